@@ -1,0 +1,39 @@
+"""fickcam: moisture uptake in polymer and composite cams, followers and
+four-bar linkages, and how the mechanisms drift out of spec as they age.
+
+``import fickcam`` is light: FiPy, matplotlib and dask are imported only by
+the modules that need them.
+"""
+from __future__ import annotations
+
+__version__ = "0.1.0"
+
+__all__ = ["load_scene", "run", "save", "open_result", "__version__"]
+
+
+def load_scene(source, *, file_name: str | None = None):
+    """Read and validate a scene from a YAML path or a dict (see SPEC.md)."""
+    from .scene import load_scene as _load
+
+    return _load(source, file_name=file_name)
+
+
+def run(scene, *, accuracy: float | None = None, progress: bool = False):
+    """Run one scene (a path, a dict or a loaded scene) and return an xarray.Dataset."""
+    from .simulate import run as _run
+
+    return _run(scene, accuracy=accuracy, progress=progress)
+
+
+def save(dataset, path):
+    """Write a result atomically (temporary file in the target folder, then rename)."""
+    from .store import save as _save
+
+    return _save(dataset, path)
+
+
+def open_result(path):
+    """Open a result file written by :func:`save` as an xarray.Dataset."""
+    from .store import open_result as _open
+
+    return _open(path)

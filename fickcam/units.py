@@ -1,0 +1,146 @@
+"""Units at the edges: parse user values into SI floats, format SI back out.
+
+Every dimensional scene value is either a bare number, read in the SI unit of
+its dimension, or a string with units parsed by pint (``"1.5 in"``,
+``"113 degC"``, ``"600 rpm"``). Two documented exceptions to "bare numbers are
+SI": relative humidity and moisture content are percentages, so a bare ``80``
+means 80 %. Inside fickcam everything is SI (K, m, s, kg, N, Pa, rad, rad/s).
+"""
+from __future__ import annotations
+
+import functools
+import math
+import re
+from typing import Annotated, Any
+
+from pydantic import AfterValidator, BeforeValidator
+
+_NUMBER_THEN_UNIT = re.compile(
+    r"^\s*(?P<number>[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)\s*(?P<unit>.*?)\s*$"
+)
+
+# dimension name -> (pint dimensionality string, SI unit we convert to)
+DIMENSIONS: dict[str, tuple[str, str]] = {
+    "length": ("[length]", "m"),
+    "mass": ("[mass]", "kg"),
+    "time": ("[time]", "s"),
+    "temperature": ("[temperature]", "K"),
+    "angle": ("", "rad"),
+    "angular_speed": ("1/[time]", "rad/s"),
+    "force": ("[force]", "N"),
+    "stiffness": ("[force]/[length]", "N/m"),
+    "pressure": ("[pressure]", "Pa"),
+    "diffusivity": ("[length]**2/[time]", "m**2/s"),
+    "molar_energy": ("[energy]/[substance]", "J/mol"),
+    "density": ("[mass]/[length]**3", "kg/m**3"),
+    "inverse_temperature": ("1/[temperature]", "1/K"),
+    "acceleration": ("[length]/[time]**2", "m/s**2"),
+    "fraction": ("", ""),
+    "percent": ("", "percent"),
+}
+
+_HUMAN = {
+    "angle": "an angle (e.g. '75 deg')",
+    "angular_speed": "a speed (e.g. '600 rpm')",
+    "fraction": "a fraction (e.g. 0.6 or '60 %')",
+    "percent": "a percentage (e.g. '80 %')",
+}
+
+
+@functools.lru_cache(maxsize=1)
+def registry():
+    """The one pint registry fickcam uses (created on first use: pint is slow to import)."""
+    import pint
+
+    ureg = pint.UnitRegistry()
+    ureg.define("percent_moisture = 0.01 = wtpct")
+    return ureg
+
+
+def _split(text: str) -> tuple[float, str]:
+    match = _NUMBER_THEN_UNIT.match(text)
+    if not match:
+        raise ValueError(f"cannot read {text!r} as a number with units")
+    return float(match.group("number")), match.group("unit")
+
+
+def to_si(value: Any, dimension: str) -> float:
+    """Convert a scene value to a float in the SI unit of ``dimension``.
+
+    Raises ``ValueError`` with a one-line reason (wrong dimension, unknown unit,
+    not a number). Strings such as ``"1e-3"`` (which YAML leaves as text) are
+    accepted as numbers.
+    """
+    pint_dim, si_unit = DIMENSIONS[dimension]
+    if isinstance(value, bool) or value is None:
+        raise ValueError(f"expected {_HUMAN.get(dimension, 'a ' + dimension.replace('_', ' '))}, got {value!r}")
+    if isinstance(value, (int, float)):
+        number = float(value)
+        unit = ""
+    elif isinstance(value, str):
+        number, unit = _split(value)
+    else:
+        raise ValueError(f"expected a number or a string with units, got {type(value).__name__}")
+    if not math.isfinite(number):
+        raise ValueError(f"{value!r} is not a finite number")
+    if not unit:
+        return number  # bare numbers are SI (percent for 'percent')
+    ureg = registry()
+    try:
+        quantity = ureg.Quantity(number, unit.replace("%", "percent"))
+    except Exception:  # pint raises several types for unknown/ill-formed units
+        raise ValueError(f"unknown unit {unit!r} in {value!r}") from None
+    wanted = ureg.Quantity(1, si_unit) if si_unit else ureg.Quantity(1, "")
+    if quantity.dimensionality != wanted.dimensionality:
+        raise ValueError(
+            f"{value!r} has the wrong dimension: expected "
+            f"{_HUMAN.get(dimension, dimension.replace('_', ' '))}"
+        )
+    return float(quantity.to(si_unit if si_unit else "").magnitude)
+
+
+def quantity(dimension: str, *, positive: bool = False, nonnegative: bool = False,
+             upper: float | None = None):
+    """A pydantic type: a value of ``dimension`` converted to SI, with bounds."""
+
+    def check(x: float) -> float:
+        if positive and not x > 0:
+            raise ValueError("must be positive")
+        if nonnegative and x < 0:
+            raise ValueError("must not be negative")
+        if upper is not None and x > upper:
+            raise ValueError(f"must not exceed {upper:g}")
+        return x
+
+    return Annotated[float, BeforeValidator(lambda v: to_si(v, dimension)), AfterValidator(check)]
+
+
+def parse_duration(text: Any) -> float:
+    """A duration such as ``"6 months"``, ``"30d"`` or ``3600`` (s) in seconds."""
+    if isinstance(text, str):
+        text = re.sub(r"^\s*([-+]?[\d.eE+-]+)\s*([A-Za-z])", r"\1 \2", text)
+    return to_si(text, "time")
+
+
+# Convenience types used by the scene models.
+Length = quantity("length", positive=True)
+NonNegativeLength = quantity("length", nonnegative=True)
+SignedLength = quantity("length")
+Mass = quantity("mass", positive=True)
+Duration = quantity("time", positive=True)
+NonNegativeTime = quantity("time", nonnegative=True)
+Temperature = quantity("temperature", positive=True)
+Angle = quantity("angle")
+PositiveAngle = quantity("angle", positive=True)
+AngularSpeed = quantity("angular_speed", positive=True)
+Force = quantity("force")
+NonNegativeForce = quantity("force", nonnegative=True)
+Stiffness = quantity("stiffness", nonnegative=True)
+Pressure = quantity("pressure", positive=True)
+Diffusivity = quantity("diffusivity", positive=True)
+MolarEnergy = quantity("molar_energy", nonnegative=True)
+Density = quantity("density", positive=True)
+ExpansionCoefficient = quantity("inverse_temperature")
+Fraction = quantity("fraction", nonnegative=True, upper=1.0)
+Percent = quantity("percent", nonnegative=True, upper=100.0)
+NonNegativePercent = quantity("percent", nonnegative=True)
