@@ -1,0 +1,56 @@
+"""Boundary and material data a diffusion solve needs: the exposure history of
+a part's surface and its (Arrhenius, anisotropic) diffusivity."""
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Callable
+
+import numpy as np
+
+GAS_CONSTANT = 8.314462618  # J/(mol K), CODATA 2018
+
+
+@dataclass(frozen=True, eq=False)
+class Exposure:
+    """Surface history of one part.
+
+    ``change_times`` (s, shape n+1) are the segment boundaries, 0 first and the
+    end of the history last; segment k spans [t_k, t_k+1). ``ramp[k]`` says the
+    segment changes linearly from the previous segment's end values (True) or is
+    held, stepping at t_k (False). ``temperature(t)`` (K) and
+    ``surface_moisture(t)`` (weight %, the saturation value Mm(T, RH) of this
+    part's material) are right-continuous functions of time arrays.
+    """
+
+    change_times: np.ndarray
+    ramp: np.ndarray
+    temperature: Callable[[np.ndarray], np.ndarray]
+    surface_moisture: Callable[[np.ndarray], np.ndarray]
+    initial_moisture: float = 0.0
+
+    @property
+    def end(self) -> float:
+        return float(self.change_times[-1])
+
+
+@dataclass(frozen=True)
+class Diffusivity:
+    """D_i(T) = D0_i exp(-Ea / (R T)) along the part axes (x, y, z).
+
+    Arrhenius law as used for epoxies by Shen & Springer (1976), J. Compos.
+    Mater. 10:2-20, eq. 9. One activation energy for all directions, so the
+    history enters only through the rescaled time tau = integral of
+    exp(-Ea/RT(t)) dt.
+    """
+
+    pre_exponential: tuple[float, float, float]
+    activation_energy: float
+
+    def arrhenius_factor(self, temperature: np.ndarray) -> np.ndarray:
+        """exp(-Ea / (R T)), dimensionless."""
+        return np.exp(-self.activation_energy / (GAS_CONSTANT * np.asarray(temperature, float)))
+
+    def __call__(self, temperature: np.ndarray) -> np.ndarray:
+        """Principal diffusivities, shape (..., 3), m^2/s."""
+        factor = self.arrhenius_factor(temperature)[..., None]
+        return factor * np.asarray(self.pre_exponential, float)

@@ -1,0 +1,64 @@
+"""Part geometries for the diffusion engine (dry dimensions, SI metres).
+
+Axes: x, y in the plane of the part, z through its thickness; for a ``Disc``
+x = y = radial. All surfaces named in each docstring are exposed to the
+environment.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+
+@dataclass(frozen=True)
+class Sheet:
+    """Infinite plate of ``thickness``, both faces exposed (Crank 1975, §4.3)."""
+
+    thickness: float
+
+
+@dataclass(frozen=True)
+class Disc:
+    """Axisymmetric disc (``inner_radius`` = 0) or annulus; faces, rim and bore exposed."""
+
+    outer_radius: float
+    thickness: float
+    inner_radius: float = 0.0
+
+
+@dataclass(frozen=True)
+class Bar:
+    """Rectangular bar, all six faces exposed (x = length, y = width, z = thickness)."""
+
+    length: float
+    width: float
+    thickness: float
+
+
+@dataclass(frozen=True, eq=False)
+class CamPlate:
+    """Prismatic cam plate: closed counter-clockwise outline (m) of the working
+    profile, last point not repeated; the two faces, the profile edge and the
+    bore are exposed. The profile edge is the contact surface."""
+
+    profile_x: np.ndarray = field(repr=False)
+    profile_y: np.ndarray = field(repr=False)
+    thickness: float = 0.0
+    bore_radius: float = 0.0
+
+
+@dataclass(frozen=True)
+class LinkBar:
+    """A link: a bar of ``length`` between boss centres, ``width`` x ``thickness``
+    section, with a hollow cylindrical boss (outer/inner radius, same thickness)
+    at each end; every surface, the two holes included, is exposed."""
+
+    length: float
+    width: float
+    thickness: float
+    boss_outer_radius: float
+    boss_inner_radius: float
+
+
+Geometry = Sheet | Disc | Bar | CamPlate | LinkBar
