@@ -1,0 +1,208 @@
+"""The ``fickcam`` command line (SPEC.md §2).
+
+Exit status: 0 success; 2 bad input (one line per problem on stderr, no
+traceback); 1 anything else (one line; ``--debug`` shows the traceback).
+"""
+from __future__ import annotations
+
+import argparse
+import logging
+import sys
+from pathlib import Path
+
+from . import __version__
+from .errors import FickcamError, InputError, SceneError
+
+log = logging.getLogger("fickcam")
+
+
+def _parser() -> argparse.ArgumentParser:
+    parser = argparse.ArgumentParser(
+        prog="fickcam",
+        description="Moisture uptake in polymer/composite cams, followers and four-bar "
+                    "linkages, and the mechanism drift it causes.")
+    parser.add_argument("--version", action="version", version=f"fickcam {__version__}")
+    parser.add_argument("--debug", action="store_true", help="show tracebacks of internal errors")
+    sub = parser.add_subparsers(dest="command", required=True, metavar="COMMAND")
+
+    run = sub.add_parser("run", help="run a scene and write its result file")
+    run.add_argument("scene")
+    run.add_argument("-o", "--output", help="result file (default: the scene's outputs.file)")
+    run.add_argument("--accuracy", type=float, help="override diffusion.accuracy")
+    run.add_argument("--quiet", action="store_true", help="no progress bar, no summary")
+
+    check = sub.add_parser("check", help="validate a scene and print the plan")
+    check.add_argument("scene")
+
+    query = sub.add_parser("query", help="values of a variable from a result file")
+    query.add_argument("result")
+    query.add_argument("variable")
+    query.add_argument("--time", help='ageing time with units, e.g. "30 d", "6 months"')
+    query.add_argument("--part")
+    query.add_argument("--link")
+    query.add_argument("--cam-angle", type=float, help="degrees")
+    query.add_argument("--crank-angle", type=float, help="degrees")
+    query.add_argument("--format", choices=("table", "csv", "json"), default="table")
+
+    export = sub.add_parser("export", help="export a result as CSV, netCDF or JSON")
+    export.add_argument("result")
+    export.add_argument("--format", choices=("csv", "netcdf", "json"), required=True)
+    export.add_argument("-o", "--output", required=True)
+    export.add_argument("--variables", nargs="+")
+
+    plot = sub.add_parser("plot", help="PNG figures of a result")
+    plot.add_argument("result")
+    plot.add_argument("-o", "--outdir", default=None, help="folder (default: next to the result)")
+    plot.add_argument("--kind", default="all",
+                      choices=("uptake", "kinematics", "dynamics", "linkage", "fields", "sweep", "all"))
+
+    bench = sub.add_parser("bench", help="the diffusion speed/accuracy trade")
+    bench.add_argument("--quick", action="store_true", help="fewer configurations")
+
+    sub.add_parser("materials", help="the built-in material library with sources")
+    sub.add_parser("schema", help="the result variables (name, dims, units)")
+
+    sweep = sub.add_parser("sweep", help="many scenes on dask.distributed")
+    sweep.add_argument("sweep")
+    group = sweep.add_mutually_exclusive_group()
+    group.add_argument("--workers", type=int, default=None, help="local worker processes")
+    group.add_argument("--scheduler", help="address of a running dask scheduler")
+    sweep.add_argument("-o", "--output", required=True)
+    sweep.add_argument("--quiet", action="store_true")
+    return parser
+
+
+def _cmd_run(args) -> int:
+    from .scene import load_scene
+    from .simulate import run, summary
+    from .store import save
+
+    scene = load_scene(args.scene)
+    if args.accuracy is not None and not (0 < args.accuracy <= 0.1):
+        raise InputError("--accuracy must lie in (0, 0.1]")
+    output = Path(args.output) if args.output else default_output(scene)
+    ds = run(scene, accuracy=args.accuracy, progress=not args.quiet)
+    save(ds, output)
+    if not args.quiet:
+        print(summary(ds))
+        print(f"wrote {output}")
+    return 0
+
+
+def default_output(scene) -> Path:
+    """The scene's ``outputs.file`` or ``outputs/<name>.h5`` (relative to the working folder)."""
+    if scene.model.outputs.file:
+        return Path(scene.model.outputs.file)
+    return Path("outputs") / f"{scene.name}.h5"
+
+
+def _cmd_check(args) -> int:
+    from .scene import load_scene
+    from .simulate import describe_plan
+
+    scene = load_scene(args.scene)
+    print(describe_plan(scene))
+    return 0
+
+
+def _cmd_query(args) -> int:
+    from .query import format_result, select
+    from .store import open_result
+
+    ds = open_result(args.result)
+    array = select(ds, args.variable, time=args.time, part=args.part, link=args.link,
+                   cam_angle=args.cam_angle, crank_angle=args.crank_angle)
+    print(format_result(array, args.variable, args.format))
+    return 0
+
+
+def _cmd_export(args) -> int:
+    from .export import export
+    from .store import open_result
+
+    ds = open_result(args.result)
+    path = export(ds, args.output, args.format, args.variables)
+    print(f"wrote {path}")
+    return 0
+
+
+def _cmd_plot(args) -> int:
+    from .plotting import plot
+    from .store import open_result
+
+    ds = open_result(args.result)
+    outdir = Path(args.outdir) if args.outdir else Path(args.result).with_suffix("")
+    for path in plot(ds, outdir, args.kind):
+        print(f"wrote {path}")
+    return 0
+
+
+def _cmd_bench(args) -> int:
+    from .bench import format_table, run_bench
+
+    print(format_table(run_bench(quick=args.quick)))
+    return 0
+
+
+def _cmd_materials(args) -> int:
+    from .materials import library_table
+
+    print(library_table())
+    return 0
+
+
+def _cmd_schema(args) -> int:
+    from .schema import markdown_table
+
+    print(markdown_table())
+    return 0
+
+
+def _cmd_sweep(args) -> int:
+    from .sweep import run_sweep
+
+    run_sweep(args.sweep, args.output, workers=args.workers, scheduler=args.scheduler,
+              progress=not args.quiet)
+    if not args.quiet:
+        print(f"wrote {args.output}")
+    return 0
+
+
+COMMANDS = {"run": _cmd_run, "check": _cmd_check, "query": _cmd_query, "export": _cmd_export,
+            "plot": _cmd_plot, "bench": _cmd_bench, "materials": _cmd_materials,
+            "schema": _cmd_schema, "sweep": _cmd_sweep}
+
+
+def main(argv: list[str] | None = None) -> int:
+    args = _parser().parse_args(argv)
+    logging.basicConfig(level=logging.WARNING if getattr(args, "quiet", False) else logging.INFO,
+                        format="fickcam: %(message)s", stream=sys.stderr)
+    logging.getLogger("fickcam").setLevel(
+        logging.WARNING if getattr(args, "quiet", False) else logging.INFO)
+    try:
+        return COMMANDS[args.command](args)
+    except SceneError as exc:
+        for problem in exc.problems:
+            print(str(problem), file=sys.stderr)
+        return 2
+    except InputError as exc:
+        print(f"fickcam: {exc}", file=sys.stderr)
+        return 2
+    except FickcamError as exc:
+        print(f"fickcam: {exc}", file=sys.stderr)
+        return 1
+    except KeyboardInterrupt:
+        print("fickcam: interrupted", file=sys.stderr)
+        return 130
+    except BrokenPipeError:
+        return 0
+    except Exception as exc:  # last resort: one line, never a traceback unless --debug
+        if args.debug:
+            raise
+        print(f"fickcam: internal error: {type(exc).__name__}: {exc} (rerun with --debug)",
+              file=sys.stderr)
+        return 1
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,101 @@
+"""Export a result for use elsewhere: tidy CSV, netCDF or JSON."""
+from __future__ import annotations
+
+import json
+import os
+import tempfile
+from pathlib import Path
+
+import numpy as np
+
+from .errors import InputError
+from .query import _csv_cell, to_records
+
+
+def _atomic_text(path: Path, text: str) -> None:
+    path.parent.mkdir(parents=True, exist_ok=True)
+    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
+    try:
+        with os.fdopen(fd, "w", encoding="utf-8", newline="") as handle:
+            handle.write(text)
+        os.replace(tmp, path)
+    except BaseException:
+        Path(tmp).unlink(missing_ok=True)
+        raise
+
+
+def _chosen(ds, variables):
+    names = list(variables) if variables else [v for v in ds.data_vars]
+    missing = [v for v in names if v not in ds.data_vars]
+    if missing:
+        raise InputError(f"not in this result: {', '.join(missing)}")
+    return names
+
+
+def export_csv(ds, path, variables=None) -> Path:
+    """Tidy CSV: columns variable, units, one per dimension (time in days as
+    ``time_d``; blank where a variable lacks that dimension) and value."""
+    names = _chosen(ds, variables)
+    dims: list[str] = []
+    for name in names:
+        for d in ds[name].dims:
+            if d not in dims:
+                dims.append(d)
+    header_dims = [("time_d" if d == "time" else d) for d in dims]
+    lines = [",".join(["variable", "units"] + header_dims + ["value"])]
+    for name in names:
+        columns, rows = to_records(ds[name])
+        position = {c: i for i, c in enumerate(columns)}
+        units = ds[name].attrs.get("units", "")
+        for row in rows:
+            cells = [name, units]
+            cells += [_csv_cell(row[position[c]]) if c in position else "" for c in header_dims]
+            cells.append(_csv_cell(row[-1]))
+            lines.append(",".join(cells))
+    path = Path(path)
+    _atomic_text(path, "\n".join(lines) + "\n")
+    return path
+
+
+def export_json(ds, path, variables=None) -> Path:
+    """JSON: coordinates and, per variable, dims, units, long_name and nested data."""
+    names = _chosen(ds, variables)
+    coords = {}
+    for name in ds.coords:
+        values = ds[name].values
+        if values.dtype.kind == "m":
+            values = values / np.timedelta64(1, "D")
+            coords["time_d"] = values.tolist()
+        else:
+            coords[name] = values.tolist()
+    document = {
+        "attributes": {k: (v if isinstance(v, (str, int, float, list, dict)) else str(v))
+                       for k, v in ds.attrs.items()},
+        "coordinates": coords,
+        "variables": {
+            name: {"dims": list(ds[name].dims), "units": ds[name].attrs.get("units", ""),
+                   "long_name": ds[name].attrs.get("long_name", ""),
+                   "data": np.where(np.isnan(ds[name].values), None, ds[name].values).tolist()
+                   if ds[name].dtype.kind == "f" else ds[name].values.tolist()}
+            for name in names
+        },
+    }
+    path = Path(path)
+    _atomic_text(path, json.dumps(document))
+    return path
+
+
+def export_netcdf(ds, path, variables=None) -> Path:
+    from .store import save
+
+    names = _chosen(ds, variables)
+    return save(ds[names], path)
+
+
+EXPORTERS = {"csv": export_csv, "json": export_json, "netcdf": export_netcdf}
+
+
+def export(ds, path, fmt: str, variables=None) -> Path:
+    if fmt not in EXPORTERS:
+        raise InputError(f"unknown export format {fmt!r} (csv, netcdf or json)")
+    return EXPORTERS[fmt](ds, path, variables)

@@ -1,0 +1,345 @@
+"""Scene files: YAML → validated, SI scene (see SPEC.md §1).
+
+YAML is read with ``yaml.SafeLoader`` only (a ``!!python`` tag is refused,
+never executed), duplicate keys are refused, and every key path is mapped to
+its line so that each problem is reported as ``scene.yaml:LINE key.path:
+reason``. Values are validated by pydantic models whose dimensional fields
+parse units with pint (:mod:`fickcam.units`).
+"""
+from __future__ import annotations
+
+import math
+import os
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any, Literal, Union
+
+import yaml
+from pydantic import BaseModel, ConfigDict, Field, ValidationError, field_validator, model_validator
+
+from .cam.spec import CamSection
+from .errors import Problem, SceneError
+from .linkage.spec import LinkageSection
+from .materials import MaterialSpec
+from .units import (
+    Duration,
+    Length,
+    NonNegativePercent,
+    NonNegativeTime,
+    Percent,
+    Temperature,
+    parse_duration,
+    quantity,
+)
+
+# --------------------------------------------------------------------------
+# YAML with line numbers
+
+
+class _LineLoader(yaml.SafeLoader):
+    """SafeLoader that refuses duplicate keys (PyYAML silently keeps the last)."""
+
+    def construct_mapping(self, node, deep=False):
+        seen: dict[Any, Any] = {}
+        for key_node, _ in node.value:
+            key = self.construct_object(key_node, deep=deep)
+            if key in seen:
+                raise yaml.constructor.ConstructorError(
+                    None, None, f"duplicate key {key!r}", key_node.start_mark
+                )
+            seen[key] = key_node
+        return super().construct_mapping(node, deep=deep)
+
+
+def _line_map(node, path: tuple = (), lines: dict | None = None) -> dict[tuple, int]:
+    """Map every key path (tuple of keys / indices) to its 1-based line."""
+    lines = {} if lines is None else lines
+    if isinstance(node, yaml.MappingNode):
+        for key_node, value_node in node.value:
+            key = key_node.value
+            lines[path + (key,)] = key_node.start_mark.line + 1
+            _line_map(value_node, path + (key,), lines)
+    elif isinstance(node, yaml.SequenceNode):
+        for index, item in enumerate(node.value):
+            lines[path + (index,)] = item.start_mark.line + 1
+            _line_map(item, path + (index,), lines)
+    return lines
+
+
+@dataclass
+class YamlDocument:
+    """A parsed YAML mapping with the line of every key path."""
+
+    data: dict
+    lines: dict[tuple, int]
+    file: str
+    text: str
+
+    def line_of(self, path: tuple) -> int | None:
+        """Line of ``path`` or of its nearest ancestor that has one."""
+        path = tuple(path)
+        while path:
+            if path in self.lines:
+                return self.lines[path]
+            path = path[:-1]
+        return 1 if self.text.strip() else None
+
+    def problem(self, path: tuple, reason: str) -> Problem:
+        key = ".".join(str(p) for p in path)
+        return Problem(self.file, self.line_of(path), key, reason)
+
+
+def read_yaml(source: str | os.PathLike, *, what: str = "scene") -> YamlDocument:
+    """Read a YAML mapping safely, with line numbers; raise SceneError on faults."""
+    path = Path(source)
+    file = str(source)
+    try:
+        text = path.read_text(encoding="utf-8")
+    except FileNotFoundError:
+        raise SceneError([Problem(file, None, "", f"no such {what} file")]) from None
+    except IsADirectoryError:
+        raise SceneError([Problem(file, None, "", f"is a directory, not a {what} file")]) from None
+    except (OSError, UnicodeDecodeError) as exc:
+        raise SceneError([Problem(file, None, "", f"cannot read: {exc}")]) from None
+    return parse_yaml(text, file=file, what=what)
+
+
+def parse_yaml(text: str, *, file: str = "<scene>", what: str = "scene") -> YamlDocument:
+    loader = _LineLoader(text)
+    try:
+        node = loader.get_single_node()
+        if node is None:
+            raise SceneError([Problem(file, None, "", f"empty {what} file")])
+        data = loader.construct_document(node)
+    except yaml.MarkedYAMLError as exc:
+        mark = exc.problem_mark or exc.context_mark
+        line = mark.line + 1 if mark is not None else None
+        reason = exc.problem or str(exc)
+        if "could not determine a constructor" in reason or "tag" in reason:
+            reason = f"tag refused (only plain YAML is read): {reason}"
+        reason = " ".join(f"{exc.context or ''} {reason}".split())
+        raise SceneError([Problem(file, line, "", f"YAML syntax: {reason}")]) from None
+    except yaml.YAMLError as exc:
+        raise SceneError([Problem(file, None, "", f"YAML syntax: {exc}")]) from None
+    finally:
+        loader.dispose()
+    if not isinstance(data, dict):
+        raise SceneError([Problem(file, 1, "", f"a {what} must be a mapping of keys to values, "
+                                                f"got {type(data).__name__}")])
+    return YamlDocument(data=data, lines=_line_map(node), file=file, text=text)
+
+
+def problems_from_validation(error: ValidationError, doc: YamlDocument,
+                             prefix: tuple = ()) -> list[Problem]:
+    """One Problem per pydantic error, located at its key path's line."""
+    problems = []
+    for item in error.errors(include_url=False):
+        loc = tuple(p for p in item["loc"] if not (isinstance(p, str) and p.startswith("function-")))
+        # drop pydantic's union branch tags (class names) from the location
+        loc = tuple(p for p in loc if not (isinstance(p, str) and p[:1].isupper()))
+        reason = item["msg"]
+        if reason.startswith("Value error, "):
+            reason = reason[len("Value error, "):]
+        if item["type"] == "extra_forbidden":
+            reason = "unknown key"
+        elif item["type"] == "missing":
+            reason = "required key is missing"
+        problems.append(doc.problem(prefix + loc, reason))
+    return problems
+
+
+# --------------------------------------------------------------------------
+# Scene models (SI floats after validation)
+
+
+class _Strict(BaseModel):
+    model_config = ConfigDict(extra="forbid", frozen=True)
+
+
+class HistorySegment(_Strict):
+    """One segment of the climate history (held, or a linear ramp)."""
+
+    duration: Duration
+    temperature: Temperature
+    relative_humidity: Percent
+    ramp: bool = False
+
+
+class EnvironmentSection(_Strict):
+    reference_temperature: Temperature = 296.15
+    initial_moisture: NonNegativePercent = 0.0
+    history: list[HistorySegment] | None = None
+    history_file: str | None = None
+
+    @model_validator(mode="after")
+    def _one_history(self):
+        if (self.history is None) == (self.history_file is None):
+            raise ValueError("give exactly one of history (segments) or history_file (CSV)")
+        if self.history is not None:
+            if not self.history:
+                raise ValueError("history needs at least one segment")
+            if self.history[0].ramp:
+                raise ValueError("the first history segment cannot ramp: there is no previous segment")
+        return self
+
+
+class DiffusionSection(_Strict):
+    model: Literal["auto", "analytic", "slab", "axisymmetric", "plane", "solid"] = "auto"
+    accuracy: float = Field(1e-3, gt=0, le=0.1)
+    surface_layer_depth: Length = 5e-4
+
+
+class EveryStep(_Strict):
+    every: Duration
+
+
+class OutputsSection(_Strict):
+    ageing_times: Union[list[NonNegativeTime], EveryStep, None] = None
+    angle_step: quantity("angle", positive=True) = math.radians(1.0)
+    fields: bool = False
+    file: str | None = None
+
+    @field_validator("ageing_times")
+    @classmethod
+    def _increasing(cls, value):
+        if isinstance(value, list):
+            if not value:
+                raise ValueError("give at least one ageing time")
+            if any(b <= a for a, b in zip(value, value[1:])):
+                raise ValueError("ageing times must increase strictly")
+        return value
+
+    @field_validator("angle_step")
+    @classmethod
+    def _divides_turn(cls, value):
+        if value > math.radians(30):
+            raise ValueError("angle_step must not exceed 30 deg")
+        return value
+
+
+class SceneModel(_Strict):
+    name: str = Field(min_length=1)
+    description: str = ""
+    environment: EnvironmentSection
+    materials: dict[str, MaterialSpec] = Field(min_length=1)
+    cam: CamSection | None = None
+    linkage: LinkageSection | None = None
+    diffusion: DiffusionSection = DiffusionSection()
+    outputs: OutputsSection = OutputsSection()
+
+    @field_validator("name")
+    @classmethod
+    def _printable(cls, value):
+        if not value.strip():
+            raise ValueError("must not be blank")
+        return value
+
+
+@dataclass
+class Scene:
+    """A validated scene: the pydantic model plus where it came from."""
+
+    model: SceneModel
+    file: str
+    text: str
+    base_dir: Path
+    document: YamlDocument | None = field(default=None, repr=False)
+    materials: dict = field(default_factory=dict, repr=False)  # name -> resolved Material
+
+    @property
+    def name(self) -> str:
+        return self.model.name
+
+
+# --------------------------------------------------------------------------
+# Cross-section checks (need more than one section)
+
+
+def _used_materials(model: SceneModel) -> list[tuple[tuple, str]]:
+    """(key path, material name) for every material reference in the scene."""
+    refs = []
+    if model.cam is not None:
+        refs.append((("cam", "material"), model.cam.material))
+        follower_material = getattr(model.cam.follower, "material", None)
+        if follower_material:
+            refs.append((("cam", "follower", "material"), follower_material))
+    if model.linkage is not None:
+        refs.append((("linkage", "material"), model.linkage.material))
+        if model.linkage.frame_material:
+            refs.append((("linkage", "frame_material"), model.linkage.frame_material))
+    return refs
+
+
+def _cross_checks(model: SceneModel, doc: YamlDocument, base_dir: Path) -> tuple[list[Problem], dict]:
+    from .environment import Environment
+    from .materials import resolve
+
+    problems: list[Problem] = []
+    if model.cam is None and model.linkage is None:
+        problems.append(doc.problem((), "a scene needs a cam or a linkage section (nothing to age)"))
+    resolved = {}
+    for path, name in _used_materials(model):
+        if name not in model.materials:
+            known = ", ".join(sorted(model.materials))
+            problems.append(doc.problem(path, f"material {name!r} is not defined under materials (defined: {known})"))
+            continue
+        if name not in resolved:
+            try:
+                resolved[name] = resolve(name, model.materials[name])
+            except ValueError as exc:
+                problems.append(doc.problem(("materials", name), str(exc)))
+    try:
+        environment = Environment.from_section(model.environment, base_dir=base_dir)
+    except ValueError as exc:
+        problems.append(doc.problem(("environment", "history_file"), str(exc)))
+        return problems, resolved
+    # the service temperature must stay below the dry Tg of every absorbing material in use
+    hottest_index, hottest = environment.hottest()
+    for name, material in resolved.items():
+        tg = getattr(material, "dry_glass_transition_temperature", None)
+        if tg is not None and hottest >= tg:
+            path = (("environment", "history", hottest_index, "temperature")
+                    if model.environment.history is not None else ("environment", "history_file"))
+            problems.append(doc.problem(
+                path, f"{hottest - 273.15:.1f} degC is at or above the dry Tg of material "
+                      f"{name!r} ({tg - 273.15:.1f} degC)"))
+    times = model.outputs.ageing_times
+    if isinstance(times, list) and times[-1] > environment.end * (1 + 1e-12):
+        problems.append(doc.problem(
+            ("outputs", "ageing_times", len(times) - 1),
+            f"ageing time beyond the end of the environment history ({environment.end / 86400:g} d)"))
+    if isinstance(times, EveryStep) and times.every > environment.end:
+        problems.append(doc.problem(("outputs", "ageing_times", "every"),
+                                    "step longer than the environment history"))
+    return problems, resolved
+
+
+# --------------------------------------------------------------------------
+
+
+def validate_document(doc: YamlDocument, *, base_dir: Path) -> Scene:
+    """Validate a parsed YAML document into a Scene or raise SceneError."""
+    # YAML 1.1 reads '1e-3' (no dot) as text: unit fields parse such strings
+    # with fickcam.units and plain float fields accept them in pydantic's lax mode.
+    try:
+        model = SceneModel.model_validate(doc.data)
+    except ValidationError as exc:
+        raise SceneError(problems_from_validation(exc, doc)) from None
+    problems, resolved = _cross_checks(model, doc, base_dir)
+    if problems:
+        raise SceneError(problems)
+    return Scene(model=model, file=doc.file, text=doc.text, base_dir=base_dir,
+                 document=doc, materials=resolved)
+
+
+def load_scene(source, *, file_name: str | None = None) -> Scene:
+    """Load a scene from a YAML path, a YAML text-free dict, or return a Scene as is."""
+    if isinstance(source, Scene):
+        return source
+    if isinstance(source, dict):
+        text = yaml.safe_dump(source, sort_keys=False)
+        doc = parse_yaml(text, file=file_name or "<dict>")
+        return validate_document(doc, base_dir=Path.cwd())
+    path = Path(source)
+    doc = read_yaml(path)
+    return validate_document(doc, base_dir=path.resolve().parent)

@@ -1,0 +1,108 @@
+"""The one table of result variables: name → dims, units, long name.
+
+It builds the Dataset (:mod:`fickcam.dataset`), checks queries
+(:mod:`fickcam.query`) and writes the variable list in the docs
+(``fickcam schema`` / :func:`markdown_table`). Physics modules return SI
+arrays under these names (angles in rad, speeds in rad/s); ``scale``
+converts SI to the stored unit (rad → deg, rad/s → rpm), per SPEC.md §4.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+DEG = 180.0 / math.pi
+RPM = 60.0 / (2.0 * math.pi)
+
+
+@dataclass(frozen=True)
+class Var:
+    dims: tuple[str, ...]
+    units: str
+    long_name: str
+    section: str  # environment | parts | cam | linkage | fields
+    scale: float = 1.0  # stored value = SI value * scale
+
+
+T, TP, TC, TK, TL = ("time",), ("time", "part"), ("time", "cam_angle"), ("time", "crank_angle"), ("time", "link")
+
+VARIABLES: dict[str, Var] = {
+    # environment
+    "temperature": Var(T, "K", "service temperature", "environment"),
+    "relative_humidity": Var(T, "%", "relative humidity", "environment"),
+    # per part: moisture and material state
+    "moisture_content": Var(TP, "%", "volume-mean moisture content (weight % of dry mass)", "parts"),
+    "surface_moisture_content": Var(TP, "%", "moisture content of the contact-surface layer", "parts"),
+    "equilibrium_moisture_content": Var(TP, "%", "saturation moisture at the surface, Mm(T, RH)", "parts"),
+    "mass": Var(TP, "kg", "part mass, m_dry (1 + M/100)", "parts"),
+    "density": Var(TP, "kg m-3", "mean density of the swollen part", "parts"),
+    "hygrothermal_strain": Var(TP, "1", "free hygrothermal strain, in-plane or axial", "parts"),
+    "strain_longitudinal": Var(TP, "1", "free hygrothermal strain along x (fibre direction)", "parts"),
+    "strain_transverse": Var(TP, "1", "free hygrothermal strain along y (in-plane transverse)", "parts"),
+    "strain_through_thickness": Var(TP, "1", "free hygrothermal strain through the thickness", "parts"),
+    "glass_transition_temperature": Var(TP, "K", "wet glass transition temperature", "parts"),
+    "property_retention": Var(TP, "1", "Chamis matrix property retention P/P0", "parts"),
+    "longitudinal_modulus": Var(TP, "Pa", "longitudinal Young's modulus E11", "parts"),
+    "transverse_modulus": Var(TP, "Pa", "transverse Young's modulus E22", "parts"),
+    "shear_modulus": Var(TP, "Pa", "in-plane shear modulus G12", "parts"),
+    "poisson_ratio": Var(TP, "1", "major Poisson ratio nu12", "parts"),
+    "surface_modulus": Var(TP, "Pa", "in-plane modulus of the wet contact-surface layer", "parts"),
+    # cam and follower: scalars over ageing
+    "base_circle_radius": Var(T, "m", "base circle radius of the cam", "cam"),
+    "lift": Var(T, "m", "total follower lift", "cam"),
+    "jump_speed": Var(T, "rpm", "cam speed at which the follower first leaves the cam", "cam", RPM),
+    "peak_contact_force": Var(T, "N", "largest contact force over a revolution", "cam"),
+    "peak_cam_torque": Var(T, "N m", "largest absolute cam torque over a revolution", "cam"),
+    "peak_contact_stress": Var(T, "Pa", "largest Hertz contact stress over a revolution", "cam"),
+    "wear_depth": Var(T, "m", "accumulated wear depth of the cam surface (Archard)", "cam"),
+    # cam and follower: over the cam angle
+    "follower_displacement": Var(TC, "m", "follower displacement", "cam"),
+    "follower_velocity": Var(TC, "m s-1", "follower velocity", "cam"),
+    "follower_acceleration": Var(TC, "m s-2", "follower acceleration", "cam"),
+    "follower_jerk": Var(TC, "m s-3", "follower jerk", "cam"),
+    "pressure_angle": Var(TC, "degree", "pressure angle", "cam", DEG),
+    "radius_of_curvature": Var(TC, "m", "radius of curvature of the cam pitch curve", "cam"),
+    "contact_force": Var(TC, "N", "contact force along the common normal", "cam"),
+    "friction_force": Var(TC, "N", "friction force at the contact and guide", "cam"),
+    "cam_torque": Var(TC, "N m", "torque on the camshaft", "cam"),
+    "contact_stress": Var(TC, "Pa", "Hertz contact stress", "cam"),
+    "profile_x": Var(TC, "m", "working profile x (cam frame)", "cam"),
+    "profile_y": Var(TC, "m", "working profile y (cam frame)", "cam"),
+    # four-bar linkage
+    "link_length": Var(TL, "m", "link length (pivot to pivot)", "linkage"),
+    "link_mass": Var(TL, "kg", "link mass", "linkage"),
+    "link_inertia": Var(TL, "kg m2", "link moment of inertia about its centre of mass", "linkage"),
+    "grashof_class": Var(T, "", "Grashof class of the linkage", "linkage"),
+    "coupler_angle": Var(TK, "degree", "coupler angle theta3", "linkage", DEG),
+    "rocker_angle": Var(TK, "degree", "rocker (output) angle theta4", "linkage", DEG),
+    "transmission_angle": Var(TK, "degree", "transmission angle", "linkage", DEG),
+    "coupler_point_x": Var(TK, "m", "coupler point x", "linkage"),
+    "coupler_point_y": Var(TK, "m", "coupler point y", "linkage"),
+    "coupler_angular_velocity": Var(TK, "rad s-1", "coupler angular velocity", "linkage"),
+    "rocker_angular_velocity": Var(TK, "rad s-1", "rocker angular velocity", "linkage"),
+    "coupler_angular_acceleration": Var(TK, "rad s-2", "coupler angular acceleration", "linkage"),
+    "rocker_angular_acceleration": Var(TK, "rad s-2", "rocker angular acceleration", "linkage"),
+    "input_torque": Var(TK, "N m", "crank input torque", "linkage"),
+    # moisture fields (outputs.fields: true)
+    "moisture": Var(("time", "part", "cell"), "%", "moisture content field", "fields"),
+    "cell_x": Var(("part", "cell"), "m", "cell centre x", "fields"),
+    "cell_y": Var(("part", "cell"), "m", "cell centre y", "fields"),
+    "cell_z": Var(("part", "cell"), "m", "cell centre z", "fields"),
+}
+
+COORDINATES: dict[str, tuple[str, str]] = {
+    "time": ("", "ageing time"),
+    "part": ("", "part name"),
+    "link": ("", "link name"),
+    "cam_angle": ("degree", "cam angle"),
+    "crank_angle": ("degree", "crank angle"),
+    "cell": ("", "cell index"),
+}
+
+
+def markdown_table() -> str:
+    """The variable table as Markdown (for the README and `fickcam schema`)."""
+    rows = ["| variable | dims | units | meaning |", "|---|---|---|---|"]
+    for name, var in VARIABLES.items():
+        rows.append(f"| `{name}` | {', '.join(var.dims)} | {var.units or '-'} | {var.long_name} |")
+    return "\n".join(rows)

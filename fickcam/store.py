@@ -1,0 +1,85 @@
+"""Result files: netCDF4/HDF5 through xarray's h5netcdf engine, written atomically.
+
+:func:`save` writes to a temporary file in the target folder, flushes it to
+disk and renames it over the target (``os.replace`` is atomic on POSIX), so a
+crash or ``kill -9`` at any moment leaves either the old file or the new one,
+never a damaged file.
+"""
+from __future__ import annotations
+
+import json
+import os
+import tempfile
+from pathlib import Path
+
+from .errors import InputError
+
+
+def _netcdf_attrs(attrs: dict) -> dict:
+    """netCDF attributes must be str, numbers or 1-D arrays: dicts/lists go to JSON."""
+    out = {}
+    for key, value in attrs.items():
+        if isinstance(value, (dict, list, tuple)) or value is None:
+            out[key] = json.dumps(value)
+        elif isinstance(value, bool):
+            out[key] = int(value)
+        else:
+            out[key] = value
+    return out
+
+
+def save(dataset, path) -> Path:
+    """Write ``dataset`` to ``path`` atomically and return the path."""
+    path = Path(path)
+    folder = path.parent if str(path.parent) else Path(".")
+    folder.mkdir(parents=True, exist_ok=True)
+    ds = dataset.copy()
+    ds.attrs = _netcdf_attrs(ds.attrs)
+    for name in ds.variables:
+        ds[name].attrs = _netcdf_attrs(ds[name].attrs)
+        if ds[name].dtype.kind == "m":
+            ds[name].encoding.update({"units": "seconds", "dtype": "float64"})
+    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=folder)
+    os.close(fd)
+    try:
+        ds.to_netcdf(tmp, engine="h5netcdf")
+        with open(tmp, "rb+") as handle:
+            os.fsync(handle.fileno())
+        os.replace(tmp, path)
+    except BaseException:
+        Path(tmp).unlink(missing_ok=True)
+        raise
+    try:  # make the rename durable too
+        dir_fd = os.open(folder, os.O_RDONLY)
+        try:
+            os.fsync(dir_fd)
+        finally:
+            os.close(dir_fd)
+    except OSError:
+        pass
+    return path
+
+
+JSON_ATTRIBUTES = ("diffusion", "notices", "parts", "scene_summary")
+
+
+def open_result(path):
+    """Open a result written by :func:`save` (time decoded as timedelta64)."""
+    import xarray as xr
+
+    path = Path(path)
+    if not path.is_file():
+        raise InputError(f"{path}: no such result file")
+    try:
+        ds = xr.open_dataset(path, engine="h5netcdf", decode_timedelta=True)
+        ds.load()
+        ds.close()
+    except Exception as exc:  # h5py/xarray raise many types for a non-netCDF file
+        raise InputError(f"{path}: not a fickcam result file ({type(exc).__name__}: {exc})") from None
+    for key in JSON_ATTRIBUTES:
+        if isinstance(ds.attrs.get(key), str):
+            try:
+                ds.attrs[key] = json.loads(ds.attrs[key])
+            except json.JSONDecodeError:
+                pass
+    return ds
