@@ -1,0 +1,60 @@
+"""A failed or killed run never damages an earlier result file."""
+import os
+import random
+import signal
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+import pytest
+import xarray as xr
+
+from fickcam.dataset import build_dataset
+from fickcam.store import open_result, save
+
+CONFIGS = Path(__file__).resolve().parents[1] / "configs"
+
+
+def _dataset(value):
+    return build_dataset({"temperature": np.full(3, value)}, {"time": [0.0, 1.0, 2.0]}, {})
+
+
+def test_failure_while_writing_keeps_the_old_file_and_leaves_no_temporary(tmp_path, monkeypatch):
+    path = tmp_path / "r.h5"
+    save(_dataset(300.0), path)
+
+    def broken(self, *args, **kwargs):
+        Path(args[0]).write_bytes(b"half a file")
+        raise OSError("disk full")
+
+    monkeypatch.setattr(xr.Dataset, "to_netcdf", broken)
+    with pytest.raises(OSError):
+        save(_dataset(400.0), path)
+    monkeypatch.undo()
+    assert float(open_result(path).temperature[0]) == 300.0
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["r.h5"]
+
+
+def test_kill_9_at_random_moments_never_leaves_an_unreadable_result(tmp_path):
+    scene = CONFIGS / "singh2016_fourbar.yaml"
+    target = tmp_path / "existing.h5"
+    command = [sys.executable, "-m", "fickcam.cli", "run", str(scene), "-o", str(target), "--quiet"]
+    started = time.perf_counter()
+    subprocess.run(command, check=True, capture_output=True, cwd=tmp_path)
+    duration = time.perf_counter() - started
+    reference = open_result(target)
+    rng = random.Random(20261121)
+    outcomes = []
+    for _ in range(8):
+        process = subprocess.Popen(command, cwd=tmp_path, stdout=subprocess.DEVNULL,
+                                   stderr=subprocess.DEVNULL)
+        time.sleep(rng.uniform(0.3, 1.1) * duration)
+        os.kill(process.pid, signal.SIGKILL)
+        process.wait()
+        result = open_result(target)  # raises if damaged
+        assert result.sizes == reference.sizes
+        xr.testing.assert_allclose(result.drop_attrs(), reference.drop_attrs())
+        outcomes.append(process.returncode)
+    assert any(code == -signal.SIGKILL for code in outcomes), "no run was actually killed"
