@@ -1,0 +1,152 @@
+"""Ply properties from constituent properties: Chamis' simplified micromechanics.
+
+Chamis, C. C. (1983) "Simplified composite micromechanics equations for hygral,
+thermal and mechanical properties", NASA TM-83320 (tables of geometric,
+mechanical, thermal and hygral equations), as reproduced in
+seeds/000_c9d2754e3bf549ac.txt Tables 2-5. The seed typesets the transverse
+and shear moduli as Em / ((1 - Em/Ef22)(1 - sqrt(kf))); the published form
+Em / (1 - sqrt(kf) (1 - Em/Ef22)) is used here (it reproduces the seed's own
+8.29 GPa, Table 9). Notation: kf, km, kv fibre, matrix, void volume ratios.
+All functions are vectorised over numpy arrays.
+"""
+from __future__ import annotations
+
+import numpy as np
+
+
+def fiber_volume_ratio(fiber_weight_fraction, fiber_density, matrix_density, void_ratio=0.0):
+    """kf = (1 - kv) / (1 + (rho_f/rho_m)(1/lambda_f - 1)) (Chamis 1983; seed 000 Table 2)."""
+    lam = np.asarray(fiber_weight_fraction, float)
+    return (1.0 - void_ratio) / (1.0 + (fiber_density / matrix_density) * (1.0 / lam - 1.0))
+
+
+def matrix_volume_ratio(fiber_ratio, void_ratio=0.0):
+    """km = 1 - kf - kv (partial volumes, seed 000 Table 2)."""
+    return 1.0 - np.asarray(fiber_ratio, float) - void_ratio
+
+
+def ply_density(kf, km, fiber_density, matrix_density):
+    """rho_l = kf rho_f + km rho_m (seed 000 Table 2; voids weightless)."""
+    return kf * fiber_density + km * matrix_density
+
+
+def rule_of_mixtures(kf, km, fiber_value, matrix_value):
+    """P_l11 = kf P_f11 + km P_m: E11, nu12, K11 (Chamis 1983; seed 000 Tables 3-4)."""
+    return kf * fiber_value + km * matrix_value
+
+
+def transverse_inverse_mixture(kf, matrix_value, fiber_value):
+    """P_l22 = P_m / (1 - sqrt(kf)(1 - P_m/P_f22)): E22, G12, G23 (Chamis 1983, published form)."""
+    root = np.sqrt(kf)
+    return matrix_value / (1.0 - root * (1.0 - matrix_value / fiber_value))
+
+
+def matrix_shear_modulus(youngs_modulus, poisson_ratio):
+    """Gm = Em / (2 (1 + nu_m)) (isotropic matrix, seed 000 section IV)."""
+    return youngs_modulus / (2.0 * (1.0 + poisson_ratio))
+
+
+def transverse_poisson_ratio(transverse_modulus, transverse_shear_modulus):
+    """nu23 = E22 / (2 G23) - 1 (Chamis 1983; seed 000 Table 3 typesets Em for E22)."""
+    return transverse_modulus / (2.0 * transverse_shear_modulus) - 1.0
+
+
+def longitudinal_expansion(kf, km, fiber_alpha11, fiber_e11, matrix_alpha, matrix_e, ply_e11):
+    """alpha_l11 = (kf alpha_f11 Ef11 + km alpha_m Em) / E_l11 (Chamis 1983; seed 000 Table 4)."""
+    return (kf * fiber_alpha11 * fiber_e11 + km * matrix_alpha * matrix_e) / ply_e11
+
+
+def transverse_expansion(kf, fiber_alpha22, matrix_alpha, matrix_nu, fiber_e11, ply_e11):
+    """alpha_l22 = alpha_f22 sqrt(kf) + (1 - sqrt(kf))(1 + kf nu_m Ef11/E_l11) alpha_m
+    (Chamis 1983; seed 000 Table 4)."""
+    root = np.sqrt(kf)
+    return fiber_alpha22 * root + (1.0 - root) * (1.0 + kf * matrix_nu * fiber_e11 / ply_e11) * matrix_alpha
+
+
+def transverse_conductivity(kf, fiber_k22, matrix_k):
+    """K_l22 = (1 - sqrt(kf)) K_m + K_m sqrt(kf) / (1 - sqrt(kf)(1 - K_m/K_f22))
+    (Chamis 1983; the seed's Table 4 typesets the last factor as (1 - k_m/k_f))."""
+    root = np.sqrt(kf)
+    return (1.0 - root) * matrix_k + matrix_k * root / (1.0 - root * (1.0 - matrix_k / fiber_k22))
+
+
+def longitudinal_moisture_expansion(km, matrix_beta, matrix_e, ply_e11):
+    """beta_l11 = beta_m km Em / E_l11 (Chamis 1983, fibres do not swell; seed 000 Table 5)."""
+    return matrix_beta * km * matrix_e / ply_e11
+
+
+def transverse_moisture_expansion(kf, matrix_beta, matrix_e, ply_e22):
+    """beta_l22 = beta_m (1 - sqrt(kf)) [1 + Em (1 - sqrt(kf)) sqrt(kf) /
+    (sqrt(kf) E_l22 + (1 - sqrt(kf)) Em)] (Chamis 1983; seed 000 Table 5)."""
+    root = np.sqrt(kf)
+    return matrix_beta * (1.0 - root) * (
+        1.0 + matrix_e * (1.0 - root) * root / (root * ply_e22 + (1.0 - root) * matrix_e))
+
+
+def longitudinal_diffusivity(kf, matrix_d):
+    """D_l11 = (1 - kf) D_m (Chamis 1983; seed 000 Table 5)."""
+    return (1.0 - kf) * matrix_d
+
+
+def transverse_diffusivity(kf, matrix_d, model: str = "chamis"):
+    """D_l22 = (1 - sqrt(kf)) D_m (Chamis 1983; seed 000 Table 5), or
+    ``model="shen_springer"``: (1 - 2 sqrt(kf/pi)) D_m (Shen & Springer 1976,
+    J. Compos. Mater. 10:2-20, eq. 19, impermeable square-packed fibres)."""
+    if model == "shen_springer":
+        return (1.0 - 2.0 * np.sqrt(kf / np.pi)) * matrix_d
+    return (1.0 - np.sqrt(kf)) * matrix_d
+
+
+def ply_moisture(matrix_moisture, matrix_beta_per_fraction, km, kv, matrix_density, ply_density_):
+    """M_l = M_m (3 beta_m km + kv) rho_m / rho_l (Chamis 1983; seed 000 section IV and
+    Table 10 step 2). beta_m here in strain per unit weight fraction (= 100 x per %);
+    3 beta_m ~ 1 for epoxies, when M_l is the matrix weight share of M_m."""
+    return matrix_moisture * (3.0 * matrix_beta_per_fraction * km + kv) * matrix_density / ply_density_
+
+
+def matrix_moisture(ply_moisture_, matrix_beta_per_fraction, km, kv, matrix_density, ply_density_):
+    """Inverse of :func:`ply_moisture`: M_m from the ply (diffusion) moisture M_l."""
+    return ply_moisture_ * ply_density_ / ((3.0 * matrix_beta_per_fraction * km + kv) * matrix_density)
+
+
+def matrix_saturation_pickup(saturation_at_100, relative_humidity_ratio):
+    """M_m = M_inf RH_R (Chamis 1983; seed 000 Table 10 step 1)."""
+    return saturation_at_100 * np.asarray(relative_humidity_ratio, float)
+
+
+# --- laminate averaging for quasi-isotropic in-plane layups ----------------------------
+
+
+def reduced_stiffness(e11, e22, g12, nu12):
+    """Plane-stress reduced stiffnesses Q11, Q22, Q12, Q66 (Jones 1999, Mechanics of
+    Composite Materials, eq. 2.61)."""
+    nu21 = nu12 * e22 / e11
+    denom = 1.0 - nu12 * nu21
+    return e11 / denom, e22 / denom, nu12 * e22 / denom, g12
+
+
+def quasi_isotropic_invariants(q11, q22, q12, q66):
+    """U1, U4, U5 (Tsai & Hahn 1980, Introduction to Composite Materials, ch. 7;
+    Jones 1999 eq. 4.93): a quasi-isotropic laminate has A/h = [[U1, U4], [U4, U1]],
+    A66/h = U5."""
+    u1 = (3.0 * q11 + 3.0 * q22 + 2.0 * q12 + 4.0 * q66) / 8.0
+    u4 = (q11 + q22 + 6.0 * q12 - 4.0 * q66) / 8.0
+    u5 = (q11 + q22 - 2.0 * q12 + 4.0 * q66) / 8.0
+    return u1, u4, u5
+
+
+def quasi_isotropic_elastic(e11, e22, g12, nu12):
+    """In-plane E, G, nu of a quasi-isotropic laminate: E = (U1^2 - U4^2)/U1,
+    G = U5, nu = U4/U1 (Tsai & Hahn 1980 ch. 7)."""
+    u1, u4, u5 = quasi_isotropic_invariants(*reduced_stiffness(e11, e22, g12, nu12))
+    return (u1 ** 2 - u4 ** 2) / u1, u5, u4 / u1
+
+
+def quasi_isotropic_expansion(e11, e22, g12, nu12, coefficient11, coefficient22):
+    """In-plane expansion coefficient (thermal or moisture) of a quasi-isotropic laminate:
+    rotational average of the ply's Q.alpha over (A11 + A12)/h =
+    (Q11 a1 + Q12 (a1 + a2) + Q22 a2) / (Q11 + Q22 + 2 Q12) (Tsai & Hahn 1980 ch. 7,
+    laminate thermal forces; Jones 1999 section 4.8)."""
+    q11, q22, q12, _ = reduced_stiffness(e11, e22, g12, nu12)
+    return (q11 * coefficient11 + q12 * (coefficient11 + coefficient22) + q22 * coefficient22) / (
+        q11 + q22 + 2.0 * q12)

@@ -1,0 +1,137 @@
+"""Scene schema of one entry under ``materials:`` (SPEC.md section 1)."""
+from __future__ import annotations
+
+from typing import Literal
+
+from pydantic import BaseModel, ConfigDict, PositiveFloat, model_validator
+
+from ..units import (
+    Density,
+    Diffusivity,
+    ExpansionCoefficient,
+    Fraction,
+    MolarEnergy,
+    NonNegativePercent,
+    Pressure,
+    Temperature,
+)
+from .library import known_names
+
+
+class _Strict(BaseModel):
+    model_config = ConfigDict(extra="forbid", frozen=True)
+
+
+class DiffusivitySpec(_Strict):
+    """D = pre_exponential exp(-activation_energy / (R T)) (Shen & Springer 1976)."""
+
+    pre_exponential: Diffusivity
+    activation_energy: MolarEnergy
+
+
+class SaturationSpec(_Strict):
+    """Mm = coefficient (RH/100)^exponent, weight %."""
+
+    coefficient: NonNegativePercent
+    exponent: PositiveFloat = 1.0
+
+
+class MatrixProperties(_Strict):
+    """Overrides of an isotropic material (neat resin, matrix, plastic, metal)."""
+
+    youngs_modulus: Pressure | None = None
+    poisson_ratio: float | None = None
+    density: Density | None = None
+    dry_glass_transition_temperature: Temperature | None = None
+    thermal_expansion: ExpansionCoefficient | None = None
+    moisture_expansion: float | None = None  # strain per weight % of moisture
+    conductivity: PositiveFloat | None = None  # W/(m K)
+    diffusivity: DiffusivitySpec | None = None
+    saturation: SaturationSpec | None = None
+
+
+class FiberProperties(_Strict):
+    """Overrides of a (transversely isotropic) fibre."""
+
+    longitudinal_modulus: Pressure | None = None
+    transverse_modulus: Pressure | None = None
+    shear_modulus: Pressure | None = None
+    transverse_shear_modulus: Pressure | None = None
+    poisson_ratio: float | None = None
+    density: Density | None = None
+    thermal_expansion_longitudinal: ExpansionCoefficient | None = None
+    thermal_expansion_transverse: ExpansionCoefficient | None = None
+    conductivity_longitudinal: PositiveFloat | None = None
+    conductivity_transverse: PositiveFloat | None = None
+
+
+class MaterialSpec(MatrixProperties):
+    """One material of a scene. Exactly one of: ``fiber`` + ``matrix`` (composite),
+    ``matrix`` alone (neat resin), ``plastic``, ``metal``.
+
+    Top-level property keys override the library values of a neat resin, plastic or
+    metal. For a composite they override the MATRIX (the ply follows by Chamis
+    micromechanics); ``matrix_properties`` is the same thing spelled explicitly and
+    ``fiber_properties`` overrides the fibre.
+    """
+
+    fiber: str | None = None
+    matrix: str | None = None
+    plastic: str | None = None
+    metal: str | None = None
+    fiber_volume_fraction: Fraction | None = None
+    fiber_weight_fraction: Fraction | None = None
+    void_volume_fraction: Fraction = 0.0
+    layup: Literal["unidirectional", "quasi_isotropic"] = "unidirectional"
+    transverse_diffusivity_model: Literal["chamis", "shen_springer"] = "chamis"
+    wet_tg_scale: Literal["celsius", "fahrenheit", "kelvin"] = "celsius"
+    matrix_properties: MatrixProperties | None = None
+    fiber_properties: FiberProperties | None = None
+
+    @model_validator(mode="after")
+    def _one_kind(self):
+        kinds = [k for k in ("plastic", "metal") if getattr(self, k)]
+        if self.matrix or self.fiber:
+            kinds.append("composite" if self.fiber else "resin")
+        if len(kinds) != 1:
+            raise ValueError("give exactly one of fiber+matrix, matrix, plastic, metal")
+        if self.fiber and not self.matrix:
+            raise ValueError("a fiber needs a matrix")
+        for key, group in (("fiber", "fibers"), ("matrix", "matrices"),
+                           ("plastic", "plastics"), ("metal", "metals")):
+            name = getattr(self, key)
+            if name is not None and name not in known_names(group):
+                raise ValueError(f"unknown {key} {name!r} (known: {', '.join(known_names(group))})")
+        composite = self.fiber is not None
+        if composite:
+            if (self.fiber_volume_fraction is None) == (self.fiber_weight_fraction is None):
+                raise ValueError("a composite needs exactly one of fiber_volume_fraction, fiber_weight_fraction")
+            if (self.fiber_volume_fraction or 0.0) + self.void_volume_fraction >= 1.0:
+                raise ValueError("fiber_volume_fraction + void_volume_fraction must be below 1")
+        else:
+            extra = [k for k in ("fiber_volume_fraction", "fiber_weight_fraction", "fiber_properties")
+                     if getattr(self, k) is not None]
+            if extra or self.void_volume_fraction or self.layup != "unidirectional":
+                raise ValueError("fiber fractions, voids, layup and fiber_properties need a fiber")
+        if self.metal and (self.diffusivity or self.saturation or self.moisture_expansion
+                           or self.dry_glass_transition_temperature):
+            raise ValueError("metals take no moisture or Tg values")
+        return self
+
+    def kind(self) -> str:
+        if self.fiber:
+            return "composite"
+        if self.matrix:
+            return "resin"
+        return "plastic" if self.plastic else "metal"
+
+    def base_name(self) -> str:
+        return self.matrix or self.plastic or self.metal
+
+    def isotropic_overrides(self) -> dict:
+        """Top-level and ``matrix_properties`` overrides merged (the latter win), SI."""
+        own = {k: v for k, v in self.model_dump(include=set(MatrixProperties.model_fields)).items()
+               if v is not None}
+        if self.matrix_properties is not None:
+            own.update(self.matrix_properties.model_dump(exclude_none=True))
+        return own

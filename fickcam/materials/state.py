@@ -1,0 +1,176 @@
+"""Material state over ageing time: wet Tg, retention, moduli, strains, density.
+
+Order per time (Chamis 1983 NASA TM-83320; seeds/000_c9d2754e3bf549ac.txt Table 10):
+ply moisture (diffusion) -> matrix moisture (Chamis M_l relation, inverted) -> wet Tg
+-> retention P/P0 -> degraded matrix -> micromechanics -> ply properties -> free strain.
+Expansion coefficients are reported as Chamis' instantaneous values (alpha_m P0/P); the
+free thermal strain uses the secant value that integrates them from T0 to T
+(hygrothermal.secant_thermal_factor), which stays finite as T approaches the wet Tg.
+"""
+from __future__ import annotations
+
+import logging
+
+import numpy as np
+
+from ..errors import PhysicsDomainError
+from .micromechanics import quasi_isotropic_elastic
+from .hygrothermal import (
+    KELVIN_OFFSET,
+    free_strain,
+    property_retention,
+    secant_thermal_factor,
+    wet_density,
+    wet_glass_transition_temperature,
+)
+
+log = logging.getLogger(__name__)
+
+#: ply-property key -> result name (SI)
+_MODULI = {"e11": "longitudinal_modulus", "e22": "transverse_modulus", "g12": "shear_modulus",
+           "g23": "transverse_shear_modulus", "nu12": "poisson_ratio",
+           "nu23": "transverse_poisson_ratio"}
+_SURFACE = ("e11", "e22", "g12", "nu12")
+
+
+def wet_tg_and_retention(material, ply_moisture, temperature, reference_temperature):
+    """(matrix moisture %, wet Tg K, retention) at the given ply moisture; for a material
+    without a dry Tg (metals, thermoplastics) Tg is NaN and retention 1."""
+    temperature = np.asarray(temperature, float)
+    matrix_m = np.asarray(material.matrix_moisture(ply_moisture), float) + 0.0 * temperature
+    tgd = material.dry_glass_transition_temperature
+    if tgd is None or material.kind == "metal":
+        return matrix_m, np.full_like(matrix_m, np.nan), np.ones_like(matrix_m)
+    tgw = wet_glass_transition_temperature(tgd, matrix_m, material.wet_tg_scale)
+    return matrix_m, tgw, property_retention(tgw, temperature, tgd, reference_temperature)
+
+
+def _secant_factor(material, wet_tg, temperature, reference_temperature):
+    """Secant thermal factor (see hygrothermal.secant_thermal_factor); 1 without a Tg."""
+    tgd = material.dry_glass_transition_temperature
+    if tgd is None or material.kind == "metal":
+        return np.ones_like(np.asarray(temperature, float))
+    return secant_thermal_factor(wet_tg, temperature, tgd, reference_temperature)
+
+
+def surface_in_plane_modulus(material, props):
+    """One in-plane modulus of the contact layer: the rotational (laminate-invariant) average
+    (U1^2 - U4^2)/U1 of the ply for a UD composite, whose contact direction turns around a
+    cam profile (Tsai & Hahn 1980 ch. 7); the modulus itself for isotropic and QI."""
+    if material.fiber is None or material.layup == "quasi_isotropic":
+        return np.asarray(props["e11"], float)
+    return quasi_isotropic_elastic(props["e11"], props["e22"], props["g12"], props["nu12"])[0]
+
+
+def first_invalid_index(temperature, *wet_tgs) -> int | None:
+    """Index of the first time at which T >= any of the given wet Tg arrays, else None."""
+    temperature = np.asarray(temperature, float)
+    reached = np.zeros(temperature.shape, bool)
+    for tg in wet_tgs:
+        reached |= temperature >= np.asarray(tg, float)  # NaN Tg compares False
+    hits = np.nonzero(reached)[0]
+    return int(hits[0]) if hits.size else None
+
+
+def wet_tg_error(part, times, index, temperature, state) -> PhysicsDomainError:
+    """The error for T reaching the wet Tg at ``index``; carries ``index`` and ``state``
+    (every variable truncated to the valid times before ``index``)."""
+    tg = min(state["glass_transition_temperature"][index], state["surface_glass_transition_temperature"][index])
+    message = (f"service temperature {temperature[index] - KELVIN_OFFSET:.1f} degC reached the wet Tg "
+               f"{tg - KELVIN_OFFSET:.1f} degC (mean moisture {state['moisture_content'][index]:.3g} %, "
+               f"surface {state['surface_moisture_content'][index]:.3g} %); results kept up to the "
+               f"previous ageing time")
+    error = PhysicsDomainError(part, float(times[index]), message)
+    error.index = index
+    error.state = {k: v[:index] for k, v in state.items()}
+    return error
+
+
+def material_state(material, temperature, moisture, surface_moisture, reference_temperature,
+                   initial_moisture, part: str = "", times=None, raise_on_wet_tg: bool = False):
+    """State of one part at each ageing time (arrays of the length of ``temperature``).
+
+    Inputs: temperature (K), moisture = volume-mean ply moisture and surface_moisture =
+    contact-layer moisture (weight %), reference temperature T0 (K), initial moisture
+    M0 (weight %). Returns SI arrays: see ``STATE_VARIABLES``. Times with T >= wet Tg
+    (bulk or surface) hold NaN in the degraded properties and ``within_wet_tg`` False.
+    With ``raise_on_wet_tg`` (needs ``times``) a :class:`PhysicsDomainError` is raised
+    at the first such time; it carries ``.index`` and ``.state`` (results before it).
+    """
+    temperature = np.asarray(temperature, float)
+    mean = np.asarray(moisture, float) + 0.0 * temperature
+    surface = np.asarray(surface_moisture, float) + 0.0 * temperature
+    matrix_m, tgw, retention = wet_tg_and_retention(material, mean, temperature, reference_temperature)
+    matrix_s, tgw_s, retention_s = wet_tg_and_retention(material, surface, temperature,
+                                                        reference_temperature)
+    if np.nanmax(matrix_s, initial=0.0) > 10.0:
+        log.warning("%s: matrix moisture %.3g %% exceeds 10 %%, the range of Chamis' wet-Tg fit",
+                    part or material.name, np.nanmax(matrix_s))
+    bulk = material.ply_properties(retention)
+    skin = material.ply_properties(retention_s)
+    secant = material.ply_properties(retention, _secant_factor(material, tgw, temperature,
+                                                               reference_temperature))
+    dT_args = (temperature, reference_temperature)
+    in_plane = "11" if material.layup == "quasi_isotropic" else "22"
+    strain_x = free_strain(secant["alpha11"], bulk["beta11"], *dT_args, mean, initial_moisture)
+    strain_y = free_strain(secant["alpha" + in_plane], bulk["beta" + in_plane], *dT_args, mean,
+                           initial_moisture)
+    strain_z = free_strain(secant["alpha22"], bulk["beta22"], *dT_args, mean, initial_moisture)
+    if material.kind == "metal":
+        strain_x = strain_y = strain_z = free_strain(bulk["alpha11"], 0.0, *dT_args, 0.0, 0.0)
+    state = {
+        "moisture_content": mean,
+        "surface_moisture_content": surface,
+        "matrix_moisture_content": matrix_m,
+        "surface_matrix_moisture_content": matrix_s,
+        "glass_transition_temperature": tgw,
+        "surface_glass_transition_temperature": tgw_s,
+        "property_retention": retention,
+        "surface_property_retention": retention_s,
+        "mass_ratio": 1.0 + mean / 100.0,
+        "density": wet_density(material.dry_density, mean, strain_x, strain_y, strain_z),
+        "strain_longitudinal": strain_x,
+        "strain_transverse": strain_y,
+        "strain_through_thickness": strain_z,
+        "hygrothermal_strain": strain_x,
+        "secant_thermal_expansion_longitudinal": secant["alpha11"],
+        "secant_thermal_expansion_transverse": secant["alpha22"],
+        "thermal_expansion_longitudinal": bulk["alpha11"],
+        "thermal_expansion_transverse": bulk["alpha22"],
+        "moisture_expansion_longitudinal": bulk["beta11"],
+        "moisture_expansion_transverse": bulk["beta22"],
+        "thermal_conductivity_longitudinal": bulk["k11"],
+        "thermal_conductivity_transverse": bulk["k22"],
+    }
+    state.update({name: np.asarray(bulk[key], float) + 0.0 * temperature for key, name in _MODULI.items()})
+    state.update({f"surface_{_MODULI[key]}": np.asarray(skin[key], float) + 0.0 * temperature
+                  for key in _SURFACE})
+    state["surface_modulus"] = surface_in_plane_modulus(material, skin) + 0.0 * temperature
+    index = first_invalid_index(temperature, tgw, tgw_s)
+    state["within_wet_tg"] = np.arange(temperature.size) < (temperature.size if index is None else index)
+    if index is not None:
+        error = wet_tg_error(part, times if times is not None else np.arange(temperature.size),
+                             index, temperature, state)
+        log.info("%s", error)
+        if raise_on_wet_tg:
+            raise error
+    return state
+
+
+#: names and units of what :func:`material_state` returns
+STATE_VARIABLES = {
+    "moisture_content": "%", "surface_moisture_content": "%", "matrix_moisture_content": "%",
+    "surface_matrix_moisture_content": "%", "glass_transition_temperature": "K",
+    "surface_glass_transition_temperature": "K", "property_retention": "1",
+    "surface_property_retention": "1", "mass_ratio": "1 (m / m_dry)", "density": "kg/m3",
+    "strain_longitudinal": "1", "strain_transverse": "1", "strain_through_thickness": "1",
+    "hygrothermal_strain": "1", "thermal_expansion_longitudinal": "1/K",
+    "thermal_expansion_transverse": "1/K", "secant_thermal_expansion_longitudinal": "1/K",
+    "secant_thermal_expansion_transverse": "1/K", "moisture_expansion_longitudinal": "1/%",
+    "moisture_expansion_transverse": "1/%", "thermal_conductivity_longitudinal": "W/(m K)",
+    "thermal_conductivity_transverse": "W/(m K)", "longitudinal_modulus": "Pa",
+    "transverse_modulus": "Pa", "shear_modulus": "Pa", "transverse_shear_modulus": "Pa",
+    "poisson_ratio": "1", "transverse_poisson_ratio": "1", "surface_longitudinal_modulus": "Pa",
+    "surface_transverse_modulus": "Pa", "surface_shear_modulus": "Pa", "surface_poisson_ratio": "1",
+    "surface_modulus": "Pa", "within_wet_tg": "bool",
+}
