@@ -233,20 +233,25 @@ def _part_mass(history: PartHistory) -> np.ndarray:
 
 
 def _valid_until_wet_tg(part: Part, state: dict, temperature, times, notices) -> np.ndarray:
-    """False from the first ageing time at which T reaches the wet Tg (physics invalid)."""
-    tg = state.get("glass_transition_temperature")
+    """False from the first ageing time at which T reaches the wet Tg of the
+    bulk or of the surface layer (Chamis' degradation law no longer applies)."""
     valid = np.ones(times.shape, bool)
-    if tg is None:
+    within = state.get("within_wet_tg")
+    if within is None:
         return valid
-    reached = np.nonzero(np.asarray(temperature) >= np.asarray(tg))[0]
+    reached = np.nonzero(~np.asarray(within, bool))[0]
     if reached.size:
         k = int(reached[0])
         valid[k:] = False
+        tg = np.fmin(state["glass_transition_temperature"][k],
+                     state.get("surface_glass_transition_temperature",
+                               state["glass_transition_temperature"])[k])
         error = PhysicsDomainError(
             part.name, times[k],
             f"service temperature {temperature[k] - 273.15:.1f} degC reached the wet Tg "
-            f"{tg[k] - 273.15:.1f} degC (moisture {state['moisture_content'][k]:.3g} %); "
-            f"results after this time are not computed")
+            f"{tg - 273.15:.1f} degC (mean moisture {state['moisture_content'][k]:.3g} %, "
+            f"surface {state['surface_moisture_content'][k]:.3g} %); this part and the "
+            f"mechanism it belongs to are not computed from then on")
         notices.append(str(error))
     return valid
 

@@ -32,6 +32,20 @@ class Exposure:
     def end(self) -> float:
         return float(self.change_times[-1])
 
+    @classmethod
+    def piecewise(cls, change_times, temperatures, surface_values, initial_moisture=0.0,
+                  ramp=None) -> "Exposure":
+        """Segments with temperature ``temperatures[k]`` (K) and surface moisture
+        ``surface_values[k]`` (weight %) on [t_k, t_k+1): held, or, where
+        ``ramp[k]``, linear from the previous segment's values (tests, bench)."""
+        edges = np.asarray(change_times, float)
+        n = edges.size - 1
+        ramp = np.zeros(n, bool) if ramp is None else np.asarray(ramp, bool)
+        temps = np.broadcast_to(np.asarray(temperatures, float), (n,)).copy()
+        values = np.broadcast_to(np.asarray(surface_values, float), (n,)).copy()
+        return cls(edges, ramp, _piecewise_function(edges, ramp, temps),
+                   _piecewise_function(edges, ramp, values), float(initial_moisture))
+
 
 @dataclass(frozen=True)
 class Diffusivity:
@@ -54,3 +68,14 @@ class Diffusivity:
         """Principal diffusivities, shape (..., 3), m^2/s."""
         factor = self.arrhenius_factor(temperature)[..., None]
         return factor * np.asarray(self.pre_exponential, float)
+
+
+def _piecewise_function(edges: np.ndarray, ramp: np.ndarray, values: np.ndarray):
+    """Right-continuous f(t): held at values[k] or linear from values[k-1] over segment k."""
+    def evaluate(t):
+        t = np.asarray(t, float)
+        k = np.clip(np.searchsorted(edges, t, side="right") - 1, 0, values.size - 1)
+        start = np.where(ramp[k] & (k > 0), values[np.maximum(k - 1, 0)], values[k])
+        fraction = np.clip((t - edges[k]) / (edges[k + 1] - edges[k]), 0.0, 1.0)
+        return start + (values[k] - start) * fraction
+    return evaluate

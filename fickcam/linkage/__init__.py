@@ -1,0 +1,17 @@
+"""Four-bar linkage over ageing: positions (Freudenstein), Grashof class,
+transmission angle, coupler curve, velocities, accelerations and kinetostatics.
+
+Public API: :class:`LinkageSection` (scene section), :class:`FourBarDesign`,
+:class:`FourBarState`, :func:`fourbar_response`, :func:`class_changes`,
+:func:`grashof_class`, and for :mod:`fickcam.simulate` :func:`scene_parts`,
+:func:`scene_response`, ``LINKS`` and ``JOINTS`` (coordinate values).
+"""
+from .ageing import LINKS, link_state, scene_parts, scene_response
+from .classify import class_changes, grashof_class
+from .dynamics import JOINT_MEANING, JOINTS
+from .model import FourBarDesign, FourBarState, fourbar_response
+from .spec import LinkageSection
+
+__all__ = ["JOINTS", "JOINT_MEANING", "LINKS", "FourBarDesign", "FourBarState", "LinkageSection",
+           "class_changes", "fourbar_response", "grashof_class", "link_state", "scene_parts",
+           "scene_response"]

@@ -1,0 +1,104 @@
+"""The scene's four-bar over ageing: which part state feeds which link, and the
+response stacked over ageing times (called by :mod:`fickcam.simulate`).
+
+Each link (crank, coupler, rocker, frame) is a diffusion part of geometry
+:class:`~fickcam.diffusion.geometry.LinkBar`. At every ageing time its pin-to-pin
+length is L (1 + eps_x) with eps_x the free hygrothermal strain along the link,
+eps = alpha dT + beta dm (seeds/001_51a6f900df76f3cc.txt eqs. 11-14, read as
+a_1 = a (1 + alpha dT + beta dm); the printed a (alpha dT + beta dm) is a slip, see
+seeds/README.md), and its mass and inertia come from
+:func:`fickcam.materials.bodies.aged_link_body`. A metal frame only expands
+thermally (eq. 14, last line).
+"""
+from __future__ import annotations
+
+import logging
+
+import numpy as np
+
+from ..mechanisms import over_ageing
+from ..response import Response
+from .classify import class_changes
+from .model import FourBarDesign, FourBarState, fourbar_response
+
+log = logging.getLogger(__name__)
+
+LINKS = ("crank", "coupler", "rocker", "frame")
+
+
+def _link_material(section, link: str) -> str:
+    return section.frame_material or section.material if link == "frame" else section.material
+
+
+def scene_parts(section, materials) -> list[tuple]:
+    """(part name, material name, diffusion geometry, dry mass kg) for each link."""
+    from ..diffusion.geometry import LinkBar
+    from ..materials.bodies import link_body
+
+    s = section.section
+    parts = []
+    for link in LINKS:
+        name = _link_material(section, link)
+        length = getattr(section, link)
+        geometry = LinkBar(length, s.width, s.thickness, s.boss_outer_radius, s.boss_inner_radius)
+        _, mass, _ = link_body(length, s.width, s.thickness, s.boss_outer_radius,
+                               s.boss_inner_radius, materials[name].dry_density)
+        parts.append((link, name, geometry, float(mass)))
+    return parts
+
+
+def link_state(section, histories, k: int):
+    """(lengths, masses, inertias) of crank, coupler, rocker, frame at ageing index k."""
+    from ..materials.bodies import aged_link_body
+
+    s = section.section
+    lengths, masses, inertias = [], [], []
+    for link in LINKS:
+        state = histories[link].state
+        eps_x = float(state["strain_longitudinal"][k])
+        length = getattr(section, link)
+        _, mass, inertia = aged_link_body(
+            length, s.width, s.thickness, s.boss_outer_radius, s.boss_inner_radius,
+            histories[link].part.material.dry_density, float(state["moisture_content"][k]),
+            eps_x, float(state["strain_transverse"][k]),
+            float(state["strain_through_thickness"][k]))
+        lengths.append(length * (1.0 + eps_x))
+        masses.append(float(mass))
+        inertias.append(float(inertia))
+    return np.array(lengths), np.array(masses), np.array(inertias)
+
+
+def scene_response(section, histories: dict, times, angles, valid, on_step=lambda: None) -> Response:
+    """The linkage over ageing: variables (time, ...) and notices, including a warning
+    where ageing changes the Grashof class or removes the crank's full rotation.
+    Toggle positions are reported at the first and last computed ageing time."""
+    design = FourBarDesign.from_section(section)
+    valid = np.asarray(valid, bool)
+    computed = np.nonzero(valid)[0]
+    ends = {int(computed[0]), int(computed[-1])} if computed.size else set()
+
+    def evaluate(k: int) -> Response:
+        lengths, masses, inertias = link_state(section, histories, k)
+        state = FourBarState(tuple(lengths), tuple(masses[:3]), tuple(inertias[:3]),
+                             tuple(section.centre_of_mass))
+        response = fourbar_response(design, state, angles)
+        response.variables.update(link_length=lengths, link_mass=masses, link_inertia=inertias)
+        response.notices = [n for n in response.notices
+                            if k in ends or not n.startswith("toggle")]
+        return response
+
+    result = over_ageing(np.asarray(times, float), valid, evaluate, on_step)
+    if "grashof_class" in result.variables:
+        result.notices += class_changes(result.variables["grashof_class"], times)
+    return _in_schema(result)
+
+
+def _in_schema(result: Response) -> Response:
+    """Keep the variables the result schema declares (the others are computed by
+    :func:`fourbar_response` but have no place in the Dataset yet)."""
+    from ..schema import VARIABLES
+
+    dropped = sorted(set(result.variables) - set(VARIABLES))
+    if dropped:
+        log.debug("linkage variables not in the schema, not stored: %s", ", ".join(dropped))
+    return Response({k: v for k, v in result.variables.items() if k in VARIABLES}, result.notices)

@@ -1,0 +1,59 @@
+"""Grashof classification (Norton, Design of Machinery 5th ed., sec. 2.12, eq. 2.8:
+S + L <= P + Q) with the crank (link 2) as input and link 1 as the frame."""
+from __future__ import annotations
+
+import numpy as np
+
+from ..mechanisms import first_change
+
+CRANK_ROCKER = "crank-rocker"
+DOUBLE_CRANK = "double-crank"
+DOUBLE_ROCKER = "double-rocker"
+CHANGE_POINT = "change-point"
+NON_GRASHOF = "non-Grashof"
+#: classes in which the input crank turns through a full revolution
+FULL_ROTATION = {CRANK_ROCKER, DOUBLE_CRANK, CHANGE_POINT}
+
+
+def grashof_condition(a, b, c, d) -> float:
+    """(P + Q) - (S + L), relative to the sum of the lengths: > 0 Grashof, = 0 change
+    point, < 0 non-Grashof (Norton eq. 2.8)."""
+    s = np.sort(np.array([a, b, c, d], float))
+    return float((s[1] + s[2] - s[0] - s[3]) / s.sum())
+
+
+def grashof_class(a, b, c, d, tolerance: float = 1e-9) -> str:
+    """Class of the four-bar with crank a, coupler b, rocker c, frame d (Norton sec. 2.12):
+    Grashof with the crank shortest -> crank-rocker, frame shortest -> double-crank,
+    coupler or rocker shortest -> double-rocker; S + L = P + Q -> change-point;
+    S + L > P + Q -> non-Grashof (triple rocker). ``tolerance`` is relative to the
+    sum of the lengths."""
+    margin = grashof_condition(a, b, c, d)
+    if abs(margin) <= tolerance:
+        return CHANGE_POINT
+    if margin < 0:
+        return NON_GRASHOF
+    shortest = int(np.argmin([a, b, c, d]))
+    return {0: CRANK_ROCKER, 3: DOUBLE_CRANK}.get(shortest, DOUBLE_ROCKER)
+
+
+def class_changes(classes, times) -> list[str]:
+    """Notices where ageing changes the Grashof class, and a warning when the crank
+    loses (or regains) its full rotation. ``classes`` are strings per ageing time
+    ('' where not computed), ``times`` in s."""
+    from ..errors import format_duration
+
+    classes = [str(c) for c in classes]
+    notices = first_change(np.asarray(classes, dtype=object), np.asarray(times, float),
+                           "the Grashof class")
+    previous = None
+    for k, label in enumerate(classes):
+        if not label:
+            continue
+        rotates = label in FULL_ROTATION
+        if previous is not None and previous != rotates:
+            what = ("WARNING: the crank can no longer make a full revolution" if previous
+                    else "the crank can make a full revolution again")
+            notices.append(f"at t = {format_duration(times[k])}: {what} ({label})")
+        previous = rotates
+    return notices

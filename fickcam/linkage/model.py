@@ -1,0 +1,150 @@
+"""One four-bar at one ageing time: positions, class, velocities, accelerations and
+kinetostatics over the crank angle, as a :class:`fickcam.response.Response`."""
+from __future__ import annotations
+
+import logging
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ..response import Response
+from .classify import FULL_ROTATION, grashof_class
+from .dynamics import STANDARD_GRAVITY, kinetostatics, rms
+from .kinematics import angular_accelerations, angular_velocities, centre_of_mass_motion
+from .positions import (
+    assembly_gaps,
+    continuous,
+    coupler_point,
+    joint_positions,
+    positions,
+    toggle_crank_angles,
+    transmission_angle,
+)
+
+log = logging.getLogger(__name__)
+
+
+@dataclass(frozen=True)
+class FourBarDesign:
+    """The dry four-bar (SI): link lengths (crank a, coupler b, rocker c, frame d),
+    coupler point (distance from A, angle from A->B), crank speed and acceleration,
+    branch, gravity and the external torque on the rocker."""
+
+    crank: float
+    coupler: float
+    rocker: float
+    frame: float
+    coupler_point_distance: float = 0.0
+    coupler_point_angle: float = 0.0
+    crank_speed: float = 1.0            # rad/s
+    crank_angular_acceleration: float = 0.0  # rad/s^2
+    assembly: str = "open"
+    gravity: bool = False
+    rocker_load_torque: float = 0.0     # N m, counter-clockwise positive
+
+    @property
+    def lengths(self) -> tuple[float, float, float, float]:
+        return (self.crank, self.coupler, self.rocker, self.frame)
+
+    @classmethod
+    def from_section(cls, section) -> "FourBarDesign":
+        """From a validated :class:`~fickcam.linkage.spec.LinkageSection`."""
+        return cls(section.crank, section.coupler, section.rocker, section.frame,
+                   section.coupler_point.distance, section.coupler_point.angle,
+                   section.crank_speed, section.crank_angular_acceleration, section.assembly,
+                   section.gravity, section.rocker_load_torque)
+
+
+@dataclass(frozen=True)
+class FourBarState:
+    """The four-bar at one ageing time (SI): swollen link lengths (crank, coupler,
+    rocker, frame), masses and inertias about each centre of mass (crank, coupler,
+    rocker), centres of mass as fractions of each pin-to-pin length from its first pin
+    (O2, A, O4), and the coupler point distance (None: the design's, scaled with the
+    coupler's length)."""
+
+    link_lengths: tuple[float, float, float, float]
+    link_masses: tuple[float, float, float] = (0.0, 0.0, 0.0)
+    link_inertias: tuple[float, float, float] = (0.0, 0.0, 0.0)
+    centre_of_mass: tuple[float, float, float] = field(default=(0.5, 0.5, 0.5))
+    coupler_point_distance: float | None = None
+
+
+def _fmt_range(lo: float, hi: float) -> str:
+    return f"{np.degrees(lo):.1f}-{np.degrees(hi):.1f} deg"
+
+
+def fourbar_response(design: FourBarDesign, state: FourBarState, crank_angle) -> Response:
+    """Positions, class, kinematics and kinetostatics over ``crank_angle`` (rad, a grid
+    over one revolution). Returns SI arrays (angles in rad); see ``VARIABLES`` in
+    :mod:`fickcam.linkage` for names, dims and units. Crank angles at which the aged
+    linkage cannot assemble hold NaN and are named in the notices."""
+    theta2 = np.asarray(crank_angle, float)
+    a, b, c, d = (float(x) for x in state.link_lengths)
+    branch = design.assembly
+    omega2, alpha2 = design.crank_speed, design.crank_angular_acceleration
+    theta3, theta4 = positions(a, b, c, d, theta2, branch)
+    ok = np.isfinite(theta3) & np.isfinite(theta4)
+    omega3, omega4 = angular_velocities(a, b, c, theta2, theta3, theta4, omega2)
+    alpha3, alpha4 = angular_accelerations(a, b, c, theta2, theta3, theta4, omega2, omega3,
+                                           omega4, alpha2)
+    dry_b = design.coupler
+    p_dist = (state.coupler_point_distance if state.coupler_point_distance is not None
+              else design.coupler_point_distance * b / dry_b)
+    px, py = coupler_point(a, theta2, theta3, p_dist, design.coupler_point_angle)
+    omega2_arr = np.full_like(theta2, omega2)
+    alpha2_arr = np.full_like(theta2, alpha2)
+    position, velocity, acceleration = centre_of_mass_motion(
+        (a, b, c, d), state.centre_of_mass, (theta2, theta3, theta4),
+        (omega2_arr, omega3, omega4), (alpha2_arr, alpha3, alpha4))
+    pins = joint_positions(a, b, c, d, theta2, theta3, theta4)
+    forces, torque = kinetostatics(state.link_masses, state.link_inertias, acceleration,
+                                   (alpha2_arr, alpha3, alpha4), pins, position,
+                                   STANDARD_GRAVITY if design.gravity else 0.0,
+                                   design.rocker_load_torque)
+    mu = transmission_angle(theta3, theta4)
+    label = grashof_class(a, b, c, d)
+    toggles = toggle_crank_angles(a, b, c, d, branch)
+    rocker = continuous(theta4)
+    zero = np.zeros((1,) + theta2.shape)  # the frame's centre of mass does not move
+    variables = {
+        "coupler_angle": continuous(theta3),
+        "rocker_angle": rocker,
+        "transmission_angle": mu,
+        "coupler_point_x": px,
+        "coupler_point_y": py,
+        "coupler_angular_velocity": omega3,
+        "rocker_angular_velocity": omega4,
+        "coupler_angular_acceleration": alpha3,
+        "rocker_angular_acceleration": alpha4,
+        "link_com_velocity_x": np.concatenate([velocity.real, zero]),
+        "link_com_velocity_y": np.concatenate([velocity.imag, zero]),
+        "link_com_acceleration_x": np.concatenate([acceleration.real, zero]),
+        "link_com_acceleration_y": np.concatenate([acceleration.imag, zero]),
+        "input_torque": torque,
+        "joint_force_x": forces.real,
+        "joint_force_y": forces.imag,
+        "joint_force": np.abs(forces),
+        "grashof_class": np.array(label),
+        "minimum_transmission_angle": np.nanmin(mu) if ok.any() else np.nan,
+        "maximum_transmission_angle": np.nanmax(mu) if ok.any() else np.nan,
+        "peak_input_torque": np.nanmax(np.abs(torque)) if ok.any() else np.nan,
+        "rms_input_torque": rms(torque),
+        "rocker_swing": np.nanmax(rocker) - np.nanmin(rocker) if ok.any() else np.nan,
+        "toggle_crank_angle_extended": toggles["extended"][0] if toggles["extended"] else np.nan,
+        "toggle_crank_angle_folded": toggles["folded"][0] if toggles["folded"] else np.nan,
+    }
+    notices = [f"Grashof class: {label}" + ("" if label in FULL_ROTATION
+                                            else " (the crank cannot make a full revolution)")]
+    for lo, hi in assembly_gaps(theta2, ok):
+        notices.append(f"cannot assemble for crank angles {_fmt_range(lo, hi)} ({branch} branch)")
+    named = {"extended": "crank and coupler extended in line (rocker limit)",
+             "folded": "crank and coupler folded in line (rocker limit)",
+             "crank_limits": "coupler and rocker in line (crank toggle, input stops)"}
+    for key, what in named.items():
+        if toggles[key]:
+            angles = ", ".join(f"{np.degrees(t):.1f}" for t in toggles[key])
+            notices.append(f"toggle: {what} at crank angle {angles} deg")
+    for message in notices:
+        log.debug("%s", message)
+    return Response(variables, notices)

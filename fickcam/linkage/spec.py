@@ -1,0 +1,122 @@
+"""The scene's ``linkage:`` section (SPEC.md §1): a four-bar with the crank as input.
+
+Values are parsed to SI by :mod:`fickcam.units`. Validation refuses what cannot be
+a link or a four-bar: non-positive lengths, bosses that would overlap on a link,
+a bar wider than its bosses, a hole as large as its boss, and a linkage that
+cannot assemble at any crank angle (the diagonal O4-A ranges over
+[|d - a|, d + a] while the coupler-rocker dyad spans [|b - c|, b + c]; Norton,
+Design of Machinery 5th ed., sec. 4.5 and 4.13).
+"""
+from __future__ import annotations
+
+import math
+from typing import Annotated, Literal
+
+from pydantic import BaseModel, BeforeValidator, ConfigDict, model_validator
+
+from ..units import Angle, AngularSpeed, Length, NonNegativeLength, registry
+
+
+def _in_si(si_unit: str, human: str):
+    """A pydantic float type for a dimension :mod:`fickcam.units` does not list: bare
+    numbers are SI, strings are parsed by pint and converted to ``si_unit``."""
+
+    def parse(value):
+        if isinstance(value, bool) or value is None:
+            raise ValueError(f"expected {human}, got {value!r}")
+        if isinstance(value, (int, float)):
+            number = float(value)
+        elif isinstance(value, str):
+            try:
+                number = float(registry().Quantity(value.replace("%", "percent")).to(si_unit).magnitude)
+            except Exception:  # pint raises several error types
+                raise ValueError(f"cannot read {value!r} as {human}") from None
+        else:
+            raise ValueError(f"expected {human}, got {type(value).__name__}")
+        if not math.isfinite(number):
+            raise ValueError(f"{value!r} is not a finite number")
+        return number
+
+    return Annotated[float, BeforeValidator(parse)]
+
+
+Torque = _in_si("N*m", "a torque (e.g. '2 N m')")
+AngularAcceleration = _in_si("rad/s**2", "an angular acceleration (e.g. '10 rad/s^2')")
+
+
+class _Strict(BaseModel):
+    model_config = ConfigDict(extra="forbid", frozen=True)
+
+
+class CouplerPoint(_Strict):
+    """Point P on the coupler: ``distance`` from the crank-coupler pin A, at ``angle``
+    (counter-clockwise) from the line A->B (Norton eq. 4.31)."""
+
+    distance: NonNegativeLength
+    angle: Angle = 0.0
+
+
+class LinkSectionSpec(_Strict):
+    """Cross-section of every link (seed 001 Figure 3): a bar ``width`` x ``thickness``
+    between two hollow bosses of ``boss_outer_radius`` / ``boss_inner_radius``."""
+
+    width: Length
+    thickness: Length
+    boss_outer_radius: Length
+    boss_inner_radius: NonNegativeLength
+
+    @model_validator(mode="after")
+    def _is_a_link(self):
+        if self.boss_inner_radius >= self.boss_outer_radius:
+            raise ValueError("boss_inner_radius must be smaller than boss_outer_radius")
+        if self.width > 2.0 * self.boss_outer_radius:
+            raise ValueError("width must not exceed twice boss_outer_radius (the bar would be "
+                             "wider than its bosses)")
+        return self
+
+
+def can_assemble_somewhere(crank: float, coupler: float, rocker: float, frame: float) -> bool:
+    """True if some crank angle closes the loop: [|d - a|, d + a] meets [|b - c|, b + c]."""
+    low = max(abs(frame - crank), abs(coupler - rocker))
+    high = min(frame + crank, coupler + rocker)
+    return low <= high * (1.0 + 1e-12)
+
+
+class LinkageSection(_Strict):
+    """The ``linkage:`` section. Optional extras beyond SPEC.md (with defaults):
+    ``gravity`` (false; g = 9.80665 m/s^2 along -y, the frame line O2->O4 being +x),
+    ``crank_angular_acceleration`` (0 rad/s^2), ``rocker_load_torque`` (0 N m, a
+    constant torque on the rocker, counter-clockwise positive) and
+    ``centre_of_mass`` (fractions along crank, coupler, rocker; 0.5 each)."""
+
+    material: str
+    frame_material: str | None = None
+    crank: Length
+    coupler: Length
+    rocker: Length
+    frame: Length
+    coupler_point: CouplerPoint
+    section: LinkSectionSpec
+    crank_speed: AngularSpeed
+    assembly: Literal["open", "crossed"] = "open"
+    gravity: bool = False
+    crank_angular_acceleration: AngularAcceleration = 0.0
+    rocker_load_torque: Torque = 0.0
+    centre_of_mass: tuple[float, float, float] = (0.5, 0.5, 0.5)
+
+    @model_validator(mode="after")
+    def _is_a_four_bar(self):
+        a, b, c, d = self.crank, self.coupler, self.rocker, self.frame
+        if not can_assemble_somewhere(a, b, c, d):
+            raise ValueError(
+                f"the linkage cannot assemble at any crank angle: the distance from the "
+                f"crank pin to the rocker pivot spans {abs(d - a) * 1e3:g}-{(d + a) * 1e3:g} mm "
+                f"but coupler and rocker reach only {abs(b - c) * 1e3:g}-{(b + c) * 1e3:g} mm")
+        two_r = 2.0 * self.section.boss_outer_radius
+        for name in ("crank", "coupler", "rocker", "frame"):
+            if getattr(self, name) < two_r:
+                raise ValueError(f"{name} ({getattr(self, name) * 1e3:g} mm) is shorter than two "
+                                 f"boss radii ({two_r * 1e3:g} mm): its bosses would overlap")
+        if not all(0.0 <= f <= 1.0 for f in self.centre_of_mass):
+            raise ValueError("centre_of_mass fractions must lie between 0 and 1")
+        return self

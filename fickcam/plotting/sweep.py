@@ -1,0 +1,168 @@
+"""Sweep results (a ``case`` dimension): chosen outputs against the varied values.
+
+Outputs per case over ageing time (:func:`outputs`): lift loss, jump speed,
+peak cam torque, cam moisture, peak crank torque, minimum transmission angle,
+largest rocker angle shift — whichever the result has. A grid sweep plots each
+output at one ageing time (the last by default) against the first varied value,
+one line per combination of the others. A Monte Carlo sweep plots the quantiles
+(5-95 %, 25-75 %, median) of each output over ageing time, and each case's value
+at that ageing time against every varied value. Failed cases are left out and
+counted in the title.
+"""
+from __future__ import annotations
+
+import warnings
+from pathlib import Path
+
+import numpy as np
+
+from . import days, figure, save_figure
+
+QUANTILES = (0.05, 0.25, 0.5, 0.75, 0.95)
+_CASE_COORDS = ("case", "case_status", "case_message", "case_wall_time")
+
+
+def _peak(array, dim):
+    with warnings.catch_warnings():  # all-NaN slices (failed cases) give NaN, as they should
+        warnings.simplefilter("ignore", RuntimeWarning)
+        return abs(array).max(dim)
+
+
+def outputs(ds) -> dict[str, tuple[str, object]]:
+    """name -> (axis label, DataArray over (case, time)) for the outputs ``ds`` has."""
+    found: dict[str, tuple[str, object]] = {}
+    if "lift" in ds:
+        found["lift_loss"] = ("lift loss [mm]", (ds["lift"].isel(time=0) - ds["lift"]) * 1e3)
+    if "jump_speed" in ds:
+        found["jump_speed"] = ("jump speed [rpm]", ds["jump_speed"])
+    if "peak_cam_torque" in ds:
+        found["peak_cam_torque"] = ("peak cam torque [N m]", ds["peak_cam_torque"])
+    elif "cam_torque" in ds:
+        found["peak_cam_torque"] = ("peak cam torque [N m]", _peak(ds["cam_torque"], "cam_angle"))
+    if "moisture_content" in ds and "part" in ds.coords:
+        for part in ("cam", "crank"):
+            if part in ds["part"].values:
+                found[f"{part}_moisture"] = (f"{part} moisture [wt %]",
+                                             ds["moisture_content"].sel(part=part, drop=True))
+    if "input_torque" in ds:
+        found["peak_input_torque"] = ("peak crank torque [N m]", _peak(ds["input_torque"], "crank_angle"))
+    if "transmission_angle" in ds:
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", RuntimeWarning)
+            found["min_transmission_angle"] = ("minimum transmission angle [deg]",
+                                               ds["transmission_angle"].min("crank_angle"))
+    if "rocker_angle" in ds:
+        shift = ds["rocker_angle"] - ds["rocker_angle"].isel(time=0)
+        found["rocker_angle_shift"] = ("largest rocker angle shift [deg]", _peak(shift, "crank_angle"))
+    return found
+
+
+def parameters(ds) -> list[str]:
+    """Names of the varied values: coordinates along ``case`` other than the bookkeeping."""
+    return [name for name, coord in ds.coords.items()
+            if coord.dims == ("case",) and name not in _CASE_COORDS]
+
+
+def _label(ds, name: str) -> str:
+    coord = ds[name]
+    units = coord.attrs.get("units", "1")
+    path = coord.attrs.get("dotted_path", name)
+    return path if units in ("1", "") else f"{path} [{units}]"
+
+
+def _ok(ds) -> np.ndarray:
+    if "case_status" in ds.coords:
+        return np.asarray(ds["case_status"].values == "ok")
+    return np.ones(ds.sizes["case"], bool)
+
+
+def _title(ds, name: str, age: float) -> str:
+    failed = int((~_ok(ds)).sum())
+    note = f", {failed} failed case(s) left out" if failed else ""
+    return f"{ds.attrs.get('scene_name', '')}: {name.replace('_', ' ')} at {age:g} d{note}"
+
+
+def _axis_values(values: np.ndarray):
+    """Numeric positions for a coordinate (text values get 0, 1, 2...) and tick labels."""
+    if values.dtype.kind in "fiu":
+        return values.astype(float), None
+    labels = sorted(set(values.tolist()))
+    return np.asarray([labels.index(v) for v in values], float), labels
+
+
+def plot_grid(ds, outdir: Path, age_index: int) -> list[Path]:
+    plt = figure()
+    names = parameters(ds)
+    x_name, others = names[0], names[1:]
+    ok = _ok(ds)
+    x, ticks = _axis_values(ds[x_name].values)
+    age = float(days(ds)[age_index])
+    written = []
+    for key, (label, array) in outputs(ds).items():
+        y = array.isel(time=age_index).values
+        fig, ax = plt.subplots(figsize=(7, 4.5))
+        combos = sorted(set(zip(*(ds[o].values.tolist() for o in others)))) if others else [()]
+        for combo in combos:
+            chosen = ok.copy()
+            for name, value in zip(others, combo):
+                chosen &= ds[name].values == value
+            order = np.argsort(x[chosen])
+            text = ", ".join(f"{ds[n].attrs.get('dotted_path', n).split('.')[-1]}={v:g}"
+                             if isinstance(v, float) else f"{n}={v}" for n, v in zip(others, combo))
+            ax.plot(x[chosen][order], y[chosen][order], "-o", ms=4, label=text or None)
+        if ticks is not None:
+            ax.set_xticks(range(len(ticks)), ticks)
+        ax.set_xlabel(_label(ds, x_name))
+        ax.set_ylabel(label)
+        ax.set_title(_title(ds, key, age), fontsize=10)
+        if others:
+            ax.legend(fontsize=7)
+        ax.grid(alpha=0.3)
+        written.append(save_figure(fig, outdir / f"sweep_{key}.png"))
+    return written
+
+
+def plot_monte_carlo(ds, outdir: Path, age_index: int) -> list[Path]:
+    plt = figure()
+    names = parameters(ds)[:4]
+    ok = _ok(ds)
+    t = days(ds)
+    age = float(t[age_index])
+    written = []
+    for key, (label, array) in outputs(ds).items():
+        values = array.transpose("case", "time").values[ok]
+        fig, axes = plt.subplots(1, 1 + len(names), figsize=(4.5 * (1 + len(names)), 4), squeeze=False)
+        fan = axes[0, 0]
+        if values.size:
+            with warnings.catch_warnings():
+                warnings.simplefilter("ignore", RuntimeWarning)
+                q = np.nanquantile(values, QUANTILES, axis=0)
+            fan.fill_between(t, q[0], q[4], alpha=0.2, color="C0", label="5-95 %")
+            fan.fill_between(t, q[1], q[3], alpha=0.4, color="C0", label="25-75 %")
+            fan.plot(t, q[2], "C0-", label="median")
+            fan.legend(fontsize=7)
+        fan.set_xlabel("ageing time [d]")
+        fan.set_ylabel(label)
+        fan.set_title(_title(ds, key, age), fontsize=9)
+        for ax, name in zip(axes[0, 1:], names):
+            x, ticks = _axis_values(ds[name].values)
+            ax.plot(x[ok], values[:, age_index] if values.size else [], ".", ms=4)
+            if ticks is not None:
+                ax.set_xticks(range(len(ticks)), ticks)
+            ax.set_xlabel(_label(ds, name))
+            ax.set_ylabel(f"{label} at {age:g} d")
+        for ax in axes[0]:
+            ax.grid(alpha=0.3)
+        written.append(save_figure(fig, outdir / f"sweep_{key}.png"))
+    return written
+
+
+def plot(ds, outdir, time_index: int = -1) -> list[Path]:
+    """Figures of a sweep result; outputs are taken at ageing time ``time_index`` (last)."""
+    outdir = Path(outdir)
+    if not parameters(ds) or "time" not in ds.dims:
+        return []
+    age_index = int(np.arange(ds.sizes["time"])[time_index])
+    if ds.attrs.get("sweep_kind") == "monte_carlo":
+        return plot_monte_carlo(ds, outdir, age_index)
+    return plot_grid(ds, outdir, age_index)

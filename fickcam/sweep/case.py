@@ -1,0 +1,72 @@
+"""One case of a sweep, as a worker process runs it: scene dict → validated
+scene → :func:`fickcam.simulate.run` → per-case result file and record.
+
+Whatever goes wrong in a case (an invalid value, physics out of its domain, a
+solver failure, even a bug) becomes a ``failed`` record with its message; it
+never stops the other cases.
+"""
+from __future__ import annotations
+
+import logging
+import time
+from dataclasses import dataclass
+from pathlib import Path
+
+from ..errors import FickcamError, SceneError
+from .workdir import write_json
+
+log = logging.getLogger(__name__)
+
+
+@dataclass(frozen=True)
+class CaseTask:
+    """Everything a worker needs for one case (small and picklable)."""
+
+    index: int
+    scene: dict          # the case's scene as plain YAML data
+    values: dict         # the raw values this case sets, by dotted path
+    label: str           # e.g. "sweep.yaml case 7", names the scene in messages
+    base_dir: str        # folder that relative paths in the scene refer to
+    result_path: str     # per-case result file
+    record_path: str     # per-case JSON record
+
+
+def case_scene(task: CaseTask):
+    """Validate the case's scene exactly as `fickcam run` would validate its file."""
+    import yaml
+
+    from ..scene import parse_yaml, validate_document
+
+    text = yaml.safe_dump(task.scene, sort_keys=False, allow_unicode=True)
+    return validate_document(parse_yaml(text, file=task.label), base_dir=Path(task.base_dir))
+
+
+def failure_message(exc: BaseException) -> str:
+    """One line saying why a case failed (scene problems by key path, no line numbers:
+    the case's scene is not a file the user wrote)."""
+    if isinstance(exc, SceneError):
+        return "; ".join(f"{p.key}: {p.reason}" if p.key else p.reason for p in exc.problems)
+    if isinstance(exc, FickcamError):
+        return str(exc)
+    return f"internal error: {type(exc).__name__}: {exc}"
+
+
+def run_case(task: CaseTask) -> dict:
+    """Run one case, write its result file (ok cases) and then its record; return the record."""
+    from ..simulate import run
+    from ..store import save
+
+    started = time.perf_counter()
+    try:
+        dataset = run(case_scene(task))
+        save(dataset, task.result_path)
+        notices = dataset.attrs.get("notices") or []
+        status, message = "ok", "; ".join(str(n) for n in notices)
+    except Exception as exc:  # noqa: BLE001 - a case's failure is data, not a crash
+        if not isinstance(exc, FickcamError):
+            log.exception("%s: internal error", task.label)
+        status, message = "failed", failure_message(exc)
+    record = {"index": task.index, "status": status, "message": message,
+              "values": task.values, "wall_time": time.perf_counter() - started}
+    write_json(record, Path(task.record_path))
+    return record

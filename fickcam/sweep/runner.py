@@ -1,0 +1,139 @@
+"""Run a sweep's cases on dask.distributed and write one combined result.
+
+By default a :class:`distributed.LocalCluster` of single-threaded worker
+processes is started for the sweep and closed after it; with ``scheduler``
+the cases go to any running dask scheduler (a real cluster, whose workers
+must have fickcam installed and see the output folder). Workers write each
+case to the work folder as it finishes; the client keeps only the small
+per-case records. dask is imported here, inside functions only.
+"""
+from __future__ import annotations
+
+import logging
+import os
+import time
+import uuid
+from contextlib import ExitStack, contextmanager
+from pathlib import Path
+
+from ..errors import InputError
+from .case import CaseTask, run_case
+from .combine import combine
+from .spec import Sweep, load_sweep
+from .workdir import WorkFolder
+
+log = logging.getLogger(__name__)
+
+
+def case_tasks(sweep: Sweep, folder: WorkFolder, indices) -> list[CaseTask]:
+    """The worker tasks of the cases ``indices``."""
+    name = Path(sweep.file).name
+    return [CaseTask(index=i, scene=sweep.scene_dict(sweep.cases[i]), values=sweep.cases[i].values,
+                     label=f"{name} case {i}", base_dir=str(sweep.base_dir),
+                     result_path=str(folder.result(i)), record_path=str(folder.record(i)))
+            for i in indices]
+
+
+def default_workers(n_cases: int) -> int:
+    """One worker process per core, but no more than there are cases."""
+    return max(1, min(os.cpu_count() or 1, n_cases))
+
+
+@contextmanager
+def dask_client(workers: int | None, scheduler: str | None, n_cases: int):
+    """A distributed.Client: to ``scheduler`` if given, else to a new LocalCluster."""
+    from distributed import Client, LocalCluster
+
+    if scheduler:
+        try:
+            client = Client(scheduler, timeout="20s")
+        except (OSError, TimeoutError) as exc:
+            raise InputError(f"cannot reach the dask scheduler at {scheduler}: {exc}") from None
+        with client:
+            yield client
+        return
+    n_workers = workers if workers is not None else default_workers(n_cases)
+    if n_workers < 1:
+        raise InputError("--workers must be at least 1")
+    with LocalCluster(n_workers=n_workers, threads_per_worker=1, processes=True,
+                      dashboard_address=":0", silence_logs=logging.WARNING) as cluster, \
+            Client(cluster) as client:
+        log.info("local dask cluster: %d worker process(es)", n_workers)
+        yield client
+
+
+def compute_cases(sweep: Sweep, folder: WorkFolder, indices, client, *, progress: bool = False,
+                  done: int = 0) -> dict[int, dict]:
+    """Run the cases ``indices`` on ``client``; return their records as they finish.
+
+    A case whose task itself broke (e.g. its worker died) is returned as failed
+    but leaves no record on disk, so a resumed sweep runs it again.
+    """
+    from distributed import as_completed
+    from tqdm.auto import tqdm
+
+    run_id = uuid.uuid4().hex[:12]  # keys unique per run: never reuse another run's result
+    futures = {client.submit(run_case, task, key=f"fickcam-case-{run_id}-{task.index}", pure=False): task
+               for task in case_tasks(sweep, folder, indices)}
+    records: dict[int, dict] = {}
+    failed = 0
+    bar = tqdm(total=len(sweep.cases), initial=done, disable=not progress, unit="case",
+               desc="sweep", leave=True)
+    try:
+        for future in as_completed(futures):
+            task = futures[future]
+            try:
+                record = future.result()
+            except Exception as exc:  # noqa: BLE001 - the worker, not the case, failed
+                log.warning("%s did not finish: %s: %s", task.label, type(exc).__name__, exc)
+                record = {"index": task.index, "status": "failed", "values": task.values,
+                          "message": f"did not finish: {type(exc).__name__}: {exc}", "retry": True}
+            if record["status"] != "ok":
+                log.warning("%s failed: %s", task.label, record["message"])
+                failed += 1
+                bar.set_postfix(failed=failed, refresh=False)
+            records[task.index] = record
+            bar.update()
+    finally:
+        bar.close()
+        for future in futures:
+            future.cancel()
+    return records
+
+
+def run_sweep(sweep_path, output, workers: int | None = None, scheduler: str | None = None,
+              progress: bool = False) -> Path:
+    """Run every case of the sweep file ``sweep_path`` and write one result to ``output``.
+
+    Finished cases of an interrupted run of the same sweep (same sweep file,
+    base scene and fickcam version) are reused, not recomputed. The per-case
+    work folder ``OUTPUT.parts`` is removed once the result is written.
+    """
+    import dask
+
+    from ..store import save
+
+    started = time.perf_counter()
+    sweep = load_sweep(sweep_path)
+    output = Path(output)
+    folder = WorkFolder.next_to(output)
+    records = folder.open_for(sweep.identity, len(sweep.cases))
+    todo = [c.index for c in sweep.cases if c.index not in records]
+    if records:
+        log.info("resuming: %d of %d case(s) already finished", len(records), len(sweep.cases))
+    if todo:
+        with dask_client(workers, scheduler, len(todo)) as client:
+            records.update(compute_cases(sweep, folder, todo, client, progress=progress,
+                                         done=len(records)))
+    failed = sorted(i for i, r in records.items() if r["status"] != "ok")
+    if failed:
+        log.warning("%d of %d case(s) failed: %s", len(failed), len(sweep.cases),
+                    ", ".join(str(i) for i in failed))
+    with ExitStack() as stack, dask.config.set(scheduler="synchronous"):
+        save(combine(sweep, folder, records, stack, started=started), output)
+    if not any(r.get("retry") for r in records.values()):
+        folder.remove_own_files()
+    else:
+        log.warning("kept %s: rerun the same command to retry the cases that did not finish",
+                    folder.path)
+    return output

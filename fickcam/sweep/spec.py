@@ -1,0 +1,419 @@
+"""Sweep files (SPEC.md §2): a base scene plus what to vary, by dotted path.
+
+A sweep file names a ``base`` scene (relative to the sweep file) and either a
+``grid`` (every combination of the listed values, the last key varying
+fastest) or Monte Carlo draws (``samples`` cases, ``random`` distributions,
+``seed``). Every varied path must exist in the base scene; list items are
+addressed by their index (``environment.history.0.relative_humidity``).
+Values may carry units exactly as in a scene; random draws are made in the
+unit their parameters are given in and passed to the scene with that unit.
+"""
+from __future__ import annotations
+
+import copy
+import hashlib
+import itertools
+import math
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any, Literal, Union
+
+import numpy as np
+from pydantic import BaseModel, ConfigDict, Field, ValidationError, field_validator, model_validator
+
+from .. import __version__
+from ..errors import Problem, SceneError
+
+Scalar = Union[bool, int, float, str]
+
+
+# --------------------------------------------------------------------------
+# The sweep file model
+
+
+class _Strict(BaseModel):
+    model_config = ConfigDict(extra="forbid", frozen=True)
+
+
+def _number_and_unit(value: Any) -> tuple[float, str]:
+    """``0.6`` → (0.6, ""), ``"65 %"`` → (65.0, "%"); ValueError if not a number."""
+    from ..units import _split
+
+    if isinstance(value, bool):
+        raise ValueError(f"expected a number, got {value!r}")
+    if isinstance(value, (int, float)):
+        return float(value), ""
+    number, unit = _split(str(value))
+    return number, unit
+
+
+class Distribution(_Strict):
+    """One random input: exactly one of normal, uniform, lognormal (+ optional unit)."""
+
+    normal: tuple[Union[float, str], Union[float, str]] | None = None    # mean, standard deviation
+    uniform: tuple[Union[float, str], Union[float, str]] | None = None   # low, high
+    lognormal: tuple[float, float] | None = None                         # mu, sigma of ln(value)
+    unit: str | None = None                                              # unit of bare parameters
+
+    @model_validator(mode="after")
+    def _one_law(self):
+        given = [name for name in ("normal", "uniform", "lognormal") if getattr(self, name) is not None]
+        if len(given) != 1:
+            raise ValueError("give exactly one of normal: [mean, sd], uniform: [low, high], "
+                             "lognormal: [mu, sigma]")
+        first, second = self.parameters
+        if self.law == "normal" and second < 0:
+            raise ValueError("the standard deviation must not be negative")
+        if self.law == "uniform" and not first < second:
+            raise ValueError("uniform needs low < high")
+        if self.law == "lognormal" and second < 0:
+            raise ValueError("sigma must not be negative")
+        return self
+
+    @property
+    def law(self) -> str:
+        return next(name for name in ("normal", "uniform", "lognormal") if getattr(self, name) is not None)
+
+    @property
+    def draw_unit(self) -> str:
+        """The unit the draws are made in ("" = bare numbers, as a scene reads them)."""
+        return _common_unit(getattr(self, self.law), self.unit)
+
+    @property
+    def parameters(self) -> tuple[float, float]:
+        values = getattr(self, self.law)
+        return tuple(_number_and_unit(v)[0] for v in values)
+
+    @field_validator("normal", "uniform")
+    @classmethod
+    def _same_unit(cls, value):
+        if value is not None:
+            _common_unit(value, None)
+        return value
+
+    def draw(self, rng: np.random.Generator, count: int) -> list:
+        """``count`` values for the scene: floats, or strings with the draw unit."""
+        first, second = self.parameters
+        if self.law == "normal":
+            numbers = rng.normal(first, second, count)
+        elif self.law == "uniform":
+            numbers = rng.uniform(first, second, count)
+        else:
+            numbers = rng.lognormal(first, second, count)
+        unit = self.draw_unit
+        return [f"{x:.12g} {unit}" if unit else float(x) for x in numbers]
+
+
+def _common_unit(values, explicit: str | None) -> str:
+    """The one unit of a distribution's parameters; bare numbers take ``explicit``."""
+    units = set()
+    for value in values:
+        _, unit = _number_and_unit(value)
+        if unit:
+            units.add(unit)
+    if len(units) > 1:
+        raise ValueError(f"parameters must share one unit, got {sorted(units)}")
+    if units and explicit:
+        raise ValueError("give the unit either with the parameters or as unit:, not both")
+    return units.pop() if units else (explicit or "")
+
+
+class SweepModel(_Strict):
+    base: str = Field(min_length=1)
+    grid: dict[str, list[Scalar]] | None = None
+    samples: int | None = Field(None, ge=1)
+    random: dict[str, Distribution] | None = None
+    seed: int = Field(0, ge=0)
+
+    @field_validator("grid")
+    @classmethod
+    def _grid_values(cls, value):
+        if value is not None:
+            if not value:
+                raise ValueError("the grid needs at least one dotted path")
+            for path, values in value.items():
+                if not values:
+                    raise ValueError(f"{path}: give at least one value")
+        return value
+
+    @field_validator("random")
+    @classmethod
+    def _some_random(cls, value):
+        if value is not None and not value:
+            raise ValueError("random needs at least one dotted path")
+        return value
+
+    @model_validator(mode="after")
+    def _grid_or_draws(self):
+        if (self.grid is None) == (self.random is None):
+            raise ValueError("give exactly one of grid (every combination) or random "
+                             "(Monte Carlo draws, with samples and seed)")
+        if self.random is not None and self.samples is None:
+            raise ValueError("Monte Carlo draws need samples: N")
+        if self.grid is not None and self.samples is not None:
+            raise ValueError("samples goes with random, not with grid")
+        return self
+
+
+# --------------------------------------------------------------------------
+# Dotted paths into the base scene
+
+
+def split_path(path: str, data: dict) -> tuple:
+    """``"environment.history.0.temperature"`` → keys into ``data``; ValueError if absent."""
+    keys: list = []
+    node: Any = data
+    for part in path.split("."):
+        where = ".".join(str(k) for k in keys) or "the scene"
+        if isinstance(node, dict):
+            if part not in node:
+                known = ", ".join(str(k) for k in node) or "nothing"
+                raise ValueError(f"not in the base scene: {where} has no key {part!r} "
+                                 f"(it has {known}); add it to the base scene to vary it")
+            keys.append(part)
+            node = node[part]
+        elif isinstance(node, list):
+            if not part.isdigit() or int(part) >= len(node):
+                raise ValueError(f"not in the base scene: {where} is a list of {len(node)} "
+                                 f"item(s), index it with 0..{len(node) - 1}")
+            keys.append(int(part))
+            node = node[int(part)]
+        else:
+            raise ValueError(f"not in the base scene: {where} is a value, it has no {part!r}")
+    if isinstance(node, (dict, list)):
+        raise ValueError("names a section, not a value: vary the values inside it")
+    return tuple(keys)
+
+
+def get_path(data, keys: tuple):
+    """The value at ``keys`` in nested dicts/lists or pydantic models."""
+    node = data
+    for key in keys:
+        if isinstance(node, (dict, list)):
+            node = node[key]
+        else:
+            node = getattr(node, key)
+    return node
+
+
+def set_path(data: dict, keys: tuple, value) -> None:
+    node = data
+    for key in keys[:-1]:
+        node = node[key]
+    node[keys[-1]] = value
+
+
+def netcdf_name(path: str) -> str:
+    """A coordinate name for a dotted path: dots become double underscores."""
+    return path.replace(".", "__")
+
+
+# --------------------------------------------------------------------------
+# Units of a varied value (for the coordinate in the result)
+
+# dimension -> (unit label in the result, factor from SI to that unit)
+_LABELS = {
+    "percent": ("%", 1.0), "fraction": ("1", 1.0), "angle": ("degree", 180.0 / math.pi),
+    "angular_speed": ("rpm", 60.0 / (2.0 * math.pi)), "temperature": ("K", 1.0),
+    "length": ("m", 1.0), "mass": ("kg", 1.0), "time": ("s", 1.0), "force": ("N", 1.0),
+    "stiffness": ("N m-1", 1.0), "pressure": ("Pa", 1.0), "diffusivity": ("m2 s-1", 1.0),
+    "molar_energy": ("J mol-1", 1.0), "density": ("kg m-3", 1.0),
+    "inverse_temperature": ("K-1", 1.0), "acceleration": ("m s-2", 1.0),
+}
+
+
+def _is_angular(text: str) -> bool:
+    from ..units import registry
+
+    _, unit = _number_and_unit(text)
+    try:
+        root = registry().Quantity(1.0, unit.replace("%", "percent")).to_root_units()
+    except Exception:  # pint raises several types for unknown units
+        return False
+    return "radian" in str(root.units)
+
+
+def infer_dimension(text: str, si_value: float) -> str | None:
+    """The dimension whose SI conversion of ``text`` (a number with a unit) gives
+    ``si_value`` — the value the scene model made of it."""
+    from ..units import to_si
+
+    angular = _is_angular(text)
+    for dimension in _LABELS:
+        if (dimension == "angle") != angular and dimension in ("angle", "percent", "fraction"):
+            continue
+        try:
+            value = to_si(text, dimension)
+        except ValueError:
+            continue
+        if math.isclose(value, si_value, rel_tol=1e-9, abs_tol=1e-300):
+            return dimension
+    return None
+
+
+# --------------------------------------------------------------------------
+# The loaded sweep
+
+
+@dataclass(frozen=True)
+class Parameter:
+    """One varied scene value: its dotted path, keys into the scene, and dimension."""
+
+    path: str
+    keys: tuple
+    dimension: str | None  # a fickcam.units dimension, or None (bare numbers / text)
+
+    @property
+    def name(self) -> str:
+        return netcdf_name(self.path)
+
+    @property
+    def units(self) -> str:
+        return _LABELS[self.dimension][0] if self.dimension else "1"
+
+    def coordinate(self, raws: list):
+        """Coordinate values for the result (SI, angles in degrees, speeds in rpm);
+        NaN for a value that cannot be read (its case fails validation)."""
+        from ..units import to_si
+
+        if self.dimension is None:
+            if all(isinstance(r, (int, float)) and not isinstance(r, bool) for r in raws):
+                return np.asarray(raws, float)
+            return np.asarray([str(r) for r in raws], dtype=object)
+        factor = _LABELS[self.dimension][1]
+        values = []
+        for raw in raws:
+            try:
+                values.append(to_si(raw, self.dimension) * factor)
+            except ValueError:
+                values.append(math.nan)
+        return np.asarray(values, float)
+
+
+@dataclass(frozen=True)
+class Case:
+    """One scene of the sweep: its index and the raw values it sets, by dotted path."""
+
+    index: int
+    values: dict
+
+
+@dataclass
+class Sweep:
+    """A validated sweep file with its expanded cases."""
+
+    file: str
+    text: str
+    model: SweepModel
+    base_file: str
+    base_text: str
+    base_dir: Path
+    base_data: dict
+    parameters: list[Parameter]
+    cases: list[Case] = field(repr=False)
+
+    @property
+    def kind(self) -> Literal["grid", "monte_carlo"]:
+        return "grid" if self.model.grid is not None else "monte_carlo"
+
+    @property
+    def identity(self) -> str:
+        """Hash of what determines the results: sweep text, base text, fickcam version."""
+        digest = hashlib.sha256()
+        for part in (self.text, self.base_text, __version__):
+            digest.update(part.encode("utf-8"))
+            digest.update(b"\0")
+        return digest.hexdigest()
+
+    def scene_dict(self, case: Case) -> dict:
+        """The scene of ``case``: the base scene with the case's values set."""
+        data = copy.deepcopy(self.base_data)
+        for parameter in self.parameters:
+            set_path(data, parameter.keys, case.values[parameter.path])
+        return data
+
+    def coordinates(self) -> dict[str, np.ndarray]:
+        """Each parameter's coordinate values along ``case``."""
+        return {p.name: p.coordinate([c.values[p.path] for c in self.cases]) for p in self.parameters}
+
+
+def _expand_grid(grid: dict[str, list]) -> list[Case]:
+    paths = list(grid)
+    return [Case(index, dict(zip(paths, combo)))
+            for index, combo in enumerate(itertools.product(*(grid[p] for p in paths)))]
+
+
+def _draw_cases(random: dict[str, Distribution], samples: int, seed: int) -> list[Case]:
+    """Draws in file order from one generator seeded with ``seed`` (reproducible)."""
+    rng = np.random.default_rng(seed)
+    columns = {path: dist.draw(rng, samples) for path, dist in random.items()}
+    return [Case(index, {path: values[index] for path, values in columns.items()})
+            for index in range(samples)]
+
+
+def _probe_values(model: SweepModel, path: str, base_value) -> list:
+    """Values of ``path`` that carry units, to learn its dimension from."""
+    values = [base_value]
+    if model.grid is not None:
+        values += model.grid[path]
+    else:
+        dist = model.random[path]
+        unit = dist.draw_unit
+        if unit:
+            values.append(f"{dist.parameters[0]:.12g} {unit}")
+    return [v for v in values if isinstance(v, str)]
+
+
+def _dimension_of(model: SweepModel, path: str, keys: tuple, base_data: dict) -> str | None:
+    """Learn the dimension of a scene value by validating the base scene with a
+    probe value at ``path`` and comparing the SI value the scene model made of it."""
+    from ..scene import SceneModel
+
+    for probe in _probe_values(model, path, get_path(base_data, keys)):
+        data = copy.deepcopy(base_data)
+        set_path(data, keys, probe)
+        try:
+            si_value = get_path(SceneModel.model_validate(data), keys)
+            _number_and_unit(probe)
+        except (ValidationError, ValueError):
+            continue
+        if isinstance(si_value, float):
+            dimension = infer_dimension(probe, si_value)
+            if dimension is not None:
+                return dimension
+    return None
+
+
+def load_sweep(source) -> Sweep:
+    """Read and validate a sweep file; raise SceneError (one Problem per fault)."""
+    from ..scene import problems_from_validation, read_yaml, validate_document
+
+    doc = read_yaml(source, what="sweep")
+    try:
+        model = SweepModel.model_validate(doc.data)
+    except ValidationError as exc:
+        raise SceneError(problems_from_validation(exc, doc)) from None
+    base_path = Path(source).resolve().parent / model.base
+    if not base_path.is_file():
+        raise SceneError([doc.problem(("base",), f"no such scene file: {base_path}")])
+    base_doc = read_yaml(base_path)
+    base_dir = base_path.parent
+    validate_document(base_doc, base_dir=base_dir)  # the base must be a valid scene itself
+
+    section = "grid" if model.grid is not None else "random"
+    problems: list[Problem] = []
+    parameters: list[Parameter] = []
+    for path in (model.grid or model.random):
+        try:
+            keys = split_path(path, base_doc.data)
+        except ValueError as exc:
+            problems.append(doc.problem((section, path), str(exc)))
+            continue
+        parameters.append(Parameter(path, keys, _dimension_of(model, path, keys, base_doc.data)))
+    if problems:
+        raise SceneError(problems)
+    cases = (_expand_grid(model.grid) if model.grid is not None
+             else _draw_cases(model.random, model.samples, model.seed))
+    return Sweep(file=str(source), text=doc.text, model=model, base_file=str(base_path),
+                 base_text=base_doc.text, base_dir=base_dir, base_data=base_doc.data,
+                 parameters=parameters, cases=cases)

@@ -1,0 +1,104 @@
+"""The work folder of a sweep (``OUT.parts/`` next to the result): one result
+file and one small JSON record per finished case, and a manifest naming the
+sweep they belong to. A record is written only after its case's result file,
+so a record on disk means a finished case; an interrupted sweep resumes from
+the records when the manifest's sweep identity still matches.
+"""
+from __future__ import annotations
+
+import json
+import logging
+import os
+import tempfile
+from dataclasses import dataclass
+from pathlib import Path
+
+from ..errors import InputError
+
+log = logging.getLogger(__name__)
+
+MANIFEST = "manifest.json"
+
+
+def write_json(data: dict, path: Path) -> Path:
+    """Write JSON atomically (temporary file in the same folder, then rename)."""
+    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
+    try:
+        with os.fdopen(fd, "w", encoding="utf-8") as handle:
+            json.dump(data, handle, indent=1)
+            handle.flush()
+            os.fsync(handle.fileno())
+        os.replace(tmp, path)
+    except BaseException:
+        Path(tmp).unlink(missing_ok=True)
+        raise
+    return path
+
+
+@dataclass(frozen=True)
+class WorkFolder:
+    """Paths of the per-case files of one sweep."""
+
+    path: Path
+
+    @classmethod
+    def next_to(cls, output) -> "WorkFolder":
+        output = Path(output)
+        return cls(output.with_name(output.name + ".parts"))
+
+    def result(self, index: int) -> Path:
+        return self.path / f"case-{index:05d}.h5"
+
+    def record(self, index: int) -> Path:
+        return self.path / f"case-{index:05d}.json"
+
+    def own_files(self) -> list[Path]:
+        return sorted(self.path.glob("case-*.h5")) + sorted(self.path.glob("case-*.json")) + \
+            sorted(self.path.glob(".case-*.tmp")) + [p for p in [self.path / MANIFEST] if p.exists()]
+
+    def open_for(self, identity: str, n_cases: int) -> dict[int, dict]:
+        """Create the folder or reuse it; return the records of finished cases.
+
+        Records of another sweep (different identity) are discarded, never mixed in.
+        """
+        manifest_path = self.path / MANIFEST
+        if self.path.exists():
+            if not manifest_path.is_file():
+                if any(self.path.iterdir()):
+                    raise InputError(f"{self.path} exists and is not a fickcam sweep work folder; "
+                                     f"move it away or choose another output")
+            else:
+                manifest = json.loads(manifest_path.read_text(encoding="utf-8"))
+                if manifest.get("identity") == identity:
+                    return self._finished_records(n_cases)
+                log.warning("%s holds cases of a different sweep (the sweep file, base scene or "
+                            "fickcam version changed): starting over", self.path)
+                self.remove_own_files()
+        self.path.mkdir(parents=True, exist_ok=True)
+        write_json({"identity": identity, "cases": n_cases}, manifest_path)
+        return {}
+
+    def _finished_records(self, n_cases: int) -> dict[int, dict]:
+        records = {}
+        for path in self.path.glob("case-*.json"):
+            try:
+                record = json.loads(path.read_text(encoding="utf-8"))
+                index = int(record["index"])
+            except (ValueError, KeyError, TypeError, json.JSONDecodeError):
+                log.warning("ignoring unreadable record %s", path)
+                continue
+            if not 0 <= index < n_cases or path != self.record(index):
+                continue
+            if record.get("status") == "ok" and not self.result(index).is_file():
+                continue
+            records[index] = record
+        return records
+
+    def remove_own_files(self) -> None:
+        """Delete the files this module wrote, then the folder if it is empty."""
+        for path in self.own_files():
+            path.unlink(missing_ok=True)
+        try:
+            self.path.rmdir()
+        except OSError:
+            log.warning("left %s in place: it holds files fickcam did not write", self.path)

@@ -1,0 +1,130 @@
+"""Per-case bookkeeping and combining along ``case``, with small synthetic results
+(built through fickcam.dataset like a real run), so no physics is needed."""
+import json
+from contextlib import ExitStack
+from pathlib import Path
+
+import numpy as np
+import pytest
+import xarray as xr
+
+import fickcam
+from fickcam.dataset import build_dataset
+from fickcam.errors import InputError
+from fickcam.sweep import WorkFolder, load_sweep
+from fickcam.sweep.combine import combine
+from fickcam.sweep.workdir import write_json
+
+CONFIGS = Path(__file__).resolve().parents[1] / "configs"
+DAY = 86400.0
+
+
+def synthetic_result(rh: float):
+    times = np.array([0.0, 10.0, 30.0]) * DAY
+    moisture = np.outer(1 - np.exp(-times / (20 * DAY)), [1.0, 0.5]) * rh / 50
+    values = {"temperature": np.full(3, 360.0), "relative_humidity": np.full(3, rh),
+              "moisture_content": moisture, "lift": 0.0381 * (1 + 1e-4 * moisture[:, 0])}
+    return build_dataset(values, {"time": times, "part": ["cam", "follower"]},
+                         {"scene_name": "synthetic", "notices": [], "wall_time": 0.1})
+
+
+@pytest.fixture
+def sweep(tmp_path):
+    (tmp_path / "base.yaml").write_text((CONFIGS / "singh2016_fourbar.yaml").read_text())
+    path = tmp_path / "sweep.yaml"
+    path.write_text("base: base.yaml\ngrid:\n"
+                    "  environment.history.0.relative_humidity: [50 %, 150 %, 80 %]\n")
+    return load_sweep(path)
+
+
+def finish(folder: WorkFolder, index: int, message: str = "", rh: float | None = None) -> dict:
+    """What a worker leaves for a case: its result (ok cases), then its record."""
+    if rh is not None:
+        fickcam.save(synthetic_result(rh), folder.result(index))
+    record = {"index": index, "status": "ok" if rh is not None else "failed", "message": message,
+              "values": {}, "wall_time": 0.5}
+    write_json(record, folder.record(index))
+    return record
+
+
+def combined_file(sweep, folder, records, path):
+    with ExitStack() as stack:
+        fickcam.save(combine(sweep, folder, records, stack), path)
+    return fickcam.open_result(path)
+
+
+def test_combined_result_has_a_case_dimension_with_each_varied_value_as_coordinate(sweep, tmp_path):
+    folder = WorkFolder.next_to(tmp_path / "out.h5")
+    folder.open_for(sweep.identity, 3)
+    records = {0: finish(folder, 0, rh=50.0), 1: finish(folder, 1, "too wet"), 2: finish(folder, 2, rh=80.0)}
+    ds = combined_file(sweep, folder, records, tmp_path / "out.h5")
+    rh = ds["environment__history__0__relative_humidity"]
+    assert rh.dims == ("case",) and rh.attrs["units"] == "%"
+    assert rh.attrs["dotted_path"] == "environment.history.0.relative_humidity"
+    np.testing.assert_allclose(rh.values, [50, 150, 80])
+    assert ds["moisture_content"].dims == ("case", "time", "part")
+    for index, value in ((0, 50.0), (2, 80.0)):
+        xr.testing.assert_allclose(ds.isel(case=index, drop=True).reset_coords(drop=True),
+                                   synthetic_result(value).drop_attrs(), check_dim_order=False)
+    assert ds["moisture_content"].attrs["units"] == "%"
+    assert ds.attrs["sweep_kind"] == "grid" and ds.attrs["cases"] == 3
+    assert "relative_humidity: [50 %, 150 %, 80 %]" in ds.attrs["sweep_text"]
+
+
+def test_a_failed_case_has_nan_data_and_its_message_and_the_result_says_so(sweep, tmp_path):
+    folder = WorkFolder.next_to(tmp_path / "out.h5")
+    folder.open_for(sweep.identity, 3)
+    records = {0: finish(folder, 0, rh=50.0), 1: finish(folder, 1, "relative_humidity: too wet"),
+               2: finish(folder, 2, rh=80.0)}
+    ds = combined_file(sweep, folder, records, tmp_path / "out.h5")
+    assert ds["case_status"].values.tolist() == ["ok", "failed", "ok"]
+    assert ds["case_message"].values[1] == "relative_humidity: too wet"
+    assert np.isnan(ds["moisture_content"].isel(case=1).values).all()
+    assert np.isfinite(ds["moisture_content"].isel(case=[0, 2]).values).all()
+    assert ds.attrs["failed_cases"] == 1
+
+
+def test_combining_reads_case_files_lazily(sweep, tmp_path):
+    folder = WorkFolder.next_to(tmp_path / "out.h5")
+    folder.open_for(sweep.identity, 3)
+    records = {i: finish(folder, i, rh=60.0 + i) for i in range(3)}
+    with ExitStack() as stack:
+        ds = combine(sweep, folder, records, stack)
+        assert all(not isinstance(ds[name].variable._data, np.ndarray) for name in ds.data_vars), \
+            "per-case data must stay on disk until the combined file is written"
+        assert ds["moisture_content"].chunks is not None
+
+
+def test_a_work_folder_of_the_same_sweep_gives_back_its_finished_cases(sweep, tmp_path):
+    folder = WorkFolder.next_to(tmp_path / "out.h5")
+    assert folder.path == tmp_path / "out.h5.parts"
+    assert folder.open_for(sweep.identity, 3) == {}
+    done = {0: finish(folder, 0, rh=50.0), 1: finish(folder, 1, "failed for good")}
+    assert folder.open_for(sweep.identity, 3) == done
+
+
+def test_an_ok_record_whose_result_file_is_gone_is_not_finished(sweep, tmp_path):
+    folder = WorkFolder.next_to(tmp_path / "out.h5")
+    folder.open_for(sweep.identity, 3)
+    finish(folder, 0, rh=50.0)
+    finish(folder, 2, rh=80.0)
+    folder.result(2).unlink()
+    assert set(folder.open_for(sweep.identity, 3)) == {0}
+
+
+def test_a_work_folder_of_another_sweep_is_cleared_not_reused(sweep, tmp_path):
+    folder = WorkFolder.next_to(tmp_path / "out.h5")
+    folder.open_for("another sweep", 3)
+    finish(folder, 0, rh=50.0)
+    assert folder.open_for(sweep.identity, 3) == {}
+    assert not folder.result(0).exists() and not folder.record(0).exists()
+    assert json.loads((folder.path / "manifest.json").read_text())["identity"] == sweep.identity
+
+
+def test_a_foreign_folder_in_the_way_is_refused_not_deleted(sweep, tmp_path):
+    folder = WorkFolder.next_to(tmp_path / "out.h5")
+    folder.path.mkdir()
+    (folder.path / "notes.txt").write_text("mine")
+    with pytest.raises(InputError, match="not a fickcam sweep work folder"):
+        folder.open_for(sweep.identity, 3)
+    assert (folder.path / "notes.txt").read_text() == "mine"

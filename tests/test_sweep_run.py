@@ -1,0 +1,162 @@
+"""Sweeps on dask.distributed: one LocalCluster with 2 worker processes shared by the
+module; each case checked against its single run, a failing case reported while the
+others complete, a resumed sweep recomputing no finished case."""
+import logging
+from pathlib import Path
+
+import numpy as np
+import pytest
+import xarray as xr
+import yaml
+
+import fickcam
+from fickcam.cli import main
+from fickcam.sweep import WorkFolder, compute_cases, load_sweep, run_sweep
+
+CONFIGS = Path(__file__).resolve().parents[1] / "configs"
+
+
+def small_base() -> str:
+    """Seed 000's cam with three ageing times and a coarse angle step (fast cases)."""
+    scene = yaml.safe_load((CONFIGS / "singh2017_cam.yaml").read_text())
+    scene["outputs"].update(ageing_times=["0 d", "20 d", "60 d"], angle_step="10 deg")
+    scene["outputs"].pop("file", None)
+    return yaml.safe_dump(scene, sort_keys=False)
+
+
+def write_sweep(folder: Path, text: str) -> Path:
+    folder.mkdir(parents=True, exist_ok=True)
+    (folder / "base.yaml").write_text(small_base())
+    (folder / "sweep.yaml").write_text(text)
+    return folder / "sweep.yaml"
+
+
+GRID = """\
+base: base.yaml
+grid:
+  environment.history.0.relative_humidity: [60 %, 150 %, 90 %]
+  environment.history.0.temperature: [70 degC, 100 degC]
+"""
+INVALID = """\
+base: base.yaml
+grid:
+  environment.history.0.relative_humidity: [120 %, 150 %]
+"""
+RH_FAILED = {2, 3}  # the 150 % cases of GRID
+
+
+@pytest.fixture(scope="module")
+def scheduler():
+    """One LocalCluster (2 single-threaded worker processes) for the whole module."""
+    from distributed import LocalCluster
+
+    with LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
+                      dashboard_address=":0", silence_logs=logging.WARNING) as cluster:
+        yield cluster.scheduler_address
+
+
+@pytest.fixture(scope="module")
+def interrupted_then_resumed(scheduler, tmp_path_factory):
+    """GRID run as a sweep that stopped after cases 0 and 1, then was resumed."""
+    from distributed import Client
+
+    path = write_sweep(tmp_path_factory.mktemp("grid"), GRID)
+    output = path.parent / "out.h5"
+    sweep = load_sweep(path)
+    folder = WorkFolder.next_to(output)
+    folder.open_for(sweep.identity, len(sweep.cases))
+    with Client(scheduler) as client:
+        first = compute_cases(sweep, folder, [0, 1], client)
+    run_sweep(path, output, scheduler=scheduler)
+    return sweep, first, fickcam.open_result(output), output
+
+
+def test_every_case_equals_running_its_scene_alone(interrupted_then_resumed):
+    sweep, _, result, _ = interrupted_then_resumed
+    assert result.sizes["case"] == len(sweep.cases) == 6
+    for case in sweep.cases:
+        if case.index in RH_FAILED:
+            continue
+        alone = fickcam.run(fickcam.load_scene(sweep.scene_dict(case)))
+        in_sweep = result.isel(case=case.index, drop=True).reset_coords(drop=True)
+        assert set(in_sweep.data_vars) == set(alone.data_vars)
+        xr.testing.assert_allclose(in_sweep, alone.drop_attrs(), rtol=1e-12, atol=0)
+
+
+def test_failing_cases_are_reported_and_the_others_complete(interrupted_then_resumed):
+    _, _, result, _ = interrupted_then_resumed
+    status = result["case_status"].values.tolist()
+    assert [i for i, s in enumerate(status) if s == "failed"] == sorted(RH_FAILED)
+    for index in RH_FAILED:
+        message = result["case_message"].values[index]
+        assert "environment.history.0.relative_humidity" in message and "100" in message
+        assert np.isnan(result["moisture_content"].isel(case=index).values).all()
+    ok = [i for i in range(6) if i not in RH_FAILED]
+    assert np.isfinite(result["lift"].isel(case=ok).values).all()
+    assert result.attrs["failed_cases"] == 2
+    np.testing.assert_allclose(result["environment__history__0__relative_humidity"].values,
+                               [60, 60, 150, 150, 90, 90])
+    np.testing.assert_allclose(result["environment__history__0__temperature"].values,
+                               [343.15, 373.15] * 3)
+
+
+def test_a_resumed_sweep_recomputes_no_finished_case(interrupted_then_resumed):
+    _, first, result, output = interrupted_then_resumed
+    for index, record in first.items():
+        assert result["case_wall_time"].values[index] == record["wall_time"], \
+            f"case {index} was computed again"
+    assert not WorkFolder.next_to(output).path.exists(), "the work folder is removed when done"
+
+
+def test_a_sweep_whose_cases_all_finished_needs_no_workers(scheduler, tmp_path):
+    from distributed import Client
+
+    path = write_sweep(tmp_path, INVALID)
+    sweep = load_sweep(path)
+    folder = WorkFolder.next_to(tmp_path / "out.h5")
+    folder.open_for(sweep.identity, len(sweep.cases))
+    with Client(scheduler) as client:
+        compute_cases(sweep, folder, [0, 1], client)
+    # nothing left to run: no scheduler is contacted (this address has none)
+    run_sweep(path, tmp_path / "out.h5", scheduler="tcp://127.0.0.1:9")
+    assert fickcam.open_result(tmp_path / "out.h5")["case_status"].values.tolist() == ["failed"] * 2
+
+
+def test_invalid_values_become_failed_cases_with_the_reason(scheduler, tmp_path):
+    path = write_sweep(tmp_path, INVALID)
+    assert main(["sweep", str(path), "--scheduler", scheduler, "-o", str(tmp_path / "out.h5"),
+                 "--quiet"]) == 0
+    result = fickcam.open_result(tmp_path / "out.h5")
+    assert result["case_status"].values.tolist() == ["failed", "failed"]
+    assert all("relative_humidity: must not exceed 100" in m for m in result["case_message"].values)
+
+
+def test_default_local_cluster_runs_the_cases_and_shows_progress(tmp_path, capsys):
+    path = write_sweep(tmp_path, INVALID)
+    run_sweep(path, tmp_path / "out.h5", workers=1, progress=True)
+    assert "2/2" in capsys.readouterr().err
+    assert fickcam.open_result(tmp_path / "out.h5").sizes["case"] == 2
+
+
+def test_monte_carlo_sweep_and_its_quantile_plots(scheduler, tmp_path):
+    path = write_sweep(tmp_path, "base: base.yaml\nsamples: 3\nseed: 4\nrandom:\n"
+                                 "  environment.history.0.relative_humidity: {uniform: [60 %, 90 %]}\n")
+    run_sweep(path, tmp_path / "mc.h5", scheduler=scheduler)
+    result = fickcam.open_result(tmp_path / "mc.h5")
+    assert result.attrs["sweep_kind"] == "monte_carlo" and result.attrs["seed"] == 4
+    assert (result["case_status"] == "ok").all()
+    drawn = result["environment__history__0__relative_humidity"].values
+    assert ((drawn >= 60) & (drawn <= 90)).all() and len(set(drawn)) == 3
+    assert main(["plot", str(tmp_path / "mc.h5"), "--kind", "sweep", "-o", str(tmp_path / "fig")]) == 0
+    assert (tmp_path / "fig" / "sweep_lift_loss.png").stat().st_size > 0
+
+
+def test_grid_plots_show_each_output_against_the_varied_values(interrupted_then_resumed, tmp_path):
+    from fickcam.plotting.sweep import outputs, plot
+
+    _, _, result, _ = interrupted_then_resumed
+    written = plot(result, tmp_path)
+    assert {p.name for p in written} >= {"sweep_lift_loss.png", "sweep_jump_speed.png",
+                                         "sweep_peak_cam_torque.png"}
+    loss = outputs(result)["lift_loss"][1]
+    assert loss.dims == ("case", "time") and np.isnan(loss.isel(case=sorted(RH_FAILED))).all()
