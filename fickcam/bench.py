@@ -3,7 +3,7 @@
 For each geometry the full uptake curve of a unit surface step (c0 = 0,
 g = 1 weight %, isothermal so tau = t) is solved by each model at a few
 accuracy targets; the error is the largest |mean - exact| over 61 output
-times spanning Fourier numbers 1e-3 .. 1.5 (relative to the step), against
+times spanning Fourier numbers (D t / h^2 of the thickness) 1e-2 .. 1.5 (relative to the step), against
 Crank's series (``fickcam.diffusion.exact.step_response``). Wall times are
 medians of ``repeats`` runs after one warm-up that pays the FiPy import.
 The row ``fipy-naive`` is FiPy solving every backward-Euler step itself
@@ -40,21 +40,21 @@ def _cases(quick: bool) -> list[Case]:
              Case("disc r5 x 2 mm", Disc(5e-3, 2e-3), Disc(5e-3, 2e-3),
                   ("analytic", "axisymmetric"), (1e-2, 3e-3, 1e-3)),
              Case("bar 8x6x3 mm", Bar(8e-3, 6e-3, 3e-3), Bar(8e-3, 6e-3, 3e-3),
-                  ("analytic", "solid"), (3e-2, 1e-2)),
+                  ("analytic", "solid"), (5e-2, 3e-2)),
              Case("cam plate 12x8x3 mm (rectangle)", plate, Bar(12e-3, 8e-3, 3e-3), ("plane",),
-                  (1e-2, 3e-3)),
+                  (3e-2, 1e-2)),
              Case("link bar 40 mm, bosses r8/r3", LinkBar(0.04, 0.01, 0.004, 0.008, 0.003), None,
                   ("plane",), (3e-2, 1e-2))]
     if quick:
-        cases = [Case(c.name, c.geometry, c.exact_as, c.models, c.accuracies[:2])
-                 for c in cases[:3]]
+        cases = [Case(c.name, c.geometry, c.exact_as, c.models, c.accuracies[:1 + (i == 0)])
+                 for i, c in enumerate(cases[:3])]
     return cases
 
 
 def _uptake_times(geometry) -> np.ndarray:
-    """0 and 60 times from Fourier 1e-3 to 1.5 of the thickness (the full uptake curve)."""
+    """0 and 60 times from Fourier 1e-2 to 1.5 of the thickness (the full uptake curve)."""
     scale = geometry.thickness ** 2 / D_REF
-    return np.concatenate([[0.0], np.geomspace(1e-3, 1.5, 60) * scale])
+    return np.concatenate([[0.0], np.geomspace(1e-2, 1.5, 60) * scale])
 
 
 def _reference(case: Case, times: np.ndarray) -> np.ndarray | None:

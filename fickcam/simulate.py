@@ -185,7 +185,10 @@ def run(scene, *, accuracy: float | None = None, progress: bool = False):
 
         angles = _angle_grid(scene.model.outputs.angle_step)
         coords["crank_angle"] = angles
-        coords["link"] = ["crank", "coupler", "rocker", "frame"]
+        from .linkage import JOINTS, LINKS
+
+        coords["link"] = list(LINKS)
+        coords["joint"] = list(JOINTS)
         mech = linkage_response(scene.model.linkage, {h.part.name: h for h in histories}, times,
                                 angles, valid_all, on_step=bar.update)
         values.update(mech.variables)

@@ -93,3 +93,14 @@ def test_invalid_ageing_times_stay_nan():
                             np.array([True, False]))
     assert np.isnan(result.variables["input_torque"][1]).all()
     assert result.variables["grashof_class"][1] == ""
+
+
+def test_fourbar_response_returns_exactly_the_documented_variables():
+    from fickcam.linkage import VARIABLES, FourBarDesign, FourBarState, fourbar_response
+
+    v = fourbar_response(FourBarDesign(0.1, 0.16, 0.16, 0.2), FourBarState((0.1, 0.16, 0.16, 0.2)),
+                         np.radians(np.arange(0, 360, 30.0))).variables
+    assert set(v) == set(VARIABLES)
+    sizes = {"crank_angle": 12, "link": 4, "joint": 4}
+    for name, (dims, _, _) in VARIABLES.items():
+        assert np.shape(v[name]) == tuple(sizes[d] for d in dims), name

@@ -128,3 +128,40 @@ def test_a_foreign_folder_in_the_way_is_refused_not_deleted(sweep, tmp_path):
     with pytest.raises(InputError, match="not a fickcam sweep work folder"):
         folder.open_for(sweep.identity, 3)
     assert (folder.path / "notes.txt").read_text() == "mine"
+
+
+def synthetic_sweep(kind: str, n: int = 6, failed=(1,)):
+    """A combined result as a sweep writes it, without running physics."""
+    cases = [synthetic_result(50.0 + 5 * i) for i in range(n)]
+    for i in failed:
+        cases[i] = cases[i].map(lambda v: v * np.nan)
+    ds = xr.concat(cases, dim="case", data_vars="all", coords="minimal", compat="override",
+                   join="outer", combine_attrs="override")
+    rh = np.array([50.0 + 5 * i for i in range(n)])
+    return ds.assign_coords(
+        case=np.arange(n),
+        environment__history__0__relative_humidity=("case", rh, {"units": "%", "dotted_path":
+                                                                 "environment.history.0.relative_humidity"}),
+        case_status=("case", np.array(["failed" if i in failed else "ok" for i in range(n)], object)),
+        case_message=("case", np.array(["" for _ in range(n)], object)),
+    ).assign_attrs(sweep_kind=kind, scene_name="synthetic")
+
+
+def test_lift_loss_is_the_drop_from_the_first_ageing_time_in_mm():
+    from fickcam.plotting.sweep import outputs
+
+    ds = synthetic_sweep("grid")
+    label, loss = outputs(ds)["lift_loss"]
+    expected = (ds["lift"].isel(time=0) - ds["lift"]) * 1e3
+    xr.testing.assert_allclose(loss, expected)
+    assert label == "lift loss [mm]" and float(loss.isel(case=0, time=0)) == 0.0
+    assert np.isnan(loss.isel(case=1)).all()
+
+
+@pytest.mark.parametrize("kind", ["grid", "monte_carlo"])
+def test_sweep_plots_one_figure_per_output_through_fickcam_plot(kind, tmp_path):
+    from fickcam.plotting import plot
+
+    written = plot(synthetic_sweep(kind), tmp_path, "sweep")
+    assert sorted(p.name for p in written) == ["sweep_cam_moisture.png", "sweep_lift_loss.png"]
+    assert all(p.stat().st_size > 1000 for p in written)

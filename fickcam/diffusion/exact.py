@@ -48,7 +48,7 @@ SATURATION_FOURIER = 8.0  # F = 1 - O(exp(-8 pi^2)) for the sheet, O(exp(-46)) c
 # --------------------------------------------------------------------- sheet
 def ierfc(x):
     """First integral of erfc: ierfc(x) = exp(-x^2)/sqrt(pi) - x erfc(x)
-    (Crank 1975, Appendix, eq. 2.?; Carslaw & Jaeger 1959 App. II)."""
+    (Carslaw & Jaeger 1959, Appendix II)."""
     x = np.asarray(x, float)
     finite = np.minimum(x, 27.0)  # ierfc(27) < 1e-318: zero beyond, also for x = inf
     return np.where(x < 27.0, np.exp(-finite * finite) / SQRT_PI - finite * erfc(finite), 0.0)
@@ -80,18 +80,40 @@ def _sheet_interval_mean_series(z1, z2, fourier):
     return 1.0 - 4.0 / np.pi * total
 
 
+def _by_regime(switch, short_form, long_form, fourier, *positions):
+    """Evaluate ``short_form`` where t* < switch and ``long_form`` elsewhere,
+    each only on its own elements (broadcast arrays of positions and t*)."""
+    arrays = np.broadcast_arrays(np.maximum(np.asarray(fourier, float), 0.0),
+                                 *(np.asarray(p, float) for p in positions))
+    fourier, positions = arrays[0], arrays[1:]
+    short = fourier < switch
+    out = np.empty(fourier.shape)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        out[short] = short_form(*(p[short] for p in positions), fourier[short])
+    out[~short] = long_form(*(p[~short] for p in positions), fourier[~short])
+    return np.clip(out, 0.0, 1.0)
+
+
 def sheet_interval_mean(z1, z2, fourier):
     """Fractional mean concentration over z in [z1, z2] (fractions of the
     thickness h, 0 <= z1 < z2 <= 1) of a sheet with both faces stepped to 1 at
     t = 0; t* = D t / h^2. Image form below t* = 0.05, series above."""
-    z1, z2, fourier = np.broadcast_arrays(*(np.asarray(v, float) for v in (z1, z2, fourier)))
-    fourier = np.maximum(fourier, 0.0)
-    short = fourier < SHEET_SWITCH
-    with np.errstate(divide="ignore", invalid="ignore"):
-        images = _sheet_interval_mean_images(z1, z2, np.where(short, fourier, SHEET_SWITCH))
-    series = _sheet_interval_mean_series(z1, z2, np.where(short, SHEET_SWITCH, fourier))
-    value = np.where(short, np.where(fourier > 0, images, 0.0), series)
-    return np.clip(value, 0.0, 1.0)
+    def images(a, b, t):
+        return np.where(t > 0, _sheet_interval_mean_images(a, b, t), 0.0)
+    return _by_regime(SHEET_SWITCH, images, _sheet_interval_mean_series, fourier, z1, z2)
+
+
+def _sheet_uptake_images(fourier):
+    """Crank 1975 eq. 4.20 with l = h/2."""
+    root = np.sqrt(fourier)
+    images = sum((-1.0) ** n * ierfc(n / (2.0 * root)) for n in range(1, SHEET_IMAGES))
+    return 4.0 * root * (1.0 / SQRT_PI + 2.0 * images)
+
+
+def _sheet_uptake_series(fourier):
+    """Crank 1975 eq. 4.18."""
+    return 1.0 - sum(8.0 / (k * np.pi) ** 2 * np.exp(-(k * np.pi) ** 2 * fourier)
+                     for k in range(1, 2 * SHEET_MODES, 2))
 
 
 def sheet_uptake(fourier):
@@ -99,17 +121,7 @@ def sheet_uptake(fourier):
     t* = D t / h^2. Short times: F = 4 sqrt(t*) [pi^-1/2 + 2 sum (-1)^n
     ierfc(n / (2 sqrt t*))] (Crank 1975 eq. 4.20 with l = h/2); long times:
     F = 1 - sum 8/((2n+1)^2 pi^2) exp(-(2n+1)^2 pi^2 t*) (Crank 1975 eq. 4.18)."""
-    fourier = np.maximum(np.asarray(fourier, float), 0.0)
-    short = fourier < SHEET_SWITCH
-    ts = np.where(short, fourier, SHEET_SWITCH)
-    root = np.sqrt(ts)
-    with np.errstate(divide="ignore"):
-        images = sum((-1.0) ** n * ierfc(n / (2.0 * root)) for n in range(1, SHEET_IMAGES))
-    short_form = 4.0 * root * (1.0 / SQRT_PI + 2.0 * images)
-    tl = np.where(short, SHEET_SWITCH, fourier)
-    long_form = 1.0 - sum(8.0 / (k * np.pi) ** 2 * np.exp(-(k * np.pi) ** 2 * tl)
-                          for k in range(1, 2 * SHEET_MODES, 2))
-    return np.clip(np.where(short, short_form, long_form), 0.0, 1.0)
+    return _by_regime(SHEET_SWITCH, _sheet_uptake_images, _sheet_uptake_series, fourier)
 
 
 def sheet_series_remainder(fourier, n_terms):
@@ -123,21 +135,25 @@ def sheet_series_remainder(fourier, n_terms):
         return first / -np.expm1(-8.0 * np.pi ** 2 * fourier)
 
 
+def _sheet_profile_images(z, fourier):
+    """Sum of erfc images of both faces (Crank 1975 eq. 4.15); at t* = 0 the
+    faces are at 1 and the interior at 0."""
+    s = 2.0 * np.sqrt(fourier)
+    images = sum((-1.0) ** n * (erfc((n + z) / s) + erfc((n + 1 - z) / s)) for n in range(SHEET_IMAGES))
+    return np.where(fourier > 0, images, np.where((z <= 0) | (z >= 1), 1.0, 0.0))
+
+
+def _sheet_profile_series(z, fourier):
+    """Crank 1975 eq. 4.17 (origin moved to a face)."""
+    return 1.0 - 4.0 / np.pi * sum(
+        (-1.0) ** n / (2 * n + 1) * np.exp(-((2 * n + 1) * np.pi) ** 2 * fourier)
+        * np.cos((2 * n + 1) * np.pi * (z - 0.5)) for n in range(SHEET_MODES))
+
+
 def sheet_profile(z, fourier):
     """Fractional concentration at z/h in [0, 1] (broadcast with t*). Short
-    times: sum of erfc images (Crank 1975 eq. 4.15); long times: Crank eq. 4.17."""
-    z, fourier = np.broadcast_arrays(np.asarray(z, float), np.maximum(np.asarray(fourier, float), 0.0))
-    short = fourier < SHEET_SWITCH
-    s = 2.0 * np.sqrt(np.where(short, fourier, SHEET_SWITCH))
-    with np.errstate(divide="ignore", invalid="ignore"):
-        images = sum((-1.0) ** n * (erfc((n + z) / s) + erfc((n + 1 - z) / s))
-                     for n in range(SHEET_IMAGES))
-    images = np.where(fourier > 0, images, np.where((z <= 0) | (z >= 1), 1.0, 0.0))
-    tl = np.where(short, SHEET_SWITCH, fourier)
-    series = 1.0 - 4.0 / np.pi * sum(
-        (-1.0) ** n / (2 * n + 1) * np.exp(-((2 * n + 1) * np.pi) ** 2 * tl)
-        * np.cos((2 * n + 1) * np.pi * (z - 0.5)) for n in range(SHEET_MODES))
-    return np.clip(np.where(short, images, series), 0.0, 1.0)
+    times: erfc images (Crank 1975 eq. 4.15); long times: Crank eq. 4.17."""
+    return _by_regime(SHEET_SWITCH, _sheet_profile_images, _sheet_profile_series, fourier, z)
 
 
 # ------------------------------------------------------------------ cylinder
@@ -158,7 +174,7 @@ def _cylinder_short_coefficients() -> np.ndarray:
     """Coefficients of F(t*) = sum_k b_k t*^((k+1)/2) for the solid cylinder.
 
     The Laplace transform of the uptake is 2 I1(q)/(q^3 I0(q)), q = sqrt(p)
-    (Crank 1975 §5.3.2; Carslaw & Jaeger 1959 §13.?). With the Hankel
+    (Crank 1975 §5.3.2, transform of eq. 5.22). With the Hankel
     expansions I_nu(q) ~ e^q/sqrt(2 pi q) sum (-1)^k a_k(nu) q^-k,
     I1/I0 = sum c_k q^-k and term-by-term inversion gives
     b_k = 2 c_k / Gamma((k + 3)/2); the first three are Crank eq. 5.24."""
@@ -234,8 +250,9 @@ def _decade_chunks(fourier):
 
 
 def _cylinder_profile_short(r, fourier):
-    """Three-term short-time form (Crank 1975 eq. 5.26; Carslaw & Jaeger 1959
-    §13.? ): (a/r)^1/2 erfc(x) + (a-r) sqrt(Dt)/(4 a^1/2 r^3/2) ierfc(x) +
+    """Three-term short-time form (Crank 1975 §5.3.2, the small-time series;
+    re-derived here from the transform I0(q r)/(p I0(q)) with the Hankel
+    expansion of I0): (a/r)^1/2 erfc(x) + (a-r) sqrt(Dt)/(4 a^1/2 r^3/2) ierfc(x) +
     (9a^2 - 2ar - 7r^2) Dt/(32 a^3/2 r^5/2) i2erfc(x), x = (a-r)/(2 sqrt(Dt))."""
     r = np.maximum(r, 0.5)
     root = np.sqrt(fourier)
@@ -392,3 +409,20 @@ def saturation_tau(geometry, pre_exponential) -> tuple[float, float]:
         lengths, axes = _box_sides(geometry)
         scales = [length ** 2 / pre_exponential[axis] for length, axis in zip(lengths, axes)]
     return min(scales), max(scales)
+
+
+def exact_history(geometry, diffusivity, exposure, times, surface_layer_depth=5e-4):
+    """dict(mean, surface) in weight % at ``times`` (s) for any ``Exposure``:
+    Duhamel superposition of ``step_response`` in rescaled time, implemented
+    in ``fickcam.diffusion.superposition`` (imported here lazily: that module
+    imports this one)."""
+    from . import superposition
+    return superposition.exact_history(geometry, diffusivity, exposure, times,
+                                       surface_layer_depth=surface_layer_depth)
+
+
+def exact_history_field(geometry, diffusivity, exposure, times, points):
+    """Moisture (weight %, shape (n_times, n_points)) at ``points`` (see
+    ``step_field``) for any ``Exposure``; see ``exact_history``."""
+    from . import superposition
+    return superposition.exact_history_field(geometry, diffusivity, exposure, times, points)

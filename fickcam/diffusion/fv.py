@@ -31,7 +31,8 @@ from ..errors import SolverError
 
 log = logging.getLogger(__name__)
 
-DIRECT_LIMIT = 40_000   # cells; above this (3-D fill-in, notes: LU ~ cells^2.1) use CG
+DIRECT_LIMIT = {1: 10**9, 2: 40_000, 3: 30_000}  # cells per dimension count; above: CG
+# (notes/fipy-measured.md: 3-D LU fills in as cells^2.1, CG stays near linear)
 RESIDUAL_TOLERANCE = 1e-9
 _FACTOR_CACHE_SIZE = 64
 
@@ -95,7 +96,7 @@ class ThetaStepper:
     def __init__(self, disc: Discretisation, part: str = ""):
         self.disc = disc
         self.part = part
-        self.iterative = disc.cells > DIRECT_LIMIT
+        self.iterative = disc.cells > DIRECT_LIMIT[max(1, len(disc.coordinates))]
         self._banded = _tridiagonal(disc.stiffness)
         self._factors: OrderedDict[tuple[float, float], object] = OrderedDict()
         self.factorisations = 0

@@ -159,6 +159,14 @@ def analytic_available(geometry) -> bool:
     return bool(check(geometry)) if check is not None else True
 
 
+def _no_exact_reason(geometry) -> str:
+    if isinstance(geometry, Disc) and geometry.inner_radius > 0:
+        return "an annulus has no product solution (use axisymmetric)"
+    if not isinstance(geometry, (Sheet, Bar, Disc)):
+        return "no separable exact solution (use plane)"
+    return "fickcam.diffusion.exact provides no exact_history"
+
+
 def plan(geometry, diffusivity: Diffusivity, exposure: Exposure, times: np.ndarray,
          accuracy: float = 1e-3, model: str = "auto") -> Plan:
     """The model, cells and steps ``solve`` will use, and why, without solving."""
@@ -168,9 +176,8 @@ def plan(geometry, diffusivity: Diffusivity, exposure: Exposure, times: np.ndarr
                     "rescaled time (linear, one Arrhenius factor): cheapest and exact",
                     ANALYTIC_ERROR)
     if model == "analytic":
-        raise InputError(f"diffusion.model analytic is not available for a "
-                         f"{type(geometry).__name__}"
-                         + (" with a bore" if isinstance(geometry, Disc) else ""))
+        raise InputError(f"diffusion.model analytic is not available for this "
+                         f"{type(geometry).__name__}: {_no_exact_reason(geometry)}")
     chosen = NUMERICAL_MODEL[type(geometry)]
     scales = _scales(geometry, diffusivity, exposure)
     change = scales.star(timesteps.rescaled_time(diffusivity, exposure, exposure.change_times,

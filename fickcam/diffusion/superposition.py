@@ -1,16 +1,16 @@
 """Duhamel superposition of exact step responses over an exposure history.
 
-Duhamel's theorem (Carslaw & Jaeger 1959 §1.14; Crank 1975 §2.? for
-time-dependent surface conditions): with the rescaled time
+Duhamel's theorem (Carslaw & Jaeger 1959 §1.14, time-dependent surface
+conditions): with the rescaled time
 tau(t) = integral_0^t exp(-Ea / (R T(s))) ds, which turns D(T(t)) into the
-constant D0 (Crank 1975 §7.? for D = D(t)),
+constant D0 (Crank 1975, D a function of time only: dT = D(t) dt),
 
     M(t) = M0 + sum_k dMs_k K(tau(t) - tau(t_k)) + integral_ramps K(tau(t) - tau(s)) dMs(s)
 
 where K is the unit-step response (mean, contact-layer mean, or a field).
 The ramp integral is taken against the measure dMs (so the kernel K, bounded,
-is never differentiated), on panels geometric in the age w = t - s, the first
-panel mapped by w = w1 u^2 which makes K ~ sqrt(tau) smooth in u. The
+is never differentiated), on panels geometric in the age w = t - s, each
+mapped by w = v^2 (v linear), which makes K ~ sqrt(tau) smooth in v. The
 derivative of Ms along each panel is the spectral derivative of its values at
 the Gauss-Legendre nodes (exact for a polynomial of degree < GAUSS_NODES).
 """
@@ -20,9 +20,9 @@ import numpy as np
 
 from .exact import SATURATION_FOURIER, saturation_tau, step_field, step_response
 
-GAUSS_NODES = 20
-PANEL_RATIO = 4.0
-FIRST_PANEL = 1e-3   # first panel spans about 1e-3 of the fastest diffusion time
+GAUSS_NODES = 16
+PANEL_RATIO = 8.0
+FIRST_PANEL = 1e-2   # first panel: 1e-2 of the fastest diffusion time (quadrature error ~1e-12 relative)
 TAU_NODES = 24
 
 _NODES, _WEIGHTS = np.polynomial.legendre.leggauss(GAUSS_NODES)

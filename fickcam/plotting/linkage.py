@@ -17,7 +17,7 @@ def _ages(ds, most: int = 4) -> list[int]:
 
 
 def _label(t_days: float) -> str:
-    return "dry (t = 0)" if t_days == 0 else f"t = {t_days:g} d"
+    return "t = 0 (dry)" if t_days == 0 else f"t = {t_days:g} d"
 
 
 def _wrapped_degrees(x):

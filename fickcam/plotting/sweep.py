@@ -70,6 +70,15 @@ def _label(ds, name: str) -> str:
     return path if units in ("1", "") else f"{path} [{units}]"
 
 
+def _value_label(ds, name: str, value) -> str:
+    """``temperature=343.15 K`` for a legend."""
+    short = ds[name].attrs.get("dotted_path", name).split(".")[-1]
+    units = ds[name].attrs.get("units", "1")
+    if isinstance(value, float):
+        return f"{short}={value:g}" + ("" if units in ("1", "") else f" {units}")
+    return f"{short}={value}"
+
+
 def _ok(ds) -> np.ndarray:
     if "case_status" in ds.coords:
         return np.asarray(ds["case_status"].values == "ok")
@@ -107,8 +116,7 @@ def plot_grid(ds, outdir: Path, age_index: int) -> list[Path]:
             for name, value in zip(others, combo):
                 chosen &= ds[name].values == value
             order = np.argsort(x[chosen])
-            text = ", ".join(f"{ds[n].attrs.get('dotted_path', n).split('.')[-1]}={v:g}"
-                             if isinstance(v, float) else f"{n}={v}" for n, v in zip(others, combo))
+            text = ", ".join(_value_label(ds, n, v) for n, v in zip(others, combo))
             ax.plot(x[chosen][order], y[chosen][order], "-o", ms=4, label=text or None)
         if ticks is not None:
             ax.set_xticks(range(len(ticks)), ticks)
@@ -162,6 +170,7 @@ def plot(ds, outdir, time_index: int = -1) -> list[Path]:
     outdir = Path(outdir)
     if not parameters(ds) or "time" not in ds.dims:
         return []
+    outdir.mkdir(parents=True, exist_ok=True)
     age_index = int(np.arange(ds.sizes["time"])[time_index])
     if ds.attrs.get("sweep_kind") == "monte_carlo":
         return plot_monte_carlo(ds, outdir, age_index)

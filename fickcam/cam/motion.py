@@ -1,0 +1,222 @@
+"""Follower motion laws and their assembly into a full turn.
+
+Every law is a normalised rise S(x), x = (theta - theta_0)/beta in [0, 1], S(0) = 0,
+S(1) = 1, returned with its derivatives with respect to x: (S, S', S'', S''').
+A segment of lift h over beta gives y = h S, dy/dtheta = h S'/beta, ... and at a
+constant cam speed omega the true time derivatives v = h S' omega/beta,
+a = h S'' omega^2/beta^2, j = h S''' omega^3/beta^3 (Norton, Design of Machinery
+5th ed., sec. 8.3, eqs. 8.1-8.3). A return is y = h (1 - S).
+"""
+from __future__ import annotations
+
+import functools
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+PI = math.pi
+
+
+def uniform_velocity(x):
+    """S = x (Norton sec. 8.3, 'constant velocity'; seed 000 Table 17). Infinite
+    acceleration at both ends."""
+    x = np.asarray(x, float)
+    return x, np.ones_like(x), np.zeros_like(x), np.zeros_like(x)
+
+
+def simple_harmonic(x):
+    """S = (1 - cos pi x)/2 (Norton eq. 8.6; seed 000 Table 17 and p. 281)."""
+    x = np.asarray(x, float)
+    return ((1 - np.cos(PI * x)) / 2, PI / 2 * np.sin(PI * x), PI ** 2 / 2 * np.cos(PI * x),
+            -PI ** 3 / 2 * np.sin(PI * x))
+
+
+def cycloidal(x):
+    """S = x - sin(2 pi x)/(2 pi) (Norton eq. 8.7; seed 000 Table 17; seed 004 p. 2)."""
+    x = np.asarray(x, float)
+    w = 2 * PI
+    return (x - np.sin(w * x) / w, 1 - np.cos(w * x), w * np.sin(w * x), w ** 2 * np.cos(w * x))
+
+
+def _polynomial(coefficients, x):
+    """S = sum c_n x^n and its first three derivatives."""
+    poly = np.polynomial.Polynomial(coefficients)
+    x = np.asarray(x, float)
+    return poly(x), poly.deriv(1)(x), poly.deriv(2)(x), poly.deriv(3)(x)
+
+
+def polynomial_345(x):
+    """S = 10 x^3 - 15 x^4 + 6 x^5 (Norton eq. 8.24)."""
+    return _polynomial([0, 0, 0, 10, -15, 6], x)
+
+
+def polynomial_4567(x):
+    """S = 35 x^4 - 84 x^5 + 70 x^6 - 20 x^7 (Norton eq. 8.25)."""
+    return _polynomial([0, 0, 0, 0, 35, -84, 70, -20], x)
+
+
+# ---- piecewise laws given by their acceleration: a(x) = c0 + c1 sin k(x-x0) + c2 cos k(x-x0)
+
+
+@dataclass(frozen=True)
+class _Piece:
+    start: float
+    end: float
+    c0: float
+    c1: float
+    c2: float
+    k: float
+
+
+def _integrated(piece: _Piece, t, v0, s0):
+    """(S, S', S'', S''') of one piece at t = x - start, from its start values v0, s0
+    (closed-form integrals of c0 + c1 sin kt + c2 cos kt)."""
+    c0, c1, c2, k = piece.c0, piece.c1, piece.c2, piece.k
+    sin, cos = np.sin(k * t), np.cos(k * t)
+    acc = c0 + c1 * sin + c2 * cos
+    jerk = k * (c1 * cos - c2 * sin)
+    vel = v0 + c0 * t + c1 / k * (1 - cos) + c2 / k * sin
+    pos = s0 + v0 * t + c0 * t ** 2 / 2 + c1 / k * (t - sin / k) + c2 / k ** 2 * (1 - cos)
+    return pos, vel, acc, jerk
+
+
+@functools.lru_cache(maxsize=None)
+def _normalised(pieces: tuple[_Piece, ...]):
+    """Start values (v0, s0) of each piece for unit peak acceleration, and the scale
+    making S(1) = 1."""
+    starts, v0, s0 = [], 0.0, 0.0
+    for piece in pieces:
+        starts.append((v0, s0))
+        s, v, _, _ = _integrated(piece, np.float64(piece.end - piece.start), v0, s0)
+        v0, s0 = float(v), float(s)
+    return tuple(starts), 1.0 / s0
+
+
+def _piecewise(pieces: tuple[_Piece, ...], x):
+    x = np.asarray(x, float)
+    starts, scale = _normalised(pieces)
+    out = [np.zeros_like(x) for _ in range(4)]
+    for piece, (v0, s0) in zip(pieces, starts):
+        inside = (x >= piece.start) & (x <= piece.end) if piece.end == 1.0 else \
+            (x >= piece.start) & (x < piece.end)
+        values = _integrated(piece, x[inside] - piece.start, v0, s0)
+        for o, v in zip(out, values):
+            o[inside] = v * scale
+    return tuple(out)
+
+
+_CONSTANT_ACCELERATION = (_Piece(0.0, 0.5, 1.0, 0.0, 0.0, 1.0), _Piece(0.5, 1.0, -1.0, 0.0, 0.0, 1.0))
+_K = 4 * PI
+_MODIFIED_TRAPEZOIDAL = (
+    _Piece(0.0, 1 / 8, 0.0, 1.0, 0.0, _K), _Piece(1 / 8, 3 / 8, 1.0, 0.0, 0.0, _K),
+    _Piece(3 / 8, 5 / 8, 0.0, 0.0, 1.0, _K), _Piece(5 / 8, 7 / 8, -1.0, 0.0, 0.0, _K),
+    _Piece(7 / 8, 1.0, 0.0, 0.0, -1.0, _K))
+_MODIFIED_SINE = (
+    _Piece(0.0, 1 / 8, 0.0, 1.0, 0.0, _K), _Piece(1 / 8, 7 / 8, 0.0, 0.0, 1.0, 4 * PI / 3),
+    _Piece(7 / 8, 1.0, 0.0, 0.0, -1.0, _K))
+
+
+def constant_acceleration(x):
+    """Parabolic: S = 2 x^2 (x <= 1/2), 1 - 2 (1 - x)^2 (Norton sec. 8.3; seed 000 Table 17,
+    whose second half is misprinted as h[1 - 2{1 - k^2}]). Infinite jerk at ends and middle."""
+    return _piecewise(_CONSTANT_ACCELERATION, x)
+
+
+def modified_trapezoidal(x):
+    """Modified trapezoid: sine ramps of period 1/2 over x in [0, 1/8], [3/8, 5/8], [7/8, 1]
+    and constant acceleration between (Norton eq. 8.15, peak C_a = 4.8881)."""
+    return _piecewise(_MODIFIED_TRAPEZOIDAL, x)
+
+
+def modified_sine(x):
+    """Modified sine: sine of period 1/2 over [0, 1/8] and [7/8, 1], of period 3/2 between
+    (Norton eq. 8.18, peak C_a = 5.5280)."""
+    return _piecewise(_MODIFIED_SINE, x)
+
+
+LAW_FUNCTIONS = {f.__name__: f for f in (uniform_velocity, constant_acceleration, simple_harmonic,
+                                         cycloidal, polynomial_345, polynomial_4567,
+                                         modified_trapezoidal, modified_sine)}
+
+
+# ------------------------------------------------------------------ a full turn
+
+
+@dataclass(frozen=True)
+class MotionSegment:
+    """One segment of the design motion (SI): start angle, span, signed height, law."""
+
+    start: float
+    span: float
+    height: float  # + rise, - return, 0 dwell
+    level: float   # follower position at the segment start (m)
+    law: str | None
+
+
+def segments_from_spec(specs) -> tuple[MotionSegment, ...]:
+    """Turn scene segments (objects with .angle, .height, .law) into MotionSegments."""
+    out, start, level = [], 0.0, 0.0
+    for s in specs:
+        out.append(MotionSegment(start, float(s.angle), float(s.height), level,
+                                 getattr(s, "law", None)))
+        start += float(s.angle)
+        level += float(s.height)
+    return tuple(out)
+
+
+def segment_motion(segment: MotionSegment, theta):
+    """(y, y', y'', y''') per radian of cam angle inside one segment (theta in rad)."""
+    theta = np.asarray(theta, float)
+    if segment.law is None or segment.height == 0.0:
+        zero = np.zeros_like(theta)
+        return zero + segment.level, zero, zero, zero
+    x = (theta - segment.start) / segment.span
+    s, s1, s2, s3 = LAW_FUNCTIONS[segment.law](x)
+    h, b = segment.height, segment.span
+    return segment.level + h * s, h * s1 / b, h * s2 / b ** 2, h * s3 / b ** 3
+
+
+def follower_motion(segments, theta):
+    """(y, dy/dtheta, d2y/dtheta2, d3y/dtheta3) of the design motion, theta (rad) taken
+    modulo 2 pi; at a joint the value of the segment that starts there."""
+    theta = np.mod(np.asarray(theta, float), 2 * PI)
+    out = [np.zeros_like(theta) for _ in range(4)]
+    for k, seg in enumerate(segments):
+        last = k == len(segments) - 1
+        inside = (theta >= seg.start) & ((theta < seg.start + seg.span) | last)
+        for o, v in zip(out, segment_motion(seg, theta[inside])):
+            o[inside] = v
+    return tuple(out)
+
+
+def time_derivatives(per_angle, omega):
+    """(y, v, a, j) from derivatives per radian at a constant speed omega (rad/s)."""
+    y, d1, d2, d3 = per_angle
+    return y, d1 * omega, d2 * omega ** 2, d3 * omega ** 3
+
+
+def joint_notices(segments, tolerance: float = 1e-9) -> list[str]:
+    """Warnings where the motion leaves infinite acceleration (velocity step) or infinite
+    jerk (acceleration step) at a segment joint or inside a law (Norton sec. 8.2, the
+    'fundamental law of cam design')."""
+    notices = []
+    lift = max(abs(s.height) for s in segments) or 1.0
+    n = len(segments)
+    for k in range(n):
+        a, b = segments[k], segments[(k + 1) % n]
+        end = segment_motion(a, np.array([a.start + a.span]))
+        start = segment_motion(b, np.array([b.start]))
+        where = math.degrees((a.start + a.span) % (2 * PI))
+        span = min(a.span, b.span)
+        if abs(end[1][0] - start[1][0]) * span > tolerance * lift:
+            notices.append(f"velocity jumps at the {where:.4g} deg joint: infinite acceleration "
+                           f"and jerk there ({a.law or 'dwell'} -> {b.law or 'dwell'})")
+        elif abs(end[2][0] - start[2][0]) * span ** 2 > tolerance * lift:
+            notices.append(f"acceleration jumps at the {where:.4g} deg joint: infinite jerk "
+                           f"there ({a.law or 'dwell'} -> {b.law or 'dwell'})")
+    for seg in segments:
+        if seg.law == "constant_acceleration" and seg.height != 0.0:
+            notices.append(f"constant_acceleration leaves infinite jerk at mid-segment "
+                           f"({math.degrees(seg.start + seg.span / 2):.4g} deg)")
+    return notices

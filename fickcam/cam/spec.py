@@ -1,0 +1,205 @@
+"""The scene's ``cam:`` section (SPEC.md §1): a plate cam and a translating follower.
+
+Values are parsed to SI by :mod:`fickcam.units` (angles in rad, speed in rad/s).
+Validation refuses what cannot be a cam: motion segments that do not add up to
+360 deg or do not return the follower to its start, an unknown motion law, a roller
+follower without a roller radius, ``eccentric`` together with ``motion`` or
+``base_circle_radius``, a bore that reaches the profile.
+"""
+from __future__ import annotations
+
+import math
+from typing import Literal
+
+from pydantic import BaseModel, ConfigDict, Field, field_validator, model_validator
+
+from ..units import (
+    Angle,
+    AngularSpeed,
+    Force,
+    Length,
+    Mass,
+    NonNegativeLength,
+    PositiveAngle,
+    Pressure,
+    SignedLength,
+    Stiffness,
+)
+
+#: motion law names (SPEC.md §1) -> module-level functions in :mod:`fickcam.cam.motion`
+LAWS = ("uniform_velocity", "constant_acceleration", "simple_harmonic", "cycloidal",
+        "polynomial_345", "polynomial_4567", "modified_trapezoidal", "modified_sine")
+Law = Literal["uniform_velocity", "constant_acceleration", "simple_harmonic", "cycloidal",
+              "polynomial_345", "polynomial_4567", "modified_trapezoidal", "modified_sine"]
+
+#: tolerance on the sum of the motion segments (rad)
+TURN_TOLERANCE = math.radians(1e-6)
+
+
+class _Strict(BaseModel):
+    model_config = ConfigDict(extra="forbid", frozen=True, populate_by_name=True)
+
+
+class Segment(_Strict):
+    """One motion segment: ``{dwell: angle}``, ``{rise: length, over: angle, law: name}``
+    or ``{return: length, over: angle, law: name}``."""
+
+    dwell: PositiveAngle | None = None
+    rise: Length | None = None
+    return_: Length | None = Field(default=None, alias="return")
+    over: PositiveAngle | None = None
+    law: Law | None = None
+
+    @model_validator(mode="after")
+    def _one_kind(self):
+        kinds = [k for k in ("dwell", "rise", "return_") if getattr(self, k) is not None]
+        if len(kinds) != 1:
+            raise ValueError("a segment is exactly one of dwell, rise or return")
+        if kinds[0] == "dwell":
+            if self.over is not None or self.law is not None:
+                raise ValueError("a dwell takes only its angle (no over/law)")
+        elif self.over is None or self.law is None:
+            raise ValueError("a rise or return needs 'over' (angle) and 'law'")
+        return self
+
+    @property
+    def kind(self) -> str:
+        return "dwell" if self.dwell is not None else ("rise" if self.rise is not None else "return")
+
+    @property
+    def angle(self) -> float:
+        return self.dwell if self.dwell is not None else self.over
+
+    @property
+    def height(self) -> float:
+        """Signed change of follower position over the segment (m)."""
+        return {"dwell": 0.0, "rise": self.rise, "return": -(self.return_ or 0.0)}[self.kind]
+
+
+class Eccentric(_Strict):
+    """Circular disc of ``radius`` turning about a point ``eccentricity`` from its centre."""
+
+    eccentricity: Length
+    radius: Length
+
+    @model_validator(mode="after")
+    def _axis_inside(self):
+        if self.eccentricity >= self.radius:
+            raise ValueError("eccentricity must be smaller than the disc radius")
+        return self
+
+
+class Guide(_Strict):
+    """Follower stem in a guide bush (seeds/004_101c340ef7457bc8.txt; Rothbart 2004, ch. 6):
+    ``overhang`` l1 from the contact to the near bush end, bush ``length`` l2, stem
+    ``diameter`` d, guide friction coefficient."""
+
+    friction_coefficient: float = Field(ge=0.0, le=1.0)
+    overhang: NonNegativeLength
+    length: Length
+    diameter: NonNegativeLength = 0.0
+
+
+class Wear(_Strict):
+    """Archard wear: dimensionless coefficient K and the cam surface hardness H
+    (wear depth rate = K/H x pressure x sliding speed)."""
+
+    archard_coefficient: float = Field(ge=0.0)
+    hardness: Pressure
+
+
+class Follower(_Strict):
+    """Translating follower. Extras beyond SPEC.md (defaults): ``width`` (the cam
+    thickness) the contact length for Hertz, ``friction_coefficient`` (0) at the cam
+    contact (sliding: knife and flat), ``modulus`` (210 GPa) / ``poisson_ratio`` (0.3)
+    used when the follower has no absorbing material, ``guide`` (none)."""
+
+    kind: Literal["knife", "roller", "flat"]
+    roller_radius: Length | None = None
+    offset: SignedLength = 0.0
+    mass: Mass
+    material: str | None = None
+    spring_rate: Stiffness = 0.0
+    spring_preload: Force = 0.0
+    external_load: Force = 0.0
+    width: Length | None = None
+    friction_coefficient: float = Field(default=0.0, ge=0.0, le=1.0)
+    modulus: Pressure = 210e9
+    poisson_ratio: float = Field(default=0.3, ge=0.0, lt=0.5)
+    guide: Guide | None = None
+
+    @model_validator(mode="after")
+    def _roller_needs_radius(self):
+        if self.kind == "roller" and self.roller_radius is None:
+            raise ValueError("a roller follower needs roller_radius")
+        if self.kind != "roller" and self.roller_radius is not None:
+            raise ValueError(f"roller_radius applies to a roller follower, not {self.kind}")
+        return self
+
+
+class CamSection(_Strict):
+    """The ``cam:`` section. Extras beyond SPEC.md (defaults): ``gravity`` (false; g along
+    the follower axis, against the lift), ``wear`` (none: no Archard wear),
+    ``follower.width``, ``follower.friction_coefficient``, ``follower.modulus``,
+    ``follower.poisson_ratio``, ``follower.guide`` (see :class:`Follower`). The cam turns
+    counter-clockwise at ``speed``; the follower moves along +y at x = offset."""
+
+    material: str
+    base_circle_radius: Length | None = None
+    thickness: Length
+    bore_radius: NonNegativeLength = 0.0
+    speed: AngularSpeed
+    follower: Follower
+    motion: list[Segment] | None = None
+    eccentric: Eccentric | None = None
+    gravity: bool = False
+    wear: Wear | None = None
+
+    @field_validator("motion")
+    @classmethod
+    def _closed_turn(cls, value):
+        if value is not None:
+            check_motion(value)
+        return value
+
+    @model_validator(mode="after")
+    def _a_cam(self):
+        if self.eccentric is not None:
+            if self.motion is not None or self.base_circle_radius is not None:
+                raise ValueError("give either eccentric or motion with base_circle_radius, not both")
+            smallest = self.eccentric.radius - self.eccentric.eccentricity
+        else:
+            if self.motion is None or self.base_circle_radius is None:
+                raise ValueError("a cam needs motion and base_circle_radius (or eccentric)")
+            smallest = self.base_circle_radius
+        if self.bore_radius >= smallest:
+            raise ValueError(f"bore_radius must be smaller than the base circle ({smallest * 1e3:g} mm)")
+        if self.follower.offset != 0.0 and abs(self.follower.offset) >= smallest + (
+                self.follower.roller_radius or 0.0) and self.follower.kind != "flat":
+            raise ValueError("follower offset must be smaller than the prime circle radius")
+        return self
+
+
+def check_motion(segments) -> None:
+    """Raise ValueError unless the segments add up to 360 deg and close (rises = returns)."""
+    if not segments:
+        raise ValueError("motion needs at least one segment")
+    total = sum(s.angle for s in segments)
+    if abs(total - 2 * math.pi) > TURN_TOLERANCE:
+        raise ValueError(f"motion segments add up to {math.degrees(total):.6g} deg, not 360 deg")
+    level = sum(s.height for s in segments)
+    scale = max(abs(s.height) for s in segments) or 1.0
+    if abs(level) > 1e-9 * scale:
+        raise ValueError(f"rises and returns do not cancel (the follower ends {level * 1e3:+.6g} mm "
+                         f"from where it started)")
+    low = 0.0
+    position = 0.0
+    for s in segments:
+        position += s.height
+        low = min(low, position)
+    if low < -1e-9 * scale:
+        raise ValueError("the motion goes below the base circle (a return before its rise)")
+
+
+__all__ = ["Angle", "CamSection", "Eccentric", "Follower", "Guide", "LAWS", "Segment", "Wear",
+           "check_motion"]

@@ -1,0 +1,79 @@
+"""Moisture fields (``moisture`` over time, part, cell; cell centres ``cell_x``,
+``cell_y``, ``cell_z`` over part, cell, NaN where a part has fewer cells or
+does not use an axis) at a few ageing times, one figure per part."""
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+
+from . import days, figure, save_figure
+
+PANELS = 4
+
+
+def plot(ds, outdir) -> list[Path]:
+    """One PNG per part with stored fields: up to four ageing times side by side."""
+    written = []
+    for part in ds["part"].values:
+        field = ds["moisture"].sel(part=part).values          # (time, cell)
+        if not np.isfinite(field).any():
+            continue
+        coords = {axis: ds[f"cell_{axis}"].sel(part=part).values for axis in "xyz"
+                  if f"cell_{axis}" in ds}
+        written.append(_plot_part(ds, str(part), field, coords, Path(outdir)))
+    return written
+
+
+def chosen_times(count: int, panels: int = PANELS) -> np.ndarray:
+    """Indices of up to ``panels`` ageing times spread over the history (last included)."""
+    return np.unique(np.linspace(0, count - 1, min(panels, count)).round().astype(int))
+
+
+def _used_axes(coords: dict[str, np.ndarray], valid: np.ndarray) -> list[str]:
+    return [a for a, v in coords.items() if np.isfinite(v[valid]).all() and np.ptp(v[valid]) > 0]
+
+
+def _mid_slice(coords, valid, axes) -> np.ndarray:
+    """Cells of a 3-D part nearest its mid-thickness plane (z)."""
+    z = coords["z"]
+    middle = 0.5 * (np.nanmin(z[valid]) + np.nanmax(z[valid]))
+    nearest = np.nanmin(np.abs(z[valid] - middle))
+    return valid & (np.abs(z - middle) <= nearest * (1 + 1e-9) + 1e-15)
+
+
+def _plot_part(ds, part, field, coords, outdir: Path) -> Path:
+    plt = figure()
+    t = days(ds)
+    valid = np.isfinite(field).any(axis=0)
+    axes = _used_axes(coords, valid)
+    if len(axes) == 3:
+        valid = _mid_slice(coords, valid, axes)
+        axes = ["x", "y"]
+    indices = chosen_times(len(t))
+    lo, hi = np.nanmin(field[:, valid]), np.nanmax(field[:, valid])
+    if len(axes) <= 1:
+        fig, ax = plt.subplots(figsize=(6, 4))
+        axis = axes[0] if axes else "z"
+        order = np.argsort(coords[axis][valid])
+        for k in indices:
+            ax.plot(coords[axis][valid][order] * 1e3, field[k, valid][order],
+                    label=f"{t[k]:g} d")
+        ax.set_xlabel(f"{axis} [mm]")
+        ax.set_ylabel("moisture [wt %]")
+        ax.legend(fontsize=8)
+        ax.set_title(f"{part}: moisture through the thickness")
+    else:
+        fig, panels = plt.subplots(1, len(indices), figsize=(3.2 * len(indices), 3.4),
+                                   squeeze=False)
+        first, second = axes[:2]
+        for ax, k in zip(panels[0], indices):
+            image = ax.tripcolor(coords[first][valid] * 1e3, coords[second][valid] * 1e3,
+                                 field[k, valid], shading="gouraud", vmin=lo, vmax=hi)
+            ax.set_aspect("equal")
+            ax.set_title(f"{t[k]:g} d", fontsize=9)
+            ax.set_xlabel(f"{first} [mm]")
+        panels[0][0].set_ylabel(f"{second} [mm]")
+        fig.colorbar(image, ax=panels[0].tolist(), label="moisture [wt %]")
+        fig.suptitle(f"{part}: moisture field")
+    return save_figure(fig, outdir / f"fields_{part}.png")
