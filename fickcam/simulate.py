@@ -13,7 +13,7 @@ import numpy as np
 
 from . import __version__
 from .environment import Environment
-from .errors import PhysicsDomainError, format_duration
+from .errors import format_duration
 from .scene import EveryStep, Scene, load_scene
 
 log = logging.getLogger(__name__)
@@ -238,24 +238,13 @@ def _part_mass(history: PartHistory) -> np.ndarray:
 def _valid_until_wet_tg(part: Part, state: dict, temperature, times, notices) -> np.ndarray:
     """False from the first ageing time at which T reaches the wet Tg of the
     bulk or of the surface layer (Chamis' degradation law no longer applies)."""
-    valid = np.ones(times.shape, bool)
-    within = state.get("within_wet_tg")
-    if within is None:
-        return valid
-    reached = np.nonzero(~np.asarray(within, bool))[0]
-    if reached.size:
-        k = int(reached[0])
-        valid[k:] = False
-        tg = np.fmin(state["glass_transition_temperature"][k],
-                     state.get("surface_glass_transition_temperature",
-                               state["glass_transition_temperature"])[k])
-        error = PhysicsDomainError(
-            part.name, times[k],
-            f"service temperature {temperature[k] - 273.15:.1f} degC reached the wet Tg "
-            f"{tg - 273.15:.1f} degC (mean moisture {state['moisture_content'][k]:.3g} %, "
-            f"surface {state['surface_moisture_content'][k]:.3g} %); this part and the "
-            f"mechanism it belongs to are not computed from then on")
-        notices.append(str(error))
+    from .materials.state import wet_tg_error
+
+    within = np.asarray(state.get("within_wet_tg", np.ones(times.shape, bool)), bool)
+    valid = np.logical_and.accumulate(within)
+    if not valid.all():
+        index = int(np.argmin(valid))
+        notices.append(str(wet_tg_error(part.name, times, index, temperature, state)))
     return valid
 
 
@@ -296,33 +285,48 @@ def _add_fields(values, coords, histories, times) -> None:
 # ------------------------------------------------------------------ summary
 
 
+def _last_finite(values: np.ndarray) -> tuple[float, float]:
+    """(first, last finite) of a series; NaN where none is finite."""
+    finite = np.asarray(values, float)[np.isfinite(values)]
+    return (finite[0], finite[-1]) if finite.size else (np.nan, np.nan)
+
+
+def _per_time(reduce, values: np.ndarray) -> np.ndarray:
+    """A reduction over the angle axis that gives NaN (not a warning) for all-NaN rows."""
+    values = np.asarray(values, float)
+    out = np.full(values.shape[0], np.nan)
+    rows = np.isfinite(values).any(axis=1)
+    out[rows] = reduce(values[rows], axis=1)
+    return out
+
+
 def summary(ds) -> str:
     """A few lines a user reads after `fickcam run`."""
     days = ds["time"].values / np.timedelta64(1, "D")
     lines = [f"{ds.attrs.get('scene_name', '')}: {len(days)} ageing times to {days[-1]:g} d, "
              f"wall time {float(ds.attrs.get('wall_time', 0)):.2f} s"]
     if "part" in ds.coords:
+        diffusion = ds.attrs.get("diffusion", {})
         for part in ds["part"].values:
-            m = ds["moisture_content"].sel(part=part).values
-            diffusion = ds.attrs.get("diffusion", {})
+            first, last = _last_finite(ds["moisture_content"].sel(part=part).values)
             info = diffusion.get(str(part), {}) if isinstance(diffusion, dict) else {}
-            lines.append(f"  {part:<9} moisture {m[0]:.3g} → {np.nanmax(m) if np.isfinite(m).any() else np.nan:.3g} %"
-                         f"  ({info.get('model', '?')}, est. error {info.get('error_estimate', 0):.1e})")
-    if "lift" in ds:
-        lift = ds["lift"].values * 1e3
-        lines.append(f"  cam lift {lift[0]:.4f} → {lift[-1]:.4f} mm ({lift[-1] - lift[0]:+.4f} mm)")
-    if "jump_speed" in ds:
-        jump = ds["jump_speed"].values
-        lines.append(f"  jump speed {jump[0]:.0f} → {jump[-1]:.0f} rpm")
-    if "cam_torque" in ds:
-        torque = np.nanmax(np.abs(ds["cam_torque"].values), axis=1)
-        lines.append(f"  peak cam torque {torque[0]:.4g} → {torque[-1]:.4g} N m")
-    if "transmission_angle" in ds:
-        mu = np.nanmin(ds["transmission_angle"].values, axis=1)
-        lines.append(f"  minimum transmission angle {mu[0]:.3f} → {mu[-1]:.3f} deg")
+            lines.append(f"  {part:<9} moisture {first:.3g} → {last:.3g} %  "
+                         f"({info.get('model', '?')}, est. error {info.get('error_estimate', 0):.1e})")
+    for name, label, scale, unit in (("lift", "cam lift", 1e3, "mm"),
+                                     ("base_circle_radius", "base circle radius", 1e3, "mm"),
+                                     ("jump_speed", "jump speed", 1.0, "rpm"),
+                                     ("peak_cam_torque", "peak cam torque", 1.0, "N m"),
+                                     ("peak_contact_stress", "peak contact stress", 1e-6, "MPa"),
+                                     ("minimum_transmission_angle", "minimum transmission angle", 1.0, "deg"),
+                                     ("peak_input_torque", "peak input torque", 1.0, "N m")):
+        if name in ds:
+            first, last = (v * scale for v in _last_finite(ds[name].values))
+            lines.append(f"  {label} {first:.5g} → {last:.5g} {unit} ({last - first:+.3g})")
     if "rocker_angle" in ds:
-        shift = np.nanmax(np.abs(ds["rocker_angle"].values[-1] - ds["rocker_angle"].values[0]))
-        lines.append(f"  largest rocker angle shift {shift:.4f} deg")
+        rocker = ds["rocker_angle"].values
+        shift = _per_time(np.max, np.abs(rocker - rocker[0]))
+        if np.isfinite(shift).any():
+            lines.append(f"  largest rocker angle shift {np.nanmax(shift):.4f} deg")
     notices = ds.attrs.get("notices", [])
     if isinstance(notices, list) and notices:
         lines.append(f"  {len(notices)} notice(s):")

@@ -147,15 +147,16 @@ def synthetic_sweep(kind: str, n: int = 6, failed=(1,)):
     ).assign_attrs(sweep_kind=kind, scene_name="synthetic")
 
 
-def test_lift_loss_is_the_drop_from_the_first_ageing_time_in_mm():
+def test_lift_change_is_measured_from_the_first_ageing_time_in_mm():
     from fickcam.plotting.sweep import outputs
 
     ds = synthetic_sweep("grid")
-    label, loss = outputs(ds)["lift_loss"]
-    expected = (ds["lift"].isel(time=0) - ds["lift"]) * 1e3
-    xr.testing.assert_allclose(loss, expected)
-    assert label == "lift loss [mm]" and float(loss.isel(case=0, time=0)) == 0.0
-    assert np.isnan(loss.isel(case=1)).all()
+    label, change = outputs(ds)["lift_change"]
+    expected = (ds["lift"] - ds["lift"].isel(time=0)) * 1e3
+    xr.testing.assert_allclose(change, expected)
+    assert label == "lift change since age 0 [mm]" and float(change.isel(case=0, time=0)) == 0.0
+    assert (change.isel(case=0, time=-1) > 0).all(), "the synthetic cam swells: its lift grows"
+    assert np.isnan(change.isel(case=1)).all()
 
 
 @pytest.mark.parametrize("kind", ["grid", "monte_carlo"])
@@ -163,5 +164,5 @@ def test_sweep_plots_one_figure_per_output_through_fickcam_plot(kind, tmp_path):
     from fickcam.plotting import plot
 
     written = plot(synthetic_sweep(kind), tmp_path, "sweep")
-    assert sorted(p.name for p in written) == ["sweep_cam_moisture.png", "sweep_lift_loss.png"]
+    assert sorted(p.name for p in written) == ["sweep_cam_moisture.png", "sweep_lift_change.png"]
     assert all(p.stat().st_size > 1000 for p in written)

@@ -170,3 +170,13 @@ def test_sweep_identity_changes_with_the_base_scene(tmp_path):
     first = load_sweep(write_sweep(tmp_path, GRID)).identity
     changed = load_sweep(write_sweep(tmp_path, GRID, base_text=BASE.replace("1.6 kg", "1.7 kg"))).identity
     assert first != changed and math.isfinite(len(first))
+
+
+def test_bare_and_text_values_become_number_or_text_coordinates(tmp_path):
+    text = ("base: base.yaml\ngrid:\n  diffusion.accuracy: [1e-3, 0.01]\n"
+            "  cam.follower.kind: [roller, knife]\n  outputs.fields: [false]\n")
+    sweep = load_sweep(write_sweep(tmp_path, text))
+    coords = sweep.coordinates()
+    np.testing.assert_allclose(coords["diffusion__accuracy"], [1e-3, 1e-3, 1e-2, 1e-2])
+    assert coords["cam__follower__kind"].tolist() == ["roller", "knife"] * 2
+    assert coords["outputs__fields"].tolist() == ["False"] * 4

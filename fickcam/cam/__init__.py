@@ -6,6 +6,10 @@ Public API: :class:`CamSection` (scene section), :class:`CamDesign`,
 :func:`working_profile`, and for :mod:`fickcam.simulate` :func:`scene_parts`,
 :func:`scene_response`.
 """
+from .ageing import cam_state, scene_parts, scene_response
+from .model import (CamDesign, CamState, cam_response, design_from_scene, working_profile,
+                    write_profile_csv)
 from .spec import CamSection
 
-__all__ = ["CamSection"]
+__all__ = ["CamDesign", "CamSection", "CamState", "cam_response", "cam_state", "design_from_scene",
+           "scene_parts", "scene_response", "working_profile", "write_profile_csv"]

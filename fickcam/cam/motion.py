@@ -94,12 +94,15 @@ def _normalised(pieces: tuple[_Piece, ...]):
 
 
 def _piecewise(pieces: tuple[_Piece, ...], x):
+    """Each x is given to the piece it falls in (the first piece extends below 0, the
+    last above 1, so that the law stays analytic just outside a segment)."""
     x = np.asarray(x, float)
     starts, scale = _normalised(pieces)
+    ends = np.array([p.end for p in pieces[:-1]])
+    index = np.searchsorted(ends, x, side="right")
     out = [np.zeros_like(x) for _ in range(4)]
-    for piece, (v0, s0) in zip(pieces, starts):
-        inside = (x >= piece.start) & (x <= piece.end) if piece.end == 1.0 else \
-            (x >= piece.start) & (x < piece.end)
+    for k, (piece, (v0, s0)) in enumerate(zip(pieces, starts)):
+        inside = index == k
         values = _integrated(piece, x[inside] - piece.start, v0, s0)
         for o, v in zip(out, values):
             o[inside] = v * scale

@@ -156,7 +156,15 @@ def triangulate(part, spacing: float) -> Triangulation:
     points = np.vstack([shape.boundary, lattice[keep]])
     triangles = Delaunay(points).simplices
     centroid = points[triangles].mean(axis=1)
-    triangles = triangles[shape.inside(*centroid.T)]
+    corners = points[triangles]
+    edge_a, edge_b = corners[:, 1] - corners[:, 0], corners[:, 2] - corners[:, 0]
+    area = 0.5 * np.abs(edge_a[:, 0] * edge_b[:, 1] - edge_a[:, 1] * edge_b[:, 0])
+    # inside the outline, and not a sliver of collinear boundary points (zero volume)
+    triangles = triangles[shape.inside(*centroid.T) & (area > 1e-6 * spacing ** 2)]
+    used = np.unique(triangles)
+    renumber = np.full(len(points), -1)
+    renumber[used] = np.arange(used.size)
+    points, triangles = points[used], renumber[triangles]
     centroid = points[triangles].mean(axis=1)
     contact_tree = cKDTree(_resample_points(shape.contact, spacing / 8))
     distance = contact_tree.query(centroid)[0]
@@ -302,7 +310,7 @@ def solve_plane(geometry, diffusivity, exposure, times, chosen, *,
     estimate = chosen.error_estimate - time_part + PAIR_TO_EXTRAPOLATED * pair ** 2
     steps = 3 * 2 * (u_plane.nodes.size - 1)
     result = DiffusionResult(np.asarray(times, float), mean, layer, "plane",
-                             planar.cells * n_z, steps, float(estimate), chosen.reason)
+                             planar.cells + n_z, steps, float(estimate), chosen.reason)
     if store_fields:
         mid = int(np.argmin(np.abs(sheet.coordinates["z"] - 0.5 * geometry.thickness)))
 

@@ -44,7 +44,7 @@ SPACE_ERROR = 1.4e-2     # err ~ SPACE_ERROR (dx/L)^2 / tau*_lo, measured on the
 TIME_ERROR = 6.3e-3      # extrapolated BE error ~ TIME_ERROR / m^2 (m = steps per doubling)
 PAIR_TO_EXTRAPOLATED = 7.0  # extrapolated error ~ 7 (c_fine - c_coarse)^2 (measured)
 FIRST_STEP = 1e-6        # first step after a change, scaled time tau D / L^2
-MAX_CELLS = {"slab": 4000, "axisymmetric": 40_000, "solid": 120_000, "plane": 20_000}
+MAX_CELLS = {"slab": 4000, "axisymmetric": 40_000, "solid": 120_000, "plane": 8_000}
 MIN_CELLS_PER_AXIS = 4
 ANALYTIC_ERROR = 1e-8    # series truncation + ramp quadrature of exact.py
 
@@ -195,22 +195,23 @@ def plan(geometry, diffusivity: Diffusivity, exposure: Exposure, times: np.ndarr
     if total > MAX_CELLS[chosen]:
         shrink = (MAX_CELLS[chosen] / total) ** (1 / len(cells))
         cells = tuple(max(MIN_CELLS_PER_AXIS, int(c * shrink)) for c in cells)
-    if chosen == "plane":
-        cells = cells + (max(MIN_CELLS_PER_AXIS, math.ceil(1.0 / spacing)),)
+    if chosen == "plane":  # the through-thickness sheet of the product
+        cells = cells + (min(MAX_CELLS["slab"], max(MIN_CELLS_PER_AXIS, math.ceil(1.0 / spacing))),)
     per_doubling = max(4, math.ceil(math.sqrt(TIME_ERROR / (0.5 * accuracy))))
     nodes = timesteps.step_nodes(change, outputs, FIRST_STEP, per_doubling, exposure.ramp)
     steps = 3 * (nodes.size - 1)  # coarse march + bisected march
     h_eff = max(e / c for e, c in zip(extents, cells))
     estimate = SPACE_ERROR * h_eff ** 2 / t_lo * dimensions + TIME_ERROR / per_doubling ** 2
     why = {"slab": "sheet through the thickness, 1-D finite volumes",
-           "axisymmetric": "disc/annulus in (r, z)" + (" (bore: no exact path)"
-                                                       if isinstance(geometry, Disc) else ""),
+           "axisymmetric": "disc/annulus in (r, z)" + (
+               " (bore: no exact path)" if isinstance(geometry, Disc) and geometry.inner_radius > 0
+               else ""),
            "solid": "bar in 3-D", "plane": "2-D outline mesh x exact-in-form sheet product"}[chosen]
     reason = (f"{why}; cells from accuracy (dx*={spacing:.2g}, earliest output "
               f"tau*={t_lo:.2g}), backward Euler {per_doubling} steps/doubling + Richardson")
     if model == "auto" and isinstance(geometry, (Sheet, Bar, Disc)):
         reason += "; exact path unavailable"
-    return Plan(chosen, int(math.prod(cells) if chosen != "plane" else math.prod(cells[:2])),
+    return Plan(chosen, int(math.prod(cells) if chosen != "plane" else math.prod(cells[:2]) + cells[2]),
                 int(steps), reason, float(estimate), cells, per_doubling)
 
 
@@ -223,7 +224,7 @@ def solve(geometry, diffusivity: Diffusivity, exposure: Exposure, times: np.ndar
     """Moisture (weight %) of one part at ``times`` (s) under ``exposure``."""
     times = np.asarray(times, float)
     chosen = plan(geometry, diffusivity, exposure, times, accuracy, model)
-    log.info("%s: %s, %d cells, %d steps (%s)", part or type(geometry).__name__, chosen.model,
+    log.debug("%s: %s, %d cells, %d steps (%s)", part or type(geometry).__name__, chosen.model,
              chosen.cells, chosen.steps, chosen.reason)
     if chosen.model == "analytic":
         return _solve_analytic(geometry, diffusivity, exposure, times, surface_layer_depth,
@@ -258,14 +259,31 @@ def _field_of(history, name):
     return history[name] if isinstance(history, dict) else getattr(history, name)
 
 
+FIELD_POINTS = {Sheet: (40,), Disc: (24, 12), Bar: (16, 12, 8)}  # cell centres for exact fields
+
+
 def _analytic_fields(geometry, diffusivity, exposure, times, depth):
-    """Fields of the analytic model are sampled from the numerical model's cells
-    (the exact module gives means; fields need a mesh to live on)."""
-    numerical = plan(geometry, diffusivity, exposure, times, 1e-3,
-                     NUMERICAL_MODEL[type(geometry)])
-    result = solve_direct(geometry, diffusivity, exposure, times, numerical,
-                          surface_layer_depth=depth, store_fields=True)
-    return result.fields, result.cell_coordinates
+    """Exact fields at the centres of a structured grid (``FIELD_POINTS`` cells per axis);
+    cell_x/y/z are the coordinates (a Disc: x = r)."""
+    from .exact import exact_history_field
+
+    def centres(length, count):
+        return (np.arange(count) + 0.5) * length / count
+
+    counts = FIELD_POINTS[type(geometry)]
+    if isinstance(geometry, Sheet):
+        axes = {"z": centres(geometry.thickness, counts[0])}
+    elif isinstance(geometry, Disc):
+        axes = {"r": centres(geometry.outer_radius, counts[0]),
+                "z": centres(geometry.thickness, counts[1])}
+    else:
+        axes = {"x": centres(geometry.length, counts[0]), "y": centres(geometry.width, counts[1]),
+                "z": centres(geometry.thickness, counts[2])}
+    grids = np.meshgrid(*axes.values(), indexing="ij")
+    points = {name: grid.ravel() for name, grid in zip(axes, grids)}
+    fields = np.asarray(exact_history_field(geometry, diffusivity, exposure, times, points), float)
+    coordinates = {("x" if name == "r" else name): values for name, values in points.items()}
+    return fields, coordinates
 
 
 # -------------------------------------------------------- direct marching

@@ -78,8 +78,8 @@ def wet_tg_error(part, times, index, temperature, state) -> PhysicsDomainError:
     tg = min(state["glass_transition_temperature"][index], state["surface_glass_transition_temperature"][index])
     message = (f"service temperature {temperature[index] - KELVIN_OFFSET:.1f} degC reached the wet Tg "
                f"{tg - KELVIN_OFFSET:.1f} degC (mean moisture {state['moisture_content'][index]:.3g} %, "
-               f"surface {state['surface_moisture_content'][index]:.3g} %); results kept up to the "
-               f"previous ageing time")
+               f"surface {state['surface_moisture_content'][index]:.3g} %); the part is not computed "
+               f"from then on, earlier results are kept")
     error = PhysicsDomainError(part, float(times[index]), message)
     error.index = index
     error.state = {k: v[:index] for k, v in state.items()}
@@ -151,7 +151,7 @@ def material_state(material, temperature, moisture, surface_moisture, reference_
     if index is not None:
         error = wet_tg_error(part, times if times is not None else np.arange(temperature.size),
                              index, temperature, state)
-        log.info("%s", error)
+        log.debug("%s", error)
         if raise_on_wet_tg:
             raise error
     return state

@@ -1,6 +1,7 @@
 """Sweep results (a ``case`` dimension): chosen outputs against the varied values.
 
-Outputs per case over ageing time (:func:`outputs`): lift loss, jump speed,
+Outputs per case over ageing time (:func:`outputs`): lift change (swelling
+grows the lift, drying or shrinkage loses it), jump speed,
 peak cam torque, cam moisture, peak crank torque, minimum transmission angle,
 largest rocker angle shift — whichever the result has. A grid sweep plots each
 output at one ageing time (the last by default) against the first varied value,
@@ -32,7 +33,8 @@ def outputs(ds) -> dict[str, tuple[str, object]]:
     """name -> (axis label, DataArray over (case, time)) for the outputs ``ds`` has."""
     found: dict[str, tuple[str, object]] = {}
     if "lift" in ds:
-        found["lift_loss"] = ("lift loss [mm]", (ds["lift"].isel(time=0) - ds["lift"]) * 1e3)
+        found["lift_change"] = ("lift change since age 0 [mm]",
+                                (ds["lift"] - ds["lift"].isel(time=0)) * 1e3)
     if "jump_speed" in ds:
         found["jump_speed"] = ("jump speed [rpm]", ds["jump_speed"])
     if "peak_cam_torque" in ds:

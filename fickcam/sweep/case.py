@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import logging
 import time
+from contextlib import contextmanager
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -29,6 +30,18 @@ class CaseTask:
     base_dir: str        # folder that relative paths in the scene refer to
     result_path: str     # per-case result file
     record_path: str     # per-case JSON record
+
+
+@contextmanager
+def quieter(logger: str, level: int):
+    """Raise ``logger``'s level to at least ``level`` for a while (not below what it was)."""
+    target = logging.getLogger(logger)
+    old = target.level
+    target.setLevel(max(level, target.getEffectiveLevel()))
+    try:
+        yield
+    finally:
+        target.setLevel(old)
 
 
 def case_scene(task: CaseTask):
@@ -58,7 +71,8 @@ def run_case(task: CaseTask) -> dict:
 
     started = time.perf_counter()
     try:
-        dataset = run(case_scene(task))
+        with quieter("fickcam.simulate", logging.ERROR):  # its notices go into the record
+            dataset = run(case_scene(task))
         save(dataset, task.result_path)
         notices = dataset.attrs.get("notices") or []
         status, message = "ok", "; ".join(str(n) for n in notices)

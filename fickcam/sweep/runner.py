@@ -17,7 +17,7 @@ from contextlib import ExitStack, contextmanager
 from pathlib import Path
 
 from ..errors import InputError
-from .case import CaseTask, run_case
+from .case import CaseTask, quieter, run_case
 from .combine import combine
 from .spec import Sweep, load_sweep
 from .workdir import WorkFolder
@@ -41,7 +41,16 @@ def default_workers(n_cases: int) -> int:
 
 @contextmanager
 def dask_client(workers: int | None, scheduler: str | None, n_cases: int):
-    """A distributed.Client: to ``scheduler`` if given, else to a new LocalCluster."""
+    """A distributed.Client: to ``scheduler`` if given, else to a new LocalCluster
+    (closed again on exit); dask's INFO chatter is kept off fickcam's stderr."""
+    import distributed  # noqa: F401 - importing it sets its loggers' levels: do that first
+
+    with quieter("distributed", logging.WARNING), _connect(workers, scheduler, n_cases) as client:
+        yield client
+
+
+@contextmanager
+def _connect(workers: int | None, scheduler: str | None, n_cases: int):
     from distributed import Client, LocalCluster
 
     if scheduler:
@@ -96,8 +105,9 @@ def compute_cases(sweep: Sweep, folder: WorkFolder, indices, client, *, progress
             bar.update()
     finally:
         bar.close()
-        for future in futures:
-            future.cancel()
+        unfinished = [future for future in futures if not future.done()]
+        if unfinished:
+            client.cancel(unfinished)
     return records
 
 

@@ -255,6 +255,16 @@ def infer_dimension(text: str, si_value: float) -> str | None:
 # The loaded sweep
 
 
+def _bare_number(value) -> float | None:
+    """A number without units (YAML 1.1 reads ``1e-3`` as text), else None."""
+    if isinstance(value, bool):
+        return None
+    try:
+        return float(value)
+    except (TypeError, ValueError):
+        return None
+
+
 @dataclass(frozen=True)
 class Parameter:
     """One varied scene value: its dotted path, keys into the scene, and dimension."""
@@ -277,8 +287,9 @@ class Parameter:
         from ..units import to_si
 
         if self.dimension is None:
-            if all(isinstance(r, (int, float)) and not isinstance(r, bool) for r in raws):
-                return np.asarray(raws, float)
+            numbers = [_bare_number(r) for r in raws]
+            if all(n is not None for n in numbers):
+                return np.asarray(numbers, float)
             return np.asarray([str(r) for r in raws], dtype=object)
         factor = _LABELS[self.dimension][1]
         values = []

@@ -1,0 +1,65 @@
+"""Run the diffusion speed/accuracy benchmark and write its table and figure.
+
+    python benchmarks/diffusion_tradeoff.py [--quick] [--out benchmarks/results]
+
+Writes ``bench.md`` (the table `fickcam bench` prints), ``bench.csv`` and
+``error_vs_time.png`` (error against the exact solution vs wall time, log-log,
+one marker series per geometry and model) for the README.
+"""
+from __future__ import annotations
+
+import argparse
+import csv
+import logging
+from pathlib import Path
+
+import numpy as np
+
+from fickcam.bench import format_table, run_bench
+
+log = logging.getLogger("benchmarks.diffusion_tradeoff")
+
+
+def write_figure(rows: list[dict], path: Path) -> Path:
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    fig, ax = plt.subplots(figsize=(7, 5))
+    series: dict[tuple[str, str], list[dict]] = {}
+    for row in rows:
+        if np.isfinite(row["wall_time"]) and row["error"] > 0:
+            series.setdefault((row["geometry"], row["model"]), []).append(row)
+    for (geometry, model), points in series.items():
+        points.sort(key=lambda r: r["wall_time"])
+        ax.loglog([p["wall_time"] for p in points], [p["error"] for p in points], "o-",
+                  label=f"{geometry}: {model}")
+    ax.set_xlabel("wall time per full uptake curve [s]")
+    ax.set_ylabel("max error of the mean uptake (fraction of the step)")
+    ax.grid(alpha=0.3, which="both")
+    ax.legend(fontsize=7)
+    fig.savefig(path, dpi=120, bbox_inches="tight")
+    plt.close(fig)
+    return path
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--quick", action="store_true")
+    parser.add_argument("--out", type=Path, default=Path("benchmarks/results"))
+    args = parser.parse_args()
+    logging.basicConfig(level=logging.INFO, format="%(message)s")
+    rows = run_bench(quick=args.quick)
+    args.out.mkdir(parents=True, exist_ok=True)
+    (args.out / "bench.md").write_text("```\n" + format_table(rows) + "\n```\n")
+    with open(args.out / "bench.csv", "w", newline="") as handle:
+        writer = csv.DictWriter(handle, fieldnames=list(rows[0]))
+        writer.writeheader()
+        writer.writerows(rows)
+    log.info("%s", format_table(rows))
+    log.info("figure: %s", write_figure(rows, args.out / "error_vs_time.png"))
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,90 @@
+"""The scene's cam over ageing: which part state feeds which input of
+:func:`~fickcam.cam.model.cam_response`, and the response stacked over ageing times
+(called by :mod:`fickcam.simulate`).
+
+Parts: ``cam`` (a :class:`~fickcam.diffusion.CamPlate` of the dry working profile) and,
+when the follower names a material, ``follower`` (a roller: a disc of the roller radius
+and the contact width; a knife or flat follower: a bar of the contact width, stem
+length 4 x width). The cam's in-plane free strains along x (fibre) and y scale/distort
+the profile, the roller's mean in-plane strain (eps_L + eps_T)/2 its radius; the follower's mass is
+m (1 + M/100) with M its mean moisture (seeds/000_c9d2754e3bf549ac.txt p. 281, m_w = 1.648 kg
+for 3 %); contact uses the cam's surface-layer modulus (the wet skin, not the bulk).
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from ..mechanisms import over_ageing
+from ..response import Response
+from .model import CamState, cam_response, design_from_scene, working_profile
+
+
+def scene_parts(section, materials) -> list[tuple]:
+    """(part name, material name, diffusion geometry, dry mass kg) for cam and follower."""
+    from ..diffusion.geometry import Bar, CamPlate, Disc
+    from ..materials.bodies import plate_body
+
+    design = design_from_scene(section)
+    x, y = working_profile(design)
+    _, cam_mass, _ = plate_body(x, y, section.thickness, section.bore_radius,
+                                materials[section.material].dry_density)
+    parts = [("cam", section.material, CamPlate(x, y, section.thickness, section.bore_radius),
+              float(cam_mass))]
+    follower = section.follower
+    if follower.material:
+        width = design.contact_length
+        geometry = (Disc(follower.roller_radius, width) if follower.kind == "roller"
+                    else Bar(4.0 * width, width, width))
+        parts.append(("follower", follower.material, geometry, float(follower.mass)))
+    return parts
+
+
+def _at(state: dict, name: str, k: int, default=None):
+    value = state.get(name)
+    return default if value is None else float(np.asarray(value)[k])
+
+
+def cam_state(design, histories: dict, k: int) -> CamState:
+    """The :class:`CamState` at ageing index k from the part histories."""
+    cam = histories["cam"].state
+    follower = histories.get("follower")
+    fstate = follower.state if follower is not None else {}
+    moisture = _at(fstate, "moisture_content", k, 0.0)
+    return CamState(
+        cam_strain_x=_at(cam, "strain_longitudinal", k, 0.0),
+        cam_strain_y=_at(cam, "strain_transverse", k, 0.0),
+        roller_strain=0.5 * (_at(fstate, "strain_longitudinal", k, 0.0) +
+                             _at(fstate, "strain_transverse", k, 0.0))
+        if design.follower_kind == "roller" else 0.0,
+        follower_mass=design.follower_mass * (1.0 + moisture / 100.0),
+        cam_surface_modulus=_at(cam, "surface_modulus", k),
+        cam_surface_poisson=_at(cam, "surface_poisson_ratio", k, 0.3),
+        follower_modulus=_at(fstate, "surface_modulus", k),
+        follower_poisson=_at(fstate, "surface_poisson_ratio", k))
+
+
+def scene_response(section, histories: dict, times, angles, valid, on_step=lambda: None) -> Response:
+    """The cam over ageing: variables (time, ...) and notices; ``wear_depth`` accumulates
+    the deepest Archard wear rate over the ageing times (trapezoid rule)."""
+    design = design_from_scene(section)
+    times = np.asarray(times, float)
+
+    def evaluate(k: int) -> Response:
+        return cam_response(design, cam_state(design, histories, k), angles)
+
+    result = over_ageing(times, np.asarray(valid, bool), evaluate, on_step)
+    rate = result.variables.get("wear_rate")
+    if rate is not None:
+        steps = np.diff(times) * 0.5 * (rate[1:] + rate[:-1])
+        result.variables["wear_depth"] = np.concatenate([[0.0], np.cumsum(steps)])
+    force = result.variables.get("contact_force")
+    if force is not None:
+        result.variables["peak_contact_force"] = np.nanmax(force, axis=1)
+        result.variables["peak_cam_torque"] = np.nanmax(np.abs(result.variables["cam_torque"]), axis=1)
+        stress = result.variables["contact_stress"]
+        known = np.isfinite(stress).any(axis=1)
+        result.variables["peak_contact_stress"] = np.where(
+            known, np.max(np.where(np.isfinite(stress), stress, -np.inf), axis=1), np.nan)
+    from ..schema import VARIABLES
+
+    return Response({k: v for k, v in result.variables.items() if k in VARIABLES}, result.notices)

@@ -1,0 +1,114 @@
+"""Follower kinematic relations, forces, torque, jump, Hertz stress, friction and wear.
+
+All functions are vectorised over the cam angle; SI throughout. Sign conventions:
+the cam turns counter-clockwise, the follower lifts along +y at x = offset, the
+pressure angle phi is positive when the common normal leans towards -x, and the cam
+pushes on the follower with Fn (-sin phi, cos phi).
+"""
+from __future__ import annotations
+
+import numpy as np
+
+STANDARD_GRAVITY = 9.80665  # m/s^2
+
+
+def pressure_angle(height, dy, offset):
+    """phi = atan((dy/dtheta - e)/(s0 + y)) with s0 + y the pitch-point height
+    (Norton, Design of Machinery 5th ed., eq. 8.31)."""
+    return np.arctan2(dy - offset, height)
+
+
+def pitch_radius_of_curvature(height, dy, d2y, offset):
+    """Radius of curvature of the pitch curve of a translating (offset) follower, from
+    the follower motion alone (kinematic inversion; reduces to Norton eq. 8.34,
+    rho = (R^2 + y'^2)^1.5/(R^2 + 2 y'^2 - R y''), for e = 0). Positive = convex."""
+    ax, ay = height, dy - offset
+    bx, by = 2.0 * dy - offset, d2y - height
+    return np.hypot(ax, ay) ** 3 / -(ax * by - ay * bx)
+
+
+def flat_radius_of_curvature(height, d2y):
+    """rho = Rb + y + y'' for a flat-faced follower (Norton eq. 8.36), height = Rb + y."""
+    return height + d2y
+
+
+def axial_force(mass, acceleration, spring_rate, spring_deflection, preload, external_load,
+                gravity: bool):
+    """Force the cam must supply along the follower axis: m a + k x + F0 + P (+ m g)
+    (Newton along the axis; Norton sec. 8.x 'dynamic force analysis'; seeds/003 sec. 5.5
+    F_c = m y'' + s y + m g; seeds/000 Table 19 adds the inertia term with the opposite
+    sign, F_i = -m y'', a slip)."""
+    weight = mass * STANDARD_GRAVITY if gravity else 0.0
+    return mass * acceleration + spring_rate * spring_deflection + preload + external_load + weight
+
+
+def guide_friction_factor(mu, overhang, guide_length, stem_diameter):
+    """G = 2 mu l1/l2 + mu - mu^2 d/l2 of a stem in a guide bush (seeds/004_101c340ef7457bc8.txt
+    p. 3; Rothbart, Cam Design Handbook 2004, ch. 6)."""
+    return 2.0 * mu * overhang / guide_length + mu - mu ** 2 * stem_diameter / guide_length
+
+
+def normal_force(axial, phi, velocity, guide_factor):
+    """Contact force along the common normal: Fn = F / (cos phi - s G |sin phi|), s = sign
+    of the follower velocity (guide friction opposes the motion) (seeds/004 p. 3,
+    F_n = P/(cos a - G sin a) while rising)."""
+    return axial / (np.cos(phi) - np.sign(velocity) * guide_factor * np.abs(np.sin(phi)))
+
+
+def contact_torque(contact_x, contact_y, force, phi):
+    """Torque the camshaft supplies: the moment about the cam axis of the contact force
+    on the follower, Fn (-sin phi, cos phi), at the contact point."""
+    return contact_x * force * np.cos(phi) + contact_y * force * np.sin(phi)
+
+
+def power_torque(force, phi, dy):
+    """T = Fn cos(phi) dy/dtheta, from T omega = (Fn cos phi) v (power balance; Norton eq.
+    8.x; seeds/004 p. 3 T0 = Fn (y'/omega) cos a)."""
+    return force * np.cos(phi) * dy
+
+
+def jump_speed(mass, d2y, holding_force):
+    """Smallest cam speed at which m omega^2 y''(theta) + S(theta) reaches zero somewhere
+    (contact force vanishes: jump; Norton sec. 15.x 'follower jump'); S = spring + preload +
+    load (+ weight) >= 0 are speed-independent. inf if y'' never goes negative, 0 if S <= 0."""
+    holding_force = np.asarray(holding_force, float)
+    if np.any(holding_force <= 0.0):
+        return 0.0
+    pulling = d2y < 0.0
+    if not np.any(pulling):
+        return float("inf")
+    return float(np.sqrt(np.min(holding_force[pulling] / (-mass * d2y[pulling]))))
+
+
+def effective_modulus(e1, nu1, e2, nu2):
+    """E* with 1/E* = (1 - nu1^2)/E1 + (1 - nu2^2)/E2 (Johnson, Contact Mechanics 1985, eq. 4.22)."""
+    return 1.0 / ((1.0 - nu1 ** 2) / e1 + (1.0 - nu2 ** 2) / e2)
+
+
+def hertz_line_pressure(force, length, cam_radius, follower_radius, e_star):
+    """Peak Hertz pressure of two cylinders in line contact, p0 = sqrt(F E*/(pi L R)),
+    1/R = 1/rho_cam + 1/R_follower (a flat face: 1/R_follower = 0; a concave cam: rho < 0)
+    (Johnson 1985 eq. 4.45; Norton, Machine Design, eq. 7.22). 0 where F <= 0, NaN where
+    the curvatures give no contact ellipse (1/R <= 0)."""
+    inverse = 1.0 / cam_radius + (0.0 if follower_radius is None else 1.0 / follower_radius)
+    load = np.maximum(force, 0.0)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        p = np.sqrt(load * e_star * inverse / (np.pi * length))
+    return np.where(inverse > 0, p, np.nan)
+
+
+def archard_wear_per_revolution(coefficient, hardness, force, length, slide_ratio):
+    """Wear depth of the cam surface per revolution at each profile point (Archard: depth
+    rate = K/H p v_s; integrated over one pass through a contact of load F/L per unit width,
+    travelling along the cam at omega rho while sliding at v_s: h = K/H (F/L) v_s/(omega rho))
+    (Archard 1953; Rothbart 2004 ch. 12)."""
+    return coefficient / hardness * np.maximum(force, 0.0) / length * slide_ratio
+
+
+def empirical_wear_depth(sliding_length, pressure, hardness_1, hardness_2, mu,
+                         a0=1.13e-5, a1=1.00, a2=2.69, a3=3.23):
+    """Linear wear Z = l a0 (P0/H1)^a1 (H2/H1)^a2 mu^a3 (seeds/004_101c340ef7457bc8.txt p. 3
+    and Table 2.1; the printed formula has mu^a1, the coefficients table and the worked
+    example use a3). Units as the paper: P0 in Pa over hardness numbers, l in m."""
+    return sliding_length * a0 * (pressure / hardness_1) ** a1 * (hardness_2 / hardness_1) ** a2 \
+        * mu ** a3

@@ -1,0 +1,156 @@
+"""Cam geometry: dry working profile, its distortion by swelling, and the follower
+motion that the (aged) geometry imposes, found geometrically.
+
+Frame: the cam turns counter-clockwise about the origin by theta; the follower
+translates along +y on the line x = offset. A point p of the cam frame is at
+R(theta) p in the fixed frame (kinematic inversion, Norton, Design of Machinery
+5th ed., sec. 8.6). The dry profile is parametrised by the design cam angle psi;
+swelling maps it by D = diag(1 + eps_x, 1 + eps_y) (x = the cam's fibre direction)
+and the roller radius by (1 + eps_roller).
+
+For every point psi of the aged profile the cam angle theta(psi) at which it is the
+contact point, and the follower height Y(psi), are closed-form; within one design
+segment both are analytic, so y(theta) = Y(psi(theta)) is sampled at Chebyshev-Lobatto
+nodes (psi from theta by Newton) and differentiated spectrally (Trefethen, Spectral
+Methods in MATLAB, 2000, ch. 6).
+"""
+from __future__ import annotations
+
+import numpy as np
+from numpy.polynomial import chebyshev
+
+from .motion import segment_motion
+
+TWO_PI = 2.0 * np.pi
+
+
+def rotate(angle, x, y):
+    """R(angle) (x, y), counter-clockwise, vectorised."""
+    c, s = np.cos(angle), np.sin(angle)
+    return c * x - s * y, s * x + c * y
+
+
+def prime_height(prime_radius: float, offset: float) -> float:
+    """Height of the follower's pitch point on the prime circle: sqrt(Rp^2 - e^2)
+    (Norton eq. 8.31 denominator)."""
+    return float(np.sqrt(prime_radius ** 2 - offset ** 2))
+
+
+def dry_profile(design, segment, psi):
+    """Dry working profile point W0 and tangent T0 (cam frame, traced clockwise) at the
+    design angle psi inside ``segment`` (a MotionSegment, or None for the eccentric disc).
+
+    Knife: W0 = R(-psi) (e, s0 + y); roller: pitch point minus Rf along the outward
+    normal (Norton eq. 8.32); flat: W0 = R(-psi) (dy/dpsi, Rb + y) (Norton eq. 8.38);
+    eccentric: a circle of radius R about (0, -eccentricity) (seeds/003_b8317aa6e553b071.txt
+    Fig. 5.1, lowest follower position at theta = 0)."""
+    psi = np.asarray(psi, float)
+    if segment is None:
+        wx, wy = rotate(-psi, 0.0, design.disc_radius)
+        tx, ty = rotate(-psi, 1.0, 0.0)
+        return wx, wy - design.eccentricity, tx, ty
+    y, y1, y2, _ = segment_motion(segment, psi)
+    if design.follower_kind == "flat":
+        wx, wy = rotate(-psi, y1, design.base_circle_radius + y)
+        tx, ty = rotate(-psi, 1.0, 0.0)
+        return wx, wy, tx, ty
+    e = design.offset
+    s0 = prime_height(design.base_circle_radius + design.roller_radius, e)
+    # a = q' - J q with q = (e, s0 + y): tangent of the pitch curve in the follower frame
+    ax, ay = s0 + y, y1 - e
+    norm = np.hypot(ax, ay)
+    nx, ny = -ay / norm, ax / norm  # outward normal J a/|a| (clockwise traversal)
+    px, py = e - design.roller_radius * nx, s0 + y - design.roller_radius * ny
+    wx, wy = rotate(-psi, px, py)
+    tx, ty = rotate(-psi, ax / norm, ay / norm)
+    return wx, wy, tx, ty
+
+
+def aged_contact(design, segment, psi, strain_x, strain_y, roller_radius):
+    """(theta, Y) for aged profile points psi: the cam angle at which psi touches the
+    follower and the follower height then (pitch point for knife/roller, face for flat)."""
+    wx, wy, tx, ty = dry_profile(design, segment, psi)
+    wx, wy = (1 + strain_x) * wx, (1 + strain_y) * wy
+    tx, ty = (1 + strain_x) * tx, (1 + strain_y) * ty
+    norm = np.hypot(tx, ty)
+    nx, ny = -ty / norm, tx / norm
+    if design.follower_kind == "flat":
+        theta = np.pi / 2 - np.arctan2(ny, nx)
+        height = wx * nx + wy * ny
+    else:
+        cx, cy = wx + roller_radius * nx, wy + roller_radius * ny
+        r = np.hypot(cx, cy)
+        theta = np.arccos(design.offset / r) - np.arctan2(cy, cx)
+        height = np.sqrt(r ** 2 - design.offset ** 2)
+    theta = psi + np.mod(theta - psi + np.pi, TWO_PI) - np.pi
+    return theta, height
+
+
+def _solve_psi(contact, theta_target, guess, steps: int = 30):
+    """psi with contact(psi)[0] = theta_target (Newton, central-difference slope)."""
+    psi = np.array(guess, float)
+    h = 1e-6
+    for _ in range(steps):
+        theta, _ = contact(psi)
+        slope = (contact(psi + h)[0] - contact(psi - h)[0]) / (2 * h)
+        step = (theta - theta_target) / slope
+        psi = psi - step
+        if np.max(np.abs(step), initial=0.0) < 1e-15:
+            break
+    return psi
+
+
+def lobatto(n: int) -> np.ndarray:
+    """Chebyshev-Lobatto points on [-1, 1], increasing."""
+    return -np.cos(np.pi * np.arange(n + 1) / n)
+
+
+def geometric_motion(design, pieces, strain_x, strain_y, roller_radius, theta, nodes: int = 40):
+    """Follower height Y and dY/dtheta, d2Y, d3Y at cam angles ``theta`` for the aged
+    geometry, and (lowest, highest) Y over the turn. ``pieces`` are (segment, psi_start, psi_end)."""
+    theta = np.mod(np.asarray(theta, float), TWO_PI)
+    out = [np.full(theta.shape, np.nan) for _ in range(4)]
+    lowest, highest = np.inf, -np.inf
+    spans = []
+    for segment, a, b in pieces:
+        contact = (lambda s, seg=segment: aged_contact(design, seg, s, strain_x, strain_y,
+                                                       roller_radius))
+        ta, tb = contact(np.array([a, b]))[0]
+        spans.append((segment, contact, ta, tb))
+    origin = spans[0][2]
+    for segment, contact, ta, tb in spans:
+        t_nodes = ta + (tb - ta) * (lobatto(nodes) + 1) / 2
+        psi = _solve_psi(contact, t_nodes, t_nodes)  # swelling shifts theta(psi) only slightly
+        height = contact(psi)[1]
+        series = chebyshev.Chebyshev.fit(t_nodes, height, nodes, domain=[ta, tb])
+        shifted = origin + np.mod(theta - origin, TWO_PI)
+        inside = (shifted >= ta) & (shifted < tb) if tb < origin + TWO_PI - 1e-12 else \
+            (shifted >= ta)
+        for k in range(4):
+            out[k][inside] = series.deriv(k)(shifted[inside]) if k else series(shifted[inside])
+        turning = series.deriv().roots()
+        turning = turning.real[(np.abs(turning.imag) < 1e-9) & (turning.real > ta) &
+                               (turning.real < tb)]
+        extremes = series(np.r_[ta, tb, turning])
+        lowest, highest = min(lowest, float(extremes.min())), max(highest, float(extremes.max()))
+    return tuple(out), (lowest, highest)
+
+
+def pieces_of(design):
+    """(segment, psi_start, psi_end) for each design segment (one piece for the disc)."""
+    if design.kind == "eccentric":
+        return ((None, 0.0, TWO_PI),)
+    return tuple((s, s.start, s.start + s.span) for s in design.segments)
+
+
+def working_outline(design, strain_x: float = 0.0, strain_y: float = 0.0, n: int = 720):
+    """Closed working profile (x, y) in m, counter-clockwise, last point != first."""
+    psi = np.linspace(0.0, TWO_PI, n, endpoint=False)
+    x = np.empty(n)
+    y = np.empty(n)
+    for segment, a, b in pieces_of(design):
+        inside = (psi >= a) & (psi < b) if b < TWO_PI else psi >= a
+        wx, wy, _, _ = dry_profile(design, segment, psi[inside])
+        x[inside], y[inside] = wx, wy
+    x, y = (1 + strain_x) * x, (1 + strain_y) * y
+    return x[::-1].copy(), y[::-1].copy()

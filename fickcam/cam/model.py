@@ -1,0 +1,315 @@
+"""The cam and follower at one ageing time: :func:`cam_response`.
+
+The design motion defines the dry profile; swelling scales it (isotropic: every
+cam dimension by 1 + eps, the roller by 1 + eps_roller) or distorts it (anisotropic:
+x by 1 + eps_x, y by 1 + eps_y), and the follower motion is recomputed from the aged
+geometry: in closed form where the aged motion is the design motion scaled by
+1 + eps (isotropic cam with a flat follower, or a radial knife/roller that swells like
+the cam, as seeds/000_c9d2754e3bf549ac.txt scales its pitch circle and lift), otherwise
+geometrically (:mod:`fickcam.cam.geometry`). The follower's frame (offset, spring seat)
+does not swell, so a swollen base circle also compresses the spring.
+"""
+from __future__ import annotations
+
+import functools
+import logging
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ..response import Response
+from . import dynamics as dyn
+from .geometry import geometric_motion, pieces_of, prime_height, rotate, working_outline
+from .motion import follower_motion, joint_notices, segments_from_spec
+
+log = logging.getLogger(__name__)
+
+#: Norton (Design of Machinery, sec. 8.7) keeps the pressure angle of a translating
+#: follower below 30 deg and the pitch radius of curvature above 2-3 roller radii
+PRESSURE_ANGLE_LIMIT = math.radians(30.0)
+CURVATURE_RATIO_LIMIT = 2.0
+
+
+@dataclass(frozen=True)
+class CamDesign:
+    """The dry cam and follower (SI, angles in rad, speed in rad/s)."""
+
+    kind: str                      # motion | eccentric
+    base_circle_radius: float
+    thickness: float
+    speed: float
+    follower_kind: str             # knife | roller | flat
+    follower_mass: float
+    segments: tuple = ()
+    eccentricity: float = 0.0
+    disc_radius: float = 0.0
+    bore_radius: float = 0.0
+    roller_radius: float = 0.0
+    offset: float = 0.0
+    spring_rate: float = 0.0
+    spring_preload: float = 0.0
+    external_load: float = 0.0
+    follower_width: float | None = None
+    friction_coefficient: float = 0.0
+    guide_factor: float = 0.0
+    gravity: bool = False
+    archard_coefficient: float = 0.0
+    hardness: float | None = None
+    follower_modulus: float = 210e9
+    follower_poisson: float = 0.3
+
+    @property
+    def contact_length(self) -> float:
+        return min(self.thickness, self.follower_width or self.thickness)
+
+
+@dataclass(frozen=True)
+class CamState:
+    """Ageing-time state: cam in-plane strains along x (fibre) and y, roller strain,
+    follower mass (kg), cam surface-layer modulus/Poisson ratio, follower modulus/Poisson."""
+
+    cam_strain_x: float = 0.0
+    cam_strain_y: float = 0.0
+    roller_strain: float = 0.0
+    follower_mass: float | None = None
+    cam_surface_modulus: float = 70e9
+    cam_surface_poisson: float = 0.3
+    follower_modulus: float | None = None
+    follower_poisson: float | None = None
+
+
+def design_from_scene(section) -> CamDesign:
+    """CamDesign from a validated :class:`~fickcam.cam.spec.CamSection` (or the dict of a
+    scene's ``cam:`` section, validated here)."""
+    if isinstance(section, dict):
+        from .spec import CamSection
+
+        section = CamSection.model_validate(section)
+    f = section.follower
+    guide = 0.0 if f.guide is None else dyn.guide_friction_factor(
+        f.guide.friction_coefficient, f.guide.overhang, f.guide.length, f.guide.diameter)
+    common = dict(thickness=section.thickness, speed=section.speed, follower_kind=f.kind,
+                  follower_mass=f.mass, bore_radius=section.bore_radius,
+                  roller_radius=f.roller_radius or 0.0, offset=f.offset, spring_rate=f.spring_rate,
+                  spring_preload=f.spring_preload, external_load=f.external_load,
+                  follower_width=f.width, friction_coefficient=f.friction_coefficient,
+                  guide_factor=guide, gravity=section.gravity,
+                  archard_coefficient=section.wear.archard_coefficient if section.wear else 0.0,
+                  hardness=section.wear.hardness if section.wear else None,
+                  follower_modulus=f.modulus, follower_poisson=f.poisson_ratio)
+    if section.eccentric is not None:
+        e, r = section.eccentric.eccentricity, section.eccentric.radius
+        return CamDesign("eccentric", r - e, eccentricity=e, disc_radius=r, **common)
+    return CamDesign("motion", section.base_circle_radius,
+                     segments=segments_from_spec(section.motion), **common)
+
+
+# ------------------------------------------------------------------ kinematics
+
+
+def _scales_exactly(design: CamDesign, state: CamState) -> bool:
+    """True where the aged motion is the design motion times (1 + eps) (closed form)."""
+    if design.kind != "motion" or state.cam_strain_x != state.cam_strain_y:
+        return False
+    if state.cam_strain_x == 0.0 and state.roller_strain == 0.0:
+        return True
+    if design.follower_kind == "flat":
+        return True
+    return design.offset == 0.0 and (design.follower_kind == "knife" or
+                                     state.roller_strain == state.cam_strain_x)
+
+
+def _closed_form(design: CamDesign, state: CamState, theta):
+    scale = 1.0 + state.cam_strain_x
+    y, d1, d2, d3 = follower_motion(design.segments, theta)
+    base = design.base_circle_radius * scale
+    if design.follower_kind == "flat":
+        floor = base
+    else:
+        floor = prime_height(base + design.roller_radius * (1 + state.roller_strain), design.offset)
+    return (floor + scale * y, scale * d1, scale * d2, scale * d3), \
+        (floor, floor + scale * _design_lift(design))
+
+
+def follower_heights(design: CamDesign, state: CamState, theta):
+    """(Y, dY/dtheta, d2Y/dtheta2, d3Y/dtheta3), (lowest, highest) Y: the follower's pitch point
+    (face for a flat follower) above the cam axis at cam angles theta (rad)."""
+    if _scales_exactly(design, state):
+        return _closed_form(design, state, theta)
+    return geometric_motion(design, pieces_of(design), state.cam_strain_x, state.cam_strain_y,
+                            design.roller_radius * (1 + state.roller_strain), theta,
+                            nodes=96 if design.kind == "eccentric" else 40)
+
+
+@functools.lru_cache(maxsize=64)
+def dry_lowest_height(design: CamDesign) -> float:
+    """Lowest follower height of the dry cam: where the spring has its preload."""
+    return follower_heights(design, CamState(), np.linspace(0, 2 * np.pi, 8, endpoint=False))[1][0]
+
+
+def working_profile(design: CamDesign, strain_x: float = 0.0, strain_y: float = 0.0,
+                    n: int = 720):
+    """Closed counter-clockwise outline (x, y) of the working profile (m), cam frame,
+    last point != first, for the diffusion mesh (:class:`fickcam.diffusion.CamPlate`)."""
+    return working_outline(design, strain_x, strain_y, n)
+
+
+def write_profile_csv(path, design: CamDesign, strain_x: float = 0.0, strain_y: float = 0.0,
+                      n: int = 720):
+    """Write the working profile (cam frame, counter-clockwise) as CSV columns x_m, y_m."""
+    x, y = working_profile(design, strain_x, strain_y, n)
+    np.savetxt(path, np.c_[x, y], delimiter=",", header="x_m,y_m", comments="", fmt="%.9e")
+    return path
+
+
+# ------------------------------------------------------------------ response
+
+
+def _contact_point(design, height, dy, phi, roller):
+    """Contact point in the fixed frame (roller: pitch point minus R along the normal)."""
+    if design.follower_kind == "flat":
+        return dy, height
+    return design.offset + roller * np.sin(phi), height - roller * np.cos(phi)
+
+
+def _slide_ratio(design, height, rho):
+    """Sliding speed over the speed at which the contact travels along the cam:
+    0 for a rolling roller, 1 for a knife edge, (Rb + y)/rho for a flat face."""
+    if design.follower_kind == "roller":
+        return np.zeros_like(height)
+    if design.follower_kind == "knife":
+        return np.ones_like(height)
+    return height / np.abs(rho)
+
+
+def cam_response(design: CamDesign, state: CamState, cam_angle) -> Response:
+    """Kinematics, dynamics and contact of the (aged) cam at cam angles (rad).
+
+    Scalars: base_circle_radius, lift (m), jump_speed (rad/s; the schema stores rpm),
+    wear_rate (m/s, deepest Archard wear per unit time). Arrays over cam_angle:
+    follower_displacement (m, from the aged lowest position), follower_velocity,
+    follower_acceleration, follower_jerk (time derivatives at design.speed),
+    pressure_angle (rad), radius_of_curvature (m, working profile; pitch curve minus roller),
+    pitch_radius_of_curvature (m), contact_force (N, common normal), cam_torque (N m),
+    friction_force (N, sliding friction at the contact), guide_friction_force (N),
+    friction_torque (N m), contact_stress (Pa, Hertz), profile_x/profile_y (m, working
+    profile point in contact, cam frame), wear_per_revolution (m)."""
+    theta = np.asarray(cam_angle, float)
+    omega = design.speed
+    mass = design.follower_mass if state.follower_mass is None else state.follower_mass
+    roller = design.roller_radius * (1 + state.roller_strain)
+    (height, d1, d2, d3), (lowest, highest) = follower_heights(design, state, theta)
+    y = height - lowest
+    notices: list[str] = joint_notices(design.segments) if design.kind == "motion" else []
+
+    if design.follower_kind == "flat":
+        phi = np.zeros_like(theta)
+        rho = dyn.flat_radius_of_curvature(height, d2)
+        rho_pitch = rho
+    else:
+        phi = dyn.pressure_angle(height, d1, design.offset)
+        rho_pitch = dyn.pitch_radius_of_curvature(height, d1, d2, design.offset)
+        rho = rho_pitch - roller
+    notices += _geometry_notices(design, theta, phi, rho_pitch, rho, roller)
+
+    velocity, acceleration = d1 * omega, d2 * omega ** 2
+    deflection = height - dry_lowest_height(design)
+    holding = dyn.axial_force(mass, 0.0, design.spring_rate, deflection, design.spring_preload,
+                              design.external_load, design.gravity)
+    axial = holding + mass * acceleration
+    force = dyn.normal_force(axial, phi, velocity, design.guide_factor)
+    cx, cy = _contact_point(design, height, d1, phi, roller)
+    torque = dyn.contact_torque(cx, cy, force, phi)
+    sliding = design.follower_kind != "roller"
+    friction = design.friction_coefficient * np.maximum(force, 0.0) * sliding
+    lever = np.abs(cx * np.sin(phi) - cy * np.cos(phi))
+    jump = dyn.jump_speed(mass, d2, holding)
+    notices += _jump_notices(theta, axial, jump, omega)
+
+    e_star = dyn.effective_modulus(state.cam_surface_modulus, state.cam_surface_poisson,
+                                   state.follower_modulus or design.follower_modulus,
+                                   state.follower_poisson or design.follower_poisson)
+    if design.follower_kind == "knife":
+        stress = np.full_like(theta, np.nan)
+        notices.append("knife-edge follower: Hertz line-contact stress is not defined")
+    else:
+        stress = dyn.hertz_line_pressure(force, design.contact_length, rho,
+                                         roller if design.follower_kind == "roller" else None,
+                                         e_star)
+    wear = (dyn.archard_wear_per_revolution(design.archard_coefficient, design.hardness, force,
+                                            design.contact_length, _slide_ratio(design, height, rho))
+            if design.hardness else np.zeros_like(theta))
+    px, py = rotate(-theta, cx, cy)
+    scale_min = 1.0 + min(state.cam_strain_x, state.cam_strain_y)
+    variables = {
+        "base_circle_radius": design.base_circle_radius * scale_min,
+        "lift": highest - lowest,
+        "jump_speed": jump,
+        "follower_displacement": y,
+        "follower_velocity": velocity,
+        "follower_acceleration": acceleration,
+        "follower_jerk": d3 * omega ** 3,
+        "pressure_angle": phi,
+        "radius_of_curvature": rho,
+        "pitch_radius_of_curvature": rho_pitch,
+        "contact_force": force,
+        "cam_torque": torque,
+        "friction_force": friction,
+        "guide_friction_force": force * np.cos(phi) - axial,
+        "friction_torque": friction * lever,
+        "contact_stress": stress,
+        "profile_x": px,
+        "profile_y": py,
+        "wear_per_revolution": wear,
+        "wear_rate": float(np.max(wear)) * omega / (2 * np.pi),
+    }
+    return Response(variables, notices)
+
+
+def _design_lift(design: CamDesign) -> float:
+    level, top = 0.0, 0.0
+    for s in design.segments:
+        level += s.height
+        top = max(top, level)
+    return top
+
+
+def _where(theta, index) -> str:
+    return f"{math.degrees(theta[index]):.4g} deg"
+
+
+def _geometry_notices(design, theta, phi, rho_pitch, rho, roller) -> list[str]:
+    """Undercut, cusp, small curvature and steep pressure angle (Norton sec. 8.7)."""
+    notices = []
+    if design.follower_kind == "flat":
+        bad = np.nonzero(rho <= 0)[0]
+        if bad.size:
+            notices.append(f"flat follower: the profile needs a cusp (rho <= 0) at "
+                           f"{_where(theta, bad[0])}; raise the base circle")
+        return notices
+    k = int(np.argmax(np.abs(phi)))
+    if abs(phi[k]) > PRESSURE_ANGLE_LIMIT:
+        notices.append(f"pressure angle {math.degrees(phi[k]):.3g} deg at {_where(theta, k)} "
+                       f"exceeds 30 deg")
+    if design.follower_kind == "roller":
+        convex = rho_pitch > 0
+        undercut = np.nonzero(convex & (rho_pitch < roller))[0]
+        if undercut.size:
+            notices.append(f"undercut: pitch radius of curvature {rho_pitch[undercut[0]] * 1e3:.4g} mm "
+                           f"< roller radius {roller * 1e3:.4g} mm at {_where(theta, undercut[0])}")
+        else:
+            small = np.nonzero(np.abs(rho_pitch) < CURVATURE_RATIO_LIMIT * roller)[0]
+            if small.size:
+                notices.append(f"small pitch radius of curvature {rho_pitch[small[0]] * 1e3:.4g} mm "
+                               f"(< 2 roller radii) at {_where(theta, small[0])}")
+    return notices
+
+
+def _jump_notices(theta, axial, jump, omega) -> list[str]:
+    if omega < jump:
+        return []
+    k = int(np.argmin(axial))
+    return [f"follower jumps at the running speed: contact force falls to zero near "
+            f"{_where(theta, k)} (jump speed {jump * 30 / math.pi:.4g} rpm <= running "
+            f"{omega * 30 / math.pi:.4g} rpm)"]

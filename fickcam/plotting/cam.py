@@ -1,0 +1,111 @@
+"""Cam and follower over ageing (`fickcam plot --kind kinematics|dynamics`): S/V/A/J at
+several ages, the working profile dry vs aged, contact force, torque and Hertz stress
+vs cam angle at several ages, jump speed and peak stress vs ageing time. Works on the
+result Dataset (cam_angle in degrees, jump_speed in rpm, SI otherwise)."""
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+
+from . import days, figure, save_figure
+from .linkage import _ages, _label
+
+KINEMATICS = (("follower_displacement", "displacement [mm]", 1e3),
+              ("follower_velocity", "velocity [m/s]", 1.0),
+              ("follower_acceleration", "acceleration [m/s²]", 1.0),
+              ("follower_jerk", "jerk [m/s³]", 1.0))
+DYNAMICS = (("contact_force", "contact force [N]", 1.0), ("cam_torque", "cam torque [N m]", 1.0),
+            ("contact_stress", "Hertz stress [MPa]", 1e-6))
+
+
+def _panels(plt, ds, rows, title):
+    """One panel per (variable, label, scale) in ``rows`` against the cam angle, a line per age."""
+    present = [r for r in rows if r[0] in ds]
+    fig, axes = plt.subplots(len(present), 1, figsize=(7.5, 2.2 * len(present) + 0.6), sharex=True,
+                             squeeze=False)
+    angle = ds["cam_angle"].values
+    t = days(ds)
+    for ax, (name, ylabel, scale) in zip(axes[:, 0], present):
+        for k in _ages(ds):
+            ax.plot(angle, ds[name].isel(time=k).values * scale, color=f"C{k % 10}", label=_label(t[k]))
+        ax.set_ylabel(ylabel)
+        ax.grid(alpha=0.3)
+    axes[0, 0].set_title(title)
+    axes[0, 0].legend(fontsize=8)
+    axes[-1, 0].set_xlabel("cam angle [deg]")
+    return fig
+
+
+def plot_kinematics(ds, outdir) -> list[Path]:
+    """cam_kinematics.png (S/V/A/J vs cam angle at up to four ages), cam_drift.png (change
+    of displacement and acceleration since the first age) and, when the profile is
+    stored, cam_profile.png (working profile, first vs last age)."""
+    plt = figure()
+    outdir = Path(outdir)
+    outdir.mkdir(parents=True, exist_ok=True)
+    name = ds.attrs.get("scene_name", "")
+    written = [save_figure(_panels(plt, ds, KINEMATICS, f"{name}: follower motion"),
+                           outdir / "cam_kinematics.png")]
+    written.append(_drift(plt, ds, outdir, name))
+    if "profile_x" in ds:
+        fig, ax = plt.subplots(figsize=(6, 6))
+        t = days(ds)
+        for k in sorted({0, ds.sizes["time"] - 1}):
+            x = np.append(ds["profile_x"].isel(time=k).values, ds["profile_x"].isel(time=k).values[0])
+            y = np.append(ds["profile_y"].isel(time=k).values, ds["profile_y"].isel(time=k).values[0])
+            ax.plot(x * 1e3, y * 1e3, color=f"C{k % 10}", label=_label(t[k]))
+        ax.plot([0], [0], "k+")
+        ax.set_aspect("equal", adjustable="datalim")
+        ax.set_xlabel("x [mm]")
+        ax.set_ylabel("y [mm]")
+        ax.set_title(f"{name}: working profile")
+        ax.legend(fontsize=8)
+        ax.grid(alpha=0.3)
+        written.append(save_figure(fig, outdir / "cam_profile.png"))
+    return written
+
+
+def _drift(plt, ds, outdir, name) -> Path:
+    """cam_drift.png: displacement and acceleration minus their values at the first age,
+    i.e. how far the follower drifts out of its as-made motion."""
+    fig, axes = plt.subplots(2, 1, figsize=(7.5, 5.5), sharex=True)
+    angle = ds["cam_angle"].values
+    t = days(ds)
+    for ax, (var, ylabel, scale) in zip(axes, (KINEMATICS[0], KINEMATICS[2])):
+        first = ds[var].isel(time=0).values
+        for k in _ages(ds)[1:]:
+            ax.plot(angle, (ds[var].isel(time=k).values - first) * scale, color=f"C{k % 10}",
+                    label=_label(t[k]))
+        ax.set_ylabel(f"change in {ylabel}")
+        ax.grid(alpha=0.3)
+    axes[0].set_title(f"{name}: drift from t = {t[0]:g} d")
+    axes[0].legend(fontsize=8)
+    axes[-1].set_xlabel("cam angle [deg]")
+    return save_figure(fig, outdir / "cam_drift.png")
+
+
+def plot_dynamics(ds, outdir) -> list[Path]:
+    """cam_dynamics.png (contact force, torque, stress vs cam angle at up to four ages) and
+    cam_jump_stress.png (jump speed and peak Hertz stress vs ageing time)."""
+    plt = figure()
+    outdir = Path(outdir)
+    outdir.mkdir(parents=True, exist_ok=True)
+    name = ds.attrs.get("scene_name", "")
+    written = [save_figure(_panels(plt, ds, DYNAMICS, f"{name}: forces"), outdir / "cam_dynamics.png")]
+    fig, (top, bottom) = plt.subplots(2, 1, figsize=(7.5, 5.5), sharex=True)
+    t = days(ds)
+    if "jump_speed" in ds:
+        top.plot(t, ds["jump_speed"].values, "o-")
+    top.set_ylabel("jump speed [rpm]")
+    top.grid(alpha=0.3)
+    top.set_title(f"{name}: jump speed and peak contact stress")
+    if "contact_stress" in ds:
+        stress = ds["contact_stress"].values
+        peak = np.array([np.nanmax(row) if np.isfinite(row).any() else np.nan for row in stress])
+        bottom.plot(t, peak * 1e-6, "s-", color="C3")
+    bottom.set_ylabel("peak Hertz stress [MPa]")
+    bottom.set_xlabel("ageing time [d]")
+    bottom.grid(alpha=0.3)
+    written.append(save_figure(fig, outdir / "cam_jump_stress.png"))
+    return written
