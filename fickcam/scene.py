@@ -105,8 +105,9 @@ def read_yaml(source: str | os.PathLike, *, what: str = "scene") -> YamlDocument
 
 
 def parse_yaml(text: str, *, file: str = "<scene>", what: str = "scene") -> YamlDocument:
-    loader = _LineLoader(text)
+    loader = None
     try:
+        loader = _LineLoader(text)
         node = loader.get_single_node()
         if node is None:
             raise SceneError([Problem(file, None, "", f"empty {what} file")])
@@ -120,9 +121,11 @@ def parse_yaml(text: str, *, file: str = "<scene>", what: str = "scene") -> Yaml
         reason = " ".join(f"{exc.context or ''} {reason}".split())
         raise SceneError([Problem(file, line, "", f"YAML syntax: {reason}")]) from None
     except yaml.YAMLError as exc:
-        raise SceneError([Problem(file, None, "", f"YAML syntax: {exc}")]) from None
+        reason = " ".join(str(exc).split())
+        raise SceneError([Problem(file, None, "", f"YAML: {reason}")]) from None
     finally:
-        loader.dispose()
+        if loader is not None:
+            loader.dispose()
     if not isinstance(data, dict):
         raise SceneError([Problem(file, 1, "", f"a {what} must be a mapping of keys to values, "
                                                 f"got {type(data).__name__}")])

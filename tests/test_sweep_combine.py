@@ -166,3 +166,12 @@ def test_sweep_plots_one_figure_per_output_through_fickcam_plot(kind, tmp_path):
     written = plot(synthetic_sweep(kind), tmp_path, "sweep")
     assert sorted(p.name for p in written) == ["sweep_cam_moisture.png", "sweep_lift_change.png"]
     assert all(p.stat().st_size > 1000 for p in written)
+
+
+def test_a_case_that_failed_for_a_reason_other_than_its_scene_runs_again(sweep, tmp_path):
+    folder = WorkFolder.next_to(tmp_path / "out.h5")
+    folder.open_for(sweep.identity, 3)
+    finish(folder, 0, rh=50.0)
+    write_json({"index": 1, "status": "failed", "message": "internal error: RuntimeError: pool closed",
+                "values": {}, "wall_time": 0.1, "retry": True}, folder.record(1))
+    assert set(folder.open_for(sweep.identity, 3)) == {0}

@@ -1,11 +1,15 @@
 """Sweep files: validation with file:line reports, grid expansion, Monte Carlo draws,
 dotted-path overrides and unit-aware coordinates (no physics run needed)."""
+import itertools
 import math
+import tempfile
 from pathlib import Path
 
 import numpy as np
 import pytest
 import yaml
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from fickcam.cli import main
 from fickcam.errors import SceneError
@@ -180,3 +184,19 @@ def test_bare_and_text_values_become_number_or_text_coordinates(tmp_path):
     np.testing.assert_allclose(coords["diffusion__accuracy"], [1e-3, 1e-3, 1e-2, 1e-2])
     assert coords["cam__follower__kind"].tolist() == ["roller", "knife"] * 2
     assert coords["outputs__fields"].tolist() == ["False"] * 4
+
+
+PATHS = ["environment.history.0.relative_humidity", "environment.history.0.temperature",
+         "cam.thickness", "materials.cfrp.fiber_volume_fraction"]
+
+
+@given(st.lists(st.sampled_from(PATHS), min_size=1, max_size=3, unique=True),
+       st.lists(st.integers(1, 3), min_size=3, max_size=3))
+@settings(max_examples=15, deadline=None)
+def test_a_grid_has_each_combination_exactly_once(paths, counts):
+    grid = {path: [f"v{path}{k}" for k in range(n)] for path, n in zip(paths, counts)}
+    with tempfile.TemporaryDirectory() as folder:
+        sweep = load_sweep(write_sweep(Path(folder), yaml.safe_dump({"base": "base.yaml", "grid": grid})))
+    combos = [tuple(case.values[p] for p in paths) for case in sweep.cases]
+    assert len(combos) == len(set(combos)) == int(np.prod([len(v) for v in grid.values()]))
+    assert set(combos) == set(itertools.product(*grid.values()))

@@ -135,13 +135,16 @@ class ThetaStepper:
         return new
 
     def _step_banded(self, dt, theta, rhs, index, time) -> np.ndarray:
-        """Tridiagonal (1-D) operators: LAPACK gtsv-style banded solve, no factorisation to cache."""
-        from scipy.linalg import solve_banded
+        """Tridiagonal (1-D) operators: LAPACK dgtsv (Gaussian elimination with partial
+        pivoting, O(n)); nothing to factorise or cache."""
+        from scipy.linalg.lapack import dgtsv
 
         bands = theta * self._banded
         bands[1] += self.disc.volumes / dt
-        new = solve_banded((1, 1), bands, rhs, check_finite=False)
         upper, diagonal, lower = bands
+        *_, new, info = dgtsv(lower[:-1], diagonal, upper[1:], rhs)
+        if info != 0:
+            raise SolverError(self.part, index, time, f"tridiagonal solve failed (info {info})")
         product = diagonal * new
         product[:-1] += upper[1:] * new[1:]
         product[1:] += lower[:-1] * new[:-1]

@@ -50,9 +50,15 @@ def rescaled_time(diffusivity: Diffusivity, exposure: Exposure, t: np.ndarray,
     tau = np.empty_like(t)
     for k in np.unique(segment):
         sel = segment == k
-        tau[sel] = cumulative[k] + np.array([
-            _segment_integral(diffusivity, exposure, edges[k], ti, bool(exposure.ramp[k]), a_ref)
-            for ti in np.minimum(t[sel], edges[k + 1])])
+        inside = np.minimum(t[sel], edges[k + 1])
+        if exposure.ramp[k]:
+            tau[sel] = cumulative[k] + np.array([
+                _segment_integral(diffusivity, exposure, edges[k], ti, True, a_ref)
+                for ti in inside])
+        else:  # held: constant factor, tau linear in t
+            factor = float(diffusivity.arrhenius_factor(
+                exposure.temperature(edges[k:k + 1]))[0]) / a_ref
+            tau[sel] = cumulative[k] + (inside - edges[k]) * factor
         beyond = t[sel] > edges[k + 1]  # past the end of the history: hold the last state
         if beyond.any():
             factor = diffusivity.arrhenius_factor(exposure.temperature(edges[-1:]))[0] / a_ref

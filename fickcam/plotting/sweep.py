@@ -141,7 +141,8 @@ def plot_monte_carlo(ds, outdir: Path, age_index: int) -> list[Path]:
     written = []
     for key, (label, array) in outputs(ds).items():
         values = array.transpose("case", "time").values[ok]
-        fig, axes = plt.subplots(1, 1 + len(names), figsize=(4.5 * (1 + len(names)), 4), squeeze=False)
+        fig, axes = plt.subplots(1, 1 + len(names), figsize=(4.5 * (1 + len(names)), 4), squeeze=False,
+                                 layout="constrained")
         fan = axes[0, 0]
         if values.size:
             with warnings.catch_warnings():
@@ -154,13 +155,14 @@ def plot_monte_carlo(ds, outdir: Path, age_index: int) -> list[Path]:
         fan.set_xlabel("ageing time [d]")
         fan.set_ylabel(label)
         fan.set_title(_title(ds, key, age), fontsize=9)
-        for ax, name in zip(axes[0, 1:], names):
+        for panel, (ax, name) in enumerate(zip(axes[0, 1:], names)):
             x, ticks = _axis_values(ds[name].values)
             ax.plot(x[ok], values[:, age_index] if values.size else [], ".", ms=4)
             if ticks is not None:
                 ax.set_xticks(range(len(ticks)), ticks)
             ax.set_xlabel(_label(ds, name))
-            ax.set_ylabel(f"{label} at {age:g} d")
+            if panel == 0:
+                ax.set_ylabel(f"at {age:g} d: {label}")
         for ax in axes[0]:
             ax.grid(alpha=0.3)
         written.append(save_figure(fig, outdir / f"sweep_{key}.png"))

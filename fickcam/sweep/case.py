@@ -3,7 +3,9 @@ scene → :func:`fickcam.simulate.run` → per-case result file and record.
 
 Whatever goes wrong in a case (an invalid value, physics out of its domain, a
 solver failure, even a bug) becomes a ``failed`` record with its message; it
-never stops the other cases.
+never stops the other cases. Failures that are not the scene's fault (anything
+but a :class:`~fickcam.errors.FickcamError`) are marked ``retry``: a resumed
+sweep runs those cases again.
 """
 from __future__ import annotations
 
@@ -69,18 +71,27 @@ def run_case(task: CaseTask) -> dict:
     from ..simulate import run
     from ..store import save
 
+    import dask
+
     started = time.perf_counter()
+    retry = False
     try:
         with quieter("fickcam.simulate", logging.ERROR):  # its notices go into the record
             dataset = run(case_scene(task))
-        save(dataset, task.result_path)
+        # xarray would guard the write with a cluster-wide distributed.Lock inside a
+        # worker; a per-case file needs only the local HDF5 lock
+        with dask.config.set(scheduler="synchronous"):
+            save(dataset, task.result_path)
         notices = dataset.attrs.get("notices") or []
         status, message = "ok", "; ".join(str(n) for n in notices)
     except Exception as exc:  # noqa: BLE001 - a case's failure is data, not a crash
         if not isinstance(exc, FickcamError):
             log.exception("%s: internal error", task.label)
+            retry = True  # not the scene's fault (a bug, or the cluster went away): rerun on resume
         status, message = "failed", failure_message(exc)
     record = {"index": task.index, "status": status, "message": message,
               "values": task.values, "wall_time": time.perf_counter() - started}
+    if retry:
+        record["retry"] = True
     write_json(record, Path(task.record_path))
     return record

@@ -94,7 +94,6 @@ def compute_cases(sweep: Sweep, folder: WorkFolder, indices, client, *, progress
             try:
                 record = future.result()
             except Exception as exc:  # noqa: BLE001 - the worker, not the case, failed
-                log.warning("%s did not finish: %s: %s", task.label, type(exc).__name__, exc)
                 record = {"index": task.index, "status": "failed", "values": task.values,
                           "message": f"did not finish: {type(exc).__name__}: {exc}", "retry": True}
             if record["status"] != "ok":
@@ -137,8 +136,9 @@ def run_sweep(sweep_path, output, workers: int | None = None, scheduler: str | N
                                          done=len(records)))
     failed = sorted(i for i, r in records.items() if r["status"] != "ok")
     if failed:
-        log.warning("%d of %d case(s) failed: %s", len(failed), len(sweep.cases),
-                    ", ".join(str(i) for i in failed))
+        shown = ", ".join(str(i) for i in failed[:20]) + (" ..." if len(failed) > 20 else "")
+        log.warning("%d of %d case(s) failed (case_status, case_message in the result): %s",
+                    len(failed), len(sweep.cases), shown)
     with ExitStack() as stack, dask.config.set(scheduler="synchronous"):
         save(combine(sweep, folder, records, stack, started=started), output)
     if not any(r.get("retry") for r in records.values()):

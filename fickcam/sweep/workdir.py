@@ -91,6 +91,8 @@ class WorkFolder:
                 continue
             if record.get("status") == "ok" and not self.result(index).is_file():
                 continue
+            if record.get("retry"):  # failed for a reason other than its scene: run again
+                continue
             records[index] = record
         return records
 
