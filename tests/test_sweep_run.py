@@ -164,3 +164,18 @@ def test_grid_plots_show_each_output_against_the_varied_values(interrupted_then_
                                          "sweep_peak_cam_torque.png"}
     change = outputs(result)["lift_change"][1]
     assert change.dims == ("case", "time") and np.isnan(change.isel(case=sorted(RH_FAILED))).all()
+
+
+def test_more_cases_than_are_kept_in_flight_all_complete_once(scheduler, tmp_path):
+    values = ", ".join(f"{101 + k} %" for k in range(40))  # 40 cheap (invalid) cases
+    path = write_sweep(tmp_path, f"base: base.yaml\ngrid:\n  environment.history.0.relative_humidity: [{values}]\n")
+    sweep = load_sweep(path)
+    folder = WorkFolder.next_to(tmp_path / "out.h5")
+    folder.open_for(sweep.identity, len(sweep.cases))
+    from distributed import Client
+
+    with Client(scheduler) as client:
+        records = compute_cases(sweep, folder, range(40), client)
+    assert sorted(records) == list(range(40))
+    assert sorted(p.name for p in folder.path.glob("case-*.json")) == \
+        [f"case-{i:05d}.json" for i in range(40)]

@@ -25,13 +25,12 @@ from .workdir import WorkFolder
 log = logging.getLogger(__name__)
 
 
-def case_tasks(sweep: Sweep, folder: WorkFolder, indices) -> list[CaseTask]:
-    """The worker tasks of the cases ``indices``."""
-    name = Path(sweep.file).name
-    return [CaseTask(index=i, scene=sweep.scene_dict(sweep.cases[i]), values=sweep.cases[i].values,
-                     label=f"{name} case {i}", base_dir=str(sweep.base_dir),
-                     result_path=str(folder.result(i)), record_path=str(folder.record(i)))
-            for i in indices]
+def case_task(sweep: Sweep, folder: WorkFolder, index: int) -> CaseTask:
+    """The worker task of case ``index``."""
+    case = sweep.cases[index]
+    return CaseTask(index=index, scene=sweep.scene_dict(case), values=case.values,
+                    label=f"{Path(sweep.file).name} case {index}", base_dir=str(sweep.base_dir),
+                    result_path=str(folder.result(index)), record_path=str(folder.record(index)))
 
 
 def default_workers(n_cases: int) -> int:
@@ -75,38 +74,52 @@ def compute_cases(sweep: Sweep, folder: WorkFolder, indices, client, *, progress
                   done: int = 0) -> dict[int, dict]:
     """Run the cases ``indices`` on ``client``; return their records as they finish.
 
-    A case whose task itself broke (e.g. its worker died) is returned as failed
-    but leaves no record on disk, so a resumed sweep runs it again.
+    At most a few cases per worker thread are in flight at once, so neither the
+    client nor the scheduler holds the scenes of a large sweep all together. A
+    case whose task itself broke (e.g. its worker died) is returned as failed and
+    marked ``retry``, so a resumed sweep runs it again.
     """
     from distributed import as_completed
     from tqdm.auto import tqdm
 
     run_id = uuid.uuid4().hex[:12]  # keys unique per run: never reuse another run's result
-    futures = {client.submit(run_case, task, key=f"fickcam-case-{run_id}-{task.index}", pure=False): task
-               for task in case_tasks(sweep, folder, indices)}
+    waiting = iter(indices)
+    in_flight: dict = {}
+    finished = as_completed()
+
+    def submit_next() -> None:
+        index = next(waiting, None)
+        if index is not None:
+            task = case_task(sweep, folder, index)
+            future = client.submit(run_case, task, key=f"fickcam-case-{run_id}-{index}", pure=False)
+            in_flight[future] = (index, task.label, task.values)
+            finished.add(future)
+
+    for _ in range(max(16, 4 * sum(client.nthreads().values()))):
+        submit_next()
     records: dict[int, dict] = {}
     failed = 0
     bar = tqdm(total=len(sweep.cases), initial=done, disable=not progress, unit="case",
                desc="sweep", leave=True)
     try:
-        for future in as_completed(futures):
-            task = futures[future]
+        for future in finished:
+            index, label, values = in_flight.pop(future)
             try:
                 record = future.result()
             except Exception as exc:  # noqa: BLE001 - the worker, not the case, failed
-                record = {"index": task.index, "status": "failed", "values": task.values,
+                record = {"index": index, "status": "failed", "values": values,
                           "message": f"did not finish: {type(exc).__name__}: {exc}", "retry": True}
+            submit_next()
             if record["status"] != "ok":
-                log.warning("%s failed: %s", task.label, record["message"])
+                log.warning("%s failed: %s", label, record["message"])
                 failed += 1
                 bar.set_postfix(failed=failed, refresh=False)
-            records[task.index] = record
+            records[index] = record
             bar.update()
     finally:
         bar.close()
-        unfinished = [future for future in futures if not future.done()]
-        if unfinished:
-            client.cancel(unfinished)
+        if in_flight:
+            client.cancel(list(in_flight))
     return records
 
 
