@@ -60,7 +60,7 @@ def save(dataset, path) -> Path:
     return path
 
 
-JSON_ATTRIBUTES = ("diffusion", "notices", "parts", "scene_summary")
+JSON_ATTRIBUTES = ("diffusion", "notices", "sweep_parameters")
 
 
 def open_result(path):

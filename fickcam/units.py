@@ -57,7 +57,7 @@ def registry():
     return ureg
 
 
-def _split(text: str) -> tuple[float, str]:
+def split_number_unit(text: str) -> tuple[float, str]:
     match = _NUMBER_THEN_UNIT.match(text)
     if not match:
         raise ValueError(f"cannot read {text!r} as a number with units")
@@ -78,7 +78,7 @@ def to_si(value: Any, dimension: str) -> float:
         number = float(value)
         unit = ""
     elif isinstance(value, str):
-        number, unit = _split(value)
+        number, unit = split_number_unit(value)
     else:
         raise ValueError(f"expected a number or a string with units, got {type(value).__name__}")
     if not math.isfinite(number):

@@ -21,6 +21,7 @@ def mild_fourbar() -> dict:
     scene["environment"]["history"] = [{"duration": "90 d", "temperature": "60 degC",
                                         "relative_humidity": "85 %"}]
     scene["outputs"].pop("file")
+    scene["outputs"]["ageing_times"] = ["0 d", "1 d", "7 d", "30 d", "90 d"]
     return scene
 
 

@@ -23,8 +23,10 @@ KINDS = {
 
 def available_kinds(ds) -> list[str]:
     """The plot kinds this result has data for."""
+    if "case" in ds.dims:  # a sweep result: one figure set over its varied parameters
+        return ["sweep"]
     names = set(ds.variables)
-    return [k for k, (_, _, needs) in KINDS.items() if all(n in names for n in needs)]
+    return [k for k, (_, _, needs) in KINDS.items() if k != "sweep" and all(n in names for n in needs)]
 
 
 def plot(ds, outdir, kind: str = "all") -> list[Path]:

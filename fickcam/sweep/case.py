@@ -68,10 +68,10 @@ def failure_message(exc: BaseException) -> str:
 
 def run_case(task: CaseTask) -> dict:
     """Run one case, write its result file (ok cases) and then its record; return the record."""
+    import dask
+
     from ..simulate import run
     from ..store import save
-
-    import dask
 
     started = time.perf_counter()
     retry = False

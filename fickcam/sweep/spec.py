@@ -37,13 +37,13 @@ class _Strict(BaseModel):
 
 def _number_and_unit(value: Any) -> tuple[float, str]:
     """``0.6`` → (0.6, ""), ``"65 %"`` → (65.0, "%"); ValueError if not a number."""
-    from ..units import _split
+    from ..units import split_number_unit
 
     if isinstance(value, bool):
         raise ValueError(f"expected a number, got {value!r}")
     if isinstance(value, (int, float)):
         return float(value), ""
-    number, unit = _split(str(value))
+    number, unit = split_number_unit(str(value))
     return number, unit
 
 
