@@ -9,9 +9,9 @@ Public API: :class:`LinkageSection` (scene section), :class:`FourBarDesign`,
 from .ageing import LINKS, link_state, scene_parts, scene_response
 from .classify import class_changes, grashof_class
 from .dynamics import JOINT_MEANING, JOINTS
-from .model import VARIABLES, FourBarDesign, FourBarState, fourbar_response
+from .model import FourBarDesign, FourBarState, fourbar_response
 from .spec import LinkageSection
 
-__all__ = ["JOINTS", "JOINT_MEANING", "LINKS", "FourBarDesign", "FourBarState", "LinkageSection", "VARIABLES",
+__all__ = ["JOINTS", "JOINT_MEANING", "LINKS", "FourBarDesign", "FourBarState", "LinkageSection",
            "class_changes", "fourbar_response", "grashof_class", "link_state", "scene_parts",
            "scene_response"]

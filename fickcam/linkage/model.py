@@ -24,39 +24,6 @@ from .positions import (
 log = logging.getLogger(__name__)
 
 
-#: every variable :func:`fourbar_response` returns: name -> (dims after ``time``, SI units,
-#: long name). ``link`` = crank, coupler, rocker, frame; ``joint`` = O2, A, B, O4.
-VARIABLES = {
-    "coupler_angle": (("crank_angle",), "rad", "coupler angle theta3"),
-    "rocker_angle": (("crank_angle",), "rad", "rocker (output) angle theta4"),
-    "transmission_angle": (("crank_angle",), "rad", "transmission angle (acute, Norton eq. 4.32)"),
-    "coupler_point_x": (("crank_angle",), "m", "coupler point x"),
-    "coupler_point_y": (("crank_angle",), "m", "coupler point y"),
-    "coupler_angular_velocity": (("crank_angle",), "rad s-1", "coupler angular velocity"),
-    "rocker_angular_velocity": (("crank_angle",), "rad s-1", "rocker angular velocity"),
-    "coupler_angular_acceleration": (("crank_angle",), "rad s-2", "coupler angular acceleration"),
-    "rocker_angular_acceleration": (("crank_angle",), "rad s-2", "rocker angular acceleration"),
-    "link_com_velocity_x": (("link", "crank_angle"), "m s-1", "velocity of the link's centre of mass, x"),
-    "link_com_velocity_y": (("link", "crank_angle"), "m s-1", "velocity of the link's centre of mass, y"),
-    "link_com_acceleration_x": (("link", "crank_angle"), "m s-2",
-                                "acceleration of the link's centre of mass, x"),
-    "link_com_acceleration_y": (("link", "crank_angle"), "m s-2",
-                                "acceleration of the link's centre of mass, y"),
-    "input_torque": (("crank_angle",), "N m", "crank input torque"),
-    "joint_force_x": (("joint", "crank_angle"), "N",
-                      "joint force x (O2: frame on crank, A: coupler on crank, B: rocker on coupler, "
-                      "O4: frame on rocker)"),
-    "joint_force_y": (("joint", "crank_angle"), "N", "joint force y (as joint_force_x)"),
-    "joint_force": (("joint", "crank_angle"), "N", "joint force magnitude"),
-    "grashof_class": ((), "", "Grashof class of the linkage"),
-    "minimum_transmission_angle": ((), "rad", "smallest transmission angle over a revolution"),
-    "maximum_transmission_angle": ((), "rad", "largest transmission angle over a revolution"),
-    "peak_input_torque": ((), "N m", "largest absolute input torque over a revolution"),
-    "rms_input_torque": ((), "N m", "root mean square input torque over a revolution"),
-    "rocker_swing": ((), "rad", "range of the rocker angle over a revolution"),
-    "toggle_crank_angle_extended": ((), "rad", "crank angle with crank and coupler extended in line"),
-    "toggle_crank_angle_folded": ((), "rad", "crank angle with crank and coupler folded in line"),
-}
 
 
 @dataclass(frozen=True)
@@ -111,7 +78,8 @@ def _fmt_range(lo: float, hi: float) -> str:
 
 def fourbar_response(design: FourBarDesign, state: FourBarState, crank_angle) -> Response:
     """Positions, class, kinematics and kinetostatics over ``crank_angle`` (rad, a grid
-    over one revolution). Returns SI arrays (angles in rad); see ``VARIABLES`` for names,
+    over one revolution). Returns SI arrays (angles in rad); see the "linkage" rows of
+    :data:`fickcam.schema.VARIABLES` for names,
     dims and units. Crank angles at which the aged
     linkage cannot assemble hold NaN and are named in the notices."""
     theta2 = np.asarray(crank_angle, float)
