@@ -28,6 +28,21 @@ def _netcdf_attrs(attrs: dict) -> dict:
     return out
 
 
+def _umask_mode() -> int:
+    """The mode a plain ``open(path, 'w')`` would give (mkstemp makes 0600 files)."""
+    mask = os.umask(0)
+    os.umask(mask)
+    return 0o666 & ~mask
+
+
+def temporary_beside(path: Path) -> str:
+    """A new temporary file in ``path``'s folder, with the usual permissions."""
+    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
+    os.fchmod(fd, _umask_mode())
+    os.close(fd)
+    return tmp
+
+
 def save(dataset, path) -> Path:
     """Write ``dataset`` to ``path`` atomically and return the path."""
     path = Path(path)
@@ -39,8 +54,7 @@ def save(dataset, path) -> Path:
         ds[name].attrs = _netcdf_attrs(ds[name].attrs)
         if ds[name].dtype.kind == "m":
             ds[name].encoding.update({"units": "seconds", "dtype": "float64"})
-    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=folder)
-    os.close(fd)
+    tmp = temporary_beside(path)
     try:
         ds.to_netcdf(tmp, engine="h5netcdf")
         with open(tmp, "rb+") as handle:
