@@ -28,8 +28,12 @@ def scene_parts(section, materials) -> list[tuple]:
     x, y = working_profile(design)
     _, cam_mass, _ = plate_body(x, y, section.thickness, section.bore_radius,
                                 materials[section.material].dry_density)
-    parts = [("cam", section.material, CamPlate(x, y, section.thickness, section.bore_radius),
-              float(cam_mass))]
+    if section.eccentric is not None and section.bore_radius == 0:
+        # a solid eccentric disc is a finite cylinder about its own centre: exact series
+        geometry = Disc(section.eccentric.radius, section.thickness)
+    else:  # the bore is on the rotation axis: a plate with the profile outline
+        geometry = CamPlate(x, y, section.thickness, section.bore_radius)
+    parts = [("cam", section.material, geometry, float(cam_mass))]
     follower = section.follower
     if follower.material:
         width = design.contact_length
