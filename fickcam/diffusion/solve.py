@@ -46,6 +46,7 @@ PAIR_TO_EXTRAPOLATED = 7.0  # extrapolated error ~ 7 (c_fine - c_coarse)^2 (meas
 FIRST_STEP = 1e-6        # first step after a change, scaled time tau D / L^2
 MAX_CELLS = {"slab": 4000, "axisymmetric": 40_000, "solid": 120_000, "plane": 8_000}
 MIN_CELLS_PER_AXIS = 4
+EXPANSION_SHARE = 0.25  # plane: share of the accuracy allowed to the short-time expansion
 ANALYTIC_ERROR = 1e-8    # series truncation + ramp quadrature of exact.py
 
 
@@ -60,6 +61,7 @@ class Plan:
     error_estimate: float
     cells_per_axis: tuple[int, ...] = ()
     steps_per_doubling: int = 0
+    expansion_tolerance: float = 0.0  # plane: the short-time expansion's error allowance
 
 
 @dataclass
@@ -187,6 +189,14 @@ def plan(geometry, diffusivity: Diffusivity, exposure: Exposure, times: np.ndarr
     t_lo = _earliest_output(change, outputs)
     extents = _extents(geometry, diffusivity)
     dimensions = len(extents)  # each direction adds its own spatial error
+    tolerance = switch = 0.0
+    if chosen == "plane":  # short-time expansion before the switch, mesh after (planform)
+        from .planform import expansion_switch
+
+        tolerance = EXPANSION_SHARE * accuracy
+        switch = expansion_switch(geometry, tuple(float(v) for v in diffusivity.pre_exponential),
+                                  tolerance)
+        t_lo = max(t_lo, switch)
     spacing = math.sqrt(0.5 * accuracy * t_lo / (SPACE_ERROR * dimensions))
     if chosen == "plane":
         extents = extents[:2]
@@ -202,6 +212,9 @@ def plan(geometry, diffusivity: Diffusivity, exposure: Exposure, times: np.ndarr
     steps = 3 * (nodes.size - 1)  # coarse march + bisected march
     h_eff = max(e / c for e, c in zip(extents, cells))
     estimate = SPACE_ERROR * h_eff ** 2 / t_lo * dimensions + TIME_ERROR / per_doubling ** 2
+    if switch > 0:  # exact sheet; the expansion's allowance or the mesh after the switch
+        estimate = (max(tolerance, SPACE_ERROR * h_eff ** 2 / t_lo * 2)
+                    + TIME_ERROR / per_doubling ** 2)
     why = {"slab": "sheet through the thickness, 1-D finite volumes",
            "axisymmetric": "disc/annulus in (r, z)" + (
                " (bore: no exact path)" if isinstance(geometry, Disc) and geometry.inner_radius > 0
@@ -209,10 +222,15 @@ def plan(geometry, diffusivity: Diffusivity, exposure: Exposure, times: np.ndarr
            "solid": "bar in 3-D", "plane": "2-D outline mesh x exact-in-form sheet product"}[chosen]
     reason = (f"{why}; cells from accuracy (dx*={spacing:.2g}, earliest output "
               f"tau*={t_lo:.2g}), backward Euler {per_doubling} steps/doubling + Richardson")
+    if switch > 0:
+        reason += f"; short-time expansion of the outline up to tau*={switch:.2g}"
+    if switch > 0 and switch >= float(np.max(outputs)):  # planform: closed form, no mesh
+        return Plan(chosen, 0, 0, reason + " (covers every output: no mesh)",
+                    float(tolerance), cells, per_doubling, tolerance)
     if model == "auto" and isinstance(geometry, (Sheet, Bar, Disc)):
         reason += "; exact path unavailable"
     return Plan(chosen, int(math.prod(cells) if chosen != "plane" else math.prod(cells[:2]) + cells[2]),
-                int(steps), reason, float(estimate), cells, per_doubling)
+                int(steps), reason, float(estimate), cells, per_doubling, tolerance)
 
 
 # ------------------------------------------------------------------ solve
