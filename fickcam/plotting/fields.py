@@ -67,9 +67,9 @@ def _plot_part(ds, part, field, coords, outdir: Path) -> Path:
         fig, panels = plt.subplots(1, len(indices), figsize=(3.2 * len(indices), 3.4),
                                    squeeze=False)
         first, second = axes[:2]
+        triangulation = _cell_triangulation(coords[first][valid] * 1e3, coords[second][valid] * 1e3)
         for ax, k in zip(panels[0], indices):
-            image = ax.tripcolor(coords[first][valid] * 1e3, coords[second][valid] * 1e3,
-                                 field[k, valid], shading="gouraud", vmin=lo, vmax=hi)
+            image = ax.tripcolor(triangulation, field[k, valid], shading="gouraud", vmin=lo, vmax=hi)
             ax.set_aspect("equal")
             ax.set_title(f"{t[k]:g} d", fontsize=9)
             ax.set_xlabel(f"{first} [mm]")
@@ -77,3 +77,22 @@ def _plot_part(ds, part, field, coords, outdir: Path) -> Path:
         fig.colorbar(image, ax=panels[0].tolist(), label="moisture [wt %]")
         fig.suptitle(f"{part}: moisture field")
     return save_figure(fig, outdir / f"fields_{part}.png")
+
+
+def _cell_triangulation(x, y, stretch: float = 4.0):
+    """Delaunay triangulation of the cell centres with the triangles that bridge
+    holes and concave notches (an edge much longer than the local cell size)
+    masked, so a bore is drawn empty rather than interpolated across."""
+    import matplotlib.tri as mtri
+
+    triangulation = mtri.Triangulation(x, y)
+    corners = triangulation.triangles
+    edges = np.stack([np.hypot(x[corners[:, i]] - x[corners[:, j]], y[corners[:, i]] - y[corners[:, j]])
+                      for i, j in ((0, 1), (1, 2), (2, 0))], axis=1)
+    shortest_at = np.full(x.size, np.inf)
+    for column in range(3):
+        np.minimum.at(shortest_at, corners[:, column], edges.min(axis=1))
+    local = shortest_at[corners].max(axis=1)
+    triangulation.set_mask(edges.max(axis=1) > stretch * local)
+    return triangulation
+
