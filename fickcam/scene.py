@@ -15,7 +15,7 @@ from pathlib import Path
 from typing import Any, Literal, Union
 
 import yaml
-from pydantic import BaseModel, ConfigDict, Field, ValidationError, field_validator, model_validator
+from pydantic import Field, ValidationError, field_validator, model_validator
 
 from .cam.spec import CamSection
 from .errors import Problem, SceneError
@@ -27,9 +27,9 @@ from .units import (
     NonNegativePercent,
     NonNegativeTime,
     Percent,
+    PositiveAngle,
+    StrictModel,
     Temperature,
-    parse_duration,
-    quantity,
 )
 
 # --------------------------------------------------------------------------
@@ -155,11 +155,9 @@ def problems_from_validation(error: ValidationError, doc: YamlDocument,
 # Scene models (SI floats after validation)
 
 
-class _Strict(BaseModel):
-    model_config = ConfigDict(extra="forbid", frozen=True)
 
 
-class HistorySegment(_Strict):
+class HistorySegment(StrictModel):
     """One segment of the climate history (held, or a linear ramp)."""
 
     duration: Duration
@@ -168,7 +166,7 @@ class HistorySegment(_Strict):
     ramp: bool = False
 
 
-class EnvironmentSection(_Strict):
+class EnvironmentSection(StrictModel):
     reference_temperature: Temperature = 296.15
     initial_moisture: NonNegativePercent = 0.0
     history: list[HistorySegment] | None = None
@@ -186,19 +184,19 @@ class EnvironmentSection(_Strict):
         return self
 
 
-class DiffusionSection(_Strict):
+class DiffusionSection(StrictModel):
     model: Literal["auto", "analytic", "slab", "axisymmetric", "plane", "solid"] = "auto"
     accuracy: float = Field(1e-3, gt=0, le=0.1)
     surface_layer_depth: Length = 5e-4
 
 
-class EveryStep(_Strict):
+class EveryStep(StrictModel):
     every: Duration
 
 
-class OutputsSection(_Strict):
+class OutputsSection(StrictModel):
     ageing_times: Union[list[NonNegativeTime], EveryStep, None] = None
-    angle_step: quantity("angle", positive=True) = math.radians(1.0)
+    angle_step: PositiveAngle = math.radians(1.0)
     fields: bool = False
     file: str | None = None
 
@@ -220,7 +218,7 @@ class OutputsSection(_Strict):
         return value
 
 
-class SceneModel(_Strict):
+class SceneModel(StrictModel):
     name: str = Field(min_length=1)
     description: str = ""
     environment: EnvironmentSection

@@ -13,7 +13,7 @@ import math
 import re
 from typing import Annotated, Any
 
-from pydantic import AfterValidator, BeforeValidator
+from pydantic import AfterValidator, BaseModel, BeforeValidator, ConfigDict
 
 _NUMBER_THEN_UNIT = re.compile(
     r"^\s*(?P<number>[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)\s*(?P<unit>.*?)\s*$"
@@ -144,3 +144,10 @@ ExpansionCoefficient = quantity("inverse_temperature")
 Fraction = quantity("fraction", nonnegative=True, upper=1.0)
 Percent = quantity("percent", nonnegative=True, upper=100.0)
 NonNegativePercent = quantity("percent", nonnegative=True)
+
+
+class StrictModel(BaseModel):
+    """Base of every scene/sweep section model: unknown keys are errors, values frozen."""
+
+    model_config = ConfigDict(extra="forbid", frozen=True)
+

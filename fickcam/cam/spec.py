@@ -11,7 +11,8 @@ from __future__ import annotations
 import math
 from typing import Literal
 
-from pydantic import BaseModel, ConfigDict, Field, field_validator, model_validator
+from ..units import StrictModel
+from pydantic import ConfigDict, Field, field_validator, model_validator
 
 from ..units import (
     Angle,
@@ -36,7 +37,7 @@ Law = Literal["uniform_velocity", "constant_acceleration", "simple_harmonic", "c
 TURN_TOLERANCE = math.radians(1e-6)
 
 
-class _Strict(BaseModel):
+class _Strict(StrictModel):
     model_config = ConfigDict(extra="forbid", frozen=True, populate_by_name=True)
 
 

@@ -23,7 +23,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .geometry import CamPlate, LinkBar
+from .geometry import CamPlate
 
 log = logging.getLogger(__name__)
 

@@ -12,9 +12,9 @@ from __future__ import annotations
 import math
 from typing import Annotated, Literal
 
-from pydantic import BaseModel, BeforeValidator, ConfigDict, model_validator
+from pydantic import BeforeValidator, model_validator
 
-from ..units import Angle, AngularSpeed, Length, NonNegativeLength, registry
+from ..units import StrictModel, Angle, AngularSpeed, Length, NonNegativeLength, registry
 
 
 def _in_si(si_unit: str, human: str):
@@ -44,11 +44,9 @@ Torque = _in_si("N*m", "a torque (e.g. '2 N m')")
 AngularAcceleration = _in_si("rad/s**2", "an angular acceleration (e.g. '10 rad/s^2')")
 
 
-class _Strict(BaseModel):
-    model_config = ConfigDict(extra="forbid", frozen=True)
 
 
-class CouplerPoint(_Strict):
+class CouplerPoint(StrictModel):
     """Point P on the coupler: ``distance`` from the crank-coupler pin A, at ``angle``
     (counter-clockwise) from the line A->B (Norton eq. 4.31)."""
 
@@ -56,7 +54,7 @@ class CouplerPoint(_Strict):
     angle: Angle = 0.0
 
 
-class LinkSectionSpec(_Strict):
+class LinkSectionSpec(StrictModel):
     """Cross-section of every link (seed 001 Figure 3): a bar ``width`` x ``thickness``
     between two hollow bosses of ``boss_outer_radius`` / ``boss_inner_radius``."""
 
@@ -82,7 +80,7 @@ def can_assemble_somewhere(crank: float, coupler: float, rocker: float, frame: f
     return low <= high * (1.0 + 1e-12)
 
 
-class LinkageSection(_Strict):
+class LinkageSection(StrictModel):
     """The ``linkage:`` section. Optional extras beyond SPEC.md (with defaults):
     ``gravity`` (false; g = 9.80665 m/s^2 along -y, the frame line O2->O4 being +x),
     ``crank_angular_acceleration`` (0 rad/s^2), ``rocker_load_torque`` (0 N m, a

@@ -3,9 +3,10 @@ from __future__ import annotations
 
 from typing import Literal
 
-from pydantic import BaseModel, ConfigDict, PositiveFloat, model_validator
+from pydantic import PositiveFloat, model_validator
 
 from ..units import (
+    StrictModel,
     Density,
     Diffusivity,
     ExpansionCoefficient,
@@ -18,25 +19,23 @@ from ..units import (
 from .library import known_names
 
 
-class _Strict(BaseModel):
-    model_config = ConfigDict(extra="forbid", frozen=True)
 
 
-class DiffusivitySpec(_Strict):
+class DiffusivitySpec(StrictModel):
     """D = pre_exponential exp(-activation_energy / (R T)) (Shen & Springer 1976)."""
 
     pre_exponential: Diffusivity
     activation_energy: MolarEnergy
 
 
-class SaturationSpec(_Strict):
+class SaturationSpec(StrictModel):
     """Mm = coefficient (RH/100)^exponent, weight %."""
 
     coefficient: NonNegativePercent
     exponent: PositiveFloat = 1.0
 
 
-class MatrixProperties(_Strict):
+class MatrixProperties(StrictModel):
     """Overrides of an isotropic material (neat resin, matrix, plastic, metal)."""
 
     youngs_modulus: Pressure | None = None
@@ -50,7 +49,7 @@ class MatrixProperties(_Strict):
     saturation: SaturationSpec | None = None
 
 
-class FiberProperties(_Strict):
+class FiberProperties(StrictModel):
     """Overrides of a (transversely isotropic) fibre."""
 
     longitudinal_modulus: Pressure | None = None

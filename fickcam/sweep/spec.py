@@ -19,9 +19,10 @@ from pathlib import Path
 from typing import Any, Literal, Union
 
 import numpy as np
-from pydantic import BaseModel, ConfigDict, Field, ValidationError, field_validator, model_validator
+from pydantic import Field, ValidationError, field_validator, model_validator
 
 from .. import __version__
+from ..units import StrictModel
 from ..errors import Problem, SceneError
 
 Scalar = Union[bool, int, float, str]
@@ -31,8 +32,6 @@ Scalar = Union[bool, int, float, str]
 # The sweep file model
 
 
-class _Strict(BaseModel):
-    model_config = ConfigDict(extra="forbid", frozen=True)
 
 
 def _number_and_unit(value: Any) -> tuple[float, str]:
@@ -47,7 +46,7 @@ def _number_and_unit(value: Any) -> tuple[float, str]:
     return number, unit
 
 
-class Distribution(_Strict):
+class Distribution(StrictModel):
     """One random input: exactly one of normal, uniform, lognormal (+ optional unit)."""
 
     normal: tuple[Union[float, str], Union[float, str]] | None = None    # mean, standard deviation
@@ -118,7 +117,7 @@ def _common_unit(values, explicit: str | None) -> str:
     return units.pop() if units else (explicit or "")
 
 
-class SweepModel(_Strict):
+class SweepModel(StrictModel):
     base: str = Field(min_length=1)
     grid: dict[str, list[Scalar]] | None = None
     samples: int | None = Field(None, ge=1)
