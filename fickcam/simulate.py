@@ -18,8 +18,6 @@ from .scene import EveryStep, Scene, load_scene
 
 log = logging.getLogger(__name__)
 
-DAY = 86400.0
-
 
 @dataclass
 class Part:

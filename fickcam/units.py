@@ -19,24 +19,24 @@ _NUMBER_THEN_UNIT = re.compile(
     r"^\s*(?P<number>[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)\s*(?P<unit>.*?)\s*$"
 )
 
-# dimension name -> (pint dimensionality string, SI unit we convert to)
-DIMENSIONS: dict[str, tuple[str, str]] = {
-    "length": ("[length]", "m"),
-    "mass": ("[mass]", "kg"),
-    "time": ("[time]", "s"),
-    "temperature": ("[temperature]", "K"),
-    "angle": ("", "rad"),
-    "angular_speed": ("1/[time]", "rad/s"),
-    "force": ("[force]", "N"),
-    "stiffness": ("[force]/[length]", "N/m"),
-    "pressure": ("[pressure]", "Pa"),
-    "diffusivity": ("[length]**2/[time]", "m**2/s"),
-    "molar_energy": ("[energy]/[substance]", "J/mol"),
-    "density": ("[mass]/[length]**3", "kg/m**3"),
-    "inverse_temperature": ("1/[temperature]", "1/K"),
-    "acceleration": ("[length]/[time]**2", "m/s**2"),
-    "fraction": ("", ""),
-    "percent": ("", "percent"),
+# dimension name -> the SI unit values are converted to (its dimensionality is what we check)
+SI_UNITS: dict[str, str] = {
+    "length": "m",
+    "mass": "kg",
+    "time": "s",
+    "temperature": "K",
+    "angle": "rad",
+    "angular_speed": "rad/s",
+    "force": "N",
+    "stiffness": "N/m",
+    "pressure": "Pa",
+    "diffusivity": "m**2/s",
+    "molar_energy": "J/mol",
+    "density": "kg/m**3",
+    "inverse_temperature": "1/K",
+    "acceleration": "m/s**2",
+    "fraction": "",
+    "percent": "percent",
 }
 
 _HUMAN = {
@@ -71,7 +71,7 @@ def to_si(value: Any, dimension: str) -> float:
     not a number). Strings such as ``"1e-3"`` (which YAML leaves as text) are
     accepted as numbers.
     """
-    pint_dim, si_unit = DIMENSIONS[dimension]
+    si_unit = SI_UNITS[dimension]
     if isinstance(value, bool) or value is None:
         raise ValueError(f"expected {_HUMAN.get(dimension, 'a ' + dimension.replace('_', ' '))}, got {value!r}")
     if isinstance(value, (int, float)):

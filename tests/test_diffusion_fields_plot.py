@@ -51,6 +51,8 @@ def test_fields_plot_writes_one_png_per_part(results, tmp_path):
     assert all(p.stat().st_size > 1000 for p in written)
 
 
-def test_chosen_times_include_first_and_last():
-    assert fields.chosen_times(11).tolist() == [0, 3, 7, 10]
-    assert fields.chosen_times(2).tolist() == [0, 1]
+def test_chosen_ages_include_first_and_last():
+    from fickcam.plotting import ages
+
+    assert ages(xr.Dataset(coords={"time": np.arange(11)}), 4) == [0, 3, 7, 10]
+    assert ages(xr.Dataset(coords={"time": np.arange(2)}), 4) == [0, 1]

@@ -49,7 +49,7 @@ def dry_profile(design, segment, psi):
         wx, wy = rotate(-psi, 0.0, design.disc_radius)
         tx, ty = rotate(-psi, 1.0, 0.0)
         return wx, wy - design.eccentricity, tx, ty
-    y, y1, y2, _ = segment_motion(segment, psi)
+    y, y1, _, _ = segment_motion(segment, psi)
     if design.follower_kind == "flat":
         wx, wy = rotate(-psi, y1, design.base_circle_radius + y)
         tx, ty = rotate(-psi, 1.0, 0.0)

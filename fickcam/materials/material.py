@@ -39,7 +39,7 @@ class Material:
 
     @property
     def matrix_ratio(self) -> float:
-        return 1.0 - self.fiber_ratio - self.void_ratio if self.fiber else 1.0
+        return float(mm.matrix_volume_ratio(self.fiber_ratio, self.void_ratio)) if self.fiber else 1.0
 
     @property
     def dry_density(self) -> float:

@@ -109,11 +109,6 @@ def matrix_moisture(ply_moisture_, matrix_beta_per_fraction, km, kv, matrix_dens
     return ply_moisture_ * ply_density_ / ((3.0 * matrix_beta_per_fraction * km + kv) * matrix_density)
 
 
-def matrix_saturation_pickup(saturation_at_100, relative_humidity_ratio):
-    """M_m = M_inf RH_R (Chamis 1983; seed 000 Table 10 step 1)."""
-    return saturation_at_100 * np.asarray(relative_humidity_ratio, float)
-
-
 # --- laminate averaging for quasi-isotropic in-plane layups ----------------------------
 
 

@@ -65,6 +65,19 @@ def days(ds):
     return ds["time"].values / np.timedelta64(1, "D")
 
 
+def ages(ds, most: int = 4) -> list[int]:
+    """Indices of up to ``most`` ageing times spread from the first to the last."""
+    import numpy as np
+
+    n = ds.sizes["time"]
+    return sorted(set(np.linspace(0, n - 1, min(n, most)).round().astype(int).tolist()))
+
+
+def age_label(t_days: float) -> str:
+    """Legend text of an ageing time in days."""
+    return f"t = {t_days:g} d"
+
+
 def save_figure(fig, path: Path) -> Path:
     fig.savefig(path, dpi=120, bbox_inches="tight")
     import matplotlib.pyplot as plt

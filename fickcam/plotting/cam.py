@@ -8,8 +8,7 @@ from pathlib import Path
 
 import numpy as np
 
-from . import days, figure, save_figure
-from .linkage import _ages, _label
+from . import age_label, ages, days, figure, save_figure
 
 KINEMATICS = (("follower_displacement", "displacement [mm]", 1e3),
               ("follower_velocity", "velocity [m/s]", 1.0),
@@ -27,8 +26,8 @@ def _panels(plt, ds, rows, title):
     angle = ds["cam_angle"].values
     t = days(ds)
     for ax, (name, ylabel, scale) in zip(axes[:, 0], present):
-        for k in _ages(ds):
-            ax.plot(angle, ds[name].isel(time=k).values * scale, color=f"C{k % 10}", label=_label(t[k]))
+        for k in ages(ds):
+            ax.plot(angle, ds[name].isel(time=k).values * scale, color=f"C{k % 10}", label=age_label(t[k]))
         ax.set_ylabel(ylabel)
         ax.grid(alpha=0.3)
     axes[0, 0].set_title(title)
@@ -54,7 +53,7 @@ def plot_kinematics(ds, outdir) -> list[Path]:
         for k in sorted({0, ds.sizes["time"] - 1}):
             x = np.append(ds["profile_x"].isel(time=k).values, ds["profile_x"].isel(time=k).values[0])
             y = np.append(ds["profile_y"].isel(time=k).values, ds["profile_y"].isel(time=k).values[0])
-            ax.plot(x * 1e3, y * 1e3, color=f"C{k % 10}", label=_label(t[k]))
+            ax.plot(x * 1e3, y * 1e3, color=f"C{k % 10}", label=age_label(t[k]))
         ax.plot([0], [0], "k+")
         ax.set_aspect("equal", adjustable="datalim")
         ax.set_xlabel("x [mm]")
@@ -74,9 +73,9 @@ def _drift(plt, ds, outdir, name) -> Path:
     t = days(ds)
     for ax, (var, ylabel, scale) in zip(axes, (KINEMATICS[0], KINEMATICS[2])):
         first = ds[var].isel(time=0).values
-        for k in _ages(ds)[1:]:
+        for k in ages(ds)[1:]:
             ax.plot(angle, (ds[var].isel(time=k).values - first) * scale, color=f"C{k % 10}",
-                    label=_label(t[k]))
+                    label=age_label(t[k]))
         ax.set_ylabel(f"change in {ylabel}")
         ax.grid(alpha=0.3)
     axes[0].set_title(f"{name}: drift from t = {t[0]:g} d")

@@ -7,7 +7,7 @@ from pathlib import Path
 
 import numpy as np
 
-from . import days, figure, save_figure
+from . import ages, days, figure, save_figure
 
 PANELS = 4
 
@@ -23,11 +23,6 @@ def plot(ds, outdir) -> list[Path]:
                   if f"cell_{axis}" in ds}
         written.append(_plot_part(ds, str(part), field, coords, Path(outdir)))
     return written
-
-
-def chosen_times(count: int, panels: int = PANELS) -> np.ndarray:
-    """Indices of up to ``panels`` ageing times spread over the history (last included)."""
-    return np.unique(np.linspace(0, count - 1, min(panels, count)).round().astype(int))
 
 
 def _used_axes(coords: dict[str, np.ndarray], valid: np.ndarray) -> list[str]:
@@ -50,7 +45,7 @@ def _plot_part(ds, part, field, coords, outdir: Path) -> Path:
     if len(axes) == 3:
         valid = _mid_slice(coords, valid, axes)
         axes = ["x", "y"]
-    indices = chosen_times(len(t))
+    indices = ages(ds, PANELS)
     lo, hi = np.nanmin(field[:, valid]), np.nanmax(field[:, valid])
     if len(axes) <= 1:
         fig, ax = plt.subplots(figsize=(6, 4))

@@ -7,17 +7,7 @@ from pathlib import Path
 
 import numpy as np
 
-from . import days, figure, save_figure
-
-
-def _ages(ds, most: int = 4) -> list[int]:
-    """Indices of up to ``most`` ageing times spread from the first to the last."""
-    n = ds.sizes["time"]
-    return sorted(set(np.linspace(0, n - 1, min(n, most)).round().astype(int).tolist()))
-
-
-def _label(t_days: float) -> str:
-    return "t = 0 (dry)" if t_days == 0 else f"t = {t_days:g} d"
+from . import age_label, ages, days, figure, save_figure
 
 
 def _wrapped_degrees(x):
@@ -30,7 +20,7 @@ def _over_crank(ax, ds, name, picks, t, ylabel, transform=None, style="-", prefi
     for k in picks:
         y = ds[name].isel(time=k).values
         ax.plot(crank, transform(y) if transform else y, style, color=f"C{k % 10}",
-                label=prefix + _label(t[k]))
+                label=prefix + age_label(t[k]))
     ax.set_ylabel(ylabel)
     ax.grid(alpha=0.3)
 
@@ -42,7 +32,7 @@ def plot(ds, outdir) -> list[Path]:
     outdir = Path(outdir)
     outdir.mkdir(parents=True, exist_ok=True)
     t = days(ds)
-    picks = _ages(ds)
+    picks = ages(ds)
     name = ds.attrs.get("scene_name", "")
     written = []
 
@@ -51,7 +41,7 @@ def plot(ds, outdir) -> list[Path]:
         for k in picks:
             ax.plot(ds["coupler_point_x"].isel(time=k).values * 1e3,
                     ds["coupler_point_y"].isel(time=k).values * 1e3, color=f"C{k % 10}",
-                    label=_label(t[k]))
+                    label=age_label(t[k]))
     ax.set_aspect("equal", adjustable="datalim")
     ax.set_xlabel("x [mm]")
     ax.set_ylabel("y [mm]")
