@@ -143,6 +143,10 @@ def run(scene, *, accuracy: float | None = None, progress: bool = False):
                            store_fields=scene.model.outputs.fields, part=part.name)
             mean, surface = result.mean, result.surface
             saturation = exposure.surface_moisture(times)
+            if result.error_estimate > options["accuracy"]:  # e.g. capped at MAX_CELLS
+                notices.append(f"{part.name}: estimated diffusion error "
+                               f"{result.error_estimate:.1e} above the requested accuracy "
+                               f"{options['accuracy']:g} ({result.model})")
         else:
             result = None
             mean = surface = saturation = np.zeros_like(times)

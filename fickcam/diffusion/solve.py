@@ -6,7 +6,10 @@ Models (``diffusion.model``):
   (``fickcam.diffusion.exact``): Sheet, Bar (product of three sheets), solid Disc.
 - ``slab``: Sheet through its thickness, 1-D finite volumes.
 - ``axisymmetric``: Disc or annulus in (r, z), FiPy CylindricalGrid2D.
-- ``solid``: Bar, FiPy Grid3D.
+- ``solid``: Bar, FiPy Grid3D; CamPlate or LinkBar, FiPy prisms of the outline on
+  Delaunay-admissible cells (``prism``, ``fv.prism``): genuinely 3-D, marching the
+  history itself, the independent check of ``plane`` (which ``auto`` picks: cheaper).
+  Widths graded towards exposed faces where that saves cells (``layout``).
 - ``plane``: CamPlate or LinkBar: 2-D triangle mesh of the outline times the
   through-thickness sheet (product solution, Crank 1975 §4.3.4 / eq. 4.51
   generalised: for a prism with a uniform surface value the unsaturated
@@ -39,12 +42,13 @@ MODELS = ("auto", "analytic", "slab", "axisymmetric", "plane", "solid")
 NUMERICAL_MODEL = {Sheet: "slab", Disc: "axisymmetric", Bar: "solid", CamPlate: "plane",
                    LinkBar: "plane"}
 ALLOWED_MODELS = {Sheet: {"analytic", "slab"}, Disc: {"analytic", "axisymmetric"},
-                  Bar: {"analytic", "solid"}, CamPlate: {"plane"}, LinkBar: {"plane"}}
+                  Bar: {"analytic", "solid"}, CamPlate: {"plane", "solid"},
+                  LinkBar: {"plane", "solid"}}  # solid CamPlate/LinkBar: prisms (prism.py)
 SPACE_ERROR = 1.4e-2     # err ~ SPACE_ERROR (dx/L)^2 / tau*_lo, measured on the sheet
 TIME_ERROR = 6.3e-3      # extrapolated BE error ~ TIME_ERROR / m^2 (m = steps per doubling)
 PAIR_TO_EXTRAPOLATED = 7.0  # extrapolated error ~ 7 (c_fine - c_coarse)^2 (measured)
 FIRST_STEP = 1e-6        # first step after a change, scaled time tau D / L^2
-MAX_CELLS = {"slab": 4000, "axisymmetric": 40_000, "solid": 120_000, "plane": 8_000}
+MAX_CELLS = {"slab": 4000, "axisymmetric": 40_000, "solid": 120_000, "plane": 40_000}
 MIN_CELLS_PER_AXIS = 4
 EXPANSION_SHARE = 0.25  # plane: share of the accuracy allowed to the short-time expansion
 ANALYTIC_ERROR = 1e-8    # series truncation + ramp quadrature of exact.py
@@ -62,6 +66,8 @@ class Plan:
     cells_per_axis: tuple[int, ...] = ()
     steps_per_doubling: int = 0
     expansion_tolerance: float = 0.0  # plane: the short-time expansion's error allowance
+    finest: float = 0.0      # plane: finest mesh spacing at the outline (units of thickness)
+    growth: float = 0.0      # plane: mesh growth per row away from the outline
 
 
 @dataclass
@@ -180,57 +186,48 @@ def plan(geometry, diffusivity: Diffusivity, exposure: Exposure, times: np.ndarr
     if model == "analytic":
         raise InputError(f"diffusion.model analytic is not available for this "
                          f"{type(geometry).__name__}: {_no_exact_reason(geometry)}")
-    chosen = NUMERICAL_MODEL[type(geometry)]
+    chosen = NUMERICAL_MODEL[type(geometry)] if model == "auto" else model
     scales = _scales(geometry, diffusivity, exposure)
     change = scales.star(timesteps.rescaled_time(diffusivity, exposure, exposure.change_times,
                                                  scales.a_ref))
     outputs = scales.star(timesteps.rescaled_time(diffusivity, exposure, np.asarray(times, float),
                                                   scales.a_ref))
     t_lo = _earliest_output(change, outputs)
-    extents = _extents(geometry, diffusivity)
-    dimensions = len(extents)  # each direction adds its own spatial error
-    tolerance = switch = 0.0
-    if chosen == "plane":  # short-time expansion before the switch, mesh after (planform)
-        from .planform import expansion_switch
+    if chosen == "plane":  # expansion of the outline, then a graded mesh (planform)
+        from .planform import plan_plane
 
-        tolerance = EXPANSION_SHARE * accuracy
-        switch = expansion_switch(geometry, tuple(float(v) for v in diffusivity.pre_exponential),
-                                  tolerance)
-        t_lo = max(t_lo, switch)
-    spacing = math.sqrt(0.5 * accuracy * t_lo / (SPACE_ERROR * dimensions))
-    if chosen == "plane":
-        extents = extents[:2]
-    cells = tuple(max(MIN_CELLS_PER_AXIS, math.ceil(e / spacing)) for e in extents)
-    total = math.prod(cells)
-    if total > MAX_CELLS[chosen]:
-        shrink = (MAX_CELLS[chosen] / total) ** (1 / len(cells))
-        cells = tuple(max(MIN_CELLS_PER_AXIS, int(c * shrink)) for c in cells)
-    if chosen == "plane":  # the through-thickness sheet of the product
-        cells = cells + (min(MAX_CELLS["slab"], max(MIN_CELLS_PER_AXIS, math.ceil(1.0 / spacing))),)
+        return plan_plane(geometry, diffusivity, change, outputs, accuracy)
+    cells = _cells(geometry, diffusivity, chosen, accuracy, t_lo)
     per_doubling = max(4, math.ceil(math.sqrt(TIME_ERROR / (0.5 * accuracy))))
     nodes = timesteps.step_nodes(change, outputs, FIRST_STEP, per_doubling, exposure.ramp)
     steps = 3 * (nodes.size - 1)  # coarse march + bisected march
-    h_eff = max(e / c for e, c in zip(extents, cells))
-    estimate = SPACE_ERROR * h_eff ** 2 / t_lo * dimensions + TIME_ERROR / per_doubling ** 2
-    if switch > 0:  # exact sheet; the expansion's allowance or the mesh after the switch
-        estimate = (max(tolerance, SPACE_ERROR * h_eff ** 2 / t_lo * 2)
-                    + TIME_ERROR / per_doubling ** 2)
+    estimate = cells.space_error + TIME_ERROR / per_doubling ** 2
     why = {"slab": "sheet through the thickness, 1-D finite volumes",
            "axisymmetric": "disc/annulus in (r, z)" + (
                " (bore: no exact path)" if isinstance(geometry, Disc) and geometry.inner_radius > 0
                else ""),
-           "solid": "bar in 3-D", "plane": "2-D outline mesh x exact-in-form sheet product"}[chosen]
-    reason = (f"{why}; cells from accuracy (dx*={spacing:.2g}, earliest output "
+           "solid": "bar in 3-D" if isinstance(geometry, Bar) else
+           "3-D prisms of the outline (Delaunay-admissible cells x graded thickness)"}[chosen]
+    reason = (f"{why}; cells from accuracy ({cells.note}, earliest output "
               f"tau*={t_lo:.2g}), backward Euler {per_doubling} steps/doubling + Richardson")
-    if switch > 0:
-        reason += f"; short-time expansion of the outline up to tau*={switch:.2g}"
-    if switch > 0 and switch >= float(np.max(outputs)):  # planform: closed form, no mesh
-        return Plan(chosen, 0, 0, reason + " (covers every output: no mesh)",
-                    float(tolerance), cells, per_doubling, tolerance)
     if model == "auto" and isinstance(geometry, (Sheet, Bar, Disc)):
         reason += "; exact path unavailable"
-    return Plan(chosen, int(math.prod(cells) if chosen != "plane" else math.prod(cells[:2]) + cells[2]),
-                int(steps), reason, float(estimate), cells, per_doubling, tolerance)
+    if estimate > accuracy:
+        reason += f"; capped at {MAX_CELLS[chosen]} cells: error above the requested accuracy"
+    return Plan(chosen, cells.total, int(steps), reason, float(estimate), cells.cells,
+                per_doubling, finest=cells.finest, growth=cells.growth)
+
+
+def _cells(geometry, diffusivity, model: str, accuracy: float, t_lo: float):
+    """The cells of a direct model (``layout``): prisms for a CamPlate or LinkBar, graded
+    or uniform for a Disc or Bar, uniform for the slab."""
+    from . import layout
+
+    if isinstance(geometry, (CamPlate, LinkBar)):
+        return layout.prism_layout(geometry, diffusivity.pre_exponential, accuracy, t_lo,
+                                   MAX_CELLS[model], SPACE_ERROR)
+    return layout.choose(geometry, _extents(geometry, diffusivity), accuracy, t_lo,
+                         MAX_CELLS[model], SPACE_ERROR)
 
 
 # ------------------------------------------------------------------ solve
@@ -308,19 +305,31 @@ def _analytic_fields(geometry, diffusivity, exposure, times, depth):
 
 
 def discretise(geometry, diffusivity: Diffusivity, cells: tuple[int, ...],
-               surface_layer_depth: float):
-    """The FiPy-assembled operator of a Sheet, Disc or Bar on ``cells``."""
-    from . import fv
+               surface_layer_depth: float, finest: float = 0.0, growth: float = 0.0):
+    """The FiPy-assembled operator of a Sheet, Disc or Bar on ``cells`` (uniform), or
+    graded from ``finest`` by ``growth`` (scaled units, ``layout``); of a CamPlate or
+    LinkBar on prisms (graded: ``finest`` > 0)."""
+    from . import fv, layout
 
     d = tuple(float(v) for v in diffusivity.pre_exponential)
+    widths = (layout.physical_widths(geometry, _extents(geometry, diffusivity), d, finest,
+                                     growth)
+              if finest > 0 and isinstance(geometry, (Disc, Bar)) else None)
     if isinstance(geometry, Sheet):
         return fv.sheet(geometry.thickness, cells[0], surface_layer_depth)
     if isinstance(geometry, Disc):
         return fv.disc(geometry.outer_radius, geometry.thickness, geometry.inner_radius,
-                       cells[0], cells[1], surface_layer_depth, d[0], d[2])
+                       cells[0], cells[1], surface_layer_depth, d[0], d[2], widths=widths)
     if isinstance(geometry, Bar):
         return fv.bar(geometry.length, geometry.width, geometry.thickness, cells,
-                      surface_layer_depth, d)
+                      surface_layer_depth, d, widths=widths)
+    if isinstance(geometry, (CamPlate, LinkBar)):
+        from .planform import stretch_of
+        from .prism import band_share
+
+        tess = layout.planform_cells(geometry, finest, growth, stretch_of(d))
+        return fv.prism(tess, geometry.thickness, layout.prism_widths(finest, growth)
+                        * geometry.thickness, band_share(tess, surface_layer_depth), d)
     raise InputError(f"no direct finite-volume model for {type(geometry).__name__}")
 
 
@@ -369,12 +378,15 @@ def swing(exposure: Exposure, times: np.ndarray) -> float:
 
 def solve_direct(geometry, diffusivity, exposure, times, chosen: Plan, *,
                  surface_layer_depth: float = 5e-4, store_fields: bool = False,
-                 part: str = "", extrapolate: bool = True) -> DiffusionResult:
-    """March a Sheet, Disc or Bar on its FiPy mesh (Richardson pair in time)."""
+                 part: str = "", extrapolate: bool = True, disc=None) -> DiffusionResult:
+    """March a Sheet, Disc, Bar or prisms of a CamPlate or LinkBar on its FiPy mesh
+    (Richardson pair in time); ``disc``: an operator built by the caller instead."""
     from . import fv
 
     scales = _scales(geometry, diffusivity, exposure)
-    disc = discretise(geometry, diffusivity, chosen.cells_per_axis, surface_layer_depth)
+    if disc is None:
+        disc = discretise(geometry, diffusivity, chosen.cells_per_axis, surface_layer_depth,
+                          chosen.finest, chosen.growth)
     runs = []
     for bisect in (False, True):
         steps = step_plan(diffusivity, exposure, times, scales, chosen.steps_per_doubling, bisect)

@@ -1,0 +1,168 @@
+"""Cells of the direct finite-volume models (slab, axisymmetric, solid) from the accuracy.
+
+Uniform: spacing h* = sqrt(0.5 a tau*_lo / (SPACE_ERROR n)) on each of the n axes
+(``solve.SPACE_ERROR``: err ~ SPACE_ERROR (h/L)^2 / tau*_lo per axis, measured on the
+sheet against Crank eq. 4.18).
+
+Graded (``grading``): cells w0 wide at the exposed faces growing by (1 + g) per cell.
+Each graded axis adds SPACE_ERROR w0^2 / tau*_lo (the boundary layer after a change
+sees only the finest cells, Crank 1975 eq. 2.45) and GROWTH_ERROR g^2
+(``grading.GROWTH_ERROR``); half the spatial budget goes to each. The graded
+layout replaces the uniform one when it needs fewer cells. A prismatic part
+(CamPlate, LinkBar) is always graded: rows graded from its outline in the plane
+(``planform.triangulate`` with a growth), the same widths through the thickness, on
+Delaunay-admissible cells (``prism``). Above the model's cell cap the finest width
+grows (and with it the estimate) until the cells fit.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from functools import lru_cache
+
+import numpy as np
+
+from .geometry import Bar, CamPlate, Disc, LinkBar
+from .grading import GROWTH_ERROR, MAX_GROWTH, graded_widths, growth_rate
+from .solve import MIN_CELLS_PER_AXIS
+
+CAP_STEP = 1.15  # the finest width grows by this factor until the cells fit the cap
+
+
+@dataclass(frozen=True)
+class Layout:
+    """Cells per axis (a prism: planform cells, z cells), and the grading if any."""
+
+    cells: tuple[int, ...]
+    space_error: float
+    finest: float = 0.0   # scaled width of the finest cells (0: uniform)
+    growth: float = 0.0
+    note: str = ""
+
+    @property
+    def total(self) -> int:
+        return int(math.prod(self.cells))
+
+
+def exposed_ends(geometry) -> tuple[str, ...]:
+    """Which ends of each axis are exposed: a Disc's radius only at the rim unless it has
+    a bore; every face of a Bar; the faces of a prism (z)."""
+    if isinstance(geometry, Disc):
+        return ("both" if geometry.inner_radius > 0 else "high", "both")
+    return ("both",) * (3 if isinstance(geometry, Bar) else 1)
+
+
+def uniform(extents, accuracy: float, t_lo: float, cap: int, space_error: float) -> Layout:
+    """Equal cells on every axis (see the module docstring), shrunk to the cap."""
+    dimensions = len(extents)
+    spacing = math.sqrt(0.5 * accuracy * t_lo / (space_error * dimensions))
+    cells = tuple(max(MIN_CELLS_PER_AXIS, math.ceil(e / spacing)) for e in extents)
+    total = math.prod(cells)
+    if total > cap:
+        shrink = (cap / total) ** (1 / len(cells))
+        cells = tuple(max(MIN_CELLS_PER_AXIS, int(c * shrink)) for c in cells)
+    h_eff = max(e / c for e, c in zip(extents, cells))
+    return Layout(cells, space_error * h_eff ** 2 / t_lo * dimensions,
+                  note=f"uniform dx*={spacing:.2g}")
+
+
+def graded_error(finest: float, growth: float, t_lo: float, axes: int,
+                 space_error: float) -> float:
+    return axes * (space_error * finest ** 2 / t_lo + GROWTH_ERROR * growth ** 2)
+
+
+def graded_design(accuracy: float, t_lo: float, axes: int, space_error: float):
+    """(w0, g) spending half the spatial budget 0.5 a on each error term."""
+    finest = math.sqrt(0.25 * accuracy * t_lo / (space_error * axes))
+    return finest, growth_rate(0.25 * accuracy / axes)
+
+
+def axis_widths(extents, ends, finest: float, growth: float) -> tuple[np.ndarray, ...]:
+    """Scaled cell widths of each axis, graded towards its exposed ends."""
+    return tuple(graded_widths(e, min(finest, 0.5 * e), growth, end)
+                 for e, end in zip(extents, ends))
+
+
+def physical_widths(geometry, extents, d, finest: float, growth: float) -> tuple[np.ndarray, ...]:
+    """Graded cell widths (m) of a Disc (r, z) or Bar (x, y, z): the scaled widths times
+    L sqrt(D_i / D_z) (Crank 1975 eq. 2.13)."""
+    axes = (0, 1, 2) if isinstance(geometry, Bar) else (0, 2)
+    scaled = axis_widths(extents, exposed_ends(geometry), finest, growth)
+    return tuple(w * geometry.thickness * math.sqrt(d[i] / d[2]) for w, i in zip(scaled, axes))
+
+
+def graded(extents, ends, accuracy: float, t_lo: float, cap: int, space_error: float,
+           count=None) -> Layout:
+    """Graded cells (see the module docstring); ``count(finest, growth)`` gives the cells
+    per axis (default: the graded widths of ``extents``)."""
+    count = count or (lambda w0, g: tuple(w.size for w in axis_widths(extents, ends, w0, g)))
+    axes = len(extents)
+    finest, growth = graded_design(accuracy, t_lo, axes, space_error)
+    cells = count(finest, growth)
+    while math.prod(cells) > cap and finest < 0.5 * min(extents):
+        finest *= CAP_STEP
+        growth = min(MAX_GROWTH, growth * CAP_STEP)
+        cells = count(finest, growth)
+    return Layout(tuple(cells), graded_error(finest, growth, t_lo, axes, space_error),
+                  finest, growth, f"graded w0*={finest:.2g} growth {growth:.2g}")
+
+
+def choose(geometry, extents, accuracy: float, t_lo: float, cap: int,
+           space_error: float) -> Layout:
+    """The layout of a Disc or Bar: graded when that needs fewer cells, else uniform."""
+    flat = uniform(extents, accuracy, t_lo, cap, space_error)
+    if not isinstance(geometry, (Disc, Bar)):
+        return flat
+    steep = graded(extents, exposed_ends(geometry), accuracy, t_lo, cap, space_error)
+    better = steep.total < flat.total or (steep.total == flat.total
+                                          and steep.space_error < flat.space_error)
+    return steep if better else flat
+
+
+# ----------------------------------------------------------------- prisms
+
+
+@lru_cache(maxsize=8)
+def planform_cells(part, finest: float, growth: float, stretch: tuple[float, float]):
+    """Admissible cells (``prism.Tessellation``) of a CamPlate or LinkBar planform, rows
+    graded from the outline: ``finest`` and the spacing in stretched (scaled) units."""
+    from .planform import triangulate
+    from .prism import admissible
+
+    mesh = triangulate(part, finest * part.thickness, growth=growth, stretch=stretch)
+    return admissible(mesh, part, stretch)
+
+
+def prism_widths(finest: float, growth: float) -> np.ndarray:
+    """Scaled z widths of a prism, graded towards both faces."""
+    return graded_widths(1.0, min(finest, 0.5), growth, "both")
+
+
+def prism_layout(geometry, d, accuracy: float, t_lo: float, cap: int,
+                 space_error: float) -> Layout:
+    """Graded prism cells: planform rows and z widths with the same w0 and g (three
+    graded directions in the error model)."""
+    from .planform import stretch_of
+
+    if not isinstance(geometry, (CamPlate, LinkBar)):
+        raise TypeError(f"no prism layout for {type(geometry).__name__}")
+    stretch = stretch_of(d)
+    layout = graded((1.0, 1.0, 1.0), ("both",) * 3, accuracy, t_lo, cap, space_error,
+                    lambda w0, g: _estimated_prism_cells(geometry, w0, g, stretch))
+    planform = planform_cells(geometry, layout.finest, layout.growth, stretch)
+    cells = (planform.cells, prism_widths(layout.finest, layout.growth).size)
+    return Layout(cells, layout.space_error, layout.finest, layout.growth, layout.note)
+
+
+def _estimated_prism_cells(part, finest: float, growth: float, stretch) -> tuple[int, int]:
+    """Cheap count for the cap: rows of spacing s(d) ~ w0 + g d at depth d under an
+    outline of scaled perimeter P make about (2 / (sqrt(3)/2)) P integral dd / s^2
+    triangles (two per rhombus of an equilateral lattice), up to the half width D:
+    integral = D / (w0 (w0 + g D))."""
+    from .planform import outline_extent
+
+    extent = np.asarray(outline_extent(part)) * np.asarray(stretch) / part.thickness
+    perimeter, depth = 2.0 * float(extent.sum()), 0.5 * float(extent.min())
+    rows = depth / (finest * (finest + growth * depth))
+    planar = max(1, int(2.0 / (math.sqrt(3) / 2) * perimeter * rows))
+    return planar, prism_widths(finest, growth).size
