@@ -8,10 +8,12 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from fickcam.diffusion import CamPlate, LinkBar, fv, planform
+from fickcam.diffusion import CamPlate, LinkBar, fv, planform, prism
 from fickcam.errors import SolverError
 
 pytest.importorskip("fipy")
+
+PLATE = CamPlate(np.array([0.0, 1.0, 1.0, 0.0]), np.array([0.0, 0.0, 0.6, 0.6]), 1.0)
 
 
 def plain_fipy_steps(mesh, dt, steps, corrected=False):
@@ -37,7 +39,7 @@ def extracted_steps(mesh, dt, steps, corrected=False):
     return history.fields[0]
 
 
-@pytest.mark.parametrize("kind", ["grid1d", "cylindrical", "grid3d", "triangles"])
+@pytest.mark.parametrize("kind", ["grid1d", "cylindrical", "grid3d", "prisms"])
 def test_extracted_operator_reproduces_plain_fipy_solve(kind):
     from fipy import CylindricalGrid2D, Grid1D, Grid3D
 
@@ -46,9 +48,8 @@ def test_extracted_operator_reproduces_plain_fipy_solve(kind):
             "cylindrical": lambda: CylindricalGrid2D(nr=6, nz=5, dr=0.1, dz=0.2,
                                                      origin=((0.3,), (0.0,))),
             "grid3d": lambda: Grid3D(nx=4, ny=3, nz=5, dx=0.3, dy=0.2, dz=0.2),
-            "triangles": lambda: planform.triangulate(
-                CamPlate(np.array([0.0, 1.0, 1.0, 0.0]), np.array([0.0, 0.0, 0.6, 0.6]), 1.0),
-                0.2).fipy_mesh(np.array([1.0, 1.0]))}[kind]()
+            "prisms": lambda: fv._prism_mesh(prism.admissible(planform.triangulate(
+                PLATE, 0.2), PLATE), 1.0, np.array([0.0, 0.3, 1.0]), mid_plane=False)[0]}[kind]()
     expected = plain_fipy_steps(mesh, 0.01, 5, corrected)
     assert np.allclose(extracted_steps(mesh, 0.01, 5, corrected), expected, rtol=0, atol=1e-10)
 

@@ -225,3 +225,17 @@ def test_fields_have_cells_and_coordinates():
     assert set(result.cell_coordinates) == {"x", "y", "z"}
     assert all(v.shape == (n_cells,) for v in result.cell_coordinates.values())
     assert np.all(result.fields[0] == 0.0) and np.all(result.fields[1] > 0)
+
+
+def test_output_a_hair_after_a_step_boundary_records_that_boundary_not_the_next():
+    """An output within round-off above a node is merged into it (``_drop_slivers``);
+    it must read that node, not the next one (``searchsorted`` alone took the next)."""
+    from fickcam.diffusion.timesteps import _drop_slivers, nearest_nodes
+
+    first = 1e-6
+    nodes = np.array([0.0, 1e-6, 2e-6, 4e-6, 8e-6])
+    outputs = np.array([2e-6 * (1 + 1e-12), 8e-6])
+    merged = _drop_slivers(np.unique(np.concatenate([nodes, outputs])), first)
+    assert merged.size == nodes.size
+    assert list(nearest_nodes(merged, outputs)) == [2, 4]
+    assert list(nearest_nodes(merged, np.array([0.0, 3.1e-6]))) == [0, 3]

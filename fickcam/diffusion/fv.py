@@ -353,23 +353,6 @@ def bar(length: float, width: float, thickness: float, cells: tuple[int, int, in
                           _normalised(whole - inner), dict(zip("xyz", centres)))
 
 
-def plane(triangulation, thickness: float, layer_distance: np.ndarray, layer_depth: float,
-          d: tuple[float, float, float]) -> Discretisation:
-    """In-plane 2-D problem on a near-equilateral triangle mesh
-    (``planform.Triangulation``; the two-point flux is exact where the
-    circumcentre is the centroid); layer: cells whose centroid lies within
-    ``layer_depth`` of the contact edge (distances given per triangle)."""
-    scale = np.array([_axis_scale(thickness, d[0], d[2]), _axis_scale(thickness, d[1], d[2])])
-    mesh = triangulation.fipy_mesh(scale)
-    volumes, stiffness, boundary = assemble(mesh)
-    centres = [np.asarray(a) / s for a, s in zip(mesh.cellCenters, scale)]
-    layer = np.where(layer_distance <= layer_depth, volumes, 0.0)
-    if not layer.any():  # layer thinner than one cell row: the boundary row
-        layer = np.where(layer_distance <= layer_distance.min() * 1.0001, volumes, 0.0)
-    return Discretisation(volumes, stiffness, boundary, _normalised(volumes), _normalised(layer),
-                          {"x": centres[0], "y": centres[1]})
-
-
 def prism(tess, thickness: float, z_widths: np.ndarray, layer_share: np.ndarray,
           d: tuple[float, float, float], mid_plane: bool = False) -> Discretisation:
     """A planform's admissible cells (``prism.Tessellation``) extruded through the

@@ -145,16 +145,6 @@ class Triangulation:
     on_outline: np.ndarray | None = None  # (n,) bool
     contact: object = field(default=None, repr=False, compare=False)
 
-    def fipy_mesh(self, scale: np.ndarray):
-        """FiPy Mesh2D with coordinates multiplied by ``scale`` per axis."""
-        from fipy.meshes.mesh2D import Mesh2D
-
-        edges = np.sort(np.stack([self.triangles[:, [0, 1]], self.triangles[:, [1, 2]],
-                                  self.triangles[:, [2, 0]]], axis=1).reshape(-1, 2), axis=1)
-        unique, inverse = np.unique(edges, axis=0, return_inverse=True)
-        vertices = (self.points * np.asarray(scale)[None, :]).T
-        return Mesh2D(vertices, unique.T, inverse.reshape(-1, 3).T)
-
 
 def triangulate(part, spacing: float, *, growth: float | None = None,
                 stretch: tuple[float, float] = (1.0, 1.0)) -> Triangulation:

@@ -365,7 +365,7 @@ def step_plan(diffusivity, exposure, times, scales: _Scales, per_doubling: int,
     if jumps.size:
         backwards = node_times[jumps] - 1e-9 * (node_times[jumps] - node_times[jumps - 1])
         before[jumps] = exposure.surface_moisture(backwards)
-    return StepPlan(nodes, node_times, surface, before, np.searchsorted(nodes, outputs),
+    return StepPlan(nodes, node_times, surface, before, timesteps.nearest_nodes(nodes, outputs),
                     np.searchsorted(nodes, change[:-1]))
 
 

@@ -119,6 +119,16 @@ def _drop_slivers(nodes: np.ndarray, first_step: float) -> np.ndarray:
     return nodes[keep]
 
 
+def nearest_nodes(nodes: np.ndarray, values: np.ndarray) -> np.ndarray:
+    """Index of the node nearest each value (an output merged into a node by
+    ``_drop_slivers`` maps to that node, not to the next one)."""
+    nodes, values = np.asarray(nodes, float), np.asarray(values, float)
+    upper = np.clip(np.searchsorted(nodes, values), 1, max(nodes.size - 1, 1))
+    lower = upper - 1
+    closer_below = np.abs(values - nodes[lower]) <= np.abs(nodes[upper] - values)
+    return np.where(closer_below, lower, upper) if nodes.size > 1 else np.zeros(values.size, int)
+
+
 def inverse_time(tau_nodes: np.ndarray, tau_of_t, change_times: np.ndarray) -> np.ndarray:
     """t(tau) by interpolating tau(t) sampled at 257 points per segment (exact on held
     segments, where tau is linear in t; tau is strictly increasing)."""
