@@ -12,7 +12,7 @@ import math
 import os
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any, Literal, Union
+from typing import Any, Literal, Union, get_args
 
 import yaml
 from pydantic import Field, ValidationError, field_validator, model_validator
@@ -184,10 +184,24 @@ class EnvironmentSection(StrictModel):
         return self
 
 
+DiffusionModel = Literal["auto", "analytic", "slab", "axisymmetric", "plane", "solid"]
+
+
 class DiffusionSection(StrictModel):
-    model: Literal["auto", "analytic", "slab", "axisymmetric", "plane", "solid"] = "auto"
+    # one model for every part, or per part name (parts not named: auto)
+    model: Union[str, dict[str, str]] = "auto"
     accuracy: float = Field(1e-3, gt=0, le=0.1)
     surface_layer_depth: Length = 5e-4
+
+    @field_validator("model")
+    @classmethod
+    def _model_names(cls, value):
+        names = get_args(DiffusionModel)
+        for part, name in (value.items() if isinstance(value, dict) else [(None, value)]):
+            if name not in names:
+                where = f"part {part!r}: " if part is not None else ""
+                raise ValueError(f"{where}{name!r} is not a model (one of {', '.join(names)})")
+        return value
 
 
 class EveryStep(StrictModel):
@@ -271,6 +285,14 @@ def _used_materials(model: SceneModel) -> list[tuple[tuple, str]]:
     return refs
 
 
+def _part_names(model: SceneModel) -> tuple[str, ...]:
+    """Names of the parts a scene builds (``simulate.build_parts``), in its order."""
+    from .linkage.ageing import LINKS
+
+    cam = ("cam", "follower") if model.cam is not None else ()
+    return cam + (LINKS if model.linkage is not None else ())
+
+
 def _cross_checks(model: SceneModel, doc: YamlDocument, base_dir: Path) -> tuple[list[Problem], dict]:
     from .environment import Environment
     from .materials import resolve
@@ -304,6 +326,12 @@ def _cross_checks(model: SceneModel, doc: YamlDocument, base_dir: Path) -> tuple
             problems.append(doc.problem(
                 path, f"{hottest - 273.15:.1f} degC is at or above the dry Tg of material "
                       f"{name!r} ({tg - 273.15:.1f} degC)"))
+    if isinstance(model.diffusion.model, dict):
+        names = _part_names(model)
+        for name in model.diffusion.model:
+            if name not in names:
+                problems.append(doc.problem(("diffusion", "model", name),
+                                            f"no part named {name!r} (parts: {', '.join(names)})"))
     times = model.outputs.ageing_times
     if isinstance(times, list) and times[-1] > environment.end * (1 + 1e-12):
         problems.append(doc.problem(

@@ -13,7 +13,7 @@ import numpy as np
 
 from . import __version__
 from .environment import Environment
-from .errors import format_duration
+from .errors import InputError, format_duration
 from .scene import EveryStep, Scene, load_scene
 
 log = logging.getLogger(__name__)
@@ -81,6 +81,26 @@ def _diffusion_options(scene: Scene, accuracy: float | None) -> dict:
             "model": section.model, "surface_layer_depth": section.surface_layer_depth}
 
 
+def part_model(options: dict, part: str) -> str:
+    """The diffusion model asked for ``part`` (``diffusion.model``: one name or per part)."""
+    model = options["model"]
+    return model.get(part, "auto") if isinstance(model, dict) else model
+
+
+def _model_text(model) -> str:
+    if isinstance(model, dict):
+        return ", ".join(f"{part}: {name}" for part, name in model.items()) + " (others auto)"
+    return model
+
+
+def _for_part(name: str, call, *args, **kwargs):
+    """``call`` with an InputError (e.g. a model that does not apply) naming the part."""
+    try:
+        return call(*args, **kwargs)
+    except InputError as exc:
+        raise InputError(f"part {name}: {exc}") from None
+
+
 def describe_plan(scene: Scene, accuracy: float | None = None) -> str:
     """The plan `fickcam check` prints: parts, diffusion model, cells, steps."""
     from .diffusion import plan
@@ -91,7 +111,7 @@ def describe_plan(scene: Scene, accuracy: float | None = None) -> str:
     lines = [f"scene {scene.name}: valid",
              f"  environment: {len(environment.change_times) - 1} segment(s), "
              f"{format_duration(environment.end)}; {len(times)} ageing times",
-             f"  diffusion: model {options['model']}, accuracy {options['accuracy']:g}"]
+             f"  diffusion: model {_model_text(options['model'])}, accuracy {options['accuracy']:g}"]
     for part in build_parts(scene):
         head = f"  part {part.name:<9} material {part.material_name}"
         if part.geometry is None:
@@ -99,8 +119,8 @@ def describe_plan(scene: Scene, accuracy: float | None = None) -> str:
             continue
         exposure = environment.exposure(part.material.saturation_moisture)
         diffusivity = part.material.diffusivity_for(part.geometry)
-        p = plan(part.geometry, diffusivity, exposure, times, accuracy=options["accuracy"],
-                 model=options["model"])
+        p = _for_part(part.name, plan, part.geometry, diffusivity, exposure, times,
+                      accuracy=options["accuracy"], model=part_model(options, part.name))
         lines.append(f"{head}: {type(part.geometry).__name__} → {p.model}, {p.cells} cells, "
                      f"{p.steps} steps, est. error {p.error_estimate:.1e} ({p.reason})")
     mechanisms = [s for s in ("cam", "linkage") if getattr(scene.model, s) is not None]
@@ -137,10 +157,11 @@ def run(scene, *, accuracy: float | None = None, progress: bool = False):
         bar.set_postfix_str(f"diffusion {part.name}")
         if part.geometry is not None:
             exposure = environment.exposure(part.material.saturation_moisture)
-            result = solve(part.geometry, part.material.diffusivity_for(part.geometry), exposure,
-                           times, accuracy=options["accuracy"], model=options["model"],
-                           surface_layer_depth=options["surface_layer_depth"],
-                           store_fields=scene.model.outputs.fields, part=part.name)
+            result = _for_part(part.name, solve, part.geometry,
+                               part.material.diffusivity_for(part.geometry), exposure, times,
+                               accuracy=options["accuracy"], model=part_model(options, part.name),
+                               surface_layer_depth=options["surface_layer_depth"],
+                               store_fields=scene.model.outputs.fields, part=part.name)
             mean, surface = result.mean, result.surface
             saturation = exposure.surface_moisture(times)
             if result.error_estimate > options["accuracy"]:  # e.g. capped at MAX_CELLS

@@ -147,6 +147,10 @@ CASES = [
     ("undefined-frame-material", LINKAGE_SCENE, "frame_material: steel", "frame_material: bronze",
      "linkage.frame_material", "not defined"),
     ("no-mechanism", LINKAGE_SCENE, "linkage:\n", "linkage_typo:\n", "", ""),
+    ("model-for-a-part-the-scene-lacks", CAM_SCENE, "model: auto", "model: {cam: plane, rocker: solid}",
+     "diffusion.model.rocker", "no part named 'rocker'"),
+    ("unknown-model-for-a-part", CAM_SCENE, "model: auto", "model: {cam: finite}",
+     "diffusion.model", ""),
 ]
 
 
@@ -241,3 +245,27 @@ def test_valid_scenes_pass_check(tmp_path, capsys):
         path.write_text(text)
         assert main(["check", str(path)]) == 0, capsys.readouterr().err
         assert "valid" in capsys.readouterr().out
+
+
+def test_a_model_that_does_not_apply_names_the_part(tmp_path, capsys):
+    """One model for every part must apply to each; the error says which part refuses it."""
+    path = tmp_path / "scene.yaml"
+    path.write_text(_absorbing_follower(CAM_SCENE.replace("model: auto", "model: plane")))
+    assert main(["check", str(path)]) == 2
+    err = capsys.readouterr().err.strip()
+    assert err.count("\n") == 0 and "part follower" in err and "Disc" in err, err
+
+
+def test_per_part_models_apply_to_their_part_and_leave_the_others_on_auto(tmp_path, capsys):
+    path = tmp_path / "scene.yaml"
+    path.write_text(_absorbing_follower(CAM_SCENE.replace(
+        "model: auto", "model: {follower: axisymmetric}").replace("accuracy: 1e-3", "accuracy: 1e-2")))
+    assert main(["check", str(path)]) == 0
+    out = capsys.readouterr().out
+    assert "Disc → axisymmetric" in out and "CamPlate → plane" in out, out
+
+
+def _absorbing_follower(text: str) -> str:
+    """The scene with a carbon/epoxy roller (it diffuses as a Disc)."""
+    assert "    offset: 0 mm\n" in text
+    return text.replace("    offset: 0 mm\n", "    offset: 0 mm\n    material: cfrp\n", 1)
