@@ -167,8 +167,8 @@ class ThetaStepper:
         self._check_residual(matrix @ new - rhs, rhs, index, time)
 
     def _check_residual(self, difference, rhs, index, time) -> None:
-        scale = max(_norm(rhs), np.finfo(float).tiny)
-        residual = _norm(difference) / scale
+        scale = max(norm(rhs), np.finfo(float).tiny)
+        residual = norm(difference) / scale
         if not np.isfinite(residual) or residual > RESIDUAL_TOLERANCE * (
                 1e3 if self.iterative else 1.0):
             raise SolverError(self.part, index, time,
@@ -232,7 +232,7 @@ def _factor_bytes(matrix, lu) -> int:
     return 12 * (matrix.nnz + (0 if lu is None else lu.nnz))
 
 
-def _norm(vector: np.ndarray) -> float:
+def norm(vector: np.ndarray) -> float:
     """Euclidean norm without BLAS (a threaded ddot costs about a millisecond per call
     here, more than the triangular solves of a small mesh)."""
     return float(np.sqrt(np.einsum("i,i->", vector, vector)))

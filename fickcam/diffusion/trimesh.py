@@ -38,6 +38,8 @@ from dataclasses import dataclass, field
 import numpy as np
 from scipy import sparse
 
+from .fv import RESIDUAL_TOLERANCE, norm
+
 ROW = math.sqrt(3.0) / 2.0   # height of an equilateral triangle of unit side
 CORNER_TURN = 0.2            # rad: a vertex turning more is a corner (kept as a node)
 FAN_STEP = 0.1               # rad between offset normals around a reflex corner
@@ -45,7 +47,6 @@ DEPTH_TOLERANCE = 0.25       # a row point must lie within this many spacings of
 MIN_GAP = 0.7                # points closer than this many local spacings are dropped
 MESH_ERROR = 0.012           # relative uptake error ~ MESH_ERROR (h0/sqrt(tau) + GROWTH_REACH g)^2
 GROWTH_REACH = 1.2           # (measured, consistent-mass P1, see the module docstring)
-RESIDUAL_TOLERANCE = 1e-9
 
 
 # ------------------------------------------------------------------ outline
@@ -366,8 +367,8 @@ class P1Operator:
             jump = self.jump / dt if k == 1 and not lumped else 0.0
             rhs = mass @ c / dt + self.boundary - jump
             c = factors[dt, lumped].solve(rhs)
-            residual = _norm(mass @ c / dt + self.stiffness @ c - rhs)
-            if not residual <= RESIDUAL_TOLERANCE * max(_norm(rhs), 1e-300):
+            residual = norm(mass @ c / dt + self.stiffness @ c - rhs)
+            if not residual <= RESIDUAL_TOLERANCE * max(norm(rhs), 1e-300):
                 raise SolverError(self.part, k, nodes[k], f"P1 step residual {residual:.2e}")
             if k in wanted:
                 states[k] = self._record(c, 1.0, keep_fields)
@@ -379,11 +380,6 @@ class P1Operator:
         return (float(np.einsum("i,i->", self.mean_weights, c)) + self.mean_outline * outline,
                 float(np.einsum("i,i->", self.layer_weights, c)) + self.layer_outline * outline,
                 c if keep_fields else None)
-
-
-def _norm(vector: np.ndarray) -> float:
-    """Euclidean norm without BLAS (a threaded ddot costs milliseconds on a loaded machine)."""
-    return math.sqrt(float(np.einsum("i,i->", vector, vector)))
 
 
 def p1_operator(points: np.ndarray, triangles: np.ndarray, fixed: np.ndarray, layer: np.ndarray,
