@@ -66,8 +66,9 @@ class Plan:
     cells_per_axis: tuple[int, ...] = ()
     steps_per_doubling: int = 0
     expansion_tolerance: float = 0.0  # plane: the short-time expansion's error allowance
-    finest: float = 0.0      # plane: finest mesh spacing at the outline (units of thickness)
-    growth: float = 0.0      # plane: mesh growth per row away from the outline
+    finest: float = 0.0      # graded meshes: finest spacing at the exposed faces/outline
+    #                          (scaled units, thickness = 1); 0 for a uniform grid
+    growth: float = 0.0      # graded meshes: growth per cell/row away from them
 
 
 @dataclass

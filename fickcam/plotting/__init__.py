@@ -78,6 +78,16 @@ def age_label(t_days: float) -> str:
     return f"t = {t_days:g} d"
 
 
+def finish_plan_view(ax, title: str) -> None:
+    """Equal-aspect x-y axes in mm with title, legend and grid (profiles, coupler curves)."""
+    ax.set_aspect("equal", adjustable="datalim")
+    ax.set_xlabel("x [mm]")
+    ax.set_ylabel("y [mm]")
+    ax.set_title(title)
+    ax.legend(fontsize=8)
+    ax.grid(alpha=0.3)
+
+
 def save_figure(fig, path: Path) -> Path:
     fig.savefig(path, dpi=120, bbox_inches="tight")
     import matplotlib.pyplot as plt

@@ -8,7 +8,7 @@ from pathlib import Path
 
 import numpy as np
 
-from . import age_label, ages, days, figure, save_figure
+from . import age_label, ages, days, figure, finish_plan_view, save_figure
 
 KINEMATICS = (("follower_displacement", "displacement [mm]", 1e3),
               ("follower_velocity", "velocity [m/s]", 1.0),
@@ -55,12 +55,7 @@ def plot_kinematics(ds, outdir) -> list[Path]:
             y = np.append(ds["profile_y"].isel(time=k).values, ds["profile_y"].isel(time=k).values[0])
             ax.plot(x * 1e3, y * 1e3, color=f"C{k % 10}", label=age_label(t[k]))
         ax.plot([0], [0], "k+")
-        ax.set_aspect("equal", adjustable="datalim")
-        ax.set_xlabel("x [mm]")
-        ax.set_ylabel("y [mm]")
-        ax.set_title(f"{name}: working profile")
-        ax.legend(fontsize=8)
-        ax.grid(alpha=0.3)
+        finish_plan_view(ax, f"{name}: working profile")
         written.append(save_figure(fig, outdir / "cam_profile.png"))
     return written
 

@@ -7,7 +7,7 @@ from pathlib import Path
 
 import numpy as np
 
-from . import age_label, ages, days, figure, save_figure
+from . import age_label, ages, days, figure, finish_plan_view, save_figure
 
 
 def _wrapped_degrees(x):
@@ -42,12 +42,7 @@ def plot(ds, outdir) -> list[Path]:
             ax.plot(ds["coupler_point_x"].isel(time=k).values * 1e3,
                     ds["coupler_point_y"].isel(time=k).values * 1e3, color=f"C{k % 10}",
                     label=age_label(t[k]))
-    ax.set_aspect("equal", adjustable="datalim")
-    ax.set_xlabel("x [mm]")
-    ax.set_ylabel("y [mm]")
-    ax.set_title(f"{name}: coupler curve")
-    ax.legend(fontsize=8)
-    ax.grid(alpha=0.3)
+    finish_plan_view(ax, f"{name}: coupler curve")
     written.append(save_figure(fig, outdir / "linkage_coupler_curve.png"))
 
     fig, (top, bottom) = plt.subplots(2, 1, figsize=(7, 7), sharex=True)
