@@ -20,7 +20,7 @@ class Var:
     dims: tuple[str, ...]
     units: str
     long_name: str
-    section: str  # environment | parts | cam | linkage | fields
+    section: str  # environment | parts | cam | linkage | elastic | fields
     scale: float = 1.0  # stored value = SI value * scale
 
 
@@ -112,6 +112,14 @@ VARIABLES: dict[str, Var] = {
                          "pin force x: O2 frame on crank, A coupler on crank, B rocker on coupler, O4 frame on rocker", "linkage"),
     "joint_force_y": Var(("time", "joint", "crank_angle"), "N",
                          "pin force y: O2 frame on crank, A coupler on crank, B rocker on coupler, O4 frame on rocker", "linkage"),
+    # elasticity (cam.elastic / linkage.elastic: true)
+    "elastic_deflection": Var(TC, "m", "deflection of the cam profile along the common normal under the contact force", "elastic"),
+    "elastic_stress_tensile": Var(TC, "Pa", "largest tensile principal stress in the cam plate under the contact force", "elastic"),
+    "elastic_stress_compressive": Var(TC, "Pa", "largest compressive principal stress in the cam plate under the contact force (negative)", "elastic"),
+    "elastic_lift_error": Var(T, "m", "follower lift lost to the elastic deflection of the cam", "elastic"),
+    "swelling_stress_tensile": Var(TP, "Pa", "largest tensile principal hygrothermal stress in the part", "elastic"),
+    "swelling_stress_compressive": Var(TP, "Pa", "largest compressive principal hygrothermal stress in the part (negative)", "elastic"),
+    "failure_index": Var(TP, "1", "largest failure index of the hygrothermal stress against the wet strengths (1: failure)", "elastic"),
     # moisture fields (outputs.fields: true)
     "moisture": Var(("time", "part", "cell"), "%", "moisture content field", "fields"),
     "cell_x": Var(("part", "cell"), "m", "cell centre x", "fields"),

@@ -149,6 +149,9 @@ def run(scene, *, accuracy: float | None = None, progress: bool = False):
     options = _diffusion_options(scene, accuracy)
     parts = build_parts(scene)
     notices: list[str] = []
+    from .elastic.parts import elastic_parts
+
+    elastic = elastic_parts(scene.model)  # these need their moisture fields
 
     bar = tqdm(total=len(parts) + len(times), disable=not progress, desc=scene.name,
                unit="step", leave=False)
@@ -161,7 +164,8 @@ def run(scene, *, accuracy: float | None = None, progress: bool = False):
                                part.material.diffusivity_for(part.geometry), exposure, times,
                                accuracy=options["accuracy"], model=part_model(options, part.name),
                                surface_layer_depth=options["surface_layer_depth"],
-                               store_fields=scene.model.outputs.fields, part=part.name)
+                               store_fields=scene.model.outputs.fields or part.name in elastic,
+                               part=part.name)
             mean, surface = result.mean, result.surface
             saturation = exposure.surface_moisture(times)
             if result.error_estimate > options["accuracy"]:  # e.g. capped at MAX_CELLS
@@ -203,6 +207,14 @@ def run(scene, *, accuracy: float | None = None, progress: bool = False):
                             angles, valid_all, on_step=bar.update)
         values.update(mech.variables)
         notices += mech.notices
+        if scene.model.cam.elastic:
+            from .elastic.cam import cam_elastic_response
+
+            bar.set_postfix_str("cam elasticity")
+            cam_state = next(h.state for h in histories if h.part.name == "cam")
+            mech = cam_elastic_response(scene.model.cam, cam_state, values, valid_all)
+            values.update(mech.variables)
+            notices += mech.notices
     if scene.model.linkage is not None:
         from .linkage import scene_response as linkage_response
 
@@ -216,6 +228,13 @@ def run(scene, *, accuracy: float | None = None, progress: bool = False):
                                 angles, valid_all, on_step=bar.update)
         values.update(mech.variables)
         notices += mech.notices
+    if elastic:
+        from .elastic.parts import swelling_variables
+
+        bar.set_postfix_str("swelling stress")
+        values.update(swelling_variables(histories, elastic, temperature,
+                                         environment.reference_temperature,
+                                         environment.initial_moisture))
     if scene.model.outputs.fields:
         _add_fields(values, coords, histories, times)
     bar.close()

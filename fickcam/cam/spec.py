@@ -142,7 +142,8 @@ class CamSection(_Strict):
     """The ``cam:`` section. Extras beyond SPEC.md (defaults): ``gravity`` (false; g along
     the follower axis, against the lift), ``wear`` (none: no Archard wear),
     ``follower.width``, ``follower.friction_coefficient``, ``follower.modulus``,
-    ``follower.poisson_ratio``, ``follower.guide`` (see :class:`Follower`). The cam turns
+    ``follower.poisson_ratio``, ``follower.guide`` (see :class:`Follower`); ``elastic``
+    (false: no elastic deflection or swelling stress, :mod:`fickcam.elastic`). The cam turns
     counter-clockwise at ``speed``; the follower moves along +y at x = offset."""
 
     material: str
@@ -155,6 +156,7 @@ class CamSection(_Strict):
     eccentric: Eccentric | None = None
     gravity: bool = False
     wear: Wear | None = None
+    elastic: bool = False
 
     @field_validator("motion")
     @classmethod
@@ -175,6 +177,8 @@ class CamSection(_Strict):
             smallest = self.base_circle_radius
         if self.bore_radius >= smallest:
             raise ValueError(f"bore_radius must be smaller than the base circle ({smallest * 1e3:g} mm)")
+        if self.elastic and self.bore_radius <= 0.0:
+            raise ValueError("elastic: true needs bore_radius (the cam plate is held at its bore)")
         if self.follower.offset != 0.0 and abs(self.follower.offset) >= smallest + (
                 self.follower.roller_radius or 0.0) and self.follower.kind != "flat":
             raise ValueError("follower offset must be smaller than the prime circle radius")

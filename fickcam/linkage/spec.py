@@ -85,7 +85,8 @@ class LinkageSection(StrictModel):
     ``gravity`` (false; g = 9.80665 m/s^2 along -y, the frame line O2->O4 being +x),
     ``crank_angular_acceleration`` (0 rad/s^2), ``rocker_load_torque`` (0 N m, a
     constant torque on the rocker, counter-clockwise positive) and
-    ``centre_of_mass`` (fractions along crank, coupler, rocker; 0.5 each)."""
+    ``centre_of_mass`` (fractions along crank, coupler, rocker; 0.5 each) and ``elastic``
+    (false; true: swelling stress and failure index of the links, :mod:`fickcam.elastic`)."""
 
     material: str
     frame_material: str | None = None
@@ -101,6 +102,7 @@ class LinkageSection(StrictModel):
     crank_angular_acceleration: AngularAcceleration = 0.0
     rocker_load_torque: Torque = 0.0
     centre_of_mass: tuple[float, float, float] = (0.5, 0.5, 0.5)
+    elastic: bool = False
 
     @model_validator(mode="after")
     def _is_a_four_bar(self):
