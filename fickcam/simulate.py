@@ -232,9 +232,7 @@ def run(scene, *, accuracy: float | None = None, progress: bool = False):
         from .elastic.parts import swelling_variables
 
         bar.set_postfix_str("swelling stress")
-        values.update(swelling_variables(histories, elastic, temperature,
-                                         environment.reference_temperature,
-                                         environment.initial_moisture))
+        values.update(swelling_variables(histories, elastic, environment, times, temperature))
     if scene.model.outputs.fields:
         _add_fields(values, coords, histories, times)
     bar.close()

@@ -151,6 +151,10 @@ CASES = [
      "diffusion.model.rocker", "no part named 'rocker'"),
     ("unknown-model-for-a-part", CAM_SCENE, "model: auto", "model: {cam: finite}",
      "diffusion.model", ""),
+    ("elastic-cam-without-bore", CAM_SCENE, "  speed: 600 rpm", "  speed: 600 rpm\n  elastic: true",
+     "cam", "bore"),
+    ("elastic-not-boolean", LINKAGE_SCENE, "assembly: open", "assembly: open\n  elastic: maybe",
+     "linkage.elastic", ""),
 ]
 
 

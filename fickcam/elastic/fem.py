@@ -54,20 +54,29 @@ def _voigt(eps) -> tuple:
 
 
 def _stress_of(q, strain) -> tuple:
-    """Q strain in Voigt form; q (3, 3, [elements, points]) or (3, 3)."""
+    """Q strain in Voigt form; q (3, 3, ...) indexable as q[i][j]."""
     return tuple(sum(q[i][j] * strain[j] for j in range(3)) for i in range(3))
+
+
+_UPPER = ((0, 0), (0, 1), (0, 2), (1, 1), (1, 2), (2, 2))
+
+
+def _q_of(w) -> tuple:
+    """The symmetric Q from the six form arguments q00 ... q22 (each (elements, points))."""
+    c = {(i, j): getattr(w, f"q{i}{j}") for i, j in _UPPER}
+    return tuple(tuple(c[min(i, j), max(i, j)] for j in range(3)) for i in range(3))
 
 
 @skfem.BilinearForm
 def _stiffness_form(u, v, w):
-    su = _stress_of(w.q, _voigt(sym_grad(u)))
+    su = _stress_of(_q_of(w), _voigt(sym_grad(u)))
     ev = _voigt(sym_grad(v))
     return w.t * sum(s * e for s, e in zip(su, ev))
 
 
 @skfem.LinearForm
 def _eigenstrain_form(v, w):
-    s_star = _stress_of(w.q, (w.exx, w.eyy, w.gxy))
+    s_star = _stress_of(_q_of(w), (w.exx, w.eyy, w.gxy))
     ev = _voigt(sym_grad(v))
     return w.t * sum(s * e for s, e in zip(s_star, ev))
 
@@ -83,9 +92,17 @@ def _per_point(values, basis) -> np.ndarray:
 
 
 def _q_field(q, basis) -> np.ndarray:
-    """Q as (3, 3, n_elements, n_points) from (3, 3), (3, 3, n_elements) or (3, 3, ne, np)."""
+    """Q as a (3, 3, n_elements, n_points) view of (3, 3), (3, 3, n_elements) or
+    (3, 3, n_elements, n_points)."""
     q = np.asarray(q, float)
-    return np.array([[_per_point(q[i, j], basis) for j in range(3)] for i in range(3)])
+    q = q.reshape(q.shape + (1,) * (4 - q.ndim)) if q.ndim < 4 else q
+    return np.broadcast_to(q, (3, 3, basis.mesh.t.shape[1], basis.X.shape[-1]))
+
+
+def _q_arguments(q, basis) -> dict:
+    """The six independent entries of Q as contiguous (elements, points) form arguments."""
+    field_ = _q_field(q, basis)
+    return {f"q{i}{j}": np.ascontiguousarray(field_[i, j]) for i, j in _UPPER}
 
 
 @dataclass
@@ -114,7 +131,7 @@ class PlaneElasticity:
 
     def stiffness(self, q) -> sparse.csr_matrix:
         """K for Q constant, per element or per quadrature point."""
-        return _stiffness_form.assemble(self.basis, q=_q_field(q, self.basis), t=self.thickness)
+        return _stiffness_form.assemble(self.basis, t=self.thickness, **_q_arguments(q, self.basis))
 
     def nodal_at_points(self, nodal) -> np.ndarray:
         """A P1 nodal field at the quadrature points, (n_elements, n_points)."""
@@ -124,8 +141,8 @@ class PlaneElasticity:
         """Load vector of the free strain eps* = (exx, eyy, gxy), each a scalar or an array
         per element / per quadrature point."""
         exx, eyy, gxy = (_per_point(s, self.basis) for s in strain)
-        return _eigenstrain_form.assemble(self.basis, q=_q_field(q, self.basis), t=self.thickness,
-                                          exx=exx, eyy=eyy, gxy=gxy)
+        return _eigenstrain_form.assemble(self.basis, t=self.thickness, exx=exx, eyy=eyy, gxy=gxy,
+                                          **_q_arguments(q, self.basis))
 
     def boundary_facets(self, keep) -> np.ndarray:
         """Boundary facets whose midpoints (2, k) satisfy ``keep(x, y)``."""

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
+DEPTH_STRIDE = 2   # every other cell of the exact sheet field (40 cells) between face and mid-plane
 SWELLING = ("swelling_stress_tensile", "swelling_stress_compressive", "failure_index")
 
 
@@ -17,7 +18,31 @@ def elastic_parts(model) -> set[str]:
     return names
 
 
-def swelling_variables(histories, names: set[str], temperature, reference, initial_moisture
+def depth_profiles(part, environment, times) -> np.ndarray | None:
+    """(times, depths) moisture of an infinite sheet of the part's thickness under its
+    exposure, from a face (the surface value) to the mid-plane: the engine's exact series
+    (Crank 1975 eq. 4.17) with the through-thickness diffusivity. At t = 0 the face still
+    holds the initial moisture."""
+    from ..diffusion import Diffusivity, Sheet, solve
+
+    if part.geometry is None:
+        return None
+    d = part.material.diffusivity_for(part.geometry)
+    dz = float(d.pre_exponential[2])
+    exposure = environment.exposure(part.material.saturation_moisture)
+    result = solve(Sheet(part.geometry.thickness), Diffusivity((dz, dz, dz), d.activation_energy),
+                   exposure, times, model="analytic", store_fields=True, part=part.name)
+    z = np.asarray(result.cell_coordinates["z"])
+    half = z <= 0.5 * part.geometry.thickness
+    order = np.argsort(z[half])
+    inside = np.asarray(result.fields)[:, half][:, order]
+    mid = 0.5 * (inside[:, -1] + np.asarray(result.fields)[:, ~half][:, np.argmin(z[~half])])
+    times = np.asarray(times, float)
+    face = np.where(times > 0, exposure.surface_moisture(times), exposure.initial_moisture)
+    return np.column_stack([face, inside[:, ::DEPTH_STRIDE], mid])
+
+
+def swelling_variables(histories, names: set[str], environment, times, temperature
                        ) -> dict[str, np.ndarray]:
     """(time, part) arrays of the swelling variables; NaN for parts not asked for."""
     from .swelling import swelling_history
@@ -27,8 +52,9 @@ def swelling_variables(histories, names: set[str], temperature, reference, initi
         if history.part.name not in names:
             continue
         result = swelling_history(history.part.geometry, history.part.material, history.diffusion,
-                                  history.state, temperature, reference, initial_moisture,
-                                  history.valid)
+                                  history.state, temperature, environment.reference_temperature,
+                                  environment.initial_moisture, history.valid,
+                                  depth_profiles(history.part, environment, times))
         for name in SWELLING:
             out[name][:, column] = result[name]
     return out

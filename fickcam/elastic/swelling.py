@@ -12,8 +12,9 @@ dry core). Results per time: the largest tensile and compressive in-plane princi
 stress and the largest Tsai-Wu index (``strength``) over the part; a quasi-isotropic
 laminate is checked ply by ply (0, 45, 90, -45 deg plies at the laminate strain,
 classical lamination theory, Jones 1999 sec. 4.3), so the moisture and thermal mismatch
-between plies counts. Not modelled: the through-thickness gradient of a plate (its
-faces swell before its mid-plane) and a shaft fit.
+between plies counts. Through the thickness the exact sheet profile of the same exposure
+is added (``stress_at_time``): the faces swell before the mid-plane. Not modelled: a
+shaft fit (the part is free), bending (the profile is symmetric).
 """
 from __future__ import annotations
 
@@ -24,7 +25,7 @@ import numpy as np
 from .fem import PlaneElasticity, principal_stresses, reduced_stiffness
 from .strength import ply_strengths, tsai_wu_index
 
-ROWS = 150        # mesh spacing = planform size / ROWS at the outline
+ROWS = 100        # mesh spacing = planform size / ROWS at the outline
 GROWTH = 0.1      # row-to-row growth inward
 QI_PLIES = np.radians([0.0, 45.0, 90.0, -45.0])
 
@@ -67,12 +68,9 @@ def nodal_moisture(result, geometry, points, surface) -> np.ndarray:
         return np.stack([np.interp(r, np.append(radii, geometry.outer_radius), np.append(p, s))
                          for p, s in zip(profile, surface)])
     source = np.column_stack([coords["x"], coords["y"]])
-    out = []
-    for values in fields:
-        linear = LinearNDInterpolator(source, values)(points)
-        nearest = NearestNDInterpolator(source, values)(points)
-        out.append(np.where(np.isfinite(linear), linear, nearest))
-    return np.stack(out)
+    linear = LinearNDInterpolator(source, fields.T)(points).T          # (times, nodes)
+    nearest = NearestNDInterpolator(source, fields.T)(points).T
+    return np.where(np.isfinite(linear), linear, nearest)
 
 
 def _thermal_factor(material, wet_tg, temperature, reference):
@@ -117,39 +115,61 @@ def _stiffness(props) -> np.ndarray:
     return reduced_stiffness(props["e11"], props["e22"], props["g12"], props["nu12"])
 
 
+def _columns(props: dict) -> dict:
+    """Per-element property arrays as (elements, 1) columns (scalars unchanged)."""
+    return {k: np.asarray(v)[:, None] if np.ndim(v) else v for k, v in props.items()}
+
+
+def _ply_angles(material):
+    return QI_PLIES if material.layup == "quasi_isotropic" and material.fiber is not None else [0.0]
+
+
 def stress_at_time(pe: PlaneElasticity, material, moisture_nodes, temperature, reference,
-                   initial_moisture):
+                   initial_moisture, depth_profile=None):
     """(largest tensile, largest compressive principal stress, largest failure index) of the
-    free part with the nodal moisture field at one ageing time."""
+    free part with the nodal moisture field at one ageing time.
+
+    ``depth_profile`` (optional): moisture of the exposed sheet at depths from a face to the
+    mid-plane (face first). Its deviation dz(z) = M(z) - M(mid) is added to the in-plane
+    field, M(x, y, z) = M_plane(x, y) + dz(z); a symmetric free plate keeps its sections
+    plane, so its total strain gains the uniform beta (mean dz) and at each depth
+    sigma = Q (eps_total - eps*(M)) (classical lamination theory with the free strain
+    varying through the thickness, Jones 1999 sec. 4.3; the faces go into compression
+    while they swell ahead of the mid-plane)."""
     moisture = pe.nodal_at_points(moisture_nodes)             # (elements, points)
-    element_moisture = moisture.mean(axis=1)
-    laminate, ply, retention = local_properties(material, element_moisture, temperature, reference)
+    laminate, ply, retention = local_properties(material, moisture.mean(axis=1), temperature,
+                                                reference)
     q = _stiffness(laminate)                                  # (3, 3, elements)
-    d_m, d_t = moisture - initial_moisture, temperature - reference
-    star = free_strain({k: np.asarray(v)[:, None] if np.ndim(v) else v for k, v in laminate.items()},
-                       d_m, d_t)
+    lam, d_t = _columns(laminate), temperature - reference
+    star = free_strain(lam, moisture - initial_moisture, d_t)
     u = pe.factorise(pe.stiffness(q), pe.statically_determinate_support())(pe.eigenstrain_load(q, star))
-    largest, smallest = principal_stresses(pe.stress(u, q, star))
+    profile = np.zeros(1) if depth_profile is None else np.asarray(depth_profile, float)
+    deviation = profile - profile[-1]
+    strain = [e + s for e, s in zip(pe.strain(u), free_strain(lam, np.mean(deviation), 0.0))]
     strengths = ply_strengths(material, retention)
-    index = np.nan
-    if strengths is not None:
-        strain = pe.strain(u)
-        ply_q = _stiffness(ply)[..., None]
-        ply_star = free_strain({k: np.asarray(v)[:, None] if np.ndim(v) else v for k, v in ply.items()},
-                               d_m, d_t)
-        columns = {k: np.asarray(v)[:, None] for k, v in strengths.items()}
-        angles = QI_PLIES if material.layup == "quasi_isotropic" and material.fiber is not None else [0.0]
-        for angle in angles:
-            mechanical = [e - s for e, s in zip(to_ply_axes(strain, angle), ply_star)]
-            s1, s2, s12 = (sum(ply_q[i, j] * mechanical[j] for j in range(3)) for i in range(3))
+    columns = None if strengths is None else _columns(strengths)
+    q_ply, plies = _stiffness(ply), _columns(ply)
+    tensile, compressive, index = -np.inf, np.inf, np.nan
+    for dz in deviation:
+        change = moisture + dz - initial_moisture
+        mechanical = np.stack([e - s for e, s in zip(strain, free_strain(lam, change, d_t))])
+        largest, smallest = principal_stresses(np.einsum("ije,jeq->ieq", q, mechanical))
+        tensile, compressive = max(tensile, largest.max()), min(compressive, smallest.min())
+        if columns is None:
+            continue
+        for angle in _ply_angles(material):
+            ply_strain = np.stack([e - s for e, s in zip(to_ply_axes(strain, angle),
+                                                         free_strain(plies, change, d_t))])
+            s1, s2, s12 = np.einsum("ije,jeq->ieq", q_ply, ply_strain)
             index = np.nanmax([index, np.max(tsai_wu_index(s1, s2, s12, columns))])
-    return float(largest.max()), float(smallest.min()), float(index)
+    return float(tensile), float(compressive), float(index)
 
 
 def swelling_history(geometry, material, result, state: dict, temperature, reference,
-                     initial_moisture, valid) -> dict[str, np.ndarray]:
+                     initial_moisture, valid, depth_profiles=None) -> dict[str, np.ndarray]:
     """swelling_stress_tensile, swelling_stress_compressive, failure_index over ageing times
-    for one part (NaN where the part is not valid or has no field)."""
+    for one part (NaN where the part is not valid or has no field); ``depth_profiles``
+    (times, depths): the sheet's moisture from a face to the mid-plane."""
     from .mesh import planform_mesh
 
     n = len(temperature)
@@ -164,7 +184,8 @@ def swelling_history(geometry, material, result, state: dict, temperature, refer
                               state.get("equilibrium_moisture_content", np.zeros(n)))
     for k in np.flatnonzero(np.asarray(valid, bool)):
         values = stress_at_time(pe, material, moisture[k], float(temperature[k]), reference,
-                                initial_moisture)
+                                initial_moisture,
+                                None if depth_profiles is None else depth_profiles[k])
         for name, value in zip(out, values):
             out[name][k] = value
     return out
