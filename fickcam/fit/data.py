@@ -100,7 +100,12 @@ class _Reader:
             self.fail(line, name, "empty cell")
             return None
         try:
-            return to_si(f"{text} {unit}", DIMENSIONS[name])
+            number = float(text)
+        except ValueError:
+            self.fail(line, name, f"{text!r} is not a number (the unit goes in the header)")
+            return None
+        try:
+            return to_si(f"{number!r} {unit}", DIMENSIONS[name])
         except ValueError as exc:
             self.fail(line, name, str(exc))
             return None
