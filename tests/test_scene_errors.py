@@ -151,6 +151,14 @@ CASES = [
      "diffusion.model.rocker", "no part named 'rocker'"),
     ("unknown-model-for-a-part", CAM_SCENE, "model: auto", "model: {cam: finite}",
      "diffusion.model", ""),
+    ("unknown-key-suggests-the-closest", CAM_SCENE, "    spring_rate: 1376.7 N/in",
+     "    spring: 1376.7 N/in", "cam.follower.spring", "did you mean 'spring_rate'?"),
+    ("unknown-top-key-suggests-the-closest", CAM_SCENE, "outputs:\n  ageing_times",
+     "outputs:\n  ageing_time", "outputs.ageing_time", "did you mean 'ageing_times'?"),
+    ("plastic-given-as-matrix", LINKAGE_SCENE, "resin: {matrix: R914}", "resin: {matrix: acetal}",
+     "materials.resin", "acetal is a plastic in the library, write 'plastic: acetal'"),
+    ("unknown-number-name", LINKAGE_SCENE, "resin: {matrix: R914}", "resin: {matrix: 3503}",
+     "materials.resin", "unknown matrix '3503'"),
 ]
 
 
@@ -237,6 +245,13 @@ def test_command_line_exit_status_and_no_traceback(tmp_path):
     assert done.returncode == 2
     assert "Traceback" not in done.stderr
     assert f"{path}:{_line_of(path.read_text(), 'speed: -600 rpm')} cam.speed:" in done.stderr
+
+
+def test_a_library_name_that_yaml_reads_as_a_number_is_accepted(tmp_path, capsys):
+    """`matrix: 3502` (unquoted) is YAML's integer 3502: it names the 3502 epoxy."""
+    path = tmp_path / "scene.yaml"
+    path.write_text(LINKAGE_SCENE.replace("resin: {matrix: R914}", "resin: {matrix: 3502}"))
+    assert main(["check", str(path)]) == 0, capsys.readouterr().err
 
 
 def test_valid_scenes_pass_check(tmp_path, capsys):
