@@ -27,7 +27,7 @@ from .units import (
     Length,
     NonNegativePercent,
     NonNegativeTime,
-    Percent,
+    RelativeHumidity,
     PositiveAngle,
     StrictModel,
     Temperature,
@@ -165,7 +165,7 @@ class HistorySegment(StrictModel):
 
     duration: Duration
     temperature: Temperature
-    relative_humidity: Percent
+    relative_humidity: RelativeHumidity
     ramp: bool = False
 
 

@@ -62,6 +62,32 @@ def test_bad_queries_are_refused_with_reason(stored, kwargs, fragment):
         select(stored, "moisture_content", **kwargs)
 
 
+def test_a_bare_query_time_is_refused_naming_the_units(stored):
+    """`--time 45` would be 45 s (SI): the query asks for a unit instead."""
+    with pytest.raises(InputError, match=r"--time 45 has no unit: write e.g. '45 d'"):
+        select(stored, "lift", time="45")
+
+
+@pytest.mark.parametrize("kwargs, said", [
+    ({"time": "45 d"}, "lift at time = 45 d (interpolated between 30 d and 60 d)"),
+    ({"time": "30 d"}, "lift at time = 30 d (stored)"),
+])
+def test_a_query_answer_states_the_time_it_answers(stored, kwargs, said):
+    text = format_result(select(stored, "lift", **kwargs), "lift", "table")
+    assert text.splitlines()[0] == said
+
+
+def test_a_query_answer_states_the_angle_it_answers(stored):
+    array = select(stored, "follower_displacement", time="7 d", cam_angle=345.0)
+    table = format_result(array, "follower_displacement", "table")
+    assert table.splitlines()[0] == ("follower_displacement at cam_angle = 345 deg (interpolated "
+                                     "between 330 deg and 0 deg), time = 7 d (stored)")
+    assert json.loads(format_result(array, "follower_displacement", "json"))["selection"] == \
+        table.splitlines()[0].split(" at ", 1)[1]
+    rows = list(csv.DictReader(format_result(array, "follower_displacement", "csv").splitlines()))
+    assert float(rows[0]["cam_angle"]) == 345.0 and float(rows[0]["time_d"]) == 7.0
+
+
 def test_unknown_variable_lists_known_ones(stored):
     with pytest.raises(InputError, match="moisture_content"):
         select(stored, "moisture", time="1 d")
