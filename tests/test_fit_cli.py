@@ -5,6 +5,7 @@ import pytest
 import yaml
 
 import fickcam
+from fickcam.diffusion.exposure import GAS_CONSTANT
 from fickcam.cli import main
 from fickcam.fit.synthetic import d5229_times, synthetic_specimen, write_weight_gain_csv
 
@@ -109,3 +110,44 @@ def test_python_api_returns_a_dataclass_and_a_dataset(tmp_path):
     assert report.name == "mine" and ds.sizes["condition"] == 1
     assert ds["diffusivity"].attrs["units"] == "m2/s"
     assert ds["diffusivity_low"].item() < ds["diffusivity"].item() < ds["diffusivity_high"].item()
+
+
+def _material_of(yaml_text):
+    from fickcam.materials import MaterialSpec, resolve
+
+    block = yaml.safe_load(yaml_text)["materials"]
+    (name, entry), = block.items()
+    return resolve(name, MaterialSpec.model_validate(entry)), entry
+
+
+def test_composite_ply_values_map_to_matrix_overrides_that_give_the_ply_back(tmp_path):
+    """The scene's composite (Chamis) turns the written matrix values back into the
+    measured through-thickness D22 and ply Mm."""
+    from fickcam.fit import fit_weight_gain, materials_yaml
+
+    rng = np.random.default_rng(6)
+    coupons = [synthetic_specimen(f"p{k}", 343.15, rh, 2e-3, d5229_times(56.0), 1.5 * (rh / 100) ** 1.2,
+                                  2e-12, rng, 0.005) for k, rh in enumerate((50.0, 85.0))]
+    report = fit_weight_gain(coupons, "8551-7", fiber="T300", fiber_volume_fraction=0.6, name="cfrp")
+    material, entry = _material_of(materials_yaml(report))
+    assert entry["fit"]["ply"]["diffusivity_factor"] == pytest.approx(report.diffusivity_factor, rel=1e-3)
+    diffusivity = material.diffusivity_for()
+    d22 = diffusivity.pre_exponential[2] * np.exp(-diffusivity.activation_energy / (GAS_CONSTANT * 343.15))
+    assert d22 == pytest.approx(report.conditions[0].diffusivity.value, rel=1e-3)
+    for condition in report.conditions:
+        ply = material.saturation_moisture(343.15, condition.relative_humidity)
+        assert ply == pytest.approx(condition.saturation.value, rel=0.01)
+
+
+def test_non_fickian_data_write_the_two_phase_rates_and_a_runnable_fickian_block(tmp_path):
+    from fickcam.fit import fit_weight_gain, materials_yaml
+
+    rng = np.random.default_rng(13)
+    coupons = [synthetic_specimen(f"s{k}", 333.15, 85.0, 2e-3, d5229_times(140.0), 2.0, 5e-12, rng, 0.01,
+                                  gamma=3e-7, beta=1e-6) for k in range(2)]
+    report = fit_weight_gain(coupons, "3502", name="wet")
+    text = materials_yaml(report)
+    assert report.non_fickian == ["60 degC / 85 % RH"]
+    assert "# sorption: {model: langmuir, binding_rate:" in text
+    material, entry = _material_of(text)
+    assert material.absorbs and entry["fit"]["non_fickian"][0]["condition"] == "60 degC / 85 % RH"

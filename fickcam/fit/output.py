@@ -29,7 +29,7 @@ def _pair(low, high, unit="") -> str:
 
 
 def _sorption_lines(report: FitReport) -> list[str]:
-    flagged = [(c, a.langmuir) for c, a in zip(report.conditions, report.anomalies) if a.non_fickian]
+    flagged = report.two_phase_fits()
     if not flagged:
         return []
     condition, fit = flagged[0]
@@ -63,14 +63,12 @@ def _fit_record(report: FitReport, m: dict) -> list[str]:
                   f"        coefficient: {_g(s.first.value)} %",
                   f"        diffusivity_factor: {_g(report.diffusivity_factor)}   # D22 / Dm",
                   f"        moisture_factor: {_g(report.moisture_factor)}   # M_ply / M_matrix"]
-    for c, a in zip(report.conditions, report.anomalies):
-        if a.non_fickian:
-            l = a.langmuir
-            lines += ["      non_fickian:" if c.label == report.non_fickian[0] else "",
-                      f"        - {{condition: {c.label}, p_value: {l.p_value:.3g}, "
-                      f"diffusivity: {_g(l.diffusivity.value)} m^2/s, "
-                      f"binding_rate: {_g(l.binding_rate.value)} 1/s, release_rate: {_g(l.release_rate.value)} 1/s}}"]
-    return [line for line in lines if line]
+    flagged = report.two_phase_fits()
+    lines += ["      non_fickian:"] if flagged else []
+    lines += [f"        - {{condition: {c.label}, p_value: {l.p_value:.3g}, diffusivity: {_g(l.diffusivity.value)} "
+              f"m^2/s, binding_rate: {_g(l.binding_rate.value)} 1/s, release_rate: {_g(l.release_rate.value)} 1/s}}"
+              for c, l in flagged]
+    return lines
 
 
 def materials_yaml(report: FitReport) -> str:
@@ -106,17 +104,16 @@ def parameter_table(report: FitReport) -> str:
                      f"{c.saturation.value:>7.4g} {'[' + _g(c.saturation.low) + ', ' + _g(c.saturation.high) + ']':>17} "
                      f"{'yes' if c.at_equilibrium else 'NO':>6} {'NO' if a.non_fickian else 'yes':>5}")
     d, s = report.arrhenius, report.saturation
-    lines += ["", f"{'law (ply values)':<22} {'value':>12} {'95 % interval':>26}  from",
+    law = "law (ply values)" if report.fiber else "law"
+    lines += ["", f"{law:<22} {'value':>12} {'95 % interval':>26}  from",
               f"{'D0 m^2/s':<22} {d.first.value:>12.4g} {_pair(d.first.low, d.first.high):>26}  {d.first_from}",
               f"{'Ea kJ/mol':<22} {d.second.value / 1e3:>12.4g} {_pair(d.second.low / 1e3, d.second.high / 1e3):>26}  {d.second_from}",
               f"{'a %':<22} {s.first.value:>12.4g} {_pair(s.first.low, s.first.high):>26}  {s.first_from}",
               f"{'b':<22} {s.second.value:>12.4g} {_pair(s.second.low, s.second.high):>26}  {s.second_from}"]
-    for c, a in zip(report.conditions, report.anomalies):
-        if a.non_fickian:
-            l = a.langmuir
-            lines.append(f"two-phase at {c.label}: D {_g(l.diffusivity.value)} m^2/s "
-                         f"{_pair(l.diffusivity.low, l.diffusivity.high)}, gamma {_g(l.binding_rate.value)} 1/s "
-                         f"{_pair(l.binding_rate.low, l.binding_rate.high)}, beta {_g(l.release_rate.value)} 1/s "
-                         f"{_pair(l.release_rate.low, l.release_rate.high)}, Mm {_g(l.saturation.value)} %")
+    lines += [f"two-phase at {c.label}: D {_g(l.diffusivity.value)} m^2/s "
+              f"{_pair(l.diffusivity.low, l.diffusivity.high)}, gamma {_g(l.binding_rate.value)} 1/s "
+              f"{_pair(l.binding_rate.low, l.binding_rate.high)}, beta {_g(l.release_rate.value)} 1/s "
+              f"{_pair(l.release_rate.low, l.release_rate.high)}, Mm {_g(l.saturation.value)} %"
+              for c, l in report.two_phase_fits()]
     lines += [f"note: {n}" for n in report.notes]
     return "\n".join(lines)

@@ -9,7 +9,7 @@ import numpy as np
 
 from ..errors import InputError
 from . import across
-from .anomalous import AnomalyTest, check_fickian
+from .anomalous import AnomalyTest, LangmuirFit, check_fickian
 from .data import Specimen, condition_label, read_weight_gain
 from .single import FickFit, fit_fickian
 
@@ -42,7 +42,11 @@ class FitReport:
     @property
     def non_fickian(self) -> list[str]:
         """Labels of the conditions whose data Fick does not describe."""
-        return [c.label for c, l in zip(self.conditions, self.anomalies) if l.non_fickian]
+        return [c.label for c, _ in self.two_phase_fits()]
+
+    def two_phase_fits(self) -> list[tuple[FickFit, LangmuirFit]]:
+        """(condition, two-phase fit) of every condition flagged non-Fickian."""
+        return [(c, a.langmuir) for c, a in zip(self.conditions, self.anomalies) if a.non_fickian]
 
     def matrix_values(self) -> dict:
         """The matrix overrides of a scene (SI; moisture in %): ply D0 / diffusivity_factor,
