@@ -15,13 +15,19 @@ from ._version import __version__
 from .environment import Environment
 from .errors import InputError
 from .parts import Part, PartHistory, build_parts, diffusion_attrs, field_values, part_values
-from .scene import EveryStep, Scene, load_scene
+from .scene import EveryStep, Scene, last_ageing_time, load_scene
 from .schema import VARIABLES, design_name
 
 log = logging.getLogger(__name__)
 
 
 # ----------------------------------------------------------------- planning
+
+
+def scene_environment(scene: Scene) -> Environment:
+    """The scene's climate history (a weather year repeated to its last ageing time)."""
+    return Environment.from_section(scene.model.environment, base_dir=scene.base_dir,
+                                    until=last_ageing_time(scene.model.outputs))
 
 
 def ageing_times(scene: Scene, environment: Environment) -> np.ndarray:
@@ -61,7 +67,7 @@ def plan_parts(scene: Scene, accuracy: float | None = None):
     diffusion Plan or None for a part that does not absorb)]), planned as :func:`run` does."""
     from .diffusion import plan
 
-    environment = Environment.from_section(scene.model.environment, base_dir=scene.base_dir)
+    environment = scene_environment(scene)
     times = ageing_times(scene, environment)
     options = diffusion_options(scene, accuracy)
     plans = []
@@ -88,11 +94,11 @@ def run(scene, *, accuracy: float | None = None, progress: bool = False):
 
     started = _time.perf_counter()
     scene = load_scene(scene)
-    environment = Environment.from_section(scene.model.environment, base_dir=scene.base_dir)
+    environment = scene_environment(scene)
     times = ageing_times(scene, environment)
     options = diffusion_options(scene, accuracy)
     parts = build_parts(scene)
-    notices: list[str] = []
+    notices: list[str] = list(environment.notes)
     bar = tqdm(total=len(parts) + len(times), disable=not progress, desc=scene.name,
                unit="step", leave=False)
 

@@ -8,10 +8,9 @@ import yaml
 
 import fickcam
 from fickcam.dataset import build_dataset
-from fickcam.environment import Environment
 from fickcam.parts import build_parts, part_values
 from fickcam.schema import VARIABLES
-from fickcam.simulate import design_part, mechanism_values
+from fickcam.simulate import design_part, mechanism_values, scene_environment
 
 CONFIGS = Path(__file__).resolve().parents[1] / "configs"
 SCENES = sorted(p for p in CONFIGS.glob("*.yaml") if not p.name.startswith("sweep"))
@@ -31,7 +30,7 @@ def follower_variants():
 @pytest.mark.parametrize("name, scene", list(follower_variants()), ids=lambda v: v if isinstance(v, str) else "")
 def test_every_name_the_models_return_is_in_the_schema(name, scene):
     scene = fickcam.load_scene(scene, file_name=f"{name}.yaml") if isinstance(scene, dict) else scene
-    environment = Environment.from_section(scene.model.environment, base_dir=scene.base_dir)
+    environment = scene_environment(scene)
     states = [design_part(part, environment) for part in build_parts(scene)]
     mechanisms = mechanism_values(scene, states, np.zeros(1), np.ones(1, bool))
     returned = set(part_values(states)) | set(mechanisms.variables)
