@@ -23,12 +23,16 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
+import logging
+
 import numpy as np
 from scipy import sparse
 from scipy.sparse.linalg import splu
 
 import skfem
 from skfem.helpers import sym_grad
+
+logging.getLogger("skfem").setLevel(logging.WARNING)  # one line per assembly at INFO
 
 
 def reduced_stiffness(e1, e2, g12, nu12) -> np.ndarray:
