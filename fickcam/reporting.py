@@ -16,7 +16,8 @@ from .schema import VARIABLES, design_name
 
 #: scalar results over ageing the summary reports, in this order (when present)
 KEY_OUTPUTS = ("lift", "base_circle_radius", "jump_speed", "peak_cam_torque",
-               "peak_contact_stress", "minimum_transmission_angle", "peak_input_torque")
+               "peak_contact_stress", "elastic_lift_error", "minimum_transmission_angle",
+               "peak_input_torque")
 #: results over the cycle whose largest change over the cycle the summary reports
 CYCLE_OUTPUTS = ("follower_displacement", "rocker_angle")
 #: a history "goes up and down" when it passes beyond both its ends by more than this
@@ -159,6 +160,28 @@ def _cycle_lines(ds) -> list[str]:
     return lines
 
 
+def _swelling_lines(ds) -> list[str]:
+    """Per part with a swelling analysis: its extreme swelling stresses and failure index."""
+    if "failure_index" not in ds:
+        return []
+    lines = []
+    seconds = ds["time"].values / np.timedelta64(1, "s")
+    for part in ds["part"].values:
+        row = ds.sel(part=part)
+        tension = row["swelling_stress_tensile"].values
+        if not np.isfinite(tension).any():
+            continue
+        compression, index = row["swelling_stress_compressive"].values, row["failure_index"].values
+        worst = int(np.nanargmin(compression))
+        text = (f"  {part} swelling stress: tension up to {np.nanmax(tension) * 1e-6:.3g} MPa, "
+                f"compression down to {compression[worst] * 1e-6:.3g} MPa "
+                f"(at {format_duration(seconds[worst])})")
+        if np.isfinite(index).any():
+            text += f", failure index up to {np.nanmax(index):.3g}"
+        lines.append(text)
+    return lines
+
+
 def _table(rows: list[list[str]], header: list[str]) -> list[str]:
     widths = [max(len(r[i]) for r in rows + [header]) for i in range(len(header))]
     lines = []
@@ -186,6 +209,7 @@ def summary(ds, *, notices: bool = True) -> str:
                   "Δ vs design", "Δ vs t = 0", "peak (Δ vs t = 0)"]
         lines += _table(rows, header)
     lines += _cycle_lines(ds)
+    lines += _swelling_lines(ds)
     stored = ds.attrs.get("notices", [])
     if isinstance(stored, list) and stored:
         if notices:

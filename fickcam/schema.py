@@ -171,9 +171,12 @@ VARIABLES: dict[str, Var] = {
     "elastic_deflection": Var(TC, "m", "deflection of the cam profile along the common normal under the contact force", "elastic", design=True),
     "elastic_stress_tensile": Var(TC, "Pa", "largest tensile principal stress in the cam plate under the contact force", "elastic", design=True),
     "elastic_stress_compressive": Var(TC, "Pa", "largest compressive principal stress in the cam plate under the contact force (negative)", "elastic", design=True),
-    "elastic_lift_error": Var(T, "m", "follower lift lost to the elastic deflection of the cam", "elastic", design=True),
+    "elastic_lift_error": Var(T, "m", "follower lift lost to the elastic deflection of the cam (negative: gained)", "elastic", design=True, display="um"),
     "swelling_stress_tensile": Var(TP, "Pa", "largest tensile principal hygrothermal stress in the part", "elastic"),
     "swelling_stress_compressive": Var(TP, "Pa", "largest compressive principal hygrothermal stress in the part (negative)", "elastic"),
+    "swelling_stress_field": Var(("part", "stress_point"), "Pa", "hygrothermal principal stress of larger magnitude at the faces, at the time of the largest failure index", "elastic"),
+    "stress_point_x": Var(("part", "stress_point"), "m", "element centroid x of the stress field", "elastic"),
+    "stress_point_y": Var(("part", "stress_point"), "m", "element centroid y of the stress field", "elastic"),
     "failure_index": Var(TP, "1", "largest failure index of the hygrothermal stress against the wet strengths (1: failure)", "elastic"),
     # moisture fields (outputs.fields: true)
     "moisture": Var(("time", "part", "cell"), "%", "moisture content field", "fields"),
@@ -209,6 +212,7 @@ COORDINATES: dict[str, tuple[str, str]] = {
     "cam_angle": ("degree", "cam angle"),
     "crank_angle": ("degree", "crank angle"),
     "cell": ("", "cell index"),
+    "stress_point": ("", "element index of a stress field"),
 }
 
 

@@ -130,8 +130,10 @@ def run(scene, *, accuracy: float | None = None, progress: bool = False):
         from .elastic.parts import swelling_variables
 
         bar.set_postfix_str("swelling stress")
-        values.update(swelling_variables(histories, elastic, environment, times,
-                                         environment.temperature(times)))
+        swelling, points = swelling_variables(histories, elastic, environment, times,
+                                              environment.temperature(times))
+        values.update(swelling)
+        coords.update(points)
     if scene.model.outputs.fields:
         fields, cells = field_values(histories, times)
         values.update(fields)

@@ -51,6 +51,15 @@ def test_dry_start_in_humid_climate_puts_the_swelling_skin_in_compression(humid_
     assert index[1] > 100 * index[2] and 0 < index[1] < 1
 
 
+def test_elastic_plots_are_written(humid_disc, tmp_path):
+    from fickcam.plotting import available_kinds, plot
+
+    assert "elastic" in available_kinds(humid_disc)
+    names = sorted(p.name for p in plot(humid_disc, tmp_path, kind="elastic"))
+    assert names == ["elastic_contact.png", "swelling_field_cam.png", "swelling_stress.png"]
+    assert humid_disc.swelling_stress_field.dims == ("part", "stress_point")
+
+
 def test_swelling_and_deflection_appear_only_where_asked(humid_disc):
     assert humid_disc.failure_index.dims == ("time", "part")
     assert np.all(humid_disc.elastic_deflection.values > 0)

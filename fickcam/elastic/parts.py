@@ -43,11 +43,14 @@ def depth_profiles(part, environment, times) -> np.ndarray | None:
 
 
 def swelling_variables(histories, names: set[str], environment, times, temperature
-                       ) -> dict[str, np.ndarray]:
-    """(time, part) arrays of the swelling variables; NaN for parts not asked for."""
+                       ) -> tuple[dict[str, np.ndarray], dict]:
+    """(values, coords): (time, part) arrays of the swelling variables (NaN for parts not
+    asked for) and each part's face stress field at its worst time over (part,
+    stress_point), padded with NaN."""
     from .swelling import swelling_history
 
     out = {name: np.full((len(temperature), len(histories)), np.nan) for name in SWELLING}
+    fields = {}
     for column, history in enumerate(histories):
         if history.part.name not in names:
             continue
@@ -57,4 +60,15 @@ def swelling_variables(histories, names: set[str], environment, times, temperatu
                                   depth_profiles(history.part, environment, times))
         for name in SWELLING:
             out[name][:, column] = result[name]
-    return out
+        if "field" in result:
+            fields[column] = (result["field"], result["points"])
+    if not fields:
+        return out, {}
+    count = max(len(field) for field, _ in fields.values())
+    stored = {name: np.full((len(histories), count), np.nan) for name in
+              ("swelling_stress_field", "stress_point_x", "stress_point_y")}
+    for column, (field, points) in fields.items():
+        stored["swelling_stress_field"][column, :len(field)] = field
+        stored["stress_point_x"][column, :len(field)] = points[:, 0]
+        stored["stress_point_y"][column, :len(field)] = points[:, 1]
+    return out | stored, {"stress_point": np.arange(count)}

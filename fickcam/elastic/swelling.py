@@ -126,8 +126,9 @@ def _ply_angles(material):
 
 def stress_at_time(pe: PlaneElasticity, material, moisture_nodes, temperature, reference,
                    initial_moisture, depth_profile=None):
-    """(largest tensile, largest compressive principal stress, largest failure index) of the
-    free part with the nodal moisture field at one ageing time.
+    """(largest tensile, largest compressive principal stress, largest failure index, field)
+    of the free part with the nodal moisture field at one ageing time; field: per element,
+    the principal stress of larger magnitude at the face (the first depth), element mean.
 
     ``depth_profile`` (optional): moisture of the exposed sheet at depths from a face to the
     mid-plane (face first). Its deviation dz(z) = M(z) - M(mid) is added to the in-plane
@@ -149,12 +150,14 @@ def stress_at_time(pe: PlaneElasticity, material, moisture_nodes, temperature, r
     strengths = ply_strengths(material, retention)
     columns = None if strengths is None else _columns(strengths)
     q_ply, plies = _stiffness(ply), _columns(ply)
-    tensile, compressive, index = -np.inf, np.inf, np.nan
+    tensile, compressive, index, field = -np.inf, np.inf, np.nan, None
     for dz in deviation:
         change = moisture + dz - initial_moisture
         mechanical = np.stack([e - s for e, s in zip(strain, free_strain(lam, change, d_t))])
         largest, smallest = principal_stresses(np.einsum("ije,jeq->ieq", q, mechanical))
         tensile, compressive = max(tensile, largest.max()), min(compressive, smallest.min())
+        if field is None:
+            field = np.where(np.abs(largest) >= np.abs(smallest), largest, smallest).mean(axis=1)
         if columns is None:
             continue
         for angle in _ply_angles(material):
@@ -162,14 +165,16 @@ def stress_at_time(pe: PlaneElasticity, material, moisture_nodes, temperature, r
                                                          free_strain(plies, change, d_t))])
             s1, s2, s12 = np.einsum("ije,jeq->ieq", q_ply, ply_strain)
             index = np.nanmax([index, np.max(tsai_wu_index(s1, s2, s12, columns))])
-    return float(tensile), float(compressive), float(index)
+    return float(tensile), float(compressive), float(index), field
 
 
 def swelling_history(geometry, material, result, state: dict, temperature, reference,
                      initial_moisture, valid, depth_profiles=None) -> dict[str, np.ndarray]:
     """swelling_stress_tensile, swelling_stress_compressive, failure_index over ageing times
-    for one part (NaN where the part is not valid or has no field); ``depth_profiles``
-    (times, depths): the sheet's moisture from a face to the mid-plane."""
+    for one part (NaN where the part is not valid or has no field), and ``field`` /
+    ``points``: the face stress field (element centroids, m) at the worst time (largest
+    failure index, else largest compression); ``depth_profiles`` (times, depths): the
+    sheet's moisture from a face to the mid-plane."""
     from .mesh import planform_mesh
 
     n = len(temperature)
@@ -182,10 +187,16 @@ def swelling_history(geometry, material, result, state: dict, temperature, refer
     pe = PlaneElasticity(mesh.points, mesh.triangles, geometry.thickness, order=2)
     moisture = nodal_moisture(result, geometry, mesh.points,
                               state.get("equilibrium_moisture_content", np.zeros(n)))
+    fields = {}
     for k in np.flatnonzero(np.asarray(valid, bool)):
-        values = stress_at_time(pe, material, moisture[k], float(temperature[k]), reference,
-                                initial_moisture,
-                                None if depth_profiles is None else depth_profiles[k])
+        *values, fields[k] = stress_at_time(
+            pe, material, moisture[k], float(temperature[k]), reference, initial_moisture,
+            None if depth_profiles is None else depth_profiles[k])
         for name, value in zip(out, values):
             out[name][k] = value
+    if fields:
+        worst = out["failure_index"] if np.isfinite(out["failure_index"]).any() else \
+            -out["swelling_stress_compressive"]
+        out["field"] = fields[int(np.nanargmax(worst))]
+        out["points"] = pe.mesh.p[:, pe.mesh.t].mean(axis=1).T
     return out
