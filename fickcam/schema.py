@@ -20,7 +20,7 @@ class Var:
     dims: tuple[str, ...]
     units: str
     long_name: str
-    section: str  # environment | parts | cam | linkage | fields
+    section: str  # environment | parts | cam | linkage | limits | fields
     scale: float = 1.0  # stored value = SI value * scale
 
 
@@ -54,6 +54,8 @@ VARIABLES: dict[str, Var] = {
     "peak_contact_force": Var(T, "N", "largest contact force over a revolution", "cam"),
     "peak_cam_torque": Var(T, "N m", "largest absolute cam torque over a revolution", "cam"),
     "peak_contact_stress": Var(T, "Pa", "largest Hertz contact stress over a revolution", "cam"),
+    "peak_subsurface_shear_stress": Var(T, "Pa", "largest subsurface shear stress over a "
+                                        "revolution", "cam"),
     "wear_depth": Var(T, "m", "accumulated wear depth of the cam surface (Archard)", "cam"),
     "wear_rate": Var(T, "m s-1", "largest Archard wear rate on the cam surface", "cam"),
     # cam and follower: over the cam angle
@@ -71,6 +73,10 @@ VARIABLES: dict[str, Var] = {
     "wear_per_revolution": Var(TC, "m", "Archard wear depth per revolution at each profile point", "cam"),
     "cam_torque": Var(TC, "N m", "torque on the camshaft", "cam"),
     "contact_stress": Var(TC, "Pa", "Hertz contact stress", "cam"),
+    "subsurface_shear_stress": Var(TC, "Pa", "largest subsurface shear stress of the Hertz line "
+                                   "contact, 0.30 p0", "cam"),
+    "subsurface_shear_depth": Var(TC, "m", "depth of the largest subsurface shear stress, "
+                                  "0.786 b", "cam"),
     "profile_x": Var(TC, "m", "working profile x (cam frame)", "cam"),
     "profile_y": Var(TC, "m", "working profile y (cam frame)", "cam"),
     # four-bar linkage
@@ -112,6 +118,11 @@ VARIABLES: dict[str, Var] = {
                          "pin force x: O2 frame on crank, A coupler on crank, B rocker on coupler, O4 frame on rocker", "linkage"),
     "joint_force_y": Var(("time", "joint", "crank_angle"), "N",
                          "pin force y: O2 frame on crank, A coupler on crank, B rocker on coupler, O4 frame on rocker", "linkage"),
+    # limits (scene limits: section)
+    "limit_ratio": Var(("time", "limit"), "1", "limit ratio: 1 at the limit, above 1 out of spec",
+                       "limits"),
+    "time_out_of_spec": Var(("limit",), "d", "first ageing time the limit fails (NaN: never)",
+                            "limits", 1.0 / 86400.0),
     # moisture fields (outputs.fields: true)
     "moisture": Var(("time", "part", "cell"), "%", "moisture content field", "fields"),
     "cell_x": Var(("part", "cell"), "m", "cell centre x", "fields"),
@@ -127,6 +138,7 @@ COORDINATES: dict[str, tuple[str, str]] = {
     "cam_angle": ("degree", "cam angle"),
     "crank_angle": ("degree", "crank angle"),
     "cell": ("", "cell index"),
+    "limit": ("", "limited result variable (scene limits: section)"),
 }
 
 

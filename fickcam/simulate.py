@@ -13,7 +13,7 @@ import numpy as np
 
 from . import __version__
 from .environment import Environment
-from .errors import InputError, format_duration
+from .errors import InputError, SceneError, format_duration
 from .scene import EveryStep, Scene, load_scene
 
 log = logging.getLogger(__name__)
@@ -134,16 +134,27 @@ def describe_plan(scene: Scene, accuracy: float | None = None) -> str:
 
 def run(scene, *, accuracy: float | None = None, progress: bool = False):
     """Run one scene and return its xarray.Dataset (SPEC.md §4)."""
+    started = _time.perf_counter()
+    scene = load_scene(scene)
+    environment = Environment.from_section(scene.model.environment, base_dir=scene.base_dir)
+    times = ageing_times(scene, environment)
+    ds = _age(scene, environment, times, accuracy, progress)
+    if scene.limits:
+        ds = ds.merge(_limits(ds, scene, environment, times, accuracy))
+        ds.attrs["limits"] = {limit.variable: limit.as_attrs() for limit in scene.limits}
+    ds.attrs["wall_time"] = _time.perf_counter() - started
+    return ds
+
+
+def _age(scene: Scene, environment: Environment, times: np.ndarray, accuracy: float | None,
+         progress: bool, quiet: bool = False):
+    """The Dataset of ``scene`` at ageing ``times`` (s); ``quiet``: do not log the notices."""
     from tqdm.auto import tqdm
 
     from .dataset import build_dataset
     from .diffusion import solve
     from .materials import material_state
 
-    started = _time.perf_counter()
-    scene = load_scene(scene)
-    environment = Environment.from_section(scene.model.environment, base_dir=scene.base_dir)
-    times = ageing_times(scene, environment)
     temperature = environment.temperature(times)
     humidity = environment.relative_humidity(times)
     options = _diffusion_options(scene, accuracy)
@@ -219,7 +230,7 @@ def run(scene, *, accuracy: float | None = None, progress: bool = False):
     if scene.model.outputs.fields:
         _add_fields(values, coords, histories, times)
     bar.close()
-    for message in notices:
+    for message in notices if not quiet else ():
         log.warning(message)
 
     attrs = {
@@ -231,10 +242,32 @@ def run(scene, *, accuracy: float | None = None, progress: bool = False):
         "scene_text": scene.text,
         "diffusion": {h.part.name: _diffusion_attrs(h) for h in histories},
         "notices": notices,
-        "wall_time": _time.perf_counter() - started,
         "Conventions": "CF-1.8",
     }
     return build_dataset(values, coords, attrs)
+
+
+def _limits(ds, scene: Scene, environment: Environment, times, accuracy: float | None):
+    """limit_ratio (time, limit) and time_out_of_spec (limit) of the scene's limits, each
+    crossing located by re-running the model inside its bracketing interval."""
+    from .dataset import build_dataset
+    from .limits import first_crossing, limit_ratio
+
+    missing = [limit for limit in scene.limits if limit.variable not in ds]
+    if missing:
+        raise SceneError([scene.document.problem(("limits", limit.variable),
+                                                 f"this scene does not compute {limit.variable}")
+                          for limit in missing])
+    ratios, crossings = [], []
+    for limit in scene.limits:
+        def evaluate(at, limit=limit):
+            return limit_ratio(_age(scene, environment, np.asarray(at), accuracy, False, True), limit)
+
+        ratios.append(limit_ratio(ds, limit))
+        crossings.append(first_crossing(times, ratios[-1], evaluate))
+    return build_dataset({"limit_ratio": np.stack(ratios, axis=1),
+                          "time_out_of_spec": np.asarray(crossings)},
+                         {"time": times, "limit": [limit.variable for limit in scene.limits]})
 
 
 _PART_VARIABLES = ("moisture_content", "surface_moisture_content", "equilibrium_moisture_content",
