@@ -54,7 +54,8 @@ def _parser() -> argparse.ArgumentParser:
     plot.add_argument("result")
     plot.add_argument("-o", "--outdir", default=None, help="folder (default: next to the result)")
     plot.add_argument("--kind", default="all",
-                      choices=("uptake", "kinematics", "dynamics", "linkage", "fields", "sweep", "all"))
+                      choices=("uptake", "kinematics", "dynamics", "linkage", "fields", "limits", "sweep",
+                               "all"))
 
     bench = sub.add_parser("bench", help="the diffusion speed/accuracy trade")
     bench.add_argument("--quick", action="store_true", help="fewer configurations")
@@ -106,13 +107,14 @@ def _cmd_check(args) -> int:
 
 
 def _cmd_query(args) -> int:
+    from .limits import describe
     from .query import format_result, select
     from .store import open_result
 
     ds = open_result(args.result)
     array = select(ds, args.variable, time=args.time, part=args.part, link=args.link,
                    cam_angle=args.cam_angle, crank_angle=args.crank_angle)
-    print(format_result(array, args.variable, args.format))
+    print(format_result(array, args.variable, args.format, limit=describe(ds, args.variable)))
     return 0
 
 

@@ -59,16 +59,20 @@ class Limit:
     max: float | None = None
     min: float | None = None
     text: str = ""
+    display_units: str = ""  # the unit the scene wrote (plots), "" = stored unit
+    display_scale: float = 1.0  # display value = stored value * display_scale
 
     def as_attrs(self) -> dict:
         return {"deviation": self.deviation, "max": self.max, "min": self.min,
-                "units": self.units, "text": self.text}
+                "units": self.units, "text": self.text, "display_units": self.display_units,
+                "display_scale": self.display_scale}
 
 
 def from_attrs(variable: str, attrs: dict) -> Limit:
     """The Limit stored in a result's ``limits`` attribute."""
     return Limit(variable, attrs.get("units", ""), attrs.get("deviation"), attrs.get("max"),
-                 attrs.get("min"), attrs.get("text", ""))
+                 attrs.get("min"), attrs.get("text", ""), attrs.get("display_units", ""),
+                 attrs.get("display_scale", 1.0))
 
 
 # ------------------------------------------------------------------ parsing
@@ -137,7 +141,19 @@ def parse_limit(name: str, spec: LimitSpec, sections: set[str]) -> Limit:
         raise ValueError(f"min ({spec.min}) is above max ({spec.max})")
     text = ", ".join(f"{key} {getattr(spec, key)}" for key in ("deviation", "min", "max")
                      if getattr(spec, key) is not None)
-    return Limit(name, var.units, text=text, **values)
+    return Limit(name, var.units, text=text, **values, **_display(spec, var))
+
+
+def _display(spec: LimitSpec, var: Var) -> dict:
+    """The unit the scene wrote its limit in, for plots (not offset units such as degC)."""
+    for raw in (spec.deviation, spec.max, spec.min):
+        if isinstance(raw, str):
+            unit = split_number_unit(raw)[1].replace("%", "percent")
+            if unit and "degC" not in unit and "degF" not in unit:
+                ureg = registry()
+                scale = ureg.Quantity(1.0, _pint_units(var.units)).to(unit).magnitude
+                return {"display_units": split_number_unit(raw)[1], "display_scale": float(scale)}
+    return {}
 
 
 # ------------------------------------------------------------------- ratios
@@ -231,3 +247,50 @@ def first_crossing(times: np.ndarray, ratio: np.ndarray,
     if not np.isfinite(r_lo) or r_hi == r_lo:
         return float(hi)
     return float(lo + (1.0 - r_lo) / (r_hi - r_lo) * (hi - lo))
+
+
+# ------------------------------------------------------------------ reading
+
+
+def stored_limits(ds) -> dict[str, Limit]:
+    """The limits recorded in a result (``limits`` attribute), by variable."""
+    recorded = ds.attrs.get("limits") or {}
+    return {name: from_attrs(name, attrs) for name, attrs in recorded.items()}
+
+
+def _days(seconds: float) -> str:
+    return f"{seconds / 86400.0:.4g} d"
+
+
+def describe(ds, name: str) -> str | None:
+    """One line on a limit of a result: its band and whether/when it fails."""
+    limit = stored_limits(ds).get(name)
+    if limit is None or "time_out_of_spec" not in ds:
+        return None
+    failed = float(ds["time_out_of_spec"].sel(limit=name)) * 86400.0
+    ratio = np.asarray(ds["limit_ratio"].sel(limit=name).values, float)
+    times = ds["time"].values / np.timedelta64(1, "s")
+    if math.isnan(failed):
+        state = f"holds to {_days(times[-1])} (largest ratio {np.nanmax(ratio):.4g})"
+    elif failed <= times[0]:
+        state = f"out of spec from the start (ratio {ratio[0]:.4g})"
+    else:
+        state = f"out of spec from {_days(failed)} (ratio {ratio[-1]:.4g} at {_days(times[-1])})"
+    band = limit.text + (" around the as-designed value" if limit.deviation is not None else "")
+    return f"{name} ({band}): {state}"
+
+
+def summary_lines(ds) -> list[str]:
+    """The summary's limit lines: the first limit to fail and when, then each limit."""
+    limits = stored_limits(ds)
+    if not limits or "time_out_of_spec" not in ds:
+        return []
+    failed = {name: float(ds["time_out_of_spec"].sel(limit=name)) for name in limits}
+    failing = sorted((t, name) for name, t in failed.items() if not math.isnan(t))
+    if failing:
+        t, name = failing[0]
+        head = (f"  first limit to fail: {name} ({limits[name].text}) at {t:.4g} d; "
+                f"{len(failing)} of {len(limits)} limit(s) fail")
+    else:
+        head = f"  all {len(limits)} limit(s) hold"
+    return [head] + [f"    {describe(ds, name)}" for name in limits]

@@ -108,12 +108,15 @@ def _plain(value, dim=None):
     return value
 
 
-def format_result(array, variable: str, fmt: str = "table") -> str:
-    """Render a selection as an aligned table, CSV or JSON."""
+def format_result(array, variable: str, fmt: str = "table", limit: str | None = None) -> str:
+    """Render a selection as an aligned table, CSV or JSON; ``limit`` (the variable's limit
+    and when it fails) goes under the table and into the JSON, not into the CSV."""
     columns, rows = to_records(array)
     units = VARIABLES[variable].units if variable in VARIABLES else array.attrs.get("units", "")
     if fmt == "json":
-        return json.dumps({"variable": variable, "units": units, "columns": columns, "rows": rows})
+        extra = {"limit": limit} if limit else {}
+        return json.dumps({"variable": variable, "units": units, "columns": columns, "rows": rows,
+                           **extra})
     if fmt == "csv":
         lines = [",".join(columns)] + [",".join(_csv_cell(v) for v in row) for row in rows]
         return "\n".join(lines)
@@ -124,6 +127,8 @@ def format_result(array, variable: str, fmt: str = "table") -> str:
     widths = [max(len(h), *(len(r[i]) for r in cells)) if cells else len(h) for i, h in enumerate(header)]
     out = ["  ".join(h.rjust(w) for h, w in zip(header, widths))]
     out += ["  ".join(c.rjust(w) for c, w in zip(row, widths)) for row in cells]
+    if limit:
+        out.append(f"limit: {limit}")
     return "\n".join(out)
 
 

@@ -383,6 +383,9 @@ def summary(ds) -> str:
         shift = _per_time(np.max, np.abs(rocker - rocker[0]))
         if np.isfinite(shift).any():
             lines.append(f"  largest rocker angle shift {np.nanmax(shift):.4f} deg")
+    from .limits import summary_lines
+
+    lines += summary_lines(ds)
     notices = ds.attrs.get("notices", [])
     if isinstance(notices, list) and notices:
         lines.append(f"  {len(notices)} notice(s):")
