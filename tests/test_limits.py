@@ -166,3 +166,20 @@ def test_a_limit_the_scene_does_not_compute_is_refused_at_its_line(tmp_path, cap
     path.write_text(yaml.safe_dump(scene, sort_keys=False))
     assert main(["run", str(path), "-o", str(tmp_path / "r.h5"), "--quiet"]) == 2
     assert "limits.wear_depth: wear_depth needs a cam section" in capsys.readouterr().err
+
+
+def test_summary_query_and_plot_show_the_limit(tmp_path, capsys):
+    scene = fast_fourbar(["0 d", "7 d", "40 d"], {"minimum_transmission_angle": {"min": "35.5 deg"},
+                                                  "rocker_swing": {"max": "80 deg"}})
+    path = tmp_path / "scene.yaml"
+    path.write_text(yaml.safe_dump(scene, sort_keys=False))
+    result = tmp_path / "r.h5"
+    assert main(["run", str(path), "-o", str(result)]) == 0
+    out = capsys.readouterr().out
+    assert "first limit to fail: minimum_transmission_angle (min 35.5 deg) at 21.3" in out
+    assert "rocker_swing (max 80 deg): holds to 40 d" in out
+    assert main(["query", str(result), "minimum_transmission_angle"]) == 0
+    assert capsys.readouterr().out.strip().splitlines()[-1].startswith(
+        "limit: minimum_transmission_angle (min 35.5 deg): out of spec from 21.3")
+    assert main(["plot", str(result), "--kind", "limits", "-o", str(tmp_path)]) == 0
+    assert (tmp_path / "limits.png").stat().st_size > 10_000
