@@ -163,9 +163,14 @@ def _cmd_schema(args) -> int:
 def _cmd_sweep(args) -> int:
     from .sweep import run_sweep
 
+    from .store import open_result
+    from .sweep.scatter import summary_lines
+
     run_sweep(args.sweep, args.output, workers=args.workers, scheduler=args.scheduler,
               progress=not args.quiet)
     if not args.quiet:
+        for line in summary_lines(open_result(args.output)):
+            print(line)
         print(f"wrote {args.output}")
     return 0
 

@@ -13,7 +13,7 @@ and turns it into a *limit ratio*, 1 at the limit and above 1 out of spec:
 with s = |b|, or for a zero bound the size of the as-designed value. With
 several entries the ratio is the largest of them. The first ageing time at
 which a ratio exceeds 1 is located on the continuous ageing time by re-running
-the model inside the bracketing interval (:func:`first_crossing`).
+the model inside the bracketing interval (:func:`first_crossings`).
 """
 from __future__ import annotations
 
@@ -218,35 +218,67 @@ def _first_above(ratio: np.ndarray) -> int | None:
     return int(above[0]) if above.size else None
 
 
-def first_crossing(times: np.ndarray, ratio: np.ndarray,
-                   evaluate: Callable[[np.ndarray], np.ndarray]) -> float:
-    """The first ageing time (s) at which ``ratio`` exceeds 1; NaN if it never does.
+@dataclass
+class _Bracket:
+    """An ageing-time interval [lo, hi] whose end is out of spec and whose start is not."""
 
-    The stored times bracket the crossing; ``evaluate(ts)`` re-runs the model at
-    ageing times ``ts`` and returns the ratio there. Each round evaluates POINTS
-    equally spaced times and keeps the sub-interval of the first crossing, until
-    the bracket is no wider than TOLERANCE of the stored interval or FLOOR
-    seconds; the crossing is then the linear interpolant's root inside it (its
-    error is below the bracket width). Out of spec at the first stored time: that time.
+    lo: float
+    hi: float
+    r_lo: float
+    r_hi: float
+    tolerance: float
+
+    def open(self) -> bool:
+        return self.hi - self.lo > self.tolerance
+
+    def narrow(self, inner: np.ndarray, values: np.ndarray) -> None:
+        """Keep the sub-interval of the first crossing among ``inner`` times."""
+        grid = np.concatenate([[self.lo], inner, [self.hi]])
+        ratio = np.concatenate([[self.r_lo], values, [self.r_hi]])
+        k = _first_above(ratio[1:]) + 1  # the last value (r_hi) is above 1
+        self.lo, self.hi, self.r_lo, self.r_hi = grid[k - 1], grid[k], ratio[k - 1], ratio[k]
+
+    def root(self) -> float:
+        """The linear interpolant's root in the bracket (error below its width)."""
+        if not np.isfinite(self.r_lo) or self.r_hi == self.r_lo:
+            return float(self.hi)
+        return float(self.lo + (1.0 - self.r_lo) / (self.r_hi - self.r_lo) * (self.hi - self.lo))
+
+
+def first_crossings(times: np.ndarray, ratios: np.ndarray,
+                    evaluate: Callable[[np.ndarray], np.ndarray]) -> np.ndarray:
+    """The first ageing time (s) at which each column of ``ratios`` (time, limit)
+    exceeds 1; NaN where it never does, the first stored time where it already does.
+
+    The stored times bracket each crossing; ``evaluate(ts)`` re-runs the model at
+    ageing times ``ts`` and returns the ratios there (len(ts), limit). Each round
+    evaluates POINTS equally spaced times inside every open bracket (one model run
+    for all limits) and keeps the sub-interval of the first crossing, until each
+    bracket is no wider than TOLERANCE of its stored interval or FLOOR seconds;
+    the crossing is then interpolated linearly inside it.
     """
     times = np.asarray(times, float)
-    index = _first_above(ratio)
-    if index is None:
-        return math.nan
-    if index == 0:
-        return float(times[0])
-    lo, hi = times[index - 1], times[index]
-    r_lo, r_hi = float(ratio[index - 1]), float(ratio[index])
-    tolerance = max(TOLERANCE * (hi - lo), FLOOR)
-    while hi - lo > tolerance:
-        inner = np.linspace(lo, hi, POINTS + 2)[1:-1]
-        grid = np.concatenate([[lo], inner, [hi]])
-        values = np.concatenate([[r_lo], np.asarray(evaluate(inner), float), [r_hi]])
-        k = _first_above(values[1:]) + 1  # the last value (r_hi) is above 1
-        lo, hi, r_lo, r_hi = grid[k - 1], grid[k], values[k - 1], values[k]
-    if not np.isfinite(r_lo) or r_hi == r_lo:
-        return float(hi)
-    return float(lo + (1.0 - r_lo) / (r_hi - r_lo) * (hi - lo))
+    ratios = np.asarray(ratios, float).reshape(len(times), -1)
+    found = np.full(ratios.shape[1], np.nan)
+    brackets: dict[int, _Bracket] = {}
+    for j in range(ratios.shape[1]):
+        index = _first_above(ratios[:, j])
+        if index == 0:
+            found[j] = times[0]
+        elif index is not None:
+            lo, hi = times[index - 1], times[index]
+            brackets[j] = _Bracket(lo, hi, ratios[index - 1, j], ratios[index, j],
+                                   max(TOLERANCE * (hi - lo), FLOOR))
+    while any(b.open() for b in brackets.values()):
+        inner = {j: np.linspace(b.lo, b.hi, POINTS + 2)[1:-1]
+                 for j, b in brackets.items() if b.open()}
+        at = np.unique(np.concatenate(list(inner.values())))
+        values = np.asarray(evaluate(at), float).reshape(len(at), -1)
+        for j, ts in inner.items():
+            brackets[j].narrow(ts, values[np.searchsorted(at, ts), j])
+    for j, bracket in brackets.items():
+        found[j] = bracket.root()
+    return found
 
 
 # ------------------------------------------------------------------ reading

@@ -123,6 +123,15 @@ VARIABLES: dict[str, Var] = {
                        "limits"),
     "time_out_of_spec": Var(("limit",), "d", "first ageing time the limit fails (NaN: never)",
                             "limits", 1.0 / 86400.0),
+    # a sweep with limits: scatter (fickcam.sweep.scatter)
+    "fraction_out_of_spec": Var(("time", "limit"), "%", "fraction of the cases out of spec by this "
+                                "ageing time", "limits", 100.0),
+    "fraction_out_of_spec_low": Var(("time", "limit"), "%", "lower bound of the Wilson 95 % "
+                                    "interval of fraction_out_of_spec", "limits", 100.0),
+    "fraction_out_of_spec_high": Var(("time", "limit"), "%", "upper bound of the Wilson 95 % "
+                                     "interval of fraction_out_of_spec", "limits", 100.0),
+    "cases_out_of_spec": Var(("time", "limit"), "1", "number of cases out of spec by this ageing "
+                             "time (attribute cases: how many ran)", "limits"),
     # moisture fields (outputs.fields: true)
     "moisture": Var(("time", "part", "cell"), "%", "moisture content field", "fields"),
     "cell_x": Var(("part", "cell"), "m", "cell centre x", "fields"),

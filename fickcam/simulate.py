@@ -251,22 +251,22 @@ def _limits(ds, scene: Scene, environment: Environment, times, accuracy: float |
     """limit_ratio (time, limit) and time_out_of_spec (limit) of the scene's limits, each
     crossing located by re-running the model inside its bracketing interval."""
     from .dataset import build_dataset
-    from .limits import first_crossing, limit_ratio
+    from .limits import first_crossings, limit_ratio
 
     missing = [limit for limit in scene.limits if limit.variable not in ds]
     if missing:
         raise SceneError([scene.document.problem(("limits", limit.variable),
                                                  f"this scene does not compute {limit.variable}")
                           for limit in missing])
-    ratios, crossings = [], []
-    for limit in scene.limits:
-        def evaluate(at, limit=limit):
-            return limit_ratio(_age(scene, environment, np.asarray(at), accuracy, False, True), limit)
+    def ratios(data) -> np.ndarray:
+        return np.stack([limit_ratio(data, limit) for limit in scene.limits], axis=1)
 
-        ratios.append(limit_ratio(ds, limit))
-        crossings.append(first_crossing(times, ratios[-1], evaluate))
-    return build_dataset({"limit_ratio": np.stack(ratios, axis=1),
-                          "time_out_of_spec": np.asarray(crossings)},
+    def evaluate(at) -> np.ndarray:
+        return ratios(_age(scene, environment, np.asarray(at), accuracy, False, quiet=True))
+
+    stored = ratios(ds)
+    crossings = first_crossings(times, stored, evaluate)
+    return build_dataset({"limit_ratio": stored, "time_out_of_spec": crossings},
                          {"time": times, "limit": [limit.variable for limit in scene.limits]})
 
 

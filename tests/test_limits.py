@@ -9,7 +9,7 @@ import yaml
 
 import fickcam
 from fickcam.cli import main
-from fickcam.limits import (FLOOR, TOLERANCE, Limit, LimitSpec, first_crossing, limit_ratio,
+from fickcam.limits import (FLOOR, TOLERANCE, Limit, LimitSpec, first_crossings, limit_ratio,
                             parse_limit)
 from fickcam.schema import VARIABLES
 
@@ -113,30 +113,34 @@ def test_times_where_the_physics_stopped_give_nan_ratios():
 # ----------------------------------------------------------------- crossing
 
 
-def test_crossing_is_located_to_the_tolerance_and_not_at_a_stored_time():
+def test_crossings_are_located_to_the_tolerance_with_one_model_run_per_round():
     calls = []
 
-    def ratio(t):
-        return 0.2 + (t / (37.3 * DAY)) ** 0.5 * 0.8  # crosses 1 at 37.3 d
+    def ratio(t):  # two limits: crossing 1 at 37.3 d and at 12.25 d; a third never fails
+        t = np.asarray(t, float)[:, None]
+        return np.hstack([0.2 + (t / (37.3 * DAY)) ** 0.5 * 0.8, np.exp((t - 12.25 * DAY) / DAY),
+                          0.5 + 0 * t])
 
     def evaluate(ts):
         calls.append(len(ts))
-        return ratio(np.asarray(ts))
+        return ratio(ts)
 
     times = np.array([0.0, 10.0, 30.0, 60.0, 90.0]) * DAY
-    found = first_crossing(times, ratio(times), evaluate)
-    bracket = 30.0 * DAY
-    assert abs(found - 37.3 * DAY) <= max(TOLERANCE * bracket, FLOOR)
-    assert len(calls) <= 3  # two rounds of 9 reach 1 % of the bracket
+    found = first_crossings(times, ratio(times), evaluate)
+    for value, exact, bracket in zip(found[:2], (37.3, 12.25), (30.0, 20.0)):
+        assert abs(value - exact * DAY) <= max(TOLERANCE * bracket * DAY, FLOOR)
+        assert value not in times
+    assert math.isnan(found[2])
+    assert len(calls) == 2  # two rounds of 9 points per limit reach 1 % of the bracket
 
 
-def test_the_first_crossing_counts_and_never_is_nan():
+def test_out_of_spec_at_the_start_and_short_brackets():
     times = np.array([0.0, 1.0, 2.0, 3.0]) * DAY
-    assert math.isnan(first_crossing(times, np.array([0.5, 0.9, 0.7, 0.95]), None))
-    assert first_crossing(times, np.array([1.2, 0.9, 1.7, 2.0]), None) == 0.0
-    # a short bracket (below the 1 h floor) is not refined
+    column = np.array([[1.2], [0.9], [1.7], [2.0]])
+    assert first_crossings(times, column, None)[0] == 0.0
+    # a bracket shorter than the 1 h floor is not refined: linear inside it
     short = np.array([0.0, 1800.0])
-    assert first_crossing(short, np.array([0.0, 2.0]), None) == pytest.approx(900.0)
+    assert first_crossings(short, np.array([[0.0], [2.0]]), None)[0] == pytest.approx(900.0)
 
 
 def test_time_out_of_spec_agrees_with_a_brute_force_search_on_a_dense_grid():
