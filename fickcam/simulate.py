@@ -14,7 +14,7 @@ import numpy as np
 from . import __version__
 from .environment import Environment
 from .errors import InputError, SceneError, format_duration
-from .scene import EveryStep, Scene, load_scene
+from .scene import EveryStep, Scene, last_ageing_time, load_scene
 
 log = logging.getLogger(__name__)
 
@@ -41,6 +41,12 @@ class PartHistory:
 
 
 # ----------------------------------------------------------------- planning
+
+
+def scene_environment(scene: Scene) -> Environment:
+    """The scene's climate history (a weather year repeated to its last ageing time)."""
+    return Environment.from_section(scene.model.environment, base_dir=scene.base_dir,
+                                    until=last_ageing_time(scene.model.outputs))
 
 
 def ageing_times(scene: Scene, environment: Environment) -> np.ndarray:
@@ -105,7 +111,7 @@ def describe_plan(scene: Scene, accuracy: float | None = None) -> str:
     """The plan `fickcam check` prints: parts, diffusion model, cells, steps."""
     from .diffusion import plan
 
-    environment = Environment.from_section(scene.model.environment, base_dir=scene.base_dir)
+    environment = scene_environment(scene)
     times = ageing_times(scene, environment)
     options = _diffusion_options(scene, accuracy)
     lines = [f"scene {scene.name}: valid",
@@ -136,11 +142,11 @@ def run(scene, *, accuracy: float | None = None, progress: bool = False):
     """Run one scene and return its xarray.Dataset (SPEC.md §4)."""
     started = _time.perf_counter()
     scene = load_scene(scene)
-    environment = Environment.from_section(scene.model.environment, base_dir=scene.base_dir)
+    environment = scene_environment(scene)
     times = ageing_times(scene, environment)
     ds = _age(scene, environment, times, accuracy, progress)
     if scene.limits:
-        ds = ds.merge(_limits(ds, scene, environment, times, accuracy))
+        ds = ds.merge(_limits(ds, scene, environment, times, accuracy), compat="override")
         ds.attrs["limits"] = {limit.variable: limit.as_attrs() for limit in scene.limits}
     ds.attrs["wall_time"] = _time.perf_counter() - started
     return ds
@@ -159,7 +165,7 @@ def _age(scene: Scene, environment: Environment, times: np.ndarray, accuracy: fl
     humidity = environment.relative_humidity(times)
     options = _diffusion_options(scene, accuracy)
     parts = build_parts(scene)
-    notices: list[str] = []
+    notices: list[str] = list(environment.notes)
 
     bar = tqdm(total=len(parts) + len(times), disable=not progress, desc=scene.name,
                unit="step", leave=False)
@@ -258,6 +264,7 @@ def _limits(ds, scene: Scene, environment: Environment, times, accuracy: float |
         raise SceneError([scene.document.problem(("limits", limit.variable),
                                                  f"this scene does not compute {limit.variable}")
                           for limit in missing])
+
     def ratios(data) -> np.ndarray:
         return np.stack([limit_ratio(data, limit) for limit in scene.limits], axis=1)
 

@@ -112,6 +112,6 @@ def combine(sweep: Sweep, folder: WorkFolder, records: dict[int, dict], stack: E
     if "time_out_of_spec" in combined:
         from .scatter import fractions
 
-        combined = combined.merge(fractions(combined))
+        combined = combined.merge(fractions(combined), compat="override")
     combined.attrs = attrs
     return combined
