@@ -26,7 +26,7 @@ import numpy as np
 from pydantic import model_validator
 
 from .schema import VARIABLES, Var
-from .units import StrictModel, registry, split_number_unit
+from .units import StrictModel, number_and_unit, registry, split_number_unit
 
 #: the crossing is located to this fraction of its bracketing interval, or to FLOOR s
 TOLERANCE = 0.01
@@ -93,16 +93,7 @@ def stored_value(value, var: Var, *, difference: bool = False) -> float:
     ``difference``: a temperature step, so degC/degF mean kelvin-sized steps.
     Angles are told apart from plain numbers (pint's radian is dimensionless).
     """
-    if isinstance(value, bool) or value is None:
-        raise ValueError(f"expected a number or a string with units, got {value!r}")
-    if isinstance(value, (int, float)):
-        number, unit = float(value), ""
-    elif isinstance(value, str):
-        number, unit = split_number_unit(value)
-    else:
-        raise ValueError(f"expected a number or a string with units, got {type(value).__name__}")
-    if not math.isfinite(number):
-        raise ValueError(f"{value!r} is not a finite number")
+    number, unit = number_and_unit(value)
     if not unit:
         return number * var.scale
     ureg = registry()
