@@ -25,7 +25,8 @@ from typing import Any, Callable
 import numpy as np
 from pydantic import model_validator
 
-from .schema import VARIABLES, Var
+from .query import drift
+from .schema import VARIABLES, Var, design_name
 from .units import StrictModel, number_and_unit, registry, split_number_unit
 
 #: the crossing is located to this fraction of its bracketing interval, or to FLOOR s
@@ -128,6 +129,8 @@ def parse_limit(name: str, spec: LimitSpec, sections: set[str]) -> Limit:
                 raise ValueError(f"{key}: {exc}") from None
     if values.get("deviation") is not None and not values["deviation"] > 0:
         raise ValueError("deviation must be positive")
+    if "deviation" in values and not var.has_design:
+        raise ValueError(f"{name} has no as-designed value to deviate from: give max or min")
     if values.get("min") is not None and values.get("max") is not None and values["min"] > values["max"]:
         raise ValueError(f"min ({spec.min}) is above max ({spec.max})")
     text = ", ".join(f"{key} {getattr(spec, key)}" for key in ("deviation", "min", "max")
@@ -166,16 +169,14 @@ def _time_first(array) -> np.ndarray:
 def worst_value(ds, variable: str, kind: str) -> np.ndarray:
     """Over ageing time: the largest (``max``) or smallest (``min``) value over the
     other dimensions, or the largest |x - x_design| (``deviation``)."""
-    array = ds[variable]
     if kind == "deviation":
-        design = ds[f"{variable}_design"]
-        return _per_time(np.abs(_time_first(array - design)), np.nanmax)
-    return _per_time(_time_first(array), np.nanmax if kind == "max" else np.nanmin)
+        return _per_time(np.abs(_time_first(drift(ds, variable, "design"))), np.nanmax)
+    return _per_time(_time_first(ds[variable]), np.nanmax if kind == "max" else np.nanmin)
 
 
 def _design_size(ds, variable: str, kind: str) -> float:
     """|as-designed value| (first stored time without a design state): the scale of a 0 bound."""
-    name = f"{variable}_design"
+    name = design_name(variable)
     if name in ds:
         values = np.asarray(ds[name].values, float)
         return float(np.nanmax(np.abs(values))) if np.isfinite(values).any() else 1.0
@@ -279,41 +280,3 @@ def stored_limits(ds) -> dict[str, Limit]:
     """The limits recorded in a result (``limits`` attribute), by variable."""
     recorded = ds.attrs.get("limits") or {}
     return {name: from_attrs(name, attrs) for name, attrs in recorded.items()}
-
-
-def _days(seconds: float) -> str:
-    return f"{seconds / 86400.0:.4g} d"
-
-
-def describe(ds, name: str) -> str | None:
-    """One line on a limit of a result: its band and whether/when it fails."""
-    limit = stored_limits(ds).get(name)
-    if limit is None or "time_out_of_spec" not in ds:
-        return None
-    failed = float(ds["time_out_of_spec"].sel(limit=name)) * 86400.0
-    ratio = np.asarray(ds["limit_ratio"].sel(limit=name).values, float)
-    times = ds["time"].values / np.timedelta64(1, "s")
-    if math.isnan(failed):
-        state = f"holds to {_days(times[-1])} (largest ratio {np.nanmax(ratio):.4g})"
-    elif failed <= times[0]:
-        state = f"out of spec from the start (ratio {ratio[0]:.4g})"
-    else:
-        state = f"out of spec from {_days(failed)} (ratio {ratio[-1]:.4g} at {_days(times[-1])})"
-    band = limit.text + (" around the as-designed value" if limit.deviation is not None else "")
-    return f"{name} ({band}): {state}"
-
-
-def summary_lines(ds) -> list[str]:
-    """The summary's limit lines: the first limit to fail and when, then each limit."""
-    limits = stored_limits(ds)
-    if not limits or "time_out_of_spec" not in ds:
-        return []
-    failed = {name: float(ds["time_out_of_spec"].sel(limit=name)) for name in limits}
-    failing = sorted((t, name) for name, t in failed.items() if not math.isnan(t))
-    if failing:
-        t, name = failing[0]
-        head = (f"  first limit to fail: {name} ({limits[name].text}) at {t:.4g} d; "
-                f"{len(failing)} of {len(limits)} limit(s) fail")
-    else:
-        head = f"  all {len(limits)} limit(s) hold"
-    return [head] + [f"    {describe(ds, name)}" for name in limits]

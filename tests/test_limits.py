@@ -38,7 +38,7 @@ def fast_fourbar(times, limits=None) -> dict:
     ("peak_contact_stress", {"max": "60 MPa"}, {"max": 60e6}),
     ("jump_speed", {"min": "12 revolution/s"}, {"min": 720.0}),
     ("temperature", {"max": "120 degC"}, {"max": 393.15}),
-    ("temperature", {"deviation": "5 degC"}, {"deviation": 5.0}),  # a step, not 278 K
+    ("glass_transition_temperature", {"deviation": "5 degC"}, {"deviation": 5.0}),  # a step
     ("moisture_content", {"max": "1.5 %"}, {"max": 1.5}),
     ("hygrothermal_strain", {"max": "0.5 %"}, {"max": 0.005}),
     ("link_length", {"min": "99.9 mm", "max": "100.4 mm"}, {"min": 0.0999, "max": 0.1004}),
@@ -60,6 +60,7 @@ def test_limits_are_stored_in_the_variables_stored_unit(name, spec, stored):
     ("rocker_angle: {}", "give deviation, max or min"),
     ("rocker_angle: {dev: 1 deg}", "unknown key"),
     ("grashof_class: {max: 1}", "no result variable 'grashof_class'"),
+    ("temperature: {deviation: 2 K}", "temperature has no as-designed value"),
 ])
 def test_bad_limits_name_their_line_and_exit_2(tmp_path, capsys, entry, reason):
     path = tmp_path / "scene.yaml"
@@ -180,7 +181,7 @@ def test_summary_query_and_plot_show_the_limit(tmp_path, capsys):
     result = tmp_path / "r.h5"
     assert main(["run", str(path), "-o", str(result)]) == 0
     out = capsys.readouterr().out
-    assert "first limit to fail: minimum_transmission_angle (min 35.5 deg) at 21.3" in out
+    assert "first limit to fail: minimum_transmission_angle (min 35.5 deg) at 21.3" in out, out
     assert "rocker_swing (max 80 deg): holds to 40 d" in out
     assert main(["query", str(result), "minimum_transmission_angle"]) == 0
     assert capsys.readouterr().out.strip().splitlines()[-1].startswith(

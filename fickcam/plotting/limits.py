@@ -6,7 +6,9 @@ from pathlib import Path
 
 import numpy as np
 
+from ..errors import format_duration
 from ..limits import stored_limits, worst_value
+from ..query import drift
 from . import age_label, ages, days, figure, save_figure
 
 ANGLES = ("cam_angle", "crank_angle")
@@ -30,7 +32,8 @@ def _over_time(ax, ds, limit) -> None:
         ax.axhline(getattr(limit, kind) * scale, color="r", lw=1.2, ls="--", label=f"limit ({kind})")
     failed = float(ds["time_out_of_spec"].sel(limit=limit.variable))
     if not math.isnan(failed):
-        ax.axvline(failed, color="k", lw=1, ls=":", label=f"out of spec at {failed:.4g} d")
+        ax.axvline(failed, color="k", lw=1, ls=":",
+                   label=f"out of spec at {format_duration(failed * 86400)}")
     ax.set_xlabel("ageing time [d]")
     ax.set_ylabel(f"{limit.variable} [{units}]")
     ax.set_title(f"{limit.variable}: {limit.text}", fontsize=10)
@@ -41,10 +44,8 @@ def _over_time(ax, ds, limit) -> None:
 def _over_cycle(ax, ds, limit, dim: str) -> None:
     """The variable (its drift from the design for a deviation) over the cycle, with the band."""
     scale, units = _units(limit)
-    array = ds[limit.variable] * scale
-    deviation = limit.deviation is not None and f"{limit.variable}_design" in ds
-    if deviation:
-        array = array - ds[f"{limit.variable}_design"] * scale
+    deviation = limit.deviation is not None
+    array = (drift(ds, limit.variable, "design") if deviation else ds[limit.variable]) * scale
     for k in ages(ds):
         values = array.isel(time=k)
         if values.ndim > 1:  # e.g. joint forces: the worst over the other dimension
