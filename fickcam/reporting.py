@@ -55,6 +55,9 @@ def describe_plan(scene, accuracy: float | None = None) -> str:
     mechanisms = [s for s in ("cam", "linkage") if getattr(scene.model, s) is not None]
     lines.append(f"  mechanisms: {', '.join(mechanisms)}; angle step "
                  f"{np.degrees(scene.model.outputs.angle_step):g} deg")
+    if scene.limits:
+        lines.append("  limits: " + "; ".join(f"{limit.variable} {limit.text}"
+                                             for limit in scene.limits))
     return "\n".join(lines)
 
 
