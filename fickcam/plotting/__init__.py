@@ -18,6 +18,7 @@ KINDS = {
     "linkage": ("linkage", "plot", ("rocker_angle",)),
     "fields": ("fields", "plot", ("moisture",)),
     "elastic": ("elastic", "plot", ("failure_index",)),
+    "limits": ("limits", "plot", ("limit_ratio",)),
     "sweep": ("sweep", "plot", ("case",)),
 }
 
