@@ -60,7 +60,9 @@ def _parser() -> argparse.ArgumentParser:
                       choices=("uptake", "kinematics", "dynamics", "linkage", "fields", "sweep", "all"))
 
     bench = sub.add_parser("bench", help="the diffusion speed/accuracy trade")
-    bench.add_argument("--quick", action="store_true", help="fewer configurations")
+    bench.add_argument("--quick", action="store_true",
+                       help="each geometry at its coarsest target, no 3-D solid rows (seconds)")
+    bench.add_argument("--quiet", action="store_true", help="no progress bar, only the table")
 
     sub.add_parser("materials", help="the built-in material library with sources")
     sub.add_parser("schema", help="the result variables (name, dims, units)")
@@ -141,10 +143,26 @@ def _cmd_plot(args) -> int:
     return 0
 
 
-def _cmd_bench(args) -> int:
-    from .bench import format_table, run_bench
+#: wall time of `fickcam bench`, measured on the project's idle 2-core machine
+BENCH_EXPECTED = {False: "about 3 min", True: "about 10 s"}
 
-    print(format_table(run_bench(quick=args.quick)))
+
+def _cmd_bench(args) -> int:
+    from tqdm.auto import tqdm
+
+    from .bench import format_table, row_count, run_bench
+
+    total = row_count(args.quick)
+    log.info("bench: %d rows, expected %s on an idle 2-core machine%s", total,
+             BENCH_EXPECTED[args.quick], "" if args.quick else " (--quick: "
+             f"{BENCH_EXPECTED[True]})")
+    with tqdm(total=total, disable=args.quiet, unit="row", desc="bench", leave=False) as bar:
+        def starting(label: str) -> None:
+            bar.update(1 if bar.postfix else 0)  # the previous row has finished
+            bar.set_postfix_str(label)
+
+        rows = run_bench(quick=args.quick, progress=starting)
+    print(format_table(rows))
     return 0
 
 
@@ -179,10 +197,11 @@ COMMANDS = {"run": _cmd_run, "check": _cmd_check, "query": _cmd_query, "export":
 
 def main(argv: list[str] | None = None) -> int:
     args = _parser().parse_args(argv)
-    logging.basicConfig(level=logging.WARNING if getattr(args, "quiet", False) else logging.INFO,
-                        format="fickcam: %(message)s", stream=sys.stderr)
+    # fickcam's own messages (INFO and notices) on stderr; other libraries' only from WARNING
+    # (FiPy logs its solver suite at INFO); --quiet keeps notices off too (errors still print)
+    logging.basicConfig(level=logging.WARNING, format="fickcam: %(message)s", stream=sys.stderr)
     logging.getLogger("fickcam").setLevel(
-        logging.WARNING if getattr(args, "quiet", False) else logging.INFO)
+        logging.ERROR if getattr(args, "quiet", False) else logging.INFO)
     try:
         return COMMANDS[args.command](args)
     except SceneError as exc:
