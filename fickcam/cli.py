@@ -16,27 +16,51 @@ from .errors import FickcamError, InputError, SceneError
 log = logging.getLogger("fickcam")
 
 
+def _command(sub, name: str, summary: str, description: str, *examples: str):
+    """A subcommand whose --help says what it does and shows how it is used."""
+    return sub.add_parser(name, help=summary, description=description,
+                          epilog="examples:\n" + "\n".join(f"  {e}" for e in examples),
+                          formatter_class=argparse.RawDescriptionHelpFormatter)
+
+
 def _parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(
         prog="fickcam",
         description="Moisture uptake in polymer/composite cams, followers and four-bar "
-                    "linkages, and the mechanism drift it causes.")
+                    "linkages, and the mechanism drift it causes.",
+        epilog="start with: fickcam examples --copy scenes && fickcam run scenes/singh2017_cam.yaml",
+        formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--version", action="version", version=f"fickcam {__version__}")
     parser.add_argument("--debug", action="store_true", help="show tracebacks of internal errors")
     sub = parser.add_subparsers(dest="command", required=True, metavar="COMMAND")
 
-    run = sub.add_parser("run", help="run a scene and write its result file")
-    run.add_argument("scene")
+    run = _command(sub, "run", "run a scene and write its result file",
+                   "Age the parts of a scene (diffusion, material state, mechanisms at every "
+                   "ageing time, and the design for comparison), write the result file "
+                   "atomically and print a summary: each key output as design -> t = 0 -> end.",
+                   "fickcam run configs/singh2017_cam.yaml -o outputs/cam.h5",
+                   "fickcam run scene.yaml --accuracy 1e-4 --quiet")
+    run.add_argument("scene", help="scene file (YAML)")
     run.add_argument("-o", "--output", help="result file (default: the scene's outputs.file)")
     run.add_argument("--accuracy", type=float, help="override diffusion.accuracy")
-    run.add_argument("--quiet", action="store_true", help="no progress bar, no summary")
+    run.add_argument("--quiet", action="store_true", help="no progress bar, summary or notices")
 
-    check = sub.add_parser("check", help="validate a scene and print the plan")
-    check.add_argument("scene")
+    check = _command(sub, "check", "validate a scene and print the plan",
+                     "Validate a scene without running it and print the plan the run uses: "
+                     "parts, the diffusion model per part, cells, steps, estimated error.",
+                     "fickcam check configs/singh2017_cam.yaml")
+    check.add_argument("scene", help="scene file (YAML)")
 
-    query = sub.add_parser("query", help="values of a variable from a result file")
-    query.add_argument("result")
-    query.add_argument("variable")
+    query = _command(sub, "query", "values of a variable from a result file",
+                     "Print the values of one result variable, optionally at an ageing time "
+                     "(interpolated between stored times), a part, link or angle, or its drift "
+                     "against the design or t = 0. On a sweep result the varied values are "
+                     "shown beside each case.",
+                     'fickcam query outputs/cam.h5 lift --time "45 d"',
+                     "fickcam query outputs/cam.h5 lift --drift design",
+                     "fickcam query outputs/cam.h5 contact_force --time 30d --cam-angle 120 --format json")
+    query.add_argument("result", help="result file (.h5)")
+    query.add_argument("variable", help="a variable name (fickcam schema lists them)")
     query.add_argument("--time", help='ageing time with its unit, e.g. "30 d", "6 months" (a bare number is refused)')
     query.add_argument("--part")
     query.add_argument("--link")
@@ -47,31 +71,59 @@ def _parser() -> argparse.ArgumentParser:
                        help="the change from the as-designed value (dry, reference temperature) "
                             "or from the first ageing time, instead of the value")
 
-    export = sub.add_parser("export", help="export a result as CSV, netCDF or JSON")
-    export.add_argument("result")
+    export = _command(sub, "export", "export a result as CSV, netCDF or JSON",
+                      "Write a result (or some of its variables) for plotting elsewhere: tidy CSV "
+                      "(one column per dimension plus value), netCDF or JSON.",
+                      "fickcam export outputs/cam.h5 --format csv -o cam.csv --variables lift jump_speed")
+    export.add_argument("result", help="result file (.h5)")
     export.add_argument("--format", choices=("csv", "netcdf", "json"), required=True)
     export.add_argument("-o", "--output", required=True)
     export.add_argument("--variables", nargs="+")
 
-    plot = sub.add_parser("plot", help="PNG figures of a result")
-    plot.add_argument("result")
+    plot = _command(sub, "plot", "PNG figures of a result",
+                    "Draw the figures a result has data for (uptake, cam kinematics and dynamics, "
+                    "linkage, moisture fields, or a sweep's outputs against its varied values).",
+                    "fickcam plot outputs/cam.h5 -o outputs/cam-plots",
+                    "fickcam plot outputs/sweep.h5 --kind sweep")
+    plot.add_argument("result", help="result file (.h5)")
     plot.add_argument("-o", "--outdir", default=None, help="folder (default: next to the result)")
     plot.add_argument("--kind", default="all",
                       choices=("uptake", "kinematics", "dynamics", "linkage", "fields", "sweep", "all"))
 
-    bench = sub.add_parser("bench", help="the diffusion speed/accuracy trade")
+    bench = _command(sub, "bench", "the diffusion speed/accuracy trade",
+                     "Measure each diffusion model's wall time and error against exact solutions "
+                     "on reference geometries (about 3 min; --quick about 10 s).",
+                     "fickcam bench --quick")
     bench.add_argument("--quick", action="store_true",
                        help="each geometry at its coarsest target, no 3-D solid rows (seconds)")
     bench.add_argument("--quiet", action="store_true", help="no progress bar, only the table")
 
-    sub.add_parser("materials", help="the built-in material library with sources")
-    sub.add_parser("schema", help="the result variables (name, dims, units)")
+    materials = _command(sub, "materials", "the built-in material library with sources",
+                         "List the built-in materials (key values and sources), or show one "
+                         "entry in full: every value, the diffusivity and saturation laws, sources.",
+                         "fickcam materials", "fickcam materials 8551-7")
+    materials.add_argument("name", nargs="?", help="one library name (fibre, matrix, plastic, metal)")
+    _command(sub, "schema", "the result variables (name, dims, units)",
+             "Print the table of result variables (name, dims, units, meaning, as-designed row) "
+             "as Markdown.", "fickcam schema")
+    examples = _command(sub, "examples", "list or copy the example scenes",
+                        "List the example scenes shipped with fickcam, print one, or copy them "
+                        "into a folder to edit and run.",
+                        "fickcam examples", "fickcam examples singh2017_cam > my_cam.yaml",
+                        "fickcam examples --copy scenes")
+    examples.add_argument("names", nargs="*", help="example names (print one; with --copy: copy these)")
+    examples.add_argument("--copy", metavar="DIR", help="copy the examples into DIR")
 
-    sweep = sub.add_parser("sweep", help="many scenes on dask.distributed")
-    sweep.add_argument("sweep")
+    sweep = _command(sub, "sweep", "many scenes on dask.distributed",
+                     "Run the variants of a scene a sweep file describes (a grid or Monte Carlo "
+                     "draws) on a local dask cluster or a running scheduler, write one result "
+                     "with a case dimension and print a table of the cases.",
+                     "fickcam sweep configs/sweep_singh2017_climate.yaml -o outputs/climate.h5",
+                     "fickcam sweep sweep.yaml --scheduler tcp://10.0.0.5:8786 -o out.h5")
+    sweep.add_argument("sweep", help="sweep file (YAML)")
     group = sweep.add_mutually_exclusive_group()
     group.add_argument("--workers", type=int, default=None, help="local worker processes")
-    group.add_argument("--scheduler", help="address of a running dask scheduler")
+    group.add_argument("--scheduler", help="address of a running dask scheduler, tcp://HOST:PORT")
     sweep.add_argument("-o", "--output", required=True)
     sweep.add_argument("--quiet", action="store_true")
     return parser
@@ -167,9 +219,31 @@ def _cmd_bench(args) -> int:
 
 
 def _cmd_materials(args) -> int:
-    from .materials import library_table
+    from .materials.library import entry_text, find_entry, library_table
 
-    print(library_table())
+    if args.name is None:
+        print(library_table())
+        return 0
+    try:
+        find_entry(args.name)
+    except KeyError:
+        raise InputError(f"no material {args.name!r} in the library (fickcam materials lists "
+                         f"them)") from None
+    print(entry_text(args.name))
+    return 0
+
+
+def _cmd_examples(args) -> int:
+    from . import example_scenes
+
+    if args.copy:
+        for path in example_scenes.copy_to(args.copy, args.names):
+            print(f"wrote {path}")
+    elif args.names:
+        for name in args.names:
+            print(example_scenes.path(name).read_text(encoding="utf-8"), end="")
+    else:
+        print(example_scenes.listing())
     return 0
 
 
@@ -183,16 +257,20 @@ def _cmd_schema(args) -> int:
 def _cmd_sweep(args) -> int:
     from .sweep import run_sweep
 
+    from .reporting import sweep_summary
+    from .store import open_result
+
     run_sweep(args.sweep, args.output, workers=args.workers, scheduler=args.scheduler,
               progress=not args.quiet)
     if not args.quiet:
+        print(sweep_summary(open_result(args.output)))
         print(f"wrote {args.output}")
     return 0
 
 
 COMMANDS = {"run": _cmd_run, "check": _cmd_check, "query": _cmd_query, "export": _cmd_export,
             "plot": _cmd_plot, "bench": _cmd_bench, "materials": _cmd_materials,
-            "schema": _cmd_schema, "sweep": _cmd_sweep}
+            "schema": _cmd_schema, "sweep": _cmd_sweep, "examples": _cmd_examples}
 
 
 def main(argv: list[str] | None = None) -> int:
