@@ -114,6 +114,20 @@ def _parser() -> argparse.ArgumentParser:
     examples.add_argument("names", nargs="*", help="example names (print one; with --copy: copy these)")
     examples.add_argument("--copy", metavar="DIR", help="copy the examples into DIR")
 
+    fit = _command(sub, "fit", "calibrate a material from ASTM D5229 weight-gain data",
+                   "Fit the diffusivity (D0, Ea) and saturation law of a material to weight-gain "
+                   "coupon data (ASTM D5229, one row per weighing) and write a scene-ready "
+                   "materials: block.",
+                   "fickcam fit coupons.csv --matrix 8551-7 -o fitted.yaml --plot fit.png",
+                   "fickcam fit laminate.csv --matrix 3502 --fiber T300 --fiber-volume-fraction 0.6 -o fitted.yaml")
+    fit.add_argument("data", help="weight-gain CSV (one row per weighing, units in the header)")
+    fit.add_argument("--matrix", required=True, help="library matrix (resin) of the coupons")
+    fit.add_argument("--fiber", help="library fibre of composite coupons")
+    fit.add_argument("--fiber-volume-fraction", type=float, help="fibre volume fraction of the coupons")
+    fit.add_argument("--name", help="material name in the YAML (default: the CSV's stem)")
+    fit.add_argument("-o", "--output", required=True, help="YAML file with the materials: block")
+    fit.add_argument("--plot", help="PNG of the data, fitted curves and residuals")
+
     sweep = _command(sub, "sweep", "many scenes on dask.distributed",
                      "Run the variants of a scene a sweep file describes (a grid or Monte Carlo "
                      "draws) on a local dask cluster or a running scheduler, write one result "
@@ -268,9 +282,26 @@ def _cmd_sweep(args) -> int:
     return 0
 
 
+def _cmd_fit(args) -> int:
+    from .fit import fit_weight_gain, materials_yaml, parameter_table, plot_fit
+
+    if (args.fiber is None) != (args.fiber_volume_fraction is None):
+        raise InputError("--fiber and --fiber-volume-fraction go together")
+    report = fit_weight_gain(args.data, args.matrix, fiber=args.fiber,
+                             fiber_volume_fraction=args.fiber_volume_fraction, name=args.name)
+    output = Path(args.output)
+    output.write_text(materials_yaml(report), encoding="utf-8")
+    print(parameter_table(report))
+    print(f"wrote {output}")
+    if args.plot:
+        print(f"wrote {plot_fit(report, args.plot)}")
+    return 0
+
+
 COMMANDS = {"run": _cmd_run, "check": _cmd_check, "query": _cmd_query, "export": _cmd_export,
             "plot": _cmd_plot, "bench": _cmd_bench, "materials": _cmd_materials,
-            "schema": _cmd_schema, "sweep": _cmd_sweep, "examples": _cmd_examples}
+            "schema": _cmd_schema, "sweep": _cmd_sweep, "fit": _cmd_fit,
+            "examples": _cmd_examples}
 
 
 def main(argv: list[str] | None = None) -> int:
