@@ -88,7 +88,8 @@ def _parser() -> argparse.ArgumentParser:
     plot.add_argument("result", help="result file (.h5)")
     plot.add_argument("-o", "--outdir", default=None, help="folder (default: next to the result)")
     plot.add_argument("--kind", default="all",
-                      choices=("uptake", "kinematics", "dynamics", "linkage", "fields", "sweep", "all"))
+                      choices=("uptake", "kinematics", "dynamics", "linkage", "fields", "limits", "sweep",
+                               "all"))
 
     bench = _command(sub, "bench", "the diffusion speed/accuracy trade",
                      "Measure each diffusion model's wall time and error against exact solutions "
@@ -178,13 +179,15 @@ def _cmd_check(args) -> int:
 
 
 def _cmd_query(args) -> int:
+    from .reporting import limit_line
     from .query import format_result, select
     from .store import open_result
 
     ds = open_result(args.result)
     array = select(ds, args.variable, time=args.time, part=args.part, link=args.link,
                    cam_angle=args.cam_angle, crank_angle=args.crank_angle, against=args.drift)
-    print(format_result(array, args.variable, args.format, args.drift))
+    print(format_result(array, args.variable, args.format, args.drift,
+                        limit=limit_line(ds, args.variable)))
     return 0
 
 
@@ -269,15 +272,18 @@ def _cmd_schema(args) -> int:
 
 
 def _cmd_sweep(args) -> int:
-    from .sweep import run_sweep
-
     from .reporting import sweep_summary
     from .store import open_result
+    from .sweep import run_sweep
+    from .sweep.scatter import summary_lines
 
     run_sweep(args.sweep, args.output, workers=args.workers, scheduler=args.scheduler,
               progress=not args.quiet)
     if not args.quiet:
-        print(sweep_summary(open_result(args.output)))
+        result = open_result(args.output)
+        print(sweep_summary(result))
+        for line in summary_lines(result):
+            print(line)
         print(f"wrote {args.output}")
     return 0
 
