@@ -143,3 +143,12 @@ def test_scene_stiffness_adds_elastic_variables_and_leaves_rigid_results_unchang
     # the CFRP rod softens as it absorbs water: its stiffness falls and the follower gains mass
     assert ds["follower_train_stiffness"].values[1] < ds["follower_train_stiffness"].values[0]
     assert ds["natural_frequency"].values[1] < ds["natural_frequency"].values[0]
+
+
+def test_series_on_the_result_grid_equals_the_direct_sum():
+    coefficients = tr.harmonics(follower_motion(design().segments, np.linspace(0, 2 * np.pi, 1024,
+                                                                               endpoint=False))[0])
+    for order in (0, 1):
+        fast = tr.at_angles(coefficients, np.radians(np.arange(0.0, 360.0, 1.5)), order, 60.0)
+        direct = tr.series(coefficients, np.radians(np.arange(0.0, 360.0, 1.5)), order, 60.0)
+        assert np.allclose(fast, direct, rtol=0, atol=1e-12 * np.max(np.abs(direct)))

@@ -33,7 +33,7 @@ from ..response import Response
 #: samples per revolution for the Fourier coefficients of the cam motion
 FINE = 8192
 #: speeds scanned for the dynamic jump speed, up to SCAN_LIMIT x the rigid jump speed
-SCAN_SPEEDS = 600
+SCAN_SPEEDS = 240
 SCAN_LIMIT = 2.0
 
 
@@ -122,6 +122,18 @@ def on_grid(coefficients, size: int, order: int = 0, omega: float = 1.0):
     return np.fft.irfft(coefficients * (1j * n * omega) ** order * size, n=size)
 
 
+def at_angles(coefficients, theta, order: int = 0, omega: float = 1.0):
+    """:func:`series` at ``theta``; through the inverse FFT on a multiple of the grid when
+    theta is the regular grid of a turn starting at 0 (the result grid), which is exact too."""
+    theta = np.asarray(theta, float)
+    count = theta.size
+    regular = np.linspace(0.0, 2 * np.pi, count, endpoint=False)
+    if count < 4 or theta.shape != regular.shape or not np.allclose(theta, regular, atol=1e-12):
+        return series(coefficients, theta, order, omega)
+    step = -(-2 * (len(coefficients) - 1) // count)
+    return on_grid(coefficients, count * step, order, omega)[::step]
+
+
 # ------------------------------------------------------------------ start from rest
 
 
@@ -138,7 +150,7 @@ def from_rest(train: Train, omega: float, x_harmonics, s0: float, theta):
     decay = np.exp(-zeta * wn * t)
     u = decay * (a * np.cos(wd * t) + b * np.sin(wd * t))
     du = decay * ((b * wd - zeta * wn * a) * np.cos(wd * t) - (a * wd + zeta * wn * b) * np.sin(wd * t))
-    return (series(x_harmonics, theta) + u, series(x_harmonics, theta, 1, omega) + du)
+    return (at_angles(x_harmonics, theta) + u, at_angles(x_harmonics, theta, 1, omega) + du)
 
 
 def free_amplitude(train: Train, offset, velocity):
@@ -166,24 +178,23 @@ def cycloidal_residual_amplitude(lift: float, rise_time: float, natural_frequenc
 # ------------------------------------------------------------------ jump
 
 
-def lowest_axial_force(train: Train, omega: float, s_harmonics, ds_fine):
+def lowest_axial_force(train: Train, omega: float, s_harmonics, s_fine, ds_fine):
     """Smallest F_c = k (s - x) + c (s' - x') over the fine grid at cam speed omega."""
     size = len(ds_fine)
     x_harm = steady_harmonics(train, omega, s_harmonics)
-    s = on_grid(s_harmonics, size)
-    deflection = s - on_grid(x_harm, size)
+    deflection = s_fine - on_grid(x_harm, size)
     rate = omega * ds_fine - on_grid(x_harm, size, 1, omega)
     return float(np.min(train.stiffness * deflection + train.damping * rate))
 
 
-def dynamic_jump_speed(train: Train, s_harmonics, ds_fine, upper: float) -> float:
+def dynamic_jump_speed(train: Train, s_harmonics, s_fine, ds_fine, upper: float) -> float:
     """Lowest cam speed at which the steady-state contact force reaches zero somewhere:
     scan SCAN_SPEEDS speeds up to ``upper``, then Brent on the first sign change. 0 if the
     follower is not held at rest, inf if it never separates below ``upper``."""
     from scipy.optimize import brentq
 
     def margin(omega):
-        return lowest_axial_force(train, omega, s_harmonics, ds_fine)
+        return lowest_axial_force(train, omega, s_harmonics, s_fine, ds_fine)
 
     if margin(0.0) <= 0.0:
         return 0.0
@@ -239,13 +250,13 @@ def dynamic_response(design, state, cam_angle, rigid) -> Response:
     x_harm = steady_harmonics(train, omega, s_harm)
     (s, ds, _, _), _ = follower_heights(design, state, theta)
     s = s - lowest
-    x, dx = series(x_harm, theta), series(x_harm, theta, 1, omega)
+    x, dx = at_angles(x_harm, theta), at_angles(x_harm, theta, 1, omega)
     axial = train.stiffness * (s - x) + train.damping * (omega * ds - dx)
     force = dyn.normal_force(axial, rigid["pressure_angle"], dx, design.guide_factor)
     rigid_jump = dyn.jump_speed(mass, d2, holding)
     upper = SCAN_LIMIT * (rigid_jump if math.isfinite(rigid_jump) else
                           max(omega, train.natural_frequency))
-    jump = dynamic_jump_speed(train, s_harm, d1, upper)
+    jump = dynamic_jump_speed(train, s_harm, height - lowest, d1, upper)
     s0 = float(height[0] - lowest)
     residual = _residual(design, state, train, x_harm, lowest, s0)
     variables = {
