@@ -10,7 +10,7 @@ import logging
 import sys
 from pathlib import Path
 
-from . import __version__
+from ._version import __version__
 from .errors import FickcamError, InputError, SceneError
 
 log = logging.getLogger("fickcam")
@@ -37,12 +37,15 @@ def _parser() -> argparse.ArgumentParser:
     query = sub.add_parser("query", help="values of a variable from a result file")
     query.add_argument("result")
     query.add_argument("variable")
-    query.add_argument("--time", help='ageing time with units, e.g. "30 d", "6 months"')
+    query.add_argument("--time", help='ageing time with its unit, e.g. "30 d", "6 months" (a bare number is refused)')
     query.add_argument("--part")
     query.add_argument("--link")
     query.add_argument("--cam-angle", type=float, help="degrees")
     query.add_argument("--crank-angle", type=float, help="degrees")
     query.add_argument("--format", choices=("table", "csv", "json"), default="table")
+    query.add_argument("--drift", choices=("design", "start"),
+                       help="the change from the as-designed value (dry, reference temperature) "
+                            "or from the first ageing time, instead of the value")
 
     export = sub.add_parser("export", help="export a result as CSV, netCDF or JSON")
     export.add_argument("result")
@@ -62,6 +65,15 @@ def _parser() -> argparse.ArgumentParser:
     sub.add_parser("materials", help="the built-in material library with sources")
     sub.add_parser("schema", help="the result variables (name, dims, units)")
 
+    fit = sub.add_parser("fit", help="calibrate a material from ASTM D5229 weight-gain data")
+    fit.add_argument("data", help="weight-gain CSV (one row per weighing, units in the header)")
+    fit.add_argument("--matrix", required=True, help="library matrix (resin) of the coupons")
+    fit.add_argument("--fiber", help="library fibre of composite coupons")
+    fit.add_argument("--fiber-volume-fraction", type=float, help="fibre volume fraction of the coupons")
+    fit.add_argument("--name", help="material name in the YAML (default: the CSV's stem)")
+    fit.add_argument("-o", "--output", required=True, help="YAML file with the materials: block")
+    fit.add_argument("--plot", help="PNG of the data, fitted curves and residuals")
+
     sweep = sub.add_parser("sweep", help="many scenes on dask.distributed")
     sweep.add_argument("sweep")
     group = sweep.add_mutually_exclusive_group()
@@ -74,7 +86,8 @@ def _parser() -> argparse.ArgumentParser:
 
 def _cmd_run(args) -> int:
     from .scene import load_scene
-    from .simulate import run, summary
+    from .reporting import summary
+    from .simulate import run
     from .store import save
 
     scene = load_scene(args.scene)
@@ -84,7 +97,7 @@ def _cmd_run(args) -> int:
     ds = run(scene, accuracy=args.accuracy, progress=not args.quiet)
     save(ds, output)
     if not args.quiet:
-        print(summary(ds))
+        print(summary(ds, notices=False))  # the run has logged them on stderr
         print(f"wrote {output}")
     return 0
 
@@ -98,7 +111,7 @@ def default_output(scene) -> Path:
 
 def _cmd_check(args) -> int:
     from .scene import load_scene
-    from .simulate import describe_plan
+    from .reporting import describe_plan
 
     scene = load_scene(args.scene)
     print(describe_plan(scene))
@@ -111,8 +124,8 @@ def _cmd_query(args) -> int:
 
     ds = open_result(args.result)
     array = select(ds, args.variable, time=args.time, part=args.part, link=args.link,
-                   cam_angle=args.cam_angle, crank_angle=args.crank_angle)
-    print(format_result(array, args.variable, args.format))
+                   cam_angle=args.cam_angle, crank_angle=args.crank_angle, against=args.drift)
+    print(format_result(array, args.variable, args.format, args.drift))
     return 0
 
 
@@ -168,9 +181,25 @@ def _cmd_sweep(args) -> int:
     return 0
 
 
+def _cmd_fit(args) -> int:
+    from .fit import fit_weight_gain, materials_yaml, parameter_table, plot_fit
+
+    if (args.fiber is None) != (args.fiber_volume_fraction is None):
+        raise InputError("--fiber and --fiber-volume-fraction go together")
+    report = fit_weight_gain(args.data, args.matrix, fiber=args.fiber,
+                             fiber_volume_fraction=args.fiber_volume_fraction, name=args.name)
+    output = Path(args.output)
+    output.write_text(materials_yaml(report), encoding="utf-8")
+    print(parameter_table(report))
+    print(f"wrote {output}")
+    if args.plot:
+        print(f"wrote {plot_fit(report, args.plot)}")
+    return 0
+
+
 COMMANDS = {"run": _cmd_run, "check": _cmd_check, "query": _cmd_query, "export": _cmd_export,
             "plot": _cmd_plot, "bench": _cmd_bench, "materials": _cmd_materials,
-            "schema": _cmd_schema, "sweep": _cmd_sweep}
+            "schema": _cmd_schema, "sweep": _cmd_sweep, "fit": _cmd_fit}
 
 
 def main(argv: list[str] | None = None) -> int:

@@ -1,9 +1,10 @@
 """Scene schema of one entry under ``materials:`` (SPEC.md section 1)."""
 from __future__ import annotations
 
-from typing import Literal
+from typing import Annotated, Literal
 
-from pydantic import PositiveFloat, model_validator
+import numpy as np
+from pydantic import AfterValidator, BeforeValidator, PositiveFloat, model_validator
 
 from ..units import (
     StrictModel,
@@ -14,11 +15,38 @@ from ..units import (
     MolarEnergy,
     NonNegativePercent,
     Pressure,
+    Rate,
+    SignedMolarEnergy,
+    SignedPercent,
     Temperature,
 )
 from .library import known_names
 
+#: scene key -> library group
+KIND_GROUPS = {"fiber": "fibers", "matrix": "matrices", "plastic": "plastics", "metal": "metals"}
 
+
+def _name_text(value):
+    """A library name that YAML read as a number (``matrix: 3502``) back as its text."""
+    if isinstance(value, bool):
+        return value
+    if isinstance(value, int):
+        return str(value)
+    if isinstance(value, float):
+        return str(int(value)) if value.is_integer() else str(value)
+    return value
+
+
+LibraryName = Annotated[str, BeforeValidator(_name_text)]
+
+
+def unknown_name_reason(key: str, name: str) -> str:
+    """Why ``key: name`` is refused: the name belongs to another kind, or the known names."""
+    for other, group in KIND_GROUPS.items():
+        if other != key and name in known_names(group):
+            return (f"unknown {key} {name!r}: {name} is a {other} in the library, "
+                    f"write '{other}: {name}'")
+    return f"unknown {key} {name!r} (known: {', '.join(known_names(KIND_GROUPS[key]))})"
 
 
 class DiffusivitySpec(StrictModel):
@@ -33,6 +61,66 @@ class SaturationSpec(StrictModel):
 
     coefficient: NonNegativePercent
     exponent: PositiveFloat = 1.0
+
+
+def _covariance(matrix: tuple[tuple[float, float], tuple[float, float]]):
+    """A 2x2 covariance: symmetric, positive semi-definite (to round-off)."""
+    m = np.asarray(matrix, float)
+    if not np.allclose(m, m.T, rtol=1e-6, atol=0.0):
+        raise ValueError("a covariance matrix must be symmetric")
+    if np.linalg.eigvalsh(m).min() < -1e-9 * max(abs(m).max(), 1e-300):
+        raise ValueError("a covariance matrix must be positive semi-definite")
+    return matrix
+
+
+Covariance = Annotated[tuple[tuple[float, float], tuple[float, float]], AfterValidator(_covariance)]
+
+
+class FitIntervals(StrictModel):
+    """95 % intervals (low, high) of the fitted values."""
+
+    pre_exponential: tuple[Diffusivity, Diffusivity] | None = None
+    activation_energy: tuple[SignedMolarEnergy, SignedMolarEnergy] | None = None
+    coefficient: tuple[SignedPercent, SignedPercent] | None = None
+    exponent: tuple[float, float] | None = None
+
+
+class FitCovariance(StrictModel):
+    """``diffusivity``: covariance of (ln pre_exponential, activation_energy [J/mol]);
+    ``saturation``: of (coefficient [%], exponent). SI numbers."""
+
+    diffusivity: Covariance | None = None
+    saturation: Covariance | None = None
+
+
+class PlyValues(StrictModel):
+    """What composite coupons gave before the map to the matrix overrides."""
+
+    pre_exponential: Diffusivity
+    coefficient: NonNegativePercent
+    diffusivity_factor: PositiveFloat
+    moisture_factor: PositiveFloat
+
+
+class NonFickianCondition(StrictModel):
+    condition: str
+    p_value: float
+    diffusivity: Diffusivity
+    binding_rate: Rate
+    release_rate: Rate
+
+
+class FitRecord(StrictModel):
+    """``materials.NAME.fit``: written by ``fickcam fit`` beside the values it found;
+    validated, not used by a run (a Monte Carlo sweep may draw from ``covariance``)."""
+
+    source: str
+    interval_95: FitIntervals | None = None
+    covariance: FitCovariance | None = None
+    activation_energy_from: Literal["data", "library"] = "data"
+    exponent_from: Literal["data", "library"] = "data"
+    ply: PlyValues | None = None
+    non_fickian: list[NonFickianCondition] = []
 
 
 class MatrixProperties(StrictModel):
@@ -74,10 +162,10 @@ class MaterialSpec(MatrixProperties):
     ``fiber_properties`` overrides the fibre.
     """
 
-    fiber: str | None = None
-    matrix: str | None = None
-    plastic: str | None = None
-    metal: str | None = None
+    fiber: LibraryName | None = None
+    matrix: LibraryName | None = None
+    plastic: LibraryName | None = None
+    metal: LibraryName | None = None
     fiber_volume_fraction: Fraction | None = None
     fiber_weight_fraction: Fraction | None = None
     void_volume_fraction: Fraction = 0.0
@@ -86,6 +174,7 @@ class MaterialSpec(MatrixProperties):
     wet_tg_scale: Literal["celsius", "fahrenheit", "kelvin"] = "celsius"
     matrix_properties: MatrixProperties | None = None
     fiber_properties: FiberProperties | None = None
+    fit: FitRecord | None = None
 
     @model_validator(mode="after")
     def _one_kind(self):
@@ -96,11 +185,10 @@ class MaterialSpec(MatrixProperties):
             raise ValueError("give exactly one of fiber+matrix, matrix, plastic, metal")
         if self.fiber and not self.matrix:
             raise ValueError("a fiber needs a matrix")
-        for key, group in (("fiber", "fibers"), ("matrix", "matrices"),
-                           ("plastic", "plastics"), ("metal", "metals")):
+        for key, group in KIND_GROUPS.items():
             name = getattr(self, key)
             if name is not None and name not in known_names(group):
-                raise ValueError(f"unknown {key} {name!r} (known: {', '.join(known_names(group))})")
+                raise ValueError(unknown_name_reason(key, name))
         composite = self.fiber is not None
         if composite:
             if (self.fiber_volume_fraction is None) == (self.fiber_weight_fraction is None):
