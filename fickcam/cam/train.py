@@ -229,17 +229,27 @@ def _events(design):
             if a.law is not None and a.height != 0.0 and b.height == 0.0]
 
 
-def dynamic_response(design, state, cam_angle, rigid) -> Response:
-    """Elastic-follower variables at one ageing time (SI; speeds in rad/s, frequency in Hz)
-    from the rigid variables ``rigid`` (pressure angle) of
-    :func:`~fickcam.cam.model.cam_response`. Displacements are measured like
-    follower_displacement, from the lowest rigid position: the static compression of the
-    train under the load P shows as a constant offset -P/(k + k_s)."""
+@dataclass(frozen=True)
+class SteadyState:
+    """The train and its periodic steady state at the scene speed, on the fine grid:
+    cam motion s (m, from the aged lowest position), ds/dtheta, d2s/dtheta2, the rigid
+    holding force (N), and the harmonics of s and of the mass position x."""
+
+    train: Train
+    lowest: float
+    s: np.ndarray
+    ds: np.ndarray
+    d2s: np.ndarray
+    holding: np.ndarray
+    s_harmonics: np.ndarray
+    x_harmonics: np.ndarray
+
+
+def steady_state(design, state) -> SteadyState:
+    """:class:`SteadyState` of ``design`` at ageing state ``state`` (needs design.train)."""
     from . import dynamics as dyn
     from .model import dry_lowest_height, follower_heights
 
-    theta = np.asarray(cam_angle, float)
-    omega = design.speed
     fine = np.linspace(0.0, 2 * np.pi, FINE, endpoint=False)
     (height, d1, d2, _), (lowest, _) = follower_heights(design, state, fine)
     mass = design.follower_mass if state.follower_mass is None else state.follower_mass
@@ -247,45 +257,60 @@ def dynamic_response(design, state, cam_angle, rigid) -> Response:
                               design.spring_preload, design.external_load, design.gravity)
     train = train_of(design, state, float(holding[0] - design.spring_rate * (height[0] - lowest)))
     s_harm = harmonics(height - lowest)
-    x_harm = steady_harmonics(train, omega, s_harm)
+    return SteadyState(train, lowest, height - lowest, d1, d2, holding, s_harm,
+                       steady_harmonics(train, design.speed, s_harm))
+
+
+def dynamic_response(design, state, cam_angle, rigid) -> Response:
+    """Elastic-follower variables at one ageing time (SI; speeds in rad/s, frequency in Hz)
+    from the rigid variables ``rigid`` (pressure angle) of
+    :func:`~fickcam.cam.model.cam_response`. Displacements are measured like
+    follower_displacement, from the lowest rigid position: the static compression of the
+    train under the load P shows as a constant offset -P/(k + k_s)."""
+    from . import dynamics as dyn
+    from .model import follower_heights
+
+    theta = np.asarray(cam_angle, float)
+    omega = design.speed
+    steady = steady_state(design, state)
+    train, x_harm = steady.train, steady.x_harmonics
     (s, ds, _, _), _ = follower_heights(design, state, theta)
-    s = s - lowest
+    s = s - steady.lowest
     x, dx = at_angles(x_harm, theta), at_angles(x_harm, theta, 1, omega)
     axial = train.stiffness * (s - x) + train.damping * (omega * ds - dx)
     force = dyn.normal_force(axial, rigid["pressure_angle"], dx, design.guide_factor)
-    rigid_jump = dyn.jump_speed(mass, d2, holding)
+    rigid_jump = dyn.jump_speed(train.mass, steady.d2s, steady.holding)
     upper = SCAN_LIMIT * (rigid_jump if math.isfinite(rigid_jump) else
                           max(omega, train.natural_frequency))
-    jump = dynamic_jump_speed(train, s_harm, height - lowest, d1, upper)
-    s0 = float(height[0] - lowest)
-    residual = _residual(design, state, train, x_harm, lowest, s0)
+    jump = dynamic_jump_speed(train, steady.s_harmonics, steady.s, steady.ds, upper)
+    residual = residual_vibrations(design, state, steady)
     variables = {
         "dynamic_follower_displacement": x,
         "dynamic_displacement_error": x - s,
         "dynamic_contact_force": force,
-        "startup_follower_displacement": from_rest(train, omega, x_harm, s0, theta)[0],
+        "startup_follower_displacement": from_rest(train, omega, x_harm, steady.s[0], theta)[0],
         "natural_frequency": train.natural_frequency / (2 * np.pi),
         "follower_train_stiffness": train.stiffness,
         "dynamic_jump_speed": jump,
         "residual_vibration": float(np.max(residual)) if residual.size else np.nan,
-        "residual_vibration_events": residual,  # per dwell after a rise/return (not stored)
         "minimum_dynamic_contact_force": float(np.min(force)),
     }
     return Response(variables, _separation_notices(theta, force))
 
 
-def _residual(design, state, train, x_harm, lowest, s0) -> np.ndarray:
-    """Free-vibration amplitude at the start of each dwell after a rise/return, over the
-    first turn from rest (Koster 1974 sec. 3.2 'residual vibration')."""
+def residual_vibrations(design, state, steady: SteadyState | None = None) -> np.ndarray:
+    """Free-vibration amplitude (m) at the start of each dwell that follows a rise or return,
+    over the first turn from rest (Koster 1974 sec. 3.2 'residual vibration'); empty for an
+    eccentric cam or a motion without such a dwell."""
     from .model import follower_heights
 
-    if design.kind != "motion":
-        return np.zeros(0)
-    events = np.asarray(_events(design), float)
+    events = np.asarray(_events(design) if design.kind == "motion" else [], float)
     if events.size == 0:
         return np.zeros(0)
-    x, dx = from_rest(train, design.speed, x_harm, s0, events)
-    s_end = follower_heights(design, state, events)[0][0] - lowest
+    steady = steady or steady_state(design, state)
+    train = steady.train
+    x, dx = from_rest(train, design.speed, steady.x_harmonics, float(steady.s[0]), events)
+    s_end = follower_heights(design, state, events)[0][0] - steady.lowest
     return free_amplitude(train, x - train.equilibrium(s_end), dx)
 
 
