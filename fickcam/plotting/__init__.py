@@ -18,6 +18,7 @@ KINDS = {
     "vibration": ("train", "plot", ("dynamic_contact_force",)),
     "linkage": ("linkage", "plot", ("rocker_angle",)),
     "fields": ("fields", "plot", ("moisture",)),
+    "limits": ("limits", "plot", ("limit_ratio",)),
     "sweep": ("sweep", "plot", ("case",)),
 }
 
