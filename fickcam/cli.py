@@ -88,8 +88,8 @@ def _parser() -> argparse.ArgumentParser:
     plot.add_argument("result", help="result file (.h5)")
     plot.add_argument("-o", "--outdir", default=None, help="folder (default: next to the result)")
     plot.add_argument("--kind", default="all",
-                      choices=("uptake", "kinematics", "dynamics", "linkage", "fields", "limits", "sweep",
-                               "all"))
+                      choices=("uptake", "kinematics", "dynamics", "vibration", "linkage", "fields",
+                               "limits", "sweep", "all"))
 
     bench = _command(sub, "bench", "the diffusion speed/accuracy trade",
                      "Measure each diffusion model's wall time and error against exact solutions "
