@@ -57,8 +57,8 @@ def _parser() -> argparse.ArgumentParser:
     plot.add_argument("result")
     plot.add_argument("-o", "--outdir", default=None, help="folder (default: next to the result)")
     plot.add_argument("--kind", default="all",
-                      choices=("uptake", "kinematics", "dynamics", "linkage", "fields", "limits", "sweep",
-                               "all"))
+                      choices=("uptake", "kinematics", "dynamics", "vibration", "linkage", "fields",
+                               "limits", "sweep", "all"))
 
     bench = sub.add_parser("bench", help="the diffusion speed/accuracy trade")
     bench.add_argument("--quick", action="store_true", help="fewer configurations")
