@@ -1,6 +1,5 @@
 """Limits (SPEC.md §6): ratios, the first time out of spec, and refused limits."""
 import math
-import textwrap
 
 import numpy as np
 import pytest
