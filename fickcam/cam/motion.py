@@ -155,6 +155,7 @@ class MotionSegment:
     height: float  # + rise, - return, 0 dwell
     level: float   # follower position at the segment start (m)
     law: str | None
+    spline: object = None  # SplineLaw of a ``spline`` segment (fickcam.cam.spline)
 
 
 def segments_from_spec(specs) -> tuple[MotionSegment, ...]:
@@ -162,10 +163,21 @@ def segments_from_spec(specs) -> tuple[MotionSegment, ...]:
     out, start, level = [], 0.0, 0.0
     for s in specs:
         out.append(MotionSegment(start, float(s.angle), float(s.height), level,
-                                 getattr(s, "law", None)))
+                                 getattr(s, "law", None), _spline_of(s)))
         start += float(s.angle)
         level += float(s.height)
     return tuple(out)
+
+
+def _spline_of(spec):
+    """The normalised :class:`~fickcam.cam.spline.SplineLaw` of a scene ``spline`` segment."""
+    given = getattr(spec, "spline", None)
+    if given is None:
+        return None
+    from .spline import spline_law
+
+    return spline_law(given.points, spec.height, spec.angle, given.degree,
+                      given.start_derivatives, given.end_derivatives)
 
 
 def segment_motion(segment: MotionSegment, theta):
@@ -175,7 +187,12 @@ def segment_motion(segment: MotionSegment, theta):
         zero = np.zeros_like(theta)
         return zero + segment.level, zero, zero, zero
     x = (theta - segment.start) / segment.span
-    s, s1, s2, s3 = LAW_FUNCTIONS[segment.law](x)
+    if segment.law == "spline":
+        from .spline import spline_motion
+
+        s, s1, s2, s3 = spline_motion(segment.spline, x)
+    else:
+        s, s1, s2, s3 = LAW_FUNCTIONS[segment.law](x)
     h, b = segment.height, segment.span
     return segment.level + h * s, h * s1 / b, h * s2 / b ** 2, h * s3 / b ** 3
 
@@ -222,4 +239,9 @@ def joint_notices(segments, tolerance: float = 1e-9) -> list[str]:
         if seg.law == "constant_acceleration" and seg.height != 0.0:
             notices.append(f"constant_acceleration leaves infinite jerk at mid-segment "
                            f"({math.degrees(seg.start + seg.span / 2):.4g} deg)")
+        if seg.law == "spline" and seg.spline.degree < 5 and len(seg.spline.x) > 2:
+            what = "velocity (infinite acceleration)" if seg.spline.degree == 1 else \
+                "acceleration (infinite jerk)" if seg.spline.degree == 3 else ""
+            notices.append(f"a degree-{seg.spline.degree} spline steps its {what} at its inner "
+                           f"points ({math.degrees(seg.start):.4g} deg segment)")
     return notices
