@@ -156,6 +156,7 @@ class MotionSegment:
     level: float   # follower position at the segment start (m)
     law: str | None
     spline: object = None  # SplineLaw of a ``spline`` segment (fickcam.cam.spline)
+    correction: tuple = ()  # harmonics of a polydyne profile correction (fickcam.cam.polydyne)
 
 
 def segments_from_spec(specs) -> tuple[MotionSegment, ...]:
@@ -181,7 +182,18 @@ def _spline_of(spec):
 
 
 def segment_motion(segment: MotionSegment, theta):
-    """(y, y', y'', y''') per radian of cam angle inside one segment (theta in rad)."""
+    """(y, y', y'', y''') per radian of cam angle inside one segment (theta in rad), with
+    the segment's polydyne correction when it has one."""
+    law = law_motion(segment, theta)
+    if not segment.correction:
+        return law
+    from .polydyne import correction_motion
+
+    return tuple(a + b for a, b in zip(law, correction_motion(np.asarray(segment.correction), theta)))
+
+
+def law_motion(segment: MotionSegment, theta):
+    """The segment's own law (no polydyne correction), as :func:`segment_motion`."""
     theta = np.asarray(theta, float)
     if segment.law is None or segment.height == 0.0:
         zero = np.zeros_like(theta)
@@ -197,16 +209,22 @@ def segment_motion(segment: MotionSegment, theta):
     return segment.level + h * s, h * s1 / b, h * s2 / b ** 2, h * s3 / b ** 3
 
 
-def follower_motion(segments, theta):
+def follower_motion(segments, theta, corrected: bool = True):
     """(y, dy/dtheta, d2y/dtheta2, d3y/dtheta3) of the design motion, theta (rad) taken
-    modulo 2 pi; at a joint the value of the segment that starts there."""
+    modulo 2 pi; at a joint the value of the segment that starts there. A polydyne
+    correction is added unless ``corrected`` is False (the chosen motion alone)."""
     theta = np.mod(np.asarray(theta, float), 2 * PI)
     out = [np.zeros_like(theta) for _ in range(4)]
     for k, seg in enumerate(segments):
         last = k == len(segments) - 1
         inside = (theta >= seg.start) & ((theta < seg.start + seg.span) | last)
-        for o, v in zip(out, segment_motion(seg, theta[inside])):
+        for o, v in zip(out, law_motion(seg, theta[inside])):
             o[inside] = v
+    if corrected and segments[0].correction:
+        from .train import at_angles
+
+        coefficients = np.asarray(segments[0].correction)
+        out = [o + at_angles(coefficients, theta, order) for order, o in enumerate(out)]
     return tuple(out)
 
 

@@ -203,6 +203,13 @@ class Follower(_Strict):
         return self
 
 
+class Polydyne(_Strict):
+    """``cam.polydyne``: cut the cam so that the elastic follower (``follower.stiffness``)
+    follows the chosen motion at ``speed`` (default: the cam's speed); ``true`` = {}."""
+
+    speed: AngularSpeed | None = None
+
+
 class CamSection(_Strict):
     """The ``cam:`` section. Extras beyond SPEC.md (defaults): ``gravity`` (false; g along
     the follower axis, against the lift), ``wear`` (none: no Archard wear),
@@ -220,6 +227,12 @@ class CamSection(_Strict):
     eccentric: Eccentric | None = None
     gravity: bool = False
     wear: Wear | None = None
+    polydyne: Polydyne | None = None
+
+    @field_validator("polydyne", mode="before")
+    @classmethod
+    def _polydyne_true(cls, value):
+        return {} if value is True else (None if value is False else value)
 
     @field_validator("motion")
     @classmethod
@@ -238,6 +251,8 @@ class CamSection(_Strict):
             if self.motion is None or self.base_circle_radius is None:
                 raise ValueError("a cam needs motion and base_circle_radius (or eccentric)")
             smallest = self.base_circle_radius
+        if self.polydyne is not None and (self.eccentric is not None or self.follower.stiffness is None):
+            raise ValueError("polydyne needs motion segments and follower.stiffness (an elastic train)")
         if self.bore_radius >= smallest:
             raise ValueError(f"bore_radius must be smaller than the base circle ({smallest * 1e3:g} mm)")
         if self.follower.offset != 0.0 and abs(self.follower.offset) >= smallest + (
