@@ -131,3 +131,32 @@ def test_demo_cam_deflection_grows_as_the_matrix_softens():
     ratios = [float(cam[v][1] / cam[v][0]) for v in moduli[:3]]
     assert min(ratios) <= deflection[0] / deflection[1] <= max(ratios)
     assert result["elastic_lift_error"][1] > result["elastic_lift_error"][0] > 0
+
+
+def test_link_swelling_follows_its_moisture_field():
+    """A link (LinkBar planform) with a wet skin along its outline over a dry core, through
+    swelling_history: the skin in compression, the core in tension; a uniform field: no
+    stress (the same free-body path as the cam plate, on the link's planform mesh)."""
+    from types import SimpleNamespace
+
+    from fickcam.diffusion.geometry import LinkBar
+    from fickcam.elastic.mesh import planform_mesh
+    from fickcam.elastic.swelling import swelling_history
+    from fickcam.materials import resolve
+    from fickcam.materials.spec import MaterialSpec
+
+    link = LinkBar(0.1, 0.02, 0.005, 0.015, 0.005)
+    mesh = planform_mesh(link, 1e-3, 0.2)
+    x, y = mesh.points.T
+    skin = np.minimum.reduce([0.01 - np.abs(y), np.hypot(x, y) - 0.005, np.hypot(x - 0.1, y) - 0.005])
+    wet = 5.0 * np.exp(-np.clip(skin, 0, None) / 1e-3)
+    result = SimpleNamespace(fields=np.stack([np.zeros_like(wet), wet, np.full_like(wet, 5.0)]),
+                             cell_coordinates={"x": x, "y": y})
+    material = resolve("resin", MaterialSpec.model_validate({"matrix": "R914"}))
+    temperature = np.full(3, 296.15)
+    out = swelling_history(link, material, result, {}, temperature, 296.15, 0.0, np.ones(3, bool))
+    tension, compression = out["swelling_stress_tensile"], out["swelling_stress_compressive"]
+    restrained = 4.0e9 * 3.02e-3 * 5.0 / (1 - 0.35)  # biaxially restrained skin
+    assert -restrained < compression[1] < -0.1 * restrained and 0 < tension[1] < restrained
+    assert max(abs(tension[2]), abs(compression[2]), abs(tension[0])) < 1e-6 * restrained
+    assert out["field"].shape == (len(out["points"]),)
