@@ -10,7 +10,7 @@ import logging
 import sys
 from pathlib import Path
 
-from . import __version__
+from .version import __version__
 from .errors import FickcamError, InputError, SceneError
 
 log = logging.getLogger("fickcam")

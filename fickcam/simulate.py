@@ -11,7 +11,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from . import __version__
+from .version import __version__
 from .environment import Environment
 from .errors import InputError, format_duration
 from .scene import EveryStep, Scene, load_scene

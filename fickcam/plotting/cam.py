@@ -8,7 +8,7 @@ from pathlib import Path
 
 import numpy as np
 
-from . import age_label, ages, days, figure, finish_plan_view, save_figure
+from .common import age_label, ages, days, figure, finish_plan_view, save_figure
 
 KINEMATICS = (("follower_displacement", "displacement [mm]", 1e3),
               ("follower_velocity", "velocity [m/s]", 1.0),

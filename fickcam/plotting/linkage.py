@@ -7,7 +7,7 @@ from pathlib import Path
 
 import numpy as np
 
-from . import age_label, ages, days, figure, finish_plan_view, save_figure
+from .common import age_label, ages, days, figure, finish_plan_view, save_figure
 
 
 def _wrapped_degrees(x):

@@ -3,7 +3,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from . import days, figure, save_figure
+from .common import days, figure, save_figure
 
 
 def plot(ds, outdir) -> list[Path]:
