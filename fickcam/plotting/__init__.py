@@ -9,6 +9,10 @@ import importlib
 from pathlib import Path
 
 from ..errors import InputError
+from .common import age_label, ages, days, figure, finish_plan_view, save_figure
+
+__all__ = ["KINDS", "available_kinds", "plot", "age_label", "ages", "days", "figure",
+           "finish_plan_view", "save_figure"]
 
 # kind -> (module, function, variables the kind needs)
 KINDS = {
