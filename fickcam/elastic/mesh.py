@@ -1,5 +1,5 @@
 """Triangle meshes of the parts' planforms for elasticity: the graded meshes the diffusion
-engine builds (``fickcam.diffusion.planform.triangulate``), imported only here so that one
+engine builds (``fickcam.diffusion.trimesh.triangulate``), imported only here so that one
 line follows a reorganisation of the diffusion package."""
 from __future__ import annotations
 
@@ -20,7 +20,7 @@ def planform_mesh(geometry, spacing: float, growth: float | None = None) -> Plat
     """The diffusion engine's triangulation of a ``CamPlate`` or ``LinkBar`` planform: edges
     of ``spacing`` (m) along the outline, growing by (1 + ``growth``) per row inward
     (``None``: a uniform lattice)."""
-    from ..diffusion.planform import triangulate
+    from ..diffusion.trimesh import triangulate
 
     mesh = triangulate(geometry, spacing, growth=growth)
     return PlateMesh(np.asarray(mesh.points, float), np.asarray(mesh.triangles, int))

@@ -7,7 +7,7 @@ from pathlib import Path
 
 import numpy as np
 
-from . import days, figure, save_figure
+from .common import days, figure, save_figure
 from .cam import _panels
 from .fields import _cell_triangulation
 
