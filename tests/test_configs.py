@@ -36,7 +36,7 @@ def test_yadav2017_steel_cam_grows_by_alpha_dt_only(results):
     assert np.all(ds.moisture_content.values == 0)
     assert np.allclose(ds.lift.values, 25.4e-3 * (1 + strain), rtol=1e-9)
     assert np.allclose(ds.base_circle_radius.values, 40e-3 * (1 + strain), rtol=1e-9)
-    assert ds.jump_speed.values[0] == pytest.approx(1091.2464, rel=1e-6)
+    assert ds.jump_speed.values[0] == pytest.approx(1091.1478, rel=1e-6)  # continuous minimum
     assert ds.peak_cam_torque.values[0] == pytest.approx(15.066397, rel=1e-6)
     assert ds.peak_contact_stress.values[0] == pytest.approx(212.26077e6, rel=1e-6)
 

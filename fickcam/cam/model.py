@@ -269,7 +269,7 @@ def cam_response(design: CamDesign, state: CamState, cam_angle) -> Response:
     sliding = design.follower_kind != "roller"
     friction = design.friction_coefficient * np.maximum(force, 0.0) * sliding
     lever = np.abs(cx * np.sin(phi) - cy * np.cos(phi))
-    jump = dyn.jump_speed(mass, d2, holding)
+    jump = continuous_jump_speed(design, state, mass, theta, d2, holding)
     notices += _jump_notices(theta, axial, jump, omega)
 
     e_star = dyn.effective_modulus(state.cam_surface_modulus, state.cam_surface_poisson,
@@ -310,6 +310,39 @@ def cam_response(design: CamDesign, state: CamState, cam_angle) -> Response:
         "wear_rate": float(np.max(wear)) * omega / (2 * np.pi),
     }
     return Response(variables, notices)
+
+
+def continuous_jump_speed(design: CamDesign, state: CamState, mass: float, theta, d2,
+                          holding) -> float:
+    """The jump speed as the minimum over the continuous cam angle, not the angle grid:
+    omega_jump^2 = min S(theta) / (-m y''(theta)) over y'' < 0 (see dyn.jump_speed). The
+    grid's smallest ratio brackets the minimum between its neighbours, where a bounded
+    Brent search (scipy.optimize.minimize_scalar) on the closed-form or spectral motion
+    finds it; at an acceleration jump (a segment joint) it converges to the one-sided limit."""
+    on_grid = dyn.jump_speed(mass, d2, holding)
+    if not np.isfinite(on_grid) or on_grid == 0.0 or theta.size < 3:
+        return on_grid
+    from scipy.optimize import minimize_scalar
+
+    spacing = float(np.median(np.diff(np.sort(theta))))
+    pulling = d2 < 0.0
+    ratios = np.full(theta.shape, np.inf)
+    ratios[pulling] = holding[pulling] / (-mass * d2[pulling])
+    centre = float(theta[int(np.argmin(ratios))])
+    low_height = dry_lowest_height(design)
+
+    def ratio(angle):
+        (height, _, d2, _), _ = follower_heights(design, state, np.array([angle]))
+        if not d2[0] < 0.0:  # not pulling away here: no bound (large, finite for Brent)
+            return 1e300
+        holding = dyn.axial_force(mass, 0.0, design.spring_rate, height[0] - low_height,
+                                  design.spring_preload, design.external_load, design.gravity)
+        return holding / (-mass * d2[0])
+
+    found = minimize_scalar(ratio, bounds=(centre - spacing, centre + spacing), method="bounded",
+                            options={"xatol": 1e-12})
+    best = min(float(found.fun), on_grid ** 2)
+    return float(np.sqrt(best))
 
 
 def _design_lift(design: CamDesign) -> float:
