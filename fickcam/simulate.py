@@ -51,6 +51,8 @@ def scene_environment(scene: Scene) -> Environment:
 
 def ageing_times(scene: Scene, environment: Environment) -> np.ndarray:
     """Ageing times in s: the scene's list, a regular ``every`` grid, or 11 points."""
+    if environment.state_times is not None:
+        return environment.state_times.copy()
     requested = scene.model.outputs.ageing_times
     end = environment.end
     if isinstance(requested, list):
@@ -114,14 +116,19 @@ def describe_plan(scene: Scene, accuracy: float | None = None) -> str:
     environment = scene_environment(scene)
     times = ageing_times(scene, environment)
     options = _diffusion_options(scene, accuracy)
-    lines = [f"scene {scene.name}: valid",
-             f"  environment: {len(environment.change_times) - 1} segment(s), "
-             f"{format_duration(environment.end)}; {len(times)} ageing times",
+    climate = (f"{len(times)} state(s) given directly (no diffusion)"
+               if environment.state_times is not None else
+               f"{len(environment.change_times) - 1} segment(s), {format_duration(environment.end)}; "
+               f"{len(times)} ageing times")
+    lines = [f"scene {scene.name}: valid", f"  environment: {climate}",
              f"  diffusion: model {_model_text(options['model'])}, accuracy {options['accuracy']:g}"]
     for part in build_parts(scene):
         head = f"  part {part.name:<9} material {part.material_name}"
         if part.geometry is None:
             lines.append(f"{head}: does not absorb moisture (thermal strain only)")
+            continue
+        if environment.state_times is not None:
+            lines.append(f"{head}: moisture given by the environment's state (no diffusion)")
             continue
         exposure = environment.exposure(part.material.saturation_moisture)
         diffusivity = part.material.diffusivity_for(part.geometry)
@@ -161,7 +168,11 @@ def run(scene, *, accuracy: float | None = None, progress: bool = False):
     histories: list[PartHistory] = []
     for part in parts:
         bar.set_postfix_str(f"diffusion {part.name}")
-        if part.geometry is not None:
+        if part.geometry is not None and environment.state_times is not None:
+            result = None  # a state given directly: uniform moisture, no diffusion
+            mean = surface = saturation = environment.uniform_moisture(
+                part.material.saturation_moisture, times)
+        elif part.geometry is not None:
             exposure = environment.exposure(part.material.saturation_moisture)
             result = _for_part(part.name, solve, part.geometry,
                                part.material.diffusivity_for(part.geometry), exposure, times,
@@ -279,6 +290,9 @@ def _valid_until_wet_tg(part: Part, state: dict, temperature, times, notices) ->
 
 def _diffusion_attrs(history: PartHistory) -> dict:
     result = history.diffusion
+    if result is None and history.part.geometry is not None:
+        return {"model": "state", "error_estimate": 0.0, "cells": 0, "steps": 0,
+                "reason": "uniform moisture given by the environment's state (no diffusion)"}
     if result is None:
         return {"model": "none", "error_estimate": 0.0, "cells": 0, "steps": 0,
                 "reason": "material does not absorb moisture"}
