@@ -53,6 +53,19 @@ def test_eccentric_nylon_cam_stroke_is_twice_the_swollen_eccentricity(results):
     assert np.all(np.diff(ds.jump_speed.values) > 0)  # heavier but larger: here it gains
 
 
+def test_eccentric_nylon_cam_softens_so_its_contact_stress_drops(results):
+    """Water plasticises the nylon cam (PA66 data sheet: conditioned modulus 0.367 of dry):
+    its surface modulus falls and the Hertz stress, p0 ~ sqrt(E*), drops with it although
+    the contact force grows."""
+    ds = results("eccentric_cam")
+    surface = ds.surface_modulus.sel(part="cam").values
+    assert surface[0] == pytest.approx(2.8e9, rel=1e-12)
+    assert surface[-1] == pytest.approx(2.8e9 * 1100 / 3000, rel=1e-3)
+    stress = ds.peak_contact_stress.values
+    assert stress[-1] < 0.7 * stress[0]
+    assert ds.peak_contact_force.values[-1] > ds.peak_contact_force.values[0]
+
+
 def test_singh2017_cam_dry_kinematics_and_follower_uptake(results):
     ds = results("singh2017_cam")
     first = ds.isel(time=0)
