@@ -20,6 +20,7 @@ from pydantic import BeforeValidator, Field, ValidationError, field_validator, m
 from .cam.spec import CamSection
 from .errors import Problem, SceneError
 from .keys import closest_key
+from .limits import LimitSpec, parse_limit
 from .linkage.spec import LinkageSection
 from .materials import MaterialSpec
 from .units import (
@@ -305,6 +306,7 @@ class SceneModel(StrictModel):
     linkage: LinkageSection | None = None
     diffusion: DiffusionSection = DiffusionSection()
     outputs: OutputsSection = OutputsSection()
+    limits: dict[str, LimitSpec] | None = None
 
     @field_validator("name")
     @classmethod
@@ -324,6 +326,7 @@ class Scene:
     base_dir: Path
     document: YamlDocument | None = field(default=None, repr=False)
     materials: dict = field(default_factory=dict, repr=False)  # name -> resolved Material
+    limits: list = field(default_factory=list, repr=False)  # fickcam.limits.Limit, scene order
 
     @property
     def name(self) -> str:
@@ -418,6 +421,18 @@ def _cross_checks(model: SceneModel, doc: YamlDocument, base_dir: Path) -> tuple
     return problems, resolved
 
 
+def _limits(model: SceneModel, doc: YamlDocument) -> tuple[list, list[Problem]]:
+    """The scene's limits (fickcam.limits.Limit) and a Problem per limit that cannot apply."""
+    sections = {name for name in ("cam", "linkage") if getattr(model, name) is not None}
+    limits, problems = [], []
+    for name, spec in (model.limits or {}).items():
+        try:
+            limits.append(parse_limit(name, spec, sections))
+        except ValueError as exc:
+            problems.append(doc.problem(("limits", name), str(exc)))
+    return limits, problems
+
+
 # --------------------------------------------------------------------------
 
 
@@ -430,10 +445,12 @@ def validate_document(doc: YamlDocument, *, base_dir: Path) -> Scene:
     except ValidationError as exc:
         raise SceneError(problems_from_validation(exc, doc, model=SceneModel)) from None
     problems, resolved = _cross_checks(model, doc, base_dir)
+    limits, limit_problems = _limits(model, doc)
+    problems += limit_problems
     if problems:
         raise SceneError(problems)
     return Scene(model=model, file=doc.file, text=doc.text, base_dir=base_dir,
-                 document=doc, materials=resolved)
+                 document=doc, materials=resolved, limits=limits)
 
 
 def load_scene(source, *, file_name: str | None = None) -> Scene:
