@@ -62,6 +62,8 @@ def _parser() -> argparse.ArgumentParser:
 
     bench = sub.add_parser("bench", help="the diffusion speed/accuracy trade")
     bench.add_argument("--quick", action="store_true", help="fewer configurations")
+    bench.add_argument("--records", action="store_true",
+                       help="cost of 1, 3, 12 months of hourly weather against a constant climate")
 
     sub.add_parser("materials", help="the built-in material library with sources")
     sub.add_parser("schema", help="the result variables (name, dims, units)")
@@ -154,6 +156,11 @@ def _cmd_plot(args) -> int:
 
 
 def _cmd_bench(args) -> int:
+    if args.records:
+        from .bench_records import format_record_table, run_record_bench
+
+        print(format_record_table(run_record_bench(months=(1, 3) if args.quick else (1, 3, 12))))
+        return 0
     from .bench import format_table, run_bench
 
     print(format_table(run_bench(quick=args.quick)))
