@@ -87,12 +87,18 @@ def run_record_bench(months=(1, 3, 12), cases=None) -> list[dict]:
     return rows
 
 
+# (key, title, width, format): the case left-aligned, numbers right-aligned
+COLUMNS = (("case", "case", 36, "s"), ("months", "months", 6, "d"), ("rows", "rows", 6, "d"),
+           ("record", "record [s]", 10, ".2f"), ("constant", "constant [s]", 12, ".2f"),
+           ("ratio", "ratio", 6, ".2f"), ("exponent", "growth exponent", 16, ".2f"))
+
+
 def format_record_table(rows: list[dict]) -> str:
     """One line per (case, months): CPU seconds under the record and the constant climate."""
-    header = (f"{'case':<36} {'months':>6} {'rows':>6} {'record [s]':>10} "
-              f"{'constant [s]':>12} {'ratio':>6} {'growth exponent':>16}")
-    lines = [header, "-" * len(header)]
-    for r in rows:
-        lines.append(f"{r['case']:<36} {r['months']:>6d} {r['rows']:>6d} {r['record']:>10.2f} "
-                     f"{r['constant']:>12.2f} {r['ratio']:>6.2f} {r['exponent']:>16.2f}")
-    return "\n".join(lines)
+    def align(key):
+        return "<" if key == "case" else ">"
+
+    header = " ".join(f"{title:{align(key)}{width}}" for key, title, width, _ in COLUMNS)
+    body = [" ".join(f"{row[key]:{align(key)}{width}{form}}" for key, _, width, form in COLUMNS)
+            for row in rows]
+    return "\n".join([header, "-" * len(header), *body])
