@@ -31,8 +31,8 @@ def test_modal_march_matches_duhamel_on_steps_and_ramps_within_its_estimate(geom
     times = np.sort(np.concatenate([np.linspace(0, 14 * DAY, 29), edges[1:-1] + 60.0]))
     swing = 1.7  # largest |Ms - M0|
     reference = exact_history(geometry, ARRHENIUS, history, times)
-    result, estimate = modal_history(geometry, ARRHENIUS, history, times, 1e-4)
-    assert estimate <= 1e-4 * 1.01
+    result, estimate = modal_history(geometry, ARRHENIUS, history, times, 3e-4)
+    assert estimate <= 3e-4
     for key in ("mean", "surface"):
         assert np.max(np.abs(result[key] - reference[key])) <= estimate * swing
 
