@@ -8,8 +8,8 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from fickcam.diffusion import (CamPlate, LinkBar, discretisation, fv, fvprism, march, outline, prism,
-                               trimesh)
+from fickcam.diffusion import (CamPlate, LinkBar, discretisation, fv, fvprism, march, outline,
+                               prism, trimesh)
 from fickcam.errors import SolverError
 
 pytest.importorskip("fipy")
@@ -38,6 +38,19 @@ def extracted_steps(mesh, dt, steps, corrected=False):
     nodes = dt * np.arange(steps + 1)
     history = march.march(disc, nodes, np.ones(steps + 1), 0.0, np.array([steps]), keep_fields=True)
     return history.fields[0]
+
+
+def test_the_installed_fipy_is_the_series_whose_private_assembly_was_verified():
+    """``discretisation.assemble`` takes FiPy's matrix through the private
+    ``_prepareLinearSystem`` (no public call returns it). A new FiPy series must fail here
+    first: rerun the extraction tests below against it, then widen FIPY_VERIFIED and the
+    pin in pyproject.toml."""
+    import fipy
+
+    assert fipy.__version__.startswith(discretisation.FIPY_VERIFIED), (
+        f"FiPy {fipy.__version__}: discretisation.assemble uses the private "
+        f"_prepareLinearSystem, verified on {discretisation.FIPY_VERIFIED}x only")
+    assert hasattr(fipy.terms.term.Term, "_prepareLinearSystem")
 
 
 @pytest.mark.parametrize("kind", ["grid1d", "cylindrical", "grid3d", "prisms"])

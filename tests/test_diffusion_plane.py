@@ -321,31 +321,39 @@ def extrapolated_planform(part, d, end, finest=(0.04, 0.02)):
 
 
 def test_demo_cam_meets_the_accuracy_against_a_space_extrapolated_fine_mesh():
-    """The real cam profile (bore, anisotropic D), wetted for 30 d then dried to 30 % for 30 d.
+    """The real cam profile (bore, anisotropic D), wetted for 30 d then dried to 30 % for 30 d,
+    and the same wetting read only at 0 and 1 year (issue 11: sparse ageing times).
     Reference: meshes of 3 k and 12 k nodes extrapolated (against 35 k and 139 k nodes: 1.3e-4
     relative in the planform uptake, 6e-6 in the mean). Measured against the 35 k / 139 k
     reference: accuracy 1e-3: true 5.1e-4 (2.5e-4 for the scene's single step), estimate
     7.0e-4, 763 nodes, 0.1 s; 1e-4: true 3.1e-5 (3.1e-5), estimate 6.4e-5, 13.3 k nodes,
-    2 s. Before: 1e-4 gave an estimated 2.6e-4 on 10.8 k uniform triangles (plan: 8.6e-3)."""
+    2 s. Before: 1e-4 gave an estimated 2.6e-4 on 10.8 k uniform triangles (plan: 8.6e-3).
+    Sparse: the estimate took the largest error over every time after the switch, 1.16e-3
+    (a false warning at accuracy 1e-3) for a true 2.5e-7; now the ages the outputs read."""
     cam, diffusivity, exposure = demo_cam()
     saturated = float(exposure.surface_moisture(np.array([1.0]))[0])
-    history = Exposure.piecewise([0.0, 30 * DAY, 60 * DAY], float(exposure.temperature(
-        np.array([0.0]))[0]), [saturated, 0.3 * saturated], exposure.initial_moisture)
-    times = np.array([0, 1, 3, 7, 15, 30, 31, 33, 37, 45, 60]) * DAY
-    result = solve(cam, diffusivity, history, times, accuracy=1e-3)
+    temperature = float(exposure.temperature(np.array([0.0]))[0])
+    history = Exposure.piecewise([0.0, 30 * DAY, 60 * DAY], temperature,
+                                 [saturated, 0.3 * saturated], exposure.initial_moisture)
+    wetting = Exposure.piecewise([0.0, 400 * DAY], temperature, [saturated],
+                                 exposure.initial_moisture)
     d = tuple(float(v) for v in diffusivity.pre_exponential)
     to_star = d[2] / cam.thickness ** 2  # rescaled s -> tau* (Crank 1975 eq. 2.13)
-    plane = extrapolated_planform(cam, d, float(RescaledTime(diffusivity, history)(times).max()
-                                                * to_star))
+    plane = extrapolated_planform(cam, d, float(RescaledTime(diffusivity, wetting)(
+        np.array([365 * DAY]))[0] * to_star))
 
     def kernel(tau):
         star = np.ravel(tau) * to_star
         return (1.0 - plane(star) * shorttime.sheet_fraction(star)).reshape(np.shape(tau))
-    reference = history.initial_moisture + duhamel(kernel, diffusivity, history, times,
-                                                   (cam.thickness ** 2 / d[2], 1e9))
-    true = float(np.max(np.abs(result.mean - reference))) / saturated
-    assert result.cells > 0
-    assert true <= result.error_estimate <= 1e-3
+    cases = ((history, np.array([0, 1, 3, 7, 15, 30, 31, 33, 37, 45, 60]) * DAY),
+             (wetting, np.array([0.0, 365 * DAY])))
+    for exposed, times in cases:
+        result = solve(cam, diffusivity, exposed, times, accuracy=1e-3)
+        reference = exposed.initial_moisture + duhamel(kernel, diffusivity, exposed, times,
+                                                       (cam.thickness ** 2 / d[2], 1e9))
+        true = float(np.max(np.abs(result.mean - reference))) / saturated
+        assert result.cells > 0
+        assert true <= result.error_estimate <= 1e-3
 
 
 def test_a_run_notes_a_part_whose_estimated_error_exceeds_the_accuracy(monkeypatch):

@@ -6,7 +6,7 @@ Backward Euler on geometric steps that restart at each environment change
 (``timesteps``), twice: on the plan's steps and on the same steps bisected. The
 difference measures the time error, and Richardson's extrapolation 2 c_fine - c_coarse
 cancels its first-order part. Cells come from the spatial error model
-(``calibration.SPACE_ERROR``, ``layout``).
+(``calibration.space_error``, ``layout``).
 """
 from __future__ import annotations
 
@@ -17,7 +17,7 @@ import numpy as np
 
 from . import fv, layout, timesteps
 from .calibration import (FIRST_STEP, MAX_CELLS, MIN_STEPS_PER_DOUBLING, PAIR_TO_EXTRAPOLATED,
-                          SPACE_ERROR, TIME_ERROR)
+                          TIME_ERROR, space_error)
 from .clock import Scales, sample_times
 from .clock import scales as scales_of
 from .exposure import Diffusivity, Exposure
@@ -58,9 +58,10 @@ def _cells(geometry, diffusivity, model: str, accuracy: float, t_lo: float):
     or uniform for a Disc or Bar, uniform for the slab."""
     d = diffusivity.pre_exponential
     if isinstance(geometry, (CamPlate, LinkBar)):
-        return layout.prism_layout(geometry, d, accuracy, t_lo, MAX_CELLS[model], SPACE_ERROR)
+        return layout.prism_layout(geometry, d, accuracy, t_lo, MAX_CELLS[model],
+                                   space_error(t_lo))
     return layout.choose(geometry, layout.extents(geometry, d), accuracy, t_lo,
-                         MAX_CELLS[model], SPACE_ERROR)
+                         MAX_CELLS[model], space_error(t_lo))
 
 
 def discretise(geometry, diffusivity: Diffusivity, cells: tuple[int, ...],
@@ -142,22 +143,29 @@ def solve_direct(geometry, diffusivity, exposure, times, chosen: Plan, *,
                           steps.outputs, steps.times, keep_fields=store_fields, part=part,
                           surface_before=steps.surface_before))
     coarse, fine = runs
-    scale = swing(exposure, times) or 1.0
-    pair = float(np.max(np.abs(fine.mean - coarse.mean))) / scale
-    space = chosen.error_estimate - TIME_ERROR / chosen.steps_per_doubling ** 2
-    if extrapolate:
-        def combine(a, b):
-            return 2.0 * b - a
-        estimate = space + PAIR_TO_EXTRAPOLATED * pair ** 2
-    else:
-        def combine(a, b):
-            return b
-        estimate = space + pair
+    combine, estimate = _richardson(chosen, coarse, fine, swing(exposure, times) or 1.0,
+                                    extrapolate)
     result = DiffusionResult(
         times, combine(coarse.mean, fine.mean), combine(coarse.layer, fine.layer), chosen.model,
-        disc.cells, coarse.steps + fine.steps, float(max(estimate, 0.0)), chosen.reason)
+        disc.cells, coarse.steps + fine.steps, estimate, chosen.reason)
     if store_fields:
         result.fields = combine(coarse.fields, fine.fields)
         result.cell_coordinates = disc.coordinates
     return result
 
+
+def _richardson(chosen: Plan, coarse, fine, scale: float, extrapolate: bool):
+    """(combine, estimate): 2 fine - coarse (or the fine march alone) and its error: the
+    plan's estimate, unless the march's own indicator (space part of the plan + the pair's
+    time error, ``PAIR_TO_EXTRAPOLATED`` d^2 extrapolated, d alone) says more."""
+    pair = float(np.max(np.abs(fine.mean - coarse.mean))) / scale
+    space = chosen.error_estimate - TIME_ERROR / chosen.steps_per_doubling ** 2
+    if extrapolate:
+        def combine(a, b):
+            return 2.0 * b - a
+        observed = space + PAIR_TO_EXTRAPOLATED * pair ** 2
+        return combine, float(max(chosen.error_estimate, observed))
+
+    def combine(a, b):
+        return b
+    return combine, float(max(space + pair, 0.0))

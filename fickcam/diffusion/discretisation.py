@@ -26,6 +26,8 @@ from dataclasses import dataclass, field
 import numpy as np
 from scipy import sparse
 
+FIPY_VERIFIED = "4.0."  # the FiPy series whose private ``_prepareLinearSystem`` was checked
+#                         against a plain ``eq.solve`` (tests/test_diffusion_fv.py)
 
 @dataclass
 class Discretisation:

@@ -78,7 +78,7 @@ def plan(geometry, diffusivity: Diffusivity, exposure: Exposure, times: np.ndarr
     change = scales.tau_star(exposure.change_times)
     outputs = scales.tau_star(np.asarray(times, float))
     if chosen == "plane":  # expansion of the outline, then a graded mesh (plane)
-        return plan_plane(geometry, diffusivity, change, outputs, accuracy)
+        return plan_plane(geometry, diffusivity, change, outputs, exposure.ramp, accuracy)
     return plan_direct(geometry, diffusivity, chosen, change, outputs, accuracy, exposure)
 
 

@@ -1,11 +1,11 @@
 """Cells of the direct finite-volume models (slab, axisymmetric, solid) from the accuracy.
 
-Uniform: spacing h* = sqrt(0.5 a tau*_lo / (SPACE_ERROR n)) on each of the n axes
-(``calibration.SPACE_ERROR``: err ~ SPACE_ERROR (h/L)^2 / tau*_lo per axis, measured on the
+Uniform: spacing h* = sqrt(0.5 a tau*_lo / (S n)) on each of the n axes, S =
+``calibration.space_error(tau*_lo)`` (err ~ S (h/L)^2 / tau*_lo per axis, measured on the
 sheet against Crank eq. 4.18).
 
 Graded (``grading``): cells w0 wide at the exposed faces growing by (1 + g) per cell.
-Each graded axis adds SPACE_ERROR w0^2 / tau*_lo (the boundary layer after a change
+Each graded axis adds S w0^2 / tau*_lo (the boundary layer after a change
 sees only the finest cells, Crank 1975 eq. 2.45) and GROWTH_ERROR g^2
 (``calibration.GROWTH_ERROR``); half the spatial budget goes to each. The graded
 layout replaces the uniform one when it needs fewer cells. A prismatic part

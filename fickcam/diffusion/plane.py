@@ -22,13 +22,14 @@ from __future__ import annotations
 import logging
 import math
 from dataclasses import dataclass
+from functools import lru_cache
 
 import numpy as np
 
 from . import fv
 from .calibration import (EXPANSION_SHARE, FIRST_STEP, GROWTH_REACH, MAX_CELLS, MESH_ERROR,
                           MIN_CELLS_PER_AXIS, MIN_STEPS_PER_DOUBLING, PAIR_TO_TIME_ERROR,
-                          PLANE_PAIR, SPACE_ERROR)
+                          PLANE_PAIR, space_error)
 from .clock import scales as scales_of
 from .duhamel import duhamel
 from .grading import MAX_GROWTH
@@ -36,9 +37,9 @@ from .outline import outline_extent
 from .p1 import plane_operator
 from .results import DiffusionResult, Plan
 from .scaling import planar_scale, stretch_of
-from .shorttime import expansion_error, expansion_of, sheet_fraction
+from .shorttime import expansion_of, sheet_fraction, weighted
 from .stepresponse import blend, step_response
-from .timesteps import earliest_output, geometric_steps
+from .timesteps import earliest_output, geometric_steps, output_ages
 from .trimesh import triangulate
 
 log = logging.getLogger(__name__)
@@ -52,11 +53,13 @@ FEATURE_POINTS = 16  # at least this many outline points round the tightest curv
 FIELD_CHUNK = 8      # output times per Duhamel pass of the fields (memory)
 
 
-def peak_weight(perimeter: float, area: float, start: float, end: float) -> float:
-    """Largest planform uptake x sheet unsaturated fraction over [start, end], the factor
-    that turns a relative planform error into an error of the mean (``leading_uptake``)."""
-    grid = np.geomspace(max(start, 1e-9), max(end, start, 1e-9), 200)
-    return float(np.max(leading_uptake(perimeter, area, grid) * sheet_fraction(grid)))
+def peak_weight(perimeter: float, area: float, ages: np.ndarray) -> float:
+    """Largest planform uptake x sheet unsaturated fraction at ``ages``, the factor that
+    turns a relative planform error into an error of the mean (``leading_uptake``); 0
+    without ages."""
+    if np.size(ages) == 0:
+        return 0.0
+    return float(np.max(leading_uptake(perimeter, area, ages) * sheet_fraction(ages)))
 
 
 def leading_uptake(perimeter: float, area: float, tau):
@@ -133,17 +136,34 @@ def _planform_size(part, d, expansion) -> tuple[float, float, float]:
 
 
 
-def plan_plane(geometry, diffusivity, change: np.ndarray, outputs: np.ndarray, accuracy: float):
-    """What ``solve_plane`` will do and the error it will report, by the blend's error model:
-    the expansion up to its switch (error ``EXPANSION_SHARE`` x accuracy); after it a graded
-    P1 mesh whose relative error at half the switch (the blend's first bound: ``mesh_design``
-    plus the expansion's own relative error there) times the largest uptake x sheet fraction
-    after the switch takes what the time error, PAIR_TO_TIME_ERROR (PLANE_PAIR F(end) / m)^2
-    (at most ``TIME_SHARE`` of it), leaves of ``DESIGN_MARGIN`` x accuracy."""
+@lru_cache(maxsize=8)
+def planform_mesh(part, finest: float, growth: float, stretch: tuple[float, float]):
+    """The triangle mesh plan and solve share (``trimesh.triangulate``; ``finest`` scaled)."""
+    return triangulate(part, finest * part.thickness, growth=growth, stretch=stretch)
+
+
+def expansion_error_at(expansion, ages: np.ndarray) -> float:
+    """The expansion's error indicator x the sheet's unsaturated fraction, largest at the
+    ``ages`` the outputs read (0 without ages)."""
+    if np.size(ages) == 0:
+        return 0.0
+    return float(np.max(weighted(expansion.uptake_error(ages), sheet_fraction(ages))))
+
+
+def plan_plane(geometry, diffusivity, change: np.ndarray, outputs: np.ndarray, ramp,
+               accuracy: float):
+    """What ``solve_plane`` will do and the error it will report, by the blend's error model
+    at the ages the outputs read (``timesteps.output_ages``): the expansion up to its switch
+    (error ``EXPANSION_SHARE`` x accuracy); after it a graded P1 mesh whose relative error
+    at half the switch (``mesh_design`` plus the expansion's own relative error there) times
+    the largest uptake x sheet fraction at the later ages takes what the time error,
+    PAIR_TO_TIME_ERROR (PLANE_PAIR F(end) / m)^2 (at most ``TIME_SHARE`` of it), leaves of
+    ``DESIGN_MARGIN`` x accuracy. The cells are those of the mesh ``solve`` builds."""
     d = tuple(float(v) for v in diffusivity.pre_exponential)
     tolerance = EXPANSION_SHARE * accuracy
     expansion = expansion_of(geometry, d)
     end = max(float(np.max(outputs)), 10 * FIRST_STEP)
+    ages = output_ages(change, outputs, ramp)
     t_lo = earliest_output(change, outputs)
     switch = 0.0 if expansion is None else expansion.switch(tolerance)
     perimeter, area, tightest = _planform_size(geometry, d, expansion)
@@ -151,32 +171,48 @@ def plan_plane(geometry, diffusivity, change: np.ndarray, outputs: np.ndarray, a
     per_doubling = max(MIN_STEPS_PER_DOUBLING,
                        math.ceil(pair * math.sqrt(PAIR_TO_TIME_ERROR / (TIME_SHARE * accuracy))))
     time_error = PAIR_TO_TIME_ERROR * (pair / per_doubling) ** 2
-    start = 0.5 * min(switch, end) if switch > 0 else t_lo
-    peak = peak_weight(perimeter, area, max(switch, t_lo), end)
-    leak = 0.0 if switch <= 0 else float(expansion.uptake_error(start) / expansion.uptake(start))
-    target = max((DESIGN_MARGIN * accuracy - time_error) / max(peak, 1e-300) - leak,
-                 0.1 * accuracy)
-    design = (mesh_design if expansion is not None else uniform_design)(
-        target, start, perimeter if expansion is not None else area, tightest, MAX_CELLS["plane"])
+    design, leak, peak = _design(expansion, switch, end, ages, perimeter, area, tightest,
+                                 accuracy, time_error)
     sheet = min(MAX_CELLS["slab"], max(MIN_CELLS_PER_AXIS, math.ceil(
-        1.0 / math.sqrt(0.5 * accuracy * max(t_lo, switch) / (3 * SPACE_ERROR)))))
+        1.0 / math.sqrt(0.5 * accuracy * max(t_lo, switch)
+                        / (3 * space_error(max(t_lo, switch)))))))
     reason = (f"2-D outline x exact sheet: short-time expansion of the outline up to "
               f"tau*={switch:.2g}, then P1 elements on a mesh graded from the outline "
               f"(h0*={design.finest:.2g}, growth {design.growth:.2g}), backward Euler "
               f"{per_doubling} steps/doubling + Richardson")
     if expansion is not None and switch >= end:
         return Plan("plane", 0, 0, reason + " (the expansion covers every output: no mesh)",
-                    expansion_error(expansion, end), (design.nodes, sheet), per_doubling,
+                    expansion_error_at(expansion, ages), (0, sheet), per_doubling,
                     tolerance, finest=design.finest, growth=design.growth)
-    mesh_error = (design.relative_error + leak) * peak
-    at_switch = expansion_error(expansion, switch) if switch > 0 else 0.0
-    estimate = max(at_switch, mesh_error) + time_error
+    at_switch = expansion_error_at(expansion, ages[ages <= switch]) if switch > 0 else 0.0
+    estimate = max(at_switch, (design.relative_error + leak) * peak) + time_error
     if estimate > accuracy:
         reason += f"; capped at {MAX_CELLS['plane']} nodes: error above the requested accuracy"
-    nodes = geometric_steps(0.0, end, mesh_first_step(design.finest, switch), per_doubling)
-    return Plan("plane", design.nodes + sheet, 3 * (nodes.size - 1), reason, float(estimate),
-                (design.nodes, sheet), per_doubling, tolerance, finest=design.finest,
+    mesh = planform_mesh(geometry, design.finest, design.growth, stretch_of(d))
+    nodes = int(np.count_nonzero(~mesh.on_outline))
+    steps = geometric_steps(0.0, end, mesh_first_step(design.finest, switch), per_doubling)
+    return Plan("plane", nodes + sheet, 3 * (steps.size - 1), reason, float(estimate),
+                (nodes, sheet), per_doubling, tolerance, finest=design.finest,
                 growth=design.growth)
+
+
+def _design(expansion, switch, end, ages, perimeter, area, tightest, accuracy, time_error):
+    """(MeshDesign, leak, peak): the mesh meeting what the time error leaves of
+    ``DESIGN_MARGIN`` x accuracy at every time from the switch (or the first output) to
+    the last output (so the contact layer, which the design does not model, keeps its
+    margin however sparse the outputs); ``leak`` is the expansion's relative error at half
+    the switch (the blend's first bound), ``peak`` the weight at the ages the outputs read
+    after the switch (for the estimate)."""
+    first = float(np.min(ages))
+    start = 0.5 * min(switch, end) if switch > 0 else first
+    span = np.geomspace(max(switch, first, 1e-9), max(end, switch, first, 1e-9), 200)
+    peak = peak_weight(perimeter, area, ages[ages >= switch])
+    leak = 0.0 if switch <= 0 else float(expansion.uptake_error(start) / expansion.uptake(start))
+    target = max((DESIGN_MARGIN * accuracy - time_error)
+                 / max(peak_weight(perimeter, area, span), 1e-300) - leak, 0.1 * accuracy)
+    design = (mesh_design if expansion is not None else uniform_design)(
+        target, start, perimeter if expansion is not None else area, tightest, MAX_CELLS["plane"])
+    return design, leak, peak
 
 
 # ------------------------------------------------------------------ solve
@@ -211,22 +247,23 @@ def solve_plane(geometry, diffusivity, exposure, times, chosen, *,
     """CamPlate / LinkBar: planform step response x sheet step response, Duhamel over the history."""
     d = tuple(float(v) for v in diffusivity.pre_exponential)
     times = np.asarray(times, float)
-    end = max(float(scales_of(geometry, diffusivity, exposure).tau_star(times).max()),
-              10 * FIRST_STEP)
+    scales = scales_of(geometry, diffusivity, exposure)
+    outputs = scales.tau_star(times)
+    ages = output_ages(scales.tau_star(exposure.change_times), outputs, exposure.ramp)
+    end = max(float(outputs.max()), 10 * FIRST_STEP)
     expansion = expansion_of(geometry, d, surface_layer_depth)
     tolerance = chosen.expansion_tolerance
     switch = expansion.switch(tolerance) if expansion is not None and tolerance > 0 else 0.0
     if switch >= end and not store_fields:
-        return _expansion_only(geometry, expansion, end, diffusivity, exposure, times, chosen,
+        return _expansion_only(geometry, expansion, ages, diffusivity, exposure, times, chosen,
                                part)
-    mesh = triangulate(geometry, chosen.finest * geometry.thickness, growth=chosen.growth,
-                       stretch=stretch_of(d))
+    mesh = planform_mesh(geometry, chosen.finest, chosen.growth, stretch_of(d))
     planar = plane_operator(mesh, geometry, surface_layer_depth, d, part)
     u_plane, pair_plane = step_response(planar, end, chosen.steps_per_doubling,
                                         mesh_first_step(chosen.finest,
                                                         0.0 if store_fields else switch),
                                         keep_fields=store_fields, part=part)
-    (plane_mean, mean_error), (plane_layer, layer_error) = (
+    (plane_mean, mean_error), (plane_layer, _) = (
         _planform_fractions(u_plane, values, expansion, which, tolerance)
         for values, which in ((u_plane.mean, "mean"), (u_plane.layer, "layer")))
 
@@ -239,10 +276,12 @@ def solve_plane(geometry, diffusivity, exposure, times, chosen, *,
     mean = _superpose(mean_fraction, diffusivity, exposure, times, geometry)
     layer = _superpose(layer_fraction, diffusivity, exposure, times, geometry)
     time_error = PAIR_TO_TIME_ERROR * pair_plane ** 2  # the sheet is exact
-    if mean_error is None:  # no expansion for this outline: the plan's model (with its time part)
-        mean_error = chosen.error_estimate
-    estimate = mean_error + time_error
-    log.debug("%s plane: error estimate %.2g (layer %s)", part, estimate, layer_error)
+    # the plan's estimate, unless the blend's own bound at the ages read says more (no
+    # expansion for this outline: the plan's model, with its time part)
+    observed = (float(np.max(mean_error(ages))) + time_error if mean_error is not None
+                else chosen.error_estimate)
+    estimate = max(chosen.error_estimate, observed)
+    log.debug("%s plane: error estimate %.2g (observed %.2g)", part, estimate, observed)
     n_z = chosen.cells_per_axis[-1]
     result = DiffusionResult(times, mean, layer, "plane", planar.cells + n_z,
                              3 * (u_plane.nodes.size - 1), float(estimate), chosen.reason)
@@ -281,11 +320,9 @@ def _plane_fields(geometry, diffusivity, exposure, times, u_plane, planar, chose
                     "z": np.full(planar.cells, sheet.coordinates["z"][mid])}
 
 
-def _expansion_only(geometry, expansion, end, diffusivity, exposure, times, chosen, part):
+def _expansion_only(geometry, expansion, ages, diffusivity, exposure, times, chosen, part):
     """Every output lies where the short-time expansion meets the tolerance: no mesh;
-    the error is ``expansion_error`` (its indicator, weighted, largest up to ``end``)."""
-    grid = np.geomspace(1e-8 * end, end, 400)
-    layer_error = float(np.max(expansion.layer_error(grid) * sheet_fraction(grid)))
+    the error is ``expansion_error_at`` the ages the outputs read."""
 
     def mean_fraction(tau):
         return (1.0 - expansion.uptake(tau)) * sheet_fraction(tau)
@@ -295,8 +332,7 @@ def _expansion_only(geometry, expansion, end, diffusivity, exposure, times, chos
 
     mean = _superpose(mean_fraction, diffusivity, exposure, times, geometry)
     layer = _superpose(layer_fraction, diffusivity, exposure, times, geometry)
-    mean_error = expansion_error(expansion, end)
-    log.debug("%s plane: short-time expansion only, error %.2g (layer %.2g)", part,
-              mean_error, layer_error)
+    mean_error = max(chosen.error_estimate, expansion_error_at(expansion, ages))
+    log.debug("%s plane: short-time expansion only, error %.2g", part, mean_error)
     return DiffusionResult(times, mean, layer, "plane", 0, 0, mean_error,
                            chosen.reason + "; no mesh needed")

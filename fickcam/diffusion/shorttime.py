@@ -154,15 +154,6 @@ def expansion_of(part, d, layer_depth: float | None = None) -> ShortTime | None:
     return short_time(part, np.asarray(planar_scale(part, d)), depth, part.thickness / 20)
 
 
-def expansion_error(expansion: ShortTime, end: float) -> float:
-    """The expansion's error indicator times the sheet's unsaturated fraction (which
-    multiplies the planform's in the product), largest over (0, end]: the indicators
-    grow with time, so this bounds the error of every output up to ``end``."""
-    grid, error = expansion.weighted_error
-    last = weighted(expansion.uptake_error(end), sheet_fraction(end))
-    return float(max(np.max(error[grid <= end], initial=0.0), last))
-
-
 def weighted(indicator, weight):
     """indicator x weight, infinite wherever the indicator is (also where the weight is 0)."""
     indicator = np.asarray(indicator, float)

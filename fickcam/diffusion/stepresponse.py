@@ -72,10 +72,11 @@ def _unit_march(disc, grid: np.ndarray, outputs: np.ndarray, keep_fields: bool, 
 
 
 def blend(response: StepResponse, values: np.ndarray, series, indicator, tolerance: float,
-           weight):
+          weight):
     """Unsaturated fraction from the short-time expansion ``series`` up to a switch node
-    and from the mesh after it. Errors are weighted by ``weight``, the sheet's
-    unsaturated fraction that multiplies the planform's in the product.
+    and from the mesh after it, and the bound of its error at any tau* (``error_at``).
+    Errors are weighted by ``weight``, the sheet's unsaturated fraction that multiplies
+    the planform's in the product.
 
     The expansion is kept while its ``indicator`` is below ``tolerance`` or below half
     the mesh-expansion mismatch at that time (then the mesh is the worse of the two; the
@@ -84,7 +85,8 @@ def blend(response: StepResponse, values: np.ndarray, series, indicator, toleran
     indicator) / uptake; by the error model of ``p1``, MESH_ERROR (h0 / sqrt(tau) +
     GROWTH_REACH g)^2, it only falls with time, so the least of these bounds over the
     octave before the switch holds after it, and the mesh's error there is that ratio
-    times the uptake. Returns the fraction and the larger of the two error estimates."""
+    times the uptake. Before the switch the error is the weighted indicator. Returns
+    (fraction, error_at), error_at None where the mesh alone serves (no switch)."""
     nodes = response.nodes[1:]
     w = weight(nodes)
     expected = weighted(indicator(nodes), w)
@@ -94,14 +96,13 @@ def blend(response: StepResponse, values: np.ndarray, series, indicator, toleran
     if last < 0:
         return (lambda tau: response.at(tau, values)), None
     switch = float(nodes[last]) if last < nodes.size - 1 else np.inf  # inf: expansion only
-    error = float(expected[last])
+    ratio = 0.0
     if last < nodes.size - 1:
         octave = (nodes >= 0.5 * switch) & (nodes <= switch)
         uptake = np.maximum(1.0 - values[1:], np.finfo(float).tiny)
         # |mesh error| <= mismatch + |expansion error| <= mismatch + indicator at every
         # node of the octave, and the mesh's relative error only falls: the least bound
-        ratio = np.min((mismatch + expected)[octave] / (uptake[octave] * w[octave]))
-        error = max(error, float(np.max(ratio * uptake[last:] * w[last:])))
+        ratio = float(np.min((mismatch + expected)[octave] / (uptake[octave] * w[octave])))
 
     def fraction(tau):
         tau = np.asarray(tau, float)
@@ -110,6 +111,14 @@ def blend(response: StepResponse, values: np.ndarray, series, indicator, toleran
         if early.any():
             out[early] = 1.0 - series(tau[early])
         return out
-    log.debug("switch to mesh at tau*=%.3g, error %.2g", switch, error)
-    return fraction, error
 
+    def error_at(tau):
+        tau = np.atleast_1d(np.asarray(tau, float))
+        out = weighted(indicator(tau), weight(tau))
+        late = tau >= switch
+        if late.any():
+            uptake = np.maximum(1.0 - response.at(tau[late], values), np.finfo(float).tiny)
+            out[late] = ratio * uptake * weight(tau[late])
+        return out
+    log.debug("switch to mesh at tau*=%.3g, ratio %.2g", switch, ratio)
+    return fraction, error_at

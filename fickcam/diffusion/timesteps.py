@@ -80,3 +80,18 @@ def earliest_output(change_stars: np.ndarray, output_stars: np.ndarray) -> float
         if before.size:
             gaps.append(tau - before[-1])
     return max(min(gaps), 1e3 * FIRST_STEP) if gaps else 1.0
+
+
+def output_ages(change_stars: np.ndarray, output_stars: np.ndarray, ramp: np.ndarray,
+                ramp_points: int = 17) -> np.ndarray:
+    """The ages tau*_out - tau*_change > 0 at which the outputs read the response to each
+    surface change (Duhamel's sum, Crank 1975 eq. 4.34): one per step, ``ramp_points``
+    spread over each ramp segment (a ramp is a continuum of small steps)."""
+    ages = []
+    for k in range(change_stars.size - 1):
+        start, stop = change_stars[k], change_stars[k + 1]
+        sources = np.linspace(start, stop, ramp_points) if ramp[k] and k > 0 else np.array([start])
+        age = np.asarray(output_stars, float)[:, None] - sources[None, :]
+        ages.append(age[age > 0])
+    found = np.concatenate(ages) if ages else np.empty(0)
+    return np.unique(found) if found.size else np.array([1.0])

@@ -9,16 +9,16 @@ import importlib
 from pathlib import Path
 
 from ..errors import InputError
-from .common import age_label, ages, days, figure, finish_plan_view, save_figure
+from .common import age_label, ages, days, drift_panel, figure, finish_plan_view, legend_outside, save_figure, tidy_ticks
 
-__all__ = ["KINDS", "available_kinds", "plot", "age_label", "ages", "days", "figure",
-           "finish_plan_view", "save_figure"]
+__all__ = ["KINDS", "available_kinds", "plot", "age_label", "ages", "days", "drift_panel", "figure", "finish_plan_view", "legend_outside", "save_figure", "tidy_ticks"]
 
 # kind -> (module, function, variables the kind needs)
 KINDS = {
     "uptake": ("uptake", "plot", ("moisture_content",)),
     "kinematics": ("cam", "plot_kinematics", ("follower_displacement",)),
     "dynamics": ("cam", "plot_dynamics", ("contact_force",)),
+    "vibration": ("train", "plot", ("dynamic_contact_force",)),
     "linkage": ("linkage", "plot", ("rocker_angle",)),
     "fields": ("fields", "plot", ("moisture",)),
     "limits": ("limits", "plot", ("limit_ratio",)),
