@@ -110,10 +110,10 @@ def test_record_cost_grows_linearly_with_its_rows():
     def cost(weeks):
         environment = greensboro_weeks(weeks)
         exposure = environment.exposure(nylon_moisture)
-        start = time.perf_counter()
+        start = time.process_time()
         modal_history(Disc(0.023, 0.01), Diffusivity((3.85e-4,) * 3, 50e3), exposure,
                       np.linspace(0, environment.end, 12), 1e-3)
-        return time.perf_counter() - start
+        return time.process_time() - start
 
     cost(1)  # warm-up
     assert cost(8) < 16 * cost(1)
