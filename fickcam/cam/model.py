@@ -60,6 +60,7 @@ class CamDesign:
     follower_poisson: float = 0.3
     train: tuple | None = None     # None: rigid; ("stiffness", k) | ("rod", L, d) | ("lever", L, w, h)
     damping_ratio: float = 0.05
+    polydyne_speed: float | None = None  # design speed of a polydyne cam (fickcam.cam.polydyne)
 
     @property
     def contact_length(self) -> float:
@@ -113,7 +114,9 @@ def design_from_scene(section) -> CamDesign:
                   archard_coefficient=section.wear.archard_coefficient if section.wear else 0.0,
                   hardness=section.wear.hardness if section.wear else None,
                   follower_modulus=f.modulus, follower_poisson=f.poisson_ratio,
-                  train=_train(f.stiffness), damping_ratio=f.damping_ratio)
+                  train=_train(f.stiffness), damping_ratio=f.damping_ratio,
+                  polydyne_speed=None if section.polydyne is None else
+                  (section.polydyne.speed or section.speed))
     if section.eccentric is not None:
         e, r = section.eccentric.eccentricity, section.eccentric.radius
         return CamDesign("eccentric", r - e, eccentricity=e, disc_radius=r, **common)
