@@ -47,7 +47,11 @@ def _write_netcdf(ds, filename: str) -> None:
     """What ``ds.to_netcdf(filename, engine="h5netcdf")`` writes for in-memory data, through
     xarray's own store on an open h5netcdf.File: ``to_netcdf`` and ``H5NetCDFStore.open``
     first ask dask for its scheduler, which imports dask.distributed (about 0.5 s) even
-    when no variable is a dask array."""
+    when no variable is a dask array. Dask-backed data (a sweep's lazily combined cases) goes
+    through ``to_netcdf``, which computes and writes it."""
+    if any(variable.chunks is not None for variable in ds.variables.values()):
+        ds.to_netcdf(filename, engine="h5netcdf")
+        return
     import h5netcdf
     from xarray.backends import H5NetCDFStore
 

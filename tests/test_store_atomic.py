@@ -48,6 +48,13 @@ def test_saved_file_reads_back_identical_to_what_to_netcdf_writes(tmp_path):
     xr.testing.assert_identical(ours, theirs)
 
 
+def test_dask_backed_data_is_written_not_skipped(tmp_path):
+    pytest.importorskip("dask.array")
+    ds = build_dataset({"temperature": np.array([300.0, 310.0, 320.0])}, {"time": [0.0, 1.0, 2.0]})
+    save(ds.chunk({"time": 2}), tmp_path / "lazy.h5")
+    np.testing.assert_array_equal(open_result(tmp_path / "lazy.h5").temperature, ds.temperature)
+
+
 def test_saving_a_result_does_not_import_dask_distributed(tmp_path):
     code = ("import sys, numpy as np\n"
             "from fickcam.dataset import build_dataset\n"
