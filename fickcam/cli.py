@@ -62,6 +62,12 @@ def _parser() -> argparse.ArgumentParser:
     sub.add_parser("materials", help="the built-in material library with sources")
     sub.add_parser("schema", help="the result variables (name, dims, units)")
 
+    profile = sub.add_parser("profile", help="the cam's dry working profile for manufacture "
+                                             "(CSV or DXF, by the output's suffix)")
+    profile.add_argument("scene")
+    profile.add_argument("-o", "--output", required=True, help="PATH.csv or PATH.dxf")
+    profile.add_argument("--points", type=int, default=3600, help="points round the profile")
+
     sweep = sub.add_parser("sweep", help="many scenes on dask.distributed")
     sweep.add_argument("sweep")
     group = sweep.add_mutually_exclusive_group()
@@ -168,9 +174,27 @@ def _cmd_sweep(args) -> int:
     return 0
 
 
+def _cmd_profile(args) -> int:
+    from .cam.model import design_from_scene, working_profile
+    from .cam.profile import write_profile_csv, write_profile_dxf
+    from .scene import load_scene
+
+    scene = load_scene(args.scene)
+    if scene.model.cam is None:
+        raise InputError(f"{args.scene}: the scene has no cam")
+    writers = {".csv": write_profile_csv, ".dxf": write_profile_dxf}
+    suffix = Path(args.output).suffix.lower()
+    if suffix not in writers or args.points < 16:
+        raise InputError("profile: the output must end in .csv or .dxf and --points be >= 16")
+    x, y = working_profile(design_from_scene(scene.model.cam), n=args.points)
+    print(f"wrote {writers[suffix](args.output, x, y)}")
+    return 0
+
+
 COMMANDS = {"run": _cmd_run, "check": _cmd_check, "query": _cmd_query, "export": _cmd_export,
             "plot": _cmd_plot, "bench": _cmd_bench, "materials": _cmd_materials,
-            "schema": _cmd_schema, "sweep": _cmd_sweep}
+            "schema": _cmd_schema, "sweep": _cmd_sweep,
+            "profile": _cmd_profile}
 
 
 def main(argv: list[str] | None = None) -> int:

@@ -343,6 +343,31 @@ def _cross_checks(model: SceneModel, doc: YamlDocument, base_dir: Path) -> tuple
     return problems, resolved
 
 
+def _cam_profile(model: SceneModel, doc: YamlDocument, base_dir: Path) -> tuple[list[Problem], SceneModel]:
+    """Read ``cam.profile_file`` (relative to the scene): problems at its line, and the model
+    with the path made absolute so that the cam can be built from it anywhere."""
+    cam = model.cam
+    if cam is None or cam.profile_file is None:
+        return [], model
+    from .cam.profile import load_profile
+
+    path = (base_dir / cam.profile_file).resolve()
+    where = ("cam", "profile_file")
+    try:
+        smallest = load_profile(path, cam.follower.roller_radius or 0.0).radii()[0]
+    except (OSError, ValueError) as exc:
+        return [doc.problem(where, str(exc))], model
+    problems = []
+    if cam.bore_radius >= smallest:
+        problems.append(doc.problem(("cam", "bore_radius"), f"must be smaller than the profile's "
+                                                            f"smallest radius ({smallest * 1e3:g} mm)"))
+    reach = smallest + (cam.follower.roller_radius or 0.0)
+    if cam.follower.kind != "flat" and abs(cam.follower.offset) >= reach:
+        problems.append(doc.problem(("cam", "follower", "offset"),
+                                    "follower offset must be smaller than the prime circle radius"))
+    return problems, model.model_copy(update={"cam": cam.model_copy(update={"profile_file": str(path)})})
+
+
 # --------------------------------------------------------------------------
 
 
@@ -355,6 +380,8 @@ def validate_document(doc: YamlDocument, *, base_dir: Path) -> Scene:
     except ValidationError as exc:
         raise SceneError(problems_from_validation(exc, doc)) from None
     problems, resolved = _cross_checks(model, doc, base_dir)
+    profile_problems, model = _cam_profile(model, doc, base_dir)
+    problems += profile_problems
     if problems:
         raise SceneError(problems)
     return Scene(model=model, file=doc.file, text=doc.text, base_dir=base_dir,

@@ -35,7 +35,7 @@ CURVATURE_RATIO_LIMIT = 2.0
 class CamDesign:
     """The dry cam and follower (SI, angles in rad, speed in rad/s)."""
 
-    kind: str                      # motion | eccentric
+    kind: str                      # motion | eccentric | profile
     base_circle_radius: float
     thickness: float
     speed: float
@@ -58,6 +58,7 @@ class CamDesign:
     hardness: float | None = None
     follower_modulus: float = 210e9
     follower_poisson: float = 0.3
+    profile: object = None         # fickcam.cam.profile.CamProfile (kind "profile")
 
     @property
     def contact_length(self) -> float:
@@ -98,6 +99,11 @@ def design_from_scene(section) -> CamDesign:
                   archard_coefficient=section.wear.archard_coefficient if section.wear else 0.0,
                   hardness=section.wear.hardness if section.wear else None,
                   follower_modulus=f.modulus, follower_poisson=f.poisson_ratio)
+    if section.profile_file is not None:
+        from .profile import load_profile
+
+        profile = load_profile(section.profile_file, f.roller_radius or 0.0)
+        return CamDesign("profile", profile.radii()[0], profile=profile, **common)
     if section.eccentric is not None:
         e, r = section.eccentric.eccentricity, section.eccentric.radius
         return CamDesign("eccentric", r - e, eccentricity=e, disc_radius=r, **common)
@@ -137,6 +143,12 @@ def follower_heights(design: CamDesign, state: CamState, theta):
     (face for a flat follower) above the cam axis at cam angles theta (rad)."""
     if _scales_exactly(design, state):
         return _closed_form(design, state, theta)
+    if design.kind == "profile":
+        from .profile import profile_motion
+
+        return profile_motion(design.profile, state.cam_strain_x, state.cam_strain_y,
+                              design.roller_radius * (1 + state.roller_strain), design.offset,
+                              design.follower_kind == "flat", theta)
     return geometric_motion(design, pieces_of(design), state.cam_strain_x, state.cam_strain_y,
                             design.roller_radius * (1 + state.roller_strain), theta,
                             nodes=96 if design.kind == "eccentric" else 40)
@@ -242,8 +254,10 @@ def cam_response(design: CamDesign, state: CamState, cam_angle) -> Response:
             if design.hardness else np.zeros_like(theta))
     px, py = rotate(-theta, cx, cy)
     scale_min = 1.0 + min(state.cam_strain_x, state.cam_strain_y)
+    base_circle = (design.profile.radii(state.cam_strain_x, state.cam_strain_y)[0]
+                   if design.kind == "profile" else design.base_circle_radius * scale_min)
     variables = {
-        "base_circle_radius": design.base_circle_radius * scale_min,
+        "base_circle_radius": base_circle,
         "lift": highest - lowest,
         "jump_speed": jump,
         "follower_displacement": y,
