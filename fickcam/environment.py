@@ -8,18 +8,15 @@ right-continuous functions of time; past the end the last values are held.
 """
 from __future__ import annotations
 
-import csv
-import re
 from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
 
-from .units import to_si
+from .damp_heat import STANDARD_TESTS, standard_climate
+from .records import read_history_csv, read_record, resolve_record_path
 
-_HEADER = re.compile(r"^\s*(?P<name>[A-Za-z_]+)\s*(?:[\[(](?P<unit>[^\])]*)[\])])?\s*$")
-_COLUMNS = {"time": ("time", "s"), "temperature": ("temperature", "K"),
-            "relative_humidity": ("percent", "%")}
+__all__ = ["Environment", "read_history_csv"]
 
 
 @dataclass(frozen=True, eq=False)
@@ -36,29 +33,44 @@ class Environment:
     humidity_start: float
     reference_temperature: float
     initial_moisture: float
+    source: str = "history segments"
+    notes: tuple[str, ...] = ()   # what a run should be told (e.g. a record held past its end)
 
     # ------------------------------------------------------------------ build
     @classmethod
-    def from_section(cls, section, *, base_dir: Path = Path(".")) -> "Environment":
-        """From the validated ``environment:`` section of a scene."""
+    def from_section(cls, section, *, base_dir: Path = Path("."),
+                     until: float | None = None) -> "Environment":
+        """From the validated ``environment:`` section of a scene; ``until`` (s),
+        the last requested ageing time, repeats a weather year far enough."""
+        reference = (section.reference_temperature, section.initial_moisture)
         if section.history is not None:
             durations = np.array([s.duration for s in section.history])
             temps = np.array([s.temperature for s in section.history])
             rh = np.array([s.relative_humidity for s in section.history])
             ramp = np.array([s.ramp for s in section.history], dtype=bool)
             change = np.concatenate([[0.0], np.cumsum(durations)])
-            return cls(change, temps, rh, ramp, float(temps[0]), float(rh[0]),
-                       section.reference_temperature, section.initial_moisture)
-        path = Path(section.history_file)
-        if not path.is_absolute():
-            path = base_dir / path
-        times, temps, rh = read_history_csv(path)
-        return cls.from_samples(times, temps, rh, section.reference_temperature,
-                                section.initial_moisture)
+            return cls(change, temps, rh, ramp, float(temps[0]), float(rh[0]), *reference)
+        if section.test is not None:
+            test = standard_climate(section.test, cycles=section.cycles, duration=section.duration,
+                                    upper_temperature=section.upper_temperature)
+            return cls(test.change_times, test.temperature_end, test.humidity_end, test.ramp,
+                       test.temperature_start, test.humidity_start, *reference,
+                       source=STANDARD_TESTS[section.test].source)
+        record = read_record(resolve_record_path(section.history_file, base_dir))
+        if until is not None:
+            record = record.covering(until)
+        notes = ()
+        if until is not None and until > record.end * (1 + 1e-12):
+            notes = (f"the climate record ({record.source}) ends at "
+                     f"{record.end / 86400:g} d: its last state (T = {record.temperature[-1] - 273.15:.1f} degC, "
+                     f"RH = {record.relative_humidity[-1]:.0f} %) is held to {until / 86400:g} d",)
+        return cls.from_samples(record.time, record.temperature, record.relative_humidity,
+                                *reference, source=record.source, notes=notes)
 
     @classmethod
     def from_samples(cls, times, temperature, relative_humidity, reference_temperature,
-                     initial_moisture=0.0) -> "Environment":
+                     initial_moisture=0.0, *, source: str = "samples",
+                     notes: tuple[str, ...] = ()) -> "Environment":
         """Piecewise-linear history through samples (first time must be 0)."""
         times = np.asarray(times, float)
         if times.size < 2:
@@ -75,7 +87,8 @@ class Environment:
             raise ValueError("relative humidity must lie between 0 and 100 %")
         return cls(times, temperature[1:], relative_humidity[1:],
                    np.ones(times.size - 1, dtype=bool), float(temperature[0]),
-                   float(relative_humidity[0]), reference_temperature, initial_moisture)
+                   float(relative_humidity[0]), reference_temperature, initial_moisture,
+                   source=source, notes=notes)
 
     # --------------------------------------------------------------- evaluate
     @property
@@ -124,38 +137,3 @@ class Environment:
         return Exposure(change_times=self.change_times.copy(), ramp=self.ramp.copy(),
                         temperature=self.temperature, surface_moisture=surface_moisture,
                         initial_moisture=self.initial_moisture)
-
-
-def read_history_csv(path: Path) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Read columns time, temperature, relative_humidity with units in the header
-    (``time [d], temperature [degC], relative_humidity [%]``; no unit = SI, RH in %)."""
-    try:
-        with open(path, newline="", encoding="utf-8") as handle:
-            rows = [row for row in csv.reader(handle) if row and not row[0].lstrip().startswith("#")]
-    except FileNotFoundError:
-        raise ValueError(f"history file {str(path)!r} not found") from None
-    except (OSError, UnicodeDecodeError) as exc:
-        raise ValueError(f"cannot read history file {str(path)!r}: {exc}") from None
-    if not rows:
-        raise ValueError(f"history file {str(path)!r} is empty")
-    units: dict[str, tuple[int, str]] = {}
-    for index, cell in enumerate(rows[0]):
-        match = _HEADER.match(cell)
-        if not match or match.group("name") not in _COLUMNS:
-            raise ValueError(f"history file header {cell!r}: expected time, temperature, relative_humidity")
-        units[match.group("name")] = (index, (match.group("unit") or "").strip())
-    missing = set(_COLUMNS) - set(units)
-    if missing:
-        raise ValueError(f"history file lacks column(s) {', '.join(sorted(missing))}")
-    columns = {}
-    for name, (index, unit) in units.items():
-        dimension = _COLUMNS[name][0]
-        values = []
-        for line, row in enumerate(rows[1:], start=2):
-            try:
-                text = row[index].strip()
-                values.append(to_si(f"{text} {unit}" if unit else float(text), dimension))
-            except (IndexError, ValueError) as exc:
-                raise ValueError(f"history file line {line}, column {name}: {exc}") from None
-        columns[name] = np.array(values)
-    return columns["time"], columns["temperature"], columns["relative_humidity"]

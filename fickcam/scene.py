@@ -166,22 +166,42 @@ class HistorySegment(StrictModel):
     ramp: bool = False
 
 
+StandardTest = Literal["steady_damp_heat", "damp_heat_85_85", "cyclic_damp_heat"]
+
+
 class EnvironmentSection(StrictModel):
     reference_temperature: Temperature = 296.15
     initial_moisture: NonNegativePercent = 0.0
     history: list[HistorySegment] | None = None
-    history_file: str | None = None
+    history_file: str | None = None          # chamber CSV, TMY3 CSV, EPW, or pvlib:NAME
+    test: StandardTest | None = None         # a standard damp-heat test (fickcam.damp_heat)
+    cycles: int | None = Field(None, gt=0)   # cyclic_damp_heat: number of 24 h cycles
+    duration: Duration | None = None         # steady tests: how long
+    upper_temperature: Temperature | None = None  # cyclic_damp_heat: 40 or 55 degC
 
     @model_validator(mode="after")
     def _one_history(self):
-        if (self.history is None) == (self.history_file is None):
-            raise ValueError("give exactly one of history (segments) or history_file (CSV)")
+        given = [name for name in ("history", "history_file", "test") if getattr(self, name) is not None]
+        if len(given) != 1:
+            raise ValueError("give exactly one of history (segments), history_file (a record) "
+                             "or test (a standard damp-heat test)")
         if self.history is not None:
             if not self.history:
                 raise ValueError("history needs at least one segment")
             if self.history[0].ramp:
                 raise ValueError("the first history segment cannot ramp: there is no previous segment")
+        if self.test is None:
+            extra = [name for name in ("cycles", "duration", "upper_temperature")
+                     if getattr(self, name) is not None]
+            if extra:
+                raise ValueError(f"{', '.join(extra)} belong(s) to a standard test (environment.test)")
         return self
+
+
+def last_ageing_time(outputs) -> float | None:
+    """The last ageing time an ``outputs:`` section lists (None for ``every``)."""
+    times = outputs.ageing_times
+    return times[-1] if isinstance(times, list) else None
 
 
 DiffusionModel = Literal["auto", "analytic", "slab", "axisymmetric", "plane", "solid"]
@@ -312,9 +332,12 @@ def _cross_checks(model: SceneModel, doc: YamlDocument, base_dir: Path) -> tuple
             except ValueError as exc:
                 problems.append(doc.problem(("materials", name), str(exc)))
     try:
-        environment = Environment.from_section(model.environment, base_dir=base_dir)
+        environment = Environment.from_section(model.environment, base_dir=base_dir,
+                                                until=last_ageing_time(model.outputs))
     except ValueError as exc:
-        problems.append(doc.problem(("environment", "history_file"), str(exc)))
+        key = next(name for name in ("test", "history_file", "history")
+                   if getattr(model.environment, name) is not None)
+        problems.append(doc.problem(("environment", key), str(exc)))
         return problems, resolved
     # the service temperature must stay below the dry Tg of every absorbing material in use
     hottest_index, hottest = environment.hottest()
@@ -322,7 +345,8 @@ def _cross_checks(model: SceneModel, doc: YamlDocument, base_dir: Path) -> tuple
         tg = getattr(material, "dry_glass_transition_temperature", None)
         if tg is not None and hottest >= tg:
             path = (("environment", "history", hottest_index, "temperature")
-                    if model.environment.history is not None else ("environment", "history_file"))
+                    if model.environment.history is not None else
+                    ("environment", "test" if model.environment.test else "history_file"))
             problems.append(doc.problem(
                 path, f"{hottest - 273.15:.1f} degC is at or above the dry Tg of material "
                       f"{name!r} ({tg - 273.15:.1f} degC)"))
@@ -333,7 +357,8 @@ def _cross_checks(model: SceneModel, doc: YamlDocument, base_dir: Path) -> tuple
                 problems.append(doc.problem(("diffusion", "model", name),
                                             f"no part named {name!r} (parts: {', '.join(names)})"))
     times = model.outputs.ageing_times
-    if isinstance(times, list) and times[-1] > environment.end * (1 + 1e-12):
+    record = model.environment.history_file is not None  # a record holds its last state
+    if isinstance(times, list) and times[-1] > environment.end * (1 + 1e-12) and not record:
         problems.append(doc.problem(
             ("outputs", "ageing_times", len(times) - 1),
             f"ageing time beyond the end of the environment history ({environment.end / 86400:g} d)"))

@@ -14,7 +14,7 @@ import numpy as np
 from . import __version__
 from .environment import Environment
 from .errors import InputError, format_duration
-from .scene import EveryStep, Scene, load_scene
+from .scene import EveryStep, Scene, last_ageing_time, load_scene
 
 log = logging.getLogger(__name__)
 
@@ -41,6 +41,12 @@ class PartHistory:
 
 
 # ----------------------------------------------------------------- planning
+
+
+def scene_environment(scene: Scene) -> Environment:
+    """The scene's climate history (a weather year repeated to its last ageing time)."""
+    return Environment.from_section(scene.model.environment, base_dir=scene.base_dir,
+                                    until=last_ageing_time(scene.model.outputs))
 
 
 def ageing_times(scene: Scene, environment: Environment) -> np.ndarray:
@@ -105,7 +111,7 @@ def describe_plan(scene: Scene, accuracy: float | None = None) -> str:
     """The plan `fickcam check` prints: parts, diffusion model, cells, steps."""
     from .diffusion import plan
 
-    environment = Environment.from_section(scene.model.environment, base_dir=scene.base_dir)
+    environment = scene_environment(scene)
     times = ageing_times(scene, environment)
     options = _diffusion_options(scene, accuracy)
     lines = [f"scene {scene.name}: valid",
@@ -142,13 +148,13 @@ def run(scene, *, accuracy: float | None = None, progress: bool = False):
 
     started = _time.perf_counter()
     scene = load_scene(scene)
-    environment = Environment.from_section(scene.model.environment, base_dir=scene.base_dir)
+    environment = scene_environment(scene)
     times = ageing_times(scene, environment)
     temperature = environment.temperature(times)
     humidity = environment.relative_humidity(times)
     options = _diffusion_options(scene, accuracy)
     parts = build_parts(scene)
-    notices: list[str] = []
+    notices: list[str] = list(environment.notes)
 
     bar = tqdm(total=len(parts) + len(times), disable=not progress, desc=scene.name,
                unit="step", leave=False)

@@ -36,26 +36,28 @@ def test_ramp_is_linear_from_previous_end_values():
 def test_csv_history_with_units_in_header(tmp_path):
     path = tmp_path / "chamber.csv"
     path.write_text("time [d],temperature [degC],relative_humidity [%]\n0,20,50\n10,80,90\n")
-    times, temps, rh = read_history_csv(path)
-    assert np.allclose(times, [0, 10 * DAY]) and np.allclose(temps, [293.15, 353.15])
-    env = Environment.from_samples(times, temps, rh, 296.15)
+    record = read_history_csv(path)
+    assert np.allclose(record.time, [0, 10 * DAY]) and np.allclose(record.temperature, [293.15, 353.15])
+    env = Environment.from_samples(record.time, record.temperature, record.relative_humidity, 296.15)
     assert np.isclose(env.temperature(5 * DAY), 323.15)
     assert np.isclose(env.relative_humidity(2.5 * DAY), 60.0)
 
 
 @pytest.mark.parametrize("text, fragment", [
-    ("time [d],temperature [degC]\n0,20\n1,30\n", "lacks column"),
-    ("time [d],temperature [degC],relative_humidity [%]\n0,20,50\n0,30,60\n", "increase"),
-    ("time [d],temperature [degC],relative_humidity [%]\n0,20,50\n1,30,160\n", "between 0 and 100"),
+    ("time [d],temperature [degC]\n0,20\n1,30\n", "bad.csv:1: no column relative_humidity"),
+    ("time [d],temperature [degC],relative_humidity [%]\n0,20,50\n0,30,60\n",
+     r"bad.csv:3 time: repeated timestamp \(also on line 2\)"),
+    ("time [d],temperature [degC],relative_humidity [%]\n0,20,50\n1,30,160\n",
+     "bad.csv:3 relative_humidity: 160 % is outside 0 to 100 %"),
     ("time [parsec],temperature [degC],relative_humidity [%]\n0,20,50\n1,30,60\n", "wrong dimension"),
-    ("time [d],temperature [degC],relative_humidity [%]\n0,20,50\n1,x,60\n", "line 3"),
+    ("time [d],temperature [degC],relative_humidity [%]\n0,20,50\n1,x,60\n",
+     "bad.csv:3 temperature: 'x' is not a number"),
 ])
 def test_bad_csv_history_is_refused_with_reason(tmp_path, text, fragment):
     path = tmp_path / "bad.csv"
     path.write_text(text)
     with pytest.raises(ValueError, match=fragment):
-        times, temps, rh = read_history_csv(path)
-        Environment.from_samples(times, temps, rh, 296.15)
+        read_history_csv(path)
 
 
 @settings(max_examples=40, deadline=None)

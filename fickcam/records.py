@@ -1,0 +1,258 @@
+"""Climate records: chamber logs and typical-meteorological-year weather files.
+
+Three formats are read into one :class:`ClimateRecord` (time from the first
+row in s, temperature in K, relative humidity in %):
+
+- a CSV log with columns ``time, temperature, relative_humidity`` and units in
+  the header (``time [h], temperature [degC], relative_humidity [%]``; no unit
+  means SI, RH in %);
+- a TMY3 CSV (NREL's typical meteorological year, 8760 hourly rows; read with
+  ``pvlib.iotools.read_tmy3``) and an EnergyPlus EPW file
+  (``pvlib.iotools.read_epw``): dry-bulb temperature and relative humidity.
+  pvlib is the optional extra ``fickcam[weather]``.
+
+A weather year is periodic: it repeats for multi-year ageing. A chamber log is
+not: past its last row the last state is held (the environment says so).
+
+Problems name the file, the line and the column: ``chamber.csv:57 time:
+repeated timestamp (also on line 56)``.
+"""
+from __future__ import annotations
+
+import csv
+import math
+import re
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from .units import to_si
+
+_HEADER = re.compile(r"^\s*(?P<name>[A-Za-z_]+)\s*(?:[\[(](?P<unit>[^\])]*)[\])])?\s*$")
+_COLUMNS = {"time": "time", "temperature": "temperature", "relative_humidity": "percent"}
+PVLIB_PREFIX = "pvlib:"
+# EnergyPlus Auxiliary Programs, "Weather Converter Program", EPW data
+# dictionary: missing dry-bulb is 99.9 degC, missing relative humidity 999 %.
+_EPW_MISSING = {"temp_air": 99.9, "relative_humidity": 999.0}
+_EPW_HEADER_LINES = 8   # LOCATION ... DATA PERIODS
+_TMY3_HEADER_LINES = 2  # site line, column names
+
+
+class RecordError(ValueError):
+    """A problem in a climate record, located as ``file:LINE column: reason``."""
+
+    def __init__(self, path: Path, line: int | None, column: str | None, reason: str):
+        where = f"{Path(path).name}:{line}" if line is not None else Path(path).name
+        super().__init__(f"{where} {column}: {reason}" if column else f"{where}: {reason}")
+
+
+@dataclass(frozen=True)
+class ClimateRecord:
+    """Samples of T(t) and RH(t), linear between rows; ``period`` (s) when the
+    record is a weather year that repeats, else None (the last state holds)."""
+
+    time: np.ndarray
+    temperature: np.ndarray
+    relative_humidity: np.ndarray
+    source: str
+    period: float | None = None
+
+    @property
+    def end(self) -> float:
+        return float(self.time[-1])
+
+    def covering(self, until: float) -> "ClimateRecord":
+        """The record repeated (if periodic) until it reaches ``until`` (s)."""
+        if self.period is None or until <= self.end:
+            return self
+        repeats = math.ceil((until - self.end) / self.period) + 1
+        shifts = np.repeat(np.arange(repeats) * self.period, self.time.size)
+        return ClimateRecord(np.tile(self.time, repeats) + shifts,
+                             np.tile(self.temperature, repeats),
+                             np.tile(self.relative_humidity, repeats),
+                             f"{self.source}, repeated {repeats} times", self.period)
+
+
+def resolve_record_path(text: str, base_dir: Path) -> Path:
+    """A scene's ``history_file``: relative to the scene, or ``pvlib:NAME`` for
+    a file shipped in pvlib's data folder (e.g. ``pvlib:723170TYA.CSV``,
+    Greensboro NC; ``pvlib:703165TY.csv``, Sand Point AK)."""
+    if text.startswith(PVLIB_PREFIX):
+        _pvlib_iotools()  # the install hint if pvlib is absent
+        import pvlib
+
+        folder = Path(pvlib.__file__).parent / "data"
+        name = text[len(PVLIB_PREFIX):].strip()
+        path = folder / name
+        if not path.is_file():
+            shipped = sorted(p.name for p in folder.glob("*") if p.suffix.lower() in (".csv", ".epw"))
+            raise ValueError(f"pvlib ships no file {name!r}; its weather files: "
+                             f"{', '.join(n for n in shipped if 'TY' in n)}")
+        return path
+    path = Path(text)
+    return path if path.is_absolute() else base_dir / path
+
+
+def read_record(path: Path) -> ClimateRecord:
+    """Read a chamber CSV, a TMY3 CSV or an EPW file (chosen by its content)."""
+    path = Path(path)
+    try:
+        with open(path, newline="", encoding="utf-8", errors="replace") as handle:
+            first = handle.readline()
+    except FileNotFoundError:
+        raise ValueError(f"history file {str(path)!r} not found") from None
+    except OSError as exc:
+        raise ValueError(f"cannot read history file {str(path)!r}: {exc}") from None
+    if path.suffix.lower() == ".epw" or first.startswith("LOCATION,"):
+        return _read_epw(path)
+    if _looks_like_tmy3(first):
+        return _read_tmy3(path)
+    return read_history_csv(path)
+
+
+# -------------------------------------------------------------- chamber CSV
+def read_history_csv(path: Path) -> ClimateRecord:
+    """Columns time, temperature, relative_humidity with units in the header."""
+    path = Path(path)
+    try:
+        with open(path, newline="", encoding="utf-8") as handle:
+            rows = [(line, row) for line, row in enumerate(csv.reader(handle), start=1)
+                    if row and any(cell.strip() for cell in row)
+                    and not row[0].lstrip().startswith("#")]
+    except FileNotFoundError:
+        raise ValueError(f"history file {str(path)!r} not found") from None
+    except (OSError, UnicodeDecodeError) as exc:
+        raise ValueError(f"cannot read history file {str(path)!r}: {exc}") from None
+    if not rows:
+        raise RecordError(path, None, None, "the file is empty")
+    header_line, header = rows[0]
+    units: dict[str, tuple[int, str]] = {}
+    for index, cell in enumerate(header):
+        match = _HEADER.match(cell)
+        if not match or match.group("name") not in _COLUMNS:
+            raise RecordError(path, header_line, cell.strip() or f"column {index + 1}",
+                              "expected the columns time, temperature, relative_humidity")
+        units[match.group("name")] = (index, (match.group("unit") or "").strip())
+    missing = set(_COLUMNS) - set(units)
+    if missing:
+        raise RecordError(path, header_line, None, f"no column {', '.join(sorted(missing))}")
+    lines = np.array([line for line, _ in rows[1:]])
+    columns = {name: _column(path, rows[1:], name, index, unit)
+               for name, (index, unit) in units.items()}
+    return _checked(path, lines, columns["time"], columns["temperature"],
+                    columns["relative_humidity"], f"chamber record {path.name}", None,
+                    must_start_at_zero=True)
+
+
+def _column(path, rows, name, index, unit) -> np.ndarray:
+    """One column in SI: numbers read row by row (a missing value names its
+    line), then converted at once by the unit's affine map (exact for degC)."""
+    values = np.empty(len(rows))
+    for k, (line, row) in enumerate(rows):
+        text = row[index].strip() if index < len(row) else ""
+        try:
+            values[k] = float(text)
+        except ValueError:
+            reason = "missing value" if text.lower() in ("", "nan", "na", "n/a") \
+                else f"{text!r} is not a number"
+            raise RecordError(path, line, name, reason) from None
+        if not math.isfinite(values[k]):
+            raise RecordError(path, line, name, "missing value")
+    if not unit:
+        return values
+    try:
+        offset = to_si(f"0 {unit}", _COLUMNS[name])
+        scale = to_si(f"1 {unit}", _COLUMNS[name]) - offset
+    except ValueError as exc:
+        raise RecordError(path, rows[0][0] - 1 if rows else None, name, str(exc)) from None
+    return offset + scale * values
+
+
+def _checked(path, lines, time, temperature, humidity, source, period, *,
+             must_start_at_zero=False) -> ClimateRecord:
+    """Refuse what a record cannot mean, naming the first offending line."""
+    if time.size < 2:
+        raise RecordError(path, None, None, "a history needs at least two rows")
+    if must_start_at_zero and time[0] != 0:
+        raise RecordError(path, lines[0], "time", "the first row must be at time 0")
+    step = np.diff(time)
+    if np.any(step <= 0):
+        k = int(np.argmax(step <= 0)) + 1
+        earlier = lines[int(np.flatnonzero(time[:k] >= time[k])[0])]
+        reason = (f"repeated timestamp (also on line {earlier})" if step[k - 1] == 0
+                  else f"time goes back (line {earlier} is later): rows must be sorted")
+        raise RecordError(path, lines[k], "time", reason)
+    if np.any(temperature <= 0):
+        k = int(np.argmax(temperature <= 0))
+        raise RecordError(path, lines[k], "temperature", "at or below absolute zero")
+    bad = (humidity < 0) | (humidity > 100)
+    if np.any(bad):
+        k = int(np.argmax(bad))
+        raise RecordError(path, lines[k], "relative_humidity",
+                          f"{humidity[k]:g} % is outside 0 to 100 %")
+    return ClimateRecord(time - time[0], temperature, humidity, source, period)
+
+
+# ------------------------------------------------------------ weather years
+def _pvlib_iotools():
+    try:
+        from pvlib import iotools
+    except ImportError:
+        raise ValueError("reading weather files needs pvlib: pip install \"fickcam[weather]\"") from None
+    return iotools
+
+
+def _looks_like_tmy3(first_line: str) -> bool:
+    """TMY3's first line: USAF id, "station name", state, time zone, lat, lon, elevation."""
+    fields = next(csv.reader([first_line]), [])
+    return len(fields) == 7 and fields[0].strip().isdigit() and len(fields[0].strip()) == 6
+
+
+def _weather_record(path, frame, first_data_line, missing, source) -> ClimateRecord:
+    """Hourly dry-bulb (degC) and RH (%) of one weather year, as a periodic record."""
+    lines = first_data_line + np.arange(len(frame))
+    for column, sentinel in missing.items():
+        values = frame[column].to_numpy(float)
+        absent = ~np.isfinite(values) | (values == sentinel if sentinel is not None else False)
+        if np.any(absent):
+            raise RecordError(path, int(lines[np.argmax(absent)]), column, "missing value")
+    seconds = (frame.index - frame.index[0]).total_seconds().to_numpy()
+    step = np.diff(seconds)
+    if step.size and np.any(step != step[0]):
+        k = int(np.argmax(step != step[0])) + 1
+        raise RecordError(path, int(lines[k]), "time",
+                          f"weather rows must be evenly spaced ({step[0] / 3600:g} h)")
+    temperature = frame["temp_air"].to_numpy(float) + 273.15
+    humidity = frame["relative_humidity"].to_numpy(float)
+    period = seconds[-1] + step[0] if step.size else None
+    return _checked(path, lines, seconds, temperature, humidity, source, period)
+
+
+def _read_tmy3(path: Path) -> ClimateRecord:
+    # pvlib.iotools.read_tmy3 (Wilcox & Marion, "Users Manual for TMY3 Data
+    # Sets", NREL/TP-581-43156, 2008); coerce_year gives one continuous year
+    # (TMY months come from different years).
+    try:
+        frame, meta = _pvlib_iotools().read_tmy3(path, coerce_year=2001, map_variables=True)
+    except RecordError:
+        raise
+    except Exception as exc:  # pvlib raises several types on malformed files
+        raise RecordError(path, None, None, f"not a readable TMY3 file ({exc})") from None
+    name = str(meta.get("Name", "")).strip('"').strip()
+    source = f"TMY3 {name}, {meta.get('State', '')} (USAF {meta.get('USAF', '?')})"
+    return _weather_record(path, frame, _TMY3_HEADER_LINES + 1,
+                           {"temp_air": None, "relative_humidity": None}, source)
+
+
+def _read_epw(path: Path) -> ClimateRecord:
+    # pvlib.iotools.read_epw (EnergyPlus weather format, U.S. DOE EnergyPlus
+    # "Auxiliary Programs", Weather Converter: EPW data dictionary).
+    try:
+        frame, meta = _pvlib_iotools().read_epw(path, coerce_year=2001)
+    except RecordError:
+        raise
+    except Exception as exc:
+        raise RecordError(path, None, None, f"not a readable EPW file ({exc})") from None
+    source = f"EPW {meta.get('city', '')}, {meta.get('country', '')}".strip(", ")
+    return _weather_record(path, frame, _EPW_HEADER_LINES + 1, _EPW_MISSING, source)
