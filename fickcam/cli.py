@@ -37,7 +37,7 @@ def _parser() -> argparse.ArgumentParser:
     query = sub.add_parser("query", help="values of a variable from a result file")
     query.add_argument("result")
     query.add_argument("variable")
-    query.add_argument("--time", help='ageing time with units, e.g. "30 d", "6 months"')
+    query.add_argument("--time", help='ageing time with its unit, e.g. "30 d", "6 months" (a bare number is refused)')
     query.add_argument("--part")
     query.add_argument("--link")
     query.add_argument("--cam-angle", type=float, help="degrees")

@@ -6,12 +6,23 @@ import numpy as np
 from .schema import COORDINATES, VARIABLES
 
 
+def ageing_time_days(seconds):
+    """The ``ageing_time`` coordinate along ``time``: float days (units ``d``), which
+    matplotlib plots and ``interp`` interpolates, unlike the timedelta ``time``."""
+    import xarray as xr
+
+    units, long_name = COORDINATES["ageing_time"]
+    return xr.Variable(("time",), np.asarray(seconds, float) / 86400.0,
+                       {"units": units, "long_name": long_name})
+
+
 def build_dataset(values: dict, coords: dict, attrs: dict | None = None):
     """An xarray.Dataset with every variable of ``values`` (SI arrays keyed by
     schema name) stored in its schema unit, with ``units`` and ``long_name``.
 
     ``coords`` gives ``time`` in seconds and the other coordinates as the
-    schema expects (angles in rad, names as strings). Variables a scene does
+    schema expects (angles in rad, names as strings); ``ageing_time`` (days)
+    is added beside ``time``. Variables a scene does
     not model are simply absent from ``values``.
     """
     import xarray as xr
@@ -28,6 +39,8 @@ def build_dataset(values: dict, coords: dict, attrs: dict | None = None):
         if units:
             attrs_c["units"] = units
         coordinates[name] = xr.Variable((name,), value, attrs_c)
+    if "time" in coords:
+        coordinates["ageing_time"] = ageing_time_days(coords["time"])
     data_vars = {}
     for name, value in values.items():
         var = VARIABLES[name]  # KeyError = a physics module used a name not in the schema

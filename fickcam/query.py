@@ -12,7 +12,7 @@ import numpy as np
 
 from .errors import InputError
 from .schema import VARIABLES
-from .units import parse_duration
+from .units import is_bare_number, parse_duration
 
 SECONDS = np.timedelta64(1, "s")
 
@@ -24,14 +24,17 @@ def _time_seconds(ds) -> np.ndarray:
 def select(ds, variable: str, *, time=None, part=None, cam_angle=None, crank_angle=None, link=None):
     """The DataArray of ``variable`` restricted/interpolated as asked.
 
-    ``time`` is a duration (string with units or seconds); angles in degrees.
-    Interpolation is linear in time and angle; outside the stored range it is
-    an error, not an extrapolation.
+    ``time`` is a duration (string with units, or seconds as a number from Python; a bare
+    number as text, as ``--time 45`` gives, is refused: it needs a unit); angles in
+    degrees. Interpolation is linear in time and angle; outside the stored range it is
+    an error, not an extrapolation. ``attrs["selection"]`` says what was answered, e.g.
+    ``time = 45 d (interpolated between 30 d and 60 d)``.
     """
     if variable not in ds.data_vars:
         known = ", ".join(sorted(v for v in ds.data_vars))
         raise InputError(f"variable {variable!r} is not in this result (it has: {known})")
     array = ds[variable]
+    answered, selected = [], {}
     for dim, value in (("part", part), ("link", link)):
         if value is None:
             continue
@@ -41,6 +44,8 @@ def select(ds, variable: str, *, time=None, part=None, cam_angle=None, crank_ang
         if value not in names:
             raise InputError(f"no {dim} {value!r} (have: {', '.join(names)})")
         array = array.sel({dim: value})
+        answered.append(f"{dim} = {value}")
+        selected[dim] = value
     for dim, value in (("cam_angle", cam_angle), ("crank_angle", crank_angle)):
         if value is None:
             continue
@@ -48,24 +53,46 @@ def select(ds, variable: str, *, time=None, part=None, cam_angle=None, crank_ang
             raise InputError(f"{variable} has no {dim} dimension")
         angle = float(value) % 360.0
         grid = array[dim].values
-        array = _interp_along(array, dim, grid, angle, period=360.0)
+        array, between = _interp_along(array, dim, grid, angle, period=360.0)
+        answered.append(_answered(dim, angle, between, lambda x: f"{x % 360:g} deg"))
+        selected[dim] = angle
     if time is not None:
         if "time" not in array.dims:
             raise InputError(f"{variable} does not vary with time")
-        try:
-            seconds = parse_duration(time) if isinstance(time, str) else float(time)
-        except ValueError as exc:
-            raise InputError(f"--time: {exc}") from None
+        seconds = _seconds(time)
         stored = _time_seconds(ds)
         if seconds < stored[0] - 1e-9 or seconds > stored[-1] + 1e-9:
             raise InputError(f"time {time} is outside the stored ageing times "
                              f"({stored[0] / 86400:g} to {stored[-1] / 86400:g} d)")
-        array = _interp_along(array, "time", stored, seconds)
+        array, between = _interp_along(array, "time", stored, seconds)
+        answered.append(_answered("time", seconds, between, lambda x: f"{x / 86400:g} d"))
+        selected["time_d"] = seconds / 86400
+    array.attrs["selection"] = ", ".join(answered)
+    array.attrs["selected"] = selected
     return array
 
 
+def _seconds(time) -> float:
+    """An ageing time in seconds; text must carry a unit (``45`` alone is refused)."""
+    if isinstance(time, str) and is_bare_number(time):
+        raise InputError(f"--time {time.strip()} has no unit: write e.g. '{time.strip()} d' "
+                         f"(days) or '{time.strip()} s'")
+    try:
+        return parse_duration(time) if isinstance(time, str) else float(time)
+    except ValueError as exc:
+        raise InputError(f"--time: {exc}") from None
+
+
+def _answered(dim, value, between, show) -> str:
+    """``dim = value (stored)`` or ``(interpolated between a and b)``."""
+    low, high = between
+    how = "stored" if low == high else f"interpolated between {show(low)} and {show(high)}"
+    return f"{dim} = {show(value)} ({how})"
+
+
 def _interp_along(array, dim, grid, value, period=None):
-    """Linear interpolation of ``array`` along ``dim`` at ``value`` (grid ascending)."""
+    """Linear interpolation of ``array`` along ``dim`` at ``value`` (grid ascending), and
+    the two grid values used (equal when ``value`` is a stored one)."""
     grid = np.asarray(grid, float)
     if period is not None:  # wrap the angle grid for periodic interpolation
         grid_ext = np.concatenate([grid, [grid[0] + period]])
@@ -79,9 +106,12 @@ def _interp_along(array, dim, grid, value, period=None):
     weight = 0.0 if x1 == x0 else (value - x0) / (x1 - x0)
     lower = array.isel({dim: index}, drop=True)
     upper = array.isel({dim: hi}, drop=True)
+    if weight <= 1e-12 or weight >= 1 - 1e-12:  # a stored value
+        x0 = x1 = x0 if weight <= 0.5 else x1
+    between = (float(x0), float(x1))
     if array.dtype.kind not in "fc":
-        return lower if weight < 0.5 else upper
-    return lower * (1.0 - weight) + upper * weight
+        return (lower if weight < 0.5 else upper), between
+    return lower * (1.0 - weight) + upper * weight, between
 
 
 def to_records(array) -> tuple[list[str], list[list]]:
@@ -112,17 +142,22 @@ def format_result(array, variable: str, fmt: str = "table") -> str:
     """Render a selection as an aligned table, CSV or JSON."""
     columns, rows = to_records(array)
     units = VARIABLES[variable].units if variable in VARIABLES else array.attrs.get("units", "")
+    selection = array.attrs.get("selection", "")
     if fmt == "json":
-        return json.dumps({"variable": variable, "units": units, "columns": columns, "rows": rows})
-    if fmt == "csv":
-        lines = [",".join(columns)] + [",".join(_csv_cell(v) for v in row) for row in rows]
+        return json.dumps({"variable": variable, "units": units, "selection": selection,
+                           "columns": columns, "rows": rows})
+    if fmt == "csv":  # tidy: the selected values as columns of their own
+        fixed = array.attrs.get("selected", {})
+        lines = [",".join([*fixed, *columns])]
+        lines += [",".join(_csv_cell(v) for v in [*fixed.values(), *row]) for row in rows]
         return "\n".join(lines)
     if fmt != "table":
         raise InputError(f"unknown format {fmt!r} (table, csv or json)")
+    title = [f"{variable} at {selection}"] if selection else []
     header = columns[:-1] + [f"{variable} [{units}]"]
     cells = [[_table_cell(v) for v in row] for row in rows]
     widths = [max(len(h), *(len(r[i]) for r in cells)) if cells else len(h) for i, h in enumerate(header)]
-    out = ["  ".join(h.rjust(w) for h, w in zip(header, widths))]
+    out = title + ["  ".join(h.rjust(w) for h, w in zip(header, widths))]
     out += ["  ".join(c.rjust(w) for c, w in zip(row, widths)) for row in cells]
     return "\n".join(out)
 

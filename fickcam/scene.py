@@ -19,6 +19,7 @@ from pydantic import Field, ValidationError, field_validator, model_validator
 
 from .cam.spec import CamSection
 from .errors import Problem, SceneError
+from .keys import closest_key
 from .linkage.spec import LinkageSection
 from .materials import MaterialSpec
 from .units import (
@@ -26,7 +27,7 @@ from .units import (
     Length,
     NonNegativePercent,
     NonNegativeTime,
-    Percent,
+    RelativeHumidity,
     PositiveAngle,
     StrictModel,
     Temperature,
@@ -133,8 +134,9 @@ def parse_yaml(text: str, *, file: str = "<scene>", what: str = "scene") -> Yaml
 
 
 def problems_from_validation(error: ValidationError, doc: YamlDocument,
-                             prefix: tuple = ()) -> list[Problem]:
-    """One Problem per pydantic error, located at its key path's line."""
+                             prefix: tuple = (), model=None) -> list[Problem]:
+    """One Problem per pydantic error, located at its key path's line; an unknown key of
+    ``model`` (the validated pydantic class) names the closest valid key."""
     problems = []
     for item in error.errors(include_url=False):
         loc = tuple(p for p in item["loc"] if not (isinstance(p, str) and p.startswith("function-")))
@@ -144,7 +146,8 @@ def problems_from_validation(error: ValidationError, doc: YamlDocument,
         if reason.startswith("Value error, "):
             reason = reason[len("Value error, "):]
         if item["type"] == "extra_forbidden":
-            reason = "unknown key"
+            near = closest_key(model, loc)
+            reason = "unknown key" + (f"; did you mean {near!r}?" if near else "")
         elif item["type"] == "missing":
             reason = "required key is missing"
         problems.append(doc.problem(prefix + loc, reason))
@@ -162,7 +165,7 @@ class HistorySegment(StrictModel):
 
     duration: Duration
     temperature: Temperature
-    relative_humidity: Percent
+    relative_humidity: RelativeHumidity
     ramp: bool = False
 
 
@@ -403,7 +406,7 @@ def validate_document(doc: YamlDocument, *, base_dir: Path) -> Scene:
     try:
         model = SceneModel.model_validate(doc.data)
     except ValidationError as exc:
-        raise SceneError(problems_from_validation(exc, doc)) from None
+        raise SceneError(problems_from_validation(exc, doc, model=SceneModel)) from None
     problems, resolved = _cross_checks(model, doc, base_dir)
     profile_problems, model = _cam_profile(model, doc, base_dir)
     problems += profile_problems

@@ -121,6 +121,8 @@ VARIABLES: dict[str, Var] = {
 
 COORDINATES: dict[str, tuple[str, str]] = {
     "time": ("", "ageing time"),
+    # float days beside the timedelta `time`, for plotting and interpolation
+    "ageing_time": ("d", "ageing time in days"),
     "part": ("", "part name"),
     "link": ("", "link name"),
     "joint": ("", "pin joint (O2 crank-frame, A crank-coupler, B coupler-rocker, O4 rocker-frame)"),

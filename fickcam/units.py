@@ -99,9 +99,53 @@ def to_si(value: Any, dimension: str) -> float:
     return float(quantity.to(si_unit if si_unit else "").magnitude)
 
 
+def is_bare_number(value: Any) -> bool:
+    """True for a number without units (a YAML number, or text such as '1e-3')."""
+    if isinstance(value, bool):
+        return False
+    if isinstance(value, (int, float)):
+        return True
+    if isinstance(value, str):
+        match = _NUMBER_THEN_UNIT.match(value)
+        return bool(match) and not match.group("unit")
+    return False
+
+
+#: a bare temperature below this (K) is almost certainly degC or degF written without unit
+COLDEST_PLAUSIBLE_TEMPERATURE = 150.0
+
+
+def implausible_bare_temperature(kelvin: float) -> str | None:
+    """Why a bare temperature is refused: polymer service and reference temperatures lie
+    far above 150 K, so '40' meant 40 degC, not 40 K."""
+    if kelvin < COLDEST_PLAUSIBLE_TEMPERATURE:
+        return (f"a bare number is kelvin, and {kelvin:g} K is implausibly cold "
+                f"(below {COLDEST_PLAUSIBLE_TEMPERATURE:g} K): did you mean '{kelvin:g} degC'? "
+                f"Give the unit ('{kelvin:g} degC' or '{kelvin:g} K')")
+    return None
+
+
+def implausible_bare_humidity(percent: float) -> str | None:
+    """Why a bare relative humidity is refused: 0 < RH <= 1 reads as a fraction
+    (0.9 meant 90 %), but a bare RH is in percent."""
+    if 0.0 < percent <= 1.0:
+        return (f"a bare relative humidity is in percent, so {percent:g} is {percent:g} %: "
+                f"did you mean '{percent * 100:g} %'? Give the unit ('{percent * 100:g} %' "
+                f"or '{percent:g} %')")
+    return None
+
+
 def quantity(dimension: str, *, positive: bool = False, nonnegative: bool = False,
-             upper: float | None = None):
-    """A pydantic type: a value of ``dimension`` converted to SI, with bounds."""
+             upper: float | None = None, bare=None):
+    """A pydantic type: a value of ``dimension`` converted to SI, with bounds. ``bare``
+    (SI value -> reason or None) refuses implausible values given without units."""
+
+    def convert(value):
+        x = to_si(value, dimension)
+        reason = bare(x) if bare is not None and is_bare_number(value) else None
+        if reason:
+            raise ValueError(reason)
+        return x
 
     def check(x: float) -> float:
         if positive and not x > 0:
@@ -112,7 +156,7 @@ def quantity(dimension: str, *, positive: bool = False, nonnegative: bool = Fals
             raise ValueError(f"must not exceed {upper:g}")
         return x
 
-    return Annotated[float, BeforeValidator(lambda v: to_si(v, dimension)), AfterValidator(check)]
+    return Annotated[float, BeforeValidator(convert), AfterValidator(check)]
 
 
 def parse_duration(text: Any) -> float:
@@ -129,7 +173,7 @@ SignedLength = quantity("length")
 Mass = quantity("mass", positive=True)
 Duration = quantity("time", positive=True)
 NonNegativeTime = quantity("time", nonnegative=True)
-Temperature = quantity("temperature", positive=True)
+Temperature = quantity("temperature", positive=True, bare=implausible_bare_temperature)
 Angle = quantity("angle")
 PositiveAngle = quantity("angle", positive=True)
 AngularSpeed = quantity("angular_speed", positive=True)
@@ -142,7 +186,7 @@ MolarEnergy = quantity("molar_energy", nonnegative=True)
 Density = quantity("density", positive=True)
 ExpansionCoefficient = quantity("inverse_temperature")
 Fraction = quantity("fraction", nonnegative=True, upper=1.0)
-Percent = quantity("percent", nonnegative=True, upper=100.0)
+RelativeHumidity = quantity("percent", nonnegative=True, upper=100.0, bare=implausible_bare_humidity)
 NonNegativePercent = quantity("percent", nonnegative=True)
 
 

@@ -14,6 +14,7 @@ from fickcam.cam.model import follower_heights
 from fickcam.cam.motion import follower_motion, segments_from_spec
 from fickcam.cam.spec import Segment
 from fickcam.materials.bodies import polygon_section
+from tolerance import roundoff
 
 THETA = np.radians(np.arange(0.0, 360.0, 0.5))
 
@@ -38,9 +39,11 @@ STATE = CamState(cam_surface_modulus=5e9, cam_surface_poisson=0.35)
 def test_dry_follower_reproduces_the_design_motion(kind, offset):
     r = cam_response(design(kind, offset=offset), STATE, THETA).variables
     y, d1, d2, d3 = follower_motion(design(kind).segments, THETA)
-    assert np.allclose(r["follower_displacement"], y, atol=1e-15)
-    assert np.allclose(r["follower_velocity"], 60 * d1, atol=1e-12)
-    assert np.allclose(r["follower_jerk"], 60 ** 3 * d3, atol=1e-6)
+    # closed form: equal up to the round-off of the heights (about base radius + lift)
+    np.testing.assert_allclose(r["follower_displacement"], y, rtol=0, atol=roundoff(0.05 + y))
+    np.testing.assert_allclose(r["follower_velocity"], 60 * d1, rtol=0, atol=roundoff(60 * d1))
+    np.testing.assert_allclose(r["follower_jerk"], 60 ** 3 * d3, rtol=0,
+                               atol=roundoff(60 ** 3 * d3))
 
 
 @pytest.mark.parametrize("kind, offset", [("roller", 0.008), ("knife", 0.005), ("flat", 0.0)])
@@ -50,7 +53,7 @@ def test_geometric_path_matches_closed_form_when_the_cam_is_dry(kind, offset):
     geometric, (low_g, _) = geometric_motion(d, pieces_of(d), 0.0, 0.0, d.roller_radius, THETA)
     for k, (a, b) in enumerate(zip(exact, geometric)):
         assert np.allclose(a, b, rtol=0, atol=1e-9 * 10 ** (2 * k) * np.max(np.abs(a))), k
-    assert low_g == pytest.approx(low, abs=1e-12)
+    assert low_g == pytest.approx(low, abs=1e-9 * low)  # the k = 0 spectral bound above
 
 
 @settings(max_examples=15, deadline=None)

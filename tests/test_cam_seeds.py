@@ -12,9 +12,12 @@ import numpy as np
 import pytest
 
 from fickcam.cam import CamDesign, CamState, cam_response
+from fickcam.cam.geometry import geometric_motion, pieces_of
+from fickcam.cam.model import follower_heights
 from fickcam.cam import dynamics as dyn
 from fickcam.cam.motion import segments_from_spec, simple_harmonic
 from fickcam.cam.spec import Segment
+from tolerance import roundoff
 
 log = logging.getLogger(__name__)
 INCH = 0.0254
@@ -210,12 +213,45 @@ def test_seed003_eccentric_cam_follows_the_exact_geometry():
     u = e * np.sin(theta)
     slope = e * np.sin(theta) - u * e * np.cos(theta) / np.sqrt((big + r) ** 2 - u ** 2)
     assert np.allclose(roller["follower_velocity"], slope, atol=1e-10)
+
+
+def test_seed003_eccentric_flat_face_is_exact_simple_harmonic_motion():
+    """Flat face on the eccentric disc: y = e (1 - cos theta) (pure SHM) with its exact
+    derivatives, equal up to round-off of the terms (no spectral differentiation)."""
+    e = 0.004
+    theta = np.radians(np.arange(0.0, 360.0, 5.0))
     flat = cam_response(seed003_design("flat", speed=10.0), CamState(cam_surface_modulus=3e9),
                         theta).variables
-    assert np.allclose(flat["follower_displacement"], e * (1 - np.cos(theta)), atol=1e-12)
-    assert np.allclose(flat["follower_velocity"], 10 * e * np.sin(theta), atol=1e-9)
-    assert np.allclose(flat["follower_acceleration"], 100 * e * np.cos(theta), atol=1e-7)
-    assert np.allclose(flat["follower_jerk"], -1000 * e * np.sin(theta), atol=1e-5)
+    exact = {"follower_displacement": e * (1 - np.cos(theta)),
+             "follower_velocity": 10 * e * np.sin(theta),
+             "follower_acceleration": 100 * e * np.cos(theta),
+             "follower_jerk": -1000 * e * np.sin(theta)}
+    radius_scale = {"follower_displacement": 0.023, "follower_velocity": 10 * e,
+                    "follower_acceleration": 100 * e, "follower_jerk": 1000 * e}
+    for name, value in exact.items():
+        np.testing.assert_allclose(flat[name], value, rtol=0,
+                                   atol=roundoff(radius_scale[name]), err_msg=name)
+
+
+@pytest.mark.parametrize("strain_x, strain_y", [(0.01, 0.003), (0.003, 0.01), (0.02, 0.0)])
+def test_swollen_eccentric_flat_face_matches_the_geometric_route(strain_x, strain_y):
+    """The closed-form support function of the swollen (elliptical) disc against the
+    independent geometric route (Newton contact + Chebyshev fit of degree N = 96). The
+    spectral k-th derivative carries round-off about eps N^(2k) |Y| (N |Y| eps for the
+    least-squares fit itself; Trefethen, Spectral
+    Methods in MATLAB, ch. 6), which sets the tolerance; extremes agree to round-off."""
+    design = seed003_design("flat", speed=1.0)
+    state = CamState(cam_strain_x=strain_x, cam_strain_y=strain_y)
+    theta = np.linspace(0.0, 2 * np.pi, 73)
+    closed, closed_extremes = follower_heights(design, state, theta)
+    nodes = 96
+    spectral, spectral_extremes = geometric_motion(design, pieces_of(design), strain_x,
+                                                   strain_y, 0.0, theta, nodes=nodes)
+    size = float(np.max(closed[0]))
+    for k in range(4):
+        np.testing.assert_allclose(closed[k], spectral[k], rtol=0,
+                                   atol=roundoff(size, operations=10 * nodes ** max(1, 2 * k)))
+    np.testing.assert_allclose(closed_extremes, spectral_extremes, rtol=0, atol=roundoff(size))
 
 
 def test_seed003_dial_gauge_rms_against_the_exact_geometry():

@@ -65,7 +65,7 @@ def test_bad_csv_history_is_refused_with_reason(tmp_path, text, fragment):
                           st.booleans()), min_size=1, max_size=6),
        st.floats(0, 1))
 def test_history_stays_within_segment_values(segments, where):
-    history = [{"duration": d * DAY, "temperature": T, "relative_humidity": rh, "ramp": r and i > 0}
+    history = [{"duration": d * DAY, "temperature": T, "relative_humidity": f"{rh!r} %", "ramp": r and i > 0}
                for i, (d, T, rh, r) in enumerate(segments)]
     env = Environment.from_section(section(history))
     t = np.linspace(0, env.end * 1.1, 200)

@@ -62,6 +62,57 @@ def test_bad_queries_are_refused_with_reason(stored, kwargs, fragment):
         select(stored, "moisture_content", **kwargs)
 
 
+def test_a_bare_query_time_is_refused_naming_the_units(stored):
+    """`--time 45` would be 45 s (SI): the query asks for a unit instead."""
+    with pytest.raises(InputError, match=r"--time 45 has no unit: write e.g. '45 d'"):
+        select(stored, "lift", time="45")
+
+
+@pytest.mark.parametrize("kwargs, said", [
+    ({"time": "45 d"}, "lift at time = 45 d (interpolated between 30 d and 60 d)"),
+    ({"time": "30 d"}, "lift at time = 30 d (stored)"),
+])
+def test_a_query_answer_states_the_time_it_answers(stored, kwargs, said):
+    text = format_result(select(stored, "lift", **kwargs), "lift", "table")
+    assert text.splitlines()[0] == said
+
+
+def test_a_query_answer_states_the_angle_it_answers(stored):
+    array = select(stored, "follower_displacement", time="7 d", cam_angle=345.0)
+    table = format_result(array, "follower_displacement", "table")
+    assert table.splitlines()[0] == ("follower_displacement at cam_angle = 345 deg (interpolated "
+                                     "between 330 deg and 0 deg), time = 7 d (stored)")
+    assert json.loads(format_result(array, "follower_displacement", "json"))["selection"] == \
+        table.splitlines()[0].split(" at ", 1)[1]
+    rows = list(csv.DictReader(format_result(array, "follower_displacement", "csv").splitlines()))
+    assert float(rows[0]["cam_angle"]) == 345.0 and float(rows[0]["time_d"]) == 7.0
+
+
+def test_ageing_time_in_days_sits_beside_the_timedelta_time(stored):
+    assert stored.ageing_time.dims == ("time",) and stored.ageing_time.attrs["units"] == "d"
+    assert stored.ageing_time.values.tolist() == [0.0, 1.0, 7.0, 30.0, 60.0]
+    assert float(stored.lift.sel(time="30D")) == float(stored.lift.values[3])
+
+
+def test_days_coordinate_plots_and_interpolates(stored):
+    """Matplotlib cannot draw the timedelta `time` against a float angle; `ageing_time`
+    (float days) plots, and with it as the dimension coordinate `interp` takes days."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    days = stored.swap_dims(time="ageing_time")
+    mesh = days.follower_displacement.plot()
+    assert mesh.axes.get_ylabel() == "ageing time in days [d]"
+    assert mesh.axes.get_ylim()[1] >= 60.0
+    lines = stored.moisture_content.plot.line(x="ageing_time")
+    assert lines[0].get_xdata().tolist() == [0.0, 1.0, 7.0, 30.0, 60.0]
+    plt.close("all")
+    expected = np.interp(45.0, stored.ageing_time.values, stored.lift.values)
+    assert float(days.lift.interp(ageing_time=45.0)) == pytest.approx(expected, rel=1e-12)
+
+
 def test_unknown_variable_lists_known_ones(stored):
     with pytest.raises(InputError, match="moisture_content"):
         select(stored, "moisture", time="1 d")

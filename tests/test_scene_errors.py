@@ -151,6 +151,22 @@ CASES = [
      "diffusion.model.rocker", "no part named 'rocker'"),
     ("unknown-model-for-a-part", CAM_SCENE, "model: auto", "model: {cam: finite}",
      "diffusion.model", ""),
+    ("unknown-key-suggests-the-closest", CAM_SCENE, "    spring_rate: 1376.7 N/in",
+     "    spring: 1376.7 N/in", "cam.follower.spring", "did you mean 'spring_rate'?"),
+    ("unknown-top-key-suggests-the-closest", CAM_SCENE, "outputs:\n  ageing_times",
+     "outputs:\n  ageing_time", "outputs.ageing_time", "did you mean 'ageing_times'?"),
+    ("plastic-given-as-matrix", LINKAGE_SCENE, "resin: {matrix: R914}", "resin: {matrix: acetal}",
+     "materials.resin", "acetal is a plastic in the library, write 'plastic: acetal'"),
+    ("bare-celsius-temperature", CAM_SCENE, "temperature: 113 degC", "temperature: 40",
+     "environment.history.0.temperature", "did you mean '40 degC'?"),
+    ("bare-celsius-reference", CAM_SCENE, "reference_temperature: 23 degC", "reference_temperature: 23",
+     "environment.reference_temperature", "did you mean '23 degC'?"),
+    ("bare-fractional-humidity", CAM_SCENE, "relative_humidity: 80 %", "relative_humidity: 0.9",
+     "environment.history.0.relative_humidity", "did you mean '90 %'?"),
+    ("bare-unit-humidity", CAM_SCENE, "relative_humidity: 80 %", "relative_humidity: 1",
+     "environment.history.0.relative_humidity", "did you mean '100 %'?"),
+    ("unknown-number-name", LINKAGE_SCENE, "resin: {matrix: R914}", "resin: {matrix: 3503}",
+     "materials.resin", "unknown matrix '3503'"),
 ]
 
 
@@ -237,6 +253,26 @@ def test_command_line_exit_status_and_no_traceback(tmp_path):
     assert done.returncode == 2
     assert "Traceback" not in done.stderr
     assert f"{path}:{_line_of(path.read_text(), 'speed: -600 rpm')} cam.speed:" in done.stderr
+
+
+def test_a_library_name_that_yaml_reads_as_a_number_is_accepted(tmp_path, capsys):
+    """`matrix: 3502` (unquoted) is YAML's integer 3502: it names the 3502 epoxy."""
+    path = tmp_path / "scene.yaml"
+    path.write_text(LINKAGE_SCENE.replace("resin: {matrix: R914}", "resin: {matrix: 3502}"))
+    assert main(["check", str(path)]) == 0, capsys.readouterr().err
+
+
+@pytest.mark.parametrize("old, new", [
+    ("temperature: 113 degC", "temperature: 386.15"),          # bare kelvin, plausible
+    ("relative_humidity: 80 %", "relative_humidity: 80"),       # bare percent, plausible
+    ("relative_humidity: 80 %", "relative_humidity: 0"),        # dry air: 0 is 0 either way
+    ("relative_humidity: 80 %", "relative_humidity: 0.9 %"),    # a unit says what is meant
+    ("temperature: 113 degC", "temperature: 100 K"),            # ... even if implausible
+])
+def test_plausible_or_explicit_values_pass(tmp_path, capsys, old, new):
+    path = tmp_path / "scene.yaml"
+    path.write_text(CAM_SCENE.replace(old, new))
+    assert main(["check", str(path)]) == 0, capsys.readouterr().err
 
 
 def test_valid_scenes_pass_check(tmp_path, capsys):

@@ -138,6 +138,49 @@ def _closed_form(design: CamDesign, state: CamState, theta):
         (floor, floor + scale * _design_lift(design))
 
 
+def _eccentric_flat(design: CamDesign, state: CamState, theta):
+    """Flat face on the (swollen) eccentric disc, in closed form: the face height is the
+    support function of the ellipse with centre (0, -e_y) and semi-axes a = R(1 + eps_x),
+    b = R(1 + eps_y) in the direction n = (sin theta, cos theta) (kinematic inversion,
+    Norton sec. 8.6): Y = -e_y cos theta + f, f = sqrt(A + B cos 2 theta),
+    A = (a^2 + b^2)/2, B = (b^2 - a^2)/2; a circle (a = b) gives pure SHM
+    Y = R - e cos theta (seeds/003_b8317aa6e553b071.txt sec. 5.2). The derivatives of f
+    follow from differentiating f^2 = g three times."""
+    theta = np.asarray(theta, float)
+    e_y = design.eccentricity * (1 + state.cam_strain_y)
+    a = design.disc_radius * (1 + state.cam_strain_x)
+    b = design.disc_radius * (1 + state.cam_strain_y)
+    big_a, big_b = (a * a + b * b) / 2, (b * b - a * a) / 2
+
+    def support(t):
+        return -e_y * np.cos(t) + np.sqrt(big_a + big_b * np.cos(2 * t))
+
+    f = np.sqrt(big_a + big_b * np.cos(2 * theta))
+    g1, g2, g3 = (-2 * big_b * np.sin(2 * theta), -4 * big_b * np.cos(2 * theta),
+                  8 * big_b * np.sin(2 * theta))
+    f1 = g1 / (2 * f)
+    f2 = (g2 / 2 - f1 ** 2) / f
+    f3 = (g3 / 2 - 3 * f1 * f2) / f
+    c, s = np.cos(theta), np.sin(theta)
+    heights = (support(theta), e_y * s + f1, e_y * c + f2, -e_y * s + f3)
+    return heights, _support_extremes(support, e_y, a, big_b)
+
+
+def _support_extremes(support, e_y, a, big_b):
+    """(lowest, highest) of the support function: theta = 0, pi and, for a flattened disc,
+    the interior stationary points where e_y f = 2 B cos theta, i.e.
+    cos^2 theta = e_y^2 a^2 / (2 B (2 B - e_y^2))."""
+    candidates = [0.0, np.pi]
+    denominator = 2 * big_b * (2 * big_b - e_y ** 2)
+    if denominator > 0:
+        c2 = e_y ** 2 * a ** 2 / denominator
+        if c2 <= 1:
+            c = math.sqrt(c2)
+            candidates += [math.acos(c), math.acos(-c), -math.acos(c), -math.acos(-c)]
+    values = support(np.array(candidates))
+    return float(values.min()), float(values.max())
+
+
 def follower_heights(design: CamDesign, state: CamState, theta):
     """(Y, dY/dtheta, d2Y/dtheta2, d3Y/dtheta3), (lowest, highest) Y: the follower's pitch point
     (face for a flat follower) above the cam axis at cam angles theta (rad)."""
@@ -149,6 +192,8 @@ def follower_heights(design: CamDesign, state: CamState, theta):
         return profile_motion(design.profile, state.cam_strain_x, state.cam_strain_y,
                               design.roller_radius * (1 + state.roller_strain), design.offset,
                               design.follower_kind == "flat", theta)
+    if design.kind == "eccentric" and design.follower_kind == "flat":
+        return _eccentric_flat(design, state, theta)
     return geometric_motion(design, pieces_of(design), state.cam_strain_x, state.cam_strain_y,
                             design.roller_radius * (1 + state.roller_strain), theta,
                             nodes=96 if design.kind == "eccentric" else 40)

@@ -1,9 +1,9 @@
 """Scene schema of one entry under ``materials:`` (SPEC.md section 1)."""
 from __future__ import annotations
 
-from typing import Literal
+from typing import Annotated, Literal
 
-from pydantic import PositiveFloat, model_validator
+from pydantic import BeforeValidator, PositiveFloat, model_validator
 
 from ..units import (
     StrictModel,
@@ -18,7 +18,31 @@ from ..units import (
 )
 from .library import known_names
 
+#: scene key -> library group
+KIND_GROUPS = {"fiber": "fibers", "matrix": "matrices", "plastic": "plastics", "metal": "metals"}
 
+
+def _name_text(value):
+    """A library name that YAML read as a number (``matrix: 3502``) back as its text."""
+    if isinstance(value, bool):
+        return value
+    if isinstance(value, int):
+        return str(value)
+    if isinstance(value, float):
+        return str(int(value)) if value.is_integer() else str(value)
+    return value
+
+
+LibraryName = Annotated[str, BeforeValidator(_name_text)]
+
+
+def unknown_name_reason(key: str, name: str) -> str:
+    """Why ``key: name`` is refused: the name belongs to another kind, or the known names."""
+    for other, group in KIND_GROUPS.items():
+        if other != key and name in known_names(group):
+            return (f"unknown {key} {name!r}: {name} is a {other} in the library, "
+                    f"write '{other}: {name}'")
+    return f"unknown {key} {name!r} (known: {', '.join(known_names(KIND_GROUPS[key]))})"
 
 
 class DiffusivitySpec(StrictModel):
@@ -74,10 +98,10 @@ class MaterialSpec(MatrixProperties):
     ``fiber_properties`` overrides the fibre.
     """
 
-    fiber: str | None = None
-    matrix: str | None = None
-    plastic: str | None = None
-    metal: str | None = None
+    fiber: LibraryName | None = None
+    matrix: LibraryName | None = None
+    plastic: LibraryName | None = None
+    metal: LibraryName | None = None
     fiber_volume_fraction: Fraction | None = None
     fiber_weight_fraction: Fraction | None = None
     void_volume_fraction: Fraction = 0.0
@@ -96,11 +120,10 @@ class MaterialSpec(MatrixProperties):
             raise ValueError("give exactly one of fiber+matrix, matrix, plastic, metal")
         if self.fiber and not self.matrix:
             raise ValueError("a fiber needs a matrix")
-        for key, group in (("fiber", "fibers"), ("matrix", "matrices"),
-                           ("plastic", "plastics"), ("metal", "metals")):
+        for key, group in KIND_GROUPS.items():
             name = getattr(self, key)
             if name is not None and name not in known_names(group):
-                raise ValueError(f"unknown {key} {name!r} (known: {', '.join(known_names(group))})")
+                raise ValueError(unknown_name_reason(key, name))
         composite = self.fiber is not None
         if composite:
             if (self.fiber_volume_fraction is None) == (self.fiber_weight_fraction is None):

@@ -402,7 +402,7 @@ def load_sweep(source) -> Sweep:
     try:
         model = SweepModel.model_validate(doc.data)
     except ValidationError as exc:
-        raise SceneError(problems_from_validation(exc, doc)) from None
+        raise SceneError(problems_from_validation(exc, doc, model=SweepModel)) from None
     base_path = Path(source).resolve().parent / model.base
     if not base_path.is_file():
         raise SceneError([doc.problem(("base",), f"no such scene file: {base_path}")])

@@ -1,0 +1,65 @@
+"""The valid keys at a place in a scene model, to suggest the one a user meant.
+
+An unknown key's location (pydantic's ``loc``) is walked through the model's field
+annotations (unions, optionals, lists and dicts opened), and the closest field name of
+the model(s) found there is offered (difflib's ratio, Python standard library).
+"""
+from __future__ import annotations
+
+import difflib
+import types
+import typing
+
+from pydantic import BaseModel
+
+
+def _open(annotation) -> list:
+    """The concrete types inside Annotated / Optional / Union."""
+    origin = typing.get_origin(annotation)
+    if origin is typing.Annotated:
+        return _open(typing.get_args(annotation)[0])
+    if origin in (typing.Union, types.UnionType):
+        return [t for a in typing.get_args(annotation) for t in _open(a)]
+    return [annotation]
+
+
+def _step(annotation, key) -> list:
+    """The annotation(s) one location step below ``annotation``."""
+    found = []
+    for t in _open(annotation):
+        origin = typing.get_origin(t)
+        if isinstance(t, type) and issubclass(t, BaseModel):
+            if isinstance(key, str) and key in t.model_fields:
+                found.append(t.model_fields[key].annotation)
+        elif origin in (list, tuple) and isinstance(key, int):
+            found += list(typing.get_args(t)[:1])
+        elif origin is dict and isinstance(key, str):
+            found += list(typing.get_args(t)[1:2])
+    return found
+
+
+def valid_keys(model: type[BaseModel], loc: tuple) -> list[str]:
+    """Field names of the model(s) at ``loc`` (the location of an unknown key, which is
+    its last element). Union branch tags in ``loc`` (class names) are skipped."""
+    current = [model]
+    for key in loc[:-1]:
+        below = [a for t in current for a in _step(t, key)]
+        if below:
+            current = below
+    names = []
+    for t in (x for a in current for x in _open(a)):
+        if isinstance(t, type) and issubclass(t, BaseModel):
+            names += [n for n in t.model_fields if n not in names]
+    return names
+
+
+def closest_key(model: type[BaseModel] | None, loc: tuple) -> str | None:
+    """The valid key nearest to the unknown one at ``loc``, if any is close."""
+    if model is None or not loc or not isinstance(loc[-1], str):
+        return None
+    matches = difflib.get_close_matches(loc[-1], valid_keys(model, loc), n=1, cutoff=0.6)
+    if not matches and loc[-1]:
+        # a prefix of a longer key ('spring' for 'spring_rate')
+        prefixed = [k for k in valid_keys(model, loc) if k.startswith(loc[-1])]
+        matches = prefixed[:1]
+    return matches[0] if matches else None
