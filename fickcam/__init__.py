@@ -6,7 +6,7 @@ the modules that need them.
 """
 from __future__ import annotations
 
-__version__ = "0.1.0"
+from ._version import __version__
 
 __all__ = ["load_scene", "run", "save", "open_result", "__version__"]
 

@@ -10,7 +10,7 @@ import logging
 import sys
 from pathlib import Path
 
-from . import __version__
+from ._version import __version__
 from .errors import FickcamError, InputError, SceneError
 
 log = logging.getLogger("fickcam")
@@ -43,6 +43,9 @@ def _parser() -> argparse.ArgumentParser:
     query.add_argument("--cam-angle", type=float, help="degrees")
     query.add_argument("--crank-angle", type=float, help="degrees")
     query.add_argument("--format", choices=("table", "csv", "json"), default="table")
+    query.add_argument("--drift", choices=("design", "start"),
+                       help="the change from the as-designed value (dry, reference temperature) "
+                            "or from the first ageing time, instead of the value")
 
     export = sub.add_parser("export", help="export a result as CSV, netCDF or JSON")
     export.add_argument("result")
@@ -80,7 +83,8 @@ def _parser() -> argparse.ArgumentParser:
 
 def _cmd_run(args) -> int:
     from .scene import load_scene
-    from .simulate import run, summary
+    from .reporting import summary
+    from .simulate import run
     from .store import save
 
     scene = load_scene(args.scene)
@@ -90,7 +94,7 @@ def _cmd_run(args) -> int:
     ds = run(scene, accuracy=args.accuracy, progress=not args.quiet)
     save(ds, output)
     if not args.quiet:
-        print(summary(ds))
+        print(summary(ds, notices=False))  # the run has logged them on stderr
         print(f"wrote {output}")
     return 0
 
@@ -104,7 +108,7 @@ def default_output(scene) -> Path:
 
 def _cmd_check(args) -> int:
     from .scene import load_scene
-    from .simulate import describe_plan
+    from .reporting import describe_plan
 
     scene = load_scene(args.scene)
     print(describe_plan(scene))
@@ -117,8 +121,8 @@ def _cmd_query(args) -> int:
 
     ds = open_result(args.result)
     array = select(ds, args.variable, time=args.time, part=args.part, link=args.link,
-                   cam_angle=args.cam_angle, crank_angle=args.crank_angle)
-    print(format_result(array, args.variable, args.format))
+                   cam_angle=args.cam_angle, crank_angle=args.crank_angle, against=args.drift)
+    print(format_result(array, args.variable, args.format, args.drift))
     return 0
 
 

@@ -43,7 +43,9 @@ def build_dataset(values: dict, coords: dict, attrs: dict | None = None):
         coordinates["ageing_time"] = ageing_time_days(coords["time"])
     data_vars = {}
     for name, value in values.items():
-        var = VARIABLES[name]  # KeyError = a physics module used a name not in the schema
+        if name not in VARIABLES:  # no silent drops: every result has its row in the schema
+            raise KeyError(f"{name!r} is not declared in fickcam/schema.py (add its row there)")
+        var = VARIABLES[name]
         array = np.asarray(value)
         if array.dtype.kind in "fc":
             array = array * var.scale

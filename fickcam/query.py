@@ -11,7 +11,7 @@ import json
 import numpy as np
 
 from .errors import InputError
-from .schema import VARIABLES
+from .schema import VARIABLES, design_name
 from .units import is_bare_number, parse_duration
 
 SECONDS = np.timedelta64(1, "s")
@@ -21,8 +21,10 @@ def _time_seconds(ds) -> np.ndarray:
     return ds["time"].values / SECONDS
 
 
-def select(ds, variable: str, *, time=None, part=None, cam_angle=None, crank_angle=None, link=None):
-    """The DataArray of ``variable`` restricted/interpolated as asked.
+def select(ds, variable: str, *, time=None, part=None, cam_angle=None, crank_angle=None, link=None,
+           against: str | None = None):
+    """The DataArray of ``variable`` (or its :func:`drift` ``against`` the design or the
+    start) restricted/interpolated as asked.
 
     ``time`` is a duration (string with units, or seconds as a number from Python; a bare
     number as text, as ``--time 45`` gives, is refused: it needs a unit); angles in
@@ -33,7 +35,7 @@ def select(ds, variable: str, *, time=None, part=None, cam_angle=None, crank_ang
     if variable not in ds.data_vars:
         known = ", ".join(sorted(v for v in ds.data_vars))
         raise InputError(f"variable {variable!r} is not in this result (it has: {known})")
-    array = ds[variable]
+    array = ds[variable] if against is None else drift(ds, variable, against)
     answered, selected = [], {}
     for dim, value in (("part", part), ("link", link)):
         if value is None:
@@ -70,6 +72,37 @@ def select(ds, variable: str, *, time=None, part=None, cam_angle=None, crank_ang
     array.attrs["selection"] = ", ".join(answered)
     array.attrs["selected"] = selected
     return array
+
+
+AGAINST = ("design", "start")
+
+
+def drift(ds, name: str, against: str = "design"):
+    """``name`` minus its as-designed value (``against="design"``: ``<name>_design``, dry at
+    the reference temperature) or minus its value at the first ageing time
+    (``against="start"``), as an xarray.DataArray in the stored unit. Angles (degrees)
+    are wrapped into [-180, 180)."""
+    if name not in ds.data_vars:
+        raise InputError(f"variable {name!r} is not in this result")
+    array = ds[name]
+    if "time" not in array.dims or array.dtype.kind not in "fc":
+        raise InputError(f"{name} is not a number that changes with ageing time: no drift")
+    if against == "design":
+        if design_name(name) not in ds.data_vars:
+            raise InputError(f"this result holds no as-designed value of {name} "
+                             f"({design_name(name)}); use --drift start")
+        reference = ds[design_name(name)]
+        what = "the design (dry, reference temperature)"
+    elif against == "start":
+        reference = array.isel(time=0, drop=True)
+        what = "the first ageing time"
+    else:
+        raise InputError(f"drift against {against!r}: use one of {', '.join(AGAINST)}")
+    change = array - reference
+    if array.attrs.get("units") == "degree":
+        change = (change + 180.0) % 360.0 - 180.0
+    return change.assign_attrs(units=array.attrs.get("units", ""),
+                               long_name=f"{array.attrs.get('long_name', name)}: change from {what}")
 
 
 def _seconds(time) -> float:
@@ -138,14 +171,16 @@ def _plain(value, dim=None):
     return value
 
 
-def format_result(array, variable: str, fmt: str = "table") -> str:
-    """Render a selection as an aligned table, CSV or JSON."""
+def format_result(array, variable: str, fmt: str = "table", against: str | None = None) -> str:
+    """Render a selection as an aligned table, CSV or JSON (of the drift ``against`` the
+    design or the start when given)."""
     columns, rows = to_records(array)
     units = VARIABLES[variable].units if variable in VARIABLES else array.attrs.get("units", "")
     selection = array.attrs.get("selection", "")
     if fmt == "json":
         return json.dumps({"variable": variable, "units": units, "selection": selection,
-                           "columns": columns, "rows": rows})
+                           "columns": columns, "rows": rows}
+                          | ({"drift_against": against} if against else {}))
     if fmt == "csv":  # tidy: the selected values as columns of their own
         fixed = array.attrs.get("selected", {})
         lines = [",".join([*fixed, *columns])]
@@ -153,8 +188,9 @@ def format_result(array, variable: str, fmt: str = "table") -> str:
         return "\n".join(lines)
     if fmt != "table":
         raise InputError(f"unknown format {fmt!r} (table, csv or json)")
-    title = [f"{variable} at {selection}"] if selection else []
-    header = columns[:-1] + [f"{variable} [{units}]"]
+    label = variable if against is None else f"{variable} drift vs {against}"
+    title = [f"{label} at {selection}"] if selection else []
+    header = columns[:-1] + [f"{label} [{units}]"]
     cells = [[_table_cell(v) for v in row] for row in rows]
     widths = [max(len(h), *(len(r[i]) for r in cells)) if cells else len(h) for i, h in enumerate(header)]
     out = title + ["  ".join(h.rjust(w) for h, w in zip(header, widths))]

@@ -5,6 +5,14 @@ It builds the Dataset (:mod:`fickcam.dataset`), checks queries
 (``fickcam schema`` / :func:`markdown_table`). Physics modules return SI
 arrays under these names (angles in rad, speeds in rad/s); ``scale``
 converts SI to the stored unit (rad → deg, rad/s → rpm), per SPEC.md §4.
+
+Every time-dependent variable of the material state and of the mechanisms
+(sections ``parts``, ``cam``, ``linkage``) also has an as-designed row
+``<name>_design`` (the same dims without ``time``): the value the same models
+give for the design, dry at the reference temperature. ``Var.design`` turns it
+on or off per variable; the rows are generated from this table
+(:func:`design_name`, :data:`DESIGN_NOTE`). ``Var.display`` is the unit a
+person reads the value in (the run summary), converted from ``units`` by pint.
 """
 from __future__ import annotations
 
@@ -22,42 +30,89 @@ class Var:
     long_name: str
     section: str  # environment | parts | cam | linkage | fields
     scale: float = 1.0  # stored value = SI value * scale
+    design: bool | None = None  # store "<name>_design"; None: yes for a time-dependent
+    #                             variable of the material state or a mechanism
+    display: str = ""  # unit a person reads it in (summary); "" = the stored unit
 
+    @property
+    def has_design(self) -> bool:
+        """True when the result also holds the as-designed value ``<name>_design``."""
+        if self.design is not None:
+            return self.design
+        return self.section in DESIGN_SECTIONS and "time" in self.dims
+
+
+DESIGN_SECTIONS = ("parts", "cam", "linkage")
+DESIGN_NOTE = ", as designed (dry, reference temperature)"
 
 T, TP, TC, TK, TL = ("time",), ("time", "part"), ("time", "cam_angle"), ("time", "crank_angle"), ("time", "link")
 
 VARIABLES: dict[str, Var] = {
     # environment
-    "temperature": Var(T, "K", "service temperature", "environment"),
+    "temperature": Var(T, "K", "service temperature", "environment", display="degC"),
     "relative_humidity": Var(T, "%", "relative humidity", "environment"),
     # per part: moisture and material state
     "moisture_content": Var(TP, "%", "volume-mean moisture content (weight % of dry mass)", "parts"),
     "surface_moisture_content": Var(TP, "%", "moisture content of the contact-surface layer", "parts"),
-    "equilibrium_moisture_content": Var(TP, "%", "saturation moisture at the surface, Mm(T, RH)", "parts"),
-    "mass": Var(TP, "kg", "part mass, m_dry (1 + M/100)", "parts"),
+    "equilibrium_moisture_content": Var(TP, "%", "saturation moisture at the surface, Mm(T, RH)", "parts",
+                                        design=False),
+    "mass": Var(TP, "kg", "part mass, m_dry (1 + M/100)", "parts", display="g"),
     "density": Var(TP, "kg m-3", "mean density of the swollen part", "parts"),
     "hygrothermal_strain": Var(TP, "1", "free hygrothermal strain, in-plane or axial", "parts"),
     "strain_longitudinal": Var(TP, "1", "free hygrothermal strain along x (fibre direction)", "parts"),
     "strain_transverse": Var(TP, "1", "free hygrothermal strain along y (in-plane transverse)", "parts"),
     "strain_through_thickness": Var(TP, "1", "free hygrothermal strain through the thickness", "parts"),
-    "glass_transition_temperature": Var(TP, "K", "wet glass transition temperature", "parts"),
+    "glass_transition_temperature": Var(TP, "K", "wet glass transition temperature", "parts",
+                                        display="degC"),
     "property_retention": Var(TP, "1", "Chamis matrix property retention P/P0", "parts"),
-    "longitudinal_modulus": Var(TP, "Pa", "longitudinal Young's modulus E11", "parts"),
-    "transverse_modulus": Var(TP, "Pa", "transverse Young's modulus E22", "parts"),
-    "shear_modulus": Var(TP, "Pa", "in-plane shear modulus G12", "parts"),
+    "longitudinal_modulus": Var(TP, "Pa", "longitudinal Young's modulus E11", "parts", display="GPa"),
+    "transverse_modulus": Var(TP, "Pa", "transverse Young's modulus E22", "parts", display="GPa"),
+    "shear_modulus": Var(TP, "Pa", "in-plane shear modulus G12", "parts", display="GPa"),
     "poisson_ratio": Var(TP, "1", "major Poisson ratio nu12", "parts"),
-    "surface_modulus": Var(TP, "Pa", "in-plane modulus of the wet contact-surface layer", "parts"),
+    "surface_modulus": Var(TP, "Pa", "in-plane modulus of the wet contact-surface layer", "parts",
+                           display="GPa"),
+    "matrix_moisture_content": Var(TP, "%", "moisture content of the matrix (Chamis)", "parts"),
+    "surface_matrix_moisture_content": Var(TP, "%", "matrix moisture content of the contact-surface layer",
+                                           "parts"),
+    "surface_glass_transition_temperature": Var(TP, "K", "wet glass transition temperature of the "
+                                                "contact-surface layer", "parts", display="degC"),
+    "surface_property_retention": Var(TP, "1", "Chamis property retention of the contact-surface layer",
+                                      "parts"),
+    "mass_ratio": Var(TP, "1", "mass over dry mass, 1 + M/100", "parts"),
+    "transverse_shear_modulus": Var(TP, "Pa", "transverse shear modulus G23", "parts", display="GPa"),
+    "transverse_poisson_ratio": Var(TP, "1", "transverse Poisson ratio nu23", "parts"),
+    "surface_longitudinal_modulus": Var(TP, "Pa", "E11 of the contact-surface layer", "parts", display="GPa"),
+    "surface_transverse_modulus": Var(TP, "Pa", "E22 of the contact-surface layer", "parts", display="GPa"),
+    "surface_shear_modulus": Var(TP, "Pa", "G12 of the contact-surface layer", "parts", display="GPa"),
+    "surface_poisson_ratio": Var(TP, "1", "nu12 of the contact-surface layer", "parts"),
+    "thermal_expansion_longitudinal": Var(TP, "K-1", "thermal expansion coefficient alpha11 "
+                                          "(Chamis, instantaneous)", "parts"),
+    "thermal_expansion_transverse": Var(TP, "K-1", "thermal expansion coefficient alpha22 "
+                                        "(Chamis, instantaneous)", "parts"),
+    "secant_thermal_expansion_longitudinal": Var(TP, "K-1", "secant thermal expansion alpha11 "
+                                                 "from the reference temperature", "parts"),
+    "secant_thermal_expansion_transverse": Var(TP, "K-1", "secant thermal expansion alpha22 "
+                                               "from the reference temperature", "parts"),
+    "moisture_expansion_longitudinal": Var(TP, "%-1", "moisture expansion coefficient beta11 "
+                                           "(strain per weight %)", "parts"),
+    "moisture_expansion_transverse": Var(TP, "%-1", "moisture expansion coefficient beta22 "
+                                         "(strain per weight %)", "parts"),
+    "thermal_conductivity_longitudinal": Var(TP, "W m-1 K-1", "thermal conductivity k11", "parts"),
+    "thermal_conductivity_transverse": Var(TP, "W m-1 K-1", "thermal conductivity k22", "parts"),
+    "within_wet_tg": Var(TP, "1", "1 while the service temperature is below the wet Tg of bulk and "
+                         "surface layer (Chamis' degradation law applies)", "parts", design=False),
     # cam and follower: scalars over ageing
-    "base_circle_radius": Var(T, "m", "base circle radius of the cam", "cam"),
-    "lift": Var(T, "m", "total follower lift", "cam"),
+    "base_circle_radius": Var(T, "m", "base circle radius of the cam", "cam", display="mm"),
+    "lift": Var(T, "m", "total follower lift", "cam", display="mm"),
     "jump_speed": Var(T, "rpm", "cam speed at which the follower first leaves the cam", "cam", RPM),
     "peak_contact_force": Var(T, "N", "largest contact force over a revolution", "cam"),
     "peak_cam_torque": Var(T, "N m", "largest absolute cam torque over a revolution", "cam"),
-    "peak_contact_stress": Var(T, "Pa", "largest Hertz contact stress over a revolution", "cam"),
-    "wear_depth": Var(T, "m", "accumulated wear depth of the cam surface (Archard)", "cam"),
+    "peak_contact_stress": Var(T, "Pa", "largest Hertz contact stress over a revolution", "cam",
+                               display="MPa"),
+    "wear_depth": Var(T, "m", "accumulated wear depth of the cam surface (Archard)", "cam", display="um"),
     "wear_rate": Var(T, "m s-1", "largest Archard wear rate on the cam surface", "cam"),
     # cam and follower: over the cam angle
-    "follower_displacement": Var(TC, "m", "follower displacement", "cam"),
+    "follower_displacement": Var(TC, "m", "follower displacement", "cam", display="mm"),
     "follower_velocity": Var(TC, "m s-1", "follower velocity", "cam"),
     "follower_acceleration": Var(TC, "m s-2", "follower acceleration", "cam"),
     "follower_jerk": Var(TC, "m s-3", "follower jerk", "cam"),
@@ -70,19 +125,19 @@ VARIABLES: dict[str, Var] = {
     "friction_torque": Var(TC, "N m", "camshaft torque from contact friction (not in cam_torque)", "cam"),
     "wear_per_revolution": Var(TC, "m", "Archard wear depth per revolution at each profile point", "cam"),
     "cam_torque": Var(TC, "N m", "torque on the camshaft", "cam"),
-    "contact_stress": Var(TC, "Pa", "Hertz contact stress", "cam"),
-    "profile_x": Var(TC, "m", "working profile x (cam frame)", "cam"),
-    "profile_y": Var(TC, "m", "working profile y (cam frame)", "cam"),
+    "contact_stress": Var(TC, "Pa", "Hertz contact stress", "cam", display="MPa"),
+    "profile_x": Var(TC, "m", "working profile x (cam frame)", "cam", display="mm"),
+    "profile_y": Var(TC, "m", "working profile y (cam frame)", "cam", display="mm"),
     # four-bar linkage
-    "link_length": Var(TL, "m", "link length (pivot to pivot)", "linkage"),
+    "link_length": Var(TL, "m", "link length (pivot to pivot)", "linkage", display="mm"),
     "link_mass": Var(TL, "kg", "link mass", "linkage"),
     "link_inertia": Var(TL, "kg m2", "link moment of inertia about its centre of mass", "linkage"),
     "grashof_class": Var(T, "", "Grashof class of the linkage", "linkage"),
     "coupler_angle": Var(TK, "degree", "coupler angle theta3", "linkage", DEG),
     "rocker_angle": Var(TK, "degree", "rocker (output) angle theta4", "linkage", DEG),
     "transmission_angle": Var(TK, "degree", "transmission angle", "linkage", DEG),
-    "coupler_point_x": Var(TK, "m", "coupler point x", "linkage"),
-    "coupler_point_y": Var(TK, "m", "coupler point y", "linkage"),
+    "coupler_point_x": Var(TK, "m", "coupler point x", "linkage", display="mm"),
+    "coupler_point_y": Var(TK, "m", "coupler point y", "linkage", display="mm"),
     "coupler_angular_velocity": Var(TK, "rad s-1", "coupler angular velocity", "linkage"),
     "rocker_angular_velocity": Var(TK, "rad s-1", "rocker angular velocity", "linkage"),
     "coupler_angular_acceleration": Var(TK, "rad s-2", "coupler angular acceleration", "linkage"),
@@ -119,6 +174,23 @@ VARIABLES: dict[str, Var] = {
     "cell_z": Var(("part", "cell"), "m", "cell centre z", "fields"),
 }
 
+
+
+def design_name(name: str) -> str:
+    """The name of the as-designed value of ``name`` (``lift`` → ``lift_design``)."""
+    return f"{name}_design"
+
+
+def _design_rows(table: dict[str, Var]) -> dict[str, Var]:
+    """``<name>_design`` for every variable with ``has_design``: dims without time."""
+    return {design_name(name): Var(tuple(d for d in var.dims if d != "time"), var.units,
+                                   var.long_name + DESIGN_NOTE, var.section, var.scale,
+                                   design=False, display=var.display)
+            for name, var in table.items() if var.has_design}
+
+
+VARIABLES.update(_design_rows(VARIABLES))
+
 COORDINATES: dict[str, tuple[str, str]] = {
     "time": ("", "ageing time"),
     # float days beside the timedelta `time`, for plotting and interpolation
@@ -133,8 +205,14 @@ COORDINATES: dict[str, tuple[str, str]] = {
 
 
 def markdown_table() -> str:
-    """The variable table as Markdown (for the README and `fickcam schema`)."""
-    rows = ["| variable | dims | units | meaning |", "|---|---|---|---|"]
+    """The variable table as Markdown (for the README and `fickcam schema`); the
+    as-designed rows are named in the last column of the variable they belong to."""
+    rows = ["| variable | dims | units | meaning | as designed |", "|---|---|---|---|---|"]
+    designs = {design_name(name) for name, var in VARIABLES.items() if var.has_design}
     for name, var in VARIABLES.items():
-        rows.append(f"| `{name}` | {', '.join(var.dims)} | {var.units or '-'} | {var.long_name} |")
+        if name in designs:
+            continue
+        design = f"`{design_name(name)}`" if var.has_design else ""
+        rows.append(f"| `{name}` | {', '.join(var.dims)} | {var.units or '-'} | {var.long_name} "
+                    f"| {design} |")
     return "\n".join(rows)

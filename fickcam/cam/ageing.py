@@ -89,6 +89,4 @@ def scene_response(section, histories: dict, times, angles, valid, on_step=lambd
         known = np.isfinite(stress).any(axis=1)
         result.variables["peak_contact_stress"] = np.where(
             known, np.max(np.where(np.isfinite(stress), stress, -np.inf), axis=1), np.nan)
-    from ..schema import VARIABLES
-
-    return Response({k: v for k, v in result.variables.items() if k in VARIABLES}, result.notices)
+    return result

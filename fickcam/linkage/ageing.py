@@ -12,16 +12,12 @@ thermally (eq. 14, last line).
 """
 from __future__ import annotations
 
-import logging
-
 import numpy as np
 
 from ..mechanisms import over_ageing
 from ..response import Response
 from .classify import class_changes
 from .model import FourBarDesign, FourBarState, fourbar_response
-
-log = logging.getLogger(__name__)
 
 LINKS = ("crank", "coupler", "rocker", "frame")
 
@@ -90,15 +86,5 @@ def scene_response(section, histories: dict, times, angles, valid, on_step=lambd
     result = over_ageing(np.asarray(times, float), valid, evaluate, on_step)
     if "grashof_class" in result.variables:
         result.notices += class_changes(result.variables["grashof_class"], times)
-    return _in_schema(result)
+    return result
 
-
-def _in_schema(result: Response) -> Response:
-    """Keep the variables the result schema declares (the others are computed by
-    :func:`fourbar_response` but have no place in the Dataset yet)."""
-    from ..schema import VARIABLES
-
-    dropped = sorted(set(result.variables) - set(VARIABLES))
-    if dropped:
-        log.debug("linkage variables not in the schema, not stored: %s", ", ".join(dropped))
-    return Response({k: v for k, v in result.variables.items() if k in VARIABLES}, result.notices)

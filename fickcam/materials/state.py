@@ -92,7 +92,7 @@ def material_state(material, temperature, moisture, surface_moisture, reference_
 
     Inputs: temperature (K), moisture = volume-mean ply moisture and surface_moisture =
     contact-layer moisture (weight %), reference temperature T0 (K), initial moisture
-    M0 (weight %). Returns SI arrays: see ``STATE_VARIABLES``. Times with T >= wet Tg
+    M0 (weight %). Returns SI arrays named as in :mod:`fickcam.schema` (section parts). Times with T >= wet Tg
     (bulk or surface) hold NaN in the degraded properties and ``within_wet_tg`` False.
     With ``raise_on_wet_tg`` (needs ``times``) a :class:`PhysicsDomainError` is raised
     at the first such time; it carries ``.index`` and ``.state`` (results before it).
@@ -156,21 +156,3 @@ def material_state(material, temperature, moisture, surface_moisture, reference_
             raise error
     return state
 
-
-#: names and units of what :func:`material_state` returns
-STATE_VARIABLES = {
-    "moisture_content": "%", "surface_moisture_content": "%", "matrix_moisture_content": "%",
-    "surface_matrix_moisture_content": "%", "glass_transition_temperature": "K",
-    "surface_glass_transition_temperature": "K", "property_retention": "1",
-    "surface_property_retention": "1", "mass_ratio": "1 (m / m_dry)", "density": "kg/m3",
-    "strain_longitudinal": "1", "strain_transverse": "1", "strain_through_thickness": "1",
-    "hygrothermal_strain": "1", "thermal_expansion_longitudinal": "1/K",
-    "thermal_expansion_transverse": "1/K", "secant_thermal_expansion_longitudinal": "1/K",
-    "secant_thermal_expansion_transverse": "1/K", "moisture_expansion_longitudinal": "1/%",
-    "moisture_expansion_transverse": "1/%", "thermal_conductivity_longitudinal": "W/(m K)",
-    "thermal_conductivity_transverse": "W/(m K)", "longitudinal_modulus": "Pa",
-    "transverse_modulus": "Pa", "shear_modulus": "Pa", "transverse_shear_modulus": "Pa",
-    "poisson_ratio": "1", "transverse_poisson_ratio": "1", "surface_longitudinal_modulus": "Pa",
-    "surface_transverse_modulus": "Pa", "surface_shear_modulus": "Pa", "surface_poisson_ratio": "1",
-    "surface_modulus": "Pa", "within_wet_tg": "bool",
-}

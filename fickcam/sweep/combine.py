@@ -15,7 +15,7 @@ from contextlib import ExitStack
 
 import numpy as np
 
-from .. import __version__
+from .._version import __version__
 from .spec import Sweep
 from .workdir import WorkFolder
 

@@ -21,7 +21,7 @@ from typing import Any, Literal, Union
 import numpy as np
 from pydantic import Field, ValidationError, field_validator, model_validator
 
-from .. import __version__
+from .._version import __version__
 from ..units import StrictModel
 from ..errors import Problem, SceneError
 

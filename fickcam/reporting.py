@@ -1,0 +1,196 @@
+"""Text a person reads: the plan `fickcam check` prints and the summary after a run.
+
+Units and scales come from the schema (:mod:`fickcam.schema`): a value is shown in
+its variable's ``display`` unit (converted from the stored unit with pint), or in
+the stored unit. The summary gives each key output as design → t = 0 → end, its
+drift against the design and against t = 0 and, for a history that goes up and
+down, its peak and when it happened.
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from .errors import format_duration
+from .query import drift
+from .schema import VARIABLES, design_name
+
+#: scalar results over ageing the summary reports, in this order (when present)
+KEY_OUTPUTS = ("lift", "base_circle_radius", "jump_speed", "peak_cam_torque",
+               "peak_contact_stress", "minimum_transmission_angle", "peak_input_torque")
+#: results over the cycle whose largest change over the cycle the summary reports
+CYCLE_OUTPUTS = ("follower_displacement", "rocker_angle")
+#: a history "goes up and down" when it passes beyond both its ends by more than this
+#: share of its largest change from the start (smaller wiggles are not worth a peak)
+PEAK_SHARE = 0.02
+
+
+# --------------------------------------------------------------------- plan
+
+
+def _model_text(model) -> str:
+    if isinstance(model, dict):
+        return ", ".join(f"{part}: {name}" for part, name in model.items()) + " (others auto)"
+    return model
+
+
+def describe_plan(scene, accuracy: float | None = None) -> str:
+    """The plan `fickcam check` prints: parts, diffusion model, cells, steps."""
+    from .simulate import plan_parts
+
+    environment, times, options, plans = plan_parts(scene, accuracy)
+    lines = [f"scene {scene.name}: valid",
+             f"  environment: {len(environment.change_times) - 1} segment(s), "
+             f"{format_duration(environment.end)}; {len(times)} ageing times",
+             f"  diffusion: model {_model_text(options['model'])}, accuracy {options['accuracy']:g}"]
+    for part, p in plans:
+        head = f"  part {part.name:<9} material {part.material_name}"
+        if p is None:
+            lines.append(f"{head}: does not absorb moisture (thermal strain only)")
+        else:
+            lines.append(f"{head}: {type(part.geometry).__name__} → {p.model}, {p.cells} cells, "
+                         f"{p.steps} steps, est. error {p.error_estimate:.1e} ({p.reason})")
+    mechanisms = [s for s in ("cam", "linkage") if getattr(scene.model, s) is not None]
+    lines.append(f"  mechanisms: {', '.join(mechanisms)}; angle step "
+                 f"{np.degrees(scene.model.outputs.angle_step):g} deg")
+    return "\n".join(lines)
+
+
+# ------------------------------------------------------------------ summary
+
+
+def display(name: str, values):
+    """(values in the variable's display unit, that unit): ``lift`` in mm, not m."""
+    var = VARIABLES[name]
+    values = np.asarray(values, float)
+    if not var.display or var.display == var.units:
+        return values, var.units or "1"
+    from .units import registry
+
+    return registry().Quantity(values, var.units).to(var.display).magnitude, var.display
+
+
+def _finite_ends(values: np.ndarray) -> tuple[int, int] | None:
+    """Indices of the first and last finite values, None when none is."""
+    index = np.nonzero(np.isfinite(values))[0]
+    return (int(index[0]), int(index[-1])) if index.size else None
+
+
+def peak(values: np.ndarray) -> int | None:
+    """Index of the interior extreme of a history that goes up and down (the value
+    furthest from the start that lies beyond both ends), None for a monotonic one."""
+    ends = _finite_ends(values)
+    if ends is None or ends[1] - ends[0] < 2:
+        return None
+    first, last = values[ends[0]], values[ends[1]]
+    tolerance = PEAK_SHARE * np.nanmax(np.abs(values - first))
+    beyond = (values > max(first, last) + tolerance) | (values < min(first, last) - tolerance)
+    if not beyond.any():
+        return None
+    away = np.where(beyond, np.abs(values - first), -np.inf)
+    return int(np.argmax(away))
+
+
+def _number(value: float) -> str:
+    return "-" if not np.isfinite(value) else f"{value:.5g}"
+
+
+def _change(value: float) -> str:
+    return "-" if not np.isfinite(value) else f"{value:+.3g}"
+
+
+def _row(label: str, unit: str, design: float, series: np.ndarray, seconds: np.ndarray) -> list[str]:
+    """One summary row: design, t = 0, end, drift against design and t = 0, peak."""
+    ends = _finite_ends(series)
+    if ends is None:
+        return [f"{label} [{unit}]", _number(design), "-", "-", "-", "-", ""]
+    start, end = series[ends[0]], series[ends[1]]
+    end_text = _number(end)
+    if ends[1] != len(series) - 1:
+        end_text += f" (at {format_duration(seconds[ends[1]])})"
+    top = peak(series)
+    peak_text = "" if top is None else \
+        f"{_number(series[top])} ({_change(series[top] - start)}) at {format_duration(seconds[top])}"
+    return [f"{label} [{unit}]", _number(design), _number(start), end_text,
+            _change(end - design), _change(end - start), peak_text]
+
+
+def _series_rows(ds, seconds) -> list[list[str]]:
+    rows = []
+    diffusion = ds.attrs.get("diffusion", {})
+    if "part" in ds.coords and "moisture_content" in ds:
+        for part in ds["part"].values:
+            if isinstance(diffusion, dict) and diffusion.get(str(part), {}).get("model") == "none":
+                continue  # takes up no moisture (a metal)
+            series, unit = display("moisture_content", ds["moisture_content"].sel(part=part).values)
+            design = ds[design_name("moisture_content")].sel(part=part).values \
+                if design_name("moisture_content") in ds else np.nan
+            rows.append(_row(f"moisture {part}", unit, float(display("moisture_content", design)[0]),
+                             series, seconds))
+    for name in KEY_OUTPUTS:
+        if name not in ds:
+            continue
+        series, unit = display(name, ds[name].values)
+        design = float(display(name, ds[design_name(name)].values)[0]) \
+            if design_name(name) in ds else np.nan
+        rows.append(_row(name, unit, design, series, seconds))
+    return rows
+
+
+def _cycle_lines(ds) -> list[str]:
+    """The largest change over the cycle of each cycle output, against design and t = 0."""
+    lines = []
+    for name in CYCLE_OUTPUTS:
+        if name not in ds:
+            continue
+        angle = next(d for d in ds[name].dims if d != "time")
+        parts = []
+        for against in ("design", "start"):
+            if against == "design" and design_name(name) not in ds:
+                continue
+            shift = np.abs(drift(ds, name, against)).max(angle, skipna=True).values
+            if np.isfinite(shift).any():
+                shown, unit = display(name, shift)
+                if VARIABLES[name].display in ("degC",):
+                    unit = "K"
+                parts.append(f"{np.nanmax(shown):.4g} {unit} against "
+                             f"{'the design' if against == 'design' else 't = 0'}")
+        if parts:
+            lines.append(f"  largest {name} change over the cycle: {', '.join(parts)}")
+    return lines
+
+
+def _table(rows: list[list[str]], header: list[str]) -> list[str]:
+    widths = [max(len(r[i]) for r in rows + [header]) for i in range(len(header))]
+    lines = []
+    for row in [header] + rows:
+        cells = [row[0].ljust(widths[0])] + [c.rjust(w) for c, w in zip(row[1:], widths[1:])]
+        lines.append(("  " + "  ".join(cells)).rstrip())
+    return lines
+
+
+def summary(ds, *, notices: bool = True) -> str:
+    """A few lines a user reads after `fickcam run`: each key output as design → t = 0 →
+    end with its drift against both, and the peak of a history that goes up and down."""
+    seconds = ds["time"].values / np.timedelta64(1, "s")
+    lines = [f"{ds.attrs.get('scene_name', '')}: {len(seconds)} ageing times to "
+             f"{format_duration(seconds[-1])}, wall time {float(ds.attrs.get('wall_time', 0)):.2f} s"]
+    diffusion = ds.attrs.get("diffusion", {})
+    if isinstance(diffusion, dict) and diffusion:
+        lines.append("  diffusion: " + ", ".join(
+            f"{part} {info.get('model', '?')}" + ("" if info.get("model") == "none" else
+                                                  f" (est. error {info.get('error_estimate', 0):.1e})")
+            for part, info in diffusion.items()))
+    rows = _series_rows(ds, seconds)
+    if rows:
+        header = ["", "design", "t = 0", f"t = {format_duration(seconds[-1])}",
+                  "Δ vs design", "Δ vs t = 0", "peak (Δ vs t = 0)"]
+        lines += _table(rows, header)
+    lines += _cycle_lines(ds)
+    stored = ds.attrs.get("notices", [])
+    if isinstance(stored, list) and stored:
+        if notices:
+            lines.append(f"  {len(stored)} notice(s):")
+            lines += [f"    - {n}" for n in stored]
+        else:
+            lines.append(f"  {len(stored)} notice(s), reported above")
+    return "\n".join(lines)
