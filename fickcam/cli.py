@@ -65,6 +65,18 @@ def _parser() -> argparse.ArgumentParser:
     sub.add_parser("materials", help="the built-in material library with sources")
     sub.add_parser("schema", help="the result variables (name, dims, units)")
 
+    compensate = sub.add_parser(
+        "compensate", help="the dry dimensions to make so that the mechanism has its design "
+                           "geometry at an ageing time (or over a window)")
+    compensate.add_argument("scene")
+    when = compensate.add_mutually_exclusive_group(required=True)
+    when.add_argument("--at", metavar="TIME", help='ageing time with units, e.g. "60 d"')
+    when.add_argument("--over", nargs=2, metavar=("T1", "T2"),
+                      help="a service window: minimise the largest deviation over it")
+    compensate.add_argument("-o", "--output", help="compensated scene (default: "
+                                                   "<scene>_compensated.yaml here)")
+    compensate.add_argument("--accuracy", type=float, help="override diffusion.accuracy")
+
     profile = sub.add_parser("profile", help="the cam's dry working profile for manufacture "
                                              "(CSV or DXF, by the output's suffix)")
     profile.add_argument("scene")
@@ -178,6 +190,20 @@ def _cmd_sweep(args) -> int:
     return 0
 
 
+def _cmd_compensate(args) -> int:
+    from .compensation import compensate, write_scene
+    from .compensation.report import report
+    from .scene import load_scene
+
+    scene = load_scene(args.scene)
+    comp = compensate(scene, at=args.at, over=args.over, accuracy=args.accuracy)
+    output = Path(args.output) if args.output else Path(f"{Path(args.scene).stem}_compensated.yaml")
+    path = write_scene(comp, scene, output)
+    print(report(comp, scene, path, accuracy=args.accuracy))
+    print(f"wrote {path}")
+    return 0
+
+
 def _cmd_profile(args) -> int:
     from .cam.model import design_from_scene, working_profile
     from .cam.profile import write_profile_csv, write_profile_dxf
@@ -198,7 +224,7 @@ def _cmd_profile(args) -> int:
 COMMANDS = {"run": _cmd_run, "check": _cmd_check, "query": _cmd_query, "export": _cmd_export,
             "plot": _cmd_plot, "bench": _cmd_bench, "materials": _cmd_materials,
             "schema": _cmd_schema, "sweep": _cmd_sweep,
-            "profile": _cmd_profile}
+            "compensate": _cmd_compensate, "profile": _cmd_profile}
 
 
 def main(argv: list[str] | None = None) -> int:
