@@ -11,7 +11,7 @@ from pathlib import Path
 import numpy as np
 
 from ..cam.model import design_from_scene, working_profile
-from ..cam.profile import write_profile_csv
+from ..cam.profile import write_profile_csv, write_profile_dxf
 from .core import Target
 
 #: points of a written compensated profile (0.1 deg apart on average)
@@ -32,6 +32,10 @@ def targets(section, base_dir: Path) -> list[Target]:
     return found
 
 
+def _by_name(targets, made) -> dict:
+    return dict(zip((t.name for t in targets), made))
+
+
 def profile_path(folder: Path, stem: str) -> Path:
     return Path(folder) / f"{stem}_cam_profile.csv"
 
@@ -39,7 +43,7 @@ def profile_path(folder: Path, stem: str) -> Path:
 def write(data: dict, targets, made, folder: Path, stem: str) -> None:
     """Write the made profile as CSV and point the scene's ``cam:`` mapping at it."""
     cam = data["cam"]
-    shape = dict(zip((t.name for t in targets), made))
+    shape = _by_name(targets, made)
     path = write_profile_csv(profile_path(folder, stem), shape[PROFILE_NAMES[0]],
                              shape[PROFILE_NAMES[1]])
     for key in ("base_circle_radius", "motion", "eccentric"):
@@ -49,6 +53,12 @@ def write(data: dict, targets, made, folder: Path, stem: str) -> None:
         follower = dict(cam["follower"])
         follower["roller_radius"] = f"{shape['roller radius'] * 1e3:.6f} mm"
         cam["follower"] = follower
+
+
+def write_dxf(targets, made, path: Path) -> Path:
+    """The made profile as DXF, for manufacture."""
+    shape = _by_name(targets, made)
+    return write_profile_dxf(path, shape[PROFILE_NAMES[0]], shape[PROFILE_NAMES[1]])
 
 
 def profile_radii(comp) -> list[tuple]:

@@ -72,14 +72,6 @@ def residual_lines(comp: Compensation) -> list[str]:
     return lines
 
 
-def _write_dxf(csv_path: Path) -> Path:
-    """The profile CSV also as DXF, for manufacture."""
-    from ..cam.profile import read_profile_csv, write_profile_dxf
-
-    x, y, _ = read_profile_csv(csv_path)
-    return write_profile_dxf(csv_path.with_suffix(".dxf"), x, y)
-
-
 def write_scene(comp: Compensation, scene, path) -> Path:
     """Write the compensated scene (and a cam's profile CSV beside it); it runs as is."""
     path = Path(path)
@@ -87,9 +79,11 @@ def write_scene(comp: Compensation, scene, path) -> Path:
     folder.mkdir(parents=True, exist_ok=True)
     data = write_made(comp.scene_data, comp.targets, comp.made, folder, path.stem)
     if "cam" in data and "profile_file" in data["cam"]:
+        from .cam import write_dxf
+
         profile = Path(data["cam"]["profile_file"])
         data["cam"]["profile_file"] = profile.name  # beside the scene
-        _write_dxf(profile)
+        write_dxf(comp.targets, comp.made, profile.with_suffix(".dxf"))
     environment = data.get("environment") or {}
     if isinstance(environment.get("history_file"), str):
         environment["history_file"] = relative_to(environment["history_file"], scene.base_dir,
