@@ -8,7 +8,8 @@ from __future__ import annotations
 
 from ._version import __version__
 
-__all__ = ["load_scene", "run", "save", "open_result", "compensate", "__version__"]
+__all__ = ["load_scene", "run", "save", "open_result", "compensate", "fit_weight_gain",
+           "__version__"]
 
 
 def load_scene(source, *, file_name: str | None = None):
@@ -46,3 +47,11 @@ def open_result(path):
     from .store import open_result as _open
 
     return _open(path)
+
+
+def fit_weight_gain(data, matrix: str, **options):
+    """Calibrate D0, Ea, a, b from ASTM D5229 weight-gain data (a CSV path); see
+    :func:`fickcam.fit.fit_weight_gain` for the options."""
+    from .fit import fit_weight_gain as _fit
+
+    return _fit(data, matrix, **options)

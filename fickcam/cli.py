@@ -83,6 +83,15 @@ def _parser() -> argparse.ArgumentParser:
     profile.add_argument("-o", "--output", required=True, help="PATH.csv or PATH.dxf")
     profile.add_argument("--points", type=int, default=3600, help="points round the profile")
 
+    fit = sub.add_parser("fit", help="calibrate a material from ASTM D5229 weight-gain data")
+    fit.add_argument("data", help="weight-gain CSV (one row per weighing, units in the header)")
+    fit.add_argument("--matrix", required=True, help="library matrix (resin) of the coupons")
+    fit.add_argument("--fiber", help="library fibre of composite coupons")
+    fit.add_argument("--fiber-volume-fraction", type=float, help="fibre volume fraction of the coupons")
+    fit.add_argument("--name", help="material name in the YAML (default: the CSV's stem)")
+    fit.add_argument("-o", "--output", required=True, help="YAML file with the materials: block")
+    fit.add_argument("--plot", help="PNG of the data, fitted curves and residuals")
+
     sweep = sub.add_parser("sweep", help="many scenes on dask.distributed")
     sweep.add_argument("sweep")
     group = sweep.add_mutually_exclusive_group()
@@ -221,9 +230,25 @@ def _cmd_profile(args) -> int:
     return 0
 
 
+def _cmd_fit(args) -> int:
+    from .fit import fit_weight_gain, materials_yaml, parameter_table, plot_fit
+
+    if (args.fiber is None) != (args.fiber_volume_fraction is None):
+        raise InputError("--fiber and --fiber-volume-fraction go together")
+    report = fit_weight_gain(args.data, args.matrix, fiber=args.fiber,
+                             fiber_volume_fraction=args.fiber_volume_fraction, name=args.name)
+    output = Path(args.output)
+    output.write_text(materials_yaml(report), encoding="utf-8")
+    print(parameter_table(report))
+    print(f"wrote {output}")
+    if args.plot:
+        print(f"wrote {plot_fit(report, args.plot)}")
+    return 0
+
+
 COMMANDS = {"run": _cmd_run, "check": _cmd_check, "query": _cmd_query, "export": _cmd_export,
             "plot": _cmd_plot, "bench": _cmd_bench, "materials": _cmd_materials,
-            "schema": _cmd_schema, "sweep": _cmd_sweep,
+            "schema": _cmd_schema, "sweep": _cmd_sweep, "fit": _cmd_fit,
             "compensate": _cmd_compensate, "profile": _cmd_profile}
 
 

@@ -34,6 +34,7 @@ SI_UNITS: dict[str, str] = {
     "molar_energy": "J/mol",
     "density": "kg/m**3",
     "inverse_temperature": "1/K",
+    "rate": "1/s",
     "acceleration": "m/s**2",
     "fraction": "",
     "percent": "percent",
@@ -187,6 +188,9 @@ Density = quantity("density", positive=True)
 ExpansionCoefficient = quantity("inverse_temperature")
 Fraction = quantity("fraction", nonnegative=True, upper=1.0)
 RelativeHumidity = quantity("percent", nonnegative=True, upper=100.0, bare=implausible_bare_humidity)
+SignedPercent = quantity("percent")
+SignedMolarEnergy = quantity("molar_energy")
+Rate = quantity("rate", positive=True)
 NonNegativePercent = quantity("percent", nonnegative=True)
 
 

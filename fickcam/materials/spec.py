@@ -3,7 +3,8 @@ from __future__ import annotations
 
 from typing import Annotated, Literal
 
-from pydantic import BeforeValidator, PositiveFloat, model_validator
+import numpy as np
+from pydantic import AfterValidator, BeforeValidator, PositiveFloat, model_validator
 
 from ..units import (
     StrictModel,
@@ -14,6 +15,9 @@ from ..units import (
     MolarEnergy,
     NonNegativePercent,
     Pressure,
+    Rate,
+    SignedMolarEnergy,
+    SignedPercent,
     Temperature,
 )
 from .library import known_names
@@ -57,6 +61,66 @@ class SaturationSpec(StrictModel):
 
     coefficient: NonNegativePercent
     exponent: PositiveFloat = 1.0
+
+
+def _covariance(matrix: tuple[tuple[float, float], tuple[float, float]]):
+    """A 2x2 covariance: symmetric, positive semi-definite (to round-off)."""
+    m = np.asarray(matrix, float)
+    if not np.allclose(m, m.T, rtol=1e-6, atol=0.0):
+        raise ValueError("a covariance matrix must be symmetric")
+    if np.linalg.eigvalsh(m).min() < -1e-9 * max(abs(m).max(), 1e-300):
+        raise ValueError("a covariance matrix must be positive semi-definite")
+    return matrix
+
+
+Covariance = Annotated[tuple[tuple[float, float], tuple[float, float]], AfterValidator(_covariance)]
+
+
+class FitIntervals(StrictModel):
+    """95 % intervals (low, high) of the fitted values."""
+
+    pre_exponential: tuple[Diffusivity, Diffusivity] | None = None
+    activation_energy: tuple[SignedMolarEnergy, SignedMolarEnergy] | None = None
+    coefficient: tuple[SignedPercent, SignedPercent] | None = None
+    exponent: tuple[float, float] | None = None
+
+
+class FitCovariance(StrictModel):
+    """``diffusivity``: covariance of (ln pre_exponential, activation_energy [J/mol]);
+    ``saturation``: of (coefficient [%], exponent). SI numbers."""
+
+    diffusivity: Covariance | None = None
+    saturation: Covariance | None = None
+
+
+class PlyValues(StrictModel):
+    """What composite coupons gave before the map to the matrix overrides."""
+
+    pre_exponential: Diffusivity
+    coefficient: NonNegativePercent
+    diffusivity_factor: PositiveFloat
+    moisture_factor: PositiveFloat
+
+
+class NonFickianCondition(StrictModel):
+    condition: str
+    p_value: float
+    diffusivity: Diffusivity
+    binding_rate: Rate
+    release_rate: Rate
+
+
+class FitRecord(StrictModel):
+    """``materials.NAME.fit``: written by ``fickcam fit`` beside the values it found;
+    validated, not used by a run (a Monte Carlo sweep may draw from ``covariance``)."""
+
+    source: str
+    interval_95: FitIntervals | None = None
+    covariance: FitCovariance | None = None
+    activation_energy_from: Literal["data", "library"] = "data"
+    exponent_from: Literal["data", "library"] = "data"
+    ply: PlyValues | None = None
+    non_fickian: list[NonFickianCondition] = []
 
 
 class MatrixProperties(StrictModel):
@@ -110,6 +174,7 @@ class MaterialSpec(MatrixProperties):
     wet_tg_scale: Literal["celsius", "fahrenheit", "kelvin"] = "celsius"
     matrix_properties: MatrixProperties | None = None
     fiber_properties: FiberProperties | None = None
+    fit: FitRecord | None = None
 
     @model_validator(mode="after")
     def _one_kind(self):

@@ -1,0 +1,21 @@
+"""Calibrate a material's moisture parameters from ASTM D5229 weight-gain data.
+
+``fit_weight_gain(csv, matrix=...)`` returns a :class:`FitReport` (a dataclass;
+``.to_dataset()`` gives an xarray Dataset); ``materials_yaml`` writes the
+scene-ready ``materials:`` block, ``parameter_table`` the printed table,
+``plot_fit`` the figure (matplotlib is imported only when it draws).
+"""
+from .data import Specimen, read_weight_gain
+from .output import materials_yaml, parameter_table
+from .report import FitReport, fit_weight_gain
+
+
+def plot_fit(report, path):
+    """Moisture gain vs sqrt(time) per condition with the fitted curves and residuals (PNG)."""
+    from .plot import plot_fit as _plot
+
+    return _plot(report, path)
+
+
+__all__ = ["FitReport", "Specimen", "fit_weight_gain", "materials_yaml", "parameter_table",
+           "plot_fit", "read_weight_gain"]

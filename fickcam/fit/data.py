@@ -1,0 +1,185 @@
+"""Weight-gain data (ASTM D5229/D5229M procedure A): a tidy CSV, one row per weighing.
+
+Columns (units in the header, any unit pint knows, like ``history_file``):
+``specimen, temperature [degC], relative_humidity [%], thickness [mm], width [mm],
+length [mm], dry_mass [g], time [d], mass [g]``. ``moisture [%]`` may replace
+``dry_mass`` and ``mass``; ``width`` and ``length`` may be left out for a sheet
+with sealed edges (both or neither). Lines starting with ``#`` are comments.
+Every fault is a ``file:LINE column: reason`` problem (exit 2 at the command line).
+"""
+from __future__ import annotations
+
+import csv
+import re
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from ..errors import Problem, SceneError
+from ..units import to_si
+
+_HEADER = re.compile(r"^\s*(?P<name>[A-Za-z_]+)\s*(?:\[(?P<unit>[^\]]*)\])?\s*$")
+DIMENSIONS = {"temperature": "temperature", "relative_humidity": "percent", "thickness": "length",
+              "width": "length", "length": "length", "dry_mass": "mass", "time": "time",
+              "mass": "mass", "moisture": "percent"}
+CONSTANT = ("temperature", "relative_humidity", "thickness", "width", "length", "dry_mass")
+MAX_PROBLEMS = 20
+
+
+@dataclass(frozen=True, eq=False)
+class Specimen:
+    """One coupon: conditions (K, %), dimensions (m; width/length None = sealed
+    edges), weighing times (s), moisture content (weight %) and their CSV lines."""
+
+    name: str
+    temperature: float
+    relative_humidity: float
+    thickness: float
+    width: float | None
+    length: float | None
+    time: np.ndarray
+    moisture: np.ndarray
+    lines: np.ndarray
+
+    @property
+    def condition(self) -> tuple[float, float]:
+        """(T in K, RH in %) rounded so that equal conditions group together."""
+        return round(self.temperature, 2), round(self.relative_humidity, 2)
+
+
+def condition_label(condition: tuple[float, float]) -> str:
+    return f"{condition[0] - 273.15:g} degC / {condition[1]:g} % RH"
+
+
+class _Reader:
+    """Collects the problems of one file while its cells are read."""
+
+    def __init__(self, file: str):
+        self.file = file
+        self.problems: list[Problem] = []
+
+    def fail(self, line: int | None, column: str, reason: str) -> None:
+        if len(self.problems) < MAX_PROBLEMS:
+            self.problems.append(Problem(self.file, line, column, reason))
+
+    def header(self, cells: list[str]) -> dict[str, tuple[int, str]]:
+        columns: dict[str, tuple[int, str]] = {}
+        for index, cell in enumerate(cells):
+            match = _HEADER.match(cell)
+            name = match.group("name") if match else cell.strip()
+            if not match or (name not in DIMENSIONS and name != "specimen"):
+                self.fail(1, name, f"unknown column (expected specimen, {', '.join(DIMENSIONS)})")
+                continue
+            if name in columns:
+                self.fail(1, name, "column given twice")
+            unit = (match.group("unit") or "").strip()
+            if name in DIMENSIONS and not unit:
+                self.fail(1, name, f"missing unit: write e.g. '{name} [{_EXAMPLE_UNITS[name]}]'")
+            columns[name] = (index, unit)
+        self._required(columns)
+        return columns
+
+    def _required(self, columns) -> None:
+        needed = ["specimen", "temperature", "relative_humidity", "thickness", "time"]
+        if "moisture" not in columns:
+            needed += ["dry_mass", "mass"]
+        elif {"dry_mass", "mass"} & set(columns):
+            self.fail(1, "moisture", "give either moisture or dry_mass and mass, not both")
+        for name in needed:
+            if name not in columns:
+                self.fail(1, name, "missing column")
+        if ("width" in columns) != ("length" in columns):
+            self.fail(1, "width" if "width" not in columns else "length",
+                      "give width and length together (or neither for a sheet with sealed edges)")
+
+    def value(self, row, line, columns, name) -> float | None:
+        index, unit = columns[name]
+        text = row[index].strip() if index < len(row) else ""
+        if not text:
+            self.fail(line, name, "empty cell")
+            return None
+        try:
+            number = float(text)
+        except ValueError:
+            self.fail(line, name, f"{text!r} is not a number (the unit goes in the header)")
+            return None
+        try:
+            return to_si(f"{number!r} {unit}", DIMENSIONS[name])
+        except ValueError as exc:
+            self.fail(line, name, str(exc))
+            return None
+
+
+_EXAMPLE_UNITS = {"temperature": "degC", "relative_humidity": "%", "thickness": "mm", "width": "mm",
+                  "length": "mm", "dry_mass": "g", "time": "d", "mass": "g", "moisture": "%"}
+
+
+def _rows(path: Path, reader: _Reader) -> list[tuple[int, list[str]]]:
+    try:
+        with open(path, newline="", encoding="utf-8") as handle:
+            numbered = list(enumerate(csv.reader(handle), start=1))
+    except FileNotFoundError:
+        raise SceneError([Problem(reader.file, None, "", "no such data file")]) from None
+    except (OSError, UnicodeDecodeError) as exc:
+        raise SceneError([Problem(reader.file, None, "", f"cannot read: {exc}")]) from None
+    return [(n, row) for n, row in numbered if row and any(c.strip() for c in row)
+            and not row[0].lstrip().startswith("#")]
+
+
+def read_weight_gain(path) -> list[Specimen]:
+    """Read and validate a weight-gain CSV; raise SceneError listing every fault."""
+    path = Path(path)
+    reader = _Reader(str(path))
+    rows = _rows(path, reader)
+    if len(rows) < 2:
+        raise SceneError([Problem(reader.file, None, "", "needs a header and at least one row")])
+    header_line, header = rows[0]
+    columns = reader.header(header)
+    if reader.problems:
+        raise SceneError([Problem(p.file, header_line, p.key, p.reason) for p in reader.problems])
+    records: dict[str, list[dict]] = {}
+    for line, row in rows[1:]:
+        record = {name: reader.value(row, line, columns, name) for name in columns if name != "specimen"}
+        name = row[columns["specimen"][0]].strip() if columns["specimen"][0] < len(row) else ""
+        if not name:
+            reader.fail(line, "specimen", "empty cell")
+        record["line"] = line
+        records.setdefault(name, []).append(record)
+    specimens = [_specimen(name, rows_, reader) for name, rows_ in records.items() if name]
+    if reader.problems:
+        raise SceneError(reader.problems)
+    return specimens
+
+
+def _specimen(name: str, rows: list[dict], reader: _Reader) -> Specimen | None:
+    first = rows[0]
+    for row in rows[1:]:
+        for key in CONSTANT:
+            if key in first and None not in (first[key], row[key]) and \
+                    not np.isclose(row[key], first[key], rtol=1e-9, atol=0.0):
+                reader.fail(row["line"], key, f"specimen {name!r} changes its {key} "
+                                              f"(line {first['line']} has another value)")
+    for row in rows:
+        for key in ("mass", "dry_mass", "thickness", "width", "length"):
+            if row.get(key) is not None and row[key] <= 0:
+                reader.fail(row["line"], key, "must be positive")
+        if row.get("time") is not None and row["time"] < 0:
+            reader.fail(row["line"], "time", "must not be negative")
+        if row.get("relative_humidity") is not None and not 0 < row["relative_humidity"] <= 100:
+            reader.fail(row["line"], "relative_humidity", "must lie in (0, 100] %")
+    times = [row["time"] for row in rows]
+    for previous, row in zip(rows, rows[1:]):
+        if None not in (previous["time"], row["time"]) and row["time"] <= previous["time"]:
+            reader.fail(row["line"], "time", f"specimen {name!r}: times must increase "
+                                             f"(line {previous['line']} is not earlier)")
+    if reader.problems:
+        return None
+    if "moisture" in first:
+        moisture = np.array([row["moisture"] for row in rows])
+    else:  # D5229 eq. 1: M = (W_i - W_b) / W_b x 100 %
+        moisture = np.array([(row["mass"] - row["dry_mass"]) / row["dry_mass"] * 100.0 for row in rows])
+    return Specimen(name=name, temperature=first["temperature"],
+                    relative_humidity=first["relative_humidity"], thickness=first["thickness"],
+                    width=first.get("width"), length=first.get("length"), time=np.array(times),
+                    moisture=moisture, lines=np.array([row["line"] for row in rows]))

@@ -1,0 +1,119 @@
+"""What ``fickcam fit`` writes: the scene-ready ``materials:`` block (YAML text with
+comments) and the printed table of parameters with their 95 % intervals.
+
+The ``fit:`` record under the material (validated, ignored by the run) holds:
+``source`` (the data file), ``interval_95`` (low, high of each value), ``covariance``
+of ``diffusivity`` = (ln pre_exponential [ln(m^2/s)], activation_energy [J/mol]) and
+of ``saturation`` = (coefficient [%], exponent [1]) as 2x2 SI matrices for Monte
+Carlo draws (bivariate normal), where each value came from (data or library), the
+ply values of a composite, the non-Fickian conditions and their two-phase rates.
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from .report import FitReport
+
+
+def _g(x: float, digits: int = 4) -> str:
+    return f"{x:.{digits}g}"
+
+
+def _matrix(m) -> str:
+    return "[" + ", ".join("[" + ", ".join(f"{v:.6g}" for v in row) + "]" for row in np.asarray(m)) + "]"
+
+
+def _pair(low, high, unit="") -> str:
+    unit = f" {unit}" if unit else ""
+    return f"[{_g(low)}{unit}, {_g(high)}{unit}]"
+
+
+def _sorption_lines(report: FitReport) -> list[str]:
+    flagged = report.two_phase_fits()
+    if not flagged:
+        return []
+    condition, fit = flagged[0]
+    return [f"    # NOT Fickian at {', '.join(report.non_fickian)}. Two-phase (Langmuir) fit at {condition.label}:",
+            "    # uncomment when the scene loader takes `sorption` (issue 13); the diffusivity",
+            "    # above is then to be replaced by the free-water value "
+            f"{_g(fit.diffusivity.value)} m^2/s at this temperature.",
+            f"    # sorption: {{model: langmuir, binding_rate: {_g(fit.binding_rate.value)} 1/s, "
+            f"release_rate: {_g(fit.release_rate.value)} 1/s}}"]
+
+
+def _fit_record(report: FitReport, m: dict) -> list[str]:
+    d, s = report.arrhenius, report.saturation
+    to_matrix_d, to_matrix_a = 1.0 / report.diffusivity_factor, 1.0 / report.moisture_factor
+    lines = ["    fit:                                   # what fickcam fit found (checked, not used by a run)",
+             f"      source: {report.source}",
+             "      interval_95:",
+             f"        pre_exponential: {_pair(d.first.low * to_matrix_d, d.first.high * to_matrix_d, 'm^2/s')}",
+             f"        activation_energy: {_pair(d.second.low / 1e3, d.second.high / 1e3, 'kJ/mol')}",
+             f"        coefficient: {_pair(s.first.low * to_matrix_a, s.first.high * to_matrix_a, '%')}",
+             f"        exponent: {_pair(s.second.low, s.second.high)}",
+             "      covariance:                          # SI, for Monte Carlo draws (bivariate normal)",
+             f"        diffusivity: {_matrix(m['diffusivity_covariance'])}   "
+             "# (ln pre_exponential, activation_energy [J/mol])",
+             f"        saturation: {_matrix(m['saturation_covariance'])}   # (coefficient [%], exponent)",
+             f"      activation_energy_from: {d.second_from}",
+             f"      exponent_from: {s.second_from}"]
+    if report.fiber:
+        lines += ["      ply:                                 # the coupon (ply) values the data gave",
+                  f"        pre_exponential: {_g(d.first.value)} m^2/s",
+                  f"        coefficient: {_g(s.first.value)} %",
+                  f"        diffusivity_factor: {_g(report.diffusivity_factor)}   # D22 / Dm",
+                  f"        moisture_factor: {_g(report.moisture_factor)}   # M_ply / M_matrix"]
+    flagged = report.two_phase_fits()
+    lines += ["      non_fickian:"] if flagged else []
+    lines += [f"        - {{condition: {c.label}, p_value: {l.p_value:.3g}, diffusivity: {_g(l.diffusivity.value)} "
+              f"m^2/s, binding_rate: {_g(l.binding_rate.value)} 1/s, release_rate: {_g(l.release_rate.value)} 1/s}}"
+              for c, l in flagged]
+    return lines
+
+
+def materials_yaml(report: FitReport) -> str:
+    """The ``materials:`` block, ready to paste into a scene."""
+    m = report.matrix_values()
+    composite = [f"    fiber: {report.fiber}", f"    fiber_volume_fraction: {report.fiber_volume_fraction:g}"] \
+        if report.fiber else []
+    which = "matrix values (from the ply values below)" if report.fiber else "neat resin values"
+    lines = [f"# fickcam fit: {report.name} from {report.source} "
+             f"({len(report.specimens)} specimens, {len(report.conditions)} conditions)",
+             *[f"# NOTE {n}" for n in report.notes],
+             "materials:",
+             f"  {report.name}:",
+             f'    matrix: "{report.matrix}"', *composite,
+             f"    # {which}; D = pre_exponential exp(-activation_energy/(R T)), Mm = coefficient (RH/100)^exponent",
+             f"    diffusivity: {{pre_exponential: {_g(m['pre_exponential'], 6)} m^2/s, "
+             f"activation_energy: {_g(m['activation_energy'] / 1e3, 6)} kJ/mol}}",
+             f"    saturation: {{coefficient: {_g(m['coefficient'], 6)} %, exponent: {_g(m['exponent'], 6)}}}",
+             *_fit_record(report, m), *_sorption_lines(report)]
+    return "\n".join(lines) + "\n"
+
+
+def parameter_table(report: FitReport) -> str:
+    """Per condition: D (full series) with its interval, D5229 initial slope and edge
+    correction, Mm with its interval and equilibrium, the non-Fickian test; then the laws."""
+    head = (f"{'condition':<22} {'n':>3} {'D m^2/s':>10} {'95 % interval':>23} {'D5229 slope':>11} "
+            f"{'edge-corr.':>10} {'Mm %':>7} {'95 % interval':>17} {'equil.':>6} {'Fick':>5}")
+    lines = [head, "-" * len(head)]
+    for c, a in zip(report.conditions, report.anomalies):
+        lines.append(f"{c.label:<22} {len(c.specimens):>3} {c.diffusivity.value:>10.4g} "
+                     f"{'[' + _g(c.diffusivity.low) + ', ' + _g(c.diffusivity.high) + ']':>23} "
+                     f"{c.initial_slope_diffusivity:>11.4g} {c.edge_corrected_diffusivity:>10.4g} "
+                     f"{c.saturation.value:>7.4g} {'[' + _g(c.saturation.low) + ', ' + _g(c.saturation.high) + ']':>17} "
+                     f"{'yes' if c.at_equilibrium else 'NO':>6} {'NO' if a.non_fickian else 'yes':>5}")
+    d, s = report.arrhenius, report.saturation
+    law = "law (ply values)" if report.fiber else "law"
+    lines += ["", f"{law:<22} {'value':>12} {'95 % interval':>26}  from",
+              f"{'D0 m^2/s':<22} {d.first.value:>12.4g} {_pair(d.first.low, d.first.high):>26}  {d.first_from}",
+              f"{'Ea kJ/mol':<22} {d.second.value / 1e3:>12.4g} {_pair(d.second.low / 1e3, d.second.high / 1e3):>26}  {d.second_from}",
+              f"{'a %':<22} {s.first.value:>12.4g} {_pair(s.first.low, s.first.high):>26}  {s.first_from}",
+              f"{'b':<22} {s.second.value:>12.4g} {_pair(s.second.low, s.second.high):>26}  {s.second_from}"]
+    lines += [f"two-phase at {c.label}: D {_g(l.diffusivity.value)} m^2/s "
+              f"{_pair(l.diffusivity.low, l.diffusivity.high)}, gamma {_g(l.binding_rate.value)} 1/s "
+              f"{_pair(l.binding_rate.low, l.binding_rate.high)}, beta {_g(l.release_rate.value)} 1/s "
+              f"{_pair(l.release_rate.low, l.release_rate.high)}, Mm {_g(l.saturation.value)} %"
+              for c, l in report.two_phase_fits()]
+    lines += [f"note: {n}" for n in report.notes]
+    return "\n".join(lines)

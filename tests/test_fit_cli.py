@@ -1,0 +1,153 @@
+"""`fickcam fit` as a user runs it: bad CSV rows refused at their line, the fitted
+YAML loads into a scene whose run reproduces the weighed points, the plot is drawn."""
+import numpy as np
+import pytest
+import yaml
+
+import fickcam
+from fickcam.diffusion.exposure import GAS_CONSTANT
+from fickcam.cli import main
+from fickcam.fit.synthetic import d5229_times, synthetic_specimen, write_weight_gain_csv
+
+HEADER = "specimen,temperature [degC],relative_humidity [%],thickness [mm],dry_mass [g],time [d],mass [g]\n"
+GOOD = "a,60,85,2,5.0,0,5.0\na,60,85,2,5.0,1,5.02\na,60,85,2,5.0,2,5.03\n"
+
+
+def run_cli(tmp_path, text, capsys, *extra):
+    path = tmp_path / "coupons.csv"
+    path.write_text(text)
+    code = main(["fit", str(path), "--matrix", "3502", "-o", str(tmp_path / "out.yaml"), *extra])
+    return code, capsys.readouterr()
+
+
+@pytest.mark.parametrize("text, where, reason", [
+    (HEADER + "a,60,85,2,5.0,0,5.0\na,60,85,2,5.0,2,5.02\na,60,85,2,5.0,1,5.03\n",
+     "coupons.csv:4 time:", "times must increase"),
+    (HEADER + GOOD + "b,60,85,2,5.0,0,-5.0\n", "coupons.csv:5 mass:", "must be positive"),
+    (HEADER.replace("time [d]", "time") + GOOD, "coupons.csv:1 time:", "missing unit"),
+    (HEADER + GOOD + "a,60,85,2.5,5.0,3,5.03\n", "coupons.csv:5 thickness:", "changes its thickness"),
+    (HEADER + GOOD + "a,70,85,2,5.0,3,5.03\n", "coupons.csv:5 temperature:", "changes its temperature"),
+    (HEADER + "a,60,85,2,5.0,0,5.0\na,60,85,2,5.0,1 fortnight,5.02\n", "coupons.csv:3 time:", "not a number"),
+    (HEADER.replace("time [d]", "time [kg]") + GOOD, "coupons.csv:2 time:", "wrong dimension"),
+    (HEADER.replace("mass [g]\n", "mass [g],colour\n") + GOOD, "coupons.csv:1 colour:", "unknown column"),
+    (HEADER.replace(",dry_mass [g]", "") + "a,60,85,2,0,5.0\n", "coupons.csv:1 dry_mass:", "missing column"),
+])
+def test_bad_rows_are_refused_at_their_line_with_exit_2(tmp_path, capsys, text, where, reason):
+    code, out = run_cli(tmp_path, text, capsys)
+    assert code == 2
+    first = out.err.splitlines()[0]
+    assert first.endswith(first.split(": ", 1)[-1]) and "Traceback" not in out.err
+    assert where in out.err and reason in out.err
+
+
+def test_unknown_library_matrix_is_bad_input(tmp_path, capsys):
+    path = tmp_path / "c.csv"
+    path.write_text(HEADER + GOOD)
+    assert main(["fit", str(path), "--matrix", "unobtainium", "-o", str(tmp_path / "o.yaml")]) == 2
+    assert "unknown matrix" in capsys.readouterr().err
+
+
+def _coupons(tmp_path, rng):
+    """SYNTHETIC coupons of the library resin 3502 at 60 degC / 85 % RH, sealed edges."""
+    d, mm = 4e-12, 3.0
+    coupons = [synthetic_specimen(f"s{k}", 333.15, 85.0, 2e-3, d5229_times(56.0), mm, d, rng, 0.005 * mm)
+               for k in range(2)]
+    return write_weight_gain_csv(coupons, tmp_path / "resin.csv", ["SYNTHETIC"], dry_mass_g=5.0), coupons
+
+
+def test_fitted_yaml_runs_in_a_scene_and_reproduces_the_weighed_points(tmp_path, capsys):
+    rng = np.random.default_rng(4)
+    csv_path, coupons = _coupons(tmp_path, rng)
+    code = main(["fit", str(csv_path), "--matrix", "3502", "-o", str(tmp_path / "fit.yaml"),
+                 "--plot", str(tmp_path / "fit.png")])
+    out = capsys.readouterr().out
+    assert code == 0 and "Ea kJ/mol" in out and "library" in out
+    assert (tmp_path / "fit.png").stat().st_size > 10_000
+    block = yaml.safe_load((tmp_path / "fit.yaml").read_text())["materials"]
+    assert list(block) == ["resin"] and block["resin"]["fit"]["source"] == "resin.csv"
+    picked = np.arange(1, coupons[0].time.size, 2)       # every other weighing keeps the run short
+    times = coupons[0].time[picked]
+    scene = {
+        "name": "coupon-check",
+        "environment": {"reference_temperature": "23 degC",
+                        "history": [{"duration": "56 d", "temperature": "60 degC", "relative_humidity": "85 %"}]},
+        "materials": block,
+        # a thin eccentric disc: radius 1 m, 2 mm thick, so that its edge adds < 0.2 % of Mm
+        "cam": {"material": "resin", "eccentric": {"eccentricity": "4 mm", "radius": "1 m"},
+                "thickness": "2 mm", "speed": "10 rpm",
+                "follower": {"kind": "roller", "roller_radius": "10 mm", "mass": "0.1 kg",
+                             "spring_rate": "100 N/m"}},
+        "outputs": {"ageing_times": [f"{t / 86400:.9g} d" for t in times], "angle_step": "10 deg"},
+    }
+    ds = fickcam.run(fickcam.load_scene(scene))
+    run = ds["moisture_content"].sel(part="cam").values
+    scatter = 0.005 * 3.0
+    for specimen in coupons:
+        difference = run - specimen.moisture[picked]
+        assert np.sqrt(np.mean(difference ** 2)) < 1.5 * scatter
+        assert np.max(np.abs(difference)) < 4 * scatter
+
+
+def test_fit_record_is_validated_by_the_scene_loader(tmp_path):
+    from pydantic import ValidationError
+
+    from fickcam.materials import MaterialSpec
+
+    good = {"matrix": "3502", "fit": {"source": "x.csv", "covariance": {"diffusivity": [[1.0, 0.5], [0.5, 1.0]]}}}
+    assert MaterialSpec.model_validate(good).fit.covariance.diffusivity[0][1] == 0.5
+    for bad in ([[1.0, 2.0], [2.0, 1.0]], [[1.0, 0.5], [0.4, 1.0]]):
+        with pytest.raises(ValidationError):
+            MaterialSpec.model_validate({**good, "fit": {"source": "x.csv", "covariance": {"diffusivity": bad}}})
+    with pytest.raises(ValidationError):
+        MaterialSpec.model_validate({**good, "fit": {"source": "x.csv", "colour": "red"}})
+
+
+def test_python_api_returns_a_dataclass_and_a_dataset(tmp_path):
+    rng = np.random.default_rng(5)
+    csv_path, _ = _coupons(tmp_path, rng)
+    report = fickcam.fit_weight_gain(csv_path, "3502", name="mine")
+    ds = report.to_dataset()
+    assert report.name == "mine" and ds.sizes["condition"] == 1
+    assert ds["diffusivity"].attrs["units"] == "m2/s"
+    assert ds["diffusivity_low"].item() < ds["diffusivity"].item() < ds["diffusivity_high"].item()
+
+
+def _material_of(yaml_text):
+    from fickcam.materials import MaterialSpec, resolve
+
+    block = yaml.safe_load(yaml_text)["materials"]
+    (name, entry), = block.items()
+    return resolve(name, MaterialSpec.model_validate(entry)), entry
+
+
+def test_composite_ply_values_map_to_matrix_overrides_that_give_the_ply_back(tmp_path):
+    """The scene's composite (Chamis) turns the written matrix values back into the
+    measured through-thickness D22 and ply Mm."""
+    from fickcam.fit import fit_weight_gain, materials_yaml
+
+    rng = np.random.default_rng(6)
+    coupons = [synthetic_specimen(f"p{k}", 343.15, rh, 2e-3, d5229_times(56.0), 1.5 * (rh / 100) ** 1.2,
+                                  2e-12, rng, 0.005) for k, rh in enumerate((50.0, 85.0))]
+    report = fit_weight_gain(coupons, "8551-7", fiber="T300", fiber_volume_fraction=0.6, name="cfrp")
+    material, entry = _material_of(materials_yaml(report))
+    assert entry["fit"]["ply"]["diffusivity_factor"] == pytest.approx(report.diffusivity_factor, rel=1e-3)
+    diffusivity = material.diffusivity_for()
+    d22 = diffusivity.pre_exponential[2] * np.exp(-diffusivity.activation_energy / (GAS_CONSTANT * 343.15))
+    assert d22 == pytest.approx(report.conditions[0].diffusivity.value, rel=1e-3)
+    for condition in report.conditions:
+        ply = material.saturation_moisture(343.15, condition.relative_humidity)
+        assert ply == pytest.approx(condition.saturation.value, rel=0.01)
+
+
+def test_non_fickian_data_write_the_two_phase_rates_and_a_runnable_fickian_block(tmp_path):
+    from fickcam.fit import fit_weight_gain, materials_yaml
+
+    rng = np.random.default_rng(13)
+    coupons = [synthetic_specimen(f"s{k}", 333.15, 85.0, 2e-3, d5229_times(140.0), 2.0, 5e-12, rng, 0.01,
+                                  gamma=3e-7, beta=1e-6) for k in range(2)]
+    report = fit_weight_gain(coupons, "3502", name="wet")
+    text = materials_yaml(report)
+    assert report.non_fickian == ["60 degC / 85 % RH"]
+    assert "# sorption: {model: langmuir, binding_rate:" in text
+    material, entry = _material_of(text)
+    assert material.absorbs and entry["fit"]["non_fickian"][0]["condition"] == "60 degC / 85 % RH"
