@@ -255,6 +255,31 @@ class OutputsSection(StrictModel):
         return value
 
 
+class DesignSection(StrictModel):
+    """``design:``: the geometry the mechanism must have in service, where the ``cam:`` /
+    ``linkage:`` sections give the dimensions as made (``fickcam compensate`` writes it).
+    Each entry holds only the keys that differ from the made section; the as-designed
+    state (``<name>_design``, drift, limits) is computed from it."""
+
+    cam: dict | None = None
+    linkage: dict | None = None
+
+
+#: keys that together give a cam's shape: a design shape replaces the made one whole
+CAM_SHAPE_KEYS = ("base_circle_radius", "motion", "eccentric", "profile_file")
+
+
+def merged(made: dict, overrides: dict, replace_whole: tuple = ()) -> dict:
+    """``made`` with ``overrides`` applied (mappings merged key by key); when the overrides
+    name any of ``replace_whole``, all of those keys of ``made`` are dropped first."""
+    out = {k: v for k, v in made.items()
+           if not (k in replace_whole and any(key in overrides for key in replace_whole))}
+    for key, value in overrides.items():
+        out[key] = merged(out[key], value) if isinstance(value, dict) and isinstance(
+            out.get(key), dict) else value
+    return out
+
+
 class SceneModel(StrictModel):
     name: str = Field(min_length=1)
     description: str = ""
@@ -264,6 +289,7 @@ class SceneModel(StrictModel):
     linkage: LinkageSection | None = None
     diffusion: DiffusionSection = DiffusionSection()
     outputs: OutputsSection = OutputsSection()
+    design: DesignSection | None = None
 
     @field_validator("name")
     @classmethod
@@ -283,10 +309,18 @@ class Scene:
     base_dir: Path
     document: YamlDocument | None = field(default=None, repr=False)
     materials: dict = field(default_factory=dict, repr=False)  # name -> resolved Material
+    design_model: SceneModel | None = field(default=None, repr=False)  # from ``design:``
 
     @property
     def name(self) -> str:
         return self.model.name
+
+    def as_designed(self) -> "Scene":
+        """This scene with its mechanisms as designed (``design:``), or itself."""
+        if self.design_model is None:
+            return self
+        return Scene(self.design_model, self.file, self.text, self.base_dir, self.document,
+                     self.materials)
 
 
 # --------------------------------------------------------------------------
@@ -410,10 +444,41 @@ def validate_document(doc: YamlDocument, *, base_dir: Path) -> Scene:
     problems, resolved = _cross_checks(model, doc, base_dir)
     profile_problems, model = _cam_profile(model, doc, base_dir)
     problems += profile_problems
+    design_problems, design_model = _design_model(model, doc, base_dir)
+    problems += design_problems
     if problems:
         raise SceneError(problems)
     return Scene(model=model, file=doc.file, text=doc.text, base_dir=base_dir,
-                 document=doc, materials=resolved)
+                 document=doc, materials=resolved, design_model=design_model)
+
+
+def design_data(data: dict) -> dict:
+    """A scene mapping as designed: its ``design:`` overrides merged into ``cam:`` and
+    ``linkage:`` (a design cam shape replaces the made one), ``design:`` dropped."""
+    design = data.get("design") or {}
+    out = {k: v for k, v in data.items() if k != "design"}
+    for section in ("cam", "linkage"):
+        if isinstance(design.get(section), dict) and isinstance(out.get(section), dict):
+            out[section] = merged(out[section], design[section],
+                                  CAM_SHAPE_KEYS if section == "cam" else ())
+    return out
+
+
+def _design_model(model: SceneModel, doc: YamlDocument, base_dir: Path):
+    """(problems, the SceneModel as designed) from the ``design:`` section, or ([], None)."""
+    if model.design is None:
+        return [], None
+    for section in ("cam", "linkage"):
+        if getattr(model.design, section) is not None and getattr(model, section) is None:
+            return [doc.problem(("design", section), f"the scene has no {section} section")], None
+    data = design_data(doc.data)
+    try:
+        design = SceneModel.model_validate(data)
+    except ValidationError as exc:
+        return [doc.problem(("design",) + tuple(problem.key.split(".")), problem.reason)
+                for problem in problems_from_validation(exc, doc)], None
+    problems, design = _cam_profile(design, doc, base_dir)
+    return problems, design
 
 
 def load_scene(source, *, file_name: str | None = None) -> Scene:

@@ -107,7 +107,8 @@ def run(scene, *, accuracy: float | None = None, progress: bool = False):
         bar.set_postfix_str(f"diffusion {part.name}")
         histories.append(age_part(part, environment, times, options, scene, notices))
         bar.update()
-    designs = [design_part(part, environment) for part in parts]
+    design_scene = scene.as_designed()  # differs where the scene is made to compensate
+    designs = [design_part(part, environment) for part in build_parts(design_scene)]
 
     values = {"temperature": environment.temperature(times),
               "relative_humidity": environment.relative_humidity(times)}
@@ -121,7 +122,7 @@ def run(scene, *, accuracy: float | None = None, progress: bool = False):
     values.update(mechanisms.variables)
     coords.update(mechanism_coords(scene))
     notices += mechanisms.notices
-    values.update(design_values(scene, designs))
+    values.update(design_values(design_scene, designs))
     if scene.model.outputs.fields:
         fields, cells = field_values(histories, times)
         values.update(fields)

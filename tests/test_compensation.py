@@ -76,6 +76,32 @@ def test_compensated_scene_keeps_sections_and_names_itself(fourbar_at_end):
     assert point / coupler == pytest.approx(80 / 160, rel=1e-9)  # the point grows with the coupler
 
 
+def test_compensated_scene_measures_its_drift_against_the_design_it_was_made_for(fourbar_at_end):
+    """The written scene's ``design:`` section: <name>_design, query.drift and limits see the
+    intended design, not the smaller made links."""
+    from fickcam.query import drift
+
+    scene, _, before, after = fourbar_at_end
+    design = FourBarDesign.from_section(scene.model.linkage).lengths
+    assert np.allclose(after.link_length_design.values, design, rtol=1e-12)
+    assert np.allclose(after.rocker_angle_design.values, before.rocker_angle_design.values)
+    left = np.abs(drift(after, "rocker_angle").values[-1]).max()
+    assert left <= 1e-3 * np.abs(drift(before, "rocker_angle").values[-1]).max()
+
+
+@pytest.mark.parametrize("design, key", [
+    ("design: {cam: {base_circle_radius: 40 mm}}", "design.cam: the scene has no cam section"),
+    ("design: {linkage: {crank: -5 mm}}", "design.linkage.crank: must be positive"),
+    ("design: {linkage: {crank: 100 mm}, gear: {}}", "design.gear: unknown key"),
+])
+def test_bad_design_sections_are_refused_at_their_line(tmp_path, capsys, design, key):
+    text = (CONFIGS / "fourbar_r914_humid.yaml").read_text() + design + "\n"
+    (tmp_path / "s.yaml").write_text(text)
+    assert main(["check", str(tmp_path / "s.yaml")]) == 2
+    err = capsys.readouterr().err.strip()
+    assert len(err.splitlines()) == 1 and key in err, err
+
+
 def test_demo_cam_compensated_at_60_days_follows_the_design_motion(tmp_path, capsys):
     """Within 1 % of the uncompensated deviation (largest over the cycle) at every cam angle;
     the UD cam swells anisotropically, so the made cam is given by its points. Done with

@@ -73,3 +73,13 @@ def profile_radii(comp) -> list[tuple]:
             ("cam", "largest radius", float(r0.max()), float(r1.max())),
             ("cam", "profile along x (fibres)", float(np.ptp(x0)), float(np.ptp(x1))),
             ("cam", "profile along y", float(np.ptp(y0)), float(np.ptp(y1)))]
+
+
+def design_entry(section: dict, targets) -> dict:
+    """The ``design:`` entry of a compensated scene: the design's shape (and roller)."""
+    from ..scene import CAM_SHAPE_KEYS
+
+    entry = {key: section[key] for key in CAM_SHAPE_KEYS if key in section}
+    if any(t.name == "roller radius" for t in targets):
+        entry["follower"] = {"roller_radius": section["follower"]["roller_radius"]}
+    return entry

@@ -31,3 +31,8 @@ def write(data: dict, targets: list[Target], made: list, length_text) -> None:
             point = dict(linkage.get("coupler_point") or {})
             point["distance"] = length_text(value)
             linkage["coupler_point"] = point
+
+
+def design_entry(section: dict) -> dict:
+    """The ``design:`` entry of a compensated scene: the design's link lengths and point."""
+    return {key: section[key] for key in LINKS + ("coupler_point",) if key in section}

@@ -72,6 +72,25 @@ def residual_lines(comp: Compensation) -> list[str]:
     return lines
 
 
+def _with_design(data: dict, comp: Compensation) -> dict:
+    """The made scene with its ``design:`` section (what drift and limits are measured
+    against) after the mechanism sections."""
+    from . import cam, linkage
+
+    design = {}
+    if "cam" in data:
+        design["cam"] = cam.design_entry(comp.scene_data["cam"], comp.targets)
+    if "linkage" in data:
+        design["linkage"] = linkage.design_entry(comp.scene_data["linkage"])
+    out = {}
+    for key, value in data.items():
+        if key != "design":
+            out[key] = value
+        if key == ("linkage" if "linkage" in data else "cam"):
+            out["design"] = design
+    return out
+
+
 def write_scene(comp: Compensation, scene, path) -> Path:
     """Write the compensated scene (and a cam's profile CSV beside it); it runs as is."""
     path = Path(path)
@@ -84,10 +103,14 @@ def write_scene(comp: Compensation, scene, path) -> Path:
         profile = Path(data["cam"]["profile_file"])
         data["cam"]["profile_file"] = profile.name  # beside the scene
         write_dxf(comp.targets, comp.made, profile.with_suffix(".dxf"))
+    data = _with_design(data, comp)
     environment = data.get("environment") or {}
     if isinstance(environment.get("history_file"), str):
         environment["history_file"] = relative_to(environment["history_file"], scene.base_dir,
                                                   folder)
+    shape = data.get("design", {}).get("cam", {})
+    if isinstance(shape.get("profile_file"), str):
+        shape["profile_file"] = relative_to(shape["profile_file"], scene.base_dir, folder)
     data["name"] = f"{scene.name}-compensated"
     data["description"] = f"{scene.model.description} (compensated {when_text(comp)})".strip()
     outputs = dict(data.get("outputs") or {})

@@ -103,12 +103,12 @@ def compensate(scene, at=None, over=None, *, accuracy: float | None = None) -> C
     time ``at`` (a duration, e.g. "60 d", or seconds), or stays closest to it over the
     window ``over`` = (T1, T2) (minimax). Returns a :class:`Compensation`; its
     ``scene_data`` is written by :func:`fickcam.compensation.write_scene`."""
-    from ..scene import load_scene
+    from ..scene import design_data, load_scene
 
     scene = load_scene(scene)
     times = compensation_times(scene, at, over)
-    targets = _targets(scene)
-    data = copy.deepcopy(scene.document.data)
+    targets = _targets(scene.as_designed())  # a compensated scene is compensated anew
+    data = design_data(copy.deepcopy(scene.document.data))
     made = [t.design for t in targets]
     with tempfile.TemporaryDirectory(prefix="fickcam-compensate-") as folder, quiet_runs():
         ds = _strain_run(data, scene.base_dir, times, accuracy)
