@@ -124,29 +124,21 @@ def write_scene(comp: Compensation, scene, path) -> Path:
     return path
 
 
-def _angle_deviation(change):
-    """Angles in degrees wrapped into [-180, 180)."""
-    return (change + 180.0) % 360.0 - 180.0
-
-
-def largest_deviation(ds, design, name: str) -> np.ndarray | None:
-    """Largest |value - design value| over the cycle at each ageing time (stored unit),
-    ``design`` being the uncompensated result holding ``<name>_design``; the coupler point
-    is the distance between the two points. None where the result lacks ``name``."""
-    from ..schema import design_name
+def largest_deviation(ds, name: str) -> np.ndarray | None:
+    """Largest |value - design value| over the cycle at each ageing time (stored unit;
+    :func:`fickcam.query.drift` against the result's as-designed state, which for a
+    compensated scene is its ``design:``); the coupler point is the distance between the
+    two points. None where the result lacks ``name``."""
+    from ..query import drift
 
     if name == "coupler_point":
         if "coupler_point_x" not in ds:
             return None
-        dx = ds["coupler_point_x"].values - design[design_name("coupler_point_x")].values
-        dy = ds["coupler_point_y"].values - design[design_name("coupler_point_y")].values
-        change = np.hypot(dx, dy)
+        change = np.hypot(drift(ds, "coupler_point_x").values, drift(ds, "coupler_point_y").values)
+    elif name in ds:
+        change = drift(ds, name).values
     else:
-        if name not in ds:
-            return None
-        change = ds[name].values - design[design_name(name)].values
-        if ds[name].attrs.get("units") == "degree":
-            change = _angle_deviation(change)
+        return None
     return np.nanmax(np.abs(change), axis=-1)
 
 
@@ -182,9 +174,9 @@ def drift_lines(times, before, after) -> list[str]:
     """The drift of the key outputs from the design, before and after compensation."""
     columns = []
     for name, label, scale, unit in KEY_OUTPUTS:
-        old = largest_deviation(before, before, name)
+        old = largest_deviation(before, name)
         if old is not None:
-            new = largest_deviation(after, before, name)
+            new = largest_deviation(after, name)
             columns.append((f"{label} {unit}", old * scale, new * scale))
     if not columns:
         return []
