@@ -2,6 +2,8 @@
 Fickian series, Carter & Kibler's closed form and an independent method of lines."""
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 from scipy.integrate import simpson, solve_ivp
 from scipy.sparse import diags
 
@@ -99,3 +101,24 @@ def test_a_mode_without_diffusion_relaxes_like_first_order_kinetics():
     free, bound = two_phase_mode_deficit(0.0, t, gamma, beta)
     assert np.allclose(free + bound, 1.0)
     assert np.allclose(free, 0.75, atol=1e-14)  # starts at its equilibrium share: stays there
+
+
+@settings(max_examples=25, deadline=None)
+@given(st.floats(-2.0, 1.0), st.floats(-3.0, 1.0), st.floats(-3.0, 1.0))
+def test_uptake_rises_monotonically_from_zero_to_the_equilibrium_shares(log_d, log_gamma, log_beta):
+    """The two-phase system is cooperative (exchange rates >= 0) and starts below its
+    steady state, so every uptake fraction rises monotonically (comparison principle)
+    and free + bound = total with free <= beta/(gamma+beta)."""
+    d = D * 10 ** log_d
+    kappa = np.pi ** 2 * d / H ** 2
+    gamma, beta = kappa * 10 ** log_gamma, kappa * 10 ** log_beta
+    slowest = kappa * beta / (kappa + gamma + beta)   # |slow eigenvalue| of mode 1 is above this
+    t = np.sort(np.concatenate([[0.0], np.logspace(-4, 0, 20) / max(kappa, gamma + beta),
+                                np.logspace(-3, np.log10(40.0), 20) / slowest]))
+    uptake = two_phase_sheet_uptake(t, d, H, gamma, beta)
+    free0, bound0 = equilibrium_shares(gamma, beta)
+    assert np.all(np.diff(uptake.total) >= -1e-10)
+    assert np.all(np.diff(uptake.bound) >= -1e-10)
+    assert np.allclose(uptake.free + uptake.bound, uptake.total)
+    assert np.all(uptake.free <= free0 + 1e-10) and np.all(uptake.bound <= bound0 + 1e-10)
+    assert uptake.total[-1] == pytest.approx(1.0, abs=1e-6)

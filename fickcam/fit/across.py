@@ -15,9 +15,10 @@ from scipy import stats
 from scipy.optimize import curve_fit
 
 from ..diffusion.exposure import GAS_CONSTANT
-from .single import CONFIDENCE, Estimate, FickFit
+from .single import CONFIDENCE, Estimate, FickFit, log_estimate
 
 Z95 = float(stats.norm.ppf(0.5 + CONFIDENCE / 2))
+SIGMA_FLOOR = 1e-9   # a condition fitted without residual (noiseless data) still gets a weight
 
 
 @dataclass(frozen=True)
@@ -35,6 +36,7 @@ class LawFit:
 
 def _weighted_fit(model, x, y, sigma, start):
     """curve_fit with absolute sigma, Birge-scaled when the scatter exceeds sigma."""
+    sigma = np.where(np.isfinite(sigma), np.maximum(sigma, SIGMA_FLOOR), 1e300)
     params, covariance = curve_fit(model, x, y, p0=start, sigma=sigma, absolute_sigma=True,
                                    maxfev=10000)
     dof = x.size - len(params)
@@ -52,8 +54,7 @@ def _interval(value, se, quantile) -> Estimate:
 
 
 def _log_interval(log_value, se, quantile) -> Estimate:
-    return Estimate(float(np.exp(log_value)), float(np.exp(log_value - quantile * se)),
-                    float(np.exp(log_value + quantile * se)))
+    return log_estimate(float(log_value), float(quantile * se))
 
 
 def _log_d_se(fit: FickFit) -> float:
@@ -65,7 +66,7 @@ def arrhenius(conditions: list[FickFit], library_activation_energy: float) -> La
     library, D0 = D exp(Ea/(R T)) (its interval from D's alone)."""
     inverse_t = np.array([1.0 / c.temperature for c in conditions])
     log_d = np.log([c.diffusivity.value for c in conditions])
-    sigma = np.array([_log_d_se(c) for c in conditions])
+    sigma = np.maximum([_log_d_se(c) for c in conditions], SIGMA_FLOOR)
     if np.unique(np.round(inverse_t, 9)).size < 2:
         ea = library_activation_energy
         weights = 1.0 / sigma ** 2
@@ -93,7 +94,7 @@ def saturation_law(conditions: list[FickFit], library_exponent: float) -> LawFit
     library); one humidity: b from the library, a = Mm / (RH/100)^b."""
     rh = np.array([c.relative_humidity / 100.0 for c in conditions])
     mm = np.array([c.saturation.value for c in conditions])
-    sigma = np.array([np.sqrt(c.covariance[1, 1]) for c in conditions])
+    sigma = np.maximum([np.sqrt(c.covariance[1, 1]) for c in conditions], SIGMA_FLOOR)
     if np.unique(np.round(rh, 6)).size < 2:
         b = library_exponent
         scale = rh ** -b

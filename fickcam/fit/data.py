@@ -25,6 +25,7 @@ DIMENSIONS = {"temperature": "temperature", "relative_humidity": "percent", "thi
               "mass": "mass", "moisture": "percent"}
 CONSTANT = ("temperature", "relative_humidity", "thickness", "width", "length", "dry_mass")
 MAX_PROBLEMS = 20
+MIN_WEIGHINGS = 3   # two parameters (D, Mm) and one degree of freedom for their intervals
 
 
 @dataclass(frozen=True, eq=False)
@@ -173,12 +174,20 @@ def _specimen(name: str, rows: list[dict], reader: _Reader) -> Specimen | None:
         if None not in (previous["time"], row["time"]) and row["time"] <= previous["time"]:
             reader.fail(row["line"], "time", f"specimen {name!r}: times must increase "
                                              f"(line {previous['line']} is not earlier)")
+    if len(rows) < MIN_WEIGHINGS:
+        reader.fail(first["line"], "specimen", f"specimen {name!r} has {len(rows)} weighing(s); "
+                                               f"a fit needs at least {MIN_WEIGHINGS}")
     if reader.problems:
         return None
     if "moisture" in first:
         moisture = np.array([row["moisture"] for row in rows])
     else:  # D5229 eq. 1: M = (W_i - W_b) / W_b x 100 %
         moisture = np.array([(row["mass"] - row["dry_mass"]) / row["dry_mass"] * 100.0 for row in rows])
+    if moisture.max() <= 0:
+        column = "moisture" if "moisture" in first else "mass"
+        reader.fail(rows[-1]["line"], column, f"specimen {name!r} gains no moisture "
+                                              f"(largest gain {moisture.max():.4g} %): nothing to fit")
+        return None
     return Specimen(name=name, temperature=first["temperature"],
                     relative_humidity=first["relative_humidity"], thickness=first["thickness"],
                     width=first.get("width"), length=first.get("length"), time=np.array(times),

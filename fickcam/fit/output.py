@@ -91,25 +91,35 @@ def materials_yaml(report: FitReport) -> str:
     return "\n".join(lines) + "\n"
 
 
+def _row(label: str, count: int, c) -> str:
+    return (f"{label:<22} {count:>3} {c.diffusivity.value:>10.4g} "
+            f"{'[' + _g(c.diffusivity.low) + ', ' + _g(c.diffusivity.high) + ']':>23} "
+            f"{c.initial_slope_diffusivity:>11.4g} {c.edge_corrected_diffusivity:>10.4g} "
+            f"{c.saturation.value:>7.4g} {'[' + _g(c.saturation.low) + ', ' + _g(c.saturation.high) + ']':>17} "
+            f"{'yes' if c.at_equilibrium else 'NO':>6}")
+
+
 def parameter_table(report: FitReport) -> str:
-    """Per condition: D (full series) with its interval, D5229 initial slope and edge
-    correction, Mm with its interval and equilibrium, the non-Fickian test; then the laws."""
+    """Per condition (and below it each of its specimens): D (full series) with its
+    interval, D5229 initial slope and edge correction, Mm with its interval and
+    equilibrium, the non-Fickian test; then the laws."""
     head = (f"{'condition':<22} {'n':>3} {'D m^2/s':>10} {'95 % interval':>23} {'D5229 slope':>11} "
             f"{'edge-corr.':>10} {'Mm %':>7} {'95 % interval':>17} {'equil.':>6} {'Fick':>5}")
     lines = [head, "-" * len(head)]
+    by_name = {f.specimens[0]: f for f in report.specimen_fits}
     for c, a in zip(report.conditions, report.anomalies):
-        lines.append(f"{c.label:<22} {len(c.specimens):>3} {c.diffusivity.value:>10.4g} "
-                     f"{'[' + _g(c.diffusivity.low) + ', ' + _g(c.diffusivity.high) + ']':>23} "
-                     f"{c.initial_slope_diffusivity:>11.4g} {c.edge_corrected_diffusivity:>10.4g} "
-                     f"{c.saturation.value:>7.4g} {'[' + _g(c.saturation.low) + ', ' + _g(c.saturation.high) + ']':>17} "
-                     f"{'yes' if c.at_equilibrium else 'NO':>6} {'NO' if a.non_fickian else 'yes':>5}")
+        lines.append(_row(c.label, len(c.specimens), c) + f" {'NO' if a.non_fickian else 'yes':>5}")
+        if len(c.specimens) > 1:
+            lines += [_row(f"  {name}", 1, by_name[name]) for name in c.specimens]
     d, s = report.arrhenius, report.saturation
     law = "law (ply values)" if report.fiber else "law"
-    lines += ["", f"{law:<22} {'value':>12} {'95 % interval':>26}  from",
-              f"{'D0 m^2/s':<22} {d.first.value:>12.4g} {_pair(d.first.low, d.first.high):>26}  {d.first_from}",
-              f"{'Ea kJ/mol':<22} {d.second.value / 1e3:>12.4g} {_pair(d.second.low / 1e3, d.second.high / 1e3):>26}  {d.second_from}",
-              f"{'a %':<22} {s.first.value:>12.4g} {_pair(s.first.low, s.first.high):>26}  {s.first_from}",
-              f"{'b':<22} {s.second.value:>12.4g} {_pair(s.second.low, s.second.high):>26}  {s.second_from}"]
+    lines += ["", f"{law:<22} {'value':>12} {'95 % interval':>26}  from"]
+    for label, estimate, scale, source in (("D0 m^2/s", d.first, 1.0, d.first_from),
+                                           ("Ea kJ/mol", d.second, 1e-3, d.second_from),
+                                           ("a %", s.first, 1.0, s.first_from),
+                                           ("b", s.second, 1.0, s.second_from)):
+        lines.append(f"{label:<22} {estimate.value * scale:>12.4g} "
+                     f"{_pair(estimate.low * scale, estimate.high * scale):>26}  {source}")
     lines += [f"two-phase at {c.label}: D {_g(l.diffusivity.value)} m^2/s "
               f"{_pair(l.diffusivity.low, l.diffusivity.high)}, gamma {_g(l.binding_rate.value)} 1/s "
               f"{_pair(l.binding_rate.low, l.binding_rate.high)}, beta {_g(l.release_rate.value)} 1/s "

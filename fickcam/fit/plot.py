@@ -55,13 +55,14 @@ def plot_fit(report: FitReport, path) -> Path:
     for index, (condition, anomaly) in enumerate(zip(report.conditions, report.anomalies)):
         _draw_condition(ax, res_ax, report, condition, anomaly, colors[index % len(colors)], times)
     ax.set_ylabel("moisture gain M [wt %]")
-    ax.set_title(f"{report.name}: weight gain from {report.source} (points) and fits (lines)")
+    origin = "" if report.source.startswith("<") else f" from {report.source}"
+    ax.set_title(f"{report.name}: weight gain{origin} (points) and fits (lines)")
     ax.legend(fontsize=8, loc="lower right")
     ax.grid(alpha=0.3)
     top = ax.secondary_xaxis("top", functions=(lambda x: np.square(x), lambda t: np.sqrt(np.maximum(t, 0))))
     top.set_xlabel("time [d]")
     res_ax.axhline(0.0, color="k", lw=0.8)
     res_ax.set_xlabel("sqrt(time) [sqrt(d)]")
-    res_ax.set_ylabel("residual [wt %]")
+    res_ax.set_ylabel("Fick residual [wt %]")
     res_ax.grid(alpha=0.3)
     return save_figure(fig, Path(path))

@@ -13,6 +13,7 @@ from .anomalous import AnomalyTest, LangmuirFit, check_fickian
 from .data import Specimen, condition_label, read_weight_gain
 from .single import FickFit, fit_fickian
 
+UNDETERMINED = 10.0       # D interval wider than this factor (or Mm's wider than Mm): not determined
 NEAR_EQUILIBRIUM = 0.99   # fitted M/Mm at the last weighing above which Mm is not called extrapolated
 
 
@@ -59,7 +60,8 @@ class FitReport:
                 "saturation_covariance": scale @ s.covariance @ scale}
 
     def to_dataset(self):
-        """The condition fits as an xarray Dataset (dimension ``condition``), the laws as attributes."""
+        """The condition fits (dimension ``condition``) and the specimen fits (``specimen_*``
+        variables, dimension ``specimen``) as an xarray Dataset, the laws as attributes."""
         import xarray as xr
 
         def column(get):
@@ -87,12 +89,17 @@ class FitReport:
             "binding_rate": column_of_anomalies(lambda l: l.binding_rate.value),
             "release_rate": column_of_anomalies(lambda l: l.release_rate.value),
         }
-        ds = xr.Dataset(variables, coords={"condition": [c.label for c in self.conditions]})
+        for name, get in (("diffusivity", lambda f: f.diffusivity), ("saturation_moisture", lambda f: f.saturation)):
+            for suffix, part in (("", "value"), ("_low", "low"), ("_high", "high")):
+                variables[f"specimen_{name}{suffix}"] = (
+                    "specimen", np.array([getattr(get(f), part) for f in self.specimen_fits]))
+        ds = xr.Dataset(variables, coords={"condition": [c.label for c in self.conditions],
+                                           "specimen": [f.specimens[0] for f in self.specimen_fits]})
         units = {"temperature": "K", "relative_humidity": "%", "saturation_moisture": "%",
                  "binding_rate": "1/s", "release_rate": "1/s"}
         for name in ds.data_vars:
-            ds[name].attrs["units"] = units.get(name.replace("_low", "").replace("_high", ""),
-                                                "m2/s" if "diffusivity" in name else "1")
+            base = name.replace("_low", "").replace("_high", "").replace("specimen_", "")
+            ds[name].attrs["units"] = units.get(base, "m2/s" if "diffusivity" in name else "1")
         ds.attrs.update(source=self.source, material=self.name,
                         pre_exponential=self.arrhenius.first.value,
                         activation_energy=self.arrhenius.second.value,
@@ -137,7 +144,7 @@ def fit_weight_gain(data, matrix: str, fiber: str | None = None,
     f11, f22 = material.principal_diffusivity_factors()
     in_plane = (f11 / f22, 1.0)
     groups = _groups(specimens)
-    conditions = [fit_fickian(g, in_plane) for g in groups]
+    conditions = [fit_fickian(g, in_plane, condition_label(g[0].condition)) for g in groups]
     anomalies = [check_fickian(g, c, in_plane) for g, c in zip(groups, conditions)]
     library = material.matrix
     moisture_factor = float(material.saturation_moisture(300.0, 100.0)) / library["saturation"]["coefficient"]
@@ -169,8 +176,16 @@ def _notes(report: FitReport) -> list[str]:
             notes.append(f"{c.label}: D5229 criterion (change < 0.020 % over two 7-day periods) not met "
                          f"although the fit reaches M/Mm = {c.fraction_reached:.3f}: weighing scatter "
                          "exceeds the criterion")
+    for c in report.specimen_fits + report.conditions:
+        if not (c.diffusivity.high < UNDETERMINED * c.diffusivity.low
+                and c.saturation.high - c.saturation.low < c.saturation.value):
+            notes.append(f"{c.label}: D and Mm are NOT determined by these weighings (95 % intervals "
+                         f"D [{c.diffusivity.low:.3g}, {c.diffusivity.high:.3g}] m^2/s, Mm "
+                         f"[{c.saturation.low:.3g}, {c.saturation.high:.3g}] %): weigh longer")
     for label in report.non_fickian:
-        notes.append(f"{label}: NOT Fickian (systematic residuals removed by the two-phase model, both tests at 1 %): see the two-phase (Langmuir) fit")
+        notes.append(f"{label}: NOT Fickian (systematic residuals removed by the two-phase model, both tests "
+                     "at 1 %): see the two-phase (Langmuir) fit; the laws across conditions use its "
+                     "apparent Fickian D and Mm")
     if report.fiber:
         notes.append(f"composite: coupon (ply) values; matrix overrides = ply D0 / {report.diffusivity_factor:.4g} "
                      f"(D22/Dm), ply a / {report.moisture_factor:.4g} (M_ply/M_matrix, Chamis 1983)")

@@ -33,6 +33,17 @@ class Estimate:
         return self.low <= x <= self.high
 
 
+LOG_LIMIT = 700.0   # |ln| of the interval ends: exp stays finite and nonzero (1e-304 .. 1e304)
+
+
+def log_estimate(centre: float, half: float) -> Estimate:
+    """exp of a value estimated as a logarithm, interval symmetric in the log (ends
+    clipped to exp(+-700) so that a useless interval still prints as numbers)."""
+    def bounded(x):
+        return float(np.exp(np.clip(x, -LOG_LIMIT, LOG_LIMIT)))
+    return Estimate(bounded(centre), bounded(centre - half), bounded(centre + half))
+
+
 @dataclass(frozen=True)
 class LeastSquares:
     """Solution x, covariance of x, sum of squared residuals, points, dof, residuals."""
@@ -60,9 +71,7 @@ class LeastSquares:
 
     def logarithmic(self, index: int) -> Estimate:
         """exp of a parameter fitted as a logarithm (interval symmetric in the log)."""
-        half = min(self.quantile() * self.standard_error(index), 700.0)  # exp(700) ~ 1e304
-        centre = self.x[index]
-        return Estimate(float(np.exp(centre)), float(np.exp(centre - half)), float(np.exp(centre + half)))
+        return log_estimate(float(self.x[index]), self.quantile() * self.standard_error(index))
 
 
 def solve_least_squares(residual, x0, x_scale) -> LeastSquares:
