@@ -71,8 +71,8 @@ def profile_radii(comp) -> list[tuple]:
     r0, r1 = np.hypot(x0, y0), np.hypot(x1, y1)
     return [("cam", "base circle radius (smallest)", float(r0.min()), float(r1.min())),
             ("cam", "largest radius", float(r0.max()), float(r1.max())),
-            ("cam", "profile along x (fibres)", float(np.ptp(x0)), float(np.ptp(x1))),
-            ("cam", "profile along y", float(np.ptp(y0)), float(np.ptp(y1)))]
+            ("cam", "profile extent along x", float(np.ptp(x0)), float(np.ptp(x1))),
+            ("cam", "profile extent along y", float(np.ptp(y0)), float(np.ptp(y1)))]
 
 
 def design_entry(section: dict, targets) -> dict:

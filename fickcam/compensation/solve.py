@@ -73,11 +73,10 @@ def _strain_run(data: dict, base_dir: Path, times: np.ndarray, accuracy):
 
 def compensation_times(scene, at, over) -> np.ndarray:
     """[T] for ``at``, the window grid for ``over`` (s); refuses times outside the history."""
-    from ..environment import Environment
-    from ..simulate import ageing_times
+    from ..simulate import ageing_times, scene_environment
     from ..units import parse_duration
 
-    environment = Environment.from_section(scene.model.environment, base_dir=scene.base_dir)
+    environment = scene_environment(scene)
     if (at is None) == (over is None):
         raise InputError("give exactly one of --at TIME or --over T1 T2")
     values = [at] if at is not None else list(over)
