@@ -57,7 +57,8 @@ def _parser() -> argparse.ArgumentParser:
     plot.add_argument("result")
     plot.add_argument("-o", "--outdir", default=None, help="folder (default: next to the result)")
     plot.add_argument("--kind", default="all",
-                      choices=("uptake", "kinematics", "dynamics", "linkage", "fields", "sweep", "all"))
+                      choices=("uptake", "kinematics", "dynamics", "linkage", "fields", "limits", "sweep",
+                               "all"))
 
     bench = sub.add_parser("bench", help="the diffusion speed/accuracy trade")
     bench.add_argument("--quick", action="store_true", help="fewer configurations")
@@ -137,13 +138,15 @@ def _cmd_check(args) -> int:
 
 
 def _cmd_query(args) -> int:
+    from .reporting import limit_line
     from .query import format_result, select
     from .store import open_result
 
     ds = open_result(args.result)
     array = select(ds, args.variable, time=args.time, part=args.part, link=args.link,
                    cam_angle=args.cam_angle, crank_angle=args.crank_angle, against=args.drift)
-    print(format_result(array, args.variable, args.format, args.drift))
+    print(format_result(array, args.variable, args.format, args.drift,
+                        limit=limit_line(ds, args.variable)))
     return 0
 
 
@@ -192,9 +195,14 @@ def _cmd_schema(args) -> int:
 def _cmd_sweep(args) -> int:
     from .sweep import run_sweep
 
+    from .store import open_result
+    from .sweep.scatter import summary_lines
+
     run_sweep(args.sweep, args.output, workers=args.workers, scheduler=args.scheduler,
               progress=not args.quiet)
     if not args.quiet:
+        for line in summary_lines(open_result(args.output)):
+            print(line)
         print(f"wrote {args.output}")
     return 0
 

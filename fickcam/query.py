@@ -171,15 +171,18 @@ def _plain(value, dim=None):
     return value
 
 
-def format_result(array, variable: str, fmt: str = "table", against: str | None = None) -> str:
+def format_result(array, variable: str, fmt: str = "table", against: str | None = None,
+                  limit: str | None = None) -> str:
     """Render a selection as an aligned table, CSV or JSON (of the drift ``against`` the
-    design or the start when given)."""
+    design or the start when given); ``limit`` (the variable's limit and when it fails)
+    goes under the table and into the JSON, not into the CSV."""
     columns, rows = to_records(array)
     units = VARIABLES[variable].units if variable in VARIABLES else array.attrs.get("units", "")
     selection = array.attrs.get("selection", "")
     if fmt == "json":
+        extra = {"limit": limit} if limit else {}
         return json.dumps({"variable": variable, "units": units, "selection": selection,
-                           "columns": columns, "rows": rows}
+                           "columns": columns, "rows": rows, **extra}
                           | ({"drift_against": against} if against else {}))
     if fmt == "csv":  # tidy: the selected values as columns of their own
         fixed = array.attrs.get("selected", {})
@@ -195,6 +198,8 @@ def format_result(array, variable: str, fmt: str = "table", against: str | None 
     widths = [max(len(h), *(len(r[i]) for r in cells)) if cells else len(h) for i, h in enumerate(header)]
     out = title + ["  ".join(h.rjust(w) for h, w in zip(header, widths))]
     out += ["  ".join(c.rjust(w) for c, w in zip(row, widths)) for row in cells]
+    if limit:
+        out.append(f"limit: {limit}")
     return "\n".join(out)
 
 

@@ -8,9 +8,12 @@ down, its peak and when it happened.
 """
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 from .errors import format_duration
+from .limits import stored_limits
 from .query import drift
 from .schema import VARIABLES, design_name
 
@@ -52,6 +55,9 @@ def describe_plan(scene, accuracy: float | None = None) -> str:
     mechanisms = [s for s in ("cam", "linkage") if getattr(scene.model, s) is not None]
     lines.append(f"  mechanisms: {', '.join(mechanisms)}; angle step "
                  f"{np.degrees(scene.model.outputs.angle_step):g} deg")
+    if scene.limits:
+        lines.append("  limits: " + "; ".join(f"{limit.variable} {limit.text}"
+                                             for limit in scene.limits))
     return "\n".join(lines)
 
 
@@ -168,6 +174,45 @@ def _table(rows: list[list[str]], header: list[str]) -> list[str]:
     return lines
 
 
+# ------------------------------------------------------------------- limits
+
+
+def limit_line(ds, name: str) -> str | None:
+    """One line on a limit of a result: its band and whether/when it fails (the run
+    summary, under a query's table)."""
+    limit = stored_limits(ds).get(name)
+    if limit is None or "time_out_of_spec" not in ds:
+        return None
+    failed = float(ds["time_out_of_spec"].sel(limit=name)) * 86400.0
+    ratio = np.asarray(ds["limit_ratio"].sel(limit=name).values, float)
+    times = ds["time"].values / np.timedelta64(1, "s")
+    if math.isnan(failed):
+        state = f"holds to {format_duration(times[-1])} (largest ratio {np.nanmax(ratio):.4f})"
+    elif failed <= times[0]:
+        state = f"out of spec from the start (ratio {ratio[0]:.4f})"
+    else:
+        state = (f"out of spec from {format_duration(failed)} "
+                 f"(ratio {ratio[-1]:.4f} at {format_duration(times[-1])})")
+    band = limit.text + (" around the as-designed value" if limit.deviation is not None else "")
+    return f"{name} ({band}): {state}"
+
+
+def limit_lines(ds) -> list[str]:
+    """The summary's limit lines: the first limit to fail and when, then each limit."""
+    limits = stored_limits(ds)
+    if not limits or "time_out_of_spec" not in ds:
+        return []
+    failed = {name: float(ds["time_out_of_spec"].sel(limit=name)) for name in limits}
+    failing = sorted((t, name) for name, t in failed.items() if not math.isnan(t))
+    if failing:
+        t, name = failing[0]
+        head = (f"  first limit to fail: {name} ({limits[name].text}) at "
+                f"{format_duration(t * 86400)}; {len(failing)} of {len(limits)} limit(s) fail")
+    else:
+        head = f"  all {len(limits)} limit(s) hold"
+    return [head] + [f"    {limit_line(ds, name)}" for name in limits]
+
+
 def summary(ds, *, notices: bool = True) -> str:
     """A few lines a user reads after `fickcam run`: each key output as design → t = 0 →
     end with its drift against both, and the peak of a history that goes up and down."""
@@ -186,6 +231,7 @@ def summary(ds, *, notices: bool = True) -> str:
                   "Δ vs design", "Δ vs t = 0", "peak (Δ vs t = 0)"]
         lines += _table(rows, header)
     lines += _cycle_lines(ds)
+    lines += limit_lines(ds)
     stored = ds.attrs.get("notices", [])
     if isinstance(stored, list) and stored:
         if notices:

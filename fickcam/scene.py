@@ -8,6 +8,7 @@ parse units with pint (:mod:`fickcam.units`).
 """
 from __future__ import annotations
 
+import dataclasses
 import math
 import os
 from dataclasses import dataclass, field
@@ -20,6 +21,7 @@ from pydantic import Field, ValidationError, field_validator, model_validator
 from .cam.spec import CamSection
 from .errors import Problem, SceneError
 from .keys import closest_key
+from .limits import LimitSpec, parse_limit
 from .linkage.spec import LinkageSection
 from .materials import MaterialSpec
 from .units import (
@@ -290,6 +292,7 @@ class SceneModel(StrictModel):
     diffusion: DiffusionSection = DiffusionSection()
     outputs: OutputsSection = OutputsSection()
     design: DesignSection | None = None
+    limits: dict[str, LimitSpec] | None = None
 
     @field_validator("name")
     @classmethod
@@ -310,6 +313,7 @@ class Scene:
     document: YamlDocument | None = field(default=None, repr=False)
     materials: dict = field(default_factory=dict, repr=False)  # name -> resolved Material
     design_model: SceneModel | None = field(default=None, repr=False)  # from ``design:``
+    limits: list = field(default_factory=list, repr=False)  # fickcam.limits.Limit, scene order
 
     @property
     def name(self) -> str:
@@ -319,8 +323,7 @@ class Scene:
         """This scene with its mechanisms as designed (``design:``), or itself."""
         if self.design_model is None:
             return self
-        return Scene(self.design_model, self.file, self.text, self.base_dir, self.document,
-                     self.materials)
+        return dataclasses.replace(self, model=self.design_model, design_model=None)
 
 
 # --------------------------------------------------------------------------
@@ -430,6 +433,18 @@ def _cam_profile(model: SceneModel, doc: YamlDocument, base_dir: Path) -> tuple[
     return problems, model.model_copy(update={"cam": cam.model_copy(update={"profile_file": str(path)})})
 
 
+def _limits(model: SceneModel, doc: YamlDocument) -> tuple[list, list[Problem]]:
+    """The scene's limits (fickcam.limits.Limit) and a Problem per limit that cannot apply."""
+    sections = {name for name in ("cam", "linkage") if getattr(model, name) is not None}
+    limits, problems = [], []
+    for name, spec in (model.limits or {}).items():
+        try:
+            limits.append(parse_limit(name, spec, sections))
+        except ValueError as exc:
+            problems.append(doc.problem(("limits", name), str(exc)))
+    return limits, problems
+
+
 # --------------------------------------------------------------------------
 
 
@@ -446,10 +461,12 @@ def validate_document(doc: YamlDocument, *, base_dir: Path) -> Scene:
     problems += profile_problems
     design_problems, design_model = _design_model(model, doc, base_dir)
     problems += design_problems
+    limits, limit_problems = _limits(model, doc)
+    problems += limit_problems
     if problems:
         raise SceneError(problems)
     return Scene(model=model, file=doc.file, text=doc.text, base_dir=base_dir,
-                 document=doc, materials=resolved, design_model=design_model)
+                 document=doc, materials=resolved, design_model=design_model, limits=limits)
 
 
 def design_data(data: dict) -> dict:

@@ -13,7 +13,7 @@ import numpy as np
 
 from ._version import __version__
 from .environment import Environment
-from .errors import InputError
+from .errors import InputError, SceneError
 from .parts import Part, PartHistory, build_parts, diffusion_attrs, field_values, part_values
 from .scene import EveryStep, Scene, last_ageing_time, load_scene
 from .schema import VARIABLES, design_name
@@ -88,14 +88,25 @@ def plan_parts(scene: Scene, accuracy: float | None = None):
 
 def run(scene, *, accuracy: float | None = None, progress: bool = False):
     """Run one scene and return its xarray.Dataset (SPEC.md §4)."""
-    from tqdm.auto import tqdm
-
-    from .dataset import build_dataset
-
     started = _time.perf_counter()
     scene = load_scene(scene)
     environment = scene_environment(scene)
     times = ageing_times(scene, environment)
+    ds = _age(scene, environment, times, accuracy, progress)
+    if scene.limits:
+        ds = ds.merge(_limits(ds, scene, environment, times, accuracy), compat="override")
+        ds.attrs["limits"] = {limit.variable: limit.as_attrs() for limit in scene.limits}
+    ds.attrs["wall_time"] = _time.perf_counter() - started
+    return ds
+
+
+def _age(scene: Scene, environment: Environment, times: np.ndarray, accuracy: float | None,
+         progress: bool, quiet: bool = False):
+    """The Dataset of ``scene`` at ageing ``times`` (s); ``quiet``: do not log the notices."""
+    from tqdm.auto import tqdm
+
+    from .dataset import build_dataset
+
     options = diffusion_options(scene, accuracy)
     parts = build_parts(scene)
     notices: list[str] = list(environment.notes)
@@ -128,7 +139,7 @@ def run(scene, *, accuracy: float | None = None, progress: bool = False):
         values.update(fields)
         coords.update(cells)
     bar.close()
-    for message in notices:
+    for message in notices if not quiet else ():
         log.warning(message)
 
     attrs = {
@@ -140,10 +151,33 @@ def run(scene, *, accuracy: float | None = None, progress: bool = False):
         "scene_text": scene.text,
         "diffusion": {h.part.name: diffusion_attrs(h) for h in histories},
         "notices": notices,
-        "wall_time": _time.perf_counter() - started,
         "Conventions": "CF-1.8",
     }
     return build_dataset(values, coords, attrs)
+
+
+def _limits(ds, scene: Scene, environment: Environment, times, accuracy: float | None):
+    """limit_ratio (time, limit) and time_out_of_spec (limit) of the scene's limits, each
+    crossing located by re-running the model inside its bracketing interval."""
+    from .dataset import build_dataset
+    from .limits import first_crossings, limit_ratio
+
+    missing = [limit for limit in scene.limits if limit.variable not in ds]
+    if missing:
+        raise SceneError([scene.document.problem(("limits", limit.variable),
+                                                 f"this scene does not compute {limit.variable}")
+                          for limit in missing])
+
+    def ratios(data) -> np.ndarray:
+        return np.stack([limit_ratio(data, limit) for limit in scene.limits], axis=1)
+
+    def evaluate(at) -> np.ndarray:
+        return ratios(_age(scene, environment, np.asarray(at), accuracy, False, quiet=True))
+
+    stored = ratios(ds)
+    crossings = first_crossings(times, stored, evaluate)
+    return build_dataset({"limit_ratio": stored, "time_out_of_spec": crossings},
+                         {"time": times, "limit": [limit.variable for limit in scene.limits]})
 
 
 def age_part(part: Part, environment: Environment, times, options: dict, scene: Scene,

@@ -74,7 +74,7 @@ def save(dataset, path) -> Path:
     return path
 
 
-JSON_ATTRIBUTES = ("diffusion", "notices", "sweep_parameters")
+JSON_ATTRIBUTES = ("diffusion", "notices", "sweep_parameters", "limits")
 
 
 def open_result(path):

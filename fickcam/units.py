@@ -65,6 +65,21 @@ def split_number_unit(text: str) -> tuple[float, str]:
     return float(match.group("number")), match.group("unit")
 
 
+def number_and_unit(value: Any) -> tuple[float, str]:
+    """(finite number, unit text) of a bare number or a string with units ("" = none)."""
+    if isinstance(value, bool) or value is None:
+        raise ValueError(f"expected a number or a string with units, got {value!r}")
+    if isinstance(value, (int, float)):
+        number, unit = float(value), ""
+    elif isinstance(value, str):
+        number, unit = split_number_unit(value)
+    else:
+        raise ValueError(f"expected a number or a string with units, got {type(value).__name__}")
+    if not math.isfinite(number):
+        raise ValueError(f"{value!r} is not a finite number")
+    return number, unit
+
+
 def to_si(value: Any, dimension: str) -> float:
     """Convert a scene value to a float in the SI unit of ``dimension``.
 
@@ -75,15 +90,7 @@ def to_si(value: Any, dimension: str) -> float:
     si_unit = SI_UNITS[dimension]
     if isinstance(value, bool) or value is None:
         raise ValueError(f"expected {_HUMAN.get(dimension, 'a ' + dimension.replace('_', ' '))}, got {value!r}")
-    if isinstance(value, (int, float)):
-        number = float(value)
-        unit = ""
-    elif isinstance(value, str):
-        number, unit = split_number_unit(value)
-    else:
-        raise ValueError(f"expected a number or a string with units, got {type(value).__name__}")
-    if not math.isfinite(number):
-        raise ValueError(f"{value!r} is not a finite number")
+    number, unit = number_and_unit(value)
     if not unit:
         return number  # bare numbers are SI (percent for 'percent')
     ureg = registry()

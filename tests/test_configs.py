@@ -47,7 +47,7 @@ def test_eccentric_nylon_cam_stroke_is_twice_the_swollen_eccentricity(results):
     assert np.allclose(ds.lift.values, 2 * 4e-3 * (1 + strain), rtol=1e-9)
     moisture = ds.moisture_content.sel(part="cam").values
     assert moisture[0] == 0 and np.all(np.diff(moisture) > 0)
-    assert moisture[-1] == pytest.approx(6.704, rel=1e-2)
+    assert moisture[-1] == pytest.approx(6.846, rel=1e-2)  # D0 from the D570 24-h uptake
     assert np.all(moisture < ds.equilibrium_moisture_content.sel(part="cam").values)
     assert ds.jump_speed.values[0] == pytest.approx(587.5824, rel=1e-6)
     assert np.all(np.diff(ds.jump_speed.values) > 0)  # heavier but larger: here it gains

@@ -85,8 +85,9 @@ def scene_response(section, histories: dict, times, angles, valid, on_step=lambd
     if force is not None:
         result.variables["peak_contact_force"] = np.nanmax(force, axis=1)
         result.variables["peak_cam_torque"] = np.nanmax(np.abs(result.variables["cam_torque"]), axis=1)
-        stress = result.variables["contact_stress"]
-        known = np.isfinite(stress).any(axis=1)
-        result.variables["peak_contact_stress"] = np.where(
-            known, np.max(np.where(np.isfinite(stress), stress, -np.inf), axis=1), np.nan)
+        for name in ("contact_stress", "subsurface_shear_stress"):
+            stress = result.variables[name]
+            known = np.isfinite(stress).any(axis=1)
+            result.variables[f"peak_{name}"] = np.where(
+                known, np.max(np.where(np.isfinite(stress), stress, -np.inf), axis=1), np.nan)
     return result

@@ -97,6 +97,25 @@ def hertz_line_pressure(force, length, cam_radius, follower_radius, e_star):
     return np.where(inverse > 0, p, np.nan)
 
 
+def hertz_line_half_width(pressure, cam_radius, follower_radius, e_star):
+    """Half-width b of the line-contact strip, from p0 = E* b / (2 R) (Johnson 1985 eq. 4.43),
+    with 1/R as in :func:`hertz_line_pressure`."""
+    inverse = 1.0 / cam_radius + (0.0 if follower_radius is None else 1.0 / follower_radius)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        return np.where(inverse > 0, 2.0 * pressure / (e_star * inverse), np.nan)
+
+
+#: largest principal shear stress under a Hertz line contact and its depth, as fractions of
+#: p0 and of the half-width b (Johnson, Contact Mechanics, 1985, §4.2 and Fig. 4.5)
+SUBSURFACE_SHEAR_RATIO = 0.30
+SUBSURFACE_SHEAR_DEPTH = 0.786
+
+
+def subsurface_shear(pressure, half_width):
+    """(tau_max, depth) below a line contact: 0.30 p0 at z = 0.786 b (Johnson 1985 §4.2)."""
+    return SUBSURFACE_SHEAR_RATIO * pressure, SUBSURFACE_SHEAR_DEPTH * half_width
+
+
 def archard_wear_per_revolution(coefficient, hardness, force, length, slide_ratio):
     """Wear depth of the cam surface per revolution at each profile point (Archard: depth
     rate = K/H p v_s; integrated over one pass through a contact of load F/L per unit width,

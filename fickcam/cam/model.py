@@ -250,7 +250,8 @@ def cam_response(design: CamDesign, state: CamState, cam_angle) -> Response:
     pressure_angle (rad), radius_of_curvature (m, working profile; pitch curve minus roller),
     pitch_radius_of_curvature (m), contact_force (N, common normal), cam_torque (N m),
     friction_force (N, sliding friction at the contact), guide_friction_force (N),
-    friction_torque (N m), contact_stress (Pa, Hertz), profile_x/profile_y (m, working
+    friction_torque (N m), contact_stress (Pa, Hertz p0), subsurface_shear_stress (Pa) and
+    subsurface_shear_depth (m) under it, profile_x/profile_y (m, working
     profile point in contact, cam frame), wear_per_revolution (m)."""
     theta = np.asarray(cam_angle, float)
     omega = design.speed
@@ -288,12 +289,13 @@ def cam_response(design: CamDesign, state: CamState, cam_angle) -> Response:
                                    state.follower_modulus or design.follower_modulus,
                                    state.follower_poisson or design.follower_poisson)
     if design.follower_kind == "knife":
-        stress = np.full_like(theta, np.nan)
+        stress = half_width = np.full_like(theta, np.nan)
         notices.append("knife-edge follower: Hertz line-contact stress is not defined")
     else:
-        stress = dyn.hertz_line_pressure(force, design.contact_length, rho,
-                                         roller if design.follower_kind == "roller" else None,
-                                         e_star)
+        radius = roller if design.follower_kind == "roller" else None
+        stress = dyn.hertz_line_pressure(force, design.contact_length, rho, radius, e_star)
+        half_width = dyn.hertz_line_half_width(stress, rho, radius, e_star)
+    shear, shear_depth = dyn.subsurface_shear(stress, half_width)
     wear = (dyn.archard_wear_per_revolution(design.archard_coefficient, design.hardness, force,
                                             design.contact_length, _slide_ratio(design, height, rho))
             if design.hardness else np.zeros_like(theta))
@@ -318,6 +320,8 @@ def cam_response(design: CamDesign, state: CamState, cam_angle) -> Response:
         "guide_friction_force": force * np.cos(phi) - axial,
         "friction_torque": friction * lever,
         "contact_stress": stress,
+        "subsurface_shear_stress": shear,
+        "subsurface_shear_depth": shear_depth,
         "profile_x": px,
         "profile_y": py,
         "wear_per_revolution": wear,

@@ -17,6 +17,7 @@ KINDS = {
     "dynamics": ("cam", "plot_dynamics", ("contact_force",)),
     "linkage": ("linkage", "plot", ("rocker_angle",)),
     "fields": ("fields", "plot", ("moisture",)),
+    "limits": ("limits", "plot", ("limit_ratio",)),
     "sweep": ("sweep", "plot", ("case",)),
 }
 

@@ -169,6 +169,36 @@ def plot_monte_carlo(ds, outdir: Path, age_index: int) -> list[Path]:
     return written
 
 
+def plot_out_of_spec(ds, outdir: Path) -> list[Path]:
+    """The fraction of cases out of spec by each ageing time, per limit, with its
+    Wilson 95 % interval (fickcam.sweep.scatter): a step curve from every case's
+    continuous time out of spec, the stored ageing times marked."""
+    from ..sweep.scatter import out_of_spec_counts, wilson_interval
+
+    plt = figure()
+    t = days(ds)
+    fine = np.linspace(t[0], t[-1], 400)
+    ran = _ok(ds)
+    failed = ds["time_out_of_spec"].transpose("case", "limit").values
+    k, n = out_of_spec_counts(failed, fine, ran)
+    fig, ax = plt.subplots(figsize=(7, 4.5))
+    for j, limit in enumerate(ds["limit"].values):
+        bounds = np.array([wilson_interval(kk, n) for kk in k[:, j]]) * 100
+        line, = ax.step(fine, 100 * k[:, j] / max(n, 1), where="post", label=str(limit))
+        ax.fill_between(fine, bounds[:, 0], bounds[:, 1], step="post", color=line.get_color(),
+                        alpha=0.15)
+        ax.plot(t, ds["fraction_out_of_spec"].sel(limit=limit).values, "o", ms=4,
+                color=line.get_color())
+    ax.set_xlabel("ageing time [d]")
+    ax.set_ylabel("cases out of spec [%]")
+    ax.set_ylim(-2, 102)
+    ax.set_title(f"{ds.attrs.get('scene_name', '')}: out of spec by each age, {n} case(s) "
+                 "(band: Wilson 95 % interval)", fontsize=9)
+    ax.legend(fontsize=8)
+    ax.grid(alpha=0.3)
+    return [save_figure(fig, outdir / "sweep_out_of_spec.png")]
+
+
 def plot(ds, outdir, time_index: int = -1) -> list[Path]:
     """Figures of a sweep result; outputs are taken at ageing time ``time_index`` (last)."""
     outdir = Path(outdir)
@@ -176,6 +206,7 @@ def plot(ds, outdir, time_index: int = -1) -> list[Path]:
         return []
     outdir.mkdir(parents=True, exist_ok=True)
     age_index = int(np.arange(ds.sizes["time"])[time_index])
+    written = plot_out_of_spec(ds, outdir) if "fraction_out_of_spec" in ds else []
     if ds.attrs.get("sweep_kind") == "monte_carlo":
-        return plot_monte_carlo(ds, outdir, age_index)
-    return plot_grid(ds, outdir, age_index)
+        return written + plot_monte_carlo(ds, outdir, age_index)
+    return written + plot_grid(ds, outdir, age_index)

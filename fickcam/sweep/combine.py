@@ -109,5 +109,9 @@ def combine(sweep: Sweep, folder: WorkFolder, records: dict[int, dict], stack: E
     combined = xr.concat(parts, dim="case", data_vars="all", coords="minimal", compat="override",
                          join="outer", combine_attrs="override")
     combined = combined.assign_coords(coords)
+    if "time_out_of_spec" in combined:
+        from .scatter import fractions
+
+        combined = combined.merge(fractions(combined), compat="override")
     combined.attrs = attrs
     return combined

@@ -1,0 +1,282 @@
+"""Limits on result variables: the spec a mechanism must hold (SPEC.md §6).
+
+A scene's ``limits:`` section names result variables and, for each, a band
+around the as-designed value (``deviation``) and/or bounds (``max``, ``min``),
+in any unit pint knows. Each limit reduces its variable to one number per
+ageing time (the worst over the cam or crank angle, the parts or the links)
+and turns it into a *limit ratio*, 1 at the limit and above 1 out of spec:
+
+- ``deviation`` d:  r = max |x - x_design| / d (the largest deviation over the cycle);
+- ``max`` b:        r = 1 + (max x - b) / s,  which is max x / b for b > 0;
+- ``min`` b:        r = 1 + (b - min x) / s,  which is 2 - min x / b for b > 0;
+
+with s = |b|, or for a zero bound the size of the as-designed value. With
+several entries the ratio is the largest of them. The first ageing time at
+which a ratio exceeds 1 is located on the continuous ageing time by re-running
+the model inside the bracketing interval (:func:`first_crossings`).
+"""
+from __future__ import annotations
+
+import math
+import re
+from dataclasses import dataclass
+from typing import Any, Callable
+
+import numpy as np
+from pydantic import model_validator
+
+from .query import drift
+from .schema import VARIABLES, Var, design_name
+from .units import StrictModel, number_and_unit, registry, split_number_unit
+
+#: the crossing is located to this fraction of its bracketing interval, or to FLOOR s
+TOLERANCE = 0.01
+FLOOR = 3600.0
+#: model evaluations per refinement round inside a bracket
+POINTS = 9
+
+
+class LimitSpec(StrictModel):
+    """One entry of the scene's ``limits:`` section (values as written, with units)."""
+
+    deviation: Any = None
+    max: Any = None
+    min: Any = None
+
+    @model_validator(mode="after")
+    def _something(self):
+        if self.deviation is None and self.max is None and self.min is None:
+            raise ValueError("give deviation, max or min")
+        return self
+
+
+@dataclass(frozen=True)
+class Limit:
+    """A validated limit: bounds in the variable's stored unit (schema ``units``)."""
+
+    variable: str
+    units: str
+    deviation: float | None = None
+    max: float | None = None
+    min: float | None = None
+    text: str = ""
+    display_units: str = ""  # the unit the scene wrote (plots), "" = stored unit
+    display_scale: float = 1.0  # display value = stored value * display_scale
+
+    def as_attrs(self) -> dict:
+        return {"deviation": self.deviation, "max": self.max, "min": self.min,
+                "units": self.units, "text": self.text, "display_units": self.display_units,
+                "display_scale": self.display_scale}
+
+
+def from_attrs(variable: str, attrs: dict) -> Limit:
+    """The Limit stored in a result's ``limits`` attribute."""
+    return Limit(variable, attrs.get("units", ""), attrs.get("deviation"), attrs.get("max"),
+                 attrs.get("min"), attrs.get("text", ""), attrs.get("display_units", ""),
+                 attrs.get("display_scale", 1.0))
+
+
+# ------------------------------------------------------------------ parsing
+
+
+def _pint_units(units: str) -> str:
+    """A schema unit ("m s-1", "kg m2", "%", "1") in pint's spelling."""
+    if units in ("", "1"):
+        return "dimensionless"
+    units = units.replace("%", "percent")
+    return re.sub(r"([A-Za-z]+)(-?\d+)", r"\1**\2", units)
+
+
+def stored_value(value, var: Var, *, difference: bool = False) -> float:
+    """``value`` (number or string with units) in ``var``'s stored unit.
+
+    A bare number is SI (as everywhere in a scene; percent for % variables).
+    ``difference``: a temperature step, so degC/degF mean kelvin-sized steps.
+    Angles are told apart from plain numbers (pint's radian is dimensionless).
+    """
+    number, unit = number_and_unit(value)
+    if not unit:
+        return number * var.scale
+    ureg = registry()
+    unit = unit.replace("%", "percent")
+    if difference:
+        unit = re.sub(r"\bdeg([CF])\b", r"delta_deg\1", unit)
+    try:
+        quantity = ureg.Quantity(number, unit)
+    except Exception:  # pint raises several types for unknown/ill-formed units
+        raise ValueError(f"unknown unit {unit!r} in {value!r}") from None
+    target = ureg.Quantity(1.0, _pint_units(var.units))
+    if quantity.to_base_units().units != target.to_base_units().units:
+        raise ValueError(f"{value!r} has the wrong dimension (the variable is in {var.units or '1'})")
+    return float(quantity.to(target.units).magnitude)
+
+
+def parse_limit(name: str, spec: LimitSpec, sections: set[str]) -> Limit:
+    """Validate one limit against the schema; ValueError(reason) if it cannot apply."""
+    var = VARIABLES.get(name)
+    if var is None or "time" not in var.dims or var.section == "fields" or not var.units:
+        raise ValueError(f"no result variable {name!r} that varies with ageing time "
+                         "(see `fickcam schema`)")
+    if var.section in ("cam", "linkage") and var.section not in sections:
+        raise ValueError(f"{name} needs a {var.section} section in the scene")
+    values = {}
+    for key in ("deviation", "max", "min"):
+        raw = getattr(spec, key)
+        if raw is not None:
+            try:
+                values[key] = stored_value(raw, var, difference=key == "deviation")
+            except ValueError as exc:
+                raise ValueError(f"{key}: {exc}") from None
+    if values.get("deviation") is not None and not values["deviation"] > 0:
+        raise ValueError("deviation must be positive")
+    if "deviation" in values and not var.has_design:
+        raise ValueError(f"{name} has no as-designed value to deviate from: give max or min")
+    if values.get("min") is not None and values.get("max") is not None and values["min"] > values["max"]:
+        raise ValueError(f"min ({spec.min}) is above max ({spec.max})")
+    text = ", ".join(f"{key} {getattr(spec, key)}" for key in ("deviation", "min", "max")
+                     if getattr(spec, key) is not None)
+    return Limit(name, var.units, text=text, **values, **_display(spec, var))
+
+
+def _display(spec: LimitSpec, var: Var) -> dict:
+    """The unit the scene wrote its limit in, for plots (not offset units such as degC)."""
+    for raw in (spec.deviation, spec.max, spec.min):
+        if isinstance(raw, str):
+            unit = split_number_unit(raw)[1].replace("%", "percent")
+            if unit and "degC" not in unit and "degF" not in unit:
+                ureg = registry()
+                scale = ureg.Quantity(1.0, _pint_units(var.units)).to(unit).magnitude
+                return {"display_units": split_number_unit(raw)[1], "display_scale": float(scale)}
+    return {}
+
+
+# ------------------------------------------------------------------- ratios
+
+
+def _per_time(values: np.ndarray, reduce) -> np.ndarray:
+    """Reduce every axis but the first (time); NaN (not a warning) for all-NaN rows."""
+    values = np.asarray(values, float).reshape(values.shape[0], -1)
+    out = np.full(values.shape[0], np.nan)
+    rows = np.isfinite(values).any(axis=1)
+    out[rows] = reduce(values[rows], axis=1)
+    return out
+
+
+def _time_first(array) -> np.ndarray:
+    return array.transpose("time", ...).values
+
+
+def worst_value(ds, variable: str, kind: str) -> np.ndarray:
+    """Over ageing time: the largest (``max``) or smallest (``min``) value over the
+    other dimensions, or the largest |x - x_design| (``deviation``)."""
+    if kind == "deviation":
+        return _per_time(np.abs(_time_first(drift(ds, variable, "design"))), np.nanmax)
+    return _per_time(_time_first(ds[variable]), np.nanmax if kind == "max" else np.nanmin)
+
+
+def _design_size(ds, variable: str, kind: str) -> float:
+    """|as-designed value| (first stored time without a design state): the scale of a 0 bound."""
+    name = design_name(variable)
+    if name in ds:
+        values = np.asarray(ds[name].values, float)
+        return float(np.nanmax(np.abs(values))) if np.isfinite(values).any() else 1.0
+    first = worst_value(ds, variable, kind)
+    finite = first[np.isfinite(first)]
+    return float(abs(finite[0])) if finite.size and finite[0] != 0 else 1.0
+
+
+def limit_ratio(ds, limit: Limit) -> np.ndarray:
+    """The limit ratio over ageing time (1 at the limit, above 1 out of spec)."""
+    ratios = []
+    if limit.deviation is not None:
+        ratios.append(worst_value(ds, limit.variable, "deviation") / limit.deviation)
+    for kind, sign in (("max", 1.0), ("min", -1.0)):
+        bound = getattr(limit, kind)
+        if bound is not None:
+            scale = abs(bound) or _design_size(ds, limit.variable, kind)
+            ratios.append(1.0 + sign * (worst_value(ds, limit.variable, kind) - bound) / scale)
+    stacked = np.vstack(ratios)
+    out = np.full(stacked.shape[1], np.nan)
+    known = np.isfinite(stacked).any(axis=0)
+    out[known] = np.nanmax(stacked[:, known], axis=0)
+    return out
+
+
+# ----------------------------------------------------------------- crossing
+
+
+def _first_above(ratio: np.ndarray) -> int | None:
+    above = np.flatnonzero(np.asarray(ratio, float) > 1.0)  # NaN compares False
+    return int(above[0]) if above.size else None
+
+
+@dataclass
+class _Bracket:
+    """An ageing-time interval [lo, hi] whose end is out of spec and whose start is not."""
+
+    lo: float
+    hi: float
+    r_lo: float
+    r_hi: float
+    tolerance: float
+
+    def open(self) -> bool:
+        return self.hi - self.lo > self.tolerance
+
+    def narrow(self, inner: np.ndarray, values: np.ndarray) -> None:
+        """Keep the sub-interval of the first crossing among ``inner`` times."""
+        grid = np.concatenate([[self.lo], inner, [self.hi]])
+        ratio = np.concatenate([[self.r_lo], values, [self.r_hi]])
+        k = _first_above(ratio[1:]) + 1  # the last value (r_hi) is above 1
+        self.lo, self.hi, self.r_lo, self.r_hi = grid[k - 1], grid[k], ratio[k - 1], ratio[k]
+
+    def root(self) -> float:
+        """The linear interpolant's root in the bracket (error below its width)."""
+        if not np.isfinite(self.r_lo) or self.r_hi == self.r_lo:
+            return float(self.hi)
+        return float(self.lo + (1.0 - self.r_lo) / (self.r_hi - self.r_lo) * (self.hi - self.lo))
+
+
+def first_crossings(times: np.ndarray, ratios: np.ndarray,
+                    evaluate: Callable[[np.ndarray], np.ndarray]) -> np.ndarray:
+    """The first ageing time (s) at which each column of ``ratios`` (time, limit)
+    exceeds 1; NaN where it never does, the first stored time where it already does.
+
+    The stored times bracket each crossing; ``evaluate(ts)`` re-runs the model at
+    ageing times ``ts`` and returns the ratios there (len(ts), limit). Each round
+    evaluates POINTS equally spaced times inside every open bracket (one model run
+    for all limits) and keeps the sub-interval of the first crossing, until each
+    bracket is no wider than TOLERANCE of its stored interval or FLOOR seconds;
+    the crossing is then interpolated linearly inside it.
+    """
+    times = np.asarray(times, float)
+    ratios = np.asarray(ratios, float).reshape(len(times), -1)
+    found = np.full(ratios.shape[1], np.nan)
+    brackets: dict[int, _Bracket] = {}
+    for j in range(ratios.shape[1]):
+        index = _first_above(ratios[:, j])
+        if index == 0:
+            found[j] = times[0]
+        elif index is not None:
+            lo, hi = times[index - 1], times[index]
+            brackets[j] = _Bracket(lo, hi, ratios[index - 1, j], ratios[index, j],
+                                   max(TOLERANCE * (hi - lo), FLOOR))
+    while any(b.open() for b in brackets.values()):
+        inner = {j: np.linspace(b.lo, b.hi, POINTS + 2)[1:-1]
+                 for j, b in brackets.items() if b.open()}
+        at = np.unique(np.concatenate(list(inner.values())))
+        values = np.asarray(evaluate(at), float).reshape(len(at), -1)
+        for j, ts in inner.items():
+            brackets[j].narrow(ts, values[np.searchsorted(at, ts), j])
+    for j, bracket in brackets.items():
+        found[j] = bracket.root()
+    return found
+
+
+# ------------------------------------------------------------------ reading
+
+
+def stored_limits(ds) -> dict[str, Limit]:
+    """The limits recorded in a result (``limits`` attribute), by variable."""
+    recorded = ds.attrs.get("limits") or {}
+    return {name: from_attrs(name, attrs) for name, attrs in recorded.items()}

@@ -1,0 +1,86 @@
+"""Each limit's variable against its band over ageing (and over the cycle)."""
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import numpy as np
+
+from ..errors import format_duration
+from ..limits import stored_limits, worst_value
+from ..query import drift
+from . import age_label, ages, days, figure, save_figure
+
+ANGLES = ("cam_angle", "crank_angle")
+
+
+def _units(limit) -> tuple[float, str]:
+    """(scale, unit) to show a limit's variable in the unit the scene wrote."""
+    return limit.display_scale, limit.display_units or limit.units
+
+
+def _over_time(ax, ds, limit) -> None:
+    """The worst value per ageing time, the limits dashed, the crossing marked."""
+    t = days(ds)
+    scale, units = _units(limit)
+    kinds = [k for k in ("deviation", "max", "min") if getattr(limit, k) is not None]
+    over = " over the cycle" if ds[limit.variable].ndim > 1 else ""
+    for kind in kinds:
+        label = "largest |x - design|" + over if kind == "deviation" else (f"{kind}{over}" if over
+                                                                          else limit.variable)
+        ax.plot(t, worst_value(ds, limit.variable, kind) * scale, "-o", ms=3, label=label)
+        ax.axhline(getattr(limit, kind) * scale, color="r", lw=1.2, ls="--", label=f"limit ({kind})")
+    failed = float(ds["time_out_of_spec"].sel(limit=limit.variable))
+    if not math.isnan(failed):
+        ax.axvline(failed, color="k", lw=1, ls=":",
+                   label=f"out of spec at {format_duration(failed * 86400)}")
+    ax.set_xlabel("ageing time [d]")
+    ax.set_ylabel(f"{limit.variable} [{units}]")
+    ax.set_title(f"{limit.variable}: {limit.text}", fontsize=10)
+    ax.legend(fontsize=7)
+    ax.grid(alpha=0.3)
+
+
+def _over_cycle(ax, ds, limit, dim: str) -> None:
+    """The variable (its drift from the design for a deviation) over the cycle, with the band."""
+    scale, units = _units(limit)
+    deviation = limit.deviation is not None
+    array = (drift(ds, limit.variable, "design") if deviation else ds[limit.variable]) * scale
+    for k in ages(ds):
+        values = array.isel(time=k)
+        if values.ndim > 1:  # e.g. joint forces: the worst over the other dimension
+            values = values.max([d for d in values.dims if d != dim])
+        ax.plot(ds[dim].values, values.values, label=age_label(days(ds)[k]))
+    if deviation:
+        band = limit.deviation * scale
+        ax.fill_between(ds[dim].values, -band, band, color="g", alpha=0.12,
+                        label=f"band ±{band:g} {units}")
+    for kind in ("max", "min"):
+        if getattr(limit, kind) is not None:
+            ax.axhline(getattr(limit, kind) * scale, color="r", lw=1.2, ls="--",
+                       label=f"limit ({kind})")
+    ax.set_xlabel(f"{dim.replace('_', ' ')} [deg]")
+    prefix = "drift of " if deviation else ""
+    ax.set_ylabel(f"{prefix}{limit.variable} [{units}]")
+    ax.legend(fontsize=7)
+    ax.grid(alpha=0.3)
+
+
+def plot(ds, outdir) -> list[Path]:
+    """limits.png: one row per limit, over ageing time and (angle variables) over the cycle."""
+    plt = figure()
+    limits = list(stored_limits(ds).values())
+    cycle = {limit.variable: next((d for d in ds[limit.variable].dims if d in ANGLES), None)
+             for limit in limits}
+    columns = 2 if any(cycle.values()) else 1
+    fig, axes = plt.subplots(len(limits), columns, figsize=(5.5 * columns, 3.4 * len(limits)),
+                             squeeze=False)
+    for row, limit in zip(axes, limits):
+        _over_time(row[0], ds, limit)
+        if cycle[limit.variable] is not None:
+            _over_cycle(row[1], ds, limit, cycle[limit.variable])
+        elif columns == 2:
+            row[1].set_axis_off()
+    fig.suptitle(f"{ds.attrs.get('scene_name', '')}: limits", y=1.0)
+    fig.tight_layout()
+    return [save_figure(fig, Path(outdir) / "limits.png")]

@@ -1,0 +1,77 @@
+"""Scatter of a sweep against its limits: the fraction of cases out of spec.
+
+For each ageing time t and limit, a case is out of spec by t when its
+``time_out_of_spec`` is at or before t (a part that left its spec once is
+rejected, even if its ratio later falls back). Of the n cases that ran, k are
+out of spec; the fraction k/n has a Wilson score 95 % interval (Wilson 1927;
+``scipy.stats.binomtest(k, n).proportion_ci(method="wilson")``), which keeps its
+coverage near 0 and 1, where the normal approximation fails (Brown, Cai &
+DasGupta 2001). Failed cases are left out of n.
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from ..schema import VARIABLES
+
+CONFIDENCE = 0.95
+
+
+def wilson_interval(k: int, n: int, confidence: float = CONFIDENCE) -> tuple[float, float]:
+    """(low, high) of the binomial proportion k/n, Wilson score interval; NaN for n = 0."""
+    from scipy.stats import binomtest
+
+    if n == 0:
+        return np.nan, np.nan
+    ci = binomtest(int(k), int(n)).proportion_ci(confidence_level=confidence, method="wilson")
+    return float(ci.low), float(ci.high)
+
+
+def out_of_spec_counts(time_out_of_spec_days: np.ndarray, ages_days: np.ndarray,
+                       ran: np.ndarray) -> tuple[np.ndarray, int]:
+    """(k over (time, limit), n): cases of ``ran`` out of spec by each age."""
+    failed_at = np.asarray(time_out_of_spec_days, float)[np.asarray(ran, bool)]  # (case, limit)
+    by_age = failed_at[None, :, :] <= np.asarray(ages_days, float)[:, None, None] * (1 + 1e-12)
+    return by_age.sum(axis=1), int(failed_at.shape[0])
+
+
+def fractions(ds):
+    """``fraction_out_of_spec`` and its 95 % bounds (time, limit, %), and
+    ``cases_out_of_spec`` (time, limit), for a combined sweep result with limits."""
+    import xarray as xr
+
+    ages = ds["time"].values / np.timedelta64(1, "D")
+    ran = (np.asarray(ds["case_status"].values) == "ok") if "case_status" in ds.coords else \
+        np.ones(ds.sizes["case"], bool)
+    failed = ds["time_out_of_spec"].transpose("case", "limit").values
+    k, n = out_of_spec_counts(failed, ages, ran)
+    bounds = np.array([[wilson_interval(kk, n) for kk in row] for row in k])  # (time, limit, 2)
+    values = {"fraction_out_of_spec": k / n if n else np.full(k.shape, np.nan),
+              "fraction_out_of_spec_low": bounds[..., 0], "fraction_out_of_spec_high": bounds[..., 1],
+              "cases_out_of_spec": k}
+    data = {}
+    for name, value in values.items():
+        var = VARIABLES[name]
+        data[name] = xr.Variable(var.dims, np.asarray(value) * var.scale,
+                                 {"units": var.units, "long_name": var.long_name,
+                                  **({"cases": n} if name == "cases_out_of_spec" else {})})
+    return xr.Dataset(data, coords={"time": ds["time"], "limit": ds["limit"]})
+
+
+def summary_lines(ds) -> list[str]:
+    """Per limit: the fraction out of spec at each stored ageing time, with its interval."""
+    if "fraction_out_of_spec" not in ds:
+        return []
+    n = int(ds["cases_out_of_spec"].attrs.get("cases", 0))
+    ages = ds["time"].values / np.timedelta64(1, "D")
+    lines = [f"out of spec (of {n} case(s) that ran; Wilson 95 % interval):"]
+    for limit in ds["limit"].values:
+        cells = []
+        for i, age in enumerate(ages):
+            pick = {"time": i, "limit": ds["limit"].values.tolist().index(limit)}
+            f, lo, hi = (float(ds[v].isel(pick)) for v in ("fraction_out_of_spec",
+                                                           "fraction_out_of_spec_low",
+                                                           "fraction_out_of_spec_high"))
+            cells.append(f"{age:g} d: {f:.3g} % [{lo:.3g}, {hi:.3g}]")
+        lines.append(f"  {limit}: " + "; ".join(cells))
+    return lines

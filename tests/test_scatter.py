@@ -1,0 +1,58 @@
+"""Scatter of a sweep against its limits: fraction out of spec with a Wilson 95 % interval."""
+import math
+
+import numpy as np
+import pytest
+import xarray as xr
+
+from fickcam.sweep.scatter import fractions, out_of_spec_counts, summary_lines, wilson_interval
+
+Z = 1.959963984540054  # standard normal 97.5 % quantile
+
+
+@pytest.mark.parametrize("k, n", [(0, 10), (3, 100), (50, 100), (99, 100), (7, 7)])
+def test_wilson_interval_matches_its_closed_form(k, n):
+    """(p + z^2/2n -+ z sqrt(p(1-p)/n + z^2/4n^2)) / (1 + z^2/n) (Wilson 1927)."""
+    p = k / n
+    centre = (p + Z ** 2 / (2 * n)) / (1 + Z ** 2 / n)
+    half = Z * math.sqrt(p * (1 - p) / n + Z ** 2 / (4 * n * n)) / (1 + Z ** 2 / n)
+    low, high = wilson_interval(k, n)
+    assert low == pytest.approx(max(centre - half, 0.0), abs=1e-12)
+    assert high == pytest.approx(min(centre + half, 1.0), abs=1e-12)
+
+
+def test_wilson_interval_covers_the_true_fraction_95_percent_of_the_time():
+    """3 % of parts out of spec, samples of 200: the interval holds the truth in
+    about 95 % of 4000 repeated sweeps (binomial spread of the coverage: ±0.7 %)."""
+    rng = np.random.default_rng(3)
+    draws = rng.binomial(200, 0.03, size=4000)
+    table = {k: wilson_interval(k, 200) for k in np.unique(draws)}
+    covered = np.mean([table[k][0] <= 0.03 <= table[k][1] for k in draws])
+    assert 0.925 <= covered <= 0.975
+
+
+def test_a_case_counts_from_its_first_time_out_of_spec_and_failed_cases_are_left_out():
+    failed_at = np.array([[5.0, np.nan], [20.0, 0.0], [np.nan, np.nan], [1.0, 1.0]])  # (case, limit)
+    ran = np.array([True, True, True, False])
+    k, n = out_of_spec_counts(failed_at, np.array([0.0, 5.0, 30.0]), ran)
+    assert n == 3
+    np.testing.assert_array_equal(k, [[0, 1], [1, 1], [2, 1]])
+
+
+def test_combined_sweep_gets_fractions_and_a_summary():
+    days = np.array([0, 30, 60])
+    ds = xr.Dataset(
+        {"time_out_of_spec": (("case", "limit"), [[10.0, np.nan], [45.0, 0.0], [np.nan, np.nan],
+                                                  [50.0, np.nan]])},
+        coords={"time": (days * 86400 * 1e9).astype("timedelta64[ns]"),
+                "limit": ["rocker_angle", "transmission_angle"],
+                "case_status": ("case", np.array(["ok"] * 4, dtype=object))})
+    out = fractions(ds)
+    np.testing.assert_allclose(out["fraction_out_of_spec"].sel(limit="rocker_angle"), [0, 25, 75])
+    low, high = wilson_interval(3, 4)
+    assert float(out["fraction_out_of_spec_low"].isel(time=2, limit=0)) == pytest.approx(100 * low)
+    assert float(out["fraction_out_of_spec_high"].isel(time=2, limit=0)) == pytest.approx(100 * high)
+    assert out["fraction_out_of_spec"].attrs["units"] == "%"
+    lines = summary_lines(out)
+    assert lines[0].startswith("out of spec (of 4 case(s)")
+    assert "60 d: 75 % [" in lines[1] and "transmission_angle: 0 d: 25 %" in lines[2]
