@@ -77,6 +77,8 @@ def _parser() -> argparse.ArgumentParser:
     compensate.add_argument("-o", "--output", help="compensated scene (default: "
                                                    "<scene>_compensated.yaml here)")
     compensate.add_argument("--accuracy", type=float, help="override diffusion.accuracy")
+    compensate.add_argument("--plot", metavar="PNG", help="also draw the drift of every "
+                            "deviation limit against its band, as designed and compensated")
 
     profile = sub.add_parser("profile", help="the cam's dry working profile for manufacture "
                                              "(CSV or DXF, by the output's suffix)")
@@ -216,7 +218,7 @@ def _cmd_compensate(args) -> int:
     comp = compensate(scene, at=args.at, over=args.over, accuracy=args.accuracy)
     output = Path(args.output) if args.output else Path(f"{Path(args.scene).stem}_compensated.yaml")
     path = write_scene(comp, scene, output)
-    print(report(comp, scene, path, accuracy=args.accuracy))
+    print(report(comp, scene, path, accuracy=args.accuracy, plot=args.plot))
     print(f"wrote {path}")
     return 0
 

@@ -153,25 +153,39 @@ def _run_at(data: dict, base_dir: Path, times: np.ndarray, accuracy):
     return run(scene_from(data, base_dir, "<compensation check>"), accuracy=accuracy)
 
 
-def drift_runs(comp: Compensation, scene, path, accuracy=None):
-    """(times s, uncompensated result, compensated result) at the scene's ageing times and
-    the compensated ones, the compensated scene read back from ``path`` as written."""
-    from ..environment import Environment
-    from ..scene import read_yaml
-    from ..simulate import ageing_times
+#: ageing times across the history at which a --plot draws the drift
+PLOT_POINTS = 49
 
-    environment = Environment.from_section(scene.model.environment, base_dir=scene.base_dir)
-    times = np.unique(np.concatenate([ageing_times(scene, environment), comp.times[[0, -1]]]))
+
+def check_times(comp: Compensation, scene, dense: bool = False) -> tuple[np.ndarray, np.ndarray]:
+    """(times to run, times to tabulate), s: the scene's ageing times and the ends of the
+    compensation, and for a plot also the compensation's own times and a regular grid."""
+    from ..simulate import ageing_times, scene_environment
+
+    environment = scene_environment(scene)
+    shown = np.unique(np.concatenate([ageing_times(scene, environment), comp.times[[0, -1]]]))
+    if not dense:
+        return shown, shown
+    grid = np.linspace(0.0, environment.end, PLOT_POINTS)
+    return np.unique(np.concatenate([shown, comp.times, grid])), shown
+
+
+def drift_runs(comp: Compensation, scene, path, times, accuracy=None):
+    """(uncompensated result, compensated result) at ``times``, the compensated scene read
+    back from ``path`` as written."""
+    from ..scene import read_yaml
+
     path = Path(path)
     written = read_yaml(path).data
     with quiet_runs():
         before = _run_at(scene.document.data, scene.base_dir, times, accuracy)
         after = _run_at(written, path.resolve().parent, times, accuracy)
-    return times, before, after
+    return before, after
 
 
-def drift_lines(times, before, after) -> list[str]:
-    """The drift of the key outputs from the design, before and after compensation."""
+def drift_lines(times, before, after, shown) -> list[str]:
+    """The drift of the key outputs from the design, before and after compensation, at the
+    ageing times ``shown``."""
     columns = []
     for name, label, scale, unit in KEY_OUTPUTS:
         old = largest_deviation(before, name)
@@ -182,15 +196,23 @@ def drift_lines(times, before, after) -> list[str]:
         return []
     lines = ["largest deviation from the design over the cycle (before -> after compensation):",
              f"  {'time':>9}  " + "  ".join(f"{title:>26}" for title, _, _ in columns)]
-    for k, t in enumerate(times):
+    for k in np.flatnonzero(np.isin(times, shown)):
+        t = times[k]
         cells = "  ".join(f"{old[k]:12.4g} -> {new[k]:10.4g}" for _, old, new in columns)
         lines.append(f"  {format_duration(t):>9}  {cells}")
     return lines
 
 
-def report(comp: Compensation, scene, path, accuracy=None) -> str:
-    """Everything `fickcam compensate` prints."""
-    times, before, after = drift_runs(comp, scene, path, accuracy)
+def report(comp: Compensation, scene, path, accuracy=None, plot=None) -> str:
+    """Everything `fickcam compensate` prints; ``plot``: also draw the drift against the
+    band there (PNG)."""
+    times, shown = check_times(comp, scene, dense=plot is not None)
+    before, after = drift_runs(comp, scene, path, times, accuracy)
     lines = [header(comp, scene), dimension_table(comp)] + residual_lines(comp) + \
-        drift_lines(times, before, after)
+        drift_lines(times, before, after, shown)
+    if plot is not None:
+        from ..plotting.compensation import plot_against_band
+
+        window = tuple(np.unique(comp.times[[0, -1]]) / 86400.0)
+        lines.append(f"wrote {plot_against_band(before, after, plot, window)}")
     return "\n".join(lines)
