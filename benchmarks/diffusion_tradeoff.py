@@ -4,7 +4,9 @@
 
 Writes ``bench.md`` (the table `fickcam bench` prints), ``bench.csv`` and
 ``error_vs_time.png`` (error against the exact solution vs wall time, log-log,
-one marker series per geometry and model) for the README.
+one marker series per geometry and model) for the README. A ``--quick`` run
+only prints its table (it must not replace the committed full results) unless
+``--out`` names a folder.
 """
 from __future__ import annotations
 
@@ -18,6 +20,7 @@ import numpy as np
 from fickcam.bench import format_table, run_bench
 
 log = logging.getLogger("benchmarks.diffusion_tradeoff")
+RESULTS = Path(__file__).resolve().parent / "results"
 
 
 def write_figure(rows: list[dict], path: Path) -> Path:
@@ -47,10 +50,18 @@ def write_figure(rows: list[dict], path: Path) -> Path:
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--quick", action="store_true")
-    parser.add_argument("--out", type=Path, default=Path("benchmarks/results"))
+    parser.add_argument("--out", type=Path, default=None,
+                        help="folder for the results (default: benchmarks/results; "
+                             "a --quick run writes nothing unless given)")
     args = parser.parse_args()
-    logging.basicConfig(level=logging.INFO, format="%(message)s")
+    logging.basicConfig(level=logging.WARNING, format="%(message)s")  # libraries: warnings only
+    log.setLevel(logging.INFO)
     rows = run_bench(quick=args.quick)
+    if args.out is None and args.quick:
+        log.info("%s", format_table(rows))
+        log.info("--quick: results not written (give --out FOLDER to keep them)")
+        return
+    args.out = args.out or RESULTS
     args.out.mkdir(parents=True, exist_ok=True)
     (args.out / "bench.md").write_text("```\n" + format_table(rows) + "\n```\n")
     with open(args.out / "bench.csv", "w", newline="") as handle:

@@ -16,27 +16,51 @@ from .errors import FickcamError, InputError, SceneError
 log = logging.getLogger("fickcam")
 
 
+def _command(sub, name: str, summary: str, description: str, *examples: str):
+    """A subcommand whose --help says what it does and shows how it is used."""
+    return sub.add_parser(name, help=summary, description=description,
+                          epilog="examples:\n" + "\n".join(f"  {e}" for e in examples),
+                          formatter_class=argparse.RawDescriptionHelpFormatter)
+
+
 def _parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(
         prog="fickcam",
         description="Moisture uptake in polymer/composite cams, followers and four-bar "
-                    "linkages, and the mechanism drift it causes.")
+                    "linkages, and the mechanism drift it causes.",
+        epilog="start with: fickcam examples --copy scenes && fickcam run scenes/singh2017_cam.yaml",
+        formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--version", action="version", version=f"fickcam {__version__}")
     parser.add_argument("--debug", action="store_true", help="show tracebacks of internal errors")
     sub = parser.add_subparsers(dest="command", required=True, metavar="COMMAND")
 
-    run = sub.add_parser("run", help="run a scene and write its result file")
-    run.add_argument("scene")
+    run = _command(sub, "run", "run a scene and write its result file",
+                   "Age the parts of a scene (diffusion, material state, mechanisms at every "
+                   "ageing time, and the design for comparison), write the result file "
+                   "atomically and print a summary: each key output as design -> t = 0 -> end.",
+                   "fickcam run configs/singh2017_cam.yaml -o outputs/cam.h5",
+                   "fickcam run scene.yaml --accuracy 1e-4 --quiet")
+    run.add_argument("scene", help="scene file (YAML)")
     run.add_argument("-o", "--output", help="result file (default: the scene's outputs.file)")
     run.add_argument("--accuracy", type=float, help="override diffusion.accuracy")
-    run.add_argument("--quiet", action="store_true", help="no progress bar, no summary")
+    run.add_argument("--quiet", action="store_true", help="no progress bar, summary or notices")
 
-    check = sub.add_parser("check", help="validate a scene and print the plan")
-    check.add_argument("scene")
+    check = _command(sub, "check", "validate a scene and print the plan",
+                     "Validate a scene without running it and print the plan the run uses: "
+                     "parts, the diffusion model per part, cells, steps, estimated error.",
+                     "fickcam check configs/singh2017_cam.yaml")
+    check.add_argument("scene", help="scene file (YAML)")
 
-    query = sub.add_parser("query", help="values of a variable from a result file")
-    query.add_argument("result")
-    query.add_argument("variable")
+    query = _command(sub, "query", "values of a variable from a result file",
+                     "Print the values of one result variable, optionally at an ageing time "
+                     "(interpolated between stored times), a part, link or angle, or its drift "
+                     "against the design or t = 0. On a sweep result the varied values are "
+                     "shown beside each case.",
+                     'fickcam query outputs/cam.h5 lift --time "45 d"',
+                     "fickcam query outputs/cam.h5 lift --drift design",
+                     "fickcam query outputs/cam.h5 contact_force --time 30d --cam-angle 120 --format json")
+    query.add_argument("result", help="result file (.h5)")
+    query.add_argument("variable", help="a variable name (fickcam schema lists them)")
     query.add_argument("--time", help='ageing time with its unit, e.g. "30 d", "6 months" (a bare number is refused)')
     query.add_argument("--part")
     query.add_argument("--link")
@@ -47,28 +71,58 @@ def _parser() -> argparse.ArgumentParser:
                        help="the change from the as-designed value (dry, reference temperature) "
                             "or from the first ageing time, instead of the value")
 
-    export = sub.add_parser("export", help="export a result as CSV, netCDF or JSON")
-    export.add_argument("result")
+    export = _command(sub, "export", "export a result as CSV, netCDF or JSON",
+                      "Write a result (or some of its variables) for plotting elsewhere: tidy CSV "
+                      "(one column per dimension plus value), netCDF or JSON.",
+                      "fickcam export outputs/cam.h5 --format csv -o cam.csv --variables lift jump_speed")
+    export.add_argument("result", help="result file (.h5)")
     export.add_argument("--format", choices=("csv", "netcdf", "json"), required=True)
     export.add_argument("-o", "--output", required=True)
     export.add_argument("--variables", nargs="+")
 
-    plot = sub.add_parser("plot", help="PNG figures of a result")
-    plot.add_argument("result")
+    plot = _command(sub, "plot", "PNG figures of a result",
+                    "Draw the figures a result has data for (uptake, cam kinematics and dynamics, "
+                    "linkage, moisture fields, or a sweep's outputs against its varied values).",
+                    "fickcam plot outputs/cam.h5 -o outputs/cam-plots",
+                    "fickcam plot outputs/sweep.h5 --kind sweep")
+    plot.add_argument("result", help="result file (.h5)")
     plot.add_argument("-o", "--outdir", default=None, help="folder (default: next to the result)")
     plot.add_argument("--kind", default="all",
-                      choices=("uptake", "kinematics", "dynamics", "linkage", "fields", "limits", "sweep",
-                               "all"))
+                      choices=("uptake", "kinematics", "dynamics", "vibration", "linkage", "fields",
+                               "limits", "sweep", "all"))
 
-    bench = sub.add_parser("bench", help="the diffusion speed/accuracy trade")
-    bench.add_argument("--quick", action="store_true", help="fewer configurations")
+    bench = _command(sub, "bench", "the diffusion speed/accuracy trade",
+                     "Measure each diffusion model's wall time and error against exact solutions "
+                     "on reference geometries (about 3 min; --quick about 10 s).",
+                     "fickcam bench --quick")
+    bench.add_argument("--quick", action="store_true",
+                       help="each geometry at its coarsest target, no 3-D solid rows (seconds)")
+    bench.add_argument("--quiet", action="store_true", help="no progress bar, only the table")
 
-    sub.add_parser("materials", help="the built-in material library with sources")
-    sub.add_parser("schema", help="the result variables (name, dims, units)")
+    materials = _command(sub, "materials", "the built-in material library with sources",
+                         "List the built-in materials (key values and sources), or show one "
+                         "entry in full: every value, the diffusivity and saturation laws, sources.",
+                         "fickcam materials", "fickcam materials 8551-7")
+    materials.add_argument("name", nargs="?", help="one library name (fibre, matrix, plastic, metal)")
+    _command(sub, "schema", "the result variables (name, dims, units)",
+             "Print the table of result variables (name, dims, units, meaning, as-designed row) "
+             "as Markdown.", "fickcam schema")
+    examples = _command(sub, "examples", "list or copy the example scenes",
+                        "List the example scenes shipped with fickcam, print one, or copy them "
+                        "into a folder to edit and run.",
+                        "fickcam examples", "fickcam examples singh2017_cam > my_cam.yaml",
+                        "fickcam examples --copy scenes")
+    examples.add_argument("names", nargs="*", help="example names (print one; with --copy: copy these)")
+    examples.add_argument("--copy", metavar="DIR", help="copy the examples into DIR")
 
-    compensate = sub.add_parser(
-        "compensate", help="the dry dimensions to make so that the mechanism has its design "
-                           "geometry at an ageing time (or over a window)")
+    compensate = _command(
+        sub, "compensate", "the dimensions to make so that the mechanism holds its design",
+        "Give the dry dimensions at the reference temperature to make so that the mechanism has "
+        "its design geometry at an ageing time (--at) or stays closest to it over a service "
+        "window (--over, minimax); print them per part with the drift of the key outputs before "
+        "and after, and write a scene that makes them (a cam as profile points, CSV and DXF).",
+        'fickcam compensate configs/singh2017_cam.yaml --at "60 d" -o cam_made.yaml',
+        'fickcam compensate configs/fourbar_r914_humid.yaml --over "30 d" "365 d" --plot band.png')
     compensate.add_argument("scene")
     when = compensate.add_mutually_exclusive_group(required=True)
     when.add_argument("--at", metavar="TIME", help='ageing time with units, e.g. "60 d"')
@@ -80,13 +134,20 @@ def _parser() -> argparse.ArgumentParser:
     compensate.add_argument("--plot", metavar="PNG", help="also draw the drift of every "
                             "deviation limit against its band, as designed and compensated")
 
-    profile = sub.add_parser("profile", help="the cam's dry working profile for manufacture "
-                                             "(CSV or DXF, by the output's suffix)")
+    profile = _command(sub, "profile", "a cam's dry working profile for manufacture (CSV or DXF)",
+                       "Write the cam's dry working profile at the reference temperature, in mm, "
+                       "as CSV (x [mm], y [mm]) or as a closed DXF polyline, by the output's suffix.",
+                       "fickcam profile configs/singh2017_cam.yaml -o cam.dxf")
     profile.add_argument("scene")
     profile.add_argument("-o", "--output", required=True, help="PATH.csv or PATH.dxf")
     profile.add_argument("--points", type=int, default=3600, help="points round the profile")
 
-    fit = sub.add_parser("fit", help="calibrate a material from ASTM D5229 weight-gain data")
+    fit = _command(sub, "fit", "calibrate a material from ASTM D5229 weight-gain data",
+                   "Fit the diffusivity (D0, Ea) and saturation law of a material to weight-gain "
+                   "coupon data (ASTM D5229, one row per weighing) and write a scene-ready "
+                   "materials: block.",
+                   "fickcam fit coupons.csv --matrix 8551-7 -o fitted.yaml --plot fit.png",
+                   "fickcam fit laminate.csv --matrix 3502 --fiber T300 --fiber-volume-fraction 0.6 -o fitted.yaml")
     fit.add_argument("data", help="weight-gain CSV (one row per weighing, units in the header)")
     fit.add_argument("--matrix", required=True, help="library matrix (resin) of the coupons")
     fit.add_argument("--fiber", help="library fibre of composite coupons")
@@ -95,11 +156,16 @@ def _parser() -> argparse.ArgumentParser:
     fit.add_argument("-o", "--output", required=True, help="YAML file with the materials: block")
     fit.add_argument("--plot", help="PNG of the data, fitted curves and residuals")
 
-    sweep = sub.add_parser("sweep", help="many scenes on dask.distributed")
-    sweep.add_argument("sweep")
+    sweep = _command(sub, "sweep", "many scenes on dask.distributed",
+                     "Run the variants of a scene a sweep file describes (a grid or Monte Carlo "
+                     "draws) on a local dask cluster or a running scheduler, write one result "
+                     "with a case dimension and print a table of the cases.",
+                     "fickcam sweep configs/sweep_singh2017_climate.yaml -o outputs/climate.h5",
+                     "fickcam sweep sweep.yaml --scheduler tcp://10.0.0.5:8786 -o out.h5")
+    sweep.add_argument("sweep", help="sweep file (YAML)")
     group = sweep.add_mutually_exclusive_group()
     group.add_argument("--workers", type=int, default=None, help="local worker processes")
-    group.add_argument("--scheduler", help="address of a running dask scheduler")
+    group.add_argument("--scheduler", help="address of a running dask scheduler, tcp://HOST:PORT")
     sweep.add_argument("-o", "--output", required=True)
     sweep.add_argument("--quiet", action="store_true")
     return parser
@@ -173,17 +239,55 @@ def _cmd_plot(args) -> int:
     return 0
 
 
-def _cmd_bench(args) -> int:
-    from .bench import format_table, run_bench
+#: wall time of `fickcam bench`, measured on the project's idle 2-core machine
+BENCH_EXPECTED = {False: "about 3 min", True: "about 10 s"}
 
-    print(format_table(run_bench(quick=args.quick)))
+
+def _cmd_bench(args) -> int:
+    from tqdm.auto import tqdm
+
+    from .bench import format_table, row_count, run_bench
+
+    total = row_count(args.quick)
+    log.info("bench: %d rows, expected %s on an idle 2-core machine%s", total,
+             BENCH_EXPECTED[args.quick], "" if args.quick else " (--quick: "
+             f"{BENCH_EXPECTED[True]})")
+    with tqdm(total=total, disable=args.quiet, unit="row", desc="bench", leave=False) as bar:
+        def starting(label: str) -> None:
+            bar.update(1 if bar.postfix else 0)  # the previous row has finished
+            bar.set_postfix_str(label)
+
+        rows = run_bench(quick=args.quick, progress=starting)
+    print(format_table(rows))
     return 0
 
 
 def _cmd_materials(args) -> int:
-    from .materials import library_table
+    from .materials.library import entry_text, find_entry, library_table
 
-    print(library_table())
+    if args.name is None:
+        print(library_table())
+        return 0
+    try:
+        find_entry(args.name)
+    except KeyError:
+        raise InputError(f"no material {args.name!r} in the library (fickcam materials lists "
+                         f"them)") from None
+    print(entry_text(args.name))
+    return 0
+
+
+def _cmd_examples(args) -> int:
+    from . import example_scenes
+
+    if args.copy:
+        for path in example_scenes.copy_to(args.copy, args.names):
+            print(f"wrote {path}")
+    elif args.names:
+        for name in args.names:
+            print(example_scenes.path(name).read_text(encoding="utf-8"), end="")
+    else:
+        print(example_scenes.listing())
     return 0
 
 
@@ -195,15 +299,17 @@ def _cmd_schema(args) -> int:
 
 
 def _cmd_sweep(args) -> int:
-    from .sweep import run_sweep
-
+    from .reporting import sweep_summary
     from .store import open_result
+    from .sweep import run_sweep
     from .sweep.scatter import summary_lines
 
     run_sweep(args.sweep, args.output, workers=args.workers, scheduler=args.scheduler,
               progress=not args.quiet)
     if not args.quiet:
-        for line in summary_lines(open_result(args.output)):
+        result = open_result(args.output)
+        print(sweep_summary(result))
+        for line in summary_lines(result):
             print(line)
         print(f"wrote {args.output}")
     return 0
@@ -259,15 +365,16 @@ def _cmd_fit(args) -> int:
 COMMANDS = {"run": _cmd_run, "check": _cmd_check, "query": _cmd_query, "export": _cmd_export,
             "plot": _cmd_plot, "bench": _cmd_bench, "materials": _cmd_materials,
             "schema": _cmd_schema, "sweep": _cmd_sweep, "fit": _cmd_fit,
-            "compensate": _cmd_compensate, "profile": _cmd_profile}
+            "examples": _cmd_examples, "compensate": _cmd_compensate, "profile": _cmd_profile}
 
 
 def main(argv: list[str] | None = None) -> int:
     args = _parser().parse_args(argv)
-    logging.basicConfig(level=logging.WARNING if getattr(args, "quiet", False) else logging.INFO,
-                        format="fickcam: %(message)s", stream=sys.stderr)
+    # fickcam's own messages (INFO and notices) on stderr; other libraries' only from WARNING
+    # (FiPy logs its solver suite at INFO); --quiet keeps notices off too (errors still print)
+    logging.basicConfig(level=logging.WARNING, format="fickcam: %(message)s", stream=sys.stderr)
     logging.getLogger("fickcam").setLevel(
-        logging.WARNING if getattr(args, "quiet", False) else logging.INFO)
+        logging.ERROR if getattr(args, "quiet", False) else logging.INFO)
     try:
         return COMMANDS[args.command](args)
     except SceneError as exc:

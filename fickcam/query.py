@@ -147,9 +147,32 @@ def _interp_along(array, dim, grid, value, period=None):
     return lower * (1.0 - weight) + upper * weight, between
 
 
+def swept_values(array) -> dict[str, np.ndarray]:
+    """The varied values of a sweep result along ``case``, in the units the sweep file
+    gave them: ``{"temperature [degC]": [60, 85, ...]}`` (empty for a single run)."""
+    from .sweep.spec import short_names
+    from .units import convert
+
+    swept = [name for name, coord in array.coords.items()
+             if "dotted_path" in coord.attrs and coord.dims == ("case",)]
+    names = short_names([array[n].attrs["dotted_path"] for n in swept])
+    out = {}
+    for name in swept:
+        coord = array[name]
+        unit = coord.attrs.get("given_units") or coord.attrs.get("units", "")
+        values = coord.values
+        if values.dtype.kind in "fiu":
+            values = convert(values, coord.attrs.get("units", ""), unit)
+        out[f"{names[coord.attrs['dotted_path']]} [{unit}]" if unit not in ("", "1")
+            else names[coord.attrs["dotted_path"]]] = values
+    return out
+
+
 def to_records(array) -> tuple[list[str], list[list]]:
-    """(columns, rows) of a DataArray in tidy form: one column per dim + value."""
+    """(columns, rows) of a DataArray in tidy form: one column per dim (and, for a sweep,
+    per varied value, beside ``case``) + value."""
     dims = list(array.dims)
+    swept = swept_values(array) if "case" in dims else {}
     columns = [("time_d" if d == "time" else d) for d in dims] + ["value"]
     if not dims:
         return columns, [[_plain(array.values)]]
@@ -157,6 +180,11 @@ def to_records(array) -> tuple[list[str], list[list]]:
     rows = []
     for record in frame[dims + ["value"]].itertuples(index=False):
         rows.append([_plain(v, d) for v, d in zip(record, dims + ["value"])])
+    if swept:
+        where = dims.index("case") + 1
+        columns[where:where] = list(swept)
+        rows = [row[:where] + [_plain(v[int(row[where - 1])]) for v in swept.values()] + row[where:]
+                for row in rows]
     return columns, rows
 
 

@@ -16,6 +16,7 @@ from .errors import format_duration
 from .limits import stored_limits
 from .query import drift
 from .schema import VARIABLES, design_name
+from .units import convert
 
 #: scalar results over ageing the summary reports, in this order (when present)
 KEY_OUTPUTS = ("lift", "base_circle_radius", "jump_speed", "peak_cam_torque",
@@ -67,12 +68,7 @@ def describe_plan(scene, accuracy: float | None = None) -> str:
 def display(name: str, values):
     """(values in the variable's display unit, that unit): ``lift`` in mm, not m."""
     var = VARIABLES[name]
-    values = np.asarray(values, float)
-    if not var.display or var.display == var.units:
-        return values, var.units or "1"
-    from .units import registry
-
-    return registry().Quantity(values, var.units).to(var.display).magnitude, var.display
+    return convert(values, var.units, var.display), var.display or var.units or "1"
 
 
 def _finite_ends(values: np.ndarray) -> tuple[int, int] | None:
@@ -239,4 +235,60 @@ def summary(ds, *, notices: bool = True) -> str:
             lines += [f"    - {n}" for n in stored]
         else:
             lines.append(f"  {len(stored)} notice(s), reported above")
+    return "\n".join(lines)
+
+
+# -------------------------------------------------------------------- sweep
+
+#: cases listed after a sweep (the rest: `fickcam query` or the plots)
+SWEEP_ROWS = 30
+
+
+def _sweep_outputs(ds) -> list[str]:
+    """The moisture and the first key outputs the sweep result holds."""
+    names = [n for n in KEY_OUTPUTS if n in ds and set(ds[n].dims) == {"case", "time"}]
+    return (["moisture_content"] if "moisture_content" in ds else []) + names[:3]
+
+
+def _sweep_cell(ds, name: str, case: int) -> str:
+    """The value at the last ageing time (largest over parts), and its drift against the
+    design."""
+    if "case_status" in ds.coords and str(ds["case_status"].values[case]) != "ok":
+        return "-"
+    array = ds[name].isel(case=case, time=-1)
+    design = ds[design_name(name)].isel(case=case) if design_name(name) in ds else np.nan
+    if "part" in array.dims:
+        index = int(np.nanargmax(np.where(np.isfinite(array.values), array.values, -np.inf)))
+        array, design = array.isel(part=index), design.isel(part=index) if design_name(name) in ds \
+            else np.nan
+    value = float(display(name, array.values)[0])
+    change = np.nan if name == "moisture_content" else value - float(display(name, design)[0])
+    return f"{_number(value)} ({_change(change)})" if np.isfinite(change) else _number(value)
+
+
+def sweep_summary(ds) -> str:
+    """One line per case after `fickcam sweep`: the varied values as the sweep file gave
+    them, the status and, at the last ageing time, the moisture (largest part) and the key
+    outputs with their drift against the design."""
+    from .query import swept_values
+
+    swept = swept_values(ds)
+    outputs = _sweep_outputs(ds)
+    n = ds.sizes.get("case", 0)
+    header = ["case", *swept, "status"] + [
+        f"{'moisture (wettest part)' if n_ == 'moisture_content' else n_} [{display(n_, 0.0)[1]}]"
+        for n_ in outputs]
+    rows = []
+    for case in range(min(n, SWEEP_ROWS)):
+        status = str(ds["case_status"].values[case]) if "case_status" in ds.coords else "ok"
+        rows.append([str(case), *(f"{v[case]:.6g}" if isinstance(v[case], (float, np.floating))
+                                  else str(v[case]) for v in swept.values()), status]
+                    + [_sweep_cell(ds, name, case) for name in outputs])
+    seconds = ds["time"].values[-1] / np.timedelta64(1, "s") if "time" in ds.coords else np.nan
+    lines = [f"{ds.attrs.get('scene_name', '')}: {n} case(s), {int(ds.attrs.get('failed_cases', 0))} "
+             f"failed; at t = {format_duration(seconds)} (Δ against the design):"]
+    widths = [max(len(r[i]) for r in rows + [header]) for i in range(len(header))]
+    lines += ["  " + "  ".join(c.rjust(w) for c, w in zip(row, widths)) for row in [header] + rows]
+    if n > SWEEP_ROWS:
+        lines.append(f"  ... {n - SWEEP_ROWS} more case(s): fickcam query RESULT VARIABLE")
     return "\n".join(lines)

@@ -113,6 +113,15 @@ VARIABLES: dict[str, Var] = {
                                         "revolution", "cam", display="MPa"),
     "wear_depth": Var(T, "m", "accumulated wear depth of the cam surface (Archard)", "cam", display="um"),
     "wear_rate": Var(T, "m s-1", "largest Archard wear rate on the cam surface", "cam"),
+    # elastic follower train (cam.follower.stiffness; fickcam.cam.train)
+    "natural_frequency": Var(T, "Hz", "natural frequency of the follower train, sqrt((k + k_s)/m)/2 pi", "cam"),
+    "follower_train_stiffness": Var(T, "N m-1", "follower train stiffness k", "cam"),
+    "dynamic_jump_speed": Var(T, "rpm", "lowest cam speed at which the elastic follower leaves the cam",
+                              "cam", RPM),
+    "residual_vibration": Var(T, "m", "largest free-vibration amplitude in a dwell after a rise or "
+                              "return, first turn from rest", "cam", display="um"),
+    "minimum_dynamic_contact_force": Var(T, "N", "smallest dynamic contact force over a revolution",
+                                         "cam"),
     # cam and follower: over the cam angle
     "follower_displacement": Var(TC, "m", "follower displacement", "cam", display="mm"),
     "follower_velocity": Var(TC, "m s-1", "follower velocity", "cam"),
@@ -134,6 +143,14 @@ VARIABLES: dict[str, Var] = {
                                   "0.786 b", "cam", display="um"),
     "profile_x": Var(TC, "m", "working profile x (cam frame)", "cam", display="mm"),
     "profile_y": Var(TC, "m", "working profile y (cam frame)", "cam", display="mm"),
+    "dynamic_follower_displacement": Var(TC, "m", "follower mass displacement, elastic train, "
+                                         "periodic steady state", "cam", display="mm"),
+    "dynamic_displacement_error": Var(TC, "m", "dynamic minus kinematic follower displacement", "cam",
+                                      display="mm"),
+    "dynamic_contact_force": Var(TC, "N", "contact force along the common normal, elastic train, "
+                                 "periodic steady state", "cam"),
+    "startup_follower_displacement": Var(TC, "m", "follower mass displacement over the first turn "
+                                         "from rest, elastic train", "cam", display="mm"),
     # four-bar linkage
     "link_length": Var(TL, "m", "link length (pivot to pivot)", "linkage", display="mm"),
     "link_mass": Var(TL, "kg", "link mass", "linkage"),

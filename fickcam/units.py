@@ -206,3 +206,19 @@ class StrictModel(BaseModel):
 
     model_config = ConfigDict(extra="forbid", frozen=True)
 
+
+
+
+_PINT_NAMES = {"%": "percent", "1": "dimensionless", "": "dimensionless"}
+
+
+def convert(values, unit: str, to: str):
+    """``values`` (numbers or an array) from ``unit`` to ``to`` for display (``K`` →
+    ``degC``, ``m`` → ``mm``, ``%`` understood); the values unchanged when the units agree."""
+    import numpy as np
+
+    values = np.asarray(values, float)
+    if not to or to == unit:
+        return values
+    quantity = registry().Quantity(values, _PINT_NAMES.get(unit, unit))
+    return quantity.to(_PINT_NAMES.get(to, to)).magnitude

@@ -85,3 +85,16 @@ def test_singh2016_fourbar_stops_its_links_at_the_wet_tg_and_keeps_earlier_resul
     assert np.allclose(ds.link_length.values[valid], nominal * (1 + strain), rtol=1e-12)
     assert float(ds.minimum_transmission_angle[0]) == pytest.approx(36.003899, rel=1e-6)
     assert str(ds.grashof_class.values[0]) == "crank-rocker"
+
+
+def test_epoxy_follower_natural_frequency_falls_with_the_wet_modulus_and_mass(results):
+    ds = results("epoxy_follower_vibration")
+    modulus = ds.longitudinal_modulus.sel(part="follower").values
+    moisture = ds.moisture_content.sel(part="follower").values
+    stiffness = modulus * np.pi * 0.008 ** 2 / 4 / 0.150
+    expected = np.sqrt((stiffness + 12e3) / (0.12 * (1 + moisture / 100))) / (2 * np.pi)
+    assert np.allclose(ds.natural_frequency.values, expected, rtol=1e-12)
+    assert np.all(np.diff(ds.natural_frequency.values) < 0)
+    assert ds.natural_frequency.values[-1] < 0.95 * ds.natural_frequency.values[0]
+    jump = ds.dynamic_jump_speed.values
+    assert np.all(jump < ds.jump_speed.values) and jump[-1] < jump[0] - 30  # rpm

@@ -75,7 +75,10 @@ def test_a_case_scene_is_the_base_with_only_the_varied_values_changed(tmp_path):
     scene = sweep.scene_dict(sweep.cases[3])
     assert scene["environment"]["history"][0]["relative_humidity"] == "65 %"
     assert scene["environment"]["history"][0]["temperature"] == "90 degC"
+    assert scene.pop("description").startswith("case 3: relative_humidity = 65 %, temperature = 90 degC")
     scene["environment"]["history"][0].update(base["environment"]["history"][0])
+    if "description" in base:
+        scene["description"] = base["description"]
     assert scene == base
     assert sweep.base_data == base, "building a case must not change the base scene"
 

@@ -64,7 +64,8 @@ def cam_state(design, histories: dict, k: int) -> CamState:
         cam_surface_modulus=_at(cam, "surface_modulus", k),
         cam_surface_poisson=_at(cam, "surface_poisson_ratio", k, 0.3),
         follower_modulus=_at(fstate, "surface_modulus", k),
-        follower_poisson=_at(fstate, "surface_poisson_ratio", k))
+        follower_poisson=_at(fstate, "surface_poisson_ratio", k),
+        follower_train_modulus=_at(fstate, "longitudinal_modulus", k))
 
 
 def scene_response(section, histories: dict, times, angles, valid, on_step=lambda: None) -> Response:
@@ -74,7 +75,15 @@ def scene_response(section, histories: dict, times, angles, valid, on_step=lambd
     times = np.asarray(times, float)
 
     def evaluate(k: int) -> Response:
-        return cam_response(design, cam_state(design, histories, k), angles)
+        state = cam_state(design, histories, k)
+        response = cam_response(design, state, angles)
+        if design.train is not None:  # elastic follower train (Norton ch. 15)
+            from .train import dynamic_response
+
+            elastic = dynamic_response(design, state, angles, response.variables)
+            response.variables.update(elastic.variables)
+            response.notices.extend(elastic.notices)
+        return response
 
     result = over_ageing(times, np.asarray(valid, bool), evaluate, on_step)
     rate = result.variables.get("wear_rate")

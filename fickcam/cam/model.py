@@ -59,6 +59,8 @@ class CamDesign:
     follower_modulus: float = 210e9
     follower_poisson: float = 0.3
     profile: object = None         # fickcam.cam.profile.CamProfile (kind "profile")
+    train: tuple | None = None     # None: rigid; ("stiffness", k) | ("rod", L, d) | ("lever", L, w, h)
+    damping_ratio: float = 0.05
 
     @property
     def contact_length(self) -> float:
@@ -78,6 +80,19 @@ class CamState:
     cam_surface_poisson: float = 0.3
     follower_modulus: float | None = None
     follower_poisson: float | None = None
+    follower_train_modulus: float | None = None
+
+
+def _train(stiffness) -> tuple | None:
+    """The follower train of ``follower.stiffness`` as a hashable tuple (None: rigid)."""
+    if stiffness is None:
+        return None
+    if isinstance(stiffness, float | int):
+        return ("stiffness", float(stiffness))
+    if stiffness.rod is not None:
+        return ("rod", stiffness.rod.length, stiffness.rod.diameter)
+    lever = stiffness.lever
+    return ("lever", lever.length, lever.width, lever.height)
 
 
 def design_from_scene(section) -> CamDesign:
@@ -98,7 +113,8 @@ def design_from_scene(section) -> CamDesign:
                   guide_factor=guide, gravity=section.gravity,
                   archard_coefficient=section.wear.archard_coefficient if section.wear else 0.0,
                   hardness=section.wear.hardness if section.wear else None,
-                  follower_modulus=f.modulus, follower_poisson=f.poisson_ratio)
+                  follower_modulus=f.modulus, follower_poisson=f.poisson_ratio,
+                  train=_train(f.stiffness), damping_ratio=f.damping_ratio)
     if section.profile_file is not None:
         from .profile import load_profile
 

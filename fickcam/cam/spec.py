@@ -9,10 +9,10 @@ follower without a roller radius, ``eccentric`` or ``profile_file`` together wit
 from __future__ import annotations
 
 import math
-from typing import Literal
+from typing import Annotated, Literal
 
 from ..units import StrictModel
-from pydantic import ConfigDict, Field, field_validator, model_validator
+from pydantic import ConfigDict, Discriminator, Field, Tag, field_validator, model_validator
 
 from ..units import (
     Angle,
@@ -25,7 +25,11 @@ from ..units import (
     Pressure,
     SignedLength,
     Stiffness,
+    quantity,
 )
+
+#: follower train stiffness: zero would leave the follower mass unconnected to the cam
+PositiveStiffness = quantity("stiffness", positive=True)
 
 #: motion law names (SPEC.md §1) -> module-level functions in :mod:`fickcam.cam.motion`
 LAWS = ("uniform_velocity", "constant_acceleration", "simple_harmonic", "cycloidal",
@@ -109,11 +113,50 @@ class Wear(_Strict):
     hardness: Pressure
 
 
+class Rod(_Strict):
+    """A round follower stem loaded along its axis: k = E pi d^2/(4 L)."""
+
+    length: Length
+    diameter: Length
+
+
+class Lever(_Strict):
+    """A cantilever lever loaded at its tip: k = 3 E I/L^3, I = width height^3/12."""
+
+    length: Length
+    width: Length
+    height: Length
+
+
+class TrainSection(_Strict):
+    """``follower.stiffness`` given by the follower's geometry: exactly one of ``rod`` or
+    ``lever``; E is the follower material's aged longitudinal modulus at each ageing time
+    (``follower.modulus`` when the follower has no material)."""
+
+    rod: Rod | None = None
+    lever: Lever | None = None
+
+    @model_validator(mode="after")
+    def _one(self):
+        if (self.rod is None) == (self.lever is None):
+            raise ValueError("give exactly one of rod: {length, diameter} or "
+                             "lever: {length, width, height}")
+        return self
+
+
+#: ``follower.stiffness``: a number with units, or a section (a mapping)
+TrainStiffness = Annotated[
+    Annotated[TrainSection, Tag("TrainSection")] | Annotated[PositiveStiffness, Tag("Stiffness")],
+    Discriminator(lambda v: "TrainSection" if isinstance(v, dict | TrainSection) else "Stiffness")]
+
+
 class Follower(_Strict):
     """Translating follower. Extras beyond SPEC.md (defaults): ``width`` (the cam
     thickness) the contact length for Hertz, ``friction_coefficient`` (0) at the cam
     contact (sliding: knife and flat), ``modulus`` (210 GPa) / ``poisson_ratio`` (0.3)
-    used when the follower has no absorbing material, ``guide`` (none)."""
+    used when the follower has no absorbing material, ``guide`` (none). ``stiffness``
+    (absent: rigid follower) is the follower train stiffness, N/m or a
+    :class:`TrainSection`; ``damping_ratio`` (0.05) its damping (:mod:`fickcam.cam.train`)."""
 
     kind: Literal["knife", "roller", "flat"]
     roller_radius: Length | None = None
@@ -128,6 +171,8 @@ class Follower(_Strict):
     modulus: Pressure = 210e9
     poisson_ratio: float = Field(default=0.3, ge=0.0, lt=0.5)
     guide: Guide | None = None
+    stiffness: TrainStiffness | None = None
+    damping_ratio: float = Field(default=0.05, ge=0.0, lt=1.0)
 
     @model_validator(mode="after")
     def _roller_needs_radius(self):
@@ -210,5 +255,6 @@ def check_motion(segments) -> None:
         raise ValueError("the motion goes below the base circle (a return before its rise)")
 
 
-__all__ = ["Angle", "CamSection", "Eccentric", "Follower", "Guide", "LAWS", "Segment", "Wear",
+__all__ = ["Angle", "CamSection", "Eccentric", "Follower", "Guide", "LAWS", "Lever", "Rod", "Segment",
+           "TrainSection", "Wear",
            "check_motion"]

@@ -2,6 +2,8 @@
 from __future__ import annotations
 
 import copy
+import math
+import textwrap
 import functools
 from importlib import resources
 
@@ -79,4 +81,75 @@ def library_table() -> str:
                      f"{_fmt(r['saturation_pct']):>8}")
     lines += ["", "Sources (ASSUMPTION = fickcam's choice, override in the scene):"]
     lines += [f"  {r['name']}: {r['sources']}" for r in rows]
+    return "\n".join(lines)
+
+
+#: library key -> (label, unit shown, factor from SI, offset)
+_SHOWN = {
+    "density": ("density", "kg/m3", 1.0, 0.0),
+    "youngs_modulus": ("Young's modulus", "GPa", 1e-9, 0.0),
+    "longitudinal_modulus": ("longitudinal modulus E11", "GPa", 1e-9, 0.0),
+    "transverse_modulus": ("transverse modulus E22", "GPa", 1e-9, 0.0),
+    "shear_modulus": ("shear modulus G12", "GPa", 1e-9, 0.0),
+    "transverse_shear_modulus": ("transverse shear modulus G23", "GPa", 1e-9, 0.0),
+    "poisson_ratio": ("Poisson ratio", "", 1.0, 0.0),
+    "dry_glass_transition_temperature": ("dry glass transition temperature", "degC", 1.0, -273.15),
+    "thermal_expansion": ("thermal expansion", "1/K", 1.0, 0.0),
+    "thermal_expansion_wet": ("thermal expansion, wet", "1/K", 1.0, 0.0),
+    "thermal_expansion_longitudinal": ("thermal expansion, longitudinal", "1/K", 1.0, 0.0),
+    "thermal_expansion_transverse": ("thermal expansion, transverse", "1/K", 1.0, 0.0),
+    "moisture_expansion": ("moisture expansion", "1/%", 1.0, 0.0),
+    "conductivity": ("thermal conductivity", "W/(m K)", 1.0, 0.0),
+    "conductivity_longitudinal": ("thermal conductivity, longitudinal", "W/(m K)", 1.0, 0.0),
+    "conductivity_transverse": ("thermal conductivity, transverse", "W/(m K)", 1.0, 0.0),
+}
+_GAS_CONSTANT = 8.314462618  # J/(mol K)
+
+
+def find_entry(name: str) -> tuple[str, dict]:
+    """(group, entry) of a library name, matched without regard to case; KeyError if none."""
+    for group in GROUPS:
+        for key, values in _load()[group].items():
+            if str(key).lower() == str(name).lower():
+                return group, copy.deepcopy(values)
+    raise KeyError(name)
+
+
+def _diffusivity_lines(law: dict) -> list[str]:
+    """D = D0 exp(-Ea / (R T)), with D at 23 and 80 degC for a feel of the scale."""
+    d0, ea = float(law["pre_exponential"]), float(law["activation_energy"])
+    at = ", ".join(f"{d0 * math.exp(-ea / (_GAS_CONSTANT * (c + 273.15))):.3g} m2/s at {c} degC"
+                   for c in (23, 80))
+    return [f"  diffusivity          D = D0 exp(-Ea/(R T)): D0 = {d0:.4g} m2/s, "
+            f"Ea = {ea / 1e3:.4g} kJ/mol ({at})"]
+
+
+def _saturation_lines(law: dict) -> list[str]:
+    """Mm = a (RH/100)^b, with its value at 50 and 100 % RH."""
+    a, b = float(law["coefficient"]), float(law.get("exponent", 1.0))
+    return [f"  saturation moisture  Mm = a (RH/100)^b: a = {a:.4g} %, b = {b:.4g} "
+            f"({a * 0.5 ** b:.3g} % at 50 % RH, {a:.3g} % at 100 % RH)"]
+
+
+def entry_text(name: str) -> str:
+    """One library entry for ``fickcam materials NAME``: every value with its unit, the
+    diffusivity and saturation laws, and the sources."""
+    group, values = find_entry(name)
+    lines = [f"{name} ({group[:-1] if group != 'matrices' else 'matrix'})"]
+    for key, value in values.items():
+        if key in _SHOWN:
+            label, unit, factor, offset = _SHOWN[key]
+            shown = "none" if value is None else f"{value * factor + offset:.4g} {unit}"
+            lines.append(f"  {label:<36} {shown}".rstrip())
+    if "diffusivity" in values:
+        lines += _diffusivity_lines(values["diffusivity"])
+    if "saturation" in values:
+        lines += _saturation_lines(values["saturation"])
+    if "diffusivity" not in values and "saturation" not in values:
+        lines.append("  takes up no moisture" if group == "metals" else
+                     "  moisture: set by the matrix it is combined with")
+    others = [k for k in values if k not in _SHOWN and k not in ("diffusivity", "saturation", "sources")]
+    lines += [f"  {k:<36} {values[k]}" for k in others]
+    lines += textwrap.wrap(" ".join(str(values.get("sources", "-")).split()), width=92,
+                           initial_indent="  sources: ", subsequent_indent="    ")
     return "\n".join(lines)

@@ -15,6 +15,7 @@ KINDS = {
     "uptake": ("uptake", "plot", ("moisture_content",)),
     "kinematics": ("cam", "plot_kinematics", ("follower_displacement",)),
     "dynamics": ("cam", "plot_dynamics", ("contact_force",)),
+    "vibration": ("train", "plot", ("dynamic_contact_force",)),
     "linkage": ("linkage", "plot", ("rocker_angle",)),
     "fields": ("fields", "plot", ("moisture",)),
     "limits": ("limits", "plot", ("limit_ratio",)),

@@ -53,10 +53,15 @@ def case_coordinates(sweep: Sweep, records: dict[int, dict]) -> dict:
     coords = {"case": xr.Variable("case", np.arange(n), {"long_name": "case index"})}
     values = sweep.coordinates()
     for parameter in sweep.parameters:
-        coords[parameter.name] = xr.Variable(
-            "case", values[parameter.name],
-            {"units": parameter.units, "long_name": f"swept scene value {parameter.path}",
-             "dotted_path": parameter.path})
+        attrs = {"units": parameter.units, "long_name": f"swept scene value {parameter.path}",
+                 "dotted_path": parameter.path}
+        given = parameter.given_unit([c.values[parameter.path] for c in sweep.cases])
+        if given and given != parameter.units:
+            attrs["given_units"] = given  # the unit the sweep file wrote (degC): for display
+        coords[parameter.name] = xr.Variable("case", values[parameter.name], attrs)
+    coords["case_description"] = xr.Variable(
+        "case", np.asarray([sweep.describe(c) for c in sweep.cases], dtype=object),
+        {"long_name": "the values the case sets, as the sweep file gives them", "units": "1"})
     status = [records.get(i, {}).get("status", "failed") for i in range(n)]
     message = [records.get(i, {}).get("message", "not run") for i in range(n)]
     wall = [float(records.get(i, {}).get("wall_time", np.nan)) for i in range(n)]

@@ -16,9 +16,10 @@ import uuid
 from contextlib import ExitStack, contextmanager
 from pathlib import Path
 
-from ..errors import InputError
+from ..errors import FickcamError, InputError
 from .case import CaseTask, quieter, run_case
 from .combine import combine
+from .scheduler import probe
 from .spec import Sweep, load_sweep
 from .workdir import WorkFolder
 
@@ -53,10 +54,11 @@ def _connect(workers: int | None, scheduler: str | None, n_cases: int):
     from distributed import Client, LocalCluster
 
     if scheduler:
+        probe(scheduler)
         try:
             client = Client(scheduler, timeout="20s")
         except (OSError, TimeoutError) as exc:
-            raise InputError(f"cannot reach the dask scheduler at {scheduler}: {exc}") from None
+            raise FickcamError(f"cannot reach the dask scheduler at {scheduler}: {exc}") from None
         with client:
             yield client
         return

@@ -280,6 +280,16 @@ class Parameter:
     def units(self) -> str:
         return _LABELS[self.dimension][0] if self.dimension else "1"
 
+    def given_unit(self, raws: list) -> str:
+        """The unit the user wrote every value in (``degC``), "" if none or mixed."""
+        units = set()
+        for raw in raws:
+            try:
+                units.add(_number_and_unit(raw)[1])
+            except ValueError:
+                return ""
+        return units.pop() if len(units) == 1 else ""
+
     def coordinate(self, raws: list):
         """Coordinate values for the result (SI, angles in degrees, speeds in rpm);
         NaN for a value that cannot be read (its case fails validation)."""
@@ -336,15 +346,40 @@ class Sweep:
         return digest.hexdigest()
 
     def scene_dict(self, case: Case) -> dict:
-        """The scene of ``case``: the base scene with the case's values set."""
+        """The scene of ``case``: the base scene with the case's values set, and a
+        description that names them."""
         data = copy.deepcopy(self.base_data)
         for parameter in self.parameters:
             set_path(data, parameter.keys, case.values[parameter.path])
+        base = str(data.get("description") or data.get("name") or "").strip()
+        data["description"] = self.describe(case) + (f" (base scene: {base})" if base else "")
         return data
+
+    def describe(self, case: Case) -> str:
+        """``case 4: relative_humidity = 65 %, temperature = 85 degC`` (values as given)."""
+        names = short_names([p.path for p in self.parameters])
+        values = ", ".join(f"{names[p.path]} = {_as_given(case.values[p.path])}"
+                           for p in self.parameters)
+        return f"case {case.index}: {values}"
 
     def coordinates(self) -> dict[str, np.ndarray]:
         """Each parameter's coordinate values along ``case``."""
         return {p.name: p.coordinate([c.values[p.path] for c in self.cases]) for p in self.parameters}
+
+
+def short_names(paths: list[str]) -> dict[str, str]:
+    """The shortest tail of each dotted path that tells the paths apart
+    (``environment.history.0.temperature`` → ``temperature``)."""
+    depth = 1
+    while True:
+        tails = {p: ".".join(p.split(".")[-depth:]) for p in paths}
+        if len(set(tails.values())) == len(paths) or depth > max(p.count(".") for p in paths):
+            return tails
+        depth += 1
+
+
+def _as_given(value) -> str:
+    return f"{value:.6g}" if isinstance(value, float) else str(value)
 
 
 def _expand_grid(grid: dict[str, list]) -> list[Case]:

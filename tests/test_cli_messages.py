@@ -1,0 +1,89 @@
+"""What the command line prints on stderr: fickcam's own notices once, no library chatter,
+nothing with --quiet; `fickcam bench` shows progress and an expected duration."""
+import os
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+import yaml
+
+import fickcam.bench
+from fickcam.cli import main
+
+ROOT = Path(__file__).resolve().parents[1]
+
+
+def fickcam_cli(*args, cwd=None):
+    env = dict(os.environ, PYTHONPATH=str(ROOT))
+    return subprocess.run([sys.executable, "-m", "fickcam.cli", *args], capture_output=True,
+                          text=True, env=env, cwd=cwd, timeout=300)
+
+
+@pytest.fixture(scope="module")
+def fourbar(tmp_path_factory):
+    """Seed 001's four-bar (it reports its Grashof class) run loud and --quiet."""
+    folder = tmp_path_factory.mktemp("fourbar")
+    scene = yaml.safe_load((ROOT / "configs" / "singh2016_fourbar.yaml").read_text())
+    scene["outputs"] = {"ageing_times": ["0 d", "1 h"], "angle_step": "6 deg"}
+    (folder / "fourbar.yaml").write_text(yaml.safe_dump(scene))
+    loud = fickcam_cli("run", "fourbar.yaml", "-o", "loud.h5", cwd=folder)
+    quiet = fickcam_cli("run", "fourbar.yaml", "-o", "quiet.h5", "--quiet", cwd=folder)
+    return folder, loud, quiet
+
+
+def test_a_notice_is_printed_once(fourbar):
+    _, loud, _ = fourbar
+    assert loud.returncode == 0, loud.stderr
+    assert (loud.stdout + loud.stderr).count("Grashof class: crank-rocker") == 1
+
+
+def test_quiet_prints_no_notices(fourbar):
+    _, _, quiet = fourbar
+    assert quiet.returncode == 0 and quiet.stdout == "" and quiet.stderr == ""
+
+
+def test_query_does_not_repeat_the_runs_notices(fourbar):
+    folder, _, _ = fourbar
+    done = fickcam_cli("query", "loud.h5", "rocker_swing", cwd=folder)
+    assert done.returncode == 0 and done.stderr == ""
+
+
+def test_fipy_solver_chatter_stays_off_stderr():
+    code = ("import sys; from fickcam.cli import main; main(['schema']); import fipy")
+    done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                          env=dict(os.environ, PYTHONPATH=str(ROOT)), timeout=120)
+    assert "PyAMG" not in done.stderr and "Solver suite" not in done.stderr, done.stderr
+
+
+def test_bench_quick_is_quick_and_shows_progress_and_expected_duration(monkeypatch, capsys):
+    quick = fickcam.bench._cases(True)
+    assert all("solid" not in case.models for case in quick)
+    assert fickcam.bench.row_count(True) < fickcam.bench.row_count(False) / 2
+    started = []
+
+    def fake(quick, progress):
+        for k in range(fickcam.bench.row_count(quick)):
+            progress(f"row {k}")
+            started.append(k)
+        return []
+
+    monkeypatch.setattr(fickcam.bench, "run_bench", fake)
+    monkeypatch.setattr("fickcam.cli.log.info", lambda *a: print(a[0] % a[1:], file=sys.stderr))
+    assert main(["bench", "--quick"]) == 0
+    err = capsys.readouterr().err
+    assert len(started) == fickcam.bench.row_count(True)
+    assert "expected about 10 s" in err and "row 7" in err
+
+
+def test_quick_benchmark_script_keeps_the_committed_results(tmp_path, monkeypatch):
+    import importlib.util
+
+    spec = importlib.util.spec_from_file_location("tradeoff", ROOT / "benchmarks" / "diffusion_tradeoff.py")
+    script = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(script)
+    monkeypatch.setattr(script, "run_bench", lambda quick: [])
+    monkeypatch.setattr(script, "RESULTS", tmp_path / "results")
+    monkeypatch.setattr(sys, "argv", ["diffusion_tradeoff.py", "--quick"])
+    script.main()
+    assert not (tmp_path / "results").exists()
