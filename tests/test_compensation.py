@@ -10,6 +10,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 import yaml
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 import fickcam
 from fickcam.cli import main
@@ -187,3 +189,17 @@ def test_compensated_example_scenes_stay_in_their_bands_over_their_windows():
     for name in ("rocker_angle", "coupler_point_x", "coupler_point_y"):
         assert np.all(fourbar.limit_ratio.sel(limit=name).values[window] <= 1.0), name
     assert np.isfinite(fourbar.time_out_of_spec.sel(limit="rocker_angle"))  # at the start
+
+
+@settings(max_examples=60, deadline=None)
+@given(st.lists(st.floats(0.0, 0.05), min_size=2, max_size=40),
+       st.floats(0.01, 1.0))
+def test_minimax_never_loses_to_compensating_at_any_one_time(strains, length):
+    """For any strain history with eps >= 0: the minimax dimension's largest deviation is no
+    larger than that of a dimension made for any single time, and at most half the
+    uncompensated one (max eps L)."""
+    strain = np.array(strains)
+    best = residual(length, made_value(length, strain), strain)
+    for eps in strain:
+        assert best <= residual(length, length / (1 + eps), strain) * (1 + 1e-12) + 1e-15
+    assert best <= 0.5 * residual(length, length, strain) * (1 + 1e-12) + 1e-15
