@@ -17,7 +17,6 @@ the model inside the bracketing interval (:func:`first_crossings`).
 """
 from __future__ import annotations
 
-import math
 import re
 from dataclasses import dataclass
 from typing import Any, Callable

@@ -175,7 +175,10 @@ def _limits(ds, scene: Scene, environment: Environment, times, accuracy: float |
         return ratios(_age(scene, environment, np.asarray(at), accuracy, False, quiet=True))
 
     stored = ratios(ds)
-    crossings = first_crossings(times, stored, evaluate)
+    search_times, search = times, stored
+    if times[0] > 0 and (stored[0] > 1).any():  # out of spec at the first stored time: since?
+        search_times, search = np.concatenate([[0.0], times]), np.vstack([evaluate([0.0]), stored])
+    crossings = first_crossings(search_times, search, evaluate)
     return build_dataset({"limit_ratio": stored, "time_out_of_spec": crossings},
                          {"time": times, "limit": [limit.variable for limit in scene.limits]})
 

@@ -8,6 +8,12 @@ table that constrains them, directly or through the standard test it reports.
   bounds the dry Tg of the 3502 and polyimide matrices from below (PMR-15 recalibrated);
 - seed 001 Table 6: its link masses use one density, 2.0 g/cm^3, for all three resins,
   so it constrains no resin's density (a slip of the paper, not recalibrated).
+
+No seed table constrains the other ASSUMPTION values: the fibres' expansion and
+conductivity (seed 000's Tables 6-8 are not in its text), the resins' diffusivities
+(no seed reports weight gain against time; seed 000's 3 % gain is an input), R914's
+modulus, density and Tg, and the plastics' moduli, beta and Ea (seeds 002 and 004
+tabulate cam deflections and cast-iron wear only).
 """
 import math
 

@@ -8,7 +8,8 @@ from pathlib import Path
 
 import numpy as np
 
-from . import age_label, ages, days, figure, finish_plan_view, save_figure
+from ..schema import design_name
+from . import age_label, ages, days, drift_panel, figure, finish_plan_view, legend_outside, save_figure
 
 KINEMATICS = (("follower_displacement", "displacement [mm]", 1e3),
               ("follower_velocity", "velocity [m/s]", 1.0),
@@ -18,11 +19,14 @@ DYNAMICS = (("contact_force", "contact force [N]", 1.0), ("cam_torque", "cam tor
             ("contact_stress", "Hertz stress [MPa]", 1e-6))
 
 
-def _panels(plt, ds, rows, title):
-    """One panel per (variable, label, scale) in ``rows`` against the cam angle, a line per age."""
+def _panels(plt, ds, rows, title, drift=None):
+    """One panel per (variable, label, scale) in ``rows`` against the cam angle, a line per
+    age, and, when ``drift`` = (variable, label, scale) and the result holds its design,
+    a last panel of its change from the design (invisible at full scale)."""
     present = [r for r in rows if r[0] in ds]
-    fig, axes = plt.subplots(len(present), 1, figsize=(7.5, 2.2 * len(present) + 0.6), sharex=True,
-                             squeeze=False)
+    with_drift = drift is not None and design_name(drift[0]) in ds
+    n = len(present) + with_drift
+    fig, axes = plt.subplots(n, 1, figsize=(7.5, 2.2 * n + 0.6), sharex=True, squeeze=False)
     angle = ds["cam_angle"].values
     t = days(ds)
     for ax, (name, ylabel, scale) in zip(axes[:, 0], present):
@@ -30,8 +34,11 @@ def _panels(plt, ds, rows, title):
             ax.plot(angle, ds[name].isel(time=k).values * scale, color=f"C{k % 10}", label=age_label(t[k]))
         ax.set_ylabel(ylabel)
         ax.grid(alpha=0.3)
+    if with_drift:
+        name, ylabel, scale = drift
+        drift_panel(axes[-1, 0], angle, ds, name, ages(ds), scale, f"{ylabel}\n− design")
     axes[0, 0].set_title(title)
-    axes[0, 0].legend(fontsize=8)
+    legend_outside(axes[0, 0])
     axes[-1, 0].set_xlabel("cam angle [deg]")
     return fig
 
@@ -44,8 +51,8 @@ def plot_kinematics(ds, outdir) -> list[Path]:
     outdir = Path(outdir)
     outdir.mkdir(parents=True, exist_ok=True)
     name = ds.attrs.get("scene_name", "")
-    written = [save_figure(_panels(plt, ds, KINEMATICS, f"{name}: follower motion"),
-                           outdir / "cam_kinematics.png")]
+    written = [save_figure(_panels(plt, ds, KINEMATICS, f"{name}: follower motion",
+                                   drift=KINEMATICS[0]), outdir / "cam_kinematics.png")]
     written.append(_drift(plt, ds, outdir, name))
     if "profile_x" in ds:
         fig, ax = plt.subplots(figsize=(6, 6))
@@ -86,20 +93,31 @@ def plot_dynamics(ds, outdir) -> list[Path]:
     outdir = Path(outdir)
     outdir.mkdir(parents=True, exist_ok=True)
     name = ds.attrs.get("scene_name", "")
-    written = [save_figure(_panels(plt, ds, DYNAMICS, f"{name}: forces"), outdir / "cam_dynamics.png")]
+    written = [save_figure(_panels(plt, ds, DYNAMICS, f"{name}: forces", drift=DYNAMICS[2]),
+                           outdir / "cam_dynamics.png")]
     fig, (top, bottom) = plt.subplots(2, 1, figsize=(7.5, 5.5), sharex=True)
     t = days(ds)
     if "jump_speed" in ds:
-        top.plot(t, ds["jump_speed"].values, "o-")
+        top.plot(t, ds["jump_speed"].values, "o-", label="aged")
+        _design_line(top, ds, "jump_speed", 1.0)
     top.set_ylabel("jump speed [rpm]")
     top.grid(alpha=0.3)
     top.set_title(f"{name}: jump speed and peak contact stress")
     if "contact_stress" in ds:
         stress = ds["contact_stress"].values
         peak = np.array([np.nanmax(row) if np.isfinite(row).any() else np.nan for row in stress])
-        bottom.plot(t, peak * 1e-6, "s-", color="C3")
+        bottom.plot(t, peak * 1e-6, "s-", color="C3", label="aged")
+        _design_line(bottom, ds, "peak_contact_stress", 1e-6)
     bottom.set_ylabel("peak Hertz stress [MPa]")
     bottom.set_xlabel("ageing time [d]")
     bottom.grid(alpha=0.3)
     written.append(save_figure(fig, outdir / "cam_jump_stress.png"))
     return written
+
+
+def _design_line(ax, ds, name: str, scale: float) -> None:
+    """The as-designed value (dry, reference temperature) as a dashed line, with a legend."""
+    if design_name(name) in ds:
+        ax.axhline(float(ds[design_name(name)]) * scale, color="k", ls="--", lw=1,
+                   label="design (dry, reference temperature)")
+    ax.legend(fontsize=8)

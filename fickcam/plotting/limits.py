@@ -4,8 +4,6 @@ from __future__ import annotations
 import math
 from pathlib import Path
 
-import numpy as np
-
 from ..errors import format_duration
 from ..limits import stored_limits, worst_value
 from ..query import drift

@@ -1,13 +1,14 @@
 """Four-bar over ageing: coupler curves, rocker angle and its drift (as seed 001,
-seeds/001_51a6f900df76f3cc.txt Figs. 6-9, plots theta_41 - theta_4), transmission
-angle and input torque, dry vs aged."""
+seeds/001_51a6f900df76f3cc.txt Figs. 6-9, plots theta_41 - theta_4) against the design
+and against t = 0, transmission angle and input torque."""
 from __future__ import annotations
 
 from pathlib import Path
 
 import numpy as np
 
-from . import age_label, ages, days, figure, finish_plan_view, save_figure
+from ..schema import design_name
+from . import age_label, ages, days, drift_panel, figure, finish_plan_view, legend_outside, save_figure
 
 
 def _wrapped_degrees(x):
@@ -39,35 +40,52 @@ def plot(ds, outdir) -> list[Path]:
     fig, ax = plt.subplots(figsize=(6.5, 6))
     if "coupler_point_x" in ds:
         for k in picks:
-            ax.plot(ds["coupler_point_x"].isel(time=k).values * 1e3,
-                    ds["coupler_point_y"].isel(time=k).values * 1e3, color=f"C{k % 10}",
-                    label=age_label(t[k]))
+            x, y = (_closed(ds[c].isel(time=k).values) * 1e3 for c in ("coupler_point_x", "coupler_point_y"))
+            ax.plot(x, y, color=f"C{k % 10}", label=age_label(t[k]))
     finish_plan_view(ax, f"{name}: coupler curve")
     written.append(save_figure(fig, outdir / "linkage_coupler_curve.png"))
 
-    fig, (top, bottom) = plt.subplots(2, 1, figsize=(7, 7), sharex=True)
-    _over_crank(top, ds, "rocker_angle", picks, t, "rocker angle theta4 [deg]")
-    dry = ds["rocker_angle"].isel(time=0).values
-    _over_crank(bottom, ds, "rocker_angle", picks[1:], t, "aged - dry [deg]",
-                lambda y: _wrapped_degrees(y - dry), prefix="theta4, ")
-    if "coupler_angle" in ds:
-        dry3 = ds["coupler_angle"].isel(time=0).values
-        _over_crank(bottom, ds, "coupler_angle", picks[1:], t, "aged - dry [deg]",
-                    lambda y: _wrapped_degrees(y - dry3), style=":", prefix="theta3, ")
-    top.set_title(f"{name}: rocker angle and its drift")
-    top.legend(fontsize=8)
-    bottom.legend(fontsize=8)
-    bottom.set_xlabel("crank angle theta2 [deg]")
-    written.append(save_figure(fig, outdir / "linkage_rocker.png"))
+    written.append(_rocker_figure(plt, ds, picks, t, name, outdir))
 
+    # no drift panel here: the transmission angle folds at 90 deg (the acute angle), so its
+    # difference jumps where the aged and design curves fold at different crank angles
     fig, (top, bottom) = plt.subplots(2, 1, figsize=(7, 7), sharex=True)
     if "transmission_angle" in ds:
         _over_crank(top, ds, "transmission_angle", picks, t, "transmission angle [deg]")
-        top.legend(fontsize=8)
     if "input_torque" in ds:
         _over_crank(bottom, ds, "input_torque", picks, t, "input torque [N m]")
-        bottom.legend(fontsize=8)
+    legend_outside(top)
     top.set_title(f"{name}: transmission angle and input torque")
     bottom.set_xlabel("crank angle theta2 [deg]")
     written.append(save_figure(fig, outdir / "linkage_transmission_torque.png"))
     return written
+
+
+def _closed(values: np.ndarray) -> np.ndarray:
+    """A curve over a full turn of the crank with its first point repeated at the end
+    (the crank angle grid stops one step short of 360 deg), so it closes."""
+    return np.append(values, values[:1])
+
+
+def _rocker_figure(plt, ds, picks, t, name, outdir) -> Path:
+    """linkage_rocker.png: theta4, then theta4 and theta3 minus the design (the t = 0 line:
+    the thermal change alone), then minus their t = 0 values (the moisture drift)."""
+    with_design = design_name("rocker_angle") in ds
+    fig, axes = plt.subplots(2 + with_design, 1, figsize=(7, 3.0 * (2 + with_design) + 0.6),
+                             sharex=True)
+    _over_crank(axes[0], ds, "rocker_angle", picks, t, "rocker angle theta4 [deg]")
+    if with_design:
+        drift_panel(axes[1], ds["crank_angle"].values, ds, "rocker_angle", picks, 1.0,
+                    "theta4 − design [deg]")
+    start = ds["rocker_angle"].isel(time=0).values
+    _over_crank(axes[-1], ds, "rocker_angle", picks[1:], t, "change since t = 0 [deg]",
+                lambda y: _wrapped_degrees(y - start), prefix="theta4, ")
+    if "coupler_angle" in ds:
+        start3 = ds["coupler_angle"].isel(time=0).values
+        _over_crank(axes[-1], ds, "coupler_angle", picks[1:], t, "change since t = 0 [deg]",
+                    lambda y: _wrapped_degrees(y - start3), style=":", prefix="theta3, ")
+    axes[0].set_title(f"{name}: rocker angle and its drift")
+    legend_outside(axes[0])
+    legend_outside(axes[-1])
+    axes[-1].set_xlabel("crank angle theta2 [deg]")
+    return save_figure(fig, outdir / "linkage_rocker.png")

@@ -17,10 +17,9 @@ from pathlib import Path
 
 import numpy as np
 
-from . import days, figure, save_figure
+from . import days, figure, legend_outside, save_figure
 
 QUANTILES = (0.05, 0.25, 0.5, 0.75, 0.95)
-_CASE_COORDS = ("case", "case_status", "case_message", "case_wall_time")
 
 
 def _peak(array, dim):
@@ -60,25 +59,35 @@ def outputs(ds) -> dict[str, tuple[str, object]]:
 
 
 def parameters(ds) -> list[str]:
-    """Names of the varied values: coordinates along ``case`` other than the bookkeeping."""
+    """Names of the varied values: the coordinates along ``case`` that a sweep path set."""
     return [name for name, coord in ds.coords.items()
-            if coord.dims == ("case",) and name not in _CASE_COORDS]
+            if coord.dims == ("case",) and "dotted_path" in coord.attrs]
+
+
+def _shown(ds, name: str) -> tuple[np.ndarray, str]:
+    """A varied value in the unit the sweep file gave it (degC, not K), and that unit."""
+    from ..units import convert
+
+    coord = ds[name]
+    unit = coord.attrs.get("given_units") or coord.attrs.get("units", "1")
+    if coord.values.dtype.kind not in "fiu":
+        return coord.values, unit
+    return convert(coord.values, coord.attrs.get("units", "1"), unit), unit
 
 
 def _label(ds, name: str) -> str:
-    coord = ds[name]
-    units = coord.attrs.get("units", "1")
-    path = coord.attrs.get("dotted_path", name)
+    _, units = _shown(ds, name)
+    path = ds[name].attrs.get("dotted_path", name)
     return path if units in ("1", "") else f"{path} [{units}]"
 
 
 def _value_label(ds, name: str, value) -> str:
-    """``temperature=343.15 K`` for a legend."""
+    """``temperature = 60 degC`` for a legend (the value as the sweep file gave it)."""
     short = ds[name].attrs.get("dotted_path", name).split(".")[-1]
-    units = ds[name].attrs.get("units", "1")
+    _, units = _shown(ds, name)
     if isinstance(value, float):
-        return f"{short}={value:g}" + ("" if units in ("1", "") else f" {units}")
-    return f"{short}={value}"
+        return f"{short} = {value:g}" + ("" if units in ("1", "") else f" {units}")
+    return f"{short} = {value}"
 
 
 def _ok(ds) -> np.ndarray:
@@ -106,17 +115,18 @@ def plot_grid(ds, outdir: Path, age_index: int) -> list[Path]:
     names = parameters(ds)
     x_name, others = names[0], names[1:]
     ok = _ok(ds)
-    x, ticks = _axis_values(ds[x_name].values)
+    x, ticks = _axis_values(_shown(ds, x_name)[0])
+    shown = {o: _shown(ds, o)[0] for o in others}
     age = float(days(ds)[age_index])
     written = []
     for key, (label, array) in outputs(ds).items():
         y = array.isel(time=age_index).values
         fig, ax = plt.subplots(figsize=(7, 4.5))
-        combos = sorted(set(zip(*(ds[o].values.tolist() for o in others)))) if others else [()]
+        combos = sorted(set(zip(*(shown[o].tolist() for o in others)))) if others else [()]
         for combo in combos:
             chosen = ok.copy()
             for name, value in zip(others, combo):
-                chosen &= ds[name].values == value
+                chosen &= shown[name] == value
             order = np.argsort(x[chosen])
             text = ", ".join(_value_label(ds, n, v) for n, v in zip(others, combo))
             ax.plot(x[chosen][order], y[chosen][order], "-o", ms=4, label=text or None)
@@ -126,7 +136,7 @@ def plot_grid(ds, outdir: Path, age_index: int) -> list[Path]:
         ax.set_ylabel(label)
         ax.set_title(_title(ds, key, age), fontsize=10)
         if others:
-            ax.legend(fontsize=7)
+            legend_outside(ax)
         ax.grid(alpha=0.3)
         written.append(save_figure(fig, outdir / f"sweep_{key}.png"))
     return written
@@ -156,7 +166,7 @@ def plot_monte_carlo(ds, outdir: Path, age_index: int) -> list[Path]:
         fan.set_ylabel(label)
         fan.set_title(_title(ds, key, age), fontsize=9)
         for panel, (ax, name) in enumerate(zip(axes[0, 1:], names)):
-            x, ticks = _axis_values(ds[name].values)
+            x, ticks = _axis_values(_shown(ds, name)[0])
             ax.plot(x[ok], values[:, age_index] if values.size else [], ".", ms=4)
             if ticks is not None:
                 ax.set_xticks(range(len(ticks)), ticks)

@@ -47,19 +47,25 @@ def _number_and_unit(value: Any) -> tuple[float, str]:
 
 
 class Distribution(StrictModel):
-    """One random input: exactly one of normal, uniform, lognormal (+ optional unit)."""
+    """One random input: exactly one of normal, uniform, lognormal (+ optional unit), or
+    ``covariance: true`` on ``materials.NAME.fit`` (:mod:`fickcam.sweep.fitdraw`)."""
 
     normal: tuple[Union[float, str], Union[float, str]] | None = None    # mean, standard deviation
     uniform: tuple[Union[float, str], Union[float, str]] | None = None   # low, high
     lognormal: tuple[float, float] | None = None                         # mu, sigma of ln(value)
+    covariance: Literal[True] | None = None                              # a fit's joint draw
     unit: str | None = None                                              # unit of bare parameters
 
     @model_validator(mode="after")
     def _one_law(self):
-        given = [name for name in ("normal", "uniform", "lognormal") if getattr(self, name) is not None]
+        given = [name for name in LAWS if getattr(self, name) is not None]
         if len(given) != 1:
             raise ValueError("give exactly one of normal: [mean, sd], uniform: [low, high], "
-                             "lognormal: [mu, sigma]")
+                             "lognormal: [mu, sigma], covariance: true (on materials.NAME.fit)")
+        if self.covariance:
+            if self.unit is not None:
+                raise ValueError("covariance: true takes no unit (the fit's values keep theirs)")
+            return self
         first, second = self.parameters
         if self.law == "normal" and second < 0:
             raise ValueError("the standard deviation must not be negative")
@@ -71,7 +77,7 @@ class Distribution(StrictModel):
 
     @property
     def law(self) -> str:
-        return next(name for name in ("normal", "uniform", "lognormal") if getattr(self, name) is not None)
+        return next(name for name in LAWS if getattr(self, name) is not None)
 
     @property
     def draw_unit(self) -> str:
@@ -101,6 +107,9 @@ class Distribution(StrictModel):
             numbers = rng.lognormal(first, second, count)
         unit = self.draw_unit
         return [f"{x:.12g} {unit}" if unit else float(x) for x in numbers]
+
+
+LAWS = ("normal", "uniform", "lognormal", "covariance")
 
 
 def _common_unit(values, explicit: str | None) -> str:
@@ -388,10 +397,19 @@ def _expand_grid(grid: dict[str, list]) -> list[Case]:
             for index, combo in enumerate(itertools.product(*(grid[p] for p in paths)))]
 
 
-def _draw_cases(random: dict[str, Distribution], samples: int, seed: int) -> list[Case]:
-    """Draws in file order from one generator seeded with ``seed`` (reproducible)."""
+def _draw_cases(random: dict[str, Distribution], samples: int, seed: int,
+                base_data: dict) -> list[Case]:
+    """Draws in file order from one generator seeded with ``seed`` (reproducible); a
+    fit's covariance draw sets each of its fitted values."""
+    from .fitdraw import draw_fitted
+
     rng = np.random.default_rng(seed)
-    columns = {path: dist.draw(rng, samples) for path, dist in random.items()}
+    columns: dict[str, list] = {}
+    for path, dist in random.items():
+        if dist.covariance:
+            columns.update(draw_fitted(path, base_data, rng, samples))
+        else:
+            columns[path] = dist.draw(rng, samples)
     return [Case(index, {path: values[index] for path, values in columns.items()})
             for index in range(samples)]
 
@@ -429,6 +447,14 @@ def _dimension_of(model: SweepModel, path: str, keys: tuple, base_data: dict) ->
     return None
 
 
+def _fitted_parameters(path: str, base_data: dict) -> list[Parameter]:
+    """The values a fit's covariance draw sets, each as a varied parameter."""
+    from .fitdraw import fitted_parameters
+
+    return [Parameter(p, split_path(p, base_data), dimension)
+            for p, dimension in fitted_parameters(path, base_data)]
+
+
 def load_sweep(source) -> Sweep:
     """Read and validate a sweep file; raise SceneError (one Problem per fault)."""
     from ..scene import problems_from_validation, read_yaml, validate_document
@@ -450,6 +476,9 @@ def load_sweep(source) -> Sweep:
     parameters: list[Parameter] = []
     for path in (model.grid or model.random):
         try:
+            if section == "random" and model.random[path].covariance:
+                parameters += _fitted_parameters(path, base_doc.data)
+                continue
             keys = split_path(path, base_doc.data)
         except ValueError as exc:
             problems.append(doc.problem((section, path), str(exc)))
@@ -458,7 +487,7 @@ def load_sweep(source) -> Sweep:
     if problems:
         raise SceneError(problems)
     cases = (_expand_grid(model.grid) if model.grid is not None
-             else _draw_cases(model.random, model.samples, model.seed))
+             else _draw_cases(model.random, model.samples, model.seed, base_doc.data))
     return Sweep(file=str(source), text=doc.text, model=model, base_file=str(base_path),
                  base_text=base_doc.text, base_dir=base_dir, base_data=base_doc.data,
                  parameters=parameters, cases=cases)

@@ -1,0 +1,149 @@
+"""Each plot kind as a user reads it: drift panels against the design, legends that hide
+no curve and speak the user's units, closed coupler curves, tick labels that neither
+crowd nor hide behind an offset."""
+from pathlib import Path
+
+import numpy as np
+import pytest
+import xarray as xr
+import yaml
+
+import fickcam
+from fickcam import plotting
+from fickcam.plotting import tidy_ticks
+
+CONFIGS = Path(__file__).resolve().parents[1] / "configs"
+
+
+@pytest.fixture
+def figures(monkeypatch):
+    """The figures the plot functions make, by file name, drawn (ticks laid out)."""
+    kept = {}
+
+    def keep(fig, path):
+        tidy_ticks(fig)
+        fig.canvas.draw()
+        kept[Path(path).name] = fig
+        return Path(path)
+
+    for module in ("cam", "linkage", "uptake", "sweep"):
+        monkeypatch.setattr(f"fickcam.plotting.{module}.save_figure", keep)
+    yield kept
+    import matplotlib.pyplot as plt
+
+    plt.close("all")
+
+
+def scene(name, **outputs):
+    data = yaml.safe_load((CONFIGS / f"{name}.yaml").read_text())
+    data["outputs"] = outputs
+    return data
+
+
+@pytest.fixture(scope="module")
+def cam():
+    return fickcam.run(scene("singh2017_cam", ageing_times=["0 d", "30 d", "60 d"], angle_step="3 deg"))
+
+
+@pytest.fixture(scope="module")
+def fourbar():
+    return fickcam.run(scene("fourbar_r914_humid", ageing_times=["0 d", "30 d", "365 d"],
+                             angle_step="5 deg"))
+
+
+def lines_of(ax):
+    return [line for line in ax.get_lines() if len(line.get_xdata()) > 2]
+
+
+def legend_clear_of_axes(ax, legend) -> bool:
+    fig = ax.figure
+    box = legend.get_window_extent(fig.canvas.get_renderer())
+    return box.x0 >= ax.get_window_extent().x1
+
+
+def test_kinematics_has_a_displacement_drift_panel_against_the_design(cam, figures, tmp_path):
+    plotting.plot(cam, tmp_path, "kinematics")
+    fig = figures["cam_kinematics.png"]
+    drift_ax = fig.axes[-1]
+    assert "− design" in drift_ax.get_ylabel() and "[mm]" in drift_ax.get_ylabel()
+    first = lines_of(drift_ax)[0].get_ydata()
+    expected = (cam.follower_displacement.isel(time=0) - cam.follower_displacement_design) * 1e3
+    assert np.allclose(first, expected.values)
+    low, high = drift_ax.get_ylim()
+    assert high < 1.0 and high > 0.2  # about 0.26 mm: visible here, invisible at 40 mm scale
+    assert legend_clear_of_axes(fig.axes[0], fig.axes[0].get_legend())
+
+
+def test_dynamics_shows_the_stress_change_and_the_design_values(cam, figures, tmp_path):
+    plotting.plot(cam, tmp_path, "dynamics")
+    assert "Hertz stress [MPa]\n− design" == figures["cam_dynamics.png"].axes[-1].get_ylabel()
+    top = figures["cam_jump_stress.png"].axes[0]
+    design = [line for line in top.get_lines() if line.get_linestyle() == "--"]
+    assert design and design[0].get_ydata()[0] == pytest.approx(float(cam.jump_speed_design))
+
+
+def test_linkage_drift_against_design_and_start_and_a_closed_coupler_curve(fourbar, figures, tmp_path):
+    plotting.plot(fourbar, tmp_path, "linkage")
+    rocker = figures["linkage_rocker.png"].axes
+    assert [ax.get_ylabel() for ax in rocker] == ["rocker angle theta4 [deg]", "theta4 − design [deg]",
+                                                  "change since t = 0 [deg]"]
+    for line in lines_of(figures["linkage_coupler_curve.png"].axes[0]):
+        x, y = line.get_xdata(), line.get_ydata()
+        assert (x[0], y[0]) == (x[-1], y[-1])  # no gap between 355 deg and 0
+    torque = figures["linkage_transmission_torque.png"].axes
+    assert legend_clear_of_axes(torque[0], torque[0].get_legend())
+
+
+def test_uptake_legend_names_only_parts_that_take_up_moisture(fourbar, figures, tmp_path):
+    plotting.plot(fourbar, tmp_path, "uptake")
+    ax = figures["uptake.png"].axes[1]
+    labels = [t.get_text() for t in ax.get_legend().get_texts()]
+    assert labels == ["crank", "coupler", "rocker", "volume mean", "surface layer"]  # no steel frame
+    assert legend_clear_of_axes(ax, ax.get_legend())
+
+
+def sweep_result(kind: str) -> xr.Dataset:
+    """A sweep as `fickcam sweep` writes it: temperature given in degC, stored in K."""
+    rng = np.random.default_rng(0)
+    days = np.array([0, 30, 60], "timedelta64[D]").astype("timedelta64[ns]")
+    if kind == "grid":
+        rh, temp = np.meshgrid([50.0, 65.0, 80.0], [333.15, 358.15], indexing="ij")
+        rh, temp = rh.ravel(), temp.ravel()
+    else:
+        rh, temp = 0.6 + 4e-5 * rng.standard_normal(20), 358.15 + 2 * rng.standard_normal(20)
+    n = rh.size
+    lift = 0.0381 + 1e-6 * rng.standard_normal((n, 3)).cumsum(axis=1)
+    return xr.Dataset(
+        {"lift": (("case", "time"), lift, {"units": "m"}),
+         "jump_speed": (("case", "time"), 1058.0 + 1e-4 * rng.standard_normal((n, 3)), {"units": "rpm"})},
+        coords={"case": np.arange(n), "time": days,
+                "first": ("case", rh, {"units": "%" if kind == "grid" else "1",
+                                       "dotted_path": "environment.history.0.relative_humidity"
+                                       if kind == "grid" else "materials.cfrp.fiber_volume_fraction"}),
+                "second": ("case", temp, {"units": "K", "given_units": "degC",
+                                          "dotted_path": "environment.history.0.temperature"}),
+                "case_status": ("case", np.array(["ok"] * n, dtype=object)),
+                "case_description": ("case", np.array(["x"] * n, dtype=object))},
+        attrs={"scene_name": "cam", "sweep_kind": "grid" if kind == "grid" else "monte_carlo"})
+
+
+def test_grid_sweep_legends_speak_the_sweep_files_units(figures, tmp_path):
+    plotting.plot(sweep_result("grid"), tmp_path, "sweep")
+    ax = figures["sweep_jump_speed.png"].axes[0]
+    assert [t.get_text() for t in ax.get_legend().get_texts()] == ["temperature = 60 degC",
+                                                                   "temperature = 85 degC"]
+    assert ax.get_xlabel() == "environment.history.0.relative_humidity [%]"
+
+
+def test_monte_carlo_ticks_neither_crowd_nor_hide_behind_an_offset(figures, tmp_path):
+    plotting.plot(sweep_result("monte_carlo"), tmp_path, "sweep")
+    fig = figures["sweep_jump_speed.png"]
+    renderer = fig.canvas.get_renderer()
+    for ax in fig.axes:
+        for axis in (ax.xaxis, ax.yaxis):
+            assert axis.get_offset_text().get_text() == ""
+            boxes = [t.get_window_extent(renderer) for t in axis.get_ticklabels() if t.get_text()]
+            boxes = [b for b in boxes if ax.get_window_extent().expanded(1.5, 1.5).overlaps(b)]
+            assert not any(a.overlaps(b) for i, a in enumerate(boxes) for b in boxes[i + 1:]), \
+                [t.get_text() for t in axis.get_ticklabels()]
+    assert fig.axes[2].get_xlabel() == "environment.history.0.temperature [degC]"
