@@ -122,6 +122,8 @@ VARIABLES: dict[str, Var] = {
                               "return, first turn from rest", "cam", display="um"),
     "minimum_dynamic_contact_force": Var(T, "N", "smallest dynamic contact force over a revolution",
                                          "cam"),
+    "peak_polydyne_output_error": Var(T, "m", "largest |output - chosen motion| of a polydyne cam",
+                                      "cam", display="um"),
     # cam and follower: over the cam angle
     "follower_displacement": Var(TC, "m", "follower displacement", "cam", display="mm"),
     "follower_velocity": Var(TC, "m s-1", "follower velocity", "cam"),
@@ -151,6 +153,10 @@ VARIABLES: dict[str, Var] = {
                                  "periodic steady state", "cam"),
     "startup_follower_displacement": Var(TC, "m", "follower mass displacement over the first turn "
                                          "from rest, elastic train", "cam", display="mm"),
+    "polydyne_correction": Var(TC, "m", "polydyne profile correction: cam motion minus chosen motion",
+                               "cam", display="mm"),
+    "polydyne_output_error": Var(TC, "m", "polydyne cam: follower output minus chosen motion", "cam",
+                                 display="um"),
     # four-bar linkage
     "link_length": Var(TL, "m", "link length (pivot to pivot)", "linkage", display="mm"),
     "link_mass": Var(TL, "kg", "link mass", "linkage"),

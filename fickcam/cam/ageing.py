@@ -72,6 +72,12 @@ def scene_response(section, histories: dict, times, angles, valid, on_step=lambd
     """The cam over ageing: variables (time, ...) and notices; ``wear_depth`` accumulates
     the deepest Archard wear rate over the ageing times (trapezoid rule)."""
     design = design_from_scene(section)
+    if design.polydyne_speed is not None:
+        from .polydyne import polydyne_design
+
+        follower = histories.get("follower")
+        dry = None if follower is None else float(follower.part.material.ply_properties(1.0)["e11"])
+        design = polydyne_design(design, dry)
     times = np.asarray(times, float)
 
     def evaluate(k: int) -> Response:

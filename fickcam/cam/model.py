@@ -61,6 +61,7 @@ class CamDesign:
     profile: object = None         # fickcam.cam.profile.CamProfile (kind "profile")
     train: tuple | None = None     # None: rigid; ("stiffness", k) | ("rod", L, d) | ("lever", L, w, h)
     damping_ratio: float = 0.05
+    polydyne_speed: float | None = None  # design speed of a polydyne cam (fickcam.cam.polydyne)
 
     @property
     def contact_length(self) -> float:
@@ -114,7 +115,9 @@ def design_from_scene(section) -> CamDesign:
                   archard_coefficient=section.wear.archard_coefficient if section.wear else 0.0,
                   hardness=section.wear.hardness if section.wear else None,
                   follower_modulus=f.modulus, follower_poisson=f.poisson_ratio,
-                  train=_train(f.stiffness), damping_ratio=f.damping_ratio)
+                  train=_train(f.stiffness), damping_ratio=f.damping_ratio,
+                  polydyne_speed=None if section.polydyne is None else
+                  (section.polydyne.speed or section.speed))
     if section.profile_file is not None:
         from .profile import load_profile
 

@@ -155,6 +155,8 @@ class MotionSegment:
     height: float  # + rise, - return, 0 dwell
     level: float   # follower position at the segment start (m)
     law: str | None
+    spline: object = None  # SplineLaw of a ``spline`` segment (fickcam.cam.spline)
+    correction: tuple = ()  # harmonics of a polydyne profile correction (fickcam.cam.polydyne)
 
 
 def segments_from_spec(specs) -> tuple[MotionSegment, ...]:
@@ -162,34 +164,67 @@ def segments_from_spec(specs) -> tuple[MotionSegment, ...]:
     out, start, level = [], 0.0, 0.0
     for s in specs:
         out.append(MotionSegment(start, float(s.angle), float(s.height), level,
-                                 getattr(s, "law", None)))
+                                 getattr(s, "law", None), _spline_of(s)))
         start += float(s.angle)
         level += float(s.height)
     return tuple(out)
 
 
+def _spline_of(spec):
+    """The normalised :class:`~fickcam.cam.spline.SplineLaw` of a scene ``spline`` segment."""
+    given = getattr(spec, "spline", None)
+    if given is None:
+        return None
+    from .spline import spline_law
+
+    return spline_law(given.points, spec.height, spec.angle, given.degree,
+                      given.start_derivatives, given.end_derivatives)
+
+
 def segment_motion(segment: MotionSegment, theta):
-    """(y, y', y'', y''') per radian of cam angle inside one segment (theta in rad)."""
+    """(y, y', y'', y''') per radian of cam angle inside one segment (theta in rad), with
+    the segment's polydyne correction when it has one."""
+    law = law_motion(segment, theta)
+    if not segment.correction:
+        return law
+    from .polydyne import correction_motion
+
+    return tuple(a + b for a, b in zip(law, correction_motion(np.asarray(segment.correction), theta)))
+
+
+def law_motion(segment: MotionSegment, theta):
+    """The segment's own law (no polydyne correction), as :func:`segment_motion`."""
     theta = np.asarray(theta, float)
     if segment.law is None or segment.height == 0.0:
         zero = np.zeros_like(theta)
         return zero + segment.level, zero, zero, zero
     x = (theta - segment.start) / segment.span
-    s, s1, s2, s3 = LAW_FUNCTIONS[segment.law](x)
+    if segment.law == "spline":
+        from .spline import spline_motion
+
+        s, s1, s2, s3 = spline_motion(segment.spline, x)
+    else:
+        s, s1, s2, s3 = LAW_FUNCTIONS[segment.law](x)
     h, b = segment.height, segment.span
     return segment.level + h * s, h * s1 / b, h * s2 / b ** 2, h * s3 / b ** 3
 
 
-def follower_motion(segments, theta):
+def follower_motion(segments, theta, corrected: bool = True):
     """(y, dy/dtheta, d2y/dtheta2, d3y/dtheta3) of the design motion, theta (rad) taken
-    modulo 2 pi; at a joint the value of the segment that starts there."""
+    modulo 2 pi; at a joint the value of the segment that starts there. A polydyne
+    correction is added unless ``corrected`` is False (the chosen motion alone)."""
     theta = np.mod(np.asarray(theta, float), 2 * PI)
     out = [np.zeros_like(theta) for _ in range(4)]
     for k, seg in enumerate(segments):
         last = k == len(segments) - 1
         inside = (theta >= seg.start) & ((theta < seg.start + seg.span) | last)
-        for o, v in zip(out, segment_motion(seg, theta[inside])):
+        for o, v in zip(out, law_motion(seg, theta[inside])):
             o[inside] = v
+    if corrected and segments[0].correction:
+        from .train import at_angles
+
+        coefficients = np.asarray(segments[0].correction)
+        out = [o + at_angles(coefficients, theta, order) for order, o in enumerate(out)]
     return tuple(out)
 
 
@@ -222,4 +257,9 @@ def joint_notices(segments, tolerance: float = 1e-9) -> list[str]:
         if seg.law == "constant_acceleration" and seg.height != 0.0:
             notices.append(f"constant_acceleration leaves infinite jerk at mid-segment "
                            f"({math.degrees(seg.start + seg.span / 2):.4g} deg)")
+        if seg.law == "spline" and seg.spline.degree < 5 and len(seg.spline.x) > 2:
+            what = "velocity (infinite acceleration)" if seg.spline.degree == 1 else \
+                "acceleration (infinite jerk)" if seg.spline.degree == 3 else ""
+            notices.append(f"a degree-{seg.spline.degree} spline steps its {what} at its inner "
+                           f"points ({math.degrees(seg.start):.4g} deg segment)")
     return notices

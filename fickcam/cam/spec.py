@@ -33,9 +33,9 @@ PositiveStiffness = quantity("stiffness", positive=True)
 
 #: motion law names (SPEC.md §1) -> module-level functions in :mod:`fickcam.cam.motion`
 LAWS = ("uniform_velocity", "constant_acceleration", "simple_harmonic", "cycloidal",
-        "polynomial_345", "polynomial_4567", "modified_trapezoidal", "modified_sine")
+        "polynomial_345", "polynomial_4567", "modified_trapezoidal", "modified_sine", "spline")
 Law = Literal["uniform_velocity", "constant_acceleration", "simple_harmonic", "cycloidal",
-              "polynomial_345", "polynomial_4567", "modified_trapezoidal", "modified_sine"]
+              "polynomial_345", "polynomial_4567", "modified_trapezoidal", "modified_sine", "spline"]
 
 #: tolerance on the sum of the motion segments (rad)
 TURN_TOLERANCE = math.radians(1e-6)
@@ -43,6 +43,18 @@ TURN_TOLERANCE = math.radians(1e-6)
 
 class _Strict(StrictModel):
     model_config = ConfigDict(extra="forbid", frozen=True, populate_by_name=True)
+
+
+class Spline(_Strict):
+    """A ``spline`` law: ``points`` [angle within the segment, distance travelled from its
+    start] from [0 deg, 0] to [over, rise/return]; ``degree`` (5: C4 inside); the
+    derivatives dS/dx, d2S/dx2, ... of the normalised law at the segment's start and end,
+    (degree - 1)/2 each, zero by default (see :mod:`fickcam.cam.spline`)."""
+
+    points: list[tuple[Angle, SignedLength]]
+    degree: int = Field(default=5, ge=1, le=9)
+    start_derivatives: list[float] | None = None
+    end_derivatives: list[float] | None = None
 
 
 class Segment(_Strict):
@@ -54,6 +66,7 @@ class Segment(_Strict):
     return_: Length | None = Field(default=None, alias="return")
     over: PositiveAngle | None = None
     law: Law | None = None
+    spline: Spline | None = None
 
     @model_validator(mode="after")
     def _one_kind(self):
@@ -65,6 +78,13 @@ class Segment(_Strict):
                 raise ValueError("a dwell takes only its angle (no over/law)")
         elif self.over is None or self.law is None:
             raise ValueError("a rise or return needs 'over' (angle) and 'law'")
+        if (self.law == "spline") != (self.spline is not None):
+            raise ValueError("law: spline goes with spline: {points: ...} (and only it)")
+        if self.spline is not None:
+            from .spline import spline_law
+
+            spline_law(self.spline.points, self.height, self.over, self.spline.degree,
+                       self.spline.start_derivatives, self.spline.end_derivatives)
         return self
 
     @property
@@ -183,6 +203,13 @@ class Follower(_Strict):
         return self
 
 
+class Polydyne(_Strict):
+    """``cam.polydyne``: cut the cam so that the elastic follower (``follower.stiffness``)
+    follows the chosen motion at ``speed`` (default: the cam's speed); ``true`` = {}."""
+
+    speed: AngularSpeed | None = None
+
+
 class CamSection(_Strict):
     """The ``cam:`` section. Extras beyond SPEC.md (defaults): ``gravity`` (false; g along
     the follower axis, against the lift), ``wear`` (none: no Archard wear),
@@ -201,6 +228,12 @@ class CamSection(_Strict):
     profile_file: str | None = None
     gravity: bool = False
     wear: Wear | None = None
+    polydyne: Polydyne | None = None
+
+    @field_validator("polydyne", mode="before")
+    @classmethod
+    def _polydyne_true(cls, value):
+        return {} if value is True else (None if value is False else value)
 
     @field_validator("motion")
     @classmethod
@@ -217,6 +250,8 @@ class CamSection(_Strict):
                                  "base_circle_radius")
             if self.follower.kind == "flat" and self.follower.offset != 0.0:
                 raise ValueError("a flat follower's offset does not change its motion; leave it 0")
+            if self.polydyne is not None:
+                raise ValueError("polydyne needs motion segments (a profile_file cam is cut as given)")
             return self  # the bore and offset are checked against the profile when it is read
         if self.eccentric is not None:
             if self.motion is not None or self.base_circle_radius is not None:
@@ -226,6 +261,8 @@ class CamSection(_Strict):
             if self.motion is None or self.base_circle_radius is None:
                 raise ValueError("a cam needs motion and base_circle_radius (or eccentric)")
             smallest = self.base_circle_radius
+        if self.polydyne is not None and (self.eccentric is not None or self.follower.stiffness is None):
+            raise ValueError("polydyne needs motion segments and follower.stiffness (an elastic train)")
         if self.bore_radius >= smallest:
             raise ValueError(f"bore_radius must be smaller than the base circle ({smallest * 1e3:g} mm)")
         if self.follower.offset != 0.0 and abs(self.follower.offset) >= smallest + (

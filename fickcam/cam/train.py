@@ -295,7 +295,23 @@ def dynamic_response(design, state, cam_angle, rigid) -> Response:
         "residual_vibration": float(np.max(residual)) if residual.size else np.nan,
         "minimum_dynamic_contact_force": float(np.min(force)),
     }
+    if design.polydyne_speed is not None:
+        variables.update(_polydyne_variables(design, theta, x))
     return Response(variables, _separation_notices(theta, force))
+
+
+def _polydyne_variables(design, theta, x) -> dict:
+    """Profile correction (cam motion minus chosen motion, dry design) and the output error:
+    the mass's motion minus the chosen motion, both from the chosen motion's lowest point
+    (which removes the constant static compression of the train)."""
+    from .motion import follower_motion
+
+    chosen = follower_motion(design.segments, theta, corrected=False)[0]
+    low = int(np.argmin(chosen))
+    error = (x - x[low]) - (chosen - chosen[low])
+    return {"polydyne_correction": follower_motion(design.segments, theta)[0] - chosen,
+            "polydyne_output_error": error,
+            "peak_polydyne_output_error": float(np.max(np.abs(error)))}
 
 
 def residual_vibrations(design, state, steady: SteadyState | None = None) -> np.ndarray:
