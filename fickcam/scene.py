@@ -13,12 +13,13 @@ import math
 import os
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any, Literal, Union, get_args
+from typing import Any, Literal, Union
 
 import yaml
 from pydantic import Field, ValidationError, field_validator, model_validator
 
 from .cam.spec import CamSection
+from .diffusion import MODELS
 from .errors import Problem, SceneError
 from .keys import closest_key
 from .limits import LimitSpec, parse_limit
@@ -209,9 +210,6 @@ def last_ageing_time(outputs) -> float | None:
     return times[-1] if isinstance(times, list) else None
 
 
-DiffusionModel = Literal["auto", "analytic", "slab", "axisymmetric", "plane", "solid"]
-
-
 class DiffusionSection(StrictModel):
     # one model for every part, or per part name (parts not named: auto)
     model: Union[str, dict[str, str]] = "auto"
@@ -221,7 +219,7 @@ class DiffusionSection(StrictModel):
     @field_validator("model")
     @classmethod
     def _model_names(cls, value):
-        names = get_args(DiffusionModel)
+        names = MODELS  # the diffusion package's own list
         for part, name in (value.items() if isinstance(value, dict) else [(None, value)]):
             if name not in names:
                 where = f"part {part!r}: " if part is not None else ""

@@ -59,3 +59,13 @@ def test_simulate_does_not_import_the_package_it_belongs_to():
     for node in ast.walk(tree):
         if isinstance(node, ast.ImportFrom) and node.level == 1 and node.module is None:
             pytest.fail(f"simulate.py line {node.lineno}: 'from . import ...'")
+
+
+def test_the_scene_takes_the_diffusion_model_names_from_the_diffusion_package():
+    from fickcam.diffusion import MODELS
+
+    text = (Path(fickcam.__file__).parent / "scene.py").read_text()
+    assert "axisymmetric" not in text, "scene.py repeats the list of diffusion models"
+    for name in MODELS:
+        fickcam.load_scene(dict(yaml.safe_load((CONFIGS / "yadav2017_cam.yaml").read_text()),
+                                diffusion={"model": name}))
