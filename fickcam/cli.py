@@ -156,6 +156,18 @@ def _parser() -> argparse.ArgumentParser:
     fit.add_argument("-o", "--output", required=True, help="YAML file with the materials: block")
     fit.add_argument("--plot", help="PNG of the data, fitted curves and residuals")
 
+    size = _command(sub, "size", "smallest base circle meeting pressure-angle and curvature limits",
+                    "Find the smallest base circle radius whose dry cam keeps the pressure angle "
+                    "and the working radius of curvature within the limits (Norton sec. 8.7), "
+                    "then run the scene with it and say whether the aged cam still meets them "
+                    "at the end of the ageing.",
+                    "fickcam size configs/singh2017_cam.yaml",
+                    "fickcam size scene.yaml --pressure-angle 25deg --radius-of-curvature 5mm")
+    size.add_argument("scene")
+    size.add_argument("--pressure-angle", default="30 deg", help="largest |pressure angle| (30 deg)")
+    size.add_argument("--radius-of-curvature", default="0 mm",
+                      help="smallest convex working radius of curvature (0: no cusp or undercut)")
+
     sweep = _command(sub, "sweep", "many scenes on dask.distributed",
                      "Run the variants of a scene a sweep file describes (a grid or Monte Carlo "
                      "draws) on a local dask cluster or a running scheduler, write one result "
@@ -202,6 +214,37 @@ def _cmd_check(args) -> int:
 
     scene = load_scene(args.scene)
     print(describe_plan(scene))
+    return 0
+
+
+def _cmd_size(args) -> int:
+    import dataclasses
+    import math
+
+    from .cam import design_from_scene
+    from .cam.sizing import Limits, aged_check, smallest_base_circle
+    from .scene import load_scene
+    from .simulate import run
+    from .units import to_si
+
+    scene = load_scene(args.scene)
+    if scene.model.cam is None:
+        raise InputError("the scene has no cam: section to size")
+    try:
+        limits = Limits(to_si(args.pressure_angle, "angle"), to_si(args.radius_of_curvature, "length"))
+        sizes = smallest_base_circle(design_from_scene(scene.model.cam), limits)
+    except ValueError as exc:
+        raise InputError(str(exc)) from None
+    radius = sizes["base_circle_radius"]
+    design = design_from_scene(scene.model.cam)
+    print(f"{scene.name}: smallest base circle radius {radius * 1e3:.4f} mm "
+          f"(pressure angle <= {math.degrees(limits.pressure_angle):g} deg needs "
+          f"{sizes['pressure_angle'] * 1e3:.4f} mm; radius of curvature >= "
+          f"{limits.radius_of_curvature * 1e3:g} mm needs {sizes['radius_of_curvature'] * 1e3:.4f} mm); "
+          f"the scene has {scene.model.cam.base_circle_radius * 1e3:.4f} mm")
+    cam = scene.model.cam.model_copy(update={"base_circle_radius": radius})
+    ds = run(dataclasses.replace(scene, model=scene.model.model_copy(update={"cam": cam})))
+    print(aged_check(ds, limits, design.follower_kind))
     return 0
 
 
@@ -365,7 +408,8 @@ def _cmd_fit(args) -> int:
 COMMANDS = {"run": _cmd_run, "check": _cmd_check, "query": _cmd_query, "export": _cmd_export,
             "plot": _cmd_plot, "bench": _cmd_bench, "materials": _cmd_materials,
             "schema": _cmd_schema, "sweep": _cmd_sweep, "fit": _cmd_fit,
-            "examples": _cmd_examples, "compensate": _cmd_compensate, "profile": _cmd_profile}
+            "examples": _cmd_examples, "size": _cmd_size, "compensate": _cmd_compensate,
+            "profile": _cmd_profile}
 
 
 def main(argv: list[str] | None = None) -> int:

@@ -1,0 +1,98 @@
+"""Cam sizing (`fickcam size`): the smallest base circle radius whose dry cam keeps the
+pressure angle and the radius of curvature within limits, and whether the aged cam of
+that size still does at the end of the ageing (Norton, Design of Machinery 5th ed.,
+sec. 8.7: 'sizing the cam', pressure angle below about 30 deg, no undercut, radius of
+curvature of the working profile above a minimum).
+
+Both checks are monotone in the base circle radius Rb for a translating follower (the
+pressure angle atan((y' - e)/(s0 + y)) falls and the convex radius of curvature grows
+as Rb grows), so each is found by bisection to SIZE_TOLERANCE and the larger wins.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, replace
+
+import numpy as np
+
+#: bisection tolerance on the base circle radius (m)
+SIZE_TOLERANCE = 1e-7
+#: cam angle step of the checks (rad)
+SIZE_STEP = math.radians(0.25)
+
+
+@dataclass(frozen=True)
+class Limits:
+    pressure_angle: float = math.radians(30.0)  # largest |pressure angle| (rad)
+    radius_of_curvature: float = 0.0            # smallest convex working radius (m); > 0 always
+
+
+def worst(design, state=None, step: float = SIZE_STEP) -> tuple[float, float]:
+    """(largest |pressure angle| rad, smallest convex working radius of curvature m; -inf
+    where the profile has a cusp or undercut) of ``design`` at ``state`` (dry by default)."""
+    from .model import CamState, cam_response
+
+    theta = np.arange(0.0, 2 * math.pi, step)
+    v = cam_response(design, state or CamState(), theta).variables
+    return (float(np.max(np.abs(v["pressure_angle"]))),
+            smallest_convex_radius(design.follower_kind, v["radius_of_curvature"],
+                                   v["pitch_radius_of_curvature"]))
+
+
+def smallest_convex_radius(kind: str, rho, pitch) -> float:
+    """Smallest working radius of curvature where the pitch curve is convex (m); a flat
+    follower's profile must be convex everywhere (rho <= 0 is a cusp), a roller's working
+    profile has an undercut where rho = rho_pitch - R_f <= 0 on a convex pitch curve."""
+    rho = np.asarray(rho, float)
+    convex = rho if kind == "flat" else np.where(np.asarray(pitch) > 0, rho, np.inf)
+    return float(np.nanmin(convex))
+
+
+def within(limits: Limits, phi: float, rho: float) -> tuple[bool, bool]:
+    """(pressure angle within its limit, radius of curvature within its limit)."""
+    return phi <= limits.pressure_angle + 1e-12, rho > 0.0 and rho >= limits.radius_of_curvature
+
+
+def meets(design, limits: Limits, state=None) -> tuple[bool, bool]:
+    return within(limits, *worst(design, state))
+
+
+def _smallest(design, ok, lowest: float) -> float:
+    """Smallest Rb >= lowest with ok(design at Rb) (bisection; ok monotone in Rb)."""
+    high = max(2 * lowest, design.base_circle_radius, 1e-3)
+    while not ok(replace(design, base_circle_radius=high)):
+        high *= 2
+        if high > 100.0:
+            raise ValueError("no base circle below 100 m meets the limits")
+    low = lowest
+    if ok(replace(design, base_circle_radius=low)):
+        return low
+    while high - low > SIZE_TOLERANCE:
+        middle = 0.5 * (low + high)
+        low, high = (low, middle) if ok(replace(design, base_circle_radius=middle)) else (middle, high)
+    return high
+
+
+def smallest_base_circle(design, limits: Limits) -> dict[str, float]:
+    """Smallest dry base circle radius for each limit and overall (m)."""
+    if design.kind != "motion":
+        raise ValueError("sizing needs a cam given by motion segments (not eccentric)")
+    # the prime circle must clear the offset, and the bore needs room
+    lowest = max(abs(design.offset) - design.roller_radius, design.bore_radius, 0.0) + SIZE_TOLERANCE
+    angle = _smallest(design, lambda d: meets(d, limits)[0], lowest)
+    curvature = _smallest(design, lambda d: meets(d, limits)[1], lowest)
+    return {"pressure_angle": angle, "radius_of_curvature": curvature,
+            "base_circle_radius": max(angle, curvature)}
+
+
+def aged_check(ds, limits: Limits, kind: str) -> str:
+    """Whether the last valid ageing time of a (sized) result still meets the limits."""
+    last = ds.isel(time=int(np.flatnonzero(np.isfinite(ds["lift"].values))[-1]))
+    phi = math.radians(float(np.nanmax(np.abs(last["pressure_angle"].values))))  # stored in deg
+    rho = smallest_convex_radius(kind, last["radius_of_curvature"].values,
+                                 last["pitch_radius_of_curvature"].values)
+    days = last["time"].values / np.timedelta64(1, "D")
+    ok = all(within(limits, phi, rho))
+    return (f"aged at t = {days:g} d: largest pressure angle {math.degrees(phi):.4g} deg, smallest "
+            f"convex radius of curvature {rho * 1e3:.4g} mm: "
+            f"{'still meets the limits' if ok else 'NO LONGER meets the limits'}")
