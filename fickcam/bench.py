@@ -145,14 +145,15 @@ def _row(case, model, accuracy, cells, steps, wall, error, estimate, reference) 
 def _naive_fipy_rows(case, diffusivity, exposure, times, reference, progress) -> list[dict]:
     """FiPy assembling and solving every step itself, same plan (coarse + bisected, Richardson)."""
     from .diffusion import plan
-    from .diffusion.solve import _scales, step_plan
+    from .diffusion.clock import scales as scales_of
+    from .diffusion.direct import step_plan
 
     rows = []
     for accuracy in NAIVE_ACCURACIES:
         progress(f"{case.name}: fipy-naive {accuracy:g}")
         chosen = plan(case.geometry, diffusivity, exposure, times, accuracy, "slab")
-        scales = _scales(case.geometry, diffusivity, exposure)
-        plans = [step_plan(diffusivity, exposure, times, scales, chosen.steps_per_doubling, b)
+        scales = scales_of(case.geometry, diffusivity, exposure)
+        plans = [step_plan(exposure, times, scales, chosen.steps_per_doubling, b)
                  for b in (False, True)]
 
         def run():

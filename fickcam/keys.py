@@ -63,3 +63,14 @@ def closest_key(model: type[BaseModel] | None, loc: tuple) -> str | None:
         prefixed = [k for k in valid_keys(model, loc) if k.startswith(loc[-1])]
         matches = prefixed[:1]
     return matches[0] if matches else None
+
+
+def short_names(paths: list[str]) -> dict[str, str]:
+    """The shortest tail of each dotted path that tells the paths apart
+    (``environment.history.0.temperature`` → ``temperature``)."""
+    depth = 1
+    while True:
+        tails = {p: ".".join(p.split(".")[-depth:]) for p in paths}
+        if len(set(tails.values())) == len(paths) or depth > max(p.count(".") for p in paths):
+            return tails
+        depth += 1

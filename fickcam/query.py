@@ -11,6 +11,7 @@ import json
 import numpy as np
 
 from .errors import InputError
+from .keys import short_names
 from .schema import VARIABLES, design_name
 from .units import is_bare_number, parse_duration
 
@@ -150,7 +151,6 @@ def _interp_along(array, dim, grid, value, period=None):
 def swept_values(array) -> dict[str, np.ndarray]:
     """The varied values of a sweep result along ``case``, in the units the sweep file
     gave them: ``{"temperature [degC]": [60, 85, ...]}`` (empty for a single run)."""
-    from .sweep.spec import short_names
     from .units import convert
 
     swept = [name for name, coord in array.coords.items()

@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 from scipy.linalg import eigh
 
-from fickcam.diffusion import fv
+from fickcam.diffusion import fv, march
 
 pytest.importorskip("fipy")
 
@@ -51,7 +51,7 @@ def test_backward_euler_time_error_is_first_order():
         nodes = np.linspace(start, T_STAR, steps + 1)
         values, vectors = eigh(disc.stiffness.toarray(), np.diag(disc.volumes))
         u0 = vectors @ (np.exp(-values * start) * (vectors.T @ (-disc.volumes)))
-        stepper = fv.ThetaStepper(disc)
+        stepper = march.ThetaStepper(disc)
         c = 1.0 + u0
         for k, dt in enumerate(np.diff(nodes), start=1):
             c = stepper.step(c, dt, 1.0, 1.0, k, nodes[k])
@@ -66,7 +66,7 @@ def test_richardson_pair_in_time_is_second_order():
 
     def backward_euler(steps):
         nodes = np.linspace(0.0, T_STAR, steps + 1)
-        return fv.march(disc, nodes, np.ones(steps + 1), 0.0, np.array([steps])).mean[0]
+        return march.march(disc, nodes, np.ones(steps + 1), 0.0, np.array([steps])).mean[0]
     errors = [abs(2 * backward_euler(2 * n) - backward_euler(n) - reference)
               for n in (40, 80, 160, 320)]
     assert observed_order(errors)[-1] == pytest.approx(2.0, abs=0.1)

@@ -7,11 +7,12 @@ from scipy.integrate import solve_ivp
 from scipy.optimize import brentq
 
 from fickcam.diffusion import Bar, CamPlate, Diffusivity, Disc, Exposure, Sheet
-from fickcam.diffusion import exact
-from fickcam.diffusion.exact import (cylinder_profile, cylinder_uptake, exact_available,
-                                     sheet_profile, sheet_series_remainder, sheet_uptake,
-                                     step_field, step_response)
-from fickcam.diffusion.superposition import RescaledTime, exact_history, exact_history_field
+from fickcam.diffusion import series as one_dimensional
+from fickcam.diffusion.analytic import exact_history, exact_history_field
+from fickcam.diffusion.clock import RescaledTime
+from fickcam.diffusion.exact import exact_available, step_field, step_response
+from fickcam.diffusion.series import (cylinder_profile, cylinder_uptake, sheet_profile,
+                                      sheet_series_remainder, sheet_uptake)
 
 
 # ------------------------------------------------------------------ helpers
@@ -64,11 +65,11 @@ def lines_solution(matrix, b, boundary, initial, times):
 # ------------------------------------------------------------------- sheet
 def test_sheet_short_and_series_forms_agree_where_both_converge():
     t = np.geomspace(0.01, 0.2, 30)   # 12 modes converge from t* = 0.01, images up to 0.2
-    images = exact._sheet_interval_mean_images(0.0, 1.0, t)
-    series = exact._sheet_interval_mean_series(0.0, 1.0, t)
+    images = one_dimensional.sheet_interval_mean_images(0.0, 1.0, t)
+    series = one_dimensional.sheet_interval_mean_series(0.0, 1.0, t)
     assert np.max(np.abs(images - series)) < 1e-13
     z = np.linspace(0.0, 1.0, 11)[:, None]
-    both = [exact._sheet_interval_mean_images(0.1, 0.7, t), exact._sheet_interval_mean_series(0.1, 0.7, t)]
+    both = [one_dimensional.sheet_interval_mean_images(0.1, 0.7, t), one_dimensional.sheet_interval_mean_series(0.1, 0.7, t)]
     assert np.max(np.abs(both[0] - both[1])) < 1e-13
     assert np.all(sheet_profile(z, t) >= 0.0)
 
@@ -128,9 +129,9 @@ def test_cylinder_matches_method_of_lines():
 
 def test_cylinder_short_time_expansion_and_limits():
     t = np.array([3e-5, 1e-4, 3e-4])
-    roots = exact._roots_for(1e-5)
-    series = 1.0 - exact._cylinder_core_deficit(np.ones(3), t, roots)
-    assert np.allclose(exact._cylinder_uptake_short(t), series, atol=1e-14)
+    roots = one_dimensional.roots_for(1e-5)
+    series = 1.0 - one_dimensional.cylinder_core_deficit(np.ones(3), t, roots)
+    assert np.allclose(one_dimensional.cylinder_uptake_short(t), series, atol=1e-14)
     tiny = np.geomspace(1e-14, 1e-8, 5)
     assert np.allclose(cylinder_uptake(tiny), 4 * np.sqrt(tiny / np.pi) - tiny, rtol=1e-8)
     assert np.all(cylinder_uptake(np.array([20.0, 1e12])) == 1.0)
@@ -140,7 +141,7 @@ def test_cylinder_short_time_expansion_and_limits():
 
 def test_cylinder_profile_short_form_matches_series_at_switch():
     r = 1.0 - np.geomspace(1e-4, 8e-3, 12)[:, None]   # inside the penetration depth
-    t = np.array([[exact.CYLINDER_PROFILE_SWITCH * (1 - 1e-9), exact.CYLINDER_PROFILE_SWITCH]])
+    t = np.array([[one_dimensional.CYLINDER_PROFILE_SWITCH * (1 - 1e-9), one_dimensional.CYLINDER_PROFILE_SWITCH]])
     both = cylinder_profile(r, t)
     assert np.max(np.abs(both[:, 0] - both[:, 1])) < 1e-9   # 3-term form: O(t*^3/2)
 
@@ -323,11 +324,8 @@ def test_extreme_parameters_are_finite_and_bounded(geometry, d):
         assert np.all(np.isfinite(f)) and np.all((f >= 0) & (f <= 1))
 
 
-def test_exact_module_exposes_history_for_the_solver():
+def test_exact_field_at_a_face_is_the_surface_value():
     history = exposure([0, 1e5], [False], [330.0], [2.0])
     t = np.linspace(0, 1e5, 5)
-    direct = exact_history(Sheet(1e-3), ARRHENIUS, history, t)
-    via_exact = exact.exact_history(Sheet(1e-3), ARRHENIUS, history, t, surface_layer_depth=5e-4)
-    assert np.array_equal(direct["mean"], via_exact["mean"])
-    field = exact.exact_history_field(Sheet(1e-3), ARRHENIUS, history, t, {"z": np.array([0.0, 5e-4])})
+    field = exact_history_field(Sheet(1e-3), ARRHENIUS, history, t, {"z": np.array([0.0, 5e-4])})
     assert np.allclose(field[1:, 0], 2.0)

@@ -52,7 +52,7 @@ def test_fields_plot_writes_one_png_per_part(results, tmp_path):
 
 
 def test_chosen_ages_include_first_and_last():
-    from fickcam.plotting import ages
+    from fickcam.plotting.common import ages
 
     assert ages(xr.Dataset(coords={"time": np.arange(11)}), 4) == [0, 3, 7, 10]
     assert ages(xr.Dataset(coords={"time": np.arange(2)}), 4) == [0, 1]

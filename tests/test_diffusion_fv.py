@@ -8,7 +8,8 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from fickcam.diffusion import CamPlate, LinkBar, fv, planform, prism
+from fickcam.diffusion import (CamPlate, LinkBar, discretisation, fv, fvprism, march, outline,
+                               prism, trimesh)
 from fickcam.errors import SolverError
 
 pytest.importorskip("fipy")
@@ -31,12 +32,25 @@ def plain_fipy_steps(mesh, dt, steps, corrected=False):
 
 
 def extracted_steps(mesh, dt, steps, corrected=False):
-    volumes, stiffness, boundary = fv.assemble(mesh, corrected)
+    volumes, stiffness, boundary = discretisation.assemble(mesh, corrected)
     ones = np.ones(volumes.size)
-    disc = fv.Discretisation(volumes, stiffness, boundary, ones / ones.sum(), ones / ones.sum())
+    disc = discretisation.Discretisation(volumes, stiffness, boundary, ones / ones.sum(), ones / ones.sum())
     nodes = dt * np.arange(steps + 1)
-    history = fv.march(disc, nodes, np.ones(steps + 1), 0.0, np.array([steps]), keep_fields=True)
+    history = march.march(disc, nodes, np.ones(steps + 1), 0.0, np.array([steps]), keep_fields=True)
     return history.fields[0]
+
+
+def test_the_installed_fipy_is_the_series_whose_private_assembly_was_verified():
+    """``discretisation.assemble`` takes FiPy's matrix through the private
+    ``_prepareLinearSystem`` (no public call returns it). A new FiPy series must fail here
+    first: rerun the extraction tests below against it, then widen FIPY_VERIFIED and the
+    pin in pyproject.toml."""
+    import fipy
+
+    assert fipy.__version__.startswith(discretisation.FIPY_VERIFIED), (
+        f"FiPy {fipy.__version__}: discretisation.assemble uses the private "
+        f"_prepareLinearSystem, verified on {discretisation.FIPY_VERIFIED}x only")
+    assert hasattr(fipy.terms.term.Term, "_prepareLinearSystem")
 
 
 @pytest.mark.parametrize("kind", ["grid1d", "cylindrical", "grid3d", "prisms"])
@@ -48,7 +62,7 @@ def test_extracted_operator_reproduces_plain_fipy_solve(kind):
             "cylindrical": lambda: CylindricalGrid2D(nr=6, nz=5, dr=0.1, dz=0.2,
                                                      origin=((0.3,), (0.0,))),
             "grid3d": lambda: Grid3D(nx=4, ny=3, nz=5, dx=0.3, dy=0.2, dz=0.2),
-            "prisms": lambda: fv._prism_mesh(prism.admissible(planform.triangulate(
+            "prisms": lambda: fvprism.prism_mesh(prism.admissible(trimesh.triangulate(
                 PLATE, 0.2), PLATE), 1.0, np.array([0.0, 0.3, 1.0]), mid_plane=False)[0]}[kind]()
     expected = plain_fipy_steps(mesh, 0.01, 5, corrected)
     assert np.allclose(extracted_steps(mesh, 0.01, 5, corrected), expected, rtol=0, atol=1e-10)
@@ -81,7 +95,7 @@ def test_backward_euler_stays_between_initial_and_surface_values(fourier, initia
     """Maximum principle: every cell between c0 and g at any Fourier number, monotone in time."""
     disc = cached_sheet(cells)
     nodes = fourier * np.arange(4)
-    history = fv.march(disc, nodes, np.full(4, surface), initial, np.arange(4),
+    history = march.march(disc, nodes, np.full(4, surface), initial, np.arange(4),
                        keep_fields=True)
     lo, hi = min(initial, surface), max(initial, surface)
     span = max(hi, 1.0)
@@ -97,7 +111,7 @@ def test_backward_euler_stays_between_initial_and_surface_values(fourier, initia
 def test_mass_balance_closes_each_step(dt, surface, initial):
     """Sum of V (c_new - c_old) equals dt times the boundary inflow f g - K c_new."""
     disc = cached_annulus()
-    stepper = fv.ThetaStepper(disc)
+    stepper = march.ThetaStepper(disc)
     old = np.full(disc.cells, initial)
     new = stepper.step(old, dt, surface, surface, 1, dt)
     uptake = np.sum(disc.volumes * (new - old))
@@ -110,7 +124,7 @@ def test_mass_balance_closes_each_step(dt, surface, initial):
 def test_failed_solve_names_part_step_and_time():
     disc = cached_sheet(10)
     with pytest.raises(SolverError) as caught:
-        fv.march(disc, np.array([0.0, 1.0, 2.0]), np.array([1.0, np.nan, np.nan]), 0.0,
+        march.march(disc, np.array([0.0, 1.0, 2.0]), np.array([1.0, np.nan, np.nan]), 0.0,
                  np.array([2]), np.array([0.0, 3600.0, 7200.0]), part="cam")
     assert caught.value.part == "cam" and caught.value.step == 1
     assert "cam" in str(caught.value) and "step 1" in str(caught.value)
@@ -121,7 +135,7 @@ def test_backward_euler_bounded_where_crank_nicolson_overshoots():
     with two BE steps) overshoots saturation, BE does not (the reason BE is the default)."""
     disc = cached_sheet(50)
     nodes = np.concatenate([[0.0], 1e-6 * 2.0 ** np.arange(25)])
-    fields = {scheme: fv.march(disc, nodes, np.ones(nodes.size), 0.0, np.arange(nodes.size),
+    fields = {scheme: march.march(disc, nodes, np.ones(nodes.size), 0.0, np.arange(nodes.size),
                                keep_fields=True, scheme=scheme, restart_steps=2).fields
               for scheme in ("backward_euler", "crank_nicolson")}
     assert fields["backward_euler"].max() <= 1.0 + 1e-14
@@ -130,14 +144,14 @@ def test_backward_euler_bounded_where_crank_nicolson_overshoots():
 
 def test_link_outline_excludes_holes_and_includes_bosses():
     link = LinkBar(0.1, 0.02, 0.01, 0.015, 0.005)
-    inside = planform._inside(link, np.array([0.0, 0.0, 0.05, -0.012, 0.05]),
+    inside = outline.inside_part(link, np.array([0.0, 0.0, 0.05, -0.012, 0.05]),
                               np.array([0.0, 0.008, 0.0, 0.0, 0.012]))
     assert inside.tolist() == [False, True, True, True, False]
 
 
 def test_triangulated_planform_has_the_outline_area():
     link = LinkBar(0.1, 0.02, 0.01, 0.015, 0.005)
-    mesh = planform.triangulate(link, 0.002)
+    mesh = trimesh.triangulate(link, 0.002)
     corners = mesh.points[mesh.triangles]
     a, b, c = corners[:, 0], corners[:, 1], corners[:, 2]
     area = 0.5 * np.abs((b - a)[:, 0] * (c - a)[:, 1] - (b - a)[:, 1] * (c - a)[:, 0]).sum()

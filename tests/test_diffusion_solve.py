@@ -10,7 +10,7 @@ from scipy.special import jn_zeros
 
 from fickcam.diffusion import (Bar, CamPlate, Diffusivity, Disc, Exposure, LinkBar, Sheet,
                                plan, solve)
-from fickcam.diffusion.timesteps import rescaled_time
+from fickcam.diffusion.clock import rescaled_time
 from fickcam.errors import InputError
 
 DAY = 86400.0
@@ -200,9 +200,6 @@ def test_model_not_applicable_to_the_geometry_is_an_input_error():
 
 
 def test_auto_takes_the_exact_path_for_a_sheet_when_available():
-    exact = pytest.importorskip("fickcam.diffusion.exact")
-    if not hasattr(exact, "exact_history"):
-        pytest.skip("exact.py has no exact_history yet")
     chosen = plan(Sheet(1e-3), ISOTROPIC, STEP_DOWN, TIMES, accuracy=1e-3)
     assert chosen.model == "analytic"
     result = solve(Sheet(2e-3), ISOTROPIC, STEP_DOWN, TIMES, accuracy=1e-4)
@@ -228,14 +225,14 @@ def test_fields_have_cells_and_coordinates():
 
 
 def test_output_a_hair_after_a_step_boundary_records_that_boundary_not_the_next():
-    """An output within round-off above a node is merged into it (``_drop_slivers``);
+    """An output within round-off above a node is merged into it (``drop_slivers``);
     it must read that node, not the next one (``searchsorted`` alone took the next)."""
-    from fickcam.diffusion.timesteps import _drop_slivers, nearest_nodes
+    from fickcam.diffusion.timesteps import drop_slivers, nearest_nodes
 
     first = 1e-6
     nodes = np.array([0.0, 1e-6, 2e-6, 4e-6, 8e-6])
     outputs = np.array([2e-6 * (1 + 1e-12), 8e-6])
-    merged = _drop_slivers(np.unique(np.concatenate([nodes, outputs])), first)
+    merged = drop_slivers(np.unique(np.concatenate([nodes, outputs])), first)
     assert merged.size == nodes.size
     assert list(nearest_nodes(merged, outputs)) == [2, 4]
     assert list(nearest_nodes(merged, np.array([0.0, 3.1e-6]))) == [0, 3]

@@ -1,11 +1,14 @@
 """Fickian moisture diffusion in the parts of a mechanism.
 
-``solve`` and ``plan`` are the entry points (``solve.py``); FiPy is imported
-only inside the finite-volume functions, so importing this package stays light.
+``solve`` and ``plan`` are the entry points (``dispatch``); FiPy is imported only
+inside the functions that assemble a mesh operator, so importing this package stays
+light. Import direction (each module imports only modules to its left):
+docs/architecture.md.
 """
+from .dispatch import MODELS, plan, solve
 from .exposure import GAS_CONSTANT, Diffusivity, Exposure
 from .geometry import Bar, CamPlate, Disc, Geometry, LinkBar, Sheet
-from .solve import MODELS, DiffusionResult, Plan, plan, solve
+from .results import DiffusionResult, Plan
 
 __all__ = ["GAS_CONSTANT", "Diffusivity", "Exposure", "Bar", "CamPlate", "Disc",
            "Geometry", "LinkBar", "Sheet", "MODELS", "DiffusionResult", "Plan", "plan", "solve"]

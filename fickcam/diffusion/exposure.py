@@ -32,6 +32,13 @@ class Exposure:
     def end(self) -> float:
         return float(self.change_times[-1])
 
+    def surface_before(self, t) -> np.ndarray:
+        """The left limit g(t-) of the right-continuous surface history: its value just
+        before ``t`` (the largest float below it); g(0-) is the initial moisture."""
+        t = np.asarray(t, float)
+        value = np.asarray(self.surface_moisture(np.nextafter(t, -np.inf)), float)
+        return np.where(t <= self.change_times[0], self.initial_moisture, value)
+
     @classmethod
     def piecewise(cls, change_times, temperatures, surface_values, initial_moisture=0.0,
                   ramp=None) -> "Exposure":

@@ -1,16 +1,16 @@
 """Cells of the direct finite-volume models (slab, axisymmetric, solid) from the accuracy.
 
-Uniform: spacing h* = sqrt(0.5 a tau*_lo / (SPACE_ERROR n)) on each of the n axes
-(``solve.SPACE_ERROR``: err ~ SPACE_ERROR (h/L)^2 / tau*_lo per axis, measured on the
+Uniform: spacing h* = sqrt(0.5 a tau*_lo / (S n)) on each of the n axes, S =
+``calibration.space_error(tau*_lo)`` (err ~ S (h/L)^2 / tau*_lo per axis, measured on the
 sheet against Crank eq. 4.18).
 
 Graded (``grading``): cells w0 wide at the exposed faces growing by (1 + g) per cell.
-Each graded axis adds SPACE_ERROR w0^2 / tau*_lo (the boundary layer after a change
+Each graded axis adds S w0^2 / tau*_lo (the boundary layer after a change
 sees only the finest cells, Crank 1975 eq. 2.45) and GROWTH_ERROR g^2
-(``grading.GROWTH_ERROR``); half the spatial budget goes to each. The graded
+(``calibration.GROWTH_ERROR``); half the spatial budget goes to each. The graded
 layout replaces the uniform one when it needs fewer cells. A prismatic part
 (CamPlate, LinkBar) is always graded: rows graded from its outline in the plane
-(``planform.triangulate`` with a growth), the same widths through the thickness, on
+(``trimesh.triangulate`` with a growth), the same widths through the thickness, on
 Delaunay-admissible cells (``prism``). Above the model's cell cap the finest width
 grows (and with it the estimate) until the cells fit.
 """
@@ -22,9 +22,13 @@ from functools import lru_cache
 
 import numpy as np
 
-from .geometry import Bar, CamPlate, Disc, LinkBar
-from .grading import GROWTH_ERROR, MAX_GROWTH, graded_widths, growth_rate
-from .solve import MIN_CELLS_PER_AXIS
+from .calibration import GROWTH_ERROR, MIN_CELLS_PER_AXIS
+from .geometry import Bar, CamPlate, Disc, LinkBar, Sheet
+from .grading import MAX_GROWTH, graded_widths, growth_rate
+from .outline import outline_extent
+from .prism import admissible
+from .scaling import axis_scale, stretch_of
+from .trimesh import triangulate
 
 CAP_STEP = 1.15  # the finest width grows by this factor until the cells fit the cap
 
@@ -42,6 +46,21 @@ class Layout:
     @property
     def total(self) -> int:
         return int(math.prod(self.cells))
+
+
+def extents(geometry, d) -> tuple[float, ...]:
+    """Scaled extents of the numerical model's axes: each physical extent times
+    sqrt(D_z / D_i) / L (``scaling``)."""
+    h = float(geometry.thickness)
+    if isinstance(geometry, Sheet):
+        return (1.0,)
+    if isinstance(geometry, Disc):
+        return ((geometry.outer_radius - geometry.inner_radius) * axis_scale(h, d[0], d[2]), 1.0)
+    if isinstance(geometry, Bar):
+        sizes = (geometry.length, geometry.width)
+    else:
+        sizes = outline_extent(geometry)
+    return tuple(size * axis_scale(h, d[i], d[2]) for i, size in enumerate(sizes)) + (1.0,)
 
 
 def exposed_ends(geometry) -> tuple[str, ...]:
@@ -88,7 +107,7 @@ def physical_widths(geometry, extents, d, finest: float, growth: float) -> tuple
     L sqrt(D_i / D_z) (Crank 1975 eq. 2.13)."""
     axes = (0, 1, 2) if isinstance(geometry, Bar) else (0, 2)
     scaled = axis_widths(extents, exposed_ends(geometry), finest, growth)
-    return tuple(w * geometry.thickness * math.sqrt(d[i] / d[2]) for w, i in zip(scaled, axes))
+    return tuple(w / axis_scale(geometry.thickness, d[i], d[2]) for w, i in zip(scaled, axes))
 
 
 def graded(extents, ends, accuracy: float, t_lo: float, cap: int, space_error: float,
@@ -126,9 +145,6 @@ def choose(geometry, extents, accuracy: float, t_lo: float, cap: int,
 def planform_cells(part, finest: float, growth: float, stretch: tuple[float, float]):
     """Admissible cells (``prism.Tessellation``) of a CamPlate or LinkBar planform, rows
     graded from the outline: ``finest`` and the spacing in stretched (scaled) units."""
-    from .planform import triangulate
-    from .prism import admissible
-
     mesh = triangulate(part, finest * part.thickness, growth=growth, stretch=stretch)
     return admissible(mesh, part, stretch)
 
@@ -142,8 +158,6 @@ def prism_layout(geometry, d, accuracy: float, t_lo: float, cap: int,
                  space_error: float) -> Layout:
     """Graded prism cells: planform rows and z widths with the same w0 and g (three
     graded directions in the error model)."""
-    from .planform import stretch_of
-
     if not isinstance(geometry, (CamPlate, LinkBar)):
         raise TypeError(f"no prism layout for {type(geometry).__name__}")
     stretch = stretch_of(d)
@@ -159,8 +173,6 @@ def _estimated_prism_cells(part, finest: float, growth: float, stretch) -> tuple
     outline of scaled perimeter P make about (2 / (sqrt(3)/2)) P integral dd / s^2
     triangles (two per rhombus of an equilateral lattice), up to the half width D:
     integral = D / (w0 (w0 + g D))."""
-    from .planform import outline_extent
-
     extent = np.asarray(outline_extent(part)) * np.asarray(stretch) / part.thickness
     perimeter, depth = 2.0 * float(extent.sum()), 0.5 * float(extent.min())
     rows = depth / (finest * (finest + growth * depth))

@@ -1,4 +1,4 @@
-"""Delaunay-admissible cells of a planform, extruded into prisms by ``fv.prism``.
+"""Delaunay-admissible cells of a planform, extruded into prisms by ``fvprism.prism``.
 
 FiPy's two-point flux (c_j - c_i) / |x_j - x_i| across a face is consistent only
 where the line between the two cell points is normal to the face. On triangles
@@ -38,6 +38,8 @@ from scipy.spatial import Delaunay, cKDTree
 
 from ..errors import InputError
 from .geometry import CamPlate
+from .polygon import (centre_offsets, circumcentres, drop_unused, inside_polygon, segment_distance,
+                      triangle_areas, unique_edges)
 
 log = logging.getLogger(__name__)
 
@@ -68,73 +70,6 @@ class Tessellation:
         return stretched / self.stretch[None, :]
 
 
-# --------------------------------------------------------------- geometry
-
-
-def unique_edges(triangles: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """(edges (e, 2) sorted, (m, 3) edge of each triangle side k = (k, k+1))."""
-    sides = np.sort(np.stack([triangles[:, [0, 1]], triangles[:, [1, 2]], triangles[:, [2, 0]]],
-                             axis=1).reshape(-1, 2), axis=1)
-    edges, inverse = np.unique(sides, axis=0, return_inverse=True)
-    return edges, inverse.reshape(-1, 3)
-
-
-def triangle_areas(points: np.ndarray, triangles: np.ndarray) -> np.ndarray:
-    a, b, c = (points[triangles[:, k]] for k in range(3))
-    return 0.5 * np.abs((b - a)[:, 0] * (c - a)[:, 1] - (b - a)[:, 1] * (c - a)[:, 0])
-
-
-def circumcentres(points: np.ndarray, triangles: np.ndarray) -> np.ndarray:
-    """Centre of each triangle's circumscribed circle (intersection of the perpendicular
-    bisectors, in coordinates relative to the first vertex)."""
-    a, b, c = (points[triangles[:, k]] for k in range(3))
-    (bx, by), (cx, cy) = (b - a).T, (c - a).T
-    twice = 2.0 * (bx * cy - by * cx)
-    b2, c2 = bx * bx + by * by, cx * cx + cy * cy
-    return a + np.column_stack([cy * b2 - by * c2, bx * c2 - cx * b2]) / twice[:, None]
-
-
-def centre_offsets(points: np.ndarray, triangles: np.ndarray, centres: np.ndarray) -> np.ndarray:
-    """(m, 3) signed distance from each triangle's circumcentre to its side k, positive
-    towards the triangle's interior (the triangle's half of the dual edge)."""
-    out = np.empty(triangles.shape)
-    for k in range(3):
-        a, b, c = (points[triangles[:, (k + j) % 3]] for j in range(3))
-        edge = b - a
-        normal = np.column_stack([-edge[:, 1], edge[:, 0]]) / np.hypot(*edge.T)[:, None]
-        side = np.sign(np.einsum("ij,ij->i", c - a, normal))
-        out[:, k] = np.einsum("ij,ij->i", centres - 0.5 * (a + b), normal) * side
-    return out
-
-
-def inside_polygon(query: np.ndarray, segments: np.ndarray, chunk: int = 2048) -> np.ndarray:
-    """Even-odd ray casting against a set of segments (Shimrat 1962, CACM algorithm 112)."""
-    a, b = segments[:, 0], segments[:, 1]
-    inside = np.zeros(len(query), bool)
-    for lo in range(0, len(query), chunk):
-        x, y = query[lo:lo + chunk, :1], query[lo:lo + chunk, 1:]
-        crosses = (a[None, :, 1] > y) != (b[None, :, 1] > y)
-        with np.errstate(divide="ignore", invalid="ignore"):
-            at = a[None, :, 0] + (y - a[None, :, 1]) * (b[None, :, 0] - a[None, :, 0]) / (
-                b[None, :, 1] - a[None, :, 1])
-        inside[lo:lo + chunk] = np.count_nonzero(crosses & (x < at), axis=1) % 2 == 1
-    return inside
-
-
-def segment_distance(query: np.ndarray, segments: np.ndarray, chunk: int = 1024) -> np.ndarray:
-    """Distance from each point to the nearest of ``segments`` (exact, by chunks)."""
-    a, b = segments[:, 0], segments[:, 1]
-    edge = b - a
-    length2 = np.maximum(np.einsum("ij,ij->i", edge, edge), np.finfo(float).tiny)
-    out = np.empty(len(query))
-    for lo in range(0, len(query), chunk):
-        q = query[lo:lo + chunk, None, :]
-        along = np.clip(np.einsum("qsi,si->qs", q - a[None], edge) / length2[None], 0.0, 1.0)
-        nearest = a[None] + along[..., None] * edge[None]
-        out[lo:lo + chunk] = np.sqrt(np.min(np.sum((q - nearest) ** 2, axis=2), axis=1))
-    return out
-
-
 # ------------------------------------------------------------ admissible
 
 
@@ -146,10 +81,8 @@ def _delaunay_inside(points: np.ndarray, outline: np.ndarray) -> tuple[np.ndarra
     area = triangle_areas(points, triangles)
     triangles = triangles[inside_polygon(points[triangles].mean(axis=1), outline)
                           & (area > 1e-9 * np.median(area))]
-    used = np.unique(triangles)
-    renumber = np.full(len(points), -1)
-    renumber[used] = np.arange(used.size)
-    return points[used], renumber[triangles]
+    points, triangles, _ = drop_unused(points, triangles)
+    return points, triangles
 
 
 def _encroached(points: np.ndarray, segments: np.ndarray) -> list[tuple[int, np.ndarray]]:

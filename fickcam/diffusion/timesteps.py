@@ -1,82 +1,14 @@
-"""Rescaled time and the backward-Euler step plan.
+"""The backward-Euler step plan in scaled time.
 
-Every direction shares one Arrhenius factor a(T) = exp(-Ea/RT), so with
-tau(t) = integral_0^t a(T(s)) / a_ref ds Fick's law dc/dt = div(D(T) grad c)
-becomes dc/dtau = div(D(T_ref) grad c) with a constant operator (Crank 1975,
-§7.2, eq. 7.5: a diffusion coefficient depending on time only).
-
-Step plan: from each environment change the steps restart at ``first_step``
-and double every ``steps_per_doubling`` steps (geometric growth in blocks of
-equal size, so one factorisation serves a whole block); requested output
-times are step boundaries.
+From each environment change the steps restart at ``first_step`` and double every
+``steps_per_doubling`` steps (geometric growth in blocks of equal size, so one
+factorisation serves a whole block); requested output times are step boundaries.
 """
 from __future__ import annotations
 
 import numpy as np
 
-from .exposure import Diffusivity, Exposure
-
-_GAUSS_NODES, _GAUSS_WEIGHTS = np.polynomial.legendre.leggauss(8)
-_RAMP_PANELS = 64
-
-
-def reference_factor(diffusivity: Diffusivity, exposure: Exposure) -> float:
-    """a_ref = the largest Arrhenius factor met in the history (the hottest segment)."""
-    t = _sample_times(exposure)
-    return float(np.max(diffusivity.arrhenius_factor(exposure.temperature(t))))
-
-
-def _sample_times(exposure: Exposure) -> np.ndarray:
-    edges = np.asarray(exposure.change_times, float)
-    inner = [np.linspace(a, b, 9)[:-1] for a, b in zip(edges[:-1], edges[1:])]
-    return np.concatenate(inner + [edges[-1:]]) if inner else edges
-
-
-def rescaled_time(diffusivity: Diffusivity, exposure: Exposure, t: np.ndarray,
-                  a_ref: float | None = None) -> np.ndarray:
-    """tau(t) = integral_0^t a(T(s))/a_ref ds in seconds at the reference temperature.
-
-    Held segments have constant T (exact); ramps are integrated with 8-point
-    Gauss-Legendre on 64 panels per segment (T(t) is smooth inside a ramp).
-    """
-    a_ref = reference_factor(diffusivity, exposure) if a_ref is None else a_ref
-    edges = np.asarray(exposure.change_times, float)
-    t = np.asarray(t, float)
-    cumulative = np.zeros(edges.size)
-    for k in range(edges.size - 1):
-        cumulative[k + 1] = cumulative[k] + _segment_integral(
-            diffusivity, exposure, edges[k], edges[k + 1], bool(exposure.ramp[k]), a_ref)
-    segment = np.clip(np.searchsorted(edges, t, side="right") - 1, 0, edges.size - 2)
-    tau = np.empty_like(t)
-    for k in np.unique(segment):
-        sel = segment == k
-        inside = np.minimum(t[sel], edges[k + 1])
-        if exposure.ramp[k]:
-            tau[sel] = cumulative[k] + np.array([
-                _segment_integral(diffusivity, exposure, edges[k], ti, True, a_ref)
-                for ti in inside])
-        else:  # held: constant factor, tau linear in t
-            factor = float(diffusivity.arrhenius_factor(
-                exposure.temperature(edges[k:k + 1]))[0]) / a_ref
-            tau[sel] = cumulative[k] + (inside - edges[k]) * factor
-        beyond = t[sel] > edges[k + 1]  # past the end of the history: hold the last state
-        if beyond.any():
-            factor = diffusivity.arrhenius_factor(exposure.temperature(edges[-1:]))[0] / a_ref
-            tau[np.flatnonzero(sel)[beyond]] += (t[sel][beyond] - edges[k + 1]) * factor
-    return tau
-
-
-def _segment_integral(diffusivity, exposure, start, stop, ramp, a_ref) -> float:
-    if stop <= start:
-        return 0.0
-    if not ramp:
-        return (stop - start) * float(diffusivity.arrhenius_factor(
-            exposure.temperature(np.array([start])))[0]) / a_ref
-    panels = np.linspace(start, stop, _RAMP_PANELS + 1)
-    half = 0.5 * np.diff(panels)
-    nodes = (panels[:-1] + half)[:, None] + half[:, None] * _GAUSS_NODES[None, :]
-    values = diffusivity.arrhenius_factor(exposure.temperature(nodes.ravel())).reshape(nodes.shape)
-    return float(np.sum(half[:, None] * _GAUSS_WEIGHTS[None, :] * values) / a_ref)
+from .calibration import FIRST_STEP
 
 
 def geometric_steps(start: float, stop: float, first_step: float,
@@ -110,10 +42,10 @@ def step_nodes(change_taus: np.ndarray, output_taus: np.ndarray, first_step: flo
     nodes = np.concatenate(pieces + [np.asarray(output_taus, float)])
     nodes = np.unique(nodes[(nodes >= change_taus[0]) & (nodes <= max(change_taus[-1],
                                                                        np.max(output_taus)))])
-    return _drop_slivers(nodes, first_step)
+    return drop_slivers(nodes, first_step)
 
 
-def _drop_slivers(nodes: np.ndarray, first_step: float) -> np.ndarray:
+def drop_slivers(nodes: np.ndarray, first_step: float) -> np.ndarray:
     """Merge step boundaries closer than 1e-9 of the first step (round-off duplicates)."""
     keep = np.concatenate([[True], np.diff(nodes) > 1e-9 * first_step])
     return nodes[keep]
@@ -121,7 +53,7 @@ def _drop_slivers(nodes: np.ndarray, first_step: float) -> np.ndarray:
 
 def nearest_nodes(nodes: np.ndarray, values: np.ndarray) -> np.ndarray:
     """Index of the node nearest each value (an output merged into a node by
-    ``_drop_slivers`` maps to that node, not to the next one)."""
+    ``drop_slivers`` maps to that node, not to the next one)."""
     nodes, values = np.asarray(nodes, float), np.asarray(values, float)
     upper = np.clip(np.searchsorted(nodes, values), 1, max(nodes.size - 1, 1))
     lower = upper - 1
@@ -137,3 +69,29 @@ def inverse_time(tau_nodes: np.ndarray, tau_of_t, change_times: np.ndarray) -> n
                                         zip(edges[:-1], edges[1:])]))
     taus = tau_of_t(samples)
     return np.interp(tau_nodes, taus, samples)
+
+
+
+def earliest_output(change_stars: np.ndarray, output_stars: np.ndarray) -> float:
+    """Smallest positive time from an environment change to a later output (scaled)."""
+    gaps = []
+    for tau in output_stars:
+        before = change_stars[change_stars < tau]
+        if before.size:
+            gaps.append(tau - before[-1])
+    return max(min(gaps), 1e3 * FIRST_STEP) if gaps else 1.0
+
+
+def output_ages(change_stars: np.ndarray, output_stars: np.ndarray, ramp: np.ndarray,
+                ramp_points: int = 17) -> np.ndarray:
+    """The ages tau*_out - tau*_change > 0 at which the outputs read the response to each
+    surface change (Duhamel's sum, Crank 1975 eq. 4.34): one per step, ``ramp_points``
+    spread over each ramp segment (a ramp is a continuum of small steps)."""
+    ages = []
+    for k in range(change_stars.size - 1):
+        start, stop = change_stars[k], change_stars[k + 1]
+        sources = np.linspace(start, stop, ramp_points) if ramp[k] and k > 0 else np.array([start])
+        age = np.asarray(output_stars, float)[:, None] - sources[None, :]
+        ages.append(age[age > 0])
+    found = np.concatenate(ages) if ages else np.empty(0)
+    return np.unique(found) if found.size else np.array([1.0])

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..diffusion.exact import sheet_uptake
+from ..diffusion.series import sheet_uptake
 from ..diffusion.two_phase import two_phase_sheet_uptake
 from .data import Specimen
 

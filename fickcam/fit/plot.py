@@ -6,7 +6,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ..plotting import figure, save_figure
+from ..plotting.common import figure, save_figure
 from .models import fickian_fraction, two_phase_fraction
 from .report import FitReport
 

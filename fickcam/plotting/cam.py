@@ -9,7 +9,8 @@ from pathlib import Path
 import numpy as np
 
 from ..schema import design_name
-from . import age_label, ages, days, drift_panel, figure, finish_plan_view, legend_outside, save_figure
+from .common import (age_label, ages, days, drift_panel, figure,
+                     finish_plan_view, legend_outside, save_figure)
 
 KINEMATICS = (("follower_displacement", "displacement [mm]", 1e3),
               ("follower_velocity", "velocity [m/s]", 1.0),

@@ -7,7 +7,7 @@ from pathlib import Path
 
 import numpy as np
 
-from . import ages, days, figure, save_figure
+from .common import ages, days, figure, save_figure
 
 PANELS = 4
 

@@ -7,7 +7,7 @@ from pathlib import Path
 from ..errors import format_duration
 from ..limits import stored_limits, worst_value
 from ..query import drift
-from . import age_label, ages, days, figure, save_figure
+from .common import age_label, ages, days, figure, save_figure
 
 ANGLES = ("cam_angle", "crank_angle")
 

@@ -8,7 +8,8 @@ from pathlib import Path
 import numpy as np
 
 from ..schema import design_name
-from . import age_label, ages, days, drift_panel, figure, finish_plan_view, legend_outside, save_figure
+from .common import (age_label, ages, days, drift_panel, figure,
+                     finish_plan_view, legend_outside, save_figure)
 
 
 def _wrapped_degrees(x):

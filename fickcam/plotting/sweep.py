@@ -17,7 +17,7 @@ from pathlib import Path
 
 import numpy as np
 
-from . import days, figure, legend_outside, save_figure
+from .common import days, figure, legend_outside, save_figure
 
 QUANTILES = (0.05, 0.25, 0.5, 0.75, 0.95)
 

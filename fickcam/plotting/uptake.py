@@ -5,7 +5,7 @@ from pathlib import Path
 
 import numpy as np
 
-from . import days, figure, legend_outside, save_figure
+from .common import days, figure, legend_outside, save_figure
 
 
 def plot(ds, outdir) -> list[Path]:

@@ -22,6 +22,7 @@ import numpy as np
 from pydantic import Field, ValidationError, field_validator, model_validator
 
 from .._version import __version__
+from ..keys import short_names
 from ..units import StrictModel
 from ..errors import Problem, SceneError
 
@@ -374,17 +375,6 @@ class Sweep:
     def coordinates(self) -> dict[str, np.ndarray]:
         """Each parameter's coordinate values along ``case``."""
         return {p.name: p.coordinate([c.values[p.path] for c in self.cases]) for p in self.parameters}
-
-
-def short_names(paths: list[str]) -> dict[str, str]:
-    """The shortest tail of each dotted path that tells the paths apart
-    (``environment.history.0.temperature`` → ``temperature``)."""
-    depth = 1
-    while True:
-        tails = {p: ".".join(p.split(".")[-depth:]) for p in paths}
-        if len(set(tails.values())) == len(paths) or depth > max(p.count(".") for p in paths):
-            return tails
-        depth += 1
 
 
 def _as_given(value) -> str:

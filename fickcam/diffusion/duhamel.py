@@ -1,9 +1,8 @@
-"""Duhamel superposition of exact step responses over an exposure history.
+"""Duhamel superposition of unit-step responses over an exposure history: the one
+implementation every model that superposes (exact series, the plane model) uses.
 
 Duhamel's theorem (Carslaw & Jaeger 1959 §1.14, time-dependent surface
-conditions): with the rescaled time
-tau(t) = integral_0^t exp(-Ea / (R T(s))) ds, which turns D(T(t)) into the
-constant D0 (Crank 1975, D a function of time only: dT = D(t) dt),
+conditions; Crank 1975 §4.2.1, eq. 4.34): with the rescaled time tau(t) (``clock``),
 
     M(t) = M0 + sum_k dMs_k K(tau(t) - tau(t_k)) + integral_ramps K(tau(t) - tau(s)) dMs(s)
 
@@ -18,15 +17,14 @@ from __future__ import annotations
 
 import numpy as np
 
-from .exact import SATURATION_FOURIER, saturation_tau, step_field, step_response
+from .clock import RescaledTime
+from .series import SATURATION_FOURIER
 
 GAUSS_NODES = 16
 PANEL_RATIO = 8.0
 FIRST_PANEL = 1e-2   # first panel: 1e-2 of the fastest diffusion time (quadrature error ~1e-12 relative)
-TAU_NODES = 24
 
 _NODES, _WEIGHTS = np.polynomial.legendre.leggauss(GAUSS_NODES)
-_TAU_NODES, _TAU_WEIGHTS = np.polynomial.legendre.leggauss(TAU_NODES)
 
 
 def _differentiation_matrix(nodes: np.ndarray) -> np.ndarray:
@@ -44,61 +42,11 @@ def _differentiation_matrix(nodes: np.ndarray) -> np.ndarray:
 _DIFF = _differentiation_matrix(_NODES)
 
 
-class RescaledTime:
-    """tau(t) = integral_0^t exp(-Ea / (R T(s))) ds for an ``Exposure``: exact on
-    held segments, Gauss-Legendre (24 nodes, analytic integrand) on ramps."""
-
-    def __init__(self, diffusivity, exposure):
-        self.rate = diffusivity.arrhenius_factor
-        self.exposure = exposure
-        self.edges = np.asarray(exposure.change_times, float)
-        self.ramp = np.asarray(exposure.ramp, bool)
-        self.held_rate = self.rate(exposure.temperature(self.edges[:-1]))
-        whole = self.partial(np.arange(self.ramp.size), self.edges[:-1], self.edges[1:])
-        self.cumulative = np.concatenate([[0.0], np.cumsum(whole)])
-
-    def segment(self, t) -> np.ndarray:
-        return np.clip(np.searchsorted(self.edges, t, side="right") - 1, 0, self.ramp.size - 1)
-
-    def partial(self, segment, lower, upper) -> np.ndarray:
-        """integral over [lower, upper] inside one segment."""
-        segment, lower, upper = np.broadcast_arrays(segment, np.asarray(lower, float),
-                                                    np.asarray(upper, float))
-        value = self.held_rate[segment] * (upper - lower)
-        ramped = self.ramp[segment]
-        if np.any(ramped):
-            lo, hi = lower[ramped], upper[ramped]
-            half = 0.5 * (hi - lo)
-            s = (lo + hi)[..., None] * 0.5 + half[..., None] * _TAU_NODES
-            rate = self.rate(self.exposure.temperature(s))
-            value[ramped] = half * (rate @ _TAU_WEIGHTS)
-        return value
-
-    def between(self, s, t) -> np.ndarray:
-        """tau(t) - tau(s) for s <= t, as a sum of positive parts."""
-        s, t = np.broadcast_arrays(np.asarray(s, float), np.asarray(t, float))
-        ks, kt = self.segment(s), self.segment(t)
-        same = ks == kt
-        upper_s = np.where(same, t, self.edges[np.minimum(ks + 1, self.ramp.size)])
-        head = self.partial(kt, np.where(same, t, self.edges[kt]), t)
-        middle = np.where(same, 0.0, self.cumulative[kt] - self.cumulative[np.minimum(ks + 1, kt)])
-        return np.maximum(self.partial(ks, s, upper_s) + middle + head, 0.0)
-
-    def __call__(self, t) -> np.ndarray:
-        return self.between(np.zeros_like(np.asarray(t, float)), t)
-
-
-def _left_limit(exposure, t: float) -> float:
-    """Ms(t-) of the right-continuous surface history."""
-    return float(exposure.surface_moisture(np.array([np.nextafter(t, -np.inf)]))[0])
-
-
 def surface_jumps(exposure) -> np.ndarray:
     """dMs_k = Ms(t_k) - Ms(t_k-) at each segment start (Ms(0-) = M0)."""
     edges = np.asarray(exposure.change_times, float)[:-1]
     after = np.asarray(exposure.surface_moisture(edges), float)
-    before = np.array([exposure.initial_moisture] + [_left_limit(exposure, t) for t in edges[1:]])
-    return after - before
+    return after - exposure.surface_before(edges)
 
 
 def _panel_edges(age_low, age_high, first):
@@ -114,7 +62,7 @@ def _surface_before(exposure, s, end):
     """Ms(s) for s in a ramp [start, end], its left limit at s = end."""
     s = np.asarray(s, float)
     value = np.asarray(exposure.surface_moisture(s.ravel()), float).reshape(s.shape)
-    return np.where(s >= end, _left_limit(exposure, end), value)
+    return np.where(s >= end, float(exposure.surface_before(end)), value)
 
 
 def _ramp_integral(kernel, clock, exposure, start, end, times, first_age, saturated_age):
@@ -141,12 +89,14 @@ def _ramp_integral(kernel, clock, exposure, start, end, times, first_age, satura
     return body + tail.reshape(tail.shape + (1,) * (body.ndim - 1))
 
 
-def duhamel(kernel, geometry, diffusivity, exposure, times, chunk=64):
-    """M(t) - M0 in weight %, shape (n_times, ...kernel outputs)."""
+def duhamel(kernel, diffusivity, exposure, times, diffusion_times, chunk=64):
+    """M(t) - M0 in weight %, shape (n_times, ...kernel outputs); ``kernel(tau)`` takes
+    rescaled times of any shape; ``diffusion_times`` = (fastest, slowest) L^2 / D0 of
+    the part (rescaled s): the first panel's scale and the age past which K = 1."""
     times = np.asarray(times, float)
     clock = RescaledTime(diffusivity, exposure)
     edges = clock.edges
-    fastest, slowest = saturation_tau(geometry, diffusivity.pre_exponential)
+    fastest, slowest = diffusion_times
     rate = diffusivity.arrhenius_factor(exposure.temperature(np.linspace(edges[0], edges[-1], 257)))
     rate = np.concatenate([rate, clock.held_rate])
     first_age = FIRST_PANEL * fastest / max(float(rate.max()), 1e-300)
@@ -166,27 +116,3 @@ def duhamel(kernel, geometry, diffusivity, exposure, times, chunk=64):
         parts.append(total)
     return np.concatenate(parts, axis=0)
 
-
-def exact_history(geometry, diffusivity, exposure, times, surface_layer_depth=5e-4):
-    """Volume-mean and contact-layer-mean moisture (weight %) at ``times`` (s)
-    for any ``Exposure`` of a part with an exact step response."""
-    d0 = diffusivity.pre_exponential
-
-    def kernel(tau):
-        mean, layer = step_response(geometry, d0, tau, surface_layer_depth)
-        return np.stack([mean, layer], axis=-1)
-
-    result = duhamel(kernel, geometry, diffusivity, exposure, times) + exposure.initial_moisture
-    return {"mean": result[:, 0], "surface": result[:, 1]}
-
-
-def exact_history_field(geometry, diffusivity, exposure, times, points):
-    """Moisture (weight %) at ``points`` (see ``exact.step_field``), shape
-    (n_times, n_points)."""
-    d0 = diffusivity.pre_exponential
-    n_points = np.asarray(next(iter(points.values()))).size
-
-    def kernel(tau):
-        return step_field(geometry, d0, tau.ravel(), points).reshape(tau.shape + (n_points,))
-
-    return duhamel(kernel, geometry, diffusivity, exposure, times, chunk=8) + exposure.initial_moisture

@@ -1,0 +1,97 @@
+"""The dispatcher: ``plan`` (which model, cells and steps a solve will use, and why)
+and ``solve`` (run that plan).
+
+Models (``diffusion.model``):
+
+- ``analytic``: Crank's series with Duhamel superposition in rescaled time
+  (``analytic``): Sheet, Bar (product of three sheets), solid Disc.
+- ``slab``, ``axisymmetric``, ``solid``: FiPy-assembled operators marching the history
+  (``direct``): a Sheet through its thickness; a Disc or annulus in (r, z); a Bar in
+  3-D or a CamPlate / LinkBar on prisms, the independent check of ``plane``.
+- ``plane``: CamPlate or LinkBar: the planform's response times the exact sheet,
+  superposed over the history (``plane``); ``auto`` picks it (cheaper than prisms).
+"""
+from __future__ import annotations
+
+import logging
+
+import numpy as np
+
+from ..errors import InputError
+from .analytic import solve_analytic
+from .calibration import ANALYTIC_ERROR
+from .clock import scales as scales_of
+from .direct import plan_direct, solve_direct
+from .exact import exact_available
+from .exposure import Diffusivity, Exposure
+from .geometry import Bar, CamPlate, Disc, LinkBar, Sheet
+from .plane import plan_plane, solve_plane
+from .results import DiffusionResult, Plan
+
+log = logging.getLogger(__name__)
+
+MODELS = ("auto", "analytic", "slab", "axisymmetric", "plane", "solid")
+NUMERICAL_MODEL = {Sheet: "slab", Disc: "axisymmetric", Bar: "solid", CamPlate: "plane",
+                   LinkBar: "plane"}
+ALLOWED_MODELS = {Sheet: {"analytic", "slab"}, Disc: {"analytic", "axisymmetric"},
+                  Bar: {"analytic", "solid"}, CamPlate: {"plane", "solid"},
+                  LinkBar: {"plane", "solid"}}  # solid CamPlate/LinkBar: prisms (prism.py)
+
+
+def _validate(geometry, model: str, accuracy: float) -> None:
+    if model not in MODELS:
+        raise InputError(f"diffusion.model {model!r}: one of {', '.join(MODELS)}")
+    if type(geometry) not in NUMERICAL_MODEL:
+        raise InputError(f"unsupported diffusion geometry {type(geometry).__name__}")
+    if not (0 < accuracy < 1):
+        raise InputError(f"diffusion.accuracy {accuracy!r}: must lie in (0, 1)")
+    if model != "auto" and model not in ALLOWED_MODELS[type(geometry)]:
+        raise InputError(f"diffusion.model {model!r} does not apply to a "
+                         f"{type(geometry).__name__} (use one of "
+                         f"{', '.join(sorted(ALLOWED_MODELS[type(geometry)]))} or auto)")
+
+
+def _no_exact_reason(geometry) -> str:
+    if isinstance(geometry, Disc) and geometry.inner_radius > 0:
+        return "an annulus has no product solution (use axisymmetric)"
+    return "no separable exact solution (use plane)"
+
+
+def plan(geometry, diffusivity: Diffusivity, exposure: Exposure, times: np.ndarray,
+         accuracy: float = 1e-3, model: str = "auto") -> Plan:
+    """The model, cells and steps ``solve`` will use, and why, without solving."""
+    _validate(geometry, model, accuracy)
+    if model in ("auto", "analytic") and exact_available(geometry):
+        return Plan("analytic", 0, 0, "exact Crank series with Duhamel superposition in "
+                    "rescaled time (linear, one Arrhenius factor): cheapest and exact",
+                    ANALYTIC_ERROR)
+    if model == "analytic":
+        raise InputError(f"diffusion.model analytic is not available for this "
+                         f"{type(geometry).__name__}: {_no_exact_reason(geometry)}")
+    chosen = NUMERICAL_MODEL[type(geometry)] if model == "auto" else model
+    scales = scales_of(geometry, diffusivity, exposure)
+    change = scales.tau_star(exposure.change_times)
+    outputs = scales.tau_star(np.asarray(times, float))
+    if chosen == "plane":  # expansion of the outline, then a graded mesh (plane)
+        return plan_plane(geometry, diffusivity, change, outputs, exposure.ramp, accuracy)
+    return plan_direct(geometry, diffusivity, chosen, change, outputs, accuracy, exposure)
+
+
+def solve(geometry, diffusivity: Diffusivity, exposure: Exposure, times: np.ndarray, *,
+          accuracy: float = 1e-3, model: str = "auto", surface_layer_depth: float = 5e-4,
+          store_fields: bool = False, part: str = "") -> DiffusionResult:
+    """Moisture (weight %) of one part at ``times`` (s) under ``exposure``."""
+    times = np.asarray(times, float)
+    chosen = plan(geometry, diffusivity, exposure, times, accuracy, model)
+    log.debug("%s: %s, %d cells, %d steps (%s)", part or type(geometry).__name__, chosen.model,
+              chosen.cells, chosen.steps, chosen.reason)
+    if chosen.model == "analytic":
+        return solve_analytic(geometry, diffusivity, exposure, times, surface_layer_depth,
+                              store_fields, chosen)
+    if chosen.model == "plane":
+        return solve_plane(geometry, diffusivity, exposure, times, chosen,
+                           surface_layer_depth=surface_layer_depth, store_fields=store_fields,
+                           part=part)
+    return solve_direct(geometry, diffusivity, exposure, times, chosen,
+                        surface_layer_depth=surface_layer_depth, store_fields=store_fields,
+                        part=part)

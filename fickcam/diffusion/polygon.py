@@ -1,0 +1,188 @@
+"""Plane geometry of outlines and triangles, the one place each of these algorithms
+lives: turning angles and corners, resampling of polylines, normals, the signed
+distance to an outline (``Wall``), point in polygon, triangle areas, edges,
+circumcentres and distances to segments."""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.spatial import cKDTree
+
+CORNER_TURN = 0.2  # rad: a vertex turning more is a corner, less samples a smooth arc
+
+
+def turning_angles(loop: np.ndarray) -> np.ndarray:
+    """Signed turn (rad, left positive) of a closed polyline at each vertex."""
+    edge = np.roll(loop, -1, axis=0) - loop
+    incoming = np.roll(edge, 1, axis=0)
+    return np.arctan2(incoming[:, 0] * edge[:, 1] - incoming[:, 1] * edge[:, 0],
+                      np.einsum("ij,ij->i", incoming, edge))
+
+
+def corners_of(loop: np.ndarray) -> np.ndarray:
+    """Indices of the vertices of a closed polyline that turn by more than ``CORNER_TURN``."""
+    return np.flatnonzero(np.abs(turning_angles(loop)) >= CORNER_TURN)
+
+
+def resample_loop(loop: np.ndarray, spacing: float) -> np.ndarray:
+    """Points along a closed polyline at equal arc steps <= ``spacing`` between its corners
+    (corners kept as points)."""
+    closed = np.vstack([loop, loop[:1]])
+    arc = np.concatenate([[0.0], np.cumsum(np.hypot(*np.diff(closed, axis=0).T))])
+    total = arc[-1]
+    corners = corners_of(loop)
+    starts = arc[corners] if corners.size else np.array([0.0])
+    ends = np.append(starts[1:], starts[0] + total)
+    steps = [a + (b - a) * np.arange(n) / n
+             for a, b in zip(starts, ends) for n in [max(1, math.ceil((b - a) / spacing))]]
+    s = np.concatenate(steps) % total
+    return np.column_stack([np.interp(s, arc, closed[:, 0]), np.interp(s, arc, closed[:, 1])])
+
+
+
+def resample_polyline(px, py, spacing: float, closed: bool = True) -> np.ndarray:
+    """Points every <= ``spacing`` along a polyline (closed: back to the start), each
+    vertex kept."""
+    pts = np.column_stack([px, py]).astype(float)
+    if closed:
+        pts = np.vstack([pts, pts[:1]])
+    out = []
+    for a, b in zip(pts[:-1], pts[1:]):
+        count = max(1, math.ceil(np.hypot(*(b - a)) / spacing))
+        out.append(a + (b - a) * (np.arange(count) / count)[:, None])
+    if not closed:
+        out.append(pts[-1:])
+    return np.vstack(out)
+
+
+def circle(cx: float, cy: float, radius: float, spacing: float) -> np.ndarray:
+    """Counter-clockwise points every <= ``spacing`` round a circle (at least 12)."""
+    count = max(12, math.ceil(2 * np.pi * radius / spacing))
+    angle = 2 * np.pi * np.arange(count) / count
+    return np.column_stack([cx + radius * np.cos(angle), cy + radius * np.sin(angle)])
+
+
+def loop_length(loop: np.ndarray) -> float:
+    return float(np.sum(np.hypot(*(np.roll(loop, -1, axis=0) - loop).T)))
+
+
+def edge_normals(points: np.ndarray) -> np.ndarray:
+    """Unit normals to the left of each edge i -> i+1 (towards the material)."""
+    edge = np.roll(points, -1, axis=0) - points
+    edge /= np.hypot(*edge.T)[:, None]
+    return np.column_stack([-edge[:, 1], edge[:, 0]])
+
+
+def vertex_normals(points: np.ndarray) -> np.ndarray:
+    """Unit bisectors of the normals of the two edges at each vertex."""
+    after = edge_normals(points)
+    both = np.roll(after, 1, axis=0) + after
+    return both / np.hypot(*both.T)[:, None]
+
+
+@dataclass(frozen=True)
+class Wall:
+    """Signed distance to an outline from dense samples: the distance to the nearest sample,
+    inside where the offset from it points along its inward normal."""
+
+    samples: np.ndarray
+    normals: np.ndarray
+    tree: object
+
+    @classmethod
+    def of(cls, loops: list[np.ndarray], spacing: float) -> Wall:
+        dense = [resample_loop(loop, spacing) for loop in loops]
+        samples = np.vstack(dense)
+        return cls(samples, np.vstack([vertex_normals(d) for d in dense]), cKDTree(samples))
+
+    def distance(self, points: np.ndarray, beyond: float = np.inf) -> tuple[np.ndarray, np.ndarray]:
+        """(distance, inside) of each point; points farther than ``beyond`` get an infinite
+        distance and count as outside (a bounded search is much faster)."""
+        gap, nearest = self.tree.query(points, distance_upper_bound=beyond)
+        found = np.isfinite(gap)
+        offset = points[found] - self.samples[nearest[found]]
+        inside = np.zeros(len(points), bool)
+        inside[found] = np.einsum("ij,ij->i", offset, self.normals[nearest[found]]) > 0
+        return gap, inside
+
+
+def polygon_segments(px, py) -> np.ndarray:
+    """(n, 2, 2) segments of the closed polygon with vertices (px, py)."""
+    vertices = np.column_stack([px, py]).astype(float)
+    return np.stack([vertices, np.roll(vertices, -1, axis=0)], axis=1)
+
+
+def inside_polygon(query: np.ndarray, segments: np.ndarray, chunk: int = 2048) -> np.ndarray:
+    """Even-odd ray casting against a set of segments (Shimrat 1962, CACM algorithm 112)."""
+    a, b = segments[:, 0], segments[:, 1]
+    inside = np.zeros(len(query), bool)
+    for lo in range(0, len(query), chunk):
+        x, y = query[lo:lo + chunk, :1], query[lo:lo + chunk, 1:]
+        crosses = (a[None, :, 1] > y) != (b[None, :, 1] > y)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            at = a[None, :, 0] + (y - a[None, :, 1]) * (b[None, :, 0] - a[None, :, 0]) / (
+                b[None, :, 1] - a[None, :, 1])
+        inside[lo:lo + chunk] = np.count_nonzero(crosses & (x < at), axis=1) % 2 == 1
+    return inside
+
+
+def triangle_areas(points: np.ndarray, triangles: np.ndarray) -> np.ndarray:
+    a, b, c = (points[triangles[:, k]] for k in range(3))
+    return 0.5 * np.abs((b - a)[:, 0] * (c - a)[:, 1] - (b - a)[:, 1] * (c - a)[:, 0])
+
+
+def unique_edges(triangles: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """(edges (e, 2) sorted, (m, 3) edge of each triangle side k = (k, k+1))."""
+    sides = np.sort(np.stack([triangles[:, [0, 1]], triangles[:, [1, 2]], triangles[:, [2, 0]]],
+                             axis=1).reshape(-1, 2), axis=1)
+    edges, inverse = np.unique(sides, axis=0, return_inverse=True)
+    return edges, inverse.reshape(-1, 3)
+
+
+def circumcentres(points: np.ndarray, triangles: np.ndarray) -> np.ndarray:
+    """Centre of each triangle's circumscribed circle (intersection of the perpendicular
+    bisectors, in coordinates relative to the first vertex)."""
+    a, b, c = (points[triangles[:, k]] for k in range(3))
+    (bx, by), (cx, cy) = (b - a).T, (c - a).T
+    twice = 2.0 * (bx * cy - by * cx)
+    b2, c2 = bx * bx + by * by, cx * cx + cy * cy
+    return a + np.column_stack([cy * b2 - by * c2, bx * c2 - cx * b2]) / twice[:, None]
+
+
+def centre_offsets(points: np.ndarray, triangles: np.ndarray, centres: np.ndarray) -> np.ndarray:
+    """(m, 3) signed distance from each triangle's circumcentre to its side k, positive
+    towards the triangle's interior (the triangle's half of the dual edge)."""
+    out = np.empty(triangles.shape)
+    for k in range(3):
+        a, b, c = (points[triangles[:, (k + j) % 3]] for j in range(3))
+        edge = b - a
+        normal = np.column_stack([-edge[:, 1], edge[:, 0]]) / np.hypot(*edge.T)[:, None]
+        side = np.sign(np.einsum("ij,ij->i", c - a, normal))
+        out[:, k] = np.einsum("ij,ij->i", centres - 0.5 * (a + b), normal) * side
+    return out
+
+
+def segment_distance(query: np.ndarray, segments: np.ndarray, chunk: int = 1024) -> np.ndarray:
+    """Distance from each point to the nearest of ``segments`` (exact, by chunks)."""
+    a, b = segments[:, 0], segments[:, 1]
+    edge = b - a
+    length2 = np.maximum(np.einsum("ij,ij->i", edge, edge), np.finfo(float).tiny)
+    out = np.empty(len(query))
+    for lo in range(0, len(query), chunk):
+        q = query[lo:lo + chunk, None, :]
+        along = np.clip(np.einsum("qsi,si->qs", q - a[None], edge) / length2[None], 0.0, 1.0)
+        nearest = a[None] + along[..., None] * edge[None]
+        out[lo:lo + chunk] = np.sqrt(np.min(np.sum((q - nearest) ** 2, axis=2), axis=1))
+    return out
+
+
+
+def drop_unused(points: np.ndarray, triangles: np.ndarray):
+    """(points, triangles, used): the points some triangle uses, triangles renumbered, and
+    the old index of each kept point."""
+    used = np.unique(triangles)
+    renumber = np.full(len(points), -1)
+    renumber[used] = np.arange(used.size)
+    return points[used], renumber[triangles], used

@@ -1,0 +1,112 @@
+"""Helpers every plot module shares: the figure factory, ageing times in days, labels,
+ticks, drift panels, legends, the plan-view finisher and the atomic save."""
+from __future__ import annotations
+
+from pathlib import Path
+
+
+def figure():
+    """A new (figure, pyplot) pair on the Agg backend (no display needed)."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    return plt
+
+
+def days(ds):
+    """Ageing times of ``ds`` in days (float array)."""
+    import numpy as np
+
+    return ds["time"].values / np.timedelta64(1, "D")
+
+
+def ages(ds, most: int = 4) -> list[int]:
+    """Indices of up to ``most`` ageing times spread from the first to the last."""
+    import numpy as np
+
+    n = ds.sizes["time"]
+    return sorted(set(np.linspace(0, n - 1, min(n, most)).round().astype(int).tolist()))
+
+
+def age_label(t_days: float) -> str:
+    """Legend text of an ageing time in days."""
+    return f"t = {t_days:g} d"
+
+
+def finish_plan_view(ax, title: str) -> None:
+    """Equal-aspect x-y axes in mm with title, legend and grid (profiles, coupler curves)."""
+    ax.set_aspect("equal", adjustable="datalim")
+    ax.set_xlabel("x [mm]")
+    ax.set_ylabel("y [mm]")
+    ax.set_title(title)
+    ax.legend(fontsize=8)
+    ax.grid(alpha=0.3)
+
+
+def tidy_ticks(fig) -> None:
+    """Plain, few tick labels on every linear axis left to matplotlib's defaults: no
+    offset (``+1.4377e-2``), no crowding (``0.009960.00997``): at most 5 ticks on x, 6 on y."""
+    from matplotlib.ticker import AutoLocator, MaxNLocator, ScalarFormatter
+
+    for ax in fig.axes:
+        for axis, bins in ((ax.xaxis, 5), (ax.yaxis, 6)):
+            if axis.get_scale() != "linear" or not isinstance(axis.get_major_formatter(),
+                                                             ScalarFormatter):
+                continue
+            axis.get_major_formatter().set_useOffset(False)
+            if type(axis.get_major_locator()) is AutoLocator:
+                axis.set_major_locator(MaxNLocator(nbins=bins, steps=[1, 2, 2.5, 5, 10]))
+
+
+def drift_panel(ax, x, ds, name: str, picks, scale: float, ylabel: str) -> None:
+    """``name`` minus its as-designed value over an angle, a line per ageing index in
+    ``picks`` (the t = 0 line is the thermal change alone; the others add the moisture),
+    in the unit ``ylabel`` names (``scale`` from the stored unit); nothing without a design."""
+    from ..query import drift
+
+    import numpy as np
+
+    change = drift(ds, name, "design")
+    t = days(ds)
+    shown = []
+    for k in picks:
+        shown.append(change.isel(time=k).values * scale)
+        ax.plot(x, shown[-1], color=f"C{k % 10}", label=age_label(t[k]))
+    ax.axhline(0.0, color="k", lw=0.8, ls="--")
+    ax.set_ylabel(ylabel)
+    ax.grid(alpha=0.3)
+    _clip_spikes(ax, np.concatenate(shown))
+
+
+def _clip_spikes(ax, values) -> None:
+    """y limits from the 1st to 99th percentile: a step of the curve (a joint of the motion
+    law) moves a little with the swelling, and its pointwise difference is a spike that
+    would flatten the drift everywhere else; say so when one is cut."""
+    import numpy as np
+
+    values = values[np.isfinite(values)]
+    if values.size < 20:
+        return
+    low, high = np.percentile(values, [1, 99])
+    low, high = min(low, 0.0), max(high, 0.0)
+    pad = 0.15 * (high - low) or 1.0
+    if values.min() < low - pad or values.max() > high + pad:
+        ax.set_ylim(low - pad, high + pad)
+        ax.text(0.99, 0.03, "spikes at steps of the curve cut off", transform=ax.transAxes,
+                ha="right", va="bottom", fontsize=7, color="0.4")
+
+
+def legend_outside(ax, **kwargs) -> None:
+    """The legend to the right of the axes, where it hides no curve."""
+    ax.legend(fontsize=8, loc="upper left", bbox_to_anchor=(1.01, 1.0), borderaxespad=0.0, **kwargs)
+
+
+def save_figure(fig, path: Path) -> Path:
+    tidy_ticks(fig)
+    fig.savefig(path, dpi=120, bbox_inches="tight")
+    import matplotlib.pyplot as plt
+
+    plt.close(fig)
+    return path

@@ -1,0 +1,138 @@
+"""The package's shape: imports run one way (no import cycle anywhere in fickcam at
+module level, none at all inside fickcam/diffusion, whose modules import only at their
+top except the heavy optional libraries), and the diffusion modules and functions stay
+small (issue 16)."""
+from __future__ import annotations
+
+import ast
+from pathlib import Path
+
+PACKAGE = Path(__file__).resolve().parents[1] / "fickcam"
+HEAVY = {"fipy", "matplotlib", "dask", "distributed"}  # may be imported inside functions
+MAX_MODULE_LINES = 400
+MAX_FUNCTION_LINES = 80
+
+
+def _module_name(path: Path) -> str:
+    parts = path.relative_to(PACKAGE.parent).with_suffix("").parts
+    return ".".join(parts[:-1] if parts[-1] == "__init__" else parts)
+
+
+def _resolve(module: str, node: ast.ImportFrom, is_package: bool) -> str:
+    if node.level == 0:
+        return node.module or ""
+    base = module.split(".")
+    base = base if is_package else base[:-1]
+    base = base[:len(base) - (node.level - 1)]
+    return ".".join(base + ([node.module] if node.module else []))
+
+
+def _imports(tree, everywhere: bool):
+    """The import statements of a module: all of them, or those at module level."""
+    if everywhere:
+        return [n for n in ast.walk(tree) if isinstance(n, (ast.Import, ast.ImportFrom))]
+    return [n for n in tree.body if isinstance(n, (ast.Import, ast.ImportFrom))]
+
+
+def import_graph(everywhere_in: str = "fickcam.diffusion") -> dict[str, set[str]]:
+    """module -> fickcam modules it imports (``from . import x`` counts as importing the
+    submodule x when there is one): at module level, and inside functions too for the
+    modules under ``everywhere_in``."""
+    modules = {_module_name(p): p for p in PACKAGE.rglob("*.py")}
+    graph: dict[str, set[str]] = {name: set() for name in modules}
+    for name, path in modules.items():
+        tree = ast.parse(path.read_text())
+        for node in _imports(tree, name.startswith(everywhere_in)):
+            targets = []
+            if isinstance(node, ast.Import):
+                targets = [alias.name for alias in node.names]
+            elif isinstance(node, ast.ImportFrom):
+                base = _resolve(name, node, path.name == "__init__.py")
+                targets = [f"{base}.{a.name}" if f"{base}.{a.name}" in modules else base
+                           for a in node.names]
+            for target in targets:
+                while target and target not in modules:
+                    target = target.rpartition(".")[0]
+                if target and target != name and target.startswith("fickcam"):
+                    graph[name].add(target)
+    return graph
+
+
+def cycles(graph: dict[str, set[str]]) -> list[list[str]]:
+    """Every strongly connected component with more than one module (Tarjan 1972)."""
+    index, low, stack, on_stack, found = {}, {}, [], set(), []
+
+    def visit(node):
+        index[node] = low[node] = len(index)
+        stack.append(node)
+        on_stack.add(node)
+        for nxt in graph[node]:
+            if nxt not in index:
+                visit(nxt)
+                low[node] = min(low[node], low[nxt])
+            elif nxt in on_stack:
+                low[node] = min(low[node], index[nxt])
+        if low[node] == index[node]:
+            component = []
+            while True:
+                top = stack.pop()
+                on_stack.discard(top)
+                component.append(top)
+                if top == node:
+                    break
+            if len(component) > 1:
+                found.append(sorted(component))
+
+    for node in sorted(graph):
+        if node not in index:
+            visit(node)
+    return found
+
+
+def test_the_import_graph_check_finds_a_cycle():
+    assert cycles({"a": {"b"}, "b": {"c"}, "c": {"a"}, "d": {"a"}}) == [["a", "b", "c"]]
+    assert cycles({"a": {"b"}, "b": set()}) == []
+
+
+def test_no_import_cycle_inside_fickcam():
+    assert cycles(import_graph()) == []
+
+
+def test_no_module_imports_its_own_package():
+    graph = import_graph()
+    upward = {name: sorted(t for t in targets if name.startswith(t + "."))
+              for name, targets in graph.items()}
+    assert {k: v for k, v in upward.items() if v} == {}
+
+
+def _functions(tree):
+    return [n for n in ast.walk(tree) if isinstance(n, (ast.FunctionDef, ast.AsyncFunctionDef))]
+
+
+def test_diffusion_imports_at_module_top_except_heavy_libraries():
+    late = []
+    for path in sorted((PACKAGE / "diffusion").glob("*.py")):
+        for function in _functions(ast.parse(path.read_text())):
+            for node in ast.walk(function):
+                if isinstance(node, ast.Import):
+                    names = [a.name for a in node.names]
+                elif isinstance(node, ast.ImportFrom):
+                    names = ["." * node.level + (node.module or "")]
+                else:
+                    continue
+                late += [f"{path.name}:{node.lineno} {n}" for n in names
+                         if n.split(".")[0] not in HEAVY]
+    assert late == []
+
+
+def test_diffusion_modules_and_functions_stay_small():
+    long_modules, long_functions = [], []
+    for path in sorted((PACKAGE / "diffusion").glob("*.py")):
+        text = path.read_text()
+        if text.count("\n") > MAX_MODULE_LINES:
+            long_modules.append((path.name, text.count("\n")))
+        for function in _functions(ast.parse(text)):
+            length = function.end_lineno - function.lineno + 1
+            if length > MAX_FUNCTION_LINES:
+                long_functions.append((path.name, function.name, length))
+    assert long_modules == [] and long_functions == []
