@@ -7,7 +7,7 @@ from pathlib import Path
 
 import numpy as np
 
-from . import days, figure, save_figure
+from .common import days, figure, save_figure
 
 
 def _spec_text(ds, variable: str) -> str:
