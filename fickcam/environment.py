@@ -35,6 +35,10 @@ class Environment:
     initial_moisture: float
     source: str = "history segments"
     notes: tuple[str, ...] = ()   # what a run should be told (e.g. a record held past its end)
+    #: states given directly (``environment.state``): their times (s) and moisture (weight %,
+    #: NaN where the state gives a relative humidity instead); None for a climate history
+    state_times: np.ndarray | None = None
+    state_moisture: np.ndarray | None = None
 
     # ------------------------------------------------------------------ build
     @classmethod
@@ -50,6 +54,8 @@ class Environment:
             ramp = np.array([s.ramp for s in section.history], dtype=bool)
             change = np.concatenate([[0.0], np.cumsum(durations)])
             return cls(change, temps, rh, ramp, float(temps[0]), float(rh[0]), *reference)
+        if section.state is not None:
+            return cls.from_states(section.states(), *reference)
         if section.test is not None:
             test = standard_climate(section.test, cycles=section.cycles, duration=section.duration,
                                     upper_temperature=section.upper_temperature)
@@ -89,6 +95,34 @@ class Environment:
                    np.ones(times.size - 1, dtype=bool), float(temperature[0]),
                    float(relative_humidity[0]), reference_temperature, initial_moisture,
                    source=source, notes=notes)
+
+    @classmethod
+    def from_states(cls, states, reference_temperature, initial_moisture=0.0) -> "Environment":
+        """States given directly (uniform moisture and temperature, no diffusion), each held
+        from its time to the next; the last is held for one second past its time so that
+        every state is a segment of the history."""
+        times = np.array([s.time for s in states], float)
+        temps = np.array([s.temperature if s.temperature is not None
+                          else reference_temperature + s.temperature_rise for s in states])
+        if np.any(temps <= 0):
+            raise ValueError("a state's temperature must be above absolute zero")
+        rh = np.array([np.nan if s.relative_humidity is None else s.relative_humidity
+                       for s in states])
+        moisture = np.array([np.nan if s.moisture is None else s.moisture for s in states])
+        change = np.concatenate([times, [times[-1] + 1.0]])
+        return cls(change, temps, rh, np.zeros(times.size, bool), float(temps[0]), float(rh[0]),
+                   reference_temperature, initial_moisture, source="states given directly",
+                   state_times=times, state_moisture=moisture)
+
+    def uniform_moisture(self, saturation_moisture, t) -> np.ndarray:
+        """Moisture (weight %) of a part at the given states' times: the state's moisture,
+        or the part's equilibrium Mm(T, RH) where the state gives a relative humidity."""
+        k = np.clip(np.searchsorted(self.state_times, np.asarray(t, float), side="right") - 1,
+                    0, self.state_times.size - 1)
+        given = self.state_moisture[k]
+        equilibrium = saturation_moisture(self.temperature_end[k],
+                                          np.nan_to_num(self.humidity_end[k]))
+        return np.where(np.isnan(given), equilibrium, given)
 
     # --------------------------------------------------------------- evaluate
     @property

@@ -82,6 +82,9 @@ def part_values(histories: list[PartHistory]) -> dict[str, np.ndarray]:
 def diffusion_attrs(history: PartHistory) -> dict:
     """The diffusion plan and error a part's result records in the dataset attributes."""
     result = history.diffusion
+    if result is None and history.part.geometry is not None:
+        return {"model": "state", "error_estimate": 0.0, "cells": 0, "steps": 0,
+                "reason": "uniform moisture given by the environment's state (no diffusion)"}
     if result is None:
         return {"model": "none", "error_estimate": 0.0, "cells": 0, "steps": 0,
                 "reason": "material does not absorb moisture"}

@@ -39,17 +39,21 @@ def _model_text(model) -> str:
 
 def describe_plan(scene, accuracy: float | None = None) -> str:
     """The plan `fickcam check` prints: parts, diffusion model, cells, steps."""
-    from .simulate import plan_parts
+    from .simulate import STATE_GIVEN, plan_parts
 
     environment, times, options, plans = plan_parts(scene, accuracy)
-    lines = [f"scene {scene.name}: valid",
-             f"  environment: {len(environment.change_times) - 1} segment(s), "
-             f"{format_duration(environment.end)}; {len(times)} ageing times",
+    climate = (f"{len(times)} state(s) given directly (no diffusion)"
+               if environment.state_times is not None else
+               f"{len(environment.change_times) - 1} segment(s), {format_duration(environment.end)}; "
+               f"{len(times)} ageing times")
+    lines = [f"scene {scene.name}: valid", f"  environment: {climate}",
              f"  diffusion: model {_model_text(options['model'])}, accuracy {options['accuracy']:g}"]
     for part, p in plans:
         head = f"  part {part.name:<9} material {part.material_name}"
         if p is None:
             lines.append(f"{head}: does not absorb moisture (thermal strain only)")
+        elif p == STATE_GIVEN:
+            lines.append(f"{head}: moisture given by the environment's state (no diffusion)")
         else:
             lines.append(f"{head}: {type(part.geometry).__name__} → {p.model}, {p.cells} cells, "
                          f"{p.steps} steps, est. error {p.error_estimate:.1e} ({p.reason})")

@@ -13,10 +13,10 @@ import math
 import os
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any, Literal, Union
+from typing import Annotated, Any, Literal, Union
 
 import yaml
-from pydantic import Field, ValidationError, field_validator, model_validator
+from pydantic import BeforeValidator, Field, ValidationError, field_validator, model_validator
 
 from .cam.spec import CamSection
 from .diffusion import MODELS
@@ -34,6 +34,7 @@ from .units import (
     PositiveAngle,
     StrictModel,
     Temperature,
+    TemperatureRise,
 )
 
 # --------------------------------------------------------------------------
@@ -172,6 +173,33 @@ class HistorySegment(StrictModel):
     ramp: bool = False
 
 
+class StateSpec(StrictModel):
+    """A state given directly (SPEC.md section 5): uniform moisture and temperature in every
+    part, no diffusion. Moisture is ``moisture`` (the same weight % in every absorbing
+    part) or ``relative_humidity`` (each part at its material's equilibrium moisture
+    Mm(RH), as seed 001 takes 'maximum moisture absorption'); temperature is
+    ``temperature`` or ``temperature_rise`` above the reference temperature."""
+
+    time: NonNegativeTime = 0.0
+    moisture: NonNegativePercent | None = None
+    relative_humidity: RelativeHumidity | None = None
+    temperature: Temperature | None = None
+    temperature_rise: TemperatureRise | None = None
+
+    @model_validator(mode="after")
+    def _one_of_each(self):
+        if (self.moisture is None) == (self.relative_humidity is None):
+            raise ValueError("a state needs exactly one of moisture, relative_humidity")
+        if (self.temperature is None) == (self.temperature_rise is None):
+            raise ValueError("a state needs exactly one of temperature, temperature_rise")
+        return self
+
+
+def _as_list(value):
+    """One mapping is a list of one (``state: {...}`` or ``state: [{...}, ...]``)."""
+    return [value] if isinstance(value, dict) else value
+
+
 StandardTest = Literal["steady_damp_heat", "damp_heat_85_85", "cyclic_damp_heat"]
 
 
@@ -184,13 +212,21 @@ class EnvironmentSection(StrictModel):
     cycles: int | None = Field(None, gt=0)   # cyclic_damp_heat: number of 24 h cycles
     duration: Duration | None = None         # steady tests: how long
     upper_temperature: Temperature | None = None  # cyclic_damp_heat: 40 or 55 degC
+    # states given directly, no diffusion: one mapping or a list of them
+    state: Annotated[list[StateSpec] | None, BeforeValidator(_as_list)] = None
 
     @model_validator(mode="after")
     def _one_history(self):
-        given = [name for name in ("history", "history_file", "test") if getattr(self, name) is not None]
+        given = [name for name in ("history", "history_file", "test", "state")
+                 if getattr(self, name) is not None]
         if len(given) != 1:
-            raise ValueError("give exactly one of history (segments), history_file (a record) "
-                             "or test (a standard damp-heat test)")
+            raise ValueError("give exactly one of history (segments), history_file (a record), "
+                             "test (a standard damp-heat test) or state (given directly)")
+        states = self.states()
+        if self.state is not None and not states:
+            raise ValueError("state needs at least one entry")
+        if any(b.time <= a.time for a, b in zip(states, states[1:])):
+            raise ValueError("the states' times must increase strictly")
         if self.history is not None:
             if not self.history:
                 raise ValueError("history needs at least one segment")
@@ -202,6 +238,11 @@ class EnvironmentSection(StrictModel):
             if extra:
                 raise ValueError(f"{', '.join(extra)} belong(s) to a standard test (environment.test)")
         return self
+
+
+    def states(self) -> list[StateSpec]:
+        """The given states as a list (empty without ``state``)."""
+        return list(self.state or [])
 
 
 def last_ageing_time(outputs) -> float | None:
@@ -373,7 +414,7 @@ def _cross_checks(model: SceneModel, doc: YamlDocument, base_dir: Path) -> tuple
         environment = Environment.from_section(model.environment, base_dir=base_dir,
                                                 until=last_ageing_time(model.outputs))
     except ValueError as exc:
-        key = next(name for name in ("test", "history_file", "history")
+        key = next(name for name in ("test", "history_file", "history", "state")
                    if getattr(model.environment, name) is not None)
         problems.append(doc.problem(("environment", key), str(exc)))
         return problems, resolved
@@ -384,7 +425,8 @@ def _cross_checks(model: SceneModel, doc: YamlDocument, base_dir: Path) -> tuple
         if tg is not None and hottest >= tg:
             path = (("environment", "history", hottest_index, "temperature")
                     if model.environment.history is not None else
-                    ("environment", "test" if model.environment.test else "history_file"))
+                    ("environment", "test" if model.environment.test else
+                     "state" if model.environment.state is not None else "history_file"))
             problems.append(doc.problem(
                 path, f"{hottest - 273.15:.1f} degC is at or above the dry Tg of material "
                       f"{name!r} ({tg - 273.15:.1f} degC)"))
@@ -395,6 +437,11 @@ def _cross_checks(model: SceneModel, doc: YamlDocument, base_dir: Path) -> tuple
                 problems.append(doc.problem(("diffusion", "model", name),
                                             f"no part named {name!r} (parts: {', '.join(names)})"))
     times = model.outputs.ageing_times
+    if model.environment.state is not None and times is not None:
+        problems.append(doc.problem(("outputs", "ageing_times"),
+                                    "a state environment is computed at its states' times "
+                                    "(environment.state[].time); leave ageing_times out"))
+        return problems, resolved
     record = model.environment.history_file is not None  # a record holds its last state
     if isinstance(times, list) and times[-1] > environment.end * (1 + 1e-12) and not record:
         problems.append(doc.problem(

@@ -32,6 +32,8 @@ def scene_environment(scene: Scene) -> Environment:
 
 def ageing_times(scene: Scene, environment: Environment) -> np.ndarray:
     """Ageing times in s: the scene's list, a regular ``every`` grid, or 11 points."""
+    if environment.state_times is not None:
+        return environment.state_times.copy()
     requested = scene.model.outputs.ageing_times
     end = environment.end
     if isinstance(requested, list):
@@ -62,9 +64,14 @@ def _for_part(name: str, call, *args, **kwargs):
         raise InputError(f"part {name}: {exc}") from None
 
 
+#: the plan of a part whose moisture the environment's state gives (no diffusion)
+STATE_GIVEN = "state"
+
+
 def plan_parts(scene: Scene, accuracy: float | None = None):
     """What `fickcam check` shows: (environment, ageing times, diffusion options, [(part,
-    diffusion Plan or None for a part that does not absorb)]), planned as :func:`run` does."""
+    diffusion Plan, None for a part that does not absorb, or STATE_GIVEN where the
+    environment gives the moisture directly)]), planned as :func:`run` does."""
     from .diffusion import plan
 
     environment = scene_environment(scene)
@@ -74,6 +81,9 @@ def plan_parts(scene: Scene, accuracy: float | None = None):
     for part in build_parts(scene):
         if part.geometry is None:
             plans.append((part, None))
+            continue
+        if environment.state_times is not None:
+            plans.append((part, STATE_GIVEN))
             continue
         exposure = environment.exposure(part.material.saturation_moisture)
         diffusivity = part.material.diffusivity_for(part.geometry)
@@ -192,6 +202,10 @@ def age_part(part: Part, environment: Environment, times, options: dict, scene: 
     if part.geometry is None:
         result = None
         mean = surface = saturation = np.zeros_like(times)
+    elif environment.state_times is not None:  # a state given directly: no diffusion
+        result = None
+        mean = surface = saturation = environment.uniform_moisture(
+            part.material.saturation_moisture, times)
     else:
         exposure = environment.exposure(part.material.saturation_moisture)
         result = _for_part(part.name, solve, part.geometry,

@@ -167,6 +167,16 @@ def quantity(dimension: str, *, positive: bool = False, nonnegative: bool = Fals
     return Annotated[float, BeforeValidator(convert), AfterValidator(check)]
 
 
+def temperature_difference(value: Any) -> float:
+    """A temperature difference in K: ``"95 K"``, ``"95 degC"`` or ``"171 degF"`` are read as
+    differences (a rise of 95 degC is 95 K, not 368.15 K); a bare number is K."""
+    if isinstance(value, str):
+        value = re.sub(r"(?<![A-Za-z_])(deg_?C|degC|°C|celsius|deg_?F|degF|°F|fahrenheit)\b",
+                       lambda m: "delta_degF" if "F" in m.group(1) or "fahr" in m.group(1)
+                       else "delta_degC", value)
+    return to_si(value, "temperature")
+
+
 def parse_duration(text: Any) -> float:
     """A duration such as ``"6 months"``, ``"30d"`` or ``3600`` (s) in seconds."""
     if isinstance(text, str):
@@ -182,6 +192,7 @@ Mass = quantity("mass", positive=True)
 Duration = quantity("time", positive=True)
 NonNegativeTime = quantity("time", nonnegative=True)
 Temperature = quantity("temperature", positive=True, bare=implausible_bare_temperature)
+TemperatureRise = Annotated[float, BeforeValidator(temperature_difference)]
 Angle = quantity("angle")
 PositiveAngle = quantity("angle", positive=True)
 AngularSpeed = quantity("angular_speed", positive=True)

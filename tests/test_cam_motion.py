@@ -11,6 +11,7 @@ from pydantic import ValidationError
 from fickcam.cam.motion import (LAW_FUNCTIONS, follower_motion, joint_notices, segments_from_spec,
                                 time_derivatives)
 from fickcam.cam.spec import LAWS, CamSection, Segment
+from tolerance import roundoff
 
 LAW_NAMES = sorted(LAW_FUNCTIONS)
 
@@ -27,7 +28,7 @@ def test_every_scene_law_has_a_function():
 @pytest.mark.parametrize("law", LAW_NAMES)
 def test_law_starts_at_zero_ends_at_one(law):
     s = LAW_FUNCTIONS[law](np.array([0.0, 1.0]))[0]
-    assert s == pytest.approx([0.0, 1.0], abs=1e-12)
+    assert s == pytest.approx([0.0, 1.0], abs=roundoff(1.0))
 
 
 @pytest.mark.parametrize("law", LAW_NAMES)

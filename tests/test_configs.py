@@ -36,7 +36,7 @@ def test_yadav2017_steel_cam_grows_by_alpha_dt_only(results):
     assert np.all(ds.moisture_content.values == 0)
     assert np.allclose(ds.lift.values, 25.4e-3 * (1 + strain), rtol=1e-9)
     assert np.allclose(ds.base_circle_radius.values, 40e-3 * (1 + strain), rtol=1e-9)
-    assert ds.jump_speed.values[0] == pytest.approx(1091.2464, rel=1e-6)
+    assert ds.jump_speed.values[0] == pytest.approx(1091.1478, rel=1e-6)  # continuous minimum
     assert ds.peak_cam_torque.values[0] == pytest.approx(15.066397, rel=1e-6)
     assert ds.peak_contact_stress.values[0] == pytest.approx(212.26077e6, rel=1e-6)
 
@@ -51,6 +51,19 @@ def test_eccentric_nylon_cam_stroke_is_twice_the_swollen_eccentricity(results):
     assert np.all(moisture < ds.equilibrium_moisture_content.sel(part="cam").values)
     assert ds.jump_speed.values[0] == pytest.approx(587.5824, rel=1e-6)
     assert np.all(np.diff(ds.jump_speed.values) > 0)  # heavier but larger: here it gains
+
+
+def test_eccentric_nylon_cam_softens_so_its_contact_stress_drops(results):
+    """Water plasticises the nylon cam (PA66 data sheet: conditioned modulus 0.367 of dry):
+    its surface modulus falls and the Hertz stress, p0 ~ sqrt(E*), drops with it although
+    the contact force grows."""
+    ds = results("eccentric_cam")
+    surface = ds.surface_modulus.sel(part="cam").values
+    assert surface[0] == pytest.approx(2.8e9, rel=1e-12)
+    assert surface[-1] == pytest.approx(2.8e9 * 1100 / 3000, rel=1e-3)
+    stress = ds.peak_contact_stress.values
+    assert stress[-1] < 0.7 * stress[0]
+    assert ds.peak_contact_force.values[-1] > ds.peak_contact_force.values[0]
 
 
 def test_singh2017_cam_dry_kinematics_and_follower_uptake(results):

@@ -115,13 +115,6 @@ def test_metal_has_thermal_strain_only_and_no_tg():
     assert not steel.absorbs and steel.diffusivity_for(None).pre_exponential == (0.0, 0.0, 0.0)
 
 
-def test_thermoplastic_without_tg_keeps_full_properties():
-    nylon = resolve("n", MaterialSpec(plastic="nylon"))
-    state = material_state(nylon, np.array([T0, 80 + C]), np.array([0.0, 3.0]), 3.0, T0, 0.0)
-    assert np.allclose(state["property_retention"], 1.0)
-    assert nylon.saturation_moisture(T0, 50.0) == pytest.approx(2.5, rel=1e-2)
-
-
 def test_composite_strain_is_longitudinal_along_x_and_transverse_across():
     cfrp = resolve("c", MaterialSpec(fiber="T300", matrix="8551-7", fiber_volume_fraction=0.6))
     state = material_state(cfrp, np.array([113 + C]), np.array([0.5]), np.array([0.5]), T0, 0.0)
@@ -170,3 +163,41 @@ def test_retention_in_unit_interval_and_decreasing_in_moisture_and_temperature(m
 def test_mass_monotone_in_moisture(m1, m2, dry):
     low, high = sorted((m1, m2))
     assert wet_mass(dry, low) <= wet_mass(dry, high)
+
+
+# BASF Ultramid A3K (unreinforced PA66) data sheet, ISO 527 tensile modulus:
+# 3000 MPa dry-as-moulded, 1100 MPa conditioned (equilibrium at 23 degC / 50 % RH)
+PA66_DRY, PA66_CONDITIONED = 3000e6, 1100e6
+
+
+def test_nylon_modulus_falls_to_the_conditioned_data_sheet_value():
+    """Water plasticises PA66: at the library's 50 % RH equilibrium moisture the modulus is
+    the data sheet's conditioned fraction of the dry one (well below half), and every
+    property the retention touches follows (E, G; thermal properties by P0/P)."""
+    nylon = resolve("nylon", MaterialSpec(plastic="nylon"))
+    assert float(nylon.saturation_moisture(T0, 50.0)) == pytest.approx(2.5, rel=1e-2)
+    conditioned = 2.5  # weight %, PA66 at equilibrium with 23 degC / 50 % RH
+    moisture = np.array([0.0, conditioned / 2, conditioned, 6.0])
+    state = material_state(nylon, np.full(4, T0), moisture, moisture, T0, 0.0)
+    retention = state["property_retention"]
+    assert retention[0] == 1.0
+    assert retention[2] == pytest.approx(PA66_CONDITIONED / PA66_DRY, rel=1e-3)
+    assert retention[2] < 0.5 and retention[1] == pytest.approx((1 + retention[2]) / 2, rel=1e-12)
+    assert retention[3] == retention[2]  # no data beyond the conditioned state: held
+    dry_modulus = nylon.matrix["youngs_modulus"]
+    np.testing.assert_allclose(state["longitudinal_modulus"], dry_modulus * retention, rtol=1e-12)
+    np.testing.assert_allclose(state["surface_modulus"], dry_modulus * retention, rtol=1e-12)
+    np.testing.assert_allclose(state["shear_modulus"] / state["longitudinal_modulus"],
+                               1 / (2 * (1 + nylon.matrix["poisson_ratio"])), rtol=1e-12)
+    alpha = state["thermal_expansion_longitudinal"]
+    assert alpha[2] > alpha[0]  # Chamis: thermal properties scale by P0/P
+    assert np.isnan(state["glass_transition_temperature"]).all()
+    assert state["within_wet_tg"].all()  # a thermoplastic is not stopped at a wet Tg
+
+
+def test_acetal_keeps_its_modulus_when_wet():
+    """POM data sheets give one modulus dry and conditioned: its table is flat."""
+    acetal = resolve("acetal", MaterialSpec(plastic="acetal"))
+    moisture = np.array([0.0, 0.2, 0.8])
+    state = material_state(acetal, np.full(3, T0), moisture, moisture, T0, 0.0)
+    np.testing.assert_array_equal(state["property_retention"], 1.0)

@@ -165,6 +165,18 @@ CASES = [
      "environment.history.0.relative_humidity", "did you mean '90 %'?"),
     ("bare-unit-humidity", CAM_SCENE, "relative_humidity: 80 %", "relative_humidity: 1",
      "environment.history.0.relative_humidity", "did you mean '100 %'?"),
+    ("state-with-moisture-and-humidity", LINKAGE_SCENE, "  history:\n    - {duration: 30 d, temperature: 118 degC, relative_humidity: 100 %}\n",
+     "  state: {moisture: 7 %, relative_humidity: 100 %, temperature_rise: 95 K}\n",
+     "environment.state.0", "exactly one of moisture, relative_humidity"),
+    ("state-without-temperature", LINKAGE_SCENE, "  history:\n    - {duration: 30 d, temperature: 118 degC, relative_humidity: 100 %}\n",
+     "  state: {moisture: 7 %}\n", "environment.state.0", "exactly one of temperature"),
+    ("state-and-history", LINKAGE_SCENE, "  history:\n",
+     "  state: {moisture: 7 %, temperature_rise: 95 K}\n  history:\n", "environment", "exactly one of"),
+    ("state-times-decrease", LINKAGE_SCENE, "  history:\n    - {duration: 30 d, temperature: 118 degC, relative_humidity: 100 %}\n",
+     "  state:\n    - {time: 1 d, moisture: 0 %, temperature_rise: 0 K}\n"
+     "    - {time: 0 d, moisture: 7 %, temperature_rise: 95 K}\n", "environment", "increase"),
+    ("state-with-ageing-times", LINKAGE_SCENE, "  history:\n    - {duration: 30 d, temperature: 118 degC, relative_humidity: 100 %}\n",
+     "  state: {moisture: 7 %, temperature_rise: 95 K}\n", "outputs.ageing_times", "state"),
     ("unknown-number-name", LINKAGE_SCENE, "resin: {matrix: R914}", "resin: {matrix: 3503}",
      "materials.resin", "unknown matrix '3503'"),
 ]

@@ -105,35 +105,50 @@ def lobatto(n: int) -> np.ndarray:
     return -np.cos(np.pi * np.arange(n + 1) / n)
 
 
-def geometric_motion(design, pieces, strain_x, strain_y, roller_radius, theta, nodes: int = 40):
-    """Follower height Y and dY/dtheta, d2Y, d3Y at cam angles ``theta`` for the aged
-    geometry, and (lowest, highest) Y over the turn. ``pieces`` are (segment, psi_start, psi_end)."""
-    theta = np.mod(np.asarray(theta, float), TWO_PI)
-    out = [np.full(theta.shape, np.nan) for _ in range(4)]
+def fit_geometric_motion(design, pieces, strain_x, strain_y, roller_radius, nodes: int = 40):
+    """The aged follower height as Chebyshev series, one per design piece: a tuple of
+    (series, theta_start, theta_end), the angle origin, and (lowest, highest) Y over the
+    turn. ``pieces`` are (segment, psi_start, psi_end)."""
     lowest, highest = np.inf, -np.inf
     spans = []
     for segment, a, b in pieces:
         contact = (lambda s, seg=segment: aged_contact(design, seg, s, strain_x, strain_y,
                                                        roller_radius))
         ta, tb = contact(np.array([a, b]))[0]
-        spans.append((segment, contact, ta, tb))
-    origin = spans[0][2]
-    for segment, contact, ta, tb in spans:
+        spans.append((contact, ta, tb))
+    fitted = []
+    for contact, ta, tb in spans:
         t_nodes = ta + (tb - ta) * (lobatto(nodes) + 1) / 2
         psi = _solve_psi(contact, t_nodes, t_nodes)  # swelling shifts theta(psi) only slightly
-        height = contact(psi)[1]
-        series = chebyshev.Chebyshev.fit(t_nodes, height, nodes, domain=[ta, tb])
-        shifted = origin + np.mod(theta - origin, TWO_PI)
-        inside = (shifted >= ta) & (shifted < tb) if tb < origin + TWO_PI - 1e-12 else \
-            (shifted >= ta)
-        for k in range(4):
-            out[k][inside] = series.deriv(k)(shifted[inside]) if k else series(shifted[inside])
+        series = chebyshev.Chebyshev.fit(t_nodes, contact(psi)[1], nodes, domain=[ta, tb])
+        fitted.append((series, ta, tb))
         turning = series.deriv().roots()
         turning = turning.real[(np.abs(turning.imag) < 1e-9) & (turning.real > ta) &
                                (turning.real < tb)]
         extremes = series(np.r_[ta, tb, turning])
         lowest, highest = min(lowest, float(extremes.min())), max(highest, float(extremes.max()))
-    return tuple(out), (lowest, highest)
+    return tuple(fitted), spans[0][1], (lowest, highest)
+
+
+def evaluate_geometric_motion(fitted, origin, theta):
+    """(Y, dY/dtheta, d2Y, d3Y) at cam angles ``theta`` from :func:`fit_geometric_motion`."""
+    theta = np.mod(np.asarray(theta, float), TWO_PI)
+    out = [np.full(theta.shape, np.nan) for _ in range(4)]
+    shifted = origin + np.mod(theta - origin, TWO_PI)
+    for series, ta, tb in fitted:
+        inside = (shifted >= ta) & (shifted < tb) if tb < origin + TWO_PI - 1e-12 else \
+            (shifted >= ta)
+        for k in range(4):
+            out[k][inside] = series.deriv(k)(shifted[inside]) if k else series(shifted[inside])
+    return tuple(out)
+
+
+def geometric_motion(design, pieces, strain_x, strain_y, roller_radius, theta, nodes: int = 40):
+    """Follower height Y and dY/dtheta, d2Y, d3Y at cam angles ``theta`` for the aged
+    geometry, and (lowest, highest) Y over the turn. ``pieces`` are (segment, psi_start, psi_end)."""
+    fitted, origin, extremes = fit_geometric_motion(design, pieces, strain_x, strain_y,
+                                                    roller_radius, nodes)
+    return evaluate_geometric_motion(fitted, origin, theta), extremes
 
 
 def pieces_of(design):

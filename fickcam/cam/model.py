@@ -20,7 +20,8 @@ import numpy as np
 
 from ..response import Response
 from . import dynamics as dyn
-from .geometry import geometric_motion, pieces_of, prime_height, rotate, working_outline
+from .geometry import (evaluate_geometric_motion, fit_geometric_motion, pieces_of, prime_height,
+                       rotate, working_outline)
 from .motion import follower_motion, joint_notices, segments_from_spec
 
 log = logging.getLogger(__name__)
@@ -203,19 +204,32 @@ def _support_extremes(support, e_y, a, big_b):
 def follower_heights(design: CamDesign, state: CamState, theta):
     """(Y, dY/dtheta, d2Y/dtheta2, d3Y/dtheta3), (lowest, highest) Y: the follower's pitch point
     (face for a flat follower) above the cam axis at cam angles theta (rad)."""
+    motion, extremes = motion_function(design, state)
+    return motion(theta), extremes
+
+
+def motion_function(design: CamDesign, state: CamState):
+    """(theta -> (Y, dY, d2Y, d3Y), (lowest, highest) Y): the closed form where it exists,
+    else the aged geometry's spectral fit, made once and evaluated at any angle."""
     if _scales_exactly(design, state):
-        return _closed_form(design, state, theta)
+        return (lambda theta: _closed_form(design, state, theta)[0],
+                _closed_form(design, state, np.zeros(1))[1])
     if design.kind == "profile":
         from .profile import profile_motion
 
-        return profile_motion(design.profile, state.cam_strain_x, state.cam_strain_y,
-                              design.roller_radius * (1 + state.roller_strain), design.offset,
-                              design.follower_kind == "flat", theta)
+        aged = (design.profile, state.cam_strain_x, state.cam_strain_y,
+                design.roller_radius * (1 + state.roller_strain), design.offset,
+                design.follower_kind == "flat")
+        return (lambda theta: profile_motion(*aged, theta)[0],
+                profile_motion(*aged, np.zeros(1))[1])
     if design.kind == "eccentric" and design.follower_kind == "flat":
-        return _eccentric_flat(design, state, theta)
-    return geometric_motion(design, pieces_of(design), state.cam_strain_x, state.cam_strain_y,
-                            design.roller_radius * (1 + state.roller_strain), theta,
-                            nodes=96 if design.kind == "eccentric" else 40)
+        return (lambda theta: _eccentric_flat(design, state, theta)[0],
+                _eccentric_flat(design, state, np.zeros(1))[1])
+    fitted, origin, extremes = fit_geometric_motion(
+        design, pieces_of(design), state.cam_strain_x, state.cam_strain_y,
+        design.roller_radius * (1 + state.roller_strain),
+        nodes=96 if design.kind == "eccentric" else 40)
+    return (lambda theta: evaluate_geometric_motion(fitted, origin, theta)), extremes
 
 
 @functools.lru_cache(maxsize=64)
@@ -276,7 +290,8 @@ def cam_response(design: CamDesign, state: CamState, cam_angle) -> Response:
     omega = design.speed
     mass = design.follower_mass if state.follower_mass is None else state.follower_mass
     roller = design.roller_radius * (1 + state.roller_strain)
-    (height, d1, d2, d3), (lowest, highest) = follower_heights(design, state, theta)
+    motion, (lowest, highest) = motion_function(design, state)
+    height, d1, d2, d3 = motion(theta)
     y = height - lowest
     notices: list[str] = joint_notices(design.segments) if design.kind == "motion" else []
 
@@ -301,7 +316,7 @@ def cam_response(design: CamDesign, state: CamState, cam_angle) -> Response:
     sliding = design.follower_kind != "roller"
     friction = design.friction_coefficient * np.maximum(force, 0.0) * sliding
     lever = np.abs(cx * np.sin(phi) - cy * np.cos(phi))
-    jump = dyn.jump_speed(mass, d2, holding)
+    jump = continuous_jump_speed(design, motion, mass, theta, d2, holding)
     notices += _jump_notices(theta, axial, jump, omega)
 
     e_star = dyn.effective_modulus(state.cam_surface_modulus, state.cam_surface_poisson,
@@ -347,6 +362,40 @@ def cam_response(design: CamDesign, state: CamState, cam_angle) -> Response:
         "wear_rate": float(np.max(wear)) * omega / (2 * np.pi),
     }
     return Response(variables, notices)
+
+
+def continuous_jump_speed(design: CamDesign, motion, mass: float, theta, d2, holding) -> float:
+    """The jump speed as the minimum over the continuous cam angle, not the angle grid:
+    omega_jump^2 = min S(theta) / (-m y''(theta)) over y'' < 0 (see dyn.jump_speed). The
+    grid's smallest ratio brackets the minimum between its neighbours, where a bounded
+    Brent search (scipy.optimize.minimize_scalar) on the closed-form or spectral motion
+    finds it; at an acceleration jump (a segment joint) it converges to the one-sided limit.
+    ``motion`` is the aged motion (:func:`motion_function`), ``d2`` and ``holding`` its grid
+    values of d2Y/dtheta2 and of the speed-independent holding force."""
+    on_grid = dyn.jump_speed(mass, d2, holding)
+    if not np.isfinite(on_grid) or on_grid == 0.0 or theta.size < 3:
+        return on_grid
+    from scipy.optimize import minimize_scalar
+
+    spacing = float(np.median(np.diff(np.sort(theta))))
+    pulling = d2 < 0.0
+    ratios = np.full(theta.shape, np.inf)
+    ratios[pulling] = holding[pulling] / (-mass * d2[pulling])
+    centre = float(theta[int(np.argmin(ratios))])
+    low_height = dry_lowest_height(design)
+
+    def ratio(angle):
+        height, _, d2, _ = motion(np.array([angle]))
+        if not d2[0] < 0.0:  # not pulling away here: no bound (large, finite for Brent)
+            return 1e300
+        holding = dyn.axial_force(mass, 0.0, design.spring_rate, height[0] - low_height,
+                                  design.spring_preload, design.external_load, design.gravity)
+        return holding / (-mass * d2[0])
+
+    found = minimize_scalar(ratio, bounds=(centre - spacing, centre + spacing), method="bounded",
+                            options={"xatol": 1e-12})
+    best = min(float(found.fun), on_grid ** 2)
+    return float(np.sqrt(best))
 
 
 def _design_lift(design: CamDesign) -> float:

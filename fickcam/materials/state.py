@@ -33,12 +33,25 @@ _MODULI = {"e11": "longitudinal_modulus", "e22": "transverse_modulus", "g12": "s
 _SURFACE = ("e11", "e22", "g12", "nu12")
 
 
+def moisture_modulus_retention(table, moisture):
+    """E(M)/E_dry of a thermoplastic from its moisture-modulus table (library
+    ``moisture_modulus: {moisture: [...] %, retention: [...]}``, sourced per material):
+    piecewise linear in the moisture content, held beyond the last entry."""
+    return np.interp(moisture, table["moisture"], table["retention"])
+
+
 def wet_tg_and_retention(material, ply_moisture, temperature, reference_temperature):
-    """(matrix moisture %, wet Tg K, retention) at the given ply moisture; for a material
-    without a dry Tg (metals, thermoplastics) Tg is NaN and retention 1."""
+    """(matrix moisture %, wet Tg K, retention) at the given ply moisture. A thermoset takes
+    Chamis' wet Tg and retention; a thermoplastic with a moisture-modulus table takes its
+    retention from the table (water plasticises it, Tg NaN); metals and materials with
+    neither have Tg NaN and retention 1."""
     temperature = np.asarray(temperature, float)
     matrix_m = np.asarray(material.matrix_moisture(ply_moisture), float) + 0.0 * temperature
     tgd = material.dry_glass_transition_temperature
+    table = material.matrix.get("moisture_modulus")
+    if material.kind != "metal" and tgd is None and table:
+        return (matrix_m, np.full_like(matrix_m, np.nan),
+                moisture_modulus_retention(table, matrix_m))
     if tgd is None or material.kind == "metal":
         return matrix_m, np.full_like(matrix_m, np.nan), np.ones_like(matrix_m)
     tgw = wet_glass_transition_temperature(tgd, matrix_m, material.wet_tg_scale)
