@@ -102,23 +102,26 @@ def run(scene, *, accuracy: float | None = None, progress: bool = False):
     scene = load_scene(scene)
     environment = scene_environment(scene)
     times = ageing_times(scene, environment)
-    ds = _age(scene, environment, times, accuracy, progress)
+    parts = build_parts(scene)
+    ds = _age(scene, environment, times, accuracy, progress, parts=parts)
     if scene.limits:
-        ds = ds.merge(_limits(ds, scene, environment, times, accuracy), compat="override")
+        ds = ds.merge(_limits(ds, scene, environment, times, accuracy, parts), compat="override")
         ds.attrs["limits"] = {limit.variable: limit.as_attrs() for limit in scene.limits}
     ds.attrs["wall_time"] = _time.perf_counter() - started
     return ds
 
 
 def _age(scene: Scene, environment: Environment, times: np.ndarray, accuracy: float | None,
-         progress: bool, quiet: bool = False):
-    """The Dataset of ``scene`` at ageing ``times`` (s); ``quiet``: do not log the notices."""
+         progress: bool, quiet: bool = False, parts: list[Part] | None = None):
+    """The Dataset of ``scene`` at ageing ``times`` (s); ``quiet``: do not log the notices;
+    ``parts``: the scene's parts when already built (their outline expansions are cached
+    per part object, so re-runs of the same scene pass them to reuse them)."""
     from tqdm.auto import tqdm
 
     from .dataset import build_dataset
 
     options = diffusion_options(scene, accuracy)
-    parts = build_parts(scene)
+    parts = build_parts(scene) if parts is None else parts
     notices: list[str] = list(environment.notes)
     bar = tqdm(total=len(parts) + len(times), disable=not progress, desc=scene.name,
                unit="step", leave=False)
@@ -166,7 +169,8 @@ def _age(scene: Scene, environment: Environment, times: np.ndarray, accuracy: fl
     return build_dataset(values, coords, attrs)
 
 
-def _limits(ds, scene: Scene, environment: Environment, times, accuracy: float | None):
+def _limits(ds, scene: Scene, environment: Environment, times, accuracy: float | None,
+            parts: list[Part]):
     """limit_ratio (time, limit) and time_out_of_spec (limit) of the scene's limits, each
     crossing located by re-running the model inside its bracketing interval."""
     from .dataset import build_dataset
@@ -182,7 +186,8 @@ def _limits(ds, scene: Scene, environment: Environment, times, accuracy: float |
         return np.stack([limit_ratio(data, limit) for limit in scene.limits], axis=1)
 
     def evaluate(at) -> np.ndarray:
-        return ratios(_age(scene, environment, np.asarray(at), accuracy, False, quiet=True))
+        return ratios(_age(scene, environment, np.asarray(at), accuracy, False, quiet=True,
+                           parts=parts))
 
     stored = ratios(ds)
     search_times, search = times, stored

@@ -43,6 +43,25 @@ def temporary_beside(path: Path) -> str:
     return tmp
 
 
+def _write_netcdf(ds, filename: str) -> None:
+    """What ``ds.to_netcdf(filename, engine="h5netcdf")`` writes for in-memory data, through
+    xarray's own store on an open h5netcdf.File: ``to_netcdf`` and ``H5NetCDFStore.open``
+    first ask dask for its scheduler, which imports dask.distributed (about 0.5 s) even
+    when no variable is a dask array. Dask-backed data (a sweep's lazily combined cases) goes
+    through ``to_netcdf``, which computes and writes it."""
+    if any(variable.chunks is not None for variable in ds.variables.values()):
+        ds.to_netcdf(filename, engine="h5netcdf")
+        return
+    import h5netcdf
+    from xarray.backends import H5NetCDFStore
+
+    store = H5NetCDFStore(h5netcdf.File(filename, "w"), mode="w")  # .open() asks dask too
+    try:
+        ds.dump_to_store(store)
+    finally:
+        store.close()
+
+
 def save(dataset, path) -> Path:
     """Write ``dataset`` to ``path`` atomically and return the path."""
     path = Path(path)
@@ -56,7 +75,7 @@ def save(dataset, path) -> Path:
             ds[name].encoding.update({"units": "seconds", "dtype": "float64"})
     tmp = temporary_beside(path)
     try:
-        ds.to_netcdf(tmp, engine="h5netcdf")
+        _write_netcdf(ds, tmp)
         with open(tmp, "rb+") as handle:
             os.fsync(handle.fileno())
         os.replace(tmp, path)

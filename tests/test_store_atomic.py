@@ -25,16 +25,44 @@ def test_failure_while_writing_keeps_the_old_file_and_leaves_no_temporary(tmp_pa
     path = tmp_path / "r.h5"
     save(_dataset(300.0), path)
 
-    def broken(self, *args, **kwargs):
-        Path(args[0]).write_bytes(b"half a file")
+    def broken(self, store, **kwargs):  # the temporary file is open and half written
         raise OSError("disk full")
 
-    monkeypatch.setattr(xr.Dataset, "to_netcdf", broken)
+    monkeypatch.setattr(xr.Dataset, "dump_to_store", broken)
     with pytest.raises(OSError):
         save(_dataset(400.0), path)
     monkeypatch.undo()
     assert float(open_result(path).temperature[0]) == 300.0
     assert sorted(p.name for p in tmp_path.iterdir()) == ["r.h5"]
+
+
+def test_saved_file_reads_back_identical_to_what_to_netcdf_writes(tmp_path):
+    ds = build_dataset({"temperature": np.array([300.0, 310.0, 320.0])},
+                       {"time": [0.0, 3600.0, 86400.0]}, {"notices": ["a", "b"], "flag": True})
+    save(ds, tmp_path / "ours.h5")
+    reference = ds.copy()
+    reference.attrs = {"notices": '["a", "b"]', "flag": 1}
+    reference.time.encoding.update({"units": "seconds", "dtype": "float64"})
+    reference.to_netcdf(tmp_path / "xarray.h5", engine="h5netcdf")
+    ours, theirs = open_result(tmp_path / "ours.h5"), open_result(tmp_path / "xarray.h5")
+    xr.testing.assert_identical(ours, theirs)
+
+
+def test_dask_backed_data_is_written_not_skipped(tmp_path):
+    pytest.importorskip("dask.array")
+    ds = build_dataset({"temperature": np.array([300.0, 310.0, 320.0])}, {"time": [0.0, 1.0, 2.0]})
+    save(ds.chunk({"time": 2}), tmp_path / "lazy.h5")
+    np.testing.assert_array_equal(open_result(tmp_path / "lazy.h5").temperature, ds.temperature)
+
+
+def test_saving_a_result_does_not_import_dask_distributed(tmp_path):
+    code = ("import sys, numpy as np\n"
+            "from fickcam.dataset import build_dataset\n"
+            "from fickcam.store import save\n"
+            "save(build_dataset({'temperature': np.ones(2)}, {'time': [0.0, 1.0]}, {}), sys.argv[1])\n"
+            "assert 'distributed' not in sys.modules, 'save imported dask.distributed'\n")
+    subprocess.run([sys.executable, "-c", code, str(tmp_path / "r.h5")], check=True,
+                   env={**os.environ, "PYTHONPATH": str(Path(__file__).resolve().parents[1])})
 
 
 def test_kill_9_at_random_moments_never_leaves_an_unreadable_result(tmp_path):

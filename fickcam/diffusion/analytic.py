@@ -7,6 +7,7 @@ import numpy as np
 from .duhamel import duhamel
 from .exact import saturation_tau, step_field, step_response
 from .geometry import Bar, Disc, Sheet
+from .modal import modal_history
 from .results import DiffusionResult, Plan
 
 
@@ -38,12 +39,19 @@ def exact_history_field(geometry, diffusivity, exposure, times, points):
 
 
 def solve_analytic(geometry, diffusivity, exposure, times, depth, store_fields,
-                   chosen: Plan) -> DiffusionResult:
-    """The exact mean and contact-layer history (and fields on request)."""
-    history = exact_history(geometry, diffusivity, exposure, times, surface_layer_depth=depth)
+                   chosen: Plan, modal_accuracy: float | None = None) -> DiffusionResult:
+    """The exact mean and contact-layer history (and fields on request); with
+    ``modal_accuracy`` the modes are marched through the record (``modal``) and the
+    result carries that march's error bound."""
+    estimate = chosen.error_estimate
+    if modal_accuracy is None:
+        history = exact_history(geometry, diffusivity, exposure, times, surface_layer_depth=depth)
+    else:
+        history, estimate = modal_history(geometry, diffusivity, exposure, times, modal_accuracy,
+                                          surface_layer_depth=depth)
     mean, surface = history["mean"], history["surface"]
     result = DiffusionResult(times, np.asarray(mean, float), np.asarray(surface, float),
-                             "analytic", 0, 0, chosen.error_estimate, chosen.reason)
+                             "analytic", 0, 0, estimate, chosen.reason)
     if store_fields:
         fields, coordinates = _analytic_fields(geometry, diffusivity, exposure, times, depth)
         result.fields, result.cell_coordinates = fields, coordinates

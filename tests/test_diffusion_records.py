@@ -1,0 +1,119 @@
+"""Long climate records on the exact paths: every mode marched through the record
+(diffusion/modal.py) against Duhamel superposition of the closed-form step responses, and
+a solid disc under three weeks of Greensboro's TMY3 year against an independent modal
+solution (each mode advanced exactly; tau from a fine trapezoid rule)."""
+import numpy as np
+import pytest
+from scipy.integrate import cumulative_trapezoid
+from scipy.special import jn_zeros
+
+from fickcam.diffusion import Bar, Diffusivity, Disc, Exposure, Sheet, plan, solve
+from fickcam.diffusion.analytic import exact_history
+from fickcam.diffusion.modal import modal_history
+
+DAY = 86400.0
+ARRHENIUS = Diffusivity((2e-5, 2e-5, 1e-5), 40e3)
+
+
+def mixed_history():
+    """Held steps and ramps, with the temperature ramping 300 -> 330 K in a day."""
+    edges = np.array([0, 2, 3, 5, 6, 9, 10, 14]) * DAY
+    temperatures = [300, 330, 330, 310, 320, 300, 340.0]
+    moisture = [1.0, 2.0, 0.5, 0.5, 1.5, 0.2, 1.8]
+    ramp = np.array([0, 1, 0, 1, 0, 1, 1], bool)
+    return Exposure.piecewise(edges, temperatures, moisture, 0.1, ramp), edges
+
+
+@pytest.mark.parametrize("geometry", [Sheet(2e-3), Disc(0.02, 0.005), Bar(0.01, 0.008, 0.003)],
+                         ids=["sheet", "disc", "bar"])
+def test_modal_march_matches_duhamel_on_steps_and_ramps_within_its_estimate(geometry):
+    history, edges = mixed_history()
+    times = np.sort(np.concatenate([np.linspace(0, 14 * DAY, 29), edges[1:-1] + 60.0]))
+    swing = 1.7  # largest |Ms - M0|
+    reference = exact_history(geometry, ARRHENIUS, history, times)
+    result, estimate = modal_history(geometry, ARRHENIUS, history, times, 3e-4)
+    assert estimate <= 3e-4
+    for key in ("mean", "surface"):
+        assert np.max(np.abs(result[key] - reference[key])) <= estimate * swing
+
+
+def test_steps_stay_exact_just_after_they_happen():
+    """The dropped fast modes' transient of a step comes from the closed form: a minute
+    after each step the mean and the layer still match Duhamel."""
+    history, edges = mixed_history()
+    times = np.concatenate([[0.0], edges[[2, 4]] + 1.0, edges[[2, 4]] + 60.0])
+    reference = exact_history(Sheet(2e-3), ARRHENIUS, history, times)
+    result, estimate = modal_history(Sheet(2e-3), ARRHENIUS, history, times, 1e-5)
+    assert np.max(np.abs(result["surface"] - reference["surface"])) <= estimate * 1.7
+
+
+def greensboro_weeks(weeks, initial_moisture=0.0):
+    pytest.importorskip("pvlib")
+    from fickcam.environment import Environment
+    from fickcam.records import read_record, resolve_record_path
+
+    record = read_record(resolve_record_path("pvlib:723170TYA.CSV", None))
+    rows = 24 * 7 * weeks + 1
+    return Environment.from_samples(record.time[:rows], record.temperature[:rows],
+                                    record.relative_humidity[:rows], 296.15, initial_moisture)
+
+
+def nylon_moisture(temperature, humidity):
+    return 8.5 * (humidity / 100.0) ** 1.6  # weight %, the shape of a sorption isotherm
+
+
+def independent_disc_mean(disc, diffusivity, environment, times):
+    """Crank eqs. 4.18 and 5.23, 200 x 80 product modes, each advanced exactly through Ms
+    taken linear in tau on 4 sub-steps per row; tau by the trapezoid rule on them. The
+    part starts at Ms(0) (no step: the modes left out only lag the slow ramps)."""
+    rows = environment.change_times
+    t = np.unique(np.concatenate([np.linspace(a, b, 5) for a, b in zip(rows[:-1], rows[1:])]
+                                 + [times]))
+    tau = cumulative_trapezoid(diffusivity.arrhenius_factor(environment.temperature(t)), t,
+                               initial=0.0)
+    ms = nylon_moisture(environment.temperature(t), environment.relative_humidity(t))
+    alpha, k = jn_zeros(0, 200), 2 * np.arange(80) + 1.0
+    rates = ((alpha[:, None] / disc.outer_radius) ** 2
+             + (k[None, :] * np.pi / disc.thickness) ** 2).ravel() * diffusivity.pre_exponential[0]
+    amplitudes = (4 / alpha[:, None] ** 2 * 8 / (k[None, :] * np.pi) ** 2).ravel()
+    y, mean = np.full(rates.size, ms[0]), [ms[0]]
+    for i in range(t.size - 1):  # y' = lambda (Ms - y) with Ms linear in tau
+        d = tau[i + 1] - tau[i]
+        slope = (ms[i + 1] - ms[i]) / d
+        y = ms[i + 1] + (y - ms[i]) * np.exp(-rates * d) - slope * -np.expm1(-rates * d) / rates
+        mean.append(amplitudes @ y + (1 - amplitudes.sum()) * ms[i + 1])
+    return np.interp(times, t, np.array(mean))
+
+
+def test_solid_disc_under_a_week_of_a_tmy3_record_matches_an_independent_modal_solution():
+    first = greensboro_weeks(1)
+    start = float(nylon_moisture(first.temperature(0.0), first.relative_humidity(0.0)))
+    environment = greensboro_weeks(1, start)
+    # a disc that follows the weather within days, so that the reference's modes suffice
+    disc, diffusivity = Disc(0.01, 0.004), Diffusivity((4e-2,) * 3, 50e3)
+    exposure = environment.exposure(nylon_moisture)
+    times = np.linspace(0.0, environment.end, 15)
+    chosen = plan(disc, diffusivity, exposure, times, accuracy=1e-4)
+    assert chosen.model == "analytic" and "recursive convolution" in chosen.reason
+    result = solve(disc, diffusivity, exposure, times, accuracy=1e-4)
+    reference = independent_disc_mean(disc, diffusivity, environment, times)
+    assert result.error_estimate <= 1e-4
+    # the reference's own truncation errs by about 2e-5 of the swing (against Duhamel)
+    assert np.max(np.abs(result.mean - reference)) <= 1e-4 * 8.5
+
+
+def test_record_cost_grows_linearly_with_its_rows():
+    """Modes x rows: eight times the rows costs well under 16 times (the mode count is set by
+    the accuracy, not by the length)."""
+    import time
+
+    def cost(weeks):
+        environment = greensboro_weeks(weeks)
+        exposure = environment.exposure(nylon_moisture)
+        start = time.process_time()
+        modal_history(Disc(0.023, 0.01), Diffusivity((3.85e-4,) * 3, 50e3), exposure,
+                      np.linspace(0, environment.end, 12), 1e-3)
+        return time.process_time() - start
+
+    cost(1)  # warm-up
+    assert cost(8) < 16 * cost(1)
