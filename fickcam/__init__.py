@@ -8,7 +8,8 @@ from __future__ import annotations
 
 from ._version import __version__
 
-__all__ = ["load_scene", "run", "save", "open_result", "fit_weight_gain", "__version__"]
+__all__ = ["load_scene", "run", "save", "open_result", "compensate", "fit_weight_gain",
+           "__version__"]
 
 
 def load_scene(source, *, file_name: str | None = None):
@@ -23,6 +24,15 @@ def run(scene, *, accuracy: float | None = None, progress: bool = False):
     from .simulate import run as _run
 
     return _run(scene, accuracy=accuracy, progress=progress)
+
+
+def compensate(scene, *, at=None, over=None, accuracy: float | None = None):
+    """The dry dimensions to make so that the mechanism has its design geometry at ageing
+    time ``at`` ("60 d") or stays closest to it over ``over`` = (T1, T2); returns a
+    ``Compensation`` (``.table()``, ``.write(path)``, ``.iterations``, ``.residual``)."""
+    from .compensation import compensate as _compensate
+
+    return _compensate(scene, at=at, over=over, accuracy=accuracy)
 
 
 def save(dataset, path):

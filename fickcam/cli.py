@@ -119,6 +119,33 @@ def _parser() -> argparse.ArgumentParser:
     examples.add_argument("names", nargs="*", help="example names (print one; with --copy: copy these)")
     examples.add_argument("--copy", metavar="DIR", help="copy the examples into DIR")
 
+    compensate = _command(
+        sub, "compensate", "the dimensions to make so that the mechanism holds its design",
+        "Give the dry dimensions at the reference temperature to make so that the mechanism has "
+        "its design geometry at an ageing time (--at) or stays closest to it over a service "
+        "window (--over, minimax); print them per part with the drift of the key outputs before "
+        "and after, and write a scene that makes them (a cam as profile points, CSV and DXF).",
+        'fickcam compensate configs/singh2017_cam.yaml --at "60 d" -o cam_made.yaml',
+        'fickcam compensate configs/fourbar_r914_humid.yaml --over "30 d" "365 d" --plot band.png')
+    compensate.add_argument("scene")
+    when = compensate.add_mutually_exclusive_group(required=True)
+    when.add_argument("--at", metavar="TIME", help='ageing time with units, e.g. "60 d"')
+    when.add_argument("--over", nargs=2, metavar=("T1", "T2"),
+                      help="a service window: minimise the largest deviation over it")
+    compensate.add_argument("-o", "--output", help="compensated scene (default: "
+                                                   "<scene>_compensated.yaml here)")
+    compensate.add_argument("--accuracy", type=float, help="override diffusion.accuracy")
+    compensate.add_argument("--plot", metavar="PNG", help="also draw the drift of every "
+                            "deviation limit against its band, as designed and compensated")
+
+    profile = _command(sub, "profile", "a cam's dry working profile for manufacture (CSV or DXF)",
+                       "Write the cam's dry working profile at the reference temperature, in mm, "
+                       "as CSV (x [mm], y [mm]) or as a closed DXF polyline, by the output's suffix.",
+                       "fickcam profile configs/singh2017_cam.yaml -o cam.dxf")
+    profile.add_argument("scene")
+    profile.add_argument("-o", "--output", required=True, help="PATH.csv or PATH.dxf")
+    profile.add_argument("--points", type=int, default=3600, help="points round the profile")
+
     fit = _command(sub, "fit", "calibrate a material from ASTM D5229 weight-gain data",
                    "Fit the diffusivity (D0, Ea) and saturation law of a material to weight-gain "
                    "coupon data (ASTM D5229, one row per weighing) and write a scene-ready "
@@ -340,6 +367,37 @@ def _cmd_sweep(args) -> int:
     return 0
 
 
+def _cmd_compensate(args) -> int:
+    from .compensation import compensate, write_scene
+    from .compensation.report import report
+    from .scene import load_scene
+
+    scene = load_scene(args.scene)
+    comp = compensate(scene, at=args.at, over=args.over, accuracy=args.accuracy)
+    output = Path(args.output) if args.output else Path(f"{Path(args.scene).stem}_compensated.yaml")
+    path = write_scene(comp, scene, output)
+    print(report(comp, scene, path, accuracy=args.accuracy, plot=args.plot))
+    print(f"wrote {path}")
+    return 0
+
+
+def _cmd_profile(args) -> int:
+    from .cam.model import design_from_scene, working_profile
+    from .cam.profile import write_profile_csv, write_profile_dxf
+    from .scene import load_scene
+
+    scene = load_scene(args.scene)
+    if scene.model.cam is None:
+        raise InputError(f"{args.scene}: the scene has no cam")
+    writers = {".csv": write_profile_csv, ".dxf": write_profile_dxf}
+    suffix = Path(args.output).suffix.lower()
+    if suffix not in writers or args.points < 16:
+        raise InputError("profile: the output must end in .csv or .dxf and --points be >= 16")
+    x, y = working_profile(design_from_scene(scene.model.cam), n=args.points)
+    print(f"wrote {writers[suffix](args.output, x, y)}")
+    return 0
+
+
 def _cmd_fit(args) -> int:
     from .fit import fit_weight_gain, materials_yaml, parameter_table, plot_fit
 
@@ -359,7 +417,8 @@ def _cmd_fit(args) -> int:
 COMMANDS = {"run": _cmd_run, "check": _cmd_check, "query": _cmd_query, "export": _cmd_export,
             "plot": _cmd_plot, "bench": _cmd_bench, "materials": _cmd_materials,
             "schema": _cmd_schema, "sweep": _cmd_sweep, "fit": _cmd_fit,
-            "examples": _cmd_examples, "size": _cmd_size}
+            "examples": _cmd_examples, "size": _cmd_size, "compensate": _cmd_compensate,
+            "profile": _cmd_profile}
 
 
 def main(argv: list[str] | None = None) -> int:

@@ -53,9 +53,12 @@ def listing() -> str:
 
 
 def _uses(file: Path) -> list[str]:
-    """Files next to ``file`` that it names: a sweep's base scene, a history file."""
+    """Files next to ``file`` that it names: a sweep's base scene, a history file, a cam's
+    profile file (as made and as designed)."""
     data = yaml.safe_load(file.read_text(encoding="utf-8")) or {}
-    used = [data.get("base"), (data.get("environment") or {}).get("history_file")]
+    used = [data.get("base"), (data.get("environment") or {}).get("history_file"),
+            (data.get("cam") or {}).get("profile_file"),
+            ((data.get("design") or {}).get("cam") or {}).get("profile_file")]
     return [u for u in used if isinstance(u, str) and (folder() / u).is_file()]
 
 

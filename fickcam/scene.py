@@ -8,6 +8,7 @@ parse units with pint (:mod:`fickcam.units`).
 """
 from __future__ import annotations
 
+import dataclasses
 import math
 import os
 from dataclasses import dataclass, field
@@ -295,6 +296,31 @@ class OutputsSection(StrictModel):
         return value
 
 
+class DesignSection(StrictModel):
+    """``design:``: the geometry the mechanism must have in service, where the ``cam:`` /
+    ``linkage:`` sections give the dimensions as made (``fickcam compensate`` writes it).
+    Each entry holds only the keys that differ from the made section; the as-designed
+    state (``<name>_design``, drift, limits) is computed from it."""
+
+    cam: dict | None = None
+    linkage: dict | None = None
+
+
+#: keys that together give a cam's shape: a design shape replaces the made one whole
+CAM_SHAPE_KEYS = ("base_circle_radius", "motion", "eccentric", "profile_file")
+
+
+def merged(made: dict, overrides: dict, replace_whole: tuple = ()) -> dict:
+    """``made`` with ``overrides`` applied (mappings merged key by key); when the overrides
+    name any of ``replace_whole``, all of those keys of ``made`` are dropped first."""
+    out = {k: v for k, v in made.items()
+           if not (k in replace_whole and any(key in overrides for key in replace_whole))}
+    for key, value in overrides.items():
+        out[key] = merged(out[key], value) if isinstance(value, dict) and isinstance(
+            out.get(key), dict) else value
+    return out
+
+
 class SceneModel(StrictModel):
     name: str = Field(min_length=1)
     description: str = ""
@@ -304,6 +330,7 @@ class SceneModel(StrictModel):
     linkage: LinkageSection | None = None
     diffusion: DiffusionSection = DiffusionSection()
     outputs: OutputsSection = OutputsSection()
+    design: DesignSection | None = None
     limits: dict[str, LimitSpec] | None = None
 
     @field_validator("name")
@@ -324,11 +351,18 @@ class Scene:
     base_dir: Path
     document: YamlDocument | None = field(default=None, repr=False)
     materials: dict = field(default_factory=dict, repr=False)  # name -> resolved Material
+    design_model: SceneModel | None = field(default=None, repr=False)  # from ``design:``
     limits: list = field(default_factory=list, repr=False)  # fickcam.limits.Limit, scene order
 
     @property
     def name(self) -> str:
         return self.model.name
+
+    def as_designed(self) -> "Scene":
+        """This scene with its mechanisms as designed (``design:``), or itself."""
+        if self.design_model is None:
+            return self
+        return dataclasses.replace(self, model=self.design_model, design_model=None)
 
 
 # --------------------------------------------------------------------------
@@ -419,6 +453,31 @@ def _cross_checks(model: SceneModel, doc: YamlDocument, base_dir: Path) -> tuple
     return problems, resolved
 
 
+def _cam_profile(model: SceneModel, doc: YamlDocument, base_dir: Path) -> tuple[list[Problem], SceneModel]:
+    """Read ``cam.profile_file`` (relative to the scene): problems at its line, and the model
+    with the path made absolute so that the cam can be built from it anywhere."""
+    cam = model.cam
+    if cam is None or cam.profile_file is None:
+        return [], model
+    from .cam.profile import load_profile
+
+    path = (base_dir / cam.profile_file).resolve()
+    where = ("cam", "profile_file")
+    try:
+        smallest = load_profile(path, cam.follower.roller_radius or 0.0).radii()[0]
+    except (OSError, ValueError) as exc:
+        return [doc.problem(where, str(exc))], model
+    problems = []
+    if cam.bore_radius >= smallest:
+        problems.append(doc.problem(("cam", "bore_radius"), f"must be smaller than the profile's "
+                                                            f"smallest radius ({smallest * 1e3:g} mm)"))
+    reach = smallest + (cam.follower.roller_radius or 0.0)
+    if cam.follower.kind != "flat" and abs(cam.follower.offset) >= reach:
+        problems.append(doc.problem(("cam", "follower", "offset"),
+                                    "follower offset must be smaller than the prime circle radius"))
+    return problems, model.model_copy(update={"cam": cam.model_copy(update={"profile_file": str(path)})})
+
+
 def _limits(model: SceneModel, doc: YamlDocument) -> tuple[list, list[Problem]]:
     """The scene's limits (fickcam.limits.Limit) and a Problem per limit that cannot apply."""
     sections = {name for name in ("cam", "linkage") if getattr(model, name) is not None}
@@ -443,12 +502,45 @@ def validate_document(doc: YamlDocument, *, base_dir: Path) -> Scene:
     except ValidationError as exc:
         raise SceneError(problems_from_validation(exc, doc, model=SceneModel)) from None
     problems, resolved = _cross_checks(model, doc, base_dir)
+    profile_problems, model = _cam_profile(model, doc, base_dir)
+    problems += profile_problems
+    design_problems, design_model = _design_model(model, doc, base_dir)
+    problems += design_problems
     limits, limit_problems = _limits(model, doc)
     problems += limit_problems
     if problems:
         raise SceneError(problems)
     return Scene(model=model, file=doc.file, text=doc.text, base_dir=base_dir,
-                 document=doc, materials=resolved, limits=limits)
+                 document=doc, materials=resolved, design_model=design_model, limits=limits)
+
+
+def design_data(data: dict) -> dict:
+    """A scene mapping as designed: its ``design:`` overrides merged into ``cam:`` and
+    ``linkage:`` (a design cam shape replaces the made one), ``design:`` dropped."""
+    design = data.get("design") or {}
+    out = {k: v for k, v in data.items() if k != "design"}
+    for section in ("cam", "linkage"):
+        if isinstance(design.get(section), dict) and isinstance(out.get(section), dict):
+            out[section] = merged(out[section], design[section],
+                                  CAM_SHAPE_KEYS if section == "cam" else ())
+    return out
+
+
+def _design_model(model: SceneModel, doc: YamlDocument, base_dir: Path):
+    """(problems, the SceneModel as designed) from the ``design:`` section, or ([], None)."""
+    if model.design is None:
+        return [], None
+    for section in ("cam", "linkage"):
+        if getattr(model.design, section) is not None and getattr(model, section) is None:
+            return [doc.problem(("design", section), f"the scene has no {section} section")], None
+    data = design_data(doc.data)
+    try:
+        design = SceneModel.model_validate(data)
+    except ValidationError as exc:
+        return [doc.problem(("design",) + tuple(problem.key.split(".")), problem.reason)
+                for problem in problems_from_validation(exc, doc)], None
+    problems, design = _cam_profile(design, doc, base_dir)
+    return problems, design
 
 
 def load_scene(source, *, file_name: str | None = None) -> Scene:

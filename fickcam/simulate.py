@@ -135,7 +135,8 @@ def _age(scene: Scene, environment: Environment, times: np.ndarray, accuracy: fl
         histories.append(age_part(part, environment, times, options, scene, notices,
                                   keep_field=part.name in elastic))
         bar.update()
-    designs = [design_part(part, environment) for part in parts]
+    design_scene = scene.as_designed()  # differs where the scene is made to compensate
+    designs = [design_part(part, environment) for part in build_parts(design_scene)]
 
     values = {"temperature": environment.temperature(times),
               "relative_humidity": environment.relative_humidity(times)}
@@ -149,7 +150,7 @@ def _age(scene: Scene, environment: Environment, times: np.ndarray, accuracy: fl
     values.update(mechanisms.variables)
     coords.update(mechanism_coords(scene))
     notices += mechanisms.notices
-    values.update(design_values(scene, designs))
+    values.update(design_values(design_scene, designs))
     if elastic:
         from .elastic.parts import swelling_variables
 

@@ -18,8 +18,8 @@ SCENES = sorted(p for p in CONFIGS.glob("*.yaml") if not p.name.startswith("swee
 
 def follower_variants():
     """The example scenes, and the demo cam with each follower kind."""
-    for path in SCENES:
-        yield path.stem, yaml.safe_load(path.read_text())
+    for path in SCENES:  # by path: a scene may name files beside it (a cam's profile)
+        yield path.stem, path
     for kind in ("knife", "flat"):
         scene = yaml.safe_load((CONFIGS / "singh2017_cam.yaml").read_text())
         scene["cam"]["follower"].update(kind=kind)
@@ -29,7 +29,8 @@ def follower_variants():
 
 @pytest.mark.parametrize("name, scene", list(follower_variants()), ids=lambda v: v if isinstance(v, str) else "")
 def test_every_name_the_models_return_is_in_the_schema(name, scene):
-    scene = fickcam.load_scene(scene, file_name=f"{name}.yaml") if isinstance(scene, dict) else scene
+    scene = fickcam.load_scene(scene, file_name=f"{name}.yaml") if isinstance(scene, dict) else \
+        fickcam.load_scene(scene)
     environment = scene_environment(scene)
     states = [design_part(part, environment) for part in build_parts(scene)]
     mechanisms = mechanism_values(scene, states, np.zeros(1), np.ones(1, bool))

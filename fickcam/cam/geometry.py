@@ -160,6 +160,9 @@ def pieces_of(design):
 
 def working_outline(design, strain_x: float = 0.0, strain_y: float = 0.0, n: int = 720):
     """Closed working profile (x, y) in m, counter-clockwise, last point != first."""
+    if design.kind == "profile":
+        x, y = design.profile.outline(n)
+        return (1 + strain_x) * x, (1 + strain_y) * y
     psi = np.linspace(0.0, TWO_PI, n, endpoint=False)
     x = np.empty(n)
     y = np.empty(n)

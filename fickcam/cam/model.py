@@ -36,7 +36,7 @@ CURVATURE_RATIO_LIMIT = 2.0
 class CamDesign:
     """The dry cam and follower (SI, angles in rad, speed in rad/s)."""
 
-    kind: str                      # motion | eccentric
+    kind: str                      # motion | eccentric | profile
     base_circle_radius: float
     thickness: float
     speed: float
@@ -59,6 +59,7 @@ class CamDesign:
     hardness: float | None = None
     follower_modulus: float = 210e9
     follower_poisson: float = 0.3
+    profile: object = None         # fickcam.cam.profile.CamProfile (kind "profile")
     train: tuple | None = None     # None: rigid; ("stiffness", k) | ("rod", L, d) | ("lever", L, w, h)
     damping_ratio: float = 0.05
     polydyne_speed: float | None = None  # design speed of a polydyne cam (fickcam.cam.polydyne)
@@ -118,6 +119,11 @@ def design_from_scene(section) -> CamDesign:
                   train=_train(f.stiffness), damping_ratio=f.damping_ratio,
                   polydyne_speed=None if section.polydyne is None else
                   (section.polydyne.speed or section.speed))
+    if section.profile_file is not None:
+        from .profile import load_profile
+
+        profile = load_profile(section.profile_file, f.roller_radius or 0.0)
+        return CamDesign("profile", profile.radii()[0], profile=profile, **common)
     if section.eccentric is not None:
         e, r = section.eccentric.eccentricity, section.eccentric.radius
         return CamDesign("eccentric", r - e, eccentricity=e, disc_radius=r, **common)
@@ -208,6 +214,14 @@ def motion_function(design: CamDesign, state: CamState):
     if _scales_exactly(design, state):
         return (lambda theta: _closed_form(design, state, theta)[0],
                 _closed_form(design, state, np.zeros(1))[1])
+    if design.kind == "profile":
+        from .profile import profile_motion
+
+        aged = (design.profile, state.cam_strain_x, state.cam_strain_y,
+                design.roller_radius * (1 + state.roller_strain), design.offset,
+                design.follower_kind == "flat")
+        return (lambda theta: profile_motion(*aged, theta)[0],
+                profile_motion(*aged, np.zeros(1))[1])
     if design.kind == "eccentric" and design.follower_kind == "flat":
         return (lambda theta: _eccentric_flat(design, state, theta)[0],
                 _eccentric_flat(design, state, np.zeros(1))[1])
@@ -321,8 +335,10 @@ def cam_response(design: CamDesign, state: CamState, cam_angle) -> Response:
             if design.hardness else np.zeros_like(theta))
     px, py = rotate(-theta, cx, cy)
     scale_min = 1.0 + min(state.cam_strain_x, state.cam_strain_y)
+    base_circle = (design.profile.radii(state.cam_strain_x, state.cam_strain_y)[0]
+                   if design.kind == "profile" else design.base_circle_radius * scale_min)
     variables = {
-        "base_circle_radius": design.base_circle_radius * scale_min,
+        "base_circle_radius": base_circle,
         "lift": highest - lowest,
         "jump_speed": jump,
         "follower_displacement": y,

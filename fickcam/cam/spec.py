@@ -3,7 +3,7 @@
 Values are parsed to SI by :mod:`fickcam.units` (angles in rad, speed in rad/s).
 Validation refuses what cannot be a cam: motion segments that do not add up to
 360 deg or do not return the follower to its start, an unknown motion law, a roller
-follower without a roller radius, ``eccentric`` together with ``motion`` or
+follower without a roller radius, ``eccentric`` or ``profile_file`` together with ``motion`` or
 ``base_circle_radius``, a bore that reaches the profile.
 """
 from __future__ import annotations
@@ -226,6 +226,7 @@ class CamSection(_Strict):
     follower: Follower
     motion: list[Segment] | None = None
     eccentric: Eccentric | None = None
+    profile_file: str | None = None
     gravity: bool = False
     wear: Wear | None = None
     elastic: bool = False
@@ -245,6 +246,15 @@ class CamSection(_Strict):
 
     @model_validator(mode="after")
     def _a_cam(self):
+        if self.profile_file is not None:
+            if any(v is not None for v in (self.motion, self.base_circle_radius, self.eccentric)):
+                raise ValueError("give one of profile_file, eccentric or motion with "
+                                 "base_circle_radius")
+            if self.follower.kind == "flat" and self.follower.offset != 0.0:
+                raise ValueError("a flat follower's offset does not change its motion; leave it 0")
+            if self.polydyne is not None:
+                raise ValueError("polydyne needs motion segments (a profile_file cam is cut as given)")
+            return self  # the bore and offset are checked against the profile when it is read
         if self.eccentric is not None:
             if self.motion is not None or self.base_circle_radius is not None:
                 raise ValueError("give either eccentric or motion with base_circle_radius, not both")

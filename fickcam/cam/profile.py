@@ -1,0 +1,278 @@
+"""A cam given by its profile points (``cam.profile_file``): a CSV of the working or the
+pitch profile, the follower motion found from it geometrically, and the profile written
+for manufacture (CSV, DXF).
+
+The closed dry profile is a periodic quintic interpolating spline W0(u) of the points,
+u the cumulative chord fraction (scipy.interpolate.make_interp_spline; de Boor, A
+Practical Guide to Splines, 2001, ch. XIII). Swelling maps it by D = diag(1 + eps_x,
+1 + eps_y) (tangents too). The follower touches the aged profile where, after turning
+the cam by theta, the roller centre W + R n (knife: W) lies on the follower line x = e,
+or (flat face) where the outward normal n points along +y (kinematic inversion, Norton,
+Design of Machinery 5th ed., sec. 8.6); u(theta) is found by Newton's method. From the
+same contact, without differentiating data: knife/roller dY/dtheta = e + Y tan(phi),
+tan(phi) = (R(theta) T)_y / (R(theta) T)_x with T the profile tangent (the pitch curve is
+parallel to the working profile; Norton eq. 8.31); flat dY/dtheta = (R(theta) W)_x
+(Norton eq. 8.38). The second and third derivatives come from a periodic quintic spline
+of dY/dtheta on a uniform grid of cam angles.
+"""
+from __future__ import annotations
+
+import csv
+import functools
+import os
+import re
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+TWO_PI = 2.0 * np.pi
+_HEADER = re.compile(r"^\s*(?P<name>[A-Za-z_]+)\s*(?:[\[(](?P<unit>[^\])]*)[\])])?\s*$")
+#: column pairs a profile file may give: the working profile or the pitch curve
+CURVES = {("x", "y"): "working", ("pitch_x", "pitch_y"): "pitch"}
+#: uniform cam-angle grid on which dY/dtheta is splined for the higher derivatives
+ANGLE_NODES = 2048
+DEGREE = 5
+
+
+def _rotate(angle, x, y):
+    c, s = np.cos(angle), np.sin(angle)
+    return c * x - s * y, s * x + c * y
+
+
+@dataclass(frozen=True, eq=False)
+class CamProfile:
+    """A closed dry working profile: periodic quintic spline (m, cam frame,
+    counter-clockwise) of the chord fraction u in [0, 1)."""
+
+    spline: object  # scipy BSpline, u -> (x, y)
+    points: int     # how many points it was made from
+
+    def at(self, u, derivative: int = 0):
+        """(x, y) of the profile (or its u-derivative) at u (taken modulo 1)."""
+        xy = self.spline(np.mod(u, 1.0), nu=derivative)
+        return xy[..., 0], xy[..., 1]
+
+    def outline(self, n: int):
+        """n points evenly spaced in u, counter-clockwise, last != first (m)."""
+        return self.at(np.arange(n) / n)
+
+    def radii(self, strain_x: float = 0.0, strain_y: float = 0.0, n: int = 8192):
+        """(smallest, largest) distance of the aged profile from the cam axis (m)."""
+        x, y = self.outline(n)
+        r = np.hypot((1 + strain_x) * x, (1 + strain_y) * y)
+        return float(r.min()), float(r.max())
+
+
+def periodic_spline(x, y):
+    """Periodic quintic interpolating spline through a closed polygon (chord parameter)."""
+    from scipy.interpolate import make_interp_spline
+
+    xy = np.c_[x, y]
+    closed = np.r_[xy, xy[:1]]
+    chord = np.r_[0.0, np.cumsum(np.hypot(*np.diff(closed, axis=0).T))]
+    return make_interp_spline(chord / chord[-1], closed, k=DEGREE, bc_type="periodic")
+
+
+def counter_clockwise(x, y):
+    """The polygon in counter-clockwise order (shoelace area > 0), closing point dropped."""
+    x, y = np.asarray(x, float), np.asarray(y, float)
+    if np.hypot(x[-1] - x[0], y[-1] - y[0]) <= 1e-12 * np.max(np.hypot(x, y)):
+        x, y = x[:-1], y[:-1]
+    area = 0.5 * np.sum(x * np.roll(y, -1) - np.roll(x, -1) * y)
+    return (x, y) if area > 0 else (x[::-1].copy(), y[::-1].copy())
+
+
+def _outward_normal(tx, ty):
+    norm = np.hypot(tx, ty)
+    return ty / norm, -tx / norm  # counter-clockwise traversal: outside on the right
+
+
+def working_from_pitch(x, y, roller_radius: float):
+    """Working profile points W = P - R n from pitch-curve points P (Norton eq. 8.32)."""
+    spline = periodic_spline(*counter_clockwise(x, y))
+    u = np.arange(4 * len(x)) / (4 * len(x))
+    (px, py), (tx, ty) = spline(u).T, spline(u, nu=1).T
+    nx, ny = _outward_normal(tx, ty)
+    return px - roller_radius * nx, py - roller_radius * ny
+
+
+def make_profile(x, y, curve: str = "working", roller_radius: float = 0.0) -> CamProfile:
+    """A :class:`CamProfile` from profile points (m); a pitch curve is first moved in by
+    the roller radius."""
+    x, y = counter_clockwise(x, y)
+    if curve == "pitch" and roller_radius > 0:
+        x, y = working_from_pitch(x, y, roller_radius)
+    return CamProfile(periodic_spline(x, y), len(x))
+
+
+# ------------------------------------------------------------------ files
+
+
+def _column_scale(cell: str, path) -> tuple[str, float]:
+    from ..units import to_si
+
+    match = _HEADER.match(cell)
+    if not match:
+        raise ValueError(f"profile file {str(path)!r}: header {cell!r} is not 'name [unit]'")
+    unit = (match.group("unit") or "").strip()
+    return match.group("name"), (to_si(f"1 {unit}", "length") if unit else 1.0)
+
+
+def read_profile_csv(path) -> tuple[np.ndarray, np.ndarray, str]:
+    """(x, y in m, 'working' | 'pitch') from a CSV whose header names the columns with
+    units: ``x [mm], y [mm]`` (working profile) or ``pitch_x [in], pitch_y [in]``
+    (pitch curve); '#' lines are comments, no unit means metres."""
+    try:
+        with open(path, newline="", encoding="utf-8") as handle:
+            rows = [(n, r) for n, r in enumerate(csv.reader(handle), start=1)
+                    if r and not r[0].lstrip().startswith("#")]
+    except FileNotFoundError:
+        raise ValueError(f"profile file {str(path)!r} not found") from None
+    except (OSError, UnicodeDecodeError) as exc:
+        raise ValueError(f"cannot read profile file {str(path)!r}: {exc}") from None
+    if not rows:
+        raise ValueError(f"profile file {str(path)!r} is empty")
+    header = rows[0][1]
+    columns = dict(_column_scale(cell, path) for cell in header)
+    pair = next((p for p in CURVES if set(p) <= set(columns)), None)
+    if pair is None:
+        raise ValueError(f"profile file {str(path)!r}: expected columns x, y (working profile) "
+                         f"or pitch_x, pitch_y (pitch curve) with units, e.g. 'x [mm]'")
+    names = [_HEADER.match(cell).group("name") for cell in header]
+    index = [names.index(n) for n in pair]
+    values = []
+    for line, row in rows[1:]:
+        try:
+            values.append([float(row[i]) * columns[n] for i, n in zip(index, pair)])
+        except (IndexError, ValueError):
+            raise ValueError(f"profile file {str(path)!r} line {line}: expected two numbers") from None
+    if len(values) < 3 * DEGREE:
+        raise ValueError(f"profile file {str(path)!r}: {len(values)} points are too few for a "
+                         f"closed profile (need at least {3 * DEGREE})")
+    xy = np.array(values)
+    if not np.all(np.isfinite(xy)):
+        raise ValueError(f"profile file {str(path)!r}: values must be finite")
+    return xy[:, 0], xy[:, 1], CURVES[pair]
+
+
+@functools.lru_cache(maxsize=16)
+def _load(path: str, mtime: float, curve_roller: float) -> CamProfile:
+    x, y, curve = read_profile_csv(path)
+    return make_profile(x, y, curve, curve_roller)
+
+
+def load_profile(path, roller_radius: float = 0.0) -> CamProfile:
+    """The :class:`CamProfile` of a profile file (cached while the file is unchanged)."""
+    path = str(Path(path))
+    try:
+        mtime = os.path.getmtime(path)
+    except OSError:
+        raise ValueError(f"profile file {path!r} not found") from None
+    return _load(path, mtime, float(roller_radius))
+
+
+def write_profile_csv(path, x, y, curve: str = "working") -> Path:
+    """Write profile points (m) as CSV in mm with units in the header (readable back)."""
+    names = ("x [mm]", "y [mm]") if curve == "working" else ("pitch_x [mm]", "pitch_y [mm]")
+    np.savetxt(path, np.c_[x, y] * 1e3, delimiter=",", header=",".join(names), comments="",
+               fmt="%.9f")
+    return Path(path)
+
+
+def write_profile_dxf(path, x, y) -> Path:
+    """Write a closed profile (m) as a DXF closed polyline in mm (ezdxf), with the cam
+    axis marked by a point at the origin."""
+    import logging
+
+    import ezdxf
+
+    logging.getLogger("ezdxf").setLevel(logging.WARNING)  # its INFO lines are about DXF internals
+    document = ezdxf.new("R2010", units=ezdxf.units.MM)
+    space = document.modelspace()
+    space.add_lwpolyline(list(zip(np.asarray(x) * 1e3, np.asarray(y) * 1e3)), close=True,
+                         dxfattribs={"layer": "PROFILE"})
+    space.add_point((0.0, 0.0), dxfattribs={"layer": "AXIS"})
+    document.saveas(path)
+    return Path(path)
+
+
+# ------------------------------------------------------------------ kinematics
+
+
+@dataclass(frozen=True)
+class _Contact:
+    """The aged profile seen by one follower: returns theta(u) (mod 2 pi), Y(u) and
+    dY/dtheta(u) at the contact of profile point u."""
+
+    profile: CamProfile
+    strain_x: float
+    strain_y: float
+    roller: float
+    offset: float
+    flat: bool
+
+    def __call__(self, u):
+        (wx, wy), (tx, ty) = self.profile.at(u), self.profile.at(u, 1)
+        sx, sy = 1 + self.strain_x, 1 + self.strain_y
+        wx, wy, tx, ty = sx * wx, sy * wy, sx * tx, sy * ty
+        nx, ny = _outward_normal(tx, ty)
+        if self.flat:
+            theta = np.pi / 2 - np.arctan2(ny, nx)
+            height = wx * nx + wy * ny
+            slope = _rotate(theta, wx, wy)[0]
+            return theta, height, slope
+        cx, cy = wx + self.roller * nx, wy + self.roller * ny
+        r = np.hypot(cx, cy)
+        theta = np.arccos(self.offset / r) - np.arctan2(cy, cx)
+        height = np.sqrt(r ** 2 - self.offset ** 2)
+        rx, ry = _rotate(theta, tx, ty)
+        return theta, height, self.offset + height * ry / rx
+
+
+def _wrap(angle):
+    return np.mod(angle + np.pi, TWO_PI) - np.pi
+
+
+def contact_parameters(contact: _Contact, theta, samples: int, steps: int = 40):
+    """u at which each cam angle theta touches: a start from the dense table of
+    theta(u) (monotone: the contact runs clockwise round the profile), then Newton."""
+    u_table = np.arange(samples + 1) / samples
+    table = np.unwrap(contact(u_table)[0])
+    if not (np.all(np.diff(table) < 0) or np.all(np.diff(table) > 0)):
+        raise ValueError("the profile does not touch the follower at one point per cam "
+                         "angle (undercut or concave beyond the roller)")
+    if table[-1] > table[0]:
+        table, u_table = table[::-1], u_table[::-1]
+    target = table[0] - np.mod(table[0] - np.asarray(theta, float), TWO_PI)
+    u = np.interp(target, table[::-1], u_table[::-1])
+    h = 1e-7
+    for _ in range(steps):
+        miss = _wrap(contact(u)[0] - target)
+        slope = _wrap(contact(u + h)[0] - contact(u - h)[0]) / (2 * h)
+        step = miss / slope
+        u = u - step
+        if np.max(np.abs(step), initial=0.0) < 1e-12:  # u: below a picometre of profile
+            break
+    return u
+
+
+def profile_motion(profile: CamProfile, strain_x: float, strain_y: float, roller: float,
+                   offset: float, flat: bool, theta):
+    """(Y, dY/dtheta, d2Y/dtheta2, d3Y/dtheta3) at cam angles theta and (lowest, highest)
+    Y over the turn for the aged profile (see the module docstring)."""
+    from scipy.interpolate import PPoly, make_interp_spline
+
+    contact = _Contact(profile, strain_x, strain_y, roller, offset, flat)
+    samples = max(4 * profile.points, ANGLE_NODES)
+    grid = TWO_PI * np.arange(ANGLE_NODES + 1) / ANGLE_NODES
+    theta = np.mod(np.asarray(theta, float), TWO_PI)
+    _, height, slope = contact(contact_parameters(contact, np.r_[grid[:-1], theta], samples))
+    spline = make_interp_spline(grid, np.r_[slope[:ANGLE_NODES], slope[0]], k=DEGREE,
+                                bc_type="periodic")
+    turning = PPoly.from_spline(spline).roots(extrapolate=False)
+    turning = np.unique(np.mod(turning[np.isfinite(turning)], TWO_PI))
+    extremes = np.r_[height, contact(contact_parameters(contact, turning, samples))[1]
+                     if turning.size else []]
+    derivatives = (slope[ANGLE_NODES:], spline(theta, nu=1), spline(theta, nu=2))
+    return (height[ANGLE_NODES:],) + derivatives, (float(extremes.min()), float(extremes.max()))

@@ -1,0 +1,136 @@
+"""Compensation: the dry dimensions to make (at the reference temperature) so that the
+mechanism has its design geometry at an ageing time, or stays closest to it over a window.
+
+A dimension L of a part grows with the part's free hygrothermal strain eps(t) to
+L_made (1 + eps(t)) (seeds/001_51a6f900df76f3cc.txt eqs. 11-14, read as
+a_1 = a (1 + alpha dT + beta dm); seeds/000_c9d2754e3bf549ac.txt p. 281 scales the
+cam the same way). Both seeds end on the same instruction: reduce the dimensions by
+the drift. Holding L_design at time T gives L_made = L_design / (1 + eps(T)). Over a
+window [T1, T2] the largest deviation max_t |L_made (1 + eps(t)) - L_design| is
+smallest (minimax) when the deviations at the strain's extremes are equal and opposite:
+L_made = L_design / (1 + (eps_min + eps_max) / 2), residual L_made (eps_max - eps_min) / 2.
+
+A made part is smaller than the design, so it takes up moisture (and strains)
+slightly differently: L_made = L_design / (1 + eps(L_made)) is solved by fixed-point
+iteration, each step a run of the scene with the current made dimensions.
+"""
+from __future__ import annotations
+
+import contextlib
+import logging
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+log = logging.getLogger(__name__)
+
+#: the fixed point stops when no made dimension moves by more than this fraction of
+#: its compensation (design - made), or by less than a picometre
+RELATIVE_TOLERANCE = 1e-6
+ABSOLUTE_TOLERANCE = 1e-12  # m
+MAX_ITERATIONS = 20
+#: ageing times at which a window's strain extremes are sought (besides the scene's own)
+WINDOW_POINTS = 33
+
+
+@dataclass(frozen=True)
+class Target:
+    """A dimension (or an array of profile coordinates) that swells with one part's strain:
+    ``part`` (result part), ``strains`` (result variables averaged into the strain that
+    acts on it), ``group``/``name`` (table row), ``design`` (m)."""
+
+    group: str
+    name: str
+    part: str
+    strains: tuple[str, ...]
+    design: float | np.ndarray
+
+
+@dataclass
+class Compensation:
+    """What :func:`fickcam.compensate` found: the made value of every target (m), the
+    ageing times it was made for, the iterations the fixed point took and the scene
+    (YAML data) that makes it."""
+
+    targets: list[Target]
+    made: list
+    times: np.ndarray               # s: [T] or the window grid
+    iterations: int
+    scene_data: dict
+    residual: list = field(default_factory=list)  # largest |made (1 + eps) - design| per target, m
+    scene: object = None                          # the design scene (fickcam.scene.Scene)
+
+    def write(self, path) -> Path:
+        """Write the compensated scene (and a cam's profile CSV and DXF beside it)."""
+        from .report import write_scene
+
+        return write_scene(self, self.scene, path)
+
+    def table(self) -> str:
+        """Dimension, design, to make, change in µm and % per part."""
+        from .report import dimension_table
+
+        return dimension_table(self)
+
+
+def part_strain(ds, target: Target) -> np.ndarray:
+    """The strain acting on ``target`` at every ageing time of a result (mean of its variables)."""
+    values = [ds[name].sel(part=target.part).values for name in target.strains]
+    return np.mean(values, axis=0)
+
+
+def midrange(strain: np.ndarray) -> float:
+    """(eps_min + eps_max) / 2: the minimax strain of a window (one time: that strain)."""
+    return 0.5 * (float(np.min(strain)) + float(np.max(strain)))
+
+
+def made_value(design, strain: np.ndarray):
+    """L_made = L_design / (1 + eps_mid) (see the module docstring)."""
+    return np.asarray(design) / (1.0 + midrange(strain)) if np.ndim(design) else \
+        float(design) / (1.0 + midrange(strain))
+
+
+def residual(design, made, strain: np.ndarray) -> float:
+    """max_t |L_made (1 + eps(t)) - L_design| over the window, largest over an array (m)."""
+    grown = np.multiply.outer(1.0 + np.asarray(strain), np.asarray(made))
+    return float(np.max(np.abs(grown - np.asarray(design))))
+
+
+def converged(old: list, new: list, targets: list[Target]) -> bool:
+    """True when every made value moved less than the tolerances (module constants)."""
+    for before, after, target in zip(old, new, targets):
+        moved = np.max(np.abs(np.asarray(after) - np.asarray(before)))
+        change = np.max(np.abs(np.asarray(target.design) - np.asarray(after)))
+        if moved > max(RELATIVE_TOLERANCE * change, ABSOLUTE_TOLERANCE):
+            return False
+    return True
+
+
+@contextlib.contextmanager
+def quiet_runs():
+    """Silence the notices of the intermediate runs (the final runs report them)."""
+    logger = logging.getLogger("fickcam.simulate")
+    level = logger.level
+    logger.setLevel(logging.ERROR)
+    try:
+        yield
+    finally:
+        logger.setLevel(level)
+
+
+def window_times(start: float, end: float, stored: np.ndarray) -> np.ndarray:
+    """Ageing times (s) on which a window's strain extremes are found: a regular grid of
+    :data:`WINDOW_POINTS` and the scene's stored times inside the window."""
+    if end <= start:
+        return np.array([float(start)])
+    inside = stored[(stored >= start) & (stored <= end)]
+    return np.unique(np.concatenate([np.linspace(start, end, WINDOW_POINTS), inside]))
+
+
+def relative_to(path: str, old_dir: Path, new_dir: Path) -> str:
+    """A path of the scene (relative to ``old_dir``) rewritten relative to ``new_dir``."""
+    import os
+
+    resolved = (old_dir / path).resolve()
+    return os.path.relpath(resolved, new_dir.resolve())

@@ -1,0 +1,38 @@
+"""What compensation changes on a four-bar: the pin-to-pin length of every link (the
+frame too: a steel frame still expands thermally) and the coupler point's distance from
+the crank pin, which grows with the coupler (fickcam.linkage.model scales it with the
+coupler's length). The link sections (width, thickness, bosses) are left as designed:
+they carry the load, not the motion."""
+from __future__ import annotations
+
+from ..linkage.ageing import LINKS
+from .core import Target
+
+LONGITUDINAL = ("strain_longitudinal",)
+
+
+def targets(section) -> list[Target]:
+    """Link lengths (crank, coupler, rocker, frame) and the coupler point distance."""
+    found = [Target(link, "length", link, LONGITUDINAL, float(getattr(section, link)))
+             for link in LINKS]
+    if section.coupler_point.distance > 0:
+        found.append(Target("coupler", "coupler point distance", "coupler", LONGITUDINAL,
+                            float(section.coupler_point.distance)))
+    return found
+
+
+def write(data: dict, targets: list[Target], made: list, length_text) -> None:
+    """Put the made values into the scene's ``linkage:`` mapping (in place)."""
+    linkage = data["linkage"]
+    for target, value in zip(targets, made):
+        if target.name == "length":
+            linkage[target.part] = length_text(value)
+        else:
+            point = dict(linkage.get("coupler_point") or {})
+            point["distance"] = length_text(value)
+            linkage["coupler_point"] = point
+
+
+def design_entry(section: dict) -> dict:
+    """The ``design:`` entry of a compensated scene: the design's link lengths and point."""
+    return {key: section[key] for key in LINKS + ("coupler_point",) if key in section}
