@@ -29,7 +29,8 @@ def run(scene, *, accuracy: float | None = None, progress: bool = False):
 def compensate(scene, *, at=None, over=None, accuracy: float | None = None):
     """The dry dimensions to make so that the mechanism has its design geometry at ageing
     time ``at`` ("60 d") or stays closest to it over ``over`` = (T1, T2); returns a
-    ``Compensation`` (``.table()``, ``.write(path)``, ``.iterations``, ``.residual``)."""
+    ``Compensation`` (``.iterations``, ``.residual``; its table and written scene come from
+    ``fickcam.compensation.dimension_table`` and ``write_scene``)."""
     from .compensation import compensate as _compensate
 
     return _compensate(scene, at=at, over=over, accuracy=accuracy)

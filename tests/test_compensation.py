@@ -46,7 +46,7 @@ def wrapped_degrees(change):
 def fourbar_at_end(tmp_path_factory):
     scene = fourbar_scene()
     comp = fickcam.compensate(scene, at="90 d")
-    path = comp.write(tmp_path_factory.mktemp("fourbar") / "compensated.yaml")
+    path = write_scene(comp, comp.scene, tmp_path_factory.mktemp("fourbar") / "compensated.yaml")
     return scene, comp, fickcam.run(scene), fickcam.run(path)
 
 

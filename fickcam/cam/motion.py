@@ -15,6 +15,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .fourier import at_angles, correction_motion
+
 PI = math.pi
 
 
@@ -187,8 +189,6 @@ def segment_motion(segment: MotionSegment, theta):
     law = law_motion(segment, theta)
     if not segment.correction:
         return law
-    from .polydyne import correction_motion
-
     return tuple(a + b for a, b in zip(law, correction_motion(np.asarray(segment.correction), theta)))
 
 
@@ -221,8 +221,6 @@ def follower_motion(segments, theta, corrected: bool = True):
         for o, v in zip(out, law_motion(seg, theta[inside])):
             o[inside] = v
     if corrected and segments[0].correction:
-        from .train import at_angles
-
         coefficients = np.asarray(segments[0].correction)
         out = [o + at_angles(coefficients, theta, order) for order, o in enumerate(out)]
     return tuple(out)

@@ -21,7 +21,8 @@ import math
 
 import numpy as np
 
-from .train import FINE, Train, harmonics, series, transfer
+from .fourier import harmonics
+from .train import FINE, Train, transfer
 
 
 def correction_harmonics(segments, train: Train, speed: float) -> np.ndarray:
@@ -32,11 +33,6 @@ def correction_harmonics(segments, train: Train, speed: float) -> np.ndarray:
     y = harmonics(follower_motion(segments, fine)[0])
     n = np.arange(len(y))
     return y * (1.0 / transfer(train, speed, n) - 1.0)
-
-
-def correction_motion(coefficients, theta):
-    """(e, e', e'', e''') per radian at cam angles theta (rad) from the harmonics."""
-    return tuple(series(coefficients, theta, order) for order in range(4))
 
 
 def polydyne_design(design, modulus: float | None):

@@ -29,6 +29,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..response import Response
+from .fourier import at_angles, harmonics, on_grid, series
 
 #: samples per revolution for the Fourier coefficients of the cam motion
 FINE = 8192
@@ -86,12 +87,6 @@ def lever_stiffness(modulus: float, length: float, width: float, height: float) 
 # ------------------------------------------------------------------ steady state
 
 
-def harmonics(s) -> np.ndarray:
-    """Complex amplitudes S_n (n = 0 .. N/2) with s(theta) = Re sum w_n S_n e^{i n theta},
-    w_0 = 1 and w_n = 2 otherwise: the real FFT of s sampled at N angles over a turn."""
-    return np.fft.rfft(np.asarray(s, float)) / len(s)
-
-
 def transfer(train: Train, omega: float, n) -> np.ndarray:
     """H_n = X_n/S_n = (k + i n omega c)/(k + k_s - m (n omega)^2 + i n omega c)."""
     w = np.asarray(n, float) * omega
@@ -105,33 +100,6 @@ def steady_harmonics(train: Train, omega: float, s_harmonics) -> np.ndarray:
     x = transfer(train, omega, n) * s_harmonics
     x[0] -= train.load / train.total_stiffness
     return x
-
-
-def series(coefficients, theta, order: int = 0, omega: float = 1.0):
-    """d^order/dt^order of Re sum w_n X_n e^{i n theta} at theta = omega t (any angles)."""
-    n = np.arange(len(coefficients))
-    weights = np.where(n == 0, 1.0, 2.0) * (1j * n * omega) ** order * coefficients
-    theta = np.asarray(theta, float)
-    phase = np.exp(1j * np.multiply.outer(theta, n))
-    return np.real(phase @ weights)
-
-
-def on_grid(coefficients, size: int, order: int = 0, omega: float = 1.0):
-    """The same series on the grid of ``size`` angles over a turn (inverse FFT)."""
-    n = np.arange(len(coefficients))
-    return np.fft.irfft(coefficients * (1j * n * omega) ** order * size, n=size)
-
-
-def at_angles(coefficients, theta, order: int = 0, omega: float = 1.0):
-    """:func:`series` at ``theta``; through the inverse FFT on a multiple of the grid when
-    theta is the regular grid of a turn starting at 0 (the result grid), which is exact too."""
-    theta = np.asarray(theta, float)
-    count = theta.size
-    regular = np.linspace(0.0, 2 * np.pi, count, endpoint=False)
-    if count < 4 or theta.shape != regular.shape or not np.allclose(theta, regular, atol=1e-12):
-        return series(coefficients, theta, order, omega)
-    step = -(-2 * (len(coefficients) - 1) // count)
-    return on_grid(coefficients, count * step, order, omega)[::step]
 
 
 # ------------------------------------------------------------------ start from rest

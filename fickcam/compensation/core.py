@@ -61,18 +61,6 @@ class Compensation:
     residual: list = field(default_factory=list)  # largest |made (1 + eps) - design| per target, m
     scene: object = None                          # the design scene (fickcam.scene.Scene)
 
-    def write(self, path) -> Path:
-        """Write the compensated scene (and a cam's profile CSV and DXF beside it)."""
-        from .report import write_scene
-
-        return write_scene(self, self.scene, path)
-
-    def table(self) -> str:
-        """Dimension, design, to make, change in µm and % per part."""
-        from .report import dimension_table
-
-        return dimension_table(self)
-
 
 def part_strain(ds, target: Target) -> np.ndarray:
     """The strain acting on ``target`` at every ageing time of a result (mean of its variables)."""
