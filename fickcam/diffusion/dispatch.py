@@ -29,6 +29,7 @@ from .exposure import Diffusivity, Exposure
 from .geometry import Bar, CamPlate, Disc, LinkBar, Sheet
 from .langmuir import langmuir_history
 from .modal import prefers_modal
+from .nonlinear import fastest, refined, solve_nonlinear
 from .plane import plan_plane, solve_plane
 from .results import DiffusionResult, Plan
 from .sorption import describe, is_langmuir, is_nonlinear
@@ -115,9 +116,12 @@ def _plan_sorption(geometry, diffusivity, exposure, times, accuracy, model, sorp
                         "2x2 free/bound system advanced exactly through the history", accuracy)
     else:
         chosen = _nonlinear_model(geometry, model)
+        diffusivity = fastest(diffusivity, sorption, exposure, times)
     scales = scales_of(geometry, diffusivity, exposure)
     direct = plan_direct(geometry, diffusivity, chosen, scales.tau_star(exposure.change_times),
                          scales.tau_star(np.asarray(times, float)), accuracy, exposure)
+    if is_nonlinear(sorption):
+        direct = refined(direct, sorption, exposure, times)
     return replace(direct, reason=f"{law}; {direct.reason}")
 
 
@@ -166,4 +170,5 @@ def _solve_sorption(geometry, diffusivity, exposure, times, chosen: Plan, sorpti
         return solve_direct(geometry, diffusivity, exposure, times, chosen,
                             surface_layer_depth=depth, store_fields=store_fields, part=part,
                             marcher=two_phase_marcher(sorption, exposure))
-    raise InputError("not yet")
+    return solve_nonlinear(geometry, diffusivity, sorption, exposure, times, chosen,
+                           surface_layer_depth=depth, store_fields=store_fields, part=part)
