@@ -8,11 +8,13 @@ follower without a roller radius, ``eccentric`` or ``profile_file`` together wit
 """
 from __future__ import annotations
 
+import itertools
 import math
 from typing import Annotated, Literal
 
 from ..units import StrictModel
-from pydantic import ConfigDict, Discriminator, Field, Tag, field_validator, model_validator
+from pydantic import (AfterValidator, BeforeValidator, ConfigDict, Discriminator, Field, PrivateAttr,
+                      Tag, field_validator, model_validator)
 
 from ..units import (
     Angle,
@@ -20,12 +22,17 @@ from ..units import (
     Force,
     Length,
     Mass,
+    MomentOfInertia,
     NonNegativeLength,
     PositiveAngle,
     Pressure,
     SignedLength,
     Stiffness,
+    Torque,
+    TorsionalStiffness,
+    is_bare_number,
     quantity,
+    to_si,
 )
 
 #: follower train stiffness: zero would leave the follower mass unconnected to the cam
@@ -39,6 +46,12 @@ Law = Literal["uniform_velocity", "constant_acceleration", "simple_harmonic", "c
 
 #: tolerance on the sum of the motion segments (rad)
 TURN_TOLERANCE = math.radians(1e-6)
+
+
+def _positive(x: float) -> float:
+    if not x > 0:
+        raise ValueError("must be positive")
+    return x
 
 
 class _Strict(StrictModel):
@@ -57,16 +70,57 @@ class Spline(_Strict):
     end_derivatives: list[float] | None = None
 
 
+def _lift(value):
+    """A rise or return: a length (translating follower) or an angle (swinging arm), in SI."""
+    try:
+        return to_si(value, "length")
+    except ValueError as length_error:
+        try:
+            return to_si(value, "angle")
+        except ValueError:
+            raise length_error from None
+
+
+def _given_as_angle(value) -> bool | None:
+    """True for a value with angle units, False otherwise, None for a bare number."""
+    if is_bare_number(value):
+        return None
+    try:
+        to_si(value, "angle")
+    except ValueError:
+        return False
+    return True
+
+
+Lift = Annotated[float, BeforeValidator(_lift), AfterValidator(_positive)]
+
+
 class Segment(_Strict):
     """One motion segment: ``{dwell: angle}``, ``{rise: length, over: angle, law: name}``
-    or ``{return: length, over: angle, law: name}``."""
+    or ``{return: length, over: angle, law: name}``; a swinging arm's rise and return are
+    angles (``{rise: 15 deg, ...}``; a bare number is m or rad)."""
 
     dwell: PositiveAngle | None = None
-    rise: Length | None = None
-    return_: Length | None = Field(default=None, alias="return")
+    rise: Lift | None = None
+    return_: Lift | None = Field(default=None, alias="return")
     over: PositiveAngle | None = None
     law: Law | None = None
     spline: Spline | None = None
+    _angular: bool | None = PrivateAttr(default=None)
+
+    @model_validator(mode="wrap")
+    @classmethod
+    def _remember_units(cls, data, handler):
+        segment = handler(data)
+        if isinstance(data, dict):
+            lift = data.get("rise", data.get("return"))
+            segment._angular = None if lift is None else _given_as_angle(lift)
+        return segment
+
+    @property
+    def angular(self) -> bool | None:
+        """True: the rise/return was given as an angle; False: a length; None: bare/dwell."""
+        return self._angular
 
     @model_validator(mode="after")
     def _one_kind(self):
@@ -170,6 +224,34 @@ TrainStiffness = Annotated[
     Discriminator(lambda v: "TrainSection" if isinstance(v, dict | TrainSection) else "Stiffness")]
 
 
+class SwingingArm(_Strict):
+    """``follower.arm``: a swinging (oscillating) follower (:mod:`fickcam.cam.arm`): the
+    ``pivot`` [x, y] in the fixed frame (cam axis at the origin, cam angle 0); ``length``
+    pivot to roller centre (roller only); ``face_offset`` the distance from the pivot to the
+    face line, the pivot on the follower's side (flat only, default 0); ``rises``: the sense
+    in which the arm turns as the follower rises; ``inertia`` of arm and roller about the
+    pivot; a torsional return spring ``spring_rate`` (N m/rad) with ``spring_preload`` (N m)
+    at the dry cam's lowest position, and a constant ``load_torque`` (N m) against the rise."""
+
+    pivot: tuple[SignedLength, SignedLength]
+    length: Length | None = None
+    face_offset: SignedLength = 0.0
+    rises: Literal["counter_clockwise", "clockwise"] = "counter_clockwise"
+    inertia: MomentOfInertia
+    spring_rate: TorsionalStiffness = 0.0
+    spring_preload: Torque = 0.0
+    load_torque: Torque = 0.0
+
+
+#: translating-follower keys that have a torsional counterpart on (or no meaning for) an arm
+_NOT_ON_AN_ARM = {"offset": "the pivot places the arm",
+                  "spring_rate": "use arm.spring_rate (torsional, N m/rad)",
+                  "spring_preload": "use arm.spring_preload (N m)",
+                  "external_load": "use arm.load_torque (N m)",
+                  "guide": "an arm has no guide bush", "stiffness": "the elastic follower train "
+                  "(issue 14 item 1) models a translating follower"}
+
+
 class Follower(_Strict):
     """Translating follower. Extras beyond SPEC.md (defaults): ``width`` (the cam
     thickness) the contact length for Hertz, ``friction_coefficient`` (0) at the cam
@@ -193,6 +275,7 @@ class Follower(_Strict):
     guide: Guide | None = None
     stiffness: TrainStiffness | None = None
     damping_ratio: float = Field(default=0.05, ge=0.0, lt=1.0)
+    arm: SwingingArm | None = None
 
     @model_validator(mode="after")
     def _roller_needs_radius(self):
@@ -200,7 +283,22 @@ class Follower(_Strict):
             raise ValueError("a roller follower needs roller_radius")
         if self.kind != "roller" and self.roller_radius is not None:
             raise ValueError(f"roller_radius applies to a roller follower, not {self.kind}")
+        if self.arm is not None:
+            self._an_arm()
         return self
+
+    def _an_arm(self):
+        if self.kind == "knife":
+            raise ValueError("a swinging arm carries a roller or a flat face (kind: roller | flat)")
+        if self.kind == "roller" and self.arm.length is None:
+            raise ValueError("a swinging roller arm needs arm.length (pivot to roller centre)")
+        if self.kind == "flat" and self.arm.length is not None:
+            raise ValueError("a flat-face arm is placed by arm.face_offset; arm.length is for a roller")
+        if self.kind == "roller" and self.arm.face_offset != 0.0:
+            raise ValueError("arm.face_offset is for a flat face; a roller arm has arm.length")
+        for key, why in _NOT_ON_AN_ARM.items():
+            if getattr(self, key) not in (None, 0.0):
+                raise ValueError(f"{key} does not apply to a swinging arm: {why}")
 
 
 class Polydyne(_Strict):
@@ -246,6 +344,15 @@ class CamSection(_Strict):
 
     @model_validator(mode="after")
     def _a_cam(self):
+        if self.follower.arm is not None:
+            arm_only = {"eccentric": self.eccentric, "profile_file": self.profile_file,
+                        "polydyne": self.polydyne, "wear": self.wear}
+            for key, value in arm_only.items():
+                if value is not None:
+                    raise ValueError(f"a swinging-arm follower needs a cam given by angular motion "
+                                     f"segments and base_circle_radius, without {key}")
+            if self.gravity or self.elastic:
+                raise ValueError("gravity and elastic are not modelled for a swinging arm")
         if self.profile_file is not None:
             if any(v is not None for v in (self.motion, self.base_circle_radius, self.eccentric)):
                 raise ValueError("give one of profile_file, eccentric or motion with "
@@ -275,6 +382,56 @@ class CamSection(_Strict):
         return self
 
 
+def arm_problems(section: CamSection) -> list[tuple[tuple, str]]:
+    """(key path inside ``cam:``, reason) for what the motion and the follower cannot do
+    together: rises as lengths on a swinging arm (or angles on a translating follower), an arm
+    that cannot reach the base circle or that would swing through the line from the cam axis
+    to its pivot (:mod:`fickcam.cam.arm`)."""
+    arm = section.follower.arm
+    problems = []
+    for k, segment in enumerate(section.motion or ()):
+        key = "rise" if segment.rise is not None else "return"
+        if arm is not None and segment.angular is False:
+            problems.append((("motion", k, key), "a swinging-arm follower rises by an angle "
+                             "(e.g. '15 deg'), not a length"))
+        if arm is None and segment.angular:
+            problems.append((("motion", k, key), "a translating follower rises by a length; an "
+                             "angle is for a swinging arm (follower.arm)"))
+    if arm is None or problems or section.base_circle_radius is None:
+        return problems
+    swing = max(itertools.accumulate(s.height for s in section.motion))
+    return _reach_problems(section, arm, swing)
+
+
+def _reach_problems(section, arm, swing: float) -> list[tuple[tuple, str]]:
+    from .arm import Arm, face_opening, roller_arm_opening
+
+    geometry = Arm(arm.pivot[0], arm.pivot[1], arm.length or 0.0, arm.face_offset)
+    d, rb = geometry.pivot_distance, section.base_circle_radius
+    where = ("follower", "arm")
+    if section.follower.kind == "roller":
+        prime = rb + section.follower.roller_radius
+        opening = roller_arm_opening(d, arm.length, prime)
+        if not math.isfinite(opening) or opening <= 0.0:
+            return [(where + ("length",), f"the arm cannot reach the prime circle: the roller centre "
+                     f"stays {abs(d - arm.length) * 1e3:g}..{(d + arm.length) * 1e3:g} mm from the "
+                     f"cam axis, the base circle + roller is {prime * 1e3:g} mm")]
+        if opening + swing >= math.pi:
+            return [(where + ("pivot",), f"the arm would swing through the line from the cam axis to "
+                     f"the pivot ({math.degrees(opening):.4g} deg from it at the base circle, swing "
+                     f"{math.degrees(swing):.4g} deg)")]
+        return []
+    opening = face_opening(d, arm.face_offset, rb)
+    if not math.isfinite(opening) or opening <= 0.0:
+        return [(where + ("pivot",), f"the face cannot touch the base circle: the pivot is "
+                 f"{d * 1e3:g} mm from the cam axis, base circle + face offset is "
+                 f"{(rb + arm.face_offset) * 1e3:g} mm")]
+    if swing >= opening:
+        return [(where + ("pivot",), f"the face would turn past the line from the cam axis to the "
+                 f"pivot (swing {math.degrees(swing):.4g} deg >= {math.degrees(opening):.4g} deg)")]
+    return []
+
+
 def check_motion(segments) -> None:
     """Raise ValueError unless the segments add up to 360 deg and close (rises = returns)."""
     if not segments:
@@ -296,6 +453,6 @@ def check_motion(segments) -> None:
         raise ValueError("the motion goes below the base circle (a return before its rise)")
 
 
-__all__ = ["Angle", "CamSection", "Eccentric", "Follower", "Guide", "LAWS", "Lever", "Rod", "Segment",
+__all__ = ["Angle", "CamSection", "SwingingArm", "arm_problems", "Eccentric", "Follower", "Guide", "LAWS", "Lever", "Rod", "Segment",
            "TrainSection", "Wear",
            "check_motion"]
