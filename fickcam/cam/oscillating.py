@@ -123,9 +123,26 @@ def arm_response(design: CamDesign, state: CamState, cam_angle) -> Response:
     }, notices)
 
 
+def describe_arm(design: CamDesign) -> str:
+    """One line for `fickcam check`: the arm, where it sits on the base circle, and the dry
+    design's largest pressure angle and smallest radius of curvature."""
+    arm = design.arm
+    theta = np.radians(np.arange(0.0, 360.0, 0.25))
+    v = arm_response(design, CamState(), theta).variables
+    if design.follower_kind == "flat":
+        what = f"flat-face arm, face {arm.face_offset * 1e3:g} mm from the pivot"
+    else:
+        what = f"roller arm {arm.length * 1e3:g} mm long, roller {design.roller_radius * 1e3:g} mm"
+    sense = "counter-clockwise" if arm.sense > 0 else "clockwise"
+    return (f"swinging {what}, pivot {arm.pivot_distance * 1e3:.4g} mm from the cam axis; swings "
+            f"{math.degrees(v['arm_swing']):.4g} deg {sense} on the rise; dry: pressure angle up "
+            f"to {math.degrees(np.nanmax(np.abs(v['pressure_angle']))):.3g} deg, smallest radius of "
+            f"curvature {np.nanmin(v['radius_of_curvature']) * 1e3:.4g} mm")
+
+
 def rotate_back(theta, contact: geo.Contact):
     """The contact point in the cam frame, R(-theta) X."""
     return geo.rotate(-theta, contact.x, contact.y)
 
 
-__all__ = ["aged_arm", "arm_contact", "arm_response", "follower_response", "holding_torque"]
+__all__ = ["aged_arm", "describe_arm", "arm_contact", "arm_response", "follower_response", "holding_torque"]
