@@ -300,3 +300,34 @@ def test_impossible_arms_are_one_line_errors(tmp_path, capsys, changes, where, r
     assert len(lines) == 1 + ("return: 5 mm" in text)  # one line per problem
     file_line, key = where.split(" ")
     assert lines[0].startswith(f"{path}:{file_line} {key}: ") and reason in lines[0]
+
+
+def test_clockwise_cam_touches_the_arm_where_it_says():
+    """A cam turning clockwise: the reported contact points (cam frame, seen from the front)
+    turned by R(-theta) lie on the roller, whose centre is on the arm about the real pivot
+    (base arm angle by root finding, arm turning clockwise on the rise)."""
+    section = arm_section("roller", "clockwise", pivot=("-60 mm", "75 mm")) | {"direction": "clockwise"}
+    design = design_from_scene(section)
+    v = arm_response(design, CamState(), THETA).variables
+    x, y = rotate(-THETA, v["profile_x"], v["profile_y"])
+    pivot = np.array([-60e-3, 75e-3])
+    towards = math.atan2(-pivot[1], -pivot[0])
+    phi0 = brentq(lambda phi: np.hypot(*(pivot + 0.08 * np.array([math.cos(phi), math.sin(phi)])))
+                  - 0.038, towards, towards - math.pi)
+    phi = phi0 - v["follower_arm_angle"]  # clockwise on the rise (dry: lowest = base)
+    cx, cy = pivot[0] + 0.08 * np.cos(phi), pivot[1] + 0.08 * np.sin(phi)
+    assert np.max(np.abs(np.hypot(x - cx, y - cy) - 8e-3)) < 1e-12
+
+
+def test_clockwise_cam_touches_the_translating_follower_where_it_says():
+    """Knife edge at x = offset: the contact point turned by R(-theta) is (offset, s0 + y)."""
+    section = {"material": "cfrp", "thickness": "10 mm", "speed": "300 rpm", "direction": "clockwise",
+               "base_circle_radius": "30 mm",
+               "follower": {"kind": "knife", "offset": "7 mm", "mass": "0.1 kg"},
+               "motion": [dict(s, **{k: "10 mm" for k in ("rise", "return") if k in s})
+                          for s in MOTION]}
+    v = cam_response(design_from_scene(section), CamState(), THETA).variables
+    x, y = rotate(-THETA, v["profile_x"], v["profile_y"])
+    assert np.max(np.abs(x - 7e-3)) < 1e-12
+    height = math.sqrt(30e-3 ** 2 - 7e-3 ** 2) + v["follower_displacement"]
+    assert np.max(np.abs(y - height)) < 1e-12

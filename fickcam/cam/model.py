@@ -64,6 +64,7 @@ class CamDesign:
     damping_ratio: float = 0.05
     polydyne_speed: float | None = None  # design speed of a polydyne cam (fickcam.cam.polydyne)
     arm: object = None             # fickcam.cam.arm.Arm of a swinging-arm follower (None: translating)
+    clockwise: bool = False        # the cam turns clockwise: computed as its mirror image x -> -x
 
     @property
     def contact_length(self) -> float:
@@ -109,9 +110,11 @@ def design_from_scene(section) -> CamDesign:
     f = section.follower
     guide = 0.0 if f.guide is None else dyn.guide_friction_factor(
         f.guide.friction_coefficient, f.guide.overhang, f.guide.length, f.guide.diameter)
+    mirror = -1.0 if section.direction == "clockwise" else 1.0
     common = dict(thickness=section.thickness, speed=section.speed, follower_kind=f.kind,
-                  follower_mass=f.mass, bore_radius=section.bore_radius,
-                  roller_radius=f.roller_radius or 0.0, offset=f.offset, spring_rate=f.spring_rate,
+                  follower_mass=f.mass, bore_radius=section.bore_radius, clockwise=mirror < 0,
+                  roller_radius=f.roller_radius or 0.0, offset=mirror * f.offset,
+                  spring_rate=f.spring_rate,
                   spring_preload=f.spring_preload, external_load=f.external_load,
                   follower_width=f.width, friction_coefficient=f.friction_coefficient,
                   guide_factor=guide, gravity=section.gravity,
@@ -124,13 +127,14 @@ def design_from_scene(section) -> CamDesign:
     if f.arm is not None:
         from .arm import Arm
 
-        common["arm"] = Arm(f.arm.pivot[0], f.arm.pivot[1], f.arm.length or 0.0, f.arm.face_offset,
-                            1 if f.arm.rises == "counter_clockwise" else -1, f.arm.inertia,
+        sense = 1 if f.arm.rises == "counter_clockwise" else -1
+        common["arm"] = Arm(mirror * f.arm.pivot[0], f.arm.pivot[1], f.arm.length or 0.0,
+                            f.arm.face_offset, int(mirror) * sense, f.arm.inertia,
                             f.arm.spring_rate, f.arm.spring_preload, f.arm.load_torque)
     if section.profile_file is not None:
         from .profile import load_profile
 
-        profile = load_profile(section.profile_file, f.roller_radius or 0.0)
+        profile = load_profile(section.profile_file, f.roller_radius or 0.0, mirror=mirror < 0)
         return CamDesign("profile", profile.radii()[0], profile=profile, **common)
     if section.eccentric is not None:
         e, r = section.eccentric.eccentricity, section.eccentric.radius
@@ -253,9 +257,20 @@ def dry_lowest_height(design: CamDesign) -> float:
 
 def working_profile(design: CamDesign, strain_x: float = 0.0, strain_y: float = 0.0,
                     n: int = 720):
-    """Closed counter-clockwise outline (x, y) of the working profile (m), cam frame,
-    last point != first, for the diffusion mesh (:class:`fickcam.diffusion.CamPlate`)."""
-    return working_outline(design, strain_x, strain_y, n)
+    """Closed counter-clockwise outline (x, y) of the working profile (m), cam frame as seen
+    from the front, last point != first, for the diffusion mesh
+    (:class:`fickcam.diffusion.CamPlate`)."""
+    x, y = working_outline(design, strain_x, strain_y, n)
+    if design.clockwise:  # mirror back, still counter-clockwise
+        return -x[::-1].copy(), y[::-1].copy()
+    return x, y
+
+
+def cam_frame_point(design: CamDesign, theta, x, y):
+    """Fixed-frame point (x, y) at cam angle theta in the cam frame, seen from the front:
+    R(-theta) (x, y), mirrored back for a clockwise cam."""
+    px, py = rotate(-theta, x, y)
+    return (-px if design.clockwise else px), py
 
 
 def write_profile_csv(path, design: CamDesign, strain_x: float = 0.0, strain_y: float = 0.0,
@@ -338,7 +353,7 @@ def cam_response(design: CamDesign, state: CamState, cam_angle) -> Response:
     wear = (dyn.archard_wear_per_revolution(design.archard_coefficient, design.hardness, force,
                                             design.contact_length, _slide_ratio(design, height, rho))
             if design.hardness else np.zeros_like(theta))
-    px, py = rotate(-theta, cx, cy)
+    px, py = cam_frame_point(design, theta, cx, cy)
     scale_min = 1.0 + min(state.cam_strain_x, state.cam_strain_y)
     base_circle = (design.profile.radii(state.cam_strain_x, state.cam_strain_y)[0]
                    if design.kind == "profile" else design.base_circle_radius * scale_min)

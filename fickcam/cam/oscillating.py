@@ -24,8 +24,8 @@ import numpy as np
 
 from ..response import Response
 from . import arm as geo
-from .model import (CamDesign, CamState, _geometry_notices, _jump_notices, cam_response,
-                    continuous_jump_speed, hertz_contact, motion_function)
+from .model import (CamDesign, CamState, _geometry_notices, _jump_notices, cam_frame_point,
+                    cam_response, continuous_jump_speed, hertz_contact, motion_function)
 from .motion import joint_notices
 
 
@@ -97,7 +97,7 @@ def arm_response(design: CamDesign, state: CamState, cam_angle) -> Response:
     stress, shear, shear_depth = hertz_contact(design, state, force, contact.radius, roller)
     sliding = design.follower_kind == "flat"
     friction = design.friction_coefficient * np.maximum(force, 0.0) * sliding
-    px, py = rotate_back(theta, contact)
+    px, py = cam_frame_point(design, theta, contact.x, contact.y)
     return Response({
         "base_circle_radius": design.base_circle_radius * (1 + min(state.cam_strain_x,
                                                                    state.cam_strain_y)),
@@ -138,11 +138,6 @@ def describe_arm(design: CamDesign) -> str:
             f"{math.degrees(v['arm_swing']):.4g} deg {sense} on the rise; dry: pressure angle up "
             f"to {math.degrees(np.nanmax(np.abs(v['pressure_angle']))):.3g} deg, smallest radius of "
             f"curvature {np.nanmin(v['radius_of_curvature']) * 1e3:.4g} mm")
-
-
-def rotate_back(theta, contact: geo.Contact):
-    """The contact point in the cam frame, R(-theta) X."""
-    return geo.rotate(-theta, contact.x, contact.y)
 
 
 __all__ = ["aged_arm", "describe_arm", "arm_contact", "arm_response", "follower_response", "holding_torque"]

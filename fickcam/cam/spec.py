@@ -314,7 +314,10 @@ class CamSection(_Strict):
     ``follower.width``, ``follower.friction_coefficient``, ``follower.modulus``,
     ``follower.poisson_ratio``, ``follower.guide`` (see :class:`Follower`); ``elastic``
     (false: no elastic deflection or swelling stress, :mod:`fickcam.elastic`). The cam turns
-    counter-clockwise at ``speed``; the follower moves along +y at x = offset."""
+    at ``speed`` in ``direction`` (counter_clockwise, seen from the front); the follower moves
+    along +y at x = offset, or swings about ``follower.arm.pivot``. A clockwise cam is
+    computed as its mirror image x -> -x (a counter-clockwise cam seen from the back), and
+    profile points are mirrored back on output."""
 
     material: str
     base_circle_radius: Length | None = None
@@ -329,6 +332,7 @@ class CamSection(_Strict):
     wear: Wear | None = None
     elastic: bool = False
     polydyne: Polydyne | None = None
+    direction: Literal["counter_clockwise", "clockwise"] = "counter_clockwise"
 
     @field_validator("polydyne", mode="before")
     @classmethod
