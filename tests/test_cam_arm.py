@@ -331,3 +331,25 @@ def test_clockwise_cam_touches_the_translating_follower_where_it_says():
     assert np.max(np.abs(x - 7e-3)) < 1e-12
     height = math.sqrt(30e-3 ** 2 - 7e-3 ** 2) + v["follower_displacement"]
     assert np.max(np.abs(y - height)) < 1e-12
+
+
+@pytest.mark.parametrize("kind", ["roller", "flat"])
+def test_arm_on_a_cam_given_by_points_follows_the_motion_program(kind, tmp_path):
+    """The same cam as 1440 working-profile points (a CSV): the arm angle found from the
+    points' periodic quintic spline (arm angle from the contact, slope from the normal-velocity
+    condition) matches the motion program within 1e-6 of the swing, dry and aged."""
+    from fickcam.cam.geometry import working_outline
+    from fickcam.cam.profile import write_profile_csv
+
+    section = SECTIONS[kind]()
+    design = design_from_scene(section)
+    path = write_profile_csv(tmp_path / "arm.csv", *working_outline(design, n=1440))
+    points = design_from_scene({k: v for k, v in section.items()
+                                if k not in ("motion", "base_circle_radius")} |
+                               {"profile_file": str(path)})
+    swing = design.segments[1].height
+    for state in (CamState(), AGED):
+        exact = arm_response(design, state, THETA).variables
+        found = arm_response(points, state, THETA).variables
+        assert np.max(np.abs(found["follower_arm_angle"] - exact["follower_arm_angle"])) < 1e-6 * swing
+        assert np.max(np.abs(found["pressure_angle"] - exact["pressure_angle"])) < 1e-5

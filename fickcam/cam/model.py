@@ -149,8 +149,8 @@ def design_from_scene(section) -> CamDesign:
 def _scales_exactly(design: CamDesign, state: CamState) -> bool:
     """True where the aged motion is the design motion times (1 + eps) (closed form)."""
     if design.arm is not None:  # the dry arm follows the design motion exactly
-        return state.cam_strain_x == state.cam_strain_y == state.roller_strain == \
-            state.arm_strain == 0.0
+        return design.kind == "motion" and state.cam_strain_x == state.cam_strain_y == \
+            state.roller_strain == state.arm_strain == 0.0
     if design.kind != "motion" or state.cam_strain_x != state.cam_strain_y:
         return False
     if state.cam_strain_x == 0.0 and state.roller_strain == 0.0:
@@ -237,8 +237,9 @@ def motion_function(design: CamDesign, state: CamState):
         aged = (design.profile, state.cam_strain_x, state.cam_strain_y,
                 design.roller_radius * (1 + state.roller_strain), design.offset,
                 design.follower_kind == "flat")
-        return (lambda theta: profile_motion(*aged, theta)[0],
-                profile_motion(*aged, np.zeros(1))[1])
+        arm = {} if design.arm is None else _grown_arm(design, state.arm_strain)
+        return (lambda theta: profile_motion(*aged, theta, **arm)[0],
+                profile_motion(*aged, np.zeros(1), **arm)[1])
     if design.kind == "eccentric" and design.follower_kind == "flat":
         return (lambda theta: _eccentric_flat(design, state, theta)[0],
                 _eccentric_flat(design, state, np.zeros(1))[1])
@@ -247,6 +248,20 @@ def motion_function(design: CamDesign, state: CamState):
         design.roller_radius * (1 + state.roller_strain),
         nodes=96 if design.kind == "eccentric" else 40, arm_strain=state.arm_strain)
     return (lambda theta: evaluate_geometric_motion(fitted, origin, theta)), extremes
+
+
+def _grown_arm(design: CamDesign, strain: float) -> dict:
+    """``arm`` (length and face offset grown by 1 + strain) and its dry ``base`` angle, for
+    :func:`fickcam.cam.profile.profile_motion`."""
+    from dataclasses import replace
+
+    from . import arm
+
+    a, rb = design.arm, design.base_circle_radius
+    base = (arm.face_base_angle(a, rb) if design.follower_kind == "flat" else
+            arm.roller_base_angle(a, rb + design.roller_radius))
+    return {"arm": replace(a, length=a.length * (1 + strain), face_offset=a.face_offset * (1 + strain)),
+            "base": base}
 
 
 @functools.lru_cache(maxsize=64)

@@ -24,7 +24,7 @@ import numpy as np
 
 from ..response import Response
 from . import arm as geo
-from .model import (CamDesign, CamState, _geometry_notices, _jump_notices, cam_frame_point,
+from .model import (CamDesign, CamState, _geometry_notices, _grown_arm, _jump_notices, cam_frame_point,
                     cam_response, continuous_jump_speed, hertz_contact, motion_function)
 from .motion import joint_notices
 
@@ -39,10 +39,9 @@ def follower_response(design: CamDesign, state: CamState, cam_angle) -> Response
 def aged_arm(design: CamDesign, state: CamState) -> geo.Arm:
     """The arm with its length and face offset grown by the follower's strain along it, and
     its inertia by the follower's moisture mass ratio m/m_dry."""
-    arm, grow = design.arm, 1.0 + state.arm_strain
     ratio = 1.0 if state.follower_mass is None else state.follower_mass / design.follower_mass
-    return replace(arm, length=arm.length * grow, face_offset=arm.face_offset * grow,
-                   inertia=arm.inertia * ratio)
+    arm = _grown_arm(design, state.arm_strain)["arm"]
+    return replace(arm, inertia=arm.inertia * ratio)
 
 
 def arm_contact(design: CamDesign, state: CamState, psi, d1, d2) -> geo.Contact:
@@ -78,7 +77,7 @@ def arm_response(design: CamDesign, state: CamState, cam_angle) -> Response:
     arm = aged_arm(design, state)
     contact = arm_contact(design, state, psi, d1, d2)
     roller = design.roller_radius * (1 + state.roller_strain)
-    notices = joint_notices(design.segments)
+    notices = joint_notices(design.segments) if design.kind == "motion" else []
     notices += _geometry_notices(design, theta, contact.pressure_angle, contact.pitch_radius,
                                  contact.radius, roller)
 
