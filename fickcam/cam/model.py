@@ -465,14 +465,16 @@ def _where(theta, index) -> str:
 
 
 def _geometry_notices(design, theta, phi, rho_pitch, rho, roller) -> list[str]:
-    """Undercut, cusp, small curvature and steep pressure angle (Norton sec. 8.7)."""
+    """Undercut, cusp, small curvature and steep pressure angle (Norton sec. 8.7; a flat-face
+    arm has a pressure angle too)."""
     notices = []
     if design.follower_kind == "flat":
         bad = np.nonzero(rho <= 0)[0]
         if bad.size:
             notices.append(f"flat follower: the profile needs a cusp (rho <= 0) at "
                            f"{_where(theta, bad[0])}; raise the base circle")
-        return notices
+        if design.arm is None:  # a translating face: phi = 0
+            return notices
     k = int(np.argmax(np.abs(phi)))
     if abs(phi[k]) > PRESSURE_ANGLE_LIMIT:
         notices.append(f"pressure angle {math.degrees(phi[k]):.3g} deg at {_where(theta, k)} "
