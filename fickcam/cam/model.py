@@ -369,11 +369,8 @@ def cam_response(design: CamDesign, state: CamState, cam_angle) -> Response:
                                             design.contact_length, _slide_ratio(design, height, rho))
             if design.hardness else np.zeros_like(theta))
     px, py = cam_frame_point(design, theta, cx, cy)
-    scale_min = 1.0 + min(state.cam_strain_x, state.cam_strain_y)
-    base_circle = (design.profile.radii(state.cam_strain_x, state.cam_strain_y)[0]
-                   if design.kind == "profile" else design.base_circle_radius * scale_min)
     variables = {
-        "base_circle_radius": base_circle,
+        "base_circle_radius": aged_base_circle(design, state),
         "lift": highest - lowest,
         "jump_speed": jump,
         "follower_displacement": y,
@@ -397,6 +394,13 @@ def cam_response(design: CamDesign, state: CamState, cam_angle) -> Response:
         "wear_rate": float(np.max(wear)) * omega / (2 * np.pi),
     }
     return Response(variables, notices)
+
+
+def aged_base_circle(design: CamDesign, state: CamState) -> float:
+    """Smallest radius of the aged cam (a distorted base circle: its smaller semi-axis)."""
+    if design.kind == "profile":
+        return design.profile.radii(state.cam_strain_x, state.cam_strain_y)[0]
+    return design.base_circle_radius * (1.0 + min(state.cam_strain_x, state.cam_strain_y))
 
 
 def hertz_contact(design: CamDesign, state: CamState, force, rho, roller):

@@ -375,6 +375,6 @@ def check_motion(segments) -> None:
         raise ValueError("the motion goes below the base circle (a return before its rise)")
 
 
-__all__ = ["Angle", "CamSection", "SwingingArm", "arm_problems", "Eccentric", "Follower", "Guide", "LAWS", "Lever", "Rod", "Segment",
-           "TrainSection", "Wear",
+__all__ = ["Angle", "CamSection", "Eccentric", "Follower", "Guide", "LAWS", "Lever", "Rod", "Segment",
+           "SwingingArm", "TrainSection", "Wear", "arm_problems",
            "check_motion"]
