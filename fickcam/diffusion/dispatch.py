@@ -21,6 +21,7 @@ import numpy as np
 from ..errors import InputError
 from .analytic import solve_analytic
 from .calibration import ANALYTIC_ERROR
+from .clock import RescaledTime
 from .clock import scales as scales_of
 from .coupled import two_phase_marcher
 from .direct import plan_direct, solve_direct
@@ -29,6 +30,8 @@ from .exposure import Diffusivity, Exposure
 from .geometry import Bar, CamPlate, Disc, LinkBar, Sheet
 from .langmuir import langmuir_history
 from .modal import prefers_modal
+from .planmodes import planform_design, planform_error, planform_source
+from .timesteps import earliest_output
 from .nonlinear import fastest, refined, solve_nonlinear
 from .plane import plan_plane, solve_plane
 from .results import DiffusionResult, Plan
@@ -64,19 +67,14 @@ def _no_exact_reason(geometry) -> str:
 
 
 def _two_phase_model(geometry, model: str) -> str:
-    """Langmuir sorption: the exact modes where the part has them, else the direct
-    finite volumes (``coupled``); a CamPlate or LinkBar on prisms (``plane`` superposes
-    Fickian step responses, which a two-phase part does not have)."""
+    """Langmuir sorption: the exact modes where the part has them; a CamPlate or LinkBar
+    ``plane``: its planform's eigenmodes x the exact sheet (``planmodes``), or ``solid``
+    prisms; else the direct finite volumes (``coupled``)."""
     if model in ("auto", "analytic") and exact_available(geometry):
         return "analytic"
     if model == "analytic":
         raise InputError(f"diffusion.model analytic is not available for this "
                          f"{type(geometry).__name__}: {_no_exact_reason(geometry)}")
-    if model == "plane":
-        raise InputError("diffusion.model plane does not apply to two-phase (langmuir) "
-                         "sorption: use solid (or auto)")
-    if isinstance(geometry, (CamPlate, LinkBar)):
-        return "solid"
     return NUMERICAL_MODEL[type(geometry)] if model == "auto" else model
 
 
@@ -114,6 +112,8 @@ def _plan_sorption(geometry, diffusivity, exposure, times, accuracy, model, sorp
         if chosen == "analytic":
             return Plan("analytic", 0, 0, f"{law}: exact Fickian modes of the part, each a "
                         "2x2 free/bound system advanced exactly through the history", accuracy)
+        if chosen == "plane":
+            return _plan_planform(geometry, diffusivity, exposure, times, accuracy, law)
     else:
         chosen = _nonlinear_model(geometry, model)
         diffusivity = fastest(diffusivity, sorption, exposure, times)
@@ -123,6 +123,17 @@ def _plan_sorption(geometry, diffusivity, exposure, times, accuracy, model, sorp
     if is_nonlinear(sorption):
         direct = refined(direct, sorption, exposure, times)
     return replace(direct, reason=f"{law}; {direct.reason}")
+
+
+def _plan_planform(geometry, diffusivity, exposure, times, accuracy, law) -> Plan:
+    scales = scales_of(geometry, diffusivity, exposure)
+    t_lo = earliest_output(scales.tau_star(exposure.change_times),
+                           scales.tau_star(np.asarray(times, float)))
+    design = planform_design(geometry, diffusivity.pre_exponential, accuracy, t_lo)
+    return Plan("plane", int(np.prod(design.cells)), 0, f"{law}: every eigenmode of the "
+                f"planform's FiPy operator ({design.note}) x the exact sheet modes, each a 2x2 "
+                "free/bound system advanced exactly through the history", accuracy,
+                design.cells, finest=design.finest, growth=design.growth)
 
 
 def _nonlinear_model(geometry, model: str) -> str:
@@ -161,14 +172,27 @@ def solve(geometry, diffusivity: Diffusivity, exposure: Exposure, times: np.ndar
 
 def _solve_sorption(geometry, diffusivity, exposure, times, chosen: Plan, sorption, depth,
                     store_fields, part) -> DiffusionResult:
-    if chosen.model == "analytic":
-        history, estimate = langmuir_history(geometry, diffusivity, sorption, exposure, times,
-                                             chosen.error_estimate, depth)
-        return DiffusionResult(times, history["mean"], history["surface"], "analytic", 0, 0,
-                               estimate, chosen.reason, bound=history["bound"])
+    if chosen.model in ("analytic", "plane"):
+        return _langmuir_modes(geometry, diffusivity, exposure, times, chosen, sorption, depth)
     if is_langmuir(sorption):
         return solve_direct(geometry, diffusivity, exposure, times, chosen,
                             surface_layer_depth=depth, store_fields=store_fields, part=part,
                             marcher=two_phase_marcher(sorption, exposure))
     return solve_nonlinear(geometry, diffusivity, sorption, exposure, times, chosen,
                            surface_layer_depth=depth, store_fields=store_fields, part=part)
+
+
+def _langmuir_modes(geometry, diffusivity, exposure, times, chosen, sorption, depth):
+    """The exact two-phase modal march; for a CamPlate or LinkBar on its planform's modes,
+    whose mesh error (``planform_error``) adds to the march's."""
+    source, planform = None, 0.0
+    if chosen.model == "plane":
+        d = diffusivity.pre_exponential
+        source = planform_source(geometry, d, depth, chosen.finest, chosen.growth)
+        ages = RescaledTime(diffusivity, exposure)(times)
+        planform = planform_error(geometry, d, depth, chosen.finest, chosen.growth, source, ages)
+    history, estimate = langmuir_history(geometry, diffusivity, sorption, exposure, times,
+                                         chosen.error_estimate, depth, source)
+    return DiffusionResult(times, history["mean"], history["surface"], chosen.model,
+                           chosen.cells, 0, estimate + planform, chosen.reason,
+                           bound=history["bound"])

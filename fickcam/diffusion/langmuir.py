@@ -29,6 +29,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .clock import RescaledTime
+from .exact import step_response
 from .modal import FIRST_COUNT, FIRST_PER_OCTAVE, INTERPOLATION_SHARE, MAX_PRODUCT, Forcing, \
     _dimensions, _pieces, lump, product_modes, step_corrections
 from .two_phase import exchange_propagator
@@ -113,22 +114,41 @@ def _record(out, want, node, p, q, q_rest, amplitudes, kept, free_now) -> None:
     out[row, 1] = q @ amplitudes + (1.0 - kept) * q_rest
 
 
-def _history(geometry, d0, depth, nodes: Nodes, counts, per_octave) -> np.ndarray:
+@dataclass(frozen=True)
+class ModeSource:
+    """Where the Fickian modes of a part come from: ``modes(counts)`` (product modes,
+    ``counts`` per doubled direction, before lumping) and ``response(age)`` (the exact
+    unit-step mean and layer uptake, for the step corrections)."""
+
+    modes: object
+    response: object
+    directions: int
+    fixed: int = 1     # modes of a direction kept whole (a planform's), times the counts
+
+
+def separable_source(geometry, d0, depth) -> ModeSource:
+    """Sheet, Bar, solid Disc: ``modal.product_modes`` and ``exact.step_response``."""
+    return ModeSource(lambda counts: product_modes(geometry, d0, depth, counts),
+                      lambda age: step_response(geometry, d0, age, depth), _dimensions(geometry))
+
+
+def _history(source: ModeSource, nodes: Nodes, counts, per_octave) -> np.ndarray:
     """(n_outputs, 3): free mean, bound mean, total contact-layer mean."""
-    modes = lump(product_modes(geometry, d0, depth, counts), per_octave)
+    modes = lump(source.modes(counts), per_octave)
     values = march_modes(modes.rates, np.stack([modes.mean, modes.layer], axis=1), nodes)
     force = Forcing(nodes.tau, nodes.free_right, nodes.free_left, nodes.outputs, 0.0)
-    values[:, 0, :] += step_corrections(geometry, d0, depth, modes, force)
+    values[:, 0, :] += step_corrections(None, None, None, modes, force, source.response)
     return np.stack([values[:, 0, 0], values[:, 1, 0], values[:, 0, 1] + values[:, 1, 1]], axis=1)
 
 
 def langmuir_history(geometry, diffusivity, law, exposure, times, accuracy,
-                     surface_layer_depth=5e-4):
+                     surface_layer_depth=5e-4, source: ModeSource | None = None):
     """Total mean, contact-layer mean and bound mean (weight %) at ``times`` (s), and the
     error estimate relative to the largest swing |Ms - M0| (the change when modes and bins
-    are doubled plus the interpolation bound of ramps)."""
+    are doubled plus the interpolation bound of ramps). ``source``: the part's modes
+    (default: the separable Sheet, Bar or solid Disc)."""
     times = np.asarray(times, float)
-    d0 = diffusivity.pre_exponential
+    source = source or separable_source(geometry, diffusivity.pre_exponential, surface_layer_depth)
     edges = np.asarray(exposure.change_times, float)
     sampled = np.concatenate([exposure.surface_moisture(edges), exposure.surface_before(edges)])
     swing = float(np.max(np.abs(np.asarray(sampled, float) - exposure.initial_moisture)))
@@ -138,17 +158,16 @@ def langmuir_history(geometry, diffusivity, law, exposure, times, accuracy,
         return {"mean": flat, "surface": flat.copy(), "bound": bound}, 0.0
     tolerance = accuracy * swing
     nodes = march_nodes(law, diffusivity, exposure, times, INTERPOLATION_SHARE * tolerance)
-    counts, per_octave = [FIRST_COUNT] * _dimensions(geometry), FIRST_PER_OCTAVE
-    values = _history(geometry, d0, surface_layer_depth, nodes, counts, per_octave)
+    counts, per_octave = [FIRST_COUNT] * source.directions, FIRST_PER_OCTAVE
+    values = _history(source, nodes, counts, per_octave)
     while True:
         coarse = values
         counts, per_octave = [2 * c for c in counts], 2 * per_octave
-        values = _history(geometry, d0, surface_layer_depth, nodes, counts, per_octave)
+        values = _history(source, nodes, counts, per_octave)
         change = float(np.max(np.abs(values - coarse)))
         if (change <= (1.0 - INTERPOLATION_SHARE) * tolerance
-                or np.prod(counts) * 2 ** len(counts) > MAX_PRODUCT):
+                or source.fixed * np.prod(counts) * 2 ** len(counts) > MAX_PRODUCT):
             break
     free, bound, layer = values.T
     return {"mean": free + bound, "surface": layer, "bound": bound}, \
         (change + nodes.interpolation) / swing
-

@@ -227,9 +227,13 @@ def march(modes: Modes, force: Forcing) -> np.ndarray:
             + (1.0 - kept)[None, :] * force.right[at, None])
 
 
-def step_corrections(geometry, d0, depth, modes: Modes, force: Forcing) -> np.ndarray:
+def step_corrections(geometry, d0, depth, modes: Modes, force: Forcing,
+                     response=None) -> np.ndarray:
     """Each step J of Ms (the initial one, held segments): J times the transient of the
-    modes left out or merged, -J (u_exact - u_modes)(age), for the outputs it reaches."""
+    modes left out or merged, -J (u_exact - u_modes)(age), for the outputs it reaches;
+    ``response(age)`` -> (mean, layer) replaces ``exact.step_response`` (a planform's
+    own modes times the sheet, ``planmodes``)."""
+    response = response or (lambda age: step_response(geometry, d0, age, depth))
     jumps = force.right - force.left
     jumps[np.abs(jumps) <= 1e-12 * np.max(np.abs(force.right))] = 0.0  # round-off of ramps
     out_tau = force.tau[force.outputs]
@@ -240,7 +244,7 @@ def step_corrections(geometry, d0, depth, modes: Modes, force: Forcing) -> np.nd
         near = (force.outputs >= k) & (age < reach)
         if not near.any():
             continue
-        exact = 1.0 - np.stack(step_response(geometry, d0, age[near], depth), axis=1)
+        exact = 1.0 - np.stack(response(age[near]), axis=1)
         kept = np.exp(-np.outer(age[near], modes.rates)) @ np.stack([modes.mean, modes.layer], 1)
         correction[near] -= jumps[k] * (exact - kept)
     return correction
