@@ -29,7 +29,7 @@ def method_of_lines(k, start, surface, nodes=400):
 
     solution = solve_ivp(rhs, (0.0, TIMES[-1] * D / H ** 2), np.full(nodes - 1, start),
                          t_eval=TIMES * D / H ** 2, method="BDF", rtol=1e-9, atol=1e-11,
-                         jac_sparsity=diags([1, 1, 1], [-1, 0, 1], shape=(nodes - 1, nodes - 1)))
+                         jac_sparsity=diags([1.0, 1.0, 1.0], [-1, 0, 1], shape=(nodes - 1, nodes - 1)))
     full = np.vstack([np.full(TIMES.size, surface), solution.y, np.full(TIMES.size, surface)])
     return np.trapezoid(full, dx=dz, axis=0)
 
