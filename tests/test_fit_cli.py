@@ -168,3 +168,4 @@ def test_non_fickian_data_write_a_runnable_two_phase_block_with_the_free_water_d
     free = material.diffusivity_for().pre_exponential[2] * np.exp(
         -material.diffusivity_for().activation_energy / (GAS_CONSTANT * 333.15))
     assert free == pytest.approx(fit.diffusivity.value, rel=1e-3)
+    assert material.saturation_moisture(333.15, 85.0) == pytest.approx(fit.saturation.value, rel=1e-3)
