@@ -1,6 +1,6 @@
 """``materials.NAME.sorption``: parsed with units, refused with a line and a key path,
 and a two-phase material gives total moisture plus ``bound_moisture_content``."""
-import textwrap
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -9,39 +9,15 @@ import yaml
 import fickcam
 from fickcam.cli import main
 
-SCENE = textwrap.dedent("""\
-    name: two-phase-follower
-    environment:
-      reference_temperature: 23 degC
-      history:
-        - {duration: 30 d, temperature: 60 degC, relative_humidity: 85 %}
-    materials:
-      cfrp: {fiber: T300, matrix: 8551-7, fiber_volume_fraction: 0.6}
-      epoxy:
-        matrix: "3502"
-        sorption: {model: langmuir, binding_rate: 0.02 1/d, release_rate: {pre_exponential: 0.05 1/d}}
-    cam:
-      material: cfrp
-      base_circle_radius: 1.94 in
-      thickness: 12 mm
-      speed: 600 rpm
-      follower:
-        kind: roller
-        roller_radius: 0.6 in
-        mass: 1.6 kg
-        material: epoxy
-        spring_rate: 1376.7 N/in
-        external_load: 100 N
-      motion:
-        - dwell: 105 deg
-        - {rise: 1.5 in, over: 75 deg, law: simple_harmonic}
-        - {return: 1.5 in, over: 75 deg, law: simple_harmonic}
-        - dwell: 105 deg
-    diffusion: {accuracy: 1e-2}
-    outputs:
-      ageing_times: [0 d, 10 d, 30 d]
-      angle_step: 10 deg
-    """)
+DEMO = (Path(__file__).resolve().parents[1] / "configs" / "singh2017_cam.yaml").read_text()
+SCENE = (DEMO.split("limits:")[0]
+         .replace("    layup: unidirectional\n", "    layup: unidirectional\n  epoxy:\n"
+                  "    matrix: \"3502\"\n    sorption: {model: langmuir, binding_rate: 0.02 1/d, "
+                  "release_rate: {pre_exponential: 0.05 1/d}}\n")
+         .replace("    material: cfrp", "    material: epoxy")
+         .replace("duration: 60 d", "duration: 30 d").replace("113 degC", "60 degC")
+         .replace("accuracy: 1e-3", "accuracy: 1e-2")
+         + "outputs:\n  ageing_times: [0 d, 10 d, 30 d]\n  angle_step: 10 deg\n")
 
 
 def test_langmuir_material_reads_rates_in_any_unit():

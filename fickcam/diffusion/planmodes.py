@@ -16,6 +16,8 @@ the accuracy by ``layout`` (2 graded directions) under ``PLANFORM_CAP`` cells.
 """
 from __future__ import annotations
 
+from functools import lru_cache
+
 import numpy as np
 from scipy.linalg import eigh
 
@@ -39,9 +41,11 @@ def planform_design(geometry, d, accuracy: float, t_lo: float) -> layout.Layout:
                              layout._estimated_prism_cells(geometry, w0, g, stretch)[0],))
 
 
+@lru_cache(maxsize=8)
 def planform_spectrum(geometry, d, depth: float, finest: float, growth: float):
-    """(rates in 1/s of rescaled time, mean amplitudes, layer amplitudes) of the planform:
-    a unit step's deficit 1 - u has mean sum A_i exp(-rate_i tau)."""
+    """(rates in 1/s of rescaled time, mean amplitudes, layer amplitudes, cells) of the
+    planform: a unit step's deficit 1 - u has mean sum A_i exp(-rate_i tau). Cached: a
+    run re-ages its parts at extra times to locate limit crossings (read-only arrays)."""
     tess = layout.planform_cells(geometry, finest, growth, stretch_of(d))
     half = 0.5 * geometry.thickness
     disc = prism(tess, geometry.thickness, np.array([half]), band_share(tess, depth), d,
@@ -55,6 +59,8 @@ def planform_spectrum(geometry, d, depth: float, finest: float, growth: float):
     mean = (disc.mean_weights / root) @ vectors * coefficients
     layer = (disc.layer_weights / root) @ vectors * coefficients
     rates = np.maximum(mu, 0.0) * d[2] / geometry.thickness ** 2
+    for array in (rates, mean, layer):
+        array.flags.writeable = False
     return rates, mean, layer, tess.cells
 
 
