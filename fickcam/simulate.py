@@ -139,9 +139,14 @@ def _age(scene: Scene, environment: Environment, times: np.ndarray, accuracy: fl
 
 
 def _aged_values(scene: Scene, environment: Environment, times: np.ndarray,
-                 accuracy: float | None, progress: bool, parts: list[Part] | None = None):
+                 accuracy: float | None, progress: bool, parts: list[Part] | None = None,
+                 diffusion_times: np.ndarray | None = None):
     """(values, coords, notices, part histories) of ``scene`` at ageing ``times`` (s): every
-    variable but the as-designed ones, as SI arrays keyed by schema name."""
+    variable but the as-designed ones, as SI arrays keyed by schema name.
+    ``diffusion_times``: sorted times that include ``times`` at which to solve diffusion
+    (the limit search passes the stored run's times too, so the solve has the stored run's
+    plan and reuses its cached step responses); the part histories are then taken at
+    ``times``."""
     from tqdm.auto import tqdm
 
     options = diffusion_options(scene, accuracy)
@@ -154,10 +159,14 @@ def _aged_values(scene: Scene, environment: Environment, times: np.ndarray,
                unit="step", leave=False)
 
     histories = []
+    solve_times = times if diffusion_times is None else diffusion_times
     for part in parts:
         bar.set_postfix_str(f"diffusion {part.name}")
-        histories.append(age_part(part, environment, times, options, scene, notices,
-                                  keep_field=part.name in elastic))
+        history = age_part(part, environment, solve_times, options, scene, notices,
+                           keep_field=part.name in elastic)
+        if diffusion_times is not None:
+            history = history.at_rows(np.searchsorted(diffusion_times, times))
+        histories.append(history)
         bar.update()
     values = {"temperature": environment.temperature(times),
               "relative_humidity": environment.relative_humidity(times)}
@@ -208,10 +217,13 @@ def _limits(ds, scene: Scene, environment: Environment, times, accuracy: float |
                if design_name(n) in ds}
 
     def evaluate(at) -> np.ndarray:
-        """The ratios at ageing times ``at``: the model re-run there; only the limited
-        variables go into the Dataset, beside the stored run's as-designed values."""
-        values, coords, _, _ = _aged_values(scene, environment, np.asarray(at), accuracy, False,
-                                            parts)
+        """The ratios at ageing times ``at`` (inside the stored span): diffusion re-solved at
+        the stored times and ``at`` together, so its plan and cached step responses are the
+        stored run's; the mechanisms evaluated at ``at`` only; only the limited variables
+        go into the Dataset, beside the stored run's as-designed values."""
+        at = np.asarray(at, float)
+        values, coords, _, _ = _aged_values(scene, environment, at, accuracy, False, parts,
+                                            diffusion_times=np.union1d(times, at))
         kept = {name: value for name, value in values.items() if name in names}
         dims = {dim for name in kept for dim in VARIABLES[name].dims}
         return ratios(build_dataset(kept, {c: v for c, v in coords.items() if c in dims})
