@@ -43,16 +43,20 @@ def default_workers(n_cases: int) -> int:
     return max(1, min(os.cpu_count() or 1, n_cases))
 
 
-@contextmanager
-def dask_client(workers: int | None, scheduler: str | None, n_cases: int):
-    """A distributed.Client: to ``scheduler`` if given, else to a new LocalCluster
-    (closed again on exit); dask's INFO chatter is kept off fickcam's stderr."""
+def require_distributed() -> None:
+    """Import dask.distributed, or say how to install it (exit status 2)."""
     try:
-        import distributed  # noqa: F401 - importing it sets its loggers' levels: do that first
+        import distributed  # noqa: F401
     except ImportError:
         raise InputError("more than one worker, or --scheduler, needs dask.distributed: "
                          "pip install 'fickcam[sweep]' (or run with --workers 1)") from None
 
+
+@contextmanager
+def dask_client(workers: int | None, scheduler: str | None, n_cases: int):
+    """A distributed.Client: to ``scheduler`` if given, else to a new LocalCluster
+    (closed again on exit); dask's INFO chatter is kept off fickcam's stderr."""
+    require_distributed()  # importing it sets its loggers' levels: do that first
     with quieter("distributed", logging.WARNING), _connect(workers, scheduler, n_cases) as client:
         yield client
 
@@ -165,9 +169,16 @@ def compute_cases(sweep: Sweep, folder: WorkFolder, indices, client, *, progress
 
 
 def in_process(workers: int | None, scheduler: str | None, n_cases: int) -> bool:
-    """Whether the cases run here: one worker asked for (or one case), no scheduler."""
+    """Whether the cases run here: one worker asked for (or one case), or no worker count
+    given and dask.distributed not installed; never with a scheduler."""
+    from importlib.util import find_spec
+
     if scheduler:
         return False
+    if workers is None and find_spec("distributed") is None:
+        log.info("dask.distributed is not installed: running the cases in this process "
+                 "(pip install 'fickcam[sweep]' for one worker process per core)")
+        return True
     return (workers if workers is not None else default_workers(n_cases)) == 1
 
 
@@ -184,13 +195,16 @@ def run_sweep(sweep_path, output, workers: int | None = None, scheduler: str | N
 
     started = time.perf_counter()
     sweep = load_sweep(sweep_path)
+    here = in_process(workers, scheduler, len(sweep.cases))
+    if not here:
+        require_distributed()
     output = Path(output)
     folder = WorkFolder.next_to(output)
     records = folder.open_for(sweep.identity, len(sweep.cases))
     todo = [c.index for c in sweep.cases if c.index not in records]
     if records:
         log.info("resuming: %d of %d case(s) already finished", len(records), len(sweep.cases))
-    if todo and in_process(workers, scheduler, len(todo)):
+    if todo and (here or in_process(workers, scheduler, len(todo))):
         records.update(run_here(sweep, folder, todo, progress=progress, done=len(records)))
     elif todo:
         with dask_client(workers, scheduler, len(todo)) as client:
