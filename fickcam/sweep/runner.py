@@ -215,7 +215,8 @@ def run_sweep(sweep_path, output, workers: int | None = None, scheduler: str | N
         shown = ", ".join(str(i) for i in failed[:20]) + (" ..." if len(failed) > 20 else "")
         log.warning("%d of %d case(s) failed (case_status, case_message in the result): %s",
                     len(failed), len(sweep.cases), shown)
-    save(combine(sweep, records, finished_cases(folder, sweep, records), started=started), output)
+    save(combine(sweep, records, finished_cases(folder, sweep, records), started=started), output,
+         compress=True)
     if not any(r.get("retry") for r in records.values()):
         folder.remove_own_files()
     else:
