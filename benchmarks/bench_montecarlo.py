@@ -130,7 +130,8 @@ def main(argv=None) -> None:
               f"{wall * args.workers / cases / single:>12.2f} {cpu / cases:>11.3f} {load:>6.1f}",
               flush=True)
         print(f"result file: {output.stat().st_size / 1e6:.1f} MB "
-              f"({output.stat().st_size / cases / 1e3:.0f} kB per case)")
+              f"({output.stat().st_size / cases / 1e3:.0f} kB per case); this process's peak "
+              f"memory {resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1e3:.0f} MB")
         checked = check_cases(sweep_file, output, min(args.check, cases))
         print(f"{checked} cases of the {args.workers}-worker result equal their single runs")
 
