@@ -1,15 +1,14 @@
-"""Long climate records on the exact paths: every mode marched through the record
-(diffusion/modal.py) against Duhamel superposition of the closed-form step responses, and
-a solid disc under three weeks of Greensboro's TMY3 year against an independent modal
-solution (each mode advanced exactly; tau from a fine trapezoid rule)."""
+"""Long climate records on the exact paths: the tabulated Duhamel sum (diffusion/tabulated.py)
+against Duhamel's panels over the closed-form step responses, and a solid disc under a week
+of Greensboro's TMY3 year against an independent modal solution (each mode advanced
+exactly; tau from a fine trapezoid rule)."""
 import numpy as np
 import pytest
 from scipy.integrate import cumulative_trapezoid
 from scipy.special import jn_zeros
 
 from fickcam.diffusion import Bar, Diffusivity, Disc, Exposure, Sheet, plan, solve
-from fickcam.diffusion.analytic import exact_history
-from fickcam.diffusion.modal import modal_history
+from fickcam.diffusion.analytic import exact_history, record_history
 
 DAY = 86400.0
 ARRHENIUS = Diffusivity((2e-5, 2e-5, 1e-5), 40e3)
@@ -26,24 +25,24 @@ def mixed_history():
 
 @pytest.mark.parametrize("geometry", [Sheet(2e-3), Disc(0.02, 0.005), Bar(0.01, 0.008, 0.003)],
                          ids=["sheet", "disc", "bar"])
-def test_modal_march_matches_duhamel_on_steps_and_ramps_within_its_estimate(geometry):
+def test_tabulated_sum_matches_duhamel_on_steps_and_ramps_within_its_estimate(geometry):
     history, edges = mixed_history()
     times = np.sort(np.concatenate([np.linspace(0, 14 * DAY, 29), edges[1:-1] + 60.0]))
     swing = 1.7  # largest |Ms - M0|
     reference = exact_history(geometry, ARRHENIUS, history, times)
-    result, estimate = modal_history(geometry, ARRHENIUS, history, times, 3e-4)
+    result, estimate, _ = record_history(geometry, ARRHENIUS, history, times, 3e-4)
     assert estimate <= 3e-4
     for key in ("mean", "surface"):
         assert np.max(np.abs(result[key] - reference[key])) <= estimate * swing
 
 
 def test_steps_stay_exact_just_after_they_happen():
-    """The dropped fast modes' transient of a step comes from the closed form: a minute
-    after each step the mean and the layer still match Duhamel."""
+    """A step reads the tabulated step response itself (short-time law below the table):
+    a second and a minute after each step the mean and the layer still match Duhamel."""
     history, edges = mixed_history()
     times = np.concatenate([[0.0], edges[[2, 4]] + 1.0, edges[[2, 4]] + 60.0])
     reference = exact_history(Sheet(2e-3), ARRHENIUS, history, times)
-    result, estimate = modal_history(Sheet(2e-3), ARRHENIUS, history, times, 1e-5)
+    result, estimate, _ = record_history(Sheet(2e-3), ARRHENIUS, history, times, 1e-5)
     assert np.max(np.abs(result["surface"] - reference["surface"])) <= estimate * 1.7
 
 
@@ -94,7 +93,7 @@ def test_solid_disc_under_a_week_of_a_tmy3_record_matches_an_independent_modal_s
     exposure = environment.exposure(nylon_moisture)
     times = np.linspace(0.0, environment.end, 15)
     chosen = plan(disc, diffusivity, exposure, times, accuracy=1e-4)
-    assert chosen.model == "analytic" and "recursive convolution" in chosen.reason
+    assert chosen.model == "analytic" and "linear in the rows" in chosen.reason
     result = solve(disc, diffusivity, exposure, times, accuracy=1e-4)
     reference = independent_disc_mean(disc, diffusivity, environment, times)
     assert result.error_estimate <= 1e-4
@@ -103,16 +102,16 @@ def test_solid_disc_under_a_week_of_a_tmy3_record_matches_an_independent_modal_s
 
 
 def test_record_cost_grows_linearly_with_its_rows():
-    """Modes x rows: eight times the rows costs well under 16 times (the mode count is set by
-    the accuracy, not by the length)."""
+    """Eight times the rows costs well under 16 times (the table is set by the accuracy, not
+    by the length; the sum is one pass over the rows)."""
     import time
 
     def cost(weeks):
         environment = greensboro_weeks(weeks)
         exposure = environment.exposure(nylon_moisture)
         start = time.process_time()
-        modal_history(Disc(0.023, 0.01), Diffusivity((3.85e-4,) * 3, 50e3), exposure,
-                      np.linspace(0, environment.end, 12), 1e-3)
+        record_history(Disc(0.023, 0.01), Diffusivity((3.85e-4,) * 3, 50e3), exposure,
+                       np.linspace(0, environment.end, 12), 1e-3)
         return time.process_time() - start
 
     cost(1)  # warm-up
