@@ -25,7 +25,7 @@ from .direct import plan_direct, solve_direct
 from .exact import exact_available
 from .exposure import Diffusivity, Exposure
 from .geometry import Bar, CamPlate, Disc, LinkBar, Sheet
-from .forcing import is_long_record
+from .forcing import RECORD_SHARE, is_long_record
 from .plane import plan_plane, solve_plane
 from .results import DiffusionResult, Plan
 
@@ -78,7 +78,8 @@ def plan(geometry, diffusivity: Diffusivity, exposure: Exposure, times: np.ndarr
     change = scales.tau_star(exposure.change_times)
     outputs = scales.tau_star(np.asarray(times, float))
     if chosen == "plane":  # expansion of the outline, then a graded mesh (plane)
-        return plan_plane(geometry, diffusivity, change, outputs, exposure.ramp, accuracy)
+        share = 1.0 - RECORD_SHARE if is_long_record(exposure) else 1.0  # the rest: the sum
+        return plan_plane(geometry, diffusivity, change, outputs, exposure.ramp, share * accuracy)
     return plan_direct(geometry, diffusivity, chosen, change, outputs, accuracy, exposure)
 
 

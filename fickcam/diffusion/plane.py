@@ -32,7 +32,7 @@ from .calibration import (EXPANSION_SHARE, FIRST_STEP, GROWTH_REACH, MAX_CELLS, 
                           PLANE_PAIR, space_error)
 from .clock import scales as scales_of
 from .duhamel import duhamel
-from .forcing import is_long_record
+from .forcing import RECORD_SHARE, is_long_record
 from .grading import MAX_GROWTH
 from .outline import outline_extent
 from .p1 import plane_operator
@@ -240,7 +240,8 @@ def _diffusion_times(geometry, d) -> tuple[float, float]:
 class History:
     """How ``solve_plane`` superposes over the exposure: Duhamel's panels (``duhamel``) for
     a few segments; for a long record (``forcing.is_long_record``) the tabulated sum of
-    ``tabulated``, cost linear in the rows, shared by the mean, the layer and the fields."""
+    ``tabulated``, cost linear in the rows, shared by the mean, the layer and the fields,
+    within ``RECORD_SHARE`` of the accuracy (``plan`` designs the rest)."""
 
     diffusivity: object
     exposure: object
@@ -252,13 +253,15 @@ class History:
     def of(cls, geometry, diffusivity, exposure, times, accuracy: float) -> "History":
         d = tuple(float(v) for v in diffusivity.pre_exponential)
         record = (LongRecord.of(diffusivity, exposure, times, _diffusion_times(geometry, d)[0],
-                                accuracy) if is_long_record(exposure) else None)
+                                RECORD_SHARE * accuracy) if is_long_record(exposure) else None)
         return cls(diffusivity, exposure, np.asarray(times, float), geometry, record)
 
-    def superpose(self, fraction, chunk: int = 64, fields: bool = False) -> tuple[np.ndarray, float]:
+    def superpose(self, fraction, chunk: int = 64, fields: bool = False,
+                  looser: float = 1.0) -> tuple[np.ndarray, float]:
         """(c0 + Duhamel sum of the unit-step unsaturated fraction u(tau*), the error of the
         sum itself relative to the swing: 0 for the panels, whose quadrature is exact to
-        ``calibration.ANALYTIC_ERROR``). ``fields``: a wide kernel (``LongRecord.field``)."""
+        ``calibration.ANALYTIC_ERROR``). ``fields``: a wide kernel (``LongRecord.field``);
+        ``looser``: a tolerance this many times the mean's (the contact layer)."""
         d = tuple(float(v) for v in self.diffusivity.pre_exponential)
         kernel = _kernel(fraction, d[2] / self.geometry.thickness ** 2)
         if self.record is None:
@@ -267,7 +270,7 @@ class History:
                 _diffusion_times(self.geometry, d), chunk=chunk), 0.0
         if fields:
             return self.exposure.initial_moisture + self.record.field(kernel), 0.0
-        values, error, _ = self.record.superpose(kernel)
+        values, error, _ = self.record.superpose(kernel, looser=looser)
         return self.exposure.initial_moisture + values, error
 
 
@@ -304,7 +307,7 @@ def solve_plane(geometry, diffusivity, exposure, times, chosen, *, accuracy: flo
         return plane_layer(tau) * sheet_fraction(tau)
 
     (mean, sum_error), (layer, _) = (history.superpose(mean_fraction),
-                                     history.superpose(layer_fraction))
+                                     history.superpose(layer_fraction, looser=LAYER_TOLERANCE))
     time_error = PAIR_TO_TIME_ERROR * pair_plane ** 2  # the sheet is exact
     # the plan's estimate, unless the blend's own bound at the ages read says more (no
     # expansion for this outline: the plan's model, with its time part)
@@ -360,7 +363,7 @@ def _expansion_only(expansion, ages, history, chosen, part):
         return (1.0 - expansion.layer_uptake(tau)) * sheet_fraction(tau)
 
     (mean, sum_error), (layer, _) = (history.superpose(mean_fraction),
-                                     history.superpose(layer_fraction))
+                                     history.superpose(layer_fraction, looser=LAYER_TOLERANCE))
     mean_error = max(chosen.error_estimate, expansion_error_at(expansion, ages)) + sum_error
     log.debug("%s plane: short-time expansion only, error %.2g", part, mean_error)
     return DiffusionResult(history.times, mean, layer, "plane", 0, 0, mean_error,

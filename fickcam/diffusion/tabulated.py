@@ -43,21 +43,28 @@ TABLE_SHARE = 0.25          # share of the tolerance for the tabulation
 SLIVER = 1e-10           # pieces shorter than this share of the span act as steps (round-off)
 ROUND_OFF = 1e-12        # a step of Ms smaller than this share of Ms is a ramp's round-off
 FIELD_PER_DECADE = 32    # fields (wide kernels): one table at this density, not refined
+JUMP_FACTOR = 50.0       # a cubic missing a node by this x the median miss marks a step of K
+JUMP_FLOOR = 1e-9        # ... and steps of K below this (of the unit step) are none
+SECTIONS = 4             # rounds locating a step, each cutting its interval into
+SECTION_POINTS = 63      #   64 (to 64^-4 = 6e-8 of a cell)
 CHUNK = 4096             # ages per kernel call (fields: memory)
 
 
 @dataclass(frozen=True)
 class Table:
-    """K and I = int_0^w K at the ages w_j = exp(start + j step) (rescaled s), shape (n, m)."""
+    """K and I = int_0^w K at the ages w_j = exp(start + j step) (rescaled s), shape (n, m),
+    less the steps of K (``jumps``: age and size (m,)), which are summed exactly."""
 
     start: float
     step: float
     kernel: np.ndarray
     integral: np.ndarray
+    jumps: tuple = ()
 
     def coarse(self) -> "Table":
         """Every second grid point: the reading whose difference measures the error."""
-        return Table(self.start, 2.0 * self.step, self.kernel[::2], self.integral[::2])
+        return Table(self.start, 2.0 * self.step, self.kernel[::2], self.integral[::2],
+                     self.jumps)
 
 
 def _evaluate(kernel, ages: np.ndarray) -> np.ndarray:
@@ -74,21 +81,70 @@ _FIRST_CELL = np.array([9.0, 19.0, -5.0, 1.0]) / 24.0
 
 
 def tabulate(kernel, first: float, last: float, per_decade: int) -> Table:
-    """K and I on an odd number of points from ``first`` past ``last`` (so that every
-    second point, ``Table.coarse``, also covers it), ``per_decade`` points a decade.
-    I(w0) = (2/3) K(w0) w0 (K ~ sqrt(w) below), then each cell integrates the cubic
-    through four grid values of K(e^x) e^x (smooth in x): K is evaluated at the grid
-    points only."""
+    """K and I on an odd number of points from ``first`` or below to ``last`` (so that
+    every second point, ``Table.coarse``, also covers it), ``per_decade`` points a decade.
+    Steps of K (``_jumps``) are taken out first. I(w0) = (2/3) K(w0) w0 (K ~ sqrt(w)
+    below), then each cell integrates the cubic through four grid values of
+    K(e^x) e^x (smooth in x): K is evaluated at the grid points only."""
     step = math.log(10.0) / per_decade
-    half = max(2, math.ceil(math.log(max(last / first, 1.0)) / (2.0 * step)) + 1)
-    x = math.log(first) + step * np.arange(2 * half + 1)
+    half = max(3, math.ceil(math.log(max(last / first, 1.0)) / (2.0 * step)))
+    x = math.log(last) - step * np.arange(2 * half, -1, -1)  # ends at ``last``: a step response
+    #   known up to the last output (the plane's mesh) is held flat past it, a kink
     values = _evaluate(kernel, np.exp(x))
+    jumps = _jumps(kernel, x, values)
+    for age, size in jumps:
+        values = values - size[None, :] * (x >= math.log(age))[:, None]
     density = values * np.exp(x)[:, None]      # dI/dx
     windows = np.lib.stride_tricks.sliding_window_view(density, 4, axis=0)  # (n-3, m, 4)
     cells = np.concatenate([(windows[:1] @ _FIRST_CELL), windows @ _MIDDLE_CELL,
                             (windows[-1:, :, ::-1] @ _FIRST_CELL)]) * step
-    integral = np.cumsum(np.concatenate([(2.0 / 3.0) * values[:1] * first, cells]), axis=0)
-    return Table(float(x[0]), step, values, integral)
+    integral = np.cumsum(np.concatenate([(2.0 / 3.0) * values[:1] * math.exp(x[0]), cells]),
+                         axis=0)
+    return Table(float(x[0]), step, values, integral, tuple(jumps))
+
+
+def _jumps(kernel, x: np.ndarray, values: np.ndarray) -> list[tuple[float, np.ndarray]]:
+    """Steps of K between grid points (the plane model's blend switches from the outline's
+    expansion to the mesh; cubic interpolation across a step would not converge): cells
+    where the cubic through the four neighbours misses both end nodes, with opposite
+    signs, by ``JUMP_FACTOR`` x the median miss; each step located by bisection between
+    the cubics extrapolated from either side, its size K(w+) - K(w-). Narrow kernels only
+    (fields are taken smooth)."""
+    if values.shape[1] > 2 or values.shape[0] < 10:
+        return []
+    miss = np.zeros(values.shape)
+    miss[2:-2] = values[2:-2] - (-values[:-4] + 4 * values[1:-3] + 4 * values[3:-1]
+                                 - values[4:]) / 6.0
+    column = np.argmax(np.max(np.abs(miss), axis=0))
+    m = miss[:, column]
+    threshold = max(JUMP_FACTOR * float(np.median(np.abs(m[2:-2]))), JUMP_FLOOR)
+    cells = np.flatnonzero((np.abs(m[:-1]) > threshold) & (np.abs(m[1:]) > threshold)
+                           & (m[:-1] * m[1:] < 0))
+    found = []
+    for cell in cells[(cells >= 3) & (cells + 4 < x.size)]:
+        low, high = _bisect(kernel, x, values[:, column], column, cell)
+        size = (_evaluate(kernel, np.array([math.exp(high)]))
+                - _evaluate(kernel, np.array([math.exp(low)])))[0]
+        if np.max(np.abs(size)) > JUMP_FLOOR:
+            found.append((math.exp(0.5 * (low + high)), size))
+    return found
+
+
+def _bisect(kernel, x, column_values, column: int, cell: int) -> tuple[float, float]:
+    """Narrow [x_cell, x_cell+1] to the step: K at ``SECTION_POINTS`` points across the
+    interval in one call; the step lies after the last point the cubic from the left
+    (nodes cell-3..cell) predicts better than the cubic from the right (cell+1..cell+4)."""
+    left = np.polynomial.Polynomial.fit(x[cell - 3:cell + 1], column_values[cell - 3:cell + 1], 3)
+    right = np.polynomial.Polynomial.fit(x[cell + 1:cell + 5], column_values[cell + 1:cell + 5], 3)
+    low, high = float(x[cell]), float(x[cell + 1])
+    for _ in range(SECTIONS):
+        points = np.linspace(low, high, SECTION_POINTS + 2)[1:-1]
+        values = _evaluate(kernel, np.exp(points))[:, column]
+        on_left = np.abs(values - left(points)) <= np.abs(values - right(points))
+        before = int(np.argmin(on_left)) if not on_left.all() else points.size
+        low, high = (points[before - 1] if before > 0 else low,
+                     points[before] if before < points.size else high)
+    return low, high
 
 
 def _lagrange(table: Table, ages: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -177,7 +233,21 @@ def read(table: Table, where: Sources) -> np.ndarray:
     on_integral = _gather(rows, index, coefficient * on_i, n, size)
     on_integral[:, 0] += np.bincount(low_rows, low, minlength=n)
     on_kernel += _gather(rows, index, coefficient * on_k, n, size)
-    return on_kernel @ table.kernel + on_integral @ table.integral
+    return on_kernel @ table.kernel + on_integral @ table.integral + _read_jumps(table, where)
+
+
+def _read_jumps(table: Table, where: Sources) -> np.ndarray:
+    """The steps of K summed exactly: J_b H(a - w_b) for each step of Ms, J_b (a - w_b)+
+    for each change of slope (the integral of a step)."""
+    total = np.zeros((where.outputs, table.kernel.shape[1]))
+    for age, size in table.jumps:
+        rows, ages, coefficient = where.steps
+        after = np.bincount(rows, coefficient * (ages > age), minlength=where.outputs)
+        rows, ages, coefficient = where.slopes
+        ramp = np.bincount(rows, coefficient * np.maximum(ages - age, 0.0),
+                           minlength=where.outputs)
+        total += (after + ramp)[:, None] * size[None, :]
+    return total
 
 
 @dataclass(frozen=True)
@@ -200,11 +270,12 @@ class LongRecord:
         force = forcing(exposure, clock, np.asarray(times, float), INTERPOLATION_SHARE * tolerance)
         return cls(force, sources(force), swing, tolerance, SHORT_TIME * fastest)
 
-    def superpose(self, kernel, per_decade: int = FIRST_PER_DECADE,
-                  refine: bool = True) -> tuple[np.ndarray, float, int]:
+    def superpose(self, kernel, per_decade: int = FIRST_PER_DECADE, refine: bool = True,
+                  looser: float = 1.0) -> tuple[np.ndarray, float, int]:
         """(M - M0 at the outputs, shape (outputs, ...kernel outputs); the error relative
         to the swing (tabulation change + Ms interpolation); the points per decade used).
-        ``refine``: double the grid while the change exceeds ``TABLE_SHARE`` x tolerance."""
+        ``refine``: double the grid while the change exceeds ``TABLE_SHARE`` x tolerance
+        (x ``looser``)."""
         last = float(np.max(self.force.tau[self.force.outputs] - self.force.tau[0], initial=0.0))
         last = max(last, 10.0 * self.first)
         shape = np.shape(kernel(np.zeros(1)))[1:]
@@ -216,7 +287,7 @@ class LongRecord:
             table = tabulate(kernel, self.first, last, per_decade)
             fine, coarse = read(table, self.where), read(table.coarse(), self.where)
             change = float(np.max(np.abs(fine - coarse), initial=0.0))
-            if (not refine or change <= TABLE_SHARE * self.tolerance
+            if (not refine or change <= TABLE_SHARE * looser * self.tolerance
                     or 2 * per_decade > min(MAX_PER_DECADE, cap)):
                 break
             per_decade *= 2
