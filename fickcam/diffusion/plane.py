@@ -144,6 +144,21 @@ def planform_mesh(part, finest: float, growth: float, stretch: tuple[float, floa
     return triangulate(part, finest * part.thickness, growth=growth, stretch=stretch)
 
 
+@lru_cache(maxsize=8)
+def planform_response(geometry, finest: float, growth: float, d: tuple, layer_depth: float,
+                      end: float, per_doubling: int, first_step: float, keep_fields: bool,
+                      part: str):
+    """(P1 operator, unit-step response, time-error pair) of the planform: what ``solve_plane``
+    marches, cached by the exact inputs that determine it (geometries compare by value), so
+    re-runs at other output times (the limit search) and sweep cases that share the part,
+    its diffusivity ratios and its plan (a climate sweep at one temperature) march once."""
+    mesh = planform_mesh(geometry, finest, growth, stretch_of(d))
+    planar = plane_operator(mesh, geometry, layer_depth, d, part)
+    response, pair = step_response(planar, end, per_doubling, first_step,
+                                   keep_fields=keep_fields, part=part)
+    return planar, response, pair
+
+
 def expansion_error_at(expansion, ages: np.ndarray) -> float:
     """The expansion's error indicator x the sheet's unsaturated fraction, largest at the
     ``ages`` the outputs read (0 without ages)."""
@@ -290,12 +305,10 @@ def solve_plane(geometry, diffusivity, exposure, times, chosen, *, accuracy: flo
     history = History.of(geometry, diffusivity, exposure, times, accuracy)
     if switch >= end and not store_fields:
         return _expansion_only(expansion, ages, history, chosen, part)
-    mesh = planform_mesh(geometry, chosen.finest, chosen.growth, stretch_of(d))
-    planar = plane_operator(mesh, geometry, surface_layer_depth, d, part)
-    u_plane, pair_plane = step_response(planar, end, chosen.steps_per_doubling,
-                                        mesh_first_step(chosen.finest,
-                                                        0.0 if store_fields else switch),
-                                        keep_fields=store_fields, part=part)
+    planar, u_plane, pair_plane = planform_response(
+        geometry, chosen.finest, chosen.growth, d, surface_layer_depth, end,
+        chosen.steps_per_doubling, mesh_first_step(chosen.finest, 0.0 if store_fields else switch),
+        store_fields, part)
     (plane_mean, mean_error), (plane_layer, _) = (
         _planform_fractions(u_plane, values, expansion, which, tolerance)
         for values, which in ((u_plane.mean, "mean"), (u_plane.layer, "layer")))
