@@ -3,12 +3,12 @@ series (Sheet, Bar, solid Disc), advanced exactly mode by mode through the histo
 
 Carter & Kibler (1978) eqs. 1-2 (``sorption``): free water n diffuses, N is bound.
 Expanding n - n_s(t) and N in the Fickian eigenfunctions psi_k of the part (zero on the
-exposed surfaces, decay rates D lambda_k; ``modal.product_modes``), Green's identity
+exposed surfaces, decay rates D lambda_k; ``modes.product_modes``), Green's identity
 gives for the coefficients (p_k, q_k) of n and N, relative to those of the constant 1:
 
     d/dt [p; q] = [[-(D lambda_k + gamma), beta], [gamma, -beta]] [p; q] + [D lambda_k n_s(t); 0],
 
-one 2x2 linear system per mode (gamma = 0: the Fickian mode equation of ``modal``);
+one 2x2 linear system per mode (gamma = 0: the Fickian mode equation);
 the volume and contact-layer means are sum A_k p_k, sum A_k q_k with the Fickian
 amplitudes. Between nodes of the history the coefficients are constant (T held, or a
 ramp cut into pieces; D from the exact rescaled clock, gamma and beta at the piece's
@@ -16,11 +16,11 @@ middle) and n_s = beta/(gamma + beta) Ms is linear, so the update is exact: with
 equilibrium x* = n_s (1, gamma/beta) and e = x - x*, e(t + h) = exp(A h) e(t) -
 (dn_s/dt) int_0^h exp(A u) du (1, gamma/beta) (``two_phase.exchange_propagator``).
 
-The modes left out (or merged into rate bins, ``modal.lump``) are the infinite-rate
+The modes left out (or merged into rate bins, ``modes.lump``) are the infinite-rate
 limit: their free water follows n_s at once and their bound water relaxes locally,
 dN/dt = gamma n_s - beta N; each step of n_s gets the exact Fickian transient of what
-was left out (``modal.step_corrections``). Counts and bins are doubled until the result
-changes less than the accuracy (``modal``'s error measure).
+was left out (``modes.step_corrections``). Counts and bins are doubled until the result
+changes less than the accuracy.
 """
 from __future__ import annotations
 
@@ -30,9 +30,12 @@ import numpy as np
 
 from .clock import RescaledTime
 from .exact import step_response
-from .modal import FIRST_COUNT, FIRST_PER_OCTAVE, INTERPOLATION_SHARE, MAX_PRODUCT, Forcing, \
-    _dimensions, _pieces, lump, product_modes, step_corrections
+from .forcing import Forcing, _pieces
+from .modes import (FIRST_COUNT, FIRST_PER_OCTAVE, MAX_PRODUCT, dimensions, lump, product_modes,
+                    step_corrections)
 from .two_phase import exchange_propagator
+
+INTERPOLATION_SHARE = 0.25  # share of the tolerance for Ms piecewise linear between nodes
 
 
 @dataclass(frozen=True)
@@ -53,7 +56,7 @@ class Nodes:
 
 
 def march_nodes(law, diffusivity, exposure, times, tolerance) -> Nodes:
-    """Edges, ramp rows cut where Ms departs from linear (``modal._pieces``), outputs."""
+    """Edges, ramp rows cut where Ms departs from linear (``forcing._pieces``), outputs."""
     clock = RescaledTime(diffusivity, exposure)
     edges = clock.edges
     pieces, interpolation = _pieces(exposure, clock, tolerance)
@@ -127,9 +130,9 @@ class ModeSource:
 
 
 def separable_source(geometry, d0, depth) -> ModeSource:
-    """Sheet, Bar, solid Disc: ``modal.product_modes`` and ``exact.step_response``."""
+    """Sheet, Bar, solid Disc: ``modes.product_modes`` and ``exact.step_response``."""
     return ModeSource(lambda counts: product_modes(geometry, d0, depth, counts),
-                      lambda age: step_response(geometry, d0, age, depth), _dimensions(geometry))
+                      lambda age: step_response(geometry, d0, age, depth), dimensions(geometry))
 
 
 def _history(source: ModeSource, nodes: Nodes, counts, per_octave) -> np.ndarray:

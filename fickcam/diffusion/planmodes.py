@@ -25,7 +25,7 @@ from . import layout
 from .calibration import space_error
 from .fvprism import prism
 from .langmuir import ModeSource
-from .modal import Modes, sheet_factor
+from .modes import Modes, sheet_factor
 from .prism import band_share
 from .scaling import stretch_of
 from .series import sheet_uptake
