@@ -6,7 +6,7 @@ import pytest
 
 from fickcam.diffusion import solve
 from fickcam.diffusion.exposure import Diffusivity, Exposure
-from fickcam.diffusion.geometry import Bar, CamPlate, Disc, Sheet
+from fickcam.diffusion.geometry import Bar, CamPlate, Disc, LinkBar, Sheet
 from fickcam.diffusion.langmuir import langmuir_history
 from fickcam.diffusion.sorption import Langmuir, Rate
 from fickcam.diffusion.two_phase import (carter_kibler_approximation, exchange_propagator,
@@ -112,3 +112,15 @@ def test_cam_plate_planform_modes_match_the_exact_disc_after_an_rh_step_down():
     assert np.max(np.abs(modes.mean - exact.mean)) / 2.0 < 1e-2
     assert np.max(np.abs(modes.bound - exact.bound)) / 2.0 < 1e-2
     assert modes.error_estimate < 1e-2
+
+
+def test_link_planform_modes_without_binding_match_the_fickian_plane_model():
+    link = LinkBar(0.04, 0.01, 0.004, 0.008, 0.003)
+    diffusivity = Diffusivity((1e-11,) * 3, 0.0)
+    times = np.linspace(0.0, 100 * DAY, 6)[1:]
+    modes = solve(link, diffusivity, STEP_DOWN, times, accuracy=1e-2, sorption=law(0.0, 6e-7))
+    fickian = solve(link, diffusivity, STEP_DOWN, times, accuracy=1e-3)
+    assert modes.model == "plane" and np.isfinite(modes.error_estimate)
+    assert np.max(np.abs(modes.mean - fickian.mean)) / 2.0 < 1e-2
+    bound = solve(link, diffusivity, STEP_DOWN, times, accuracy=1e-2, sorption=law(2e-7, 6e-7))
+    assert np.all(bound.bound > 0) and np.all(bound.bound < bound.mean)

@@ -21,6 +21,7 @@ from functools import lru_cache
 import numpy as np
 from scipy.linalg import eigh
 
+from ..errors import InputError
 from . import layout
 from .calibration import space_error
 from .fvprism import prism
@@ -31,6 +32,7 @@ from .scaling import stretch_of
 from .series import sheet_uptake
 
 PLANFORM_CAP = 2500   # dense eigh of 2 500 cells: about 3 s of CPU, 50 MB
+OTHER_MESHES = (2.0, 1.5, 0.5)  # the second mesh of the error estimate: w0 times these
 
 
 def planform_design(geometry, d, accuracy: float, t_lo: float) -> layout.Layout:
@@ -67,12 +69,18 @@ def planform_spectrum(geometry, d, depth: float, finest: float, growth: float):
 def planform_error(geometry, d, depth: float, finest: float, growth: float, source,
                    ages) -> float:
     """A-posteriori error of the planform mesh: the unit-step mean uptake at ``ages``
-    (rescaled s) on this mesh and on one twice as coarse (about a quarter of the cells),
-    their difference / 3 (second order, Richardson)."""
-    coarse = planform_source(geometry, d, depth, 2.0 * finest, growth)
+    (rescaled s) on this mesh and on one with w0 times r (2, else 1.5 where a coarse mesh
+    cannot resolve the outline, else a finer one, 0.5), their difference / |r^2 - 1|
+    (second order, Richardson); infinity if no other mesh can be built."""
     ages = np.asarray(ages, float)
-    return float(np.max(np.abs(source.response(ages)[0] - coarse.response(ages)[0]),
-                        initial=0.0)) / 3.0
+    for ratio in OTHER_MESHES:
+        try:
+            coarse = planform_source(geometry, d, depth, ratio * finest, growth)
+        except InputError:
+            continue
+        difference = np.abs(source.response(ages)[0] - coarse.response(ages)[0])
+        return float(np.max(difference, initial=0.0)) / abs(ratio ** 2 - 1.0)
+    return float("inf")
 
 
 def planform_source(geometry, d, depth: float, finest: float, growth: float) -> ModeSource:
