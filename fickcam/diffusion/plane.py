@@ -258,7 +258,7 @@ def solve_plane(geometry, diffusivity, exposure, times, chosen, *,
         return _expansion_only(geometry, expansion, ages, diffusivity, exposure, times, chosen,
                                part)
     mesh = planform_mesh(geometry, chosen.finest, chosen.growth, stretch_of(d))
-    planar = plane_operator(mesh, geometry, surface_layer_depth, d, part)
+    planar = plane_operator(mesh, geometry, surface_layer_depth, d)
     u_plane, pair_plane = step_response(planar, end, chosen.steps_per_doubling,
                                         mesh_first_step(chosen.finest,
                                                         0.0 if store_fields else switch),
