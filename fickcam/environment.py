@@ -13,24 +13,18 @@ from pathlib import Path
 
 import numpy as np
 
-from .damp_heat import STANDARD_TESTS, standard_climate
+from .damp_heat import STANDARD_TESTS, Segments, standard_climate
 from .records import read_history_csv, read_record, resolve_record_path
 
 __all__ = ["Environment", "read_history_csv"]
 
 
 @dataclass(frozen=True, eq=False)
-class Environment:
-    """Piecewise history: ``change_times`` (n+1, s), segment end values
-    ``temperature_end`` / ``humidity_end`` (n), ``ramp`` flags (n) and the
-    values at t = 0 (``temperature_start``, ``humidity_start``)."""
+class Environment(Segments):
+    """Piecewise history (the ``Segments`` fields: ``change_times`` (n+1, s), segment
+    end values ``temperature_end`` / ``humidity_end`` (n), ``ramp`` flags (n) and the
+    values at t = 0), with what a run needs besides."""
 
-    change_times: np.ndarray
-    temperature_end: np.ndarray
-    humidity_end: np.ndarray
-    ramp: np.ndarray
-    temperature_start: float
-    humidity_start: float
     reference_temperature: float
     initial_moisture: float
     source: str = "history segments"

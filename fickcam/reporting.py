@@ -19,11 +19,11 @@ from .schema import VARIABLES, design_name
 from .units import convert
 
 #: scalar results over ageing the summary reports, in this order (when present)
-KEY_OUTPUTS = ("lift", "base_circle_radius", "jump_speed", "peak_cam_torque",
+KEY_OUTPUTS = ("lift", "arm_swing", "base_circle_radius", "jump_speed", "peak_cam_torque",
                "peak_contact_stress", "elastic_lift_error", "minimum_transmission_angle",
                "peak_input_torque")
 #: results over the cycle whose largest change over the cycle the summary reports
-CYCLE_OUTPUTS = ("follower_displacement", "rocker_angle")
+CYCLE_OUTPUTS = ("follower_displacement", "follower_arm_angle", "rocker_angle")
 #: a history "goes up and down" when it passes beyond both its ends by more than this
 #: share of its largest change from the start (smaller wiggles are not worth a peak)
 PEAK_SHARE = 0.02
@@ -61,6 +61,11 @@ def describe_plan(scene, accuracy: float | None = None) -> str:
     mechanisms = [s for s in ("cam", "linkage") if getattr(scene.model, s) is not None]
     lines.append(f"  mechanisms: {', '.join(mechanisms)}; angle step "
                  f"{np.degrees(scene.model.outputs.angle_step):g} deg")
+    if scene.model.cam is not None and scene.model.cam.follower.arm is not None:
+        from .cam.model import design_from_scene
+        from .cam.oscillating import describe_arm
+
+        lines.append(f"  follower: {describe_arm(design_from_scene(scene.model.cam))}")
     if scene.limits:
         lines.append("  limits: " + "; ".join(f"{limit.variable} {limit.text}"
                                              for limit in scene.limits))

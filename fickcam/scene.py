@@ -399,6 +399,10 @@ def _cross_checks(model: SceneModel, doc: YamlDocument, base_dir: Path) -> tuple
     problems: list[Problem] = []
     if model.cam is None and model.linkage is None:
         problems.append(doc.problem((), "a scene needs a cam or a linkage section (nothing to age)"))
+    if model.cam is not None:
+        from .cam.spec import arm_problems
+
+        problems += [doc.problem(("cam",) + path, reason) for path, reason in arm_problems(model.cam)]
     resolved = {}
     for path, name in _used_materials(model):
         if name not in model.materials:

@@ -122,6 +122,7 @@ VARIABLES: dict[str, Var] = {
                               "return, first turn from rest", "cam", display="um"),
     "minimum_dynamic_contact_force": Var(T, "N", "smallest dynamic contact force over a revolution",
                                          "cam"),
+    "arm_swing": Var(T, "degree", "total swing of a swinging-arm follower", "cam", DEG),
     "peak_polydyne_output_error": Var(T, "m", "largest |output - chosen motion| of a polydyne cam",
                                       "cam", display="um"),
     # cam and follower: over the cam angle
@@ -129,6 +130,13 @@ VARIABLES: dict[str, Var] = {
     "follower_velocity": Var(TC, "m s-1", "follower velocity", "cam"),
     "follower_acceleration": Var(TC, "m s-2", "follower acceleration", "cam"),
     "follower_jerk": Var(TC, "m s-3", "follower jerk", "cam"),
+    "follower_arm_angle": Var(TC, "degree", "swinging-arm follower angle from its lowest position",
+                              "cam", DEG),
+    "follower_arm_angular_velocity": Var(TC, "rad s-1", "swinging-arm angular velocity", "cam"),
+    "follower_arm_angular_acceleration": Var(TC, "rad s-2", "swinging-arm angular acceleration", "cam"),
+    "follower_arm_angular_jerk": Var(TC, "rad s-3", "swinging-arm angular jerk", "cam"),
+    "arm_torque": Var(TC, "N m", "torque the cam must exert on the swinging arm about its pivot "
+                      "(inertia, spring, preload, load)", "cam"),
     "pressure_angle": Var(TC, "degree", "pressure angle", "cam", DEG),
     "radius_of_curvature": Var(TC, "m", "radius of curvature of the working profile at the contact", "cam"),
     "pitch_radius_of_curvature": Var(TC, "m", "radius of curvature of the pitch curve", "cam"),

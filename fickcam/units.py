@@ -29,6 +29,8 @@ SI_UNITS: dict[str, str] = {
     "angular_speed": "rad/s",
     "force": "N",
     "stiffness": "N/m",
+    "torque": "N*m",
+    "moment_of_inertia": "kg*m**2",
     "pressure": "Pa",
     "diffusivity": "m**2/s",
     "molar_energy": "J/mol",
@@ -199,6 +201,9 @@ AngularSpeed = quantity("angular_speed", positive=True)
 Force = quantity("force")
 NonNegativeForce = quantity("force", nonnegative=True)
 Stiffness = quantity("stiffness", nonnegative=True)
+Torque = quantity("torque")
+TorsionalStiffness = quantity("torque", nonnegative=True)  # N m/rad: rad is dimensionless
+MomentOfInertia = quantity("moment_of_inertia", nonnegative=True)
 Pressure = quantity("pressure", positive=True)
 Diffusivity = quantity("diffusivity", positive=True)
 MolarEnergy = quantity("molar_energy", nonnegative=True)

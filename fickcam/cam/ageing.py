@@ -5,8 +5,10 @@
 Parts: ``cam`` (a :class:`~fickcam.diffusion.CamPlate` of the dry working profile) and,
 when the follower names a material, ``follower`` (a roller: a disc of the roller radius
 and the contact width; a knife or flat follower: a bar of the contact width, stem
-length 4 x width). The cam's in-plane free strains along x (fibre) and y scale/distort
-the profile, the roller's mean in-plane strain (eps_L + eps_T)/2 its radius; the follower's mass is
+length 4 x width; a swinging arm: a bar of the arm length, or the pivot distance for a
+flat face, and the contact width square). The cam's in-plane free strains along x (fibre)
+and y scale/distort the profile, the roller's mean in-plane strain (eps_L + eps_T)/2 its
+radius, a swinging arm's strain along its length (x) its length and face offset; the follower's mass is
 m (1 + M/100) with M its mean moisture (seeds/000_c9d2754e3bf549ac.txt p. 281, m_w = 1.648 kg
 for 3 %); contact uses the cam's surface-layer modulus (the wet skin, not the bulk).
 """
@@ -16,7 +18,8 @@ import numpy as np
 
 from ..mechanisms import over_ageing
 from ..response import Response
-from .model import CamState, cam_response, design_from_scene, working_profile
+from .model import CamState, design_from_scene, working_profile
+from .oscillating import follower_response
 
 
 def scene_parts(section, materials) -> list[tuple]:
@@ -37,8 +40,12 @@ def scene_parts(section, materials) -> list[tuple]:
     follower = section.follower
     if follower.material:
         width = design.contact_length
-        geometry = (Disc(follower.roller_radius, width) if follower.kind == "roller"
-                    else Bar(4.0 * width, width, width))
+        if design.arm is not None:  # the arm, a bar of the contact width, roller included
+            geometry = Bar(design.arm.length or design.arm.pivot_distance, width, width)
+        elif follower.kind == "roller":
+            geometry = Disc(follower.roller_radius, width)
+        else:
+            geometry = Bar(4.0 * width, width, width)
         parts.append(("follower", follower.material, geometry, float(follower.mass)))
     return parts
 
@@ -60,6 +67,7 @@ def cam_state(design, histories: dict, k: int) -> CamState:
         roller_strain=0.5 * (_at(fstate, "strain_longitudinal", k, 0.0) +
                              _at(fstate, "strain_transverse", k, 0.0))
         if design.follower_kind == "roller" else 0.0,
+        arm_strain=_at(fstate, "strain_longitudinal", k, 0.0) if design.arm is not None else 0.0,
         follower_mass=design.follower_mass * (1.0 + moisture / 100.0),
         cam_surface_modulus=_at(cam, "surface_modulus", k),
         cam_surface_poisson=_at(cam, "surface_poisson_ratio", k, 0.3),
@@ -82,7 +90,7 @@ def scene_response(section, histories: dict, times, angles, valid, on_step=lambd
 
     def evaluate(k: int) -> Response:
         state = cam_state(design, histories, k)
-        response = cam_response(design, state, angles)
+        response = follower_response(design, state, angles)
         if design.train is not None:  # elastic follower train (Norton ch. 15)
             from .train import dynamic_response
 

@@ -19,6 +19,7 @@ from __future__ import annotations
 import numpy as np
 from numpy.polynomial import chebyshev
 
+from . import arm
 from .motion import segment_motion
 
 TWO_PI = 2.0 * np.pi
@@ -45,6 +46,9 @@ def dry_profile(design, segment, psi):
     eccentric: a circle of radius R about (0, -eccentricity) (seeds/003_b8317aa6e553b071.txt
     Fig. 5.1, lowest follower position at theta = 0)."""
     psi = np.asarray(psi, float)
+    if design.arm is not None:
+        return arm.dry_profile(design.arm, design.follower_kind, design.base_circle_radius,
+                               design.roller_radius, psi, segment_motion(segment, psi))
     if segment is None:
         wx, wy = rotate(-psi, 0.0, design.disc_radius)
         tx, ty = rotate(-psi, 1.0, 0.0)
@@ -66,15 +70,19 @@ def dry_profile(design, segment, psi):
     return wx, wy, tx, ty
 
 
-def aged_contact(design, segment, psi, strain_x, strain_y, roller_radius):
+def aged_contact(design, segment, psi, strain_x, strain_y, roller_radius, arm_strain=0.0):
     """(theta, Y) for aged profile points psi: the cam angle at which psi touches the
-    follower and the follower height then (pitch point for knife/roller, face for flat)."""
+    follower and the follower height then (pitch point for knife/roller, face for flat;
+    a swinging arm's angle from its dry base position, :mod:`fickcam.cam.arm`, whose length
+    and face offset grow by 1 + ``arm_strain``)."""
     wx, wy, tx, ty = dry_profile(design, segment, psi)
     wx, wy = (1 + strain_x) * wx, (1 + strain_y) * wy
     tx, ty = (1 + strain_x) * tx, (1 + strain_y) * ty
     norm = np.hypot(tx, ty)
     nx, ny = -ty / norm, tx / norm
-    if design.follower_kind == "flat":
+    if design.arm is not None:
+        theta, height = _arm_contact(design, wx, wy, nx, ny, roller_radius, 1.0 + arm_strain)
+    elif design.follower_kind == "flat":
         theta = np.pi / 2 - np.arctan2(ny, nx)
         height = wx * nx + wy * ny
     else:
@@ -84,6 +92,16 @@ def aged_contact(design, segment, psi, strain_x, strain_y, roller_radius):
         height = np.sqrt(r ** 2 - design.offset ** 2)
     theta = psi + np.mod(theta - psi + np.pi, TWO_PI) - np.pi
     return theta, height
+
+
+def _arm_contact(design, wx, wy, nx, ny, roller_radius, grow):
+    """(theta, arm angle) of aged profile points on a swinging arm grown by ``grow``."""
+    a = design.arm
+    if design.follower_kind == "flat":
+        return arm.aged_face_contact(a, arm.face_base_angle(a, design.base_circle_radius),
+                                     a.face_offset * grow, wx, wy, nx, ny)
+    phi0 = arm.roller_base_angle(a, design.base_circle_radius + design.roller_radius)
+    return arm.aged_roller_contact(a, phi0, a.length * grow, wx, wy, nx, ny, roller_radius)
 
 
 def _solve_psi(contact, theta_target, guess, steps: int = 30):
@@ -105,7 +123,8 @@ def lobatto(n: int) -> np.ndarray:
     return -np.cos(np.pi * np.arange(n + 1) / n)
 
 
-def fit_geometric_motion(design, pieces, strain_x, strain_y, roller_radius, nodes: int = 40):
+def fit_geometric_motion(design, pieces, strain_x, strain_y, roller_radius, nodes: int = 40,
+                         arm_strain: float = 0.0):
     """The aged follower height as Chebyshev series, one per design piece: a tuple of
     (series, theta_start, theta_end), the angle origin, and (lowest, highest) Y over the
     turn. ``pieces`` are (segment, psi_start, psi_end)."""
@@ -113,7 +132,7 @@ def fit_geometric_motion(design, pieces, strain_x, strain_y, roller_radius, node
     spans = []
     for segment, a, b in pieces:
         contact = (lambda s, seg=segment: aged_contact(design, seg, s, strain_x, strain_y,
-                                                       roller_radius))
+                                                       roller_radius, arm_strain))
         ta, tb = contact(np.array([a, b]))[0]
         spans.append((contact, ta, tb))
     fitted = []

@@ -63,6 +63,8 @@ class CamDesign:
     train: tuple | None = None     # None: rigid; ("stiffness", k) | ("rod", L, d) | ("lever", L, w, h)
     damping_ratio: float = 0.05
     polydyne_speed: float | None = None  # design speed of a polydyne cam (fickcam.cam.polydyne)
+    arm: object = None             # fickcam.cam.arm.Arm of a swinging-arm follower (None: translating)
+    clockwise: bool = False        # the cam turns clockwise: computed as its mirror image x -> -x
 
     @property
     def contact_length(self) -> float:
@@ -83,6 +85,7 @@ class CamState:
     follower_modulus: float | None = None
     follower_poisson: float | None = None
     follower_train_modulus: float | None = None
+    arm_strain: float = 0.0        # swinging arm: strain along its length (and face offset)
 
 
 def _train(stiffness) -> tuple | None:
@@ -107,9 +110,11 @@ def design_from_scene(section) -> CamDesign:
     f = section.follower
     guide = 0.0 if f.guide is None else dyn.guide_friction_factor(
         f.guide.friction_coefficient, f.guide.overhang, f.guide.length, f.guide.diameter)
+    mirror = -1.0 if section.direction == "clockwise" else 1.0
     common = dict(thickness=section.thickness, speed=section.speed, follower_kind=f.kind,
-                  follower_mass=f.mass, bore_radius=section.bore_radius,
-                  roller_radius=f.roller_radius or 0.0, offset=f.offset, spring_rate=f.spring_rate,
+                  follower_mass=f.mass, bore_radius=section.bore_radius, clockwise=mirror < 0,
+                  roller_radius=f.roller_radius or 0.0, offset=mirror * f.offset,
+                  spring_rate=f.spring_rate,
                   spring_preload=f.spring_preload, external_load=f.external_load,
                   follower_width=f.width, friction_coefficient=f.friction_coefficient,
                   guide_factor=guide, gravity=section.gravity,
@@ -119,10 +124,17 @@ def design_from_scene(section) -> CamDesign:
                   train=_train(f.stiffness), damping_ratio=f.damping_ratio,
                   polydyne_speed=None if section.polydyne is None else
                   (section.polydyne.speed or section.speed))
+    if f.arm is not None:
+        from .arm import Arm
+
+        sense = 1 if f.arm.rises == "counter_clockwise" else -1
+        common["arm"] = Arm(mirror * f.arm.pivot[0], f.arm.pivot[1], f.arm.length or 0.0,
+                            f.arm.face_offset, int(mirror) * sense, f.arm.inertia,
+                            f.arm.spring_rate, f.arm.spring_preload, f.arm.load_torque)
     if section.profile_file is not None:
         from .profile import load_profile
 
-        profile = load_profile(section.profile_file, f.roller_radius or 0.0)
+        profile = load_profile(section.profile_file, f.roller_radius or 0.0, mirror=mirror < 0)
         return CamDesign("profile", profile.radii()[0], profile=profile, **common)
     if section.eccentric is not None:
         e, r = section.eccentric.eccentricity, section.eccentric.radius
@@ -136,6 +148,9 @@ def design_from_scene(section) -> CamDesign:
 
 def _scales_exactly(design: CamDesign, state: CamState) -> bool:
     """True where the aged motion is the design motion times (1 + eps) (closed form)."""
+    if design.arm is not None:  # the dry arm follows the design motion exactly
+        return state.cam_strain_x == state.cam_strain_y == state.roller_strain == \
+            state.arm_strain == 0.0
     if design.kind != "motion" or state.cam_strain_x != state.cam_strain_y:
         return False
     if state.cam_strain_x == 0.0 and state.roller_strain == 0.0:
@@ -149,6 +164,8 @@ def _scales_exactly(design: CamDesign, state: CamState) -> bool:
 def _closed_form(design: CamDesign, state: CamState, theta):
     scale = 1.0 + state.cam_strain_x
     y, d1, d2, d3 = follower_motion(design.segments, theta)
+    if design.arm is not None:  # the arm angle from its dry base position
+        return (y, d1, d2, d3), (0.0, _design_lift(design))
     base = design.base_circle_radius * scale
     if design.follower_kind == "flat":
         floor = base
@@ -228,7 +245,7 @@ def motion_function(design: CamDesign, state: CamState):
     fitted, origin, extremes = fit_geometric_motion(
         design, pieces_of(design), state.cam_strain_x, state.cam_strain_y,
         design.roller_radius * (1 + state.roller_strain),
-        nodes=96 if design.kind == "eccentric" else 40)
+        nodes=96 if design.kind == "eccentric" else 40, arm_strain=state.arm_strain)
     return (lambda theta: evaluate_geometric_motion(fitted, origin, theta)), extremes
 
 
@@ -240,9 +257,20 @@ def dry_lowest_height(design: CamDesign) -> float:
 
 def working_profile(design: CamDesign, strain_x: float = 0.0, strain_y: float = 0.0,
                     n: int = 720):
-    """Closed counter-clockwise outline (x, y) of the working profile (m), cam frame,
-    last point != first, for the diffusion mesh (:class:`fickcam.diffusion.CamPlate`)."""
-    return working_outline(design, strain_x, strain_y, n)
+    """Closed counter-clockwise outline (x, y) of the working profile (m), cam frame as seen
+    from the front, last point != first, for the diffusion mesh
+    (:class:`fickcam.diffusion.CamPlate`)."""
+    x, y = working_outline(design, strain_x, strain_y, n)
+    if design.clockwise:  # mirror back, still counter-clockwise
+        return -x[::-1].copy(), y[::-1].copy()
+    return x, y
+
+
+def cam_frame_point(design: CamDesign, theta, x, y):
+    """Fixed-frame point (x, y) at cam angle theta in the cam frame, seen from the front:
+    R(-theta) (x, y), mirrored back for a clockwise cam."""
+    px, py = rotate(-theta, x, y)
+    return (-px if design.clockwise else px), py
 
 
 def write_profile_csv(path, design: CamDesign, strain_x: float = 0.0, strain_y: float = 0.0,
@@ -319,21 +347,13 @@ def cam_response(design: CamDesign, state: CamState, cam_angle) -> Response:
     jump = continuous_jump_speed(design, motion, mass, theta, d2, holding)
     notices += _jump_notices(theta, axial, jump, omega)
 
-    e_star = dyn.effective_modulus(state.cam_surface_modulus, state.cam_surface_poisson,
-                                   state.follower_modulus or design.follower_modulus,
-                                   state.follower_poisson or design.follower_poisson)
     if design.follower_kind == "knife":
-        stress = half_width = np.full_like(theta, np.nan)
         notices.append("knife-edge follower: Hertz line-contact stress is not defined")
-    else:
-        radius = roller if design.follower_kind == "roller" else None
-        stress = dyn.hertz_line_pressure(force, design.contact_length, rho, radius, e_star)
-        half_width = dyn.hertz_line_half_width(stress, rho, radius, e_star)
-    shear, shear_depth = dyn.subsurface_shear(stress, half_width)
+    stress, shear, shear_depth = hertz_contact(design, state, force, rho, roller)
     wear = (dyn.archard_wear_per_revolution(design.archard_coefficient, design.hardness, force,
                                             design.contact_length, _slide_ratio(design, height, rho))
             if design.hardness else np.zeros_like(theta))
-    px, py = rotate(-theta, cx, cy)
+    px, py = cam_frame_point(design, theta, cx, cy)
     scale_min = 1.0 + min(state.cam_strain_x, state.cam_strain_y)
     base_circle = (design.profile.radii(state.cam_strain_x, state.cam_strain_y)[0]
                    if design.kind == "profile" else design.base_circle_radius * scale_min)
@@ -364,14 +384,32 @@ def cam_response(design: CamDesign, state: CamState, cam_angle) -> Response:
     return Response(variables, notices)
 
 
-def continuous_jump_speed(design: CamDesign, motion, mass: float, theta, d2, holding) -> float:
+def hertz_contact(design: CamDesign, state: CamState, force, rho, roller):
+    """(p0, tau_max, its depth) of the Hertz line contact of the cam (working radius rho)
+    with the roller (radius ``roller``) or flat face; NaN for a knife edge (dynamics module)."""
+    if design.follower_kind == "knife":
+        nothing = np.full_like(np.asarray(force, float), np.nan)
+        return nothing, nothing, nothing
+    e_star = dyn.effective_modulus(state.cam_surface_modulus, state.cam_surface_poisson,
+                                   state.follower_modulus or design.follower_modulus,
+                                   state.follower_poisson or design.follower_poisson)
+    radius = roller if design.follower_kind == "roller" else None
+    stress = dyn.hertz_line_pressure(force, design.contact_length, rho, radius, e_star)
+    half_width = dyn.hertz_line_half_width(stress, rho, radius, e_star)
+    return (stress,) + dyn.subsurface_shear(stress, half_width)
+
+
+def continuous_jump_speed(design: CamDesign, motion, mass: float, theta, d2, holding,
+                          holding_of=None) -> float:
     """The jump speed as the minimum over the continuous cam angle, not the angle grid:
     omega_jump^2 = min S(theta) / (-m y''(theta)) over y'' < 0 (see dyn.jump_speed). The
     grid's smallest ratio brackets the minimum between its neighbours, where a bounded
     Brent search (scipy.optimize.minimize_scalar) on the closed-form or spectral motion
     finds it; at an acceleration jump (a segment joint) it converges to the one-sided limit.
     ``motion`` is the aged motion (:func:`motion_function`), ``d2`` and ``holding`` its grid
-    values of d2Y/dtheta2 and of the speed-independent holding force."""
+    values of d2Y/dtheta2 and of the speed-independent holding force; ``holding_of(Y)`` gives
+    the holding force (a swinging arm's torque, with ``mass`` its inertia) at any Y
+    (default: the translating follower's spring, preload, load and weight)."""
     on_grid = dyn.jump_speed(mass, d2, holding)
     if not np.isfinite(on_grid) or on_grid == 0.0 or theta.size < 3:
         return on_grid
@@ -389,7 +427,8 @@ def continuous_jump_speed(design: CamDesign, motion, mass: float, theta, d2, hol
         if not d2[0] < 0.0:  # not pulling away here: no bound (large, finite for Brent)
             return 1e300
         holding = dyn.axial_force(mass, 0.0, design.spring_rate, height[0] - low_height,
-                                  design.spring_preload, design.external_load, design.gravity)
+                                  design.spring_preload, design.external_load, design.gravity) \
+            if holding_of is None else holding_of(height[0])
         return holding / (-mass * d2[0])
 
     found = minimize_scalar(ratio, bounds=(centre - spacing, centre + spacing), method="bounded",

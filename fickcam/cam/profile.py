@@ -157,19 +157,20 @@ def read_profile_csv(path) -> tuple[np.ndarray, np.ndarray, str]:
 
 
 @functools.lru_cache(maxsize=16)
-def _load(path: str, mtime: float, curve_roller: float) -> CamProfile:
+def _load(path: str, mtime: float, curve_roller: float, mirror: bool = False) -> CamProfile:
     x, y, curve = read_profile_csv(path)
-    return make_profile(x, y, curve, curve_roller)
+    return make_profile(-x if mirror else x, y, curve, curve_roller)
 
 
-def load_profile(path, roller_radius: float = 0.0) -> CamProfile:
-    """The :class:`CamProfile` of a profile file (cached while the file is unchanged)."""
+def load_profile(path, roller_radius: float = 0.0, mirror: bool = False) -> CamProfile:
+    """The :class:`CamProfile` of a profile file (cached while the file is unchanged);
+    ``mirror``: its mirror image x -> -x (a clockwise cam, :mod:`fickcam.cam.model`)."""
     path = str(Path(path))
     try:
         mtime = os.path.getmtime(path)
     except OSError:
         raise ValueError(f"profile file {path!r} not found") from None
-    return _load(path, mtime, float(roller_radius))
+    return _load(path, mtime, float(roller_radius), mirror)
 
 
 def write_profile_csv(path, x, y, curve: str = "working") -> Path:

@@ -6,7 +6,11 @@ curvature of the working profile above a minimum).
 
 Both checks are monotone in the base circle radius Rb for a translating follower (the
 pressure angle atan((y' - e)/(s0 + y)) falls and the convex radius of curvature grows
-as Rb grows), so each is found by bisection to SIZE_TOLERANCE and the larger wins.
+as Rb grows), so each is found by bisection to SIZE_TOLERANCE and the larger wins. A
+swinging arm on a fixed pivot reaches only a band of base circles (:func:`arm_reach`) and
+its pressure angle need not fall with Rb (the arm turns towards the cam axis as Rb grows),
+so each check is scanned over that band (ARM_SCAN radii) and the first radius that meets
+it refined by bisection against the one before.
 """
 from __future__ import annotations
 
@@ -19,6 +23,8 @@ import numpy as np
 SIZE_TOLERANCE = 1e-7
 #: cam angle step of the checks (rad)
 SIZE_STEP = math.radians(0.25)
+#: base circle radii scanned across a swinging arm's reach
+ARM_SCAN = 64
 
 
 @dataclass(frozen=True)
@@ -30,10 +36,11 @@ class Limits:
 def worst(design, state=None, step: float = SIZE_STEP) -> tuple[float, float]:
     """(largest |pressure angle| rad, smallest convex working radius of curvature m; -inf
     where the profile has a cusp or undercut) of ``design`` at ``state`` (dry by default)."""
-    from .model import CamState, cam_response
+    from .model import CamState
+    from .oscillating import follower_response
 
     theta = np.arange(0.0, 2 * math.pi, step)
-    v = cam_response(design, state or CamState(), theta).variables
+    v = follower_response(design, state or CamState(), theta).variables
     return (float(np.max(np.abs(v["pressure_angle"]))),
             smallest_convex_radius(design.follower_kind, v["radius_of_curvature"],
                                    v["pitch_radius_of_curvature"]))
@@ -64,13 +71,45 @@ def _smallest(design, ok, lowest: float) -> float:
         high *= 2
         if high > 100.0:
             raise ValueError("no base circle below 100 m meets the limits")
-    low = lowest
-    if ok(replace(design, base_circle_radius=low)):
-        return low
+    if ok(replace(design, base_circle_radius=lowest)):
+        return lowest
+    return _bisect(design, ok, lowest, high)
+
+
+def _bisect(design, ok, low: float, high: float) -> float:
+    """The Rb in (low, high] where ok turns true (ok(low) false, ok(high) true), to SIZE_TOLERANCE."""
     while high - low > SIZE_TOLERANCE:
         middle = 0.5 * (low + high)
         low, high = (low, middle) if ok(replace(design, base_circle_radius=middle)) else (middle, high)
     return high
+
+
+def arm_reach(design) -> tuple[float, float]:
+    """(lowest, highest) base circle radius a swinging arm can follow through its swing
+    beta (:mod:`fickcam.cam.arm`): a roller needs |d - l| < Rb + Rf and an opening angle
+    delta + beta < pi, i.e. (Rb + Rf)^2 < d^2 + l^2 + 2 d l cos(beta) (law of cosines); a
+    flat face needs d cos(beta) > Rb + f."""
+    arm, swing = design.arm, max(np.cumsum([s.height for s in design.segments]))
+    d = arm.pivot_distance
+    if design.follower_kind == "flat":
+        return 0.0, d * math.cos(swing) - arm.face_offset
+    top = math.sqrt(d * d + arm.length ** 2 + 2 * d * arm.length * math.cos(swing))
+    return abs(d - arm.length) - design.roller_radius, top - design.roller_radius
+
+
+def _smallest_in_reach(design, ok, lowest: float, highest: float) -> float:
+    """Smallest Rb in (lowest, highest) with ok(design at Rb): the first of ARM_SCAN radii,
+    refined by bisection against the radius scanned before it."""
+    radii = np.linspace(lowest, highest, ARM_SCAN + 2)[1:-1]
+    passing = [ok(replace(design, base_circle_radius=float(r))) for r in radii]
+    if not any(passing):
+        raise ValueError(f"no base circle the arm can reach ({lowest * 1e3:.4g}.."
+                         f"{highest * 1e3:.4g} mm) meets the limits; move the pivot or change "
+                         f"the arm")
+    k = passing.index(True)
+    if k == 0:
+        return float(radii[0])
+    return _bisect(design, ok, float(radii[k - 1]), float(radii[k]))
 
 
 def smallest_base_circle(design, limits: Limits) -> dict[str, float]:
@@ -79,6 +118,13 @@ def smallest_base_circle(design, limits: Limits) -> dict[str, float]:
         raise ValueError("sizing needs a cam given by motion segments (not eccentric)")
     # the prime circle must clear the offset, and the bore needs room
     lowest = max(abs(design.offset) - design.roller_radius, design.bore_radius, 0.0) + SIZE_TOLERANCE
+    if design.arm is not None:
+        low, high = arm_reach(design)
+        low = max(low, lowest)
+        angle = _smallest_in_reach(design, lambda d: meets(d, limits)[0], low, high)
+        curvature = _smallest_in_reach(design, lambda d: meets(d, limits)[1], low, high)
+        return {"pressure_angle": angle, "radius_of_curvature": curvature,
+                "base_circle_radius": max(angle, curvature)}
     angle = _smallest(design, lambda d: meets(d, limits)[0], lowest)
     curvature = _smallest(design, lambda d: meets(d, limits)[1], lowest)
     return {"pressure_angle": angle, "radius_of_curvature": curvature,
@@ -87,7 +133,7 @@ def smallest_base_circle(design, limits: Limits) -> dict[str, float]:
 
 def aged_check(ds, limits: Limits, kind: str) -> str:
     """Whether the last valid ageing time of a (sized) result still meets the limits."""
-    last = ds.isel(time=int(np.flatnonzero(np.isfinite(ds["lift"].values))[-1]))
+    last = ds.isel(time=int(np.flatnonzero(np.isfinite(ds["base_circle_radius"].values))[-1]))
     phi = math.radians(float(np.nanmax(np.abs(last["pressure_angle"].values))))  # stored in deg
     rho = smallest_convex_radius(kind, last["radius_of_curvature"].values,
                                  last["pitch_radius_of_curvature"].values)

@@ -12,7 +12,9 @@ import math
 from typing import Annotated, Literal
 
 from ..units import StrictModel
-from pydantic import ConfigDict, Discriminator, Field, Tag, field_validator, model_validator
+from .arm_spec import NOT_ON_AN_ARM, SwingingArm, arm_problems
+from pydantic import (AfterValidator, BeforeValidator, ConfigDict, Discriminator, Field, PrivateAttr,
+                      Tag, field_validator, model_validator)
 
 from ..units import (
     Angle,
@@ -25,7 +27,9 @@ from ..units import (
     Pressure,
     SignedLength,
     Stiffness,
+    is_bare_number,
     quantity,
+    to_si,
 )
 
 #: follower train stiffness: zero would leave the follower mass unconnected to the cam
@@ -39,6 +43,12 @@ Law = Literal["uniform_velocity", "constant_acceleration", "simple_harmonic", "c
 
 #: tolerance on the sum of the motion segments (rad)
 TURN_TOLERANCE = math.radians(1e-6)
+
+
+def _positive(x: float) -> float:
+    if not x > 0:
+        raise ValueError("must be positive")
+    return x
 
 
 class _Strict(StrictModel):
@@ -57,16 +67,57 @@ class Spline(_Strict):
     end_derivatives: list[float] | None = None
 
 
+def _lift(value):
+    """A rise or return: a length (translating follower) or an angle (swinging arm), in SI."""
+    try:
+        return to_si(value, "length")
+    except ValueError as length_error:
+        try:
+            return to_si(value, "angle")
+        except ValueError:
+            raise length_error from None
+
+
+def _given_as_angle(value) -> bool | None:
+    """True for a value with angle units, False otherwise, None for a bare number."""
+    if is_bare_number(value):
+        return None
+    try:
+        to_si(value, "angle")
+    except ValueError:
+        return False
+    return True
+
+
+Lift = Annotated[float, BeforeValidator(_lift), AfterValidator(_positive)]
+
+
 class Segment(_Strict):
     """One motion segment: ``{dwell: angle}``, ``{rise: length, over: angle, law: name}``
-    or ``{return: length, over: angle, law: name}``."""
+    or ``{return: length, over: angle, law: name}``; a swinging arm's rise and return are
+    angles (``{rise: 15 deg, ...}``; a bare number is m or rad)."""
 
     dwell: PositiveAngle | None = None
-    rise: Length | None = None
-    return_: Length | None = Field(default=None, alias="return")
+    rise: Lift | None = None
+    return_: Lift | None = Field(default=None, alias="return")
     over: PositiveAngle | None = None
     law: Law | None = None
     spline: Spline | None = None
+    _angular: bool | None = PrivateAttr(default=None)
+
+    @model_validator(mode="wrap")
+    @classmethod
+    def _remember_units(cls, data, handler):
+        segment = handler(data)
+        if isinstance(data, dict):
+            lift = data.get("rise", data.get("return"))
+            segment._angular = None if lift is None else _given_as_angle(lift)
+        return segment
+
+    @property
+    def angular(self) -> bool | None:
+        """True: the rise/return was given as an angle; False: a length; None: bare/dwell."""
+        return self._angular
 
     @model_validator(mode="after")
     def _one_kind(self):
@@ -193,6 +244,7 @@ class Follower(_Strict):
     guide: Guide | None = None
     stiffness: TrainStiffness | None = None
     damping_ratio: float = Field(default=0.05, ge=0.0, lt=1.0)
+    arm: SwingingArm | None = None
 
     @model_validator(mode="after")
     def _roller_needs_radius(self):
@@ -200,7 +252,22 @@ class Follower(_Strict):
             raise ValueError("a roller follower needs roller_radius")
         if self.kind != "roller" and self.roller_radius is not None:
             raise ValueError(f"roller_radius applies to a roller follower, not {self.kind}")
+        if self.arm is not None:
+            self._an_arm()
         return self
+
+    def _an_arm(self):
+        if self.kind == "knife":
+            raise ValueError("a swinging arm carries a roller or a flat face (kind: roller | flat)")
+        if self.kind == "roller" and self.arm.length is None:
+            raise ValueError("a swinging roller arm needs arm.length (pivot to roller centre)")
+        if self.kind == "flat" and self.arm.length is not None:
+            raise ValueError("a flat-face arm is placed by arm.face_offset; arm.length is for a roller")
+        if self.kind == "roller" and self.arm.face_offset != 0.0:
+            raise ValueError("arm.face_offset is for a flat face; a roller arm has arm.length")
+        for key, why in NOT_ON_AN_ARM.items():
+            if getattr(self, key) not in (None, 0.0):
+                raise ValueError(f"{key} does not apply to a swinging arm: {why}")
 
 
 class Polydyne(_Strict):
@@ -216,7 +283,10 @@ class CamSection(_Strict):
     ``follower.width``, ``follower.friction_coefficient``, ``follower.modulus``,
     ``follower.poisson_ratio``, ``follower.guide`` (see :class:`Follower`); ``elastic``
     (false: no elastic deflection or swelling stress, :mod:`fickcam.elastic`). The cam turns
-    counter-clockwise at ``speed``; the follower moves along +y at x = offset."""
+    at ``speed`` in ``direction`` (counter_clockwise, seen from the front); the follower moves
+    along +y at x = offset, or swings about ``follower.arm.pivot``. A clockwise cam is
+    computed as its mirror image x -> -x (a counter-clockwise cam seen from the back), and
+    profile points are mirrored back on output."""
 
     material: str
     base_circle_radius: Length | None = None
@@ -231,6 +301,7 @@ class CamSection(_Strict):
     wear: Wear | None = None
     elastic: bool = False
     polydyne: Polydyne | None = None
+    direction: Literal["counter_clockwise", "clockwise"] = "counter_clockwise"
 
     @field_validator("polydyne", mode="before")
     @classmethod
@@ -246,6 +317,15 @@ class CamSection(_Strict):
 
     @model_validator(mode="after")
     def _a_cam(self):
+        if self.follower.arm is not None:
+            arm_only = {"eccentric": self.eccentric, "profile_file": self.profile_file,
+                        "polydyne": self.polydyne, "wear": self.wear}
+            for key, value in arm_only.items():
+                if value is not None:
+                    raise ValueError(f"a swinging-arm follower needs a cam given by angular motion "
+                                     f"segments and base_circle_radius, without {key}")
+            if self.gravity or self.elastic:
+                raise ValueError("gravity and elastic are not modelled for a swinging arm")
         if self.profile_file is not None:
             if any(v is not None for v in (self.motion, self.base_circle_radius, self.eccentric)):
                 raise ValueError("give one of profile_file, eccentric or motion with "
@@ -296,6 +376,6 @@ def check_motion(segments) -> None:
         raise ValueError("the motion goes below the base circle (a return before its rise)")
 
 
-__all__ = ["Angle", "CamSection", "Eccentric", "Follower", "Guide", "LAWS", "Lever", "Rod", "Segment",
+__all__ = ["Angle", "CamSection", "SwingingArm", "arm_problems", "Eccentric", "Follower", "Guide", "LAWS", "Lever", "Rod", "Segment",
            "TrainSection", "Wear",
            "check_motion"]

@@ -16,7 +16,7 @@ __all__ = ["KINDS", "available_kinds", "plot", "age_label", "ages", "days", "dri
 # kind -> (module, function, variables the kind needs)
 KINDS = {
     "uptake": ("uptake", "plot", ("moisture_content",)),
-    "kinematics": ("cam", "plot_kinematics", ("follower_displacement",)),
+    "kinematics": ("cam", "plot_kinematics", ("pressure_angle",)),  # translating or swinging arm
     "dynamics": ("cam", "plot_dynamics", ("contact_force",)),
     "vibration": ("train", "plot", ("dynamic_contact_force",)),
     "linkage": ("linkage", "plot", ("rocker_angle",)),

@@ -16,8 +16,18 @@ KINEMATICS = (("follower_displacement", "displacement [mm]", 1e3),
               ("follower_velocity", "velocity [m/s]", 1.0),
               ("follower_acceleration", "acceleration [m/s²]", 1.0),
               ("follower_jerk", "jerk [m/s³]", 1.0))
+#: a swinging-arm follower (the arm angle is stored in degrees)
+ARM_KINEMATICS = (("follower_arm_angle", "arm angle [deg]", 1.0),
+                  ("follower_arm_angular_velocity", "angular velocity [rad/s]", 1.0),
+                  ("follower_arm_angular_acceleration", "angular acceleration [rad/s²]", 1.0),
+                  ("follower_arm_angular_jerk", "angular jerk [rad/s³]", 1.0))
 DYNAMICS = (("contact_force", "contact force [N]", 1.0), ("cam_torque", "cam torque [N m]", 1.0),
-            ("contact_stress", "Hertz stress [MPa]", 1e-6))
+            ("arm_torque", "arm torque [N m]", 1.0), ("contact_stress", "Hertz stress [MPa]", 1e-6))
+
+
+def kinematic_rows(ds):
+    """The S/V/A/J rows of a translating follower, or of a swinging arm."""
+    return KINEMATICS if "follower_displacement" in ds else ARM_KINEMATICS
 
 
 def _panels(plt, ds, rows, title, drift=None):
@@ -52,9 +62,10 @@ def plot_kinematics(ds, outdir) -> list[Path]:
     outdir = Path(outdir)
     outdir.mkdir(parents=True, exist_ok=True)
     name = ds.attrs.get("scene_name", "")
-    written = [save_figure(_panels(plt, ds, KINEMATICS, f"{name}: follower motion",
-                                   drift=KINEMATICS[0]), outdir / "cam_kinematics.png")]
-    written.append(_drift(plt, ds, outdir, name))
+    rows = kinematic_rows(ds)
+    written = [save_figure(_panels(plt, ds, rows, f"{name}: follower motion", drift=rows[0]),
+                           outdir / "cam_kinematics.png")]
+    written.append(_drift(plt, ds, outdir, name, rows))
     if "profile_x" in ds:
         fig, ax = plt.subplots(figsize=(6, 6))
         t = days(ds)
@@ -68,13 +79,13 @@ def plot_kinematics(ds, outdir) -> list[Path]:
     return written
 
 
-def _drift(plt, ds, outdir, name) -> Path:
+def _drift(plt, ds, outdir, name, rows) -> Path:
     """cam_drift.png: displacement and acceleration minus their values at the first age,
     i.e. how far the follower drifts out of its as-made motion."""
     fig, axes = plt.subplots(2, 1, figsize=(7.5, 5.5), sharex=True)
     angle = ds["cam_angle"].values
     t = days(ds)
-    for ax, (var, ylabel, scale) in zip(axes, (KINEMATICS[0], KINEMATICS[2])):
+    for ax, (var, ylabel, scale) in zip(axes, (rows[0], rows[2])):
         first = ds[var].isel(time=0).values
         for k in ages(ds)[1:]:
             ax.plot(angle, (ds[var].isel(time=k).values - first) * scale, color=f"C{k % 10}",
@@ -94,7 +105,7 @@ def plot_dynamics(ds, outdir) -> list[Path]:
     outdir = Path(outdir)
     outdir.mkdir(parents=True, exist_ok=True)
     name = ds.attrs.get("scene_name", "")
-    written = [save_figure(_panels(plt, ds, DYNAMICS, f"{name}: forces", drift=DYNAMICS[2]),
+    written = [save_figure(_panels(plt, ds, DYNAMICS, f"{name}: forces", drift=DYNAMICS[-1]),
                            outdir / "cam_dynamics.png")]
     fig, (top, bottom) = plt.subplots(2, 1, figsize=(7.5, 5.5), sharex=True)
     t = days(ds)
