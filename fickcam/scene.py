@@ -475,6 +475,10 @@ def _cam_profile(model: SceneModel, doc: YamlDocument, base_dir: Path) -> tuple[
     if cam.bore_radius >= smallest:
         problems.append(doc.problem(("cam", "bore_radius"), f"must be smaller than the profile's "
                                                             f"smallest radius ({smallest * 1e3:g} mm)"))
+    if cam.follower.arm is not None:
+        from .cam.arm_spec import reach_problems
+
+        problems += [doc.problem(("cam",) + key, reason) for key, reason in reach_problems(cam, smallest)]
     reach = smallest + (cam.follower.roller_radius or 0.0)
     if cam.follower.kind != "flat" and abs(cam.follower.offset) >= reach:
         problems.append(doc.problem(("cam", "follower", "offset"),

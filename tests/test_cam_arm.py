@@ -331,3 +331,50 @@ def test_clockwise_cam_touches_the_translating_follower_where_it_says():
     assert np.max(np.abs(x - 7e-3)) < 1e-12
     height = math.sqrt(30e-3 ** 2 - 7e-3 ** 2) + v["follower_displacement"]
     assert np.max(np.abs(y - height)) < 1e-12
+
+
+@pytest.mark.parametrize("kind", ["roller", "flat"])
+def test_arm_on_a_cam_given_by_points_follows_the_motion_program(kind, tmp_path):
+    """The same cam as 1440 working-profile points (a CSV): the arm angle found from the
+    points' periodic quintic spline (arm angle from the contact, slope from the normal-velocity
+    condition) matches the motion program within 1e-6 of the swing, dry and aged."""
+    from fickcam.cam.geometry import working_outline
+    from fickcam.cam.profile import write_profile_csv
+
+    section = SECTIONS[kind]()
+    design = design_from_scene(section)
+    path = write_profile_csv(tmp_path / "arm.csv", *working_outline(design, n=1440))
+    points = design_from_scene({k: v for k, v in section.items()
+                                if k not in ("motion", "base_circle_radius")} |
+                               {"profile_file": str(path)})
+    swing = design.segments[1].height
+    for state in (CamState(), AGED):
+        exact = arm_response(design, state, THETA).variables
+        found = arm_response(points, state, THETA).variables
+        assert np.max(np.abs(found["follower_arm_angle"] - exact["follower_arm_angle"])) < 1e-6 * swing
+        assert np.max(np.abs(found["pressure_angle"] - exact["pressure_angle"])) < 1e-5
+
+
+def test_sized_arm_cam_sits_on_the_pressure_angle_limit():
+    """`fickcam size` for an arm: at the radius found the largest pressure angle is within
+    the limit, 1 um below it is not (the limit is crossed there, found by bisection)."""
+    from dataclasses import replace
+
+    from fickcam.cam.sizing import Limits, arm_reach, smallest_base_circle, worst
+
+    design = design_from_scene(arm_section())
+    limits = Limits(math.radians(30.0), 5e-3)
+    radius = smallest_base_circle(design, limits)["pressure_angle"]
+    low, high = arm_reach(design)
+    assert low < radius < high
+    assert worst(replace(design, base_circle_radius=radius))[0] <= limits.pressure_angle + 1e-12
+    assert worst(replace(design, base_circle_radius=radius - 1e-6))[0] > limits.pressure_angle
+
+
+def test_check_describes_the_arm(tmp_path, capsys):
+    path = tmp_path / "scene.yaml"
+    path.write_text(SCENE)
+    assert main(["check", str(path)]) == 0
+    out = capsys.readouterr().out
+    assert "follower: swinging roller arm 80 mm long, roller 8 mm, pivot 98.49 mm" in out
+    assert "swings 20 deg counter-clockwise on the rise" in out

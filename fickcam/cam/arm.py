@@ -252,3 +252,27 @@ def aged_face_contact(arm: Arm, gamma0_dry: float, face_offset: float, wx, wy, n
     delta = face_opening(arm.pivot_distance, face_offset, wx * nx + wy * ny)
     gamma = arm.pivot_angle - arm.sense * delta
     return gamma - np.arctan2(ny, nx), arm.sense * (gamma - gamma0_dry)
+
+
+def arm_slope(arm: Arm, px, py, nx, ny):
+    """dpsi/dtheta from the contact alone: along the common normal N the cam point at P
+    (velocity J P per unit cam speed, counter-clockwise) and the arm point at P (velocity
+    sense psi' J (P - A)) move alike, so psi' = (J P . N) / (sense J (P - A) . N), P the
+    roller centre or the face contact (the normal-velocity condition of higher pairs;
+    Norton sec. 8.6, Chen 1982 ch. 4)."""
+    jx, jy = perp(px, py)
+    ax, ay = perp(px - arm.pivot_x, py - arm.pivot_y)
+    return (jx * nx + jy * ny) / (arm.sense * (ax * nx + ay * ny))
+
+
+def aged_profile_contact(arm: Arm, kind: str, base: float, roller: float, wx, wy, nx, ny):
+    """(theta, psi, dpsi/dtheta) at which the aged profile point W (outward normal n, cam
+    frame) touches the arm (``arm`` already grown; ``base`` the dry base angle)."""
+    if kind == "flat":
+        theta, psi = aged_face_contact(arm, base, arm.face_offset, wx, wy, nx, ny)
+        px, py = rotate(theta, wx, wy)
+    else:
+        theta, psi = aged_roller_contact(arm, base, arm.length, wx, wy, nx, ny, roller)
+        px, py = rotate(theta, wx + roller * nx, wy + roller * ny)
+    fx, fy = rotate(theta, nx, ny)
+    return theta, psi, arm_slope(arm, px, py, fx, fy)

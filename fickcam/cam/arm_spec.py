@@ -57,14 +57,17 @@ def arm_problems(section) -> list[tuple[tuple, str]]:
     if arm is None or problems or section.base_circle_radius is None:
         return problems
     swing = max(itertools.accumulate(s.height for s in section.motion))
-    return _reach_problems(section, arm, swing)
+    return reach_problems(section, section.base_circle_radius, swing)
 
 
-def _reach_problems(section, arm, swing: float) -> list[tuple[tuple, str]]:
+def reach_problems(section, rb: float, swing: float = 0.0) -> list[tuple[tuple, str]]:
+    """An arm that cannot touch a base circle of radius ``rb`` or would swing through the line
+    from the cam axis to its pivot on a swing of ``swing`` rad (see :func:`arm_problems`)."""
     from .arm import Arm, face_opening, roller_arm_opening
 
+    arm = section.follower.arm
     geometry = Arm(arm.pivot[0], arm.pivot[1], arm.length or 0.0, arm.face_offset)
-    d, rb = geometry.pivot_distance, section.base_circle_radius
+    d = geometry.pivot_distance
     where = ("follower", "arm")
     if section.follower.kind == "roller":
         prime = rb + section.follower.roller_radius
@@ -89,4 +92,4 @@ def _reach_problems(section, arm, swing: float) -> list[tuple[tuple, str]]:
     return []
 
 
-__all__ = ["NOT_ON_AN_ARM", "SwingingArm", "arm_problems"]
+__all__ = ["NOT_ON_AN_ARM", "SwingingArm", "arm_problems", "reach_problems"]

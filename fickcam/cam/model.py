@@ -149,8 +149,8 @@ def design_from_scene(section) -> CamDesign:
 def _scales_exactly(design: CamDesign, state: CamState) -> bool:
     """True where the aged motion is the design motion times (1 + eps) (closed form)."""
     if design.arm is not None:  # the dry arm follows the design motion exactly
-        return state.cam_strain_x == state.cam_strain_y == state.roller_strain == \
-            state.arm_strain == 0.0
+        return design.kind == "motion" and state.cam_strain_x == state.cam_strain_y == \
+            state.roller_strain == state.arm_strain == 0.0
     if design.kind != "motion" or state.cam_strain_x != state.cam_strain_y:
         return False
     if state.cam_strain_x == 0.0 and state.roller_strain == 0.0:
@@ -237,8 +237,9 @@ def motion_function(design: CamDesign, state: CamState):
         aged = (design.profile, state.cam_strain_x, state.cam_strain_y,
                 design.roller_radius * (1 + state.roller_strain), design.offset,
                 design.follower_kind == "flat")
-        return (lambda theta: profile_motion(*aged, theta)[0],
-                profile_motion(*aged, np.zeros(1))[1])
+        arm = {} if design.arm is None else _grown_arm(design, state.arm_strain)
+        return (lambda theta: profile_motion(*aged, theta, **arm)[0],
+                profile_motion(*aged, np.zeros(1), **arm)[1])
     if design.kind == "eccentric" and design.follower_kind == "flat":
         return (lambda theta: _eccentric_flat(design, state, theta)[0],
                 _eccentric_flat(design, state, np.zeros(1))[1])
@@ -247,6 +248,20 @@ def motion_function(design: CamDesign, state: CamState):
         design.roller_radius * (1 + state.roller_strain),
         nodes=96 if design.kind == "eccentric" else 40, arm_strain=state.arm_strain)
     return (lambda theta: evaluate_geometric_motion(fitted, origin, theta)), extremes
+
+
+def _grown_arm(design: CamDesign, strain: float) -> dict:
+    """``arm`` (length and face offset grown by 1 + strain) and its dry ``base`` angle, for
+    :func:`fickcam.cam.profile.profile_motion`."""
+    from dataclasses import replace
+
+    from . import arm
+
+    a, rb = design.arm, design.base_circle_radius
+    base = (arm.face_base_angle(a, rb) if design.follower_kind == "flat" else
+            arm.roller_base_angle(a, rb + design.roller_radius))
+    return {"arm": replace(a, length=a.length * (1 + strain), face_offset=a.face_offset * (1 + strain)),
+            "base": base}
 
 
 @functools.lru_cache(maxsize=64)
@@ -354,11 +369,8 @@ def cam_response(design: CamDesign, state: CamState, cam_angle) -> Response:
                                             design.contact_length, _slide_ratio(design, height, rho))
             if design.hardness else np.zeros_like(theta))
     px, py = cam_frame_point(design, theta, cx, cy)
-    scale_min = 1.0 + min(state.cam_strain_x, state.cam_strain_y)
-    base_circle = (design.profile.radii(state.cam_strain_x, state.cam_strain_y)[0]
-                   if design.kind == "profile" else design.base_circle_radius * scale_min)
     variables = {
-        "base_circle_radius": base_circle,
+        "base_circle_radius": aged_base_circle(design, state),
         "lift": highest - lowest,
         "jump_speed": jump,
         "follower_displacement": y,
@@ -382,6 +394,13 @@ def cam_response(design: CamDesign, state: CamState, cam_angle) -> Response:
         "wear_rate": float(np.max(wear)) * omega / (2 * np.pi),
     }
     return Response(variables, notices)
+
+
+def aged_base_circle(design: CamDesign, state: CamState) -> float:
+    """Smallest radius of the aged cam (a distorted base circle: its smaller semi-axis)."""
+    if design.kind == "profile":
+        return design.profile.radii(state.cam_strain_x, state.cam_strain_y)[0]
+    return design.base_circle_radius * (1.0 + min(state.cam_strain_x, state.cam_strain_y))
 
 
 def hertz_contact(design: CamDesign, state: CamState, force, rho, roller):
@@ -450,14 +469,16 @@ def _where(theta, index) -> str:
 
 
 def _geometry_notices(design, theta, phi, rho_pitch, rho, roller) -> list[str]:
-    """Undercut, cusp, small curvature and steep pressure angle (Norton sec. 8.7)."""
+    """Undercut, cusp, small curvature and steep pressure angle (Norton sec. 8.7; a flat-face
+    arm has a pressure angle too)."""
     notices = []
     if design.follower_kind == "flat":
         bad = np.nonzero(rho <= 0)[0]
         if bad.size:
             notices.append(f"flat follower: the profile needs a cusp (rho <= 0) at "
                            f"{_where(theta, bad[0])}; raise the base circle")
-        return notices
+        if design.arm is None:  # a translating face: phi = 0
+            return notices
     k = int(np.argmax(np.abs(phi)))
     if abs(phi[k]) > PRESSURE_ANGLE_LIMIT:
         notices.append(f"pressure angle {math.degrees(phi[k]):.3g} deg at {_where(theta, k)} "

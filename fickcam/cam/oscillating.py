@@ -24,8 +24,9 @@ import numpy as np
 
 from ..response import Response
 from . import arm as geo
-from .model import (CamDesign, CamState, _geometry_notices, _jump_notices, cam_frame_point,
-                    cam_response, continuous_jump_speed, hertz_contact, motion_function)
+from .model import (CamDesign, CamState, _geometry_notices, _grown_arm, _jump_notices,
+                    aged_base_circle, cam_frame_point, cam_response, continuous_jump_speed,
+                    hertz_contact, motion_function)
 from .motion import joint_notices
 
 
@@ -36,22 +37,19 @@ def follower_response(design: CamDesign, state: CamState, cam_angle) -> Response
     return cam_response(design, state, cam_angle)
 
 
-def aged_arm(design: CamDesign, state: CamState) -> geo.Arm:
-    """The arm with its length and face offset grown by the follower's strain along it, and
-    its inertia by the follower's moisture mass ratio m/m_dry."""
-    arm, grow = design.arm, 1.0 + state.arm_strain
+def aged_arm(design: CamDesign, state: CamState) -> tuple[geo.Arm, float]:
+    """The arm with its length and face offset grown by the follower's strain along it and
+    its inertia by the follower's moisture mass ratio m/m_dry, and its dry base angle."""
     ratio = 1.0 if state.follower_mass is None else state.follower_mass / design.follower_mass
-    return replace(arm, length=arm.length * grow, face_offset=arm.face_offset * grow,
-                   inertia=arm.inertia * ratio)
+    grown = _grown_arm(design, state.arm_strain)
+    return replace(grown["arm"], inertia=grown["arm"].inertia * ratio), grown["base"]
 
 
 def arm_contact(design: CamDesign, state: CamState, psi, d1, d2) -> geo.Contact:
     """Contact geometry of the aged arm at arm angles psi from the dry base position."""
-    arm = aged_arm(design, state)
+    arm, base = aged_arm(design, state)
     if design.follower_kind == "flat":
-        return geo.face_contact(arm, geo.face_base_angle(design.arm, design.base_circle_radius),
-                                psi, d1, d2)
-    base = geo.roller_base_angle(design.arm, design.base_circle_radius + design.roller_radius)
+        return geo.face_contact(arm, base, psi, d1, d2)
     return geo.roller_contact(arm, base, design.roller_radius * (1 + state.roller_strain),
                               psi, d1, d2)
 
@@ -75,10 +73,10 @@ def arm_response(design: CamDesign, state: CamState, cam_angle) -> Response:
     omega = design.speed
     motion, (lowest, highest) = motion_function(design, state)
     psi, d1, d2, d3 = motion(theta)
-    arm = aged_arm(design, state)
+    arm = aged_arm(design, state)[0]
     contact = arm_contact(design, state, psi, d1, d2)
     roller = design.roller_radius * (1 + state.roller_strain)
-    notices = joint_notices(design.segments)
+    notices = joint_notices(design.segments) if design.kind == "motion" else []
     notices += _geometry_notices(design, theta, contact.pressure_angle, contact.pitch_radius,
                                  contact.radius, roller)
 
@@ -99,8 +97,7 @@ def arm_response(design: CamDesign, state: CamState, cam_angle) -> Response:
     friction = design.friction_coefficient * np.maximum(force, 0.0) * sliding
     px, py = cam_frame_point(design, theta, contact.x, contact.y)
     return Response({
-        "base_circle_radius": design.base_circle_radius * (1 + min(state.cam_strain_x,
-                                                                   state.cam_strain_y)),
+        "base_circle_radius": aged_base_circle(design, state),
         "arm_swing": highest - lowest,
         "jump_speed": jump,
         "follower_arm_angle": psi - lowest,
@@ -140,4 +137,5 @@ def describe_arm(design: CamDesign) -> str:
             f"curvature {np.nanmin(v['radius_of_curvature']) * 1e3:.4g} mm")
 
 
-__all__ = ["aged_arm", "describe_arm", "arm_contact", "arm_response", "follower_response", "holding_torque"]
+__all__ = ["aged_arm", "arm_contact", "arm_response", "describe_arm", "follower_response",
+           "holding_torque"]

@@ -9,7 +9,8 @@ Practical Guide to Splines, 2001, ch. XIII). Swelling maps it by D = diag(1 + ep
 the cam by theta, the roller centre W + R n (knife: W) lies on the follower line x = e,
 or (flat face) where the outward normal n points along +y (kinematic inversion, Norton,
 Design of Machinery 5th ed., sec. 8.6); u(theta) is found by Newton's method. From the
-same contact, without differentiating data: knife/roller dY/dtheta = e + Y tan(phi),
+same contact, without differentiating data (a swinging arm: :func:`fickcam.cam.arm.arm_slope`):
+knife/roller dY/dtheta = e + Y tan(phi),
 tan(phi) = (R(theta) T)_y / (R(theta) T)_x with T the profile tangent (the pitch curve is
 parallel to the working profile; Norton eq. 8.31); flat dY/dtheta = (R(theta) W)_x
 (Norton eq. 8.38). The second and third derivatives come from a periodic quintic spline
@@ -25,6 +26,8 @@ from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
+
+from .arm import aged_profile_contact
 
 TWO_PI = 2.0 * np.pi
 _HEADER = re.compile(r"^\s*(?P<name>[A-Za-z_]+)\s*(?:[\[(](?P<unit>[^\])]*)[\])])?\s*$")
@@ -212,12 +215,17 @@ class _Contact:
     roller: float
     offset: float
     flat: bool
+    arm: object = None  # a swinging arm (fickcam.cam.arm.Arm, grown) and its dry base angle
+    base: float = 0.0
 
     def __call__(self, u):
         (wx, wy), (tx, ty) = self.profile.at(u), self.profile.at(u, 1)
         sx, sy = 1 + self.strain_x, 1 + self.strain_y
         wx, wy, tx, ty = sx * wx, sy * wy, sx * tx, sy * ty
         nx, ny = _outward_normal(tx, ty)
+        if self.arm is not None:
+            return aged_profile_contact(self.arm, "flat" if self.flat else "roller", self.base,
+                                        self.roller, wx, wy, nx, ny)
         if self.flat:
             theta = np.pi / 2 - np.arctan2(ny, nx)
             height = wx * nx + wy * ny
@@ -259,12 +267,14 @@ def contact_parameters(contact: _Contact, theta, samples: int, steps: int = 40):
 
 
 def profile_motion(profile: CamProfile, strain_x: float, strain_y: float, roller: float,
-                   offset: float, flat: bool, theta):
+                   offset: float, flat: bool, theta, arm=None, base: float = 0.0):
     """(Y, dY/dtheta, d2Y/dtheta2, d3Y/dtheta3) at cam angles theta and (lowest, highest)
-    Y over the turn for the aged profile (see the module docstring)."""
+    Y over the turn for the aged profile (see the module docstring); with ``arm`` (a grown
+    :class:`fickcam.cam.arm.Arm`) Y is the arm angle from its dry ``base`` angle, dY/dtheta
+    from :func:`fickcam.cam.arm.arm_slope`."""
     from scipy.interpolate import PPoly, make_interp_spline
 
-    contact = _Contact(profile, strain_x, strain_y, roller, offset, flat)
+    contact = _Contact(profile, strain_x, strain_y, roller, offset, flat, arm, base)
     samples = max(4 * profile.points, ANGLE_NODES)
     grid = TWO_PI * np.arange(ANGLE_NODES + 1) / ANGLE_NODES
     theta = np.mod(np.asarray(theta, float), TWO_PI)

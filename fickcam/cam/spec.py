@@ -318,12 +318,11 @@ class CamSection(_Strict):
     @model_validator(mode="after")
     def _a_cam(self):
         if self.follower.arm is not None:
-            arm_only = {"eccentric": self.eccentric, "profile_file": self.profile_file,
-                        "polydyne": self.polydyne, "wear": self.wear}
+            arm_only = {"eccentric": self.eccentric, "polydyne": self.polydyne, "wear": self.wear}
             for key, value in arm_only.items():
                 if value is not None:
                     raise ValueError(f"a swinging-arm follower needs a cam given by angular motion "
-                                     f"segments and base_circle_radius, without {key}")
+                                     f"segments (or profile_file), without {key}")
             if self.gravity or self.elastic:
                 raise ValueError("gravity and elastic are not modelled for a swinging arm")
         if self.profile_file is not None:
@@ -376,6 +375,6 @@ def check_motion(segments) -> None:
         raise ValueError("the motion goes below the base circle (a return before its rise)")
 
 
-__all__ = ["Angle", "CamSection", "SwingingArm", "arm_problems", "Eccentric", "Follower", "Guide", "LAWS", "Lever", "Rod", "Segment",
-           "TrainSection", "Wear",
+__all__ = ["Angle", "CamSection", "Eccentric", "Follower", "Guide", "LAWS", "Lever", "Rod", "Segment",
+           "SwingingArm", "TrainSection", "Wear", "arm_problems",
            "check_motion"]

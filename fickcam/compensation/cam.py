@@ -17,6 +17,8 @@ from .core import Target
 #: points of a written compensated profile (0.1 deg apart on average)
 PROFILE_POINTS = 3600
 PROFILE_NAMES = ("profile x", "profile y")
+#: a swinging arm's dimensions that grow with the follower's strain along it
+ARM_NAMES = {"length": "arm length", "face_offset": "arm face offset"}
 
 
 def targets(section, base_dir: Path) -> list[Target]:
@@ -29,6 +31,12 @@ def targets(section, base_dir: Path) -> list[Target]:
         found.append(Target("follower", "roller radius", "follower",
                             ("strain_longitudinal", "strain_transverse"),
                             float(follower.roller_radius)))
+    arm = follower.arm
+    if arm is not None and follower.material:  # grows along its length (fickcam.cam.ageing)
+        key = "length" if follower.kind == "roller" else "face_offset"
+        if getattr(arm, key):
+            found.append(Target("follower", ARM_NAMES[key], "follower", ("strain_longitudinal",),
+                                float(getattr(arm, key))))
     return found
 
 
@@ -49,10 +57,13 @@ def write(data: dict, targets, made, folder: Path, stem: str) -> None:
     for key in ("base_circle_radius", "motion", "eccentric"):
         cam.pop(key, None)
     cam["profile_file"] = str(path.resolve())
+    follower = dict(cam["follower"])
     if "roller radius" in shape:
-        follower = dict(cam["follower"])
         follower["roller_radius"] = f"{shape['roller radius'] * 1e3:.6f} mm"
-        cam["follower"] = follower
+    arm = {key: f"{shape[name] * 1e3:.6f} mm" for key, name in ARM_NAMES.items() if name in shape}
+    if arm:
+        follower["arm"] = dict(follower["arm"]) | arm
+    cam["follower"] = follower
 
 
 def write_dxf(targets, made, path: Path) -> Path:
@@ -80,6 +91,11 @@ def design_entry(section: dict, targets) -> dict:
     from ..scene import CAM_SHAPE_KEYS
 
     entry = {key: section[key] for key in CAM_SHAPE_KEYS if key in section}
-    if any(t.name == "roller radius" for t in targets):
-        entry["follower"] = {"roller_radius": section["follower"]["roller_radius"]}
+    names = {t.name for t in targets}
+    follower = {"roller_radius": section["follower"]["roller_radius"]} if "roller radius" in names else {}
+    arm = {key: section["follower"]["arm"][key] for key, name in ARM_NAMES.items() if name in names}
+    if arm:
+        follower["arm"] = arm
+    if follower:
+        entry["follower"] = follower
     return entry

@@ -14,6 +14,7 @@ from .solve import write_made
 #: key outputs over angle whose largest deviation from the design is reported:
 #: result variable, label, scale from the stored unit, unit shown
 KEY_OUTPUTS = (("follower_displacement", "follower displacement", 1e6, "µm"),
+               ("follower_arm_angle", "arm angle", 1.0, "deg"),
                ("pressure_angle", "pressure angle", 1.0, "deg"),
                ("rocker_angle", "rocker angle", 1.0, "deg"),
                ("coupler_angle", "coupler angle", 1.0, "deg"),
