@@ -1,26 +1,30 @@
-"""Throughput of a Monte Carlo of the demo cam (configs/singh2017_cam.yaml) on 1 and 2
+"""Throughput of a Monte Carlo of the demo cam (configs/singh2017_cam.yaml) on 2
 LocalCluster workers, and what one case costs against one run in a warm process.
 
     python benchmarks/bench_montecarlo.py            # 1000 cases (issue 17's target)
     python benchmarks/bench_montecarlo.py --quick    # 100 cases
-    python benchmarks/bench_montecarlo.py --cases 8 --workers 2
+    python benchmarks/bench_montecarlo.py --cases 8 --scaling-cases 8
 
 The sweep draws the fibre volume fraction, the service temperature and the cam
-thickness (so no two cases share a geometry or a climate). Each worker count
-runs the whole sweep from a fresh folder (cluster start-up and the final write
-included: that is what a user waits for). Printed per worker count: wall time,
-cases per second per worker, the cost of a case (wall x workers / cases) as a
-ratio to one warm single run, and the 1 -> 2 worker scaling measured in this
-same run. Then up to ``--check`` cases of the 2-worker result are compared
-with single runs of the same scene (numpy.testing.assert_allclose, rtol 1e-9:
-a case must be its single run). The load average is printed because other
-work on the machine skews every figure.
+thickness (so no two cases share a geometry or a climate: nothing is reused
+across cases). Every sweep runs from a fresh folder, cluster start-up and the
+final write included (that is what a user waits for). First the 1 -> 2 worker
+scaling, measured in this same run on the first ``--scaling-cases`` draws (1
+worker runs in the process, 2 on a LocalCluster); then the whole sweep on
+``--workers`` workers: wall time, cases per second per worker, the cost of a
+case (wall x workers / cases) as a ratio to one warm single run, and the CPU
+seconds per case of this process and every worker (rusage: comparable on a
+loaded machine). Then ``--check`` cases of the result are compared with single
+runs of the same scene (numpy.testing.assert_allclose, rtol 1e-9: a case must be
+its single run). The load average is printed because other work on the machine
+skews wall times.
 """
 from __future__ import annotations
 
 import argparse
 import logging
 import os
+import resource
 import statistics
 import tempfile
 import time
@@ -28,6 +32,8 @@ from pathlib import Path
 
 import numpy as np
 
+from fickcam.diffusion.plane import planform_mesh, planform_response
+from fickcam.diffusion.shorttime import expansion_of
 from fickcam.simulate import run
 from fickcam.store import open_result
 from fickcam.sweep import run_sweep
@@ -47,20 +53,31 @@ random:
 
 
 def single_run_time(repeats: int = 3) -> float:
-    """Median wall time (s) of one run of the base scene in a warm process."""
+    """Median wall time (s) of one run of the base scene in a warm process, its caches of
+    meshes and step responses emptied first: what a case of this sweep costs, none of
+    whose geometries repeats."""
     run(BASE)
     times = []
     for _ in range(repeats):
+        for cache in (planform_response, planform_mesh, expansion_of):
+            cache.cache_clear()
         started = time.perf_counter()
         run(BASE)
         times.append(time.perf_counter() - started)
     return statistics.median(times)
 
 
-def time_sweep(sweep_file: Path, output: Path, workers: int) -> float:
-    started = time.perf_counter()
+def cpu_seconds() -> float:
+    """CPU time of this process and of its finished child processes (the workers)."""
+    children = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return time.process_time() + children.ru_utime + children.ru_stime
+
+
+def time_sweep(sweep_file: Path, output: Path, workers: int) -> tuple[float, float]:
+    """(wall s, CPU s) of one sweep from a fresh folder."""
+    cpu, started = cpu_seconds(), time.perf_counter()
     run_sweep(sweep_file, output, workers=workers)
-    return time.perf_counter() - started
+    return time.perf_counter() - started, cpu_seconds() - cpu
 
 
 def check_cases(sweep_file: Path, output: Path, count: int) -> int:
@@ -71,8 +88,7 @@ def check_cases(sweep_file: Path, output: Path, count: int) -> int:
     for index in picks:
         case = sweep.cases[index]
         task = CaseTask(index=int(index), scene=sweep.scene_dict(case), values=case.values,
-                        label=f"case {index}", base_dir=str(sweep.base_dir), result_path="",
-                        record_path="")
+                        label=f"case {index}", base_dir=str(sweep.base_dir))
         alone = run(case_scene(task))
         for name, variable in alone.data_vars.items():
             if variable.dtype.kind == "f" and name in result:
@@ -85,7 +101,9 @@ def main(argv=None) -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--cases", type=int, default=1000)
     parser.add_argument("--quick", action="store_true", help="100 cases")
-    parser.add_argument("--workers", type=int, nargs="+", default=[1, 2])
+    parser.add_argument("--workers", type=int, default=2)
+    parser.add_argument("--scaling-cases", type=int, default=100,
+                        help="draws run on 1 and on 2 workers for the scaling")
     parser.add_argument("--check", type=int, default=20, help="cases compared with single runs")
     args = parser.parse_args(argv)
     logging.basicConfig(level=logging.ERROR)
@@ -93,21 +111,29 @@ def main(argv=None) -> None:
     single = single_run_time()
     print(f"Monte Carlo of {BASE.name}: {cases} cases, {os.cpu_count()} cores, "
           f"load {os.getloadavg()[0]:.1f}; one warm single run {single:.3f} s")
-    print(f"{'workers':>8} {'wall s':>8} {'cases/s/worker':>15} {'case/single':>12} {'load':>6}")
-    walls = {}
     with tempfile.TemporaryDirectory() as folder:
         sweep_file = Path(folder) / "montecarlo.yaml"
+        scaling = min(args.scaling_cases, cases)
+        if scaling:
+            sweep_file.write_text(SWEEP.format(base=BASE, cases=scaling))
+            walls = {w: time_sweep(sweep_file, Path(folder) / f"scaling-{w}.h5", w)[0]
+                     for w in (1, 2)}
+            print(f"scaling 1 -> 2 workers on {scaling} cases: {walls[1]:.1f} s -> "
+                  f"{walls[2]:.1f} s, {walls[1] / walls[2]:.2f} x (load {os.getloadavg()[0]:.1f})")
         sweep_file.write_text(SWEEP.format(base=BASE, cases=cases))
-        for workers in args.workers:
-            load = os.getloadavg()[0]
-            output = Path(folder) / f"mc-{workers}.h5"
-            walls[workers] = wall = time_sweep(sweep_file, output, workers)
-            print(f"{workers:>8} {wall:>8.1f} {cases / wall / workers:>15.2f} "
-                  f"{wall * workers / cases / single:>12.2f} {load:>6.1f}", flush=True)
-        if 1 in walls and 2 in walls:
-            print(f"scaling 1 -> 2 workers: {walls[1] / walls[2]:.2f} x")
+        load = os.getloadavg()[0]
+        output = Path(folder) / "montecarlo.h5"
+        wall, cpu = time_sweep(sweep_file, output, args.workers)
+        print(f"{'workers':>8} {'wall s':>8} {'cases/s/worker':>15} {'case/single':>12} "
+              f"{'CPU s/case':>11} {'load':>6}")
+        print(f"{args.workers:>8} {wall:>8.1f} {cases / wall / args.workers:>15.2f} "
+              f"{wall * args.workers / cases / single:>12.2f} {cpu / cases:>11.3f} {load:>6.1f}",
+              flush=True)
+        print(f"result file: {output.stat().st_size / 1e6:.1f} MB "
+              f"({output.stat().st_size / cases / 1e3:.0f} kB per case); this process's peak "
+              f"memory {resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1e3:.0f} MB")
         checked = check_cases(sweep_file, output, min(args.check, cases))
-        print(f"{checked} cases of the {args.workers[-1]}-worker result equal their single runs")
+        print(f"{checked} cases of the {args.workers}-worker result equal their single runs")
 
 
 if __name__ == "__main__":

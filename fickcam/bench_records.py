@@ -19,7 +19,9 @@ import yaml
 
 MONTH_HOURS = 730
 ROOT = Path(__file__).resolve().parents[1]
-CASES = {"nylon eccentric cam (exact disc)": "configs/eccentric_cam.yaml"}
+CASES = {"demo cam (plane)": "configs/singh2017_cam.yaml",
+         "nylon eccentric cam (exact disc)": "configs/eccentric_cam.yaml",
+         "four-bar (plane)": "configs/fourbar_r914_humid.yaml"}
 
 
 def _scene(config: Path, environment: dict, months: int) -> dict:

@@ -60,6 +60,8 @@ class Environment(Segments):
         if until is not None:
             record = record.covering(until)
         notes = ()
+        if until is not None and until <= record.end:
+            record = record.cut(until)
         if until is not None and until > record.end * (1 + 1e-12):
             notes = (f"the climate record ({record.source}) ends at "
                      f"{record.end / 86400:g} d: its last state (T = {record.temperature[-1] - 273.15:.1f} degC, "

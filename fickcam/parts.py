@@ -9,7 +9,7 @@ same for the moisture fields.
 """
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
@@ -33,6 +33,23 @@ class PartHistory:
     diffusion: object | None
     state: dict = field(default_factory=dict)
     valid: np.ndarray | None = None  # bool over ageing times
+
+    def at_rows(self, rows: np.ndarray) -> "PartHistory":
+        """The history at the ageing times ``rows`` (indices) only: every array over time
+        (state, validity, moisture and fields) taken at those rows."""
+        n = len(self.valid)
+
+        def take(value):
+            return value[rows] if np.ndim(value) >= 1 and np.shape(value)[0] == n else value
+
+        result = self.diffusion
+        if result is not None:
+            result = replace(result, times=result.times[rows], mean=result.mean[rows],
+                                         surface=result.surface[rows],
+                                         fields=None if result.fields is None
+                                         else result.fields[rows])
+        return PartHistory(self.part, result, {k: take(v) for k, v in self.state.items()},
+                           self.valid[rows])
 
 
 def build_parts(scene) -> list[Part]:

@@ -73,6 +73,16 @@ class ClimateRecord:
                              np.tile(self.relative_humidity, repeats),
                              f"{self.source}, repeated {repeats} times", self.period)
 
+    def cut(self, until: float) -> "ClimateRecord":
+        """The rows up to the first at or past ``until`` (s): a run computes nothing past
+        its last ageing time (a year of hourly rows read for a month costs a month)."""
+        last = max(int(np.searchsorted(self.time, until, side="left")), 1)
+        if last >= self.time.size - 1:
+            return self
+        keep = slice(0, last + 1)
+        return ClimateRecord(self.time[keep], self.temperature[keep],
+                             self.relative_humidity[keep], self.source, self.period)
+
 
 def resolve_record_path(text: str, base_dir: Path) -> Path:
     """A scene's ``history_file``: relative to the scene, or ``pvlib:NAME`` for

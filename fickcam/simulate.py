@@ -112,13 +112,42 @@ def run(scene, *, accuracy: float | None = None, progress: bool = False):
 
 
 def _age(scene: Scene, environment: Environment, times: np.ndarray, accuracy: float | None,
-         progress: bool, quiet: bool = False, parts: list[Part] | None = None):
-    """The Dataset of ``scene`` at ageing ``times`` (s); ``quiet``: do not log the notices;
-    ``parts``: the scene's parts when already built (their outline expansions are cached
-    per part object, so re-runs of the same scene pass them to reuse them)."""
-    from tqdm.auto import tqdm
-
+         progress: bool, parts: list[Part] | None = None):
+    """The Dataset of ``scene`` at ageing ``times`` (s); ``parts``: the scene's parts when
+    already built (their outline expansions are cached per part object)."""
     from .dataset import build_dataset
+
+    values, coords, notices, histories = _aged_values(scene, environment, times, accuracy,
+                                                      progress, parts)
+    design_scene = scene.as_designed()  # differs where the scene is made to compensate
+    designs = [design_part(part, environment) for part in build_parts(design_scene)]
+    values.update(design_values(design_scene, designs))
+    for message in notices:
+        log.warning(message)
+    attrs = {
+        "title": f"fickcam result: {scene.name}",
+        "fickcam_version": __version__,
+        "scene_name": scene.name,
+        "scene_description": scene.model.description,
+        "scene_file": scene.file,
+        "scene_text": scene.text,
+        "diffusion": {h.part.name: diffusion_attrs(h) for h in histories},
+        "notices": notices,
+        "Conventions": "CF-1.8",
+    }
+    return build_dataset(values, coords, attrs)
+
+
+def _aged_values(scene: Scene, environment: Environment, times: np.ndarray,
+                 accuracy: float | None, progress: bool, parts: list[Part] | None = None,
+                 diffusion_times: np.ndarray | None = None):
+    """(values, coords, notices, part histories) of ``scene`` at ageing ``times`` (s): every
+    variable but the as-designed ones, as SI arrays keyed by schema name.
+    ``diffusion_times``: sorted times that include ``times`` at which to solve diffusion
+    (the limit search passes the stored run's times too, so the solve has the stored run's
+    plan and reuses its cached step responses); the part histories are then taken at
+    ``times``."""
+    from tqdm.auto import tqdm
 
     options = diffusion_options(scene, accuracy)
     parts = build_parts(scene) if parts is None else parts
@@ -130,14 +159,15 @@ def _age(scene: Scene, environment: Environment, times: np.ndarray, accuracy: fl
                unit="step", leave=False)
 
     histories = []
+    solve_times = times if diffusion_times is None else diffusion_times
     for part in parts:
         bar.set_postfix_str(f"diffusion {part.name}")
-        histories.append(age_part(part, environment, times, options, scene, notices,
-                                  keep_field=part.name in elastic))
+        history = age_part(part, environment, solve_times, options, scene, notices,
+                           keep_field=part.name in elastic)
+        if diffusion_times is not None:
+            history = history.at_rows(np.searchsorted(diffusion_times, times))
+        histories.append(history)
         bar.update()
-    design_scene = scene.as_designed()  # differs where the scene is made to compensate
-    designs = [design_part(part, environment) for part in build_parts(design_scene)]
-
     values = {"temperature": environment.temperature(times),
               "relative_humidity": environment.relative_humidity(times)}
     coords: dict = {"time": times}
@@ -150,7 +180,6 @@ def _age(scene: Scene, environment: Environment, times: np.ndarray, accuracy: fl
     values.update(mechanisms.variables)
     coords.update(mechanism_coords(scene))
     notices += mechanisms.notices
-    values.update(design_values(design_scene, designs))
     if elastic:
         from .elastic.parts import swelling_variables
 
@@ -164,21 +193,7 @@ def _age(scene: Scene, environment: Environment, times: np.ndarray, accuracy: fl
         values.update(fields)
         coords.update(cells)
     bar.close()
-    for message in notices if not quiet else ():
-        log.warning(message)
-
-    attrs = {
-        "title": f"fickcam result: {scene.name}",
-        "fickcam_version": __version__,
-        "scene_name": scene.name,
-        "scene_description": scene.model.description,
-        "scene_file": scene.file,
-        "scene_text": scene.text,
-        "diffusion": {h.part.name: diffusion_attrs(h) for h in histories},
-        "notices": notices,
-        "Conventions": "CF-1.8",
-    }
-    return build_dataset(values, coords, attrs)
+    return values, coords, notices, histories
 
 
 def _limits(ds, scene: Scene, environment: Environment, times, accuracy: float | None,
@@ -197,9 +212,22 @@ def _limits(ds, scene: Scene, environment: Environment, times, accuracy: float |
     def ratios(data) -> np.ndarray:
         return np.stack([limit_ratio(data, limit) for limit in scene.limits], axis=1)
 
+    names = {limit.variable for limit in scene.limits}
+    designs = {design_name(n): ds[design_name(n)].variable for n in names
+               if design_name(n) in ds}
+
     def evaluate(at) -> np.ndarray:
-        return ratios(_age(scene, environment, np.asarray(at), accuracy, False, quiet=True,
-                           parts=parts))
+        """The ratios at ageing times ``at`` (inside the stored span): diffusion re-solved at
+        the stored times and ``at`` together, so its plan and cached step responses are the
+        stored run's; the mechanisms evaluated at ``at`` only; only the limited variables
+        go into the Dataset, beside the stored run's as-designed values."""
+        at = np.asarray(at, float)
+        values, coords, _, _ = _aged_values(scene, environment, at, accuracy, False, parts,
+                                            diffusion_times=np.union1d(times, at))
+        kept = {name: value for name, value in values.items() if name in names}
+        dims = {dim for name in kept for dim in VARIABLES[name].dims}
+        return ratios(build_dataset(kept, {c: v for c, v in coords.items() if c in dims})
+                      .assign(designs))
 
     stored = ratios(ds)
     search_times, search = times, stored

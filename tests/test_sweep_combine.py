@@ -1,7 +1,7 @@
-"""Per-case bookkeeping and combining along ``case``, with small synthetic results
-(built through fickcam.dataset like a real run), so no physics is needed."""
+"""Per-case bookkeeping (the sweep's journal) and combining along ``case``, with small
+synthetic results (built through fickcam.dataset like a real run), so no physics is
+needed."""
 import json
-from contextlib import ExitStack
 from pathlib import Path
 
 import numpy as np
@@ -12,8 +12,9 @@ import fickcam
 from fickcam.dataset import build_dataset
 from fickcam.errors import InputError
 from fickcam.sweep import WorkFolder, load_sweep
-from fickcam.sweep.combine import combine
-from fickcam.sweep.workdir import write_json
+from fickcam.sweep.combine import combine, stack_cases
+from fickcam.sweep.journal import HEAD, decode_dataset, encode_case
+from fickcam.sweep.runner import finished_cases
 
 CONFIGS = Path(__file__).resolve().parents[1] / "configs"
 DAY = 86400.0
@@ -37,19 +38,19 @@ def sweep(tmp_path):
     return load_sweep(path)
 
 
-def finish(folder: WorkFolder, index: int, message: str = "", rh: float | None = None) -> dict:
-    """What a worker leaves for a case: its result (ok cases), then its record."""
-    if rh is not None:
-        fickcam.save(synthetic_result(rh), folder.result(index))
+def finish(folder: WorkFolder, index: int, message: str = "", rh: float | None = None,
+           retry: bool = False) -> dict:
+    """What the client journals for a finished case: its record and (ok cases) its result."""
     record = {"index": index, "status": "ok" if rh is not None else "failed", "message": message,
               "values": {}, "wall_time": 0.5}
-    write_json(record, folder.record(index))
+    if retry:
+        record["retry"] = True
+    folder.journal.append(encode_case(record, None if rh is None else synthetic_result(rh)))
     return record
 
 
 def combined_file(sweep, folder, records, path):
-    with ExitStack() as stack:
-        fickcam.save(combine(sweep, folder, records, stack), path)
+    fickcam.save(combine(sweep, records, finished_cases(folder, sweep, records)), path)
     return fickcam.open_result(path)
 
 
@@ -85,15 +86,19 @@ def test_a_failed_case_has_nan_data_and_its_message_and_the_result_says_so(sweep
     assert ds.attrs["failed_cases"] == 1
 
 
-def test_combining_reads_case_files_lazily(sweep, tmp_path):
-    folder = WorkFolder.next_to(tmp_path / "out.h5")
-    folder.open_for(sweep.identity, 3)
-    records = {i: finish(folder, i, rh=60.0 + i) for i in range(3)}
-    with ExitStack() as stack:
-        ds = combine(sweep, folder, records, stack)
-        assert all(not isinstance(ds[name].variable._data, np.ndarray) for name in ds.data_vars), \
-            "per-case data must stay on disk until the combined file is written"
-        assert ds["moisture_content"].chunks is not None
+def test_a_case_comes_back_from_the_journal_exactly():
+    original = synthetic_result(65.0)
+    record = {"index": 3, "status": "ok", "message": "", "values": {"a": "65 %"}, "wall_time": 1.0}
+    xr.testing.assert_identical(decode_dataset(encode_case(record, original)),
+                                original.drop_attrs(deep=False))
+
+
+def test_stacking_with_numpy_equals_xarray_concat(sweep):
+    parts = [synthetic_result(50.0 + i) for i in range(3)]
+    fast = stack_cases(parts)
+    xr.testing.assert_identical(fast.drop_attrs(deep=False), xr.concat(
+        parts, dim="case", data_vars="all", coords="minimal", compat="override", join="outer",
+        combine_attrs="override").drop_attrs(deep=False))
 
 
 def test_a_work_folder_of_the_same_sweep_gives_back_its_finished_cases(sweep, tmp_path):
@@ -104,13 +109,18 @@ def test_a_work_folder_of_the_same_sweep_gives_back_its_finished_cases(sweep, tm
     assert folder.open_for(sweep.identity, 3) == done
 
 
-def test_an_ok_record_whose_result_file_is_gone_is_not_finished(sweep, tmp_path):
+def test_a_torn_last_entry_is_cut_off_and_the_whole_ones_kept(sweep, tmp_path):
     folder = WorkFolder.next_to(tmp_path / "out.h5")
     folder.open_for(sweep.identity, 3)
     finish(folder, 0, rh=50.0)
+    whole = folder.journal.path.stat().st_size
     finish(folder, 2, rh=80.0)
-    folder.result(2).unlink()
+    with open(folder.journal.path, "r+b") as handle:  # a kill -9 in the middle of the append
+        handle.truncate(whole + HEAD.size + 100)
     assert set(folder.open_for(sweep.identity, 3)) == {0}
+    assert folder.journal.path.stat().st_size == whole
+    finish(folder, 2, rh=80.0)  # appends after the cut: both cases read back
+    assert set(folder.open_for(sweep.identity, 3)) == {0, 2}
 
 
 def test_a_work_folder_of_another_sweep_is_cleared_not_reused(sweep, tmp_path):
@@ -118,7 +128,7 @@ def test_a_work_folder_of_another_sweep_is_cleared_not_reused(sweep, tmp_path):
     folder.open_for("another sweep", 3)
     finish(folder, 0, rh=50.0)
     assert folder.open_for(sweep.identity, 3) == {}
-    assert not folder.result(0).exists() and not folder.record(0).exists()
+    assert not folder.journal.path.exists()
     assert json.loads((folder.path / "manifest.json").read_text())["identity"] == sweep.identity
 
 
@@ -173,6 +183,5 @@ def test_a_case_that_failed_for_a_reason_other_than_its_scene_runs_again(sweep, 
     folder = WorkFolder.next_to(tmp_path / "out.h5")
     folder.open_for(sweep.identity, 3)
     finish(folder, 0, rh=50.0)
-    write_json({"index": 1, "status": "failed", "message": "internal error: RuntimeError: pool closed",
-                "values": {}, "wall_time": 0.1, "retry": True}, folder.record(1))
+    finish(folder, 1, "internal error: RuntimeError: pool closed", retry=True)
     assert set(folder.open_for(sweep.identity, 3)) == {0}

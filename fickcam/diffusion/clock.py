@@ -7,6 +7,7 @@ diffusion coefficient depending on time only). Held segments have a constant fac
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import lru_cache
 
 import numpy as np
 
@@ -60,12 +61,19 @@ class RescaledTime:
         return self.between(np.zeros_like(np.asarray(t, float)), t)
 
 
+@lru_cache(maxsize=16)
+def clock_of(diffusivity: Diffusivity, exposure: Exposure) -> RescaledTime:
+    """The ``RescaledTime`` of a (diffusivity, exposure), built once: plan, scales and the
+    superposition share it (a year of hourly rows integrates 8760 ramps)."""
+    return RescaledTime(diffusivity, exposure)
+
 
 def sample_times(exposure: Exposure) -> np.ndarray:
     """Nine samples per segment (its edges included): where T and g are looked at."""
     edges = np.asarray(exposure.change_times, float)
-    inner = [np.linspace(a, b, 9)[:-1] for a, b in zip(edges[:-1], edges[1:])]
-    return np.concatenate(inner + [edges[-1:]]) if inner else edges
+    share = np.linspace(0.0, 1.0, 9)[:-1]
+    inner = edges[:-1, None] + np.diff(edges)[:, None] * share[None, :]
+    return np.concatenate([inner.ravel(), edges[-1:]])
 
 
 def reference_factor(diffusivity: Diffusivity, exposure: Exposure) -> float:
@@ -78,7 +86,7 @@ def rescaled_time(diffusivity: Diffusivity, exposure: Exposure, t: np.ndarray,
                   a_ref: float | None = None) -> np.ndarray:
     """tau(t) / a_ref: the rescaled time in seconds at the reference temperature."""
     a_ref = reference_factor(diffusivity, exposure) if a_ref is None else a_ref
-    return RescaledTime(diffusivity, exposure)(np.asarray(t, float)) / a_ref
+    return clock_of(diffusivity, exposure)(np.asarray(t, float)) / a_ref
 
 
 @dataclass(frozen=True)
@@ -103,4 +111,4 @@ def scales(geometry, diffusivity: Diffusivity, exposure: Exposure) -> Scales:
     """The scales of a part: reference factor, its D_z there, its thickness."""
     a_ref = reference_factor(diffusivity, exposure)
     return Scales(a_ref, float(diffusivity.pre_exponential[2]) * a_ref,
-                  float(geometry.thickness), RescaledTime(diffusivity, exposure))
+                  float(geometry.thickness), clock_of(diffusivity, exposure))

@@ -25,7 +25,7 @@ from .direct import plan_direct, solve_direct
 from .exact import exact_available
 from .exposure import Diffusivity, Exposure
 from .geometry import Bar, CamPlate, Disc, LinkBar, Sheet
-from .modal import prefers_modal
+from .forcing import RECORD_SHARE, is_long_record
 from .plane import plan_plane, solve_plane
 from .results import DiffusionResult, Plan
 
@@ -62,10 +62,10 @@ def plan(geometry, diffusivity: Diffusivity, exposure: Exposure, times: np.ndarr
          accuracy: float = 1e-3, model: str = "auto") -> Plan:
     """The model, cells and steps ``solve`` will use, and why, without solving."""
     _validate(geometry, model, accuracy)
-    if model in ("auto", "analytic") and exact_available(geometry) and prefers_modal(exposure):
-        return Plan("analytic", 0, 0, f"exact Crank series, each mode advanced through the "
-                    f"{exposure.ramp.size}-segment record by exact exponential updates "
-                    "(recursive convolution, cost rows x modes)", accuracy)
+    if model in ("auto", "analytic") and exact_available(geometry) and is_long_record(exposure):
+        return Plan("analytic", 0, 0, f"exact Crank series, tabulated once and superposed "
+                    f"over the {exposure.ramp.size}-segment record in closed form per row "
+                    "(cost linear in the rows)", accuracy)
     if model in ("auto", "analytic") and exact_available(geometry):
         return Plan("analytic", 0, 0, "exact Crank series with Duhamel superposition in "
                     "rescaled time (linear, one Arrhenius factor): cheapest and exact",
@@ -78,7 +78,8 @@ def plan(geometry, diffusivity: Diffusivity, exposure: Exposure, times: np.ndarr
     change = scales.tau_star(exposure.change_times)
     outputs = scales.tau_star(np.asarray(times, float))
     if chosen == "plane":  # expansion of the outline, then a graded mesh (plane)
-        return plan_plane(geometry, diffusivity, change, outputs, exposure.ramp, accuracy)
+        share = 1.0 - RECORD_SHARE if is_long_record(exposure) else 1.0  # the rest: the sum
+        return plan_plane(geometry, diffusivity, change, outputs, exposure.ramp, share * accuracy)
     return plan_direct(geometry, diffusivity, chosen, change, outputs, accuracy, exposure)
 
 
@@ -91,11 +92,11 @@ def solve(geometry, diffusivity: Diffusivity, exposure: Exposure, times: np.ndar
     log.debug("%s: %s, %d cells, %d steps (%s)", part or type(geometry).__name__, chosen.model,
               chosen.cells, chosen.steps, chosen.reason)
     if chosen.model == "analytic":
-        modal = accuracy if prefers_modal(exposure) else None
+        record = accuracy if is_long_record(exposure) else None
         return solve_analytic(geometry, diffusivity, exposure, times, surface_layer_depth,
-                              store_fields, chosen, modal)
+                              store_fields, chosen, record)
     if chosen.model == "plane":
-        return solve_plane(geometry, diffusivity, exposure, times, chosen,
+        return solve_plane(geometry, diffusivity, exposure, times, chosen, accuracy=accuracy,
                            surface_layer_depth=surface_layer_depth, store_fields=store_fields,
                            part=part)
     return solve_direct(geometry, diffusivity, exposure, times, chosen,

@@ -17,7 +17,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .clock import RescaledTime
+from .clock import clock_of
 from .series import SATURATION_FOURIER
 
 GAUSS_NODES = 16
@@ -94,7 +94,7 @@ def duhamel(kernel, diffusivity, exposure, times, diffusion_times, chunk=64):
     rescaled times of any shape; ``diffusion_times`` = (fastest, slowest) L^2 / D0 of
     the part (rescaled s): the first panel's scale and the age past which K = 1."""
     times = np.asarray(times, float)
-    clock = RescaledTime(diffusivity, exposure)
+    clock = clock_of(diffusivity, exposure)
     edges = clock.edges
     fastest, slowest = diffusion_times
     rate = diffusivity.arrhenius_factor(exposure.temperature(np.linspace(edges[0], edges[-1], 257)))

@@ -47,6 +47,25 @@ class CamPlate:
     thickness: float = 0.0
     bore_radius: float = 0.0
 
+    def __post_init__(self):
+        """Own read-only copies of the outline: equality and hash below are by value (the
+        caches of meshes and step responses are keyed by them), so the arrays must not
+        change afterwards."""
+        for name in ("profile_x", "profile_y"):
+            array = np.array(getattr(self, name), dtype=float)
+            array.setflags(write=False)
+            object.__setattr__(self, name, array)
+
+    def _values(self) -> tuple:
+        return (self.profile_x.tobytes(), self.profile_y.tobytes(), float(self.thickness),
+                float(self.bore_radius))
+
+    def __eq__(self, other) -> bool:
+        return type(other) is CamPlate and self._values() == other._values()
+
+    def __hash__(self) -> int:
+        return hash(self._values())
+
 
 @dataclass(frozen=True)
 class LinkBar:

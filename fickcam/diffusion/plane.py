@@ -32,6 +32,7 @@ from .calibration import (EXPANSION_SHARE, FIRST_STEP, GROWTH_REACH, MAX_CELLS, 
                           PLANE_PAIR, space_error)
 from .clock import scales as scales_of
 from .duhamel import duhamel
+from .forcing import RECORD_SHARE, is_long_record
 from .grading import MAX_GROWTH
 from .outline import outline_extent
 from .p1 import plane_operator
@@ -39,6 +40,7 @@ from .results import DiffusionResult, Plan
 from .scaling import planar_scale, stretch_of
 from .shorttime import expansion_of, sheet_fraction, weighted
 from .stepresponse import blend, step_response
+from .tabulated import LongRecord
 from .timesteps import earliest_output, geometric_steps, output_ages
 from .trimesh import triangulate
 
@@ -142,6 +144,21 @@ def planform_mesh(part, finest: float, growth: float, stretch: tuple[float, floa
     return triangulate(part, finest * part.thickness, growth=growth, stretch=stretch)
 
 
+@lru_cache(maxsize=8)
+def planform_response(geometry, finest: float, growth: float, d: tuple, layer_depth: float,
+                      end: float, per_doubling: int, first_step: float, keep_fields: bool,
+                      part: str):
+    """(P1 operator, unit-step response, time-error pair) of the planform: what ``solve_plane``
+    marches, cached by the exact inputs that determine it (geometries compare by value), so
+    re-runs at other output times (the limit search) and sweep cases that share the part,
+    its diffusivity ratios and its plan (a climate sweep at one temperature) march once."""
+    mesh = planform_mesh(geometry, finest, growth, stretch_of(d))
+    planar = plane_operator(mesh, geometry, layer_depth, d)
+    response, pair = step_response(planar, end, per_doubling, first_step,
+                                   keep_fields=keep_fields, part=part)
+    return planar, response, pair
+
+
 def expansion_error_at(expansion, ages: np.ndarray) -> float:
     """The expansion's error indicator x the sheet's unsaturated fraction, largest at the
     ``ages`` the outputs read (0 without ages)."""
@@ -234,17 +251,48 @@ def _diffusion_times(geometry, d) -> tuple[float, float]:
     return min(times), max(times)
 
 
-def _superpose(fraction, diffusivity, exposure, times, geometry, chunk: int = 64):
-    """c0 + Duhamel sum of the unit-step unsaturated fraction u(tau*) over the history."""
-    d = tuple(float(v) for v in diffusivity.pre_exponential)
-    kernel = _kernel(fraction, d[2] / geometry.thickness ** 2)
-    return exposure.initial_moisture + duhamel(kernel, diffusivity, exposure, times,
-                                               _diffusion_times(geometry, d), chunk=chunk)
+@dataclass(frozen=True)
+class History:
+    """How ``solve_plane`` superposes over the exposure: Duhamel's panels (``duhamel``) for
+    a few segments; for a long record (``forcing.is_long_record``) the tabulated sum of
+    ``tabulated``, cost linear in the rows, shared by the mean, the layer and the fields,
+    within ``RECORD_SHARE`` of the accuracy (``plan`` designs the rest)."""
+
+    diffusivity: object
+    exposure: object
+    times: np.ndarray
+    geometry: object
+    record: LongRecord | None
+
+    @classmethod
+    def of(cls, geometry, diffusivity, exposure, times, accuracy: float) -> "History":
+        d = tuple(float(v) for v in diffusivity.pre_exponential)
+        record = (LongRecord.of(diffusivity, exposure, times, _diffusion_times(geometry, d)[0],
+                                RECORD_SHARE * accuracy) if is_long_record(exposure) else None)
+        return cls(diffusivity, exposure, np.asarray(times, float), geometry, record)
+
+    def superpose(self, fraction, chunk: int = 64, fields: bool = False,
+                  looser: float = 1.0) -> tuple[np.ndarray, float]:
+        """(c0 + Duhamel sum of the unit-step unsaturated fraction u(tau*), the error of the
+        sum itself relative to the swing: 0 for the panels, whose quadrature is exact to
+        ``calibration.ANALYTIC_ERROR``). ``fields``: a wide kernel (``LongRecord.field``);
+        ``looser``: a tolerance this many times the mean's (the contact layer)."""
+        d = tuple(float(v) for v in self.diffusivity.pre_exponential)
+        kernel = _kernel(fraction, d[2] / self.geometry.thickness ** 2)
+        if self.record is None:
+            return self.exposure.initial_moisture + duhamel(
+                kernel, self.diffusivity, self.exposure, self.times,
+                _diffusion_times(self.geometry, d), chunk=chunk), 0.0
+        if fields:
+            return self.exposure.initial_moisture + self.record.field(kernel), 0.0
+        values, error, _ = self.record.superpose(kernel, looser=looser)
+        return self.exposure.initial_moisture + values, error
 
 
-def solve_plane(geometry, diffusivity, exposure, times, chosen, *,
+def solve_plane(geometry, diffusivity, exposure, times, chosen, *, accuracy: float,
                 surface_layer_depth: float = 5e-4, store_fields: bool = False, part: str = ""):
-    """CamPlate / LinkBar: planform step response x sheet step response, Duhamel over the history."""
+    """CamPlate / LinkBar: planform step response x sheet step response, Duhamel over the
+    history (``History``); the estimate adds the error of the sum itself on long records."""
     d = tuple(float(v) for v in diffusivity.pre_exponential)
     times = np.asarray(times, float)
     scales = scales_of(geometry, diffusivity, exposure)
@@ -254,15 +302,13 @@ def solve_plane(geometry, diffusivity, exposure, times, chosen, *,
     expansion = expansion_of(geometry, d, surface_layer_depth)
     tolerance = chosen.expansion_tolerance
     switch = expansion.switch(tolerance) if expansion is not None and tolerance > 0 else 0.0
+    history = History.of(geometry, diffusivity, exposure, times, accuracy)
     if switch >= end and not store_fields:
-        return _expansion_only(geometry, expansion, ages, diffusivity, exposure, times, chosen,
-                               part)
-    mesh = planform_mesh(geometry, chosen.finest, chosen.growth, stretch_of(d))
-    planar = plane_operator(mesh, geometry, surface_layer_depth, d)
-    u_plane, pair_plane = step_response(planar, end, chosen.steps_per_doubling,
-                                        mesh_first_step(chosen.finest,
-                                                        0.0 if store_fields else switch),
-                                        keep_fields=store_fields, part=part)
+        return _expansion_only(expansion, ages, history, chosen, part)
+    planar, u_plane, pair_plane = planform_response(
+        geometry, chosen.finest, chosen.growth, d, surface_layer_depth, end,
+        chosen.steps_per_doubling, mesh_first_step(chosen.finest, 0.0 if store_fields else switch),
+        store_fields, part)
     (plane_mean, mean_error), (plane_layer, _) = (
         _planform_fractions(u_plane, values, expansion, which, tolerance)
         for values, which in ((u_plane.mean, "mean"), (u_plane.layer, "layer")))
@@ -273,22 +319,22 @@ def solve_plane(geometry, diffusivity, exposure, times, chosen, *,
     def layer_fraction(tau):  # contact edge band x the whole thickness
         return plane_layer(tau) * sheet_fraction(tau)
 
-    mean = _superpose(mean_fraction, diffusivity, exposure, times, geometry)
-    layer = _superpose(layer_fraction, diffusivity, exposure, times, geometry)
+    (mean, sum_error), (layer, _) = (history.superpose(mean_fraction),
+                                     history.superpose(layer_fraction, looser=LAYER_TOLERANCE))
     time_error = PAIR_TO_TIME_ERROR * pair_plane ** 2  # the sheet is exact
     # the plan's estimate, unless the blend's own bound at the ages read says more (no
     # expansion for this outline: the plan's model, with its time part)
     observed = (float(np.max(mean_error(ages))) + time_error if mean_error is not None
                 else chosen.error_estimate)
-    estimate = max(chosen.error_estimate, observed)
-    log.debug("%s plane: error estimate %.2g (observed %.2g)", part, estimate, observed)
+    estimate = max(chosen.error_estimate, observed) + sum_error
+    log.debug("%s plane: error estimate %.2g (observed %.2g, sum %.2g)", part, estimate,
+              observed, sum_error)
     n_z = chosen.cells_per_axis[-1]
     result = DiffusionResult(times, mean, layer, "plane", planar.cells + n_z,
                              3 * (u_plane.nodes.size - 1), float(estimate), chosen.reason)
     if store_fields:
         result.fields, result.cell_coordinates = _plane_fields(
-            geometry, diffusivity, exposure, times, u_plane, planar, chosen, end,
-            surface_layer_depth, part)
+            geometry, history, u_plane, planar, chosen, end, surface_layer_depth, part)
     log.debug("%s plane: %d nodes x %d sheet cells", part, planar.cells, n_z)
     return result
 
@@ -305,8 +351,7 @@ def _planform_fractions(response, values, expansion, which: str, tolerance: floa
                  LAYER_TOLERANCE * tolerance, sheet_fraction)
 
 
-def _plane_fields(geometry, diffusivity, exposure, times, u_plane, planar, chosen, end,
-                  depth, part):
+def _plane_fields(geometry, history, u_plane, planar, chosen, end, depth, part):
     """Fields on the mid-thickness plane: planform fields x the sheet's field there."""
     sheet = fv.sheet(geometry.thickness, chosen.cells_per_axis[-1], depth)
     u_sheet, _ = step_response(sheet, end, chosen.steps_per_doubling, FIRST_STEP,
@@ -315,12 +360,12 @@ def _plane_fields(geometry, diffusivity, exposure, times, u_plane, planar, chose
 
     def field_fraction(tau):
         return u_plane.at(tau, u_plane.fields) * u_sheet.at(tau, u_sheet.fields[:, mid])[:, None]
-    fields = _superpose(field_fraction, diffusivity, exposure, times, geometry, FIELD_CHUNK)
+    fields, _ = history.superpose(field_fraction, FIELD_CHUNK, fields=True)
     return fields, {"x": planar.coordinates["x"], "y": planar.coordinates["y"],
                     "z": np.full(planar.cells, sheet.coordinates["z"][mid])}
 
 
-def _expansion_only(geometry, expansion, ages, diffusivity, exposure, times, chosen, part):
+def _expansion_only(expansion, ages, history, chosen, part):
     """Every output lies where the short-time expansion meets the tolerance: no mesh;
     the error is ``expansion_error_at`` the ages the outputs read."""
 
@@ -330,9 +375,9 @@ def _expansion_only(geometry, expansion, ages, diffusivity, exposure, times, cho
     def layer_fraction(tau):
         return (1.0 - expansion.layer_uptake(tau)) * sheet_fraction(tau)
 
-    mean = _superpose(mean_fraction, diffusivity, exposure, times, geometry)
-    layer = _superpose(layer_fraction, diffusivity, exposure, times, geometry)
-    mean_error = max(chosen.error_estimate, expansion_error_at(expansion, ages))
+    (mean, sum_error), (layer, _) = (history.superpose(mean_fraction),
+                                     history.superpose(layer_fraction, looser=LAYER_TOLERANCE))
+    mean_error = max(chosen.error_estimate, expansion_error_at(expansion, ages)) + sum_error
     log.debug("%s plane: short-time expansion only, error %.2g", part, mean_error)
-    return DiffusionResult(times, mean, layer, "plane", 0, 0, mean_error,
+    return DiffusionResult(history.times, mean, layer, "plane", 0, 0, mean_error,
                            chosen.reason + "; no mesh needed")

@@ -82,16 +82,30 @@ def earliest_output(change_stars: np.ndarray, output_stars: np.ndarray) -> float
     return max(min(gaps), 1e3 * FIRST_STEP) if gaps else 1.0
 
 
+AGES_PER_DECADE = 64  # more than MAX_AGES ages (a long record) are thinned to the least and
+MAX_AGES = 2048       # the largest in each bin of 1/AGES_PER_DECADE decade
+
+
 def output_ages(change_stars: np.ndarray, output_stars: np.ndarray, ramp: np.ndarray,
                 ramp_points: int = 17) -> np.ndarray:
     """The ages tau*_out - tau*_change > 0 at which the outputs read the response to each
     surface change (Duhamel's sum, Crank 1975 eq. 4.34): one per step, ``ramp_points``
-    spread over each ramp segment (a ramp is a continuum of small steps)."""
-    ages = []
-    for k in range(change_stars.size - 1):
-        start, stop = change_stars[k], change_stars[k + 1]
-        sources = np.linspace(start, stop, ramp_points) if ramp[k] and k > 0 else np.array([start])
-        age = np.asarray(output_stars, float)[:, None] - sources[None, :]
-        ages.append(age[age > 0])
-    found = np.concatenate(ages) if ages else np.empty(0)
-    return np.unique(found) if found.size else np.array([1.0])
+    spread over each ramp segment (a ramp is a continuum of small steps). A long record's
+    ages fill the span densely: past ``MAX_AGES`` only the least and the largest of each
+    bin of 1/``AGES_PER_DECADE`` decade are kept (what the error models read is smooth in
+    age)."""
+    change_stars = np.asarray(change_stars, float)
+    start, stop = change_stars[:-1], change_stars[1:]
+    spread = np.asarray(ramp, bool) & (np.arange(start.size) > 0)
+    share = np.linspace(0.0, 1.0, ramp_points)[None, :] * spread[:, None]
+    sources = np.unique(start[:, None] + (stop - start)[:, None] * share)
+    age = np.asarray(output_stars, float)[:, None] - sources[None, :]
+    found = np.unique(age[age > 0])
+    if found.size == 0:
+        return np.array([1.0])
+    if found.size <= MAX_AGES:
+        return found
+    bins = np.floor(np.log10(found) * AGES_PER_DECADE)
+    first = np.flatnonzero(np.diff(bins, prepend=-np.inf) > 0)
+    last = np.flatnonzero(np.diff(bins, append=np.inf) > 0)
+    return np.unique(found[np.concatenate([first, last])])

@@ -1,5 +1,6 @@
 """One case of a sweep, as a worker process runs it: scene dict → validated
-scene → :func:`fickcam.simulate.run` → per-case result file and record.
+scene → :func:`fickcam.simulate.run` → its record and journal payload (the client
+appends that to the sweep's journal; the worker writes no file).
 
 Whatever goes wrong in a case (an invalid value, physics out of its domain, a
 solver failure, even a bug) becomes a ``failed`` record with its message; it
@@ -16,7 +17,6 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from ..errors import FickcamError, SceneError
-from .workdir import write_json
 
 log = logging.getLogger(__name__)
 
@@ -30,8 +30,6 @@ class CaseTask:
     values: dict         # the raw values this case sets, by dotted path
     label: str           # e.g. "sweep.yaml case 7", names the scene in messages
     base_dir: str        # folder that relative paths in the scene refer to
-    result_path: str     # per-case result file
-    record_path: str     # per-case JSON record
 
 
 @contextmanager
@@ -66,22 +64,17 @@ def failure_message(exc: BaseException) -> str:
     return f"internal error: {type(exc).__name__}: {exc}"
 
 
-def run_case(task: CaseTask) -> dict:
-    """Run one case, write its result file (ok cases) and then its record; return the record."""
-    import dask
-
+def run_case(task: CaseTask) -> tuple[dict, bytes]:
+    """Run one case; return its record and its journal payload (record and result)."""
     from ..simulate import run
-    from ..store import save
+    from .journal import encode_case
 
     started = time.perf_counter()
     retry = False
+    dataset = None
     try:
         with quieter("fickcam.simulate", logging.ERROR):  # its notices go into the record
             dataset = run(case_scene(task))
-        # xarray would guard the write with a cluster-wide distributed.Lock inside a
-        # worker; a per-case file needs only the local HDF5 lock
-        with dask.config.set(scheduler="synchronous"):
-            save(dataset, task.result_path)
         notices = dataset.attrs.get("notices") or []
         status, message = "ok", "; ".join(str(n) for n in notices)
     except Exception as exc:  # noqa: BLE001 - a case's failure is data, not a crash
@@ -93,5 +86,4 @@ def run_case(task: CaseTask) -> dict:
               "values": task.values, "wall_time": time.perf_counter() - started}
     if retry:
         record["retry"] = True
-    write_json(record, Path(task.record_path))
-    return record
+    return record, encode_case(record, dataset if status == "ok" else None)

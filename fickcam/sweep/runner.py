@@ -1,11 +1,15 @@
-"""Run a sweep's cases on dask.distributed and write one combined result.
+"""Run a sweep's cases and write one combined result.
 
-By default a :class:`distributed.LocalCluster` of single-threaded worker
-processes is started for the sweep and closed after it; with ``scheduler``
-the cases go to any running dask scheduler (a real cluster, whose workers
-must have fickcam installed and see the output folder). Workers write each
-case to the work folder as it finishes; the client keeps only the small
-per-case records. dask is imported here, inside functions only.
+With one worker (``--workers 1``, or a single case) the cases run one after the
+other in this process, without dask. Otherwise a :class:`distributed.LocalCluster`
+of single-threaded worker processes is started for the sweep and closed after it,
+or with ``scheduler`` the cases go to any running dask scheduler (a real cluster,
+whose workers need fickcam and the base scene's ``history_file``). Each worker
+returns its case's record and result; the client appends them to the sweep's
+journal as they arrive (:mod:`fickcam.sweep.journal`) and writes the result file
+once at the end. dask is imported here, inside functions only, and only when it
+is used: a plain install needs it only for ``--workers N`` > 1 or ``--scheduler``
+(``pip install 'fickcam[sweep]'``).
 """
 from __future__ import annotations
 
@@ -13,12 +17,13 @@ import logging
 import os
 import time
 import uuid
-from contextlib import ExitStack, contextmanager
+from contextlib import contextmanager
 from pathlib import Path
 
 from ..errors import FickcamError, InputError
 from .case import CaseTask, quieter, run_case
 from .combine import combine
+from .journal import decode_dataset
 from .scheduler import probe
 from .spec import Sweep, load_sweep
 from .workdir import WorkFolder
@@ -26,12 +31,11 @@ from .workdir import WorkFolder
 log = logging.getLogger(__name__)
 
 
-def case_task(sweep: Sweep, folder: WorkFolder, index: int) -> CaseTask:
+def case_task(sweep: Sweep, index: int) -> CaseTask:
     """The worker task of case ``index``."""
     case = sweep.cases[index]
     return CaseTask(index=index, scene=sweep.scene_dict(case), values=case.values,
-                    label=f"{Path(sweep.file).name} case {index}", base_dir=str(sweep.base_dir),
-                    result_path=str(folder.result(index)), record_path=str(folder.record(index)))
+                    label=f"{Path(sweep.file).name} case {index}", base_dir=str(sweep.base_dir))
 
 
 def default_workers(n_cases: int) -> int:
@@ -39,12 +43,20 @@ def default_workers(n_cases: int) -> int:
     return max(1, min(os.cpu_count() or 1, n_cases))
 
 
+def require_distributed() -> None:
+    """Import dask.distributed, or say how to install it (exit status 2)."""
+    try:
+        import distributed  # noqa: F401
+    except ImportError:
+        raise InputError("more than one worker, or --scheduler, needs dask.distributed: "
+                         "pip install 'fickcam[sweep]' (or run with --workers 1)") from None
+
+
 @contextmanager
 def dask_client(workers: int | None, scheduler: str | None, n_cases: int):
     """A distributed.Client: to ``scheduler`` if given, else to a new LocalCluster
     (closed again on exit); dask's INFO chatter is kept off fickcam's stderr."""
-    import distributed  # noqa: F401 - importing it sets its loggers' levels: do that first
-
+    require_distributed()  # importing it sets its loggers' levels: do that first
     with quieter("distributed", logging.WARNING), _connect(workers, scheduler, n_cases) as client:
         yield client
 
@@ -72,6 +84,44 @@ def _connect(workers: int | None, scheduler: str | None, n_cases: int):
         yield client
 
 
+class _Collector:
+    """Appends each finished case to the journal, keeps its record, shows progress."""
+
+    def __init__(self, sweep: Sweep, folder: WorkFolder, progress: bool, done: int):
+        from tqdm.auto import tqdm
+
+        self.journal = folder.journal
+        self.records: dict[int, dict] = {}
+        self.failed = 0
+        self.bar = tqdm(total=len(sweep.cases), initial=done, disable=not progress, unit="case",
+                        desc="sweep", leave=True)
+
+    def add(self, record: dict, payload: bytes | None, label: str) -> None:
+        if payload is not None:
+            self.journal.append(payload)
+        if record["status"] != "ok":
+            log.warning("%s failed: %s", label, record["message"])
+            self.failed += 1
+            self.bar.set_postfix(failed=self.failed, refresh=False)
+        self.records[record["index"]] = record
+        self.bar.update()
+
+
+def run_here(sweep: Sweep, folder: WorkFolder, indices, *, progress: bool = False,
+             done: int = 0) -> dict[int, dict]:
+    """Run the cases ``indices`` one after the other in this process (no dask); return
+    their records. Caches of meshes and step responses carry over from case to case."""
+    collector = _Collector(sweep, folder, progress, done)
+    try:
+        for index in indices:
+            task = case_task(sweep, index)
+            record, payload = run_case(task)
+            collector.add(record, payload, task.label)
+    finally:
+        collector.bar.close()
+    return collector.records
+
+
 def compute_cases(sweep: Sweep, folder: WorkFolder, indices, client, *, progress: bool = False,
                   done: int = 0) -> dict[int, dict]:
     """Run the cases ``indices`` on ``client``; return their records as they finish.
@@ -82,7 +132,6 @@ def compute_cases(sweep: Sweep, folder: WorkFolder, indices, client, *, progress
     marked ``retry``, so a resumed sweep runs it again.
     """
     from distributed import as_completed
-    from tqdm.auto import tqdm
 
     run_id = uuid.uuid4().hex[:12]  # keys unique per run: never reuse another run's result
     waiting = iter(indices)
@@ -92,37 +141,45 @@ def compute_cases(sweep: Sweep, folder: WorkFolder, indices, client, *, progress
     def submit_next() -> None:
         index = next(waiting, None)
         if index is not None:
-            task = case_task(sweep, folder, index)
+            task = case_task(sweep, index)
             future = client.submit(run_case, task, key=f"fickcam-case-{run_id}-{index}", pure=False)
             in_flight[future] = (index, task.label, task.values)
             finished.add(future)
 
     for _ in range(max(16, 4 * sum(client.nthreads().values()))):
         submit_next()
-    records: dict[int, dict] = {}
-    failed = 0
-    bar = tqdm(total=len(sweep.cases), initial=done, disable=not progress, unit="case",
-               desc="sweep", leave=True)
+    collector = _Collector(sweep, folder, progress, done)
     try:
         for future in finished:
             index, label, values = in_flight.pop(future)
             try:
-                record = future.result()
+                record, payload = future.result()
             except Exception as exc:  # noqa: BLE001 - the worker, not the case, failed
                 record = {"index": index, "status": "failed", "values": values,
                           "message": f"did not finish: {type(exc).__name__}: {exc}", "retry": True}
+                payload = None
+            future.release()
             submit_next()
-            if record["status"] != "ok":
-                log.warning("%s failed: %s", label, record["message"])
-                failed += 1
-                bar.set_postfix(failed=failed, refresh=False)
-            records[index] = record
-            bar.update()
+            collector.add(record, payload, label)
     finally:
-        bar.close()
+        collector.bar.close()
         if in_flight:
             client.cancel(list(in_flight))
-    return records
+    return collector.records
+
+
+def in_process(workers: int | None, scheduler: str | None, n_cases: int) -> bool:
+    """Whether the cases run here: one worker asked for (or one case), or no worker count
+    given and dask.distributed not installed; never with a scheduler."""
+    from importlib.util import find_spec
+
+    if scheduler:
+        return False
+    if workers is None and find_spec("distributed") is None:
+        log.info("dask.distributed is not installed: running the cases in this process "
+                 "(pip install 'fickcam[sweep]' for one worker process per core)")
+        return True
+    return (workers if workers is not None else default_workers(n_cases)) == 1
 
 
 def run_sweep(sweep_path, output, workers: int | None = None, scheduler: str | None = None,
@@ -130,22 +187,26 @@ def run_sweep(sweep_path, output, workers: int | None = None, scheduler: str | N
     """Run every case of the sweep file ``sweep_path`` and write one result to ``output``.
 
     Finished cases of an interrupted run of the same sweep (same sweep file,
-    base scene and fickcam version) are reused, not recomputed. The per-case
-    work folder ``OUTPUT.parts`` is removed once the result is written.
+    base scene and fickcam version) are reused, not recomputed, even after a
+    ``kill -9``. The work folder ``OUTPUT.parts`` is removed once the result is
+    written.
     """
-    import dask
-
     from ..store import save
 
     started = time.perf_counter()
     sweep = load_sweep(sweep_path)
+    here = in_process(workers, scheduler, len(sweep.cases))
+    if not here:
+        require_distributed()
     output = Path(output)
     folder = WorkFolder.next_to(output)
     records = folder.open_for(sweep.identity, len(sweep.cases))
     todo = [c.index for c in sweep.cases if c.index not in records]
     if records:
         log.info("resuming: %d of %d case(s) already finished", len(records), len(sweep.cases))
-    if todo:
+    if todo and (here or in_process(workers, scheduler, len(todo))):
+        records.update(run_here(sweep, folder, todo, progress=progress, done=len(records)))
+    elif todo:
         with dask_client(workers, scheduler, len(todo)) as client:
             records.update(compute_cases(sweep, folder, todo, client, progress=progress,
                                          done=len(records)))
@@ -154,11 +215,22 @@ def run_sweep(sweep_path, output, workers: int | None = None, scheduler: str | N
         shown = ", ".join(str(i) for i in failed[:20]) + (" ..." if len(failed) > 20 else "")
         log.warning("%d of %d case(s) failed (case_status, case_message in the result): %s",
                     len(failed), len(sweep.cases), shown)
-    with ExitStack() as stack, dask.config.set(scheduler="synchronous"):
-        save(combine(sweep, folder, records, stack, started=started), output)
+    save(combine(sweep, records, finished_cases(folder, sweep, records), started=started), output,
+         compress=True)
     if not any(r.get("retry") for r in records.values()):
         folder.remove_own_files()
     else:
         log.warning("kept %s: rerun the same command to retry the cases that did not finish",
                     folder.path)
     return output
+
+
+def finished_cases(folder: WorkFolder, sweep: Sweep, records: dict[int, dict]) -> dict:
+    """The result Datasets of the ok cases among ``records``, read from the journal."""
+    entries = folder.finished(sweep.identity, len(sweep.cases))
+    cases = {}
+    for index, record in records.items():
+        entry = entries.get(index)
+        if record["status"] == "ok" and entry is not None:
+            cases[index] = decode_dataset(folder.journal.payload(entry))
+    return cases

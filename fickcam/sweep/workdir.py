@@ -1,8 +1,7 @@
-"""The work folder of a sweep (``OUT.parts/`` next to the result): one result
-file and one small JSON record per finished case, and a manifest naming the
-sweep they belong to. A record is written only after its case's result file,
-so a record on disk means a finished case; an interrupted sweep resumes from
-the records when the manifest's sweep identity still matches.
+"""The work folder of a sweep (``OUT.parts/`` next to the result): the journal of
+finished cases (:mod:`fickcam.sweep.journal`) and a manifest naming the sweep it
+belongs to. An interrupted sweep resumes from the journal when the manifest's sweep
+identity still matches.
 """
 from __future__ import annotations
 
@@ -14,10 +13,12 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from ..errors import InputError
+from .journal import Entry, Journal
 
 log = logging.getLogger(__name__)
 
 MANIFEST = "manifest.json"
+JOURNAL = "cases.journal"
 
 
 def write_json(data: dict, path: Path) -> Path:
@@ -46,21 +47,25 @@ class WorkFolder:
         output = Path(output)
         return cls(output.with_name(output.name + ".parts"))
 
-    def result(self, index: int) -> Path:
-        return self.path / f"case-{index:05d}.h5"
-
-    def record(self, index: int) -> Path:
-        return self.path / f"case-{index:05d}.json"
+    @property
+    def journal(self) -> Journal:
+        return Journal(self.path / JOURNAL)
 
     def own_files(self) -> list[Path]:
+        """What fickcam writes here (and the per-case files that older versions wrote)."""
         return sorted(self.path.glob("case-*.h5")) + sorted(self.path.glob("case-*.json")) + \
-            sorted(self.path.glob(".case-*.tmp")) + [p for p in [self.path / MANIFEST] if p.exists()]
+            sorted(self.path.glob(".case-*.tmp")) + \
+            [p for p in (self.path / JOURNAL, self.path / MANIFEST) if p.exists()]
 
     def open_for(self, identity: str, n_cases: int) -> dict[int, dict]:
         """Create the folder or reuse it; return the records of finished cases.
 
-        Records of another sweep (different identity) are discarded, never mixed in.
+        Cases of another sweep (different identity) are discarded, never mixed in.
         """
+        return {index: entry.record for index, entry in self.finished(identity, n_cases).items()}
+
+    def finished(self, identity: str, n_cases: int) -> dict[int, Entry]:
+        """:meth:`open_for`, with where each finished case lies in the journal."""
         manifest_path = self.path / MANIFEST
         if self.path.exists():
             if not manifest_path.is_file():
@@ -70,7 +75,7 @@ class WorkFolder:
             else:
                 manifest = json.loads(manifest_path.read_text(encoding="utf-8"))
                 if manifest.get("identity") == identity:
-                    return self._finished_records(n_cases)
+                    return self._finished_entries(n_cases)
                 log.warning("%s holds cases of a different sweep (the sweep file, base scene or "
                             "fickcam version changed): starting over", self.path)
                 self.remove_own_files()
@@ -78,23 +83,11 @@ class WorkFolder:
         write_json({"identity": identity, "cases": n_cases}, manifest_path)
         return {}
 
-    def _finished_records(self, n_cases: int) -> dict[int, dict]:
-        records = {}
-        for path in self.path.glob("case-*.json"):
-            try:
-                record = json.loads(path.read_text(encoding="utf-8"))
-                index = int(record["index"])
-            except (ValueError, KeyError, TypeError, json.JSONDecodeError):
-                log.warning("ignoring unreadable record %s", path)
-                continue
-            if not 0 <= index < n_cases or path != self.record(index):
-                continue
-            if record.get("status") == "ok" and not self.result(index).is_file():
-                continue
-            if record.get("retry"):  # failed for a reason other than its scene: run again
-                continue
-            records[index] = record
-        return records
+    def _finished_entries(self, n_cases: int) -> dict[int, Entry]:
+        """Journal entries of this sweep's cases, except those marked for another try
+        (failed for a reason other than their scene)."""
+        return {index: entry for index, entry in self.journal.read().items()
+                if 0 <= index < n_cases and not entry.record.get("retry")}
 
     def remove_own_files(self) -> None:
         """Delete the files this module wrote, then the folder if it is empty."""

@@ -1,0 +1,137 @@
+"""The journal of a sweep: one append-only file to which each finished case is added
+as it arrives, so that what is done stays done through any interruption (Ctrl-C,
+``kill -9``, a lost machine).
+
+Each entry is ``MAGIC | payload length | CRC-32 of the payload | payload`` (one
+``write``), the payload the case's record (status, message, values, wall time) as
+JSON followed by its result's arrays as raw bytes (numbers and times; text as
+JSON). Opening the journal reads the entries in order and cuts the file back to
+the last whole one: an entry torn by a kill fails its length or checksum and is
+dropped (its case runs again), the ones before it are kept. No per-case netCDF
+file is written and no combine pass reads them back: the result is built from the
+journal in memory and written once.
+"""
+from __future__ import annotations
+
+import json
+import logging
+import os
+import struct
+import zlib
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+log = logging.getLogger(__name__)
+
+MAGIC = b"FKJ1"
+HEAD = struct.Struct("<4sQI")  # magic, payload length, CRC-32 of the payload
+LENGTH = struct.Struct("<I")   # bytes of the JSON header at the start of a payload
+
+
+def _plain(value):
+    """JSON for numpy scalars and arrays in attributes."""
+    if isinstance(value, np.generic):
+        return value.item()
+    if isinstance(value, np.ndarray):
+        return value.tolist()
+    raise TypeError(f"cannot store {type(value).__name__} in a sweep journal")
+
+
+def encode_case(record: dict, dataset=None) -> bytes:
+    """A case's journal payload: its record and (ok cases) every variable of its result."""
+    variables, blobs, offset = [], [], 0
+    for name, variable in ({} if dataset is None else dataset.variables).items():
+        data = np.asarray(variable.values)
+        entry = {"name": name, "dims": list(variable.dims), "attrs": dict(variable.attrs),
+                 "coord": name in dataset.coords, "shape": list(data.shape)}
+        if data.dtype.kind in "OUS":
+            entry["text"] = [str(v) for v in data.ravel()]
+        else:
+            data = np.ascontiguousarray(data)
+            entry.update(dtype=data.dtype.str, offset=offset, nbytes=data.nbytes)
+            blobs.append(data.tobytes())
+            offset += data.nbytes
+        variables.append(entry)
+    head = json.dumps({"record": record, "variables": variables}, default=_plain).encode()
+    return LENGTH.pack(len(head)) + head + b"".join(blobs)
+
+
+def _header(payload: bytes) -> tuple[dict, int]:
+    (size,) = LENGTH.unpack_from(payload)
+    return json.loads(payload[LENGTH.size:LENGTH.size + size]), LENGTH.size + size
+
+
+def decode_record(payload: bytes) -> dict:
+    return _header(payload)[0]["record"]
+
+
+def decode_dataset(payload: bytes):
+    """The result Dataset of an ok case's payload (None for a failed case)."""
+    import xarray as xr
+
+    header, start = _header(payload)
+    if not header["variables"]:
+        return None
+    data_vars, coords = {}, {}
+    for entry in header["variables"]:
+        if "text" in entry:
+            values = np.array(entry["text"], dtype=object).reshape(entry["shape"])
+        else:
+            first = start + entry["offset"]
+            values = np.frombuffer(payload[first:first + entry["nbytes"]],
+                                   dtype=np.dtype(entry["dtype"])).reshape(entry["shape"])
+        variable = xr.Variable(entry["dims"], values, entry["attrs"])
+        (coords if entry["coord"] else data_vars)[entry["name"]] = variable
+    return xr.Dataset(data_vars, coords=coords)
+
+
+@dataclass(frozen=True)
+class Entry:
+    """Where a case's payload lies in the journal, and its record."""
+
+    record: dict
+    offset: int
+    size: int
+
+
+class Journal:
+    """The append-only case file of one sweep (``OUT.parts/cases.journal``)."""
+
+    def __init__(self, path: Path):
+        self.path = Path(path)
+
+    def read(self) -> dict[int, Entry]:
+        """The whole entries, the latest per case index; a torn tail is cut off."""
+        entries: dict[int, Entry] = {}
+        if not self.path.is_file():
+            return entries
+        with open(self.path, "rb+") as handle:
+            end = 0
+            while True:
+                head = handle.read(HEAD.size)
+                if len(head) < HEAD.size:
+                    break
+                magic, size, checksum = HEAD.unpack(head)
+                payload = handle.read(size) if magic == MAGIC else b""
+                if magic != MAGIC or len(payload) < size or zlib.crc32(payload) != checksum:
+                    break
+                record = decode_record(payload)
+                entries[int(record["index"])] = Entry(record, end + HEAD.size, size)
+                end += HEAD.size + size
+            if end < os.fstat(handle.fileno()).st_size:
+                log.warning("%s: dropped a partly written case at byte %d (it runs again)",
+                            self.path, end)
+                handle.truncate(end)
+        return entries
+
+    def append(self, payload: bytes) -> None:
+        """Add one case (one write of header and payload; flushed to the OS at once)."""
+        with open(self.path, "ab") as handle:
+            handle.write(HEAD.pack(MAGIC, len(payload), zlib.crc32(payload)) + payload)
+
+    def payload(self, entry: Entry) -> bytes:
+        with open(self.path, "rb") as handle:
+            handle.seek(entry.offset)
+            return handle.read(entry.size)

@@ -1,0 +1,63 @@
+"""What sweep cases reuse from earlier cases in the same process (the planform mesh, its
+operator and unit-step response, the outline expansion) is keyed by the exact inputs:
+a case that changes the cam thickness or the fibre fraction never gets a stale entry,
+and a case that repeats a geometry gets the same numbers as a fresh process."""
+import numpy as np
+import pytest
+import xarray as xr
+import yaml
+
+import fickcam
+from fickcam.diffusion import CamPlate
+from fickcam.diffusion.plane import planform_mesh, planform_response
+from fickcam.diffusion.shorttime import expansion_of
+from test_sweep_run import small_base
+
+CACHES = (planform_response, planform_mesh, expansion_of)
+
+
+def scene(**changes):
+    data = yaml.safe_load(small_base())
+    data.pop("limits")
+    data["cam"]["thickness"] = changes.get("thickness", data["cam"]["thickness"])
+    fraction = changes.get("fraction")
+    if fraction is not None:
+        data["materials"]["cfrp"]["fiber_volume_fraction"] = fraction
+    return fickcam.load_scene(data)
+
+
+def fresh(data):
+    """The run in a process whose caches are empty."""
+    for cache in CACHES:
+        cache.cache_clear()
+    return fickcam.run(data)
+
+
+def test_cam_plates_are_equal_exactly_when_their_values_are():
+    x, y = np.cos(np.linspace(0, 6, 50)), np.sin(np.linspace(0, 6, 50))
+    plate = CamPlate(x, y, 0.012, 0.01)
+    assert plate == CamPlate(x.copy(), y.copy(), 0.012, 0.01)
+    assert hash(plate) == hash(CamPlate(x.copy(), y.copy(), 0.012, 0.01))
+    assert plate != CamPlate(x, y, 0.0125, 0.01) and plate != CamPlate(x, y, 0.012, 0.011)
+    moved = y.copy()
+    moved[7] += 1e-12
+    assert plate != CamPlate(x, moved, 0.012, 0.01)
+    x[3] = 5.0  # the caller's array changes afterwards: the plate keeps its own copy
+    assert plate.profile_x[3] != 5.0 and not plate.profile_x.flags.writeable
+
+
+@pytest.mark.parametrize("change", [{"thickness": "12.5 mm"}, {"fraction": 0.55}])
+def test_a_changed_thickness_or_fibre_fraction_never_reuses_a_stale_entry(change):
+    base, changed = scene(), scene(**change)
+    fresh(base)
+    after_base = fickcam.run(changed)  # the base case's entries are in the caches
+    xr.testing.assert_identical(after_base.drop_attrs(), fresh(changed).drop_attrs())
+    assert not after_base.equals(fickcam.run(base))
+
+
+def test_a_repeated_geometry_reuses_the_step_response_and_gives_the_same_numbers():
+    first = fresh(scene())
+    misses = planform_response.cache_info().misses
+    again = fickcam.run(scene())
+    assert planform_response.cache_info().misses == misses, "the repeat marched again"
+    xr.testing.assert_identical(again.drop_attrs(), first.drop_attrs())
