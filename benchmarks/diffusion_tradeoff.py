@@ -3,7 +3,7 @@
     python benchmarks/diffusion_tradeoff.py [--quick] [--out benchmarks/results]
 
 Writes ``bench.md`` (the table `fickcam bench` prints), ``bench.csv`` and
-``error_vs_time.png`` (error against the exact solution vs wall time, log-log,
+``error_vs_time.png`` (error against the exact solution vs CPU time, log-log,
 one marker series per geometry and model) for the README. A ``--quick`` run
 only prints its table (it must not replace the committed full results) unless
 ``--out`` names a folder.
@@ -32,13 +32,13 @@ def write_figure(rows: list[dict], path: Path) -> Path:
     fig, ax = plt.subplots(figsize=(7, 5))
     series: dict[tuple[str, str], list[dict]] = {}
     for row in rows:
-        if np.isfinite(row["wall_time"]) and row["error"] > 0:
+        if np.isfinite(row["cpu_time"]) and row["error"] > 0:
             series.setdefault((row["geometry"], row["model"]), []).append(row)
     for (geometry, model), points in series.items():
-        points.sort(key=lambda r: r["wall_time"])
-        ax.loglog([p["wall_time"] for p in points], [p["error"] for p in points], "o-",
+        points.sort(key=lambda r: r["cpu_time"])
+        ax.loglog([p["cpu_time"] for p in points], [p["error"] for p in points], "o-",
                   label=f"{geometry}: {model}")
-    ax.set_xlabel("wall time per full uptake curve [s]")
+    ax.set_xlabel("CPU time per full uptake curve [s]")
     ax.set_ylabel("max error of the mean uptake (fraction of the step)")
     ax.grid(alpha=0.3, which="both")
     ax.legend(fontsize=7)

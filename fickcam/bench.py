@@ -4,8 +4,9 @@ For each geometry the full uptake curve of a unit surface step (c0 = 0,
 g = 1 weight %, isothermal so tau = t) is solved by each model at a few
 accuracy targets; the error is the largest |mean - exact| over 61 output
 times spanning Fourier numbers (D t / h^2 of the thickness) 1e-2 .. 1.5 (relative to the step), against
-Crank's series (``fickcam.diffusion.exact.step_response``). Wall times are
-medians of ``repeats`` runs after one warm-up that pays the FiPy import.
+Crank's series (``fickcam.diffusion.exact.step_response``). Times are CPU seconds of
+this process (``time.process_time``: the machine is shared, a wall time under load
+says little), medians of ``repeats`` runs after one warm-up that pays the FiPy import.
 The row ``fipy-naive`` is FiPy solving every backward-Euler step itself
 (``eq.solve`` with ``LinearLUSolver(tolerance=1e-10)``) on the same step plan.
 Non-Fickian rows (``bench_sorption``): two-phase sheet and disc, concentration-dependent
@@ -89,17 +90,17 @@ def _reference(case: Case, times: np.ndarray) -> np.ndarray | None:
 def _timed(function, repeats: int, warm_up: bool = True):
     if warm_up:
         function()  # imports, caches
-    walls = []
+    seconds = []
     result = None
     for _ in range(repeats):
-        started = time.perf_counter()
+        started = time.process_time()
         result = function()
-        walls.append(time.perf_counter() - started)
-    return result, float(np.median(walls))
+        seconds.append(time.process_time() - started)
+    return result, float(np.median(seconds))
 
 
 def run_bench(quick: bool = False, repeats: int = 3, progress=lambda label: None) -> list[dict]:
-    """Rows (geometry, model, accuracy, cells, steps, wall_time s, error, error_estimate);
+    """Rows (geometry, model, accuracy, cells, steps, cpu_time s, error, error_estimate);
     ``progress(label)`` is called as each row starts."""
     from .diffusion import Diffusivity, Exposure, Sheet, solve
 
@@ -120,7 +121,7 @@ def run_bench(quick: bool = False, repeats: int = 3, progress=lambda label: None
             for accuracy in (case.accuracies if model != "analytic" else case.accuracies[:1]):
                 progress(f"{case.name}: {model} {accuracy:g}")
                 try:
-                    result, wall = _timed(lambda: solve(case.geometry, diffusivity, exposure,
+                    result, cpu = _timed(lambda: solve(case.geometry, diffusivity, exposure,
                                                         times, accuracy=accuracy, model=model),
                                           1 if quick else case.runs or repeats,
                                           warm_up=not case.runs)
@@ -132,7 +133,7 @@ def run_bench(quick: bool = False, repeats: int = 3, progress=lambda label: None
                     rows.append(_row(case, model, accuracy, 0, 0, np.nan, np.nan, np.nan, label))
                     continue
                 error = float(np.max(np.abs(result.mean - reference)))
-                rows.append(_row(case, result.model, accuracy, result.cells, result.steps, wall,
+                rows.append(_row(case, result.model, accuracy, result.cells, result.steps, cpu,
                                  error, result.error_estimate, label))
         if isinstance(case.geometry, Sheet) and not quick:
             rows += _naive_fipy_rows(case, diffusivity, exposure, times, reference, progress)
@@ -143,9 +144,9 @@ def run_bench(quick: bool = False, repeats: int = 3, progress=lambda label: None
                                 progress)
 
 
-def _row(case, model, accuracy, cells, steps, wall, error, estimate, reference) -> dict:
+def _row(case, model, accuracy, cells, steps, cpu, error, estimate, reference) -> dict:
     return {"geometry": case.name, "model": model, "accuracy": accuracy, "cells": int(cells),
-            "steps": int(steps), "wall_time": wall, "error": error,
+            "steps": int(steps), "cpu_time": cpu, "error": error,
             "error_estimate": estimate, "reference": reference}
 
 
@@ -172,9 +173,9 @@ def _naive_fipy_rows(case, diffusivity, exposure, times, reference, progress) ->
             coarse, fine = (_fipy_march(chosen.cells_per_axis[0], p.nodes, p.outputs)
                             for p in plans)
             return 2 * fine - coarse
-        mean, wall = _timed(run, 1)
+        mean, cpu = _timed(run, 1)
         steps = sum(p.nodes.size - 1 for p in plans)
-        rows.append(_row(case, "fipy-naive", accuracy, chosen.cells_per_axis[0], steps, wall,
+        rows.append(_row(case, "fipy-naive", accuracy, chosen.cells_per_axis[0], steps, cpu,
                          float(np.max(np.abs(mean - reference))), np.nan, "exact"))
     return rows
 
@@ -196,10 +197,10 @@ def _fipy_march(cells: int, nodes: np.ndarray, outputs: np.ndarray) -> np.ndarra
 def format_table(rows: list[dict]) -> str:
     """A fixed-width table, one line per (geometry, model, accuracy)."""
     header = (f"{'geometry':<32} {'model':<13} {'accuracy':>8} {'cells':>8} {'steps':>6} "
-              f"{'wall [s]':>9} {'error':>9} {'estimate':>9}  reference")
+              f"{'CPU [s]':>9} {'error':>9} {'estimate':>9}  reference")
     lines = [header, "-" * len(header)]
     for r in rows:
         lines.append(f"{r['geometry']:<32} {r['model']:<13} {r['accuracy']:>8.0e} "
-                     f"{r['cells']:>8d} {r['steps']:>6d} {r['wall_time']:>9.4f} "
+                     f"{r['cells']:>8d} {r['steps']:>6d} {r['cpu_time']:>9.4f} "
                      f"{r['error']:>9.1e} {r['error_estimate']:>9.1e}  {r['reference']}")
     return "\n".join(lines)

@@ -305,8 +305,11 @@ def _cmd_bench(args) -> int:
              BENCH_EXPECTED[args.quick], "" if args.quick else " (--quick: "
              f"{BENCH_EXPECTED[True]})")
     with tqdm(total=total, disable=args.quiet, unit="row", desc="bench", leave=False) as bar:
+        started = []
+
         def starting(label: str) -> None:
-            bar.update(1 if bar.postfix else 0)  # the previous row has finished
+            bar.update(1 if started else 0)  # the previous row has finished
+            started.append(label)  # (a disabled bar, --quiet, keeps no postfix)
             bar.set_postfix_str(label)
 
         rows = run_bench(quick=args.quick, progress=starting)

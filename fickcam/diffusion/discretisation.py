@@ -21,7 +21,7 @@ extraction is tested against a plain ``eq.solve``).
 from __future__ import annotations
 
 from collections import OrderedDict
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 from scipy import sparse
@@ -31,20 +31,40 @@ FIPY_VERIFIED = "4.0."  # the FiPy series whose private ``_prepareLinearSystem``
 
 @dataclass
 class Discretisation:
-    """A FiPy-assembled operator with the weights that integrate its cell values."""
+    """An operator M dc/dt + K c = g f with the weights that integrate its values.
 
-    volumes: np.ndarray            # (n,) scaled cell volumes (M = diag(volumes))
+    FiPy's finite volumes: M = diag(volumes). The hand-written P1 elements of the plane
+    model (``p1``) add a consistent ``mass`` and nodes held at the surface value g
+    (eliminated): their mass coupling ``held_mass`` (M_fb 1, the jump term of a change
+    of g) and their shares of the mean and the layer (``held_mean``, ``held_layer``)."""
+
+    volumes: np.ndarray            # (n,) scaled cell volumes (M = diag(volumes)), lumped mass
     stiffness: sparse.csr_matrix   # K, (n, n)
     boundary: np.ndarray           # f, (n,) for a unit surface value
-    mean_weights: np.ndarray       # (n,), sum 1: volume mean
-    layer_weights: np.ndarray      # (n,), sum 1: mean over the surface layer
+    mean_weights: np.ndarray       # (n,), sum 1 with held_mean: volume mean
+    layer_weights: np.ndarray      # (n,), sum 1 with held_layer: mean over the surface layer
     coordinates: dict[str, np.ndarray] = field(default_factory=dict)  # physical cell centres, m
+    mass: sparse.csr_matrix | None = None  # consistent mass (None: diag(volumes))
+    held_mass: np.ndarray | None = None    # (n,) M_fb 1 of the held nodes
+    held_mean: float = 0.0
+    held_layer: float = 0.0
     factors: OrderedDict = field(default_factory=OrderedDict, repr=False, compare=False)
     # (dt, theta) -> (matrix, LU or None): shared by every march on this operator
 
     @property
     def cells(self) -> int:
         return int(self.volumes.size)
+
+    def mass_matrix(self) -> sparse.spmatrix:
+        return sparse.diags(self.volumes) if self.mass is None else self.mass
+
+    def lumped(self) -> Discretisation:
+        """The same operator with its mass lumped (itself where it already is): an
+        M-matrix, whose backward-Euler fields obey the maximum principle (Thomée 2006
+        ch. 15), for fields rather than means."""
+        if self.mass is None:
+            return self
+        return replace(self, mass=None, held_mass=None, factors=OrderedDict())
 
 
 def assemble(mesh, corrected: bool = False,

@@ -1,5 +1,6 @@
-"""A planform's Delaunay-admissible cells (``prism.Tessellation``) extruded through the
-thickness into FiPy prisms (a generic FiPy ``Mesh`` with given cell points)."""
+"""A planform's Delaunay-admissible cells (``prism.Tessellation``) as FiPy meshes with given
+cell points: the planform alone (a ``Mesh2D``, the in-plane operator of the plane model) or
+extruded through the thickness into prisms (a generic 3-D ``Mesh``)."""
 from __future__ import annotations
 
 from functools import lru_cache
@@ -42,6 +43,26 @@ def prism(tess, thickness: float, z_widths: np.ndarray, layer_share: np.ndarray,
     layer = volumes * np.tile(layer_share, layers)
     return Discretisation(volumes, stiffness, boundary, normalised(volumes), normalised(layer),
                           coordinates)
+
+
+def planar(tess, scale: float, layer_share: np.ndarray) -> Discretisation:
+    """The in-plane operator of a planform's admissible cells (``prism.Tessellation``): a
+    FiPy ``Mesh2D`` whose faces are the cells' sides and whose cell points are the
+    circumcentres, so the line between neighbouring cell points is normal to their side
+    and FiPy's two-point flux is consistent (Eymard, Gallouet & Herbin 2000, Definition
+    9.1; see ``prism``). Coordinates: stretched planform x ``scale`` (scaled units).
+    Every outline side holds the surface value; the mirror lines are insulated.
+    Layer: cells weighted by ``layer_share`` (fraction within the contact band)."""
+    sides, cell_sides = sides_of_cells(tess)
+    cell_faces = _padded(cell_sides, max(s.size for s in cell_sides))
+    mesh = _centred_mesh_class(2)(tess.points.T * scale, sides.T, cell_faces,
+                                  tess.centres.T * scale)
+    exposed = np.asarray(mesh.exteriorFaces, bool) & ~_on_mirror(tess, sides)
+    volumes, stiffness, boundary = assemble(mesh, exposed=exposed)
+    planar_centres = tess.physical(tess.centres)
+    return Discretisation(volumes, stiffness, boundary, normalised(volumes),
+                          normalised(volumes * layer_share),
+                          {"x": planar_centres[:, 0], "y": planar_centres[:, 1]})
 
 
 def _padded(rows: list[np.ndarray], width: int) -> np.ndarray:
@@ -88,8 +109,8 @@ def prism_mesh(tess, scale: float, z_nodes: np.ndarray, mid_plane: bool):
     cell_centres = np.vstack([np.tile(tess.centres.T * scale, layers), centre_z[None, :]])
     face_centres = np.vstack([np.tile(tess.centres.T * scale, layers + 1),
                               np.repeat(z_nodes, cells)[None, :]])
-    mesh = _centred_mesh_class()(vertices, faces, cell_faces, cell_centres,
-                                 np.arange(first_side), face_centres)
+    mesh = _centred_mesh_class(3)(vertices, faces, cell_faces, cell_centres,
+                                  np.arange(first_side), face_centres)
     insulated = np.zeros(faces.shape[1], bool)
     insulated[first_side:] = np.tile(_on_mirror(tess, sides), layers)
     if mid_plane:
@@ -119,18 +140,20 @@ def _on_mirror(tess, sides: np.ndarray) -> np.ndarray:
     return on
 
 
-@lru_cache(maxsize=1)
-def _centred_mesh_class():
-    """FiPy's generic ``Mesh`` with given cell points (FiPy would average the face
-    centres) and the top/bottom faces centred on them, so that the segment from a
-    cell point to its top or bottom face is vertical. Cell volumes do not depend on
-    those face centres (FiPy's divergence-theorem volume uses the x component of the
-    face normals, zero on horizontal faces)."""
+@lru_cache(maxsize=2)
+def _centred_mesh_class(dimensions: int):
+    """FiPy's generic ``Mesh`` (3-D) or ``Mesh2D`` with given cell points (FiPy would
+    average the face centres) and, in 3-D, the top/bottom faces centred on them, so that
+    the segment from a cell point to its top or bottom face is vertical. Cell volumes do
+    not depend on those points (FiPy's divergence-theorem volume uses the face normals
+    and, in 3-D, only their x component, zero on horizontal faces; in 2-D the face
+    centres, the sides' midpoints, which are kept)."""
     from fipy.meshes.mesh import Mesh
+    from fipy.meshes.mesh2D import Mesh2D
 
-    class CentredMesh(Mesh):
+    class CentredMesh(Mesh2D if dimensions == 2 else Mesh):
         def __init__(self, vertex_coords, face_vertex_ids, cell_face_ids, cell_centres,
-                     centred_faces, face_centres):
+                     centred_faces=None, face_centres=None):
             self._given_cells = cell_centres
             self._given_faces = (centred_faces, face_centres)
             super().__init__(vertex_coords, face_vertex_ids, cell_face_ids)
@@ -141,8 +164,8 @@ def _centred_mesh_class():
         def _calcFaceCenters(self):
             centres = np.array(super()._calcFaceCenters())
             ids, values = self._given_faces
-            centres[:, ids] = values
+            if ids is not None:
+                centres[:, ids] = values
             return centres
 
     return CentredMesh
-

@@ -40,7 +40,7 @@ class ThetaStepper:
         self.disc = disc
         self.part = part
         self.iterative = disc.cells > DIRECT_LIMIT[max(1, len(disc.coordinates))]
-        self._banded = _tridiagonal(disc.stiffness)
+        self._banded = _tridiagonal(disc.stiffness) if disc.mass is None else None
         self._factors = disc.factors
         self.factorisations = 0
 
@@ -49,8 +49,10 @@ class ThetaStepper:
         if key in self._factors:
             self._factors.move_to_end(key)
             return self._factors[key]
-        matrix = (sparse.diags(self.disc.volumes / dt) + theta * self.disc.stiffness).tocsc()
+        matrix = (self.disc.mass_matrix() / dt + theta * self.disc.stiffness).tocsc()
+        # symmetric positive definite: symmetric ordering, diagonal pivots only
         lu = None if self.iterative else splinalg.splu(matrix, permc_spec=ORDERING,
+                                                       diag_pivot_thresh=0.0,
                                                        options={"SymmetricMode": True})
         self.factorisations += 1
         self._factors[key] = solver = (matrix, lu, _factor_bytes(matrix, lu))
@@ -60,9 +62,15 @@ class ThetaStepper:
         return solver
 
     def step(self, c: np.ndarray, dt: float, g_old: float, g_new: float, index: int,
-             time: float, theta: float = 1.0) -> np.ndarray:
-        """One step of size dt (scaled time); ``index``/``time`` name it in errors."""
-        rhs = self.disc.volumes * c / dt + (theta * g_new + (1 - theta) * g_old) * self.disc.boundary
+             time: float, theta: float = 1.0, held_change: float = 0.0) -> np.ndarray:
+        """One step of size dt (scaled time); ``index``/``time`` name it in errors.
+        ``held_change``: the change of the held nodes' value over the step (their mass
+        coupling moves it into the free nodes: - M_fb (g_end - g_start) / dt)."""
+        disc = self.disc
+        mass_c = disc.volumes * c if disc.mass is None else disc.mass @ c
+        rhs = mass_c / dt + (theta * g_new + (1 - theta) * g_old) * disc.boundary
+        if disc.held_mass is not None and held_change != 0.0:
+            rhs -= disc.held_mass * (held_change / dt)
         if theta != 1.0:
             rhs -= (1 - theta) * (self.disc.stiffness @ c)
         if self._banded is not None:
@@ -148,14 +156,25 @@ def march(disc: Discretisation, nodes: np.ndarray, surface_values: np.ndarray,
     steps = _rounded(np.diff(nodes))
     labels = nodes if times is None else times
     ending = surface_values if surface_before is None else surface_before
+    held = held_values(ending, initial)
     for k, dt in enumerate(steps, start=1):
-        c = stepper.step(c, dt, surface_values[k - 1], ending[k], k, labels[k], theta[k])
+        c = stepper.step(c, dt, surface_values[k - 1], ending[k], k, labels[k], theta[k],
+                         held[k] - held[k - 1])
         if want[k]:
             record[k] = c.copy()
     states = np.array([record[k] for k in outputs])
-    return History(mean=states @ disc.mean_weights, layer=states @ disc.layer_weights,
+    return History(mean=states @ disc.mean_weights + disc.held_mean * held[outputs],
+                   layer=states @ disc.layer_weights + disc.held_layer * held[outputs],
                    fields=states if keep_fields else None, steps=int(steps.size),
                    factorisations=stepper.factorisations)
+
+
+def held_values(ending: np.ndarray, initial: float) -> np.ndarray:
+    """The value of nodes held at the surface value at each node of the march: the
+    state's own ``initial`` at node 0 (before any jump there), the left limit after."""
+    held = np.asarray(ending, float).copy()
+    held[0] = initial
+    return held
 
 
 def _factor_bytes(matrix, lu) -> int:

@@ -1,9 +1,12 @@
 """The P1 finite-element operator of the in-plane problem on a triangle mesh (``trimesh``).
 
-FiPy's two-point flux between triangle centroids is not consistent on
-such a mesh (measured on a graded disc: relative uptake error ~0.08 g that does
-not fall with h0). The P1 Galerkin method is: stiffness by the cotangent formula
-K_jk = -(cot a_jk + cot b_jk) / 2 over the angles opposite edge jk (Duffin 1959;
+Kept by measurement (issue 16; docs/architecture.md): FiPy's two-point flux between
+triangle centroids is not consistent on such a mesh (measured on a graded disc: relative
+uptake error ~0.08 g that does not fall with h0), and on the same mesh made
+Delaunay-admissible (``fvprism.planar``, circumcentre cell points) it is second order
+but 4-6x less accurate than P1 on 2.2x the unknowns: FiPy needs 11-50x P1's CPU time
+for the same accuracy on the demo cam and a link. The P1 Galerkin method is: stiffness
+by the cotangent formula K_jk = -(cot a_jk + cot b_jk) / 2 over the angles opposite edge jk (Duffin 1959;
 Pinkall & Polthier 1993; with a lumped mass it is the vertex-centred finite volume
 scheme on the Voronoi cells, MacNeal 1953), consistent mass M_jk = |T| (1 + delta_jk) / 12
 per triangle, the outline nodes held at the surface value. Its error after a step
@@ -19,14 +22,10 @@ undershoot slightly (Thomée 2006 ch. 15).
 """
 from __future__ import annotations
 
-from dataclasses import dataclass, field
-
 import numpy as np
 from scipy import sparse
-from scipy.sparse.linalg import splu
 
-from ..errors import SolverError
-from .march import RESIDUAL_TOLERANCE, norm
+from .discretisation import Discretisation
 from .polygon import triangle_areas
 from .scaling import planar_scale
 from .trimesh import Triangulation
@@ -59,94 +58,32 @@ def consistent_mass(points: np.ndarray, triangles: np.ndarray) -> sparse.csr_mat
     return sparse.csr_matrix((values.ravel(), (rows, cols)), shape=(n, n))
 
 
-@dataclass
-class Marched:
-    """Mean, layer mean and (optionally) nodal values at the output nodes of a march."""
-
-    mean: np.ndarray
-    layer: np.ndarray
-    fields: np.ndarray | None
-
-
-@dataclass
-class P1Operator:
-    """Backward-Euler P1 steps of dc/dt = laplacian(c) with the outline nodes at a unit
-    value from t = 0+: M (c_new - c_old)/dt + K c_new = f, with f = -K_fb 1 and, on the
-    first step, the jump of the outline values through the mass, -M_fb 1 / dt
-    (Thomée 2006 ch. 1, Dirichlet nodes eliminated). ``lumped``: the row-sum mass instead,
-    less accurate but monotone (M-matrix): the consistent mass undershoots while
-    dt < h^2 / 6 (1-D; Thomée 2006 ch. 15), fields down to -0.5 of the step at early
-    outputs of coarse meshes. (Lumping only the early steps spoils the accuracy for
-    long after: 3.5x the error at 10 h0^2 on a link.)"""
-
-    mass: sparse.csc_matrix        # M_ff
-    lumped: sparse.csc_matrix      # diag of the row sums of M over all nodes, free rows
-    stiffness: sparse.csc_matrix   # K_ff
-    boundary: np.ndarray           # f = -K_fb 1
-    jump: np.ndarray               # M_fb 1
-    mean_weights: np.ndarray       # (free,) integral weights / area
-    mean_outline: float            # share of the area integral carried by the outline nodes
-    layer_weights: np.ndarray
-    layer_outline: float
-    coordinates: dict[str, np.ndarray] = field(default_factory=dict)  # free nodes, physical m
-    part: str = ""
-    _factors: dict = field(default_factory=dict, repr=False)  # LU of M / dt + K per (dt, lumped)
-
-    @property
-    def cells(self) -> int:
-        return int(self.boundary.size)
-
-    def march(self, nodes: np.ndarray, outputs: np.ndarray, keep_fields: bool = False,
-              lumped: bool = False) -> Marched:
-        """Unit-step response from c = 0 over the step boundaries ``nodes`` (scaled time),
-        recorded at the node indices ``outputs`` (index 0: the state before the step)."""
-        c = np.zeros(self.cells)
-        factors = self._factors  # shared by the marches: a bisected step is an earlier step
-        wanted = set(np.asarray(outputs).tolist())
-        states = {0: self._record(c, 0.0, keep_fields)}
-        for k in range(1, nodes.size):
-            dt = float(f"{nodes[k] - nodes[k - 1]:.12g}")
-            mass = self.lumped if lumped else self.mass
-            if (dt, lumped) not in factors:
-                # symmetric positive definite: symmetric ordering, no pivoting (4x faster)
-                factors[dt, lumped] = splu((mass / dt + self.stiffness).tocsc(),
-                                           permc_spec="MMD_AT_PLUS_A", diag_pivot_thresh=0.0,
-                                           options={"SymmetricMode": True})
-            jump = self.jump / dt if k == 1 and not lumped else 0.0
-            rhs = mass @ c / dt + self.boundary - jump
-            c = factors[dt, lumped].solve(rhs)
-            residual = norm(mass @ c / dt + self.stiffness @ c - rhs)
-            if not residual <= RESIDUAL_TOLERANCE * max(norm(rhs), 1e-300):
-                raise SolverError(self.part, k, nodes[k], f"P1 step residual {residual:.2e}")
-            if k in wanted:
-                states[k] = self._record(c, 1.0, keep_fields)
-        mean, layer, fields = (np.array(v) for v in zip(*(states[k] for k in outputs)))
-        return Marched(mean, layer, fields if keep_fields else None)
-
-    def _record(self, c: np.ndarray, outline: float, keep_fields: bool):
-        """(mean, layer mean, nodal values or None) with the outline nodes at ``outline``."""
-        return (float(np.einsum("i,i->", self.mean_weights, c)) + self.mean_outline * outline,
-                float(np.einsum("i,i->", self.layer_weights, c)) + self.layer_outline * outline,
-                c if keep_fields else None)
-
-
 def p1_operator(points: np.ndarray, triangles: np.ndarray, fixed: np.ndarray, layer: np.ndarray,
-                coordinates: dict[str, np.ndarray], part: str = "") -> P1Operator:
-    """The P1 operator on a mesh in scaled coordinates; ``fixed`` marks the outline nodes,
-    ``layer`` (n,) the integral weights of the contact layer (any scale)."""
+                coordinates: dict[str, np.ndarray]) -> Discretisation:
+    """The P1 operator on a mesh in scaled coordinates behind the interface of every mesh
+    model (``discretisation.Discretisation``, marched by ``march``): backward-Euler steps
+    M_ff (c_new - c_old)/dt + K_ff c_new = g f - M_fb 1 (g_new - g_old)/dt with f = -K_fb 1,
+    the outline nodes (``fixed``) held at the surface value g and eliminated (Thomée 2006
+    ch. 1). Its lumped form (``lumped``, the row sums of M over all nodes) is less
+    accurate but monotone (M-matrix): the consistent mass undershoots while dt < h^2 / 6
+    (1-D; Thomée 2006 ch. 15), fields down to -0.5 of the step at early outputs of coarse
+    meshes; it serves the fields. (Lumping only the early steps spoils the accuracy for
+    long after: 3.5x the error at 10 h0^2 on a link.) ``layer`` (n,): the integral
+    weights of the contact layer (any scale)."""
     stiffness = cotangent_stiffness(points, triangles)
     mass = consistent_mass(points, triangles)
     free = ~fixed
     weights = np.asarray(mass.sum(axis=1)).ravel()  # integral of each hat function
     area, layer_total = weights.sum(), layer.sum()
-    return P1Operator(
-        mass[free][:, free].tocsc(), sparse.diags(weights[free]).tocsc(),
-        stiffness[free][:, free].tocsc(),
+    return Discretisation(
+        weights[free], stiffness[free][:, free].tocsr(),
         -np.asarray(stiffness[free][:, fixed].sum(axis=1)).ravel(),
-        np.asarray(mass[free][:, fixed].sum(axis=1)).ravel(),
-        weights[free] / area, float(weights[fixed].sum() / area),
-        layer[free] / layer_total, float(layer[fixed].sum() / layer_total),
-        {name: value[free] for name, value in coordinates.items()}, part)
+        weights[free] / area, layer[free] / layer_total,
+        {name: value[free] for name, value in coordinates.items()},
+        mass=mass[free][:, free].tocsr(),
+        held_mass=np.asarray(mass[free][:, fixed].sum(axis=1)).ravel(),
+        held_mean=float(weights[fixed].sum() / area),
+        held_layer=float(layer[fixed].sum() / layer_total))
 
 
 def layer_weights(points: np.ndarray, triangles: np.ndarray, distance, depth: float,
@@ -169,7 +106,7 @@ def layer_weights(points: np.ndarray, triangles: np.ndarray, distance, depth: fl
 
 
 
-def plane_operator(mesh: Triangulation, part, layer_depth: float, d, name: str = ""):
+def plane_operator(mesh: Triangulation, part, layer_depth: float, d) -> Discretisation:
     """P1 finite elements of the in-plane problem in scaled coordinates (``trimesh``), the
     outline nodes held at the surface value; layer: the integrals of the hat functions
     over the band within ``layer_depth`` of the contact edge (at least the first row)."""
@@ -177,5 +114,5 @@ def plane_operator(mesh: Triangulation, part, layer_depth: float, d, name: str =
     layer = layer_weights(mesh.points, mesh.triangles, mesh.contact, depth)
     scaled = mesh.points * np.asarray(planar_scale(part, d))[None, :]
     coordinates = {"x": mesh.points[:, 0], "y": mesh.points[:, 1]}
-    return p1_operator(scaled, mesh.triangles, mesh.on_outline, layer, coordinates, name)
+    return p1_operator(scaled, mesh.triangles, mesh.on_outline, layer, coordinates)
 

@@ -153,7 +153,7 @@ def planform_response(geometry, finest: float, growth: float, d: tuple, layer_de
     re-runs at other output times (the limit search) and sweep cases that share the part,
     its diffusivity ratios and its plan (a climate sweep at one temperature) march once."""
     mesh = planform_mesh(geometry, finest, growth, stretch_of(d))
-    planar = plane_operator(mesh, geometry, layer_depth, d, part)
+    planar = plane_operator(mesh, geometry, layer_depth, d)
     response, pair = step_response(planar, end, per_doubling, first_step,
                                    keep_fields=keep_fields, part=part)
     return planar, response, pair

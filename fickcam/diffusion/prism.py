@@ -348,8 +348,8 @@ def linear_sublevel_fraction(values: np.ndarray, level: float) -> np.ndarray:
     1 - (v3 - l)^2 / ((v3 - v1)(v3 - v2)) for v2 <= l <= v3 (the cut is a triangle
     similar to a corner of the triangle)."""
     v1, v2, v3 = np.sort(values, axis=1).T
-    tiny = np.finfo(float).tiny
-    low = (level - v1) ** 2 / np.maximum((v2 - v1) * (v3 - v1), tiny)
-    high = 1.0 - (v3 - level) ** 2 / np.maximum((v3 - v1) * (v3 - v2), tiny)
+    below, above = (v2 - v1) * (v3 - v1), (v3 - v1) * (v3 - v2)  # 0 only where unused
+    low = np.divide((level - v1) ** 2, below, out=np.zeros_like(v1), where=below > 0)
+    high = 1.0 - np.divide((v3 - level) ** 2, above, out=np.zeros_like(v1), where=above > 0)
     out = np.where(level <= v2, low, high)
     return np.clip(np.where(level <= v1, 0.0, np.where(level >= v3, 1.0, out)), 0.0, 1.0)

@@ -43,16 +43,17 @@ class StepResponse:
 def step_response(disc, end: float, per_doubling: int, first_step: float, *,
                   keep_fields: bool = False, part: str = "") -> tuple[StepResponse, float]:
     """Backward-Euler unit-step response, Richardson-extrapolated in time; also
-    the largest coarse/fine difference of the mean (the time-error indicator). A P1
-    operator's fields come from its monotone lumped-mass march (``p1.P1Operator``)."""
+    the largest coarse/fine difference of the mean (the time-error indicator). The
+    fields come from the operator with its mass lumped (``Discretisation.lumped``:
+    the operator itself for finite volumes), whose fields are bounded."""
     nodes = geometric_steps(0.0, end, first_step, per_doubling)
     fine = np.sort(np.concatenate([nodes, 0.5 * (nodes[1:] + nodes[:-1])]))
     grids = [(grid, np.searchsorted(grid, nodes)) for grid in (nodes, fine)]
-    monotone = keep_fields and hasattr(disc, "march")  # P1: fields by the lumped mass
-    coarse, refined = (_unit_march(disc, grid, at, keep_fields and not monotone, part)
+    monotone = disc.lumped()
+    coarse, refined = (_unit_march(disc, grid, at, keep_fields and monotone is disc, part)
                        for grid, at in grids)
-    with_fields = ([disc.march(grid, at, True, lumped=True) for grid, at in grids] if monotone
-                   else (coarse, refined))
+    with_fields = ((coarse, refined) if monotone is disc or not keep_fields else
+                   [_unit_march(monotone, grid, at, True, part) for grid, at in grids])
 
     def unsaturated(a, b):
         return 1.0 - (2.0 * b - a)
@@ -63,12 +64,9 @@ def step_response(disc, end: float, per_doubling: int, first_step: float, *,
 
 
 def _unit_march(disc, grid: np.ndarray, outputs: np.ndarray, keep_fields: bool, part: str):
-    """A unit step of the surface value at t = 0 from 0: a P1 operator (``p1``)
-    marches itself, a FiPy-assembled discretisation goes through ``march.march``."""
-    if hasattr(disc, "march"):
-        return disc.march(grid, outputs, keep_fields)
+    """A unit step of the surface value at t = 0 from 0 (``march.march``)."""
     return marching.march(disc, grid, np.ones(grid.size), 0.0, outputs, keep_fields=keep_fields,
-                    part=part)
+                          part=part)
 
 
 def blend(response: StepResponse, values: np.ndarray, series, indicator, tolerance: float,
