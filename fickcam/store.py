@@ -65,7 +65,7 @@ def _write_netcdf(ds, filename: str) -> None:
 def save(dataset, path, compress: bool = False) -> Path:
     """Write ``dataset`` to ``path`` atomically and return the path. ``compress``: numbers
     deflated (zlib level 1 after the byte shuffle, lossless; h5py chooses the chunks): the
-    demo cam's sweep results shrink 1.5 x for about 40 % more write time; a single run is
+    demo cam's sweep results shrink 1.5-2.2 x for about 40 % more write time; a single run is
     written plain (small, and read at once)."""
     path = Path(path)
     folder = path.parent if str(path.parent) else Path(".")

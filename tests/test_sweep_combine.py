@@ -12,7 +12,7 @@ import fickcam
 from fickcam.dataset import build_dataset
 from fickcam.errors import InputError
 from fickcam.sweep import WorkFolder, load_sweep
-from fickcam.sweep.combine import combine, stack_cases
+from fickcam.sweep.combine import combine, missing_like, stack_cases
 from fickcam.sweep.journal import HEAD, decode_dataset, encode_case
 from fickcam.sweep.runner import finished_cases
 
@@ -93,9 +93,12 @@ def test_a_case_comes_back_from_the_journal_exactly():
                                 original.drop_attrs(deep=False))
 
 
-def test_stacking_with_numpy_equals_xarray_concat(sweep):
-    parts = [synthetic_result(50.0 + i) for i in range(3)]
-    fast = stack_cases(parts)
+def test_stacking_case_by_case_equals_xarray_concat():
+    parts = [synthetic_result(50.0), missing_like(synthetic_result(51.0)), synthetic_result(52.0)]
+    flags = [np.array([True, False, True]), np.full(3, np.nan), np.array([False, False, True])]
+    parts = [p.assign(flag=("time", f)) for p, f in zip(parts, flags)]  # bool among NaN: float
+    fast = stack_cases(lambda i: parts[i], 3)
+    assert fast["flag"].dtype == float
     xr.testing.assert_identical(fast.drop_attrs(deep=False), xr.concat(
         parts, dim="case", data_vars="all", coords="minimal", compat="override", join="outer",
         combine_attrs="override").drop_attrs(deep=False))

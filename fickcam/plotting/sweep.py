@@ -7,8 +7,9 @@ largest rocker angle shift — whichever the result has. A grid sweep plots each
 output at one ageing time (the last by default) against the first varied value,
 one line per combination of the others. A Monte Carlo sweep plots the quantiles
 (5-95 %, 25-75 %, median) of each output over ageing time, and each case's value
-at that ageing time against every varied value. Failed cases are left out and
-counted in the title.
+at that ageing time against every varied value. A grid over text values (weather
+files of several sites) also plots each output over ageing time, one line per case.
+Failed cases are left out and counted in the title.
 """
 from __future__ import annotations
 
@@ -129,7 +130,8 @@ def plot_grid(ds, outdir: Path, age_index: int) -> list[Path]:
                 chosen &= shown[name] == value
             order = np.argsort(x[chosen])
             text = ", ".join(_value_label(ds, n, v) for n, v in zip(others, combo))
-            ax.plot(x[chosen][order], y[chosen][order], "-o", ms=4, label=text or None)
+            style = "o" if ticks is not None else "-o"  # categories (sites): no line between
+            ax.plot(x[chosen][order], y[chosen][order], style, ms=5, label=text or None)
         if ticks is not None:
             ax.set_xticks(range(len(ticks)), ticks)
         ax.set_xlabel(_label(ds, x_name))
@@ -140,6 +142,37 @@ def plot_grid(ds, outdir: Path, age_index: int) -> list[Path]:
         ax.grid(alpha=0.3)
         written.append(save_figure(fig, outdir / f"sweep_{key}.png"))
     return written
+
+
+def plot_histories(ds, outdir: Path) -> list[Path]:
+    """A grid over text values (``environment.history_file``: weather files of several
+    sites): each output over ageing time, one line per case labelled by its values, so
+    the sites' seasons and drift are compared, not only their last values."""
+    plt = figure()
+    names = parameters(ds)
+    ok = _ok(ds)
+    t = days(ds)
+    shown = {name: _shown(ds, name)[0] for name in names}
+    written = []
+    for key, (label, array) in outputs(ds).items():
+        values = array.transpose("case", "time").values
+        fig, ax = plt.subplots(figsize=(8, 4.5))
+        for case in np.flatnonzero(ok):
+            text = ", ".join(_value_label(ds, n, shown[n][case]) for n in names)
+            ax.plot(t, values[case], "-", lw=1.2, label=text)
+        ax.set_xlabel("ageing time [d]")
+        ax.set_ylabel(label)
+        failed = int((~ok).sum())
+        ax.set_title(f"{ds.attrs.get('scene_name', '')}: {key.replace('_', ' ')} by case"
+                     + (f", {failed} failed case(s) left out" if failed else ""), fontsize=10)
+        legend_outside(ax)
+        ax.grid(alpha=0.3)
+        written.append(save_figure(fig, outdir / f"sweep_{key}_over_time.png"))
+    return written
+
+
+def _has_text_values(ds) -> bool:
+    return any(ds[name].values.dtype.kind not in "fiub" for name in parameters(ds))
 
 
 def plot_monte_carlo(ds, outdir: Path, age_index: int) -> list[Path]:
@@ -219,4 +252,5 @@ def plot(ds, outdir, time_index: int = -1) -> list[Path]:
     written = plot_out_of_spec(ds, outdir) if "fraction_out_of_spec" in ds else []
     if ds.attrs.get("sweep_kind") == "monte_carlo":
         return written + plot_monte_carlo(ds, outdir, age_index)
-    return written + plot_grid(ds, outdir, age_index)
+    written += plot_grid(ds, outdir, age_index)
+    return written + (plot_histories(ds, outdir) if _has_text_values(ds) else [])

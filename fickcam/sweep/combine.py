@@ -1,7 +1,7 @@
 """Combine the cases of a sweep into one Dataset along a new ``case`` dimension.
 
-The cases come from the sweep's journal, in memory (the demo cam's result is
-about 0.25 MB a case, so 1000 cases take 250 MB, twice that while stacking). A
+The cases come from the sweep's journal one at a time and are copied into the
+stacked arrays (the demo cam: 0.36 MB a case, so 1000 cases take 360 MB). A
 failed case contributes NaN data (empty text for text variables). Coordinates
 along ``case``: every varied parameter (SI, angles in degrees, speeds in rpm),
 ``case_status``, ``case_message`` and ``case_wall_time``.
@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import json
 import time
+from collections.abc import Mapping
 
 import numpy as np
 
@@ -86,21 +87,33 @@ def sweep_attributes(sweep: Sweep, records: dict[int, dict], started: float | No
     return attrs
 
 
-def stack_cases(parts: list):
-    """The cases along a new leading ``case`` dimension: each variable stacked with numpy
-    when every case has the same variables and coordinates (a sweep that varies no
-    ageing times or angles), else ``xarray.concat`` (outer join)."""
+def stack_cases(case, n: int):
+    """The ``n`` cases along a new leading ``case`` dimension; ``case(i)`` gives case i's
+    Dataset (the journal decodes it on demand). When every case has the same variables
+    and coordinates (a sweep that varies no ageing times or angles) each case is copied
+    into preallocated arrays and let go, so only the stacks and one case are held; else
+    ``xarray.concat`` (outer join) of them all."""
     import xarray as xr
 
-    first = parts[0]
-    if all(_same_layout(first, part) for part in parts[1:]):
-        data = {name: xr.Variable(("case",) + variable.dims,
-                                  np.stack([part.variables[name].values for part in parts]),
-                                  variable.attrs)
-                for name, variable in first.data_vars.items()}
-        return xr.Dataset(data, coords=first.coords)
-    return xr.concat(parts, dim="case", data_vars="all", coords="minimal", compat="override",
-                     join="outer", combine_attrs="override")
+    first = case(0)
+    stacks: dict[str, np.ndarray] = {}
+    for index in range(n):
+        part = first if index == 0 else case(index)
+        if not _same_layout(first, part):
+            return xr.concat([case(i) for i in range(n)], dim="case", data_vars="all",
+                             coords="minimal", compat="override", join="outer",
+                             combine_attrs="override")
+        for name in first.data_vars:
+            values = part.variables[name].values
+            stack = stacks.get(name)
+            if stack is None:
+                stack = stacks[name] = np.empty((n,) + values.shape, values.dtype)
+            elif np.result_type(stack, values) != stack.dtype:  # bool cases and NaN ones
+                stack = stacks[name] = stack.astype(np.result_type(stack, values))
+            stack[index] = values
+    data = {name: xr.Variable(("case",) + variable.dims, stacks[name], variable.attrs)
+            for name, variable in first.data_vars.items()}
+    return xr.Dataset(data, coords=first.coords)
 
 
 def _same_layout(first, other) -> bool:
@@ -115,8 +128,10 @@ def _same_layout(first, other) -> bool:
                for n in first.coords)
 
 
-def combine(sweep: Sweep, records: dict[int, dict], cases: dict, started: float | None = None):
-    """The sweep's Dataset from its records and the result Datasets of its ok cases."""
+def combine(sweep: Sweep, records: dict[int, dict], cases: Mapping,
+            started: float | None = None):
+    """The sweep's Dataset from its records and the result Datasets of its ok cases
+    (``cases``: index -> Dataset, e.g. the journal's :class:`~.runner.JournalCases`)."""
     import xarray as xr
 
     coords = case_coordinates(sweep, records)
@@ -125,7 +140,7 @@ def combine(sweep: Sweep, records: dict[int, dict], cases: dict, started: float 
     if not ok:
         return xr.Dataset(coords=coords, attrs=attrs)
     template = missing_like(cases[ok[0]])
-    combined = stack_cases([cases.get(i, template) for i in range(len(sweep.cases))])
+    combined = stack_cases(lambda i: cases[i] if i in cases else template, len(sweep.cases))
     combined = combined.assign_coords(coords)
     if "time_out_of_spec" in combined:
         from .scatter import fractions

@@ -17,6 +17,7 @@ import logging
 import os
 import time
 import uuid
+from collections.abc import Mapping
 from contextlib import contextmanager
 from pathlib import Path
 
@@ -225,12 +226,28 @@ def run_sweep(sweep_path, output, workers: int | None = None, scheduler: str | N
     return output
 
 
-def finished_cases(folder: WorkFolder, sweep: Sweep, records: dict[int, dict]) -> dict:
-    """The result Datasets of the ok cases among ``records``, read from the journal."""
+class JournalCases(Mapping):
+    """The result Datasets of a sweep's ok cases, each decoded from the journal when asked
+    for (so building the result holds one case at a time besides the stacked arrays)."""
+
+    def __init__(self, folder: WorkFolder, entries: dict):
+        self.folder, self.entries = folder, entries
+
+    def __getitem__(self, index: int):
+        return decode_dataset(self.folder.journal.payload(self.entries[index]))
+
+    def __contains__(self, index) -> bool:  # without decoding (Mapping's would)
+        return index in self.entries
+
+    def __iter__(self):
+        return iter(self.entries)
+
+    def __len__(self) -> int:
+        return len(self.entries)
+
+
+def finished_cases(folder: WorkFolder, sweep: Sweep, records: dict[int, dict]) -> JournalCases:
+    """The ok cases among ``records``, as they are in the journal."""
     entries = folder.finished(sweep.identity, len(sweep.cases))
-    cases = {}
-    for index, record in records.items():
-        entry = entries.get(index)
-        if record["status"] == "ok" and entry is not None:
-            cases[index] = decode_dataset(folder.journal.payload(entry))
-    return cases
+    return JournalCases(folder, {index: entries[index] for index, record in records.items()
+                                 if record["status"] == "ok" and index in entries})
