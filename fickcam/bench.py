@@ -9,7 +9,8 @@ this process (``time.process_time``: the machine is shared, a wall time under lo
 says little), medians of ``repeats`` runs after one warm-up that pays the FiPy import.
 The row ``fipy-naive`` is FiPy solving every backward-Euler step itself
 (``eq.solve`` with ``LinearLUSolver(tolerance=1e-10)``) on the same step plan.
-Parts without an exact solution (the link) are measured against the plane model
+Non-Fickian rows (``bench_sorption``): two-phase sheet and disc, concentration-dependent
+sheet, each against its own reference. Parts without an exact solution (the link) are measured against the plane model
 at a third of the finest accuracy asked (at most 1e-3); the link's ``solid`` row
 (3-D prisms marching the history, the plane model's independent check) is timed
 in a single run.
@@ -65,9 +66,11 @@ def row_count(quick: bool = False) -> int:
     """How many rows :func:`run_bench` measures (for a progress bar)."""
     from .diffusion import Sheet
 
+    from .bench_sorption import sorption_row_count
+
     return sum(sum(1 if model == "analytic" else len(case.accuracies) for model in case.models)
                + (len(NAIVE_ACCURACIES) if isinstance(case.geometry, Sheet) and not quick else 0)
-               for case in _cases(quick))
+               for case in _cases(quick)) + sorption_row_count(quick)
 
 
 def _uptake_times(geometry) -> np.ndarray:
@@ -134,13 +137,22 @@ def run_bench(quick: bool = False, repeats: int = 3, progress=lambda label: None
                                  error, result.error_estimate, label))
         if isinstance(case.geometry, Sheet) and not quick:
             rows += _naive_fipy_rows(case, diffusivity, exposure, times, reference, progress)
-    return rows
+    from .bench_sorption import sorption_rows
+
+    return rows + sorption_rows(quick, _uptake_times, diffusivity, D_REF,
+                                lambda run: _timed(run, 1 if quick else repeats), _named_row,
+                                progress)
 
 
 def _row(case, model, accuracy, cells, steps, cpu, error, estimate, reference) -> dict:
     return {"geometry": case.name, "model": model, "accuracy": accuracy, "cells": int(cells),
             "steps": int(steps), "cpu_time": cpu, "error": error,
             "error_estimate": estimate, "reference": reference}
+
+
+def _named_row(name, model, accuracy, cells, steps, wall, error, estimate, reference) -> dict:
+    return _row(Case(name, None, None, (), ()), model, accuracy, cells, steps, wall, error,
+                estimate, reference)
 
 
 def _naive_fipy_rows(case, diffusivity, exposure, times, reference, progress) -> list[dict]:

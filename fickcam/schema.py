@@ -54,6 +54,9 @@ VARIABLES: dict[str, Var] = {
     # per part: moisture and material state
     "moisture_content": Var(TP, "%", "volume-mean moisture content (weight % of dry mass)", "parts"),
     "surface_moisture_content": Var(TP, "%", "moisture content of the contact-surface layer", "parts"),
+    "bound_moisture_content": Var(TP, "%", "bound-water share of the moisture content (two-phase "
+                                  "sorption, Carter & Kibler 1978; only with a langmuir material)",
+                                  "parts", design=False),
     "equilibrium_moisture_content": Var(TP, "%", "saturation moisture at the surface, Mm(T, RH)", "parts",
                                         design=False),
     "mass": Var(TP, "kg", "part mass, m_dry (1 + M/100)", "parts", display="g"),

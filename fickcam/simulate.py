@@ -89,7 +89,8 @@ def plan_parts(scene: Scene, accuracy: float | None = None):
         diffusivity = part.material.diffusivity_for(part.geometry)
         plans.append((part, _for_part(part.name, plan, part.geometry, diffusivity, exposure, times,
                                       accuracy=options["accuracy"],
-                                      model=part_model(options, part.name))))
+                                      model=part_model(options, part.name),
+                                      sorption=part.material.sorption_law())))
     return environment, times, options, plans
 
 
@@ -258,8 +259,9 @@ def age_part(part: Part, environment: Environment, times, options: dict, scene: 
                            part.material.diffusivity_for(part.geometry), exposure, times,
                            accuracy=options["accuracy"], model=part_model(options, part.name),
                            surface_layer_depth=options["surface_layer_depth"],
-                           store_fields=scene.model.outputs.fields or keep_field, part=part.name)
-        mean, surface = result.mean, result.surface
+                           store_fields=scene.model.outputs.fields or keep_field, part=part.name,
+                           sorption=part.material.sorption_law())
+        mean, surface = result.mean, result.surface  # total (free + bound) moisture
         saturation = exposure.surface_moisture(times)
         if result.error_estimate > options["accuracy"]:  # e.g. capped at MAX_CELLS
             notices.append(f"{part.name}: estimated diffusion error "
@@ -267,6 +269,8 @@ def age_part(part: Part, environment: Environment, times, options: dict, scene: 
                            f"{options['accuracy']:g} ({result.model})")
     state = _state(part, temperature, mean, surface, environment, times)
     state["equilibrium_moisture_content"] = saturation
+    if result is not None and result.bound is not None:
+        state["bound_moisture_content"] = result.bound
     valid = _valid_until_wet_tg(part, state, temperature, times, notices)
     return PartHistory(part, result, state, valid)
 

@@ -221,6 +221,7 @@ RelativeHumidity = quantity("percent", nonnegative=True, upper=100.0, bare=impla
 SignedPercent = quantity("percent")
 SignedMolarEnergy = quantity("molar_energy")
 Rate = quantity("rate", positive=True)
+NonNegativeRate = quantity("rate", nonnegative=True)
 NonNegativePercent = quantity("percent", nonnegative=True)
 
 

@@ -151,7 +151,7 @@ def test_composite_ply_values_map_to_matrix_overrides_that_give_the_ply_back(tmp
         assert ply == pytest.approx(condition.saturation.value, rel=0.01)
 
 
-def test_non_fickian_data_write_the_two_phase_rates_and_a_runnable_fickian_block(tmp_path):
+def test_non_fickian_data_write_a_runnable_two_phase_block_with_the_free_water_diffusivity(tmp_path):
     from fickcam.fit import fit_weight_gain, materials_yaml
 
     rng = np.random.default_rng(13)
@@ -160,6 +160,12 @@ def test_non_fickian_data_write_the_two_phase_rates_and_a_runnable_fickian_block
     report = fit_weight_gain(coupons, "3502", name="wet")
     text = materials_yaml(report)
     assert report.non_fickian == ["60 degC / 85 % RH"]
-    assert "# sorption: {model: langmuir, binding_rate:" in text
+    assert "\n    sorption: {model: langmuir, binding_rate:" in text
     material, entry = _material_of(text)
     assert material.absorbs and entry["fit"]["non_fickian"][0]["condition"] == "60 degC / 85 % RH"
+    law, (_, fit) = material.sorption_law(), report.two_phase_fits()[0]
+    assert law.binding.pre_exponential == pytest.approx(fit.binding_rate.value, rel=1e-3)
+    free = material.diffusivity_for().pre_exponential[2] * np.exp(
+        -material.diffusivity_for().activation_energy / (GAS_CONSTANT * 333.15))
+    assert free == pytest.approx(fit.diffusivity.value, rel=1e-3)
+    assert material.saturation_moisture(333.15, 85.0) == pytest.approx(fit.saturation.value, rel=1e-3)

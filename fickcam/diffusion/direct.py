@@ -129,9 +129,12 @@ def swing(exposure: Exposure, times: np.ndarray) -> float:
 
 def solve_direct(geometry, diffusivity, exposure, times, chosen: Plan, *,
                  surface_layer_depth: float = 5e-4, store_fields: bool = False,
-                 part: str = "", extrapolate: bool = True, disc=None) -> DiffusionResult:
+                 part: str = "", extrapolate: bool = True, disc=None,
+                 marcher=march) -> DiffusionResult:
     """March a Sheet, Disc, Bar or prisms of a CamPlate or LinkBar on its FiPy mesh
-    (Richardson pair in time); ``disc``: an operator built by the caller instead."""
+    (Richardson pair in time); ``disc``: an operator built by the caller instead;
+    ``marcher``: ``march.march`` or one with its arguments (``coupled``: two-phase, whose
+    history also carries the bound-water mean)."""
     scales = scales_of(geometry, diffusivity, exposure)
     if disc is None:
         disc = discretise(geometry, diffusivity, chosen.cells_per_axis, surface_layer_depth,
@@ -139,7 +142,7 @@ def solve_direct(geometry, diffusivity, exposure, times, chosen: Plan, *,
     runs = []
     for bisect in (False, True):
         steps = step_plan(exposure, times, scales, chosen.steps_per_doubling, bisect)
-        runs.append(march(disc, steps.nodes, steps.surface, exposure.initial_moisture,
+        runs.append(marcher(disc, steps.nodes, steps.surface, exposure.initial_moisture,
                           steps.outputs, steps.times, keep_fields=store_fields, part=part,
                           surface_before=steps.surface_before))
     coarse, fine = runs
@@ -148,6 +151,8 @@ def solve_direct(geometry, diffusivity, exposure, times, chosen: Plan, *,
     result = DiffusionResult(
         times, combine(coarse.mean, fine.mean), combine(coarse.layer, fine.layer), chosen.model,
         disc.cells, coarse.steps + fine.steps, estimate, chosen.reason)
+    if getattr(coarse, "bound", None) is not None:
+        result.bound = combine(coarse.bound, fine.bound)
     if store_fields:
         result.fields = combine(coarse.fields, fine.fields)
         result.cell_coordinates = disc.coordinates

@@ -14,20 +14,28 @@ Models (``diffusion.model``):
 from __future__ import annotations
 
 import logging
+from dataclasses import replace
 
 import numpy as np
 
 from ..errors import InputError
 from .analytic import solve_analytic
 from .calibration import ANALYTIC_ERROR
+from .clock import RescaledTime
 from .clock import scales as scales_of
+from .coupled import two_phase_marcher
 from .direct import plan_direct, solve_direct
 from .exact import exact_available
 from .exposure import Diffusivity, Exposure
 from .geometry import Bar, CamPlate, Disc, LinkBar, Sheet
 from .forcing import RECORD_SHARE, is_long_record
+from .langmuir import langmuir_history
+from .nonlinear import fastest, refined, solve_nonlinear
+from .planmodes import planform_design, planform_error, planform_source
+from .timesteps import earliest_output
 from .plane import plan_plane, solve_plane
 from .results import DiffusionResult, Plan
+from .sorption import describe, is_langmuir, is_nonlinear
 
 log = logging.getLogger(__name__)
 
@@ -58,10 +66,25 @@ def _no_exact_reason(geometry) -> str:
     return "no separable exact solution (use plane)"
 
 
+def _two_phase_model(geometry, model: str) -> str:
+    """Langmuir sorption: the exact modes where the part has them; a CamPlate or LinkBar
+    ``plane``: its planform's eigenmodes x the exact sheet (``planmodes``), or ``solid``
+    prisms; else the direct finite volumes (``coupled``)."""
+    if model in ("auto", "analytic") and exact_available(geometry):
+        return "analytic"
+    if model == "analytic":
+        raise InputError(f"diffusion.model analytic is not available for this "
+                         f"{type(geometry).__name__}: {_no_exact_reason(geometry)}")
+    return NUMERICAL_MODEL[type(geometry)] if model == "auto" else model
+
+
 def plan(geometry, diffusivity: Diffusivity, exposure: Exposure, times: np.ndarray,
-         accuracy: float = 1e-3, model: str = "auto") -> Plan:
-    """The model, cells and steps ``solve`` will use, and why, without solving."""
+         accuracy: float = 1e-3, model: str = "auto", sorption=None) -> Plan:
+    """The model, cells and steps ``solve`` will use, and why, without solving
+    (``sorption``: a law of ``diffusion.sorption``, None for Fick)."""
     _validate(geometry, model, accuracy)
+    if is_langmuir(sorption) or is_nonlinear(sorption):
+        return _plan_sorption(geometry, diffusivity, exposure, times, accuracy, model, sorption)
     if model in ("auto", "analytic") and exact_available(geometry) and is_long_record(exposure):
         return Plan("analytic", 0, 0, f"exact Crank series, tabulated once and superposed "
                     f"over the {exposure.ramp.size}-segment record in closed form per row "
@@ -83,14 +106,58 @@ def plan(geometry, diffusivity: Diffusivity, exposure: Exposure, times: np.ndarr
     return plan_direct(geometry, diffusivity, chosen, change, outputs, accuracy, exposure)
 
 
+def _plan_sorption(geometry, diffusivity, exposure, times, accuracy, model, sorption) -> Plan:
+    law = describe(sorption)
+    if is_langmuir(sorption):
+        chosen = _two_phase_model(geometry, model)
+        if chosen == "analytic":
+            return Plan("analytic", 0, 0, f"{law}: exact Fickian modes of the part, each a "
+                        "2x2 free/bound system advanced exactly through the history", accuracy)
+        if chosen == "plane":
+            return _plan_planform(geometry, diffusivity, exposure, times, accuracy, law)
+    else:
+        chosen = _nonlinear_model(geometry, model)
+        diffusivity = fastest(diffusivity, sorption, exposure, times)
+    scales = scales_of(geometry, diffusivity, exposure)
+    direct = plan_direct(geometry, diffusivity, chosen, scales.tau_star(exposure.change_times),
+                         scales.tau_star(np.asarray(times, float)), accuracy, exposure)
+    if is_nonlinear(sorption):
+        direct = refined(direct, sorption, exposure, times)
+    return replace(direct, reason=f"{law}; {direct.reason}")
+
+
+def _plan_planform(geometry, diffusivity, exposure, times, accuracy, law) -> Plan:
+    scales = scales_of(geometry, diffusivity, exposure)
+    t_lo = earliest_output(scales.tau_star(exposure.change_times),
+                           scales.tau_star(np.asarray(times, float)))
+    design = planform_design(geometry, diffusivity.pre_exponential, accuracy, t_lo)
+    return Plan("plane", int(np.prod(design.cells)), 0, f"{law}: every eigenmode of the "
+                f"planform's FiPy operator ({design.note}) x the exact sheet modes, each a 2x2 "
+                "free/bound system advanced exactly through the history", accuracy,
+                design.cells, finest=design.finest, growth=design.growth)
+
+
+def _nonlinear_model(geometry, model: str) -> str:
+    """Concentration-dependent D: FiPy sweeps on the slab (Sheet) or (r, z) grid (Disc)."""
+    if not isinstance(geometry, (Sheet, Disc)):
+        raise InputError(f"concentration_dependent sorption is solved for a Sheet or a Disc, "
+                         f"not yet for a {type(geometry).__name__}")
+    return NUMERICAL_MODEL[type(geometry)] if model in ("auto", "analytic") else model
+
+
 def solve(geometry, diffusivity: Diffusivity, exposure: Exposure, times: np.ndarray, *,
           accuracy: float = 1e-3, model: str = "auto", surface_layer_depth: float = 5e-4,
-          store_fields: bool = False, part: str = "") -> DiffusionResult:
-    """Moisture (weight %) of one part at ``times`` (s) under ``exposure``."""
+          store_fields: bool = False, part: str = "", sorption=None) -> DiffusionResult:
+    """Moisture (weight %) of one part at ``times`` (s) under ``exposure``; with a
+    ``sorption`` law (``diffusion.sorption``) the mean and surface are the total (free +
+    bound) moisture and, for Langmuir, ``bound`` the bound-water mean."""
     times = np.asarray(times, float)
-    chosen = plan(geometry, diffusivity, exposure, times, accuracy, model)
+    chosen = plan(geometry, diffusivity, exposure, times, accuracy, model, sorption)
     log.debug("%s: %s, %d cells, %d steps (%s)", part or type(geometry).__name__, chosen.model,
               chosen.cells, chosen.steps, chosen.reason)
+    if sorption is not None and (is_langmuir(sorption) or is_nonlinear(sorption)):
+        return _solve_sorption(geometry, diffusivity, exposure, times, chosen, sorption,
+                               surface_layer_depth, store_fields, part)
     if chosen.model == "analytic":
         record = accuracy if is_long_record(exposure) else None
         return solve_analytic(geometry, diffusivity, exposure, times, surface_layer_depth,
@@ -102,3 +169,31 @@ def solve(geometry, diffusivity: Diffusivity, exposure: Exposure, times: np.ndar
     return solve_direct(geometry, diffusivity, exposure, times, chosen,
                         surface_layer_depth=surface_layer_depth, store_fields=store_fields,
                         part=part)
+
+
+def _solve_sorption(geometry, diffusivity, exposure, times, chosen: Plan, sorption, depth,
+                    store_fields, part) -> DiffusionResult:
+    if chosen.model in ("analytic", "plane"):
+        return _langmuir_modes(geometry, diffusivity, exposure, times, chosen, sorption, depth)
+    if is_langmuir(sorption):
+        return solve_direct(geometry, diffusivity, exposure, times, chosen,
+                            surface_layer_depth=depth, store_fields=store_fields, part=part,
+                            marcher=two_phase_marcher(sorption, exposure))
+    return solve_nonlinear(geometry, diffusivity, sorption, exposure, times, chosen,
+                           surface_layer_depth=depth, store_fields=store_fields, part=part)
+
+
+def _langmuir_modes(geometry, diffusivity, exposure, times, chosen, sorption, depth):
+    """The exact two-phase modal march; for a CamPlate or LinkBar on its planform's modes,
+    whose mesh error (``planform_error``) adds to the march's."""
+    source, planform = None, 0.0
+    if chosen.model == "plane":
+        d = diffusivity.pre_exponential
+        source = planform_source(geometry, d, depth, chosen.finest, chosen.growth)
+        ages = RescaledTime(diffusivity, exposure)(times)
+        planform = planform_error(geometry, d, depth, chosen.finest, chosen.growth, source, ages)
+    history, estimate = langmuir_history(geometry, diffusivity, sorption, exposure, times,
+                                         chosen.error_estimate, depth, source)
+    return DiffusionResult(times, history["mean"], history["surface"], chosen.model,
+                           chosen.cells, 0, estimate + planform, chosen.reason,
+                           bound=history["bound"])

@@ -25,15 +25,20 @@ def normalised(weights: np.ndarray) -> np.ndarray:
 
 def sheet(thickness: float, cells: int, layer_depth: float) -> Discretisation:
     """Sheet through its thickness, Grid1D in z/h; layer: both faces (Crank §4.3)."""
-    from fipy import Grid1D
-
-    mesh = Grid1D(nx=cells, dx=1.0 / cells)
+    mesh = sheet_mesh(cells)
     volumes, stiffness, boundary = assemble(mesh)
     z_lo = np.arange(cells) / cells * thickness
     z_hi = z_lo + thickness / cells
     layer = thickness / cells - interval_overlap(z_lo, z_hi, layer_depth, thickness - layer_depth)
     return Discretisation(volumes, stiffness, boundary, normalised(volumes),
                           normalised(layer), {"z": 0.5 * (z_lo + z_hi)})
+
+
+def sheet_mesh(cells: int):
+    """FiPy Grid1D of a sheet in z/h, ``cells`` uniform cells."""
+    from fipy import Grid1D
+
+    return Grid1D(nx=cells, dx=1.0 / cells)
 
 
 def _uniform_widths(lengths, counts) -> tuple[np.ndarray, ...]:
@@ -58,6 +63,21 @@ def disc(outer_radius: float, thickness: float, inner_radius: float, radial_cell
     """Disc or annulus in (r, z), FiPy CylindricalGrid2D; layer: the outer rim.
     ``widths``: (radial from the bore or axis, axial) cell widths in m, graded
     (FiPy's non-uniform grid), instead of the uniform ``radial_cells`` x ``axial_cells``."""
+    mesh, scale_r, (dr, dz) = disc_mesh(outer_radius, thickness, inner_radius, radial_cells,
+                                        axial_cells, radial_d, axial_d, widths)
+    volumes, stiffness, boundary = assemble(mesh)
+    r_c, z_c = (np.asarray(a) for a in mesh.cellCenters)
+    r_lo, r_hi = (inner_radius + edge for edge in _bounds(dr, np.arange(volumes.size) % dr.size))
+    band_lo = max(outer_radius - layer_depth, inner_radius)
+    ring = np.clip(np.minimum(r_hi, outer_radius) ** 2 - np.maximum(r_lo, band_lo) ** 2, 0, None)
+    ring *= dz[np.arange(volumes.size) // dr.size]
+    return Discretisation(volumes, stiffness, boundary, normalised(volumes), normalised(ring),
+                          {"x": r_c / scale_r, "z": z_c * thickness})
+
+
+def disc_mesh(outer_radius, thickness, inner_radius, radial_cells, axial_cells, radial_d,
+              axial_d, widths=None):
+    """(FiPy CylindricalGrid2D in scaled (r, z), radial scale, (dr, dz) widths in m)."""
     from fipy import CylindricalGrid2D
 
     scale_r = axis_scale(thickness, radial_d, axial_d)
@@ -67,14 +87,7 @@ def disc(outer_radius: float, thickness: float, inner_radius: float, radial_cell
     r_axis, z_axis = _grid_axis(dr, scale_r, uniform), _grid_axis(dz, 1.0 / thickness, uniform)
     mesh = CylindricalGrid2D(nr=r_axis["n"], nz=z_axis["n"], dr=r_axis["d"], dz=z_axis["d"],
                              origin=((inner_radius * scale_r,), (0.0,)))
-    volumes, stiffness, boundary = assemble(mesh)
-    r_c, z_c = (np.asarray(a) for a in mesh.cellCenters)
-    r_lo, r_hi = (inner_radius + edge for edge in _bounds(dr, np.arange(volumes.size) % dr.size))
-    band_lo = max(outer_radius - layer_depth, inner_radius)
-    ring = np.clip(np.minimum(r_hi, outer_radius) ** 2 - np.maximum(r_lo, band_lo) ** 2, 0, None)
-    ring *= dz[np.arange(volumes.size) // dr.size]
-    return Discretisation(volumes, stiffness, boundary, normalised(volumes), normalised(ring),
-                          {"x": r_c / scale_r, "z": z_c * thickness})
+    return mesh, scale_r, (dr, dz)
 
 
 def bar(length: float, width: float, thickness: float, cells: tuple[int, int, int],

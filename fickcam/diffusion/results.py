@@ -35,5 +35,6 @@ class DiffusionResult:
     error_estimate: float
     reason: str
     fields: np.ndarray | None = None
+    bound: np.ndarray | None = None  # two-phase (Langmuir) sorption: bound-water mean, weight %
     cell_coordinates: dict[str, np.ndarray] = field(default_factory=dict)
 

@@ -58,24 +58,66 @@ def equilibrium_shares(gamma: float, beta: float) -> tuple[float, float]:
     return beta / (gamma + beta), gamma / (gamma + beta)
 
 
+@dataclass(frozen=True)
+class Propagator:
+    """exp(A t) = c I + d (A - m I) and its integral int_0^t exp(A u) du = C I + D (A - m I)
+    for A = [[-(rate + gamma), beta], [gamma, -beta]] (Cayley-Hamilton / Sylvester for
+    2x2 matrices; eigenvalues m +- s <= 0): c = exp(mt) cosh(st), d = exp(mt) sinh(st)/s,
+    C and D the same integrated. Arrays broadcast over modes and times."""
+
+    a11: np.ndarray
+    a12: np.ndarray
+    a21: np.ndarray
+    a22: np.ndarray
+    m: np.ndarray
+    c: np.ndarray
+    d: np.ndarray
+    c_int: np.ndarray
+    d_int: np.ndarray
+
+    def apply(self, x1, x2, integral: bool = False):
+        """exp(A t) x (or its integral times x), component-wise."""
+        c, d = (self.c_int, self.d_int) if integral else (self.c, self.d)
+        return (c * x1 + d * ((self.a11 - self.m) * x1 + self.a12 * x2),
+                c * x2 + d * (self.a21 * x1 + (self.a22 - self.m) * x2))
+
+
+def _phi(rate, t):
+    """int_0^t exp(rate u) du for rate <= 0 (t where rate = 0)."""
+    with np.errstate(invalid="ignore", divide="ignore"):
+        return np.where(rate < 0, np.expm1(rate * t) / np.where(rate < 0, rate, -1.0), t)
+
+
+def exchange_propagator(rate, t, gamma, beta) -> Propagator:
+    """The per-mode 2x2 propagator of free and bound water (module docstring): mode decay
+    ``rate`` = D lambda (1/s), exchange rates ``gamma``, ``beta`` (1/s), time ``t`` (s);
+    all broadcast. The s -> 0 limits are taken in closed form."""
+    rate, t, gamma, beta = np.broadcast_arrays(*(np.asarray(v, float) for v in (rate, t, gamma, beta)))
+    a11, a22 = -(rate + gamma), -beta
+    m = 0.5 * (a11 + a22)
+    s = np.sqrt(0.25 * (a11 - a22) ** 2 + beta * gamma)
+    slow = np.exp((m + s) * t)                       # slower eigenvalue m + s <= 0
+    c = 0.5 * (slow + np.exp((m - s) * t))
+    positive = s * t > 1e-5   # below: the series of the divided difference, error (st)^2/6
+    safe = np.where(s > 0, s, 1.0)
+    with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
+        d = np.where(s > 0, slow * -np.expm1(-2.0 * s * t) / (2.0 * safe), t * np.exp(m * t))
+        phi_slow, phi_fast = _phi(m + s, t), _phi(m - s, t)
+        z = m * t
+        small = np.abs(z) < 1e-3
+        g = np.where(small, 0.5 + z / 3.0,
+                     (np.exp(z) * (z - 1.0) + 1.0) / np.where(small, 1.0, z) ** 2)
+        d_int = np.where(positive, (phi_slow - phi_fast) / (2.0 * safe), t * t * g)
+    return Propagator(a11, beta, gamma, a22, m, c, d, 0.5 * (phi_slow + phi_fast), d_int)
+
+
 def two_phase_mode_deficit(rate, t, gamma: float, beta: float):
     """(free, bound) deficits of one mode with diffusive decay rate ``rate`` = D lambda
     (1/s) at times ``t`` (s), starting from the equilibrium shares (free, bound):
     exp(A t) x0 with A = [[-(rate + gamma), beta], [gamma, -beta]]. Broadcasts
     ``rate`` against ``t``; usable for any geometry whose Fickian modes are known."""
     free0, bound0 = equilibrium_shares(gamma, beta)
-    rate, t = np.broadcast_arrays(np.asarray(rate, float), np.asarray(t, float))
-    a11, a22 = -(rate + gamma), -beta
-    m = 0.5 * (a11 + a22)
-    s = np.sqrt(0.25 * (a11 - a22) ** 2 + beta * gamma)
-    fast = np.exp((m + s) * t)                       # slower eigenvalue m + s <= 0
-    cosh_part = 0.5 * (fast + np.exp((m - s) * t))   # exp(mt) cosh(st)
-    with np.errstate(invalid="ignore", divide="ignore"):
-        sinh_part = np.where(s > 0, fast * -np.expm1(-2.0 * s * t) / (2.0 * np.where(s > 0, s, 1.0)),
-                             t * np.exp(m * t))      # exp(mt) sinh(st)/s, s -> 0 limit t exp(mt)
-    free = cosh_part * free0 + sinh_part * ((a11 - m) * free0 + beta * bound0)
-    bound = cosh_part * bound0 + sinh_part * (gamma * free0 + (a22 - m) * bound0)
-    return free, bound
+    return exchange_propagator(rate, t, gamma, beta).apply(free0, bound0)
 
 
 def _mode_count(fourier_min: float, exchange: float, tolerance: float) -> int:

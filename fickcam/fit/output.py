@@ -28,16 +28,30 @@ def _pair(low, high, unit="") -> str:
     return f"[{_g(low)}{unit}, {_g(high)}{unit}]"
 
 
-def _sorption_lines(report: FitReport) -> list[str]:
+def _two_phase_ratios(report: FitReport) -> tuple[float, float]:
+    """(D_free / D_Fick, Mm_total / Mm_Fick) at the first non-Fickian condition ((1, 1)
+    when Fickian): the two-phase fit's free water diffuses faster than the Fickian fit's
+    apparent D, and its total Mm lies above the Fickian plateau."""
+    flagged = report.two_phase_fits()
+    if not flagged:
+        return 1.0, 1.0
+    condition, fit = flagged[0]
+    return (fit.diffusivity.value / condition.diffusivity.value,
+            fit.saturation.value / condition.saturation.value)
+
+
+def _sorption_lines(report: FitReport, pre_exponential: float, coefficient: float) -> list[str]:
     flagged = report.two_phase_fits()
     if not flagged:
         return []
     condition, fit = flagged[0]
+    diffusion, saturation = _two_phase_ratios(report)
     return [f"    # NOT Fickian at {', '.join(report.non_fickian)}. Two-phase (Langmuir) fit at {condition.label}:",
-            "    # uncomment when the scene loader takes `sorption` (issue 13); the diffusivity",
-            "    # above is then to be replaced by the free-water value "
-            f"{_g(fit.diffusivity.value)} m^2/s at this temperature.",
-            f"    # sorption: {{model: langmuir, binding_rate: {_g(fit.binding_rate.value)} 1/s, "
+            f"    # free-water D {_g(fit.diffusivity.value)} m^2/s, total Mm {_g(fit.saturation.value)} % there;",
+            f"    # above: the Fickian values ({_g(pre_exponential)} m^2/s pre-exponential, coefficient "
+            f"{_g(coefficient)} %) times D_free/D_Fick = {_g(diffusion)} and Mm/Mm_Fick = {_g(saturation)},",
+            "    # same activation energy and exponent (Carter & Kibler 1978).",
+            f"    sorption: {{model: langmuir, binding_rate: {_g(fit.binding_rate.value)} 1/s, "
             f"release_rate: {_g(fit.release_rate.value)} 1/s}}"]
 
 
@@ -84,10 +98,10 @@ def materials_yaml(report: FitReport) -> str:
              f"  {report.name}:",
              f'    matrix: "{report.matrix}"', *composite,
              f"    # {which}; D = pre_exponential exp(-activation_energy/(R T)), Mm = coefficient (RH/100)^exponent",
-             f"    diffusivity: {{pre_exponential: {_g(m['pre_exponential'], 6)} m^2/s, "
+             f"    diffusivity: {{pre_exponential: {_g(m['pre_exponential'] * _two_phase_ratios(report)[0], 6)} m^2/s, "
              f"activation_energy: {_g(m['activation_energy'] / 1e3, 6)} kJ/mol}}",
-             f"    saturation: {{coefficient: {_g(m['coefficient'], 6)} %, exponent: {_g(m['exponent'], 6)}}}",
-             *_fit_record(report, m), *_sorption_lines(report)]
+             f"    saturation: {{coefficient: {_g(m['coefficient'] * _two_phase_ratios(report)[1], 6)} %, exponent: {_g(m['exponent'], 6)}}}",
+             *_fit_record(report, m), *_sorption_lines(report, m['pre_exponential'], m['coefficient'])]
     return "\n".join(lines) + "\n"
 
 

@@ -6,6 +6,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..diffusion.exposure import Diffusivity
+from ..diffusion.sorption import ConcentrationDependent, Langmuir, Rate
 from . import micromechanics as mm
 from .hygrothermal import thermal_property_factor
 from .library import entry
@@ -31,6 +32,7 @@ class Material:
     transverse_diffusivity_model: str = "chamis"
     wet_tg_scale: str = "celsius"
     sources: tuple[str, ...] = field(default=())
+    sorption: dict | None = None  # the scene's ``sorption`` (SI), None: Fickian
 
     # ---------------------------------------------------------------- basics
     @property
@@ -103,6 +105,22 @@ class Material:
             mean = 0.5 * (f11 + f22)
             return Diffusivity((d0 * mean, d0 * mean, d0 * f22), ea)
         return Diffusivity((d0 * f11, d0 * f22, d0 * f22), ea)
+
+    def sorption_law(self):
+        """The part's sorption law (``diffusion.sorption``), None when Fickian. The
+        two-phase rates are the matrix's local exchange rates, the same in a ply; the
+        concentration-dependent law is relative to the ply's Mm at 100 % RH."""
+        spec = self.sorption
+        if not self.absorbs or spec is None or spec["model"] == "fickian":
+            return None
+        if spec["model"] == "langmuir":
+            return Langmuir(Rate(**spec["binding_rate"]), Rate(**spec["release_rate"]))
+        reference = float(self.saturation_moisture(np.array(300.0), np.array(100.0)))
+        if spec.get("exponent") is not None:
+            return ConcentrationDependent(reference, exponent=float(spec["exponent"]))
+        table = spec["table"]
+        return ConcentrationDependent(reference, ratios=tuple(table["moisture_ratio"]),
+                                      factors=tuple(table["diffusivity_ratio"]))
 
     # ---------------------------------------------------------------- properties
     def ply_properties(self, retention, thermal_factor=None) -> dict[str, np.ndarray]:
@@ -203,4 +221,5 @@ def resolve(name: str, spec, library=None) -> Material:
     return Material(name=name, kind=kind, matrix=matrix, fiber=fiber, fiber_ratio=float(kf),
                     void_ratio=float(kv), layup=spec.layup,
                     transverse_diffusivity_model=spec.transverse_diffusivity_model,
-                    wet_tg_scale=spec.wet_tg_scale, sources=tuple(sources))
+                    wet_tg_scale=spec.wet_tg_scale, sources=tuple(sources),
+                    sorption=spec.sorption.model_dump() if spec.sorption is not None else None)

@@ -4,7 +4,7 @@ from __future__ import annotations
 from typing import Annotated, Literal
 
 import numpy as np
-from pydantic import AfterValidator, BeforeValidator, PositiveFloat, model_validator
+from pydantic import AfterValidator, BeforeValidator, NonNegativeFloat, PositiveFloat, model_validator
 
 from ..units import (
     StrictModel,
@@ -13,6 +13,7 @@ from ..units import (
     ExpansionCoefficient,
     Fraction,
     MolarEnergy,
+    NonNegativeRate,
     NonNegativePercent,
     Pressure,
     Rate,
@@ -54,6 +55,70 @@ class DiffusivitySpec(StrictModel):
 
     pre_exponential: Diffusivity
     activation_energy: MolarEnergy
+
+
+class RateSpec(StrictModel):
+    """rate = pre_exponential exp(-activation_energy / (R T)), 1/s; a plain rate is constant."""
+
+    pre_exponential: NonNegativeRate
+    activation_energy: MolarEnergy = 0.0
+
+
+def _plain_rate(value):
+    return value if isinstance(value, dict) else {"pre_exponential": value}
+
+
+ArrheniusRate = Annotated[RateSpec, BeforeValidator(_plain_rate)]
+
+
+class DiffusivityTable(StrictModel):
+    """D/D(T) (``diffusivity_ratio``) against c/Mm (``moisture_ratio``, increasing)."""
+
+    moisture_ratio: list[NonNegativeFloat]
+    diffusivity_ratio: list[PositiveFloat]
+
+    @model_validator(mode="after")
+    def _pairs(self):
+        if len(self.moisture_ratio) != len(self.diffusivity_ratio) or len(self.moisture_ratio) < 2:
+            raise ValueError("moisture_ratio and diffusivity_ratio need the same length, at least 2")
+        if np.any(np.diff(self.moisture_ratio) <= 0):
+            raise ValueError("moisture_ratio must increase")
+        return self
+
+
+SORPTION_KEYS = {"fickian": set(), "langmuir": {"binding_rate", "release_rate"},
+                 "concentration_dependent": {"exponent", "table"}}
+
+
+class SorptionSpec(StrictModel):
+    """``materials.NAME.sorption``: ``fickian`` (default), ``langmuir`` (Carter & Kibler
+    1978: ``binding_rate`` gamma, ``release_rate`` beta, each a rate or {pre_exponential,
+    activation_energy}) or ``concentration_dependent`` (D = D(T) exp(``exponent`` c/Mm), or
+    ``table``: D/D(T) against c/Mm, Mm the saturation at 100 % RH)."""
+
+    model: Literal["fickian", "langmuir", "concentration_dependent"]
+    binding_rate: ArrheniusRate | None = None
+    release_rate: ArrheniusRate | None = None
+    exponent: float | None = None
+    table: DiffusivityTable | None = None
+
+    @model_validator(mode="after")
+    def _keys_of_the_model(self):
+        given = {k for k in ("binding_rate", "release_rate", "exponent", "table")
+                 if getattr(self, k) is not None}
+        foreign = given - SORPTION_KEYS[self.model]
+        if foreign:
+            raise ValueError(f"model {self.model} takes no {', '.join(sorted(foreign))}")
+        if self.model == "langmuir":
+            if given != SORPTION_KEYS["langmuir"]:
+                raise ValueError("langmuir needs binding_rate and release_rate")
+            if self.binding_rate.pre_exponential > 0 and self.release_rate.pre_exponential == 0:
+                raise ValueError("a binding_rate needs a positive release_rate (else nothing saturates)")
+        if self.model == "concentration_dependent" and len(given) != 1:
+            raise ValueError("concentration_dependent needs exactly one of exponent, table")
+        if self.exponent is not None and not abs(self.exponent) <= 20:
+            raise ValueError("exponent must lie in [-20, 20] (D varies by exp(k) over the range)")
+        return self
 
 
 class SaturationSpec(StrictModel):
@@ -175,6 +240,7 @@ class MaterialSpec(MatrixProperties):
     matrix_properties: MatrixProperties | None = None
     fiber_properties: FiberProperties | None = None
     fit: FitRecord | None = None
+    sorption: SorptionSpec | None = None
 
     @model_validator(mode="after")
     def _one_kind(self):
@@ -201,7 +267,7 @@ class MaterialSpec(MatrixProperties):
             if extra or self.void_volume_fraction or self.layup != "unidirectional":
                 raise ValueError("fiber fractions, voids, layup and fiber_properties need a fiber")
         if self.metal and (self.diffusivity or self.saturation or self.moisture_expansion
-                           or self.dry_glass_transition_temperature):
+                           or self.dry_glass_transition_temperature or self.sorption):
             raise ValueError("metals take no moisture or Tg values")
         return self
 

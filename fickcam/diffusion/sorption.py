@@ -1,0 +1,94 @@
+"""Sorption laws beyond Fick: the two-phase (Langmuir-type) model and a diffusivity
+that depends on the moisture already absorbed. Plain data and small functions of
+numpy arrays; no solver here (``langmuir`` / ``coupled`` / ``nonlinear`` solve).
+
+- Two-phase: Carter & Kibler (1978), J. Compos. Mater. 12:118-131, eqs. 1-2: free water
+  n diffuses, is bound at rate gamma and released at rate beta,
+  dn/dt = div(D grad n) - gamma n + beta N, dN/dt = gamma n - beta N. The saturation
+  law gives the TOTAL equilibrium content Mm = n_inf + N_inf; the surface holds the
+  free share beta/(gamma + beta) of it (gamma n_inf = beta N_inf). Each rate may follow
+  Arrhenius, rate(T) = rate0 exp(-Ea/(R T)).
+- Concentration-dependent: D(c, T) = D(T) f(c/Mm_ref), f = exp(k c/Mm_ref) (Crank 1975
+  §9.3, the exponential diffusion coefficient) or a table of f against c/Mm_ref,
+  Mm_ref the material's saturation at 100 % RH (a material constant, so that D depends
+  on the local moisture only, never on the climate).
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from .exposure import GAS_CONSTANT
+
+
+@dataclass(frozen=True)
+class Rate:
+    """rate(T) = pre_exponential exp(-activation_energy / (R T)), 1/s (Arrhenius)."""
+
+    pre_exponential: float
+    activation_energy: float = 0.0
+
+    def __call__(self, temperature) -> np.ndarray:
+        t = np.asarray(temperature, float)
+        return self.pre_exponential * np.exp(-self.activation_energy / (GAS_CONSTANT * t))
+
+
+@dataclass(frozen=True)
+class Langmuir:
+    """Carter & Kibler's two-phase model: ``binding`` gamma(T), ``release`` beta(T)."""
+
+    binding: Rate
+    release: Rate
+
+    def rates(self, temperature) -> tuple[np.ndarray, np.ndarray]:
+        """(gamma, beta) at T (K), 1/s."""
+        return self.binding(temperature), self.release(temperature)
+
+    def free_share(self, temperature) -> np.ndarray:
+        """beta/(gamma + beta): the free share of the total at equilibrium (1 if gamma = 0)."""
+        gamma, beta = self.rates(temperature)
+        total = gamma + beta
+        return np.where(gamma > 0, beta / np.where(total > 0, total, 1.0), 1.0)
+
+
+@dataclass(frozen=True)
+class ConcentrationDependent:
+    """D(c, T)/D(T) = exp(k c/Mm_ref) (``exponent`` k; Crank 1975 §9.3) or the table
+    (``ratios`` c/Mm_ref, ``factors`` D/D(T)), interpolated linearly, held beyond it."""
+
+    reference_moisture: float            # Mm_ref, weight %
+    exponent: float | None = None
+    ratios: tuple[float, ...] = ()
+    factors: tuple[float, ...] = ()
+
+    def factor(self, moisture) -> np.ndarray:
+        """D/D(T) at the local moisture (weight %)."""
+        ratio = np.asarray(moisture, float) / self.reference_moisture
+        if self.exponent is not None:
+            return np.exp(self.exponent * ratio)
+        return np.interp(ratio, self.ratios, self.factors)
+
+    def largest_factor(self, moisture) -> float:
+        """The largest D/D(T) met for moisture in [0, ``moisture``] (the stiffest operator)."""
+        return float(np.max(self.factor(np.linspace(0.0, float(moisture), 65))))
+
+
+def is_langmuir(sorption) -> bool:
+    return isinstance(sorption, Langmuir)
+
+
+def is_nonlinear(sorption) -> bool:
+    return isinstance(sorption, ConcentrationDependent)
+
+
+def describe(sorption) -> str:
+    """One line for ``fickcam check``."""
+    if isinstance(sorption, Langmuir):
+        return (f"two-phase (Langmuir) sorption, gamma0 {sorption.binding.pre_exponential:.3g} 1/s, "
+                f"beta0 {sorption.release.pre_exponential:.3g} 1/s")
+    if isinstance(sorption, ConcentrationDependent):
+        law = (f"exp({sorption.exponent:g} c/Mm)" if sorption.exponent is not None
+               else f"table of {len(sorption.ratios)} points")
+        return f"concentration-dependent D = D(T) {law}"
+    return "Fickian"

@@ -1,0 +1,61 @@
+"""Extremes of the sorption laws: exchange rates 1e-3..1e3 of the diffusion rate, D
+exponents 0..5: bounded, no NaN, mass conserved (free + bound against the exact series,
+which conserves it; wet to equilibrium and dry again)."""
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from fickcam.diffusion import solve
+from fickcam.diffusion.exposure import Diffusivity, Exposure
+from fickcam.diffusion.geometry import Sheet
+from fickcam.diffusion.sorption import ConcentrationDependent, Langmuir, Rate
+from fickcam.diffusion.two_phase import two_phase_sheet_uptake
+
+H, D, MM = 2e-3, 5e-12, 2.0
+KAPPA = np.pi ** 2 * D / H ** 2
+ISOTROPIC = Diffusivity((D, D, D), 0.0)
+
+
+def soak_and_dry(end):
+    """Wet to Mm for half the time, then dry: absorption and desorption in one history."""
+    return Exposure.piecewise([0.0, 0.5 * end, end], [330.0, 330.0], [MM, 0.0])
+
+
+@settings(max_examples=8, deadline=None)
+@given(st.floats(-3, 3), st.floats(-3, 3))
+def test_two_phase_extremes_stay_bounded_and_conserve_mass(log_gamma, log_beta):
+    gamma, beta = KAPPA * 10 ** log_gamma, KAPPA * 10 ** log_beta
+    slowest = min(KAPPA, gamma, beta)
+    end = 40.0 / slowest
+    times = np.geomspace(1e-3 / KAPPA, 0.5 * end, 25)
+    soak = Exposure.piecewise([0.0, end], [330.0], [MM])
+    law = Langmuir(Rate(gamma), Rate(beta))
+    modes = solve(Sheet(H), ISOTROPIC, soak, times, accuracy=1e-6, sorption=law)
+    exact = two_phase_sheet_uptake(times, D, H, gamma, beta)
+    assert np.all(np.isfinite(modes.mean)) and np.all(np.isfinite(modes.bound))
+    assert np.max(np.abs(modes.mean / MM - exact.total)) < 1e-5
+    assert np.max(np.abs(modes.bound / MM - exact.bound)) < 1e-5
+    assert np.all(modes.bound >= -1e-9) and np.all(modes.mean <= MM * (1 + 1e-9))
+    fv = solve(Sheet(H), ISOTROPIC, soak_and_dry(end), times, accuracy=1e-2, model="slab",
+               sorption=law)
+    assert np.all(np.isfinite(fv.mean)) and np.all(np.isfinite(fv.bound))
+    assert np.all(fv.mean >= -1e-2 * MM) and np.all(fv.mean <= MM * (1 + 1e-2))
+    assert np.all(fv.bound >= -1e-2 * MM) and np.all(fv.bound <= fv.mean + 1e-2 * MM)
+    assert fv.mean[-1] == pytest.approx(exact.total[-1] * MM, abs=1e-2 * MM)
+
+
+@pytest.mark.parametrize("exponent", [0.0, 5.0])
+def test_concentration_dependent_extremes_stay_bounded_and_reach_equilibrium(exponent):
+    law = ConcentrationDependent(MM, exponent=exponent)
+    end = 4.0 * H ** 2 / D
+    times = np.array([0.01, 0.1, 0.5, 1.0, 1.6, 2.5, 4.0]) * H ** 2 / D
+    result = solve(Sheet(H), ISOTROPIC, soak_and_dry(end), times, accuracy=1e-2, sorption=law,
+                   store_fields=True)
+    assert np.all(np.isfinite(result.fields))
+    # Richardson's 2 fine - coarse may step outside [0, Mm] by its own error, no more
+    assert np.all(result.fields >= -1e-2 * MM) and np.all(result.fields <= MM * (1 + 1e-2))
+    wet = times <= 0.5 * end
+    assert np.all(np.diff(result.mean[wet]) > -1e-3 * MM) and np.all(np.diff(result.mean[~wet]) < 0)
+    assert result.mean[np.flatnonzero(wet)[-1]] == pytest.approx(MM, abs=1e-2 * MM)
+    assert result.mean[-1] == pytest.approx(0.0, abs=1e-2 * MM)
