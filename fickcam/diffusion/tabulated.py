@@ -45,8 +45,8 @@ ROUND_OFF = 1e-12        # a step of Ms smaller than this share of Ms is a ramp'
 FIELD_PER_DECADE = 32    # fields (wide kernels): one table at this density, not refined
 JUMP_FACTOR = 50.0       # a cubic missing a node by this x the median miss marks a step of K
 JUMP_FLOOR = 1e-9        # ... and steps of K below this (of the unit step) are none
-SECTIONS = 4             # rounds locating a step, each cutting its interval into
-SECTION_POINTS = 63      #   64 (to 64^-4 = 6e-8 of a cell)
+SECTIONS = 3             # rounds locating a step, each cutting its interval into
+SECTION_POINTS = 15      #   16 (to 16^-3 = 2.4e-4 of a cell: Ms moves little over it)
 CHUNK = 4096             # ages per kernel call (fields: memory)
 
 
@@ -60,6 +60,7 @@ class Table:
     kernel: np.ndarray
     integral: np.ndarray
     jumps: tuple = ()
+    raw: np.ndarray | None = None  # K with its steps (what a finer table reuses)
 
     def coarse(self) -> "Table":
         """Every second grid point: the reading whose difference measures the error."""
@@ -80,18 +81,29 @@ _MIDDLE_CELL = np.array([-1.0, 13.0, 13.0, -1.0]) / 24.0
 _FIRST_CELL = np.array([9.0, 19.0, -5.0, 1.0]) / 24.0
 
 
-def tabulate(kernel, first: float, last: float, per_decade: int) -> Table:
+def tabulate(kernel, first: float, last: float, per_decade: int,
+             coarser: "Table | None" = None) -> Table:
     """K and I on an odd number of points from ``first`` or below to ``last`` (so that
     every second point, ``Table.coarse``, also covers it), ``per_decade`` points a decade.
     Steps of K (``_jumps``) are taken out first. I(w0) = (2/3) K(w0) w0 (K ~ sqrt(w)
     below), then each cell integrates the cubic through four grid values of
-    K(e^x) e^x (smooth in x): K is evaluated at the grid points only."""
+    K(e^x) e^x (smooth in x): K is evaluated at the grid points only, and not again where
+    the ``coarser`` table (half the points a decade) has them; its steps are kept."""
     step = math.log(10.0) / per_decade
     half = max(3, math.ceil(math.log(max(last / first, 1.0)) / (2.0 * step)))
-    x = math.log(last) - step * np.arange(2 * half, -1, -1)  # ends at ``last``: a step response
-    #   known up to the last output (the plane's mesh) is held flat past it, a kink
-    values = _evaluate(kernel, np.exp(x))
-    jumps = _jumps(kernel, x, values)
+    back = np.arange(2 * half, -1, -1)  # points counted from the end
+    x = math.log(last) - step * back  # ends at ``last``: a step response known up to the
+    #   last output (the plane's mesh) is held flat past it, a kink
+    if coarser is None:
+        values, jumps = _evaluate(kernel, np.exp(x)), None
+    else:
+        known = (back % 2 == 0) & (back // 2 < coarser.raw.shape[0])
+        values = np.empty((x.size, coarser.raw.shape[1]))
+        values[known] = coarser.raw[::-1][back[known] // 2]
+        values[~known] = _evaluate(kernel, np.exp(x[~known]))
+        jumps = list(coarser.jumps)
+    raw = values
+    jumps = _jumps(kernel, x, values) if jumps is None else jumps
     for age, size in jumps:
         values = values - size[None, :] * (x >= math.log(age))[:, None]
     density = values * np.exp(x)[:, None]      # dI/dx
@@ -100,7 +112,7 @@ def tabulate(kernel, first: float, last: float, per_decade: int) -> Table:
                             (windows[-1:, :, ::-1] @ _FIRST_CELL)]) * step
     integral = np.cumsum(np.concatenate([(2.0 / 3.0) * values[:1] * math.exp(x[0]), cells]),
                          axis=0)
-    return Table(float(x[0]), step, values, integral, tuple(jumps))
+    return Table(float(x[0]), step, values, integral, tuple(jumps), raw)
 
 
 def _jumps(kernel, x: np.ndarray, values: np.ndarray) -> list[tuple[float, np.ndarray]]:
@@ -283,8 +295,9 @@ class LongRecord:
         decades = math.log10(last / self.first) + 1.0
         cap = max(4, int(TABLE_ENTRIES / (width * decades)) // 2)
         per_decade = min(per_decade, cap)
+        table = None
         while True:
-            table = tabulate(kernel, self.first, last, per_decade)
+            table = tabulate(kernel, self.first, last, per_decade, table)
             fine, coarse = read(table, self.where), read(table.coarse(), self.where)
             change = float(np.max(np.abs(fine - coarse), initial=0.0))
             if (not refine or change <= TABLE_SHARE * looser * self.tolerance
