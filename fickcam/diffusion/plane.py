@@ -40,7 +40,7 @@ from .results import DiffusionResult, Plan
 from .scaling import planar_scale, stretch_of
 from .shorttime import expansion_of, sheet_fraction, weighted
 from .stepresponse import blend, step_response
-from .tabulated import LongRecord
+from .tabulated import LongRecord, Same
 from .timesteps import earliest_output, geometric_steps, output_ages
 from .trimesh import triangulate
 
@@ -272,11 +272,12 @@ class History:
         return cls(diffusivity, exposure, np.asarray(times, float), geometry, record)
 
     def superpose(self, fraction, chunk: int = 64, fields: bool = False,
-                  looser: float = 1.0) -> tuple[np.ndarray, float]:
+                  looser: float = 1.0, same: Same | None = None) -> tuple[np.ndarray, float]:
         """(c0 + Duhamel sum of the unit-step unsaturated fraction u(tau*), the error of the
         sum itself relative to the swing: 0 for the panels, whose quadrature is exact to
         ``calibration.ANALYTIC_ERROR``). ``fields``: a wide kernel (``LongRecord.field``);
-        ``looser``: a tolerance this many times the mean's (the contact layer)."""
+        ``looser``: a tolerance this many times the mean's (the contact layer); ``same``:
+        which fraction this is (``tabulated.Same``), to reuse its tables across solves."""
         d = tuple(float(v) for v in self.diffusivity.pre_exponential)
         kernel = _kernel(fraction, d[2] / self.geometry.thickness ** 2)
         if self.record is None:
@@ -285,7 +286,9 @@ class History:
                 _diffusion_times(self.geometry, d), chunk=chunk), 0.0
         if fields:
             return self.exposure.initial_moisture + self.record.field(kernel), 0.0
-        values, error, _ = self.record.superpose(kernel, looser=looser)
+        if same is not None:
+            same = Same(same.key + (d[2] / self.geometry.thickness ** 2,), same.holds)
+        values, error, _ = self.record.superpose(kernel, looser=looser, same=same)
         return self.exposure.initial_moisture + values, error
 
 
@@ -319,8 +322,12 @@ def solve_plane(geometry, diffusivity, exposure, times, chosen, *, accuracy: flo
     def layer_fraction(tau):  # contact edge band x the whole thickness
         return plane_layer(tau) * sheet_fraction(tau)
 
-    (mean, sum_error), (layer, _) = (history.superpose(mean_fraction),
-                                     history.superpose(layer_fraction, looser=LAYER_TOLERANCE))
+    def same(which: str) -> Same:  # the fractions are fixed by these (cached) objects
+        return Same((id(u_plane), id(expansion), tolerance, which), (u_plane, expansion))
+
+    (mean, sum_error), (layer, _) = (
+        history.superpose(mean_fraction, same=same("mean")),
+        history.superpose(layer_fraction, looser=LAYER_TOLERANCE, same=same("layer")))
     time_error = PAIR_TO_TIME_ERROR * pair_plane ** 2  # the sheet is exact
     # the plan's estimate, unless the blend's own bound at the ages read says more (no
     # expansion for this outline: the plan's model, with its time part)

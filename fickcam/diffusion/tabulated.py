@@ -25,6 +25,7 @@ that change is within its share of the tolerance.
 from __future__ import annotations
 
 import math
+from collections import OrderedDict
 from dataclasses import dataclass
 
 import numpy as np
@@ -37,6 +38,7 @@ MAX_PER_DECADE = 256     #   grid and its every second point read differently
 SHORT_TIME = 1e-6        # the grid starts at this share of the fastest diffusion time
 #   (below it K = K(w0) sqrt(w / w0), Crank eq. 4.20, relative error ~sqrt(1e-6); the
 #   ages there weigh ~w0^1.5)
+KEPT_TABLES = 32           # tables kept between solves of one part (a run's limit search)
 TABLE_ENTRIES = 20_000_000  # grid points x kernel outputs at most (fields: memory)
 INTERPOLATION_SHARE = 0.25  # share of the tolerance for Ms piecewise linear in tau
 TABLE_SHARE = 0.25          # share of the tolerance for the tabulation
@@ -283,11 +285,12 @@ class LongRecord:
         return cls(force, sources(force), swing, tolerance, SHORT_TIME * fastest)
 
     def superpose(self, kernel, per_decade: int = FIRST_PER_DECADE, refine: bool = True,
-                  looser: float = 1.0) -> tuple[np.ndarray, float, int]:
+                  looser: float = 1.0, same: "Same | None" = None) -> tuple[np.ndarray, float, int]:
         """(M - M0 at the outputs, shape (outputs, ...kernel outputs); the error relative
         to the swing (tabulation change + Ms interpolation); the points per decade used).
         ``refine``: double the grid while the change exceeds ``TABLE_SHARE`` x tolerance
-        (x ``looser``)."""
+        (x ``looser``). ``same``: says which kernel this is, so that its tables are taken
+        from earlier solves (the same grid gives the same table: results do not change)."""
         last = float(np.max(self.force.tau[self.force.outputs] - self.force.tau[0], initial=0.0))
         last = max(last, 10.0 * self.first)
         shape = np.shape(kernel(np.zeros(1)))[1:]
@@ -297,7 +300,9 @@ class LongRecord:
         per_decade = min(per_decade, cap)
         table = None
         while True:
-            table = tabulate(kernel, self.first, last, per_decade, table)
+            table = _kept(same, (self.first, last, per_decade),
+                          lambda coarser=table: tabulate(kernel, self.first, last, per_decade,
+                                                         coarser))
             fine, coarse = read(table, self.where), read(table.coarse(), self.where)
             change = float(np.max(np.abs(fine - coarse), initial=0.0))
             if (not refine or change <= TABLE_SHARE * looser * self.tolerance
@@ -311,3 +316,31 @@ class LongRecord:
         """M - M0 of a wide kernel (a field's cells): one table at ``FIELD_PER_DECADE``,
         not refined (a run's estimate is the mean's)."""
         return self.superpose(kernel, FIELD_PER_DECADE, refine=False)[0]
+
+
+@dataclass(frozen=True, eq=False)
+class Same:
+    """Names a kernel across solves: ``key`` (hashable) and the objects its ids stand for,
+    ``holds``, kept alive with the tables so that no id is reused while they are kept."""
+
+    key: tuple
+    holds: tuple = ()
+
+
+_TABLES: OrderedDict = OrderedDict()
+
+
+def _kept(same: Same | None, grid: tuple, build) -> Table:
+    """The table of kernel ``same`` on ``grid`` from an earlier solve, else ``build()``
+    (kept, the least recently used dropped past ``KEPT_TABLES``)."""
+    if same is None:
+        return build()
+    key = (same.key, grid)
+    if key in _TABLES:
+        _TABLES.move_to_end(key)
+        return _TABLES[key][0]
+    table = build()
+    _TABLES[key] = (table, same.holds)
+    while len(_TABLES) > KEPT_TABLES:
+        _TABLES.popitem(last=False)
+    return table
