@@ -184,3 +184,26 @@ def test_a_plane_solve_repeated_on_a_record_reuses_its_tables_and_a_thicker_part
     tabulated._TABLES.clear()
     alone = solve(circular_plate(0.01, 0.005), diffusivity, exposure, times, accuracy=1e-3)
     assert np.array_equal(thicker.mean, alone.mean)  # as if no thinner tables were kept
+
+
+def test_a_plane_result_extended_to_new_times_equals_a_solve_at_both_sets_of_times():
+    """The limit search's ``extend``: the stored solve read at new times inside its span
+    (nodes gained, tables and plan kept) gives what a solve at the stored and the new
+    times together gives there, to round-off; the stored rows are kept as they were."""
+    environment = greensboro_weeks(1)
+    diffusivity = Diffusivity((0.4,) * 3, 50e3)
+    exposure = environment.exposure(nylon_moisture)
+    plate, times = circular_plate(0.01, 0.004), np.linspace(0.0, environment.end, 6)
+    stored = solve(plate, diffusivity, exposure, times, accuracy=1e-3)
+    new = np.array([0.37, 2.51, 4.9]) * 86400.0
+    both = np.union1d(times, new)
+    extended = stored.extend(both)
+    together = solve(plate, diffusivity, exposure, both, accuracy=1e-3)
+    rows = np.searchsorted(both, new)
+    assert np.array_equal(extended.times, both)
+    scale = float(np.max(np.abs(together.mean)))
+    for name in ("mean", "surface"):
+        assert np.allclose(getattr(extended, name)[rows], getattr(together, name)[rows],
+                           rtol=0, atol=64 * np.finfo(float).eps * scale)
+        kept = np.searchsorted(both, times)
+        assert np.array_equal(getattr(extended, name)[kept], getattr(stored, name))

@@ -21,7 +21,7 @@ from __future__ import annotations
 
 import logging
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from functools import lru_cache
 
 import numpy as np
@@ -271,25 +271,34 @@ class History:
                                 RECORD_SHARE * accuracy) if is_long_record(exposure) else None)
         return cls(diffusivity, exposure, np.asarray(times, float), geometry, record)
 
+    def at(self, times) -> "History":
+        """The same history read at other ``times`` inside the outputs' span (a long record
+        only: ``LongRecord.at``)."""
+        return replace(self, times=np.asarray(times, float), record=self.record.at(times))
+
     def superpose(self, fraction, chunk: int = 64, fields: bool = False,
-                  looser: float = 1.0, same: Same | None = None) -> tuple[np.ndarray, float]:
+                  looser: float = 1.0, same: Same | None = None,
+                  start: int = 0) -> tuple[np.ndarray, float, int]:
         """(c0 + Duhamel sum of the unit-step unsaturated fraction u(tau*), the error of the
         sum itself relative to the swing: 0 for the panels, whose quadrature is exact to
-        ``calibration.ANALYTIC_ERROR``). ``fields``: a wide kernel (``LongRecord.field``);
-        ``looser``: a tolerance this many times the mean's (the contact layer); ``same``:
-        which fraction this is (``tabulated.Same``), to reuse its tables across solves."""
+        ``calibration.ANALYTIC_ERROR``, the tables' points per decade: 0 for the panels).
+        ``fields``: a wide kernel (``LongRecord.field``); ``looser``: a tolerance this many
+        times the mean's (the contact layer); ``same``: which fraction this is
+        (``tabulated.Same``), to reuse its tables across solves; ``start``: the points per
+        decade an earlier solve of this fraction refined to (``LongRecord.superpose``)."""
         d = tuple(float(v) for v in self.diffusivity.pre_exponential)
         kernel = _kernel(fraction, d[2] / self.geometry.thickness ** 2)
         if self.record is None:
             return self.exposure.initial_moisture + duhamel(
                 kernel, self.diffusivity, self.exposure, self.times,
-                _diffusion_times(self.geometry, d), chunk=chunk), 0.0
+                _diffusion_times(self.geometry, d), chunk=chunk), 0.0, 0
         if fields:
-            return self.exposure.initial_moisture + self.record.field(kernel), 0.0
+            return self.exposure.initial_moisture + self.record.field(kernel), 0.0, 0
         if same is not None:
             same = Same(same.key + (d[2] / self.geometry.thickness ** 2,), same.holds)
-        values, error, _ = self.record.superpose(kernel, looser=looser, same=same)
-        return self.exposure.initial_moisture + values, error
+        values, error, level = self.record.superpose(kernel, looser=looser, same=same,
+                                                     start=start)
+        return self.exposure.initial_moisture + values, error, level
 
 
 def solve_plane(geometry, diffusivity, exposure, times, chosen, *, accuracy: float,
@@ -325,9 +334,14 @@ def solve_plane(geometry, diffusivity, exposure, times, chosen, *, accuracy: flo
     def same(which: str) -> Same:  # the fractions are fixed by these (cached) objects
         return Same((id(u_plane), id(expansion), tolerance, which), (u_plane, expansion))
 
-    (mean, sum_error), (layer, _) = (
-        history.superpose(mean_fraction, same=same("mean")),
-        history.superpose(layer_fraction, looser=LAYER_TOLERANCE, same=same("layer")))
+    def superposed(over: History, levels=(0, 0)):  # (mean, its sum's error, layer, levels)
+        (mean, error, mean_level), (layer, _, layer_level) = (
+            over.superpose(mean_fraction, same=same("mean"), start=levels[0]),
+            over.superpose(layer_fraction, looser=LAYER_TOLERANCE, same=same("layer"),
+                           start=levels[1]))
+        return mean, error, layer, (mean_level, layer_level)
+
+    mean, sum_error, layer, levels = superposed(history)
     time_error = PAIR_TO_TIME_ERROR * pair_plane ** 2  # the sheet is exact
     # the plan's estimate, unless the blend's own bound at the ages read says more (no
     # expansion for this outline: the plan's model, with its time part)
@@ -342,6 +356,8 @@ def solve_plane(geometry, diffusivity, exposure, times, chosen, *, accuracy: flo
     if store_fields:
         result.fields, result.cell_coordinates = _plane_fields(
             geometry, history, u_plane, planar, chosen, end, surface_layer_depth, part)
+    elif history.record is not None:
+        result.extend = _extension(result, lambda at: superposed(history.at(at), levels))
     log.debug("%s plane: %d nodes x %d sheet cells", part, planar.cells, n_z)
     return result
 
@@ -367,7 +383,7 @@ def _plane_fields(geometry, history, u_plane, planar, chosen, end, depth, part):
 
     def field_fraction(tau):
         return u_plane.at(tau, u_plane.fields) * u_sheet.at(tau, u_sheet.fields[:, mid])[:, None]
-    fields, _ = history.superpose(field_fraction, FIELD_CHUNK, fields=True)
+    fields = history.superpose(field_fraction, FIELD_CHUNK, fields=True)[0]
     return fields, {"x": planar.coordinates["x"], "y": planar.coordinates["y"],
                     "z": np.full(planar.cells, sheet.coordinates["z"][mid])}
 
@@ -382,9 +398,22 @@ def _expansion_only(expansion, ages, history, chosen, part):
     def layer_fraction(tau):
         return (1.0 - expansion.layer_uptake(tau)) * sheet_fraction(tau)
 
-    (mean, sum_error), (layer, _) = (history.superpose(mean_fraction),
-                                     history.superpose(layer_fraction, looser=LAYER_TOLERANCE))
+    (mean, sum_error, _), (layer, _, _) = (
+        history.superpose(mean_fraction), history.superpose(layer_fraction, looser=LAYER_TOLERANCE))
     mean_error = max(chosen.error_estimate, expansion_error_at(expansion, ages)) + sum_error
     log.debug("%s plane: short-time expansion only, error %.2g", part, mean_error)
     return DiffusionResult(history.times, mean, layer, "plane", 0, 0, mean_error,
                            chosen.reason + "; no mesh needed")
+
+
+def _extension(result: DiffusionResult, superposed):
+    """``DiffusionResult.extend`` of a plane solve over a long record: the result at its
+    times and ``at`` (inside their span) together, the new rows summed with the stored plan,
+    planform response, forcing and tables (``History.at``), the stored rows as they are."""
+
+    def extend(at) -> DiffusionResult:
+        at = np.asarray(at, float)
+        new = np.setdiff1d(at, result.times)
+        mean, _, layer, _ = superposed(new)
+        return result.merged(new, mean, layer)
+    return extend
