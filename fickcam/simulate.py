@@ -162,17 +162,18 @@ def _aged_values(scene: Scene, environment: Environment, times: np.ndarray,
     bar = tqdm(total=len(parts) + len(times), disable=not progress, desc=scene.name,
                unit="step", leave=False)
 
-    histories = []
+    histories, solved = [], {}
     stored_times, befores = stored if stored is not None else (None, [None] * len(parts))
     for part, before in zip(parts, befores):
         bar.set_postfix_str(f"diffusion {part.name}")
         if before is None:
             history = age_part(part, environment, times, options, scene, notices,
-                               keep_field=part.name in elastic)
+                               keep_field=part.name in elastic, solved=solved)
         else:
             both = np.union1d(stored_times, times)
             history = age_part(part, environment, both, options, scene, notices,
-                               keep_field=part.name in elastic, before=before.diffusion)
+                               keep_field=part.name in elastic, before=before.diffusion,
+                               solved=solved)
             history = history.at_rows(np.searchsorted(both, times))
         histories.append(history)
         bar.update()
@@ -247,11 +248,14 @@ def _limits(ds, scene: Scene, environment: Environment, times, accuracy: float |
 
 
 def age_part(part: Part, environment: Environment, times, options: dict, scene: Scene,
-             notices: list[str], keep_field: bool = False, before=None) -> PartHistory:
+             notices: list[str], keep_field: bool = False, before=None,
+             solved: dict | None = None) -> PartHistory:
     """Diffusion, then the material state, of one part over the ageing times (its moisture
     field kept when the scene stores fields or ``keep_field``: its swelling stress);
     ``before``: a DiffusionResult of this part at some of ``times``, extended to the others
-    where it can be (``_extended``) instead of solving again."""
+    where it can be (``_extended``) instead of solving again; ``solved``: the diffusion
+    results of the run's earlier parts by shape, material and fields kept (parts alike in
+    all three absorb alike, e.g. a four-bar's coupler and rocker: solved once)."""
     from .diffusion import solve
 
     temperature = environment.temperature(times)
@@ -264,7 +268,8 @@ def age_part(part: Part, environment: Environment, times, options: dict, scene: 
             part.material.saturation_moisture, times)
     else:
         exposure = environment.exposure(part.material.saturation_moisture)
-        result = _extended(before, times)
+        alike = (part.geometry, part.material_name, keep_field)
+        result = (solved or {}).get(alike) or _extended(before, times)
         if result is None:
             result = _for_part(part.name, solve, part.geometry,
                                part.material.diffusivity_for(part.geometry), exposure, times,
@@ -272,6 +277,8 @@ def age_part(part: Part, environment: Environment, times, options: dict, scene: 
                                surface_layer_depth=options["surface_layer_depth"],
                                store_fields=scene.model.outputs.fields or keep_field,
                                part=part.name, sorption=part.material.sorption_law())
+        if solved is not None:
+            solved[alike] = result
         mean, surface = result.mean, result.surface  # total (free + bound) moisture
         saturation = exposure.surface_moisture(times)
         if result.error_estimate > options["accuracy"]:  # e.g. capped at MAX_CELLS

@@ -27,6 +27,7 @@ from __future__ import annotations
 import math
 from collections import OrderedDict
 from dataclasses import dataclass, replace
+from functools import lru_cache
 
 import numpy as np
 
@@ -282,14 +283,12 @@ class LongRecord:
     @classmethod
     def of(cls, diffusivity, exposure, times, fastest: float, accuracy: float) -> "LongRecord":
         """``fastest``: the part's shortest diffusion time L^2 / D0 (rescaled s)."""
-        clock = clock_of(diffusivity, exposure)
-        swing = swing_of(exposure, clock)
-        tolerance = accuracy * max(swing, 1e-300)
-        force = forcing(exposure, clock, np.asarray(times, float), INTERPOLATION_SHARE * tolerance)
+        force, where, swing, tolerance = _forced(diffusivity, exposure,
+                                                 np.asarray(times, float).tobytes(), accuracy)
         first = SHORT_TIME * fastest
         last = float(np.max(force.tau[force.outputs] - force.tau[0], initial=0.0))
-        return cls(force, sources(force), swing, tolerance, first, max(last, 10.0 * first),
-                   exposure, clock)
+        return cls(force, where, swing, tolerance, first, max(last, 10.0 * first),
+                   exposure, clock_of(diffusivity, exposure))
 
     def at(self, times) -> "LongRecord":
         """This record read at other ``times`` inside its outputs' span (the limit search):
@@ -335,6 +334,17 @@ class LongRecord:
         """M - M0 of a wide kernel (a field's cells): one table at ``FIELD_PER_DECADE``,
         not refined (a run's estimate is the mean's)."""
         return self.superpose(kernel, FIELD_PER_DECADE, refine=False)[0]
+
+
+@lru_cache(maxsize=16)
+def _forced(diffusivity, exposure, times: bytes, accuracy: float):
+    """(Forcing, Sources, swing, tolerance) of a record at ``times`` (their bytes), made
+    once for the parts that share a material and its exposure (the links of a four-bar)."""
+    clock = clock_of(diffusivity, exposure)
+    swing = swing_of(exposure, clock)
+    tolerance = accuracy * max(swing, 1e-300)
+    force = forcing(exposure, clock, np.frombuffer(times), INTERPOLATION_SHARE * tolerance)
+    return force, sources(force), swing, tolerance
 
 
 @dataclass(frozen=True, eq=False)
