@@ -131,17 +131,22 @@ class Environment(Segments):
     def _segment_start_values(self, end_values: np.ndarray, start: float) -> np.ndarray:
         return np.concatenate([[start], end_values[:-1]])
 
-    def _evaluate(self, t, end_values, start) -> np.ndarray:
-        t = np.asarray(t, float)
-        n = end_values.size
-        k = np.clip(np.searchsorted(self.change_times, t, side="right") - 1, 0, n - 1)
-        t0 = self.change_times[k]
-        t1 = self.change_times[k + 1]
+    def _evaluate(self, t, end_values, start, where=None) -> np.ndarray:
+        """The history of ``end_values`` at ``t``; ``where``: ``_where(t)`` when known."""
+        k, frac = self._where(t) if where is None else where
         begin = self._segment_start_values(end_values, start)[k]
-        frac = np.clip((t - t0) / (t1 - t0), 0.0, 1.0)
         held = end_values[k]
         ramped = begin + (end_values[k] - begin) * frac
         return np.where(self.ramp[k], ramped, held)
+
+    def _where(self, t) -> tuple[np.ndarray, np.ndarray]:
+        """(segment, fraction of it) of each time ``t``."""
+        t = np.asarray(t, float)
+        n = self.ramp.size
+        k = np.clip(np.searchsorted(self.change_times, t, side="right") - 1, 0, n - 1)
+        t0 = self.change_times[k]
+        t1 = self.change_times[k + 1]
+        return k, np.clip((t - t0) / (t1 - t0), 0.0, 1.0)
 
     def temperature(self, t) -> np.ndarray:
         """T(t) in K (right-continuous)."""
@@ -167,8 +172,11 @@ class Environment(Segments):
         if saturation_moisture in self._exposures:
             return self._exposures[saturation_moisture]
 
-        def surface_moisture(t):
-            return saturation_moisture(self.temperature(t), self.relative_humidity(t))
+        def surface_moisture(t):  # T and RH share the segment lookup
+            where = self._where(t)
+            return saturation_moisture(
+                self._evaluate(t, self.temperature_end, self.temperature_start, where),
+                self._evaluate(t, self.humidity_end, self.humidity_start, where))
 
         exposure = Exposure(change_times=self.change_times.copy(), ramp=self.ramp.copy(),
                             temperature=self.temperature, surface_moisture=surface_moisture,

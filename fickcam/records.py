@@ -23,6 +23,7 @@ import csv
 import math
 import re
 from dataclasses import dataclass, replace
+from functools import lru_cache
 from pathlib import Path
 
 import numpy as np
@@ -124,8 +125,30 @@ def _site(name, region) -> str:
 
 
 def read_record(path: Path) -> ClimateRecord:
-    """Read a chamber CSV, a TMY3 CSV or an EPW file (chosen by its content)."""
+    """Read a chamber CSV, a TMY3 CSV or an EPW file (chosen by its content); a file read
+    before and not changed since (same size and modification time) is not read again
+    (a scene's check and its run, a sweep's cases)."""
     path = Path(path)
+    try:
+        stat = path.stat()
+    except FileNotFoundError:
+        raise ValueError(f"history file {str(path)!r} not found") from None
+    except OSError as exc:
+        raise ValueError(f"cannot read history file {str(path)!r}: {exc}") from None
+    return _read_unchanged(str(path.resolve()), stat.st_size, stat.st_mtime_ns)
+
+
+@lru_cache(maxsize=8)
+def _read_unchanged(path: str, size: int, modified: int) -> ClimateRecord:
+    """``read_record`` of a file of this size and modification time (the cache key); its
+    arrays read-only, as they are shared."""
+    record = _read_record(Path(path))
+    for values in (record.time, record.temperature, record.relative_humidity):
+        values.setflags(write=False)
+    return record
+
+
+def _read_record(path: Path) -> ClimateRecord:
     try:
         with open(path, newline="", encoding="utf-8", errors="replace") as handle:
             first = handle.readline()
@@ -175,8 +198,27 @@ def read_history_csv(path: Path) -> ClimateRecord:
 
 
 def _column(path, rows, name, index, unit) -> np.ndarray:
-    """One column in SI: numbers read row by row (a missing value names its
-    line), then converted at once by the unit's affine map (exact for degC)."""
+    """One column in SI: numbers read at once (row by row only when one is not a finite
+    number, so that it names its line), then converted at once by the unit's affine map
+    (exact for degC)."""
+    try:
+        values = np.array([row[index] for _, row in rows], dtype=float)
+    except (ValueError, IndexError):
+        values = None
+    if values is None or not np.all(np.isfinite(values)):
+        values = _column_by_row(path, rows, name, index)
+    if not unit:
+        return values
+    try:
+        offset = to_si(f"0 {unit}", _COLUMNS[name])
+        scale = to_si(f"1 {unit}", _COLUMNS[name]) - offset
+    except ValueError as exc:
+        raise RecordError(path, rows[0][0] - 1 if rows else None, name, str(exc)) from None
+    return offset + scale * values
+
+
+def _column_by_row(path, rows, name, index) -> np.ndarray:
+    """The column read row by row: the first cell that is no finite number names its line."""
     values = np.empty(len(rows))
     for k, (line, row) in enumerate(rows):
         text = row[index].strip() if index < len(row) else ""
@@ -188,14 +230,7 @@ def _column(path, rows, name, index, unit) -> np.ndarray:
             raise RecordError(path, line, name, reason) from None
         if not math.isfinite(values[k]):
             raise RecordError(path, line, name, "missing value")
-    if not unit:
-        return values
-    try:
-        offset = to_si(f"0 {unit}", _COLUMNS[name])
-        scale = to_si(f"1 {unit}", _COLUMNS[name]) - offset
-    except ValueError as exc:
-        raise RecordError(path, rows[0][0] - 1 if rows else None, name, str(exc)) from None
-    return offset + scale * values
+    return values
 
 
 def _checked(path, lines, time, temperature, humidity, source, period, *,

@@ -329,3 +329,14 @@ def test_exact_field_at_a_face_is_the_surface_value():
     t = np.linspace(0, 1e5, 5)
     field = exact_history_field(Sheet(1e-3), ARRHENIUS, history, t, {"z": np.array([0.0, 5e-4])})
     assert np.allclose(field[1:, 0], 2.0)
+
+
+def test_bessel_roots_from_one_table_equal_scipys_for_each_count():
+    """The J0 roots the cylinder series reads come from one table of ROOT_TABLE roots:
+    bit for bit what scipy gives when asked for just that many."""
+    from scipy.special import jn_zeros
+
+    from fickcam.diffusion.series import ROOT_TABLE, _bessel_roots
+
+    for count in (1, 65, 838, ROOT_TABLE, ROOT_TABLE + 3):
+        assert np.array_equal(_bessel_roots(count), jn_zeros(0, count))

@@ -187,3 +187,21 @@ def test_a_plane_result_extended_to_new_times_equals_a_solve_at_both_sets_of_tim
                            rtol=0, atol=64 * np.finfo(float).eps * scale)
         kept = np.searchsorted(both, times)
         assert np.array_equal(getattr(extended, name)[kept], getattr(stored, name))
+
+
+def test_output_ages_of_a_long_record_are_its_ages_least_and_largest_per_bin():
+    """Thinned row by row (no sort of every output x source age), the output ages are still
+    exactly the least and the largest distinct age of each 1/64-decade bin of all of them."""
+    from fickcam.diffusion.timesteps import AGES_PER_DECADE, _output_ages
+
+    rng = np.random.default_rng(7)
+    change = np.concatenate([[0.0], np.cumsum(rng.uniform(0.2, 1.0, 3000) * 1e-3)])
+    ramp, outputs = rng.random(3000) < 0.8, np.linspace(0.0, change[-1], 9)
+    edges = np.unique(np.concatenate(
+        [change[:1], change[1:-1][~ramp[1:]], change[-1:]]
+        + [np.linspace(a, b, 17) for a, b, r in zip(change[1:-1], change[2:], ramp[1:]) if r]))
+    ages = np.unique((outputs[:, None] - edges[None, :]).ravel())
+    ages = ages[ages > 0]
+    bins = np.floor(np.log10(ages) * AGES_PER_DECADE)
+    ends = [ages[bins == b][[0, -1]] for b in np.unique(bins)]
+    assert np.array_equal(_output_ages(change, outputs, ramp), np.unique(np.concatenate(ends)))

@@ -162,11 +162,11 @@ def _bisect(kernel, x, column_values, column: int, cell: int) -> tuple[float, fl
     return low, high
 
 
-def _lagrange(table: Table, ages: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Indices and weights (k, 4) reading K at ``ages`` >= the grid's first: four-point
-    Lagrange in log age."""
+def _lagrange(table: Table, logs: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Indices and weights (k, 4) reading K at ages >= the grid's first (their ``logs``):
+    four-point Lagrange in log age."""
     size = table.kernel.shape[0]
-    x = (np.log(ages) - table.start) / table.step
+    x = (logs - table.start) / table.step
     base = np.clip(np.floor(x).astype(int) - 1, 0, size - 4)
     t = (x - base)[:, None]
     weights = np.concatenate([-(t - 1) * (t - 2) * (t - 3) / 6, t * (t - 2) * (t - 3) / 2,
@@ -174,29 +174,30 @@ def _lagrange(table: Table, ages: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     return base[:, None] + np.arange(4), weights
 
 
-def _hermite(table: Table, ages: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Indices (k, 2) and weights on I and on K (k, 2) reading I at ``ages``: the cubic
-    Hermite interpolant in x = log age with the exact slopes dI/dx = K e^x, so that a
-    difference I(a) - I(b) (a ramp piece) is as accurate as K itself, to O(h^3)."""
+def _hermite(table: Table, logs: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Indices (k, 2) and weights on I and on K (k, 2) reading I at ages (their ``logs``):
+    the cubic Hermite interpolant in x = log age with the exact slopes dI/dx = K e^x, so
+    that a difference I(a) - I(b) (a ramp piece) is as accurate as K itself, to O(h^3)."""
     size = table.kernel.shape[0]
-    x = (np.log(ages) - table.start) / table.step
+    x = (logs - table.start) / table.step
     base = np.clip(np.floor(x).astype(int), 0, size - 2)
     t = x - base
-    h00, h10 = (1 + 2 * t) * (1 - t) ** 2, t * (1 - t) ** 2
-    h01, h11 = t * t * (3 - 2 * t), t * t * (t - 1)
-    grid = np.exp(table.start + table.step * base)
-    slope = table.step * np.stack([grid, grid * math.exp(table.step)], axis=1)
-    return (base[:, None] + np.arange(2), np.stack([h00, h01], axis=1),
-            np.stack([h10, h11], axis=1) * slope)
+    on_i, on_k = np.empty((t.size, 2)), np.empty((t.size, 2))
+    on_i[:, 0], on_k[:, 0] = (1 + 2 * t) * (1 - t) ** 2, t * (1 - t) ** 2   # h00, h10
+    on_i[:, 1], on_k[:, 1] = t * t * (3 - 2 * t), t * t * (t - 1)          # h01, h11
+    grid = np.exp(table.start + table.step * np.arange(size))[base]  # the grid's ages
+    on_k[:, 0] *= table.step * grid
+    on_k[:, 1] *= table.step * (grid * math.exp(table.step))
+    return base[:, None] + np.arange(2), on_i, on_k
 
 
 @dataclass(frozen=True)
 class Sources:
-    """Where Duhamel's sum reads the tables: output row, age and coefficient, for the steps
-    (K) and the changes of slope (I)."""
+    """Where Duhamel's sum reads the tables: output row, age, coefficient and log age (taken
+    once for every table read), for the steps (K) and the changes of slope (I)."""
 
-    steps: tuple[np.ndarray, np.ndarray, np.ndarray]
-    slopes: tuple[np.ndarray, np.ndarray, np.ndarray]
+    steps: tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]
+    slopes: tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]
     outputs: int
 
 
@@ -215,13 +216,14 @@ def sources(force: Forcing) -> Sources:
 
     def reading(coefficient):
         row, node = np.nonzero((ages > 0) & (coefficient != 0)[None, :])
-        return row, ages[row, node], coefficient[node]
+        return row, ages[row, node], coefficient[node], np.log(ages[row, node])
     return Sources(reading(jumps), reading(change), force.outputs.size)
 
 
 def _gather(rows, index, weights, outputs: int, size: int) -> np.ndarray:
-    """(outputs, size): the weights summed per output row and grid point."""
-    flat = (rows[:, None] * size + index).ravel()
+    """(outputs, size): the weights summed per output row and grid point (``index`` (k, j)
+    of grid points, or their flat positions ``rows * size + index`` already)."""
+    flat = (rows[:, None] * size + index).ravel() if index.ndim > 1 else index
     summed = np.bincount(flat, weights.ravel(), minlength=outputs * size)
     return summed.astype(float, copy=False).reshape(outputs, size)  # float even when empty
 
@@ -229,25 +231,33 @@ def _gather(rows, index, weights, outputs: int, size: int) -> np.ndarray:
 def _split(reading, w0: float, power: float):
     """(the reading on the grid; its weight on the first grid point per output row, by the
     short-time law (age / w0)^power for ages below the grid)."""
-    rows, ages, coefficient = reading
+    rows, ages, coefficient, logs = reading
     below = ages < w0
-    return ((rows[~below], ages[~below], coefficient[~below, None]),
+    return ((rows[~below], logs[~below], coefficient[~below, None]),
             (rows[below], coefficient[below] * (ages[below] / w0) ** power))
 
 
-def read(table: Table, where: Sources) -> np.ndarray:
-    """M - M0 at the outputs, shape (outputs, m): steps read K (Lagrange), slope changes
-    read I (Hermite, with K as its slope)."""
-    size, w0, n = table.kernel.shape[0], math.exp(table.start), where.outputs
-    (rows, ages, coefficient), (low_rows, low) = _split(where.steps, w0, 0.5)
-    index, weights = _lagrange(table, ages)
+def read(table: Table, where: Sources) -> tuple[np.ndarray, np.ndarray]:
+    """M - M0 at the outputs, shape (outputs, m), from ``table`` and from its every second
+    point (``Table.coarse``, the same first age: the readings share their split): steps
+    read K (Lagrange), slope changes read I (Hermite, with K as its slope)."""
+    w0, n = math.exp(table.start), where.outputs
+    steps, slopes = _split(where.steps, w0, 0.5), _split(where.slopes, w0, 1.5)
+    return tuple(_read_split(each, steps, slopes, where) for each in (table, table.coarse()))
+
+
+def _read_split(table: Table, steps, slopes, where: Sources) -> np.ndarray:
+    size, n = table.kernel.shape[0], where.outputs
+    (rows, logs, coefficient), (low_rows, low) = steps
+    index, weights = _lagrange(table, logs)
     on_kernel = _gather(rows, index, coefficient * weights, n, size)
     on_kernel[:, 0] += np.bincount(low_rows, low, minlength=n)
-    (rows, ages, coefficient), (low_rows, low) = _split(where.slopes, w0, 1.5)
-    index, on_i, on_k = _hermite(table, ages)
-    on_integral = _gather(rows, index, coefficient * on_i, n, size)
+    (rows, logs, coefficient), (low_rows, low) = slopes
+    index, on_i, on_k = _hermite(table, logs)
+    flat = (rows[:, None] * size + index).ravel()
+    on_integral = _gather(rows, flat, coefficient * on_i, n, size)
     on_integral[:, 0] += np.bincount(low_rows, low, minlength=n)
-    on_kernel += _gather(rows, index, coefficient * on_k, n, size)
+    on_kernel += _gather(rows, flat, coefficient * on_k, n, size)
     return on_kernel @ table.kernel + on_integral @ table.integral + _read_jumps(table, where)
 
 
@@ -256,9 +266,9 @@ def _read_jumps(table: Table, where: Sources) -> np.ndarray:
     for each change of slope (the integral of a step)."""
     total = np.zeros((where.outputs, table.kernel.shape[1]))
     for age, size in table.jumps:
-        rows, ages, coefficient = where.steps
+        rows, ages, coefficient, _ = where.steps
         after = np.bincount(rows, coefficient * (ages > age), minlength=where.outputs)
-        rows, ages, coefficient = where.slopes
+        rows, ages, coefficient, _ = where.slopes
         ramp = np.bincount(rows, coefficient * np.maximum(ages - age, 0.0),
                            minlength=where.outputs)
         total += (after + ramp)[:, None] * size[None, :]
@@ -321,7 +331,7 @@ class LongRecord:
             if per_decade < start and 2 * per_decade <= min(MAX_PER_DECADE, cap):
                 per_decade *= 2
                 continue
-            fine, coarse = read(table, self.where), read(table.coarse(), self.where)
+            fine, coarse = read(table, self.where)
             change = float(np.max(np.abs(fine - coarse), initial=0.0))
             if (not refine or change <= TABLE_SHARE * looser * self.tolerance
                     or 2 * per_decade > min(MAX_PER_DECADE, cap)):

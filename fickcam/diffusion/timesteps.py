@@ -119,12 +119,31 @@ def _output_ages(change_stars: np.ndarray, output_stars: np.ndarray, ramp: np.nd
     share = np.linspace(0.0, 1.0, ramp_points)[None, :] * spread[:, None]
     sources = np.unique(start[:, None] + (stop - start)[:, None] * share)
     age = np.asarray(output_stars, float)[:, None] - sources[None, :]
+    if np.count_nonzero(age > 0, axis=1).max(initial=0) > MAX_AGES:
+        # more than MAX_AGES distinct ages in one output's row alone: thin each row (its
+        # ages fall along it) to its bins' ends, then those (the same least and largest)
+        return _thinned(np.unique(np.concatenate([_bin_ends(row[row > 0]) for row in age])))
     found = np.unique(age[age > 0])
     if found.size == 0:
         return np.array([1.0])
-    if found.size <= MAX_AGES:
-        return found
-    bins = np.floor(np.log10(found) * AGES_PER_DECADE)
+    return found if found.size <= MAX_AGES else _thinned(found)
+
+
+def _bins(ages: np.ndarray) -> np.ndarray:
+    return np.floor(np.log10(ages) * AGES_PER_DECADE)
+
+
+def _thinned(found: np.ndarray) -> np.ndarray:
+    """The least and the largest of sorted ``found`` in each bin of 1/AGES_PER_DECADE decade."""
+    bins = _bins(found)
     first = np.flatnonzero(np.diff(bins, prepend=-np.inf) > 0)
     last = np.flatnonzero(np.diff(bins, append=np.inf) > 0)
     return np.unique(found[np.concatenate([first, last])])
+
+
+def _bin_ends(row: np.ndarray) -> np.ndarray:
+    """The first and the last of ``row`` (monotone) in each bin it crosses."""
+    if row.size == 0:
+        return row
+    turns = np.flatnonzero(np.diff(_bins(row)))
+    return row[np.concatenate([[0], turns, turns + 1, [row.size - 1]])]
