@@ -170,8 +170,7 @@ def read_history_csv(path: Path) -> ClimateRecord:
     try:
         with open(path, newline="", encoding="utf-8") as handle:
             rows = [(line, row) for line, row in enumerate(csv.reader(handle), start=1)
-                    if row and any(cell.strip() for cell in row)
-                    and not row[0].lstrip().startswith("#")]
+                    if _holds_data(row)]
     except FileNotFoundError:
         raise ValueError(f"history file {str(path)!r} not found") from None
     except (OSError, UnicodeDecodeError) as exc:
@@ -195,6 +194,14 @@ def read_history_csv(path: Path) -> ClimateRecord:
     return _checked(path, lines, columns["time"], columns["temperature"],
                     columns["relative_humidity"], f"chamber record {path.name}", None,
                     must_start_at_zero=True)
+
+
+def _holds_data(row: list[str]) -> bool:
+    """A row with some text that is not a comment (``#`` first)."""
+    first = row[0].strip() if row else ""
+    if first:
+        return not first.startswith("#")
+    return any(cell.strip() for cell in row[1:])
 
 
 def _column(path, rows, name, index, unit) -> np.ndarray:
