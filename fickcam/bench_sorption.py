@@ -7,7 +7,9 @@ bench's 61 times, error = largest |mean - reference| (relative to the step):
   Kibler's exact series (``two_phase.two_phase_sheet_uptake``), the disc's FiPy (r, z)
   block march against its exact modes at accuracy 1e-8;
 - concentration-dependent (D = D0 exp(2 c/Mm)): the FiPy slab against a 800-node method
-  of lines (scipy BDF, tolerances 1e-10), an independent discretisation.
+  of lines (scipy BDF, tolerances 1e-10), an independent discretisation; a 6 x 4 x 2 mm
+  plate (CamPlate, the 3-D prisms cut at the mid-plane, ``mirrored``) against the same
+  model run at ``PLANFORM_REFERENCE`` (a fine run: no independent 3-D solution exists).
 """
 from __future__ import annotations
 
@@ -15,18 +17,22 @@ import numpy as np
 
 EXPONENT = 2.0
 EXCHANGE = 0.1   # gamma = beta = EXCHANGE pi^2 D / h^2
+PLANFORM_REFERENCE = 3e-3  # accuracy of the plate's fine reference run
 
 
 def sorption_cases(quick: bool) -> list[tuple]:
     """(name, geometry, law name, models, accuracies)."""
-    from .diffusion import Disc, Sheet
+    from .diffusion import CamPlate, Disc, Sheet
 
     accuracies = (1e-2,) if quick else (1e-2, 1e-3)
+    plate = CamPlate(np.array([0, 6e-3, 6e-3, 0.0]), np.array([0, 0, 4e-3, 4e-3]), 2e-3)
     return [("sheet 2 mm, two-phase", Sheet(2e-3), "langmuir", ("analytic", "slab"), accuracies),
             ("disc r5 x 2 mm, two-phase", Disc(5e-3, 2e-3), "langmuir",
              ("analytic", "axisymmetric"), accuracies),
             ("sheet 2 mm, D exp(2c/Mm)", Sheet(2e-3), "concentration_dependent", ("slab",),
-             accuracies)]
+             accuracies)] + ([] if quick else [  # the 3-D row: full bench only
+            ("plate 6x4x2 mm, D exp(2c/Mm)", plate, "concentration_dependent", ("solid",),
+             (3e-2, 1e-2))])
 
 
 def sorption_row_count(quick: bool) -> int:
@@ -67,6 +73,9 @@ def reference(name, geometry, kind, times, diffusivity, exposure, d_ref):
     from .diffusion.two_phase import two_phase_sheet_uptake
 
     law = _law(kind, d_ref, geometry.thickness)
+    if kind != "langmuir" and not isinstance(geometry, Sheet):
+        return solve(geometry, diffusivity, exposure, times, accuracy=PLANFORM_REFERENCE,
+                     sorption=law).mean, f"fine run ({PLANFORM_REFERENCE:g})"
     if kind != "langmuir":
         return _method_of_lines(times, d_ref, geometry.thickness), "method of lines"
     if isinstance(geometry, Sheet):

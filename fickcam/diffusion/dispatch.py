@@ -30,7 +30,7 @@ from .exposure import Diffusivity, Exposure
 from .geometry import Bar, CamPlate, Disc, LinkBar, Sheet
 from .forcing import RECORD_SHARE, is_long_record
 from .langmuir import langmuir_history
-from .nonlinear import fastest, refined, solve_nonlinear
+from .nonlinear import nonlinear_plan, solve_nonlinear
 from .planmodes import planform_design, planform_error, planform_source
 from .timesteps import earliest_output
 from .plane import plan_plane, solve_plane
@@ -108,22 +108,28 @@ def plan(geometry, diffusivity: Diffusivity, exposure: Exposure, times: np.ndarr
 
 def _plan_sorption(geometry, diffusivity, exposure, times, accuracy, model, sorption) -> Plan:
     law = describe(sorption)
-    if is_langmuir(sorption):
-        chosen = _two_phase_model(geometry, model)
-        if chosen == "analytic":
-            return Plan("analytic", 0, 0, f"{law}: exact Fickian modes of the part, each a "
-                        "2x2 free/bound system advanced exactly through the history", accuracy)
-        if chosen == "plane":
-            return _plan_planform(geometry, diffusivity, exposure, times, accuracy, law)
-    else:
-        chosen = _nonlinear_model(geometry, model)
-        diffusivity = fastest(diffusivity, sorption, exposure, times)
-    scales = scales_of(geometry, diffusivity, exposure)
-    direct = plan_direct(geometry, diffusivity, chosen, scales.tau_star(exposure.change_times),
-                         scales.tau_star(np.asarray(times, float)), accuracy, exposure)
     if is_nonlinear(sorption):
-        direct = refined(direct, sorption, exposure, times)
+        chosen = _nonlinear_model(geometry, model)
+        direct = nonlinear_plan(lambda d, a: _direct_plan(geometry, d, chosen, exposure, times, a),
+                                diffusivity, sorption, exposure, times, accuracy)
+        mirror = {Bar: "; solved on one octant (mirror planes)",
+                  CamPlate: "; solved on half the thickness (mid-plane mirror)",
+                  LinkBar: "; solved on half the thickness (mid-plane mirror)"}
+        return replace(direct, reason=f"{law}; {direct.reason}{mirror.get(type(geometry), '')}")
+    chosen = _two_phase_model(geometry, model)
+    if chosen == "analytic":
+        return Plan("analytic", 0, 0, f"{law}: exact Fickian modes of the part, each a "
+                    "2x2 free/bound system advanced exactly through the history", accuracy)
+    if chosen == "plane":
+        return _plan_planform(geometry, diffusivity, exposure, times, accuracy, law)
+    direct = _direct_plan(geometry, diffusivity, chosen, exposure, times, accuracy)
     return replace(direct, reason=f"{law}; {direct.reason}")
+
+
+def _direct_plan(geometry, diffusivity, chosen, exposure, times, accuracy) -> Plan:
+    scales = scales_of(geometry, diffusivity, exposure)
+    return plan_direct(geometry, diffusivity, chosen, scales.tau_star(exposure.change_times),
+                       scales.tau_star(np.asarray(times, float)), accuracy, exposure)
 
 
 def _plan_planform(geometry, diffusivity, exposure, times, accuracy, law) -> Plan:
@@ -138,10 +144,15 @@ def _plan_planform(geometry, diffusivity, exposure, times, accuracy, law) -> Pla
 
 
 def _nonlinear_model(geometry, model: str) -> str:
-    """Concentration-dependent D: FiPy sweeps on the slab (Sheet) or (r, z) grid (Disc)."""
-    if not isinstance(geometry, (Sheet, Disc)):
-        raise InputError(f"concentration_dependent sorption is solved for a Sheet or a Disc, "
-                         f"not yet for a {type(geometry).__name__}")
+    """Concentration-dependent D: FiPy sweeps on the part's own mesh: the slab (Sheet),
+    the (r, z) grid (Disc), 3-D cells cut at the mirror planes (Bar, CamPlate, LinkBar:
+    ``mirrored``). No exact series and no planform x sheet product exist for D(c) (the
+    Laplacian no longer separates): ``analytic`` means the mesh model, ``plane`` is refused."""
+    if model == "plane":
+        raise InputError(f"diffusion.model {model} has no concentration-dependent form (D(c) "
+                         f"does not separate); use solid or auto for a {type(geometry).__name__}")
+    if isinstance(geometry, (Bar, CamPlate, LinkBar)):
+        return "solid"
     return NUMERICAL_MODEL[type(geometry)] if model in ("auto", "analytic") else model
 
 
