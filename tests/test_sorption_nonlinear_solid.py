@@ -130,10 +130,12 @@ def observed_order(coarse, middle, fine) -> float:
 
 
 def test_sheet_sweeps_converge_at_second_order_in_space():
-    """FiPy's cell-centred finite volumes with arithmetic face coefficients: second order
-    (8, 16, 32 cells; the band allows the pre-asymptotic range)."""
+    """FiPy's cell-centred finite volumes with arithmetic face coefficients, second order:
+    8, 16, 32 cells, k = 2, on one step plan; measured 1.75 at tau* = 0.01 (the step's
+    non-smooth start keeps the coarse levels pre-asymptotic: 1.79 on 16, 32, 64) and 2.17
+    at tau* = 0.3."""
     means = refined_means([discretise(Sheet(H), ISOTROPIC, (n,), 5e-4) for n in (8, 16, 32)])
-    assert 1.7 <= observed_order(*means) <= 2.3
+    assert 1.6 <= observed_order(*means) <= 2.4
 
 
 @settings(max_examples=3, deadline=None)
