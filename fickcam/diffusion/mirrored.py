@@ -17,7 +17,7 @@ import numpy as np
 
 from . import layout
 from .discretisation import Discretisation, assemble
-from .fv import _bounds, _grid_axis, interval_overlap, normalised
+from .fv import _grid_axis, near_faces, normalised
 from .fvprism import prism
 from .geometry import Bar, CamPlate, LinkBar
 from .prism import band_share
@@ -65,12 +65,7 @@ def octant(bar: Bar, d, cells, finest: float, growth: float,
     exposed = np.asarray(mesh.exteriorFaces, bool) & np.any(np.isclose(centres, 0.0, atol=1e-12),
                                                            axis=0)
     volumes, stiffness, boundary = assemble(mesh, exposed=exposed)
-    index = np.unravel_index(np.arange(volumes.size), tuple(w.size for w in widths[::-1]))[::-1]
-    whole, inner = np.ones(volumes.size), np.ones(volumes.size)
-    for w, i, length in zip(widths, index, size):
-        lo, hi = _bounds(w, i)
-        whole *= hi - lo
-        inner *= interval_overlap(lo, hi, layer_depth, length - layer_depth)
     cells = [np.asarray(a) / s for a, s in zip(mesh.cellCenters, scale)]
     return Discretisation(volumes, stiffness, boundary, normalised(volumes),
-                          normalised(whole - inner), dict(zip("xyz", cells)))
+                          normalised(near_faces(widths, size, layer_depth)),
+                          dict(zip("xyz", cells)))
