@@ -175,3 +175,25 @@ def test_link_planform_modes_without_binding_match_the_fickian_plane_model():
     assert np.max(np.abs(modes.mean - fickian.mean)) / 2.0 < 1e-2
     bound = solve(link, diffusivity, STEP_DOWN, times, accuracy=1e-2, sorption=law(2e-7, 6e-7))
     assert np.all(bound.bound > 0) and np.all(bound.bound < bound.mean)
+
+
+def test_cam_plate_fipy_prisms_match_the_exact_disc_after_an_rh_step_down():
+    """``solid``: FiPy prisms of the circular plate with the coupled free/bound block
+    operator (``coupled``), against the exact two-phase disc modes: within the accuracy,
+    and the error falls with it (about first order in the accuracy, as for Fick: the plan
+    sizes cells and steps so that the estimate is proportional to it)."""
+    sorption = law(2e-7, 6e-7)
+    times = PLATE_TIMES[1::2]
+    exact = solve(Disc(0.005, 0.006), PLATE_DIFFUSIVITY, STEP_DOWN, times, accuracy=1e-7,
+                  sorption=sorption)
+    errors = []
+    for accuracy in (3e-2, 1e-2, 3e-3):
+        prisms = solve(circular_plate(), PLATE_DIFFUSIVITY, STEP_DOWN, times, accuracy=accuracy,
+                       model="solid", sorption=sorption)
+        assert prisms.model == "solid"
+        error = max(np.max(np.abs(prisms.mean - exact.mean)),
+                    np.max(np.abs(prisms.bound - exact.bound))) / 2.0
+        assert error < prisms.error_estimate <= accuracy
+        errors.append(error)
+    orders = np.log(np.array(errors[:-1]) / errors[1:]) / np.log([3.0, 10.0 / 3.0])
+    assert np.all((0.6 < orders) & (orders < 1.4)), orders
