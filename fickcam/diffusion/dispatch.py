@@ -69,7 +69,7 @@ def _no_exact_reason(geometry) -> str:
 
 def _two_phase_model(geometry, model: str) -> str:
     """Langmuir sorption: the exact modes where the part has them; a CamPlate or LinkBar
-    ``plane``: its planform's eigenmodes x the exact sheet (``planmodes``), or ``solid``
+    ``plane``: its planform's quadrature x the exact sheet (``planmodes``), or ``solid``
     prisms; else the direct finite volumes (``coupled``)."""
     if model in ("auto", "analytic") and exact_available(geometry):
         return "analytic"
