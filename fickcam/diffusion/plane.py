@@ -38,7 +38,7 @@ from .outline import outline_extent
 from .p1 import plane_operator
 from .results import DiffusionResult, Plan
 from .scaling import planar_scale, stretch_of
-from .shorttime import expansion_of, sheet_fraction, weighted
+from .shorttime import expansion_of, outline_chords, sheet_fraction, weighted
 from .stepresponse import blend, step_response
 from .tabulated import LongRecord, Same
 from .timesteps import earliest_output, geometric_steps, output_ages
@@ -157,6 +157,11 @@ def planform_response(geometry, finest: float, growth: float, d: tuple, layer_de
     response, pair = step_response(planar, end, per_doubling, first_step,
                                    keep_fields=keep_fields, part=part)
     return planar, response, pair
+
+
+#: what a process keeps between the runs of one geometry (sweep cases): clear these for
+#: the cost of a run whose geometry is new
+CASE_CACHES = (planform_response, planform_mesh, expansion_of, outline_chords)
 
 
 def expansion_error_at(expansion, ages: np.ndarray) -> float:

@@ -178,7 +178,7 @@ def short_time(part, scale: np.ndarray, layer_depth: float, spacing: float) -> S
     moments = np.zeros(_disc_coefficients().size)
     weights, depths, curvatures = [], [], []
     scaled = [loop * scale[None, :] for loop in loops]
-    chords, chord_lengths = inward_chords(scaled, 0.25 * spacing * float(np.max(scale)))
+    chords, chord_lengths = outline_chords(part, tuple(float(s) for s in scale), spacing)
     for loop, p, is_contact in zip(loops, scaled, contact):
         length = np.hypot(*(np.roll(p, -1, axis=0) - p).T)
         turn = turning_angles(p)
@@ -210,6 +210,17 @@ def short_time(part, scale: np.ndarray, layer_depth: float, spacing: float) -> S
                      weights / weights.sum(), np.concatenate(depths), np.concatenate(curvatures),
                      float(np.concatenate(curvatures) ** 2 @ (weights / weights.sum())),
                      chords, chord_lengths)
+
+
+@lru_cache(maxsize=16)
+def outline_chords(part, scale: tuple[float, float], spacing: float):
+    """``inward_chords`` of the part's outline (``boundary_loops`` at ``spacing``) scaled by
+    ``scale``: plan and solve ask for the expansion at two layer depths, which leave the
+    chords alone (half the expansion's cost)."""
+    loops, _ = boundary_loops(part, spacing)
+    factor = np.asarray(scale)
+    return inward_chords([loop * factor[None, :] for loop in loops],
+                         0.25 * spacing * float(np.max(factor)))
 
 
 def inward_chords(loops: list[np.ndarray], spacing: float) -> tuple[np.ndarray, np.ndarray]:
