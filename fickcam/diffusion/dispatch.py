@@ -31,7 +31,7 @@ from .geometry import Bar, CamPlate, Disc, LinkBar, Sheet
 from .forcing import RECORD_SHARE, is_long_record
 from .langmuir import history_swing, langmuir_history
 from .nonlinear import fastest, refined, solve_nonlinear
-from .planmodes import LAYER_TOLERANCE, planform_design, refined_planform
+from .planmodes import LAYER_TOLERANCE, PLANFORM_CAP, planform_design, refined_planform
 from .timesteps import earliest_output
 from .plane import plan_plane, solve_plane
 from .results import DiffusionResult, Plan
@@ -206,9 +206,11 @@ def _langmuir_modes(geometry, diffusivity, exposure, times, chosen, sorption, de
                                chosen.growth, read_ages(RescaledTime(diffusivity, exposure),
                                                         exposure, times), share, measure)
     history, estimate = refined.result
+    capped = ("" if refined.error <= share else
+              f"; capped at {PLANFORM_CAP} cells: error above the requested accuracy")
     chosen = replace(chosen, cells=refined.cells, cells_per_axis=(refined.cells,),
                      reason=f"{chosen.reason}; refined to {refined.cells} cells "
-                            f"({refined.levels} meshes), {refined.steps}-point quadrature")
+                            f"({refined.levels} meshes), {refined.steps}-point quadrature{capped}")
     return _langmuir_result(times, history, estimate + refined.error, chosen)
 
 
