@@ -97,13 +97,15 @@ def _parser() -> argparse.ArgumentParser:
     bench = _command(sub, "bench", "the diffusion speed/accuracy trade",
                      "Measure each diffusion model's wall time and error against exact solutions "
                      "on reference geometries (about 3 min; --quick about 10 s); --records: the "
-                     "cost of hourly weather records against a constant climate.",
+                     "cost of hourly weather records against a constant climate, and a solid "
+                     "disc's error through a whole TMY3 year against its exact modes.",
                      "fickcam bench --quick", "fickcam bench --records")
     bench.add_argument("--quick", action="store_true",
                        help="each geometry at its coarsest target, no 3-D solid rows (seconds)")
     bench.add_argument("--quiet", action="store_true", help="no progress bar, only the table")
     bench.add_argument("--records", action="store_true",
-                       help="cost of 1, 3, 12 months of hourly weather against a constant climate")
+                       help="cost of 1, 3, 12 months of hourly weather against a constant climate, "
+                       "then a year's accuracy (--quick: 1 and 3 months, no accuracy)")
 
     materials = _command(sub, "materials", "the built-in material library with sources",
                          "List the built-in materials (key values and sources), or show one "
@@ -295,9 +297,12 @@ BENCH_EXPECTED = {False: "about 3 min", True: "about 10 s"}
 
 def _cmd_bench(args) -> int:
     if args.records:
-        from .bench_records import format_record_table, run_record_bench
+        from .bench_records import (format_record_table, format_year_accuracy,
+                                    run_record_bench, year_accuracy)
 
         print(format_record_table(run_record_bench(months=(1, 3) if args.quick else (1, 3, 12))))
+        if not args.quick:
+            print(format_year_accuracy(year_accuracy()))
         return 0
     from tqdm.auto import tqdm
 

@@ -48,6 +48,8 @@ def case_coordinates(sweep: Sweep, records: dict[int, dict]) -> dict:
         given = parameter.given_unit([c.values[parameter.path] for c in sweep.cases])
         if given and given != parameter.units:
             attrs["given_units"] = given  # the unit the sweep file wrote (degC): for display
+        if parameter.path == "environment.history_file":
+            attrs.update(_site_labels(values[parameter.name], sweep.base_dir))
         coords[parameter.name] = xr.Variable("case", values[parameter.name], attrs)
     coords["case_description"] = xr.Variable(
         "case", np.asarray([sweep.describe(c) for c in sweep.cases], dtype=object),
@@ -63,6 +65,16 @@ def case_coordinates(sweep: Sweep, records: dict[int, dict]) -> dict:
     coords["case_wall_time"] = xr.Variable("case", np.asarray(wall),
                                            {"long_name": "wall time of the case", "units": "s"})
     return coords
+
+
+def _site_labels(files, base_dir) -> dict:
+    """``value_labels``: each weather file's site by the file's own metadata (JSON, value ->
+    "Sand Point, AK"), for legends and ticks; {} when no value names a weather file."""
+    from ..records import site_name
+
+    labels = {str(f): site_name(str(f), base_dir) for f in dict.fromkeys(np.asarray(files).tolist())}
+    labels = {value: site for value, site in labels.items() if site}
+    return {"value_labels": json.dumps(labels)} if labels else {}
 
 
 def sweep_attributes(sweep: Sweep, records: dict[int, dict], started: float | None) -> dict:
