@@ -393,7 +393,8 @@ def _cmd_compensate(args) -> int:
 
 
 def _cmd_profile(args) -> int:
-    from .cam.model import design_from_scene, working_profile
+    from .cam.design import design_from_scene
+    from .cam.kinematics import working_profile
     from .cam.profile import write_profile_csv, write_profile_dxf
     from .scene import load_scene
 
