@@ -434,9 +434,9 @@ COMMANDS = {"run": _cmd_run, "check": _cmd_check, "query": _cmd_query, "export":
 
 
 def main(argv: list[str] | None = None) -> int:
-    # At exit the interpreter's last garbage collection walks every object the imports made
-    # (numpy, scipy, pandas, xarray, h5py: a few million) only to free them with the process;
-    # frozen first (gc.freeze), they are freed without it: 0.2-0.3 CPU s of a demo run.
+    # At exit the interpreter's garbage collections walk every object the imports made
+    # (numpy, scipy, pandas, xarray, h5py) only to free them with the process; frozen first
+    # (gc.freeze) they are skipped: 0.2-0.3 CPU s of a demo run, measured as whole processes.
     atexit.unregister(gc.freeze)  # once, however often main() runs in one process
     atexit.register(gc.freeze)
     args = _parser().parse_args(argv)
