@@ -80,9 +80,11 @@ def _two_phase_model(geometry, model: str) -> str:
 
 
 def plan(geometry, diffusivity: Diffusivity, exposure: Exposure, times: np.ndarray,
-         accuracy: float = 1e-3, model: str = "auto", sorption=None) -> Plan:
+         accuracy: float = 1e-3, model: str = "auto", sorption=None,
+         surface_layer_depth: float | None = None) -> Plan:
     """The model, cells and steps ``solve`` will use, and why, without solving
-    (``sorption``: a law of ``diffusion.sorption``, None for Fick)."""
+    (``sorption``: a law of ``diffusion.sorption``, None for Fick; ``surface_layer_depth``:
+    the solve's, so that a plane plan and its solve share one outline expansion)."""
     _validate(geometry, model, accuracy)
     if is_langmuir(sorption) or is_nonlinear(sorption):
         return _plan_sorption(geometry, diffusivity, exposure, times, accuracy, model, sorption)
@@ -103,7 +105,8 @@ def plan(geometry, diffusivity: Diffusivity, exposure: Exposure, times: np.ndarr
     outputs = scales.tau_star(np.asarray(times, float))
     if chosen == "plane":  # expansion of the outline, then a graded mesh (plane)
         share = 1.0 - RECORD_SHARE if is_long_record(exposure) else 1.0  # the rest: the sum
-        return plan_plane(geometry, diffusivity, change, outputs, exposure.ramp, share * accuracy)
+        return plan_plane(geometry, diffusivity, change, outputs, exposure.ramp, share * accuracy,
+                          surface_layer_depth)
     return plan_direct(geometry, diffusivity, chosen, change, outputs, accuracy, exposure)
 
 
@@ -154,7 +157,8 @@ def solve(geometry, diffusivity: Diffusivity, exposure: Exposure, times: np.ndar
     ``sorption`` law (``diffusion.sorption``) the mean and surface are the total (free +
     bound) moisture and, for Langmuir, ``bound`` the bound-water mean."""
     times = np.asarray(times, float)
-    chosen = plan(geometry, diffusivity, exposure, times, accuracy, model, sorption)
+    chosen = plan(geometry, diffusivity, exposure, times, accuracy, model, sorption,
+                  surface_layer_depth)
     log.debug("%s: %s, %d cells, %d steps (%s)", part or type(geometry).__name__, chosen.model,
               chosen.cells, chosen.steps, chosen.reason)
     if sorption is not None and (is_langmuir(sorption) or is_nonlinear(sorption)):
