@@ -32,8 +32,7 @@ from pathlib import Path
 
 import numpy as np
 
-from fickcam.diffusion.plane import planform_mesh, planform_response
-from fickcam.diffusion.shorttime import expansion_of
+from fickcam.diffusion.plane import CASE_CACHES
 from fickcam.simulate import run
 from fickcam.store import open_result
 from fickcam.sweep import run_sweep
@@ -59,7 +58,7 @@ def single_run_time(repeats: int = 3) -> float:
     run(BASE)
     times = []
     for _ in range(repeats):
-        for cache in (planform_response, planform_mesh, expansion_of):
+        for cache in CASE_CACHES:
             cache.cache_clear()
         started = time.perf_counter()
         run(BASE)

@@ -8,7 +8,7 @@ right-continuous functions of time; past the end the last values are held.
 """
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
@@ -33,6 +33,9 @@ class Environment(Segments):
     #: NaN where the state gives a relative humidity instead); None for a climate history
     state_times: np.ndarray | None = None
     state_moisture: np.ndarray | None = None
+    #: each material's Exposure, made once (parts of one material share it, and with it
+    #: the rescaled clock ``diffusion.clock.clock_of`` builds from a record's rows)
+    _exposures: dict = field(default_factory=dict, init=False, repr=False, compare=False)
 
     # ------------------------------------------------------------------ build
     @classmethod
@@ -161,9 +164,14 @@ class Environment(Segments):
         ``saturation_moisture(T, RH)`` (weight %)."""
         from .diffusion import Exposure
 
+        if saturation_moisture in self._exposures:
+            return self._exposures[saturation_moisture]
+
         def surface_moisture(t):
             return saturation_moisture(self.temperature(t), self.relative_humidity(t))
 
-        return Exposure(change_times=self.change_times.copy(), ramp=self.ramp.copy(),
-                        temperature=self.temperature, surface_moisture=surface_moisture,
-                        initial_moisture=self.initial_moisture)
+        exposure = Exposure(change_times=self.change_times.copy(), ramp=self.ramp.copy(),
+                            temperature=self.temperature, surface_moisture=surface_moisture,
+                            initial_moisture=self.initial_moisture)
+        self._exposures[saturation_moisture] = exposure
+        return exposure

@@ -22,7 +22,7 @@ from __future__ import annotations
 import csv
 import math
 import re
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 
 import numpy as np
@@ -57,6 +57,7 @@ class ClimateRecord:
     relative_humidity: np.ndarray
     source: str
     period: float | None = None
+    site: str = ""  # a weather file's site ("Greensboro Piedmont Triad Int, NC"), else ""
 
     @property
     def end(self) -> float:
@@ -71,7 +72,8 @@ class ClimateRecord:
         return ClimateRecord(np.tile(self.time, repeats) + shifts,
                              np.tile(self.temperature, repeats),
                              np.tile(self.relative_humidity, repeats),
-                             f"{self.source}, repeated {repeats} times", self.period)
+                             f"{self.source}, repeated {repeats} times", self.period,
+                             self.site)
 
     def cut(self, until: float) -> "ClimateRecord":
         """The rows up to the first at or past ``until`` (s): a run computes nothing past
@@ -81,7 +83,7 @@ class ClimateRecord:
             return self
         keep = slice(0, last + 1)
         return ClimateRecord(self.time[keep], self.temperature[keep],
-                             self.relative_humidity[keep], self.source, self.period)
+                             self.relative_humidity[keep], self.source, self.period, self.site)
 
 
 def resolve_record_path(text: str, base_dir: Path) -> Path:
@@ -102,6 +104,23 @@ def resolve_record_path(text: str, base_dir: Path) -> Path:
         return path
     path = Path(text)
     return path if path.is_absolute() else base_dir / path
+
+
+def site_name(text: str, base_dir: Path) -> str:
+    """The site of the weather file a scene's ``history_file`` names (TMY3 ``Name``, ``State``;
+    EPW ``city``, ``state-prov``, as pvlib reads them), for legends; "" for a chamber log or
+    a file that cannot be read here."""
+    try:
+        return read_record(resolve_record_path(text, base_dir)).site
+    except ValueError:
+        return ""
+
+
+def _site(name, region) -> str:
+    """``NAME, REGION`` with an all-capitals name in title case (TMY3 writes capitals)."""
+    name = str(name or "").strip('"').strip()
+    name = name.title() if name.isupper() else name
+    return ", ".join(part for part in (name, str(region or "").strip()) if part)
 
 
 def read_record(path: Path) -> ClimateRecord:
@@ -219,7 +238,7 @@ def _looks_like_tmy3(first_line: str) -> bool:
     return len(fields) == 7 and fields[0].strip().isdigit() and len(fields[0].strip()) == 6
 
 
-def _weather_record(path, frame, first_data_line, missing, source) -> ClimateRecord:
+def _weather_record(path, frame, first_data_line, missing, source, site) -> ClimateRecord:
     """Hourly dry-bulb (degC) and RH (%) of one weather year, as a periodic record."""
     lines = first_data_line + np.arange(len(frame))
     for column, sentinel in missing.items():
@@ -236,7 +255,8 @@ def _weather_record(path, frame, first_data_line, missing, source) -> ClimateRec
     temperature = frame["temp_air"].to_numpy(float) + 273.15
     humidity = frame["relative_humidity"].to_numpy(float)
     period = seconds[-1] + step[0] if step.size else None
-    return _checked(path, lines, seconds, temperature, humidity, source, period)
+    return replace(_checked(path, lines, seconds, temperature, humidity, source, period),
+                   site=site)
 
 
 def _read_tmy3(path: Path) -> ClimateRecord:
@@ -252,7 +272,8 @@ def _read_tmy3(path: Path) -> ClimateRecord:
     name = str(meta.get("Name", "")).strip('"').strip()
     source = f"TMY3 {name}, {meta.get('State', '')} (USAF {meta.get('USAF', '?')})"
     return _weather_record(path, frame, _TMY3_HEADER_LINES + 1,
-                           {"temp_air": None, "relative_humidity": None}, source)
+                           {"temp_air": None, "relative_humidity": None}, source,
+                           _site(name, meta.get("State")))
 
 
 def _read_epw(path: Path) -> ClimateRecord:
@@ -265,4 +286,5 @@ def _read_epw(path: Path) -> ClimateRecord:
     except Exception as exc:
         raise RecordError(path, None, None, f"not a readable EPW file ({exc})") from None
     source = f"EPW {meta.get('city', '')}, {meta.get('country', '')}".strip(", ")
-    return _weather_record(path, frame, _EPW_HEADER_LINES + 1, _EPW_MISSING, source)
+    return _weather_record(path, frame, _EPW_HEADER_LINES + 1, _EPW_MISSING, source,
+                           _site(meta.get("city"), meta.get("state-prov")))

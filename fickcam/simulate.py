@@ -90,7 +90,8 @@ def plan_parts(scene: Scene, accuracy: float | None = None):
         plans.append((part, _for_part(part.name, plan, part.geometry, diffusivity, exposure, times,
                                       accuracy=options["accuracy"],
                                       model=part_model(options, part.name),
-                                      sorption=part.material.sorption_law())))
+                                      sorption=part.material.sorption_law(),
+                                      surface_layer_depth=options["surface_layer_depth"])))
     return environment, times, options, plans
 
 
@@ -104,9 +105,10 @@ def run(scene, *, accuracy: float | None = None, progress: bool = False):
     environment = scene_environment(scene)
     times = ageing_times(scene, environment)
     parts = build_parts(scene)
-    ds = _age(scene, environment, times, accuracy, progress, parts=parts)
+    ds, histories = _age(scene, environment, times, accuracy, progress, parts=parts)
     if scene.limits:
-        ds = ds.merge(_limits(ds, scene, environment, times, accuracy, parts), compat="override")
+        ds = ds.merge(_limits(ds, scene, environment, times, accuracy, parts, histories),
+                      compat="override")
         ds.attrs["limits"] = {limit.variable: limit.as_attrs() for limit in scene.limits}
     ds.attrs["wall_time"] = _time.perf_counter() - started
     return ds
@@ -114,8 +116,9 @@ def run(scene, *, accuracy: float | None = None, progress: bool = False):
 
 def _age(scene: Scene, environment: Environment, times: np.ndarray, accuracy: float | None,
          progress: bool, parts: list[Part] | None = None):
-    """The Dataset of ``scene`` at ageing ``times`` (s); ``parts``: the scene's parts when
-    already built (their outline expansions are cached per part object)."""
+    """The Dataset of ``scene`` at ageing ``times`` (s) and the part histories;
+    ``parts``: the scene's parts when already built (their outline expansions are cached
+    per part object)."""
     from .dataset import build_dataset
 
     values, coords, notices, histories = _aged_values(scene, environment, times, accuracy,
@@ -136,18 +139,19 @@ def _age(scene: Scene, environment: Environment, times: np.ndarray, accuracy: fl
         "notices": notices,
         "Conventions": "CF-1.8",
     }
-    return build_dataset(values, coords, attrs)
+    return build_dataset(values, coords, attrs), histories
 
 
 def _aged_values(scene: Scene, environment: Environment, times: np.ndarray,
                  accuracy: float | None, progress: bool, parts: list[Part] | None = None,
-                 diffusion_times: np.ndarray | None = None):
+                 stored: tuple[np.ndarray, list[PartHistory]] | None = None):
     """(values, coords, notices, part histories) of ``scene`` at ageing ``times`` (s): every
     variable but the as-designed ones, as SI arrays keyed by schema name.
-    ``diffusion_times``: sorted times that include ``times`` at which to solve diffusion
-    (the limit search passes the stored run's times too, so the solve has the stored run's
-    plan and reuses its cached step responses); the part histories are then taken at
-    ``times``."""
+    ``stored``: the stored run's times and part histories (the limit search): diffusion is
+    then taken at the stored times and ``times`` together, so it has the stored run's plan
+    and its material state the stored run's past (validity up to the wet Tg): extended from
+    the stored solve where it can (``DiffusionResult.extend``: only the new times are
+    summed), else re-solved at both; the part histories are then taken at ``times``."""
     from tqdm.auto import tqdm
 
     options = diffusion_options(scene, accuracy)
@@ -159,14 +163,19 @@ def _aged_values(scene: Scene, environment: Environment, times: np.ndarray,
     bar = tqdm(total=len(parts) + len(times), disable=not progress, desc=scene.name,
                unit="step", leave=False)
 
-    histories = []
-    solve_times = times if diffusion_times is None else diffusion_times
-    for part in parts:
+    histories, solved = [], {}
+    stored_times, befores = stored if stored is not None else (None, [None] * len(parts))
+    for part, before in zip(parts, befores):
         bar.set_postfix_str(f"diffusion {part.name}")
-        history = age_part(part, environment, solve_times, options, scene, notices,
-                           keep_field=part.name in elastic)
-        if diffusion_times is not None:
-            history = history.at_rows(np.searchsorted(diffusion_times, times))
+        if before is None:
+            history = age_part(part, environment, times, options, scene, notices,
+                               keep_field=part.name in elastic, solved=solved)
+        else:
+            both = np.union1d(stored_times, times)
+            history = age_part(part, environment, both, options, scene, notices,
+                               keep_field=part.name in elastic, before=before.diffusion,
+                               solved=solved)
+            history = history.at_rows(np.searchsorted(both, times))
         histories.append(history)
         bar.update()
     values = {"temperature": environment.temperature(times),
@@ -198,7 +207,7 @@ def _aged_values(scene: Scene, environment: Environment, times: np.ndarray,
 
 
 def _limits(ds, scene: Scene, environment: Environment, times, accuracy: float | None,
-            parts: list[Part]):
+            parts: list[Part], histories: list[PartHistory]):
     """limit_ratio (time, limit) and time_out_of_spec (limit) of the scene's limits, each
     crossing located by re-running the model inside its bracketing interval."""
     from .dataset import build_dataset
@@ -218,13 +227,13 @@ def _limits(ds, scene: Scene, environment: Environment, times, accuracy: float |
                if design_name(n) in ds}
 
     def evaluate(at) -> np.ndarray:
-        """The ratios at ageing times ``at`` (inside the stored span): diffusion re-solved at
-        the stored times and ``at`` together, so its plan and cached step responses are the
-        stored run's; the mechanisms evaluated at ``at`` only; only the limited variables
-        go into the Dataset, beside the stored run's as-designed values."""
+        """The ratios at ageing times ``at`` (inside the stored span): diffusion at the
+        stored times and ``at`` together (``_aged_values``), so its plan and cached step
+        responses are the stored run's; the mechanisms evaluated at ``at`` only; only the
+        limited variables go into the Dataset, beside the stored run's as-designed values."""
         at = np.asarray(at, float)
         values, coords, _, _ = _aged_values(scene, environment, at, accuracy, False, parts,
-                                            diffusion_times=np.union1d(times, at))
+                                            stored=(times, histories))
         kept = {name: value for name, value in values.items() if name in names}
         dims = {dim for name in kept for dim in VARIABLES[name].dims}
         return ratios(build_dataset(kept, {c: v for c, v in coords.items() if c in dims})
@@ -240,9 +249,14 @@ def _limits(ds, scene: Scene, environment: Environment, times, accuracy: float |
 
 
 def age_part(part: Part, environment: Environment, times, options: dict, scene: Scene,
-             notices: list[str], keep_field: bool = False) -> PartHistory:
+             notices: list[str], keep_field: bool = False, before=None,
+             solved: dict | None = None) -> PartHistory:
     """Diffusion, then the material state, of one part over the ageing times (its moisture
-    field kept when the scene stores fields or ``keep_field``: its swelling stress)."""
+    field kept when the scene stores fields or ``keep_field``: its swelling stress);
+    ``before``: a DiffusionResult of this part at some of ``times``, extended to the others
+    where it can be (``_extended``) instead of solving again; ``solved``: the diffusion
+    results of the run's earlier parts by shape, material and fields kept (parts alike in
+    all three absorb alike, e.g. a four-bar's coupler and rocker: solved once)."""
     from .diffusion import solve
 
     temperature = environment.temperature(times)
@@ -255,12 +269,17 @@ def age_part(part: Part, environment: Environment, times, options: dict, scene: 
             part.material.saturation_moisture, times)
     else:
         exposure = environment.exposure(part.material.saturation_moisture)
-        result = _for_part(part.name, solve, part.geometry,
-                           part.material.diffusivity_for(part.geometry), exposure, times,
-                           accuracy=options["accuracy"], model=part_model(options, part.name),
-                           surface_layer_depth=options["surface_layer_depth"],
-                           store_fields=scene.model.outputs.fields or keep_field, part=part.name,
-                           sorption=part.material.sorption_law())
+        alike = (part.geometry, part.material_name, keep_field)
+        result = (solved or {}).get(alike) or _extended(before, times)
+        if result is None:
+            result = _for_part(part.name, solve, part.geometry,
+                               part.material.diffusivity_for(part.geometry), exposure, times,
+                               accuracy=options["accuracy"], model=part_model(options, part.name),
+                               surface_layer_depth=options["surface_layer_depth"],
+                               store_fields=scene.model.outputs.fields or keep_field,
+                               part=part.name, sorption=part.material.sorption_law())
+        if solved is not None:
+            solved[alike] = result
         mean, surface = result.mean, result.surface  # total (free + bound) moisture
         saturation = exposure.surface_moisture(times)
         if result.error_estimate > options["accuracy"]:  # e.g. capped at MAX_CELLS
@@ -273,6 +292,16 @@ def age_part(part: Part, environment: Environment, times, options: dict, scene: 
         state["bound_moisture_content"] = result.bound
     valid = _valid_until_wet_tg(part, state, temperature, times, notices)
     return PartHistory(part, result, state, valid)
+
+
+def _extended(before, times):
+    """``before`` extended to ``times`` (``DiffusionResult.extend``) when it offers that and
+    ``times`` lie inside its span, else None."""
+    if before is None or before.extend is None:
+        return None
+    if np.min(times) < 0 or np.max(times) > np.max(before.times):
+        return None
+    return before.extend(times)
 
 
 def design_part(part: Part, environment: Environment) -> PartHistory:

@@ -9,11 +9,9 @@ import yaml
 
 import fickcam
 from fickcam.diffusion import CamPlate
-from fickcam.diffusion.plane import planform_mesh, planform_response
-from fickcam.diffusion.shorttime import expansion_of
+from fickcam.diffusion.plane import CASE_CACHES, planform_response
 from test_sweep_run import small_base
 
-CACHES = (planform_response, planform_mesh, expansion_of)
 
 
 def scene(**changes):
@@ -28,7 +26,7 @@ def scene(**changes):
 
 def fresh(data):
     """The run in a process whose caches are empty."""
-    for cache in CACHES:
+    for cache in CASE_CACHES:
         cache.cache_clear()
     return fickcam.run(data)
 

@@ -26,6 +26,7 @@ def test_tmy3_year_reads_hourly_dry_bulb_and_humidity_with_its_winter_frost():
     assert record.temperature.max() - 273.15 == pytest.approx(35.6)
     assert record.relative_humidity.min() == 11 and record.relative_humidity.max() == 100
     assert "GREENSBORO" in record.source
+    assert record.site == "Greensboro Piedmont Triad Int, NC"  # the file's Name and State
 
 
 def test_weather_year_repeats_for_multi_year_ageing():
@@ -67,6 +68,7 @@ def test_epw_file_reads_through_pvlib(tmp_path):
     record = read_record(path)
     assert np.allclose(record.temperature - 273.15, temps)
     assert np.all(record.relative_humidity == 80) and record.period == 48 * HOUR
+    assert record.site == "Testville, ST"  # the LOCATION line's city and state-prov
 
 
 def test_epw_missing_value_is_refused_at_its_line(tmp_path):

@@ -399,3 +399,23 @@ def test_a_run_notes_a_part_whose_estimated_error_exceeds_the_accuracy(monkeypat
     assert any(n.startswith("cam: estimated diffusion error") and "above the requested accuracy"
                in n for n in notices)
     assert not any(n.startswith("follower: estimated") for n in notices)
+
+
+@pytest.mark.parametrize("z", [0.0, 1e-6, 0.03, 0.7, 3.0, 12.0, 1e200])
+def test_contact_layer_integrals_in_closed_form_equal_quadrature(z):
+    """int_0^z erfc and int_0^z s erfc(s) (the layer's mean under a curved edge) against
+    adaptive quadrature, also where sqrt(t) << delta makes erfc a steep front. The second
+    cancels two terms of size z / (2 sqrt(pi)) for small z: an absolute error of a few
+    eps z, negligible beside the first (about z) it is added to."""
+    from scipy.integrate import quad
+    from scipy.special import erfc
+
+    from fickcam.diffusion.shorttime import layer_integrals
+
+    upper = min(z, 40.0)
+    first, second = layer_integrals(z)
+    for value, integrand in ((first, erfc), (second, lambda s: s * erfc(s))):
+        reference, error = quad(integrand, 0.0, upper, epsabs=1e-16, epsrel=1e-13, limit=200,
+                                points=[min(upper, 1.0)] if upper > 1.0 else None)
+        cancelled = 4 * np.finfo(float).eps * upper
+        assert abs(value - reference) <= 1e-13 * reference + error + cancelled

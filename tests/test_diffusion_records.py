@@ -4,10 +4,9 @@ of Greensboro's TMY3 year against an independent modal solution (each mode advan
 exactly; tau from a fine trapezoid rule)."""
 import numpy as np
 import pytest
-from scipy.integrate import cumulative_trapezoid
-from scipy.special import jn_zeros
 
 from fickcam.diffusion import Bar, Diffusivity, Disc, Exposure, Sheet, plan, solve
+from fickcam.bench_records import modal_disc_mean
 from fickcam.diffusion.analytic import exact_history, record_history
 
 DAY = 86400.0
@@ -48,41 +47,22 @@ def test_steps_stay_exact_just_after_they_happen():
 
 def greensboro_weeks(weeks, initial_moisture=0.0):
     pytest.importorskip("pvlib")
-    from fickcam.environment import Environment
-    from fickcam.records import read_record, resolve_record_path
+    from fickcam.bench_records import greensboro
 
-    record = read_record(resolve_record_path("pvlib:723170TYA.CSV", None))
-    rows = 24 * 7 * weeks + 1
-    return Environment.from_samples(record.time[:rows], record.temperature[:rows],
-                                    record.relative_humidity[:rows], 296.15, initial_moisture)
+    return greensboro(24 * 7 * weeks + 1, initial_moisture)
 
 
 def nylon_moisture(temperature, humidity):
-    return 8.5 * (humidity / 100.0) ** 1.6  # weight %, the shape of a sorption isotherm
+    from fickcam.bench_records import isotherm
+
+    return isotherm(temperature, humidity)
 
 
-def independent_disc_mean(disc, diffusivity, environment, times, modes=(200, 80), substeps=4):
-    """Crank eqs. 4.18 and 5.23, ``modes`` (radial, axial) product modes, each advanced
-    exactly through Ms taken linear in tau on ``substeps`` sub-steps per row; tau by the
-    trapezoid rule on them. The part starts at Ms(0) (no step: the modes left out only lag
-    the slow ramps)."""
-    rows = environment.change_times
-    t = np.unique(np.concatenate([np.linspace(a, b, substeps + 1)
-                                  for a, b in zip(rows[:-1], rows[1:])] + [times]))
-    tau = cumulative_trapezoid(diffusivity.arrhenius_factor(environment.temperature(t)), t,
-                               initial=0.0)
-    ms = nylon_moisture(environment.temperature(t), environment.relative_humidity(t))
-    alpha, k = jn_zeros(0, modes[0]), 2 * np.arange(modes[1]) + 1.0
-    rates = ((alpha[:, None] / disc.outer_radius) ** 2
-             + (k[None, :] * np.pi / disc.thickness) ** 2).ravel() * diffusivity.pre_exponential[0]
-    amplitudes = (4 / alpha[:, None] ** 2 * 8 / (k[None, :] * np.pi) ** 2).ravel()
-    y, mean = np.full(rates.size, ms[0]), [ms[0]]
-    for i in range(t.size - 1):  # y' = lambda (Ms - y) with Ms linear in tau
-        d = tau[i + 1] - tau[i]
-        slope = (ms[i + 1] - ms[i]) / d
-        y = ms[i + 1] + (y - ms[i]) * np.exp(-rates * d) - slope * -np.expm1(-rates * d) / rates
-        mean.append(amplitudes @ y + (1 - amplitudes.sum()) * ms[i + 1])
-    return np.interp(times, t, np.array(mean))
+def record_swing(environment) -> float:
+    """The largest |Ms - M0| over the record's rows: what ``accuracy`` is relative to."""
+    edges = environment.change_times
+    values = nylon_moisture(environment.temperature(edges), environment.relative_humidity(edges))
+    return float(np.max(np.abs(values - environment.initial_moisture)))
 
 
 def test_solid_disc_under_a_week_of_a_tmy3_record_matches_an_independent_modal_solution():
@@ -96,10 +76,10 @@ def test_solid_disc_under_a_week_of_a_tmy3_record_matches_an_independent_modal_s
     chosen = plan(disc, diffusivity, exposure, times, accuracy=1e-4)
     assert chosen.model == "analytic" and "linear in the rows" in chosen.reason
     result = solve(disc, diffusivity, exposure, times, accuracy=1e-4)
-    reference = independent_disc_mean(disc, diffusivity, environment, times, (60, 30), 16)
+    reference = modal_disc_mean(disc, diffusivity, environment, times)
     assert result.error_estimate <= 1e-4
-    # the reference's own truncation errs by about 1e-5 of the swing (against Duhamel)
-    assert np.max(np.abs(result.mean - reference)) <= 1e-4 * 8.5
+    # the reference errs by about 3e-6 of the swing (against 120 x 60 modes, 64 sub-steps)
+    assert np.max(np.abs(result.mean - reference)) <= 1e-4 * record_swing(environment)
 
 
 def test_record_cost_grows_linearly_with_its_rows():
@@ -129,7 +109,7 @@ def circular_plate(radius, thickness):
 def test_plane_model_under_three_weeks_of_a_tmy3_record_matches_the_exact_modal_disc():
     """The plane path (planform mesh x exact sheet, superposed by the tabulated sum) on a
     CamPlate that is a full circle, against the finite cylinder's modes advanced exactly
-    through the record (60 x 30 modes, 16 sub-steps a row: the reference errs by ~1e-5)."""
+    through the record (``bench_records.modal_disc_mean``: errs by a few 1e-6)."""
     first = greensboro_weeks(3)
     start = float(nylon_moisture(first.temperature(0.0), first.relative_humidity(0.0)))
     environment = greensboro_weeks(3, start)
@@ -138,10 +118,10 @@ def test_plane_model_under_three_weeks_of_a_tmy3_record_matches_the_exact_modal_
     exposure = environment.exposure(nylon_moisture)
     times = np.linspace(0.0, environment.end, 15)
     result = solve(circular_plate(0.01, 0.004), diffusivity, exposure, times, accuracy=1e-4)
-    reference = independent_disc_mean(disc, diffusivity, environment, times, (60, 30), 16)
+    reference = modal_disc_mean(disc, diffusivity, environment, times)
     assert result.model == "plane" and result.cells > 0
     assert result.error_estimate <= 1e-4
-    assert np.max(np.abs(result.mean - reference)) <= 1e-4 * 8.5
+    assert np.max(np.abs(result.mean - reference)) <= 1e-4 * record_swing(environment)
 
 
 def test_fields_on_a_record_take_the_tabulated_sum_and_match_duhamel():
@@ -184,3 +164,26 @@ def test_a_plane_solve_repeated_on_a_record_reuses_its_tables_and_a_thicker_part
     tabulated._TABLES.clear()
     alone = solve(circular_plate(0.01, 0.005), diffusivity, exposure, times, accuracy=1e-3)
     assert np.array_equal(thicker.mean, alone.mean)  # as if no thinner tables were kept
+
+
+def test_a_plane_result_extended_to_new_times_equals_a_solve_at_both_sets_of_times():
+    """The limit search's ``extend``: the stored solve read at new times inside its span
+    (nodes gained, tables and plan kept) gives what a solve at the stored and the new
+    times together gives there, to round-off; the stored rows are kept as they were."""
+    environment = greensboro_weeks(1)
+    diffusivity = Diffusivity((0.4,) * 3, 50e3)
+    exposure = environment.exposure(nylon_moisture)
+    plate, times = circular_plate(0.01, 0.004), np.linspace(0.0, environment.end, 6)
+    stored = solve(plate, diffusivity, exposure, times, accuracy=1e-3)
+    new = np.array([0.37, 2.51, 4.9]) * 86400.0
+    both = np.union1d(times, new)
+    extended = stored.extend(both)
+    together = solve(plate, diffusivity, exposure, both, accuracy=1e-3)
+    rows = np.searchsorted(both, new)
+    assert np.array_equal(extended.times, both)
+    scale = float(np.max(np.abs(together.mean)))
+    for name in ("mean", "surface"):
+        assert np.allclose(getattr(extended, name)[rows], getattr(together, name)[rows],
+                           rtol=0, atol=64 * np.finfo(float).eps * scale)
+        kept = np.searchsorted(both, times)
+        assert np.array_equal(getattr(extended, name)[kept], getattr(stored, name))

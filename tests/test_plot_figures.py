@@ -152,15 +152,17 @@ def test_monte_carlo_ticks_neither_crowd_nor_hide_behind_an_offset(figures, tmp_
 def test_a_sweep_over_weather_files_compares_the_sites_over_ageing_time(figures, tmp_path):
     """A grid over ``environment.history_file`` (text values): the at-one-age figure marks
     each site without a line between them, and each output is also drawn over ageing time,
-    one line per site, labelled with its file."""
+    one line per site, labelled with the site the sweep read from each file (a file
+    without a site keeps its name)."""
     sites = np.array(["pvlib:723170TYA.CSV", "pvlib:703165TY.csv"], dtype=object)
     days = np.array([0, 30, 60], "timedelta64[D]").astype("timedelta64[ns]")
     result = xr.Dataset(
         {"jump_speed": (("case", "time"), np.array([[588.0, 588.4, 588.9], [588.0, 588.2, 588.5]]),
                         {"units": "rpm"})},
         coords={"case": np.arange(2), "time": days,
-                "environment__history_file": ("case", sites, {"units": "1",
-                                                             "dotted_path": "environment.history_file"}),
+                "environment__history_file": ("case", sites, {
+                    "units": "1", "dotted_path": "environment.history_file",
+                    "value_labels": '{"pvlib:703165TY.csv": "Sand Point, AK"}'}),
                 "case_status": ("case", np.array(["ok", "ok"], dtype=object))},
         attrs={"scene_name": "cam", "sweep_kind": "grid"})
     plotting.plot(result, tmp_path, "sweep")
@@ -168,5 +170,7 @@ def test_a_sweep_over_weather_files_compares_the_sites_over_ageing_time(figures,
     assert all(line.get_linestyle() == "None" for line in at_age.get_lines())
     over_time = figures["sweep_jump_speed_over_time.png"].axes[0]
     assert [t.get_text() for t in over_time.get_legend().get_texts()] == [
-        "history_file = pvlib:723170TYA.CSV", "history_file = pvlib:703165TY.csv"]
+        "history_file = pvlib:723170TYA.CSV", "Sand Point, AK"]
+    assert [t.get_text() for t in at_age.get_xticklabels()] == [
+        "Sand Point, AK", "pvlib:723170TYA.CSV"]
     assert [line.get_ydata()[-1] for line in over_time.get_lines()] == [588.9, 588.5]

@@ -105,13 +105,15 @@ def _arm_contact(design, wx, wy, nx, ny, roller_radius, grow):
 
 
 def _solve_psi(contact, theta_target, guess, steps: int = 30):
-    """psi with contact(psi)[0] = theta_target (Newton, central-difference slope)."""
+    """psi with contact(psi)[0] = theta_target (Newton, central-difference slope; the three
+    points in one call)."""
     psi = np.array(guess, float)
     h = 1e-6
+    n = psi.size
     for _ in range(steps):
-        theta, _ = contact(psi)
-        slope = (contact(psi + h)[0] - contact(psi - h)[0]) / (2 * h)
-        step = (theta - theta_target) / slope
+        theta = contact(np.concatenate([psi, psi + h, psi - h]))[0]
+        slope = (theta[n:2 * n] - theta[2 * n:]) / (2 * h)
+        step = (theta[:n] - theta_target) / slope
         psi = psi - step
         if np.max(np.abs(step), initial=0.0) < 1e-15:
             break
@@ -126,8 +128,8 @@ def lobatto(n: int) -> np.ndarray:
 def fit_geometric_motion(design, pieces, strain_x, strain_y, roller_radius, nodes: int = 40,
                          arm_strain: float = 0.0):
     """The aged follower height as Chebyshev series, one per design piece: a tuple of
-    (series, theta_start, theta_end), the angle origin, and (lowest, highest) Y over the
-    turn. ``pieces`` are (segment, psi_start, psi_end)."""
+    ((series and its first three derivatives), theta_start, theta_end), the angle origin,
+    and (lowest, highest) Y over the turn. ``pieces`` are (segment, psi_start, psi_end)."""
     lowest, highest = np.inf, -np.inf
     spans = []
     for segment, a, b in pieces:
@@ -140,7 +142,7 @@ def fit_geometric_motion(design, pieces, strain_x, strain_y, roller_radius, node
         t_nodes = ta + (tb - ta) * (lobatto(nodes) + 1) / 2
         psi = _solve_psi(contact, t_nodes, t_nodes)  # swelling shifts theta(psi) only slightly
         series = chebyshev.Chebyshev.fit(t_nodes, contact(psi)[1], nodes, domain=[ta, tb])
-        fitted.append((series, ta, tb))
+        fitted.append(((series,) + tuple(series.deriv(k) for k in (1, 2, 3)), ta, tb))
         turning = series.deriv().roots()
         turning = turning.real[(np.abs(turning.imag) < 1e-9) & (turning.real > ta) &
                                (turning.real < tb)]
@@ -157,8 +159,11 @@ def evaluate_geometric_motion(fitted, origin, theta):
     for series, ta, tb in fitted:
         inside = (shifted >= ta) & (shifted < tb) if tb < origin + TWO_PI - 1e-12 else \
             (shifted >= ta)
+        if not inside.any():  # the search for the jump speed reads one angle at a time
+            continue
+        at = shifted[inside]
         for k in range(4):
-            out[k][inside] = series.deriv(k)(shifted[inside]) if k else series(shifted[inside])
+            out[k][inside] = series[k](at)
     return tuple(out)
 
 

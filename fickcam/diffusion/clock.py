@@ -39,7 +39,7 @@ class RescaledTime:
         segment, lower, upper = np.broadcast_arrays(segment, np.asarray(lower, float),
                                                     np.asarray(upper, float))
         value = self.held_rate[segment] * (upper - lower)
-        ramped = self.ramp[segment]
+        ramped = self.ramp[segment] & (upper != lower)  # an empty interval adds 0
         if np.any(ramped):
             lo, hi = lower[ramped], upper[ramped]
             half = 0.5 * (hi - lo)

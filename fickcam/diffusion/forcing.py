@@ -35,6 +35,23 @@ class Forcing:
     left: np.ndarray
     outputs: np.ndarray   # node index of each requested time
     interpolation: float  # bound of |Ms - its piecewise-linear-in-tau stand-in|
+    nodes: np.ndarray | None = None  # the nodes' physical times (s), where known
+
+    def with_outputs(self, exposure, clock: RescaledTime, times) -> "Forcing":
+        """The same forcing with ``times`` (inside its span) added as nodes, and the outputs
+        at ``times`` only: the nodes a solve at the stored and the new times together would
+        have, each evaluated where it is new (tau, Ms are functions of the node alone)."""
+        times = np.asarray(times, float)
+        new = np.setdiff1d(times, self.nodes)
+        nodes = np.concatenate([self.nodes, new])
+        order = np.argsort(nodes, kind="stable")
+
+        def merged(old, value):
+            return np.concatenate([old, np.asarray(value, float)])[order]
+        return Forcing(merged(self.tau, clock(new)),
+                       merged(self.right, exposure.surface_moisture(new)),
+                       merged(self.left, exposure.surface_before(new)),
+                       np.searchsorted(nodes[order], times), self.interpolation, nodes[order])
 
 
 def _pieces(exposure, clock, tolerance) -> tuple[np.ndarray, float]:
@@ -71,7 +88,7 @@ def forcing(exposure, clock: RescaledTime, times, tolerance) -> Forcing:
     nodes = nodes[nodes <= np.max(times)]
     return Forcing(clock(nodes), np.asarray(exposure.surface_moisture(nodes), float),
                    np.asarray(exposure.surface_before(nodes), float),
-                   np.searchsorted(nodes, times), interpolation)
+                   np.searchsorted(nodes, times), interpolation, nodes)
 
 
 def swing(exposure, clock) -> float:

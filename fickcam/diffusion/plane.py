@@ -31,16 +31,15 @@ from .calibration import (EXPANSION_SHARE, FIRST_STEP, GROWTH_REACH, MAX_CELLS, 
                           MIN_CELLS_PER_AXIS, MIN_STEPS_PER_DOUBLING, PAIR_TO_TIME_ERROR,
                           PLANE_PAIR, space_error)
 from .clock import scales as scales_of
-from .duhamel import duhamel
-from .forcing import RECORD_SHARE, is_long_record
 from .grading import MAX_GROWTH
 from .outline import outline_extent
 from .p1 import plane_operator
 from .results import DiffusionResult, Plan
 from .scaling import planar_scale, stretch_of
-from .shorttime import expansion_of, sheet_fraction, weighted
+from .shorttime import expansion_of, outline_chords, sheet_fraction, weighted
 from .stepresponse import blend, step_response
-from .tabulated import LongRecord, Same
+from .superposed import History, extension
+from .tabulated import Same
 from .timesteps import earliest_output, geometric_steps, output_ages
 from .trimesh import triangulate
 
@@ -159,6 +158,11 @@ def planform_response(geometry, finest: float, growth: float, d: tuple, layer_de
     return planar, response, pair
 
 
+#: what a process keeps between the runs of one geometry (sweep cases): clear these for
+#: the cost of a run whose geometry is new
+CASE_CACHES = (planform_response, planform_mesh, expansion_of, outline_chords)
+
+
 def expansion_error_at(expansion, ages: np.ndarray) -> float:
     """The expansion's error indicator x the sheet's unsaturated fraction, largest at the
     ``ages`` the outputs read (0 without ages)."""
@@ -168,17 +172,19 @@ def expansion_error_at(expansion, ages: np.ndarray) -> float:
 
 
 def plan_plane(geometry, diffusivity, change: np.ndarray, outputs: np.ndarray, ramp,
-               accuracy: float):
+               accuracy: float, layer_depth: float | None = None):
     """What ``solve_plane`` will do and the error it will report, by the blend's error model
     at the ages the outputs read (``timesteps.output_ages``): the expansion up to its switch
     (error ``EXPANSION_SHARE`` x accuracy); after it a graded P1 mesh whose relative error
     at half the switch (``mesh_design`` plus the expansion's own relative error there) times
     the largest uptake x sheet fraction at the later ages takes what the time error,
     PAIR_TO_TIME_ERROR (PLANE_PAIR F(end) / m)^2 (at most ``TIME_SHARE`` of it), leaves of
-    ``DESIGN_MARGIN`` x accuracy. The cells are those of the mesh ``solve`` builds."""
+    ``DESIGN_MARGIN`` x accuracy. The cells are those of the mesh ``solve`` builds. The
+    plan reads nothing of the contact layer: ``layer_depth`` (the solve's) only lets plan
+    and solve share the expansion (``expansion_of``)."""
     d = tuple(float(v) for v in diffusivity.pre_exponential)
     tolerance = EXPANSION_SHARE * accuracy
-    expansion = expansion_of(geometry, d)
+    expansion = expansion_of(geometry, d, layer_depth)
     end = max(float(np.max(outputs)), 10 * FIRST_STEP)
     ages = output_ages(change, outputs, ramp)
     t_lo = earliest_output(change, outputs)
@@ -235,63 +241,6 @@ def _design(expansion, switch, end, ages, perimeter, area, tightest, accuracy, t
 # ------------------------------------------------------------------ solve
 
 
-def _kernel(fraction, scale: float):
-    """K(tau) = 1 - u(tau*) for ``duhamel`` (rescaled s, any shape), tau* = scale tau."""
-    def kernel(tau):
-        tau = np.asarray(tau, float)
-        u = np.asarray(fraction(tau.ravel() * scale), float)
-        return 1.0 - u.reshape(tau.shape + u.shape[1:])
-    return kernel
-
-
-def _diffusion_times(geometry, d) -> tuple[float, float]:
-    """(fastest, slowest) L^2 / D0 of a prism: the thickness and the planform extents."""
-    sizes = (*outline_extent(geometry), geometry.thickness)
-    times = [size ** 2 / d[i] for i, size in enumerate(sizes)]
-    return min(times), max(times)
-
-
-@dataclass(frozen=True)
-class History:
-    """How ``solve_plane`` superposes over the exposure: Duhamel's panels (``duhamel``) for
-    a few segments; for a long record (``forcing.is_long_record``) the tabulated sum of
-    ``tabulated``, cost linear in the rows, shared by the mean, the layer and the fields,
-    within ``RECORD_SHARE`` of the accuracy (``plan`` designs the rest)."""
-
-    diffusivity: object
-    exposure: object
-    times: np.ndarray
-    geometry: object
-    record: LongRecord | None
-
-    @classmethod
-    def of(cls, geometry, diffusivity, exposure, times, accuracy: float) -> "History":
-        d = tuple(float(v) for v in diffusivity.pre_exponential)
-        record = (LongRecord.of(diffusivity, exposure, times, _diffusion_times(geometry, d)[0],
-                                RECORD_SHARE * accuracy) if is_long_record(exposure) else None)
-        return cls(diffusivity, exposure, np.asarray(times, float), geometry, record)
-
-    def superpose(self, fraction, chunk: int = 64, fields: bool = False,
-                  looser: float = 1.0, same: Same | None = None) -> tuple[np.ndarray, float]:
-        """(c0 + Duhamel sum of the unit-step unsaturated fraction u(tau*), the error of the
-        sum itself relative to the swing: 0 for the panels, whose quadrature is exact to
-        ``calibration.ANALYTIC_ERROR``). ``fields``: a wide kernel (``LongRecord.field``);
-        ``looser``: a tolerance this many times the mean's (the contact layer); ``same``:
-        which fraction this is (``tabulated.Same``), to reuse its tables across solves."""
-        d = tuple(float(v) for v in self.diffusivity.pre_exponential)
-        kernel = _kernel(fraction, d[2] / self.geometry.thickness ** 2)
-        if self.record is None:
-            return self.exposure.initial_moisture + duhamel(
-                kernel, self.diffusivity, self.exposure, self.times,
-                _diffusion_times(self.geometry, d), chunk=chunk), 0.0
-        if fields:
-            return self.exposure.initial_moisture + self.record.field(kernel), 0.0
-        if same is not None:
-            same = Same(same.key + (d[2] / self.geometry.thickness ** 2,), same.holds)
-        values, error, _ = self.record.superpose(kernel, looser=looser, same=same)
-        return self.exposure.initial_moisture + values, error
-
-
 def solve_plane(geometry, diffusivity, exposure, times, chosen, *, accuracy: float,
                 surface_layer_depth: float = 5e-4, store_fields: bool = False, part: str = ""):
     """CamPlate / LinkBar: planform step response x sheet step response, Duhamel over the
@@ -325,9 +274,14 @@ def solve_plane(geometry, diffusivity, exposure, times, chosen, *, accuracy: flo
     def same(which: str) -> Same:  # the fractions are fixed by these (cached) objects
         return Same((id(u_plane), id(expansion), tolerance, which), (u_plane, expansion))
 
-    (mean, sum_error), (layer, _) = (
-        history.superpose(mean_fraction, same=same("mean")),
-        history.superpose(layer_fraction, looser=LAYER_TOLERANCE, same=same("layer")))
+    def superposed(over: History, levels=(0, 0)):  # (mean, its sum's error, layer, levels)
+        (mean, error, mean_level), (layer, _, layer_level) = (
+            over.superpose(mean_fraction, same=same("mean"), start=levels[0]),
+            over.superpose(layer_fraction, looser=LAYER_TOLERANCE, same=same("layer"),
+                           start=levels[1]))
+        return mean, error, layer, (mean_level, layer_level)
+
+    mean, sum_error, layer, levels = superposed(history)
     time_error = PAIR_TO_TIME_ERROR * pair_plane ** 2  # the sheet is exact
     # the plan's estimate, unless the blend's own bound at the ages read says more (no
     # expansion for this outline: the plan's model, with its time part)
@@ -342,6 +296,8 @@ def solve_plane(geometry, diffusivity, exposure, times, chosen, *, accuracy: flo
     if store_fields:
         result.fields, result.cell_coordinates = _plane_fields(
             geometry, history, u_plane, planar, chosen, end, surface_layer_depth, part)
+    elif history.record is not None:
+        result.extend = extension(result, lambda at: superposed(history.at(at), levels))
     log.debug("%s plane: %d nodes x %d sheet cells", part, planar.cells, n_z)
     return result
 
@@ -367,7 +323,7 @@ def _plane_fields(geometry, history, u_plane, planar, chosen, end, depth, part):
 
     def field_fraction(tau):
         return u_plane.at(tau, u_plane.fields) * u_sheet.at(tau, u_sheet.fields[:, mid])[:, None]
-    fields, _ = history.superpose(field_fraction, FIELD_CHUNK, fields=True)
+    fields = history.superpose(field_fraction, FIELD_CHUNK, fields=True)[0]
     return fields, {"x": planar.coordinates["x"], "y": planar.coordinates["y"],
                     "z": np.full(planar.cells, sheet.coordinates["z"][mid])}
 
@@ -382,9 +338,10 @@ def _expansion_only(expansion, ages, history, chosen, part):
     def layer_fraction(tau):
         return (1.0 - expansion.layer_uptake(tau)) * sheet_fraction(tau)
 
-    (mean, sum_error), (layer, _) = (history.superpose(mean_fraction),
-                                     history.superpose(layer_fraction, looser=LAYER_TOLERANCE))
+    (mean, sum_error, _), (layer, _, _) = (
+        history.superpose(mean_fraction), history.superpose(layer_fraction, looser=LAYER_TOLERANCE))
     mean_error = max(chosen.error_estimate, expansion_error_at(expansion, ages)) + sum_error
     log.debug("%s plane: short-time expansion only, error %.2g", part, mean_error)
     return DiffusionResult(history.times, mean, layer, "plane", 0, 0, mean_error,
                            chosen.reason + "; no mesh needed")
+

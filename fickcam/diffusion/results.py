@@ -1,7 +1,8 @@
 """What a diffusion solve plans (``Plan``) and returns (``DiffusionResult``)."""
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
+from typing import Callable
 
 import numpy as np
 
@@ -37,4 +38,19 @@ class DiffusionResult:
     fields: np.ndarray | None = None
     bound: np.ndarray | None = None  # two-phase (Langmuir) sorption: bound-water mean, weight %
     cell_coordinates: dict[str, np.ndarray] = field(default_factory=dict)
+    #: ``extend(at)``: this result at its times and ``at`` (inside their span) together,
+    #: the new rows from the stored solve's plan and tables (the limit search); None where
+    #: only a new solve can say
+    extend: Callable[[np.ndarray], "DiffusionResult"] | None = field(default=None, repr=False)
+
+    def merged(self, times, mean, surface) -> "DiffusionResult":
+        """This result with rows at ``times`` (none of its own) added, in time order (no
+        fields or bound moisture: what ``extend`` gives)."""
+        order = np.argsort(np.concatenate([self.times, times]), kind="stable")
+
+        def rows(old, new):
+            return np.concatenate([old, np.asarray(new, float)])[order]
+        return replace(self, times=rows(self.times, times), mean=rows(self.mean, mean),
+                       surface=rows(self.surface, surface), fields=None, bound=None,
+                       extend=None)
 

@@ -6,14 +6,13 @@ from dataclasses import dataclass
 from functools import cached_property, lru_cache
 
 import numpy as np
-from scipy.special import erfc
+from scipy.special import erf, erfc
 
 from .outline import boundary_loops
 from .polygon import CORNER_TURN, Wall, loop_length, resample_loop, turning_angles, vertex_normals
 from .scaling import planar_scale
 from .series import cylinder_short_coefficients, ierfc, sheet_uptake
 
-LAYER_POINTS = 12
 TAIL_FROM = 4          # first term of the disc series left to the error indicator
 CHORD_RAYS = 256       # rays cast per outline loop for the facing-edge term
 
@@ -92,14 +91,13 @@ class ShortTime:
         """Mean over the contact layer: erfc(x / 2 sqrt t) (Crank 1975 eq. 2.45) with the
         first-order curvature terms of a cylinder, c = sqrt(a/r) erfc(...) (Carslaw &
         Jaeger 1959 §13.3) and area weight r/a, i.e. (1 - kappa x / 2) erfc over a
-        layer of area (1 - kappa delta / 2) delta per unit length (Gauss-Legendre in x)."""
+        layer of area (1 - kappa delta / 2) delta per unit length, integrated in closed
+        form (``layer_integrals``)."""
         tau = np.atleast_1d(np.asarray(tau, float))
-        x, w = np.polynomial.legendre.leggauss(LAYER_POINTS)
         depth, kappa = self.contact_depths, self.contact_curvature
-        x = 0.5 * (x + 1)[:, None] * depth[None, :]            # (q, k)
-        root = 2 * np.sqrt(np.maximum(tau, 1e-300))[:, None, None]
-        profile = erfc(x[None] / root) * (1 - 0.5 * kappa[None, None, :] * x[None])
-        integral = 0.5 * np.einsum("q,tqk->tk", w, profile) * depth[None, :]
+        scale = 2 * np.sqrt(np.maximum(tau, 1e-300))[:, None]   # (t, 1)
+        flat, first = layer_integrals(depth[None, :] / scale)
+        integral = scale * flat - 0.5 * kappa[None, :] * scale ** 2 * first
         band = integral / (depth * (1 - 0.5 * kappa * depth))[None, :]
         return band @ self.contact_weights
 
@@ -120,6 +118,22 @@ class ShortTime:
         """(tau, indicator x sheet unsaturated fraction) on a log grid, 100 points a decade."""
         grid = np.geomspace(1e-8, 1e4, 1201)
         return grid, weighted(self.uptake_error(grid), sheet_fraction(grid))
+
+
+def layer_integrals(z):
+    """(int_0^z erfc(s) ds, int_0^z s erfc(s) ds), so that int_0^delta (1 - kappa x / 2)
+    erfc(x / a) dx = a first - (kappa / 2) a^2 second at z = delta / a. The first is
+    1/sqrt(pi) - ierfc(z) (Carslaw & Jaeger 1959 Appendix II, ierfc(z) = exp(-z^2)/sqrt(pi)
+    - z erfc(z)), written z erfc(z) - expm1(-z^2)/sqrt(pi) (two positive terms, no
+    cancellation for small z); the second, by parts with erfc' = -2 exp(-s^2)/sqrt(pi)
+    (Abramowitz & Stegun 1964 eq. 7.1.19) and int_0^z s^2 exp(-s^2) ds = sqrt(pi) erf(z)/4
+    - z exp(-z^2)/2, is z^2 erfc(z)/2 + erf(z)/4 - z exp(-z^2)/(2 sqrt(pi)). Exact where
+    the 12-point Gauss rule they replace was not (sqrt(t) << delta: a steep erfc)."""
+    z = np.minimum(np.asarray(z, float), 40.0)  # erfc(40) = 0: both integrals are complete
+    tail = erfc(z)
+    first = z * tail - np.expm1(-z * z) / np.sqrt(np.pi)
+    second = 0.5 * z * z * tail + 0.25 * erf(z) - z * np.exp(-z * z) / (2 * np.sqrt(np.pi))
+    return first, second
 
 
 def _geometric_remainder(before, last):
@@ -178,7 +192,7 @@ def short_time(part, scale: np.ndarray, layer_depth: float, spacing: float) -> S
     moments = np.zeros(_disc_coefficients().size)
     weights, depths, curvatures = [], [], []
     scaled = [loop * scale[None, :] for loop in loops]
-    chords, chord_lengths = inward_chords(scaled, 0.25 * spacing * float(np.max(scale)))
+    chords, chord_lengths = outline_chords(part, tuple(float(s) for s in scale), spacing)
     for loop, p, is_contact in zip(loops, scaled, contact):
         length = np.hypot(*(np.roll(p, -1, axis=0) - p).T)
         turn = turning_angles(p)
@@ -212,11 +226,22 @@ def short_time(part, scale: np.ndarray, layer_depth: float, spacing: float) -> S
                      chords, chord_lengths)
 
 
+@lru_cache(maxsize=16)
+def outline_chords(part, scale: tuple[float, float], spacing: float):
+    """``inward_chords`` of the part's outline (``boundary_loops`` at ``spacing``) scaled by
+    ``scale``: plan and solve ask for the expansion at two layer depths, which leave the
+    chords alone (half the expansion's cost)."""
+    loops, _ = boundary_loops(part, spacing)
+    factor = np.asarray(scale)
+    return inward_chords([loop * factor[None, :] for loop in loops],
+                         0.25 * spacing * float(np.max(factor)))
+
+
 def inward_chords(loops: list[np.ndarray], spacing: float) -> tuple[np.ndarray, np.ndarray]:
     """(chord, outline length it stands for) at ``CHORD_RAYS`` points evenly spaced along
     each closed polyline of ``loops`` (material on the left): the length of the inward
     normal ray inside the outline, marched on a geometric grid against the signed distance
-    of ``polygon.Wall``, then bisected."""
+    of ``polygon.Wall`` (each ray only until it leaves), then bisected."""
     wall = Wall.of(loops, spacing)
     rays = [resample_loop(loop, loop_length(loop) / CHORD_RAYS) for loop in loops]
     start = np.vstack(rays)
@@ -227,8 +252,14 @@ def inward_chords(loops: list[np.ndarray], spacing: float) -> tuple[np.ndarray, 
 
     def inside(t):
         return wall.distance(start + t[..., None] * normal)[1]
-    out = np.column_stack([~inside(np.full(len(start), t)) for t in steps])
-    first = np.where(out.any(axis=1), np.argmax(out, axis=1), steps.size - 1)
+    first = np.full(len(start), steps.size - 1)  # the first step outside (the last: none)
+    marching = np.arange(len(start))
+    for k, t in enumerate(steps):
+        left = ~wall.distance(start[marching] + t * normal[marching])[1]
+        first[marching[left]] = k
+        marching = marching[~left]
+        if not marching.size:
+            break
     low = np.where(first > 0, steps[np.maximum(first - 1, 0)], 0.0)
     high = steps[first]
     for _ in range(16):

@@ -26,7 +26,8 @@ from __future__ import annotations
 
 import math
 from collections import OrderedDict
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
+from functools import lru_cache
 
 import numpy as np
 
@@ -267,42 +268,59 @@ def _read_jumps(table: Table, where: Sources) -> np.ndarray:
 @dataclass(frozen=True)
 class LongRecord:
     """One long record's forcing at the outputs, shared by every kernel superposed over it
-    (mean, contact layer, fields); ``tolerance`` in weight % (accuracy x swing)."""
+    (mean, contact layer, fields); ``tolerance`` in weight % (accuracy x swing); ``last``
+    the oldest age the outputs read (the tables' end)."""
 
     force: Forcing
     where: Sources
     swing: float
     tolerance: float
     first: float
+    last: float
+    exposure: object
+    clock: object
 
     @classmethod
     def of(cls, diffusivity, exposure, times, fastest: float, accuracy: float) -> "LongRecord":
         """``fastest``: the part's shortest diffusion time L^2 / D0 (rescaled s)."""
-        clock = clock_of(diffusivity, exposure)
-        swing = swing_of(exposure, clock)
-        tolerance = accuracy * max(swing, 1e-300)
-        force = forcing(exposure, clock, np.asarray(times, float), INTERPOLATION_SHARE * tolerance)
-        return cls(force, sources(force), swing, tolerance, SHORT_TIME * fastest)
+        force, where, swing, tolerance = _forced(diffusivity, exposure,
+                                                 np.asarray(times, float).tobytes(), accuracy)
+        first = SHORT_TIME * fastest
+        last = float(np.max(force.tau[force.outputs] - force.tau[0], initial=0.0))
+        return cls(force, where, swing, tolerance, first, max(last, 10.0 * first),
+                   exposure, clock_of(diffusivity, exposure))
+
+    def at(self, times) -> "LongRecord":
+        """This record read at other ``times`` inside its outputs' span (the limit search):
+        the nodes gain ``times`` as a solve at both sets would have them, the tables keep
+        their grid (``last``), and the sum reads the new outputs only."""
+        force = self.force.with_outputs(self.exposure, self.clock, times)
+        return replace(self, force=force, where=sources(force))
 
     def superpose(self, kernel, per_decade: int = FIRST_PER_DECADE, refine: bool = True,
-                  looser: float = 1.0, same: "Same | None" = None) -> tuple[np.ndarray, float, int]:
+                  looser: float = 1.0, same: "Same | None" = None,
+                  start: int = 0) -> tuple[np.ndarray, float, int]:
         """(M - M0 at the outputs, shape (outputs, ...kernel outputs); the error relative
         to the swing (tabulation change + Ms interpolation); the points per decade used).
         ``refine``: double the grid while the change exceeds ``TABLE_SHARE`` x tolerance
         (x ``looser``). ``same``: says which kernel this is, so that its tables are taken
-        from earlier solves (the same grid gives the same table: results do not change)."""
-        last = float(np.max(self.force.tau[self.force.outputs] - self.force.tau[0], initial=0.0))
-        last = max(last, 10.0 * self.first)
+        from earlier solves (the same grid gives the same table: results do not change).
+        ``start``: a grid density an earlier solve at other outputs refined to; coarser
+        grids are built (or taken) as before but not read, the outputs of that solve
+        having needed this one (its tables are then reused, not rebuilt)."""
         shape = np.shape(kernel(np.zeros(1)))[1:]
         width = max(int(np.prod(shape)), 1)
-        decades = math.log10(last / self.first) + 1.0
+        decades = math.log10(self.last / self.first) + 1.0
         cap = max(4, int(TABLE_ENTRIES / (width * decades)) // 2)
         per_decade = min(per_decade, cap)
         table = None
         while True:
-            table = _kept(same, (self.first, last, per_decade),
-                          lambda coarser=table: tabulate(kernel, self.first, last, per_decade,
-                                                         coarser))
+            table = _kept(same, (self.first, self.last, per_decade),
+                          lambda coarser=table: tabulate(kernel, self.first, self.last,
+                                                         per_decade, coarser))
+            if per_decade < start and 2 * per_decade <= min(MAX_PER_DECADE, cap):
+                per_decade *= 2
+                continue
             fine, coarse = read(table, self.where), read(table.coarse(), self.where)
             change = float(np.max(np.abs(fine - coarse), initial=0.0))
             if (not refine or change <= TABLE_SHARE * looser * self.tolerance
@@ -316,6 +334,17 @@ class LongRecord:
         """M - M0 of a wide kernel (a field's cells): one table at ``FIELD_PER_DECADE``,
         not refined (a run's estimate is the mean's)."""
         return self.superpose(kernel, FIELD_PER_DECADE, refine=False)[0]
+
+
+@lru_cache(maxsize=16)
+def _forced(diffusivity, exposure, times: bytes, accuracy: float):
+    """(Forcing, Sources, swing, tolerance) of a record at ``times`` (their bytes), made
+    once for the parts that share a material and its exposure (the links of a four-bar)."""
+    clock = clock_of(diffusivity, exposure)
+    swing = swing_of(exposure, clock)
+    tolerance = accuracy * max(swing, 1e-300)
+    force = forcing(exposure, clock, np.frombuffer(times), INTERPOLATION_SHARE * tolerance)
+    return force, sources(force), swing, tolerance
 
 
 @dataclass(frozen=True, eq=False)

@@ -13,6 +13,7 @@ Failed cases are left out and counted in the title.
 """
 from __future__ import annotations
 
+import json
 import warnings
 from pathlib import Path
 
@@ -83,12 +84,18 @@ def _label(ds, name: str) -> str:
 
 
 def _value_label(ds, name: str, value) -> str:
-    """``temperature = 60 degC`` for a legend (the value as the sweep file gave it)."""
+    """``temperature = 60 degC`` for a legend (the value as the sweep file gave it); a
+    weather file by its site (``Sand Point, AK``: ``value_labels``) where it names one."""
     short = ds[name].attrs.get("dotted_path", name).split(".")[-1]
     _, units = _shown(ds, name)
     if isinstance(value, float):
         return f"{short} = {value:g}" + ("" if units in ("1", "") else f" {units}")
-    return f"{short} = {value}"
+    return _sites(ds, name).get(str(value)) or f"{short} = {value}"
+
+
+def _sites(ds, name: str) -> dict:
+    """The sweep's ``value_labels`` of a text parameter (weather file -> its site), or {}."""
+    return json.loads(ds[name].attrs.get("value_labels", "{}"))
 
 
 def _ok(ds) -> np.ndarray:
@@ -103,12 +110,14 @@ def _title(ds, name: str, age: float) -> str:
     return f"{ds.attrs.get('scene_name', '')}: {name.replace('_', ' ')} at {age:g} d{note}"
 
 
-def _axis_values(values: np.ndarray):
-    """Numeric positions for a coordinate (text values get 0, 1, 2...) and tick labels."""
+def _axis_values(values: np.ndarray, names: dict | None = None):
+    """Numeric positions for a coordinate (text values get 0, 1, 2...) and tick labels
+    (a text value's name in ``names`` where it has one: a weather file's site)."""
     if values.dtype.kind in "fiu":
         return values.astype(float), None
     labels = sorted(set(values.tolist()))
-    return np.asarray([labels.index(v) for v in values], float), labels
+    ticks = [(names or {}).get(str(v), v) for v in labels]
+    return np.asarray([labels.index(v) for v in values], float), ticks
 
 
 def plot_grid(ds, outdir: Path, age_index: int) -> list[Path]:
@@ -116,7 +125,7 @@ def plot_grid(ds, outdir: Path, age_index: int) -> list[Path]:
     names = parameters(ds)
     x_name, others = names[0], names[1:]
     ok = _ok(ds)
-    x, ticks = _axis_values(_shown(ds, x_name)[0])
+    x, ticks = _axis_values(_shown(ds, x_name)[0], _sites(ds, x_name))
     shown = {o: _shown(ds, o)[0] for o in others}
     age = float(days(ds)[age_index])
     written = []
@@ -199,7 +208,7 @@ def plot_monte_carlo(ds, outdir: Path, age_index: int) -> list[Path]:
         fan.set_ylabel(label)
         fan.set_title(_title(ds, key, age), fontsize=9)
         for panel, (ax, name) in enumerate(zip(axes[0, 1:], names)):
-            x, ticks = _axis_values(_shown(ds, name)[0])
+            x, ticks = _axis_values(_shown(ds, name)[0], _sites(ds, name))
             ax.plot(x[ok], values[:, age_index] if values.size else [], ".", ms=4)
             if ticks is not None:
                 ax.set_xticks(range(len(ticks)), ticks)
