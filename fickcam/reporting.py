@@ -62,7 +62,7 @@ def describe_plan(scene, accuracy: float | None = None) -> str:
     lines.append(f"  mechanisms: {', '.join(mechanisms)}; angle step "
                  f"{np.degrees(scene.model.outputs.angle_step):g} deg")
     if scene.model.cam is not None and scene.model.cam.follower.arm is not None:
-        from .cam.model import design_from_scene
+        from .cam.design import design_from_scene
         from .cam.oscillating import describe_arm
 
         lines.append(f"  follower: {describe_arm(design_from_scene(scene.model.cam))}")

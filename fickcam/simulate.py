@@ -90,7 +90,8 @@ def plan_parts(scene: Scene, accuracy: float | None = None):
         plans.append((part, _for_part(part.name, plan, part.geometry, diffusivity, exposure, times,
                                       accuracy=options["accuracy"],
                                       model=part_model(options, part.name),
-                                      sorption=part.material.sorption_law())))
+                                      sorption=part.material.sorption_law(),
+                                      surface_layer_depth=options["surface_layer_depth"])))
     return environment, times, options, plans
 
 

@@ -13,7 +13,9 @@ import pytest
 from scipy.optimize import brentq, minimize_scalar
 
 from fickcam.cam.geometry import dry_profile, rotate
-from fickcam.cam.model import CamState, cam_response, design_from_scene, motion_function
+from fickcam.cam.design import CamState, design_from_scene
+from fickcam.cam.kinematics import motion_function
+from fickcam.cam.model import cam_response
 from fickcam.cam.motion import follower_motion
 from fickcam.cam.oscillating import arm_response
 from fickcam.cli import main

@@ -10,7 +10,7 @@ from hypothesis import strategies as st
 from fickcam.cam import CamDesign, CamState, cam_response, working_profile
 from fickcam.cam import dynamics as dyn
 from fickcam.cam.geometry import geometric_motion, pieces_of
-from fickcam.cam.model import dry_lowest_height, follower_heights
+from fickcam.cam.kinematics import dry_lowest_height, follower_heights
 from fickcam.cam.motion import follower_motion, segments_from_spec
 from fickcam.cam.spec import Segment
 from fickcam.materials.bodies import polygon_section

@@ -11,7 +11,8 @@ import yaml
 
 from fickcam.cam import dynamics as dyn
 from fickcam.cam.geometry import rotate, working_outline
-from fickcam.cam.model import CamState, cam_response, design_from_scene
+from fickcam.cam.design import CamState, design_from_scene
+from fickcam.cam.model import cam_response
 from fickcam.cam.profile import (make_profile, profile_motion, read_profile_csv,
                                  write_profile_csv, write_profile_dxf)
 from fickcam.cli import main

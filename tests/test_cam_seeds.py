@@ -13,7 +13,7 @@ import pytest
 
 from fickcam.cam import CamDesign, CamState, cam_response
 from fickcam.cam.geometry import geometric_motion, pieces_of
-from fickcam.cam.model import follower_heights
+from fickcam.cam.kinematics import follower_heights
 from fickcam.cam import dynamics as dyn
 from fickcam.cam.motion import segments_from_spec, simple_harmonic
 from fickcam.cam.spec import Segment

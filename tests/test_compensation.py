@@ -15,7 +15,8 @@ from hypothesis import strategies as st
 
 import fickcam
 from fickcam.cli import main
-from fickcam.cam.model import CamState, cam_response, design_from_scene
+from fickcam.cam.design import CamState, design_from_scene
+from fickcam.cam.model import cam_response
 from fickcam.compensation import compensate, write_scene
 from fickcam.compensation.core import made_value, residual
 from fickcam.linkage import FourBarDesign, FourBarState, fourbar_response

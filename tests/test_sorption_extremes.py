@@ -8,7 +8,7 @@ from hypothesis import strategies as st
 
 from fickcam.diffusion import solve
 from fickcam.diffusion.exposure import Diffusivity, Exposure
-from fickcam.diffusion.geometry import Sheet
+from fickcam.diffusion.geometry import CamPlate, Disc, Sheet
 from fickcam.diffusion.sorption import ConcentrationDependent, Langmuir, Rate
 from fickcam.diffusion.two_phase import two_phase_sheet_uptake
 
@@ -59,3 +59,29 @@ def test_concentration_dependent_extremes_stay_bounded_and_reach_equilibrium(exp
     assert np.all(np.diff(result.mean[wet]) > -1e-3 * MM) and np.all(np.diff(result.mean[~wet]) < 0)
     assert result.mean[np.flatnonzero(wet)[-1]] == pytest.approx(MM, abs=1e-2 * MM)
     assert result.mean[-1] == pytest.approx(0.0, abs=1e-2 * MM)
+
+
+@settings(max_examples=6, deadline=None)
+@given(st.floats(-3, 3), st.floats(-3, 3))
+def test_two_phase_extremes_on_a_cam_plate_stay_bounded_and_conserve_mass(log_gamma, log_beta):
+    """A circular CamPlate on its planform quadrature (``planmodes``), wet and dried, against
+    the exact disc modes (which conserve free + bound water): rates 1e-3..1e3 of the
+    slowest diffusion rate of the plate, within the accuracy, bounded, finite."""
+    radius, thickness, d = 0.004, 0.004, 1e-11
+    slowest = d * (2.405 ** 2 / radius ** 2 + np.pi ** 2 / thickness ** 2)
+    gamma, beta = slowest * 10 ** log_gamma, slowest * 10 ** log_beta
+    end = 20.0 / min(slowest, gamma, beta)
+    times = np.geomspace(1e-2 / slowest, end, 12)
+    angle = np.linspace(0.0, 2.0 * np.pi, 160, endpoint=False)
+    plate = CamPlate(radius * np.cos(angle), radius * np.sin(angle), thickness)
+    law = Langmuir(Rate(gamma), Rate(beta))
+    diffusivity = Diffusivity((d, d, d), 0.0)
+    history = soak_and_dry(end)
+    modes = solve(plate, diffusivity, history, times, accuracy=1e-2, sorption=law)
+    exact = solve(Disc(radius, thickness), diffusivity, history, times, accuracy=1e-6, sorption=law)
+    assert modes.model == "plane"
+    assert np.all(np.isfinite(modes.mean)) and np.all(np.isfinite(modes.bound))
+    assert np.all(modes.bound >= -1e-2 * MM) and np.all(modes.bound <= modes.mean + 1e-2 * MM)
+    assert np.all(modes.mean <= MM * (1 + 1e-2)) and np.all(modes.mean >= -1e-2 * MM)
+    assert np.max(np.abs(modes.mean - exact.mean)) < 1e-2 * MM
+    assert np.max(np.abs(modes.bound - exact.bound)) < 1e-2 * MM

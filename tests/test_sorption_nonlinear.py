@@ -38,14 +38,18 @@ def exposure(start, surface):
     return Exposure.piecewise([0.0, TIMES[-1]], [330.0], [surface], initial_moisture=start)
 
 
-@pytest.mark.parametrize("start, surface", [(0.0, MM), (MM, 0.0)])
-def test_exponential_diffusivity_matches_a_fine_method_of_lines(start, surface):
-    law = ConcentrationDependent(MM, exponent=2.0)
-    result = solve(Sheet(H), ISOTROPIC, exposure(start, surface), TIMES, accuracy=1e-2,
+@pytest.mark.parametrize("k, accuracy, start, surface", [
+    (2.0, 1e-2, 0.0, MM), (2.0, 1e-2, MM, 0.0), (5.0, 1e-3, MM, 0.0)])
+def test_exponential_diffusivity_matches_a_fine_method_of_lines(k, accuracy, start, surface):
+    """Absorption and desorption (the dry skin, ``nonlinear.dries_to_a_skin``, the case
+    that sizes the cells at the smallest D): within the accuracy and within the estimate.
+    Measured: k = 2 at 1e-2: 3.7e-3 (estimate 5.3e-3) absorbing, 5.3e-3 (5.7e-3)
+    desorbing; k = 5 desorbing at 1e-3: 4.5e-4 (8.6e-4)."""
+    law = ConcentrationDependent(MM, exponent=k)
+    result = solve(Sheet(H), ISOTROPIC, exposure(start, surface), TIMES, accuracy=accuracy,
                    sorption=law)
-    reference = method_of_lines(2.0, start, surface)
-    assert np.max(np.abs(result.mean - reference)) / MM < 1e-2
-    assert result.error_estimate < 1e-2
+    reference = method_of_lines(k, start, surface, nodes=800 if k > 2 else 400)
+    assert np.max(np.abs(result.mean - reference)) / MM <= result.error_estimate <= accuracy
 
 
 def test_absorption_is_faster_than_desorption_when_d_rises_with_moisture():

@@ -7,8 +7,9 @@ Public API: :class:`CamSection` (scene section), :class:`CamDesign`,
 :func:`scene_response`.
 """
 from .ageing import cam_state, scene_parts, scene_response
-from .model import (CamDesign, CamState, cam_response, design_from_scene, working_profile,
-                    write_profile_csv)
+from .design import CamDesign, CamState, design_from_scene
+from .kinematics import working_profile, write_profile_csv
+from .model import cam_response
 from .spec import CamSection
 
 __all__ = ["CamDesign", "CamSection", "CamState", "cam_response", "cam_state", "design_from_scene",

@@ -18,7 +18,8 @@ import numpy as np
 
 from ..mechanisms import over_ageing
 from ..response import Response
-from .model import CamState, design_from_scene, working_profile
+from .design import CamState, design_from_scene
+from .kinematics import working_profile
 from .oscillating import follower_response
 
 

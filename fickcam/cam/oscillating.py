@@ -24,9 +24,10 @@ import numpy as np
 
 from ..response import Response
 from . import arm as geo
-from .model import (CamDesign, CamState, _geometry_notices, _grown_arm, _jump_notices,
-                    aged_base_circle, cam_frame_point, cam_response, continuous_jump_speed,
-                    hertz_contact, motion_function)
+from .design import CamDesign, CamState
+from .kinematics import _grown_arm, cam_frame_point, motion_function
+from .model import (_geometry_notices, _jump_notices, aged_base_circle, cam_response,
+                    continuous_jump_speed, hertz_contact)
 from .motion import joint_notices
 
 

@@ -40,7 +40,7 @@ def polydyne_design(design, modulus: float | None):
     as-designed state (dry mass; a rod/lever with the dry modulus ``modulus``)."""
     from dataclasses import replace
 
-    from .model import CamState
+    from .design import CamState
     from .train import train_of
 
     state = CamState(follower_train_modulus=modulus)

@@ -167,7 +167,7 @@ def _load(path: str, mtime: float, curve_roller: float, mirror: bool = False) ->
 
 def load_profile(path, roller_radius: float = 0.0, mirror: bool = False) -> CamProfile:
     """The :class:`CamProfile` of a profile file (cached while the file is unchanged);
-    ``mirror``: its mirror image x -> -x (a clockwise cam, :mod:`fickcam.cam.model`)."""
+    ``mirror``: its mirror image x -> -x (a clockwise cam, :mod:`fickcam.cam.kinematics`)."""
     path = str(Path(path))
     try:
         mtime = os.path.getmtime(path)

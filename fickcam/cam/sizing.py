@@ -36,7 +36,7 @@ class Limits:
 def worst(design, state=None, step: float = SIZE_STEP) -> tuple[float, float]:
     """(largest |pressure angle| rad, smallest convex working radius of curvature m; -inf
     where the profile has a cusp or undercut) of ``design`` at ``state`` (dry by default)."""
-    from .model import CamState
+    from .design import CamState
     from .oscillating import follower_response
 
     theta = np.arange(0.0, 2 * math.pi, step)

@@ -216,7 +216,7 @@ class SteadyState:
 def steady_state(design, state) -> SteadyState:
     """:class:`SteadyState` of ``design`` at ageing state ``state`` (needs design.train)."""
     from . import dynamics as dyn
-    from .model import dry_lowest_height, follower_heights
+    from .kinematics import dry_lowest_height, follower_heights
 
     fine = np.linspace(0.0, 2 * np.pi, FINE, endpoint=False)
     (height, d1, d2, _), (lowest, _) = follower_heights(design, state, fine)
@@ -236,7 +236,7 @@ def dynamic_response(design, state, cam_angle, rigid) -> Response:
     follower_displacement, from the lowest rigid position: the static compression of the
     train under the load P shows as a constant offset -P/(k + k_s)."""
     from . import dynamics as dyn
-    from .model import follower_heights
+    from .kinematics import follower_heights
 
     theta = np.asarray(cam_angle, float)
     omega = design.speed
@@ -286,7 +286,7 @@ def residual_vibrations(design, state, steady: SteadyState | None = None) -> np.
     """Free-vibration amplitude (m) at the start of each dwell that follows a rise or return,
     over the first turn from rest (Koster 1974 sec. 3.2 'residual vibration'); empty for an
     eccentric cam or a motion without such a dwell."""
-    from .model import follower_heights
+    from .kinematics import follower_heights
 
     events = np.asarray(_events(design) if design.kind == "motion" else [], float)
     if events.size == 0:

@@ -10,7 +10,8 @@ from pathlib import Path
 
 import numpy as np
 
-from ..cam.model import design_from_scene, working_profile
+from ..cam.design import design_from_scene
+from ..cam.kinematics import working_profile
 from ..cam.profile import write_profile_csv, write_profile_dxf
 from .core import Target
 

@@ -29,9 +29,9 @@ from .exact import exact_available
 from .exposure import Diffusivity, Exposure
 from .geometry import Bar, CamPlate, Disc, LinkBar, Sheet
 from .forcing import RECORD_SHARE, is_long_record
-from .langmuir import langmuir_history
-from .nonlinear import fastest, refined, solve_nonlinear
-from .planmodes import planform_design, planform_error, planform_source
+from .langmuir import history_swing, langmuir_history
+from .nonlinear import nonlinear_plan, solve_nonlinear
+from .planmodes import LAYER_TOLERANCE, PLANFORM_CAP, planform_design, refined_planform
 from .timesteps import earliest_output
 from .plane import plan_plane, solve_plane
 from .results import DiffusionResult, Plan
@@ -39,6 +39,7 @@ from .sorption import describe, is_langmuir, is_nonlinear
 
 log = logging.getLogger(__name__)
 
+PLANFORM_SHARE = 0.5  # of the accuracy: the planform mesh; the rest the two-phase march
 MODELS = ("auto", "analytic", "slab", "axisymmetric", "plane", "solid")
 NUMERICAL_MODEL = {Sheet: "slab", Disc: "axisymmetric", Bar: "solid", CamPlate: "plane",
                    LinkBar: "plane"}
@@ -68,7 +69,7 @@ def _no_exact_reason(geometry) -> str:
 
 def _two_phase_model(geometry, model: str) -> str:
     """Langmuir sorption: the exact modes where the part has them; a CamPlate or LinkBar
-    ``plane``: its planform's eigenmodes x the exact sheet (``planmodes``), or ``solid``
+    ``plane``: its planform's quadrature x the exact sheet (``planmodes``), or ``solid``
     prisms; else the direct finite volumes (``coupled``)."""
     if model in ("auto", "analytic") and exact_available(geometry):
         return "analytic"
@@ -79,9 +80,11 @@ def _two_phase_model(geometry, model: str) -> str:
 
 
 def plan(geometry, diffusivity: Diffusivity, exposure: Exposure, times: np.ndarray,
-         accuracy: float = 1e-3, model: str = "auto", sorption=None) -> Plan:
+         accuracy: float = 1e-3, model: str = "auto", sorption=None,
+         surface_layer_depth: float | None = None) -> Plan:
     """The model, cells and steps ``solve`` will use, and why, without solving
-    (``sorption``: a law of ``diffusion.sorption``, None for Fick)."""
+    (``sorption``: a law of ``diffusion.sorption``, None for Fick; ``surface_layer_depth``:
+    the solve's, so that a plane plan and its solve share one outline expansion)."""
     _validate(geometry, model, accuracy)
     if is_langmuir(sorption) or is_nonlinear(sorption):
         return _plan_sorption(geometry, diffusivity, exposure, times, accuracy, model, sorption)
@@ -102,28 +105,35 @@ def plan(geometry, diffusivity: Diffusivity, exposure: Exposure, times: np.ndarr
     outputs = scales.tau_star(np.asarray(times, float))
     if chosen == "plane":  # expansion of the outline, then a graded mesh (plane)
         share = 1.0 - RECORD_SHARE if is_long_record(exposure) else 1.0  # the rest: the sum
-        return plan_plane(geometry, diffusivity, change, outputs, exposure.ramp, share * accuracy)
+        return plan_plane(geometry, diffusivity, change, outputs, exposure.ramp, share * accuracy,
+                          surface_layer_depth)
     return plan_direct(geometry, diffusivity, chosen, change, outputs, accuracy, exposure)
 
 
 def _plan_sorption(geometry, diffusivity, exposure, times, accuracy, model, sorption) -> Plan:
     law = describe(sorption)
-    if is_langmuir(sorption):
-        chosen = _two_phase_model(geometry, model)
-        if chosen == "analytic":
-            return Plan("analytic", 0, 0, f"{law}: exact Fickian modes of the part, each a "
-                        "2x2 free/bound system advanced exactly through the history", accuracy)
-        if chosen == "plane":
-            return _plan_planform(geometry, diffusivity, exposure, times, accuracy, law)
-    else:
-        chosen = _nonlinear_model(geometry, model)
-        diffusivity = fastest(diffusivity, sorption, exposure, times)
-    scales = scales_of(geometry, diffusivity, exposure)
-    direct = plan_direct(geometry, diffusivity, chosen, scales.tau_star(exposure.change_times),
-                         scales.tau_star(np.asarray(times, float)), accuracy, exposure)
     if is_nonlinear(sorption):
-        direct = refined(direct, sorption, exposure, times)
+        chosen = _nonlinear_model(geometry, model)
+        direct = nonlinear_plan(lambda d, a: _direct_plan(geometry, d, chosen, exposure, times, a),
+                                diffusivity, sorption, exposure, times, accuracy)
+        mirror = {Bar: "; solved on one octant (mirror planes)",
+                  CamPlate: "; solved on half the thickness (mid-plane mirror)",
+                  LinkBar: "; solved on half the thickness (mid-plane mirror)"}
+        return replace(direct, reason=f"{law}; {direct.reason}{mirror.get(type(geometry), '')}")
+    chosen = _two_phase_model(geometry, model)
+    if chosen == "analytic":
+        return Plan("analytic", 0, 0, f"{law}: exact Fickian modes of the part, each a "
+                    "2x2 free/bound system advanced exactly through the history", accuracy)
+    if chosen == "plane":
+        return _plan_planform(geometry, diffusivity, exposure, times, accuracy, law)
+    direct = _direct_plan(geometry, diffusivity, chosen, exposure, times, accuracy)
     return replace(direct, reason=f"{law}; {direct.reason}")
+
+
+def _direct_plan(geometry, diffusivity, chosen, exposure, times, accuracy) -> Plan:
+    scales = scales_of(geometry, diffusivity, exposure)
+    return plan_direct(geometry, diffusivity, chosen, scales.tau_star(exposure.change_times),
+                       scales.tau_star(np.asarray(times, float)), accuracy, exposure)
 
 
 def _plan_planform(geometry, diffusivity, exposure, times, accuracy, law) -> Plan:
@@ -131,17 +141,23 @@ def _plan_planform(geometry, diffusivity, exposure, times, accuracy, law) -> Pla
     t_lo = earliest_output(scales.tau_star(exposure.change_times),
                            scales.tau_star(np.asarray(times, float)))
     design = planform_design(geometry, diffusivity.pre_exponential, accuracy, t_lo)
-    return Plan("plane", int(np.prod(design.cells)), 0, f"{law}: every eigenmode of the "
-                f"planform's FiPy operator ({design.note}) x the exact sheet modes, each a 2x2 "
-                "free/bound system advanced exactly through the history", accuracy,
-                design.cells, finest=design.finest, growth=design.growth)
+    return Plan("plane", int(np.prod(design.cells)), 0, f"{law}: the planform's FiPy operator "
+                f"(first mesh {design.note}, refined from its measured error), its decay seen "
+                "by the mean and layer as a shift-invert Lanczos quadrature, x the exact sheet "
+                "modes, each a 2x2 free/bound system advanced exactly through the history",
+                accuracy, design.cells, finest=design.finest, growth=design.growth)
 
 
 def _nonlinear_model(geometry, model: str) -> str:
-    """Concentration-dependent D: FiPy sweeps on the slab (Sheet) or (r, z) grid (Disc)."""
-    if not isinstance(geometry, (Sheet, Disc)):
-        raise InputError(f"concentration_dependent sorption is solved for a Sheet or a Disc, "
-                         f"not yet for a {type(geometry).__name__}")
+    """Concentration-dependent D: FiPy sweeps on the part's own mesh: the slab (Sheet),
+    the (r, z) grid (Disc), 3-D cells cut at the mirror planes (Bar, CamPlate, LinkBar:
+    ``mirrored``). No exact series and no planform x sheet product exist for D(c) (the
+    Laplacian no longer separates): ``analytic`` means the mesh model, ``plane`` is refused."""
+    if model == "plane":
+        raise InputError(f"diffusion.model {model} has no concentration-dependent form (D(c) "
+                         f"does not separate); use solid or auto for a {type(geometry).__name__}")
+    if isinstance(geometry, (Bar, CamPlate, LinkBar)):
+        return "solid"
     return NUMERICAL_MODEL[type(geometry)] if model in ("auto", "analytic") else model
 
 
@@ -152,7 +168,8 @@ def solve(geometry, diffusivity: Diffusivity, exposure: Exposure, times: np.ndar
     ``sorption`` law (``diffusion.sorption``) the mean and surface are the total (free +
     bound) moisture and, for Langmuir, ``bound`` the bound-water mean."""
     times = np.asarray(times, float)
-    chosen = plan(geometry, diffusivity, exposure, times, accuracy, model, sorption)
+    chosen = plan(geometry, diffusivity, exposure, times, accuracy, model, sorption,
+                  surface_layer_depth)
     log.debug("%s: %s, %d cells, %d steps (%s)", part or type(geometry).__name__, chosen.model,
               chosen.cells, chosen.steps, chosen.reason)
     if sorption is not None and (is_langmuir(sorption) or is_nonlinear(sorption)):
@@ -184,16 +201,45 @@ def _solve_sorption(geometry, diffusivity, exposure, times, chosen: Plan, sorpti
 
 
 def _langmuir_modes(geometry, diffusivity, exposure, times, chosen, sorption, depth):
-    """The exact two-phase modal march; for a CamPlate or LinkBar on its planform's modes,
-    whose mesh error (``planform_error``) adds to the march's."""
-    source, planform = None, 0.0
-    if chosen.model == "plane":
-        d = diffusivity.pre_exponential
-        source = planform_source(geometry, d, depth, chosen.finest, chosen.growth)
-        ages = RescaledTime(diffusivity, exposure)(times)
-        planform = planform_error(geometry, d, depth, chosen.finest, chosen.growth, source, ages)
-    history, estimate = langmuir_history(geometry, diffusivity, sorption, exposure, times,
-                                         chosen.error_estimate, depth, source)
+    """The exact two-phase modal march; for a CamPlate or LinkBar on its planform's
+    quadrature (``planmodes``), refined until the march's change between two meshes says
+    the mesh error is ``PLANFORM_SHARE`` of the accuracy; it adds to the march's estimate."""
+    accuracy = chosen.error_estimate
+    if chosen.model != "plane":
+        history, estimate = langmuir_history(geometry, diffusivity, sorption, exposure, times,
+                                             accuracy, depth)
+        return _langmuir_result(times, history, estimate, chosen)
+    share, scale = PLANFORM_SHARE * accuracy, 1.0 / max(history_swing(exposure), 1e-300)
+
+    def measure(source):
+        history, estimate = langmuir_history(geometry, diffusivity, sorption, exposure, times,
+                                             accuracy - share, depth, source)
+        compared = [history["mean"], history["bound"], history["surface"] / LAYER_TOLERANCE]
+        return np.stack(compared) * scale, (history, estimate)
+
+    refined = refined_planform(geometry, diffusivity.pre_exponential, depth, chosen.finest,
+                               chosen.growth, read_ages(RescaledTime(diffusivity, exposure),
+                                                        exposure, times), share, measure)
+    history, estimate = refined.result
+    capped = ("" if refined.error <= share else
+              f"; capped at {PLANFORM_CAP} cells: error above the requested accuracy")
+    chosen = replace(chosen, cells=refined.cells, cells_per_axis=(refined.cells,),
+                     reason=f"{chosen.reason}; refined to {refined.cells} cells "
+                            f"({refined.levels} meshes), {refined.steps}-point quadrature{capped}")
+    return _langmuir_result(times, history, estimate + refined.error, chosen)
+
+
+def _langmuir_result(times, history, estimate, chosen) -> DiffusionResult:
     return DiffusionResult(times, history["mean"], history["surface"], chosen.model,
-                           chosen.cells, 0, estimate + planform, chosen.reason,
-                           bound=history["bound"])
+                           chosen.cells, 0, estimate, chosen.reason, bound=history["bound"])
+
+
+def read_ages(clock, exposure, times, most: int = 256) -> np.ndarray:
+    """Rescaled ages (s) the outputs read after each change of the exposure (at most
+    ``most``, spread over their range, the least and largest kept)."""
+    changes = clock(np.asarray(exposure.change_times, float))
+    ages = np.subtract.outer(clock(np.asarray(times, float)), changes).ravel()
+    ages = np.unique(ages[ages > 0])
+    if ages.size > most:
+        ages = ages[np.unique(np.linspace(0, ages.size - 1, most).astype(int))]
+    return ages

@@ -107,12 +107,20 @@ def bar(length: float, width: float, thickness: float, cells: tuple[int, int, in
                   dy=axes[1]["d"], dz=axes[2]["d"])
     volumes, stiffness, boundary = assemble(mesh)
     centres = [np.asarray(a) / s for a, s in zip(mesh.cellCenters, scale)]
-    index = np.unravel_index(np.arange(volumes.size), tuple(w.size for w in widths[::-1]))[::-1]
-    whole, inner = np.ones(volumes.size), np.ones(volumes.size)
-    for w, i, length_i in zip(widths, index, size):
+    return Discretisation(volumes, stiffness, boundary, normalised(volumes),
+                          normalised(near_faces(widths, size, layer_depth)),
+                          dict(zip("xyz", centres)))
+
+
+def near_faces(widths, size, layer_depth: float) -> np.ndarray:
+    """Volume (m^3) of each cell of a Grid3D (x fastest) of these axis widths (m) within
+    ``layer_depth`` of a face of the box ``size`` (cell volume minus its inner core)."""
+    count = int(np.prod([w.size for w in widths]))
+    index = np.unravel_index(np.arange(count), tuple(w.size for w in widths[::-1]))[::-1]
+    whole, inner = np.ones(count), np.ones(count)
+    for w, i, length in zip(widths, index, size):
         lo, hi = _bounds(w, i)
         whole *= hi - lo
-        inner *= interval_overlap(lo, hi, layer_depth, length_i - layer_depth)
-    return Discretisation(volumes, stiffness, boundary, normalised(volumes),
-                          normalised(whole - inner), dict(zip("xyz", centres)))
+        inner *= interval_overlap(lo, hi, layer_depth, length - layer_depth)
+    return whole - inner
 

@@ -35,6 +35,7 @@ from .modes import (FIRST_COUNT, FIRST_PER_OCTAVE, MAX_PRODUCT, dimensions, lump
                     step_corrections)
 from .two_phase import exchange_propagator
 
+MAX_EXCHANGE_PIECES = 100_000  # pieces per ramp row at most (exchange frozen per piece)
 INTERPOLATION_SHARE = 0.25  # share of the tolerance for Ms piecewise linear between nodes
 
 
@@ -60,6 +61,9 @@ def march_nodes(law, diffusivity, exposure, times, tolerance) -> Nodes:
     clock = RescaledTime(diffusivity, exposure)
     edges = clock.edges
     pieces, interpolation = _pieces(exposure, clock, tolerance)
+    exchange, frozen = _exchange_pieces(law, clock, exposure, tolerance)
+    pieces = np.maximum(pieces, exchange)
+    interpolation += float(np.max(frozen / pieces ** 2, initial=0.0))
     cuts = [np.linspace(a, b, n + 1)[:-1] for a, b, n in zip(edges[:-1], edges[1:], pieces)]
     t = np.unique(np.concatenate(cuts + [edges[-1:], times]))
     share_right = law.free_share(exposure.temperature(t))
@@ -72,6 +76,32 @@ def march_nodes(law, diffusivity, exposure, times, tolerance) -> Nodes:
     return Nodes(t, clock(t), share_right * np.asarray(exposure.surface_moisture(t), float),
                  left, gamma, beta, ratio, np.searchsorted(t, times),
                  (1.0 - share0) * exposure.initial_moisture, interpolation)
+
+
+def _exchange_pieces(law, clock, exposure, tolerance) -> tuple[np.ndarray, np.ndarray]:
+    """Pieces per ramp row so that freezing gamma, beta, the Arrhenius factor of D and the
+    free share at each piece's middle (the exponential midpoint rule, second order: Blanes,
+    Casas, Oteo & Ros 2009, Phys. Rep. 470:151, §4.1, local error O(h^3) from A'' and
+    [A, A']) stays within ``tolerance``. A row of length L whose rates change by a log
+    spread Delta, exchange scale a = max(gamma + beta), cut into n pieces (h = L/n,
+    spread Delta/n each) errs by about L a (Delta/n)^2 / 24 + (L a)^2 Delta / (12 n^2);
+    returns n and that error times n^2 (held rows: 1 piece, no error)."""
+    start, end = clock.edges[:-1], clock.edges[1:]
+    first = exposure.temperature(start)
+    last = exposure.temperature(np.nextafter(end, -np.inf))
+    spread = np.zeros(start.size)
+    for rate in (lambda t: law.rates(t)[0], lambda t: law.rates(t)[1], clock.rate,
+                 law.free_share):
+        a, b = np.asarray(rate(first), float), np.asarray(rate(last), float)
+        positive = (a > 0) & (b > 0)
+        spread = np.maximum(spread, np.abs(np.log(np.where(positive, b, 1.0)
+                                                  / np.where(positive, a, 1.0))))
+    scale = sum(np.maximum(x, y) for x, y in zip(law.rates(first), law.rates(last)))
+    exchange = scale * (end - start)
+    frozen = np.where(clock.ramp, exchange * spread ** 2 / 24.0 + exchange ** 2 * spread / 12.0,
+                      0.0)
+    pieces = np.ceil(np.sqrt(frozen / max(tolerance, 1e-300)))
+    return np.clip(pieces, 1, MAX_EXCHANGE_PIECES).astype(int), frozen
 
 
 def march_modes(rates, amplitudes, nodes: Nodes) -> np.ndarray:
@@ -144,6 +174,13 @@ def _history(source: ModeSource, nodes: Nodes, counts, per_octave) -> np.ndarray
     return np.stack([values[:, 0, 0], values[:, 1, 0], values[:, 0, 1] + values[:, 1, 1]], axis=1)
 
 
+def history_swing(exposure) -> float:
+    """The largest |Ms - M0| at the exposure's changes (the scale of the accuracy)."""
+    edges = np.asarray(exposure.change_times, float)
+    sampled = np.concatenate([exposure.surface_moisture(edges), exposure.surface_before(edges)])
+    return float(np.max(np.abs(np.asarray(sampled, float) - exposure.initial_moisture)))
+
+
 def langmuir_history(geometry, diffusivity, law, exposure, times, accuracy,
                      surface_layer_depth=5e-4, source: ModeSource | None = None):
     """Total mean, contact-layer mean and bound mean (weight %) at ``times`` (s), and the
@@ -152,9 +189,7 @@ def langmuir_history(geometry, diffusivity, law, exposure, times, accuracy,
     (default: the separable Sheet, Bar or solid Disc)."""
     times = np.asarray(times, float)
     source = source or separable_source(geometry, diffusivity.pre_exponential, surface_layer_depth)
-    edges = np.asarray(exposure.change_times, float)
-    sampled = np.concatenate([exposure.surface_moisture(edges), exposure.surface_before(edges)])
-    swing = float(np.max(np.abs(np.asarray(sampled, float) - exposure.initial_moisture)))
+    swing = history_swing(exposure)
     if swing == 0.0:
         flat = np.full(times.size, exposure.initial_moisture)
         bound = flat * (1.0 - law.free_share(exposure.temperature(times)))

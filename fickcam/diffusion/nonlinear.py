@@ -1,10 +1,12 @@
 """Concentration-dependent diffusion, D(c, T) = D(T) f(c/Mm_ref) (``sorption``;
-Crank 1975 ch. 9), on the FiPy slab (Sheet) and (r, z) grid (Disc or annulus).
+Crank 1975 ch. 9), on the FiPy slab (Sheet), (r, z) grid (Disc or annulus) and the 3-D
+cells of a Bar (Grid3D) or of a CamPlate or LinkBar (prisms of Delaunay-admissible
+planform cells), the latter cut at their mirror planes (``mirrored``).
 
 One Arrhenius factor still multiplies every D, so the rescaled clock of ``clock`` stays
 exact: dc/dtau = div(D0 f(c) grad c) (Crank 1975 §7.2 with §9.1). Time and mesh are
-scaled with the LARGEST D met, D0 max f, so that the planned steps and cells resolve the
-fastest diffusion; the FiPy coefficient is then f(c)/max f <= 1 on the faces, evaluated
+scaled with the LARGEST D met, D0 max f, so that the planned steps resolve the fastest
+diffusion, and the cells are sized at the smallest (``nonlinear_plan``); the FiPy coefficient is then f(c)/max f <= 1 on the faces, evaluated
 at the face value of c (the constrained surface value on exposed faces).
 
 FiPy assembles the mesh's unit operator once (``direct.discretise``); ``Faces`` takes it
@@ -14,7 +16,8 @@ and agrees to round-off), without FiPy's per-sweep assembly (about 20 ms a sweep
 Each backward-Euler step is swept (Picard: coefficient from the latest iterate) until the
 residual of the new iterate in its own operator, checked after every sweep, is below
 ``SWEEP_TOLERANCE`` of the right side; a step that does not get there in ``MAX_SWEEPS``
-sweeps raises ``SolverError`` naming part, step and time. The steps are those of the
+sweeps raises ``SolverError`` naming part, step and time. The linear systems of the
+sweeps are solved by CG on lagged LU factors (``Lagged``). The steps are those of the
 direct models (geometric, restarting at every change), run twice for the Richardson pair
 (``direct``).
 """
@@ -27,15 +30,23 @@ from scipy import sparse
 from scipy.sparse import linalg as splinalg
 
 from ..errors import SolverError
+from .clock import sample_times
 from .clock import scales as scales_of
+from .calibration import TIME_ERROR
 from .direct import _richardson, discretise, step_plan, swing
 from .exposure import Diffusivity
 from .geometry import Disc, Sheet
-from .march import History, _rounded, norm
+from .mirrored import mirrored
+from .march import ORDERING, History, _rounded, norm
 from .results import DiffusionResult
 
 SWEEP_TOLERANCE = 1e-9   # residual / |right side| at which a step's sweeps stop
 MAX_SWEEPS = 60
+LAG_ITERATIONS = 15  # CG iterations on the lagged factors before a refactorisation
+LINEAR_TOLERANCE = 1e-12
+SPACE_MARGIN = 4.0    # skin: cells sized at D_min for accuracy / (1 + SPACE_MARGIN (sqrt(ratio) - 1))
+ABSORPTION_MARGIN = 2.0  # no skin: cells sized at D_max for accuracy / ABSORPTION_MARGIN
+SPACE_TO_ERROR = 1.0  # error / (m x the space estimate of the cells' plan): 0.5-1.0 measured
 
 
 def fastest(diffusivity: Diffusivity, law, exposure, times) -> Diffusivity:
@@ -46,17 +57,58 @@ def fastest(diffusivity: Diffusivity, law, exposure, times) -> Diffusivity:
                        diffusivity.activation_energy)
 
 
-def refined(plan, law, exposure, times):
-    """The direct plan with cells refined by 2 sqrt(max f / min f) per axis: where D is
-    low (the dry side of a front) the profile is steeper by about sqrt of the D ratio
-    (Crank 1975 §9.4, the sharp fronts of strongly varying D); measured on a sheet with
-    k = 2 against a fine method of lines, the Fickian cell count left 10x the accuracy."""
+def slowest(diffusivity: Diffusivity, law, exposure, times) -> Diffusivity:
+    """The diffusivity scaled by the smallest f met: the scale of the steepest layer."""
     values = law.factor(np.linspace(0.0, wettest(exposure, times), 65))
-    factor = 2.0 * float(np.sqrt(np.max(values) / np.min(values)))
-    cells = tuple(int(np.ceil(n * factor)) for n in plan.cells_per_axis)
-    return replace(plan, cells_per_axis=cells, cells=int(np.prod(cells)),
-                   finest=plan.finest / factor,
-                   reason=plan.reason + f"; cells x{factor:.2g} for the steepest front")
+    return Diffusivity(tuple(d * float(np.min(values)) for d in diffusivity.pre_exponential),
+                       diffusivity.activation_energy)
+
+
+def spread(law, exposure, times) -> float:
+    """max f / min f over the moisture the part meets."""
+    values = law.factor(np.linspace(0.0, wettest(exposure, times), 65))
+    return float(np.max(values) / np.min(values))
+
+
+def dries_to_a_skin(law, exposure) -> bool:
+    """Whether the surface ever holds a moisture whose D is below the largest D met before
+    (initial moisture, earlier surface values): the part then has a skin where the whole
+    drop of c crosses a layer sqrt(D_min t) deep (desorption when D rises with c, Crank
+    1975 §9.3-9.4, absorption when it falls)."""
+    g = np.asarray(exposure.surface_moisture(sample_times(exposure)), float)
+    f = law.factor(np.concatenate([[exposure.initial_moisture], g]))
+    return bool(np.any(f[1:] < np.maximum.accumulate(f)[:-1] * (1 - 1e-9)))
+
+
+def nonlinear_plan(planner, diffusivity, law, exposure, times, accuracy: float):
+    """The direct plan of a concentration-dependent part: steps from the fastest D (its
+    scaled time is the march's). Cells: those of the fastest D at accuracy / m, m =
+    ``ABSORPTION_MARGIN``, unless the surface dries to a skin (``dries_to_a_skin``); then
+    those of the slowest D at accuracy / m, m = 1 + SPACE_MARGIN (sqrt(max f / min f) - 1).
+    Measured on the sheet against a fine
+    method of lines (tests/test_sorption_nonlinear.py; k = 2 and 5, accuracy 1e-2 and
+    1e-3): absorption with the fastest D's own cells erred up to 0.9 of the accuracy (the
+    dry side of the front is steep but holds little water), hence ``ABSORPTION_MARGIN``;
+    desorption with the slowest D's own cells erred 1.3-1.6 sqrt(max f / min f) times the
+    accuracy. The estimate: SPACE_TO_ERROR m x the space estimate of the cells' plan.
+    ``planner(diffusivity, accuracy)``: the Fickian direct plan of the part."""
+    fast = planner(fastest(diffusivity, law, exposure, times), accuracy)
+    if dries_to_a_skin(law, exposure):
+        margin = 1.0 + SPACE_MARGIN * (np.sqrt(spread(law, exposure, times)) - 1.0)
+        cells = planner(slowest(diffusivity, law, exposure, times), accuracy / margin)
+        why = f"drying to a skin: cells sized at the smallest D for accuracy / {margin:.3g}"
+    else:
+        margin = ABSORPTION_MARGIN if spread(law, exposure, times) > 1 + 1e-9 else 1.0  # 1: Fick
+        cells = planner(fastest(diffusivity, law, exposure, times), accuracy / margin)
+        why = f"no dry skin: cells sized at the largest D for accuracy / {margin:g}"
+    space = cells.error_estimate - TIME_ERROR / cells.steps_per_doubling ** 2
+    estimate = float(SPACE_TO_ERROR * margin * space + TIME_ERROR / fast.steps_per_doubling ** 2)
+    reason = f"{fast.reason.split('; capped')[0]}; {why}"
+    if estimate > accuracy:
+        reason += "; capped: error above the requested accuracy"
+    return replace(fast, cells=cells.cells, cells_per_axis=cells.cells_per_axis,
+                   finest=cells.finest, growth=cells.growth, error_estimate=estimate,
+                   reason=reason)
 
 
 def solve_nonlinear(geometry, diffusivity, law, exposure, times, chosen, *,
@@ -64,12 +116,13 @@ def solve_nonlinear(geometry, diffusivity, law, exposure, times, chosen, *,
     """Mean and contact-layer moisture (weight %) at ``times`` (s): the Richardson pair of
     swept backward-Euler marches (module docstring). ``chosen`` was planned with
     ``fastest(...)``."""
-    if not isinstance(geometry, (Sheet, Disc)):
-        raise TypeError(f"no concentration-dependent model for {type(geometry).__name__}")
     scaled = fastest(diffusivity, law, exposure, times)
     scales = scales_of(geometry, scaled, exposure)
-    weights = discretise(geometry, scaled, chosen.cells_per_axis, surface_layer_depth,
-                         chosen.finest, chosen.growth)
+    weights = (discretise(geometry, scaled, chosen.cells_per_axis, surface_layer_depth,
+                          chosen.finest, chosen.growth) if isinstance(geometry, (Sheet, Disc))
+               else mirrored(geometry, tuple(float(v) for v in scaled.pre_exponential),
+                             chosen.cells_per_axis, chosen.finest, chosen.growth,
+                             surface_layer_depth))
     faces = Faces.of(weights)
     top = law.largest_factor(wettest(exposure, times))
     runs = []
@@ -133,25 +186,52 @@ def sweep_march(faces: Faces, weights, law, top, steps, initial, keep_fields, pa
     want = {int(k) for k in steps.outputs}
     record = {0: c.copy()} if 0 in want else {}
     dts = _rounded(np.diff(steps.nodes))
+    solver = Lagged()
     for k, dt in enumerate(dts, start=1):
-        c = _sweep(faces, c, float(steps.surface_before[k]), law, top, dt, part, k, steps.times[k])
+        c = _sweep(faces, c, float(steps.surface_before[k]), law, top, dt, part, k, steps.times[k],
+                   solver)
         if k in want:
             record[k] = c.copy()
     states = np.array([record[int(k)] for k in steps.outputs])
     return History(mean=states @ weights.mean_weights, layer=states @ weights.layer_weights,
-                   fields=states if keep_fields else None, steps=int(dts.size), factorisations=0)
+                   fields=states if keep_fields else None, steps=int(dts.size),
+                   factorisations=solver.factorisations)
 
 
-def _sweep(faces: Faces, old, g, law, top, dt, part, index, time) -> np.ndarray:
+class Lagged:
+    """Solves the SPD systems (M/dt + K(c)) x = b of a march: conjugate gradients
+    preconditioned by the LU factors of an earlier system (its coefficient moves little
+    from sweep to sweep and step to step; a doubled dt bounds the condition number by 2),
+    refactorised (SuperLU, symmetric ordering) when CG needs more than ``LAG_ITERATIONS``.
+    On the 3-D meshes this replaces a factorisation per sweep by a few triangular solves."""
+
+    def __init__(self):
+        self.lu = None
+        self.factorisations = 0
+
+    def solve(self, matrix: sparse.csr_matrix, rhs: np.ndarray, guess: np.ndarray) -> np.ndarray:
+        if self.lu is not None:
+            preconditioner = splinalg.LinearOperator(matrix.shape, self.lu.solve)
+            x, info = splinalg.cg(matrix, rhs, x0=guess, rtol=LINEAR_TOLERANCE, atol=0.0,
+                                  M=preconditioner, maxiter=LAG_ITERATIONS)
+            if info == 0:
+                return x
+        self.lu = splinalg.splu(matrix.tocsc(), permc_spec=ORDERING, diag_pivot_thresh=0.0,
+                                options={"SymmetricMode": True})
+        self.factorisations += 1
+        return self.lu.solve(rhs)
+
+
+def _sweep(faces: Faces, old, g, law, top, dt, part, index, time, solver=None) -> np.ndarray:
     """Picard sweeps (M/dt + K(c)) c_new = M old/dt + f(g) with K from the latest iterate,
-    until the residual of the new iterate in its own operator is below ``SWEEP_TOLERANCE``
-    of the right side; SolverError if ``MAX_SWEEPS`` do not get there."""
+    until the residual of the new iterate in its own operator (the next sweep's) is below
+    ``SWEEP_TOLERANCE`` of the right side; SolverError if ``MAX_SWEEPS`` do not get there."""
+    solver = solver or Lagged()
     mass = faces.volumes / dt
     c, residual = old, np.inf
+    k, f = faces.operator(c, g, law, top)
     for _ in range(MAX_SWEEPS):
-        k, f = faces.operator(c, g, law, top)
-        rhs = mass * old + f
-        c = splinalg.spsolve((sparse.diags(mass) + k).tocsc(), rhs)
+        c = solver.solve(sparse.diags(mass) + k, mass * old + f, c)
         k, f = faces.operator(c, g, law, top)
         residual = norm(mass * c + k @ c - mass * old - f) / max(norm(mass * old + f), 1e-300)
         if not np.isfinite(residual):

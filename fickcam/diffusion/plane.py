@@ -172,17 +172,19 @@ def expansion_error_at(expansion, ages: np.ndarray) -> float:
 
 
 def plan_plane(geometry, diffusivity, change: np.ndarray, outputs: np.ndarray, ramp,
-               accuracy: float):
+               accuracy: float, layer_depth: float | None = None):
     """What ``solve_plane`` will do and the error it will report, by the blend's error model
     at the ages the outputs read (``timesteps.output_ages``): the expansion up to its switch
     (error ``EXPANSION_SHARE`` x accuracy); after it a graded P1 mesh whose relative error
     at half the switch (``mesh_design`` plus the expansion's own relative error there) times
     the largest uptake x sheet fraction at the later ages takes what the time error,
     PAIR_TO_TIME_ERROR (PLANE_PAIR F(end) / m)^2 (at most ``TIME_SHARE`` of it), leaves of
-    ``DESIGN_MARGIN`` x accuracy. The cells are those of the mesh ``solve`` builds."""
+    ``DESIGN_MARGIN`` x accuracy. The cells are those of the mesh ``solve`` builds. The
+    plan reads nothing of the contact layer: ``layer_depth`` (the solve's) only lets plan
+    and solve share the expansion (``expansion_of``)."""
     d = tuple(float(v) for v in diffusivity.pre_exponential)
     tolerance = EXPANSION_SHARE * accuracy
-    expansion = expansion_of(geometry, d)
+    expansion = expansion_of(geometry, d, layer_depth)
     end = max(float(np.max(outputs)), 10 * FIRST_STEP)
     ages = output_ages(change, outputs, ramp)
     t_lo = earliest_output(change, outputs)

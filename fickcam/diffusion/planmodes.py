@@ -1,5 +1,5 @@
-"""The modes of a CamPlate or LinkBar: every eigenmode of its planform's finite-volume
-operator times the exact through-thickness sheet modes, for the two-phase march
+"""The modes of a CamPlate or LinkBar: the planform's spectrum, seen by the mean and the
+contact layer, times the exact through-thickness sheet modes, for the two-phase march
 (``langmuir``) where the plane model's superposed step responses do not apply.
 
 The part is a prism (planform x thickness), so in the scaled coordinates of
@@ -7,86 +7,163 @@ The part is a prism (planform x thickness), so in the scaled coordinates of
 §1.16): modes psi_i(x, y) sin(k pi z/h), rates mu_i + (k pi)^2. The planform operator is
 FiPy's, on the Delaunay-admissible cells of ``prism`` (one layer of prisms between a face
 and the insulated mid-plane, whose face-to-cell coupling 2 V/w^2 is taken off the
-diagonal and off f: the remainder is the in-plane two-point-flux operator, K_p 1 = f_p).
-Its generalised eigenproblem K_p v = mu M v (M = diag(volumes), symmetric after
-M^-1/2 K_p M^-1/2) is solved whole (dense ``eigh``), so the planform direction is not
-truncated: the deficit of a unit step is sum_i c_i v_i exp(-mu_i t) exactly (the
-semi-discrete solution), c_i = v_i^T M 1. Its error is the planform mesh's, sized from
-the accuracy by ``layout`` (2 graded directions) under ``PLANFORM_CAP`` cells.
+diagonal: the remainder is the in-plane two-point-flux operator K_p, K_p 1 = f_p). With
+M = diag(volumes) and S = M^-1/2 K_p M^-1/2 (symmetric positive definite), the mean of
+any function of the planform decay, sum_i A_i f(mu_i) = v^T f(S) v / V with v = M^1/2 1,
+is a Stieltjes integral over S's spectrum (the layer: the bilinear form with the band's
+volumes). m steps of Lanczos started at v give its m-point Gauss quadrature: Ritz values
+theta_j as rates, squared first components of T's eigenvectors as amplitudes (Golub &
+Meurant 2010, "Matrices, Moments and Quadrature with Applications", §§6.2, 7.1). The
+Lanczos runs on S^-1 (shift-and-invert at 0, one sparse LU): exp(-mu t) is smooth in
+1/mu, so the quadrature converges at a rate set by the outputs' ages, not by the mesh's
+stiffest mode (van den Eshof & Hochbruck 2006, SIAM J. Sci. Comput. 27:1438, §3; Moret &
+Novati 2004, BIT 44:595). Full reorthogonalisation keeps the layer's bilinear form
+accurate. m doubles until the unit-step response at the ages read changes by less than
+``LANCZOS_SHARE`` of the tolerance (``lanczos_count``).
+
+The mesh is refined a posteriori (``refined_planform``): second order in the finest
+width w0 and growth g together (``layout``: error (w0/sqrt(t) + c g)^2), so the two-phase
+histories on two meshes w0 and w0/r estimate the finer one's error as their difference /
+(r^2 - 1) (Richardson), and the next r follows from that estimate, until the planform's
+share of the accuracy is met or ``PLANFORM_CAP`` cells are reached. (The Fickian step
+response alone would not do: bound water lives on the slowest modes long after their
+free water has settled, so an error of the slowest planform rates shows late.)
 """
 from __future__ import annotations
 
+from dataclasses import dataclass
 from functools import lru_cache
 
 import numpy as np
-from scipy.linalg import eigh
+from scipy import sparse
+from scipy.linalg import eigh_tridiagonal
+from scipy.sparse.linalg import splu
 
 from ..errors import InputError
 from . import layout
 from .calibration import space_error
 from .fvprism import prism
 from .langmuir import ModeSource
+from .march import ORDERING
 from .modes import Modes, sheet_factor
 from .prism import band_share
 from .scaling import stretch_of
 from .series import sheet_uptake
 
-PLANFORM_CAP = 2500   # dense eigh of 2 500 cells: about 3 s of CPU, 50 MB
-OTHER_MESHES = (2.0, 1.5, 0.5)  # the second mesh of the error estimate: w0 times these
+FIRST_CAP = 2500      # cells of the first planform mesh (the plan's a-priori design)
+PLANFORM_CAP = 60_000  # the finest planform mesh refined to, cells
+FIRST_LANCZOS = 32    # Lanczos steps to start with (doubled while the response moves)
+MAX_LANCZOS = 512     # steps at most: Q holds 512 x cells doubles (250 MB at the cap)
+LANCZOS_SHARE = 0.05  # share of the tolerance left to the quadrature
+SAFETY = 1.2          # refine a little past the Richardson prediction (it is asymptotic)
+LAYER_TOLERANCE = 4.0  # the contact layer may be this many times less accurate (as ``plane``)
+MAX_REFINE = 4.0      # refine w0 by at most this factor per level (the estimate's reach)
 
 
 def planform_design(geometry, d, accuracy: float, t_lo: float) -> layout.Layout:
-    """Graded planform rows (w0, g) from the error model, shrunk under the cap."""
+    """The first mesh: graded planform rows (w0, g) from the error model, shrunk under
+    ``FIRST_CAP`` cells (``refined_planform`` refines it from the measured error)."""
     stretch = stretch_of(d)
-    return layout.graded((1.0, 1.0), ("both", "both"), accuracy, t_lo, PLANFORM_CAP,
+    return layout.graded((1.0, 1.0), ("both", "both"), accuracy, t_lo, FIRST_CAP,
                          space_error(t_lo), lambda w0, g: (
                              layout._estimated_prism_cells(geometry, w0, g, stretch)[0],))
 
 
-@lru_cache(maxsize=8)
-def planform_spectrum(geometry, d, depth: float, finest: float, growth: float):
-    """(rates in 1/s of rescaled time, mean amplitudes, layer amplitudes, cells) of the
-    planform: a unit step's deficit 1 - u has mean sum A_i exp(-rate_i tau). Cached: a
-    run re-ages its parts at extra times to locate limit crossings (read-only arrays)."""
+@dataclass(frozen=True, eq=False)
+class Planform:
+    """S = M^-1/2 K_p M^-1/2 (rescaled 1/s) and the vectors of the mean (v = M^1/2 1 / V)
+    and the layer (the band's M^1/2 share / V_band) against M^1/2 1."""
+
+    operator: sparse.csc_matrix
+    start: np.ndarray
+    mean: np.ndarray
+    layer: np.ndarray
+    cells: int
+
+
+@lru_cache(maxsize=4)
+def planform_operator(geometry, d, depth: float, finest: float, growth: float) -> Planform:
+    """The planform's FiPy operator (module docstring) on the graded admissible cells."""
     tess = layout.planform_cells(geometry, finest, growth, stretch_of(d))
     half = 0.5 * geometry.thickness
     disc = prism(tess, geometry.thickness, np.array([half]), band_share(tess, depth), d,
                  mid_plane=True)
     volumes = disc.volumes
     vertical = 2.0 * volumes / 0.5 ** 2      # face-to-cell coupling of the exposed face
-    stiffness = disc.stiffness.toarray() - np.diag(vertical)
     root = np.sqrt(volumes)
-    mu, vectors = eigh(stiffness / root[:, None] / root[None, :])
-    coefficients = vectors.T @ root                # c_i of the constant 1 (M-orthonormal v)
-    mean = (disc.mean_weights / root) @ vectors * coefficients
-    layer = (disc.layer_weights / root) @ vectors * coefficients
-    rates = np.maximum(mu, 0.0) * d[2] / geometry.thickness ** 2
+    inverse = sparse.diags(1.0 / root)
+    scale = d[2] / geometry.thickness ** 2   # scaled -> rescaled time
+    operator = scale * (inverse @ (disc.stiffness - sparse.diags(vertical)) @ inverse)
+    return Planform(operator.tocsc(), root, disc.mean_weights / root,
+                    disc.layer_weights / root, tess.cells)
+
+
+@lru_cache(maxsize=4)
+def _factor(planform: Planform):
+    """Sparse LU of the symmetric positive definite S: symmetric ordering, diagonal pivots
+    (as ``march``)."""
+    return splu(planform.operator, permc_spec=ORDERING, diag_pivot_thresh=0.0,
+                options={"SymmetricMode": True})
+
+
+@lru_cache(maxsize=8)
+def lanczos_spectrum(planform: Planform, steps: int):
+    """(rates, mean amplitudes, layer amplitudes): the ``steps``-point Gauss quadrature of
+    the planform's decay (module docstring), shift-and-invert Lanczos from M^1/2 1 with
+    full reorthogonalisation. Read-only arrays (cached)."""
+    steps = min(steps, planform.cells)
+    inverse = _factor(planform)
+    norm = float(np.linalg.norm(planform.start))
+    basis = np.zeros((steps, planform.cells))
+    basis[0] = planform.start / norm
+    alpha, beta = np.zeros(steps), np.zeros(max(steps - 1, 0))
+    for j in range(steps):
+        w = inverse.solve(basis[j])
+        alpha[j] = basis[j] @ w
+        w -= basis[:j + 1].T @ (basis[:j + 1] @ w)       # full reorthogonalisation, twice
+        w -= basis[:j + 1].T @ (basis[:j + 1] @ w)
+        if j + 1 < steps:
+            beta[j] = float(np.linalg.norm(w))
+            if beta[j] <= 1e-14 * abs(alpha[j]):          # invariant subspace: exact
+                return lanczos_spectrum(planform, j + 1)
+            basis[j + 1] = w / beta[j]
+    theta, vectors = eigh_tridiagonal(alpha, beta)
+    first = norm * vectors[0]
+    rates = 1.0 / theta
+    mean = (planform.mean @ basis.T @ vectors) * first
+    layer = (planform.layer @ basis.T @ vectors) * first
     for array in (rates, mean, layer):
         array.flags.writeable = False
-    return rates, mean, layer, tess.cells
+    return rates, mean, layer
 
 
-def planform_error(geometry, d, depth: float, finest: float, growth: float, source,
-                   ages) -> float:
-    """A-posteriori error of the planform mesh: the unit-step mean uptake at ``ages``
-    (rescaled s) on this mesh and on one with w0 times r (2, else 1.5 where a coarse mesh
-    cannot resolve the outline, else a finer one, 0.5), their difference / |r^2 - 1|
-    (second order, Richardson); infinity if no other mesh can be built."""
-    ages = np.asarray(ages, float)
-    for ratio in OTHER_MESHES:
-        try:
-            coarse = planform_source(geometry, d, depth, ratio * finest, growth)
-        except InputError:
-            continue
-        difference = np.abs(source.response(ages)[0] - coarse.response(ages)[0])
-        return float(np.max(difference, initial=0.0)) / abs(ratio ** 2 - 1.0)
-    return float("inf")
+def planar_fraction(spectrum, ages) -> np.ndarray:
+    """(ages, 2): the planform's unsaturated mean and layer fractions of a unit step."""
+    rates, mean, layer = spectrum
+    return np.exp(-np.outer(np.asarray(ages, float), rates)) @ np.stack([mean, layer], axis=1)
 
 
-def planform_source(geometry, d, depth: float, finest: float, growth: float) -> ModeSource:
-    """The product modes (planform whole x ``count`` sheet modes) and the exact step
-    response of the semi-discrete planform times Crank's sheet (eq. 4.18)."""
-    rates, mean, layer, cells = planform_spectrum(geometry, d, depth, finest, growth)
+def lanczos_count(planform: Planform, ages, tolerance: float) -> tuple[int, float]:
+    """Lanczos steps whose quadrature of the unit-step response at ``ages`` moves by less
+    than ``LANCZOS_SHARE`` x ``tolerance`` when halved, and that change (the mean's; the
+    layer's / ``LAYER_TOLERANCE``)."""
+    steps = FIRST_LANCZOS
+    previous = planar_fraction(lanczos_spectrum(planform, steps), ages)
+    while True:
+        steps *= 2
+        current = planar_fraction(lanczos_spectrum(planform, steps), ages)
+        difference = np.abs(current - previous)
+        change = float(max(np.max(difference[:, 0], initial=0.0),
+                           np.max(difference[:, 1], initial=0.0) / LAYER_TOLERANCE))
+        if change <= LANCZOS_SHARE * tolerance or steps >= min(MAX_LANCZOS, planform.cells):
+            return steps, change
+        previous = current
+
+
+def planform_source(geometry, d, spectrum) -> ModeSource:
+    """The product modes (planform quadrature x ``count`` sheet modes) and the unit-step
+    response of the same planform quadrature times Crank's sheet (eq. 4.18)."""
+    rates, mean, layer = spectrum
 
     def modes(counts) -> Modes:
         sheet = sheet_factor(geometry.thickness, d[2], 0.0, counts[0])
@@ -96,8 +173,59 @@ def planform_source(geometry, d, depth: float, finest: float, growth: float) -> 
 
     def response(age):
         age = np.asarray(age, float)
-        planar = np.exp(-np.outer(age, rates))
-        through = 1.0 - sheet_uptake(d[2] * age / geometry.thickness ** 2)
-        return 1.0 - (planar @ mean) * through, 1.0 - (planar @ layer) * through
+        planar = planar_fraction(spectrum, age)
+        through = (1.0 - sheet_uptake(d[2] * age / geometry.thickness ** 2))[:, None]
+        return tuple((1.0 - planar * through).T)
 
-    return ModeSource(modes, response, 1, cells)
+    return ModeSource(modes, response, 1, rates.size)
+
+
+@dataclass(frozen=True)
+class RefinedPlanform:
+    """The finest planform used: the estimated error of its mesh and quadrature (fraction
+    of the swing), cells, Lanczos steps, meshes built, and what ``measure`` gave on it."""
+
+    error: float
+    cells: int
+    steps: int
+    levels: int
+    result: object
+
+
+def _level(geometry, d, depth, finest, growth, ages, tolerance, measure):
+    """(compared values, payload, cells, steps, quadrature change) of ``measure`` on the
+    product modes of the mesh (finest, growth)."""
+    planform = planform_operator(geometry, d, depth, finest, growth)
+    steps, change = lanczos_count(planform, ages, tolerance)
+    values, payload = measure(planform_source(geometry, d, lanczos_spectrum(planform, steps)))
+    return np.asarray(values, float), payload, planform.cells, steps, change
+
+
+def refined_planform(geometry, d, depth: float, finest: float, growth: float, ages,
+                     tolerance: float, measure) -> RefinedPlanform:
+    """Refine the first mesh (``planform_design``) by r = w0 / w0' (finest width and growth
+    together) until the Richardson estimate |y' - y| / (r^2 - 1) of what ``measure(source)``
+    compares (its first return: the two-phase history relative to the swing, the layer's
+    / ``LAYER_TOLERANCE``; the second is kept), plus the quadrature's change at ``ages``
+    (rescaled s), is at most ``tolerance``; r = 2 first, then from the estimate. The
+    error is infinite if the mesh cannot be refined."""
+    ages = np.asarray(ages, float)
+    ages = ages[ages > 0]
+    coarse = _level(geometry, d, depth, finest, growth, ages, tolerance, measure)
+    ratio, levels = 2.0, 1
+    while True:
+        try:
+            fine = _level(geometry, d, depth, finest / ratio, growth / ratio, ages, tolerance,
+                          measure)
+        except InputError:
+            break
+        levels += 1
+        finest, growth = finest / ratio, growth / ratio
+        mesh = float(np.max(np.abs(fine[0] - coarse[0]), initial=0.0)) / (ratio ** 2 - 1.0)
+        error = mesh + fine[4]
+        if error <= tolerance or fine[2] * 2 > PLANFORM_CAP:
+            return RefinedPlanform(error, fine[2], fine[3], levels, fine[1])
+        ratio = float(np.clip(SAFETY * np.sqrt(mesh / max(tolerance - fine[4], 0.5 * tolerance)),
+                              1.2, min(MAX_REFINE, np.sqrt(PLANFORM_CAP / fine[2]))))
+        coarse = fine
+    return RefinedPlanform(float("inf"), coarse[2], coarse[3], levels, coarse[1])

@@ -241,7 +241,7 @@ def inward_chords(loops: list[np.ndarray], spacing: float) -> tuple[np.ndarray, 
     """(chord, outline length it stands for) at ``CHORD_RAYS`` points evenly spaced along
     each closed polyline of ``loops`` (material on the left): the length of the inward
     normal ray inside the outline, marched on a geometric grid against the signed distance
-    of ``polygon.Wall``, then bisected."""
+    of ``polygon.Wall`` (each ray only until it leaves), then bisected."""
     wall = Wall.of(loops, spacing)
     rays = [resample_loop(loop, loop_length(loop) / CHORD_RAYS) for loop in loops]
     start = np.vstack(rays)
@@ -252,8 +252,14 @@ def inward_chords(loops: list[np.ndarray], spacing: float) -> tuple[np.ndarray, 
 
     def inside(t):
         return wall.distance(start + t[..., None] * normal)[1]
-    out = np.column_stack([~inside(np.full(len(start), t)) for t in steps])
-    first = np.where(out.any(axis=1), np.argmax(out, axis=1), steps.size - 1)
+    first = np.full(len(start), steps.size - 1)  # the first step outside (the last: none)
+    marching = np.arange(len(start))
+    for k, t in enumerate(steps):
+        left = ~wall.distance(start[marching] + t * normal[marching])[1]
+        first[marching[left]] = k
+        marching = marching[~left]
+        if not marching.size:
+            break
     low = np.where(first > 0, steps[np.maximum(first - 1, 0)], 0.0)
     high = steps[first]
     for _ in range(16):

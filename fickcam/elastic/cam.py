@@ -37,7 +37,7 @@ def ply_stiffness(state: dict, k: int, prefix: str = "") -> np.ndarray:
 
 def cam_plate(design):
     """The dry working profile as a plate held at its bore, and the mesh spacing."""
-    from ..cam.model import working_profile
+    from ..cam.kinematics import working_profile
     from ..diffusion.geometry import CamPlate
 
     x, y = working_profile(design)
@@ -51,7 +51,7 @@ def cam_elastic_response(section, cam_state: dict, variables: dict, valid) -> Re
     cam_angle) and elastic_lift_error (time) from the cam's
     material state and the rigid cam results (contact force and stress, contact point,
     pressure angle, follower displacement)."""
-    from ..cam.model import design_from_scene
+    from ..cam.design import design_from_scene
     from .mesh import planform_mesh
 
     design = design_from_scene(section)

@@ -15,6 +15,7 @@ from collections.abc import Mapping
 import numpy as np
 
 from .._version import __version__
+from .journal import CaseArrays
 from .spec import Sweep
 
 
@@ -99,51 +100,59 @@ def sweep_attributes(sweep: Sweep, records: dict[int, dict], started: float | No
     return attrs
 
 
+def _arrays(case) -> CaseArrays:
+    return case if isinstance(case, CaseArrays) else CaseArrays.of(case)
+
+
+def _dataset(case):
+    return case.to_dataset() if isinstance(case, CaseArrays) else case
+
+
 def stack_cases(case, n: int):
     """The ``n`` cases along a new leading ``case`` dimension; ``case(i)`` gives case i's
-    Dataset (the journal decodes it on demand). When every case has the same variables
-    and coordinates (a sweep that varies no ageing times or angles) each case is copied
-    into preallocated arrays and let go, so only the stacks and one case are held; else
-    ``xarray.concat`` (outer join) of them all."""
+    Dataset or :class:`~.journal.CaseArrays` (the journal decodes it on demand). When every
+    case has the same variables and coordinates (a sweep that varies no ageing times or
+    angles) each case is copied into preallocated arrays and let go, so only the stacks
+    and one case are held; else ``xarray.concat`` (outer join) of them all."""
     import xarray as xr
 
-    first = case(0)
+    first = _arrays(case(0))
     stacks: dict[str, np.ndarray] = {}
     for index in range(n):
-        part = first if index == 0 else case(index)
+        part = first if index == 0 else _arrays(case(index))
         if not _same_layout(first, part):
-            return xr.concat([case(i) for i in range(n)], dim="case", data_vars="all",
-                             coords="minimal", compat="override", join="outer",
-                             combine_attrs="override")
-        for name in first.data_vars:
-            values = part.variables[name].values
+            return xr.concat([_dataset(case(i)) for i in range(n)], dim="case",
+                             data_vars="all", coords="minimal", compat="override",
+                             join="outer", combine_attrs="override")
+        for name, (_, values, _) in part.data.items():
             stack = stacks.get(name)
             if stack is None:
                 stack = stacks[name] = np.empty((n,) + values.shape, values.dtype)
             elif np.result_type(stack, values) != stack.dtype:  # bool cases and NaN ones
                 stack = stacks[name] = stack.astype(np.result_type(stack, values))
             stack[index] = values
-    data = {name: xr.Variable(("case",) + variable.dims, stacks[name], variable.attrs)
-            for name, variable in first.data_vars.items()}
-    return xr.Dataset(data, coords=first.coords)
+    data = {name: xr.Variable(("case",) + dims, stacks[name], attrs)
+            for name, (dims, _, attrs) in first.data.items()}
+    return xr.Dataset(data, coords={name: xr.Variable(*v) for name, v in first.coords.items()})
 
 
-def _same_layout(first, other) -> bool:
+def _same_layout(first: CaseArrays, other: CaseArrays) -> bool:
     """Same data variables (names, dims, shapes) and equal coordinates."""
-    if list(other.data_vars) != list(first.data_vars) or set(other.coords) != set(first.coords):
+    if list(other.data) != list(first.data) or set(other.coords) != set(first.coords):
         return False
-    mine, theirs = first.variables, other.variables
-    if any(theirs[n].dims != mine[n].dims or theirs[n].shape != mine[n].shape
-           for n in first.data_vars):
+    mine, theirs = first.data, other.data
+    if any(theirs[n][0] != mine[n][0] or theirs[n][1].shape != mine[n][1].shape for n in mine):
         return False
-    return all(theirs[n].dims == mine[n].dims and np.array_equal(theirs[n].values, mine[n].values)
-               for n in first.coords)
+    mine, theirs = first.coords, other.coords
+    return all(theirs[n][0] == mine[n][0] and np.array_equal(theirs[n][1], mine[n][1])
+               for n in mine)
 
 
 def combine(sweep: Sweep, records: dict[int, dict], cases: Mapping,
             started: float | None = None):
     """The sweep's Dataset from its records and the result Datasets of its ok cases
-    (``cases``: index -> Dataset, e.g. the journal's :class:`~.runner.JournalCases`)."""
+    (``cases``: index -> Dataset or :class:`~.journal.CaseArrays`, e.g. the journal's
+    :class:`~.runner.JournalCases`)."""
     import xarray as xr
 
     coords = case_coordinates(sweep, records)
@@ -151,7 +160,7 @@ def combine(sweep: Sweep, records: dict[int, dict], cases: Mapping,
     ok = [i for i in range(len(sweep.cases)) if i in cases]
     if not ok:
         return xr.Dataset(coords=coords, attrs=attrs)
-    template = missing_like(cases[ok[0]])
+    template = CaseArrays.of(missing_like(_dataset(cases[ok[0]])))
     combined = stack_cases(lambda i: cases[i] if i in cases else template, len(sweep.cases))
     combined = combined.assign_coords(coords)
     if "time_out_of_spec" in combined:

@@ -67,10 +67,30 @@ def decode_record(payload: bytes) -> dict:
     return _header(payload)[0]["record"]
 
 
-def decode_dataset(payload: bytes):
-    """The result Dataset of an ok case's payload (None for a failed case)."""
-    import xarray as xr
+@dataclass(frozen=True)
+class CaseArrays:
+    """A case's result as plain arrays, name -> (dims, values, attrs) for its data
+    variables and its coordinates: what stacking the cases needs, without the cost of an
+    xarray.Dataset per case (20 ms for the demo cam's 133 variables)."""
 
+    data: dict
+    coords: dict
+
+    @classmethod
+    def of(cls, dataset) -> "CaseArrays":
+        def plain(variables):
+            return {name: (tuple(v.dims), v.values, dict(v.attrs)) for name, v in variables.items()}
+        return cls(plain(dataset.data_vars), plain(dataset.coords))
+
+    def to_dataset(self):
+        import xarray as xr
+
+        return xr.Dataset({name: xr.Variable(*v) for name, v in self.data.items()},
+                          coords={name: xr.Variable(*v) for name, v in self.coords.items()})
+
+
+def decode_arrays(payload: bytes) -> CaseArrays | None:
+    """The result of an ok case's payload as arrays (None for a failed case)."""
     header, start = _header(payload)
     if not header["variables"]:
         return None
@@ -82,9 +102,15 @@ def decode_dataset(payload: bytes):
             first = start + entry["offset"]
             values = np.frombuffer(payload[first:first + entry["nbytes"]],
                                    dtype=np.dtype(entry["dtype"])).reshape(entry["shape"])
-        variable = xr.Variable(entry["dims"], values, entry["attrs"])
-        (coords if entry["coord"] else data_vars)[entry["name"]] = variable
-    return xr.Dataset(data_vars, coords=coords)
+        (coords if entry["coord"] else data_vars)[entry["name"]] = (
+            tuple(entry["dims"]), values, entry["attrs"])
+    return CaseArrays(data_vars, coords)
+
+
+def decode_dataset(payload: bytes):
+    """The result Dataset of an ok case's payload (None for a failed case)."""
+    arrays = decode_arrays(payload)
+    return None if arrays is None else arrays.to_dataset()
 
 
 @dataclass(frozen=True)

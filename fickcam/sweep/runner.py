@@ -24,7 +24,7 @@ from pathlib import Path
 from ..errors import FickcamError, InputError
 from .case import CaseTask, quieter, run_case
 from .combine import combine
-from .journal import decode_dataset
+from .journal import decode_arrays
 from .scheduler import probe
 from .spec import Sweep, load_sweep
 from .workdir import WorkFolder
@@ -227,14 +227,15 @@ def run_sweep(sweep_path, output, workers: int | None = None, scheduler: str | N
 
 
 class JournalCases(Mapping):
-    """The result Datasets of a sweep's ok cases, each decoded from the journal when asked
-    for (so building the result holds one case at a time besides the stacked arrays)."""
+    """The results of a sweep's ok cases (:class:`~.journal.CaseArrays`), each decoded from
+    the journal when asked for (so building the result holds one case at a time besides
+    the stacked arrays)."""
 
     def __init__(self, folder: WorkFolder, entries: dict):
         self.folder, self.entries = folder, entries
 
     def __getitem__(self, index: int):
-        return decode_dataset(self.folder.journal.payload(self.entries[index]))
+        return decode_arrays(self.folder.journal.payload(self.entries[index]))
 
     def __contains__(self, index) -> bool:  # without decoding (Mapping's would)
         return index in self.entries

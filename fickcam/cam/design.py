@@ -1,0 +1,119 @@
+"""The dry cam and follower (:class:`CamDesign`), their state at one ageing time
+(:class:`CamState`), and the design read from a scene's ``cam:`` section."""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from . import dynamics as dyn
+from .motion import segments_from_spec
+
+
+@dataclass(frozen=True)
+class CamDesign:
+    """The dry cam and follower (SI, angles in rad, speed in rad/s)."""
+
+    kind: str                      # motion | eccentric | profile
+    base_circle_radius: float
+    thickness: float
+    speed: float
+    follower_kind: str             # knife | roller | flat
+    follower_mass: float
+    segments: tuple = ()
+    eccentricity: float = 0.0
+    disc_radius: float = 0.0
+    bore_radius: float = 0.0
+    roller_radius: float = 0.0
+    offset: float = 0.0
+    spring_rate: float = 0.0
+    spring_preload: float = 0.0
+    external_load: float = 0.0
+    follower_width: float | None = None
+    friction_coefficient: float = 0.0
+    guide_factor: float = 0.0
+    gravity: bool = False
+    archard_coefficient: float = 0.0
+    hardness: float | None = None
+    follower_modulus: float = 210e9
+    follower_poisson: float = 0.3
+    profile: object = None         # fickcam.cam.profile.CamProfile (kind "profile")
+    train: tuple | None = None     # None: rigid; ("stiffness", k) | ("rod", L, d) | ("lever", L, w, h)
+    damping_ratio: float = 0.05
+    polydyne_speed: float | None = None  # design speed of a polydyne cam (fickcam.cam.polydyne)
+    arm: object = None             # fickcam.cam.arm.Arm of a swinging-arm follower (None: translating)
+    clockwise: bool = False        # the cam turns clockwise: computed as its mirror image x -> -x
+
+    @property
+    def contact_length(self) -> float:
+        return min(self.thickness, self.follower_width or self.thickness)
+
+
+@dataclass(frozen=True)
+class CamState:
+    """Ageing-time state: cam in-plane strains along x (fibre) and y, roller strain,
+    follower mass (kg), cam surface-layer modulus/Poisson ratio, follower modulus/Poisson."""
+
+    cam_strain_x: float = 0.0
+    cam_strain_y: float = 0.0
+    roller_strain: float = 0.0
+    follower_mass: float | None = None
+    cam_surface_modulus: float = 70e9
+    cam_surface_poisson: float = 0.3
+    follower_modulus: float | None = None
+    follower_poisson: float | None = None
+    follower_train_modulus: float | None = None
+    arm_strain: float = 0.0        # swinging arm: strain along its length (and face offset)
+
+
+def _train(stiffness) -> tuple | None:
+    """The follower train of ``follower.stiffness`` as a hashable tuple (None: rigid)."""
+    if stiffness is None:
+        return None
+    if isinstance(stiffness, float | int):
+        return ("stiffness", float(stiffness))
+    if stiffness.rod is not None:
+        return ("rod", stiffness.rod.length, stiffness.rod.diameter)
+    lever = stiffness.lever
+    return ("lever", lever.length, lever.width, lever.height)
+
+
+def design_from_scene(section) -> CamDesign:
+    """CamDesign from a validated :class:`~fickcam.cam.spec.CamSection` (or the dict of a
+    scene's ``cam:`` section, validated here)."""
+    if isinstance(section, dict):
+        from .spec import CamSection
+
+        section = CamSection.model_validate(section)
+    f = section.follower
+    guide = 0.0 if f.guide is None else dyn.guide_friction_factor(
+        f.guide.friction_coefficient, f.guide.overhang, f.guide.length, f.guide.diameter)
+    mirror = -1.0 if section.direction == "clockwise" else 1.0
+    common = dict(thickness=section.thickness, speed=section.speed, follower_kind=f.kind,
+                  follower_mass=f.mass, bore_radius=section.bore_radius, clockwise=mirror < 0,
+                  roller_radius=f.roller_radius or 0.0, offset=mirror * f.offset,
+                  spring_rate=f.spring_rate,
+                  spring_preload=f.spring_preload, external_load=f.external_load,
+                  follower_width=f.width, friction_coefficient=f.friction_coefficient,
+                  guide_factor=guide, gravity=section.gravity,
+                  archard_coefficient=section.wear.archard_coefficient if section.wear else 0.0,
+                  hardness=section.wear.hardness if section.wear else None,
+                  follower_modulus=f.modulus, follower_poisson=f.poisson_ratio,
+                  train=_train(f.stiffness), damping_ratio=f.damping_ratio,
+                  polydyne_speed=None if section.polydyne is None else
+                  (section.polydyne.speed or section.speed))
+    if f.arm is not None:
+        from .arm import Arm
+
+        sense = 1 if f.arm.rises == "counter_clockwise" else -1
+        common["arm"] = Arm(mirror * f.arm.pivot[0], f.arm.pivot[1], f.arm.length or 0.0,
+                            f.arm.face_offset, int(mirror) * sense, f.arm.inertia,
+                            f.arm.spring_rate, f.arm.spring_preload, f.arm.load_torque)
+    if section.profile_file is not None:
+        from .profile import load_profile
+
+        profile = load_profile(section.profile_file, f.roller_radius or 0.0, mirror=mirror < 0)
+        return CamDesign("profile", profile.radii()[0], profile=profile, **common)
+    if section.eccentric is not None:
+        e, r = section.eccentric.eccentricity, section.eccentric.radius
+        return CamDesign("eccentric", r - e, eccentricity=e, disc_radius=r, **common)
+    return CamDesign("motion", section.base_circle_radius,
+                     segments=segments_from_spec(section.motion), **common)

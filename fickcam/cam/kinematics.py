@@ -1,0 +1,179 @@
+"""Kinematics of the (aged) cam: the follower height and its derivatives over the cam
+angle, and the working profile.
+
+Swelling scales the profile (isotropic: every cam dimension by 1 + eps, the roller by
+1 + eps_roller) or distorts it (anisotropic: x by 1 + eps_x, y by 1 + eps_y); the
+follower motion is in closed form where the aged motion is the design motion scaled by
+1 + eps (isotropic cam with a flat follower, or a radial knife/roller that swells like
+the cam, as seeds/000_c9d2754e3bf549ac.txt scales its pitch circle and lift), otherwise
+found geometrically (:mod:`fickcam.cam.geometry`).
+"""
+from __future__ import annotations
+
+import functools
+import math
+
+import numpy as np
+
+from .design import CamDesign, CamState
+from .geometry import (evaluate_geometric_motion, fit_geometric_motion, pieces_of, prime_height,
+                       rotate, working_outline)
+from .motion import follower_motion
+
+
+def _scales_exactly(design: CamDesign, state: CamState) -> bool:
+    """True where the aged motion is the design motion times (1 + eps) (closed form)."""
+    if design.arm is not None:  # the dry arm follows the design motion exactly
+        return design.kind == "motion" and state.cam_strain_x == state.cam_strain_y == \
+            state.roller_strain == state.arm_strain == 0.0
+    if design.kind != "motion" or state.cam_strain_x != state.cam_strain_y:
+        return False
+    if state.cam_strain_x == 0.0 and state.roller_strain == 0.0:
+        return True
+    if design.follower_kind == "flat":
+        return True
+    return design.offset == 0.0 and (design.follower_kind == "knife" or
+                                     state.roller_strain == state.cam_strain_x)
+
+
+def _closed_form(design: CamDesign, state: CamState, theta):
+    scale = 1.0 + state.cam_strain_x
+    y, d1, d2, d3 = follower_motion(design.segments, theta)
+    if design.arm is not None:  # the arm angle from its dry base position
+        return (y, d1, d2, d3), (0.0, _design_lift(design))
+    base = design.base_circle_radius * scale
+    if design.follower_kind == "flat":
+        floor = base
+    else:
+        floor = prime_height(base + design.roller_radius * (1 + state.roller_strain), design.offset)
+    return (floor + scale * y, scale * d1, scale * d2, scale * d3), \
+        (floor, floor + scale * _design_lift(design))
+
+
+def _eccentric_flat(design: CamDesign, state: CamState, theta):
+    """Flat face on the (swollen) eccentric disc, in closed form: the face height is the
+    support function of the ellipse with centre (0, -e_y) and semi-axes a = R(1 + eps_x),
+    b = R(1 + eps_y) in the direction n = (sin theta, cos theta) (kinematic inversion,
+    Norton sec. 8.6): Y = -e_y cos theta + f, f = sqrt(A + B cos 2 theta),
+    A = (a^2 + b^2)/2, B = (b^2 - a^2)/2; a circle (a = b) gives pure SHM
+    Y = R - e cos theta (seeds/003_b8317aa6e553b071.txt sec. 5.2). The derivatives of f
+    follow from differentiating f^2 = g three times."""
+    theta = np.asarray(theta, float)
+    e_y = design.eccentricity * (1 + state.cam_strain_y)
+    a = design.disc_radius * (1 + state.cam_strain_x)
+    b = design.disc_radius * (1 + state.cam_strain_y)
+    big_a, big_b = (a * a + b * b) / 2, (b * b - a * a) / 2
+
+    def support(t):
+        return -e_y * np.cos(t) + np.sqrt(big_a + big_b * np.cos(2 * t))
+
+    f = np.sqrt(big_a + big_b * np.cos(2 * theta))
+    g1, g2, g3 = (-2 * big_b * np.sin(2 * theta), -4 * big_b * np.cos(2 * theta),
+                  8 * big_b * np.sin(2 * theta))
+    f1 = g1 / (2 * f)
+    f2 = (g2 / 2 - f1 ** 2) / f
+    f3 = (g3 / 2 - 3 * f1 * f2) / f
+    c, s = np.cos(theta), np.sin(theta)
+    heights = (support(theta), e_y * s + f1, e_y * c + f2, -e_y * s + f3)
+    return heights, _support_extremes(support, e_y, a, big_b)
+
+
+def _support_extremes(support, e_y, a, big_b):
+    """(lowest, highest) of the support function: theta = 0, pi and, for a flattened disc,
+    the interior stationary points where e_y f = 2 B cos theta, i.e.
+    cos^2 theta = e_y^2 a^2 / (2 B (2 B - e_y^2))."""
+    candidates = [0.0, np.pi]
+    denominator = 2 * big_b * (2 * big_b - e_y ** 2)
+    if denominator > 0:
+        c2 = e_y ** 2 * a ** 2 / denominator
+        if c2 <= 1:
+            c = math.sqrt(c2)
+            candidates += [math.acos(c), math.acos(-c), -math.acos(c), -math.acos(-c)]
+    values = support(np.array(candidates))
+    return float(values.min()), float(values.max())
+
+
+def follower_heights(design: CamDesign, state: CamState, theta):
+    """(Y, dY/dtheta, d2Y/dtheta2, d3Y/dtheta3), (lowest, highest) Y: the follower's pitch point
+    (face for a flat follower) above the cam axis at cam angles theta (rad)."""
+    motion, extremes = motion_function(design, state)
+    return motion(theta), extremes
+
+
+def motion_function(design: CamDesign, state: CamState):
+    """(theta -> (Y, dY, d2Y, d3Y), (lowest, highest) Y): the closed form where it exists,
+    else the aged geometry's spectral fit, made once and evaluated at any angle."""
+    if _scales_exactly(design, state):
+        return (lambda theta: _closed_form(design, state, theta)[0],
+                _closed_form(design, state, np.zeros(1))[1])
+    if design.kind == "profile":
+        from .profile import profile_motion
+
+        aged = (design.profile, state.cam_strain_x, state.cam_strain_y,
+                design.roller_radius * (1 + state.roller_strain), design.offset,
+                design.follower_kind == "flat")
+        arm = {} if design.arm is None else _grown_arm(design, state.arm_strain)
+        return (lambda theta: profile_motion(*aged, theta, **arm)[0],
+                profile_motion(*aged, np.zeros(1), **arm)[1])
+    if design.kind == "eccentric" and design.follower_kind == "flat":
+        return (lambda theta: _eccentric_flat(design, state, theta)[0],
+                _eccentric_flat(design, state, np.zeros(1))[1])
+    fitted, origin, extremes = fit_geometric_motion(
+        design, pieces_of(design), state.cam_strain_x, state.cam_strain_y,
+        design.roller_radius * (1 + state.roller_strain),
+        nodes=96 if design.kind == "eccentric" else 40, arm_strain=state.arm_strain)
+    return (lambda theta: evaluate_geometric_motion(fitted, origin, theta)), extremes
+
+
+def _grown_arm(design: CamDesign, strain: float) -> dict:
+    """``arm`` (length and face offset grown by 1 + strain) and its dry ``base`` angle, for
+    :func:`fickcam.cam.profile.profile_motion`."""
+    from dataclasses import replace
+
+    from . import arm
+
+    a, rb = design.arm, design.base_circle_radius
+    base = (arm.face_base_angle(a, rb) if design.follower_kind == "flat" else
+            arm.roller_base_angle(a, rb + design.roller_radius))
+    return {"arm": replace(a, length=a.length * (1 + strain), face_offset=a.face_offset * (1 + strain)),
+            "base": base}
+
+
+@functools.lru_cache(maxsize=64)
+def dry_lowest_height(design: CamDesign) -> float:
+    """Lowest follower height of the dry cam: where the spring has its preload."""
+    return follower_heights(design, CamState(), np.linspace(0, 2 * np.pi, 8, endpoint=False))[1][0]
+
+
+def working_profile(design: CamDesign, strain_x: float = 0.0, strain_y: float = 0.0,
+                    n: int = 720):
+    """Closed counter-clockwise outline (x, y) of the working profile (m), cam frame as seen
+    from the front, last point != first, for the diffusion mesh
+    (:class:`fickcam.diffusion.CamPlate`)."""
+    x, y = working_outline(design, strain_x, strain_y, n)
+    if design.clockwise:  # mirror back, still counter-clockwise
+        return -x[::-1].copy(), y[::-1].copy()
+    return x, y
+
+
+def cam_frame_point(design: CamDesign, theta, x, y):
+    """Fixed-frame point (x, y) at cam angle theta in the cam frame, seen from the front:
+    R(-theta) (x, y), mirrored back for a clockwise cam."""
+    px, py = rotate(-theta, x, y)
+    return (-px if design.clockwise else px), py
+
+
+def write_profile_csv(path, design: CamDesign, strain_x: float = 0.0, strain_y: float = 0.0,
+                      n: int = 720):
+    """Write the working profile (cam frame, counter-clockwise) as CSV columns x_m, y_m."""
+    x, y = working_profile(design, strain_x, strain_y, n)
+    np.savetxt(path, np.c_[x, y], delimiter=",", header="x_m,y_m", comments="", fmt="%.9e")
+    return path
+
+
+def _design_lift(design: CamDesign) -> float:
+    level, top = 0.0, 0.0
+    for s in design.segments:
+        level += s.height
+        top = max(top, level)
+    return top
