@@ -4,7 +4,7 @@ Fick (k = 0), the sheet (the centre of a wide bar), conservation, refinement, th
 direction of Crank's sorption/desorption asymmetry and the extremes of k."""
 import numpy as np
 import pytest
-from hypothesis import given, settings
+from hypothesis import example, given, settings
 from hypothesis import strategies as st
 
 from fickcam.diffusion import Bar, CamPlate, Diffusivity, Exposure, Sheet, plan, solve
@@ -138,17 +138,19 @@ def test_sheet_sweeps_converge_at_second_order_in_space():
     assert 1.6 <= observed_order(*means) <= 2.4
 
 
-@settings(max_examples=3, deadline=None)
+@settings(max_examples=2, deadline=None)
 @given(st.floats(0.0, 5.0))
+@example(5.0)
 def test_extreme_exponents_on_a_bar_stay_bounded_without_nan(exponent):
     """k from 0 to 5 on a bar wetted to Mm then dried: finite, within [0, Mm] up to the
-    requested accuracy, wetter after the soak than after the drying."""
+    run's own error estimate, wetter after the soak than after the drying (k = 5 always
+    tried: drying to a skin sizes its cells at D0 for accuracy / 46, 1 440 cells here)."""
     small = Bar(3e-3, 2e-3, 1e-3)
     end = 0.6 * 1e-3 ** 2 / D
     history = Exposure.piecewise([0.0, 0.5 * end, end], [330.0, 330.0], [MM, 0.0])
     times = np.linspace(0.0, end, 7)
-    accuracy = 0.3  # k = 5 drying to a skin sizes the cells at D0 for accuracy / 46
-    result = solve(small, ISOTROPIC, history, times, accuracy=accuracy, sorption=law(exponent))
+    result = solve(small, ISOTROPIC, history, times, accuracy=0.5, sorption=law(exponent))
+    bound = result.error_estimate * MM
     assert np.all(np.isfinite(result.mean)) and np.all(np.isfinite(result.surface))
-    assert np.all(result.mean >= -accuracy * MM) and np.all(result.mean <= (1 + accuracy) * MM)
+    assert np.all(result.mean >= -bound) and np.all(result.mean <= MM + bound)
     assert result.mean[3] > result.mean[-1]
