@@ -4,7 +4,8 @@ Each case is a shipped scene aged through the first 1, 3 and 12 months (730 h ea
 Greensboro's TMY3 year (``pvlib:723170TYA.CSV``, hourly rows; 12 months = its 8760 rows)
 and, for the ratio, through the same span under a constant climate (the record's mean
 temperature and humidity), with the same ageing times. Whole scene runs, in-process
-(``simulate.run``), after a warm-up of each kind. Costs are CPU seconds of this process
+(``simulate.run``), after a warm-up of each kind; each cost is the median of three runs
+taken alternately with its pair. Costs are CPU seconds of this process
 (``time.process_time``: other work on a shared machine does not move them). The growth
 exponent is the slope of log(cost) against log(rows).
 """
@@ -63,6 +64,13 @@ def _cost(scene: dict) -> float:
     return time.process_time() - start
 
 
+def _median_costs(constant: dict, record: dict, repeats: int = 3) -> tuple[float, float]:
+    """Median CPU time of ``repeats`` runs of each scene, taken alternately: a run of
+    the demo cam costs about 0.1 s, where one timing scatters by some 10-20 %."""
+    pairs = [(_cost(constant), _cost(record)) for _ in range(repeats)]
+    return tuple(float(np.median(column)) for column in zip(*pairs))
+
+
 def run_record_bench(months=(1, 3, 12), cases=None) -> list[dict]:
     """Rows (case, months, rows, record s, constant s, ratio) and, per case, the exponent."""
     rows = []
@@ -78,7 +86,7 @@ def run_record_bench(months=(1, 3, 12), cases=None) -> list[dict]:
                     "relative_humidity": f"{humidity:.2f} %"}]}, count)
                 if not timings:
                     _cost(constant), _cost(record)  # warm-up: imports, caches
-                held, cost = _cost(constant), _cost(record)
+                held, cost = _median_costs(constant, record)
                 timings.append((_rows(count), cost))
                 rows.append({"case": name, "months": count, "rows": _rows(count),
                              "record": cost, "constant": held, "ratio": cost / held})
