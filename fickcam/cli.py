@@ -198,7 +198,8 @@ def _cmd_run(args) -> int:
     from .store import save
 
     scene = load_scene(args.scene)
-    gc.freeze()  # the modules loaded so far live to the end: the run's collections skip them
+    if args.whole_process:
+        gc.freeze()  # the modules loaded so far live to the end: the run's collections skip them
     if args.accuracy is not None and not (0 < args.accuracy <= 0.1):
         raise InputError("--accuracy must lie in (0, 0.1]")
     output = Path(args.output) if args.output else default_output(scene)
@@ -433,13 +434,19 @@ COMMANDS = {"run": _cmd_run, "check": _cmd_check, "query": _cmd_query, "export":
             "profile": _cmd_profile}
 
 
-def main(argv: list[str] | None = None) -> int:
-    # At exit the interpreter's garbage collections walk every object the imports made
-    # (numpy, scipy, pandas, xarray, h5py) only to free them with the process; frozen first
-    # (gc.freeze) they are skipped: 0.2-0.3 CPU s of a demo run, measured as whole processes.
-    atexit.unregister(gc.freeze)  # once, however often main() runs in one process
+def process_main() -> int:
+    """The `fickcam` command as its own process. The interpreter's garbage collections
+    walk every object the imports made (numpy, scipy, pandas, xarray, h5py), at exit only
+    to free them with the process; frozen first (gc.freeze) they are skipped: 0.2-0.3 CPU s
+    of a demo run, measured as whole processes. Only here: in a caller's process (tests,
+    notebooks) a freeze would keep whatever garbage exists at that moment for good."""
     atexit.register(gc.freeze)
+    return main(whole_process=True)
+
+
+def main(argv: list[str] | None = None, whole_process: bool = False) -> int:
     args = _parser().parse_args(argv)
+    args.whole_process = whole_process
     # fickcam's own messages (INFO and notices) on stderr; other libraries' only from WARNING
     # (FiPy logs its solver suite at INFO); --quiet keeps notices off too (errors still print)
     logging.basicConfig(level=logging.WARNING, format="fickcam: %(message)s", stream=sys.stderr)
@@ -471,4 +478,4 @@ def main(argv: list[str] | None = None) -> int:
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    sys.exit(process_main())
