@@ -42,6 +42,7 @@ from scipy.sparse.linalg import splu
 from ..errors import InputError
 from . import layout
 from .calibration import space_error
+from .cellmoments import corrected_weights
 from .fvprism import prism
 from .langmuir import ModeSource
 from .march import ORDERING
@@ -94,8 +95,8 @@ def planform_operator(geometry, d, depth: float, finest: float, growth: float) -
     inverse = sparse.diags(1.0 / root)
     scale = d[2] / geometry.thickness ** 2   # scaled -> rescaled time
     operator = scale * (inverse @ (disc.stiffness - sparse.diags(vertical)) @ inverse)
-    return Planform(operator.tocsc(), root, disc.mean_weights / root,
-                    disc.layer_weights / root, tess.cells)
+    mean, layer = corrected_weights(tess, depth)
+    return Planform(operator.tocsc(), root, mean / root, layer / root, tess.cells)
 
 
 @lru_cache(maxsize=4)
@@ -160,9 +161,23 @@ def lanczos_count(planform: Planform, ages, tolerance: float) -> tuple[int, floa
         previous = current
 
 
+def whole_at_start(spectrum):
+    """The quadrature with the amplitudes of the mean and of the layer summing to 1 (the
+    part starts whole at its initial value): the corrected means (``cellmoments``) sum to
+    1 - sum grad u . (c - x) of a unit field that steps to 0 at the surface, the share of
+    the edge cells between their circumcentres and the surface, which settles within the
+    finest cells' time w0^2/D; it is given to the fastest quadrature node."""
+    rates, mean, layer = (np.array(a) for a in spectrum)
+    fastest = np.argmax(rates)
+    mean[fastest] += 1.0 - mean.sum()
+    layer[fastest] += 1.0 - layer.sum()
+    return rates, mean, layer
+
+
 def planform_source(geometry, d, spectrum) -> ModeSource:
     """The product modes (planform quadrature x ``count`` sheet modes) and the unit-step
     response of the same planform quadrature times Crank's sheet (eq. 4.18)."""
+    spectrum = whole_at_start(spectrum)
     rates, mean, layer = spectrum
 
     def modes(counts) -> Modes:
