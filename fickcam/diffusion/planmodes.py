@@ -198,13 +198,16 @@ def planform_source(geometry, d, spectrum) -> ModeSource:
 @dataclass(frozen=True)
 class RefinedPlanform:
     """The finest planform used: the estimated error of its mesh and quadrature (fraction
-    of the swing), cells, Lanczos steps, meshes built, and what ``measure`` gave on it."""
+    of the swing), cells, Lanczos steps, meshes built, what ``measure`` gave on it, and its
+    finest width and growth (scaled)."""
 
     error: float
     cells: int
     steps: int
     levels: int
     result: object
+    finest: float
+    growth: float
 
 
 def _level(geometry, d, depth, finest, growth, ages, tolerance, measure):
@@ -239,8 +242,8 @@ def refined_planform(geometry, d, depth: float, finest: float, growth: float, ag
         mesh = float(np.max(np.abs(fine[0] - coarse[0]), initial=0.0)) / (ratio ** 2 - 1.0)
         error = mesh + fine[4]
         if error <= tolerance or fine[2] * 2 > PLANFORM_CAP:
-            return RefinedPlanform(error, fine[2], fine[3], levels, fine[1])
+            return RefinedPlanform(error, fine[2], fine[3], levels, fine[1], finest, growth)
         ratio = float(np.clip(SAFETY * np.sqrt(mesh / max(tolerance - fine[4], 0.5 * tolerance)),
                               1.2, min(MAX_REFINE, np.sqrt(PLANFORM_CAP / fine[2]))))
         coarse = fine
-    return RefinedPlanform(float("inf"), coarse[2], coarse[3], levels, coarse[1])
+    return RefinedPlanform(float("inf"), coarse[2], coarse[3], levels, coarse[1], finest, growth)
