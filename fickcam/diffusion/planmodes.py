@@ -8,12 +8,15 @@ The part is a prism (planform x thickness), so in the scaled coordinates of
 FiPy's, on the Delaunay-admissible cells of ``prism`` (one layer of prisms between a face
 and the insulated mid-plane, whose face-to-cell coupling 2 V/w^2 is taken off the
 diagonal: the remainder is the in-plane two-point-flux operator K_p, K_p 1 = f_p). With
-M = diag(volumes) and S = M^-1/2 K_p M^-1/2 (symmetric positive definite), the mean of
-any function of the planform decay, sum_i A_i f(mu_i) = v^T f(S) v / V with v = M^1/2 1,
-is a Stieltjes integral over S's spectrum (the layer: the bilinear form with the band's
-volumes). m steps of Lanczos started at v give its m-point Gauss quadrature: Ritz values
-theta_j as rates, squared first components of T's eigenvectors as amplitudes (Golub &
-Meurant 2010, "Matrices, Moments and Quadrature with Applications", §§6.2, 7.1). The
+M = diag(volumes) and S = M^-1/2 K_p M^-1/2 (symmetric positive definite), the mean and
+the layer are linear functionals w^T u of the cell values (weights corrected for where
+each cell value sits, ``cellmoments``: second order where the plain volume weights are
+first order on graded cells), so any function of the planform decay they see,
+sum_i A_i f(mu_i) = w^T M^-1/2 f(S) v with v = M^1/2 1, is a bilinear form over S's
+spectrum. m steps of Lanczos started at v give its m-point quadrature: Ritz values
+theta_j as rates, the first components of T's eigenvectors times w's projections as
+amplitudes, exact for polynomials in S^-1 of degree < m (Golub & Meurant 2010,
+"Matrices, Moments and Quadrature with Applications", §§6.2, 7.1). The
 Lanczos runs on S^-1 (shift-and-invert at 0, one sparse LU): exp(-mu t) is smooth in
 1/mu, so the quadrature converges at a rate set by the outputs' ages, not by the mesh's
 stiffest mode (van den Eshof & Hochbruck 2006, SIAM J. Sci. Comput. 27:1438, §3; Moret &
@@ -47,7 +50,6 @@ from .fvprism import prism
 from .langmuir import ModeSource
 from .march import ORDERING
 from .modes import Modes, sheet_factor
-from .prism import band_share
 from .scaling import stretch_of
 from .series import sheet_uptake
 
@@ -87,8 +89,8 @@ def planform_operator(geometry, d, depth: float, finest: float, growth: float) -
     """The planform's FiPy operator (module docstring) on the graded admissible cells."""
     tess = layout.planform_cells(geometry, finest, growth, stretch_of(d))
     half = 0.5 * geometry.thickness
-    disc = prism(tess, geometry.thickness, np.array([half]), band_share(tess, depth), d,
-                 mid_plane=True)
+    disc = prism(tess, geometry.thickness, np.array([half]), np.ones(tess.cells), d,
+                 mid_plane=True)   # (its plain band weights unused: ``cellmoments`` below)
     volumes = disc.volumes
     vertical = 2.0 * volumes / 0.5 ** 2      # face-to-cell coupling of the exposed face
     root = np.sqrt(volumes)
