@@ -22,6 +22,7 @@ from __future__ import annotations
 
 import numpy as np
 from scipy import sparse
+from scipy.spatial import cKDTree
 
 from .polygon import segment_distance, unique_edges
 
@@ -100,13 +101,28 @@ def gradient_matrix(tess) -> sparse.csr_matrix:
     return sparse.csr_matrix((values, (rows, cols)), shape=(2 * tess.cells, tess.cells))
 
 
+def contact_distance(tess, depth: float) -> np.ndarray:
+    """Distance (physical m) of each mesh point to the contact edge, exact at the corners of
+    every triangle that can reach within ``depth`` of it (the band's cuts interpolate them),
+    2 x that reach elsewhere (only that it exceeds ``depth`` matters): a point within
+    ``depth`` of a segment is within ``depth`` + half its length of its midpoint."""
+    points = tess.physical(tess.points)
+    segments = tess.physical(tess.contact.reshape(-1, 2)).reshape(-1, 2, 2)
+    reach = depth + 0.5 * float(np.max(np.hypot(*(segments[:, 1] - segments[:, 0]).T)))
+    near = cKDTree(segments.mean(axis=1)).query(points, distance_upper_bound=reach)[0] <= reach
+    corners = np.zeros(len(points), bool)
+    corners[tess.triangles[np.any(near[tess.triangles], axis=1)].ravel()] = True
+    distance = np.full(len(points), 2.0 * reach)
+    distance[corners] = segment_distance(points[corners], segments)
+    return distance
+
+
 def corrected_weights(tess, depth: float) -> tuple[np.ndarray, np.ndarray]:
     """(mean, layer) weights on the cell values: sum_K |R_K| u_K + grad u_K . |R_K| (c_K -
     x_K) over the whole cells and over their parts within ``depth`` (physical m) of the
     contact edge, each divided by its region's area (module docstring)."""
     corners = tess.points[tess.triangles]
-    distance = segment_distance(tess.physical(tess.points),
-                                tess.physical(tess.contact.reshape(-1, 2)).reshape(-1, 2, 2))
+    distance = contact_distance(tess, depth)
     whole = _triangle(corners[:, 0], corners[:, 1], corners[:, 2])
     band = sublevel_moments(corners, distance[tess.triangles], depth)
     gradient = gradient_matrix(tess)
