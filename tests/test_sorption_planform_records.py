@@ -81,6 +81,25 @@ def test_circular_plate_through_a_daily_record_is_within_the_accuracy_of_the_exa
     assert error <= accuracy and error <= 1.5 * result.error_estimate
 
 
+def test_limit_search_extension_marches_the_refined_mesh_to_new_times_within_the_accuracy():
+    """``extend`` (the limit search's extra ageing times) keeps the stored rows and adds
+    the new ones, bound water included, from the stored run's refined mesh, within the
+    accuracy of the exact disc at those times."""
+    plate, disc = circle(0.01, 0.004)
+    diffusivity, law = Diffusivity((D,) * 3, 0.0), Langmuir(Rate(1e-6), Rate(3e-6))
+    exposure, accuracy = daily_record(), 3e-4
+    times, extra = np.array([1.5, 6.0, 11.5]) * DAY, np.array([2.25, 7.75]) * DAY
+    result = solve(plate, diffusivity, exposure, times, accuracy=accuracy, sorption=law)
+    extended = result.extend(extra)
+    exact = solve(disc, diffusivity, exposure, extra, accuracy=1e-7, sorption=law)
+    new = np.isin(extended.times, extra)
+    assert np.array_equal(extended.mean[~new], result.mean)
+    swing = history_swing(exposure)
+    for key, tolerance in (("mean", 1.0), ("bound", 1.0), ("surface", LAYER_TOLERANCE)):
+        error = np.max(np.abs(getattr(extended, key)[new] - getattr(exact, key))) / swing
+        assert error <= tolerance * accuracy
+
+
 def test_check_reports_the_refined_planform_mesh_the_run_uses():
     """``plan`` (what ``fickcam check`` prints) gives the cells, quadrature and estimate of
     the mesh ``solve`` ends on, not the first mesh before the a-posteriori refinement."""

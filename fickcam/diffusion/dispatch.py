@@ -32,8 +32,8 @@ from .geometry import Bar, CamPlate, Disc, LinkBar, Sheet
 from .forcing import RECORD_SHARE, is_long_record
 from .langmuir import history_swing, langmuir_history
 from .nonlinear import nonlinear_plan, solve_nonlinear
-from .planmodes import (LAYER_TOLERANCE, PLANFORM_CAP, RefinedPlanform, planform_design,
-                        refined_planform)
+from .planmodes import (LAYER_TOLERANCE, PLANFORM_CAP, RefinedPlanform, lanczos_spectrum,
+                        planform_design, planform_operator, planform_source, refined_planform)
 from .timesteps import earliest_output
 from .plane import plan_plane, solve_plane
 from .results import DiffusionResult, Plan
@@ -254,7 +254,23 @@ def _langmuir_modes(geometry, diffusivity, exposure, times, chosen, sorption, de
     _, refined = _planform_refinement(geometry, diffusivity, exposure, times, accuracy, sorption,
                                       depth)
     history, _ = refined.result
-    return _langmuir_result(times, history, chosen.error_estimate, chosen)
+    result = _langmuir_result(times, history, chosen.error_estimate, chosen)
+    source = planform_source(geometry, diffusivity.pre_exponential, lanczos_spectrum(
+        planform_operator(geometry, diffusivity.pre_exponential, depth, refined.finest,
+                          refined.growth), refined.steps))
+
+    def extend(at) -> DiffusionResult:
+        """The limit search's extra times on this refined mesh (no new refinement): the
+        march through the stored and new times together, the new rows kept."""
+        new = np.setdiff1d(np.asarray(at, float), times)
+        both = np.union1d(times, new)
+        extra, _ = langmuir_history(geometry, diffusivity, sorption, exposure, both,
+                                    (1.0 - PLANFORM_SHARE) * accuracy, depth, source)
+        rows = np.searchsorted(both, new)
+        return result.merged(new, extra["mean"][rows], extra["surface"][rows],
+                             extra["bound"][rows])
+    result.extend = extend
+    return result
 
 
 def _langmuir_result(times, history, estimate, chosen) -> DiffusionResult:
