@@ -92,7 +92,8 @@ def gradient_matrix(tess) -> sparse.csr_matrix:
     i, j, offset = _links(tess)
     normal = np.zeros((tess.cells, 2, 2))
     np.add.at(normal, i, offset[:, :, None] * offset[:, None, :])
-    coefficient = np.einsum("kab,kb->ka", np.linalg.inv(normal)[i], offset)
+    # pinv: a cell whose links lie along one line gets no gradient across it
+    coefficient = np.einsum("kab,kb->ka", np.linalg.pinv(normal)[i], offset)
     neighbour = j >= 0
     rows = np.concatenate([2 * i[neighbour], 2 * i[neighbour] + 1, 2 * i, 2 * i + 1])
     cols = np.concatenate([j[neighbour], j[neighbour], i, i])
