@@ -8,6 +8,7 @@ import json
 import numpy as np
 import pytest
 
+from fickcam.blas import one_blas_thread
 from fickcam.bench_two_phase import CONFIGS, REFERENCE, cam_problem, true_error
 from fickcam.diffusion import CamPlate, Diffusivity, Disc, plan, solve
 from fickcam.diffusion.langmuir import history_swing
@@ -114,17 +115,21 @@ def test_check_reports_the_refined_planform_mesh_the_run_uses():
     assert f"to {result.cells} cells" in chosen.reason and "-point" in chosen.reason
 
 
-def test_demo_two_phase_cam_is_within_its_estimate_of_a_fine_run():
-    """The demo cam (``configs/singh2017_cam_two_phase.yaml``) at accuracy 1e-3 against
-    its fine run (planform meshes 16x finer in w0 and 8x in growth, Richardson-extrapolated;
-    benchmarks/two_phase_cam_records.py --reference): mean, bound and layer / 4 within
-    the estimate, and the estimate within the accuracy."""
+@pytest.mark.parametrize("climate", ["constant", "daily record"])
+def test_demo_two_phase_cam_is_within_its_estimate_of_a_fine_run(climate):
+    """The demo cam (``configs/singh2017_cam_two_phase.yaml``, and through the daily
+    chamber log ``..._daily.yaml``) at accuracy 1e-3 against its fine run (planform meshes
+    16x finer in w0 and 8x in growth, Richardson-extrapolated; benchmarks/
+    two_phase_cam_records.py --reference): mean, bound and layer / 4 within the
+    estimate, and the estimate within the accuracy (before the corrected means the daily
+    record stopped at the 60 000-cell cap with an estimate of 1e-3)."""
     reference = json.loads(REFERENCE.read_text())
-    geometry, diffusivity, exposure, times, law, depth = cam_problem(CONFIGS["constant"])
-    found = reference["constant"]
+    geometry, diffusivity, exposure, times, law, depth = cam_problem(CONFIGS[climate])
+    found = reference[climate]
     assert np.allclose(found["times_s"], times)
-    result = solve(geometry, diffusivity, exposure, times, accuracy=1e-3, sorption=law,
-                   surface_layer_depth=depth)
+    with one_blas_thread():   # as a run (its Lanczos on 17 000 cells)
+        result = solve(geometry, diffusivity, exposure, times, accuracy=1e-3, sorption=law,
+                       surface_layer_depth=depth)
     error = true_error(result, found)
-    assert found["uncertainty"] < 0.1 * error <= 0.1 * result.error_estimate
-    assert result.error_estimate <= 1e-3
+    assert found["uncertainty"] < 0.25 * error
+    assert error + found["uncertainty"] <= result.error_estimate <= 1e-3
