@@ -69,6 +69,7 @@ def _for_part(name: str, call, *args, **kwargs):
 STATE_GIVEN = "state"
 
 
+@on_one_blas_thread  # a two-phase plate's plan runs its planform refinement (as ``run``)
 def plan_parts(scene: Scene, accuracy: float | None = None):
     """What `fickcam check` shows: (environment, ageing times, diffusion options, [(part,
     diffusion Plan, None for a part that does not absorb, or STATE_GIVEN where the
