@@ -8,12 +8,15 @@ The part is a prism (planform x thickness), so in the scaled coordinates of
 FiPy's, on the Delaunay-admissible cells of ``prism`` (one layer of prisms between a face
 and the insulated mid-plane, whose face-to-cell coupling 2 V/w^2 is taken off the
 diagonal: the remainder is the in-plane two-point-flux operator K_p, K_p 1 = f_p). With
-M = diag(volumes) and S = M^-1/2 K_p M^-1/2 (symmetric positive definite), the mean of
-any function of the planform decay, sum_i A_i f(mu_i) = v^T f(S) v / V with v = M^1/2 1,
-is a Stieltjes integral over S's spectrum (the layer: the bilinear form with the band's
-volumes). m steps of Lanczos started at v give its m-point Gauss quadrature: Ritz values
-theta_j as rates, squared first components of T's eigenvectors as amplitudes (Golub &
-Meurant 2010, "Matrices, Moments and Quadrature with Applications", §§6.2, 7.1). The
+M = diag(volumes) and S = M^-1/2 K_p M^-1/2 (symmetric positive definite), the mean and
+the layer are linear functionals w^T u of the cell values (weights corrected for where
+each cell value sits, ``cellmoments``: second order where the plain volume weights are
+first order on graded cells), so any function of the planform decay they see,
+sum_i A_i f(mu_i) = w^T M^-1/2 f(S) v with v = M^1/2 1, is a bilinear form over S's
+spectrum. m steps of Lanczos started at v give its m-point quadrature: Ritz values
+theta_j as rates, the first components of T's eigenvectors times w's projections as
+amplitudes, exact for polynomials in S^-1 of degree < m (Golub & Meurant 2010,
+"Matrices, Moments and Quadrature with Applications", §§6.2, 7.1). The
 Lanczos runs on S^-1 (shift-and-invert at 0, one sparse LU): exp(-mu t) is smooth in
 1/mu, so the quadrature converges at a rate set by the outputs' ages, not by the mesh's
 stiffest mode (van den Eshof & Hochbruck 2006, SIAM J. Sci. Comput. 27:1438, §3; Moret &
@@ -42,11 +45,11 @@ from scipy.sparse.linalg import splu
 from ..errors import InputError
 from . import layout
 from .calibration import space_error
+from .cellmoments import corrected_weights
 from .fvprism import prism
 from .langmuir import ModeSource
 from .march import ORDERING
 from .modes import Modes, sheet_factor
-from .prism import band_share
 from .scaling import stretch_of
 from .series import sheet_uptake
 
@@ -86,16 +89,16 @@ def planform_operator(geometry, d, depth: float, finest: float, growth: float) -
     """The planform's FiPy operator (module docstring) on the graded admissible cells."""
     tess = layout.planform_cells(geometry, finest, growth, stretch_of(d))
     half = 0.5 * geometry.thickness
-    disc = prism(tess, geometry.thickness, np.array([half]), band_share(tess, depth), d,
-                 mid_plane=True)
+    disc = prism(tess, geometry.thickness, np.array([half]), np.ones(tess.cells), d,
+                 mid_plane=True)   # (its plain band weights unused: ``cellmoments`` below)
     volumes = disc.volumes
     vertical = 2.0 * volumes / 0.5 ** 2      # face-to-cell coupling of the exposed face
     root = np.sqrt(volumes)
     inverse = sparse.diags(1.0 / root)
     scale = d[2] / geometry.thickness ** 2   # scaled -> rescaled time
     operator = scale * (inverse @ (disc.stiffness - sparse.diags(vertical)) @ inverse)
-    return Planform(operator.tocsc(), root, disc.mean_weights / root,
-                    disc.layer_weights / root, tess.cells)
+    mean, layer = corrected_weights(tess, depth)
+    return Planform(operator.tocsc(), root, mean / root, layer / root, tess.cells)
 
 
 @lru_cache(maxsize=4)
@@ -160,9 +163,23 @@ def lanczos_count(planform: Planform, ages, tolerance: float) -> tuple[int, floa
         previous = current
 
 
+def whole_at_start(spectrum):
+    """The quadrature with the amplitudes of the mean and of the layer summing to 1 (the
+    part starts whole at its initial value): the corrected means (``cellmoments``) sum to
+    1 - sum grad u . (c - x) of a unit field that steps to 0 at the surface, the share of
+    the edge cells between their circumcentres and the surface, which settles within the
+    finest cells' time w0^2/D; it is given to the fastest quadrature node."""
+    rates, mean, layer = (np.array(a) for a in spectrum)
+    fastest = np.argmax(rates)
+    mean[fastest] += 1.0 - mean.sum()
+    layer[fastest] += 1.0 - layer.sum()
+    return rates, mean, layer
+
+
 def planform_source(geometry, d, spectrum) -> ModeSource:
     """The product modes (planform quadrature x ``count`` sheet modes) and the unit-step
     response of the same planform quadrature times Crank's sheet (eq. 4.18)."""
+    spectrum = whole_at_start(spectrum)
     rates, mean, layer = spectrum
 
     def modes(counts) -> Modes:
@@ -183,13 +200,16 @@ def planform_source(geometry, d, spectrum) -> ModeSource:
 @dataclass(frozen=True)
 class RefinedPlanform:
     """The finest planform used: the estimated error of its mesh and quadrature (fraction
-    of the swing), cells, Lanczos steps, meshes built, and what ``measure`` gave on it."""
+    of the swing), cells, Lanczos steps, meshes built, what ``measure`` gave on it, and its
+    finest width and growth (scaled)."""
 
     error: float
     cells: int
     steps: int
     levels: int
     result: object
+    finest: float
+    growth: float
 
 
 def _level(geometry, d, depth, finest, growth, ages, tolerance, measure):
@@ -224,8 +244,8 @@ def refined_planform(geometry, d, depth: float, finest: float, growth: float, ag
         mesh = float(np.max(np.abs(fine[0] - coarse[0]), initial=0.0)) / (ratio ** 2 - 1.0)
         error = mesh + fine[4]
         if error <= tolerance or fine[2] * 2 > PLANFORM_CAP:
-            return RefinedPlanform(error, fine[2], fine[3], levels, fine[1])
+            return RefinedPlanform(error, fine[2], fine[3], levels, fine[1], finest, growth)
         ratio = float(np.clip(SAFETY * np.sqrt(mesh / max(tolerance - fine[4], 0.5 * tolerance)),
                               1.2, min(MAX_REFINE, np.sqrt(PLANFORM_CAP / fine[2]))))
         coarse = fine
-    return RefinedPlanform(float("inf"), coarse[2], coarse[3], levels, coarse[1])
+    return RefinedPlanform(float("inf"), coarse[2], coarse[3], levels, coarse[1], finest, growth)
