@@ -3,6 +3,7 @@ against independent references, and the measurement that dropped the Fickian D_r
 correction.
 
     python benchmarks/dc_defect_correction.py plate-reference   # tests/data/dc_plate_reference.json
+    python benchmarks/dc_defect_correction.py plate              # auto against it
     python benchmarks/dc_defect_correction.py demo-cam           # the README table
     python benchmarks/dc_defect_correction.py fickian-reference  # why not Fick at Crank's mean D
 
@@ -62,6 +63,24 @@ def plate_reference() -> None:
                           "cpu_s": time.process_time() - start}
         print(direction, out[direction], flush=True)
     REFERENCE.write_text(json.dumps(out, indent=1) + "\n")
+
+
+def plate_record() -> None:
+    """``auto`` (the corrected product) on the plate against the stored brute-force runs."""
+    from fickcam.diffusion import solve
+
+    stored = json.loads(REFERENCE.read_text())
+    for direction in ("absorption", "desorption"):
+        plate, d, exposure, times, law = plate_case(direction)
+        reference = stored[direction]
+        for accuracy in (3e-2, 1e-2):
+            start = time.process_time()
+            result = solve(plate, d, exposure, times, accuracy=accuracy, sorption=law)
+            cpu = time.process_time() - start
+            mean = np.max(np.abs(result.mean - reference["mean"])) / MM
+            layer = np.max(np.abs(result.surface - reference["layer"])) / MM
+            print(f"| {direction} | {accuracy:g} | {result.error_estimate:.1e} | {mean:.1e} | "
+                  f"{layer:.1e} | {result.cells} | {cpu:.1f} |", flush=True)
 
 
 def demo_cam(k: float):
@@ -170,5 +189,5 @@ def sheet_uptake_series(tau):
 
 
 if __name__ == "__main__":
-    {"plate-reference": plate_reference, "demo-cam": cam_table,
+    {"plate-reference": plate_reference, "plate": plate_record, "demo-cam": cam_table,
      "fickian-reference": fickian_reference}[sys.argv[1]]()

@@ -37,13 +37,14 @@ from .clock import scales as scales_of
 from .direct import plan_direct, step_plan, swing
 from .discretisation import Discretisation, assemble
 from .fv import normalised
+from .cellmoments import corrected_weights
 from .fvprism import prism
 from .geometry import Sheet
 from .mirrored import half, mirrored
+from .prism import band_share
 from .nonlinear import (SPACE_MARGIN, Faces, dries_to_a_skin, fastest, nonlinear_plan,
                         solve_nonlinear, spread, sweep_march, wettest)
 from .planmodes import LAYER_TOLERANCE
-from .prism import band_share
 from .results import DiffusionResult, Plan
 from .scaling import stretch_of
 
@@ -52,6 +53,9 @@ REFINE = (2.0, 4.0)        # planform refinements (finest and growth / R) for Ri
 PLANFORM_CELLS = 60_000    # the finest planform tried
 SHEET_SHARE = 0.1          # the fine sheet's accuracy: this share of the requested one
 PLANFORM_SHARE = 0.5       # of the accuracy: the planform's Richardson estimate
+ROMBERG = 1.0 / 3.0  # extrapolated error / change between two extrapolations: order 2
+#   assumed; measured 2.7 (mean) and 5.6 (layer) on the demo cam's Fickian planform at 1 d
+#   (errors of the x4 extrapolation 2e-5 and 1.4e-4 against the plane model)
 TARGET = "; est. = the target: the run measures its own and warns above it"
 ORDER_ONE = 1.0 / (math.sqrt(2.0) - 1.0)  # the finer 3-D plan's error / the change between
 #   the two, at order 1 in w0 (w0 ~ sqrt(accuracy): ratio sqrt 2): the observed D(c) prism
@@ -82,15 +86,18 @@ def half_slab(z_widths: np.ndarray) -> Discretisation:
     return Discretisation(volumes, stiffness, boundary, weights, weights)
 
 
-def planform_disc(geometry, d, finest: float, growth: float, depth: float) -> Discretisation:
-    """The planform alone (a prism of infinite thickness) on the graded admissible cells
-    of (``finest``, ``growth``): one layer of the mirrored prisms with its exposed face's
-    coupling 8 V (half-layer height 1/4 scaled) taken out of the boundary vector (as
-    ``planmodes.planform_operator``); layer: the contact band."""
+def planform_disc(geometry, d, finest: float, growth: float, depth: float):
+    """(Discretisation, corrected weights): the planform alone (a prism of infinite
+    thickness) on the graded admissible cells of (``finest``, ``growth``), one layer of
+    the mirrored prisms with its exposed face's coupling 8 V (half-layer height 1/4
+    scaled) taken out of the boundary vector (as ``planmodes.planform_operator``); its
+    mean and layer weights the plate's (cell volumes, band shares: the same discrete
+    product), and ``cellmoments``' second-order (mean, layer) weights on u - g beside."""
     tess = layout.planform_cells(geometry, finest, growth, stretch_of(d))
     disc = prism(tess, geometry.thickness, np.array([0.5 * geometry.thickness]),
                  band_share(tess, depth), d, mid_plane=True)
-    return replace(disc, boundary=disc.boundary - 8.0 * disc.volumes)
+    return (replace(disc, boundary=disc.boundary - 8.0 * disc.volumes),
+            corrected_weights(tess, depth))
 
 
 def richardson_march(disc, law, top, exposure, times, scales, per_doubling, keep, part) -> Pair:
@@ -178,9 +185,13 @@ class Setting:
         return richardson_march(disc, self.law, self.top, self.exposure, self.times,
                                 self.scales, self.per_doubling, keep, self.part)
 
-    def planform(self, finest: float, growth: float) -> tuple[Pair, int]:
-        disc = planform_disc(self.geometry, self.d, finest, growth, self.depth)
-        return self.run(disc), disc.cells
+    def planform(self, finest: float, growth: float) -> tuple[Pair, Pair, int]:
+        """(the plate's weights, ``cellmoments``' weights, cells) of the planform's march."""
+        disc, weights = planform_disc(self.geometry, self.d, finest, growth, self.depth)
+        pair, g = self.run(disc, True), np.asarray(self.exposure.surface_before(self.times), float)
+        mean, layer = (g + (pair.fields - g[:, None]) @ w for w in weights)
+        return replace(pair, fields=None), replace(pair, mean=mean, layer=layer, fields=None), \
+            disc.cells
 
 
 @dataclass(frozen=True)
@@ -191,6 +202,7 @@ class Level:
     plate: Pair
     slab: Pair
     planform: Pair
+    moments: Pair   # the same march read with ``cellmoments``' weights
     cells: int
     planform_cells: int
     coordinates: dict
@@ -201,8 +213,9 @@ def three_d(setting: Setting, chosen: Plan, keep: bool) -> Level:
                     chosen.growth, setting.depth)
     plate = setting.run(disc, keep)
     slab = setting.run(half_slab(half(layout.prism_widths(chosen.finest, chosen.growth))))
-    planform, planform_cells = setting.planform(chosen.finest, chosen.growth)
-    return Level(chosen, plate, slab, planform, disc.cells, planform_cells, disc.coordinates)
+    planform, moments, planform_cells = setting.planform(chosen.finest, chosen.growth)
+    return Level(chosen, plate, slab, planform, moments, disc.cells, planform_cells,
+                 disc.coordinates)
 
 
 def refined_reference(setting: Setting, level: Level, sheet: Pair, accuracy: float, scale):
@@ -211,23 +224,23 @@ def refined_reference(setting: Setting, level: Level, sheet: Pair, accuracy: flo
     last two (second order: p_R + (p_R - p_R/2) / 3), until the estimate is
     ``PLANFORM_SHARE`` of the accuracy or the next mesh would pass ``PLANFORM_CELLS``. The
     estimate: the change the last extrapolation makes to the result or, once there are two
-    extrapolations, the change between them (Romberg's check; on the demo cam's Fickian
-    planform at 1 d: layer 5e-3 where the error is 1.7e-3, mean 8e-5 where it is 1e-5)."""
-    surface = np.asarray(setting.exposure.surface_moisture(setting.times), float)
+    extrapolations, ``ROMBERG`` x the change between them (Romberg's check)."""
+    surface = np.asarray(setting.exposure.surface_before(setting.times), float)
 
     def result(reference):
         return corrected(level.plate, (level.slab, sheet), (level.planform, reference), surface)
-    previous, factor, cells, earlier = level.planform, 1.0, 0, None
+    previous, factor, cells, earlier = level.moments, 1.0, 0, None
     for refine in REFINE:
         if cells and level.planform_cells * refine ** 2 > PLANFORM_CELLS:
             break
-        fine, cells = setting.planform(level.plan.finest / refine, level.plan.growth / refine)
+        _, fine, cells = setting.planform(level.plan.finest / refine,
+                                          level.plan.growth / refine)
         weight = 1.0 / ((refine / factor) ** 2 - 1.0)
         extrapolated = Pair(fine.mean + weight * (fine.mean - previous.mean),
                             fine.layer + weight * (fine.layer - previous.layer), None,
                             fine.steps, fine.pair)
-        estimate = gap(result(earlier if earlier is not None else fine), result(extrapolated),
-                       scale)
+        estimate = (gap(result(fine), result(extrapolated), scale) if earlier is None else
+                    ROMBERG * gap(result(earlier), result(extrapolated), scale))
         previous, factor, earlier = fine, refine, extrapolated
         if estimate <= PLANFORM_SHARE * accuracy:
             break
@@ -270,7 +283,7 @@ def solve_corrected(geometry, diffusivity, law, exposure, times, accuracy: float
     scale = swing(exposure, times) or 1.0
     planform, planform_error, planform_cells, factor = refined_reference(
         setting, marched[-1], reference, accuracy, scale)
-    surface = np.asarray(exposure.surface_moisture(times), float)
+    surface = np.asarray(exposure.surface_before(times), float)  # g(t-): the state there
     results = [corrected(m.plate, (m.slab, reference), (m.planform, planform), surface)
                for m in marched]
     unseparated = gap(results[0], results[-1], scale) * ORDER_ONE * skin_margin(
