@@ -5,9 +5,9 @@ contact layer, times the exact through-thickness sheet modes, for the two-phase 
 The part is a prism (planform x thickness), so in the scaled coordinates of
 ``discretisation`` its Laplacian separates (Crank 1975 §5.3; Carslaw & Jaeger 1959
 §1.16): modes psi_i(x, y) sin(k pi z/h), rates mu_i + (k pi)^2. The planform operator is
-FiPy's, on the Delaunay-admissible cells of ``prism`` (one layer of prisms between a face
-and the insulated mid-plane, whose face-to-cell coupling 2 V/w^2 is taken off the
-diagonal: the remainder is the in-plane two-point-flux operator K_p, K_p 1 = f_p). With
+FiPy's two-point-flux operator K_p on the Delaunay-admissible cells of ``prism``
+(``fvprism.planar``: the cells' sides as faces, their circumcentres as cell points; the
+in-plane part of a prism layer's operator to 1e-13, for a third of its cost). With
 M = diag(volumes) and S = M^-1/2 K_p M^-1/2 (symmetric positive definite), the mean and
 the layer are linear functionals w^T u of the cell values (weights corrected for where
 each cell value sits, ``cellmoments``: second order where the plain volume weights are
@@ -46,11 +46,11 @@ from ..errors import InputError
 from . import layout
 from .calibration import space_error
 from .cellmoments import corrected_weights
-from .fvprism import prism
+from .fvprism import planar
 from .langmuir import ModeSource
 from .march import ORDERING
 from .modes import Modes, sheet_factor
-from .scaling import stretch_of
+from .scaling import axis_scale, stretch_of
 from .series import sheet_uptake
 
 FIRST_CAP = 2500      # cells of the first planform mesh (the plan's a-priori design)
@@ -88,15 +88,12 @@ class Planform:
 def planform_operator(geometry, d, depth: float, finest: float, growth: float) -> Planform:
     """The planform's FiPy operator (module docstring) on the graded admissible cells."""
     tess = layout.planform_cells(geometry, finest, growth, stretch_of(d))
-    half = 0.5 * geometry.thickness
-    disc = prism(tess, geometry.thickness, np.array([half]), np.ones(tess.cells), d,
-                 mid_plane=True)   # (its plain band weights unused: ``cellmoments`` below)
-    volumes = disc.volumes
-    vertical = 2.0 * volumes / 0.5 ** 2      # face-to-cell coupling of the exposed face
-    root = np.sqrt(volumes)
+    coordinates = axis_scale(geometry.thickness, d[1], d[2]) / float(tess.stretch[1])
+    disc = planar(tess, coordinates, np.ones(tess.cells))  # (plain band weights unused)
+    root = np.sqrt(disc.volumes)
     inverse = sparse.diags(1.0 / root)
     scale = d[2] / geometry.thickness ** 2   # scaled -> rescaled time
-    operator = scale * (inverse @ (disc.stiffness - sparse.diags(vertical)) @ inverse)
+    operator = scale * (inverse @ disc.stiffness @ inverse)
     mean, layer = corrected_weights(tess, depth)
     return Planform(operator.tocsc(), root, mean / root, layer / root, tess.cells)
 
