@@ -61,6 +61,8 @@ LANCZOS_SHARE = 0.05  # share of the tolerance left to the quadrature
 SAFETY = 1.2          # refine a little past the Richardson prediction (it is asymptotic)
 LAYER_TOLERANCE = 4.0  # the contact layer may be this many times less accurate (as ``plane``)
 MAX_REFINE = 4.0      # refine w0 by at most this factor per level (the estimate's reach)
+MIN_REFINE = 1.5      # ... and at least this (a smaller step's Richardson difference, / (r^2 - 1),
+#                       magnifies what is not yet asymptotic, and costs a level)
 
 
 def planform_design(geometry, d, accuracy: float, t_lo: float) -> layout.Layout:
@@ -243,6 +245,6 @@ def refined_planform(geometry, d, depth: float, finest: float, growth: float, ag
         if error <= tolerance or fine[2] * 2 > PLANFORM_CAP:
             return RefinedPlanform(error, fine[2], fine[3], levels, fine[1], finest, growth)
         ratio = float(np.clip(SAFETY * np.sqrt(mesh / max(tolerance - fine[4], 0.5 * tolerance)),
-                              1.2, min(MAX_REFINE, np.sqrt(PLANFORM_CAP / fine[2]))))
+                              MIN_REFINE, min(MAX_REFINE, np.sqrt(PLANFORM_CAP / fine[2]))))
         coarse = fine
     return RefinedPlanform(float("inf"), coarse[2], coarse[3], levels, coarse[1], finest, growth)
