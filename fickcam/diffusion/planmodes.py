@@ -108,30 +108,57 @@ def _factor(planform: Planform):
                 options={"SymmetricMode": True})
 
 
+class _Recurrence:
+    """The shift-and-invert Lanczos recurrence of one planform from M^1/2 1, with full
+    reorthogonalisation, run further on demand: m steps are the leading m rows of any longer
+    run (step j uses only the rows before it), so doubling the steps (``lanczos_count``)
+    continues the run instead of starting again."""
+
+    def __init__(self, planform: Planform):
+        self.planform = planform
+        self.norm = float(np.linalg.norm(planform.start))
+        self.basis = np.zeros((FIRST_LANCZOS, planform.cells))
+        self.basis[0] = planform.start / self.norm
+        self.alpha, self.beta = [], []
+        self.count = planform.cells       # steps at most (fewer at an invariant subspace)
+
+    def run(self, steps: int) -> int:
+        """Steps taken so far, at least min(``steps``, ``count``)."""
+        inverse = _factor(self.planform)
+        while len(self.alpha) < min(steps, self.count):
+            j = len(self.alpha)
+            w = inverse.solve(self.basis[j])
+            self.alpha.append(float(self.basis[j] @ w))
+            done = self.basis[:j + 1]
+            w -= done.T @ (done @ w)       # full reorthogonalisation, twice
+            w -= done.T @ (done @ w)
+            self.beta.append(float(np.linalg.norm(w)))
+            if self.beta[j] <= 1e-14 * abs(self.alpha[j]):   # invariant subspace: exact
+                self.count = j + 1
+            elif j + 1 < self.count:
+                if j + 1 == len(self.basis):
+                    self.basis = np.vstack([self.basis, np.zeros_like(self.basis)])
+                self.basis[j + 1] = w / self.beta[j]
+        return min(len(self.alpha), max(steps, 1))
+
+
+@lru_cache(maxsize=4)
+def _recurrence(planform: Planform) -> _Recurrence:
+    return _Recurrence(planform)
+
+
 @lru_cache(maxsize=8)
 def lanczos_spectrum(planform: Planform, steps: int):
     """(rates, mean amplitudes, layer amplitudes): the ``steps``-point Gauss quadrature of
-    the planform's decay (module docstring), shift-and-invert Lanczos from M^1/2 1 with
-    full reorthogonalisation. Read-only arrays (cached)."""
-    steps = min(steps, planform.cells)
-    inverse = _factor(planform)
-    norm = float(np.linalg.norm(planform.start))
-    basis = np.zeros((steps, planform.cells))
-    basis[0] = planform.start / norm
-    alpha, beta = np.zeros(steps), np.zeros(max(steps - 1, 0))
-    for j in range(steps):
-        w = inverse.solve(basis[j])
-        alpha[j] = basis[j] @ w
-        w -= basis[:j + 1].T @ (basis[:j + 1] @ w)       # full reorthogonalisation, twice
-        w -= basis[:j + 1].T @ (basis[:j + 1] @ w)
-        if j + 1 < steps:
-            beta[j] = float(np.linalg.norm(w))
-            if beta[j] <= 1e-14 * abs(alpha[j]):          # invariant subspace: exact
-                return lanczos_spectrum(planform, j + 1)
-            basis[j + 1] = w / beta[j]
+    the planform's decay (module docstring), from the first ``steps`` rows of the Lanczos
+    recurrence (``_Recurrence``). Read-only arrays (cached)."""
+    recurrence = _recurrence(planform)
+    steps = recurrence.run(steps)
+    alpha, beta = np.array(recurrence.alpha[:steps]), np.array(recurrence.beta[:steps - 1])
     theta, vectors = eigh_tridiagonal(alpha, beta)
-    first = norm * vectors[0]
+    first = recurrence.norm * vectors[0]
     rates = 1.0 / theta
+    basis = recurrence.basis[:steps]
     mean = (planform.mean @ basis.T @ vectors) * first
     layer = (planform.layer @ basis.T @ vectors) * first
     for array in (rates, mean, layer):
