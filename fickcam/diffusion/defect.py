@@ -223,8 +223,10 @@ def refined_reference(setting: Setting, level: Level, sheet: Pair, accuracy: flo
     refined by R in ``REFINE`` (finest and growth / R), Richardson-extrapolated from the
     last two (second order: p_R + (p_R - p_R/2) / 3), until the estimate is
     ``PLANFORM_SHARE`` of the accuracy or the next mesh would pass ``PLANFORM_CELLS``. The
-    estimate: the change the last extrapolation makes to the result or, once there are two
-    extrapolations, ``ROMBERG`` x the change between them (Romberg's check)."""
+    estimate: the change from the level's planform to the first refinement (R = 1 may be
+    short of the asymptotic range: on the demo cam with k = 1 the change the first
+    extrapolation made, (p_2 - p_1) / 3, was half of what the next one found) or, once there
+    are two extrapolations, ``ROMBERG`` x the change between them (Romberg's check)."""
     surface = np.asarray(setting.exposure.surface_before(setting.times), float)
 
     def result(reference):
@@ -239,7 +241,7 @@ def refined_reference(setting: Setting, level: Level, sheet: Pair, accuracy: flo
         extrapolated = Pair(fine.mean + weight * (fine.mean - previous.mean),
                             fine.layer + weight * (fine.layer - previous.layer), None,
                             fine.steps, fine.pair)
-        estimate = (gap(result(fine), result(extrapolated), scale) if earlier is None else
+        estimate = (gap(result(previous), result(fine), scale) if earlier is None else
                     ROMBERG * gap(result(earlier), result(extrapolated), scale))
         previous, factor, earlier = fine, refine, extrapolated
         if estimate <= PLANFORM_SHARE * accuracy:
