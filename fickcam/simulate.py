@@ -12,6 +12,7 @@ import time as _time
 import numpy as np
 
 from ._version import __version__
+from .blas import on_one_blas_thread
 from .environment import Environment
 from .errors import InputError, SceneError
 from .parts import Part, PartHistory, build_parts, diffusion_attrs, field_values, part_values
@@ -68,6 +69,7 @@ def _for_part(name: str, call, *args, **kwargs):
 STATE_GIVEN = "state"
 
 
+@on_one_blas_thread  # a two-phase plate's plan runs its planform refinement (as ``run``)
 def plan_parts(scene: Scene, accuracy: float | None = None):
     """What `fickcam check` shows: (environment, ageing times, diffusion options, [(part,
     diffusion Plan, None for a part that does not absorb, or STATE_GIVEN where the
@@ -98,6 +100,7 @@ def plan_parts(scene: Scene, accuracy: float | None = None):
 # ---------------------------------------------------------------------- run
 
 
+@on_one_blas_thread  # the caller's BLAS threads are restored on return (fickcam.blas)
 def run(scene, *, accuracy: float | None = None, progress: bool = False):
     """Run one scene and return its xarray.Dataset (SPEC.md §4)."""
     started = _time.perf_counter()

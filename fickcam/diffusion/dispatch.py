@@ -15,6 +15,7 @@ from __future__ import annotations
 
 import logging
 from dataclasses import replace
+from functools import lru_cache
 
 import numpy as np
 
@@ -31,7 +32,8 @@ from .geometry import Bar, CamPlate, Disc, LinkBar, Sheet
 from .forcing import RECORD_SHARE, is_long_record
 from .langmuir import history_swing, langmuir_history
 from .nonlinear import nonlinear_plan, solve_nonlinear
-from .planmodes import LAYER_TOLERANCE, PLANFORM_CAP, planform_design, refined_planform
+from .planmodes import (LAYER_TOLERANCE, PLANFORM_CAP, RefinedPlanform, lanczos_spectrum,
+                        planform_design, planform_operator, planform_source, refined_planform)
 from .timesteps import earliest_output
 from .plane import plan_plane, solve_plane
 from .results import DiffusionResult, Plan
@@ -40,6 +42,7 @@ from .sorption import describe, is_langmuir, is_nonlinear
 log = logging.getLogger(__name__)
 
 PLANFORM_SHARE = 0.5  # of the accuracy: the planform mesh; the rest the two-phase march
+LAYER_DEPTH = 5e-4    # m, the contact layer's depth when none is given (SPEC: surface_layer_depth)
 MODELS = ("auto", "analytic", "slab", "axisymmetric", "plane", "solid")
 NUMERICAL_MODEL = {Sheet: "slab", Disc: "axisymmetric", Bar: "solid", CamPlate: "plane",
                    LinkBar: "plane"}
@@ -87,7 +90,9 @@ def plan(geometry, diffusivity: Diffusivity, exposure: Exposure, times: np.ndarr
     the solve's, so that a plane plan and its solve share one outline expansion)."""
     _validate(geometry, model, accuracy)
     if is_langmuir(sorption) or is_nonlinear(sorption):
-        return _plan_sorption(geometry, diffusivity, exposure, times, accuracy, model, sorption)
+        depth = LAYER_DEPTH if surface_layer_depth is None else surface_layer_depth
+        return _plan_sorption(geometry, diffusivity, exposure, times, accuracy, model, sorption,
+                              depth)
     if model in ("auto", "analytic") and exact_available(geometry) and is_long_record(exposure):
         return Plan("analytic", 0, 0, f"exact Crank series, tabulated once and superposed "
                     f"over the {exposure.ramp.size}-segment record in closed form per row "
@@ -110,7 +115,8 @@ def plan(geometry, diffusivity: Diffusivity, exposure: Exposure, times: np.ndarr
     return plan_direct(geometry, diffusivity, chosen, change, outputs, accuracy, exposure)
 
 
-def _plan_sorption(geometry, diffusivity, exposure, times, accuracy, model, sorption) -> Plan:
+def _plan_sorption(geometry, diffusivity, exposure, times, accuracy, model, sorption,
+                   depth) -> Plan:
     law = describe(sorption)
     if is_nonlinear(sorption):
         chosen = _nonlinear_model(geometry, model)
@@ -125,7 +131,7 @@ def _plan_sorption(geometry, diffusivity, exposure, times, accuracy, model, sorp
         return Plan("analytic", 0, 0, f"{law}: exact Fickian modes of the part, each a "
                     "2x2 free/bound system advanced exactly through the history", accuracy)
     if chosen == "plane":
-        return _plan_planform(geometry, diffusivity, exposure, times, accuracy, law)
+        return _plan_planform(geometry, diffusivity, exposure, times, accuracy, sorption, depth)
     direct = _direct_plan(geometry, diffusivity, chosen, exposure, times, accuracy)
     return replace(direct, reason=f"{law}; {direct.reason}")
 
@@ -136,16 +142,53 @@ def _direct_plan(geometry, diffusivity, chosen, exposure, times, accuracy) -> Pl
                        scales.tau_star(np.asarray(times, float)), accuracy, exposure)
 
 
-def _plan_planform(geometry, diffusivity, exposure, times, accuracy, law) -> Plan:
+def _plan_planform(geometry, diffusivity, exposure, times, accuracy, sorption, depth) -> Plan:
+    """The planform mesh the solve will use: the first mesh from the error model, refined
+    from the two-phase histories it measures (``refined``, kept for the solve, so that
+    ``fickcam check`` shows the refined mesh and a run pays for it once)."""
+    design, refined = _planform_refinement(geometry, diffusivity, exposure, times, accuracy,
+                                           sorption, depth)
+    _, estimate = refined.result
+    capped = ("" if refined.error <= PLANFORM_SHARE * accuracy else
+              f"; capped at {PLANFORM_CAP} cells: error above the requested accuracy")
+    return Plan("plane", refined.cells, 0, f"{describe(sorption)}: the planform's FiPy "
+                f"operator (first mesh {design.note}, about {int(np.prod(design.cells))} cells; "
+                f"refined from the two-phase histories on {refined.levels} meshes to "
+                f"{refined.cells} cells), its decay seen by the mean and layer as a "
+                f"{refined.steps}-point shift-invert Lanczos quadrature, x the exact sheet "
+                "modes, each a 2x2 free/bound system advanced exactly through the history"
+                f"{capped}", estimate + refined.error, (refined.cells,),
+                finest=refined.finest, growth=refined.growth)
+
+
+def _planform_refinement(geometry, diffusivity, exposure, times, accuracy, sorption, depth):
+    """(first mesh, ``_refined``) of a two-phase CamPlate or LinkBar."""
     scales = scales_of(geometry, diffusivity, exposure)
     t_lo = earliest_output(scales.tau_star(exposure.change_times),
                            scales.tau_star(np.asarray(times, float)))
     design = planform_design(geometry, diffusivity.pre_exponential, accuracy, t_lo)
-    return Plan("plane", int(np.prod(design.cells)), 0, f"{law}: the planform's FiPy operator "
-                f"(first mesh {design.note}, refined from its measured error), its decay seen "
-                "by the mean and layer as a shift-invert Lanczos quadrature, x the exact sheet "
-                "modes, each a 2x2 free/bound system advanced exactly through the history",
-                accuracy, design.cells, finest=design.finest, growth=design.growth)
+    return design, _refined(geometry, diffusivity, exposure, tuple(np.asarray(times, float)),
+                            accuracy, sorption, depth, design.finest, design.growth)
+
+
+@lru_cache(maxsize=4)
+def _refined(geometry, diffusivity, exposure, times: tuple, accuracy, sorption, depth, finest,
+             growth) -> RefinedPlanform:
+    """``planmodes.refined_planform`` of the two-phase history (the march on each mesh,
+    most of whose cost is the planform operators): its mesh error is ``PLANFORM_SHARE`` of
+    the accuracy, the march the rest. Cached: ``plan`` and ``solve`` share it."""
+    times = np.asarray(times, float)
+    share, scale = PLANFORM_SHARE * accuracy, 1.0 / max(history_swing(exposure), 1e-300)
+
+    def measure(source):
+        history, estimate = langmuir_history(geometry, diffusivity, sorption, exposure, times,
+                                             accuracy - share, depth, source)
+        compared = [history["mean"], history["bound"], history["surface"] / LAYER_TOLERANCE]
+        return np.stack(compared) * scale, (history, estimate)
+
+    ages = read_ages(RescaledTime(diffusivity, exposure), exposure, times)
+    return refined_planform(geometry, diffusivity.pre_exponential, depth, finest, growth, ages,
+                            share, measure)
 
 
 def _nonlinear_model(geometry, model: str) -> str:
@@ -162,7 +205,7 @@ def _nonlinear_model(geometry, model: str) -> str:
 
 
 def solve(geometry, diffusivity: Diffusivity, exposure: Exposure, times: np.ndarray, *,
-          accuracy: float = 1e-3, model: str = "auto", surface_layer_depth: float = 5e-4,
+          accuracy: float = 1e-3, model: str = "auto", surface_layer_depth: float = LAYER_DEPTH,
           store_fields: bool = False, part: str = "", sorption=None) -> DiffusionResult:
     """Moisture (weight %) of one part at ``times`` (s) under ``exposure``; with a
     ``sorption`` law (``diffusion.sorption``) the mean and surface are the total (free +
@@ -174,7 +217,7 @@ def solve(geometry, diffusivity: Diffusivity, exposure: Exposure, times: np.ndar
               chosen.cells, chosen.steps, chosen.reason)
     if sorption is not None and (is_langmuir(sorption) or is_nonlinear(sorption)):
         return _solve_sorption(geometry, diffusivity, exposure, times, chosen, sorption,
-                               surface_layer_depth, store_fields, part)
+                               surface_layer_depth, store_fields, part, accuracy)
     if chosen.model == "analytic":
         record = accuracy if is_long_record(exposure) else None
         return solve_analytic(geometry, diffusivity, exposure, times, surface_layer_depth,
@@ -189,9 +232,10 @@ def solve(geometry, diffusivity: Diffusivity, exposure: Exposure, times: np.ndar
 
 
 def _solve_sorption(geometry, diffusivity, exposure, times, chosen: Plan, sorption, depth,
-                    store_fields, part) -> DiffusionResult:
+                    store_fields, part, accuracy) -> DiffusionResult:
     if chosen.model in ("analytic", "plane"):
-        return _langmuir_modes(geometry, diffusivity, exposure, times, chosen, sorption, depth)
+        return _langmuir_modes(geometry, diffusivity, exposure, times, chosen, sorption, depth,
+                               accuracy)
     if is_langmuir(sorption):
         return solve_direct(geometry, diffusivity, exposure, times, chosen,
                             surface_layer_depth=depth, store_fields=store_fields, part=part,
@@ -200,38 +244,39 @@ def _solve_sorption(geometry, diffusivity, exposure, times, chosen: Plan, sorpti
                            surface_layer_depth=depth, store_fields=store_fields, part=part)
 
 
-def _langmuir_modes(geometry, diffusivity, exposure, times, chosen, sorption, depth):
+def _langmuir_modes(geometry, diffusivity, exposure, times, chosen, sorption, depth, accuracy):
     """The exact two-phase modal march; for a CamPlate or LinkBar on its planform's
-    quadrature (``planmodes``), refined until the march's change between two meshes says
-    the mesh error is ``PLANFORM_SHARE`` of the accuracy; it adds to the march's estimate."""
-    accuracy = chosen.error_estimate
+    quadrature (``planmodes``), the histories of the plan's refined mesh (``_refined``)."""
     if chosen.model != "plane":
         history, estimate = langmuir_history(geometry, diffusivity, sorption, exposure, times,
                                              accuracy, depth)
         return _langmuir_result(times, history, estimate, chosen)
-    share, scale = PLANFORM_SHARE * accuracy, 1.0 / max(history_swing(exposure), 1e-300)
+    _, refined = _planform_refinement(geometry, diffusivity, exposure, times, accuracy, sorption,
+                                      depth)
+    history, _ = refined.result
+    result = _langmuir_result(times, history, chosen.error_estimate, chosen)
+    source = planform_source(geometry, diffusivity.pre_exponential, lanczos_spectrum(
+        planform_operator(geometry, diffusivity.pre_exponential, depth, refined.finest,
+                          refined.growth), refined.steps))
 
-    def measure(source):
-        history, estimate = langmuir_history(geometry, diffusivity, sorption, exposure, times,
-                                             accuracy - share, depth, source)
-        compared = [history["mean"], history["bound"], history["surface"] / LAYER_TOLERANCE]
-        return np.stack(compared) * scale, (history, estimate)
-
-    refined = refined_planform(geometry, diffusivity.pre_exponential, depth, chosen.finest,
-                               chosen.growth, read_ages(RescaledTime(diffusivity, exposure),
-                                                        exposure, times), share, measure)
-    history, estimate = refined.result
-    capped = ("" if refined.error <= share else
-              f"; capped at {PLANFORM_CAP} cells: error above the requested accuracy")
-    chosen = replace(chosen, cells=refined.cells, cells_per_axis=(refined.cells,),
-                     reason=f"{chosen.reason}; refined to {refined.cells} cells "
-                            f"({refined.levels} meshes), {refined.steps}-point quadrature{capped}")
-    return _langmuir_result(times, history, estimate + refined.error, chosen)
+    def extend(at) -> DiffusionResult:
+        """The limit search's extra times on this refined mesh (no new refinement): the
+        march through the stored and new times together, the new rows kept."""
+        new = np.setdiff1d(np.asarray(at, float), times)
+        both = np.union1d(times, new)
+        extra, _ = langmuir_history(geometry, diffusivity, sorption, exposure, both,
+                                    (1.0 - PLANFORM_SHARE) * accuracy, depth, source)
+        rows = np.searchsorted(both, new)
+        return result.merged(new, extra["mean"][rows], extra["surface"][rows],
+                             extra["bound"][rows])
+    result.extend = extend
+    return result
 
 
 def _langmuir_result(times, history, estimate, chosen) -> DiffusionResult:
-    return DiffusionResult(times, history["mean"], history["surface"], chosen.model,
-                           chosen.cells, 0, estimate, chosen.reason, bound=history["bound"])
+    """(copies: a planform's histories stay cached for the next plan and solve)"""
+    return DiffusionResult(times, history["mean"].copy(), history["surface"].copy(), chosen.model,
+                           chosen.cells, 0, estimate, chosen.reason, bound=history["bound"].copy())
 
 
 def read_ages(clock, exposure, times, most: int = 256) -> np.ndarray:

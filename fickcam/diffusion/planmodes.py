@@ -5,15 +5,18 @@ contact layer, times the exact through-thickness sheet modes, for the two-phase 
 The part is a prism (planform x thickness), so in the scaled coordinates of
 ``discretisation`` its Laplacian separates (Crank 1975 §5.3; Carslaw & Jaeger 1959
 §1.16): modes psi_i(x, y) sin(k pi z/h), rates mu_i + (k pi)^2. The planform operator is
-FiPy's, on the Delaunay-admissible cells of ``prism`` (one layer of prisms between a face
-and the insulated mid-plane, whose face-to-cell coupling 2 V/w^2 is taken off the
-diagonal: the remainder is the in-plane two-point-flux operator K_p, K_p 1 = f_p). With
-M = diag(volumes) and S = M^-1/2 K_p M^-1/2 (symmetric positive definite), the mean of
-any function of the planform decay, sum_i A_i f(mu_i) = v^T f(S) v / V with v = M^1/2 1,
-is a Stieltjes integral over S's spectrum (the layer: the bilinear form with the band's
-volumes). m steps of Lanczos started at v give its m-point Gauss quadrature: Ritz values
-theta_j as rates, squared first components of T's eigenvectors as amplitudes (Golub &
-Meurant 2010, "Matrices, Moments and Quadrature with Applications", §§6.2, 7.1). The
+FiPy's two-point-flux operator K_p on the Delaunay-admissible cells of ``prism``
+(``fvprism.planar``: the cells' sides as faces, their circumcentres as cell points; the
+in-plane part of a prism layer's operator to 1e-13, for a third of its cost). With
+M = diag(volumes) and S = M^-1/2 K_p M^-1/2 (symmetric positive definite), the mean and
+the layer are linear functionals w^T u of the cell values (weights corrected for where
+each cell value sits, ``cellmoments``: second order where the plain volume weights are
+first order on graded cells), so any function of the planform decay they see,
+sum_i A_i f(mu_i) = w^T M^-1/2 f(S) v with v = M^1/2 1, is a bilinear form over S's
+spectrum. m steps of Lanczos started at v give its m-point quadrature: Ritz values
+theta_j as rates, the first components of T's eigenvectors times w's projections as
+amplitudes, exact for polynomials in S^-1 of degree < m (Golub & Meurant 2010,
+"Matrices, Moments and Quadrature with Applications", §§6.2, 7.1). The
 Lanczos runs on S^-1 (shift-and-invert at 0, one sparse LU): exp(-mu t) is smooth in
 1/mu, so the quadrature converges at a rate set by the outputs' ages, not by the mesh's
 stiffest mode (van den Eshof & Hochbruck 2006, SIAM J. Sci. Comput. 27:1438, §3; Moret &
@@ -42,12 +45,12 @@ from scipy.sparse.linalg import splu
 from ..errors import InputError
 from . import layout
 from .calibration import space_error
-from .fvprism import prism
+from .cellmoments import corrected_weights
+from .fvprism import planar
 from .langmuir import ModeSource
 from .march import ORDERING
 from .modes import Modes, sheet_factor
-from .prism import band_share
-from .scaling import stretch_of
+from .scaling import axis_scale, stretch_of
 from .series import sheet_uptake
 
 FIRST_CAP = 2500      # cells of the first planform mesh (the plan's a-priori design)
@@ -58,6 +61,8 @@ LANCZOS_SHARE = 0.05  # share of the tolerance left to the quadrature
 SAFETY = 1.2          # refine a little past the Richardson prediction (it is asymptotic)
 LAYER_TOLERANCE = 4.0  # the contact layer may be this many times less accurate (as ``plane``)
 MAX_REFINE = 4.0      # refine w0 by at most this factor per level (the estimate's reach)
+MIN_REFINE = 1.5      # ... and at least this (a smaller step's Richardson difference, / (r^2 - 1),
+#                       magnifies what is not yet asymptotic, and costs a level)
 
 
 def planform_design(geometry, d, accuracy: float, t_lo: float) -> layout.Layout:
@@ -85,17 +90,14 @@ class Planform:
 def planform_operator(geometry, d, depth: float, finest: float, growth: float) -> Planform:
     """The planform's FiPy operator (module docstring) on the graded admissible cells."""
     tess = layout.planform_cells(geometry, finest, growth, stretch_of(d))
-    half = 0.5 * geometry.thickness
-    disc = prism(tess, geometry.thickness, np.array([half]), band_share(tess, depth), d,
-                 mid_plane=True)
-    volumes = disc.volumes
-    vertical = 2.0 * volumes / 0.5 ** 2      # face-to-cell coupling of the exposed face
-    root = np.sqrt(volumes)
+    coordinates = axis_scale(geometry.thickness, d[1], d[2]) / float(tess.stretch[1])
+    disc = planar(tess, coordinates, np.ones(tess.cells))  # (plain band weights unused)
+    root = np.sqrt(disc.volumes)
     inverse = sparse.diags(1.0 / root)
     scale = d[2] / geometry.thickness ** 2   # scaled -> rescaled time
-    operator = scale * (inverse @ (disc.stiffness - sparse.diags(vertical)) @ inverse)
-    return Planform(operator.tocsc(), root, disc.mean_weights / root,
-                    disc.layer_weights / root, tess.cells)
+    operator = scale * (inverse @ disc.stiffness @ inverse)
+    mean, layer = corrected_weights(tess, depth)
+    return Planform(operator.tocsc(), root, mean / root, layer / root, tess.cells)
 
 
 @lru_cache(maxsize=4)
@@ -106,30 +108,57 @@ def _factor(planform: Planform):
                 options={"SymmetricMode": True})
 
 
+class _Recurrence:
+    """The shift-and-invert Lanczos recurrence of one planform from M^1/2 1, with full
+    reorthogonalisation, run further on demand: m steps are the leading m rows of any longer
+    run (step j uses only the rows before it), so doubling the steps (``lanczos_count``)
+    continues the run instead of starting again."""
+
+    def __init__(self, planform: Planform):
+        self.planform = planform
+        self.norm = float(np.linalg.norm(planform.start))
+        self.basis = np.zeros((FIRST_LANCZOS, planform.cells))
+        self.basis[0] = planform.start / self.norm
+        self.alpha, self.beta = [], []
+        self.count = planform.cells       # steps at most (fewer at an invariant subspace)
+
+    def run(self, steps: int) -> int:
+        """Steps taken so far, at least min(``steps``, ``count``)."""
+        inverse = _factor(self.planform)
+        while len(self.alpha) < min(steps, self.count):
+            j = len(self.alpha)
+            w = inverse.solve(self.basis[j])
+            self.alpha.append(float(self.basis[j] @ w))
+            done = self.basis[:j + 1]
+            w -= done.T @ (done @ w)       # full reorthogonalisation, twice
+            w -= done.T @ (done @ w)
+            self.beta.append(float(np.linalg.norm(w)))
+            if self.beta[j] <= 1e-14 * abs(self.alpha[j]):   # invariant subspace: exact
+                self.count = j + 1
+            elif j + 1 < self.count:
+                if j + 1 == len(self.basis):
+                    self.basis = np.vstack([self.basis, np.zeros_like(self.basis)])
+                self.basis[j + 1] = w / self.beta[j]
+        return min(len(self.alpha), max(steps, 1))
+
+
+@lru_cache(maxsize=4)
+def _recurrence(planform: Planform) -> _Recurrence:
+    return _Recurrence(planform)
+
+
 @lru_cache(maxsize=8)
 def lanczos_spectrum(planform: Planform, steps: int):
     """(rates, mean amplitudes, layer amplitudes): the ``steps``-point Gauss quadrature of
-    the planform's decay (module docstring), shift-and-invert Lanczos from M^1/2 1 with
-    full reorthogonalisation. Read-only arrays (cached)."""
-    steps = min(steps, planform.cells)
-    inverse = _factor(planform)
-    norm = float(np.linalg.norm(planform.start))
-    basis = np.zeros((steps, planform.cells))
-    basis[0] = planform.start / norm
-    alpha, beta = np.zeros(steps), np.zeros(max(steps - 1, 0))
-    for j in range(steps):
-        w = inverse.solve(basis[j])
-        alpha[j] = basis[j] @ w
-        w -= basis[:j + 1].T @ (basis[:j + 1] @ w)       # full reorthogonalisation, twice
-        w -= basis[:j + 1].T @ (basis[:j + 1] @ w)
-        if j + 1 < steps:
-            beta[j] = float(np.linalg.norm(w))
-            if beta[j] <= 1e-14 * abs(alpha[j]):          # invariant subspace: exact
-                return lanczos_spectrum(planform, j + 1)
-            basis[j + 1] = w / beta[j]
+    the planform's decay (module docstring), from the first ``steps`` rows of the Lanczos
+    recurrence (``_Recurrence``). Read-only arrays (cached)."""
+    recurrence = _recurrence(planform)
+    steps = recurrence.run(steps)
+    alpha, beta = np.array(recurrence.alpha[:steps]), np.array(recurrence.beta[:steps - 1])
     theta, vectors = eigh_tridiagonal(alpha, beta)
-    first = norm * vectors[0]
+    first = recurrence.norm * vectors[0]
     rates = 1.0 / theta
+    basis = recurrence.basis[:steps]
     mean = (planform.mean @ basis.T @ vectors) * first
     layer = (planform.layer @ basis.T @ vectors) * first
     for array in (rates, mean, layer):
@@ -160,9 +189,23 @@ def lanczos_count(planform: Planform, ages, tolerance: float) -> tuple[int, floa
         previous = current
 
 
+def whole_at_start(spectrum):
+    """The quadrature with the amplitudes of the mean and of the layer summing to 1 (the
+    part starts whole at its initial value): the corrected means (``cellmoments``) sum to
+    1 - sum grad u . (c - x) of a unit field that steps to 0 at the surface, the share of
+    the edge cells between their circumcentres and the surface, which settles within the
+    finest cells' time w0^2/D; it is given to the fastest quadrature node."""
+    rates, mean, layer = (np.array(a) for a in spectrum)
+    fastest = np.argmax(rates)
+    mean[fastest] += 1.0 - mean.sum()
+    layer[fastest] += 1.0 - layer.sum()
+    return rates, mean, layer
+
+
 def planform_source(geometry, d, spectrum) -> ModeSource:
     """The product modes (planform quadrature x ``count`` sheet modes) and the unit-step
     response of the same planform quadrature times Crank's sheet (eq. 4.18)."""
+    spectrum = whole_at_start(spectrum)
     rates, mean, layer = spectrum
 
     def modes(counts) -> Modes:
@@ -183,13 +226,16 @@ def planform_source(geometry, d, spectrum) -> ModeSource:
 @dataclass(frozen=True)
 class RefinedPlanform:
     """The finest planform used: the estimated error of its mesh and quadrature (fraction
-    of the swing), cells, Lanczos steps, meshes built, and what ``measure`` gave on it."""
+    of the swing), cells, Lanczos steps, meshes built, what ``measure`` gave on it, and its
+    finest width and growth (scaled)."""
 
     error: float
     cells: int
     steps: int
     levels: int
     result: object
+    finest: float
+    growth: float
 
 
 def _level(geometry, d, depth, finest, growth, ages, tolerance, measure):
@@ -224,8 +270,8 @@ def refined_planform(geometry, d, depth: float, finest: float, growth: float, ag
         mesh = float(np.max(np.abs(fine[0] - coarse[0]), initial=0.0)) / (ratio ** 2 - 1.0)
         error = mesh + fine[4]
         if error <= tolerance or fine[2] * 2 > PLANFORM_CAP:
-            return RefinedPlanform(error, fine[2], fine[3], levels, fine[1])
+            return RefinedPlanform(error, fine[2], fine[3], levels, fine[1], finest, growth)
         ratio = float(np.clip(SAFETY * np.sqrt(mesh / max(tolerance - fine[4], 0.5 * tolerance)),
-                              1.2, min(MAX_REFINE, np.sqrt(PLANFORM_CAP / fine[2]))))
+                              MIN_REFINE, min(MAX_REFINE, np.sqrt(PLANFORM_CAP / fine[2]))))
         coarse = fine
-    return RefinedPlanform(float("inf"), coarse[2], coarse[3], levels, coarse[1])
+    return RefinedPlanform(float("inf"), coarse[2], coarse[3], levels, coarse[1], finest, growth)

@@ -43,14 +43,15 @@ class DiffusionResult:
     #: only a new solve can say
     extend: Callable[[np.ndarray], "DiffusionResult"] | None = field(default=None, repr=False)
 
-    def merged(self, times, mean, surface) -> "DiffusionResult":
+    def merged(self, times, mean, surface, bound=None) -> "DiffusionResult":
         """This result with rows at ``times`` (none of its own) added, in time order (no
-        fields or bound moisture: what ``extend`` gives)."""
+        fields: what ``extend`` gives; bound moisture where this result and ``bound`` give it)."""
         order = np.argsort(np.concatenate([self.times, times]), kind="stable")
 
         def rows(old, new):
             return np.concatenate([old, np.asarray(new, float)])[order]
+        both = self.bound is not None and bound is not None
         return replace(self, times=rows(self.times, times), mean=rows(self.mean, mean),
-                       surface=rows(self.surface, surface), fields=None, bound=None,
-                       extend=None)
+                       surface=rows(self.surface, surface), fields=None,
+                       bound=rows(self.bound, bound) if both else None, extend=None)
 

@@ -1,0 +1,182 @@
+"""The ``fickcam`` command line's arguments (SPEC.md §2): one argparse subcommand per
+command, each with a summary, a description and examples in its --help. What each
+command does is in :mod:`fickcam.commands`; :mod:`fickcam.cli` runs them.
+"""
+from __future__ import annotations
+
+import argparse
+
+from ._version import __version__
+
+
+def _command(sub, name: str, summary: str, description: str, *examples: str):
+    """A subcommand whose --help says what it does and shows how it is used."""
+    return sub.add_parser(name, help=summary, description=description,
+                          epilog="examples:\n" + "\n".join(f"  {e}" for e in examples),
+                          formatter_class=argparse.RawDescriptionHelpFormatter)
+
+
+def _parser() -> argparse.ArgumentParser:
+    parser = argparse.ArgumentParser(
+        prog="fickcam",
+        description="Moisture uptake in polymer/composite cams, followers and four-bar "
+                    "linkages, and the mechanism drift it causes.",
+        epilog="start with: fickcam examples --copy scenes && fickcam run scenes/singh2017_cam.yaml",
+        formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("--version", action="version", version=f"fickcam {__version__}")
+    parser.add_argument("--debug", action="store_true", help="show tracebacks of internal errors")
+    sub = parser.add_subparsers(dest="command", required=True, metavar="COMMAND")
+
+    run = _command(sub, "run", "run a scene and write its result file",
+                   "Age the parts of a scene (diffusion, material state, mechanisms at every "
+                   "ageing time, and the design for comparison), write the result file "
+                   "atomically and print a summary: each key output as design -> t = 0 -> end.",
+                   "fickcam run configs/singh2017_cam.yaml -o outputs/cam.h5",
+                   "fickcam run scene.yaml --accuracy 1e-4 --quiet")
+    run.add_argument("scene", help="scene file (YAML)")
+    run.add_argument("-o", "--output", help="result file (default: the scene's outputs.file)")
+    run.add_argument("--accuracy", type=float, help="override diffusion.accuracy")
+    run.add_argument("--quiet", action="store_true", help="no progress bar, summary or notices")
+
+    check = _command(sub, "check", "validate a scene and print the plan",
+                     "Validate a scene without running it and print the plan the run uses: "
+                     "parts, the diffusion model per part, cells, steps, estimated error.",
+                     "fickcam check configs/singh2017_cam.yaml")
+    check.add_argument("scene", help="scene file (YAML)")
+
+    query = _command(sub, "query", "values of a variable from a result file",
+                     "Print the values of one result variable, optionally at an ageing time "
+                     "(interpolated between stored times), a part, link or angle, or its drift "
+                     "against the design or t = 0. On a sweep result the varied values are "
+                     "shown beside each case.",
+                     'fickcam query outputs/cam.h5 lift --time "45 d"',
+                     "fickcam query outputs/cam.h5 lift --drift design",
+                     "fickcam query outputs/cam.h5 contact_force --time 30d --cam-angle 120 --format json")
+    query.add_argument("result", help="result file (.h5)")
+    query.add_argument("variable", help="a variable name (fickcam schema lists them)")
+    query.add_argument("--time", help='ageing time with its unit, e.g. "30 d", "6 months" (a bare number is refused)')
+    query.add_argument("--part")
+    query.add_argument("--link")
+    query.add_argument("--cam-angle", type=float, help="degrees")
+    query.add_argument("--crank-angle", type=float, help="degrees")
+    query.add_argument("--format", choices=("table", "csv", "json"), default="table")
+    query.add_argument("--drift", choices=("design", "start"),
+                       help="the change from the as-designed value (dry, reference temperature) "
+                            "or from the first ageing time, instead of the value")
+
+    export = _command(sub, "export", "export a result as CSV, netCDF or JSON",
+                      "Write a result (or some of its variables) for plotting elsewhere: tidy CSV "
+                      "(one column per dimension plus value), netCDF or JSON.",
+                      "fickcam export outputs/cam.h5 --format csv -o cam.csv --variables lift jump_speed")
+    export.add_argument("result", help="result file (.h5)")
+    export.add_argument("--format", choices=("csv", "netcdf", "json"), required=True)
+    export.add_argument("-o", "--output", required=True)
+    export.add_argument("--variables", nargs="+")
+
+    plot = _command(sub, "plot", "PNG figures of a result",
+                    "Draw the figures a result has data for (uptake, cam kinematics and dynamics, "
+                    "linkage, moisture fields, elastic deflection and swelling stress, or a "
+                    "sweep's outputs against its varied values).",
+                    "fickcam plot outputs/cam.h5 -o outputs/cam-plots",
+                    "fickcam plot outputs/sweep.h5 --kind sweep")
+    plot.add_argument("result", help="result file (.h5)")
+    plot.add_argument("-o", "--outdir", default=None, help="folder (default: next to the result)")
+    plot.add_argument("--kind", default="all",
+                      choices=("uptake", "kinematics", "dynamics", "vibration", "linkage", "fields",
+                               "elastic", "limits", "sweep", "all"))
+
+    bench = _command(sub, "bench", "the diffusion speed/accuracy trade",
+                     "Measure each diffusion model's wall time and error against exact solutions "
+                     "on reference geometries (about 3 min; --quick about 10 s); --records: the "
+                     "cost of hourly weather records against a constant climate, and a solid "
+                     "disc's error through a whole TMY3 year against its exact modes.",
+                     "fickcam bench --quick", "fickcam bench --records")
+    bench.add_argument("--quick", action="store_true",
+                       help="each geometry at its coarsest target, no 3-D solid rows (seconds)")
+    bench.add_argument("--quiet", action="store_true", help="no progress bar, only the table")
+    bench.add_argument("--records", action="store_true",
+                       help="cost of 1, 3, 12 months of hourly weather against a constant climate, "
+                       "then a year's accuracy (--quick: 1 and 3 months, no accuracy)")
+
+    materials = _command(sub, "materials", "the built-in material library with sources",
+                         "List the built-in materials (key values and sources), or show one "
+                         "entry in full: every value, the diffusivity and saturation laws, sources.",
+                         "fickcam materials", "fickcam materials 8551-7")
+    materials.add_argument("name", nargs="?", help="one library name (fibre, matrix, plastic, metal)")
+    _command(sub, "schema", "the result variables (name, dims, units)",
+             "Print the table of result variables (name, dims, units, meaning, as-designed row) "
+             "as Markdown.", "fickcam schema")
+    examples = _command(sub, "examples", "list or copy the example scenes",
+                        "List the example scenes shipped with fickcam, print one, or copy them "
+                        "into a folder to edit and run.",
+                        "fickcam examples", "fickcam examples singh2017_cam > my_cam.yaml",
+                        "fickcam examples --copy scenes")
+    examples.add_argument("names", nargs="*", help="example names (print one; with --copy: copy these)")
+    examples.add_argument("--copy", metavar="DIR", help="copy the examples into DIR")
+
+    compensate = _command(
+        sub, "compensate", "the dimensions to make so that the mechanism holds its design",
+        "Give the dry dimensions at the reference temperature to make so that the mechanism has "
+        "its design geometry at an ageing time (--at) or stays closest to it over a service "
+        "window (--over, minimax); print them per part with the drift of the key outputs before "
+        "and after, and write a scene that makes them (a cam as profile points, CSV and DXF).",
+        'fickcam compensate configs/singh2017_cam.yaml --at "60 d" -o cam_made.yaml',
+        'fickcam compensate configs/fourbar_r914_humid.yaml --over "30 d" "365 d" --plot band.png')
+    compensate.add_argument("scene")
+    when = compensate.add_mutually_exclusive_group(required=True)
+    when.add_argument("--at", metavar="TIME", help='ageing time with units, e.g. "60 d"')
+    when.add_argument("--over", nargs=2, metavar=("T1", "T2"),
+                      help="a service window: minimise the largest deviation over it")
+    compensate.add_argument("-o", "--output", help="compensated scene (default: "
+                                                   "<scene>_compensated.yaml here)")
+    compensate.add_argument("--accuracy", type=float, help="override diffusion.accuracy")
+    compensate.add_argument("--plot", metavar="PNG", help="also draw the drift of every "
+                            "deviation limit against its band, as designed and compensated")
+
+    profile = _command(sub, "profile", "a cam's dry working profile for manufacture (CSV or DXF)",
+                       "Write the cam's dry working profile at the reference temperature, in mm, "
+                       "as CSV (x [mm], y [mm]) or as a closed DXF polyline, by the output's suffix.",
+                       "fickcam profile configs/singh2017_cam.yaml -o cam.dxf")
+    profile.add_argument("scene")
+    profile.add_argument("-o", "--output", required=True, help="PATH.csv or PATH.dxf")
+    profile.add_argument("--points", type=int, default=3600, help="points round the profile")
+
+    fit = _command(sub, "fit", "calibrate a material from ASTM D5229 weight-gain data",
+                   "Fit the diffusivity (D0, Ea) and saturation law of a material to weight-gain "
+                   "coupon data (ASTM D5229, one row per weighing) and write a scene-ready "
+                   "materials: block.",
+                   "fickcam fit coupons.csv --matrix 8551-7 -o fitted.yaml --plot fit.png",
+                   "fickcam fit laminate.csv --matrix 3502 --fiber T300 --fiber-volume-fraction 0.6 -o fitted.yaml")
+    fit.add_argument("data", help="weight-gain CSV (one row per weighing, units in the header)")
+    fit.add_argument("--matrix", required=True, help="library matrix (resin) of the coupons")
+    fit.add_argument("--fiber", help="library fibre of composite coupons")
+    fit.add_argument("--fiber-volume-fraction", type=float, help="fibre volume fraction of the coupons")
+    fit.add_argument("--name", help="material name in the YAML (default: the CSV's stem)")
+    fit.add_argument("-o", "--output", required=True, help="YAML file with the materials: block")
+    fit.add_argument("--plot", help="PNG of the data, fitted curves and residuals")
+
+    size = _command(sub, "size", "smallest base circle meeting pressure-angle and curvature limits",
+                    "Find the smallest base circle radius whose dry cam keeps the pressure angle "
+                    "and the working radius of curvature within the limits (Norton sec. 8.7), "
+                    "then run the scene with it and say whether the aged cam still meets them "
+                    "at the end of the ageing.",
+                    "fickcam size configs/singh2017_cam.yaml",
+                    "fickcam size scene.yaml --pressure-angle 25deg --radius-of-curvature 5mm")
+    size.add_argument("scene")
+    size.add_argument("--pressure-angle", default="30 deg", help="largest |pressure angle| (30 deg)")
+    size.add_argument("--radius-of-curvature", default="0 mm",
+                      help="smallest convex working radius of curvature (0: no cusp or undercut)")
+
+    sweep = _command(sub, "sweep", "many scenes on dask.distributed",
+                     "Run the variants of a scene a sweep file describes (a grid or Monte Carlo "
+                     "draws) on a local dask cluster or a running scheduler, write one result "
+                     "with a case dimension and print a table of the cases.",
+                     "fickcam sweep configs/sweep_singh2017_climate.yaml -o outputs/climate.h5",
+                     "fickcam sweep sweep.yaml --scheduler tcp://10.0.0.5:8786 -o out.h5")
+    sweep.add_argument("sweep", help="sweep file (YAML)")
+    group = sweep.add_mutually_exclusive_group()
+    group.add_argument("--workers", type=int, default=None, help="local worker processes")
+    group.add_argument("--scheduler", help="address of a running dask scheduler, tcp://HOST:PORT")
+    sweep.add_argument("-o", "--output", required=True)
+    sweep.add_argument("--quiet", action="store_true")
+    return parser

@@ -1,0 +1,256 @@
+"""What each ``fickcam`` subcommand does (SPEC.md §2), given its parsed arguments
+(:mod:`fickcam.cli_parser`); each returns the exit status. Heavy imports stay inside the
+command that needs them.
+"""
+from __future__ import annotations
+
+import gc
+import logging
+from pathlib import Path
+
+from .errors import InputError
+
+log = logging.getLogger("fickcam")
+
+
+def _cmd_run(args) -> int:
+    from .scene import load_scene
+    from .reporting import summary
+    from .simulate import run
+    from .store import save
+
+    scene = load_scene(args.scene)
+    if args.whole_process:
+        gc.freeze()  # the modules loaded so far live to the end: the run's collections skip them
+    if args.accuracy is not None and not (0 < args.accuracy <= 0.1):
+        raise InputError("--accuracy must lie in (0, 0.1]")
+    output = Path(args.output) if args.output else default_output(scene)
+    ds = run(scene, accuracy=args.accuracy, progress=not args.quiet)
+    save(ds, output)
+    if not args.quiet:
+        print(summary(ds, notices=False))  # the run has logged them on stderr
+        print(f"wrote {output}")
+    return 0
+
+
+def default_output(scene) -> Path:
+    """The scene's ``outputs.file`` or ``outputs/<name>.h5`` (relative to the working folder)."""
+    if scene.model.outputs.file:
+        return Path(scene.model.outputs.file)
+    return Path("outputs") / f"{scene.name}.h5"
+
+
+def _cmd_check(args) -> int:
+    from .scene import load_scene
+    from .reporting import describe_plan
+
+    scene = load_scene(args.scene)
+    print(describe_plan(scene))
+    return 0
+
+
+def _cmd_size(args) -> int:
+    import dataclasses
+    import math
+
+    from .cam import design_from_scene
+    from .cam.sizing import Limits, aged_check, smallest_base_circle
+    from .scene import load_scene
+    from .simulate import run
+    from .units import to_si
+
+    scene = load_scene(args.scene)
+    if scene.model.cam is None:
+        raise InputError("the scene has no cam: section to size")
+    try:
+        limits = Limits(to_si(args.pressure_angle, "angle"), to_si(args.radius_of_curvature, "length"))
+        sizes = smallest_base_circle(design_from_scene(scene.model.cam), limits)
+    except ValueError as exc:
+        raise InputError(str(exc)) from None
+    radius = sizes["base_circle_radius"]
+    design = design_from_scene(scene.model.cam)
+    print(f"{scene.name}: smallest base circle radius {radius * 1e3:.4f} mm "
+          f"(pressure angle <= {math.degrees(limits.pressure_angle):g} deg needs "
+          f"{sizes['pressure_angle'] * 1e3:.4f} mm; radius of curvature >= "
+          f"{limits.radius_of_curvature * 1e3:g} mm needs {sizes['radius_of_curvature'] * 1e3:.4f} mm); "
+          f"the scene has {scene.model.cam.base_circle_radius * 1e3:.4f} mm")
+    cam = scene.model.cam.model_copy(update={"base_circle_radius": radius})
+    ds = run(dataclasses.replace(scene, model=scene.model.model_copy(update={"cam": cam})))
+    print(aged_check(ds, limits, design.follower_kind))
+    return 0
+
+
+def _cmd_query(args) -> int:
+    from .reporting import limit_line
+    from .query import format_result, select
+    from .store import open_result
+
+    ds = open_result(args.result)
+    array = select(ds, args.variable, time=args.time, part=args.part, link=args.link,
+                   cam_angle=args.cam_angle, crank_angle=args.crank_angle, against=args.drift)
+    print(format_result(array, args.variable, args.format, args.drift,
+                        limit=limit_line(ds, args.variable)))
+    return 0
+
+
+def _cmd_export(args) -> int:
+    from .export import export
+    from .store import open_result
+
+    ds = open_result(args.result)
+    path = export(ds, args.output, args.format, args.variables)
+    print(f"wrote {path}")
+    return 0
+
+
+def _cmd_plot(args) -> int:
+    from .plotting import plot
+    from .store import open_result
+
+    ds = open_result(args.result)
+    outdir = Path(args.outdir) if args.outdir else Path(args.result).with_suffix("")
+    for path in plot(ds, outdir, args.kind):
+        print(f"wrote {path}")
+    return 0
+
+
+#: wall time of `fickcam bench`, measured on the project's idle 2-core machine
+BENCH_EXPECTED = {False: "about 3 min", True: "about 10 s"}
+
+
+def _cmd_bench(args) -> int:
+    if args.records:
+        from .bench_records import (format_record_table, format_year_accuracy,
+                                    run_record_bench, year_accuracy)
+
+        print(format_record_table(run_record_bench(months=(1, 3) if args.quick else (1, 3, 12))))
+        if not args.quick:
+            print(format_year_accuracy(year_accuracy()))
+        return 0
+    from tqdm.auto import tqdm
+
+    from .bench import format_table, row_count, run_bench
+
+    total = row_count(args.quick)
+    log.info("bench: %d rows, expected %s on an idle 2-core machine%s", total,
+             BENCH_EXPECTED[args.quick], "" if args.quick else " (--quick: "
+             f"{BENCH_EXPECTED[True]})")
+    with tqdm(total=total, disable=args.quiet, unit="row", desc="bench", leave=False) as bar:
+        started = []
+
+        def starting(label: str) -> None:
+            bar.update(1 if started else 0)  # the previous row has finished
+            started.append(label)  # (a disabled bar, --quiet, keeps no postfix)
+            bar.set_postfix_str(label)
+
+        rows = run_bench(quick=args.quick, progress=starting)
+    print(format_table(rows))
+    return 0
+
+
+def _cmd_materials(args) -> int:
+    from .materials.library import entry_text, find_entry, library_table
+
+    if args.name is None:
+        print(library_table())
+        return 0
+    try:
+        find_entry(args.name)
+    except KeyError:
+        raise InputError(f"no material {args.name!r} in the library (fickcam materials lists "
+                         f"them)") from None
+    print(entry_text(args.name))
+    return 0
+
+
+def _cmd_examples(args) -> int:
+    from . import example_scenes
+
+    if args.copy:
+        for path in example_scenes.copy_to(args.copy, args.names):
+            print(f"wrote {path}")
+    elif args.names:
+        for name in args.names:
+            print(example_scenes.path(name).read_text(encoding="utf-8"), end="")
+    else:
+        print(example_scenes.listing())
+    return 0
+
+
+def _cmd_schema(args) -> int:
+    from .schema import markdown_table
+
+    print(markdown_table())
+    return 0
+
+
+def _cmd_sweep(args) -> int:
+    from .reporting import sweep_summary
+    from .store import open_result
+    from .sweep import run_sweep
+    from .sweep.scatter import summary_lines
+
+    run_sweep(args.sweep, args.output, workers=args.workers, scheduler=args.scheduler,
+              progress=not args.quiet)
+    if not args.quiet:
+        result = open_result(args.output)
+        print(sweep_summary(result))
+        for line in summary_lines(result):
+            print(line)
+        print(f"wrote {args.output}")
+    return 0
+
+
+def _cmd_compensate(args) -> int:
+    from .compensation import compensate, write_scene
+    from .compensation.report import report
+    from .scene import load_scene
+
+    scene = load_scene(args.scene)
+    comp = compensate(scene, at=args.at, over=args.over, accuracy=args.accuracy)
+    output = Path(args.output) if args.output else Path(f"{Path(args.scene).stem}_compensated.yaml")
+    path = write_scene(comp, scene, output)
+    print(report(comp, scene, path, accuracy=args.accuracy, plot=args.plot))
+    print(f"wrote {path}")
+    return 0
+
+
+def _cmd_profile(args) -> int:
+    from .cam.design import design_from_scene
+    from .cam.kinematics import working_profile
+    from .cam.profile import write_profile_csv, write_profile_dxf
+    from .scene import load_scene
+
+    scene = load_scene(args.scene)
+    if scene.model.cam is None:
+        raise InputError(f"{args.scene}: the scene has no cam")
+    writers = {".csv": write_profile_csv, ".dxf": write_profile_dxf}
+    suffix = Path(args.output).suffix.lower()
+    if suffix not in writers or args.points < 16:
+        raise InputError("profile: the output must end in .csv or .dxf and --points be >= 16")
+    x, y = working_profile(design_from_scene(scene.model.cam), n=args.points)
+    print(f"wrote {writers[suffix](args.output, x, y)}")
+    return 0
+
+
+def _cmd_fit(args) -> int:
+    from .fit import fit_weight_gain, materials_yaml, parameter_table, plot_fit
+
+    if (args.fiber is None) != (args.fiber_volume_fraction is None):
+        raise InputError("--fiber and --fiber-volume-fraction go together")
+    report = fit_weight_gain(args.data, args.matrix, fiber=args.fiber,
+                             fiber_volume_fraction=args.fiber_volume_fraction, name=args.name)
+    output = Path(args.output)
+    output.write_text(materials_yaml(report), encoding="utf-8")
+    print(parameter_table(report))
+    print(f"wrote {output}")
+    if args.plot:
+        print(f"wrote {plot_fit(report, args.plot)}")
+    return 0
+
+
+COMMANDS = {"run": _cmd_run, "check": _cmd_check, "query": _cmd_query, "export": _cmd_export,
+            "plot": _cmd_plot, "bench": _cmd_bench, "materials": _cmd_materials,
+            "schema": _cmd_schema, "sweep": _cmd_sweep, "fit": _cmd_fit,
+            "examples": _cmd_examples, "size": _cmd_size, "compensate": _cmd_compensate,
+            "profile": _cmd_profile}

@@ -1,0 +1,189 @@
+"""The scene file's sections as pydantic models (SPEC.md §1): values in SI floats after
+validation, dimensional fields parsed with pint (:mod:`fickcam.units`). Checks that need
+more than one section live in :mod:`fickcam.scene`.
+"""
+from __future__ import annotations
+
+import math
+from typing import Annotated, Literal, Union
+
+from pydantic import BeforeValidator, Field, field_validator, model_validator
+
+from .cam.spec import CamSection
+from .diffusion import MODELS
+from .limits import LimitSpec
+from .linkage.spec import LinkageSection
+from .materials import MaterialSpec
+from .units import (
+    Duration,
+    Length,
+    NonNegativePercent,
+    NonNegativeTime,
+    RelativeHumidity,
+    PositiveAngle,
+    StrictModel,
+    Temperature,
+    TemperatureRise,
+)
+
+
+class HistorySegment(StrictModel):
+    """One segment of the climate history (held, or a linear ramp)."""
+
+    duration: Duration
+    temperature: Temperature
+    relative_humidity: RelativeHumidity
+    ramp: bool = False
+
+
+class StateSpec(StrictModel):
+    """A state given directly (SPEC.md section 5): uniform moisture and temperature in every
+    part, no diffusion. Moisture is ``moisture`` (the same weight % in every absorbing
+    part) or ``relative_humidity`` (each part at its material's equilibrium moisture
+    Mm(RH), as seed 001 takes 'maximum moisture absorption'); temperature is
+    ``temperature`` or ``temperature_rise`` above the reference temperature."""
+
+    time: NonNegativeTime = 0.0
+    moisture: NonNegativePercent | None = None
+    relative_humidity: RelativeHumidity | None = None
+    temperature: Temperature | None = None
+    temperature_rise: TemperatureRise | None = None
+
+    @model_validator(mode="after")
+    def _one_of_each(self):
+        if (self.moisture is None) == (self.relative_humidity is None):
+            raise ValueError("a state needs exactly one of moisture, relative_humidity")
+        if (self.temperature is None) == (self.temperature_rise is None):
+            raise ValueError("a state needs exactly one of temperature, temperature_rise")
+        return self
+
+
+def _as_list(value):
+    """One mapping is a list of one (``state: {...}`` or ``state: [{...}, ...]``)."""
+    return [value] if isinstance(value, dict) else value
+
+
+StandardTest = Literal["steady_damp_heat", "damp_heat_85_85", "cyclic_damp_heat"]
+
+
+class EnvironmentSection(StrictModel):
+    reference_temperature: Temperature = 296.15
+    initial_moisture: NonNegativePercent = 0.0
+    history: list[HistorySegment] | None = None
+    history_file: str | None = None          # chamber CSV, TMY3 CSV, EPW, or pvlib:NAME
+    test: StandardTest | None = None         # a standard damp-heat test (fickcam.damp_heat)
+    cycles: int | None = Field(None, gt=0)   # cyclic_damp_heat: number of 24 h cycles
+    duration: Duration | None = None         # steady tests: how long
+    upper_temperature: Temperature | None = None  # cyclic_damp_heat: 40 or 55 degC
+    # states given directly, no diffusion: one mapping or a list of them
+    state: Annotated[list[StateSpec] | None, BeforeValidator(_as_list)] = None
+
+    @model_validator(mode="after")
+    def _one_history(self):
+        given = [name for name in ("history", "history_file", "test", "state")
+                 if getattr(self, name) is not None]
+        if len(given) != 1:
+            raise ValueError("give exactly one of history (segments), history_file (a record), "
+                             "test (a standard damp-heat test) or state (given directly)")
+        states = self.states()
+        if self.state is not None and not states:
+            raise ValueError("state needs at least one entry")
+        if any(b.time <= a.time for a, b in zip(states, states[1:])):
+            raise ValueError("the states' times must increase strictly")
+        if self.history is not None:
+            if not self.history:
+                raise ValueError("history needs at least one segment")
+            if self.history[0].ramp:
+                raise ValueError("the first history segment cannot ramp: there is no previous segment")
+        if self.test is None:
+            extra = [name for name in ("cycles", "duration", "upper_temperature")
+                     if getattr(self, name) is not None]
+            if extra:
+                raise ValueError(f"{', '.join(extra)} belong(s) to a standard test (environment.test)")
+        return self
+
+
+    def states(self) -> list[StateSpec]:
+        """The given states as a list (empty without ``state``)."""
+        return list(self.state or [])
+
+
+def last_ageing_time(outputs) -> float | None:
+    """The last ageing time an ``outputs:`` section lists (None for ``every``)."""
+    times = outputs.ageing_times
+    return times[-1] if isinstance(times, list) else None
+
+
+class DiffusionSection(StrictModel):
+    # one model for every part, or per part name (parts not named: auto)
+    model: Union[str, dict[str, str]] = "auto"
+    accuracy: float = Field(1e-3, gt=0, le=0.1)
+    surface_layer_depth: Length = 5e-4
+
+    @field_validator("model")
+    @classmethod
+    def _model_names(cls, value):
+        names = MODELS  # the diffusion package's own list
+        for part, name in (value.items() if isinstance(value, dict) else [(None, value)]):
+            if name not in names:
+                where = f"part {part!r}: " if part is not None else ""
+                raise ValueError(f"{where}{name!r} is not a model (one of {', '.join(names)})")
+        return value
+
+
+class EveryStep(StrictModel):
+    every: Duration
+
+
+class OutputsSection(StrictModel):
+    ageing_times: Union[list[NonNegativeTime], EveryStep, None] = None
+    angle_step: PositiveAngle = math.radians(1.0)
+    fields: bool = False
+    file: str | None = None
+
+    @field_validator("ageing_times")
+    @classmethod
+    def _increasing(cls, value):
+        if isinstance(value, list):
+            if not value:
+                raise ValueError("give at least one ageing time")
+            if any(b <= a for a, b in zip(value, value[1:])):
+                raise ValueError("ageing times must increase strictly")
+        return value
+
+    @field_validator("angle_step")
+    @classmethod
+    def _divides_turn(cls, value):
+        if value > math.radians(30):
+            raise ValueError("angle_step must not exceed 30 deg")
+        return value
+
+
+class DesignSection(StrictModel):
+    """``design:``: the geometry the mechanism must have in service, where the ``cam:`` /
+    ``linkage:`` sections give the dimensions as made (``fickcam compensate`` writes it).
+    Each entry holds only the keys that differ from the made section; the as-designed
+    state (``<name>_design``, drift, limits) is computed from it."""
+
+    cam: dict | None = None
+    linkage: dict | None = None
+
+
+class SceneModel(StrictModel):
+    name: str = Field(min_length=1)
+    description: str = ""
+    environment: EnvironmentSection
+    materials: dict[str, MaterialSpec] = Field(min_length=1)
+    cam: CamSection | None = None
+    linkage: LinkageSection | None = None
+    diffusion: DiffusionSection = DiffusionSection()
+    outputs: OutputsSection = OutputsSection()
+    design: DesignSection | None = None
+    limits: dict[str, LimitSpec] | None = None
+
+    @field_validator("name")
+    @classmethod
+    def _printable(cls, value):
+        if not value.strip():
+            raise ValueError("must not be blank")
+        return value

@@ -1,0 +1,134 @@
+"""YAML with line numbers: scene and sweep files are read with ``yaml.SafeLoader`` only
+(a ``!!python`` tag is refused, never executed), duplicate keys are refused, and every
+key path is mapped to its line so that each problem is reported as ``scene.yaml:LINE
+key.path: reason`` (pydantic errors included, :func:`problems_from_validation`).
+"""
+from __future__ import annotations
+
+import os
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+import yaml
+from pydantic import ValidationError
+
+from .errors import Problem, SceneError
+from .keys import closest_key
+
+
+class _LineLoader(yaml.SafeLoader):
+    """SafeLoader that refuses duplicate keys (PyYAML silently keeps the last)."""
+
+    def construct_mapping(self, node, deep=False):
+        seen: dict[Any, Any] = {}
+        for key_node, _ in node.value:
+            key = self.construct_object(key_node, deep=deep)
+            if key in seen:
+                raise yaml.constructor.ConstructorError(
+                    None, None, f"duplicate key {key!r}", key_node.start_mark
+                )
+            seen[key] = key_node
+        return super().construct_mapping(node, deep=deep)
+
+
+def _line_map(node, path: tuple = (), lines: dict | None = None) -> dict[tuple, int]:
+    """Map every key path (tuple of keys / indices) to its 1-based line."""
+    lines = {} if lines is None else lines
+    if isinstance(node, yaml.MappingNode):
+        for key_node, value_node in node.value:
+            key = key_node.value
+            lines[path + (key,)] = key_node.start_mark.line + 1
+            _line_map(value_node, path + (key,), lines)
+    elif isinstance(node, yaml.SequenceNode):
+        for index, item in enumerate(node.value):
+            lines[path + (index,)] = item.start_mark.line + 1
+            _line_map(item, path + (index,), lines)
+    return lines
+
+
+@dataclass
+class YamlDocument:
+    """A parsed YAML mapping with the line of every key path."""
+
+    data: dict
+    lines: dict[tuple, int]
+    file: str
+    text: str
+
+    def line_of(self, path: tuple) -> int | None:
+        """Line of ``path`` or of its nearest ancestor that has one."""
+        path = tuple(path)
+        while path:
+            if path in self.lines:
+                return self.lines[path]
+            path = path[:-1]
+        return 1 if self.text.strip() else None
+
+    def problem(self, path: tuple, reason: str) -> Problem:
+        key = ".".join(str(p) for p in path)
+        return Problem(self.file, self.line_of(path), key, reason)
+
+
+def read_yaml(source: str | os.PathLike, *, what: str = "scene") -> YamlDocument:
+    """Read a YAML mapping safely, with line numbers; raise SceneError on faults."""
+    path = Path(source)
+    file = str(source)
+    try:
+        text = path.read_text(encoding="utf-8")
+    except FileNotFoundError:
+        raise SceneError([Problem(file, None, "", f"no such {what} file")]) from None
+    except IsADirectoryError:
+        raise SceneError([Problem(file, None, "", f"is a directory, not a {what} file")]) from None
+    except (OSError, UnicodeDecodeError) as exc:
+        raise SceneError([Problem(file, None, "", f"cannot read: {exc}")]) from None
+    return parse_yaml(text, file=file, what=what)
+
+
+def parse_yaml(text: str, *, file: str = "<scene>", what: str = "scene") -> YamlDocument:
+    loader = None
+    try:
+        loader = _LineLoader(text)
+        node = loader.get_single_node()
+        if node is None:
+            raise SceneError([Problem(file, None, "", f"empty {what} file")])
+        data = loader.construct_document(node)
+    except yaml.MarkedYAMLError as exc:
+        mark = exc.problem_mark or exc.context_mark
+        line = mark.line + 1 if mark is not None else None
+        reason = exc.problem or str(exc)
+        if "could not determine a constructor" in reason or "tag" in reason:
+            reason = f"tag refused (only plain YAML is read): {reason}"
+        reason = " ".join(f"{exc.context or ''} {reason}".split())
+        raise SceneError([Problem(file, line, "", f"YAML syntax: {reason}")]) from None
+    except yaml.YAMLError as exc:
+        reason = " ".join(str(exc).split())
+        raise SceneError([Problem(file, None, "", f"YAML: {reason}")]) from None
+    finally:
+        if loader is not None:
+            loader.dispose()
+    if not isinstance(data, dict):
+        raise SceneError([Problem(file, 1, "", f"a {what} must be a mapping of keys to values, "
+                                                f"got {type(data).__name__}")])
+    return YamlDocument(data=data, lines=_line_map(node), file=file, text=text)
+
+
+def problems_from_validation(error: ValidationError, doc: YamlDocument,
+                             prefix: tuple = (), model=None) -> list[Problem]:
+    """One Problem per pydantic error, located at its key path's line; an unknown key of
+    ``model`` (the validated pydantic class) names the closest valid key."""
+    problems = []
+    for item in error.errors(include_url=False):
+        loc = tuple(p for p in item["loc"] if not (isinstance(p, str) and p.startswith("function-")))
+        # drop pydantic's union branch tags (class names) from the location
+        loc = tuple(p for p in loc if not (isinstance(p, str) and p[:1].isupper()))
+        reason = item["msg"]
+        if reason.startswith("Value error, "):
+            reason = reason[len("Value error, "):]
+        if item["type"] == "extra_forbidden":
+            near = closest_key(model, loc)
+            reason = "unknown key" + (f"; did you mean {near!r}?" if near else "")
+        elif item["type"] == "missing":
+            reason = "required key is missing"
+        problems.append(doc.problem(prefix + loc, reason))
+    return problems

@@ -1,0 +1,83 @@
+"""A run limits BLAS to one thread only while it runs (fickcam.blas): the caller's BLAS
+threads are the same before and after, also when the run fails, and the limit leaves
+every result of the demo scene bit-identical."""
+from __future__ import annotations
+
+from contextlib import nullcontext
+from pathlib import Path
+
+import numpy as np
+import pytest
+from threadpoolctl import threadpool_info, threadpool_limits
+
+import fickcam.blas
+import fickcam.simulate
+from fickcam.errors import SceneError
+from fickcam.simulate import run
+
+DEMO = Path(__file__).resolve().parents[1] / "configs" / "singh2017_cam.yaml"
+CALLER_THREADS = 2  # what the caller asks for; the run must give it back
+
+
+def blas_threads() -> dict[str, int]:
+    """Threads of every loaded BLAS library, by file."""
+    return {p["filepath"]: p["num_threads"] for p in threadpool_info() if p["user_api"] == "blas"}
+
+
+@pytest.fixture(scope="module")
+def demo_runs():
+    """The demo run with the limit, then without it, the caller having set its own limit
+    first: (threads seen inside the limited run, the caller's threads after it, its
+    result, the result without the limit, threads seen inside that run)."""
+    seen = []
+    mechanisms = fickcam.simulate.mechanism_values
+
+    def spying(*args, **kwargs):
+        seen.append(blas_threads())
+        return mechanisms(*args, **kwargs)
+
+    patch = pytest.MonkeyPatch()
+    patch.setattr(fickcam.simulate, "mechanism_values", spying)
+    try:
+        with threadpool_limits(CALLER_THREADS, "blas"):
+            limited = run(DEMO)
+            inside, after = list(seen), blas_threads()
+            patch.setattr(fickcam.blas, "one_blas_thread", nullcontext)
+            default = run(DEMO)
+            unlimited = seen[len(inside):]
+    finally:
+        patch.undo()
+    return inside, after, limited, default, unlimited
+
+
+def test_run_uses_one_blas_thread_in_every_blas_library(demo_runs):
+    seen = demo_runs[0]
+    assert seen and len(seen[0]) >= 1  # numpy's OpenBLAS at least (scipy's too when loaded)
+    assert all(threads == 1 for during in seen for threads in during.values())
+
+
+def test_without_the_limit_the_run_would_use_the_callers_threads(demo_runs):
+    unlimited = demo_runs[4]  # the comparison below compares two thread counts
+    assert unlimited and all(threads == CALLER_THREADS for during in unlimited
+                             for threads in during.values())
+
+
+def test_caller_blas_threads_are_restored_after_run(demo_runs):
+    after = demo_runs[1]
+    assert after and all(threads == CALLER_THREADS for threads in after.values())
+
+
+def test_caller_blas_threads_are_restored_when_run_fails():
+    with threadpool_limits(CALLER_THREADS, "blas"):
+        before = blas_threads()
+        with pytest.raises(SceneError):
+            run({"name": "broken"})  # no environment: refused inside the limited run
+        assert blas_threads() == before
+
+
+def test_one_blas_thread_leaves_the_demo_results_bit_identical(demo_runs):
+    limited, default = demo_runs[2], demo_runs[3]
+    assert set(limited.data_vars) == set(default.data_vars)
+    for name, variable in limited.data_vars.items():
+        assert np.array_equal(variable.values, default[name].values,
+                              equal_nan=variable.dtype.kind == "f"), name
