@@ -10,6 +10,10 @@ Models (``diffusion.model``):
   3-D or a CamPlate / LinkBar on prisms, the independent check of ``plane``.
 - ``plane``: CamPlate or LinkBar: the planform's response times the exact sheet,
   superposed over the history (``plane``); ``auto`` picks it (cheaper than prisms).
+
+Concentration-dependent D (``sorption``) under ``auto``: Fick with D f where f is constant
+over the moisture met; on a CamPlate or LinkBar the D(c) sheet x planform product
+corrected on coarse 3-D prisms (``defect``); ``solid`` keeps the 3-D cells alone.
 """
 from __future__ import annotations
 
@@ -25,13 +29,14 @@ from .calibration import ANALYTIC_ERROR
 from .clock import RescaledTime
 from .clock import scales as scales_of
 from .coupled import two_phase_marcher
+from .defect import plan_corrected, solve_corrected
 from .direct import plan_direct, solve_direct
 from .exact import exact_available
 from .exposure import Diffusivity, Exposure
 from .geometry import Bar, CamPlate, Disc, LinkBar, Sheet
 from .forcing import RECORD_SHARE, is_long_record
 from .langmuir import history_swing, langmuir_history
-from .nonlinear import nonlinear_plan, solve_nonlinear
+from .nonlinear import nonlinear_plan, solve_nonlinear, spread
 from .planmodes import (LAYER_TOLERANCE, PLANFORM_CAP, RefinedPlanform, lanczos_spectrum,
                         planform_design, planform_operator, planform_source, refined_planform)
 from .timesteps import earliest_output
@@ -89,6 +94,10 @@ def plan(geometry, diffusivity: Diffusivity, exposure: Exposure, times: np.ndarr
     (``sorption``: a law of ``diffusion.sorption``, None for Fick; ``surface_layer_depth``:
     the solve's, so that a plane plan and its solve share one outline expansion)."""
     _validate(geometry, model, accuracy)
+    if is_nonlinear(sorption) and _nonlinear_route(geometry, model, sorption, exposure,
+                                                   times) == "fick":
+        return _as_fick(plan, geometry, diffusivity, exposure, times, sorption, accuracy,
+                        model, surface_layer_depth)
     if is_langmuir(sorption) or is_nonlinear(sorption):
         depth = LAYER_DEPTH if surface_layer_depth is None else surface_layer_depth
         return _plan_sorption(geometry, diffusivity, exposure, times, accuracy, model, sorption,
@@ -118,6 +127,10 @@ def plan(geometry, diffusivity: Diffusivity, exposure: Exposure, times: np.ndarr
 def _plan_sorption(geometry, diffusivity, exposure, times, accuracy, model, sorption,
                    depth) -> Plan:
     law = describe(sorption)
+    if is_nonlinear(sorption) and _nonlinear_route(geometry, model, sorption, exposure,
+                                                   times) == "corrected":
+        corrected = plan_corrected(geometry, diffusivity, sorption, exposure, times, accuracy)
+        return replace(corrected, reason=f"{law}; {corrected.reason}")
     if is_nonlinear(sorption):
         chosen = _nonlinear_model(geometry, model)
         direct = nonlinear_plan(lambda d, a: _direct_plan(geometry, d, chosen, exposure, times, a),
@@ -204,6 +217,31 @@ def _nonlinear_model(geometry, model: str) -> str:
     return NUMERICAL_MODEL[type(geometry)] if model in ("auto", "analytic") else model
 
 
+def _nonlinear_route(geometry, model: str, sorption, exposure, times) -> str:
+    """How ``auto`` solves D(c) on a Bar, CamPlate or LinkBar: ``fick`` where f is one
+    number over the moisture the part meets (k = 0: Fick with D f, the Fickian models'
+    own result), ``corrected`` for a CamPlate or LinkBar (``defect``: the D(c) sheet x
+    planform corrected on coarse 3-D cells; far cheaper than the 3-D cells alone at the
+    same accuracy), else ``direct`` (``solid`` always: the 3-D cells alone, the check)."""
+    if model != "auto" or not isinstance(geometry, (Bar, CamPlate, LinkBar)):
+        return "direct"
+    if spread(sorption, exposure, times) <= 1.0 + 1e-12:
+        return "fick"
+    return "corrected" if isinstance(geometry, (CamPlate, LinkBar)) else "direct"
+
+
+def _as_fick(call, geometry, diffusivity, exposure, times, sorption, accuracy, model, depth,
+             **options):
+    """``call`` (plan or solve) for Fick with D f(c0): f is constant where the part goes."""
+    factor = float(sorption.factor(exposure.initial_moisture))
+    scaled = Diffusivity(tuple(d * factor for d in diffusivity.pre_exponential),
+                         diffusivity.activation_energy)
+    done = call(geometry, scaled, exposure, times, accuracy=accuracy, model=model,
+                surface_layer_depth=depth, **options)
+    return replace(done, reason=f"{describe(sorption)} is {factor:g} over the moisture met: "
+                                f"Fick with D x {factor:g}; {done.reason}")
+
+
 def solve(geometry, diffusivity: Diffusivity, exposure: Exposure, times: np.ndarray, *,
           accuracy: float = 1e-3, model: str = "auto", surface_layer_depth: float = LAYER_DEPTH,
           store_fields: bool = False, part: str = "", sorption=None) -> DiffusionResult:
@@ -211,8 +249,17 @@ def solve(geometry, diffusivity: Diffusivity, exposure: Exposure, times: np.ndar
     ``sorption`` law (``diffusion.sorption``) the mean and surface are the total (free +
     bound) moisture and, for Langmuir, ``bound`` the bound-water mean."""
     times = np.asarray(times, float)
+    route = (_nonlinear_route(geometry, model, sorption, exposure, times)
+             if is_nonlinear(sorption) else "")
+    if route == "fick":
+        return _as_fick(solve, geometry, diffusivity, exposure, times, sorption, accuracy, model,
+                        surface_layer_depth, store_fields=store_fields, part=part)
     chosen = plan(geometry, diffusivity, exposure, times, accuracy, model, sorption,
                   surface_layer_depth)
+    if route == "corrected":
+        return solve_corrected(geometry, diffusivity, sorption, exposure, times, accuracy,
+                               surface_layer_depth=surface_layer_depth,
+                               store_fields=store_fields, part=part, reason=chosen.reason)
     log.debug("%s: %s, %d cells, %d steps (%s)", part or type(geometry).__name__, chosen.model,
               chosen.cells, chosen.steps, chosen.reason)
     if sorption is not None and (is_langmuir(sorption) or is_nonlinear(sorption)):

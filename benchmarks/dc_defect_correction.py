@@ -1,0 +1,193 @@
+"""Concentration-dependent D on cam plates: the corrected product (``diffusion/defect.py``)
+against independent references, and the measurement that dropped the Fickian D_ref
+correction.
+
+    python benchmarks/dc_defect_correction.py plate-reference   # tests/data/dc_plate_reference.json
+    python benchmarks/dc_defect_correction.py plate              # auto against it
+    python benchmarks/dc_defect_correction.py demo-cam           # the README table
+    python benchmarks/dc_defect_correction.py fickian-reference  # why not Fick at Crank's mean D
+
+``plate-reference``: the 4 x 3 x 2 mm plate of the tests (D = 5e-12 m^2/s exp(2 c/Mm),
+Mm = 2 %, absorption 0 -> Mm and desorption Mm -> 0) by the 3-D cells alone (``model:
+solid``, FiPy prisms on half the thickness) at ``REFERENCE_ACCURACY``: a brute-force run,
+once, with its own estimate stored beside it. ``demo-cam``: configs/singh2017_cam.yaml
+with ``exponent`` k = 0, 1, 2 at accuracies 1e-2, 3e-3, 1e-3: cells, CPU s, estimate;
+k = 0 against the Fickian plane model at 1e-5 (the exact reference), k = 1, 2 against the
+corrected run at 1e-3 (self-consistency) and the 3-D cells alone at ``CAM_SOLID``.
+``fickian-reference``: the demo cam's z widths as a 1-D slab, the D(c) sheet and the
+Fickian sheet at Crank's weighted-mean D (1975 §9.3) against fine references.
+CPU time: time.process_time, one BLAS thread (set OPENBLAS_NUM_THREADS=1).
+"""
+from __future__ import annotations
+
+import json
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+import yaml
+
+ROOT = Path(__file__).resolve().parents[1]
+REFERENCE = ROOT / "tests" / "data" / "dc_plate_reference.json"
+REFERENCE_ACCURACY = {"absorption": 1e-2, "desorption": 3e-2}  # desorption: 106 CPU s already
+CAM_SOLID = 1e-2
+H, D, MM = 2e-3, 5e-12, 2.0
+TAU = [0.0, 0.01, 0.03, 0.1, 0.3]
+
+
+def plate_case(direction: str):
+    from fickcam.diffusion import CamPlate, Diffusivity, Exposure
+    from fickcam.diffusion.sorption import ConcentrationDependent
+
+    times = np.array(TAU) * H ** 2 / D
+    start, surface = (0.0, MM) if direction == "absorption" else (MM, 0.0)
+    exposure = Exposure.piecewise([0.0, times[-1]], [330.0], [surface], initial_moisture=start)
+    plate = CamPlate(np.array([0, 4e-3, 4e-3, 0.0]), np.array([0, 0, 3e-3, 3e-3]), H)
+    law = ConcentrationDependent(MM, exponent=2.0)
+    return plate, Diffusivity((D, D, D), 0.0), exposure, times, law
+
+
+def plate_reference() -> None:
+    from fickcam.diffusion import solve
+
+    out = {"tau": TAU, "exponent": 2.0, "mm": MM, "made_by": "benchmarks/dc_defect_correction.py"}
+    for direction in ("absorption", "desorption"):
+        plate, d, exposure, times, law = plate_case(direction)
+        start = time.process_time()
+        result = solve(plate, d, exposure, times, accuracy=REFERENCE_ACCURACY[direction],
+                       model="solid", sorption=law)
+        out[direction] = {"accuracy": REFERENCE_ACCURACY[direction],
+                          "mean": result.mean.tolist(), "layer": result.surface.tolist(),
+                          "estimate": result.error_estimate, "cells": result.cells,
+                          "cpu_s": time.process_time() - start}
+        print(direction, out[direction], flush=True)
+    REFERENCE.write_text(json.dumps(out, indent=1) + "\n")
+
+
+def plate_record() -> None:
+    """``auto`` (the corrected product) on the plate against the stored brute-force runs."""
+    from fickcam.diffusion import solve
+
+    stored = json.loads(REFERENCE.read_text())
+    for direction in ("absorption", "desorption"):
+        plate, d, exposure, times, law = plate_case(direction)
+        reference = stored[direction]
+        for accuracy in (3e-2, 1e-2):
+            start = time.process_time()
+            result = solve(plate, d, exposure, times, accuracy=accuracy, sorption=law)
+            cpu = time.process_time() - start
+            mean = np.max(np.abs(result.mean - reference["mean"])) / MM
+            layer = np.max(np.abs(result.surface - reference["layer"])) / MM
+            print(f"| {direction} | {accuracy:g} | {result.error_estimate:.1e} | {mean:.1e} | "
+                  f"{layer:.1e} | {result.cells} | {cpu:.1f} |", flush=True)
+
+
+def demo_cam(k: float):
+    """(geometry, diffusivity, exposure, times, law) of the cam of configs/singh2017_cam.yaml
+    with ``sorption: {model: concentration_dependent, exponent: k}``."""
+    from fickcam.scene import load_scene
+    from fickcam.simulate import ageing_times, build_parts, scene_environment
+
+    raw = yaml.safe_load((ROOT / "configs" / "singh2017_cam.yaml").read_text())
+    raw["materials"]["cfrp"]["sorption"] = {"model": "concentration_dependent", "exponent": k}
+    scene = load_scene(raw)
+    environment = scene_environment(scene)
+    part = next(p for p in build_parts(scene) if p.name == "cam")
+    return (part.geometry, part.material.diffusivity_for(part.geometry),
+            environment.exposure(part.material.saturation_moisture),
+            ageing_times(scene, environment), part.material.sorption_law())
+
+
+def cam_table(exponents=(0.0, 1.0, 2.0), accuracies=(1e-2, 3e-3, 1e-3)) -> None:
+    from fickcam.diffusion import solve
+    from fickcam.diffusion.defect import solve_corrected
+
+    for k in exponents:
+        geometry, d, exposure, times, law = demo_cam(k)
+        swing = float(exposure.surface_moisture(times[-1:])[0] - exposure.initial_moisture)
+        if k == 0:
+            exact = solve(geometry, d, exposure, times, accuracy=1e-5, model="plane")
+            reference, label = (exact.mean, exact.surface), "plane 1e-5"
+        else:
+            fine = solve_corrected(geometry, d, law, exposure, times, 1e-3)
+            reference, label = (fine.mean, fine.surface), "corrected 1e-3"
+        for accuracy in accuracies:
+            start = time.process_time()
+            result = solve_corrected(geometry, d, law, exposure, times, accuracy)
+            cpu = time.process_time() - start
+            mean = np.max(np.abs(result.mean - reference[0])) / swing
+            layer = np.max(np.abs(result.surface - reference[1])) / swing
+            print(f"| {k:g} | {accuracy:g} | {result.error_estimate:.1e} | {mean:.1e} | "
+                  f"{layer:.1e} | {label} | {result.cells} | {cpu:.1f} |", flush=True)
+
+
+def slab(widths):
+    from fickcam.diffusion.defect import half_slab
+    return half_slab(np.asarray(widths, float))
+
+
+def fickian_reference() -> None:
+    """The 1-D measurement of the module docstring of ``defect``."""
+    from fickcam.diffusion.defect import Setting, level_plan
+    from fickcam.diffusion.layout import prism_widths
+    from fickcam.diffusion.mirrored import half
+    from fickcam.diffusion.nonlinear import wettest
+
+    geometry, d, exposure, times, law = demo_cam(2.0)
+    mm = float(exposure.surface_moisture(times[-1:])[0])
+    factor = crank_mean_factor(law, 0.0, mm)
+    top = law.largest_factor(wettest(exposure, times))
+    setting = Setting.of(geometry, d, law, exposure, times, 5e-4, 4, "")
+    constant = Constant(factor)
+    fine = np.full(1000, 0.5 / 1000)
+    tau = setting.scales.tau_star(np.asarray(times, float))
+    u_ref = setting.run(slab(fine)).mean
+    v_ref = mm * sheet_uptake_series(factor / top * tau)
+    print(f"Crank's weighted-mean D / D(T) = {factor:.3f} (top {top:.3f})")
+    for accuracy in (0.3, 0.1, 0.03):
+        chosen = level_plan(geometry, d, law, exposure, times, accuracy, 4)
+        widths = half(prism_widths(chosen.finest, chosen.growth))
+        u = setting.run(slab(widths)).mean
+        v = replace_law(setting, constant).run(slab(widths)).mean
+        print(f"plan {accuracy:g}, {widths.size} z cells: D(c) {np.round((u - u_ref) / mm, 5)}, "
+              f"Fick D_ref {np.round((v - v_ref) / mm, 5)}, difference "
+              f"{np.round((u - v - u_ref + v_ref) / mm, 5)}")
+
+
+class Constant:
+    """D / D(T) one number (the linear Fickian problem at D_ref)."""
+
+    def __init__(self, value):
+        self.value = value
+
+    def factor(self, moisture):
+        return np.full(np.shape(moisture), self.value)
+
+    def largest_factor(self, moisture):
+        return self.value
+
+
+def replace_law(setting, law):
+    from dataclasses import replace
+    return replace(setting, law=law)
+
+
+def crank_mean_factor(law, start: float, end: float) -> float:
+    """Crank 1975 §9.3 weighted-mean D / D(T): absorption (5/3) ∫ s^(2/3) f ds over the
+    swing fraction s (wet side weighted)."""
+    s = np.linspace(0.0, 1.0, 2001)
+    weight = 5.0 / 3.0 * s ** (2.0 / 3.0)
+    return float(np.trapezoid(weight * law.factor(start + s * (end - start)), s))
+
+
+def sheet_uptake_series(tau):
+    """Crank 1975 eq. 4.18, fraction of the sheet's uptake at D t / h^2 = tau (thickness h)."""
+    n = np.arange(400)
+    rates = (2 * n + 1) ** 2 * np.pi ** 2
+    return 1.0 - np.sum(8.0 / rates[:, None] * np.exp(-np.outer(rates, tau)), axis=0)
+
+
+if __name__ == "__main__":
+    {"plate-reference": plate_reference, "plate": plate_record, "demo-cam": cam_table,
+     "fickian-reference": fickian_reference}[sys.argv[1]]()

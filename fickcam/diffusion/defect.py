@@ -1,0 +1,317 @@
+"""Concentration-dependent D on a CamPlate or LinkBar: the D(c) sheet x D(c) planform
+product, corrected on coarse mirrored 3-D prisms (defect correction; Stetter 1978,
+Numer. Math. 29:425-443; Böhmer, Hemker & Stetter 1984, Computing Suppl. 5:1-32).
+
+For Fick on a prism (planform x thickness) the unaccomplished uptakes multiply,
+U = g - c = U_sheet U_planform / (g - c0) (Crank 1975 §4.3, the product of eq. 4.51), and
+on a prism mesh (planform cells x z widths, a tensor product) the same holds for the
+discrete fields. So the 3-D cells' error splits into a sheet factor and a planform
+factor, each measurable on its own grid: the D(c) sheet on the prisms' z widths
+(``half_slab``) against a fine sheet, and the D(c) planform alone (``planform_disc``, the
+prisms' cells without their faces) against the same planform refined twice and four
+times (Richardson, second order: 1.25e-3 then 3.1e-4 on the demo cam's mean at 1 d).
+The result takes the coarse 3-D U and swaps each factor's coarse value for its fine one:
+
+    U = U_3d (U_sheet,ref / U_sheet,h) (U_planform,ref / U_planform,h)
+
+for the mean, and for the contact layer with the planform's band in place of its mean
+(the layer spans the thickness). With constant D this is the fine sheet x fine planform
+(independent of the 3-D mesh); with D(c) the 3-D cells carry what does not separate,
+and the change of the result between two 3-D meshes measures it (``MESH_LEVELS``).
+
+Measured first and dropped: Fick at Crank's (1975 §9.3) weighted-mean D on the same
+3-D mesh (c_h + v_exact - v_h): on the demo cam's z widths the Fickian and the D(c)
+sheets err with opposite signs (1 d: -8.6e-3 and +2.2e-3 of the swing), so the difference
+errs more than either (``benchmarks/dc_defect_correction.py``).
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, replace
+
+import numpy as np
+
+from . import layout
+from .calibration import MIN_STEPS_PER_DOUBLING, PAIR_TO_EXTRAPOLATED, TIME_ERROR
+from .clock import scales as scales_of
+from .direct import plan_direct, step_plan, swing
+from .discretisation import Discretisation, assemble
+from .fv import normalised
+from .cellmoments import corrected_weights
+from .fvprism import prism
+from .geometry import Sheet
+from .mirrored import half, mirrored
+from .prism import band_share
+from .nonlinear import (SPACE_MARGIN, Faces, dries_to_a_skin, fastest, nonlinear_plan,
+                        solve_nonlinear, spread, sweep_march, wettest)
+from .planmodes import LAYER_TOLERANCE
+from .results import DiffusionResult, Plan
+from .scaling import stretch_of
+
+MESH_LEVELS = (1.0, 0.5)   # accuracies of the two 3-D plans (coarse cells suffice)
+REFINE = (2.0, 4.0)        # planform refinements (finest and growth / R) for Richardson
+PLANFORM_CELLS = 60_000    # the finest planform tried
+SHEET_SHARE = 0.1          # the fine sheet's accuracy: this share of the requested one
+PLANFORM_SHARE = 0.5       # of the accuracy: the planform's Richardson estimate
+ROMBERG = 1.0 / 3.0  # extrapolated error / change between two extrapolations: order 2
+#   assumed; measured 2.7 (mean) and 5.6 (layer) on the demo cam's Fickian planform at 1 d
+#   (errors of the x4 extrapolation 2e-5 and 1.4e-4 against the plane model)
+TARGET = "; est. = the target: the run measures its own and warns above it"
+ORDER_ONE = 1.0 / (math.sqrt(2.0) - 1.0)  # the finer 3-D plan's error / the change between
+#   the two, at order 1 in w0 (w0 ~ sqrt(accuracy): ratio sqrt 2): the observed D(c) prism
+#   orders are erratic (0.8-3.1), so the lowest is assumed
+
+
+@dataclass(frozen=True)
+class Pair:
+    """A Richardson-combined march (2 fine - coarse in time) and its time pair."""
+
+    mean: np.ndarray
+    layer: np.ndarray
+    fields: np.ndarray | None = None
+    steps: int = 0
+    pair: float = 0.0   # largest |fine - coarse| of the mean (time error indicator)
+
+
+def half_slab(z_widths: np.ndarray) -> Discretisation:
+    """FiPy Grid1D of a half thickness on ``z_widths`` (scaled, from the exposed face at
+    z = 0; the other end is the mid-plane mirror, insulated)."""
+    from fipy import Grid1D
+
+    mesh = Grid1D(dx=np.asarray(z_widths, float))
+    exposed = np.asarray(mesh.exteriorFaces, bool) & np.isclose(
+        np.asarray(mesh.faceCenters)[0], 0.0, atol=1e-12)
+    volumes, stiffness, boundary = assemble(mesh, exposed=exposed)
+    weights = normalised(volumes)
+    return Discretisation(volumes, stiffness, boundary, weights, weights)
+
+
+def planform_disc(geometry, d, finest: float, growth: float, depth: float):
+    """(Discretisation, corrected weights): the planform alone (a prism of infinite
+    thickness) on the graded admissible cells of (``finest``, ``growth``), one layer of
+    the mirrored prisms with its exposed face's coupling 8 V (half-layer height 1/4
+    scaled) taken out of the boundary vector (as ``planmodes.planform_operator``); its
+    mean and layer weights the plate's (cell volumes, band shares: the same discrete
+    product), and ``cellmoments``' second-order (mean, layer) weights on u - g beside."""
+    tess = layout.planform_cells(geometry, finest, growth, stretch_of(d))
+    disc = prism(tess, geometry.thickness, np.array([0.5 * geometry.thickness]),
+                 band_share(tess, depth), d, mid_plane=True)
+    return (replace(disc, boundary=disc.boundary - 8.0 * disc.volumes),
+            corrected_weights(tess, depth))
+
+
+def richardson_march(disc, law, top, exposure, times, scales, per_doubling, keep, part) -> Pair:
+    """The swept backward-Euler march (``nonlinear``) on the plan's steps and on them
+    bisected, combined 2 fine - coarse."""
+    faces = Faces.of(disc)
+    coarse, fine = (sweep_march(faces, disc, law, top,
+                                step_plan(exposure, times, scales, per_doubling, bisect),
+                                exposure.initial_moisture, keep, part)
+                    for bisect in (False, True))
+    fields = 2.0 * fine.fields - coarse.fields if keep else None
+    return Pair(2.0 * fine.mean - coarse.mean, 2.0 * fine.layer - coarse.layer, fields,
+                coarse.steps + fine.steps, float(np.max(np.abs(fine.mean - coarse.mean))))
+
+
+def corrected(plate: Pair, sheet: tuple, planform: tuple, surface: np.ndarray):
+    """(mean, layer): the plate's U = g - c times the ratio of the fine reference's U to the
+    coarse grid's, for the sheet (the layer spans the thickness) and for the planform
+    (its mean, its band for the layer). A ratio is 1 where the coarse grid's U is within
+    round-off of zero. ``sheet``, ``planform``: (coarse Pair, fine reference Pair)."""
+    floor = 1e-9 * max(float(np.max(np.abs(surface))), 1e-300)
+
+    def ratio(fine, coarse):
+        gap = surface - coarse
+        small = np.abs(gap) <= floor
+        return np.where(small, 1.0, (surface - fine) / np.where(small, 1.0, gap))
+    (s_h, s_ref), (p_h, p_ref) = sheet, planform
+    through = ratio(s_ref.mean, s_h.mean)
+    return (surface - (surface - plate.mean) * through * ratio(p_ref.mean, p_h.mean),
+            surface - (surface - plate.layer) * through * ratio(p_ref.layer, p_h.layer))
+
+
+def steps_for(accuracy: float) -> int:
+    """Steps per doubling for the time error TIME_ERROR / m^2 at half the accuracy
+    (``direct.plan_direct``)."""
+    return max(MIN_STEPS_PER_DOUBLING, math.ceil(math.sqrt(TIME_ERROR / (0.5 * accuracy))))
+
+
+def level_plan(geometry, diffusivity, law, exposure, times, mesh_accuracy, per_doubling) -> Plan:
+    """A 3-D plan: ``nonlinear_plan``'s cells at ``mesh_accuracy``, ``per_doubling`` steps."""
+    def planner(d, a):
+        s = scales_of(geometry, d, exposure)
+        return plan_direct(geometry, d, "solid", s.tau_star(exposure.change_times),
+                           s.tau_star(np.asarray(times, float)), a, exposure)
+    chosen = nonlinear_plan(planner, diffusivity, law, exposure, times, mesh_accuracy)
+    return replace(chosen, steps_per_doubling=per_doubling)
+
+
+def sheet_reference(geometry, diffusivity, law, exposure, times, accuracy) -> DiffusionResult:
+    """The D(c) sheet of the part's thickness at ``SHEET_SHARE`` x the accuracy (FiPy slab)."""
+    sheet = Sheet(geometry.thickness)
+
+    def planner(d, a):
+        s = scales_of(sheet, d, exposure)
+        return plan_direct(sheet, d, "slab", s.tau_star(exposure.change_times),
+                           s.tau_star(np.asarray(times, float)), a, exposure)
+    chosen = nonlinear_plan(planner, diffusivity, law, exposure, times, SHEET_SHARE * accuracy)
+    return solve_nonlinear(sheet, diffusivity, law, exposure, times, chosen)
+
+
+@dataclass(frozen=True)
+class Setting:
+    """What every march of one solve shares: law, scaled D, its top factor, scales."""
+
+    geometry: object
+    law: object
+    exposure: object
+    times: np.ndarray
+    d: tuple
+    top: float
+    scales: object
+    depth: float
+    per_doubling: int
+    part: str
+
+    @classmethod
+    def of(cls, geometry, diffusivity, law, exposure, times, depth, per_doubling, part):
+        scaled = fastest(diffusivity, law, exposure, times)
+        return cls(geometry, law, exposure, np.asarray(times, float),
+                   tuple(float(v) for v in scaled.pre_exponential),
+                   law.largest_factor(wettest(exposure, times)),
+                   scales_of(geometry, scaled, exposure), depth, per_doubling, part)
+
+    def run(self, disc, keep: bool = False) -> Pair:
+        return richardson_march(disc, self.law, self.top, self.exposure, self.times,
+                                self.scales, self.per_doubling, keep, self.part)
+
+    def planform(self, finest: float, growth: float) -> tuple[Pair, Pair, int]:
+        """(the plate's weights, ``cellmoments``' weights, cells) of the planform's march."""
+        disc, weights = planform_disc(self.geometry, self.d, finest, growth, self.depth)
+        pair, g = self.run(disc, True), np.asarray(self.exposure.surface_before(self.times), float)
+        mean, layer = (g + (pair.fields - g[:, None]) @ w for w in weights)
+        return replace(pair, fields=None), replace(pair, mean=mean, layer=layer, fields=None), \
+            disc.cells
+
+
+@dataclass(frozen=True)
+class Level:
+    """One 3-D plan's marches: the plate, its z widths as a sheet, its planform alone."""
+
+    plan: Plan
+    plate: Pair
+    slab: Pair
+    planform: Pair
+    moments: Pair   # the same march read with ``cellmoments``' weights
+    cells: int
+    planform_cells: int
+    coordinates: dict
+
+
+def three_d(setting: Setting, chosen: Plan, keep: bool) -> Level:
+    disc = mirrored(setting.geometry, setting.d, chosen.cells_per_axis, chosen.finest,
+                    chosen.growth, setting.depth)
+    plate = setting.run(disc, keep)
+    slab = setting.run(half_slab(half(layout.prism_widths(chosen.finest, chosen.growth))))
+    planform, moments, planform_cells = setting.planform(chosen.finest, chosen.growth)
+    return Level(chosen, plate, slab, planform, moments, disc.cells, planform_cells,
+                 disc.coordinates)
+
+
+def refined_reference(setting: Setting, level: Level, sheet: Pair, accuracy: float, scale):
+    """(planform reference Pair, estimate, planform cells, factor R): the level's planform
+    refined by R in ``REFINE`` (finest and growth / R), Richardson-extrapolated from the
+    last two (second order: p_R + (p_R - p_R/2) / 3), until the estimate is
+    ``PLANFORM_SHARE`` of the accuracy or the next mesh would pass ``PLANFORM_CELLS``. The
+    estimate: the change the last extrapolation makes to the result or, once there are two
+    extrapolations, ``ROMBERG`` x the change between them (Romberg's check)."""
+    surface = np.asarray(setting.exposure.surface_before(setting.times), float)
+
+    def result(reference):
+        return corrected(level.plate, (level.slab, sheet), (level.planform, reference), surface)
+    previous, factor, cells, earlier = level.moments, 1.0, 0, None
+    for refine in REFINE:
+        if cells and level.planform_cells * refine ** 2 > PLANFORM_CELLS:
+            break
+        _, fine, cells = setting.planform(level.plan.finest / refine,
+                                          level.plan.growth / refine)
+        weight = 1.0 / ((refine / factor) ** 2 - 1.0)
+        extrapolated = Pair(fine.mean + weight * (fine.mean - previous.mean),
+                            fine.layer + weight * (fine.layer - previous.layer), None,
+                            fine.steps, fine.pair)
+        estimate = (gap(result(fine), result(extrapolated), scale) if earlier is None else
+                    ROMBERG * gap(result(earlier), result(extrapolated), scale))
+        previous, factor, earlier = fine, refine, extrapolated
+        if estimate <= PLANFORM_SHARE * accuracy:
+            break
+    return extrapolated, estimate, cells, factor
+
+
+def gap(a, b, scale: float) -> float:
+    """The larger of the mean's and the layer's (/ ``LAYER_TOLERANCE``) largest difference,
+    relative to ``scale``."""
+    return max(float(np.max(np.abs(a[0] - b[0]))),
+               float(np.max(np.abs(a[1] - b[1]))) / LAYER_TOLERANCE) / scale
+
+
+def skin_margin(law, exposure, times) -> float:
+    """1 unless the surface dries to a skin (``nonlinear.dries_to_a_skin``); then the sheet's
+    measured margin 1 + SPACE_MARGIN (sqrt(max f / min f) - 1) (``nonlinear_plan``): on the
+    4 x 3 x 2 mm plate drying with k = 2 the 3-D change between the plans was 2.6e-3 and the
+    result differed from the 3-D cells alone by 1.2e-2 (benchmarks/dc_defect_correction.py)."""
+    if not dries_to_a_skin(law, exposure):
+        return 1.0
+    return 1.0 + SPACE_MARGIN * (math.sqrt(spread(law, exposure, times)) - 1.0)
+
+
+def solve_corrected(geometry, diffusivity, law, exposure, times, accuracy: float, *,
+                    surface_layer_depth=5e-4, store_fields=False, part="",
+                    reason="") -> DiffusionResult:
+    """Mean and contact layer (weight %) at ``times``: the corrected product (module
+    docstring) on the finer of two 3-D plans (``MESH_LEVELS``, their change the estimate of
+    what does not separate), plus the sheet's and the planform's estimates and the time
+    error of the marches (``PAIR_TO_EXTRAPOLATED`` pair^2). ``store_fields``: the finer
+    3-D plan's own cells (not corrected)."""
+    times = np.asarray(times, float)
+    setting = Setting.of(geometry, diffusivity, law, exposure, times, surface_layer_depth,
+                         steps_for(accuracy), part)
+    sheet = sheet_reference(geometry, diffusivity, law, exposure, times, accuracy)
+    reference = Pair(sheet.mean, sheet.surface)
+    plans = [level_plan(geometry, diffusivity, law, exposure, times, a, setting.per_doubling)
+             for a in MESH_LEVELS]
+    marched = [three_d(setting, p, store_fields and p is plans[-1]) for p in plans]
+    scale = swing(exposure, times) or 1.0
+    planform, planform_error, planform_cells, factor = refined_reference(
+        setting, marched[-1], reference, accuracy, scale)
+    surface = np.asarray(exposure.surface_before(times), float)  # g(t-): the state there
+    results = [corrected(m.plate, (m.slab, reference), (m.planform, planform), surface)
+               for m in marched]
+    unseparated = gap(results[0], results[-1], scale) * ORDER_ONE * skin_margin(
+        law, exposure, times)
+    pair = max(marched[-1].plate.pair, planform.pair) / scale
+    estimate = (sheet.error_estimate + planform_error + unseparated
+                + PAIR_TO_EXTRAPOLATED * pair ** 2)
+    fine = marched[-1]
+    note = (f"{reason.split(TARGET)[0]}; measured: sheet {sheet.error_estimate:.1e}, planform x{factor:g} "
+            f"({planform_cells} cells) {planform_error:.1e}, 3-D change {unseparated:.1e}")
+    if estimate > accuracy:
+        note += "; capped: error above the requested accuracy"
+    result = DiffusionResult(times, results[-1][0], results[-1][1], "solid",
+                             fine.cells + planform_cells,
+                             sum(m.plate.steps for m in marched), float(estimate), note)
+    if store_fields:
+        result.fields, result.cell_coordinates = fine.plate.fields, fine.coordinates
+    return result
+
+
+def plan_corrected(geometry, diffusivity, law, exposure, times, accuracy: float) -> Plan:
+    """What ``solve_corrected`` will start from: the finer 3-D plan, the planform refined
+    up to ``PLANFORM_CELLS``, the requested accuracy as the target its measured estimate
+    is held to (the solve reports the estimate)."""
+    chosen = level_plan(geometry, diffusivity, law, exposure, times, MESH_LEVELS[-1],
+                        steps_for(accuracy))
+    reason = ("D(c) sheet x D(c) planform (each refined and checked), corrected on coarse 3-D "
+              f"prisms on half the thickness (mid-plane mirror; the {MESH_LEVELS[0]:g} and "
+              f"{MESH_LEVELS[-1]:g} plans; {chosen.steps_per_doubling} steps/doubling + "
+              f"Richardson; defect correction){TARGET}")
+    return replace(chosen, reason=reason, error_estimate=accuracy)

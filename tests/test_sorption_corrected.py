@@ -1,0 +1,84 @@
+"""Concentration-dependent D on a cam plate by the corrected product (``diffusion.defect``:
+the D(c) sheet x D(c) planform corrected on coarse 3-D prisms): the Fickian limit to
+round-off, a brute-force 3-D reference (tests/data/dc_plate_reference.json, made once by
+benchmarks/dc_defect_correction.py), Crank's direction of the sorption/desorption
+asymmetry, bounds and equilibrium."""
+import json
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from fickcam.diffusion import CamPlate, Diffusivity, Exposure, plan, solve
+from fickcam.diffusion.planmodes import LAYER_TOLERANCE
+from fickcam.diffusion.sorption import ConcentrationDependent
+
+pytest.importorskip("fipy")
+
+H, D, MM = 2e-3, 5e-12, 2.0
+ISOTROPIC = Diffusivity((D, D, D), 0.0)
+REFERENCE = json.loads((Path(__file__).parent / "data" / "dc_plate_reference.json").read_text())
+TIMES = np.array(REFERENCE["tau"]) * H ** 2 / D
+PLATE = CamPlate(np.array([0, 4e-3, 4e-3, 0.0]), np.array([0, 0, 3e-3, 3e-3]), H)
+
+
+def exposure(start, surface):
+    return Exposure.piecewise([0.0, TIMES[-1]], [330.0], [surface], initial_moisture=start)
+
+
+def law(k):
+    return ConcentrationDependent(MM, exponent=k)
+
+
+@pytest.fixture(scope="module")
+def absorbed():
+    return solve(PLATE, ISOTROPIC, exposure(0.0, MM), TIMES, accuracy=1e-2, sorption=law(2.0))
+
+
+def test_a_constant_factor_is_the_fickian_result_to_round_off():
+    """k = 0 (and a flat table, D = 1.5 D(T)) is Fick: ``auto`` gives the Fickian model's own
+    result (the plane model here), bit for bit."""
+    wet = exposure(0.0, MM)
+    zero = solve(PLATE, ISOTROPIC, wet, TIMES, accuracy=1e-3, sorption=law(0.0))
+    fick = solve(PLATE, ISOTROPIC, wet, TIMES, accuracy=1e-3)
+    assert zero.model == fick.model == "plane"
+    np.testing.assert_array_equal(zero.mean, fick.mean)
+    np.testing.assert_array_equal(zero.surface, fick.surface)
+    flat = ConcentrationDependent(MM, ratios=(0.0, 1.0), factors=(1.5, 1.5))
+    faster = Diffusivity((1.5 * D,) * 3, 0.0)
+    np.testing.assert_array_equal(solve(PLATE, ISOTROPIC, wet, TIMES, sorption=flat).mean,
+                                  solve(PLATE, faster, wet, TIMES).mean)
+
+
+def test_the_corrected_plate_matches_a_brute_force_3d_run_within_the_accuracy(absorbed):
+    """k = 2 absorption at accuracy 1e-2 against the 3-D cells alone at accuracy 1e-2
+    (``model: solid``): within the requested accuracy plus the reference's own estimate
+    (mean; the contact layer LAYER_TOLERANCE times that, as everywhere)."""
+    reference = REFERENCE["absorption"]
+    allowed = 1e-2 + reference["estimate"]
+    assert absorbed.error_estimate <= 1e-2
+    assert np.max(np.abs(absorbed.mean - reference["mean"])) / MM <= allowed
+    assert np.max(np.abs(absorbed.surface - reference["layer"])) / MM <= LAYER_TOLERANCE * allowed
+    assert absorbed.mean[-1] == pytest.approx(MM, abs=absorbed.error_estimate * MM)
+
+
+def test_absorption_runs_ahead_of_desorption_and_both_stay_bounded():
+    """D rising with c: sorption is faster than desorption (Crank 1975 §9.3, fig. 9.4), k = 1
+    from dry to Mm and back, over the first outputs (tau* <= 0.03, where the gap is 0.07-0.1
+    of Mm); both stay within [0, Mm] up to their estimates."""
+    times = TIMES[:3]
+    wetted, dried = (solve(PLATE, ISOTROPIC, exposure(start, end), times, accuracy=0.1,
+                           sorption=law(1.0)) for start, end in ((0.0, MM), (MM, 0.0)))
+    up, down = wetted.mean / MM, 1.0 - dried.mean / MM
+    assert np.all(up[1:] > down[1:] + wetted.error_estimate + dried.error_estimate)
+    for result in (wetted, dried):
+        slack = result.error_estimate * MM
+        assert np.all(result.mean >= -slack) and np.all(result.mean <= MM + slack)
+
+
+def test_check_names_the_corrected_product_for_a_cam_plate():
+    chosen = plan(PLATE, ISOTROPIC, exposure(0.0, MM), TIMES, accuracy=1e-2, sorption=law(2.0))
+    assert chosen.model == "solid" and "sheet x D(c) planform" in chosen.reason
+    solid = plan(PLATE, ISOTROPIC, exposure(0.0, MM), TIMES, accuracy=1e-2, model="solid",
+                 sorption=law(2.0))
+    assert "sheet x" not in solid.reason
