@@ -74,6 +74,22 @@ def test_zero_exponent_is_fickian():
     assert np.max(np.abs(result.mean - fick.mean)) / MM < 1e-2
 
 
+@pytest.mark.parametrize("law", [
+    ConcentrationDependent(MM, exponent=3.0), ConcentrationDependent(MM, exponent=-2.0),
+    ConcentrationDependent(MM, ratios=(0.1, 0.5, 1.0), factors=(1.0, 2.0, 6.0))],
+    ids=["exp(3c)", "exp(-2c)", "table"])
+def test_face_coefficient_is_the_mean_of_f_between_the_two_sides(law):
+    """``mean_factor`` against scipy's adaptive quadrature of f over [low, high] / width
+    (the table held beyond its ends; either order; a zero-width interval is f there)."""
+    from scipy.integrate import quad
+
+    pairs = [(0.0, MM), (MM, 0.0), (0.3, 1.7), (-0.1, 2.5), (0.05, 0.15), (1.0, 1.0 + 1e-9)]
+    for low, high in pairs:
+        exact = quad(law.factor, low, high, points=[0.2, 1.0, 2.0], epsabs=1e-13)[0]
+        assert law.mean_factor(low, high) == pytest.approx(exact / (high - low), rel=1e-9)
+    assert law.mean_factor(0.7, 0.7) == pytest.approx(law.factor(0.7), rel=1e-15)
+
+
 def kirchhoff_face_coefficient(law, c, surface):
     """Each face's mean of f between its two cells, or between its cell and the surface
     value on an exterior face (``ConcentrationDependent.mean_factor``)."""
