@@ -164,6 +164,9 @@ class Constant:
     def factor(self, moisture):
         return np.full(np.shape(moisture), self.value)
 
+    def mean_factor(self, low, high):
+        return np.full(np.broadcast(low, high).shape, self.value)
+
     def largest_factor(self, moisture):
         return self.value
 

@@ -20,9 +20,12 @@ for the mean, and for the contact layer with the planform's band in place of its
 and the change of the result between two 3-D meshes measures it (``MESH_LEVELS``).
 
 Measured first and dropped: Fick at Crank's (1975 §9.3) weighted-mean D on the same
-3-D mesh (c_h + v_exact - v_h): on the demo cam's z widths the Fickian and the D(c)
-sheets err with opposite signs (1 d: -8.6e-3 and +2.2e-3 of the swing), so the difference
-errs more than either (``benchmarks/dc_defect_correction.py``).
+3-D mesh (c_h + v_exact - v_h). With f(surface value) on the exposed faces (before the
+Kirchhoff face mean of ``sorption.mean_factor``) the Fickian and the D(c) sheets on the
+demo cam's z widths erred with opposite signs, so the difference erred more than either.
+Since that fix they err alike (plan 0.1, 1 d: -5.4e-3 both; the difference 3e-5, at most
+8.9e-4 over the outputs; ``benchmarks/dc_defect_correction.py fickian-reference``): worth
+a new trial on the 3-D cells.
 """
 from __future__ import annotations
 
@@ -58,8 +61,9 @@ ROMBERG = 1.0 / 3.0  # extrapolated error / change between two extrapolations: o
 #   (errors of the x4 extrapolation 2e-5 and 1.4e-4 against the plane model)
 TARGET = "; est. = the target: the run measures its own and warns above it"
 ORDER_ONE = 1.0 / (math.sqrt(2.0) - 1.0)  # the finer 3-D plan's error / the change between
-#   the two, at order 1 in w0 (w0 ~ sqrt(accuracy): ratio sqrt 2): the observed D(c) prism
-#   orders are erratic (0.8-3.1), so the lowest is assumed
+#   the two, at order 1 in w0 (w0 ~ sqrt(accuracy): ratio sqrt 2). Kept as an upper bound:
+#   the D(c) prism order under nested refinement is now 2 (Kirchhoff faces, tests), but
+#   these two plans change the growth with w0 and were not measured at order 2 on the cam
 
 
 @dataclass(frozen=True)
