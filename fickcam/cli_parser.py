@@ -26,7 +26,14 @@ def _parser() -> argparse.ArgumentParser:
     parser.add_argument("--version", action="version", version=f"fickcam {__version__}")
     parser.add_argument("--debug", action="store_true", help="show tracebacks of internal errors")
     sub = parser.add_subparsers(dest="command", required=True, metavar="COMMAND")
+    for add in (_scene_commands, _result_commands, _reference_commands, _design_commands,
+                _sweep_command):
+        add(sub)
+    return parser
 
+
+def _scene_commands(sub) -> None:
+    """run and check: a scene in, a result or a plan out."""
     run = _command(sub, "run", "run a scene and write its result file",
                    "Age the parts of a scene (diffusion, material state, mechanisms at every "
                    "ageing time, and the design for comparison), write the result file "
@@ -44,6 +51,9 @@ def _parser() -> argparse.ArgumentParser:
                      "fickcam check configs/singh2017_cam.yaml")
     check.add_argument("scene", help="scene file (YAML)")
 
+
+def _result_commands(sub) -> None:
+    """query, export and plot: a result file in."""
     query = _command(sub, "query", "values of a variable from a result file",
                      "Print the values of one result variable, optionally at an ageing time "
                      "(interpolated between stored times), a part, link or angle, or its drift "
@@ -85,6 +95,9 @@ def _parser() -> argparse.ArgumentParser:
                       choices=("uptake", "kinematics", "dynamics", "vibration", "linkage", "fields",
                                "elastic", "limits", "sweep", "all"))
 
+
+def _reference_commands(sub) -> None:
+    """bench, materials, schema and examples: what fickcam knows, nothing of the user's."""
     bench = _command(sub, "bench", "the diffusion speed/accuracy trade",
                      "Measure each diffusion model's wall time and error against exact solutions "
                      "on reference geometries (about 3 min; --quick about 10 s); --records: the "
@@ -114,6 +127,9 @@ def _parser() -> argparse.ArgumentParser:
     examples.add_argument("names", nargs="*", help="example names (print one; with --copy: copy these)")
     examples.add_argument("--copy", metavar="DIR", help="copy the examples into DIR")
 
+
+def _design_commands(sub) -> None:
+    """compensate, profile, fit and size: dimensions and materials to make."""
     compensate = _command(
         sub, "compensate", "the dimensions to make so that the mechanism holds its design",
         "Give the dry dimensions at the reference temperature to make so that the mechanism has "
@@ -167,6 +183,9 @@ def _parser() -> argparse.ArgumentParser:
     size.add_argument("--radius-of-curvature", default="0 mm",
                       help="smallest convex working radius of curvature (0: no cusp or undercut)")
 
+
+def _sweep_command(sub) -> None:
+    """sweep: many scenes at once on dask.distributed."""
     sweep = _command(sub, "sweep", "many scenes on dask.distributed",
                      "Run the variants of a scene a sweep file describes (a grid or Monte Carlo "
                      "draws) on a local dask cluster or a running scheduler, write one result "
@@ -179,4 +198,3 @@ def _parser() -> argparse.ArgumentParser:
     group.add_argument("--scheduler", help="address of a running dask scheduler, tcp://HOST:PORT")
     sweep.add_argument("-o", "--output", required=True)
     sweep.add_argument("--quiet", action="store_true")
-    return parser

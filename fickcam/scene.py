@@ -104,9 +104,29 @@ def _part_names(model: SceneModel) -> tuple[str, ...]:
 
 
 def _cross_checks(model: SceneModel, doc: YamlDocument, base_dir: Path) -> tuple[list[Problem], dict]:
+    """What no single section can check: parts name defined materials, the climate stays
+    below their dry Tg, the outputs' times fit the climate's history."""
     from .environment import Environment
-    from .materials import resolve
 
+    problems = _part_problems(model, doc)
+    material_problems, resolved = _resolved_materials(model, doc)
+    problems += material_problems
+    try:
+        environment = Environment.from_section(model.environment, base_dir=base_dir,
+                                                until=last_ageing_time(model.outputs))
+    except ValueError as exc:
+        key = next(name for name in ("test", "history_file", "history", "state")
+                   if getattr(model.environment, name) is not None)
+        problems.append(doc.problem(("environment", key), str(exc)))
+        return problems, resolved
+    problems += _glass_transition_problems(model, doc, environment, resolved)
+    problems += _model_name_problems(model, doc)
+    problems += _ageing_time_problems(model, doc, environment)
+    return problems, resolved
+
+
+def _part_problems(model: SceneModel, doc: YamlDocument) -> list[Problem]:
+    """Something to age, and a cam's follower arm that fits."""
     problems: list[Problem] = []
     if model.cam is None and model.linkage is None:
         problems.append(doc.problem((), "a scene needs a cam or a linkage section (nothing to age)"))
@@ -114,6 +134,24 @@ def _cross_checks(model: SceneModel, doc: YamlDocument, base_dir: Path) -> tuple
         from .cam.spec import arm_problems
 
         problems += [doc.problem(("cam",) + path, reason) for path, reason in arm_problems(model.cam)]
+    return problems
+
+
+def _model_name_problems(model: SceneModel, doc: YamlDocument) -> list[Problem]:
+    """A per-part diffusion model must name a part of the scene."""
+    if not isinstance(model.diffusion.model, dict):
+        return []
+    names = _part_names(model)
+    return [doc.problem(("diffusion", "model", name),
+                        f"no part named {name!r} (parts: {', '.join(names)})")
+            for name in model.diffusion.model if name not in names]
+
+
+def _resolved_materials(model: SceneModel, doc: YamlDocument) -> tuple[list[Problem], dict]:
+    """Each material a part uses, resolved once (library name or own values)."""
+    from .materials import resolve
+
+    problems: list[Problem] = []
     resolved = {}
     for path, name in _used_materials(model):
         if name not in model.materials:
@@ -125,15 +163,13 @@ def _cross_checks(model: SceneModel, doc: YamlDocument, base_dir: Path) -> tuple
                 resolved[name] = resolve(name, model.materials[name])
             except ValueError as exc:
                 problems.append(doc.problem(("materials", name), str(exc)))
-    try:
-        environment = Environment.from_section(model.environment, base_dir=base_dir,
-                                                until=last_ageing_time(model.outputs))
-    except ValueError as exc:
-        key = next(name for name in ("test", "history_file", "history", "state")
-                   if getattr(model.environment, name) is not None)
-        problems.append(doc.problem(("environment", key), str(exc)))
-        return problems, resolved
-    # the service temperature must stay below the dry Tg of every absorbing material in use
+    return problems, resolved
+
+
+def _glass_transition_problems(model: SceneModel, doc: YamlDocument, environment,
+                               resolved: dict) -> list[Problem]:
+    """The service temperature must stay below the dry Tg of every absorbing material in use."""
+    problems: list[Problem] = []
     hottest_index, hottest = environment.hottest()
     for name, material in resolved.items():
         tg = getattr(material, "dry_glass_transition_temperature", None)
@@ -145,18 +181,17 @@ def _cross_checks(model: SceneModel, doc: YamlDocument, base_dir: Path) -> tuple
             problems.append(doc.problem(
                 path, f"{hottest - 273.15:.1f} degC is at or above the dry Tg of material "
                       f"{name!r} ({tg - 273.15:.1f} degC)"))
-    if isinstance(model.diffusion.model, dict):
-        names = _part_names(model)
-        for name in model.diffusion.model:
-            if name not in names:
-                problems.append(doc.problem(("diffusion", "model", name),
-                                            f"no part named {name!r} (parts: {', '.join(names)})"))
+    return problems
+
+
+def _ageing_time_problems(model: SceneModel, doc: YamlDocument, environment) -> list[Problem]:
+    """Output times within the climate's history (a record holds its last state)."""
     times = model.outputs.ageing_times
     if model.environment.state is not None and times is not None:
-        problems.append(doc.problem(("outputs", "ageing_times"),
-                                    "a state environment is computed at its states' times "
-                                    "(environment.state[].time); leave ageing_times out"))
-        return problems, resolved
+        return [doc.problem(("outputs", "ageing_times"),
+                            "a state environment is computed at its states' times "
+                            "(environment.state[].time); leave ageing_times out")]
+    problems: list[Problem] = []
     record = model.environment.history_file is not None  # a record holds its last state
     if isinstance(times, list) and times[-1] > environment.end * (1 + 1e-12) and not record:
         problems.append(doc.problem(
@@ -165,7 +200,7 @@ def _cross_checks(model: SceneModel, doc: YamlDocument, base_dir: Path) -> tuple
     if isinstance(times, EveryStep) and times.every > environment.end:
         problems.append(doc.problem(("outputs", "ageing_times", "every"),
                                     "step longer than the environment history"))
-    return problems, resolved
+    return problems
 
 
 def _cam_profile(model: SceneModel, doc: YamlDocument, base_dir: Path) -> tuple[list[Problem], SceneModel]:
