@@ -51,7 +51,6 @@ MAX_SWEEPS = 60
 LAG_ITERATIONS = 15  # CG iterations on the lagged factors before a refactorisation
 LINEAR_TOLERANCE = 1e-12
 SKIN_CELLS_MARGIN = 1.0  # skin: cells at D_min for accuracy / (1 + it (sqrt(ratio) - 1))
-SPACE_MARGIN = 4.0   # the pre-Kirchhoff-mean skin margin, kept by defect.skin_margin as an upper bound
 ABSORPTION_MARGIN = 2.0  # no skin: cells sized at D_max for accuracy / ABSORPTION_MARGIN
 SPACE_TO_ERROR = 1.0  # error / (m x the space estimate of the cells' plan): 0.5-1.0 measured
 
