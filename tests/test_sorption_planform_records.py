@@ -13,8 +13,10 @@ from fickcam.bench_two_phase import CONFIGS, REFERENCE, cam_problem, true_error
 from fickcam.diffusion import CamPlate, Diffusivity, Disc, plan, solve
 from fickcam.diffusion.langmuir import history_swing
 from fickcam.diffusion.modes import cylinder_factor
-from fickcam.diffusion.planmodes import (LAYER_TOLERANCE, lanczos_spectrum, planar_fraction,
-                                         planform_operator, whole_at_start)
+from fickcam.diffusion import planmodes
+from fickcam.diffusion.dispatch import LAYER_DEPTH, _planform_refinement
+from fickcam.diffusion.planmodes import (LAYER_TOLERANCE, _estimate, _parts, lanczos_spectrum,
+                                         planar_fraction, planform_operator, whole_at_start)
 from fickcam.diffusion.sorption import Langmuir, Rate
 from fickcam.environment import Environment
 
@@ -133,3 +135,45 @@ def test_demo_two_phase_cam_is_within_its_estimate_of_a_fine_run(climate):
     error = true_error(result, found)
     assert found["uncertainty"] < 0.25 * error
     assert error + found["uncertainty"] <= result.error_estimate <= 1e-3
+
+
+def test_two_step_richardson_recovers_the_w0_and_growth_terms_apart():
+    """``_parts`` through three meshes (two differing from the first in w0 or g alone) and,
+    by least squares, through four gives back alpha and beta of y = y* + alpha w0^2 + beta
+    g^2 per compared value; ``_estimate`` adds their magnitudes (no cancellation trusted)."""
+    alpha, beta = np.array([[0.25, -0.08]]), np.array([[-4e-3, 2.6e-3]])
+
+    def mesh(w, g):
+        return (w, g, (np.array([[0.3, 0.7]]) + alpha * w ** 2 + beta * g ** 2,))
+
+    three = [mesh(0.06, 0.125), mesh(0.03, 0.125), mesh(0.06, 0.0625)]
+    for meshes in (three, three + [mesh(0.0125, 0.084)]):
+        parts = _parts(meshes)
+        assert parts == pytest.approx(np.stack([alpha.ravel(), beta.ravel()]), rel=1e-9)
+    assert _estimate(_parts(three), 0.02, 0.1) == pytest.approx(
+        max(0.25 * 4e-4 + 4e-3 * 1e-2, 0.08 * 4e-4 + 2.6e-3 * 1e-2))
+
+
+def test_w0_and_growth_refined_apart_under_a_binding_cap_keep_the_estimate_honest(monkeypatch):
+    """Where refining w0 and g together cannot meet the accuracy under the cap (here 20 000
+    cells, 3e-5 on the r 10 mm plate through the daily record), they are refined apart
+    (``planmodes._separately``: the refined mesh's w0 / g is no longer the first mesh's):
+    within the cap, and mean, bound water and layer / 4 against the exact disc within the
+    estimate."""
+    monkeypatch.setattr(planmodes, "PLANFORM_CAP", 20_000)
+    plate, disc = circle(0.01, 0.004)
+    diffusivity, law = Diffusivity((D,) * 3, 0.0), Langmuir(Rate(1e-6), Rate(3e-6))
+    exposure, accuracy = daily_record(), 3e-5
+    times = np.array([0.5, 1.5, 3.5, 6.0, 9.5, 11.5]) * DAY
+    exact = solve(disc, diffusivity, exposure, times, accuracy=1e-7, sorption=law)
+    with one_blas_thread():
+        result = solve(plate, diffusivity, exposure, times, accuracy=accuracy, sorption=law)
+    design, refined = _planform_refinement(plate, diffusivity, exposure, times, accuracy, law,
+                                           LAYER_DEPTH)   # cached: the solve's refinement
+    swing = history_swing(exposure)
+    errors = [np.max(np.abs(getattr(result, k) - getattr(exact, k))) / swing
+              for k in ("mean", "bound", "surface")]
+    assert refined.cells == result.cells <= 20_000
+    assert refined.finest / refined.growth != pytest.approx(design.finest / design.growth,
+                                                            rel=1e-3)
+    assert max(errors[0], errors[1], errors[2] / LAYER_TOLERANCE) <= result.error_estimate

@@ -63,6 +63,8 @@ LAYER_TOLERANCE = 4.0  # the contact layer may be this many times less accurate 
 MAX_REFINE = 4.0      # refine w0 by at most this factor per level (the estimate's reach)
 MIN_REFINE = 1.5      # ... and at least this (a smaller step's Richardson difference, / (r^2 - 1),
 #                       magnifies what is not yet asymptotic, and costs a level)
+SPLIT_REACH = 6.0     # w0 and g apart (``_target``): each within this factor of the last mesh
+SPLIT_GRID = 49       # ... searched on this many ratios each (geometric)
 
 
 def planform_design(geometry, d, accuracy: float, t_lo: float) -> layout.Layout:
@@ -253,8 +255,9 @@ def refined_planform(geometry, d, depth: float, finest: float, growth: float, ag
     together) until the Richardson estimate |y' - y| / (r^2 - 1) of what ``measure(source)``
     compares (its first return: the two-phase history relative to the swing, the layer's
     / ``LAYER_TOLERANCE``; the second is kept), plus the quadrature's change at ``ages``
-    (rescaled s), is at most ``tolerance``; r = 2 first, then from the estimate. The
-    error is infinite if the mesh cannot be refined."""
+    (rescaled s), is at most ``tolerance``; r = 2 first, then from the estimate. Where even
+    the cap's r would leave the estimate above the tolerance, w0 and g are refined apart
+    (``_separately``). The error is infinite if the mesh cannot be refined."""
     ages = np.asarray(ages, float)
     ages = ages[ages > 0]
     coarse = _level(geometry, d, depth, finest, growth, ages, tolerance, measure)
@@ -271,7 +274,93 @@ def refined_planform(geometry, d, depth: float, finest: float, growth: float, ag
         error = mesh + fine[4]
         if error <= tolerance or fine[2] * 2 > PLANFORM_CAP:
             return RefinedPlanform(error, fine[2], fine[3], levels, fine[1], finest, growth)
+        reach = np.sqrt(PLANFORM_CAP / fine[2])
+        if mesh / reach ** 2 > tolerance - fine[4]:
+            apart = _separately(geometry, d, depth, (finest, growth, fine), ages, tolerance,
+                                measure, levels)
+            if apart is not None:
+                return apart
         ratio = float(np.clip(SAFETY * np.sqrt(mesh / max(tolerance - fine[4], 0.5 * tolerance)),
-                              MIN_REFINE, min(MAX_REFINE, np.sqrt(PLANFORM_CAP / fine[2]))))
+                              MIN_REFINE, min(MAX_REFINE, reach)))
         coarse = fine
     return RefinedPlanform(float("inf"), coarse[2], coarse[3], levels, coarse[1], finest, growth)
+
+
+def _parts(meshes) -> np.ndarray:
+    """(2, compared values): the error coefficients (alpha, beta) of y = y* + alpha w0^2 +
+    beta g^2 through the ``meshes`` (finest, growth, ``_level``; three or more, not on one
+    line in (w0^2, g^2)), each compared value on its own: Richardson extrapolation in two
+    step sizes, exact through three meshes (where two differ from the third in w0 or g
+    alone, each term is its own one-parameter Richardson difference), least squares through
+    more (Eca & Hoekstra 2014, J. Comput. Phys. 262:104, §3: more grids than unknowns)."""
+    steps = np.array([[1.0, w ** 2, g ** 2] for w, g, _ in meshes])
+    values = np.stack([level[0].ravel() for _, _, level in meshes])
+    return np.linalg.lstsq(steps, values, rcond=None)[0][1:]
+
+
+def _estimate(parts, finest: float, growth: float) -> float:
+    """The mesh error of (finest, growth): the w0 and g terms' magnitudes added, the
+    largest over the compared values (their signs are not trusted to cancel)."""
+    return float(np.max(np.abs(parts[0]) * finest ** 2 + np.abs(parts[1]) * growth ** 2,
+                        initial=0.0))
+
+
+def _target(geometry, d, parts, meshes, budget: float):
+    """(finest, growth), within ``SPLIT_REACH`` of the last of ``meshes``, of the fewest
+    cells whose predicted mesh error (``_estimate``) is ``budget`` / ``SAFETY``^2, under the
+    cap, else of the least error under it. The cells: the cap's cheap count
+    (``layout._estimated_prism_cells``) times the largest ratio of the cells built to it
+    so far (it misses by up to 20 % as w0 and g part)."""
+    stretch = stretch_of(d)
+    finest, growth, _ = meshes[-1]
+    ratio = max(level[2] / layout._estimated_prism_cells(geometry, w, g, stretch)[0]
+                for w, g, level in meshes)
+    best = None
+    for w in finest * np.geomspace(1.0 / SPLIT_REACH, SPLIT_REACH, SPLIT_GRID):
+        for g in growth * np.geomspace(1.0 / SPLIT_REACH, SPLIT_REACH, SPLIT_GRID):
+            if g > layout.MAX_GROWTH:
+                continue
+            count = ratio * layout._estimated_prism_cells(geometry, w, g, stretch)[0]
+            if count > PLANFORM_CAP:
+                continue
+            error = _estimate(parts, w, g)
+            key = (max(error * SAFETY ** 2, budget), count)   # met: fewest cells; else: least error
+            if best is None or key < best[0]:
+                best = (key, float(w), float(g))
+    return None if best is None else best[1:]
+
+
+def _separately(geometry, d, depth, start, ages, tolerance, measure, levels):
+    """Refine w0 and g apart from the mesh ``start`` (finest, growth, ``_level``): one mesh
+    with w0 / 2 alone and one with g / 2 alone give each term's own Richardson difference
+    (``_parts``); the mesh of the fewest cells predicted to meet the tolerance follows
+    (``_target``), and its estimate comes from it and the two meshes before it. Measured on
+    the demo cam through its daily record (README): the contact layer's error follows w0,
+    the mean's g, so refining them together spends cells on the one already met. None if
+    a probe mesh cannot be built."""
+    finest, growth, _ = start
+    meshes = [start]
+    try:
+        for w, g in ((finest / 2.0, growth), (finest, growth / 2.0)):
+            meshes.append((w, g, _level(geometry, d, depth, w, g, ages, tolerance, measure)))
+    except InputError:
+        return None
+    levels += 2
+    while True:
+        parts = _parts(meshes)
+        met = [(mesh[2][2], _estimate(parts, mesh[0], mesh[1]) + mesh[2][4], mesh)
+               for mesh in meshes]
+        cheapest = min((m for m in met if m[1] <= tolerance), default=None, key=lambda m: m[0])
+        last = met[-1]
+        if cheapest is not None or last[0] * 2 > PLANFORM_CAP:
+            cells, error, (w, g, level) = cheapest or last
+            return RefinedPlanform(error, cells, level[3], levels, level[1], w, g)
+        w, g, level = meshes[-1]
+        target = _target(geometry, d, parts, meshes, tolerance - level[4])
+        if target is None or np.allclose(target, (w, g), rtol=1e-3):
+            return RefinedPlanform(last[1], last[0], level[3], levels, level[1], w, g)
+        try:
+            meshes.append((*target, _level(geometry, d, depth, *target, ages, tolerance, measure)))
+        except InputError:
+            return RefinedPlanform(last[1], last[0], level[3], levels, level[1], w, g)
+        levels += 1
