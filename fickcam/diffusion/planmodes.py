@@ -34,7 +34,8 @@ free water has settled, so an error of the slowest planform rates shows late.)
 """
 from __future__ import annotations
 
-from dataclasses import dataclass
+import logging
+from dataclasses import dataclass, replace
 from functools import lru_cache
 
 import numpy as np
@@ -52,6 +53,8 @@ from .march import ORDERING
 from .modes import Modes, sheet_factor
 from .scaling import axis_scale, stretch_of
 from .series import sheet_uptake
+
+log = logging.getLogger(__name__)
 
 FIRST_CAP = 2500      # cells of the first planform mesh (the plan's a-priori design)
 PLANFORM_CAP = 60_000  # the finest planform mesh refined to, cells
@@ -257,11 +260,13 @@ def refined_planform(geometry, d, depth: float, finest: float, growth: float, ag
     / ``LAYER_TOLERANCE``; the second is kept), plus the quadrature's change at ``ages``
     (rescaled s), is at most ``tolerance``; r = 2 first, then from the estimate. Where even
     the cap's r would leave the estimate above the tolerance, w0 and g are refined apart
-    (``_separately``). The error is infinite if the mesh cannot be refined."""
+    (``_separately``); if that ends above the tolerance too (the prediction at the cap is
+    only as good as the coarse meshes' estimate), together on, and the lower estimate is
+    kept. The error is infinite if the mesh cannot be refined."""
     ages = np.asarray(ages, float)
     ages = ages[ages > 0]
     coarse = _level(geometry, d, depth, finest, growth, ages, tolerance, measure)
-    ratio, levels = 2.0, 1
+    ratio, levels, apart = 2.0, 1, None
     while True:
         try:
             fine = _level(geometry, d, depth, finest / ratio, growth / ratio, ages, tolerance,
@@ -273,17 +278,30 @@ def refined_planform(geometry, d, depth: float, finest: float, growth: float, ag
         mesh = float(np.max(np.abs(fine[0] - coarse[0]), initial=0.0)) / (ratio ** 2 - 1.0)
         error = mesh + fine[4]
         if error <= tolerance or fine[2] * 2 > PLANFORM_CAP:
-            return RefinedPlanform(error, fine[2], fine[3], levels, fine[1], finest, growth)
+            return _lower(RefinedPlanform(error, fine[2], fine[3], levels, fine[1], finest,
+                                          growth), apart)
         reach = np.sqrt(PLANFORM_CAP / fine[2])
-        if mesh / reach ** 2 > tolerance - fine[4]:
+        log.debug("planform w0 %.3g g %.3g: %d cells, estimate %.2e; at the cap together %.2e",
+                  finest, growth, fine[2], error, mesh / reach ** 2 + fine[4])
+        if apart is None and mesh / reach ** 2 > tolerance - fine[4]:
             apart = _separately(geometry, d, depth, (finest, growth, fine), ages, tolerance,
                                 measure, levels)
-            if apart is not None:
+            if apart is not None and apart.error <= tolerance:
                 return apart
+            levels = levels if apart is None else apart.levels
         ratio = float(np.clip(SAFETY * np.sqrt(mesh / max(tolerance - fine[4], 0.5 * tolerance)),
                               MIN_REFINE, min(MAX_REFINE, reach)))
         coarse = fine
-    return RefinedPlanform(float("inf"), coarse[2], coarse[3], levels, coarse[1], finest, growth)
+    return _lower(RefinedPlanform(float("inf"), coarse[2], coarse[3], levels, coarse[1], finest,
+                                  growth), apart)
+
+
+def _lower(together: RefinedPlanform, apart) -> RefinedPlanform:
+    """Of the refinement together and the one apart (None if not tried), the one of the
+    lower estimate, with the meshes of both counted."""
+    if apart is None or together.error <= apart.error:
+        return together
+    return replace(apart, levels=together.levels)
 
 
 def _parts(meshes) -> np.ndarray:
@@ -352,6 +370,8 @@ def _separately(geometry, d, depth, start, ages, tolerance, measure, levels):
                for mesh in meshes]
         cheapest = min((m for m in met if m[1] <= tolerance), default=None, key=lambda m: m[0])
         last = met[-1]
+        log.debug("planform w0 %.3g g %.3g apart: %d cells, estimate %.2e", meshes[-1][0],
+                  meshes[-1][1], last[0], last[1])
         if cheapest is not None or last[0] * 2 > PLANFORM_CAP:
             cells, error, (w, g, level) = cheapest or last
             return RefinedPlanform(error, cells, level[3], levels, level[1], w, g)
