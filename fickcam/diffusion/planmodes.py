@@ -30,7 +30,13 @@ histories on two meshes w0 and w0/r estimate the finer one's error as their diff
 (r^2 - 1) (Richardson), and the next r follows from that estimate, until the planform's
 share of the accuracy is met or ``PLANFORM_CAP`` cells are reached. (The Fickian step
 response alone would not do: bound water lives on the slowest modes long after their
-free water has settled, so an error of the slowest planform rates shows late.)
+free water has settled, so an error of the slowest planform rates shows late.) Where the
+estimate predicts that even the cap's r cannot meet the share, w0 and g are refined apart
+(``_separately``): the error is alpha w0^2 + beta g^2 per compared value, each term from
+its own Richardson difference (a mesh with w0 / 2 alone, one with g / 2 alone), and the
+next mesh is the one of the fewest cells predicted to meet the share: on the demo cam
+through its daily record the contact layer's error is mostly w0's, the mean's both
+(opposite signs), and refining them together spent the cap on the mean's g.
 """
 from __future__ import annotations
 
@@ -352,10 +358,9 @@ def _separately(geometry, d, depth, start, ages, tolerance, measure, levels):
     """Refine w0 and g apart from the mesh ``start`` (finest, growth, ``_level``): one mesh
     with w0 / 2 alone and one with g / 2 alone give each term's own Richardson difference
     (``_parts``); the mesh of the fewest cells predicted to meet the tolerance follows
-    (``_target``), and its estimate comes from it and the two meshes before it. Measured on
-    the demo cam through its daily record (README): the contact layer's error follows w0,
-    the mean's g, so refining them together spends cells on the one already met. None if
-    a probe mesh cannot be built."""
+    (``_target``), its estimate from all the meshes apart (least squares), and so on while
+    the last mesh is under half the cap. The cheapest mesh whose estimate meets the
+    tolerance is kept, else the last. None if a probe mesh cannot be built."""
     finest, growth, _ = start
     meshes = [start]
     try:
