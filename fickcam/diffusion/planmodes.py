@@ -36,7 +36,8 @@ estimate predicts that even the cap's r cannot meet the share, w0 and g are refi
 its own Richardson difference (a mesh with w0 / 2 alone, one with g / 2 alone), and the
 next mesh is the one of the fewest cells predicted to meet the share: on the demo cam
 through its daily record the contact layer's error is mostly w0's, the mean's both
-(opposite signs), and refining them together spent the cap on the mean's g.
+(opposite signs), and refining them together spent the cap on a finer g than either
+needed (README, "Non-Fickian sorption").
 """
 from __future__ import annotations
 
