@@ -275,6 +275,44 @@ def skin_margin(law, exposure, times) -> float:
     return 1.0 + SKIN_ESTIMATE_MARGIN * (math.sqrt(spread(law, exposure, times)) - 1.0)
 
 
+@dataclass(frozen=True)
+class Levels:
+    """The corrected result on each 3-D plan of one solve, all with the same sheet and
+    planform references (those refined from the finest plan)."""
+
+    marched: list      # Level per plan, coarsest first
+    results: list      # (mean, layer) corrected, per plan
+    sheet: DiffusionResult
+    planform: Pair     # the planform reference
+    planform_error: float
+    planform_cells: int
+    factor: float      # the planform's refinement R
+    scale: float       # the swing the estimates are relative to
+
+
+def corrected_levels(geometry, diffusivity, law, exposure, times, accuracy: float,
+                     levels=MESH_LEVELS, *, surface_layer_depth=5e-4, store_fields=False,
+                     part="") -> Levels:
+    """The corrected product (module docstring) on the 3-D plans of ``levels`` (accuracies
+    of ``nonlinear_plan``, coarsest first); ``store_fields`` keeps the finest one's."""
+    times = np.asarray(times, float)
+    setting = Setting.of(geometry, diffusivity, law, exposure, times, surface_layer_depth,
+                         steps_for(accuracy), part)
+    sheet = sheet_reference(geometry, diffusivity, law, exposure, times, accuracy)
+    reference = Pair(sheet.mean, sheet.surface)
+    plans = [level_plan(geometry, diffusivity, law, exposure, times, a, setting.per_doubling)
+             for a in levels]
+    marched = [three_d(setting, p, store_fields and p is plans[-1]) for p in plans]
+    scale = swing(exposure, times) or 1.0
+    planform, planform_error, planform_cells, factor = refined_reference(
+        setting, marched[-1], reference, accuracy, scale)
+    surface = np.asarray(exposure.surface_before(times), float)  # g(t-): the state there
+    results = [corrected(m.plate, (m.slab, reference), (m.planform, planform), surface)
+               for m in marched]
+    return Levels(marched, results, sheet, planform, planform_error, planform_cells, factor,
+                  scale)
+
+
 def solve_corrected(geometry, diffusivity, law, exposure, times, accuracy: float, *,
                     surface_layer_depth=5e-4, store_fields=False, part="",
                     reason="") -> DiffusionResult:
@@ -284,31 +322,23 @@ def solve_corrected(geometry, diffusivity, law, exposure, times, accuracy: float
     error of the marches (``PAIR_TO_EXTRAPOLATED`` pair^2). ``store_fields``: the finer
     3-D plan's own cells (not corrected)."""
     times = np.asarray(times, float)
-    setting = Setting.of(geometry, diffusivity, law, exposure, times, surface_layer_depth,
-                         steps_for(accuracy), part)
-    sheet = sheet_reference(geometry, diffusivity, law, exposure, times, accuracy)
-    reference = Pair(sheet.mean, sheet.surface)
-    plans = [level_plan(geometry, diffusivity, law, exposure, times, a, setting.per_doubling)
-             for a in MESH_LEVELS]
-    marched = [three_d(setting, p, store_fields and p is plans[-1]) for p in plans]
-    scale = swing(exposure, times) or 1.0
-    planform, planform_error, planform_cells, factor = refined_reference(
-        setting, marched[-1], reference, accuracy, scale)
-    surface = np.asarray(exposure.surface_before(times), float)  # g(t-): the state there
-    results = [corrected(m.plate, (m.slab, reference), (m.planform, planform), surface)
-               for m in marched]
+    run = corrected_levels(geometry, diffusivity, law, exposure, times, accuracy,
+                           surface_layer_depth=surface_layer_depth,
+                           store_fields=store_fields, part=part)
+    marched, results, sheet, scale = run.marched, run.results, run.sheet, run.scale
     unseparated = gap(results[0], results[-1], scale) * ORDER_ONE * skin_margin(
         law, exposure, times)
-    pair = max(marched[-1].plate.pair, planform.pair) / scale
-    estimate = (sheet.error_estimate + planform_error + unseparated
+    pair = max(marched[-1].plate.pair, run.planform.pair) / scale
+    estimate = (sheet.error_estimate + run.planform_error + unseparated
                 + PAIR_TO_EXTRAPOLATED * pair ** 2)
     fine = marched[-1]
-    note = (f"{reason.split(TARGET)[0]}; measured: sheet {sheet.error_estimate:.1e}, planform x{factor:g} "
-            f"({planform_cells} cells) {planform_error:.1e}, 3-D change {unseparated:.1e}")
+    note = (f"{reason.split(TARGET)[0]}; measured: sheet {sheet.error_estimate:.1e}, "
+            f"planform x{run.factor:g} ({run.planform_cells} cells) {run.planform_error:.1e}, "
+            f"3-D change {unseparated:.1e}")
     if estimate > accuracy:
         note += "; capped: error above the requested accuracy"
     result = DiffusionResult(times, results[-1][0], results[-1][1], "solid",
-                             fine.cells + planform_cells,
+                             fine.cells + run.planform_cells,
                              sum(m.plate.steps for m in marched), float(estimate), note)
     if store_fields:
         result.fields, result.cell_coordinates = fine.plate.fields, fine.coordinates
