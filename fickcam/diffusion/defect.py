@@ -60,13 +60,12 @@ ROMBERG = 1.0 / 3.0  # extrapolated error / change between two extrapolations: o
 #   assumed; measured 2.7 (mean) and 5.6 (layer) on the demo cam's Fickian planform at 1 d
 #   (errors of the x4 extrapolation 2e-5 and 1.4e-4 against the plane model)
 SKIN_ESTIMATE_MARGIN = 1.0  # on the 3-D change of a drying part (``skin_margin``), the cells'
-#   margin (``nonlinear.SKIN_CELLS_MARGIN``). Measured (benchmarks/dc_defect_correction.py
-#   plate, plate-order) on the 4 x 3 x 2 mm plate drying, at 1e-2: the corrected result
-#   errs 3.0e-3 (k = 2) and 3.5e-3 (k = 3) against the stored 3-D runs, and its 0.5 plan is
+#   margin (``nonlinear.SKIN_CELLS_MARGIN``). Measured on the 4 x 3 x 2 mm plate drying at
+#   1e-2 (benchmarks/dc_defect_correction.py plate-order, skin-margin): the 0.5 plan is
 #   0.29 (k = 2) and 1.62 (k = 3: the changes stop shrinking as the plans' growth changes)
-#   times the (1, 0.5) change from the 0.125 plan. A margin 0 keeps the estimate above the
-#   error by only 1.2 at k = 3 (2.4 at k = 2); 2 needs 0.82; 1 gives 2.2 (k = 3) and 3.9
-#   (k = 2); the old 4 (measured before the Kirchhoff face mean) gave 5.2 and 8.5
+#   times the (1, 0.5) change from the 0.125 plan; the estimate / the distance to the stored
+#   3-D runs (2.97e-3, 3.54e-3) is 2.54 and 1.31 with a margin 0, 4.01 and 2.28 with 1, 8.44
+#   and 5.20 with the old 4 (set before the Kirchhoff face mean); a safety of 2 needs 0.71
 TARGET = "; est. = the target: the run measures its own and warns above it"
 ORDER_ONE = 1.0 / (math.sqrt(2.0) - 1.0)  # the finer 3-D plan's error / the change between
 #   the two, at order 1 in w0 (w0 ~ sqrt(accuracy): ratio sqrt 2). Order 2 (a factor 1) is
@@ -278,8 +277,9 @@ def skin_margin(law, exposure, times) -> float:
     1 + SKIN_ESTIMATE_MARGIN (sqrt(max f / min f) - 1), as the cells' margin of
     ``nonlinear_plan``: on the 4 x 3 x 2 mm plate drying the change between the plans need not
     shrink (k = 3: the 0.5 plan 1.6 times the change from the 0.125 one) and the result
-    errs 3.0e-3 (k = 2) and 3.5e-3 (k = 3) against the stored 3-D runs, 2.2-3.9 times below
-    the estimate with it (``SKIN_ESTIMATE_MARGIN``; benchmarks/dc_defect_correction.py)."""
+    errs 3.0e-3 (k = 2) and 3.5e-3 (k = 3) against the stored 3-D runs at 1e-2, 4.0 and 2.3
+    times below the estimate with it (``SKIN_ESTIMATE_MARGIN``;
+    benchmarks/dc_defect_correction.py)."""
     if not dries_to_a_skin(law, exposure):
         return 1.0
     return 1.0 + SKIN_ESTIMATE_MARGIN * (math.sqrt(spread(law, exposure, times)) - 1.0)
