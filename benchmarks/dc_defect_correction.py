@@ -2,18 +2,28 @@
 against independent references, and the measurement that dropped the Fickian D_ref
 correction.
 
-    python benchmarks/dc_defect_correction.py plate-reference   # tests/data/dc_plate_reference.json
-    python benchmarks/dc_defect_correction.py plate              # auto against it
+    python benchmarks/dc_defect_correction.py plate-reference [K [absorption|desorption]]
+                                   # tests/data/dc_plate_reference.json (K = 2), _k3.json (3)
+    python benchmarks/dc_defect_correction.py plate              # auto against them
+    python benchmarks/dc_defect_correction.py plate-order [K [absorption|desorption]]
+                                                  # the 3-D plans' order (exponent K, 2)
+    python benchmarks/dc_defect_correction.py skin-margin [M ...] # drying: estimate / error
     python benchmarks/dc_defect_correction.py demo-cam           # the README table
     python benchmarks/dc_defect_correction.py fickian-reference  # why not Fick at Crank's mean D
 
 ``plate-reference``: the 4 x 3 x 2 mm plate of the tests (D = 5e-12 m^2/s exp(2 c/Mm),
 Mm = 2 %, absorption 0 -> Mm and desorption Mm -> 0) by the 3-D cells alone (``model:
 solid``, FiPy prisms on half the thickness) at ``REFERENCE_ACCURACY``: a brute-force run,
-once, with its own estimate stored beside it. ``demo-cam``: configs/singh2017_cam.yaml
+once, with its own estimate stored beside it; ``plate-reference 3 desorption``: the same
+drying with k = 3 (tests/data/dc_plate_reference_k3.json, 297 CPU s). ``demo-cam``: configs/singh2017_cam.yaml
 with ``exponent`` k = 0, 1, 2 at accuracies 1e-2, 3e-3, 1e-3: cells, CPU s, estimate;
 k = 0 against the Fickian plane model at 1e-5 (the exact reference), k = 1, 2 against the
 corrected run at 1e-3 (self-consistency) and the 3-D cells alone at ``CAM_SOLID``.
+``plate-order``: the same plate, the corrected result (``defect.corrected_levels``, one
+sheet and one planform reference for all) on the 3-D plans of ``ORDER_LEVELS``: the
+changes between successive plans, their observed order in the finest cell width w0, and
+each plan's error against the stored brute-force runs; the 3-D cells alone beside it.
+``skin-margin``: the drying plates' estimate / error for several ``SKIN_ESTIMATE_MARGIN``.
 ``fickian-reference``: the demo cam's z widths as a 1-D slab, the D(c) sheet and the
 Fickian sheet at Crank's weighted-mean D (1975 §9.3) against fine references.
 CPU time: time.process_time, one BLAS thread (set OPENBLAS_NUM_THREADS=1).
@@ -34,9 +44,11 @@ REFERENCE_ACCURACY = {"absorption": 1e-2, "desorption": 3e-2}  # desorption: 106
 CAM_SOLID = 1e-2
 H, D, MM = 2e-3, 5e-12, 2.0
 TAU = [0.0, 0.01, 0.03, 0.1, 0.3]
+ORDER_LEVELS = (1.0, 0.5, 0.25, 0.125)   # plan accuracies of ``plate-order``
+ORDER_ACCURACY = 1e-2   # ``plate-order``'s sheet reference and steps: those of ``plate`` at 1e-2
 
 
-def plate_case(direction: str):
+def plate_case(direction: str, exponent: float = 2.0):
     from fickcam.diffusion import CamPlate, Diffusivity, Exposure
     from fickcam.diffusion.sorption import ConcentrationDependent
 
@@ -44,16 +56,25 @@ def plate_case(direction: str):
     start, surface = (0.0, MM) if direction == "absorption" else (MM, 0.0)
     exposure = Exposure.piecewise([0.0, times[-1]], [330.0], [surface], initial_moisture=start)
     plate = CamPlate(np.array([0, 4e-3, 4e-3, 0.0]), np.array([0, 0, 3e-3, 3e-3]), H)
-    law = ConcentrationDependent(MM, exponent=2.0)
+    law = ConcentrationDependent(MM, exponent=exponent)
     return plate, Diffusivity((D, D, D), 0.0), exposure, times, law
 
 
-def plate_reference() -> None:
+def reference_file(exponent: float) -> Path:
+    """The stored brute-force runs of exponent k (k = 2: the tests' main file)."""
+    return REFERENCE if exponent == 2.0 else REFERENCE.with_name(
+        f"dc_plate_reference_k{exponent:g}.json")
+
+
+def plate_reference(exponent: str = "2", *directions: str) -> None:
     from fickcam.diffusion import solve
 
-    out = {"tau": TAU, "exponent": 2.0, "mm": MM, "made_by": "benchmarks/dc_defect_correction.py"}
-    for direction in ("absorption", "desorption"):
-        plate, d, exposure, times, law = plate_case(direction)
+    k = float(exponent)
+    out = {"tau": TAU, "exponent": k, "mm": MM,
+           "made_by": "benchmarks/dc_defect_correction.py plate-reference "
+                      + " ".join([exponent, *directions])}
+    for direction in directions or ("absorption", "desorption"):
+        plate, d, exposure, times, law = plate_case(direction, k)
         start = time.process_time()
         result = solve(plate, d, exposure, times, accuracy=REFERENCE_ACCURACY[direction],
                        model="solid", sorption=law)
@@ -62,25 +83,115 @@ def plate_reference() -> None:
                           "estimate": result.error_estimate, "cells": result.cells,
                           "cpu_s": time.process_time() - start}
         print(direction, out[direction], flush=True)
-    REFERENCE.write_text(json.dumps(out, indent=1) + "\n")
+    reference_file(k).write_text(json.dumps(out, indent=1) + "\n")
 
 
 def plate_record() -> None:
-    """``auto`` (the corrected product) on the plate against the stored brute-force runs."""
+    """``auto`` (the corrected product) on the plate against the stored brute-force runs
+    (k = 2 both ways, k = 3 drying), in ``defect.gap``'s norm (the layer / 4) beside."""
     from fickcam.diffusion import solve
+    from fickcam.diffusion.defect import gap
 
-    stored = json.loads(REFERENCE.read_text())
-    for direction in ("absorption", "desorption"):
-        plate, d, exposure, times, law = plate_case(direction)
-        reference = stored[direction]
+    for k, direction in ((2.0, "absorption"), (2.0, "desorption"), (3.0, "desorption")):
+        plate, d, exposure, times, law = plate_case(direction, k)
+        reference = json.loads(reference_file(k).read_text())[direction]
+        truth = (np.asarray(reference["mean"]), np.asarray(reference["layer"]))
         for accuracy in (3e-2, 1e-2):
             start = time.process_time()
             result = solve(plate, d, exposure, times, accuracy=accuracy, sorption=law)
             cpu = time.process_time() - start
             mean = np.max(np.abs(result.mean - reference["mean"])) / MM
             layer = np.max(np.abs(result.surface - reference["layer"])) / MM
-            print(f"| {direction} | {accuracy:g} | {result.error_estimate:.1e} | {mean:.1e} | "
-                  f"{layer:.1e} | {result.cells} | {cpu:.1f} |", flush=True)
+            error = gap((result.mean, result.surface), truth, MM)
+            print(f"| {k:g} | {direction} | {accuracy:g} | {result.error_estimate:.1e} | "
+                  f"{mean:.1e} | {layer:.1e} | {result.error_estimate / error:.1f} | "
+                  f"{result.cells} | {cpu:.1f} |", flush=True)
+
+
+def skin_margins(*margins: str) -> None:
+    """The drying plates (k = 2, 3) at accuracy 1e-2 with ``defect.SKIN_ESTIMATE_MARGIN`` set
+    to each of ``margins`` (default 0, 1, 4): the estimate / the distance to the stored run."""
+    from fickcam.diffusion import defect
+
+    kept = defect.SKIN_ESTIMATE_MARGIN
+    try:
+        for margin in [float(m) for m in margins or ("0", "1", "4")]:
+            defect.SKIN_ESTIMATE_MARGIN = margin
+            for k in (2.0, 3.0):
+                plate, d, exposure, times, law = plate_case("desorption", k)
+                stored = json.loads(reference_file(k).read_text())["desorption"]
+                result = defect.solve_corrected(plate, d, law, exposure, times, 1e-2)
+                error = defect.gap((result.mean, result.surface),
+                                   (np.asarray(stored["mean"]), np.asarray(stored["layer"])), MM)
+                print(f"| {margin:g} | {k:g} | {result.error_estimate:.2e} | {error:.2e} | "
+                      f"{result.error_estimate / error:.2f} |", flush=True)
+    finally:
+        defect.SKIN_ESTIMATE_MARGIN = kept
+
+
+def plate_order(exponent: str = "2", *directions: str) -> None:
+    """The corrected plate on the plans of ``ORDER_LEVELS`` (module docstring), D = D(T)
+    exp(k c/Mm) with k = ``exponent``: per output, of the swing, each plan's error against
+    the stored runs (k = 2 only; theirs: their estimate), the changes d_i between successive
+    plans and p_i = log(|d_i| / |d_i+1|) / log(w0_i / w0_i+1); the same for the 3-D cells
+    alone ("3-D"). Then, in ``defect.gap``'s norm (largest over the outputs, the layer / 4),
+    the change between the ``MESH_LEVELS`` plans (what ``solve_corrected`` multiplies by
+    ``ORDER_ONE``) beside the finer plan's distance to the finest plan (its unseparated
+    error, less the finest plan's own) and to the stored run."""
+    from fickcam.diffusion.defect import MESH_LEVELS, corrected_levels, gap
+
+    stored = json.loads(REFERENCE.read_text())
+    k = float(exponent)
+    for direction in directions or ("absorption", "desorption"):
+        plate, d, exposure, times, law = plate_case(direction, k)
+        start = time.process_time()
+        run = corrected_levels(plate, d, law, exposure, times, ORDER_ACCURACY, ORDER_LEVELS)
+        widths = np.array([m.plan.finest for m in run.marched])
+        known = k == stored["exponent"]
+        print(f"## k = {k:g}, {direction}, accuracy {ORDER_ACCURACY:g}: "
+              f"{time.process_time() - start:.1f} CPU s; plans {ORDER_LEVELS}, cells "
+              f"{[m.cells for m in run.marched]}, (planform, z) cells "
+              f"{[m.plan.cells_per_axis for m in run.marched]}, w0 "
+              f"{np.round(widths, 4).tolist()}, growth {[m.plan.growth for m in run.marched]}; "
+              f"sheet est. {run.sheet.error_estimate:.1e}, planform x{run.factor:g} est. "
+              f"{run.planform_error:.1e}" + (f"; stored run's est. "
+                                            f"{stored[direction]['estimate']:.1e}" if known else ""),
+              flush=True)
+        for index, quantity in ((0, "mean"), (1, "layer")):
+            corrected = np.array([r[index] for r in run.results]) / MM
+            alone = np.array([(m.plate.mean, m.plate.layer)[index] for m in run.marched]) / MM
+            truth = (np.asarray(stored[direction][quantity]) / MM if known
+                     else np.full(len(TAU), np.nan))
+            for label, values in (("corrected", corrected), ("3-D", alone)):
+                order_table(f"{direction} {quantity} {label}", values, truth, widths)
+        coarse, fine = (run.results[ORDER_LEVELS.index(a)] for a in MESH_LEVELS)
+        change = gap(coarse, fine, MM)
+        line = (f"gap norm: change {MESH_LEVELS} {change:.2e}; plan {MESH_LEVELS[-1]:g} to plan "
+                f"{ORDER_LEVELS[-1]:g} {gap(fine, run.results[-1], MM):.2e} "
+                f"(x{gap(fine, run.results[-1], MM) / change:.2f} the change)")
+        if known:
+            truth = (np.asarray(stored[direction]["mean"]), np.asarray(stored[direction]["layer"]))
+            line += (f"; to the stored run: plan {MESH_LEVELS[-1]:g} {gap(fine, truth, MM):.2e} "
+                     f"(x{gap(fine, truth, MM) / change:.2f}), plan {ORDER_LEVELS[-1]:g} "
+                     f"{gap(run.results[-1], truth, MM):.2e}")
+        print(line, flush=True)
+
+
+def order_table(title: str, values: np.ndarray, truth: np.ndarray, widths: np.ndarray) -> None:
+    """Rows per output time (tau*): errors of each plan, changes, observed orders."""
+    changes = values[:-1] - values[1:]
+    print(f"### {title}\n| tau* | " + " | ".join(f"err {a:g}" for a in ORDER_LEVELS)
+          + " | " + " | ".join(f"d{i + 1}" for i in range(changes.shape[0])) + " | "
+          + " | ".join(f"p{i + 1}" for i in range(changes.shape[0] - 1)) + " |")
+    ratios = np.log(widths[:-1] / widths[1:])
+    for j, tau in enumerate(TAU):
+        if tau == 0.0:
+            continue
+        orders = [np.log(abs(changes[i, j]) / abs(changes[i + 1, j])) / ratios[i]
+                  if changes[i + 1, j] != 0.0 else np.nan for i in range(changes.shape[0] - 1)]
+        print(f"| {tau:g} | " + " | ".join(f"{v:+.2e}" for v in values[:, j] - truth[j])
+              + " | " + " | ".join(f"{v:+.2e}" for v in changes[:, j]) + " | "
+              + " | ".join(f"{v:.2f}" for v in orders) + " |", flush=True)
 
 
 def demo_cam(k: float):
@@ -192,5 +303,7 @@ def sheet_uptake_series(tau):
 
 
 if __name__ == "__main__":
-    {"plate-reference": plate_reference, "plate": plate_record, "demo-cam": cam_table,
-     "fickian-reference": fickian_reference}[sys.argv[1]]()
+    {"plate-reference": plate_reference, "plate": plate_record, "plate-order": plate_order,
+     "skin-margin": skin_margins,
+     "demo-cam": cam_table,
+     "fickian-reference": fickian_reference}[sys.argv[1]](*sys.argv[2:])

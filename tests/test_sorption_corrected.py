@@ -10,6 +10,7 @@ import numpy as np
 import pytest
 
 from fickcam.diffusion import CamPlate, Diffusivity, Exposure, plan, solve
+from fickcam.diffusion.defect import gap
 from fickcam.diffusion.planmodes import LAYER_TOLERANCE
 from fickcam.diffusion.sorption import ConcentrationDependent
 
@@ -50,16 +51,39 @@ def test_a_constant_factor_is_the_fickian_result_to_round_off():
                                   solve(PLATE, faster, wet, TIMES).mean)
 
 
+def stored_error(result, direction):
+    """The result's distance to the stored 3-D run in the estimate's norm (``defect.gap``:
+    the largest over the outputs of the mean's and the layer's / LAYER_TOLERANCE)."""
+    reference = REFERENCE[direction]
+    return gap((result.mean, result.surface), (np.asarray(reference["mean"]),
+                                               np.asarray(reference["layer"])), MM)
+
+
 def test_the_corrected_plate_matches_a_brute_force_3d_run_within_the_accuracy(absorbed):
     """k = 2 absorption at accuracy 1e-2 against the 3-D cells alone at accuracy 1e-2
     (``model: solid``): within the requested accuracy plus the reference's own estimate
-    (mean; the contact layer LAYER_TOLERANCE times that, as everywhere)."""
+    (mean; the contact layer LAYER_TOLERANCE times that, as everywhere), and within the
+    run's own estimate (measured: 1.3e-3 against 9.6e-3; benchmarks/dc_defect_correction.py
+    plate)."""
     reference = REFERENCE["absorption"]
     allowed = 1e-2 + reference["estimate"]
-    assert absorbed.error_estimate <= 1e-2
+    assert stored_error(absorbed, "absorption") <= absorbed.error_estimate <= 1e-2
     assert np.max(np.abs(absorbed.mean - reference["mean"])) / MM <= allowed
     assert np.max(np.abs(absorbed.surface - reference["layer"])) / MM <= LAYER_TOLERANCE * allowed
     assert absorbed.mean[-1] == pytest.approx(MM, abs=absorbed.error_estimate * MM)
+
+
+def test_the_drying_plates_estimate_covers_its_error_with_the_skin_margins_safety():
+    """k = 2 drying (Mm -> 0, a dry skin) at accuracy 3e-2 against the 3-D cells alone at
+    3e-2: the estimate (with ``defect.skin_margin``) is at least twice the distance to the
+    stored run (measured 2.8e-3 against 1.3e-2; ``SKIN_ESTIMATE_MARGIN`` = 1 was chosen for
+    that safety on the k = 3 plate at 1e-2, 2.28, where 0 keeps 1.31: too slow for a test,
+    benchmarks/dc_defect_correction.py skin-margin; here 0 would still pass) and within the
+    accuracy; the result within the accuracy plus the reference's estimate."""
+    dried = solve(PLATE, ISOTROPIC, exposure(MM, 0.0), TIMES, accuracy=3e-2, sorption=law(2.0))
+    error = stored_error(dried, "desorption")
+    assert 2.0 * error <= dried.error_estimate <= 3e-2
+    assert error <= 3e-2 + REFERENCE["desorption"]["estimate"]
 
 
 def test_absorption_runs_ahead_of_desorption_and_both_stay_bounded():
