@@ -8,9 +8,10 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from hypothesis import given, settings, strategies as st
 
 from fickcam.diffusion import CamPlate, Diffusivity, Exposure, plan, solve
-from fickcam.diffusion.defect import gap
+from fickcam.diffusion.defect import gap, three_levels
 from fickcam.diffusion.planmodes import LAYER_TOLERANCE
 from fickcam.diffusion.sorption import ConcentrationDependent
 
@@ -106,3 +107,38 @@ def test_check_names_the_corrected_product_for_a_cam_plate():
     solid = plan(PLATE, ISOTROPIC, exposure(0.0, MM), TIMES, accuracy=1e-2, model="solid",
                  sorption=law(2.0))
     assert "sheet x" not in solid.reason
+
+
+WIDTHS = np.array([4.0, 2.0, 1.0])   # three planform meshes, each refined 2x
+TRUTH = np.array([0.0, 0.4, 1.1])    # a quantity over three outputs
+
+
+@settings(max_examples=200, deadline=None)
+@given(order=st.floats(1.6, 4.0), higher=st.floats(-0.5, 0.5), finest=st.floats(0.01, 0.1),
+       sign=st.sampled_from((-1.0, 1.0)))
+def test_the_three_mesh_estimate_bounds_the_finest_meshs_error_from_order_1_6(
+        order, higher, finest, sign):
+    """An error a h^p (1 + b h) shrinking monotonically (Roache's grid convergence index,
+    ``three_levels``): the estimate is at least the finest mesh's error."""
+    shape = np.array([1.0, -0.5, 0.1])
+    values = [TRUTH + sign * shape * (w ** order) * (1.0 + higher * w)
+              for w in finest * WIDTHS]
+    assert three_levels(*values) >= np.max(np.abs(values[-1] - TRUTH))
+
+
+@settings(max_examples=100, deadline=None)
+@given(contraction=st.floats(3.0, 40.0), size=st.floats(1e-8, 1e-2))
+def test_the_three_mesh_estimate_bounds_an_oscillating_error(contraction, size):
+    """An error changing sign between meshes and shrinking by ``contraction`` (the demo cam's
+    contact layer at 1 d: -14): the finest mesh within half its change."""
+    values = [TRUTH + size * (-contraction) ** (2 - level) for level in range(3)]
+    assert three_levels(*values) >= np.max(np.abs(values[-1] - TRUTH))
+
+
+def test_the_three_mesh_estimate_trusts_a_second_order_sequence_more_than_a_first():
+    """Monotone order 2: 1.25 |change| / 3; order 1 (rho = 2): the whole change."""
+    second = [TRUTH + w ** 2 for w in 0.1 * WIDTHS]
+    first = [TRUTH + w for w in 0.1 * WIDTHS]
+    change = (0.1 ** 2) * (4.0 - 1.0)
+    assert three_levels(*second) == pytest.approx(1.25 * change / 3.0, rel=1e-9)
+    assert three_levels(*first) == pytest.approx(0.1 * (2.0 - 1.0), rel=1e-9)

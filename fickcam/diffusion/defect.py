@@ -56,9 +56,6 @@ REFINE = (2.0, 4.0)        # planform refinements (finest and growth / R) for Ri
 PLANFORM_CELLS = 60_000    # the finest planform tried
 SHEET_SHARE = 0.1          # the fine sheet's accuracy: this share of the requested one
 PLANFORM_SHARE = 0.5       # of the accuracy: the planform's Richardson estimate
-ROMBERG = 1.0 / 3.0  # extrapolated error / change between two extrapolations: order 2
-#   assumed; measured 2.7 (mean) and 5.6 (layer) on the demo cam's Fickian planform at 1 d
-#   (errors of the x4 extrapolation 2e-5 and 1.4e-4 against the plane model)
 SKIN_ESTIMATE_MARGIN = 1.0  # on the 3-D change of a drying part (``skin_margin``), the cells'
 #   margin (``nonlinear.SKIN_CELLS_MARGIN``). Measured on the 4 x 3 x 2 mm plate drying at
 #   1e-2 (benchmarks/dc_defect_correction.py plate-order, skin-margin): the 0.5 plan is
@@ -236,33 +233,78 @@ def three_d(setting: Setting, chosen: Plan, keep: bool) -> Level:
 
 def refined_reference(setting: Setting, level: Level, sheet: Pair, accuracy: float, scale):
     """(planform reference Pair, estimate, planform cells, factor R): the level's planform
-    refined by R in ``REFINE`` (finest and growth / R), Richardson-extrapolated from the
-    last two (second order: p_R + (p_R - p_R/2) / 3), until the estimate is
-    ``PLANFORM_SHARE`` of the accuracy or the next mesh would pass ``PLANFORM_CELLS``. The
-    estimate: the change from the level's planform to the first refinement (R = 1 may be
-    short of the asymptotic range: on the demo cam with k = 1 the change the first
-    extrapolation made, (p_2 - p_1) / 3, was half of what the next one found) or, once there
-    are two extrapolations, ``ROMBERG`` x the change between them (Romberg's check)."""
+    refined by R in ``REFINE`` (finest and growth / R) until the estimate is
+    ``PLANFORM_SHARE`` of the accuracy or the next mesh would pass ``PLANFORM_CELLS``.
+    After the first refinement: the Richardson extrapolation of the two (second order:
+    p_2 + (p_2 - p_1) / 3), its estimate the whole change p_2 - p_1 (R = 1 may be short of
+    the asymptotic range: on the demo cam with k = 1 the change the first extrapolation
+    made, (p_2 - p_1) / 3, was half of what the next one found). After the second: the
+    finest mesh, the mean's and the layer's errors by ``three_levels`` (the corrected
+    result is affine in the planform reference, so its changes are the reference's).
+    Before, the second extrapolation with a third of its change from the first (Romberg's
+    check): on the demo cam (k = 2, 1e-3) an estimate 9.0e-4 for an error 1.8e-4."""
     surface = np.asarray(setting.exposure.surface_before(setting.times), float)
 
     def result(reference):
         return corrected(level.plate, (level.slab, sheet), (level.planform, reference), surface)
-    previous, factor, cells, earlier = level.moments, 1.0, 0, None
+    planforms, cells, factor = [level.moments], 0, 1.0
     for refine in REFINE:
         if cells and level.planform_cells * refine ** 2 > PLANFORM_CELLS:
             break
         _, fine, cells = setting.planform(level.plan.finest / refine,
                                           level.plan.growth / refine)
-        weight = 1.0 / ((refine / factor) ** 2 - 1.0)
-        extrapolated = Pair(fine.mean + weight * (fine.mean - previous.mean),
-                            fine.layer + weight * (fine.layer - previous.layer), None,
-                            fine.steps, fine.pair)
-        estimate = (gap(result(previous), result(fine), scale) if earlier is None else
-                    ROMBERG * gap(result(earlier), result(extrapolated), scale))
-        previous, factor, earlier = fine, refine, extrapolated
+        planforms.append(fine)
+        weight, factor = 1.0 / ((refine / factor) ** 2 - 1.0), refine
+        if len(planforms) == 2:
+            reference = replace(fine, mean=fine.mean + weight * (fine.mean - planforms[0].mean),
+                                layer=fine.layer + weight * (fine.layer - planforms[0].layer))
+            estimate = gap(result(planforms[0]), result(fine), scale)
+        else:
+            reference = fine
+            mean, layer = (three_levels(*(result(p)[i] for p in planforms[-3:]))
+                           for i in range(2))
+            estimate = max(mean, layer / LAYER_TOLERANCE) / scale
         if estimate <= PLANFORM_SHARE * accuracy:
             break
-    return extrapolated, estimate, cells, factor
+    return reference, estimate, cells, factor
+
+
+CONTRACTION = 3.0  # |change ratio| between two 2x refinements read as converging (order >= 1.6)
+SAFETY = 1.25      # Roache's factor on the three-grid convergence index
+
+
+def three_levels(coarse, middle, fine) -> float:
+    """The error of ``fine``, one quantity (an array over the outputs) on the finest of
+    three meshes each refined by the same factor: the three-grid check of Roache (1998,
+    Verification and Validation in Computational Science and Engineering, ch. 5; Celik et
+    al. 2008, J. Fluids Eng. 130:078001, eqs. 1-5). The ratio of the changes,
+    rho = (middle - coarse) / (fine - middle), is read where the finer change is at least a
+    tenth of its largest:
+
+    - rho >= ``CONTRACTION`` throughout (monotone, at least order log2 3 = 1.6 under
+      2x refinement): the grid convergence index 1.25 |fine - middle| / (rho - 1), with
+      the smallest rho seen (for an error a h^p, |fine - middle| / (rho - 1) is the error);
+    - |rho| >= ``CONTRACTION`` throughout (converging, but oscillating or changing sign):
+      half the change (the rest of a series contracting by 3 or more, alternating or
+      not, is at most |fine - middle| / 2);
+    - else the whole change (an upper bound from order 1 on).
+
+    The finest mesh is the answer, not an extrapolation: on the demo cam's D(c) planform
+    (k = 2, accuracy 1e-3) the contact layer at 1 d flips sign between the meshes
+    (rho = -14), and there the second-order extrapolation erred 1.8e-4 of the swing
+    (layer / 4; against the 8x mesh, 108 000 cells), the 4x mesh itself 2e-5; an
+    order-2 extrapolation of a higher-order sequence also overshoots."""
+    changes = (middle - coarse, fine - middle)
+    largest = float(np.max(np.abs(changes[1])))
+    if largest == 0.0:
+        return 0.0
+    significant = np.abs(changes[1]) >= 0.1 * largest
+    rho = changes[0][significant] / changes[1][significant]
+    if np.all(rho >= CONTRACTION):
+        return SAFETY * largest / (float(np.min(rho)) - 1.0)
+    if np.all(np.abs(rho) >= CONTRACTION):
+        return 0.5 * largest
+    return largest
 
 
 def gap(a, b, scale: float) -> float:
