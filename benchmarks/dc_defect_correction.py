@@ -6,6 +6,7 @@ correction.
     python benchmarks/dc_defect_correction.py plate              # auto against it
     python benchmarks/dc_defect_correction.py demo-cam           # the README table
     python benchmarks/dc_defect_correction.py fickian-reference  # why not Fick at Crank's mean D
+    python benchmarks/dc_defect_correction.py soak-dry           # wetted, then dried: plans, CPU
 
 ``plate-reference``: the 4 x 3 x 2 mm plate of the tests (D = 5e-12 m^2/s exp(2 c/Mm),
 Mm = 2 %, absorption 0 -> Mm and desorption Mm -> 0) by the 3-D cells alone (``model:
@@ -16,6 +17,9 @@ k = 0 against the Fickian plane model at 1e-5 (the exact reference), k = 1, 2 ag
 corrected run at 1e-3 (self-consistency) and the 3-D cells alone at ``CAM_SOLID``.
 ``fickian-reference``: the demo cam's z widths as a 1-D slab, the D(c) sheet and the
 Fickian sheet at Crank's weighted-mean D (1975 §9.3) against fine references.
+``soak-dry``: the plate wetted to Mm for 1.5 h^2/D, then dried (``SOAK_DRY_TAU`` outputs,
+the first at 1e-3 h^2/D), k = 3 and 5: the cells of the two 3-D plans, then ``auto`` at 0.1
+(CPU s, cells, estimate and its parts) against ``auto`` at 0.03 (self-consistency).
 CPU time: time.process_time, one BLAS thread (set OPENBLAS_NUM_THREADS=1).
 """
 from __future__ import annotations
@@ -46,6 +50,45 @@ def plate_case(direction: str):
     plate = CamPlate(np.array([0, 4e-3, 4e-3, 0.0]), np.array([0, 0, 3e-3, 3e-3]), H)
     law = ConcentrationDependent(MM, exponent=2.0)
     return plate, Diffusivity((D, D, D), 0.0), exposure, times, law
+
+
+SOAK_DRY_TAU = [1e-3, 1e-2, 0.1, 0.5, 1.0, 1.6, 2.0, 3.0]
+
+
+def soak_dry_case(k: float):
+    """(plate, diffusivity, exposure, times, law): wetted to Mm for 1.5 h^2/D, then dried."""
+    from fickcam.diffusion import CamPlate, Diffusivity, Exposure
+    from fickcam.diffusion.sorption import ConcentrationDependent
+
+    tau = H ** 2 / D
+    exposure = Exposure.piecewise([0.0, 1.5 * tau, 3.0 * tau], [330.0, 330.0], [MM, 0.0])
+    plate = CamPlate(np.array([0, 4e-3, 4e-3, 0.0]), np.array([0, 0, 3e-3, 3e-3]), H)
+    return (plate, Diffusivity((D, D, D), 0.0), exposure, np.array(SOAK_DRY_TAU) * tau,
+            ConcentrationDependent(MM, exponent=k))
+
+
+def soak_dry(exponents=(3.0, 5.0), accuracy=0.1, reference_accuracy=0.03) -> None:
+    from fickcam.diffusion import solve
+    from fickcam.diffusion.defect import MESH_LEVELS, level_plan, steps_for
+
+    for k in exponents:
+        plate, d, exposure, times, law = soak_dry_case(k)
+        for level in MESH_LEVELS:
+            chosen = level_plan(plate, d, law, exposure, times, level, steps_for(accuracy))
+            print(f"k {k:g}, 3-D plan {level:g}: {chosen.cells} cells {chosen.cells_per_axis}, "
+                  f"w0 {chosen.finest:.3g}, growth {chosen.growth:.3g}", flush=True)
+        runs = []
+        for a in (accuracy, reference_accuracy):
+            start = time.process_time()
+            result = solve(plate, d, exposure, times, accuracy=a, sorption=law)
+            runs.append(result)
+            print(f"k {k:g}, accuracy {a:g}: {time.process_time() - start:.1f} CPU s, "
+                  f"{result.cells} cells, estimate {result.error_estimate:.2e} "
+                  f"({result.reason.split('measured: ')[-1]})", flush=True)
+        mean = np.max(np.abs(runs[0].mean - runs[1].mean)) / MM
+        layer = np.max(np.abs(runs[0].surface - runs[1].surface)) / MM
+        print(f"k {k:g}: {accuracy:g} vs {reference_accuracy:g}: mean {mean:.2e}, "
+              f"layer {layer:.2e}", flush=True)
 
 
 def plate_reference() -> None:
@@ -193,4 +236,4 @@ def sheet_uptake_series(tau):
 
 if __name__ == "__main__":
     {"plate-reference": plate_reference, "plate": plate_record, "demo-cam": cam_table,
-     "fickian-reference": fickian_reference}[sys.argv[1]]()
+     "fickian-reference": fickian_reference, "soak-dry": soak_dry}[sys.argv[1]]()
