@@ -237,32 +237,43 @@ class Faces:
     transmissibility area/distance), each cell's exposed-face transmissibility, volumes.
     FiPy builds DiffusionTerm(coeff) from exactly these, times the coefficient at the face
     (``discretisation.assemble``), so the operator of any face coefficient (here the mean
-    of f between the face's two sides) follows without re-assembly."""
+    of f between the face's two sides) follows without re-assembly. The CSR pattern of
+    that operator (``indptr``, ``indices``; ``order`` takes the values [upper, lower,
+    diagonal] to it) is fixed, so a sweep only fills its values."""
 
     rows: np.ndarray
     cols: np.ndarray
     transmissibility: np.ndarray
     boundary: np.ndarray
     volumes: np.ndarray
+    indptr: np.ndarray
+    indices: np.ndarray
+    order: np.ndarray
 
     @classmethod
     def of(cls, disc) -> "Faces":
         k = disc.stiffness.tocoo()
         upper = k.row < k.col
-        return cls(k.row[upper], k.col[upper], -k.data[upper], disc.boundary, disc.volumes)
+        rows, cols, n = k.row[upper], k.col[upper], disc.volumes.size
+        slots = 2 * rows.size + n
+        pattern = sparse.coo_matrix(
+            (np.arange(1, slots + 1, dtype=float),   # from 1: a 0 could be dropped
+             (np.concatenate([rows, cols, np.arange(n)]),
+              np.concatenate([cols, rows, np.arange(n)]))), (n, n)).tocsr()
+        return cls(rows, cols, -k.data[upper], disc.boundary, disc.volumes, pattern.indptr,
+                   pattern.indices, pattern.data.astype(np.int64) - 1)
 
-    def operator(self, c, g, law, top) -> tuple[sparse.csr_matrix, np.ndarray]:
-        """(K(c), b): the stiffness with face coefficients mean f(c_i..c_j)/top and the
-        boundary vector of the surface value g (each exposed cell's coefficient the mean
-        f(c..g)/top), so the flux into a cell is T (Phi(g) - Phi(c)) / top."""
+    def operator(self, c, g, law, top, mass=0.0) -> tuple[sparse.csr_matrix, np.ndarray]:
+        """(diag(mass) + K(c), b): the stiffness with face coefficients mean f(c_i..c_j)/top
+        and the boundary vector of the surface value g (each exposed cell's coefficient the
+        mean f(c..g)/top), so the flux into a cell is T (Phi(g) - Phi(c)) / top."""
         n = self.volumes.size
         flux = law.mean_factor(c[self.rows], c[self.cols]) / top * self.transmissibility
         edge = law.mean_factor(c, g) / top * self.boundary
-        diagonal = np.bincount(self.rows, flux, n) + np.bincount(self.cols, flux, n) + edge
-        k = sparse.coo_matrix((np.concatenate([-flux, -flux, diagonal]),
-                               (np.concatenate([self.rows, self.cols, np.arange(n)]),
-                                np.concatenate([self.cols, self.rows, np.arange(n)]))), (n, n))
-        return k.tocsr(), edge * g
+        diagonal = np.bincount(self.rows, flux, n) + np.bincount(self.cols, flux, n) + edge + mass
+        values = np.concatenate([-flux, -flux, diagonal])
+        return (sparse.csr_matrix((values[self.order], self.indices, self.indptr), (n, n)),
+                edge * g)
 
 
 def sweep_march(faces: Faces, weights, law, top, steps, initial, keep_fields, part) -> History:
@@ -288,7 +299,10 @@ class Lagged:
     preconditioned by the LU factors of an earlier system (its coefficient moves little
     from sweep to sweep and step to step; a doubled dt bounds the condition number by 2),
     refactorised (SuperLU, symmetric ordering) when CG needs more than ``LAG_ITERATIONS``.
-    On the 3-D meshes this replaces a factorisation per sweep by a few triangular solves."""
+    On the 3-D meshes this replaces a factorisation per sweep by a few triangular solves.
+    The CG is scipy's (``scipy.sparse.linalg.cg``: the same iteration and stopping test,
+    Saad 2003, Iterative Methods for Sparse Linear Systems, Alg. 9.1) written out, without
+    its per-call set-up, which cost more than the solves on small meshes."""
 
     def __init__(self):
         self.lu = None
@@ -296,15 +310,38 @@ class Lagged:
 
     def solve(self, matrix: sparse.csr_matrix, rhs: np.ndarray, guess: np.ndarray) -> np.ndarray:
         if self.lu is not None:
-            preconditioner = splinalg.LinearOperator(matrix.shape, self.lu.solve)
-            x, info = splinalg.cg(matrix, rhs, x0=guess, rtol=LINEAR_TOLERANCE, atol=0.0,
-                                  M=preconditioner, maxiter=LAG_ITERATIONS)
-            if info == 0:
+            x = _preconditioned_cg(matrix, rhs, guess, self.lu.solve)
+            if x is not None:
                 return x
         self.lu = splinalg.splu(matrix.tocsc(), permc_spec=ORDERING, diag_pivot_thresh=0.0,
                                 options={"SymmetricMode": True})
         self.factorisations += 1
         return self.lu.solve(rhs)
+
+
+def _dot(a: np.ndarray, b: np.ndarray) -> float:
+    return float(np.einsum("i,i->", a, b))
+
+
+def _preconditioned_cg(matrix, rhs, guess, precondition) -> np.ndarray | None:
+    """x with |b - A x| <= ``LINEAR_TOLERANCE`` |b| after at most ``LAG_ITERATIONS``
+    preconditioned CG iterations from ``guess``, else None."""
+    bound = LINEAR_TOLERANCE * norm(rhs)
+    x = np.array(guess, float)
+    r = rhs - matrix @ x
+    rho_previous, p = 0.0, None
+    for _ in range(LAG_ITERATIONS):
+        if norm(r) <= bound:
+            return x
+        z = precondition(r)
+        rho = _dot(r, z)
+        p = z if p is None else z + (rho / rho_previous) * p
+        q = matrix @ p
+        alpha = rho / _dot(p, q)
+        x += alpha * p
+        r -= alpha * q
+        rho_previous = rho
+    return None
 
 
 def _sweep(faces: Faces, old, g, law, top, dt, part, index, time, solver=None) -> np.ndarray:
@@ -314,11 +351,11 @@ def _sweep(faces: Faces, old, g, law, top, dt, part, index, time, solver=None) -
     solver = solver or Lagged()
     mass = faces.volumes / dt
     c, residual = old, np.inf
-    k, f = faces.operator(c, g, law, top)
+    system, f = faces.operator(c, g, law, top, mass)
     for _ in range(MAX_SWEEPS):
-        c = solver.solve(sparse.diags(mass) + k, mass * old + f, c)
-        k, f = faces.operator(c, g, law, top)
-        residual = norm(mass * c + k @ c - mass * old - f) / max(norm(mass * old + f), 1e-300)
+        c = solver.solve(system, mass * old + f, c)
+        system, f = faces.operator(c, g, law, top, mass)
+        residual = norm(system @ c - mass * old - f) / max(norm(mass * old + f), 1e-300)
         if not np.isfinite(residual):
             break
         if residual <= SWEEP_TOLERANCE:
