@@ -99,8 +99,9 @@ def dries_to_a_skin(law, exposure) -> bool:
 
 @dataclass(frozen=True)
 class Sizing:
-    """One constraint on the cells of a nonlinear plan: the Fickian plan at ``diffusivity``
-    for accuracy / ``margin`` at ``outputs`` (the earliest of them sets the layer to resolve)."""
+    """One constraint on the cells of a nonlinear plan: the Fickian ``plan`` of one D for
+    accuracy / ``margin`` at some of the outputs (the earliest of them sets the layer to
+    resolve); ``why`` for the plan's reason."""
 
     plan: object
     margin: float
@@ -129,9 +130,9 @@ def nonlinear_plan(planner, diffusivity, law, exposure, times, accuracy: float):
     earliest of them; earlier outputs see no skin and take the fastest D's cells at
     accuracy / ``ABSORPTION_MARGIN``; the plan takes the cells that cover both, else, as
     before this split, the skin's at every output). On the 4 x 3 x 2 mm plate wetted for 1.5
-    tau then dried (k = 5, first output 1e-3 tau) the skin's cells at every output were 35 568
-    prisms for the corrected path's finer 3-D plan (benchmarks/dc_defect_correction.py
-    soak-dry).
+    tau then dried (k = 5, first output 1e-3 tau; benchmarks/dc_defect_correction.py
+    soak-dry) the skin's cells at every output made the corrected path's finer 3-D plan
+    35 568 prisms (the run did not finish in 14 min); sized from the skin's start on, 3 840.
     Measured on the sheet against a fine
     method of lines (tests/test_sorption_nonlinear.py; k = 2 and 5, accuracy 1e-2 and
     1e-3): absorption with the fastest D's own cells erred up to 0.9 of the accuracy (the
