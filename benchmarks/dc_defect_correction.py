@@ -10,6 +10,9 @@ correction.
     python benchmarks/dc_defect_correction.py skin-margin [M ...] # drying: estimate / error
     python benchmarks/dc_defect_correction.py demo-cam           # the README table
     python benchmarks/dc_defect_correction.py fickian-reference  # why not Fick at Crank's mean D
+    python benchmarks/dc_defect_correction.py soak-dry           # wetted, then dried: plans, CPU
+    python benchmarks/dc_defect_correction.py march-cost         # CPU of one swept march pair
+    python benchmarks/dc_defect_correction.py soak-dry-solid K A # auto at 0.1 vs solid at A
 
 ``plate-reference``: the 4 x 3 x 2 mm plate of the tests (D = 5e-12 m^2/s exp(2 c/Mm),
 Mm = 2 %, absorption 0 -> Mm and desorption Mm -> 0) by the 3-D cells alone (``model:
@@ -26,6 +29,15 @@ each plan's error against the stored brute-force runs; the 3-D cells alone besid
 ``skin-margin``: the drying plates' estimate / error for several ``SKIN_ESTIMATE_MARGIN``.
 ``fickian-reference``: the demo cam's z widths as a 1-D slab, the D(c) sheet and the
 Fickian sheet at Crank's weighted-mean D (1975 §9.3) against fine references.
+``soak-dry``: the plate wetted to Mm for 1.5 h^2/D, then dried (``SOAK_DRY_TAU`` outputs,
+the first at 1e-3 h^2/D), k = 3 and 5: the cells of the two 3-D plans, then ``auto`` at 0.1
+(CPU s, cells, estimate and its parts) against ``auto`` at 0.03 (self-consistency).
+``soak-dry-solid K A``: the same case with exponent K, ``auto`` at 0.1 against the 3-D cells
+alone (``model: solid``) at accuracy A, an independent march (CPU s, cells, estimates).
+``march-cost``: the Richardson pair of swept marches (``defect.Setting.run``) on the plate's
+z widths as a sheet and on its coarse 3-D plan, k = 5, wetted to Mm then stepped down to
+0.4 Mm at 0.15 h^2/D (outputs 0.02-0.3 h^2/D): CPU s and the results (to compare two
+versions, run it with each one's PYTHONPATH).
 CPU time: time.process_time, one BLAS thread (set OPENBLAS_NUM_THREADS=1).
 """
 from __future__ import annotations
@@ -58,6 +70,90 @@ def plate_case(direction: str, exponent: float = 2.0):
     plate = CamPlate(np.array([0, 4e-3, 4e-3, 0.0]), np.array([0, 0, 3e-3, 3e-3]), H)
     law = ConcentrationDependent(MM, exponent=exponent)
     return plate, Diffusivity((D, D, D), 0.0), exposure, times, law
+
+
+SOAK_DRY_TAU = [1e-3, 1e-2, 0.1, 0.5, 1.0, 1.6, 2.0, 3.0]
+
+
+def soak_dry_case(k: float):
+    """(plate, diffusivity, exposure, times, law): wetted to Mm for 1.5 h^2/D, then dried."""
+    from fickcam.diffusion import CamPlate, Diffusivity, Exposure
+    from fickcam.diffusion.sorption import ConcentrationDependent
+
+    tau = H ** 2 / D
+    exposure = Exposure.piecewise([0.0, 1.5 * tau, 3.0 * tau], [330.0, 330.0], [MM, 0.0])
+    plate = CamPlate(np.array([0, 4e-3, 4e-3, 0.0]), np.array([0, 0, 3e-3, 3e-3]), H)
+    return (plate, Diffusivity((D, D, D), 0.0), exposure, np.array(SOAK_DRY_TAU) * tau,
+            ConcentrationDependent(MM, exponent=k))
+
+
+def soak_dry(exponents=(3.0, 5.0), accuracy=0.1, reference_accuracy=0.03) -> None:
+    """``reference_accuracy`` None: no reference run (e.g. to time an older fickcam, run
+    with its PYTHONPATH: soak_dry((3.0,), 0.1, None))."""
+    from fickcam.diffusion import solve
+    from fickcam.diffusion.defect import MESH_LEVELS, level_plan, steps_for
+
+    for k in exponents:
+        plate, d, exposure, times, law = soak_dry_case(k)
+        for level in MESH_LEVELS:
+            chosen = level_plan(plate, d, law, exposure, times, level, steps_for(accuracy))
+            print(f"k {k:g}, 3-D plan {level:g}: {chosen.cells} cells {chosen.cells_per_axis}, "
+                  f"w0 {chosen.finest:.3g}, growth {chosen.growth:.3g}", flush=True)
+        runs = []
+        for a in (accuracy, reference_accuracy)[:2 if reference_accuracy else 1]:
+            start = time.process_time()
+            result = solve(plate, d, exposure, times, accuracy=a, sorption=law)
+            runs.append(result)
+            print(f"k {k:g}, accuracy {a:g}: {time.process_time() - start:.1f} CPU s, "
+                  f"{result.cells} cells, estimate {result.error_estimate:.2e} "
+                  f"({result.reason.split('measured: ')[-1]})", flush=True)
+        if not reference_accuracy:
+            continue
+        mean = np.max(np.abs(runs[0].mean - runs[1].mean)) / MM
+        layer = np.max(np.abs(runs[0].surface - runs[1].surface)) / MM
+        print(f"k {k:g}: {accuracy:g} vs {reference_accuracy:g}: mean {mean:.2e}, "
+              f"layer {layer:.2e}", flush=True)
+
+
+def soak_dry_solid(exponent: str, reference_accuracy: str) -> None:
+    from fickcam.diffusion import solve
+
+    k, reference_accuracy = float(exponent), float(reference_accuracy)
+    plate, d, exposure, times, law = soak_dry_case(k)
+    runs = []
+    for model, accuracy in (("auto", 0.1), ("solid", reference_accuracy)):
+        start = time.process_time()
+        runs.append(solve(plate, d, exposure, times, accuracy=accuracy, model=model,
+                          sorption=law))
+        print(f"k {k:g}, {model} at {accuracy:g}: {time.process_time() - start:.1f} CPU s, "
+              f"{runs[-1].cells} cells, estimate {runs[-1].error_estimate:.2e}", flush=True)
+    mean = np.abs(runs[0].mean - runs[1].mean) / MM
+    layer = np.abs(runs[0].surface - runs[1].surface) / MM
+    print(f"k {k:g}: |auto - solid| / Mm at tau {SOAK_DRY_TAU}: mean {np.round(mean, 5)}, "
+          f"layer {np.round(layer, 5)}; largest {mean.max():.2e}, {layer.max():.2e}")
+
+
+def march_cost() -> None:
+    from fickcam.diffusion import CamPlate, Diffusivity, Exposure, layout
+    from fickcam.diffusion.defect import Setting, half_slab, level_plan
+    from fickcam.diffusion.mirrored import half, mirrored
+    from fickcam.diffusion.sorption import ConcentrationDependent
+
+    times = np.array([0.02, 0.1, 0.2, 0.3]) * H ** 2 / D
+    exposure = Exposure.piecewise([0.0, 0.5 * times[-1], times[-1]], [330.0, 330.0],
+                                  [MM, 0.4 * MM])
+    plate = CamPlate(np.array([0, 4e-3, 4e-3, 0.0]), np.array([0, 0, 3e-3, 3e-3]), H)
+    law, d = ConcentrationDependent(MM, exponent=5.0), Diffusivity((D, D, D), 0.0)
+    setting = Setting.of(plate, d, law, exposure, times, 5e-4, 4, "")
+    chosen = level_plan(plate, d, law, exposure, times, 1.0, 4)
+    for name, disc in (("sheet", half_slab(half(layout.prism_widths(0.07, 0.229)))),
+                       ("3-D", mirrored(plate, setting.d, chosen.cells_per_axis, chosen.finest,
+                                        chosen.growth, 5e-4))):
+        start = time.process_time()
+        pair = setting.run(disc)
+        print(f"{name}: {disc.cells} cells, {pair.steps} steps, "
+              f"{time.process_time() - start:.2f} CPU s, mean {np.round(pair.mean, 12)}",
+              flush=True)
 
 
 def reference_file(exponent: float) -> Path:
@@ -304,6 +400,6 @@ def sheet_uptake_series(tau):
 
 if __name__ == "__main__":
     {"plate-reference": plate_reference, "plate": plate_record, "plate-order": plate_order,
-     "skin-margin": skin_margins,
-     "demo-cam": cam_table,
-     "fickian-reference": fickian_reference}[sys.argv[1]](*sys.argv[2:])
+     "skin-margin": skin_margins, "demo-cam": cam_table,
+     "fickian-reference": fickian_reference, "soak-dry": soak_dry,
+     "march-cost": march_cost, "soak-dry-solid": soak_dry_solid}[sys.argv[1]](*sys.argv[2:])

@@ -132,3 +132,39 @@ def test_a_step_that_does_not_converge_raises_a_solver_error(monkeypatch):
     with pytest.raises(SolverError, match="did not converge"):
         solve(Sheet(H), ISOTROPIC, exposure(0.0, MM), TIMES, accuracy=1e-2, sorption=law,
               part="cam")
+
+
+def test_the_skin_is_resolved_from_its_start_on():
+    """Wetted to Mm for 1.5 h^2/D, then dried, outputs from 1e-3 h^2/D (k = 5, the corrected
+    path's finer 3-D plan of a 4 x 3 x 2 mm plate): the skin starts at the drying (within
+    one sample of it), the skin's cells (smallest D) are sized at the outputs after it, the
+    wetting outputs take the largest D's cells; the plan covers both (no wider first row, no
+    faster growth) with far fewer cells than the skin's cells at every output (35 568)."""
+    from fickcam.diffusion import CamPlate
+    from fickcam.diffusion.clock import scales as scales_of
+    from fickcam.diffusion.direct import plan_direct
+
+    tau = H ** 2 / D
+    plate = CamPlate(np.array([0, 4e-3, 4e-3, 0.0]), np.array([0, 0, 3e-3, 3e-3]), H)
+    history = Exposure.piecewise([0.0, 1.5 * tau, 3.0 * tau], [330.0, 330.0], [MM, 0.0])
+    times = np.array([1e-3, 1e-2, 0.1, 0.5, 1.0, 1.6, 2.0, 3.0]) * tau
+    law = ConcentrationDependent(MM, exponent=5.0)
+    asked = []
+
+    def planner(d, a, outputs):
+        s = scales_of(plate, d, history)
+        asked.append((a, np.asarray(outputs, float),
+                      plan_direct(plate, d, "solid", s.tau_star(history.change_times),
+                                  s.tau_star(np.asarray(outputs, float)), a, history)))
+        return asked[-1][2]
+
+    start = nonlinear.skin_start(law, history)
+    assert 1.5 * tau - 1.5 * tau / 8 <= start <= 1.5 * tau
+    chosen = nonlinear.nonlinear_plan(planner, ISOTROPIC, law, history, times, 0.5)
+    margin = np.exp(2.5)  # 1 + SKIN_CELLS_MARGIN (sqrt(e^5) - 1)
+    skin = next(p for a, at, p in asked if np.isclose(a, 0.5 / margin) and at.min() >= start)
+    soak = next(p for a, at, p in asked if np.isclose(a, 0.25) and at.max() < start)
+    everywhere = next(p for a, at, p in asked if np.isclose(a, 0.5 / margin) and at.size == 8)
+    for constraint in (skin, soak):
+        assert chosen.finest <= constraint.finest and chosen.growth <= constraint.growth
+    assert chosen.cells < everywhere.cells / 5

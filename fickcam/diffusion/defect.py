@@ -151,10 +151,10 @@ def steps_for(accuracy: float) -> int:
 
 def level_plan(geometry, diffusivity, law, exposure, times, mesh_accuracy, per_doubling) -> Plan:
     """A 3-D plan: ``nonlinear_plan``'s cells at ``mesh_accuracy``, ``per_doubling`` steps."""
-    def planner(d, a):
+    def planner(d, a, outputs):
         s = scales_of(geometry, d, exposure)
         return plan_direct(geometry, d, "solid", s.tau_star(exposure.change_times),
-                           s.tau_star(np.asarray(times, float)), a, exposure)
+                           s.tau_star(outputs), a, exposure)
     chosen = nonlinear_plan(planner, diffusivity, law, exposure, times, mesh_accuracy)
     return replace(chosen, steps_per_doubling=per_doubling)
 
@@ -163,10 +163,10 @@ def sheet_reference(geometry, diffusivity, law, exposure, times, accuracy) -> Di
     """The D(c) sheet of the part's thickness at ``SHEET_SHARE`` x the accuracy (FiPy slab)."""
     sheet = Sheet(geometry.thickness)
 
-    def planner(d, a):
+    def planner(d, a, outputs):
         s = scales_of(sheet, d, exposure)
         return plan_direct(sheet, d, "slab", s.tau_star(exposure.change_times),
-                           s.tau_star(np.asarray(times, float)), a, exposure)
+                           s.tau_star(outputs), a, exposure)
     chosen = nonlinear_plan(planner, diffusivity, law, exposure, times, SHEET_SHARE * accuracy)
     return solve_nonlinear(sheet, diffusivity, law, exposure, times, chosen)
 

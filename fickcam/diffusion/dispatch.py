@@ -133,7 +133,7 @@ def _plan_sorption(geometry, diffusivity, exposure, times, accuracy, model, sorp
         return replace(corrected, reason=f"{law}; {corrected.reason}")
     if is_nonlinear(sorption):
         chosen = _nonlinear_model(geometry, model)
-        direct = nonlinear_plan(lambda d, a: _direct_plan(geometry, d, chosen, exposure, times, a),
+        direct = nonlinear_plan(lambda d, a, at: _direct_plan(geometry, d, chosen, exposure, at, a),
                                 diffusivity, sorption, exposure, times, accuracy)
         mirror = {Bar: "; solved on one octant (mirror planes)",
                   CamPlate: "; solved on half the thickness (mid-plane mirror)",

@@ -163,9 +163,20 @@ def prism_layout(geometry, d, accuracy: float, t_lo: float, cap: int,
     stretch = stretch_of(d)
     layout = graded((1.0, 1.0, 1.0), ("both",) * 3, accuracy, t_lo, cap, space_error,
                     lambda w0, g: _estimated_prism_cells(geometry, w0, g, stretch))
-    planform = planform_cells(geometry, layout.finest, layout.growth, stretch)
-    cells = (planform.cells, prism_widths(layout.finest, layout.growth).size)
-    return Layout(cells, layout.space_error, layout.finest, layout.growth, layout.note)
+    finest = min(layout.finest, widest_row(geometry, stretch))
+    planform = planform_cells(geometry, finest, layout.growth, stretch)
+    cells = (planform.cells, prism_widths(finest, layout.growth).size)
+    return Layout(cells, layout.space_error, finest, layout.growth, layout.note)
+
+
+def widest_row(part, stretch) -> float:
+    """The widest first row of a planform (scaled): half its smallest scaled extent, as
+    ``prism_widths`` holds the z widths to half the thickness. A late first output makes the
+    error model's w0 grow without bound (w0 ~ sqrt(accuracy t_lo)); rows wider than the
+    planform leave the outline mesher no points (seen: the 4 x 3 x 2 mm plate, k = 5, first
+    output 0.1 h^2/D: w0 = 6.4e4). Narrower rows only lower the error, so the estimate holds."""
+    extent = np.asarray(outline_extent(part)) * np.asarray(stretch) / part.thickness
+    return 0.5 * float(extent.min())
 
 
 def _estimated_prism_cells(part, finest: float, growth: float, stretch) -> tuple[int, int]:

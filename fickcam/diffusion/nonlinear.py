@@ -76,21 +76,63 @@ def spread(law, exposure, times) -> float:
     return float(np.max(values) / np.min(values))
 
 
-def dries_to_a_skin(law, exposure) -> bool:
-    """Whether the surface ever holds a moisture whose D is below the largest D met before
-    (initial moisture, earlier surface values): the part then has a skin where the whole
-    drop of c crosses a layer sqrt(D_min t) deep (desorption when D rises with c, Crank
-    1975 §9.3-9.4, absorption when it falls)."""
-    g = np.asarray(exposure.surface_moisture(sample_times(exposure)), float)
+def skin_start(law, exposure) -> float | None:
+    """When the surface may first dry to a skin (s), or None if it never does: the sample
+    (``clock.sample_times``) before the first one whose surface moisture has a D below the
+    largest D met before (initial moisture, earlier surface values). From then on the part
+    has a skin where the whole drop of c crosses a layer sqrt(D_min t) deep (desorption when
+    D rises with c, Crank 1975 §9.3-9.4, absorption when it falls); before it, none."""
+    t = sample_times(exposure)
+    g = np.asarray(exposure.surface_moisture(t), float)
     f = law.factor(np.concatenate([[exposure.initial_moisture], g]))
-    return bool(np.any(f[1:] < np.maximum.accumulate(f)[:-1] * (1 - 1e-9)))
+    below = f[1:] < np.maximum.accumulate(f)[:-1] * (1 - 1e-9)
+    if not np.any(below):
+        return None
+    first = int(np.argmax(below))
+    return float(t[max(first - 1, 0)])
+
+
+def dries_to_a_skin(law, exposure) -> bool:
+    """Whether the surface ever dries to a skin (``skin_start``)."""
+    return skin_start(law, exposure) is not None
+
+
+@dataclass(frozen=True)
+class Sizing:
+    """One constraint on the cells of a nonlinear plan: the Fickian ``plan`` of one D for
+    accuracy / ``margin`` at some of the outputs (the earliest of them sets the layer to
+    resolve); ``why`` for the plan's reason."""
+
+    plan: object
+    margin: float
+    why: str
+
+    @property
+    def error(self) -> float:
+        """m x the space estimate of the plan (its time share taken out)."""
+        return self.margin * (self.plan.error_estimate
+                              - TIME_ERROR / self.plan.steps_per_doubling ** 2)
+
+    def covers(self, other: "Sizing") -> bool:
+        """Whether these cells are nowhere coarser than ``other``'s (finest and growth; the
+        layout's error model grows with both; a uniform grid, finest 0, by its cells)."""
+        return ((self.plan.finest > 0) == (other.plan.finest > 0)
+                and self.plan.finest <= other.plan.finest and self.plan.growth <= other.plan.growth
+                and self.plan.cells >= other.plan.cells)
 
 
 def nonlinear_plan(planner, diffusivity, law, exposure, times, accuracy: float):
     """The direct plan of a concentration-dependent part: steps from the fastest D (its
     scaled time is the march's). Cells: those of the fastest D at accuracy / m, m =
-    ``ABSORPTION_MARGIN``, unless the surface dries to a skin (``dries_to_a_skin``); then
-    those of the slowest D at accuracy / m, m = 1 + SKIN_CELLS_MARGIN (sqrt(max f / min f) - 1).
+    ``ABSORPTION_MARGIN``, unless the surface dries to a skin (``skin_start``); then
+    those of the slowest D at accuracy / m, m = 1 + SKIN_CELLS_MARGIN (sqrt(max f / min f) - 1),
+    sized at the outputs from the skin's start on (the layer the skin makes is as young as the
+    earliest of them; earlier outputs see no skin and take the fastest D's cells at
+    accuracy / ``ABSORPTION_MARGIN``; the plan takes the cells that cover both, else, as
+    before this split, the skin's at every output). On the 4 x 3 x 2 mm plate wetted for 1.5
+    tau then dried (k = 5, first output 1e-3 tau; benchmarks/dc_defect_correction.py
+    soak-dry) the skin's cells at every output made the corrected path's finer 3-D plan
+    35 568 prisms (the run did not finish in 14 min); sized from the skin's start on, 3 840.
     Measured on the sheet against a fine
     method of lines (tests/test_sorption_nonlinear.py; k = 2 and 5, accuracy 1e-2 and
     1e-3): absorption with the fastest D's own cells erred up to 0.9 of the accuracy (the
@@ -100,25 +142,58 @@ def nonlinear_plan(planner, diffusivity, law, exposure, times, accuracy: float):
     from Mm, k = 1, 2, 3, 5, accuracy 1e-2, 1e-3, 1e-4, vs a 1600-node method of lines):
     a margin 0 (the slowest D's own cells) erred up to 0.47 of the accuracy, 1 up to
     0.32, 4 up to 0.28, so ``SKIN_CELLS_MARGIN`` = 1 keeps a safety of 3 at 0.77-0.88 of the
-    CPU of 4 (k = 5). The estimate: SPACE_TO_ERROR m x the space estimate of the cells' plan.
-    ``planner(diffusivity, accuracy)``: the Fickian direct plan of the part."""
-    fast = planner(fastest(diffusivity, law, exposure, times), accuracy)
-    if dries_to_a_skin(law, exposure):
-        margin = 1.0 + SKIN_CELLS_MARGIN * (np.sqrt(spread(law, exposure, times)) - 1.0)
-        cells = planner(slowest(diffusivity, law, exposure, times), accuracy / margin)
-        why = f"drying to a skin: cells sized at the smallest D for accuracy / {margin:.3g}"
+    CPU of 4 (k = 5). The estimate: SPACE_TO_ERROR m x the space estimate of the cells' plan
+    (the larger over the constraints met).
+    ``planner(diffusivity, accuracy, outputs)``: the Fickian direct plan of the part."""
+    times = np.asarray(times, float)
+    fast_d = fastest(diffusivity, law, exposure, times)
+    fast = planner(fast_d, accuracy, times)
+    start = skin_start(law, exposure)
+    wet_margin = ABSORPTION_MARGIN if spread(law, exposure, times) > 1 + 1e-9 else 1.0  # 1: Fick
+    wet_why = f"no dry skin: cells sized at the largest D for accuracy / {wet_margin:g}"
+    if start is None:
+        chosen = [Sizing(planner(fast_d, accuracy / wet_margin, times), wet_margin, wet_why)]
     else:
-        margin = ABSORPTION_MARGIN if spread(law, exposure, times) > 1 + 1e-9 else 1.0  # 1: Fick
-        cells = planner(fastest(diffusivity, law, exposure, times), accuracy / margin)
-        why = f"no dry skin: cells sized at the largest D for accuracy / {margin:g}"
-    space = cells.error_estimate - TIME_ERROR / cells.steps_per_doubling ** 2
-    estimate = float(SPACE_TO_ERROR * margin * space + TIME_ERROR / fast.steps_per_doubling ** 2)
-    reason = f"{fast.reason.split('; capped')[0]}; {why}"
+        margin = 1.0 + SKIN_CELLS_MARGIN * (np.sqrt(spread(law, exposure, times)) - 1.0)
+        slow_d = slowest(diffusivity, law, exposure, times)
+        why = f"drying to a skin: cells sized at the smallest D for accuracy / {margin:.3g}"
+        chosen = _skin_sizing(planner, slow_d, fast_d, accuracy, times, start, margin,
+                              wet_margin, why)
+    cells = chosen[0].plan
+    estimate = float(SPACE_TO_ERROR * max(s.error for s in chosen[1:] or chosen)
+                     + TIME_ERROR / fast.steps_per_doubling ** 2)
+    reason = f"{fast.reason.split('; capped')[0]}; {chosen[0].why}"
     if estimate > accuracy:
         reason += "; capped: error above the requested accuracy"
     return replace(fast, cells=cells.cells, cells_per_axis=cells.cells_per_axis,
                    finest=cells.finest, growth=cells.growth, error_estimate=estimate,
                    reason=reason)
+
+
+def _skin_sizing(planner, slow_d, fast_d, accuracy, times, start, margin, wet_margin,
+                 why) -> list[Sizing]:
+    """The cells of a part that dries to a skin from ``start`` on (``nonlinear_plan``): the
+    chosen Sizing first, then the constraints it covers. Candidates: the skin's cells (slowest
+    D, accuracy / ``margin``, outputs from ``start`` on), the soak's (fastest D, accuracy /
+    ``wet_margin``, earlier outputs), each again at the smaller of the two accuracies (the
+    growth of one, the finest width of the other); the fewest cells that cover both win, else
+    the skin's cells at every output (the rule before the split)."""
+    wet, dry = times[times < start], times[times >= start]
+    everywhere = Sizing(planner(slow_d, accuracy / margin, times), margin, why)
+    if wet.size == 0 or dry.size == 0:
+        return [everywhere]
+    both = (f"{why} at the outputs from {start:.3g} s on (the skin's start), at the largest D "
+            f"for accuracy / {wet_margin:g} before")
+    skin = Sizing(planner(slow_d, accuracy / margin, dry), margin, both)
+    soak = Sizing(planner(fast_d, accuracy / wet_margin, wet), wet_margin, both)
+    tighter = accuracy / max(margin, wet_margin)
+    candidates = [skin, soak, Sizing(planner(fast_d, tighter, wet), margin, both),
+                  Sizing(planner(slow_d, tighter, dry), margin, both)]
+    covering = [c for c in candidates if c.covers(skin) and c.covers(soak)]
+    if not covering:
+        return [everywhere]
+    best = min(covering, key=lambda c: c.plan.cells)
+    return [best, skin, soak]
 
 
 def solve_nonlinear(geometry, diffusivity, law, exposure, times, chosen, *,
@@ -163,32 +238,43 @@ class Faces:
     transmissibility area/distance), each cell's exposed-face transmissibility, volumes.
     FiPy builds DiffusionTerm(coeff) from exactly these, times the coefficient at the face
     (``discretisation.assemble``), so the operator of any face coefficient (here the mean
-    of f between the face's two sides) follows without re-assembly."""
+    of f between the face's two sides) follows without re-assembly. The CSR pattern of
+    that operator (``indptr``, ``indices``; ``order`` takes the values [upper, lower,
+    diagonal] to it) is fixed, so a sweep only fills its values."""
 
     rows: np.ndarray
     cols: np.ndarray
     transmissibility: np.ndarray
     boundary: np.ndarray
     volumes: np.ndarray
+    indptr: np.ndarray
+    indices: np.ndarray
+    order: np.ndarray
 
     @classmethod
     def of(cls, disc) -> "Faces":
         k = disc.stiffness.tocoo()
         upper = k.row < k.col
-        return cls(k.row[upper], k.col[upper], -k.data[upper], disc.boundary, disc.volumes)
+        rows, cols, n = k.row[upper], k.col[upper], disc.volumes.size
+        slots = 2 * rows.size + n
+        pattern = sparse.coo_matrix(
+            (np.arange(1, slots + 1, dtype=float),   # from 1: a 0 could be dropped
+             (np.concatenate([rows, cols, np.arange(n)]),
+              np.concatenate([cols, rows, np.arange(n)]))), (n, n)).tocsr()
+        return cls(rows, cols, -k.data[upper], disc.boundary, disc.volumes, pattern.indptr,
+                   pattern.indices, pattern.data.astype(np.int64) - 1)
 
-    def operator(self, c, g, law, top) -> tuple[sparse.csr_matrix, np.ndarray]:
-        """(K(c), b): the stiffness with face coefficients mean f(c_i..c_j)/top and the
-        boundary vector of the surface value g (each exposed cell's coefficient the mean
-        f(c..g)/top), so the flux into a cell is T (Phi(g) - Phi(c)) / top."""
+    def operator(self, c, g, law, top, mass=0.0) -> tuple[sparse.csr_matrix, np.ndarray]:
+        """(diag(mass) + K(c), b): the stiffness with face coefficients mean f(c_i..c_j)/top
+        and the boundary vector of the surface value g (each exposed cell's coefficient the
+        mean f(c..g)/top), so the flux into a cell is T (Phi(g) - Phi(c)) / top."""
         n = self.volumes.size
         flux = law.mean_factor(c[self.rows], c[self.cols]) / top * self.transmissibility
         edge = law.mean_factor(c, g) / top * self.boundary
-        diagonal = np.bincount(self.rows, flux, n) + np.bincount(self.cols, flux, n) + edge
-        k = sparse.coo_matrix((np.concatenate([-flux, -flux, diagonal]),
-                               (np.concatenate([self.rows, self.cols, np.arange(n)]),
-                                np.concatenate([self.cols, self.rows, np.arange(n)]))), (n, n))
-        return k.tocsr(), edge * g
+        diagonal = np.bincount(self.rows, flux, n) + np.bincount(self.cols, flux, n) + edge + mass
+        values = np.concatenate([-flux, -flux, diagonal])
+        return (sparse.csr_matrix((values[self.order], self.indices, self.indptr), (n, n)),
+                edge * g)
 
 
 def sweep_march(faces: Faces, weights, law, top, steps, initial, keep_fields, part) -> History:
@@ -214,7 +300,10 @@ class Lagged:
     preconditioned by the LU factors of an earlier system (its coefficient moves little
     from sweep to sweep and step to step; a doubled dt bounds the condition number by 2),
     refactorised (SuperLU, symmetric ordering) when CG needs more than ``LAG_ITERATIONS``.
-    On the 3-D meshes this replaces a factorisation per sweep by a few triangular solves."""
+    On the 3-D meshes this replaces a factorisation per sweep by a few triangular solves.
+    The CG is scipy's (``scipy.sparse.linalg.cg``: the same iteration and stopping test,
+    Saad 2003, Iterative Methods for Sparse Linear Systems, Alg. 9.1) written out, without
+    its per-call set-up, which cost more than the solves on small meshes."""
 
     def __init__(self):
         self.lu = None
@@ -222,15 +311,38 @@ class Lagged:
 
     def solve(self, matrix: sparse.csr_matrix, rhs: np.ndarray, guess: np.ndarray) -> np.ndarray:
         if self.lu is not None:
-            preconditioner = splinalg.LinearOperator(matrix.shape, self.lu.solve)
-            x, info = splinalg.cg(matrix, rhs, x0=guess, rtol=LINEAR_TOLERANCE, atol=0.0,
-                                  M=preconditioner, maxiter=LAG_ITERATIONS)
-            if info == 0:
+            x = _preconditioned_cg(matrix, rhs, guess, self.lu.solve)
+            if x is not None:
                 return x
         self.lu = splinalg.splu(matrix.tocsc(), permc_spec=ORDERING, diag_pivot_thresh=0.0,
                                 options={"SymmetricMode": True})
         self.factorisations += 1
         return self.lu.solve(rhs)
+
+
+def _dot(a: np.ndarray, b: np.ndarray) -> float:
+    return float(np.einsum("i,i->", a, b))
+
+
+def _preconditioned_cg(matrix, rhs, guess, precondition) -> np.ndarray | None:
+    """x with |b - A x| <= ``LINEAR_TOLERANCE`` |b| after at most ``LAG_ITERATIONS``
+    preconditioned CG iterations from ``guess``, else None."""
+    bound = LINEAR_TOLERANCE * norm(rhs)
+    x = np.array(guess, float)
+    r = rhs - matrix @ x
+    rho_previous, p = 0.0, None
+    for _ in range(LAG_ITERATIONS):
+        if norm(r) <= bound:
+            return x
+        z = precondition(r)
+        rho = _dot(r, z)
+        p = z if p is None else z + (rho / rho_previous) * p
+        q = matrix @ p
+        alpha = rho / _dot(p, q)
+        x += alpha * p
+        r -= alpha * q
+        rho_previous = rho
+    return None
 
 
 def _sweep(faces: Faces, old, g, law, top, dt, part, index, time, solver=None) -> np.ndarray:
@@ -240,11 +352,11 @@ def _sweep(faces: Faces, old, g, law, top, dt, part, index, time, solver=None) -
     solver = solver or Lagged()
     mass = faces.volumes / dt
     c, residual = old, np.inf
-    k, f = faces.operator(c, g, law, top)
+    system, f = faces.operator(c, g, law, top, mass)
     for _ in range(MAX_SWEEPS):
-        c = solver.solve(sparse.diags(mass) + k, mass * old + f, c)
-        k, f = faces.operator(c, g, law, top)
-        residual = norm(mass * c + k @ c - mass * old - f) / max(norm(mass * old + f), 1e-300)
+        c = solver.solve(system, mass * old + f, c)
+        system, f = faces.operator(c, g, law, top, mass)
+        residual = norm(system @ c - mass * old - f) / max(norm(mass * old + f), 1e-300)
         if not np.isfinite(residual):
             break
         if residual <= SWEEP_TOLERANCE:
