@@ -301,9 +301,10 @@ class Lagged:
     from sweep to sweep and step to step; a doubled dt bounds the condition number by 2),
     refactorised (SuperLU, symmetric ordering) when CG needs more than ``LAG_ITERATIONS``.
     On the 3-D meshes this replaces a factorisation per sweep by a few triangular solves.
-    The CG is scipy's (``scipy.sparse.linalg.cg``: the same iteration and stopping test,
-    Saad 2003, Iterative Methods for Sparse Linear Systems, Alg. 9.1) written out, without
-    its per-call set-up, which cost more than the solves on small meshes."""
+    The CG is scipy's: written out without its per-call set-up it saved no more than the
+    machine's noise (``march-cost``: 3-D 4.1-4.6 against 4.7-5.7 CPU s, sheet 1.1-1.6
+    against 1.3-1.4, side by side on a loaded machine); the fixed CSR pattern of ``Faces``
+    is what made the sweeps cheaper."""
 
     def __init__(self):
         self.lu = None
@@ -311,38 +312,15 @@ class Lagged:
 
     def solve(self, matrix: sparse.csr_matrix, rhs: np.ndarray, guess: np.ndarray) -> np.ndarray:
         if self.lu is not None:
-            x = _preconditioned_cg(matrix, rhs, guess, self.lu.solve)
-            if x is not None:
+            preconditioner = splinalg.LinearOperator(matrix.shape, self.lu.solve)
+            x, info = splinalg.cg(matrix, rhs, x0=guess, rtol=LINEAR_TOLERANCE, atol=0.0,
+                                  M=preconditioner, maxiter=LAG_ITERATIONS)
+            if info == 0:
                 return x
         self.lu = splinalg.splu(matrix.tocsc(), permc_spec=ORDERING, diag_pivot_thresh=0.0,
                                 options={"SymmetricMode": True})
         self.factorisations += 1
         return self.lu.solve(rhs)
-
-
-def _dot(a: np.ndarray, b: np.ndarray) -> float:
-    return float(np.einsum("i,i->", a, b))
-
-
-def _preconditioned_cg(matrix, rhs, guess, precondition) -> np.ndarray | None:
-    """x with |b - A x| <= ``LINEAR_TOLERANCE`` |b| after at most ``LAG_ITERATIONS``
-    preconditioned CG iterations from ``guess``, else None."""
-    bound = LINEAR_TOLERANCE * norm(rhs)
-    x = np.array(guess, float)
-    r = rhs - matrix @ x
-    rho_previous, p = 0.0, None
-    for _ in range(LAG_ITERATIONS):
-        if norm(r) <= bound:
-            return x
-        z = precondition(r)
-        rho = _dot(r, z)
-        p = z if p is None else z + (rho / rho_previous) * p
-        q = matrix @ p
-        alpha = rho / _dot(p, q)
-        x += alpha * p
-        r -= alpha * q
-        rho_previous = rho
-    return None
 
 
 def _sweep(faces: Faces, old, g, law, top, dt, part, index, time, solver=None) -> np.ndarray:
