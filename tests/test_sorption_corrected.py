@@ -113,32 +113,48 @@ WIDTHS = np.array([4.0, 2.0, 1.0])   # three planform meshes, each refined 2x
 TRUTH = np.array([0.0, 0.4, 1.1])    # a quantity over three outputs
 
 
+def taken_error(values) -> tuple[float, float]:
+    """(error of the value ``three_levels`` chose, its estimate)."""
+    extrapolate, estimate = three_levels(*values)
+    middle, fine = values[1:]
+    chosen = fine + (fine - middle) / 3.0 if extrapolate else fine
+    return float(np.max(np.abs(chosen - TRUTH))), estimate
+
+
 @settings(max_examples=200, deadline=None)
 @given(order=st.floats(1.6, 4.0), higher=st.floats(-0.5, 0.5), finest=st.floats(0.01, 0.1),
        sign=st.sampled_from((-1.0, 1.0)))
-def test_the_three_mesh_estimate_bounds_the_finest_meshs_error_from_order_1_6(
+def test_the_three_mesh_estimate_bounds_the_chosen_values_error_from_order_1_6(
         order, higher, finest, sign):
     """An error a h^p (1 + b h) shrinking monotonically (Roache's grid convergence index,
-    ``three_levels``): the estimate is at least the finest mesh's error."""
+    ``three_levels``): the estimate is at least the error of what it chose (the finest
+    mesh, or its second-order extrapolation where the order is 1.6-2.8)."""
     shape = np.array([1.0, -0.5, 0.1])
-    values = [TRUTH + sign * shape * (w ** order) * (1.0 + higher * w)
-              for w in finest * WIDTHS]
-    assert three_levels(*values) >= np.max(np.abs(values[-1] - TRUTH))
+    error, estimate = taken_error([TRUTH + sign * shape * (w ** order) * (1.0 + higher * w)
+                                   for w in finest * WIDTHS])
+    assert error <= estimate
 
 
 @settings(max_examples=100, deadline=None)
 @given(contraction=st.floats(3.0, 40.0), size=st.floats(1e-8, 1e-2))
 def test_the_three_mesh_estimate_bounds_an_oscillating_error(contraction, size):
     """An error changing sign between meshes and shrinking by ``contraction`` (the demo cam's
-    contact layer at 1 d: -14): the finest mesh within half its change."""
+    contact layer at 1 d: -14): the finest mesh, within half its change."""
     values = [TRUTH + size * (-contraction) ** (2 - level) for level in range(3)]
-    assert three_levels(*values) >= np.max(np.abs(values[-1] - TRUTH))
+    assert three_levels(*values)[0] is False
+    error, estimate = taken_error(values)
+    assert error <= estimate
 
 
-def test_the_three_mesh_estimate_trusts_a_second_order_sequence_more_than_a_first():
-    """Monotone order 2: 1.25 |change| / 3; order 1 (rho = 2): the whole change."""
-    second = [TRUTH + w ** 2 for w in 0.1 * WIDTHS]
-    first = [TRUTH + w for w in 0.1 * WIDTHS]
-    change = (0.1 ** 2) * (4.0 - 1.0)
-    assert three_levels(*second) == pytest.approx(1.25 * change / 3.0, rel=1e-9)
-    assert three_levels(*first) == pytest.approx(0.1 * (2.0 - 1.0), rel=1e-9)
+def test_the_three_mesh_check_extrapolates_only_a_sequence_near_second_order():
+    """Order 2: extrapolated (exact here), estimate 1.25 |change| / 3; order 1 (rho = 2):
+    the finest mesh, estimate the whole change; order 4 (rho = 16): the finest mesh (an
+    order-2 extrapolation would err 4x more), estimate 1.25 |change| / 15."""
+    for order, extrapolate, estimate in ((2.0, True, 1.25 / 3.0), (1.0, False, 1.0),
+                                         (4.0, False, 1.25 / 15.0)):
+        values = [TRUTH + w ** order for w in 0.1 * WIDTHS]
+        change = 0.1 ** order * (2.0 ** order - 1.0)
+        chosen, got = three_levels(*values)
+        assert chosen is extrapolate
+        assert got == pytest.approx(estimate * change, rel=1e-9)
+        assert taken_error(values)[0] <= got
