@@ -26,8 +26,8 @@ sweeps raises ``SolverError`` naming part, step and time. The linear systems of 
 sweeps are solved by CG on lagged LU factors (``Lagged``), each only to ``FORCING`` x the
 residual of the iterate it starts from (inexact Picard), and a step's sweeps start from
 the last two states extrapolated in time (``extrapolated``): on a 6 x 4 x 2 mm bar (k = 2,
-absorbing, accuracy 1e-2, 4 968 cells) 19.4 CPU s against 30.3 with exact solves from the
-old state, the same means to 3e-9 of Mm (benchmarks/dc_bar.py sweeps; its profile
+absorbing, accuracy 1e-2, 4 968 cells) 20.3 CPU s against 27.6 with exact solves from the
+old state, the same means to 1.6e-9 of Mm (benchmarks/dc_bar.py sweeps; its profile
 showed the triangular solves of the lagged factors at 60-75 % of the CPU). The steps are those of the
 direct models (geometric, restarting at every change), run twice for the Richardson pair
 (``direct``).
