@@ -92,6 +92,19 @@ def test_bar_estimate_bounds_the_error_against_an_independent_reference(k, start
     assert layer <= LAYER_TOLERANCE * result.error_estimate
 
 
+def test_a_capped_bar_plan_keeps_the_grading_of_smaller_error():
+    """A 60 x 8 x 4 mm link bar drying (k = 2) is capped from 1e-2 down; asking for more
+    accuracy must not worsen the estimate. Before: at 3e-3 the capped uniform grid (fewer
+    cells) won over the capped graded one, estimate 5.7e-2 against 9.6e-3 at 1e-2
+    (benchmarks/dc_bar.py link); now 8.8e-3 on the graded cells."""
+    link, thickness = Bar(60e-3, 8e-3, 4e-3), 4e-3
+    times = np.array(BAR_REFERENCE["tau"]) * thickness ** 2 / D
+    drying = exposure(MM, 0.0, times[-1])
+    estimates = [plan(link, ISOTROPIC, drying, times, accuracy=a, sorption=law(2)).error_estimate
+                 for a in (1e-2, 3e-3, 1e-3)]
+    assert estimates[2] <= estimates[1] <= estimates[0] < 1e-2, estimates
+
+
 def column_mean(z_centres: np.ndarray, values: np.ndarray) -> np.ndarray:
     """Mean over the half thickness of a column of cells given their centres (from z = 0:
     each edge is the previous one mirrored through the centre)."""
