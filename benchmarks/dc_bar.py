@@ -5,8 +5,8 @@ independent references (issue 13).
     python benchmarks/dc_bar.py reference   # tests/data/dc_bar_reference.json (method of lines)
     python benchmarks/dc_bar.py small [K ...]  # 6 x 4 x 2 mm bar: k = 0, 1, 2 at 1e-2, 3e-3, 1e-3
     python benchmarks/dc_bar.py link [K ...]   # 60 x 8 x 4 mm link bar: k = 0 exact, k > 0 vs 3e-3
-    python benchmarks/dc_bar.py sweeps      # inexact sweeps from the extrapolated state vs exact ones
-    python benchmarks/dc_bar.py profile     # where the CPU goes: cells, steps, sweeps, factorisations
+    python benchmarks/dc_bar.py sweeps      # inexact sweeps from the extrapolated state vs exact
+    python benchmarks/dc_bar.py profile     # where the CPU goes (cProfile of k = 2 runs)
 
 References. k = 0: the exact block (Crank 1975 eq. 4.51, product of three sheets;
 ``solve(..., model="analytic")``). k > 0 (``reference``): an independent method of lines

@@ -28,7 +28,8 @@ residual of the iterate it starts from (inexact Picard), and a step's sweeps sta
 the last two states extrapolated in time (``extrapolated``): on a 6 x 4 x 2 mm bar (k = 2,
 absorbing, accuracy 1e-2, 4 968 cells) 20.3 CPU s against 27.6 with exact solves from the
 old state, the same means to 1.6e-9 of Mm (benchmarks/dc_bar.py sweeps; its profile
-showed the triangular solves of the lagged factors at 60-75 % of the CPU). The steps are those of the
+showed the triangular solves of the lagged factors at 60-75 % of the CPU). The steps are
+those of the
 direct models (geometric, restarting at every change), run twice for the Richardson pair
 (``direct``).
 """
