@@ -29,9 +29,8 @@ the last two states extrapolated in time (``extrapolated``): on a 6 x 4 x 2 mm b
 absorbing, accuracy 1e-2, 4 968 cells) 20.3 CPU s against 27.6 with exact solves from the
 old state, the same means to 1.6e-9 of Mm (benchmarks/dc_bar.py sweeps; its profile
 showed the triangular solves of the lagged factors at 60-75 % of the CPU). The steps are
-those of the
-direct models (geometric, restarting at every change), run twice for the Richardson pair
-(``direct``).
+those of the direct models (geometric, restarting at every change), run twice for the
+Richardson pair (``direct``).
 """
 from __future__ import annotations
 
