@@ -10,6 +10,7 @@ correction.
     python benchmarks/dc_defect_correction.py skin-margin [M ...] # drying: estimate / error
     python benchmarks/dc_defect_correction.py demo-cam           # the README table
     python benchmarks/dc_defect_correction.py fickian-reference  # why not Fick at Crank's mean D
+    python benchmarks/dc_defect_correction.py planform-sequence [K [A]]  # 1x-8x planforms
     python benchmarks/dc_defect_correction.py soak-dry           # wetted, then dried: plans, CPU
     python benchmarks/dc_defect_correction.py march-cost         # CPU of one swept march pair
     python benchmarks/dc_defect_correction.py soak-dry-solid K A # auto at 0.1 vs solid at A
@@ -329,6 +330,47 @@ def cam_table(exponents=(0.0, 1.0, 2.0), accuracies=(1e-2, 3e-3, 1e-3)) -> None:
                   f"{layer:.1e} | {label} | {result.cells} | {cpu:.1f} |", flush=True)
 
 
+def planform_sequence(exponent: str = "2", accuracy: str = "1e-3") -> None:
+    """The demo cam's D(c) planform on the finer 3-D plan refined 1x, 2x, 4x and 8x (the 8x
+    past ``PLANFORM_CELLS``): each quantity's changes, their ratios rho, ``three_levels``'
+    choice and estimate on the first three against the 8x mesh (relative to the swing; the
+    layer / ``LAYER_TOLERANCE``)."""
+    from fickcam.diffusion import defect
+    from fickcam.diffusion.direct import swing
+
+    k, accuracy = float(exponent), float(accuracy)
+    geometry, d, exposure, times, law = demo_cam(k)
+    setting = defect.Setting.of(geometry, d, law, exposure, times, 5e-4,
+                                defect.steps_for(accuracy), "cam")
+    sheet = defect.sheet_reference(geometry, d, law, exposure, times, accuracy)
+    chosen = defect.level_plan(geometry, d, law, exposure, times, defect.MESH_LEVELS[-1],
+                               setting.per_doubling)
+    level = defect.three_d(setting, chosen, False)
+    surface = np.asarray(exposure.surface_before(times), float)
+    scale = swing(exposure, times)
+    through = (level.slab, defect.Pair(sheet.mean, sheet.surface))
+    results = {1.0: defect.corrected(level.plate, through, (level.planform, level.moments),
+                                     surface)}
+    for refine in (2.0, 4.0, 8.0):
+        start = time.process_time()
+        _, fine, cells = setting.planform(chosen.finest / refine, chosen.growth / refine)
+        results[refine] = defect.corrected(level.plate, through, (level.planform, fine),
+                                           surface)
+        print(f"planform x{refine:g}: {cells} cells, {time.process_time() - start:.1f} CPU s",
+              flush=True)
+    for index, name, divisor in ((0, "mean", 1.0), (1, "layer", defect.LAYER_TOLERANCE)):
+        coarse, middle, fine, finest = (results[r][index] for r in (1.0, 2.0, 4.0, 8.0))
+        extrapolate, estimate = defect.three_levels(coarse, middle, fine)
+        taken = fine + (fine - middle) / 3.0 if extrapolate else fine
+        with np.errstate(divide="ignore", invalid="ignore"):
+            rho = (middle - coarse) / (fine - middle)
+        print(f"{name}: rho {np.round(rho, 2)}, extrapolated {extrapolate}, estimate "
+              f"{estimate / divisor / scale:.2e}, |taken - x8| "
+              f"{np.max(np.abs(taken - finest)) / divisor / scale:.2e}, |x4 - x8| "
+              f"{np.max(np.abs(fine - finest)) / divisor / scale:.2e}, |x4 extrapolated - x8| "
+              f"{np.max(np.abs(fine + (fine - middle) / 3.0 - finest)) / divisor / scale:.2e}")
+
+
 def slab(widths):
     from fickcam.diffusion.defect import half_slab
     return half_slab(np.asarray(widths, float))
@@ -401,5 +443,6 @@ def sheet_uptake_series(tau):
 if __name__ == "__main__":
     {"plate-reference": plate_reference, "plate": plate_record, "plate-order": plate_order,
      "skin-margin": skin_margins, "demo-cam": cam_table,
+     "planform-sequence": planform_sequence,
      "fickian-reference": fickian_reference, "soak-dry": soak_dry,
      "march-cost": march_cost, "soak-dry-solid": soak_dry_solid}[sys.argv[1]](*sys.argv[2:])
