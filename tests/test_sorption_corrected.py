@@ -11,7 +11,8 @@ import pytest
 from hypothesis import given, settings, strategies as st
 
 from fickcam.diffusion import CamPlate, Diffusivity, Exposure, plan, solve
-from fickcam.diffusion.defect import gap, three_levels
+from fickcam.diffusion.defect import gap
+from fickcam.diffusion.gridcheck import three_levels
 from fickcam.diffusion.planmodes import LAYER_TOLERANCE
 from fickcam.diffusion.sorption import ConcentrationDependent
 

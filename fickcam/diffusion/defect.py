@@ -42,6 +42,7 @@ from .discretisation import Discretisation, assemble
 from .fv import normalised
 from .cellmoments import corrected_weights
 from .fvprism import prism
+from .gridcheck import taken, three_levels
 from .geometry import Sheet
 from .mirrored import half, mirrored
 from .prism import band_share
@@ -262,57 +263,12 @@ def refined_reference(setting: Setting, level: Level, sheet: Pair, accuracy: flo
         else:
             (mean, mean_error), (layer, layer_error) = (
                 three_levels(*(result(p)[i] for p in planforms[-3:])) for i in range(2))
-            reference = replace(fine, mean=_taken(mean, planforms[-2].mean, fine.mean),
-                                layer=_taken(layer, planforms[-2].layer, fine.layer))
+            reference = replace(fine, mean=taken(mean, planforms[-2].mean, fine.mean),
+                                layer=taken(layer, planforms[-2].layer, fine.layer))
             estimate = max(mean_error, layer_error / LAYER_TOLERANCE) / scale
         if estimate <= PLANFORM_SHARE * accuracy:
             break
     return reference, estimate, cells, factor
-
-
-def _taken(extrapolate: bool, middle, fine):
-    """What ``three_levels`` chose: the 2x Richardson extrapolation, or the finest mesh."""
-    return fine + (fine - middle) / 3.0 if extrapolate else fine
-
-
-CONTRACTION = 3.0  # |change ratio| between two 2x refinements read as converging (order >= 1.6)
-SAFETY = 1.25      # Roache's factor on the three-grid convergence index
-OVERSHOOT = 7.0    # largest rho at which the order-2 extrapolation is taken
-
-
-def three_levels(coarse, middle, fine) -> tuple[bool, float]:
-    """(extrapolate, error) of one quantity (an array over the outputs) on the finest of
-    three meshes each refined 2x: the three-grid check of Roache (1998, Verification and
-    Validation in Computational Science and Engineering, ch. 5; Celik et al. 2008, J. Fluids
-    Eng. 130:078001, eqs. 1-5). The ratio of the changes, rho = (middle - coarse) /
-    (fine - middle), is read where the finer change is at least a tenth of its largest:
-
-    - ``CONTRACTION`` <= rho throughout (monotone, at least order log2 3 = 1.6): the
-      error of ``fine`` is its grid convergence index 1.25 |fine - middle| / (rho - 1)
-      with the smallest rho seen (for an error a h^p, |fine - middle| / (rho - 1) is the
-      error); where also rho <= ``OVERSHOOT`` the second-order extrapolation
-      fine + (fine - middle) / 3 is taken: its error |4 - rho| / 3 that of ``fine``, no
-      larger (an order-2 extrapolation of a sequence of order above log2 7 = 2.8
-      overshoots by more than the fine mesh's own error);
-    - |rho| >= ``CONTRACTION`` throughout (converging, but oscillating or changing sign):
-      ``fine``, its error at most half its change (the rest of a series contracting by 3
-      or more, alternating or not, is at most |fine - middle| / 2);
-    - else ``fine``, its error at most the whole change (an upper bound from order 1 on).
-
-    On the demo cam's D(c) planform (k = 2, accuracy 1e-3) the contact layer at 1 d flips
-    sign between the meshes (rho = -14): there the extrapolation erred 1.8e-4 of the swing
-    (layer / 4; against the 8x mesh, 108 000 cells), the 4x mesh itself 2e-5."""
-    changes = (middle - coarse, fine - middle)
-    largest = float(np.max(np.abs(changes[1])))
-    if largest == 0.0:
-        return False, 0.0
-    significant = np.abs(changes[1]) >= 0.1 * largest
-    rho = changes[0][significant] / changes[1][significant]
-    if np.all(rho >= CONTRACTION):
-        return bool(np.all(rho <= OVERSHOOT)), SAFETY * largest / (float(np.min(rho)) - 1.0)
-    if np.all(np.abs(rho) >= CONTRACTION):
-        return False, 0.5 * largest
-    return False, largest
 
 
 def gap(a, b, scale: float) -> float:

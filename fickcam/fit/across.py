@@ -57,6 +57,15 @@ def _log_interval(log_value, se, quantile) -> Estimate:
     return log_estimate(float(log_value), float(quantile * se))
 
 
+def _weighted_mean(values, sigma) -> tuple[float, float]:
+    """(inverse-variance weighted mean, its variance 1 / sum 1/sigma^2); where no value has
+    a known sigma (no condition determined: NaN), the plain mean and a NaN variance."""
+    weights = 1.0 / np.asarray(sigma, float) ** 2
+    if not np.any(weights > 0.0):
+        return float(np.mean(values)), float("nan")
+    return float(np.sum(weights * values) / np.sum(weights)), 1.0 / float(np.sum(weights))
+
+
 def _log_d_se(fit: FickFit) -> float:
     return float(np.sqrt(fit.covariance[0, 0]))
 
@@ -69,9 +78,7 @@ def arrhenius(conditions: list[FickFit], library_activation_energy: float) -> La
     sigma = np.maximum([_log_d_se(c) for c in conditions], SIGMA_FLOOR)
     if np.unique(np.round(inverse_t, 9)).size < 2:
         ea = library_activation_energy
-        weights = 1.0 / sigma ** 2
-        log_d0 = float(np.sum(weights * (log_d + ea * inverse_t / GAS_CONSTANT)) / np.sum(weights))
-        variance = 1.0 / float(np.sum(weights))
+        log_d0, variance = _weighted_mean(log_d + ea * inverse_t / GAS_CONSTANT, sigma)
         covariance = np.array([[variance, 0.0], [0.0, 0.0]])
         return LawFit(_log_interval(log_d0, np.sqrt(variance), Z95), Estimate(ea, ea, ea),
                       covariance, "data", "library", len(conditions))
@@ -98,9 +105,7 @@ def saturation_law(conditions: list[FickFit], library_exponent: float) -> LawFit
     if np.unique(np.round(rh, 6)).size < 2:
         b = library_exponent
         scale = rh ** -b
-        weights = 1.0 / (sigma * scale) ** 2
-        a = float(np.sum(weights * mm * scale) / np.sum(weights))
-        variance = 1.0 / float(np.sum(weights))
+        a, variance = _weighted_mean(mm * scale, sigma * scale)
         return LawFit(_interval(a, np.sqrt(variance), Z95), Estimate(b, b, b),
                       np.array([[variance, 0.0], [0.0, 0.0]]), "data", "library", len(conditions))
 

@@ -55,22 +55,33 @@ def _sorption_lines(report: FitReport, pre_exponential: float, coefficient: floa
             f"release_rate: {_g(fit.release_rate.value)} 1/s}}"]
 
 
+def _uncertainty_lines(d, s, m: dict, to_matrix_d: float, to_matrix_a: float) -> list[str]:
+    """``interval_95`` and ``covariance`` of a determined fit (matrix values)."""
+    return ["      interval_95:",
+            f"        pre_exponential: {_pair(d.first.low * to_matrix_d, d.first.high * to_matrix_d, 'm^2/s')}",
+            f"        activation_energy: {_pair(d.second.low / 1e3, d.second.high / 1e3, 'kJ/mol')}",
+            f"        coefficient: {_pair(s.first.low * to_matrix_a, s.first.high * to_matrix_a, '%')}",
+            f"        exponent: {_pair(s.second.low, s.second.high)}",
+            "      covariance:                          # SI, for Monte Carlo draws (bivariate normal)",
+            f"        diffusivity: {_matrix(m['diffusivity_covariance'])}   "
+            "# (ln pre_exponential, activation_energy [J/mol])",
+            f"        saturation: {_matrix(m['saturation_covariance'])}   # (coefficient [%], exponent)"]
+
+
 def _fit_record(report: FitReport, m: dict) -> list[str]:
     d, s = report.arrhenius, report.saturation
     to_matrix_d, to_matrix_a = 1.0 / report.diffusivity_factor, 1.0 / report.moisture_factor
     lines = ["    fit:                                   # what fickcam fit found (checked, not used by a run)",
-             f"      source: {report.source}",
-             "      interval_95:",
-             f"        pre_exponential: {_pair(d.first.low * to_matrix_d, d.first.high * to_matrix_d, 'm^2/s')}",
-             f"        activation_energy: {_pair(d.second.low / 1e3, d.second.high / 1e3, 'kJ/mol')}",
-             f"        coefficient: {_pair(s.first.low * to_matrix_a, s.first.high * to_matrix_a, '%')}",
-             f"        exponent: {_pair(s.second.low, s.second.high)}",
-             "      covariance:                          # SI, for Monte Carlo draws (bivariate normal)",
-             f"        diffusivity: {_matrix(m['diffusivity_covariance'])}   "
-             "# (ln pre_exponential, activation_energy [J/mol])",
-             f"        saturation: {_matrix(m['saturation_covariance'])}   # (coefficient [%], exponent)",
-             f"      activation_energy_from: {d.second_from}",
-             f"      exponent_from: {s.second_from}"]
+             f"      source: {report.source}"]
+    bounds = [d.first.low, d.first.high, s.first.low, s.first.high]
+    if not (np.all(np.isfinite(bounds)) and np.all(np.isfinite(m["diffusivity_covariance"]))
+            and np.all(np.isfinite(m["saturation_covariance"]))):
+        lines += ["      # no interval_95 or covariance: D and Mm are NOT determined by these "
+                  "weighings (weigh longer)"]
+    else:
+        lines += _uncertainty_lines(d, s, m, to_matrix_d, to_matrix_a)
+    lines += [f"      activation_energy_from: {d.second_from}",
+              f"      exponent_from: {s.second_from}"]
     if report.fiber:
         lines += ["      ply:                                 # the coupon (ply) values the data gave",
                   f"        pre_exponential: {_g(d.first.value)} m^2/s",

@@ -53,11 +53,11 @@ class FitReport:
         """The matrix overrides of a scene (SI; moisture in %): ply D0 / diffusivity_factor,
         ply a / moisture_factor; Ea, b unchanged; covariances carried along."""
         d, s = self.arrhenius, self.saturation
-        scale = np.diag([1.0 / self.moisture_factor, 1.0])
+        scale = np.array([1.0 / self.moisture_factor, 1.0])   # diag(scale) C diag(scale)
         return {"pre_exponential": d.first.value / self.diffusivity_factor,
                 "activation_energy": d.second.value, "coefficient": s.first.value / self.moisture_factor,
                 "exponent": s.second.value, "diffusivity_covariance": d.covariance,
-                "saturation_covariance": scale @ s.covariance @ scale}
+                "saturation_covariance": np.outer(scale, scale) * s.covariance}
 
     def to_dataset(self):
         """The condition fits (dimension ``condition``) and the specimen fits (``specimen_*``

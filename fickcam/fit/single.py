@@ -76,15 +76,22 @@ class LeastSquares:
 
 def solve_least_squares(residual, x0, x_scale) -> LeastSquares:
     """scipy.optimize.least_squares (trust region reflective) and the covariance
-    s^2 (J^T J)^-1, s^2 = SSR/(n - p) (Bates & Watts 1988, eq. 2.14)."""
+    s^2 (J^T J)^-1, s^2 = SSR/(n - p) (Bates & Watts 1988, eq. 2.14), n the residuals that
+    carry information: a residual that is zero and does not depend on the parameters (the
+    dry weighing at t = 0, where every model gives M = 0) is not an observation of the
+    scatter. With n <= p nothing is left to estimate s from: the covariance is NaN (the
+    parameters are not determined, and the report says so), not the zero that an exact fit
+    through p points gives (or, by round-off, a negative variance on one machine and a
+    tiny positive one on another)."""
     result = least_squares(residual, np.asarray(x0, float), x_scale=np.asarray(x_scale, float),
                            method="trf", xtol=1e-12, ftol=1e-12, gtol=1e-12, max_nfev=400)
     r = result.fun
-    n, p = r.size, result.x.size
+    p = result.x.size
+    n = int(np.count_nonzero(np.any(result.jac != 0.0, axis=1) | (r != 0.0)))
     ssr = float(r @ r)
-    s2 = ssr / max(n - p, 1)
     try:
-        covariance = s2 * np.linalg.inv(result.jac.T @ result.jac)
+        covariance = (ssr / (n - p) * np.linalg.inv(result.jac.T @ result.jac) if n > p else
+                      np.full((p, p), np.nan))
     except np.linalg.LinAlgError:
         covariance = np.full((p, p), np.inf)
     return LeastSquares(result.x, covariance, ssr, n, r)
