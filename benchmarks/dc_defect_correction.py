@@ -337,6 +337,7 @@ def planform_sequence(exponent: str = "2", accuracy: str = "1e-3") -> None:
     layer / ``LAYER_TOLERANCE``)."""
     from fickcam.diffusion import defect
     from fickcam.diffusion.direct import swing
+    from fickcam.diffusion.gridcheck import three_levels
 
     k, accuracy = float(exponent), float(accuracy)
     geometry, d, exposure, times, law = demo_cam(k)
@@ -360,7 +361,7 @@ def planform_sequence(exponent: str = "2", accuracy: str = "1e-3") -> None:
               flush=True)
     for index, name, divisor in ((0, "mean", 1.0), (1, "layer", defect.LAYER_TOLERANCE)):
         coarse, middle, fine, finest = (results[r][index] for r in (1.0, 2.0, 4.0, 8.0))
-        extrapolate, estimate = defect.three_levels(coarse, middle, fine)
+        extrapolate, estimate = three_levels(coarse, middle, fine)
         taken = fine + (fine - middle) / 3.0 if extrapolate else fine
         with np.errstate(divide="ignore", invalid="ignore"):
             rho = (middle - coarse) / (fine - middle)
