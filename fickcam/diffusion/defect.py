@@ -31,6 +31,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, replace
+from functools import partial
 
 import numpy as np
 
@@ -41,6 +42,7 @@ from .direct import plan_direct, step_plan, swing
 from .discretisation import Discretisation, assemble
 from .fv import normalised
 from .cellmoments import corrected_weights
+from .dense import Extension, Track
 from .fvprism import prism
 from .gridcheck import taken, three_levels
 from .geometry import Sheet
@@ -85,6 +87,20 @@ class Pair:
     fields: np.ndarray | None = None
     steps: int = 0
     pair: float = 0.0   # largest |fine - coarse| of the mean (time error indicator)
+    track: Track | None = None   # (mean, layer) at every step (``dense``: ``extend``)
+
+
+def combined(pairs, mean_rule, layer_rule=None) -> Pair:
+    """The last of ``pairs`` with its mean, layer and track ``mean_rule`` / ``layer_rule``
+    (pointwise in time) of ``pairs``' own."""
+    layer_rule = layer_rule or mean_rule
+    track = pairs[-1].track
+    if track is not None:
+        track = track.with_values(np.column_stack(
+            [rule(*(p.track.values[:, i] for p in pairs))
+             for i, rule in enumerate((mean_rule, layer_rule))]))
+    return replace(pairs[-1], mean=mean_rule(*(p.mean for p in pairs)),
+                   layer=layer_rule(*(p.layer for p in pairs)), track=track)
 
 
 def half_slab(z_widths: np.ndarray) -> Discretisation:
@@ -114,17 +130,18 @@ def planform_disc(geometry, d, finest: float, growth: float, depth: float):
             corrected_weights(tess, depth))
 
 
-def richardson_march(disc, law, top, exposure, times, scales, per_doubling, keep, part) -> Pair:
+def richardson_march(disc, law, top, exposure, times, scales, per_doubling, keep, part,
+                     columns=()) -> Pair:
     """The swept backward-Euler march (``nonlinear``) on the plan's steps and on them
-    bisected, combined 2 fine - coarse."""
+    bisected, combined 2 fine - coarse; its track: (mean, layer, ``columns``' sums)."""
     faces = Faces.of(disc)
-    coarse, fine = (sweep_march(faces, disc, law, top,
-                                step_plan(exposure, times, scales, per_doubling, bisect),
-                                exposure.initial_moisture, keep, part)
-                    for bisect in (False, True))
+    plans = [step_plan(exposure, times, scales, per_doubling, bisect) for bisect in (False, True)]
+    coarse, fine = (sweep_march(faces, disc, law, top, steps, exposure.initial_moisture, keep,
+                                part, columns) for steps in plans)
     fields = 2.0 * fine.fields - coarse.fields if keep else None
     return Pair(2.0 * fine.mean - coarse.mean, 2.0 * fine.layer - coarse.layer, fields,
-                coarse.steps + fine.steps, float(np.max(np.abs(fine.mean - coarse.mean))))
+                coarse.steps + fine.steps, float(np.max(np.abs(fine.mean - coarse.mean))),
+                Track.of(plans[0], coarse, fine, scales, exposure))
 
 
 def corrected(plate: Pair, sheet: tuple, planform: tuple, surface: np.ndarray):
@@ -195,17 +212,22 @@ class Setting:
                    law.largest_factor(wettest(exposure, times)),
                    scales_of(geometry, scaled, exposure), depth, per_doubling, part)
 
-    def run(self, disc, keep: bool = False) -> Pair:
+    def run(self, disc, keep: bool = False, columns=()) -> Pair:
         return richardson_march(disc, self.law, self.top, self.exposure, self.times,
-                                self.scales, self.per_doubling, keep, self.part)
+                                self.scales, self.per_doubling, keep, self.part, columns)
 
     def planform(self, finest: float, growth: float) -> tuple[Pair, Pair, int]:
         """(the plate's weights, ``cellmoments``' weights, cells) of the planform's march."""
         disc, weights = planform_disc(self.geometry, self.d, finest, growth, self.depth)
-        pair, g = self.run(disc, True), np.asarray(self.exposure.surface_before(self.times), float)
+        pair = self.run(disc, True, weights)
+        g = np.asarray(self.exposure.surface_before(self.times), float)
         mean, layer = (g + (pair.fields - g[:, None]) @ w for w in weights)
-        return replace(pair, fields=None), replace(pair, mean=mean, layer=layer, fields=None), \
-            disc.cells
+        track = pair.track   # its columns 2, 3: the sums of u on ``weights``, g added as above
+        moments = track.values[:, 2:] + track.surface[:, None] * (
+            1.0 - np.array([np.sum(w) for w in weights]))
+        return (replace(pair, fields=None, track=track.with_values(track.values[:, :2])),
+                replace(pair, mean=mean, layer=layer, fields=None,
+                        track=track.with_values(moments)), disc.cells)
 
 
 @dataclass(frozen=True)
@@ -257,14 +279,12 @@ def refined_reference(setting: Setting, level: Level, sheet: Pair, accuracy: flo
         planforms.append(fine)
         weight, factor = 1.0 / ((refine / factor) ** 2 - 1.0), refine
         if len(planforms) == 2:
-            reference = replace(fine, mean=fine.mean + weight * (fine.mean - planforms[0].mean),
-                                layer=fine.layer + weight * (fine.layer - planforms[0].layer))
+            reference = combined(planforms, lambda coarse, f: f + weight * (f - coarse))
             estimate = gap(result(planforms[0]), result(fine), scale)
         else:
             (mean, mean_error), (layer, layer_error) = (
                 three_levels(*(result(p)[i] for p in planforms[-3:])) for i in range(2))
-            reference = replace(fine, mean=taken(mean, planforms[-2].mean, fine.mean),
-                                layer=taken(layer, planforms[-2].layer, fine.layer))
+            reference = combined(planforms[-2:], partial(taken, mean), partial(taken, layer))
             estimate = max(mean_error, layer_error / LAYER_TOLERANCE) / scale
         if estimate <= PLANFORM_SHARE * accuracy:
             break
@@ -358,6 +378,17 @@ def solve_corrected(geometry, diffusivity, law, exposure, times, accuracy: float
                              sum(m.plate.steps for m in marched), float(estimate), note)
     if store_fields:
         result.fields, result.cell_coordinates = fine.plate.fields, fine.coordinates
+    else:   # the limit search's extra times: the corrected product between the steps (``dense``)
+        def product(values, at):   # the tracks' (mean, layer) at ``at``: as ``results``
+            plate, slab, planform, reference, sheet_at = (Pair(v[:, 0], v[:, 1]) for v in values)
+            return corrected(plate, (slab, sheet_at), (planform, reference),
+                             np.asarray(exposure.surface_before(at), float))
+        result.extend = Extension(
+            result, [fine.plate.track, fine.slab.track, fine.planform.track,
+                     run.planform.track, sheet.extend.tracks[0]], product, scale, accuracy,
+            lambda both: solve_corrected(geometry, diffusivity, law, exposure, both, accuracy,
+                                         surface_layer_depth=surface_layer_depth, part=part,
+                                         reason=reason), part)
     return result
 
 

@@ -30,6 +30,7 @@ from .clock import RescaledTime
 from .clock import scales as scales_of
 from .coupled import two_phase_marcher
 from .defect import plan_corrected, solve_corrected
+from .dense import held_to_plan
 from .direct import plan_direct, solve_direct
 from .exact import exact_available
 from .exposure import Diffusivity, Exposure
@@ -256,12 +257,25 @@ def solve(geometry, diffusivity: Diffusivity, exposure: Exposure, times: np.ndar
                         surface_layer_depth, store_fields=store_fields, part=part)
     chosen = plan(geometry, diffusivity, exposure, times, accuracy, model, sorption,
                   surface_layer_depth)
+    if route:   # D(c): ``extend`` reads between the steps where the cells stay (``dense``)
+        def again(at):
+            return plan(geometry, diffusivity, exposure, at, accuracy, model, sorption,
+                        surface_layer_depth)
+
+        def resolve(at):
+            return solve(geometry, diffusivity, exposure, at, accuracy=accuracy, model=model,
+                         surface_layer_depth=surface_layer_depth, part=part, sorption=sorption)
     if route == "corrected":
-        return solve_corrected(geometry, diffusivity, sorption, exposure, times, accuracy,
-                               surface_layer_depth=surface_layer_depth,
-                               store_fields=store_fields, part=part, reason=chosen.reason)
+        return held_to_plan(solve_corrected(
+            geometry, diffusivity, sorption, exposure, times, accuracy,
+            surface_layer_depth=surface_layer_depth, store_fields=store_fields, part=part,
+            reason=chosen.reason), again, resolve)
     log.debug("%s: %s, %d cells, %d steps (%s)", part or type(geometry).__name__, chosen.model,
               chosen.cells, chosen.steps, chosen.reason)
+    if route:
+        return held_to_plan(_solve_sorption(geometry, diffusivity, exposure, times, chosen,
+                                            sorption, surface_layer_depth, store_fields, part,
+                                            accuracy), again, resolve)
     if sorption is not None and (is_langmuir(sorption) or is_nonlinear(sorption)):
         return _solve_sorption(geometry, diffusivity, exposure, times, chosen, sorption,
                                surface_layer_depth, store_fields, part, accuracy)

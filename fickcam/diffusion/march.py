@@ -123,6 +123,7 @@ class History:
     fields: np.ndarray | None
     steps: int
     factorisations: int
+    track: np.ndarray | None = None  # swept marches: weighted sums at every node (``dense``)
 
 
 def march(disc: Discretisation, nodes: np.ndarray, surface_values: np.ndarray,

@@ -43,6 +43,7 @@ from scipy.sparse import linalg as splinalg
 from ..errors import SolverError
 from .clock import sample_times
 from .clock import scales as scales_of
+from .dense import Extension, Track
 from .calibration import TIME_ERROR
 from .direct import _richardson, discretise, step_plan, swing
 from .exposure import Diffusivity
@@ -218,12 +219,10 @@ def solve_nonlinear(geometry, diffusivity, law, exposure, times, chosen, *,
                              surface_layer_depth))
     faces = Faces.of(weights)
     top = law.largest_factor(wettest(exposure, times))
-    runs = []
-    for bisect in (False, True):
-        steps = step_plan(exposure, times, scales, chosen.steps_per_doubling, bisect)
-        runs.append(sweep_march(faces, weights, law, top, steps, exposure.initial_moisture,
-                                store_fields, part))
-    coarse, fine = runs
+    plans = [step_plan(exposure, times, scales, chosen.steps_per_doubling, bisect)
+             for bisect in (False, True)]
+    coarse, fine = (sweep_march(faces, weights, law, top, steps, exposure.initial_moisture,
+                                store_fields, part) for steps in plans)
     combine, estimate = _richardson(chosen, coarse, fine, swing(exposure, times) or 1.0, True)
     result = DiffusionResult(times, combine(coarse.mean, fine.mean),
                              combine(coarse.layer, fine.layer), chosen.model, weights.cells,
@@ -231,6 +230,13 @@ def solve_nonlinear(geometry, diffusivity, law, exposure, times, chosen, *,
     if store_fields:
         result.fields = combine(coarse.fields, fine.fields)
         result.cell_coordinates = weights.coordinates
+    else:  # the limit search's extra times, read between the steps (``dense``)
+        result.extend = Extension(
+            result, [Track.of(plans[0], coarse, fine, scales, exposure)],
+            lambda values, _: (values[0][:, 0], values[0][:, 1]), swing(exposure, times) or 1.0,
+            chosen.error_estimate, lambda both: solve_nonlinear(
+                geometry, diffusivity, law, exposure, both, chosen,
+                surface_layer_depth=surface_layer_depth, part=part), part)
     return result
 
 
@@ -285,11 +291,16 @@ class Faces:
                 edge * g)
 
 
-def sweep_march(faces: Faces, weights, law, top, steps, initial, keep_fields, part) -> History:
-    """Backward Euler in scaled time, each step swept to convergence (module docstring)."""
+def sweep_march(faces: Faces, weights, law, top, steps, initial, keep_fields, part,
+                columns=()) -> History:
+    """Backward Euler in scaled time, each step swept to convergence (module docstring).
+    The history's ``track``: the mean, the layer and the weighted sums of ``columns`` (cell
+    weight vectors) at every node (``dense``)."""
     c = np.full(faces.volumes.size, float(initial))
     want = {int(k) for k in steps.outputs}
     record = {0: c.copy()} if 0 in want else {}
+    sums = np.column_stack([weights.mean_weights, weights.layer_weights, *columns])
+    track = [c @ sums]
     dts = _rounded(np.diff(steps.nodes))
     solver = Lagged()
     previous = None
@@ -298,12 +309,13 @@ def sweep_march(faces: Faces, weights, law, top, steps, initial, keep_fields, pa
         guess = None if previous is None else extrapolated(previous, c, dts[k - 2], dt, g)
         previous = c
         c = _sweep(faces, c, g, law, top, dt, part, k, steps.times[k], solver, guess)
+        track.append(c @ sums)
         if k in want:
             record[k] = c.copy()
     states = np.array([record[int(k)] for k in steps.outputs])
     return History(mean=states @ weights.mean_weights, layer=states @ weights.layer_weights,
                    fields=states if keep_fields else None, steps=int(dts.size),
-                   factorisations=solver.factorisations)
+                   factorisations=solver.factorisations, track=np.array(track))
 
 
 class Lagged:
