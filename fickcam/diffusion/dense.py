@@ -10,8 +10,8 @@ and double every m steps (``timesteps``): in log(age), age = tau* - tau*_change,
 are about evenly spaced (ln 2 / m apart), and the solution, ~sqrt(age) early and
 exponential late (Crank 1975 eq. 4.18, 4.17), is smooth there. A new time is read by the
 Lagrange cubic through the 4 nodes of its segment about it, in log(age), and by the
-quadratic through the 3 nearest; their difference, the size of the cubic's last term, is
-the estimate of the quadratic's error and so bounds the cubic's (the error of Lagrange
+quadratics through the first 3 and the last 3 of them; the larger difference, the size of
+the cubic's last term, is the estimate of a quadratic's error and so bounds the cubic's (the error of Lagrange
 interpolation is the next divided difference times the nodal polynomial: Burden & Faires,
 Numerical Analysis, Thm 3.3; Stoer & Bulirsch, Introduction to Numerical Analysis §2.1.4).
 A segment is (change, next change]: the node at a change ends the segment before it (the
@@ -93,12 +93,12 @@ class Track:
         j = int(np.searchsorted(x, at))
         if j == 0 or j == x.size:   # before the first step's end or past the segment
             return nan, nan
-        four = np.arange(min(max(j - 2, 0), x.size - 4), min(max(j - 2, 0), x.size - 4) + 4)
-        nearer_above = (x[j] - at) < (at - x[j - 1])
-        three = np.arange(min(max(j - 2 + nearer_above, 0), x.size - 3),
-                          min(max(j - 2 + nearer_above, 0), x.size - 3) + 3)
-        return (lagrange(x[four], at) @ self.values[inside[four]],
-                lagrange(x[three], at) @ self.values[inside[three]])
+        four = np.arange(4) + min(max(j - 2, 0), x.size - 4)
+        cubic = lagrange(x[four], at) @ self.values[inside[four]]
+        lower, upper = (lagrange(x[three], at) @ self.values[inside[three]]
+                        for three in (four[:3], four[1:]))
+        # the quadratic further from the cubic: one alone can meet it by chance
+        return cubic, np.where(np.abs(cubic - lower) >= np.abs(cubic - upper), lower, upper)
 
 
 def lagrange(x: np.ndarray, at: float) -> np.ndarray:
