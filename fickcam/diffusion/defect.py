@@ -42,7 +42,7 @@ from .direct import plan_direct, step_plan, swing
 from .discretisation import Discretisation, assemble
 from .fv import normalised
 from .cellmoments import corrected_weights
-from .dense import Extension, Track
+from .dense import Extension, Track, combined
 from .fvprism import prism
 from .gridcheck import taken, three_levels
 from .geometry import Sheet
@@ -88,19 +88,6 @@ class Pair:
     steps: int = 0
     pair: float = 0.0   # largest |fine - coarse| of the mean (time error indicator)
     track: Track | None = None   # (mean, layer) at every step (``dense``: ``extend``)
-
-
-def combined(pairs, mean_rule, layer_rule=None) -> Pair:
-    """The last of ``pairs`` with its mean, layer and track ``mean_rule`` / ``layer_rule``
-    (pointwise in time) of ``pairs``' own."""
-    layer_rule = layer_rule or mean_rule
-    track = pairs[-1].track
-    if track is not None:
-        track = track.with_values(np.column_stack(
-            [rule(*(p.track.values[:, i] for p in pairs))
-             for i, rule in enumerate((mean_rule, layer_rule))]))
-    return replace(pairs[-1], mean=mean_rule(*(p.mean for p in pairs)),
-                   layer=layer_rule(*(p.layer for p in pairs)), track=track)
 
 
 def half_slab(z_widths: np.ndarray) -> Discretisation:

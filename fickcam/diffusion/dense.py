@@ -101,6 +101,20 @@ class Track:
         return cubic, np.where(np.abs(cubic - lower) >= np.abs(cubic - upper), lower, upper)
 
 
+def combined(pairs, mean_rule, layer_rule=None):
+    """The last of ``pairs`` (marches with mean, layer and a ``Track`` of the two, as
+    ``defect.Pair``) with its mean, layer and track ``mean_rule`` / ``layer_rule`` (pointwise
+    in time: a Richardson or three-mesh combination) of ``pairs``' own."""
+    layer_rule = layer_rule or mean_rule
+    track = pairs[-1].track
+    if track is not None:
+        track = track.with_values(np.column_stack(
+            [rule(*(p.track.values[:, i] for p in pairs))
+             for i, rule in enumerate((mean_rule, layer_rule))]))
+    return replace(pairs[-1], mean=mean_rule(*(p.mean for p in pairs)),
+                   layer=layer_rule(*(p.layer for p in pairs)), track=track)
+
+
 def lagrange(x: np.ndarray, at: float) -> np.ndarray:
     """Weights of the Lagrange polynomial through nodes ``x`` evaluated at ``at``."""
     weights = np.ones(x.size)
