@@ -115,10 +115,11 @@ def limits(k: str, accuracy: str, before: str = "", deviation: str = "") -> None
     start = time.process_time()
     ds = fickcam.run(fickcam.load_scene(demo_scene(float(k), float(accuracy), deviation)))
     cpu = time.process_time() - start
-    out = ds["time_out_of_spec"].values / 86400.0
+    out = ds["time_out_of_spec"]
     ratio = ds["limit_ratio"].values
     print(f"| {float(k):g} | {float(accuracy):g} | {deviation or 0.25} | {before or 'extend'} | "
-          f"{cpu:.1f} | {', '.join(f'{v:.4f}' for v in out)} d |", flush=True)
+          f"{cpu:.1f} | {', '.join(f'{v:.6g}' for v in out.values)} "
+          f"{out.attrs.get('units', '')} |", flush=True)
     print("limit_ratio (time x limit):", np.array2string(ratio, precision=4), flush=True)
 
 
