@@ -26,9 +26,9 @@ estimate of each new time. It is added to the result's estimate; where it exceed
 result is solved again at its times and the new ones together (logged). So is it where
 the plan of the stored and new times together has other cells (``fits``, set by
 ``dispatch.solve``): the cells are sized for the youngest output after a change
-(``timesteps.earliest_output``), and a younger new time reads a layer they do not resolve
-(on the 4 x 3 x 2 mm plate, k = 2, 1e-2, a time 1e-3 h^2/D after a step down read 4e-3 of
-the swing off the re-planned solve, its interpolation estimate 1e-6).
+(``timesteps.earliest_output``), and a younger new time reads a layer they do not resolve,
+which its interpolation estimate cannot see. Measured: ``benchmarks/dc_extend.py`` (README
+"Non-Fickian sorption"); tested: tests/test_sorption_extend.py.
 """
 from __future__ import annotations
 
@@ -42,7 +42,8 @@ from .planmodes import LAYER_TOLERANCE
 
 log = logging.getLogger(__name__)
 
-INTERPOLATION_SHARE = 1.0  # of the accuracy: a larger interpolation estimate re-solves
+INTERPOLATION_SHARE = 1.0  # of the accuracy: a larger interpolation estimate re-solves (the
+#   demo cam's, 4 steps per doubling: 6.5e-5 (k = 1) to 3.7e-4 (k = 2); benchmarks/dc_extend.py)
 
 
 @dataclass(frozen=True)
