@@ -84,6 +84,20 @@ def test_a_new_time_younger_than_the_stored_outputs_is_solved_again(stepped_shee
     assert 0.302 * T in extended.times
 
 
+def test_a_new_time_younger_than_the_stored_outputs_of_the_skin_is_solved_again():
+    """Stored outputs 0.3 and 0.7 h^2/D after the step down (the skin's cells sized for 0.3),
+    a new one 0.02 after it: older than the youngest stored output of the whole history (1e-2
+    after the start), but the skin's plan changes (``dense.held_to_plan``), so it is solved
+    again and agrees with ``solve`` at both to round-off."""
+    law = ConcentrationDependent(MM, exponent=2.0)
+    stored_times = TIMES[TIMES != 0.31 * T]
+    stored = solve(Sheet(H), ISOTROPIC, STEP_DOWN, stored_times, accuracy=1e-2, sorption=law)
+    extended = stored.extend(np.array([0.32]) * T)
+    assert "read between" not in extended.reason
+    again = solve(Sheet(H), ISOTROPIC, STEP_DOWN, extended.times, accuracy=1e-2, sorption=law)
+    np.testing.assert_array_equal(extended.mean, again.mean)
+
+
 def test_the_reading_never_crosses_an_exposure_change():
     """Two segments with different cubics in log(age): read just after the change (its first
     stencil) and just before, each is its own segment's cubic to round-off (a stencil across

@@ -23,9 +23,10 @@ the cubic and on the quadratic values; the difference of the two results, larges
 mean and the layer / ``LAYER_TOLERANCE`` and relative to the swing, is the interpolation
 estimate of each new time. It is added to the result's estimate; where it exceeds
 ``INTERPOLATION_SHARE`` of the accuracy (or a time has too few nodes about it), the
-result is solved again at its times and the new ones together (logged). So is it where
-the plan of the stored and new times together has other cells (``fits``, set by
-``dispatch.solve``): the cells are sized for the youngest output after a change
+result is solved again at its times and the new ones together (logged). So is it where a
+new time is younger after its change than every stored output (``younger``), or where the
+plan of the stored and new times together has other cells (``fits``, set by
+``dispatch.solve``: also a skin's cells, sized at the outputs from the skin's start): the cells are sized for the youngest output after a change
 (``timesteps.earliest_output``), and a younger new time reads a layer they do not resolve,
 which its interpolation estimate cannot see. Measured: ``benchmarks/dc_extend.py`` (README
 "Non-Fickian sorption"); tested: tests/test_sorption_extend.py.
@@ -39,6 +40,7 @@ from typing import Callable
 import numpy as np
 
 from .planmodes import LAYER_TOLERANCE
+from .timesteps import earliest_output
 
 log = logging.getLogger(__name__)
 
@@ -137,6 +139,13 @@ class Extension:
         self.scale, self.accuracy, self.resolve, self.what = scale, accuracy, resolve, what
         self.fits: Callable[[np.ndarray], bool] | None = None   # the same cells at times?
 
+    def younger(self, times) -> bool:
+        """Whether ``times`` have an output younger after its change than the stored ones
+        (``timesteps.earliest_output``, the plans' t_lo: every plan's cells would change)."""
+        track = self.tracks[0]
+        return bool(earliest_output(track.changes, track.tau_star(times))
+                    < earliest_output(track.changes, track.tau_star(self.result.times)))
+
     def interpolated(self, times) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """(mean, layer, estimate per time) at ``times`` (module docstring)."""
         times = np.asarray(times, float)
@@ -151,7 +160,7 @@ class Extension:
         result = self.result
         new = np.setdiff1d(np.asarray(at, float), result.times)
         both = np.union1d(result.times, new)
-        if self.fits is not None and not self.fits(both):
+        if self.younger(both) or (self.fits is not None and not self.fits(both)):
             log.info("%s: %d new times need other cells than the stored solve's: solved again",
                      self.what or result.model, new.size)
             return self.resolve(both)
