@@ -159,3 +159,25 @@ def test_the_three_mesh_check_extrapolates_only_a_sequence_near_second_order():
         assert chosen is extrapolate
         assert got == pytest.approx(estimate * change, rel=1e-9)
         assert taken_error(values)[0] <= got
+
+
+def test_the_refined_3d_mesh_is_nested_by_two_in_every_direction():
+    """``defect.Cells.refined``: every planform point and z node of the coarse mesh is one of
+    the fine mesh's, every z width halved, the planform's area kept and its cells about 4x
+    (each triangle split into four: red refinement), so three_levels' ratio-2 check applies."""
+    from fickcam.diffusion.defect import Cells
+    from fickcam.diffusion.prism import cell_areas
+    from fickcam.diffusion.results import Plan
+
+    coarse = Cells.of(PLATE, (1.0, 1.0, 1.0), Plan("solid", 0, 0, "", 0.0, finest=0.27,
+                                                   growth=0.25))
+    fine = coarse.refined()
+    nodes = [np.concatenate([[0.0], np.cumsum(c.z)]) for c in (coarse, fine)]
+    np.testing.assert_allclose(nodes[1][::2], nodes[0], atol=1e-15)
+    np.testing.assert_allclose(fine.z, np.repeat(0.5 * coarse.z, 2), rtol=1e-15)
+    gaps = np.min(np.linalg.norm(coarse.tess.points[:, None] - fine.tess.points[None], axis=2),
+                  axis=1)
+    assert np.max(gaps) <= 1e-12 * H
+    assert cell_areas(fine.tess).sum() == pytest.approx(cell_areas(coarse.tess).sum(), rel=1e-12)
+    assert 3.5 <= fine.tess.cells / coarse.tess.cells <= 4.5
+    assert fine.cells == fine.tess.cells * 2 * coarse.z.size

@@ -44,15 +44,18 @@ from .cellmoments import corrected_weights
 from .fvprism import prism
 from .gridcheck import taken, three_levels
 from .geometry import Sheet
-from .mirrored import half, mirrored
-from .prism import band_share
+from .mirrored import half
+from .prism import band_share, refine
 from .nonlinear import (Faces, dries_to_a_skin, fastest, nonlinear_plan,
                         solve_nonlinear, spread, sweep_march, wettest)
 from .planmodes import LAYER_TOLERANCE
 from .results import DiffusionResult, Plan
 from .scaling import stretch_of
 
-MESH_LEVELS = (1.0, 0.5)   # accuracies of the two 3-D plans (coarse cells suffice)
+MESH_LEVELS = (1.0, 0.5)   # accuracies of the coarsest 3-D plan (then refined by 2, nested)
+#                            and of the plan whose graded planform the planform's refinement
+#                            starts from
+NESTED_CELLS = 30_000      # the finest nested 3-D mesh tried (cells on half the thickness)
 REFINE = (2.0, 4.0)        # planform refinements (finest and growth / R) for Richardson
 PLANFORM_CELLS = 60_000    # the finest planform tried
 SHEET_SHARE = 0.1          # the fine sheet's accuracy: this share of the requested one
@@ -65,15 +68,11 @@ SKIN_ESTIMATE_MARGIN = 1.0  # on the 3-D change of a drying part (``skin_margin`
 #   3-D runs (2.97e-3, 3.54e-3) is 2.54 and 1.31 with a margin 0, 4.01 and 2.28 with 1, 8.44
 #   and 5.20 with the old 4 (set before the Kirchhoff face mean); a safety of 2 needs 0.71
 TARGET = "; est. = the target: the run measures its own and warns above it"
-ORDER_ONE = 1.0 / (math.sqrt(2.0) - 1.0)  # the finer 3-D plan's error / the change between
-#   the two, at order 1 in w0 (w0 ~ sqrt(accuracy): ratio sqrt 2). Order 2 (a factor 1) is
-#   not what these plans show: on the 4 x 3 x 2 mm plate (k = 2, plans 1, 0.5, 0.25, 0.125,
-#   benchmarks/dc_defect_correction.py plate-order) the observed order of the successive
-#   changes scatters from -10 to 12 over the outputs (the z cells step 4, 6, 6, 8: not a
-#   nested refinement), and where the changes shrink steadily it is below 1 (absorbing,
-#   tau* = 0.03: 0.37, 0.77). The 0.5 plan is 0.44 (absorbing) and 0.29 (drying) times the
-#   change from the 0.125 plan, 0.79 and 2.8 times it from the stored 3-D runs (the latter
-#   no closer on the 0.125 plan: not the 3-D cells' error); kept as an upper bound
+ORDER_ONE = 1.0 / (2.0 - 1.0)  # the finer of two nested 3-D meshes' error / the change
+#   between them at order 1 (refinement ratio 2; a higher order gives less). Before, the two
+#   meshes were the graded 1 and 0.5 plans (w0 ratio sqrt 2, z cells 4, 6, 6, 8 over the
+#   plans 1-0.125 of the 4 x 3 x 2 mm plate: not nested, observed orders -10 to 12) and the
+#   factor 1 / (sqrt 2 - 1) = 2.4 an upper-bound guess
 
 
 @dataclass(frozen=True)
@@ -100,18 +99,41 @@ def half_slab(z_widths: np.ndarray) -> Discretisation:
     return Discretisation(volumes, stiffness, boundary, weights, weights)
 
 
-def planform_disc(geometry, d, finest: float, growth: float, depth: float):
+def planform_disc(geometry, d, tess, depth: float):
     """(Discretisation, corrected weights): the planform alone (a prism of infinite
-    thickness) on the graded admissible cells of (``finest``, ``growth``), one layer of
-    the mirrored prisms with its exposed face's coupling 8 V (half-layer height 1/4
-    scaled) taken out of the boundary vector (as ``planmodes.planform_operator``); its
-    mean and layer weights the plate's (cell volumes, band shares: the same discrete
-    product), and ``cellmoments``' second-order (mean, layer) weights on u - g beside."""
-    tess = layout.planform_cells(geometry, finest, growth, stretch_of(d))
+    thickness) on the admissible cells ``tess``, one layer of the mirrored prisms with its
+    exposed face's coupling 8 V (half-layer height 1/4 scaled) taken out of the boundary
+    vector (as ``planmodes.planform_operator``); its mean and layer weights the plate's
+    (cell volumes, band shares: the same discrete product), and ``cellmoments``'
+    second-order (mean, layer) weights on u - g beside."""
     disc = prism(tess, geometry.thickness, np.array([0.5 * geometry.thickness]),
                  band_share(tess, depth), d, mid_plane=True)
     return (replace(disc, boundary=disc.boundary - 8.0 * disc.volumes),
             corrected_weights(tess, depth))
+
+
+@dataclass(frozen=True)
+class Cells:
+    """A 3-D mesh of the mirrored prisms: admissible planform cells (``prism.Tessellation``)
+    x z widths (scaled, exposed face to mid-plane)."""
+
+    tess: object
+    z: np.ndarray
+
+    @classmethod
+    def of(cls, geometry, d, chosen: Plan) -> "Cells":
+        """The graded cells of a plan (``mirrored``'s prisms)."""
+        return cls(layout.planform_cells(geometry, chosen.finest, chosen.growth, stretch_of(d)),
+                   half(layout.prism_widths(chosen.finest, chosen.growth)))
+
+    def refined(self) -> "Cells":
+        """Nested refinement by 2: every planform edge halved (``prism.refine``), every z
+        width halved; 8 x the cells."""
+        return Cells(refine(self.tess), np.repeat(0.5 * self.z, 2))
+
+    @property
+    def cells(self) -> int:
+        return self.tess.cells * self.z.size
 
 
 def richardson_march(disc, law, top, exposure, times, scales, per_doubling, keep, part) -> Pair:
@@ -200,8 +222,14 @@ class Setting:
                                 self.scales, self.per_doubling, keep, self.part)
 
     def planform(self, finest: float, growth: float) -> tuple[Pair, Pair, int]:
-        """(the plate's weights, ``cellmoments``' weights, cells) of the planform's march."""
-        disc, weights = planform_disc(self.geometry, self.d, finest, growth, self.depth)
+        """(the plate's weights, ``cellmoments``' weights, cells) of the planform's march on
+        the graded cells of (``finest``, ``growth``)."""
+        return self.planform_on(layout.planform_cells(self.geometry, finest, growth,
+                                                      stretch_of(self.d)))
+
+    def planform_on(self, tess) -> tuple[Pair, Pair, int]:
+        """``planform`` on the admissible cells ``tess``."""
+        disc, weights = planform_disc(self.geometry, self.d, tess, self.depth)
         pair, g = self.run(disc, True), np.asarray(self.exposure.surface_before(self.times), float)
         mean, layer = (g + (pair.fields - g[:, None]) @ w for w in weights)
         return replace(pair, fields=None), replace(pair, mean=mean, layer=layer, fields=None), \
@@ -222,20 +250,25 @@ class Level:
     coordinates: dict
 
 
-def three_d(setting: Setting, chosen: Plan, keep: bool) -> Level:
-    disc = mirrored(setting.geometry, setting.d, chosen.cells_per_axis, chosen.finest,
-                    chosen.growth, setting.depth)
+def three_d(setting: Setting, chosen: Plan, keep: bool, cells: Cells | None = None) -> Level:
+    """The marches of one 3-D mesh: ``cells``, or the graded cells of ``chosen``."""
+    cells = cells or Cells.of(setting.geometry, setting.d, chosen)
+    geometry = setting.geometry
+    disc = prism(cells.tess, geometry.thickness, cells.z * geometry.thickness,
+                 band_share(cells.tess, setting.depth), setting.d, mid_plane=True)
     plate = setting.run(disc, keep)
-    slab = setting.run(half_slab(half(layout.prism_widths(chosen.finest, chosen.growth))))
-    planform, moments, planform_cells = setting.planform(chosen.finest, chosen.growth)
+    slab = setting.run(half_slab(cells.z))
+    planform, moments, planform_cells = setting.planform_on(cells.tess)
     return Level(chosen, plate, slab, planform, moments, disc.cells, planform_cells,
                  disc.coordinates)
 
 
-def refined_reference(setting: Setting, level: Level, sheet: Pair, accuracy: float, scale):
-    """(planform reference Pair, estimate, planform cells, factor R): the level's planform
-    refined by R in ``REFINE`` (finest and growth / R) until the estimate is
-    ``PLANFORM_SHARE`` of the accuracy or the next mesh would pass ``PLANFORM_CELLS``.
+def refined_reference(setting: Setting, start: Plan, level: Level, sheet: Pair,
+                      accuracy: float, scale):
+    """(planform reference Pair, estimate, planform cells, factor R): the graded planform of
+    the plan ``start`` refined by R in ``REFINE`` (finest and growth / R) until the estimate
+    is ``PLANFORM_SHARE`` of the accuracy or the next mesh would pass ``PLANFORM_CELLS``
+    (the estimate: the change of ``level``'s corrected result).
     After the first refinement: the Richardson extrapolation of the two (second order:
     p_2 + (p_2 - p_1) / 3), its estimate the whole change p_2 - p_1 (R = 1 may be short of
     the asymptotic range: on the demo cam with k = 1 the change the first extrapolation
@@ -248,12 +281,12 @@ def refined_reference(setting: Setting, level: Level, sheet: Pair, accuracy: flo
 
     def result(reference):
         return corrected(level.plate, (level.slab, sheet), (level.planform, reference), surface)
-    planforms, cells, factor = [level.moments], 0, 1.0
+    _, first, start_cells = setting.planform(start.finest, start.growth)
+    planforms, cells, factor = [first], 0, 1.0
     for refine in REFINE:
-        if cells and level.planform_cells * refine ** 2 > PLANFORM_CELLS:
+        if cells and start_cells * refine ** 2 > PLANFORM_CELLS:
             break
-        _, fine, cells = setting.planform(level.plan.finest / refine,
-                                          level.plan.growth / refine)
+        _, fine, cells = setting.planform(start.finest / refine, start.growth / refine)
         planforms.append(fine)
         weight, factor = 1.0 / ((refine / factor) ** 2 - 1.0), refine
         if len(planforms) == 2:
@@ -293,82 +326,138 @@ def skin_margin(law, exposure, times) -> float:
 
 @dataclass(frozen=True)
 class Levels:
-    """The corrected result on each 3-D plan of one solve, all with the same sheet and
-    planform references (those refined from the finest plan)."""
+    """The corrected result on each 3-D mesh of one solve, all with the same sheet and
+    planform references."""
 
-    marched: list      # Level per plan, coarsest first
-    results: list      # (mean, layer) corrected, per plan
+    marched: list      # Level per mesh, coarsest first
+    results: list      # (mean, layer) corrected, per mesh
     sheet: DiffusionResult
     planform: Pair     # the planform reference
     planform_error: float
     planform_cells: int
     factor: float      # the planform's refinement R
     scale: float       # the swing the estimates are relative to
+    setting: Setting
+    meshes: list       # Cells per mesh
+
+    def finer(self, store_fields: bool = False) -> "Levels":
+        """One more mesh: the finest refined by 2 (``Cells.refined``), nested."""
+        cells = self.meshes[-1].refined()
+        level = three_d(self.setting, self.marched[-1].plan, store_fields, cells)
+        result = corrected(level.plate, (level.slab, Pair(self.sheet.mean, self.sheet.surface)),
+                           (level.planform, self.planform), surface_of(self.setting))
+        return replace(self, marched=[*self.marched, level], results=[*self.results, result],
+                       meshes=[*self.meshes, cells])
+
+
+def surface_of(setting: Setting) -> np.ndarray:
+    """g(t-) at the outputs: the state the unaccomplished uptakes are measured from."""
+    return np.asarray(setting.exposure.surface_before(setting.times), float)
 
 
 def corrected_levels(geometry, diffusivity, law, exposure, times, accuracy: float,
-                     levels=MESH_LEVELS, *, surface_layer_depth=5e-4, store_fields=False,
-                     part="") -> Levels:
-    """The corrected product (module docstring) on the 3-D plans of ``levels`` (accuracies
-    of ``nonlinear_plan``, coarsest first); ``store_fields`` keeps the finest one's."""
+                     meshes: int = 2, *, plans=None, surface_layer_depth=5e-4,
+                     store_fields=False, part="") -> Levels:
+    """The corrected product (module docstring) on ``meshes`` nested 3-D meshes: the graded
+    cells of the ``MESH_LEVELS[0]`` plan, each next one refined by 2 in every direction
+    (``Cells.refined``); or, with ``plans`` (accuracies of ``nonlinear_plan``, coarsest
+    first), on those plans' graded cells (not nested; ``benchmarks/dc_defect_correction.py
+    plate-order``). The planform reference is refined from the ``MESH_LEVELS[-1]`` plan's
+    graded planform. ``store_fields`` keeps the finest mesh's fields."""
     times = np.asarray(times, float)
     setting = Setting.of(geometry, diffusivity, law, exposure, times, surface_layer_depth,
                          steps_for(accuracy), part)
     sheet = sheet_reference(geometry, diffusivity, law, exposure, times, accuracy)
     reference = Pair(sheet.mean, sheet.surface)
-    plans = [level_plan(geometry, diffusivity, law, exposure, times, a, setting.per_doubling)
-             for a in levels]
-    marched = [three_d(setting, p, store_fields and p is plans[-1]) for p in plans]
+
+    def planned(a):
+        return level_plan(geometry, diffusivity, law, exposure, times, a, setting.per_doubling)
+    if plans is None:
+        chosen = [planned(MESH_LEVELS[0])] * meshes
+        cells = [Cells.of(geometry, setting.d, chosen[0])]
+        while len(cells) < meshes:
+            cells.append(cells[-1].refined())
+    else:
+        chosen = [planned(a) for a in plans]
+        cells = [Cells.of(geometry, setting.d, c) for c in chosen]
+    marched = [three_d(setting, c, store_fields and i == len(chosen) - 1, m)
+               for i, (c, m) in enumerate(zip(chosen, cells))]
     scale = swing(exposure, times) or 1.0
     planform, planform_error, planform_cells, factor = refined_reference(
-        setting, marched[-1], reference, accuracy, scale)
-    surface = np.asarray(exposure.surface_before(times), float)  # g(t-): the state there
+        setting, planned(MESH_LEVELS[-1]), marched[-1], reference, accuracy, scale)
+    surface = surface_of(setting)
     results = [corrected(m.plate, (m.slab, reference), (m.planform, planform), surface)
                for m in marched]
     return Levels(marched, results, sheet, planform, planform_error, planform_cells, factor,
-                  scale)
+                  scale, setting, cells)
+
+
+def unseparated(run: Levels, margin: float) -> tuple[tuple, float]:
+    """((mean, layer), estimate) of the 3-D cells on the finest nested mesh. Two meshes:
+    the finest one's result, its estimate the change between them x ``ORDER_ONE`` x
+    ``margin`` (``skin_margin``). Three or more: the last three by ``three_levels`` (mean
+    and layer each; the second-order extrapolation where it may be taken), the order
+    measured, no margin."""
+    results = run.results
+    if len(results) < 3:
+        return results[-1], gap(results[-2], results[-1], run.scale) * ORDER_ONE * margin
+    checked = [three_levels(*(r[i] for r in results[-3:])) for i in range(2)]
+    values = tuple(taken(extrapolate, results[-2][i], results[-1][i])
+                   for i, (extrapolate, _) in enumerate(checked))
+    return values, max(checked[0][1], checked[1][1] / LAYER_TOLERANCE) / run.scale
 
 
 def solve_corrected(geometry, diffusivity, law, exposure, times, accuracy: float, *,
                     surface_layer_depth=5e-4, store_fields=False, part="",
                     reason="") -> DiffusionResult:
     """Mean and contact layer (weight %) at ``times``: the corrected product (module
-    docstring) on the finer of two 3-D plans (``MESH_LEVELS``, their change the estimate of
-    what does not separate), plus the sheet's and the planform's estimates and the time
-    error of the marches (``PAIR_TO_EXTRAPOLATED`` pair^2). ``store_fields``: the finer
-    3-D plan's own cells (not corrected)."""
+    docstring) on two nested 3-D meshes (``corrected_levels``; their change the estimate
+    of what does not separate, ``unseparated``), a third one (8 x the cells) where that
+    estimate is above the rest of the estimate, the total above the accuracy and the mesh
+    within ``NESTED_CELLS``; plus the sheet's and the planform's estimates and the time
+    error of the marches (``PAIR_TO_EXTRAPOLATED`` pair^2). ``store_fields``: the finest
+    3-D mesh's own cells (not corrected)."""
     times = np.asarray(times, float)
     run = corrected_levels(geometry, diffusivity, law, exposure, times, accuracy,
                            surface_layer_depth=surface_layer_depth,
                            store_fields=store_fields, part=part)
-    marched, results, sheet, scale = run.marched, run.results, run.sheet, run.scale
-    unseparated = gap(results[0], results[-1], scale) * ORDER_ONE * skin_margin(
-        law, exposure, times)
-    pair = max(marched[-1].plate.pair, run.planform.pair) / scale
-    estimate = (sheet.error_estimate + run.planform_error + unseparated
-                + PAIR_TO_EXTRAPOLATED * pair ** 2)
-    fine = marched[-1]
+    margin, sheet = skin_margin(law, exposure, times), run.sheet
+
+    def estimated(run):
+        values, three_d_error = unseparated(run, margin)
+        pair = max(run.marched[-1].plate.pair, run.planform.pair) / run.scale
+        rest = sheet.error_estimate + run.planform_error + PAIR_TO_EXTRAPOLATED * pair ** 2
+        return values, three_d_error, rest
+    values, three_d_error, rest = estimated(run)
+    while (three_d_error + rest > accuracy and three_d_error > rest
+           and run.meshes[-1].cells * 8 <= NESTED_CELLS):
+        run = run.finer(store_fields)
+        values, three_d_error, rest = estimated(run)
+    estimate = three_d_error + rest
+    fine = run.marched[-1]
     note = (f"{reason.split(TARGET)[0]}; measured: sheet {sheet.error_estimate:.1e}, "
             f"planform x{run.factor:g} ({run.planform_cells} cells) {run.planform_error:.1e}, "
-            f"3-D change {unseparated:.1e}")
+            f"3-D change {three_d_error:.1e} ({len(run.meshes)} nested meshes, "
+            f"{fine.cells} cells)")
     if estimate > accuracy:
         note += "; capped: error above the requested accuracy"
-    result = DiffusionResult(times, results[-1][0], results[-1][1], "solid",
+    result = DiffusionResult(times, values[0], values[1], "solid",
                              fine.cells + run.planform_cells,
-                             sum(m.plate.steps for m in marched), float(estimate), note)
+                             sum(m.plate.steps for m in run.marched), float(estimate), note)
     if store_fields:
         result.fields, result.cell_coordinates = fine.plate.fields, fine.coordinates
     return result
 
 
 def plan_corrected(geometry, diffusivity, law, exposure, times, accuracy: float) -> Plan:
-    """What ``solve_corrected`` will start from: the finer 3-D plan, the planform refined
-    up to ``PLANFORM_CELLS``, the requested accuracy as the target its measured estimate
-    is held to (the solve reports the estimate)."""
-    chosen = level_plan(geometry, diffusivity, law, exposure, times, MESH_LEVELS[-1],
+    """What ``solve_corrected`` will start from: the coarsest 3-D plan (refined by 2,
+    nested, once or twice), the planform refined up to ``PLANFORM_CELLS``, the requested
+    accuracy as the target its measured estimate is held to (the solve reports the
+    estimate)."""
+    chosen = level_plan(geometry, diffusivity, law, exposure, times, MESH_LEVELS[0],
                         steps_for(accuracy))
     reason = ("D(c) sheet x D(c) planform (each refined and checked), corrected on coarse 3-D "
-              f"prisms on half the thickness (mid-plane mirror; the {MESH_LEVELS[0]:g} and "
-              f"{MESH_LEVELS[-1]:g} plans; {chosen.steps_per_doubling} steps/doubling + "
-              f"Richardson; defect correction){TARGET}")
+              f"prisms on half the thickness (mid-plane mirror; the {MESH_LEVELS[0]:g} plan "
+              f"and it refined by 2, nested, twice where needed; {chosen.steps_per_doubling} "
+              f"steps/doubling + Richardson; defect correction){TARGET}")
     return replace(chosen, reason=reason, error_estimate=accuracy)
