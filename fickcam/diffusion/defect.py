@@ -17,7 +17,15 @@ The result takes the coarse 3-D U and swaps each factor's coarse value for its f
 for the mean, and for the contact layer with the planform's band in place of its mean
 (the layer spans the thickness). With constant D this is the fine sheet x fine planform
 (independent of the 3-D mesh); with D(c) the 3-D cells carry what does not separate,
-and the change of the result between two 3-D meshes measures it (``MESH_LEVELS``).
+and the change of the result between nested 3-D meshes measures it (``Cells.refined``:
+every planform edge and z width halved, so the meshes form a refinement by exactly 2 and
+``gridcheck.three_levels`` can read an order from three of them; ``unseparated``).
+Measured (``benchmarks/dc_defect_correction.py nested``, gap norm of the swing): on the
+4 x 3 x 2 mm plate with k = 2 the changes over the meshes 1x, 2x, 4x are 2.1e-3, 3.6e-4
+absorbing (order 2.5) and 1.1e-3, 4.4e-4 drying (order 1.3); on the demo cam (k = 2, 1x =
+the 1.0 plan, 3 507 cells) z alone 3.1e-4 then 2.5e-5, the planform alone 2.6e-4, both
+5.2e-4. The graded plans 1, 0.5, 0.25, 0.125 used before are not nested (z cells 4, 6, 6,
+8 on the plate) and their changes showed orders from -10 to 12.
 
 Measured first and dropped: Fick at Crank's (1975 §9.3) weighted-mean D on the same
 3-D mesh (c_h + v_exact - v_h). With f(surface value) on the exposed faces (before the
@@ -60,13 +68,13 @@ REFINE = (2.0, 4.0)        # planform refinements (finest and growth / R) for Ri
 PLANFORM_CELLS = 60_000    # the finest planform tried
 SHEET_SHARE = 0.1          # the fine sheet's accuracy: this share of the requested one
 PLANFORM_SHARE = 0.5       # of the accuracy: the planform's Richardson estimate
-SKIN_ESTIMATE_MARGIN = 1.0  # on the 3-D change of a drying part (``skin_margin``), the cells'
-#   margin (``nonlinear.SKIN_CELLS_MARGIN``). Measured on the 4 x 3 x 2 mm plate drying at
-#   1e-2 (benchmarks/dc_defect_correction.py plate-order, skin-margin): the 0.5 plan is
-#   0.29 (k = 2) and 1.62 (k = 3: the changes stop shrinking as the plans' growth changes)
-#   times the (1, 0.5) change from the 0.125 plan; the estimate / the distance to the stored
-#   3-D runs (2.97e-3, 3.54e-3) is 2.54 and 1.31 with a margin 0, 4.01 and 2.28 with 1, 8.44
-#   and 5.20 with the old 4 (set before the Kirchhoff face mean); a safety of 2 needs 0.71
+SKIN_ESTIMATE_MARGIN = 1.0  # on the two-mesh 3-D change of a drying part (``skin_margin``),
+#   the cells' margin (``nonlinear.SKIN_CELLS_MARGIN``). Set on the non-nested 1 and 0.5
+#   plans of the 4 x 3 x 2 mm plate drying at 1e-2 (benchmarks/dc_defect_correction.py
+#   skin-margin: estimate / distance to the stored 3-D runs 4.0 (k = 2) and 2.3 (k = 3),
+#   a safety of 2 needing 0.71). On nested meshes drying converges slower than absorbing
+#   (k = 2: order 1.3 against 2.5, ``nested``), so the finer mesh's error, about 1.5 x the
+#   next change, is close to the change itself: the margin stays
 TARGET = "; est. = the target: the run measures its own and warns above it"
 ORDER_ONE = 1.0 / (2.0 - 1.0)  # the finer of two nested 3-D meshes' error / the change
 #   between them at order 1 (refinement ratio 2; a higher order gives less). Before, the two
@@ -314,11 +322,9 @@ def gap(a, b, scale: float) -> float:
 def skin_margin(law, exposure, times) -> float:
     """1 unless the surface dries to a skin (``nonlinear.dries_to_a_skin``); then
     1 + SKIN_ESTIMATE_MARGIN (sqrt(max f / min f) - 1), as the cells' margin of
-    ``nonlinear_plan``: on the 4 x 3 x 2 mm plate drying the change between the plans need not
-    shrink (k = 3: the 0.5 plan 1.6 times the change from the 0.125 one) and the result
-    errs 3.0e-3 (k = 2) and 3.5e-3 (k = 3) against the stored 3-D runs at 1e-2, 4.0 and 2.3
-    times below the estimate with it (``SKIN_ESTIMATE_MARGIN``;
-    benchmarks/dc_defect_correction.py)."""
+    ``nonlinear_plan``, on the change between two nested 3-D meshes (``unseparated``; three
+    meshes measure their order and take no margin): drying converges at a lower order than
+    absorbing (``SKIN_ESTIMATE_MARGIN``; benchmarks/dc_defect_correction.py nested)."""
     if not dries_to_a_skin(law, exposure):
         return 1.0
     return 1.0 + SKIN_ESTIMATE_MARGIN * (math.sqrt(spread(law, exposure, times)) - 1.0)
@@ -412,11 +418,11 @@ def solve_corrected(geometry, diffusivity, law, exposure, times, accuracy: float
                     reason="") -> DiffusionResult:
     """Mean and contact layer (weight %) at ``times``: the corrected product (module
     docstring) on two nested 3-D meshes (``corrected_levels``; their change the estimate
-    of what does not separate, ``unseparated``), a third one (8 x the cells) where that
-    estimate is above the rest of the estimate, the total above the accuracy and the mesh
-    within ``NESTED_CELLS``; plus the sheet's and the planform's estimates and the time
-    error of the marches (``PAIR_TO_EXTRAPOLATED`` pair^2). ``store_fields``: the finest
-    3-D mesh's own cells (not corrected)."""
+    of what does not separate, ``unseparated``), a further one (8 x the cells) while the
+    total is above the accuracy, the rest of the estimate below it (so a smaller 3-D term
+    can meet it) and the mesh within ``NESTED_CELLS``; plus the sheet's and the planform's
+    estimates and the time error of the marches (``PAIR_TO_EXTRAPOLATED`` pair^2).
+    ``store_fields``: the finest 3-D mesh's own cells (not corrected)."""
     times = np.asarray(times, float)
     run = corrected_levels(geometry, diffusivity, law, exposure, times, accuracy,
                            surface_layer_depth=surface_layer_depth,
@@ -429,8 +435,7 @@ def solve_corrected(geometry, diffusivity, law, exposure, times, accuracy: float
         rest = sheet.error_estimate + run.planform_error + PAIR_TO_EXTRAPOLATED * pair ** 2
         return values, three_d_error, rest
     values, three_d_error, rest = estimated(run)
-    while (three_d_error + rest > accuracy and three_d_error > rest
-           and run.meshes[-1].cells * 8 <= NESTED_CELLS):
+    while rest < accuracy < rest + three_d_error and run.meshes[-1].cells * 8 <= NESTED_CELLS:
         run = run.finer(store_fields)
         values, three_d_error, rest = estimated(run)
     estimate = three_d_error + rest
