@@ -14,7 +14,7 @@ correction.
     python benchmarks/dc_defect_correction.py soak-dry           # wetted, then dried: plans, CPU
     python benchmarks/dc_defect_correction.py march-cost         # CPU of one swept march pair
     python benchmarks/dc_defect_correction.py soak-dry-solid K A # auto at 0.1 vs solid at A
-    python benchmarks/dc_defect_correction.py nested CASE A [P Z ...]  # nested 3-D meshes
+    python benchmarks/dc_defect_correction.py nested CASE A[@B] [PZ ...]  # nested meshes
     python benchmarks/dc_defect_correction.py corrected CASE A   # one corrected run
 
 ``plate-reference``: the 4 x 3 x 2 mm plate of the tests (D = 5e-12 m^2/s exp(2 c/Mm),
@@ -41,10 +41,10 @@ alone (``model: solid``) at accuracy A, an independent march (CPU s, cells, esti
 z widths as a sheet and on its coarse 3-D plan, k = 5, wetted to Mm then stepped down to
 0.4 Mm at 0.15 h^2/D (outputs 0.02-0.3 h^2/D): CPU s and the results (to compare two
 versions, run it with each one's PYTHONPATH).
-``nested CASE A [PZ ...]``: CASE is cam-K (the demo cam, exponent K), plate-K-absorption,
+``nested CASE A[@B] [PZ ...]``: CASE is cam-K (the demo cam, exponent K), plate-K-absorption,
 plate-K-desorption or soak-K; the corrected result (sheet and planform references of a run
-at accuracy A) on the 3-D mesh of the ``MESH_LEVELS[0]`` plan with its planform refined P
-times and its z widths Z times (``defect.Cells.refined``'s two halves apart; default 00 01
+at accuracy A) on the 3-D mesh of the ``defect.base_level`` plan (or the plan of accuracy B)
+with its planform refined P times and its z widths Z times (``defect.Cells.refined``'s two halves apart; default 00 01
 10 11 02): cells, CPU s, the distances between all of them (``defect.gap``), and the ratios
 of successive changes along z (00 01 02 ...), the planform (00 10 20) and both (00 11 22).
 ``corrected CASE A``: ``defect.solve_corrected`` (what ``auto`` runs): CPU s, cells, the
@@ -468,8 +468,10 @@ def nested(case: str, accuracy: str, *meshes: str) -> None:
     from fickcam.diffusion.prism import refine
 
     geometry, d, exposure, times, law = named_case(case)
+    accuracy, _, base = accuracy.partition("@")
     start = time.process_time()
-    run = defect.corrected_levels(geometry, d, law, exposure, times, float(accuracy), 1)
+    run = defect.corrected_levels(geometry, d, law, exposure, times, float(accuracy), 1,
+                                  plans=(float(base),) if base else None)
     print(f"{case} at {accuracy}: references {time.process_time() - start:.1f} CPU s, sheet "
           f"est. {run.sheet.error_estimate:.1e}, planform x{run.factor:g} est. "
           f"{run.planform_error:.1e}", flush=True)

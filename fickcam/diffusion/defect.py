@@ -60,10 +60,15 @@ from .planmodes import LAYER_TOLERANCE
 from .results import DiffusionResult, Plan
 from .scaling import stretch_of
 
-MESH_LEVELS = (1.0, 0.5)   # accuracies of the coarsest 3-D plan (then refined by 2, nested)
+MESH_LEVELS = (1.0, 0.5)   # accuracies of the coarsest 3-D plan (then refined by 2, nested;
+#                            ``base_level``: down to the second where the accuracy is tight)
 #                            and of the plan whose graded planform the planform's refinement
 #                            starts from
 NESTED_CELLS = 30_000      # the finest nested 3-D mesh tried (cells on half the thickness)
+BASE_PER_ACCURACY = 500.0  # the coarsest 3-D plan's accuracy per requested accuracy, at most
+#   MESH_LEVELS[0] (``base_level``). On the demo cam (k = 2) at 1e-3 the 1.0 plan's nested
+#   pair changed by 5.2e-4 where the rest of the estimate left 4.4e-4 (and a third mesh would
+#   have 224 000 cells); the 0.5 plan's pair by 2.9e-4 (estimate 8.0e-4)
 REFINE = (2.0, 4.0)        # planform refinements (finest and growth / R) for Richardson
 PLANFORM_CELLS = 60_000    # the finest planform tried
 SHEET_SHARE = 0.1          # the fine sheet's accuracy: this share of the requested one
@@ -356,6 +361,12 @@ class Levels:
                        meshes=[*self.meshes, cells])
 
 
+def base_level(accuracy: float) -> float:
+    """The accuracy of the coarsest 3-D plan: ``BASE_PER_ACCURACY`` x the requested one, at
+    most ``MESH_LEVELS[0]``, at least ``MESH_LEVELS[-1]``."""
+    return min(MESH_LEVELS[0], max(MESH_LEVELS[-1], BASE_PER_ACCURACY * accuracy))
+
+
 def surface_of(setting: Setting) -> np.ndarray:
     """g(t-) at the outputs: the state the unaccomplished uptakes are measured from."""
     return np.asarray(setting.exposure.surface_before(setting.times), float)
@@ -365,7 +376,7 @@ def corrected_levels(geometry, diffusivity, law, exposure, times, accuracy: floa
                      meshes: int = 2, *, plans=None, surface_layer_depth=5e-4,
                      store_fields=False, part="") -> Levels:
     """The corrected product (module docstring) on ``meshes`` nested 3-D meshes: the graded
-    cells of the ``MESH_LEVELS[0]`` plan, each next one refined by 2 in every direction
+    cells of the ``base_level`` plan, each next one refined by 2 in every direction
     (``Cells.refined``); or, with ``plans`` (accuracies of ``nonlinear_plan``, coarsest
     first), on those plans' graded cells (not nested; ``benchmarks/dc_defect_correction.py
     plate-order``). The planform reference is refined from the ``MESH_LEVELS[-1]`` plan's
@@ -379,7 +390,7 @@ def corrected_levels(geometry, diffusivity, law, exposure, times, accuracy: floa
     def planned(a):
         return level_plan(geometry, diffusivity, law, exposure, times, a, setting.per_doubling)
     if plans is None:
-        chosen = [planned(MESH_LEVELS[0])] * meshes
+        chosen = [planned(base_level(accuracy))] * meshes
         cells = [Cells.of(geometry, setting.d, chosen[0])]
         while len(cells) < meshes:
             cells.append(cells[-1].refined())
@@ -459,10 +470,10 @@ def plan_corrected(geometry, diffusivity, law, exposure, times, accuracy: float)
     nested, once or twice), the planform refined up to ``PLANFORM_CELLS``, the requested
     accuracy as the target its measured estimate is held to (the solve reports the
     estimate)."""
-    chosen = level_plan(geometry, diffusivity, law, exposure, times, MESH_LEVELS[0],
-                        steps_for(accuracy))
+    level = base_level(accuracy)
+    chosen = level_plan(geometry, diffusivity, law, exposure, times, level, steps_for(accuracy))
     reason = ("D(c) sheet x D(c) planform (each refined and checked), corrected on coarse 3-D "
-              f"prisms on half the thickness (mid-plane mirror; the {MESH_LEVELS[0]:g} plan "
+              f"prisms on half the thickness (mid-plane mirror; the {level:g} plan "
               f"and it refined by 2, nested, twice where needed; {chosen.steps_per_doubling} "
               f"steps/doubling + Richardson; defect correction){TARGET}")
     return replace(chosen, reason=reason, error_estimate=accuracy)
