@@ -33,8 +33,8 @@ each plan's error against the stored brute-force runs; the 3-D cells alone besid
 ``fickian-reference``: the demo cam's z widths as a 1-D slab, the D(c) sheet and the
 Fickian sheet at Crank's weighted-mean D (1975 §9.3) against fine references.
 ``soak-dry``: the plate wetted to Mm for 1.5 h^2/D, then dried (``SOAK_DRY_TAU`` outputs,
-the first at 1e-3 h^2/D), k = 3 and 5: the cells of the two 3-D plans, then ``auto`` at 0.1
-(CPU s, cells, estimate and its parts) against ``auto`` at 0.03 (self-consistency).
+the first at 1e-3 h^2/D), k = 3 and 5: the cells of the first two nested 3-D meshes,
+then ``auto`` at 0.1 (CPU s, cells, estimate and its parts) against ``auto`` at 0.03 (self-consistency).
 ``soak-dry-solid K A``: the same case with exponent K, ``auto`` at 0.1 against the 3-D cells
 alone (``model: solid``) at accuracy A, an independent march (CPU s, cells, estimates).
 ``march-cost``: the Richardson pair of swept marches (``defect.Setting.run``) on the plate's
@@ -43,10 +43,11 @@ z widths as a sheet and on its coarse 3-D plan, k = 5, wetted to Mm then stepped
 versions, run it with each one's PYTHONPATH).
 ``nested CASE A[@B] [PZ ...]``: CASE is cam-K (the demo cam, exponent K), plate-K-absorption,
 plate-K-desorption or soak-K; the corrected result (sheet and planform references of a run
-at accuracy A) on the 3-D mesh of the ``defect.base_level`` plan (or the plan of accuracy B)
-with its planform refined P times and its z widths Z times (``defect.Cells.refined``'s two halves apart; default 00 01
-10 11 02): cells, CPU s, the distances between all of them (``defect.gap``), and the ratios
-of successive changes along z (00 01 02 ...), the planform (00 10 20) and both (00 11 22).
+at accuracy A) on the 3-D mesh of the ``defect.base_level`` plan (or the plan of accuracy
+B) with its planform refined P times and its z widths Z times (``defect.Cells.refined``'s
+two halves apart; default 00 01 10 11 02): cells, CPU s, the distances between all of
+them (``defect.gap``), and the ratios of successive changes along z (00 01 02 ...), the
+planform (00 10 20) and both (00 11 22).
 ``corrected CASE A``: ``defect.solve_corrected`` (what ``auto`` runs): CPU s, cells, the
 estimate and its parts; a plate against its stored 3-D run (``plate``'s norm).
 CPU time: time.process_time, one BLAS thread (set OPENBLAS_NUM_THREADS=1).
@@ -102,14 +103,15 @@ def soak_dry(exponents=(3.0, 5.0), accuracy=0.1, reference_accuracy=0.03) -> Non
     """``reference_accuracy`` None: no reference run (e.g. to time an older fickcam, run
     with its PYTHONPATH: soak_dry((3.0,), 0.1, None))."""
     from fickcam.diffusion import solve
-    from fickcam.diffusion.defect import MESH_LEVELS, level_plan, steps_for
+    from fickcam.diffusion.defect import Cells, Setting, base_level, level_plan, steps_for
 
     for k in exponents:
         plate, d, exposure, times, law = soak_dry_case(k)
-        for level in MESH_LEVELS:
-            chosen = level_plan(plate, d, law, exposure, times, level, steps_for(accuracy))
-            print(f"k {k:g}, 3-D plan {level:g}: {chosen.cells} cells {chosen.cells_per_axis}, "
-                  f"w0 {chosen.finest:.3g}, growth {chosen.growth:.3g}", flush=True)
+        level = base_level(accuracy)
+        chosen = level_plan(plate, d, law, exposure, times, level, steps_for(accuracy))
+        cells = Cells.of(plate, Setting.of(plate, d, law, exposure, times, 5e-4, 4, "").d, chosen)
+        print(f"k {k:g}, 3-D plan {level:g}: {cells.cells} cells, 2x {cells.refined().cells}, "
+              f"w0 {chosen.finest:.3g}, growth {chosen.growth:.3g}", flush=True)
         runs = []
         for a in (accuracy, reference_accuracy)[:2 if reference_accuracy else 1]:
             start = time.process_time()
