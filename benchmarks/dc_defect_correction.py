@@ -34,7 +34,8 @@ each plan's error against the stored brute-force runs; the 3-D cells alone besid
 Fickian sheet at Crank's weighted-mean D (1975 §9.3) against fine references.
 ``soak-dry``: the plate wetted to Mm for 1.5 h^2/D, then dried (``SOAK_DRY_TAU`` outputs,
 the first at 1e-3 h^2/D), k = 3 and 5: the cells of the first two nested 3-D meshes,
-then ``auto`` at 0.1 (CPU s, cells, estimate and its parts) against ``auto`` at 0.03 (self-consistency).
+then ``auto`` at 0.1 (CPU s, cells, estimate and its parts) against ``auto`` at 0.03
+(self-consistency).
 ``soak-dry-solid K A``: the same case with exponent K, ``auto`` at 0.1 against the 3-D cells
 alone (``model: solid``) at accuracy A, an independent march (CPU s, cells, estimates).
 ``march-cost``: the Richardson pair of swept marches (``defect.Setting.run``) on the plate's
