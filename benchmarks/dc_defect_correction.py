@@ -14,6 +14,8 @@ correction.
     python benchmarks/dc_defect_correction.py soak-dry           # wetted, then dried: plans, CPU
     python benchmarks/dc_defect_correction.py march-cost         # CPU of one swept march pair
     python benchmarks/dc_defect_correction.py soak-dry-solid K A # auto at 0.1 vs solid at A
+    python benchmarks/dc_defect_correction.py nested CASE A[@B] [PZ ...]  # nested meshes
+    python benchmarks/dc_defect_correction.py corrected CASE A   # one corrected run
 
 ``plate-reference``: the 4 x 3 x 2 mm plate of the tests (D = 5e-12 m^2/s exp(2 c/Mm),
 Mm = 2 %, absorption 0 -> Mm and desorption Mm -> 0) by the 3-D cells alone (``model:
@@ -31,14 +33,24 @@ each plan's error against the stored brute-force runs; the 3-D cells alone besid
 ``fickian-reference``: the demo cam's z widths as a 1-D slab, the D(c) sheet and the
 Fickian sheet at Crank's weighted-mean D (1975 §9.3) against fine references.
 ``soak-dry``: the plate wetted to Mm for 1.5 h^2/D, then dried (``SOAK_DRY_TAU`` outputs,
-the first at 1e-3 h^2/D), k = 3 and 5: the cells of the two 3-D plans, then ``auto`` at 0.1
-(CPU s, cells, estimate and its parts) against ``auto`` at 0.03 (self-consistency).
+the first at 1e-3 h^2/D), k = 3 and 5: the cells of the first two nested 3-D meshes,
+then ``auto`` at 0.1 (CPU s, cells, estimate and its parts) against ``auto`` at 0.03
+(self-consistency).
 ``soak-dry-solid K A``: the same case with exponent K, ``auto`` at 0.1 against the 3-D cells
 alone (``model: solid``) at accuracy A, an independent march (CPU s, cells, estimates).
 ``march-cost``: the Richardson pair of swept marches (``defect.Setting.run``) on the plate's
 z widths as a sheet and on its coarse 3-D plan, k = 5, wetted to Mm then stepped down to
 0.4 Mm at 0.15 h^2/D (outputs 0.02-0.3 h^2/D): CPU s and the results (to compare two
 versions, run it with each one's PYTHONPATH).
+``nested CASE A[@B] [PZ ...]``: CASE is cam-K (the demo cam, exponent K), plate-K-absorption,
+plate-K-desorption or soak-K; the corrected result (sheet and planform references of a run
+at accuracy A) on the 3-D mesh of the ``defect.base_level`` plan (or the plan of accuracy
+B) with its planform refined P times and its z widths Z times (``defect.Cells.refined``'s
+two halves apart; default 00 01 10 11 02): cells, CPU s, the distances between all of
+them (``defect.gap``), and the ratios of successive changes along z (00 01 02 ...), the
+planform (00 10 20) and both (00 11 22).
+``corrected CASE A``: ``defect.solve_corrected`` (what ``auto`` runs): CPU s, cells, the
+estimate and its parts; a plate against its stored 3-D run (``plate``'s norm).
 CPU time: time.process_time, one BLAS thread (set OPENBLAS_NUM_THREADS=1).
 """
 from __future__ import annotations
@@ -92,14 +104,16 @@ def soak_dry(exponents=(3.0, 5.0), accuracy=0.1, reference_accuracy=0.03) -> Non
     """``reference_accuracy`` None: no reference run (e.g. to time an older fickcam, run
     with its PYTHONPATH: soak_dry((3.0,), 0.1, None))."""
     from fickcam.diffusion import solve
-    from fickcam.diffusion.defect import MESH_LEVELS, level_plan, steps_for
+    from fickcam.diffusion.defect import base_level
+    from fickcam.diffusion.defectparts import Cells, Setting, level_plan, steps_for
 
     for k in exponents:
         plate, d, exposure, times, law = soak_dry_case(k)
-        for level in MESH_LEVELS:
-            chosen = level_plan(plate, d, law, exposure, times, level, steps_for(accuracy))
-            print(f"k {k:g}, 3-D plan {level:g}: {chosen.cells} cells {chosen.cells_per_axis}, "
-                  f"w0 {chosen.finest:.3g}, growth {chosen.growth:.3g}", flush=True)
+        level = base_level(accuracy)
+        chosen = level_plan(plate, d, law, exposure, times, level, steps_for(accuracy))
+        cells = Cells.of(plate, Setting.of(plate, d, law, exposure, times, 5e-4, 4, "").d, chosen)
+        print(f"k {k:g}, 3-D plan {level:g}: {cells.cells} cells, 2x {cells.refined().cells}, "
+              f"w0 {chosen.finest:.3g}, growth {chosen.growth:.3g}", flush=True)
         runs = []
         for a in (accuracy, reference_accuracy)[:2 if reference_accuracy else 1]:
             start = time.process_time()
@@ -136,7 +150,7 @@ def soak_dry_solid(exponent: str, reference_accuracy: str) -> None:
 
 def march_cost() -> None:
     from fickcam.diffusion import CamPlate, Diffusivity, Exposure, layout
-    from fickcam.diffusion.defect import Setting, half_slab, level_plan
+    from fickcam.diffusion.defectparts import Setting, half_slab, level_plan
     from fickcam.diffusion.mirrored import half, mirrored
     from fickcam.diffusion.sorption import ConcentrationDependent
 
@@ -242,7 +256,8 @@ def plate_order(exponent: str = "2", *directions: str) -> None:
     for direction in directions or ("absorption", "desorption"):
         plate, d, exposure, times, law = plate_case(direction, k)
         start = time.process_time()
-        run = corrected_levels(plate, d, law, exposure, times, ORDER_ACCURACY, ORDER_LEVELS)
+        run = corrected_levels(plate, d, law, exposure, times, ORDER_ACCURACY,
+                               plans=ORDER_LEVELS)
         widths = np.array([m.plan.finest for m in run.marched])
         known = k == stored["exponent"]
         print(f"## k = {k:g}, {direction}, accuracy {ORDER_ACCURACY:g}: "
@@ -373,13 +388,13 @@ def planform_sequence(exponent: str = "2", accuracy: str = "1e-3") -> None:
 
 
 def slab(widths):
-    from fickcam.diffusion.defect import half_slab
+    from fickcam.diffusion.defectparts import half_slab
     return half_slab(np.asarray(widths, float))
 
 
 def fickian_reference() -> None:
     """The 1-D measurement of the module docstring of ``defect``."""
-    from fickcam.diffusion.defect import Setting, level_plan
+    from fickcam.diffusion.defectparts import Setting, level_plan
     from fickcam.diffusion.layout import prism_widths
     from fickcam.diffusion.mirrored import half
     from fickcam.diffusion.nonlinear import wettest
@@ -441,9 +456,91 @@ def sheet_uptake_series(tau):
     return 1.0 - np.sum(8.0 / rates[:, None] * np.exp(-np.outer(rates, tau)), axis=0)
 
 
+def named_case(case: str):
+    """(geometry, diffusivity, exposure, times, law) of cam-K, plate-K-DIRECTION or soak-K."""
+    kind, exponent, *direction = case.split("-")
+    if kind == "cam":
+        return demo_cam(float(exponent))
+    if kind == "soak":
+        plate, d, exposure, times, law = soak_dry_case(float(exponent))
+        return plate, d, exposure, times, law
+    return plate_case(direction[0], float(exponent))
+
+
+def nested(case: str, accuracy: str, *meshes: str) -> None:
+    from fickcam.diffusion import defect
+    from fickcam.diffusion.prism import refine
+
+    geometry, d, exposure, times, law = named_case(case)
+    accuracy, _, base = accuracy.partition("@")
+    start = time.process_time()
+    run = defect.corrected_levels(geometry, d, law, exposure, times, float(accuracy), 1,
+                                  plans=(float(base),) if base else None)
+    print(f"{case} at {accuracy}: references {time.process_time() - start:.1f} CPU s, sheet "
+          f"est. {run.sheet.error_estimate:.1e}, planform x{run.factor:g} est. "
+          f"{run.planform_error:.1e}", flush=True)
+    reference = defect.Pair(run.sheet.mean, run.sheet.surface)
+    results = {}
+    for spec in meshes or ("00", "01", "10", "11", "02"):
+        cells = run.meshes[0]
+        tess, z = cells.tess, cells.z
+        for _ in range(int(spec[0])):
+            tess = refine(tess)
+        for _ in range(int(spec[1])):
+            z = np.repeat(0.5 * z, 2)
+        start = time.process_time()
+        level = defect.three_d(run.setting, run.marched[0].plan, False, defect.Cells(tess, z))
+        results[spec] = defect.corrected(level.plate, (level.slab, reference),
+                                         (level.planform, run.planform),
+                                         defect.surface_of(run.setting))
+        print(f"{spec}: {level.cells} cells ({tess.cells} x {z.size}), "
+              f"{time.process_time() - start:.1f} CPU s", flush=True)
+    print("| | " + " | ".join(results) + " |")
+    for a in results:
+        print(f"| {a} | " + " | ".join(f"{defect.gap(results[a], results[b], run.scale):.2e}"
+                                       for b in results) + " |")
+    for path in (("00", "01", "02", "03"), ("00", "10", "20"), ("00", "11", "22")):
+        path = [m for m in path if m in results]
+        changes = [np.asarray(results[b]) - np.asarray(results[a])
+                   for a, b in zip(path, path[1:])]
+        for i in range(len(changes) - 1):
+            with np.errstate(divide="ignore", invalid="ignore"):
+                rho = changes[i] / changes[i + 1]
+            print(f"{path[i]}-{path[i + 1]}-{path[i + 2]}: rho mean {np.round(rho[0], 2)}, "
+                  f"layer {np.round(rho[1], 2)}; three_levels: "
+                  f"{[three_levels_of(results, path[i:i + 3], q, run.scale) for q in (0, 1)]}")
+
+
+def three_levels_of(results, path, quantity, scale):
+    from fickcam.diffusion.gridcheck import three_levels
+    from fickcam.diffusion.planmodes import LAYER_TOLERANCE
+
+    extrapolate, error = three_levels(*(np.asarray(results[m][quantity]) for m in path))
+    return extrapolate, float(f"{error / scale / (LAYER_TOLERANCE if quantity else 1.0):.2e}")
+
+
+def corrected_run(case: str, accuracy: str) -> None:
+    from fickcam.diffusion.defect import gap, solve_corrected
+
+    geometry, d, exposure, times, law = named_case(case)
+    start = time.process_time()
+    result = solve_corrected(geometry, d, law, exposure, times, float(accuracy))
+    line = (f"{case} at {accuracy}: {time.process_time() - start:.1f} CPU s, {result.cells} "
+            f"cells, estimate {result.error_estimate:.2e} "
+            f"({result.reason.split('measured: ')[-1]})")
+    if case.startswith("plate"):
+        k, direction = float(case.split("-")[1]), case.split("-")[2]
+        stored = json.loads(reference_file(k).read_text())[direction]
+        error = gap((result.mean, result.surface),
+                    (np.asarray(stored["mean"]), np.asarray(stored["layer"])), MM)
+        line += f"; to the stored 3-D run (est. {stored['estimate']:.1e}): {error:.2e}"
+    print(line, flush=True)
+
+
 if __name__ == "__main__":
     {"plate-reference": plate_reference, "plate": plate_record, "plate-order": plate_order,
      "skin-margin": skin_margins, "demo-cam": cam_table,
      "planform-sequence": planform_sequence,
      "fickian-reference": fickian_reference, "soak-dry": soak_dry,
-     "march-cost": march_cost, "soak-dry-solid": soak_dry_solid}[sys.argv[1]](*sys.argv[2:])
+     "march-cost": march_cost, "soak-dry-solid": soak_dry_solid, "nested": nested,
+     "corrected": corrected_run}[sys.argv[1]](*sys.argv[2:])

@@ -17,7 +17,15 @@ The result takes the coarse 3-D U and swaps each factor's coarse value for its f
 for the mean, and for the contact layer with the planform's band in place of its mean
 (the layer spans the thickness). With constant D this is the fine sheet x fine planform
 (independent of the 3-D mesh); with D(c) the 3-D cells carry what does not separate,
-and the change of the result between two 3-D meshes measures it (``MESH_LEVELS``).
+and the change of the result between nested 3-D meshes measures it (``Cells.refined``:
+every planform edge and z width halved, so the meshes form a refinement by exactly 2 and
+``gridcheck.three_levels`` can read an order from three of them; ``unseparated``).
+Measured (``benchmarks/dc_defect_correction.py nested``, gap norm of the swing): on the
+4 x 3 x 2 mm plate with k = 2 the changes over the meshes 1x, 2x, 4x are 2.1e-3, 3.6e-4
+absorbing (order 2.5) and 1.1e-3, 4.4e-4 drying (order 1.3); on the demo cam (k = 2, 1x =
+the 1.0 plan, 3 507 cells) z alone 3.1e-4 then 2.5e-5, the planform alone 2.6e-4, both
+5.2e-4. The graded plans 1, 0.5, 0.25, 0.125 used before are not nested (z cells 4, 6, 6,
+8 on the plate) and their changes showed orders from -10 to 12.
 
 Measured first and dropped: Fick at Crank's (1975 §9.3) weighted-mean D on the same
 3-D mesh (c_h + v_exact - v_h). With f(surface value) on the exposed faces (before the
@@ -35,216 +43,49 @@ from functools import partial
 
 import numpy as np
 
-from . import layout
-from .calibration import MIN_STEPS_PER_DOUBLING, PAIR_TO_EXTRAPOLATED, TIME_ERROR
-from .clock import scales as scales_of
-from .direct import plan_direct, step_plan, swing
-from .discretisation import Discretisation, assemble
-from .fv import normalised
-from .cellmoments import corrected_weights
-from .dense import Extension, Track, combined
-from .fvprism import prism
+from .calibration import PAIR_TO_EXTRAPOLATED
+from .defectparts import (Cells, Level, Pair, Setting, corrected, level_plan, sheet_reference,
+                          steps_for, three_d)
+from .dense import Extension, combined
+from .direct import swing
 from .gridcheck import taken, three_levels
-from .geometry import Sheet
-from .mirrored import half, mirrored
-from .prism import band_share
-from .nonlinear import (Faces, dries_to_a_skin, fastest, nonlinear_plan,
-                        solve_nonlinear, spread, sweep_march, wettest)
+from .nonlinear import dries_to_a_skin, spread
 from .planmodes import LAYER_TOLERANCE
 from .results import DiffusionResult, Plan
-from .scaling import stretch_of
 
-MESH_LEVELS = (1.0, 0.5)   # accuracies of the two 3-D plans (coarse cells suffice)
+MESH_LEVELS = (1.0, 0.5)   # accuracies of the coarsest 3-D plan (then refined by 2, nested;
+#                            ``base_level``: down to the second where the accuracy is tight)
+#                            and of the plan whose graded planform the planform's refinement
+#                            starts from
+NESTED_CELLS = 30_000      # the finest nested 3-D mesh tried (cells on half the thickness)
+BASE_PER_ACCURACY = 500.0  # the coarsest 3-D plan's accuracy per requested accuracy, at most
+#   MESH_LEVELS[0] (``base_level``). On the demo cam (k = 2) at 1e-3 the 1.0 plan's nested
+#   pair changed by 5.2e-4 where the rest of the estimate left 4.4e-4 (and a third mesh would
+#   have 224 000 cells); the 0.5 plan's pair by 2.9e-4 (estimate 8.0e-4)
 REFINE = (2.0, 4.0)        # planform refinements (finest and growth / R) for Richardson
 PLANFORM_CELLS = 60_000    # the finest planform tried
-SHEET_SHARE = 0.1          # the fine sheet's accuracy: this share of the requested one
 PLANFORM_SHARE = 0.5       # of the accuracy: the planform's Richardson estimate
-SKIN_ESTIMATE_MARGIN = 1.0  # on the 3-D change of a drying part (``skin_margin``), the cells'
-#   margin (``nonlinear.SKIN_CELLS_MARGIN``). Measured on the 4 x 3 x 2 mm plate drying at
-#   1e-2 (benchmarks/dc_defect_correction.py plate-order, skin-margin): the 0.5 plan is
-#   0.29 (k = 2) and 1.62 (k = 3: the changes stop shrinking as the plans' growth changes)
-#   times the (1, 0.5) change from the 0.125 plan; the estimate / the distance to the stored
-#   3-D runs (2.97e-3, 3.54e-3) is 2.54 and 1.31 with a margin 0, 4.01 and 2.28 with 1, 8.44
-#   and 5.20 with the old 4 (set before the Kirchhoff face mean); a safety of 2 needs 0.71
+SKIN_ESTIMATE_MARGIN = 1.0  # on the two-mesh 3-D change of a drying part (``skin_margin``),
+#   the cells' margin (``nonlinear.SKIN_CELLS_MARGIN``). Set on the non-nested 1 and 0.5
+#   plans of the 4 x 3 x 2 mm plate drying at 1e-2 (benchmarks/dc_defect_correction.py
+#   skin-margin: estimate / distance to the stored 3-D runs 4.0 (k = 2) and 2.3 (k = 3),
+#   a safety of 2 needing 0.71). On nested meshes drying converges slower than absorbing
+#   (k = 2: order 1.3 against 2.5, ``nested``), so the finer mesh's error, about 1.5 x the
+#   next change, is close to the change itself: the margin stays
 TARGET = "; est. = the target: the run measures its own and warns above it"
-ORDER_ONE = 1.0 / (math.sqrt(2.0) - 1.0)  # the finer 3-D plan's error / the change between
-#   the two, at order 1 in w0 (w0 ~ sqrt(accuracy): ratio sqrt 2). Order 2 (a factor 1) is
-#   not what these plans show: on the 4 x 3 x 2 mm plate (k = 2, plans 1, 0.5, 0.25, 0.125,
-#   benchmarks/dc_defect_correction.py plate-order) the observed order of the successive
-#   changes scatters from -10 to 12 over the outputs (the z cells step 4, 6, 6, 8: not a
-#   nested refinement), and where the changes shrink steadily it is below 1 (absorbing,
-#   tau* = 0.03: 0.37, 0.77). The 0.5 plan is 0.44 (absorbing) and 0.29 (drying) times the
-#   change from the 0.125 plan, 0.79 and 2.8 times it from the stored 3-D runs (the latter
-#   no closer on the 0.125 plan: not the 3-D cells' error); kept as an upper bound
+ORDER_ONE = 1.0 / (2.0 - 1.0)  # the finer of two nested 3-D meshes' error / the change
+#   between them at order 1 (refinement ratio 2; a higher order gives less). Before, the two
+#   meshes were the graded 1 and 0.5 plans (w0 ratio sqrt 2, z cells 4, 6, 6, 8 over the
+#   plans 1-0.125 of the 4 x 3 x 2 mm plate: not nested, observed orders -10 to 12) and the
+#   factor 1 / (sqrt 2 - 1) = 2.4 an upper-bound guess
 
 
-@dataclass(frozen=True)
-class Pair:
-    """A Richardson-combined march (2 fine - coarse in time) and its time pair."""
-
-    mean: np.ndarray
-    layer: np.ndarray
-    fields: np.ndarray | None = None
-    steps: int = 0
-    pair: float = 0.0   # largest |fine - coarse| of the mean (time error indicator)
-    track: Track | None = None   # (mean, layer) at every step (``dense``: ``extend``)
-
-
-def half_slab(z_widths: np.ndarray) -> Discretisation:
-    """FiPy Grid1D of a half thickness on ``z_widths`` (scaled, from the exposed face at
-    z = 0; the other end is the mid-plane mirror, insulated)."""
-    from fipy import Grid1D
-
-    mesh = Grid1D(dx=np.asarray(z_widths, float))
-    exposed = np.asarray(mesh.exteriorFaces, bool) & np.isclose(
-        np.asarray(mesh.faceCenters)[0], 0.0, atol=1e-12)
-    volumes, stiffness, boundary = assemble(mesh, exposed=exposed)
-    weights = normalised(volumes)
-    return Discretisation(volumes, stiffness, boundary, weights, weights)
-
-
-def planform_disc(geometry, d, finest: float, growth: float, depth: float):
-    """(Discretisation, corrected weights): the planform alone (a prism of infinite
-    thickness) on the graded admissible cells of (``finest``, ``growth``), one layer of
-    the mirrored prisms with its exposed face's coupling 8 V (half-layer height 1/4
-    scaled) taken out of the boundary vector (as ``planmodes.planform_operator``); its
-    mean and layer weights the plate's (cell volumes, band shares: the same discrete
-    product), and ``cellmoments``' second-order (mean, layer) weights on u - g beside."""
-    tess = layout.planform_cells(geometry, finest, growth, stretch_of(d))
-    disc = prism(tess, geometry.thickness, np.array([0.5 * geometry.thickness]),
-                 band_share(tess, depth), d, mid_plane=True)
-    return (replace(disc, boundary=disc.boundary - 8.0 * disc.volumes),
-            corrected_weights(tess, depth))
-
-
-def richardson_march(disc, law, top, exposure, times, scales, per_doubling, keep, part,
-                     columns=()) -> Pair:
-    """The swept backward-Euler march (``nonlinear``) on the plan's steps and on them
-    bisected, combined 2 fine - coarse; its track: (mean, layer, ``columns``' sums)."""
-    faces = Faces.of(disc)
-    plans = [step_plan(exposure, times, scales, per_doubling, bisect) for bisect in (False, True)]
-    coarse, fine = (sweep_march(faces, disc, law, top, steps, exposure.initial_moisture, keep,
-                                part, columns) for steps in plans)
-    fields = 2.0 * fine.fields - coarse.fields if keep else None
-    return Pair(2.0 * fine.mean - coarse.mean, 2.0 * fine.layer - coarse.layer, fields,
-                coarse.steps + fine.steps, float(np.max(np.abs(fine.mean - coarse.mean))),
-                Track.of(plans[0], coarse, fine, scales, exposure))
-
-
-def corrected(plate: Pair, sheet: tuple, planform: tuple, surface: np.ndarray):
-    """(mean, layer): the plate's U = g - c times the ratio of the fine reference's U to the
-    coarse grid's, for the sheet (the layer spans the thickness) and for the planform
-    (its mean, its band for the layer). A ratio is 1 where the coarse grid's U is within
-    round-off of zero. ``sheet``, ``planform``: (coarse Pair, fine reference Pair)."""
-    floor = 1e-9 * max(float(np.max(np.abs(surface))), 1e-300)
-
-    def ratio(fine, coarse):
-        gap = surface - coarse
-        small = np.abs(gap) <= floor
-        return np.where(small, 1.0, (surface - fine) / np.where(small, 1.0, gap))
-    (s_h, s_ref), (p_h, p_ref) = sheet, planform
-    through = ratio(s_ref.mean, s_h.mean)
-    return (surface - (surface - plate.mean) * through * ratio(p_ref.mean, p_h.mean),
-            surface - (surface - plate.layer) * through * ratio(p_ref.layer, p_h.layer))
-
-
-def steps_for(accuracy: float) -> int:
-    """Steps per doubling for the time error TIME_ERROR / m^2 at half the accuracy
-    (``direct.plan_direct``)."""
-    return max(MIN_STEPS_PER_DOUBLING, math.ceil(math.sqrt(TIME_ERROR / (0.5 * accuracy))))
-
-
-def level_plan(geometry, diffusivity, law, exposure, times, mesh_accuracy, per_doubling) -> Plan:
-    """A 3-D plan: ``nonlinear_plan``'s cells at ``mesh_accuracy``, ``per_doubling`` steps."""
-    def planner(d, a, outputs):
-        s = scales_of(geometry, d, exposure)
-        return plan_direct(geometry, d, "solid", s.tau_star(exposure.change_times),
-                           s.tau_star(outputs), a, exposure)
-    chosen = nonlinear_plan(planner, diffusivity, law, exposure, times, mesh_accuracy)
-    return replace(chosen, steps_per_doubling=per_doubling)
-
-
-def sheet_reference(geometry, diffusivity, law, exposure, times, accuracy) -> DiffusionResult:
-    """The D(c) sheet of the part's thickness at ``SHEET_SHARE`` x the accuracy (FiPy slab)."""
-    sheet = Sheet(geometry.thickness)
-
-    def planner(d, a, outputs):
-        s = scales_of(sheet, d, exposure)
-        return plan_direct(sheet, d, "slab", s.tau_star(exposure.change_times),
-                           s.tau_star(outputs), a, exposure)
-    chosen = nonlinear_plan(planner, diffusivity, law, exposure, times, SHEET_SHARE * accuracy)
-    return solve_nonlinear(sheet, diffusivity, law, exposure, times, chosen)
-
-
-@dataclass(frozen=True)
-class Setting:
-    """What every march of one solve shares: law, scaled D, its top factor, scales."""
-
-    geometry: object
-    law: object
-    exposure: object
-    times: np.ndarray
-    d: tuple
-    top: float
-    scales: object
-    depth: float
-    per_doubling: int
-    part: str
-
-    @classmethod
-    def of(cls, geometry, diffusivity, law, exposure, times, depth, per_doubling, part):
-        scaled = fastest(diffusivity, law, exposure, times)
-        return cls(geometry, law, exposure, np.asarray(times, float),
-                   tuple(float(v) for v in scaled.pre_exponential),
-                   law.largest_factor(wettest(exposure, times)),
-                   scales_of(geometry, scaled, exposure), depth, per_doubling, part)
-
-    def run(self, disc, keep: bool = False, columns=()) -> Pair:
-        return richardson_march(disc, self.law, self.top, self.exposure, self.times,
-                                self.scales, self.per_doubling, keep, self.part, columns)
-
-    def planform(self, finest: float, growth: float) -> tuple[Pair, Pair, int]:
-        """(the plate's weights, ``cellmoments``' weights, cells) of the planform's march."""
-        disc, weights = planform_disc(self.geometry, self.d, finest, growth, self.depth)
-        pair = self.run(disc, True, weights)
-        g = np.asarray(self.exposure.surface_before(self.times), float)
-        mean, layer = (g + (pair.fields - g[:, None]) @ w for w in weights)
-        track = pair.track   # its columns 2, 3: the sums of u on ``weights``, g added as above
-        moments = track.values[:, 2:] + track.surface[:, None] * (
-            1.0 - np.array([np.sum(w) for w in weights]))
-        return (replace(pair, fields=None, track=track.with_values(track.values[:, :2])),
-                replace(pair, mean=mean, layer=layer, fields=None,
-                        track=track.with_values(moments)), disc.cells)
-
-
-@dataclass(frozen=True)
-class Level:
-    """One 3-D plan's marches: the plate, its z widths as a sheet, its planform alone."""
-
-    plan: Plan
-    plate: Pair
-    slab: Pair
-    planform: Pair
-    moments: Pair   # the same march read with ``cellmoments``' weights
-    cells: int
-    planform_cells: int
-    coordinates: dict
-
-
-def three_d(setting: Setting, chosen: Plan, keep: bool) -> Level:
-    disc = mirrored(setting.geometry, setting.d, chosen.cells_per_axis, chosen.finest,
-                    chosen.growth, setting.depth)
-    plate = setting.run(disc, keep)
-    slab = setting.run(half_slab(half(layout.prism_widths(chosen.finest, chosen.growth))))
-    planform, moments, planform_cells = setting.planform(chosen.finest, chosen.growth)
-    return Level(chosen, plate, slab, planform, moments, disc.cells, planform_cells,
-                 disc.coordinates)
-
-
-def refined_reference(setting: Setting, level: Level, sheet: Pair, accuracy: float, scale):
-    """(planform reference Pair, estimate, planform cells, factor R): the level's planform
-    refined by R in ``REFINE`` (finest and growth / R) until the estimate is
-    ``PLANFORM_SHARE`` of the accuracy or the next mesh would pass ``PLANFORM_CELLS``.
+def refined_reference(setting: Setting, start: Plan, level: Level, sheet: Pair,
+                      accuracy: float, scale):
+    """(planform reference Pair, estimate, planform cells, factor R): the graded planform of
+    the plan ``start`` refined by R in ``REFINE`` (finest and growth / R) until the estimate
+    is ``PLANFORM_SHARE`` of the accuracy or the next mesh would pass ``PLANFORM_CELLS``
+    (the estimate: the change of ``level``'s corrected result).
     After the first refinement: the Richardson extrapolation of the two (second order:
     p_2 + (p_2 - p_1) / 3), its estimate the whole change p_2 - p_1 (R = 1 may be short of
     the asymptotic range: on the demo cam with k = 1 the change the first extrapolation
@@ -257,12 +98,12 @@ def refined_reference(setting: Setting, level: Level, sheet: Pair, accuracy: flo
 
     def result(reference):
         return corrected(level.plate, (level.slab, sheet), (level.planform, reference), surface)
-    planforms, cells, factor = [level.moments], 0, 1.0
+    _, first, start_cells = setting.planform(start.finest, start.growth)
+    planforms, cells, factor = [first], 0, 1.0
     for refine in REFINE:
-        if cells and level.planform_cells * refine ** 2 > PLANFORM_CELLS:
+        if cells and start_cells * refine ** 2 > PLANFORM_CELLS:
             break
-        _, fine, cells = setting.planform(level.plan.finest / refine,
-                                          level.plan.growth / refine)
+        _, fine, cells = setting.planform(start.finest / refine, start.growth / refine)
         planforms.append(fine)
         weight, factor = 1.0 / ((refine / factor) ** 2 - 1.0), refine
         if len(planforms) == 2:
@@ -288,11 +129,9 @@ def gap(a, b, scale: float) -> float:
 def skin_margin(law, exposure, times) -> float:
     """1 unless the surface dries to a skin (``nonlinear.dries_to_a_skin``); then
     1 + SKIN_ESTIMATE_MARGIN (sqrt(max f / min f) - 1), as the cells' margin of
-    ``nonlinear_plan``: on the 4 x 3 x 2 mm plate drying the change between the plans need not
-    shrink (k = 3: the 0.5 plan 1.6 times the change from the 0.125 one) and the result
-    errs 3.0e-3 (k = 2) and 3.5e-3 (k = 3) against the stored 3-D runs at 1e-2, 4.0 and 2.3
-    times below the estimate with it (``SKIN_ESTIMATE_MARGIN``;
-    benchmarks/dc_defect_correction.py)."""
+    ``nonlinear_plan``, on the change between two nested 3-D meshes (``unseparated``; three
+    meshes measure their order and take no margin): drying converges at a lower order than
+    absorbing (``SKIN_ESTIMATE_MARGIN``; benchmarks/dc_defect_correction.py nested)."""
     if not dries_to_a_skin(law, exposure):
         return 1.0
     return 1.0 + SKIN_ESTIMATE_MARGIN * (math.sqrt(spread(law, exposure, times)) - 1.0)
@@ -300,93 +139,173 @@ def skin_margin(law, exposure, times) -> float:
 
 @dataclass(frozen=True)
 class Levels:
-    """The corrected result on each 3-D plan of one solve, all with the same sheet and
-    planform references (those refined from the finest plan)."""
+    """The corrected result on each 3-D mesh of one solve, all with the same sheet and
+    planform references."""
 
-    marched: list      # Level per plan, coarsest first
-    results: list      # (mean, layer) corrected, per plan
+    marched: list      # Level per mesh, coarsest first
+    results: list      # (mean, layer) corrected, per mesh
     sheet: DiffusionResult
     planform: Pair     # the planform reference
     planform_error: float
     planform_cells: int
     factor: float      # the planform's refinement R
     scale: float       # the swing the estimates are relative to
+    setting: Setting
+    meshes: list       # Cells per mesh
+
+    def finer(self, store_fields: bool = False) -> "Levels":
+        """One more mesh: the finest refined by 2 (``Cells.refined``), nested."""
+        cells = self.meshes[-1].refined()
+        level = three_d(self.setting, self.marched[-1].plan, store_fields, cells)
+        result = corrected(level.plate, (level.slab, Pair(self.sheet.mean, self.sheet.surface)),
+                           (level.planform, self.planform), surface_of(self.setting))
+        return replace(self, marched=[*self.marched, level], results=[*self.results, result],
+                       meshes=[*self.meshes, cells])
+
+
+def base_level(accuracy: float) -> float:
+    """The accuracy of the coarsest 3-D plan: ``BASE_PER_ACCURACY`` x the requested one, at
+    most ``MESH_LEVELS[0]``, at least ``MESH_LEVELS[-1]``."""
+    return min(MESH_LEVELS[0], max(MESH_LEVELS[-1], BASE_PER_ACCURACY * accuracy))
+
+
+def surface_of(setting: Setting) -> np.ndarray:
+    """g(t-) at the outputs: the state the unaccomplished uptakes are measured from."""
+    return np.asarray(setting.exposure.surface_before(setting.times), float)
 
 
 def corrected_levels(geometry, diffusivity, law, exposure, times, accuracy: float,
-                     levels=MESH_LEVELS, *, surface_layer_depth=5e-4, store_fields=False,
-                     part="") -> Levels:
-    """The corrected product (module docstring) on the 3-D plans of ``levels`` (accuracies
-    of ``nonlinear_plan``, coarsest first); ``store_fields`` keeps the finest one's."""
+                     meshes: int = 2, *, plans=None, surface_layer_depth=5e-4,
+                     store_fields=False, part="") -> Levels:
+    """The corrected product (module docstring) on ``meshes`` nested 3-D meshes: the graded
+    cells of the ``base_level`` plan, each next one refined by 2 in every direction
+    (``Cells.refined``); or, with ``plans`` (accuracies of ``nonlinear_plan``, coarsest
+    first), on those plans' graded cells (not nested; ``benchmarks/dc_defect_correction.py
+    plate-order``). The planform reference is refined from the ``MESH_LEVELS[-1]`` plan's
+    graded planform. ``store_fields`` keeps the finest mesh's fields."""
     times = np.asarray(times, float)
     setting = Setting.of(geometry, diffusivity, law, exposure, times, surface_layer_depth,
                          steps_for(accuracy), part)
     sheet = sheet_reference(geometry, diffusivity, law, exposure, times, accuracy)
     reference = Pair(sheet.mean, sheet.surface)
-    plans = [level_plan(geometry, diffusivity, law, exposure, times, a, setting.per_doubling)
-             for a in levels]
-    marched = [three_d(setting, p, store_fields and p is plans[-1]) for p in plans]
+
+    def planned(a):
+        return level_plan(geometry, diffusivity, law, exposure, times, a, setting.per_doubling)
+    if plans is None:
+        chosen = [planned(base_level(accuracy))] * meshes
+        cells = [Cells.of(geometry, setting.d, chosen[0])]
+        while len(cells) < meshes:
+            cells.append(cells[-1].refined())
+    else:
+        chosen = [planned(a) for a in plans]
+        cells = [Cells.of(geometry, setting.d, c) for c in chosen]
+    marched = [three_d(setting, c, store_fields and i == len(chosen) - 1, m)
+               for i, (c, m) in enumerate(zip(chosen, cells))]
     scale = swing(exposure, times) or 1.0
     planform, planform_error, planform_cells, factor = refined_reference(
-        setting, marched[-1], reference, accuracy, scale)
-    surface = np.asarray(exposure.surface_before(times), float)  # g(t-): the state there
+        setting, planned(MESH_LEVELS[-1]), marched[-1], reference, accuracy, scale)
+    surface = surface_of(setting)
     results = [corrected(m.plate, (m.slab, reference), (m.planform, planform), surface)
                for m in marched]
     return Levels(marched, results, sheet, planform, planform_error, planform_cells, factor,
-                  scale)
+                  scale, setting, cells)
+
+
+def unseparated(run: Levels, margin: float) -> tuple[tuple, float]:
+    """((mean, layer), estimate) of the 3-D cells on the finest nested mesh. Two meshes:
+    the finest one's result, its estimate the change between them x ``ORDER_ONE`` x
+    ``margin`` (``skin_margin``). Three or more: the last three by ``three_levels`` (mean
+    and layer each; the second-order extrapolation where it may be taken), the order
+    measured, no margin."""
+    values, checked = finest(run.results)
+    if checked is None:
+        return values, gap(run.results[-2], values, run.scale) * ORDER_ONE * margin
+    return values, max(checked[0][1], checked[1][1] / LAYER_TOLERANCE) / run.scale
+
+
+def finest(results: list) -> tuple[tuple, list | None]:
+    """((mean, layer), the ``three_levels`` checks or None): what ``unseparated`` takes from
+    the corrected results of the nested meshes (coarsest first)."""
+    if len(results) < 3:
+        return results[-1], None
+    checked = [three_levels(*(r[i] for r in results[-3:])) for i in range(2)]
+    return tuple(taken(extrapolate, results[-2][i], results[-1][i])
+                 for i, (extrapolate, _) in enumerate(checked)), checked
+
+
+def extension(run: Levels, result: DiffusionResult, accuracy: float, resolve) -> Extension:
+    """``result.extend`` (``dense``): the corrected product of every nested mesh read
+    between the marches' steps, combined as ``finest`` combines the solve's."""
+    exposure, meshes = run.setting.exposure, run.marched[-3:]
+    tracks = [track for m in meshes for track in (m.plate.track, m.slab.track,
+                                                  m.planform.track)]
+
+    def product(values, at):   # the tracks' columns at ``at`` -> (mean, layer)
+        pairs = [Pair(v[:, 0], v[:, 1]) for v in values]
+        reference, sheet_at = pairs[-2:]
+        surface = np.asarray(exposure.surface_before(at), float)
+        per_mesh = [corrected(pairs[3 * i], (pairs[3 * i + 1], sheet_at),
+                              (pairs[3 * i + 2], reference), surface)
+                    for i in range(len(meshes))]
+        return finest(per_mesh)[0]
+    return Extension(result, [*tracks, run.planform.track, run.sheet.extend.tracks[0]],
+                     product, run.scale, accuracy, resolve, run.setting.part)
 
 
 def solve_corrected(geometry, diffusivity, law, exposure, times, accuracy: float, *,
                     surface_layer_depth=5e-4, store_fields=False, part="",
                     reason="") -> DiffusionResult:
     """Mean and contact layer (weight %) at ``times``: the corrected product (module
-    docstring) on the finer of two 3-D plans (``MESH_LEVELS``, their change the estimate of
-    what does not separate), plus the sheet's and the planform's estimates and the time
-    error of the marches (``PAIR_TO_EXTRAPOLATED`` pair^2). ``store_fields``: the finer
-    3-D plan's own cells (not corrected)."""
+    docstring) on two nested 3-D meshes (``corrected_levels``; their change the estimate
+    of what does not separate, ``unseparated``), a further one (8 x the cells) while the
+    total is above the accuracy, the rest of the estimate below it (so a smaller 3-D term
+    can meet it) and the mesh within ``NESTED_CELLS``; plus the sheet's and the planform's
+    estimates and the time error of the marches (``PAIR_TO_EXTRAPOLATED`` pair^2).
+    ``store_fields``: the finest 3-D mesh's own cells (not corrected)."""
     times = np.asarray(times, float)
     run = corrected_levels(geometry, diffusivity, law, exposure, times, accuracy,
                            surface_layer_depth=surface_layer_depth,
                            store_fields=store_fields, part=part)
-    marched, results, sheet, scale = run.marched, run.results, run.sheet, run.scale
-    unseparated = gap(results[0], results[-1], scale) * ORDER_ONE * skin_margin(
-        law, exposure, times)
-    pair = max(marched[-1].plate.pair, run.planform.pair) / scale
-    estimate = (sheet.error_estimate + run.planform_error + unseparated
-                + PAIR_TO_EXTRAPOLATED * pair ** 2)
-    fine = marched[-1]
+    margin, sheet = skin_margin(law, exposure, times), run.sheet
+
+    def estimated(run):
+        values, three_d_error = unseparated(run, margin)
+        pair = max(run.marched[-1].plate.pair, run.planform.pair) / run.scale
+        rest = sheet.error_estimate + run.planform_error + PAIR_TO_EXTRAPOLATED * pair ** 2
+        return values, three_d_error, rest
+    values, three_d_error, rest = estimated(run)
+    while rest < accuracy < rest + three_d_error and run.meshes[-1].cells * 8 <= NESTED_CELLS:
+        run = run.finer(store_fields)
+        values, three_d_error, rest = estimated(run)
+    estimate = three_d_error + rest
+    fine = run.marched[-1]
     note = (f"{reason.split(TARGET)[0]}; measured: sheet {sheet.error_estimate:.1e}, "
             f"planform x{run.factor:g} ({run.planform_cells} cells) {run.planform_error:.1e}, "
-            f"3-D change {unseparated:.1e}")
+            f"3-D change {three_d_error:.1e} ({len(run.meshes)} nested meshes, "
+            f"{fine.cells} cells)")
     if estimate > accuracy:
         note += "; capped: error above the requested accuracy"
-    result = DiffusionResult(times, results[-1][0], results[-1][1], "solid",
+    result = DiffusionResult(times, values[0], values[1], "solid",
                              fine.cells + run.planform_cells,
-                             sum(m.plate.steps for m in marched), float(estimate), note)
+                             sum(m.plate.steps for m in run.marched), float(estimate), note)
     if store_fields:
         result.fields, result.cell_coordinates = fine.plate.fields, fine.coordinates
-    else:   # the limit search's extra times: the corrected product between the steps (``dense``)
-        def product(values, at):   # the tracks' (mean, layer) at ``at``: as ``results``
-            plate, slab, planform, reference, sheet_at = (Pair(v[:, 0], v[:, 1]) for v in values)
-            return corrected(plate, (slab, sheet_at), (planform, reference),
-                             np.asarray(exposure.surface_before(at), float))
-        result.extend = Extension(
-            result, [fine.plate.track, fine.slab.track, fine.planform.track,
-                     run.planform.track, sheet.extend.tracks[0]], product, scale, accuracy,
-            lambda both: solve_corrected(geometry, diffusivity, law, exposure, both, accuracy,
-                                         surface_layer_depth=surface_layer_depth, part=part,
-                                         reason=reason), part)
+    else:   # the limit search's extra times: read between the marches' steps (``dense``)
+        result.extend = extension(run, result, accuracy, lambda both: solve_corrected(
+            geometry, diffusivity, law, exposure, both, accuracy,
+            surface_layer_depth=surface_layer_depth, part=part, reason=reason))
     return result
 
 
 def plan_corrected(geometry, diffusivity, law, exposure, times, accuracy: float) -> Plan:
-    """What ``solve_corrected`` will start from: the finer 3-D plan, the planform refined
-    up to ``PLANFORM_CELLS``, the requested accuracy as the target its measured estimate
-    is held to (the solve reports the estimate)."""
-    chosen = level_plan(geometry, diffusivity, law, exposure, times, MESH_LEVELS[-1],
-                        steps_for(accuracy))
+    """What ``solve_corrected`` will start from: the coarsest 3-D plan (refined by 2,
+    nested, once or twice), the planform refined up to ``PLANFORM_CELLS``, the requested
+    accuracy as the target its measured estimate is held to (the solve reports the
+    estimate)."""
+    level = base_level(accuracy)
+    chosen = level_plan(geometry, diffusivity, law, exposure, times, level, steps_for(accuracy))
     reason = ("D(c) sheet x D(c) planform (each refined and checked), corrected on coarse 3-D "
-              f"prisms on half the thickness (mid-plane mirror; the {MESH_LEVELS[0]:g} and "
-              f"{MESH_LEVELS[-1]:g} plans; {chosen.steps_per_doubling} steps/doubling + "
-              f"Richardson; defect correction){TARGET}")
+              f"prisms on half the thickness (mid-plane mirror; the {level:g} plan "
+              f"and it refined by 2, nested, twice where needed; {chosen.steps_per_doubling} "
+              f"steps/doubling + Richardson; defect correction){TARGET}")
     return replace(chosen, reason=reason, error_estimate=accuracy)

@@ -1,0 +1,227 @@
+"""The pieces ``defect`` combines, each a swept backward-Euler march of the D(c) equation
+(``nonlinear``) on its own grid, Richardson-combined in time: the coarse 3-D prisms
+(``Cells``, nested refinement by 2), their z widths as a sheet (``half_slab``), their
+planform alone (``planform_disc``), the fine sheet reference (``sheet_reference``), and the
+product that swaps each coarse factor's unaccomplished uptake for its reference's
+(``corrected``; Crank 1975 §4.3, eq. 4.51 for Fick; Stetter 1978 for the correction).
+Every march records its mean and layer at each step (``dense.Track``: ``extend``).
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, replace
+
+import numpy as np
+
+from . import layout
+from .calibration import MIN_STEPS_PER_DOUBLING, TIME_ERROR
+from .cellmoments import corrected_weights
+from .clock import scales as scales_of
+from .dense import Track
+from .direct import plan_direct, step_plan
+from .discretisation import Discretisation, assemble
+from .fv import normalised
+from .fvprism import prism
+from .geometry import Sheet
+from .mirrored import half
+from .nonlinear import Faces, fastest, nonlinear_plan, solve_nonlinear, sweep_march, wettest
+from .prism import band_share, refine
+from .results import DiffusionResult, Plan
+from .scaling import stretch_of
+
+SHEET_SHARE = 0.1          # the fine sheet's accuracy: this share of the requested one
+
+
+@dataclass(frozen=True)
+class Pair:
+    """A Richardson-combined march (2 fine - coarse in time) and its time pair."""
+
+    mean: np.ndarray
+    layer: np.ndarray
+    fields: np.ndarray | None = None
+    steps: int = 0
+    pair: float = 0.0   # largest |fine - coarse| of the mean (time error indicator)
+    track: Track | None = None   # (mean, layer) at every step (``dense``: ``extend``)
+
+
+def half_slab(z_widths: np.ndarray) -> Discretisation:
+    """FiPy Grid1D of a half thickness on ``z_widths`` (scaled, from the exposed face at
+    z = 0; the other end is the mid-plane mirror, insulated)."""
+    from fipy import Grid1D
+
+    mesh = Grid1D(dx=np.asarray(z_widths, float))
+    exposed = np.asarray(mesh.exteriorFaces, bool) & np.isclose(
+        np.asarray(mesh.faceCenters)[0], 0.0, atol=1e-12)
+    volumes, stiffness, boundary = assemble(mesh, exposed=exposed)
+    weights = normalised(volumes)
+    return Discretisation(volumes, stiffness, boundary, weights, weights)
+
+
+def planform_disc(geometry, d, tess, depth: float):
+    """(Discretisation, corrected weights): the planform alone (a prism of infinite
+    thickness) on the admissible cells ``tess``, one layer of the mirrored prisms with its
+    exposed face's coupling 8 V (half-layer height 1/4 scaled) taken out of the boundary
+    vector (as ``planmodes.planform_operator``); its mean and layer weights the plate's
+    (cell volumes, band shares: the same discrete product), and ``cellmoments``'
+    second-order (mean, layer) weights on u - g beside."""
+    disc = prism(tess, geometry.thickness, np.array([0.5 * geometry.thickness]),
+                 band_share(tess, depth), d, mid_plane=True)
+    return (replace(disc, boundary=disc.boundary - 8.0 * disc.volumes),
+            corrected_weights(tess, depth))
+
+
+@dataclass(frozen=True)
+class Cells:
+    """A 3-D mesh of the mirrored prisms: admissible planform cells (``prism.Tessellation``)
+    x z widths (scaled, exposed face to mid-plane)."""
+
+    tess: object
+    z: np.ndarray
+
+    @classmethod
+    def of(cls, geometry, d, chosen: Plan) -> "Cells":
+        """The graded cells of a plan (``mirrored``'s prisms)."""
+        return cls(layout.planform_cells(geometry, chosen.finest, chosen.growth, stretch_of(d)),
+                   half(layout.prism_widths(chosen.finest, chosen.growth)))
+
+    def refined(self) -> "Cells":
+        """Nested refinement by 2: every planform edge halved (``prism.refine``), every z
+        width halved; 8 x the cells."""
+        return Cells(refine(self.tess), np.repeat(0.5 * self.z, 2))
+
+    @property
+    def cells(self) -> int:
+        return self.tess.cells * self.z.size
+
+
+def richardson_march(disc, law, top, exposure, times, scales, per_doubling, keep, part,
+                     columns=()) -> Pair:
+    """The swept backward-Euler march (``nonlinear``) on the plan's steps and on them
+    bisected, combined 2 fine - coarse; its track: (mean, layer, ``columns``' sums)."""
+    faces = Faces.of(disc)
+    plans = [step_plan(exposure, times, scales, per_doubling, bisect) for bisect in (False, True)]
+    coarse, fine = (sweep_march(faces, disc, law, top, steps, exposure.initial_moisture, keep,
+                                part, columns) for steps in plans)
+    fields = 2.0 * fine.fields - coarse.fields if keep else None
+    return Pair(2.0 * fine.mean - coarse.mean, 2.0 * fine.layer - coarse.layer, fields,
+                coarse.steps + fine.steps, float(np.max(np.abs(fine.mean - coarse.mean))),
+                Track.of(plans[0], coarse, fine, scales, exposure))
+
+
+def corrected(plate: Pair, sheet: tuple, planform: tuple, surface: np.ndarray):
+    """(mean, layer): the plate's U = g - c times the ratio of the fine reference's U to the
+    coarse grid's, for the sheet (the layer spans the thickness) and for the planform
+    (its mean, its band for the layer). A ratio is 1 where the coarse grid's U is within
+    round-off of zero. ``sheet``, ``planform``: (coarse Pair, fine reference Pair)."""
+    floor = 1e-9 * max(float(np.max(np.abs(surface))), 1e-300)
+
+    def ratio(fine, coarse):
+        gap = surface - coarse
+        small = np.abs(gap) <= floor
+        return np.where(small, 1.0, (surface - fine) / np.where(small, 1.0, gap))
+    (s_h, s_ref), (p_h, p_ref) = sheet, planform
+    through = ratio(s_ref.mean, s_h.mean)
+    return (surface - (surface - plate.mean) * through * ratio(p_ref.mean, p_h.mean),
+            surface - (surface - plate.layer) * through * ratio(p_ref.layer, p_h.layer))
+
+
+def steps_for(accuracy: float) -> int:
+    """Steps per doubling for the time error TIME_ERROR / m^2 at half the accuracy
+    (``direct.plan_direct``)."""
+    return max(MIN_STEPS_PER_DOUBLING, math.ceil(math.sqrt(TIME_ERROR / (0.5 * accuracy))))
+
+
+def level_plan(geometry, diffusivity, law, exposure, times, mesh_accuracy, per_doubling) -> Plan:
+    """A 3-D plan: ``nonlinear_plan``'s cells at ``mesh_accuracy``, ``per_doubling`` steps."""
+    def planner(d, a, outputs):
+        s = scales_of(geometry, d, exposure)
+        return plan_direct(geometry, d, "solid", s.tau_star(exposure.change_times),
+                           s.tau_star(outputs), a, exposure)
+    chosen = nonlinear_plan(planner, diffusivity, law, exposure, times, mesh_accuracy)
+    return replace(chosen, steps_per_doubling=per_doubling)
+
+
+def sheet_reference(geometry, diffusivity, law, exposure, times, accuracy) -> DiffusionResult:
+    """The D(c) sheet of the part's thickness at ``SHEET_SHARE`` x the accuracy (FiPy slab)."""
+    sheet = Sheet(geometry.thickness)
+
+    def planner(d, a, outputs):
+        s = scales_of(sheet, d, exposure)
+        return plan_direct(sheet, d, "slab", s.tau_star(exposure.change_times),
+                           s.tau_star(outputs), a, exposure)
+    chosen = nonlinear_plan(planner, diffusivity, law, exposure, times, SHEET_SHARE * accuracy)
+    return solve_nonlinear(sheet, diffusivity, law, exposure, times, chosen)
+
+
+@dataclass(frozen=True)
+class Setting:
+    """What every march of one solve shares: law, scaled D, its top factor, scales."""
+
+    geometry: object
+    law: object
+    exposure: object
+    times: np.ndarray
+    d: tuple
+    top: float
+    scales: object
+    depth: float
+    per_doubling: int
+    part: str
+
+    @classmethod
+    def of(cls, geometry, diffusivity, law, exposure, times, depth, per_doubling, part):
+        scaled = fastest(diffusivity, law, exposure, times)
+        return cls(geometry, law, exposure, np.asarray(times, float),
+                   tuple(float(v) for v in scaled.pre_exponential),
+                   law.largest_factor(wettest(exposure, times)),
+                   scales_of(geometry, scaled, exposure), depth, per_doubling, part)
+
+    def run(self, disc, keep: bool = False, columns=()) -> Pair:
+        return richardson_march(disc, self.law, self.top, self.exposure, self.times,
+                                self.scales, self.per_doubling, keep, self.part, columns)
+
+    def planform(self, finest: float, growth: float) -> tuple[Pair, Pair, int]:
+        """(the plate's weights, ``cellmoments``' weights, cells) of the planform's march on
+        the graded cells of (``finest``, ``growth``)."""
+        return self.planform_on(layout.planform_cells(self.geometry, finest, growth,
+                                                      stretch_of(self.d)))
+
+    def planform_on(self, tess) -> tuple[Pair, Pair, int]:
+        """``planform`` on the admissible cells ``tess``."""
+        disc, weights = planform_disc(self.geometry, self.d, tess, self.depth)
+        pair = self.run(disc, True, weights)
+        g = np.asarray(self.exposure.surface_before(self.times), float)
+        mean, layer = (g + (pair.fields - g[:, None]) @ w for w in weights)
+        track = pair.track   # its columns 2, 3: the sums of u on ``weights``, g added as above
+        moments = track.values[:, 2:] + track.surface[:, None] * (
+            1.0 - np.array([np.sum(w) for w in weights]))
+        return (replace(pair, fields=None, track=track.with_values(track.values[:, :2])),
+                replace(pair, mean=mean, layer=layer, fields=None,
+                        track=track.with_values(moments)), disc.cells)
+
+
+@dataclass(frozen=True)
+class Level:
+    """One 3-D plan's marches: the plate, its z widths as a sheet, its planform alone."""
+
+    plan: Plan
+    plate: Pair
+    slab: Pair
+    planform: Pair
+    moments: Pair   # the same march read with ``cellmoments``' weights
+    cells: int
+    planform_cells: int
+    coordinates: dict
+
+
+def three_d(setting: Setting, chosen: Plan, keep: bool, cells: Cells | None = None) -> Level:
+    """The marches of one 3-D mesh: ``cells``, or the graded cells of ``chosen``."""
+    cells = cells or Cells.of(setting.geometry, setting.d, chosen)
+    geometry = setting.geometry
+    disc = prism(cells.tess, geometry.thickness, cells.z * geometry.thickness,
+                 band_share(cells.tess, setting.depth), setting.d, mid_plane=True)
+    plate = setting.run(disc, keep)
+    slab = setting.run(half_slab(cells.z))
+    planform, moments, planform_cells = setting.planform_on(cells.tess)
+    return Level(chosen, plate, slab, planform, moments, disc.cells, planform_cells,
+                 disc.coordinates)
