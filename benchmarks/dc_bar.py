@@ -337,7 +337,8 @@ def cap() -> None:
         return time.process_time()
 
     began = report("start", time.process_time())
-    chosen = plan(bar, d, exposure, times, accuracy=accuracy, sorption=law)
+    chosen = plan(bar, d, exposure, times, accuracy=accuracy, sorption=law,
+                  model="solid" if k == 0 else "auto")  # as ``measure``
     print(f"plan: {chosen.cells} cells {chosen.cells_per_axis} (octant), estimate "
           f"{chosen.error_estimate:.2e}, {chosen.steps} steps; {chosen.reason}", flush=True)
     began = report("plan", began)
