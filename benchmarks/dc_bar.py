@@ -3,10 +3,14 @@ octant, ``diffusion/nonlinear.py``): accuracy, honesty of the estimate and cost 
 independent references (issue 13).
 
     python benchmarks/dc_bar.py reference   # tests/data/dc_bar_reference.json (method of lines)
-    python benchmarks/dc_bar.py small [K ...]  # 6 x 4 x 2 mm bar: k = 0, 1, 2 at 1e-2, 3e-3, 1e-3
+    python benchmarks/dc_bar.py small [K ...] [--at A ...] [--only DIRECTION]
+        # 6 x 4 x 2 mm bar: k = 0, 1, 2 at 1e-2, 3e-3, 1e-3, absorption and desorption
     python benchmarks/dc_bar.py link [K ...]   # 60 x 8 x 4 mm link bar: k = 0 exact, k > 0 vs 3e-3
     python benchmarks/dc_bar.py sweeps      # inexact sweeps from the extrapolated state vs exact
     python benchmarks/dc_bar.py profile     # where the CPU goes (cProfile of k = 2 runs)
+    python benchmarks/dc_bar.py cap [K DIRECTION ACCURACY]  # one system at the cell cap:
+        # cells, assembly, LU fill, factorisation and solve CPU, peak memory (default: the
+        # k = 1 drying small bar at 1e-3, capped at MAX_CELLS["solid"] octant cells)
 
 References. k = 0: the exact block (Crank 1975 eq. 4.51, product of three sheets;
 ``solve(..., model="analytic")``). k > 0 (``reference``): an independent method of lines
@@ -187,13 +191,29 @@ def measure(size, k: float, direction: str, accuracy: float, reference_mean, ref
     return result, result.error_estimate, mean_error, layer_error, result.cells, cpu
 
 
+def options(accuracies):
+    """(exponents, accuracies, directions) from ``K ... [--at A ...] [--only DIRECTION]``."""
+    words, chosen = sys.argv[2:], {"--at": [], "--only": []}
+    exponents, into = [], None
+    for word in words:
+        if word in chosen:
+            into = chosen[word]
+        elif into is None:
+            exponents.append(float(word))
+        else:
+            into.append(word)
+    return (tuple(exponents) or (0.0,) + EXPONENTS,
+            tuple(float(a) for a in chosen["--at"]) or accuracies,
+            tuple(chosen["--only"]) or DIRECTIONS)
+
+
 def table(size, references, label: str, accuracies=ACCURACIES) -> None:
     """Rows |k|direction|accuracy|estimate|mean error|layer error|cells|steps|CPU s|."""
     print(f"| bar | k | direction | accuracy | estimate | mean error | layer error | "
           f"reference | cells (octant) | steps | CPU s |\n|{'---|' * 11}", flush=True)
-    exponents = tuple(float(k) for k in sys.argv[2:]) or (0.0,) + EXPONENTS
+    exponents, accuracies, directions = options(accuracies)
     for k in exponents:
-        for direction in DIRECTIONS:
+        for direction in directions:
             previous = 0.0
             for accuracy in accuracies:
                 if previous > CPU_LIMIT / 4:
@@ -292,9 +312,63 @@ def profile() -> None:
         pstats.Stats(profiler).sort_stats("tottime").print_stats(12)
 
 
+def cap() -> None:
+    """What one linear system at the cap costs: the plan of the small bar (``cap K
+    DIRECTION ACCURACY``), its octant assembled (FiPy), one system of a step factorised as
+    ``nonlinear.Lagged`` does (SuperLU, symmetric mode) and solved on those factors; CPU
+    (time.process_time) and peak resident memory (ru_maxrss) after each stage."""
+    import resource
+
+    from fickcam.diffusion import nonlinear, plan
+    from fickcam.diffusion.clock import scales as scales_of
+    from fickcam.diffusion.direct import step_plan
+    from fickcam.diffusion.mirrored import mirrored
+    from fickcam.diffusion.sorption import ConcentrationDependent
+
+    k = float(sys.argv[2]) if len(sys.argv) > 2 else 1.0
+    direction = sys.argv[3] if len(sys.argv) > 3 else "desorption"
+    accuracy = float(sys.argv[4]) if len(sys.argv) > 4 else 1e-3
+    bar, d, exposure, times, law, start, _ = case(SMALL, direction, k)
+
+    def report(stage, began):
+        peak = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
+        print(f"{stage}: {time.process_time() - began:.2f} CPU s, peak RSS {peak:.0f} MB",
+              flush=True)
+        return time.process_time()
+
+    began = report("start", time.process_time())
+    chosen = plan(bar, d, exposure, times, accuracy=accuracy, sorption=law,
+                  model="solid" if k == 0 else "auto")  # as ``measure``
+    print(f"plan: {chosen.cells} cells {chosen.cells_per_axis} (octant), estimate "
+          f"{chosen.error_estimate:.2e}, {chosen.steps} steps; {chosen.reason}", flush=True)
+    began = report("plan", began)
+    scaled = nonlinear.fastest(d, law, exposure, times)
+    weights = mirrored(bar, tuple(float(v) for v in scaled.pre_exponential),
+                       chosen.cells_per_axis, chosen.finest, chosen.growth, DEPTH)
+    faces = nonlinear.Faces.of(weights)
+    began = report(f"octant assembled ({weights.cells} cells)", began)
+    steps = step_plan(exposure, times, scales_of(bar, scaled, exposure),
+                      chosen.steps_per_doubling)
+    dt = float(np.diff(steps.nodes)[-1])
+    c = np.full(weights.cells, float(start))
+    top = law.largest_factor(MM)
+    system, f = faces.operator(c, 0.0 if direction == "desorption" else MM, law, top,
+                               faces.volumes / dt)
+    solver = nonlinear.Lagged()
+    rhs = faces.volumes / dt * c + f
+    solver.solve(system, rhs, c)
+    fill = solver.lu.L.nnz + solver.lu.U.nnz
+    began = report(f"factorised (L + U: {fill} non-zeros, {fill / weights.cells:.0f} a cell, "
+                   f"{fill * 12 / 2 ** 20:.0f} MB of values and indices)", began)
+    repeats = 10
+    for _ in range(repeats):
+        solver.lu.solve(rhs)
+    report(f"{repeats} triangular solves on the factors", began)
+
+
 if __name__ == "__main__":
     commands = {"reference": reference, "small": small, "link": link, "sweeps": sweeps,
-                "profile": profile}
+                "profile": profile, "cap": cap}
     if len(sys.argv) < 2 or sys.argv[1] not in commands:
         sys.exit(f"usage: {sys.argv[0]} {' | '.join(commands)}")
     commands[sys.argv[1]]()

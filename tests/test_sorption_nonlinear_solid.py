@@ -13,7 +13,7 @@ from hypothesis import strategies as st
 
 from fickcam.diffusion import (Bar, CamPlate, Diffusivity, Exposure, Sheet, fvprism, plan,
                                prism, solve, trimesh)
-from fickcam.diffusion import nonlinear
+from fickcam.diffusion import calibration, layout, nonlinear
 from fickcam.diffusion.clock import scales as scales_of
 from fickcam.diffusion.direct import discretise, step_plan
 from fickcam.diffusion.march import _rounded
@@ -51,6 +51,9 @@ def test_zero_exponent_reproduces_the_fickian_part(part):
     block = Bar(4e-3, 3e-3, H) if part is PLATE else part
     fick = solve(block, ANISOTROPIC, exposure(0.0, MM), TIMES, model="analytic")
     assert result.model == "solid"
+    # the plan counts the cells it solves: the mirrored part's (octant, half thickness)
+    assert plan(part, ANISOTROPIC, exposure(0.0, MM), TIMES, accuracy=COARSE, model="solid",
+                sorption=law(0)).cells == result.cells
     assert np.max(np.abs(result.mean - fick.mean)) / MM <= result.error_estimate <= COARSE
 
 
@@ -92,11 +95,49 @@ def test_bar_estimate_bounds_the_error_against_an_independent_reference(k, start
     assert layer <= LAYER_TOLERANCE * result.error_estimate
 
 
+def test_the_cell_cap_counts_the_octant_the_sweeps_solve(monkeypatch):
+    """``MAX_CELLS["solid"]`` bounds the cells of the linear system. The D(c) sweeps solve
+    one octant of a bar, so the cap counts the octant: with the cap at 2 000, the 6 x 4 x 2
+    mm bar absorbing (k = 2) at 3e-2 needs 1 078 octant cells (8 624 on the whole bar,
+    which the plan counted before: capped, estimate above the accuracy) and is not capped;
+    its estimate bounds the error against the independent method of lines
+    (``BAR_REFERENCE``; measured: estimate 1.6e-2, mean error 3.2e-3, layer 5.4e-3). The
+    Fickian solid solves the whole bar and is capped by it at the same cap."""
+    monkeypatch.setitem(calibration.MAX_CELLS, "solid", 2000)
+    times = np.array(BAR_REFERENCE["tau"]) * H ** 2 / D
+    absorbing, accuracy = exposure(0.0, MM, times[-1]), 3e-2
+    chosen = plan(BAR, ISOTROPIC, absorbing, times, accuracy=accuracy, sorption=law(2))
+    assert chosen.cells <= 2000 < 8 * chosen.cells and "capped" not in chosen.reason
+    fick = plan(BAR, ISOTROPIC, absorbing, times, accuracy=accuracy, model="solid")
+    assert fick.cells <= 2000 and "capped" in fick.reason
+    result = solve(BAR, ISOTROPIC, absorbing, times, accuracy=accuracy, sorption=law(2))
+    stored = BAR_REFERENCE["k2_absorption"]
+    error = np.max(np.abs(result.mean - np.array(stored["mean"]))) / MM
+    layer = np.max(np.abs(result.surface - np.array(stored["layer"]))) / MM
+    assert result.cells == chosen.cells
+    assert error <= result.error_estimate <= accuracy
+    assert layer <= LAYER_TOLERANCE * result.error_estimate
+
+
+@pytest.mark.parametrize("cap", [300, 1000, 5000])
+def test_a_mirrored_layout_counts_the_cells_of_the_octant_it_assembles(cap):
+    """``layout.uniform`` and ``layout.choose`` with the three axes halved: the cap bounds
+    the cells of the octant ``mirrored`` assembles from the layout (uniform counts
+    rounded to even, so the octant is exactly half of each), not the whole bar's."""
+    extents = layout.extents(BAR, (D, D, D))
+    for chosen in (layout.uniform(extents, 1e-2, 1e-2, cap, 1e-2, halved=(0, 1, 2)),
+                   layout.choose(BAR, extents, 1e-2, 1e-2, cap, 1e-2, halved=(0, 1, 2))):
+        octant = mirrored(BAR, (D, D, D), chosen.cells, chosen.finest, chosen.growth, 5e-4)
+        assert octant.cells == chosen.solved == chosen.total // 8 <= cap
+
+
 def test_a_capped_bar_plan_keeps_the_grading_of_smaller_error():
-    """A 60 x 8 x 4 mm link bar drying (k = 2) is capped from 1e-2 down; asking for more
-    accuracy must not worsen the estimate. Before: at 3e-3 the capped uniform grid (fewer
-    cells) won over the capped graded one, estimate 5.7e-2 against 9.6e-3 at 1e-2
-    (benchmarks/dc_bar.py link); now 8.8e-3 on the graded cells."""
+    """A 60 x 8 x 4 mm link bar drying (k = 2): asking for more accuracy must not worsen
+    the estimate. Before: with the cap counted on the whole bar it was capped from 1e-2
+    down, and at 3e-3 the capped uniform grid (fewer cells) won over the capped graded one,
+    estimate 5.7e-2 against 9.6e-3 at 1e-2 (benchmarks/dc_bar.py link); then 8.8e-3 on the
+    graded cells. Counted on the octant, 1e-3 is capped (103 530 octant cells, estimate
+    2.4e-3, against 2.8e-3 at 3e-3 and 5.8e-3 at 1e-2)."""
     link, thickness = Bar(60e-3, 8e-3, 4e-3), 4e-3
     times = np.array(BAR_REFERENCE["tau"]) * thickness ** 2 / D
     drying = exposure(MM, 0.0, times[-1])

@@ -34,6 +34,19 @@ Measured (upper ends of the measured ranges, so estimates err on the safe side):
   m = 3-12, against m = 32, sheet-weighted).
 - ``ANALYTIC_ERROR``: Crank's series truncation and the Duhamel quadrature of the exact
   path (tests/test_diffusion_exact.py: 1e-10 and below against closed forms).
+
+``MAX_CELLS`` is a choice, not a measurement: the most cells of the linear system a
+direct model assembles, counted on what is solved (``layout.unknowns``): the whole part
+for Fick; for the D(c) sweeps the octant of a Bar or half the thickness of a CamPlate or
+LinkBar (``mirrored``). What the solid cap costs (benchmarks/dc_bar.py cap: the 6 x 4 x 2
+mm bar drying, k = 1, at 1e-3, capped at 101 185 octant cells; one BLAS thread, 2-core
+machine under a load of ~10): FiPy's assembly of the octant 1.4 CPU s; a SuperLU
+factorisation of a step's system (minimum-degree ordering, as ``nonlinear.Lagged``)
+9.0e7 non-zeros in L + U (890 a cell), peak resident memory 2.3 GB, 48 CPU s; a
+triangular solve on those factors 0.14 CPU s.
+A whole D(c) march near the cap (benchmarks/dc_bar.py small, k = 0 at 1e-3: 111 996
+octant cells, 291 steps of the Richardson pair) 935 CPU s, 3.2 s a step, 2.6 GB peak; the
+k = 2 drying bar at 3e-3 (94 656 cells, 240 steps) 1 188 CPU s, 2.1 GB (load 3-10).
 """
 from __future__ import annotations
 
@@ -67,6 +80,7 @@ def space_error(earliest: float) -> float:
 # Planner choices (not measured)
 FIRST_STEP = 1e-6        # first step after a change, scaled time tau D / L^2
 MAX_CELLS = {"slab": 4000, "axisymmetric": 40_000, "solid": 120_000, "plane": 40_000}
+# ... cells of the linear system (a mirrored D(c) part: the cells it solves; see above)
 MIN_CELLS_PER_AXIS = 4
 MIN_STEPS_PER_DOUBLING = 4
 EXPANSION_SHARE = 0.25   # plane: share of the accuracy allowed to the short-time expansion

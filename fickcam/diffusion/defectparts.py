@@ -136,7 +136,7 @@ def level_plan(geometry, diffusivity, law, exposure, times, mesh_accuracy, per_d
     def planner(d, a, outputs):
         s = scales_of(geometry, d, exposure)
         return plan_direct(geometry, d, "solid", s.tau_star(exposure.change_times),
-                           s.tau_star(outputs), a, exposure)
+                           s.tau_star(outputs), a, exposure, mirrored=True)
     chosen = nonlinear_plan(planner, diffusivity, law, exposure, times, mesh_accuracy)
     return replace(chosen, steps_per_doubling=per_doubling)
 

@@ -24,17 +24,21 @@ from .exposure import Diffusivity, Exposure
 from .fvprism import prism
 from .geometry import Bar, CamPlate, Disc, LinkBar, Sheet
 from .march import march
+from .mirrored import halved_axes
 from .prism import band_share
 from .results import DiffusionResult, Plan
 from .scaling import stretch_of
 
 
 def plan_direct(geometry, diffusivity, model: str, change: np.ndarray, outputs: np.ndarray,
-                accuracy: float, exposure: Exposure) -> Plan:
+                accuracy: float, exposure: Exposure, mirrored: bool = False) -> Plan:
     """Cells from the spatial error model, steps per doubling from the time error model,
-    each taking half the accuracy."""
+    each taking half the accuracy. ``mirrored``: the solve keeps the part cut at its
+    mirror planes (``mirrored``, the D(c) sweeps); the plan's cells and the cap
+    (``MAX_CELLS``: cells of the linear system) count that cut part."""
     t_lo = timesteps.earliest_output(change, outputs)
-    cells = _cells(geometry, diffusivity, model, accuracy, t_lo)
+    cells = _cells(geometry, diffusivity, model, accuracy, t_lo,
+                   halved_axes(geometry) if mirrored else ())
     per_doubling = max(MIN_STEPS_PER_DOUBLING, math.ceil(math.sqrt(TIME_ERROR / (0.5 * accuracy))))
     nodes = timesteps.step_nodes(change, outputs, FIRST_STEP, per_doubling, exposure.ramp)
     steps = 3 * (nodes.size - 1)  # coarse march + bisected march
@@ -49,19 +53,20 @@ def plan_direct(geometry, diffusivity, model: str, change: np.ndarray, outputs: 
               f"tau*={t_lo:.2g}), backward Euler {per_doubling} steps/doubling + Richardson")
     if estimate > accuracy:
         reason += f"; capped at {MAX_CELLS[model]} cells: error above the requested accuracy"
-    return Plan(model, cells.total, int(steps), reason, float(estimate), cells.cells,
+    return Plan(model, cells.solved, int(steps), reason, float(estimate), cells.cells,
                 per_doubling, finest=cells.finest, growth=cells.growth)
 
 
-def _cells(geometry, diffusivity, model: str, accuracy: float, t_lo: float):
+def _cells(geometry, diffusivity, model: str, accuracy: float, t_lo: float, halved=()):
     """The cells of a direct model (``layout``): prisms for a CamPlate or LinkBar, graded
-    or uniform for a Disc or Bar, uniform for the slab."""
+    or uniform for a Disc or Bar, uniform for the slab; ``halved``: the axes the solve
+    cuts at their mirror plane."""
     d = diffusivity.pre_exponential
     if isinstance(geometry, (CamPlate, LinkBar)):
         return layout.prism_layout(geometry, d, accuracy, t_lo, MAX_CELLS[model],
-                                   space_error(t_lo))
+                                   space_error(t_lo), halved)
     return layout.choose(geometry, layout.extents(geometry, d), accuracy, t_lo,
-                         MAX_CELLS[model], space_error(t_lo))
+                         MAX_CELLS[model], space_error(t_lo), halved)
 
 
 def discretise(geometry, diffusivity: Diffusivity, cells: tuple[int, ...],

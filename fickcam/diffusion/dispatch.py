@@ -134,7 +134,9 @@ def _plan_sorption(geometry, diffusivity, exposure, times, accuracy, model, sorp
         return replace(corrected, reason=f"{law}; {corrected.reason}")
     if is_nonlinear(sorption):
         chosen = _nonlinear_model(geometry, model)
-        direct = nonlinear_plan(lambda d, a, at: _direct_plan(geometry, d, chosen, exposure, at, a),
+        mirror_cut = chosen == "solid"  # the 3-D cells cut at the mirror planes (``mirrored``)
+        direct = nonlinear_plan(lambda d, a, at: _direct_plan(geometry, d, chosen, exposure, at, a,
+                                                              mirror_cut),
                                 diffusivity, sorption, exposure, times, accuracy)
         mirror = {Bar: "; solved on one octant (mirror planes)",
                   CamPlate: "; solved on half the thickness (mid-plane mirror)",
@@ -150,10 +152,11 @@ def _plan_sorption(geometry, diffusivity, exposure, times, accuracy, model, sorp
     return replace(direct, reason=f"{law}; {direct.reason}")
 
 
-def _direct_plan(geometry, diffusivity, chosen, exposure, times, accuracy) -> Plan:
+def _direct_plan(geometry, diffusivity, chosen, exposure, times, accuracy,
+                 mirrored: bool = False) -> Plan:
     scales = scales_of(geometry, diffusivity, exposure)
     return plan_direct(geometry, diffusivity, chosen, scales.tau_star(exposure.change_times),
-                       scales.tau_star(np.asarray(times, float)), accuracy, exposure)
+                       scales.tau_star(np.asarray(times, float)), accuracy, exposure, mirrored)
 
 
 def _plan_planform(geometry, diffusivity, exposure, times, accuracy, sorption, depth) -> Plan:

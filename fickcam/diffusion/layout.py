@@ -12,7 +12,10 @@ layout replaces the uniform one when it needs fewer cells. A prismatic part
 (CamPlate, LinkBar) is always graded: rows graded from its outline in the plane
 (``trimesh.triangulate`` with a growth), the same widths through the thickness, on
 Delaunay-admissible cells (``prism``). Above the model's cell cap the finest width
-grows (and with it the estimate) until the cells fit.
+grows (and with it the estimate) until the cells fit. The cap counts the cells of the
+linear system (``unknowns``): a part solved cut at its mirror planes (``mirrored``: a
+Bar's octant, a prism's half thickness) is counted on that cut part, ``halved`` naming
+the axes cut in two.
 """
 from __future__ import annotations
 
@@ -42,10 +45,22 @@ class Layout:
     finest: float = 0.0   # scaled width of the finest cells (0: uniform)
     growth: float = 0.0
     note: str = ""
+    halved: tuple[int, ...] = ()  # axes cut at their mirror plane by the solve
 
     @property
     def total(self) -> int:
         return int(math.prod(self.cells))
+
+    @property
+    def solved(self) -> int:
+        """Cells of the linear system the solve assembles (``unknowns``)."""
+        return unknowns(self.cells, self.halved)
+
+
+def unknowns(cells, halved=()) -> int:
+    """Cells of the linear system on ``cells`` per axis: the axes in ``halved`` cut at
+    their mirror plane (``mirrored``: half of the count rounded up to even)."""
+    return int(math.prod(-(-c // 2) if axis in halved else c for axis, c in enumerate(cells)))
 
 
 def extents(geometry, d) -> tuple[float, ...]:
@@ -71,18 +86,23 @@ def exposed_ends(geometry) -> tuple[str, ...]:
     return ("both",) * (3 if isinstance(geometry, Bar) else 1)
 
 
-def uniform(extents, accuracy: float, t_lo: float, cap: int, space_error: float) -> Layout:
-    """Equal cells on every axis (see the module docstring), shrunk to the cap."""
+def uniform(extents, accuracy: float, t_lo: float, cap: int, space_error: float,
+            halved=()) -> Layout:
+    """Equal cells on every axis (see the module docstring), shrunk to the cap; a
+    ``halved`` axis has an even count (its mirror plane a face) and half of it solved."""
     dimensions = len(extents)
     spacing = math.sqrt(0.5 * accuracy * t_lo / (space_error * dimensions))
-    cells = tuple(max(MIN_CELLS_PER_AXIS, math.ceil(e / spacing)) for e in extents)
-    total = math.prod(cells)
+    parts = [2 if axis in halved else 1 for axis in range(dimensions)]
+    solved = [max(-(-MIN_CELLS_PER_AXIS // p), math.ceil(e / spacing / p))
+              for e, p in zip(extents, parts)]
+    total = math.prod(solved)
     if total > cap:
-        shrink = (cap / total) ** (1 / len(cells))
-        cells = tuple(max(MIN_CELLS_PER_AXIS, int(c * shrink)) for c in cells)
+        shrink = (cap / total) ** (1 / dimensions)
+        solved = [max(-(-MIN_CELLS_PER_AXIS // p), int(n * shrink)) for n, p in zip(solved, parts)]
+    cells = tuple(n * p for n, p in zip(solved, parts))
     h_eff = max(e / c for e, c in zip(extents, cells))
     return Layout(cells, space_error * h_eff ** 2 / t_lo * dimensions,
-                  note=f"uniform dx*={spacing:.2g}")
+                  note=f"uniform dx*={spacing:.2g}", halved=tuple(halved))
 
 
 def graded_error(finest: float, growth: float, t_lo: float, axes: int,
@@ -111,35 +131,38 @@ def physical_widths(geometry, extents, d, finest: float, growth: float) -> tuple
 
 
 def graded(extents, ends, accuracy: float, t_lo: float, cap: int, space_error: float,
-           count=None) -> Layout:
+           count=None, halved=()) -> Layout:
     """Graded cells (see the module docstring); ``count(finest, growth)`` gives the cells
-    per axis (default: the graded widths of ``extents``)."""
+    per axis (default: the graded widths of ``extents``), ``halved`` the axes the solve
+    cuts at their mirror plane (``unknowns``: what the cap counts)."""
     count = count or (lambda w0, g: tuple(w.size for w in axis_widths(extents, ends, w0, g)))
     axes = len(extents)
     finest, growth = graded_design(accuracy, t_lo, axes, space_error)
     cells = count(finest, growth)
-    while math.prod(cells) > cap and finest < 0.5 * min(extents):
+    while unknowns(cells, halved) > cap and finest < 0.5 * min(extents):
         finest *= CAP_STEP
         growth = min(MAX_GROWTH, growth * CAP_STEP)
         cells = count(finest, growth)
     return Layout(tuple(cells), graded_error(finest, growth, t_lo, axes, space_error),
-                  finest, growth, f"graded w0*={finest:.2g} growth {growth:.2g}")
+                  finest, growth, f"graded w0*={finest:.2g} growth {growth:.2g}", tuple(halved))
 
 
 def choose(geometry, extents, accuracy: float, t_lo: float, cap: int,
-           space_error: float) -> Layout:
-    """The layout of a Disc or Bar: graded when that needs fewer cells, else uniform;
-    when either is shrunk to the cap (its error above the accuracy), the one of smaller
-    error (a capped uniform grid has fewer cells but, on a drying D(c) link bar at
-    3e-3, 5x the error of the capped graded one: benchmarks/dc_bar.py link)."""
-    flat = uniform(extents, accuracy, t_lo, cap, space_error)
+           space_error: float, halved=()) -> Layout:
+    """The layout of a Disc or Bar: graded when that needs fewer cells (of the linear
+    system: ``halved`` axes cut at their mirror plane), else uniform; when either is shrunk
+    to the cap (its error above the accuracy), the one of smaller error (a capped uniform
+    grid has fewer cells but, on a drying D(c) link bar at 3e-3, 5x the error of the
+    capped graded one: benchmarks/dc_bar.py link)."""
+    flat = uniform(extents, accuracy, t_lo, cap, space_error, halved)
     if not isinstance(geometry, (Disc, Bar)):
         return flat
-    steep = graded(extents, exposed_ends(geometry), accuracy, t_lo, cap, space_error)
+    steep = graded(extents, exposed_ends(geometry), accuracy, t_lo, cap, space_error,
+                   halved=halved)
     if max(steep.space_error, flat.space_error) > accuracy:
         return steep if steep.space_error < flat.space_error else flat
-    better = steep.total < flat.total or (steep.total == flat.total
-                                          and steep.space_error < flat.space_error)
+    better = steep.solved < flat.solved or (steep.solved == flat.solved
+                                            and steep.space_error < flat.space_error)
     return steep if better else flat
 
 
@@ -160,18 +183,19 @@ def prism_widths(finest: float, growth: float) -> np.ndarray:
 
 
 def prism_layout(geometry, d, accuracy: float, t_lo: float, cap: int,
-                 space_error: float) -> Layout:
+                 space_error: float, halved=()) -> Layout:
     """Graded prism cells: planform rows and z widths with the same w0 and g (three
-    graded directions in the error model)."""
+    graded directions in the error model); ``halved`` (1,): the solve keeps half the
+    thickness (``mirrored``), which the cap counts."""
     if not isinstance(geometry, (CamPlate, LinkBar)):
         raise TypeError(f"no prism layout for {type(geometry).__name__}")
     stretch = stretch_of(d)
     layout = graded((1.0, 1.0, 1.0), ("both",) * 3, accuracy, t_lo, cap, space_error,
-                    lambda w0, g: _estimated_prism_cells(geometry, w0, g, stretch))
+                    lambda w0, g: _estimated_prism_cells(geometry, w0, g, stretch), halved)
     finest = min(layout.finest, widest_row(geometry, stretch))
     planform = planform_cells(geometry, finest, layout.growth, stretch)
     cells = (planform.cells, prism_widths(finest, layout.growth).size)
-    return Layout(cells, layout.space_error, finest, layout.growth, layout.note)
+    return Layout(cells, layout.space_error, finest, layout.growth, layout.note, layout.halved)
 
 
 def widest_row(part, stretch) -> float:

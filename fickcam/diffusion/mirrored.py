@@ -24,6 +24,16 @@ from .prism import band_share
 from .scaling import axis_scale, stretch_of
 
 
+def halved_axes(geometry) -> tuple[int, ...]:
+    """The axes of the layout's cells (``layout.Layout``) that ``mirrored`` cuts in two:
+    x, y, z of a Bar (octant), z of a CamPlate or LinkBar (cells: planform, z)."""
+    if isinstance(geometry, Bar):
+        return (0, 1, 2)
+    if isinstance(geometry, (CamPlate, LinkBar)):
+        return (1,)
+    raise TypeError(f"no mirrored mesh for {type(geometry).__name__}")
+
+
 def half(widths: np.ndarray) -> np.ndarray:
     """The first half of a symmetric ``both``-graded axis (an even count of cells)."""
     if widths.size % 2:
