@@ -153,7 +153,8 @@ def test_rectangular_prisms_match_product_of_three_sheets_after_a_step_down():
     """A rectangular CamPlate against the exact block (Crank 1975 eq. 4.51, Duhamel over
     the history): the reference construction (quarter, half thickness, nested pair)
     within 5e-4 of the swing (its coarse level alone: 2e-2), and the solid model at
-    accuracy 3e-2 within its own error estimate."""
+    accuracy 6e-2 within its own error estimate (measured: error 1.1e-2, estimate 2.8e-2,
+    10 060 cells, 8 CPU s; at 3e-2 22 320 cells and 117 CPU s, the suite's slowest test)."""
     length, width, h = 12e-3, 8e-3, 3e-3
     plate = rectangle(length, width, h)
     exact_block = analytic.exact_history(Bar(length, width, h), ISOTROPIC, UP_DOWN, TIMES,
@@ -161,9 +162,9 @@ def test_rectangular_prisms_match_product_of_three_sheets_after_a_step_down():
     mean, _, coarse, _ = reference(plate, 0.5e-3, ISOTROPIC, ((0, length / 2), (1, width / 2)))
     assert relative(mean, exact_block["mean"]) <= 5e-4
     assert relative(coarse.mean, exact_block["mean"]) > 1e-2  # the extrapolation matters
-    result = solve(plate, ISOTROPIC, UP_DOWN, TIMES, accuracy=3e-2, model="solid")
+    result = solve(plate, ISOTROPIC, UP_DOWN, TIMES, accuracy=6e-2, model="solid")
     assert result.model == "solid"
-    assert relative(result.mean, exact_block["mean"]) <= result.error_estimate <= 3e-2
+    assert relative(result.mean, exact_block["mean"]) <= result.error_estimate <= 6e-2
 
 
 def test_prism_reference_converges_at_second_order_in_space():

@@ -241,7 +241,7 @@ def read(table: Table, where: Sources) -> tuple[np.ndarray, np.ndarray]:
     """M - M0 at the outputs, shape (outputs, m), from ``table`` and from its every second
     point (``Table.coarse``, the same first age: the readings share their split): steps
     read K (Lagrange), slope changes read I (Hermite, with K as its slope)."""
-    w0, n = math.exp(table.start), where.outputs
+    w0 = math.exp(table.start)
     steps, slopes = _split(where.steps, w0, 0.5), _split(where.slopes, w0, 1.5)
     return tuple(_read_split(each, steps, slopes, where) for each in (table, table.coarse()))
 
