@@ -77,7 +77,7 @@ def test_the_stored_bar_reference_is_the_exact_block_at_zero_exponent():
 @pytest.mark.parametrize("k, start, surface", [(2, 0.0, MM), (1, MM, 0.0)],
                          ids=["absorption", "desorption"])
 def test_bar_estimate_bounds_the_error_against_an_independent_reference(k, start, surface):
-    """``auto`` on the 6 x 4 x 2 mm bar (the direct 3-D cells on one octant) at accuracy
+    """``solid`` on the 6 x 4 x 2 mm bar (the direct 3-D cells on one octant) at accuracy
     5e-2 against the independent method of lines (``BAR_REFERENCE``, its own error below
     1e-4 at k = 0): error <= estimate <= accuracy for the mean, and the contact layer
     within ``LAYER_TOLERANCE`` estimates. Measured (benchmarks/dc_bar.py): estimate
@@ -86,7 +86,7 @@ def test_bar_estimate_bounds_the_error_against_an_independent_reference(k, start
     assert BAR_REFERENCE["size"] == [BAR.length, BAR.width, BAR.thickness]
     times = np.array(BAR_REFERENCE["tau"]) * H ** 2 / D
     result = solve(BAR, ISOTROPIC, exposure(start, surface, times[-1]), times,
-                   accuracy=COARSE, sorption=law(k))
+                   accuracy=COARSE, sorption=law(k), model="solid")
     stored = BAR_REFERENCE[f"k{k}_{'absorption' if surface else 'desorption'}"]
     error = np.max(np.abs(result.mean - np.array(stored["mean"]))) / MM
     layer = np.max(np.abs(result.surface - np.array(stored["layer"]))) / MM
@@ -162,7 +162,7 @@ def test_a_wide_bar_is_the_sheet_at_its_centre():
     20 x 20 x 2 mm bar's centre column is the sheet's, both with D = D0 exp(2 c/Mm)."""
     wide, accuracy = Bar(20e-3, 20e-3, H), COARSE
     bar = solve(wide, ISOTROPIC, exposure(0.0, MM), TIMES, accuracy=accuracy, sorption=law(2),
-                store_fields=True)
+                store_fields=True, model="solid")
     sheet = solve(Sheet(H), ISOTROPIC, exposure(0.0, MM), TIMES, accuracy=accuracy,
                   sorption=law(2))
     xyz = bar.cell_coordinates
