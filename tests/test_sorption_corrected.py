@@ -12,7 +12,7 @@ from hypothesis import given, settings, strategies as st
 
 from fickcam.diffusion import Bar, CamPlate, Diffusivity, Exposure, plan, solve
 from fickcam.diffusion.defect import gap, solve_corrected
-from fickcam.diffusion.defectparts import as_prism
+from fickcam.diffusion.defectparts import as_prism, bar_coordinates
 from fickcam.diffusion.gridcheck import three_levels
 from fickcam.diffusion.planmodes import LAYER_TOLERANCE
 from fickcam.diffusion.sorption import ConcentrationDependent
@@ -258,6 +258,12 @@ def test_a_bar_is_the_prism_of_its_section_thinnest_in_its_fastest_direction():
     plate, d, faces_layer = as_prism(Bar(2e-3, 4e-3, 6e-3), upright)
     assert faces_layer and plate.thickness == 2e-3 and d.pre_exponential == (3 * D, 2 * D, D)
     assert np.ptp(plate.profile_x) == 6e-3 and np.ptp(plate.profile_y) == 4e-3
+    # stored fields come back in the bar's frame: the section's corners, the thickness' half
+    corners = {"x": np.array([-3e-3, 3e-3]), "y": np.array([-2e-3, 2e-3]),
+               "z": np.array([0.0, 1e-3])}
+    back = bar_coordinates(Bar(2e-3, 4e-3, 6e-3), upright, corners)
+    assert {axis: list(v) for axis, v in back.items()} == {
+        "z": [0.0, 6e-3], "y": [0.0, 4e-3], "x": [0.0, 1e-3]}
     # with D_z 9x faster the 6 mm axis is the fastest: (6 mm)^2 / 9 D < (2 mm)^2 / D
     plate, d, _ = as_prism(Bar(2e-3, 4e-3, 6e-3), Diffusivity((D, D, 10 * D), 0.0))
     assert plate.thickness == 6e-3 and d.pre_exponential == (D, D, 10 * D)

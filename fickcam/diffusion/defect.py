@@ -45,8 +45,9 @@ from functools import partial
 import numpy as np
 
 from .calibration import PAIR_TO_EXTRAPOLATED
-from .defectparts import (Cells, Level, Pair, Setting, as_prism, corrected, level_plan,
-                          sheet_reference, steps_for, three_d)
+from .defectparts import (Cells, Level, Pair, Setting, as_prism, bar_coordinates, corrected,
+                          level_plan, sheet_reference, steps_for, three_d)
+from .geometry import Bar
 from .dense import Extension, combined
 from .direct import swing
 from .gridcheck import taken, three_levels
@@ -265,7 +266,8 @@ def solve_corrected(geometry, diffusivity, law, exposure, times, accuracy: float
     total is above the accuracy, the rest of the estimate below it (so a smaller 3-D term
     can meet it) and the mesh within ``NESTED_CELLS``; plus the sheet's and the planform's
     estimates and the time error of the marches (``PAIR_TO_EXTRAPOLATED`` pair^2).
-    ``store_fields``: the finest 3-D mesh's own cells (not corrected)."""
+    ``store_fields``: the finest 3-D mesh's own cells (not corrected; a Bar's in its own
+    frame, ``bar_coordinates``)."""
     times = np.asarray(times, float)
     run = corrected_levels(geometry, diffusivity, law, exposure, times, accuracy,
                            surface_layer_depth=surface_layer_depth,
@@ -294,6 +296,8 @@ def solve_corrected(geometry, diffusivity, law, exposure, times, accuracy: float
                              sum(m.plate.steps for m in run.marched), float(estimate), note)
     if store_fields:
         result.fields, result.cell_coordinates = fine.plate.fields, fine.coordinates
+        if isinstance(geometry, Bar):
+            result.cell_coordinates = bar_coordinates(geometry, diffusivity, fine.coordinates)
     else:   # the limit search's extra times: read between the marches' steps (``dense``)
         result.extend = extension(run, result, accuracy, lambda both: solve_corrected(
             geometry, diffusivity, law, exposure, both, accuracy,

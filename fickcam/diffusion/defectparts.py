@@ -53,12 +53,31 @@ def as_prism(geometry, diffusivity):
     (``mirrored.octant``), so its two faces count too. A CamPlate or LinkBar as it is."""
     if not isinstance(geometry, Bar):
         return geometry, diffusivity, False
-    size = np.array([geometry.length, geometry.width, geometry.thickness])
-    d0 = np.asarray(diffusivity.pre_exponential, float)
-    order = sorted(range(3), key=lambda i: (size[i] ** 2 / d0[i], -i))[::-1]
-    a, b, h = size[order]
+    order = section_axes(geometry, diffusivity)
+    a, b, h = bar_size(geometry)[order]
     plate = CamPlate(np.array([-a, a, a, -a]) / 2, np.array([-b, -b, b, b]) / 2, float(h), 0.0)
+    d0 = diffusivity.pre_exponential
     return plate, replace(diffusivity, pre_exponential=tuple(float(d0[i]) for i in order)), True
+
+
+def bar_size(bar: Bar) -> np.ndarray:
+    return np.array([bar.length, bar.width, bar.thickness])
+
+
+def section_axes(bar: Bar, diffusivity) -> list[int]:
+    """The Bar's axes as (section x, section y, thickness): slowest first (``as_prism``)."""
+    size, d0 = bar_size(bar), np.asarray(diffusivity.pre_exponential, float)
+    return sorted(range(3), key=lambda i: (size[i] ** 2 / d0[i], -i))[::-1]
+
+
+def bar_coordinates(bar: Bar, diffusivity, coordinates: dict) -> dict:
+    """The prism cells' centres (``as_prism``'s frame: the section centred, z from a face
+    to the mid-plane) in the Bar's own x, y, z (from its corner: the section whole, the
+    thickness axis its exposed half, as the octant's cells are from the exposed faces)."""
+    order, size = section_axes(bar, diffusivity), bar_size(bar)
+    shifted = (coordinates["x"] + 0.5 * size[order[0]], coordinates["y"] + 0.5 * size[order[1]],
+               coordinates["z"])
+    return {"xyz"[axis]: value for axis, value in zip(order, shifted)}
 
 
 def z_band(z_widths: np.ndarray, depth: float) -> np.ndarray:
