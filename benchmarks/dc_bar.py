@@ -1,6 +1,8 @@
-"""Concentration-dependent D on a Bar (``auto`` -> the direct 3-D FiPy cells on one
-octant, ``diffusion/nonlinear.py``): accuracy, honesty of the estimate and cost against
-independent references (issue 13).
+"""Concentration-dependent D on a Bar: the direct 3-D FiPy cells on one octant (``solid``,
+and ``auto`` above ``dispatch.BAR_CORRECTED_FROM``; ``diffusion/nonlinear.py``) and the
+corrected product of its rectangular section (``auto`` from there down; ``diffusion/
+defect.py``): accuracy, honesty of the estimate and cost against independent references
+(issue 13).
 
     python benchmarks/dc_bar.py reference   # tests/data/dc_bar_reference.json (method of lines)
     python benchmarks/dc_bar.py small [K ...] [--at A ...] [--only DIRECTION]
@@ -305,7 +307,7 @@ def sweeps() -> None:
             nonlinear.FORCING = 0.0
             nonlinear.extrapolated = lambda before, latest, dt_before, dt, g: latest
         started = time.process_time()
-        result = solve(bar, d, exposure, times, accuracy=1e-2, sorption=law)
+        result = solve(bar, d, exposure, times, accuracy=1e-2, sorption=law, model="solid")
         means.append(result.mean)
         print(f"{name}: {result.cells} cells, {time.process_time() - started:.1f} CPU s",
               flush=True)
@@ -324,7 +326,8 @@ def profile() -> None:
         bar, d, exposure, times, law, _, _ = case(SMALL, direction, 2.0)
         profiler = cProfile.Profile()
         profiler.enable()
-        result = solve(bar, d, exposure, times, accuracy=accuracy, sorption=law)
+        result = solve(bar, d, exposure, times, accuracy=accuracy, sorption=law,
+                       model="solid")
         profiler.disable()
         print(f"{direction} at {accuracy:g}: {result.cells} cells, {result.steps} steps")
         pstats.Stats(profiler).sort_stats("tottime").print_stats(12)

@@ -22,7 +22,6 @@ from .direct import plan_direct, step_plan
 from .discretisation import Discretisation, assemble
 from .fv import interval_overlap, normalised
 from .fvprism import prism
-from .exposure import Diffusivity
 from .geometry import Bar, CamPlate, Sheet
 from .mirrored import half
 from .nonlinear import Faces, fastest, nonlinear_plan, solve_nonlinear, sweep_march, wettest
