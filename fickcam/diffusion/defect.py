@@ -47,9 +47,9 @@ import numpy as np
 from .calibration import PAIR_TO_EXTRAPOLATED
 from .defectparts import (Cells, Level, Pair, Setting, as_prism, bar_coordinates, corrected,
                           level_plan, sheet_reference, steps_for, three_d)
-from .geometry import Bar
 from .dense import Extension, combined
 from .direct import swing
+from .geometry import Bar
 from .gridcheck import taken, three_levels
 from .nonlinear import dries_to_a_skin, spread
 from .planmodes import LAYER_TOLERANCE
