@@ -1,10 +1,14 @@
-"""Concentration-dependent D on a Bar (``auto`` -> the direct 3-D FiPy cells on one
-octant, ``diffusion/nonlinear.py``): accuracy, honesty of the estimate and cost against
-independent references (issue 13).
+"""Concentration-dependent D on a Bar: the direct 3-D FiPy cells on one octant (``solid``,
+and ``auto`` above ``dispatch.BAR_CORRECTED_FROM``; ``diffusion/nonlinear.py``) and the
+corrected product of its rectangular section (``auto`` from there down; ``diffusion/
+defect.py``): accuracy, honesty of the estimate and cost against independent references
+(issue 13).
 
     python benchmarks/dc_bar.py reference   # tests/data/dc_bar_reference.json (method of lines)
     python benchmarks/dc_bar.py small [K ...] [--at A ...] [--only DIRECTION]
         # 6 x 4 x 2 mm bar: k = 0, 1, 2 at 1e-2, 3e-3, 1e-3, absorption and desorption
+    python benchmarks/dc_bar.py corrected [K ...] [--at A ...] [--only DIRECTION]
+        # the same through the corrected route (defect: sheet x rectangle, 3-D corrected)
     python benchmarks/dc_bar.py link [K ...]   # 60 x 8 x 4 mm link bar: k = 0 exact, k > 0 vs 3e-3
     python benchmarks/dc_bar.py sweeps      # inexact sweeps from the extrapolated state vs exact
     python benchmarks/dc_bar.py profile     # where the CPU goes (cProfile of k = 2 runs)
@@ -51,6 +55,7 @@ EXPONENTS = (1.0, 2.0)
 DIRECTIONS = ("absorption", "desorption")
 BASE_FIRST, BASE_GROWTH = 5e-2, 0.3      # base grid: first width / h, growth per cell
 CPU_LIMIT = 900.0
+ROUTE = "solid"   # ``small``: the direct 3-D cells (octant); ``corrected``: ``defect``
 
 
 def axis_faces(half: float, first: float, growth: float, depth: float) -> np.ndarray:
@@ -177,14 +182,18 @@ def reference() -> None:
 
 
 def measure(size, k: float, direction: str, accuracy: float, reference_mean, reference_layer):
-    """One ``auto`` run (``solid`` at k = 0, which ``auto`` would hand to the exact
+    """One run of ``ROUTE`` (``solid`` at k = 0, which ``auto`` would hand to the exact
     block): (estimate, mean error, layer error, cells, steps, CPU s)."""
     from fickcam.diffusion import solve
+    from fickcam.diffusion.defect import solve_corrected
 
     bar, d, exposure, times, law, _, _ = case(size, direction, k)
     started = time.process_time()
-    result = solve(bar, d, exposure, times, accuracy=accuracy, sorption=law,
-                   model="solid" if k == 0 else "auto")
+    if ROUTE == "corrected":
+        result = solve_corrected(bar, d, law, exposure, times, accuracy)
+    else:
+        result = solve(bar, d, exposure, times, accuracy=accuracy, sorption=law,
+                       model="solid" if k == 0 else ROUTE)
     cpu = time.process_time() - started
     mean_error = np.max(np.abs(result.mean - reference_mean)) / MM
     layer_error = np.max(np.abs(result.surface - reference_layer)) / MM
@@ -252,6 +261,17 @@ def small() -> None:
     table(SMALL, references, "6x4x2")
 
 
+def corrected() -> None:
+    """``small`` through the corrected route (``defect.solve_corrected``: the bar as the
+    prism of its rectangular section, thickness its smallest side), k > 0 only
+    (``corrected [K ...] [--at A ...] [--only DIRECTION]``)."""
+    global ROUTE
+    ROUTE = "corrected"
+    if len(sys.argv) < 3 or sys.argv[2].startswith("--"):
+        sys.argv[2:2] = [str(k) for k in EXPONENTS]
+    small()
+
+
 def link() -> None:
     """k = 0 against the exact block; k > 0 (``link K ...``) against this route at
     ``LINK_REFERENCE`` (self-convergence: the difference from it is a lower bound of the
@@ -287,7 +307,7 @@ def sweeps() -> None:
             nonlinear.FORCING = 0.0
             nonlinear.extrapolated = lambda before, latest, dt_before, dt, g: latest
         started = time.process_time()
-        result = solve(bar, d, exposure, times, accuracy=1e-2, sorption=law)
+        result = solve(bar, d, exposure, times, accuracy=1e-2, sorption=law, model="solid")
         means.append(result.mean)
         print(f"{name}: {result.cells} cells, {time.process_time() - started:.1f} CPU s",
               flush=True)
@@ -306,7 +326,8 @@ def profile() -> None:
         bar, d, exposure, times, law, _, _ = case(SMALL, direction, 2.0)
         profiler = cProfile.Profile()
         profiler.enable()
-        result = solve(bar, d, exposure, times, accuracy=accuracy, sorption=law)
+        result = solve(bar, d, exposure, times, accuracy=accuracy, sorption=law,
+                       model="solid")
         profiler.disable()
         print(f"{direction} at {accuracy:g}: {result.cells} cells, {result.steps} steps")
         pstats.Stats(profiler).sort_stats("tottime").print_stats(12)
@@ -338,7 +359,7 @@ def cap() -> None:
 
     began = report("start", time.process_time())
     chosen = plan(bar, d, exposure, times, accuracy=accuracy, sorption=law,
-                  model="solid" if k == 0 else "auto")  # as ``measure``
+                  model="solid" if k == 0 else ROUTE)  # as ``measure``
     print(f"plan: {chosen.cells} cells {chosen.cells_per_axis} (octant), estimate "
           f"{chosen.error_estimate:.2e}, {chosen.steps} steps; {chosen.reason}", flush=True)
     began = report("plan", began)
@@ -367,7 +388,8 @@ def cap() -> None:
 
 
 if __name__ == "__main__":
-    commands = {"reference": reference, "small": small, "link": link, "sweeps": sweeps,
+    commands = {"reference": reference, "small": small, "corrected": corrected, "link": link,
+                "sweeps": sweeps,
                 "profile": profile, "cap": cap}
     if len(sys.argv) < 2 or sys.argv[1] not in commands:
         sys.exit(f"usage: {sys.argv[0]} {' | '.join(commands)}")

@@ -10,8 +10,9 @@ import numpy as np
 import pytest
 from hypothesis import given, settings, strategies as st
 
-from fickcam.diffusion import CamPlate, Diffusivity, Exposure, plan, solve
-from fickcam.diffusion.defect import gap
+from fickcam.diffusion import Bar, CamPlate, Diffusivity, Exposure, plan, solve
+from fickcam.diffusion.defect import gap, solve_corrected
+from fickcam.diffusion.defectparts import as_prism, bar_coordinates
 from fickcam.diffusion.gridcheck import three_levels
 from fickcam.diffusion.planmodes import LAYER_TOLERANCE
 from fickcam.diffusion.sorption import ConcentrationDependent
@@ -243,3 +244,64 @@ def test_three_nested_meshes_read_between_their_steps_give_what_the_solve_takes(
     assert np.all(estimate < 1e-2)
     slack = 1e-2 * swing
     assert np.all((values[0][1:-1] - slack < mean) & (mean < values[0][2:] + slack))
+
+
+BAR_REFERENCE = json.loads((Path(__file__).parent / "data" / "dc_bar_reference.json").read_text())
+BAR = Bar(*BAR_REFERENCE["size"])   # 6 x 4 x 2 mm
+BAR_TIMES = np.array(BAR_REFERENCE["tau"]) * H ** 2 / D
+
+
+def test_a_bar_is_the_prism_of_its_section_thinnest_in_its_fastest_direction():
+    """``as_prism``: the rectangle of the two slower axes, the thickness the axis of the
+    smallest size^2 / D, D permuted with the axes; a CamPlate passes unchanged."""
+    upright = Diffusivity((D, 2 * D, 3 * D), 0.0)
+    plate, d, faces_layer = as_prism(Bar(2e-3, 4e-3, 6e-3), upright)
+    assert faces_layer and plate.thickness == 2e-3 and d.pre_exponential == (3 * D, 2 * D, D)
+    assert np.ptp(plate.profile_x) == 6e-3 and np.ptp(plate.profile_y) == 4e-3
+    # stored fields come back in the bar's frame: the section's corners, the thickness' half
+    corners = {"x": np.array([-3e-3, 3e-3]), "y": np.array([-2e-3, 2e-3]),
+               "z": np.array([0.0, 1e-3])}
+    back = bar_coordinates(Bar(2e-3, 4e-3, 6e-3), upright, corners)
+    assert {axis: list(v) for axis, v in back.items()} == {
+        "z": [0.0, 6e-3], "y": [0.0, 4e-3], "x": [0.0, 1e-3]}
+    # with D_z 9x faster the 6 mm axis is the fastest: (6 mm)^2 / 9 D < (2 mm)^2 / D
+    plate, d, _ = as_prism(Bar(2e-3, 4e-3, 6e-3), Diffusivity((D, D, 10 * D), 0.0))
+    assert plate.thickness == 6e-3 and d.pre_exponential == (D, D, 10 * D)
+    assert as_prism(PLATE, ISOTROPIC) == (PLATE, ISOTROPIC, False)
+
+
+def test_a_fickian_bar_through_the_corrected_product_is_the_exact_block(start=0.0, surface=MM):
+    """k = 0 through ``solve_corrected`` (``auto`` hands it to the exact block instead): the
+    product is then the fine sheet x fine rectangle (Crank 1975 eq. 4.51), for the mean and
+    for the layer within 0.5 mm of any of the six faces (``corrected``'s union of the band
+    through the thickness and the faces' layer over the section): both within the run's
+    estimate of the exact block."""
+    wet = Exposure.piecewise([0.0, BAR_TIMES[-1]], [330.0], [surface], initial_moisture=start)
+    result = solve_corrected(BAR, ISOTROPIC, law(0.0), wet, BAR_TIMES, 3e-2)
+    exact = solve(BAR, ISOTROPIC, wet, BAR_TIMES, model="analytic")
+    assert np.max(np.abs(result.mean - exact.mean)) / MM <= result.error_estimate
+    assert np.max(np.abs(result.surface - exact.surface)) / MM <= result.error_estimate
+    # the layer is the six faces' (the band through the thickness alone is far drier/wetter)
+    assert np.max(np.abs(result.surface - result.mean)) / MM > 0.05
+
+
+def test_a_dc_bar_under_auto_takes_the_corrected_product_and_meets_the_method_of_lines():
+    """``auto`` on the 6 x 4 x 2 mm bar with k = 1 drying to a skin: the corrected product
+    (not the octant's cells), against the independent method of lines (tests/data/
+    dc_bar_reference.json, benchmarks/dc_bar.py reference): error <= estimate <= 1e-2 for
+    the mean, the contact layer within ``LAYER_TOLERANCE`` estimates. Measured
+    (benchmarks/dc_bar.py corrected): estimate 2.9e-3, mean 3.7e-4, layer 6.2e-4, 12.7 CPU s
+    (the octant, ``solid``: 23.1 CPU s for an estimate 5.8e-3)."""
+    dry = Exposure.piecewise([0.0, BAR_TIMES[-1]], [330.0], [0.0], initial_moisture=MM)
+    chosen = plan(BAR, ISOTROPIC, dry, BAR_TIMES, accuracy=1e-2, sorption=law(1.0))
+    assert "rectangular section" in chosen.reason
+    # above BAR_CORRECTED_FROM the octant is cheaper (0.7-6.9 against 10-23 CPU s): auto keeps it
+    looser = plan(BAR, ISOTROPIC, dry, BAR_TIMES, accuracy=3e-2, sorption=law(1.0))
+    assert "octant" in looser.reason and "rectangular section" not in looser.reason
+    result = solve(BAR, ISOTROPIC, dry, BAR_TIMES, accuracy=1e-2, sorption=law(1.0))
+    stored = BAR_REFERENCE["k1_desorption"]
+    error = np.max(np.abs(result.mean - np.array(stored["mean"]))) / MM
+    layer = np.max(np.abs(result.surface - np.array(stored["layer"]))) / MM
+    assert "rectangular section" in result.reason
+    assert error <= result.error_estimate <= 1e-2
+    assert layer <= LAYER_TOLERANCE * result.error_estimate

@@ -1,6 +1,7 @@
-"""Concentration-dependent D on a CamPlate or LinkBar: the D(c) sheet x D(c) planform
-product, corrected on coarse mirrored 3-D prisms (defect correction; Stetter 1978,
-Numer. Math. 29:425-443; Böhmer, Hemker & Stetter 1984, Computing Suppl. 5:1-32).
+"""Concentration-dependent D on a CamPlate, LinkBar or Bar (the prism of its rectangular
+section, ``defectparts.as_prism``): the D(c) sheet x D(c) planform product, corrected on
+coarse mirrored 3-D prisms (defect correction; Stetter 1978, Numer. Math. 29:425-443;
+Böhmer, Hemker & Stetter 1984, Computing Suppl. 5:1-32).
 
 For Fick on a prism (planform x thickness) the unaccomplished uptakes multiply,
 U = g - c = U_sheet U_planform / (g - c0) (Crank 1975 §4.3, the product of eq. 4.51), and
@@ -44,10 +45,11 @@ from functools import partial
 import numpy as np
 
 from .calibration import PAIR_TO_EXTRAPOLATED
-from .defectparts import (Cells, Level, Pair, Setting, corrected, level_plan, sheet_reference,
-                          steps_for, three_d)
+from .defectparts import (Cells, Level, Pair, Setting, as_prism, bar_coordinates, corrected,
+                          level_plan, sheet_reference, steps_for, three_d)
 from .dense import Extension, combined
 from .direct import swing
+from .geometry import Bar
 from .gridcheck import taken, three_levels
 from .nonlinear import dries_to_a_skin, spread
 from .planmodes import LAYER_TOLERANCE
@@ -97,7 +99,8 @@ def refined_reference(setting: Setting, start: Plan, level: Level, sheet: Pair,
     surface = np.asarray(setting.exposure.surface_before(setting.times), float)
 
     def result(reference):
-        return corrected(level.plate, (level.slab, sheet), (level.planform, reference), surface)
+        return corrected(level.plate, (level.slab, sheet), (level.planform, reference), surface,
+                         level.union)
     _, first, start_cells = setting.planform(start.finest, start.growth)
     planforms, cells, factor = [first], 0, 1.0
     for refine in REFINE:
@@ -158,7 +161,7 @@ class Levels:
         cells = self.meshes[-1].refined()
         level = three_d(self.setting, self.marched[-1].plan, store_fields, cells)
         result = corrected(level.plate, (level.slab, Pair(self.sheet.mean, self.sheet.surface)),
-                           (level.planform, self.planform), surface_of(self.setting))
+                           (level.planform, self.planform), surface_of(self.setting), level.union)
         return replace(self, marched=[*self.marched, level], results=[*self.results, result],
                        meshes=[*self.meshes, cells])
 
@@ -184,9 +187,11 @@ def corrected_levels(geometry, diffusivity, law, exposure, times, accuracy: floa
     plate-order``). The planform reference is refined from the ``MESH_LEVELS[-1]`` plan's
     graded planform. ``store_fields`` keeps the finest mesh's fields."""
     times = np.asarray(times, float)
+    geometry, diffusivity, faces_layer = as_prism(geometry, diffusivity)
     setting = Setting.of(geometry, diffusivity, law, exposure, times, surface_layer_depth,
-                         steps_for(accuracy), part)
-    sheet = sheet_reference(geometry, diffusivity, law, exposure, times, accuracy)
+                         steps_for(accuracy), part, faces_layer)
+    sheet = sheet_reference(geometry, diffusivity, law, exposure, times, accuracy,
+                            surface_layer_depth)
     reference = Pair(sheet.mean, sheet.surface)
 
     def planned(a):
@@ -205,7 +210,7 @@ def corrected_levels(geometry, diffusivity, law, exposure, times, accuracy: floa
     planform, planform_error, planform_cells, factor = refined_reference(
         setting, planned(MESH_LEVELS[-1]), marched[-1], reference, accuracy, scale)
     surface = surface_of(setting)
-    results = [corrected(m.plate, (m.slab, reference), (m.planform, planform), surface)
+    results = [corrected(m.plate, (m.slab, reference), (m.planform, planform), surface, m.union)
                for m in marched]
     return Levels(marched, results, sheet, planform, planform_error, planform_cells, factor,
                   scale, setting, cells)
@@ -245,8 +250,8 @@ def extension(run: Levels, result: DiffusionResult, accuracy: float, resolve) ->
         reference, sheet_at = pairs[-2:]
         surface = np.asarray(exposure.surface_before(at), float)
         per_mesh = [corrected(pairs[3 * i], (pairs[3 * i + 1], sheet_at),
-                              (pairs[3 * i + 2], reference), surface)
-                    for i in range(len(meshes))]
+                              (pairs[3 * i + 2], reference), surface, m.union)
+                    for i, m in enumerate(meshes)]
         return finest(per_mesh)[0]
     return Extension(result, [*tracks, run.planform.track, run.sheet.extend.tracks[0]],
                      product, run.scale, accuracy, resolve, run.setting.part)
@@ -261,7 +266,8 @@ def solve_corrected(geometry, diffusivity, law, exposure, times, accuracy: float
     total is above the accuracy, the rest of the estimate below it (so a smaller 3-D term
     can meet it) and the mesh within ``NESTED_CELLS``; plus the sheet's and the planform's
     estimates and the time error of the marches (``PAIR_TO_EXTRAPOLATED`` pair^2).
-    ``store_fields``: the finest 3-D mesh's own cells (not corrected)."""
+    ``store_fields``: the finest 3-D mesh's own cells (not corrected; a Bar's in its own
+    frame, ``bar_coordinates``)."""
     times = np.asarray(times, float)
     run = corrected_levels(geometry, diffusivity, law, exposure, times, accuracy,
                            surface_layer_depth=surface_layer_depth,
@@ -290,6 +296,8 @@ def solve_corrected(geometry, diffusivity, law, exposure, times, accuracy: float
                              sum(m.plate.steps for m in run.marched), float(estimate), note)
     if store_fields:
         result.fields, result.cell_coordinates = fine.plate.fields, fine.coordinates
+        if isinstance(geometry, Bar):
+            result.cell_coordinates = bar_coordinates(geometry, diffusivity, fine.coordinates)
     else:   # the limit search's extra times: read between the marches' steps (``dense``)
         result.extend = extension(run, result, accuracy, lambda both: solve_corrected(
             geometry, diffusivity, law, exposure, both, accuracy,
@@ -303,8 +311,12 @@ def plan_corrected(geometry, diffusivity, law, exposure, times, accuracy: float)
     accuracy as the target its measured estimate is held to (the solve reports the
     estimate)."""
     level = base_level(accuracy)
+    geometry, diffusivity, bar = as_prism(geometry, diffusivity)
     chosen = level_plan(geometry, diffusivity, law, exposure, times, level, steps_for(accuracy))
-    reason = ("D(c) sheet x D(c) planform (each refined and checked), corrected on coarse 3-D "
+    section = (" (the bar as the prism of its rectangular section, its thickness the fastest "
+               "axis)" if bar else "")
+    reason = (f"D(c) sheet x D(c) planform{section} (each refined and checked), corrected on "
+              "coarse 3-D "
               f"prisms on half the thickness (mid-plane mirror; the {level:g} plan "
               f"and it refined by 2, nested, twice where needed; {chosen.steps_per_doubling} "
               f"steps/doubling + Richardson; defect correction){TARGET}")

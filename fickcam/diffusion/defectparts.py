@@ -20,9 +20,9 @@ from .clock import scales as scales_of
 from .dense import Track
 from .direct import plan_direct, step_plan
 from .discretisation import Discretisation, assemble
-from .fv import normalised
+from .fv import interval_overlap, normalised
 from .fvprism import prism
-from .geometry import Sheet
+from .geometry import Bar, CamPlate, Sheet
 from .mirrored import half
 from .nonlinear import Faces, fastest, nonlinear_plan, solve_nonlinear, sweep_march, wettest
 from .prism import band_share, refine
@@ -42,6 +42,48 @@ class Pair:
     steps: int = 0
     pair: float = 0.0   # largest |fine - coarse| of the mean (time error indicator)
     track: Track | None = None   # (mean, layer) at every step (``dense``: ``extend``)
+
+
+def as_prism(geometry, diffusivity):
+    """(prism, diffusivity, faces_layer): a Bar as the CamPlate of its rectangular section,
+    its thickness the axis of the smallest size^2 / D (the sheet factor, measured on the
+    finest grid, carries the fastest direction), D permuted to (in-plane x, y, thickness);
+    ``faces_layer``: the Bar's contact layer is within the depth of any of its six faces
+    (``mirrored.octant``), so its two faces count too. A CamPlate or LinkBar as it is."""
+    if not isinstance(geometry, Bar):
+        return geometry, diffusivity, False
+    order = section_axes(geometry, diffusivity)
+    a, b, h = bar_size(geometry)[order]
+    plate = CamPlate(np.array([-a, a, a, -a]) / 2, np.array([-b, -b, b, b]) / 2, float(h), 0.0)
+    d0 = diffusivity.pre_exponential
+    return plate, replace(diffusivity, pre_exponential=tuple(float(d0[i]) for i in order)), True
+
+
+def bar_size(bar: Bar) -> np.ndarray:
+    return np.array([bar.length, bar.width, bar.thickness])
+
+
+def section_axes(bar: Bar, diffusivity) -> list[int]:
+    """The Bar's axes as (section x, section y, thickness): slowest first (``as_prism``)."""
+    size, d0 = bar_size(bar), np.asarray(diffusivity.pre_exponential, float)
+    return sorted(range(3), key=lambda i: (size[i] ** 2 / d0[i], -i))[::-1]
+
+
+def bar_coordinates(bar: Bar, diffusivity, coordinates: dict) -> dict:
+    """The prism cells' centres (``as_prism``'s frame: the section centred, z from a face
+    to the mid-plane) in the Bar's own x, y, z (from its corner: the section whole, the
+    thickness axis its exposed half, as the octant's cells are from the exposed faces)."""
+    order, size = section_axes(bar, diffusivity), bar_size(bar)
+    shifted = (coordinates["x"] + 0.5 * size[order[0]], coordinates["y"] + 0.5 * size[order[1]],
+               coordinates["z"])
+    return {"xyz"[axis]: value for axis, value in zip(order, shifted)}
+
+
+def z_band(z_widths: np.ndarray, depth: float) -> np.ndarray:
+    """Fraction of each z cell (m, from the exposed face) within ``depth`` of that face."""
+    nodes = np.concatenate([[0.0], np.cumsum(z_widths)])
+    inside = interval_overlap(nodes[:-1], nodes[1:], -1.0, depth)
+    return inside / z_widths
 
 
 def half_slab(z_widths: np.ndarray) -> Discretisation:
@@ -108,11 +150,16 @@ def richardson_march(disc, law, top, exposure, times, scales, per_doubling, keep
                 Track.of(plans[0], coarse, fine, scales, exposure))
 
 
-def corrected(plate: Pair, sheet: tuple, planform: tuple, surface: np.ndarray):
+def corrected(plate: Pair, sheet: tuple, planform: tuple, surface: np.ndarray, union=None):
     """(mean, layer): the plate's U = g - c times the ratio of the fine reference's U to the
     coarse grid's, for the sheet (the layer spans the thickness) and for the planform
     (its mean, its band for the layer). A ratio is 1 where the coarse grid's U is within
-    round-off of zero. ``sheet``, ``planform``: (coarse Pair, fine reference Pair)."""
+    round-off of zero. ``sheet``, ``planform``: (coarse Pair, fine reference Pair).
+    ``union`` (a Bar's layer, ``Level.union``): (beta, zeta), the planform band's and the
+    sheet layer's volume fractions; the layer is then the band through the thickness or
+    the sheet's layer over the planform, whose U for the product of Fick (Crank 1975
+    §4.3) is beta Ub S + zeta Sl (P - beta Ub) (P, Ub: the planform's mean and band; S,
+    Sl: the sheet's mean and layer) with the coarse factors or the references."""
     floor = 1e-9 * max(float(np.max(np.abs(surface))), 1e-300)
 
     def ratio(fine, coarse):
@@ -121,8 +168,17 @@ def corrected(plate: Pair, sheet: tuple, planform: tuple, surface: np.ndarray):
         return np.where(small, 1.0, (surface - fine) / np.where(small, 1.0, gap))
     (s_h, s_ref), (p_h, p_ref) = sheet, planform
     through = ratio(s_ref.mean, s_h.mean)
-    return (surface - (surface - plate.mean) * through * ratio(p_ref.mean, p_h.mean),
-            surface - (surface - plate.layer) * through * ratio(p_ref.layer, p_h.layer))
+    mean = surface - (surface - plate.mean) * through * ratio(p_ref.mean, p_h.mean)
+    if union is None:
+        return mean, surface - (surface - plate.layer) * through * ratio(p_ref.layer, p_h.layer)
+    beta, zeta = union
+
+    def product(s, p):   # the layer's c (g - U / g-scale) from the factors' U = g - c
+        s_u, s_l, p_u, p_b = (surface - v for v in (s.mean, s.layer, p.mean, p.layer))
+        return surface - (beta * p_b * s_u + zeta * s_l * (p_u - beta * p_b)) / scale
+    scale = max(float(np.max(np.abs(surface))), 1e-300)
+    return mean, surface - (surface - plate.layer) * ratio(product(s_ref, p_ref),
+                                                           product(s_h, p_h))
 
 
 def steps_for(accuracy: float) -> int:
@@ -141,8 +197,10 @@ def level_plan(geometry, diffusivity, law, exposure, times, mesh_accuracy, per_d
     return replace(chosen, steps_per_doubling=per_doubling)
 
 
-def sheet_reference(geometry, diffusivity, law, exposure, times, accuracy) -> DiffusionResult:
-    """The D(c) sheet of the part's thickness at ``SHEET_SHARE`` x the accuracy (FiPy slab)."""
+def sheet_reference(geometry, diffusivity, law, exposure, times, accuracy,
+                    depth=5e-4) -> DiffusionResult:
+    """The D(c) sheet of the part's thickness at ``SHEET_SHARE`` x the accuracy (FiPy slab;
+    its layer within ``depth`` of a face)."""
     sheet = Sheet(geometry.thickness)
 
     def planner(d, a, outputs):
@@ -150,7 +208,8 @@ def sheet_reference(geometry, diffusivity, law, exposure, times, accuracy) -> Di
         return plan_direct(sheet, d, "slab", s.tau_star(exposure.change_times),
                            s.tau_star(outputs), a, exposure)
     chosen = nonlinear_plan(planner, diffusivity, law, exposure, times, SHEET_SHARE * accuracy)
-    return solve_nonlinear(sheet, diffusivity, law, exposure, times, chosen)
+    return solve_nonlinear(sheet, diffusivity, law, exposure, times, chosen,
+                           surface_layer_depth=depth)
 
 
 @dataclass(frozen=True)
@@ -167,14 +226,16 @@ class Setting:
     depth: float
     per_doubling: int
     part: str
+    faces_layer: bool = False   # the layer includes the two faces (a Bar's: ``as_prism``)
 
     @classmethod
-    def of(cls, geometry, diffusivity, law, exposure, times, depth, per_doubling, part):
+    def of(cls, geometry, diffusivity, law, exposure, times, depth, per_doubling, part,
+           faces_layer=False):
         scaled = fastest(diffusivity, law, exposure, times)
         return cls(geometry, law, exposure, np.asarray(times, float),
                    tuple(float(v) for v in scaled.pre_exponential),
                    law.largest_factor(wettest(exposure, times)),
-                   scales_of(geometry, scaled, exposure), depth, per_doubling, part)
+                   scales_of(geometry, scaled, exposure), depth, per_doubling, part, faces_layer)
 
     def run(self, disc, keep: bool = False, columns=()) -> Pair:
         return richardson_march(disc, self.law, self.top, self.exposure, self.times,
@@ -212,6 +273,7 @@ class Level:
     cells: int
     planform_cells: int
     coordinates: dict
+    union: tuple | None = None   # (beta, zeta) of a Bar's layer (``corrected``)
 
 
 def three_d(setting: Setting, chosen: Plan, keep: bool, cells: Cells | None = None) -> Level:
@@ -220,8 +282,17 @@ def three_d(setting: Setting, chosen: Plan, keep: bool, cells: Cells | None = No
     geometry = setting.geometry
     disc = prism(cells.tess, geometry.thickness, cells.z * geometry.thickness,
                  band_share(cells.tess, setting.depth), setting.d, mid_plane=True)
+    slab, union = half_slab(cells.z), None
+    if setting.faces_layer:   # a Bar: the band through the thickness or the faces' layer
+        band = band_share(cells.tess, setting.depth)
+        near = z_band(cells.z * geometry.thickness, setting.depth)
+        share = 1.0 - np.outer(1.0 - near, 1.0 - band).ravel()   # cell k c + i (``prism``)
+        disc = replace(disc, layer_weights=normalised(disc.volumes * share))
+        slab = replace(slab, layer_weights=normalised(slab.volumes * near))
+        areas = disc.volumes[:cells.tess.cells]
+        union = (float(areas @ band / areas.sum()), float(cells.z @ near / cells.z.sum()))
     plate = setting.run(disc, keep)
-    slab = setting.run(half_slab(cells.z))
+    slab = setting.run(slab)
     planform, moments, planform_cells = setting.planform_on(cells.tess)
     return Level(chosen, plate, slab, planform, moments, disc.cells, planform_cells,
-                 disc.coordinates)
+                 disc.coordinates, union)

@@ -12,8 +12,10 @@ Models (``diffusion.model``):
   superposed over the history (``plane``); ``auto`` picks it (cheaper than prisms).
 
 Concentration-dependent D (``sorption``) under ``auto``: Fick with D f where f is constant
-over the moisture met; on a CamPlate or LinkBar the D(c) sheet x planform product
-corrected on coarse 3-D prisms (``defect``); ``solid`` keeps the 3-D cells alone.
+over the moisture met; on a CamPlate, LinkBar or Bar (the prism of its rectangular section,
+``defectparts.as_prism``; a Bar from ``BAR_CORRECTED_FROM`` down, above it its octant's
+cells) the D(c) sheet x planform product corrected on coarse 3-D prisms (``defect``);
+``solid`` keeps the 3-D cells alone (a Bar's octant), the check.
 """
 from __future__ import annotations
 
@@ -49,6 +51,13 @@ log = logging.getLogger(__name__)
 
 PLANFORM_SHARE = 0.5  # of the accuracy: the planform mesh; the rest the two-phase march
 LAYER_DEPTH = 5e-4    # m, the contact layer's depth when none is given (SPEC: surface_layer_depth)
+BAR_CORRECTED_FROM = 1e-2  # accuracy from which ``auto`` takes a D(c) Bar's corrected product.
+#   6 x 4 x 2 mm bar, k = 1, 2, both directions (benchmarks/dc_bar.py small vs corrected, CPU
+#   s, the errors against a method of lines): at 1e-2 corrected 11-27 s, the octant 13-91 s;
+#   at 3e-3 14-58 s against 54-1 188 s; at 1e-3 29-90 s (estimate 8.4e-4-2.1e-3, error
+#   0.8-5.6e-4) where the octant is capped (est. 1.0-1.9e-3, not run: > 15 CPU min). At 3e-2
+#   and 0.1 the octant takes 0.7-6.9 s, corrected 10-23 s (its floor: fine sheet, two
+#   nested meshes, planform refined x4)
 MODELS = ("auto", "analytic", "slab", "axisymmetric", "plane", "solid")
 NUMERICAL_MODEL = {Sheet: "slab", Disc: "axisymmetric", Bar: "solid", CamPlate: "plane",
                    LinkBar: "plane"}
@@ -96,7 +105,7 @@ def plan(geometry, diffusivity: Diffusivity, exposure: Exposure, times: np.ndarr
     the solve's, so that a plane plan and its solve share one outline expansion)."""
     _validate(geometry, model, accuracy)
     if is_nonlinear(sorption) and _nonlinear_route(geometry, model, sorption, exposure,
-                                                   times) == "fick":
+                                                   times, accuracy) == "fick":
         return _as_fick(plan, geometry, diffusivity, exposure, times, sorption, accuracy,
                         model, surface_layer_depth)
     if is_langmuir(sorption) or is_nonlinear(sorption):
@@ -129,7 +138,7 @@ def _plan_sorption(geometry, diffusivity, exposure, times, accuracy, model, sorp
                    depth) -> Plan:
     law = describe(sorption)
     if is_nonlinear(sorption) and _nonlinear_route(geometry, model, sorption, exposure,
-                                                   times) == "corrected":
+                                                   times, accuracy) == "corrected":
         corrected = plan_corrected(geometry, diffusivity, sorption, exposure, times, accuracy)
         return replace(corrected, reason=f"{law}; {corrected.reason}")
     if is_nonlinear(sorption):
@@ -221,17 +230,21 @@ def _nonlinear_model(geometry, model: str) -> str:
     return NUMERICAL_MODEL[type(geometry)] if model in ("auto", "analytic") else model
 
 
-def _nonlinear_route(geometry, model: str, sorption, exposure, times) -> str:
+def _nonlinear_route(geometry, model: str, sorption, exposure, times, accuracy) -> str:
     """How ``auto`` solves D(c) on a Bar, CamPlate or LinkBar: ``fick`` where f is one
     number over the moisture the part meets (k = 0: Fick with D f, the Fickian models'
-    own result), ``corrected`` for a CamPlate or LinkBar (``defect``: the D(c) sheet x
-    planform corrected on coarse 3-D cells; far cheaper than the 3-D cells alone at the
-    same accuracy), else ``direct`` (``solid`` always: the 3-D cells alone, the check)."""
+    own result), else ``corrected`` (``defect``: the D(c) sheet x planform corrected on
+    coarse 3-D cells; far cheaper than the 3-D cells alone at the same accuracy), for a
+    Bar (the prism of its rectangular section, its thickness the fastest axis) from
+    ``BAR_CORRECTED_FROM`` down, above it ``direct`` (the octant's cells). ``solid``:
+    ``direct`` always (the 3-D cells alone, the check)."""
     if model != "auto" or not isinstance(geometry, (Bar, CamPlate, LinkBar)):
         return "direct"
     if spread(sorption, exposure, times) <= 1.0 + 1e-12:
         return "fick"
-    return "corrected" if isinstance(geometry, (CamPlate, LinkBar)) else "direct"
+    if isinstance(geometry, Bar) and accuracy > BAR_CORRECTED_FROM:
+        return "direct"
+    return "corrected"
 
 
 def _as_fick(call, geometry, diffusivity, exposure, times, sorption, accuracy, model, depth,
@@ -253,7 +266,7 @@ def solve(geometry, diffusivity: Diffusivity, exposure: Exposure, times: np.ndar
     ``sorption`` law (``diffusion.sorption``) the mean and surface are the total (free +
     bound) moisture and, for Langmuir, ``bound`` the bound-water mean."""
     times = np.asarray(times, float)
-    route = (_nonlinear_route(geometry, model, sorption, exposure, times)
+    route = (_nonlinear_route(geometry, model, sorption, exposure, times, accuracy)
              if is_nonlinear(sorption) else "")
     if route == "fick":
         return _as_fick(solve, geometry, diffusivity, exposure, times, sorption, accuracy, model,
