@@ -178,14 +178,14 @@ class Extension:
         return extended
 
 
-def held_to_plan(result, replan, resolve):
+def held_to_plan(result, chosen, replan, resolve):
     """``result`` with its ``Extension`` (if any) re-solving by ``resolve(times)`` where
-    ``replan(times)`` has other cells than ``replan(result.times)``."""
+    ``replan(times)`` has other cells than ``chosen``, the plan ``result`` was solved on."""
     extension = result.extend
     if isinstance(extension, Extension):
         def cells(plan):
             return plan.cells, tuple(plan.cells_per_axis), plan.finest, plan.growth
-        stored = cells(replan(result.times))
+        stored = cells(chosen)
         extension.fits = lambda both: cells(replan(both)) == stored
         extension.resolve = resolve
     return result

@@ -285,13 +285,13 @@ def solve(geometry, diffusivity: Diffusivity, exposure: Exposure, times: np.ndar
         return held_to_plan(solve_corrected(
             geometry, diffusivity, sorption, exposure, times, accuracy,
             surface_layer_depth=surface_layer_depth, store_fields=store_fields, part=part,
-            reason=chosen.reason), again, resolve)
+            reason=chosen.reason), chosen, again, resolve)
     log.debug("%s: %s, %d cells, %d steps (%s)", part or type(geometry).__name__, chosen.model,
               chosen.cells, chosen.steps, chosen.reason)
     if route:
         return held_to_plan(_solve_sorption(geometry, diffusivity, exposure, times, chosen,
                                             sorption, surface_layer_depth, store_fields, part,
-                                            accuracy), again, resolve)
+                                            accuracy), chosen, again, resolve)
     if sorption is not None and (is_langmuir(sorption) or is_nonlinear(sorption)):
         return _solve_sorption(geometry, diffusivity, exposure, times, chosen, sorption,
                                surface_layer_depth, store_fields, part, accuracy)
