@@ -44,7 +44,7 @@ z widths as a sheet and on its coarse 3-D plan, k = 5, wetted to Mm then stepped
 versions, run it with each one's PYTHONPATH).
 ``nested CASE A[@B] [PZ ...]``: CASE is cam-K (the demo cam, exponent K), plate-K-absorption,
 plate-K-desorption or soak-K; the corrected result (sheet and planform references of a run
-at accuracy A) on the 3-D mesh of the ``defect.base_level`` plan (or the plan of accuracy
+at accuracy A) on the 3-D mesh of the ``defect.base_plan`` plan (or the plan of accuracy
 B) with its planform refined P times and its z widths Z times (``defect.Cells.refined``'s
 two halves apart; default 00 01 10 11 02): cells, CPU s, the distances between all of
 them (``defect.gap``), and the ratios of successive changes along z (00 01 02 ...), the
@@ -70,6 +70,7 @@ CAM_SOLID = 1e-2
 H, D, MM = 2e-3, 5e-12, 2.0
 TAU = [0.0, 0.01, 0.03, 0.1, 0.3]
 ORDER_LEVELS = (1.0, 0.5, 0.25, 0.125)   # plan accuracies of ``plate-order``
+GRADED_PAIR = (1.0, 0.5)   # the two graded 3-D plans of the corrected path before nesting
 ORDER_ACCURACY = 1e-2   # ``plate-order``'s sheet reference and steps: those of ``plate`` at 1e-2
 
 
@@ -104,13 +105,13 @@ def soak_dry(exponents=(3.0, 5.0), accuracy=0.1, reference_accuracy=0.03) -> Non
     """``reference_accuracy`` None: no reference run (e.g. to time an older fickcam, run
     with its PYTHONPATH: soak_dry((3.0,), 0.1, None))."""
     from fickcam.diffusion import solve
-    from fickcam.diffusion.defect import base_level
+    from fickcam.diffusion.defect import base_plan
     from fickcam.diffusion.defectparts import Cells, Setting, level_plan, steps_for
 
     for k in exponents:
         plate, d, exposure, times, law = soak_dry_case(k)
-        level = base_level(accuracy)
-        chosen = level_plan(plate, d, law, exposure, times, level, steps_for(accuracy))
+        level, chosen = base_plan(lambda a: level_plan(plate, d, law, exposure, times, a,
+                                                       steps_for(accuracy)), accuracy)
         cells = Cells.of(plate, Setting.of(plate, d, law, exposure, times, 5e-4, 4, "").d, chosen)
         print(f"k {k:g}, 3-D plan {level:g}: {cells.cells} cells, 2x {cells.refined().cells}, "
               f"w0 {chosen.finest:.3g}, growth {chosen.growth:.3g}", flush=True)
@@ -246,10 +247,10 @@ def plate_order(exponent: str = "2", *directions: str) -> None:
     the stored runs (k = 2 only; theirs: their estimate), the changes d_i between successive
     plans and p_i = log(|d_i| / |d_i+1|) / log(w0_i / w0_i+1); the same for the 3-D cells
     alone ("3-D"). Then, in ``defect.gap``'s norm (largest over the outputs, the layer / 4),
-    the change between the ``MESH_LEVELS`` plans (what ``solve_corrected`` multiplies by
-    ``ORDER_ONE``) beside the finer plan's distance to the finest plan (its unseparated
+    the change between the 1 and 0.5 plans (``GRADED_PAIR``: the two meshes whose change
+    ``solve_corrected`` multiplied by 2.4 before the nested meshes) beside the finer plan's distance to the finest plan (its unseparated
     error, less the finest plan's own) and to the stored run."""
-    from fickcam.diffusion.defect import MESH_LEVELS, corrected_levels, gap
+    from fickcam.diffusion.defect import corrected_levels, gap
 
     stored = json.loads(REFERENCE.read_text())
     k = float(exponent)
@@ -276,14 +277,14 @@ def plate_order(exponent: str = "2", *directions: str) -> None:
                      else np.full(len(TAU), np.nan))
             for label, values in (("corrected", corrected), ("3-D", alone)):
                 order_table(f"{direction} {quantity} {label}", values, truth, widths)
-        coarse, fine = (run.results[ORDER_LEVELS.index(a)] for a in MESH_LEVELS)
+        coarse, fine = (run.results[ORDER_LEVELS.index(a)] for a in GRADED_PAIR)
         change = gap(coarse, fine, MM)
-        line = (f"gap norm: change {MESH_LEVELS} {change:.2e}; plan {MESH_LEVELS[-1]:g} to plan "
+        line = (f"gap norm: change {GRADED_PAIR} {change:.2e}; plan {GRADED_PAIR[-1]:g} to plan "
                 f"{ORDER_LEVELS[-1]:g} {gap(fine, run.results[-1], MM):.2e} "
                 f"(x{gap(fine, run.results[-1], MM) / change:.2f} the change)")
         if known:
             truth = (np.asarray(stored[direction]["mean"]), np.asarray(stored[direction]["layer"]))
-            line += (f"; to the stored run: plan {MESH_LEVELS[-1]:g} {gap(fine, truth, MM):.2e} "
+            line += (f"; to the stored run: plan {GRADED_PAIR[-1]:g} {gap(fine, truth, MM):.2e} "
                      f"(x{gap(fine, truth, MM) / change:.2f}), plan {ORDER_LEVELS[-1]:g} "
                      f"{gap(run.results[-1], truth, MM):.2e}")
         print(line, flush=True)

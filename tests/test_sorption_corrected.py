@@ -305,3 +305,58 @@ def test_a_dc_bar_under_auto_takes_the_corrected_product_and_meets_the_method_of
     assert "rectangular section" in result.reason
     assert error <= result.error_estimate <= 1e-2
     assert layer <= LAYER_TOLERANCE * result.error_estimate
+
+
+def test_the_coarsest_3d_plan_is_loose_at_loose_accuracy_but_keeps_two_z_widths():
+    """``defect.base_plan``: at 1e-2 the 4 x 3 x 2 mm plate absorbing (k = 2) would get one
+    z width on the 4.0 plan, so it takes the 2.0 plan (two); at 1e-3 the 0.5 plan, as before;
+    the level never rises as the accuracy tightens."""
+    from functools import partial
+    from fickcam.diffusion.defect import MESH_LEVELS, MIN_Z_WIDTHS, base_plan
+    from fickcam.diffusion.defectparts import level_plan
+    from fickcam.diffusion.layout import prism_widths
+    from fickcam.diffusion.mirrored import half
+
+    plan_at = partial(level_plan, PLATE, ISOTROPIC, law(2.0), exposure(0.0, MM), TIMES,
+                      per_doubling=4)
+    assert half(prism_widths(plan_at(4.0).finest, plan_at(4.0).growth)).size < MIN_Z_WIDTHS
+    levels = [base_plan(plan_at, a) for a in (0.1, 1e-2, 3e-3, 1e-3)]
+    assert [level for level, _ in levels] == [2.0, 2.0, 1.5, MESH_LEVELS[-1]]
+    for _, chosen in levels:
+        assert half(prism_widths(chosen.finest, chosen.growth)).size >= MIN_Z_WIDTHS
+
+
+def test_the_planform_stops_at_2x_only_when_the_whole_estimate_meets_the_accuracy():
+    """``defect.refined_reference`` on the plate (k = 2 absorbing): with the whole estimate
+    within the accuracy (``total``) the refinement stops at 2x even where the 2x estimate is
+    above ``PLANFORM_SHARE`` of it; otherwise it goes on to 4x. The 2x reference (Richardson
+    of 1x and 2x) is within its estimate (their whole change) of the 4x one (the three-mesh
+    choice), in ``gap``'s norm of the corrected result: what the early stop relies on
+    (measured: 3.1e-3 against 5.5e-4 + the 4x estimate 1.1e-3; 14 CPU s)."""
+    from fickcam.diffusion.defect import (MESH_LEVELS, Pair, Setting, corrected,
+                                          refined_reference, surface_of)
+    from fickcam.diffusion.defectparts import level_plan, sheet_reference, steps_for, three_d
+
+    times, wet, accuracy = TIMES[:4], exposure(0.0, MM), 0.1   # the marches' steps at 0.1
+    setting = Setting.of(PLATE, ISOTROPIC, law(2.0), wet, times, 5e-4, steps_for(accuracy), "")
+    start = level_plan(PLATE, ISOTROPIC, law(2.0), wet, times, MESH_LEVELS[-1],
+                       setting.per_doubling)
+    fine_sheet = sheet_reference(PLATE, ISOTROPIC, law(2.0), wet, times, accuracy)
+    coarse = level_plan(PLATE, ISOTROPIC, law(2.0), wet, times, 2.0, setting.per_doubling)
+    sheet, level = Pair(fine_sheet.mean, fine_sheet.surface), three_d(setting, coarse, False)
+    tight = 1e-4   # far below the 2x estimate: only ``total`` can stop at 2x
+    seen = []
+
+    def within(*planform):
+        seen.append(planform[1])
+        return 0.5 * tight
+    early = refined_reference(setting, start, level, sheet, tight, MM, within)
+    full = refined_reference(setting, start, level, sheet, tight, MM,
+                             lambda *planform: 2.0 * tight)
+    assert early[3] == 2.0 and seen == [early[1]] and early[1] > tight
+    assert full[3] == 4.0
+
+    def result(reference):
+        return corrected(level.plate, (level.slab, sheet), (level.planform, reference),
+                         surface_of(setting), level.union)
+    assert gap(result(early[0]), result(full[0]), MM) + full[1] <= early[1]

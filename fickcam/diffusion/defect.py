@@ -51,11 +51,13 @@ from .dense import Extension, combined
 from .direct import swing
 from .geometry import Bar
 from .gridcheck import taken, three_levels
+from .layout import prism_widths
+from .mirrored import half
 from .nonlinear import dries_to_a_skin, spread
 from .planmodes import LAYER_TOLERANCE
 from .results import DiffusionResult, Plan
 
-MESH_LEVELS = (1.0, 0.5)   # accuracies of the coarsest 3-D plan (then refined by 2, nested;
+MESH_LEVELS = (4.0, 0.5)   # accuracies of the coarsest 3-D plan (then refined by 2, nested;
 #                            ``base_level``: down to the second where the accuracy is tight)
 #                            and of the plan whose graded planform the planform's refinement
 #                            starts from
@@ -63,7 +65,13 @@ NESTED_CELLS = 30_000      # the finest nested 3-D mesh tried (cells on half the
 BASE_PER_ACCURACY = 500.0  # the coarsest 3-D plan's accuracy per requested accuracy, at most
 #   MESH_LEVELS[0] (``base_level``). On the demo cam (k = 2) at 1e-3 the 1.0 plan's nested
 #   pair changed by 5.2e-4 where the rest of the estimate left 4.4e-4 (and a third mesh would
-#   have 224 000 cells); the 0.5 plan's pair by 2.9e-4 (estimate 8.0e-4)
+#   have 224 000 cells); the 0.5 plan's pair by 2.9e-4 (estimate 8.0e-4). At 1e-2 (the 4.0
+#   plan) its pair (892 + 7 128 cells) changes by 9.8e-4, the 1.0 plan's (3 507 + 28 068)
+#   by 5.2e-4 for 4x the cells
+MIN_Z_WIDTHS = 2           # z widths on the half thickness of the coarsest 3-D plan at least
+#   (``base_plan``): the 4 x 3 x 2 mm plate absorbing (k = 2) at 1e-2 has one on the 4.0 plan
+#   (18 x 1 cells): estimate 8.7e-3 / distance to the stored 3-D run 5.6e-3 = 1.5; on the
+#   2.0 plan (29 x 2): 5.9e-3 / 2.1e-3 = 2.9 (benchmarks/dc_defect_correction.py plate)
 REFINE = (2.0, 4.0)        # planform refinements (finest and growth / R) for Richardson
 PLANFORM_CELLS = 60_000    # the finest planform tried
 PLANFORM_SHARE = 0.5       # of the accuracy: the planform's Richardson estimate
@@ -83,11 +91,16 @@ ORDER_ONE = 1.0 / (2.0 - 1.0)  # the finer of two nested 3-D meshes' error / the
 
 
 def refined_reference(setting: Setting, start: Plan, level: Level, sheet: Pair,
-                      accuracy: float, scale):
+                      accuracy: float, scale, total=None):
     """(planform reference Pair, estimate, planform cells, factor R): the graded planform of
     the plan ``start`` refined by R in ``REFINE`` (finest and growth / R) until the estimate
-    is ``PLANFORM_SHARE`` of the accuracy or the next mesh would pass ``PLANFORM_CELLS``
-    (the estimate: the change of ``level``'s corrected result).
+    is ``PLANFORM_SHARE`` of the accuracy, or ``total(reference, estimate, cells, R)`` (the
+    whole estimate of the solve with this reference: ``corrected_levels``) is within the
+    accuracy, or the next mesh would pass ``PLANFORM_CELLS`` (the estimate: the change of
+    ``level``'s corrected result). The demo cam (k = 2) at 1e-2: the 2x planform's estimate
+    6.3e-3 is above the share, but with the 4.0 plan's nested pair (3-D change 9.8e-4) and
+    the sheet (8.6e-4) the whole is 8.6e-3: the 4x planform (27 303 cells, 59 of the run's
+    153 CPU s) is not marched (``benchmarks/dc_defect_correction.py corrected cam-2 1e-2``).
     After the first refinement: the Richardson extrapolation of the two (second order:
     p_2 + (p_2 - p_1) / 3), its estimate the whole change p_2 - p_1 (R = 1 may be short of
     the asymptotic range: on the demo cam with k = 1 the change the first extrapolation
@@ -117,7 +130,8 @@ def refined_reference(setting: Setting, start: Plan, level: Level, sheet: Pair,
                 three_levels(*(result(p)[i] for p in planforms[-3:])) for i in range(2))
             reference = combined(planforms[-2:], partial(taken, mean), partial(taken, layer))
             estimate = max(mean_error, layer_error / LAYER_TOLERANCE) / scale
-        if estimate <= PLANFORM_SHARE * accuracy:
+        if estimate <= PLANFORM_SHARE * accuracy or (
+                total is not None and total(reference, estimate, cells, factor) <= accuracy):
             break
     return reference, estimate, cells, factor
 
@@ -172,6 +186,19 @@ def base_level(accuracy: float) -> float:
     return min(MESH_LEVELS[0], max(MESH_LEVELS[-1], BASE_PER_ACCURACY * accuracy))
 
 
+def base_plan(plan_at, accuracy: float) -> tuple[float, Plan]:
+    """(its accuracy, the coarsest 3-D plan): ``plan_at(base_level(accuracy))``, the level
+    halved (down to ``MESH_LEVELS[-1]``) while its z widths on the half thickness are fewer
+    than ``MIN_Z_WIDTHS``."""
+    level = base_level(accuracy)
+    chosen = plan_at(level)
+    while (level > MESH_LEVELS[-1]
+           and half(prism_widths(chosen.finest, chosen.growth)).size < MIN_Z_WIDTHS):
+        level = max(MESH_LEVELS[-1], 0.5 * level)
+        chosen = plan_at(level)
+    return level, chosen
+
+
 def surface_of(setting: Setting) -> np.ndarray:
     """g(t-) at the outputs: the state the unaccomplished uptakes are measured from."""
     return np.asarray(setting.exposure.surface_before(setting.times), float)
@@ -197,7 +224,7 @@ def corrected_levels(geometry, diffusivity, law, exposure, times, accuracy: floa
     def planned(a):
         return level_plan(geometry, diffusivity, law, exposure, times, a, setting.per_doubling)
     if plans is None:
-        chosen = [planned(base_level(accuracy))] * meshes
+        chosen = [base_plan(planned, accuracy)[1]] * meshes
         cells = [Cells.of(geometry, setting.d, chosen[0])]
         while len(cells) < meshes:
             cells.append(cells[-1].refined())
@@ -206,14 +233,29 @@ def corrected_levels(geometry, diffusivity, law, exposure, times, accuracy: floa
         cells = [Cells.of(geometry, setting.d, c) for c in chosen]
     marched = [three_d(setting, c, store_fields and i == len(chosen) - 1, m)
                for i, (c, m) in enumerate(zip(chosen, cells))]
-    scale = swing(exposure, times) or 1.0
-    planform, planform_error, planform_cells, factor = refined_reference(
-        setting, planned(MESH_LEVELS[-1]), marched[-1], reference, accuracy, scale)
-    surface = surface_of(setting)
-    results = [corrected(m.plate, (m.slab, reference), (m.planform, planform), surface, m.union)
-               for m in marched]
-    return Levels(marched, results, sheet, planform, planform_error, planform_cells, factor,
-                  scale, setting, cells)
+    scale, surface = swing(exposure, times) or 1.0, surface_of(setting)
+
+    def levels(planform, planform_error, planform_cells, factor) -> Levels:
+        results = [corrected(m.plate, (m.slab, reference), (m.planform, planform), surface,
+                             m.union) for m in marched]
+        return Levels(marched, results, sheet, planform, planform_error, planform_cells,
+                      factor, scale, setting, cells)
+
+    def total(*planform) -> float:   # the solve's whole estimate with this planform reference
+        return sum(estimate_parts(levels(*planform), skin_margin(law, exposure, times))[1:])
+    return levels(*refined_reference(setting, planned(MESH_LEVELS[-1]), marched[-1], reference,
+                                     accuracy, scale,
+                                     total if plans is None and meshes > 1 else None))
+
+
+def estimate_parts(run: Levels, margin: float) -> tuple[tuple, float, float]:
+    """((mean, layer), 3-D term, rest): ``unseparated``'s values and estimate, and the rest
+    of the estimate: the sheet's, the planform's and the marches' time error
+    (``PAIR_TO_EXTRAPOLATED`` pair^2)."""
+    values, three_d_error = unseparated(run, margin)
+    pair = max(run.marched[-1].plate.pair, run.planform.pair) / run.scale
+    rest = run.sheet.error_estimate + run.planform_error + PAIR_TO_EXTRAPOLATED * pair ** 2
+    return values, three_d_error, rest
 
 
 def unseparated(run: Levels, margin: float) -> tuple[tuple, float]:
@@ -272,13 +314,8 @@ def solve_corrected(geometry, diffusivity, law, exposure, times, accuracy: float
     run = corrected_levels(geometry, diffusivity, law, exposure, times, accuracy,
                            surface_layer_depth=surface_layer_depth,
                            store_fields=store_fields, part=part)
-    margin, sheet = skin_margin(law, exposure, times), run.sheet
-
-    def estimated(run):
-        values, three_d_error = unseparated(run, margin)
-        pair = max(run.marched[-1].plate.pair, run.planform.pair) / run.scale
-        rest = sheet.error_estimate + run.planform_error + PAIR_TO_EXTRAPOLATED * pair ** 2
-        return values, three_d_error, rest
+    sheet = run.sheet
+    estimated = partial(estimate_parts, margin=skin_margin(law, exposure, times))
     values, three_d_error, rest = estimated(run)
     while rest < accuracy < rest + three_d_error and run.meshes[-1].cells * 8 <= NESTED_CELLS:
         run = run.finer(store_fields)
@@ -310,9 +347,9 @@ def plan_corrected(geometry, diffusivity, law, exposure, times, accuracy: float)
     nested, once or twice), the planform refined up to ``PLANFORM_CELLS``, the requested
     accuracy as the target its measured estimate is held to (the solve reports the
     estimate)."""
-    level = base_level(accuracy)
     geometry, diffusivity, bar = as_prism(geometry, diffusivity)
-    chosen = level_plan(geometry, diffusivity, law, exposure, times, level, steps_for(accuracy))
+    level, chosen = base_plan(partial(level_plan, geometry, diffusivity, law, exposure, times,
+                                      per_doubling=steps_for(accuracy)), accuracy)
     section = (" (the bar as the prism of its rectangular section, its thickness the fastest "
                "axis)" if bar else "")
     reason = (f"D(c) sheet x D(c) planform{section} (each refined and checked), corrected on "
