@@ -62,12 +62,16 @@ MESH_LEVELS = (4.0, 0.5)   # accuracies of the coarsest 3-D plan (then refined b
 #                            and of the plan whose graded planform the planform's refinement
 #                            starts from
 NESTED_CELLS = 30_000      # the finest nested 3-D mesh tried (cells on half the thickness)
-BASE_PER_ACCURACY = 500.0  # the coarsest 3-D plan's accuracy per requested accuracy, at most
-#   MESH_LEVELS[0] (``base_level``). On the demo cam (k = 2) at 1e-3 the 1.0 plan's nested
-#   pair changed by 5.2e-4 where the rest of the estimate left 4.4e-4 (and a third mesh would
-#   have 224 000 cells); the 0.5 plan's pair by 2.9e-4 (estimate 8.0e-4). At 1e-2 (the 4.0
-#   plan) its pair (892 + 7 128 cells) changes by 9.8e-4, the 1.0 plan's (3 507 + 28 068)
-#   by 5.2e-4 for 4x the cells
+BASE_PER_ACCURACY = 1.0 / 3e-3  # the coarsest 3-D plan's accuracy per requested accuracy,
+#   within MESH_LEVELS (``base_level``): 0.5 at 1e-3 and below, 1.0 at 3e-3, 3.3 at 1e-2, 4.0
+#   from 1.2e-2 up. On the demo cam (k = 2) at 1e-3 the 1.0 plan's nested pair changed by
+#   5.2e-4 where the rest of the estimate left 4.4e-4 (and a third mesh would have 224 000
+#   cells); the 0.5 plan's pair by 2.9e-4 (estimate 8.0e-4). At 3e-3 the 6 x 4 x 2 mm bar
+#   drying (k = 2) on the 1.5 plan (500 x, 633 + 5 064 cells) changed by 3.1e-3 with its skin
+#   margin (estimate 3.9e-3, capped; 3.0e-3 on the 1.0 plan); the cam on the 4.0 plan by
+#   9.7e-4 (estimate 1.9e-3, 77 CPU s against 135 on the 1.5 plan). At 1e-2 the cam's 4.0
+#   plan pair (892 + 7 128 cells) changed by 9.8e-4 (benchmarks/dc_defect_correction.py
+#   corrected, dc_bar.py corrected)
 MIN_Z_WIDTHS = 2           # z widths on the half thickness of the coarsest 3-D plan at least
 #   (``base_plan``): the 4 x 3 x 2 mm plate absorbing (k = 2) at 1e-2 has one on the 4.0 plan
 #   (18 x 1 cells): estimate 8.7e-3 / distance to the stored 3-D run 5.6e-3 = 1.5; on the
@@ -205,14 +209,15 @@ def surface_of(setting: Setting) -> np.ndarray:
 
 
 def corrected_levels(geometry, diffusivity, law, exposure, times, accuracy: float,
-                     meshes: int = 2, *, plans=None, surface_layer_depth=5e-4,
+                     meshes: int = 2, *, plans=None, base=None, surface_layer_depth=5e-4,
                      store_fields=False, part="") -> Levels:
     """The corrected product (module docstring) on ``meshes`` nested 3-D meshes: the graded
     cells of the ``base_level`` plan, each next one refined by 2 in every direction
     (``Cells.refined``); or, with ``plans`` (accuracies of ``nonlinear_plan``, coarsest
     first), on those plans' graded cells (not nested; ``benchmarks/dc_defect_correction.py
-    plate-order``). The planform reference is refined from the ``MESH_LEVELS[-1]`` plan's
-    graded planform. ``store_fields`` keeps the finest mesh's fields."""
+    plate-order``). ``base``: the coarsest nested plan's accuracy instead of ``base_plan``'s.
+    The planform reference is refined from the ``MESH_LEVELS[-1]`` plan's graded planform.
+    ``store_fields`` keeps the finest mesh's fields."""
     times = np.asarray(times, float)
     geometry, diffusivity, faces_layer = as_prism(geometry, diffusivity)
     setting = Setting.of(geometry, diffusivity, law, exposure, times, surface_layer_depth,
@@ -224,7 +229,7 @@ def corrected_levels(geometry, diffusivity, law, exposure, times, accuracy: floa
     def planned(a):
         return level_plan(geometry, diffusivity, law, exposure, times, a, setting.per_doubling)
     if plans is None:
-        chosen = [base_plan(planned, accuracy)[1]] * meshes
+        chosen = [planned(base) if base else base_plan(planned, accuracy)[1]] * meshes
         cells = [Cells.of(geometry, setting.d, chosen[0])]
         while len(cells) < meshes:
             cells.append(cells[-1].refined())
