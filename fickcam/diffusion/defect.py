@@ -102,9 +102,11 @@ def refined_reference(setting: Setting, start: Plan, level: Level, sheet: Pair,
     whole estimate of the solve with this reference: ``corrected_levels``) is within the
     accuracy, or the next mesh would pass ``PLANFORM_CELLS`` (the estimate: the change of
     ``level``'s corrected result). The demo cam (k = 2) at 1e-2: the 2x planform's estimate
-    6.3e-3 is above the share, but with the 4.0 plan's nested pair (3-D change 9.8e-4) and
-    the sheet (8.6e-4) the whole is 8.6e-3: the 4x planform (27 303 cells, 59 of the run's
-    153 CPU s) is not marched (``benchmarks/dc_defect_correction.py corrected cam-2 1e-2``).
+    6.3e-3 is above the share, but with the 3.3 plan's nested pair (3-D change 7.6e-4) and
+    the sheet (8.6e-4) the whole is 8.3e-3: the 4x planform (27 303 cells, 59 CPU s alone)
+    is not marched, the run takes 28 CPU s (143-153 on the 1.0 plan's pair with the 4x
+    planform, estimate 2.0e-3; the two results 2.8e-3 apart in ``gap``'s norm;
+    ``benchmarks/dc_defect_correction.py corrected cam-2 1e-2``).
     After the first refinement: the Richardson extrapolation of the two (second order:
     p_2 + (p_2 - p_1) / 3), its estimate the whole change p_2 - p_1 (R = 1 may be short of
     the asymptotic range: on the demo cam with k = 1 the change the first extrapolation
