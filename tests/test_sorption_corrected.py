@@ -296,8 +296,9 @@ def test_a_dc_bar_under_auto_takes_the_corrected_product_and_meets_the_method_of
     (not the octant's cells), against the independent method of lines (tests/data/
     dc_bar_reference.json, benchmarks/dc_bar.py reference): error <= estimate <= 1e-2 for
     the mean, the contact layer within ``LAYER_TOLERANCE`` estimates. Measured
-    (benchmarks/dc_bar.py corrected): estimate 2.9e-3, mean 3.7e-4, layer 6.2e-4, 12.7 CPU s
-    (the octant, ``solid``: 23.1 CPU s for an estimate 5.8e-3)."""
+    (benchmarks/dc_bar.py corrected): estimate 7.6e-3, mean 5.3e-4, layer 7.7e-4, 6.3 CPU s
+    (on the 1.0 plan's pair before: 2.9e-3, 3.7e-4, 6.2e-4, 12.7 CPU s; the octant,
+    ``solid``: 23.1 CPU s for an estimate 5.8e-3)."""
     dry = Exposure.piecewise([0.0, BAR_TIMES[-1]], [330.0], [0.0], initial_moisture=MM)
     chosen = plan(BAR, ISOTROPIC, dry, BAR_TIMES, accuracy=1e-2, sorption=law(1.0))
     assert "rectangular section" in chosen.reason
