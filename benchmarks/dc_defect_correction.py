@@ -248,8 +248,9 @@ def plate_order(exponent: str = "2", *directions: str) -> None:
     plans and p_i = log(|d_i| / |d_i+1|) / log(w0_i / w0_i+1); the same for the 3-D cells
     alone ("3-D"). Then, in ``defect.gap``'s norm (largest over the outputs, the layer / 4),
     the change between the 1 and 0.5 plans (``GRADED_PAIR``: the two meshes whose change
-    ``solve_corrected`` multiplied by 2.4 before the nested meshes) beside the finer plan's distance to the finest plan (its unseparated
-    error, less the finest plan's own) and to the stored run."""
+    ``solve_corrected`` multiplied by 2.4 before the nested meshes) beside the finer plan's
+    distance to the finest plan (its unseparated error, less the finest plan's own) and to
+    the stored run."""
     from fickcam.diffusion.defect import corrected_levels, gap
 
     stored = json.loads(REFERENCE.read_text())

@@ -361,7 +361,7 @@ def plan_corrected(geometry, diffusivity, law, exposure, times, accuracy: float)
                "axis)" if bar else "")
     reason = (f"D(c) sheet x D(c) planform{section} (each refined and checked), corrected on "
               "coarse 3-D "
-              f"prisms on half the thickness (mid-plane mirror; the {level:g} plan "
+              f"prisms on half the thickness (mid-plane mirror; the {level:.2g} plan "
               f"and it refined by 2, nested, twice where needed; {chosen.steps_per_doubling} "
               f"steps/doubling + Richardson; defect correction){TARGET}")
     return replace(chosen, reason=reason, error_estimate=accuracy)
