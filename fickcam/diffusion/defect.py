@@ -67,7 +67,7 @@ BASE_PER_ACCURACY = 1.0 / 3e-3  # the coarsest 3-D plan's accuracy per requested
 #   from 1.2e-2 up. On the demo cam (k = 2) at 1e-3 the 1.0 plan's nested pair changed by
 #   5.2e-4 where the rest of the estimate left 4.4e-4 (and a third mesh would have 224 000
 #   cells); the 0.5 plan's pair by 2.9e-4 (estimate 8.0e-4). At 3e-3 the 6 x 4 x 2 mm bar
-#   drying (k = 2) on the 1.5 plan (500 x, 633 + 5 064 cells) changed by 3.1e-3 with its skin
+#   drying (k = 2) on the 1.5 plan (500 x; 5 064 cells refined) changed by 3.1e-3 with its skin
 #   margin (estimate 3.9e-3, capped; 3.0e-3 on the 1.0 plan); the cam on the 4.0 plan by
 #   9.7e-4 (estimate 1.9e-3, 77 CPU s against 135 on the 1.5 plan). At 1e-2 the cam's 4.0
 #   plan pair (892 + 7 128 cells) changed by 9.8e-4 (benchmarks/dc_defect_correction.py
