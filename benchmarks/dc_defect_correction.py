@@ -15,7 +15,7 @@ correction.
     python benchmarks/dc_defect_correction.py march-cost         # CPU of one swept march pair
     python benchmarks/dc_defect_correction.py soak-dry-solid K A # auto at 0.1 vs solid at A
     python benchmarks/dc_defect_correction.py nested CASE A[@B] [PZ ...]  # nested meshes
-    python benchmarks/dc_defect_correction.py corrected CASE A   # one corrected run
+    python benchmarks/dc_defect_correction.py corrected CASE A[@B]  # one corrected run
 
 ``plate-reference``: the 4 x 3 x 2 mm plate of the tests (D = 5e-12 m^2/s exp(2 c/Mm),
 Mm = 2 %, absorption 0 -> Mm and desorption Mm -> 0) by the 3-D cells alone (``model:
@@ -49,8 +49,9 @@ B) with its planform refined P times and its z widths Z times (``defect.Cells.re
 two halves apart; default 00 01 10 11 02): cells, CPU s, the distances between all of
 them (``defect.gap``), and the ratios of successive changes along z (00 01 02 ...), the
 planform (00 10 20) and both (00 11 22).
-``corrected CASE A``: ``defect.solve_corrected`` (what ``auto`` runs): CPU s, cells, the
-estimate and its parts; a plate against its stored 3-D run (``plate``'s norm).
+``corrected CASE A[@B]``: ``defect.solve_corrected`` (what ``auto`` runs; B: on the nested
+pair of the plan of accuracy B): CPU s, cells, the estimate and its parts; a plate against
+its stored 3-D run (``plate``'s norm).
 CPU time: time.process_time, one BLAS thread (set OPENBLAS_NUM_THREADS=1).
 """
 from __future__ import annotations
@@ -522,11 +523,21 @@ def three_levels_of(results, path, quantity, scale):
 
 
 def corrected_run(case: str, accuracy: str) -> None:
+    """``corrected CASE A[@B]``: B forces the coarsest nested plan's accuracy (as is, even
+    with one z width: ``defect.base_level`` and ``MIN_Z_WIDTHS`` set for the run)."""
+    from fickcam.diffusion import defect
     from fickcam.diffusion.defect import gap, solve_corrected
 
     geometry, d, exposure, times, law = named_case(case)
+    accuracy, _, base = accuracy.partition("@")
+    kept = defect.base_level, defect.MIN_Z_WIDTHS
+    if base:
+        defect.base_level, defect.MIN_Z_WIDTHS = (lambda a: float(base)), 1
     start = time.process_time()
-    result = solve_corrected(geometry, d, law, exposure, times, float(accuracy))
+    try:
+        result = solve_corrected(geometry, d, law, exposure, times, float(accuracy))
+    finally:
+        defect.base_level, defect.MIN_Z_WIDTHS = kept
     line = (f"{case} at {accuracy}: {time.process_time() - start:.1f} CPU s, {result.cells} "
             f"cells, estimate {result.error_estimate:.2e} "
             f"({result.reason.split('measured: ')[-1]})")

@@ -70,12 +70,14 @@ BASE_PER_ACCURACY = 1.0 / 3e-3  # the coarsest 3-D plan's accuracy per requested
 #   drying (k = 2) on the 1.5 plan (500 x; 5 064 cells refined) changed by 3.1e-3 with its skin
 #   margin (estimate 3.9e-3, capped; 3.0e-3 on the 1.0 plan); the cam on the 4.0 plan by
 #   9.7e-4 (estimate 1.9e-3, 77 CPU s against 135 on the 1.5 plan). At 1e-2 the cam's 4.0
-#   plan pair (892 + 7 128 cells) changed by 9.8e-4 (benchmarks/dc_defect_correction.py
-#   corrected, dc_bar.py corrected)
+#   plan pair (892 + 7 128 cells) changed by 9.8e-4, the 3.3 plan's (8 088 cells refined) by
+#   7.6e-4 (benchmarks/dc_defect_correction.py corrected cam-2 A[@B]; dc_bar.py corrected 2
+#   --at 3e-3 --only desorption with this constant at 500)
 MIN_Z_WIDTHS = 2           # z widths on the half thickness of the coarsest 3-D plan at least
 #   (``base_plan``): the 4 x 3 x 2 mm plate absorbing (k = 2) at 1e-2 has one on the 4.0 plan
 #   (18 x 1 cells): estimate 8.7e-3 / distance to the stored 3-D run 5.6e-3 = 1.5; on the
-#   2.0 plan (29 x 2): 5.9e-3 / 2.1e-3 = 2.9 (benchmarks/dc_defect_correction.py plate)
+#   2.0 plan (29 x 2): 5.9e-3 / 2.1e-3 = 2.9 (benchmarks/dc_defect_correction.py corrected
+#   plate-2-absorption 1e-2@4, @2)
 REFINE = (2.0, 4.0)        # planform refinements (finest and growth / R) for Richardson
 PLANFORM_CELLS = 60_000    # the finest planform tried
 PLANFORM_SHARE = 0.5       # of the accuracy: the planform's Richardson estimate
