@@ -120,7 +120,7 @@ def refined_reference(setting: Setting, start: Plan, level: Level, sheet: Pair,
             estimate = max(mean_error, layer_error / LAYER_TOLERANCE) / scale
         if estimate <= PLANFORM_SHARE * accuracy:
             break
-    return reference, estimate, cells, factor
+    return replace(reference, coarser=(planforms[-2], weight)), estimate, cells, factor
 
 
 def gap(a, b, scale: float) -> float:

@@ -43,6 +43,8 @@ class Pair:
     pair: float = 0.0   # largest |fine - coarse| of the mean (time error indicator)
     track: Track | None = None   # (mean, layer) at every step (``dense``: ``extend``)
     grid: object = None   # a planform march's cells (``prism.Tessellation``: ``defectfields``)
+    coarser: tuple | None = None   # the planform reference's (Pair refined once less, the
+    #                               Richardson weight on the change): ``defectfields``
 
 
 def as_prism(geometry, diffusivity):
