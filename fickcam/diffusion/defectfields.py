@@ -173,36 +173,41 @@ class FieldErrors:
     """What is known of a corrected field's error (``field_errors``), relative to the swing."""
 
     correction: float   # largest |corrected - coarse|: the coarse cells' own error, indicated
-    planform: float     # the planform reference's change (finest against once less refined)
+    sheet: float        # the fine sheet's estimate (its mean's)
+    planform: float     # the finest planform's, second order: its change from the planform
+    #                     refined once less / (R^2 - 1)
     three_d: float      # the change from the coarser nested mesh (0 with one mesh)
 
     @property
     def total(self) -> float:
-        return self.planform + self.three_d
+        return self.sheet + self.planform + self.three_d
 
     def note(self) -> str:
         three_d = (f"; change from the coarser nested mesh {self.three_d:.1e}"
                    if self.three_d else "")
         return (f"; fields: the finest mesh's cells x the sheet's and the planform's ratios, "
-                f"cell by cell (largest correction {self.correction:.1e}; planform reference "
-                f"change {self.planform:.1e}{three_d}; sum {self.total:.1e}, the fields' error "
-                "indicated, not in the estimate)")
+                f"cell by cell (largest correction {self.correction:.1e}; sheet {self.sheet:.1e}, "
+                f"planform {self.planform:.1e}{three_d}: sum {self.total:.1e}, the fields' "
+                "error indicated, not in the estimate)")
 
 
 def field_errors(run) -> tuple[np.ndarray, FieldErrors]:
     """(fields, errors): the finest nested mesh's cells corrected (``corrected_fields``) and
     what is known of their error, relative to the swing: the largest correction (the
-    coarse cells' own error, indicated); the planform reference's change, the corrected
-    field with the finest planform against with the one refined once less (the whole
-    change, as ``defect.refined_reference`` estimates the mean); and the change of the
-    corrected field from the next coarser nested mesh at its cell points. That change is
+    coarse cells' own error, indicated); the fine sheet's estimate (its mean's; its cells'
+    values read at the z centres erred 2.7e-3 where it estimated 2.2e-3, Fickian 4 x 3 x 2
+    mm plate at 3e-2, tau* = 0.01); the finest planform's error at second order, the
+    change of the corrected field from the planform refined once less x 1 / (R^2 - 1)
+    (the weight ``defect.refined_reference`` took, R the ratio of the two); and the change
+    of the corrected field from the next coarser nested mesh at its cell points. That change is
     read on Q - 1 (``unseparated_share``: near 0, smooth, where U itself is too steep on
     these coarse cells to be carried between the meshes by ``restricted``: the exact
     Fickian U so carried from the 4 x 3 x 2 mm plate's 1 200 cells to its 150 erred 0.11
     of the swing at tau* = 0.01), times the references' product there; at order 1 the
-    finer field's error is about that change (``defect.ORDER_ONE``). Their sum: the
-    fields' error indicated, without the fine sheet's own (its estimate is its mean's).
-    None of it is in the result's estimate, which is the mean's and the layer's."""
+    finer field's error is about that change (``defect.ORDER_ONE``). Their sum, the
+    fields' error indicated, was 2.2 (plate) and 1.4 (6 x 4 x 2 mm bar) x the Fickian
+    fields' largest error at 3e-2 (``benchmarks/dc_corrected_fields.py fickian``). None of
+    it is in the result's estimate, which is the mean's and the layer's."""
     setting = run.setting
     surface = np.asarray(setting.exposure.surface_before(setting.times), float)
 
@@ -222,8 +227,11 @@ def field_errors(run) -> tuple[np.ndarray, FieldErrors]:
         share, product = unseparated_share(coarser, coarse_references, surface)
         carried = restricted(unseparated_share(fields, references, surface)[0], fine, coarse)
         three_d = float(np.max(np.abs((carried - share) * product))) / run.scale
+    weight = run.planform.coarser[1]
     return fields, FieldErrors(float(np.max(np.abs(fields - level.plate.fields))) / run.scale,
-                               float(np.max(np.abs(fields - once_less))) / run.scale, three_d)
+                               run.sheet.error_estimate,
+                               weight * float(np.max(np.abs(fields - once_less))) / run.scale,
+                               three_d)
 
 
 def stored(run, reason: str) -> tuple[np.ndarray, str]:

@@ -1,0 +1,136 @@
+"""Stored fields of the corrected product (``diffusion/defectfields.py``, issue 13): the
+finest nested 3-D mesh's cells corrected cell by cell, against the exact Fickian block
+and against the corrected mean, and what keeping them costs.
+
+    python benchmarks/dc_corrected_fields.py fickian [ACCURACY]
+        # k = 0 on the 4 x 3 x 2 mm plate and the 6 x 4 x 2 mm bar (default 3e-2): the
+        # corrected and the coarse cells' fields against the exact block (Crank 1975 eq.
+        # 4.51 at the cells' points), the indicated error (``defectfields.FieldErrors``),
+        # the volume means of the corrected and of the exact point values
+    python benchmarks/dc_corrected_fields.py dc [K] [ACCURACY]
+        # k (default 2) on the plate, absorbing and drying: the fields' volume mean against
+        # the corrected mean, for the corrected and the coarse cells, and the indication
+    python benchmarks/dc_corrected_fields.py cam [K] [ACCURACY]
+        # the demo cam (configs/singh2017_cam.yaml, exponent K, default 2, at 1e-2): the
+        # fields' indicated error and the CPU of the run and of the fields' correction
+    python benchmarks/dc_corrected_fields.py cost [K] [ACCURACY]
+        # CPU of solve_corrected on the plate (absorbing) without and with store_fields
+
+Errors: |field - reference| / Mm (the swing) per output (tau* = D t / h^2 = 0, 0.01, 0.03,
+0.1, 0.3). CPU: time.process_time, one BLAS thread (OMP_NUM_THREADS=1
+OPENBLAS_NUM_THREADS=1).
+"""
+from __future__ import annotations
+
+import importlib.util
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+
+from fickcam.diffusion import Bar, CamPlate, Diffusivity, Exposure
+from fickcam.diffusion.analytic import exact_history_field
+from fickcam.diffusion.defect import corrected_levels, solve_corrected
+from fickcam.diffusion.defectfields import field_errors
+from fickcam.diffusion.defectparts import bar_coordinates
+from fickcam.diffusion.prism import cell_areas
+from fickcam.diffusion.sorption import ConcentrationDependent
+
+H, D, MM = 2e-3, 5e-12, 2.0
+ISOTROPIC = Diffusivity((D, D, D), 0.0)
+TIMES = np.array([0.0, 0.01, 0.03, 0.1, 0.3]) * H ** 2 / D
+PLATE = CamPlate(np.array([0, 4e-3, 4e-3, 0.0]), np.array([0, 0, 3e-3, 3e-3]), H)
+BAR = Bar(6e-3, 4e-3, H)
+
+
+def exposure(start, surface):
+    return Exposure.piecewise([0.0, TIMES[-1]], [330.0], [surface], initial_moisture=start)
+
+
+def volume_mean(run, fields):
+    cells = run.meshes[-1]
+    volumes = np.outer(cells.z, cell_areas(cells.tess)).ravel()
+    return fields @ volumes / volumes.sum()
+
+
+def row(name, values):
+    print(f"  {name:<34}" + " ".join(f"{v:9.2e}" for v in values), flush=True)
+
+
+def fickian():
+    accuracy = float(sys.argv[2]) if len(sys.argv) > 2 else 3e-2
+    wet = exposure(0.0, MM)
+    for part, block in ((PLATE, Bar(4e-3, 3e-3, H)), (BAR, BAR)):
+        began = time.process_time()
+        run = corrected_levels(part, ISOTROPIC, ConcentrationDependent(MM, exponent=0.0), wet,
+                               TIMES, accuracy, store_fields=True)
+        fields, errors = field_errors(run)
+        coordinates = run.marched[-1].coordinates
+        if isinstance(part, Bar):
+            coordinates = bar_coordinates(BAR, ISOTROPIC, coordinates)
+        exact = exact_history_field(block, ISOTROPIC, wet, TIMES, coordinates)
+        print(f"{type(part).__name__} at {accuracy:g}: {run.meshes[-1].cells} cells, planform "
+              f"reference {run.planform.grid.cells} cells, {time.process_time() - began:.1f} "
+              f"CPU s; {errors}")
+        row("corrected - exact", np.max(np.abs(fields - exact), axis=1) / MM)
+        row("coarse cells - exact", np.max(np.abs(run.marched[-1].plate.fields - exact),
+                                           axis=1) / MM)
+        if not isinstance(part, Bar):
+            row("volume means: corrected - exact",
+                (volume_mean(run, fields) - volume_mean(run, exact)) / MM)
+            row("exact's volume mean - mean", (volume_mean(run, exact) - run.results[-1][0])
+                / MM)
+
+
+def dc():
+    k = float(sys.argv[2]) if len(sys.argv) > 2 else 2.0
+    accuracy = float(sys.argv[3]) if len(sys.argv) > 3 else 3e-2
+    for name, start, surface in (("absorbing", 0.0, MM), ("drying", MM, 0.0)):
+        began = time.process_time()
+        run = corrected_levels(PLATE, ISOTROPIC, ConcentrationDependent(MM, exponent=k),
+                               exposure(start, surface), TIMES, accuracy, store_fields=True)
+        fields, errors = field_errors(run)
+        print(f"plate k = {k:g} {name} at {accuracy:g}: {run.meshes[-1].cells} cells, "
+              f"{time.process_time() - began:.1f} CPU s; {errors}")
+        mean = run.results[-1][0]
+        row("volume mean corrected - mean", (volume_mean(run, fields) - mean) / MM)
+        row("volume mean coarse - mean",
+            (volume_mean(run, run.marched[-1].plate.fields) - mean) / MM)
+
+
+def cam():
+    k = float(sys.argv[2]) if len(sys.argv) > 2 else 2.0
+    accuracy = float(sys.argv[3]) if len(sys.argv) > 3 else 1e-2
+    spec = importlib.util.spec_from_file_location(
+        "dc_defect_correction", Path(__file__).with_name("dc_defect_correction.py"))
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    geometry, diffusivity, wet, times, law = module.demo_cam(k)
+    began = time.process_time()
+    run = corrected_levels(geometry, diffusivity, law, wet, times, accuracy, store_fields=True)
+    marched = time.process_time()
+    fields, errors = field_errors(run)
+    print(f"demo cam k = {k:g} at {accuracy:g}: {[m.cells for m in run.meshes]} cells, planform "
+          f"reference {run.planform.grid.cells} cells, {len(times)} outputs; run "
+          f"{marched - began:.1f} CPU s, fields {time.process_time() - marched:.2f} CPU s; "
+          f"{errors}", flush=True)
+
+
+def cost():
+    k = float(sys.argv[2]) if len(sys.argv) > 2 else 2.0
+    accuracy = float(sys.argv[3]) if len(sys.argv) > 3 else 3e-2
+    for store in (False, True):
+        began = time.process_time()
+        result = solve_corrected(PLATE, ISOTROPIC, ConcentrationDependent(MM, exponent=k),
+                                 exposure(0.0, MM), TIMES, accuracy, store_fields=store)
+        print(f"plate k = {k:g} at {accuracy:g} store_fields={store}: "
+              f"{time.process_time() - began:.1f} CPU s, {result.cells} cells; "
+              f"{result.reason.split('; measured: ')[-1]}", flush=True)
+
+
+if __name__ == "__main__":
+    commands = {"fickian": fickian, "dc": dc, "cam": cam, "cost": cost}
+    if len(sys.argv) < 2 or sys.argv[1] not in commands:
+        sys.exit(f"usage: {sys.argv[0]} {' | '.join(commands)}")
+    commands[sys.argv[1]]()
