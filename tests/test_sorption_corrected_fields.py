@@ -92,3 +92,36 @@ def test_dc_fields_under_auto_are_corrected_and_consistent_with_the_mean(monkeyp
     seen = coarse > 1e-5
     assert np.all(corrected[seen] <= 0.5 * coarse[seen])
     assert np.max(corrected) <= errors.total
+
+
+def test_the_planform_reading_is_second_order_and_holds_mirrors_and_the_surface():
+    """``defectfields.planform_at`` (linear on the Delaunay triangles of the cell points, the
+    exposed outline at 0, images across mirror lines): a smooth U vanishing on the outline
+    of the 4 x 3 x 2 mm plate, read at another graded mesh's points (some on the mirror
+    line), converges at second order under nested refinement (from the 0.3 plan refined
+    once: 160, 648, 2 608 cells, measured ratios of the errors 4.2, 3.3), the same on the
+    half cut at its mirror line x = 2 mm (4.4, 5.7), and is 0 on the exposed outline."""
+    from fickcam.diffusion.layout import planform_cells, triangulate
+    from fickcam.diffusion.prism import admissible, refine
+    from fickcam.diffusion.defectfields import exposed_points, planform_at
+
+    def unaccomplished(tess, points):
+        x, y = tess.physical(points).T
+        return x * (4e-3 - x) * y * (3e-3 - y) / (2e-3 * 1.5e-3) ** 2
+
+    whole = planform_cells(PLATE, 0.3, 0.3, (1.0, 1.0))
+    half = admissible(triangulate(PLATE, 0.3 * H, growth=0.3, stretch=(1.0, 1.0)), PLATE,
+                      (1.0, 1.0), mirrors=((0, 2e-3),))
+    assert half.mirrors and np.all(half.centres[:, 0] >= 2e-3)
+    points = planform_cells(PLATE, 0.5, 0.5, (1.0, 1.0)).centres
+    for tess, at in ((whole, points), (half, points[points[:, 0] >= 2e-3])):
+        exact = unaccomplished(tess, at)
+        errors = []
+        for level in (refine(tess), refine(refine(tess)), refine(refine(refine(tess)))):
+            read = planform_at(level, unaccomplished(level, level.centres)[None, :], at)[0]
+            errors.append(np.max(np.abs(read - exact)))
+        assert errors[0] / errors[1] > 2.8 and errors[1] / errors[2] > 2.8   # 4 at order 2
+        outline = exposed_points(tess)
+        on_outline = planform_at(tess, unaccomplished(tess, tess.centres)[None, :], outline)
+        np.testing.assert_allclose(on_outline, 0.0, atol=1e-12)
+    assert np.any(points[:, 0] == 2e-3)   # read on the mirror line itself
