@@ -110,8 +110,8 @@ class References:
     sheet's at its z centres (times, z widths), the finest planform's and the one refined
     once less at its planform cells (times, cells). The field takes the finest planform
     alone: the Richardson combination f + (f - c) / 3 the mean takes (``defect.
-    refined_reference``) doubled the Fickian field's error on the 4 x 3 x 2 mm plate at
-    3e-2 (2.5e-2 against 1.2e-2 of the swing at tau* = 0.01): point values read between
+    refined_reference``) raised the Fickian field's error on the 4 x 3 x 2 mm plate at
+    3e-2 from 5.7e-3 to 8.8e-3 of the swing (tau* = 0.01): point values read between
     non-nested cells are not in the asymptotic range there."""
 
     sheet: np.ndarray
@@ -147,9 +147,10 @@ def corrected_fields(level, cells, sheet_ref: np.ndarray, planform_ref: np.ndarr
 
 
 def restricted(fields: np.ndarray, cells, coarse) -> np.ndarray:
-    """A field of U = g - c on ``cells`` (``Cells.refined`` of ``coarse``) read at
+    """A field (times, cells) on ``cells`` (``Cells.refined`` of ``coarse``) read at
     ``coarse``'s cell points: each coarse z width is two fine ones (the mean of the two at
-    their shared node, linear), the planform by ``planform_at``."""
+    their shared node, linear), the planform by ``planform_at`` without the outline's
+    nodes (the field, Q - 1 in ``field_errors``, need not vanish there)."""
     times = fields.shape[0]
     layers = fields.reshape(times, coarse.z.size, 2, cells.tess.cells).mean(axis=2)
     flat = layers.reshape(times * coarse.z.size, cells.tess.cells)
@@ -176,18 +177,17 @@ class FieldErrors:
     sheet: float        # the fine sheet's estimate (its mean's)
     planform: float     # the finest planform's, second order: its change from the planform
     #                     refined once less / (R^2 - 1)
-    three_d: float      # the change from the coarser nested mesh (0 with one mesh)
+    three_d: float      # the change from the coarser nested mesh
 
     @property
     def total(self) -> float:
         return self.sheet + self.planform + self.three_d
 
     def note(self) -> str:
-        three_d = (f"; change from the coarser nested mesh {self.three_d:.1e}"
-                   if self.three_d else "")
         return (f"; fields: the finest mesh's cells x the sheet's and the planform's ratios, "
                 f"cell by cell (largest correction {self.correction:.1e}; sheet {self.sheet:.1e}, "
-                f"planform {self.planform:.1e}{three_d}: sum {self.total:.1e}, the fields' "
+                f"planform {self.planform:.1e}, change from the coarser nested mesh "
+                f"{self.three_d:.1e}: sum {self.total:.1e}, the fields' "
                 "error indicated, not in the estimate)")
 
 
@@ -203,7 +203,8 @@ def field_errors(run) -> tuple[np.ndarray, FieldErrors]:
     read on Q - 1 (``unseparated_share``: near 0, smooth, where U itself is too steep on
     these coarse cells to be carried between the meshes by ``restricted``: the exact
     Fickian U so carried from the 4 x 3 x 2 mm plate's 1 200 cells to its 150 erred 0.11
-    of the swing at tau* = 0.01), times the references' product there; at order 1 the
+    of the swing at tau* = 0.01, by ``restricted`` with the outline's nodes), times the
+    references' product there; at order 1 the
     finer field's error is about that change (``defect.ORDER_ONE``). Their sum, the
     fields' error indicated, was 2.2 (plate) and 1.4 (6 x 4 x 2 mm bar) x the Fickian
     fields' largest error at 3e-2 (``benchmarks/dc_corrected_fields.py fickian``). None of
@@ -220,13 +221,11 @@ def field_errors(run) -> tuple[np.ndarray, FieldErrors]:
     fields, references = on(-1)
     level, cells = run.marched[-1], run.meshes[-1]
     once_less = corrected_fields(level, cells, references.sheet, references.coarser, surface)
-    three_d = 0.0
-    if len(run.meshes) >= 2:
-        coarse, fine = run.meshes[-2:]
-        coarser, coarse_references = on(-2)
-        share, product = unseparated_share(coarser, coarse_references, surface)
-        carried = restricted(unseparated_share(fields, references, surface)[0], fine, coarse)
-        three_d = float(np.max(np.abs((carried - share) * product))) / run.scale
+    coarse, fine = run.meshes[-2:]   # ``solve_corrected`` marches two nested meshes or more
+    coarser, coarse_references = on(-2)
+    share, product = unseparated_share(coarser, coarse_references, surface)
+    carried = restricted(unseparated_share(fields, references, surface)[0], fine, coarse)
+    three_d = float(np.max(np.abs((carried - share) * product))) / run.scale
     weight = run.planform.coarser[1]
     return fields, FieldErrors(float(np.max(np.abs(fields - level.plate.fields))) / run.scale,
                                run.sheet.error_estimate,
