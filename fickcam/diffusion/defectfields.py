@@ -192,7 +192,8 @@ class FieldErrors:
 
 
 def field_errors(run) -> tuple[np.ndarray, FieldErrors]:
-    """(fields, errors): the finest nested mesh's cells corrected (``corrected_fields``) and
+    """(fields, errors) of ``run`` (``defect.Levels`` on nested meshes, ``store_fields``):
+    the finest nested mesh's cells corrected (``corrected_fields``) and
     what is known of their error, relative to the swing: the largest correction (the
     coarse cells' own error, indicated); the fine sheet's estimate (its mean's; its cells'
     values read at the z centres erred 2.7e-3 where it estimated 2.2e-3, Fickian 4 x 3 x 2
