@@ -10,6 +10,10 @@ and against the corrected mean, and what keeping them costs.
     python benchmarks/dc_corrected_fields.py dc [K] [ACCURACY]
         # k (default 2) on the plate, absorbing and drying: the fields' volume mean against
         # the corrected mean, for the corrected and the coarse cells, and the indication
+    python benchmarks/dc_corrected_fields.py wide [K] [SIDE_MM] [MARGIN_MM]
+        # k (default 2) absorbing on a SIDE x SIDE x 2 mm plate (default 10, at 3e-2) up to
+        # tau* = 0.03: the corrected and the coarse cells' fields more than MARGIN (3) mm from
+        # every edge against the D(c) sheet alone at 1e-3 (Crank 1975 ch. 9)
     python benchmarks/dc_corrected_fields.py cam [K] [ACCURACY]
         # the demo cam (configs/singh2017_cam.yaml, exponent K, default 2, at 1e-2): the
         # fields' indicated error and the CPU of the run and of the fields' correction
@@ -29,7 +33,7 @@ from pathlib import Path
 
 import numpy as np
 
-from fickcam.diffusion import Bar, CamPlate, Diffusivity, Exposure
+from fickcam.diffusion import Bar, CamPlate, Diffusivity, Exposure, Sheet, solve
 from fickcam.diffusion.analytic import exact_history_field
 from fickcam.diffusion.defect import corrected_levels, solve_corrected
 from fickcam.diffusion.defectfields import field_errors
@@ -99,6 +103,33 @@ def dc():
             (volume_mean(run, run.marched[-1].plate.fields) - mean) / MM)
 
 
+def wide():
+    k = float(sys.argv[2]) if len(sys.argv) > 2 else 2.0
+    side = (float(sys.argv[3]) if len(sys.argv) > 3 else 10.0) * 1e-3
+    margin = (float(sys.argv[4]) if len(sys.argv) > 4 else 3.0) * 1e-3
+    plate = CamPlate(np.array([0, side, side, 0.0]), np.array([0, 0, side, side]), H)
+    times = TIMES[:3]
+    wet = Exposure.piecewise([0.0, times[-1]], [330.0], [MM], initial_moisture=0.0)
+    law = ConcentrationDependent(MM, exponent=k)
+    began = time.process_time()
+    run = corrected_levels(plate, ISOTROPIC, law, wet, times, 3e-2, store_fields=True)
+    fields, errors = field_errors(run)
+    spent = time.process_time() - began
+    sheet = solve(Sheet(H), ISOTROPIC, wet, times, accuracy=1e-3, sorption=law, model="slab",
+                  store_fields=True)
+    at = run.marched[-1].coordinates
+    centre = ((np.minimum(at["x"], side - at["x"]) > margin)
+              & (np.minimum(at["y"], side - at["y"]) > margin))
+    reference = np.stack([np.interp(at["z"][centre], sheet.cell_coordinates["z"], row)
+                          for row in sheet.fields])
+    print(f"plate {side * 1e3:g} mm k = {k:g} absorbing at 3e-2: {run.meshes[-1].cells} cells "
+          f"({centre.sum()} central), {spent:.1f} CPU s; sheet at 1e-3 estimate "
+          f"{sheet.error_estimate:.1e}; {errors} (sum {errors.total:.2e})")
+    row("corrected - sheet", np.max(np.abs(fields[:, centre] - reference), axis=1) / MM)
+    row("coarse cells - sheet", np.max(np.abs(run.marched[-1].plate.fields[:, centre]
+                                              - reference), axis=1) / MM)
+
+
 def cam():
     k = float(sys.argv[2]) if len(sys.argv) > 2 else 2.0
     accuracy = float(sys.argv[3]) if len(sys.argv) > 3 else 1e-2
@@ -130,7 +161,7 @@ def cost():
 
 
 if __name__ == "__main__":
-    commands = {"fickian": fickian, "dc": dc, "cam": cam, "cost": cost}
+    commands = {"fickian": fickian, "dc": dc, "wide": wide, "cam": cam, "cost": cost}
     if len(sys.argv) < 2 or sys.argv[1] not in commands:
         sys.exit(f"usage: {sys.argv[0]} {' | '.join(commands)}")
     commands[sys.argv[1]]()
