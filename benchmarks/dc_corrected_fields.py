@@ -10,10 +10,11 @@ and against the corrected mean, and what keeping them costs.
     python benchmarks/dc_corrected_fields.py dc [K] [ACCURACY]
         # k (default 2) on the plate, absorbing and drying: the fields' volume mean against
         # the corrected mean, for the corrected and the coarse cells, and the indication
-    python benchmarks/dc_corrected_fields.py wide [K] [SIDE_MM] [MARGIN_MM]
-        # k (default 2) absorbing on a SIDE x SIDE x 2 mm plate (default 10, at 3e-2) up to
-        # tau* = 0.03: the corrected and the coarse cells' fields more than MARGIN (3) mm from
-        # every edge against the D(c) sheet alone at 1e-3 (Crank 1975 ch. 9)
+    python benchmarks/dc_corrected_fields.py wide [K] [SIDE_MM] [MARGIN_MM] [OUTPUTS]
+        # k (default 2) absorbing on a SIDE x SIDE x 2 mm plate (default 8, at 3e-2) up to
+        # the OUTPUTS-th output (default 2: tau* = 0.01): the corrected and the coarse cells'
+        # fields more than MARGIN (2.5) mm from every edge against the D(c) sheet alone at
+        # 1e-3 (Crank 1975 ch. 9)
     python benchmarks/dc_corrected_fields.py cam [K] [ACCURACY]
         # the demo cam (configs/singh2017_cam.yaml, exponent K, default 2, at 1e-2): the
         # fields' indicated error and the CPU of the run and of the fields' correction
@@ -105,10 +106,10 @@ def dc():
 
 def wide():
     k = float(sys.argv[2]) if len(sys.argv) > 2 else 2.0
-    side = (float(sys.argv[3]) if len(sys.argv) > 3 else 10.0) * 1e-3
-    margin = (float(sys.argv[4]) if len(sys.argv) > 4 else 3.0) * 1e-3
+    side = (float(sys.argv[3]) if len(sys.argv) > 3 else 8.0) * 1e-3
+    margin = (float(sys.argv[4]) if len(sys.argv) > 4 else 2.5) * 1e-3
     plate = CamPlate(np.array([0, side, side, 0.0]), np.array([0, 0, side, side]), H)
-    times = TIMES[:3]
+    times = TIMES[:int(sys.argv[5]) if len(sys.argv) > 5 else 2]
     wet = Exposure.piecewise([0.0, times[-1]], [330.0], [MM], initial_moisture=0.0)
     law = ConcentrationDependent(MM, exponent=k)
     began = time.process_time()
