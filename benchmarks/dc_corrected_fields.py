@@ -6,7 +6,11 @@ and against the corrected mean, and what keeping them costs.
         # k = 0 on the 4 x 3 x 2 mm plate and the 6 x 4 x 2 mm bar (default 3e-2): the
         # corrected and the coarse cells' fields against the exact block (Crank 1975 eq.
         # 4.51 at the cells' points), the indicated error (``defectfields.FieldErrors``),
-        # the volume means of the corrected and of the exact point values
+        # the volume means of the corrected and of the exact point values; on the plate
+        # also: the fine sheet read at the z centres, the field with the planform reference
+        # Richardson-combined (f + w (f - c)), the exact U carried by ``restricted`` from
+        # the finer nested mesh to the coarser one; on the bar the planform reference read
+        # by ``planform_at`` and by the nearest cell's value + its least-squares gradient
     python benchmarks/dc_corrected_fields.py dc [K] [ACCURACY]
         # k (default 2) on the plate, absorbing and drying: the fields' volume mean against
         # the corrected mean, for the corrected and the coarse cells, and the indication
@@ -33,11 +37,13 @@ import time
 from pathlib import Path
 
 import numpy as np
+from scipy.spatial import cKDTree
 
 from fickcam.diffusion import Bar, CamPlate, Diffusivity, Exposure, Sheet, solve
 from fickcam.diffusion.analytic import exact_history_field
 from fickcam.diffusion.defect import corrected_levels, solve_corrected
-from fickcam.diffusion.defectfields import field_errors
+from fickcam.diffusion.cellmoments import gradient_matrix
+from fickcam.diffusion.defectfields import References, corrected_fields, field_errors, planform_at
 from fickcam.diffusion.defectparts import bar_coordinates
 from fickcam.diffusion.prism import cell_areas
 from fickcam.diffusion.sorption import ConcentrationDependent
@@ -86,6 +92,56 @@ def fickian():
                 (volume_mean(run, fields) - volume_mean(run, exact)) / MM)
             row("exact's volume mean - mean", (volume_mean(run, exact) - run.results[-1][0])
                 / MM)
+            plate_extras(run, exact, wet)
+        else:
+            bar_reading(run, wet)
+
+
+def plate_extras(run, exact, wet):
+    """The plate's rows of ``fickian`` beyond the fields' errors (module docstring)."""
+    surface = np.asarray(wet.surface_before(TIMES), float)
+    g = surface[:, None]
+    level, cells = run.marched[-1], run.meshes[-1]
+    references = References.of(cells, run.sheet, run.planform, surface, H)
+    z_centres = np.unique(level.coordinates["z"])
+    sheet = exact_history_field(Sheet(H), ISOTROPIC, wet, TIMES, {"z": z_centres})
+    row("sheet read at z - exact", np.max(np.abs(g - references.sheet - sheet), axis=1) / MM)
+    print(f"  (the sheet's estimate {run.sheet.error_estimate:.2e})")
+    weight = run.planform.coarser[1]
+    combined = references.planform + weight * (references.planform - references.coarser)
+    row("Richardson planform field - exact",
+        np.max(np.abs(corrected_fields(level, cells, references.sheet, combined, surface)
+                      - exact), axis=1) / MM)
+    coarse = run.meshes[-2]
+    coarse_exact = exact_history_field(Bar(4e-3, 3e-3, H), ISOTROPIC, wet, TIMES,
+                                       run.marched[-2].coordinates)
+    layers = (g - exact).reshape(len(TIMES), coarse.z.size, 2, -1).mean(axis=2)
+    carried = planform_at(cells.tess, layers.reshape(len(TIMES) * coarse.z.size, -1),
+                          coarse.tess.centres).reshape(len(TIMES), -1)
+    row(f"exact U {cells.cells} -> {coarse.cells} - exact",
+        np.max(np.abs(carried - (g - coarse_exact)), axis=1) / MM)
+
+
+def bar_reading(run, wet):
+    """The bar's planform reference read at the 3-D mesh's cell points, two ways, against
+    the exact rectangle (the block's section, Crank 1975 eq. 4.51 of two sheets)."""
+    surface = np.asarray(wet.surface_before(TIMES), float)
+    g = surface[:, None]
+    reference, points = run.planform, run.meshes[-1].tess.centres
+    physical = run.meshes[-1].tess.physical(points)
+    exact = exact_history_field(Bar(6e-3, 4e-3, 1.0), ISOTROPIC, wet, TIMES,
+                                {"x": physical[:, 0] + 3e-3, "y": physical[:, 1] + 2e-3,
+                                 "z": np.full(len(points), 0.5)})
+    values = g - reference.fields
+    row("planform_at - exact", np.max(np.abs(g - planform_at(reference.grid, values, points)
+                                             - exact), axis=1) / MM)
+    _, nearest = cKDTree(reference.grid.centres).query(points)
+    gradient = (gradient_matrix(reference.grid) @ values.T).T
+    offset = points - reference.grid.centres[nearest]
+    read = (values[:, nearest] + gradient[:, 2 * nearest] * offset[:, 0]
+            + gradient[:, 2 * nearest + 1] * offset[:, 1])
+    row("nearest + gradient - exact", np.max(np.abs(g - read - exact), axis=1) / MM)
+    print(f"  ({reference.grid.cells} reference cells read at {len(points)} points)")
 
 
 def dc():
