@@ -110,8 +110,10 @@ def run(scene, *, accuracy: float | None = None, progress: bool = False):
     parts = build_parts(scene)
     ds, histories = _age(scene, environment, times, accuracy, progress, parts=parts)
     if scene.limits:
-        ds = ds.merge(_limits(ds, scene, environment, times, accuracy, parts, histories),
-                      compat="override")
+        limits, searched = _limits(ds, scene, environment, times, accuracy, parts, histories)
+        notices = [*ds.attrs["notices"], *searched]
+        ds = ds.merge(limits, compat="override")
+        ds.attrs["notices"] = notices
         ds.attrs["limits"] = {limit.variable: limit.as_attrs() for limit in scene.limits}
     ds.attrs["wall_time"] = _time.perf_counter() - started
     return ds
@@ -211,8 +213,9 @@ def _aged_values(scene: Scene, environment: Environment, times: np.ndarray,
 
 def _limits(ds, scene: Scene, environment: Environment, times, accuracy: float | None,
             parts: list[Part], histories: list[PartHistory]):
-    """limit_ratio (time, limit) and time_out_of_spec (limit) of the scene's limits, each
-    crossing located by re-running the model inside its bracketing interval."""
+    """(limit_ratio (time, limit) and time_out_of_spec (limit) of the scene's limits, each
+    crossing located by re-running the model inside its bracketing interval; the search's
+    notices, ``_search_notices``)."""
     from .dataset import build_dataset
     from .limits import first_crossings, limit_ratio
 
@@ -229,14 +232,20 @@ def _limits(ds, scene: Scene, environment: Environment, times, accuracy: float |
     designs = {design_name(n): ds[design_name(n)].variable for n in names
                if design_name(n) in ds}
 
+    searched: dict[str, float] = {}   # part -> largest diffusion estimate of the search
+
     def evaluate(at) -> np.ndarray:
         """The ratios at ageing times ``at`` (inside the stored span): diffusion at the
         stored times and ``at`` together (``_aged_values``), so its plan and cached step
         responses are the stored run's; the mechanisms evaluated at ``at`` only; only the
         limited variables go into the Dataset, beside the stored run's as-designed values."""
         at = np.asarray(at, float)
-        values, coords, _, _ = _aged_values(scene, environment, at, accuracy, False, parts,
-                                            stored=(times, histories))
+        values, coords, _, aged = _aged_values(scene, environment, at, accuracy, False, parts,
+                                               stored=(times, histories))
+        for history in aged:
+            if history.diffusion is not None:
+                searched[history.part.name] = max(searched.get(history.part.name, 0.0),
+                                                  history.diffusion.error_estimate)
         kept = {name: value for name, value in values.items() if name in names}
         dims = {dim for name in kept for dim in VARIABLES[name].dims}
         return ratios(build_dataset(kept, {c: v for c, v in coords.items() if c in dims})
@@ -247,8 +256,26 @@ def _limits(ds, scene: Scene, environment: Environment, times, accuracy: float |
     if times[0] > 0 and (stored[0] > 1).any():  # out of spec at the first stored time: since?
         search_times, search = np.concatenate([[0.0], times]), np.vstack([evaluate([0.0]), stored])
     crossings = first_crossings(search_times, search, evaluate)
-    return build_dataset({"limit_ratio": stored, "time_out_of_spec": crossings},
-                         {"time": times, "limit": [limit.variable for limit in scene.limits]})
+    return (build_dataset({"limit_ratio": stored, "time_out_of_spec": crossings},
+                          {"time": times, "limit": [limit.variable for limit in scene.limits]}),
+            _search_notices(searched, histories, diffusion_options(scene, accuracy)["accuracy"]))
+
+
+def _search_notices(searched: dict[str, float], histories: list[PartHistory],
+                    accuracy: float) -> list[str]:
+    """Notices (also logged) for the parts whose diffusion at the limit search's times
+    (read between the stored solve's steps, ``DiffusionResult.extend``: the stored estimate
+    plus the interpolation's) is estimated above the requested accuracy while the stored
+    run's was not (that one is already noticed)."""
+    stored = {h.part.name: h.diffusion.error_estimate for h in histories
+              if h.diffusion is not None}
+    notices = [f"{name}: estimated diffusion error {estimate:.1e} at the limit search's "
+               f"times above the requested accuracy {accuracy:g} (the crossing times carry it)"
+               for name, estimate in searched.items()
+               if estimate > accuracy >= stored.get(name, 0.0)]
+    for message in notices:
+        log.warning(message)
+    return notices
 
 
 def age_part(part: Part, environment: Environment, times, options: dict, scene: Scene,

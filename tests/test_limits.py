@@ -214,3 +214,32 @@ def test_summary_query_and_plot_show_the_limit(tmp_path, capsys):
     assert main(["plot", str(result), "--kind", "limits", "-o", str(tmp_path)]) == 0
     assert (tmp_path / "limits.png").stat().st_size > 10_000
 
+
+
+def test_a_search_estimate_above_the_accuracy_is_noticed_and_the_crossing_kept(monkeypatch):
+    """Diffusion at the search's times (the stored and the new together) estimated above
+    the requested accuracy (as a D(c) result read between its steps can be: the stored
+    estimate plus the interpolation's) while the stored run's is within it: the run says
+    so, naming the part, and still gives the crossing. With the estimates left alone no
+    such notice appears."""
+    import fickcam.diffusion
+
+    solve, stored_times = fickcam.diffusion.solve, 4
+    limits = {"minimum_transmission_angle": {"min": "35.5 deg"}}
+    scene = fast_fourbar(["0 d", "7 d", "30 d", "40 d"], limits)
+    honest = fickcam.run(scene, accuracy=1e-3)
+    assert not [n for n in honest.attrs["notices"] if "limit search" in n]
+
+    def inflated(*args, **kwargs):   # a search solve (more times than the stored run)
+        result = solve(*args, **kwargs)
+        if len(args[3]) > stored_times:
+            result.error_estimate = 2.0 * kwargs["accuracy"]
+        return result
+    monkeypatch.setattr(fickcam.diffusion, "solve", inflated)
+    noticed = fickcam.run(scene, accuracy=1e-3)
+    search = [n for n in noticed.attrs["notices"] if "limit search" in n]
+    assert search and all("estimated diffusion error 2.0e-03" in n and "accuracy 0.001" in n
+                          for n in search)
+    assert {n.split(":")[0] for n in search} <= set(noticed["part"].values.tolist())
+    assert float(noticed["time_out_of_spec"].sel(limit="minimum_transmission_angle")) == \
+        pytest.approx(float(honest["time_out_of_spec"].sel(limit="minimum_transmission_angle")))

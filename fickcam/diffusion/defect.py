@@ -45,6 +45,7 @@ from functools import partial
 import numpy as np
 
 from .calibration import PAIR_TO_EXTRAPOLATED
+from .defectfields import stored
 from .defectparts import (Cells, Level, Pair, Setting, as_prism, bar_coordinates, corrected,
                           level_plan, sheet_reference, steps_for, three_d)
 from .dense import Extension, combined
@@ -141,7 +142,7 @@ def refined_reference(setting: Setting, start: Plan, level: Level, sheet: Pair,
         if estimate <= PLANFORM_SHARE * accuracy or (
                 total is not None and total(reference, estimate, cells, factor) <= accuracy):
             break
-    return reference, estimate, cells, factor
+    return replace(reference, coarser=(planforms[-2], weight)), estimate, cells, factor
 
 
 def gap(a, b, scale: float) -> float:
@@ -216,18 +217,18 @@ def corrected_levels(geometry, diffusivity, law, exposure, times, accuracy: floa
                      meshes: int = 2, *, plans=None, base=None, surface_layer_depth=5e-4,
                      store_fields=False, part="") -> Levels:
     """The corrected product (module docstring) on ``meshes`` nested 3-D meshes: the graded
-    cells of the ``base_level`` plan, each next one refined by 2 in every direction
+    cells of the ``base_plan`` plan, each next one refined by 2 in every direction
     (``Cells.refined``); or, with ``plans`` (accuracies of ``nonlinear_plan``, coarsest
     first), on those plans' graded cells (not nested; ``benchmarks/dc_defect_correction.py
     plate-order``). ``base``: the coarsest nested plan's accuracy instead of ``base_plan``'s.
     The planform reference is refined from the ``MESH_LEVELS[-1]`` plan's graded planform.
-    ``store_fields`` keeps the finest mesh's fields."""
+    ``store_fields`` keeps every mesh's fields and the references' (``defectfields``)."""
     times = np.asarray(times, float)
     geometry, diffusivity, faces_layer = as_prism(geometry, diffusivity)
     setting = Setting.of(geometry, diffusivity, law, exposure, times, surface_layer_depth,
-                         steps_for(accuracy), part, faces_layer)
+                         steps_for(accuracy), part, faces_layer, store_fields)
     sheet = sheet_reference(geometry, diffusivity, law, exposure, times, accuracy,
-                            surface_layer_depth)
+                            surface_layer_depth, store_fields)
     reference = Pair(sheet.mean, sheet.surface)
 
     def planned(a):
@@ -240,8 +241,7 @@ def corrected_levels(geometry, diffusivity, law, exposure, times, accuracy: floa
     else:
         chosen = [planned(a) for a in plans]
         cells = [Cells.of(geometry, setting.d, c) for c in chosen]
-    marched = [three_d(setting, c, store_fields and i == len(chosen) - 1, m)
-               for i, (c, m) in enumerate(zip(chosen, cells))]
+    marched = [three_d(setting, c, store_fields, m) for c, m in zip(chosen, cells)]
     scale, surface = swing(exposure, times) or 1.0, surface_of(setting)
 
     def levels(planform, planform_error, planform_cells, factor) -> Levels:
@@ -317,8 +317,8 @@ def solve_corrected(geometry, diffusivity, law, exposure, times, accuracy: float
     total is above the accuracy, the rest of the estimate below it (so a smaller 3-D term
     can meet it) and the mesh within ``NESTED_CELLS``; plus the sheet's and the planform's
     estimates and the time error of the marches (``PAIR_TO_EXTRAPOLATED`` pair^2).
-    ``store_fields``: the finest 3-D mesh's own cells (not corrected; a Bar's in its own
-    frame, ``bar_coordinates``)."""
+    ``store_fields``: the finest 3-D mesh's cells corrected cell by cell
+    (``defectfields.stored``; a Bar's in its own frame, ``bar_coordinates``)."""
     times = np.asarray(times, float)
     run = corrected_levels(geometry, diffusivity, law, exposure, times, accuracy,
                            surface_layer_depth=surface_layer_depth,
@@ -341,7 +341,8 @@ def solve_corrected(geometry, diffusivity, law, exposure, times, accuracy: float
                              fine.cells + run.planform_cells,
                              sum(m.plate.steps for m in run.marched), float(estimate), note)
     if store_fields:
-        result.fields, result.cell_coordinates = fine.plate.fields, fine.coordinates
+        result.fields, result.reason = stored(run, result.reason)
+        result.cell_coordinates = fine.coordinates
         if isinstance(geometry, Bar):
             result.cell_coordinates = bar_coordinates(geometry, diffusivity, fine.coordinates)
     else:   # the limit search's extra times: read between the marches' steps (``dense``)

@@ -46,6 +46,9 @@ class Pair:
     steps: int = 0
     pair: float = 0.0   # largest |fine - coarse| of the mean (time error indicator)
     track: Track | None = None   # (mean, layer) at every step (``dense``: ``extend``)
+    grid: object = None   # a planform march's cells (``prism.Tessellation``: ``defectfields``)
+    coarser: tuple | None = None   # the planform reference's (Pair refined once less, the
+    #                               Richardson weight on the change): ``defectfields``
 
 
 def as_prism(geometry, diffusivity):
@@ -202,9 +205,9 @@ def level_plan(geometry, diffusivity, law, exposure, times, mesh_accuracy, per_d
 
 
 def sheet_reference(geometry, diffusivity, law, exposure, times, accuracy,
-                    depth=5e-4) -> DiffusionResult:
+                    depth=5e-4, store_fields=False) -> DiffusionResult:
     """The D(c) sheet of the part's thickness at ``SHEET_SHARE`` x the accuracy (FiPy slab;
-    its layer within ``depth`` of a face)."""
+    its layer within ``depth`` of a face; its cells' fields with ``store_fields``)."""
     sheet = Sheet(geometry.thickness)
 
     def planner(d, a, outputs):
@@ -213,7 +216,7 @@ def sheet_reference(geometry, diffusivity, law, exposure, times, accuracy,
                            s.tau_star(outputs), a, exposure)
     chosen = nonlinear_plan(planner, diffusivity, law, exposure, times, SHEET_SHARE * accuracy)
     return solve_nonlinear(sheet, diffusivity, law, exposure, times, chosen,
-                           surface_layer_depth=depth)
+                           surface_layer_depth=depth, store_fields=store_fields)
 
 
 @dataclass(frozen=True)
@@ -231,15 +234,17 @@ class Setting:
     per_doubling: int
     part: str
     faces_layer: bool = False   # the layer includes the two faces (a Bar's: ``as_prism``)
+    keep_fields: bool = False   # the planform marches keep their fields (``defectfields``)
 
     @classmethod
     def of(cls, geometry, diffusivity, law, exposure, times, depth, per_doubling, part,
-           faces_layer=False):
+           faces_layer=False, keep_fields=False):
         scaled = fastest(diffusivity, law, exposure, times)
         return cls(geometry, law, exposure, np.asarray(times, float),
                    tuple(float(v) for v in scaled.pre_exponential),
                    law.largest_factor(wettest(exposure, times)),
-                   scales_of(geometry, scaled, exposure), depth, per_doubling, part, faces_layer)
+                   scales_of(geometry, scaled, exposure), depth, per_doubling, part, faces_layer,
+                   keep_fields)
 
     def run(self, disc, keep: bool = False, columns=()) -> Pair:
         return richardson_march(disc, self.law, self.top, self.exposure, self.times,
@@ -252,7 +257,8 @@ class Setting:
                                                       stretch_of(self.d)))
 
     def planform_on(self, tess) -> tuple[Pair, Pair, int]:
-        """``planform`` on the admissible cells ``tess``."""
+        """``planform`` on the admissible cells ``tess`` (both pairs with their cell values
+        and ``tess`` when ``keep_fields``)."""
         disc, weights = planform_disc(self.geometry, self.d, tess, self.depth)
         pair = self.run(disc, True, weights)
         g = np.asarray(self.exposure.surface_before(self.times), float)
@@ -260,8 +266,10 @@ class Setting:
         track = pair.track   # its columns 2, 3: the sums of u on ``weights``, g added as above
         moments = track.values[:, 2:] + track.surface[:, None] * (
             1.0 - np.array([np.sum(w) for w in weights]))
-        return (replace(pair, fields=None, track=track.with_values(track.values[:, :2])),
-                replace(pair, mean=mean, layer=layer, fields=None,
+        fields = pair.fields if self.keep_fields else None
+        return (replace(pair, fields=fields, grid=tess,
+                        track=track.with_values(track.values[:, :2])),
+                replace(pair, mean=mean, layer=layer, fields=fields, grid=tess,
                         track=track.with_values(moments)), disc.cells)
 
 
@@ -296,7 +304,7 @@ def three_d(setting: Setting, chosen: Plan, keep: bool, cells: Cells | None = No
         areas = disc.volumes[:cells.tess.cells]
         union = (float(areas @ band / areas.sum()), float(cells.z @ near / cells.z.sum()))
     plate = setting.run(disc, keep)
-    slab = setting.run(slab)
+    slab = setting.run(slab, keep)
     planform, moments, planform_cells = setting.planform_on(cells.tess)
     return Level(chosen, plate, slab, planform, moments, disc.cells, planform_cells,
                  disc.coordinates, union)
