@@ -457,8 +457,13 @@ def sheet_uptake_series(tau):
 
 
 def named_case(case: str):
-    """(geometry, diffusivity, exposure, times, law) of cam-K, plate-K-DIRECTION or soak-K."""
+    """(geometry, diffusivity, exposure, times, law) of cam-K, plate-K-DIRECTION, soak-K or
+    bar-K-DIRECTION (``dc_bar.py``'s 6 x 4 x 2 mm bar)."""
     kind, exponent, *direction = case.split("-")
+    if kind == "bar":
+        from dc_bar import SMALL, case as bar_case   # benchmarks/ (the script's directory)
+        bar, d, exposure, times, law, _, _ = bar_case(SMALL, direction[0], float(exponent))
+        return bar, d, exposure, times, law
     if kind == "cam":
         return demo_cam(float(exponent))
     if kind == "soak":
@@ -492,7 +497,7 @@ def nested(case: str, accuracy: str, *meshes: str) -> None:
         level = defect.three_d(run.setting, run.marched[0].plan, False, defect.Cells(tess, z))
         results[spec] = defect.corrected(level.plate, (level.slab, reference),
                                          (level.planform, run.planform),
-                                         defect.surface_of(run.setting))
+                                         defect.surface_of(run.setting), level.union)
         print(f"{spec}: {level.cells} cells ({tess.cells} x {z.size}), "
               f"{time.process_time() - start:.1f} CPU s", flush=True)
     print("| | " + " | ".join(results) + " |")

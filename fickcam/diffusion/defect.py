@@ -46,7 +46,7 @@ import numpy as np
 
 from .calibration import PAIR_TO_EXTRAPOLATED
 from .defectparts import (Cells, Level, Pair, Setting, as_prism, bar_coordinates, corrected,
-                          level_plan, sheet_reference, steps_for, three_d)
+                          cross, level_plan, sheet_reference, steps_for, three_d)
 from .dense import Extension, combined
 from .direct import swing
 from .geometry import Bar
@@ -64,7 +64,7 @@ BASE_PER_ACCURACY = 500.0  # the coarsest 3-D plan's accuracy per requested accu
 #   MESH_LEVELS[0] (``base_level``). On the demo cam (k = 2) at 1e-3 the 1.0 plan's nested
 #   pair changed by 5.2e-4 where the rest of the estimate left 4.4e-4 (and a third mesh would
 #   have 224 000 cells); the 0.5 plan's pair by 2.9e-4 (estimate 8.0e-4)
-REFINE = (2.0, 4.0)        # planform refinements (finest and growth / R) for Richardson
+REFINE = (2.0, 4.0, 8.0)   # planform refinements (finest and growth / R) for Richardson
 PLANFORM_CELLS = 60_000    # the finest planform tried
 PLANFORM_SHARE = 0.5       # of the accuracy: the planform's Richardson estimate
 SKIN_ESTIMATE_MARGIN = 1.0  # on the two-mesh 3-D change of a drying part (``skin_margin``),
@@ -145,7 +145,7 @@ class Levels:
     """The corrected result on each 3-D mesh of one solve, all with the same sheet and
     planform references."""
 
-    marched: list      # Level per mesh, coarsest first
+    marched: list      # Level per mesh, the finest last
     results: list      # (mean, layer) corrected, per mesh
     sheet: DiffusionResult
     planform: Pair     # the planform reference
@@ -155,15 +155,52 @@ class Levels:
     scale: float       # the swing the estimates are relative to
     setting: Setting
     meshes: list       # Cells per mesh
+    keys: list = ()    # (planform, z) halvings of each mesh from the first; () = the diagonal
 
-    def finer(self, store_fields: bool = False) -> "Levels":
-        """One more mesh: the finest refined by 2 (``Cells.refined``), nested."""
-        cells = self.meshes[-1].refined()
-        level = three_d(self.setting, self.marched[-1].plan, store_fields, cells)
-        result = corrected(level.plate, (level.slab, Pair(self.sheet.mean, self.sheet.surface)),
-                           (level.planform, self.planform), surface_of(self.setting), level.union)
-        return replace(self, marched=[*self.marched, level], results=[*self.results, result],
-                       meshes=[*self.meshes, cells])
+    @property
+    def lattice(self) -> list:
+        return list(self.keys)[:len(self.results)] or [(i, i) for i in range(len(self.results))]
+
+    def finer(self, store_fields: bool = False) -> "Levels | None":
+        """The next step of ``solve_corrected``, within ``NESTED_CELLS``, or None: the
+        finest refined by 2 in every direction (``Cells.refined``, 8 x its cells); where
+        that passes the cap, once, the ``cross`` around it (its largest mesh 2 x its cells;
+        ``combination``)."""
+        (p, z), cells = self.lattice[-1], self.meshes[-1].cells
+        if combination(self.lattice) is None:
+            if cells * 8 <= NESTED_CELLS:
+                return self.adding([], (p + 1, z + 1), store_fields)
+            if p >= 1 and z >= 1 and cells * 2 <= NESTED_CELLS:
+                along_z, along_planform = cross(p, z)
+                return self.adding([*along_z, *along_planform], (p, z), store_fields)
+        return None
+
+    def adding(self, keys: list, top: tuple, store_fields: bool) -> "Levels":
+        """These meshes and ``top`` (halvings of the first) added where missing, ``top`` the
+        finest (the last), its fields kept with ``store_fields``."""
+        have = dict(zip(self.lattice, zip(self.marched, self.results, self.meshes)))
+        surface, reference = surface_of(self.setting), Pair(self.sheet.mean, self.sheet.surface)
+        for key in [*keys, top]:
+            if key not in have:
+                cells = self.meshes[0].refined(*key)
+                level = three_d(self.setting, self.marched[0].plan,
+                                store_fields and key == top, cells)
+                have[key] = (level, corrected(level.plate, (level.slab, reference),
+                                              (level.planform, self.planform), surface,
+                                              level.union), cells)
+        order = [k for k in have if k != top] + [top]
+        marched, results, meshes = (list(v) for v in zip(*(have[k] for k in order)))
+        return replace(self, marched=marched, results=results, meshes=meshes, keys=order)
+
+
+def combination(lattice: list) -> tuple[list, list] | None:
+    """Indices (into ``lattice``) of the ``cross`` around the finest mesh (the last), or
+    None where it is not all there."""
+    index = {key: i for i, key in enumerate(lattice)}
+    chains = cross(*lattice[-1])
+    if not all(key in index for chain in chains for key in chain):
+        return None
+    return tuple([index[key] for key in chain] for chain in chains)
 
 
 def base_level(accuracy: float) -> float:
@@ -217,31 +254,59 @@ def corrected_levels(geometry, diffusivity, law, exposure, times, accuracy: floa
 
 
 def unseparated(run: Levels, margin: float) -> tuple[tuple, float]:
-    """((mean, layer), estimate) of the 3-D cells on the finest nested mesh. Two meshes:
-    the finest one's result, its estimate the change between them x ``ORDER_ONE`` x
-    ``margin`` (``skin_margin``). Three or more: the last three by ``three_levels`` (mean
-    and layer each; the second-order extrapolation where it may be taken), the order
-    measured, no margin."""
-    values, checked = finest(run.results)
-    if checked is None:
+    """((mean, layer), estimate) of the 3-D cells (``finest``). On the diagonal (each mesh
+    refined by 2 in every direction), two meshes: the finer one's result, its estimate the
+    change between them x ``ORDER_ONE`` x ``margin`` (``skin_margin``); three or more: the
+    last three by ``three_levels`` (mean and layer each; the second-order extrapolation
+    where it may be taken), the order measured, no margin. With the ``cross`` around the
+    finest (I, J): the combination technique (Griebel, Schneider & Zenger 1992, in
+    Iterative Methods in Linear Algebra, 263-281; its error splitting E = P(h_planform) +
+    Z(h_z) + mixed): R(I, J) + [R(I-1, J+1) - R(I-1, J)] + [R(I+1, J-1) - R(I, J-1)],
+    the planform and z errors of the mesh (I+1, J+1) without its cells, each direction's
+    step and estimate by ``three_levels`` on its chain; plus the mixed difference M =
+    R(I, J) - R(I, J-1) - R(I-1, J) + R(I-1, J-1) x ``margin``: for a mixed term c a^p b^z
+    (a, b <= 1/2: order >= 1 in each direction) the combination's is c (ab + a^2 + b^2 -
+    a - b), within |M| = |c| (1 - a)(1 - b)."""
+    values, checks = finest(run.results, run.lattice)
+    if len(checks) == 1 and checks[0] is None:
         return values, gap(run.results[-2], values, run.scale) * ORDER_ONE * margin
-    return values, max(checked[0][1], checked[1][1] / LAYER_TOLERANCE) / run.scale
+    errors = [sum(checked[i][1] for checked in checks) for i in range(2)]
+    if len(checks) == 2:
+        (z, planform), top = combination(run.lattice), run.results[-1]
+        for i in range(2):
+            mixed = top[i] - run.results[planform[1]][i] - run.results[z[1]][i] + \
+                run.results[z[0]][i]
+            errors[i] += float(np.max(np.abs(mixed))) * margin
+    return values, max(errors[0], errors[1] / LAYER_TOLERANCE) / run.scale
 
 
-def finest(results: list) -> tuple[tuple, list | None]:
-    """((mean, layer), the ``three_levels`` checks or None): what ``unseparated`` takes from
-    the corrected results of the nested meshes (coarsest first)."""
-    if len(results) < 3:
-        return results[-1], None
-    checked = [three_levels(*(r[i] for r in results[-3:])) for i in range(2)]
-    return tuple(taken(extrapolate, results[-2][i], results[-1][i])
-                 for i, (extrapolate, _) in enumerate(checked)), checked
+def finest(results: list, lattice: list | None = None) -> tuple[tuple, list]:
+    """((mean, layer), ``three_levels`` checks or None): what ``unseparated`` takes from the
+    corrected results of the nested meshes (the finest last; ``lattice``: their keys,
+    ``Levels.lattice``): fewer than three on the diagonal, the finest ([None]); three, the
+    last three's checks ([checks]); with the ``combination`` (its z and planform chains'
+    checks)."""
+    lattice = lattice or [(i, i) for i in range(len(results))]
+    chains = combination(lattice[:len(results)])
+    if chains is None:
+        if len(results) < 3:
+            return results[-1], [None]
+        chains = ([len(results) - 3, len(results) - 2, len(results) - 1],)
+    values, checks = list(results[-1]), []
+    for chain in chains:
+        checked = [three_levels(*(results[j][i] for j in chain)) for i in range(2)]
+        checks.append(checked)
+        for i, (extrapolate, _) in enumerate(checked):
+            middle, fine = results[chain[1]][i], results[chain[2]][i]
+            values[i] = values[i] + taken(extrapolate, middle, fine) - \
+                (middle if len(chains) == 2 else fine)
+    return tuple(values), checks
 
 
 def extension(run: Levels, result: DiffusionResult, accuracy: float, resolve) -> Extension:
     """``result.extend`` (``dense``): the corrected product of every nested mesh read
     between the marches' steps, combined as ``finest`` combines the solve's."""
-    exposure, meshes = run.setting.exposure, run.marched[-3:]
+    exposure, meshes = run.setting.exposure, run.marched
     tracks = [track for m in meshes for track in (m.plate.track, m.slab.track,
                                                   m.planform.track)]
 
@@ -252,7 +317,7 @@ def extension(run: Levels, result: DiffusionResult, accuracy: float, resolve) ->
         per_mesh = [corrected(pairs[3 * i], (pairs[3 * i + 1], sheet_at),
                               (pairs[3 * i + 2], reference), surface, m.union)
                     for i, m in enumerate(meshes)]
-        return finest(per_mesh)[0]
+        return finest(per_mesh, run.lattice)[0]
     return Extension(result, [*tracks, run.planform.track, run.sheet.extend.tracks[0]],
                      product, run.scale, accuracy, resolve, run.setting.part)
 
@@ -280,8 +345,11 @@ def solve_corrected(geometry, diffusivity, law, exposure, times, accuracy: float
         rest = sheet.error_estimate + run.planform_error + PAIR_TO_EXTRAPOLATED * pair ** 2
         return values, three_d_error, rest
     values, three_d_error, rest = estimated(run)
-    while rest < accuracy < rest + three_d_error and run.meshes[-1].cells * 8 <= NESTED_CELLS:
-        run = run.finer(store_fields)
+    while rest < accuracy < rest + three_d_error:
+        finer = run.finer(store_fields)
+        if finer is None:
+            break
+        run = finer
         values, three_d_error, rest = estimated(run)
     estimate = three_d_error + rest
     fine = run.marched[-1]
