@@ -28,6 +28,21 @@ the 1.0 plan, 3 507 cells) z alone 3.1e-4 then 2.5e-5, the planform alone 2.6e-4
 5.2e-4. The graded plans 1, 0.5, 0.25, 0.125 used before are not nested (z cells 4, 6, 6,
 8 on the plate) and their changes showed orders from -10 to 12.
 
+The error splits by direction: on the 6 x 4 x 2 mm bar at 1e-3 (``nested bar-K-DIRECTION
+1e-3``, P planform and Z z halvings of the 0.5 plan's mesh) the changes along z were 4.9e-4
+then 1.3e-4 at P = 0 and 5.1e-4, 1.4e-4 at P = 1 (k = 2 absorbing), those along the
+planform 4.3e-4, 1.3e-4 at Z = 0 and 4.4e-4, 1.4e-4 at Z = 1; drying with k = 1, z 1.2e-4
+then 3.6e-5 at P = 0 and 1, the planform 2.4e-4 at Z = 0, 1 and 2. So where the next
+diagonal mesh (8 x the cells) passes ``NESTED_CELLS``, the combination technique stands
+in for it (``Levels.finer``, ``unseparated``): from the ``cross`` of meshes around the
+finest (I, J), at most 2 x its cells, R(I, J) + [R(I-1, J+1) - R(I-1, J)] + [R(I+1, J-1) -
+R(I, J-1)], each direction's chain checked by ``three_levels``, plus the mixed
+difference. On a 3 x 2 x 2 mm plate (k = 2, 1e-2) it came within 5.7e-5 (absorbing) and
+6.9e-6 (drying) of the 8 x mesh, against 3.9e-4 and 3.4e-4 for the finest; on the bar at
+1e-3 ``solve_corrected``'s estimate fell from 1.3e-3 to 8.3e-4 (k = 1 drying, error
+7.7e-5) and, with the planform also refined 8 x, from 2.0e-3 to 4.8e-4 (k = 2 absorbing,
+error 1.1e-4 where it was 5.6e-4) (``benchmarks/dc_bar.py corrected``).
+
 Measured first and dropped: Fick at Crank's (1975 §9.3) weighted-mean D on the same
 3-D mesh (c_h + v_exact - v_h). With f(surface value) on the exposed faces (before the
 Kirchhoff face mean of ``sorption.mean_factor``) the Fickian and the D(c) sheets on the
@@ -45,8 +60,8 @@ from functools import partial
 import numpy as np
 
 from .calibration import PAIR_TO_EXTRAPOLATED
-from .defectparts import (Cells, Level, Pair, Setting, as_prism, bar_coordinates, corrected,
-                          cross, level_plan, sheet_reference, steps_for, three_d)
+from .defectparts import (Cells, Level, Pair, Setting, as_prism, bar_coordinates, combination,
+                          corrected, cross, level_plan, sheet_reference, steps_for, three_d)
 from .dense import Extension, combined
 from .direct import swing
 from .geometry import Bar
@@ -59,12 +74,15 @@ MESH_LEVELS = (1.0, 0.5)   # accuracies of the coarsest 3-D plan (then refined b
 #                            ``base_level``: down to the second where the accuracy is tight)
 #                            and of the plan whose graded planform the planform's refinement
 #                            starts from
-NESTED_CELLS = 30_000      # the finest nested 3-D mesh tried (cells on half the thickness)
+NESTED_CELLS = 32_000      # the finest nested 3-D mesh tried (cells on half the thickness):
+#   the diagonal's next (8 x) or the ``cross``'s largest (2 x the finest)
 BASE_PER_ACCURACY = 500.0  # the coarsest 3-D plan's accuracy per requested accuracy, at most
 #   MESH_LEVELS[0] (``base_level``). On the demo cam (k = 2) at 1e-3 the 1.0 plan's nested
 #   pair changed by 5.2e-4 where the rest of the estimate left 4.4e-4 (and a third mesh would
 #   have 224 000 cells); the 0.5 plan's pair by 2.9e-4 (estimate 8.0e-4)
-REFINE = (2.0, 4.0, 8.0)   # planform refinements (finest and growth / R) for Richardson
+REFINE = (2.0, 4.0, 8.0)   # planform refinements (finest and growth / R) for Richardson;
+#   8 where 4 leaves more than ``PLANFORM_SHARE`` (the bar, k = 2 absorbing at 1e-3: 8.7e-4
+#   at x 4, 2 889 cells; x 8 11 569 cells)
 PLANFORM_CELLS = 60_000    # the finest planform tried
 PLANFORM_SHARE = 0.5       # of the accuracy: the planform's Richardson estimate
 SKIN_ESTIMATE_MARGIN = 1.0  # on the two-mesh 3-D change of a drying part (``skin_margin``),
@@ -193,16 +211,6 @@ class Levels:
         return replace(self, marched=marched, results=results, meshes=meshes, keys=order)
 
 
-def combination(lattice: list) -> tuple[list, list] | None:
-    """Indices (into ``lattice``) of the ``cross`` around the finest mesh (the last), or
-    None where it is not all there."""
-    index = {key: i for i, key in enumerate(lattice)}
-    chains = cross(*lattice[-1])
-    if not all(key in index for chain in chains for key in chain):
-        return None
-    return tuple([index[key] for key in chain] for chain in chains)
-
-
 def base_level(accuracy: float) -> float:
     """The accuracy of the coarsest 3-D plan: ``BASE_PER_ACCURACY`` x the requested one, at
     most ``MESH_LEVELS[0]``, at least ``MESH_LEVELS[-1]``."""
@@ -281,11 +289,10 @@ def unseparated(run: Levels, margin: float) -> tuple[tuple, float]:
 
 
 def finest(results: list, lattice: list | None = None) -> tuple[tuple, list]:
-    """((mean, layer), ``three_levels`` checks or None): what ``unseparated`` takes from the
-    corrected results of the nested meshes (the finest last; ``lattice``: their keys,
-    ``Levels.lattice``): fewer than three on the diagonal, the finest ([None]); three, the
-    last three's checks ([checks]); with the ``combination`` (its z and planform chains'
-    checks)."""
+    """((mean, layer), [checks per chain] or [None]): what ``unseparated`` takes from the
+    corrected results of the nested meshes (the finest last; ``lattice``: their keys): on
+    the diagonal the last three's ``three_levels`` (the finest alone if fewer), or the
+    ``combination``'s z and planform chains'."""
     lattice = lattice or [(i, i) for i in range(len(results))]
     chains = combination(lattice[:len(results)])
     if chains is None:
@@ -327,9 +334,10 @@ def solve_corrected(geometry, diffusivity, law, exposure, times, accuracy: float
                     reason="") -> DiffusionResult:
     """Mean and contact layer (weight %) at ``times``: the corrected product (module
     docstring) on two nested 3-D meshes (``corrected_levels``; their change the estimate
-    of what does not separate, ``unseparated``), a further one (8 x the cells) while the
-    total is above the accuracy, the rest of the estimate below it (so a smaller 3-D term
-    can meet it) and the mesh within ``NESTED_CELLS``; plus the sheet's and the planform's
+    of what does not separate, ``unseparated``), a further one (8 x the cells, or where
+    that passes ``NESTED_CELLS`` once the ``cross`` around the finest: ``Levels.finer``)
+    while the total is above the accuracy and the rest of the estimate below it (so a
+    smaller 3-D term can meet it); plus the sheet's and the planform's
     estimates and the time error of the marches (``PAIR_TO_EXTRAPOLATED`` pair^2).
     ``store_fields``: the finest 3-D mesh's own cells (not corrected; a Bar's in its own
     frame, ``bar_coordinates``)."""
@@ -375,7 +383,7 @@ def solve_corrected(geometry, diffusivity, law, exposure, times, accuracy: float
 
 def plan_corrected(geometry, diffusivity, law, exposure, times, accuracy: float) -> Plan:
     """What ``solve_corrected`` will start from: the coarsest 3-D plan (refined by 2,
-    nested, once or twice), the planform refined up to ``PLANFORM_CELLS``, the requested
+    nested, once or twice, or by direction: ``Levels.finer``), the planform refined up to ``PLANFORM_CELLS``, the requested
     accuracy as the target its measured estimate is held to (the solve reports the
     estimate)."""
     level = base_level(accuracy)
@@ -386,6 +394,7 @@ def plan_corrected(geometry, diffusivity, law, exposure, times, accuracy: float)
     reason = (f"D(c) sheet x D(c) planform{section} (each refined and checked), corrected on "
               "coarse 3-D "
               f"prisms on half the thickness (mid-plane mirror; the {level:g} plan "
-              f"and it refined by 2, nested, twice where needed; {chosen.steps_per_doubling} "
+              f"and it refined by 2, nested, twice or by direction where needed; "
+              f"{chosen.steps_per_doubling} "
               f"steps/doubling + Richardson; defect correction){TARGET}")
     return replace(chosen, reason=reason, error_estimate=accuracy)

@@ -148,6 +148,16 @@ def cross(p: int, z: int) -> tuple[list, list]:
     return [(p - 1, z - 1), (p - 1, z), (p - 1, z + 1)], [(p - 1, z - 1), (p, z - 1), (p + 1, z - 1)]
 
 
+def combination(lattice: list) -> tuple[list, list] | None:
+    """Indices (into ``lattice``) of the ``cross`` around the finest mesh (the last), or
+    None where it is not all there."""
+    index = {key: i for i, key in enumerate(lattice)}
+    chains = cross(*lattice[-1])
+    if not all(key in index for chain in chains for key in chain):
+        return None
+    return tuple([index[key] for key in chain] for chain in chains)
+
+
 def richardson_march(disc, law, top, exposure, times, scales, per_doubling, keep, part,
                      columns=()) -> Pair:
     """The swept backward-Euler march (``nonlinear``) on the plan's steps and on them
