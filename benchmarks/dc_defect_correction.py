@@ -546,7 +546,7 @@ def cross_run(case: str, accuracy: str) -> None:
     run = defect.corrected_levels(geometry, d, law, exposure, times, float(accuracy), 3)
     middle = time.process_time()
     two = replace(run, results=run.results[:2], marched=run.marched[:2], meshes=run.meshes[:2])
-    defect.NESTED_CELLS = 4 * run.meshes[1].cells
+    defect.NESTED_CELLS, defect.CROSS_CELLS = 4 * run.meshes[1].cells, 2 * run.meshes[1].cells
     crossed = two.finer()
     end, scale, r = time.process_time(), run.scale, dict(zip(crossed.keys, crossed.results))
     (two_v, two_e), (three_v, three_e), (cross_v, cross_e) = (

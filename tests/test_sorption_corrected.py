@@ -261,6 +261,7 @@ def test_the_cross_of_cheaper_meshes_stands_in_for_the_next_diagonal_mesh(nested
     from fickcam.diffusion.results import DiffusionResult
 
     monkeypatch.setattr(defect, "NESTED_CELLS", 4 * nested_plate.meshes[1].cells)
+    monkeypatch.setattr(defect, "CROSS_CELLS", 2 * nested_plate.meshes[1].cells)
     two = replace(nested_plate, results=nested_plate.results[:2],
                   marched=nested_plate.marched[:2], meshes=nested_plate.meshes[:2])
     crossed = two.finer()

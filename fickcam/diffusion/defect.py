@@ -40,8 +40,9 @@ R(I, J-1)], each direction's chain checked by ``three_levels``, plus the mixed
 difference. On a 3 x 2 x 2 mm plate (k = 2, 1e-2) it came within 5.7e-5 (absorbing) and
 6.9e-6 (drying) of the 8 x mesh, against 3.9e-4 and 3.4e-4 for the finest; on the bar at
 1e-3 ``solve_corrected``'s estimate fell from 1.3e-3 to 8.3e-4 (k = 1 drying, error
-7.7e-5) and, with the planform also refined 8 x, from 2.0e-3 to 4.8e-4 (k = 2 absorbing,
-error 1.1e-4 where it was 5.6e-4) (``benchmarks/dc_bar.py corrected``).
+7.7e-5), 2.1e-3 to 6.8e-4 (k = 2 drying, 7.0e-5) and, with the planform also refined 8 x,
+2.0e-3 to 4.8e-4 (k = 2 absorbing, 1.1e-4 where it was 5.6e-4), at 3.1-4.3 x the CPU s
+(``benchmarks/dc_bar.py corrected``).
 
 Measured first and dropped: Fick at Crank's (1975 §9.3) weighted-mean D on the same
 3-D mesh (c_h + v_exact - v_h). With f(surface value) on the exposed faces (before the
@@ -74,8 +75,8 @@ MESH_LEVELS = (1.0, 0.5)   # accuracies of the coarsest 3-D plan (then refined b
 #                            ``base_level``: down to the second where the accuracy is tight)
 #                            and of the plan whose graded planform the planform's refinement
 #                            starts from
-NESTED_CELLS = 32_000      # the finest nested 3-D mesh tried (cells on half the thickness):
-#   the diagonal's next (8 x) or the ``cross``'s largest (2 x the finest)
+NESTED_CELLS = 30_000      # the finest nested 3-D mesh tried (cells on half the thickness)
+CROSS_CELLS = 32_000       # the ``cross``'s largest (2 x the finest; the k = 2 drying bar's 30 608)
 BASE_PER_ACCURACY = 500.0  # the coarsest 3-D plan's accuracy per requested accuracy, at most
 #   MESH_LEVELS[0] (``base_level``). On the demo cam (k = 2) at 1e-3 the 1.0 plan's nested
 #   pair changed by 5.2e-4 where the rest of the estimate left 4.4e-4 (and a third mesh would
@@ -176,19 +177,19 @@ class Levels:
     keys: list = ()    # (planform, z) halvings of each mesh from the first; () = the diagonal
 
     @property
-    def lattice(self) -> list:
+    def lattice(self) -> list:   # the keys, or the diagonal's
         return list(self.keys)[:len(self.results)] or [(i, i) for i in range(len(self.results))]
 
     def finer(self, store_fields: bool = False) -> "Levels | None":
-        """The next step of ``solve_corrected``, within ``NESTED_CELLS``, or None: the
-        finest refined by 2 in every direction (``Cells.refined``, 8 x its cells); where
-        that passes the cap, once, the ``cross`` around it (its largest mesh 2 x its cells;
+        """The next step of ``solve_corrected``, or None: the finest refined by 2 in every
+        direction (``Cells.refined``, 8 x its cells) within ``NESTED_CELLS``; past it, once,
+        the ``cross`` around it (its largest mesh 2 x its cells, within ``CROSS_CELLS``;
         ``combination``)."""
         (p, z), cells = self.lattice[-1], self.meshes[-1].cells
         if combination(self.lattice) is None:
             if cells * 8 <= NESTED_CELLS:
                 return self.adding([], (p + 1, z + 1), store_fields)
-            if p >= 1 and z >= 1 and cells * 2 <= NESTED_CELLS:
+            if p >= 1 and z >= 1 and cells * 2 <= CROSS_CELLS:
                 along_z, along_planform = cross(p, z)
                 return self.adding([*along_z, *along_planform], (p, z), store_fields)
         return None
@@ -335,7 +336,7 @@ def solve_corrected(geometry, diffusivity, law, exposure, times, accuracy: float
     """Mean and contact layer (weight %) at ``times``: the corrected product (module
     docstring) on two nested 3-D meshes (``corrected_levels``; their change the estimate
     of what does not separate, ``unseparated``), a further one (8 x the cells, or where
-    that passes ``NESTED_CELLS`` once the ``cross`` around the finest: ``Levels.finer``)
+    that passes ``NESTED_CELLS`` once the ``cross`` around the finest, ``Levels.finer``)
     while the total is above the accuracy and the rest of the estimate below it (so a
     smaller 3-D term can meet it); plus the sheet's and the planform's
     estimates and the time error of the marches (``PAIR_TO_EXTRAPOLATED`` pair^2).
@@ -383,9 +384,8 @@ def solve_corrected(geometry, diffusivity, law, exposure, times, accuracy: float
 
 def plan_corrected(geometry, diffusivity, law, exposure, times, accuracy: float) -> Plan:
     """What ``solve_corrected`` will start from: the coarsest 3-D plan (refined by 2,
-    nested, once or twice, or by direction: ``Levels.finer``), the planform refined up to ``PLANFORM_CELLS``, the requested
-    accuracy as the target its measured estimate is held to (the solve reports the
-    estimate)."""
+    nested, once or twice, or by direction: ``Levels.finer``), the planform refined up to
+    ``PLANFORM_CELLS``, the accuracy as the target its measured estimate is held to."""
     level = base_level(accuracy)
     geometry, diffusivity, bar = as_prism(geometry, diffusivity)
     chosen = level_plan(geometry, diffusivity, law, exposure, times, level, steps_for(accuracy))
@@ -395,6 +395,6 @@ def plan_corrected(geometry, diffusivity, law, exposure, times, accuracy: float)
               "coarse 3-D "
               f"prisms on half the thickness (mid-plane mirror; the {level:g} plan "
               f"and it refined by 2, nested, twice or by direction where needed; "
-              f"{chosen.steps_per_doubling} "
-              f"steps/doubling + Richardson; defect correction){TARGET}")
+              f"{chosen.steps_per_doubling} steps/doubling + Richardson; defect "
+              f"correction){TARGET}")
     return replace(chosen, reason=reason, error_estimate=accuracy)

@@ -145,7 +145,8 @@ class Cells:
 def cross(p: int, z: int) -> tuple[list, list]:
     """The combination around mesh (p, z) (``defect.combination``): its base (p-1, z-1)
     refined along z once and twice, and along the planform once and twice."""
-    return [(p - 1, z - 1), (p - 1, z), (p - 1, z + 1)], [(p - 1, z - 1), (p, z - 1), (p + 1, z - 1)]
+    return ([(p - 1, z - 1), (p - 1, z), (p - 1, z + 1)],
+            [(p - 1, z - 1), (p, z - 1), (p + 1, z - 1)])
 
 
 def combination(lattice: list) -> tuple[list, list] | None:
