@@ -29,20 +29,18 @@ the 1.0 plan, 3 507 cells) z alone 3.1e-4 then 2.5e-5, the planform alone 2.6e-4
 8 on the plate) and their changes showed orders from -10 to 12.
 
 The error splits by direction: on the 6 x 4 x 2 mm bar at 1e-3 (``nested bar-K-DIRECTION
-1e-3``, P planform and Z z halvings of the 0.5 plan's mesh) the changes along z were 4.9e-4
-then 1.3e-4 at P = 0 and 5.1e-4, 1.4e-4 at P = 1 (k = 2 absorbing), those along the
-planform 4.3e-4, 1.3e-4 at Z = 0 and 4.4e-4, 1.4e-4 at Z = 1; drying with k = 1, z 1.2e-4
-then 3.6e-5 at P = 0 and 1, the planform 2.4e-4 at Z = 0, 1 and 2. So where the next
+1e-3``, P planform and Z z halvings) the changes along z were 4.9e-4, 1.3e-4 at P = 0 and
+5.1e-4, 1.4e-4 at P = 1 (k = 2 absorbing), along the planform 4.3e-4, 1.3e-4 at Z = 0 and
+4.4e-4, 1.4e-4 at Z = 1 (k = 1 drying: z 1.2e-4, 3.6e-5 at P = 0, 1). So where the next
 diagonal mesh (8 x the cells) passes ``NESTED_CELLS``, the combination technique stands
 in for it (``Levels.finer``, ``unseparated``): from the ``cross`` of meshes around the
 finest (I, J), at most 2 x its cells, R(I, J) + [R(I-1, J+1) - R(I-1, J)] + [R(I+1, J-1) -
-R(I, J-1)], each direction's chain checked by ``three_levels``, plus the mixed
-difference. On a 3 x 2 x 2 mm plate (k = 2, 1e-2) it came within 5.7e-5 (absorbing) and
-6.9e-6 (drying) of the 8 x mesh, against 3.9e-4 and 3.4e-4 for the finest; on the bar at
-1e-3 ``solve_corrected``'s estimate fell from 1.3e-3 to 8.3e-4 (k = 1 drying, error
+R(I, J-1)], each chain by ``three_levels``, plus the mixed difference. On a 3 x 2 x 2 mm
+plate (k = 2, 1e-2; ``cross``) it came within 5.7e-5 (absorbing) and 6.9e-6 (drying) of
+the 8 x mesh (estimates 4.1e-4, 3.4e-4), the finest 3.9e-4 and 3.4e-4; on the bar at
+1e-3 (``dc_bar.py corrected``) the estimate fell from 1.3e-3 to 8.3e-4 (k = 1 drying, error
 7.7e-5), 2.1e-3 to 6.8e-4 (k = 2 drying, 7.0e-5) and, with the planform also refined 8 x,
-2.0e-3 to 4.8e-4 (k = 2 absorbing, 1.1e-4 where it was 5.6e-4), at 3.1-4.3 x the CPU s
-(``benchmarks/dc_bar.py corrected``).
+2.0e-3 to 4.8e-4 (k = 2 absorbing, 1.1e-4 where it was 5.6e-4), 3.1-4.3 x the CPU s.
 
 Measured first and dropped: Fick at Crank's (1975 §9.3) weighted-mean D on the same
 3-D mesh (c_h + v_exact - v_h). With f(surface value) on the exposed faces (before the
@@ -77,6 +75,8 @@ MESH_LEVELS = (1.0, 0.5)   # accuracies of the coarsest 3-D plan (then refined b
 #                            starts from
 NESTED_CELLS = 30_000      # the finest nested 3-D mesh tried (cells on half the thickness)
 CROSS_CELLS = 32_000       # the ``cross``'s largest (2 x the finest; the k = 2 drying bar's 30 608)
+CROSS_BELOW = 3e-3   # the cross below it only: at 3e-3 the k = 2 drying bar's capped 3.05e-3
+#   (31 CPU s) would be 1.1e-3 (91 s); the looser accuracies keep their cost
 BASE_PER_ACCURACY = 500.0  # the coarsest 3-D plan's accuracy per requested accuracy, at most
 #   MESH_LEVELS[0] (``base_level``). On the demo cam (k = 2) at 1e-3 the 1.0 plan's nested
 #   pair changed by 5.2e-4 where the rest of the estimate left 4.4e-4 (and a third mesh would
@@ -180,7 +180,7 @@ class Levels:
     def lattice(self) -> list:   # the keys, or the diagonal's
         return list(self.keys)[:len(self.results)] or [(i, i) for i in range(len(self.results))]
 
-    def finer(self, store_fields: bool = False) -> "Levels | None":
+    def finer(self, store_fields: bool = False, cross_allowed: bool = True) -> "Levels | None":
         """The next step of ``solve_corrected``, or None: the finest refined by 2 in every
         direction (``Cells.refined``, 8 x its cells) within ``NESTED_CELLS``; past it, once,
         the ``cross`` around it (its largest mesh 2 x its cells, within ``CROSS_CELLS``;
@@ -189,7 +189,7 @@ class Levels:
         if combination(self.lattice) is None:
             if cells * 8 <= NESTED_CELLS:
                 return self.adding([], (p + 1, z + 1), store_fields)
-            if p >= 1 and z >= 1 and cells * 2 <= CROSS_CELLS:
+            if cross_allowed and p >= 1 and z >= 1 and cells * 2 <= CROSS_CELLS:
                 along_z, along_planform = cross(p, z)
                 return self.adding([*along_z, *along_planform], (p, z), store_fields)
         return None
@@ -336,7 +336,7 @@ def solve_corrected(geometry, diffusivity, law, exposure, times, accuracy: float
     """Mean and contact layer (weight %) at ``times``: the corrected product (module
     docstring) on two nested 3-D meshes (``corrected_levels``; their change the estimate
     of what does not separate, ``unseparated``), a further one (8 x the cells, or where
-    that passes ``NESTED_CELLS`` once the ``cross`` around the finest, ``Levels.finer``)
+    that passes ``NESTED_CELLS`` once the ``cross`` around the finest below ``CROSS_BELOW``)
     while the total is above the accuracy and the rest of the estimate below it (so a
     smaller 3-D term can meet it); plus the sheet's and the planform's
     estimates and the time error of the marches (``PAIR_TO_EXTRAPOLATED`` pair^2).
@@ -355,7 +355,7 @@ def solve_corrected(geometry, diffusivity, law, exposure, times, accuracy: float
         return values, three_d_error, rest
     values, three_d_error, rest = estimated(run)
     while rest < accuracy < rest + three_d_error:
-        finer = run.finer(store_fields)
+        finer = run.finer(store_fields, accuracy < CROSS_BELOW)
         if finer is None:
             break
         run = finer
