@@ -15,7 +15,8 @@ correction.
     python benchmarks/dc_defect_correction.py march-cost         # CPU of one swept march pair
     python benchmarks/dc_defect_correction.py soak-dry-solid K A # auto at 0.1 vs solid at A
     python benchmarks/dc_defect_correction.py nested CASE A[@B] [PZ ...]  # nested meshes
-    python benchmarks/dc_defect_correction.py corrected CASE A   # one corrected run
+    python benchmarks/dc_defect_correction.py corrected CASE A [C]  # one corrected run
+                                             # (C: defect.CROSS_BELOW for it)
     python benchmarks/dc_defect_correction.py cross CASE A       # the cross vs the 8x mesh
 
 ``plate-reference``: the 4 x 3 x 2 mm plate of the tests (D = 5e-12 m^2/s exp(2 c/Mm),
@@ -560,9 +561,12 @@ def cross_run(case: str, accuracy: str) -> None:
           f"three-mesh value| {defect.gap(cross_v, three_v, scale):.2e}", flush=True)
 
 
-def corrected_run(case: str, accuracy: str) -> None:
+def corrected_run(case: str, accuracy: str, cross_below: str = "") -> None:
+    from fickcam.diffusion import defect
     from fickcam.diffusion.defect import gap, solve_corrected
 
+    if cross_below:   # ``defect.CROSS_BELOW`` for this run (1 lets every accuracy take it)
+        defect.CROSS_BELOW = float(cross_below)
     geometry, d, exposure, times, law = named_case(case)
     start = time.process_time()
     result = solve_corrected(geometry, d, law, exposure, times, float(accuracy))
