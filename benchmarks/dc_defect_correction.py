@@ -16,6 +16,7 @@ correction.
     python benchmarks/dc_defect_correction.py soak-dry-solid K A # auto at 0.1 vs solid at A
     python benchmarks/dc_defect_correction.py nested CASE A[@B] [PZ ...]  # nested meshes
     python benchmarks/dc_defect_correction.py corrected CASE A[@B]  # one corrected run
+    python benchmarks/dc_defect_correction.py cross CASE A       # the cross vs the 8x mesh
 
 ``plate-reference``: the 4 x 3 x 2 mm plate of the tests (D = 5e-12 m^2/s exp(2 c/Mm),
 Mm = 2 %, absorption 0 -> Mm and desorption Mm -> 0) by the 3-D cells alone (``model:
@@ -43,12 +44,16 @@ z widths as a sheet and on its coarse 3-D plan, k = 5, wetted to Mm then stepped
 0.4 Mm at 0.15 h^2/D (outputs 0.02-0.3 h^2/D): CPU s and the results (to compare two
 versions, run it with each one's PYTHONPATH).
 ``nested CASE A[@B] [PZ ...]``: CASE is cam-K (the demo cam, exponent K), plate-K-absorption,
-plate-K-desorption or soak-K; the corrected result (sheet and planform references of a run
+plate-K-desorption, soak-K or bar-K-absorption / bar-K-desorption (``dc_bar.py``'s 6 x 4 x 2 mm
+bar, its layer the six faces'); the corrected result (sheet and planform references of a run
 at accuracy A) on the 3-D mesh of the ``defect.base_plan`` plan (or the plan of accuracy
 B) with its planform refined P times and its z widths Z times (``defect.Cells.refined``'s
 two halves apart; default 00 01 10 11 02): cells, CPU s, the distances between all of
 them (``defect.gap``), and the ratios of successive changes along z (00 01 02 ...), the
 planform (00 10 20) and both (00 11 22).
+``cross CASE A`` (CASE also small-K-DIRECTION: the tests' 3 x 2 x 2 mm plate, outputs to
+0.1 h^2/D): the three diagonal nested meshes, and the ``defect.cross`` around the second
+(``Levels.finer`` where the third passes the cap): the combination against the third.
 ``corrected CASE A[@B]``: ``defect.solve_corrected`` (what ``auto`` runs; B: on the nested
 pair of the plan of accuracy B): CPU s, cells, the estimate and its parts; a plate against
 its stored 3-D run (``plate``'s norm).
@@ -75,14 +80,16 @@ GRADED_PAIR = (1.0, 0.5)   # the two graded 3-D plans of the corrected path befo
 ORDER_ACCURACY = 1e-2   # ``plate-order``'s sheet reference and steps: those of ``plate`` at 1e-2
 
 
-def plate_case(direction: str, exponent: float = 2.0):
+def plate_case(direction: str, exponent: float = 2.0, size=(4e-3, 3e-3), outputs=None):
     from fickcam.diffusion import CamPlate, Diffusivity, Exposure
     from fickcam.diffusion.sorption import ConcentrationDependent
 
-    times = np.array(TAU) * H ** 2 / D
+    times = np.array(TAU[:outputs]) * H ** 2 / D
     start, surface = (0.0, MM) if direction == "absorption" else (MM, 0.0)
-    exposure = Exposure.piecewise([0.0, times[-1]], [330.0], [surface], initial_moisture=start)
-    plate = CamPlate(np.array([0, 4e-3, 4e-3, 0.0]), np.array([0, 0, 3e-3, 3e-3]), H)
+    exposure = Exposure.piecewise([0.0, TAU[-1] * H ** 2 / D], [330.0], [surface],
+                                  initial_moisture=start)
+    a, b = size
+    plate = CamPlate(np.array([0, a, a, 0.0]), np.array([0, 0, b, b]), H)
     law = ConcentrationDependent(MM, exponent=exponent)
     return plate, Diffusivity((D, D, D), 0.0), exposure, times, law
 
@@ -460,10 +467,17 @@ def sheet_uptake_series(tau):
 
 
 def named_case(case: str):
-    """(geometry, diffusivity, exposure, times, law) of cam-K, plate-K-DIRECTION or soak-K."""
+    """(geometry, diffusivity, exposure, times, law) of cam-K, plate-K-DIRECTION, soak-K or
+    bar-K-DIRECTION (``dc_bar.py``'s 6 x 4 x 2 mm bar)."""
     kind, exponent, *direction = case.split("-")
+    if kind == "bar":
+        from dc_bar import SMALL, case as bar_case   # benchmarks/ (the script's directory)
+        bar, d, exposure, times, law, _, _ = bar_case(SMALL, direction[0], float(exponent))
+        return bar, d, exposure, times, law
     if kind == "cam":
         return demo_cam(float(exponent))
+    if kind == "small":   # tests/test_sorption_corrected.py's nested_plate: 3 x 2 x 2 mm
+        return plate_case(direction[0], float(exponent), (3e-3, 2e-3), 4)
     if kind == "soak":
         plate, d, exposure, times, law = soak_dry_case(float(exponent))
         return plate, d, exposure, times, law
@@ -495,7 +509,7 @@ def nested(case: str, accuracy: str, *meshes: str) -> None:
         level = defect.three_d(run.setting, run.marched[0].plan, False, defect.Cells(tess, z))
         results[spec] = defect.corrected(level.plate, (level.slab, reference),
                                          (level.planform, run.planform),
-                                         defect.surface_of(run.setting))
+                                         defect.surface_of(run.setting), level.union)
         print(f"{spec}: {level.cells} cells ({tess.cells} x {z.size}), "
               f"{time.process_time() - start:.1f} CPU s", flush=True)
     print("| | " + " | ".join(results) + " |")
@@ -520,6 +534,33 @@ def three_levels_of(results, path, quantity, scale):
 
     extrapolate, error = three_levels(*(np.asarray(results[m][quantity]) for m in path))
     return extrapolate, float(f"{error / scale / (LAYER_TOLERANCE if quantity else 1.0):.2e}")
+
+
+def cross_run(case: str, accuracy: str) -> None:
+    """The ``defect.cross`` around the 2 x nested mesh (``Levels.finer`` with the diagonal's
+    third mesh taken as past the cap) against that third mesh: distances (``defect.gap``)
+    and the estimates of two meshes, of the three diagonal ones and of the combination."""
+    from dataclasses import replace
+
+    from fickcam.diffusion import defect
+
+    geometry, d, exposure, times, law = named_case(case)
+    start = time.process_time()
+    run = defect.corrected_levels(geometry, d, law, exposure, times, float(accuracy), 3)
+    middle = time.process_time()
+    two = replace(run, results=run.results[:2], marched=run.marched[:2], meshes=run.meshes[:2])
+    defect.NESTED_CELLS, defect.CROSS_CELLS = 4 * run.meshes[1].cells, 2 * run.meshes[1].cells
+    crossed = two.finer()
+    end, scale, r = time.process_time(), run.scale, dict(zip(crossed.keys, crossed.results))
+    (two_v, two_e), (three_v, three_e), (cross_v, cross_e) = (
+        defect.unseparated(levels, 1.0) for levels in (two, run, crossed))
+    raw = tuple(r[1, 1][i] + r[0, 2][i] - r[0, 1][i] + r[2, 0][i] - r[1, 0][i] for i in range(2))
+    print(f"{case} at {accuracy}: diagonal {[m.cells for m in run.meshes]} cells "
+          f"{middle - start:.1f} CPU s; cross {[m.cells for m in crossed.meshes]} "
+          f"{end - middle:.1f} CPU s\nestimates: two meshes {two_e:.2e}, three {three_e:.2e}, "
+          f"cross {cross_e:.2e}\n|combination - R22| {defect.gap(raw, run.results[2], scale):.2e}"
+          f", |R11 - R22| {defect.gap(r[1, 1], run.results[2], scale):.2e}, |cross value - "
+          f"three-mesh value| {defect.gap(cross_v, three_v, scale):.2e}", flush=True)
 
 
 def corrected_run(case: str, accuracy: str) -> None:
@@ -556,4 +597,4 @@ if __name__ == "__main__":
      "planform-sequence": planform_sequence,
      "fickian-reference": fickian_reference, "soak-dry": soak_dry,
      "march-cost": march_cost, "soak-dry-solid": soak_dry_solid, "nested": nested,
-     "corrected": corrected_run}[sys.argv[1]](*sys.argv[2:])
+     "corrected": corrected_run, "cross": cross_run}[sys.argv[1]](*sys.argv[2:])

@@ -28,6 +28,20 @@ the 1.0 plan, 3 507 cells) z alone 3.1e-4 then 2.5e-5, the planform alone 2.6e-4
 5.2e-4. The graded plans 1, 0.5, 0.25, 0.125 used before are not nested (z cells 4, 6, 6,
 8 on the plate) and their changes showed orders from -10 to 12.
 
+The error splits by direction: on the 6 x 4 x 2 mm bar at 1e-3 (``nested bar-K-DIRECTION
+1e-3``, P planform and Z z halvings) the changes along z were 4.9e-4, 1.3e-4 at P = 0 and
+5.1e-4, 1.4e-4 at P = 1 (k = 2 absorbing), along the planform 4.3e-4, 1.3e-4 at Z = 0 and
+4.4e-4, 1.4e-4 at Z = 1 (k = 1 drying: z 1.2e-4, 3.6e-5 at P = 0, 1). So where the next
+diagonal mesh (8 x the cells) passes ``NESTED_CELLS``, the combination technique stands
+in for it (``Levels.finer``, ``unseparated``): from the ``cross`` of meshes around the
+finest (I, J), at most 2 x its cells, R(I, J) + [R(I-1, J+1) - R(I-1, J)] + [R(I+1, J-1) -
+R(I, J-1)], each chain by ``three_levels``, plus the mixed difference. On a 3 x 2 x 2 mm
+plate (k = 2, 1e-2; ``cross``) it came within 5.7e-5 (absorbing) and 6.9e-6 (drying) of
+the 8 x mesh (estimates 4.1e-4, 3.4e-4), the finest 3.9e-4 and 3.4e-4; on the bar at
+1e-3 (``dc_bar.py corrected``) the estimate fell from 1.3e-3 to 8.3e-4 (k = 1 drying, error
+7.7e-5), 2.1e-3 to 6.8e-4 (k = 2 drying, 7.0e-5) and, with the planform also refined 8 x,
+2.0e-3 to 4.8e-4 (k = 2 absorbing, 1.1e-4 where it was 5.6e-4), 3.1-4.3 x the CPU s.
+
 Measured first and dropped: Fick at Crank's (1975 §9.3) weighted-mean D on the same
 3-D mesh (c_h + v_exact - v_h). With f(surface value) on the exposed faces (before the
 Kirchhoff face mean of ``sorption.mean_factor``) the Fickian and the D(c) sheets on the
@@ -46,9 +60,10 @@ import numpy as np
 
 from .calibration import PAIR_TO_EXTRAPOLATED
 from .defectfields import stored
-from .defectparts import (Cells, Level, Pair, Setting, as_prism, bar_coordinates, corrected,
-                          level_plan, sheet_reference, steps_for, three_d)
-from .dense import Extension, combined
+from .defectparts import (Cells, Pair, Setting, as_prism, bar_coordinates, combination,
+                          corrected, cross, level_plan, sheet_reference, steps_for, three_d)
+from .defectplanform import gap, refined_reference
+from .dense import Extension
 from .direct import swing
 from .geometry import Bar
 from .gridcheck import taken, three_levels
@@ -63,6 +78,7 @@ MESH_LEVELS = (4.0, 0.5)   # accuracies of the coarsest 3-D plan (then refined b
 #                            and of the plan whose graded planform the planform's refinement
 #                            starts from
 NESTED_CELLS = 30_000      # the finest nested 3-D mesh tried (cells on half the thickness)
+CROSS_CELLS = 32_000       # the ``cross``'s largest (2 x the finest; the k = 2 drying bar's 30 608)
 BASE_PER_ACCURACY = 1.0 / 3e-3  # the coarsest 3-D plan's accuracy per requested accuracy,
 #   within MESH_LEVELS (``base_level``): 0.5 at 1e-3 and below, 1.0 at 3e-3, 3.3 at 1e-2, 4.0
 #   from 1.2e-2 up. On the demo cam (k = 2) at 1e-3 the 1.0 plan's nested pair changed by
@@ -79,9 +95,6 @@ MIN_Z_WIDTHS = 2           # z widths on the half thickness of the coarsest 3-D 
 #   (18 x 1 cells): estimate 8.7e-3 / distance to the stored 3-D run 5.6e-3 = 1.5; on the
 #   2.0 plan (29 x 2): 5.9e-3 / 2.1e-3 = 2.9 (benchmarks/dc_defect_correction.py corrected
 #   plate-2-absorption 1e-2@4, @2)
-REFINE = (2.0, 4.0)        # planform refinements (finest and growth / R) for Richardson
-PLANFORM_CELLS = 60_000    # the finest planform tried
-PLANFORM_SHARE = 0.5       # of the accuracy: the planform's Richardson estimate
 SKIN_ESTIMATE_MARGIN = 1.0  # on the two-mesh 3-D change of a drying part (``skin_margin``),
 #   the cells' margin (``nonlinear.SKIN_CELLS_MARGIN``). Set on the non-nested 1 and 0.5
 #   plans of the 4 x 3 x 2 mm plate drying at 1e-2 (benchmarks/dc_defect_correction.py
@@ -95,61 +108,6 @@ ORDER_ONE = 1.0 / (2.0 - 1.0)  # the finer of two nested 3-D meshes' error / the
 #   meshes were the graded 1 and 0.5 plans (w0 ratio sqrt 2, z cells 4, 6, 6, 8 over the
 #   plans 1-0.125 of the 4 x 3 x 2 mm plate: not nested, observed orders -10 to 12) and the
 #   factor 1 / (sqrt 2 - 1) = 2.4 an upper-bound guess
-
-
-def refined_reference(setting: Setting, start: Plan, level: Level, sheet: Pair,
-                      accuracy: float, scale, total=None):
-    """(planform reference Pair, estimate, planform cells, factor R): the graded planform of
-    the plan ``start`` refined by R in ``REFINE`` (finest and growth / R) until the estimate
-    is ``PLANFORM_SHARE`` of the accuracy, or ``total(reference, estimate, cells, R)`` (the
-    whole estimate of the solve with this reference: ``corrected_levels``) is within the
-    accuracy, or the next mesh would pass ``PLANFORM_CELLS`` (the estimate: the change of
-    ``level``'s corrected result). The demo cam (k = 2) at 1e-2: the 2x planform's estimate
-    6.3e-3 is above the share, but with the 3.3 plan's nested pair (3-D change 7.6e-4) and
-    the sheet (8.6e-4) the whole is 8.3e-3: the 4x planform (27 303 cells, 59 CPU s alone)
-    is not marched, the run takes 28 CPU s (143-153 on the 1.0 plan's pair with the 4x
-    planform, estimate 2.0e-3; the two results 2.8e-3 apart in ``gap``'s norm;
-    ``benchmarks/dc_defect_correction.py corrected cam-2 1e-2``).
-    After the first refinement: the Richardson extrapolation of the two (second order:
-    p_2 + (p_2 - p_1) / 3), its estimate the whole change p_2 - p_1 (R = 1 may be short of
-    the asymptotic range: on the demo cam with k = 1 the change the first extrapolation
-    made, (p_2 - p_1) / 3, was half of what the next one found). After the second: the mean
-    and the layer each by ``three_levels`` (the corrected result is affine in the planform
-    reference, so its changes are the reference's).
-    Before, the second extrapolation with a third of its change from the first (Romberg's
-    check): on the demo cam (k = 2, 1e-3) an estimate 9.0e-4 for an error 1.8e-4."""
-    surface = np.asarray(setting.exposure.surface_before(setting.times), float)
-
-    def result(reference):
-        return corrected(level.plate, (level.slab, sheet), (level.planform, reference), surface,
-                         level.union)
-    _, first, start_cells = setting.planform(start.finest, start.growth)
-    planforms, cells, factor = [first], 0, 1.0
-    for refine in REFINE:
-        if cells and start_cells * refine ** 2 > PLANFORM_CELLS:
-            break
-        _, fine, cells = setting.planform(start.finest / refine, start.growth / refine)
-        planforms.append(fine)
-        weight, factor = 1.0 / ((refine / factor) ** 2 - 1.0), refine
-        if len(planforms) == 2:
-            reference = combined(planforms, lambda coarse, f: f + weight * (f - coarse))
-            estimate = gap(result(planforms[0]), result(fine), scale)
-        else:
-            (mean, mean_error), (layer, layer_error) = (
-                three_levels(*(result(p)[i] for p in planforms[-3:])) for i in range(2))
-            reference = combined(planforms[-2:], partial(taken, mean), partial(taken, layer))
-            estimate = max(mean_error, layer_error / LAYER_TOLERANCE) / scale
-        if estimate <= PLANFORM_SHARE * accuracy or (
-                total is not None and total(reference, estimate, cells, factor) <= accuracy):
-            break
-    return replace(reference, coarser=(planforms[-2], weight)), estimate, cells, factor
-
-
-def gap(a, b, scale: float) -> float:
-    """The larger of the mean's and the layer's (/ ``LAYER_TOLERANCE``) largest difference,
-    relative to ``scale``."""
-    return max(float(np.max(np.abs(a[0] - b[0]))),
-               float(np.max(np.abs(a[1] - b[1]))) / LAYER_TOLERANCE) / scale
 
 
 def skin_margin(law, exposure, times) -> float:
@@ -168,7 +126,7 @@ class Levels:
     """The corrected result on each 3-D mesh of one solve, all with the same sheet and
     planform references."""
 
-    marched: list      # Level per mesh, coarsest first
+    marched: list      # Level per mesh, the finest last
     results: list      # (mean, layer) corrected, per mesh
     sheet: DiffusionResult
     planform: Pair     # the planform reference
@@ -178,15 +136,42 @@ class Levels:
     scale: float       # the swing the estimates are relative to
     setting: Setting
     meshes: list       # Cells per mesh
+    keys: list = ()    # (planform, z) halvings of each mesh from the first; () = the diagonal
 
-    def finer(self, store_fields: bool = False) -> "Levels":
-        """One more mesh: the finest refined by 2 (``Cells.refined``), nested."""
-        cells = self.meshes[-1].refined()
-        level = three_d(self.setting, self.marched[-1].plan, store_fields, cells)
-        result = corrected(level.plate, (level.slab, Pair(self.sheet.mean, self.sheet.surface)),
-                           (level.planform, self.planform), surface_of(self.setting), level.union)
-        return replace(self, marched=[*self.marched, level], results=[*self.results, result],
-                       meshes=[*self.meshes, cells])
+    @property
+    def lattice(self) -> list:   # the keys, or the diagonal's
+        return list(self.keys)[:len(self.results)] or [(i, i) for i in range(len(self.results))]
+
+    def finer(self, store_fields: bool = False) -> "Levels | None":
+        """The next step of ``solve_corrected``, or None: the finest refined by 2 in every
+        direction (``Cells.refined``, 8 x its cells) within ``NESTED_CELLS``; past it, once,
+        the ``cross`` around it (its largest mesh 2 x its cells, within ``CROSS_CELLS``;
+        ``combination``)."""
+        (p, z), cells = self.lattice[-1], self.meshes[-1].cells
+        if combination(self.lattice) is None:
+            if cells * 8 <= NESTED_CELLS:
+                return self.adding([], (p + 1, z + 1), store_fields)
+            if p >= 1 and z >= 1 and cells * 2 <= CROSS_CELLS:
+                along_z, along_planform = cross(p, z)
+                return self.adding([*along_z, *along_planform], (p, z), store_fields)
+        return None
+
+    def adding(self, keys: list, top: tuple, store_fields: bool) -> "Levels":
+        """These meshes and ``top`` (halvings of the first) added where missing, ``top`` the
+        finest (the last), its fields kept with ``store_fields``."""
+        have = dict(zip(self.lattice, zip(self.marched, self.results, self.meshes)))
+        surface, reference = surface_of(self.setting), Pair(self.sheet.mean, self.sheet.surface)
+        for key in [*keys, top]:
+            if key not in have:
+                cells = self.meshes[0].refined(*key)
+                level = three_d(self.setting, self.marched[0].plan,
+                                store_fields and key == top, cells)
+                have[key] = (level, corrected(level.plate, (level.slab, reference),
+                                              (level.planform, self.planform), surface,
+                                              level.union), cells)
+        order = [k for k in have if k != top] + [top]
+        marched, results, meshes = (list(v) for v in zip(*(have[k] for k in order)))
+        return replace(self, marched=marched, results=results, meshes=meshes, keys=order)
 
 
 def base_level(accuracy: float) -> float:
@@ -268,31 +253,58 @@ def estimate_parts(run: Levels, margin: float) -> tuple[tuple, float, float]:
 
 
 def unseparated(run: Levels, margin: float) -> tuple[tuple, float]:
-    """((mean, layer), estimate) of the 3-D cells on the finest nested mesh. Two meshes:
-    the finest one's result, its estimate the change between them x ``ORDER_ONE`` x
-    ``margin`` (``skin_margin``). Three or more: the last three by ``three_levels`` (mean
-    and layer each; the second-order extrapolation where it may be taken), the order
-    measured, no margin."""
-    values, checked = finest(run.results)
-    if checked is None:
+    """((mean, layer), estimate) of the 3-D cells (``finest``). On the diagonal (each mesh
+    refined by 2 in every direction), two meshes: the finer one's result, its estimate the
+    change between them x ``ORDER_ONE`` x ``margin`` (``skin_margin``); three or more: the
+    last three by ``three_levels`` (mean and layer each; the second-order extrapolation
+    where it may be taken), the order measured, no margin. With the ``cross`` around the
+    finest (I, J): the combination technique (Griebel, Schneider & Zenger 1992, in
+    Iterative Methods in Linear Algebra, 263-281; its error splitting E = P(h_planform) +
+    Z(h_z) + mixed): R(I, J) + [R(I-1, J+1) - R(I-1, J)] + [R(I+1, J-1) - R(I, J-1)],
+    the planform and z errors of the mesh (I+1, J+1) without its cells, each direction's
+    step and estimate by ``three_levels`` on its chain; plus the mixed difference M =
+    R(I, J) - R(I, J-1) - R(I-1, J) + R(I-1, J-1) x ``margin``: for a mixed term c a^p b^z
+    (a, b <= 1/2: order >= 1 in each direction) the combination's is c (ab + a^2 + b^2 -
+    a - b), within |M| = |c| (1 - a)(1 - b)."""
+    values, checks = finest(run.results, run.lattice)
+    if len(checks) == 1 and checks[0] is None:
         return values, gap(run.results[-2], values, run.scale) * ORDER_ONE * margin
-    return values, max(checked[0][1], checked[1][1] / LAYER_TOLERANCE) / run.scale
+    errors = [sum(checked[i][1] for checked in checks) for i in range(2)]
+    if len(checks) == 2:
+        (z, planform), top = combination(run.lattice), run.results[-1]
+        for i in range(2):
+            mixed = top[i] - run.results[planform[1]][i] - run.results[z[1]][i] + \
+                run.results[z[0]][i]
+            errors[i] += float(np.max(np.abs(mixed))) * margin
+    return values, max(errors[0], errors[1] / LAYER_TOLERANCE) / run.scale
 
 
-def finest(results: list) -> tuple[tuple, list | None]:
-    """((mean, layer), the ``three_levels`` checks or None): what ``unseparated`` takes from
-    the corrected results of the nested meshes (coarsest first)."""
-    if len(results) < 3:
-        return results[-1], None
-    checked = [three_levels(*(r[i] for r in results[-3:])) for i in range(2)]
-    return tuple(taken(extrapolate, results[-2][i], results[-1][i])
-                 for i, (extrapolate, _) in enumerate(checked)), checked
+def finest(results: list, lattice: list | None = None) -> tuple[tuple, list]:
+    """((mean, layer), [checks per chain] or [None]): what ``unseparated`` takes from the
+    corrected results of the nested meshes (the finest last; ``lattice``: their keys): on
+    the diagonal the last three's ``three_levels`` (the finest alone if fewer), or the
+    ``combination``'s z and planform chains'."""
+    lattice = lattice or [(i, i) for i in range(len(results))]
+    chains = combination(lattice[:len(results)])
+    if chains is None:
+        if len(results) < 3:
+            return results[-1], [None]
+        chains = ([len(results) - 3, len(results) - 2, len(results) - 1],)
+    values, checks = list(results[-1]), []
+    for chain in chains:
+        checked = [three_levels(*(results[j][i] for j in chain)) for i in range(2)]
+        checks.append(checked)
+        for i, (extrapolate, _) in enumerate(checked):
+            middle, fine = results[chain[1]][i], results[chain[2]][i]
+            values[i] = values[i] + taken(extrapolate, middle, fine) - \
+                (middle if len(chains) == 2 else fine)
+    return tuple(values), checks
 
 
 def extension(run: Levels, result: DiffusionResult, accuracy: float, resolve) -> Extension:
     """``result.extend`` (``dense``): the corrected product of every nested mesh read
     between the marches' steps, combined as ``finest`` combines the solve's."""
-    exposure, meshes = run.setting.exposure, run.marched[-3:]
+    exposure, meshes = run.setting.exposure, run.marched
     tracks = [track for m in meshes for track in (m.plate.track, m.slab.track,
                                                   m.planform.track)]
 
@@ -303,7 +315,7 @@ def extension(run: Levels, result: DiffusionResult, accuracy: float, resolve) ->
         per_mesh = [corrected(pairs[3 * i], (pairs[3 * i + 1], sheet_at),
                               (pairs[3 * i + 2], reference), surface, m.union)
                     for i, m in enumerate(meshes)]
-        return finest(per_mesh)[0]
+        return finest(per_mesh, run.lattice)[0]
     return Extension(result, [*tracks, run.planform.track, run.sheet.extend.tracks[0]],
                      product, run.scale, accuracy, resolve, run.setting.part)
 
@@ -313,9 +325,10 @@ def solve_corrected(geometry, diffusivity, law, exposure, times, accuracy: float
                     reason="") -> DiffusionResult:
     """Mean and contact layer (weight %) at ``times``: the corrected product (module
     docstring) on two nested 3-D meshes (``corrected_levels``; their change the estimate
-    of what does not separate, ``unseparated``), a further one (8 x the cells) while the
-    total is above the accuracy, the rest of the estimate below it (so a smaller 3-D term
-    can meet it) and the mesh within ``NESTED_CELLS``; plus the sheet's and the planform's
+    of what does not separate, ``unseparated``), a further one (8 x the cells, or where
+    that passes ``NESTED_CELLS`` once the ``cross`` around the finest) while the total is
+    above the accuracy and the rest of the estimate below it (so a smaller 3-D term can meet
+    it: the finer meshes cost only a run that would otherwise miss its accuracy); plus the sheet's and the planform's
     estimates and the time error of the marches (``PAIR_TO_EXTRAPOLATED`` pair^2).
     ``store_fields``: the finest 3-D mesh's cells corrected cell by cell
     (``defectfields.stored``; a Bar's in its own frame, ``bar_coordinates``)."""
@@ -326,8 +339,11 @@ def solve_corrected(geometry, diffusivity, law, exposure, times, accuracy: float
     sheet = run.sheet
     estimated = partial(estimate_parts, margin=skin_margin(law, exposure, times))
     values, three_d_error, rest = estimated(run)
-    while rest < accuracy < rest + three_d_error and run.meshes[-1].cells * 8 <= NESTED_CELLS:
-        run = run.finer(store_fields)
+    while rest < accuracy < rest + three_d_error:
+        finer = run.finer(store_fields)
+        if finer is None:
+            break
+        run = finer
         values, three_d_error, rest = estimated(run)
     estimate = three_d_error + rest
     fine = run.marched[-1]
@@ -354,9 +370,9 @@ def solve_corrected(geometry, diffusivity, law, exposure, times, accuracy: float
 
 def plan_corrected(geometry, diffusivity, law, exposure, times, accuracy: float) -> Plan:
     """What ``solve_corrected`` will start from: the coarsest 3-D plan (refined by 2,
-    nested, once or twice), the planform refined up to ``PLANFORM_CELLS``, the requested
-    accuracy as the target its measured estimate is held to (the solve reports the
-    estimate)."""
+    nested, once or twice, or by direction: ``Levels.finer``), the planform refined up to
+    ``defectplanform.PLANFORM_CELLS``, the accuracy as the target its measured estimate is held to (the
+    solve reports the estimate)."""
     geometry, diffusivity, bar = as_prism(geometry, diffusivity)
     level, chosen = base_plan(partial(level_plan, geometry, diffusivity, law, exposure, times,
                                       per_doubling=steps_for(accuracy)), accuracy)
@@ -365,6 +381,7 @@ def plan_corrected(geometry, diffusivity, law, exposure, times, accuracy: float)
     reason = (f"D(c) sheet x D(c) planform{section} (each refined and checked), corrected on "
               "coarse 3-D "
               f"prisms on half the thickness (mid-plane mirror; the {level:.2g} plan "
-              f"and it refined by 2, nested, twice where needed; {chosen.steps_per_doubling} "
-              f"steps/doubling + Richardson; defect correction){TARGET}")
+              f"and it refined by 2, nested, twice or by direction where needed; "
+              f"{chosen.steps_per_doubling} steps/doubling + Richardson; defect "
+              f"correction){TARGET}")
     return replace(chosen, reason=reason, error_estimate=accuracy)

@@ -199,7 +199,7 @@ def field_errors(run) -> tuple[np.ndarray, FieldErrors]:
     values read at the z centres erred 2.7e-3 where it estimated 2.2e-3, Fickian 4 x 3 x 2
     mm plate at 3e-2, tau* = 0.01); the finest planform's error at second order, the
     change of the corrected field from the planform refined once less x 1 / (R^2 - 1)
-    (the weight ``defect.refined_reference`` took, R the ratio of the two); and the change
+    (the weight ``defectplanform.refined_reference`` took, R the ratio of the two); and the change
     of the corrected field from the next coarser nested mesh at its cell points. That change is
     read on Q - 1 (``unseparated_share``: near 0, smooth, where U itself is too steep on
     these coarse cells to be carried between the meshes by ``restricted``: the exact
@@ -222,8 +222,10 @@ def field_errors(run) -> tuple[np.ndarray, FieldErrors]:
     fields, references = on(-1)
     level, cells = run.marched[-1], run.meshes[-1]
     once_less = corrected_fields(level, cells, references.sheet, references.coarser, surface)
-    coarse, fine = run.meshes[-2:]   # ``solve_corrected`` marches two nested meshes or more
-    coarser, coarse_references = on(-2)
+    top = run.lattice[-1]   # the diagonal's next coarser mesh (not one of a ``cross``'s),
+    below = run.lattice.index((top[0] - 1, top[1] - 1))   # its fields kept: there are two
+    coarse, fine = run.meshes[below], run.meshes[-1]      # diagonal meshes or more
+    coarser, coarse_references = on(below)
     share, product = unseparated_share(coarser, coarse_references, surface)
     carried = restricted(unseparated_share(fields, references, surface)[0], fine, coarse)
     three_d = float(np.max(np.abs((carried - share) * product))) / run.scale

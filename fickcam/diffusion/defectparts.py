@@ -133,14 +133,37 @@ class Cells:
         return cls(layout.planform_cells(geometry, chosen.finest, chosen.growth, stretch_of(d)),
                    half(layout.prism_widths(chosen.finest, chosen.growth)))
 
-    def refined(self) -> "Cells":
-        """Nested refinement by 2: every planform edge halved (``prism.refine``), every z
-        width halved; 8 x the cells."""
-        return Cells(refine(self.tess), np.repeat(0.5 * self.z, 2))
+    def refined(self, planform: int = 1, z: int = 1) -> "Cells":
+        """Nested refinement by 2, ``planform`` times of every planform edge
+        (``prism.refine``: 4 x the cells each) and ``z`` times of every z width (2 x each);
+        by default both once: 8 x the cells."""
+        tess, widths = self.tess, self.z
+        for _ in range(planform):
+            tess = refine(tess)
+        for _ in range(z):
+            widths = np.repeat(0.5 * widths, 2)
+        return Cells(tess, widths)
 
     @property
     def cells(self) -> int:
         return self.tess.cells * self.z.size
+
+
+def cross(p: int, z: int) -> tuple[list, list]:
+    """The combination around mesh (p, z) (``defect.combination``): its base (p-1, z-1)
+    refined along z once and twice, and along the planform once and twice."""
+    return ([(p - 1, z - 1), (p - 1, z), (p - 1, z + 1)],
+            [(p - 1, z - 1), (p, z - 1), (p + 1, z - 1)])
+
+
+def combination(lattice: list) -> tuple[list, list] | None:
+    """Indices (into ``lattice``) of the ``cross`` around the finest mesh (the last), or
+    None where it is not all there."""
+    index = {key: i for i, key in enumerate(lattice)}
+    chains = cross(*lattice[-1])
+    if not all(key in index for chain in chains for key in chain):
+        return None
+    return tuple([index[key] for key in chain] for chain in chains)
 
 
 def richardson_march(disc, law, top, exposure, times, scales, per_doubling, keep, part,
