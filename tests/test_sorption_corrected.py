@@ -376,6 +376,29 @@ def test_the_coarsest_3d_plan_is_loose_at_loose_accuracy_but_keeps_two_z_widths(
         assert half(prism_widths(chosen.finest, chosen.growth)).size >= MIN_Z_WIDTHS
 
 
+def test_a_large_part_starts_coarser_so_that_the_cross_around_its_pair_fits():
+    """``defect.base_plan``: where the cross around the nested pair (16 x the base's cells)
+    would pass ``CROSS_CELLS`` the base is coarsened (the plate's plans with their cell
+    counts scaled up, as a large part's are): at 1e-3 the 1.0 plan instead of the 0.5 plan,
+    its own plan unchanged; a part small enough keeps the 0.5 plan."""
+    from dataclasses import replace
+    from functools import partial
+    from fickcam.diffusion.defect import CROSS_CELLS, MESH_LEVELS, base_plan
+    from fickcam.diffusion.defectparts import level_plan
+
+    plan_at = partial(level_plan, PLATE, ISOTROPIC, law(2.0), exposure(0.0, MM), TIMES,
+                      per_doubling=4)
+    fine, coarse = plan_at(MESH_LEVELS[-1]), plan_at(1.0)
+    assert coarse.cells < fine.cells
+    scale = CROSS_CELLS / (16 * 0.5 * (fine.cells + coarse.cells))   # the 0.5 plan past it
+
+    def large(level):
+        return replace(plan_at(level), cells=int(plan_at(level).cells * scale))
+    level, chosen = base_plan(large, 1e-3)
+    assert level == 1.0 and chosen.finest == coarse.finest and 16 * chosen.cells <= CROSS_CELLS
+    assert base_plan(plan_at, 1e-3)[0] == MESH_LEVELS[-1]
+
+
 def test_the_planform_stops_at_2x_only_when_the_whole_estimate_meets_the_accuracy():
     """``defect.refined_reference`` on the plate (k = 2 absorbing): with the whole estimate
     within the accuracy (``total``) the refinement stops at 2x even where the 2x estimate is

@@ -78,7 +78,10 @@ MESH_LEVELS = (4.0, 0.5)   # accuracies of the coarsest 3-D plan (then refined b
 #                            and of the plan whose graded planform the planform's refinement
 #                            starts from
 NESTED_CELLS = 30_000      # the finest nested 3-D mesh tried (cells on half the thickness)
-CROSS_CELLS = 32_000       # the ``cross``'s largest (2 x the finest; the k = 2 drying bar's 30 608)
+CROSS_CELLS = 60_000       # the ``cross``'s largest (2 x the finest): half the solid cap
+#   (``calibration.MAX_CELLS``). The 60 x 8 x 4 mm link (k = 2, absorbing, 1e-3; 18 210 cells, its
+#   cross 36 420): 6.4e-4 in 229 CPU s, where 32 000 left it "capped" at 1.3e-3 (72 s); the
+#   6 x 4 x 2 mm drying bar's cross has 30 608 (benchmarks/dc_bar.py, auto)
 BASE_PER_ACCURACY = 1.0 / 3e-3  # the coarsest 3-D plan's accuracy per requested accuracy,
 #   within MESH_LEVELS (``base_level``): 0.5 at 1e-3 and below, 1.0 at 3e-3, 3.3 at 1e-2, 4.0
 #   from 1.2e-2 up. On the demo cam (k = 2) at 1e-3 the 1.0 plan's nested pair changed by
@@ -182,10 +185,19 @@ def base_level(accuracy: float) -> float:
 
 def base_plan(plan_at, accuracy: float) -> tuple[float, Plan]:
     """(its accuracy, the coarsest 3-D plan): ``plan_at(base_level(accuracy))``, the level
-    halved (down to ``MESH_LEVELS[-1]``) while its z widths on the half thickness are fewer
-    than ``MIN_Z_WIDTHS``."""
+    doubled (up to ``MESH_LEVELS[0]``) while the ``cross`` around the pair (16 x the base's
+    cells) would pass ``CROSS_CELLS`` (so a large part has a further mesh), then halved
+    (down to ``MESH_LEVELS[-1]``) while the plan has fewer than ``MIN_Z_WIDTHS`` z widths on
+    the half thickness. At 1e-3, k = 2 (benchmarks/dc_bar.py, auto): the 60 x 8 x 4 mm link
+    drying on the 0.5 plan (7 904 cells) "capped" at 2.0e-3 in 334 CPU s, on the 1.0 plan
+    (3 681) 6.7e-4 in 404 s with the cross; absorbing 6.4e-4 in 229 s, 8.1e-4 in 81 s. The
+    demo cam (0.5 plan 7 272 cells) on the 1.0 plan: 7.2e-4 in 433 s, six meshes, against
+    8.0e-4 in 309 s on the 0.5 plan's pair, 7.4e-5 apart (``gap``; dc_defect_correction.py)."""
     level = base_level(accuracy)
     chosen = plan_at(level)
+    while level < MESH_LEVELS[0] and 16 * chosen.cells > CROSS_CELLS:
+        level = min(MESH_LEVELS[0], 2.0 * level)
+        chosen = plan_at(level)
     while (level > MESH_LEVELS[-1]
            and half(prism_widths(chosen.finest, chosen.growth)).size < MIN_Z_WIDTHS):
         level = max(MESH_LEVELS[-1], 0.5 * level)
