@@ -31,10 +31,9 @@ import numpy as np
 from scipy import sparse
 from scipy.spatial import Delaunay, cKDTree
 
+from .defectparts import ROUND_OFF, unaccomplished_ratio as ratio
 from .polygon import unique_edges
 
-ROUND_OFF = 1e-9   # of the largest |surface value|: a coarse U this small keeps ratio 1
-#                    (as ``defectparts.corrected``)
 
 
 def planform_at(tess, values: np.ndarray, points: np.ndarray, surface: bool = True):
@@ -97,11 +96,6 @@ def sheet_at(z_sheet: np.ndarray, unaccomplished: np.ndarray, z: np.ndarray,
     knots = np.concatenate([[0.0], z_sheet, [thickness]])
     values = np.pad(unaccomplished, ((0, 0), (1, 1)))
     return np.stack([np.interp(z, knots, row) for row in values])
-
-
-def ratio(reference: np.ndarray, coarse: np.ndarray, floor: float) -> np.ndarray:
-    small = np.abs(coarse) <= floor
-    return np.where(small, 1.0, reference / np.where(small, 1.0, coarse))
 
 
 @dataclass(frozen=True)

@@ -180,6 +180,15 @@ def richardson_march(disc, law, top, exposure, times, scales, per_doubling, keep
                 Track.of(plans[0], coarse, fine, scales, exposure))
 
 
+ROUND_OFF = 1e-9   # of the largest |surface value|: a coarse U this small keeps ratio 1
+
+
+def unaccomplished_ratio(reference: np.ndarray, coarse: np.ndarray, floor: float) -> np.ndarray:
+    """reference / coarse (unaccomplished uptakes), 1 where |coarse| <= ``floor``."""
+    small = np.abs(coarse) <= floor
+    return np.where(small, 1.0, reference / np.where(small, 1.0, coarse))
+
+
 def corrected(plate: Pair, sheet: tuple, planform: tuple, surface: np.ndarray, union=None):
     """(mean, layer): the plate's U = g - c times the ratio of the fine reference's U to the
     coarse grid's, for the sheet (the layer spans the thickness) and for the planform
@@ -190,12 +199,10 @@ def corrected(plate: Pair, sheet: tuple, planform: tuple, surface: np.ndarray, u
     the sheet's layer over the planform, whose U for the product of Fick (Crank 1975
     §4.3) is beta Ub S + zeta Sl (P - beta Ub) (P, Ub: the planform's mean and band; S,
     Sl: the sheet's mean and layer) with the coarse factors or the references."""
-    floor = 1e-9 * max(float(np.max(np.abs(surface))), 1e-300)
+    floor = ROUND_OFF * max(float(np.max(np.abs(surface))), 1e-300)
 
-    def ratio(fine, coarse):
-        gap = surface - coarse
-        small = np.abs(gap) <= floor
-        return np.where(small, 1.0, (surface - fine) / np.where(small, 1.0, gap))
+    def ratio(fine, coarse):   # of the unaccomplished uptakes U = g - c
+        return unaccomplished_ratio(surface - fine, surface - coarse, floor)
     (s_h, s_ref), (p_h, p_ref) = sheet, planform
     through = ratio(s_ref.mean, s_h.mean)
     mean = surface - (surface - plate.mean) * through * ratio(p_ref.mean, p_h.mean)
