@@ -67,7 +67,7 @@ def select(ds, variable: str, *, time=None, part=None, cam_angle=None, crank_ang
         if seconds < stored[0] - 1e-9 or seconds > stored[-1] + 1e-9:
             raise InputError(f"time {time} is outside the stored ageing times "
                              f"({stored[0] / 86400:g} to {stored[-1] / 86400:g} d)")
-        array, between = _at_time(array, stored, seconds)
+        array, between = _interp_along(array, "time", stored, seconds)
         answered.append(_answered("time", seconds, between, lambda x: f"{x / 86400:g} d"))
         selected["time_d"] = seconds / 86400
     array.attrs["selection"] = ", ".join(answered)
@@ -140,36 +140,33 @@ def _interp_along(array, dim, grid, value, period=None):
     weight = 0.0 if x1 == x0 else (value - x0) / (x1 - x0)
     lower = array.isel({dim: index}, drop=True)
     upper = array.isel({dim: hi}, drop=True)
-    if weight <= 1e-12 or weight >= 1 - 1e-12:  # a stored value, as stored (NaN beside it
-        x0 = x1 = x0 if weight <= 0.5 else x1  # or not)
-        return (lower if weight <= 0.5 else upper), (float(x0), float(x1))
+    stored = weight <= 1e-12 or weight >= 1 - 1e-12
+    if stored:  # as stored, whatever stands beside it (a NaN times 0 is NaN)
+        x0 = x1 = x0 if weight <= 0.5 else x1
     between = (float(x0), float(x1))
-    if array.dtype.kind not in "fc":
-        return (lower if weight < 0.5 else upper), between
-    return lower * (1.0 - weight) + upper * weight, between
+    if array.dtype.kind not in "fc" or stored:
+        answer = lower if weight < 0.5 else upper
+    else:
+        answer = lower * (1.0 - weight) + upper * weight
+    if period is None and array.dtype.kind in "fc" and bool(answer.isnull().any()):
+        return _own_points(array, dim, grid, value).assign_coords(answer.coords), between
+    return answer, between
 
 
-def _at_time(array, stored, seconds):
-    """``array`` at ageing time ``seconds`` and the stored times it lies between (as
-    :func:`_interp_along`). A series with no value at one of those (a sweep's case whose
-    own ageing times differ, or that ends earlier) is interpolated between its own nearest
-    ageing times, and is NaN outside them: never extrapolated, never NaN by a neighbour."""
+def _own_points(array, dim, grid, value):
+    """``array`` at ``value`` along ``dim``, each series between its own nearest grid points
+    that hold a value (a sweep's case whose ageing times differ from the others', or
+    that ends earlier), NaN outside them: never extrapolated, never NaN by a neighbour."""
     import xarray as xr
 
-    chosen, between = _interp_along(array, "time", stored, seconds)
-    if array.dtype.kind not in "fc" or not bool(chosen.isnull().any()):
-        return chosen, between
-
-    def own_times(values):
+    def own(values):
         known = np.isfinite(values)
-        times = stored[known]
-        if not times.size or not times[0] - 1e-9 <= seconds <= times[-1] + 1e-9:
+        points = grid[known]
+        if not points.size or not points[0] - 1e-9 <= value <= points[-1] + 1e-9:
             return np.nan
-        return np.interp(seconds, times, values[known])
+        return np.interp(value, points, values[known])
 
-    own = xr.apply_ufunc(own_times, array, input_core_dims=[["time"]], vectorize=True,
-                         keep_attrs=True)
-    return own.assign_coords(chosen.coords), between
+    return xr.apply_ufunc(own, array, input_core_dims=[[dim]], vectorize=True, keep_attrs=True)
 
 
 def swept_values(array) -> dict[str, np.ndarray]:

@@ -134,3 +134,21 @@ def test_a_stored_time_next_to_a_missing_value_is_read_as_stored():
     ds = two_cases().isel(case=0)
     assert float(select(ds, "lift", time="45 d")) == 4.5
     assert np.isnan(float(select(ds, "lift", time="46 d")))
+
+
+def test_a_limit_is_said_to_hold_only_as_far_as_the_model_computed_it(tmp_path):
+    """The R914 four-bar leaves the model's domain (wet Tg) between 2 h 20 min and 2 h
+    30 min of its 3 h history: its limit holds to 2 h (the last ageing time with values),
+    not to 3 h."""
+    import fickcam
+    from fickcam.reporting import limit_line
+
+    scene = yaml.safe_load((CONFIGS / "singh2016_fourbar.yaml").read_text())
+    scene["limits"] = {"rocker_angle": {"deviation": "5 deg"}}
+    scene["outputs"] = {"ageing_times": {"every": "30 min"}, "angle_step": "10 deg"}
+    path = tmp_path / "fourbar.yaml"
+    path.write_text(yaml.safe_dump(scene, sort_keys=False))
+    ds = fickcam.run(path)
+    assert ds.time.values[-1] == np.timedelta64(3, "h")
+    line = limit_line(ds, "rocker_angle")
+    assert "holds to 2 h (" in line and "no value after 2 h, see the notices" in line, line
