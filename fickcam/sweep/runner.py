@@ -190,10 +190,10 @@ def run_sweep(sweep_path, output, workers: int | None = None, scheduler: str | N
     from ..store import save
 
     started = time.perf_counter()
+    if scheduler or (workers or 1) > 1:
+        require_distributed()  # before the sweep file is read
     sweep = load_sweep(sweep_path)
     here = in_process(workers, scheduler, len(sweep.cases))
-    if not here:
-        require_distributed()
     output = Path(output)
     folder = WorkFolder.next_to(output)
     records = folder.open_for(sweep.identity, len(sweep.cases))
