@@ -152,3 +152,17 @@ def test_a_limit_is_said_to_hold_only_as_far_as_the_model_computed_it(tmp_path):
     assert ds.time.values[-1] == np.timedelta64(3, "h")
     line = limit_line(ds, "rocker_angle")
     assert "holds to 2 h (" in line and "no value after 2 h, see the notices" in line, line
+
+
+def test_a_sweep_whose_cases_end_at_different_times_says_which_end_early():
+    from fickcam.sweep.combine import case_ends, early_ends
+
+    ds = two_cases().assign_coords(case_status=("case", np.array(["ok", "ok"], dtype=object)))
+    np.testing.assert_array_equal(case_ends(ds) / DAY, [45, 100])
+    assert early_ends(ds) == (
+        "1 case(s) end before the last ageing time, 100 d (case 0 at 45 d): the table and "
+        "the sweep plots at 100 d leave them empty; fickcam query --time reads each case at "
+        "its own ageing times")
+    assert early_ends(ds.isel(case=[1])) is None
+    failed = ds.assign_coords(case_status=("case", np.array(["failed", "ok"], dtype=object)))
+    assert early_ends(failed) is None  # a failed case has no values at all: said elsewhere

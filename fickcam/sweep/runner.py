@@ -24,7 +24,7 @@ from pathlib import Path
 from ..errors import FickcamError, InputError
 from ..extras import installed, require
 from .case import CaseTask, quieter, run_case
-from .combine import combine
+from .combine import combine, early_ends
 from .journal import decode_arrays
 from .scheduler import probe
 from .spec import Sweep, load_sweep
@@ -211,8 +211,11 @@ def run_sweep(sweep_path, output, workers: int | None = None, scheduler: str | N
         shown = ", ".join(str(i) for i in failed[:20]) + (" ..." if len(failed) > 20 else "")
         log.warning("%d of %d case(s) failed (case_status, case_message in the result): %s",
                     len(failed), len(sweep.cases), shown)
-    save(combine(sweep, records, finished_cases(folder, sweep, records), started=started), output,
-         compress=True)
+    result = combine(sweep, records, finished_cases(folder, sweep, records), started=started)
+    short = early_ends(result)
+    if short:
+        log.warning(short)
+    save(result, output, compress=True)
     if not any(r.get("retry") for r in records.values()):
         folder.remove_own_files()
     else:
