@@ -120,6 +120,9 @@ BENCH_EXPECTED = {False: "about 3 min", True: "about 10 s"}
 
 def _cmd_bench(args) -> int:
     if args.records:
+        from .extras import require
+
+        require("weather")  # the records bench reads a TMY3 year that pvlib ships
         from .bench_records import (format_record_table, format_year_accuracy,
                                     run_record_bench, year_accuracy)
 
@@ -218,16 +221,18 @@ def _cmd_compensate(args) -> int:
 def _cmd_profile(args) -> int:
     from .cam.design import design_from_scene
     from .cam.kinematics import working_profile
-    from .cam.profile import write_profile_csv, write_profile_dxf
+    from .cam.profile import dxf_module, write_profile_csv, write_profile_dxf
     from .scene import load_scene
 
-    scene = load_scene(args.scene)
-    if scene.model.cam is None:
-        raise InputError(f"{args.scene}: the scene has no cam")
     writers = {".csv": write_profile_csv, ".dxf": write_profile_dxf}
     suffix = Path(args.output).suffix.lower()
     if suffix not in writers or args.points < 16:
         raise InputError("profile: the output must end in .csv or .dxf and --points be >= 16")
+    if suffix == ".dxf":
+        dxf_module()  # refused before any work without the dxf extra
+    scene = load_scene(args.scene)
+    if scene.model.cam is None:
+        raise InputError(f"{args.scene}: the scene has no cam")
     x, y = working_profile(design_from_scene(scene.model.cam), n=args.points)
     print(f"wrote {writers[suffix](args.output, x, y)}")
     return 0
@@ -235,13 +240,13 @@ def _cmd_profile(args) -> int:
 
 def _cmd_fit(args) -> int:
     from .fit import fit_weight_gain, materials_yaml, parameter_table, plot_fit
+    from .store import write_text_atomically
 
     if (args.fiber is None) != (args.fiber_volume_fraction is None):
         raise InputError("--fiber and --fiber-volume-fraction go together")
     report = fit_weight_gain(args.data, args.matrix, fiber=args.fiber,
                              fiber_volume_fraction=args.fiber_volume_fraction, name=args.name)
-    output = Path(args.output)
-    output.write_text(materials_yaml(report), encoding="utf-8")
+    output = write_text_atomically(args.output, materials_yaml(report))
     print(parameter_table(report))
     print(f"wrote {output}")
     if args.plot:

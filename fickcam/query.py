@@ -140,12 +140,33 @@ def _interp_along(array, dim, grid, value, period=None):
     weight = 0.0 if x1 == x0 else (value - x0) / (x1 - x0)
     lower = array.isel({dim: index}, drop=True)
     upper = array.isel({dim: hi}, drop=True)
-    if weight <= 1e-12 or weight >= 1 - 1e-12:  # a stored value
+    stored = weight <= 1e-12 or weight >= 1 - 1e-12
+    if stored:  # as stored, whatever stands beside it (a NaN times 0 is NaN)
         x0 = x1 = x0 if weight <= 0.5 else x1
     between = (float(x0), float(x1))
-    if array.dtype.kind not in "fc":
-        return (lower if weight < 0.5 else upper), between
-    return lower * (1.0 - weight) + upper * weight, between
+    if array.dtype.kind not in "fc" or stored:
+        answer = lower if weight < 0.5 else upper
+    else:
+        answer = lower * (1.0 - weight) + upper * weight
+    if period is None and array.dtype.kind in "fc" and bool(answer.isnull().any()):
+        return _own_points(array, dim, grid, value).assign_coords(answer.coords), between
+    return answer, between
+
+
+def _own_points(array, dim, grid, value):
+    """``array`` at ``value`` along ``dim``, each series between its own nearest grid points
+    that hold a value (a sweep's case whose ageing times differ from the others', or
+    that ends earlier), NaN outside them: never extrapolated, never NaN by a neighbour."""
+    import xarray as xr
+
+    def own(values):
+        known = np.isfinite(values)
+        points = grid[known]
+        if not points.size or not points[0] - 1e-9 <= value <= points[-1] + 1e-9:
+            return np.nan
+        return np.interp(value, points, values[known])
+
+    return xr.apply_ufunc(own, array, input_core_dims=[[dim]], vectorize=True, keep_attrs=True)
 
 
 def swept_values(array) -> dict[str, np.ndarray]:

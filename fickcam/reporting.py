@@ -214,13 +214,19 @@ def limit_line(ds, name: str) -> str | None:
     failed = float(ds["time_out_of_spec"].sel(limit=name)) * 86400.0
     ratio = np.asarray(ds["limit_ratio"].sel(limit=name).values, float)
     times = ds["time"].values / np.timedelta64(1, "s")
+    known = np.flatnonzero(np.isfinite(ratio))
+    last = int(known[-1]) if known.size else 0
+    # no ratio past a part's leaving the model's domain: the limit is judged up to there only
+    unknown = (f"; no value after {format_duration(times[last])}, see the notices"
+               if last < times.size - 1 else "")
     if math.isnan(failed):
-        state = f"holds to {format_duration(times[-1])} (largest ratio {np.nanmax(ratio):.4f})"
+        state = (f"holds to {format_duration(times[last])} (largest ratio "
+                 f"{np.nanmax(ratio):.4f}{unknown})")
     elif failed <= times[0]:
-        state = f"out of spec from the start (ratio {ratio[0]:.4f})"
+        state = f"out of spec from the start (ratio {ratio[0]:.4f}{unknown})"
     else:
         state = (f"out of spec from {format_duration(failed)} "
-                 f"(ratio {ratio[-1]:.4f} at {format_duration(times[-1])})")
+                 f"(ratio {ratio[last]:.4f} at {format_duration(times[last])}{unknown})")
     band = limit.text + (" around the as-designed value" if limit.deviation is not None else "")
     return f"{name} ({band}): {state}"
 

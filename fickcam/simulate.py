@@ -40,9 +40,21 @@ def ageing_times(scene: Scene, environment: Environment) -> np.ndarray:
     if isinstance(requested, list):
         return np.asarray(requested, float)
     if isinstance(requested, EveryStep):
-        count = int(np.floor(end / requested.every * (1 + 1e-12)))
-        return requested.every * np.arange(count + 1)
+        return every_step_times(requested.every, end)
     return np.linspace(0.0, end, 11)
+
+
+def every_step_times(step: float, end: float) -> np.ndarray:
+    """0, step, 2 step, ... up to ``end`` (s), and ``end`` itself when the steps do not
+    land on it: the history's last state is always reported (two years every 30 d:
+    0, 30, ..., 720 d and 730.5 d). A step that lands within 1e-9 ``end`` of the end is
+    moved onto it rather than followed by a sliver."""
+    count = int(np.floor(end / step * (1 + 1e-12)))
+    times = step * np.arange(count + 1)
+    if count and end - times[-1] <= 1e-9 * end:
+        times[-1] = end
+        return times
+    return np.append(times, end) if end > times[-1] else times
 
 
 def diffusion_options(scene: Scene, accuracy: float | None) -> dict:

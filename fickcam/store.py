@@ -10,6 +10,8 @@ from __future__ import annotations
 import json
 import os
 import tempfile
+from collections.abc import Iterator
+from contextlib import contextmanager
 from pathlib import Path
 
 from .errors import InputError
@@ -41,6 +43,29 @@ def temporary_beside(path: Path) -> str:
     os.fchmod(fd, _umask_mode())
     os.close(fd)
     return tmp
+
+
+@contextmanager
+def replaced_atomically(path) -> Iterator[str]:
+    """A temporary file beside ``path`` (its folder made if needed) for the block to write;
+    renamed over ``path`` when the block ends, removed if it raises: ``path`` is never
+    left half written."""
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    tmp = temporary_beside(path)
+    try:
+        yield tmp
+        os.replace(tmp, path)
+    except BaseException:
+        Path(tmp).unlink(missing_ok=True)
+        raise
+
+
+def write_text_atomically(path, text: str) -> Path:
+    """Write ``text`` (UTF-8) to ``path`` through a temporary file and a rename."""
+    with replaced_atomically(path) as tmp, open(tmp, "w", encoding="utf-8", newline="") as handle:
+        handle.write(text)
+    return Path(path)
 
 
 def _write_netcdf(ds, filename: str) -> None:
