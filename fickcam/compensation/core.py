@@ -17,6 +17,7 @@ iteration, each step a run of the scene with the current made dimensions.
 from __future__ import annotations
 
 import contextlib
+import dataclasses
 import logging
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -50,8 +51,9 @@ class Target:
 @dataclass
 class Compensation:
     """What :func:`fickcam.compensate` found: the made value of every target (m), the
-    ageing times it was made for, the iterations the fixed point took and the scene
-    (YAML data) that makes it."""
+    ageing times it was made for, the iterations the fixed point took, the scene (YAML
+    data, as designed) that makes it, and the runs of the design (``before``) and of the
+    made scene (``after``) at the ``check`` times (s) across the ``life`` asked about."""
 
     targets: list[Target]
     made: list
@@ -60,6 +62,20 @@ class Compensation:
     scene_data: dict
     residual: list = field(default_factory=list)  # largest |made (1 + eps) - design| per target, m
     scene: object = None                          # the design scene (fickcam.scene.Scene)
+    life: tuple = (0.0, 0.0)                      # s: the window, or delivery to the history's end
+    check: np.ndarray = None                      # s: the ageing times of before and after
+    before: object = None                         # xarray.Dataset of the design
+    after: object = None                          # xarray.Dataset of the made scene
+    asked: object = None                          # what was asked when keep_limits widened it
+
+    def fails(self) -> bool:
+        """True when the made part breaks one of the scene's limits across the life."""
+        return "limit_ratio" in self.after and bool((self.after.limit_ratio.values > 1.0).any())
+
+    def widened(self, times, made, after, iterations, left) -> "Compensation":
+        """This compensation made anew for ``times`` (keep_limits); ``asked`` keeps it."""
+        return dataclasses.replace(self, made=made, times=np.asarray(times), after=after,
+                                   iterations=iterations, residual=left, asked=self)
 
 
 def part_strain(ds, target: Target) -> np.ndarray:
