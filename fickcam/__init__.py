@@ -27,17 +27,19 @@ def run(scene, *, accuracy: float | None = None, progress: bool = False):
 
 
 def compensate(scene, *, at=None, over=None, accuracy: float | None = None,
-               keep_limits: bool = False):
+               keep_limits: bool = False, points: bool = False):
     """The dry dimensions to make so that the mechanism has its design geometry at ageing
     time ``at`` ("60 d") or stays closest to it over ``over`` = (T1, T2); ``keep_limits``
     (with ``at``): if that breaks one of the scene's limits from delivery to the end of the
-    history, made for that whole life instead. Returns a ``Compensation`` (``.made``,
+    history, made for that whole life instead; ``points``: a parametric cam made as points.
+    Returns a ``Compensation`` (``.made``,
     ``.iterations``, ``.residual``, ``.before`` and ``.after``: the runs of the design and
     of the made scene; its table, report and written scene come from
     ``fickcam.compensation.dimension_table``, ``report`` and ``write_scene``)."""
     from .compensation import compensate as _compensate
 
-    return _compensate(scene, at=at, over=over, accuracy=accuracy, keep_limits=keep_limits)
+    return _compensate(scene, at=at, over=over, accuracy=accuracy, keep_limits=keep_limits,
+                       points=points)
 
 
 def save(dataset, path):

@@ -150,6 +150,10 @@ def _design_commands(sub) -> None:
                             help="with --at: if that breaks one of the scene's limits between "
                                  "delivery and the end of the history, make the part for that "
                                  "whole life instead (minimax over it)")
+    compensate.add_argument("--points", action="store_true",
+                            help="make a cam given by its parameters as points (its working "
+                                 "profile, x and y compensated apart): for a cam that swells "
+                                 "anisotropically, such as a unidirectional laminate")
     compensate.add_argument("-o", "--output", help="compensated scene (default: "
                                                    "<scene>_compensated.yaml here)")
     compensate.add_argument("--profile", metavar="PATH",

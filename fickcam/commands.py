@@ -202,8 +202,7 @@ def _cmd_sweep(args) -> int:
 
 
 def _cmd_compensate(args) -> int:
-    from .compensation import compensate, write_scene
-    from .compensation.report import report
+    from .compensation import compensate, report, write_scene
     from .scene import load_scene
 
     if args.profile is not None:
@@ -219,7 +218,8 @@ def _cmd_compensate(args) -> int:
     if args.profile is not None and scene.model.cam is None:
         raise InputError(f"{args.scene}: --profile needs a cam (the scene has none)")
     comp = compensate(scene, at=args.at, over=args.over, accuracy=args.accuracy,
-                      plot=args.plot is not None, keep_limits=args.keep_limits)
+                      plot=args.plot is not None, keep_limits=args.keep_limits,
+                      points=args.points)
     output = Path(args.output) if args.output else Path(f"{Path(args.scene).stem}_compensated.yaml")
     text = report(comp, scene)
     written = write_scene(comp, scene, output, profile=args.profile, plot=args.plot)

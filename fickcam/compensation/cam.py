@@ -17,8 +17,9 @@ A roller that takes up moisture: its radius with its mean in-plane strain, as
 offset (flat) with the follower's strain along it. Cam thickness, bore and the follower's
 offset from the cam axis (set by the frame) are left as designed.
 
-A cam made anisotropic (a unidirectional laminate) swells into a distorted shape that a
-parametric cam cannot take up; what is left shows in the limits report.
+A cam that swells anisotropically (a unidirectional laminate: eps_T can be tens of times
+eps_L) turns a circle into an ellipse, a distortion no choice of its parameters takes up;
+the report says so, and ``points`` (``--points``) makes such a cam as points instead.
 """
 from __future__ import annotations
 
@@ -39,18 +40,20 @@ IN_PLANE = ("strain_longitudinal", "strain_transverse")
 ARM_NAMES = {"length": "arm length", "face_offset": "arm face offset"}
 
 
-def given_by_points(section) -> bool:
-    """True when the made cam is written as points (a profile file, or a swinging arm)."""
-    return section.profile_file is not None or section.follower.arm is not None
+def given_by_points(section, points: bool = False) -> bool:
+    """True when the made cam is written as points: a profile file, a swinging arm's cam,
+    or any cam when ``points`` is asked for."""
+    return points or section.profile_file is not None or section.follower.arm is not None
 
 
 def _segment_name(index: int, segment) -> str:
     return f"{segment.kind} of segment {index + 1}"
 
 
-def shape_targets(section) -> list[Target]:
-    """The cam's own dimensions, in the form it was given in (module docstring)."""
-    if given_by_points(section):
+def shape_targets(section, points: bool = False) -> list[Target]:
+    """The cam's own dimensions, in the form it was given in (module docstring), or its
+    points when ``points`` is asked for."""
+    if given_by_points(section, points):
         x, y = working_profile(design_from_scene(section), n=PROFILE_POINTS)
         return [Target("cam", PROFILE_NAMES[0], "cam", ("strain_longitudinal",), x),
                 Target("cam", PROFILE_NAMES[1], "cam", ("strain_transverse",), y)]
@@ -66,10 +69,10 @@ def shape_targets(section) -> list[Target]:
     return found
 
 
-def targets(section, base_dir: Path) -> list[Target]:
+def targets(section, points: bool = False) -> list[Target]:
     """The cam's dimensions (:func:`shape_targets`) and, for an ageing follower, its roller
     radius and its arm's length or face offset."""
-    found = shape_targets(section)
+    found = shape_targets(section, points)
     follower = section.follower
     if follower.kind == "roller" and follower.material:
         found.append(Target("follower", "roller radius", "follower", IN_PLANE,
@@ -175,3 +178,24 @@ def made_outline(data: dict, base_dir: Path, points: int):
 
     section = scene_from(data, base_dir, "<compensated scene>").model.cam
     return working_profile(design_from_scene(section), n=points)
+
+
+#: a parametric cam's in-plane strains differ by more than this fraction of the larger:
+#: the report suggests making it as points
+ANISOTROPY = 0.1
+
+
+def anisotropy_note(comp) -> list[str]:
+    """A line when a cam made in its parameters swells anisotropically over the life."""
+    if comp.before is None or "cam" not in getattr(comp.before, "part", []) or \
+            any(t.name in PROFILE_NAMES for t in comp.targets) or \
+            not any(t.group == "cam" for t in comp.targets):
+        return []
+    along, across = (comp.before[name].sel(part="cam").values for name in IN_PLANE)
+    larger = float(np.max(np.maximum(np.abs(along), np.abs(across))))
+    apart = float(np.max(np.abs(across - along)))
+    if larger == 0.0 or apart <= ANISOTROPY * larger:
+        return []
+    return [f"the cam swells anisotropically (in-plane strains up to {larger:.3g}, apart by up "
+            f"to {apart:.3g}): a parametric cam cannot take up that distortion; --points makes "
+            f"it as points instead (x and y compensated apart)"]

@@ -218,8 +218,10 @@ def drift_lines(comp: Compensation) -> list[str]:
 def report(comp: Compensation, scene) -> str:
     """Everything `fickcam compensate` prints before the files it wrote (no runs: it reads
     the runs the compensation made)."""
+    from .cam import anisotropy_note
+
     lines = [header(comp, scene), dimension_table(comp)] + residual_lines(comp) + \
-        limit_lines(comp) + advice_lines(comp, scene) + drift_lines(comp)
+        limit_lines(comp) + advice_lines(comp, scene) + anisotropy_note(comp) + drift_lines(comp)
     return "\n".join(lines)
 
 

@@ -40,12 +40,12 @@ def scene_from(data: dict, base_dir: Path, file_name: str):
     return validate_document(doc, base_dir=base_dir)
 
 
-def _targets(scene) -> list:
+def _targets(scene, points: bool) -> list:
     found = []
     if scene.model.cam is not None:
         from . import cam
 
-        found += cam.targets(scene.model.cam, scene.base_dir)
+        found += cam.targets(scene.model.cam, points)
     if scene.model.linkage is not None:
         from . import linkage
 
@@ -182,12 +182,13 @@ def fixed_point(scene, data: dict, targets: list, times: np.ndarray, check: np.n
 
 
 def compensate(scene, at=None, over=None, *, accuracy: float | None = None,
-               plot: bool = False, keep_limits: bool = False) -> Compensation:
+               plot: bool = False, keep_limits: bool = False, points: bool = False) -> Compensation:
     """The dry dimensions to make so that the mechanism has its design geometry at ageing
     time ``at`` (a duration, e.g. "60 d", or seconds), or stays closest to it over the
     window ``over`` = (T1, T2) (minimax). ``keep_limits`` (with ``at``): when that leaves
     one of the scene's limits failing between delivery and the end of the history, make
-    the dimensions for that whole life instead (minimax over it). Returns a
+    the dimensions for that whole life instead (minimax over it). ``points``: make a cam
+    given by its parameters as points (x and y compensated apart). Returns a
     :class:`Compensation` with the design's and the made scene's runs; its scene is
     written by :func:`fickcam.compensation.write_scene`."""
     from ..scene import design_data, load_scene
@@ -199,7 +200,7 @@ def compensate(scene, at=None, over=None, *, accuracy: float | None = None,
     wide = keep_limits and bool(scene.limits)
     check = check_times(scene, times, life, plot=plot, wide=wide)
     design = scene.as_designed()  # a compensated scene is compensated anew
-    targets = _targets(design)
+    targets = _targets(design, points)
     data = design_data(copy.deepcopy(scene.document.data))
     with quiet_runs():
         before = run_at(data, scene.base_dir, check, accuracy)
