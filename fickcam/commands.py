@@ -202,7 +202,8 @@ def _cmd_sweep(args) -> int:
 
 
 def _cmd_compensate(args) -> int:
-    from .compensation import compensate, report, write_scene
+    from .compensation import compensate, report
+    from .compensation.report import write_files
     from .scene import load_scene
 
     if args.profile is not None:
@@ -222,7 +223,7 @@ def _cmd_compensate(args) -> int:
                       points=args.points)
     output = Path(args.output) if args.output else Path(f"{Path(args.scene).stem}_compensated.yaml")
     text = report(comp, scene)
-    written = write_scene(comp, scene, output, profile=args.profile, plot=args.plot)
+    written = write_files(comp, scene, output, profile=args.profile, plot=args.plot)
     print(text)
     for path in written:
         print(f"wrote {path}")

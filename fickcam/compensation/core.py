@@ -68,9 +68,19 @@ class Compensation:
     after: object = None                          # xarray.Dataset of the made scene
     asked: object = None                          # what was asked when keep_limits widened it
 
+    def in_life(self) -> np.ndarray:
+        """Which of the ``check`` times lie in the life asked about (a plot adds others)."""
+        return (self.check >= self.life[0]) & (self.check <= self.life[1])
+
+    def ratios(self, ds, limit: str) -> tuple[np.ndarray, np.ndarray]:
+        """(ageing times in the life, s; the limit ratio of ``limit`` in ``ds`` at them)."""
+        inside = self.in_life()
+        return self.check[inside], ds.limit_ratio.sel(limit=limit).values[inside]
+
     def fails(self) -> bool:
         """True when the made part breaks one of the scene's limits across the life."""
-        return "limit_ratio" in self.after and bool((self.after.limit_ratio.values > 1.0).any())
+        return "limit_ratio" in self.after and any(
+            (self.ratios(self.after, name)[1] > 1.0).any() for name in self.after.limit.values)
 
     def widened(self, times, made, after, iterations, left) -> "Compensation":
         """This compensation made anew for ``times`` (keep_limits); ``asked`` keeps it."""

@@ -95,7 +95,7 @@ def out_of_spec_span(ratio: np.ndarray, times: np.ndarray) -> tuple[float, float
     return float(times[above[0]]), float(times[last]), after
 
 
-def _cell(ratio: np.ndarray, times: np.ndarray) -> str:
+def _cell(times: np.ndarray, ratio: np.ndarray) -> str:
     value, when = worst(ratio, times)
     if math.isnan(value):
         return f"{'unknown':<26}"
@@ -109,17 +109,16 @@ def limit_lines(comp: Compensation) -> list[str]:
     from ..limits import stored_limits
 
     if "limit_ratio" not in comp.before:
-        return [f"no limits: in the scene: the part is not checked against a spec "
-                f"(add a limits: section to see its limits here)"]
+        return ["the scene has no limits: section, so the made part is not checked against a "
+                "spec (add one to see each limit here, as designed and compensated)"]
     limits = stored_limits(comp.before)
     life = f"{days(comp.life[0])} to {days(comp.life[1])}"
     lines = [f"limits from {life} (worst limit ratio, 1 = at the limit, and when):",
-             f"  {'limit':<44} {'as designed':<34} {'compensated':<34}"]
+             f"  {'limit':<44} {'as designed':<34} compensated"]
     for name in comp.before.limit.values:
         label = f"{name} ({limits[name].text})"
-        before = comp.before.limit_ratio.sel(limit=name).values
-        after = comp.after.limit_ratio.sel(limit=name).values
-        lines.append(f"  {label:<44} {_cell(before, comp.check)}  {_cell(after, comp.check)}")
+        lines.append(f"  {label:<44} {_cell(*comp.ratios(comp.before, name))}  "
+                     f"{_cell(*comp.ratios(comp.after, name))}".rstrip())
     return lines
 
 
@@ -127,10 +126,10 @@ def _failures(comp: Compensation, ds) -> list[str]:
     """'follower_displacement out of spec at 0 d, back in spec by 7 d (worst 1.35 at 0 d)'."""
     found = []
     for name in ds.limit.values:
-        ratio = ds.limit_ratio.sel(limit=name).values
-        span = out_of_spec_span(ratio, comp.check)
+        times, ratio = comp.ratios(ds, name)
+        span = out_of_spec_span(ratio, times)
         if span is not None:
-            value, when = worst(ratio, comp.check)
+            value, when = worst(ratio, times)
             first = f"at {days(span[0])}" if span[0] == span[1] else \
                 f"from {days(span[0])} to {days(span[1])}"
             back = "" if math.isnan(span[2]) else f", back in spec by {days(span[2])}"
@@ -261,12 +260,18 @@ def _drawing_writer(data: dict, points, base_dir: Path, path: Path):
     return lambda tmp: write(tmp, x, y)
 
 
-def write_scene(comp: Compensation, scene, path, *, profile=None, plot=None) -> list[Path]:
+def write_scene(comp: Compensation, scene, path, *, profile=None, plot=None) -> Path:
+    """Write the compensated scene and what goes with it (:func:`write_files`); returns the
+    scene's path."""
+    return write_files(comp, scene, path, profile=profile, plot=plot)[0]
+
+
+def write_files(comp: Compensation, scene, path, *, profile=None, plot=None) -> list[Path]:
     """Write the compensated scene (a cam given by points: its points beside it as
     ``<stem>_cam_profile.csv``), and when asked the made cam's profile (``profile``, .csv
     or .dxf) and the drift against the bands (``plot``, PNG); all together through
     temporary files and renames, so that nothing is written if one fails. Returns the
-    paths written."""
+    paths written, the scene's first."""
     from ..store import replaced_together
     from .cam import profile_path
     from .solve import write_made, write_points

@@ -148,13 +148,15 @@ def compensation_times(scene, at, over) -> tuple[np.ndarray, tuple[float, float]
 def check_times(scene, times: np.ndarray, life: tuple[float, float], *, plot: bool = False,
                 wide: bool = False) -> np.ndarray:
     """The ageing times (s) of every run (module docstring): the scene's ageing times
-    inside ``life``, its ends and ``times``; ``plot``: a regular grid of PLOT_POINTS;
-    ``wide``: the grid of a window over the whole life."""
+    inside ``life``, its ends and ``times``; ``plot``: a regular grid of PLOT_POINTS over
+    the whole history (the plot shows the part before and after a window too); ``wide``:
+    the grid of a window over the whole life."""
     from ..simulate import ageing_times, scene_environment
 
-    stored = ageing_times(scene, scene_environment(scene))
+    environment = scene_environment(scene)
+    stored = ageing_times(scene, environment)
     inside = stored[(stored >= life[0]) & (stored <= life[1])]
-    extra = [np.linspace(*life, PLOT_POINTS)] if plot else []
+    extra = [np.linspace(0.0, environment.end, PLOT_POINTS)] if plot else []
     if wide:
         extra.append(window_times(*life, stored))
     return np.unique(np.concatenate([inside, np.array(life), times, *extra]))
