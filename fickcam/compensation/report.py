@@ -84,15 +84,27 @@ def worst(ratio: np.ndarray, times: np.ndarray) -> tuple[float, float]:
     return float(ratio[k]), float(times[k])
 
 
-def out_of_spec_span(ratio: np.ndarray, times: np.ndarray) -> tuple[float, float, float] | None:
-    """(first ageing time out of spec, last one, the next stored time: it is back in spec
-    in between, or NaN at the life's end); None when the limit holds at every time."""
-    above = np.flatnonzero(ratio > 1.0)
-    if not above.size:
-        return None
-    last = int(above[-1])
-    after = float(times[last + 1]) if last + 1 < len(times) else math.nan
-    return float(times[above[0]]), float(times[last]), after
+def out_of_spec_spans(ratio: np.ndarray, times: np.ndarray) -> list[str]:
+    """Each stretch of ageing times out of spec (ratio above 1): 'at 0 d, back in spec by
+    7 d', 'from 30 d to 90 d, back in spec by 120 d', 'from 300 d to the end'."""
+    above = ratio > 1.0
+    spans = []
+    k = 0
+    while k < len(times):
+        if not above[k]:
+            k += 1
+            continue
+        last = k
+        while last + 1 < len(times) and above[last + 1]:
+            last += 1
+        text = f"at {days(times[k])}" if last == k else f"from {days(times[k])} to {days(times[last])}"
+        if last + 1 < len(times):
+            text += f", back in spec by {days(times[last + 1])}"
+        elif last > k:
+            text = f"from {days(times[k])} to the end"
+        spans.append(text)
+        k = last + 1
+    return spans
 
 
 def _cell(times: np.ndarray, ratio: np.ndarray) -> str:
@@ -122,22 +134,32 @@ def limit_lines(comp: Compensation) -> list[str]:
     return lines
 
 
-def _failures(comp: Compensation, ds) -> list[str]:
-    """'follower_displacement out of spec at 0 d, back in spec by 7 d (worst 1.35 at 0 d)'."""
+def _failures(comp: Compensation, ds, brief: bool = False) -> list[str]:
+    """'follower_displacement out of spec at 0 d, back in spec by 7 d (worst 1.35 at 0 d)'
+    per failing limit; ``brief``: 'follower_displacement (worst 1.35 at 0 d)'."""
     found = []
     for name in ds.limit.values:
         times, ratio = comp.ratios(ds, name)
-        span = out_of_spec_span(ratio, times)
-        if span is not None:
+        spans = out_of_spec_spans(ratio, times)
+        if spans:
             value, when = worst(ratio, times)
-            first = f"at {days(span[0])}" if span[0] == span[1] else \
-                f"from {days(span[0])} to {days(span[1])}"
-            back = "" if math.isnan(span[2]) else f", back in spec by {days(span[2])}"
-            if math.isnan(span[2]) and span[0] < span[1]:
-                first = f"from {days(span[0])} to the end"
-            found.append(f"{name} out of spec {first}{back} "
-                         f"(worst {value:.3g} at {days(when)})")
+            where = "" if brief else " out of spec " + " and ".join(spans)
+            found.append(f"{name}{where} (worst {value:.3g} at {days(when)})")
     return found
+
+
+def worse_line(comp: Compensation) -> list[str]:
+    """'further out of spec than as designed at 2 of 6 ageing times (0 d, 7 d)', by the
+    largest limit ratio at each time; nothing where compensation never makes it worse."""
+    names = comp.after.limit.values
+    times = comp.ratios(comp.after, names[0])[0]
+    before = np.nanmax([comp.ratios(comp.before, name)[1] for name in names], axis=0)
+    after = np.nanmax([comp.ratios(comp.after, name)[1] for name in names], axis=0)
+    worse = np.flatnonzero((after > before) & (after > 1.0))
+    if not worse.size:
+        return []
+    return [f"as compensated it is further out of spec than as designed at {worse.size} of "
+            f"{times.size} ageing times ({', '.join(days(t) for t in times[worse])})"]
 
 
 def advice_lines(comp: Compensation, scene) -> list[str]:
@@ -149,11 +171,11 @@ def advice_lines(comp: Compensation, scene) -> list[str]:
     lines = []
     if comp.asked is not None:
         lines.append(f"--keep-limits: compensating {when_text(comp.asked)} broke "
-                     + "; ".join(_failures(comp.asked, comp.asked.after))
+                     + ", ".join(_failures(comp.asked, comp.asked.after, brief=True))
                      + f"; made for the whole life, {life}, instead")
     if not failures:
         return lines + [f"every limit holds from {life} as compensated"]
-    lines.append("as compensated: " + "; ".join(failures))
+    lines += ["as compensated: " + "; ".join(failures)] + worse_line(comp)
     if comp.times.size == 1:
         lines.append(f"Compensating at one time cannot hold the part from delivery on. Make it "
                      f"for its whole life instead (minimax: closest to the design over it):\n"
