@@ -138,8 +138,9 @@ def _design_commands(sub) -> None:
         "window, or delivery to the end of the history for --at) as designed and compensated, "
         "and the drift of the key outputs; write a scene that makes them (a cam in the form it "
         "was given: eccentric disc, base circle and motion, or points).",
-        'fickcam compensate configs/singh2017_cam.yaml --over "0 d" "60 d" -o cam_made.yaml',
-        'fickcam compensate configs/eccentric_cam.yaml --at "120 d" --keep-limits',
+        'fickcam compensate configs/singh2017_cam.yaml --over "0 d" "60 d" --points -o cam_made.yaml',
+        'fickcam compensate configs/eccentric_cam.yaml --at "120 d" --profile disc.dxf',
+        'fickcam compensate configs/fourbar_r914_humid.yaml --at "180 d" --keep-limits',
         'fickcam compensate configs/fourbar_r914_humid.yaml --over "30 d" "365 d" --plot band.png')
     compensate.add_argument("scene")
     when = compensate.add_mutually_exclusive_group(required=True)

@@ -240,3 +240,14 @@ def test_dxf_is_written_when_asked(tmp_path):
     made = fickcam.load_scene(tmp_path / "made.yaml").model.cam.eccentric
     radius = np.hypot(x, y + made.eccentricity * 1e3)  # mm, about the disc's centre
     assert np.allclose(radius, made.radius * 1e3, rtol=0, atol=1e-6)
+
+
+def test_each_stretch_out_of_spec_is_named():
+    from fickcam.compensation.report import out_of_spec_spans
+
+    times = np.array([0.0, 7.0, 30.0, 90.0, 180.0]) * DAY
+    assert out_of_spec_spans(np.array([1.3, 0.9, 0.8, 1.1, 1.2]), times) == \
+        ["at 0 d, back in spec by 7 d", "from 90 d to the end"]
+    assert out_of_spec_spans(np.array([0.5, 1.2, 1.1, 0.9, 1.01]), times) == \
+        ["from 7 d to 30 d, back in spec by 90 d", "at 180 d"]
+    assert out_of_spec_spans(np.array([0.5, 1.0, np.nan, 0.9, 0.2]), times) == []

@@ -61,7 +61,8 @@ def shape_targets(section, points: bool = False) -> list[Target]:
         return [Target("cam", "disc radius", "cam", IN_PLANE, float(section.eccentric.radius)),
                 Target("cam", "eccentricity", "cam", ("strain_transverse",),
                        float(section.eccentric.eccentricity))]
-    found = [Target("cam", "base circle radius", "cam", IN_PLANE, float(section.base_circle_radius))]
+    found = [Target("cam", "base circle radius", "cam", IN_PLANE,
+                    float(section.base_circle_radius))]
     for index, segment in enumerate(section.motion):
         if segment.kind != "dwell":
             found.append(Target("cam", _segment_name(index, segment), "cam", IN_PLANE,

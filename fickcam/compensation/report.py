@@ -97,7 +97,8 @@ def out_of_spec_spans(ratio: np.ndarray, times: np.ndarray) -> list[str]:
         last = k
         while last + 1 < len(times) and above[last + 1]:
             last += 1
-        text = f"at {days(times[k])}" if last == k else f"from {days(times[k])} to {days(times[last])}"
+        text = f"at {days(times[k])}" if last == k else \
+            f"from {days(times[k])} to {days(times[last])}"
         if last + 1 < len(times):
             text += f", back in spec by {days(times[last + 1])}"
         elif last > k:
