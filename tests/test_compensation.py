@@ -1,4 +1,4 @@
-"""Compensation (issue 19): the dry dimensions to make so that the mechanism has its
+"""Compensation: the dry dimensions to make so that the mechanism has its
 design geometry at an ageing time, or stays closest to it over a window (minimax).
 
 Checks run the written compensated scene as a user would (fickcam.run on the YAML

@@ -1,4 +1,4 @@
-"""Compensation (issue 19): the dry dimensions at the reference temperature to make so that
+"""Compensation: the dry dimensions at the reference temperature to make so that
 the mechanism has its design geometry at an ageing time, or stays closest to it over a
 window (minimax); `fickcam compensate` and :func:`fickcam.compensate`.
 

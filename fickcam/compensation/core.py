@@ -2,10 +2,11 @@
 mechanism has its design geometry at an ageing time, or stays closest to it over a window.
 
 A dimension L of a part grows with the part's free hygrothermal strain eps(t) to
-L_made (1 + eps(t)) (seeds/001_51a6f900df76f3cc.txt eqs. 11-14, read as
-a_1 = a (1 + alpha dT + beta dm); seeds/000_c9d2754e3bf549ac.txt p. 281 scales the
-cam the same way). Both seeds end on the same instruction: reduce the dimensions by
-the drift. Holding L_design at time T gives L_made = L_design / (1 + eps(T)). Over a
+L_made (1 + eps(t)) (Singh & Sanyal 2016, on the volume, mass and moment of inertia of
+neat-resin four-bar links under a hygrothermal environment, eqs. 11-14, read as
+a_1 = a (1 + alpha dT + beta dm); Singh & Sanyal 2017, on a carbon/epoxy cam and
+follower under a hygrothermal environment, p. 281, scales the cam the same way). Both
+papers end on the same instruction: reduce the dimensions by the drift. Holding L_design at time T gives L_made = L_design / (1 + eps(T)). Over a
 window [T1, T2] the largest deviation max_t |L_made (1 + eps(t)) - L_design| is
 smallest (minimax) when the deviations at the strain's extremes are equal and opposite:
 L_made = L_design / (1 + (eps_min + eps_max) / 2), residual L_made (eps_max - eps_min) / 2.
