@@ -134,17 +134,32 @@ def _design_commands(sub) -> None:
         sub, "compensate", "the dimensions to make so that the mechanism holds its design",
         "Give the dry dimensions at the reference temperature to make so that the mechanism has "
         "its design geometry at an ageing time (--at) or stays closest to it over a service "
-        "window (--over, minimax); print them per part with the drift of the key outputs before "
-        "and after, and write a scene that makes them (a cam as profile points, CSV and DXF).",
-        'fickcam compensate configs/singh2017_cam.yaml --at "60 d" -o cam_made.yaml',
+        "window (--over, minimax); print them per part, the scene's limits over the life (the "
+        "window, or delivery to the end of the history for --at) as designed and compensated, "
+        "and the drift of the key outputs; write a scene that makes them (a cam in the form it "
+        "was given: eccentric disc, base circle and motion, or points).",
+        'fickcam compensate configs/singh2017_cam.yaml --over "0 d" "60 d" --points -o cam_made.yaml',
+        'fickcam compensate configs/eccentric_cam.yaml --at "120 d" --profile disc.dxf',
+        'fickcam compensate configs/fourbar_r914_humid.yaml --at "180 d" --keep-limits',
         'fickcam compensate configs/fourbar_r914_humid.yaml --over "30 d" "365 d" --plot band.png')
     compensate.add_argument("scene")
     when = compensate.add_mutually_exclusive_group(required=True)
     when.add_argument("--at", metavar="TIME", help='ageing time with units, e.g. "60 d"')
     when.add_argument("--over", nargs=2, metavar=("T1", "T2"),
                       help="a service window: minimise the largest deviation over it")
+    compensate.add_argument("--keep-limits", action="store_true",
+                            help="with --at: if that breaks one of the scene's limits between "
+                                 "delivery and the end of the history, make the part for that "
+                                 "whole life instead (minimax over it)")
+    compensate.add_argument("--points", action="store_true",
+                            help="make a cam given by its parameters as points (its working "
+                                 "profile, x and y compensated apart): for a cam that swells "
+                                 "anisotropically, such as a unidirectional laminate")
     compensate.add_argument("-o", "--output", help="compensated scene (default: "
                                                    "<scene>_compensated.yaml here)")
+    compensate.add_argument("--profile", metavar="PATH",
+                            help="also write the made cam's dry working profile for manufacture, "
+                                 "in mm: PATH.csv, or PATH.dxf (needs the dxf extra)")
     compensate.add_argument("--accuracy", type=float, help="override diffusion.accuracy")
     compensate.add_argument("--plot", metavar="PNG", help="also draw the drift of every "
                             "deviation limit against its band, as designed and compensated")

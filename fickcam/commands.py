@@ -205,16 +205,31 @@ def _cmd_sweep(args) -> int:
 
 
 def _cmd_compensate(args) -> int:
-    from .compensation import compensate, write_scene
-    from .compensation.report import report
+    from .compensation import compensate, report
+    from .compensation.report import write_files
     from .scene import load_scene
 
+    if args.profile is not None:
+        suffix = Path(args.profile).suffix.lower()
+        if suffix not in (".csv", ".dxf"):
+            raise InputError(f"--profile {args.profile}: the made cam's profile is written as "
+                             f".csv or .dxf (by the suffix)")
+        if suffix == ".dxf":  # before any computation: the extra may be missing
+            from .extras import require
+
+            require("dxf", advice="or write the profile as .csv")
     scene = load_scene(args.scene)
-    comp = compensate(scene, at=args.at, over=args.over, accuracy=args.accuracy)
+    if args.profile is not None and scene.model.cam is None:
+        raise InputError(f"{args.scene}: --profile needs a cam (the scene has none)")
+    comp = compensate(scene, at=args.at, over=args.over, accuracy=args.accuracy,
+                      plot=args.plot is not None, keep_limits=args.keep_limits,
+                      points=args.points)
     output = Path(args.output) if args.output else Path(f"{Path(args.scene).stem}_compensated.yaml")
-    path = write_scene(comp, scene, output)
-    print(report(comp, scene, path, accuracy=args.accuracy, plot=args.plot))
-    print(f"wrote {path}")
+    text = report(comp, scene)
+    written = write_files(comp, scene, output, profile=args.profile, plot=args.plot)
+    print(text)
+    for path in written:
+        print(f"wrote {path}")
     return 0
 
 

@@ -37,9 +37,10 @@ def _umask_mode() -> int:
     return 0o666 & ~mask
 
 
-def temporary_beside(path: Path) -> str:
-    """A new temporary file in ``path``'s folder, with the usual permissions."""
-    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
+def temporary_beside(path: Path, suffix: str = ".tmp") -> str:
+    """A new temporary file in ``path``'s folder, with the usual permissions, its name
+    ending in ``suffix``."""
+    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=suffix, dir=path.parent)
     os.fchmod(fd, _umask_mode())
     os.close(fd)
     return tmp
@@ -160,3 +161,22 @@ def open_result(path):
             except json.JSONDecodeError:
                 pass
     return ds
+
+
+@contextmanager
+def replaced_together(paths) -> Iterator[list[str]]:
+    """Temporary files beside each of ``paths`` (ending in the target's suffix, for writers
+    that go by it) for the block to write; all renamed over their targets when the block
+    ends, all removed if it raises: the targets are written all or none."""
+    paths = [Path(p) for p in paths]
+    temps: list[str] = []
+    try:
+        for path in paths:
+            path.parent.mkdir(parents=True, exist_ok=True)
+            temps.append(temporary_beside(path, suffix=f".tmp{path.suffix}"))
+        yield temps
+        for tmp, path in zip(temps, paths):
+            os.replace(tmp, path)
+    finally:
+        for tmp in temps:
+            Path(tmp).unlink(missing_ok=True)

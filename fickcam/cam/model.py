@@ -52,7 +52,8 @@ def cam_response(design: CamDesign, state: CamState, cam_angle) -> Response:
 
     Scalars: base_circle_radius, lift (m), jump_speed (rad/s; the schema stores rpm),
     wear_rate (m/s, deepest Archard wear per unit time). Arrays over cam_angle:
-    follower_displacement (m, from the aged lowest position), follower_velocity,
+    follower_displacement (m, from the aged lowest position), follower_position (m, the
+    pitch point or flat face above the cam axis), follower_velocity,
     follower_acceleration, follower_jerk (time derivatives at design.speed),
     pressure_angle (rad), radius_of_curvature (m, working profile; pitch curve minus roller),
     pitch_radius_of_curvature (m), contact_force (N, common normal), cam_torque (N m),
@@ -105,6 +106,7 @@ def cam_response(design: CamDesign, state: CamState, cam_angle) -> Response:
         "lift": highest - lowest,
         "jump_speed": jump,
         "follower_displacement": y,
+        "follower_position": height,
         "follower_velocity": velocity,
         "follower_acceleration": acceleration,
         "follower_jerk": d3 * omega ** 3,
