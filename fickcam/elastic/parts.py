@@ -21,30 +21,55 @@ def elastic_parts(model) -> set[str]:
 
 
 def sheet_profile(part, environment, times) -> SheetProfile | None:
-    """The exact moisture of an infinite sheet of the part's thickness under its exposure
-    (the engine's series, Crank 1975 eq. 4.17, with the through-thickness diffusivity):
-    from a face (the surface value) to the mid-plane at every ``DEPTH_STRIDE``-th of its
-    cells, and its thickness mean. At t = 0 the face still holds the initial moisture."""
-    from ..diffusion import Diffusivity, Sheet, solve
+    """``exact_sheet`` of the part's thickness under its exposure, with its
+    through-thickness diffusivity; None for a part without a diffusion geometry."""
+    from ..diffusion import Diffusivity
 
     if part.geometry is None:
         return None
-    thickness = part.geometry.thickness
     d = part.material.diffusivity_for(part.geometry)
     dz = float(d.pre_exponential[2])
-    exposure = environment.exposure(part.material.saturation_moisture)
-    result = solve(Sheet(thickness), Diffusivity((dz, dz, dz), d.activation_energy),
-                   exposure, times, model="analytic", store_fields=True, part=part.name)
+    return exact_sheet(part.geometry.thickness, Diffusivity((dz, dz, dz), d.activation_energy),
+                       environment.exposure(part.material.saturation_moisture), times, part.name)
+
+
+def exact_sheet(thickness, diffusivity, exposure, times, name: str = "") -> SheetProfile:
+    """The exact moisture of an infinite sheet under an exposure (the engine's series,
+    Crank 1975 eq. 4.17, superposed over the history).
+
+    Parameters
+    ----------
+    thickness : float
+        Sheet thickness [m].
+    diffusivity : fickcam.diffusion.Diffusivity
+        Its diffusivity (the through-thickness value is used) [m^2/s].
+    exposure : fickcam.diffusion.Exposure
+        Surface value and temperature over time.
+    times : array_like
+        Ageing times [s].
+    name : str
+        The part's name for messages.
+
+    Returns
+    -------
+    SheetProfile
+        From a face (the surface value; at t = 0 still the initial moisture) to the
+        mid-plane at every ``DEPTH_STRIDE``-th cell of the series' field, and the mean.
+    """
+    from ..diffusion import Sheet, solve
+
+    result = solve(Sheet(thickness), diffusivity, exposure, times, model="analytic",
+                   store_fields=True, part=name)
     z = np.asarray(result.cell_coordinates["z"])
     fields = np.asarray(result.fields)
     half = z <= 0.5 * thickness
     order = np.argsort(z[half])
-    inside = fields[:, half][:, order][:, ::DEPTH_STRIDE]
-    mid = 0.5 * (fields[:, half][:, order][:, -1] + fields[:, ~half][:, np.argmin(z[~half])])
+    inside = fields[:, half][:, order]
+    mid = 0.5 * (inside[:, -1] + fields[:, ~half][:, np.argmin(z[~half])])
     times = np.asarray(times, float)
     face = np.where(times > 0, exposure.surface_moisture(times), exposure.initial_moisture)
     depths = np.concatenate([[0.0], z[half][order][::DEPTH_STRIDE], [0.5 * thickness]])
-    return SheetProfile(depths, np.column_stack([face, inside, mid]),
+    return SheetProfile(depths, np.column_stack([face, inside[:, ::DEPTH_STRIDE], mid]),
                         np.asarray(result.mean, float))
 
 
