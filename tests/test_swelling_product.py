@@ -14,8 +14,6 @@ bore exposed, the hollow-cylinder series times the sheet series; thin-plate stre
 """
 from __future__ import annotations
 
-from types import SimpleNamespace
-
 import numpy as np
 import pytest
 from hypothesis import given, settings
@@ -27,9 +25,8 @@ from fickcam.diffusion import Diffusivity, Disc, Exposure, solve
 from fickcam.elastic.fem import PlaneElasticity
 from fickcam.elastic.mesh import disc_plate, planform_mesh
 from fickcam.elastic.parts import exact_sheet
-from fickcam.elastic.swelling import (GROWTH, ROWS, outline_vertices, plate_moisture,
-                                      plate_size, stress_at_time, swelling_history,
-                                      through_thickness)
+from fickcam.elastic.swelling import (GROWTH, ROWS, plate_moisture, plate_size, stress_at_time,
+                                      swelling_history, through_thickness)
 from fickcam.elastic.thickness import SheetProfile
 from fickcam.materials.material import Material
 
@@ -122,8 +119,8 @@ def test_moisture_through_the_thickness_stays_within_the_climate(climate, shape)
     result = solve(geometry, diffusivity, exposure, times, store_fields=True)
     sheet = exact_sheet(geometry.thickness, diffusivity, exposure, times)
     mesh = planform_mesh(disc_plate(0.025, 0.006, 0.008), 0.05 / ROWS, GROWTH)
-    layers, mean = plate_moisture(result, geometry, mesh.points, sheet.surface, sheet,
-                                  outline_vertices(mesh.triangles))
+    outline = PlaneElasticity(mesh.points, mesh.triangles, 0.006, order=1).mesh.boundary_nodes()
+    layers, mean = plate_moisture(result, geometry, mesh.points, sheet.surface, sheet, outline)
     lo, hi = min(values + [initial]), max(values + [initial])
     slack = result.error_estimate * (hi - lo) + roundoff(lo, hi)
     assert lo - slack <= layers.min() and layers.max() <= hi + slack

@@ -121,15 +121,6 @@ def nodal_moisture(result, geometry, points, surface, outline=None) -> np.ndarra
     return np.where(np.isfinite(linear), linear, nearest)
 
 
-def outline_vertices(triangles) -> np.ndarray:
-    """Indices of the vertices on a triangle mesh's boundary (its edges that belong to one
-    triangle only)."""
-    edges = np.sort(np.vstack([triangles[:, [0, 1]], triangles[:, [1, 2]],
-                               triangles[:, [2, 0]]]), axis=1)
-    unique, count = np.unique(edges, axis=0, return_counts=True)
-    return np.unique(unique[count == 1])
-
-
 def through_thickness(in_plane, depth: float, sheet: SheetProfile | None
                       ) -> tuple[np.ndarray, np.ndarray]:
     """(layers, mean): the plate's moisture [weight %] at the sheet's depths, face first,
@@ -277,7 +268,7 @@ def plate_moisture(result, geometry, points, surface, sheet: SheetProfile | None
     sheet : SheetProfile, optional
         The exact sheet of the part's thickness under its exposure.
     outline : numpy.ndarray, optional
-        Indices of the vertices on the exposed outline (``outline_vertices``).
+        Indices of the vertices on the exposed outline (the mesh's boundary nodes).
 
     Returns
     -------
@@ -311,7 +302,7 @@ def swelling_history(geometry, material, result, state: dict, temperature, refer
     pe = PlaneElasticity(mesh.points, mesh.triangles, geometry.thickness, order=2)
     layers, mean = plate_moisture(result, geometry, mesh.points,
                                   state.get("equilibrium_moisture_content", np.zeros(n)), sheet,
-                                  outline_vertices(mesh.triangles))
+                                  pe.mesh.boundary_nodes())
     fields = {}
     for k in np.flatnonzero(np.asarray(valid, bool)):
         *values, fields[k] = stress_at_time(pe, material, layers[k], mean[k],
