@@ -31,7 +31,12 @@ value, so it stays within the initial and surface values the part has seen (the
 maximum principle of the exact field; Protter & Weinberger, Maximum Principles in
 Differential Equations, Springer 1984, ch. 3), it is still exact in the core (w = 0) and
 on the exposed edge (w = 1), and it reproduces the engine's in-plane value wherever
-w lies in [0, 1].
+w lies in [0, 1]. Measured on an annulus (radii 8 and 25 mm, 6 mm thick, D = 1e-12 m^2/s)
+against the engine's own (r, z) field, largest difference over the part relative to the
+surface swing: 0.2-2 % under a constant climate (the sheet's depth sampling), up to 32 %
+close to the rim within a day or two of a step of the surface value (2 -> 0.5 -> 3 %, or
+daily steps), 0.2 % once the steps are a few weeks old; the sum of the in-plane field and
+the sheet's deviation from its mid-plane differed by 61-96 % in the same cases.
 """
 from __future__ import annotations
 
