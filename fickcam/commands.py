@@ -215,9 +215,9 @@ def _cmd_compensate(args) -> int:
             raise InputError(f"--profile {args.profile}: the made cam's profile is written as "
                              f".csv or .dxf (by the suffix)")
         if suffix == ".dxf":  # before any computation: the extra may be missing
-            from .extras import require
+            from .cam.profile import dxf_module
 
-            require("dxf", advice="or write the profile as .csv")
+            dxf_module()
     scene = load_scene(args.scene)
     if args.profile is not None and scene.model.cam is None:
         raise InputError(f"{args.scene}: --profile needs a cam (the scene has none)")
