@@ -11,9 +11,21 @@ from ._version import __version__
 
 def _command(sub, name: str, summary: str, description: str, *examples: str):
     """A subcommand whose --help says what it does and shows how it is used."""
-    return sub.add_parser(name, help=summary, description=description,
-                          epilog="examples:\n" + "\n".join(f"  {e}" for e in examples),
-                          formatter_class=argparse.RawDescriptionHelpFormatter)
+    command = sub.add_parser(name, help=summary, description=description,
+                             epilog="examples:\n" + "\n".join(f"  {e}" for e in examples),
+                             formatter_class=argparse.RawDescriptionHelpFormatter)
+    _verbosity(command)
+    return command
+
+
+def _verbosity(command) -> None:
+    """-v and -q, on every command (:mod:`fickcam.messages`: errors, warnings, notes)."""
+    group = command.add_argument_group("messages on stderr")
+    group.add_argument("-v", "--verbose", action="count", default=0,
+                       help="also debug details of the work")
+    group.add_argument("-q", "--quiet", action="count", default=0,
+                       help="no notes and no progress bar (the summary stays); -qq: errors only, "
+                            "no summary")
 
 
 def _parser() -> argparse.ArgumentParser:
@@ -43,7 +55,6 @@ def _scene_commands(sub) -> None:
     run.add_argument("scene", help="scene file (YAML)")
     run.add_argument("-o", "--output", help="result file (default: the scene's outputs.file)")
     run.add_argument("--accuracy", type=float, help="override diffusion.accuracy")
-    run.add_argument("--quiet", action="store_true", help="no progress bar, summary or notices")
 
     check = _command(sub, "check", "validate a scene and print the plan",
                      "Validate a scene without running it and print the plan the run uses: "
@@ -106,7 +117,6 @@ def _reference_commands(sub) -> None:
                      "fickcam bench --quick", "fickcam bench --records")
     bench.add_argument("--quick", action="store_true",
                        help="each geometry at its coarsest target, no 3-D solid rows (seconds)")
-    bench.add_argument("--quiet", action="store_true", help="no progress bar, only the table")
     bench.add_argument("--records", action="store_true",
                        help="cost of 1, 3, 12 months of hourly weather against a constant climate, "
                        "then a year's accuracy (--quick: 1 and 3 months, no accuracy)")
@@ -197,4 +207,3 @@ def _sweep_command(sub) -> None:
     group.add_argument("--workers", type=int, default=None, help="local worker processes")
     group.add_argument("--scheduler", help="address of a running dask scheduler, tcp://HOST:PORT")
     sweep.add_argument("-o", "--output", required=True)
-    sweep.add_argument("--quiet", action="store_true")

@@ -27,10 +27,24 @@ def _cmd_run(args) -> int:
     output = Path(args.output) if args.output else default_output(scene)
     ds = run(scene, accuracy=args.accuracy, progress=not args.quiet)
     save(ds, output)
-    if not args.quiet:
+    if args.quiet < 2:
         print(summary(ds, notices=False))  # the run has logged them on stderr
+        print(notices_line(ds.attrs.get("notices", []), args.quiet))
         print(f"wrote {output}")
     return 0
+
+
+def notices_line(notices, quiet: int) -> str:
+    """Under the run summary: how many warnings and notes the run reported on stderr
+    (the notes hidden by ``-q``); all are in the result's ``notices`` attribute."""
+    from .messages import count_levels
+
+    counts = count_levels(notices)
+    if not sum(counts.values()):
+        return "  no warnings or notes"
+    warnings, notes = f"{counts['warning']} warning(s)", f"{counts['note']} note(s)"
+    said = f"{warnings} above, {notes} hidden by -q" if quiet else f"{warnings} and {notes} above"
+    return f"  {said}; all kept in the result's notices attribute"
 
 
 def default_output(scene) -> Path:
@@ -127,15 +141,15 @@ def _cmd_bench(args) -> int:
         if not args.quick:
             print(format_year_accuracy(year_accuracy()))
         return 0
-    from tqdm.auto import tqdm
-
     from .bench import format_table, row_count, run_bench
+    from .messages import progress_bar
 
     total = row_count(args.quick)
     log.info("bench: %d rows, expected %s on an idle 2-core machine%s", total,
              BENCH_EXPECTED[args.quick], "" if args.quick else " (--quick: "
              f"{BENCH_EXPECTED[True]})")
-    with tqdm(total=total, disable=args.quiet, unit="row", desc="bench", leave=False) as bar:
+    with progress_bar(total, enabled=not args.quiet, eta=False, unit="rows", desc="bench",
+                      leave=False) as bar:  # rows differ in cost a hundredfold: no ETA
         started = []
 
         def starting(label: str) -> None:
@@ -192,7 +206,7 @@ def _cmd_sweep(args) -> int:
 
     run_sweep(args.sweep, args.output, workers=args.workers, scheduler=args.scheduler,
               progress=not args.quiet)
-    if not args.quiet:
+    if args.quiet < 2:
         result = open_result(args.output)
         print(sweep_summary(result))
         for line in summary_lines(result):
