@@ -72,7 +72,8 @@ def _result_commands(sub) -> None:
                      "shown beside each case.",
                      'fickcam query outputs/cam.h5 lift --time "45 d"',
                      "fickcam query outputs/cam.h5 lift --drift design",
-                     "fickcam query outputs/cam.h5 contact_force --time 30d --cam-angle 120 --format json")
+                     "fickcam query outputs/cam.h5 contact_force --time 30d --cam-angle 120 --format json",
+                     "fickcam query outputs/cam.h5 lift --units um --format csv > lift.csv")
     query.add_argument("result", help="result file (.h5)")
     query.add_argument("variable", help="a variable name (fickcam schema lists them)")
     query.add_argument("--time", help='ageing time with its unit, e.g. "30 d", "6 months" (a bare number is refused)')
@@ -81,6 +82,8 @@ def _result_commands(sub) -> None:
     query.add_argument("--cam-angle", type=float, help="degrees")
     query.add_argument("--crank-angle", type=float, help="degrees")
     query.add_argument("--format", choices=("table", "csv", "json"), default="table")
+    query.add_argument("--units", help="unit to show the values in, e.g. um, MPa, degF (default: "
+                                       "the variable's display unit, as in the run summary)")
     query.add_argument("--drift", choices=("design", "start"),
                        help="the change from the as-designed value (dry, reference temperature) "
                             "or from the first ageing time, instead of the value")

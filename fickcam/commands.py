@@ -103,7 +103,7 @@ def _cmd_query(args) -> int:
     array = select(ds, args.variable, time=args.time, part=args.part, link=args.link,
                    cam_angle=args.cam_angle, crank_angle=args.crank_angle, against=args.drift)
     print(format_result(array, args.variable, args.format, args.drift,
-                        limit=limit_line(ds, args.variable)))
+                        limit=limit_line(ds, args.variable), units=args.units))
     return 0
 
 
@@ -163,7 +163,8 @@ def _cmd_bench(args) -> int:
 
 
 def _cmd_materials(args) -> int:
-    from .materials.library import entry_text, find_entry, library_table
+    from .keys import closest_names
+    from .materials.library import GROUPS, entry_text, find_entry, known_names, library_table
 
     if args.name is None:
         print(library_table())
@@ -171,8 +172,10 @@ def _cmd_materials(args) -> int:
     try:
         find_entry(args.name)
     except KeyError:
-        raise InputError(f"no material {args.name!r} in the library (fickcam materials lists "
-                         f"them)") from None
+        names = {name.lower(): name for group in GROUPS for name in known_names(group)}
+        near = [names[n] for n in closest_names(args.name.lower(), names)]
+        hint = f"did you mean {', '.join(near)}?" if near else "fickcam materials lists them"
+        raise InputError(f"no material {args.name!r} in the library; {hint}") from None
     print(entry_text(args.name))
     return 0
 

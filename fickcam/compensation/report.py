@@ -52,7 +52,7 @@ def when_text(comp: Compensation) -> str:
     times = comp.times
     if times.size == 1:
         return f"at {format_duration(times[0])}"
-    return (f"over {format_duration(times[0])} to {format_duration(times[-1])} (minimax, "
+    return (f"over {format_duration(times[0], times[-1])} to {format_duration(times[-1])} (minimax, "
             f"{times.size} ageing times)")
 
 
@@ -200,7 +200,7 @@ def drift_lines(times, before, after, shown) -> list[str]:
     for k in np.flatnonzero(np.isin(times, shown)):
         t = times[k]
         cells = "  ".join(f"{old[k]:12.4g} -> {new[k]:10.4g}" for _, old, new in columns)
-        lines.append(f"  {format_duration(t):>9}  {cells}")
+        lines.append(f"  {format_duration(t, times[-1]):>9}  {cells}")  # one unit of time
     return lines
 
 
