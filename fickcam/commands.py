@@ -42,9 +42,13 @@ def notices_line(notices, quiet: int) -> str:
     counts = count_levels(notices)
     if not sum(counts.values()):
         return "  no warnings or notes"
-    warnings, notes = f"{counts['warning']} warning(s)", f"{counts['note']} note(s)"
-    said = f"{warnings} above, {notes} hidden by -q" if quiet else f"{warnings} and {notes} above"
-    return f"  {said}; all kept in the result's notices attribute"
+    warnings = f"{counts['warning']} warning(s)" if counts["warning"] else ""
+    notes = f"{counts['note']} note(s)" if counts["note"] else ""
+    if quiet and notes:
+        said = f"{warnings} above, " * bool(warnings) + f"{notes} hidden by -q"
+    else:
+        said = " and ".join(text for text in (warnings, notes) if text) + " above"
+    return f"  {said} (all kept in the result's notices attribute)"
 
 
 def default_output(scene) -> Path:

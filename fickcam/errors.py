@@ -66,9 +66,9 @@ class SolverError(FickcamError):
 
 
 #: units of time, each (name, seconds) with the longest span it is chosen for [s]:
-#: a 40-min history in min, a 3 h one in h, a 60-day one in d, a 5-year one in yr
+#: a 40-min history in min, a 3 h one in h, a 60-day or 2-year one in d, a 5-year one in yr
 TIME_UNITS = (("s", 1.0, 120.0), ("min", 60.0, 2 * 3600.0), ("h", 3600.0, 2 * 86400.0),
-              ("d", 86400.0, 730 * 86400.0), ("yr", 365.25 * 86400.0, float("inf")))
+              ("d", 86400.0, 3 * 365.25 * 86400.0), ("yr", 365.25 * 86400.0, float("inf")))
 
 
 def time_unit(span: float) -> tuple[str, float]:

@@ -59,7 +59,7 @@ def cam_elastic_response(section, cam_state: dict, variables: dict, valid) -> Re
     plate, spacing = cam_plate(design)
     mesh = planform_mesh(plate, spacing, GROWTH)
     model = cam_plate_model(mesh.points, mesh.triangles, design.thickness, design.bore_radius, spacing)
-    log.info("cam plate: %d nodes, %d dofs, spacing %.3g mm", len(mesh.points),
+    log.debug("cam plate: %d nodes, %d dofs, spacing %.3g mm", len(mesh.points),
              model.elasticity.dofs, spacing * 1e3)
     force = variables["contact_force"]
     shape = force.shape
