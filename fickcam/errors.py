@@ -75,7 +75,8 @@ def time_unit(span: float) -> tuple[str, float]:
     """(name, seconds) of the unit that suits durations up to ``span`` [s]: one unit for
     every time of a run, chosen from its last ageing time."""
     span = abs(float(span))
-    return next((name, seconds) for name, seconds, longest in TIME_UNITS if span < longest)
+    return next(((name, seconds) for name, seconds, longest in TIME_UNITS if span < longest),
+                ("d", 86400.0))  # no span (NaN: no case of a sweep ran): days, as results store
 
 
 def format_duration(seconds: float, span: float | None = None) -> str:

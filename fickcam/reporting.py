@@ -322,8 +322,10 @@ def sweep_summary(ds) -> str:
                                   else str(v[case]) for v in swept.values()), status]
                     + [_sweep_cell(ds, name, case) for name in outputs])
     seconds = ds["time"].values[-1] / np.timedelta64(1, "s") if "time" in ds.coords else np.nan
+    when = f"; at t = {format_duration(seconds)} (Δ against the design)" \
+        if np.isfinite(seconds) else ""  # (no time when no case ran)
     lines = [f"{ds.attrs.get('scene_name', '')}: {n} case(s), {int(ds.attrs.get('failed_cases', 0))} "
-             f"failed; at t = {format_duration(seconds)} (Δ against the design):"]
+             f"failed{when}:"]
     widths = [max(len(r[i]) for r in rows + [header]) for i in range(len(header))]
     lines += ["  " + "  ".join(c.rjust(w) for c, w in zip(row, widths)) for row in [header] + rows]
     if n > SWEEP_ROWS:
