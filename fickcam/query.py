@@ -222,8 +222,9 @@ def format_result(array, variable: str, fmt: str = "table", against: str | None 
     values, unit = shown_values(array, variable, units, drift=against is not None)
     columns, rows = to_records(array.copy(data=values) if array.dtype.kind in "fc" else array)
     label = variable if against is None else f"{variable} drift vs {against}"
-    time_name, days = time_unit(array.attrs.get("time_span", 86400.0))
-    days /= 86400.0  # (one unit of time for the table, chosen from the result's span)
+    span = array.attrs.get("time_span")  # one unit of time for the table, from the result's
+    time_name, days = time_unit(span) if span is not None else ("d", 86400.0)
+    days /= 86400.0  # (the rows hold days)
     fixed = array.attrs.get("selected", {})
     fixed = {column_label(k, time_name): v / days if k in TIME_COLUMNS else v
              for k, v in fixed.items()}
@@ -281,7 +282,7 @@ def shown_values(array, variable: str, units: str | None = None, drift: bool = F
     if array.dtype.kind not in "fc" or wanted == stored:
         return array.values, stored
     if drift and _is_offset(wanted):
-        return array.values, "K" if stored == "K" else stored  # a difference of temperature
+        return array.values, stored  # a difference of temperature: K, not degC
     from pint.errors import PintError
 
     try:
