@@ -72,16 +72,34 @@ TIME_UNITS = (("s", 1.0, 120.0), ("min", 60.0, 2 * 3600.0), ("h", 3600.0, 2 * 86
 
 
 def time_unit(span: float) -> tuple[str, float]:
-    """(name, seconds) of the unit that suits durations up to ``span`` [s]: one unit for
-    every time of a run, chosen from its last ageing time."""
+    """The unit that suits durations up to ``span``: one unit for every time of a run,
+    chosen from its last ageing time.
+
+    Parameters
+    ----------
+    span : float
+        The longest duration to be shown [s] (NaN: days).
+
+    Returns
+    -------
+    tuple of (str, float)
+        The unit's name (``s``, ``min``, ``h``, ``d`` or ``yr``) and its length [s].
+    """
     span = abs(float(span))
     return next(((name, seconds) for name, seconds, longest in TIME_UNITS if span < longest),
                 ("d", 86400.0))  # no span (NaN: no case of a sweep ran): days, as results store
 
 
 def format_duration(seconds: float, span: float | None = None) -> str:
-    """A duration [s] as text in the unit that suits ``span`` [s] (a run's last ageing time,
-    so that all its times share one unit: ``0 d``, ``182.6 d``, ``730 d``), by default in
-    the unit that suits the duration itself."""
+    """A duration as text in the unit that suits ``span`` (:func:`time_unit`).
+
+    Parameters
+    ----------
+    seconds : float
+        The duration [s].
+    span : float, optional
+        A run's last ageing time [s], so that all its times share one unit (``0 d``,
+        ``182.6 d``, ``730.5 d``); by default the duration itself.
+    """
     name, unit = time_unit(seconds if span is None else span)
     return f"{float(seconds) / unit:.4g} {name}"

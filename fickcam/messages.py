@@ -2,10 +2,10 @@
 
 One scheme for every command::
 
-    fickcam: error: no material 'pa77' in the library (did you mean PA6, PA66?)
-    fickcam: warning: crank at t = 2.5 h: service temperature reached the wet Tg ...
+    fickcam: error: no variable 'lfit' in this result; did you mean lift?
+    fickcam: warning: crank at t = 2.5 h: service temperature 118.0 degC reached the wet Tg ...
     fickcam: note: at t = 0 h: Grashof class: crank-rocker
-    scene.yaml:12 cam.thickness: 12 m is not a plausible cam thickness (did you mean mm?)
+    scene.yaml:3 cam.thicknes: unknown key; did you mean 'thickness'?
 
 A problem in an input file keeps the compiler's ``FILE:LINE key: reason`` form; every other
 line starts with ``fickcam:`` and its level. The levels are the :mod:`logging` module's:
@@ -108,9 +108,16 @@ class _TerminalHandler(logging.Handler):
 
 @contextlib.contextmanager
 def terminal_messages(verbosity: int = 0):
-    """While inside: fickcam's log records on stderr at the level ``verbosity`` asks for
-    (:data:`LEVELS`; clipped to its range), other libraries' only from WARNING; the loggers
-    are restored on leaving (a caller's process, tests or a notebook, keeps its own set-up)."""
+    """While inside: fickcam's log records on stderr as ``fickcam: LEVEL: message``, other
+    libraries' only from WARNING; the loggers are restored on leaving (a caller's process,
+    tests or a notebook, keeps its own set-up).
+
+    Parameters
+    ----------
+    verbosity : int
+        ``-v`` count minus ``-q`` count [1]: 1 debug, 0 notes, -1 warnings, -2 errors only
+        (:data:`LEVELS`; clipped to that range).
+    """
     level = LEVELS[max(min(verbosity, max(LEVELS)), min(LEVELS))]
     ours, root = logging.getLogger(PROGRAM), logging.getLogger()
     handler, others = _TerminalHandler(), _TerminalHandler(logging.WARNING)
@@ -142,12 +149,21 @@ COUNT_BAR = "{desc}: {n_fmt}/{total_fmt} {unit} [{elapsed}{postfix}]"
 
 
 def progress_bar(total: int, *, enabled: bool = True, eta: bool = True, **options):
-    """A tqdm bar of ``total`` steps on stderr, shown only when ``enabled`` and stderr is a
-    terminal (or as a widget in a notebook): never as ``\\r`` frames in a log or a pipe.
+    """A tqdm bar on stderr, shown only when ``enabled`` and stderr is a terminal (or as a
+    widget in a notebook): never as ``\\r`` frames in a log or a pipe.
 
-    ``eta=False`` for steps of unequal cost (the diffusion of parts that differ a hundredfold):
-    the bar then shows the steps done and the time spent, not a remaining time it cannot know.
-    ``options`` go to tqdm (``desc``, ``unit``, ``leave``, ``initial``...).
+    Parameters
+    ----------
+    total : int
+        Steps the bar counts [1].
+    enabled : bool
+        False hides it (``-q``, or a caller that asked for no progress).
+    eta : bool
+        Show the remaining time: only for steps of about equal cost. False for steps that
+        differ a hundredfold (the diffusion of parts): the bar then shows the steps done and
+        the time spent, not a remaining time it cannot know.
+    **options
+        Passed to tqdm (``desc``, ``unit``, ``leave``, ``initial``...).
     """
     from tqdm.asyncio import tqdm as console_bar
     from tqdm.auto import tqdm

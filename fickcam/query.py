@@ -271,9 +271,25 @@ def _labelled(name: str, unit: str) -> str:
 
 
 def shown_values(array, variable: str, units: str | None = None, drift: bool = False):
-    """(values of ``array`` in ``units``, that unit): by default the variable's display
-    unit from the schema (``lift``: m stored, mm shown). A change (``drift``) of a
-    temperature is a difference: degC gives K. Units that do not fit are refused."""
+    """The values of a selection in the unit a person reads them in.
+
+    Parameters
+    ----------
+    array : xarray.DataArray
+        Values in the variable's stored unit (SI; angles in degrees).
+    variable : str
+        Its schema name.
+    units : str, optional
+        A pint unit to show (``um``, ``degF``); by default the variable's display unit from
+        the schema (``lift``: m stored, mm shown). One of another dimension is refused.
+    drift : bool
+        The values are changes: a temperature difference stays in K (degC would add 273.15).
+
+    Returns
+    -------
+    tuple of (numpy.ndarray, str)
+        The values and their unit.
+    """
     from .units import convert
 
     var = VARIABLES.get(variable)
