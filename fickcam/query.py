@@ -80,10 +80,11 @@ def select(ds, variable: str, *, time=None, part=None, cam_angle=None, crank_ang
 def unknown_variable(name: str, known) -> str:
     """Why ``name`` cannot be queried: the closest names the result has (a misspelling),
     not all of them."""
-    if name in VARIABLES:  # spelt right, but the scene does not compute it
-        return (f"this result holds no {name} (a {VARIABLES[name].section} variable: the scene "
-                f"does not compute it)")
     near = closest_names(name, sorted(known))
+    if name in VARIABLES:  # spelt right, but the scene does not compute it
+        what = (f"this result holds no {name} (a {VARIABLES[name].section} variable: the scene "
+                f"does not compute it)")
+        return what + (f"; did you mean {', '.join(near)}?" if near else "")
     hint = f"did you mean {', '.join(near)}?" if near else "fickcam schema lists the variables"
     return f"no variable {name!r} in this result; {hint}"
 
