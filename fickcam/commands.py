@@ -27,10 +27,28 @@ def _cmd_run(args) -> int:
     output = Path(args.output) if args.output else default_output(scene)
     ds = run(scene, accuracy=args.accuracy, progress=not args.quiet)
     save(ds, output)
-    if not args.quiet:
+    if args.quiet < 2:
         print(summary(ds, notices=False))  # the run has logged them on stderr
+        print(notices_line(ds.attrs.get("notices", []), args.quiet))
         print(f"wrote {output}")
     return 0
+
+
+def notices_line(notices, quiet: int) -> str:
+    """Under the run summary: how many warnings and notes the run reported on stderr
+    (the notes hidden by ``-q``); all are in the result's ``notices`` attribute."""
+    from .messages import count_levels
+
+    counts = count_levels(notices)
+    if not sum(counts.values()):
+        return "  no warnings or notes"
+    warnings = f"{counts['warning']} warning(s)" if counts["warning"] else ""
+    notes = f"{counts['note']} note(s)" if counts["note"] else ""
+    if quiet and notes:
+        said = f"{warnings} above, " * bool(warnings) + f"{notes} hidden by -q"
+    else:
+        said = " and ".join(text for text in (warnings, notes) if text) + " above"
+    return f"  {said} (all kept in the result's notices attribute)"
 
 
 def default_output(scene) -> Path:
@@ -89,7 +107,7 @@ def _cmd_query(args) -> int:
     array = select(ds, args.variable, time=args.time, part=args.part, link=args.link,
                    cam_angle=args.cam_angle, crank_angle=args.crank_angle, against=args.drift)
     print(format_result(array, args.variable, args.format, args.drift,
-                        limit=limit_line(ds, args.variable)))
+                        limit=limit_line(ds, args.variable), units=args.units))
     return 0
 
 
@@ -130,15 +148,15 @@ def _cmd_bench(args) -> int:
         if not args.quick:
             print(format_year_accuracy(year_accuracy()))
         return 0
-    from tqdm.auto import tqdm
-
     from .bench import format_table, row_count, run_bench
+    from .messages import progress_bar
 
     total = row_count(args.quick)
     log.info("bench: %d rows, expected %s on an idle 2-core machine%s", total,
              BENCH_EXPECTED[args.quick], "" if args.quick else " (--quick: "
              f"{BENCH_EXPECTED[True]})")
-    with tqdm(total=total, disable=args.quiet, unit="row", desc="bench", leave=False) as bar:
+    with progress_bar(total, enabled=not args.quiet, eta=False, unit="rows", desc="bench",
+                      leave=False) as bar:  # rows differ in cost a hundredfold: no ETA
         started = []
 
         def starting(label: str) -> None:
@@ -152,7 +170,8 @@ def _cmd_bench(args) -> int:
 
 
 def _cmd_materials(args) -> int:
-    from .materials.library import entry_text, find_entry, library_table
+    from .keys import closest_names
+    from .materials.library import GROUPS, entry_text, find_entry, known_names, library_table
 
     if args.name is None:
         print(library_table())
@@ -160,8 +179,10 @@ def _cmd_materials(args) -> int:
     try:
         find_entry(args.name)
     except KeyError:
-        raise InputError(f"no material {args.name!r} in the library (fickcam materials lists "
-                         f"them)") from None
+        names = {name.lower(): name for group in GROUPS for name in known_names(group)}
+        near = [names[n] for n in closest_names(args.name.lower(), names)]
+        hint = f"did you mean {', '.join(near)}?" if near else "fickcam materials lists them"
+        raise InputError(f"no material {args.name!r} in the library; {hint}") from None
     print(entry_text(args.name))
     return 0
 
@@ -195,7 +216,7 @@ def _cmd_sweep(args) -> int:
 
     run_sweep(args.sweep, args.output, workers=args.workers, scheduler=args.scheduler,
               progress=not args.quiet)
-    if not args.quiet:
+    if args.quiet < 2:
         result = open_result(args.output)
         print(sweep_summary(result))
         for line in summary_lines(result):

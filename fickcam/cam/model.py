@@ -16,6 +16,7 @@ import math
 
 import numpy as np
 
+from ..messages import note
 from ..response import Response
 from . import dynamics as dyn
 from .design import CamDesign, CamState
@@ -95,7 +96,7 @@ def cam_response(design: CamDesign, state: CamState, cam_angle) -> Response:
     notices += _jump_notices(theta, axial, jump, omega)
 
     if design.follower_kind == "knife":
-        notices.append("knife-edge follower: Hertz line-contact stress is not defined")
+        notices.append(note("knife-edge follower: Hertz line-contact stress is not defined"))
     stress, shear, shear_depth = hertz_contact(design, state, force, rho, roller)
     wear = (dyn.archard_wear_per_revolution(design.archard_coefficient, design.hardness, force,
                                             design.contact_length, _slide_ratio(design, height, rho))

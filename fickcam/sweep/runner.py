@@ -86,13 +86,13 @@ class _Collector:
     """Appends each finished case to the journal, keeps its record, shows progress."""
 
     def __init__(self, sweep: Sweep, folder: WorkFolder, progress: bool, done: int):
-        from tqdm.auto import tqdm
+        from ..messages import progress_bar
 
         self.journal = folder.journal
         self.records: dict[int, dict] = {}
         self.failed = 0
-        self.bar = tqdm(total=len(sweep.cases), initial=done, disable=not progress, unit="case",
-                        desc="sweep", leave=True)
+        self.bar = progress_bar(len(sweep.cases), initial=done, enabled=progress, unit="cases",
+                                desc="sweep", leave=True)
 
     def add(self, record: dict, payload: bytes | None, label: str) -> None:
         if payload is not None:
