@@ -9,14 +9,16 @@ reported as ``scene.yaml:LINE key.path: reason``, and gives the :class:`Scene`.
 from __future__ import annotations
 
 import dataclasses
+import logging
 from dataclasses import dataclass, field
 from pathlib import Path
 
 import yaml
 from pydantic import ValidationError
 
-from .errors import Problem, SceneError
+from .errors import Problem, SceneError, format_duration
 from .limits import parse_limit
+from .plausibility import Findings, geometry_findings, history_findings
 from .scene_models import (  # noqa: F401  (re-exported: fickcam.scene is their public home)
     DesignSection,
     DiffusionSection,
@@ -35,6 +37,8 @@ from .yamldoc import (  # noqa: F401  (re-exported)
     problems_from_validation,
     read_yaml,
 )
+
+log = logging.getLogger(__name__)
 
 
 #: keys that together give a cam's shape: a design shape replaces the made one whole
@@ -64,6 +68,7 @@ class Scene:
     materials: dict = field(default_factory=dict, repr=False)  # name -> resolved Material
     design_model: SceneModel | None = field(default=None, repr=False)  # from ``design:``
     limits: list = field(default_factory=list, repr=False)  # fickcam.limits.Limit, scene order
+    warnings: list = field(default_factory=list, repr=False)  # Problem: unusual bare values
 
     @property
     def name(self) -> str:
@@ -103,9 +108,11 @@ def _part_names(model: SceneModel) -> tuple[str, ...]:
     return cam + (LINKS if model.linkage is not None else ())
 
 
-def _cross_checks(model: SceneModel, doc: YamlDocument, base_dir: Path) -> tuple[list[Problem], dict]:
-    """What no single section can check: parts name defined materials, the climate stays
-    below their dry Tg, the outputs' times fit the climate's history."""
+def _cross_checks(model: SceneModel, doc: YamlDocument, base_dir: Path,
+                  findings: Findings) -> tuple[list[Problem], dict]:
+    """What no single section can check: parts name defined materials, bare durations are
+    plausible for the parts (``findings``), the climate stays below their dry Tg, the
+    outputs' times fit the climate's history."""
     from .environment import Environment
 
     problems = _part_problems(model, doc)
@@ -119,9 +126,13 @@ def _cross_checks(model: SceneModel, doc: YamlDocument, base_dir: Path) -> tuple
                    if getattr(model.environment, name) is not None)
         problems.append(doc.problem(("environment", key), str(exc)))
         return problems, resolved
+    durations = history_findings(model, doc, environment, resolved)
+    findings.warnings += durations.warnings
+    problems += durations.errors
     problems += _glass_transition_problems(model, doc, environment, resolved)
     problems += _model_name_problems(model, doc)
-    problems += _ageing_time_problems(model, doc, environment)
+    if not durations.errors:  # a slipped duration is the cause: name it, not the times
+        problems += _ageing_time_problems(model, doc, environment)
     return problems, resolved
 
 
@@ -199,7 +210,8 @@ def _ageing_time_problems(model: SceneModel, doc: YamlDocument, environment) -> 
             f"ageing time beyond the end of the environment history ({environment.end / 86400:g} d)"))
     if isinstance(times, EveryStep) and times.every > environment.end:
         problems.append(doc.problem(("outputs", "ageing_times", "every"),
-                                    "step longer than the environment history"))
+                                    f"step longer than the environment history "
+                                    f"({format_duration(environment.end)})"))
     return problems
 
 
@@ -249,13 +261,18 @@ def _limits(model: SceneModel, doc: YamlDocument) -> tuple[list, list[Problem]]:
 
 def validate_document(doc: YamlDocument, *, base_dir: Path) -> Scene:
     """Validate a parsed YAML document into a Scene or raise SceneError."""
+    # A bare length or speed that is almost certainly a unit slip is named first: it would
+    # otherwise surface as whatever check of its section it breaks.
+    findings = geometry_findings(doc)
+    if findings.errors:
+        raise SceneError(findings.errors)
     # YAML 1.1 reads '1e-3' (no dot) as text: unit fields parse such strings
     # with fickcam.units and plain float fields accept them in pydantic's lax mode.
     try:
         model = SceneModel.model_validate(doc.data)
     except ValidationError as exc:
         raise SceneError(problems_from_validation(exc, doc, model=SceneModel)) from None
-    problems, resolved = _cross_checks(model, doc, base_dir)
+    problems, resolved = _cross_checks(model, doc, base_dir, findings)
     profile_problems, model = _cam_profile(model, doc, base_dir)
     problems += profile_problems
     design_problems, design_model = _design_model(model, doc, base_dir)
@@ -264,8 +281,11 @@ def validate_document(doc: YamlDocument, *, base_dir: Path) -> Scene:
     problems += limit_problems
     if problems:
         raise SceneError(problems)
-    return Scene(model=model, file=doc.file, text=doc.text, base_dir=base_dir,
-                 document=doc, materials=resolved, design_model=design_model, limits=limits)
+    for warning in findings.warnings:
+        log.warning("%s", warning)
+    return Scene(model=model, file=doc.file, text=doc.text, base_dir=base_dir, document=doc,
+                 materials=resolved, design_model=design_model, limits=limits,
+                 warnings=findings.warnings)
 
 
 def design_data(data: dict) -> dict:
