@@ -79,15 +79,22 @@ class Reading:
     context: str = ""
 
 
-def _meant(number: float, reading: Reading) -> tuple[Verdict, str] | None:
-    """(verdict, text) of the best alternative reading of ``number``, None if there is none."""
+def _meant(number: float, reading: Reading) -> tuple[Verdict, str, str] | None:
+    """(verdict, text, unit) of the best alternative reading of ``number``, None if there
+    is none."""
     best = None
     for unit, factor in reading.alternatives:
         text = f"{number * factor:g} {unit}"
         verdict = reading.verdict(to_si(text, reading.dimension))
         if best is None or verdict < best[0]:
-            best = (verdict, text)
+            best = (verdict, text, unit)
     return best
+
+
+def likely_unit(number: float, reading: Reading) -> str | None:
+    """The unit that reads a bare ``number`` plausibly, None when no alternative does."""
+    meant = _meant(number, reading)
+    return meant[2] if meant is not None and meant[0] is Verdict.PLAUSIBLE else None
 
 
 def bare_judgement(number: float, reading: Reading) -> tuple[Verdict, str] | None:
@@ -141,6 +148,11 @@ RELATIVE_HUMIDITY = Reading(
 
 #: readings of values judged on their own, by the name ``units.quantity(bare=...)`` gives
 BARE_READINGS = {"temperature": TEMPERATURE, "relative_humidity": RELATIVE_HUMIDITY}
+
+#: a climate record's length in s: a record shorter than a day is not an ageing history
+RECORD_LENGTH = Reading("climate record length", "time", "s", Band(86400.0, math.inf, 86400.0).verdict,
+                        (("d", 1.0), ("h", 1.0), ("min", 1.0)),
+                        "a climate record shorter than a day ages no polymer part")
 
 # ------------------------------------------------------------ values judged by their part
 

@@ -177,6 +177,19 @@ def _resolved_materials(model: SceneModel, doc: YamlDocument) -> tuple[list[Prob
     return problems, resolved
 
 
+def _alias_notes(doc: YamlDocument) -> list[Problem]:
+    """What a material named by a close alias must know (``plastic: PA6`` reads PA66 data)."""
+    from .materials.library import ALIAS_NOTES
+    from .materials.spec import KIND_GROUPS
+
+    notes = {alias.casefold(): note for alias, note in ALIAS_NOTES.items()}
+    materials = doc.data.get("materials")
+    return [doc.problem(("materials", name, key), notes[str(spec[key]).casefold()])
+            for name, spec in (materials.items() if isinstance(materials, dict) else ())
+            if isinstance(spec, dict)
+            for key in KIND_GROUPS if str(spec.get(key, "")).casefold() in notes]
+
+
 def _glass_transition_problems(model: SceneModel, doc: YamlDocument, environment,
                                resolved: dict) -> list[Problem]:
     """The service temperature must stay below the dry Tg of every absorbing material in use."""
@@ -281,6 +294,7 @@ def validate_document(doc: YamlDocument, *, base_dir: Path) -> Scene:
     problems += limit_problems
     if problems:
         raise SceneError(problems)
+    findings.warnings += _alias_notes(doc)
     for warning in findings.warnings:
         log.warning("%s", warning)
     return Scene(model=model, file=doc.file, text=doc.text, base_dir=base_dir, document=doc,
