@@ -79,41 +79,43 @@ class Reading:
     context: str = ""
 
 
-def _meant(number: float, reading: Reading) -> tuple[Verdict, str, str] | None:
-    """(verdict, text, unit) of the best alternative reading of ``number``, None if there
-    is none."""
-    best = None
+def _alternatives(number: float, reading: Reading) -> list[tuple[Verdict, str, str]]:
+    """(verdict, text, unit) of each alternative reading of ``number``, best first (stable:
+    the readings' own order among equals)."""
+    found = []
     for unit, factor in reading.alternatives:
         text = f"{number * factor:g} {unit}"
-        verdict = reading.verdict(to_si(text, reading.dimension))
-        if best is None or verdict < best[0]:
-            best = (verdict, text, unit)
-    return best
+        found.append((reading.verdict(to_si(text, reading.dimension)), text, unit))
+    return sorted(found, key=lambda item: item[0])
 
 
 def likely_unit(number: float, reading: Reading) -> str | None:
     """The unit that reads a bare ``number`` plausibly, None when no alternative does."""
-    meant = _meant(number, reading)
-    return meant[2] if meant is not None and meant[0] is Verdict.PLAUSIBLE else None
+    found = _alternatives(number, reading)
+    return found[0][2] if found and found[0][0] is Verdict.PLAUSIBLE else None
 
 
 def bare_judgement(number: float, reading: Reading) -> tuple[Verdict, str] | None:
     """(IMPLAUSIBLE or UNUSUAL, reason) for a bare ``number`` (in SI) that looks like a unit
     slip, None when it reads well: an implausible value is always refused, an unusual one
-    only warned about when another unit gives a plausible value."""
+    only warned about when another unit gives a plausible value. The reason suggests the
+    first alternative that reads better, and names the others that read as well."""
     verdict = reading.verdict(number)
     if verdict is Verdict.PLAUSIBLE:
         return None
-    meant = _meant(number, reading)
-    if verdict is Verdict.UNUSUAL and (meant is None or meant[0] is not Verdict.PLAUSIBLE):
+    found = _alternatives(number, reading)
+    best = found[0][0] if found else verdict
+    if verdict is Verdict.UNUSUAL and best is not Verdict.PLAUSIBLE:
         return None
     given = f"{number:g} {reading.unit}".strip()
     adjective = "an implausible" if verdict is Verdict.IMPLAUSIBLE else "an unusual"
     context = f" ({reading.context})" if reading.context else ""
     reason = f"{given} is {adjective} {reading.what}{context}"
-    if meant is not None and meant[0] < verdict:
-        reason += (f": did you mean '{meant[1]}'? Bare numbers are {reading.unit}: give the unit "
-                   f"('{meant[1]}' or '{given}')")
+    if best < verdict:
+        meant = [text for v, text, _ in found if v is best]
+        also = f" ({' or '.join(repr(t) for t in meant[1:])} would read as well)" if meant[1:] else ""
+        reason += (f": did you mean '{meant[0]}'?{also} Bare numbers are {reading.unit}: give "
+                   f"the unit ('{meant[0]}' or '{given}')")
     else:
         reason += f"; bare numbers are {reading.unit}: give the unit to keep it ('{given}')"
     return verdict, reason
@@ -354,7 +356,7 @@ def _tighter(a: Band, b: Band) -> Band:
 #: history: below 1 % nothing ages, below 5 % hardly anything
 UPTAKE = Band(0.05, math.inf, 0.01)
 #: how many times an output time (a step, or the last time) fits in the history
-SAMPLES = Band(0.0, 1000.0, 0.0, 1e5)
+SAMPLES = Band(0.0, 1000.0, 0.0, 1e4)
 
 
 def plate_uptake(diffusivity: float, time: float, half_thickness: float) -> float:
@@ -433,7 +435,7 @@ def _history_reading(absorber: Absorber, kelvin: float, rest: float, total: floa
 
 def _output_findings(model, doc, end: float, findings: Findings) -> None:
     """A bare ``every`` step, or the last of bare ageing times, by how many of it fit in the
-    history: more than 1000 is unusual, more than 100 000 implausible."""
+    history: more than 1000 is unusual, more than 10 000 implausible."""
     times = model.outputs.ageing_times
     if isinstance(times, list):
         path, what = ("outputs", "ageing_times", len(times) - 1), "last ageing time"
