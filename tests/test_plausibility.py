@@ -59,7 +59,7 @@ def test_a_unit_slip_is_refused_at_its_key_with_the_likely_unit(tmp_path, capsys
     path = _scene(tmp_path, example, old, new)
     assert main(["check", str(path)]) == 2
     err = capsys.readouterr().err.strip()
-    line = _line_of(path, new.split(",")[0].split("[")[0])
+    line = _line_of(path, new.rstrip(","))
     assert re.match(rf"^{re.escape(str(path))}:{line} {re.escape(key)}: .*implausible.*"
                     rf"did you mean '{re.escape(meant)}'\?", err), err
     assert len(err.splitlines()) == 1, err  # the cause alone, not what it breaks downstream
