@@ -148,8 +148,16 @@ RELATIVE_HUMIDITY = Reading(
     "relative humidity", "percent", "%", _humidity_verdict, (("%", 100.0),),
     "1 % or less is drier than any service climate")
 
+def _angle_verdict(radians: float) -> Verdict:
+    return Verdict.PLAUSIBLE if abs(radians) <= 2.0 * math.pi else Verdict.IMPLAUSIBLE
+
+
+ANGLE = Reading("angle", "angle", "rad", _angle_verdict, (("deg", 1.0),),
+                "more than a turn either way")
+
 #: readings of values judged on their own, by the name ``units.quantity(bare=...)`` gives
-BARE_READINGS = {"temperature": TEMPERATURE, "relative_humidity": RELATIVE_HUMIDITY}
+BARE_READINGS = {"temperature": TEMPERATURE, "relative_humidity": RELATIVE_HUMIDITY,
+                 "angle": ANGLE}
 
 #: a climate record's length in s: a record shorter than a day is not an ageing history
 RECORD_LENGTH = Reading("climate record length", "time", "s", Band(86400.0, math.inf, 86400.0).verdict,
@@ -208,6 +216,8 @@ BARS = ("crank", "coupler", "rocker", "frame")
 BAR_RATIO = Band(0.05, 20.0, 0.0, 100.0)
 #: a rise or return as a multiple of the base circle radius
 LIFT = Band(0.0, 3.0, 0.0, 15.0)
+#: a swinging arm's rise or return, rad: arms swing by degrees to tens of degrees
+SWING = Band(0.0, math.radians(60.0), 0.0, math.radians(90.0))
 
 
 def raw_value(data, path: tuple):
@@ -290,14 +300,17 @@ def _cam_findings(doc, findings: Findings) -> None:
         findings.judge(doc, ("cam",) + member.path,
                        _length(member.what, member.ratio.times(radius), context))
     arm = isinstance(raw_value(cam, ("follower", "arm")), dict)
+    swing = Reading("arm swing", "angle", "rad", SWING.verdict, (("deg", 1.0),),
+                    "a swinging arm turns by degrees to tens of degrees")
     for k, segment in enumerate(cam.get("motion") or ()):
         for key in ("rise", "return"):
-            if isinstance(segment, dict) and key in segment and not arm:
-                findings.judge(doc, ("cam", "motion", k, key),
+            if isinstance(segment, dict) and key in segment:
+                findings.judge(doc, ("cam", "motion", k, key), swing if arm else
                                _length(key, LIFT.times(radius), context))
     outer = _cam_outer_radius(cam, radius)
     for key in (("speed",), ("polydyne", "speed")):
-        findings.judge(doc, ("cam",) + key, _speed("cam speed", outer, "its rim is"))
+        findings.judge(doc, ("cam",) + key, _speed("cam speed", raw_value(cam, key), outer,
+                                                   "its rim"))
 
 
 def _cam_outer_radius(cam: dict, radius: float) -> float:
@@ -308,11 +321,13 @@ def _cam_outer_radius(cam: dict, radius: float) -> float:
     return radius + max([x for x in rises if x and x > 0] + [eccentricity or 0.0])
 
 
-def _speed(what: str, radius: float, where: str) -> Reading:
-    """A rotational speed judged by the speed it gives a point ``radius`` from the axis."""
-    return Reading(what, "angular_speed", "rad/s", lambda omega: RIM_SPEED.verdict(omega * radius),
-                   SPEED_ALTERNATIVES, f"{where} {_mm(radius)} from the axis; "
-                   f"{RIM_SPEED.high:g} m/s is already fast for a polymer part")
+def _speed(what: str, value, radius: float, where: str) -> Reading:
+    """A rotational speed judged by the speed it gives a point ``radius`` [m] from the axis
+    (``value``: the speed as given, for the message)."""
+    omega = si_value(value, "angular_speed") or 0.0
+    return Reading(what, "angular_speed", "rad/s", lambda w: RIM_SPEED.verdict(w * radius),
+                   SPEED_ALTERNATIVES, f"{where}, {_mm(radius)} from the axis, would run at "
+                   f"{omega * radius:.3g} m/s; polymer parts rarely run above {RIM_SPEED.high:g} m/s")
 
 
 def _linkage_findings(doc, findings: Findings) -> None:
@@ -330,7 +345,8 @@ def _linkage_findings(doc, findings: Findings) -> None:
         findings.judge(doc, ("linkage",) + member.path,
                        _length(member.what, member.ratio.times(reference), context))
     findings.judge(doc, ("linkage", "crank_speed"),
-                   _speed("crank speed", bars.get("crank", reference), "the crank pin is"))
+                   _speed("crank speed", linkage.get("crank_speed"), bars.get("crank", reference),
+                          "the crank pin"))
 
 
 def _bar_reading(linkage: dict, bars: dict[str, float], name: str) -> Reading:
