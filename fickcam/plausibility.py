@@ -248,9 +248,10 @@ class Findings:
     warnings: list[Problem]
 
     def judge(self, doc, path: tuple, reading: Reading) -> bool:
-        """Judge the bare value at ``path``; True when it was refused."""
+        """Judge the bare value at ``path``; True when it was refused. Only positive values
+        are judged: zero and negative ones are left to the section's own checks."""
         value = raw_value(doc.data, path)
-        if not is_bare_number(value):
+        if not is_bare_number(value) or not float(value) > 0:
             return False
         judged = bare_judgement(float(value), reading)
         if judged is None:
@@ -302,11 +303,13 @@ def _cam_findings(doc, findings: Findings) -> None:
     arm = isinstance(raw_value(cam, ("follower", "arm")), dict)
     swing = Reading("arm swing", "angle", "rad", SWING.verdict, (("deg", 1.0),),
                     "a swinging arm turns by degrees to tens of degrees")
-    for k, segment in enumerate(cam.get("motion") or ()):
+    for k, segment in _segments(cam):
         for key in ("rise", "return"):
-            if isinstance(segment, dict) and key in segment:
+            if key in segment:
                 findings.judge(doc, ("cam", "motion", k, key), swing if arm else
                                _length(key, LIFT.times(radius), context))
+    if findings.errors:  # the rim is not known while a length is refused
+        return
     outer = _cam_outer_radius(cam, radius)
     for key in (("speed",), ("polydyne", "speed")):
         findings.judge(doc, ("cam",) + key, _speed("cam speed", raw_value(cam, key), outer,
@@ -317,8 +320,16 @@ def _cam_outer_radius(cam: dict, radius: float) -> float:
     """The largest radius of a cam (m), near enough: a disc's radius plus its eccentricity,
     or the base circle radius plus the largest rise."""
     eccentricity = si_value(raw_value(cam, ("eccentric", "eccentricity")), "length")
-    rises = [si_value(s.get("rise"), "length") for s in cam.get("motion") or () if isinstance(s, dict)]
+    rises = [si_value(s.get("rise"), "length") for _, s in _segments(cam)]
     return radius + max([x for x in rises if x and x > 0] + [eccentricity or 0.0])
+
+
+def _segments(cam: dict) -> list[tuple[int, dict]]:
+    """(index, segment) of the motion segments of a ``cam:`` mapping that are mappings (the
+    rest is refused by the section's own checks)."""
+    motion = cam.get("motion")
+    return [(k, s) for k, s in enumerate(motion) if isinstance(s, dict)] \
+        if isinstance(motion, list) else []
 
 
 def _speed(what: str, value, radius: float, where: str) -> Reading:
