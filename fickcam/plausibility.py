@@ -89,10 +89,9 @@ def _alternatives(number: float, reading: Reading) -> list[tuple[Verdict, str, s
     return sorted(found, key=lambda item: item[0])
 
 
-def likely_unit(number: float, reading: Reading) -> str | None:
-    """The unit that reads a bare ``number`` plausibly, None when no alternative does."""
-    found = _alternatives(number, reading)
-    return found[0][2] if found and found[0][0] is Verdict.PLAUSIBLE else None
+def plausible_units(number: float, reading: Reading) -> list[str]:
+    """The units that read a bare ``number`` plausibly, in the reading's order."""
+    return [unit for verdict, _, unit in _alternatives(number, reading) if verdict is Verdict.PLAUSIBLE]
 
 
 def bare_judgement(number: float, reading: Reading) -> tuple[Verdict, str] | None:

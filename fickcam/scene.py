@@ -222,9 +222,11 @@ def _ageing_time_problems(model: SceneModel, doc: YamlDocument, environment) -> 
             ("outputs", "ageing_times", len(times) - 1),
             f"ageing time beyond the end of the environment history ({environment.end / 86400:g} d)"))
     if isinstance(times, EveryStep) and times.every > environment.end:
+        origin = (f", as {model.environment.history_file} gives it: check the unit of its time "
+                  f"column" if record else "")
         problems.append(doc.problem(("outputs", "ageing_times", "every"),
                                     f"step longer than the environment history "
-                                    f"({format_duration(environment.end)})"))
+                                    f"({format_duration(environment.end)}{origin})"))
     return problems
 
 
@@ -288,7 +290,7 @@ def validate_document(doc: YamlDocument, *, base_dir: Path) -> Scene:
     problems, resolved = _cross_checks(model, doc, base_dir, findings)
     profile_problems, model = _cam_profile(model, doc, base_dir)
     problems += profile_problems
-    design_problems, design_model = _design_model(model, doc, base_dir)
+    design_problems, design_model = _design_model(model, doc, base_dir, findings)
     problems += design_problems
     limits, limit_problems = _limits(model, doc)
     problems += limit_problems
@@ -314,7 +316,21 @@ def design_data(data: dict) -> dict:
     return out
 
 
-def _design_model(model: SceneModel, doc: YamlDocument, base_dir: Path):
+def _design_slips(doc: YamlDocument, data: dict, findings: Findings) -> list[Problem]:
+    """Bare values of the ``design:`` overrides that look like unit slips, judged in the
+    mechanism as designed and reported at their ``design.`` key (warnings join
+    ``findings``); the made sections' own values were judged before."""
+    found = geometry_findings(dataclasses.replace(doc, data=data))
+    errors = []
+    for problem, into in [(p, errors) for p in found.errors] + [(p, findings.warnings)
+                                                                 for p in found.warnings]:
+        path = ("design",) + tuple(int(k) if k.isdigit() else k for k in problem.key.split("."))
+        if path in doc.lines:
+            into.append(doc.problem(path, problem.reason))
+    return errors
+
+
+def _design_model(model: SceneModel, doc: YamlDocument, base_dir: Path, findings: Findings):
     """(problems, the SceneModel as designed) from the ``design:`` section, or ([], None)."""
     if model.design is None:
         return [], None
@@ -322,6 +338,9 @@ def _design_model(model: SceneModel, doc: YamlDocument, base_dir: Path):
         if getattr(model.design, section) is not None and getattr(model, section) is None:
             return [doc.problem(("design", section), f"the scene has no {section} section")], None
     data = design_data(doc.data)
+    slips = _design_slips(doc, data, findings)
+    if slips:
+        return slips, None
     try:
         design = SceneModel.model_validate(data)
     except ValidationError as exc:

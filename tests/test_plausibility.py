@@ -50,6 +50,11 @@ SLIPS = [
      "outputs.ageing_times.4", "60 d"),
     ("singh2016_fourbar.yaml", "crank: 100 mm", "crank: 100", "linkage.crank", "100 mm"),
     ("singh2016_fourbar.yaml", "thickness: 10 mm,", "thickness: 10,", "linkage.section.thickness", "10 mm"),
+    ("singh2016_fourbar.yaml", "crank_speed: 100 rpm", "crank_speed: 600", "linkage.crank_speed", "600 rpm"),
+    ("singh2017_cam.yaml", "dwell: 105 deg", "dwell: 105", "cam.motion.0.dwell", "105 deg"),
+    ("nylon_swinging_arm.yaml", "{rise: 20 deg,", "{rise: 20,", "cam.motion.1.rise", "20 deg"),
+    ("singh2017_cam_compensated.yaml", "base_circle_radius: 1.94 in", "base_circle_radius: 49",
+     "design.cam.base_circle_radius", "49 mm"),
 ]
 
 
@@ -63,6 +68,17 @@ def test_a_unit_slip_is_refused_at_its_key_with_the_likely_unit(tmp_path, capsys
     assert re.match(rf"^{re.escape(str(path))}:{line} {re.escape(key)}: .*implausible.*"
                     rf"did you mean '{re.escape(meant)}'\?", err), err
     assert len(err.splitlines()) == 1, err  # the cause alone, not what it breaks downstream
+
+
+def test_values_that_are_no_numbers_are_refused_by_their_section_not_judged(tmp_path, capsys):
+    path = _scene(tmp_path, "singh2016_fourbar.yaml", "crank: 100 mm", "crank: [1]")
+    text = path.read_text().replace("thickness: 10 mm,", "thickness: -10,").replace(
+        "    - dwell: 105 deg", "    - 7")
+    path.write_text(text)
+    assert main(["check", str(path)]) == 2
+    err = capsys.readouterr().err
+    assert "Traceback" not in err and "linkage.crank: expected a number" in err
+    assert "implausible" not in err
 
 
 def test_a_slipped_history_is_named_not_the_output_step_it_breaks(tmp_path, capsys):
