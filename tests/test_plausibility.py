@@ -11,10 +11,13 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from fickcam.cli import main
 from fickcam.materials.library import find_entry, library_table
-from fickcam.plausibility import CAM_RADIUS, Band, Verdict, plate_uptake
+from fickcam.plausibility import (CAM_MEMBERS, CAM_RADIUS, LENGTH_ALTERNATIVES, Band, Reading,
+                                  Verdict, bare_judgement, plate_uptake)
 from fickcam.scene import load_scene
 from fickcam.units import to_si
 
@@ -179,8 +182,11 @@ def test_an_alias_resolves_to_the_same_material_as_its_name(tmp_path, alias, nam
     assert find_entry(alias) == find_entry(name)
 
 
-def test_aliases_are_listed_and_pa6_is_told_it_reads_pa66_data(tmp_path):
+def test_aliases_are_listed_and_pa6_is_told_it_reads_pa66_data(tmp_path, capsys):
     table = library_table()
+    path = _scene(tmp_path, "eccentric_cam.yaml", "plastic: nylon", "plastic: PA12")
+    assert main(["check", str(path)]) == 2
+    assert "nylon (PA66, PA6)" in capsys.readouterr().err
     assert "PA66, PA6 = nylon" in table and "POM = acetal" in table and "PI = polyimide" in table
     scene = load_scene(_scene(tmp_path, "eccentric_cam.yaml", "plastic: nylon", "plastic: PA6"))
     [note] = scene.warnings
@@ -233,3 +239,23 @@ def test_plate_uptake_is_the_exact_early_time_series(tau):
 def test_plate_uptake_bounds_the_exact_uptake_from_above(tau):
     half, d = 5e-3, 1e-12
     assert plate_uptake(d, tau * half ** 2 / d, half) >= _plate_uptake_series(tau)
+
+
+THICKNESS = CAM_MEMBERS[0].ratio.times(0.02)  # a cam of 20 mm base circle radius
+
+
+@settings(max_examples=200, deadline=None)
+@given(st.floats(1e-6, 1e6))
+def test_a_judgement_refuses_exactly_the_implausible_and_suggests_only_what_reads_better(metres):
+    reading = Reading("cam thickness", "length", "m", THICKNESS.verdict, LENGTH_ALTERNATIVES)
+    judged = bare_judgement(metres, reading)
+    verdict = THICKNESS.verdict(metres)
+    if verdict is Verdict.PLAUSIBLE:
+        assert judged is None
+    if verdict is Verdict.IMPLAUSIBLE:
+        assert judged is not None and judged[0] is Verdict.IMPLAUSIBLE
+    if judged is not None and "did you mean" in judged[1]:
+        meant = re.search(r"did you mean '([^']+)'", judged[1]).group(1)
+        assert THICKNESS.verdict(to_si(meant, "length")) < judged[0]
+    if judged is not None and judged[0] is Verdict.UNUSUAL:
+        assert "did you mean" in judged[1]  # an unusual value is only told with a better unit

@@ -21,7 +21,7 @@ from ..units import (
     SignedPercent,
     Temperature,
 )
-from .library import known_names, library_name
+from .library import aliases_of, known_names, library_name
 
 #: scene key -> library group
 KIND_GROUPS = {"fiber": "fibers", "matrix": "matrices", "plastic": "plastics", "metal": "metals"}
@@ -48,7 +48,9 @@ def unknown_name_reason(key: str, name: str) -> str:
         if other != key and name in known_names(group):
             return (f"unknown {key} {name!r}: {name} is a {other} in the library, "
                     f"write '{other}: {name}'")
-    return f"unknown {key} {name!r} (known: {', '.join(known_names(KIND_GROUPS[key]))})"
+    known = [f"{known} ({', '.join(aliases_of(known))})" if aliases_of(known) else known
+             for known in known_names(KIND_GROUPS[key])]
+    return f"unknown {key} {name!r} (known: {', '.join(known)})"
 
 
 class DiffusivitySpec(StrictModel):
