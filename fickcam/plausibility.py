@@ -17,7 +17,7 @@ Each value is judged against its own part, not one global bound:
   mechanism part;
 - a speed by the speed of the part's rim (cam) or crank pin (four-bar);
 - a climate history's length by how far water gets into the parts over it (Fickian uptake
-  of a plate, Crank, *The Mathematics of Diffusion*, 2nd ed., 1975, eq. 4.22: a history in
+  of a plate, Crank, *The Mathematics of Diffusion*, 2nd ed., 1975, eq. 4.20: a history in
   which the parts take up almost nothing ages nothing), and an output time against the
   history it samples.
 
@@ -30,7 +30,7 @@ import math
 import statistics
 from dataclasses import dataclass
 from enum import IntEnum
-from typing import Callable, Iterator
+from typing import Callable
 
 from .errors import Problem
 from .units import is_bare_number, to_si
@@ -91,7 +91,8 @@ def _alternatives(number: float, reading: Reading) -> list[tuple[Verdict, str, s
 
 def plausible_units(number: float, reading: Reading) -> list[str]:
     """The units that read a bare ``number`` plausibly, in the reading's order."""
-    return [unit for verdict, _, unit in _alternatives(number, reading) if verdict is Verdict.PLAUSIBLE]
+    return [unit for verdict, _, unit in _alternatives(number, reading)
+            if verdict is Verdict.PLAUSIBLE]
 
 
 def bare_judgement(number: float, reading: Reading) -> tuple[Verdict, str] | None:
@@ -112,7 +113,8 @@ def bare_judgement(number: float, reading: Reading) -> tuple[Verdict, str] | Non
     reason = f"{given} is {adjective} {reading.what}{context}"
     if best < verdict:
         meant = [text for v, text, _ in found if v is best]
-        also = f" ({' or '.join(repr(t) for t in meant[1:])} would read as well)" if meant[1:] else ""
+        others = " or ".join(f"'{text}'" for text in meant[1:])
+        also = f" ({others} would read as well)" if others else ""
         reason += (f": did you mean '{meant[0]}'?{also} Bare numbers are {reading.unit}: give "
                    f"the unit ('{meant[0]}' or '{given}')")
     else:
@@ -147,6 +149,7 @@ RELATIVE_HUMIDITY = Reading(
     "relative humidity", "percent", "%", _humidity_verdict, (("%", 100.0),),
     "1 % or less is drier than any service climate")
 
+
 def _angle_verdict(radians: float) -> Verdict:
     return Verdict.PLAUSIBLE if abs(radians) <= 2.0 * math.pi else Verdict.IMPLAUSIBLE
 
@@ -159,7 +162,8 @@ BARE_READINGS = {"temperature": TEMPERATURE, "relative_humidity": RELATIVE_HUMID
                  "angle": ANGLE}
 
 #: a climate record's length in s: a record shorter than a day is not an ageing history
-RECORD_LENGTH = Reading("climate record length", "time", "s", Band(86400.0, math.inf, 86400.0).verdict,
+RECORD_LENGTH = Reading("climate record length", "time", "s",
+                        Band(86400.0, math.inf, 86400.0).verdict,
                         (("d", 1.0), ("h", 1.0), ("min", 1.0)),
                         "a climate record shorter than a day ages no polymer part")
 
@@ -283,7 +287,8 @@ def geometry_findings(doc) -> Findings:
 
 def _cam_reference(cam: dict) -> tuple[tuple, float | None]:
     """(key path, value in m) of the cam's base circle radius or disc radius."""
-    path = ("cam", "base_circle_radius") if "base_circle_radius" in cam else ("cam", "eccentric", "radius")
+    path = ("cam", "base_circle_radius") if "base_circle_radius" in cam else \
+        ("cam", "eccentric", "radius")
     return path, si_value(raw_value({"cam": cam}, path), "length")
 
 
@@ -337,7 +342,8 @@ def _speed(what: str, value, radius: float, where: str) -> Reading:
     omega = si_value(value, "angular_speed") or 0.0
     return Reading(what, "angular_speed", "rad/s", lambda w: RIM_SPEED.verdict(w * radius),
                    SPEED_ALTERNATIVES, f"{where}, {_mm(radius)} from the axis, would run at "
-                   f"{omega * radius:.3g} m/s; polymer parts rarely run above {RIM_SPEED.high:g} m/s")
+                   f"{omega * radius:.3g} m/s; polymer parts rarely run above "
+                   f"{RIM_SPEED.high:g} m/s")
 
 
 def _linkage_findings(doc, findings: Findings) -> None:
@@ -363,7 +369,8 @@ def _bar_reading(linkage: dict, bars: dict[str, float], name: str) -> Reading:
     """A bar judged by the size of a four-bar and against the other bars (those given with
     units first), unless those are implausible themselves."""
     others = [v for other, v in bars.items() if other != name]
-    trusted = [v for other, v in bars.items() if other != name and not is_bare_number(linkage[other])]
+    trusted = [v for other, v in bars.items()
+               if other != name and not is_bare_number(linkage[other])]
     reference = statistics.median(trusted or others) if others else None
     if reference is None or BAR_LENGTH.verdict(reference) is Verdict.IMPLAUSIBLE:
         return _length(f"{name} length", BAR_LENGTH, "four-bar links measure millimetres to metres")
@@ -387,7 +394,7 @@ SAMPLES = Band(0.0, 1000.0, 0.0, 1e4)
 
 def plate_uptake(diffusivity: float, time: float, half_thickness: float) -> float:
     """M(t)/M(inf) of a plate of ``half_thickness`` [m] exposed on both faces after
-    ``time`` [s] at ``diffusivity`` [m2/s], by the early-time series (Crank 1975, eq. 4.22,
+    ``time`` [s] at ``diffusivity`` [m2/s], by the early-time series (Crank 1975, eq. 4.20,
     first term): 2 sqrt(D t / (pi l^2)); at most 1 (an upper bound at all times)."""
     return min(1.0, 2.0 * math.sqrt(max(diffusivity * time, 0.0) / math.pi) / half_thickness)
 
@@ -469,5 +476,9 @@ def _output_findings(model, doc, end: float, findings: Findings) -> None:
         path, what = ("outputs", "ageing_times", "every"), "ageing time step"
     else:
         return
-    findings.judge(doc, path, Reading(what, "time", "s", lambda t: SAMPLES.verdict(end / t if t > 0 else 0.0),
-                                      HISTORY_ALTERNATIVES, f"the history lasts {_days(end)}"))
+
+    def fits(step: float) -> Verdict:
+        return SAMPLES.verdict(end / step if step > 0 else 0.0)
+
+    findings.judge(doc, path, Reading(what, "time", "s", fits, HISTORY_ALTERNATIVES,
+                                      f"the history lasts {_days(end)}"))

@@ -203,11 +203,14 @@ def read_history_csv(path: Path) -> ClimateRecord:
 def _unit_slip(path, header_line: int, name: str, values: np.ndarray) -> None:
     """Refuse a column without a unit in the header whose values read in SI are almost
     certainly a slip (times in days, temperatures in degC), naming the likely unit."""
-    from .plausibility import RECORD_LENGTH, RELATIVE_HUMIDITY, TEMPERATURE, Verdict, plausible_units
+    from .plausibility import (RECORD_LENGTH, RELATIVE_HUMIDITY, TEMPERATURE, Verdict,
+                               plausible_units)
 
-    reading, number = {"time": (RECORD_LENGTH, float(np.ptp(values)) if values.size else 0.0),
-                       "temperature": (TEMPERATURE, float(np.min(values, initial=np.inf))),
-                       "relative_humidity": (RELATIVE_HUMIDITY, float(np.max(values, initial=0.0)))}[name]
+    reading, number = {
+        "time": (RECORD_LENGTH, float(np.ptp(values)) if values.size else 0.0),
+        "temperature": (TEMPERATURE, float(np.min(values, initial=np.inf))),
+        "relative_humidity": (RELATIVE_HUMIDITY, float(np.max(values, initial=0.0))),
+    }[name]
     if not math.isfinite(number) or reading.verdict(number) is not Verdict.IMPLAUSIBLE:
         return
     units = plausible_units(number, reading) if name != "relative_humidity" else []

@@ -229,7 +229,7 @@ def _plate_uptake_series(tau: float, terms: int = 2000) -> float:
 
 @pytest.mark.parametrize("tau", [1e-4, 1e-3, 1e-2, 0.04])
 def test_plate_uptake_is_the_exact_early_time_series(tau):
-    """The neglected terms of eq. 4.22 are 4 sqrt(tau) ierfc(1/sqrt(tau)) ~ 1e-13 at
+    """The neglected terms of eq. 4.20 are 4 sqrt(tau) ierfc(1/sqrt(tau)) ~ 1e-13 at
     tau = 0.04; the series' truncation (2000 terms) is below 1e-9 at tau >= 1e-4."""
     half, d = 5e-3, 1e-12
     assert plate_uptake(d, tau * half ** 2 / d, half) == pytest.approx(_plate_uptake_series(tau), rel=1e-6)
