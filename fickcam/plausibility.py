@@ -96,10 +96,24 @@ def plausible_units(number: float, reading: Reading) -> list[str]:
 
 
 def bare_judgement(number: float, reading: Reading) -> tuple[Verdict, str] | None:
-    """(IMPLAUSIBLE or UNUSUAL, reason) for a bare ``number`` (in SI) that looks like a unit
-    slip, None when it reads well: an implausible value is always refused, an unusual one
-    only warned about when another unit gives a plausible value. The reason suggests the
-    first alternative that reads better, and names the others that read as well."""
+    """Judge a number given without units.
+
+    An implausible value is always refused, an unusual one only warned about when another
+    unit gives a plausible value. The reason suggests the first alternative that reads
+    better, and names the others that read as well.
+
+    Parameters
+    ----------
+    number : float
+        The bare number, which is the value in the SI unit of its key [``reading.unit``].
+    reading : Reading
+        How values of this key are judged.
+
+    Returns
+    -------
+    tuple of (Verdict, str) or None
+        (IMPLAUSIBLE or UNUSUAL, reason), or None when the number reads well.
+    """
     verdict = reading.verdict(number)
     if verdict is Verdict.PLAUSIBLE:
         return None
@@ -393,9 +407,24 @@ SAMPLES = Band(0.0, 1000.0, 0.0, 1e4)
 
 
 def plate_uptake(diffusivity: float, time: float, half_thickness: float) -> float:
-    """M(t)/M(inf) of a plate of ``half_thickness`` [m] exposed on both faces after
-    ``time`` [s] at ``diffusivity`` [m2/s], by the early-time series (Crank 1975, eq. 4.20,
-    first term): 2 sqrt(D t / (pi l^2)); at most 1 (an upper bound at all times)."""
+    """Fractional uptake M(t)/M(inf) of a plate exposed on both faces, by the first term of
+    the early-time series (Crank 1975, eq. 4.20): 2 sqrt(D t / (pi l^2)), at most 1. The
+    further terms alternate and shrink, so this bounds the exact uptake from above.
+
+    Parameters
+    ----------
+    diffusivity : float
+        D [m2/s].
+    time : float
+        t [s].
+    half_thickness : float
+        l, half the plate's thickness [m].
+
+    Returns
+    -------
+    float
+        M(t)/M(inf) [-].
+    """
     return min(1.0, 2.0 * math.sqrt(max(diffusivity * time, 0.0) / math.pi) / half_thickness)
 
 
@@ -413,8 +442,23 @@ class Absorber:
 
 
 def fastest_absorber(model, materials: dict, temperature: float) -> Absorber | None:
-    """The cam or the links, whichever takes up water fastest at ``temperature`` [K]; None
-    when no part absorbs."""
+    """The part that takes up water fastest: the cam (half of its thickness or radius,
+    whichever is smaller) or the links (half of the section's thickness or width).
+
+    Parameters
+    ----------
+    model : SceneModel
+        The validated scene.
+    materials : dict
+        Scene material name -> resolved :class:`~fickcam.materials.Material`.
+    temperature : float
+        Where the diffusivities are taken [K].
+
+    Returns
+    -------
+    Absorber or None
+        None when no part absorbs.
+    """
     parts = []
     if model.cam is not None:
         radius = model.cam.base_circle_radius or (model.cam.eccentric.radius if model.cam.eccentric
