@@ -443,7 +443,8 @@ class Absorber:
 
 def fastest_absorber(model, materials: dict, temperature: float) -> Absorber | None:
     """The part that takes up water fastest: the cam (half of its thickness or radius,
-    whichever is smaller) or the links (half of the section's thickness or width).
+    whichever is smaller), its roller (half of its width or diameter) or the links (half of
+    the section's thickness or width).
 
     Parameters
     ----------
@@ -460,10 +461,14 @@ def fastest_absorber(model, materials: dict, temperature: float) -> Absorber | N
         None when no part absorbs.
     """
     parts = []
-    if model.cam is not None:
-        radius = model.cam.base_circle_radius or (model.cam.eccentric.radius if model.cam.eccentric
-                                                   else model.cam.thickness)
-        parts.append(("cam", model.cam.material, 0.5 * min(model.cam.thickness, radius)))
+    cam = model.cam
+    if cam is not None:
+        radius = cam.base_circle_radius or (cam.eccentric.radius if cam.eccentric else cam.thickness)
+        parts.append(("cam", cam.material, 0.5 * min(cam.thickness, radius)))
+        if cam.follower.material and cam.follower.roller_radius:
+            width = cam.follower.width or cam.thickness
+            parts.append(("follower", cam.follower.material,
+                          0.5 * min(width, 2.0 * cam.follower.roller_radius)))
     if model.linkage is not None:
         section = model.linkage.section
         parts.append(("links", model.linkage.material, 0.5 * min(section.thickness, section.width)))

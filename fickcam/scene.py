@@ -127,12 +127,16 @@ def _cross_checks(model: SceneModel, doc: YamlDocument, base_dir: Path,
         problems.append(doc.problem(("environment", key), str(exc)))
         return problems, resolved
     durations = history_findings(model, doc, environment, resolved)
-    findings.warnings += durations.warnings
     problems += durations.errors
     problems += _glass_transition_problems(model, doc, environment, resolved)
     problems += _model_name_problems(model, doc)
-    if not durations.errors:  # a slipped duration is the cause: name it, not the times
-        problems += _ageing_time_problems(model, doc, environment)
+    timing = [] if durations.errors else _ageing_time_problems(model, doc, environment)
+    # a slipped duration is the cause: name it, not the output times it cuts short
+    if timing and durations.warnings:
+        problems += durations.warnings
+    else:
+        problems += timing
+        findings.warnings += durations.warnings
     return problems, resolved
 
 

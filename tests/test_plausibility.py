@@ -91,6 +91,18 @@ def test_a_slipped_history_is_named_not_the_output_step_it_breaks(tmp_path, caps
     assert "environment.history.0.duration" in err and "ageing_times" not in err
 
 
+def test_an_unusual_duration_is_named_when_the_output_times_do_not_fit_it(tmp_path, capsys):
+    """1000 s of 85 degC / 85 % RH lets the 10 mm nylon disc take up about 3 % of its
+    equilibrium moisture: unusual, not refused; but a 100 h step does not fit in it."""
+    path = _scene(tmp_path, "eccentric_cam.yaml", "  history:\n    - {duration: 180 d, temperature: "
+                  "40 degC, relative_humidity: 90 %}", "  test: damp_heat_85_85\n  duration: 1000")
+    path.write_text(path.read_text().replace("every: 30 d", "every: 100 h"))
+    assert main(["check", str(path)]) == 2
+    err = capsys.readouterr().err.strip()
+    assert f":{_line_of(path, 'duration: 1000')} environment.duration: 1000 s is an unusual" in err
+    assert "did you mean '1000 h'?" in err and "ageing_times" not in err
+
+
 def test_an_unusual_bare_speed_is_warned_about_and_the_scene_still_loads(tmp_path, caplog):
     """600 rad/s puts the 27 mm rim of the eccentric cam at 16 m/s: possible, unusual."""
     path = _scene(tmp_path, "eccentric_cam.yaml", "speed: 300 rpm", "speed: 600")
