@@ -325,12 +325,12 @@ def _design_slips(doc: YamlDocument, data: dict, findings: Findings) -> list[Pro
     mechanism as designed and reported at their ``design.`` key (warnings join
     ``findings``); the made sections' own values were judged before."""
     found = geometry_findings(dataclasses.replace(doc, data=data))
-    errors = []
-    for problem, into in [(p, errors) for p in found.errors] + [(p, findings.warnings)
-                                                                 for p in found.warnings]:
-        path = ("design",) + tuple(int(k) if k.isdigit() else k for k in problem.key.split("."))
-        if path in doc.lines:
-            into.append(doc.problem(path, problem.reason))
+    errors: list[Problem] = []
+    for problems, into in ((found.errors, errors), (found.warnings, findings.warnings)):
+        for problem in problems:
+            path = ("design",) + tuple(int(k) if k.isdigit() else k for k in problem.key.split("."))
+            if path in doc.lines:  # a value the design gives, not one it keeps from the made
+                into.append(doc.problem(path, problem.reason))
     return errors
 
 

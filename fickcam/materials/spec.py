@@ -48,8 +48,8 @@ def unknown_name_reason(key: str, name: str) -> str:
         if other != key and name in known_names(group):
             return (f"unknown {key} {name!r}: {name} is a {other} in the library, "
                     f"write '{other}: {name}'")
-    known = [f"{known} ({', '.join(aliases_of(known))})" if aliases_of(known) else known
-             for known in known_names(KIND_GROUPS[key])]
+    known = [f"{entry} ({', '.join(aliases_of(entry))})" if aliases_of(entry) else entry
+             for entry in known_names(KIND_GROUPS[key])]
     return f"unknown {key} {name!r} (known: {', '.join(known)})"
 
 
