@@ -279,6 +279,46 @@ class Findings:
         return verdict is Verdict.IMPLAUSIBLE
 
 
+@dataclass(frozen=True)
+class Scale:
+    """A mechanism's size: its reference ``length`` [m] (the cam's base circle or disc
+    radius, a four-bar's median bar) with the words that say so, and the ``radius`` [m] of
+    the point whose speed judges its rotational speed (rim, crank pin)."""
+
+    length: float
+    context: str
+    radius: float
+    where: str
+
+
+#: a limit's bare length bound as a multiple of its mechanism's reference length: a
+#: deviation (a tolerance band), or a max / min (a dimension)
+LIMIT_DEVIATION = Band(0.0, 0.5, 0.0, 2.0)
+LIMIT_BOUND = Band(0.0, 5.0, 0.0, 25.0)
+
+
+def _limit_findings(doc, findings: Findings, scales: dict[str, Scale]) -> None:
+    """Bare bounds of ``limits:`` on a mechanism's lengths (m) and speeds (rpm variables)
+    judged as the mechanism's own lengths and speeds."""
+    from .schema import VARIABLES
+
+    for name, spec in doc.data["limits"].items():
+        var = VARIABLES.get(name)
+        scale = scales.get(getattr(var, "section", None))
+        if scale is None or not isinstance(spec, dict):
+            continue
+        for key in ("deviation", "max", "min"):
+            what = f"{name} {key}"
+            if var.units == "m":
+                band = LIMIT_DEVIATION if key == "deviation" else LIMIT_BOUND
+                reading = _length(what, band.times(scale.length), scale.context)
+            elif var.units == "rpm":
+                reading = _speed(what, spec.get(key), scale.radius, scale.where)
+            else:
+                continue
+            findings.judge(doc, ("limits", name, key), reading)
+
+
 def _length(what: str, band: Band, context: str) -> Reading:
     return Reading(what, "length", "m", band.verdict, LENGTH_ALTERNATIVES, context)
 
@@ -292,10 +332,13 @@ def geometry_findings(doc) -> Findings:
     their own mechanism (read from the YAML, so that a slip is named even where it also
     breaks a check of the section)."""
     findings = Findings([], [])
+    scales = {}
     if isinstance(doc.data.get("cam"), dict):
-        _cam_findings(doc, findings)
+        scales["cam"] = _cam_findings(doc, findings)
     if isinstance(doc.data.get("linkage"), dict):
-        _linkage_findings(doc, findings)
+        scales["linkage"] = _linkage_findings(doc, findings)
+    if isinstance(doc.data.get("limits"), dict) and not findings.errors:
+        _limit_findings(doc, findings, {k: v for k, v in scales.items() if v is not None})
     return findings
 
 
@@ -306,13 +349,14 @@ def _cam_reference(cam: dict) -> tuple[tuple, float | None]:
     return path, si_value(raw_value({"cam": cam}, path), "length")
 
 
-def _cam_findings(doc, findings: Findings) -> None:
+def _cam_findings(doc, findings: Findings) -> Scale | None:
+    """Judge the cam's bare lengths and speeds; its scale, None when it has none."""
     cam = doc.data["cam"]
     path, radius = _cam_reference(cam)
     if radius is None or radius <= 0 or findings.judge(
             doc, path, _length("cam base circle radius", CAM_RADIUS, "moulded and machined "
                                "cams measure millimetres to decimetres")):
-        return
+        return None
     context = f"its base circle radius is {_mm(radius)}" if path[-1] != "radius" else \
         f"its disc radius is {_mm(radius)}"
     for member in CAM_MEMBERS:
@@ -327,11 +371,12 @@ def _cam_findings(doc, findings: Findings) -> None:
                 findings.judge(doc, ("cam", "motion", k, key), swing if arm else
                                _length(key, LIFT.times(radius), context))
     if findings.errors:  # the rim is not known while a length is refused
-        return
+        return None
     outer = _cam_outer_radius(cam, radius)
     for key in (("speed",), ("polydyne", "speed")):
         findings.judge(doc, ("cam",) + key, _speed("cam speed", raw_value(cam, key), outer,
                                                    "its rim"))
+    return Scale(radius, context, outer, "its rim")
 
 
 def _cam_outer_radius(cam: dict, radius: float) -> float:
@@ -360,7 +405,8 @@ def _speed(what: str, value, radius: float, where: str) -> Reading:
                    f"{RIM_SPEED.high:g} m/s")
 
 
-def _linkage_findings(doc, findings: Findings) -> None:
+def _linkage_findings(doc, findings: Findings) -> Scale | None:
+    """Judge the four-bar's bare lengths and speed; its scale, None when it has none."""
     linkage = doc.data["linkage"]
     bars = {name: si_value(linkage.get(name), "length") for name in BARS}
     bars = {name: value for name, value in bars.items() if value is not None and value > 0}
@@ -368,15 +414,16 @@ def _linkage_findings(doc, findings: Findings) -> None:
     for name in bars:
         refused |= findings.judge(doc, ("linkage", name), _bar_reading(linkage, bars, name))
     if refused or not bars:
-        return
+        return None
     reference = statistics.median(bars.values())
     context = f"its bars measure about {_mm(reference)}"
     for member in LINKAGE_MEMBERS:
         findings.judge(doc, ("linkage",) + member.path,
                        _length(member.what, member.ratio.times(reference), context))
+    crank = bars.get("crank", reference)
     findings.judge(doc, ("linkage", "crank_speed"),
-                   _speed("crank speed", linkage.get("crank_speed"), bars.get("crank", reference),
-                          "the crank pin"))
+                   _speed("crank speed", linkage.get("crank_speed"), crank, "the crank pin"))
+    return Scale(reference, context, crank, "the crank pin")
 
 
 def _bar_reading(linkage: dict, bars: dict[str, float], name: str) -> Reading:

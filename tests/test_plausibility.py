@@ -58,6 +58,11 @@ SLIPS = [
     ("nylon_swinging_arm.yaml", "{rise: 20 deg,", "{rise: 20,", "cam.motion.1.rise", "20 deg"),
     ("singh2017_cam_compensated.yaml", "base_circle_radius: 1.94 in", "base_circle_radius: 49",
      "design.cam.base_circle_radius", "49 mm"),
+    ("singh2017_cam.yaml", "{deviation: 0.25 mm}", "{deviation: 0.25}",
+     "limits.follower_displacement.deviation", "0.25 mm"),
+    ("singh2017_cam.yaml", "{min: 1000 rpm}", "{min: 1000}", "limits.jump_speed.min", "1000 rpm"),
+    ("fourbar_r914_humid.yaml", "coupler_point_x: {deviation: 1 mm}", "coupler_point_x: {deviation: 1}",
+     "limits.coupler_point_x.deviation", "1 mm"),
 ]
 
 
@@ -124,6 +129,8 @@ def test_an_unusual_bare_speed_is_warned_about_and_the_scene_still_loads(tmp_pat
     ("singh2016_fourbar.yaml", "crank: 100 mm", "crank: 0.1"),
     ("singh2016_fourbar.yaml", "duration: 3 h", "duration: 10800"),
     ("eccentric_cam.yaml", "thickness: 10 mm", "thickness: 12 m"),  # a unit says what is meant
+    ("singh2017_cam.yaml", "{deviation: 0.25 mm}", "{deviation: 0.00025}"),
+    ("singh2017_cam.yaml", "{min: 1000 rpm}", "{min: 104.7}"),
 ])
 def test_plausible_bare_values_pass_without_a_warning(tmp_path, caplog, example, old, new):
     path = _scene(tmp_path, example, old, new)
