@@ -10,8 +10,9 @@ writing the unit is always the way to keep an unusual value.
 
 Each value is judged against its own part, not one global bound:
 
-- temperature and relative humidity alone (a polymer part is not aged below 150 K; a bare
-  RH is in percent, so 0.9 meant 90 %);
+- temperature, relative humidity and angles alone (a polymer part is not aged below 150 K;
+  a bare RH is in percent, so 0.9 meant 90 %; an angle beyond a turn meant degrees), and a
+  climate record's length in a history file whose header gives no unit;
 - a cam's lengths against its base circle (or disc) radius, a four-bar's against its other
   bars; the base circle and the bars themselves against the size of a moulded or machined
   mechanism part;
@@ -19,7 +20,9 @@ Each value is judged against its own part, not one global bound:
 - a climate history's length by how far water gets into the parts over it (Fickian uptake
   of a plate, Crank, *The Mathematics of Diffusion*, 2nd ed., 1975, eq. 4.20: a history in
   which the parts take up almost nothing ages nothing), and an output time against the
-  history it samples.
+  history it samples;
+- a bound of ``limits:`` on a mechanism's length or speed as that mechanism's own lengths
+  and speeds.
 
 The bounds are fickcam's judgement of what a polymer mechanism part can be; they only
 decide when to ask for a unit, never change a value.
