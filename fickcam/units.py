@@ -47,7 +47,7 @@ SI_UNITS: dict[str, str] = {
 
 _HUMAN = {
     "angle": "an angle (e.g. '75 deg')",
-    "angular_speed": "a speed (e.g. '600 rpm')",
+    "angular_speed": "a rotational speed (e.g. '600 rpm')",
     "fraction": "a fraction (e.g. 0.6 or '60 %')",
     "percent": "a percentage (e.g. '80 %')",
 }
@@ -89,30 +89,68 @@ def number_and_unit(value: Any) -> tuple[float, str]:
     return number, unit
 
 
+#: spellings of a unit used in workshops that pint does not read as meant, taken as the
+#: unit on the right for values of that dimension (one meaning only)
+SHOP_UNITS: dict[str, dict[str, str]] = {
+    "angular_speed": {"RPM": "rpm", "Rpm": "rpm", "r/min": "rpm", "rev/min": "rpm",
+                      "RPS": "rps", "r/s": "rps", "rev/s": "rps"},
+    "percent": {"%RH": "%", "% RH": "%", "%rh": "%", "% rh": "%"},
+}
+
+#: spellings that pint reads as another dimension (``F`` the farad, ``C`` the coulomb) or not
+#: at all, or that are ambiguous for the dimension: suggested, never taken
+LIKELY_UNITS: dict[str, dict[str, str]] = {
+    "temperature": {"C": "degC", "F": "degF", "c": "degC", "f": "degF", "deg C": "degC",
+                    "deg F": "degF", "Celsius": "degC", "Fahrenheit": "degF"},
+    "length": {"MM": "mm", '"': "in", "mil": "thou", "mils": "thou"},
+    "time": {"wk": "week", "wks": "week", "yrs": "year", "mo": "month", "mos": "month"},
+    "force": {"lb": "lbf", "lbs": "lbf", "kg": "kgf"},
+    "stiffness": {"lb/in": "lbf/in", "lbs/in": "lbf/in", "kg/mm": "kgf/mm"},
+    # a rotational speed in 1/time: pint reads rad per time, a workshop revolutions
+    "angular_speed": {"1/min": "rpm", "min^-1": "rpm", "/min": "rpm", "Hz": "rps",
+                      "1/s": "rps", "s^-1": "rps", "/s": "rps"},
+}
+
+
+def _likely_unit(unit: str, dimension: str) -> str | None:
+    """The unit a misread spelling most likely meant for ``dimension``, or None."""
+    return LIKELY_UNITS.get(dimension, {}).get(" ".join(unit.split()))
+
+
+def _human(dimension: str) -> str:
+    return _HUMAN.get(dimension, "a " + dimension.replace("_", " "))
+
+
 def to_si(value: Any, dimension: str) -> float:
     """Convert a scene value to a float in the SI unit of ``dimension``.
 
     Raises ``ValueError`` with a one-line reason (wrong dimension, unknown unit,
-    not a number). Strings such as ``"1e-3"`` (which YAML leaves as text) are
-    accepted as numbers.
+    not a number), naming the unit a misread spelling most likely meant. Strings such as
+    ``"1e-3"`` (which YAML leaves as text) are accepted as numbers.
     """
     si_unit = SI_UNITS[dimension]
     if isinstance(value, bool) or value is None:
-        raise ValueError(f"expected {_HUMAN.get(dimension, 'a ' + dimension.replace('_', ' '))}, got {value!r}")
+        raise ValueError(f"expected {_human(dimension)}, got {value!r}")
     number, unit = number_and_unit(value)
     if not unit:
         return number  # bare numbers are SI (percent for 'percent')
+    unit = SHOP_UNITS.get(dimension, {}).get(" ".join(unit.split()), unit)
+    likely = _likely_unit(unit, dimension)
+    meant = f": did you mean '{number:g} {likely}'?" if likely else ""
     ureg = registry()
     try:
         quantity = ureg.Quantity(number, unit.replace("%", "percent"))
     except Exception:  # pint raises several types for unknown/ill-formed units
-        raise ValueError(f"unknown unit {unit!r} in {value!r}") from None
+        raise ValueError(f"unknown unit {unit!r} in {value!r}{meant}") from None
     wanted = ureg.Quantity(1, si_unit) if si_unit else ureg.Quantity(1, "")
     if quantity.dimensionality != wanted.dimensionality:
-        raise ValueError(
-            f"{value!r} has the wrong dimension: expected "
-            f"{_HUMAN.get(dimension, dimension.replace('_', ' '))}"
-        )
+        read = f" (pint reads {unit!r} as {quantity.units:P})" if likely else ""
+        raise ValueError(f"{value!r} has the wrong dimension{read}: expected "
+                         f"{_human(dimension)}{meant}")
+    if likely:  # the dimension agrees, but the spelling is ambiguous for it
+        si = float(quantity.to(si_unit).magnitude)
+        raise ValueError(f"{value!r} is ambiguous for {_human(dimension)}: did you mean "
+                         f"'{number:g} {likely}'? (pint reads it as {si:g} {si_unit})")
     return float(quantity.to(si_unit if si_unit else "").magnitude)
 
 
@@ -128,40 +166,20 @@ def is_bare_number(value: Any) -> bool:
     return False
 
 
-#: a bare temperature below this (K) is almost certainly degC or degF written without unit
-COLDEST_PLAUSIBLE_TEMPERATURE = 150.0
-
-
-def implausible_bare_temperature(kelvin: float) -> str | None:
-    """Why a bare temperature is refused: polymer service and reference temperatures lie
-    far above 150 K, so '40' meant 40 degC, not 40 K."""
-    if kelvin < COLDEST_PLAUSIBLE_TEMPERATURE:
-        return (f"a bare number is kelvin, and {kelvin:g} K is implausibly cold "
-                f"(below {COLDEST_PLAUSIBLE_TEMPERATURE:g} K): did you mean '{kelvin:g} degC'? "
-                f"Give the unit ('{kelvin:g} degC' or '{kelvin:g} K')")
-    return None
-
-
-def implausible_bare_humidity(percent: float) -> str | None:
-    """Why a bare relative humidity is refused: 0 < RH <= 1 reads as a fraction
-    (0.9 meant 90 %), but a bare RH is in percent."""
-    if 0.0 < percent <= 1.0:
-        return (f"a bare relative humidity is in percent, so {percent:g} is {percent:g} %: "
-                f"did you mean '{percent * 100:g} %'? Give the unit ('{percent * 100:g} %' "
-                f"or '{percent:g} %')")
-    return None
-
-
 def quantity(dimension: str, *, positive: bool = False, nonnegative: bool = False,
-             upper: float | None = None, bare=None):
-    """A pydantic type: a value of ``dimension`` converted to SI, with bounds. ``bare``
-    (SI value -> reason or None) refuses implausible values given without units."""
+             upper: float | None = None, bare: str | None = None):
+    """A pydantic type: a value of ``dimension`` converted to SI, with bounds. ``bare`` names
+    the reading of :mod:`fickcam.plausibility` that refuses implausible values given
+    without units (``"temperature"``: 40 meant 40 degC, not 40 K)."""
 
     def convert(value):
         x = to_si(value, dimension)
-        reason = bare(x) if bare is not None and is_bare_number(value) else None
-        if reason:
-            raise ValueError(reason)
+        if bare is not None and is_bare_number(value):
+            from .plausibility import BARE_READINGS, refusal
+
+            reason = refusal(value, BARE_READINGS[bare])
+            if reason:
+                raise ValueError(reason)
         return x
 
     def check(x: float) -> float:
@@ -200,10 +218,10 @@ SignedLength = quantity("length")
 Mass = quantity("mass", positive=True)
 Duration = quantity("time", positive=True)
 NonNegativeTime = quantity("time", nonnegative=True)
-Temperature = quantity("temperature", positive=True, bare=implausible_bare_temperature)
+Temperature = quantity("temperature", positive=True, bare="temperature")
 TemperatureRise = Annotated[float, BeforeValidator(temperature_difference)]
-Angle = quantity("angle")
-PositiveAngle = quantity("angle", positive=True)
+Angle = quantity("angle", bare="angle")
+PositiveAngle = quantity("angle", positive=True, bare="angle")
 AngularSpeed = quantity("angular_speed", positive=True)
 Force = quantity("force")
 NonNegativeForce = quantity("force", nonnegative=True)
@@ -217,7 +235,7 @@ MolarEnergy = quantity("molar_energy", nonnegative=True)
 Density = quantity("density", positive=True)
 ExpansionCoefficient = quantity("inverse_temperature")
 Fraction = quantity("fraction", nonnegative=True, upper=1.0)
-RelativeHumidity = quantity("percent", nonnegative=True, upper=100.0, bare=implausible_bare_humidity)
+RelativeHumidity = quantity("percent", nonnegative=True, upper=100.0, bare="relative_humidity")
 SignedPercent = quantity("percent")
 SignedMolarEnergy = quantity("molar_energy")
 Rate = quantity("rate", positive=True)
