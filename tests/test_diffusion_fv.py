@@ -8,8 +8,10 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from fickcam.diffusion import (CamPlate, LinkBar, discretisation, fv, fvprism, march, outline,
-                               prism, trimesh)
+from fickcam.diffusion import CamPlate, LinkBar
+from fickcam.diffusion.operators import discretisation, grids, prisms
+from fickcam.diffusion.stepping import march
+from fickcam.diffusion.planform import outline, admissible, triangles
 from fickcam.errors import SolverError
 from tolerance import roundoff
 
@@ -63,7 +65,7 @@ def test_extracted_operator_reproduces_plain_fipy_solve(kind):
             "cylindrical": lambda: CylindricalGrid2D(nr=6, nz=5, dr=0.1, dz=0.2,
                                                      origin=((0.3,), (0.0,))),
             "grid3d": lambda: Grid3D(nx=4, ny=3, nz=5, dx=0.3, dy=0.2, dz=0.2),
-            "prisms": lambda: fvprism.prism_mesh(prism.admissible(trimesh.triangulate(
+            "prisms": lambda: prisms.prism_mesh(admissible.admissible(triangles.triangulate(
                 PLATE, 0.2), PLATE), 1.0, np.array([0.0, 0.3, 1.0]), mid_plane=False)[0]}[kind]()
     expected = plain_fipy_steps(mesh, 0.01, 5, corrected)
     assert np.allclose(extracted_steps(mesh, 0.01, 5, corrected), expected, rtol=0, atol=1e-10)
@@ -71,7 +73,7 @@ def test_extracted_operator_reproduces_plain_fipy_solve(kind):
 
 def test_uniform_field_at_the_surface_value_is_steady():
     """K 1 = f: a part saturated at g stays there (conservative, consistent fluxes)."""
-    disc = fv.bar(0.02, 0.01, 0.004, (5, 4, 3), 5e-4, (2e-12, 1e-12, 5e-13))
+    disc = grids.bar(0.02, 0.01, 0.004, (5, 4, 3), 5e-4, (2e-12, 1e-12, 5e-13))
     row_scale = abs(disc.stiffness) @ np.ones(disc.cells)   # sum of |K_ij| per row
     np.testing.assert_allclose(disc.stiffness @ np.ones(disc.cells), disc.boundary, rtol=0,
                                atol=roundoff(row_scale))
@@ -82,12 +84,12 @@ FOURIER = st.floats(min_value=1e-3, max_value=1e6)
 
 @lru_cache(maxsize=None)
 def cached_sheet(cells):
-    return fv.sheet(1e-3, cells, 1e-4)
+    return grids.sheet(1e-3, cells, 1e-4)
 
 
 @lru_cache(maxsize=None)
 def cached_annulus():
-    return fv.disc(0.01, 0.004, 0.002, 6, 5, 5e-4, 1e-12, 2e-12)
+    return grids.disc(0.01, 0.004, 0.002, 6, 5, 5e-4, 1e-12, 2e-12)
 
 
 @settings(max_examples=40, deadline=None, suppress_health_check=[HealthCheck.too_slow])
@@ -154,7 +156,7 @@ def test_link_outline_excludes_holes_and_includes_bosses():
 
 def test_triangulated_planform_has_the_outline_area():
     link = LinkBar(0.1, 0.02, 0.01, 0.015, 0.005)
-    mesh = trimesh.triangulate(link, 0.002)
+    mesh = triangles.triangulate(link, 0.002)
     corners = mesh.points[mesh.triangles]
     a, b, c = corners[:, 0], corners[:, 1], corners[:, 2]
     area = 0.5 * np.abs((b - a)[:, 0] * (c - a)[:, 1] - (b - a)[:, 1] * (c - a)[:, 0]).sum()

@@ -8,9 +8,9 @@ import numpy as np
 import pytest
 from scipy.special import jn_zeros
 
-from fickcam.diffusion import (Bar, CamPlate, Diffusivity, Disc, Exposure, LinkBar, Sheet,
-                               plan, solve)
-from fickcam.diffusion.clock import rescaled_time
+from fickcam.diffusion import (Bar, CamPlate, Diffusivity, Disc, Exposure, LinkBar, Sheet, plan,
+                               solve)
+from fickcam.diffusion.forcing.clock import rescaled_time
 from fickcam.errors import InputError
 
 DAY = 86400.0
@@ -227,7 +227,7 @@ def test_fields_have_cells_and_coordinates():
 def test_output_a_hair_after_a_step_boundary_records_that_boundary_not_the_next():
     """An output within round-off above a node is merged into it (``drop_slivers``);
     it must read that node, not the next one (``searchsorted`` alone took the next)."""
-    from fickcam.diffusion.timesteps import drop_slivers, nearest_nodes
+    from fickcam.diffusion.stepping.step_plans import drop_slivers, nearest_nodes
 
     first = 1e-6
     nodes = np.array([0.0, 1e-6, 2e-6, 4e-6, 8e-6])

@@ -10,13 +10,13 @@ import numpy as np
 import pytest
 
 from fickcam.diffusion import Bar, CamPlate, Diffusivity, Exposure, Sheet, solve
-from fickcam.diffusion.analytic import exact_history_field
-from fickcam.diffusion import defect
-from fickcam.diffusion.defect import corrected_levels
-from fickcam.diffusion.defectfields import field_errors, stored
-from fickcam.diffusion.defectparts import bar_coordinates
-from fickcam.diffusion.prism import cell_areas
-from fickcam.diffusion.sorption import ConcentrationDependent
+from fickcam.diffusion.models.analytic import exact_history_field
+from fickcam.diffusion.nonfickian import corrected_product
+from fickcam.diffusion.nonfickian.corrected_product import corrected_levels
+from fickcam.diffusion.nonfickian.corrected_fields import field_errors, stored
+from fickcam.diffusion.nonfickian.corrected_pieces import bar_coordinates
+from fickcam.diffusion.planform.admissible import cell_areas
+from fickcam.diffusion.problem.sorption import ConcentrationDependent
 
 pytest.importorskip("fipy")
 
@@ -70,7 +70,7 @@ def test_fickian_corrected_fields_are_the_exact_block_at_the_cell_points(part):
 
 def test_dc_fields_under_auto_are_corrected_and_consistent_with_the_mean(monkeypatch):
     """k = 2 absorbing on the 4 x 3 x 2 mm plate, ``auto`` with fields stored: the
-    corrected product's fields (``defect.solve_corrected`` hands its run to
+    corrected product's fields (``corrected_product.solve_corrected`` hands its run to
     ``defectfields.stored``), their error told in the reason. Their volume mean is the
     corrected mean to the point values' quadrature (for Fick the exact field's own: 1.6e-2
     of the swing at tau* = 0.01 on these 1 200 cells), at most half the coarse cells'
@@ -81,7 +81,7 @@ def test_dc_fields_under_auto_are_corrected_and_consistent_with_the_mean(monkeyp
     def kept(run, reason):
         runs.append(run)
         return stored(run, reason)
-    monkeypatch.setattr(defect, "stored", kept)
+    monkeypatch.setattr(corrected_product, "stored", kept)
     result = solve(PLATE, ISOTROPIC, WET, TIMES, accuracy=3e-2, sorption=law(2.0),
                    store_fields=True)
     assert "fields: the finest mesh's cells x the sheet's and the planform's" in result.reason
@@ -102,9 +102,9 @@ def test_the_planform_reading_is_second_order_and_holds_mirrors_and_the_surface(
     line), converges at second order under nested refinement (from the 0.3 plan refined
     once: 160, 648, 2 608 cells, measured ratios of the errors 4.2, 3.3), the same on the
     half cut at its mirror line x = 2 mm (4.4, 5.7), and is 0 on the exposed outline."""
-    from fickcam.diffusion.layout import planform_cells, triangulate
-    from fickcam.diffusion.prism import admissible, refine
-    from fickcam.diffusion.defectfields import exposed_points, planform_at
+    from fickcam.diffusion.operators.sizing import planform_cells, triangulate
+    from fickcam.diffusion.planform.admissible import admissible, refine
+    from fickcam.diffusion.nonfickian.corrected_fields import exposed_points, planform_at
 
     def unaccomplished(tess, points):
         x, y = tess.physical(points).T
@@ -163,8 +163,8 @@ def test_fields_after_the_cross_are_the_diagonal_finest_meshs_and_its_coarser_ne
     small = CamPlate(np.array([0, 3e-3, 3e-3, 0.0]), np.array([0, 0, 2e-3, 2e-3]), H)
     run = corrected_levels(small, ISOTROPIC, law(2.0), WET, TIMES[:4], 1e-2, 2, base=1.0,
                            store_fields=True)
-    monkeypatch.setattr(defect, "NESTED_CELLS", 4 * run.meshes[1].cells)
-    monkeypatch.setattr(defect, "CROSS_CELLS", 2 * run.meshes[1].cells)
+    monkeypatch.setattr(corrected_product, "NESTED_CELLS", 4 * run.meshes[1].cells)
+    monkeypatch.setattr(corrected_product, "CROSS_CELLS", 2 * run.meshes[1].cells)
     crossed = run.finer(store_fields=True)
     assert crossed.keys[-1] == (1, 1) and len(crossed.meshes) == 6
     assert [m.plate.fields is None for m in crossed.marched] == [False] + [True] * 4 + [False]

@@ -7,12 +7,12 @@ import numpy as np
 import pytest
 
 from fickcam.diffusion import CamPlate, Diffusivity, Exposure, Sheet, solve
-from fickcam.diffusion.calibration import FIRST_STEP
-from fickcam.diffusion.defect import gap
-from fickcam.diffusion.dense import Track
-from fickcam.diffusion.series import sheet_uptake
-from fickcam.diffusion.sorption import ConcentrationDependent
-from fickcam.diffusion.timesteps import step_nodes
+from fickcam.diffusion.accuracy.error_model import FIRST_STEP
+from fickcam.diffusion.nonfickian.corrected_product import gap
+from fickcam.diffusion.stepping.dense_output import Track
+from fickcam.diffusion.exact.series import sheet_uptake
+from fickcam.diffusion.problem.sorption import ConcentrationDependent
+from fickcam.diffusion.stepping.step_plans import step_nodes
 
 pytest.importorskip("fipy")
 

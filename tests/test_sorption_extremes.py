@@ -7,10 +7,10 @@ from hypothesis import example, given, settings
 from hypothesis import strategies as st
 
 from fickcam.diffusion import solve
-from fickcam.diffusion.exposure import Diffusivity, Exposure
-from fickcam.diffusion.geometry import CamPlate, Disc, Sheet
-from fickcam.diffusion.sorption import ConcentrationDependent, Langmuir, Rate
-from fickcam.diffusion.two_phase import two_phase_sheet_uptake
+from fickcam.diffusion.problem.exposure import Diffusivity, Exposure
+from fickcam.diffusion.problem.geometry import CamPlate, Disc, Sheet
+from fickcam.diffusion.problem.sorption import ConcentrationDependent, Langmuir, Rate
+from fickcam.diffusion.exact.two_phase import two_phase_sheet_uptake
 
 H, D, MM = 2e-3, 5e-12, 2.0
 KAPPA = np.pi ** 2 * D / H ** 2
@@ -106,8 +106,8 @@ def test_corrected_plate_extremes_stay_bounded_and_agree_with_the_3d_cells(expon
     own result (``model: solid`` at the corrected path's finer 3-D plan, accuracy
     MESH_LEVELS[-1]: those cells marched alone, uncorrected). Few examples: each runs about
     20 swept marches of 300-600 steps; the explicit one is the extreme skin (k = 5, drying)."""
-    from fickcam.diffusion.defect import MESH_LEVELS, solve_corrected
-    from fickcam.diffusion.planmodes import LAYER_TOLERANCE
+    from fickcam.diffusion.nonfickian.corrected_product import MESH_LEVELS, solve_corrected
+    from fickcam.diffusion.accuracy.error_model import LAYER_TOLERANCE
 
     initial, wet, late = PLATE_HISTORIES[history]
     end = PLATE_TIMES[-1]

@@ -11,14 +11,16 @@ import pytest
 from fickcam.blas import one_blas_thread
 from fickcam.bench_two_phase import CONFIGS, REFERENCE, cam_problem, true_error
 from fickcam.diffusion import CamPlate, Diffusivity, Disc, plan, solve
-from fickcam.diffusion.langmuir import history_swing
-from fickcam.diffusion.modes import cylinder_factor
-from fickcam.diffusion import planmodes
-from fickcam.diffusion.layout import _estimated_prism_cells as estimated_prism_cells
-from fickcam.diffusion.scaling import stretch_of
-from fickcam.diffusion.planmodes import (LAYER_TOLERANCE, _estimate, _parts, lanczos_spectrum,
-                                         planar_fraction, planform_operator, whole_at_start)
-from fickcam.diffusion.sorption import Langmuir, Rate
+from fickcam.diffusion.nonfickian.two_phase_modes import history_swing
+from fickcam.diffusion.exact.modes import cylinder_factor
+from fickcam.diffusion.nonfickian import planform_modes
+from fickcam.diffusion.operators.sizing import _estimated_prism_cells as estimated_prism_cells
+from fickcam.diffusion.problem.scaling import stretch_of
+from fickcam.diffusion.nonfickian.planform_modes import (_estimate, _parts, lanczos_spectrum,
+                                                         planar_fraction, planform_operator,
+                                                         whole_at_start)
+from fickcam.diffusion.accuracy.error_model import LAYER_TOLERANCE
+from fickcam.diffusion.problem.sorption import Langmuir, Rate
 from fickcam.environment import Environment
 
 DAY = 86400.0
@@ -156,7 +158,7 @@ def test_two_step_richardson_recovers_the_w0_and_growth_terms_apart():
 
 
 def _modelled_level(coefficients):
-    """A stand-in for ``planmodes._level`` whose compared values (mean, layer) err exactly
+    """A stand-in for ``planform_modes._level`` whose compared values (mean, layer) err exactly
     by ``coefficients`` @ (w0^2, g^2), on the cells the planform would have (0.8 x the
     cap's cheap count, as measured on the demo cam)."""
     def level(geometry, d, depth, finest, growth, ages, tolerance, measure):
@@ -175,15 +177,15 @@ def test_w0_and_growth_refined_apart_meet_a_tolerance_together_cannot_under_the_
     magnitudes added) at least the exact error."""
     plate, _ = circle(0.01, 0.004)
     coefficients = np.array([[0.02, -0.004], [0.25, 0.001]])
-    monkeypatch.setattr(planmodes, "_level", _modelled_level(coefficients))
+    monkeypatch.setattr(planform_modes, "_level", _modelled_level(coefficients))
 
     def refined():
-        return planmodes.refined_planform(plate, (D,) * 3, DEPTH, 0.12, 0.25, [1.0], 5e-5,
+        return planform_modes.refined_planform(plate, (D,) * 3, DEPTH, 0.12, 0.25, [1.0], 5e-5,
                                           None)
     apart = refined()
     exact = np.max(np.abs(coefficients @ np.array([apart.finest ** 2, apart.growth ** 2])))
-    assert exact <= apart.error <= 5e-5 and apart.cells <= planmodes.PLANFORM_CAP
-    monkeypatch.setattr(planmodes, "_separately", lambda *args: None)
+    assert exact <= apart.error <= 5e-5 and apart.cells <= planform_modes.PLANFORM_CAP
+    monkeypatch.setattr(planform_modes, "_separately", lambda *args: None)
     assert refined().error > 5e-5
 
 
@@ -193,7 +195,7 @@ def test_refinement_apart_that_ends_above_the_tolerance_falls_back_to_together(m
     cell cap: apart ended at 1.3e-4), the refinement together is kept: the estimate within
     the accuracy, the cells within the cap, and mean, bound water and layer / 4 against the
     exact disc within the estimate."""
-    monkeypatch.setattr(planmodes, "PLANFORM_CAP", 12_000)
+    monkeypatch.setattr(planform_modes, "PLANFORM_CAP", 12_000)
     plate, disc = circle(0.01, 0.004)
     diffusivity, law = Diffusivity((D,) * 3, 0.0), Langmuir(Rate(1e-6), Rate(3e-6))
     exposure, accuracy = daily_record(), 6e-5

@@ -6,9 +6,9 @@ light. Import direction (each module imports only modules to its left):
 docs/architecture.md.
 """
 from .dispatch import MODELS, plan, solve
-from .exposure import GAS_CONSTANT, Diffusivity, Exposure
-from .geometry import Bar, CamPlate, Disc, Geometry, LinkBar, Sheet
-from .results import DiffusionResult, Plan
+from .problem.exposure import GAS_CONSTANT, Diffusivity, Exposure
+from .problem.geometry import Bar, CamPlate, Disc, Geometry, LinkBar, Sheet
+from .problem.results import DiffusionResult, Plan
 
 __all__ = ["GAS_CONSTANT", "Diffusivity", "Exposure", "Bar", "CamPlate", "Disc",
            "Geometry", "LinkBar", "Sheet", "MODELS", "DiffusionResult", "Plan", "plan", "solve"]

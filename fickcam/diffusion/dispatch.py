@@ -26,26 +26,27 @@ from functools import lru_cache
 import numpy as np
 
 from ..errors import InputError
-from .analytic import solve_analytic
-from .calibration import ANALYTIC_ERROR
-from .clock import RescaledTime
-from .clock import scales as scales_of
-from .coupled import two_phase_marcher
-from .defect import plan_corrected, solve_corrected
-from .dense import held_to_plan
-from .direct import plan_direct, solve_direct
-from .exact import exact_available
-from .exposure import Diffusivity, Exposure
-from .geometry import Bar, CamPlate, Disc, LinkBar, Sheet
-from .forcing import RECORD_SHARE, is_long_record
-from .langmuir import history_swing, langmuir_history
-from .nonlinear import nonlinear_plan, solve_nonlinear, spread
-from .planmodes import (LAYER_TOLERANCE, PLANFORM_CAP, RefinedPlanform, lanczos_spectrum,
-                        planform_design, planform_operator, planform_source, refined_planform)
-from .timesteps import earliest_output
-from .plane import plan_plane, solve_plane
-from .results import DiffusionResult, Plan
-from .sorption import describe, is_langmuir, is_nonlinear
+from .models.analytic import solve_analytic
+from .accuracy.error_model import ANALYTIC_ERROR, LAYER_TOLERANCE
+from .forcing.clock import RescaledTime
+from .forcing.clock import scales as scales_of
+from .nonfickian.two_phase_mesh import two_phase_marcher
+from .nonfickian.corrected_product import plan_corrected, solve_corrected
+from .stepping.dense_output import held_to_plan
+from .models.finite_volume import plan_direct, solve_direct
+from .exact.separable import exact_available
+from .problem.exposure import Diffusivity, Exposure
+from .problem.geometry import Bar, CamPlate, Disc, LinkBar, Sheet
+from .forcing.record import RECORD_SHARE, is_long_record
+from .nonfickian.two_phase_modes import history_swing, langmuir_history
+from .nonfickian.concentration_dependent import nonlinear_plan, solve_nonlinear, spread
+from .nonfickian.planform_modes import (PLANFORM_CAP, RefinedPlanform,
+                                        lanczos_spectrum, planform_design, planform_operator,
+                                        planform_source, refined_planform)
+from .stepping.step_plans import earliest_output
+from .models.plane import plan_plane, solve_plane
+from .problem.results import DiffusionResult, Plan
+from .problem.sorption import describe, is_langmuir, is_nonlinear
 
 log = logging.getLogger(__name__)
 
