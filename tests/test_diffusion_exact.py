@@ -336,7 +336,7 @@ def test_bessel_roots_from_one_table_equal_scipys_for_each_count():
     bit for bit what scipy gives when asked for just that many."""
     from scipy.special import jn_zeros
 
-    from fickcam.diffusion.exact.series import ROOT_TABLE, _bessel_roots
+    from fickcam.diffusion.exact.series import ROOT_TABLE, bessel_roots
 
     for count in (1, 65, 838, ROOT_TABLE, ROOT_TABLE + 3):
-        assert np.array_equal(_bessel_roots(count), jn_zeros(0, count))
+        assert np.array_equal(bessel_roots(count), jn_zeros(0, count))

@@ -9,7 +9,7 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from fickcam.diffusion import CamPlate, LinkBar
-from fickcam.diffusion.operators import discretisation, grids, prisms
+from fickcam.diffusion.operators import discretisation, fipy_backend, grids, prisms
 from fickcam.diffusion.stepping import march
 from fickcam.diffusion.planform import outline, admissible, triangles
 from fickcam.errors import SolverError
@@ -35,7 +35,7 @@ def plain_fipy_steps(mesh, dt, steps, corrected=False):
 
 
 def extracted_steps(mesh, dt, steps, corrected=False):
-    volumes, stiffness, boundary = discretisation.assemble(mesh, corrected)
+    volumes, stiffness, boundary = fipy_backend.assemble(mesh, corrected)
     ones = np.ones(volumes.size)
     disc = discretisation.Discretisation(volumes, stiffness, boundary, ones / ones.sum(), ones / ones.sum())
     nodes = dt * np.arange(steps + 1)
@@ -43,17 +43,27 @@ def extracted_steps(mesh, dt, steps, corrected=False):
     return history.fields[0]
 
 
-def test_the_installed_fipy_is_the_series_whose_private_assembly_was_verified():
-    """``discretisation.assemble`` takes FiPy's matrix through the private
-    ``_prepareLinearSystem`` (no public call returns it). A new FiPy series must fail here
-    first: rerun the extraction tests below against it, then widen FIPY_VERIFIED and the
-    pin in pyproject.toml."""
-    import fipy
+@pytest.mark.parametrize("dimensions", [2, 3])
+def test_fipy_takes_the_given_cell_points_of_a_generic_mesh(dimensions):
+    """The one private FiPy API fickcam uses: a generic mesh's cell points (and the prisms'
+    horizontal face centres) given through overridden ``_calcCellCenters`` and
+    ``_calcFaceCenters``. A FiPy release that stops calling them fails here (and
+    ``fipy_backend.centred_mesh`` raises) instead of moving the cell points silently."""
+    from fipy.meshes.mesh import Mesh
 
-    assert fipy.__version__.startswith(discretisation.FIPY_VERIFIED), (
-        f"FiPy {fipy.__version__}: discretisation.assemble uses the private "
-        f"_prepareLinearSystem, verified on {discretisation.FIPY_VERIFIED}x only")
-    assert hasattr(fipy.terms.term.Term, "_prepareLinearSystem")
+    assert hasattr(Mesh, "_calcCellCenters") and hasattr(Mesh, "_calcFaceCenters")
+    tess = admissible.admissible(triangles.triangulate(PLATE, 0.2), PLATE)
+    if dimensions == 2:
+        sides, cell_sides = prisms.sides_of_cells(tess)
+        faces = np.full((max(c.size for c in cell_sides), tess.cells), -1)
+        for k, row in enumerate(cell_sides):
+            faces[:row.size, k] = row
+        mesh = fipy_backend.centred_mesh(2, tess.points.T, sides.T, faces, tess.centres.T)
+        given = tess.centres.T
+    else:
+        mesh, _ = prisms.prism_mesh(tess, 1.0, np.array([0.0, 0.3, 1.0]), mid_plane=False)
+        given = np.vstack([np.tile(tess.centres.T, 2), np.repeat([0.15, 0.65], tess.cells)])
+    assert np.array_equal(np.asarray(mesh.cellCenters), given)
 
 
 @pytest.mark.parametrize("kind", ["grid1d", "cylindrical", "grid3d", "prisms"])

@@ -192,7 +192,7 @@ def test_a_plane_result_extended_to_new_times_equals_a_solve_at_both_sets_of_tim
 def test_output_ages_of_a_long_record_are_its_ages_least_and_largest_per_bin():
     """Thinned row by row (no sort of every output x source age), the output ages are still
     exactly the least and the largest distinct age of each 1/64-decade bin of all of them."""
-    from fickcam.diffusion.stepping.step_plans import AGES_PER_DECADE, _output_ages
+    from fickcam.diffusion.stepping.step_plans import AGES_PER_DECADE, output_ages
 
     rng = np.random.default_rng(7)
     change = np.concatenate([[0.0], np.cumsum(rng.uniform(0.2, 1.0, 3000) * 1e-3)])
@@ -204,4 +204,4 @@ def test_output_ages_of_a_long_record_are_its_ages_least_and_largest_per_bin():
     ages = ages[ages > 0]
     bins = np.floor(np.log10(ages) * AGES_PER_DECADE)
     ends = [ages[bins == b][[0, -1]] for b in np.unique(bins)]
-    assert np.array_equal(_output_ages(change, outputs, ramp), np.unique(np.concatenate(ends)))
+    assert np.array_equal(output_ages(change, outputs, ramp), np.unique(np.concatenate(ends)))

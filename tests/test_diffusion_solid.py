@@ -61,7 +61,7 @@ def test_prism_mesh_geometry_is_the_extruded_planform():
     assert volumes.min() > 0
     assert volumes.sum() == pytest.approx(length * width * h / h ** 3, rel=1e-12)
     cells, layers = tess.cells, z_nodes.size - 1
-    areas = np.asarray(mesh._faceAreas)
+    areas = np.asarray(mesh.scaledFaceAreas)  # a generic mesh is unscaled
     planar = admissible.cell_areas(tess) / h ** 2
     horizontal = areas[:cells * (layers + 1)].reshape(layers + 1, cells)
     assert np.allclose(horizontal, planar[None, :], rtol=1e-12)
@@ -70,7 +70,7 @@ def test_prism_mesh_geometry_is_the_extruded_planform():
     side_areas = areas[cells * (layers + 1):].reshape(layers, -1)
     assert np.allclose(side_areas, np.diff(z_nodes)[:, None] * edge[None, :], rtol=1e-12)
     interior = np.asarray(mesh.interiorFaces)
-    between = np.asarray(mesh._cellDistanceVectors)[:, interior]
+    between = np.asarray(mesh.cellDistanceVectors)[:, interior]
     normals = np.asarray(mesh.faceNormals)[:, interior]
     cosine = np.abs(np.sum(between * normals, axis=0)) / np.linalg.norm(between, axis=0)
     assert cosine.min() > 1 - 1e-9

@@ -19,7 +19,7 @@ from fickcam.diffusion.operators import sizing
 from fickcam.diffusion.nonfickian import concentration_dependent
 from fickcam.diffusion.forcing.clock import scales as scales_of
 from fickcam.diffusion.models.finite_volume import discretise, step_plan
-from fickcam.diffusion.stepping.march import _rounded
+from fickcam.diffusion.stepping.march import rounded_steps
 from fickcam.diffusion.operators.symmetry_cuts import mirrored
 from fickcam.diffusion.accuracy.error_model import LAYER_TOLERANCE
 from fickcam.diffusion.problem.sorption import ConcentrationDependent
@@ -215,7 +215,7 @@ def test_inexact_sweeps_from_the_extrapolated_state_converge_to_the_exact_sweeps
     fast = concentration_dependent.sweep_march(faces, weights, strong, top, steps, 0.0, True, "")
     monkeypatch.setattr(concentration_dependent, "FORCING", 0.0)
     c, exact = np.zeros(weights.cells), [np.zeros(weights.cells)]
-    for k, dt in enumerate(_rounded(np.diff(nodes)), start=1):
+    for k, dt in enumerate(rounded_steps(np.diff(nodes)), start=1):
         c = concentration_dependent._sweep(faces, c, MM, strong, top, dt, "bar", k, 0.0)
         if k % 5 == 0:
             exact.append(c)

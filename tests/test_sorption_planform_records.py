@@ -14,11 +14,11 @@ from fickcam.diffusion import CamPlate, Diffusivity, Disc, plan, solve
 from fickcam.diffusion.nonfickian.two_phase_modes import history_swing
 from fickcam.diffusion.exact.modes import cylinder_factor
 from fickcam.diffusion.nonfickian import planform_modes
-from fickcam.diffusion.operators.sizing import _estimated_prism_cells as estimated_prism_cells
+from fickcam.diffusion.operators.sizing import estimated_prism_cells
 from fickcam.diffusion.problem.scaling import stretch_of
-from fickcam.diffusion.nonfickian.planform_modes import (_estimate, _parts, lanczos_spectrum,
-                                                         planar_fraction, planform_operator,
-                                                         whole_at_start)
+from fickcam.diffusion.nonfickian.planform_modes import (mesh_error, error_coefficients,
+                                                         lanczos_spectrum, planar_fraction,
+                                                         planform_operator, whole_at_start)
 from fickcam.diffusion.accuracy.error_model import LAYER_TOLERANCE
 from fickcam.diffusion.problem.sorption import Langmuir, Rate
 from fickcam.environment import Environment
@@ -141,9 +141,9 @@ def test_demo_two_phase_cam_is_within_its_estimate_of_a_fine_run(climate):
 
 
 def test_two_step_richardson_recovers_the_w0_and_growth_terms_apart():
-    """``_parts`` through three meshes (two differing from the first in w0 or g alone) and,
+    """``error_coefficients`` through three meshes (two differing from the first in w0 or g alone) and,
     by least squares, through four gives back alpha and beta of y = y* + alpha w0^2 + beta
-    g^2 per compared value; ``_estimate`` adds their magnitudes (no cancellation trusted)."""
+    g^2 per compared value; ``mesh_error`` adds their magnitudes (no cancellation trusted)."""
     alpha, beta = np.array([[0.25, -0.08]]), np.array([[-4e-3, 2.6e-3]])
 
     def mesh(w, g):
@@ -151,9 +151,9 @@ def test_two_step_richardson_recovers_the_w0_and_growth_terms_apart():
 
     three = [mesh(0.06, 0.125), mesh(0.03, 0.125), mesh(0.06, 0.0625)]
     for meshes in (three, three + [mesh(0.0125, 0.084)]):
-        parts = _parts(meshes)
+        parts = error_coefficients(meshes)
         assert parts == pytest.approx(np.stack([alpha.ravel(), beta.ravel()]), rel=1e-9)
-    assert _estimate(_parts(three), 0.02, 0.1) == pytest.approx(
+    assert mesh_error(error_coefficients(three), 0.02, 0.1) == pytest.approx(
         max(0.25 * 4e-4 + 4e-3 * 1e-2, 0.08 * 4e-4 + 2.6e-3 * 1e-2))
 
 

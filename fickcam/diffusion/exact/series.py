@@ -143,7 +143,7 @@ ROOT_TABLE = 4096  # J0 roots made at once (8 ms) for every smaller count asked 
 
 
 @lru_cache(maxsize=8)
-def _bessel_roots(count: int) -> np.ndarray:
+def bessel_roots(count: int) -> np.ndarray:
     """First ``count`` positive roots beta_n of J0 (the first ``ROOT_TABLE`` from one table:
     scipy's roots do not depend on how many are asked for)."""
     return _root_table()[:count] if count <= ROOT_TABLE else jn_zeros(0, count)
@@ -157,7 +157,7 @@ def _root_table() -> np.ndarray:
 def roots_for(fourier_min: float) -> np.ndarray:
     """Enough J0 roots that exp(-beta_N^2 t*) < exp(-EXP_CUTOFF) for t* >= fourier_min."""
     count = int(np.sqrt(EXP_CUTOFF / max(fourier_min, 1e-12)) / np.pi) + 2
-    return _bessel_roots(min(count, 200_000))
+    return bessel_roots(min(count, 200_000))
 
 
 @lru_cache(maxsize=1)

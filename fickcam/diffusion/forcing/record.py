@@ -54,7 +54,7 @@ class Forcing:
                        np.searchsorted(nodes[order], times), self.interpolation, nodes[order])
 
 
-def _pieces(exposure, clock, tolerance) -> tuple[np.ndarray, float]:
+def linear_pieces(exposure, clock, tolerance) -> tuple[np.ndarray, float]:
     """Pieces per row so that Ms is linear in tau within ``tolerance``: the deviation from
     linear, largest of three interior samples (the rate may change several-fold along a
     row, so the tau-midpoint is not the t-midpoint), falls as 1 / pieces^2 (smooth Ms)."""
@@ -77,10 +77,10 @@ def _pieces(exposure, clock, tolerance) -> tuple[np.ndarray, float]:
 
 
 def forcing(exposure, clock: RescaledTime, times, tolerance) -> Forcing:
-    """Nodes: the rows' edges, rows cut into pieces (``_pieces``), and the output times
+    """Nodes: the rows' edges, rows cut into pieces (``linear_pieces``), and the output times
     (rows past the last output are left out: nothing there reaches an output)."""
     edges = clock.edges
-    pieces, interpolation = _pieces(exposure, clock, tolerance)
+    pieces, interpolation = linear_pieces(exposure, clock, tolerance)
     row = np.repeat(np.arange(pieces.size), pieces)
     within = np.arange(row.size) - np.repeat(np.cumsum(pieces) - pieces, pieces)
     cuts = edges[row] + (edges[row + 1] - edges[row]) * within / pieces[row]

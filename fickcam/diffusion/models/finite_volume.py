@@ -152,7 +152,7 @@ def solve_direct(geometry, diffusivity, exposure, times, chosen: Plan, *,
                           steps.outputs, steps.times, keep_fields=store_fields, part=part,
                           surface_before=steps.surface_before))
     coarse, fine = runs
-    combine, estimate = _richardson(chosen, coarse, fine, swing(exposure, times) or 1.0,
+    combine, estimate = richardson_pair(chosen, coarse, fine, swing(exposure, times) or 1.0,
                                     extrapolate)
     result = DiffusionResult(
         times, combine(coarse.mean, fine.mean), combine(coarse.layer, fine.layer), chosen.model,
@@ -165,7 +165,7 @@ def solve_direct(geometry, diffusivity, exposure, times, chosen: Plan, *,
     return result
 
 
-def _richardson(chosen: Plan, coarse, fine, scale: float, extrapolate: bool):
+def richardson_pair(chosen: Plan, coarse, fine, scale: float, extrapolate: bool):
     """(combine, estimate): 2 fine - coarse (or the fine march alone) and its error: the
     plan's estimate, unless the march's own indicator (space part of the plan + the pair's
     time error, ``PAIR_TO_EXTRAPOLATED`` d^2 extrapolated, d alone) says more."""

@@ -45,11 +45,11 @@ from ..forcing.clock import sample_times
 from ..forcing.clock import scales as scales_of
 from ..stepping.dense_output import Extension, Track
 from ..accuracy.error_model import TIME_ERROR
-from ..models.finite_volume import _richardson, discretise, step_plan, swing
+from ..models.finite_volume import richardson_pair, discretise, step_plan, swing
 from ..problem.exposure import Diffusivity
 from ..problem.geometry import Disc, Sheet
 from ..operators.symmetry_cuts import mirrored
-from ..stepping.march import ORDERING, History, _rounded, norm
+from ..stepping.march import ORDERING, History, rounded_steps, norm
 from ..problem.results import DiffusionResult
 
 SWEEP_TOLERANCE = 1e-9   # residual / |right side| at which a step's sweeps stop
@@ -223,7 +223,7 @@ def solve_nonlinear(geometry, diffusivity, law, exposure, times, chosen, *,
              for bisect in (False, True)]
     coarse, fine = (sweep_march(faces, weights, law, top, steps, exposure.initial_moisture,
                                 store_fields, part) for steps in plans)
-    combine, estimate = _richardson(chosen, coarse, fine, swing(exposure, times) or 1.0, True)
+    combine, estimate = richardson_pair(chosen, coarse, fine, swing(exposure, times) or 1.0, True)
     result = DiffusionResult(times, combine(coarse.mean, fine.mean),
                              combine(coarse.layer, fine.layer), chosen.model, weights.cells,
                              coarse.steps + fine.steps, estimate, chosen.reason)
@@ -301,7 +301,7 @@ def sweep_march(faces: Faces, weights, law, top, steps, initial, keep_fields, pa
     record = {0: c.copy()} if 0 in want else {}
     sums = np.column_stack([weights.mean_weights, weights.layer_weights, *columns])
     track = [c @ sums]
-    dts = _rounded(np.diff(steps.nodes))
+    dts = rounded_steps(np.diff(steps.nodes))
     solver = Lagged()
     previous = None
     for k, dt in enumerate(dts, start=1):

@@ -19,7 +19,8 @@ from ..planform.cell_moments import corrected_weights
 from ..forcing.clock import scales as scales_of
 from ..stepping.dense_output import Track
 from ..models.finite_volume import plan_direct, step_plan
-from ..operators.discretisation import Discretisation, assemble
+from ..operators.discretisation import Discretisation
+from ..operators.fipy_backend import assemble, interval_mesh
 from ..operators.grids import interval_overlap, normalised
 from ..operators.prisms import prism
 from ..problem.geometry import Bar, CamPlate, Sheet
@@ -97,9 +98,7 @@ def z_band(z_widths: np.ndarray, depth: float) -> np.ndarray:
 def half_slab(z_widths: np.ndarray) -> Discretisation:
     """FiPy Grid1D of a half thickness on ``z_widths`` (scaled, from the exposed face at
     z = 0; the other end is the mid-plane mirror, insulated)."""
-    from fipy import Grid1D
-
-    mesh = Grid1D(dx=np.asarray(z_widths, float))
+    mesh = interval_mesh(np.asarray(z_widths, float))
     exposed = np.asarray(mesh.exteriorFaces, bool) & np.isclose(
         np.asarray(mesh.faceCenters)[0], 0.0, atol=1e-12)
     volumes, stiffness, boundary = assemble(mesh, exposed=exposed)

@@ -82,7 +82,7 @@ def planform_design(geometry, d, accuracy: float, t_lo: float) -> sizing.Layout:
     stretch = stretch_of(d)
     return sizing.graded((1.0, 1.0), ("both", "both"), accuracy, t_lo, FIRST_CAP,
                          space_error(t_lo), lambda w0, g: (
-                             sizing._estimated_prism_cells(geometry, w0, g, stretch)[0],))
+                             sizing.estimated_prism_cells(geometry, w0, g, stretch)[0],))
 
 
 @dataclass(frozen=True, eq=False)
@@ -310,7 +310,7 @@ def _lower(together: RefinedPlanform, apart) -> RefinedPlanform:
     return replace(apart, levels=together.levels)
 
 
-def _parts(meshes) -> np.ndarray:
+def error_coefficients(meshes) -> np.ndarray:
     """(2, compared values): the error coefficients (alpha, beta) of y = y* + alpha w0^2 +
     beta g^2 through the ``meshes`` (finest, growth, ``_level``; three or more, not on one
     line in (w0^2, g^2)), each compared value on its own: Richardson extrapolation in two
@@ -322,7 +322,7 @@ def _parts(meshes) -> np.ndarray:
     return np.linalg.lstsq(steps, values, rcond=None)[0][1:]
 
 
-def _estimate(parts, finest: float, growth: float) -> float:
+def mesh_error(parts, finest: float, growth: float) -> float:
     """The mesh error of (finest, growth): the w0 and g terms' magnitudes added, the
     largest over the compared values (their signs are not trusted to cancel)."""
     return float(np.max(np.abs(parts[0]) * finest ** 2 + np.abs(parts[1]) * growth ** 2,
@@ -331,23 +331,23 @@ def _estimate(parts, finest: float, growth: float) -> float:
 
 def _target(geometry, d, parts, meshes, budget: float):
     """(finest, growth), within ``SPLIT_REACH`` of the last of ``meshes``, of the fewest
-    cells whose predicted mesh error (``_estimate``) is ``budget`` / ``SAFETY``^2, under the
+    cells whose predicted mesh error (``mesh_error``) is ``budget`` / ``SAFETY``^2, under the
     cap, else of the least error under it. The cells: the cap's cheap count
-    (``sizing._estimated_prism_cells``) times the largest ratio of the cells built to it
+    (``sizing.estimated_prism_cells``) times the largest ratio of the cells built to it
     so far (it misses by up to 20 % as w0 and g part)."""
     stretch = stretch_of(d)
     finest, growth, _ = meshes[-1]
-    ratio = max(level[2] / sizing._estimated_prism_cells(geometry, w, g, stretch)[0]
+    ratio = max(level[2] / sizing.estimated_prism_cells(geometry, w, g, stretch)[0]
                 for w, g, level in meshes)
     best = None
     for w in finest * np.geomspace(1.0 / SPLIT_REACH, SPLIT_REACH, SPLIT_GRID):
         for g in growth * np.geomspace(1.0 / SPLIT_REACH, SPLIT_REACH, SPLIT_GRID):
             if g > sizing.MAX_GROWTH:
                 continue
-            count = ratio * sizing._estimated_prism_cells(geometry, w, g, stretch)[0]
+            count = ratio * sizing.estimated_prism_cells(geometry, w, g, stretch)[0]
             if count > PLANFORM_CAP:
                 continue
-            error = _estimate(parts, w, g)
+            error = mesh_error(parts, w, g)
             key = (max(error * SAFETY ** 2, budget), count)   # met: fewest cells; else: least error
             if best is None or key < best[0]:
                 best = (key, float(w), float(g))
@@ -357,7 +357,7 @@ def _target(geometry, d, parts, meshes, budget: float):
 def _separately(geometry, d, depth, start, ages, tolerance, measure, levels):
     """Refine w0 and g apart from the mesh ``start`` (finest, growth, ``_level``): one mesh
     with w0 / 2 alone and one with g / 2 alone give each term's own Richardson difference
-    (``_parts``); the mesh of the fewest cells predicted to meet the tolerance follows
+    (``error_coefficients``); the mesh of the fewest cells predicted to meet the tolerance follows
     (``_target``), its estimate from all the meshes apart (least squares), and so on while
     the last mesh is under half the cap. The cheapest mesh whose estimate meets the
     tolerance is kept, else the last. None if a probe mesh cannot be built."""
@@ -370,8 +370,8 @@ def _separately(geometry, d, depth, start, ages, tolerance, measure, levels):
         return None
     levels += 2
     while True:
-        parts = _parts(meshes)
-        met = [(mesh[2][2], _estimate(parts, mesh[0], mesh[1]) + mesh[2][4], mesh)
+        parts = error_coefficients(meshes)
+        met = [(mesh[2][2], mesh_error(parts, mesh[0], mesh[1]) + mesh[2][4], mesh)
                for mesh in meshes]
         cheapest = min((m for m in met if m[1] <= tolerance), default=None, key=lambda m: m[0])
         last = met[-1]

@@ -22,7 +22,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..stepping.march import ThetaStepper, _rounded
+from ..stepping.march import ThetaStepper, rounded_steps
 
 
 @dataclass
@@ -67,7 +67,7 @@ def march_coupled(disc, nodes, free_before, binding, release, initial,
     record = {}
     if 0 in want:
         record[0] = (n.copy(), bound.copy())
-    steps = _rounded(np.diff(nodes))
+    steps = rounded_steps(np.diff(nodes))
     for k, dt in enumerate(steps, start=1):
         gdt, bdt = binding[k - 1], release[k - 1]
         effective = 1.0 / (1.0 / dt + gdt / dt / (1.0 + bdt))

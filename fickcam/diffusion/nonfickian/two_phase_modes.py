@@ -30,7 +30,7 @@ import numpy as np
 
 from ..forcing.clock import RescaledTime
 from ..exact.separable import step_response
-from ..forcing.record import Forcing, _pieces
+from ..forcing.record import Forcing, linear_pieces
 from ..exact.modes import (FIRST_COUNT, FIRST_PER_OCTAVE, MAX_PRODUCT, dimensions, lump,
                            product_modes, step_corrections)
 from ..exact.two_phase import exchange_propagator
@@ -57,10 +57,10 @@ class Nodes:
 
 
 def march_nodes(law, diffusivity, exposure, times, tolerance) -> Nodes:
-    """Edges, ramp rows cut where Ms departs from linear (``forcing._pieces``), outputs."""
+    """Edges, ramp rows cut where Ms departs from linear (``forcing.linear_pieces``), outputs."""
     clock = RescaledTime(diffusivity, exposure)
     edges = clock.edges
-    pieces, interpolation = _pieces(exposure, clock, tolerance)
+    pieces, interpolation = linear_pieces(exposure, clock, tolerance)
     exchange, frozen = _exchange_pieces(law, clock, exposure, tolerance)
     pieces = np.maximum(pieces, exchange)
     interpolation += float(np.max(frozen / pieces ** 2, initial=0.0))

@@ -1,5 +1,5 @@
-"""The operator interface of every mesh model (``Discretisation``) and its one FiPy
-assembly (``assemble``).
+"""The operator interface of every mesh model (``Discretisation``): M dc/dt + K c = g f
+with the weights that integrate its values.
 
 Every mesh is built in non-dimensional, anisotropy-scaled coordinates
 x_i' = (x_i / L) sqrt(D_z / D_i) with L the part thickness, so that the
@@ -8,15 +8,13 @@ eq. 2.13: anisotropic diffusion along principal axes reduces to isotropic
 diffusion by scaling each coordinate with sqrt(D_ref / D_i)). Time is then
 tau* = tau D_z(T_ref) / L^2.
 
-FiPy assembles ``TransientTerm == DiffusionTerm`` once per mesh with all
-exposed faces constrained to 1 (``DiffusionTermCorrection`` is not used: its
-non-orthogonal correction is an explicit source built from the current
-gradient, so it is not part of a constant matrix); with dt = 1 and c_old = 0 its matrix is
-A = M + K and its right side is f, so K and f follow and backward Euler with
-any step and any uniform surface value g is (M/dt + K) c_new = M c_old/dt + g f.
-One scipy factorisation per distinct dt serves every step of that size
-(private FiPy API ``_prepareLinearSystem``: fipy is pinned to 4.0.x and the
-extraction is tested against a plain ``eq.solve``).
+FiPy assembles ``TransientTerm == DiffusionTerm`` once per mesh with all exposed faces
+constrained to 1 (``fipy_backend.assemble``; ``DiffusionTermCorrection`` is not used: its
+non-orthogonal correction is an explicit source built from the current gradient, so it is
+not part of a constant matrix); the P1 elements of the plane model (``p1``) build their
+own. Backward Euler with any step and any uniform surface value g is then
+(M/dt + K) c_new = M c_old/dt + g f, one scipy factorisation per distinct dt serving every
+step of that size (``stepping.march``).
 """
 from __future__ import annotations
 
@@ -26,8 +24,6 @@ from dataclasses import dataclass, field, replace
 import numpy as np
 from scipy import sparse
 
-FIPY_VERIFIED = "4.0."  # the FiPy series whose private ``_prepareLinearSystem`` was checked
-#                         against a plain ``eq.solve`` (tests/test_diffusion_fv.py)
 
 @dataclass
 class Discretisation:
@@ -65,30 +61,3 @@ class Discretisation:
         if self.mass is None:
             return self
         return replace(self, mass=None, held_mass=None, factors=OrderedDict())
-
-
-def assemble(mesh, corrected: bool = False,
-             exposed: np.ndarray | None = None) -> tuple[np.ndarray, sparse.csr_matrix, np.ndarray]:
-    """(volumes, K, f) of dc/dt = laplacian(c) with c = 1 on every exterior face
-    (or on the faces marked in ``exposed``; the other exterior faces are insulated,
-    FiPy's default: zero flux, e.g. a mirror plane).
-
-    FiPy's matrix for ``TransientTerm() == DiffusionTerm(1)`` at dt = 1 is
-    M + K; its right side with c_old = 0 is f.
-    """
-    from fipy import (CellVariable, DiffusionTerm, DiffusionTermCorrection, LinearLUSolver,
-                      TransientTerm)
-
-    var = CellVariable(mesh=mesh, value=0.0)
-    var.constrain(1.0, mesh.exteriorFaces if exposed is None else exposed)
-    diffusion = DiffusionTermCorrection if corrected else DiffusionTerm
-    equation = TransientTerm(coeff=1.0) == diffusion(coeff=1.0)
-    equation.cacheMatrix()
-    equation.cacheRHSvector()
-    equation._prepareLinearSystem(var, LinearLUSolver(tolerance=1e-10), (), 1.0)
-    volumes = np.asarray(mesh.cellVolumes, float).copy()
-    matrix = sparse.csr_matrix(equation.matrix.matrix)
-    stiffness = (matrix - sparse.diags(volumes)).tocsr()
-    boundary = np.asarray(equation.RHSvector, float).copy()
-    return volumes, stiffness, boundary
-

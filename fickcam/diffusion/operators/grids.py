@@ -9,7 +9,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from .discretisation import Discretisation, assemble
+from .discretisation import Discretisation
+from .fipy_backend import assemble, box_mesh, cylindrical_mesh, interval_mesh
 from ..problem.scaling import axis_scale
 
 
@@ -36,9 +37,7 @@ def sheet(thickness: float, cells: int, layer_depth: float) -> Discretisation:
 
 def sheet_mesh(cells: int):
     """FiPy Grid1D of a sheet in z/h, ``cells`` uniform cells."""
-    from fipy import Grid1D
-
-    return Grid1D(nx=cells, dx=1.0 / cells)
+    return interval_mesh(1.0 / cells, nx=cells)
 
 
 def _uniform_widths(lengths, counts) -> tuple[np.ndarray, ...]:
@@ -51,7 +50,7 @@ def _bounds(widths: np.ndarray, index: np.ndarray) -> tuple[np.ndarray, np.ndarr
     return edges[index], edges[index + 1]
 
 
-def _grid_axis(widths: np.ndarray, scale: float, uniform: bool) -> dict:
+def grid_axis(widths: np.ndarray, scale: float, uniform: bool) -> dict:
     """FiPy grid arguments for one axis: a count and a spacing, or the array of widths."""
     return ({"n": widths.size, "d": float(widths[0]) * scale} if uniform
             else {"n": None, "d": widths * scale})
@@ -78,15 +77,12 @@ def disc(outer_radius: float, thickness: float, inner_radius: float, radial_cell
 def disc_mesh(outer_radius, thickness, inner_radius, radial_cells, axial_cells, radial_d,
               axial_d, widths=None):
     """(FiPy CylindricalGrid2D in scaled (r, z), radial scale, (dr, dz) widths in m)."""
-    from fipy import CylindricalGrid2D
-
     scale_r = axis_scale(thickness, radial_d, axial_d)
     uniform = widths is None
     dr, dz = widths or _uniform_widths((outer_radius - inner_radius, thickness),
                                        (radial_cells, axial_cells))
-    r_axis, z_axis = _grid_axis(dr, scale_r, uniform), _grid_axis(dz, 1.0 / thickness, uniform)
-    mesh = CylindricalGrid2D(nr=r_axis["n"], nz=z_axis["n"], dr=r_axis["d"], dz=z_axis["d"],
-                             origin=((inner_radius * scale_r,), (0.0,)))
+    r_axis, z_axis = grid_axis(dr, scale_r, uniform), grid_axis(dz, 1.0 / thickness, uniform)
+    mesh = cylindrical_mesh(r_axis, z_axis, inner_radius * scale_r)
     return mesh, scale_r, (dr, dz)
 
 
@@ -96,15 +92,12 @@ def bar(length: float, width: float, thickness: float, cells: tuple[int, int, in
     """Rectangular bar, FiPy Grid3D; layer: within ``layer_depth`` of any face.
     ``widths``: (x, y, z) cell widths in m, graded (FiPy's non-uniform grid),
     instead of the uniform ``cells``."""
-    from fipy import Grid3D
-
     size = np.array([length, width, thickness])
     scale = np.array([axis_scale(thickness, d[i], d[2]) for i in range(3)])
     uniform = widths is None
     widths = widths or _uniform_widths(size, cells)
-    axes = [_grid_axis(w, s, uniform) for w, s in zip(widths, scale)]
-    mesh = Grid3D(nx=axes[0]["n"], ny=axes[1]["n"], nz=axes[2]["n"], dx=axes[0]["d"],
-                  dy=axes[1]["d"], dz=axes[2]["d"])
+    axes = [grid_axis(w, s, uniform) for w, s in zip(widths, scale)]
+    mesh = box_mesh(axes)
     volumes, stiffness, boundary = assemble(mesh)
     centres = [np.asarray(a) / s for a, s in zip(mesh.cellCenters, scale)]
     return Discretisation(volumes, stiffness, boundary, normalised(volumes),

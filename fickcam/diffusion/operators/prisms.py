@@ -3,11 +3,10 @@ cell points: the planform alone (a ``Mesh2D``, the in-plane operator of the plan
 extruded through the thickness into prisms (a generic 3-D ``Mesh``)."""
 from __future__ import annotations
 
-from functools import lru_cache
-
 import numpy as np
 
-from .discretisation import Discretisation, assemble
+from .discretisation import Discretisation
+from .fipy_backend import assemble, centred_mesh
 from .grids import normalised
 from ..planform.polygon import unique_edges
 from ..planform.admissible import cell_loops
@@ -55,8 +54,7 @@ def planar(tess, scale: float, layer_share: np.ndarray) -> Discretisation:
     Layer: cells weighted by ``layer_share`` (fraction within the contact band)."""
     sides, cell_sides = sides_of_cells(tess)
     cell_faces = _padded(cell_sides, max(s.size for s in cell_sides))
-    mesh = _centred_mesh_class(2)(tess.points.T * scale, sides.T, cell_faces,
-                                  tess.centres.T * scale)
+    mesh = centred_mesh(2, tess.points.T * scale, sides.T, cell_faces, tess.centres.T * scale)
     exposed = np.asarray(mesh.exteriorFaces, bool) & ~_on_mirror(tess, sides)
     volumes, stiffness, boundary = assemble(mesh, exposed=exposed)
     planar_centres = tess.physical(tess.centres)
@@ -109,8 +107,8 @@ def prism_mesh(tess, scale: float, z_nodes: np.ndarray, mid_plane: bool):
     cell_centres = np.vstack([np.tile(tess.centres.T * scale, layers), centre_z[None, :]])
     face_centres = np.vstack([np.tile(tess.centres.T * scale, layers + 1),
                               np.repeat(z_nodes, cells)[None, :]])
-    mesh = _centred_mesh_class(3)(vertices, faces, cell_faces, cell_centres,
-                                  np.arange(first_side), face_centres)
+    mesh = centred_mesh(3, vertices, faces, cell_faces, cell_centres, np.arange(first_side),
+                        face_centres)
     insulated = np.zeros(faces.shape[1], bool)
     insulated[first_side:] = np.tile(_on_mirror(tess, sides), layers)
     if mid_plane:
@@ -138,34 +136,3 @@ def _on_mirror(tess, sides: np.ndarray) -> np.ndarray:
     for axis, value in tess.mirrors:
         on |= np.all(tess.points[sides][:, :, axis] == value, axis=1)
     return on
-
-
-@lru_cache(maxsize=2)
-def _centred_mesh_class(dimensions: int):
-    """FiPy's generic ``Mesh`` (3-D) or ``Mesh2D`` with given cell points (FiPy would
-    average the face centres) and, in 3-D, the top/bottom faces centred on them, so that
-    the segment from a cell point to its top or bottom face is vertical. Cell volumes do
-    not depend on those points (FiPy's divergence-theorem volume uses the face normals
-    and, in 3-D, only their x component, zero on horizontal faces; in 2-D the face
-    centres, the sides' midpoints, which are kept)."""
-    from fipy.meshes.mesh import Mesh
-    from fipy.meshes.mesh2D import Mesh2D
-
-    class CentredMesh(Mesh2D if dimensions == 2 else Mesh):
-        def __init__(self, vertex_coords, face_vertex_ids, cell_face_ids, cell_centres,
-                     centred_faces=None, face_centres=None):
-            self._given_cells = cell_centres
-            self._given_faces = (centred_faces, face_centres)
-            super().__init__(vertex_coords, face_vertex_ids, cell_face_ids)
-
-        def _calcCellCenters(self):
-            return self._given_cells
-
-        def _calcFaceCenters(self):
-            centres = np.array(super()._calcFaceCenters())
-            ids, values = self._given_faces
-            if ids is not None:
-                centres[:, ids] = values
-            return centres
-
-    return CentredMesh

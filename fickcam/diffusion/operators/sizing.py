@@ -191,7 +191,7 @@ def prism_layout(geometry, d, accuracy: float, t_lo: float, cap: int,
         raise TypeError(f"no prism layout for {type(geometry).__name__}")
     stretch = stretch_of(d)
     layout = graded((1.0, 1.0, 1.0), ("both",) * 3, accuracy, t_lo, cap, space_error,
-                    lambda w0, g: _estimated_prism_cells(geometry, w0, g, stretch), halved)
+                    lambda w0, g: estimated_prism_cells(geometry, w0, g, stretch), halved)
     finest = min(layout.finest, widest_row(geometry, stretch))
     planform = planform_cells(geometry, finest, layout.growth, stretch)
     cells = (planform.cells, prism_widths(finest, layout.growth).size)
@@ -208,7 +208,7 @@ def widest_row(part, stretch) -> float:
     return 0.5 * float(extent.min())
 
 
-def _estimated_prism_cells(part, finest: float, growth: float, stretch) -> tuple[int, int]:
+def estimated_prism_cells(part, finest: float, growth: float, stretch) -> tuple[int, int]:
     """Cheap count for the cap: rows of spacing s(d) ~ w0 + g d at depth d under an
     outline of scaled perimeter P make about (2 / (sqrt(3)/2)) P integral dd / s^2
     triangles (two per rhombus of an equilateral lattice), up to the half width D:

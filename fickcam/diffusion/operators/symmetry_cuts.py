@@ -16,8 +16,9 @@ from __future__ import annotations
 import numpy as np
 
 from . import sizing
-from .discretisation import Discretisation, assemble
-from .grids import _grid_axis, near_faces, normalised
+from .discretisation import Discretisation
+from .fipy_backend import assemble, box_mesh
+from .grids import grid_axis, near_faces, normalised
 from .prisms import prism
 from ..problem.geometry import Bar, CamPlate, LinkBar
 from ..planform.admissible import band_share
@@ -61,16 +62,13 @@ def octant(bar: Bar, d, cells, finest: float, growth: float,
     """The octant x, y, z <= half of a Bar on FiPy's Grid3D: the faces x = 0, y = 0, z = 0
     exposed, the three mid-planes insulated (FiPy's default for unconstrained faces).
     Layer: within ``layer_depth`` of an exposed face (the whole bar's layer, by symmetry)."""
-    from fipy import Grid3D
-
     size = np.array([bar.length, bar.width, bar.thickness])
     full = (sizing.physical_widths(bar, sizing.extents(bar, d), d, finest, growth) if finest > 0
             else tuple(np.full(n, s / n) for s, n in zip(size, (2 * -(-c // 2) for c in cells))))
     widths = tuple(half(w) for w in full)
     scale = np.array([axis_scale(bar.thickness, d[i], d[2]) for i in range(3)])
-    axes = [_grid_axis(w, s, uniform=False) for w, s in zip(widths, scale)]
-    mesh = Grid3D(nx=None, ny=None, nz=None, dx=axes[0]["d"], dy=axes[1]["d"],
-                  dz=axes[2]["d"])
+    axes = [grid_axis(w, s, uniform=False) for w, s in zip(widths, scale)]
+    mesh = box_mesh(axes)
     centres = np.asarray(mesh.faceCenters)
     exposed = np.asarray(mesh.exteriorFaces, bool) & np.any(np.isclose(centres, 0.0, atol=1e-12),
                                                            axis=0)

@@ -154,7 +154,7 @@ def march(disc: Discretisation, nodes: np.ndarray, surface_values: np.ndarray,
     record = {k: None for k in np.unique(outputs)}
     if 0 in record:
         record[0] = c.copy()
-    steps = _rounded(np.diff(nodes))
+    steps = rounded_steps(np.diff(nodes))
     labels = nodes if times is None else times
     ending = surface_values if surface_before is None else surface_before
     held = held_values(ending, initial)
@@ -200,7 +200,7 @@ def _tridiagonal(matrix: sparse.csr_matrix) -> np.ndarray | None:
     return bands
 
 
-def _rounded(steps: np.ndarray) -> np.ndarray:
+def rounded_steps(steps: np.ndarray) -> np.ndarray:
     """Steps rounded to 12 significant digits so equal blocks share one factorisation."""
     return np.array([float(f"{s:.12g}") for s in steps])
 
