@@ -39,7 +39,7 @@ then ``auto`` at 0.1 (CPU s, cells, estimate and its parts) against ``auto`` at 
 (self-consistency).
 ``soak-dry-solid K A``: the same case with exponent K, ``auto`` at 0.1 against the 3-D cells
 alone (``model: solid``) at accuracy A, an independent march (CPU s, cells, estimates).
-``march-cost``: the Richardson pair of swept marches (``corrected_product.Setting.run``) on the plate's
+``march-cost``: the Richardson pair of swept marches (``corrected_product.SharedInputs.run``) on the plate's
 z widths as a sheet and on its coarse 3-D plan, k = 5, wetted to Mm then stepped down to
 0.4 Mm at 0.15 h^2/D (outputs 0.02-0.3 h^2/D): CPU s and the results (to compare two
 versions, run it with each one's PYTHONPATH).
@@ -47,13 +47,13 @@ versions, run it with each one's PYTHONPATH).
 plate-K-desorption, soak-K or bar-K-absorption / bar-K-desorption (``dc_bar.py``'s 6 x 4 x 2 mm
 bar, its layer the six faces'); the corrected result (sheet and planform references of a run
 at accuracy A) on the 3-D mesh of the ``corrected_product.base_plan`` plan (or the plan of accuracy
-B) with its planform refined P times and its z widths Z times (``corrected_product.Cells.refined``'s
+B) with its planform refined P times and its z widths Z times (``corrected_product.PrismCells.refined``'s
 two halves apart; default 00 01 10 11 02): cells, CPU s, the distances between all of
 them (``corrected_product.gap``), and the ratios of successive changes along z (00 01 02 ...), the
 planform (00 10 20) and both (00 11 22).
 ``cross CASE A`` (CASE also small-K-DIRECTION: the tests' 3 x 2 x 2 mm plate, outputs to
 0.1 h^2/D): the three diagonal nested meshes, and the ``corrected_product.cross`` around the second
-(``Levels.finer`` where the third passes the cap): the combination against the third.
+(``CorrectedMeshes.finer`` where the third passes the cap): the combination against the third.
 ``corrected CASE A[@B]``: ``corrected_product.solve_corrected`` (what ``auto`` runs; B: on the nested
 pair of the plan of accuracy B): CPU s, cells, the estimate and its parts; a plate against
 its stored 3-D run (``plate``'s norm).
@@ -114,13 +114,13 @@ def soak_dry(exponents=(3.0, 5.0), accuracy=0.1, reference_accuracy=0.03) -> Non
     with its PYTHONPATH: soak_dry((3.0,), 0.1, None))."""
     from fickcam.diffusion import solve
     from fickcam.diffusion.nonfickian.corrected_product import base_plan
-    from fickcam.diffusion.nonfickian.corrected_pieces import Cells, Setting, level_plan, steps_for
+    from fickcam.diffusion.nonfickian.corrected_pieces import PrismCells, SharedInputs, level_plan, steps_for
 
     for k in exponents:
         plate, d, exposure, times, law = soak_dry_case(k)
         level, chosen = base_plan(lambda a: level_plan(plate, d, law, exposure, times, a,
                                                        steps_for(accuracy)), accuracy)
-        cells = Cells.of(plate, Setting.of(plate, d, law, exposure, times, 5e-4, 4, "").d, chosen)
+        cells = PrismCells.of(plate, SharedInputs.of(plate, d, law, exposure, times, 5e-4, 4, "").d, chosen)
         print(f"k {k:g}, 3-D plan {level:g}: {cells.cells} cells, 2x {cells.refined().cells}, "
               f"w0 {chosen.finest:.3g}, growth {chosen.growth:.3g}", flush=True)
         runs = []
@@ -160,7 +160,7 @@ def soak_dry_solid(exponent: str, reference_accuracy: str) -> None:
 def march_cost() -> None:
     from fickcam.diffusion import CamPlate, Diffusivity, Exposure
     from fickcam.diffusion.operators import sizing
-    from fickcam.diffusion.nonfickian.corrected_pieces import Setting, half_slab, level_plan
+    from fickcam.diffusion.nonfickian.corrected_pieces import SharedInputs, half_slab, level_plan
     from fickcam.diffusion.operators.symmetry_cuts import half, mirrored
     from fickcam.diffusion.problem.sorption import ConcentrationDependent
 
@@ -169,7 +169,7 @@ def march_cost() -> None:
                                   [MM, 0.4 * MM])
     plate = CamPlate(np.array([0, 4e-3, 4e-3, 0.0]), np.array([0, 0, 3e-3, 3e-3]), H)
     law, d = ConcentrationDependent(MM, exponent=5.0), Diffusivity((D, D, D), 0.0)
-    setting = Setting.of(plate, d, law, exposure, times, 5e-4, 4, "")
+    setting = SharedInputs.of(plate, d, law, exposure, times, 5e-4, 4, "")
     chosen = level_plan(plate, d, law, exposure, times, 1.0, 4)
     for name, disc in (("sheet", half_slab(half(sizing.prism_widths(0.07, 0.229)))),
                        ("3-D", mirrored(plate, setting.d, chosen.cells_per_axis, chosen.finest,
@@ -362,13 +362,13 @@ def planform_sequence(exponent: str = "2", accuracy: str = "1e-3") -> None:
     choice and estimate on the first three against the 8x mesh (relative to the swing; the
     layer / ``LAYER_TOLERANCE``)."""
     from fickcam.diffusion.nonfickian import corrected_product
-    from fickcam.diffusion.models.finite_volume import swing
+    from fickcam.diffusion.problem.exposure import swing
     from fickcam.diffusion.accuracy.grid_convergence import three_levels
     from fickcam.diffusion.accuracy.error_model import LAYER_TOLERANCE
 
     k, accuracy = float(exponent), float(accuracy)
     geometry, d, exposure, times, law = demo_cam(k)
-    setting = corrected_product.Setting.of(geometry, d, law, exposure, times, 5e-4,
+    setting = corrected_product.SharedInputs.of(geometry, d, law, exposure, times, 5e-4,
                                 corrected_product.steps_for(accuracy), "cam")
     sheet = corrected_product.sheet_reference(geometry, d, law, exposure, times, accuracy)
     chosen = corrected_product.level_plan(geometry, d, law, exposure, times, corrected_product.MESH_LEVELS[-1],
@@ -376,7 +376,7 @@ def planform_sequence(exponent: str = "2", accuracy: str = "1e-3") -> None:
     level = corrected_product.three_d(setting, chosen, False)
     surface = np.asarray(exposure.surface_before(times), float)
     scale = swing(exposure, times)
-    through = (level.slab, corrected_product.Pair(sheet.mean, sheet.surface))
+    through = (level.slab, corrected_product.CombinedMarch(sheet.mean, sheet.surface))
     results = {1.0: corrected_product.corrected(level.plate, through, (level.planform, level.moments),
                                      surface)}
     for refine in (2.0, 4.0, 8.0):
@@ -406,7 +406,7 @@ def slab(widths):
 
 def fickian_reference() -> None:
     """The 1-D measurement of the module docstring of ``defect``."""
-    from fickcam.diffusion.nonfickian.corrected_pieces import Setting, level_plan
+    from fickcam.diffusion.nonfickian.corrected_pieces import SharedInputs, level_plan
     from fickcam.diffusion.operators.sizing import prism_widths
     from fickcam.diffusion.operators.symmetry_cuts import half
     from fickcam.diffusion.nonfickian.concentration_dependent import wettest
@@ -415,7 +415,7 @@ def fickian_reference() -> None:
     mm = float(exposure.surface_moisture(times[-1:])[0])
     factor = crank_mean_factor(law, 0.0, mm)
     top = law.largest_factor(wettest(exposure, times))
-    setting = Setting.of(geometry, d, law, exposure, times, 5e-4, 4, "")
+    setting = SharedInputs.of(geometry, d, law, exposure, times, 5e-4, 4, "")
     constant = Constant(factor)
     fine = np.full(1000, 0.5 / 1000)
     tau = setting.scales.tau_star(np.asarray(times, float))
@@ -498,7 +498,7 @@ def nested(case: str, accuracy: str, *meshes: str) -> None:
     print(f"{case} at {accuracy}: references {time.process_time() - start:.1f} CPU s, sheet "
           f"est. {run.sheet.error_estimate:.1e}, planform x{run.factor:g} est. "
           f"{run.planform_error:.1e}", flush=True)
-    reference = corrected_product.Pair(run.sheet.mean, run.sheet.surface)
+    reference = corrected_product.CombinedMarch(run.sheet.mean, run.sheet.surface)
     results = {}
     for spec in meshes or ("00", "01", "10", "11", "02"):
         cells = run.meshes[0]
@@ -508,7 +508,7 @@ def nested(case: str, accuracy: str, *meshes: str) -> None:
         for _ in range(int(spec[1])):
             z = np.repeat(0.5 * z, 2)
         start = time.process_time()
-        level = corrected_product.three_d(run.setting, run.marched[0].plan, False, corrected_product.Cells(tess, z))
+        level = corrected_product.three_d(run.setting, run.marched[0].plan, False, corrected_product.PrismCells(tess, z))
         results[spec] = corrected_product.corrected(level.plate, (level.slab, reference),
                                          (level.planform, run.planform),
                                          corrected_product.surface_of(run.setting), level.union)
@@ -539,7 +539,7 @@ def three_levels_of(results, path, quantity, scale):
 
 
 def cross_run(case: str, accuracy: str) -> None:
-    """The ``corrected_product.cross`` around the 2 x nested mesh (``Levels.finer`` with the diagonal's
+    """The ``corrected_product.cross`` around the 2 x nested mesh (``CorrectedMeshes.finer`` with the diagonal's
     third mesh taken as past the cap) against that third mesh: distances (``corrected_product.gap``)
     and the estimates of two meshes, of the three diagonal ones and of the combination."""
     from dataclasses import replace

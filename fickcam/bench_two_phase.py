@@ -26,7 +26,7 @@ import numpy as np
 from .blas import one_blas_thread
 from .diffusion import CamPlate, Diffusivity, Disc, solve
 from .diffusion.accuracy.error_model import LAYER_TOLERANCE
-from .diffusion.nonfickian.two_phase_modes import history_swing
+from .diffusion.problem.exposure import swing as history_swing
 from .scene import load_scene
 from .simulate import ageing_times, build_parts, run, scene_environment
 

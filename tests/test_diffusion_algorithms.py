@@ -12,9 +12,9 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from fickcam.diffusion import Diffusivity, Exposure
-from fickcam.diffusion.problem import scaling
 from fickcam.diffusion.planform.polygon import (CORNER_TURN, corners_of, inside_polygon,
                                                 polygon_segments, triangle_areas)
+from fickcam.diffusion.problem import scaling
 
 
 def test_left_limit_is_the_value_held_before_each_jump_and_the_initial_value_at_zero():

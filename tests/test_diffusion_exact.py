@@ -8,11 +8,11 @@ from scipy.optimize import brentq
 
 from fickcam.diffusion import Bar, CamPlate, Diffusivity, Disc, Exposure, Sheet
 from fickcam.diffusion.exact import series as one_dimensional
-from fickcam.diffusion.models.analytic import exact_history, exact_history_field
-from fickcam.diffusion.forcing.clock import RescaledTime
 from fickcam.diffusion.exact.separable import exact_available, step_field, step_response
 from fickcam.diffusion.exact.series import (cylinder_profile, cylinder_uptake, sheet_profile,
                                             sheet_series_remainder, sheet_uptake)
+from fickcam.diffusion.forcing.clock import RescaledTime
+from fickcam.diffusion.models.analytic import exact_history, exact_history_field
 
 
 # ------------------------------------------------------------------ helpers

@@ -10,8 +10,8 @@ from hypothesis import strategies as st
 
 from fickcam.diffusion import CamPlate, LinkBar
 from fickcam.diffusion.operators import discretisation, fipy_backend, grids, prisms
-from fickcam.diffusion.stepping import march
 from fickcam.diffusion.planform import outline, admissible, triangles
+from fickcam.diffusion.stepping import march
 from fickcam.errors import SolverError
 from tolerance import roundoff
 

@@ -11,14 +11,14 @@ from scipy.spatial import cKDTree
 from scipy.special import j0, j1, y0, y1
 
 from fickcam.diffusion import Bar, CamPlate, Diffusivity, Disc, Exposure, LinkBar, plan, solve
-from fickcam.diffusion.models import analytic
 from fickcam.diffusion.accuracy import error_model
+from fickcam.diffusion.exact import series
+from fickcam.diffusion.forcing.clock import RescaledTime
+from fickcam.diffusion.models import analytic
 from fickcam.diffusion.operators import prisms, p1
 from fickcam.diffusion.planform import outline, polygon, admissible, short_time, triangles
 from fickcam.diffusion.problem import scaling
-from fickcam.diffusion.exact import series
 from fickcam.diffusion.stepping import step_response
-from fickcam.diffusion.forcing.clock import RescaledTime
 from fickcam.diffusion.superposition.duhamel import duhamel
 
 CONFIGS = Path(__file__).resolve().parents[1] / "configs"

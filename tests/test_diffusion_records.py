@@ -5,8 +5,8 @@ exactly; tau from a fine trapezoid rule)."""
 import numpy as np
 import pytest
 
-from fickcam.diffusion import Bar, Diffusivity, Disc, Exposure, Sheet, plan, solve
 from fickcam.bench_records import modal_disc_mean
+from fickcam.diffusion import Bar, Diffusivity, Disc, Exposure, Sheet, plan, solve
 from fickcam.diffusion.models.analytic import exact_history, record_history
 
 DAY = 86400.0

@@ -10,13 +10,13 @@ import pytest
 
 from fickcam.diffusion import Bar, CamPlate, Diffusivity, Exposure, LinkBar, Plan, plan, solve
 from fickcam.diffusion.accuracy import error_model
-from fickcam.diffusion.models import analytic, plane
+from fickcam.diffusion.models import analytic
+from fickcam.diffusion.models.finite_volume import solve_direct
 from fickcam.diffusion.operators import prisms
-from fickcam.diffusion.stepping import march
+from fickcam.diffusion.operators.grading import graded_widths
 from fickcam.diffusion.planform import polygon, admissible, triangles
 from fickcam.diffusion.problem import scaling
-from fickcam.diffusion.models.finite_volume import solve_direct
-from fickcam.diffusion.operators.grading import graded_widths
+from fickcam.diffusion.stepping import march
 
 pytest.importorskip("fipy")
 

@@ -11,10 +11,10 @@ import pytest
 from hypothesis import given, settings, strategies as st
 
 from fickcam.diffusion import Bar, CamPlate, Diffusivity, Exposure, plan, solve
-from fickcam.diffusion.nonfickian.corrected_product import gap, solve_corrected
-from fickcam.diffusion.nonfickian.corrected_pieces import as_prism, bar_coordinates
-from fickcam.diffusion.accuracy.grid_convergence import three_levels
 from fickcam.diffusion.accuracy.error_model import LAYER_TOLERANCE
+from fickcam.diffusion.accuracy.grid_convergence import three_levels
+from fickcam.diffusion.nonfickian.corrected_pieces import as_prism, bar_coordinates
+from fickcam.diffusion.nonfickian.corrected_product import gap, solve_corrected
 from fickcam.diffusion.problem.sorption import ConcentrationDependent
 
 pytest.importorskip("fipy")
@@ -166,14 +166,14 @@ def test_the_three_mesh_check_extrapolates_only_a_sequence_near_second_order():
 
 
 def test_the_refined_3d_mesh_is_nested_by_two_in_every_direction():
-    """``corrected_product.Cells.refined``: every planform point and z node of the coarse mesh is one of
+    """``corrected_product.PrismCells.refined``: every planform point and z node of the coarse mesh is one of
     the fine mesh's, every z width halved, the planform's area kept and its cells about 4x
     (each triangle split into four: red refinement), so three_levels' ratio-2 check applies."""
-    from fickcam.diffusion.nonfickian.corrected_pieces import Cells
+    from fickcam.diffusion.nonfickian.corrected_pieces import PrismCells
     from fickcam.diffusion.planform.admissible import cell_areas
     from fickcam.diffusion.problem.results import Plan
 
-    coarse = Cells.of(PLATE, (1.0, 1.0, 1.0), Plan("solid", 0, 0, "", 0.0, finest=0.27,
+    coarse = PrismCells.of(PLATE, (1.0, 1.0, 1.0), Plan("solid", 0, 0, "", 0.0, finest=0.27,
                                                    growth=0.25))
     fine = coarse.refined()
     nodes = [np.concatenate([[0.0], np.cumsum(c.z)]) for c in (coarse, fine)]
@@ -255,8 +255,8 @@ def test_three_nested_meshes_read_between_their_steps_give_what_the_solve_takes(
 def test_the_cross_of_cheaper_meshes_stands_in_for_the_next_diagonal_mesh(nested_plate,
                                                                          monkeypatch):
     """Where the finest mesh refined by 2 in every direction (8 x its cells) passes
-    ``NESTED_CELLS``, ``Levels.finer`` adds the ``cross`` around it (the base refined along z
-    once and twice and along the planform once and twice, nested: ``Cells.refined(p, z)``),
+    ``NESTED_CELLS``, ``CorrectedMeshes.finer`` adds the ``cross`` around it (the base refined along z
+    once and twice and along the planform once and twice, nested: ``PrismCells.refined(p, z)``),
     at most 2 x its cells. Their combination R11 + (R02 - R01) + (R20 - R10) (Griebel,
     Schneider & Zenger 1992) is closer to the 8 x mesh R22 than R11 is (measured 5.7e-5
     against 3.9e-4); its estimate (4.1e-4) covers its distance to the diagonal three-mesh
@@ -406,19 +406,19 @@ def test_the_planform_stops_at_2x_only_when_the_whole_estimate_meets_the_accurac
     reference (Richardson of 1x and 2x) is within its estimate (their whole change) of the
     finer one (the three-mesh choice), in ``gap``'s norm of the corrected result: what the early stop relies on
     (measured: 3.1e-3 against 8.2e-4 + the 8x estimate 2.8e-4; 14 CPU s)."""
-    from fickcam.diffusion.nonfickian.corrected_product import (MESH_LEVELS, Pair, Setting,
+    from fickcam.diffusion.nonfickian.corrected_product import (MESH_LEVELS, CombinedMarch, SharedInputs,
                                                                 corrected, refined_reference,
                                                                 surface_of)
     from fickcam.diffusion.nonfickian.corrected_pieces import (level_plan, sheet_reference,
                                                                steps_for, three_d)
 
     times, wet, accuracy = TIMES[:4], exposure(0.0, MM), 0.1   # the marches' steps at 0.1
-    setting = Setting.of(PLATE, ISOTROPIC, law(2.0), wet, times, 5e-4, steps_for(accuracy), "")
+    setting = SharedInputs.of(PLATE, ISOTROPIC, law(2.0), wet, times, 5e-4, steps_for(accuracy), "")
     start = level_plan(PLATE, ISOTROPIC, law(2.0), wet, times, MESH_LEVELS[-1],
                        setting.per_doubling)
     fine_sheet = sheet_reference(PLATE, ISOTROPIC, law(2.0), wet, times, accuracy)
     coarse = level_plan(PLATE, ISOTROPIC, law(2.0), wet, times, 2.0, setting.per_doubling)
-    sheet, level = Pair(fine_sheet.mean, fine_sheet.surface), three_d(setting, coarse, False)
+    sheet, level = CombinedMarch(fine_sheet.mean, fine_sheet.surface), three_d(setting, coarse, False)
     tight = 1e-4   # far below the 2x estimate: only ``total`` can stop at 2x
     seen = []
 

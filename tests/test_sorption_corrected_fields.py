@@ -12,9 +12,9 @@ import pytest
 from fickcam.diffusion import Bar, CamPlate, Diffusivity, Exposure, Sheet, solve
 from fickcam.diffusion.models.analytic import exact_history_field
 from fickcam.diffusion.nonfickian import corrected_product
-from fickcam.diffusion.nonfickian.corrected_product import corrected_levels
 from fickcam.diffusion.nonfickian.corrected_fields import field_errors, stored
 from fickcam.diffusion.nonfickian.corrected_pieces import bar_coordinates
+from fickcam.diffusion.nonfickian.corrected_product import corrected_levels
 from fickcam.diffusion.planform.admissible import cell_areas
 from fickcam.diffusion.problem.sorption import ConcentrationDependent
 
@@ -156,7 +156,7 @@ def test_dc_fields_at_the_centre_of_a_wide_plate_are_the_dc_sheet():
 
 def test_fields_after_the_cross_are_the_diagonal_finest_meshs_and_its_coarser_neighbours(
         monkeypatch):
-    """Where the 8x mesh passes the cap, ``Levels.finer`` adds the ``cross`` (meshes refined
+    """Where the 8x mesh passes the cap, ``CorrectedMeshes.finer`` adds the ``cross`` (meshes refined
     along one direction, their fields not kept) around the finest: the stored fields and
     their indicated errors still come from the finest mesh and the next coarser one on the
     diagonal, so they are the two-mesh run's exactly (k = 2 absorbing, 3 x 2 x 2 mm plate)."""

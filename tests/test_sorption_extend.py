@@ -8,10 +8,10 @@ import pytest
 
 from fickcam.diffusion import CamPlate, Diffusivity, Exposure, Sheet, solve
 from fickcam.diffusion.accuracy.error_model import FIRST_STEP
-from fickcam.diffusion.nonfickian.corrected_product import gap
-from fickcam.diffusion.stepping.dense_output import Track
 from fickcam.diffusion.exact.series import sheet_uptake
+from fickcam.diffusion.nonfickian.corrected_product import gap
 from fickcam.diffusion.problem.sorption import ConcentrationDependent
+from fickcam.diffusion.stepping.dense_output import StepRecord
 from fickcam.diffusion.stepping.step_plans import step_nodes
 
 pytest.importorskip("fipy")
@@ -25,9 +25,9 @@ STEP_DOWN = Exposure.piecewise([0.0, 0.3 * T, TIMES[-1]], [330.0, 330.0], [MM, 0
 
 
 def track_of(values, per_doubling, changes=(0.0, 1.0), outputs=(0.5, 1.0)):
-    """A Track on the march's own node plan (scaled time = time) with ``values(tau)``."""
+    """A StepRecord on the march's own node plan (scaled time = time) with ``values(tau)``."""
     nodes = step_nodes(np.array(changes), np.array(outputs), FIRST_STEP, per_doubling)
-    return Track(nodes, np.column_stack([values(nodes)] * 2), np.zeros(nodes.size),
+    return StepRecord(nodes, np.column_stack([values(nodes)] * 2), np.zeros(nodes.size),
                  np.array(changes, float), lambda t: np.asarray(t, float))
 
 

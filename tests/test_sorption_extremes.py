@@ -7,10 +7,10 @@ from hypothesis import example, given, settings
 from hypothesis import strategies as st
 
 from fickcam.diffusion import solve
+from fickcam.diffusion.exact.two_phase import two_phase_sheet_uptake
 from fickcam.diffusion.problem.exposure import Diffusivity, Exposure
 from fickcam.diffusion.problem.geometry import CamPlate, Disc, Sheet
 from fickcam.diffusion.problem.sorption import ConcentrationDependent, Langmuir, Rate
-from fickcam.diffusion.exact.two_phase import two_phase_sheet_uptake
 
 H, D, MM = 2e-3, 5e-12, 2.0
 KAPPA = np.pi ** 2 * D / H ** 2

@@ -5,15 +5,15 @@ import numpy as np
 import pytest
 
 from fickcam.diffusion import plan, solve
-from fickcam.diffusion.problem.exposure import Diffusivity, Exposure
-from fickcam.diffusion.problem.geometry import Bar, CamPlate, Disc, LinkBar, Sheet
-from fickcam.diffusion.nonfickian.two_phase_modes import langmuir_history
-from fickcam.diffusion.nonfickian.planform_modes import (lanczos_spectrum, planform_operator,
-                                                         planform_source)
 from fickcam.diffusion.accuracy.error_model import LAYER_TOLERANCE
-from fickcam.diffusion.problem.sorption import Langmuir, Rate
 from fickcam.diffusion.exact.two_phase import (carter_kibler_approximation, exchange_propagator,
                                                two_phase_sheet_uptake)
+from fickcam.diffusion.nonfickian.planform_modes import (lanczos_spectrum, planform_operator,
+                                                         planform_source)
+from fickcam.diffusion.nonfickian.two_phase_modes import langmuir_history
+from fickcam.diffusion.problem.exposure import Diffusivity, Exposure
+from fickcam.diffusion.problem.geometry import Bar, CamPlate, Disc, LinkBar, Sheet
+from fickcam.diffusion.problem.sorption import Langmuir, Rate
 
 H, D, DAY = 2e-3, 5e-12, 86400.0
 KAPPA = np.pi ** 2 * D / H ** 2

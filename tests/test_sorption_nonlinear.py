@@ -5,9 +5,9 @@ import pytest
 from scipy.integrate import solve_ivp
 from scipy.sparse import diags
 
-from fickcam.diffusion.nonfickian import concentration_dependent
 from fickcam.diffusion import solve
 from fickcam.diffusion.models.finite_volume import discretise
+from fickcam.diffusion.nonfickian import concentration_dependent
 from fickcam.diffusion.problem.exposure import Diffusivity, Exposure
 from fickcam.diffusion.problem.geometry import Disc, Sheet
 from fickcam.diffusion.problem.sorption import ConcentrationDependent

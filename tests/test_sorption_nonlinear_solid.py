@@ -12,17 +12,17 @@ from hypothesis import example, given, settings
 from hypothesis import strategies as st
 
 from fickcam.diffusion import Bar, CamPlate, Diffusivity, Exposure, Sheet, plan, solve
-from fickcam.diffusion.operators import prisms
-from fickcam.diffusion.planform import admissible, triangles
 from fickcam.diffusion.accuracy import error_model
-from fickcam.diffusion.operators import sizing
-from fickcam.diffusion.nonfickian import concentration_dependent
+from fickcam.diffusion.accuracy.error_model import LAYER_TOLERANCE
 from fickcam.diffusion.forcing.clock import scales as scales_of
 from fickcam.diffusion.models.finite_volume import discretise, step_plan
-from fickcam.diffusion.stepping.march import rounded_steps
+from fickcam.diffusion.nonfickian import concentration_dependent
+from fickcam.diffusion.operators import prisms
+from fickcam.diffusion.operators import sizing
 from fickcam.diffusion.operators.symmetry_cuts import mirrored
-from fickcam.diffusion.accuracy.error_model import LAYER_TOLERANCE
+from fickcam.diffusion.planform import admissible, triangles
 from fickcam.diffusion.problem.sorption import ConcentrationDependent
+from fickcam.diffusion.stepping.march import rounded_steps
 from fickcam.errors import InputError
 
 pytest.importorskip("fipy")

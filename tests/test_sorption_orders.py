@@ -10,14 +10,14 @@ import numpy as np
 import pytest
 from scipy.linalg import eigh
 
-from fickcam.diffusion.operators import grids
 from fickcam.diffusion import solve
+from fickcam.diffusion.exact.two_phase import (equilibrium_shares, two_phase_mode_deficit,
+                                               two_phase_sheet_uptake)
 from fickcam.diffusion.nonfickian.two_phase_mesh import march_coupled
+from fickcam.diffusion.operators import grids
 from fickcam.diffusion.problem.exposure import Diffusivity, Exposure
 from fickcam.diffusion.problem.geometry import Disc, Sheet
 from fickcam.diffusion.problem.sorption import Langmuir, Rate
-from fickcam.diffusion.exact.two_phase import (equilibrium_shares, two_phase_mode_deficit,
-                                               two_phase_sheet_uptake)
 
 pytest.importorskip("fipy")
 

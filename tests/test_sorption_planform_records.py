@@ -8,18 +8,18 @@ import json
 import numpy as np
 import pytest
 
-from fickcam.blas import one_blas_thread
 from fickcam.bench_two_phase import CONFIGS, REFERENCE, cam_problem, true_error
+from fickcam.blas import one_blas_thread
 from fickcam.diffusion import CamPlate, Diffusivity, Disc, plan, solve
-from fickcam.diffusion.nonfickian.two_phase_modes import history_swing
+from fickcam.diffusion.accuracy.error_model import LAYER_TOLERANCE
 from fickcam.diffusion.exact.modes import cylinder_factor
 from fickcam.diffusion.nonfickian import planform_modes
-from fickcam.diffusion.operators.sizing import estimated_prism_cells
-from fickcam.diffusion.problem.scaling import stretch_of
 from fickcam.diffusion.nonfickian.planform_modes import (mesh_error, error_coefficients,
                                                          lanczos_spectrum, planar_fraction,
                                                          planform_operator, whole_at_start)
-from fickcam.diffusion.accuracy.error_model import LAYER_TOLERANCE
+from fickcam.diffusion.operators.sizing import estimated_prism_cells
+from fickcam.diffusion.problem.exposure import swing as history_swing
+from fickcam.diffusion.problem.scaling import stretch_of
 from fickcam.diffusion.problem.sorption import Langmuir, Rate
 from fickcam.environment import Environment
 

@@ -26,32 +26,30 @@ from functools import lru_cache
 import numpy as np
 
 from ..errors import InputError
-from .models.analytic import solve_analytic
-from .accuracy.error_model import ANALYTIC_ERROR, LAYER_TOLERANCE
+from .accuracy.error_model import ANALYTIC_ERROR, LAYER_TOLERANCE, PLANFORM_SHARE
+from .exact.separable import exact_available
 from .forcing.clock import RescaledTime
 from .forcing.clock import scales as scales_of
-from .nonfickian.two_phase_mesh import two_phase_marcher
-from .nonfickian.corrected_product import plan_corrected, solve_corrected
-from .stepping.dense_output import held_to_plan
-from .models.finite_volume import plan_direct, solve_direct
-from .exact.separable import exact_available
-from .problem.exposure import Diffusivity, Exposure
-from .problem.geometry import Bar, CamPlate, Disc, LinkBar, Sheet
 from .forcing.record import RECORD_SHARE, is_long_record
-from .nonfickian.two_phase_modes import history_swing, langmuir_history
+from .models.analytic import solve_analytic
+from .models.finite_volume import plan_direct, solve_direct
+from .models.plane import plan_plane, solve_plane
 from .nonfickian.concentration_dependent import nonlinear_plan, solve_nonlinear, spread
+from .nonfickian.corrected_product import plan_corrected, solve_corrected
 from .nonfickian.planform_modes import (PLANFORM_CAP, RefinedPlanform,
                                         lanczos_spectrum, planform_design, planform_operator,
                                         planform_source, refined_planform)
-from .stepping.step_plans import earliest_output
-from .models.plane import plan_plane, solve_plane
+from .nonfickian.two_phase_mesh import two_phase_marcher
+from .nonfickian.two_phase_modes import langmuir_history
+from .problem.exposure import Diffusivity, Exposure, swing
+from .problem.geometry import LAYER_DEPTH, Bar, CamPlate, Disc, LinkBar, Sheet
 from .problem.results import DiffusionResult, Plan
 from .problem.sorption import describe, is_langmuir, is_nonlinear
+from .stepping.dense_output import held_to_plan
+from .stepping.step_plans import earliest_output
 
 log = logging.getLogger(__name__)
 
-PLANFORM_SHARE = 0.5  # of the accuracy: the planform mesh; the rest the two-phase march
-LAYER_DEPTH = 5e-4    # m, the contact layer's depth when none is given (SPEC: surface_layer_depth)
 BAR_CORRECTED_FROM = 1e-2  # accuracy from which ``auto`` takes a D(c) Bar's corrected product.
 #   6 x 4 x 2 mm bar, k = 1, 2, both directions (benchmarks/dc_bar.py small vs corrected, CPU
 #   s, the errors against a method of lines): at 1e-2 corrected 11-27 s, the octant 13-91 s;
@@ -205,7 +203,7 @@ def _refined(geometry, diffusivity, exposure, times: tuple, accuracy, sorption, 
     most of whose cost is the planform operators): its mesh error is ``PLANFORM_SHARE`` of
     the accuracy, the march the rest. Cached: ``plan`` and ``solve`` share it."""
     times = np.asarray(times, float)
-    share, scale = PLANFORM_SHARE * accuracy, 1.0 / max(history_swing(exposure), 1e-300)
+    share, scale = PLANFORM_SHARE * accuracy, 1.0 / max(swing(exposure), 1e-300)
 
     def measure(source):
         history, estimate = langmuir_history(geometry, diffusivity, sorption, exposure, times,

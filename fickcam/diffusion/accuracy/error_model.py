@@ -66,6 +66,7 @@ GROWTH_REACH = 1.2
 PLANE_PAIR = 0.03
 PAIR_TO_TIME_ERROR = 2.5
 ANALYTIC_ERROR = 1e-8
+PLANFORM_SHARE = 0.5  # of the accuracy: the planform's mesh error (the rest: the march in time)
 LAYER_TOLERANCE = 4.0  # the contact layer may be this many times less accurate than the mean
 
 

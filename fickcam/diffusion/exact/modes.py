@@ -25,9 +25,9 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.special import j1, jn_zeros
 
-from .separable import step_response
 from ..forcing.record import Forcing
 from ..problem.geometry import Disc, Sheet
+from .separable import step_response
 
 FIRST_COUNT = 32         # modes per factor to start with (doubled with the bins halved
 FIRST_PER_OCTAVE = 4     # rate bins per octave to start with   while the two differ)

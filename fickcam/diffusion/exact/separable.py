@@ -27,7 +27,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..problem.geometry import Bar, Disc, Sheet
+from ..problem.geometry import LAYER_DEPTH, Bar, Disc, Sheet
 from .series import (cylinder_core_mean, cylinder_profile, cylinder_uptake, sheet_interval_mean,
                      sheet_profile, sheet_uptake)
 
@@ -100,7 +100,7 @@ def _check_exact(geometry, pre_exponential):
         raise ValueError("a Disc needs equal radial diffusivities Dx = Dy")
 
 
-def step_response(geometry, pre_exponential, tau, surface_layer_depth=5e-4):
+def step_response(geometry, pre_exponential, tau, surface_layer_depth=LAYER_DEPTH):
     """Unit-step response (fraction mean uptake, fraction mean over the contact
     layer) at rescaled times ``tau`` (s; D0_i tau in m^2). Products per
     Crank 1975 §5.3 (1 - F multiplies). See the module docstring for the

@@ -11,7 +11,7 @@ from functools import lru_cache
 
 import numpy as np
 
-from ..problem.exposure import Diffusivity, Exposure
+from ..problem.exposure import Diffusivity, Exposure, sample_times
 
 TAU_NODES = 12
 _TAU_NODES, _TAU_WEIGHTS = np.polynomial.legendre.leggauss(TAU_NODES)
@@ -67,14 +67,6 @@ def clock_of(diffusivity: Diffusivity, exposure: Exposure) -> RescaledTime:
     """The ``RescaledTime`` of a (diffusivity, exposure), built once: plan, scales and the
     superposition share it (a year of hourly rows integrates 8760 ramps)."""
     return RescaledTime(diffusivity, exposure)
-
-
-def sample_times(exposure: Exposure) -> np.ndarray:
-    """Nine samples per segment (its edges included): where T and g are looked at."""
-    edges = np.asarray(exposure.change_times, float)
-    share = np.linspace(0.0, 1.0, 9)[:-1]
-    inner = edges[:-1, None] + np.diff(edges)[:, None] * share[None, :]
-    return np.concatenate([inner.ravel(), edges[-1:]])
 
 
 def reference_factor(diffusivity: Diffusivity, exposure: Exposure) -> float:

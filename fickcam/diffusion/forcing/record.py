@@ -89,11 +89,3 @@ def forcing(exposure, clock: RescaledTime, times, tolerance) -> Forcing:
     return Forcing(clock(nodes), np.asarray(exposure.surface_moisture(nodes), float),
                    np.asarray(exposure.surface_before(nodes), float),
                    np.searchsorted(nodes, times), interpolation, nodes)
-
-
-def swing(exposure, clock) -> float:
-    """The largest |Ms - M0| over the record (the scale ``accuracy`` is relative to)."""
-    edges = clock.edges
-    values = np.concatenate([np.asarray(exposure.surface_moisture(edges), float),
-                             np.asarray(exposure.surface_before(edges), float)])
-    return float(np.max(np.abs(values - exposure.initial_moisture)))

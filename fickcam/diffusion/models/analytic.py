@@ -6,11 +6,11 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..superposition.duhamel import duhamel
 from ..exact.separable import saturation_tau, step_field, step_response
-from ..problem.geometry import Bar, Disc, Sheet
-from ..superposition.tabulated import LongRecord
+from ..problem.geometry import LAYER_DEPTH, Bar, Disc, Sheet
 from ..problem.results import DiffusionResult, Plan
+from ..superposition.duhamel import duhamel
+from ..superposition.tabulated import LongRecord
 
 
 def _mean_and_layer(geometry, d0, depth):
@@ -28,7 +28,7 @@ def _at_points(geometry, d0, points):
     return kernel
 
 
-def exact_history(geometry, diffusivity, exposure, times, surface_layer_depth=5e-4):
+def exact_history(geometry, diffusivity, exposure, times, surface_layer_depth=LAYER_DEPTH):
     """Volume-mean and contact-layer-mean moisture (weight %) at ``times`` (s)
     for any ``Exposure`` of a part with an exact step response."""
     d0 = diffusivity.pre_exponential
@@ -45,7 +45,7 @@ def exact_history_field(geometry, diffusivity, exposure, times, points):
                    saturation_tau(geometry, d0), chunk=8) + exposure.initial_moisture
 
 
-def record_history(geometry, diffusivity, exposure, times, accuracy, surface_layer_depth=5e-4):
+def record_history(geometry, diffusivity, exposure, times, accuracy, surface_layer_depth=LAYER_DEPTH):
     """``exact_history`` over a long record by the tabulated sum, with its error estimate
     (relative to the record's largest swing |Ms - M0|, as ``accuracy`` is) and the
     ``LongRecord`` the fields reuse."""

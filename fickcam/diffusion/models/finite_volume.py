@@ -15,20 +15,20 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..operators import grids, sizing
-from ..stepping import step_plans
 from ..accuracy.error_model import (FIRST_STEP, MAX_CELLS, MIN_STEPS_PER_DOUBLING,
                                     PAIR_TO_EXTRAPOLATED, TIME_ERROR, space_error)
-from ..forcing.clock import Scales, sample_times
+from ..forcing.clock import Scales
 from ..forcing.clock import scales as scales_of
-from ..problem.exposure import Diffusivity, Exposure
+from ..operators import grids, sizing
 from ..operators.prisms import prism
-from ..problem.geometry import Bar, CamPlate, Disc, LinkBar, Sheet
-from ..stepping.march import march
 from ..operators.symmetry_cuts import halved_axes
 from ..planform.admissible import band_share
+from ..problem.exposure import Diffusivity, Exposure, swing
+from ..problem.geometry import LAYER_DEPTH, Bar, CamPlate, Disc, LinkBar, Sheet
 from ..problem.results import DiffusionResult, Plan
 from ..problem.scaling import stretch_of
+from ..stepping import step_plans
+from ..stepping.march import march
 
 
 def plan_direct(geometry, diffusivity, model: str, change: np.ndarray, outputs: np.ndarray,
@@ -126,15 +126,8 @@ def step_plan(exposure, times, scales: Scales, per_doubling: int,
                     np.searchsorted(nodes, change[:-1]))
 
 
-def swing(exposure: Exposure, times: np.ndarray) -> float:
-    """Largest |g(t) - c0| over the history: the scale of the relative error."""
-    t = np.concatenate([sample_times(exposure), np.asarray(times, float)])
-    return float(np.max(np.abs(np.asarray(exposure.surface_moisture(t)) -
-                               exposure.initial_moisture)))
-
-
 def solve_direct(geometry, diffusivity, exposure, times, chosen: Plan, *,
-                 surface_layer_depth: float = 5e-4, store_fields: bool = False,
+                 surface_layer_depth: float = LAYER_DEPTH, store_fields: bool = False,
                  part: str = "", extrapolate: bool = True, disc=None,
                  marcher=march) -> DiffusionResult:
     """March a Sheet, Disc, Bar or prisms of a CamPlate or LinkBar on its FiPy mesh

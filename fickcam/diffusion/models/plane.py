@@ -6,7 +6,10 @@ uniform at c0, the unsaturated fraction u = (g - c)/(g - c0) of a unit step
 is the product u_plane(x, y, tau) u_sheet(z, tau) (Crank 1975, §4.3.4,
 eq. 4.51 for a rectangular block; the argument is the same for any planform
 because the Laplacian separates). A history is then the Duhamel sum over the
-surface history in rescaled time (``duhamel``; Crank 1975 §4.2.1, eq. 4.34).
+surface history in rescaled time (``duhamel``; Crank 1975 §4.2.1, eq. 4.34): Duhamel's
+panels for a few segments, the tabulated sum over a long record (``tabulated``), and a
+stored record solve read at more times (``extension``, the limit search), all in
+``PrismSuperposition``.
 
 The planform's unit-step response comes from the exact short-time expansion of
 the outline (``shorttime``) up to a switch time and from P1 finite elements on
@@ -21,28 +24,30 @@ from __future__ import annotations
 
 import logging
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from functools import lru_cache
 
 import numpy as np
 
-from ..operators import grids
 from ..accuracy.error_model import (EXPANSION_SHARE, LAYER_TOLERANCE, FIRST_STEP, GROWTH_REACH,
                                     MAX_CELLS, MESH_ERROR, MIN_CELLS_PER_AXIS,
                                     MIN_STEPS_PER_DOUBLING, PAIR_TO_TIME_ERROR, PLANE_PAIR,
                                     space_error)
 from ..forcing.clock import scales as scales_of
+from ..forcing.record import RECORD_SHARE, is_long_record
+from ..operators import grids
 from ..operators.grading import MAX_GROWTH
-from ..planform.outline import outline_extent
 from ..operators.p1 import plane_operator
+from ..planform.outline import outline_extent
+from ..planform.short_time import expansion_of, outline_chords, sheet_fraction, weighted
+from ..planform.triangles import triangulate
+from ..problem.geometry import LAYER_DEPTH
 from ..problem.results import DiffusionResult, Plan
 from ..problem.scaling import planar_scale, stretch_of
-from ..planform.short_time import expansion_of, outline_chords, sheet_fraction, weighted
-from ..stepping.step_response import blend, step_response
-from ..superposition.prism_history import History, extension
-from ..superposition.tabulated import Same
 from ..stepping.step_plans import earliest_output, geometric_steps, output_ages
-from ..planform.triangles import triangulate
+from ..stepping.step_response import blend, step_response
+from ..superposition.duhamel import duhamel
+from ..superposition.tabulated import KernelKey, LongRecord
 
 log = logging.getLogger(__name__)
 
@@ -242,9 +247,9 @@ def _design(expansion, switch, end, ages, perimeter, area, tightest, accuracy, t
 
 
 def solve_plane(geometry, diffusivity, exposure, times, chosen, *, accuracy: float,
-                surface_layer_depth: float = 5e-4, store_fields: bool = False, part: str = ""):
+                surface_layer_depth: float = LAYER_DEPTH, store_fields: bool = False, part: str = ""):
     """CamPlate / LinkBar: planform step response x sheet step response, Duhamel over the
-    history (``History``); the estimate adds the error of the sum itself on long records."""
+    history (``PrismSuperposition``); the estimate adds the error of the sum itself on long records."""
     d = tuple(float(v) for v in diffusivity.pre_exponential)
     times = np.asarray(times, float)
     scales = scales_of(geometry, diffusivity, exposure)
@@ -254,7 +259,7 @@ def solve_plane(geometry, diffusivity, exposure, times, chosen, *, accuracy: flo
     expansion = expansion_of(geometry, d, surface_layer_depth)
     tolerance = chosen.expansion_tolerance
     switch = expansion.switch(tolerance) if expansion is not None and tolerance > 0 else 0.0
-    history = History.of(geometry, diffusivity, exposure, times, accuracy)
+    history = PrismSuperposition.of(geometry, diffusivity, exposure, times, accuracy)
     if switch >= end and not store_fields:
         return _expansion_only(expansion, ages, history, chosen, part)
     planar, u_plane, pair_plane = planform_response(
@@ -271,10 +276,10 @@ def solve_plane(geometry, diffusivity, exposure, times, chosen, *, accuracy: flo
     def layer_fraction(tau):  # contact edge band x the whole thickness
         return plane_layer(tau) * sheet_fraction(tau)
 
-    def same(which: str) -> Same:  # the fractions are fixed by these (cached) objects
-        return Same((id(u_plane), id(expansion), tolerance, which), (u_plane, expansion))
+    def same(which: str) -> KernelKey:  # the fractions are fixed by these (cached) objects
+        return KernelKey((id(u_plane), id(expansion), tolerance, which), (u_plane, expansion))
 
-    def superposed(over: History, levels=(0, 0)):  # (mean, its sum's error, layer, levels)
+    def superposed(over: PrismSuperposition, levels=(0, 0)):  # (mean, its sum's error, layer, levels)
         (mean, error, mean_level), (layer, _, layer_level) = (
             over.superpose(mean_fraction, same=same("mean"), start=levels[0]),
             over.superpose(layer_fraction, looser=LAYER_TOLERANCE, same=same("layer"),
@@ -345,3 +350,81 @@ def _expansion_only(expansion, ages, history, chosen, part):
     return DiffusionResult(history.times, mean, layer, "plane", 0, 0, mean_error,
                            chosen.reason + "; no mesh needed")
 
+
+def _kernel(fraction, scale: float):
+    """K(tau) = 1 - u(tau*) for ``duhamel`` (rescaled s, any shape), tau* = scale tau."""
+    def kernel(tau):
+        tau = np.asarray(tau, float)
+        u = np.asarray(fraction(tau.ravel() * scale), float)
+        return 1.0 - u.reshape(tau.shape + u.shape[1:])
+    return kernel
+
+
+def _diffusion_times(geometry, d) -> tuple[float, float]:
+    """(fastest, slowest) L^2 / D0 of a prism: the thickness and the planform extents."""
+    sizes = (*outline_extent(geometry), geometry.thickness)
+    times = [size ** 2 / d[i] for i, size in enumerate(sizes)]
+    return min(times), max(times)
+
+
+@dataclass(frozen=True)
+class PrismSuperposition:
+    """How ``solve_plane`` superposes over the exposure: Duhamel's panels (``duhamel``) for
+    a few segments; for a long record (``forcing.is_long_record``) the tabulated sum of
+    ``tabulated``, cost linear in the rows, shared by the mean, the layer and the fields,
+    within ``RECORD_SHARE`` of the accuracy (``plan`` designs the rest)."""
+
+    diffusivity: object
+    exposure: object
+    times: np.ndarray
+    geometry: object
+    record: LongRecord | None
+
+    @classmethod
+    def of(cls, geometry, diffusivity, exposure, times, accuracy: float) -> "PrismSuperposition":
+        d = tuple(float(v) for v in diffusivity.pre_exponential)
+        record = (LongRecord.of(diffusivity, exposure, times, _diffusion_times(geometry, d)[0],
+                                RECORD_SHARE * accuracy) if is_long_record(exposure) else None)
+        return cls(diffusivity, exposure, np.asarray(times, float), geometry, record)
+
+    def at(self, times) -> "PrismSuperposition":
+        """The same history read at other ``times`` inside the outputs' span (a long record
+        only: ``LongRecord.at``)."""
+        return replace(self, times=np.asarray(times, float), record=self.record.at(times))
+
+    def superpose(self, fraction, chunk: int = 64, fields: bool = False,
+                  looser: float = 1.0, same: KernelKey | None = None,
+                  start: int = 0) -> tuple[np.ndarray, float, int]:
+        """(c0 + Duhamel sum of the unit-step unsaturated fraction u(tau*), the error of the
+        sum itself relative to the swing: 0 for the panels, whose quadrature is exact to
+        ``calibration.ANALYTIC_ERROR``, the tables' points per decade: 0 for the panels).
+        ``fields``: a wide kernel (``LongRecord.field``); ``looser``: a tolerance this many
+        times the mean's (the contact layer); ``same``: which fraction this is
+        (``tabulated.KernelKey``), to reuse its tables across solves; ``start``: the points per
+        decade an earlier solve of this fraction refined to (``LongRecord.superpose``)."""
+        d = tuple(float(v) for v in self.diffusivity.pre_exponential)
+        kernel = _kernel(fraction, d[2] / self.geometry.thickness ** 2)
+        if self.record is None:
+            return self.exposure.initial_moisture + duhamel(
+                kernel, self.diffusivity, self.exposure, self.times,
+                _diffusion_times(self.geometry, d), chunk=chunk), 0.0, 0
+        if fields:
+            return self.exposure.initial_moisture + self.record.field(kernel), 0.0, 0
+        if same is not None:
+            same = KernelKey(same.key + (d[2] / self.geometry.thickness ** 2,), same.holds)
+        values, error, level = self.record.superpose(kernel, looser=looser, same=same,
+                                                     start=start)
+        return self.exposure.initial_moisture + values, error, level
+
+
+def extension(result: DiffusionResult, superposed):
+    """``DiffusionResult.extend`` of a plane solve over a long record: the result at its
+    times and ``at`` (inside their span) together, the new rows summed with the stored plan,
+    planform response, forcing and tables (``PrismSuperposition.at``), the stored rows as they are."""
+
+    def extend(at) -> DiffusionResult:
+        at = np.asarray(at, float)
+        new = np.setdiff1d(at, result.times)
+        mean, _, layer, _ = superposed(new)
+        return result.merged(new, mean, layer)
+    return extend

@@ -41,16 +41,15 @@ from scipy import sparse
 from scipy.sparse import linalg as splinalg
 
 from ...errors import SolverError
-from ..forcing.clock import sample_times
-from ..forcing.clock import scales as scales_of
-from ..stepping.dense_output import Extension, Track
 from ..accuracy.error_model import TIME_ERROR
-from ..models.finite_volume import richardson_pair, discretise, step_plan, swing
-from ..problem.exposure import Diffusivity
-from ..problem.geometry import Disc, Sheet
+from ..forcing.clock import scales as scales_of
+from ..models.finite_volume import discretise, richardson_pair, step_plan
 from ..operators.symmetry_cuts import mirrored
-from ..stepping.march import ORDERING, History, rounded_steps, norm
+from ..problem.exposure import Diffusivity, sample_times, swing
+from ..problem.geometry import LAYER_DEPTH, Disc, Sheet
 from ..problem.results import DiffusionResult
+from ..stepping.dense_output import Extension, StepRecord
+from ..stepping.march import ORDERING, History, rounded_steps, norm
 
 SWEEP_TOLERANCE = 1e-9   # residual / |right side| at which a step's sweeps stop
 MAX_SWEEPS = 60
@@ -132,7 +131,7 @@ class Sizing:
 
 def nonlinear_plan(planner, diffusivity, law, exposure, times, accuracy: float):
     """The direct plan of a concentration-dependent part: steps from the fastest D (its
-    scaled time is the march's). Cells: those of the fastest D at accuracy / m, m =
+    scaled time is the march's). PrismCells: those of the fastest D at accuracy / m, m =
     ``ABSORPTION_MARGIN``, unless the surface dries to a skin (``skin_start``); then
     those of the slowest D at accuracy / m, m = 1 + SKIN_CELLS_MARGIN (sqrt(max f / min f) - 1),
     sized at the outputs from the skin's start on (the layer the skin makes is as young as the
@@ -206,7 +205,7 @@ def _skin_sizing(planner, slow_d, fast_d, accuracy, times, start, margin, wet_ma
 
 
 def solve_nonlinear(geometry, diffusivity, law, exposure, times, chosen, *,
-                    surface_layer_depth=5e-4, store_fields=False, part="") -> DiffusionResult:
+                    surface_layer_depth=LAYER_DEPTH, store_fields=False, part="") -> DiffusionResult:
     """Mean and contact-layer moisture (weight %) at ``times`` (s): the Richardson pair of
     swept backward-Euler marches (module docstring). ``chosen`` was planned with
     ``fastest(...)``."""
@@ -232,7 +231,7 @@ def solve_nonlinear(geometry, diffusivity, law, exposure, times, chosen, *,
         result.cell_coordinates = weights.coordinates
     else:  # the limit search's extra times, read between the steps (``dense``)
         result.extend = Extension(
-            result, [Track.of(plans[0], coarse, fine, scales, exposure)],
+            result, [StepRecord.of(plans[0], coarse, fine, scales, exposure)],
             lambda values, _: (values[0][:, 0], values[0][:, 1]), swing(exposure, times) or 1.0,
             chosen.error_estimate, lambda both: solve_nonlinear(
                 geometry, diffusivity, law, exposure, both, chosen,

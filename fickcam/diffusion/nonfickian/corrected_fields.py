@@ -31,8 +31,8 @@ import numpy as np
 from scipy import sparse
 from scipy.spatial import Delaunay, cKDTree
 
-from .corrected_pieces import ROUND_OFF, unaccomplished_ratio as ratio
 from ..planform.polygon import unique_edges
+from .corrected_pieces import ROUND_OFF, unaccomplished_ratio as ratio
 
 
 
@@ -100,7 +100,7 @@ def sheet_at(z_sheet: np.ndarray, unaccomplished: np.ndarray, z: np.ndarray,
 
 @dataclass(frozen=True)
 class References:
-    """The references' U at the cell points of a 3-D mesh (``defectparts.Cells``): the fine
+    """The references' U at the cell points of a 3-D mesh (``defectparts.PrismCells``): the fine
     sheet's at its z centres (times, z widths), the finest planform's and the one refined
     once less at its planform cells (times, cells). The field takes the finest planform
     alone: the Richardson combination f + (f - c) / 3 the mean takes (``defect.
@@ -115,7 +115,7 @@ class References:
     @classmethod
     def of(cls, cells, sheet, planform, surface: np.ndarray, thickness: float):
         """``sheet``: a ``DiffusionResult`` with fields; ``planform``: the reference
-        ``defectparts.Pair`` with fields, ``grid`` and ``coarser``."""
+        ``defectparts.CombinedMarch`` with fields, ``grid`` and ``coarser``."""
         g = surface[:, None]
         z_nodes = np.concatenate([[0.0], np.cumsum(cells.z)]) * thickness
         z_centres = 0.5 * (z_nodes[1:] + z_nodes[:-1])
@@ -128,8 +128,8 @@ class References:
 
 def corrected_fields(level, cells, sheet_ref: np.ndarray, planform_ref: np.ndarray,
                      surface: np.ndarray) -> np.ndarray:
-    """(times, cells) c of a 3-D mesh's cells (``defectparts.Level`` marched with its fields
-    kept on ``cells``, ``defectparts.Cells``) corrected by the sheet's and the planform's
+    """(times, cells) c of a 3-D mesh's cells (``defectparts.MeshMarches`` marched with its fields
+    kept on ``cells``, ``defectparts.PrismCells``) corrected by the sheet's and the planform's
     reference U at its points (``References``); ``surface``: g at the outputs (module
     docstring)."""
     g = surface[:, None]
@@ -141,7 +141,7 @@ def corrected_fields(level, cells, sheet_ref: np.ndarray, planform_ref: np.ndarr
 
 
 def restricted(fields: np.ndarray, cells, coarse) -> np.ndarray:
-    """A field (times, cells) on ``cells`` (``Cells.refined`` of ``coarse``) read at
+    """A field (times, cells) on ``cells`` (``PrismCells.refined`` of ``coarse``) read at
     ``coarse``'s cell points: each coarse z width is two fine ones (the mean of the two at
     their shared node, linear), the planform by ``planform_at`` without the outline's
     nodes (the field, Q - 1 in ``field_errors``, need not vanish there)."""
@@ -186,7 +186,7 @@ class FieldErrors:
 
 
 def field_errors(run) -> tuple[np.ndarray, FieldErrors]:
-    """(fields, errors) of ``run`` (``defect.Levels`` on nested meshes, ``store_fields``):
+    """(fields, errors) of ``run`` (``defect.CorrectedMeshes`` on nested meshes, ``store_fields``):
     the finest nested mesh's cells corrected (``corrected_fields``) and
     what is known of their error, relative to the swing: the largest correction (the
     coarse cells' own error, indicated); the fine sheet's estimate (its mean's; its cells'

@@ -1,10 +1,10 @@
 """The pieces ``defect`` combines, each a swept backward-Euler march of the D(c) equation
 (``nonlinear``) on its own grid, Richardson-combined in time: the coarse 3-D prisms
-(``Cells``, nested refinement by 2), their z widths as a sheet (``half_slab``), their
+(``PrismCells``, nested refinement by 2), their z widths as a sheet (``half_slab``), their
 planform alone (``planform_disc``), the fine sheet reference (``sheet_reference``), and the
 product that swaps each coarse factor's unaccomplished uptake for its reference's
 (``corrected``; Crank 1975 §4.3, eq. 4.51 for Fick; Stetter 1978 for the correction).
-Every march records its mean and layer at each step (``dense.Track``: ``extend``).
+Every march records its mean and layer at each step (``dense.StepRecord``: ``extend``).
 """
 from __future__ import annotations
 
@@ -13,23 +13,23 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from ..operators import sizing
 from ..accuracy.error_model import MIN_STEPS_PER_DOUBLING, TIME_ERROR
-from ..planform.cell_moments import corrected_weights
 from ..forcing.clock import scales as scales_of
-from ..stepping.dense_output import Track
 from ..models.finite_volume import plan_direct, step_plan
+from ..operators import sizing
 from ..operators.discretisation import Discretisation
 from ..operators.fipy_backend import assemble, interval_mesh
 from ..operators.grids import interval_overlap, normalised
 from ..operators.prisms import prism
-from ..problem.geometry import Bar, CamPlate, Sheet
 from ..operators.symmetry_cuts import half
-from .concentration_dependent import (Faces, fastest, nonlinear_plan, solve_nonlinear, sweep_march,
-                                      wettest)
 from ..planform.admissible import band_share, refine
+from ..planform.cell_moments import corrected_weights
+from ..problem.geometry import LAYER_DEPTH, Bar, CamPlate, Sheet
 from ..problem.results import DiffusionResult, Plan
 from ..problem.scaling import stretch_of
+from ..stepping.dense_output import StepRecord
+from .concentration_dependent import (Faces, fastest, nonlinear_plan, solve_nonlinear, sweep_march,
+                                      wettest)
 
 SHEET_SHARE = 0.1          # the fine sheet's accuracy: this share of the requested one. Not
 #   loosened at loose accuracies: on the demo cam (k = 2) at 1e-2 the sheet takes 1.2 CPU s
@@ -39,7 +39,7 @@ SHEET_SHARE = 0.1          # the fine sheet's accuracy: this share of the reques
 
 
 @dataclass(frozen=True)
-class Pair:
+class CombinedMarch:
     """A Richardson-combined march (2 fine - coarse in time) and its time pair."""
 
     mean: np.ndarray
@@ -47,9 +47,9 @@ class Pair:
     fields: np.ndarray | None = None
     steps: int = 0
     pair: float = 0.0   # largest |fine - coarse| of the mean (time error indicator)
-    track: Track | None = None   # (mean, layer) at every step (``dense``: ``extend``)
+    track: StepRecord | None = None   # (mean, layer) at every step (``dense``: ``extend``)
     grid: object = None   # a planform march's cells (``prism.Tessellation``: ``defectfields``)
-    coarser: tuple | None = None   # the planform reference's (Pair refined once less, the
+    coarser: tuple | None = None   # the planform reference's (CombinedMarch refined once less, the
     #                               Richardson weight on the change): ``defectfields``
 
 
@@ -120,7 +120,7 @@ def planform_disc(geometry, d, tess, depth: float):
 
 
 @dataclass(frozen=True)
-class Cells:
+class PrismCells:
     """A 3-D mesh of the mirrored prisms: admissible planform cells (``prism.Tessellation``)
     x z widths (scaled, exposed face to mid-plane)."""
 
@@ -128,12 +128,12 @@ class Cells:
     z: np.ndarray
 
     @classmethod
-    def of(cls, geometry, d, chosen: Plan) -> "Cells":
+    def of(cls, geometry, d, chosen: Plan) -> "PrismCells":
         """The graded cells of a plan (``mirrored``'s prisms)."""
         return cls(sizing.planform_cells(geometry, chosen.finest, chosen.growth, stretch_of(d)),
                    half(sizing.prism_widths(chosen.finest, chosen.growth)))
 
-    def refined(self, planform: int = 1, z: int = 1) -> "Cells":
+    def refined(self, planform: int = 1, z: int = 1) -> "PrismCells":
         """Nested refinement by 2, ``planform`` times of every planform edge
         (``prism.refine``: 4 x the cells each) and ``z`` times of every z width (2 x each);
         by default both once: 8 x the cells."""
@@ -142,7 +142,7 @@ class Cells:
             tess = refine(tess)
         for _ in range(z):
             widths = np.repeat(0.5 * widths, 2)
-        return Cells(tess, widths)
+        return PrismCells(tess, widths)
 
     @property
     def cells(self) -> int:
@@ -167,7 +167,7 @@ def combination(lattice: list) -> tuple[list, list] | None:
 
 
 def richardson_march(disc, law, top, exposure, times, scales, per_doubling, keep, part,
-                     columns=()) -> Pair:
+                     columns=()) -> CombinedMarch:
     """The swept backward-Euler march (``nonlinear``) on the plan's steps and on them
     bisected, combined 2 fine - coarse; its track: (mean, layer, ``columns``' sums)."""
     faces = Faces.of(disc)
@@ -175,9 +175,9 @@ def richardson_march(disc, law, top, exposure, times, scales, per_doubling, keep
     coarse, fine = (sweep_march(faces, disc, law, top, steps, exposure.initial_moisture, keep,
                                 part, columns) for steps in plans)
     fields = 2.0 * fine.fields - coarse.fields if keep else None
-    return Pair(2.0 * fine.mean - coarse.mean, 2.0 * fine.layer - coarse.layer, fields,
+    return CombinedMarch(2.0 * fine.mean - coarse.mean, 2.0 * fine.layer - coarse.layer, fields,
                 coarse.steps + fine.steps, float(np.max(np.abs(fine.mean - coarse.mean))),
-                Track.of(plans[0], coarse, fine, scales, exposure))
+                StepRecord.of(plans[0], coarse, fine, scales, exposure))
 
 
 ROUND_OFF = 1e-9   # of the largest |surface value|: a coarse U this small keeps ratio 1
@@ -189,12 +189,12 @@ def unaccomplished_ratio(reference: np.ndarray, coarse: np.ndarray, floor: float
     return np.where(small, 1.0, reference / np.where(small, 1.0, coarse))
 
 
-def corrected(plate: Pair, sheet: tuple, planform: tuple, surface: np.ndarray, union=None):
+def corrected(plate: CombinedMarch, sheet: tuple, planform: tuple, surface: np.ndarray, union=None):
     """(mean, layer): the plate's U = g - c times the ratio of the fine reference's U to the
     coarse grid's, for the sheet (the layer spans the thickness) and for the planform
     (its mean, its band for the layer). A ratio is 1 where the coarse grid's U is within
-    round-off of zero. ``sheet``, ``planform``: (coarse Pair, fine reference Pair).
-    ``union`` (a Bar's layer, ``Level.union``): (beta, zeta), the planform band's and the
+    round-off of zero. ``sheet``, ``planform``: (coarse CombinedMarch, fine reference CombinedMarch).
+    ``union`` (a Bar's layer, ``MeshMarches.union``): (beta, zeta), the planform band's and the
     sheet layer's volume fractions; the layer is then the band through the thickness or
     the sheet's layer over the planform, whose U for the product of Fick (Crank 1975
     §4.3) is beta Ub S + zeta Sl (P - beta Ub) (P, Ub: the planform's mean and band; S,
@@ -235,7 +235,7 @@ def level_plan(geometry, diffusivity, law, exposure, times, mesh_accuracy, per_d
 
 
 def sheet_reference(geometry, diffusivity, law, exposure, times, accuracy,
-                    depth=5e-4, store_fields=False) -> DiffusionResult:
+                    depth=LAYER_DEPTH, store_fields=False) -> DiffusionResult:
     """The D(c) sheet of the part's thickness at ``SHEET_SHARE`` x the accuracy (FiPy slab;
     its layer within ``depth`` of a face; its cells' fields with ``store_fields``)."""
     sheet = Sheet(geometry.thickness)
@@ -250,7 +250,7 @@ def sheet_reference(geometry, diffusivity, law, exposure, times, accuracy,
 
 
 @dataclass(frozen=True)
-class Setting:
+class SharedInputs:
     """What every march of one solve shares: law, scaled D, its top factor, scales."""
 
     geometry: object
@@ -276,17 +276,17 @@ class Setting:
                    scales_of(geometry, scaled, exposure), depth, per_doubling, part, faces_layer,
                    keep_fields)
 
-    def run(self, disc, keep: bool = False, columns=()) -> Pair:
+    def run(self, disc, keep: bool = False, columns=()) -> CombinedMarch:
         return richardson_march(disc, self.law, self.top, self.exposure, self.times,
                                 self.scales, self.per_doubling, keep, self.part, columns)
 
-    def planform(self, finest: float, growth: float) -> tuple[Pair, Pair, int]:
+    def planform(self, finest: float, growth: float) -> tuple[CombinedMarch, CombinedMarch, int]:
         """(the plate's weights, ``cellmoments``' weights, cells) of the planform's march on
         the graded cells of (``finest``, ``growth``)."""
         return self.planform_on(sizing.planform_cells(self.geometry, finest, growth,
                                                       stretch_of(self.d)))
 
-    def planform_on(self, tess) -> tuple[Pair, Pair, int]:
+    def planform_on(self, tess) -> tuple[CombinedMarch, CombinedMarch, int]:
         """``planform`` on the admissible cells ``tess`` (both pairs with their cell values
         and ``tess`` when ``keep_fields``)."""
         disc, weights = planform_disc(self.geometry, self.d, tess, self.depth)
@@ -304,23 +304,23 @@ class Setting:
 
 
 @dataclass(frozen=True)
-class Level:
+class MeshMarches:
     """One 3-D plan's marches: the plate, its z widths as a sheet, its planform alone."""
 
     plan: Plan
-    plate: Pair
-    slab: Pair
-    planform: Pair
-    moments: Pair   # the same march read with ``cellmoments``' weights
+    plate: CombinedMarch
+    slab: CombinedMarch
+    planform: CombinedMarch
+    moments: CombinedMarch   # the same march read with ``cellmoments``' weights
     cells: int
     planform_cells: int
     coordinates: dict
     union: tuple | None = None   # (beta, zeta) of a Bar's layer (``corrected``)
 
 
-def three_d(setting: Setting, chosen: Plan, keep: bool, cells: Cells | None = None) -> Level:
+def three_d(setting: SharedInputs, chosen: Plan, keep: bool, cells: PrismCells | None = None) -> MeshMarches:
     """The marches of one 3-D mesh: ``cells``, or the graded cells of ``chosen``."""
-    cells = cells or Cells.of(setting.geometry, setting.d, chosen)
+    cells = cells or PrismCells.of(setting.geometry, setting.d, chosen)
     geometry = setting.geometry
     disc = prism(cells.tess, geometry.thickness, cells.z * geometry.thickness,
                  band_share(cells.tess, setting.depth), setting.d, mid_plane=True)
@@ -336,5 +336,5 @@ def three_d(setting: Setting, chosen: Plan, keep: bool, cells: Cells | None = No
     plate = setting.run(disc, keep)
     slab = setting.run(slab, keep)
     planform, moments, planform_cells = setting.planform_on(cells.tess)
-    return Level(chosen, plate, slab, planform, moments, disc.cells, planform_cells,
+    return MeshMarches(chosen, plate, slab, planform, moments, disc.cells, planform_cells,
                  disc.coordinates, union)

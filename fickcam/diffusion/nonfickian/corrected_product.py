@@ -18,7 +18,7 @@ The result takes the coarse 3-D U and swaps each factor's coarse value for its f
 for the mean, and for the contact layer with the planform's band in place of its mean
 (the layer spans the thickness). With constant D this is the fine sheet x fine planform
 (independent of the 3-D mesh); with D(c) the 3-D cells carry what does not separate,
-and the change of the result between nested 3-D meshes measures it (``Cells.refined``:
+and the change of the result between nested 3-D meshes measures it (``PrismCells.refined``:
 every planform edge and z width halved, so the meshes form a refinement by exactly 2 and
 ``gridcheck.three_levels`` can read an order from three of them; ``unseparated``).
 Measured (``benchmarks/dc_defect_correction.py nested``, gap norm of the swing): on the
@@ -33,7 +33,7 @@ The error splits by direction: on the 6 x 4 x 2 mm bar at 1e-3 (``nested bar-K-D
 5.1e-4, 1.4e-4 at P = 1 (k = 2 absorbing), along the planform 4.3e-4, 1.3e-4 at Z = 0 and
 4.4e-4, 1.4e-4 at Z = 1 (k = 1 drying: z 1.2e-4, 3.6e-5 at P = 0, 1). So where the next
 diagonal mesh (8 x the cells) passes ``NESTED_CELLS``, the combination technique stands
-in for it (``Levels.finer``, ``unseparated``): from the ``cross`` of meshes around the
+in for it (``CorrectedMeshes.finer``, ``unseparated``): from the ``cross`` of meshes around the
 finest (I, J), at most 2 x its cells, R(I, J) + [R(I-1, J+1) - R(I-1, J)] + [R(I+1, J-1) -
 R(I, J-1)], each chain by ``three_levels``, plus the mixed difference. On a 3 x 2 x 2 mm
 plate (k = 2, 1e-2; ``cross``) it came within 5.7e-5 (absorbing) and 6.9e-6 (drying) of
@@ -49,6 +49,14 @@ demo cam's z widths erred with opposite signs, so the difference erred more than
 Since that fix they err alike (plan 0.1, 1 d: -5.4e-3 both; the difference 3e-5, at most
 8.9e-4 over the outputs; ``benchmarks/dc_defect_correction.py fickian-reference``): worth
 a new trial on the 3-D cells.
+
+The planform reference (``refined_reference``): the D(c) planform alone
+(``corrected_pieces.planform_disc``) on a graded planform refined by 2, 4 and 8 (every
+finest width and growth / R), Richardson-extrapolated (second order, then three meshes by
+``grid_convergence.three_levels``; Richardson 1911, "The approximate arithmetical solution
+by finite differences of physical problems involving differential equations", Phil. Trans.
+R. Soc. A 210:307-357, doi:10.1098/rsta.1911.0009), and the norm every estimate of the
+corrected product is measured in (``gap``).
 """
 from __future__ import annotations
 
@@ -58,20 +66,19 @@ from functools import partial
 
 import numpy as np
 
-from ..accuracy.error_model import PAIR_TO_EXTRAPOLATED
-from .corrected_fields import stored
-from .corrected_pieces import (Cells, Pair, Setting, as_prism, bar_coordinates, combination,
-                               corrected, cross, level_plan, sheet_reference, steps_for, three_d)
-from .corrected_planform import gap, refined_reference
-from ..stepping.dense_output import Extension
-from ..models.finite_volume import swing
-from ..problem.geometry import Bar
+from ..accuracy.error_model import LAYER_TOLERANCE, PAIR_TO_EXTRAPOLATED, PLANFORM_SHARE
 from ..accuracy.grid_convergence import taken, three_levels
 from ..operators.sizing import prism_widths
 from ..operators.symmetry_cuts import half
-from .concentration_dependent import dries_to_a_skin, spread
-from ..accuracy.error_model import LAYER_TOLERANCE
+from ..problem.exposure import swing
+from ..problem.geometry import LAYER_DEPTH, Bar
 from ..problem.results import DiffusionResult, Plan
+from ..stepping.dense_output import Extension
+from .concentration_dependent import dries_to_a_skin, spread
+from .corrected_fields import stored
+from .corrected_pieces import (PrismCells, MeshMarches, CombinedMarch, SharedInputs, as_prism, bar_coordinates,
+                               combination, corrected, cross, level_plan, sheet_reference,
+                               steps_for, three_d)
 
 MESH_LEVELS = (4.0, 0.5)   # accuracies of the coarsest 3-D plan (then refined by 2, nested;
 #                            ``base_level``: down to the second where the accuracy is tight)
@@ -111,6 +118,10 @@ ORDER_ONE = 1.0 / (2.0 - 1.0)  # the finer of two nested 3-D meshes' error / the
 #   meshes were the graded 1 and 0.5 plans (w0 ratio sqrt 2, z cells 4, 6, 6, 8 over the
 #   plans 1-0.125 of the 4 x 3 x 2 mm plate: not nested, observed orders -10 to 12) and the
 #   factor 1 / (sqrt 2 - 1) = 2.4 an upper-bound guess
+REFINE = (2.0, 4.0, 8.0)   # planform refinements (finest and growth / R) for Richardson;
+#   8 where 4 leaves more than ``PLANFORM_SHARE`` (the bar, k = 2 absorbing at 1e-3: 8.7e-4
+#   at x 4, 2 889 cells; x 8 11 569 cells)
+PLANFORM_CELLS = 60_000    # the finest planform tried
 
 
 def skin_margin(law, exposure, times) -> float:
@@ -125,29 +136,29 @@ def skin_margin(law, exposure, times) -> float:
 
 
 @dataclass(frozen=True)
-class Levels:
+class CorrectedMeshes:
     """The corrected result on each 3-D mesh of one solve, all with the same sheet and
     planform references."""
 
-    marched: list      # Level per mesh, the finest last
+    marched: list      # MeshMarches per mesh, the finest last
     results: list      # (mean, layer) corrected, per mesh
     sheet: DiffusionResult
-    planform: Pair     # the planform reference
+    planform: CombinedMarch     # the planform reference
     planform_error: float
     planform_cells: int
     factor: float      # the planform's refinement R
     scale: float       # the swing the estimates are relative to
-    setting: Setting
-    meshes: list       # Cells per mesh
+    setting: SharedInputs
+    meshes: list       # PrismCells per mesh
     keys: list = ()    # (planform, z) halvings of each mesh from the first; () = the diagonal
 
     @property
     def lattice(self) -> list:   # the keys, or the diagonal's
         return list(self.keys)[:len(self.results)] or [(i, i) for i in range(len(self.results))]
 
-    def finer(self, store_fields: bool = False) -> "Levels | None":
+    def finer(self, store_fields: bool = False) -> "CorrectedMeshes | None":
         """The next step of ``solve_corrected``, or None: the finest refined by 2 in every
-        direction (``Cells.refined``, 8 x its cells) within ``NESTED_CELLS``; past it, once,
+        direction (``PrismCells.refined``, 8 x its cells) within ``NESTED_CELLS``; past it, once,
         the ``cross`` around it (its largest mesh 2 x its cells, within ``CROSS_CELLS``;
         ``combination``)."""
         (p, z), cells = self.lattice[-1], self.meshes[-1].cells
@@ -159,11 +170,11 @@ class Levels:
                 return self.adding([*along_z, *along_planform], (p, z), store_fields)
         return None
 
-    def adding(self, keys: list, top: tuple, store_fields: bool) -> "Levels":
+    def adding(self, keys: list, top: tuple, store_fields: bool) -> "CorrectedMeshes":
         """These meshes and ``top`` (halvings of the first) added where missing, ``top`` the
         finest (the last), its fields kept with ``store_fields``."""
         have = dict(zip(self.lattice, zip(self.marched, self.results, self.meshes)))
-        surface, reference = surface_of(self.setting), Pair(self.sheet.mean, self.sheet.surface)
+        surface, reference = surface_of(self.setting), CombinedMarch(self.sheet.mean, self.sheet.surface)
         for key in [*keys, top]:
             if key not in have:
                 cells = self.meshes[0].refined(*key)
@@ -205,46 +216,46 @@ def base_plan(plan_at, accuracy: float) -> tuple[float, Plan]:
     return level, chosen
 
 
-def surface_of(setting: Setting) -> np.ndarray:
+def surface_of(setting: SharedInputs) -> np.ndarray:
     """g(t-) at the outputs: the state the unaccomplished uptakes are measured from."""
     return np.asarray(setting.exposure.surface_before(setting.times), float)
 
 
 def corrected_levels(geometry, diffusivity, law, exposure, times, accuracy: float,
-                     meshes: int = 2, *, plans=None, base=None, surface_layer_depth=5e-4,
-                     store_fields=False, part="") -> Levels:
+                     meshes: int = 2, *, plans=None, base=None, surface_layer_depth=LAYER_DEPTH,
+                     store_fields=False, part="") -> CorrectedMeshes:
     """The corrected product (module docstring) on ``meshes`` nested 3-D meshes: the graded
     cells of the ``base_plan`` plan, each next one refined by 2 in every direction
-    (``Cells.refined``); or, with ``plans`` (accuracies of ``nonlinear_plan``, coarsest
+    (``PrismCells.refined``); or, with ``plans`` (accuracies of ``nonlinear_plan``, coarsest
     first), on those plans' graded cells (not nested; ``benchmarks/dc_defect_correction.py
     plate-order``). ``base``: the coarsest nested plan's accuracy instead of ``base_plan``'s.
     The planform reference is refined from the ``MESH_LEVELS[-1]`` plan's graded planform.
     ``store_fields`` keeps every mesh's fields and the references' (``defectfields``)."""
     times = np.asarray(times, float)
     geometry, diffusivity, faces_layer = as_prism(geometry, diffusivity)
-    setting = Setting.of(geometry, diffusivity, law, exposure, times, surface_layer_depth,
+    setting = SharedInputs.of(geometry, diffusivity, law, exposure, times, surface_layer_depth,
                          steps_for(accuracy), part, faces_layer, store_fields)
     sheet = sheet_reference(geometry, diffusivity, law, exposure, times, accuracy,
                             surface_layer_depth, store_fields)
-    reference = Pair(sheet.mean, sheet.surface)
+    reference = CombinedMarch(sheet.mean, sheet.surface)
 
     def planned(a):
         return level_plan(geometry, diffusivity, law, exposure, times, a, setting.per_doubling)
     if plans is None:
         chosen = [planned(base) if base else base_plan(planned, accuracy)[1]] * meshes
-        cells = [Cells.of(geometry, setting.d, chosen[0])]
+        cells = [PrismCells.of(geometry, setting.d, chosen[0])]
         while len(cells) < meshes:
             cells.append(cells[-1].refined())
     else:
         chosen = [planned(a) for a in plans]
-        cells = [Cells.of(geometry, setting.d, c) for c in chosen]
+        cells = [PrismCells.of(geometry, setting.d, c) for c in chosen]
     marched = [three_d(setting, c, store_fields, m) for c, m in zip(chosen, cells)]
     scale, surface = swing(exposure, times) or 1.0, surface_of(setting)
 
-    def levels(planform, planform_error, planform_cells, factor) -> Levels:
+    def levels(planform, planform_error, planform_cells, factor) -> CorrectedMeshes:
         results = [corrected(m.plate, (m.slab, reference), (m.planform, planform), surface,
                              m.union) for m in marched]
-        return Levels(marched, results, sheet, planform, planform_error, planform_cells,
+        return CorrectedMeshes(marched, results, sheet, planform, planform_error, planform_cells,
                       factor, scale, setting, cells)
 
     def total(*planform) -> float:   # the solve's whole estimate with this planform reference
@@ -254,7 +265,7 @@ def corrected_levels(geometry, diffusivity, law, exposure, times, accuracy: floa
                                      total if plans is None and meshes > 1 else None))
 
 
-def estimate_parts(run: Levels, margin: float) -> tuple[tuple, float, float]:
+def estimate_parts(run: CorrectedMeshes, margin: float) -> tuple[tuple, float, float]:
     """((mean, layer), 3-D term, rest): ``unseparated``'s values and estimate, and the rest
     of the estimate: the sheet's, the planform's and the marches' time error
     (``PAIR_TO_EXTRAPOLATED`` pair^2)."""
@@ -264,7 +275,7 @@ def estimate_parts(run: Levels, margin: float) -> tuple[tuple, float, float]:
     return values, three_d_error, rest
 
 
-def unseparated(run: Levels, margin: float) -> tuple[tuple, float]:
+def unseparated(run: CorrectedMeshes, margin: float) -> tuple[tuple, float]:
     """((mean, layer), estimate) of the 3-D cells (``finest``). On the diagonal (each mesh
     refined by 2 in every direction), two meshes: the finer one's result, its estimate the
     change between them x ``ORDER_ONE`` x ``margin`` (``skin_margin``); three or more: the
@@ -313,7 +324,7 @@ def finest(results: list, lattice: list | None = None) -> tuple[tuple, list]:
     return tuple(values), checks
 
 
-def extension(run: Levels, result: DiffusionResult, accuracy: float, resolve) -> Extension:
+def extension(run: CorrectedMeshes, result: DiffusionResult, accuracy: float, resolve) -> Extension:
     """``result.extend`` (``dense``): the corrected product of every nested mesh read
     between the marches' steps, combined as ``finest`` combines the solve's."""
     exposure, meshes = run.setting.exposure, run.marched
@@ -321,7 +332,7 @@ def extension(run: Levels, result: DiffusionResult, accuracy: float, resolve) ->
                                                   m.planform.track)]
 
     def product(values, at):   # the tracks' columns at ``at`` -> (mean, layer)
-        pairs = [Pair(v[:, 0], v[:, 1]) for v in values]
+        pairs = [CombinedMarch(v[:, 0], v[:, 1]) for v in values]
         reference, sheet_at = pairs[-2:]
         surface = np.asarray(exposure.surface_before(at), float)
         per_mesh = [corrected(pairs[3 * i], (pairs[3 * i + 1], sheet_at),
@@ -333,7 +344,7 @@ def extension(run: Levels, result: DiffusionResult, accuracy: float, resolve) ->
 
 
 def solve_corrected(geometry, diffusivity, law, exposure, times, accuracy: float, *,
-                    surface_layer_depth=5e-4, store_fields=False, part="",
+                    surface_layer_depth=LAYER_DEPTH, store_fields=False, part="",
                     reason="") -> DiffusionResult:
     """Mean and contact layer (weight %) at ``times``: the corrected product (module
     docstring) on two nested 3-D meshes (``corrected_levels``; their change the estimate
@@ -382,8 +393,8 @@ def solve_corrected(geometry, diffusivity, law, exposure, times, accuracy: float
 
 def plan_corrected(geometry, diffusivity, law, exposure, times, accuracy: float) -> Plan:
     """What ``solve_corrected`` will start from: the coarsest 3-D plan (refined by 2,
-    nested, once or twice, or by direction: ``Levels.finer``), the planform refined up to
-    ``defectplanform.PLANFORM_CELLS``, the accuracy as the target its measured estimate is held to (the
+    nested, once or twice, or by direction: ``CorrectedMeshes.finer``), the planform refined up to
+    ``PLANFORM_CELLS``, the accuracy as the target its measured estimate is held to (the
     solve reports the estimate)."""
     geometry, diffusivity, bar = as_prism(geometry, diffusivity)
     level, chosen = base_plan(partial(level_plan, geometry, diffusivity, law, exposure, times,
@@ -397,3 +408,72 @@ def plan_corrected(geometry, diffusivity, law, exposure, times, accuracy: float)
               f"{chosen.steps_per_doubling} steps/doubling + Richardson; defect "
               f"correction){TARGET}")
     return replace(chosen, reason=reason, error_estimate=accuracy)
+
+
+def refined_reference(setting: SharedInputs, start: Plan, level: MeshMarches, sheet: CombinedMarch,
+                      accuracy: float, scale, total=None):
+    """(planform reference CombinedMarch, estimate, planform cells, factor R): the graded planform of
+    the plan ``start`` refined by R in ``REFINE`` (finest and growth / R) until the estimate
+    is ``PLANFORM_SHARE`` of the accuracy, or ``total(reference, estimate, cells, R)`` (the
+    whole estimate of the solve with this reference: ``corrected_levels``) is within the
+    accuracy, or the next mesh would pass ``PLANFORM_CELLS`` (the estimate: the change of
+    ``level``'s corrected result). The demo cam (k = 2) at 1e-2: the 2x planform's estimate
+    6.3e-3 is above the share, but with the 3.3 plan's nested pair (3-D change 7.6e-4) and
+    the sheet (8.6e-4) the whole is 8.3e-3: the 4x planform (27 303 cells, 59 CPU s alone)
+    is not marched, the run takes 28 CPU s (143-153 on the 1.0 plan's pair with the 4x
+    planform, estimate 2.0e-3; the two results 2.8e-3 apart in ``gap``'s norm;
+    ``benchmarks/dc_defect_correction.py corrected cam-2 1e-2``).
+    After the first refinement: the Richardson extrapolation of the two (second order:
+    p_2 + (p_2 - p_1) / 3), its estimate the whole change p_2 - p_1 (R = 1 may be short of
+    the asymptotic range: on the demo cam with k = 1 the change the first extrapolation
+    made, (p_2 - p_1) / 3, was half of what the next one found). After the second: the mean
+    and the layer each by ``three_levels`` (the corrected result is affine in the planform
+    reference, so its changes are the reference's).
+    Before, the second extrapolation with a third of its change from the first (Romberg's
+    check): on the demo cam (k = 2, 1e-3) an estimate 9.0e-4 for an error 1.8e-4."""
+    surface = np.asarray(setting.exposure.surface_before(setting.times), float)
+
+    def result(reference):
+        return corrected(level.plate, (level.slab, sheet), (level.planform, reference), surface,
+                         level.union)
+    _, first, start_cells = setting.planform(start.finest, start.growth)
+    planforms, cells, factor = [first], 0, 1.0
+    for refine in REFINE:
+        if cells and start_cells * refine ** 2 > PLANFORM_CELLS:
+            break
+        _, fine, cells = setting.planform(start.finest / refine, start.growth / refine)
+        planforms.append(fine)
+        weight, factor = 1.0 / ((refine / factor) ** 2 - 1.0), refine
+        if len(planforms) == 2:
+            reference = combined(planforms, lambda coarse, f: f + weight * (f - coarse))
+            estimate = gap(result(planforms[0]), result(fine), scale)
+        else:
+            (mean, mean_error), (layer, layer_error) = (
+                three_levels(*(result(p)[i] for p in planforms[-3:])) for i in range(2))
+            reference = combined(planforms[-2:], partial(taken, mean), partial(taken, layer))
+            estimate = max(mean_error, layer_error / LAYER_TOLERANCE) / scale
+        if estimate <= PLANFORM_SHARE * accuracy or (
+                total is not None and total(reference, estimate, cells, factor) <= accuracy):
+            break
+    return replace(reference, coarser=(planforms[-2], weight)), estimate, cells, factor
+
+
+def gap(a, b, scale: float) -> float:
+    """The larger of the mean's and the layer's (/ ``LAYER_TOLERANCE``) largest difference,
+    relative to ``scale``."""
+    return max(float(np.max(np.abs(a[0] - b[0]))),
+               float(np.max(np.abs(a[1] - b[1]))) / LAYER_TOLERANCE) / scale
+
+
+def combined(pairs, mean_rule, layer_rule=None):
+    """The last of ``pairs`` (marches with mean, layer and a ``StepRecord`` of the two, as
+    ``defect.CombinedMarch``) with its mean, layer and track ``mean_rule`` / ``layer_rule`` (pointwise
+    in time: a Richardson or three-mesh combination) of ``pairs``' own."""
+    layer_rule = layer_rule or mean_rule
+    track = pairs[-1].track
+    if track is not None:
+        track = track.with_values(np.column_stack(
+            [rule(*(p.track.values[:, i] for p in pairs))
+             for i, rule in enumerate((mean_rule, layer_rule))]))
+    return replace(pairs[-1], mean=mean_rule(*(p.mean for p in pairs)),
+                   layer=layer_rule(*(p.layer for p in pairs)), track=track)

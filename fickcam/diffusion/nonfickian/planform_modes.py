@@ -51,15 +51,15 @@ from scipy.linalg import eigh_tridiagonal
 from scipy.sparse.linalg import splu
 
 from ...errors import InputError
-from ..operators import sizing
 from ..accuracy.error_model import LAYER_TOLERANCE, space_error
-from ..planform.cell_moments import corrected_weights
-from ..operators.prisms import planar
-from .two_phase_modes import ModeSource
-from ..stepping.march import ORDERING
 from ..exact.modes import Modes, sheet_factor
-from ..problem.scaling import axis_scale, stretch_of
 from ..exact.series import sheet_uptake
+from ..operators import sizing
+from ..operators.prisms import planar
+from ..planform.cell_moments import corrected_weights
+from ..problem.scaling import axis_scale, stretch_of
+from ..stepping.march import ORDERING
+from .two_phase_modes import ModeSource
 
 log = logging.getLogger(__name__)
 

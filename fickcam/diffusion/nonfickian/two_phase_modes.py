@@ -28,12 +28,14 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..forcing.clock import RescaledTime
-from ..exact.separable import step_response
-from ..forcing.record import Forcing, linear_pieces
 from ..exact.modes import (FIRST_COUNT, FIRST_PER_OCTAVE, MAX_PRODUCT, dimensions, lump,
                            product_modes, step_corrections)
+from ..exact.separable import step_response
 from ..exact.two_phase import exchange_propagator
+from ..forcing.clock import RescaledTime
+from ..forcing.record import Forcing, linear_pieces
+from ..problem.exposure import swing as swing_of
+from ..problem.geometry import LAYER_DEPTH
 
 MAX_EXCHANGE_PIECES = 100_000  # pieces per ramp row at most (exchange frozen per piece)
 INTERPOLATION_SHARE = 0.25  # share of the tolerance for Ms piecewise linear between nodes
@@ -174,22 +176,15 @@ def _history(source: ModeSource, nodes: Nodes, counts, per_octave) -> np.ndarray
     return np.stack([values[:, 0, 0], values[:, 1, 0], values[:, 0, 1] + values[:, 1, 1]], axis=1)
 
 
-def history_swing(exposure) -> float:
-    """The largest |Ms - M0| at the exposure's changes (the scale of the accuracy)."""
-    edges = np.asarray(exposure.change_times, float)
-    sampled = np.concatenate([exposure.surface_moisture(edges), exposure.surface_before(edges)])
-    return float(np.max(np.abs(np.asarray(sampled, float) - exposure.initial_moisture)))
-
-
 def langmuir_history(geometry, diffusivity, law, exposure, times, accuracy,
-                     surface_layer_depth=5e-4, source: ModeSource | None = None):
+                     surface_layer_depth=LAYER_DEPTH, source: ModeSource | None = None):
     """Total mean, contact-layer mean and bound mean (weight %) at ``times`` (s), and the
     error estimate relative to the largest swing |Ms - M0| (the change when modes and bins
     are doubled plus the interpolation bound of ramps). ``source``: the part's modes
     (default: the separable Sheet, Bar or solid Disc)."""
     times = np.asarray(times, float)
     source = source or separable_source(geometry, diffusivity.pre_exponential, surface_layer_depth)
-    swing = history_swing(exposure)
+    swing = swing_of(exposure)
     if swing == 0.0:
         flat = np.full(times.size, exposure.initial_moisture)
         bound = flat * (1.0 - law.free_share(exposure.temperature(times)))

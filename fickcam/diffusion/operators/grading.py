@@ -17,8 +17,9 @@ import math
 
 import numpy as np
 
+from ..accuracy.error_model import GROWTH_ERROR
+
 MAX_GROWTH = 0.25  # at most 25 % wider than the neighbour
-GROWTH_ERROR = 0.065  # relative uptake error ~ GROWTH_ERROR g^2 (measured, upper end)
 
 
 def growth_rate(tolerance: float) -> float:

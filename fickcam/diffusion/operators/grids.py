@@ -9,9 +9,9 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..problem.scaling import axis_scale
 from .discretisation import Discretisation
 from .fipy_backend import assemble, box_mesh, cylindrical_mesh, interval_mesh
-from ..problem.scaling import axis_scale
 
 
 def interval_overlap(lo: np.ndarray, hi: np.ndarray, a: float, b: float) -> np.ndarray:

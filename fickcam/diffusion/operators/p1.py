@@ -25,10 +25,10 @@ from __future__ import annotations
 import numpy as np
 from scipy import sparse
 
-from .discretisation import Discretisation
 from ..planform.polygon import triangle_areas
-from ..problem.scaling import planar_scale
 from ..planform.triangles import Triangulation
+from ..problem.scaling import planar_scale
+from .discretisation import Discretisation
 
 
 def cotangent_stiffness(points: np.ndarray, triangles: np.ndarray) -> sparse.csr_matrix:

@@ -5,12 +5,12 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..planform.admissible import cell_loops
+from ..planform.polygon import unique_edges
+from ..problem.scaling import axis_scale
 from .discretisation import Discretisation
 from .fipy_backend import assemble, centred_mesh
 from .grids import normalised
-from ..planform.polygon import unique_edges
-from ..planform.admissible import cell_loops
-from ..problem.scaling import axis_scale
 
 
 def prism(tess, thickness: float, z_widths: np.ndarray, layer_share: np.ndarray,

@@ -26,12 +26,12 @@ from functools import lru_cache
 import numpy as np
 
 from ..accuracy.error_model import GROWTH_ERROR, MIN_CELLS_PER_AXIS
-from ..problem.geometry import Bar, CamPlate, Disc, LinkBar, Sheet
-from .grading import MAX_GROWTH, graded_widths, growth_rate
-from ..planform.outline import outline_extent
 from ..planform.admissible import admissible
-from ..problem.scaling import axis_scale, stretch_of
+from ..planform.outline import outline_extent
 from ..planform.triangles import triangulate
+from ..problem.geometry import Bar, CamPlate, Disc, LinkBar, Sheet
+from ..problem.scaling import axis_scale, stretch_of
+from .grading import MAX_GROWTH, graded_widths, growth_rate
 
 CAP_STEP = 1.15  # the finest width grows by this factor until the cells fit the cap
 

@@ -15,14 +15,14 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..planform.admissible import band_share
+from ..problem.geometry import Bar, CamPlate, LinkBar
+from ..problem.scaling import axis_scale, stretch_of
 from . import sizing
 from .discretisation import Discretisation
 from .fipy_backend import assemble, box_mesh
 from .grids import grid_axis, near_faces, normalised
 from .prisms import prism
-from ..problem.geometry import Bar, CamPlate, LinkBar
-from ..planform.admissible import band_share
-from ..problem.scaling import axis_scale, stretch_of
 
 
 def halved_axes(geometry) -> tuple[int, ...]:

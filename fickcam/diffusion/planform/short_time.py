@@ -8,10 +8,10 @@ from functools import cached_property, lru_cache
 import numpy as np
 from scipy.special import erf, erfc
 
+from ..exact.series import cylinder_short_coefficients, ierfc, sheet_uptake
+from ..problem.scaling import planar_scale
 from .outline import boundary_loops
 from .polygon import CORNER_TURN, Wall, loop_length, resample_loop, turning_angles, vertex_normals
-from ..problem.scaling import planar_scale
-from ..exact.series import cylinder_short_coefficients, ierfc, sheet_uptake
 
 TAIL_FROM = 4          # first term of the disc series left to the error indicator
 CHORD_RAYS = 256       # rays cast per outline loop for the facing-edge term

@@ -86,3 +86,35 @@ def _piecewise_function(edges: np.ndarray, ramp: np.ndarray, values: np.ndarray)
         fraction = np.clip((t - edges[k]) / (edges[k + 1] - edges[k]), 0.0, 1.0)
         return start + (values[k] - start) * fraction
     return evaluate
+
+
+def sample_times(exposure: Exposure) -> np.ndarray:
+    """Nine samples per segment (its edges included): where T and g are looked at."""
+    edges = np.asarray(exposure.change_times, float)
+    share = np.linspace(0.0, 1.0, 9)[:-1]
+    inner = edges[:-1, None] + np.diff(edges)[:, None] * share[None, :]
+    return np.concatenate([inner.ravel(), edges[-1:]])
+
+
+def swing(exposure: Exposure, times=()) -> float:
+    """The largest |g - c0| over the history: the scale every accuracy is relative to.
+
+    Parameters
+    ----------
+    exposure : Exposure
+        The surface history g(t) [weight %] and the initial moisture c0 [weight %].
+    times : array_like, optional
+        More times [s] to look at (the outputs); g is always looked at on nine samples
+        of every segment (``sample_times``: a ramp between its ends) and just before each
+        change (a held segment's or a ramp's end value).
+
+    Returns
+    -------
+    float
+        max |g - c0| [weight %].
+    """
+    edges = np.asarray(exposure.change_times, float)
+    at = np.concatenate([sample_times(exposure), np.asarray(times, float).ravel()])
+    values = np.concatenate([np.asarray(exposure.surface_moisture(at), float),
+                             np.asarray(exposure.surface_before(edges), float)])
+    return float(np.max(np.abs(values - exposure.initial_moisture)))

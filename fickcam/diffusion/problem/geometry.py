@@ -2,13 +2,16 @@
 
 Axes: x, y in the plane of the part, z through its thickness; for a ``Disc``
 x = y = radial. All surfaces named in each docstring are exposed to the
-environment.
+environment. The contact layer, whose mean every result reports beside the part's mean,
+lies within a depth of the contact surface (``LAYER_DEPTH`` unless the caller gives one).
 """
 from __future__ import annotations
 
 from dataclasses import dataclass, field
 
 import numpy as np
+
+LAYER_DEPTH = 5e-4  # m, the contact layer's depth when none is given
 
 
 @dataclass(frozen=True)

@@ -5,7 +5,7 @@ already took, instead of a new solve (the limit search's times).
 Every swept march records its mean and contact layer (and any other weighted sums asked)
 at every step, not only at the outputs; the Richardson pair's two marches share the coarse
 plan's nodes (the fine plan is the coarse one bisected), so 2 fine - coarse is known at
-every coarse node (``Track``). The steps restart at FIRST_STEP after each exposure change
+every coarse node (``StepRecord``). The steps restart at FIRST_STEP after each exposure change
 and double every m steps (``timesteps``): in log(age), age = tau* - tau*_change, the nodes
 are about evenly spaced (ln 2 / m apart), and the solution, ~sqrt(age) early and
 exponential late (Crank 1975 eq. 4.18, 4.17), is smooth there. A new time is read by the
@@ -51,7 +51,7 @@ INTERPOLATION_SHARE = 1.0  # of the accuracy: a larger interpolation estimate re
 
 
 @dataclass(frozen=True)
-class Track:
+class StepRecord:
     """Weighted sums (columns: mean, layer, ...) of a Richardson-combined march at every
     node of its coarse step plan (``direct.StepPlan``)."""
 
@@ -62,12 +62,12 @@ class Track:
     tau_star: Callable    # tau* of physical times (s)
 
     @classmethod
-    def of(cls, steps, coarse, fine, scales, exposure) -> "Track":
+    def of(cls, steps, coarse, fine, scales, exposure) -> "StepRecord":
         """From the coarse and the fine (bisected) march of ``steps`` (their ``track``s)."""
         return cls(steps.nodes, 2.0 * fine.track[::2] - coarse.track, steps.surface_before,
                    scales.tau_star(exposure.change_times), scales.tau_star)
 
-    def with_values(self, values: np.ndarray) -> "Track":
+    def with_values(self, values: np.ndarray) -> "StepRecord":
         return replace(self, values=np.asarray(values, float))
 
     def at(self, times) -> tuple[np.ndarray, np.ndarray]:
@@ -104,20 +104,6 @@ class Track:
                         for three in (four[:3], four[1:]))
         # the quadratic further from the cubic: one alone can meet it by chance
         return cubic, np.where(np.abs(cubic - lower) >= np.abs(cubic - upper), lower, upper)
-
-
-def combined(pairs, mean_rule, layer_rule=None):
-    """The last of ``pairs`` (marches with mean, layer and a ``Track`` of the two, as
-    ``defect.Pair``) with its mean, layer and track ``mean_rule`` / ``layer_rule`` (pointwise
-    in time: a Richardson or three-mesh combination) of ``pairs``' own."""
-    layer_rule = layer_rule or mean_rule
-    track = pairs[-1].track
-    if track is not None:
-        track = track.with_values(np.column_stack(
-            [rule(*(p.track.values[:, i] for p in pairs))
-             for i, rule in enumerate((mean_rule, layer_rule))]))
-    return replace(pairs[-1], mean=mean_rule(*(p.mean for p in pairs)),
-                   layer=layer_rule(*(p.layer for p in pairs)), track=track)
 
 
 def lagrange(x: np.ndarray, at: float) -> np.ndarray:

@@ -9,8 +9,8 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.interpolate import PchipInterpolator
 
-from . import march as marching
 from ..planform.short_time import weighted
+from . import march as marching
 from .step_plans import geometric_steps
 
 log = logging.getLogger(__name__)

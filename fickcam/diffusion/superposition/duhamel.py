@@ -17,8 +17,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..forcing.clock import clock_of
 from ..exact.series import SATURATION_FOURIER
+from ..forcing.clock import clock_of
 
 GAUSS_NODES = 16
 PANEL_RATIO = 8.0

@@ -32,7 +32,8 @@ from functools import lru_cache
 import numpy as np
 
 from ..forcing.clock import clock_of
-from ..forcing.record import Forcing, forcing, swing as swing_of
+from ..forcing.record import Forcing, forcing
+from ..problem.exposure import swing as swing_of
 
 FIRST_PER_DECADE = 16    # grid points per decade of age to start with; doubled while the
 MAX_PER_DECADE = 256     #   grid and its every second point read differently
@@ -308,7 +309,7 @@ class LongRecord:
         return replace(self, force=force, where=sources(force))
 
     def superpose(self, kernel, per_decade: int = FIRST_PER_DECADE, refine: bool = True,
-                  looser: float = 1.0, same: "Same | None" = None,
+                  looser: float = 1.0, same: "KernelKey | None" = None,
                   start: int = 0) -> tuple[np.ndarray, float, int]:
         """(M - M0 at the outputs, shape (outputs, ...kernel outputs); the error relative
         to the swing (tabulation change + Ms interpolation); the points per decade used).
@@ -351,14 +352,14 @@ def _forced(diffusivity, exposure, times: bytes, accuracy: float):
     """(Forcing, Sources, swing, tolerance) of a record at ``times`` (their bytes), made
     once for the parts that share a material and its exposure (the links of a four-bar)."""
     clock = clock_of(diffusivity, exposure)
-    swing = swing_of(exposure, clock)
+    swing = swing_of(exposure)
     tolerance = accuracy * max(swing, 1e-300)
     force = forcing(exposure, clock, np.frombuffer(times), INTERPOLATION_SHARE * tolerance)
     return force, sources(force), swing, tolerance
 
 
 @dataclass(frozen=True, eq=False)
-class Same:
+class KernelKey:
     """Names a kernel across solves: ``key`` (hashable) and the objects its ids stand for,
     ``holds``, kept alive with the tables so that no id is reused while they are kept."""
 
@@ -369,7 +370,7 @@ class Same:
 _TABLES: OrderedDict = OrderedDict()
 
 
-def _kept(same: Same | None, grid: tuple, build) -> Table:
+def _kept(same: KernelKey | None, grid: tuple, build) -> Table:
     """The table of kernel ``same`` on ``grid`` from an earlier solve, else ``build()``
     (kept, the least recently used dropped past ``KEPT_TABLES``)."""
     if same is None:
