@@ -1,7 +1,8 @@
 """Concentration-dependent D on a Bar: the direct 3-D FiPy cells on one octant (``solid``,
-and ``auto`` above ``dispatch.BAR_CORRECTED_FROM``; ``diffusion/concentration_dependent.py``) and the
-corrected product of its rectangular section (``auto`` from there down; ``diffusion/
-defect.py``): accuracy, honesty of the estimate and cost against independent references
+and ``auto`` above ``dispatch.BAR_CORRECTED_FROM``;
+``diffusion/nonfickian/concentration_dependent.py``) and the corrected product of its
+rectangular section (``auto`` from there down; ``diffusion/nonfickian/corrected_product.py``):
+accuracy, honesty of the estimate and cost against independent references
 (issue 13).
 
     python benchmarks/dc_bar.py reference   # tests/data/dc_bar_reference.json (method of lines)

@@ -1,4 +1,4 @@
-"""Concentration-dependent D on cam plates: the corrected product (``diffusion/corrected_product.py``)
+"""Concentration-dependent D on cam plates: the corrected product (``diffusion/nonfickian/corrected_product.py``)
 against independent references, and the measurement that dropped the Fickian D_ref
 correction.
 

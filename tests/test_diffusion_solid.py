@@ -128,7 +128,8 @@ def reference(part, outline: float, diffusivity, mirrors, finest_z: float = 0.1)
     pair in space: (4 fine - coarse) / 3. Returns (mean, layer, coarse, fine)."""
     d = tuple(float(v) for v in diffusivity.pre_exponential)
     stretch = scaling.stretch_of(d)
-    tess = admissible.admissible(triangles.triangulate(part, outline, growth=0.25, stretch=stretch),
+    tess = admissible.admissible(triangles.triangulate(part, outline, growth=0.25,
+                                 stretch=stretch),
                             part, stretch, mirrors)
     widths = graded_widths(part.thickness, finest_z * part.thickness, 0.3)
     widths = widths[:widths.size // 2]

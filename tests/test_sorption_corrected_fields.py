@@ -71,7 +71,7 @@ def test_fickian_corrected_fields_are_the_exact_block_at_the_cell_points(part):
 def test_dc_fields_under_auto_are_corrected_and_consistent_with_the_mean(monkeypatch):
     """k = 2 absorbing on the 4 x 3 x 2 mm plate, ``auto`` with fields stored: the
     corrected product's fields (``corrected_product.solve_corrected`` hands its run to
-    ``defectfields.stored``), their error told in the reason. Their volume mean is the
+    ``corrected_fields.stored``), their error told in the reason. Their volume mean is the
     corrected mean to the point values' quadrature (for Fick the exact field's own: 1.6e-2
     of the swing at tau* = 0.01 on these 1 200 cells), at most half the coarse cells'
     distance to it (measured 0.26-0.38 of it where that exceeds 1e-5), within the fields'
@@ -96,7 +96,7 @@ def test_dc_fields_under_auto_are_corrected_and_consistent_with_the_mean(monkeyp
 
 
 def test_the_planform_reading_is_second_order_and_holds_mirrors_and_the_surface():
-    """``defectfields.planform_at`` (linear on the Delaunay triangles of the cell points, the
+    """``corrected_fields.planform_at`` (linear on the Delaunay triangles of the cell points, the
     exposed outline at 0, images across mirror lines): a smooth U vanishing on the outline
     of the 4 x 3 x 2 mm plate, read at another graded mesh's points (some on the mirror
     line), converges at second order under nested refinement (from the 0.3 plan refined
@@ -156,7 +156,8 @@ def test_dc_fields_at_the_centre_of_a_wide_plate_are_the_dc_sheet():
 
 def test_fields_after_the_cross_are_the_diagonal_finest_meshs_and_its_coarser_neighbours(
         monkeypatch):
-    """Where the 8x mesh passes the cap, ``CorrectedMeshes.finer`` adds the ``cross`` (meshes refined
+    """Where the 8x mesh passes the cap, ``CorrectedMeshes.finer`` adds the ``cross`` (meshes
+    refined
     along one direction, their fields not kept) around the finest: the stored fields and
     their indicated errors still come from the finest mesh and the next coarser one on the
     diagonal, so they are the two-mesh run's exactly (k = 2 absorbing, 3 x 2 x 2 mm plate)."""

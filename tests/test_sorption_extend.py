@@ -55,7 +55,8 @@ def test_extend_agrees_with_a_solve_at_the_new_times_within_its_estimate(stepped
 
 
 def test_the_corrected_plate_read_between_its_steps_agrees_with_its_solve_at_the_new_times():
-    """The 4 x 3 x 2 mm plate (k = 2, absorbing; the corrected product of ``defect``) at 3e-2:
+    """The 4 x 3 x 2 mm plate (k = 2, absorbing; the corrected product of ``corrected_product``) at
+    3e-2:
     read at its own outputs, the tracks of its marches (plate, slab, planform, planform
     reference, sheet) give the stored result to round-off; 7 new times read between the
     steps are within the extended estimate of a solve at the stored and new times, and
@@ -87,7 +88,7 @@ def test_a_new_time_younger_than_the_stored_outputs_is_solved_again(stepped_shee
 def test_a_new_time_younger_than_the_stored_outputs_of_the_skin_is_solved_again():
     """Stored outputs 0.3 and 0.7 h^2/D after the step down (the skin's cells sized for 0.3),
     a new one 0.02 after it: older than the youngest stored output of the whole history (1e-2
-    after the start), but the skin's plan changes (``dense.held_to_plan``), so it is solved
+    after the start), but the skin's plan changes (``dense_output.held_to_plan``), so it is solved
     again and agrees with ``solve`` at both to round-off."""
     law = ConcentrationDependent(MM, exponent=2.0)
     stored_times = TIMES[TIMES != 0.31 * T]

@@ -64,7 +64,7 @@ def test_concentration_dependent_extremes_stay_bounded_and_reach_equilibrium(exp
 @settings(max_examples=6, deadline=None)
 @given(st.floats(-3, 3), st.floats(-3, 3))
 def test_two_phase_extremes_on_a_cam_plate_stay_bounded_and_conserve_mass(log_gamma, log_beta):
-    """A circular CamPlate on its planform quadrature (``planmodes``), wet and dried, against
+    """A circular CamPlate on its planform quadrature (``planform_modes``), wet and dried, against
     the exact disc modes (which conserve free + bound water): rates 1e-3..1e3 of the
     slowest diffusion rate of the plate, within the accuracy, bounded, finite."""
     radius, thickness, d = 0.004, 0.004, 1e-11
@@ -99,7 +99,8 @@ PLATE_HISTORIES = {  # (initial moisture, surface in the first half, in the seco
 @example(5.0, "desorption")
 def test_corrected_plate_extremes_stay_bounded_and_agree_with_the_3d_cells(exponent, history):
     """D = D0 exp(k c/Mm), k = 0..5, on a 3 x 2 x 2 mm plate by the corrected product
-    (``defect.solve_corrected``, what ``auto`` runs for k > 0) at a loose accuracy: finite,
+    (``corrected_product.solve_corrected``, what ``auto`` runs for k > 0) at a loose accuracy:
+    finite,
     within the surface values and the initial moisture by its own estimate (Richardson's
     2 fine - coarse may step outside by its error; the layer by LAYER_TOLERANCE times it),
     uptake monotone under absorption, and the mean within both estimates of the 3-D cells'

@@ -42,7 +42,8 @@ def exposure(start, surface):
 @pytest.mark.parametrize("k, accuracy, start, surface", [
     (2.0, 1e-2, 0.0, MM), (2.0, 1e-2, MM, 0.0), (5.0, 1e-3, MM, 0.0)])
 def test_exponential_diffusivity_matches_a_fine_method_of_lines(k, accuracy, start, surface):
-    """Absorption and desorption (the dry skin, ``concentration_dependent.dries_to_a_skin``, the case
+    """Absorption and desorption (the dry skin, ``concentration_dependent.dries_to_a_skin``, the
+    case
     that sizes the cells at the smallest D): within the accuracy and within the estimate.
     Measured: k = 2 at 1e-2: 2.7e-3 (estimate 5.3e-3) absorbing, 5.1e-4 (5.7e-3)
     desorbing; k = 5 desorbing at 1e-3: 9.9e-5 (8.6e-4) (with f(surface value) on the
@@ -115,7 +116,8 @@ def test_operator_sweeps_are_fipys_own_sweeps():
     law = ConcentrationDependent(MM, exponent=3.0)
     weights = discretise(Sheet(H), ISOTROPIC, (20,), 5e-4)
     start = np.linspace(0.2, 1.5, 20)
-    ours = concentration_dependent._sweep(concentration_dependent.Faces.of(weights), start, MM, law, 20.0, 1e-3, "", 1, 0.0)
+    ours = concentration_dependent._sweep(concentration_dependent.Faces.of(weights), start, MM,
+                                          law, 20.0, 1e-3, "", 1, 0.0)
     c = CellVariable(mesh=Grid1D(nx=20, dx=0.05), value=start, hasOld=True)
     c.constrain(MM, c.mesh.exteriorFaces)
     coefficient = FaceVariable(mesh=c.mesh, value=1.0)

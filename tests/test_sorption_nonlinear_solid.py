@@ -127,7 +127,7 @@ def test_the_cell_cap_counts_the_octant_the_sweeps_solve(monkeypatch):
 @pytest.mark.parametrize("cap", [300, 1000, 5000])
 def test_a_mirrored_layout_counts_the_cells_of_the_octant_it_assembles(cap):
     """``sizing.uniform`` and ``sizing.choose`` with the three axes halved: the cap bounds
-    the cells of the octant ``mirrored`` assembles from the layout (uniform counts
+    the cells of the octant ``symmetry_cuts`` assembles from the layout (uniform counts
     rounded to even, so the octant is exactly half of each), not the whole bar's."""
     extents = sizing.extents(BAR, (D, D, D))
     for chosen in (sizing.uniform(extents, 1e-2, 1e-2, cap, 1e-2, halved=(0, 1, 2)),
@@ -250,7 +250,8 @@ def refined_histories(operators, k, start=0.0, surface=MM, per_doubling=8):
     scaled = concentration_dependent.fastest(ISOTROPIC, strong, wet, TIMES)
     steps = step_plan(wet, TIMES, scales_of(Sheet(H), scaled, wet), per_doubling)
     top = strong.largest_factor(MM)
-    runs = [concentration_dependent.sweep_march(concentration_dependent.Faces.of(w), w, strong, top, steps, start, False,
+    runs = [concentration_dependent.sweep_march(concentration_dependent.Faces.of(w), w, strong,
+                                                top, steps, start, False,
                                   "") for w in operators]
     return [np.concatenate([run.mean[1:], run.layer[1:]]) / MM for run in runs]
 

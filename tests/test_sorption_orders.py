@@ -46,7 +46,7 @@ def test_two_phase_sheet_operator_is_second_order_in_space():
 
 def test_two_phase_disc_operator_is_second_order_in_space():
     """(r, z) grid of a disc (radius = thickness = 1 in scaled units) against the exact
-    two-phase modes of the Disc (``langmuir``)."""
+    two-phase modes of the Disc (``two_phase_modes``)."""
     d, h = 1e-11, 0.004
     soak = Exposure.piecewise([0.0, 1e10], [330.0], [1.0])
     t = T_STAR * h ** 2 / d
@@ -58,7 +58,7 @@ def test_two_phase_disc_operator_is_second_order_in_space():
 
 
 def coupled_march(disc, steps):
-    """``coupled.march_coupled`` of a soak from dry to T_STAR in equal steps."""
+    """``two_phase_mesh.march_coupled`` of a soak from dry to T_STAR in equal steps."""
     nodes = np.linspace(0.0, T_STAR, steps + 1)
     free_share, _ = equilibrium_shares(GAMMA, BETA)
     surface = np.full(nodes.size, free_share)

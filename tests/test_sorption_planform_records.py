@@ -1,6 +1,6 @@
-"""The two-phase cam-plate path (``planmodes``) on climate records, its contact layer, and
+"""The two-phase cam-plate path (``planform_modes``) on climate records, its contact layer, and
 what ``fickcam check`` reports of it, each against an independent reference: the exact
-cylinder modes (Crank 1975 eqs. 5.22-5.23), the exact two-phase disc (``langmuir``), and a
+cylinder modes (Crank 1975 eqs. 5.22-5.23), the exact two-phase disc (``two_phase_modes``), and a
 fine run of the demo cam recorded in tests/data by benchmarks/two_phase_cam_records.py."""
 from __future__ import annotations
 
@@ -141,7 +141,8 @@ def test_demo_two_phase_cam_is_within_its_estimate_of_a_fine_run(climate):
 
 
 def test_two_step_richardson_recovers_the_w0_and_growth_terms_apart():
-    """``error_coefficients`` through three meshes (two differing from the first in w0 or g alone) and,
+    """``error_coefficients`` through three meshes (two differing from the first in w0 or g alone)
+    and,
     by least squares, through four gives back alpha and beta of y = y* + alpha w0^2 + beta
     g^2 per compared value; ``mesh_error`` adds their magnitudes (no cancellation trusted)."""
     alpha, beta = np.array([[0.25, -0.08]]), np.array([[-4e-3, 2.6e-3]])

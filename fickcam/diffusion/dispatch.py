@@ -6,15 +6,15 @@ Models (``diffusion.model``):
 - ``analytic``: Crank's series with Duhamel superposition in rescaled time
   (``analytic``): Sheet, Bar (product of three sheets), solid Disc.
 - ``slab``, ``axisymmetric``, ``solid``: FiPy-assembled operators marching the history
-  (``direct``): a Sheet through its thickness; a Disc or annulus in (r, z); a Bar in
+  (``finite_volume``): a Sheet through its thickness; a Disc or annulus in (r, z); a Bar in
   3-D or a CamPlate / LinkBar on prisms, the independent check of ``plane``.
 - ``plane``: CamPlate or LinkBar: the planform's response times the exact sheet,
   superposed over the history (``plane``); ``auto`` picks it (cheaper than prisms).
 
 Concentration-dependent D (``sorption``) under ``auto``: Fick with D f where f is constant
 over the moisture met; on a CamPlate, LinkBar or Bar (the prism of its rectangular section,
-``defectparts.as_prism``; a Bar from ``BAR_CORRECTED_FROM`` down, above it its octant's
-cells) the D(c) sheet x planform product corrected on coarse 3-D prisms (``defect``);
+``corrected_pieces.as_prism``; a Bar from ``BAR_CORRECTED_FROM`` down, above it its octant's
+cells) the D(c) sheet x planform product corrected on coarse 3-D prisms (``corrected_product``);
 ``solid`` keeps the 3-D cells alone (a Bar's octant), the check.
 """
 from __future__ import annotations
@@ -62,7 +62,7 @@ NUMERICAL_MODEL = {Sheet: "slab", Disc: "axisymmetric", Bar: "solid", CamPlate: 
                    LinkBar: "plane"}
 ALLOWED_MODELS = {Sheet: {"analytic", "slab"}, Disc: {"analytic", "axisymmetric"},
                   Bar: {"analytic", "solid"}, CamPlate: {"plane", "solid"},
-                  LinkBar: {"plane", "solid"}}  # solid CamPlate/LinkBar: prisms (prism.py)
+                  LinkBar: {"plane", "solid"}}  # solid CamPlate/LinkBar: prisms (operators.prisms)
 
 
 def _validate(geometry, model: str, accuracy: float) -> None:
@@ -86,8 +86,8 @@ def _no_exact_reason(geometry) -> str:
 
 def _two_phase_model(geometry, model: str) -> str:
     """Langmuir sorption: the exact modes where the part has them; a CamPlate or LinkBar
-    ``plane``: its planform's quadrature x the exact sheet (``planmodes``), or ``solid``
-    prisms; else the direct finite volumes (``coupled``)."""
+    ``plane``: its planform's quadrature x the exact sheet (``planform_modes``), or ``solid``
+    prisms; else the direct finite volumes (``two_phase_mesh``)."""
     if model in ("auto", "analytic") and exact_available(geometry):
         return "analytic"
     if model == "analytic":
@@ -142,7 +142,8 @@ def _plan_sorption(geometry, diffusivity, exposure, times, accuracy, model, sorp
         return replace(corrected, reason=f"{law}; {corrected.reason}")
     if is_nonlinear(sorption):
         chosen = _nonlinear_model(geometry, model)
-        mirror_cut = chosen == "solid"  # the 3-D cells cut at the mirror planes (``mirrored``)
+        # the 3-D cells cut at the mirror planes (``symmetry_cuts``)
+        mirror_cut = chosen == "solid"
         direct = nonlinear_plan(lambda d, a, at: _direct_plan(geometry, d, chosen, exposure, at, a,
                                                               mirror_cut),
                                 diffusivity, sorption, exposure, times, accuracy)
@@ -199,7 +200,7 @@ def _planform_refinement(geometry, diffusivity, exposure, times, accuracy, sorpt
 @lru_cache(maxsize=4)
 def _refined(geometry, diffusivity, exposure, times: tuple, accuracy, sorption, depth, finest,
              growth) -> RefinedPlanform:
-    """``planmodes.refined_planform`` of the two-phase history (the march on each mesh,
+    """``planform_modes.refined_planform`` of the two-phase history (the march on each mesh,
     most of whose cost is the planform operators): its mesh error is ``PLANFORM_SHARE`` of
     the accuracy, the march the rest. Cached: ``plan`` and ``solve`` share it."""
     times = np.asarray(times, float)
@@ -219,7 +220,7 @@ def _refined(geometry, diffusivity, exposure, times: tuple, accuracy, sorption, 
 def _nonlinear_model(geometry, model: str) -> str:
     """Concentration-dependent D: FiPy sweeps on the part's own mesh: the slab (Sheet),
     the (r, z) grid (Disc), 3-D cells cut at the mirror planes (Bar, CamPlate, LinkBar:
-    ``mirrored``). No exact series and no planform x sheet product exist for D(c) (the
+    ``symmetry_cuts``). No exact series and no planform x sheet product exist for D(c) (the
     Laplacian no longer separates): ``analytic`` means the mesh model, ``plane`` is refused."""
     if model == "plane":
         raise InputError(f"diffusion.model {model} has no concentration-dependent form (D(c) "
@@ -232,11 +233,11 @@ def _nonlinear_model(geometry, model: str) -> str:
 def _nonlinear_route(geometry, model: str, sorption, exposure, times, accuracy) -> str:
     """How ``auto`` solves D(c) on a Bar, CamPlate or LinkBar: ``fick`` where f is one
     number over the moisture the part meets (k = 0: Fick with D f, the Fickian models'
-    own result), else ``corrected`` (``defect``: the D(c) sheet x planform corrected on
+    own result), else ``corrected`` (``corrected_product``: the D(c) sheet x planform corrected on
     coarse 3-D cells; far cheaper than the 3-D cells alone at the same accuracy), for a
     Bar (the prism of its rectangular section, its thickness the fastest axis) from
-    ``BAR_CORRECTED_FROM`` down, above it ``direct`` (the octant's cells). ``solid``:
-    ``direct`` always (the 3-D cells alone, the check)."""
+    ``BAR_CORRECTED_FROM`` down, above it ``finite_volume`` (the octant's cells). ``solid``:
+    ``finite_volume`` always (the 3-D cells alone, the check)."""
     if model != "auto" or not isinstance(geometry, (Bar, CamPlate, LinkBar)):
         return "direct"
     if spread(sorption, exposure, times) <= 1.0 + 1e-12:
@@ -272,7 +273,7 @@ def solve(geometry, diffusivity: Diffusivity, exposure: Exposure, times: np.ndar
                         surface_layer_depth, store_fields=store_fields, part=part)
     chosen = plan(geometry, diffusivity, exposure, times, accuracy, model, sorption,
                   surface_layer_depth)
-    if route:   # D(c): ``extend`` reads between the steps where the cells stay (``dense``)
+    if route:   # D(c): ``extend`` reads between the steps where the cells stay (``dense_output``)
         def again(at):
             return plan(geometry, diffusivity, exposure, at, accuracy, model, sorption,
                         surface_layer_depth)
@@ -322,7 +323,7 @@ def _solve_sorption(geometry, diffusivity, exposure, times, chosen: Plan, sorpti
 
 def _langmuir_modes(geometry, diffusivity, exposure, times, chosen, sorption, depth, accuracy):
     """The exact two-phase modal march; for a CamPlate or LinkBar on its planform's
-    quadrature (``planmodes``), the histories of the plan's refined mesh (``_refined``)."""
+    quadrature (``planform_modes``), the histories of the plan's refined mesh (``_refined``)."""
     if chosen.model != "plane":
         history, estimate = langmuir_history(geometry, diffusivity, sorption, exposure, times,
                                              accuracy, depth)

@@ -1,7 +1,7 @@
 """Three meshes, each refined by 2: how far the finest is from the converged value, and
 whether its second-order Richardson extrapolation may be taken (Roache 1998,
 Verification and Validation in Computational Science and Engineering, ch. 5; Celik et
-al. 2008, J. Fluids Eng. 130:078001). Used on the D(c) planform of ``defect`` and on its
+al. 2008, J. Fluids Eng. 130:078001). Used on the D(c) planform of ``corrected_product`` and on its
 nested 3-D meshes."""
 from __future__ import annotations
 

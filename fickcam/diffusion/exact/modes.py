@@ -1,5 +1,5 @@
 """The Fickian modes of the separable parts (Sheet, solid Disc, Bar) for the two-phase
-march (``langmuir``): the unsaturated fraction of a unit surface step is a sum of
+march (``two_phase_modes``): the unsaturated fraction of a unit surface step is a sum of
 decaying modes, 1 - K(tau) = sum_n A_n exp(-lambda_n tau):
 
 - sheet (thickness h, both faces): A_n = 8 / ((2n+1)^2 pi^2), lambda_n = (2n+1)^2 pi^2 D / h^2
@@ -108,7 +108,8 @@ def product_modes(geometry, d0, depth, counts) -> Modes:
 def lump(modes: Modes, per_octave: int) -> Modes:
     """Modes whose rates lie in one bin of 1/``per_octave`` octave merged into one: summed
     amplitudes at their weighted mean rate (a mode's miss y - Ms changes little across a
-    narrow bin of rates; the error is measured by halving the bins, ``langmuir.langmuir_history``).
+    narrow bin of rates; the error is measured by halving the bins,
+    ``two_phase_modes.langmuir_history``).
     A bin of one mode is exact; ``tail_rate`` becomes the slowest rate merged."""
     bins = np.floor(np.log2(modes.rates / modes.rates.min()) * per_octave).astype(int)
     _, index, members = np.unique(bins, return_inverse=True, return_counts=True)
@@ -124,8 +125,8 @@ def step_corrections(geometry, d0, depth, modes: Modes, force: Forcing,
                      response=None) -> np.ndarray:
     """Each step J of Ms (the initial one, held segments): J times the transient of the
     modes left out or merged, -J (u_exact - u_modes)(age), for the outputs it reaches;
-    ``response(age)`` -> (mean, layer) replaces ``exact.step_response`` (a planform's
-    own modes times the sheet, ``planmodes``)."""
+    ``response(age)`` -> (mean, layer) replaces ``separable.step_response`` (a planform's
+    own modes times the sheet, ``planform_modes``)."""
     response = response or (lambda age: step_response(geometry, d0, age, depth))
     jumps = force.right - force.left
     jumps[np.abs(jumps) <= 1e-12 * np.max(np.abs(force.right))] = 0.0  # round-off of ramps

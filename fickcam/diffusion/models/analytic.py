@@ -38,14 +38,15 @@ def exact_history(geometry, diffusivity, exposure, times, surface_layer_depth=LA
 
 
 def exact_history_field(geometry, diffusivity, exposure, times, points):
-    """Moisture (weight %) at ``points`` (see ``exact.step_field``), shape
+    """Moisture (weight %) at ``points`` (see ``separable.step_field``), shape
     (n_times, n_points)."""
     d0 = diffusivity.pre_exponential
     return duhamel(_at_points(geometry, d0, points), diffusivity, exposure, times,
                    saturation_tau(geometry, d0), chunk=8) + exposure.initial_moisture
 
 
-def record_history(geometry, diffusivity, exposure, times, accuracy, surface_layer_depth=LAYER_DEPTH):
+def record_history(geometry, diffusivity, exposure, times, accuracy,
+                   surface_layer_depth=LAYER_DEPTH):
     """``exact_history`` over a long record by the tabulated sum, with its error estimate
     (relative to the record's largest swing |Ms - M0|, as ``accuracy`` is) and the
     ``LongRecord`` the fields reuse."""

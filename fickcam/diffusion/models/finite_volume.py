@@ -3,10 +3,10 @@ and ``solid`` (Bar on a 3-D grid; CamPlate or LinkBar on prisms of Delaunay-admi
 cells), each a FiPy-assembled operator marching the history itself.
 
 Backward Euler on geometric steps that restart at each environment change
-(``timesteps``), twice: on the plan's steps and on the same steps bisected. The
+(``step_plans``), twice: on the plan's steps and on the same steps bisected. The
 difference measures the time error, and Richardson's extrapolation 2 c_fine - c_coarse
 cancels its first-order part. Cells come from the spatial error model
-(``calibration.space_error``, ``layout``).
+(``error_model.space_error``, ``sizing``).
 """
 from __future__ import annotations
 
@@ -35,7 +35,7 @@ def plan_direct(geometry, diffusivity, model: str, change: np.ndarray, outputs: 
                 accuracy: float, exposure: Exposure, mirrored: bool = False) -> Plan:
     """Cells from the spatial error model, steps per doubling from the time error model,
     each taking half the accuracy. ``mirrored``: the solve keeps the part cut at its
-    mirror planes (``mirrored``, the D(c) sweeps); the plan's cells and the cap
+    mirror planes (``symmetry_cuts``, the D(c) sweeps); the plan's cells and the cap
     (``MAX_CELLS``: cells of the linear system) count that cut part."""
     t_lo = step_plans.earliest_output(change, outputs)
     cells = _cells(geometry, diffusivity, model, accuracy, t_lo,
@@ -59,7 +59,7 @@ def plan_direct(geometry, diffusivity, model: str, change: np.ndarray, outputs: 
 
 
 def _cells(geometry, diffusivity, model: str, accuracy: float, t_lo: float, halved=()):
-    """The cells of a direct model (``layout``): prisms for a CamPlate or LinkBar, graded
+    """The cells of a direct model (``sizing``): prisms for a CamPlate or LinkBar, graded
     or uniform for a Disc or Bar, uniform for the slab; ``halved``: the axes the solve
     cuts at their mirror plane."""
     d = diffusivity.pre_exponential
@@ -73,7 +73,7 @@ def _cells(geometry, diffusivity, model: str, accuracy: float, t_lo: float, halv
 def discretise(geometry, diffusivity: Diffusivity, cells: tuple[int, ...],
                surface_layer_depth: float, finest: float = 0.0, growth: float = 0.0):
     """The FiPy-assembled operator of a Sheet, Disc or Bar on ``cells`` (uniform), or
-    graded from ``finest`` by ``growth`` (scaled units, ``layout``); of a CamPlate or
+    graded from ``finest`` by ``growth`` (scaled units, ``sizing``); of a CamPlate or
     LinkBar on prisms (graded: ``finest`` > 0)."""
     d = tuple(float(v) for v in diffusivity.pre_exponential)
     widths = (sizing.physical_widths(geometry, sizing.extents(geometry, d), d, finest,
@@ -132,7 +132,7 @@ def solve_direct(geometry, diffusivity, exposure, times, chosen: Plan, *,
                  marcher=march) -> DiffusionResult:
     """March a Sheet, Disc, Bar or prisms of a CamPlate or LinkBar on its FiPy mesh
     (Richardson pair in time); ``disc``: an operator built by the caller instead;
-    ``marcher``: ``march.march`` or one with its arguments (``coupled``: two-phase, whose
+    ``marcher``: ``march.march`` or one with its arguments (``two_phase_mesh``: two-phase, whose
     history also carries the bound-water mean)."""
     scales = scales_of(geometry, diffusivity, exposure)
     if disc is None:

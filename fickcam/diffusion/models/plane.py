@@ -12,8 +12,8 @@ stored record solve read at more times (``extension``, the limit search), all in
 ``PrismSuperposition``.
 
 The planform's unit-step response comes from the exact short-time expansion of
-the outline (``shorttime``) up to a switch time and from P1 finite elements on
-a triangle mesh graded from the outline after it (``trimesh``, ``p1``). ``plan_plane``
+the outline (``short_time``) up to a switch time and from P1 finite elements on
+a triangle mesh graded from the outline after it (``triangles``, ``p1``). ``plan_plane``
 sizes that mesh and the time steps with the error model the blend reports, so
 ``fickcam check`` shows the error ``solve`` will estimate. The errors are
 measured against the exact product of three sheets (rectangle), the finite
@@ -89,7 +89,7 @@ def mesh_design(target: float, start: float, perimeter: float, tightest: float,
                 cap: int) -> MeshDesign:
     """h0 and g meeting a relative uptake error ``target`` from scaled time ``start`` on.
 
-    The error model r = MESH_ERROR (h0 / sqrt(t) + GROWTH_REACH g)^2 (``calibration``) and the
+    The error model r = MESH_ERROR (h0 / sqrt(t) + GROWTH_REACH g)^2 (``error_model``) and the
     node count ~ sum_k P / (h0 (1 + g)^k) ~ P / (g h0) (rows of P / s_k points) give the
     cheapest split at
     h0 / sqrt(t) = GROWTH_REACH g = S / 2, S = sqrt(target / MESH_ERROR); g is at most
@@ -144,7 +144,7 @@ def _planform_size(part, d, expansion) -> tuple[float, float, float]:
 
 @lru_cache(maxsize=8)
 def planform_mesh(part, finest: float, growth: float, stretch: tuple[float, float]):
-    """The triangle mesh plan and solve share (``trimesh.triangulate``; ``finest`` scaled)."""
+    """The triangle mesh plan and solve share (``triangles.triangulate``; ``finest`` scaled)."""
     return triangulate(part, finest * part.thickness, growth=growth, stretch=stretch)
 
 
@@ -179,7 +179,7 @@ def expansion_error_at(expansion, ages: np.ndarray) -> float:
 def plan_plane(geometry, diffusivity, change: np.ndarray, outputs: np.ndarray, ramp,
                accuracy: float, layer_depth: float | None = None):
     """What ``solve_plane`` will do and the error it will report, by the blend's error model
-    at the ages the outputs read (``timesteps.output_ages``): the expansion up to its switch
+    at the ages the outputs read (``step_plans.output_ages``): the expansion up to its switch
     (error ``EXPANSION_SHARE`` x accuracy); after it a graded P1 mesh whose relative error
     at half the switch (``mesh_design`` plus the expansion's own relative error there) times
     the largest uptake x sheet fraction at the later ages takes what the time error,
@@ -247,9 +247,11 @@ def _design(expansion, switch, end, ages, perimeter, area, tightest, accuracy, t
 
 
 def solve_plane(geometry, diffusivity, exposure, times, chosen, *, accuracy: float,
-                surface_layer_depth: float = LAYER_DEPTH, store_fields: bool = False, part: str = ""):
+                surface_layer_depth: float = LAYER_DEPTH, store_fields: bool = False,
+                part: str = ""):
     """CamPlate / LinkBar: planform step response x sheet step response, Duhamel over the
-    history (``PrismSuperposition``); the estimate adds the error of the sum itself on long records."""
+    history (``PrismSuperposition``); the estimate adds the error of the sum itself on long
+    records."""
     d = tuple(float(v) for v in diffusivity.pre_exponential)
     times = np.asarray(times, float)
     scales = scales_of(geometry, diffusivity, exposure)
@@ -279,7 +281,8 @@ def solve_plane(geometry, diffusivity, exposure, times, chosen, *, accuracy: flo
     def same(which: str) -> KernelKey:  # the fractions are fixed by these (cached) objects
         return KernelKey((id(u_plane), id(expansion), tolerance, which), (u_plane, expansion))
 
-    def superposed(over: PrismSuperposition, levels=(0, 0)):  # (mean, its sum's error, layer, levels)
+    # (mean, its sum's error, layer, levels)
+    def superposed(over: PrismSuperposition, levels=(0, 0)):
         (mean, error, mean_level), (layer, _, layer_level) = (
             over.superpose(mean_fraction, same=same("mean"), start=levels[0]),
             over.superpose(layer_fraction, looser=LAYER_TOLERANCE, same=same("layer"),
@@ -370,7 +373,7 @@ def _diffusion_times(geometry, d) -> tuple[float, float]:
 @dataclass(frozen=True)
 class PrismSuperposition:
     """How ``solve_plane`` superposes over the exposure: Duhamel's panels (``duhamel``) for
-    a few segments; for a long record (``forcing.is_long_record``) the tabulated sum of
+    a few segments; for a long record (``record.is_long_record``) the tabulated sum of
     ``tabulated``, cost linear in the rows, shared by the mean, the layer and the fields,
     within ``RECORD_SHARE`` of the accuracy (``plan`` designs the rest)."""
 
@@ -397,7 +400,7 @@ class PrismSuperposition:
                   start: int = 0) -> tuple[np.ndarray, float, int]:
         """(c0 + Duhamel sum of the unit-step unsaturated fraction u(tau*), the error of the
         sum itself relative to the swing: 0 for the panels, whose quadrature is exact to
-        ``calibration.ANALYTIC_ERROR``, the tables' points per decade: 0 for the panels).
+        ``error_model.ANALYTIC_ERROR``, the tables' points per decade: 0 for the panels).
         ``fields``: a wide kernel (``LongRecord.field``); ``looser``: a tolerance this many
         times the mean's (the contact layer); ``same``: which fraction this is
         (``tabulated.KernelKey``), to reuse its tables across solves; ``start``: the points per
@@ -420,7 +423,8 @@ class PrismSuperposition:
 def extension(result: DiffusionResult, superposed):
     """``DiffusionResult.extend`` of a plane solve over a long record: the result at its
     times and ``at`` (inside their span) together, the new rows summed with the stored plan,
-    planform response, forcing and tables (``PrismSuperposition.at``), the stored rows as they are."""
+    planform response, forcing and tables (``PrismSuperposition.at``), the stored rows as they
+    are."""
 
     def extend(at) -> DiffusionResult:
         at = np.asarray(at, float)

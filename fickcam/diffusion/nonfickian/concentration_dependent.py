@@ -1,7 +1,7 @@
 """Concentration-dependent diffusion, D(c, T) = D(T) f(c/Mm_ref) (``sorption``;
 Crank 1975 ch. 9), on the FiPy slab (Sheet), (r, z) grid (Disc or annulus) and the 3-D
 cells of a Bar (Grid3D) or of a CamPlate or LinkBar (prisms of Delaunay-admissible
-planform cells), the latter cut at their mirror planes (``mirrored``).
+planform cells), the latter cut at their mirror planes (``symmetry_cuts``).
 
 One Arrhenius factor still multiplies every D, so the rescaled clock of ``clock`` stays
 exact: dc/dtau = div(D0 f(c) grad c) (Crank 1975 §7.2 with §9.1). Time and mesh are
@@ -15,7 +15,7 @@ jump across the half cell; its error, opposite in sign to the cells' own, made t
 observed order erratic (-0.6 to 7.0 on the sheet, k = 1, 2) and skins 10x less accurate; with
 the mean every face is second order (2.00, tests/test_sorption_nonlinear_solid.py).
 
-FiPy assembles the mesh's unit operator once (``direct.discretise``); ``Faces`` takes it
+FiPy assembles the mesh's unit operator once (``finite_volume.discretise``); ``Faces`` takes it
 apart by face, and the operator of any face coefficient f(c_face) follows from it exactly
 as FiPy's ``DiffusionTerm(coeff=FaceVariable)`` would build it (a test sweeps FiPy itself
 and agrees to round-off), without FiPy's per-sweep assembly (about 20 ms a sweep).
@@ -30,7 +30,7 @@ absorbing, accuracy 1e-2, 4 968 cells) 20.3 CPU s against 27.6 with exact solves
 old state, the same means to 1.6e-9 of Mm (benchmarks/dc_bar.py sweeps; its profile
 showed the triangular solves of the lagged factors at 60-75 % of the CPU). The steps are
 those of the direct models (geometric, restarting at every change), run twice for the
-Richardson pair (``direct``).
+Richardson pair (``finite_volume``).
 """
 from __future__ import annotations
 
@@ -86,7 +86,7 @@ def spread(law, exposure, times) -> float:
 
 def skin_start(law, exposure) -> float | None:
     """When the surface may first dry to a skin (s), or None if it never does: the sample
-    (``clock.sample_times``) before the first one whose surface moisture has a D below the
+    (``exposure.sample_times``) before the first one whose surface moisture has a D below the
     largest D met before (initial moisture, earlier surface values). From then on the part
     has a skin where the whole drop of c crosses a layer sqrt(D_min t) deep (desorption when
     D rises with c, Crank 1975 §9.3-9.4, absorption when it falls); before it, none."""
@@ -205,7 +205,8 @@ def _skin_sizing(planner, slow_d, fast_d, accuracy, times, start, margin, wet_ma
 
 
 def solve_nonlinear(geometry, diffusivity, law, exposure, times, chosen, *,
-                    surface_layer_depth=LAYER_DEPTH, store_fields=False, part="") -> DiffusionResult:
+                    surface_layer_depth=LAYER_DEPTH, store_fields=False,
+                    part="") -> DiffusionResult:
     """Mean and contact-layer moisture (weight %) at ``times`` (s): the Richardson pair of
     swept backward-Euler marches (module docstring). ``chosen`` was planned with
     ``fastest(...)``."""
@@ -229,7 +230,7 @@ def solve_nonlinear(geometry, diffusivity, law, exposure, times, chosen, *,
     if store_fields:
         result.fields = combine(coarse.fields, fine.fields)
         result.cell_coordinates = weights.coordinates
-    else:  # the limit search's extra times, read between the steps (``dense``)
+    else:  # the limit search's extra times, read between the steps (``dense_output``)
         result.extend = Extension(
             result, [StepRecord.of(plans[0], coarse, fine, scales, exposure)],
             lambda values, _: (values[0][:, 0], values[0][:, 1]), swing(exposure, times) or 1.0,
@@ -250,7 +251,7 @@ class Faces:
     """FiPy's unit operator taken apart by face: the interior faces (cells i < j, their
     transmissibility area/distance), each cell's exposed-face transmissibility, volumes.
     FiPy builds DiffusionTerm(coeff) from exactly these, times the coefficient at the face
-    (``discretisation.assemble``), so the operator of any face coefficient (here the mean
+    (``fipy_backend.assemble``), so the operator of any face coefficient (here the mean
     of f between the face's two sides) follows without re-assembly. The CSR pattern of
     that operator (``indptr``, ``indices``; ``order`` takes the values [upper, lower,
     diagonal] to it) is fixed, so a sweep only fills its values."""
@@ -294,7 +295,7 @@ def sweep_march(faces: Faces, weights, law, top, steps, initial, keep_fields, pa
                 columns=()) -> History:
     """Backward Euler in scaled time, each step swept to convergence (module docstring).
     The history's ``track``: the mean, the layer and the weighted sums of ``columns`` (cell
-    weight vectors) at every node (``dense``)."""
+    weight vectors) at every node (``dense_output``)."""
     c = np.full(faces.volumes.size, float(initial))
     want = {int(k) for k in steps.outputs}
     record = {0: c.copy()} if 0 in want else {}

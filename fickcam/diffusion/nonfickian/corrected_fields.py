@@ -1,11 +1,11 @@
-"""Stored fields of the corrected product (``defect``): each coarse 3-D cell's own value
+"""Stored fields of the corrected product (``corrected_product``): each coarse 3-D cell's own value
 corrected as the mean and the layer are, cell by cell.
 
 For Fick on a prism mesh (planform cells i x z widths k, a tensor product) the discrete
 field is the product of the discrete sheet on the z widths and the discrete planform,
 U_3d(i, k) = S_h(k) P_h(i) / (g - c0) (Crank 1975 §4.3, eq. 4.51 pointwise; U = g - c,
 the unaccomplished uptake), so the same swap of each coarse factor for its reference
-(``defectparts.corrected``) applies to every cell:
+(``corrected_pieces.corrected``) applies to every cell:
 
     U(i, k) = U_3d(i, k) [S_ref(z_k) / S_h(k)] [P_ref(x_i) / P_h(i)],
 
@@ -13,7 +13,7 @@ a ratio 1 where the coarse U is within round-off of zero. With constant D this i
 fine sheet x fine planform at the cell's point, whatever the 3-D mesh.
 
 Point values, not cell averages: on the admissible cells the finite-volume value of a
-cell approximates u at its circumcentre (``cellmoments``: Eymard, Gallouet & Herbin 2000
+cell approximates u at its circumcentre (``cell_moments``: Eymard, Gallouet & Herbin 2000
 §9), O(h) from its centroid where the cells are graded, so a cell average of the
 reference (an area overlap) would not be the quantity P_h(i) approximates and the ratio
 would carry an O(h) error; the stored ``cell_coordinates`` are these points too. The
@@ -50,7 +50,7 @@ def reading(tess, points: np.ndarray, surface: bool = True) -> sparse.csr_matrix
     all takes its nearest cell's value. Second order for a smooth field. Measured on the
     6 x 4 x 2 mm bar's section (Fickian planform of 902 cells read at the 3-D mesh's 516):
     error 2.2e-2 of the swing at tau* = 0.01, against 6.8e-2 by the nearest cell's value
-    plus its least-squares gradient (``cellmoments.gradient_matrix``)."""
+    plus its least-squares gradient (``cell_moments.gradient_matrix``)."""
     nodes, cell = tess.centres, np.arange(tess.cells)
     if surface:
         boundary = exposed_points(tess)
@@ -100,7 +100,8 @@ def sheet_at(z_sheet: np.ndarray, unaccomplished: np.ndarray, z: np.ndarray,
 
 @dataclass(frozen=True)
 class References:
-    """The references' U at the cell points of a 3-D mesh (``defectparts.PrismCells``): the fine
+    """The references' U at the cell points of a 3-D mesh (``corrected_pieces.PrismCells``): the
+    fine
     sheet's at its z centres (times, z widths), the finest planform's and the one refined
     once less at its planform cells (times, cells). The field takes the finest planform
     alone: the Richardson combination f + (f - c) / 3 the mean takes (``defect.
@@ -115,7 +116,7 @@ class References:
     @classmethod
     def of(cls, cells, sheet, planform, surface: np.ndarray, thickness: float):
         """``sheet``: a ``DiffusionResult`` with fields; ``planform``: the reference
-        ``defectparts.CombinedMarch`` with fields, ``grid`` and ``coarser``."""
+        ``corrected_pieces.CombinedMarch`` with fields, ``grid`` and ``coarser``."""
         g = surface[:, None]
         z_nodes = np.concatenate([[0.0], np.cumsum(cells.z)]) * thickness
         z_centres = 0.5 * (z_nodes[1:] + z_nodes[:-1])
@@ -128,8 +129,9 @@ class References:
 
 def corrected_fields(level, cells, sheet_ref: np.ndarray, planform_ref: np.ndarray,
                      surface: np.ndarray) -> np.ndarray:
-    """(times, cells) c of a 3-D mesh's cells (``defectparts.MeshMarches`` marched with its fields
-    kept on ``cells``, ``defectparts.PrismCells``) corrected by the sheet's and the planform's
+    """(times, cells) c of a 3-D mesh's cells (``corrected_pieces.MeshMarches`` marched with its
+    fields
+    kept on ``cells``, ``corrected_pieces.PrismCells``) corrected by the sheet's and the planform's
     reference U at its points (``References``); ``surface``: g at the outputs (module
     docstring)."""
     g = surface[:, None]
@@ -186,21 +188,23 @@ class FieldErrors:
 
 
 def field_errors(run) -> tuple[np.ndarray, FieldErrors]:
-    """(fields, errors) of ``run`` (``defect.CorrectedMeshes`` on nested meshes, ``store_fields``):
+    """(fields, errors) of ``run`` (``corrected_product.CorrectedMeshes`` on nested meshes,
+    ``store_fields``):
     the finest nested mesh's cells corrected (``corrected_fields``) and
     what is known of their error, relative to the swing: the largest correction (the
     coarse cells' own error, indicated); the fine sheet's estimate (its mean's; its cells'
     values read at the z centres erred 2.7e-3 where it estimated 2.2e-3, Fickian 4 x 3 x 2
     mm plate at 3e-2, tau* = 0.01); the finest planform's error at second order, the
     change of the corrected field from the planform refined once less x 1 / (R^2 - 1)
-    (the weight ``defectplanform.refined_reference`` took, R the ratio of the two); and the change
+    (the weight ``corrected_product.refined_reference`` took, R the ratio of the two); and the
+    change
     of the corrected field from the next coarser nested mesh at its cell points. That change is
     read on Q - 1 (``unseparated_share``: near 0, smooth, where U itself is too steep on
     these coarse cells to be carried between the meshes by ``restricted``: the exact
     Fickian U so carried from the 4 x 3 x 2 mm plate's 1 200 cells to its 150 erred 0.11
     of the swing at tau* = 0.01, by ``restricted`` with the outline's nodes), times the
     references' product there; at order 1 the
-    finer field's error is about that change (``defect.ORDER_ONE``). Their sum, the
+    finer field's error is about that change (``corrected_product.ORDER_ONE``). Their sum, the
     fields' error indicated, was 2.2 (plate) and 1.4 (6 x 4 x 2 mm bar) x the Fickian
     fields' largest error at 3e-2 (``benchmarks/dc_corrected_fields.py fickian``). None of
     it is in the result's estimate, which is the mean's and the layer's."""

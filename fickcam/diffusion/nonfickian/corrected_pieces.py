@@ -1,10 +1,11 @@
-"""The pieces ``defect`` combines, each a swept backward-Euler march of the D(c) equation
-(``nonlinear``) on its own grid, Richardson-combined in time: the coarse 3-D prisms
+"""The pieces ``corrected_product`` combines, each a swept backward-Euler march of the D(c)
+equation
+(``concentration_dependent``) on its own grid, Richardson-combined in time: the coarse 3-D prisms
 (``PrismCells``, nested refinement by 2), their z widths as a sheet (``half_slab``), their
 planform alone (``planform_disc``), the fine sheet reference (``sheet_reference``), and the
 product that swaps each coarse factor's unaccomplished uptake for its reference's
 (``corrected``; Crank 1975 §4.3, eq. 4.51 for Fick; Stetter 1978 for the correction).
-Every march records its mean and layer at each step (``dense.StepRecord``: ``extend``).
+Every march records its mean and layer at each step (``dense_output.StepRecord``: ``extend``).
 """
 from __future__ import annotations
 
@@ -35,7 +36,7 @@ SHEET_SHARE = 0.1          # the fine sheet's accuracy: this share of the reques
 #   loosened at loose accuracies: on the demo cam (k = 2) at 1e-2 the sheet takes 1.2 CPU s
 #   (74 cells, estimate 8.6e-4) of the run's 28-30; at 0.25 0.5 s (2.0e-3), and the
 #   1.2e-3 it would add to the estimate is what lets the planform stop at 2x
-#   (``defect.refined_reference``)
+#   (``corrected_product.refined_reference``)
 
 
 @dataclass(frozen=True)
@@ -47,10 +48,11 @@ class CombinedMarch:
     fields: np.ndarray | None = None
     steps: int = 0
     pair: float = 0.0   # largest |fine - coarse| of the mean (time error indicator)
-    track: StepRecord | None = None   # (mean, layer) at every step (``dense``: ``extend``)
-    grid: object = None   # a planform march's cells (``prism.Tessellation``: ``defectfields``)
+    track: StepRecord | None = None   # (mean, layer) at every step (``dense_output``: ``extend``)
+    # a planform march's cells (``admissible.Tessellation``: ``corrected_fields``)
+    grid: object = None
     coarser: tuple | None = None   # the planform reference's (CombinedMarch refined once less, the
-    #                               Richardson weight on the change): ``defectfields``
+    #                               Richardson weight on the change): ``corrected_fields``
 
 
 def as_prism(geometry, diffusivity):
@@ -58,7 +60,7 @@ def as_prism(geometry, diffusivity):
     its thickness the axis of the smallest size^2 / D (the sheet factor, measured on the
     finest grid, carries the fastest direction), D permuted to (in-plane x, y, thickness);
     ``faces_layer``: the Bar's contact layer is within the depth of any of its six faces
-    (``mirrored.octant``), so its two faces count too. A CamPlate or LinkBar as it is."""
+    (``symmetry_cuts.octant``), so its two faces count too. A CamPlate or LinkBar as it is."""
     if not isinstance(geometry, Bar):
         return geometry, diffusivity, False
     order = section_axes(geometry, diffusivity)
@@ -110,8 +112,8 @@ def planform_disc(geometry, d, tess, depth: float):
     """(Discretisation, corrected weights): the planform alone (a prism of infinite
     thickness) on the admissible cells ``tess``, one layer of the mirrored prisms with its
     exposed face's coupling 8 V (half-layer height 1/4 scaled) taken out of the boundary
-    vector (as ``planmodes.planform_operator``); its mean and layer weights the plate's
-    (cell volumes, band shares: the same discrete product), and ``cellmoments``'
+    vector (as ``planform_modes.planform_operator``); its mean and layer weights the plate's
+    (cell volumes, band shares: the same discrete product), and ``cell_moments``'
     second-order (mean, layer) weights on u - g beside."""
     disc = prism(tess, geometry.thickness, np.array([0.5 * geometry.thickness]),
                  band_share(tess, depth), d, mid_plane=True)
@@ -121,7 +123,7 @@ def planform_disc(geometry, d, tess, depth: float):
 
 @dataclass(frozen=True)
 class PrismCells:
-    """A 3-D mesh of the mirrored prisms: admissible planform cells (``prism.Tessellation``)
+    """A 3-D mesh of the mirrored prisms: admissible planform cells (``admissible.Tessellation``)
     x z widths (scaled, exposed face to mid-plane)."""
 
     tess: object
@@ -129,13 +131,13 @@ class PrismCells:
 
     @classmethod
     def of(cls, geometry, d, chosen: Plan) -> "PrismCells":
-        """The graded cells of a plan (``mirrored``'s prisms)."""
+        """The graded cells of a plan (``symmetry_cuts``'s prisms)."""
         return cls(sizing.planform_cells(geometry, chosen.finest, chosen.growth, stretch_of(d)),
                    half(sizing.prism_widths(chosen.finest, chosen.growth)))
 
     def refined(self, planform: int = 1, z: int = 1) -> "PrismCells":
         """Nested refinement by 2, ``planform`` times of every planform edge
-        (``prism.refine``: 4 x the cells each) and ``z`` times of every z width (2 x each);
+        (``admissible.refine``: 4 x the cells each) and ``z`` times of every z width (2 x each);
         by default both once: 8 x the cells."""
         tess, widths = self.tess, self.z
         for _ in range(planform):
@@ -150,7 +152,7 @@ class PrismCells:
 
 
 def cross(p: int, z: int) -> tuple[list, list]:
-    """The combination around mesh (p, z) (``defect.combination``): its base (p-1, z-1)
+    """The combination around mesh (p, z) (``corrected_product.combination``): its base (p-1, z-1)
     refined along z once and twice, and along the planform once and twice."""
     return ([(p - 1, z - 1), (p - 1, z), (p - 1, z + 1)],
             [(p - 1, z - 1), (p, z - 1), (p + 1, z - 1)])
@@ -168,7 +170,7 @@ def combination(lattice: list) -> tuple[list, list] | None:
 
 def richardson_march(disc, law, top, exposure, times, scales, per_doubling, keep, part,
                      columns=()) -> CombinedMarch:
-    """The swept backward-Euler march (``nonlinear``) on the plan's steps and on them
+    """The swept backward-Euler march (``concentration_dependent``) on the plan's steps and on them
     bisected, combined 2 fine - coarse; its track: (mean, layer, ``columns``' sums)."""
     faces = Faces.of(disc)
     plans = [step_plan(exposure, times, scales, per_doubling, bisect) for bisect in (False, True)]
@@ -189,11 +191,13 @@ def unaccomplished_ratio(reference: np.ndarray, coarse: np.ndarray, floor: float
     return np.where(small, 1.0, reference / np.where(small, 1.0, coarse))
 
 
-def corrected(plate: CombinedMarch, sheet: tuple, planform: tuple, surface: np.ndarray, union=None):
+def corrected(plate: CombinedMarch, sheet: tuple, planform: tuple, surface: np.ndarray,
+              union=None):
     """(mean, layer): the plate's U = g - c times the ratio of the fine reference's U to the
     coarse grid's, for the sheet (the layer spans the thickness) and for the planform
     (its mean, its band for the layer). A ratio is 1 where the coarse grid's U is within
-    round-off of zero. ``sheet``, ``planform``: (coarse CombinedMarch, fine reference CombinedMarch).
+    round-off of zero. ``sheet``, ``planform``: (coarse CombinedMarch, fine reference
+    CombinedMarch).
     ``union`` (a Bar's layer, ``MeshMarches.union``): (beta, zeta), the planform band's and the
     sheet layer's volume fractions; the layer is then the band through the thickness or
     the sheet's layer over the planform, whose U for the product of Fick (Crank 1975
@@ -220,7 +224,7 @@ def corrected(plate: CombinedMarch, sheet: tuple, planform: tuple, surface: np.n
 
 def steps_for(accuracy: float) -> int:
     """Steps per doubling for the time error TIME_ERROR / m^2 at half the accuracy
-    (``direct.plan_direct``)."""
+    (``finite_volume.plan_direct``)."""
     return max(MIN_STEPS_PER_DOUBLING, math.ceil(math.sqrt(TIME_ERROR / (0.5 * accuracy))))
 
 
@@ -264,7 +268,7 @@ class SharedInputs:
     per_doubling: int
     part: str
     faces_layer: bool = False   # the layer includes the two faces (a Bar's: ``as_prism``)
-    keep_fields: bool = False   # the planform marches keep their fields (``defectfields``)
+    keep_fields: bool = False   # the planform marches keep their fields (``corrected_fields``)
 
     @classmethod
     def of(cls, geometry, diffusivity, law, exposure, times, depth, per_doubling, part,
@@ -281,7 +285,7 @@ class SharedInputs:
                                 self.scales, self.per_doubling, keep, self.part, columns)
 
     def planform(self, finest: float, growth: float) -> tuple[CombinedMarch, CombinedMarch, int]:
-        """(the plate's weights, ``cellmoments``' weights, cells) of the planform's march on
+        """(the plate's weights, ``cell_moments``' weights, cells) of the planform's march on
         the graded cells of (``finest``, ``growth``)."""
         return self.planform_on(sizing.planform_cells(self.geometry, finest, growth,
                                                       stretch_of(self.d)))
@@ -311,14 +315,15 @@ class MeshMarches:
     plate: CombinedMarch
     slab: CombinedMarch
     planform: CombinedMarch
-    moments: CombinedMarch   # the same march read with ``cellmoments``' weights
+    moments: CombinedMarch   # the same march read with ``cell_moments``' weights
     cells: int
     planform_cells: int
     coordinates: dict
     union: tuple | None = None   # (beta, zeta) of a Bar's layer (``corrected``)
 
 
-def three_d(setting: SharedInputs, chosen: Plan, keep: bool, cells: PrismCells | None = None) -> MeshMarches:
+def three_d(setting: SharedInputs, chosen: Plan, keep: bool,
+            cells: PrismCells | None = None) -> MeshMarches:
     """The marches of one 3-D mesh: ``cells``, or the graded cells of ``chosen``."""
     cells = cells or PrismCells.of(setting.geometry, setting.d, chosen)
     geometry = setting.geometry
@@ -328,7 +333,7 @@ def three_d(setting: SharedInputs, chosen: Plan, keep: bool, cells: PrismCells |
     if setting.faces_layer:   # a Bar: the band through the thickness or the faces' layer
         band = band_share(cells.tess, setting.depth)
         near = z_band(cells.z * geometry.thickness, setting.depth)
-        share = 1.0 - np.outer(1.0 - near, 1.0 - band).ravel()   # cell k c + i (``prism``)
+        share = 1.0 - np.outer(1.0 - near, 1.0 - band).ravel()   # cell k c + i (``admissible``)
         disc = replace(disc, layer_weights=normalised(disc.volumes * share))
         slab = replace(slab, layer_weights=normalised(slab.volumes * near))
         areas = disc.volumes[:cells.tess.cells]

@@ -1,5 +1,5 @@
 """Concentration-dependent D on a CamPlate, LinkBar or Bar (the prism of its rectangular
-section, ``defectparts.as_prism``): the D(c) sheet x D(c) planform product, corrected on
+section, ``corrected_pieces.as_prism``): the D(c) sheet x D(c) planform product, corrected on
 coarse mirrored 3-D prisms (defect correction; Stetter 1978, Numer. Math. 29:425-443;
 Böhmer, Hemker & Stetter 1984, Computing Suppl. 5:1-32).
 
@@ -20,7 +20,7 @@ for the mean, and for the contact layer with the planform's band in place of its
 (independent of the 3-D mesh); with D(c) the 3-D cells carry what does not separate,
 and the change of the result between nested 3-D meshes measures it (``PrismCells.refined``:
 every planform edge and z width halved, so the meshes form a refinement by exactly 2 and
-``gridcheck.three_levels`` can read an order from three of them; ``unseparated``).
+``grid_convergence.three_levels`` can read an order from three of them; ``unseparated``).
 Measured (``benchmarks/dc_defect_correction.py nested``, gap norm of the swing): on the
 4 x 3 x 2 mm plate with k = 2 the changes over the meshes 1x, 2x, 4x are 2.1e-3, 3.6e-4
 absorbing (order 2.5) and 1.1e-3, 4.4e-4 drying (order 1.3); on the demo cam (k = 2, 1x =
@@ -76,7 +76,8 @@ from ..problem.results import DiffusionResult, Plan
 from ..stepping.dense_output import Extension
 from .concentration_dependent import dries_to_a_skin, spread
 from .corrected_fields import stored
-from .corrected_pieces import (PrismCells, MeshMarches, CombinedMarch, SharedInputs, as_prism, bar_coordinates,
+from .corrected_pieces import (PrismCells, MeshMarches, CombinedMarch, SharedInputs, as_prism,
+                               bar_coordinates,
                                combination, corrected, cross, level_plan, sheet_reference,
                                steps_for, three_d)
 
@@ -86,7 +87,7 @@ MESH_LEVELS = (4.0, 0.5)   # accuracies of the coarsest 3-D plan (then refined b
 #                            starts from
 NESTED_CELLS = 30_000      # the finest nested 3-D mesh tried (cells on half the thickness)
 CROSS_CELLS = 60_000       # the ``cross``'s largest (2 x the finest): half the solid cap
-#   (``calibration.MAX_CELLS``). The 60 x 8 x 4 mm link (k = 2, absorbing, 1e-3; 18 210 cells, its
+#   (``error_model.MAX_CELLS``). The 60 x 8 x 4 mm link (k = 2, absorbing, 1e-3; 18 210 cells, its
 #   cross 36 420): 6.4e-4 in 229 CPU s, where 32 000 left it "capped" at 1.3e-3 (72 s); the
 #   6 x 4 x 2 mm drying bar's cross has 30 608 (benchmarks/dc_bar.py, auto)
 BASE_PER_ACCURACY = 1.0 / 3e-3  # the coarsest 3-D plan's accuracy per requested accuracy,
@@ -106,7 +107,8 @@ MIN_Z_WIDTHS = 2           # z widths on the half thickness of the coarsest 3-D 
 #   2.0 plan (29 x 2): 5.9e-3 / 2.1e-3 = 2.9 (benchmarks/dc_defect_correction.py corrected
 #   plate-2-absorption 1e-2@4, @2)
 SKIN_ESTIMATE_MARGIN = 1.0  # on the two-mesh 3-D change of a drying part (``skin_margin``),
-#   the cells' margin (``nonlinear.SKIN_CELLS_MARGIN``). Set on the non-nested 1 and 0.5
+#   the cells' margin (``concentration_dependent.SKIN_CELLS_MARGIN``). Set on the non-nested 1 and
+# 0.5
 #   plans of the 4 x 3 x 2 mm plate drying at 1e-2 (benchmarks/dc_defect_correction.py
 #   skin-margin: estimate / distance to the stored 3-D runs 4.0 (k = 2) and 2.3 (k = 3),
 #   a safety of 2 needing 0.71). On nested meshes drying converges slower than absorbing
@@ -125,7 +127,7 @@ PLANFORM_CELLS = 60_000    # the finest planform tried
 
 
 def skin_margin(law, exposure, times) -> float:
-    """1 unless the surface dries to a skin (``nonlinear.dries_to_a_skin``); then
+    """1 unless the surface dries to a skin (``concentration_dependent.dries_to_a_skin``); then
     1 + SKIN_ESTIMATE_MARGIN (sqrt(max f / min f) - 1), as the cells' margin of
     ``nonlinear_plan``, on the change between two nested 3-D meshes (``unseparated``; three
     meshes measure their order and take no margin): drying converges at a lower order than
@@ -174,7 +176,8 @@ class CorrectedMeshes:
         """These meshes and ``top`` (halvings of the first) added where missing, ``top`` the
         finest (the last), its fields kept with ``store_fields``."""
         have = dict(zip(self.lattice, zip(self.marched, self.results, self.meshes)))
-        surface, reference = surface_of(self.setting), CombinedMarch(self.sheet.mean, self.sheet.surface)
+        surface, reference = surface_of(self.setting), CombinedMarch(self.sheet.mean,
+                                        self.sheet.surface)
         for key in [*keys, top]:
             if key not in have:
                 cells = self.meshes[0].refined(*key)
@@ -230,7 +233,7 @@ def corrected_levels(geometry, diffusivity, law, exposure, times, accuracy: floa
     first), on those plans' graded cells (not nested; ``benchmarks/dc_defect_correction.py
     plate-order``). ``base``: the coarsest nested plan's accuracy instead of ``base_plan``'s.
     The planform reference is refined from the ``MESH_LEVELS[-1]`` plan's graded planform.
-    ``store_fields`` keeps every mesh's fields and the references' (``defectfields``)."""
+    ``store_fields`` keeps every mesh's fields and the references' (``corrected_fields``)."""
     times = np.asarray(times, float)
     geometry, diffusivity, faces_layer = as_prism(geometry, diffusivity)
     setting = SharedInputs.of(geometry, diffusivity, law, exposure, times, surface_layer_depth,
@@ -324,8 +327,9 @@ def finest(results: list, lattice: list | None = None) -> tuple[tuple, list]:
     return tuple(values), checks
 
 
-def extension(run: CorrectedMeshes, result: DiffusionResult, accuracy: float, resolve) -> Extension:
-    """``result.extend`` (``dense``): the corrected product of every nested mesh read
+def extension(run: CorrectedMeshes, result: DiffusionResult, accuracy: float,
+              resolve) -> Extension:
+    """``result.extend`` (``dense_output``): the corrected product of every nested mesh read
     between the marches' steps, combined as ``finest`` combines the solve's."""
     exposure, meshes = run.setting.exposure, run.marched
     tracks = [track for m in meshes for track in (m.plate.track, m.slab.track,
@@ -354,7 +358,7 @@ def solve_corrected(geometry, diffusivity, law, exposure, times, accuracy: float
     it: the finer meshes cost only a run that would otherwise miss its accuracy); plus the sheet's and the planform's
     estimates and the time error of the marches (``PAIR_TO_EXTRAPOLATED`` pair^2).
     ``store_fields``: the finest 3-D mesh's cells corrected cell by cell
-    (``defectfields.stored``; a Bar's in its own frame, ``bar_coordinates``)."""
+    (``corrected_fields.stored``; a Bar's in its own frame, ``bar_coordinates``)."""
     times = np.asarray(times, float)
     run = corrected_levels(geometry, diffusivity, law, exposure, times, accuracy,
                            surface_layer_depth=surface_layer_depth,
@@ -384,7 +388,7 @@ def solve_corrected(geometry, diffusivity, law, exposure, times, accuracy: float
         result.cell_coordinates = fine.coordinates
         if isinstance(geometry, Bar):
             result.cell_coordinates = bar_coordinates(geometry, diffusivity, fine.coordinates)
-    else:   # the limit search's extra times: read between the marches' steps (``dense``)
+    else:   # the limit search's extra times: read between the marches' steps (``dense_output``)
         result.extend = extension(run, result, accuracy, lambda both: solve_corrected(
             geometry, diffusivity, law, exposure, both, accuracy,
             surface_layer_depth=surface_layer_depth, part=part, reason=reason))
@@ -412,7 +416,8 @@ def plan_corrected(geometry, diffusivity, law, exposure, times, accuracy: float)
 
 def refined_reference(setting: SharedInputs, start: Plan, level: MeshMarches, sheet: CombinedMarch,
                       accuracy: float, scale, total=None):
-    """(planform reference CombinedMarch, estimate, planform cells, factor R): the graded planform of
+    """(planform reference CombinedMarch, estimate, planform cells, factor R): the graded planform
+    of
     the plan ``start`` refined by R in ``REFINE`` (finest and growth / R) until the estimate
     is ``PLANFORM_SHARE`` of the accuracy, or ``total(reference, estimate, cells, R)`` (the
     whole estimate of the solve with this reference: ``corrected_levels``) is within the
@@ -467,7 +472,8 @@ def gap(a, b, scale: float) -> float:
 
 def combined(pairs, mean_rule, layer_rule=None):
     """The last of ``pairs`` (marches with mean, layer and a ``StepRecord`` of the two, as
-    ``defect.CombinedMarch``) with its mean, layer and track ``mean_rule`` / ``layer_rule`` (pointwise
+    ``corrected_product.CombinedMarch``) with its mean, layer and track ``mean_rule`` /
+    ``layer_rule`` (pointwise
     in time: a Richardson or three-mesh combination) of ``pairs``' own."""
     layer_rule = layer_rule or mean_rule
     track = pairs[-1].track

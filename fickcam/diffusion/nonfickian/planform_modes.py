@@ -1,16 +1,16 @@
 """The modes of a CamPlate or LinkBar: the planform's spectrum, seen by the mean and the
 contact layer, times the exact through-thickness sheet modes, for the two-phase march
-(``langmuir``) where the plane model's superposed step responses do not apply.
+(``two_phase_modes``) where the plane model's superposed step responses do not apply.
 
 The part is a prism (planform x thickness), so in the scaled coordinates of
 ``discretisation`` its Laplacian separates (Crank 1975 §5.3; Carslaw & Jaeger 1959
 §1.16): modes psi_i(x, y) sin(k pi z/h), rates mu_i + (k pi)^2. The planform operator is
-FiPy's two-point-flux operator K_p on the Delaunay-admissible cells of ``prism``
-(``fvprism.planar``: the cells' sides as faces, their circumcentres as cell points; the
+FiPy's two-point-flux operator K_p on the Delaunay-admissible cells of ``admissible``
+(``prisms.planar``: the cells' sides as faces, their circumcentres as cell points; the
 in-plane part of a prism layer's operator to 1e-13, for a third of its cost). With
 M = diag(volumes) and S = M^-1/2 K_p M^-1/2 (symmetric positive definite), the mean and
 the layer are linear functionals w^T u of the cell values (weights corrected for where
-each cell value sits, ``cellmoments``: second order where the plain volume weights are
+each cell value sits, ``cell_moments``: second order where the plain volume weights are
 first order on graded cells), so any function of the planform decay they see,
 sum_i A_i f(mu_i) = w^T M^-1/2 f(S) v with v = M^1/2 1, is a bilinear form over S's
 spectrum. m steps of Lanczos started at v give its m-point quadrature: Ritz values
@@ -25,7 +25,7 @@ accurate. m doubles until the unit-step response at the ages read changes by les
 ``LANCZOS_SHARE`` of the tolerance (``lanczos_count``).
 
 The mesh is refined a posteriori (``refined_planform``): second order in the finest
-width w0 and growth g together (``layout``: error (w0/sqrt(t) + c g)^2), so the two-phase
+width w0 and growth g together (``sizing``: error (w0/sqrt(t) + c g)^2), so the two-phase
 histories on two meshes w0 and w0/r estimate the finer one's error as their difference /
 (r^2 - 1) (Richardson), and the next r follows from that estimate, until the planform's
 share of the accuracy is met or ``PLANFORM_CAP`` cells are reached. (The Fickian step
@@ -202,7 +202,7 @@ def lanczos_count(planform: Planform, ages, tolerance: float) -> tuple[int, floa
 
 def whole_at_start(spectrum):
     """The quadrature with the amplitudes of the mean and of the layer summing to 1 (the
-    part starts whole at its initial value): the corrected means (``cellmoments``) sum to
+    part starts whole at its initial value): the corrected means (``cell_moments``) sum to
     1 - sum grad u . (c - x) of a unit field that steps to 0 at the surface, the share of
     the edge cells between their circumcentres and the surface, which settles within the
     finest cells' time w0^2/D; it is given to the fastest quadrature node."""

@@ -2,7 +2,7 @@
 (slab, axisymmetric disc/annulus, solid bar and prisms of cam plates and links).
 
 The coupled system (Carter & Kibler 1978 eqs. 1-2, ``sorption``) on a mesh with
-FiPy's assembled operator (M = diag(volumes), K, f; ``discretisation.assemble``) is the
+FiPy's assembled operator (M = diag(volumes), K, f; ``fipy_backend.assemble``) is the
 block system
 
     [[M, 0], [0, M]] d/dt [n; N] = -[[K + gamma M, -beta M], [-gamma M, beta M]] [n; N] + [g f; 0],

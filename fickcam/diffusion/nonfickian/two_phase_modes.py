@@ -59,7 +59,7 @@ class Nodes:
 
 
 def march_nodes(law, diffusivity, exposure, times, tolerance) -> Nodes:
-    """Edges, ramp rows cut where Ms departs from linear (``forcing.linear_pieces``), outputs."""
+    """Edges, ramp rows cut where Ms departs from linear (``record.linear_pieces``), outputs."""
     clock = RescaledTime(diffusivity, exposure)
     edges = clock.edges
     pieces, interpolation = linear_pieces(exposure, clock, tolerance)
@@ -162,7 +162,7 @@ class ModeSource:
 
 
 def separable_source(geometry, d0, depth) -> ModeSource:
-    """Sheet, Bar, solid Disc: ``modes.product_modes`` and ``exact.step_response``."""
+    """Sheet, Bar, solid Disc: ``modes.product_modes`` and ``separable.step_response``."""
     return ModeSource(lambda counts: product_modes(geometry, d0, depth, counts),
                       lambda age: step_response(geometry, d0, age, depth), dimensions(geometry))
 

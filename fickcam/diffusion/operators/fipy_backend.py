@@ -33,8 +33,8 @@ import numpy as np
 from scipy import sparse
 
 
-def assemble(mesh, corrected: bool = False,
-             exposed: np.ndarray | None = None) -> tuple[np.ndarray, sparse.csr_matrix, np.ndarray]:
+def assemble(mesh, corrected: bool = False, exposed: np.ndarray | None = None
+             ) -> tuple[np.ndarray, sparse.csr_matrix, np.ndarray]:
     """(volumes, K, f) of dc/dt = laplacian(c) on a FiPy mesh.
 
     Parameters

@@ -1,9 +1,9 @@
-"""The P1 finite-element operator of the in-plane problem on a triangle mesh (``trimesh``).
+"""The P1 finite-element operator of the in-plane problem on a triangle mesh (``triangles``).
 
 Kept by measurement (issue 16; docs/architecture.md): FiPy's two-point flux between
 triangle centroids is not consistent on such a mesh (measured on a graded disc: relative
 uptake error ~0.08 g that does not fall with h0), and on the same mesh made
-Delaunay-admissible (``fvprism.planar``, circumcentre cell points) it is second order
+Delaunay-admissible (``prisms.planar``, circumcentre cell points) it is second order
 but 4-6x less accurate than P1 on 2.2x the unknowns: FiPy needs 11-50x P1's CPU time
 for the same accuracy on the demo cam and a link. The P1 Galerkin method is: stiffness
 by the cotangent formula K_jk = -(cot a_jk + cot b_jk) / 2 over the angles opposite edge jk (Duffin 1959;
@@ -12,7 +12,7 @@ scheme on the Voronoi cells, MacNeal 1953), consistent mass M_jk = |T| (1 + delt
 per triangle, the outline nodes held at the surface value. Its error after a step
 of the boundary value is O(h^2 / t) (Thomée 2006, Galerkin Finite Element
 Methods for Parabolic Problems, Theorem 3.1, non-smooth data), measured here as
-a relative uptake error ~ ``calibration.MESH_ERROR`` (h0 / sqrt(tau) + ``GROWTH_REACH`` g)^2
+a relative uptake error ~ ``error_model.MESH_ERROR`` (h0 / sqrt(tau) + ``GROWTH_REACH`` g)^2
 (0.6-1.1x the error on graded discs against Crank eq. 5.23, on the demo cam and a link
 against fine meshes). On a
 Delaunay mesh cot a + cot b >= 0, so K is an M-matrix (Xu & Zikatanov 1999,
@@ -107,7 +107,7 @@ def layer_weights(points: np.ndarray, triangles: np.ndarray, distance, depth: fl
 
 
 def plane_operator(mesh: Triangulation, part, layer_depth: float, d) -> Discretisation:
-    """P1 finite elements of the in-plane problem in scaled coordinates (``trimesh``), the
+    """P1 finite elements of the in-plane problem in scaled coordinates (``triangles``), the
     outline nodes held at the surface value; layer: the integrals of the hat functions
     over the band within ``layer_depth`` of the contact edge (at least the first row)."""
     depth = max(layer_depth, 1.0001 * float(mesh.contact_distance.min()))

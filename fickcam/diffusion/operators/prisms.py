@@ -1,4 +1,4 @@
-"""A planform's Delaunay-admissible cells (``prism.Tessellation``) as FiPy meshes with given
+"""A planform's Delaunay-admissible cells (``admissible.Tessellation``) as FiPy meshes with given
 cell points: the planform alone (a ``Mesh2D``, the in-plane operator of the plane model) or
 extruded through the thickness into prisms (a generic 3-D ``Mesh``)."""
 from __future__ import annotations
@@ -15,7 +15,7 @@ from .grids import normalised
 
 def prism(tess, thickness: float, z_widths: np.ndarray, layer_share: np.ndarray,
           d: tuple[float, float, float], mid_plane: bool = False) -> Discretisation:
-    """A planform's admissible cells (``prism.Tessellation``) extruded through the
+    """A planform's admissible cells (``admissible.Tessellation``) extruded through the
     thickness into FiPy prisms with the given z widths (m, from a face; summing to
     ``thickness``, or to half of it with ``mid_plane``: the top is then the mid-plane,
     a mirror, insulated; so are the tessellation's mirror lines).
@@ -25,7 +25,7 @@ def prism(tess, thickness: float, z_widths: np.ndarray, layer_share: np.ndarray,
     the sides, shorter vertex lists padded with -1 (masked, as FiPy's Gmsh reader
     does for mixed elements). The cell point is the planform cell's circumcentre at
     mid-layer, so every line between neighbouring cell points is normal to their
-    face (see ``prism``) and FiPy's two-point flux is consistent. Layer: cells
+    face (see ``admissible``) and FiPy's two-point flux is consistent. Layer: cells
     weighted by ``layer_share`` (fraction of the planform cell within the contact
     band), over the whole thickness, as in the plane model."""
     scale = np.array([axis_scale(thickness, d[i], d[2]) for i in range(2)]) / tess.stretch
@@ -45,11 +45,11 @@ def prism(tess, thickness: float, z_widths: np.ndarray, layer_share: np.ndarray,
 
 
 def planar(tess, scale: float, layer_share: np.ndarray) -> Discretisation:
-    """The in-plane operator of a planform's admissible cells (``prism.Tessellation``): a
+    """The in-plane operator of a planform's admissible cells (``admissible.Tessellation``): a
     FiPy ``Mesh2D`` whose faces are the cells' sides and whose cell points are the
     circumcentres, so the line between neighbouring cell points is normal to their side
     and FiPy's two-point flux is consistent (Eymard, Gallouet & Herbin 2000, Definition
-    9.1; see ``prism``). Coordinates: stretched planform x ``scale`` (scaled units).
+    9.1; see ``admissible``). Coordinates: stretched planform x ``scale`` (scaled units).
     Every outline side holds the surface value; the mirror lines are insulated.
     Layer: cells weighted by ``layer_share`` (fraction within the contact band)."""
     sides, cell_sides = sides_of_cells(tess)

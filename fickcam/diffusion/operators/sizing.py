@@ -1,19 +1,19 @@
 """Cells of the direct finite-volume models (slab, axisymmetric, solid) from the accuracy.
 
 Uniform: spacing h* = sqrt(0.5 a tau*_lo / (S n)) on each of the n axes, S =
-``calibration.space_error(tau*_lo)`` (err ~ S (h/L)^2 / tau*_lo per axis, measured on the
+``error_model.space_error(tau*_lo)`` (err ~ S (h/L)^2 / tau*_lo per axis, measured on the
 sheet against Crank eq. 4.18).
 
 Graded (``grading``): cells w0 wide at the exposed faces growing by (1 + g) per cell.
 Each graded axis adds S w0^2 / tau*_lo (the boundary layer after a change
 sees only the finest cells, Crank 1975 eq. 2.45) and GROWTH_ERROR g^2
-(``calibration.GROWTH_ERROR``); half the spatial budget goes to each. The graded
+(``error_model.GROWTH_ERROR``); half the spatial budget goes to each. The graded
 layout replaces the uniform one when it needs fewer cells. A prismatic part
 (CamPlate, LinkBar) is always graded: rows graded from its outline in the plane
-(``trimesh.triangulate`` with a growth), the same widths through the thickness, on
-Delaunay-admissible cells (``prism``). Above the model's cell cap the finest width
+(``triangles.triangulate`` with a growth), the same widths through the thickness, on
+Delaunay-admissible cells (``admissible``). Above the model's cell cap the finest width
 grows (and with it the estimate) until the cells fit. The cap counts the cells of the
-linear system (``unknowns``): a part solved cut at its mirror planes (``mirrored``: a
+linear system (``unknowns``): a part solved cut at its mirror planes (``symmetry_cuts``: a
 Bar's octant, a prism's half thickness) is counted on that cut part, ``halved`` naming
 the axes cut in two.
 """
@@ -59,7 +59,7 @@ class Layout:
 
 def unknowns(cells, halved=()) -> int:
     """Cells of the linear system on ``cells`` per axis: the axes in ``halved`` cut at
-    their mirror plane (``mirrored``: half of the count rounded up to even)."""
+    their mirror plane (``symmetry_cuts``: half of the count rounded up to even)."""
     return int(math.prod(-(-c // 2) if axis in halved else c for axis, c in enumerate(cells)))
 
 
@@ -171,7 +171,7 @@ def choose(geometry, extents, accuracy: float, t_lo: float, cap: int,
 
 @lru_cache(maxsize=8)
 def planform_cells(part, finest: float, growth: float, stretch: tuple[float, float]):
-    """Admissible cells (``prism.Tessellation``) of a CamPlate or LinkBar planform, rows
+    """Admissible cells (``admissible.Tessellation``) of a CamPlate or LinkBar planform, rows
     graded from the outline: ``finest`` and the spacing in stretched (scaled) units."""
     mesh = triangulate(part, finest * part.thickness, growth=growth, stretch=stretch)
     return admissible(mesh, part, stretch)
@@ -186,7 +186,7 @@ def prism_layout(geometry, d, accuracy: float, t_lo: float, cap: int,
                  space_error: float, halved=()) -> Layout:
     """Graded prism cells: planform rows and z widths with the same w0 and g (three
     graded directions in the error model); ``halved`` (1,): the solve keeps half the
-    thickness (``mirrored``), which the cap counts."""
+    thickness (``symmetry_cuts``), which the cap counts."""
     if not isinstance(geometry, (CamPlate, LinkBar)):
         raise TypeError(f"no prism layout for {type(geometry).__name__}")
     stretch = stretch_of(d)

@@ -1,5 +1,5 @@
 """Meshes of the ``solid`` parts cut at their planes of mirror symmetry, for the
-concentration-dependent model (``nonlinear``), whose cost grows with the cells.
+concentration-dependent model (``concentration_dependent``), whose cost grows with the cells.
 
 Every face of a Bar, CamPlate or LinkBar holds the same surface value and the initial
 moisture is uniform, so the moisture field is mirror-symmetric about the mid-plane
@@ -26,7 +26,7 @@ from .prisms import prism
 
 
 def halved_axes(geometry) -> tuple[int, ...]:
-    """The axes of the layout's cells (``sizing.Layout``) that ``mirrored`` cuts in two:
+    """The axes of the layout's cells (``sizing.Layout``) that ``symmetry_cuts`` cuts in two:
     x, y, z of a Bar (octant), z of a CamPlate or LinkBar (cells: planform, z)."""
     if isinstance(geometry, Bar):
         return (0, 1, 2)
@@ -45,7 +45,7 @@ def half(widths: np.ndarray) -> np.ndarray:
 def mirrored(geometry, d, cells, finest: float, growth: float,
              layer_depth: float) -> Discretisation:
     """The FiPy operator of the mirror part of a Bar (octant) or a CamPlate or LinkBar
-    (half thickness), graded from ``finest`` by ``growth`` (scaled units, ``layout``), or
+    (half thickness), graded from ``finest`` by ``growth`` (scaled units, ``sizing``), or
     a Bar on uniform ``cells`` (rounded up to even counts) when ``finest`` is 0."""
     if isinstance(geometry, (CamPlate, LinkBar)):
         tess = sizing.planform_cells(geometry, finest, growth, stretch_of(d))

@@ -1,4 +1,4 @@
-"""Delaunay-admissible cells of a planform, extruded into prisms by ``fvprism.prism``.
+"""Delaunay-admissible cells of a planform, extruded into prisms by ``prisms.prism``.
 
 FiPy's two-point flux (c_j - c_i) / |x_j - x_i| across a face is consistent only
 where the line between the two cell points is normal to the face. On triangles
@@ -197,7 +197,7 @@ def admissible(triangulation, part, stretch=(1.0, 1.0), mirrors=()) -> Tessellat
     """Admissible cells from the points and the outline (boundary edges) of a
     ``planform.Triangulation`` (physical m); ``stretch`` per axis (only the ratio matters).
     ``mirrors``: lines (axis, value in m) of mirror symmetry; only the side
-    x_axis >= value is kept and the cut is an insulated boundary (``fv.prism``)."""
+    x_axis >= value is kept and the cut is an insulated boundary (``grids.prism``)."""
     stretch = np.asarray(stretch, float) / max(stretch)
     points = np.asarray(triangulation.points, float) * stretch[None, :]
     triangles = np.asarray(triangulation.triangles)

@@ -1,7 +1,7 @@
 """Means of a planform's cell values over the part and over its contact band, corrected
 to second order for where each cell's value sits.
 
-On the admissible cells (``prism``) the finite-volume value of cell K approximates u at
+On the admissible cells (``admissible``) the finite-volume value of cell K approximates u at
 its circumcentre x_K, not its mean (Eymard, Gallouet & Herbin 2000, Handbook of
 Numerical Analysis VII, §9: the two-point flux is consistent because x_K is the
 circumcentre). Over a region R of the cell (the whole cell, or its part within the
@@ -42,7 +42,7 @@ def sublevel_moments(corners: np.ndarray, values: np.ndarray, level: float):
     """(area, first moment) of the part of each triangle (``corners`` (m, 3, 2)) where the
     linear interpolant of its vertex ``values`` (m, 3) is <= ``level``: with sorted values
     v1 <= v2 <= v3, the corner triangle at v1 cut at ``level`` (level <= v2), else the
-    whole minus the corner triangle at v3 (the cuts of ``prism.linear_sublevel_fraction``)."""
+    whole minus the corner triangle at v3 (the cuts of ``admissible.linear_sublevel_fraction``)."""
     order = np.argsort(values, axis=1)
     v = np.take_along_axis(values, order, axis=1)
     p = np.take_along_axis(corners, order[:, :, None], axis=1)

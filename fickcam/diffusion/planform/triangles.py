@@ -205,7 +205,7 @@ def triangulate(part, spacing: float, *, growth: float | None = None,
     """Triangles of a planform with edges of about ``spacing`` (m) along the outline.
 
     Without ``growth``: boundary samples plus a uniform hexagonal lattice. With ``growth``
-    g: rows graded from the outline, spacing (1 + g)^k ``spacing`` (``trimesh``), built in
+    g: rows graded from the outline, spacing (1 + g)^k ``spacing`` (``triangles``), built in
     the coordinates (stretch_x x, stretch_y y), where ``spacing`` is measured and the
     triangles are near-equilateral (the scaled coordinates of anisotropic diffusion,
     Crank 1975 eq. 2.13). Outlines without closed loops (a LinkBar whose bosses are

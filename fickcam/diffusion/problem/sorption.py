@@ -1,6 +1,7 @@
 """Sorption laws beyond Fick: the two-phase (Langmuir-type) model and a diffusivity
 that depends on the moisture already absorbed. Plain data and small functions of
-numpy arrays; no solver here (``langmuir`` / ``coupled`` / ``nonlinear`` solve).
+numpy arrays; no solver here (``two_phase_modes`` / ``two_phase_mesh`` /
+``concentration_dependent`` solve).
 
 - Two-phase: Carter & Kibler (1978), J. Compos. Mater. 12:118-131, eqs. 1-2: free water
   n diffuses, is bound at rate gamma and released at rate beta,

@@ -1,12 +1,12 @@
-"""``DiffusionResult.extend`` of the concentration-dependent marches (``nonlinear``,
-``defect``): the result at extra times inside its span read between the steps the solve
+"""``DiffusionResult.extend`` of the concentration-dependent marches (``concentration_dependent``,
+``corrected_product``): the result at extra times inside its span read between the steps the solve
 already took, instead of a new solve (the limit search's times).
 
 Every swept march records its mean and contact layer (and any other weighted sums asked)
 at every step, not only at the outputs; the Richardson pair's two marches share the coarse
 plan's nodes (the fine plan is the coarse one bisected), so 2 fine - coarse is known at
 every coarse node (``StepRecord``). The steps restart at FIRST_STEP after each exposure change
-and double every m steps (``timesteps``): in log(age), age = tau* - tau*_change, the nodes
+and double every m steps (``step_plans``): in log(age), age = tau* - tau*_change, the nodes
 are about evenly spaced (ln 2 / m apart), and the solution, ~sqrt(age) early and
 exponential late (Crank 1975 eq. 4.18, 4.17), is smooth there. A new time is read by the
 Lagrange cubic through the 4 nodes of its segment about it, in log(age), and by the
@@ -18,7 +18,8 @@ A segment is (change, next change]: the node at a change ends the segment before
 state there is the march's at t-, read with g(t-) as the outputs are), and no stencil
 reaches past it, so nothing is interpolated across an exposure change.
 
-The combination of several tracks (the corrected product of ``defect``) is done twice, on
+The combination of several tracks (the corrected product of ``corrected_product``) is done twice,
+on
 the cubic and on the quadratic values; the difference of the two results, largest over the
 mean and the layer / ``LAYER_TOLERANCE`` and relative to the swing, is the interpolation
 estimate of each new time. It is added to the result's estimate; where it exceeds
@@ -27,7 +28,7 @@ result is solved again at its times and the new ones together (logged). So is it
 new time is younger after its change than every stored output (``younger``), or where the
 plan of the stored and new times together has other cells (``fits``, set by
 ``dispatch.solve``: also a skin's cells, sized at the outputs from the skin's start): the cells are sized for the youngest output after a change
-(``timesteps.earliest_output``), and a younger new time reads a layer they do not resolve,
+(``step_plans.earliest_output``), and a younger new time reads a layer they do not resolve,
 which its interpolation estimate cannot see. Measured: ``benchmarks/dc_extend.py`` (README
 "Non-Fickian sorption"); tested: tests/test_sorption_extend.py.
 """
@@ -53,7 +54,7 @@ INTERPOLATION_SHARE = 1.0  # of the accuracy: a larger interpolation estimate re
 @dataclass(frozen=True)
 class StepRecord:
     """Weighted sums (columns: mean, layer, ...) of a Richardson-combined march at every
-    node of its coarse step plan (``direct.StepPlan``)."""
+    node of its coarse step plan (``finite_volume.StepPlan``)."""
 
     nodes: np.ndarray     # tau* of the nodes
     values: np.ndarray    # (nodes, columns)
@@ -129,7 +130,7 @@ class Extension:
 
     def younger(self, times) -> bool:
         """Whether ``times`` have an output younger after its change than the stored ones
-        (``timesteps.earliest_output``, the plans' t_lo: every plan's cells would change)."""
+        (``step_plans.earliest_output``, the plans' t_lo: every plan's cells would change)."""
         track = self.tracks[0]
         return bool(earliest_output(track.changes, track.tau_star(times))
                     < earliest_output(track.changes, track.tau_star(self.result.times)))

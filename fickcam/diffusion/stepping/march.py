@@ -123,7 +123,8 @@ class History:
     fields: np.ndarray | None
     steps: int
     factorisations: int
-    track: np.ndarray | None = None  # swept marches: weighted sums at every node (``dense``)
+    # swept marches: weighted sums at every node (``dense_output``)
+    track: np.ndarray | None = None
 
 
 def march(disc: Discretisation, nodes: np.ndarray, surface_values: np.ndarray,

@@ -1,6 +1,6 @@
 """The unit-step response of an operator in scaled time (Richardson-extrapolated backward
 Euler on geometric steps), interpolated between its nodes, and its blend with a
-short-time expansion (``shorttime``) for the plane model."""
+short-time expansion (``short_time``) for the plane model."""
 from __future__ import annotations
 
 import logging
