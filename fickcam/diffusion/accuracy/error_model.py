@@ -12,7 +12,7 @@ Measured (upper ends of the measured ranges, so estimates err on the safe side):
   few %): the factor rises from 0.0055 at tau*_lo = 1e-3 to 0.057 near 0.18 (the
   slowest mode's error peaks there) and falls as exp(-pi^2 tau*) after. The old single
   constant 1.4e-2 (its value near 1e-2) made late first outputs miss the accuracy by
-  2-2.6x (issue 11). (tests/test_diffusion_convergence.py.)
+  2-2.6x. (tests/test_diffusion_convergence.py.)
 - ``TIME_ERROR``: Richardson-extrapolated backward Euler on geometric steps with m steps
   per doubling: error of the mean ~ TIME_ERROR / m^2, the largest over one output at
   tau* = 1e-3-2 with no other output among the steps (outputs add nodes and only shrink

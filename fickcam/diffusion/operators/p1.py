@@ -1,6 +1,6 @@
 """The P1 finite-element operator of the in-plane problem on a triangle mesh (``triangles``).
 
-Kept by measurement (issue 16; docs/architecture.md): FiPy's two-point flux between
+Kept by measurement (docs/architecture.md, "The in-plane operator"): FiPy's two-point flux between
 triangle centroids is not consistent on such a mesh (measured on a graded disc: relative
 uptake error ~0.08 g that does not fall with h0), and on the same mesh made
 Delaunay-admissible (``prisms.planar``, circumcentre cell points) it is second order
