@@ -2,7 +2,16 @@
 whether its second-order Richardson extrapolation may be taken (Roache 1998,
 Verification and Validation in Computational Science and Engineering, ch. 5; Celik et
 al. 2008, J. Fluids Eng. 130:078001). Used on the D(c) planform of ``corrected_product`` and on its
-nested 3-D meshes."""
+nested 3-D meshes.
+
+References
+----------
+- Roache, P. J. (1998). Verification and Validation in Computational Science and Engineering.
+  Albuquerque: Hermosa Publishers.
+- Celik, I. B., Ghia, U., Roache, P. J., Freitas, C. J., Coleman, H. & Raad, P. E. (2008).
+  Procedure for estimation and reporting of uncertainty due to discretization in CFD
+  applications. Journal of Fluids Engineering 130(7):078001. doi:10.1115/1.2960953
+"""
 from __future__ import annotations
 
 import numpy as np

@@ -17,6 +17,12 @@ The product modes are lumped into narrow bins of rate (summed amplitudes at the 
 rate); a step of the surface value gets the transient of what was left out or merged back
 from the closed-form step response (``step_corrections``), so steps stay exact. (These
 were the Fickian record march's modes before the tabulated sum replaced it.)
+
+References
+----------
+- Crank, J. (1975). The Mathematics of Diffusion, 2nd ed. Oxford: Clarendon Press.
+- Carslaw, H. S. & Jaeger, J. C. (1959). Conduction of Heat in Solids, 2nd ed. Oxford:
+  Clarendon Press.
 """
 from __future__ import annotations
 

@@ -22,6 +22,12 @@ Every fraction here is (C - C0) / (Cs - C0): 0 before the step, 1 at
 saturation. The unaccomplished fraction 1 - F of a product region multiplies
 (Crank 1975 §5.3 / Carslaw & Jaeger 1959 §1.16, product solutions), pointwise
 and for means over product sub-regions.
+
+References
+----------
+- Crank, J. (1975). The Mathematics of Diffusion, 2nd ed. Oxford: Clarendon Press.
+- Carslaw, H. S. & Jaeger, J. C. (1959). Conduction of Heat in Solids, 2nd ed. Oxford:
+  Clarendon Press.
 """
 from __future__ import annotations
 

@@ -24,6 +24,12 @@ closed form (sum 8/(k pi)^2 = 1) and only the O(1/(D lambda_k)) remainder is
 summed over modes, so the truncation error falls as 1/N^3 (N modes).
 
 numpy only; imports nothing else from fickcam.
+
+References
+----------
+- Carter, H. G. & Kibler, K. G. (1978). Langmuir-type model for anomalous moisture diffusion
+  in composite resins. Journal of Composite Materials 12(2):118-131.
+  doi:10.1177/002199837801200201
 """
 from __future__ import annotations
 

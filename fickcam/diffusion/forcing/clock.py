@@ -3,6 +3,10 @@ so with tau(t) = integral_0^t a(T(s)) ds Fick's law dc/dt = div(D(T) grad c) bec
 dc/dtau = div(D0 grad c) with a constant operator (Crank 1975 §7.2, eq. 7.5: a
 diffusion coefficient depending on time only). Held segments have a constant factor
 (tau exact); ramps are integrated by Gauss-Legendre (the integrand is analytic).
+
+References
+----------
+- Crank, J. (1975). The Mathematics of Diffusion, 2nd ed. Oxford: Clarendon Press.
 """
 from __future__ import annotations
 

@@ -19,6 +19,10 @@ sizes that mesh and the time steps with the error model the blend reports, so
 measured against the exact product of three sheets (rectangle), the finite
 cylinder, the annulus series (plate with a bore) and space-extrapolated fine
 meshes (the demo cam) in tests/test_diffusion_plane.py.
+
+References
+----------
+- Crank, J. (1975). The Mathematics of Diffusion, 2nd ed. Oxford: Clarendon Press.
 """
 from __future__ import annotations
 

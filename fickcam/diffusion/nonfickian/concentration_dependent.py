@@ -31,6 +31,10 @@ old state, the same means to 1.6e-9 of Mm (benchmarks/dc_bar.py sweeps; its prof
 showed the triangular solves of the lagged factors at 60-75 % of the CPU). The steps are
 those of the direct models (geometric, restarting at every change), run twice for the
 Richardson pair (``finite_volume``).
+
+References
+----------
+- Crank, J. (1975). The Mathematics of Diffusion, 2nd ed. Oxford: Clarendon Press.
 """
 from __future__ import annotations
 

@@ -22,6 +22,12 @@ interpolation between its cell centres and the surface value at the face (its ce
 not the 3-D mesh's z widths), the planform reference (a different graded planform, not
 nested) by linear interpolation on the Delaunay triangles of its cell points and the
 exposed outline (``reading``).
+
+References
+----------
+- Crank, J. (1975). The Mathematics of Diffusion, 2nd ed. Oxford: Clarendon Press.
+- Eymard, R., Gallouët, T. & Herbin, R. (2000). Finite volume methods. Handbook of Numerical
+  Analysis VII:713-1020. doi:10.1016/S1570-8659(00)07005-8
 """
 from __future__ import annotations
 

@@ -6,6 +6,12 @@ planform alone (``planform_disc``), the fine sheet reference (``sheet_reference`
 product that swaps each coarse factor's unaccomplished uptake for its reference's
 (``corrected``; Crank 1975 §4.3, eq. 4.51 for Fick; Stetter 1978 for the correction).
 Every march records its mean and layer at each step (``dense_output.StepRecord``: ``extend``).
+
+References
+----------
+- Crank, J. (1975). The Mathematics of Diffusion, 2nd ed. Oxford: Clarendon Press.
+- Stetter, H. J. (1978). The defect correction principle and discretization methods.
+  Numerische Mathematik 29:425-443. doi:10.1007/BF01432879
 """
 from __future__ import annotations
 

@@ -57,6 +57,18 @@ finest width and growth / R), Richardson-extrapolated (second order, then three 
 by finite differences of physical problems involving differential equations", Phil. Trans.
 R. Soc. A 210:307-357, doi:10.1098/rsta.1911.0009), and the norm every estimate of the
 corrected product is measured in (``gap``).
+
+References
+----------
+- Crank, J. (1975). The Mathematics of Diffusion, 2nd ed. Oxford: Clarendon Press.
+- Stetter, H. J. (1978). The defect correction principle and discretization methods.
+  Numerische Mathematik 29:425-443. doi:10.1007/BF01432879
+- Böhmer, K., Hemker, P. W. & Stetter, H. J. (1984). The defect correction approach. Computing
+  Supplementum 5:1-32. doi:10.1007/978-3-7091-7023-6_1
+- Richardson, L. F. (1911). The approximate arithmetical solution by finite differences of
+  physical problems involving differential equations, with an application to the stresses in a
+  masonry dam. Philosophical Transactions of the Royal Society A 210:307-357.
+  doi:10.1098/rsta.1911.0009
 """
 from __future__ import annotations
 

@@ -38,6 +38,19 @@ next mesh is the one of the fewest cells predicted to meet the share: on the dem
 through its daily record the contact layer's error is mostly w0's, the mean's both
 (opposite signs), and refining them together spent the cap on a finer g than either
 needed (README, "Non-Fickian sorption").
+
+References
+----------
+- Crank, J. (1975). The Mathematics of Diffusion, 2nd ed. Oxford: Clarendon Press.
+- Carslaw, H. S. & Jaeger, J. C. (1959). Conduction of Heat in Solids, 2nd ed. Oxford:
+  Clarendon Press.
+- Golub, G. H. & Meurant, G. (2010). Matrices, Moments and Quadrature with Applications.
+  Princeton University Press.
+- van den Eshof, J. & Hochbruck, M. (2006). Preconditioning Lanczos approximations to the
+  matrix exponential. SIAM Journal on Scientific Computing 27(4):1438-1457.
+  doi:10.1137/040605461
+- Moret, I. & Novati, P. (2004). RD-rational approximations of the matrix exponential. BIT
+  Numerical Mathematics 44(3):595-615. doi:10.1023/B:BITN.0000046805.27551.3b
 """
 from __future__ import annotations
 

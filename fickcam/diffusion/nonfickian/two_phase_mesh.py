@@ -15,6 +15,12 @@ the Fickian step of ``march.ThetaStepper`` with 1/h_eff = 1/h + gamma/(1 + beta 
 every step reuses its factorisations (one per distinct h_eff), banded solves and residual
 checks. Backward Euler is L-stable and keeps n, N >= 0 for any gamma, beta (the
 eliminated operator is still an M-matrix).
+
+References
+----------
+- Carter, H. G. & Kibler, K. G. (1978). Langmuir-type model for anomalous moisture diffusion
+  in composite resins. Journal of Composite Materials 12(2):118-131.
+  doi:10.1177/002199837801200201
 """
 from __future__ import annotations
 

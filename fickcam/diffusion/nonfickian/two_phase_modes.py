@@ -21,6 +21,12 @@ limit: their free water follows n_s at once and their bound water relaxes locall
 dN/dt = gamma n_s - beta N; each step of n_s gets the exact Fickian transient of what
 was left out (``modes.step_corrections``). Counts and bins are doubled until the result
 changes less than the accuracy.
+
+References
+----------
+- Carter, H. G. & Kibler, K. G. (1978). Langmuir-type model for anomalous moisture diffusion
+  in composite resins. Journal of Composite Materials 12(2):118-131.
+  doi:10.1177/002199837801200201
 """
 from __future__ import annotations
 

@@ -15,6 +15,10 @@ not part of a constant matrix); the P1 elements of the plane model (``p1``) buil
 own. Backward Euler with any step and any uniform surface value g is then
 (M/dt + K) c_new = M c_old/dt + g f, one scipy factorisation per distinct dt serving every
 step of that size (``stepping.march``).
+
+References
+----------
+- Crank, J. (1975). The Mathematics of Diffusion, 2nd ed. Oxford: Clarendon Press.
 """
 from __future__ import annotations
 

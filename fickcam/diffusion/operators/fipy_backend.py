@@ -24,6 +24,13 @@ cell points as the mean of its face centres and offers no public way to give the
 subclass overrides ``_calcCellCenters`` (and ``_calcFaceCenters`` for the prisms' top and
 bottom faces). The mesh is checked on construction and raises if a FiPy release stops
 calling those methods; tests/test_diffusion_fv.py fails on it too.
+
+References
+----------
+- Eymard, R., Gallouët, T. & Herbin, R. (2000). Finite volume methods. Handbook of Numerical
+  Analysis VII:713-1020. doi:10.1016/S1570-8659(00)07005-8
+- Guyer, J. E., Wheeler, D. & Warren, J. A. (2009). FiPy: partial differential equations with
+  Python. Computing in Science & Engineering 11(3):6-15. doi:10.1109/MCSE.2009.52
 """
 from __future__ import annotations
 

@@ -10,6 +10,13 @@ graded cell-centred grid keeps second-order global accuracy in w_0 at fixed g
 growth adds an error of its own, measured on the sheet against Crank's series
 (eq. 4.18, mean uptake over tau* >= 1e-3 and >= 1e-2, g = 0.03-0.24):
 about ``GROWTH_ERROR`` g^2 (0.040-0.063 g^2).
+
+References
+----------
+- Crank, J. (1975). The Mathematics of Diffusion, 2nd ed. Oxford: Clarendon Press.
+- Manteuffel, T. A. & White, A. B. (1986). The numerical solution of second-order boundary
+  value problems on nonuniform meshes. Mathematics of Computation 47(176):511-535.
+  doi:10.1090/S0025-5718-1986-0856700-3
 """
 from __future__ import annotations
 

@@ -19,6 +19,19 @@ Delaunay mesh cot a + cot b >= 0, so K is an M-matrix (Xu & Zikatanov 1999,
 Math. Comp. 68, 1429-1446); the consistent mass (3x more accurate than the
 lumped one here) gives up the discrete maximum principle, so early fields may
 undershoot slightly (Thomée 2006 ch. 15).
+
+References
+----------
+- Duffin, R. J. (1959). Distributed and lumped networks. Journal of Mathematics and Mechanics
+  8(5):793-826.
+- MacNeal, R. H. (1953). An asymmetrical finite difference network. Quarterly of Applied
+  Mathematics 11:295-310. doi:10.1090/qam/99978
+- Pinkall, U. & Polthier, K. (1993). Computing discrete minimal surfaces and their conjugates.
+  Experimental Mathematics 2(1):15-36. doi:10.1080/10586458.1993.10504266
+- Xu, J. & Zikatanov, L. (1999). A monotone finite element scheme for convection-diffusion
+  equations. Mathematics of Computation 68(228):1429-1446. doi:10.1090/S0025-5718-99-01148-5
+- Thomée, V. (2006). Galerkin Finite Element Methods for Parabolic Problems, 2nd ed. Springer
+  Series in Computational Mathematics 25. doi:10.1007/3-540-33122-0
 """
 from __future__ import annotations
 

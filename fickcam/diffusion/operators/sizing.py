@@ -16,6 +16,10 @@ grows (and with it the estimate) until the cells fit. The cap counts the cells o
 linear system (``unknowns``): a part solved cut at its mirror planes (``symmetry_cuts``: a
 Bar's octant, a prism's half thickness) is counted on that cut part, ``halved`` naming
 the axes cut in two.
+
+References
+----------
+- Crank, J. (1975). The Mathematics of Diffusion, 2nd ed. Oxford: Clarendon Press.
 """
 from __future__ import annotations
 

@@ -10,6 +10,10 @@ octant of a Bar, cut at the middle of the same graded widths the full mesh would
 (``grading.graded_widths`` is symmetric), so it is the full mesh's solution exactly, on
 1/2 (prism) or 1/8 (Bar) of the cells. The means and the contact layer are volume
 averages, the same over a mirror half as over the whole.
+
+References
+----------
+- Crank, J. (1975). The Mathematics of Diffusion, 2nd ed. Oxford: Clarendon Press.
 """
 from __future__ import annotations
 

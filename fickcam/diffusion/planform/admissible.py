@@ -25,6 +25,14 @@ so the point sets are nested; the outline is the polygon of the first mesh
 Everything is built in stretched coordinates (x sqrt(D_z/D_x), y sqrt(D_z/D_y)),
 where diffusion is isotropic (Crank 1975 §2.6, eq. 2.13): circumcentres and the
 Delaunay property are not invariant under unequal stretching.
+
+References
+----------
+- Crank, J. (1975). The Mathematics of Diffusion, 2nd ed. Oxford: Clarendon Press.
+- Eymard, R., Gallouët, T. & Herbin, R. (2000). Finite volume methods. Handbook of Numerical
+  Analysis VII:713-1020. doi:10.1016/S1570-8659(00)07005-8
+- Ruppert, J. (1995). A Delaunay refinement algorithm for quality 2-dimensional mesh
+  generation. Journal of Algorithms 18(3):548-585. doi:10.1006/jagm.1995.1021
 """
 from __future__ import annotations
 

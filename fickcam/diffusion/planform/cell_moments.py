@@ -17,6 +17,15 @@ the term. The gradient is the least-squares fit to the neighbours' values and to
 surface value at the midpoints of the exposed sides (Barth 1991, AIAA 91-1548; Blazek
 2015, Computational Fluid Dynamics, §5.3.4), linear in the cell values, so the corrected
 mean is again a fixed vector of weights on them (``corrected_weights``).
+
+References
+----------
+- Eymard, R., Gallouët, T. & Herbin, R. (2000). Finite volume methods. Handbook of Numerical
+  Analysis VII:713-1020. doi:10.1016/S1570-8659(00)07005-8
+- Barth, T. J. (1991). A 3-D upwind Euler solver for unstructured meshes. AIAA Paper 91-1548.
+  doi:10.2514/6.1991-1548
+- Blazek, J. (2015). Computational Fluid Dynamics: Principles and Applications, 3rd ed.
+  Butterworth-Heinemann. doi:10.1016/C2013-0-19038-1
 """
 from __future__ import annotations
 

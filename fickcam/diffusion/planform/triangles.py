@@ -16,6 +16,10 @@ centroid lies outside are dropped.
 
 Outlines without closed loops (a LinkBar whose bosses are narrower than the bar, or
 overlap) get boundary samples plus a uniform hexagonal lattice instead.
+
+References
+----------
+- Crank, J. (1975). The Mathematics of Diffusion, 2nd ed. Oxford: Clarendon Press.
 """
 from __future__ import annotations
 

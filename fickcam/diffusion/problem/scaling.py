@@ -1,6 +1,11 @@
 """The one change of variables every model uses: anisotropic diffusion along principal
 axes is isotropic in the coordinates x_i' = (x_i / L) sqrt(D_z / D_i), L the part's
-thickness (Crank 1975 §2.6, eq. 2.13), where time becomes tau* = tau D_z / L^2."""
+thickness (Crank 1975 §2.6, eq. 2.13), where time becomes tau* = tau D_z / L^2.
+
+References
+----------
+- Crank, J. (1975). The Mathematics of Diffusion, 2nd ed. Oxford: Clarendon Press.
+"""
 from __future__ import annotations
 
 import math

@@ -13,6 +13,13 @@ numpy arrays; no solver here (``two_phase_modes`` / ``two_phase_mesh`` /
   §9.3, the exponential diffusion coefficient) or a table of f against c/Mm_ref,
   Mm_ref the material's saturation at 100 % RH (a material constant, so that D depends
   on the local moisture only, never on the climate).
+
+References
+----------
+- Crank, J. (1975). The Mathematics of Diffusion, 2nd ed. Oxford: Clarendon Press.
+- Carter, H. G. & Kibler, K. G. (1978). Langmuir-type model for anomalous moisture diffusion
+  in composite resins. Journal of Composite Materials 12(2):118-131.
+  doi:10.1177/002199837801200201
 """
 from __future__ import annotations
 

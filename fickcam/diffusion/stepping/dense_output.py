@@ -31,6 +31,10 @@ plan of the stored and new times together has other cells (``fits``, set by
 (``step_plans.earliest_output``), and a younger new time reads a layer they do not resolve,
 which its interpolation estimate cannot see. Measured: ``benchmarks/dc_extend.py`` (README
 "Non-Fickian sorption"); tested: tests/test_sorption_extend.py.
+
+References
+----------
+- Crank, J. (1975). The Mathematics of Diffusion, 2nd ed. Oxford: Clarendon Press.
 """
 from __future__ import annotations
 

@@ -12,6 +12,12 @@ is never differentiated), on panels geometric in the age w = t - s, each
 mapped by w = v^2 (v linear), which makes K ~ sqrt(tau) smooth in v. The
 derivative of Ms along each panel is the spectral derivative of its values at
 the Gauss-Legendre nodes (exact for a polynomial of degree < GAUSS_NODES).
+
+References
+----------
+- Crank, J. (1975). The Mathematics of Diffusion, 2nd ed. Oxford: Clarendon Press.
+- Carslaw, H. S. & Jaeger, J. C. (1959). Conduction of Heat in Solids, 2nd ed. Oxford:
+  Clarendon Press.
 """
 from __future__ import annotations
 

@@ -21,6 +21,12 @@ once (``np.bincount``): no work per row in Python, and fields cost one matrix pr
 The tabulation error is measured by reading every second grid point alone (the error
 falls as h^3: the change, reported, is about 7x the error); the grid is refined until
 that change is within its share of the tolerance.
+
+References
+----------
+- Crank, J. (1975). The Mathematics of Diffusion, 2nd ed. Oxford: Clarendon Press.
+- Carslaw, H. S. & Jaeger, J. C. (1959). Conduction of Heat in Solids, 2nd ed. Oxford:
+  Clarendon Press.
 """
 from __future__ import annotations
 
