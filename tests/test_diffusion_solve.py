@@ -199,6 +199,32 @@ def test_model_not_applicable_to_the_geometry_is_an_input_error():
         plan(Sheet(1e-3), ISOTROPIC, STEP_DOWN, TIMES, accuracy=2.0)
 
 
+def test_the_model_registry_says_which_parts_each_model_solves_and_why_not():
+    """Each model of the registry answers for itself: the parts it applies to, the reason it
+    refuses one (the analytic series needs a separable part), and ``auto``'s choice is the
+    exact series where it applies, else the first mesh model that does."""
+    from fickcam.diffusion.dispatch import FICK_MODELS, MODELS, numerical_model
+
+    outline = np.array([0.0, 0.02, 0.02, 0.0]), np.array([0.0, 0.0, 0.01, 0.01])
+    parts = {"sheet": Sheet(1e-3), "disc": Disc(0.02, 0.004), "annulus": Disc(0.02, 0.004, 0.008),
+             "bar": Bar(0.04, 0.01, 0.004), "cam": CamPlate(*outline, 0.004),
+             "link": LinkBar(0.1, 0.01, 0.004, 0.01, 0.005)}
+    solvable = {name: sorted(m for m, model in FICK_MODELS.items()
+                             if model.refusal(part) is None)
+                for name, part in parts.items()}
+    assert solvable == {"sheet": ["analytic", "slab"], "disc": ["analytic", "axisymmetric"],
+                        "annulus": ["axisymmetric"], "bar": ["analytic", "solid"],
+                        "cam": ["plane", "solid"], "link": ["plane", "solid"]}
+    assert FICK_MODELS["analytic"].refusal(parts["annulus"]) == (
+        "an annulus has no product solution (use axisymmetric)")
+    assert FICK_MODELS["plane"].refusal(parts["sheet"]) == "does not apply to a Sheet"
+    assert [numerical_model(p) for p in parts.values()] == [
+        "slab", "axisymmetric", "axisymmetric", "solid", "plane", "plane"]
+    assert MODELS == ("auto", "analytic", "slab", "axisymmetric", "plane", "solid")
+    with pytest.raises(InputError, match="annulus has no product solution"):
+        plan(parts["annulus"], ISOTROPIC, STEP_DOWN, TIMES, model="analytic")
+
+
 def test_auto_takes_the_exact_path_for_a_sheet_when_available():
     chosen = plan(Sheet(1e-3), ISOTROPIC, STEP_DOWN, TIMES, accuracy=1e-3)
     assert chosen.model == "analytic"

@@ -1,7 +1,8 @@
 """The dispatcher: ``plan`` (which model, cells and steps a solve will use, and why)
 and ``solve`` (run that plan).
 
-Models (``diffusion.model``):
+Models (``diffusion.model``), each a ``FickModel`` of the registry ``FICK_MODELS``, which
+says which parts it applies to, why not where it does not, and plans and solves:
 
 - ``analytic``: Crank's series with Duhamel superposition in rescaled time
   (``analytic``): Sheet, Bar (product of three sheets), solid Disc.
@@ -20,8 +21,9 @@ cells) the D(c) sheet x planform product corrected on coarse 3-D prisms (``corre
 from __future__ import annotations
 
 import logging
-from dataclasses import replace
+from dataclasses import dataclass, replace
 from functools import lru_cache
+from typing import Callable
 
 import numpy as np
 
@@ -57,43 +59,136 @@ BAR_CORRECTED_FROM = 1e-2  # accuracy from which ``auto`` takes a D(c) Bar's cor
 #   0.8-5.6e-4) where the octant is capped (est. 1.0-1.9e-3, not run: > 15 CPU min). At 3e-2
 #   and 0.1 the octant takes 0.7-6.9 s, corrected 10-23 s (its floor: fine sheet, two
 #   nested meshes, planform refined x4)
-MODELS = ("auto", "analytic", "slab", "axisymmetric", "plane", "solid")
-NUMERICAL_MODEL = {Sheet: "slab", Disc: "axisymmetric", Bar: "solid", CamPlate: "plane",
-                   LinkBar: "plane"}
-ALLOWED_MODELS = {Sheet: {"analytic", "slab"}, Disc: {"analytic", "axisymmetric"},
-                  Bar: {"analytic", "solid"}, CamPlate: {"plane", "solid"},
-                  LinkBar: {"plane", "solid"}}  # solid CamPlate/LinkBar: prisms (operators.prisms)
+
+
+@dataclass(frozen=True)
+class FickModel:
+    """One Fickian model of the registry: the parts it applies to, why it does not apply to
+    a part (``refusal``), its plan and its solve.
+
+    ``plan(geometry, diffusivity, exposure, times, accuracy, depth) -> Plan`` and
+    ``solve(geometry, diffusivity, exposure, times, chosen, accuracy, depth, store_fields,
+    part) -> DiffusionResult`` (depth: the contact layer's [m]; times [s])."""
+
+    name: str
+    parts: tuple[type, ...]
+    plan: Callable
+    solve: Callable
+    exact: bool = False   # only where a separable exact solution exists
+
+    def applies(self, geometry) -> bool:
+        return isinstance(geometry, self.parts)
+
+    def refusal(self, geometry) -> str | None:
+        """Why this model cannot solve ``geometry`` (None where it can)."""
+        if not self.applies(geometry):
+            return f"does not apply to a {type(geometry).__name__}"
+        if self.exact and not exact_available(geometry):
+            if isinstance(geometry, Disc) and geometry.inner_radius > 0:
+                return "an annulus has no product solution (use axisymmetric)"
+            return "no separable exact solution (use plane)"
+        return None
+
+
+def _plan_analytic(geometry, diffusivity, exposure, times, accuracy, depth) -> Plan:
+    if is_long_record(exposure):
+        return Plan("analytic", 0, 0, f"exact Crank series, tabulated once and superposed "
+                    f"over the {exposure.ramp.size}-segment record in closed form per row "
+                    "(cost linear in the rows)", accuracy)
+    return Plan("analytic", 0, 0, "exact Crank series with Duhamel superposition in "
+                "rescaled time (linear, one Arrhenius factor): cheapest and exact",
+                ANALYTIC_ERROR)
+
+
+def _solve_analytic(geometry, diffusivity, exposure, times, chosen, accuracy, depth,
+                    store_fields, part) -> DiffusionResult:
+    record = accuracy if is_long_record(exposure) else None
+    return solve_analytic(geometry, diffusivity, exposure, times, depth, store_fields, chosen,
+                          record)
+
+
+def _scaled_history(geometry, diffusivity, exposure, times):
+    """tau* of the exposure's changes and of the outputs."""
+    scales = scales_of(geometry, diffusivity, exposure)
+    return scales.tau_star(exposure.change_times), scales.tau_star(np.asarray(times, float))
+
+
+def _plan_plane(geometry, diffusivity, exposure, times, accuracy, depth) -> Plan:
+    """The outline's expansion, then a graded mesh; a long record's sum takes its share."""
+    change, outputs = _scaled_history(geometry, diffusivity, exposure, times)
+    share = 1.0 - RECORD_SHARE if is_long_record(exposure) else 1.0
+    return plan_plane(geometry, diffusivity, change, outputs, exposure.ramp, share * accuracy,
+                      depth)
+
+
+def _solve_plane(geometry, diffusivity, exposure, times, chosen, accuracy, depth, store_fields,
+                 part) -> DiffusionResult:
+    return solve_plane(geometry, diffusivity, exposure, times, chosen, accuracy=accuracy,
+                       surface_layer_depth=depth, store_fields=store_fields, part=part)
+
+
+def _finite_volume(name: str, parts: tuple[type, ...]) -> FickModel:
+    """A finite-volume model (``models.finite_volume``) of these parts."""
+    def planned(geometry, diffusivity, exposure, times, accuracy, depth) -> Plan:
+        return _direct_plan(geometry, diffusivity, name, exposure, times, accuracy)
+
+    def solved(geometry, diffusivity, exposure, times, chosen, accuracy, depth, store_fields,
+               part) -> DiffusionResult:
+        return solve_direct(geometry, diffusivity, exposure, times, chosen,
+                            surface_layer_depth=depth, store_fields=store_fields, part=part)
+    return FickModel(name, parts, planned, solved)
+
+
+# The Fickian models, in the order ``diffusion.model`` lists them; ``auto`` takes the exact
+# series where the part has one, else the first numerical model that applies (``solid``
+# CamPlate / LinkBar: prisms of admissible cells, the check of ``plane``).
+FICK_MODELS = {model.name: model for model in (
+    FickModel("analytic", (Sheet, Bar, Disc), _plan_analytic, _solve_analytic, exact=True),
+    _finite_volume("slab", (Sheet,)),
+    _finite_volume("axisymmetric", (Disc,)),
+    FickModel("plane", (CamPlate, LinkBar), _plan_plane, _solve_plane),
+    _finite_volume("solid", (Bar, CamPlate, LinkBar)))}
+MODELS = ("auto", *FICK_MODELS)
+PARTS = (Sheet, Disc, Bar, CamPlate, LinkBar)
+
+
+def numerical_model(geometry) -> str:
+    """The first mesh model that applies to the part: slab, axisymmetric, plane, solid."""
+    return next(name for name, model in FICK_MODELS.items()
+                if not model.exact and model.applies(geometry))
 
 
 def _validate(geometry, model: str, accuracy: float) -> None:
     if model not in MODELS:
         raise InputError(f"diffusion.model {model!r}: one of {', '.join(MODELS)}")
-    if type(geometry) not in NUMERICAL_MODEL:
+    if type(geometry) not in PARTS:
         raise InputError(f"unsupported diffusion geometry {type(geometry).__name__}")
     if not (0 < accuracy < 1):
         raise InputError(f"diffusion.accuracy {accuracy!r}: must lie in (0, 1)")
-    if model != "auto" and model not in ALLOWED_MODELS[type(geometry)]:
+    if model != "auto" and not FICK_MODELS[model].applies(geometry):
+        allowed = sorted(name for name, m in FICK_MODELS.items() if m.applies(geometry))
         raise InputError(f"diffusion.model {model!r} does not apply to a "
-                         f"{type(geometry).__name__} (use one of "
-                         f"{', '.join(sorted(ALLOWED_MODELS[type(geometry)]))} or auto)")
+                         f"{type(geometry).__name__} (use one of {', '.join(allowed)} or auto)")
 
 
-def _no_exact_reason(geometry) -> str:
-    if isinstance(geometry, Disc) and geometry.inner_radius > 0:
-        return "an annulus has no product solution (use axisymmetric)"
-    return "no separable exact solution (use plane)"
+def _fick_model(geometry, model: str) -> FickModel:
+    """The registry's model for ``model`` (``auto``: the exact series where it applies, else
+    ``numerical_model``); a model that cannot solve the part says why."""
+    if model == "auto":
+        exact = FICK_MODELS["analytic"]
+        return exact if exact.refusal(geometry) is None else FICK_MODELS[numerical_model(geometry)]
+    why = FICK_MODELS[model].refusal(geometry)
+    if why is not None:
+        raise InputError(f"diffusion.model {model} is not available for this "
+                         f"{type(geometry).__name__}: {why}")
+    return FICK_MODELS[model]
 
 
 def _two_phase_model(geometry, model: str) -> str:
     """Langmuir sorption: the exact modes where the part has them; a CamPlate or LinkBar
     ``plane``: its planform's quadrature x the exact sheet (``planform_modes``), or ``solid``
     prisms; else the direct finite volumes (``two_phase_mesh``)."""
-    if model in ("auto", "analytic") and exact_available(geometry):
-        return "analytic"
-    if model == "analytic":
-        raise InputError(f"diffusion.model analytic is not available for this "
-                         f"{type(geometry).__name__}: {_no_exact_reason(geometry)}")
-    return NUMERICAL_MODEL[type(geometry)] if model == "auto" else model
+    return _fick_model(geometry, model).name
 
 
 def plan(geometry, diffusivity: Diffusivity, exposure: Exposure, times: np.ndarray,
@@ -111,26 +206,8 @@ def plan(geometry, diffusivity: Diffusivity, exposure: Exposure, times: np.ndarr
         depth = LAYER_DEPTH if surface_layer_depth is None else surface_layer_depth
         return _plan_sorption(geometry, diffusivity, exposure, times, accuracy, model, sorption,
                               depth)
-    if model in ("auto", "analytic") and exact_available(geometry) and is_long_record(exposure):
-        return Plan("analytic", 0, 0, f"exact Crank series, tabulated once and superposed "
-                    f"over the {exposure.ramp.size}-segment record in closed form per row "
-                    "(cost linear in the rows)", accuracy)
-    if model in ("auto", "analytic") and exact_available(geometry):
-        return Plan("analytic", 0, 0, "exact Crank series with Duhamel superposition in "
-                    "rescaled time (linear, one Arrhenius factor): cheapest and exact",
-                    ANALYTIC_ERROR)
-    if model == "analytic":
-        raise InputError(f"diffusion.model analytic is not available for this "
-                         f"{type(geometry).__name__}: {_no_exact_reason(geometry)}")
-    chosen = NUMERICAL_MODEL[type(geometry)] if model == "auto" else model
-    scales = scales_of(geometry, diffusivity, exposure)
-    change = scales.tau_star(exposure.change_times)
-    outputs = scales.tau_star(np.asarray(times, float))
-    if chosen == "plane":  # expansion of the outline, then a graded mesh (plane)
-        share = 1.0 - RECORD_SHARE if is_long_record(exposure) else 1.0  # the rest: the sum
-        return plan_plane(geometry, diffusivity, change, outputs, exposure.ramp, share * accuracy,
-                          surface_layer_depth)
-    return plan_direct(geometry, diffusivity, chosen, change, outputs, accuracy, exposure)
+    return _fick_model(geometry, model).plan(geometry, diffusivity, exposure, times, accuracy,
+                                             surface_layer_depth)
 
 
 def _plan_sorption(geometry, diffusivity, exposure, times, accuracy, model, sorption,
@@ -163,9 +240,8 @@ def _plan_sorption(geometry, diffusivity, exposure, times, accuracy, model, sorp
 
 def _direct_plan(geometry, diffusivity, chosen, exposure, times, accuracy,
                  mirrored: bool = False) -> Plan:
-    scales = scales_of(geometry, diffusivity, exposure)
-    return plan_direct(geometry, diffusivity, chosen, scales.tau_star(exposure.change_times),
-                       scales.tau_star(np.asarray(times, float)), accuracy, exposure, mirrored)
+    change, outputs = _scaled_history(geometry, diffusivity, exposure, times)
+    return plan_direct(geometry, diffusivity, chosen, change, outputs, accuracy, exposure, mirrored)
 
 
 def _plan_planform(geometry, diffusivity, exposure, times, accuracy, sorption, depth) -> Plan:
@@ -227,7 +303,7 @@ def _nonlinear_model(geometry, model: str) -> str:
                          f"does not separate); use solid or auto for a {type(geometry).__name__}")
     if isinstance(geometry, (Bar, CamPlate, LinkBar)):
         return "solid"
-    return NUMERICAL_MODEL[type(geometry)] if model in ("auto", "analytic") else model
+    return numerical_model(geometry) if model in ("auto", "analytic") else model
 
 
 def _nonlinear_route(geometry, model: str, sorption, exposure, times, accuracy) -> str:
@@ -295,17 +371,8 @@ def solve(geometry, diffusivity: Diffusivity, exposure: Exposure, times: np.ndar
     if sorption is not None and (is_langmuir(sorption) or is_nonlinear(sorption)):
         return _solve_sorption(geometry, diffusivity, exposure, times, chosen, sorption,
                                surface_layer_depth, store_fields, part, accuracy)
-    if chosen.model == "analytic":
-        record = accuracy if is_long_record(exposure) else None
-        return solve_analytic(geometry, diffusivity, exposure, times, surface_layer_depth,
-                              store_fields, chosen, record)
-    if chosen.model == "plane":
-        return solve_plane(geometry, diffusivity, exposure, times, chosen, accuracy=accuracy,
-                           surface_layer_depth=surface_layer_depth, store_fields=store_fields,
-                           part=part)
-    return solve_direct(geometry, diffusivity, exposure, times, chosen,
-                        surface_layer_depth=surface_layer_depth, store_fields=store_fields,
-                        part=part)
+    return FICK_MODELS[chosen.model].solve(geometry, diffusivity, exposure, times, chosen,
+                                           accuracy, surface_layer_depth, store_fields, part)
 
 
 def _solve_sorption(geometry, diffusivity, exposure, times, chosen: Plan, sorption, depth,
