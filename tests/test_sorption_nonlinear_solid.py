@@ -201,9 +201,9 @@ def test_sweeps_conserve_mass_uptake_equals_the_surface_flux():
     assert 0 < gained < MM * faces.volumes.sum()
 
 
-def test_inexact_sweeps_from_the_extrapolated_state_converge_to_the_exact_sweeps(monkeypatch):
+def test_inexact_sweeps_from_the_extrapolated_state_converge_to_the_exact_sweeps():
     """``sweep_march`` starts each step's sweeps from the last two states extrapolated in
-    time and solves each sweep's system to ``FORCING`` x the residual it starts from
+    time and solves each sweep's system to ``Sweeps.forcing`` x the residual it starts from
     (inexact Picard); the converged steps must be those of sweeps from the old state with
     every system solved to ``LINEAR_TOLERANCE``: 20 steps of the mirrored bar, k = 3,
     absorbing (to 55 % of Mm), within the sweep tolerance (measured 1.7e-9 of Mm)."""
@@ -213,10 +213,11 @@ def test_inexact_sweeps_from_the_extrapolated_state_converge_to_the_exact_sweeps
     steps = SimpleNamespace(nodes=nodes, surface_before=np.full(21, MM), times=nodes,
                             outputs=np.arange(0, 21, 5))
     fast = concentration_dependent.sweep_march(faces, weights, strong, top, steps, 0.0, True, "")
-    monkeypatch.setattr(concentration_dependent, "FORCING", 0.0)
+    exact_sweeps = concentration_dependent.Sweeps(forcing=0.0)
     c, exact = np.zeros(weights.cells), [np.zeros(weights.cells)]
     for k, dt in enumerate(rounded_steps(np.diff(nodes)), start=1):
-        c = concentration_dependent._sweep(faces, c, MM, strong, top, dt, "bar", k, 0.0)
+        c = concentration_dependent.sweep_step(faces, c, MM, strong, top, dt, "bar", k, 0.0,
+                                               sweeps=exact_sweeps)
         if k % 5 == 0:
             exact.append(c)
     assert fast.fields.shape == (5, weights.cells)

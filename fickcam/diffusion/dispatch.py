@@ -36,7 +36,8 @@ from .forcing.record import RECORD_SHARE, is_long_record
 from .models.analytic import solve_analytic
 from .models.finite_volume import plan_direct, solve_direct
 from .models.plane import plan_plane, solve_plane
-from .nonfickian.concentration_dependent import nonlinear_plan, solve_nonlinear, spread
+from .nonfickian.concentration_dependent import (SWEEPS, Sweeps, nonlinear_plan, solve_nonlinear,
+                                                 spread)
 from .nonfickian.corrected_product import plan_corrected, solve_corrected
 from .nonfickian.planform_modes import (PLANFORM_CAP, RefinedPlanform,
                                         lanczos_spectrum, planform_design, planform_operator,
@@ -337,10 +338,12 @@ def _as_fick(call, geometry, diffusivity, exposure, times, sorption, accuracy, m
 
 def solve(geometry, diffusivity: Diffusivity, exposure: Exposure, times: np.ndarray, *,
           accuracy: float = 1e-3, model: str = "auto", surface_layer_depth: float = LAYER_DEPTH,
-          store_fields: bool = False, part: str = "", sorption=None) -> DiffusionResult:
+          store_fields: bool = False, part: str = "", sorption=None,
+          sweeps: Sweeps = SWEEPS) -> DiffusionResult:
     """Moisture (weight %) of one part at ``times`` (s) under ``exposure``; with a
     ``sorption`` law (``diffusion.sorption``) the mean and surface are the total (free +
-    bound) moisture and, for Langmuir, ``bound`` the bound-water mean."""
+    bound) moisture and, for Langmuir, ``bound`` the bound-water mean. ``sweeps``: when a
+    concentration-dependent step's sweeps stop (``concentration_dependent.Sweeps``)."""
     times = np.asarray(times, float)
     route = (_nonlinear_route(geometry, model, sorption, exposure, times, accuracy)
              if is_nonlinear(sorption) else "")
@@ -356,18 +359,19 @@ def solve(geometry, diffusivity: Diffusivity, exposure: Exposure, times: np.ndar
 
         def resolve(at):
             return solve(geometry, diffusivity, exposure, at, accuracy=accuracy, model=model,
-                         surface_layer_depth=surface_layer_depth, part=part, sorption=sorption)
+                         surface_layer_depth=surface_layer_depth, part=part, sorption=sorption,
+                         sweeps=sweeps)
     if route == "corrected":
         return held_to_plan(solve_corrected(
             geometry, diffusivity, sorption, exposure, times, accuracy,
             surface_layer_depth=surface_layer_depth, store_fields=store_fields, part=part,
-            reason=chosen.reason), chosen, again, resolve)
+            reason=chosen.reason, sweeps=sweeps), chosen, again, resolve)
     log.debug("%s: %s, %d cells, %d steps (%s)", part or type(geometry).__name__, chosen.model,
               chosen.cells, chosen.steps, chosen.reason)
     if route:
         return held_to_plan(_solve_sorption(geometry, diffusivity, exposure, times, chosen,
                                             sorption, surface_layer_depth, store_fields, part,
-                                            accuracy), chosen, again, resolve)
+                                            accuracy, sweeps), chosen, again, resolve)
     if sorption is not None and (is_langmuir(sorption) or is_nonlinear(sorption)):
         return _solve_sorption(geometry, diffusivity, exposure, times, chosen, sorption,
                                surface_layer_depth, store_fields, part, accuracy)
@@ -376,7 +380,7 @@ def solve(geometry, diffusivity: Diffusivity, exposure: Exposure, times: np.ndar
 
 
 def _solve_sorption(geometry, diffusivity, exposure, times, chosen: Plan, sorption, depth,
-                    store_fields, part, accuracy) -> DiffusionResult:
+                    store_fields, part, accuracy, sweeps: Sweeps = SWEEPS) -> DiffusionResult:
     if chosen.model in ("analytic", "plane"):
         return _langmuir_modes(geometry, diffusivity, exposure, times, chosen, sorption, depth,
                                accuracy)
@@ -385,7 +389,8 @@ def _solve_sorption(geometry, diffusivity, exposure, times, chosen: Plan, sorpti
                             surface_layer_depth=depth, store_fields=store_fields, part=part,
                             marcher=two_phase_marcher(sorption, exposure))
     return solve_nonlinear(geometry, diffusivity, sorption, exposure, times, chosen,
-                           surface_layer_depth=depth, store_fields=store_fields, part=part)
+                           surface_layer_depth=depth, store_fields=store_fields, part=part,
+                           sweeps=sweeps)
 
 
 def _langmuir_modes(geometry, diffusivity, exposure, times, chosen, sorption, depth, accuracy):

@@ -62,6 +62,22 @@ LINEAR_TOLERANCE = 1e-12
 FORCING = 0.01  # a sweep's CG stops at FORCING x the residual of the iterate it starts from
 # (0.1 was somewhat cheaper but left the converged steps so near SWEEP_TOLERANCE that 16-64-cell
 # sheets differing by 8e-9 of Mm at tau* = 0.3 showed orders 1.6-1.8; 0.01: 2.00)
+
+
+@dataclass(frozen=True)
+class Sweeps:
+    """When a step's Picard sweeps stop: at ``tolerance`` x the right side, or with a
+    ``SolverError`` after ``most`` sweeps; each sweep's linear system solved to ``forcing``
+    x the residual of the iterate it starts from (``sweep_step``). The defaults are the run's;
+    tests pass others instead of changing the module's values."""
+
+    tolerance: float = SWEEP_TOLERANCE
+    most: int = MAX_SWEEPS
+    forcing: float = FORCING
+
+
+SWEEPS = Sweeps()
+
 SKIN_CELLS_MARGIN = 1.0  # skin: cells at D_min for accuracy / (1 + it (sqrt(ratio) - 1))
 ABSORPTION_MARGIN = 2.0  # no skin: cells sized at D_max for accuracy / ABSORPTION_MARGIN
 SPACE_TO_ERROR = 1.0  # error / (m x the space estimate of the cells' plan): 0.5-1.0 measured
@@ -210,10 +226,10 @@ def _skin_sizing(planner, slow_d, fast_d, accuracy, times, start, margin, wet_ma
 
 def solve_nonlinear(geometry, diffusivity, law, exposure, times, chosen, *,
                     surface_layer_depth=LAYER_DEPTH, store_fields=False,
-                    part="") -> DiffusionResult:
+                    part="", sweeps: Sweeps = SWEEPS) -> DiffusionResult:
     """Mean and contact-layer moisture (weight %) at ``times`` (s): the Richardson pair of
     swept backward-Euler marches (module docstring). ``chosen`` was planned with
-    ``fastest(...)``."""
+    ``fastest(...)``; ``sweeps``: when each step's sweeps stop."""
     scaled = fastest(diffusivity, law, exposure, times)
     scales = scales_of(geometry, scaled, exposure)
     weights = (discretise(geometry, scaled, chosen.cells_per_axis, surface_layer_depth,
@@ -226,7 +242,7 @@ def solve_nonlinear(geometry, diffusivity, law, exposure, times, chosen, *,
     plans = [step_plan(exposure, times, scales, chosen.steps_per_doubling, bisect)
              for bisect in (False, True)]
     coarse, fine = (sweep_march(faces, weights, law, top, steps, exposure.initial_moisture,
-                                store_fields, part) for steps in plans)
+                                store_fields, part, sweeps=sweeps) for steps in plans)
     combine, estimate = richardson_pair(chosen, coarse, fine, swing(exposure, times) or 1.0, True)
     result = DiffusionResult(times, combine(coarse.mean, fine.mean),
                              combine(coarse.layer, fine.layer), chosen.model, weights.cells,
@@ -240,7 +256,7 @@ def solve_nonlinear(geometry, diffusivity, law, exposure, times, chosen, *,
             lambda values, _: (values[0][:, 0], values[0][:, 1]), swing(exposure, times) or 1.0,
             chosen.error_estimate, lambda both: solve_nonlinear(
                 geometry, diffusivity, law, exposure, both, chosen,
-                surface_layer_depth=surface_layer_depth, part=part), part)
+                surface_layer_depth=surface_layer_depth, part=part, sweeps=sweeps), part)
     return result
 
 
@@ -296,7 +312,7 @@ class Faces:
 
 
 def sweep_march(faces: Faces, weights, law, top, steps, initial, keep_fields, part,
-                columns=()) -> History:
+                columns=(), sweeps: Sweeps = SWEEPS) -> History:
     """Backward Euler in scaled time, each step swept to convergence (module docstring).
     The history's ``track``: the mean, the layer and the weighted sums of ``columns`` (cell
     weight vectors) at every node (``dense_output``)."""
@@ -312,7 +328,8 @@ def sweep_march(faces: Faces, weights, law, top, steps, initial, keep_fields, pa
         g = float(steps.surface_before[k])
         guess = None if previous is None else extrapolated(previous, c, dts[k - 2], dt, g)
         previous = c
-        c = _sweep(faces, c, g, law, top, dt, part, k, steps.times[k], solver, guess)
+        c = sweep_step(faces, c, g, law, top, dt, part, k, steps.times[k], solver, guess,
+                       sweeps)
         track.append(c @ sums)
         if k in want:
             record[k] = c.copy()
@@ -360,13 +377,13 @@ def extrapolated(before, latest, dt_before, dt, g) -> np.ndarray:
     return np.clip(guess, min(float(latest.min()), g), max(float(latest.max()), g))
 
 
-def _sweep(faces: Faces, old, g, law, top, dt, part, index, time, solver=None,
-           guess=None) -> np.ndarray:
+def sweep_step(faces: Faces, old, g, law, top, dt, part, index, time, solver=None,
+               guess=None, sweeps: Sweeps = SWEEPS) -> np.ndarray:
     """Picard sweeps (M/dt + K(c)) c_new = M old/dt + f(g) with K from the latest iterate
     (the first: ``guess``, else ``old``), until the residual of the new iterate in its own
-    operator (the next sweep's) is below ``SWEEP_TOLERANCE`` of the right side; SolverError
-    if ``MAX_SWEEPS`` do not get there. Each sweep's linear system is solved only to
-    ``FORCING`` x the residual of the iterate it starts from (inexact Picard: the forcing
+    operator (the next sweep's) is below ``sweeps.tolerance`` of the right side; SolverError
+    if ``sweeps.most`` do not get there. Each sweep's linear system is solved only to
+    ``sweeps.forcing`` x the residual of the iterate it starts from (inexact Picard: the forcing
     terms of inexact Newton, Eisenstat & Walker 1996, SIAM J. Sci. Comput. 17:16-32): an
     early sweep's system is itself off by that residual, and the stopping test is on the
     nonlinear residual, so the converged step is unchanged."""
@@ -376,13 +393,14 @@ def _sweep(faces: Faces, old, g, law, top, dt, part, index, time, solver=None,
     system, f = faces.operator(c, g, law, top, mass)
     scale = max(norm(mass * old + f), 1e-300)
     residual = norm(system @ c - mass * old - f) / scale
-    for _ in range(MAX_SWEEPS):
-        c = solver.solve(system, mass * old + f, c, max(LINEAR_TOLERANCE, FORCING * residual))
+    for _ in range(sweeps.most):
+        c = solver.solve(system, mass * old + f, c,
+                         max(LINEAR_TOLERANCE, sweeps.forcing * residual))
         system, f = faces.operator(c, g, law, top, mass)
         residual = norm(system @ c - mass * old - f) / max(norm(mass * old + f), 1e-300)
         if not np.isfinite(residual):
             break
-        if residual <= SWEEP_TOLERANCE:
+        if residual <= sweeps.tolerance:
             return c
     raise SolverError(part, index, time, f"concentration-dependent sweeps did not converge: "
-                      f"residual {residual:.2e} after {MAX_SWEEPS} sweeps")
+                      f"residual {residual:.2e} after {sweeps.most} sweeps")

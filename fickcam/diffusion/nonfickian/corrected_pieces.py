@@ -35,8 +35,8 @@ from ..problem.geometry import LAYER_DEPTH, Bar, CamPlate, Sheet
 from ..problem.results import DiffusionResult, Plan
 from ..problem.scaling import stretch_of
 from ..stepping.dense_output import StepRecord
-from .concentration_dependent import (Faces, fastest, nonlinear_plan, solve_nonlinear, sweep_march,
-                                      wettest)
+from .concentration_dependent import (SWEEPS, Faces, Sweeps, fastest, nonlinear_plan,
+                                      solve_nonlinear, sweep_march, wettest)
 
 SHEET_SHARE = 0.1          # the fine sheet's accuracy: this share of the requested one. Not
 #   loosened at loose accuracies: on the demo cam (k = 2) at 1e-2 the sheet takes 1.2 CPU s
@@ -175,13 +175,13 @@ def combination(lattice: list) -> tuple[list, list] | None:
 
 
 def richardson_march(disc, law, top, exposure, times, scales, per_doubling, keep, part,
-                     columns=()) -> CombinedMarch:
+                     columns=(), sweeps: Sweeps = SWEEPS) -> CombinedMarch:
     """The swept backward-Euler march (``concentration_dependent``) on the plan's steps and on them
     bisected, combined 2 fine - coarse; its track: (mean, layer, ``columns``' sums)."""
     faces = Faces.of(disc)
     plans = [step_plan(exposure, times, scales, per_doubling, bisect) for bisect in (False, True)]
     coarse, fine = (sweep_march(faces, disc, law, top, steps, exposure.initial_moisture, keep,
-                                part, columns) for steps in plans)
+                                part, columns, sweeps) for steps in plans)
     fields = 2.0 * fine.fields - coarse.fields if keep else None
     return CombinedMarch(2.0 * fine.mean - coarse.mean, 2.0 * fine.layer - coarse.layer, fields,
                 coarse.steps + fine.steps, float(np.max(np.abs(fine.mean - coarse.mean))),
@@ -245,7 +245,8 @@ def level_plan(geometry, diffusivity, law, exposure, times, mesh_accuracy, per_d
 
 
 def sheet_reference(geometry, diffusivity, law, exposure, times, accuracy,
-                    depth=LAYER_DEPTH, store_fields=False) -> DiffusionResult:
+                    depth=LAYER_DEPTH, store_fields=False,
+                    sweeps: Sweeps = SWEEPS) -> DiffusionResult:
     """The D(c) sheet of the part's thickness at ``SHEET_SHARE`` x the accuracy (FiPy slab;
     its layer within ``depth`` of a face; its cells' fields with ``store_fields``)."""
     sheet = Sheet(geometry.thickness)
@@ -256,7 +257,7 @@ def sheet_reference(geometry, diffusivity, law, exposure, times, accuracy,
                            s.tau_star(outputs), a, exposure)
     chosen = nonlinear_plan(planner, diffusivity, law, exposure, times, SHEET_SHARE * accuracy)
     return solve_nonlinear(sheet, diffusivity, law, exposure, times, chosen,
-                           surface_layer_depth=depth, store_fields=store_fields)
+                           surface_layer_depth=depth, store_fields=store_fields, sweeps=sweeps)
 
 
 @dataclass(frozen=True)
@@ -275,20 +276,22 @@ class SharedInputs:
     part: str
     faces_layer: bool = False   # the layer includes the two faces (a Bar's: ``as_prism``)
     keep_fields: bool = False   # the planform marches keep their fields (``corrected_fields``)
+    sweeps: Sweeps = SWEEPS     # when each step's sweeps stop
 
     @classmethod
     def of(cls, geometry, diffusivity, law, exposure, times, depth, per_doubling, part,
-           faces_layer=False, keep_fields=False):
+           faces_layer=False, keep_fields=False, sweeps: Sweeps = SWEEPS):
         scaled = fastest(diffusivity, law, exposure, times)
         return cls(geometry, law, exposure, np.asarray(times, float),
                    tuple(float(v) for v in scaled.pre_exponential),
                    law.largest_factor(wettest(exposure, times)),
                    scales_of(geometry, scaled, exposure), depth, per_doubling, part, faces_layer,
-                   keep_fields)
+                   keep_fields, sweeps)
 
     def run(self, disc, keep: bool = False, columns=()) -> CombinedMarch:
         return richardson_march(disc, self.law, self.top, self.exposure, self.times,
-                                self.scales, self.per_doubling, keep, self.part, columns)
+                                self.scales, self.per_doubling, keep, self.part, columns,
+                                self.sweeps)
 
     def planform(self, finest: float, growth: float) -> tuple[CombinedMarch, CombinedMarch, int]:
         """(the plate's weights, ``cell_moments``' weights, cells) of the planform's march on

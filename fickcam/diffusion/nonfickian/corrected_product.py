@@ -86,7 +86,7 @@ from ..problem.exposure import swing
 from ..problem.geometry import LAYER_DEPTH, Bar
 from ..problem.results import DiffusionResult, Plan
 from ..stepping.dense_output import Extension
-from .concentration_dependent import dries_to_a_skin, spread
+from .concentration_dependent import SWEEPS, Sweeps, dries_to_a_skin, spread
 from .corrected_fields import stored
 from .corrected_pieces import (PrismCells, MeshMarches, CombinedMarch, SharedInputs, as_prism,
                                bar_coordinates,
@@ -238,20 +238,21 @@ def surface_of(setting: SharedInputs) -> np.ndarray:
 
 def corrected_levels(geometry, diffusivity, law, exposure, times, accuracy: float,
                      meshes: int = 2, *, plans=None, base=None, surface_layer_depth=LAYER_DEPTH,
-                     store_fields=False, part="") -> CorrectedMeshes:
+                     store_fields=False, part="", sweeps: Sweeps = SWEEPS) -> CorrectedMeshes:
     """The corrected product (module docstring) on ``meshes`` nested 3-D meshes: the graded
     cells of the ``base_plan`` plan, each next one refined by 2 in every direction
     (``PrismCells.refined``); or, with ``plans`` (accuracies of ``nonlinear_plan``, coarsest
     first), on those plans' graded cells (not nested; ``benchmarks/dc_defect_correction.py
     plate-order``). ``base``: the coarsest nested plan's accuracy instead of ``base_plan``'s.
     The planform reference is refined from the ``MESH_LEVELS[-1]`` plan's graded planform.
-    ``store_fields`` keeps every mesh's fields and the references' (``corrected_fields``)."""
+    ``store_fields`` keeps every mesh's fields and the references' (``corrected_fields``);
+    ``sweeps``: when each step's sweeps stop, in every march."""
     times = np.asarray(times, float)
     geometry, diffusivity, faces_layer = as_prism(geometry, diffusivity)
     setting = SharedInputs.of(geometry, diffusivity, law, exposure, times, surface_layer_depth,
-                         steps_for(accuracy), part, faces_layer, store_fields)
+                         steps_for(accuracy), part, faces_layer, store_fields, sweeps)
     sheet = sheet_reference(geometry, diffusivity, law, exposure, times, accuracy,
-                            surface_layer_depth, store_fields)
+                            surface_layer_depth, store_fields, sweeps)
     reference = CombinedMarch(sheet.mean, sheet.surface)
 
     def planned(a):
@@ -361,7 +362,7 @@ def extension(run: CorrectedMeshes, result: DiffusionResult, accuracy: float,
 
 def solve_corrected(geometry, diffusivity, law, exposure, times, accuracy: float, *,
                     surface_layer_depth=LAYER_DEPTH, store_fields=False, part="",
-                    reason="") -> DiffusionResult:
+                    reason="", sweeps: Sweeps = SWEEPS) -> DiffusionResult:
     """Mean and contact layer (weight %) at ``times``: the corrected product (module
     docstring) on two nested 3-D meshes (``corrected_levels``; their change the estimate
     of what does not separate, ``unseparated``), a further one (8 x the cells, or where
@@ -374,7 +375,7 @@ def solve_corrected(geometry, diffusivity, law, exposure, times, accuracy: float
     times = np.asarray(times, float)
     run = corrected_levels(geometry, diffusivity, law, exposure, times, accuracy,
                            surface_layer_depth=surface_layer_depth,
-                           store_fields=store_fields, part=part)
+                           store_fields=store_fields, part=part, sweeps=sweeps)
     sheet = run.sheet
     estimated = partial(estimate_parts, margin=skin_margin(law, exposure, times))
     values, three_d_error, rest = estimated(run)
