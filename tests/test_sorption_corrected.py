@@ -258,12 +258,10 @@ def test_three_nested_meshes_read_between_their_steps_give_what_the_solve_takes(
     assert np.all((values[0][1:-1] - slack < mean) & (mean < values[0][2:] + slack))
 
 
-def test_the_cross_of_cheaper_meshes_stands_in_for_the_next_diagonal_mesh(nested_plate,
-                                                                         monkeypatch):
+def test_the_cross_of_cheaper_meshes_stands_in_for_the_next_diagonal_mesh(nested_plate):
     """Where the finest mesh refined by 2 in every direction (8 x its cells) passes
-    ``NESTED_CELLS``, ``CorrectedMeshes.finer`` adds the ``cross`` around it (the base refined
-    along z
-    once and twice and along the planform once and twice, nested: ``PrismCells.refined(p, z)``),
+    ``MeshCaps.nested``, ``CorrectedMeshes.finer`` adds the ``cross`` around it (the base
+    refined along z once and twice and along the planform once and twice, nested: ``PrismCells.refined(p, z)``),
     at most 2 x its cells. Their combination R11 + (R02 - R01) + (R20 - R10) (Griebel,
     Schneider & Zenger 1992) is closer to the 8 x mesh R22 than R11 is (measured 5.7e-5
     against 3.9e-4); its estimate (4.1e-4) covers its distance to the diagonal three-mesh
@@ -273,11 +271,11 @@ def test_the_cross_of_cheaper_meshes_stands_in_for_the_next_diagonal_mesh(nested
     from fickcam.diffusion.nonfickian import corrected_product
     from fickcam.diffusion.problem.results import DiffusionResult
 
-    monkeypatch.setattr(corrected_product, "NESTED_CELLS", 4 * nested_plate.meshes[1].cells)
-    monkeypatch.setattr(corrected_product, "CROSS_CELLS", 2 * nested_plate.meshes[1].cells)
+    caps = corrected_product.MeshCaps(nested=4 * nested_plate.meshes[1].cells,
+                                      cross=2 * nested_plate.meshes[1].cells)
     two = replace(nested_plate, results=nested_plate.results[:2],
                   marched=nested_plate.marched[:2], meshes=nested_plate.meshes[:2])
-    crossed = two.finer()
+    crossed = two.finer(caps=caps)
     assert crossed.keys == [(0, 0), (0, 1), (0, 2), (1, 0), (2, 0), (1, 1)]
     assert max(m.cells for m in crossed.meshes) <= 2 * crossed.meshes[-1].cells
     base, finest = crossed.meshes[0], crossed.meshes[-1]
@@ -285,7 +283,7 @@ def test_the_cross_of_cheaper_meshes_stands_in_for_the_next_diagonal_mesh(nested
     np.testing.assert_array_equal(across.tess.points, finest.tess.points)
     np.testing.assert_array_equal(across.z, finest.z)
     np.testing.assert_array_equal(base.refined(0, 2).z, crossed.meshes[2].z)
-    assert crossed.finer() is None   # once
+    assert crossed.finer(caps=caps) is None   # once
     r, scale = dict(zip(crossed.keys, crossed.results)), nested_plate.scale
     combined = tuple(r[1, 1][i] + r[0, 2][i] - r[0, 1][i] + r[2, 0][i] - r[1, 0][i]
                      for i in range(2))

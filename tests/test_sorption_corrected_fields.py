@@ -154,19 +154,17 @@ def test_dc_fields_at_the_centre_of_a_wide_plate_are_the_dc_sheet():
     assert corrected <= coarse / 5.0
 
 
-def test_fields_after_the_cross_are_the_diagonal_finest_meshs_and_its_coarser_neighbours(
-        monkeypatch):
+def test_fields_after_the_cross_are_the_diagonal_finest_meshs_and_its_coarser_neighbours():
     """Where the 8x mesh passes the cap, ``CorrectedMeshes.finer`` adds the ``cross`` (meshes
-    refined
-    along one direction, their fields not kept) around the finest: the stored fields and
+    refined along one direction, their fields not kept) around the finest: the stored fields and
     their indicated errors still come from the finest mesh and the next coarser one on the
     diagonal, so they are the two-mesh run's exactly (k = 2 absorbing, 3 x 2 x 2 mm plate)."""
     small = CamPlate(np.array([0, 3e-3, 3e-3, 0.0]), np.array([0, 0, 2e-3, 2e-3]), H)
     run = corrected_levels(small, ISOTROPIC, law(2.0), WET, TIMES[:4], 1e-2, 2, base=1.0,
                            store_fields=True)
-    monkeypatch.setattr(corrected_product, "NESTED_CELLS", 4 * run.meshes[1].cells)
-    monkeypatch.setattr(corrected_product, "CROSS_CELLS", 2 * run.meshes[1].cells)
-    crossed = run.finer(store_fields=True)
+    caps = corrected_product.MeshCaps(nested=4 * run.meshes[1].cells,
+                                      cross=2 * run.meshes[1].cells)
+    crossed = run.finer(store_fields=True, caps=caps)
     assert crossed.keys[-1] == (1, 1) and len(crossed.meshes) == 6
     assert [m.plate.fields is None for m in crossed.marched] == [False] + [True] * 4 + [False]
     (two, two_errors), (cross, cross_errors) = field_errors(run), field_errors(crossed)

@@ -102,6 +102,21 @@ CROSS_CELLS = 60_000       # the ``cross``'s largest (2 x the finest): half the 
 #   (``error_model.MAX_CELLS``). The 60 x 8 x 4 mm link (k = 2, absorbing, 1e-3; 18 210 cells, its
 #   cross 36 420): 6.4e-4 in 229 CPU s, where 32 000 left it "capped" at 1.3e-3 (72 s); the
 #   6 x 4 x 2 mm drying bar's cross has 30 608 (benchmarks/dc_bar.py, auto)
+
+
+@dataclass(frozen=True)
+class MeshCaps:
+    """The largest 3-D meshes the corrected product refines to [cells on half the
+    thickness]: the next nested mesh (8 x the finest) within ``nested``, the ``cross``'s
+    largest (2 x the finest) within ``cross``. The defaults are the run's; tests pass
+    smaller ones instead of changing the module's values."""
+
+    nested: int = NESTED_CELLS
+    cross: int = CROSS_CELLS
+
+
+MESH_CAPS = MeshCaps()
+
 BASE_PER_ACCURACY = 1.0 / 3e-3  # the coarsest 3-D plan's accuracy per requested accuracy,
 #   within MESH_LEVELS (``base_level``): 0.5 at 1e-3 and below, 1.0 at 3e-3, 3.3 at 1e-2, 4.0
 #   from 1.2e-2 up. On the demo cam (k = 2) at 1e-3 the 1.0 plan's nested pair changed by
@@ -170,16 +185,17 @@ class CorrectedMeshes:
     def lattice(self) -> list:   # the keys, or the diagonal's
         return list(self.keys)[:len(self.results)] or [(i, i) for i in range(len(self.results))]
 
-    def finer(self, store_fields: bool = False) -> "CorrectedMeshes | None":
+    def finer(self, store_fields: bool = False,
+              caps: MeshCaps = MESH_CAPS) -> "CorrectedMeshes | None":
         """The next step of ``solve_corrected``, or None: the finest refined by 2 in every
-        direction (``PrismCells.refined``, 8 x its cells) within ``NESTED_CELLS``; past it, once,
-        the ``cross`` around it (its largest mesh 2 x its cells, within ``CROSS_CELLS``;
+        direction (``PrismCells.refined``, 8 x its cells) within ``caps.nested``; past it,
+        once, the ``cross`` around it (its largest mesh 2 x its cells, within ``caps.cross``;
         ``combination``)."""
         (p, z), cells = self.lattice[-1], self.meshes[-1].cells
         if combination(self.lattice) is None:
-            if cells * 8 <= NESTED_CELLS:
+            if cells * 8 <= caps.nested:
                 return self.adding([], (p + 1, z + 1), store_fields)
-            if p >= 1 and z >= 1 and cells * 2 <= CROSS_CELLS:
+            if p >= 1 and z >= 1 and cells * 2 <= caps.cross:
                 along_z, along_planform = cross(p, z)
                 return self.adding([*along_z, *along_planform], (p, z), store_fields)
         return None
@@ -209,10 +225,10 @@ def base_level(accuracy: float) -> float:
     return min(MESH_LEVELS[0], max(MESH_LEVELS[-1], BASE_PER_ACCURACY * accuracy))
 
 
-def base_plan(plan_at, accuracy: float) -> tuple[float, Plan]:
+def base_plan(plan_at, accuracy: float, caps: MeshCaps = MESH_CAPS) -> tuple[float, Plan]:
     """(its accuracy, the coarsest 3-D plan): ``plan_at(base_level(accuracy))``, the level
     doubled (up to ``MESH_LEVELS[0]``) while the ``cross`` around the pair (16 x the base's
-    cells) would pass ``CROSS_CELLS`` (so a large part has a further mesh), then halved
+    cells) would pass ``caps.cross`` (so a large part has a further mesh), then halved
     (down to ``MESH_LEVELS[-1]``) while the plan has fewer than ``MIN_Z_WIDTHS`` z widths on
     the half thickness. At 1e-3, k = 2 (benchmarks/dc_bar.py, auto): the 60 x 8 x 4 mm link
     drying on the 0.5 plan (7 904 cells) "capped" at 2.0e-3 in 334 CPU s, on the 1.0 plan
@@ -221,7 +237,7 @@ def base_plan(plan_at, accuracy: float) -> tuple[float, Plan]:
     8.0e-4 in 309 s on the 0.5 plan's pair, 7.4e-5 apart (``gap``; dc_defect_correction.py)."""
     level = base_level(accuracy)
     chosen = plan_at(level)
-    while level < MESH_LEVELS[0] and 16 * chosen.cells > CROSS_CELLS:
+    while level < MESH_LEVELS[0] and 16 * chosen.cells > caps.cross:
         level = min(MESH_LEVELS[0], 2.0 * level)
         chosen = plan_at(level)
     while (level > MESH_LEVELS[-1]
