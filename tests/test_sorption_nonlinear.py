@@ -5,7 +5,7 @@ import pytest
 from scipy.integrate import solve_ivp
 from scipy.sparse import diags
 
-from fickcam.diffusion import solve
+from fickcam.diffusion import SolverSettings, solve
 from fickcam.diffusion.models.finite_volume import discretise
 from fickcam.diffusion.nonfickian import concentration_dependent
 from fickcam.diffusion.problem.exposure import Diffusivity, Exposure
@@ -131,9 +131,10 @@ def test_operator_sweeps_are_fipys_own_sweeps():
 
 def test_a_step_that_does_not_converge_raises_a_solver_error():
     law = ConcentrationDependent(MM, exponent=5.0)
+    one_sweep = SolverSettings(sweeps=concentration_dependent.Sweeps(most=1))
     with pytest.raises(SolverError, match="did not converge"):
         solve(Sheet(H), ISOTROPIC, exposure(0.0, MM), TIMES, accuracy=1e-2, sorption=law,
-              part="cam", sweeps=concentration_dependent.Sweeps(most=1))
+              part="cam", settings=one_sweep)
 
 
 def test_the_skin_is_resolved_from_its_start_on():

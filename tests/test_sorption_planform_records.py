@@ -5,12 +5,13 @@ fine run of the demo cam recorded in tests/data by benchmarks/two_phase_cam_reco
 from __future__ import annotations
 
 import json
+from dataclasses import replace
 import numpy as np
 import pytest
 
 from fickcam.bench_two_phase import CONFIGS, REFERENCE, cam_problem, true_error
 from fickcam.blas import one_blas_thread
-from fickcam.diffusion import CamPlate, Diffusivity, Disc, plan, solve
+from fickcam.diffusion import CamPlate, Diffusivity, Disc, SolverSettings, plan, solve
 from fickcam.diffusion.accuracy.error_model import LAYER_TOLERANCE
 from fickcam.diffusion.exact.modes import cylinder_factor
 from fickcam.diffusion.nonfickian import planform_modes
@@ -170,40 +171,39 @@ def _modelled_level(coefficients):
     return level
 
 
-def test_w0_and_growth_refined_apart_meet_a_tolerance_together_cannot_under_the_cap(
-        monkeypatch):
+def test_w0_and_growth_refined_apart_meet_a_tolerance_together_cannot_under_the_cap():
     """On a plate whose layer errs 0.25 w0^2 and mean 0.02 w0^2 - 0.004 g^2 (the pattern of
     the demo cam through its daily record), refining w0 and g together stops at the cap
     above 5e-5; apart (``_separately``) meets it under the cap, the estimate (the terms'
     magnitudes added) at least the exact error."""
     plate, _ = circle(0.01, 0.004)
     coefficients = np.array([[0.02, -0.004], [0.25, 0.001]])
-    monkeypatch.setattr(planform_modes, "_level", _modelled_level(coefficients))
+    modelled = planform_modes.Refinement(level=_modelled_level(coefficients))
 
-    def refined():
+    def refined(refinement):
         return planform_modes.refined_planform(plate, (D,) * 3, DEPTH, 0.12, 0.25, [1.0], 5e-5,
-                                          None)
-    apart = refined()
+                                               None, refinement)
+    apart = refined(modelled)
     exact = np.max(np.abs(coefficients @ np.array([apart.finest ** 2, apart.growth ** 2])))
     assert exact <= apart.error <= 5e-5 and apart.cells <= planform_modes.PLANFORM_CAP
-    monkeypatch.setattr(planform_modes, "_separately", lambda *args: None)
-    assert refined().error > 5e-5
+    assert refined(replace(modelled, apart=False)).error > 5e-5
 
 
-def test_refinement_apart_that_ends_above_the_tolerance_falls_back_to_together(monkeypatch):
+def test_refinement_apart_that_ends_above_the_tolerance_falls_back_to_together():
     """Where the coarse meshes' estimate predicts that together cannot meet the accuracy
     under the cap but it can (the r 10 mm plate through the daily record, 6e-5, a 12 000-
     cell cap: apart ended at 1.3e-4), the refinement together is kept: the estimate within
     the accuracy, the cells within the cap, and mean, bound water and layer / 4 against the
     exact disc within the estimate."""
-    monkeypatch.setattr(planform_modes, "PLANFORM_CAP", 12_000)
+    capped = SolverSettings(planform=planform_modes.Refinement(cap=12_000))
     plate, disc = circle(0.01, 0.004)
     diffusivity, law = Diffusivity((D,) * 3, 0.0), Langmuir(Rate(1e-6), Rate(3e-6))
     exposure, accuracy = daily_record(), 6e-5
     times = np.array([0.5, 1.5, 3.5, 6.0, 9.5, 11.5]) * DAY
     exact = solve(disc, diffusivity, exposure, times, accuracy=1e-7, sorption=law)
     with one_blas_thread():
-        result = solve(plate, diffusivity, exposure, times, accuracy=accuracy, sorption=law)
+        result = solve(plate, diffusivity, exposure, times, accuracy=accuracy, sorption=law,
+                       settings=capped)
     swing = history_swing(exposure)
     errors = [np.max(np.abs(getattr(result, k) - getattr(exact, k))) / swing
               for k in ("mean", "bound", "surface")]

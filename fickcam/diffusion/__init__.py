@@ -18,10 +18,11 @@ before it (tests/test_architecture.py holds the order):
 FiPy is imported inside the backend's functions only, so importing this package stays
 light.
 """
-from .dispatch import MODELS, plan, solve
+from .dispatch import MODELS, SolverSettings, plan, solve
 from .problem.exposure import GAS_CONSTANT, Diffusivity, Exposure
 from .problem.geometry import Bar, CamPlate, Disc, Geometry, LinkBar, Sheet
 from .problem.results import DiffusionResult, Plan
 
 __all__ = ["GAS_CONSTANT", "Diffusivity", "Exposure", "Bar", "CamPlate", "Disc",
-           "Geometry", "LinkBar", "Sheet", "MODELS", "DiffusionResult", "Plan", "plan", "solve"]
+           "Geometry", "LinkBar", "Sheet", "MODELS", "DiffusionResult", "Plan", "SolverSettings",
+           "plan", "solve"]

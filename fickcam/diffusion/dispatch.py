@@ -39,7 +39,7 @@ from .models.plane import plan_plane, solve_plane
 from .nonfickian.concentration_dependent import (SWEEPS, Sweeps, nonlinear_plan, solve_nonlinear,
                                                  spread)
 from .nonfickian.corrected_product import plan_corrected, solve_corrected
-from .nonfickian.planform_modes import (PLANFORM_CAP, RefinedPlanform,
+from .nonfickian.planform_modes import (REFINEMENT, RefinedPlanform, Refinement,
                                         lanczos_spectrum, planform_design, planform_operator,
                                         planform_source, refined_planform)
 from .nonfickian.two_phase_mesh import two_phase_marcher
@@ -192,12 +192,27 @@ def _two_phase_model(geometry, model: str) -> str:
     return _fick_model(geometry, model).name
 
 
+@dataclass(frozen=True)
+class SolverSettings:
+    """The solvers' tuned limits, frozen: when a concentration-dependent step's sweeps stop
+    (``sweeps``) and how a two-phase planform is refined (``planform``: its cap, refinement
+    apart). The defaults are the run's; a caller (a test) passes others instead of changing
+    module values."""
+
+    sweeps: Sweeps = SWEEPS
+    planform: Refinement = REFINEMENT
+
+
+SETTINGS = SolverSettings()
+
+
 def plan(geometry, diffusivity: Diffusivity, exposure: Exposure, times: np.ndarray,
          accuracy: float = 1e-3, model: str = "auto", sorption=None,
-         surface_layer_depth: float | None = None) -> Plan:
+         surface_layer_depth: float | None = None, settings: SolverSettings = SETTINGS) -> Plan:
     """The model, cells and steps ``solve`` will use, and why, without solving
     (``sorption``: a law of ``diffusion.sorption``, None for Fick; ``surface_layer_depth``:
-    the solve's, so that a plane plan and its solve share one outline expansion)."""
+    the solve's, so that a plane plan and its solve share one outline expansion;
+    ``settings``: the solve's)."""
     _validate(geometry, model, accuracy)
     if is_nonlinear(sorption) and _nonlinear_route(geometry, model, sorption, exposure,
                                                    times, accuracy) == "fick":
@@ -206,13 +221,13 @@ def plan(geometry, diffusivity: Diffusivity, exposure: Exposure, times: np.ndarr
     if is_langmuir(sorption) or is_nonlinear(sorption):
         depth = LAYER_DEPTH if surface_layer_depth is None else surface_layer_depth
         return _plan_sorption(geometry, diffusivity, exposure, times, accuracy, model, sorption,
-                              depth)
+                              depth, settings.planform)
     return _fick_model(geometry, model).plan(geometry, diffusivity, exposure, times, accuracy,
                                              surface_layer_depth)
 
 
 def _plan_sorption(geometry, diffusivity, exposure, times, accuracy, model, sorption,
-                   depth) -> Plan:
+                   depth, refinement: Refinement = REFINEMENT) -> Plan:
     law = describe(sorption)
     if is_nonlinear(sorption) and _nonlinear_route(geometry, model, sorption, exposure,
                                                    times, accuracy) == "corrected":
@@ -234,7 +249,8 @@ def _plan_sorption(geometry, diffusivity, exposure, times, accuracy, model, sorp
         return Plan("analytic", 0, 0, f"{law}: exact Fickian modes of the part, each a "
                     "2x2 free/bound system advanced exactly through the history", accuracy)
     if chosen == "plane":
-        return _plan_planform(geometry, diffusivity, exposure, times, accuracy, sorption, depth)
+        return _plan_planform(geometry, diffusivity, exposure, times, accuracy, sorption, depth,
+                              refinement)
     direct = _direct_plan(geometry, diffusivity, chosen, exposure, times, accuracy)
     return replace(direct, reason=f"{law}; {direct.reason}")
 
@@ -245,15 +261,16 @@ def _direct_plan(geometry, diffusivity, chosen, exposure, times, accuracy,
     return plan_direct(geometry, diffusivity, chosen, change, outputs, accuracy, exposure, mirrored)
 
 
-def _plan_planform(geometry, diffusivity, exposure, times, accuracy, sorption, depth) -> Plan:
+def _plan_planform(geometry, diffusivity, exposure, times, accuracy, sorption, depth,
+                   refinement: Refinement) -> Plan:
     """The planform mesh the solve will use: the first mesh from the error model, refined
     from the two-phase histories it measures (``refined``, kept for the solve, so that
     ``fickcam check`` shows the refined mesh and a run pays for it once)."""
     design, refined = _planform_refinement(geometry, diffusivity, exposure, times, accuracy,
-                                           sorption, depth)
+                                           sorption, depth, refinement)
     _, estimate = refined.result
     capped = ("" if refined.error <= PLANFORM_SHARE * accuracy else
-              f"; capped at {PLANFORM_CAP} cells: error above the requested accuracy")
+              f"; capped at {refinement.cap} cells: error above the requested accuracy")
     return Plan("plane", refined.cells, 0, f"{describe(sorption)}: the planform's FiPy "
                 f"operator (first mesh {design.note}, about {int(np.prod(design.cells))} cells; "
                 f"refined from the two-phase histories on {refined.levels} meshes to "
@@ -264,19 +281,20 @@ def _plan_planform(geometry, diffusivity, exposure, times, accuracy, sorption, d
                 finest=refined.finest, growth=refined.growth)
 
 
-def _planform_refinement(geometry, diffusivity, exposure, times, accuracy, sorption, depth):
+def _planform_refinement(geometry, diffusivity, exposure, times, accuracy, sorption, depth,
+                         refinement: Refinement):
     """(first mesh, ``_refined``) of a two-phase CamPlate or LinkBar."""
     scales = scales_of(geometry, diffusivity, exposure)
     t_lo = earliest_output(scales.tau_star(exposure.change_times),
                            scales.tau_star(np.asarray(times, float)))
     design = planform_design(geometry, diffusivity.pre_exponential, accuracy, t_lo)
     return design, _refined(geometry, diffusivity, exposure, tuple(np.asarray(times, float)),
-                            accuracy, sorption, depth, design.finest, design.growth)
+                            accuracy, sorption, depth, design.finest, design.growth, refinement)
 
 
 @lru_cache(maxsize=4)
 def _refined(geometry, diffusivity, exposure, times: tuple, accuracy, sorption, depth, finest,
-             growth) -> RefinedPlanform:
+             growth, refinement: Refinement) -> RefinedPlanform:
     """``planform_modes.refined_planform`` of the two-phase history (the march on each mesh,
     most of whose cost is the planform operators): its mesh error is ``PLANFORM_SHARE`` of
     the accuracy, the march the rest. Cached: ``plan`` and ``solve`` share it."""
@@ -291,7 +309,7 @@ def _refined(geometry, diffusivity, exposure, times: tuple, accuracy, sorption, 
 
     ages = read_ages(RescaledTime(diffusivity, exposure), exposure, times)
     return refined_planform(geometry, diffusivity.pre_exponential, depth, finest, growth, ages,
-                            share, measure)
+                            share, measure, refinement)
 
 
 def _nonlinear_model(geometry, model: str) -> str:
@@ -339,11 +357,11 @@ def _as_fick(call, geometry, diffusivity, exposure, times, sorption, accuracy, m
 def solve(geometry, diffusivity: Diffusivity, exposure: Exposure, times: np.ndarray, *,
           accuracy: float = 1e-3, model: str = "auto", surface_layer_depth: float = LAYER_DEPTH,
           store_fields: bool = False, part: str = "", sorption=None,
-          sweeps: Sweeps = SWEEPS) -> DiffusionResult:
+          settings: SolverSettings = SETTINGS) -> DiffusionResult:
     """Moisture (weight %) of one part at ``times`` (s) under ``exposure``; with a
     ``sorption`` law (``diffusion.sorption``) the mean and surface are the total (free +
-    bound) moisture and, for Langmuir, ``bound`` the bound-water mean. ``sweeps``: when a
-    concentration-dependent step's sweeps stop (``concentration_dependent.Sweeps``)."""
+    bound) moisture and, for Langmuir, ``bound`` the bound-water mean. ``settings``: the
+    solvers' tuned limits (``SolverSettings``)."""
     times = np.asarray(times, float)
     route = (_nonlinear_route(geometry, model, sorption, exposure, times, accuracy)
              if is_nonlinear(sorption) else "")
@@ -351,49 +369,51 @@ def solve(geometry, diffusivity: Diffusivity, exposure: Exposure, times: np.ndar
         return _as_fick(solve, geometry, diffusivity, exposure, times, sorption, accuracy, model,
                         surface_layer_depth, store_fields=store_fields, part=part)
     chosen = plan(geometry, diffusivity, exposure, times, accuracy, model, sorption,
-                  surface_layer_depth)
+                  surface_layer_depth, settings)
     if route:   # D(c): ``extend`` reads between the steps where the cells stay (``dense_output``)
         def again(at):
             return plan(geometry, diffusivity, exposure, at, accuracy, model, sorption,
-                        surface_layer_depth)
+                        surface_layer_depth, settings)
 
         def resolve(at):
             return solve(geometry, diffusivity, exposure, at, accuracy=accuracy, model=model,
                          surface_layer_depth=surface_layer_depth, part=part, sorption=sorption,
-                         sweeps=sweeps)
+                         settings=settings)
     if route == "corrected":
         return held_to_plan(solve_corrected(
             geometry, diffusivity, sorption, exposure, times, accuracy,
             surface_layer_depth=surface_layer_depth, store_fields=store_fields, part=part,
-            reason=chosen.reason, sweeps=sweeps), chosen, again, resolve)
+            reason=chosen.reason, sweeps=settings.sweeps), chosen, again, resolve)
     log.debug("%s: %s, %d cells, %d steps (%s)", part or type(geometry).__name__, chosen.model,
               chosen.cells, chosen.steps, chosen.reason)
     if route:
         return held_to_plan(_solve_sorption(geometry, diffusivity, exposure, times, chosen,
                                             sorption, surface_layer_depth, store_fields, part,
-                                            accuracy, sweeps), chosen, again, resolve)
+                                            accuracy, settings), chosen, again, resolve)
     if sorption is not None and (is_langmuir(sorption) or is_nonlinear(sorption)):
         return _solve_sorption(geometry, diffusivity, exposure, times, chosen, sorption,
-                               surface_layer_depth, store_fields, part, accuracy)
+                               surface_layer_depth, store_fields, part, accuracy, settings)
     return FICK_MODELS[chosen.model].solve(geometry, diffusivity, exposure, times, chosen,
                                            accuracy, surface_layer_depth, store_fields, part)
 
 
 def _solve_sorption(geometry, diffusivity, exposure, times, chosen: Plan, sorption, depth,
-                    store_fields, part, accuracy, sweeps: Sweeps = SWEEPS) -> DiffusionResult:
+                    store_fields, part, accuracy,
+                    settings: SolverSettings = SETTINGS) -> DiffusionResult:
     if chosen.model in ("analytic", "plane"):
         return _langmuir_modes(geometry, diffusivity, exposure, times, chosen, sorption, depth,
-                               accuracy)
+                               accuracy, settings.planform)
     if is_langmuir(sorption):
         return solve_direct(geometry, diffusivity, exposure, times, chosen,
                             surface_layer_depth=depth, store_fields=store_fields, part=part,
                             marcher=two_phase_marcher(sorption, exposure))
     return solve_nonlinear(geometry, diffusivity, sorption, exposure, times, chosen,
                            surface_layer_depth=depth, store_fields=store_fields, part=part,
-                           sweeps=sweeps)
+                           sweeps=settings.sweeps)
 
 
-def _langmuir_modes(geometry, diffusivity, exposure, times, chosen, sorption, depth, accuracy):
+def _langmuir_modes(geometry, diffusivity, exposure, times, chosen, sorption, depth, accuracy,
+                    refinement: Refinement = REFINEMENT):
     """The exact two-phase modal march; for a CamPlate or LinkBar on its planform's
     quadrature (``planform_modes``), the histories of the plan's refined mesh (``_refined``)."""
     if chosen.model != "plane":
@@ -401,7 +421,7 @@ def _langmuir_modes(geometry, diffusivity, exposure, times, chosen, sorption, de
                                              accuracy, depth)
         return _langmuir_result(times, history, estimate, chosen)
     _, refined = _planform_refinement(geometry, diffusivity, exposure, times, accuracy, sorption,
-                                      depth)
+                                      depth, refinement)
     history, _ = refined.result
     result = _langmuir_result(times, history, chosen.error_estimate, chosen)
     source = planform_source(geometry, diffusivity.pre_exponential, lanczos_spectrum(

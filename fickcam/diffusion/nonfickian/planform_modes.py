@@ -57,6 +57,7 @@ from __future__ import annotations
 import logging
 from dataclasses import dataclass, replace
 from functools import lru_cache
+from typing import Callable
 
 import numpy as np
 from scipy import sparse
@@ -271,8 +272,25 @@ def _level(geometry, d, depth, finest, growth, ages, tolerance, measure):
     return np.asarray(values, float), payload, planform.cells, steps, change
 
 
+@dataclass(frozen=True)
+class Refinement:
+    """How ``refined_planform`` refines: up to ``cap`` cells, w0 and g ``apart`` where
+    together cannot meet the tolerance under the cap, each mesh measured by ``level``
+    (``(geometry, d, depth, finest, growth, ages, tolerance, measure)`` -> (compared values,
+    payload, cells, steps, quadrature change)). The defaults are the run's; tests pass
+    others (a smaller cap, a modelled level) instead of changing the module."""
+
+    cap: int = PLANFORM_CAP
+    apart: bool = True
+    level: Callable = _level
+
+
+REFINEMENT = Refinement()
+
+
 def refined_planform(geometry, d, depth: float, finest: float, growth: float, ages,
-                     tolerance: float, measure) -> RefinedPlanform:
+                     tolerance: float, measure,
+                     refinement: Refinement = REFINEMENT) -> RefinedPlanform:
     """Refine the first mesh (``planform_design``) by r = w0 / w0' (finest width and growth
     together) until the Richardson estimate |y' - y| / (r^2 - 1) of what ``measure(source)``
     compares (its first return: the two-phase history relative to the swing, the layer's
@@ -284,27 +302,27 @@ def refined_planform(geometry, d, depth: float, finest: float, growth: float, ag
     kept. The error is infinite if the mesh cannot be refined."""
     ages = np.asarray(ages, float)
     ages = ages[ages > 0]
-    coarse = _level(geometry, d, depth, finest, growth, ages, tolerance, measure)
+    coarse = refinement.level(geometry, d, depth, finest, growth, ages, tolerance, measure)
     ratio, levels, apart = 2.0, 1, None
     while True:
         try:
-            fine = _level(geometry, d, depth, finest / ratio, growth / ratio, ages, tolerance,
-                          measure)
+            fine = refinement.level(geometry, d, depth, finest / ratio, growth / ratio, ages,
+                                    tolerance, measure)
         except InputError:
             break
         levels += 1
         finest, growth = finest / ratio, growth / ratio
         mesh = float(np.max(np.abs(fine[0] - coarse[0]), initial=0.0)) / (ratio ** 2 - 1.0)
         error = mesh + fine[4]
-        if error <= tolerance or fine[2] * 2 > PLANFORM_CAP:
+        if error <= tolerance or fine[2] * 2 > refinement.cap:
             return _lower(RefinedPlanform(error, fine[2], fine[3], levels, fine[1], finest,
                                           growth), apart)
-        reach = np.sqrt(PLANFORM_CAP / fine[2])
+        reach = np.sqrt(refinement.cap / fine[2])
         log.debug("planform w0 %.3g g %.3g: %d cells, estimate %.2e; at the cap together %.2e",
                   finest, growth, fine[2], error, mesh / reach ** 2 + fine[4])
-        if apart is None and mesh / reach ** 2 > tolerance - fine[4]:
+        if refinement.apart and apart is None and mesh / reach ** 2 > tolerance - fine[4]:
             apart = _separately(geometry, d, depth, (finest, growth, fine), ages, tolerance,
-                                measure, levels)
+                                measure, levels, refinement)
             if apart is not None and apart.error <= tolerance:
                 return apart
             levels = levels if apart is None else apart.levels
@@ -342,10 +360,10 @@ def mesh_error(parts, finest: float, growth: float) -> float:
                         initial=0.0))
 
 
-def _target(geometry, d, parts, meshes, budget: float):
+def _target(geometry, d, parts, meshes, budget: float, cap: int):
     """(finest, growth), within ``SPLIT_REACH`` of the last of ``meshes``, of the fewest
-    cells whose predicted mesh error (``mesh_error``) is ``budget`` / ``SAFETY``^2, under the
-    cap, else of the least error under it. The cells: the cap's cheap count
+    cells whose predicted mesh error (``mesh_error``) is ``budget`` / ``SAFETY``^2, under
+    ``cap``, else of the least error under it. The cells: the cap's cheap count
     (``sizing.estimated_prism_cells``) times the largest ratio of the cells built to it
     so far (it misses by up to 20 % as w0 and g part)."""
     stretch = stretch_of(d)
@@ -358,7 +376,7 @@ def _target(geometry, d, parts, meshes, budget: float):
             if g > sizing.MAX_GROWTH:
                 continue
             count = ratio * sizing.estimated_prism_cells(geometry, w, g, stretch)[0]
-            if count > PLANFORM_CAP:
+            if count > cap:
                 continue
             error = mesh_error(parts, w, g)
             key = (max(error * SAFETY ** 2, budget), count)   # met: fewest cells; else: least error
@@ -367,7 +385,7 @@ def _target(geometry, d, parts, meshes, budget: float):
     return None if best is None else best[1:]
 
 
-def _separately(geometry, d, depth, start, ages, tolerance, measure, levels):
+def _separately(geometry, d, depth, start, ages, tolerance, measure, levels, refinement):
     """Refine w0 and g apart from the mesh ``start`` (finest, growth, ``_level``): one mesh
     with w0 / 2 alone and one with g / 2 alone give each term's own Richardson difference
     (``error_coefficients``); the mesh of the fewest cells predicted to meet the tolerance follows
@@ -378,7 +396,8 @@ def _separately(geometry, d, depth, start, ages, tolerance, measure, levels):
     meshes = [start]
     try:
         for w, g in ((finest / 2.0, growth), (finest, growth / 2.0)):
-            meshes.append((w, g, _level(geometry, d, depth, w, g, ages, tolerance, measure)))
+            meshes.append((w, g, refinement.level(geometry, d, depth, w, g, ages, tolerance,
+                                                  measure)))
     except InputError:
         return None
     levels += 2
@@ -390,15 +409,16 @@ def _separately(geometry, d, depth, start, ages, tolerance, measure, levels):
         last = met[-1]
         log.debug("planform w0 %.3g g %.3g apart: %d cells, estimate %.2e", meshes[-1][0],
                   meshes[-1][1], last[0], last[1])
-        if cheapest is not None or last[0] * 2 > PLANFORM_CAP:
+        if cheapest is not None or last[0] * 2 > refinement.cap:
             cells, error, (w, g, level) = cheapest or last
             return RefinedPlanform(error, cells, level[3], levels, level[1], w, g)
         w, g, level = meshes[-1]
-        target = _target(geometry, d, parts, meshes, tolerance - level[4])
+        target = _target(geometry, d, parts, meshes, tolerance - level[4], refinement.cap)
         if target is None or np.allclose(target, (w, g), rtol=1e-3):
             return RefinedPlanform(last[1], last[0], level[3], levels, level[1], w, g)
         try:
-            meshes.append((*target, _level(geometry, d, depth, *target, ages, tolerance, measure)))
+            meshes.append((*target, refinement.level(geometry, d, depth, *target, ages, tolerance,
+                                                     measure)))
         except InputError:
             return RefinedPlanform(last[1], last[0], level[3], levels, level[1], w, g)
         levels += 1
