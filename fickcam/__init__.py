@@ -26,14 +26,20 @@ def run(scene, *, accuracy: float | None = None, progress: bool = False):
     return _run(scene, accuracy=accuracy, progress=progress)
 
 
-def compensate(scene, *, at=None, over=None, accuracy: float | None = None):
+def compensate(scene, *, at=None, over=None, accuracy: float | None = None,
+               keep_limits: bool = False, points: bool = False):
     """The dry dimensions to make so that the mechanism has its design geometry at ageing
-    time ``at`` ("60 d") or stays closest to it over ``over`` = (T1, T2); returns a
-    ``Compensation`` (``.iterations``, ``.residual``; its table and written scene come from
-    ``fickcam.compensation.dimension_table`` and ``write_scene``)."""
+    time ``at`` ("60 d") or stays closest to it over ``over`` = (T1, T2); ``keep_limits``
+    (with ``at``): if that breaks one of the scene's limits from delivery to the end of the
+    history, made for that whole life instead; ``points``: a parametric cam made as points.
+    Returns a ``Compensation`` (``.made``,
+    ``.iterations``, ``.residual``, ``.before`` and ``.after``: the runs of the design and
+    of the made scene; its table, report and written scene come from
+    ``fickcam.compensation.dimension_table``, ``report`` and ``write_scene``)."""
     from .compensation import compensate as _compensate
 
-    return _compensate(scene, at=at, over=over, accuracy=accuracy)
+    return _compensate(scene, at=at, over=over, accuracy=accuracy, keep_limits=keep_limits,
+                       points=points)
 
 
 def save(dataset, path):

@@ -7,14 +7,12 @@ from __future__ import annotations
 
 import atexit
 import gc
-import logging
 import sys
 
 from .cli_parser import _parser  # noqa: F401  (re-exported: tests build the parser from here)
 from .commands import COMMANDS
 from .errors import FickcamError, InputError, SceneError
-
-log = logging.getLogger("fickcam")
+from .messages import error_line, terminal_messages
 
 
 def process_main() -> int:
@@ -28,12 +26,16 @@ def process_main() -> int:
 
 
 def main(argv: list[str] | None = None, whole_process: bool = False) -> int:
+    """Run the ``fickcam`` command line on ``argv`` and return its exit status; what it
+    writes on stderr follows :mod:`fickcam.messages` (``fickcam: error|warning|note: ...``,
+    an input file's problems as ``FILE:LINE key: reason``)."""
     args = _parser().parse_args(argv)
     args.whole_process = whole_process
-    # fickcam's own messages (INFO and notices) on stderr; other libraries' only from WARNING
-    # (FiPy logs its solver suite at INFO); --quiet keeps notices off too (errors still print)
-    logging.basicConfig(level=logging.WARNING, format="fickcam: %(message)s", stream=sys.stderr)
-    log.setLevel(logging.ERROR if getattr(args, "quiet", False) else logging.INFO)
+    with terminal_messages(args.verbose - args.quiet):
+        return _run_command(args)
+
+
+def _run_command(args) -> int:
     try:
         return COMMANDS[args.command](args)
     except SceneError as exc:
@@ -41,20 +43,20 @@ def main(argv: list[str] | None = None, whole_process: bool = False) -> int:
             print(str(problem), file=sys.stderr)
         return 2
     except InputError as exc:
-        print(f"fickcam: {exc}", file=sys.stderr)
+        print(error_line(str(exc)), file=sys.stderr)
         return 2
     except FickcamError as exc:
-        print(f"fickcam: {exc}", file=sys.stderr)
+        print(error_line(str(exc)), file=sys.stderr)
         return 1
     except KeyboardInterrupt:
-        print("fickcam: interrupted", file=sys.stderr)
+        print(error_line("interrupted"), file=sys.stderr)
         return 130
     except BrokenPipeError:
         return 0
     except Exception as exc:  # last resort: one line, never a traceback unless --debug
         if args.debug:
             raise
-        print(f"fickcam: internal error: {type(exc).__name__}: {exc} (rerun with --debug)",
+        print(error_line(f"internal error: {type(exc).__name__}: {exc} (rerun with --debug)"),
               file=sys.stderr)
         return 1
 

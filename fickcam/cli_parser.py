@@ -11,9 +11,21 @@ from ._version import __version__
 
 def _command(sub, name: str, summary: str, description: str, *examples: str):
     """A subcommand whose --help says what it does and shows how it is used."""
-    return sub.add_parser(name, help=summary, description=description,
-                          epilog="examples:\n" + "\n".join(f"  {e}" for e in examples),
-                          formatter_class=argparse.RawDescriptionHelpFormatter)
+    command = sub.add_parser(name, help=summary, description=description,
+                             epilog="examples:\n" + "\n".join(f"  {e}" for e in examples),
+                             formatter_class=argparse.RawDescriptionHelpFormatter)
+    _verbosity(command)
+    return command
+
+
+def _verbosity(command) -> None:
+    """-v and -q, on every command (:mod:`fickcam.messages`: errors, warnings, notes)."""
+    group = command.add_argument_group("messages on stderr")
+    group.add_argument("-v", "--verbose", action="count", default=0,
+                       help="also debug details of the work")
+    group.add_argument("-q", "--quiet", action="count", default=0,
+                       help="no notes and no progress bar (the summary stays); -qq: errors only, "
+                            "no summary")
 
 
 def _parser() -> argparse.ArgumentParser:
@@ -43,7 +55,6 @@ def _scene_commands(sub) -> None:
     run.add_argument("scene", help="scene file (YAML)")
     run.add_argument("-o", "--output", help="result file (default: the scene's outputs.file)")
     run.add_argument("--accuracy", type=float, help="override diffusion.accuracy")
-    run.add_argument("--quiet", action="store_true", help="no progress bar, summary or notices")
 
     check = _command(sub, "check", "validate a scene and print the plan",
                      "Validate a scene without running it and print the plan the run uses: "
@@ -61,7 +72,8 @@ def _result_commands(sub) -> None:
                      "shown beside each case.",
                      'fickcam query outputs/cam.h5 lift --time "45 d"',
                      "fickcam query outputs/cam.h5 lift --drift design",
-                     "fickcam query outputs/cam.h5 contact_force --time 30d --cam-angle 120 --format json")
+                     "fickcam query outputs/cam.h5 contact_force --time 30d --cam-angle 120 --format json",
+                     "fickcam query outputs/cam.h5 lift --units um --format csv > lift.csv")
     query.add_argument("result", help="result file (.h5)")
     query.add_argument("variable", help="a variable name (fickcam schema lists them)")
     query.add_argument("--time", help='ageing time with its unit, e.g. "30 d", "6 months" (a bare number is refused)')
@@ -70,6 +82,8 @@ def _result_commands(sub) -> None:
     query.add_argument("--cam-angle", type=float, help="degrees")
     query.add_argument("--crank-angle", type=float, help="degrees")
     query.add_argument("--format", choices=("table", "csv", "json"), default="table")
+    query.add_argument("--units", help="unit to show the values in, e.g. um, MPa, degF (default: "
+                                       "the variable's display unit, as in the run summary)")
     query.add_argument("--drift", choices=("design", "start"),
                        help="the change from the as-designed value (dry, reference temperature) "
                             "or from the first ageing time, instead of the value")
@@ -106,7 +120,6 @@ def _reference_commands(sub) -> None:
                      "fickcam bench --quick", "fickcam bench --records")
     bench.add_argument("--quick", action="store_true",
                        help="each geometry at its coarsest target, no 3-D solid rows (seconds)")
-    bench.add_argument("--quiet", action="store_true", help="no progress bar, only the table")
     bench.add_argument("--records", action="store_true",
                        help="cost of 1, 3, 12 months of hourly weather against a constant climate, "
                        "then a year's accuracy (--quick: 1 and 3 months, no accuracy)")
@@ -134,17 +147,32 @@ def _design_commands(sub) -> None:
         sub, "compensate", "the dimensions to make so that the mechanism holds its design",
         "Give the dry dimensions at the reference temperature to make so that the mechanism has "
         "its design geometry at an ageing time (--at) or stays closest to it over a service "
-        "window (--over, minimax); print them per part with the drift of the key outputs before "
-        "and after, and write a scene that makes them (a cam as profile points, CSV and DXF).",
-        'fickcam compensate configs/singh2017_cam.yaml --at "60 d" -o cam_made.yaml',
+        "window (--over, minimax); print them per part, the scene's limits over the life (the "
+        "window, or delivery to the end of the history for --at) as designed and compensated, "
+        "and the drift of the key outputs; write a scene that makes them (a cam in the form it "
+        "was given: eccentric disc, base circle and motion, or points).",
+        'fickcam compensate configs/singh2017_cam.yaml --over "0 d" "60 d" --points -o cam_made.yaml',
+        'fickcam compensate configs/eccentric_cam.yaml --at "120 d" --profile disc.dxf',
+        'fickcam compensate configs/fourbar_r914_humid.yaml --at "180 d" --keep-limits',
         'fickcam compensate configs/fourbar_r914_humid.yaml --over "30 d" "365 d" --plot band.png')
     compensate.add_argument("scene")
     when = compensate.add_mutually_exclusive_group(required=True)
     when.add_argument("--at", metavar="TIME", help='ageing time with units, e.g. "60 d"')
     when.add_argument("--over", nargs=2, metavar=("T1", "T2"),
                       help="a service window: minimise the largest deviation over it")
+    compensate.add_argument("--keep-limits", action="store_true",
+                            help="with --at: if that breaks one of the scene's limits between "
+                                 "delivery and the end of the history, make the part for that "
+                                 "whole life instead (minimax over it)")
+    compensate.add_argument("--points", action="store_true",
+                            help="make a cam given by its parameters as points (its working "
+                                 "profile, x and y compensated apart): for a cam that swells "
+                                 "anisotropically, such as a unidirectional laminate")
     compensate.add_argument("-o", "--output", help="compensated scene (default: "
                                                    "<scene>_compensated.yaml here)")
+    compensate.add_argument("--profile", metavar="PATH",
+                            help="also write the made cam's dry working profile for manufacture, "
+                                 "in mm: PATH.csv, or PATH.dxf (needs the dxf extra)")
     compensate.add_argument("--accuracy", type=float, help="override diffusion.accuracy")
     compensate.add_argument("--plot", metavar="PNG", help="also draw the drift of every "
                             "deviation limit against its band, as designed and compensated")
@@ -197,4 +225,3 @@ def _sweep_command(sub) -> None:
     group.add_argument("--workers", type=int, default=None, help="local worker processes")
     group.add_argument("--scheduler", help="address of a running dask scheduler, tcp://HOST:PORT")
     sweep.add_argument("-o", "--output", required=True)
-    sweep.add_argument("--quiet", action="store_true")

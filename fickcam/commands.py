@@ -27,10 +27,28 @@ def _cmd_run(args) -> int:
     output = Path(args.output) if args.output else default_output(scene)
     ds = run(scene, accuracy=args.accuracy, progress=not args.quiet)
     save(ds, output)
-    if not args.quiet:
+    if args.quiet < 2:
         print(summary(ds, notices=False))  # the run has logged them on stderr
+        print(notices_line(ds.attrs.get("notices", []), args.quiet))
         print(f"wrote {output}")
     return 0
+
+
+def notices_line(notices, quiet: int) -> str:
+    """Under the run summary: how many warnings and notes the run reported on stderr
+    (the notes hidden by ``-q``); all are in the result's ``notices`` attribute."""
+    from .messages import count_levels
+
+    counts = count_levels(notices)
+    if not sum(counts.values()):
+        return "  no warnings or notes"
+    warnings = f"{counts['warning']} warning(s)" if counts["warning"] else ""
+    notes = f"{counts['note']} note(s)" if counts["note"] else ""
+    if quiet and notes:
+        said = f"{warnings} above, " * bool(warnings) + f"{notes} hidden by -q"
+    else:
+        said = " and ".join(text for text in (warnings, notes) if text) + " above"
+    return f"  {said} (all kept in the result's notices attribute)"
 
 
 def default_output(scene) -> Path:
@@ -89,7 +107,7 @@ def _cmd_query(args) -> int:
     array = select(ds, args.variable, time=args.time, part=args.part, link=args.link,
                    cam_angle=args.cam_angle, crank_angle=args.crank_angle, against=args.drift)
     print(format_result(array, args.variable, args.format, args.drift,
-                        limit=limit_line(ds, args.variable)))
+                        limit=limit_line(ds, args.variable), units=args.units))
     return 0
 
 
@@ -120,6 +138,9 @@ BENCH_EXPECTED = {False: "about 3 min", True: "about 10 s"}
 
 def _cmd_bench(args) -> int:
     if args.records:
+        from .extras import require
+
+        require("weather")  # the records bench reads a TMY3 year that pvlib ships
         from .bench_records import (format_record_table, format_year_accuracy,
                                     run_record_bench, year_accuracy)
 
@@ -127,15 +148,15 @@ def _cmd_bench(args) -> int:
         if not args.quick:
             print(format_year_accuracy(year_accuracy()))
         return 0
-    from tqdm.auto import tqdm
-
     from .bench import format_table, row_count, run_bench
+    from .messages import progress_bar
 
     total = row_count(args.quick)
     log.info("bench: %d rows, expected %s on an idle 2-core machine%s", total,
              BENCH_EXPECTED[args.quick], "" if args.quick else " (--quick: "
              f"{BENCH_EXPECTED[True]})")
-    with tqdm(total=total, disable=args.quiet, unit="row", desc="bench", leave=False) as bar:
+    with progress_bar(total, enabled=not args.quiet, eta=False, unit="rows", desc="bench",
+                      leave=False) as bar:  # rows differ in cost a hundredfold: no ETA
         started = []
 
         def starting(label: str) -> None:
@@ -149,7 +170,8 @@ def _cmd_bench(args) -> int:
 
 
 def _cmd_materials(args) -> int:
-    from .materials.library import entry_text, find_entry, library_table
+    from .keys import closest_names
+    from .materials.library import GROUPS, entry_text, find_entry, known_names, library_table
 
     if args.name is None:
         print(library_table())
@@ -157,8 +179,10 @@ def _cmd_materials(args) -> int:
     try:
         find_entry(args.name)
     except KeyError:
-        raise InputError(f"no material {args.name!r} in the library (fickcam materials lists "
-                         f"them)") from None
+        names = {name.lower(): name for group in GROUPS for name in known_names(group)}
+        near = [names[n] for n in closest_names(args.name.lower(), names)]
+        hint = f"did you mean {', '.join(near)}?" if near else "fickcam materials lists them"
+        raise InputError(f"no material {args.name!r} in the library; {hint}") from None
     print(entry_text(args.name))
     return 0
 
@@ -192,7 +216,7 @@ def _cmd_sweep(args) -> int:
 
     run_sweep(args.sweep, args.output, workers=args.workers, scheduler=args.scheduler,
               progress=not args.quiet)
-    if not args.quiet:
+    if args.quiet < 2:
         result = open_result(args.output)
         print(sweep_summary(result))
         for line in summary_lines(result):
@@ -202,32 +226,49 @@ def _cmd_sweep(args) -> int:
 
 
 def _cmd_compensate(args) -> int:
-    from .compensation import compensate, write_scene
-    from .compensation.report import report
+    from .compensation import compensate, report
+    from .compensation.report import write_files
     from .scene import load_scene
 
+    if args.profile is not None:
+        suffix = Path(args.profile).suffix.lower()
+        if suffix not in (".csv", ".dxf"):
+            raise InputError(f"--profile {args.profile}: the made cam's profile is written as "
+                             f".csv or .dxf (by the suffix)")
+        if suffix == ".dxf":  # before any computation: the extra may be missing
+            from .cam.profile import dxf_module
+
+            dxf_module()
     scene = load_scene(args.scene)
-    comp = compensate(scene, at=args.at, over=args.over, accuracy=args.accuracy)
+    if args.profile is not None and scene.model.cam is None:
+        raise InputError(f"{args.scene}: --profile needs a cam (the scene has none)")
+    comp = compensate(scene, at=args.at, over=args.over, accuracy=args.accuracy,
+                      plot=args.plot is not None, keep_limits=args.keep_limits,
+                      points=args.points)
     output = Path(args.output) if args.output else Path(f"{Path(args.scene).stem}_compensated.yaml")
-    path = write_scene(comp, scene, output)
-    print(report(comp, scene, path, accuracy=args.accuracy, plot=args.plot))
-    print(f"wrote {path}")
+    text = report(comp, scene)
+    written = write_files(comp, scene, output, profile=args.profile, plot=args.plot)
+    print(text)
+    for path in written:
+        print(f"wrote {path}")
     return 0
 
 
 def _cmd_profile(args) -> int:
     from .cam.design import design_from_scene
     from .cam.kinematics import working_profile
-    from .cam.profile import write_profile_csv, write_profile_dxf
+    from .cam.profile import dxf_module, write_profile_csv, write_profile_dxf
     from .scene import load_scene
 
-    scene = load_scene(args.scene)
-    if scene.model.cam is None:
-        raise InputError(f"{args.scene}: the scene has no cam")
     writers = {".csv": write_profile_csv, ".dxf": write_profile_dxf}
     suffix = Path(args.output).suffix.lower()
     if suffix not in writers or args.points < 16:
         raise InputError("profile: the output must end in .csv or .dxf and --points be >= 16")
+    if suffix == ".dxf":
+        dxf_module()  # refused before any work without the dxf extra
+    scene = load_scene(args.scene)
+    if scene.model.cam is None:
+        raise InputError(f"{args.scene}: the scene has no cam")
     x, y = working_profile(design_from_scene(scene.model.cam), n=args.points)
     print(f"wrote {writers[suffix](args.output, x, y)}")
     return 0
@@ -235,13 +276,13 @@ def _cmd_profile(args) -> int:
 
 def _cmd_fit(args) -> int:
     from .fit import fit_weight_gain, materials_yaml, parameter_table, plot_fit
+    from .store import write_text_atomically
 
     if (args.fiber is None) != (args.fiber_volume_fraction is None):
         raise InputError("--fiber and --fiber-volume-fraction go together")
     report = fit_weight_gain(args.data, args.matrix, fiber=args.fiber,
                              fiber_volume_fraction=args.fiber_volume_fraction, name=args.name)
-    output = Path(args.output)
-    output.write_text(materials_yaml(report), encoding="utf-8")
+    output = write_text_atomically(args.output, materials_yaml(report))
     print(parameter_table(report))
     print(f"wrote {output}")
     if args.plot:

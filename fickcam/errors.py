@@ -48,11 +48,11 @@ class PhysicsDomainError(FickcamError):
     linkage cannot assemble).
     """
 
-    def __init__(self, part: str, time: float, message: str):
+    def __init__(self, part: str, time: float, message: str, span: float | None = None):
         self.part = part
         self.time = float(time)
         self.message = message
-        super().__init__(f"{part} at t = {format_duration(self.time)}: {message}")
+        super().__init__(f"{part} at t = {format_duration(self.time, span)}: {message}")
 
 
 class SolverError(FickcamError):
@@ -65,13 +65,41 @@ class SolverError(FickcamError):
         )
 
 
-def format_duration(seconds: float) -> str:
-    """A duration in seconds as the largest sensible unit (s, h, d or years)."""
-    s = float(seconds)
-    if abs(s) < 3600:
-        return f"{s:.4g} s"
-    if abs(s) < 86400 * 2:
-        return f"{s / 3600:.4g} h"
-    if abs(s) < 86400 * 730:
-        return f"{s / 86400:.4g} d"
-    return f"{s / (86400 * 365.25):.4g} yr"
+#: units of time, each (name, seconds) with the longest span it is chosen for [s]:
+#: a 40-min history in min, a 3 h one in h, a 60-day or 2-year one in d, a 5-year one in yr
+TIME_UNITS = (("s", 1.0, 120.0), ("min", 60.0, 2 * 3600.0), ("h", 3600.0, 2 * 86400.0),
+              ("d", 86400.0, 3 * 365.25 * 86400.0), ("yr", 365.25 * 86400.0, float("inf")))
+
+
+def time_unit(span: float) -> tuple[str, float]:
+    """The unit that suits durations up to ``span``: one unit for every time of a run,
+    chosen from its last ageing time.
+
+    Parameters
+    ----------
+    span : float
+        The longest duration to be shown [s] (NaN: days).
+
+    Returns
+    -------
+    tuple of (str, float)
+        The unit's name (``s``, ``min``, ``h``, ``d`` or ``yr``) and its length [s].
+    """
+    span = abs(float(span))
+    return next(((name, seconds) for name, seconds, longest in TIME_UNITS if span < longest),
+                ("d", 86400.0))  # no span (NaN: no case of a sweep ran): days, as results store
+
+
+def format_duration(seconds: float, span: float | None = None) -> str:
+    """A duration as text in the unit that suits ``span`` (:func:`time_unit`).
+
+    Parameters
+    ----------
+    seconds : float
+        The duration [s].
+    span : float, optional
+        A run's last ageing time [s], so that all its times share one unit (``0 d``,
+        ``182.6 d``, ``730.5 d``); by default the duration itself.
+    """
+    name, unit = time_unit(seconds if span is None else span)
+    return f"{float(seconds) / unit:.4g} {name}"

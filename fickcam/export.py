@@ -2,27 +2,13 @@
 from __future__ import annotations
 
 import json
-import os
 from pathlib import Path
 
 import numpy as np
 
 from .errors import InputError
 from .query import _csv_cell, to_records
-
-
-def _atomic_text(path: Path, text: str) -> None:
-    from .store import temporary_beside
-
-    path.parent.mkdir(parents=True, exist_ok=True)
-    tmp = temporary_beside(path)
-    try:
-        with open(tmp, "w", encoding="utf-8", newline="") as handle:
-            handle.write(text)
-        os.replace(tmp, path)
-    except BaseException:
-        Path(tmp).unlink(missing_ok=True)
-        raise
+from .store import write_text_atomically
 
 
 def _chosen(ds, variables):
@@ -54,7 +40,7 @@ def export_csv(ds, path, variables=None) -> Path:
             cells.append(_csv_cell(row[-1]))
             lines.append(",".join(cells))
     path = Path(path)
-    _atomic_text(path, "\n".join(lines) + "\n")
+    write_text_atomically(path, "\n".join(lines) + "\n")
     return path
 
 
@@ -82,7 +68,7 @@ def export_json(ds, path, variables=None) -> Path:
         },
     }
     path = Path(path)
-    _atomic_text(path, json.dumps(document))
+    write_text_atomically(path, json.dumps(document))
     return path
 
 

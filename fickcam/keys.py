@@ -57,12 +57,18 @@ def closest_key(model: type[BaseModel] | None, loc: tuple) -> str | None:
     """The valid key nearest to the unknown one at ``loc``, if any is close."""
     if model is None or not loc or not isinstance(loc[-1], str):
         return None
-    matches = difflib.get_close_matches(loc[-1], valid_keys(model, loc), n=1, cutoff=0.6)
-    if not matches and loc[-1]:
-        # a prefix of a longer key ('spring' for 'spring_rate')
-        prefixed = [k for k in valid_keys(model, loc) if k.startswith(loc[-1])]
-        matches = prefixed[:1]
+    matches = closest_names(loc[-1], valid_keys(model, loc), n=1)
     return matches[0] if matches else None
+
+
+def closest_names(name: str, names, n: int = 3) -> list[str]:
+    """Up to ``n`` of ``names`` nearest to the unknown ``name`` (difflib's ratio >= 0.6,
+    closest first; else those it begins, 'spring' for 'spring_rate')."""
+    names = list(names)
+    matches = difflib.get_close_matches(name, names, n=n, cutoff=0.6)
+    if not matches and name:
+        matches = [k for k in names if k.startswith(name)][:n]
+    return matches
 
 
 def short_names(paths: list[str]) -> dict[str, str]:

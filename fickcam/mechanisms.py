@@ -12,6 +12,7 @@ from typing import Callable
 import numpy as np
 
 from .errors import format_duration
+from .messages import restated
 from .response import Response
 
 
@@ -40,9 +41,11 @@ def over_ageing(times: np.ndarray, valid: np.ndarray, evaluate: Callable[[int], 
                 seen.setdefault(message, []).append(float(t))
         on_step()
     notices = []
+    span = float(np.max(times)) if len(times) else None  # one unit of time for the whole run
     for message, when in seen.items():
         tail = f" (and at {len(when) - 1} later ageing time(s))" if len(when) > 1 else ""
-        notices.append(f"at t = {format_duration(when[0])}: {message}{tail}")
+        notices.append(restated(message, f"at t = {format_duration(when[0], span)}: "
+                                         f"{message}{tail}"))
     variables = {name: (value.astype(str) if value.dtype == object else value)
                  for name, value in stacked.items()}
     return Response(variables, notices)
@@ -51,8 +54,9 @@ def over_ageing(times: np.ndarray, valid: np.ndarray, evaluate: Callable[[int], 
 def first_change(values: np.ndarray, times: np.ndarray, what: str) -> list[str]:
     """Notices where a per-time label (e.g. the Grashof class) changes."""
     notices = []
+    span = float(np.max(times)) if len(times) else None
     for k in range(1, len(values)):
         if values[k] and values[k - 1] and values[k] != values[k - 1]:
-            notices.append(f"at t = {format_duration(times[k])}: {what} changed from "
+            notices.append(f"at t = {format_duration(times[k], span)}: {what} changed from "
                            f"{values[k - 1]} to {values[k]}")
     return notices

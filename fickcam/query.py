@@ -10,8 +10,8 @@ import json
 
 import numpy as np
 
-from .errors import InputError
-from .keys import short_names
+from .errors import InputError, format_duration, time_unit
+from .keys import closest_names, short_names
 from .schema import VARIABLES, design_name
 from .units import is_bare_number, parse_duration
 
@@ -34,8 +34,7 @@ def select(ds, variable: str, *, time=None, part=None, cam_angle=None, crank_ang
     ``time = 45 d (interpolated between 30 d and 60 d)``.
     """
     if variable not in ds.data_vars:
-        known = ", ".join(sorted(v for v in ds.data_vars))
-        raise InputError(f"variable {variable!r} is not in this result (it has: {known})")
+        raise InputError(unknown_variable(variable, ds.data_vars))
     array = ds[variable] if against is None else drift(ds, variable, against)
     answered, selected = [], {}
     for dim, value in (("part", part), ("link", link)):
@@ -68,11 +67,26 @@ def select(ds, variable: str, *, time=None, part=None, cam_angle=None, crank_ang
             raise InputError(f"time {time} is outside the stored ageing times "
                              f"({stored[0] / 86400:g} to {stored[-1] / 86400:g} d)")
         array, between = _interp_along(array, "time", stored, seconds)
-        answered.append(_answered("time", seconds, between, lambda x: f"{x / 86400:g} d"))
+        answered.append(_answered("time", seconds, between,
+                                  lambda x: format_duration(x, stored[-1])))
         selected["time_d"] = seconds / 86400
     array.attrs["selection"] = ", ".join(answered)
     array.attrs["selected"] = selected
+    if "time" in ds.coords:  # the result's last ageing time: its times' unit (format_result)
+        array.attrs["time_span"] = float(_time_seconds(ds)[-1])
     return array
+
+
+def unknown_variable(name: str, known) -> str:
+    """Why ``name`` cannot be queried: the closest names the result has (a misspelling),
+    not all of them."""
+    near = closest_names(name, sorted(known))
+    if name in VARIABLES:  # spelt right, but the scene does not compute it
+        what = (f"this result holds no {name} (a {VARIABLES[name].section} variable: the scene "
+                f"does not compute it)")
+        return what + (f"; did you mean {', '.join(near)}?" if near else "")
+    hint = f"did you mean {', '.join(near)}?" if near else "fickcam schema lists the variables"
+    return f"no variable {name!r} in this result; {hint}"
 
 
 AGAINST = ("design", "start")
@@ -140,12 +154,33 @@ def _interp_along(array, dim, grid, value, period=None):
     weight = 0.0 if x1 == x0 else (value - x0) / (x1 - x0)
     lower = array.isel({dim: index}, drop=True)
     upper = array.isel({dim: hi}, drop=True)
-    if weight <= 1e-12 or weight >= 1 - 1e-12:  # a stored value
+    stored = weight <= 1e-12 or weight >= 1 - 1e-12
+    if stored:  # as stored, whatever stands beside it (a NaN times 0 is NaN)
         x0 = x1 = x0 if weight <= 0.5 else x1
     between = (float(x0), float(x1))
-    if array.dtype.kind not in "fc":
-        return (lower if weight < 0.5 else upper), between
-    return lower * (1.0 - weight) + upper * weight, between
+    if array.dtype.kind not in "fc" or stored:
+        answer = lower if weight < 0.5 else upper
+    else:
+        answer = lower * (1.0 - weight) + upper * weight
+    if period is None and array.dtype.kind in "fc" and bool(answer.isnull().any()):
+        return _own_points(array, dim, grid, value).assign_coords(answer.coords), between
+    return answer, between
+
+
+def _own_points(array, dim, grid, value):
+    """``array`` at ``value`` along ``dim``, each series between its own nearest grid points
+    that hold a value (a sweep's case whose ageing times differ from the others', or
+    that ends earlier), NaN outside them: never extrapolated, never NaN by a neighbour."""
+    import xarray as xr
+
+    def own(values):
+        known = np.isfinite(values)
+        points = grid[known]
+        if not points.size or not points[0] - 1e-9 <= value <= points[-1] + 1e-9:
+            return np.nan
+        return np.interp(value, points, values[known])
+
+    return xr.apply_ufunc(own, array, input_core_dims=[[dim]], vectorize=True, keep_attrs=True)
 
 
 def swept_values(array) -> dict[str, np.ndarray]:
@@ -200,28 +235,36 @@ def _plain(value, dim=None):
 
 
 def format_result(array, variable: str, fmt: str = "table", against: str | None = None,
-                  limit: str | None = None) -> str:
+                  limit: str | None = None, units: str | None = None) -> str:
     """Render a selection as an aligned table, CSV or JSON (of the drift ``against`` the
-    design or the start when given); ``limit`` (the variable's limit and when it fails)
-    goes under the table and into the JSON, not into the CSV."""
-    columns, rows = to_records(array)
-    units = VARIABLES[variable].units if variable in VARIABLES else array.attrs.get("units", "")
+    design or the start when given) in ``units`` (default: the variable's display unit,
+    as in the run summary: mm, MPa, degC); ``limit`` (the variable's limit and when it
+    fails) goes under the table and into the JSON, not into the CSV. Every column is
+    headed ``name [unit]`` (``time [d]``, ``cam_angle [degree]``, ``lift [mm]``)."""
+    values, unit = shown_values(array, variable, units, drift=against is not None)
+    columns, rows = to_records(array.copy(data=values) if array.dtype.kind in "fc" else array)
+    label = variable if against is None else f"{variable} drift vs {against}"
+    span = array.attrs.get("time_span")  # one unit of time for the table, from the result's
+    time_name, days = time_unit(span) if span is not None else ("d", 86400.0)
+    days /= 86400.0  # (the rows hold days)
+    fixed = array.attrs.get("selected", {})
+    fixed = {column_label(k, time_name): v / days if k in TIME_COLUMNS else v
+             for k, v in fixed.items()}
+    rows = [[v / days if c in TIME_COLUMNS else v for c, v in zip(columns, row)] for row in rows]
+    header = [column_label(c, time_name) for c in columns[:-1]] + [_labelled(label, unit)]
     selection = array.attrs.get("selection", "")
     if fmt == "json":
         extra = {"limit": limit} if limit else {}
-        return json.dumps({"variable": variable, "units": units, "selection": selection,
-                           "columns": columns, "rows": rows, **extra}
+        return json.dumps({"variable": variable, "units": unit, "selection": selection,
+                           "columns": header, "rows": rows, **extra}
                           | ({"drift_against": against} if against else {}))
     if fmt == "csv":  # tidy: the selected values as columns of their own
-        fixed = array.attrs.get("selected", {})
-        lines = [",".join([*fixed, *columns])]
+        lines = [",".join([*fixed, *header])]
         lines += [",".join(_csv_cell(v) for v in [*fixed.values(), *row]) for row in rows]
         return "\n".join(lines)
     if fmt != "table":
         raise InputError(f"unknown format {fmt!r} (table, csv or json)")
-    label = variable if against is None else f"{variable} drift vs {against}"
     title = [f"{label} at {selection}"] if selection else []
-    header = columns[:-1] + [f"{label} [{units}]"]
     cells = [[_table_cell(v) for v in row] for row in rows]
     widths = [max(len(h), *(len(r[i]) for r in cells)) if cells else len(h) for i, h in enumerate(header)]
     out = title + ["  ".join(h.rjust(w) for h, w in zip(header, widths))]
@@ -229,6 +272,80 @@ def format_result(array, variable: str, fmt: str = "table", against: str | None 
     if limit:
         out.append(f"limit: {limit}")
     return "\n".join(out)
+
+
+#: the names :func:`to_records` and ``select`` give the ageing time (in days)
+TIME_COLUMNS = ("time_d", "ageing_time")
+#: units of the angles a query's rows are labelled with; part, link, joint and case have none
+COLUMN_UNITS = {"cam_angle": "degree", "crank_angle": "degree"}
+
+
+def column_label(name: str, time_name: str = "d") -> str:
+    """A column's heading, ``name [unit]`` (``time_d`` → ``time [d]``, or in the unit of
+    time ``time_name``)."""
+    if name in TIME_COLUMNS:
+        return _labelled("time", time_name)
+    return _labelled(name, COLUMN_UNITS.get(name, ""))
+
+
+def _labelled(name: str, unit: str) -> str:
+    return f"{name} [{unit}]" if unit and unit != "1" else name
+
+
+def shown_values(array, variable: str, units: str | None = None, drift: bool = False):
+    """The values of a selection in the unit a person reads them in.
+
+    Parameters
+    ----------
+    array : xarray.DataArray
+        Values in the variable's stored unit (SI; angles in degrees).
+    variable : str
+        Its schema name.
+    units : str, optional
+        A pint unit to show (``um``, ``degF``); by default the variable's display unit from
+        the schema (``lift``: m stored, mm shown). One of another dimension is refused.
+    drift : bool
+        The values are changes: a temperature difference stays in K (degC would add 273.15).
+
+    Returns
+    -------
+    tuple of (numpy.ndarray, str)
+        The values and their unit.
+    """
+    from .units import convert
+
+    var = VARIABLES.get(variable)
+    stored = var.units if var is not None else array.attrs.get("units", "")
+    wanted = units or (var.display if var is not None else "") or stored
+    if array.dtype.kind not in "fc" or wanted == stored:
+        return array.values, stored
+    if drift and _is_offset(wanted):
+        return array.values, stored  # a difference of temperature: K, not degC
+    from pint.errors import PintError
+
+    try:
+        return convert(array.values, stored, wanted), wanted
+    except UNIT_ERRORS + (PintError,) as exc:  # an unknown unit, or one of another dimension
+        raise InputError(f"--units {wanted}: not a unit {variable} can be shown in (stored in "
+                         f"{stored or 'no unit'}){': ' + str(exc) if str(exc) else ''}") from None
+
+
+#: what pint's parser raises on text that is no unit besides its own errors ('mm/' fails
+#: an assertion inside it)
+UNIT_ERRORS = (ValueError, AttributeError, TypeError, AssertionError)
+
+
+def _is_offset(unit: str) -> bool:
+    """True for a unit whose zero is offset (degC, degF): a difference is not converted
+    as a value is."""
+    from pint.errors import PintError
+
+    from .units import convert
+
+    try:
+        return bool(convert(0.0, unit, "K") != 0.0)
+    except UNIT_ERRORS + (PintError,):  # not a temperature
+        return False
 
 
 def _csv_cell(value) -> str:

@@ -28,6 +28,7 @@ from pathlib import Path
 
 import numpy as np
 
+from .extras import require
 from .units import to_si
 
 _HEADER = re.compile(r"^\s*(?P<name>[A-Za-z_]+)\s*(?:[\[(](?P<unit>[^\])]*)[\])])?\s*$")
@@ -92,9 +93,7 @@ def resolve_record_path(text: str, base_dir: Path) -> Path:
     a file shipped in pvlib's data folder (e.g. ``pvlib:723170TYA.CSV``,
     Greensboro NC; ``pvlib:703165TY.csv``, Sand Point AK)."""
     if text.startswith(PVLIB_PREFIX):
-        _pvlib_iotools()  # the install hint if pvlib is absent
-        import pvlib
-
+        pvlib = require("weather")
         folder = Path(pvlib.__file__).parent / "data"
         name = text[len(PVLIB_PREFIX):].strip()
         path = folder / name
@@ -267,11 +266,8 @@ def _checked(path, lines, time, temperature, humidity, source, period, *,
 
 # ------------------------------------------------------------ weather years
 def _pvlib_iotools():
-    try:
-        from pvlib import iotools
-    except ImportError:
-        raise ValueError("reading weather files needs pvlib: pip install \"fickcam[weather]\"") from None
-    return iotools
+    """pvlib's readers, or the one-line install hint (a ValueError) without pvlib."""
+    return require("weather").iotools
 
 
 def _looks_like_tmy3(first_line: str) -> bool:
@@ -305,8 +301,9 @@ def _read_tmy3(path: Path) -> ClimateRecord:
     # pvlib.iotools.read_tmy3 (Wilcox & Marion, "Users Manual for TMY3 Data
     # Sets", NREL/TP-581-43156, 2008); coerce_year gives one continuous year
     # (TMY months come from different years).
+    iotools = _pvlib_iotools()
     try:
-        frame, meta = _pvlib_iotools().read_tmy3(path, coerce_year=2001, map_variables=True)
+        frame, meta = iotools.read_tmy3(path, coerce_year=2001, map_variables=True)
     except RecordError:
         raise
     except Exception as exc:  # pvlib raises several types on malformed files
@@ -321,8 +318,9 @@ def _read_tmy3(path: Path) -> ClimateRecord:
 def _read_epw(path: Path) -> ClimateRecord:
     # pvlib.iotools.read_epw (EnergyPlus weather format, U.S. DOE EnergyPlus
     # "Auxiliary Programs", Weather Converter: EPW data dictionary).
+    iotools = _pvlib_iotools()
     try:
-        frame, meta = _pvlib_iotools().read_epw(path, coerce_year=2001)
+        frame, meta = iotools.read_epw(path, coerce_year=2001)
     except RecordError:
         raise
     except Exception as exc:

@@ -118,10 +118,11 @@ def _row(label: str, unit: str, design: float, series: np.ndarray, seconds: np.n
     start, end = series[ends[0]], series[ends[1]]
     end_text = _number(end)
     if ends[1] != len(series) - 1:
-        end_text += f" (at {format_duration(seconds[ends[1]])})"
+        end_text += f" (at {format_duration(seconds[ends[1]], seconds[-1])})"
     top = peak(series)
     peak_text = "" if top is None else \
-        f"{_number(series[top])} ({_change(series[top] - start)}) at {format_duration(seconds[top])}"
+        f"{_number(series[top])} ({_change(series[top] - start)}) at " \
+        f"{format_duration(seconds[top], seconds[-1])}"
     return [f"{label} [{unit}]", _number(design), _number(start), end_text,
             _change(end - design), _change(end - start), peak_text]
 
@@ -186,7 +187,7 @@ def _swelling_lines(ds) -> list[str]:
         worst = int(np.nanargmin(compression))
         text = (f"  {part} swelling stress: tension up to {np.nanmax(tension) * 1e-6:.3g} MPa, "
                 f"compression down to {compression[worst] * 1e-6:.3g} MPa "
-                f"(at {format_duration(seconds[worst])})")
+                f"(at {format_duration(seconds[worst], seconds[-1])})")
         if np.isfinite(index).any():
             text += f", failure index up to {np.nanmax(index):.3g}"
         lines.append(text)
@@ -214,15 +215,27 @@ def limit_line(ds, name: str) -> str | None:
     failed = float(ds["time_out_of_spec"].sel(limit=name)) * 86400.0
     ratio = np.asarray(ds["limit_ratio"].sel(limit=name).values, float)
     times = ds["time"].values / np.timedelta64(1, "s")
+    known = np.flatnonzero(np.isfinite(ratio))
+    last = int(known[-1]) if known.size else 0
+    # no ratio past a part's leaving the model's domain: the limit is judged up to there only
+    unknown = (f"; no value after {format_duration(times[last], times[-1])}, see the notices"
+               if last < times.size - 1 else "")
     if math.isnan(failed):
-        state = f"holds to {format_duration(times[-1])} (largest ratio {np.nanmax(ratio):.4f})"
+        state = (f"holds to {format_duration(times[last], times[-1])} (largest ratio "
+                 f"{np.nanmax(ratio):.4f}{unknown})")
     elif failed <= times[0]:
-        state = f"out of spec from the start (ratio {ratio[0]:.4f})"
+        state = f"out of spec from the start (ratio {ratio[0]:.4f}{unknown})"
     else:
-        state = (f"out of spec from {format_duration(failed)} "
-                 f"(ratio {ratio[-1]:.4f} at {format_duration(times[-1])})")
+        state = (f"out of spec from {format_duration(failed, times[-1])} "
+                 f"(ratio {ratio[last]:.4f} at {format_duration(times[last], times[-1])}"
+                 f"{unknown})")
     band = limit.text + (" around the as-designed value" if limit.deviation is not None else "")
     return f"{name} ({band}): {state}"
+
+
+def _span(ds) -> float:
+    """The last ageing time of a result [s]: its times are all given in the unit that suits it."""
+    return float(ds["time"].values[-1] / np.timedelta64(1, "s"))
 
 
 def limit_lines(ds) -> list[str]:
@@ -235,7 +248,8 @@ def limit_lines(ds) -> list[str]:
     if failing:
         t, name = failing[0]
         head = (f"  first limit to fail: {name} ({limits[name].text}) at "
-                f"{format_duration(t * 86400)}; {len(failing)} of {len(limits)} limit(s) fail")
+                f"{format_duration(t * 86400, _span(ds))}; {len(failing)} of {len(limits)} limit(s) "
+                f"fail")
     else:
         head = f"  all {len(limits)} limit(s) hold"
     return [head] + [f"    {limit_line(ds, name)}" for name in limits]
@@ -262,12 +276,9 @@ def summary(ds, *, notices: bool = True) -> str:
     lines += _swelling_lines(ds)
     lines += limit_lines(ds)
     stored = ds.attrs.get("notices", [])
-    if isinstance(stored, list) and stored:
-        if notices:
-            lines.append(f"  {len(stored)} notice(s):")
-            lines += [f"    - {n}" for n in stored]
-        else:
-            lines.append(f"  {len(stored)} notice(s), reported above")
+    if notices and isinstance(stored, list) and stored:  # (the command line logs them instead)
+        lines.append(f"  {len(stored)} notice(s):")
+        lines += [f"    - {n}" for n in stored]
     return "\n".join(lines)
 
 
@@ -318,8 +329,10 @@ def sweep_summary(ds) -> str:
                                   else str(v[case]) for v in swept.values()), status]
                     + [_sweep_cell(ds, name, case) for name in outputs])
     seconds = ds["time"].values[-1] / np.timedelta64(1, "s") if "time" in ds.coords else np.nan
+    when = f"; at t = {format_duration(seconds)} (Δ against the design)" \
+        if np.isfinite(seconds) else ""  # (no time when no case ran)
     lines = [f"{ds.attrs.get('scene_name', '')}: {n} case(s), {int(ds.attrs.get('failed_cases', 0))} "
-             f"failed; at t = {format_duration(seconds)} (Δ against the design):"]
+             f"failed{when}:"]
     widths = [max(len(r[i]) for r in rows + [header]) for i in range(len(header))]
     lines += ["  " + "  ".join(c.rjust(w) for c, w in zip(row, widths)) for row in [header] + rows]
     if n > SWEEP_ROWS:

@@ -129,7 +129,12 @@ VARIABLES: dict[str, Var] = {
     "peak_polydyne_output_error": Var(T, "m", "largest |output - chosen motion| of a polydyne cam",
                                       "cam", display="um"),
     # cam and follower: over the cam angle
-    "follower_displacement": Var(TC, "m", "follower displacement", "cam", display="mm"),
+    "follower_displacement": Var(TC, "m", "follower displacement from its lowest position on "
+                                 "the aged cam (the motion; a grown base circle is not in it: "
+                                 "see follower_position)", "cam", display="mm"),
+    "follower_position": Var(TC, "m", "follower position: height of the roller centre, knife "
+                             "tip or flat face above the cam axis, along the follower's line "
+                             "of travel (a grown base circle is in it)", "cam", display="mm"),
     "follower_velocity": Var(TC, "m s-1", "follower velocity", "cam"),
     "follower_acceleration": Var(TC, "m s-2", "follower acceleration", "cam"),
     "follower_jerk": Var(TC, "m s-3", "follower jerk", "cam"),

@@ -15,6 +15,7 @@ from ._version import __version__
 from .blas import on_one_blas_thread
 from .environment import Environment
 from .errors import InputError, SceneError
+from .messages import log_notices, progress_bar
 from .parts import Part, PartHistory, build_parts, diffusion_attrs, field_values, part_values
 from .scene import EveryStep, Scene, last_ageing_time, load_scene
 from .schema import VARIABLES, design_name
@@ -40,9 +41,21 @@ def ageing_times(scene: Scene, environment: Environment) -> np.ndarray:
     if isinstance(requested, list):
         return np.asarray(requested, float)
     if isinstance(requested, EveryStep):
-        count = int(np.floor(end / requested.every * (1 + 1e-12)))
-        return requested.every * np.arange(count + 1)
+        return every_step_times(requested.every, end)
     return np.linspace(0.0, end, 11)
+
+
+def every_step_times(step: float, end: float) -> np.ndarray:
+    """0, step, 2 step, ... up to ``end`` (s), and ``end`` itself when the steps do not
+    land on it: the history's last state is always reported (two years every 30 d:
+    0, 30, ..., 720 d and 730.5 d). A step that lands within 1e-9 ``end`` of the end is
+    moved onto it rather than followed by a sliver."""
+    count = int(np.floor(end / step * (1 + 1e-12)))
+    times = step * np.arange(count + 1)
+    if count and end - times[-1] <= 1e-9 * end:
+        times[-1] = end
+        return times
+    return np.append(times, end) if end > times[-1] else times
 
 
 def diffusion_options(scene: Scene, accuracy: float | None) -> dict:
@@ -131,8 +144,7 @@ def _age(scene: Scene, environment: Environment, times: np.ndarray, accuracy: fl
     design_scene = scene.as_designed()  # differs where the scene is made to compensate
     designs = [design_part(part, environment) for part in build_parts(design_scene)]
     values.update(design_values(design_scene, designs))
-    for message in notices:
-        log.warning(message)
+    log_notices(log, notices)
     attrs = {
         "title": f"fickcam result: {scene.name}",
         "fickcam_version": __version__,
@@ -157,21 +169,22 @@ def _aged_values(scene: Scene, environment: Environment, times: np.ndarray,
     and its material state the stored run's past (validity up to the wet Tg): extended from
     the stored solve where it can (``DiffusionResult.extend``: only the new times are
     summed), else re-solved at both; the part histories are then taken at ``times``."""
-    from tqdm.auto import tqdm
-
     options = diffusion_options(scene, accuracy)
     parts = build_parts(scene) if parts is None else parts
     notices: list[str] = list(environment.notes)
     from .elastic.parts import elastic_parts
 
     elastic = elastic_parts(scene.model)  # these need their moisture fields
-    bar = tqdm(total=len(parts) + len(times), disable=not progress, desc=scene.name,
-               unit="step", leave=False)
+    # diffusion then mechanisms, one bar each: a part's diffusion may cost a thousand times an
+    # ageing time's mechanisms, and parts differ a hundredfold (a steel frame: nothing), so
+    # the diffusion bar counts parts without a remaining time; the mechanisms' is honest
+    bar = progress_bar(len(parts), enabled=progress, eta=False, desc=f"{scene.name}: diffusion",
+                       unit="parts", leave=False)
 
     histories, solved = [], {}
     stored_times, befores = stored if stored is not None else (None, [None] * len(parts))
     for part, before in zip(parts, befores):
-        bar.set_postfix_str(f"diffusion {part.name}")
+        bar.set_postfix_str(part.name)
         if before is None:
             history = age_part(part, environment, times, options, scene, notices,
                                keep_field=part.name in elastic, solved=solved)
@@ -183,6 +196,9 @@ def _aged_values(scene: Scene, environment: Environment, times: np.ndarray,
             history = history.at_rows(np.searchsorted(both, times))
         histories.append(history)
         bar.update()
+    bar.close()
+    bar = progress_bar(len(times), enabled=progress, desc=f"{scene.name}: mechanisms",
+                       unit="ageing times", leave=False)
     values = {"temperature": environment.temperature(times),
               "relative_humidity": environment.relative_humidity(times)}
     coords: dict = {"time": times}
@@ -273,8 +289,7 @@ def _search_notices(searched: dict[str, float], histories: list[PartHistory],
                f"times above the requested accuracy {accuracy:g} (the crossing times carry it)"
                for name, estimate in searched.items()
                if estimate > accuracy >= stored.get(name, 0.0)]
-    for message in notices:
-        log.warning(message)
+    log_notices(log, notices)
     return notices
 
 

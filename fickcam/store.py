@@ -10,6 +10,8 @@ from __future__ import annotations
 import json
 import os
 import tempfile
+from collections.abc import Iterator
+from contextlib import contextmanager
 from pathlib import Path
 
 from .errors import InputError
@@ -35,12 +37,36 @@ def _umask_mode() -> int:
     return 0o666 & ~mask
 
 
-def temporary_beside(path: Path) -> str:
-    """A new temporary file in ``path``'s folder, with the usual permissions."""
-    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
+def temporary_beside(path: Path, suffix: str = ".tmp") -> str:
+    """A new temporary file in ``path``'s folder, with the usual permissions, its name
+    ending in ``suffix``."""
+    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=suffix, dir=path.parent)
     os.fchmod(fd, _umask_mode())
     os.close(fd)
     return tmp
+
+
+@contextmanager
+def replaced_atomically(path) -> Iterator[str]:
+    """A temporary file beside ``path`` (its folder made if needed) for the block to write;
+    renamed over ``path`` when the block ends, removed if it raises: ``path`` is never
+    left half written."""
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    tmp = temporary_beside(path)
+    try:
+        yield tmp
+        os.replace(tmp, path)
+    except BaseException:
+        Path(tmp).unlink(missing_ok=True)
+        raise
+
+
+def write_text_atomically(path, text: str) -> Path:
+    """Write ``text`` (UTF-8) to ``path`` through a temporary file and a rename."""
+    with replaced_atomically(path) as tmp, open(tmp, "w", encoding="utf-8", newline="") as handle:
+        handle.write(text)
+    return Path(path)
 
 
 def _write_netcdf(ds, filename: str) -> None:
@@ -135,3 +161,22 @@ def open_result(path):
             except json.JSONDecodeError:
                 pass
     return ds
+
+
+@contextmanager
+def replaced_together(paths) -> Iterator[list[str]]:
+    """Temporary files beside each of ``paths`` (ending in the target's suffix, for writers
+    that go by it) for the block to write; all renamed over their targets when the block
+    ends, all removed if it raises: the targets are written all or none."""
+    paths = [Path(p) for p in paths]
+    temps: list[str] = []
+    try:
+        for path in paths:
+            path.parent.mkdir(parents=True, exist_ok=True)
+            temps.append(temporary_beside(path, suffix=f".tmp{path.suffix}"))
+        yield temps
+        for tmp, path in zip(temps, paths):
+            os.replace(tmp, path)
+    finally:
+        for tmp in temps:
+            Path(tmp).unlink(missing_ok=True)

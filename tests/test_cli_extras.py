@@ -90,5 +90,5 @@ def test_sweep_summary_tables_each_case_in_the_users_units():
 def test_query_on_a_sweep_shows_the_varied_values():
     out = format_result(select(sweep_result(), "lift", time="30 d"), "lift", "csv")
     lines = out.splitlines()
-    assert lines[0].split(",")[:3] == ["time_d", "case", "temperature [degC]"]
+    assert lines[0].split(",")[:3] == ["time [d]", "case", "temperature [degC]"]
     assert [float(line.split(",")[2]) for line in lines[1:]] == pytest.approx([60, 85])

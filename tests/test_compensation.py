@@ -1,4 +1,4 @@
-"""Compensation (issue 19): the dry dimensions to make so that the mechanism has its
+"""Compensation: the dry dimensions to make so that the mechanism has its
 design geometry at an ageing time, or stays closest to it over a window (minimax).
 
 Checks run the written compensated scene as a user would (fickcam.run on the YAML
@@ -107,19 +107,21 @@ def test_bad_design_sections_are_refused_at_their_line(tmp_path, capsys, design,
 
 def test_demo_cam_compensated_at_60_days_follows_the_design_motion(tmp_path, capsys):
     """Within 1 % of the uncompensated deviation (largest over the cycle) at every cam angle;
-    the UD cam swells anisotropically, so the made cam is given by its points. Done with
-    the command line, as a user would."""
+    the UD cam swells anisotropically, so it is made as points (--points), x and y apart.
+    Done with the command line, as a user would."""
     data = read_yaml(CONFIGS / "singh2017_cam.yaml").data
     data["outputs"] = {"ageing_times": ["0 d", "60 d"], "angle_step": "1 deg"}
     (tmp_path / "demo.yaml").write_text(yaml.safe_dump(data))
     path = tmp_path / "made" / "cam.yaml"
-    assert main(["compensate", str(tmp_path / "demo.yaml"), "--at", "60 d", "-o", str(path)]) == 0
+    drawing = path.parent / "cam.dxf"
+    assert main(["compensate", str(tmp_path / "demo.yaml"), "--at", "60 d", "--points", "-o",
+                 str(path), "--profile", str(drawing)]) == 0
     printed = capsys.readouterr().out
-    for line in ("fixed point settled after", "follower  roller radius", "base circle radius",
-                 "follower displacement µm", f"wrote {path}"):
+    for line in ("fixed point settled after", "follower  roller radius", "profile: smallest radius",
+                 "follower displacement µm", f"wrote {path}", f"wrote {drawing}"):
         assert line in printed
     assert (path.parent / "cam_cam_profile.csv").exists()
-    assert (path.parent / "cam_cam_profile.dxf").exists()
+    assert drawing.exists()
     scene = load_scene(tmp_path / "demo.yaml")
     before, after = fickcam.run(scene), fickcam.run(path)
     design = cam_response(design_from_scene(scene.model.cam), CamState(),

@@ -1,12 +1,12 @@
-"""Seed 001 (seeds/001_51a6f900df76f3cc.txt, Singh & Sanyal 2016) ends on "compensating
-it by accordingly shortening overall dimension of each link i.e. crank, coupler and
-rocker". Its three four-bars, R914 links at dm = 7 % (Table 4's equilibrium moisture)
+"""Singh & Sanyal 2016 (four-bar links of neat resin under a hygrothermal environment) end
+on "compensating it by accordingly shortening overall dimension of each link i.e. crank,
+coupler and rocker". Its three four-bars, R914 links at dm = 7 % (Table 4's equilibrium moisture)
 and dT = 95 degC, steel frame, each link shortened two ways:
 
 - the paper's convention: shorten by the growth of eq. 13, dL = L (alpha dT + beta dm),
   taken on the design length: L_made = L (1 - eps). (Its printed eq. 14,
   a_1 = a (alpha dT + beta dm), read literally, would have the link made a/eps, 37 times
-  longer; seeds/README.md notes the slip.)
+  longer: a slip of the printed equation.)
 - the correct one: the made link grows by its own strain, L_made (1 + eps) = L, so
   L_made = L / (1 + eps) (fickcam.compensation.core.made_value).
 

@@ -113,8 +113,8 @@ def test_query_drift_option_answers_against_design_and_start(tmp_path, cam, caps
     fickcam.save(cam, path)
     assert main(["query", str(path), "lift", "--drift", "design", "--format", "csv"]) == 0
     rows = capsys.readouterr().out.splitlines()[1:]
-    assert [float(r.split(",")[1]) for r in rows] == pytest.approx(cam.lift.values - 1.5 * INCH,
-                                                                   abs=1e-15)
+    assert [float(r.split(",")[1]) for r in rows] == pytest.approx(
+        (cam.lift.values - 1.5 * INCH) * 1e3, abs=1e-12)  # in mm, the display unit
     assert main(["query", str(path), "lift", "--drift", "start"]) == 0
     out = capsys.readouterr().out
-    assert "lift drift vs start [m]" in out
+    assert "lift drift vs start [mm]" in out

@@ -1,5 +1,6 @@
-"""Long climate records on the exact paths: the tabulated Duhamel sum (diffusion/tabulated.py)
-against Duhamel's panels over the closed-form step responses, and a solid disc under a week
+"""Long climate records on the exact paths: the tabulated Duhamel sum
+(diffusion/superposition/tabulated.py) against Duhamel's panels over the closed-form step
+responses, and a solid disc under a week
 of Greensboro's TMY3 year against an independent modal solution (each mode advanced
 exactly; tau from a fine trapezoid rule)."""
 import numpy as np

@@ -154,7 +154,9 @@ def test_link_swelling_follows_its_moisture_field():
                              cell_coordinates={"x": x, "y": y})
     material = resolve("resin", MaterialSpec.model_validate({"matrix": "R914"}))
     temperature = np.full(3, 296.15)
-    out = swelling_history(link, material, result, {}, temperature, 296.15, 0.0, np.ones(3, bool))
+    surface = {"equilibrium_moisture_content": np.array([0.0, 5.0, 5.0])}  # the outline's value
+    out = swelling_history(link, material, result, surface, temperature, 296.15, 0.0,
+                           np.ones(3, bool))
     tension, compression = out["swelling_stress_tensile"], out["swelling_stress_compressive"]
     restrained = 4.0e9 * 3.02e-3 * 5.0 / (1 - 0.35)  # biaxially restrained skin
     assert -restrained < compression[1] < -0.1 * restrained and 0 < tension[1] < restrained

@@ -169,3 +169,64 @@ def test_non_fickian_data_write_a_runnable_two_phase_block_with_the_free_water_d
         -material.diffusivity_for().activation_energy / (GAS_CONSTANT * 333.15))
     assert free == pytest.approx(fit.diffusivity.value, rel=1e-3)
     assert material.saturation_moisture(333.15, 85.0) == pytest.approx(fit.saturation.value, rel=1e-3)
+
+
+def _sealed_and_open(tmp_path):
+    """Noise-free SYNTHETIC coupons of 3502 at 60 degC / 85 % RH in one file: ``sealed``
+    (edges sealed: empty width and length cells) and ``open`` (20 x 20 mm, edges open)."""
+    rng = np.random.default_rng(0)
+    d, mm, times = 4e-12, 3.0, d5229_times(56.0)
+    coupons = [synthetic_specimen("sealed", 333.15, 85.0, 2e-3, times, mm, d, rng, 0.0),
+               synthetic_specimen("open", 333.15, 85.0, 2e-3, times, mm, d, rng, 0.0,
+                                  width=20e-3, length=20e-3)]
+    return write_weight_gain_csv(coupons, tmp_path / "mixed.csv", ["SYNTHETIC"]), d, mm
+
+
+def test_empty_width_and_length_cells_mean_sealed_edges_beside_open_coupons(tmp_path, capsys):
+    from fickcam.fit import fit_weight_gain
+    from fickcam.fit.data import read_weight_gain
+
+    path, d, mm = _sealed_and_open(tmp_path)
+    rows = path.read_text().splitlines()
+    assert rows[1].startswith("specimen,") and ",20,20," in rows[-1] and ",,," in rows[2]
+    sealed, opened = read_weight_gain(path)
+    assert (sealed.width, sealed.length) == (None, None)
+    assert (opened.width, opened.length) == pytest.approx((20e-3, 20e-3))
+    # each coupon fitted with its own model gives the D it was made with (noise-free data,
+    # moisture written to 1e-4 %, 3e-5 of Mm); the sealed coupon taken as open gives
+    # 0.84 D, the open one taken as sealed 1.20 D (its edges' share of the uptake)
+    report = fit_weight_gain(path, "3502")
+    for fit in report.specimen_fits:
+        assert fit.diffusivity.value == pytest.approx(d, rel=1e-3)
+        assert fit.saturation.value == pytest.approx(mm, rel=1e-3)
+    code = main(["fit", str(path), "--matrix", "3502", "-o", str(tmp_path / "out.yaml")])
+    out = capsys.readouterr()
+    assert code == 0 and out.err == "", out.err
+    assert "mixed" in yaml.safe_load((tmp_path / "out.yaml").read_text())["materials"]
+
+
+@pytest.mark.parametrize("edit, where", [
+    (lambda row: row.replace(",20,20,", ",20,,"), "length: empty cell: give width and length together"),
+    (lambda row: row.replace(",20,20,", ",25,25,"), "width: specimen 'open' changes its width"),
+])
+def test_width_and_length_come_together_and_stay_the_same(tmp_path, capsys, edit, where):
+    path, _, _ = _sealed_and_open(tmp_path)
+    rows = path.read_text().splitlines()
+    rows[-1] = edit(rows[-1])
+    path.write_text("\n".join(rows) + "\n")
+    assert main(["fit", str(path), "--matrix", "3502", "-o", str(tmp_path / "out.yaml")]) == 2
+    err = capsys.readouterr().err
+    assert f"mixed.csv:{len(rows)} {where}" in err and "Traceback" not in err
+    assert not (tmp_path / "out.yaml").exists()
+
+
+def test_a_coupons_width_and_length_may_be_given_on_one_of_its_rows(tmp_path):
+    from fickcam.fit.data import read_weight_gain
+
+    path, _, _ = _sealed_and_open(tmp_path)
+    rows = path.read_text().splitlines()
+    rows = [row.replace(",20,20,", ",,,") if row.startswith("open,") and k < len(rows) - 1 else row
+            for k, row in enumerate(rows)]
+    path.write_text("\n".join(rows) + "\n")
+    sealed, opened = read_weight_gain(path)
+    assert sealed.width is None and opened.width == pytest.approx(20e-3)

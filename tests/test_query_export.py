@@ -85,7 +85,7 @@ def test_a_query_answer_states_the_angle_it_answers(stored):
     assert json.loads(format_result(array, "follower_displacement", "json"))["selection"] == \
         table.splitlines()[0].split(" at ", 1)[1]
     rows = list(csv.DictReader(format_result(array, "follower_displacement", "csv").splitlines()))
-    assert float(rows[0]["cam_angle"]) == 345.0 and float(rows[0]["time_d"]) == 7.0
+    assert float(rows[0]["cam_angle [degree]"]) == 345.0 and float(rows[0]["time [d]"]) == 7.0
 
 
 def test_ageing_time_in_days_sits_beside_the_timedelta_time(stored):

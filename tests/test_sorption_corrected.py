@@ -1,5 +1,6 @@
-"""Concentration-dependent D on a cam plate by the corrected product (``diffusion.defect``:
-the D(c) sheet x D(c) planform corrected on coarse 3-D prisms): the Fickian limit to
+"""Concentration-dependent D on a cam plate by the corrected product
+(``diffusion.nonfickian.corrected_product``: the D(c) sheet x D(c) planform corrected on coarse
+3-D prisms): the Fickian limit to
 round-off, a brute-force 3-D reference (tests/data/dc_plate_reference.json, made once by
 benchmarks/dc_defect_correction.py), Crank's direction of the sorption/desorption
 asymmetry, bounds and equilibrium."""

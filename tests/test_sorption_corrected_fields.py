@@ -1,5 +1,5 @@
-"""Stored fields of the corrected product (``diffusion.defectfields``): the finest nested
-3-D mesh's cells corrected cell by cell by the sheet's and the planform's reference/coarse
+"""Stored fields of the corrected product (``diffusion.nonfickian.corrected_fields``): the finest
+nested 3-D mesh's cells corrected cell by cell by the sheet's and the planform's reference/coarse
 ratios, against the exact Fickian block (k = 0: Crank 1975 eq. 4.51 pointwise, the
 product of three sheets) and, with k = 2, against the corrected mean they must be
 consistent with."""

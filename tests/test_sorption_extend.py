@@ -1,5 +1,6 @@
-"""``DiffusionResult.extend`` of the concentration-dependent marches (``diffusion.dense``):
-new times read between the stored march's steps agree with a solve at those times within
+"""``DiffusionResult.extend`` of the concentration-dependent marches
+(``diffusion.stepping.dense_output``): new times read between the stored march's steps agree with
+a solve at those times within
 the extended result's estimate, the reading never crosses an exposure change, and its
 estimate grows as the steps thin out. The exact Fickian sheet uptake (Crank 1975 eq. 4.18,
 4.20; ``series.sheet_uptake``) is the independent reference of the interpolation alone."""

@@ -73,11 +73,11 @@ def test_a_server_of_another_protocol_is_refused(server, tmp_path, capsys):
 
 def test_a_closed_port_is_an_unreachable_scheduler(tmp_path, capsys):
     code, line = sweep_with(f"tcp://127.0.0.1:{closed_port()}", tmp_path, capsys)
-    assert code == 1 and line.startswith("fickcam: no dask scheduler at")
+    assert code == 1 and line.startswith("fickcam: error: no dask scheduler at")
 
 
 @pytest.mark.parametrize("address", ["garbage address", "tcp://127.0.0.1", "tcp://:8786",
                                       "nosuch://host:8786"])
 def test_a_malformed_address_is_bad_input(address, tmp_path, capsys):
     code, line = sweep_with(address, tmp_path, capsys)
-    assert code == 2 and line.startswith(f"fickcam: --scheduler {address}")
+    assert code == 2 and line.startswith(f"fickcam: error: --scheduler {address}")

@@ -166,8 +166,11 @@ def cam_frame_point(design: CamDesign, theta, x, y):
 def write_profile_csv(path, design: CamDesign, strain_x: float = 0.0, strain_y: float = 0.0,
                       n: int = 720):
     """Write the working profile (cam frame, counter-clockwise) as CSV columns x_m, y_m."""
+    from ..store import replaced_atomically
+
     x, y = working_profile(design, strain_x, strain_y, n)
-    np.savetxt(path, np.c_[x, y], delimiter=",", header="x_m,y_m", comments="", fmt="%.9e")
+    with replaced_atomically(path) as tmp:
+        np.savetxt(tmp, np.c_[x, y], delimiter=",", header="x_m,y_m", comments="", fmt="%.9e")
     return path
 
 

@@ -16,6 +16,7 @@ import math
 
 import numpy as np
 
+from ..messages import note
 from ..response import Response
 from . import dynamics as dyn
 from .design import CamDesign, CamState
@@ -52,7 +53,8 @@ def cam_response(design: CamDesign, state: CamState, cam_angle) -> Response:
 
     Scalars: base_circle_radius, lift (m), jump_speed (rad/s; the schema stores rpm),
     wear_rate (m/s, deepest Archard wear per unit time). Arrays over cam_angle:
-    follower_displacement (m, from the aged lowest position), follower_velocity,
+    follower_displacement (m, from the aged lowest position), follower_position (m, the
+    pitch point or flat face above the cam axis), follower_velocity,
     follower_acceleration, follower_jerk (time derivatives at design.speed),
     pressure_angle (rad), radius_of_curvature (m, working profile; pitch curve minus roller),
     pitch_radius_of_curvature (m), contact_force (N, common normal), cam_torque (N m),
@@ -94,7 +96,7 @@ def cam_response(design: CamDesign, state: CamState, cam_angle) -> Response:
     notices += _jump_notices(theta, axial, jump, omega)
 
     if design.follower_kind == "knife":
-        notices.append("knife-edge follower: Hertz line-contact stress is not defined")
+        notices.append(note("knife-edge follower: Hertz line-contact stress is not defined"))
     stress, shear, shear_depth = hertz_contact(design, state, force, rho, roller)
     wear = (dyn.archard_wear_per_revolution(design.archard_coefficient, design.hardness, force,
                                             design.contact_length, _slide_ratio(design, height, rho))
@@ -105,6 +107,7 @@ def cam_response(design: CamDesign, state: CamState, cam_angle) -> Response:
         "lift": highest - lowest,
         "jump_speed": jump,
         "follower_displacement": y,
+        "follower_position": height,
         "follower_velocity": velocity,
         "follower_acceleration": acceleration,
         "follower_jerk": d3 * omega ** 3,

@@ -27,6 +27,8 @@ from pathlib import Path
 
 import numpy as np
 
+from ..extras import require
+from ..store import replaced_atomically
 from .arm import aged_profile_contact
 
 TWO_PI = 2.0 * np.pi
@@ -179,25 +181,33 @@ def load_profile(path, roller_radius: float = 0.0, mirror: bool = False) -> CamP
 def write_profile_csv(path, x, y, curve: str = "working") -> Path:
     """Write profile points (m) as CSV in mm with units in the header (readable back)."""
     names = ("x [mm]", "y [mm]") if curve == "working" else ("pitch_x [mm]", "pitch_y [mm]")
-    np.savetxt(path, np.c_[x, y] * 1e3, delimiter=",", header=",".join(names), comments="",
-               fmt="%.9f")
+    with replaced_atomically(path) as tmp:
+        np.savetxt(tmp, np.c_[x, y] * 1e3, delimiter=",", header=",".join(names), comments="",
+                   fmt="%.9f")
     return Path(path)
+
+
+def dxf_module():
+    """ezdxf, or the one-line refusal with its install command (:func:`fickcam.extras.require`):
+    a command that will write DXF asks first, before it computes anything."""
+    return require("dxf", advice="or write the profile as .csv")
 
 
 def write_profile_dxf(path, x, y) -> Path:
     """Write a closed profile (m) as a DXF closed polyline in mm (ezdxf), with the cam
-    axis marked by a point at the origin."""
+    axis marked by a point at the origin. Needs the extra ``fickcam[dxf]`` (ezdxf):
+    without it, :class:`~fickcam.extras.MissingExtra` and no file."""
     import logging
 
-    import ezdxf
-
+    ezdxf = dxf_module()
     logging.getLogger("ezdxf").setLevel(logging.WARNING)  # its INFO lines are about DXF internals
     document = ezdxf.new("R2010", units=ezdxf.units.MM)
     space = document.modelspace()
     space.add_lwpolyline(list(zip(np.asarray(x) * 1e3, np.asarray(y) * 1e3)), close=True,
                          dxfattribs={"layer": "PROFILE"})
     space.add_point((0.0, 0.0), dxfattribs={"layer": "AXIS"})
-    document.saveas(path)
+    with replaced_atomically(path) as tmp:
+        document.saveas(tmp)
     return Path(path)
 
 

@@ -1,12 +1,12 @@
-"""Compensation (issue 19): the dry dimensions at the reference temperature to make so that
+"""Compensation: the dry dimensions at the reference temperature to make so that
 the mechanism has its design geometry at an ageing time, or stays closest to it over a
 window (minimax); `fickcam compensate` and :func:`fickcam.compensate`.
 
 Public API: :func:`compensate` -> :class:`Compensation`, :func:`write_scene`,
-:func:`dimension_table`.
+:func:`dimension_table`, :func:`report`.
 """
 from .core import Compensation, Target
-from .report import dimension_table, write_scene
+from .report import dimension_table, report, write_scene
 from .solve import compensate
 
-__all__ = ["Compensation", "Target", "compensate", "dimension_table", "write_scene"]
+__all__ = ["Compensation", "Target", "compensate", "dimension_table", "report", "write_scene"]

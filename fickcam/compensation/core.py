@@ -2,10 +2,11 @@
 mechanism has its design geometry at an ageing time, or stays closest to it over a window.
 
 A dimension L of a part grows with the part's free hygrothermal strain eps(t) to
-L_made (1 + eps(t)) (seeds/001_51a6f900df76f3cc.txt eqs. 11-14, read as
-a_1 = a (1 + alpha dT + beta dm); seeds/000_c9d2754e3bf549ac.txt p. 281 scales the
-cam the same way). Both seeds end on the same instruction: reduce the dimensions by
-the drift. Holding L_design at time T gives L_made = L_design / (1 + eps(T)). Over a
+L_made (1 + eps(t)) (Singh & Sanyal 2016, on the volume, mass and moment of inertia of
+neat-resin four-bar links under a hygrothermal environment, eqs. 11-14, read as
+a_1 = a (1 + alpha dT + beta dm); Singh & Sanyal 2017, on a carbon/epoxy cam and
+follower under a hygrothermal environment, p. 281, scales the cam the same way). Both
+papers end on the same instruction: reduce the dimensions by the drift. Holding L_design at time T gives L_made = L_design / (1 + eps(T)). Over a
 window [T1, T2] the largest deviation max_t |L_made (1 + eps(t)) - L_design| is
 smallest (minimax) when the deviations at the strain's extremes are equal and opposite:
 L_made = L_design / (1 + (eps_min + eps_max) / 2), residual L_made (eps_max - eps_min) / 2.
@@ -17,6 +18,7 @@ iteration, each step a run of the scene with the current made dimensions.
 from __future__ import annotations
 
 import contextlib
+import dataclasses
 import logging
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -50,8 +52,9 @@ class Target:
 @dataclass
 class Compensation:
     """What :func:`fickcam.compensate` found: the made value of every target (m), the
-    ageing times it was made for, the iterations the fixed point took and the scene
-    (YAML data) that makes it."""
+    ageing times it was made for, the iterations the fixed point took, the scene (YAML
+    data, as designed) that makes it, and the runs of the design (``before``) and of the
+    made scene (``after``) at the ``check`` times (s) across the ``life`` asked about."""
 
     targets: list[Target]
     made: list
@@ -60,6 +63,30 @@ class Compensation:
     scene_data: dict
     residual: list = field(default_factory=list)  # largest |made (1 + eps) - design| per target, m
     scene: object = None                          # the design scene (fickcam.scene.Scene)
+    life: tuple = (0.0, 0.0)                      # s: the window, or delivery to the history's end
+    check: np.ndarray = None                      # s: the ageing times of before and after
+    before: object = None                         # xarray.Dataset of the design
+    after: object = None                          # xarray.Dataset of the made scene
+    asked: object = None                          # what was asked when keep_limits widened it
+
+    def in_life(self) -> np.ndarray:
+        """Which of the ``check`` times lie in the life asked about (a plot adds others)."""
+        return (self.check >= self.life[0]) & (self.check <= self.life[1])
+
+    def ratios(self, ds, limit: str) -> tuple[np.ndarray, np.ndarray]:
+        """(ageing times in the life, s; the limit ratio of ``limit`` in ``ds`` at them)."""
+        inside = self.in_life()
+        return self.check[inside], ds.limit_ratio.sel(limit=limit).values[inside]
+
+    def fails(self) -> bool:
+        """True when the made part breaks one of the scene's limits across the life."""
+        return "limit_ratio" in self.after and any(
+            (self.ratios(self.after, name)[1] > 1.0).any() for name in self.after.limit.values)
+
+    def widened(self, times, made, after, iterations, left) -> "Compensation":
+        """This compensation made anew for ``times`` (keep_limits); ``asked`` keeps it."""
+        return dataclasses.replace(self, made=made, times=np.asarray(times), after=after,
+                                   iterations=iterations, residual=left, asked=self)
 
 
 def part_strain(ds, target: Target) -> np.ndarray:

@@ -1,15 +1,16 @@
 """What `fickcam compensate` prints and writes: the table of dimensions to make per part,
-the drift of the key outputs before and after, and the runnable compensated scene."""
+the scene's limits over the life asked about (as designed and compensated), what to do
+when compensating at one time breaks them, the drift of the key outputs before and after,
+and the runnable compensated scene (all files written together, or none)."""
 from __future__ import annotations
 
+import math
 from pathlib import Path
 
 import numpy as np
 import yaml
 
-from ..errors import format_duration
-from .core import Compensation, quiet_runs, relative_to
-from .solve import write_made
+from .core import Compensation, relative_to
 
 #: key outputs over angle whose largest deviation from the design is reported:
 #: result variable, label, scale from the stored unit, unit shown
@@ -19,21 +20,22 @@ KEY_OUTPUTS = (("follower_displacement", "follower displacement", 1e6, "µm"),
                ("rocker_angle", "rocker angle", 1.0, "deg"),
                ("coupler_angle", "coupler angle", 1.0, "deg"),
                ("coupler_point", "coupler point", 1e6, "µm"))
+DAY = 86400.0
+
+
+def days(seconds: float) -> str:
+    """An ageing time as the user's scenes give them: '182.6 d'."""
+    return f"{seconds / DAY:.4g} d"
 
 
 def dimension_rows(comp: Compensation) -> list[tuple]:
-    """(group, dimension, design m, made m) per scalar target; a profile gives its
-    smallest and largest radius from the cam axis (base circle, base circle + lift)."""
-    rows = []
-    for target, made in zip(comp.targets, comp.made):
-        if np.ndim(target.design):
-            continue
-        rows.append((target.group, target.name, float(target.design), float(made)))
-    if any(t.group == "cam" for t in comp.targets):
-        from .cam import profile_radii
+    """(group, dimension, design m, made m) per scalar target; a cam given by points
+    gives its smallest and largest radius and its extents."""
+    from .cam import profile_radii
 
-        rows = profile_radii(comp) + rows
-    return rows
+    rows = [(t.group, t.name, float(t.design), float(m))
+            for t, m in zip(comp.targets, comp.made) if not np.ndim(t.design)]
+    return profile_radii(comp) + rows
 
 
 def dimension_table(comp: Compensation) -> str:
@@ -48,19 +50,17 @@ def dimension_table(comp: Compensation) -> str:
 
 
 def when_text(comp: Compensation) -> str:
-    """'at 60 d' or 'over 0 s to 365 d (minimax, 38 ageing times)'."""
+    """'at 60 d' or 'over 0 d to 365 d (minimax, 38 ageing times)'."""
     times = comp.times
     if times.size == 1:
-        return f"at {format_duration(times[0])}"
-    return (f"over {format_duration(times[0])} to {format_duration(times[-1])} (minimax, "
-            f"{times.size} ageing times)")
+        return f"at {days(times[0])}"
+    return f"over {days(times[0])} to {days(times[-1])} (minimax, {times.size} ageing times)"
 
 
 def header(comp: Compensation, scene) -> str:
     """One line: what was compensated for and how the fixed point went."""
-    when = when_text(comp)
-    return (f"{scene.name}: dry dimensions at the reference temperature to make, {when}; "
-            f"fixed point settled after {comp.iterations} iteration(s)")
+    return (f"{scene.name}: dry dimensions at the reference temperature to make, "
+            f"{when_text(comp)}; fixed point settled after {comp.iterations} iteration(s)")
 
 
 def residual_lines(comp: Compensation) -> list[str]:
@@ -73,56 +73,121 @@ def residual_lines(comp: Compensation) -> list[str]:
     return lines
 
 
-def _with_design(data: dict, comp: Compensation) -> dict:
-    """The made scene with its ``design:`` section (what drift and limits are measured
-    against) after the mechanism sections."""
-    from . import cam, linkage
-
-    design = {}
-    if "cam" in data:
-        design["cam"] = cam.design_entry(comp.scene_data["cam"], comp.targets)
-    if "linkage" in data:
-        design["linkage"] = linkage.design_entry(comp.scene_data["linkage"])
-    out = {}
-    for key, value in data.items():
-        if key != "design":
-            out[key] = value
-        if key == ("linkage" if "linkage" in data else "cam"):
-            out["design"] = design
-    return out
+# ------------------------------------------------------------------ limits
 
 
-def write_scene(comp: Compensation, scene, path) -> Path:
-    """Write the compensated scene (and a cam's profile CSV beside it); it runs as is."""
-    path = Path(path)
-    folder = path.parent if str(path.parent) else Path(".")
-    folder.mkdir(parents=True, exist_ok=True)
-    data = write_made(comp.scene_data, comp.targets, comp.made, folder, path.stem)
-    if "cam" in data and "profile_file" in data["cam"]:
-        from .cam import write_dxf
+def worst(ratio: np.ndarray, times: np.ndarray) -> tuple[float, float]:
+    """(largest limit ratio, the ageing time of it) over a run's times; NaN where unknown."""
+    if not np.isfinite(ratio).any():
+        return math.nan, math.nan
+    k = int(np.nanargmax(ratio))
+    return float(ratio[k]), float(times[k])
 
-        profile = Path(data["cam"]["profile_file"])
-        data["cam"]["profile_file"] = profile.name  # beside the scene
-        write_dxf(comp.targets, comp.made, profile.with_suffix(".dxf"))
-    data = _with_design(data, comp)
-    environment = data.get("environment") or {}
-    if isinstance(environment.get("history_file"), str):
-        environment["history_file"] = relative_to(environment["history_file"], scene.base_dir,
-                                                  folder)
-    shape = data.get("design", {}).get("cam", {})
-    if isinstance(shape.get("profile_file"), str):
-        shape["profile_file"] = relative_to(shape["profile_file"], scene.base_dir, folder)
-    data["name"] = f"{scene.name}-compensated"
-    data["description"] = f"{scene.model.description} (compensated {when_text(comp)})".strip()
-    outputs = dict(data.get("outputs") or {})
-    outputs["file"] = f"outputs/{data['name']}.h5"
-    data["outputs"] = outputs
-    text = (f"# Written by `fickcam compensate` from {scene.file}.\n"
-            f"# {header(comp, scene)}.\n"
-            + "".join(f"# {line}\n" for line in dimension_table(comp).splitlines())
-            + yaml.safe_dump(data, sort_keys=False, allow_unicode=True))
-    path.write_text(text, encoding="utf-8")
-    return path
+
+def out_of_spec_spans(ratio: np.ndarray, times: np.ndarray) -> list[str]:
+    """Each stretch of ageing times out of spec (ratio above 1): 'at 0 d, back in spec by
+    7 d', 'from 30 d to 90 d, back in spec by 120 d', 'from 300 d to the end'."""
+    above = ratio > 1.0
+    spans = []
+    k = 0
+    while k < len(times):
+        if not above[k]:
+            k += 1
+            continue
+        last = k
+        while last + 1 < len(times) and above[last + 1]:
+            last += 1
+        text = f"at {days(times[k])}" if last == k else \
+            f"from {days(times[k])} to {days(times[last])}"
+        if last + 1 < len(times):
+            text += f", back in spec by {days(times[last + 1])}"
+        elif last > k:
+            text = f"from {days(times[k])} to the end"
+        spans.append(text)
+        k = last + 1
+    return spans
+
+
+def _cell(times: np.ndarray, ratio: np.ndarray) -> str:
+    value, when = worst(ratio, times)
+    if math.isnan(value):
+        return f"{'unknown':<26}"
+    verdict = "holds" if value <= 1.0 else "OUT OF SPEC"
+    return f"{value:6.3f} at {days(when):>9}  {verdict:<11}"
+
+
+def limit_lines(comp: Compensation) -> list[str]:
+    """The scene's limits over the life: worst ratio (1 at the limit), when, and whether
+    it holds, as designed and as compensated."""
+    from ..limits import stored_limits
+
+    if "limit_ratio" not in comp.before:
+        return ["the scene has no limits: section, so the made part is not checked against a "
+                "spec (add one to see each limit here, as designed and compensated)"]
+    limits = stored_limits(comp.before)
+    life = f"{days(comp.life[0])} to {days(comp.life[1])}"
+    lines = [f"limits from {life} (worst limit ratio, 1 = at the limit, and when):",
+             f"  {'limit':<44} {'as designed':<34} compensated"]
+    for name in comp.before.limit.values:
+        label = f"{name} ({limits[name].text})"
+        lines.append(f"  {label:<44} {_cell(*comp.ratios(comp.before, name))}  "
+                     f"{_cell(*comp.ratios(comp.after, name))}".rstrip())
+    return lines
+
+
+def _failures(comp: Compensation, ds, brief: bool = False) -> list[str]:
+    """'follower_displacement out of spec at 0 d, back in spec by 7 d (worst 1.35 at 0 d)'
+    per failing limit; ``brief``: 'follower_displacement (worst 1.35 at 0 d)'."""
+    found = []
+    for name in ds.limit.values:
+        times, ratio = comp.ratios(ds, name)
+        spans = out_of_spec_spans(ratio, times)
+        if spans:
+            value, when = worst(ratio, times)
+            where = "" if brief else " out of spec " + " and ".join(spans)
+            found.append(f"{name}{where} (worst {value:.3g} at {days(when)})")
+    return found
+
+
+def worse_line(comp: Compensation) -> list[str]:
+    """'further out of spec than as designed at 2 of 6 ageing times (0 d, 7 d)', by the
+    largest limit ratio at each time; nothing where compensation never makes it worse."""
+    names = comp.after.limit.values
+    times = comp.ratios(comp.after, names[0])[0]
+    before = np.nanmax([comp.ratios(comp.before, name)[1] for name in names], axis=0)
+    after = np.nanmax([comp.ratios(comp.after, name)[1] for name in names], axis=0)
+    worse = np.flatnonzero((after > before) & (after > 1.0))
+    if not worse.size:
+        return []
+    return [f"as compensated it is further out of spec than as designed at {worse.size} of "
+            f"{times.size} ageing times ({', '.join(days(t) for t in times[worse])})"]
+
+
+def advice_lines(comp: Compensation, scene) -> list[str]:
+    """What the limits say about the compensation asked for, and what to do instead."""
+    if "limit_ratio" not in comp.after:
+        return []
+    life = f"{days(comp.life[0])} to {days(comp.life[1])}"
+    failures = _failures(comp, comp.after)
+    lines = []
+    if comp.asked is not None:
+        lines.append(f"--keep-limits: compensating {when_text(comp.asked)} broke "
+                     + ", ".join(_failures(comp.asked, comp.asked.after, brief=True))
+                     + f"; made for the whole life, {life}, instead")
+    if not failures:
+        return lines + [f"every limit holds from {life} as compensated"]
+    lines += ["as compensated: " + "; ".join(failures)] + worse_line(comp)
+    if comp.times.size == 1:
+        lines.append(f"Compensating at one time cannot hold the part from delivery on. Make it "
+                     f"for its whole life instead (minimax: closest to the design over it):\n"
+                     f"  fickcam compensate {scene.file} --over \"{comp.life[0] / DAY:g} d\" "
+                     f"\"{comp.life[1] / DAY:g} d\"\n"
+                     f"or add --keep-limits to do so whenever the time asked for breaks a limit.")
+    else:
+        lines.append(f"these dimensions come no closer to the design over {life} (minimax): "
+                     f"to keep every limit, shorten the window or choose a material that "
+                     f"swells less")
+    return lines
 
 
 def largest_deviation(ds, name: str) -> np.ndarray | None:
@@ -143,77 +208,116 @@ def largest_deviation(ds, name: str) -> np.ndarray | None:
     return np.nanmax(np.abs(change), axis=-1)
 
 
-def _run_at(data: dict, base_dir: Path, times: np.ndarray, accuracy):
-    from ..simulate import run
-    from .solve import scene_from
-
-    data = dict(data)
-    outputs = dict(data.get("outputs") or {})
-    outputs.update(ageing_times=[float(t) for t in times], fields=False)
-    data["outputs"] = outputs
-    return run(scene_from(data, base_dir, "<compensation check>"), accuracy=accuracy)
-
-
-#: ageing times across the history at which a --plot draws the drift
-PLOT_POINTS = 49
-
-
-def check_times(comp: Compensation, scene, dense: bool = False) -> tuple[np.ndarray, np.ndarray]:
-    """(times to run, times to tabulate), s: the scene's ageing times and the ends of the
-    compensation, and for a plot also the compensation's own times and a regular grid."""
+def shown_times(comp: Compensation) -> np.ndarray:
+    """The ageing times (s) the drift table shows: the scene's inside the life, its ends
+    and the ends of the compensation."""
     from ..simulate import ageing_times, scene_environment
 
-    environment = scene_environment(scene)
-    shown = np.unique(np.concatenate([ageing_times(scene, environment), comp.times[[0, -1]]]))
-    if not dense:
-        return shown, shown
-    grid = np.linspace(0.0, environment.end, PLOT_POINTS)
-    return np.unique(np.concatenate([shown, comp.times, grid])), shown
+    scene = comp.scene
+    stored = ageing_times(scene, scene_environment(scene))
+    inside = stored[(stored >= comp.life[0]) & (stored <= comp.life[1])]
+    return np.unique(np.concatenate([inside, np.array(comp.life), comp.times[[0, -1]]]))
 
 
-def drift_runs(comp: Compensation, scene, path, times, accuracy=None):
-    """(uncompensated result, compensated result) at ``times``, the compensated scene read
-    back from ``path`` as written."""
-    from ..scene import read_yaml
-
-    path = Path(path)
-    written = read_yaml(path).data
-    with quiet_runs():
-        before = _run_at(scene.document.data, scene.base_dir, times, accuracy)
-        after = _run_at(written, path.resolve().parent, times, accuracy)
-    return before, after
-
-
-def drift_lines(times, before, after, shown) -> list[str]:
-    """The drift of the key outputs from the design, before and after compensation, at the
-    ageing times ``shown``."""
+def drift_lines(comp: Compensation) -> list[str]:
+    """The drift of the key outputs from the design, before and after compensation."""
     columns = []
     for name, label, scale, unit in KEY_OUTPUTS:
-        old = largest_deviation(before, name)
+        old = largest_deviation(comp.before, name)
         if old is not None:
-            new = largest_deviation(after, name)
+            new = largest_deviation(comp.after, name)
             columns.append((f"{label} {unit}", old * scale, new * scale))
     if not columns:
         return []
     lines = ["largest deviation from the design over the cycle (before -> after compensation):",
              f"  {'time':>9}  " + "  ".join(f"{title:>26}" for title, _, _ in columns)]
-    for k in np.flatnonzero(np.isin(times, shown)):
-        t = times[k]
+    for k in np.flatnonzero(np.isin(comp.check, shown_times(comp))):
         cells = "  ".join(f"{old[k]:12.4g} -> {new[k]:10.4g}" for _, old, new in columns)
-        lines.append(f"  {format_duration(t):>9}  {cells}")
+        lines.append(f"  {days(comp.check[k]):>9}  {cells}")
     return lines
 
 
-def report(comp: Compensation, scene, path, accuracy=None, plot=None) -> str:
-    """Everything `fickcam compensate` prints; ``plot``: also draw the drift against the
-    band there (PNG)."""
-    times, shown = check_times(comp, scene, dense=plot is not None)
-    before, after = drift_runs(comp, scene, path, times, accuracy)
+def report(comp: Compensation, scene) -> str:
+    """Everything `fickcam compensate` prints before the files it wrote (no runs: it reads
+    the runs the compensation made)."""
+    from .cam import anisotropy_note
+
     lines = [header(comp, scene), dimension_table(comp)] + residual_lines(comp) + \
-        drift_lines(times, before, after, shown)
+        limit_lines(comp) + advice_lines(comp, scene) + anisotropy_note(comp) + drift_lines(comp)
+    return "\n".join(lines)
+
+
+# ------------------------------------------------------------------ files
+
+
+def scene_text(comp: Compensation, scene, data: dict, folder: Path) -> str:
+    """The compensated scene's YAML: the made dimensions, ``design:`` the drawing's intent,
+    paths relative to ``folder``, the table and the limits as comments."""
+    environment = data.get("environment") or {}
+    if isinstance(environment.get("history_file"), str) and ":" not in environment["history_file"]:
+        environment["history_file"] = relative_to(environment["history_file"], scene.base_dir,
+                                                  folder)
+    shape = data.get("design", {}).get("cam", {})
+    if isinstance(shape.get("profile_file"), str):
+        shape["profile_file"] = relative_to(shape["profile_file"], scene.base_dir, folder)
+    data["name"] = f"{scene.name}-compensated"
+    data["description"] = f"{scene.model.description} (compensated {when_text(comp)})".strip()
+    outputs = dict(data.get("outputs") or {})
+    outputs["file"] = f"outputs/{data['name']}.h5"
+    data["outputs"] = outputs
+    comments = [header(comp, scene) + "."] + dimension_table(comp).splitlines() + limit_lines(comp)
+    return (f"# Written by `fickcam compensate` from {scene.file}.\n"
+            + "".join(f"# {line}\n" for line in comments)
+            + yaml.safe_dump(data, sort_keys=False, allow_unicode=True))
+
+
+def _drawing_writer(data: dict, points, base_dir: Path, path: Path):
+    """A writer of the made cam's dry working profile to ``path`` (.csv or .dxf, mm);
+    ``data``: the made scene mapping, its paths relative to ``base_dir``."""
+    from ..cam.profile import write_profile_csv, write_profile_dxf
+    from .cam import PROFILE_POINTS, made_outline
+
+    x, y = (points[:, 0], points[:, 1]) if points is not None else \
+        made_outline(data, base_dir, PROFILE_POINTS)
+    write = write_profile_dxf if path.suffix.lower() == ".dxf" else write_profile_csv
+    return lambda tmp: write(tmp, x, y)
+
+
+def write_scene(comp: Compensation, scene, path, *, profile=None, plot=None) -> Path:
+    """Write the compensated scene and what goes with it (:func:`write_files`); returns the
+    scene's path."""
+    return write_files(comp, scene, path, profile=profile, plot=plot)[0]
+
+
+def write_files(comp: Compensation, scene, path, *, profile=None, plot=None) -> list[Path]:
+    """Write the compensated scene (a cam given by points: its points beside it as
+    ``<stem>_cam_profile.csv``), and when asked the made cam's profile (``profile``, .csv
+    or .dxf) and the drift against the bands (``plot``, PNG); all together through
+    temporary files and renames, so that nothing is written if one fails. Returns the
+    paths written, the scene's first."""
+    from ..store import replaced_together
+    from .cam import profile_path
+    from .solve import write_made, write_points
+
+    path = Path(path)
+    folder = path.parent if str(path.parent) else Path(".")
+    csv = profile_path(folder, path.stem)
+    data, points = write_made(comp.scene_data, scene.as_designed(), comp.targets, comp.made,
+                              Path(csv.name))
+    writers = {path: None}  # the scene's text last: the drawing may validate the made scene
+    if points is not None:
+        writers[csv] = lambda tmp: write_points(tmp, points)
+    if profile is not None:
+        writers[Path(profile)] = _drawing_writer(data, points, scene.base_dir,
+                                                       Path(profile))
     if plot is not None:
         from ..plotting.compensation import plot_against_band
 
-        window = tuple(np.unique(comp.times[[0, -1]]) / 86400.0)
-        lines.append(f"wrote {plot_against_band(before, after, plot, window)}")
-    return "\n".join(lines)
+        window = tuple(np.unique(comp.times[[0, -1]]) / DAY)
+        writers[Path(plot)] = lambda tmp: plot_against_band(comp.before, comp.after, tmp, window)
+    text = scene_text(comp, scene, data, folder)
+    writers[path] = lambda tmp: Path(tmp).write_text(text, encoding="utf-8")
+    with replaced_together(list(writers)) as temps:
+        for tmp, write in zip(temps, writers.values()):
+            write(tmp)
+    return list(writers)

@@ -1,6 +1,14 @@
 """The fixed point of compensation: run the scene with the current made dimensions,
 read each part's strain at the ageing times compensated for, make the dimensions
-anew (:mod:`fickcam.compensation.core`), until they stop moving."""
+anew (:mod:`fickcam.compensation.core`), until they stop moving.
+
+Every run is made at the *check times*: the scene's ageing times inside the life asked
+about, its ends, the times compensated for (and, when asked, a regular grid for a plot or
+for the wider window of ``keep_limits``), with the scene's own angle step and limits. So
+the first run (the design) is both the fixed point's start and the uncompensated part of
+the limits report, and the run that shows the fixed point has settled is the compensated
+part: compensating at one time costs the design run and one run per iteration.
+"""
 from __future__ import annotations
 
 import copy
@@ -12,13 +20,16 @@ import numpy as np
 import yaml
 
 from ..errors import FickcamError, InputError, format_duration
-from .core import (MAX_ITERATIONS, Compensation, converged, made_value, part_strain,
-                   quiet_runs, residual, window_times)
+from .core import (MAX_ITERATIONS, Compensation, converged, made_value, part_strain, quiet_runs,
+                   residual, window_times)
+
+#: ageing times across the history at which a --plot draws the drift
+PLOT_POINTS = 49
 
 
-def length_text(value: float) -> str:
-    """A length for the written scene, to the nanometre."""
-    return f"{value * 1e3:.6f} mm"
+def length_text(value: float, digits: int = 6) -> str:
+    """A length for the written scene in mm, to the nanometre (``digits`` decimals of mm)."""
+    return f"{value * 1e3:.{digits}f} mm"
 
 
 def scene_from(data: dict, base_dir: Path, file_name: str):
@@ -29,12 +40,12 @@ def scene_from(data: dict, base_dir: Path, file_name: str):
     return validate_document(doc, base_dir=base_dir)
 
 
-def _targets(scene) -> list:
+def _targets(scene, points: bool) -> list:
     found = []
     if scene.model.cam is not None:
         from . import cam
 
-        found += cam.targets(scene.model.cam, scene.base_dir)
+        found += cam.targets(scene.model.cam, points)
     if scene.model.linkage is not None:
         from . import linkage
 
@@ -42,84 +53,170 @@ def _targets(scene) -> list:
     return found
 
 
-def write_made(data: dict, targets: list, made: list, folder: Path, stem: str) -> dict:
-    """A copy of the scene mapping with the made dimensions (a cam's profile written as
-    ``<stem>_cam_profile.csv`` in ``folder``)."""
-    data = copy.deepcopy(data)
+def with_design(data: dict, design: dict, targets: list) -> dict:
+    """The made scene mapping with its ``design:`` section (``design`` is the design's
+    mapping): what its as-designed values, drift and limits are measured against; placed
+    after the mechanism sections."""
+    from . import cam, linkage
+
+    entry = {}
+    if "cam" in data:
+        entry["cam"] = cam.design_entry(design["cam"], targets)
+    if "linkage" in data:
+        entry["linkage"] = linkage.design_entry(design["linkage"])
+    out = {}
+    for key, value in data.items():
+        if key != "design":
+            out[key] = value
+        if key == ("linkage" if "linkage" in data else "cam"):
+            out["design"] = entry
+    return out
+
+
+def write_made(data: dict, scene, targets: list, made: list, profile: Path):
+    """(a copy of the scene mapping ``data`` (as designed) with the made dimensions and a
+    ``design:`` section, the made cam's points or None): a cam given by points names
+    ``profile``, where the caller writes its points."""
+    design, data = data, copy.deepcopy(data)
     cam_part = [(t, m) for t, m in zip(targets, made) if t.group in ("cam", "follower")]
     link_part = [(t, m) for t, m in zip(targets, made) if t.group not in ("cam", "follower")]
+    points = None
     if cam_part:
         from . import cam
 
-        cam.write(data, *zip(*cam_part), folder, stem)
+        points = cam.write(data, scene.model.cam, *zip(*cam_part), profile, length_text)
     if link_part:
         from . import linkage
 
         linkage.write(data, *zip(*link_part), length_text)
-    return data
+    return with_design(data, design, targets), points
 
 
-def _strain_run(data: dict, base_dir: Path, times: np.ndarray, accuracy):
-    """A run at ``times`` only, with a coarse angle grid: the strains are what is read."""
+def write_points(path, points: np.ndarray) -> Path:
+    """A made cam's points (m) as the profile CSV a scene reads (mm, units in the header)."""
+    from ..cam.profile import write_profile_csv
+
+    return write_profile_csv(path, points[:, 0], points[:, 1])
+
+
+def run_at(data: dict, base_dir: Path, times: np.ndarray, accuracy):
+    """The scene mapping run at ageing ``times`` (s) only, fields off, no file."""
     from ..simulate import run
 
     data = copy.deepcopy(data)
     outputs = dict(data.get("outputs") or {})
-    outputs.update(ageing_times=[float(t) for t in times], angle_step="30 deg", fields=False)
+    outputs.update(ageing_times=[float(t) for t in times], fields=False)
     outputs.pop("file", None)
     data["outputs"] = outputs
-    return run(scene_from(data, base_dir, "<compensation>"), accuracy=accuracy)
+    ds = run(scene_from(data, base_dir, "<compensation>"), accuracy=accuracy)
+    if ds.sizes["time"] != len(times):
+        raise FickcamError("compensation: a run did not keep the ageing times it was given")
+    return ds
 
 
-def compensation_times(scene, at, over) -> np.ndarray:
-    """[T] for ``at``, the window grid for ``over`` (s); refuses times outside the history."""
-    from ..simulate import ageing_times, scene_environment
+def _seconds(value) -> float:
     from ..units import parse_duration
+
+    try:
+        return parse_duration(value) if isinstance(value, str) else float(value)
+    except ValueError as exc:
+        raise InputError(f"compensation time: {exc}") from None
+
+
+def compensation_times(scene, at, over) -> tuple[np.ndarray, tuple[float, float]]:
+    """([T] for ``at`` or the window grid for ``over``, the life asked about: the window,
+    or delivery to the end of the history for ``at``), s; refuses times outside the
+    history."""
+    from ..simulate import ageing_times, scene_environment
 
     environment = scene_environment(scene)
     if (at is None) == (over is None):
         raise InputError("give exactly one of --at TIME or --over T1 T2")
-    values = [at] if at is not None else list(over)
-    seconds = []
-    for value in values:
-        try:
-            seconds.append(parse_duration(value) if isinstance(value, str) else float(value))
-        except ValueError as exc:
-            raise InputError(f"compensation time: {exc}") from None
+    seconds = [_seconds(value) for value in ([at] if at is not None else list(over))]
     for s in seconds:
         if not 0.0 <= s <= environment.end * (1 + 1e-12) or not math.isfinite(s):
             raise InputError(f"compensation time {format_duration(s)} is outside the scene's "
                              f"history (0 to {format_duration(environment.end)})")
     if at is not None:
-        return np.array(seconds)
+        return np.array(seconds), (0.0, float(environment.end))
     if seconds[1] <= seconds[0]:
         raise InputError("--over T1 T2 needs T1 < T2")
-    return window_times(seconds[0], seconds[1], ageing_times(scene, environment))
+    return (window_times(seconds[0], seconds[1], ageing_times(scene, environment)),
+            (seconds[0], seconds[1]))
 
 
-def compensate(scene, at=None, over=None, *, accuracy: float | None = None) -> Compensation:
+def check_times(scene, times: np.ndarray, life: tuple[float, float], *, plot: bool = False,
+                wide: bool = False) -> np.ndarray:
+    """The ageing times (s) of every run (module docstring): the scene's ageing times
+    inside ``life``, its ends and ``times``; ``plot``: a regular grid of PLOT_POINTS over
+    the whole history (the plot shows the part before and after a window too); ``wide``:
+    the grid of a window over the whole life."""
+    from ..simulate import ageing_times, scene_environment
+
+    environment = scene_environment(scene)
+    stored = ageing_times(scene, environment)
+    inside = stored[(stored >= life[0]) & (stored <= life[1])]
+    extra = [np.linspace(0.0, environment.end, PLOT_POINTS)] if plot else []
+    if wide:
+        extra.append(window_times(*life, stored))
+    return np.unique(np.concatenate([inside, np.array(life), times, *extra]))
+
+
+def fixed_point(scene, data: dict, targets: list, times: np.ndarray, check: np.ndarray,
+                start, accuracy):
+    """(made values, the run of the made scene at ``check``, iterations, strains at
+    ``times``) from ``start``, the run of the design at ``check``."""
+    at = np.searchsorted(check, times)
+    made = [t.design for t in targets]
+    ds = start
+    with tempfile.TemporaryDirectory(prefix="fickcam-compensate-") as folder, quiet_runs():
+        for iteration in range(MAX_ITERATIONS + 1):
+            strains = [part_strain(ds, t)[at] for t in targets]
+            new = [made_value(t.design, s) for t, s in zip(targets, strains)]
+            if iteration and converged(made, new, targets):
+                return made, ds, iteration, strains
+            made = new
+            trial, points = write_made(data, scene, targets, made, Path(folder) / "trial.csv")
+            if points is not None:
+                write_points(Path(folder) / "trial.csv", points)
+            ds = run_at(trial, scene.base_dir, check, accuracy)
+    raise FickcamError(f"compensation did not settle in {MAX_ITERATIONS} iterations")
+
+
+def compensate(scene, at=None, over=None, *, accuracy: float | None = None,
+               plot: bool = False, keep_limits: bool = False, points: bool = False) -> Compensation:
     """The dry dimensions to make so that the mechanism has its design geometry at ageing
     time ``at`` (a duration, e.g. "60 d", or seconds), or stays closest to it over the
-    window ``over`` = (T1, T2) (minimax). Returns a :class:`Compensation`; its
-    ``scene_data`` is written by :func:`fickcam.compensation.write_scene`."""
+    window ``over`` = (T1, T2) (minimax). ``keep_limits`` (with ``at``): when that leaves
+    one of the scene's limits failing between delivery and the end of the history, make
+    the dimensions for that whole life instead (minimax over it). ``points``: make a cam
+    given by its parameters as points (x and y compensated apart). Returns a
+    :class:`Compensation` with the design's and the made scene's runs; its scene is
+    written by :func:`fickcam.compensation.write_scene`."""
     from ..scene import design_data, load_scene
 
     scene = load_scene(scene)
-    times = compensation_times(scene, at, over)
-    targets = _targets(scene.as_designed())  # a compensated scene is compensated anew
+    times, life = compensation_times(scene, at, over)
+    if keep_limits and at is None:
+        raise InputError("--keep-limits goes with --at (a window is already its own life)")
+    wide = keep_limits and bool(scene.limits)
+    check = check_times(scene, times, life, plot=plot, wide=wide)
+    design = scene.as_designed()  # a compensated scene is compensated anew
+    targets = _targets(design, points)
     data = design_data(copy.deepcopy(scene.document.data))
-    made = [t.design for t in targets]
-    with tempfile.TemporaryDirectory(prefix="fickcam-compensate-") as folder, quiet_runs():
-        ds = _strain_run(data, scene.base_dir, times, accuracy)
-        for iteration in range(MAX_ITERATIONS + 1):
-            strains = [part_strain(ds, t) for t in targets]
-            new = [made_value(t.design, s) for t, s in zip(targets, strains)]
-            if iteration and converged(made, new, targets):
-                break
-            made = new
-            trial = write_made(data, targets, made, Path(folder), "trial")
-            ds = _strain_run(trial, scene.base_dir, times, accuracy)
-        else:
-            raise FickcamError(f"compensation did not settle in {MAX_ITERATIONS} iterations")
-    leftover = [residual(t.design, m, s) for t, m, s in zip(targets, made, strains)]
-    return Compensation(targets, made, times, iteration, data, residual=leftover, scene=scene)
+    with quiet_runs():
+        before = run_at(data, scene.base_dir, check, accuracy)
+    made, after, iterations, strains = fixed_point(design, data, targets, times, check, before,
+                                                   accuracy)
+    comp = Compensation(targets, made, times, iterations, data, scene=scene, life=life,
+                        check=check, before=before, after=after,
+                        residual=[residual(t.design, m, s)
+                                  for t, m, s in zip(targets, made, strains)])
+    if wide and comp.fails():
+        window = window_times(*life, check)
+        made, after, iterations, strains = fixed_point(design, data, targets, window, check,
+                                                       before, accuracy)
+        comp = comp.widened(window, made, after, iterations,
+                            [residual(t.design, m, s) for t, m, s in zip(targets, made, strains)])
+    return comp
+

@@ -210,7 +210,7 @@ def plan(geometry, diffusivity: Diffusivity, exposure: Exposure, times: np.ndarr
          accuracy: float = 1e-3, model: str = "auto", sorption=None,
          surface_layer_depth: float | None = None, settings: SolverSettings = SETTINGS) -> Plan:
     """The model, cells and steps ``solve`` will use, and why, without solving
-    (``sorption``: a law of ``diffusion.sorption``, None for Fick; ``surface_layer_depth``:
+    (``sorption``: a law of ``problem.sorption``, None for Fick; ``surface_layer_depth``:
     the solve's, so that a plane plan and its solve share one outline expansion;
     ``settings``: the solve's)."""
     _validate(geometry, model, accuracy)
@@ -359,7 +359,7 @@ def solve(geometry, diffusivity: Diffusivity, exposure: Exposure, times: np.ndar
           store_fields: bool = False, part: str = "", sorption=None,
           settings: SolverSettings = SETTINGS) -> DiffusionResult:
     """Moisture (weight %) of one part at ``times`` (s) under ``exposure``; with a
-    ``sorption`` law (``diffusion.sorption``) the mean and surface are the total (free +
+    ``sorption`` law (``problem.sorption``) the mean and surface are the total (free +
     bound) moisture and, for Langmuir, ``bound`` the bound-water mean. ``settings``: the
     solvers' tuned limits (``SolverSettings``)."""
     times = np.asarray(times, float)

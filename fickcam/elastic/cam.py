@@ -16,6 +16,7 @@ import logging
 
 import numpy as np
 
+from ..messages import note
 from ..response import Response
 from .contact import (cam_plate_model, contact_response, follower_shift, hertz_half_width,
                       lift_error)
@@ -59,7 +60,7 @@ def cam_elastic_response(section, cam_state: dict, variables: dict, valid) -> Re
     plate, spacing = cam_plate(design)
     mesh = planform_mesh(plate, spacing, GROWTH)
     model = cam_plate_model(mesh.points, mesh.triangles, design.thickness, design.bore_radius, spacing)
-    log.info("cam plate: %d nodes, %d dofs, spacing %.3g mm", len(mesh.points),
+    log.debug("cam plate: %d nodes, %d dofs, spacing %.3g mm", len(mesh.points),
              model.elasticity.dofs, spacing * 1e3)
     force = variables["contact_force"]
     shape = force.shape
@@ -79,6 +80,7 @@ def cam_elastic_response(section, cam_state: dict, variables: dict, valid) -> Re
     out["elastic_lift_error"] = lift
     notices = []
     if design.follower_kind == "knife":
-        notices.append(f"knife-edge follower: the contact force is a point load, spread over "
-                       f"{2 * 3 * spacing * 1e3:.2g} mm of the cam profile for its deflection")
+        notices.append(note(f"knife-edge follower: the contact force is a point load, spread "
+                            f"over {2 * 3 * spacing * 1e3:.2g} mm of the cam profile for its "
+                            f"deflection"))
     return Response(out, notices)

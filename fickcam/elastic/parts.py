@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from .thickness import SheetProfile
+
 DEPTH_STRIDE = 2   # every other cell of the exact sheet field (40 cells) between face and mid-plane
 SWELLING = ("swelling_stress_tensile", "swelling_stress_compressive", "failure_index")
 
@@ -18,28 +20,57 @@ def elastic_parts(model) -> set[str]:
     return names
 
 
-def depth_profiles(part, environment, times) -> np.ndarray | None:
-    """(times, depths) moisture of an infinite sheet of the part's thickness under its
-    exposure, from a face (the surface value) to the mid-plane: the engine's exact series
-    (Crank 1975 eq. 4.17) with the through-thickness diffusivity. At t = 0 the face still
-    holds the initial moisture."""
-    from ..diffusion import Diffusivity, Sheet, solve
+def sheet_profile(part, environment, times) -> SheetProfile | None:
+    """``exact_sheet`` of the part's thickness under its exposure, with its
+    through-thickness diffusivity; None for a part without a diffusion geometry."""
+    from ..diffusion import Diffusivity
 
     if part.geometry is None:
         return None
     d = part.material.diffusivity_for(part.geometry)
     dz = float(d.pre_exponential[2])
-    exposure = environment.exposure(part.material.saturation_moisture)
-    result = solve(Sheet(part.geometry.thickness), Diffusivity((dz, dz, dz), d.activation_energy),
-                   exposure, times, model="analytic", store_fields=True, part=part.name)
+    return exact_sheet(part.geometry.thickness, Diffusivity((dz, dz, dz), d.activation_energy),
+                       environment.exposure(part.material.saturation_moisture), times, part.name)
+
+
+def exact_sheet(thickness, diffusivity, exposure, times, name: str = "") -> SheetProfile:
+    """The exact moisture of an infinite sheet under an exposure (the engine's series,
+    Crank 1975 eq. 4.17, superposed over the history).
+
+    Parameters
+    ----------
+    thickness : float
+        Sheet thickness [m].
+    diffusivity : fickcam.diffusion.Diffusivity
+        Its diffusivity (the through-thickness value is used) [m^2/s].
+    exposure : fickcam.diffusion.Exposure
+        Surface value and temperature over time.
+    times : array_like
+        Ageing times [s].
+    name : str
+        The part's name for messages.
+
+    Returns
+    -------
+    SheetProfile
+        From a face (the surface value; at t = 0 still the initial moisture) to the
+        mid-plane at every ``DEPTH_STRIDE``-th cell of the series' field, and the mean.
+    """
+    from ..diffusion import Sheet, solve
+
+    result = solve(Sheet(thickness), diffusivity, exposure, times, model="analytic",
+                   store_fields=True, part=name)
     z = np.asarray(result.cell_coordinates["z"])
-    half = z <= 0.5 * part.geometry.thickness
+    fields = np.asarray(result.fields)
+    half = z <= 0.5 * thickness
     order = np.argsort(z[half])
-    inside = np.asarray(result.fields)[:, half][:, order]
-    mid = 0.5 * (inside[:, -1] + np.asarray(result.fields)[:, ~half][:, np.argmin(z[~half])])
+    inside = fields[:, half][:, order]
+    mid = 0.5 * (inside[:, -1] + fields[:, ~half][:, np.argmin(z[~half])])
     times = np.asarray(times, float)
     face = np.where(times > 0, exposure.surface_moisture(times), exposure.initial_moisture)
-    return np.column_stack([face, inside[:, ::DEPTH_STRIDE], mid])
+    depths = np.concatenate([[0.0], z[half][order][::DEPTH_STRIDE], [0.5 * thickness]])
+    return SheetProfile(depths, np.column_stack([face, inside[:, ::DEPTH_STRIDE], mid]),
+                        np.asarray(result.mean, float))
 
 
 def swelling_variables(histories, names: set[str], environment, times, temperature
@@ -57,7 +88,7 @@ def swelling_variables(histories, names: set[str], environment, times, temperatu
         result = swelling_history(history.part.geometry, history.part.material, history.diffusion,
                                   history.state, temperature, environment.reference_temperature,
                                   environment.initial_moisture, history.valid,
-                                  depth_profiles(history.part, environment, times))
+                                  sheet_profile(history.part, environment, times))
         for name in SWELLING:
             out[name][:, column] = result[name]
         if "field" in result:

@@ -1,20 +1,26 @@
 """Hygrothermal (swelling) stress of a free part at each ageing time.
 
-The moisture field M(x, y) of the diffusion engine (its in-plane field: the mid-thickness
-plane of a plate or link, the thickness mean of a disc) makes the free strain
-eps* = alpha dT + beta (M - M0) along the ply axes (Chamis 1983; seeds/000 eq. 5-6), an
-initial strain in the plane-stress model (``fem``). The part is free: three statically
-determinate supports stop its rigid motion and carry no load, since the eigenstrain load
-is self-equilibrated (Timoshenko & Goodier 1970 sec. 150: a free body under a uniform
-free strain is stress-free). Stiffness and strengths follow the local moisture: each
-element's matrix retention P/P0 from its own moisture (the wet skin is softer than the
-dry core). Results per time: the largest tensile and compressive in-plane principal
-stress and the largest Tsai-Wu index (``strength``) over the part; a quasi-isotropic
-laminate is checked ply by ply (0, 45, 90, -45 deg plies at the laminate strain,
-classical lamination theory, Jones 1999 sec. 4.3), so the moisture and thermal mismatch
-between plies counts. Through the thickness the exact sheet profile of the same exposure
-is added (``stress_at_time``): the faces swell before the mid-plane. Not modelled: a
-shaft fit (the part is free), bending (the profile is symmetric).
+The moisture field of the diffusion engine on the level of the thickness nearest the
+mid-plane (``nodal_moisture``), carried through the thickness with the exact sheet of the
+same exposure as the product of the planform's and the sheet's unaccomplished fractions
+(``thickness``; Crank 1975 §5.3), makes the free strain eps* = alpha dT + beta (M - M0)
+along the ply axes (Chamis, Simplified composite micromechanics equations for
+hygral, thermal and mechanical properties, NASA TM-83320, 1983; Singh & Sanyal 2017,
+IJIRSET 6(3), eqs. 5-6). The plate's thickness-mean free strain is the initial strain of
+the plane-stress model (``fem``); each depth's stress is then the stiffness times the
+in-plane strain less that depth's free strain (``stress_at_time``): the faces swell
+before the mid-plane. The part is free: three statically determinate supports stop its
+rigid motion and carry no load, since the eigenstrain load is self-equilibrated
+(Timoshenko & Goodier 1970 sec. 150: a free body under a uniform free strain is
+stress-free). Stiffness and strengths follow the local moisture: each element's matrix
+retention P/P0 from its own thickness-mean moisture (the wet skin is softer than the dry
+core). Results per time: the largest tensile and compressive in-plane principal stress
+and the largest Tsai-Wu index (``strength``) over the part and its depths; a
+quasi-isotropic laminate is checked ply by ply (0, 45, 90, -45 deg plies at the laminate
+strain, classical lamination theory, Jones 1999 sec. 4.3), so the moisture and thermal
+mismatch between plies counts. Not modelled: a shaft fit (the part is free), bending
+(the profile is symmetric), the free-edge boundary layer of 3-D elasticity within about
+one thickness of an edge.
 """
 from __future__ import annotations
 
@@ -24,6 +30,7 @@ import numpy as np
 
 from .fem import PlaneElasticity, principal_stresses, reduced_stiffness
 from .strength import ply_strengths, tsai_wu_index
+from .thickness import SheetProfile, planform_accomplished_fraction, product_moisture
 
 ROWS = 100        # mesh spacing = planform size / ROWS at the outline
 GROWTH = 0.1      # row-to-row growth inward
@@ -51,26 +58,82 @@ def plate_size(plate) -> float:
     return float(plate.length + 2 * plate.boss_outer_radius)
 
 
-def nodal_moisture(result, geometry, points, surface) -> np.ndarray:
-    """(times, nodes) moisture (weight %) at the mesh vertices from the engine's stored field:
-    linear interpolation of the in-plane field (nearest value outside its hull); a disc's
-    radial profile averaged over z with the surface value at the rim."""
+def mid_plane_cells(coordinates: dict, thickness: float) -> np.ndarray:
+    """Which stored cells lie on the level of the thickness nearest the mid-plane (both
+    levels where two are equally near): the cells of an in-plane field (one level) or of
+    an (r, z) or 3-D field.
+
+    Parameters
+    ----------
+    coordinates : dict
+        The engine's ``cell_coordinates`` [m]; without ``z`` every cell counts.
+    thickness : float
+        The part's thickness [m].
+
+    Returns
+    -------
+    numpy.ndarray
+        Boolean mask over the cells.
+    """
+    if "z" not in coordinates:
+        return np.ones(len(coordinates["x"]), bool)
+    distance = np.abs(np.asarray(coordinates["z"], float) - 0.5 * thickness)
+    return distance <= distance.min() + 1e-9 * thickness
+
+
+def level_depth(coordinates: dict, thickness: float) -> float:
+    """Depth below the nearer face [m] of the level ``mid_plane_cells`` picks."""
+    if "z" not in coordinates:
+        return 0.5 * thickness
+    z = np.asarray(coordinates["z"], float)[mid_plane_cells(coordinates, thickness)]
+    return float(np.mean(np.minimum(z, thickness - z)))
+
+
+def nodal_moisture(result, geometry, points, surface, outline=None) -> np.ndarray:
+    """(times, nodes) moisture [weight %] at the mesh vertices ``points`` [m] on the level
+    of the engine's stored field nearest the mid-plane (``mid_plane_cells``), with the
+    surface value ``surface`` (times,) on the exposed outline: a disc's radial profile
+    between its rim and bore; a plate's field linearly interpolated on the triangles of
+    its cell points and the vertices ``outline`` (indices into ``points``: the mesh's
+    boundary, where the part is exposed)."""
     from scipy.interpolate import LinearNDInterpolator, NearestNDInterpolator
 
     from ..diffusion.problem.geometry import Disc
 
-    fields = np.asarray(result.fields, float)
     coords = result.cell_coordinates
+    level = mid_plane_cells(coords, geometry.thickness)
+    fields = np.asarray(result.fields, float)[:, level]
+    surface = np.asarray(surface, float)
     if isinstance(geometry, Disc):
-        radii, inverse = np.unique(np.round(coords["x"], 12), return_inverse=True)
+        radii, inverse = np.unique(np.round(coords["x"][level], 12), return_inverse=True)
         profile = np.stack([np.bincount(inverse, f) / np.bincount(inverse) for f in fields])
+        ends = [geometry.inner_radius] if geometry.inner_radius > 0 else []
+        radii = np.concatenate([ends, radii, [geometry.outer_radius]])
         r = np.hypot(*points.T)
-        return np.stack([np.interp(r, np.append(radii, geometry.outer_radius), np.append(p, s))
+        return np.stack([np.interp(r, radii, np.concatenate([[s] * len(ends), p, [s]]))
                          for p, s in zip(profile, surface)])
-    source = np.column_stack([coords["x"], coords["y"]])
+    source = np.column_stack([coords["x"][level], coords["y"][level]])
+    if outline is not None:
+        source = np.vstack([source, points[outline]])
+        fields = np.hstack([fields, np.repeat(surface[:, None], len(outline), axis=1)])
     linear = LinearNDInterpolator(source, fields.T)(points).T          # (times, nodes)
     nearest = NearestNDInterpolator(source, fields.T)(points).T
     return np.where(np.isfinite(linear), linear, nearest)
+
+
+def through_thickness(in_plane, depth: float, sheet: SheetProfile | None
+                      ) -> tuple[np.ndarray, np.ndarray]:
+    """(layers, mean): the plate's moisture [weight %] at the sheet's depths, face first,
+    (times, depths, nodes), and its thickness mean (times, nodes), from the in-plane field
+    ``in_plane`` (times, nodes) on the level ``depth`` [m] below a face, as the product
+    of the planform's and the sheet's unaccomplished fractions (``thickness``); without
+    a sheet, the in-plane field alone (one layer)."""
+    if sheet is None:
+        return in_plane[:, None, :], in_plane
+    surface = sheet.surface[:, None]
+    w = planform_accomplished_fraction(in_plane, sheet.at(depth)[:, None], surface)
+    layers = product_moisture(w[:, None, :], sheet.moisture[:, :, None], surface[:, :, None])
+    return layers, product_moisture(w, sheet.mean[:, None], surface)
 
 
 def _thermal_factor(material, wet_tg, temperature, reference):
@@ -124,35 +187,54 @@ def _ply_angles(material):
     return QI_PLIES if material.layup == "quasi_isotropic" and material.fiber is not None else [0.0]
 
 
-def stress_at_time(pe: PlaneElasticity, material, moisture_nodes, temperature, reference,
-                   initial_moisture, depth_profile=None):
-    """(largest tensile, largest compressive principal stress, largest failure index, field)
-    of the free part with the nodal moisture field at one ageing time; field: per element,
-    the principal stress of larger magnitude at the face (the first depth), element mean.
+def stress_at_time(pe: PlaneElasticity, material, layers, mean, temperature, reference,
+                   initial_moisture):
+    """The free plate's swelling stress at one ageing time.
 
-    ``depth_profile`` (optional): moisture of the exposed sheet at depths from a face to the
-    mid-plane (face first). Its deviation dz(z) = M(z) - M(mid) is added to the in-plane
-    field, M(x, y, z) = M_plane(x, y) + dz(z); a symmetric free plate keeps its sections
-    plane, so its total strain gains the uniform beta (mean dz) and at each depth
-    sigma = Q (eps_total - eps*(M)) (classical lamination theory with the free strain
-    varying through the thickness, Jones 1999 sec. 4.3; the faces go into compression
-    while they swell ahead of the mid-plane)."""
-    moisture = pe.nodal_at_points(moisture_nodes)             # (elements, points)
-    laminate, ply, retention = local_properties(material, moisture.mean(axis=1), temperature,
+    A symmetric free plate keeps its sections plane and does not bend: its in-plane
+    strain is that of the plane-stress model under the thickness-mean free strain, and at
+    each depth sigma = Q (eps - eps*(M(z))) (classical lamination theory with the free
+    strain varying through the thickness, Jones, Mechanics of Composite Materials, 2nd
+    ed., Taylor & Francis 1999, sec. 4.3; Timoshenko & Goodier, Theory of Elasticity, 3rd
+    ed., McGraw-Hill 1970, sec. 150): the faces go into compression while they swell ahead
+    of the mid-plane. Stiffness and strengths per element at its thickness-mean moisture.
+
+    Parameters
+    ----------
+    pe : PlaneElasticity
+        The planform's plane-stress model.
+    material : fickcam.materials.Material
+        The part's material.
+    layers : array_like
+        Moisture at the mesh vertices [weight %], (depths, nodes), the face first.
+    mean : array_like
+        Thickness-mean moisture at the mesh vertices [weight %], (nodes,).
+    temperature, reference : float
+        Temperature and the stress-free reference temperature [K].
+    initial_moisture : float
+        The stress-free (initial) moisture [weight %].
+
+    Returns
+    -------
+    tuple
+        (largest tensile [Pa], largest compressive principal stress [Pa], largest
+        Tsai-Wu index [-], field): field per element, the principal stress of larger
+        magnitude at the face (the first layer), element mean [Pa].
+    """
+    average = pe.nodal_at_points(mean)                       # (elements, points)
+    laminate, ply, retention = local_properties(material, average.mean(axis=1), temperature,
                                                 reference)
     q = _stiffness(laminate)                                  # (3, 3, elements)
     lam, d_t = _columns(laminate), temperature - reference
-    star = free_strain(lam, moisture - initial_moisture, d_t)
+    star = free_strain(lam, average - initial_moisture, d_t)
     u = pe.factorise(pe.stiffness(q), pe.statically_determinate_support())(pe.eigenstrain_load(q, star))
-    profile = np.zeros(1) if depth_profile is None else np.asarray(depth_profile, float)
-    deviation = profile - profile[-1]
-    strain = [e + s for e, s in zip(pe.strain(u), free_strain(lam, np.mean(deviation), 0.0))]
+    strain = pe.strain(u)
     strengths = ply_strengths(material, retention)
     columns = None if strengths is None else _columns(strengths)
     q_ply, plies = _stiffness(ply), _columns(ply)
     tensile, compressive, index, field = -np.inf, np.inf, np.nan, None
-    for dz in deviation:
-        change = moisture + dz - initial_moisture
+    for layer in np.asarray(layers, float):
+        change = pe.nodal_at_points(layer) - initial_moisture
         mechanical = np.stack([e - s for e, s in zip(strain, free_strain(lam, change, d_t))])
         largest, smallest = principal_stresses(np.einsum("ije,jeq->ieq", q, mechanical))
         tensile, compressive = max(tensile, largest.max()), min(compressive, smallest.min())
@@ -168,13 +250,46 @@ def stress_at_time(pe: PlaneElasticity, material, moisture_nodes, temperature, r
     return float(tensile), float(compressive), float(index), field
 
 
+def plate_moisture(result, geometry, points, surface, sheet: SheetProfile | None = None,
+                   outline=None) -> tuple[np.ndarray, np.ndarray]:
+    """The part's moisture at the mesh vertices through its thickness.
+
+    Parameters
+    ----------
+    result : fickcam.diffusion.DiffusionResult
+        The part's diffusion result with its stored ``fields``.
+    geometry : fickcam.diffusion.Geometry
+        The part's diffusion geometry (a ``Disc``, ``CamPlate`` or ``LinkBar``).
+    points : numpy.ndarray
+        Mesh vertices [m], (nodes, 2).
+    surface : array_like
+        Surface value [weight %] per time, (times,): a disc's rim and bore (the sheet's
+        face value replaces it when ``sheet`` is given).
+    sheet : SheetProfile, optional
+        The exact sheet of the part's thickness under its exposure.
+    outline : numpy.ndarray, optional
+        Indices of the vertices on the exposed outline (the mesh's boundary nodes).
+
+    Returns
+    -------
+    tuple of numpy.ndarray
+        (layers, mean) [weight %]: (times, depths, nodes) at the sheet's depths, face
+        first, and the thickness mean (times, nodes) (``through_thickness``).
+    """
+    surface = np.asarray(surface, float) if sheet is None else sheet.surface
+    in_plane = nodal_moisture(result, geometry, points, surface, outline)
+    depth = level_depth(result.cell_coordinates, geometry.thickness)
+    return through_thickness(in_plane, depth, sheet)
+
+
 def swelling_history(geometry, material, result, state: dict, temperature, reference,
-                     initial_moisture, valid, depth_profiles=None) -> dict[str, np.ndarray]:
+                     initial_moisture, valid, sheet: SheetProfile | None = None
+                     ) -> dict[str, np.ndarray]:
     """swelling_stress_tensile, swelling_stress_compressive, failure_index over ageing times
     for one part (NaN where the part is not valid or has no field), and ``field`` /
     ``points``: the face stress field (element centroids, m) at the worst time (largest
-    failure index, else largest compression); ``depth_profiles`` (times, depths): the
-    sheet's moisture from a face to the mid-plane."""
+    failure index, else largest compression); ``sheet``: the exact sheet of the part's
+    thickness under its exposure (``plate_moisture``; None: the in-plane field alone)."""
     from .mesh import planform_mesh
 
     n = len(temperature)
@@ -185,13 +300,13 @@ def swelling_history(geometry, material, result, state: dict, temperature, refer
         return out
     mesh = planform_mesh(plate, plate_size(plate) / ROWS, GROWTH)
     pe = PlaneElasticity(mesh.points, mesh.triangles, geometry.thickness, order=2)
-    moisture = nodal_moisture(result, geometry, mesh.points,
-                              state.get("equilibrium_moisture_content", np.zeros(n)))
+    layers, mean = plate_moisture(result, geometry, mesh.points,
+                                  state.get("equilibrium_moisture_content", np.zeros(n)), sheet,
+                                  pe.mesh.boundary_nodes())
     fields = {}
     for k in np.flatnonzero(np.asarray(valid, bool)):
-        *values, fields[k] = stress_at_time(
-            pe, material, moisture[k], float(temperature[k]), reference, initial_moisture,
-            None if depth_profiles is None else depth_profiles[k])
+        *values, fields[k] = stress_at_time(pe, material, layers[k], mean[k],
+                                            float(temperature[k]), reference, initial_moisture)
         for name, value in zip(out, values):
             out[name][k] = value
     if fields:

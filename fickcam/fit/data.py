@@ -4,7 +4,9 @@ Columns (units in the header, any unit pint knows, like ``history_file``):
 ``specimen, temperature [degC], relative_humidity [%], thickness [mm], width [mm],
 length [mm], dry_mass [g], time [d], mass [g]``. ``moisture [%]`` may replace
 ``dry_mass`` and ``mass``; ``width`` and ``length`` may be left out for a sheet
-with sealed edges (both or neither). Lines starting with ``#`` are comments.
+with sealed edges (both or neither): as columns, or as empty cells (not given, as in
+pandas), so that sealed and open coupons share one file. A coupon's width and length
+may be given on one of its rows only. Lines starting with ``#`` are comments.
 Every fault is a ``file:LINE column: reason`` problem (exit 2 at the command line).
 """
 from __future__ import annotations
@@ -24,6 +26,8 @@ DIMENSIONS = {"temperature": "temperature", "relative_humidity": "percent", "thi
               "width": "length", "length": "length", "dry_mass": "mass", "time": "time",
               "mass": "mass", "moisture": "percent"}
 CONSTANT = ("temperature", "relative_humidity", "thickness", "width", "length", "dry_mass")
+#: columns whose empty cell means "not given" (a coupon with sealed edges)
+EDGES = ("width", "length")
 MAX_PROBLEMS = 20
 MIN_WEIGHINGS = 3   # two parameters (D, Mm) and one degree of freedom for their intervals
 
@@ -98,7 +102,8 @@ class _Reader:
         index, unit = columns[name]
         text = row[index].strip() if index < len(row) else ""
         if not text:
-            self.fail(line, name, "empty cell")
+            if name not in EDGES:
+                self.fail(line, name, "empty cell")
             return None
         try:
             number = float(text)
@@ -153,14 +158,27 @@ def read_weight_gain(path) -> list[Specimen]:
     return specimens
 
 
+def _edge_problems(rows: list[dict], reader: _Reader) -> None:
+    """Width and length come together on a row (both empty: not given there; a coupon
+    with sealed edges leaves them empty on every row)."""
+    for row in rows:
+        given = [key for key in EDGES if row.get(key) is not None]
+        unreadable = any(p.line == row["line"] and p.key in EDGES for p in reader.problems)
+        if len(given) == 1 and not unreadable:
+            missing = next(key for key in EDGES if key not in given)
+            reader.fail(row["line"], missing, "empty cell: give width and length together "
+                                              "(both empty for a coupon with sealed edges)")
+
+
 def _specimen(name: str, rows: list[dict], reader: _Reader) -> Specimen | None:
     first = rows[0]
-    for row in rows[1:]:
-        for key in CONSTANT:
-            if key in first and None not in (first[key], row[key]) and \
-                    not np.isclose(row[key], first[key], rtol=1e-9, atol=0.0):
+    for key in CONSTANT:  # each compared with the first row that gives it
+        given = [row for row in rows if row.get(key) is not None]
+        for row in given[1:]:
+            if not np.isclose(row[key], given[0][key], rtol=1e-9, atol=0.0):
                 reader.fail(row["line"], key, f"specimen {name!r} changes its {key} "
-                                              f"(line {first['line']} has another value)")
+                                              f"(line {given[0]['line']} has another value)")
+    _edge_problems(rows, reader)
     for row in rows:
         for key in ("mass", "dry_mass", "thickness", "width", "length"):
             if row.get(key) is not None and row[key] <= 0:
@@ -188,7 +206,9 @@ def _specimen(name: str, rows: list[dict], reader: _Reader) -> Specimen | None:
         reader.fail(rows[-1]["line"], column, f"specimen {name!r} gains no moisture "
                                               f"(largest gain {moisture.max():.4g} %): nothing to fit")
         return None
+    width, length = (next((row[key] for row in rows if row.get(key) is not None), None)
+                     for key in EDGES)
     return Specimen(name=name, temperature=first["temperature"],
                     relative_humidity=first["relative_humidity"], thickness=first["thickness"],
-                    width=first.get("width"), length=first.get("length"), time=np.array(times),
+                    width=width, length=length, time=np.array(times),
                     moisture=moisture, lines=np.array([row["line"] for row in rows]))

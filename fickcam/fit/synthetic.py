@@ -43,16 +43,22 @@ def synthetic_specimen(name, temperature, relative_humidity, thickness, times, s
                     specimen.time, moisture, specimen.lines)
 
 
+def _mm(length: float | None) -> str:
+    """A length (m) as a CSV cell in mm; an empty cell for one not given."""
+    return "" if length is None else f"{length * 1e3:g}"
+
+
 def write_weight_gain_csv(specimens, path, comments=(), dry_mass_g: float | None = None) -> Path:
     """Write coupons as a tidy CSV (``# comments`` first). With ``dry_mass_g`` the
     masses are written (dry_mass, mass in g, 5 decimals like a 0.01 mg balance),
-    else the moisture content in %."""
+    else the moisture content in %. Coupons with sealed edges among open ones get empty
+    width and length cells."""
     path = Path(path)
     with open(path, "w", newline="", encoding="utf-8") as handle:
         for line in comments:
             handle.write(f"# {line}\n")
         writer = csv.writer(handle)
-        edges = specimens[0].width is not None
+        edges = any(s.width is not None for s in specimens)  # empty cells: sealed edges
         head = ["specimen", "temperature [degC]", "relative_humidity [%]", "thickness [mm]"]
         head += ["width [mm]", "length [mm]"] if edges else []
         head += ["time [d]"] + (["dry_mass [g]", "mass [g]"] if dry_mass_g else ["moisture [%]"])
@@ -61,7 +67,7 @@ def write_weight_gain_csv(specimens, path, comments=(), dry_mass_g: float | None
             for t, m in zip(s.time, s.moisture):
                 row = [s.name, f"{s.temperature - 273.15:g}", f"{s.relative_humidity:g}",
                        f"{s.thickness * 1e3:g}"]
-                row += [f"{s.width * 1e3:g}", f"{s.length * 1e3:g}"] if edges else []
+                row += [_mm(s.width), _mm(s.length)] if edges else []
                 row.append(f"{t / DAY:.6g}")
                 if dry_mass_g:
                     row += [f"{dry_mass_g:.5f}", f"{dry_mass_g * (1 + m / 100):.5f}"]

@@ -42,8 +42,10 @@ def class_changes(classes, times) -> list[str]:
     loses (or regains) its full rotation. ``classes`` are strings per ageing time
     ('' where not computed), ``times`` in s."""
     from ..errors import format_duration
+    from ..messages import note
 
     classes = [str(c) for c in classes]
+    span = float(np.max(times)) if len(times) else None
     notices = first_change(np.asarray(classes, dtype=object), np.asarray(times, float),
                            "the Grashof class")
     previous = None
@@ -52,8 +54,8 @@ def class_changes(classes, times) -> list[str]:
             continue
         rotates = label in FULL_ROTATION
         if previous is not None and previous != rotates:
-            what = ("WARNING: the crank can no longer make a full revolution" if previous
-                    else "the crank can make a full revolution again")
-            notices.append(f"at t = {format_duration(times[k])}: {what} ({label})")
+            said = f"at t = {format_duration(times[k], span)}: the crank can"
+            notices.append(f"{said} no longer make a full revolution ({label})" if previous
+                           else note(f"{said} make a full revolution again ({label})"))
         previous = rotates
     return notices

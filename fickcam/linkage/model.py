@@ -7,6 +7,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from ..messages import note
 from ..response import Response
 from .classify import FULL_ROTATION, grashof_class
 from .dynamics import STANDARD_GRAVITY, kinetostatics, rms
@@ -139,6 +140,8 @@ def fourbar_response(design: FourBarDesign, state: FourBarState, crank_angle) ->
     }
     notices = [f"Grashof class: {label}" + ("" if label in FULL_ROTATION
                                             else " (the crank cannot make a full revolution)")]
+    if label in FULL_ROTATION:  # what the mechanism is: for information
+        notices[0] = note(notices[0])
     for lo, hi in assembly_gaps(theta2, ok):
         notices.append(f"cannot assemble for crank angles {_fmt_range(lo, hi)} ({branch} branch)")
     named = {"extended": "crank and coupler extended in line (rocker limit)",
@@ -147,7 +150,7 @@ def fourbar_response(design: FourBarDesign, state: FourBarState, crank_angle) ->
     for key, what in named.items():
         if toggles[key]:
             angles = ", ".join(f"{np.degrees(t):.1f}" for t in toggles[key])
-            notices.append(f"toggle: {what} at crank angle {angles} deg")
+            notices.append(note(f"toggle: {what} at crank angle {angles} deg"))
     for message in notices:
         log.debug("%s", message)
     return Response(variables, notices)

@@ -102,6 +102,15 @@ _SHOWN = {
     "conductivity": ("thermal conductivity", "W/(m K)", 1.0, 0.0),
     "conductivity_longitudinal": ("thermal conductivity, longitudinal", "W/(m K)", 1.0, 0.0),
     "conductivity_transverse": ("thermal conductivity, transverse", "W/(m K)", 1.0, 0.0),
+    "tensile_strength": ("tensile strength", "MPa", 1e-6, 0.0),
+    "compressive_strength": ("compressive strength", "MPa", 1e-6, 0.0),
+    "shear_strength": ("shear strength", "MPa", 1e-6, 0.0),
+}
+#: where the strengths come from, per group (the library file's header says the same)
+STRENGTH_SOURCES = {
+    "fibers": "typical of Chamis (1984, NASA TM-83696, Table 1), ASSUMPTION",
+    "matrices": "typical of Chamis (1984, NASA TM-83696, Table 1), ASSUMPTION",
+    "plastics": "typical data-sheet value, ASSUMPTION",
 }
 _GAS_CONSTANT = 8.314462618  # J/(mol K)
 
@@ -131,6 +140,12 @@ def _saturation_lines(law: dict) -> list[str]:
             f"({a * 0.5 ** b:.3g} % at 50 % RH, {a:.3g} % at 100 % RH)"]
 
 
+def _retention_line(table: dict) -> str:
+    """The moisture-modulus table: the share of the dry modulus kept at each moisture."""
+    pairs = ", ".join(f"{r:.4g} at {m:.4g} %" for m, r in zip(table["moisture"], table["retention"]))
+    return f"  {'modulus retention with moisture':<36} {pairs} (linear between, held beyond)"
+
+
 def entry_text(name: str) -> str:
     """One library entry for ``fickcam materials NAME``: every value with its unit, the
     diffusivity and saturation laws, and the sources."""
@@ -140,7 +155,11 @@ def entry_text(name: str) -> str:
         if key in _SHOWN:
             label, unit, factor, offset = _SHOWN[key]
             shown = "none" if value is None else f"{value * factor + offset:.4g} {unit}"
+            if key.endswith("_strength") and group in STRENGTH_SOURCES:
+                shown = f"{shown:<12} ({STRENGTH_SOURCES[group]})"
             lines.append(f"  {label:<36} {shown}".rstrip())
+    if "moisture_modulus" in values:
+        lines.append(_retention_line(values["moisture_modulus"]))
     if "diffusivity" in values:
         lines += _diffusivity_lines(values["diffusivity"])
     if "saturation" in values:
@@ -148,7 +167,8 @@ def entry_text(name: str) -> str:
     if "diffusivity" not in values and "saturation" not in values:
         lines.append("  takes up no moisture" if group == "metals" else
                      "  moisture: set by the matrix it is combined with")
-    others = [k for k in values if k not in _SHOWN and k not in ("diffusivity", "saturation", "sources")]
+    others = [k for k in values if k not in _SHOWN and k not in ("diffusivity", "saturation",
+                                                               "sources", "moisture_modulus")]
     lines += [f"  {k:<36} {values[k]}" for k in others]
     lines += textwrap.wrap(" ".join(str(values.get("sources", "-")).split()), width=92,
                            initial_indent="  sources: ", subsequent_indent="    ")

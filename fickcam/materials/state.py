@@ -93,7 +93,7 @@ def wet_tg_error(part, times, index, temperature, state) -> PhysicsDomainError:
                f"{tg - KELVIN_OFFSET:.1f} degC (mean moisture {state['moisture_content'][index]:.3g} %, "
                f"surface {state['surface_moisture_content'][index]:.3g} %); the part is not computed "
                f"from then on, earlier results are kept")
-    error = PhysicsDomainError(part, float(times[index]), message)
+    error = PhysicsDomainError(part, float(times[index]), message, span=float(np.max(times)))
     error.index = index
     error.state = {k: v[:index] for k, v in state.items()}
     return error

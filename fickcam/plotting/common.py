@@ -104,8 +104,14 @@ def legend_outside(ax, **kwargs) -> None:
 
 
 def save_figure(fig, path: Path) -> Path:
+    """Write ``fig`` to ``path`` (format by its suffix) through a temporary file and a
+    rename, and close it."""
+    from ..store import replaced_atomically
+
     tidy_ticks(fig)
-    fig.savefig(path, dpi=120, bbox_inches="tight")
+    with replaced_atomically(path) as tmp:
+        fig.savefig(tmp, format=Path(path).suffix.lstrip(".").lower() or "png", dpi=120,
+                    bbox_inches="tight")
     import matplotlib.pyplot as plt
 
     plt.close(fig)

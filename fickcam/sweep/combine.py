@@ -169,3 +169,36 @@ def combine(sweep: Sweep, records: dict[int, dict], cases: Mapping,
         combined = combined.merge(fractions(combined), compat="override")
     combined.attrs = attrs
     return combined
+
+
+def case_ends(ds) -> np.ndarray:
+    """Each case's last ageing time with a value (s; NaN for a case without any): the
+    ageing times of cases that vary the history's length differ (``every`` ends on each
+    case's own history), and the combined result holds NaN at the others' times."""
+    times = ds["time"].values / np.timedelta64(1, "s")
+    held = np.zeros((ds.sizes["case"], times.size), bool)
+    for variable in ds.data_vars.values():
+        if variable.dims[:2] == ("case", "time") and variable.dtype.kind in "fc":
+            held |= variable.notnull().any(list(variable.dims[2:])).values
+    last = np.where(held.any(axis=1), times.size - 1 - np.argmax(held[:, ::-1], axis=1), -1)
+    return np.where(last >= 0, times[np.maximum(last, 0)], np.nan)
+
+
+def early_ends(ds) -> str | None:
+    """One line when some ok cases end before the result's last ageing time (their cells
+    at that time are empty in the sweep's table and plots), else None."""
+    from ..errors import format_duration
+
+    if "time" not in ds.dims or "case" not in ds.dims:
+        return None
+    ends = case_ends(ds)
+    ok = (ds["case_status"].values == "ok") if "case_status" in ds.coords else np.isfinite(ends)
+    last = float(ds["time"].values[-1] / np.timedelta64(1, "s"))
+    early = np.flatnonzero(ok & np.isfinite(ends) & (ends < last))
+    if not early.size:
+        return None
+    shown = ", ".join(f"case {k} at {format_duration(ends[k])}" for k in early[:5])
+    more = f" and {early.size - 5} more" if early.size > 5 else ""
+    return (f"{early.size} case(s) end before the last ageing time, {format_duration(last)} "
+            f"({shown}{more}): the table and the sweep plots at {format_duration(last)} leave "
+            f"them empty; fickcam query --time reads each case at its own ageing times")

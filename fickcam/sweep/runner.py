@@ -9,7 +9,7 @@ returns its case's record and result; the client appends them to the sweep's
 journal as they arrive (:mod:`fickcam.sweep.journal`) and writes the result file
 once at the end. dask is imported here, inside functions only, and only when it
 is used: a plain install needs it only for ``--workers N`` > 1 or ``--scheduler``
-(``pip install 'fickcam[sweep]'``).
+(``pip install "fickcam[sweep]"``).
 """
 from __future__ import annotations
 
@@ -22,8 +22,9 @@ from contextlib import contextmanager
 from pathlib import Path
 
 from ..errors import FickcamError, InputError
+from ..extras import installed, require
 from .case import CaseTask, quieter, run_case
-from .combine import combine
+from .combine import combine, early_ends
 from .journal import decode_arrays
 from .scheduler import probe
 from .spec import Sweep, load_sweep
@@ -46,11 +47,7 @@ def default_workers(n_cases: int) -> int:
 
 def require_distributed() -> None:
     """Import dask.distributed, or say how to install it (exit status 2)."""
-    try:
-        import distributed  # noqa: F401
-    except ImportError:
-        raise InputError("more than one worker, or --scheduler, needs dask.distributed: "
-                         "pip install 'fickcam[sweep]' (or run with --workers 1)") from None
+    require("sweep", advice="or run with --workers 1")
 
 
 @contextmanager
@@ -89,13 +86,13 @@ class _Collector:
     """Appends each finished case to the journal, keeps its record, shows progress."""
 
     def __init__(self, sweep: Sweep, folder: WorkFolder, progress: bool, done: int):
-        from tqdm.auto import tqdm
+        from ..messages import progress_bar
 
         self.journal = folder.journal
         self.records: dict[int, dict] = {}
         self.failed = 0
-        self.bar = tqdm(total=len(sweep.cases), initial=done, disable=not progress, unit="case",
-                        desc="sweep", leave=True)
+        self.bar = progress_bar(len(sweep.cases), initial=done, enabled=progress, unit="cases",
+                                desc="sweep", leave=True)
 
     def add(self, record: dict, payload: bytes | None, label: str) -> None:
         if payload is not None:
@@ -172,13 +169,11 @@ def compute_cases(sweep: Sweep, folder: WorkFolder, indices, client, *, progress
 def in_process(workers: int | None, scheduler: str | None, n_cases: int) -> bool:
     """Whether the cases run here: one worker asked for (or one case), or no worker count
     given and dask.distributed not installed; never with a scheduler."""
-    from importlib.util import find_spec
-
     if scheduler:
         return False
-    if workers is None and find_spec("distributed") is None:
+    if workers is None and not installed("sweep"):
         log.info("dask.distributed is not installed: running the cases in this process "
-                 "(pip install 'fickcam[sweep]' for one worker process per core)")
+                 "(pip install \"fickcam[sweep]\" for one worker process per core)")
         return True
     return (workers if workers is not None else default_workers(n_cases)) == 1
 
@@ -195,10 +190,10 @@ def run_sweep(sweep_path, output, workers: int | None = None, scheduler: str | N
     from ..store import save
 
     started = time.perf_counter()
+    if scheduler or (workers or 1) > 1:
+        require_distributed()  # before the sweep file is read
     sweep = load_sweep(sweep_path)
     here = in_process(workers, scheduler, len(sweep.cases))
-    if not here:
-        require_distributed()
     output = Path(output)
     folder = WorkFolder.next_to(output)
     records = folder.open_for(sweep.identity, len(sweep.cases))
@@ -216,8 +211,11 @@ def run_sweep(sweep_path, output, workers: int | None = None, scheduler: str | N
         shown = ", ".join(str(i) for i in failed[:20]) + (" ..." if len(failed) > 20 else "")
         log.warning("%d of %d case(s) failed (case_status, case_message in the result): %s",
                     len(failed), len(sweep.cases), shown)
-    save(combine(sweep, records, finished_cases(folder, sweep, records), started=started), output,
-         compress=True)
+    result = combine(sweep, records, finished_cases(folder, sweep, records), started=started)
+    short = early_ends(result)
+    if short:
+        log.warning(short)
+    save(result, output, compress=True)
     if not any(r.get("retry") for r in records.values()):
         folder.remove_own_files()
     else:

@@ -445,6 +445,24 @@ def _fitted_parameters(path: str, base_data: dict) -> list[Parameter]:
             for p, dimension in fitted_parameters(path, base_data)]
 
 
+def _history_file_problems(model: SweepModel, doc, base_dir: Path) -> list[Problem]:
+    """Each climate file a grid names, read before any case runs: a file that is missing,
+    or that needs an extra this install lacks (pvlib), is refused at once at its line,
+    not found by every case that uses it after the others have run."""
+    from ..records import read_record, resolve_record_path
+
+    problems: list[Problem] = []
+    for path, values in (model.grid or {}).items():
+        if path.rsplit(".", 1)[-1] != "history_file":
+            continue
+        for index, value in enumerate(values):
+            try:
+                read_record(resolve_record_path(str(value), base_dir))
+            except ValueError as exc:
+                problems.append(doc.problem(("grid", path, index), str(exc)))
+    return problems
+
+
 def load_sweep(source) -> Sweep:
     """Read and validate a sweep file; raise SceneError (one Problem per fault)."""
     from ..scene import problems_from_validation, read_yaml, validate_document
@@ -474,6 +492,7 @@ def load_sweep(source) -> Sweep:
             problems.append(doc.problem((section, path), str(exc)))
             continue
         parameters.append(Parameter(path, keys, _dimension_of(model, path, keys, base_doc.data)))
+    problems += _history_file_problems(model, doc, base_dir)
     if problems:
         raise SceneError(problems)
     cases = (_expand_grid(model.grid) if model.grid is not None
