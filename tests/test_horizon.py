@@ -66,7 +66,7 @@ def test_a_two_year_history_every_30_d_is_reported_to_two_years(tmp_path, capsys
     assert "lift at time = 730.5 d (stored)" in capsys.readouterr().out
     assert main(["query", str(result), "lift", "--time", "25 months"]) == 2
     err = capsys.readouterr().err.strip()
-    assert err == ("fickcam: time 25 months is outside the stored ageing times "
+    assert err == ("fickcam: error: time 25 months is outside the stored ageing times "
                    "(0 to 730.5 d)")
 
 
