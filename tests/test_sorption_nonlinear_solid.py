@@ -192,7 +192,7 @@ def test_sweeps_conserve_mass_uptake_equals_the_surface_flux():
     c = np.zeros(weights.cells)
     influx = 0.0
     for dt in np.geomspace(1e-4, 5e-2, 12):
-        new = concentration_dependent._sweep(faces, c, MM, strong, top, dt, "bar", 1, 0.0)
+        new = concentration_dependent.sweep_step(faces, c, MM, strong, top, dt, "bar", 1, 0.0)
         influx += dt * float(np.sum(strong.mean_factor(new, MM) / top * faces.boundary
                                     * (MM - new)))
         c = new
