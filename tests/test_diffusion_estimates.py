@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 from fickcam.diffusion import Diffusivity, Disc, Exposure, Sheet, plan, solve
-from fickcam.diffusion.analytic import exact_history
+from fickcam.diffusion.models.analytic import exact_history
 
 CONFIGS = Path(__file__).resolve().parents[1] / "configs"
 D = 1e-12

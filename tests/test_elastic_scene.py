@@ -139,7 +139,7 @@ def test_link_swelling_follows_its_moisture_field():
     stress (the same free-body path as the cam plate, on the link's planform mesh)."""
     from types import SimpleNamespace
 
-    from fickcam.diffusion.geometry import LinkBar
+    from fickcam.diffusion.problem.geometry import LinkBar
     from fickcam.elastic.mesh import planform_mesh
     from fickcam.elastic.swelling import swelling_history
     from fickcam.materials import resolve

@@ -20,7 +20,7 @@ import math
 import numpy as np
 import pytest
 
-from fickcam.diffusion.exact import cylinder_uptake, sheet_uptake
+from fickcam.diffusion.exact.separable import cylinder_uptake, sheet_uptake
 from fickcam.materials.hygrothermal import wet_tg_factor
 from fickcam.materials.library import entry
 

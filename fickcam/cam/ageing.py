@@ -25,7 +25,7 @@ from .oscillating import follower_response
 
 def scene_parts(section, materials) -> list[tuple]:
     """(part name, material name, diffusion geometry, dry mass kg) for cam and follower."""
-    from ..diffusion.geometry import Bar, CamPlate, Disc
+    from ..diffusion.problem.geometry import Bar, CamPlate, Disc
     from ..materials.bodies import plate_body
 
     design = design_from_scene(section)

@@ -90,7 +90,7 @@ EXAMPLE_DRY_MASS_G = 6.35          # 50 x 50 x 2 mm of a 1.27 g/cm3 resin
 
 def example_arrhenius() -> tuple[float, float]:
     """(D0 m^2/s, Ea J/mol) through the two published diffusivities."""
-    from ..diffusion.exposure import GAS_CONSTANT
+    from ..diffusion.problem.exposure import GAS_CONSTANT
 
     t1, t2 = 293.15, 358.15
     ea = GAS_CONSTANT * np.log(EXAMPLE_D_85C / EXAMPLE_D_20C) / (1.0 / t1 - 1.0 / t2)
@@ -102,7 +102,7 @@ def write_example(path) -> Path:
     50 x 50 x 2 mm coupons (edges open) per condition, weighed 70 days."""
     rng = np.random.default_rng(EXAMPLE_SEED)
     d0, ea = example_arrhenius()
-    from ..diffusion.exposure import GAS_CONSTANT
+    from ..diffusion.problem.exposure import GAS_CONSTANT
 
     coupons = []
     for t_c, rh in EXAMPLE_CONDITIONS:
