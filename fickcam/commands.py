@@ -75,7 +75,7 @@ def _cmd_size(args) -> int:
     from .cam.sizing import Limits, aged_check, smallest_base_circle
     from .scene import load_scene
     from .simulate import run
-    from .units import to_si
+    from .unit_parsing import to_si
 
     scene = load_scene(args.scene)
     if scene.model.cam is None:

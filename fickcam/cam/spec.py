@@ -16,21 +16,9 @@ from .arm_spec import NOT_ON_AN_ARM, SwingingArm, arm_problems
 from pydantic import (AfterValidator, BeforeValidator, ConfigDict, Discriminator, Field, PrivateAttr,
                       Tag, field_validator, model_validator)
 
-from ..units import (
-    Angle,
-    AngularSpeed,
-    Force,
-    Length,
-    Mass,
-    NonNegativeLength,
-    PositiveAngle,
-    Pressure,
-    SignedLength,
-    Stiffness,
-    is_bare_number,
-    quantity,
-    to_si,
-)
+from ..units import (Angle, AngularSpeed, Force, Length, Mass, NonNegativeLength, PositiveAngle,
+                     Pressure, SignedLength, Stiffness, quantity)
+from ..unit_parsing import is_bare_number, to_si
 
 #: follower train stiffness: zero would leave the follower mass unconnected to the cam
 PositiveStiffness = quantity("stiffness", positive=True)

@@ -14,7 +14,8 @@ from typing import Annotated, Literal
 
 from pydantic import BeforeValidator, model_validator
 
-from ..units import StrictModel, Angle, AngularSpeed, Length, NonNegativeLength, registry
+from ..units import StrictModel, Angle, AngularSpeed, Length, NonNegativeLength
+from ..unit_parsing import registry
 
 
 def _in_si(si_unit: str, human: str):
