@@ -48,7 +48,7 @@ def test_state_drift_is_freudenstein_with_the_swollen_lengths(states):
     assert shift[0] == 0 and 0.3 < shift[1] < shift[2] and shift[2] > 1.5
 
 
-def test_seed_three_resins_drift_in_the_order_of_their_moisture():
+def test_singh2016_three_resins_drift_in_the_order_of_their_moisture():
     """Seed 001's cases (sweep file): 3502 (5 %) drifts more than 8551-7 (2 %); R914 (7 %)
     reaches its Chamis wet Tg (103.6 degC < 118 degC) in the saturated state, where fickcam
     stops its links with a notice and keeps the two earlier states."""

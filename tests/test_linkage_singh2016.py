@@ -45,7 +45,7 @@ def shift_table():
     return {(case, resin): shifts(case, resin) for case in CASES for resin in RESINS}
 
 
-def test_seed_linkages_assemble_over_the_whole_revolution_dry_and_aged():
+def test_the_papers_linkages_assemble_over_the_whole_revolution_dry_and_aged():
     for case, (a, b, c, d) in CASES.items():
         for eps in [0.0] + [strain(r) for r in RESINS]:
             t3, t4 = positions(a * (1 + eps), b * (1 + eps), c * (1 + eps), d * (1 + STEEL_ALPHA * DT), THETA2)

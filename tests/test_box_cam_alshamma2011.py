@@ -54,7 +54,7 @@ def test_sine_derivatives_agree_with_finite_differences():
 
 
 @pytest.mark.parametrize("r, theta", [(0.025, 0.5), (0.025, 2.0), (0.04, 1.0), (0.06, 3.0)])
-def test_seed002_homogeneous_solution_does_not_satisfy_its_plate_equation(r, theta):
+def test_alshamma2011_homogeneous_solution_does_not_satisfy_its_plate_equation(r, theta):
     """w_H = A sin(r theta) + B cos(r theta) (eq. 4) is not a solution of eq. (3) with
     q = 0: the residual L[w_H] is of the size of its largest term, not zero. (The paper's
     eq. 5 then 'solves' for w_H in terms of itself; eqs. 5-9 inherit the error.)"""
@@ -65,7 +65,7 @@ def test_seed002_homogeneous_solution_does_not_satisfy_its_plate_equation(r, the
     assert abs(residual) > 0.1 * max(abs(x) for x in terms)
 
 
-def test_seed002_particular_solution_is_not_one():
+def test_alshamma2011_particular_solution_is_not_one():
     """w_P = C r theta with C = q r^3 / (theta D_theta) (eqs. 6-7): C is not a constant,
     and w_P = q r^4 / D_theta gives L[w_P] = q (72 D_r - 8 D_theta) / D_theta, which is q
     only if D_r / D_theta = 1/8; here the residual is 100x q."""
@@ -81,7 +81,7 @@ def test_seed002_particular_solution_is_not_one():
 ANSYS_RANGE = (0.0031101e-3, 0.047361e-3)
 
 
-def test_seed002_box_cam_deflection_against_the_ansys_magnitudes():
+def test_alshamma2011_box_cam_deflection_against_the_ansys_magnitudes():
     """The seed 002 scene (its clamped radius, fibre fraction, harmonic motion; the rest
     fickcam's assumptions, see the scene) deflects in its plane by micrometres, the order
     of the paper's ANSYS tables read as mm; the paper's load cannot be evaluated (sigma_y,

@@ -50,7 +50,7 @@ TABLE_1 = {"acetal": (0.25, 4.5e-5, 1.425), "nylon": (1.5, 4.5e-5, 1.14),
 
 
 @pytest.mark.parametrize("plastic", sorted(TABLE_1))
-def test_d570_water_absorption_of_the_plastics_matches_seed000_table1(plastic):
+def test_d570_water_absorption_of_the_plastics_matches_singh2017_table1(plastic):
     """Within half a unit of the table's last printed digit (0.005 or 0.05 %)."""
     absorption, _, _ = TABLE_1[plastic]
     half_digit = 0.05 if absorption >= 1 else 0.005
@@ -58,7 +58,7 @@ def test_d570_water_absorption_of_the_plastics_matches_seed000_table1(plastic):
 
 
 @pytest.mark.parametrize("plastic", sorted(TABLE_1))
-def test_plastics_expansion_and_density_are_seed000_table1(plastic):
+def test_plastics_expansion_and_density_are_singh2017_table1(plastic):
     _, alpha_per_f, gravity = TABLE_1[plastic]
     e = entry("plastics", plastic)
     assert e["thermal_expansion"] == pytest.approx(alpha_per_f * F_PER_K, rel=1e-3)
@@ -75,14 +75,14 @@ def implied_dry_tg(retention: float, moisture: float, service=113.0, reference=2
 @pytest.mark.parametrize("matrix, retention", [
     # retention read off seed 001 Tables 2 and 3 (see test_materials_micromechanics.py)
     ("3502", 0.540), ("PMR-15", 0.861)])
-def test_dry_tg_is_high_enough_for_the_retention_of_seed001_tables_2_and_3(matrix, retention):
+def test_dry_tg_is_high_enough_for_the_retention_of_singh2016_tables_2_and_3(matrix, retention):
     """f(M) <= 1, so the table's retention needs Tgd >= implied_dry_tg(r, 0) whatever
     moisture it assumed: 3502 >= 150 degC, polyimide >= 370.9 degC (the old 340 was not)."""
     tgd = entry("matrices", matrix)["dry_glass_transition_temperature"] - 273.15
     assert tgd >= implied_dry_tg(retention, 0.0) - 0.5
 
 
-def test_3502_dry_tg_lies_between_the_two_wet_tg_conventions_of_seed001_table2():
+def test_3502_dry_tg_lies_between_the_two_wet_tg_conventions_of_singh2016_table2():
     """Seed 001 Table 2 follows seed 000 Table 10: the wet Tg from the ply moisture
     M_l = M_m (3 x 0.38 k_m) rho_m / rho_l (M_m = 5.0 x 0.8, rho_m 1.3, rho_l 1.428), which
     needs Tgd = 191 degC; fickcam's wet Tg from the matrix moisture M_m = 4.0 % (Chamis)
@@ -95,7 +95,7 @@ def test_3502_dry_tg_lies_between_the_two_wet_tg_conventions_of_seed001_table2()
     assert low < tgd < high
 
 
-def test_seed001_table6_uses_one_density_for_every_resin():
+def test_singh2016_table6_uses_one_density_for_every_resin():
     """Dry masses 147, 1227, 1467 g for volumes 73699, 613699, 733699 mm^3, the same for
     R914, 3502 and 8551-7: rho = 2.0 g/cm^3 throughout, where seed 000 Table 9 gives
     8551-7 1.3 g/cm^3. The table constrains no resin density; the library keeps
