@@ -4,11 +4,18 @@ response stacked over ageing times (called by :mod:`fickcam.simulate`).
 Each link (crank, coupler, rocker, frame) is a diffusion part of geometry
 :class:`~fickcam.diffusion.geometry.LinkBar`. At every ageing time its pin-to-pin
 length is L (1 + eps_x) with eps_x the free hygrothermal strain along the link,
-eps = alpha dT + beta dm (seeds/001_51a6f900df76f3cc.txt eqs. 11-14, read as
-a_1 = a (1 + alpha dT + beta dm); the printed a (alpha dT + beta dm) is a slip, see
-seeds/README.md), and its mass and inertia come from
+eps = alpha dT + beta dm (Singh & Sanyal 2016 eqs. 11-14, read as
+a_1 = a (1 + alpha dT + beta dm); the printed a (alpha dT + beta dm) is a slip: it is the
+change of length, not the wet length), and its mass and inertia come from
 :func:`fickcam.materials.bodies.aged_link_body`. A metal frame only expands
 thermally (eq. 14, last line).
+
+References
+----------
+Singh, S. & Sanyal, S. (2016). Variations in geometry, volume, mass and moment of
+    inertia of link of a four bar mechanism made of neat resin under hygrothermal
+    environment. International Journal of Innovative Research in Science, Engineering and
+    Technology (IJIRSET) 5(12).
 """
 from __future__ import annotations
 

@@ -55,7 +55,7 @@ class CouplerPoint(StrictModel):
 
 
 class LinkSectionSpec(StrictModel):
-    """Cross-section of every link (seed 001 Figure 3): a bar ``width`` x ``thickness``
+    """Cross-section of every link (Singh & Sanyal 2016, Figure 3): a bar ``width`` x ``thickness``
     between two hollow bosses of ``boss_outer_radius`` / ``boss_inner_radius``."""
 
     width: Length
