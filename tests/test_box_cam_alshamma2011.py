@@ -1,5 +1,12 @@
-"""Seed 002 (Al-Shamma & Yousuf 2011, seeds/002_86df1b5c018ead04.txt): where its
-analytical plate solution fails, and its box cam through fickcam's plane-stress model."""
+"""Al-Shamma & Yousuf (2011): where its analytical plate solution fails, and its box cam
+through fickcam's plane-stress model.
+
+References
+----------
+Al-Shamma, F. & Yousuf, L. S. (2011). Predictive model of orthotropic un-symmetric
+    box cam based on deflection and countered by segments of circular-arc contact
+    profiles. Global Journal of Researches in Engineering (A) 11(7).
+"""
 from pathlib import Path
 
 import numpy as np
@@ -82,11 +89,11 @@ ANSYS_RANGE = (0.0031101e-3, 0.047361e-3)
 
 
 def test_alshamma2011_box_cam_deflection_against_the_ansys_magnitudes():
-    """The seed 002 scene (its clamped radius, fibre fraction, harmonic motion; the rest
-    fickcam's assumptions, see the scene) deflects in its plane by micrometres, the order
-    of the paper's ANSYS tables read as mm; the paper's load cannot be evaluated (sigma_y,
-    L and L1 of its eq. 10 are not given), so only the order is compared. Moisture softens
-    the matrix, so the aged cam deflects more."""
+    """The Al-Shamma & Yousuf 2011 scene (its clamped radius, fibre fraction, harmonic
+    motion; the rest fickcam's assumptions, see the scene) deflects in its plane by
+    micrometres, the order of the paper's ANSYS tables read as mm; the paper's load cannot
+    be evaluated (sigma_y, L and L1 of its eq. 10 are not given), so only the order is
+    compared. Moisture softens the matrix, so the aged cam deflects more."""
     doc = yaml.safe_load((Path(__file__).resolve().parents[1] / "configs" /
                           "alshamma2011_box_cam.yaml").read_text())
     doc["outputs"] = {"ageing_times": ["0 d", "60 d"], "angle_step": "15 deg"}

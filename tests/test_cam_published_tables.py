@@ -1,9 +1,21 @@
-"""The seed papers' cam numbers, reproduced under each paper's own conventions, with
-each slip named where it is met.
+"""The published cam papers' numbers, reproduced under each paper's own conventions,
+with each slip named where it is met.
 
-seeds/000_c9d2754e3bf549ac.txt (Singh & Sanyal 2017) Tables 18-19, seeds/004_101c340ef7457bc8.txt
-(Yadav et al. 2017) worked example and wear figure, seeds/003_b8317aa6e553b071.txt (eccentric
-cam, Table 5.3 dial gauge, Table 5.8 contact force).
+Singh & Sanyal (2017) Tables 18-19, Yadav et al. (2017) worked example and wear figure,
+Madhukar et al. (2023) (eccentric cam, Table 5.3 dial gauge, Table 5.8 contact force).
+
+References
+----------
+Madhukar, S., Manu, G., Shyam Venkat, P., Jaswanth Kumar, B. & Sai Kumar, M. (2023).
+    Experimental investigation on contact force analysis of eccentric cam with roller
+    follower. B.Tech project report, Anil Neerukonda Institute of Technology & Sciences,
+    Visakhapatnam.
+Singh, S. & Sanyal, S. (2017). Kinematic and dynamic variations in cam and follower
+    made of composite material under hygrothermal environment. International Journal of
+    Innovative Research in Science, Engineering and Technology (IJIRSET) 6(3).
+Yadav, S., Karmarkar, V., Surti, J., Mistry, S. & Vardhe, G. (2017). To study wear
+    and friction at contact surface of cam and follower of I.C. engine. International
+    Research Journal of Engineering and Technology (IRJET) 4(4).
 """
 import logging
 import math
@@ -22,7 +34,7 @@ from tolerance import roundoff
 log = logging.getLogger(__name__)
 INCH = 0.0254
 
-# ---------------------------------------------------------------- seed 000
+# ---------------------------------------------------------------- Singh & Sanyal 2017
 
 # Table 18: angle, y, y1 (hygrothermal), y', y'1, y'', y''1, y''', y'''1 (inch, per normalised angle)
 TABLE_18 = [
@@ -129,7 +141,7 @@ def test_singh2017_scene_in_si_scales_lift_and_follower_motion_by_the_strain():
         -1.5 * INCH * math.pi ** 2 / (2 * beta ** 2) * 62.83 ** 2, rel=1e-12)
 
 
-# ---------------------------------------------------------------- seed 004
+# ---------------------------------------------------------------- Yadav et al. 2017
 
 YADAV2017 = dict(h=0.0254, beta=math.radians(100), rpm=900.0, k=19345.95, preload_travel=0.009,
                weight=8.896, mu=0.05, l1=0.00785, l2=0.074, d=0.0157, alpha=math.radians(10))
@@ -185,12 +197,12 @@ def test_yadav2017_wear_figure_does_not_follow_from_its_inputs():
     H1 = 450, H2 = 370, mu = 0.05 and Table 2.1's exponents gives 16.63 um; the paper prints
     14.68 um (13 % lower; its formula also shows mu^a1 for mu^a3)."""
     z = dyn.empirical_wear_depth(0.07, 255.3e6, 450.0, 370.0, 0.05)
-    log.info("seed 004 wear: %.4g um (paper 14.68 um)", z * 1e6)
+    log.info("Yadav et al. 2017 wear: %.4g um (paper 14.68 um)", z * 1e6)
     assert z * 1e6 == pytest.approx(16.634, rel=1e-3)
     assert abs(z * 1e6 - 14.68) / 14.68 > 0.1
 
 
-# ---------------------------------------------------------------- seed 003
+# ---------------------------------------------------------------- Madhukar et al. 2023
 
 TABLE_5_3 = np.array([0.1, 0.325, 0.64, 1.15, 1.72, 2.45, 3.31, 4.4, 4.83, 5.65, 6.41, 7.12, 7.8,
                       8.39, 8.78, 9.06, 9.19, 9.21, 9.03, 8.79, 8.48, 7.92, 7.3, 6.64, 6.0, 5.28,
@@ -268,7 +280,7 @@ def test_madhukar2023_dial_gauge_rms_against_the_exact_geometry():
     y = cam_response(madhukar2023_design(), CamState(cam_surface_modulus=3e9),
                      theta).variables["follower_displacement"]
     rms = float(np.sqrt(np.mean((y - TABLE_5_3) ** 2)))
-    log.warning("seed 003 Table 5.3 RMS vs exact geometry: %.4f mm (max |diff| %.3f mm)",
+    log.warning("Madhukar et al. 2023 Table 5.3 RMS vs exact geometry: %.4f mm (max |diff| %.3f mm)",
                 rms * 1e3, np.max(np.abs(y - TABLE_5_3)) * 1e3)
     assert 0.3e-3 < rms < 1.0e-3
 
@@ -276,7 +288,8 @@ def test_madhukar2023_dial_gauge_rms_against_the_exact_geometry():
 def test_madhukar2023_contact_force_extremes_at_hand_speed():
     """F_c = m y'' + s y + m g (sec. 5.5) at omega = 1 rad/s (its code's w = 1): from m g =
     7.23 N at the lowest point to m g + s 2e = 12.51 N at 180 deg. The paper's Table 5.8
-    gives 7.35 / 12.74 N (its y passes degrees to sin/cos, seeds/README.md); within 2 %."""
+    gives 7.35 / 12.74 N (its code's y passes degrees to sin/cos, which expect radians);
+    within 2 %."""
     theta = np.radians(np.arange(0.0, 360.0, 1.0))
     force = cam_response(madhukar2023_design(), CamState(cam_surface_modulus=3e9),
                          theta).variables["contact_force"]

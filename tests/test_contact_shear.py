@@ -1,6 +1,7 @@
-"""Subsurface shear under the cam-follower line contact, and seed 003's Tables 5.9-5.10.
+"""Subsurface shear under the cam-follower line contact, and the Tables 5.9-5.10
+of Madhukar et al. (2023).
 
-Seed 003 (seeds/003_b8317aa6e553b071.txt, sec. 5.6) computes a "contact stress"
+Madhukar et al. (2023, sec. 5.6) compute a "contact stress"
 sigma = sqrt(F / (pi a)) with a = 0.023 m and a "maximum shear stress" tau = sigma / 2.
 The slip: this is not the Hertz stress. Hertz's line contact gives
 p0 = sqrt(F E* / (pi L R)) (Johnson 1985 eq. 4.45); the report drops the contact
