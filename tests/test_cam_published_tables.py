@@ -4,18 +4,7 @@ with each slip named where it is met.
 Singh & Sanyal (2017) Tables 18-19, Yadav et al. (2017) worked example and wear figure,
 Madhukar et al. (2023) (eccentric cam, Table 5.3 dial gauge, Table 5.8 contact force).
 
-References
-----------
-Madhukar, S., Manu, G., Shyam Venkat, P., Jaswanth Kumar, B. & Sai Kumar, M. (2023).
-    Experimental investigation on contact force analysis of eccentric cam with roller
-    follower. B.Tech project report, Anil Neerukonda Institute of Technology & Sciences,
-    Visakhapatnam.
-Singh, S. & Sanyal, S. (2017). Kinematic and dynamic variations in cam and follower
-    made of composite material under hygrothermal environment. International Journal of
-    Innovative Research in Science, Engineering and Technology (IJIRSET) 6(3).
-Yadav, S., Karmarkar, V., Surti, J., Mistry, S. & Vardhe, G. (2017). To study wear
-    and friction at contact surface of cam and follower of I.C. engine. International
-    Research Journal of Engineering and Technology (IRJET) 4(4).
+The papers are cited in full in :mod:`fickcam.cam`.
 """
 import logging
 import math

@@ -8,12 +8,8 @@ a_1 = a (1 + alpha dT + beta dm) (the printed form is the change of length, not 
 wet length), which is what is reproduced here. The wet CTE of Table 4 is used (the links
 are hot and wet).
 
-References
-----------
-Singh, S. & Sanyal, S. (2016). Variations in geometry, volume, mass and moment of
-    inertia of link of a four bar mechanism made of neat resin under hygrothermal
-    environment. International Journal of Innovative Research in Science, Engineering and
-    Technology (IJIRSET) 5(12)."""
+The paper is cited in full in :mod:`fickcam.linkage`.
+"""
 import numpy as np
 import pytest
 

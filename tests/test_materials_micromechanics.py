@@ -3,17 +3,7 @@
 Singh & Sanyal (2017) Table 9 (dry T300/8551-7), Tables 10 and 14 (hygrothermal);
 Singh & Sanyal (2016) Tables 1-3.
 
-References
-----------
-Chamis, C. C. (1983). Simplified composite micromechanics equations for hygral,
-    thermal and mechanical properties. NASA TM-83320.
-Singh, S. & Sanyal, S. (2016). Variations in geometry, volume, mass and moment of
-    inertia of link of a four bar mechanism made of neat resin under hygrothermal
-    environment. International Journal of Innovative Research in Science, Engineering and
-    Technology (IJIRSET) 5(12).
-Singh, S. & Sanyal, S. (2017). Kinematic and dynamic variations in cam and follower
-    made of composite material under hygrothermal environment. International Journal of
-    Innovative Research in Science, Engineering and Technology (IJIRSET) 6(3).
+The papers are cited in full in :mod:`fickcam.materials`.
 """
 import numpy as np
 import pytest

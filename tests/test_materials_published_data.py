@@ -18,15 +18,7 @@ diffusivities (none of the papers reports weight gain against time; Singh & Sany
 Ea (Al-Shamma & Yousuf 2011 and Yadav et al. 2017 tabulate cam deflections and cast-iron
 wear only).
 
-References
-----------
-Singh, S. & Sanyal, S. (2016). Variations in geometry, volume, mass and moment of
-    inertia of link of a four bar mechanism made of neat resin under hygrothermal
-    environment. International Journal of Innovative Research in Science, Engineering and
-    Technology (IJIRSET) 5(12).
-Singh, S. & Sanyal, S. (2017). Kinematic and dynamic variations in cam and follower
-    made of composite material under hygrothermal environment. International Journal of
-    Innovative Research in Science, Engineering and Technology (IJIRSET) 6(3).
+The papers are cited in full in :mod:`fickcam.materials`.
 """
 import math
 

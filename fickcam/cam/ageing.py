@@ -12,11 +12,7 @@ radius, a swinging arm's strain along its length (x) its length and face offset;
 m (1 + M/100) with M its mean moisture (Singh & Sanyal 2017, p. 281: m_w = 1.648 kg for
 3 %); contact uses the cam's surface-layer modulus (the wet skin, not the bulk).
 
-References
-----------
-Singh, S. & Sanyal, S. (2017). Kinematic and dynamic variations in cam and follower
-    made of composite material under hygrothermal environment. International Journal of
-    Innovative Research in Science, Engineering and Technology (IJIRSET) 6(3).
+The papers are cited in full in :mod:`fickcam.cam`.
 """
 from __future__ import annotations
 

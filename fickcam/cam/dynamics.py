@@ -5,18 +5,7 @@ the cam turns counter-clockwise, the follower lifts along +y at x = offset, the
 pressure angle phi is positive when the common normal leans towards -x, and the cam
 pushes on the follower with Fn (-sin phi, cos phi).
 
-References
-----------
-Madhukar, S., Manu, G., Shyam Venkat, P., Jaswanth Kumar, B. & Sai Kumar, M. (2023).
-    Experimental investigation on contact force analysis of eccentric cam with roller
-    follower. B.Tech project report, Anil Neerukonda Institute of Technology & Sciences,
-    Visakhapatnam.
-Singh, S. & Sanyal, S. (2017). Kinematic and dynamic variations in cam and follower
-    made of composite material under hygrothermal environment. International Journal of
-    Innovative Research in Science, Engineering and Technology (IJIRSET) 6(3).
-Yadav, S., Karmarkar, V., Surti, J., Mistry, S. & Vardhe, G. (2017). To study wear
-    and friction at contact surface of cam and follower of I.C. engine. International
-    Research Journal of Engineering and Technology (IRJET) 4(4).
+The papers are cited in full in :mod:`fickcam.cam`.
 """
 from __future__ import annotations
 

@@ -14,12 +14,7 @@ segment both are analytic, so y(theta) = Y(psi(theta)) is sampled at Chebyshev-L
 nodes (psi from theta by Newton) and differentiated spectrally (Trefethen, Spectral
 Methods in MATLAB, 2000, ch. 6).
 
-References
-----------
-Madhukar, S., Manu, G., Shyam Venkat, P., Jaswanth Kumar, B. & Sai Kumar, M. (2023).
-    Experimental investigation on contact force analysis of eccentric cam with roller
-    follower. B.Tech project report, Anil Neerukonda Institute of Technology & Sciences,
-    Visakhapatnam.
+The papers are cited in full in :mod:`fickcam.cam`.
 """
 from __future__ import annotations
 

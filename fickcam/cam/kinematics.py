@@ -8,15 +8,7 @@ follower motion is in closed form where the aged motion is the design motion sca
 the cam, as Singh & Sanyal (2017) scale their pitch circle and lift), otherwise
 found geometrically (:mod:`fickcam.cam.geometry`).
 
-References
-----------
-Madhukar, S., Manu, G., Shyam Venkat, P., Jaswanth Kumar, B. & Sai Kumar, M. (2023).
-    Experimental investigation on contact force analysis of eccentric cam with roller
-    follower. B.Tech project report, Anil Neerukonda Institute of Technology & Sciences,
-    Visakhapatnam.
-Singh, S. & Sanyal, S. (2017). Kinematic and dynamic variations in cam and follower
-    made of composite material under hygrothermal environment. International Journal of
-    Innovative Research in Science, Engineering and Technology (IJIRSET) 6(3).
+The papers are cited in full in :mod:`fickcam.cam`.
 """
 from __future__ import annotations
 

@@ -7,14 +7,7 @@ constant cam speed omega the true time derivatives v = h S' omega/beta,
 a = h S'' omega^2/beta^2, j = h S''' omega^3/beta^3 (Norton, Design of Machinery
 5th ed., sec. 8.3, eqs. 8.1-8.3). A return is y = h (1 - S).
 
-References
-----------
-Singh, S. & Sanyal, S. (2017). Kinematic and dynamic variations in cam and follower
-    made of composite material under hygrothermal environment. International Journal of
-    Innovative Research in Science, Engineering and Technology (IJIRSET) 6(3).
-Yadav, S., Karmarkar, V., Surti, J., Mistry, S. & Vardhe, G. (2017). To study wear
-    and friction at contact surface of cam and follower of I.C. engine. International
-    Research Journal of Engineering and Technology (IRJET) 4(4).
+The papers are cited in full in :mod:`fickcam.cam`.
 """
 from __future__ import annotations
 

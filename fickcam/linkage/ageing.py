@@ -10,12 +10,7 @@ change of length, not the wet length), and its mass and inertia come from
 :func:`fickcam.materials.bodies.aged_link_body`. A metal frame only expands
 thermally (eq. 14, last line).
 
-References
-----------
-Singh, S. & Sanyal, S. (2016). Variations in geometry, volume, mass and moment of
-    inertia of link of a four bar mechanism made of neat resin under hygrothermal
-    environment. International Journal of Innovative Research in Science, Engineering and
-    Technology (IJIRSET) 5(12).
+The paper is cited in full in :mod:`fickcam.linkage`.
 """
 from __future__ import annotations
 

@@ -14,12 +14,7 @@ This sign is kept over the whole crank revolution (a branch never switches), so
 the angles are continuous wherever the linkage assembles. Where it cannot
 (negative discriminant), every output is NaN.
 
-References
-----------
-Singh, S. & Sanyal, S. (2016). Variations in geometry, volume, mass and moment of
-    inertia of link of a four bar mechanism made of neat resin under hygrothermal
-    environment. International Journal of Innovative Research in Science, Engineering and
-    Technology (IJIRSET) 5(12).
+The paper is cited in full in :mod:`fickcam.linkage`.
 """
 from __future__ import annotations
 

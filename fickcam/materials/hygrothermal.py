@@ -3,17 +3,7 @@
 Chamis (1983) NASA TM-83320, hygrothermal degradation equations, as reproduced
 in Singh & Sanyal (2017) eqs. 9-11 and Table 10, and Singh & Sanyal (2016) eqs. 4-10.
 
-References
-----------
-Chamis, C. C. (1983). Simplified composite micromechanics equations for hygral,
-    thermal and mechanical properties. NASA TM-83320.
-Singh, S. & Sanyal, S. (2016). Variations in geometry, volume, mass and moment of
-    inertia of link of a four bar mechanism made of neat resin under hygrothermal
-    environment. International Journal of Innovative Research in Science, Engineering and
-    Technology (IJIRSET) 5(12).
-Singh, S. & Sanyal, S. (2017). Kinematic and dynamic variations in cam and follower
-    made of composite material under hygrothermal environment. International Journal of
-    Innovative Research in Science, Engineering and Technology (IJIRSET) 6(3).
+The papers are cited in full in :mod:`fickcam.materials`.
 """
 from __future__ import annotations
 

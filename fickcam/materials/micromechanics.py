@@ -9,13 +9,7 @@ Em / (1 - sqrt(kf) (1 - Em/Ef22)) is used here (it reproduces the paper's own
 8.29 GPa, Table 9). Notation: kf, km, kv fibre, matrix, void volume ratios.
 All functions are vectorised over numpy arrays.
 
-References
-----------
-Chamis, C. C. (1983). Simplified composite micromechanics equations for hygral,
-    thermal and mechanical properties. NASA TM-83320.
-Singh, S. & Sanyal, S. (2017). Kinematic and dynamic variations in cam and follower
-    made of composite material under hygrothermal environment. International Journal of
-    Innovative Research in Science, Engineering and Technology (IJIRSET) 6(3).
+The papers are cited in full in :mod:`fickcam.materials`.
 """
 from __future__ import annotations
 
