@@ -6,11 +6,11 @@ README.md, CONTRIBUTING.md, pyproject.toml and the tests' docstrings and comment
 
 - the internal contract's file name (the product's documented behaviour is stated in
   place instead);
-- a path into the folder of source papers, a paper named by its file number there
-  ("seed 001"), or any path into a folder outside the repository (papers are cited by
+- a path into the folder of source papers, a paper named by its file number there,
+  or any path into a folder outside the repository (papers are cited by
   author, title, journal and year);
-- an issue number ("issue 12", "issue #12"), which means nothing outside the tracker
-  (an upstream project's issue, "matplotlib issue 26525", names where it lives).
+- an issue number of this project's tracker, which means nothing outside it (an
+  upstream project's issue, named with the project, says where it lives).
 
 Each area is a separate case, so a failure names where to look.
 """
@@ -35,7 +35,7 @@ PAPER_BY_FILE_NUMBER = r"\bseeds?\s+" + r"00\d\b"
 ISSUE_NUMBER = re.compile(r"(?:(\S+)\s+)?\bissues?\s+#?\d+", re.IGNORECASE)
 PATHS = re.compile("|".join((CONTRACT, SOURCE_PAPER_PATH, OUTSIDE_FOLDER, PAPER_BY_FILE_NUMBER)),
                    re.IGNORECASE)
-#: projects whose issue trackers a reference may name ("matplotlib issue 26525")
+#: projects whose issue trackers a reference may name, as "<project> issue <number>"
 UPSTREAM = {"matplotlib", "numpy", "scipy", "xarray", "pint", "pydantic", "fipy", "dask",
             "scikit-fem", "skfem", "pvlib", "ezdxf", "petsc", "petsc4py", "netcdf4", "h5py",
             "h5netcdf", "hypothesis", "pytest", "openblas", "sphinx", "myst-parser", "tqdm"}
@@ -109,9 +109,11 @@ def offending_lines(relative: str, what: str) -> list[str]:
 def test_the_patterns_catch_what_they_are_meant_to_and_spare_plain_text():
     refused_texts = ["see " + "SPEC" + ".md §1", "seeds" + "/000_c9d2754e3bf549ac.txt Table 9",
                      "../" + "shared/seeds/README.md", "as in " + "issue 16",
-                     "Issue #12 item 4", "issues 11 and 12", "(issue 13)", "as " + "seed 001's Table 6"]
+                     "Issue " + "#12 item 4", "issues " + "11 and 12", "(issue " + "13)",
+                     "as " + "seed 001's Table 6"]
     allowed = ["Singh & Sanyal (2017) Table 9", "random seed 13", "the spec a mechanism must "
-               "hold", "tissue 3", "an issue with the mesh", "(matplotlib issue 26525, open)"]
+               "hold", "tissue 3", "an issue with the mesh",
+               "(matplotlib issue " + "26525, open)"]
     assert all(refused(text) for text in refused_texts)
     assert not any(refused(text) for text in allowed)
 

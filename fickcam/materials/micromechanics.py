@@ -71,7 +71,7 @@ def transverse_expansion(kf, fiber_alpha22, matrix_alpha, matrix_nu, fiber_e11, 
 
 def transverse_conductivity(kf, fiber_k22, matrix_k):
     """K_l22 = (1 - sqrt(kf)) K_m + K_m sqrt(kf) / (1 - sqrt(kf)(1 - K_m/K_f22))
-    (Chamis 1983; the seed's Table 4 typesets the last factor as (1 - k_m/k_f))."""
+    (Chamis 1983; Singh & Sanyal 2017 Table 4 typesets the last factor as (1 - k_m/k_f))."""
     root = np.sqrt(kf)
     return (1.0 - root) * matrix_k + matrix_k * root / (1.0 - root * (1.0 - matrix_k / fiber_k22))
 
