@@ -166,9 +166,8 @@ class Eccentric(_Strict):
 
 
 class Guide(_Strict):
-    """Follower stem in a guide bush (Yadav et al. 2017, 'To study wear and
-    friction at contact surface of cam and follower of I.C. engine', IRJET 4(4); Rothbart,
-    Cam Design Handbook 2004, ch. 6):
+    """Follower stem in a guide bush (Yadav et al. 2017, cited in full in
+    :mod:`fickcam.cam`; Rothbart, Cam Design Handbook 2004, ch. 6):
     ``overhang`` l1 from the contact to the near bush end, bush ``length`` l2, stem
     ``diameter`` d, guide friction coefficient."""
 
