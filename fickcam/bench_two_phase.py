@@ -1,4 +1,4 @@
-"""The two-phase demo cam under a constant climate and a daily chamber record (issue 13):
+"""The two-phase demo cam under a constant climate and a daily chamber record:
 its fine references, the true error of a run against them, and a circular plate against
 the exact disc over the same record (``benchmarks/two_phase_cam_records.py``).
 

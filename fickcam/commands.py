@@ -1,4 +1,4 @@
-"""What each ``fickcam`` subcommand does (SPEC.md §2), given its parsed arguments
+"""What each ``fickcam`` subcommand does, given its parsed arguments
 (:mod:`fickcam.cli_parser`); each returns the exit status. Heavy imports stay inside the
 command that needs them.
 """

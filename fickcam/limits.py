@@ -1,4 +1,4 @@
-"""Limits on result variables: the spec a mechanism must hold (SPEC.md §6).
+"""Limits on result variables: the spec a mechanism must hold.
 
 A scene's ``limits:`` section names result variables and, for each, a band
 around the as-designed value (``deviation``) and/or bounds (``max``, ``min``),

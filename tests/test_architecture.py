@@ -96,7 +96,7 @@ def test_the_import_graph_check_finds_a_cycle():
 
 def test_no_import_cycle_inside_fickcam():
     # every import counts, also those deferred inside functions: a cycle held apart by a
-    # function-level import is still a cycle (issue 16)
+    # function-level import is still a cycle
     assert cycles(import_graph(everywhere_in="fickcam")) == []
 
 

@@ -360,7 +360,7 @@ def extrapolated_planform(part, d, end, finest=(0.04, 0.02)):
 
 def test_demo_cam_meets_the_accuracy_against_a_space_extrapolated_fine_mesh():
     """The real cam profile (bore, anisotropic D), wetted for 30 d then dried to 30 % for 30 d,
-    and the same wetting read only at 0 and 1 year (issue 11: sparse ageing times).
+    and the same wetting read only at 0 and 1 year (sparse ageing times).
     Reference: meshes of 3 k and 12 k nodes extrapolated (against 35 k and 139 k nodes: 1.3e-4
     relative in the planform uptake, 6e-6 in the mean). Measured against the 35 k / 139 k
     reference: accuracy 1e-3: true 5.1e-4 (2.5e-4 for the scene's single step), estimate

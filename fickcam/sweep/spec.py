@@ -1,4 +1,4 @@
-"""Sweep files (SPEC.md §2): a base scene plus what to vary, by dotted path.
+"""Sweep files: a base scene plus what to vary, by dotted path.
 
 A sweep file names a ``base`` scene (relative to the sweep file) and either a
 ``grid`` (every combination of the listed values, the last key varying
