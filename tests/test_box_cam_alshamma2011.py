@@ -88,6 +88,7 @@ def test_alshamma2011_particular_solution_is_not_one():
 ANSYS_RANGE = (0.0031101e-3, 0.047361e-3)
 
 
+@pytest.mark.slow
 def test_alshamma2011_box_cam_deflection_against_the_ansys_magnitudes():
     """The Al-Shamma & Yousuf 2011 scene (its clamped radius, fibre fraction, harmonic
     motion; the rest fickcam's assumptions, see the scene) deflects in its plane by

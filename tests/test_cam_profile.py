@@ -49,6 +49,7 @@ def kinematics(design, state=CamState()):
     return v["follower_displacement"], v["pressure_angle"], v["lift"]
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("kind, offset", [("roller", "0 mm"), ("roller", "8 mm"), ("knife", "0 mm")])
 def test_cam_from_points_reproduces_the_motion_program_cam(tmp_path, kind, offset):
     """720 points (0.5 deg apart): displacement within 1e-6 of the lift, pressure angle
@@ -93,6 +94,7 @@ def test_profile_spline_converges_at_sixth_order_between_its_points():
     assert 5.5 < order < 7.0
 
 
+@pytest.mark.slow
 def test_acceleration_jump_limits_the_pressure_angle_to_first_order_in_the_spacing(tmp_path):
     """Simple harmonic rise after a dwell: the profile's curvature jumps at the joint, so
     the spline's tangent there is off by O(h); halving the spacing halves the error."""

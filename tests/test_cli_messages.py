@@ -32,6 +32,7 @@ def fourbar(tmp_path_factory):
     return folder, loud, quiet
 
 
+@pytest.mark.slow
 def test_a_notice_is_printed_once(fourbar):
     _, loud, _ = fourbar
     assert loud.returncode == 0, loud.stderr
@@ -44,6 +45,7 @@ def test_quiet_prints_no_notes_but_keeps_the_summary(fourbar):
     assert "minimum_transmission_angle" in quiet.stdout and "note(s) hidden by -q" in quiet.stdout
 
 
+@pytest.mark.slow
 def test_query_does_not_repeat_the_runs_notices(fourbar):
     folder, _, _ = fourbar
     done = fickcam_cli("query", "loud.h5", "rocker_swing", cwd=folder)

@@ -54,6 +54,7 @@ def test_every_grid_starts_at_zero_steps_evenly_and_ends_on_the_history(step, st
     assert np.allclose(gaps[:-1], step, rtol=1e-12) and gaps[-1] <= step + 1e-9 * end
 
 
+@pytest.mark.slow
 def test_a_two_year_history_every_30_d_is_reported_to_two_years(tmp_path, capsys):
     path = steel_cam(tmp_path, {"every": "30 d"}, history=TWO_YEAR_HISTORY)
     scene = load_scene(path)

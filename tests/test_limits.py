@@ -198,6 +198,7 @@ def test_a_limit_the_scene_does_not_compute_is_refused_at_its_line(tmp_path, cap
     assert "limits.wear_depth: wear_depth needs a cam section" in capsys.readouterr().err
 
 
+@pytest.mark.slow
 def test_summary_query_and_plot_show_the_limit(tmp_path, capsys):
     scene = fast_fourbar(["0 d", "7 d", "40 d"], {"minimum_transmission_angle": {"min": "35.5 deg"},
                                                   "rocker_swing": {"max": "80 deg"}})

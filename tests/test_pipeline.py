@@ -48,6 +48,7 @@ def test_readme_starts_with_the_two_commands_and_lists_every_variable():
     assert markdown_table() in text, "README variable table is out of date: paste `fickcam schema`"
 
 
+@pytest.mark.slow
 def test_result_variables_follow_the_schema(fourbar):
     for name in fourbar.data_vars:
         var = VARIABLES[name]
@@ -91,6 +92,7 @@ def test_metal_frame_takes_up_no_moisture(fourbar):
     assert np.all(fourbar.moisture_content.sel(part="frame").values == 0)
 
 
+@pytest.mark.slow
 def test_cli_run_query_export_plot_round_trip(tmp_path, capsys):
     out = tmp_path / "r.h5"
     scene = tmp_path / "scene.yaml"

@@ -82,6 +82,7 @@ def test_dynamics_shows_the_stress_change_and_the_design_values(cam, figures, tm
     assert design and design[0].get_ydata()[0] == pytest.approx(float(cam.jump_speed_design))
 
 
+@pytest.mark.slow
 def test_linkage_drift_against_design_and_start_and_a_closed_coupler_curve(fourbar, figures, tmp_path):
     plotting.plot(fourbar, tmp_path, "linkage")
     rocker = figures["linkage_rocker.png"].axes

@@ -173,6 +173,7 @@ def test_lift_change_is_measured_from_the_first_ageing_time_in_mm():
     assert np.isnan(change.isel(case=1)).all()
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("kind", ["grid", "monte_carlo"])
 def test_sweep_plots_one_figure_per_output_through_fickcam_plot(kind, tmp_path):
     from fickcam.plotting import plot

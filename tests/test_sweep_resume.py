@@ -15,6 +15,8 @@ import fickcam
 from fickcam.sweep import WorkFolder, run_sweep
 from test_sweep_run import small_base
 
+import pytest
+
 ROOT = Path(__file__).resolve().parents[1]
 GRID = """\
 base: base.yaml
@@ -64,6 +66,7 @@ def kill_while_running(sweep_file: Path, output: Path, delay: float) -> dict | N
     return done if len(done) < CASES else None
 
 
+@pytest.mark.slow
 def test_a_sweep_killed_at_a_random_moment_resumes_to_the_uninterrupted_result(tmp_path):
     seed = random.randrange(1 << 16)
     path = write_sweep(tmp_path)

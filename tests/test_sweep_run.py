@@ -73,6 +73,7 @@ def interrupted_then_resumed(scheduler, tmp_path_factory):
     return sweep, first, fickcam.open_result(output), output
 
 
+@pytest.mark.slow
 def test_every_case_equals_running_its_scene_alone(interrupted_then_resumed):
     sweep, _, result, _ = interrupted_then_resumed
     assert result.sizes["case"] == len(sweep.cases) == 3
@@ -168,6 +169,7 @@ def test_grid_plots_show_each_output_against_the_varied_values(interrupted_then_
     assert change.dims == ("case", "time") and np.isnan(change.isel(case=sorted(RH_FAILED))).all()
 
 
+@pytest.mark.slow
 def test_more_cases_than_are_kept_in_flight_all_complete_once(scheduler, tmp_path):
     values = ", ".join(f"{101 + k} %" for k in range(40))  # 40 cheap (invalid) cases
     path = write_sweep(tmp_path, f"base: base.yaml\ngrid:\n  environment.history.0.relative_humidity: [{values}]\n")

@@ -57,6 +57,7 @@ def sweep_with(address, tmp_path, capsys):
     return code, err[0]
 
 
+@pytest.mark.slow
 def test_an_http_server_is_refused_in_seconds(server, tmp_path, capsys, monkeypatch):
     monkeypatch.setattr("fickcam.sweep.scheduler.PROBE_TIMEOUT", 1.0)  # it stays silent
     port = server(http.server.SimpleHTTPRequestHandler)
