@@ -8,14 +8,13 @@ import sys
 import time
 from pathlib import Path
 
+import pytest
 import xarray as xr
 import yaml
 
 import fickcam
 from fickcam.sweep import WorkFolder, run_sweep
 from test_sweep_run import small_base
-
-import pytest
 
 ROOT = Path(__file__).resolve().parents[1]
 GRID = """\
