@@ -262,9 +262,10 @@ def _design_rows(table: dict[str, Var]) -> dict[str, Var]:
 VARIABLES.update(_design_rows(VARIABLES))
 
 COORDINATES: dict[str, tuple[str, str]] = {
-    "time": ("", "ageing time"),
-    # float days beside the timedelta `time`, for plotting and interpolation
-    "ageing_time": ("d", "ageing time in days"),
+    # float days: matplotlib plots them and `sel`/`interp` take numbers of days; "d" (the
+    # UDUNITS day) is not a CF time unit, so no netCDF reader turns the column into dates
+    "time": ("d", "ageing time"),
+    "ageing_time": ("d", "ageing time in days"),  # the same days, kept for older code
     "part": ("", "part name"),
     "link": ("", "link name"),
     "joint": ("", "pin joint (O2 crank-frame, A crank-coupler, B coupler-rocker, O4 rocker-frame)"),

@@ -105,7 +105,7 @@ def test_uptake_legend_names_only_parts_that_take_up_moisture(fourbar, figures, 
 def sweep_result(kind: str) -> xr.Dataset:
     """A sweep as `fickcam sweep` writes it: temperature given in degC, stored in K."""
     rng = np.random.default_rng(0)
-    days = np.array([0, 30, 60], "timedelta64[D]").astype("timedelta64[ns]")
+    days = np.array([0.0, 30.0, 60.0])  # ageing time [d]
     if kind == "grid":
         rh, temp = np.meshgrid([50.0, 65.0, 80.0], [333.15, 358.15], indexing="ij")
         rh, temp = rh.ravel(), temp.ravel()
@@ -155,7 +155,7 @@ def test_a_sweep_over_weather_files_compares_the_sites_over_ageing_time(figures,
     one line per site, labelled with the site the sweep read from each file (a file
     without a site keeps its name)."""
     sites = np.array(["pvlib:723170TYA.CSV", "pvlib:703165TY.csv"], dtype=object)
-    days = np.array([0, 30, 60], "timedelta64[D]").astype("timedelta64[ns]")
+    days = np.array([0.0, 30.0, 60.0])  # ageing time [d]
     result = xr.Dataset(
         {"jump_speed": (("case", "time"), np.array([[588.0, 588.4, 588.9], [588.0, 588.2, 588.5]]),
                         {"units": "rpm"})},

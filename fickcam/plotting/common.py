@@ -19,7 +19,7 @@ def days(ds):
     """Ageing times of ``ds`` in days (float array)."""
     import numpy as np
 
-    return ds["time"].values / np.timedelta64(1, "D")
+    return np.asarray(ds["time"].values, float)
 
 
 def ages(ds, most: int = 4) -> list[int]:
