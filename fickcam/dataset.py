@@ -56,7 +56,7 @@ def build_dataset(values: dict, coords: dict, attrs: dict | None = None):
     for name, value in coords.items():
         units, long_name = COORDINATES[name]
         value = np.asarray(value)
-        if name == "time":
+        if units == "d":  # ageing times: given in s
             value = ageing_days(value)
         elif units == "degree":
             value = np.degrees(np.asarray(value, float))

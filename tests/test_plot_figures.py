@@ -96,7 +96,7 @@ def test_linkage_drift_against_design_and_start_and_a_closed_coupler_curve(fourb
 
 def test_uptake_legend_names_only_parts_that_take_up_moisture(fourbar, figures, tmp_path):
     plotting.plot(fourbar, tmp_path, "uptake")
-    ax = figures["uptake.png"].axes[1]
+    ax = figures["uptake.png"].axes[2]
     labels = [t.get_text() for t in ax.get_legend().get_texts()]
     assert labels == ["crank", "coupler", "rocker", "volume mean", "surface layer"]  # no steel frame
     assert legend_clear_of_axes(ax, ax.get_legend())
