@@ -20,7 +20,7 @@ matplotlib.use("Agg")
 
 CONFIGS = Path(__file__).resolve().parents[1] / "configs"
 UNIT = re.compile(r"\[[^\]]+\]")
-AGE = re.compile(r"^t = [0-9.e+-]+ d$")
+AGE = re.compile(r"^t = [0-9.e+-]+ (d|h|min)$")
 
 
 def short_scene(name: str, **changes) -> dict:

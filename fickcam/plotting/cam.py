@@ -124,7 +124,7 @@ def _drift(plt, ds, outdir, name, rows) -> Path:
         ax.set_ylabel(f"change in {ylabel}")
         ax.grid(alpha=0.3)
     axes[0].set_title(f"{name}: drift from t = {t[0]:g} d")
-    axes[0].legend(fontsize=8)
+    legend_outside(axes[0])
     axes[-1].set_xlabel("cam angle [deg]")
     return save_figure(fig, outdir / "cam_drift.png")
 

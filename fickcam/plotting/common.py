@@ -22,12 +22,22 @@ def days(ds):
     return np.asarray(ds["time"].values, float)
 
 
+#: a mechanism's motion: ageing times where it is NaN have no valid state (beyond the wet Tg)
+MOTIONS = ("follower_displacement", "follower_arm_angle", "rocker_angle")
+
+
 def ages(ds, most: int = 4) -> list[int]:
-    """Indices of up to ``most`` ageing times spread from the first to the last."""
+    """Indices of up to ``most`` ageing times spread from the first to the last, among
+    those where the mechanism has a valid state (a line to draw)."""
     import numpy as np
 
-    n = ds.sizes["time"]
-    return sorted(set(np.linspace(0, n - 1, min(n, most)).round().astype(int).tolist()))
+    valid = np.arange(ds.sizes["time"])
+    motion = next((name for name in MOTIONS if name in ds), None)
+    if motion is not None:
+        values = ds[motion].transpose("time", ...).values.reshape(valid.size, -1)
+        valid = valid[np.isfinite(values).any(axis=1)] if np.isfinite(values).any() else valid
+    n = valid.size
+    return sorted(set(valid[np.linspace(0, n - 1, min(n, most)).round().astype(int)].tolist()))
 
 
 def age_colour(ds, k: int):
@@ -39,8 +49,11 @@ def age_colour(ds, k: int):
 
 
 def age_label(t_days: float) -> str:
-    """Legend text of an ageing time in days."""
-    return f"t = {t_days:g} d"
+    """Legend text of an ageing time: in days, or hours or minutes below a day."""
+    if t_days == 0 or t_days >= 1:
+        return f"t = {t_days:g} d"
+    hours = t_days * 24.0
+    return f"t = {hours:.4g} h" if hours >= 1 else f"t = {hours * 60:.4g} min"
 
 
 def finish_plan_view(ax, title: str) -> None:

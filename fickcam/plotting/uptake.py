@@ -37,20 +37,22 @@ def climate_edges(centres_days: np.ndarray) -> np.ndarray:
 
 def _climate_panel(ax, ds, name: str, ylabel: str, offset: float, colour) -> None:
     """The climate the parts saw: the mean over each interval of the stored summary and its
-    range shaded; a result without one shows the values at the stored ageing times only."""
+    range shaded; a result without one shows the values at the stored ageing times, as
+    points (nothing is known between them)."""
     summary = f"climate_{name}"
     if summary in ds:
         edges = climate_edges(np.asarray(ds["climate_time"].values, float))
         step = INTERVALS.get(round(float(edges[1] - edges[0]) * 86400.0), "interval")
         low = ds[f"{summary}_min"].values + offset
         high = ds[f"{summary}_max"].values + offset
-        ax.fill_between(edges, np.append(low, low[-1]), np.append(high, high[-1]), step="post",
-                        color=colour, alpha=0.25, lw=0, label=f"{step} range")
+        if np.nanmax(high - low, initial=0.0) > 0:  # a constant climate has no range to shade
+            ax.fill_between(edges, np.append(low, low[-1]), np.append(high, high[-1]),
+                            step="post", color=colour, alpha=0.25, lw=0, label=f"{step} range")
         ax.stairs(ds[summary].values + offset, edges, baseline=None, color=colour,
                   label=f"{step} mean")
     else:
-        ax.plot(days(ds), ds[name].values + offset, "o-", ms=3, color=colour,
-                label="at the stored ageing times only")
+        ax.plot(days(ds), ds[name].values + offset, "o", ms=4, color=colour,
+                label="at the stored ageing times")  # states given directly, or an older file
     ax.set_ylabel(ylabel)
     ax.grid(alpha=0.3)
     legend_outside(ax)
@@ -72,7 +74,11 @@ def _moisture_panel(ax, ds, t) -> None:
         ax.set_title(f"no moisture uptake: {', '.join(skipped)}", fontsize=9)
     ax.set_xlabel("ageing time [d]")
     ax.set_ylabel("moisture content [wt %]")
-    legend_outside(ax)
+    if absorbing:
+        legend_outside(ax)
+    else:  # a legend without entries: matplotlib warns, and the user sees nothing
+        ax.text(0.5, 0.5, "no part takes up moisture", ha="center", va="center",
+                transform=ax.transAxes)
     ax.grid(alpha=0.3)
 
 
