@@ -61,7 +61,8 @@ def drawn(ds, folder) -> dict[str, Figure]:
     figures, save = {}, Figure.savefig
 
     def keep(fig, path, *args, **kwargs):
-        figures[Path(path).name] = fig
+        # the file's name, also when it is written to a temporary file renamed over it
+        figures[re.sub(r"^\.(.+)\.[^.]+\.tmp$", r"\1", Path(path).name)] = fig
         return save(fig, path, *args, **kwargs)
 
     with pytest.MonkeyPatch.context() as monkeypatch:
