@@ -10,12 +10,34 @@ DAY = 86400.0  # s
 
 
 def ageing_days(seconds) -> np.ndarray:
-    """Ageing times [s] as the float days [d] of the ``time`` coordinate."""
+    """Ageing times as the float days of the ``time`` coordinate.
+
+    Parameters
+    ----------
+    seconds : array_like
+        Ageing times [s].
+
+    Returns
+    -------
+    numpy.ndarray
+        The same times [d].
+    """
     return np.asarray(seconds, float) / DAY
 
 
 def ageing_seconds(ds) -> np.ndarray:
-    """The ageing times [s] of a result's ``time`` coordinate (float days)."""
+    """The ageing times of a result.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        A result, its ``time`` coordinate in float days [d].
+
+    Returns
+    -------
+    numpy.ndarray
+        Its ageing times [s].
+    """
     return np.asarray(ds["time"].values, float) * DAY
 
 
@@ -29,8 +51,20 @@ def ageing_time_days(seconds):
 
 
 def with_time_in_days(ds):
-    """``ds`` with a timedelta64 ``time`` (results written by fickcam before time was
-    stored in days) turned into float days, so every result reads the same way."""
+    """A result with its ``time`` in float days, whichever way its file stored it.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        A result; its ``time`` may be timedelta64 (files written by fickcam before time
+        was stored in days) or float days [d].
+
+    Returns
+    -------
+    xarray.Dataset
+        ``ds`` itself when ``time`` is already in days, else a copy with ``time`` (and an
+        ``ageing_time`` beside it) in float days [d], units ``d``.
+    """
     if "time" not in ds.coords or ds["time"].dtype.kind != "m":
         return ds
     units, long_name = COORDINATES["time"]

@@ -162,9 +162,21 @@ class Environment(Segments):
         return self._evaluate(t, self.humidity_end, self.humidity_start)
 
     def interval_summary(self, edges) -> dict[str, tuple[np.ndarray, np.ndarray, np.ndarray]]:
-        """(mean, lowest, highest) of the temperature (K) and the relative humidity (%) over
-        each interval [edges[i], edges[i+1]] (s, increasing), exact for the history's straight
-        pieces and steps; past the end of the history its last values are held."""
+        """The climate over each interval between ``edges``: its mean and its range, exact
+        for the history's straight pieces and steps (past the end of the history its last
+        values are held).
+
+        Parameters
+        ----------
+        edges : array_like
+            Interval edges [s], increasing, at least two.
+
+        Returns
+        -------
+        dict
+            ``"temperature"``: (mean, lowest, highest) [K] and ``"relative_humidity"``:
+            (mean, lowest, highest) [%], each an array with one value per interval.
+        """
         edges = np.asarray(edges, float)
         out = {}
         for name, ends, start in (("temperature", self.temperature_end, self.temperature_start),
@@ -204,21 +216,48 @@ class Environment(Segments):
 
 
 def summary_edges(end: float) -> np.ndarray:
-    """Edges [s] of a climate summary from 0 to ``end`` [s]: hourly, daily, weekly or 30-day
-    intervals, the shortest of them that gives at most SUMMARY_INTERVALS (the last interval
-    ends at ``end``)."""
+    """Edges of a climate summary: hourly, daily, weekly or 30-day intervals, the shortest
+    of them that gives at most SUMMARY_INTERVALS.
+
+    Parameters
+    ----------
+    end : float
+        End of the summary [s], positive.
+
+    Returns
+    -------
+    numpy.ndarray
+        Edges from 0 to ``end`` [s]; the last interval ends at ``end`` and may be shorter.
+    """
     step = next((s for s in SUMMARY_STEPS if end / s <= SUMMARY_INTERVALS), SUMMARY_STEPS[-1])
     starts = np.arange(0.0, end, step)
     return np.append(starts[end - starts > 1e-6 * step], end)
 
 
 def piecewise_linear_summary(change_times, after, before, edges):
-    """(mean, lowest, highest) over each interval [edges[i], edges[i+1]] of the function that
-    runs straight from ``after[k]`` just after ``change_times[k]`` to ``before[k]`` just
-    before ``change_times[k+1]`` (a step where ``after[k] != before[k-1]``) and holds
-    ``before[-1]`` past the last change time. The mean is the exact integral over the
-    interval (trapezoids are exact for straight pieces) divided by its length; the extremes
-    are among the interval's end values and the pieces' ends inside it."""
+    """Mean, lowest and highest value over intervals of a function made of straight pieces.
+
+    The function runs straight from ``after[k]`` just after ``change_times[k]`` to
+    ``before[k]`` just before ``change_times[k+1]`` (a step where ``after[k]`` differs
+    from ``before[k-1]``) and holds ``before[-1]`` past the last change time. The mean is
+    the exact integral over the interval (trapezoids are exact for straight pieces) divided
+    by its length; the extremes are among the interval's end values and the pieces' ends
+    inside it.
+
+    Parameters
+    ----------
+    change_times : numpy.ndarray
+        Times where the pieces meet [s], increasing, shape (n + 1,).
+    after, before : numpy.ndarray
+        Each piece's value at its start and at its end [any unit], shape (n,).
+    edges : numpy.ndarray
+        Interval edges [s], increasing.
+
+    Returns
+    -------
+    tuple of numpy.ndarray
+        (mean, lowest, highest) per interval, in the unit of ``after`` and ``before``.
+    """
     t0, t1 = change_times[:-1], change_times[1:]
     done = np.concatenate([[0.0], np.cumsum((t1 - t0) * (after + before) / 2.0)])
 

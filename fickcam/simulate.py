@@ -164,9 +164,22 @@ def _age(scene: Scene, environment: Environment, times: np.ndarray, accuracy: fl
 
 
 def climate_values(environment: Environment, edges: np.ndarray) -> dict[str, np.ndarray]:
-    """The climate the parts saw, as the mean, lowest and highest temperature and relative
-    humidity over each interval between ``edges`` [s] (``climate_*`` variables): the record
-    itself, where the stored ageing times only sample it."""
+    """The climate the parts saw, as result variables: the record itself, where the stored
+    ageing times only sample it.
+
+    Parameters
+    ----------
+    environment : Environment
+        The scene's climate history.
+    edges : numpy.ndarray
+        Interval edges [s] (:func:`~fickcam.environment.summary_edges`).
+
+    Returns
+    -------
+    dict
+        ``climate_temperature`` [K] and ``climate_relative_humidity`` [%] (the means over
+        each interval) with their ``_min`` and ``_max``, one value per interval.
+    """
     values = {}
     for name, (mean, low, high) in environment.interval_summary(edges).items():
         values.update({f"climate_{name}": mean, f"climate_{name}_min": low,
