@@ -65,7 +65,7 @@ def test_sweep_cases_are_described_by_their_values():
 
 def sweep_result() -> xr.Dataset:
     """A two-case sweep result as `fickcam sweep` writes it (temperatures given in degC)."""
-    days = np.array([0, 30], "timedelta64[D]").astype("timedelta64[ns]")
+    days = np.array([0.0, 30.0])  # ageing time [d]
     lift = np.array([[38.3, 38.35], [38.4, 38.5]]) * 1e-3
     return xr.Dataset(
         {"lift": (("case", "time"), lift, {"units": "m"}),

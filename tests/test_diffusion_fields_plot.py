@@ -24,7 +24,7 @@ def fields_dataset(results: dict) -> xr.Dataset:
             cells[axis][index, :n] = values
     data = {"moisture": (("time", "part", "cell"), moisture)}
     data.update({f"cell_{a}": (("part", "cell"), v) for a, v in cells.items()})
-    return xr.Dataset(data, coords={"time": (times * 1e9).astype("timedelta64[ns]"),
+    return xr.Dataset(data, coords={"time": times / 86400.0,
                                     "part": list(results)})
 
 
