@@ -131,7 +131,7 @@ def stack_cases(case, n: int):
                 stack = stacks[name] = np.empty((n,) + values.shape, values.dtype)
             elif np.result_type(stack, values) != stack.dtype:  # bool cases and NaN ones
                 stack = stacks[name] = stack.astype(np.result_type(stack, values))
-            stack[index] = values
+            stack[index, ...] = values  # a 0-d text array: its item, not the array object
     data = {name: xr.Variable(("case",) + dims, stacks[name], attrs)
             for name, (dims, _, attrs) in first.data.items()}
     return xr.Dataset(data, coords={name: xr.Variable(*v) for name, v in first.coords.items()})
