@@ -12,6 +12,8 @@ import inspect
 import typing
 from pathlib import Path
 
+import yaml
+
 from pydantic import BaseModel
 from pydantic_core import PydanticUndefined
 
@@ -20,6 +22,8 @@ from fickcam.cli_parser import build_parser
 from fickcam.scene_models import SceneModel
 from fickcam.units import SI_UNITS
 
+EXAMPLES = Path(__file__).resolve().parents[2] / "configs"
+NAMED_MAPPINGS = ("materials", "limits")
 GENERATED = ("scene.md", "results.md", "cli.md")
 
 
@@ -139,24 +143,62 @@ def _is_named_mapping(annotation, model) -> bool:
     return any(_is_named_mapping(arg, model) for arg in typing.get_args(annotation))
 
 
+def _flatten(value, prefix: str, out: dict) -> None:
+    """Dotted keys of a scene's values (the entries of named mappings as ``NAME``)."""
+    if isinstance(value, list):
+        for item in value:
+            _flatten(item, prefix, out)
+        return
+    if not isinstance(value, dict):
+        out.setdefault(prefix, value)
+        return
+    out.setdefault(prefix, None)
+    for key, item in value.items():
+        named = prefix.split(".")[-1] in NAMED_MAPPINGS and prefix.count(".") == 0
+        _flatten(item, f"{prefix}.NAME" if named else f"{prefix}.{key}" if prefix else str(key), out)
+
+
+def example_values(folder: Path = EXAMPLES) -> dict[str, object]:
+    """The first value each dotted key takes in the example scenes (sweep files left out)."""
+    found: dict[str, object] = {}
+    for path in sorted(folder.glob("*.yaml")):
+        scene = yaml.safe_load(path.read_text())
+        if isinstance(scene, dict) and "base" not in scene:
+            flat: dict[str, object] = {}
+            _flatten(scene, "", flat)
+            for key, value in flat.items():
+                if value is not None and key not in found:
+                    found[key] = value
+    return found
+
+
 def scene_reference_markdown() -> str:
     """The scene reference page as MyST Markdown."""
     lines = ["# Scene keys", "",
              "Every key a scene accepts, generated from the scene models when the documentation "
              "is built. `NAME` stands for a name you choose (a material, a limited variable). "
              "A quantity is a number in the SI unit given (a percentage for `%`) or a string with "
-             "its unit (`\"30 mm\"`, `\"113 degC\"`, `\"60 d\"`). A key that is not listed is "
-             "refused as `scene.yaml:LINE key: unknown key; did you mean ...?`, and a value out "
-             "of its bounds as `scene.yaml:LINE key: reason`.", ""]
+             "its unit (`\"30 mm\"`, `\"113 degC\"`, `\"60 d\"`); defaults are in that SI unit. "
+             "The example is the first value the key takes in the example scenes of `configs/`. "
+             "A key that is not listed is refused as `scene.yaml:LINE key: unknown key; did you "
+             "mean ...?`, and a value out of its bounds or of the wrong dimension as "
+             "`scene.yaml:LINE key: reason`, exit status 2.", ""]
+    rows = scene_key_rows()
+    sections = {row["key"].split(".")[0] for row in rows if "." in row["key"]}
+    examples = example_values()
     section = None
-    for row in scene_key_rows():
+    for row in rows:
         top = row["key"].split(".")[0]
-        if top != section:
-            section = top
-            lines += ["", f"## `{top}`", "", "| key | type | SI unit | bounds | default | allowed values |",
-                      "|---|---|---|---|---|---|"]
+        heading = top if top in sections else "top level"
+        if heading != section:
+            section = heading
+            lines += ["", f"## `{heading}`" if heading in sections else "## Top level", "",
+                      "| key | type | SI unit | bounds | default | allowed values | example |",
+                      "|---|---|---|---|---|---|---|"]
+        example = examples.get(row["key"])
+        shown = "" if example is None else f"`{_cell(str(example))}`"
         lines.append(f"| `{row['key']}` | {_cell(row['type'])} | {row['unit']} | {row['bounds']} "
-                     f"| {_cell(row['default'])} | {row['allowed']} |")
+                     f"| {_cell(row['default'])} | {row['allowed']} | {shown} |")
     return "\n".join(lines) + "\n"
 
 
