@@ -14,16 +14,17 @@ release = fickcam.__version__
 version = release
 
 
-def _load_reference_extension():
-    """The local extension, loaded from its file (no ``sys.path`` edits)."""
-    path = Path(__file__).parent / "_ext" / "fickcam_reference.py"
-    spec = importlib.util.spec_from_file_location("fickcam_reference", path)
+def _load_local_extension(name: str):
+    """A local extension, loaded from its file in ``_ext/`` (no ``sys.path`` edits)."""
+    path = Path(__file__).parent / "_ext" / f"{name}.py"
+    spec = importlib.util.spec_from_file_location(name, path)
     module = importlib.util.module_from_spec(spec)
     spec.loader.exec_module(module)
     return module
 
 
-_reference = _load_reference_extension()
+_reference = _load_local_extension("fickcam_reference")
+_gallery = _load_local_extension("fickcam_gallery")
 
 extensions = [
     "myst_parser",
@@ -91,4 +92,5 @@ def plain_text_docstring(app, what, name, obj, options, lines):
 
 def setup(app):
     _reference.setup(app)
+    _gallery.setup(app)
     app.connect("autodoc-process-docstring", plain_text_docstring)
