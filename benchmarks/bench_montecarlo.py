@@ -32,7 +32,7 @@ from pathlib import Path
 
 import numpy as np
 
-from fickcam.diffusion.plane import CASE_CACHES
+from fickcam.diffusion.models.plane import CASE_CACHES
 from fickcam.simulate import run
 from fickcam.store import open_result
 from fickcam.sweep import run_sweep

@@ -1,7 +1,8 @@
 """Concentration-dependent D on a Bar: the direct 3-D FiPy cells on one octant (``solid``,
-and ``auto`` above ``dispatch.BAR_CORRECTED_FROM``; ``diffusion/nonlinear.py``) and the
-corrected product of its rectangular section (``auto`` from there down; ``diffusion/
-defect.py``): accuracy, honesty of the estimate and cost against independent references
+and ``auto`` above ``dispatch.BAR_CORRECTED_FROM``;
+``diffusion/nonfickian/concentration_dependent.py``) and the corrected product of its
+rectangular section (``auto`` from there down; ``diffusion/nonfickian/corrected_product.py``):
+accuracy, honesty of the estimate and cost against independent references
 (issue 13).
 
     python benchmarks/dc_bar.py reference   # tests/data/dc_bar_reference.json (method of lines)
@@ -141,7 +142,7 @@ def method_of_lines(size, k: float, start: float, surface: float, times, d0=D,
 
 def case(size, direction: str, k: float):
     from fickcam.diffusion import Bar, Diffusivity, Exposure
-    from fickcam.diffusion.sorption import ConcentrationDependent
+    from fickcam.diffusion.problem.sorption import ConcentrationDependent
 
     times = np.array(TAU) * size[2] ** 2 / D
     start, surface = (0.0, MM) if direction == "absorption" else (MM, 0.0)
@@ -185,7 +186,7 @@ def measure(size, k: float, direction: str, accuracy: float, reference_mean, ref
     """One run of ``ROUTE`` (``solid`` at k = 0, which ``auto`` would hand to the exact
     block): (estimate, mean error, layer error, cells, steps, CPU s)."""
     from fickcam.diffusion import solve
-    from fickcam.diffusion.defect import solve_corrected
+    from fickcam.diffusion.nonfickian.corrected_product import solve_corrected
 
     bar, d, exposure, times, law, _, _ = case(size, direction, k)
     started = time.process_time()
@@ -298,14 +299,15 @@ def sweeps() -> None:
     """The k = 2 small bar absorbing at 1e-2 with the sweeps as they are (inexact, from the
     extrapolated state) and as they were (each system solved to LINEAR_TOLERANCE, from
     the old state: ``FORCING`` 0 and the extrapolation replaced by the latest state)."""
-    from fickcam.diffusion import nonlinear, solve
+    from fickcam.diffusion.nonfickian import concentration_dependent
+    from fickcam.diffusion import solve
 
     bar, d, exposure, times, law, _, _ = case(SMALL, "absorption", 2.0)
     means = []
     for name in ("inexact, extrapolated", "exact, from the old state"):
         if means:
-            nonlinear.FORCING = 0.0
-            nonlinear.extrapolated = lambda before, latest, dt_before, dt, g: latest
+            concentration_dependent.FORCING = 0.0
+            concentration_dependent.extrapolated = lambda before, latest, dt_before, dt, g: latest
         started = time.process_time()
         result = solve(bar, d, exposure, times, accuracy=1e-2, sorption=law, model="solid")
         means.append(result.mean)
@@ -336,15 +338,16 @@ def profile() -> None:
 def cap() -> None:
     """What one linear system at the cap costs: the plan of the small bar (``cap K
     DIRECTION ACCURACY``), its octant assembled (FiPy), one system of a step factorised as
-    ``nonlinear.Lagged`` does (SuperLU, symmetric mode) and solved on those factors; CPU
+    ``concentration_dependent.Lagged`` does (SuperLU, symmetric mode) and solved on those factors; CPU
     (time.process_time) and peak resident memory (ru_maxrss) after each stage."""
     import resource
 
-    from fickcam.diffusion import nonlinear, plan
-    from fickcam.diffusion.clock import scales as scales_of
-    from fickcam.diffusion.direct import step_plan
-    from fickcam.diffusion.mirrored import mirrored
-    from fickcam.diffusion.sorption import ConcentrationDependent
+    from fickcam.diffusion.nonfickian import concentration_dependent
+    from fickcam.diffusion import plan
+    from fickcam.diffusion.forcing.clock import scales as scales_of
+    from fickcam.diffusion.models.finite_volume import step_plan
+    from fickcam.diffusion.operators.symmetry_cuts import mirrored
+    from fickcam.diffusion.problem.sorption import ConcentrationDependent
 
     k = float(sys.argv[2]) if len(sys.argv) > 2 else 1.0
     direction = sys.argv[3] if len(sys.argv) > 3 else "desorption"
@@ -363,10 +366,10 @@ def cap() -> None:
     print(f"plan: {chosen.cells} cells {chosen.cells_per_axis} (octant), estimate "
           f"{chosen.error_estimate:.2e}, {chosen.steps} steps; {chosen.reason}", flush=True)
     began = report("plan", began)
-    scaled = nonlinear.fastest(d, law, exposure, times)
+    scaled = concentration_dependent.fastest(d, law, exposure, times)
     weights = mirrored(bar, tuple(float(v) for v in scaled.pre_exponential),
                        chosen.cells_per_axis, chosen.finest, chosen.growth, DEPTH)
-    faces = nonlinear.Faces.of(weights)
+    faces = concentration_dependent.Faces.of(weights)
     began = report(f"octant assembled ({weights.cells} cells)", began)
     steps = step_plan(exposure, times, scales_of(bar, scaled, exposure),
                       chosen.steps_per_doubling)
@@ -375,7 +378,7 @@ def cap() -> None:
     top = law.largest_factor(MM)
     system, f = faces.operator(c, 0.0 if direction == "desorption" else MM, law, top,
                                faces.volumes / dt)
-    solver = nonlinear.Lagged()
+    solver = concentration_dependent.Lagged()
     rhs = faces.volumes / dt * c + f
     solver.solve(system, rhs, c)
     fill = solver.lu.L.nnz + solver.lu.U.nnz

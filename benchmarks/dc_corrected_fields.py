@@ -1,4 +1,4 @@
-"""Stored fields of the corrected product (``diffusion/defectfields.py``, issue 13): the
+"""Stored fields of the corrected product (``diffusion/nonfickian/corrected_fields.py``, issue 13): the
 finest nested 3-D mesh's cells corrected cell by cell, against the exact Fickian block
 and against the corrected mean, and what keeping them costs.
 
@@ -40,13 +40,14 @@ import numpy as np
 from scipy.spatial import cKDTree
 
 from fickcam.diffusion import Bar, CamPlate, Diffusivity, Exposure, Sheet, solve
-from fickcam.diffusion.analytic import exact_history_field
-from fickcam.diffusion.defect import corrected_levels, solve_corrected
-from fickcam.diffusion.cellmoments import gradient_matrix
-from fickcam.diffusion.defectfields import References, corrected_fields, field_errors, planform_at
-from fickcam.diffusion.defectparts import bar_coordinates
-from fickcam.diffusion.prism import cell_areas
-from fickcam.diffusion.sorption import ConcentrationDependent
+from fickcam.diffusion.models.analytic import exact_history_field
+from fickcam.diffusion.nonfickian.corrected_product import corrected_levels, solve_corrected
+from fickcam.diffusion.planform.cell_moments import gradient_matrix
+from fickcam.diffusion.nonfickian.corrected_fields import (References, corrected_fields,
+                                                           field_errors, planform_at)
+from fickcam.diffusion.nonfickian.corrected_pieces import bar_coordinates
+from fickcam.diffusion.planform.admissible import cell_areas
+from fickcam.diffusion.problem.sorption import ConcentrationDependent
 
 H, D, MM = 2e-3, 5e-12, 2.0
 ISOTROPIC = Diffusivity((D, D, D), 0.0)

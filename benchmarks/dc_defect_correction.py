@@ -1,4 +1,4 @@
-"""Concentration-dependent D on cam plates: the corrected product (``diffusion/defect.py``)
+"""Concentration-dependent D on cam plates: the corrected product (``diffusion/nonfickian/corrected_product.py``)
 against independent references, and the measurement that dropped the Fickian D_ref
 correction.
 
@@ -26,7 +26,7 @@ drying with k = 3 (tests/data/dc_plate_reference_k3.json, 297 CPU s). ``demo-cam
 with ``exponent`` k = 0, 1, 2 at accuracies 1e-2, 3e-3, 1e-3: cells, CPU s, estimate;
 k = 0 against the Fickian plane model at 1e-5 (the exact reference), k = 1, 2 against the
 corrected run at 1e-3 (self-consistency) and the 3-D cells alone at ``CAM_SOLID``.
-``plate-order``: the same plate, the corrected result (``defect.corrected_levels``, one
+``plate-order``: the same plate, the corrected result (``corrected_product.corrected_levels``, one
 sheet and one planform reference for all) on the 3-D plans of ``ORDER_LEVELS``: the
 changes between successive plans, their observed order in the finest cell width w0, and
 each plan's error against the stored brute-force runs; the 3-D cells alone beside it.
@@ -39,22 +39,22 @@ then ``auto`` at 0.1 (CPU s, cells, estimate and its parts) against ``auto`` at 
 (self-consistency).
 ``soak-dry-solid K A``: the same case with exponent K, ``auto`` at 0.1 against the 3-D cells
 alone (``model: solid``) at accuracy A, an independent march (CPU s, cells, estimates).
-``march-cost``: the Richardson pair of swept marches (``defect.Setting.run``) on the plate's
+``march-cost``: the Richardson pair of swept marches (``corrected_product.SharedInputs.run``) on the plate's
 z widths as a sheet and on its coarse 3-D plan, k = 5, wetted to Mm then stepped down to
 0.4 Mm at 0.15 h^2/D (outputs 0.02-0.3 h^2/D): CPU s and the results (to compare two
 versions, run it with each one's PYTHONPATH).
 ``nested CASE A[@B] [PZ ...]``: CASE is cam-K (the demo cam, exponent K), plate-K-absorption,
 plate-K-desorption, soak-K or bar-K-absorption / bar-K-desorption (``dc_bar.py``'s 6 x 4 x 2 mm
 bar, its layer the six faces'); the corrected result (sheet and planform references of a run
-at accuracy A) on the 3-D mesh of the ``defect.base_plan`` plan (or the plan of accuracy
-B) with its planform refined P times and its z widths Z times (``defect.Cells.refined``'s
+at accuracy A) on the 3-D mesh of the ``corrected_product.base_plan`` plan (or the plan of accuracy
+B) with its planform refined P times and its z widths Z times (``corrected_product.PrismCells.refined``'s
 two halves apart; default 00 01 10 11 02): cells, CPU s, the distances between all of
-them (``defect.gap``), and the ratios of successive changes along z (00 01 02 ...), the
+them (``corrected_product.gap``), and the ratios of successive changes along z (00 01 02 ...), the
 planform (00 10 20) and both (00 11 22).
 ``cross CASE A`` (CASE also small-K-DIRECTION: the tests' 3 x 2 x 2 mm plate, outputs to
-0.1 h^2/D): the three diagonal nested meshes, and the ``defect.cross`` around the second
-(``Levels.finer`` where the third passes the cap): the combination against the third.
-``corrected CASE A[@B]``: ``defect.solve_corrected`` (what ``auto`` runs; B: on the nested
+0.1 h^2/D): the three diagonal nested meshes, and the ``corrected_product.cross`` around the second
+(``CorrectedMeshes.finer`` where the third passes the cap): the combination against the third.
+``corrected CASE A[@B]``: ``corrected_product.solve_corrected`` (what ``auto`` runs; B: on the nested
 pair of the plan of accuracy B): CPU s, cells, the estimate and its parts; a plate against
 its stored 3-D run (``plate``'s norm).
 CPU time: time.process_time, one BLAS thread (set OPENBLAS_NUM_THREADS=1).
@@ -82,7 +82,7 @@ ORDER_ACCURACY = 1e-2   # ``plate-order``'s sheet reference and steps: those of 
 
 def plate_case(direction: str, exponent: float = 2.0, size=(4e-3, 3e-3), outputs=None):
     from fickcam.diffusion import CamPlate, Diffusivity, Exposure
-    from fickcam.diffusion.sorption import ConcentrationDependent
+    from fickcam.diffusion.problem.sorption import ConcentrationDependent
 
     times = np.array(TAU[:outputs]) * H ** 2 / D
     start, surface = (0.0, MM) if direction == "absorption" else (MM, 0.0)
@@ -100,7 +100,7 @@ SOAK_DRY_TAU = [1e-3, 1e-2, 0.1, 0.5, 1.0, 1.6, 2.0, 3.0]
 def soak_dry_case(k: float):
     """(plate, diffusivity, exposure, times, law): wetted to Mm for 1.5 h^2/D, then dried."""
     from fickcam.diffusion import CamPlate, Diffusivity, Exposure
-    from fickcam.diffusion.sorption import ConcentrationDependent
+    from fickcam.diffusion.problem.sorption import ConcentrationDependent
 
     tau = H ** 2 / D
     exposure = Exposure.piecewise([0.0, 1.5 * tau, 3.0 * tau], [330.0, 330.0], [MM, 0.0])
@@ -113,14 +113,14 @@ def soak_dry(exponents=(3.0, 5.0), accuracy=0.1, reference_accuracy=0.03) -> Non
     """``reference_accuracy`` None: no reference run (e.g. to time an older fickcam, run
     with its PYTHONPATH: soak_dry((3.0,), 0.1, None))."""
     from fickcam.diffusion import solve
-    from fickcam.diffusion.defect import base_plan
-    from fickcam.diffusion.defectparts import Cells, Setting, level_plan, steps_for
+    from fickcam.diffusion.nonfickian.corrected_product import base_plan
+    from fickcam.diffusion.nonfickian.corrected_pieces import PrismCells, SharedInputs, level_plan, steps_for
 
     for k in exponents:
         plate, d, exposure, times, law = soak_dry_case(k)
         level, chosen = base_plan(lambda a: level_plan(plate, d, law, exposure, times, a,
                                                        steps_for(accuracy)), accuracy)
-        cells = Cells.of(plate, Setting.of(plate, d, law, exposure, times, 5e-4, 4, "").d, chosen)
+        cells = PrismCells.of(plate, SharedInputs.of(plate, d, law, exposure, times, 5e-4, 4, "").d, chosen)
         print(f"k {k:g}, 3-D plan {level:g}: {cells.cells} cells, 2x {cells.refined().cells}, "
               f"w0 {chosen.finest:.3g}, growth {chosen.growth:.3g}", flush=True)
         runs = []
@@ -158,19 +158,20 @@ def soak_dry_solid(exponent: str, reference_accuracy: str) -> None:
 
 
 def march_cost() -> None:
-    from fickcam.diffusion import CamPlate, Diffusivity, Exposure, layout
-    from fickcam.diffusion.defectparts import Setting, half_slab, level_plan
-    from fickcam.diffusion.mirrored import half, mirrored
-    from fickcam.diffusion.sorption import ConcentrationDependent
+    from fickcam.diffusion import CamPlate, Diffusivity, Exposure
+    from fickcam.diffusion.operators import sizing
+    from fickcam.diffusion.nonfickian.corrected_pieces import SharedInputs, half_slab, level_plan
+    from fickcam.diffusion.operators.symmetry_cuts import half, mirrored
+    from fickcam.diffusion.problem.sorption import ConcentrationDependent
 
     times = np.array([0.02, 0.1, 0.2, 0.3]) * H ** 2 / D
     exposure = Exposure.piecewise([0.0, 0.5 * times[-1], times[-1]], [330.0, 330.0],
                                   [MM, 0.4 * MM])
     plate = CamPlate(np.array([0, 4e-3, 4e-3, 0.0]), np.array([0, 0, 3e-3, 3e-3]), H)
     law, d = ConcentrationDependent(MM, exponent=5.0), Diffusivity((D, D, D), 0.0)
-    setting = Setting.of(plate, d, law, exposure, times, 5e-4, 4, "")
+    setting = SharedInputs.of(plate, d, law, exposure, times, 5e-4, 4, "")
     chosen = level_plan(plate, d, law, exposure, times, 1.0, 4)
-    for name, disc in (("sheet", half_slab(half(layout.prism_widths(0.07, 0.229)))),
+    for name, disc in (("sheet", half_slab(half(sizing.prism_widths(0.07, 0.229)))),
                        ("3-D", mirrored(plate, setting.d, chosen.cells_per_axis, chosen.finest,
                                         chosen.growth, 5e-4))):
         start = time.process_time()
@@ -208,9 +209,9 @@ def plate_reference(exponent: str = "2", *directions: str) -> None:
 
 def plate_record() -> None:
     """``auto`` (the corrected product) on the plate against the stored brute-force runs
-    (k = 2 both ways, k = 3 drying), in ``defect.gap``'s norm (the layer / 4) beside."""
+    (k = 2 both ways, k = 3 drying), in ``corrected_product.gap``'s norm (the layer / 4) beside."""
     from fickcam.diffusion import solve
-    from fickcam.diffusion.defect import gap
+    from fickcam.diffusion.nonfickian.corrected_product import gap
 
     for k, direction in ((2.0, "absorption"), (2.0, "desorption"), (3.0, "desorption")):
         plate, d, exposure, times, law = plate_case(direction, k)
@@ -229,24 +230,24 @@ def plate_record() -> None:
 
 
 def skin_margins(*margins: str) -> None:
-    """The drying plates (k = 2, 3) at accuracy 1e-2 with ``defect.SKIN_ESTIMATE_MARGIN`` set
+    """The drying plates (k = 2, 3) at accuracy 1e-2 with ``corrected_product.SKIN_ESTIMATE_MARGIN`` set
     to each of ``margins`` (default 0, 1, 4): the estimate / the distance to the stored run."""
-    from fickcam.diffusion import defect
+    from fickcam.diffusion.nonfickian import corrected_product
 
-    kept = defect.SKIN_ESTIMATE_MARGIN
+    kept = corrected_product.SKIN_ESTIMATE_MARGIN
     try:
         for margin in [float(m) for m in margins or ("0", "1", "4")]:
-            defect.SKIN_ESTIMATE_MARGIN = margin
+            corrected_product.SKIN_ESTIMATE_MARGIN = margin
             for k in (2.0, 3.0):
                 plate, d, exposure, times, law = plate_case("desorption", k)
                 stored = json.loads(reference_file(k).read_text())["desorption"]
-                result = defect.solve_corrected(plate, d, law, exposure, times, 1e-2)
-                error = defect.gap((result.mean, result.surface),
+                result = corrected_product.solve_corrected(plate, d, law, exposure, times, 1e-2)
+                error = corrected_product.gap((result.mean, result.surface),
                                    (np.asarray(stored["mean"]), np.asarray(stored["layer"])), MM)
                 print(f"| {margin:g} | {k:g} | {result.error_estimate:.2e} | {error:.2e} | "
                       f"{result.error_estimate / error:.2f} |", flush=True)
     finally:
-        defect.SKIN_ESTIMATE_MARGIN = kept
+        corrected_product.SKIN_ESTIMATE_MARGIN = kept
 
 
 def plate_order(exponent: str = "2", *directions: str) -> None:
@@ -254,12 +255,12 @@ def plate_order(exponent: str = "2", *directions: str) -> None:
     exp(k c/Mm) with k = ``exponent``: per output, of the swing, each plan's error against
     the stored runs (k = 2 only; theirs: their estimate), the changes d_i between successive
     plans and p_i = log(|d_i| / |d_i+1|) / log(w0_i / w0_i+1); the same for the 3-D cells
-    alone ("3-D"). Then, in ``defect.gap``'s norm (largest over the outputs, the layer / 4),
+    alone ("3-D"). Then, in ``corrected_product.gap``'s norm (largest over the outputs, the layer / 4),
     the change between the 1 and 0.5 plans (``GRADED_PAIR``: the two meshes whose change
     ``solve_corrected`` multiplied by 2.4 before the nested meshes) beside the finer plan's
     distance to the finest plan (its unseparated error, less the finest plan's own) and to
     the stored run."""
-    from fickcam.diffusion.defect import corrected_levels, gap
+    from fickcam.diffusion.nonfickian.corrected_product import corrected_levels, gap
 
     stored = json.loads(REFERENCE.read_text())
     k = float(exponent)
@@ -334,7 +335,7 @@ def demo_cam(k: float):
 
 def cam_table(exponents=(0.0, 1.0, 2.0), accuracies=(1e-2, 3e-3, 1e-3)) -> None:
     from fickcam.diffusion import solve
-    from fickcam.diffusion.defect import solve_corrected
+    from fickcam.diffusion.nonfickian.corrected_product import solve_corrected
 
     for k in exponents:
         geometry, d, exposure, times, law = demo_cam(k)
@@ -360,31 +361,32 @@ def planform_sequence(exponent: str = "2", accuracy: str = "1e-3") -> None:
     past ``PLANFORM_CELLS``): each quantity's changes, their ratios rho, ``three_levels``'
     choice and estimate on the first three against the 8x mesh (relative to the swing; the
     layer / ``LAYER_TOLERANCE``)."""
-    from fickcam.diffusion import defect
-    from fickcam.diffusion.direct import swing
-    from fickcam.diffusion.gridcheck import three_levels
+    from fickcam.diffusion.nonfickian import corrected_product
+    from fickcam.diffusion.problem.exposure import swing
+    from fickcam.diffusion.accuracy.grid_convergence import three_levels
+    from fickcam.diffusion.accuracy.error_model import LAYER_TOLERANCE
 
     k, accuracy = float(exponent), float(accuracy)
     geometry, d, exposure, times, law = demo_cam(k)
-    setting = defect.Setting.of(geometry, d, law, exposure, times, 5e-4,
-                                defect.steps_for(accuracy), "cam")
-    sheet = defect.sheet_reference(geometry, d, law, exposure, times, accuracy)
-    chosen = defect.level_plan(geometry, d, law, exposure, times, defect.MESH_LEVELS[-1],
+    setting = corrected_product.SharedInputs.of(geometry, d, law, exposure, times, 5e-4,
+                                corrected_product.steps_for(accuracy), "cam")
+    sheet = corrected_product.sheet_reference(geometry, d, law, exposure, times, accuracy)
+    chosen = corrected_product.level_plan(geometry, d, law, exposure, times, corrected_product.MESH_LEVELS[-1],
                                setting.per_doubling)
-    level = defect.three_d(setting, chosen, False)
+    level = corrected_product.three_d(setting, chosen, False)
     surface = np.asarray(exposure.surface_before(times), float)
     scale = swing(exposure, times)
-    through = (level.slab, defect.Pair(sheet.mean, sheet.surface))
-    results = {1.0: defect.corrected(level.plate, through, (level.planform, level.moments),
+    through = (level.slab, corrected_product.CombinedMarch(sheet.mean, sheet.surface))
+    results = {1.0: corrected_product.corrected(level.plate, through, (level.planform, level.moments),
                                      surface)}
     for refine in (2.0, 4.0, 8.0):
         start = time.process_time()
         _, fine, cells = setting.planform(chosen.finest / refine, chosen.growth / refine)
-        results[refine] = defect.corrected(level.plate, through, (level.planform, fine),
+        results[refine] = corrected_product.corrected(level.plate, through, (level.planform, fine),
                                            surface)
         print(f"planform x{refine:g}: {cells} cells, {time.process_time() - start:.1f} CPU s",
               flush=True)
-    for index, name, divisor in ((0, "mean", 1.0), (1, "layer", defect.LAYER_TOLERANCE)):
+    for index, name, divisor in ((0, "mean", 1.0), (1, "layer", LAYER_TOLERANCE)):
         coarse, middle, fine, finest = (results[r][index] for r in (1.0, 2.0, 4.0, 8.0))
         extrapolate, estimate = three_levels(coarse, middle, fine)
         taken = fine + (fine - middle) / 3.0 if extrapolate else fine
@@ -398,22 +400,22 @@ def planform_sequence(exponent: str = "2", accuracy: str = "1e-3") -> None:
 
 
 def slab(widths):
-    from fickcam.diffusion.defectparts import half_slab
+    from fickcam.diffusion.nonfickian.corrected_pieces import half_slab
     return half_slab(np.asarray(widths, float))
 
 
 def fickian_reference() -> None:
     """The 1-D measurement of the module docstring of ``defect``."""
-    from fickcam.diffusion.defectparts import Setting, level_plan
-    from fickcam.diffusion.layout import prism_widths
-    from fickcam.diffusion.mirrored import half
-    from fickcam.diffusion.nonlinear import wettest
+    from fickcam.diffusion.nonfickian.corrected_pieces import SharedInputs, level_plan
+    from fickcam.diffusion.operators.sizing import prism_widths
+    from fickcam.diffusion.operators.symmetry_cuts import half
+    from fickcam.diffusion.nonfickian.concentration_dependent import wettest
 
     geometry, d, exposure, times, law = demo_cam(2.0)
     mm = float(exposure.surface_moisture(times[-1:])[0])
     factor = crank_mean_factor(law, 0.0, mm)
     top = law.largest_factor(wettest(exposure, times))
-    setting = Setting.of(geometry, d, law, exposure, times, 5e-4, 4, "")
+    setting = SharedInputs.of(geometry, d, law, exposure, times, 5e-4, 4, "")
     constant = Constant(factor)
     fine = np.full(1000, 0.5 / 1000)
     tau = setting.scales.tau_star(np.asarray(times, float))
@@ -485,18 +487,18 @@ def named_case(case: str):
 
 
 def nested(case: str, accuracy: str, *meshes: str) -> None:
-    from fickcam.diffusion import defect
-    from fickcam.diffusion.prism import refine
+    from fickcam.diffusion.nonfickian import corrected_product
+    from fickcam.diffusion.planform.admissible import refine
 
     geometry, d, exposure, times, law = named_case(case)
     accuracy, _, base = accuracy.partition("@")
     start = time.process_time()
-    run = defect.corrected_levels(geometry, d, law, exposure, times, float(accuracy), 1,
+    run = corrected_product.corrected_levels(geometry, d, law, exposure, times, float(accuracy), 1,
                                   plans=(float(base),) if base else None)
     print(f"{case} at {accuracy}: references {time.process_time() - start:.1f} CPU s, sheet "
           f"est. {run.sheet.error_estimate:.1e}, planform x{run.factor:g} est. "
           f"{run.planform_error:.1e}", flush=True)
-    reference = defect.Pair(run.sheet.mean, run.sheet.surface)
+    reference = corrected_product.CombinedMarch(run.sheet.mean, run.sheet.surface)
     results = {}
     for spec in meshes or ("00", "01", "10", "11", "02"):
         cells = run.meshes[0]
@@ -506,15 +508,15 @@ def nested(case: str, accuracy: str, *meshes: str) -> None:
         for _ in range(int(spec[1])):
             z = np.repeat(0.5 * z, 2)
         start = time.process_time()
-        level = defect.three_d(run.setting, run.marched[0].plan, False, defect.Cells(tess, z))
-        results[spec] = defect.corrected(level.plate, (level.slab, reference),
+        level = corrected_product.three_d(run.setting, run.marched[0].plan, False, corrected_product.PrismCells(tess, z))
+        results[spec] = corrected_product.corrected(level.plate, (level.slab, reference),
                                          (level.planform, run.planform),
-                                         defect.surface_of(run.setting), level.union)
+                                         corrected_product.surface_of(run.setting), level.union)
         print(f"{spec}: {level.cells} cells ({tess.cells} x {z.size}), "
               f"{time.process_time() - start:.1f} CPU s", flush=True)
     print("| | " + " | ".join(results) + " |")
     for a in results:
-        print(f"| {a} | " + " | ".join(f"{defect.gap(results[a], results[b], run.scale):.2e}"
+        print(f"| {a} | " + " | ".join(f"{corrected_product.gap(results[a], results[b], run.scale):.2e}"
                                        for b in results) + " |")
     for path in (("00", "01", "02", "03"), ("00", "10", "20"), ("00", "11", "22")):
         path = [m for m in path if m in results]
@@ -529,56 +531,56 @@ def nested(case: str, accuracy: str, *meshes: str) -> None:
 
 
 def three_levels_of(results, path, quantity, scale):
-    from fickcam.diffusion.gridcheck import three_levels
-    from fickcam.diffusion.planmodes import LAYER_TOLERANCE
+    from fickcam.diffusion.accuracy.grid_convergence import three_levels
+    from fickcam.diffusion.accuracy.error_model import LAYER_TOLERANCE
 
     extrapolate, error = three_levels(*(np.asarray(results[m][quantity]) for m in path))
     return extrapolate, float(f"{error / scale / (LAYER_TOLERANCE if quantity else 1.0):.2e}")
 
 
 def cross_run(case: str, accuracy: str) -> None:
-    """The ``defect.cross`` around the 2 x nested mesh (``Levels.finer`` with the diagonal's
-    third mesh taken as past the cap) against that third mesh: distances (``defect.gap``)
+    """The ``corrected_product.cross`` around the 2 x nested mesh (``CorrectedMeshes.finer`` with the diagonal's
+    third mesh taken as past the cap) against that third mesh: distances (``corrected_product.gap``)
     and the estimates of two meshes, of the three diagonal ones and of the combination."""
     from dataclasses import replace
 
-    from fickcam.diffusion import defect
+    from fickcam.diffusion.nonfickian import corrected_product
 
     geometry, d, exposure, times, law = named_case(case)
     start = time.process_time()
-    run = defect.corrected_levels(geometry, d, law, exposure, times, float(accuracy), 3)
+    run = corrected_product.corrected_levels(geometry, d, law, exposure, times, float(accuracy), 3)
     middle = time.process_time()
     two = replace(run, results=run.results[:2], marched=run.marched[:2], meshes=run.meshes[:2])
-    defect.NESTED_CELLS, defect.CROSS_CELLS = 4 * run.meshes[1].cells, 2 * run.meshes[1].cells
+    corrected_product.NESTED_CELLS, corrected_product.CROSS_CELLS = 4 * run.meshes[1].cells, 2 * run.meshes[1].cells
     crossed = two.finer()
     end, scale, r = time.process_time(), run.scale, dict(zip(crossed.keys, crossed.results))
     (two_v, two_e), (three_v, three_e), (cross_v, cross_e) = (
-        defect.unseparated(levels, 1.0) for levels in (two, run, crossed))
+        corrected_product.unseparated(levels, 1.0) for levels in (two, run, crossed))
     raw = tuple(r[1, 1][i] + r[0, 2][i] - r[0, 1][i] + r[2, 0][i] - r[1, 0][i] for i in range(2))
     print(f"{case} at {accuracy}: diagonal {[m.cells for m in run.meshes]} cells "
           f"{middle - start:.1f} CPU s; cross {[m.cells for m in crossed.meshes]} "
           f"{end - middle:.1f} CPU s\nestimates: two meshes {two_e:.2e}, three {three_e:.2e}, "
-          f"cross {cross_e:.2e}\n|combination - R22| {defect.gap(raw, run.results[2], scale):.2e}"
-          f", |R11 - R22| {defect.gap(r[1, 1], run.results[2], scale):.2e}, |cross value - "
-          f"three-mesh value| {defect.gap(cross_v, three_v, scale):.2e}", flush=True)
+          f"cross {cross_e:.2e}\n|combination - R22| {corrected_product.gap(raw, run.results[2], scale):.2e}"
+          f", |R11 - R22| {corrected_product.gap(r[1, 1], run.results[2], scale):.2e}, |cross value - "
+          f"three-mesh value| {corrected_product.gap(cross_v, three_v, scale):.2e}", flush=True)
 
 
 def corrected_run(case: str, accuracy: str) -> None:
     """``corrected CASE A[@B]``: B forces the coarsest nested plan's accuracy (as is, even
-    with one z width: ``defect.base_level`` and ``MIN_Z_WIDTHS`` set for the run)."""
-    from fickcam.diffusion import defect
-    from fickcam.diffusion.defect import gap, solve_corrected
+    with one z width: ``corrected_product.base_level`` and ``MIN_Z_WIDTHS`` set for the run)."""
+    from fickcam.diffusion.nonfickian import corrected_product
+    from fickcam.diffusion.nonfickian.corrected_product import gap, solve_corrected
 
     geometry, d, exposure, times, law = named_case(case)
     accuracy, _, base = accuracy.partition("@")
-    kept = defect.base_level, defect.MIN_Z_WIDTHS
+    kept = corrected_product.base_level, corrected_product.MIN_Z_WIDTHS
     if base:
-        defect.base_level, defect.MIN_Z_WIDTHS = (lambda a: float(base)), 1
+        corrected_product.base_level, corrected_product.MIN_Z_WIDTHS = (lambda a: float(base)), 1
     start = time.process_time()
     try:
         result = solve_corrected(geometry, d, law, exposure, times, float(accuracy))
     finally:
-        defect.base_level, defect.MIN_Z_WIDTHS = kept
+        corrected_product.base_level, corrected_product.MIN_Z_WIDTHS = kept
     line = (f"{case} at {accuracy}: {time.process_time() - start:.1f} CPU s, {result.cells} "
             f"cells, estimate {result.error_estimate:.2e} "
             f"({result.reason.split('measured: ')[-1]})")

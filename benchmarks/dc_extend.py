@@ -1,4 +1,4 @@
-"""``DiffusionResult.extend`` of the D(c) marches (``diffusion/dense.py``): new times read
+"""``DiffusionResult.extend`` of the D(c) marches (``diffusion/dense_output.py``): new times read
 between the stored solve's steps against a solve at the stored and new times together.
 
     python benchmarks/dc_extend.py sheet                 # 1-D D(c) sheet, wetted then dried
@@ -17,7 +17,7 @@ before): distance, the interpolation estimate, CPU s of each. ``limits K A``: th
 scene (cam and roller with that sorption, the drawing's limits) by ``fickcam.run`` at
 accuracy A (``DEV``: the follower displacement's deviation limit, mm, instead of 0.25: a
 crossing after the first day): CPU s and time_out_of_spec; ``before``: every extend solves again
-(``dense.INTERPOLATION_SHARE`` = -1), as the limit search did before ``dense``.
+(``dense_output.INTERPOLATION_SHARE`` = -1), as the limit search did before ``dense``.
 CPU time: time.process_time, one BLAS thread (set OPENBLAS_NUM_THREADS=1).
 """
 from __future__ import annotations
@@ -34,7 +34,7 @@ NEW_DAYS = np.linspace(1.5, 59.0, 20)
 
 
 def distance(mean, layer, other_mean, other_layer, swing) -> np.ndarray:
-    from fickcam.diffusion.planmodes import LAYER_TOLERANCE
+    from fickcam.diffusion.accuracy.error_model import LAYER_TOLERANCE
 
     return np.maximum(np.abs(mean - other_mean),
                       np.abs(layer - other_layer) / LAYER_TOLERANCE) / swing
@@ -42,8 +42,8 @@ def distance(mean, layer, other_mean, other_layer, swing) -> np.ndarray:
 
 def sheet() -> None:
     from fickcam.diffusion import Diffusivity, Exposure, Sheet, plan, solve
-    from fickcam.diffusion.nonlinear import solve_nonlinear
-    from fickcam.diffusion.sorption import ConcentrationDependent
+    from fickcam.diffusion.nonfickian.concentration_dependent import solve_nonlinear
+    from fickcam.diffusion.problem.sorption import ConcentrationDependent
 
     h, d, mm = 2e-3, 5e-12, 2.0
     t = h ** 2 / d
@@ -108,10 +108,10 @@ def cam(k: str, accuracy: str) -> None:
 
 def limits(k: str, accuracy: str, before: str = "", deviation: str = "") -> None:
     import fickcam
-    from fickcam.diffusion import dense
+    from fickcam.diffusion.stepping import dense_output
 
     if before == "before":
-        dense.INTERPOLATION_SHARE = -1.0
+        dense_output.INTERPOLATION_SHARE = -1.0
     start = time.process_time()
     ds = fickcam.run(fickcam.load_scene(demo_scene(float(k), float(accuracy), deviation)))
     cpu = time.process_time() - start

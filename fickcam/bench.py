@@ -4,7 +4,7 @@ For each geometry the full uptake curve of a unit surface step (c0 = 0,
 g = 1 weight %, isothermal so tau = t) is solved by each model at a few
 accuracy targets; the error is the largest |mean - exact| over 61 output
 times spanning Fourier numbers (D t / h^2 of the thickness) 1e-2 .. 1.5 (relative to the step), against
-Crank's series (``fickcam.diffusion.exact.step_response``). Times are CPU seconds of
+Crank's series (``fickcam.diffusion.exact.separable.step_response``). Times are CPU seconds of
 this process (``time.process_time``: the machine is shared, a wall time under load
 says little), medians of ``repeats`` runs after one warm-up that pays the FiPy import.
 The row ``fipy-naive`` is FiPy solving every backward-Euler step itself
@@ -82,7 +82,7 @@ def _uptake_times(geometry) -> np.ndarray:
 def _reference(case: Case, times: np.ndarray) -> np.ndarray | None:
     if case.exact_as is None:
         return None
-    from .diffusion.exact import step_response
+    from .diffusion.exact.separable import step_response
 
     return step_response(case.exact_as, (D_REF,) * 3, times)[0]
 
@@ -158,8 +158,8 @@ def _named_row(name, model, accuracy, cells, steps, wall, error, estimate, refer
 def _naive_fipy_rows(case, diffusivity, exposure, times, reference, progress) -> list[dict]:
     """FiPy assembling and solving every step itself, same plan (coarse + bisected, Richardson)."""
     from .diffusion import plan
-    from .diffusion.clock import scales as scales_of
-    from .diffusion.direct import step_plan
+    from .diffusion.forcing.clock import scales as scales_of
+    from .diffusion.models.finite_volume import step_plan
 
     rows = []
     for accuracy in NAIVE_ACCURACIES:

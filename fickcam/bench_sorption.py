@@ -49,7 +49,7 @@ def sorption_row_count(quick: bool) -> int:
 
 
 def _law(kind: str, d_ref: float, thickness: float):
-    from .diffusion.sorption import ConcentrationDependent, Langmuir, Rate
+    from .diffusion.problem.sorption import ConcentrationDependent, Langmuir, Rate
 
     if kind == "langmuir":
         rate = EXCHANGE * np.pi ** 2 * d_ref / thickness ** 2
@@ -79,7 +79,7 @@ def _method_of_lines(times, d_ref: float, thickness: float, nodes: int = 800) ->
 def reference(name, geometry, kind, times, diffusivity, exposure, d_ref):
     """(values, label) of the reference uptake curve of a case."""
     from .diffusion import CamPlate, Disc, Sheet, solve
-    from .diffusion.two_phase import two_phase_sheet_uptake
+    from .diffusion.exact.two_phase import two_phase_sheet_uptake
 
     law = _law(kind, d_ref, geometry.thickness)
     if kind != "langmuir" and not isinstance(geometry, Sheet):

@@ -1,4 +1,4 @@
-"""The two-phase demo cam under a constant climate and a daily chamber record (issue 13):
+"""The two-phase demo cam under a constant climate and a daily chamber record:
 its fine references, the true error of a run against them, and a circular plate against
 the exact disc over the same record (``benchmarks/two_phase_cam_records.py``).
 
@@ -25,7 +25,8 @@ import numpy as np
 
 from .blas import one_blas_thread
 from .diffusion import CamPlate, Diffusivity, Disc, solve
-from .diffusion.langmuir import history_swing
+from .diffusion.accuracy.error_model import LAYER_TOLERANCE
+from .diffusion.problem.exposure import swing as history_swing
 from .scene import load_scene
 from .simulate import ageing_times, build_parts, run, scene_environment
 
@@ -35,7 +36,6 @@ CONFIGS = {"constant": ROOT / "configs/singh2017_cam_two_phase.yaml",
 LOG = ROOT / "configs/chamber_daily_113C.csv"
 REFERENCE = ROOT / "tests/data/two_phase_cam_reference.json"
 FINE = ((8.0, 4.0), (16.0, 8.0))   # (w0, growth) divisors of the first mesh
-LAYER_TOLERANCE = 4.0
 
 
 def write_log(path: Path = LOG, days: int = 181, seed: int = 13) -> None:
@@ -62,27 +62,27 @@ def cam_problem(config: Path):
 def fine_history(problem, divisors):
     """The cam's (mean, bound, layer) on a fixed planform mesh ``divisors`` finer than
     the first (the refinement's own ``_level``, march at 1e-5)."""
-    from .diffusion import planmodes
-    from .diffusion.clock import RescaledTime
+    from .diffusion.nonfickian import planform_modes
+    from .diffusion.forcing.clock import RescaledTime
     from .diffusion.dispatch import read_ages
-    from .diffusion.langmuir import langmuir_history
+    from .diffusion.nonfickian.two_phase_modes import langmuir_history
 
     geometry, diffusivity, exposure, times, law, depth = problem
     start = _first_mesh(problem)
     ages = read_ages(RescaledTime(diffusivity, exposure), exposure, times)
-    operator = planmodes.planform_operator(geometry, diffusivity.pre_exponential, depth,
+    operator = planform_modes.planform_operator(geometry, diffusivity.pre_exponential, depth,
                                            start[0] / divisors[0], start[1] / divisors[1])
-    steps, _ = planmodes.lanczos_count(operator, ages[ages > 0], 1e-5)
-    source = planmodes.planform_source(geometry, diffusivity.pre_exponential,
-                                       planmodes.lanczos_spectrum(operator, steps))
+    steps, _ = planform_modes.lanczos_count(operator, ages[ages > 0], 1e-5)
+    source = planform_modes.planform_source(geometry, diffusivity.pre_exponential,
+                                       planform_modes.lanczos_spectrum(operator, steps))
     history, _ = langmuir_history(geometry, diffusivity, law, exposure, times, 1e-5, depth, source)
     return np.stack([history["mean"], history["bound"], history["surface"]]), operator.cells
 
 
 def _first_mesh(problem):
-    from .diffusion.clock import scales as scales_of
-    from .diffusion.planmodes import planform_design
-    from .diffusion.timesteps import earliest_output
+    from .diffusion.forcing.clock import scales as scales_of
+    from .diffusion.nonfickian.planform_modes import planform_design
+    from .diffusion.stepping.step_plans import earliest_output
 
     geometry, diffusivity, exposure, times, _, _ = problem
     scales = scales_of(geometry, diffusivity, exposure)

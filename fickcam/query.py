@@ -13,7 +13,7 @@ import numpy as np
 from .errors import InputError, format_duration, time_unit
 from .keys import closest_names, short_names
 from .schema import VARIABLES, design_name
-from .units import is_bare_number, parse_duration
+from .unit_parsing import is_bare_number, parse_duration
 
 SECONDS = np.timedelta64(1, "s")
 
@@ -186,7 +186,7 @@ def _own_points(array, dim, grid, value):
 def swept_values(array) -> dict[str, np.ndarray]:
     """The varied values of a sweep result along ``case``, in the units the sweep file
     gave them: ``{"temperature [degC]": [60, 85, ...]}`` (empty for a single run)."""
-    from .units import convert
+    from .unit_parsing import convert
 
     swept = [name for name, coord in array.coords.items()
              if "dotted_path" in coord.attrs and coord.dims == ("case",)]
@@ -312,7 +312,7 @@ def shown_values(array, variable: str, units: str | None = None, drift: bool = F
     tuple of (numpy.ndarray, str)
         The values and their unit.
     """
-    from .units import convert
+    from .unit_parsing import convert
 
     var = VARIABLES.get(variable)
     stored = var.units if var is not None else array.attrs.get("units", "")
@@ -340,7 +340,7 @@ def _is_offset(unit: str) -> bool:
     as a value is."""
     from pint.errors import PintError
 
-    from .units import convert
+    from .unit_parsing import convert
 
     try:
         return bool(convert(0.0, unit, "K") != 0.0)

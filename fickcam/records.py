@@ -5,7 +5,8 @@ row in s, temperature in K, relative humidity in %):
 
 - a CSV log with columns ``time, temperature, relative_humidity`` and units in
   the header (``time [h], temperature [degC], relative_humidity [%]``; no unit
-  means SI, RH in %);
+  means SI, RH in %, and a column that then reads implausibly, as a record shorter
+  than a day or colder than 150 K, is refused with the likely unit);
 - a TMY3 CSV (NREL's typical meteorological year, 8760 hourly rows; read with
   ``pvlib.iotools.read_tmy3``) and an EnergyPlus EPW file
   (``pvlib.iotools.read_epw``): dry-bulb temperature and relative humidity.
@@ -29,7 +30,7 @@ from pathlib import Path
 import numpy as np
 
 from .extras import require
-from .units import to_si
+from .unit_parsing import to_si
 
 _HEADER = re.compile(r"^\s*(?P<name>[A-Za-z_]+)\s*(?:[\[(](?P<unit>[^\])]*)[\])])?\s*$")
 _COLUMNS = {"time": "time", "temperature": "temperature", "relative_humidity": "percent"}
@@ -190,9 +191,32 @@ def read_history_csv(path: Path) -> ClimateRecord:
     lines = np.array([line for line, _ in rows[1:]])
     columns = {name: _column(path, rows[1:], name, index, unit)
                for name, (index, unit) in units.items()}
+    for name, (_, unit) in units.items():
+        if not unit:
+            _unit_slip(path, header_line, name, columns[name])
     return _checked(path, lines, columns["time"], columns["temperature"],
                     columns["relative_humidity"], f"chamber record {path.name}", None,
                     must_start_at_zero=True)
+
+
+def _unit_slip(path, header_line: int, name: str, values: np.ndarray) -> None:
+    """Refuse a column without a unit in the header whose values read in SI are almost
+    certainly a slip (times in days, temperatures in degC), naming the likely unit."""
+    from .plausibility import (RECORD_LENGTH, RELATIVE_HUMIDITY, TEMPERATURE, Verdict,
+                               plausible_units)
+
+    reading, number = {
+        "time": (RECORD_LENGTH, float(np.ptp(values)) if values.size else 0.0),
+        "temperature": (TEMPERATURE, float(np.min(values, initial=np.inf))),
+        "relative_humidity": (RELATIVE_HUMIDITY, float(np.max(values, initial=0.0))),
+    }[name]
+    if not math.isfinite(number) or reading.verdict(number) is not Verdict.IMPLAUSIBLE:
+        return
+    units = plausible_units(number, reading) if name != "relative_humidity" else []
+    header = " or ".join(f"'{name} [{unit}]'" for unit in units) or "values in percent (0 to 100)"
+    raise RecordError(path, header_line, name, (
+        f"the header gives no unit, so the column is read in {reading.unit}: {number:g} "
+        f"{reading.unit} is an implausible {reading.what} ({reading.context}): write {header}"))
 
 
 def _holds_data(row: list[str]) -> bool:

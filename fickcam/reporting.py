@@ -16,7 +16,7 @@ from .errors import format_duration
 from .limits import stored_limits
 from .query import drift
 from .schema import VARIABLES, design_name
-from .units import convert
+from .unit_parsing import convert
 
 #: scalar results over ageing the summary reports, in this order (when present)
 KEY_OUTPUTS = ("lift", "arm_swing", "base_circle_radius", "jump_speed", "peak_cam_torque",

@@ -1,4 +1,4 @@
-"""Scene files: YAML → validated, SI scene (see SPEC.md §1).
+"""Scene files: YAML → validated, SI scene.
 
 The YAML is read with line numbers by :mod:`fickcam.yamldoc` and its sections validated
 by the pydantic models of :mod:`fickcam.scene_models`; this module adds the checks that
@@ -9,14 +9,16 @@ reported as ``scene.yaml:LINE key.path: reason``, and gives the :class:`Scene`.
 from __future__ import annotations
 
 import dataclasses
+import logging
 from dataclasses import dataclass, field
 from pathlib import Path
 
 import yaml
 from pydantic import ValidationError
 
-from .errors import Problem, SceneError
+from .errors import Problem, SceneError, format_duration
 from .limits import parse_limit
+from .plausibility import Findings, geometry_findings, history_findings
 from .scene_models import (  # noqa: F401  (re-exported: fickcam.scene is their public home)
     DesignSection,
     DiffusionSection,
@@ -35,6 +37,8 @@ from .yamldoc import (  # noqa: F401  (re-exported)
     problems_from_validation,
     read_yaml,
 )
+
+log = logging.getLogger(__name__)
 
 
 #: keys that together give a cam's shape: a design shape replaces the made one whole
@@ -64,6 +68,7 @@ class Scene:
     materials: dict = field(default_factory=dict, repr=False)  # name -> resolved Material
     design_model: SceneModel | None = field(default=None, repr=False)  # from ``design:``
     limits: list = field(default_factory=list, repr=False)  # fickcam.limits.Limit, scene order
+    warnings: list = field(default_factory=list, repr=False)  # Problem: unusual bare values
 
     @property
     def name(self) -> str:
@@ -103,9 +108,11 @@ def _part_names(model: SceneModel) -> tuple[str, ...]:
     return cam + (LINKS if model.linkage is not None else ())
 
 
-def _cross_checks(model: SceneModel, doc: YamlDocument, base_dir: Path) -> tuple[list[Problem], dict]:
-    """What no single section can check: parts name defined materials, the climate stays
-    below their dry Tg, the outputs' times fit the climate's history."""
+def _cross_checks(model: SceneModel, doc: YamlDocument, base_dir: Path,
+                  findings: Findings) -> tuple[list[Problem], dict]:
+    """What no single section can check: parts name defined materials, bare durations are
+    plausible for the parts (``findings``), the climate stays below their dry Tg, the
+    outputs' times fit the climate's history."""
     from .environment import Environment
 
     problems = _part_problems(model, doc)
@@ -119,9 +126,17 @@ def _cross_checks(model: SceneModel, doc: YamlDocument, base_dir: Path) -> tuple
                    if getattr(model.environment, name) is not None)
         problems.append(doc.problem(("environment", key), str(exc)))
         return problems, resolved
+    durations = history_findings(model, doc, environment, resolved)
+    problems += durations.errors
     problems += _glass_transition_problems(model, doc, environment, resolved)
     problems += _model_name_problems(model, doc)
-    problems += _ageing_time_problems(model, doc, environment)
+    timing = [] if durations.errors else _ageing_time_problems(model, doc, environment)
+    # a slipped duration is the cause: name it, not the output times it cuts short
+    if timing and durations.warnings:
+        problems += durations.warnings
+    else:
+        problems += timing
+        findings.warnings += durations.warnings
     return problems, resolved
 
 
@@ -166,6 +181,19 @@ def _resolved_materials(model: SceneModel, doc: YamlDocument) -> tuple[list[Prob
     return problems, resolved
 
 
+def _alias_notes(doc: YamlDocument) -> list[Problem]:
+    """What a material named by a close alias must know (``plastic: PA6`` reads PA66 data)."""
+    from .materials.library import ALIAS_NOTES
+    from .materials.spec import KIND_GROUPS
+
+    notes = {alias.casefold(): note for alias, note in ALIAS_NOTES.items()}
+    materials = doc.data.get("materials")
+    return [doc.problem(("materials", name, key), notes[str(spec[key]).casefold()])
+            for name, spec in (materials.items() if isinstance(materials, dict) else ())
+            if isinstance(spec, dict)
+            for key in KIND_GROUPS if str(spec.get(key, "")).casefold() in notes]
+
+
 def _glass_transition_problems(model: SceneModel, doc: YamlDocument, environment,
                                resolved: dict) -> list[Problem]:
     """The service temperature must stay below the dry Tg of every absorbing material in use."""
@@ -198,8 +226,11 @@ def _ageing_time_problems(model: SceneModel, doc: YamlDocument, environment) -> 
             ("outputs", "ageing_times", len(times) - 1),
             f"ageing time beyond the end of the environment history ({environment.end / 86400:g} d)"))
     if isinstance(times, EveryStep) and times.every > environment.end:
+        origin = (f", as {model.environment.history_file} gives it: check the unit of its time "
+                  f"column" if record else "")
         problems.append(doc.problem(("outputs", "ageing_times", "every"),
-                                    "step longer than the environment history"))
+                                    f"step longer than the environment history "
+                                    f"({format_duration(environment.end)}{origin})"))
     return problems
 
 
@@ -249,23 +280,32 @@ def _limits(model: SceneModel, doc: YamlDocument) -> tuple[list, list[Problem]]:
 
 def validate_document(doc: YamlDocument, *, base_dir: Path) -> Scene:
     """Validate a parsed YAML document into a Scene or raise SceneError."""
+    # A bare length or speed that is almost certainly a unit slip is named first: it would
+    # otherwise surface as whatever check of its section it breaks.
+    findings = geometry_findings(doc)
+    if findings.errors:
+        raise SceneError(findings.errors)
     # YAML 1.1 reads '1e-3' (no dot) as text: unit fields parse such strings
     # with fickcam.units and plain float fields accept them in pydantic's lax mode.
     try:
         model = SceneModel.model_validate(doc.data)
     except ValidationError as exc:
         raise SceneError(problems_from_validation(exc, doc, model=SceneModel)) from None
-    problems, resolved = _cross_checks(model, doc, base_dir)
+    problems, resolved = _cross_checks(model, doc, base_dir, findings)
     profile_problems, model = _cam_profile(model, doc, base_dir)
     problems += profile_problems
-    design_problems, design_model = _design_model(model, doc, base_dir)
+    design_problems, design_model = _design_model(model, doc, base_dir, findings)
     problems += design_problems
     limits, limit_problems = _limits(model, doc)
     problems += limit_problems
     if problems:
         raise SceneError(problems)
-    return Scene(model=model, file=doc.file, text=doc.text, base_dir=base_dir,
-                 document=doc, materials=resolved, design_model=design_model, limits=limits)
+    findings.warnings += _alias_notes(doc)
+    for warning in findings.warnings:
+        log.warning("%s", warning)
+    return Scene(model=model, file=doc.file, text=doc.text, base_dir=base_dir, document=doc,
+                 materials=resolved, design_model=design_model, limits=limits,
+                 warnings=findings.warnings)
 
 
 def design_data(data: dict) -> dict:
@@ -280,7 +320,21 @@ def design_data(data: dict) -> dict:
     return out
 
 
-def _design_model(model: SceneModel, doc: YamlDocument, base_dir: Path):
+def _design_slips(doc: YamlDocument, data: dict, findings: Findings) -> list[Problem]:
+    """Bare values of the ``design:`` overrides that look like unit slips, judged in the
+    mechanism as designed and reported at their ``design.`` key (warnings join
+    ``findings``); the made sections' own values were judged before."""
+    found = geometry_findings(dataclasses.replace(doc, data=data))
+    errors: list[Problem] = []
+    for problems, into in ((found.errors, errors), (found.warnings, findings.warnings)):
+        for problem in problems:
+            path = ("design",) + tuple(int(k) if k.isdigit() else k for k in problem.key.split("."))
+            if path in doc.lines:  # a value the design gives, not one it keeps from the made
+                into.append(doc.problem(path, problem.reason))
+    return errors
+
+
+def _design_model(model: SceneModel, doc: YamlDocument, base_dir: Path, findings: Findings):
     """(problems, the SceneModel as designed) from the ``design:`` section, or ([], None)."""
     if model.design is None:
         return [], None
@@ -288,6 +342,9 @@ def _design_model(model: SceneModel, doc: YamlDocument, base_dir: Path):
         if getattr(model.design, section) is not None and getattr(model, section) is None:
             return [doc.problem(("design", section), f"the scene has no {section} section")], None
     data = design_data(doc.data)
+    slips = _design_slips(doc, data, findings)
+    if slips:
+        return slips, None
     try:
         design = SceneModel.model_validate(data)
     except ValidationError as exc:

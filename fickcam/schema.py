@@ -4,7 +4,7 @@ It builds the Dataset (:mod:`fickcam.dataset`), checks queries
 (:mod:`fickcam.query`) and writes the variable list in the docs
 (``fickcam schema`` / :func:`markdown_table`). Physics modules return SI
 arrays under these names (angles in rad, speeds in rad/s); ``scale``
-converts SI to the stored unit (rad → deg, rad/s → rpm), per SPEC.md §4.
+converts SI to the stored unit (rad → deg, rad/s → rpm).
 
 Every time-dependent variable of the material state and of the mechanisms
 (sections ``parts``, ``cam``, ``linkage``) also has an as-designed row
@@ -150,7 +150,7 @@ VARIABLES: dict[str, Var] = {
     "pitch_radius_of_curvature": Var(TC, "m", "radius of curvature of the pitch curve", "cam"),
     "contact_force": Var(TC, "N", "contact force along the common normal", "cam"),
     "friction_force": Var(TC, "N", "sliding friction force at the cam contact", "cam"),
-    "guide_friction_force": Var(TC, "N", "friction force in the follower guide (seed 004)", "cam"),
+    "guide_friction_force": Var(TC, "N", "friction force in the follower guide", "cam"),
     "friction_torque": Var(TC, "N m", "camshaft torque from contact friction (not in cam_torque)", "cam"),
     "wear_per_revolution": Var(TC, "m", "Archard wear depth per revolution at each profile point", "cam"),
     "cam_torque": Var(TC, "N m", "torque on the camshaft", "cam"),

@@ -115,7 +115,7 @@ def plan_parts(scene: Scene, accuracy: float | None = None):
 
 @on_one_blas_thread  # the caller's BLAS threads are restored on return (fickcam.blas)
 def run(scene, *, accuracy: float | None = None, progress: bool = False):
-    """Run one scene and return its xarray.Dataset (SPEC.md §4)."""
+    """Run one scene and return its xarray.Dataset."""
     started = _time.perf_counter()
     scene = load_scene(scene)
     environment = scene_environment(scene)

@@ -1,7 +1,8 @@
 """The package's shape: imports run one way (no import cycle anywhere in fickcam,
 counting imports inside functions too; fickcam/diffusion's modules import only at their
-top except the heavy optional libraries), and the diffusion modules and functions stay
-small (issue 16)."""
+top except the heavy optional libraries), the diffusion engine's sub-packages are layered
+in the order of its data flow (each imports only itself and the stages below it), and its
+functions stay short. Module boundaries follow concepts, not a line count."""
 from __future__ import annotations
 
 import ast
@@ -9,7 +10,6 @@ from pathlib import Path
 
 PACKAGE = Path(__file__).resolve().parents[1] / "fickcam"
 HEAVY = {"fipy", "matplotlib", "dask", "distributed"}  # may be imported inside functions
-MAX_MODULE_LINES = 400
 MAX_FUNCTION_LINES = 80
 
 
@@ -96,7 +96,7 @@ def test_the_import_graph_check_finds_a_cycle():
 
 def test_no_import_cycle_inside_fickcam():
     # every import counts, also those deferred inside functions: a cycle held apart by a
-    # function-level import is still a cycle (issue 16)
+    # function-level import is still a cycle
     assert cycles(import_graph(everywhere_in="fickcam")) == []
 
 
@@ -113,7 +113,7 @@ def _functions(tree):
 
 def test_diffusion_imports_at_module_top_except_heavy_libraries():
     late = []
-    for path in sorted((PACKAGE / "diffusion").glob("*.py")):
+    for path in sorted((PACKAGE / "diffusion").rglob("*.py")):
         for function in _functions(ast.parse(path.read_text())):
             for node in ast.walk(function):
                 if isinstance(node, ast.Import):
@@ -127,14 +127,61 @@ def test_diffusion_imports_at_module_top_except_heavy_libraries():
     assert late == []
 
 
-def test_diffusion_modules_and_functions_stay_small():
-    long_modules, long_functions = [], []
-    for path in sorted((PACKAGE / "diffusion").glob("*.py")):
-        text = path.read_text()
-        if text.count("\n") > MAX_MODULE_LINES:
-            long_modules.append((path.name, text.count("\n")))
-        for function in _functions(ast.parse(text)):
+def test_diffusion_functions_stay_short():
+    long_functions = []
+    for path in sorted((PACKAGE / "diffusion").rglob("*.py")):
+        for function in _functions(ast.parse(path.read_text())):
             length = function.end_lineno - function.lineno + 1
             if length > MAX_FUNCTION_LINES:
                 long_functions.append((path.name, function.name, length))
-    assert long_modules == [] and long_functions == []
+    assert long_functions == []
+
+
+# The stages of fickcam/diffusion in the order of its data flow, lowest first: a module in
+# one stage imports only modules of its own stage and of the stages before it. The package
+# itself (``solve``, ``plan``: dispatch) sits on top of them all.
+STAGES = ("problem", "accuracy", "forcing", "exact", "planform", "superposition", "operators",
+          "stepping", "models", "nonfickian")
+ENGINE = "fickcam.diffusion"
+
+
+def stage_of(module: str) -> int:
+    """Rank of a diffusion module's stage; the package's top-level modules rank above all."""
+    parts = module.split(".")
+    return STAGES.index(parts[2]) if len(parts) > 2 and parts[2] in STAGES else len(STAGES)
+
+
+def upward_imports(graph: dict[str, set[str]]) -> list[tuple[str, str]]:
+    """(module, target) pairs where a diffusion module imports a later stage."""
+    return sorted((name, target) for name, targets in graph.items()
+                  if name.startswith(ENGINE + ".") for target in targets
+                  if target.startswith(ENGINE) and stage_of(target) > stage_of(name))
+
+
+def test_the_layering_check_finds_an_upward_import():
+    graph = {f"{ENGINE}.stepping.march": {f"{ENGINE}.models.plane", f"{ENGINE}.problem.results"},
+             f"{ENGINE}.models.plane": {f"{ENGINE}.stepping.march"}}
+    assert upward_imports(graph) == [(f"{ENGINE}.stepping.march", f"{ENGINE}.models.plane")]
+
+
+def test_every_diffusion_module_lives_in_a_stage():
+    loose = sorted(p.name for p in (PACKAGE / "diffusion").glob("*.py")
+                   if p.stem not in ("__init__", "dispatch"))
+    folders = sorted(p.name for p in (PACKAGE / "diffusion").iterdir()
+                     if p.is_dir() and (p / "__init__.py").exists())
+    assert loose == [] and folders == sorted(STAGES)
+
+
+def test_diffusion_stages_import_only_the_stages_below_them():
+    assert upward_imports(import_graph(everywhere_in="fickcam")) == []
+
+
+def test_no_private_name_is_imported_across_diffusion_modules():
+    """A ``_name`` is its module's own: another module that needs it needs a public name."""
+    private = []
+    for path in sorted((PACKAGE / "diffusion").rglob("*.py")):
+        for node in ast.walk(ast.parse(path.read_text())):
+            if isinstance(node, ast.ImportFrom) and node.module != "__future__":
+                private += [f"{path.relative_to(PACKAGE)}:{node.lineno} {a.name}"
+                            for a in node.names if a.name.startswith("_")]
+    assert private == []

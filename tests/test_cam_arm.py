@@ -1,4 +1,4 @@
-"""Swinging-arm (oscillating) followers, roller and flat face (issue 14, item 4).
+"""Swinging-arm (oscillating) followers, roller and flat face.
 
 Independent references: the arm angle found by root finding of the contact between the
 roller circle (or the face line) and the generated profile, with scipy.optimize at each
@@ -125,7 +125,7 @@ ANGLES = np.radians(np.arange(3.0, 360.0, 11.0))  # 33 cam angles across every s
 @pytest.mark.parametrize("rises", ["counter_clockwise", "clockwise"])
 @pytest.mark.parametrize("state", [CamState(), AGED], ids=["dry", "aged"])
 def test_roller_arm_angle_matches_root_found_contact(rises, state):
-    """Done-when line of issue 14: within 1e-9 rad, offset pivot, dry and swollen cam/roller/arm."""
+    """Within 1e-9 rad, offset pivot, dry and swollen cam/roller/arm."""
     design = design_from_scene(arm_section("roller", rises,
                                            pivot=("90 mm", "40 mm") if rises == "counter_clockwise"
                                            else ("-60 mm", "75 mm")))

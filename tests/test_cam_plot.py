@@ -63,7 +63,7 @@ def test_kinematics_and_dynamics_plots_are_written(dataset, tmp_path):
 
 
 def test_scene_parts_are_the_cam_plate_and_the_roller():
-    from fickcam.diffusion.geometry import CamPlate, Disc
+    from fickcam.diffusion.problem.geometry import CamPlate, Disc
     from fickcam.materials.bodies import polygon_section
 
     material = SimpleNamespace(dry_density=1500.0)

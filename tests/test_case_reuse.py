@@ -9,7 +9,7 @@ import yaml
 
 import fickcam
 from fickcam.diffusion import CamPlate
-from fickcam.diffusion.plane import CASE_CACHES, planform_response
+from fickcam.diffusion.models.plane import CASE_CACHES, planform_response
 from test_sweep_run import small_base
 
 

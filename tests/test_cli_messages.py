@@ -22,7 +22,7 @@ def fickcam_cli(*args, cwd=None):
 
 @pytest.fixture(scope="module")
 def fourbar(tmp_path_factory):
-    """Seed 001's four-bar (it reports its Grashof class) run loud and --quiet."""
+    """Singh & Sanyal 2016's four-bar (it reports its Grashof class) run loud and --quiet."""
     folder = tmp_path_factory.mktemp("fourbar")
     scene = yaml.safe_load((ROOT / "configs" / "singh2016_fourbar.yaml").read_text())
     scene["outputs"] = {"ageing_times": ["0 d", "1 h"], "angle_step": "6 deg"}

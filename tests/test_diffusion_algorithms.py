@@ -11,9 +11,10 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from fickcam.diffusion import Diffusivity, Exposure, scaling
-from fickcam.diffusion.polygon import (CORNER_TURN, corners_of, inside_polygon, polygon_segments,
-                                       triangle_areas)
+from fickcam.diffusion import Diffusivity, Exposure
+from fickcam.diffusion.planform.polygon import (CORNER_TURN, corners_of, inside_polygon,
+                                                polygon_segments, triangle_areas)
+from fickcam.diffusion.problem import scaling
 
 
 def test_left_limit_is_the_value_held_before_each_jump_and_the_initial_value_at_zero():

@@ -1,5 +1,5 @@
 """What ``fickcam check`` shows is what the run uses, and the error estimates are honest
-when the first output comes late (issue 11 items 7 and 8)."""
+when the first output comes late."""
 from __future__ import annotations
 
 from pathlib import Path
@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 from fickcam.diffusion import Diffusivity, Disc, Exposure, Sheet, plan, solve
-from fickcam.diffusion.analytic import exact_history
+from fickcam.diffusion.models.analytic import exact_history
 
 CONFIGS = Path(__file__).resolve().parents[1] / "configs"
 D = 1e-12

@@ -7,12 +7,12 @@ from scipy.integrate import solve_ivp
 from scipy.optimize import brentq
 
 from fickcam.diffusion import Bar, CamPlate, Diffusivity, Disc, Exposure, Sheet
-from fickcam.diffusion import series as one_dimensional
-from fickcam.diffusion.analytic import exact_history, exact_history_field
-from fickcam.diffusion.clock import RescaledTime
-from fickcam.diffusion.exact import exact_available, step_field, step_response
-from fickcam.diffusion.series import (cylinder_profile, cylinder_uptake, sheet_profile,
-                                      sheet_series_remainder, sheet_uptake)
+from fickcam.diffusion.exact import series as one_dimensional
+from fickcam.diffusion.exact.separable import exact_available, step_field, step_response
+from fickcam.diffusion.exact.series import (cylinder_profile, cylinder_uptake, sheet_profile,
+                                            sheet_series_remainder, sheet_uptake)
+from fickcam.diffusion.forcing.clock import RescaledTime
+from fickcam.diffusion.models.analytic import exact_history, exact_history_field
 
 
 # ------------------------------------------------------------------ helpers
@@ -336,7 +336,7 @@ def test_bessel_roots_from_one_table_equal_scipys_for_each_count():
     bit for bit what scipy gives when asked for just that many."""
     from scipy.special import jn_zeros
 
-    from fickcam.diffusion.series import ROOT_TABLE, _bessel_roots
+    from fickcam.diffusion.exact.series import ROOT_TABLE, bessel_roots
 
     for count in (1, 65, 838, ROOT_TABLE, ROOT_TABLE + 3):
-        assert np.array_equal(_bessel_roots(count), jn_zeros(0, count))
+        assert np.array_equal(bessel_roots(count), jn_zeros(0, count))

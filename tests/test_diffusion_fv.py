@@ -8,8 +8,10 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from fickcam.diffusion import (CamPlate, LinkBar, discretisation, fv, fvprism, march, outline,
-                               prism, trimesh)
+from fickcam.diffusion import CamPlate, LinkBar
+from fickcam.diffusion.operators import discretisation, fipy_backend, grids, prisms
+from fickcam.diffusion.planform import outline, admissible, triangles
+from fickcam.diffusion.stepping import march
 from fickcam.errors import SolverError
 from tolerance import roundoff
 
@@ -33,7 +35,7 @@ def plain_fipy_steps(mesh, dt, steps, corrected=False):
 
 
 def extracted_steps(mesh, dt, steps, corrected=False):
-    volumes, stiffness, boundary = discretisation.assemble(mesh, corrected)
+    volumes, stiffness, boundary = fipy_backend.assemble(mesh, corrected)
     ones = np.ones(volumes.size)
     disc = discretisation.Discretisation(volumes, stiffness, boundary, ones / ones.sum(), ones / ones.sum())
     nodes = dt * np.arange(steps + 1)
@@ -41,17 +43,27 @@ def extracted_steps(mesh, dt, steps, corrected=False):
     return history.fields[0]
 
 
-def test_the_installed_fipy_is_the_series_whose_private_assembly_was_verified():
-    """``discretisation.assemble`` takes FiPy's matrix through the private
-    ``_prepareLinearSystem`` (no public call returns it). A new FiPy series must fail here
-    first: rerun the extraction tests below against it, then widen FIPY_VERIFIED and the
-    pin in pyproject.toml."""
-    import fipy
+@pytest.mark.parametrize("dimensions", [2, 3])
+def test_fipy_takes_the_given_cell_points_of_a_generic_mesh(dimensions):
+    """The one private FiPy API fickcam uses: a generic mesh's cell points (and the prisms'
+    horizontal face centres) given through overridden ``_calcCellCenters`` and
+    ``_calcFaceCenters``. A FiPy release that stops calling them fails here (and
+    ``fipy_backend.centred_mesh`` raises) instead of moving the cell points silently."""
+    from fipy.meshes.mesh import Mesh
 
-    assert fipy.__version__.startswith(discretisation.FIPY_VERIFIED), (
-        f"FiPy {fipy.__version__}: discretisation.assemble uses the private "
-        f"_prepareLinearSystem, verified on {discretisation.FIPY_VERIFIED}x only")
-    assert hasattr(fipy.terms.term.Term, "_prepareLinearSystem")
+    assert hasattr(Mesh, "_calcCellCenters") and hasattr(Mesh, "_calcFaceCenters")
+    tess = admissible.admissible(triangles.triangulate(PLATE, 0.2), PLATE)
+    if dimensions == 2:
+        sides, cell_sides = prisms.sides_of_cells(tess)
+        faces = np.full((max(c.size for c in cell_sides), tess.cells), -1)
+        for k, row in enumerate(cell_sides):
+            faces[:row.size, k] = row
+        mesh = fipy_backend.centred_mesh(2, tess.points.T, sides.T, faces, tess.centres.T)
+        given = tess.centres.T
+    else:
+        mesh, _ = prisms.prism_mesh(tess, 1.0, np.array([0.0, 0.3, 1.0]), mid_plane=False)
+        given = np.vstack([np.tile(tess.centres.T, 2), np.repeat([0.15, 0.65], tess.cells)])
+    assert np.array_equal(np.asarray(mesh.cellCenters), given)
 
 
 @pytest.mark.parametrize("kind", ["grid1d", "cylindrical", "grid3d", "prisms"])
@@ -63,7 +75,7 @@ def test_extracted_operator_reproduces_plain_fipy_solve(kind):
             "cylindrical": lambda: CylindricalGrid2D(nr=6, nz=5, dr=0.1, dz=0.2,
                                                      origin=((0.3,), (0.0,))),
             "grid3d": lambda: Grid3D(nx=4, ny=3, nz=5, dx=0.3, dy=0.2, dz=0.2),
-            "prisms": lambda: fvprism.prism_mesh(prism.admissible(trimesh.triangulate(
+            "prisms": lambda: prisms.prism_mesh(admissible.admissible(triangles.triangulate(
                 PLATE, 0.2), PLATE), 1.0, np.array([0.0, 0.3, 1.0]), mid_plane=False)[0]}[kind]()
     expected = plain_fipy_steps(mesh, 0.01, 5, corrected)
     assert np.allclose(extracted_steps(mesh, 0.01, 5, corrected), expected, rtol=0, atol=1e-10)
@@ -71,7 +83,7 @@ def test_extracted_operator_reproduces_plain_fipy_solve(kind):
 
 def test_uniform_field_at_the_surface_value_is_steady():
     """K 1 = f: a part saturated at g stays there (conservative, consistent fluxes)."""
-    disc = fv.bar(0.02, 0.01, 0.004, (5, 4, 3), 5e-4, (2e-12, 1e-12, 5e-13))
+    disc = grids.bar(0.02, 0.01, 0.004, (5, 4, 3), 5e-4, (2e-12, 1e-12, 5e-13))
     row_scale = abs(disc.stiffness) @ np.ones(disc.cells)   # sum of |K_ij| per row
     np.testing.assert_allclose(disc.stiffness @ np.ones(disc.cells), disc.boundary, rtol=0,
                                atol=roundoff(row_scale))
@@ -82,12 +94,12 @@ FOURIER = st.floats(min_value=1e-3, max_value=1e6)
 
 @lru_cache(maxsize=None)
 def cached_sheet(cells):
-    return fv.sheet(1e-3, cells, 1e-4)
+    return grids.sheet(1e-3, cells, 1e-4)
 
 
 @lru_cache(maxsize=None)
 def cached_annulus():
-    return fv.disc(0.01, 0.004, 0.002, 6, 5, 5e-4, 1e-12, 2e-12)
+    return grids.disc(0.01, 0.004, 0.002, 6, 5, 5e-4, 1e-12, 2e-12)
 
 
 @settings(max_examples=40, deadline=None, suppress_health_check=[HealthCheck.too_slow])
@@ -154,7 +166,7 @@ def test_link_outline_excludes_holes_and_includes_bosses():
 
 def test_triangulated_planform_has_the_outline_area():
     link = LinkBar(0.1, 0.02, 0.01, 0.015, 0.005)
-    mesh = trimesh.triangulate(link, 0.002)
+    mesh = triangles.triangulate(link, 0.002)
     corners = mesh.points[mesh.triangles]
     a, b, c = corners[:, 0], corners[:, 1], corners[:, 2]
     area = 0.5 * np.abs((b - a)[:, 0] * (c - a)[:, 1] - (b - a)[:, 1] * (c - a)[:, 0]).sum()

@@ -11,10 +11,15 @@ from scipy.spatial import cKDTree
 from scipy.special import j0, j1, y0, y1
 
 from fickcam.diffusion import Bar, CamPlate, Diffusivity, Disc, Exposure, LinkBar, plan, solve
-from fickcam.diffusion import (analytic, calibration, fvprism, outline, p1, polygon, prism, scaling,
-                               series, shorttime, stepresponse, trimesh)
-from fickcam.diffusion.clock import RescaledTime
-from fickcam.diffusion.duhamel import duhamel
+from fickcam.diffusion.accuracy import error_model
+from fickcam.diffusion.exact import series
+from fickcam.diffusion.forcing.clock import RescaledTime
+from fickcam.diffusion.models import analytic
+from fickcam.diffusion.operators import prisms, p1
+from fickcam.diffusion.planform import outline, polygon, admissible, short_time, triangles
+from fickcam.diffusion.problem import scaling
+from fickcam.diffusion.stepping import step_response
+from fickcam.diffusion.superposition.duhamel import duhamel
 
 CONFIGS = Path(__file__).resolve().parents[1] / "configs"
 DAY = 86400.0
@@ -60,10 +65,10 @@ def test_expansion_reproduces_the_cylinder_series_and_the_right_angle_corner():
     radius, thickness = 0.05, 1e-2
     scale = np.array([1.0, 1.0]) / thickness
     tau = np.array([1e-4, 1e-3, 1e-2, 0.1])
-    disc = shorttime.short_time(circle_plate(radius, thickness), scale, 5e-4, 1e-3)
+    disc = short_time.short_time(circle_plate(radius, thickness), scale, 5e-4, 1e-3)
     cylinder = series.cylinder_uptake(tau * (thickness / radius) ** 2)
     assert np.all(np.abs(disc.uptake(tau) - cylinder) <= disc.uptake_error(tau) + 1e-5 * cylinder)
-    assert shorttime.corner_coefficient(np.array([np.pi / 2]))[0] == pytest.approx(4 / np.pi,
+    assert short_time.corner_coefficient(np.array([np.pi / 2]))[0] == pytest.approx(4 / np.pi,
                                                                                 rel=1e-6)
 
 
@@ -86,13 +91,13 @@ def test_link_expansion_matches_the_graded_mesh_extrapolated_in_space():
     as second order in both (error ratio 4, measured 4.0-4.1 on a disc)."""
     link = LinkBar(0.08, 0.03, 0.01, 0.015, 0.005)
     d = (1.0, 1.0, 1.0)
-    expansion = shorttime.expansion_of(link, d)
+    expansion = short_time.expansion_of(link, d)
     tau = np.array([0.01, 0.02])
     meshes = []
     for finest in (0.04, 0.02):
-        mesh = trimesh.triangulate(link, finest * link.thickness, growth=6 * finest)
+        mesh = triangles.triangulate(link, finest * link.thickness, growth=6 * finest)
         operator = p1.plane_operator(mesh, link, 5e-4, d)
-        response, _ = stepresponse.step_response(operator, 0.03, 8, finest ** 2 / 16)
+        response, _ = step_response.step_response(operator, 0.03, 8, finest ** 2 / 16)
         meshes.append(1.0 - response.at(tau, response.mean))
     extrapolated = (4 * meshes[1] - meshes[0]) / 3
     assert np.all(np.abs(meshes[0] - expansion.uptake(tau)) > 5e-4)  # the coarse mesh alone errs
@@ -168,14 +173,14 @@ def test_expansion_indicator_bounds_its_error_on_annuli_wherever_it_is_finite():
     tau = np.geomspace(1e-3, 1.0, 40)
     for inner, outer in ((0.833, 2.5), (0.833, 4.17), (0.5, 3.0), (1.5, 3.0), (2.5, 3.0)):
         plate = bored_plate(outer, 1.0, inner, points=2880)
-        expansion = shorttime.short_time(plate, np.ones(2), 0.01, 0.05)
+        expansion = short_time.short_time(plate, np.ones(2), 0.01, 0.05)
         exact_uptake = annulus_uptake(inner, outer, tau)
         error = np.abs(expansion.uptake(tau) - exact_uptake)
         indicator = expansion.uptake_error(tau)
         assert np.all(error <= indicator + 2e-5 * exact_uptake)
         assert np.all(error[indicator > 2e-5 * exact_uptake]
                       <= 0.6 * indicator[indicator > 2e-5 * exact_uptake])
-    small_hole = shorttime.short_time(bored_plate(2.5, 1.0, 0.833), np.ones(2), 0.01, 0.05)
+    small_hole = short_time.short_time(bored_plate(2.5, 1.0, 0.833), np.ones(2), 0.01, 0.05)
     assert np.isinf(small_hole.uptake_error(0.3))
 
 
@@ -218,11 +223,11 @@ def graded_disc_errors(operator_of):
     exact_uptake = series.cylinder_uptake(DISC_TAU / 9.0)
     errors, models, operators = [], [], []
     for finest, growth in ((0.1, 0.2), (0.05, 0.1)):
-        operators.append(operator_of(trimesh.triangulate(GRADED_DISC, finest, growth=growth)))
-        response, _ = stepresponse.step_response(operators[-1], 0.3, 8, finest ** 2 / 16)
+        operators.append(operator_of(triangles.triangulate(GRADED_DISC, finest, growth=growth)))
+        response, _ = step_response.step_response(operators[-1], 0.3, 8, finest ** 2 / 16)
         errors.append((1 - response.at(DISC_TAU, response.mean) - exact_uptake) / exact_uptake)
-        models.append(calibration.MESH_ERROR * (finest / np.sqrt(DISC_TAU)
-                                                + calibration.GROWTH_REACH * growth) ** 2)
+        models.append(error_model.MESH_ERROR * (finest / np.sqrt(DISC_TAU)
+                                                + error_model.GROWTH_REACH * growth) ** 2)
     return np.array(errors), np.array(models), operators
 
 
@@ -242,20 +247,20 @@ def test_graded_p1_mesh_converges_at_second_order_in_spacing_and_growth():
 
 def test_fipy_planar_operator_converges_at_second_order_but_errs_several_times_p1():
     """FiPy's in-plane operator on the same graded meshes made Delaunay-admissible
-    (circumcentre cell points, ``fvprism.planar``), against Crank eq. 5.23: second order
+    (circumcentre cell points, ``prisms.planar``), against Crank eq. 5.23: second order
     (halving h0 and g quarters the error, measured 3.9-4.0) but 4.3-6.2x the error model
     of P1, against P1's 0.6-1.1x, on 2.2x the unknowns, and its uptake is low. This is why
     the plane model keeps P1 (docs/architecture.md: on the demo cam and a link FiPy needs
     11-50x P1's CPU time for the same accuracy)."""
     def fipy_of_disc(mesh):
-        cells = prism.admissible(mesh, GRADED_DISC)
-        return fvprism.planar(cells, 1.0, prism.band_share(cells, 0.05))
+        cells = admissible.admissible(mesh, GRADED_DISC)
+        return prisms.planar(cells, 1.0, admissible.band_share(cells, 0.05))
     errors, models, operators = graded_disc_errors(fipy_of_disc)
     assert np.all((-8 * models <= errors) & (errors <= -3 * models))
     assert np.all((3.5 <= errors[0] / errors[1]) & (errors[0] / errors[1] <= 4.5))
     for operator in operators:
         assert np.sum(operator.volumes) == pytest.approx(np.pi * 3.0 ** 2, rel=1e-3)
-    coarse_p1 = p1_of_disc(trimesh.triangulate(GRADED_DISC, 0.1, growth=0.2))
+    coarse_p1 = p1_of_disc(triangles.triangulate(GRADED_DISC, 0.1, growth=0.2))
     assert operators[0].cells > 2 * coarse_p1.cells
 
 
@@ -267,14 +272,14 @@ def test_graded_mesh_keeps_the_outline_and_well_shaped_triangles():
     link = LinkBar(0.08, 0.03, 0.01, 0.015, 0.005)
     rectangle = CamPlate(np.array([0, 0.04, 0.04, 0.0]), np.array([0, 0, 0.025, 0.025]), 6e-3)
     for part in (rectangle, link):
-        mesh = trimesh.triangulate(part, 5e-4, growth=0.2)
+        mesh = triangles.triangulate(part, 5e-4, growth=0.2)
         loops = [polygon.resample_loop(loop, 5e-4)
                  for loop in outline.boundary_loops(part, 5e-4)[0]]
         enclosed = sum(0.5 * np.sum(p[:, 0] * np.roll(p[:, 1], -1) - np.roll(p[:, 0], -1) * p[:, 1])
                        for p in loops)
         area = polygon.triangle_areas(mesh.points, mesh.triangles).sum()
         assert area == pytest.approx(enclosed, rel=1e-9)
-        angles = np.degrees(trimesh.angles(mesh.points, mesh.triangles))
+        angles = np.degrees(triangles.angles(mesh.points, mesh.triangles))
         assert angles.min() >= 25 and angles.max() <= 125
         assert len(mesh.points) < 0.35 * area / (np.sqrt(3) / 2 * 5e-4 ** 2)
         on_outline = mesh.points[mesh.on_outline]
@@ -304,7 +309,7 @@ def test_plan_estimate_is_the_error_solve_reports(part):
 def test_a_capped_plane_plan_says_its_error_exceeds_the_accuracy(monkeypatch):
     """Capped at 300 nodes, 1e-4 cannot be met: plan and solve both say so, and the
     estimate still bounds the true error (the run turns it into a notice)."""
-    monkeypatch.setitem(calibration.MAX_CELLS, "plane", 300)
+    monkeypatch.setitem(error_model.MAX_CELLS, "plane", 300)
     plate = bored_plate(0.02, 6e-3, 5e-3)
     chosen = plan(plate, ISOTROPIC, HISTORY, TIMES, accuracy=1e-4)
     result = solve(plate, ISOTROPIC, HISTORY, TIMES, accuracy=1e-4)
@@ -333,13 +338,13 @@ def extrapolated_planform(part, d, end, finest=(0.04, 0.02)):
     """Unsaturated planform fraction: the expansion where its relative indicator is below
     1e-6, else P1 on graded meshes (h0, 6 h0) and (h0, 6 h0) / 2, extrapolated as second
     order in both (4 fine - coarse) / 3; 8 steps a doubling (time error ~ 3e-6)."""
-    expansion = shorttime.expansion_of(part, d)
+    expansion = short_time.expansion_of(part, d)
     responses = []
     for h0 in finest:
-        mesh = trimesh.triangulate(part, h0 * part.thickness, growth=6 * h0,
+        mesh = triangles.triangulate(part, h0 * part.thickness, growth=6 * h0,
                                     stretch=scaling.stretch_of(d))
         operator = p1.plane_operator(mesh, part, 5e-4, d)
-        response, _ = stepresponse.step_response(operator, end, 8, h0 ** 2 / 16)
+        response, _ = step_response.step_response(operator, end, 8, h0 ** 2 / 16)
         responses.append(response)
 
     def fraction(tau):
@@ -355,7 +360,7 @@ def extrapolated_planform(part, d, end, finest=(0.04, 0.02)):
 
 def test_demo_cam_meets_the_accuracy_against_a_space_extrapolated_fine_mesh():
     """The real cam profile (bore, anisotropic D), wetted for 30 d then dried to 30 % for 30 d,
-    and the same wetting read only at 0 and 1 year (issue 11: sparse ageing times).
+    and the same wetting read only at 0 and 1 year (sparse ageing times).
     Reference: meshes of 3 k and 12 k nodes extrapolated (against 35 k and 139 k nodes: 1.3e-4
     relative in the planform uptake, 6e-6 in the mean). Measured against the 35 k / 139 k
     reference: accuracy 1e-3: true 5.1e-4 (2.5e-4 for the scene's single step), estimate
@@ -377,7 +382,7 @@ def test_demo_cam_meets_the_accuracy_against_a_space_extrapolated_fine_mesh():
 
     def kernel(tau):
         star = np.ravel(tau) * to_star
-        return (1.0 - plane(star) * shorttime.sheet_fraction(star)).reshape(np.shape(tau))
+        return (1.0 - plane(star) * short_time.sheet_fraction(star)).reshape(np.shape(tau))
     cases = ((history, np.array([0, 1, 3, 7, 15, 30, 31, 33, 37, 45, 60]) * DAY),
              (wetting, np.array([0.0, 365 * DAY])))
     for exposed, times in cases:
@@ -394,7 +399,7 @@ def test_a_run_notes_a_part_whose_estimated_error_exceeds_the_accuracy(monkeypat
     exceeds the accuracy and the run says so among its notices (logged as warnings)."""
     import fickcam
 
-    monkeypatch.setitem(calibration.MAX_CELLS, "plane", 300)
+    monkeypatch.setitem(error_model.MAX_CELLS, "plane", 300)
     notices = fickcam.run(CONFIGS / "singh2017_cam.yaml", accuracy=1e-4).attrs["notices"]
     assert any(n.startswith("cam: estimated diffusion error") and "above the requested accuracy"
                in n for n in notices)
@@ -410,7 +415,7 @@ def test_contact_layer_integrals_in_closed_form_equal_quadrature(z):
     from scipy.integrate import quad
     from scipy.special import erfc
 
-    from fickcam.diffusion.shorttime import layer_integrals
+    from fickcam.diffusion.planform.short_time import layer_integrals
 
     upper = min(z, 40.0)
     first, second = layer_integrals(z)

@@ -1,13 +1,14 @@
-"""Long climate records on the exact paths: the tabulated Duhamel sum (diffusion/tabulated.py)
-against Duhamel's panels over the closed-form step responses, and a solid disc under a week
+"""Long climate records on the exact paths: the tabulated Duhamel sum
+(diffusion/superposition/tabulated.py) against Duhamel's panels over the closed-form step
+responses, and a solid disc under a week
 of Greensboro's TMY3 year against an independent modal solution (each mode advanced
 exactly; tau from a fine trapezoid rule)."""
 import numpy as np
 import pytest
 
-from fickcam.diffusion import Bar, Diffusivity, Disc, Exposure, Sheet, plan, solve
 from fickcam.bench_records import modal_disc_mean
-from fickcam.diffusion.analytic import exact_history, record_history
+from fickcam.diffusion import Bar, Diffusivity, Disc, Exposure, Sheet, plan, solve
+from fickcam.diffusion.models.analytic import exact_history, record_history
 
 DAY = 86400.0
 ARRHENIUS = Diffusivity((2e-5, 2e-5, 1e-5), 40e3)
@@ -127,7 +128,7 @@ def test_plane_model_under_three_weeks_of_a_tmy3_record_matches_the_exact_modal_
 def test_fields_on_a_record_take_the_tabulated_sum_and_match_duhamel():
     """Exact fields of a sheet over 33 hourly rows: the tabulated sum (one table, one matrix
     product) against Duhamel's panels, within the requested accuracy of the swing."""
-    from fickcam.diffusion.analytic import exact_history_field
+    from fickcam.diffusion.models.analytic import exact_history_field
 
     week, rows = greensboro_weeks(1), 34
     edges = week.change_times[:rows]
@@ -147,7 +148,7 @@ def test_a_plane_solve_repeated_on_a_record_reuses_its_tables_and_a_thicker_part
     """A limit search re-solves a part at more ageing times: the step-response tables of a
     record are taken from the first solve (same results to the last bit, nothing tabulated
     again); a part of another thickness never reads them."""
-    from fickcam.diffusion import tabulated
+    from fickcam.diffusion.superposition import tabulated
 
     environment = greensboro_weeks(1)
     diffusivity = Diffusivity((0.4,) * 3, 50e3)
@@ -192,7 +193,7 @@ def test_a_plane_result_extended_to_new_times_equals_a_solve_at_both_sets_of_tim
 def test_output_ages_of_a_long_record_are_its_ages_least_and_largest_per_bin():
     """Thinned row by row (no sort of every output x source age), the output ages are still
     exactly the least and the largest distinct age of each 1/64-decade bin of all of them."""
-    from fickcam.diffusion.timesteps import AGES_PER_DECADE, _output_ages
+    from fickcam.diffusion.stepping.step_plans import AGES_PER_DECADE, output_ages
 
     rng = np.random.default_rng(7)
     change = np.concatenate([[0.0], np.cumsum(rng.uniform(0.2, 1.0, 3000) * 1e-3)])
@@ -204,4 +205,4 @@ def test_output_ages_of_a_long_record_are_its_ages_least_and_largest_per_bin():
     ages = ages[ages > 0]
     bins = np.floor(np.log10(ages) * AGES_PER_DECADE)
     ends = [ages[bins == b][[0, -1]] for b in np.unique(bins)]
-    assert np.array_equal(_output_ages(change, outputs, ramp), np.unique(np.concatenate(ends)))
+    assert np.array_equal(output_ages(change, outputs, ramp), np.unique(np.concatenate(ends)))

@@ -8,11 +8,15 @@ from functools import lru_cache
 import numpy as np
 import pytest
 
-from fickcam.diffusion import (Bar, CamPlate, Diffusivity, Exposure, LinkBar, Plan, analytic,
-                               fvprism, march, plan, plane, polygon, prism, scaling, solve,
-                               trimesh)
-from fickcam.diffusion.direct import solve_direct
-from fickcam.diffusion.grading import graded_widths
+from fickcam.diffusion import Bar, CamPlate, Diffusivity, Exposure, LinkBar, Plan, plan, solve
+from fickcam.diffusion.accuracy import error_model
+from fickcam.diffusion.models import analytic
+from fickcam.diffusion.models.finite_volume import solve_direct
+from fickcam.diffusion.operators import prisms
+from fickcam.diffusion.operators.grading import graded_widths
+from fickcam.diffusion.planform import polygon, admissible, triangles
+from fickcam.diffusion.problem import scaling
+from fickcam.diffusion.stepping import march
 
 pytest.importorskip("fipy")
 
@@ -50,23 +54,23 @@ def test_prism_mesh_geometry_is_the_extruded_planform():
     the two-point flux consistent)."""
     length, width, h = 12e-3, 8e-3, 3e-3
     plate = rectangle(length, width, h)
-    tess = prism.admissible(trimesh.triangulate(plate, 1e-3), plate)
+    tess = admissible.admissible(triangles.triangulate(plate, 1e-3), plate)
     z_nodes = np.array([0.0, 0.2, 0.5, 1.0])
-    mesh, _ = fvprism.prism_mesh(tess, 1.0 / h, z_nodes, mid_plane=False)
+    mesh, _ = prisms.prism_mesh(tess, 1.0 / h, z_nodes, mid_plane=False)
     volumes = np.asarray(mesh.cellVolumes)
     assert volumes.min() > 0
     assert volumes.sum() == pytest.approx(length * width * h / h ** 3, rel=1e-12)
     cells, layers = tess.cells, z_nodes.size - 1
-    areas = np.asarray(mesh._faceAreas)
-    planar = prism.cell_areas(tess) / h ** 2
+    areas = np.asarray(mesh.scaledFaceAreas)  # a generic mesh is unscaled
+    planar = admissible.cell_areas(tess) / h ** 2
     horizontal = areas[:cells * (layers + 1)].reshape(layers + 1, cells)
     assert np.allclose(horizontal, planar[None, :], rtol=1e-12)
-    sides, _ = fvprism.sides_of_cells(tess)
+    sides, _ = prisms.sides_of_cells(tess)
     edge = np.hypot(*(tess.points[sides[:, 1]] - tess.points[sides[:, 0]]).T) / h
     side_areas = areas[cells * (layers + 1):].reshape(layers, -1)
     assert np.allclose(side_areas, np.diff(z_nodes)[:, None] * edge[None, :], rtol=1e-12)
     interior = np.asarray(mesh.interiorFaces)
-    between = np.asarray(mesh._cellDistanceVectors)[:, interior]
+    between = np.asarray(mesh.cellDistanceVectors)[:, interior]
     normals = np.asarray(mesh.faceNormals)[:, interior]
     cosine = np.abs(np.sum(between * normals, axis=0)) / np.linalg.norm(between, axis=0)
     assert cosine.min() > 1 - 1e-9
@@ -75,8 +79,8 @@ def test_prism_mesh_geometry_is_the_extruded_planform():
 def test_admissible_cells_are_delaunay_with_gabriel_boundary_segments():
     """Circumcentres of neighbours are ordered along the normal of their shared edge
     (signed dual length >= 0) and lie inside at the outline (positive distance)."""
-    tess = prism.admissible(trimesh.triangulate(LINK, 0.7e-3), LINK)
-    for mesh in (tess, prism.refine(tess)):
+    tess = admissible.admissible(triangles.triangulate(LINK, 0.7e-3), LINK)
+    for mesh in (tess, admissible.refine(tess)):
         centres = mesh.centres[mesh.cell_of]
         offsets = polygon.centre_offsets(mesh.points, mesh.triangles, centres)
         edges, side = polygon.unique_edges(mesh.triangles)
@@ -85,18 +89,18 @@ def test_admissible_cells_are_delaunay_with_gabriel_boundary_segments():
         length = np.hypot(*(mesh.points[edges[:, 1]] - mesh.points[edges[:, 0]]).T)
         assert np.all(dual[shared == 1] > 0.01 * length[shared == 1])
         assert np.all(dual[shared == 2] > -1e-3 * length[shared == 2])
-        assert prism.cell_areas(mesh).sum() == pytest.approx(
-            prism.cell_areas(tess).sum(), rel=1e-12)  # nested: the same polygon
+        assert admissible.cell_areas(mesh).sum() == pytest.approx(
+            admissible.cell_areas(tess).sum(), rel=1e-12)  # nested: the same polygon
 
 
 def test_mid_plane_mirror_reproduces_the_full_thickness():
     """Half the thickness with an insulated mid-plane is the same discrete problem."""
     h = 4e-3
-    tess = prism.admissible(trimesh.triangulate(LINK, 1.5e-3), LINK)
-    share = prism.band_share(tess, LAYER)
+    tess = admissible.admissible(triangles.triangulate(LINK, 1.5e-3), LINK)
+    share = admissible.band_share(tess, LAYER)
     widths = graded_widths(h, 0.1 * h, 0.3)
-    full = fvprism.prism(tess, h, widths, share, (D, D, D))
-    half = fvprism.prism(tess, h, widths[:widths.size // 2], share, (D, D, D), mid_plane=True)
+    full = prisms.prism(tess, h, widths, share, (D, D, D))
+    half = prisms.prism(tess, h, widths[:widths.size // 2], share, (D, D, D), mid_plane=True)
     nodes = np.concatenate([[0.0], np.geomspace(1e-4, 0.3, 12)])
     runs = [march.march(disc, nodes, np.ones(nodes.size), 0.0, np.arange(nodes.size))
             for disc in (full, half)]
@@ -124,16 +128,17 @@ def reference(part, outline: float, diffusivity, mirrors, finest_z: float = 0.1)
     pair in space: (4 fine - coarse) / 3. Returns (mean, layer, coarse, fine)."""
     d = tuple(float(v) for v in diffusivity.pre_exponential)
     stretch = scaling.stretch_of(d)
-    tess = prism.admissible(trimesh.triangulate(part, outline, growth=0.25, stretch=stretch),
+    tess = admissible.admissible(triangles.triangulate(part, outline, growth=0.25,
+                                 stretch=stretch),
                             part, stretch, mirrors)
     widths = graded_widths(part.thickness, finest_z * part.thickness, 0.3)
     widths = widths[:widths.size // 2]
     levels = []
     for _ in range(2):
-        disc = fvprism.prism(tess, part.thickness, widths, prism.band_share(tess, LAYER), d,
+        disc = prisms.prism(tess, part.thickness, widths, admissible.band_share(tess, LAYER), d,
                         mid_plane=True)
         levels.append(march_pair(part, disc, diffusivity))
-        tess, widths = prism.refine(tess), np.repeat(0.5 * widths, 2)
+        tess, widths = admissible.refine(tess), np.repeat(0.5 * widths, 2)
     coarse, fine = levels
     return ((4 * fine.mean - coarse.mean) / 3, (4 * fine.surface - coarse.surface) / 3,
             coarse, fine)
@@ -174,17 +179,17 @@ def test_prism_reference_converges_at_second_order_in_space():
     observed order log2(d01 / d12) = 2 +- 0.3 for the mean and the contact layer at
     tau* = 0.03 and 0.1 (at tau* ~ 0.003 the coarsest level, one 1 mm cell through
     each half-thickness' boundary layer, is not yet asymptotic)."""
-    tess = prism.admissible(trimesh.triangulate(LINK, 0.7e-3, growth=0.3), LINK,
+    tess = admissible.admissible(triangles.triangulate(LINK, 0.7e-3, growth=0.3), LINK,
                             mirrors=((0, LINK.length / 2), (1, 0.0)))
     widths = uniform_z(0.5 * LINK.thickness, 2)
     nodes = np.concatenate([[0.0], np.geomspace(1e-3, 0.1, 5)])
     levels = []
     for _ in range(3):
-        disc = fvprism.prism(tess, LINK.thickness, widths, prism.band_share(tess, LAYER),
+        disc = prisms.prism(tess, LINK.thickness, widths, admissible.band_share(tess, LAYER),
                         (D, D, D), mid_plane=True)
         run = march.march(disc, nodes, np.ones(nodes.size), 0.0, np.array([4, 5]))
         levels.append(np.concatenate([run.mean, run.layer]))
-        tess, widths = prism.refine(tess), np.repeat(0.5 * widths, 2)
+        tess, widths = admissible.refine(tess), np.repeat(0.5 * widths, 2)
     first, second = levels[0] - levels[1], levels[1] - levels[2]
     order = np.log2(np.abs(first / second))
     assert np.all(np.abs(order - 2.0) <= 0.3), order
@@ -216,7 +221,7 @@ def test_link_plane_model_matches_the_3d_reference_through_a_step_up_and_down(d,
     result = solve(LINK, Diffusivity(d, 0.0), UP_DOWN, TIMES, accuracy=accuracy)
     assert result.model == "plane"
     assert relative(result.mean, mean) <= accuracy
-    assert relative(result.surface, layer) <= plane.LAYER_TOLERANCE * accuracy
+    assert relative(result.surface, layer) <= error_model.LAYER_TOLERANCE * accuracy
 
 
 def test_link_prism_outline_is_the_true_outline_to_a_few_parts_in_ten_thousand():
@@ -230,10 +235,10 @@ def test_link_prism_outline_is_the_true_outline_to_a_few_parts_in_ten_thousand()
             - 2 * np.pi * ri ** 2)
     perimeter = (2 * (LINK.length - 2 * x0) + 4 * (np.pi - np.arcsin(w / r)) * r
                  + 4 * np.pi * ri)
-    quarter = prism.admissible(trimesh.triangulate(LINK, 0.5e-3, growth=0.25), LINK,
+    quarter = admissible.admissible(triangles.triangulate(LINK, 0.5e-3, growth=0.25), LINK,
                                mirrors=((0, LINK.length / 2), (1, 0.0)))
     edges = quarter.contact[:, 1] - quarter.contact[:, 0]
-    assert 4 * prism.cell_areas(quarter).sum() == pytest.approx(area, rel=3e-4)
+    assert 4 * admissible.cell_areas(quarter).sum() == pytest.approx(area, rel=3e-4)
     assert 4 * np.hypot(*edges.T).sum() == pytest.approx(perimeter, rel=6e-4)
 
 

@@ -8,9 +8,9 @@ import numpy as np
 import pytest
 from scipy.special import jn_zeros
 
-from fickcam.diffusion import (Bar, CamPlate, Diffusivity, Disc, Exposure, LinkBar, Sheet,
-                               plan, solve)
-from fickcam.diffusion.clock import rescaled_time
+from fickcam.diffusion import (Bar, CamPlate, Diffusivity, Disc, Exposure, LinkBar, Sheet, plan,
+                               solve)
+from fickcam.diffusion.forcing.clock import rescaled_time
 from fickcam.errors import InputError
 
 DAY = 86400.0
@@ -199,6 +199,32 @@ def test_model_not_applicable_to_the_geometry_is_an_input_error():
         plan(Sheet(1e-3), ISOTROPIC, STEP_DOWN, TIMES, accuracy=2.0)
 
 
+def test_the_model_registry_says_which_parts_each_model_solves_and_why_not():
+    """Each model of the registry answers for itself: the parts it applies to, the reason it
+    refuses one (the analytic series needs a separable part), and ``auto``'s choice is the
+    exact series where it applies, else the first mesh model that does."""
+    from fickcam.diffusion.dispatch import FICK_MODELS, MODELS, numerical_model
+
+    outline = np.array([0.0, 0.02, 0.02, 0.0]), np.array([0.0, 0.0, 0.01, 0.01])
+    parts = {"sheet": Sheet(1e-3), "disc": Disc(0.02, 0.004), "annulus": Disc(0.02, 0.004, 0.008),
+             "bar": Bar(0.04, 0.01, 0.004), "cam": CamPlate(*outline, 0.004),
+             "link": LinkBar(0.1, 0.01, 0.004, 0.01, 0.005)}
+    solvable = {name: sorted(m for m, model in FICK_MODELS.items()
+                             if model.refusal(part) is None)
+                for name, part in parts.items()}
+    assert solvable == {"sheet": ["analytic", "slab"], "disc": ["analytic", "axisymmetric"],
+                        "annulus": ["axisymmetric"], "bar": ["analytic", "solid"],
+                        "cam": ["plane", "solid"], "link": ["plane", "solid"]}
+    assert FICK_MODELS["analytic"].refusal(parts["annulus"]) == (
+        "an annulus has no product solution (use axisymmetric)")
+    assert FICK_MODELS["plane"].refusal(parts["sheet"]) == "does not apply to a Sheet"
+    assert [numerical_model(p) for p in parts.values()] == [
+        "slab", "axisymmetric", "axisymmetric", "solid", "plane", "plane"]
+    assert MODELS == ("auto", "analytic", "slab", "axisymmetric", "plane", "solid")
+    with pytest.raises(InputError, match="annulus has no product solution"):
+        plan(parts["annulus"], ISOTROPIC, STEP_DOWN, TIMES, model="analytic")
+
+
 def test_auto_takes_the_exact_path_for_a_sheet_when_available():
     chosen = plan(Sheet(1e-3), ISOTROPIC, STEP_DOWN, TIMES, accuracy=1e-3)
     assert chosen.model == "analytic"
@@ -227,7 +253,7 @@ def test_fields_have_cells_and_coordinates():
 def test_output_a_hair_after_a_step_boundary_records_that_boundary_not_the_next():
     """An output within round-off above a node is merged into it (``drop_slivers``);
     it must read that node, not the next one (``searchsorted`` alone took the next)."""
-    from fickcam.diffusion.timesteps import drop_slivers, nearest_nodes
+    from fickcam.diffusion.stepping.step_plans import drop_slivers, nearest_nodes
 
     first = 1e-6
     nodes = np.array([0.0, 1e-6, 2e-6, 4e-6, 8e-6])

@@ -7,10 +7,10 @@ from hypothesis import strategies as st
 from scipy.integrate import simpson, solve_ivp
 from scipy.sparse import diags
 
-from fickcam.diffusion.exact import sheet_uptake
-from fickcam.diffusion.two_phase import (carter_kibler_approximation, equilibrium_shares,
-                                         two_phase_mode_deficit, two_phase_sheet_profile,
-                                         two_phase_sheet_uptake)
+from fickcam.diffusion.exact.separable import sheet_uptake
+from fickcam.diffusion.exact.two_phase import (carter_kibler_approximation, equilibrium_shares,
+                                               two_phase_mode_deficit, two_phase_sheet_profile,
+                                               two_phase_sheet_uptake)
 
 H = 2e-3
 D = 5e-12

@@ -107,10 +107,10 @@ def test_half_plane_log_term_matches_the_plate_where_the_mesh_resolves_both_widt
 
 
 def test_demo_cam_deflection_grows_as_the_matrix_softens():
-    """Demo cam (seed 000), dry at t = 0 vs 60 d, through cam_elastic_response on the rigid
-    run's contact results: the deflection at the peak contact force grows by 1/retention
-    of a modulus on its load path, between the fibre modulus E11 (barely changed) and the
-    matrix-dominated E22 and G12."""
+    """Demo cam (Singh & Sanyal 2017), dry at t = 0 vs 60 d, through cam_elastic_response
+    on the rigid run's contact results: the deflection at the peak contact force grows by
+    1/retention of a modulus on its load path, between the fibre modulus E11 (barely
+    changed) and the matrix-dominated E22 and G12."""
     from fickcam.elastic.cam import cam_elastic_response
 
     doc = yaml.safe_load(Path("configs/singh2017_cam.yaml").read_text())
@@ -139,7 +139,7 @@ def test_link_swelling_follows_its_moisture_field():
     stress (the same free-body path as the cam plate, on the link's planform mesh)."""
     from types import SimpleNamespace
 
-    from fickcam.diffusion.geometry import LinkBar
+    from fickcam.diffusion.problem.geometry import LinkBar
     from fickcam.elastic.mesh import planform_mesh
     from fickcam.elastic.swelling import swelling_history
     from fickcam.materials import resolve

@@ -5,7 +5,7 @@ import numpy as np
 import pytest
 from scipy import stats
 
-from fickcam.diffusion.exposure import GAS_CONSTANT
+from fickcam.diffusion.problem.exposure import GAS_CONSTANT
 from fickcam.fit import fit_weight_gain
 from fickcam.fit.anomalous import check_fickian, runs_test
 from fickcam.fit.models import edge_factor, fickian_fraction
@@ -146,7 +146,7 @@ def test_runs_test_counts_runs_like_wald_and_wolfowitz():
 
 
 def test_fickian_fraction_of_a_sealed_sheet_is_cranks_series():
-    from fickcam.diffusion.exact import sheet_uptake
+    from fickcam.diffusion.exact.separable import sheet_uptake
 
     rng = np.random.default_rng(0)
     specimen = coupon(rng)

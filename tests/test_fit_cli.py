@@ -5,8 +5,8 @@ import pytest
 import yaml
 
 import fickcam
-from fickcam.diffusion.exposure import GAS_CONSTANT
 from fickcam.cli import main
+from fickcam.diffusion.problem.exposure import GAS_CONSTANT
 from fickcam.fit.synthetic import d5229_times, synthetic_specimen, write_weight_gain_csv
 
 HEADER = "specimen,temperature [degC],relative_humidity [%],thickness [mm],dry_mass [g],time [d],mass [g]\n"

@@ -1,4 +1,4 @@
-"""Limits (SPEC.md §6): ratios, the first time out of spec, and refused limits."""
+"""Limits: ratios, the first time out of spec, and refused limits."""
 import math
 
 import numpy as np
@@ -18,7 +18,7 @@ DAY = 86400.0
 
 
 def fast_fourbar(times, limits=None) -> dict:
-    """Seed 001's R914 four-bar at 60 degC / 85 % RH for 40 days."""
+    """Singh & Sanyal 2016's R914 four-bar at 60 degC / 85 % RH for 40 days."""
     scene = yaml.safe_load(LINKAGE_SCENE)
     scene["environment"]["history"] = [{"duration": "40 d", "temperature": "60 degC",
                                         "relative_humidity": "85 %"}]

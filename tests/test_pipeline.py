@@ -16,7 +16,7 @@ CONFIGS = ROOT / "configs"
 
 
 def mild_fourbar() -> dict:
-    """Seed 001's R914 four-bar at 60 degC / 85 % RH (well below its wet Tg)."""
+    """Singh & Sanyal 2016's R914 four-bar at 60 degC / 85 % RH (well below its wet Tg)."""
     scene = yaml.safe_load((CONFIGS / "singh2016_fourbar.yaml").read_text())
     scene["environment"]["history"] = [{"duration": "90 d", "temperature": "60 degC",
                                         "relative_humidity": "85 %"}]

@@ -1,5 +1,6 @@
-"""Concentration-dependent D on a cam plate by the corrected product (``diffusion.defect``:
-the D(c) sheet x D(c) planform corrected on coarse 3-D prisms): the Fickian limit to
+"""Concentration-dependent D on a cam plate by the corrected product
+(``diffusion.nonfickian.corrected_product``: the D(c) sheet x D(c) planform corrected on coarse
+3-D prisms): the Fickian limit to
 round-off, a brute-force 3-D reference (tests/data/dc_plate_reference.json, made once by
 benchmarks/dc_defect_correction.py), Crank's direction of the sorption/desorption
 asymmetry, bounds and equilibrium."""
@@ -11,11 +12,11 @@ import pytest
 from hypothesis import given, settings, strategies as st
 
 from fickcam.diffusion import Bar, CamPlate, Diffusivity, Exposure, plan, solve
-from fickcam.diffusion.defect import gap, solve_corrected
-from fickcam.diffusion.defectparts import as_prism, bar_coordinates
-from fickcam.diffusion.gridcheck import three_levels
-from fickcam.diffusion.planmodes import LAYER_TOLERANCE
-from fickcam.diffusion.sorption import ConcentrationDependent
+from fickcam.diffusion.accuracy.error_model import LAYER_TOLERANCE
+from fickcam.diffusion.accuracy.grid_convergence import three_levels
+from fickcam.diffusion.nonfickian.corrected_pieces import as_prism, bar_coordinates
+from fickcam.diffusion.nonfickian.corrected_product import gap, solve_corrected
+from fickcam.diffusion.problem.sorption import ConcentrationDependent
 
 pytest.importorskip("fipy")
 
@@ -55,7 +56,8 @@ def test_a_constant_factor_is_the_fickian_result_to_round_off():
 
 
 def stored_error(result, direction):
-    """The result's distance to the stored 3-D run in the estimate's norm (``defect.gap``:
+    """The result's distance to the stored 3-D run in the estimate's norm
+    (``corrected_product.gap``:
     the largest over the outputs of the mean's and the layer's / LAYER_TOLERANCE)."""
     reference = REFERENCE[direction]
     return gap((result.mean, result.surface), (np.asarray(reference["mean"]),
@@ -79,7 +81,8 @@ def test_the_corrected_plate_matches_a_brute_force_3d_run_within_the_accuracy(ab
 
 def test_the_drying_plates_estimate_covers_its_error_with_the_skin_margins_safety():
     """k = 2 drying (Mm -> 0, a dry skin) at accuracy 3e-2 against the 3-D cells alone at
-    3e-2: the estimate (with ``defect.skin_margin``) is at least twice the distance to the
+    3e-2: the estimate (with ``corrected_product.skin_margin``) is at least twice the distance to
+    the
     stored run (measured 1.9e-3 against 1.0e-2 on the 4.0 plan's nested pair; 2.7e-3
     against 9.4e-3 on the 1.0 plan's, 1.3e-2 on the graded plans before;
     ``SKIN_ESTIMATE_MARGIN`` = 1 was chosen for that safety on the k = 3 plate at 1e-2 on the
@@ -166,14 +169,15 @@ def test_the_three_mesh_check_extrapolates_only_a_sequence_near_second_order():
 
 
 def test_the_refined_3d_mesh_is_nested_by_two_in_every_direction():
-    """``defect.Cells.refined``: every planform point and z node of the coarse mesh is one of
+    """``corrected_product.PrismCells.refined``: every planform point and z node of the coarse mesh
+    is one of
     the fine mesh's, every z width halved, the planform's area kept and its cells about 4x
     (each triangle split into four: red refinement), so three_levels' ratio-2 check applies."""
-    from fickcam.diffusion.defectparts import Cells
-    from fickcam.diffusion.prism import cell_areas
-    from fickcam.diffusion.results import Plan
+    from fickcam.diffusion.nonfickian.corrected_pieces import PrismCells
+    from fickcam.diffusion.planform.admissible import cell_areas
+    from fickcam.diffusion.problem.results import Plan
 
-    coarse = Cells.of(PLATE, (1.0, 1.0, 1.0), Plan("solid", 0, 0, "", 0.0, finest=0.27,
+    coarse = PrismCells.of(PLATE, (1.0, 1.0, 1.0), Plan("solid", 0, 0, "", 0.0, finest=0.27,
                                                    growth=0.25))
     fine = coarse.refined()
     nodes = [np.concatenate([[0.0], np.cumsum(c.z)]) for c in (coarse, fine)]
@@ -190,11 +194,12 @@ def test_the_refined_3d_mesh_is_nested_by_two_in_every_direction():
 @pytest.fixture(scope="module")
 def nested_plate():
     """k = 2 absorption on a 3 x 2 x 2 mm plate on three nested 3-D meshes (64, 464, 3 520
-    cells; ``defect.corrected_levels`` from the 1.0 plan), outputs up to tau* = 0.1 (18 CPU
+    cells; ``corrected_product.corrected_levels`` from the 1.0 plan), outputs up to tau* = 0.1 (18
+    CPU
     s). From the 3.3 plan ``solve_corrected`` starts from at 1e-2 (28, 192, 1 408 cells) the
     order is 1.3: the coarsest of those meshes is short of the asymptotic range, the two-mesh
     estimate still covers the finer mesh's error (below)."""
-    from fickcam.diffusion.defect import corrected_levels
+    from fickcam.diffusion.nonfickian.corrected_product import corrected_levels
     small = CamPlate(np.array([0, 3e-3, 3e-3, 0.0]), np.array([0, 0, 2e-3, 2e-3]), H)
     return corrected_levels(small, ISOTROPIC, law(2.0), exposure(0.0, MM), TIMES[:4], 1e-2, 3,
                             base=1.0)
@@ -202,7 +207,8 @@ def nested_plate():
 
 def test_nested_3d_meshes_converge_at_their_measured_order(nested_plate):
     """The corrected result's changes between the nested meshes (each refined by 2 in every
-    direction) shrink at an order of 1.5-3.5 in ``defect.gap``'s norm (measured: 2.7 here;
+    direction) shrink at an order of 1.5-3.5 in ``corrected_product.gap``'s norm (measured: 2.7
+    here;
     2.5 on the 4 x 3 x 2 mm plate over tau* = 0.01-0.3, benchmarks/dc_defect_correction.py
     nested plate-2-absorption 1e-2 00 11 22); the non-nested plans 1, 0.5, 0.25, 0.125
     scattered from -10 to 12 per output."""
@@ -217,7 +223,7 @@ def test_the_two_mesh_3d_estimate_bounds_the_finer_meshs_error(nested_plate):
     estimate (``unseparated``); and the three-mesh estimate is below the two-mesh one
     (measured: 2.6e-3 against 5.0e-4 + 2.0e-4)."""
     from dataclasses import replace
-    from fickcam.diffusion.defect import unseparated
+    from fickcam.diffusion.nonfickian.corrected_product import unseparated
 
     two = replace(nested_plate, results=nested_plate.results[:2])
     values, two_mesh = unseparated(two, 1.0)
@@ -227,15 +233,16 @@ def test_the_two_mesh_3d_estimate_bounds_the_finer_meshs_error(nested_plate):
 
 
 def test_three_nested_meshes_read_between_their_steps_give_what_the_solve_takes(nested_plate):
-    """``defect.extension`` on three nested meshes: read at the stored outputs, the tracks of
+    """``corrected_product.extension`` on three nested meshes: read at the stored outputs, the
+    tracks of
     the nine 3-D marches, the planform reference and the sheet give ``unseparated``'s values
     (the three-mesh check's choice, extrapolated or the finest) to round-off; between the
     outputs, the reading's estimate (cubic against quadratic) is below the accuracy and the
     values lie between the neighbouring outputs' within the accuracy (uptake is monotone; near
     saturation the corrected product itself overshoots Mm by 1.1e-4 of it at tau* = 0.055,
     on every mesh: 1.4e-4 below, 6e-5 and 1.1e-4 above)."""
-    from fickcam.diffusion.defect import extension, unseparated
-    from fickcam.diffusion.results import DiffusionResult
+    from fickcam.diffusion.nonfickian.corrected_product import extension, unseparated
+    from fickcam.diffusion.problem.results import DiffusionResult
 
     values, _ = unseparated(nested_plate, 1.0)
     times = nested_plate.setting.times
@@ -252,25 +259,24 @@ def test_three_nested_meshes_read_between_their_steps_give_what_the_solve_takes(
     assert np.all((values[0][1:-1] - slack < mean) & (mean < values[0][2:] + slack))
 
 
-def test_the_cross_of_cheaper_meshes_stands_in_for_the_next_diagonal_mesh(nested_plate,
-                                                                         monkeypatch):
+def test_the_cross_of_cheaper_meshes_stands_in_for_the_next_diagonal_mesh(nested_plate):
     """Where the finest mesh refined by 2 in every direction (8 x its cells) passes
-    ``NESTED_CELLS``, ``Levels.finer`` adds the ``cross`` around it (the base refined along z
-    once and twice and along the planform once and twice, nested: ``Cells.refined(p, z)``),
+    ``MeshCaps.nested``, ``CorrectedMeshes.finer`` adds the ``cross`` around it (the base
+    refined along z once and twice and along the planform once and twice, nested: ``PrismCells.refined(p, z)``),
     at most 2 x its cells. Their combination R11 + (R02 - R01) + (R20 - R10) (Griebel,
     Schneider & Zenger 1992) is closer to the 8 x mesh R22 than R11 is (measured 5.7e-5
     against 3.9e-4); its estimate (4.1e-4) covers its distance to the diagonal three-mesh
     value plus that one's estimate (5.7e-5 + 2.0e-4) and is below the two-mesh estimate
     (2.6e-3); ``extension`` reads it back at the outputs."""
     from dataclasses import replace
-    from fickcam.diffusion import defect
-    from fickcam.diffusion.results import DiffusionResult
+    from fickcam.diffusion.nonfickian import corrected_product
+    from fickcam.diffusion.problem.results import DiffusionResult
 
-    monkeypatch.setattr(defect, "NESTED_CELLS", 4 * nested_plate.meshes[1].cells)
-    monkeypatch.setattr(defect, "CROSS_CELLS", 2 * nested_plate.meshes[1].cells)
+    caps = corrected_product.MeshCaps(nested=4 * nested_plate.meshes[1].cells,
+                                      cross=2 * nested_plate.meshes[1].cells)
     two = replace(nested_plate, results=nested_plate.results[:2],
                   marched=nested_plate.marched[:2], meshes=nested_plate.meshes[:2])
-    crossed = two.finer()
+    crossed = two.finer(caps=caps)
     assert crossed.keys == [(0, 0), (0, 1), (0, 2), (1, 0), (2, 0), (1, 1)]
     assert max(m.cells for m in crossed.meshes) <= 2 * crossed.meshes[-1].cells
     base, finest = crossed.meshes[0], crossed.meshes[-1]
@@ -278,18 +284,18 @@ def test_the_cross_of_cheaper_meshes_stands_in_for_the_next_diagonal_mesh(nested
     np.testing.assert_array_equal(across.tess.points, finest.tess.points)
     np.testing.assert_array_equal(across.z, finest.z)
     np.testing.assert_array_equal(base.refined(0, 2).z, crossed.meshes[2].z)
-    assert crossed.finer() is None   # once
+    assert crossed.finer(caps=caps) is None   # once
     r, scale = dict(zip(crossed.keys, crossed.results)), nested_plate.scale
     combined = tuple(r[1, 1][i] + r[0, 2][i] - r[0, 1][i] + r[2, 0][i] - r[1, 0][i]
                      for i in range(2))
     diagonal = nested_plate.results[2]
     assert gap(combined, diagonal, scale) <= 0.5 * gap(r[1, 1], diagonal, scale)
-    values, estimate = defect.unseparated(crossed, 1.0)
-    three, three_mesh = defect.unseparated(nested_plate, 1.0)
-    _, two_mesh = defect.unseparated(two, 1.0)
+    values, estimate = corrected_product.unseparated(crossed, 1.0)
+    three, three_mesh = corrected_product.unseparated(nested_plate, 1.0)
+    _, two_mesh = corrected_product.unseparated(two, 1.0)
     assert gap(values, three, scale) + three_mesh <= estimate < two_mesh
     stored = DiffusionResult(crossed.setting.times, values[0], values[1], "solid", 0, 0, 0.0, "")
-    mean, layer, _ = defect.extension(crossed, stored, 1e-2, resolve=None).interpolated(
+    mean, layer, _ = corrected_product.extension(crossed, stored, 1e-2, resolve=None).interpolated(
         crossed.setting.times)
     np.testing.assert_allclose(mean, values[0], rtol=0, atol=1e-12 * scale)
     np.testing.assert_allclose(layer, values[1], rtol=0, atol=1e-12 * scale)
@@ -358,14 +364,15 @@ def test_a_dc_bar_under_auto_takes_the_corrected_product_and_meets_the_method_of
 
 
 def test_the_coarsest_3d_plan_is_loose_at_loose_accuracy_but_keeps_two_z_widths():
-    """``defect.base_plan``: at 0.1 the 4 x 3 x 2 mm plate absorbing (k = 2) would get one
+    """``corrected_product.base_plan``: at 0.1 the 4 x 3 x 2 mm plate absorbing (k = 2) would get
+    one
     z width on the 4.0 plan, so it takes the 2.0 plan (two); at 1e-2 the 3.3 plan (two), at
     3e-3 the 1.0 plan and at 1e-3 the 0.5 plan, as before."""
     from functools import partial
-    from fickcam.diffusion.defect import MESH_LEVELS, MIN_Z_WIDTHS, base_plan
-    from fickcam.diffusion.defectparts import level_plan
-    from fickcam.diffusion.layout import prism_widths
-    from fickcam.diffusion.mirrored import half
+    from fickcam.diffusion.nonfickian.corrected_product import MESH_LEVELS, MIN_Z_WIDTHS, base_plan
+    from fickcam.diffusion.nonfickian.corrected_pieces import level_plan
+    from fickcam.diffusion.operators.sizing import prism_widths
+    from fickcam.diffusion.operators.symmetry_cuts import half
 
     plan_at = partial(level_plan, PLATE, ISOTROPIC, law(2.0), exposure(0.0, MM), TIMES,
                       per_doubling=4)
@@ -377,14 +384,15 @@ def test_the_coarsest_3d_plan_is_loose_at_loose_accuracy_but_keeps_two_z_widths(
 
 
 def test_a_large_part_starts_coarser_so_that_the_cross_around_its_pair_fits():
-    """``defect.base_plan``: where the cross around the nested pair (16 x the base's cells)
+    """``corrected_product.base_plan``: where the cross around the nested pair (16 x the base's
+    cells)
     would pass ``CROSS_CELLS`` the base is coarsened (the plate's plans with their cell
     counts scaled up, as a large part's are): at 1e-3 the 1.0 plan instead of the 0.5 plan,
     its own plan unchanged; a part small enough keeps the 0.5 plan."""
     from dataclasses import replace
     from functools import partial
-    from fickcam.diffusion.defect import CROSS_CELLS, MESH_LEVELS, base_plan
-    from fickcam.diffusion.defectparts import level_plan
+    from fickcam.diffusion.nonfickian.corrected_product import CROSS_CELLS, MESH_LEVELS, base_plan
+    from fickcam.diffusion.nonfickian.corrected_pieces import level_plan
 
     plan_at = partial(level_plan, PLATE, ISOTROPIC, law(2.0), exposure(0.0, MM), TIMES,
                       per_doubling=4)
@@ -400,23 +408,29 @@ def test_a_large_part_starts_coarser_so_that_the_cross_around_its_pair_fits():
 
 
 def test_the_planform_stops_at_2x_only_when_the_whole_estimate_meets_the_accuracy():
-    """``defect.refined_reference`` on the plate (k = 2 absorbing): with the whole estimate
+    """``corrected_product.refined_reference`` on the plate (k = 2 absorbing): with the whole
+    estimate
     within the accuracy (``total``) the refinement stops at 2x even where the 2x estimate is
     above ``PLANFORM_SHARE`` of it; otherwise it goes on (4x, 8x: ``REFINE``). The 2x
     reference (Richardson of 1x and 2x) is within its estimate (their whole change) of the
     finer one (the three-mesh choice), in ``gap``'s norm of the corrected result: what the early stop relies on
     (measured: 3.1e-3 against 8.2e-4 + the 8x estimate 2.8e-4; 14 CPU s)."""
-    from fickcam.diffusion.defect import (MESH_LEVELS, Pair, Setting, corrected,
-                                          refined_reference, surface_of)
-    from fickcam.diffusion.defectparts import level_plan, sheet_reference, steps_for, three_d
+    from fickcam.diffusion.nonfickian.corrected_product import (MESH_LEVELS, CombinedMarch,
+                                                                SharedInputs,
+                                                                corrected, refined_reference,
+                                                                surface_of)
+    from fickcam.diffusion.nonfickian.corrected_pieces import (level_plan, sheet_reference,
+                                                               steps_for, three_d)
 
     times, wet, accuracy = TIMES[:4], exposure(0.0, MM), 0.1   # the marches' steps at 0.1
-    setting = Setting.of(PLATE, ISOTROPIC, law(2.0), wet, times, 5e-4, steps_for(accuracy), "")
+    setting = SharedInputs.of(PLATE, ISOTROPIC, law(2.0), wet, times, 5e-4, steps_for(accuracy),
+                              "")
     start = level_plan(PLATE, ISOTROPIC, law(2.0), wet, times, MESH_LEVELS[-1],
                        setting.per_doubling)
     fine_sheet = sheet_reference(PLATE, ISOTROPIC, law(2.0), wet, times, accuracy)
     coarse = level_plan(PLATE, ISOTROPIC, law(2.0), wet, times, 2.0, setting.per_doubling)
-    sheet, level = Pair(fine_sheet.mean, fine_sheet.surface), three_d(setting, coarse, False)
+    sheet, level = CombinedMarch(fine_sheet.mean, fine_sheet.surface), three_d(setting, coarse,
+                                 False)
     tight = 1e-4   # far below the 2x estimate: only ``total`` can stop at 2x
     seen = []
 

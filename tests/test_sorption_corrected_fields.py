@@ -1,5 +1,5 @@
-"""Stored fields of the corrected product (``diffusion.defectfields``): the finest nested
-3-D mesh's cells corrected cell by cell by the sheet's and the planform's reference/coarse
+"""Stored fields of the corrected product (``diffusion.nonfickian.corrected_fields``): the finest
+nested 3-D mesh's cells corrected cell by cell by the sheet's and the planform's reference/coarse
 ratios, against the exact Fickian block (k = 0: Crank 1975 eq. 4.51 pointwise, the
 product of three sheets) and, with k = 2, against the corrected mean they must be
 consistent with."""
@@ -10,13 +10,13 @@ import numpy as np
 import pytest
 
 from fickcam.diffusion import Bar, CamPlate, Diffusivity, Exposure, Sheet, solve
-from fickcam.diffusion.analytic import exact_history_field
-from fickcam.diffusion import defect
-from fickcam.diffusion.defect import corrected_levels
-from fickcam.diffusion.defectfields import field_errors, stored
-from fickcam.diffusion.defectparts import bar_coordinates
-from fickcam.diffusion.prism import cell_areas
-from fickcam.diffusion.sorption import ConcentrationDependent
+from fickcam.diffusion.models.analytic import exact_history_field
+from fickcam.diffusion.nonfickian import corrected_product
+from fickcam.diffusion.nonfickian.corrected_fields import field_errors, stored
+from fickcam.diffusion.nonfickian.corrected_pieces import bar_coordinates
+from fickcam.diffusion.nonfickian.corrected_product import corrected_levels
+from fickcam.diffusion.planform.admissible import cell_areas
+from fickcam.diffusion.problem.sorption import ConcentrationDependent
 
 pytest.importorskip("fipy")
 
@@ -70,8 +70,8 @@ def test_fickian_corrected_fields_are_the_exact_block_at_the_cell_points(part):
 
 def test_dc_fields_under_auto_are_corrected_and_consistent_with_the_mean(monkeypatch):
     """k = 2 absorbing on the 4 x 3 x 2 mm plate, ``auto`` with fields stored: the
-    corrected product's fields (``defect.solve_corrected`` hands its run to
-    ``defectfields.stored``), their error told in the reason. Their volume mean is the
+    corrected product's fields (``corrected_product.solve_corrected`` hands its run to
+    ``corrected_fields.stored``), their error told in the reason. Their volume mean is the
     corrected mean to the point values' quadrature (for Fick the exact field's own: 1.6e-2
     of the swing at tau* = 0.01 on these 1 200 cells), at most half the coarse cells'
     distance to it (measured 0.26-0.38 of it where that exceeds 1e-5), within the fields'
@@ -81,7 +81,7 @@ def test_dc_fields_under_auto_are_corrected_and_consistent_with_the_mean(monkeyp
     def kept(run, reason):
         runs.append(run)
         return stored(run, reason)
-    monkeypatch.setattr(defect, "stored", kept)
+    monkeypatch.setattr(corrected_product, "stored", kept)
     result = solve(PLATE, ISOTROPIC, WET, TIMES, accuracy=3e-2, sorption=law(2.0),
                    store_fields=True)
     assert "fields: the finest mesh's cells x the sheet's and the planform's" in result.reason
@@ -96,15 +96,15 @@ def test_dc_fields_under_auto_are_corrected_and_consistent_with_the_mean(monkeyp
 
 
 def test_the_planform_reading_is_second_order_and_holds_mirrors_and_the_surface():
-    """``defectfields.planform_at`` (linear on the Delaunay triangles of the cell points, the
+    """``corrected_fields.planform_at`` (linear on the Delaunay triangles of the cell points, the
     exposed outline at 0, images across mirror lines): a smooth U vanishing on the outline
     of the 4 x 3 x 2 mm plate, read at another graded mesh's points (some on the mirror
     line), converges at second order under nested refinement (from the 0.3 plan refined
     once: 160, 648, 2 608 cells, measured ratios of the errors 4.2, 3.3), the same on the
     half cut at its mirror line x = 2 mm (4.4, 5.7), and is 0 on the exposed outline."""
-    from fickcam.diffusion.layout import planform_cells, triangulate
-    from fickcam.diffusion.prism import admissible, refine
-    from fickcam.diffusion.defectfields import exposed_points, planform_at
+    from fickcam.diffusion.operators.sizing import planform_cells, triangulate
+    from fickcam.diffusion.planform.admissible import admissible, refine
+    from fickcam.diffusion.nonfickian.corrected_fields import exposed_points, planform_at
 
     def unaccomplished(tess, points):
         x, y = tess.physical(points).T
@@ -154,18 +154,17 @@ def test_dc_fields_at_the_centre_of_a_wide_plate_are_the_dc_sheet():
     assert corrected <= coarse / 5.0
 
 
-def test_fields_after_the_cross_are_the_diagonal_finest_meshs_and_its_coarser_neighbours(
-        monkeypatch):
-    """Where the 8x mesh passes the cap, ``Levels.finer`` adds the ``cross`` (meshes refined
-    along one direction, their fields not kept) around the finest: the stored fields and
+def test_fields_after_the_cross_are_the_diagonal_finest_meshs_and_its_coarser_neighbours():
+    """Where the 8x mesh passes the cap, ``CorrectedMeshes.finer`` adds the ``cross`` (meshes
+    refined along one direction, their fields not kept) around the finest: the stored fields and
     their indicated errors still come from the finest mesh and the next coarser one on the
     diagonal, so they are the two-mesh run's exactly (k = 2 absorbing, 3 x 2 x 2 mm plate)."""
     small = CamPlate(np.array([0, 3e-3, 3e-3, 0.0]), np.array([0, 0, 2e-3, 2e-3]), H)
     run = corrected_levels(small, ISOTROPIC, law(2.0), WET, TIMES[:4], 1e-2, 2, base=1.0,
                            store_fields=True)
-    monkeypatch.setattr(defect, "NESTED_CELLS", 4 * run.meshes[1].cells)
-    monkeypatch.setattr(defect, "CROSS_CELLS", 2 * run.meshes[1].cells)
-    crossed = run.finer(store_fields=True)
+    caps = corrected_product.MeshCaps(nested=4 * run.meshes[1].cells,
+                                      cross=2 * run.meshes[1].cells)
+    crossed = run.finer(store_fields=True, caps=caps)
     assert crossed.keys[-1] == (1, 1) and len(crossed.meshes) == 6
     assert [m.plate.fields is None for m in crossed.marched] == [False] + [True] * 4 + [False]
     (two, two_errors), (cross, cross_errors) = field_errors(run), field_errors(crossed)

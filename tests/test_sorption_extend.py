@@ -1,5 +1,6 @@
-"""``DiffusionResult.extend`` of the concentration-dependent marches (``diffusion.dense``):
-new times read between the stored march's steps agree with a solve at those times within
+"""``DiffusionResult.extend`` of the concentration-dependent marches
+(``diffusion.stepping.dense_output``): new times read between the stored march's steps agree with
+a solve at those times within
 the extended result's estimate, the reading never crosses an exposure change, and its
 estimate grows as the steps thin out. The exact Fickian sheet uptake (Crank 1975 eq. 4.18,
 4.20; ``series.sheet_uptake``) is the independent reference of the interpolation alone."""
@@ -7,12 +8,12 @@ import numpy as np
 import pytest
 
 from fickcam.diffusion import CamPlate, Diffusivity, Exposure, Sheet, solve
-from fickcam.diffusion.calibration import FIRST_STEP
-from fickcam.diffusion.defect import gap
-from fickcam.diffusion.dense import Track
-from fickcam.diffusion.series import sheet_uptake
-from fickcam.diffusion.sorption import ConcentrationDependent
-from fickcam.diffusion.timesteps import step_nodes
+from fickcam.diffusion.accuracy.error_model import FIRST_STEP
+from fickcam.diffusion.exact.series import sheet_uptake
+from fickcam.diffusion.nonfickian.corrected_product import gap
+from fickcam.diffusion.problem.sorption import ConcentrationDependent
+from fickcam.diffusion.stepping.dense_output import StepRecord
+from fickcam.diffusion.stepping.step_plans import step_nodes
 
 pytest.importorskip("fipy")
 
@@ -25,9 +26,9 @@ STEP_DOWN = Exposure.piecewise([0.0, 0.3 * T, TIMES[-1]], [330.0, 330.0], [MM, 0
 
 
 def track_of(values, per_doubling, changes=(0.0, 1.0), outputs=(0.5, 1.0)):
-    """A Track on the march's own node plan (scaled time = time) with ``values(tau)``."""
+    """A StepRecord on the march's own node plan (scaled time = time) with ``values(tau)``."""
     nodes = step_nodes(np.array(changes), np.array(outputs), FIRST_STEP, per_doubling)
-    return Track(nodes, np.column_stack([values(nodes)] * 2), np.zeros(nodes.size),
+    return StepRecord(nodes, np.column_stack([values(nodes)] * 2), np.zeros(nodes.size),
                  np.array(changes, float), lambda t: np.asarray(t, float))
 
 
@@ -55,7 +56,8 @@ def test_extend_agrees_with_a_solve_at_the_new_times_within_its_estimate(stepped
 
 
 def test_the_corrected_plate_read_between_its_steps_agrees_with_its_solve_at_the_new_times():
-    """The 4 x 3 x 2 mm plate (k = 2, absorbing; the corrected product of ``defect``) at 3e-2:
+    """The 4 x 3 x 2 mm plate (k = 2, absorbing; the corrected product of ``corrected_product``) at
+    3e-2:
     read at its own outputs, the tracks of its marches (plate, slab, planform, planform
     reference, sheet) give the stored result to round-off; 7 new times read between the
     steps are within the extended estimate of a solve at the stored and new times, and
@@ -87,7 +89,7 @@ def test_a_new_time_younger_than_the_stored_outputs_is_solved_again(stepped_shee
 def test_a_new_time_younger_than_the_stored_outputs_of_the_skin_is_solved_again():
     """Stored outputs 0.3 and 0.7 h^2/D after the step down (the skin's cells sized for 0.3),
     a new one 0.02 after it: older than the youngest stored output of the whole history (1e-2
-    after the start), but the skin's plan changes (``dense.held_to_plan``), so it is solved
+    after the start), but the skin's plan changes (``dense_output.held_to_plan``), so it is solved
     again and agrees with ``solve`` at both to round-off."""
     law = ConcentrationDependent(MM, exponent=2.0)
     stored_times = TIMES[TIMES != 0.31 * T]

@@ -7,10 +7,10 @@ from hypothesis import example, given, settings
 from hypothesis import strategies as st
 
 from fickcam.diffusion import solve
-from fickcam.diffusion.exposure import Diffusivity, Exposure
-from fickcam.diffusion.geometry import CamPlate, Disc, Sheet
-from fickcam.diffusion.sorption import ConcentrationDependent, Langmuir, Rate
-from fickcam.diffusion.two_phase import two_phase_sheet_uptake
+from fickcam.diffusion.exact.two_phase import two_phase_sheet_uptake
+from fickcam.diffusion.problem.exposure import Diffusivity, Exposure
+from fickcam.diffusion.problem.geometry import CamPlate, Disc, Sheet
+from fickcam.diffusion.problem.sorption import ConcentrationDependent, Langmuir, Rate
 
 H, D, MM = 2e-3, 5e-12, 2.0
 KAPPA = np.pi ** 2 * D / H ** 2
@@ -64,7 +64,7 @@ def test_concentration_dependent_extremes_stay_bounded_and_reach_equilibrium(exp
 @settings(max_examples=6, deadline=None)
 @given(st.floats(-3, 3), st.floats(-3, 3))
 def test_two_phase_extremes_on_a_cam_plate_stay_bounded_and_conserve_mass(log_gamma, log_beta):
-    """A circular CamPlate on its planform quadrature (``planmodes``), wet and dried, against
+    """A circular CamPlate on its planform quadrature (``planform_modes``), wet and dried, against
     the exact disc modes (which conserve free + bound water): rates 1e-3..1e3 of the
     slowest diffusion rate of the plate, within the accuracy, bounded, finite."""
     radius, thickness, d = 0.004, 0.004, 1e-11
@@ -99,15 +99,16 @@ PLATE_HISTORIES = {  # (initial moisture, surface in the first half, in the seco
 @example(5.0, "desorption")
 def test_corrected_plate_extremes_stay_bounded_and_agree_with_the_3d_cells(exponent, history):
     """D = D0 exp(k c/Mm), k = 0..5, on a 3 x 2 x 2 mm plate by the corrected product
-    (``defect.solve_corrected``, what ``auto`` runs for k > 0) at a loose accuracy: finite,
+    (``corrected_product.solve_corrected``, what ``auto`` runs for k > 0) at a loose accuracy:
+    finite,
     within the surface values and the initial moisture by its own estimate (Richardson's
     2 fine - coarse may step outside by its error; the layer by LAYER_TOLERANCE times it),
     uptake monotone under absorption, and the mean within both estimates of the 3-D cells'
     own result (``model: solid`` at the corrected path's finer 3-D plan, accuracy
     MESH_LEVELS[-1]: those cells marched alone, uncorrected). Few examples: each runs about
     20 swept marches of 300-600 steps; the explicit one is the extreme skin (k = 5, drying)."""
-    from fickcam.diffusion.defect import MESH_LEVELS, solve_corrected
-    from fickcam.diffusion.planmodes import LAYER_TOLERANCE
+    from fickcam.diffusion.nonfickian.corrected_product import MESH_LEVELS, solve_corrected
+    from fickcam.diffusion.accuracy.error_model import LAYER_TOLERANCE
 
     initial, wet, late = PLATE_HISTORIES[history]
     end = PLATE_TIMES[-1]

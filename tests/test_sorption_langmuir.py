@@ -5,14 +5,15 @@ import numpy as np
 import pytest
 
 from fickcam.diffusion import plan, solve
-from fickcam.diffusion.exposure import Diffusivity, Exposure
-from fickcam.diffusion.geometry import Bar, CamPlate, Disc, LinkBar, Sheet
-from fickcam.diffusion.langmuir import langmuir_history
-from fickcam.diffusion.planmodes import (LAYER_TOLERANCE, lanczos_spectrum, planform_operator,
-                                         planform_source)
-from fickcam.diffusion.sorption import Langmuir, Rate
-from fickcam.diffusion.two_phase import (carter_kibler_approximation, exchange_propagator,
-                                         two_phase_sheet_uptake)
+from fickcam.diffusion.accuracy.error_model import LAYER_TOLERANCE
+from fickcam.diffusion.exact.two_phase import (carter_kibler_approximation, exchange_propagator,
+                                               two_phase_sheet_uptake)
+from fickcam.diffusion.nonfickian.planform_modes import (lanczos_spectrum, planform_operator,
+                                                         planform_source)
+from fickcam.diffusion.nonfickian.two_phase_modes import langmuir_history
+from fickcam.diffusion.problem.exposure import Diffusivity, Exposure
+from fickcam.diffusion.problem.geometry import Bar, CamPlate, Disc, LinkBar, Sheet
+from fickcam.diffusion.problem.sorption import Langmuir, Rate
 
 H, D, DAY = 2e-3, 5e-12, 86400.0
 KAPPA = np.pi ** 2 * D / H ** 2
@@ -147,7 +148,7 @@ def test_cam_plate_planform_mesh_converges_at_second_order():
 def test_lanczos_quadrature_reproduces_the_moments_of_the_planform_spectrum():
     """m shift-and-invert Lanczos steps from M^1/2 1 are the m-point Gauss quadrature of
     the planform's spectral measure; the mean and the layer, each a bilinear form w^T
-    S^-k v of their gradient-corrected weights (``cellmoments``) against the start v,
+    S^-k v of their gradient-corrected weights (``cell_moments``) against the start v,
     are exact for k < m (Golub & Meurant 2010 §§6.2, 7.1); with m = cells it is the
     whole spectrum (dense eigh)."""
     plate = circular_plate()
@@ -180,7 +181,7 @@ def test_link_planform_modes_without_binding_match_the_fickian_plane_model():
 
 def test_cam_plate_fipy_prisms_match_the_exact_disc_after_an_rh_step_down():
     """``solid``: FiPy prisms of the circular plate with the coupled free/bound block
-    operator (``coupled``), against the exact two-phase disc modes: within the accuracy,
+    operator (``two_phase_mesh``), against the exact two-phase disc modes: within the accuracy,
     and the error falls with it (about first order in the accuracy, as for Fick: the plan
     sizes cells and steps so that the estimate is proportional to it)."""
     sorption = law(2e-7, 6e-7)

@@ -5,11 +5,12 @@ import pytest
 from scipy.integrate import solve_ivp
 from scipy.sparse import diags
 
-from fickcam.diffusion import nonlinear, solve
-from fickcam.diffusion.direct import discretise
-from fickcam.diffusion.exposure import Diffusivity, Exposure
-from fickcam.diffusion.geometry import Disc, Sheet
-from fickcam.diffusion.sorption import ConcentrationDependent
+from fickcam.diffusion import SolverSettings, solve
+from fickcam.diffusion.models.finite_volume import discretise
+from fickcam.diffusion.nonfickian import concentration_dependent
+from fickcam.diffusion.problem.exposure import Diffusivity, Exposure
+from fickcam.diffusion.problem.geometry import Disc, Sheet
+from fickcam.diffusion.problem.sorption import ConcentrationDependent
 from fickcam.errors import SolverError
 
 H, D, MM = 2e-3, 5e-12, 2.0
@@ -41,7 +42,8 @@ def exposure(start, surface):
 @pytest.mark.parametrize("k, accuracy, start, surface", [
     (2.0, 1e-2, 0.0, MM), (2.0, 1e-2, MM, 0.0), (5.0, 1e-3, MM, 0.0)])
 def test_exponential_diffusivity_matches_a_fine_method_of_lines(k, accuracy, start, surface):
-    """Absorption and desorption (the dry skin, ``nonlinear.dries_to_a_skin``, the case
+    """Absorption and desorption (the dry skin, ``concentration_dependent.dries_to_a_skin``, the
+    case
     that sizes the cells at the smallest D): within the accuracy and within the estimate.
     Measured: k = 2 at 1e-2: 2.7e-3 (estimate 5.3e-3) absorbing, 5.1e-4 (5.7e-3)
     desorbing; k = 5 desorbing at 1e-3: 9.9e-5 (8.6e-4) (with f(surface value) on the
@@ -114,7 +116,8 @@ def test_operator_sweeps_are_fipys_own_sweeps():
     law = ConcentrationDependent(MM, exponent=3.0)
     weights = discretise(Sheet(H), ISOTROPIC, (20,), 5e-4)
     start = np.linspace(0.2, 1.5, 20)
-    ours = nonlinear._sweep(nonlinear.Faces.of(weights), start, MM, law, 20.0, 1e-3, "", 1, 0.0)
+    ours = concentration_dependent.sweep_step(concentration_dependent.Faces.of(weights), start,
+                                              MM, law, 20.0, 1e-3, "", 1, 0.0)
     c = CellVariable(mesh=Grid1D(nx=20, dx=0.05), value=start, hasOld=True)
     c.constrain(MM, c.mesh.exteriorFaces)
     coefficient = FaceVariable(mesh=c.mesh, value=1.0)
@@ -126,12 +129,12 @@ def test_operator_sweeps_are_fipys_own_sweeps():
     assert np.max(np.abs(np.asarray(c.value) - ours)) < 1e-9
 
 
-def test_a_step_that_does_not_converge_raises_a_solver_error(monkeypatch):
-    monkeypatch.setattr(nonlinear, "MAX_SWEEPS", 1)
+def test_a_step_that_does_not_converge_raises_a_solver_error():
     law = ConcentrationDependent(MM, exponent=5.0)
+    one_sweep = SolverSettings(sweeps=concentration_dependent.Sweeps(most=1))
     with pytest.raises(SolverError, match="did not converge"):
         solve(Sheet(H), ISOTROPIC, exposure(0.0, MM), TIMES, accuracy=1e-2, sorption=law,
-              part="cam")
+              part="cam", settings=one_sweep)
 
 
 def test_the_skin_is_resolved_from_its_start_on():
@@ -141,8 +144,8 @@ def test_the_skin_is_resolved_from_its_start_on():
     wetting outputs take the largest D's cells; the plan covers both (no wider first row, no
     faster growth) with far fewer cells than the skin's cells at every output (35 568)."""
     from fickcam.diffusion import CamPlate
-    from fickcam.diffusion.clock import scales as scales_of
-    from fickcam.diffusion.direct import plan_direct
+    from fickcam.diffusion.forcing.clock import scales as scales_of
+    from fickcam.diffusion.models.finite_volume import plan_direct
 
     tau = H ** 2 / D
     plate = CamPlate(np.array([0, 4e-3, 4e-3, 0.0]), np.array([0, 0, 3e-3, 3e-3]), H)
@@ -158,9 +161,9 @@ def test_the_skin_is_resolved_from_its_start_on():
                                   s.tau_star(np.asarray(outputs, float)), a, history)))
         return asked[-1][2]
 
-    start = nonlinear.skin_start(law, history)
+    start = concentration_dependent.skin_start(law, history)
     assert 1.5 * tau - 1.5 * tau / 8 <= start <= 1.5 * tau
-    chosen = nonlinear.nonlinear_plan(planner, ISOTROPIC, law, history, times, 0.5)
+    chosen = concentration_dependent.nonlinear_plan(planner, ISOTROPIC, law, history, times, 0.5)
     margin = np.exp(2.5)  # 1 + SKIN_CELLS_MARGIN (sqrt(e^5) - 1)
     skin = next(p for a, at, p in asked if np.isclose(a, 0.5 / margin) and at.min() >= start)
     soak = next(p for a, at, p in asked if np.isclose(a, 0.25) and at.max() < start)

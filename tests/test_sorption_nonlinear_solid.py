@@ -11,15 +11,18 @@ import pytest
 from hypothesis import example, given, settings
 from hypothesis import strategies as st
 
-from fickcam.diffusion import (Bar, CamPlate, Diffusivity, Exposure, Sheet, fvprism, plan,
-                               prism, solve, trimesh)
-from fickcam.diffusion import calibration, layout, nonlinear
-from fickcam.diffusion.clock import scales as scales_of
-from fickcam.diffusion.direct import discretise, step_plan
-from fickcam.diffusion.march import _rounded
-from fickcam.diffusion.mirrored import mirrored
-from fickcam.diffusion.planmodes import LAYER_TOLERANCE
-from fickcam.diffusion.sorption import ConcentrationDependent
+from fickcam.diffusion import Bar, CamPlate, Diffusivity, Exposure, Sheet, plan, solve
+from fickcam.diffusion.accuracy import error_model
+from fickcam.diffusion.accuracy.error_model import LAYER_TOLERANCE
+from fickcam.diffusion.forcing.clock import scales as scales_of
+from fickcam.diffusion.models.finite_volume import discretise, step_plan
+from fickcam.diffusion.nonfickian import concentration_dependent
+from fickcam.diffusion.operators import prisms
+from fickcam.diffusion.operators import sizing
+from fickcam.diffusion.operators.symmetry_cuts import mirrored
+from fickcam.diffusion.planform import admissible, triangles
+from fickcam.diffusion.problem.sorption import ConcentrationDependent
+from fickcam.diffusion.stepping.march import rounded_steps
 from fickcam.errors import InputError
 
 pytest.importorskip("fipy")
@@ -103,7 +106,7 @@ def test_the_cell_cap_counts_the_octant_the_sweeps_solve(monkeypatch):
     its estimate bounds the error against the independent method of lines
     (``BAR_REFERENCE``; measured: estimate 1.6e-2, mean error 3.2e-3, layer 5.4e-3). The
     Fickian solid solves the whole bar and is capped by it at the same cap."""
-    monkeypatch.setitem(calibration.MAX_CELLS, "solid", 2000)
+    monkeypatch.setitem(error_model.MAX_CELLS, "solid", 2000)
     times = np.array(BAR_REFERENCE["tau"]) * H ** 2 / D
     absorbing, accuracy = exposure(0.0, MM, times[-1]), 3e-2
     chosen = plan(BAR, ISOTROPIC, absorbing, times, accuracy=accuracy, sorption=law(2),
@@ -123,12 +126,12 @@ def test_the_cell_cap_counts_the_octant_the_sweeps_solve(monkeypatch):
 
 @pytest.mark.parametrize("cap", [300, 1000, 5000])
 def test_a_mirrored_layout_counts_the_cells_of_the_octant_it_assembles(cap):
-    """``layout.uniform`` and ``layout.choose`` with the three axes halved: the cap bounds
-    the cells of the octant ``mirrored`` assembles from the layout (uniform counts
+    """``sizing.uniform`` and ``sizing.choose`` with the three axes halved: the cap bounds
+    the cells of the octant ``symmetry_cuts`` assembles from the layout (uniform counts
     rounded to even, so the octant is exactly half of each), not the whole bar's."""
-    extents = layout.extents(BAR, (D, D, D))
-    for chosen in (layout.uniform(extents, 1e-2, 1e-2, cap, 1e-2, halved=(0, 1, 2)),
-                   layout.choose(BAR, extents, 1e-2, 1e-2, cap, 1e-2, halved=(0, 1, 2))):
+    extents = sizing.extents(BAR, (D, D, D))
+    for chosen in (sizing.uniform(extents, 1e-2, 1e-2, cap, 1e-2, halved=(0, 1, 2)),
+                   sizing.choose(BAR, extents, 1e-2, 1e-2, cap, 1e-2, halved=(0, 1, 2))):
         octant = mirrored(BAR, (D, D, D), chosen.cells, chosen.finest, chosen.growth, 5e-4)
         assert octant.cells == chosen.solved == chosen.total // 8 <= cap
 
@@ -184,12 +187,12 @@ def test_sweeps_conserve_mass_uptake_equals_the_surface_flux():
     faces, D0 (Phi(g) - Phi(c)) per unit transmissibility (Phi = integral of f), to the
     sweep tolerance."""
     weights = mirrored(BAR, (D, D, D), (6, 4, 2), 0.0, 0.0, 5e-4)
-    faces = nonlinear.Faces.of(weights)
+    faces = concentration_dependent.Faces.of(weights)
     strong, top = law(3), float(np.exp(3.0))
     c = np.zeros(weights.cells)
     influx = 0.0
     for dt in np.geomspace(1e-4, 5e-2, 12):
-        new = nonlinear._sweep(faces, c, MM, strong, top, dt, "bar", 1, 0.0)
+        new = concentration_dependent.sweep_step(faces, c, MM, strong, top, dt, "bar", 1, 0.0)
         influx += dt * float(np.sum(strong.mean_factor(new, MM) / top * faces.boundary
                                     * (MM - new)))
         c = new
@@ -198,22 +201,23 @@ def test_sweeps_conserve_mass_uptake_equals_the_surface_flux():
     assert 0 < gained < MM * faces.volumes.sum()
 
 
-def test_inexact_sweeps_from_the_extrapolated_state_converge_to_the_exact_sweeps(monkeypatch):
+def test_inexact_sweeps_from_the_extrapolated_state_converge_to_the_exact_sweeps():
     """``sweep_march`` starts each step's sweeps from the last two states extrapolated in
-    time and solves each sweep's system to ``FORCING`` x the residual it starts from
+    time and solves each sweep's system to ``Sweeps.forcing`` x the residual it starts from
     (inexact Picard); the converged steps must be those of sweeps from the old state with
     every system solved to ``LINEAR_TOLERANCE``: 20 steps of the mirrored bar, k = 3,
     absorbing (to 55 % of Mm), within the sweep tolerance (measured 1.7e-9 of Mm)."""
     weights = mirrored(BAR, (D, D, D), (12, 8, 4), 0.0, 0.0, 5e-4)
-    faces, strong, top = nonlinear.Faces.of(weights), law(3), float(np.exp(3.0))
+    faces, strong, top = concentration_dependent.Faces.of(weights), law(3), float(np.exp(3.0))
     nodes = np.concatenate([[0.0], np.cumsum(np.geomspace(1e-4, 2e-2, 20))])  # scaled time
     steps = SimpleNamespace(nodes=nodes, surface_before=np.full(21, MM), times=nodes,
                             outputs=np.arange(0, 21, 5))
-    fast = nonlinear.sweep_march(faces, weights, strong, top, steps, 0.0, True, "")
-    monkeypatch.setattr(nonlinear, "FORCING", 0.0)
+    fast = concentration_dependent.sweep_march(faces, weights, strong, top, steps, 0.0, True, "")
+    exact_sweeps = concentration_dependent.Sweeps(forcing=0.0)
     c, exact = np.zeros(weights.cells), [np.zeros(weights.cells)]
-    for k, dt in enumerate(_rounded(np.diff(nodes)), start=1):
-        c = nonlinear._sweep(faces, c, MM, strong, top, dt, "bar", k, 0.0)
+    for k, dt in enumerate(rounded_steps(np.diff(nodes)), start=1):
+        c = concentration_dependent.sweep_step(faces, c, MM, strong, top, dt, "bar", k, 0.0,
+                                               sweeps=exact_sweeps)
         if k % 5 == 0:
             exact.append(c)
     assert fast.fields.shape == (5, weights.cells)
@@ -244,10 +248,11 @@ def refined_histories(operators, k, start=0.0, surface=MM, per_doubling=8):
     all on the same steps (backward Euler, no Richardson), so that the time error is
     common and their differences are the space error alone."""
     strong, wet = law(k), exposure(start, surface)
-    scaled = nonlinear.fastest(ISOTROPIC, strong, wet, TIMES)
+    scaled = concentration_dependent.fastest(ISOTROPIC, strong, wet, TIMES)
     steps = step_plan(wet, TIMES, scales_of(Sheet(H), scaled, wet), per_doubling)
     top = strong.largest_factor(MM)
-    runs = [nonlinear.sweep_march(nonlinear.Faces.of(w), w, strong, top, steps, start, False,
+    runs = [concentration_dependent.sweep_march(concentration_dependent.Faces.of(w), w, strong,
+                                                top, steps, start, False,
                                   "") for w in operators]
     return [np.concatenate([run.mean[1:], run.layer[1:]]) / MM for run in runs]
 
@@ -296,13 +301,13 @@ def test_prism_sweeps_converge_at_second_order_under_nested_refinement():
     from above, as the bar does on coarse meshes. The earlier f(surface value) on the exposed faces: 0.4 to 5.6 (the error changes
     sign between meshes); on rows graded from the outline (growth 0.3) it is monotone
     now but pre-asymptotic at these sizes (1.7-2.4 on 36, 260, 1 968 cells)."""
-    tess = prism.admissible(trimesh.triangulate(PLATE, 0.5e-3), PLATE,
+    tess = admissible.admissible(triangles.triangulate(PLATE, 0.5e-3), PLATE,
                             mirrors=((0, 2e-3), (1, 1.5e-3)))
     widths, operators = np.full(2, 0.25 * H), []
     for _ in range(3):
-        operators.append(fvprism.prism(tess, H, widths, prism.band_share(tess, 5e-4),
+        operators.append(prisms.prism(tess, H, widths, admissible.band_share(tess, 5e-4),
                                        (D, D, D), mid_plane=True))
-        tess, widths = prism.refine(tess), np.repeat(0.5 * widths, 2)
+        tess, widths = admissible.refine(tess), np.repeat(0.5 * widths, 2)
     orders = observed_orders(*refined_histories(operators, 1.0)).reshape(2, -1)
     assert np.all(np.abs(orders[:, 1:] - 2.0) <= 0.3), orders
     assert np.all(orders[:, 0] >= 1.7), orders  # tau* = 0.01: pre-asymptotic, from above
@@ -310,8 +315,8 @@ def test_prism_sweeps_converge_at_second_order_under_nested_refinement():
 
 def square_cells(length: float, width: float, nx: int, ny: int) -> SimpleNamespace:
     """A rectangle's nx x ny squares, each cut into two right triangles (points and
-    triangles, as ``trimesh.triangulate`` gives them): their circumcentres coincide, so
-    ``prism.admissible`` merges each pair back into its square."""
+    triangles, as ``triangles.triangulate`` gives them): their circumcentres coincide, so
+    ``admissible.admissible`` merges each pair back into its square."""
     x, y = np.meshgrid(np.linspace(0, length, nx + 1), np.linspace(0, width, ny + 1),
                        indexing="ij")
     corner = (np.arange(nx)[:, None] * (ny + 1) + np.arange(ny)[None, :]).ravel()
@@ -327,9 +332,9 @@ def test_prisms_of_square_cells_are_the_grid3d_octant_to_round_off():
     thickness, is the 4 x 3 x 2 mm bar's Grid3D octant on the same cells: the same k = 1
     sweeps give the same mean to round-off (measured 2e-16), so nothing in the prisms'
     assembly, mirrors or weights adds to the error of the graded or lattice prisms."""
-    tess = prism.admissible(square_cells(4e-3, 3e-3, 16, 12), PLATE,
+    tess = admissible.admissible(square_cells(4e-3, 3e-3, 16, 12), PLATE,
                             mirrors=((0, 2e-3), (1, 1.5e-3)))
-    plate = fvprism.prism(tess, H, np.full(4, 0.25e-3), prism.band_share(tess, 5e-4),
+    plate = prisms.prism(tess, H, np.full(4, 0.25e-3), admissible.band_share(tess, 5e-4),
                           (D, D, D), mid_plane=True)
     bar = mirrored(Bar(4e-3, 3e-3, H), (D, D, D), (16, 12, 8), 0.0, 0.0, 5e-4)
     assert tess.cells == 48 and plate.cells == bar.cells == 192

@@ -1,24 +1,27 @@
-"""The two-phase cam-plate path (``planmodes``) on climate records, its contact layer, and
+"""The two-phase cam-plate path (``planform_modes``) on climate records, its contact layer, and
 what ``fickcam check`` reports of it, each against an independent reference: the exact
-cylinder modes (Crank 1975 eqs. 5.22-5.23), the exact two-phase disc (``langmuir``), and a
+cylinder modes (Crank 1975 eqs. 5.22-5.23), the exact two-phase disc (``two_phase_modes``), and a
 fine run of the demo cam recorded in tests/data by benchmarks/two_phase_cam_records.py."""
 from __future__ import annotations
 
 import json
+from dataclasses import replace
 import numpy as np
 import pytest
 
-from fickcam.blas import one_blas_thread
 from fickcam.bench_two_phase import CONFIGS, REFERENCE, cam_problem, true_error
-from fickcam.diffusion import CamPlate, Diffusivity, Disc, plan, solve
-from fickcam.diffusion.langmuir import history_swing
-from fickcam.diffusion.modes import cylinder_factor
-from fickcam.diffusion import planmodes
-from fickcam.diffusion.layout import _estimated_prism_cells as estimated_prism_cells
-from fickcam.diffusion.scaling import stretch_of
-from fickcam.diffusion.planmodes import (LAYER_TOLERANCE, _estimate, _parts, lanczos_spectrum,
-                                         planar_fraction, planform_operator, whole_at_start)
-from fickcam.diffusion.sorption import Langmuir, Rate
+from fickcam.blas import one_blas_thread
+from fickcam.diffusion import CamPlate, Diffusivity, Disc, SolverSettings, plan, solve
+from fickcam.diffusion.accuracy.error_model import LAYER_TOLERANCE
+from fickcam.diffusion.exact.modes import cylinder_factor
+from fickcam.diffusion.nonfickian import planform_modes
+from fickcam.diffusion.nonfickian.planform_modes import (mesh_error, error_coefficients,
+                                                         lanczos_spectrum, planar_fraction,
+                                                         planform_operator, whole_at_start)
+from fickcam.diffusion.operators.sizing import estimated_prism_cells
+from fickcam.diffusion.problem.exposure import swing as history_swing
+from fickcam.diffusion.problem.scaling import stretch_of
+from fickcam.diffusion.problem.sorption import Langmuir, Rate
 from fickcam.environment import Environment
 from tolerance import roundoff
 
@@ -140,9 +143,10 @@ def test_demo_two_phase_cam_is_within_its_estimate_of_a_fine_run(climate):
 
 
 def test_two_step_richardson_recovers_the_w0_and_growth_terms_apart():
-    """``_parts`` through three meshes (two differing from the first in w0 or g alone) and,
+    """``error_coefficients`` through three meshes (two differing from the first in w0 or g alone)
+    and,
     by least squares, through four gives back alpha and beta of y = y* + alpha w0^2 + beta
-    g^2 per compared value; ``_estimate`` adds their magnitudes (no cancellation trusted)."""
+    g^2 per compared value; ``mesh_error`` adds their magnitudes (no cancellation trusted)."""
     alpha, beta = np.array([[0.25, -0.08]]), np.array([[-4e-3, 2.6e-3]])
 
     def mesh(w, g):
@@ -150,9 +154,9 @@ def test_two_step_richardson_recovers_the_w0_and_growth_terms_apart():
 
     three = [mesh(0.06, 0.125), mesh(0.03, 0.125), mesh(0.06, 0.0625)]
     for meshes in (three, three + [mesh(0.0125, 0.084)]):
-        parts = _parts(meshes)
+        parts = error_coefficients(meshes)
         assert parts == pytest.approx(np.stack([alpha.ravel(), beta.ravel()]), rel=1e-9)
-    assert _estimate(_parts(three), 0.02, 0.1) == pytest.approx(
+    assert mesh_error(error_coefficients(three), 0.02, 0.1) == pytest.approx(
         max(0.25 * 4e-4 + 4e-3 * 1e-2, 0.08 * 4e-4 + 2.6e-3 * 1e-2))
 
 
@@ -160,7 +164,7 @@ COMPARED_VALUES = np.array([[0.5], [0.3]])  # the stand-in's mean and layer, wei
 
 
 def _modelled_level(coefficients):
-    """A stand-in for ``planmodes._level`` whose compared values (mean, layer) err exactly
+    """A stand-in for ``planform_modes._level`` whose compared values (mean, layer) err exactly
     by ``coefficients`` @ (w0^2, g^2), on the cells the planform would have (0.8 x the
     cap's cheap count, as measured on the demo cam)."""
     def level(geometry, d, depth, finest, growth, ages, tolerance, measure):
@@ -171,8 +175,7 @@ def _modelled_level(coefficients):
     return level
 
 
-def test_w0_and_growth_refined_apart_meet_a_tolerance_together_cannot_under_the_cap(
-        monkeypatch):
+def test_w0_and_growth_refined_apart_meet_a_tolerance_together_cannot_under_the_cap():
     """On a plate whose layer errs 0.25 w0^2 and mean 0.02 w0^2 - 0.004 g^2 (the pattern of
     the demo cam through its daily record), refining w0 and g together stops at the cap
     above 5e-5; apart (``_separately``) meets it under the cap, the estimate (the terms'
@@ -182,33 +185,33 @@ def test_w0_and_growth_refined_apart_meet_a_tolerance_together_cannot_under_the_
     carries, so the comparison allows round-off at their magnitude."""
     plate, _ = circle(0.01, 0.004)
     coefficients = np.array([[0.02, -0.004], [0.25, 0.001]])
-    monkeypatch.setattr(planmodes, "_level", _modelled_level(coefficients))
+    modelled = planform_modes.Refinement(level=_modelled_level(coefficients))
 
-    def refined():
-        return planmodes.refined_planform(plate, (D,) * 3, DEPTH, 0.12, 0.25, [1.0], 5e-5,
-                                          None)
-    apart = refined()
+    def refined(refinement):
+        return planform_modes.refined_planform(plate, (D,) * 3, DEPTH, 0.12, 0.25, [1.0], 5e-5,
+                                               None, refinement)
+    apart = refined(modelled)
     exact = np.max(np.abs(coefficients @ np.array([apart.finest ** 2, apart.growth ** 2])))
     assert exact <= apart.error + roundoff(COMPARED_VALUES)
-    assert apart.error <= 5e-5 and apart.cells <= planmodes.PLANFORM_CAP
-    monkeypatch.setattr(planmodes, "_separately", lambda *args: None)
-    assert refined().error > 5e-5
+    assert apart.error <= 5e-5 and apart.cells <= planform_modes.PLANFORM_CAP
+    assert refined(replace(modelled, apart=False)).error > 5e-5
 
 
-def test_refinement_apart_that_ends_above_the_tolerance_falls_back_to_together(monkeypatch):
+def test_refinement_apart_that_ends_above_the_tolerance_falls_back_to_together():
     """Where the coarse meshes' estimate predicts that together cannot meet the accuracy
     under the cap but it can (the r 10 mm plate through the daily record, 6e-5, a 12 000-
     cell cap: apart ended at 1.3e-4), the refinement together is kept: the estimate within
     the accuracy, the cells within the cap, and mean, bound water and layer / 4 against the
     exact disc within the estimate."""
-    monkeypatch.setattr(planmodes, "PLANFORM_CAP", 12_000)
+    capped = SolverSettings(planform=planform_modes.Refinement(cap=12_000))
     plate, disc = circle(0.01, 0.004)
     diffusivity, law = Diffusivity((D,) * 3, 0.0), Langmuir(Rate(1e-6), Rate(3e-6))
     exposure, accuracy = daily_record(), 6e-5
     times = np.array([0.5, 1.5, 3.5, 6.0, 9.5, 11.5]) * DAY
     exact = solve(disc, diffusivity, exposure, times, accuracy=1e-7, sorption=law)
     with one_blas_thread():
-        result = solve(plate, diffusivity, exposure, times, accuracy=accuracy, sorption=law)
+        result = solve(plate, diffusivity, exposure, times, accuracy=accuracy, sorption=law,
+                       settings=capped)
     swing = history_swing(exposure)
     errors = [np.max(np.abs(getattr(result, k) - getattr(exact, k))) / swing
               for k in ("mean", "bound", "surface")]

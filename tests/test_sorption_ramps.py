@@ -9,9 +9,9 @@ import numpy as np
 import pytest
 from scipy.integrate import solve_ivp
 
-from fickcam.diffusion.exposure import Diffusivity, Exposure
-from fickcam.diffusion.langmuir import march_modes, march_nodes
-from fickcam.diffusion.sorption import Langmuir, Rate
+from fickcam.diffusion.nonfickian.two_phase_modes import march_modes, march_nodes
+from fickcam.diffusion.problem.exposure import Diffusivity, Exposure
+from fickcam.diffusion.problem.sorption import Langmuir, Rate
 
 DAY = 86400.0
 R = 8.314462618

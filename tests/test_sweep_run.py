@@ -17,8 +17,8 @@ CONFIGS = Path(__file__).resolve().parents[1] / "configs"
 
 
 def small_base() -> str:
-    """Seed 000's cam with three ageing times, a coarse angle step and a loose diffusion
-    accuracy (fast cases: the sweep machinery is under test, not the physics)."""
+    """Singh & Sanyal 2017's cam with three ageing times, a coarse angle step and a loose
+    diffusion accuracy (fast cases: the sweep machinery is under test, not the physics)."""
     scene = yaml.safe_load((CONFIGS / "singh2017_cam.yaml").read_text())
     scene["outputs"].update(ageing_times=["0 d", "30 d", "60 d"], angle_step="10 deg")
     scene["diffusion"]["accuracy"] = 5e-2

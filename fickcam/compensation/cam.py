@@ -30,7 +30,7 @@ import numpy as np
 
 from ..cam.design import design_from_scene
 from ..cam.kinematics import working_profile
-from .core import Target
+from .core import Target, scene_from
 
 #: points of a written compensated profile (0.1 deg apart on average)
 PROFILE_POINTS = 3600
@@ -99,7 +99,7 @@ def profile_path(folder: Path, stem: str) -> Path:
 def _motion(section, segments: list, shape: dict, length_text) -> list:
     """The scene's motion segments with the made rises and returns (to the picometre, so
     that they still cancel), a spline law's distances scaled with its segment's lift."""
-    from ..units import to_si
+    from ..unit_parsing import to_si
 
     made = copy.deepcopy(segments)
     for index, (given, segment) in enumerate(zip(section.motion, made)):
@@ -175,8 +175,6 @@ def design_entry(section: dict, targets) -> dict:
 
 def made_outline(data: dict, base_dir: Path, points: int):
     """(x, y) in m of the made cam's dry working profile, from the made scene mapping."""
-    from .solve import scene_from
-
     section = scene_from(data, base_dir, "<compensated scene>").model.cam
     return working_profile(design_from_scene(section), n=points)
 

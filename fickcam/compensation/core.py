@@ -24,6 +24,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
+import yaml
 
 log = logging.getLogger(__name__)
 
@@ -149,3 +150,11 @@ def relative_to(path: str, old_dir: Path, new_dir: Path) -> str:
 
     resolved = (old_dir / path).resolve()
     return os.path.relpath(resolved, new_dir.resolve())
+
+
+def scene_from(data: dict, base_dir: Path, file_name: str):
+    """Validate a scene mapping whose relative paths are relative to ``base_dir``."""
+    from ..scene import parse_yaml, validate_document
+
+    doc = parse_yaml(yaml.safe_dump(data, sort_keys=False), file=file_name)
+    return validate_document(doc, base_dir=base_dir)

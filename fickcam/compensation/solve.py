@@ -17,10 +17,9 @@ import tempfile
 from pathlib import Path
 
 import numpy as np
-import yaml
 
 from ..errors import FickcamError, InputError, format_duration
-from .core import (MAX_ITERATIONS, Compensation, converged, made_value, part_strain, quiet_runs,
+from .core import (MAX_ITERATIONS, scene_from, Compensation, converged, made_value, part_strain, quiet_runs,
                    residual, window_times)
 
 #: ageing times across the history at which a --plot draws the drift
@@ -30,14 +29,6 @@ PLOT_POINTS = 49
 def length_text(value: float, digits: int = 6) -> str:
     """A length for the written scene in mm, to the nanometre (``digits`` decimals of mm)."""
     return f"{value * 1e3:.{digits}f} mm"
-
-
-def scene_from(data: dict, base_dir: Path, file_name: str):
-    """Validate a scene mapping whose relative paths are relative to ``base_dir``."""
-    from ..scene import parse_yaml, validate_document
-
-    doc = parse_yaml(yaml.safe_dump(data, sort_keys=False), file=file_name)
-    return validate_document(doc, base_dir=base_dir)
 
 
 def _targets(scene, points: bool) -> list:
@@ -115,7 +106,7 @@ def run_at(data: dict, base_dir: Path, times: np.ndarray, accuracy):
 
 
 def _seconds(value) -> float:
-    from ..units import parse_duration
+    from ..unit_parsing import parse_duration
 
     try:
         return parse_duration(value) if isinstance(value, str) else float(value)

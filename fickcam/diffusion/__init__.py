@@ -1,14 +1,28 @@
-"""Fickian moisture diffusion in the parts of a mechanism.
+"""Moisture diffusion in the parts of a mechanism: ``solve`` and ``plan`` (``dispatch``).
 
-``solve`` and ``plan`` are the entry points (``dispatch``); FiPy is imported only
-inside the functions that assemble a mesh operator, so importing this package stays
-light. Import direction (each module imports only modules to its left):
-docs/architecture.md.
+The sub-packages are the stages of the data flow, each importing only the ones listed
+before it (tests/test_architecture.py holds the order):
+
+- ``problem``: what is solved (geometries, exposure, diffusivity, sorption laws, results);
+- ``accuracy``: the error model every plan sizes its cells and steps with;
+- ``forcing``: the climate as the solvers see it (the rescaled clock, long records);
+- ``exact``: closed-form series (the exact path);
+- ``planform``: the outline of cam plates and links, its meshes and expansion;
+- ``superposition``: Duhamel's theorem over the exposure history;
+- ``operators``: the discrete operators, FiPy's (``operators.fipy_backend``, the one
+  module that imports FiPy) and the plane model's P1;
+- ``stepping``: step plans, the marcher, dense output;
+- ``models``: the Fickian models ``solve`` chooses between;
+- ``nonfickian``: two-phase (Langmuir-type) and concentration-dependent moisture.
+
+FiPy is imported inside the backend's functions only, so importing this package stays
+light.
 """
-from .dispatch import MODELS, plan, solve
-from .exposure import GAS_CONSTANT, Diffusivity, Exposure
-from .geometry import Bar, CamPlate, Disc, Geometry, LinkBar, Sheet
-from .results import DiffusionResult, Plan
+from .dispatch import MODELS, SolverSettings, plan, solve
+from .problem.exposure import GAS_CONSTANT, Diffusivity, Exposure
+from .problem.geometry import Bar, CamPlate, Disc, Geometry, LinkBar, Sheet
+from .problem.results import DiffusionResult, Plan
 
 __all__ = ["GAS_CONSTANT", "Diffusivity", "Exposure", "Bar", "CamPlate", "Disc",
-           "Geometry", "LinkBar", "Sheet", "MODELS", "DiffusionResult", "Plan", "plan", "solve"]
+           "Geometry", "LinkBar", "Sheet", "MODELS", "DiffusionResult", "Plan", "SolverSettings",
+           "plan", "solve"]

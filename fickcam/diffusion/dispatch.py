@@ -1,56 +1,58 @@
 """The dispatcher: ``plan`` (which model, cells and steps a solve will use, and why)
 and ``solve`` (run that plan).
 
-Models (``diffusion.model``):
+Models (``diffusion.model``), each a ``FickModel`` of the registry ``FICK_MODELS``, which
+says which parts it applies to, why not where it does not, and plans and solves:
 
 - ``analytic``: Crank's series with Duhamel superposition in rescaled time
   (``analytic``): Sheet, Bar (product of three sheets), solid Disc.
 - ``slab``, ``axisymmetric``, ``solid``: FiPy-assembled operators marching the history
-  (``direct``): a Sheet through its thickness; a Disc or annulus in (r, z); a Bar in
+  (``finite_volume``): a Sheet through its thickness; a Disc or annulus in (r, z); a Bar in
   3-D or a CamPlate / LinkBar on prisms, the independent check of ``plane``.
 - ``plane``: CamPlate or LinkBar: the planform's response times the exact sheet,
   superposed over the history (``plane``); ``auto`` picks it (cheaper than prisms).
 
 Concentration-dependent D (``sorption``) under ``auto``: Fick with D f where f is constant
 over the moisture met; on a CamPlate, LinkBar or Bar (the prism of its rectangular section,
-``defectparts.as_prism``; a Bar from ``BAR_CORRECTED_FROM`` down, above it its octant's
-cells) the D(c) sheet x planform product corrected on coarse 3-D prisms (``defect``);
+``corrected_pieces.as_prism``; a Bar from ``BAR_CORRECTED_FROM`` down, above it its octant's
+cells) the D(c) sheet x planform product corrected on coarse 3-D prisms (``corrected_product``);
 ``solid`` keeps the 3-D cells alone (a Bar's octant), the check.
 """
 from __future__ import annotations
 
 import logging
-from dataclasses import replace
+from dataclasses import dataclass, replace
 from functools import lru_cache
+from typing import Callable
 
 import numpy as np
 
 from ..errors import InputError
-from .analytic import solve_analytic
-from .calibration import ANALYTIC_ERROR
-from .clock import RescaledTime
-from .clock import scales as scales_of
-from .coupled import two_phase_marcher
-from .defect import plan_corrected, solve_corrected
-from .dense import held_to_plan
-from .direct import plan_direct, solve_direct
-from .exact import exact_available
-from .exposure import Diffusivity, Exposure
-from .geometry import Bar, CamPlate, Disc, LinkBar, Sheet
-from .forcing import RECORD_SHARE, is_long_record
-from .langmuir import history_swing, langmuir_history
-from .nonlinear import nonlinear_plan, solve_nonlinear, spread
-from .planmodes import (LAYER_TOLERANCE, PLANFORM_CAP, RefinedPlanform, lanczos_spectrum,
-                        planform_design, planform_operator, planform_source, refined_planform)
-from .timesteps import earliest_output
-from .plane import plan_plane, solve_plane
-from .results import DiffusionResult, Plan
-from .sorption import describe, is_langmuir, is_nonlinear
+from .accuracy.error_model import ANALYTIC_ERROR, LAYER_TOLERANCE, PLANFORM_SHARE
+from .exact.separable import exact_available
+from .forcing.clock import RescaledTime
+from .forcing.clock import scales as scales_of
+from .forcing.record import RECORD_SHARE, is_long_record
+from .models.analytic import solve_analytic
+from .models.finite_volume import plan_direct, solve_direct
+from .models.plane import plan_plane, solve_plane
+from .nonfickian.concentration_dependent import (SWEEPS, Sweeps, nonlinear_plan, solve_nonlinear,
+                                                 spread)
+from .nonfickian.corrected_product import plan_corrected, solve_corrected
+from .nonfickian.planform_modes import (REFINEMENT, RefinedPlanform, Refinement,
+                                        lanczos_spectrum, planform_design, planform_operator,
+                                        planform_source, refined_planform)
+from .nonfickian.two_phase_mesh import two_phase_marcher
+from .nonfickian.two_phase_modes import langmuir_history
+from .problem.exposure import Diffusivity, Exposure, swing
+from .problem.geometry import LAYER_DEPTH, Bar, CamPlate, Disc, LinkBar, Sheet
+from .problem.results import DiffusionResult, Plan
+from .problem.sorption import describe, is_langmuir, is_nonlinear
+from .stepping.dense_output import held_to_plan
+from .stepping.step_plans import earliest_output
 
 log = logging.getLogger(__name__)
 
-PLANFORM_SHARE = 0.5  # of the accuracy: the planform mesh; the rest the two-phase march
-LAYER_DEPTH = 5e-4    # m, the contact layer's depth when none is given (SPEC: surface_layer_depth)
 BAR_CORRECTED_FROM = 1e-2  # accuracy from which ``auto`` takes a D(c) Bar's corrected product.
 #   6 x 4 x 2 mm bar, k = 1, 2, both directions (benchmarks/dc_bar.py small vs corrected, CPU
 #   s, the errors against a method of lines): at 1e-2 corrected 11-27 s, the octant 13-91 s;
@@ -58,51 +60,159 @@ BAR_CORRECTED_FROM = 1e-2  # accuracy from which ``auto`` takes a D(c) Bar's cor
 #   0.8-5.6e-4) where the octant is capped (est. 1.0-1.9e-3, not run: > 15 CPU min). At 3e-2
 #   and 0.1 the octant takes 0.7-6.9 s, corrected 10-23 s (its floor: fine sheet, two
 #   nested meshes, planform refined x4)
-MODELS = ("auto", "analytic", "slab", "axisymmetric", "plane", "solid")
-NUMERICAL_MODEL = {Sheet: "slab", Disc: "axisymmetric", Bar: "solid", CamPlate: "plane",
-                   LinkBar: "plane"}
-ALLOWED_MODELS = {Sheet: {"analytic", "slab"}, Disc: {"analytic", "axisymmetric"},
-                  Bar: {"analytic", "solid"}, CamPlate: {"plane", "solid"},
-                  LinkBar: {"plane", "solid"}}  # solid CamPlate/LinkBar: prisms (prism.py)
+
+
+@dataclass(frozen=True)
+class FickModel:
+    """One Fickian model of the registry: the parts it applies to, why it does not apply to
+    a part (``refusal``), its plan and its solve.
+
+    ``plan(geometry, diffusivity, exposure, times, accuracy, depth) -> Plan`` and
+    ``solve(geometry, diffusivity, exposure, times, chosen, accuracy, depth, store_fields,
+    part) -> DiffusionResult`` (depth: the contact layer's [m]; times [s])."""
+
+    name: str
+    parts: tuple[type, ...]
+    plan: Callable
+    solve: Callable
+    exact: bool = False   # only where a separable exact solution exists
+
+    def applies(self, geometry) -> bool:
+        return isinstance(geometry, self.parts)
+
+    def refusal(self, geometry) -> str | None:
+        """Why this model cannot solve ``geometry`` (None where it can)."""
+        if not self.applies(geometry):
+            return f"does not apply to a {type(geometry).__name__}"
+        if self.exact and not exact_available(geometry):
+            if isinstance(geometry, Disc) and geometry.inner_radius > 0:
+                return "an annulus has no product solution (use axisymmetric)"
+            return "no separable exact solution (use plane)"
+        return None
+
+
+def _plan_analytic(geometry, diffusivity, exposure, times, accuracy, depth) -> Plan:
+    if is_long_record(exposure):
+        return Plan("analytic", 0, 0, f"exact Crank series, tabulated once and superposed "
+                    f"over the {exposure.ramp.size}-segment record in closed form per row "
+                    "(cost linear in the rows)", accuracy)
+    return Plan("analytic", 0, 0, "exact Crank series with Duhamel superposition in "
+                "rescaled time (linear, one Arrhenius factor): cheapest and exact",
+                ANALYTIC_ERROR)
+
+
+def _solve_analytic(geometry, diffusivity, exposure, times, chosen, accuracy, depth,
+                    store_fields, part) -> DiffusionResult:
+    record = accuracy if is_long_record(exposure) else None
+    return solve_analytic(geometry, diffusivity, exposure, times, depth, store_fields, chosen,
+                          record)
+
+
+def _scaled_history(geometry, diffusivity, exposure, times):
+    """tau* of the exposure's changes and of the outputs."""
+    scales = scales_of(geometry, diffusivity, exposure)
+    return scales.tau_star(exposure.change_times), scales.tau_star(np.asarray(times, float))
+
+
+def _plan_plane(geometry, diffusivity, exposure, times, accuracy, depth) -> Plan:
+    """The outline's expansion, then a graded mesh; a long record's sum takes its share."""
+    change, outputs = _scaled_history(geometry, diffusivity, exposure, times)
+    share = 1.0 - RECORD_SHARE if is_long_record(exposure) else 1.0
+    return plan_plane(geometry, diffusivity, change, outputs, exposure.ramp, share * accuracy,
+                      depth)
+
+
+def _solve_plane(geometry, diffusivity, exposure, times, chosen, accuracy, depth, store_fields,
+                 part) -> DiffusionResult:
+    return solve_plane(geometry, diffusivity, exposure, times, chosen, accuracy=accuracy,
+                       surface_layer_depth=depth, store_fields=store_fields, part=part)
+
+
+def _finite_volume(name: str, parts: tuple[type, ...]) -> FickModel:
+    """A finite-volume model (``models.finite_volume``) of these parts."""
+    def planned(geometry, diffusivity, exposure, times, accuracy, depth) -> Plan:
+        return _direct_plan(geometry, diffusivity, name, exposure, times, accuracy)
+
+    def solved(geometry, diffusivity, exposure, times, chosen, accuracy, depth, store_fields,
+               part) -> DiffusionResult:
+        return solve_direct(geometry, diffusivity, exposure, times, chosen,
+                            surface_layer_depth=depth, store_fields=store_fields, part=part)
+    return FickModel(name, parts, planned, solved)
+
+
+# The Fickian models, in the order ``diffusion.model`` lists them; ``auto`` takes the exact
+# series where the part has one, else the first numerical model that applies (``solid``
+# CamPlate / LinkBar: prisms of admissible cells, the check of ``plane``).
+FICK_MODELS = {model.name: model for model in (
+    FickModel("analytic", (Sheet, Bar, Disc), _plan_analytic, _solve_analytic, exact=True),
+    _finite_volume("slab", (Sheet,)),
+    _finite_volume("axisymmetric", (Disc,)),
+    FickModel("plane", (CamPlate, LinkBar), _plan_plane, _solve_plane),
+    _finite_volume("solid", (Bar, CamPlate, LinkBar)))}
+MODELS = ("auto", *FICK_MODELS)
+PARTS = (Sheet, Disc, Bar, CamPlate, LinkBar)
+
+
+def numerical_model(geometry) -> str:
+    """The first mesh model that applies to the part: slab, axisymmetric, plane, solid."""
+    return next(name for name, model in FICK_MODELS.items()
+                if not model.exact and model.applies(geometry))
 
 
 def _validate(geometry, model: str, accuracy: float) -> None:
     if model not in MODELS:
         raise InputError(f"diffusion.model {model!r}: one of {', '.join(MODELS)}")
-    if type(geometry) not in NUMERICAL_MODEL:
+    if type(geometry) not in PARTS:
         raise InputError(f"unsupported diffusion geometry {type(geometry).__name__}")
     if not (0 < accuracy < 1):
         raise InputError(f"diffusion.accuracy {accuracy!r}: must lie in (0, 1)")
-    if model != "auto" and model not in ALLOWED_MODELS[type(geometry)]:
+    if model != "auto" and not FICK_MODELS[model].applies(geometry):
+        allowed = sorted(name for name, m in FICK_MODELS.items() if m.applies(geometry))
         raise InputError(f"diffusion.model {model!r} does not apply to a "
-                         f"{type(geometry).__name__} (use one of "
-                         f"{', '.join(sorted(ALLOWED_MODELS[type(geometry)]))} or auto)")
+                         f"{type(geometry).__name__} (use one of {', '.join(allowed)} or auto)")
 
 
-def _no_exact_reason(geometry) -> str:
-    if isinstance(geometry, Disc) and geometry.inner_radius > 0:
-        return "an annulus has no product solution (use axisymmetric)"
-    return "no separable exact solution (use plane)"
+def _fick_model(geometry, model: str) -> FickModel:
+    """The registry's model for ``model`` (``auto``: the exact series where it applies, else
+    ``numerical_model``); a model that cannot solve the part says why."""
+    if model == "auto":
+        exact = FICK_MODELS["analytic"]
+        return exact if exact.refusal(geometry) is None else FICK_MODELS[numerical_model(geometry)]
+    why = FICK_MODELS[model].refusal(geometry)
+    if why is not None:
+        raise InputError(f"diffusion.model {model} is not available for this "
+                         f"{type(geometry).__name__}: {why}")
+    return FICK_MODELS[model]
 
 
 def _two_phase_model(geometry, model: str) -> str:
     """Langmuir sorption: the exact modes where the part has them; a CamPlate or LinkBar
-    ``plane``: its planform's quadrature x the exact sheet (``planmodes``), or ``solid``
-    prisms; else the direct finite volumes (``coupled``)."""
-    if model in ("auto", "analytic") and exact_available(geometry):
-        return "analytic"
-    if model == "analytic":
-        raise InputError(f"diffusion.model analytic is not available for this "
-                         f"{type(geometry).__name__}: {_no_exact_reason(geometry)}")
-    return NUMERICAL_MODEL[type(geometry)] if model == "auto" else model
+    ``plane``: its planform's quadrature x the exact sheet (``planform_modes``), or ``solid``
+    prisms; else the direct finite volumes (``two_phase_mesh``)."""
+    return _fick_model(geometry, model).name
+
+
+@dataclass(frozen=True)
+class SolverSettings:
+    """The solvers' tuned limits, frozen: when a concentration-dependent step's sweeps stop
+    (``sweeps``) and how a two-phase planform is refined (``planform``: its cap, refinement
+    apart). The defaults are the run's; a caller (a test) passes others instead of changing
+    module values."""
+
+    sweeps: Sweeps = SWEEPS
+    planform: Refinement = REFINEMENT
+
+
+SETTINGS = SolverSettings()
 
 
 def plan(geometry, diffusivity: Diffusivity, exposure: Exposure, times: np.ndarray,
          accuracy: float = 1e-3, model: str = "auto", sorption=None,
-         surface_layer_depth: float | None = None) -> Plan:
+         surface_layer_depth: float | None = None, settings: SolverSettings = SETTINGS) -> Plan:
     """The model, cells and steps ``solve`` will use, and why, without solving
-    (``sorption``: a law of ``diffusion.sorption``, None for Fick; ``surface_layer_depth``:
-    the solve's, so that a plane plan and its solve share one outline expansion)."""
+    (``sorption``: a law of ``problem.sorption``, None for Fick; ``surface_layer_depth``:
+    the solve's, so that a plane plan and its solve share one outline expansion;
+    ``settings``: the solve's)."""
     _validate(geometry, model, accuracy)
     if is_nonlinear(sorption) and _nonlinear_route(geometry, model, sorption, exposure,
                                                    times, accuracy) == "fick":
@@ -111,31 +221,13 @@ def plan(geometry, diffusivity: Diffusivity, exposure: Exposure, times: np.ndarr
     if is_langmuir(sorption) or is_nonlinear(sorption):
         depth = LAYER_DEPTH if surface_layer_depth is None else surface_layer_depth
         return _plan_sorption(geometry, diffusivity, exposure, times, accuracy, model, sorption,
-                              depth)
-    if model in ("auto", "analytic") and exact_available(geometry) and is_long_record(exposure):
-        return Plan("analytic", 0, 0, f"exact Crank series, tabulated once and superposed "
-                    f"over the {exposure.ramp.size}-segment record in closed form per row "
-                    "(cost linear in the rows)", accuracy)
-    if model in ("auto", "analytic") and exact_available(geometry):
-        return Plan("analytic", 0, 0, "exact Crank series with Duhamel superposition in "
-                    "rescaled time (linear, one Arrhenius factor): cheapest and exact",
-                    ANALYTIC_ERROR)
-    if model == "analytic":
-        raise InputError(f"diffusion.model analytic is not available for this "
-                         f"{type(geometry).__name__}: {_no_exact_reason(geometry)}")
-    chosen = NUMERICAL_MODEL[type(geometry)] if model == "auto" else model
-    scales = scales_of(geometry, diffusivity, exposure)
-    change = scales.tau_star(exposure.change_times)
-    outputs = scales.tau_star(np.asarray(times, float))
-    if chosen == "plane":  # expansion of the outline, then a graded mesh (plane)
-        share = 1.0 - RECORD_SHARE if is_long_record(exposure) else 1.0  # the rest: the sum
-        return plan_plane(geometry, diffusivity, change, outputs, exposure.ramp, share * accuracy,
-                          surface_layer_depth)
-    return plan_direct(geometry, diffusivity, chosen, change, outputs, accuracy, exposure)
+                              depth, settings.planform)
+    return _fick_model(geometry, model).plan(geometry, diffusivity, exposure, times, accuracy,
+                                             surface_layer_depth)
 
 
 def _plan_sorption(geometry, diffusivity, exposure, times, accuracy, model, sorption,
-                   depth) -> Plan:
+                   depth, refinement: Refinement = REFINEMENT) -> Plan:
     law = describe(sorption)
     if is_nonlinear(sorption) and _nonlinear_route(geometry, model, sorption, exposure,
                                                    times, accuracy) == "corrected":
@@ -143,7 +235,8 @@ def _plan_sorption(geometry, diffusivity, exposure, times, accuracy, model, sorp
         return replace(corrected, reason=f"{law}; {corrected.reason}")
     if is_nonlinear(sorption):
         chosen = _nonlinear_model(geometry, model)
-        mirror_cut = chosen == "solid"  # the 3-D cells cut at the mirror planes (``mirrored``)
+        # the 3-D cells cut at the mirror planes (``symmetry_cuts``)
+        mirror_cut = chosen == "solid"
         direct = nonlinear_plan(lambda d, a, at: _direct_plan(geometry, d, chosen, exposure, at, a,
                                                               mirror_cut),
                                 diffusivity, sorption, exposure, times, accuracy)
@@ -156,27 +249,28 @@ def _plan_sorption(geometry, diffusivity, exposure, times, accuracy, model, sorp
         return Plan("analytic", 0, 0, f"{law}: exact Fickian modes of the part, each a "
                     "2x2 free/bound system advanced exactly through the history", accuracy)
     if chosen == "plane":
-        return _plan_planform(geometry, diffusivity, exposure, times, accuracy, sorption, depth)
+        return _plan_planform(geometry, diffusivity, exposure, times, accuracy, sorption, depth,
+                              refinement)
     direct = _direct_plan(geometry, diffusivity, chosen, exposure, times, accuracy)
     return replace(direct, reason=f"{law}; {direct.reason}")
 
 
 def _direct_plan(geometry, diffusivity, chosen, exposure, times, accuracy,
                  mirrored: bool = False) -> Plan:
-    scales = scales_of(geometry, diffusivity, exposure)
-    return plan_direct(geometry, diffusivity, chosen, scales.tau_star(exposure.change_times),
-                       scales.tau_star(np.asarray(times, float)), accuracy, exposure, mirrored)
+    change, outputs = _scaled_history(geometry, diffusivity, exposure, times)
+    return plan_direct(geometry, diffusivity, chosen, change, outputs, accuracy, exposure, mirrored)
 
 
-def _plan_planform(geometry, diffusivity, exposure, times, accuracy, sorption, depth) -> Plan:
+def _plan_planform(geometry, diffusivity, exposure, times, accuracy, sorption, depth,
+                   refinement: Refinement) -> Plan:
     """The planform mesh the solve will use: the first mesh from the error model, refined
     from the two-phase histories it measures (``refined``, kept for the solve, so that
     ``fickcam check`` shows the refined mesh and a run pays for it once)."""
     design, refined = _planform_refinement(geometry, diffusivity, exposure, times, accuracy,
-                                           sorption, depth)
+                                           sorption, depth, refinement)
     _, estimate = refined.result
     capped = ("" if refined.error <= PLANFORM_SHARE * accuracy else
-              f"; capped at {PLANFORM_CAP} cells: error above the requested accuracy")
+              f"; capped at {refinement.cap} cells: error above the requested accuracy")
     return Plan("plane", refined.cells, 0, f"{describe(sorption)}: the planform's FiPy "
                 f"operator (first mesh {design.note}, about {int(np.prod(design.cells))} cells; "
                 f"refined from the two-phase histories on {refined.levels} meshes to "
@@ -187,24 +281,25 @@ def _plan_planform(geometry, diffusivity, exposure, times, accuracy, sorption, d
                 finest=refined.finest, growth=refined.growth)
 
 
-def _planform_refinement(geometry, diffusivity, exposure, times, accuracy, sorption, depth):
+def _planform_refinement(geometry, diffusivity, exposure, times, accuracy, sorption, depth,
+                         refinement: Refinement):
     """(first mesh, ``_refined``) of a two-phase CamPlate or LinkBar."""
     scales = scales_of(geometry, diffusivity, exposure)
     t_lo = earliest_output(scales.tau_star(exposure.change_times),
                            scales.tau_star(np.asarray(times, float)))
     design = planform_design(geometry, diffusivity.pre_exponential, accuracy, t_lo)
     return design, _refined(geometry, diffusivity, exposure, tuple(np.asarray(times, float)),
-                            accuracy, sorption, depth, design.finest, design.growth)
+                            accuracy, sorption, depth, design.finest, design.growth, refinement)
 
 
 @lru_cache(maxsize=4)
 def _refined(geometry, diffusivity, exposure, times: tuple, accuracy, sorption, depth, finest,
-             growth) -> RefinedPlanform:
-    """``planmodes.refined_planform`` of the two-phase history (the march on each mesh,
+             growth, refinement: Refinement) -> RefinedPlanform:
+    """``planform_modes.refined_planform`` of the two-phase history (the march on each mesh,
     most of whose cost is the planform operators): its mesh error is ``PLANFORM_SHARE`` of
     the accuracy, the march the rest. Cached: ``plan`` and ``solve`` share it."""
     times = np.asarray(times, float)
-    share, scale = PLANFORM_SHARE * accuracy, 1.0 / max(history_swing(exposure), 1e-300)
+    share, scale = PLANFORM_SHARE * accuracy, 1.0 / max(swing(exposure), 1e-300)
 
     def measure(source):
         history, estimate = langmuir_history(geometry, diffusivity, sorption, exposure, times,
@@ -214,30 +309,30 @@ def _refined(geometry, diffusivity, exposure, times: tuple, accuracy, sorption, 
 
     ages = read_ages(RescaledTime(diffusivity, exposure), exposure, times)
     return refined_planform(geometry, diffusivity.pre_exponential, depth, finest, growth, ages,
-                            share, measure)
+                            share, measure, refinement)
 
 
 def _nonlinear_model(geometry, model: str) -> str:
     """Concentration-dependent D: FiPy sweeps on the part's own mesh: the slab (Sheet),
     the (r, z) grid (Disc), 3-D cells cut at the mirror planes (Bar, CamPlate, LinkBar:
-    ``mirrored``). No exact series and no planform x sheet product exist for D(c) (the
+    ``symmetry_cuts``). No exact series and no planform x sheet product exist for D(c) (the
     Laplacian no longer separates): ``analytic`` means the mesh model, ``plane`` is refused."""
     if model == "plane":
         raise InputError(f"diffusion.model {model} has no concentration-dependent form (D(c) "
                          f"does not separate); use solid or auto for a {type(geometry).__name__}")
     if isinstance(geometry, (Bar, CamPlate, LinkBar)):
         return "solid"
-    return NUMERICAL_MODEL[type(geometry)] if model in ("auto", "analytic") else model
+    return numerical_model(geometry) if model in ("auto", "analytic") else model
 
 
 def _nonlinear_route(geometry, model: str, sorption, exposure, times, accuracy) -> str:
     """How ``auto`` solves D(c) on a Bar, CamPlate or LinkBar: ``fick`` where f is one
     number over the moisture the part meets (k = 0: Fick with D f, the Fickian models'
-    own result), else ``corrected`` (``defect``: the D(c) sheet x planform corrected on
+    own result), else ``corrected`` (``corrected_product``: the D(c) sheet x planform corrected on
     coarse 3-D cells; far cheaper than the 3-D cells alone at the same accuracy), for a
     Bar (the prism of its rectangular section, its thickness the fastest axis) from
-    ``BAR_CORRECTED_FROM`` down, above it ``direct`` (the octant's cells). ``solid``:
-    ``direct`` always (the 3-D cells alone, the check)."""
+    ``BAR_CORRECTED_FROM`` down, above it ``finite_volume`` (the octant's cells). ``solid``:
+    ``finite_volume`` always (the 3-D cells alone, the check)."""
     if model != "auto" or not isinstance(geometry, (Bar, CamPlate, LinkBar)):
         return "direct"
     if spread(sorption, exposure, times) <= 1.0 + 1e-12:
@@ -261,10 +356,12 @@ def _as_fick(call, geometry, diffusivity, exposure, times, sorption, accuracy, m
 
 def solve(geometry, diffusivity: Diffusivity, exposure: Exposure, times: np.ndarray, *,
           accuracy: float = 1e-3, model: str = "auto", surface_layer_depth: float = LAYER_DEPTH,
-          store_fields: bool = False, part: str = "", sorption=None) -> DiffusionResult:
+          store_fields: bool = False, part: str = "", sorption=None,
+          settings: SolverSettings = SETTINGS) -> DiffusionResult:
     """Moisture (weight %) of one part at ``times`` (s) under ``exposure``; with a
-    ``sorption`` law (``diffusion.sorption``) the mean and surface are the total (free +
-    bound) moisture and, for Langmuir, ``bound`` the bound-water mean."""
+    ``sorption`` law (``problem.sorption``) the mean and surface are the total (free +
+    bound) moisture and, for Langmuir, ``bound`` the bound-water mean. ``settings``: the
+    solvers' tuned limits (``SolverSettings``)."""
     times = np.asarray(times, float)
     route = (_nonlinear_route(geometry, model, sorption, exposure, times, accuracy)
              if is_nonlinear(sorption) else "")
@@ -272,64 +369,59 @@ def solve(geometry, diffusivity: Diffusivity, exposure: Exposure, times: np.ndar
         return _as_fick(solve, geometry, diffusivity, exposure, times, sorption, accuracy, model,
                         surface_layer_depth, store_fields=store_fields, part=part)
     chosen = plan(geometry, diffusivity, exposure, times, accuracy, model, sorption,
-                  surface_layer_depth)
-    if route:   # D(c): ``extend`` reads between the steps where the cells stay (``dense``)
+                  surface_layer_depth, settings)
+    if route:   # D(c): ``extend`` reads between the steps where the cells stay (``dense_output``)
         def again(at):
             return plan(geometry, diffusivity, exposure, at, accuracy, model, sorption,
-                        surface_layer_depth)
+                        surface_layer_depth, settings)
 
         def resolve(at):
             return solve(geometry, diffusivity, exposure, at, accuracy=accuracy, model=model,
-                         surface_layer_depth=surface_layer_depth, part=part, sorption=sorption)
+                         surface_layer_depth=surface_layer_depth, part=part, sorption=sorption,
+                         settings=settings)
     if route == "corrected":
         return held_to_plan(solve_corrected(
             geometry, diffusivity, sorption, exposure, times, accuracy,
             surface_layer_depth=surface_layer_depth, store_fields=store_fields, part=part,
-            reason=chosen.reason), chosen, again, resolve)
+            reason=chosen.reason, sweeps=settings.sweeps), chosen, again, resolve)
     log.debug("%s: %s, %d cells, %d steps (%s)", part or type(geometry).__name__, chosen.model,
               chosen.cells, chosen.steps, chosen.reason)
     if route:
         return held_to_plan(_solve_sorption(geometry, diffusivity, exposure, times, chosen,
                                             sorption, surface_layer_depth, store_fields, part,
-                                            accuracy), chosen, again, resolve)
+                                            accuracy, settings), chosen, again, resolve)
     if sorption is not None and (is_langmuir(sorption) or is_nonlinear(sorption)):
         return _solve_sorption(geometry, diffusivity, exposure, times, chosen, sorption,
-                               surface_layer_depth, store_fields, part, accuracy)
-    if chosen.model == "analytic":
-        record = accuracy if is_long_record(exposure) else None
-        return solve_analytic(geometry, diffusivity, exposure, times, surface_layer_depth,
-                              store_fields, chosen, record)
-    if chosen.model == "plane":
-        return solve_plane(geometry, diffusivity, exposure, times, chosen, accuracy=accuracy,
-                           surface_layer_depth=surface_layer_depth, store_fields=store_fields,
-                           part=part)
-    return solve_direct(geometry, diffusivity, exposure, times, chosen,
-                        surface_layer_depth=surface_layer_depth, store_fields=store_fields,
-                        part=part)
+                               surface_layer_depth, store_fields, part, accuracy, settings)
+    return FICK_MODELS[chosen.model].solve(geometry, diffusivity, exposure, times, chosen,
+                                           accuracy, surface_layer_depth, store_fields, part)
 
 
 def _solve_sorption(geometry, diffusivity, exposure, times, chosen: Plan, sorption, depth,
-                    store_fields, part, accuracy) -> DiffusionResult:
+                    store_fields, part, accuracy,
+                    settings: SolverSettings = SETTINGS) -> DiffusionResult:
     if chosen.model in ("analytic", "plane"):
         return _langmuir_modes(geometry, diffusivity, exposure, times, chosen, sorption, depth,
-                               accuracy)
+                               accuracy, settings.planform)
     if is_langmuir(sorption):
         return solve_direct(geometry, diffusivity, exposure, times, chosen,
                             surface_layer_depth=depth, store_fields=store_fields, part=part,
                             marcher=two_phase_marcher(sorption, exposure))
     return solve_nonlinear(geometry, diffusivity, sorption, exposure, times, chosen,
-                           surface_layer_depth=depth, store_fields=store_fields, part=part)
+                           surface_layer_depth=depth, store_fields=store_fields, part=part,
+                           sweeps=settings.sweeps)
 
 
-def _langmuir_modes(geometry, diffusivity, exposure, times, chosen, sorption, depth, accuracy):
+def _langmuir_modes(geometry, diffusivity, exposure, times, chosen, sorption, depth, accuracy,
+                    refinement: Refinement = REFINEMENT):
     """The exact two-phase modal march; for a CamPlate or LinkBar on its planform's
-    quadrature (``planmodes``), the histories of the plan's refined mesh (``_refined``)."""
+    quadrature (``planform_modes``), the histories of the plan's refined mesh (``_refined``)."""
     if chosen.model != "plane":
         history, estimate = langmuir_history(geometry, diffusivity, sorption, exposure, times,
                                              accuracy, depth)
         return _langmuir_result(times, history, estimate, chosen)
     _, refined = _planform_refinement(geometry, diffusivity, exposure, times, accuracy, sorption,
-                                      depth)
+                                      depth, refinement)
     history, _ = refined.result
     result = _langmuir_result(times, history, chosen.error_estimate, chosen)
     source = planform_source(geometry, diffusivity.pre_exponential, lanczos_spectrum(

@@ -18,7 +18,8 @@ import numpy as np
 
 from ..messages import note
 from ..response import Response
-from .contact import cam_plate_model, contact_response, follower_shift, hertz_half_width, lift_error
+from .contact import (cam_plate_model, contact_response, follower_shift, hertz_half_width,
+                      lift_error)
 from .fem import reduced_stiffness
 
 log = logging.getLogger(__name__)
@@ -39,7 +40,7 @@ def ply_stiffness(state: dict, k: int, prefix: str = "") -> np.ndarray:
 def cam_plate(design):
     """The dry working profile as a plate held at its bore, and the mesh spacing."""
     from ..cam.kinematics import working_profile
-    from ..diffusion.geometry import CamPlate
+    from ..diffusion.problem.geometry import CamPlate
 
     x, y = working_profile(design)
     perimeter = float(np.sum(np.hypot(np.diff(x, append=x[:1]), np.diff(y, append=y[:1]))))

@@ -1,5 +1,5 @@
 """Triangle meshes of the parts' planforms for elasticity: the graded meshes the diffusion
-engine builds (``fickcam.diffusion.trimesh.triangulate``), imported only here so that one
+engine builds (``fickcam.diffusion.planform.triangles.triangulate``), imported only here so that one
 line follows a reorganisation of the diffusion package."""
 from __future__ import annotations
 
@@ -20,7 +20,7 @@ def planform_mesh(geometry, spacing: float, growth: float | None = None) -> Plat
     """The diffusion engine's triangulation of a ``CamPlate`` or ``LinkBar`` planform: edges
     of ``spacing`` (m) along the outline, growing by (1 + ``growth``) per row inward
     (``None``: a uniform lattice)."""
-    from ..diffusion.trimesh import triangulate
+    from ..diffusion.planform.triangles import triangulate
 
     mesh = triangulate(geometry, spacing, growth=growth)
     return PlateMesh(np.asarray(mesh.points, float), np.asarray(mesh.triangles, int))
@@ -30,7 +30,7 @@ def disc_plate(radius: float, thickness: float, bore_radius: float = 0.0, centre
                samples: int = 720):
     """A circular disc (an eccentric cam, a roller) as a ``CamPlate`` outline, so that it
     meshes like any plate; ``centre`` shifts the circle off the origin (the bore axis)."""
-    from ..diffusion.geometry import CamPlate
+    from ..diffusion.problem.geometry import CamPlate
 
     angle = 2 * np.pi * np.arange(samples) / samples
     return CamPlate(centre[0] + radius * np.cos(angle), centre[1] + radius * np.sin(angle),

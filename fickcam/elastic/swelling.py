@@ -39,7 +39,7 @@ QI_PLIES = np.radians([0.0, 45.0, 90.0, -45.0])
 
 def part_plate(geometry):
     """The planform to mesh for a diffusion geometry (a disc about its own centre), or None."""
-    from ..diffusion.geometry import CamPlate, Disc, LinkBar
+    from ..diffusion.problem.geometry import CamPlate, Disc, LinkBar
     from .mesh import disc_plate
 
     if isinstance(geometry, Disc):
@@ -51,7 +51,7 @@ def part_plate(geometry):
 
 def plate_size(plate) -> float:
     """Largest planform dimension (m)."""
-    from ..diffusion.geometry import CamPlate
+    from ..diffusion.problem.geometry import CamPlate
 
     if isinstance(plate, CamPlate):
         return float(max(np.ptp(plate.profile_x), np.ptp(plate.profile_y)))
@@ -98,7 +98,7 @@ def nodal_moisture(result, geometry, points, surface, outline=None) -> np.ndarra
     boundary, where the part is exposed)."""
     from scipy.interpolate import LinearNDInterpolator, NearestNDInterpolator
 
-    from ..diffusion.geometry import Disc
+    from ..diffusion.problem.geometry import Disc
 
     coords = result.cell_coordinates
     level = mid_plane_cells(coords, geometry.thickness)

@@ -14,7 +14,7 @@ import numpy as np
 from scipy import stats
 from scipy.optimize import curve_fit
 
-from ..diffusion.exposure import GAS_CONSTANT
+from ..diffusion.problem.exposure import GAS_CONSTANT
 from .single import CONFIDENCE, Estimate, FickFit, log_estimate
 
 Z95 = float(stats.norm.ppf(0.5 + CONFIDENCE / 2))

@@ -11,7 +11,7 @@
 Each at 1 %. Neither alone is trusted: gamma = 0 lies on the boundary with beta then
 undefined, so the F test alone is liberal (we measured about 5 % false alarms at a
 nominal 0.1 %), and the runs test alone does not say what the anomaly is. The
-two-phase fit (exact per-mode solution, ``fickcam.diffusion.two_phase``) is only
+two-phase fit (exact per-mode solution, ``fickcam.diffusion.exact.two_phase``) is only
 made when test 1 fires: it costs about a second per condition.
 """
 from __future__ import annotations

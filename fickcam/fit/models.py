@@ -5,8 +5,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..diffusion.series import sheet_uptake
-from ..diffusion.two_phase import two_phase_sheet_uptake
+from ..diffusion.exact.series import sheet_uptake
+from ..diffusion.exact.two_phase import two_phase_sheet_uptake
 from .data import Specimen
 
 SERIES_TOLERANCE = 1e-7   # two-phase series truncation (fraction of Mm): far below any weighing scatter

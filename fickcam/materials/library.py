@@ -11,6 +11,15 @@ import yaml
 
 GROUPS = ("fibers", "matrices", "plastics", "metals")
 
+#: names users know for library entries -> the entry (only entries the library holds):
+#: the nylon entry holds PA66 values, acetal POM values, polyimide Vespel-type values
+ALIASES = {"PA66": "nylon", "PA6": "nylon", "POM": "acetal", "PI": "polyimide"}
+#: what a user of an alias must know when the entry is close to, not the same as, the
+#: material the alias names
+ALIAS_NOTES = {"PA6": "PA6 is read as the library's nylon, whose values are typical of "
+                      "dry-as-moulded PA66; PA6 takes up more water than PA66: override "
+                      "saturation and diffusivity with PA6 data where you have them"}
+
 
 @functools.lru_cache(maxsize=1)
 def _load() -> dict:
@@ -33,6 +42,21 @@ def _numbers(node):
 def library() -> dict:
     """A deep copy of the whole library: group -> name -> values (SI)."""
     return copy.deepcopy(_load())
+
+
+def library_name(name) -> str:
+    """The library name that ``name`` means: itself, an alias (``PA66`` -> ``nylon``), or
+    either written in another case; ``name`` unchanged when it means none."""
+    text = str(name)
+    folded = text.casefold()
+    names = {str(key).casefold(): str(key) for group in GROUPS for key in _load()[group]}
+    names.update({alias.casefold(): entry for alias, entry in ALIASES.items()})
+    return names.get(folded, text) if text not in names.values() else text
+
+
+def aliases_of(name: str) -> list[str]:
+    """The aliases of a library name, in :data:`ALIASES` order."""
+    return [alias for alias, entry in ALIASES.items() if entry == name]
 
 
 def known_names(group: str) -> list[str]:
@@ -63,6 +87,7 @@ def library_rows() -> list[dict]:
                 "beta_per_pct": values.get("moisture_expansion"),
                 "dry_tg_degC": None if tg is None else tg - 273.15,
                 "saturation_pct": (values.get("saturation") or {}).get("coefficient"),
+                "aliases": aliases_of(name),
                 "sources": " ".join(values["sources"].split()),
             })
     return rows
@@ -79,6 +104,8 @@ def library_table() -> str:
                      f"{_fmt(r['modulus_GPa']):>7} {_fmt(r['alpha_per_K']):>10} "
                      f"{_fmt(r['beta_per_pct']):>9} {_fmt(r['dry_tg_degC']):>8} "
                      f"{_fmt(r['saturation_pct']):>8}")
+    known = [f"{', '.join(r['aliases'])} = {r['name']}" for r in rows if r["aliases"]]
+    lines += ["", f"Also known as: {'; '.join(known)}"]
     lines += ["", "Sources (ASSUMPTION = fickcam's choice, override in the scene):"]
     lines += [f"  {r['name']}: {r['sources']}" for r in rows]
     return "\n".join(lines)
@@ -116,11 +143,12 @@ _GAS_CONSTANT = 8.314462618  # J/(mol K)
 
 
 def find_entry(name: str) -> tuple[str, dict]:
-    """(group, entry) of a library name, matched without regard to case; KeyError if none."""
+    """(group, entry) of a library name or alias, matched without regard to case; KeyError
+    if none."""
+    name = library_name(name)
     for group in GROUPS:
-        for key, values in _load()[group].items():
-            if str(key).lower() == str(name).lower():
-                return group, copy.deepcopy(values)
+        if name in _load()[group]:
+            return group, copy.deepcopy(_load()[group][name])
     raise KeyError(name)
 
 
@@ -150,7 +178,10 @@ def entry_text(name: str) -> str:
     """One library entry for ``fickcam materials NAME``: every value with its unit, the
     diffusivity and saturation laws, and the sources."""
     group, values = find_entry(name)
-    lines = [f"{name} ({group[:-1] if group != 'matrices' else 'matrix'})"]
+    name = library_name(name)
+    also = ", ".join(aliases_of(name))
+    lines = [f"{name} ({group[:-1] if group != 'matrices' else 'matrix'}"
+             f"{'; also ' + also if also else ''})"]
     for key, value in values.items():
         if key in _SHOWN:
             label, unit, factor, offset = _SHOWN[key]

@@ -5,8 +5,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..diffusion.exposure import Diffusivity
-from ..diffusion.sorption import ConcentrationDependent, Langmuir, Rate
+from ..diffusion.problem.exposure import Diffusivity
+from ..diffusion.problem.sorption import ConcentrationDependent, Langmuir, Rate
 from . import micromechanics as mm
 from .hygrothermal import thermal_property_factor
 from .library import entry

@@ -1,4 +1,4 @@
-"""Scene schema of one entry under ``materials:`` (SPEC.md section 1)."""
+"""Scene schema of one entry under ``materials:``."""
 from __future__ import annotations
 
 from typing import Annotated, Literal
@@ -21,21 +21,22 @@ from ..units import (
     SignedPercent,
     Temperature,
 )
-from .library import known_names
+from .library import aliases_of, known_names, library_name
 
 #: scene key -> library group
 KIND_GROUPS = {"fiber": "fibers", "matrix": "matrices", "plastic": "plastics", "metal": "metals"}
 
 
 def _name_text(value):
-    """A library name that YAML read as a number (``matrix: 3502``) back as its text."""
+    """A library name that YAML read as a number (``matrix: 3502``) back as its text, and an
+    alias users know (``plastic: PA66``) as the library's name (``nylon``)."""
     if isinstance(value, bool):
         return value
     if isinstance(value, int):
-        return str(value)
-    if isinstance(value, float):
-        return str(int(value)) if value.is_integer() else str(value)
-    return value
+        value = str(value)
+    elif isinstance(value, float):
+        value = str(int(value)) if value.is_integer() else str(value)
+    return library_name(value) if isinstance(value, str) else value
 
 
 LibraryName = Annotated[str, BeforeValidator(_name_text)]
@@ -47,7 +48,9 @@ def unknown_name_reason(key: str, name: str) -> str:
         if other != key and name in known_names(group):
             return (f"unknown {key} {name!r}: {name} is a {other} in the library, "
                     f"write '{other}: {name}'")
-    return f"unknown {key} {name!r} (known: {', '.join(known_names(KIND_GROUPS[key]))})"
+    known = [f"{entry} ({', '.join(aliases_of(entry))})" if aliases_of(entry) else entry
+             for entry in known_names(KIND_GROUPS[key])]
+    return f"unknown {key} {name!r} (known: {', '.join(known)})"
 
 
 class DiffusivitySpec(StrictModel):

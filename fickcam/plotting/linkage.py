@@ -1,5 +1,5 @@
-"""Four-bar over ageing: coupler curves, rocker angle and its drift (as seed 001,
-seeds/001_51a6f900df76f3cc.txt Figs. 6-9, plots theta_41 - theta_4) against the design
+"""Four-bar over ageing: coupler curves, rocker angle and its drift (as Singh & Sanyal
+2016, Figs. 6-9, plot theta_41 - theta_4) against the design
 and against t = 0, transmission angle and input torque."""
 from __future__ import annotations
 

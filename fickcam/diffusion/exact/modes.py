@@ -1,0 +1,150 @@
+"""The Fickian modes of the separable parts (Sheet, solid Disc, Bar) for the two-phase
+march (``two_phase_modes``): the unsaturated fraction of a unit surface step is a sum of
+decaying modes, 1 - K(tau) = sum_n A_n exp(-lambda_n tau):
+
+- sheet (thickness h, both faces): A_n = 8 / ((2n+1)^2 pi^2), lambda_n = (2n+1)^2 pi^2 D / h^2
+  (Crank 1975 eq. 4.18); its mode shape (4 / ((2n+1) pi)) sin((2n+1) pi z / h)
+  (Crank eq. 4.17) averaged over the core z/h in [f, 1-f] gives 8 cos((2n+1) pi f) /
+  ((2n+1)^2 pi^2 (1 - 2f));
+- solid cylinder (radius a): A_n = 4 / alpha_n^2, lambda_n = alpha_n^2 D / a^2, alpha_n the
+  zeros of J0 (Crank eq. 5.23); its shape 2 J0(alpha r / a) / (alpha J1(alpha)) (Crank
+  eq. 5.22) averaged over r/a < rho gives 4 J1(alpha rho) / (rho alpha^2 J1(alpha));
+- a bar or a finite disc is a product of these (Crank §5.3; Carslaw & Jaeger 1959
+  §1.16): product modes with multiplied amplitudes and summed rates; the contact layer
+  is the part minus its core, (whole - V core) / (1 - V).
+
+The product modes are lumped into narrow bins of rate (summed amplitudes at the mean
+rate); a step of the surface value gets the transient of what was left out or merged back
+from the closed-form step response (``step_corrections``), so steps stay exact. (These
+were the Fickian record march's modes before the tabulated sum replaced it.)
+
+References
+----------
+- Crank, J. (1975). The Mathematics of Diffusion, 2nd ed. Oxford: Clarendon Press.
+- Carslaw, H. S. & Jaeger, J. C. (1959). Conduction of Heat in Solids, 2nd ed. Oxford:
+  Clarendon Press.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.special import j1, jn_zeros
+
+from ..forcing.record import Forcing
+from ..problem.geometry import Disc, Sheet
+from .separable import step_response
+
+FIRST_COUNT = 32         # modes per factor to start with (doubled with the bins halved
+FIRST_PER_OCTAVE = 4     # rate bins per octave to start with   while the two differ)
+MAX_PRODUCT = 300_000    # product modes generated at most (memory, time)
+TRANSIENT_CUTOFF = 50.0  # a step's transient past exp(-50) is nothing
+
+
+@dataclass(frozen=True)
+class Factor:
+    """One separable direction: rates (1/s rescaled), mean and core amplitudes, and the
+    share of this direction's extent that lies in the core."""
+
+    rates: np.ndarray
+    mean: np.ndarray
+    core: np.ndarray
+    core_share: float
+
+
+def sheet_factor(length, d0, depth, count) -> Factor:
+    """Crank eqs. 4.17-4.18: modes of a sheet of full thickness ``length``."""
+    k = 2 * np.arange(count) + 1.0
+    fraction = min(depth / length, 0.5)
+    mean = 8.0 / (k * np.pi) ** 2
+    core = (8.0 * np.cos(k * np.pi * fraction) / ((k * np.pi) ** 2 * (1.0 - 2.0 * fraction))
+            if fraction < 0.5 else mean)
+    return Factor((k * np.pi) ** 2 * d0 / length ** 2, mean, core, 1.0 - 2.0 * fraction)
+
+
+def cylinder_factor(radius, d0, depth, count) -> Factor:
+    """Crank eqs. 5.22-5.23: modes of a solid cylinder; the core is r < radius - depth."""
+    alpha = jn_zeros(0, count)
+    mean = 4.0 / alpha ** 2
+    rho = 1.0 - depth / radius
+    core = 4.0 * j1(alpha * rho) / (rho * alpha ** 2 * j1(alpha)) if rho > 0 else mean
+    return Factor(alpha ** 2 * d0 / radius ** 2, mean, core, max(rho, 0.0) ** 2)
+
+
+def factors(geometry, d0, depth, counts) -> list[Factor]:
+    """The separable directions of a Sheet, a solid Disc (the axial sheet has no core:
+    the layer is the rim over the full thickness) or a Bar, with ``counts`` modes each."""
+    if isinstance(geometry, Sheet):
+        return [sheet_factor(geometry.thickness, d0[2], depth, counts[0])]
+    if isinstance(geometry, Disc):
+        axial = sheet_factor(geometry.thickness, d0[2], 0.0, counts[1])
+        return [cylinder_factor(geometry.outer_radius, d0[0], depth, counts[0]),
+                Factor(axial.rates, axial.mean, axial.mean, 1.0)]
+    return [sheet_factor(length, d0[axis], depth, count) for length, axis, count in
+            zip((geometry.length, geometry.width, geometry.thickness), (0, 1, 2), counts)]
+
+
+def dimensions(geometry) -> int:
+    return 1 if isinstance(geometry, Sheet) else 2 if isinstance(geometry, Disc) else 3
+
+
+@dataclass(frozen=True)
+class Modes:
+    """Product modes: rates, amplitudes of the mean and of the contact-layer mean."""
+
+    rates: np.ndarray
+    mean: np.ndarray
+    layer: np.ndarray
+    tail_rate: float      # the slowest rate of any mode left out or merged
+
+
+def product_modes(geometry, d0, depth, counts) -> Modes:
+    """Outer products of the factors' modes (Crank §5.3: 1 - F multiplies)."""
+    parts = factors(geometry, d0, depth, counts)
+    rates, mean, core, volume = np.zeros(1), np.ones(1), np.ones(1), 1.0
+    for factor in parts:
+        rates = (rates[:, None] + factor.rates[None, :]).ravel()
+        mean = (mean[:, None] * factor.mean[None, :]).ravel()
+        core = (core[:, None] * factor.core[None, :]).ravel()
+        volume *= factor.core_share
+    layer = mean if volume <= 0.0 else (mean - volume * core) / (1.0 - volume)
+    return Modes(rates, mean, layer, min(float(f.rates[-1]) for f in parts))
+
+
+def lump(modes: Modes, per_octave: int) -> Modes:
+    """Modes whose rates lie in one bin of 1/``per_octave`` octave merged into one: summed
+    amplitudes at their weighted mean rate (a mode's miss y - Ms changes little across a
+    narrow bin of rates; the error is measured by halving the bins,
+    ``two_phase_modes.langmuir_history``).
+    A bin of one mode is exact; ``tail_rate`` becomes the slowest rate merged."""
+    bins = np.floor(np.log2(modes.rates / modes.rates.min()) * per_octave).astype(int)
+    _, index, members = np.unique(bins, return_inverse=True, return_counts=True)
+    weight = np.abs(modes.mean) + np.abs(modes.layer) + 1e-300
+    total = np.bincount(index, weight)
+    rates = np.bincount(index, weight * modes.rates) / total
+    merged = rates[members > 1]
+    return Modes(rates, np.bincount(index, modes.mean), np.bincount(index, modes.layer),
+                 min(modes.tail_rate, float(merged.min()) if merged.size else np.inf))
+
+
+def step_corrections(geometry, d0, depth, modes: Modes, force: Forcing,
+                     response=None) -> np.ndarray:
+    """Each step J of Ms (the initial one, held segments): J times the transient of the
+    modes left out or merged, -J (u_exact - u_modes)(age), for the outputs it reaches;
+    ``response(age)`` -> (mean, layer) replaces ``separable.step_response`` (a planform's
+    own modes times the sheet, ``planform_modes``)."""
+    response = response or (lambda age: step_response(geometry, d0, age, depth))
+    jumps = force.right - force.left
+    jumps[np.abs(jumps) <= 1e-12 * np.max(np.abs(force.right))] = 0.0  # round-off of ramps
+    out_tau = force.tau[force.outputs]
+    correction = np.zeros((out_tau.size, 2))
+    reach = TRANSIENT_CUTOFF / modes.tail_rate
+    for k in np.flatnonzero(jumps):
+        age = out_tau - force.tau[k]
+        near = (force.outputs >= k) & (age < reach)
+        if not near.any():
+            continue
+        exact = 1.0 - np.stack(response(age[near]), axis=1)
+        kept = np.exp(-np.outer(age[near], modes.rates)) @ np.stack([modes.mean, modes.layer], 1)
+        correction[near] -= jumps[k] * (exact - kept)
+    return correction

@@ -1,0 +1,109 @@
+"""The ``analytic`` model: Crank's exact step responses (``exact``) superposed over the
+history in rescaled time, for the Sheet, the Bar and the solid Disc: by Duhamel's panels
+(``duhamel``) over a few segments, by the tabulated sum (``tabulated``, cost linear in
+the rows) over a long record."""
+from __future__ import annotations
+
+import numpy as np
+
+from ..exact.separable import saturation_tau, step_field, step_response
+from ..problem.geometry import LAYER_DEPTH, Bar, Disc, Sheet
+from ..problem.results import DiffusionResult, Plan
+from ..superposition.duhamel import duhamel
+from ..superposition.tabulated import LongRecord
+
+
+def _mean_and_layer(geometry, d0, depth):
+    def kernel(tau):
+        mean, layer = step_response(geometry, d0, tau, depth)
+        return np.stack([mean, layer], axis=-1)
+    return kernel
+
+
+def _at_points(geometry, d0, points):
+    n_points = np.asarray(next(iter(points.values()))).size
+
+    def kernel(tau):
+        return step_field(geometry, d0, tau.ravel(), points).reshape(tau.shape + (n_points,))
+    return kernel
+
+
+def exact_history(geometry, diffusivity, exposure, times, surface_layer_depth=LAYER_DEPTH):
+    """Volume-mean and contact-layer-mean moisture (weight %) at ``times`` (s)
+    for any ``Exposure`` of a part with an exact step response."""
+    d0 = diffusivity.pre_exponential
+    result = (duhamel(_mean_and_layer(geometry, d0, surface_layer_depth), diffusivity, exposure,
+                      times, saturation_tau(geometry, d0)) + exposure.initial_moisture)
+    return {"mean": result[:, 0], "surface": result[:, 1]}
+
+
+def exact_history_field(geometry, diffusivity, exposure, times, points):
+    """Moisture (weight %) at ``points`` (see ``separable.step_field``), shape
+    (n_times, n_points)."""
+    d0 = diffusivity.pre_exponential
+    return duhamel(_at_points(geometry, d0, points), diffusivity, exposure, times,
+                   saturation_tau(geometry, d0), chunk=8) + exposure.initial_moisture
+
+
+def record_history(geometry, diffusivity, exposure, times, accuracy,
+                   surface_layer_depth=LAYER_DEPTH):
+    """``exact_history`` over a long record by the tabulated sum, with its error estimate
+    (relative to the record's largest swing |Ms - M0|, as ``accuracy`` is) and the
+    ``LongRecord`` the fields reuse."""
+    d0 = diffusivity.pre_exponential
+    record = LongRecord.of(diffusivity, exposure, times, saturation_tau(geometry, d0)[0],
+                           accuracy)
+    values, error, _ = record.superpose(_mean_and_layer(geometry, d0, surface_layer_depth))
+    values = values + exposure.initial_moisture
+    return {"mean": values[:, 0], "surface": values[:, 1]}, error, record
+
+
+def solve_analytic(geometry, diffusivity, exposure, times, depth, store_fields,
+                   chosen: Plan, record_accuracy: float | None = None) -> DiffusionResult:
+    """The exact mean and contact-layer history (and fields on request); with
+    ``record_accuracy`` (a long record) by the tabulated sum, and the result carries its
+    error estimate."""
+    estimate, record = chosen.error_estimate, None
+    if record_accuracy is None:
+        history = exact_history(geometry, diffusivity, exposure, times, surface_layer_depth=depth)
+    else:
+        history, estimate, record = record_history(geometry, diffusivity, exposure, times,
+                                                   record_accuracy, surface_layer_depth=depth)
+    mean, surface = history["mean"], history["surface"]
+    result = DiffusionResult(times, np.asarray(mean, float), np.asarray(surface, float),
+                             "analytic", 0, 0, estimate, chosen.reason)
+    if store_fields:
+        fields, coordinates = _analytic_fields(geometry, diffusivity, exposure, times, record)
+        result.fields, result.cell_coordinates = fields, coordinates
+        result.cells = fields.shape[1]
+    return result
+
+
+FIELD_POINTS = {Sheet: (40,), Disc: (24, 12), Bar: (16, 12, 8)}  # cell centres for exact fields
+
+
+def _analytic_fields(geometry, diffusivity, exposure, times, record):
+    """Exact fields at the centres of a structured grid (``FIELD_POINTS`` cells per axis);
+    cell_x/y/z are the coordinates (a Disc: x = r)."""
+    def centres(length, count):
+        return (np.arange(count) + 0.5) * length / count
+
+    counts = FIELD_POINTS[type(geometry)]
+    if isinstance(geometry, Sheet):
+        axes = {"z": centres(geometry.thickness, counts[0])}
+    elif isinstance(geometry, Disc):
+        axes = {"r": centres(geometry.outer_radius, counts[0]),
+                "z": centres(geometry.thickness, counts[1])}
+    else:
+        axes = {"x": centres(geometry.length, counts[0]), "y": centres(geometry.width, counts[1]),
+                "z": centres(geometry.thickness, counts[2])}
+    grids = np.meshgrid(*axes.values(), indexing="ij")
+    points = {name: grid.ravel() for name, grid in zip(axes, grids)}
+    if record is None:
+        fields = exact_history_field(geometry, diffusivity, exposure, times, points)
+    else:
+        kernel = _at_points(geometry, diffusivity.pre_exponential, points)
+        fields = record.field(kernel) + exposure.initial_moisture
+    coordinates = {("x" if name == "r" else name): values for name, values in points.items()}
+    return fields, coordinates
+

@@ -1,0 +1,175 @@
+"""The direct models: ``slab`` (Sheet, 1-D), ``axisymmetric`` (Disc or annulus in (r, z))
+and ``solid`` (Bar on a 3-D grid; CamPlate or LinkBar on prisms of Delaunay-admissible
+cells), each a FiPy-assembled operator marching the history itself.
+
+Backward Euler on geometric steps that restart at each environment change
+(``step_plans``), twice: on the plan's steps and on the same steps bisected. The
+difference measures the time error, and Richardson's extrapolation 2 c_fine - c_coarse
+cancels its first-order part. Cells come from the spatial error model
+(``error_model.space_error``, ``sizing``).
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..accuracy.error_model import (FIRST_STEP, MAX_CELLS, MIN_STEPS_PER_DOUBLING,
+                                    PAIR_TO_EXTRAPOLATED, TIME_ERROR, space_error)
+from ..forcing.clock import Scales
+from ..forcing.clock import scales as scales_of
+from ..operators import grids, sizing
+from ..operators.prisms import prism
+from ..operators.symmetry_cuts import halved_axes
+from ..planform.admissible import band_share
+from ..problem.exposure import Diffusivity, Exposure, swing
+from ..problem.geometry import LAYER_DEPTH, Bar, CamPlate, Disc, LinkBar, Sheet
+from ..problem.results import DiffusionResult, Plan
+from ..problem.scaling import stretch_of
+from ..stepping import step_plans
+from ..stepping.march import march
+
+
+def plan_direct(geometry, diffusivity, model: str, change: np.ndarray, outputs: np.ndarray,
+                accuracy: float, exposure: Exposure, mirrored: bool = False) -> Plan:
+    """Cells from the spatial error model, steps per doubling from the time error model,
+    each taking half the accuracy. ``mirrored``: the solve keeps the part cut at its
+    mirror planes (``symmetry_cuts``, the D(c) sweeps); the plan's cells and the cap
+    (``MAX_CELLS``: cells of the linear system) count that cut part."""
+    t_lo = step_plans.earliest_output(change, outputs)
+    cells = _cells(geometry, diffusivity, model, accuracy, t_lo,
+                   halved_axes(geometry) if mirrored else ())
+    per_doubling = max(MIN_STEPS_PER_DOUBLING, math.ceil(math.sqrt(TIME_ERROR / (0.5 * accuracy))))
+    nodes = step_plans.step_nodes(change, outputs, FIRST_STEP, per_doubling, exposure.ramp)
+    steps = 3 * (nodes.size - 1)  # coarse march + bisected march
+    estimate = cells.space_error + TIME_ERROR / per_doubling ** 2
+    why = {"slab": "sheet through the thickness, 1-D finite volumes",
+           "axisymmetric": "disc/annulus in (r, z)" + (
+               " (bore: no exact path)" if isinstance(geometry, Disc) and geometry.inner_radius > 0
+               else ""),
+           "solid": "bar in 3-D" if isinstance(geometry, Bar) else
+           "3-D prisms of the outline (Delaunay-admissible cells x graded thickness)"}[model]
+    reason = (f"{why}; cells from accuracy ({cells.note}, earliest output "
+              f"tau*={t_lo:.2g}), backward Euler {per_doubling} steps/doubling + Richardson")
+    if estimate > accuracy:
+        reason += f"; capped at {MAX_CELLS[model]} cells: error above the requested accuracy"
+    return Plan(model, cells.solved, int(steps), reason, float(estimate), cells.cells,
+                per_doubling, finest=cells.finest, growth=cells.growth)
+
+
+def _cells(geometry, diffusivity, model: str, accuracy: float, t_lo: float, halved=()):
+    """The cells of a direct model (``sizing``): prisms for a CamPlate or LinkBar, graded
+    or uniform for a Disc or Bar, uniform for the slab; ``halved``: the axes the solve
+    cuts at their mirror plane."""
+    d = diffusivity.pre_exponential
+    if isinstance(geometry, (CamPlate, LinkBar)):
+        return sizing.prism_layout(geometry, d, accuracy, t_lo, MAX_CELLS[model],
+                                   space_error(t_lo), halved)
+    return sizing.choose(geometry, sizing.extents(geometry, d), accuracy, t_lo,
+                         MAX_CELLS[model], space_error(t_lo), halved)
+
+
+def discretise(geometry, diffusivity: Diffusivity, cells: tuple[int, ...],
+               surface_layer_depth: float, finest: float = 0.0, growth: float = 0.0):
+    """The FiPy-assembled operator of a Sheet, Disc or Bar on ``cells`` (uniform), or
+    graded from ``finest`` by ``growth`` (scaled units, ``sizing``); of a CamPlate or
+    LinkBar on prisms (graded: ``finest`` > 0)."""
+    d = tuple(float(v) for v in diffusivity.pre_exponential)
+    widths = (sizing.physical_widths(geometry, sizing.extents(geometry, d), d, finest,
+                                     growth)
+              if finest > 0 and isinstance(geometry, (Disc, Bar)) else None)
+    if isinstance(geometry, Sheet):
+        return grids.sheet(geometry.thickness, cells[0], surface_layer_depth)
+    if isinstance(geometry, Disc):
+        return grids.disc(geometry.outer_radius, geometry.thickness, geometry.inner_radius,
+                       cells[0], cells[1], surface_layer_depth, d[0], d[2], widths=widths)
+    if isinstance(geometry, Bar):
+        return grids.bar(geometry.length, geometry.width, geometry.thickness, cells,
+                      surface_layer_depth, d, widths=widths)
+    if isinstance(geometry, (CamPlate, LinkBar)):
+        tess = sizing.planform_cells(geometry, finest, growth, stretch_of(d))
+        return prism(tess, geometry.thickness, sizing.prism_widths(finest, growth)
+                     * geometry.thickness, band_share(tess, surface_layer_depth), d)
+    raise TypeError(f"no direct finite-volume model for {type(geometry).__name__}")
+
+
+@dataclass(frozen=True)
+class StepPlan:
+    """Step boundaries in scaled time with the surface value at each and the outputs."""
+
+    nodes: np.ndarray
+    times: np.ndarray       # s, the physical time of each node
+    surface: np.ndarray     # weight %, g(t) at each node (right-continuous)
+    surface_before: np.ndarray  # weight %, g(t-) at each node (left limit: a step ending there)
+    outputs: np.ndarray     # node index of each requested time
+    restarts: np.ndarray    # node index of each environment change
+
+
+def step_plan(exposure, times, scales: Scales, per_doubling: int,
+              bisect: bool = False) -> StepPlan:
+    """Nodes of the march (``bisect``: every step halved, for the Richardson pair)."""
+    tau_star = scales.tau_star
+    change = tau_star(exposure.change_times)
+    outputs = tau_star(times)
+    nodes = step_plans.step_nodes(change, outputs, FIRST_STEP, per_doubling, exposure.ramp)
+    if bisect:
+        nodes = np.sort(np.concatenate([nodes, 0.5 * (nodes[1:] + nodes[:-1])]))
+    node_times = step_plans.inverse_time(nodes, tau_star, exposure.change_times)
+    exact_nodes = np.isin(nodes, change)
+    node_times[exact_nodes] = exposure.change_times[np.searchsorted(change, nodes[exact_nodes])]
+    surface = np.asarray(exposure.surface_moisture(node_times), float)
+    before = surface.copy()
+    jumps = np.flatnonzero(exact_nodes)[1:]
+    before[jumps] = exposure.surface_before(node_times[jumps])
+    return StepPlan(nodes, node_times, surface, before, step_plans.nearest_nodes(nodes, outputs),
+                    np.searchsorted(nodes, change[:-1]))
+
+
+def solve_direct(geometry, diffusivity, exposure, times, chosen: Plan, *,
+                 surface_layer_depth: float = LAYER_DEPTH, store_fields: bool = False,
+                 part: str = "", extrapolate: bool = True, disc=None,
+                 marcher=march) -> DiffusionResult:
+    """March a Sheet, Disc, Bar or prisms of a CamPlate or LinkBar on its FiPy mesh
+    (Richardson pair in time); ``disc``: an operator built by the caller instead;
+    ``marcher``: ``march.march`` or one with its arguments (``two_phase_mesh``: two-phase, whose
+    history also carries the bound-water mean)."""
+    scales = scales_of(geometry, diffusivity, exposure)
+    if disc is None:
+        disc = discretise(geometry, diffusivity, chosen.cells_per_axis, surface_layer_depth,
+                          chosen.finest, chosen.growth)
+    runs = []
+    for bisect in (False, True):
+        steps = step_plan(exposure, times, scales, chosen.steps_per_doubling, bisect)
+        runs.append(marcher(disc, steps.nodes, steps.surface, exposure.initial_moisture,
+                          steps.outputs, steps.times, keep_fields=store_fields, part=part,
+                          surface_before=steps.surface_before))
+    coarse, fine = runs
+    combine, estimate = richardson_pair(chosen, coarse, fine, swing(exposure, times) or 1.0,
+                                    extrapolate)
+    result = DiffusionResult(
+        times, combine(coarse.mean, fine.mean), combine(coarse.layer, fine.layer), chosen.model,
+        disc.cells, coarse.steps + fine.steps, estimate, chosen.reason)
+    if getattr(coarse, "bound", None) is not None:
+        result.bound = combine(coarse.bound, fine.bound)
+    if store_fields:
+        result.fields = combine(coarse.fields, fine.fields)
+        result.cell_coordinates = disc.coordinates
+    return result
+
+
+def richardson_pair(chosen: Plan, coarse, fine, scale: float, extrapolate: bool):
+    """(combine, estimate): 2 fine - coarse (or the fine march alone) and its error: the
+    plan's estimate, unless the march's own indicator (space part of the plan + the pair's
+    time error, ``PAIR_TO_EXTRAPOLATED`` d^2 extrapolated, d alone) says more."""
+    pair = float(np.max(np.abs(fine.mean - coarse.mean))) / scale
+    space = chosen.error_estimate - TIME_ERROR / chosen.steps_per_doubling ** 2
+    if extrapolate:
+        def combine(a, b):
+            return 2.0 * b - a
+        observed = space + PAIR_TO_EXTRAPOLATED * pair ** 2
+        return combine, float(max(chosen.error_estimate, observed))
+
+    def combine(a, b):
+        return b
+    return combine, float(max(space + pair, 0.0))

@@ -1,0 +1,224 @@
+"""Cells of the direct finite-volume models (slab, axisymmetric, solid) from the accuracy.
+
+Uniform: spacing h* = sqrt(0.5 a tau*_lo / (S n)) on each of the n axes, S =
+``error_model.space_error(tau*_lo)`` (err ~ S (h/L)^2 / tau*_lo per axis, measured on the
+sheet against Crank eq. 4.18).
+
+Graded (``grading``): cells w0 wide at the exposed faces growing by (1 + g) per cell.
+Each graded axis adds S w0^2 / tau*_lo (the boundary layer after a change
+sees only the finest cells, Crank 1975 eq. 2.45) and GROWTH_ERROR g^2
+(``error_model.GROWTH_ERROR``); half the spatial budget goes to each. The graded
+layout replaces the uniform one when it needs fewer cells. A prismatic part
+(CamPlate, LinkBar) is always graded: rows graded from its outline in the plane
+(``triangles.triangulate`` with a growth), the same widths through the thickness, on
+Delaunay-admissible cells (``admissible``). Above the model's cell cap the finest width
+grows (and with it the estimate) until the cells fit. The cap counts the cells of the
+linear system (``unknowns``): a part solved cut at its mirror planes (``symmetry_cuts``: a
+Bar's octant, a prism's half thickness) is counted on that cut part, ``halved`` naming
+the axes cut in two.
+
+References
+----------
+- Crank, J. (1975). The Mathematics of Diffusion, 2nd ed. Oxford: Clarendon Press.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from functools import lru_cache
+
+import numpy as np
+
+from ..accuracy.error_model import GROWTH_ERROR, MIN_CELLS_PER_AXIS
+from ..planform.admissible import admissible
+from ..planform.outline import outline_extent
+from ..planform.triangles import triangulate
+from ..problem.geometry import Bar, CamPlate, Disc, LinkBar, Sheet
+from ..problem.scaling import axis_scale, stretch_of
+from .grading import MAX_GROWTH, graded_widths, growth_rate
+
+CAP_STEP = 1.15  # the finest width grows by this factor until the cells fit the cap
+
+
+@dataclass(frozen=True)
+class Layout:
+    """Cells per axis (a prism: planform cells, z cells), and the grading if any."""
+
+    cells: tuple[int, ...]
+    space_error: float
+    finest: float = 0.0   # scaled width of the finest cells (0: uniform)
+    growth: float = 0.0
+    note: str = ""
+    halved: tuple[int, ...] = ()  # axes cut at their mirror plane by the solve
+
+    @property
+    def total(self) -> int:
+        return int(math.prod(self.cells))
+
+    @property
+    def solved(self) -> int:
+        """Cells of the linear system the solve assembles (``unknowns``)."""
+        return unknowns(self.cells, self.halved)
+
+
+def unknowns(cells, halved=()) -> int:
+    """Cells of the linear system on ``cells`` per axis: the axes in ``halved`` cut at
+    their mirror plane (``symmetry_cuts``: half of the count rounded up to even)."""
+    return int(math.prod(-(-c // 2) if axis in halved else c for axis, c in enumerate(cells)))
+
+
+def extents(geometry, d) -> tuple[float, ...]:
+    """Scaled extents of the numerical model's axes: each physical extent times
+    sqrt(D_z / D_i) / L (``scaling``)."""
+    h = float(geometry.thickness)
+    if isinstance(geometry, Sheet):
+        return (1.0,)
+    if isinstance(geometry, Disc):
+        return ((geometry.outer_radius - geometry.inner_radius) * axis_scale(h, d[0], d[2]), 1.0)
+    if isinstance(geometry, Bar):
+        sizes = (geometry.length, geometry.width)
+    else:
+        sizes = outline_extent(geometry)
+    return tuple(size * axis_scale(h, d[i], d[2]) for i, size in enumerate(sizes)) + (1.0,)
+
+
+def exposed_ends(geometry) -> tuple[str, ...]:
+    """Which ends of each axis are exposed: a Disc's radius only at the rim unless it has
+    a bore; every face of a Bar; the faces of a prism (z)."""
+    if isinstance(geometry, Disc):
+        return ("both" if geometry.inner_radius > 0 else "high", "both")
+    return ("both",) * (3 if isinstance(geometry, Bar) else 1)
+
+
+def uniform(extents, accuracy: float, t_lo: float, cap: int, space_error: float,
+            halved=()) -> Layout:
+    """Equal cells on every axis (see the module docstring), shrunk to the cap; a
+    ``halved`` axis has an even count (its mirror plane a face) and half of it solved."""
+    dimensions = len(extents)
+    spacing = math.sqrt(0.5 * accuracy * t_lo / (space_error * dimensions))
+    parts = [2 if axis in halved else 1 for axis in range(dimensions)]
+    solved = [max(-(-MIN_CELLS_PER_AXIS // p), math.ceil(e / spacing / p))
+              for e, p in zip(extents, parts)]
+    total = math.prod(solved)
+    if total > cap:
+        shrink = (cap / total) ** (1 / dimensions)
+        solved = [max(-(-MIN_CELLS_PER_AXIS // p), int(n * shrink)) for n, p in zip(solved, parts)]
+    cells = tuple(n * p for n, p in zip(solved, parts))
+    h_eff = max(e / c for e, c in zip(extents, cells))
+    return Layout(cells, space_error * h_eff ** 2 / t_lo * dimensions,
+                  note=f"uniform dx*={spacing:.2g}", halved=tuple(halved))
+
+
+def graded_error(finest: float, growth: float, t_lo: float, axes: int,
+                 space_error: float) -> float:
+    return axes * (space_error * finest ** 2 / t_lo + GROWTH_ERROR * growth ** 2)
+
+
+def graded_design(accuracy: float, t_lo: float, axes: int, space_error: float):
+    """(w0, g) spending half the spatial budget 0.5 a on each error term."""
+    finest = math.sqrt(0.25 * accuracy * t_lo / (space_error * axes))
+    return finest, growth_rate(0.25 * accuracy / axes)
+
+
+def axis_widths(extents, ends, finest: float, growth: float) -> tuple[np.ndarray, ...]:
+    """Scaled cell widths of each axis, graded towards its exposed ends."""
+    return tuple(graded_widths(e, min(finest, 0.5 * e), growth, end)
+                 for e, end in zip(extents, ends))
+
+
+def physical_widths(geometry, extents, d, finest: float, growth: float) -> tuple[np.ndarray, ...]:
+    """Graded cell widths (m) of a Disc (r, z) or Bar (x, y, z): the scaled widths times
+    L sqrt(D_i / D_z) (Crank 1975 eq. 2.13)."""
+    axes = (0, 1, 2) if isinstance(geometry, Bar) else (0, 2)
+    scaled = axis_widths(extents, exposed_ends(geometry), finest, growth)
+    return tuple(w / axis_scale(geometry.thickness, d[i], d[2]) for w, i in zip(scaled, axes))
+
+
+def graded(extents, ends, accuracy: float, t_lo: float, cap: int, space_error: float,
+           count=None, halved=()) -> Layout:
+    """Graded cells (see the module docstring); ``count(finest, growth)`` gives the cells
+    per axis (default: the graded widths of ``extents``), ``halved`` the axes the solve
+    cuts at their mirror plane (``unknowns``: what the cap counts)."""
+    count = count or (lambda w0, g: tuple(w.size for w in axis_widths(extents, ends, w0, g)))
+    axes = len(extents)
+    finest, growth = graded_design(accuracy, t_lo, axes, space_error)
+    cells = count(finest, growth)
+    while unknowns(cells, halved) > cap and finest < 0.5 * min(extents):
+        finest *= CAP_STEP
+        growth = min(MAX_GROWTH, growth * CAP_STEP)
+        cells = count(finest, growth)
+    return Layout(tuple(cells), graded_error(finest, growth, t_lo, axes, space_error),
+                  finest, growth, f"graded w0*={finest:.2g} growth {growth:.2g}", tuple(halved))
+
+
+def choose(geometry, extents, accuracy: float, t_lo: float, cap: int,
+           space_error: float, halved=()) -> Layout:
+    """The layout of a Disc or Bar: graded when that needs fewer cells (of the linear
+    system: ``halved`` axes cut at their mirror plane), else uniform; when either is shrunk
+    to the cap (its error above the accuracy), the one of smaller error (a capped uniform
+    grid has fewer cells but, on a drying D(c) link bar at 3e-3, 5x the error of the
+    capped graded one: benchmarks/dc_bar.py link)."""
+    flat = uniform(extents, accuracy, t_lo, cap, space_error, halved)
+    if not isinstance(geometry, (Disc, Bar)):
+        return flat
+    steep = graded(extents, exposed_ends(geometry), accuracy, t_lo, cap, space_error,
+                   halved=halved)
+    if max(steep.space_error, flat.space_error) > accuracy:
+        return steep if steep.space_error < flat.space_error else flat
+    better = steep.solved < flat.solved or (steep.solved == flat.solved
+                                            and steep.space_error < flat.space_error)
+    return steep if better else flat
+
+
+# ----------------------------------------------------------------- prisms
+
+
+@lru_cache(maxsize=8)
+def planform_cells(part, finest: float, growth: float, stretch: tuple[float, float]):
+    """Admissible cells (``admissible.Tessellation``) of a CamPlate or LinkBar planform, rows
+    graded from the outline: ``finest`` and the spacing in stretched (scaled) units."""
+    mesh = triangulate(part, finest * part.thickness, growth=growth, stretch=stretch)
+    return admissible(mesh, part, stretch)
+
+
+def prism_widths(finest: float, growth: float) -> np.ndarray:
+    """Scaled z widths of a prism, graded towards both faces."""
+    return graded_widths(1.0, min(finest, 0.5), growth, "both")
+
+
+def prism_layout(geometry, d, accuracy: float, t_lo: float, cap: int,
+                 space_error: float, halved=()) -> Layout:
+    """Graded prism cells: planform rows and z widths with the same w0 and g (three
+    graded directions in the error model); ``halved`` (1,): the solve keeps half the
+    thickness (``symmetry_cuts``), which the cap counts."""
+    if not isinstance(geometry, (CamPlate, LinkBar)):
+        raise TypeError(f"no prism layout for {type(geometry).__name__}")
+    stretch = stretch_of(d)
+    layout = graded((1.0, 1.0, 1.0), ("both",) * 3, accuracy, t_lo, cap, space_error,
+                    lambda w0, g: estimated_prism_cells(geometry, w0, g, stretch), halved)
+    finest = min(layout.finest, widest_row(geometry, stretch))
+    planform = planform_cells(geometry, finest, layout.growth, stretch)
+    cells = (planform.cells, prism_widths(finest, layout.growth).size)
+    return Layout(cells, layout.space_error, finest, layout.growth, layout.note, layout.halved)
+
+
+def widest_row(part, stretch) -> float:
+    """The widest first row of a planform (scaled): half its smallest scaled extent, as
+    ``prism_widths`` holds the z widths to half the thickness. A late first output makes the
+    error model's w0 grow without bound (w0 ~ sqrt(accuracy t_lo)); rows wider than the
+    planform leave the outline mesher no points (seen: the 4 x 3 x 2 mm plate, k = 5, first
+    output 0.1 h^2/D: w0 = 6.4e4). Narrower rows only lower the error, so the estimate holds."""
+    extent = np.asarray(outline_extent(part)) * np.asarray(stretch) / part.thickness
+    return 0.5 * float(extent.min())
+
+
+def estimated_prism_cells(part, finest: float, growth: float, stretch) -> tuple[int, int]:
+    """Cheap count for the cap: rows of spacing s(d) ~ w0 + g d at depth d under an
+    outline of scaled perimeter P make about (2 / (sqrt(3)/2)) P integral dd / s^2
+    triangles (two per rhombus of an equilateral lattice), up to the half width D:
+    integral = D / (w0 (w0 + g D))."""
+    extent = np.asarray(outline_extent(part)) * np.asarray(stretch) / part.thickness
+    perimeter, depth = 2.0 * float(extent.sum()), 0.5 * float(extent.min())
+    rows = depth / (finest * (finest + growth * depth))
+    planar = max(1, int(2.0 / (math.sqrt(3) / 2) * perimeter * rows))
+    return planar, prism_widths(finest, growth).size

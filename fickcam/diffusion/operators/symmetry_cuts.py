@@ -1,0 +1,83 @@
+"""Meshes of the ``solid`` parts cut at their planes of mirror symmetry, for the
+concentration-dependent model (``concentration_dependent``), whose cost grows with the cells.
+
+Every face of a Bar, CamPlate or LinkBar holds the same surface value and the initial
+moisture is uniform, so the moisture field is mirror-symmetric about the mid-plane
+z = h/2 of a prism and about the three mid-planes of a Bar: no flux crosses them
+(Crank 1975 §4.3.1, the sheet's centre plane as an impermeable wall). The model keeps
+one side: the half thickness of a prism (its planform has no symmetry in general), one
+octant of a Bar, cut at the middle of the same graded widths the full mesh would have
+(``grading.graded_widths`` is symmetric), so it is the full mesh's solution exactly, on
+1/2 (prism) or 1/8 (Bar) of the cells. The means and the contact layer are volume
+averages, the same over a mirror half as over the whole.
+
+References
+----------
+- Crank, J. (1975). The Mathematics of Diffusion, 2nd ed. Oxford: Clarendon Press.
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from ..planform.admissible import band_share
+from ..problem.geometry import Bar, CamPlate, LinkBar
+from ..problem.scaling import axis_scale, stretch_of
+from . import sizing
+from .discretisation import Discretisation
+from .fipy_backend import assemble, box_mesh
+from .grids import grid_axis, near_faces, normalised
+from .prisms import prism
+
+
+def halved_axes(geometry) -> tuple[int, ...]:
+    """The axes of the layout's cells (``sizing.Layout``) that ``symmetry_cuts`` cuts in two:
+    x, y, z of a Bar (octant), z of a CamPlate or LinkBar (cells: planform, z)."""
+    if isinstance(geometry, Bar):
+        return (0, 1, 2)
+    if isinstance(geometry, (CamPlate, LinkBar)):
+        return (1,)
+    raise TypeError(f"no mirrored mesh for {type(geometry).__name__}")
+
+
+def half(widths: np.ndarray) -> np.ndarray:
+    """The first half of a symmetric ``both``-graded axis (an even count of cells)."""
+    if widths.size % 2:
+        raise ValueError("a mirrored axis needs an even number of cells")
+    return widths[:widths.size // 2]
+
+
+def mirrored(geometry, d, cells, finest: float, growth: float,
+             layer_depth: float) -> Discretisation:
+    """The FiPy operator of the mirror part of a Bar (octant) or a CamPlate or LinkBar
+    (half thickness), graded from ``finest`` by ``growth`` (scaled units, ``sizing``), or
+    a Bar on uniform ``cells`` (rounded up to even counts) when ``finest`` is 0."""
+    if isinstance(geometry, (CamPlate, LinkBar)):
+        tess = sizing.planform_cells(geometry, finest, growth, stretch_of(d))
+        z = half(sizing.prism_widths(finest, growth)) * geometry.thickness
+        return prism(tess, geometry.thickness, z, band_share(tess, layer_depth), d,
+                     mid_plane=True)
+    if isinstance(geometry, Bar):
+        return octant(geometry, d, cells, finest, growth, layer_depth)
+    raise TypeError(f"no mirrored mesh for {type(geometry).__name__}")
+
+
+def octant(bar: Bar, d, cells, finest: float, growth: float,
+           layer_depth: float) -> Discretisation:
+    """The octant x, y, z <= half of a Bar on FiPy's Grid3D: the faces x = 0, y = 0, z = 0
+    exposed, the three mid-planes insulated (FiPy's default for unconstrained faces).
+    Layer: within ``layer_depth`` of an exposed face (the whole bar's layer, by symmetry)."""
+    size = np.array([bar.length, bar.width, bar.thickness])
+    full = (sizing.physical_widths(bar, sizing.extents(bar, d), d, finest, growth) if finest > 0
+            else tuple(np.full(n, s / n) for s, n in zip(size, (2 * -(-c // 2) for c in cells))))
+    widths = tuple(half(w) for w in full)
+    scale = np.array([axis_scale(bar.thickness, d[i], d[2]) for i in range(3)])
+    axes = [grid_axis(w, s, uniform=False) for w, s in zip(widths, scale)]
+    mesh = box_mesh(axes)
+    centres = np.asarray(mesh.faceCenters)
+    exposed = np.asarray(mesh.exteriorFaces, bool) & np.any(np.isclose(centres, 0.0, atol=1e-12),
+                                                           axis=0)
+    volumes, stiffness, boundary = assemble(mesh, exposed=exposed)
+    cells = [np.asarray(a) / s for a, s in zip(mesh.cellCenters, scale)]
+    return Discretisation(volumes, stiffness, boundary, normalised(volumes),
+                          normalised(near_faces(widths, size, layer_depth)),
+                          dict(zip("xyz", cells)))

@@ -1,0 +1,149 @@
+"""The backward-Euler step plan in scaled time.
+
+From each environment change the steps restart at ``first_step`` and double every
+``steps_per_doubling`` steps (geometric growth in blocks of equal size, so one
+factorisation serves a whole block); requested output times are step boundaries.
+"""
+from __future__ import annotations
+
+from functools import lru_cache
+
+import numpy as np
+
+from ..accuracy.error_model import FIRST_STEP
+
+
+def geometric_steps(start: float, stop: float, first_step: float,
+                    steps_per_doubling: int, max_step: float = np.inf) -> np.ndarray:
+    """Step boundaries from ``start`` to ``stop``: ``first_step`` doubling every
+    ``steps_per_doubling`` steps, at most ``max_step``; the last step is cut to end at ``stop``."""
+    nodes = [start]
+    dt, k = first_step, 0
+    while nodes[-1] < stop:
+        nodes.append(min(nodes[-1] + min(dt, max_step), stop))
+        k += 1
+        if k % steps_per_doubling == 0:
+            dt *= 2.0
+    return np.asarray(nodes)
+
+
+def step_nodes(change_taus: np.ndarray, output_taus: np.ndarray, first_step: float,
+               steps_per_doubling: int, ramp: np.ndarray | None = None,
+               ramp_steps: int = 32) -> np.ndarray:
+    """All step boundaries in tau: geometric from each change, with the outputs inserted.
+
+    Inside a ramp segment the step is also limited to 1/``ramp_steps`` of the
+    ramp so that the moving surface value is followed.
+    """
+    change_taus = np.asarray(change_taus, float)
+    pieces = []
+    for k in range(change_taus.size - 1):
+        start, stop = change_taus[k], change_taus[k + 1]
+        limit = (stop - start) / ramp_steps if ramp is not None and ramp[k] else np.inf
+        pieces.append(geometric_steps(start, stop, first_step, steps_per_doubling, limit))
+    nodes = np.concatenate(pieces + [np.asarray(output_taus, float)])
+    nodes = np.unique(nodes[(nodes >= change_taus[0]) & (nodes <= max(change_taus[-1],
+                                                                       np.max(output_taus)))])
+    return drop_slivers(nodes, first_step)
+
+
+def drop_slivers(nodes: np.ndarray, first_step: float) -> np.ndarray:
+    """Merge step boundaries closer than 1e-9 of the first step (round-off duplicates)."""
+    keep = np.concatenate([[True], np.diff(nodes) > 1e-9 * first_step])
+    return nodes[keep]
+
+
+def nearest_nodes(nodes: np.ndarray, values: np.ndarray) -> np.ndarray:
+    """Index of the node nearest each value (an output merged into a node by
+    ``drop_slivers`` maps to that node, not to the next one)."""
+    nodes, values = np.asarray(nodes, float), np.asarray(values, float)
+    upper = np.clip(np.searchsorted(nodes, values), 1, max(nodes.size - 1, 1))
+    lower = upper - 1
+    closer_below = np.abs(values - nodes[lower]) <= np.abs(nodes[upper] - values)
+    return np.where(closer_below, lower, upper) if nodes.size > 1 else np.zeros(values.size, int)
+
+
+def inverse_time(tau_nodes: np.ndarray, tau_of_t, change_times: np.ndarray) -> np.ndarray:
+    """t(tau) by interpolating tau(t) sampled at 257 points per segment (exact on held
+    segments, where tau is linear in t; tau is strictly increasing)."""
+    edges = np.asarray(change_times, float)
+    samples = np.unique(np.concatenate([np.linspace(a, b, 257) for a, b in
+                                        zip(edges[:-1], edges[1:])]))
+    taus = tau_of_t(samples)
+    return np.interp(tau_nodes, taus, samples)
+
+
+
+def earliest_output(change_stars: np.ndarray, output_stars: np.ndarray) -> float:
+    """Smallest positive time from an environment change to a later output (scaled)."""
+    gaps = []
+    for tau in output_stars:
+        before = change_stars[change_stars < tau]
+        if before.size:
+            gaps.append(tau - before[-1])
+    return max(min(gaps), 1e3 * FIRST_STEP) if gaps else 1.0
+
+
+AGES_PER_DECADE = 64  # more than MAX_AGES ages (a long record) are thinned to the least and
+MAX_AGES = 2048       # the largest in each bin of 1/AGES_PER_DECADE decade
+
+
+def output_ages(change_stars: np.ndarray, output_stars: np.ndarray, ramp: np.ndarray,
+                ramp_points: int = 17) -> np.ndarray:
+    """``_output_ages``, computed once for the plan and the solve of every part with the
+    same scaled history (the links of a four-bar; a year of rows costs ~0.05 s), read-only."""
+    arrays = (np.asarray(change_stars, float), np.asarray(output_stars, float),
+              np.asarray(ramp, bool))
+    return _ages_of(*(a.tobytes() for a in arrays), ramp_points)
+
+
+@lru_cache(maxsize=8)
+def _ages_of(change: bytes, outputs: bytes, ramp: bytes, ramp_points: int) -> np.ndarray:
+    ages = _output_ages(np.frombuffer(change), np.frombuffer(outputs),
+                        np.frombuffer(ramp, bool), ramp_points)
+    ages.setflags(write=False)
+    return ages
+
+
+def _output_ages(change_stars: np.ndarray, output_stars: np.ndarray, ramp: np.ndarray,
+                 ramp_points: int = 17) -> np.ndarray:
+    """The ages tau*_out - tau*_change > 0 at which the outputs read the response to each
+    surface change (Duhamel's sum, Crank 1975 eq. 4.34): one per step, ``ramp_points``
+    spread over each ramp segment (a ramp is a continuum of small steps). A long record's
+    ages fill the span densely: past ``MAX_AGES`` only the least and the largest of each
+    bin of 1/``AGES_PER_DECADE`` decade are kept (what the error models read is smooth in
+    age)."""
+    change_stars = np.asarray(change_stars, float)
+    start, stop = change_stars[:-1], change_stars[1:]
+    spread = np.asarray(ramp, bool) & (np.arange(start.size) > 0)
+    share = np.linspace(0.0, 1.0, ramp_points)[None, :] * spread[:, None]
+    sources = np.unique(start[:, None] + (stop - start)[:, None] * share)
+    age = np.asarray(output_stars, float)[:, None] - sources[None, :]
+    if np.count_nonzero(age > 0, axis=1).max(initial=0) > MAX_AGES:
+        # more than MAX_AGES distinct ages in one output's row alone: thin each row (its
+        # ages fall along it) to its bins' ends, then those (the same least and largest)
+        return _thinned(np.unique(np.concatenate([_bin_ends(row[row > 0]) for row in age])))
+    found = np.unique(age[age > 0])
+    if found.size == 0:
+        return np.array([1.0])
+    return found if found.size <= MAX_AGES else _thinned(found)
+
+
+def _bins(ages: np.ndarray) -> np.ndarray:
+    return np.floor(np.log10(ages) * AGES_PER_DECADE)
+
+
+def _thinned(found: np.ndarray) -> np.ndarray:
+    """The least and the largest of sorted ``found`` in each bin of 1/AGES_PER_DECADE decade."""
+    bins = _bins(found)
+    first = np.flatnonzero(np.diff(bins, prepend=-np.inf) > 0)
+    last = np.flatnonzero(np.diff(bins, append=np.inf) > 0)
+    return np.unique(found[np.concatenate([first, last])])
+
+
+def _bin_ends(row: np.ndarray) -> np.ndarray:
+    """The first and the last of ``row`` (monotone) in each bin it crosses."""
+    if row.size == 0:
+        return row
+    turns = np.flatnonzero(np.diff(_bins(row)))
+    return row[np.concatenate([[0], turns, turns + 1, [row.size - 1]])]
