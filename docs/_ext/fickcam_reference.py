@@ -20,7 +20,7 @@ from pydantic_core import PydanticUndefined
 from fickcam import schema
 from fickcam.cli_parser import build_parser
 from fickcam.scene_models import SceneModel
-from fickcam.units import SI_UNITS
+from fickcam.unit_parsing import SI_UNITS
 
 EXAMPLES = Path(__file__).resolve().parents[2] / "configs"
 NAMED_MAPPINGS = ("materials", "limits")
