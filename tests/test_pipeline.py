@@ -9,7 +9,7 @@ import yaml
 
 import fickcam
 from fickcam.cli import main
-from fickcam.schema import VARIABLES, markdown_table
+from fickcam.schema import VARIABLES
 
 ROOT = Path(__file__).resolve().parents[1]
 CONFIGS = ROOT / "configs"
@@ -46,10 +46,9 @@ def test_readme_starts_with_the_two_commands_and_links_every_variable():
     assert lines[3].endswith("fickcam run configs/singh2017_cam.yaml") and "pip install" in lines[3]
     assert lines[4].endswith("pytest") and 'pip install -e ".[test]"' in lines[4]
     assert len(lines) <= 250
-    # the variable table is generated into the docs (tests/test_docs_reference.py)
+    # the variable table is generated into the docs when they build
+    # (tests/test_docs_reference.py checks the generator)
     assert "(docs/reference/results.md)" in text
-    assert markdown_table() in (ROOT / "docs" / "reference" / "results.md").read_text(), \
-        "docs/reference/results.md is out of date: build the docs (.ci/docs)"
 
 
 def test_result_variables_follow_the_schema(fourbar):
