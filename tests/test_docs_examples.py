@@ -63,3 +63,18 @@ def test_no_page_names_a_file_outside_the_repository(page):
     text = page.read_text()
     for outside in ("SPEC.md", "../shared", "seeds/", "/work/"):
         assert outside not in text, f"{page.name} names {outside}"
+
+
+def test_the_readme_python_quick_start_runs(tmp_path, monkeypatch):
+    """The README's Python block, run as written from a folder holding ``configs/``."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    (tmp_path / "configs").symlink_to(ROOT / "configs")
+    monkeypatch.chdir(tmp_path)
+    blocks = [body for page, body in _fences("python") if page.name == "README.md"]
+    assert len(blocks) == 1
+    namespace: dict = {}
+    exec(compile(blocks[0], "README.md", "exec"), namespace)
+    assert (tmp_path / "outputs" / "run.h5").exists()
+    assert "lift" in namespace["ds"]
