@@ -11,7 +11,7 @@ the exact disc over the same record (``benchmarks/two_phase_cam_records.py``).
   cells go as 1/(w0 g), second order) into ``tests/data/two_phase_cam_reference.json``
   (mean, bound, contact layer in weight %, and the two fine meshes' Richardson difference
   relative to the swing as the reference's own uncertainty).
-- ``cam_rows`` / ``circle_rows``: the README table (accuracy asked, the run's estimate, the
+- ``cam_rows`` / ``circle_rows``: the validation table (accuracy asked, the run's estimate, the
   true error: the largest of mean, bound and layer / 4 relative to the swing, planform
   cells, CPU seconds of the whole scene run in this process, or of the plate's solve).
 """

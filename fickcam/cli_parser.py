@@ -225,3 +225,8 @@ def _sweep_command(sub) -> None:
     group.add_argument("--workers", type=int, default=None, help="local worker processes")
     group.add_argument("--scheduler", help="address of a running dask scheduler, tcp://HOST:PORT")
     sweep.add_argument("-o", "--output", required=True)
+
+
+def build_parser() -> argparse.ArgumentParser:
+    """The ``fickcam`` argument parser (for the generated command-line reference)."""
+    return _parser()

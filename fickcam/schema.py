@@ -294,7 +294,7 @@ COORDINATES: dict[str, tuple[str, str]] = {
 
 
 def markdown_table() -> str:
-    """The variable table as Markdown (for the README and `fickcam schema`); the
+    """The variable table as Markdown (for the docs' reference and `fickcam schema`); the
     as-designed rows are named in the last column of the variable they belong to."""
     rows = ["| variable | dims | units | meaning | as designed |", "|---|---|---|---|---|"]
     designs = {design_name(name) for name, var in VARIABLES.items() if var.has_design}

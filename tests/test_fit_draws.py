@@ -9,7 +9,7 @@ from fickcam.sweep import load_sweep
 
 from test_scene_errors import LINKAGE_SCENE
 
-# the fitted block of the README's "Calibrating a material" example
+# the fitted block of the materials guide's "Calibrating a material" example
 FITTED = {"matrix": "3502",
           "diffusivity": {"pre_exponential": "9.08355e-08 m^2/s", "activation_energy": "30.1843 kJ/mol"},
           "saturation": {"coefficient": "5.00092 %", "exponent": 1.40037},

@@ -9,7 +9,7 @@ import yaml
 
 import fickcam
 from fickcam.cli import main
-from fickcam.schema import VARIABLES, markdown_table
+from fickcam.schema import VARIABLES
 
 ROOT = Path(__file__).resolve().parents[1]
 CONFIGS = ROOT / "configs"
@@ -40,12 +40,15 @@ def test_import_fickcam_stays_light():
     assert done.returncode == 0, done.stdout + done.stderr
 
 
-def test_readme_starts_with_the_two_commands_and_lists_every_variable():
+def test_readme_starts_with_the_two_commands_and_links_every_variable():
     text = (ROOT / "README.md").read_text()
     lines = text.splitlines()
     assert lines[3].endswith("fickcam run configs/singh2017_cam.yaml") and "pip install" in lines[3]
     assert lines[4].endswith("pytest") and 'pip install -e ".[test]"' in lines[4]
-    assert markdown_table() in text, "README variable table is out of date: paste `fickcam schema`"
+    assert len(lines) <= 250
+    # the variable table is generated into the docs when they build
+    # (tests/test_docs_reference.py checks the generator)
+    assert "(docs/reference/results.md)" in text
 
 
 @pytest.mark.slow

@@ -1,6 +1,6 @@
 """SYNTHETIC weight-gain data: coupons weighed at D5229-like times, uptake from the
 exact Fickian or two-phase solution, Gaussian scatter. For tests and for the
-labelled example data set (no measured table was reachable, see the README);
+labelled example data set (no measured table was reachable, see the user guide's materials page);
 never to be presented as measurements."""
 from __future__ import annotations
 
@@ -123,6 +123,6 @@ def write_example(path) -> Path:
         "Mm = a (RH/100)^b: a = 5.0 % (3502 equilibrium moisture, Singh & Sanyal 2016,",
         "  IJIRSET 5(12), Table 4), b = 1.4 (Piggott & Woo 1987: solubility ~ RH^1.4).",
         "Scatter: 0.2 mg (1 sigma) on each weighing, masses rounded to 0.1 mg.",
-        "No published weight-gain table was reachable (see README, 'Calibrating a material').",
+        "No published weight-gain table was reachable (see the user guide, 'Materials and fickcam fit').",
     ]
     return write_weight_gain_csv(coupons, path, comments, dry_mass_g=EXAMPLE_DRY_MASS_G)

@@ -4,8 +4,8 @@ A sweep's ``random:`` entry ``materials.NAME.fit: {draw: covariance}`` draws, pe
 case, (ln D0, Ea) and (a, b) of material NAME as bivariate normals centred on the
 values the base scene holds, with the covariances ``fickcam fit`` recorded under
 ``materials.NAME.fit.covariance`` (SI 2x2 matrices of (ln pre_exponential,
-activation_energy [J/mol]) and (coefficient [%], exponent); README, "Calibrating a
-material"). ln D0 and Ea of a fit across temperatures are strongly correlated (about
+activation_energy [J/mol]) and (coefficient [%], exponent); the user guide's page
+"Materials and fickcam fit"). ln D0 and Ea of a fit across temperatures are strongly correlated (about
 +0.99): drawing them independently would spread D at the test temperatures far
 more than the data allow, so they are drawn jointly (numpy's
 ``Generator.multivariate_normal``). D0 is log-normal: it stays positive.
