@@ -283,17 +283,28 @@ def _limits(ds, scene: Scene, environment: Environment, times, accuracy: float |
     crossings = first_crossings(search_times, search, evaluate)
     return (build_dataset({"limit_ratio": stored, "time_out_of_spec": crossings},
                           {"time": times, "limit": [limit.variable for limit in scene.limits]}),
-            _search_notices(searched, histories, diffusion_options(scene, accuracy)["accuracy"]))
+            search_notices(searched, {h.part.name: h.diffusion.error_estimate for h in histories
+                                      if h.diffusion is not None},
+                           diffusion_options(scene, accuracy)["accuracy"]))
 
 
-def _search_notices(searched: dict[str, float], histories: list[PartHistory],
-                    accuracy: float) -> list[str]:
+def search_notices(searched: dict[str, float], stored: dict[str, float],
+                   accuracy: float) -> list[str]:
     """Notices (also logged) for the parts whose diffusion at the limit search's times
     (read between the stored solve's steps, ``DiffusionResult.extend``: the stored estimate
     plus the interpolation's) is estimated above the requested accuracy while the stored
-    run's was not (that one is already noticed)."""
-    stored = {h.part.name: h.diffusion.error_estimate for h in histories
-              if h.diffusion is not None}
+    run's was not (that one is already noticed).
+
+    Parameters
+    ----------
+    searched : dict of str to float
+        Part name -> largest diffusion error estimate over the search's solves [-]
+        (relative to the moisture swing).
+    stored : dict of str to float
+        Part name -> error estimate of the stored run's solve [-].
+    accuracy : float
+        The requested accuracy [-].
+    """
     notices = [f"{name}: estimated diffusion error {estimate:.1e} at the limit search's "
                f"times above the requested accuracy {accuracy:g} (the crossing times carry it)"
                for name, estimate in searched.items()
