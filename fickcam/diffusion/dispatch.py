@@ -302,13 +302,16 @@ def _refined(geometry, diffusivity, exposure, times: tuple, accuracy, sorption, 
              growth, refinement: Refinement) -> RefinedPlanform:
     """``planform_modes.refined_planform`` of the two-phase history (the march on each mesh,
     most of whose cost is the planform operators): its mesh error is ``PLANFORM_SHARE`` of
-    the accuracy, the march the rest. Cached: ``plan`` and ``solve`` share it."""
+    the accuracy, the march the rest. Cached: ``plan`` and ``solve`` share it (its
+    histories' arrays read-only)."""
     times = np.asarray(times, float)
     share, scale = PLANFORM_SHARE * accuracy, 1.0 / max(swing(exposure), 1e-300)
 
     def measure(source):
         history, estimate = langmuir_history(geometry, diffusivity, sorption, exposure, times,
                                              accuracy - share, depth, source)
+        for values in history.values():
+            values.setflags(write=False)   # cached with the refinement: shared, never copied
         compared = [history["mean"], history["bound"], history["surface"] / LAYER_TOLERANCE]
         return np.stack(compared) * scale, (history, estimate)
 
@@ -449,9 +452,10 @@ def _langmuir_modes(geometry, diffusivity, exposure, times, chosen, sorption, de
 
 
 def _langmuir_result(times, history, estimate, chosen) -> DiffusionResult:
-    """(copies: a planform's histories stay cached for the next plan and solve)"""
-    return DiffusionResult(times, history["mean"].copy(), history["surface"].copy(), chosen.model,
-                           chosen.cells, 0, estimate, chosen.reason, bound=history["bound"].copy())
+    """The result of a two-phase modal history (a planform's: read-only, cached with its
+    refinement for the next plan and solve)."""
+    return DiffusionResult(times, history["mean"], history["surface"], chosen.model,
+                           chosen.cells, 0, estimate, chosen.reason, bound=history["bound"])
 
 
 def read_ages(clock, exposure, times, most: int = 256) -> np.ndarray:
