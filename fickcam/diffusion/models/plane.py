@@ -159,11 +159,15 @@ def planform_response(geometry, finest: float, growth: float, d: tuple, layer_de
     """(P1 operator, unit-step response, time-error pair) of the planform: what ``solve_plane``
     marches, cached by the exact inputs that determine it (geometries compare by value), so
     re-runs at other output times (the limit search) and sweep cases that share the part,
-    its diffusivity ratios and its plan (a climate sweep at one temperature) march once."""
+    its diffusivity ratios and its plan (a climate sweep at one temperature) march once.
+    The response's arrays are read-only."""
     mesh = planform_mesh(geometry, finest, growth, stretch_of(d))
     planar = plane_operator(mesh, geometry, layer_depth, d)
     response, pair = step_response(planar, end, per_doubling, first_step,
                                    keep_fields=keep_fields, part=part)
+    for array in (response.nodes, response.mean, response.layer, response.fields):
+        if array is not None:
+            array.setflags(write=False)   # cached: shared by every solve that reads it
     return planar, response, pair
 
 
