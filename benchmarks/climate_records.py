@@ -203,7 +203,8 @@ def format_year_accuracy(found: dict) -> str:
     """One line: the year's error against the requested accuracy and the estimate."""
     verdict = "within" if found["error"] <= found["accuracy"] else "ABOVE"
     return (f"solid disc through Greensboro's TMY3 year ({found['rows']} rows, "
-            f"{found['outputs']} daily outputs at 12:30, {found['model']}): error {found['error']:.1e} "
+            f"{found['outputs']} daily outputs at 12:30, {found['model']}): "
+            f"error {found['error']:.1e} "
             f"of the swing vs modal reference, {verdict} the requested {found['accuracy']:g} "
             f"(estimate {found['estimate']:.1e}; {found['cost']:.2f} CPU s)")
 

@@ -8,37 +8,36 @@ one marker series per geometry and model) for the README. A ``--quick`` run
 only prints its table (it must not replace the committed full results) unless
 ``--out`` names a folder.
 
-Fickian rows:
-For each geometry the full uptake curve of a unit surface step (c0 = 0,
-g = 1 weight %, isothermal so tau = t) is solved by each model at a few
-accuracy targets; the error is the largest |mean - exact| over 61 output
-times spanning Fourier numbers (D t / h^2 of the thickness) 1e-2 .. 1.5 (relative to the step), against
-Crank's series (``fickcam.diffusion.exact.separable.step_response``). Times are CPU seconds of
-this process (``time.process_time``: the machine is shared, a wall time under load
-says little), medians of ``repeats`` runs after one warm-up that pays the FiPy import.
-The row ``fipy-naive`` is FiPy solving every backward-Euler step itself
-(``eq.solve`` with ``LinearLUSolver(tolerance=1e-10)``) on the same step plan.
-Non-Fickian rows (below): two-phase sheet and disc, concentration-dependent
-sheet, each against its own reference. Parts without an exact solution (the link) are measured against the plane model
-at a third of the finest accuracy asked (at most 1e-3); the link's ``solid`` row
-(3-D prisms marching the history, the plane model's independent check) is timed
-in a single run.
+Fickian rows: for each geometry the full uptake curve of a unit surface step (c0 = 0,
+g = 1 weight %, isothermal so tau = t) is solved by each model at a few accuracy
+targets; the error is the largest |mean - exact| over 61 output times spanning Fourier
+numbers (D t / h^2 of the thickness) 1e-2 .. 1.5 (relative to the step), against Crank's
+series (``fickcam.diffusion.exact.separable.step_response``). Times are CPU seconds of
+this process (``time.process_time``: the machine is shared, a wall time under load says
+little), medians of ``repeats`` runs after one warm-up that pays the FiPy import. The row
+``fipy-naive`` is FiPy solving every backward-Euler step itself (``eq.solve`` with
+``LinearLUSolver(tolerance=1e-10)``) on the same step plan. Parts without an exact
+solution (the link) are measured against the plane model at a third of the finest
+accuracy asked (at most 1e-3); the link's ``solid`` row (3-D prisms marching the history,
+the plane model's independent check) is timed in a single run.
 
-Non-Fickian rows (``materials.NAME.sorption``):
-Unit surface step (c0 = 0, Ms = 1 weight %, isothermal), the full uptake curve at the
-bench's 61 times, error = largest |mean - reference| (relative to the step):
+Non-Fickian rows (``materials.NAME.sorption``; two-phase sheet and disc,
+concentration-dependent sheet and plate, each against its own reference): unit surface
+step (c0 = 0, Ms = 1 weight %, isothermal), the full uptake curve at the bench's 61
+times, error = largest |mean - reference| (relative to the step):
 
 - two-phase (Langmuir; gamma = beta = 0.1 pi^2 D/h^2): the sheet against Carter &
-  Kibler's exact series (``two_phase.two_phase_sheet_uptake``), the disc's FiPy (r, z)
-  block march against its exact modes at accuracy 1e-8, and a circular cam plate (a
-  160-gon, area short by 2.6e-4) on its planform quadrature (``planmodes``) against the
-  exact modes of that disc;
+  Kibler's exact series (``diffusion.exact.two_phase.two_phase_sheet_uptake``), the
+  disc's FiPy (r, z) block march against its exact modes at accuracy 1e-8, and a
+  circular cam plate (a 160-gon, area short by 2.6e-4) on its planform quadrature
+  (``nonfickian.planform_modes``) against the exact modes of that disc;
 - concentration-dependent (D = D0 exp(2 c/Mm)): the FiPy slab against a 800-node method
   of lines (scipy BDF, tolerances 1e-10), an independent discretisation; a 4 x 3 x 2 mm
-  plate (CamPlate, the 3-D prisms cut at the mid-plane, ``mirrored``) against the same
-  model run at ``PLANFORM_REFERENCE`` (a fine run: no independent 3-D solution exists),
-  by the 3-D cells alone (``solid``) and by ``auto``'s corrected sheet x planform product
-  (``diffusion.defect``), the two against the same fine 3-D run.
+  plate (CamPlate, the 3-D prisms cut at the mid-plane, ``operators.symmetry_cuts``)
+  against the same model run at ``PLANFORM_REFERENCE`` (a fine run: no independent 3-D
+  solution exists), by the 3-D cells alone (``solid``) and by ``auto``'s corrected
+  sheet x planform product (``nonfickian.corrected_product``), the two against the same
+  fine 3-D run.
 """
 from __future__ import annotations
 
@@ -304,7 +303,8 @@ def reference(name, geometry, kind, times, diffusivity, exposure, d_ref):
         rate = law.binding.pre_exponential
         return two_phase_sheet_uptake(times, d_ref, geometry.thickness, rate, rate).total, "exact"
     if isinstance(geometry, CamPlate):  # the disc its outline approximates
-        geometry = Disc(float(np.max(np.hypot(geometry.profile_x, geometry.profile_y))), geometry.thickness)
+        radius = float(np.max(np.hypot(geometry.profile_x, geometry.profile_y)))
+        geometry = Disc(radius, geometry.thickness)
     return solve(geometry, diffusivity, exposure, times, accuracy=1e-8,
                  sorption=law).mean, "exact modes"
 
