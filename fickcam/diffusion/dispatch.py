@@ -196,10 +196,20 @@ def _two_phase_model(geometry, model: str) -> str:
 
 @dataclass(frozen=True)
 class SolverSettings:
-    """The solvers' tuned limits, frozen: when a concentration-dependent step's sweeps stop
-    (``sweeps``), how a two-phase planform is refined (``planform``: its cap, refinement
-    apart) and the most cells each mesh model may assemble (``cells``). The defaults are
-    the run's; a caller (a test) passes others instead of changing module values."""
+    """The solvers' tuned limits, frozen. The defaults are the run's; a caller (a test)
+    passes others (``fickcam.run(scene, settings=...)``, ``plan``, ``solve``) instead of
+    changing module values.
+
+    Attributes
+    ----------
+    sweeps : Sweeps
+        When a concentration-dependent step's sweeps stop.
+    planform : Refinement
+        How a two-phase planform is refined (its cap in cells, refinement apart).
+    cells : CellCaps
+        The most cells [-] of the linear system each mesh model may assemble
+        (e.g. ``SolverSettings(cells=CellCaps(plane=300))``).
+    """
 
     sweeps: Sweeps = SWEEPS
     planform: Refinement = REFINEMENT
