@@ -13,7 +13,7 @@ __all__ = ["load_scene", "run", "save", "open_result", "compensate", "fit_weight
 
 
 def load_scene(source, *, file_name: str | None = None):
-    """Read and validate a scene from a YAML path or a dict (see SPEC.md)."""
+    """Read and validate a scene from a YAML path or a dict; values in SI after validation."""
     from .scene import load_scene as _load
 
     return _load(source, file_name=file_name)

@@ -1,4 +1,4 @@
-"""The ``fickcam`` command line (SPEC.md §2).
+"""The ``fickcam`` command line.
 
 Exit status: 0 success; 2 bad input (one line per problem on stderr, no
 traceback); 1 anything else (one line; ``--debug`` shows the traceback).

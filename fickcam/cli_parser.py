@@ -1,4 +1,4 @@
-"""The ``fickcam`` command line's arguments (SPEC.md §2): one argparse subcommand per
+"""The ``fickcam`` command line's arguments: one argparse subcommand per
 command, each with a summary, a description and examples in its --help. What each
 command does is in :mod:`fickcam.commands`; :mod:`fickcam.cli` runs them.
 """

@@ -1,4 +1,4 @@
-"""What each ``fickcam`` subcommand does (SPEC.md §2), given its parsed arguments
+"""What each ``fickcam`` subcommand does, given its parsed arguments
 (:mod:`fickcam.cli_parser`); each returns the exit status. Heavy imports stay inside the
 command that needs them.
 """
@@ -75,7 +75,7 @@ def _cmd_size(args) -> int:
     from .cam.sizing import Limits, aged_check, smallest_base_circle
     from .scene import load_scene
     from .simulate import run
-    from .units import to_si
+    from .unit_parsing import to_si
 
     scene = load_scene(args.scene)
     if scene.model.cam is None:

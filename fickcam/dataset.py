@@ -6,23 +6,82 @@ import numpy as np
 from .schema import COORDINATES, VARIABLES
 
 
+DAY = 86400.0  # s
+
+
+def ageing_days(seconds) -> np.ndarray:
+    """Ageing times as the float days of the ``time`` coordinate.
+
+    Parameters
+    ----------
+    seconds : array_like
+        Ageing times [s].
+
+    Returns
+    -------
+    numpy.ndarray
+        The same times [d].
+    """
+    return np.asarray(seconds, float) / DAY
+
+
+def ageing_seconds(ds) -> np.ndarray:
+    """The ageing times of a result.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        A result, its ``time`` coordinate in float days [d].
+
+    Returns
+    -------
+    numpy.ndarray
+        Its ageing times [s].
+    """
+    return np.asarray(ds["time"].values, float) * DAY
+
+
 def ageing_time_days(seconds):
-    """The ``ageing_time`` coordinate along ``time``: float days (units ``d``), which
-    matplotlib plots and ``interp`` interpolates, unlike the timedelta ``time``."""
+    """The ``ageing_time`` coordinate along ``time``: the same float days (units ``d``),
+    kept beside ``time`` for code written when ``time`` was a timedelta."""
     import xarray as xr
 
     units, long_name = COORDINATES["ageing_time"]
-    return xr.Variable(("time",), np.asarray(seconds, float) / 86400.0,
-                       {"units": units, "long_name": long_name})
+    return xr.Variable(("time",), ageing_days(seconds), {"units": units, "long_name": long_name})
+
+
+def with_time_in_days(ds):
+    """A result with its ``time`` in float days, whichever way its file stored it.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        A result; its ``time`` may be timedelta64 (files written by fickcam before time
+        was stored in days) or float days [d].
+
+    Returns
+    -------
+    xarray.Dataset
+        ``ds`` itself when ``time`` is already in days, else a copy with ``time`` (and an
+        ``ageing_time`` beside it) in float days [d], units ``d``.
+    """
+    if "time" not in ds.coords or ds["time"].dtype.kind != "m":
+        return ds
+    units, long_name = COORDINATES["time"]
+    days = ds["time"].values / np.timedelta64(1, "D")
+    ds = ds.assign_coords(time=("time", days, {"units": units, "long_name": long_name}))
+    if "ageing_time" not in ds.coords:
+        ds = ds.assign_coords(ageing_time=ageing_time_days(days * DAY))
+    return ds
 
 
 def build_dataset(values: dict, coords: dict, attrs: dict | None = None):
     """An xarray.Dataset with every variable of ``values`` (SI arrays keyed by
     schema name) stored in its schema unit, with ``units`` and ``long_name``.
 
-    ``coords`` gives ``time`` in seconds and the other coordinates as the
-    schema expects (angles in rad, names as strings); ``ageing_time`` (days)
-    is added beside ``time``. Variables a scene does
+    ``coords`` gives ``time`` in seconds (stored as float days, units ``d``) and the
+    other coordinates as the schema expects (angles in rad, names as strings);
+    ``ageing_time`` (the same days) is added beside ``time``. Variables a scene does
     not model are simply absent from ``values``.
     """
     import xarray as xr
@@ -31,8 +90,8 @@ def build_dataset(values: dict, coords: dict, attrs: dict | None = None):
     for name, value in coords.items():
         units, long_name = COORDINATES[name]
         value = np.asarray(value)
-        if name == "time":
-            value = (np.asarray(value, float) * 1e9).round().astype("timedelta64[ns]")
+        if units == "d":  # ageing times: given in s
+            value = ageing_days(value)
         elif units == "degree":
             value = np.degrees(np.asarray(value, float))
         attrs_c = {"long_name": long_name}

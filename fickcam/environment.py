@@ -16,7 +16,12 @@ import numpy as np
 from .damp_heat import STANDARD_TESTS, Segments, standard_climate
 from .records import read_history_csv, read_record, resolve_record_path
 
-__all__ = ["Environment", "read_history_csv"]
+__all__ = ["Environment", "read_history_csv", "summary_edges"]
+
+#: interval lengths of a climate summary [s] (an hour, a day, a week, 30 days): the shortest
+#: that cuts the history into at most SUMMARY_INTERVALS intervals
+SUMMARY_STEPS = (3600.0, 86400.0, 7 * 86400.0, 30 * 86400.0)
+SUMMARY_INTERVALS = 1000
 
 
 @dataclass(frozen=True, eq=False)
@@ -156,6 +161,31 @@ class Environment(Segments):
         """RH(t) in percent (right-continuous)."""
         return self._evaluate(t, self.humidity_end, self.humidity_start)
 
+    def interval_summary(self, edges) -> dict[str, tuple[np.ndarray, np.ndarray, np.ndarray]]:
+        """The climate over each interval between ``edges``: its mean and its range, exact
+        for the history's straight pieces and steps (past the end of the history its last
+        values are held).
+
+        Parameters
+        ----------
+        edges : array_like
+            Interval edges [s], increasing, at least two.
+
+        Returns
+        -------
+        dict
+            ``"temperature"``: (mean, lowest, highest) [K] and ``"relative_humidity"``:
+            (mean, lowest, highest) [%], each an array with one value per interval.
+        """
+        edges = np.asarray(edges, float)
+        out = {}
+        for name, ends, start in (("temperature", self.temperature_end, self.temperature_start),
+                                  ("relative_humidity", self.humidity_end, self.humidity_start)):
+            begin = self._segment_start_values(ends, start)
+            after = np.where(self.ramp, begin, ends)  # just after t_k; just before t_k+1: ends
+            out[name] = piecewise_linear_summary(self.change_times, after, ends, edges)
+        return out
+
     def hottest(self) -> tuple[int, float]:
         """(segment index, temperature) of the hottest point of the history."""
         index = int(np.argmax(self.temperature_end))
@@ -183,3 +213,70 @@ class Environment(Segments):
                             initial_moisture=self.initial_moisture)
         self._exposures[saturation_moisture] = exposure
         return exposure
+
+
+def summary_edges(end: float) -> np.ndarray:
+    """Edges of a climate summary: hourly, daily, weekly or 30-day intervals, the shortest
+    of them that gives at most SUMMARY_INTERVALS.
+
+    Parameters
+    ----------
+    end : float
+        End of the summary [s], positive.
+
+    Returns
+    -------
+    numpy.ndarray
+        Edges from 0 to ``end`` [s]; the last interval ends at ``end`` and may be shorter.
+    """
+    step = next((s for s in SUMMARY_STEPS if end / s <= SUMMARY_INTERVALS), SUMMARY_STEPS[-1])
+    starts = np.arange(0.0, end, step)
+    return np.append(starts[end - starts > 1e-6 * step], end)
+
+
+def piecewise_linear_summary(change_times, after, before, edges):
+    """Mean, lowest and highest value over intervals of a function made of straight pieces.
+
+    The function runs straight from ``after[k]`` just after ``change_times[k]`` to
+    ``before[k]`` just before ``change_times[k+1]`` (a step where ``after[k]`` differs
+    from ``before[k-1]``) and holds ``before[-1]`` past the last change time. The mean is
+    the exact integral over the interval (trapezoids are exact for straight pieces) divided
+    by its length; the extremes are among the interval's end values and the pieces' ends
+    inside it.
+
+    Parameters
+    ----------
+    change_times : numpy.ndarray
+        Times where the pieces meet [s], increasing, shape (n + 1,).
+    after, before : numpy.ndarray
+        Each piece's value at its start and at its end [any unit], shape (n,).
+    edges : numpy.ndarray
+        Interval edges [s], increasing.
+
+    Returns
+    -------
+    tuple of numpy.ndarray
+        (mean, lowest, highest) per interval, in the unit of ``after`` and ``before``.
+    """
+    t0, t1 = change_times[:-1], change_times[1:]
+    done = np.concatenate([[0.0], np.cumsum((t1 - t0) * (after + before) / 2.0)])
+
+    def value_and_integral(t, side):
+        k = np.clip(np.searchsorted(change_times, t, side=side) - 1, 0, after.size - 1)
+        inside = np.minimum(t, t1[k])
+        value = after[k] + (before[k] - after[k]) * (inside - t0[k]) / (t1[k] - t0[k])
+        integral = (done[k] + (inside - t0[k]) * (after[k] + value) / 2.0
+                    + np.maximum(t - t1[k], 0.0) * before[k])
+        return value, integral
+
+    first, start_integral = value_and_integral(edges[:-1], "right")
+    last, end_integral = value_and_integral(edges[1:], "left")
+    low, high = np.minimum(first, last), np.maximum(first, last)
+    n = edges.size - 1
+    bins = np.concatenate([np.searchsorted(edges, t0, "right"), np.searchsorted(edges, t1, "left")]) - 1
+    values = np.concatenate([after, before])
+    inside = (bins >= 0) & (bins < n)
+    np.minimum.at(low, bins[inside], values[inside])
+    np.maximum.at(high, bins[inside], values[inside])
+    mean = (end_integral - start_integral) / np.diff(edges)
+    return np.clip(mean, low, high), low, high  # round-off must not lift a mean off its range

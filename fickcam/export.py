@@ -49,12 +49,7 @@ def export_json(ds, path, variables=None) -> Path:
     names = _chosen(ds, variables)
     coords = {}
     for name in ds.coords:
-        values = ds[name].values
-        if values.dtype.kind == "m":
-            values = values / np.timedelta64(1, "D")
-            coords["time_d"] = values.tolist()
-        else:
-            coords[name] = values.tolist()
+        coords["time_d" if name == "time" else name] = ds[name].values.tolist()
     document = {
         "attributes": {k: (v if isinstance(v, (str, int, float, list, dict)) else str(v))
                        for k, v in ds.attrs.items()},

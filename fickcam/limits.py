@@ -1,4 +1,4 @@
-"""Limits on result variables: the spec a mechanism must hold (SPEC.md §6).
+"""Limits on result variables: the spec a mechanism must hold.
 
 A scene's ``limits:`` section names result variables and, for each, a band
 around the as-designed value (``deviation``) and/or bounds (``max``, ``min``),
@@ -26,7 +26,8 @@ from pydantic import model_validator
 
 from .query import drift
 from .schema import VARIABLES, Var, design_name
-from .units import StrictModel, number_and_unit, registry, split_number_unit
+from .units import StrictModel
+from .unit_parsing import number_and_unit, registry, split_number_unit
 
 #: the crossing is located to this fraction of its bracketing interval, or to FLOOR s
 TOLERANCE = 0.01

@@ -73,7 +73,7 @@ def build_parts(scene) -> list[Part]:
 
 
 def part_mass(history: PartHistory) -> np.ndarray:
-    """m = m_dry (1 + M/100) (seed 000 eq. 3 inverted), NaN where not given."""
+    """m = m_dry (1 + M/100) (Singh & Sanyal 2017 eq. 3 inverted), NaN where not given."""
     dry = history.part.dry_mass
     moisture = np.asarray(history.state["moisture_content"], float)
     return np.full_like(moisture, np.nan) if dry is None else dry * (1 + moisture / 100.0)

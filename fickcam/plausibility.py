@@ -36,7 +36,7 @@ from enum import IntEnum
 from typing import Callable
 
 from .errors import Problem
-from .units import is_bare_number, to_si
+from .unit_parsing import is_bare_number, to_si
 
 
 class Verdict(IntEnum):

@@ -10,17 +10,11 @@ import json
 
 import numpy as np
 
+from .dataset import ageing_seconds
 from .errors import InputError, format_duration, time_unit
 from .keys import closest_names, short_names
 from .schema import VARIABLES, design_name
-from .units import is_bare_number, parse_duration
-
-SECONDS = np.timedelta64(1, "s")
-
-
-def _time_seconds(ds) -> np.ndarray:
-    return ds["time"].values / SECONDS
-
+from .unit_parsing import is_bare_number, parse_duration
 
 def select(ds, variable: str, *, time=None, part=None, cam_angle=None, crank_angle=None, link=None,
            against: str | None = None):
@@ -62,7 +56,7 @@ def select(ds, variable: str, *, time=None, part=None, cam_angle=None, crank_ang
         if "time" not in array.dims:
             raise InputError(f"{variable} does not vary with time")
         seconds = _seconds(time)
-        stored = _time_seconds(ds)
+        stored = ageing_seconds(ds)
         if seconds < stored[0] - 1e-9 or seconds > stored[-1] + 1e-9:
             raise InputError(f"time {time} is outside the stored ageing times "
                              f"({stored[0] / 86400:g} to {stored[-1] / 86400:g} d)")
@@ -73,7 +67,7 @@ def select(ds, variable: str, *, time=None, part=None, cam_angle=None, crank_ang
     array.attrs["selection"] = ", ".join(answered)
     array.attrs["selected"] = selected
     if "time" in ds.coords:  # the result's last ageing time: its times' unit (format_result)
-        array.attrs["time_span"] = float(_time_seconds(ds)[-1])
+        array.attrs["time_span"] = float(ageing_seconds(ds)[-1])
     return array
 
 
@@ -186,7 +180,7 @@ def _own_points(array, dim, grid, value):
 def swept_values(array) -> dict[str, np.ndarray]:
     """The varied values of a sweep result along ``case``, in the units the sweep file
     gave them: ``{"temperature [degC]": [60, 85, ...]}`` (empty for a single run)."""
-    from .units import convert
+    from .unit_parsing import convert
 
     swept = [name for name, coord in array.coords.items()
              if "dotted_path" in coord.attrs and coord.dims == ("case",)]
@@ -214,7 +208,7 @@ def to_records(array) -> tuple[list[str], list[list]]:
     frame = array.to_dataframe(name="value").reset_index()
     rows = []
     for record in frame[dims + ["value"]].itertuples(index=False):
-        rows.append([_plain(v, d) for v, d in zip(record, dims + ["value"])])
+        rows.append([_plain(v) for v in record])
     if swept:
         where = dims.index("case") + 1
         columns[where:where] = list(swept)
@@ -223,10 +217,7 @@ def to_records(array) -> tuple[list[str], list[list]]:
     return columns, rows
 
 
-def _plain(value, dim=None):
-    if isinstance(value, np.timedelta64) or (dim == "time" and hasattr(value, "total_seconds")):
-        seconds = value / SECONDS if isinstance(value, np.timedelta64) else value.total_seconds()
-        return float(seconds) / 86400.0
+def _plain(value):
     if isinstance(value, np.generic):
         return value.item()
     if isinstance(value, np.ndarray):
@@ -312,7 +303,7 @@ def shown_values(array, variable: str, units: str | None = None, drift: bool = F
     tuple of (numpy.ndarray, str)
         The values and their unit.
     """
-    from .units import convert
+    from .unit_parsing import convert
 
     var = VARIABLES.get(variable)
     stored = var.units if var is not None else array.attrs.get("units", "")
@@ -340,7 +331,7 @@ def _is_offset(unit: str) -> bool:
     as a value is."""
     from pint.errors import PintError
 
-    from .units import convert
+    from .unit_parsing import convert
 
     try:
         return bool(convert(0.0, unit, "K") != 0.0)

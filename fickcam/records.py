@@ -30,7 +30,7 @@ from pathlib import Path
 import numpy as np
 
 from .extras import require
-from .units import to_si
+from .unit_parsing import to_si
 
 _HEADER = re.compile(r"^\s*(?P<name>[A-Za-z_]+)\s*(?:[\[(](?P<unit>[^\])]*)[\])])?\s*$")
 _COLUMNS = {"time": "time", "temperature": "temperature", "relative_humidity": "percent"}

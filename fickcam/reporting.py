@@ -12,11 +12,12 @@ import math
 
 import numpy as np
 
+from .dataset import ageing_seconds
 from .errors import format_duration
 from .limits import stored_limits
 from .query import drift
 from .schema import VARIABLES, design_name
-from .units import convert
+from .unit_parsing import convert
 
 #: scalar results over ageing the summary reports, in this order (when present)
 KEY_OUTPUTS = ("lift", "arm_swing", "base_circle_radius", "jump_speed", "peak_cam_torque",
@@ -177,7 +178,7 @@ def _swelling_lines(ds) -> list[str]:
     if "failure_index" not in ds:
         return []
     lines = []
-    seconds = ds["time"].values / np.timedelta64(1, "s")
+    seconds = ageing_seconds(ds)
     for part in ds["part"].values:
         row = ds.sel(part=part)
         tension = row["swelling_stress_tensile"].values
@@ -214,7 +215,7 @@ def limit_line(ds, name: str) -> str | None:
         return None
     failed = float(ds["time_out_of_spec"].sel(limit=name)) * 86400.0
     ratio = np.asarray(ds["limit_ratio"].sel(limit=name).values, float)
-    times = ds["time"].values / np.timedelta64(1, "s")
+    times = ageing_seconds(ds)
     known = np.flatnonzero(np.isfinite(ratio))
     last = int(known[-1]) if known.size else 0
     # no ratio past a part's leaving the model's domain: the limit is judged up to there only
@@ -235,7 +236,7 @@ def limit_line(ds, name: str) -> str | None:
 
 def _span(ds) -> float:
     """The last ageing time of a result [s]: its times are all given in the unit that suits it."""
-    return float(ds["time"].values[-1] / np.timedelta64(1, "s"))
+    return float(ageing_seconds(ds)[-1])
 
 
 def limit_lines(ds) -> list[str]:
@@ -258,7 +259,7 @@ def limit_lines(ds) -> list[str]:
 def summary(ds, *, notices: bool = True) -> str:
     """A few lines a user reads after `fickcam run`: each key output as design → t = 0 →
     end with its drift against both, and the peak of a history that goes up and down."""
-    seconds = ds["time"].values / np.timedelta64(1, "s")
+    seconds = ageing_seconds(ds)
     lines = [f"{ds.attrs.get('scene_name', '')}: {len(seconds)} ageing times to "
              f"{format_duration(seconds[-1])}, wall time {float(ds.attrs.get('wall_time', 0)):.2f} s"]
     diffusion = ds.attrs.get("diffusion", {})
@@ -328,7 +329,7 @@ def sweep_summary(ds) -> str:
         rows.append([str(case), *(f"{v[case]:.6g}" if isinstance(v[case], (float, np.floating))
                                   else str(v[case]) for v in swept.values()), status]
                     + [_sweep_cell(ds, name, case) for name in outputs])
-    seconds = ds["time"].values[-1] / np.timedelta64(1, "s") if "time" in ds.coords else np.nan
+    seconds = ageing_seconds(ds)[-1] if "time" in ds.coords else np.nan
     when = f"; at t = {format_duration(seconds)} (Δ against the design)" \
         if np.isfinite(seconds) else ""  # (no time when no case ran)
     lines = [f"{ds.attrs.get('scene_name', '')}: {n} case(s), {int(ds.attrs.get('failed_cases', 0))} "

@@ -1,4 +1,4 @@
-"""Scene files: YAML → validated, SI scene (see SPEC.md §1).
+"""Scene files: YAML → validated, SI scene.
 
 The YAML is read with line numbers by :mod:`fickcam.yamldoc` and its sections validated
 by the pydantic models of :mod:`fickcam.scene_models`; this module adds the checks that

@@ -1,4 +1,4 @@
-"""The scene file's sections as pydantic models (SPEC.md §1): values in SI floats after
+"""The scene file's sections as pydantic models: values in SI floats after
 validation, dimensional fields parsed with pint (:mod:`fickcam.units`). Checks that need
 more than one section live in :mod:`fickcam.scene`.
 """
@@ -37,10 +37,10 @@ class HistorySegment(StrictModel):
 
 
 class StateSpec(StrictModel):
-    """A state given directly (SPEC.md section 5): uniform moisture and temperature in every
+    """A state given directly: uniform moisture and temperature in every
     part, no diffusion. Moisture is ``moisture`` (the same weight % in every absorbing
     part) or ``relative_humidity`` (each part at its material's equilibrium moisture
-    Mm(RH), as seed 001 takes 'maximum moisture absorption'); temperature is
+    Mm(RH), as Singh & Sanyal 2016 take 'maximum moisture absorption'); temperature is
     ``temperature`` or ``temperature_rise`` above the reference temperature."""
 
     time: NonNegativeTime = 0.0

@@ -4,7 +4,7 @@ It builds the Dataset (:mod:`fickcam.dataset`), checks queries
 (:mod:`fickcam.query`) and writes the variable list in the docs
 (``fickcam schema`` / :func:`markdown_table`). Physics modules return SI
 arrays under these names (angles in rad, speeds in rad/s); ``scale``
-converts SI to the stored unit (rad → deg, rad/s → rpm), per SPEC.md §4.
+converts SI to the stored unit (rad → deg, rad/s → rpm).
 
 Every time-dependent variable of the material state and of the mechanisms
 (sections ``parts``, ``cam``, ``linkage``) also has an as-designed row
@@ -46,11 +46,25 @@ DESIGN_SECTIONS = ("parts", "cam", "linkage")
 DESIGN_NOTE = ", as designed (dry, reference temperature)"
 
 T, TP, TC, TK, TL = ("time",), ("time", "part"), ("time", "cam_angle"), ("time", "crank_angle"), ("time", "link")
+CT = ("climate_time",)
 
 VARIABLES: dict[str, Var] = {
     # environment
     "temperature": Var(T, "K", "service temperature", "environment", display="degC"),
     "relative_humidity": Var(T, "%", "relative humidity", "environment"),
+    # the climate between the ageing times: mean and range over each interval of climate_time
+    "climate_temperature": Var(CT, "K", "mean temperature over the interval", "environment",
+                               display="degC"),
+    "climate_temperature_min": Var(CT, "K", "lowest temperature in the interval", "environment",
+                                   display="degC"),
+    "climate_temperature_max": Var(CT, "K", "highest temperature in the interval", "environment",
+                                   display="degC"),
+    "climate_relative_humidity": Var(CT, "%", "mean relative humidity over the interval",
+                                     "environment"),
+    "climate_relative_humidity_min": Var(CT, "%", "lowest relative humidity in the interval",
+                                         "environment"),
+    "climate_relative_humidity_max": Var(CT, "%", "highest relative humidity in the interval",
+                                         "environment"),
     # per part: moisture and material state
     "moisture_content": Var(TP, "%", "volume-mean moisture content (weight % of dry mass)", "parts"),
     "surface_moisture_content": Var(TP, "%", "moisture content of the contact-surface layer", "parts"),
@@ -150,7 +164,7 @@ VARIABLES: dict[str, Var] = {
     "pitch_radius_of_curvature": Var(TC, "m", "radius of curvature of the pitch curve", "cam"),
     "contact_force": Var(TC, "N", "contact force along the common normal", "cam"),
     "friction_force": Var(TC, "N", "sliding friction force at the cam contact", "cam"),
-    "guide_friction_force": Var(TC, "N", "friction force in the follower guide (seed 004)", "cam"),
+    "guide_friction_force": Var(TC, "N", "friction force in the follower guide", "cam"),
     "friction_torque": Var(TC, "N m", "camshaft torque from contact friction (not in cam_torque)", "cam"),
     "wear_per_revolution": Var(TC, "m", "Archard wear depth per revolution at each profile point", "cam"),
     "cam_torque": Var(TC, "N m", "torque on the camshaft", "cam"),
@@ -262,9 +276,12 @@ def _design_rows(table: dict[str, Var]) -> dict[str, Var]:
 VARIABLES.update(_design_rows(VARIABLES))
 
 COORDINATES: dict[str, tuple[str, str]] = {
-    "time": ("", "ageing time"),
-    # float days beside the timedelta `time`, for plotting and interpolation
-    "ageing_time": ("d", "ageing time in days"),
+    # float days: matplotlib plots them and `sel`/`interp` take numbers of days; "d" (the
+    # UDUNITS day) is not a CF time unit, so no netCDF reader turns the column into dates
+    "time": ("d", "ageing time"),
+    "ageing_time": ("d", "ageing time in days"),  # the same days, kept for older code
+    # hourly, daily, weekly or 30-day intervals (the finest that gives at most 1000)
+    "climate_time": ("d", "ageing time, middle of the climate interval"),
     "part": ("", "part name"),
     "link": ("", "link name"),
     "joint": ("", "pin joint (O2 crank-frame, A crank-coupler, B coupler-rocker, O4 rocker-frame)"),

@@ -13,7 +13,7 @@ import numpy as np
 
 from ._version import __version__
 from .blas import on_one_blas_thread
-from .environment import Environment
+from .environment import Environment, summary_edges
 from .errors import InputError, SceneError
 from .messages import log_notices, progress_bar
 from .parts import Part, PartHistory, build_parts, diffusion_attrs, field_values, part_values
@@ -153,6 +153,10 @@ def _age(scene: Scene, environment: Environment, times: np.ndarray, accuracy: fl
     design_scene = scene.as_designed()  # differs where the scene is made to compensate
     designs = [design_part(part, environment) for part in build_parts(design_scene)]
     values.update(design_values(design_scene, designs))
+    if environment.state_times is None and times[-1] > 0:  # states given directly: no climate
+        edges = summary_edges(times[-1])
+        values.update(climate_values(environment, edges))
+        coords["climate_time"] = 0.5 * (edges[:-1] + edges[1:])
     log_notices(log, notices)
     attrs = {
         "title": f"fickcam result: {scene.name}",
@@ -166,6 +170,30 @@ def _age(scene: Scene, environment: Environment, times: np.ndarray, accuracy: fl
         "Conventions": "CF-1.8",
     }
     return build_dataset(values, coords, attrs), histories
+
+
+def climate_values(environment: Environment, edges: np.ndarray) -> dict[str, np.ndarray]:
+    """The climate the parts saw, as result variables: the record itself, where the stored
+    ageing times only sample it.
+
+    Parameters
+    ----------
+    environment : Environment
+        The scene's climate history.
+    edges : numpy.ndarray
+        Interval edges [s] (:func:`~fickcam.environment.summary_edges`).
+
+    Returns
+    -------
+    dict
+        ``climate_temperature`` [K] and ``climate_relative_humidity`` [%] (the means over
+        each interval) with their ``_min`` and ``_max``, one value per interval.
+    """
+    values = {}
+    for name, (mean, low, high) in environment.interval_summary(edges).items():
+        values.update({f"climate_{name}": mean, f"climate_{name}_min": low,
+                       f"climate_{name}_max": high})
+    return values
 
 
 def _aged_values(scene: Scene, environment: Environment, times: np.ndarray,

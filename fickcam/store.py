@@ -111,9 +111,7 @@ def save(dataset, path, compress: bool = False) -> Path:
     ds.attrs = _netcdf_attrs(ds.attrs)
     for name in ds.variables:
         ds[name].attrs = _netcdf_attrs(ds[name].attrs)
-        if ds[name].dtype.kind == "m":
-            ds[name].encoding.update({"units": "seconds", "dtype": "float64"})
-        elif ds[name].dtype.kind == "f" and "_FillValue" not in ds[name].encoding:
+        if ds[name].dtype.kind == "f" and "_FillValue" not in ds[name].encoding:
             # a missing value is NaN itself: no _FillValue attribute (15 % of the write)
             ds[name].encoding["_FillValue"] = None
         if compress and ds[name].dtype.kind in "fiub" and ds[name].ndim:
@@ -142,8 +140,11 @@ JSON_ATTRIBUTES = ("diffusion", "notices", "sweep_parameters", "limits")
 
 
 def open_result(path):
-    """Open a result written by :func:`save` (time decoded as timedelta64)."""
+    """Open a result written by :func:`save`: ``time`` in float days (a file written when
+    fickcam stored a timedelta ``time`` is read into days too)."""
     import xarray as xr
+
+    from .dataset import with_time_in_days
 
     path = Path(path)
     if not path.is_file():
@@ -152,6 +153,7 @@ def open_result(path):
         ds = xr.open_dataset(path, engine="h5netcdf", decode_timedelta=True)
         ds.load()
         ds.close()
+        ds = with_time_in_days(ds)
     except Exception as exc:  # h5py/xarray raise many types for a non-netCDF file
         raise InputError(f"{path}: not a fickcam result file ({type(exc).__name__}: {exc})") from None
     for key in JSON_ATTRIBUTES:

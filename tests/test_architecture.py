@@ -8,6 +8,8 @@ from __future__ import annotations
 import ast
 from pathlib import Path
 
+import pytest
+
 PACKAGE = Path(__file__).resolve().parents[1] / "fickcam"
 HEAVY = {"fipy", "matplotlib", "dask", "distributed"}  # may be imported inside functions
 MAX_FUNCTION_LINES = 80
@@ -94,9 +96,10 @@ def test_the_import_graph_check_finds_a_cycle():
     assert cycles({"a": {"b"}, "b": set()}) == []
 
 
+@pytest.mark.slow
 def test_no_import_cycle_inside_fickcam():
     # every import counts, also those deferred inside functions: a cycle held apart by a
-    # function-level import is still a cycle (issue 16)
+    # function-level import is still a cycle
     assert cycles(import_graph(everywhere_in="fickcam")) == []
 
 

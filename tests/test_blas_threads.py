@@ -56,6 +56,7 @@ def demo_runs():
     return inside, after, limited, default, unlimited
 
 
+@pytest.mark.slow
 def test_run_uses_one_blas_thread_in_every_blas_library(demo_runs):
     seen = demo_runs[0]
     assert seen and len(seen[0]) >= 1  # numpy's OpenBLAS at least (scipy's too when loaded)

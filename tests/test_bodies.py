@@ -1,4 +1,4 @@
-"""Volume, mass and inertia of links, discs and cam plates; seed 001 Table 6."""
+"""Volume, mass and inertia of links, discs and cam plates; Singh & Sanyal (2016) Table 6."""
 import numpy as np
 import pytest
 from hypothesis import given, settings
@@ -78,7 +78,7 @@ def test_aged_link_mass_is_dry_mass_times_one_plus_moisture_and_monotone(m1, m2)
 
 
 # --------------------------------------------------------------------------------------
-# seeds/001_51a6f900df76f3cc.txt Table 6 under the paper's own convention (Table 5):
+# Singh & Sanyal (2016) Table 6 under the paper's own convention (Table 5):
 # V = W T L + 2 pi (Ro^2 - Ri^2) T (the bar runs centre to centre, overlap counted twice),
 # wet dimensions x (1 + alpha_wet dT + beta dm) with dT = 95 degC and dm = the Table 4
 # equilibrium moisture, wet mass = wet density x wet volume.
@@ -105,7 +105,7 @@ def paper_volume(L, W, T, ro, ri):
 
 
 @pytest.mark.parametrize("L, resin, v_dry, v_wet, m_dry, m_wet", TABLE6)
-def test_seed001_table6_volume_and_mass(L, resin, v_dry, v_wet, m_dry, m_wet):
+def test_singh2016_table6_volume_and_mass(L, resin, v_dry, v_wet, m_dry, m_wet):
     values = entry("matrices", resin)
     strain = values["thermal_expansion_wet"] * 95.0 + values["moisture_expansion"] * values["saturation"]["coefficient"]
     scale = 1.0 + strain
@@ -118,7 +118,7 @@ def test_seed001_table6_volume_and_mass(L, resin, v_dry, v_wet, m_dry, m_wet):
         pytest.approx(m_wet, rel=0.02)
 
 
-def test_seed001_table6_dry_inertia_has_the_inferred_bar_term_and_no_bar_length_term():
+def test_singh2016_table6_dry_inertia_has_the_inferred_bar_term_and_no_bar_length_term():
     # The dry inertias of the three lengths fit I = A + B L + C L^2 exactly with
     # B = rho W T (W^2 + T^2)/12 of the inferred section; a correct centroidal bar term
     # m_bar L^2/12 would add rho W T L^3/12 (paper slip: Table 5 uses the bar's long axis).
@@ -144,10 +144,10 @@ def test_aged_disc_and_plate_agree_and_scale_with_strain():
     assert np.allclose(idisc, idisc[0] * (1 + moisture / 100) * (1 + strains) ** 2)
 
 
-def test_seed001_table6_inertia_growth_is_per_material_except_a_copied_row():
+def test_singh2016_table6_inertia_growth_is_per_material_except_a_copied_row():
     # Every link dimension scales by the same free strain, so under any one
     # convention the wet/dry inertia ratio depends on the material, not on the
-    # link length. Rows 1-6 of seeds/001_51a6f900df76f3cc.txt Table 6 obey this
+    # link length. Rows 1-6 of Singh & Sanyal (2016) Table 6 obey this
     # (R914 1.209 / 1.211, 3502 1.144 / 1.144, 8551-7 1.067 / 1.067); row 7
     # (R914, 1200 mm) carries the 3502 ratio (1.1449): a copying slip in the paper,
     # which is why that column is not used to validate fickcam's inertia.

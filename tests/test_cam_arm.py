@@ -1,4 +1,4 @@
-"""Swinging-arm (oscillating) followers, roller and flat face (issue 14, item 4).
+"""Swinging-arm (oscillating) followers, roller and flat face.
 
 Independent references: the arm angle found by root finding of the contact between the
 roller circle (or the face line) and the generated profile, with scipy.optimize at each
@@ -122,10 +122,11 @@ def root_found_face_angles(design, state, angles):
 ANGLES = np.radians(np.arange(3.0, 360.0, 11.0))  # 33 cam angles across every segment
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("rises", ["counter_clockwise", "clockwise"])
 @pytest.mark.parametrize("state", [CamState(), AGED], ids=["dry", "aged"])
 def test_roller_arm_angle_matches_root_found_contact(rises, state):
-    """Done-when line of issue 14: within 1e-9 rad, offset pivot, dry and swollen cam/roller/arm."""
+    """Within 1e-9 rad, offset pivot, dry and swollen cam/roller/arm."""
     design = design_from_scene(arm_section("roller", rises,
                                            pivot=("90 mm", "40 mm") if rises == "counter_clockwise"
                                            else ("-60 mm", "75 mm")))
@@ -335,6 +336,7 @@ def test_clockwise_cam_touches_the_translating_follower_where_it_says():
     assert np.max(np.abs(y - height)) < 1e-12
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("kind", ["roller", "flat"])
 def test_arm_on_a_cam_given_by_points_follows_the_motion_program(kind, tmp_path):
     """The same cam as 1440 working-profile points (a CSV): the arm angle found from the
@@ -382,6 +384,7 @@ def test_check_describes_the_arm(tmp_path, capsys):
     assert "swings 20 deg counter-clockwise on the rise" in out
 
 
+@pytest.mark.slow
 def test_compensated_swinging_arm_follows_the_design_motion(tmp_path, capsys):
     """`fickcam compensate` on the nylon arm config at 180 d: the made cam (points), roller and
     arm length bring the arm angle back to the design within 1 % of its uncompensated drift."""

@@ -52,6 +52,7 @@ def test_scene_response_variables_follow_the_schema_and_age(dataset):
     assert ds["peak_contact_force"].values[-1] != ds["peak_contact_force"].values[0]
 
 
+@pytest.mark.slow
 def test_kinematics_and_dynamics_plots_are_written(dataset, tmp_path):
     from fickcam.plotting.cam import plot_dynamics, plot_kinematics
 

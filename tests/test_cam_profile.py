@@ -22,7 +22,7 @@ THETA = np.radians(np.arange(0.0, 360.0, 0.5))
 
 def cam_section(kind="roller", law="cycloidal", offset="0 mm", lift="1.5 in", base="1.94 in",
                 **extra):
-    """seed 000's cam (1.94 in base circle, 1.5 in rise/return over 75 deg) with a
+    """Singh & Sanyal 2017's cam (1.94 in base circle, 1.5 in rise/return over 75 deg) with a
     continuous-acceleration law unless told otherwise."""
     follower = {"kind": kind, "offset": offset, "mass": "1.6 kg", "spring_rate": "1376.7 N/in",
                 "external_load": "100 N"}
@@ -49,10 +49,11 @@ def kinematics(design, state=CamState()):
     return v["follower_displacement"], v["pressure_angle"], v["lift"]
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("kind, offset", [("roller", "0 mm"), ("roller", "8 mm"), ("knife", "0 mm")])
 def test_cam_from_points_reproduces_the_motion_program_cam(tmp_path, kind, offset):
     """720 points (0.5 deg apart): displacement within 1e-6 of the lift, pressure angle
-    within 0.01 deg (issue 19's criterion), at every cam angle."""
+    within 0.01 deg, at every cam angle."""
     motion, points = as_points(cam_section(kind, offset=offset), tmp_path, 720)
     y0, phi0, lift = kinematics(motion)
     y1, phi1, lift1 = kinematics(points)
@@ -93,6 +94,7 @@ def test_profile_spline_converges_at_sixth_order_between_its_points():
     assert 5.5 < order < 7.0
 
 
+@pytest.mark.slow
 def test_acceleration_jump_limits_the_pressure_angle_to_first_order_in_the_spacing(tmp_path):
     """Simple harmonic rise after a dwell: the profile's curvature jumps at the joint, so
     the spline's tangent there is off by O(h); halving the spacing halves the error."""

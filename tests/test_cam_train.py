@@ -55,6 +55,7 @@ def shooting_solution(d, load, theta):
     return run.y[:, :-1], start, run.y[:, -1]
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("law, stiffness", [("polynomial_345", 2e5), ("cycloidal", 6e4)])
 def test_fourier_steady_state_matches_solve_ivp_run_to_periodicity(law, stiffness):
     d = design(law, stiffness)

@@ -44,6 +44,7 @@ def test_cam_plates_are_equal_exactly_when_their_values_are():
     assert plate.profile_x[3] != 5.0 and not plate.profile_x.flags.writeable
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("change", [{"thickness": "12.5 mm"}, {"fraction": 0.55}])
 def test_a_changed_thickness_or_fibre_fraction_never_reuses_a_stale_entry(change):
     base, changed = scene(), scene(**change)

@@ -24,7 +24,7 @@ def fickcam_cli(*args, cwd=None):
 
 @pytest.fixture(scope="module")
 def fourbar(tmp_path_factory):
-    """Seed 001's four-bar (it reports its Grashof class) run loud and --quiet."""
+    """Singh & Sanyal 2016's four-bar (it reports its Grashof class) run loud and --quiet."""
     folder = tmp_path_factory.mktemp("fourbar")
     scene = yaml.safe_load((ROOT / "configs" / "singh2016_fourbar.yaml").read_text())
     scene["outputs"] = {"ageing_times": ["0 d", "1 h"], "angle_step": "6 deg"}
@@ -34,6 +34,7 @@ def fourbar(tmp_path_factory):
     return folder, loud, quiet
 
 
+@pytest.mark.slow
 def test_a_notice_is_printed_once(fourbar):
     _, loud, _ = fourbar
     assert loud.returncode == 0, loud.stderr
@@ -46,6 +47,7 @@ def test_quiet_prints_no_notes_but_keeps_the_summary(fourbar):
     assert "minimum_transmission_angle" in quiet.stdout and "note(s) hidden by -q" in quiet.stdout
 
 
+@pytest.mark.slow
 def test_query_does_not_repeat_the_runs_notices(fourbar):
     folder, _, _ = fourbar
     done = fickcam_cli("query", "loud.h5", "rocker_swing", cwd=folder)

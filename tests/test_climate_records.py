@@ -167,7 +167,7 @@ def test_standard_test_runs_as_a_scene_and_bad_keys_name_their_line(tmp_path):
     scene = tmp_path / "scene.yaml"
     scene.write_text(_scene("  test: cyclic_damp_heat\n  cycles: 4"))
     ds = fickcam.run(fickcam.load_scene(scene))
-    assert ds.temperature.sel(time="2D").item() == pytest.approx(298.15)
+    assert ds.temperature.sel(time=2).item() == pytest.approx(298.15)
     scene.write_text(_scene("  test: steady_damp_heat\n  cycles: 4"))
     with pytest.raises(SceneError, match=r"scene.yaml:\d+ environment.*steady test"):
         fickcam.load_scene(scene)

@@ -51,6 +51,7 @@ def fourbar_at_end(tmp_path_factory):
     return scene, comp, fickcam.run(scene), fickcam.run(path)
 
 
+@pytest.mark.slow
 def test_compensated_four_bar_has_its_design_link_lengths_at_that_time(fourbar_at_end):
     scene, comp, before, after = fourbar_at_end
     design = np.array(FourBarDesign.from_section(scene.model.linkage).lengths)
@@ -105,6 +106,7 @@ def test_bad_design_sections_are_refused_at_their_line(tmp_path, capsys, design,
     assert len(err.splitlines()) == 1 and key in err, err
 
 
+@pytest.mark.slow
 def test_demo_cam_compensated_at_60_days_follows_the_design_motion(tmp_path, capsys):
     """Within 1 % of the uncompensated deviation (largest over the cycle) at every cam angle;
     the UD cam swells anisotropically, so it is made as points (--points), x and y apart.
@@ -132,6 +134,7 @@ def test_demo_cam_compensated_at_60_days_follows_the_design_motion(tmp_path, cap
     assert np.all(left <= 0.01 * deviation.max())
 
 
+@pytest.mark.slow
 def test_window_compensation_beats_either_end_and_halves_the_drift(tmp_path):
     """Over 30-90 d: the largest deviation (link lengths, rocker angle) of the minimax
     dimensions is no larger than that of the dimensions made for 30 d or for 90 d, and at
@@ -181,6 +184,7 @@ def test_compensation_time_outside_the_history_is_refused(capsys):
     assert "outside the scene's history" in capsys.readouterr().err
 
 
+@pytest.mark.slow
 def test_compensated_example_scenes_stay_in_their_bands_over_their_windows():
     """configs/*_compensated.yaml (written by fickcam compensate --over): the demo cam
     inside its 0.25 mm band for all 60 d, the R914 four-bar inside every deviation band

@@ -72,6 +72,7 @@ def _is_number(word: str) -> bool:
     return True
 
 
+@pytest.mark.slow
 def test_an_eccentric_cam_is_made_as_an_eccentric_cam(at_half_year):
     """Disc radius and eccentricity, no points; both grow back to the design at 180 d
     (isotropic nylon: both with the same strain), so the motion is the design's there."""
@@ -107,6 +108,7 @@ def test_out_of_spec_at_delivery_is_said_with_the_window_to_use(at_half_year):
     assert f'fickcam compensate {scene} --over "0 d" "730 d"' in printed
 
 
+@pytest.mark.slow
 def test_keep_limits_makes_the_part_for_its_whole_life(tmp_path):
     """--keep-limits widens to 0-730 d (minimax): in spec at every stored time, as the
     written scene's own run shows; the report says what it did and why."""
@@ -127,6 +129,7 @@ def test_keep_limits_goes_with_at_only(tmp_path):
     assert status == 2 and "--keep-limits goes with --at" in err
 
 
+@pytest.mark.slow
 def test_a_cam_given_by_points_is_made_as_points(tmp_path):
     """The same disc given by its points: written as points beside the scene (the scene
     names the file relative to itself), and the written scene runs."""
@@ -208,6 +211,7 @@ def test_dxf_is_refused_at_once_without_its_extra(tmp_path, monkeypatch):
     assert not list(tmp_path.iterdir())
 
 
+@pytest.mark.slow
 def test_nothing_is_written_when_the_command_fails(tmp_path):
     """A drawing that cannot be written (its folder is a file): the command fails after
     computing, and neither the scene nor the points beside it are left behind."""
@@ -253,6 +257,7 @@ def test_each_stretch_out_of_spec_is_named():
     assert out_of_spec_spans(np.array([0.5, 1.0, np.nan, 0.9, 0.2]), times) == []
 
 
+@pytest.mark.slow
 def test_a_four_bar_made_for_half_a_year_is_said_to_be_worse_when_new(tmp_path):
     """The R914 four-bar compensated at 180 d: its links are 2 % short when dry, so it is
     further out of spec than the design at its first ageing times; the report names them,
@@ -265,7 +270,7 @@ def test_a_four_bar_made_for_half_a_year_is_said_to_be_worse_when_new(tmp_path):
     old, new = before.limit_ratio.max("limit").values, after.limit_ratio.max("limit").values
     worse = np.flatnonzero((new > old) & (new > 1.0))
     assert worse.size >= 2  # at least delivery and the first week
-    from fickcam.units import parse_duration
+    from fickcam.unit_parsing import parse_duration
 
     stored = [parse_duration(t) / DAY for t in read_yaml(scene).data["outputs"]["ageing_times"]]
     times = ", ".join(f"{stored[k]:.4g} d" for k in worse)

@@ -114,7 +114,7 @@ def test_epoxy_follower_natural_frequency_falls_with_the_wet_modulus_and_mass(re
 
 
 def test_nylon_swinging_arm_swing_shrinks_as_the_arm_grows(results):
-    """Issue 14 item 4: the design swing is the motion program's 20 deg exactly; the wet nylon
+    """The design swing is the motion program's 20 deg exactly; the wet nylon
     arm grows along its length, so the same cam lift turns it through a smaller angle, and its
     softer roller lowers the Hertz stress. Pinned loosely: they rest on the diffusion model."""
     ds = results("nylon_swinging_arm")

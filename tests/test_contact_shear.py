@@ -1,6 +1,7 @@
-"""Subsurface shear under the cam-follower line contact, and seed 003's Tables 5.9-5.10.
+"""Subsurface shear under the cam-follower line contact, and the Tables 5.9-5.10
+of Madhukar et al. (2023).
 
-Seed 003 (seeds/003_b8317aa6e553b071.txt, sec. 5.6) computes a "contact stress"
+Madhukar et al. (2023, sec. 5.6) compute a "contact stress"
 sigma = sqrt(F / (pi a)) with a = 0.023 m and a "maximum shear stress" tau = sigma / 2.
 The slip: this is not the Hertz stress. Hertz's line contact gives
 p0 = sqrt(F E* / (pi L R)) (Johnson 1985 eq. 4.45); the report drops the contact
@@ -18,7 +19,7 @@ from scipy.optimize import minimize_scalar
 from fickcam.cam import CamState, cam_response
 from fickcam.cam import dynamics as dyn
 
-from test_cam_seeds import seed003_design
+from test_cam_published_tables import madhukar2023_design
 
 # Table 5.8 contact force (N), Table 5.9 sigma, Table 5.10 tau, at 10, 20, ... 360 deg;
 # rows 18 and 36 are blank in the report.
@@ -36,7 +37,7 @@ TABLE_5_10 = [5.0423, 5.0759, 5.1314, 5.2185, 5.3147, 5.4253, 5.5557, 5.6816, 5.
               5.2155, 5.1395, 5.0885, 5.0715, None]
 
 
-def test_seed003_tables_5_9_and_5_10_under_the_reports_own_formula():
+def test_madhukar2023_tables_5_9_and_5_10_under_the_reports_own_formula():
     """sigma_i = sqrt(F_i / (pi 0.023)) and tau_i = sigma_i / 2 reproduce every row.
     The forces are printed to 4-5 figures but the stresses were computed from unrounded
     forces, hence 1e-4; tau rows 7 and 11 are off by 1.2e-4 (5.5557 for 5.5551, 6.0838
@@ -49,13 +50,13 @@ def test_seed003_tables_5_9_and_5_10_under_the_reports_own_formula():
         assert report_sigma / 2 == pytest.approx(tau, rel=2e-4)
 
 
-def test_seed003_real_hertz_stress_is_a_million_times_the_reports():
+def test_madhukar2023_real_hertz_stress_is_a_million_times_the_reports():
     """With fickcam's E* (cam surface 3 GPa against a steel roller), L = 10 mm and
     1/R = 1/23 mm + 1/10 mm, the peak contact pressure at the 12.5 N peak force is
     about 13.6 MPa and the subsurface shear about 4.1 MPa at some 46 um depth, where the
     report prints 13.3 and 6.6 "N/m^2"."""
     theta = np.radians(np.arange(0.0, 360.0, 1.0))
-    r = cam_response(seed003_design(), CamState(cam_surface_modulus=3e9), theta).variables
+    r = cam_response(madhukar2023_design(), CamState(cam_surface_modulus=3e9), theta).variables
     k = int(np.argmax(r["contact_force"]))
     p0 = r["contact_stress"][k]
     assert 1e6 * 13.2784 / 2 < p0 < 1e6 * 13.2784 * 2

@@ -108,6 +108,7 @@ def test_peak_only_for_histories_beyond_both_ends():
     assert peak(np.array([0.0, 1.0, 1.0 + 1e-6, 1.0])) is None  # a wiggle, not a peak
 
 
+@pytest.mark.slow
 def test_query_drift_option_answers_against_design_and_start(tmp_path, cam, capsys):
     path = tmp_path / "cam.h5"
     fickcam.save(cam, path)

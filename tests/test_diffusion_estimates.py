@@ -1,5 +1,5 @@
 """What ``fickcam check`` shows is what the run uses, and the error estimates are honest
-when the first output comes late (issue 11 items 7 and 8)."""
+when the first output comes late."""
 from __future__ import annotations
 
 from pathlib import Path

@@ -161,6 +161,7 @@ def test_cube_is_three_sheets_and_symmetric():
     assert np.allclose(field, step_field(cube, (1e-9, 1e-9, 1e-9), tau, mirrored), atol=1e-13)
 
 
+@pytest.mark.slow
 def test_square_product_matches_2d_method_of_lines():
     from scipy.sparse import identity, kron
     n = 40   # quarter of a unit square, D = 1, symmetry at the centre lines

@@ -74,6 +74,7 @@ def test_expansion_reproduces_the_cylinder_series_and_the_right_angle_corner():
                                                                                 rel=1e-6)
 
 
+@pytest.mark.slow
 def test_link_mean_converges_as_accuracy_tightens():
     """Self-convergence on a stadium link with holes (no exact solution): the error
     against a tight solve shrinks with the requested accuracy and stays within it."""
@@ -87,6 +88,7 @@ def test_link_mean_converges_as_accuracy_tightens():
     assert errors[1e-3] <= errors[1e-2]
 
 
+@pytest.mark.slow
 def test_link_expansion_matches_the_graded_mesh_extrapolated_in_space():
     """The stadium link with holes (no exact solution): the short-time expansion's planform
     uptake against P1 elements on two graded meshes, (h0, g) and (h0, g) / 2, extrapolated
@@ -186,6 +188,7 @@ def test_expansion_indicator_bounds_its_error_on_annuli_wherever_it_is_finite():
     assert np.isinf(small_hole.uptake_error(0.3))
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("accuracy", [1e-3, 1e-4])
 def test_circular_plate_with_a_bore_meets_the_accuracy_against_the_annulus_series(accuracy):
     """Plate r 20 mm, bore 5 mm, 6 mm thick, a step up and a step down, both through the
@@ -360,9 +363,10 @@ def extrapolated_planform(part, d, end, finest=(0.04, 0.02)):
     return fraction
 
 
+@pytest.mark.slow
 def test_demo_cam_meets_the_accuracy_against_a_space_extrapolated_fine_mesh():
     """The real cam profile (bore, anisotropic D), wetted for 30 d then dried to 30 % for 30 d,
-    and the same wetting read only at 0 and 1 year (issue 11: sparse ageing times).
+    and the same wetting read only at 0 and 1 year (sparse ageing times).
     Reference: meshes of 3 k and 12 k nodes extrapolated (against 35 k and 139 k nodes: 1.3e-4
     relative in the planform uptake, 6e-6 in the mean). Measured against the 35 k / 139 k
     reference: accuracy 1e-3: true 5.1e-4 (2.5e-4 for the scene's single step), estimate

@@ -154,6 +154,7 @@ def link_reference(d: tuple[float, float, float], outline: float):
 # ------------------------------------------------- against exact solutions
 
 
+@pytest.mark.slow
 def test_rectangular_prisms_match_product_of_three_sheets_after_a_step_down():
     """A rectangular CamPlate against the exact block (Crank 1975 eq. 4.51, Duhamel over
     the history): the reference construction (quarter, half thickness, nested pair)
@@ -172,6 +173,7 @@ def test_rectangular_prisms_match_product_of_three_sheets_after_a_step_down():
     assert relative(result.mean, exact_block["mean"]) <= result.error_estimate <= 6e-2
 
 
+@pytest.mark.slow
 def test_prism_reference_converges_at_second_order_in_space():
     """Successive nested refinements of the LinkBar quarter (every planform edge and z
     width halved each time; outline rows graded from 0.7 mm), marched on one step plan
@@ -195,6 +197,7 @@ def test_prism_reference_converges_at_second_order_in_space():
     assert np.all(np.abs(order - 2.0) <= 0.3), order
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("d,outline", [((D, D, D), 0.5e-3), ((4 * D, 2 * D, D), 0.35e-3)],
                          ids=["isotropic", "anisotropic"])
 def test_link_plane_model_matches_the_3d_reference_through_a_step_up_and_down(d, outline):
@@ -245,6 +248,7 @@ def test_link_prism_outline_is_the_true_outline_to_a_few_parts_in_ten_thousand()
 # ---------------------------------------------------------------- extremes
 
 
+@pytest.mark.slow
 def test_solid_prisms_stay_bounded_and_finite_from_saturated_to_dry():
     """RH 100 % (surface 2 %) from 1 %, then RH 0 % (surface 0): backward Euler on the
     prisms is bounded by the initial and surface values in every cell (maximum

@@ -76,6 +76,7 @@ def test_sheet_in_two_temperatures_follows_the_rescaled_time():
     assert relative_error(result.mean, exact, 1.0) <= 1e-3
 
 
+@pytest.mark.slow
 def test_sheet_ramp_matches_duhamel_integral():
     h = 1e-3
     exposure = Exposure.piecewise([0.0, 2 * DAY, 6 * DAY, 8 * DAY], 340.0, [0.5, 2.0, 2.0], 0.0,
@@ -97,6 +98,7 @@ def test_disc_rz_matches_cylinder_times_sheet_after_a_step_down():
     assert relative_error(result.mean, superposed(step, STEP_DOWN_JUMPS, TIMES)) <= 3e-3
 
 
+@pytest.mark.slow
 def test_bar_3d_matches_product_of_three_sheets_after_a_step_down():
     bar = Bar(8e-3, 6e-3, 3e-3)
     times = np.linspace(0, 40 * DAY, 5)
@@ -119,6 +121,7 @@ def test_rectangular_cam_plate_matches_product_of_three_sheets_after_a_step_down
     assert relative_error(result.mean, superposed(step, STEP_DOWN_JUMPS, times)) <= 1e-2
 
 
+@pytest.mark.slow
 def test_anisotropic_bar_scales_each_axis():
     """D_x != D_z: the block solution with each side scaled by sqrt(D_z / D_i) (Crank §2.6)."""
     d = (4e-12, 1e-12, 1e-12)
@@ -233,6 +236,7 @@ def test_auto_takes_the_exact_path_for_a_sheet_when_available():
     assert relative_error(result.mean, exact) <= 1e-4
 
 
+@pytest.mark.slow
 def test_importing_the_diffusion_package_does_not_import_fipy():
     code = "import sys, fickcam.diffusion; print('fipy' in sys.modules)"
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)

@@ -27,6 +27,7 @@ def _pressure_load(pe, facets, pressure):
     return operator @ np.concatenate([traction[:, 0], traction[:, 1]])
 
 
+@pytest.mark.slow
 def test_lame_thick_ring_under_internal_and_external_pressure():
     """u_r = ((1 - nu) A r + (1 + nu) B / r) / E, A = (pi a^2 - po b^2)/(b^2 - a^2),
     B = (pi - po) a^2 b^2 / (b^2 - a^2) (Timoshenko & Goodier 1970 sec. 28, plane stress)."""
@@ -121,6 +122,7 @@ def _polar(sigma, x, y):
     return (sxx * c * c + syy * s * s + 2 * sxy * c * s, sxx * s * s + syy * c * c - 2 * sxy * c * s)
 
 
+@pytest.mark.slow
 def test_disc_with_cylinder_moisture_profile_gives_thin_disc_thermal_stress():
     """Solid disc, free, eigenstrain beta M(r) with M the exact cylinder uptake profile:
     sigma_r = beta E (1/b^2 int_0^b M r dr - 1/r^2 int_0^r M r dr),

@@ -34,6 +34,7 @@ def humid_disc():
     return fickcam.run(copy.deepcopy(HUMID_DISC))
 
 
+@pytest.mark.slow
 def test_dry_start_in_humid_climate_puts_the_swelling_skin_in_compression(humid_disc):
     """Dry R914 disc at 60 degC / 90 % RH: stress-free at t = 0; after half a day the wet
     skin is held back by the dry core (compression of the order of the fully restrained
@@ -51,6 +52,7 @@ def test_dry_start_in_humid_climate_puts_the_swelling_skin_in_compression(humid_
     assert index[1] > 100 * index[2] and 0 < index[1] < 1
 
 
+@pytest.mark.slow
 def test_elastic_plots_are_written(humid_disc, tmp_path):
     from fickcam.plotting import available_kinds, plot
 
@@ -71,6 +73,7 @@ def test_swelling_and_deflection_appear_only_where_asked(humid_disc):
                                            "failure_index"))
 
 
+@pytest.mark.slow
 def test_a_scene_that_does_not_ask_never_imports_scikit_fem():
     plain = copy.deepcopy(HUMID_DISC)
     plain["cam"]["elastic"] = False
@@ -84,6 +87,7 @@ def test_a_scene_that_does_not_ask_never_imports_scikit_fem():
     ("isotropic", isotropic_stiffness(50e9, 0.3)),
     ("fibres along x", reduced_stiffness(133e9, 5.9e9, 2.5e9, 0.3)),
 ])
+@pytest.mark.slow
 def test_half_plane_log_term_matches_the_plate_where_the_mesh_resolves_both_widths(name, q):
     """Doubling the spread w of the same elliptical load on the plate's rim lowers the
     mean deflection by C P ln 2 (the half-plane's log term used below the mesh) where the
@@ -106,11 +110,12 @@ def test_half_plane_log_term_matches_the_plate_where_the_mesh_resolves_both_widt
         assert means[0] - means[1] == pytest.approx(expected, rel=0.08)
 
 
+@pytest.mark.slow
 def test_demo_cam_deflection_grows_as_the_matrix_softens():
-    """Demo cam (seed 000), dry at t = 0 vs 60 d, through cam_elastic_response on the rigid
-    run's contact results: the deflection at the peak contact force grows by 1/retention
-    of a modulus on its load path, between the fibre modulus E11 (barely changed) and the
-    matrix-dominated E22 and G12."""
+    """Demo cam (Singh & Sanyal 2017), dry at t = 0 vs 60 d, through cam_elastic_response
+    on the rigid run's contact results: the deflection at the peak contact force grows by
+    1/retention of a modulus on its load path, between the fibre modulus E11 (barely
+    changed) and the matrix-dominated E22 and G12."""
     from fickcam.elastic.cam import cam_elastic_response
 
     doc = yaml.safe_load(Path("configs/singh2017_cam.yaml").read_text())
@@ -133,6 +138,7 @@ def test_demo_cam_deflection_grows_as_the_matrix_softens():
     assert result["elastic_lift_error"][1] > result["elastic_lift_error"][0] > 0
 
 
+@pytest.mark.slow
 def test_link_swelling_follows_its_moisture_field():
     """A link (LinkBar planform) with a wet skin along its outline over a dry core, through
     swelling_history: the skin in compression, the core in tension; a uniform field: no

@@ -1,5 +1,5 @@
-"""An environment that gives the state directly (SPEC.md section 5): uniform moisture
-and temperature, no diffusion; seed 001's quasi-static calculation as a scene."""
+"""An environment that gives the state directly: uniform moisture and temperature, no
+diffusion; Singh & Sanyal (2016)'s quasi-static calculation as a scene."""
 from pathlib import Path
 
 import numpy as np
@@ -20,7 +20,7 @@ def states():
 
 def test_states_are_uniform_and_taken_as_given(states):
     """As built, hot and dry, hot at 3502's equilibrium moisture Mm(100 %) = 5 %
-    (seed 001 Table 4): moisture and temperature exactly as stated, no diffusion."""
+    (Singh & Sanyal 2016 Table 4): moisture and temperature exactly as stated, no diffusion."""
     np.testing.assert_array_equal(states.ageing_time.values, [0.0, 1.0, 2.0])
     np.testing.assert_allclose(states.temperature.values, [T0, T0 + RISE, T0 + RISE], rtol=1e-15)
     for part in ("crank", "coupler", "rocker"):
@@ -35,7 +35,8 @@ def test_states_are_uniform_and_taken_as_given(states):
 
 def test_state_drift_is_freudenstein_with_the_swollen_lengths(states):
     """The rocker angle at each state is Freudenstein's with that state's link lengths
-    (seed 001 eqs. 15-18), an independent closed form; the drift is far from trivial."""
+    (Singh & Sanyal 2016 eqs. 15-18), an independent closed form; the drift is far from
+    trivial."""
     theta2 = np.radians(states.crank_angle.values)
     lengths = states.link_length.values
     strain = states.hygrothermal_strain.values
@@ -48,10 +49,10 @@ def test_state_drift_is_freudenstein_with_the_swollen_lengths(states):
     assert shift[0] == 0 and 0.3 < shift[1] < shift[2] and shift[2] > 1.5
 
 
-def test_seed_three_resins_drift_in_the_order_of_their_moisture():
-    """Seed 001's cases (sweep file): 3502 (5 %) drifts more than 8551-7 (2 %); R914 (7 %)
-    reaches its Chamis wet Tg (103.6 degC < 118 degC) in the saturated state, where fickcam
-    stops its links with a notice and keeps the two earlier states."""
+def test_singh2016_three_resins_drift_in_the_order_of_their_moisture():
+    """Singh & Sanyal 2016's cases (sweep file): 3502 (5 %) drifts more than 8551-7 (2 %);
+    R914 (7 %) reaches its Chamis wet Tg (103.6 degC < 118 degC) in the saturated state,
+    where fickcam stops its links with a notice and keeps the two earlier states."""
     sweep = load_sweep(CONFIGS / "sweep_singh2016_resins.yaml")
     shift = {}
     for case in sweep.cases:

@@ -24,6 +24,7 @@ def test_example_fit_recovers_its_generating_parameters_and_passes_the_range_che
     assert report.saturation.second.contains(EXAMPLE_EXPONENT)
     assert 25e3 <= report.arrhenius.second.value <= 60e3    # epoxies: Ea of order 30 to 60 kJ/mol
     assert report.saturation.second.value > 1.0          # resins: RH exponent above 1 (Piggott & Woo)
-    # seed 001 Table 4: 3502 equilibrium moisture 5.0 % (circular here: the generator used it)
+    # Singh & Sanyal 2016 Table 4: 3502 equilibrium moisture 5.0 % (circular here: the
+    # generator used it)
     assert report.saturation.first.contains(entry("matrices", "3502")["saturation"]["coefficient"])
     assert all(c.at_equilibrium for c in report.conditions) and report.non_fickian == []

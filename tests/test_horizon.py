@@ -54,6 +54,7 @@ def test_every_grid_starts_at_zero_steps_evenly_and_ends_on_the_history(step, st
     assert np.allclose(gaps[:-1], step, rtol=1e-12) and gaps[-1] <= step + 1e-9 * end
 
 
+@pytest.mark.slow
 def test_a_two_year_history_every_30_d_is_reported_to_two_years(tmp_path, capsys):
     path = steel_cam(tmp_path, {"every": "30 d"}, history=TWO_YEAR_HISTORY)
     scene = load_scene(path)
@@ -99,7 +100,7 @@ def test_a_chamber_log_shorter_than_the_ageing_times_is_held_with_a_notice(tmp_p
                                       "0,90,50\n45,90,50\n")
     path = steel_cam(tmp_path, ["0 d", "30 d", "90 d"], history_file="log.csv")
     ds = fickcam.run(path)
-    assert ds.time.values[-1] == np.timedelta64(90, "D")
+    assert ds.time.values[-1] == 90.0  # days
     assert any("ends at 45 d" in n and "is held to 90 d" in n for n in ds.attrs["notices"])
 
 
@@ -113,7 +114,7 @@ def two_cases() -> xr.Dataset:
     lift = np.array([[0.0, 3.0, 4.5, np.nan, np.nan, np.nan],
                      [0.0, 3.0, np.nan, 6.0, 9.0, 10.0]])  # lift = t / 10 d
     return xr.Dataset({"lift": (("case", "time"), lift, {"units": "m"})},
-                      coords={"case": [0, 1], "time": (days * DAY * 1e9).astype("timedelta64[ns]")})
+                      coords={"case": [0, 1], "time": days.astype(float)})
 
 
 @pytest.mark.parametrize("days, expected", [
@@ -149,7 +150,7 @@ def test_a_limit_is_said_to_hold_only_as_far_as_the_model_computed_it(tmp_path):
     path = tmp_path / "fourbar.yaml"
     path.write_text(yaml.safe_dump(scene, sort_keys=False))
     ds = fickcam.run(path)
-    assert ds.time.values[-1] == np.timedelta64(3, "h")
+    assert ds.time.values[-1] == pytest.approx(3 / 24)  # days
     line = limit_line(ds, "rocker_angle")
     assert "holds to 2 h (" in line and "no value after 2 h, see the notices" in line, line
 

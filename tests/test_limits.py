@@ -1,4 +1,4 @@
-"""Limits (SPEC.md §6): ratios, the first time out of spec, and refused limits."""
+"""Limits: ratios, the first time out of spec, and refused limits."""
 import math
 
 import numpy as np
@@ -19,7 +19,7 @@ DAY = 86400.0
 
 
 def fast_fourbar(times, limits=None) -> dict:
-    """Seed 001's R914 four-bar at 60 degC / 85 % RH for 40 days."""
+    """Singh & Sanyal 2016's R914 four-bar at 60 degC / 85 % RH for 40 days."""
     scene = yaml.safe_load(LINKAGE_SCENE)
     scene["environment"]["history"] = [{"duration": "40 d", "temperature": "60 degC",
                                         "relative_humidity": "85 %"}]
@@ -199,6 +199,7 @@ def test_a_limit_the_scene_does_not_compute_is_refused_at_its_line(tmp_path, cap
     assert "limits.wear_depth: wear_depth needs a cam section" in capsys.readouterr().err
 
 
+@pytest.mark.slow
 def test_summary_query_and_plot_show_the_limit(tmp_path, capsys):
     scene = fast_fourbar(["0 d", "7 d", "40 d"], {"minimum_transmission_angle": {"min": "35.5 deg"},
                                                   "rocker_swing": {"max": "80 deg"}})
@@ -214,7 +215,6 @@ def test_summary_query_and_plot_show_the_limit(tmp_path, capsys):
         "limit: minimum_transmission_angle (min 35.5 deg): out of spec from 21.3")
     assert main(["plot", str(result), "--kind", "limits", "-o", str(tmp_path)]) == 0
     assert (tmp_path / "limits.png").stat().st_size > 10_000
-
 
 
 def test_a_limit_search_of_honest_estimates_adds_no_notice():

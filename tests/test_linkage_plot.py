@@ -20,7 +20,7 @@ def tiny_dataset():
                         ("transmission_angle", 180 / np.pi), ("coupler_point_x", 1.0),
                         ("coupler_point_y", 1.0), ("input_torque", 1.0)):
         data[name] = (("time", "crank_angle"), np.stack([r[name] for r in rows]) * scale)
-    times = np.array([0, 7, 30], "timedelta64[D]").astype("timedelta64[ns]")
+    times = np.array([0.0, 7.0, 30.0])  # ageing time [d]
     return xr.Dataset(data, coords={"time": times, "crank_angle": crank}, attrs={"scene_name": "tiny"})
 
 

@@ -64,8 +64,9 @@ def history(strain, moisture=0.0, density=1290.0):
 
 
 def test_ageing_that_lengthens_the_crank_removes_full_rotation_and_is_warned():
-    """Seed 001 case 2 (a = 115, b = c = d = 120 mm) is 5 mm from its Grashof limit: a
-    crank grown by 6 % makes it non-Grashof, so the crank cannot turn through ~180 deg."""
+    """Singh & Sanyal 2016 case 2 (a = 115, b = c = d = 120 mm) is 5 mm from its Grashof
+    limit: a crank grown by 6 % makes it non-Grashof, so the crank cannot turn through
+    ~180 deg."""
     times = np.array([0.0, 86400.0, 10 * 86400.0])
     histories = {"crank": history([0.0, 0.01, 0.06], [0.0, 1.0, 2.0]), "coupler": history([0, 0, 0]),
                  "rocker": history([0, 0, 0]), "frame": history([0, 0, 0], density=7850.0)}

@@ -61,4 +61,4 @@ def test_library_table_lists_every_material_with_sources():
                  "nylon", "polyimide", "steel", "aluminium"):
         assert name in text
     assert all(row["sources"] for row in library_rows())
-    assert "seeds/000_c9d2754e3bf549ac.txt" in text and "ASSUMPTION" in text
+    assert "Singh & Sanyal (2017" in text and "ASSUMPTION" in text

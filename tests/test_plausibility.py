@@ -19,7 +19,7 @@ from fickcam.materials.library import find_entry, library_table
 from fickcam.plausibility import (CAM_MEMBERS, CAM_RADIUS, LENGTH_ALTERNATIVES, Band, Reading,
                                   Verdict, bare_judgement, plate_uptake)
 from fickcam.scene import load_scene
-from fickcam.units import to_si
+from fickcam.unit_parsing import to_si
 
 EXAMPLES = Path(str(resources.files("fickcam") / "examples"))
 SCENES = sorted(p for p in EXAMPLES.glob("*.yaml") if not p.name.startswith("sweep_"))

@@ -34,13 +34,14 @@ def stored(tmp_path):
     return open_result(path)
 
 
-def test_time_selection_by_string_matches_stored_values(stored):
-    assert float(stored.lift.sel(time="30D")) == pytest.approx(float(stored.lift.values[3]))
+def test_time_selection_in_days_matches_stored_values(stored):
+    assert float(stored.lift.sel(time=30)) == float(stored.lift.values[3])
+    assert float(stored.lift.sel(time=29.6, method="nearest")) == float(stored.lift.values[3])
 
 
 @pytest.mark.parametrize("when, seconds", [("10 d", 10 * DAY), ("6 weeks", 42 * DAY), (45 * DAY, 45 * DAY)])
 def test_query_interpolates_linearly_between_stored_times(stored, when, seconds):
-    t = stored.time.values / np.timedelta64(1, "s")
+    t = stored.time.values * DAY
     for part in ("cam", "follower"):
         expected = np.interp(seconds, t, stored.moisture_content.sel(part=part).values)
         got = select(stored, "moisture_content", time=when, part=part)
@@ -88,29 +89,38 @@ def test_a_query_answer_states_the_angle_it_answers(stored):
     assert float(rows[0]["cam_angle [degree]"]) == 345.0 and float(rows[0]["time [d]"]) == 7.0
 
 
-def test_ageing_time_in_days_sits_beside_the_timedelta_time(stored):
-    assert stored.ageing_time.dims == ("time",) and stored.ageing_time.attrs["units"] == "d"
-    assert stored.ageing_time.values.tolist() == [0.0, 1.0, 7.0, 30.0, 60.0]
-    assert float(stored.lift.sel(time="30D")) == float(stored.lift.values[3])
+def test_time_is_float_days_and_ageing_time_the_same_days_beside_it(stored):
+    for name in ("time", "ageing_time"):
+        assert stored[name].dims == ("time",) and stored[name].attrs["units"] == "d"
+        assert stored[name].values.tolist() == [0.0, 1.0, 7.0, 30.0, 60.0]
 
 
 def test_days_coordinate_plots_and_interpolates(stored):
-    """Matplotlib cannot draw the timedelta `time` against a float angle; `ageing_time`
-    (float days) plots, and with it as the dimension coordinate `interp` takes days."""
+    """The days of `time` go on an axis as they are, and `interp` takes days."""
     import matplotlib
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    days = stored.swap_dims(time="ageing_time")
-    mesh = days.follower_displacement.plot()
-    assert mesh.axes.get_ylabel() == "ageing time in days [d]"
+    mesh = stored.follower_displacement.plot()
+    assert mesh.axes.get_ylabel() == "ageing time [d]"
     assert mesh.axes.get_ylim()[1] >= 60.0
-    lines = stored.moisture_content.plot.line(x="ageing_time")
+    lines = stored.moisture_content.plot.line(x="time")
     assert lines[0].get_xdata().tolist() == [0.0, 1.0, 7.0, 30.0, 60.0]
     plt.close("all")
-    expected = np.interp(45.0, stored.ageing_time.values, stored.lift.values)
-    assert float(days.lift.interp(ageing_time=45.0)) == pytest.approx(expected, rel=1e-12)
+    expected = np.interp(45.0, stored.time.values, stored.lift.values)
+    assert float(stored.lift.interp(time=45.0)) == pytest.approx(expected, rel=1e-12)
+
+
+def test_a_result_with_a_timedelta_time_opens_in_days(stored, tmp_path):
+    """Files written when fickcam stored `time` as a timedelta read into the same days."""
+    legacy = stored.drop_vars("ageing_time").assign_coords(
+        time=(stored.time.values * DAY * 1e9).astype("timedelta64[ns]"))
+    legacy.to_netcdf(tmp_path / "old.h5", engine="h5netcdf")
+    reopened = open_result(tmp_path / "old.h5")
+    assert reopened.time.dtype.kind == "f" and reopened.time.attrs["units"] == "d"
+    xr.testing.assert_identical(reopened.time, stored.time)
+    assert reopened.ageing_time.values.tolist() == stored.ageing_time.values.tolist()
 
 
 def test_unknown_variable_lists_known_ones(stored):
@@ -144,7 +154,7 @@ def test_csv_export_round_trips(stored, tmp_path):
                 value = r[key]
                 coord = array[dim].values
                 if dim == "time":
-                    index[dim] = int(np.argmin(np.abs(coord / np.timedelta64(1, "D") - float(value))))
+                    index[dim] = int(np.argmin(np.abs(coord - float(value))))
                 elif coord.dtype.kind in "US":
                     index[dim] = list(coord).index(value)
                 else:

@@ -44,7 +44,7 @@ def test_combined_sweep_gets_fractions_and_a_summary():
     ds = xr.Dataset(
         {"time_out_of_spec": (("case", "limit"), [[10.0, np.nan], [45.0, 0.0], [np.nan, np.nan],
                                                   [50.0, np.nan]])},
-        coords={"time": (days * 86400 * 1e9).astype("timedelta64[ns]"),
+        coords={"time": np.asarray(days, float),
                 "limit": ["rocker_angle", "transmission_angle"],
                 "case_status": ("case", np.array(["ok"] * 4, dtype=object))})
     out = fractions(ds)

@@ -261,6 +261,7 @@ def test_several_problems_are_all_reported(tmp_path, capsys):
     assert f"{path}:{_line_of(text, 'mass: 0 kg')} cam.follower.mass:" in err
 
 
+@pytest.mark.slow
 def test_command_line_exit_status_and_no_traceback(tmp_path):
     path = tmp_path / "scene.yaml"
     path.write_text(CAM_SCENE.replace("speed: 600 rpm", "speed: -600 rpm"))

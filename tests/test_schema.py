@@ -27,6 +27,7 @@ def follower_variants():
         yield f"singh2017 {kind}", scene
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("name, scene", list(follower_variants()), ids=lambda v: v if isinstance(v, str) else "")
 def test_every_name_the_models_return_is_in_the_schema(name, scene):
     scene = fickcam.load_scene(scene, file_name=f"{name}.yaml") if isinstance(scene, dict) else \

@@ -64,6 +64,7 @@ def stored_error(result, direction):
                                                np.asarray(reference["layer"])), MM)
 
 
+@pytest.mark.slow
 def test_the_corrected_plate_matches_a_brute_force_3d_run_within_the_accuracy(absorbed):
     """k = 2 absorption at accuracy 1e-2 against the 3-D cells alone at accuracy 1e-2
     (``model: solid``): within the requested accuracy plus the reference's own estimate
@@ -79,6 +80,7 @@ def test_the_corrected_plate_matches_a_brute_force_3d_run_within_the_accuracy(ab
     assert absorbed.mean[-1] == pytest.approx(MM, abs=absorbed.error_estimate * MM)
 
 
+@pytest.mark.slow
 def test_the_drying_plates_estimate_covers_its_error_with_the_skin_margins_safety():
     """k = 2 drying (Mm -> 0, a dry skin) at accuracy 3e-2 against the 3-D cells alone at
     3e-2: the estimate (with ``corrected_product.skin_margin``) is at least twice the distance to
@@ -95,6 +97,7 @@ def test_the_drying_plates_estimate_covers_its_error_with_the_skin_margins_safet
     assert error <= 3e-2 + REFERENCE["desorption"]["estimate"]
 
 
+@pytest.mark.slow
 def test_absorption_runs_ahead_of_desorption_and_both_stay_bounded():
     """D rising with c: sorption is faster than desorption (Crank 1975 §9.3, fig. 9.4), k = 1
     from dry to Mm and back, over the first outputs (tau* <= 0.03, where the gap is 0.07-0.1
@@ -205,6 +208,7 @@ def nested_plate():
                             base=1.0)
 
 
+@pytest.mark.slow
 def test_nested_3d_meshes_converge_at_their_measured_order(nested_plate):
     """The corrected result's changes between the nested meshes (each refined by 2 in every
     direction) shrink at an order of 1.5-3.5 in ``corrected_product.gap``'s norm (measured: 2.7
@@ -259,6 +263,7 @@ def test_three_nested_meshes_read_between_their_steps_give_what_the_solve_takes(
     assert np.all((values[0][1:-1] - slack < mean) & (mean < values[0][2:] + slack))
 
 
+@pytest.mark.slow
 def test_the_cross_of_cheaper_meshes_stands_in_for_the_next_diagonal_mesh(nested_plate):
     """Where the finest mesh refined by 2 in every direction (8 x its cells) passes
     ``MeshCaps.nested``, ``CorrectedMeshes.finer`` adds the ``cross`` around it (the base
@@ -325,6 +330,7 @@ def test_a_bar_is_the_prism_of_its_section_thinnest_in_its_fastest_direction():
     assert as_prism(PLATE, ISOTROPIC) == (PLATE, ISOTROPIC, False)
 
 
+@pytest.mark.slow
 def test_a_fickian_bar_through_the_corrected_product_is_the_exact_block(start=0.0, surface=MM):
     """k = 0 through ``solve_corrected`` (``auto`` hands it to the exact block instead): the
     product is then the fine sheet x fine rectangle (Crank 1975 eq. 4.51), for the mean and
@@ -340,6 +346,7 @@ def test_a_fickian_bar_through_the_corrected_product_is_the_exact_block(start=0.
     assert np.max(np.abs(result.surface - result.mean)) / MM > 0.05
 
 
+@pytest.mark.slow
 def test_a_dc_bar_under_auto_takes_the_corrected_product_and_meets_the_method_of_lines():
     """``auto`` on the 6 x 4 x 2 mm bar with k = 1 drying to a skin: the corrected product
     (not the octant's cells), against the independent method of lines (tests/data/
@@ -407,6 +414,7 @@ def test_a_large_part_starts_coarser_so_that_the_cross_around_its_pair_fits():
     assert base_plan(plan_at, 1e-3)[0] == MESH_LEVELS[-1]
 
 
+@pytest.mark.slow
 def test_the_planform_stops_at_2x_only_when_the_whole_estimate_meets_the_accuracy():
     """``corrected_product.refined_reference`` on the plate (k = 2 absorbing): with the whole
     estimate

@@ -40,6 +40,7 @@ def volume_mean(run, fields):
     return fields @ volumes / volumes.sum()
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("part", [PLATE, BAR], ids=["plate", "bar"])
 def test_fickian_corrected_fields_are_the_exact_block_at_the_cell_points(part):
     """k = 0 through the corrected path at 3e-2: the corrected fields at the cells' points
@@ -68,6 +69,7 @@ def test_fickian_corrected_fields_are_the_exact_block_at_the_cell_points(part):
         assert np.max(np.abs(gap)) / MM <= run.sheet.error_estimate + run.planform_error
 
 
+@pytest.mark.slow
 def test_dc_fields_under_auto_are_corrected_and_consistent_with_the_mean():
     """k = 2 absorbing on the 4 x 3 x 2 mm plate, ``auto`` with fields stored: the
     corrected product's fields (``corrected_product.solve_corrected`` hands its run,
@@ -89,6 +91,7 @@ def test_dc_fields_under_auto_are_corrected_and_consistent_with_the_mean():
     assert np.max(corrected) <= errors.total
 
 
+@pytest.mark.slow
 def test_the_planform_reading_is_second_order_and_holds_mirrors_and_the_surface():
     """``corrected_fields.planform_at`` (linear on the Delaunay triangles of the cell points, the
     exposed outline at 0, images across mirror lines): a smooth U vanishing on the outline
@@ -122,6 +125,7 @@ def test_the_planform_reading_is_second_order_and_holds_mirrors_and_the_surface(
     assert np.any(points[:, 0] == 2e-3)   # read on the mirror line itself
 
 
+@pytest.mark.slow
 def test_dc_fields_at_the_centre_of_a_wide_plate_are_the_dc_sheet():
     """k = 2 absorbing, an 8 x 8 x 2 mm plate up to tau* = 0.01: more than 2.5 mm from every
     edge (4.6 diffusion lengths at the wettest D, e^2 D) the part is the D(c) sheet (Crank
@@ -148,6 +152,7 @@ def test_dc_fields_at_the_centre_of_a_wide_plate_are_the_dc_sheet():
     assert corrected <= coarse / 5.0
 
 
+@pytest.mark.slow
 def test_fields_after_the_cross_are_the_diagonal_finest_meshs_and_its_coarser_neighbours():
     """Where the 8x mesh passes the cap, ``CorrectedMeshes.finer`` adds the ``cross`` (meshes
     refined along one direction, their fields not kept) around the finest: the stored fields and

@@ -38,6 +38,7 @@ def stepped_sheet():
                  sorption=ConcentrationDependent(MM, exponent=2.0))
 
 
+@pytest.mark.slow
 def test_extend_agrees_with_a_solve_at_the_new_times_within_its_estimate(stepped_sheet):
     """k = 2, wetted then stepped down at 0.3 h^2/D: 20 new times inside the stored span (none
     younger after its change than the stored outputs, so the cells stay) read between the
@@ -55,6 +56,7 @@ def test_extend_agrees_with_a_solve_at_the_new_times_within_its_estimate(stepped
     assert extended.error_estimate >= stepped_sheet.error_estimate
 
 
+@pytest.mark.slow
 def test_the_corrected_plate_read_between_its_steps_agrees_with_its_solve_at_the_new_times():
     """The 4 x 3 x 2 mm plate (k = 2, absorbing; the corrected product of ``corrected_product``) at
     3e-2:
@@ -78,6 +80,7 @@ def test_the_corrected_plate_read_between_its_steps_agrees_with_its_solve_at_the
     assert 0.0 < distance <= 0.1 * extended.error_estimate
 
 
+@pytest.mark.slow
 def test_a_new_time_younger_than_the_stored_outputs_is_solved_again(stepped_sheet):
     """2e-3 h^2/D after the step down: the cells were sized for the youngest stored output
     (1e-2 h^2/D after a change), so extend solves again (the result says nothing of reading)."""
@@ -86,6 +89,7 @@ def test_a_new_time_younger_than_the_stored_outputs_is_solved_again(stepped_shee
     assert 0.302 * T in extended.times
 
 
+@pytest.mark.slow
 def test_a_new_time_younger_than_the_stored_outputs_of_the_skin_is_solved_again():
     """Stored outputs 0.3 and 0.7 h^2/D after the step down (the skin's cells sized for 0.3),
     a new one 0.02 after it: older than the youngest stored output of the whole history (1e-2

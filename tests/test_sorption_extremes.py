@@ -45,6 +45,7 @@ def test_two_phase_extremes_stay_bounded_and_conserve_mass(log_gamma, log_beta):
     assert fv.mean[-1] == pytest.approx(exact.total[-1] * MM, abs=1e-2 * MM)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("exponent", [0.0, 5.0])
 def test_concentration_dependent_extremes_stay_bounded_and_reach_equilibrium(exponent):
     law = ConcentrationDependent(MM, exponent=exponent)
@@ -61,6 +62,7 @@ def test_concentration_dependent_extremes_stay_bounded_and_reach_equilibrium(exp
     assert result.mean[-1] == pytest.approx(0.0, abs=1e-2 * MM)
 
 
+@pytest.mark.slow
 @settings(max_examples=6, deadline=None)
 @given(st.floats(-3, 3), st.floats(-3, 3))
 def test_two_phase_extremes_on_a_cam_plate_stay_bounded_and_conserve_mass(log_gamma, log_beta):
@@ -94,6 +96,7 @@ PLATE_HISTORIES = {  # (initial moisture, surface in the first half, in the seco
     "absorption": (0.0, MM, MM), "desorption": (MM, 0.0, 0.0), "step down": (0.0, MM, 0.4 * MM)}
 
 
+@pytest.mark.slow
 @settings(max_examples=1, deadline=None)
 @given(st.floats(0.0, 5.0), st.sampled_from(sorted(PLATE_HISTORIES)))
 @example(5.0, "desorption")

@@ -126,6 +126,7 @@ def test_cam_plate_planform_modes_match_the_exact_disc_after_an_rh_step_down(acc
     assert np.max(np.abs(modes.surface - exact.surface)) / 2.0 < LAYER_TOLERANCE * accuracy
 
 
+@pytest.mark.slow
 def test_cam_plate_planform_mesh_converges_at_second_order():
     """The two-phase history on the planform meshes w0, w0/2, w0/4 (finest width and growth
     halved together): differences fall by 4, observed order log2(d01/d12) = 2 +- 0.3 for
@@ -179,6 +180,7 @@ def test_link_planform_modes_without_binding_match_the_fickian_plane_model():
     assert np.all(bound.bound > 0) and np.all(bound.bound < bound.mean)
 
 
+@pytest.mark.slow
 def test_cam_plate_fipy_prisms_match_the_exact_disc_after_an_rh_step_down():
     """``solid``: FiPy prisms of the circular plate with the coupled free/bound block
     operator (``two_phase_mesh``), against the exact two-phase disc modes: within the accuracy,

@@ -39,6 +39,7 @@ def exposure(start, surface):
     return Exposure.piecewise([0.0, TIMES[-1]], [330.0], [surface], initial_moisture=start)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("k, accuracy, start, surface", [
     (2.0, 1e-2, 0.0, MM), (2.0, 1e-2, MM, 0.0), (5.0, 1e-3, MM, 0.0)])
 def test_exponential_diffusivity_matches_a_fine_method_of_lines(k, accuracy, start, surface):
@@ -59,6 +60,7 @@ def test_exponential_diffusivity_matches_a_fine_method_of_lines(k, accuracy, sta
     assert error <= accuracy / 3.0  # the planning safety (nonlinear_plan)
 
 
+@pytest.mark.slow
 def test_absorption_is_faster_than_desorption_when_d_rises_with_moisture():
     """Crank 1975 §9.3 (Fig. 9.4): with D increasing with c, sorption runs ahead of
     desorption at every time; the reverse for D falling with c."""

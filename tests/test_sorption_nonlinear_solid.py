@@ -46,6 +46,7 @@ def law(k):
     return ConcentrationDependent(MM, exponent=k)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("part", [BAR, PLATE], ids=["bar", "plate"])
 def test_zero_exponent_reproduces_the_fickian_part(part):
     """k = 0 is Fick: the mirrored 3-D sweeps of a bar (Grid3D octant) and of a rectangular
@@ -79,6 +80,7 @@ def test_the_stored_bar_reference_is_the_exact_block_at_zero_exponent():
         assert np.max(np.abs(np.array(stored["layer"]) - exact.surface)) / MM < 2e-4
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("k, start, surface", [(2, 0.0, MM), (1, MM, 0.0)],
                          ids=["absorption", "desorption"])
 def test_bar_estimate_bounds_the_error_against_an_independent_reference(k, start, surface):
@@ -100,6 +102,7 @@ def test_bar_estimate_bounds_the_error_against_an_independent_reference(k, start
     assert layer <= LAYER_TOLERANCE * result.error_estimate
 
 
+@pytest.mark.slow
 def test_the_cell_cap_counts_the_octant_the_sweeps_solve():
     """``MAX_CELLS["solid"]`` bounds the cells of the linear system. The D(c) sweeps solve
     one octant of a bar, so the cap counts the octant: with the cap at 2 000, the 6 x 4 x 2
@@ -166,6 +169,7 @@ def column_mean(z_centres: np.ndarray, values: np.ndarray) -> np.ndarray:
     return values[:, order] @ widths / widths.sum()
 
 
+@pytest.mark.slow
 def test_a_wide_bar_is_the_sheet_at_its_centre():
     """Far from its edges (in-plane depth sqrt(0.3) h << half width) the uptake of a
     20 x 20 x 2 mm bar's centre column is the sheet's, both with D = D0 exp(2 c/Mm)."""
@@ -228,6 +232,7 @@ def test_inexact_sweeps_from_the_extrapolated_state_converge_to_the_exact_sweeps
     assert np.max(np.abs(fast.fields - np.array(exact))) / MM < 1e-8
 
 
+@pytest.mark.slow
 def test_absorption_runs_ahead_of_desorption_on_a_bar_when_d_rises_with_moisture():
     """Crank 1975 §9.3 (Fig. 9.4), on the 3-D part: D rising with c makes sorption faster
     than desorption at every early time."""
@@ -265,6 +270,7 @@ def observed_orders(coarse, middle, fine) -> np.ndarray:
     return np.log2(np.abs(middle - coarse) / np.abs(fine - middle))
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("start, surface", [(0.0, MM), (MM, 0.0)],
                          ids=["absorption", "desorption"])
 def test_sheet_sweeps_converge_at_second_order_in_space(start, surface):
@@ -281,6 +287,7 @@ def test_sheet_sweeps_converge_at_second_order_in_space(start, surface):
     assert np.all(np.abs(orders - 2.0) <= 0.15), orders
 
 
+@pytest.mark.slow
 def test_bar_sweeps_converge_at_second_order_under_nested_refinement():
     """The Grid3D octant of a 2 mm cube, k = 1 (D up to e x), uniform cells 8^3, 16^3,
     32^3 over the whole cube (64, 512, 4 096 in the octant): mean and contact layer at
@@ -294,6 +301,7 @@ def test_bar_sweeps_converge_at_second_order_under_nested_refinement():
     assert np.all(np.abs(orders - 2.0) <= 0.3), orders
 
 
+@pytest.mark.slow
 def test_prism_sweeps_converge_at_second_order_under_nested_refinement():
     """The 4 x 3 mm plate's planform quarter (mirror lines x = 2, y = 1.5 mm) on its
     admissible cells from a 0.5 mm lattice, two z cells in the half thickness, every
@@ -345,6 +353,7 @@ def test_prisms_of_square_cells_are_the_grid3d_octant_to_round_off():
     assert np.max(np.abs(on_prisms - on_grid)[:TIMES.size - 1]) < 1e-12
 
 
+@pytest.mark.slow
 @settings(max_examples=2, deadline=None)
 @given(st.floats(0.0, 5.0))
 @example(5.0)

@@ -44,6 +44,7 @@ def test_two_phase_sheet_operator_is_second_order_in_space():
     assert observed_order(errors)[-1] == pytest.approx(2.0, abs=0.1)
 
 
+@pytest.mark.slow
 def test_two_phase_disc_operator_is_second_order_in_space():
     """(r, z) grid of a disc (radius = thickness = 1 in scaled units) against the exact
     two-phase modes of the Disc (``two_phase_modes``)."""

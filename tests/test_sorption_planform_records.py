@@ -126,6 +126,7 @@ def test_check_reports_the_refined_planform_mesh_the_run_uses():
     assert f"to {result.cells} cells" in chosen.reason and "-point" in chosen.reason
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("climate", ["constant", "daily record"])
 def test_demo_two_phase_cam_is_within_its_estimate_of_a_fine_run(climate):
     """The demo cam (``configs/singh2017_cam_two_phase.yaml``, and through the daily
@@ -201,6 +202,7 @@ def test_w0_and_growth_refined_apart_meet_a_tolerance_together_cannot_under_the_
     assert refined(replace(modelled, apart=False)).error > 5e-5
 
 
+@pytest.mark.slow
 def test_refinement_apart_that_ends_above_the_tolerance_falls_back_to_together():
     """Where the coarse meshes' estimate predicts that together cannot meet the accuracy
     under the cap but it can (the r 10 mm plate through the daily record, 6e-5, a 12 000-

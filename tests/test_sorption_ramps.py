@@ -42,6 +42,7 @@ def reference(rate):
     return solution.y.T
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("tolerance, physical_rate", [(1e-3, 3e-6), (1e-5, 3e-6), (1e-5, 3e-7)])
 def test_a_mode_follows_solve_ivp_across_an_arrhenius_ramp(tolerance, physical_rate):
     times = TIMES

@@ -55,6 +55,7 @@ def test_dask_backed_data_is_written_not_skipped(tmp_path):
     np.testing.assert_array_equal(open_result(tmp_path / "lazy.h5").temperature, ds.temperature)
 
 
+@pytest.mark.slow
 def test_saving_a_result_does_not_import_dask_distributed(tmp_path):
     code = ("import sys, numpy as np\n"
             "from fickcam.dataset import build_dataset\n"
@@ -65,6 +66,7 @@ def test_saving_a_result_does_not_import_dask_distributed(tmp_path):
                    env={**os.environ, "PYTHONPATH": str(Path(__file__).resolve().parents[1])})
 
 
+@pytest.mark.slow
 def test_kill_9_at_random_moments_never_leaves_an_unreadable_result(tmp_path):
     scene = CONFIGS / "yadav2017_cam.yaml"  # no diffusion: each run is mostly start-up and writing
     target = tmp_path / "existing.h5"

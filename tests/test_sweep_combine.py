@@ -173,6 +173,7 @@ def test_lift_change_is_measured_from_the_first_ageing_time_in_mm():
     assert np.isnan(change.isel(case=1)).all()
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("kind", ["grid", "monte_carlo"])
 def test_sweep_plots_one_figure_per_output_through_fickcam_plot(kind, tmp_path):
     from fickcam.plotting import plot
@@ -188,3 +189,20 @@ def test_a_case_that_failed_for_a_reason_other_than_its_scene_runs_again(sweep, 
     finish(folder, 0, rh=50.0)
     finish(folder, 1, "internal error: RuntimeError: pool closed", retry=True)
     assert set(folder.open_for(sweep.identity, 3)) == {0}
+
+
+def test_a_single_text_value_per_case_is_stacked_as_text_and_saved(tmp_path):
+    """A four-bar's as-designed Grashof class is one text value per case; the journal gives
+    it back as a 0-d object array, whose item (not the array) goes into the stack, so the
+    sweep's result saves."""
+    from fickcam.sweep.journal import decode_arrays
+
+    record = {"index": 0, "status": "ok", "message": "", "values": {"a": "65 %"}, "wall_time": 1.0}
+    cases = [synthetic_result(50.0 + i).assign(grashof_class_design=((), "crank-rocker"))
+             for i in range(2)]
+    journal = [decode_arrays(encode_case(record, case)) for case in cases]
+    stacked = stack_cases(lambda i: journal[i], 2)
+    assert stacked["grashof_class_design"].values.tolist() == ["crank-rocker"] * 2
+    fickcam.save(stacked, tmp_path / "text.h5")
+    assert fickcam.open_result(tmp_path / "text.h5")["grashof_class_design"].values.tolist() == \
+        ["crank-rocker"] * 2

@@ -1,6 +1,6 @@
 """Large meshes: a part's FiPy diffusion solve with PETSc under MPI (docs/sweeps.md).
 
-Runs the moisture uptake of seed 001's crank (a 100 x 30 x 10 mm bar, all faces
+Runs the moisture uptake of Singh & Sanyal 2016's crank (a 100 x 30 x 10 mm bar, all faces
 wet, non-dimensional time D t / h^2) on a FiPy Grid3D twice: serially, and with
 ``FIPY_SOLVERS=petsc`` under ``mpirun -np 2`` (FiPy partitions the grid over the
 ranks). The two mean-uptake curves must agree. Skipped, with the reason, where
@@ -25,7 +25,7 @@ import fipy
 from fipy import CellVariable, DiffusionTerm, Grid3D, TransientTerm
 from fipy.tools import numerix
 
-# seed 001 crank: 100 x 30 x 10 mm, lengths scaled by the thickness h = 10 mm
+# Singh & Sanyal 2016 crank: 100 x 30 x 10 mm, lengths scaled by the thickness h = 10 mm
 nx, ny, nz = 40, 12, 8
 mesh = Grid3D(nx=nx, ny=ny, nz=nz, dx=10.0 / nx, dy=3.0 / ny, dz=1.0 / nz)
 c = CellVariable(mesh=mesh, value=0.0)

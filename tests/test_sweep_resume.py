@@ -8,6 +8,7 @@ import sys
 import time
 from pathlib import Path
 
+import pytest
 import xarray as xr
 import yaml
 
@@ -64,6 +65,7 @@ def kill_while_running(sweep_file: Path, output: Path, delay: float) -> dict | N
     return done if len(done) < CASES else None
 
 
+@pytest.mark.slow
 def test_a_sweep_killed_at_a_random_moment_resumes_to_the_uninterrupted_result(tmp_path):
     seed = random.randrange(1 << 16)
     path = write_sweep(tmp_path)

@@ -17,8 +17,8 @@ CONFIGS = Path(__file__).resolve().parents[1] / "configs"
 
 
 def small_base() -> str:
-    """Seed 000's cam with three ageing times, a coarse angle step and a loose diffusion
-    accuracy (fast cases: the sweep machinery is under test, not the physics)."""
+    """Singh & Sanyal 2017's cam with three ageing times, a coarse angle step and a loose
+    diffusion accuracy (fast cases: the sweep machinery is under test, not the physics)."""
     scene = yaml.safe_load((CONFIGS / "singh2017_cam.yaml").read_text())
     scene["outputs"].update(ageing_times=["0 d", "30 d", "60 d"], angle_step="10 deg")
     scene["diffusion"]["accuracy"] = 5e-2
@@ -73,6 +73,7 @@ def interrupted_then_resumed(scheduler, tmp_path_factory):
     return sweep, first, fickcam.open_result(output), output
 
 
+@pytest.mark.slow
 def test_every_case_equals_running_its_scene_alone(interrupted_then_resumed):
     sweep, _, result, _ = interrupted_then_resumed
     assert result.sizes["case"] == len(sweep.cases) == 3
@@ -168,6 +169,7 @@ def test_grid_plots_show_each_output_against_the_varied_values(interrupted_then_
     assert change.dims == ("case", "time") and np.isnan(change.isel(case=sorted(RH_FAILED))).all()
 
 
+@pytest.mark.slow
 def test_more_cases_than_are_kept_in_flight_all_complete_once(scheduler, tmp_path):
     values = ", ".join(f"{101 + k} %" for k in range(40))  # 40 cheap (invalid) cases
     path = write_sweep(tmp_path, f"base: base.yaml\ngrid:\n  environment.history.0.relative_humidity: [{values}]\n")

@@ -57,6 +57,7 @@ def sweep_with(address, tmp_path, capsys):
     return code, err[0]
 
 
+@pytest.mark.slow
 def test_an_http_server_is_refused_in_seconds(server, tmp_path, capsys):
     """It stays silent: the probe's own timeout (3 s) ends the wait."""
     port = server(http.server.SimpleHTTPRequestHandler)

@@ -103,6 +103,7 @@ SHAPES = {"disc (r, z) field": Disc(0.025, 0.006, 0.008),
           "cam plate (mid-plane field)": disc_plate(0.025, 0.006, 0.008)}
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("climate", sorted(CLIMATES))
 @pytest.mark.parametrize("shape", sorted(SHAPES))
 def test_moisture_through_the_thickness_stays_within_the_climate(climate, shape):
@@ -164,6 +165,7 @@ def refinement():
     return exact, stress_extremes(ANNULUS, spacing, times), stress_extremes(ANNULUS, spacing / 2, times)
 
 
+@pytest.mark.slow
 def test_finite_element_stresses_converge_to_the_exact_annulus(refinement):
     """On exact moisture the stress error falls with the spacing at least at first order
     (the extremes are read at quadrature points, inside the elements; measured 0.27 % ->
@@ -178,6 +180,7 @@ def test_finite_element_stresses_converge_to_the_exact_annulus(refinement):
     assert error_coarse <= 1.5 * richardson
 
 
+@pytest.mark.slow
 def test_annulus_swelling_stress_end_to_end_matches_the_exact_solution(refinement):
     """The engine's (r, z) field of the annulus (its mid-plane level), the exact sheet and
     ``swelling_history`` at the first weeks: within the elements' bound of the test above

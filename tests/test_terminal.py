@@ -29,7 +29,7 @@ PREFIXES = ("fickcam: error: ", "fickcam: warning: ", "fickcam: note: ")
 
 @pytest.fixture()
 def fourbar(tmp_path):
-    """Seed 001's four-bar to 2.5 h: notes (Grashof class, toggles) and warnings (the
+    """Singh & Sanyal 2016's four-bar to 2.5 h: notes (Grashof class, toggles) and warnings (the
     links reach their wet Tg at 2.5 h)."""
     scene = yaml.safe_load((ROOT / "configs" / "singh2016_fourbar.yaml").read_text())
     scene["outputs"] = {"ageing_times": ["0 h", "1 h", "2.5 h"], "angle_step": "6 deg"}

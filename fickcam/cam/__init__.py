@@ -5,6 +5,22 @@ Public API: :class:`CamSection` (scene section), :class:`CamDesign`,
 :class:`CamState`, :func:`design_from_scene`, :func:`cam_response`,
 :func:`working_profile`, and for :mod:`fickcam.simulate` :func:`scene_parts`,
 :func:`scene_response`.
+
+References
+----------
+Al-Shamma, F. & Yousuf, L. S. (2011). Predictive model of orthotropic un-symmetric
+    box cam based on deflection and countered by segments of circular-arc contact
+    profiles. Global Journal of Researches in Engineering (A) 11(7).
+Madhukar, S., Manu, G., Shyam Venkat, P., Jaswanth Kumar, B. & Sai Kumar, M. (2023).
+    Experimental investigation on contact force analysis of eccentric cam with roller
+    follower. B.Tech project report, Anil Neerukonda Institute of Technology & Sciences,
+    Visakhapatnam.
+Singh, S. & Sanyal, S. (2017). Kinematic and dynamic variations in cam and follower
+    made of composite material under hygrothermal environment. International Journal of
+    Innovative Research in Science, Engineering and Technology (IJIRSET) 6(3).
+Yadav, S., Karmarkar, V., Surti, J., Mistry, S. & Vardhe, G. (2017). To study wear
+    and friction at contact surface of cam and follower of I.C. engine. International
+    Research Journal of Engineering and Technology (IRJET) 4(4).
 """
 from .ageing import cam_state, scene_parts, scene_response
 from .design import CamDesign, CamState, design_from_scene

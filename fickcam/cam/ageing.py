@@ -9,8 +9,10 @@ length 4 x width; a swinging arm: a bar of the arm length, or the pivot distance
 flat face, and the contact width square). The cam's in-plane free strains along x (fibre)
 and y scale/distort the profile, the roller's mean in-plane strain (eps_L + eps_T)/2 its
 radius, a swinging arm's strain along its length (x) its length and face offset; the follower's mass is
-m (1 + M/100) with M its mean moisture (seeds/000_c9d2754e3bf549ac.txt p. 281, m_w = 1.648 kg
-for 3 %); contact uses the cam's surface-layer modulus (the wet skin, not the bulk).
+m (1 + M/100) with M its mean moisture (Singh & Sanyal 2017, p. 281: m_w = 1.648 kg for
+3 %); contact uses the cam's surface-layer modulus (the wet skin, not the bulk).
+
+The papers are cited in full in :mod:`fickcam.cam`.
 """
 from __future__ import annotations
 

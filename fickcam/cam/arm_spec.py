@@ -36,7 +36,7 @@ NOT_ON_AN_ARM = {"offset": "the pivot places the arm",
                   "spring_preload": "use arm.spring_preload (N m)",
                   "external_load": "use arm.load_torque (N m)",
                   "guide": "an arm has no guide bush", "stiffness": "the elastic follower train "
-                  "(issue 14 item 1) models a translating follower"}
+                  "models a translating follower only"}
 
 
 def arm_problems(section) -> list[tuple[tuple, str]]:

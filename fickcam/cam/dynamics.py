@@ -4,6 +4,8 @@ All functions are vectorised over the cam angle; SI throughout. Sign conventions
 the cam turns counter-clockwise, the follower lifts along +y at x = offset, the
 pressure angle phi is positive when the common normal leans towards -x, and the cam
 pushes on the follower with Fn (-sin phi, cos phi).
+
+The papers are cited in full in :mod:`fickcam.cam`.
 """
 from __future__ import annotations
 
@@ -35,22 +37,22 @@ def flat_radius_of_curvature(height, d2y):
 def axial_force(mass, acceleration, spring_rate, spring_deflection, preload, external_load,
                 gravity: bool):
     """Force the cam must supply along the follower axis: m a + k x + F0 + P (+ m g)
-    (Newton along the axis; Norton sec. 8.x 'dynamic force analysis'; seeds/003 sec. 5.5
-    F_c = m y'' + s y + m g; seeds/000 Table 19 adds the inertia term with the opposite
-    sign, F_i = -m y'', a slip)."""
+    (Newton along the axis; Norton, Design of Machinery 5th ed., ch. 15; Madhukar et al.
+    2023 sec. 5.5 F_c = m y'' + s y + m g; Singh & Sanyal 2017 Table 19 adds the inertia
+    term with the opposite sign, F_i = -m y'', a slip)."""
     weight = mass * STANDARD_GRAVITY if gravity else 0.0
     return mass * acceleration + spring_rate * spring_deflection + preload + external_load + weight
 
 
 def guide_friction_factor(mu, overhang, guide_length, stem_diameter):
-    """G = 2 mu l1/l2 + mu - mu^2 d/l2 of a stem in a guide bush (seeds/004_101c340ef7457bc8.txt
+    """G = 2 mu l1/l2 + mu - mu^2 d/l2 of a stem in a guide bush (Yadav et al. 2017
     p. 3; Rothbart, Cam Design Handbook 2004, ch. 6)."""
     return 2.0 * mu * overhang / guide_length + mu - mu ** 2 * stem_diameter / guide_length
 
 
 def normal_force(axial, phi, velocity, guide_factor):
     """Contact force along the common normal: Fn = F / (cos phi - s G |sin phi|), s = sign
-    of the follower velocity (guide friction opposes the motion) (seeds/004 p. 3,
+    of the follower velocity (guide friction opposes the motion) (Yadav et al. 2017 p. 3,
     F_n = P/(cos a - G sin a) while rising)."""
     return axial / (np.cos(phi) - np.sign(velocity) * guide_factor * np.abs(np.sin(phi)))
 
@@ -62,8 +64,8 @@ def contact_torque(contact_x, contact_y, force, phi):
 
 
 def power_torque(force, phi, dy):
-    """T = Fn cos(phi) dy/dtheta, from T omega = (Fn cos phi) v (power balance; Norton eq.
-    8.x; seeds/004 p. 3 T0 = Fn (y'/omega) cos a)."""
+    """T = Fn cos(phi) dy/dtheta, from T omega = (Fn cos phi) v (power balance; Yadav et
+    al. 2017 p. 3: T0 = Fn (y'/omega) cos a)."""
     return force * np.cos(phi) * dy
 
 
@@ -126,7 +128,7 @@ def archard_wear_per_revolution(coefficient, hardness, force, length, slide_rati
 
 def empirical_wear_depth(sliding_length, pressure, hardness_1, hardness_2, mu,
                          a0=1.13e-5, a1=1.00, a2=2.69, a3=3.23):
-    """Linear wear Z = l a0 (P0/H1)^a1 (H2/H1)^a2 mu^a3 (seeds/004_101c340ef7457bc8.txt p. 3
+    """Linear wear Z = l a0 (P0/H1)^a1 (H2/H1)^a2 mu^a3 (Yadav et al. 2017 p. 3
     and Table 2.1; the printed formula has mu^a1, the coefficients table and the worked
     example use a3). Units as the paper: P0 in Pa over hardness numbers, l in m."""
     return sliding_length * a0 * (pressure / hardness_1) ** a1 * (hardness_2 / hardness_1) ** a2 \

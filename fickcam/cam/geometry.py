@@ -13,6 +13,8 @@ contact point, and the follower height Y(psi), are closed-form; within one desig
 segment both are analytic, so y(theta) = Y(psi(theta)) is sampled at Chebyshev-Lobatto
 nodes (psi from theta by Newton) and differentiated spectrally (Trefethen, Spectral
 Methods in MATLAB, 2000, ch. 6).
+
+The papers are cited in full in :mod:`fickcam.cam`.
 """
 from __future__ import annotations
 
@@ -43,8 +45,8 @@ def dry_profile(design, segment, psi):
 
     Knife: W0 = R(-psi) (e, s0 + y); roller: pitch point minus Rf along the outward
     normal (Norton eq. 8.32); flat: W0 = R(-psi) (dy/dpsi, Rb + y) (Norton eq. 8.38);
-    eccentric: a circle of radius R about (0, -eccentricity) (seeds/003_b8317aa6e553b071.txt
-    Fig. 5.1, lowest follower position at theta = 0)."""
+    eccentric: a circle of radius R about (0, -eccentricity) (Madhukar et
+    al. 2023, Fig. 5.1, lowest follower position at theta = 0)."""
     psi = np.asarray(psi, float)
     if design.arm is not None:
         return arm.dry_profile(design.arm, design.follower_kind, design.base_circle_radius,

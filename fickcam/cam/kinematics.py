@@ -5,8 +5,10 @@ Swelling scales the profile (isotropic: every cam dimension by 1 + eps, the roll
 1 + eps_roller) or distorts it (anisotropic: x by 1 + eps_x, y by 1 + eps_y); the
 follower motion is in closed form where the aged motion is the design motion scaled by
 1 + eps (isotropic cam with a flat follower, or a radial knife/roller that swells like
-the cam, as seeds/000_c9d2754e3bf549ac.txt scales its pitch circle and lift), otherwise
+the cam, as Singh & Sanyal (2017) scale their pitch circle and lift), otherwise
 found geometrically (:mod:`fickcam.cam.geometry`).
+
+The papers are cited in full in :mod:`fickcam.cam`.
 """
 from __future__ import annotations
 
@@ -56,7 +58,7 @@ def _eccentric_flat(design: CamDesign, state: CamState, theta):
     b = R(1 + eps_y) in the direction n = (sin theta, cos theta) (kinematic inversion,
     Norton sec. 8.6): Y = -e_y cos theta + f, f = sqrt(A + B cos 2 theta),
     A = (a^2 + b^2)/2, B = (b^2 - a^2)/2; a circle (a = b) gives pure SHM
-    Y = R - e cos theta (seeds/003_b8317aa6e553b071.txt sec. 5.2). The derivatives of f
+    Y = R - e cos theta (Madhukar et al. 2023 sec. 5.2). The derivatives of f
     follow from differentiating f^2 = g three times."""
     theta = np.asarray(theta, float)
     e_y = design.eccentricity * (1 + state.cam_strain_y)

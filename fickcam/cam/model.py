@@ -5,7 +5,7 @@ cam dimension by 1 + eps, the roller by 1 + eps_roller) or distorts it (anisotro
 x by 1 + eps_x, y by 1 + eps_y), and the follower motion is recomputed from the aged
 geometry: in closed form where the aged motion is the design motion scaled by
 1 + eps (isotropic cam with a flat follower, or a radial knife/roller that swells like
-the cam, as seeds/000_c9d2754e3bf549ac.txt scales its pitch circle and lift), otherwise
+the cam, as Singh & Sanyal (2017) scale their pitch circle and lift), otherwise
 geometrically (:mod:`fickcam.cam.geometry`). The follower's frame (offset, spring seat)
 does not swell, so a swollen base circle also compresses the spring.
 """

@@ -6,6 +6,8 @@ A segment of lift h over beta gives y = h S, dy/dtheta = h S'/beta, ... and at a
 constant cam speed omega the true time derivatives v = h S' omega/beta,
 a = h S'' omega^2/beta^2, j = h S''' omega^3/beta^3 (Norton, Design of Machinery
 5th ed., sec. 8.3, eqs. 8.1-8.3). A return is y = h (1 - S).
+
+The papers are cited in full in :mod:`fickcam.cam`.
 """
 from __future__ import annotations
 
@@ -21,21 +23,22 @@ PI = math.pi
 
 
 def uniform_velocity(x):
-    """S = x (Norton sec. 8.3, 'constant velocity'; seed 000 Table 17). Infinite
+    """S = x (Norton sec. 8.3, 'constant velocity'; Singh & Sanyal 2017 Table 17). Infinite
     acceleration at both ends."""
     x = np.asarray(x, float)
     return x, np.ones_like(x), np.zeros_like(x), np.zeros_like(x)
 
 
 def simple_harmonic(x):
-    """S = (1 - cos pi x)/2 (Norton eq. 8.6; seed 000 Table 17 and p. 281)."""
+    """S = (1 - cos pi x)/2 (Norton eq. 8.6; Singh & Sanyal 2017 Table 17 and p. 281)."""
     x = np.asarray(x, float)
     return ((1 - np.cos(PI * x)) / 2, PI / 2 * np.sin(PI * x), PI ** 2 / 2 * np.cos(PI * x),
             -PI ** 3 / 2 * np.sin(PI * x))
 
 
 def cycloidal(x):
-    """S = x - sin(2 pi x)/(2 pi) (Norton eq. 8.7; seed 000 Table 17; seed 004 p. 2)."""
+    """S = x - sin(2 pi x)/(2 pi) (Norton eq. 8.7; Singh & Sanyal 2017 Table 17;
+    Yadav et al. 2017 p. 2)."""
     x = np.asarray(x, float)
     w = 2 * PI
     return (x - np.sin(w * x) / w, 1 - np.cos(w * x), w * np.sin(w * x), w ** 2 * np.cos(w * x))
@@ -123,8 +126,9 @@ _MODIFIED_SINE = (
 
 
 def constant_acceleration(x):
-    """Parabolic: S = 2 x^2 (x <= 1/2), 1 - 2 (1 - x)^2 (Norton sec. 8.3; seed 000 Table 17,
-    whose second half is misprinted as h[1 - 2{1 - k^2}]). Infinite jerk at ends and middle."""
+    """Parabolic: S = 2 x^2 (x <= 1/2), 1 - 2 (1 - x)^2 (Norton sec. 8.3; Singh & Sanyal
+    2017 Table 17, whose second half is misprinted as h[1 - 2{1 - k^2}]). Infinite jerk at
+    ends and middle."""
     return _piecewise(_CONSTANT_ACCELERATION, x)
 
 

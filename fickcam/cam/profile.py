@@ -115,7 +115,7 @@ def make_profile(x, y, curve: str = "working", roller_radius: float = 0.0) -> Ca
 
 
 def _column_scale(cell: str, path) -> tuple[str, float]:
-    from ..units import to_si
+    from ..unit_parsing import to_si
 
     match = _HEADER.match(cell)
     if not match:

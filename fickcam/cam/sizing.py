@@ -137,7 +137,7 @@ def aged_check(ds, limits: Limits, kind: str) -> str:
     phi = math.radians(float(np.nanmax(np.abs(last["pressure_angle"].values))))  # stored in deg
     rho = smallest_convex_radius(kind, last["radius_of_curvature"].values,
                                  last["pitch_radius_of_curvature"].values)
-    days = last["time"].values / np.timedelta64(1, "D")
+    days = float(last["time"])
     ok = all(within(limits, phi, rho))
     return (f"aged at t = {days:g} d: largest pressure angle {math.degrees(phi):.4g} deg, smallest "
             f"convex radius of curvature {rho * 1e3:.4g} mm: "

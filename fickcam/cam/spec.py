@@ -1,4 +1,4 @@
-"""The scene's ``cam:`` section (SPEC.md §1): a plate cam and a translating follower.
+"""The scene's ``cam:`` section: a plate cam and a translating follower.
 
 Values are parsed to SI by :mod:`fickcam.units` (angles in rad, speed in rad/s).
 Validation refuses what cannot be a cam: motion segments that do not add up to
@@ -16,26 +16,14 @@ from .arm_spec import NOT_ON_AN_ARM, SwingingArm, arm_problems
 from pydantic import (AfterValidator, BeforeValidator, ConfigDict, Discriminator, Field, PrivateAttr,
                       Tag, field_validator, model_validator)
 
-from ..units import (
-    Angle,
-    AngularSpeed,
-    Force,
-    Length,
-    Mass,
-    NonNegativeLength,
-    PositiveAngle,
-    Pressure,
-    SignedLength,
-    Stiffness,
-    is_bare_number,
-    quantity,
-    to_si,
-)
+from ..units import (Angle, AngularSpeed, Force, Length, Mass, NonNegativeLength, PositiveAngle,
+                     Pressure, SignedLength, Stiffness, quantity)
+from ..unit_parsing import is_bare_number, to_si
 
 #: follower train stiffness: zero would leave the follower mass unconnected to the cam
 PositiveStiffness = quantity("stiffness", positive=True)
 
-#: motion law names (SPEC.md §1) -> module-level functions in :mod:`fickcam.cam.motion`
+#: motion law names -> module-level functions in :mod:`fickcam.cam.motion`
 LAWS = ("uniform_velocity", "constant_acceleration", "simple_harmonic", "cycloidal",
         "polynomial_345", "polynomial_4567", "modified_trapezoidal", "modified_sine", "spline")
 Law = Literal["uniform_velocity", "constant_acceleration", "simple_harmonic", "cycloidal",
@@ -166,7 +154,8 @@ class Eccentric(_Strict):
 
 
 class Guide(_Strict):
-    """Follower stem in a guide bush (seeds/004_101c340ef7457bc8.txt; Rothbart 2004, ch. 6):
+    """Follower stem in a guide bush (Yadav et al. 2017, cited in full in
+    :mod:`fickcam.cam`; Rothbart, Cam Design Handbook 2004, ch. 6):
     ``overhang`` l1 from the contact to the near bush end, bush ``length`` l2, stem
     ``diameter`` d, guide friction coefficient."""
 
@@ -222,7 +211,7 @@ TrainStiffness = Annotated[
 
 
 class Follower(_Strict):
-    """Translating follower. Extras beyond SPEC.md (defaults): ``width`` (the cam
+    """Translating follower. Optional keys (defaults): ``width`` (the cam
     thickness) the contact length for Hertz, ``friction_coefficient`` (0) at the cam
     contact (sliding: knife and flat), ``modulus`` (210 GPa) / ``poisson_ratio`` (0.3)
     used when the follower has no absorbing material, ``guide`` (none). ``stiffness``
@@ -278,7 +267,7 @@ class Polydyne(_Strict):
 
 
 class CamSection(_Strict):
-    """The ``cam:`` section. Extras beyond SPEC.md (defaults): ``gravity`` (false; g along
+    """The ``cam:`` section. Optional keys (defaults): ``gravity`` (false; g along
     the follower axis, against the lift), ``wear`` (none: no Archard wear),
     ``follower.width``, ``follower.friction_coefficient``, ``follower.modulus``,
     ``follower.poisson_ratio``, ``follower.guide`` (see :class:`Follower`); ``elastic``

@@ -99,7 +99,7 @@ def profile_path(folder: Path, stem: str) -> Path:
 def _motion(section, segments: list, shape: dict, length_text) -> list:
     """The scene's motion segments with the made rises and returns (to the picometre, so
     that they still cancel), a spline law's distances scaled with its segment's lift."""
-    from ..units import to_si
+    from ..unit_parsing import to_si
 
     made = copy.deepcopy(segments)
     for index, (given, segment) in enumerate(zip(section.motion, made)):

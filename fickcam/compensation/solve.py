@@ -106,7 +106,7 @@ def run_at(data: dict, base_dir: Path, times: np.ndarray, accuracy):
 
 
 def _seconds(value) -> float:
-    from ..units import parse_duration
+    from ..unit_parsing import parse_duration
 
     try:
         return parse_duration(value) if isinstance(value, str) else float(value)

@@ -19,7 +19,7 @@ from pathlib import Path
 import numpy as np
 
 from ..errors import Problem, SceneError
-from ..units import to_si
+from ..unit_parsing import to_si
 
 _HEADER = re.compile(r"^\s*(?P<name>[A-Za-z_]+)\s*(?:\[(?P<unit>[^\]]*)\])?\s*$")
 DIMENSIONS = {"temperature": "temperature", "relative_humidity": "percent", "thickness": "length",

@@ -81,7 +81,7 @@ def write_weight_gain_csv(specimens, path, comments=(), dry_mass_g: float | None
 EXAMPLE_SEED = 5229
 EXAMPLE_D_20C = 3.8e-13      # m^2/s, epoxy moulding compound at 20 degC (TU Delft repository abstract)
 EXAMPLE_D_85C = 3.6e-12      # m^2/s, the same at 85 degC
-EXAMPLE_COEFFICIENT = 5.0    # %, 3502 equilibrium moisture, seeds/001_51a6f900df76f3cc.txt Table 4
+EXAMPLE_COEFFICIENT = 5.0    # %, 3502 equilibrium moisture, Singh & Sanyal (2016) Table 4
 EXAMPLE_EXPONENT = 1.4       # solubility ~ RH^1.4, Piggott & Woo (1987) abstract
 EXAMPLE_CONDITIONS = ((40.0, 85.0), (60.0, 85.0), (85.0, 85.0), (85.0, 50.0), (85.0, 70.0))
 EXAMPLE_BALANCE_SCATTER_G = 2e-4   # weighing scatter (g), 1 sigma; masses rounded to 0.1 mg
@@ -120,8 +120,8 @@ def write_example(path) -> Path:
         "  (epoxy moulding compound, TU Delft repository abstract, 'Effect of temperature and",
         f"  humidity on moisture diffusion in an epoxy moulding compound material'): D0 = {d0:.4g} m^2/s,",
         f"  Ea = {ea / 1e3:.4g} kJ/mol.",
-        "Mm = a (RH/100)^b: a = 5.0 % (3502 equilibrium moisture, seeds/001 Table 4),",
-        "  b = 1.4 (Piggott & Woo 1987: solubility ~ RH^1.4).",
+        "Mm = a (RH/100)^b: a = 5.0 % (3502 equilibrium moisture, Singh & Sanyal 2016,",
+        "  IJIRSET 5(12), Table 4), b = 1.4 (Piggott & Woo 1987: solubility ~ RH^1.4).",
         "Scatter: 0.2 mg (1 sigma) on each weighing, masses rounded to 0.1 mg.",
         "No published weight-gain table was reachable (see README, 'Calibrating a material').",
     ]

@@ -5,6 +5,13 @@ Public API: :class:`LinkageSection` (scene section), :class:`FourBarDesign`,
 :class:`FourBarState`, :func:`fourbar_response`, :func:`class_changes`,
 :func:`grashof_class`, and for :mod:`fickcam.simulate` :func:`scene_parts`,
 :func:`scene_response`, ``LINKS`` and ``JOINTS`` (coordinate values).
+
+References
+----------
+Singh, S. & Sanyal, S. (2016). Variations in geometry, volume, mass and moment of
+    inertia of link of a four bar mechanism made of neat resin under hygrothermal
+    environment. International Journal of Innovative Research in Science, Engineering and
+    Technology (IJIRSET) 5(12).
 """
 from .ageing import LINKS, link_state, scene_parts, scene_response
 from .classify import class_changes, grashof_class

@@ -4,11 +4,13 @@ response stacked over ageing times (called by :mod:`fickcam.simulate`).
 Each link (crank, coupler, rocker, frame) is a diffusion part of geometry
 :class:`~fickcam.diffusion.problem.geometry.LinkBar`. At every ageing time its pin-to-pin
 length is L (1 + eps_x) with eps_x the free hygrothermal strain along the link,
-eps = alpha dT + beta dm (seeds/001_51a6f900df76f3cc.txt eqs. 11-14, read as
-a_1 = a (1 + alpha dT + beta dm); the printed a (alpha dT + beta dm) is a slip, see
-seeds/README.md), and its mass and inertia come from
+eps = alpha dT + beta dm (Singh & Sanyal 2016 eqs. 11-14, read as
+a_1 = a (1 + alpha dT + beta dm); the printed a (alpha dT + beta dm) is a slip: it is the
+change of length, not the wet length), and its mass and inertia come from
 :func:`fickcam.materials.bodies.aged_link_body`. A metal frame only expands
 thermally (eq. 14, last line).
+
+The paper is cited in full in :mod:`fickcam.linkage`.
 """
 from __future__ import annotations
 

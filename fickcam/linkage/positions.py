@@ -1,5 +1,5 @@
 """Four-bar positions in closed form (Freudenstein 1955, as in Norton, Design of
-Machinery 5th ed., sec. 4.5, eqs. 4.8-4.13; seeds/001_51a6f900df76f3cc.txt eqs. 15-18).
+Machinery 5th ed., sec. 4.5, eqs. 4.8-4.13; Singh & Sanyal 2016 eqs. 15-18).
 
 Notation (Norton): a = crank (link 2, pivot O2 at the origin), b = coupler (3),
 c = rocker (4, pivot O4 at (d, 0)), d = frame (1). Angles are measured
@@ -13,6 +13,8 @@ the diagonal A->O4. ``crossed`` is the plus sign, its mirror image across A->O4.
 This sign is kept over the whole crank revolution (a branch never switches), so
 the angles are continuous wherever the linkage assembles. Where it cannot
 (negative discriminant), every output is NaN.
+
+The paper is cited in full in :mod:`fickcam.linkage`.
 """
 from __future__ import annotations
 

@@ -1,4 +1,4 @@
-"""The scene's ``linkage:`` section (SPEC.md §1): a four-bar with the crank as input.
+"""The scene's ``linkage:`` section: a four-bar with the crank as input.
 
 Values are parsed to SI by :mod:`fickcam.units`. Validation refuses what cannot be
 a link or a four-bar: non-positive lengths, bosses that would overlap on a link,
@@ -14,7 +14,8 @@ from typing import Annotated, Literal
 
 from pydantic import BeforeValidator, model_validator
 
-from ..units import StrictModel, Angle, AngularSpeed, Length, NonNegativeLength, registry
+from ..units import StrictModel, Angle, AngularSpeed, Length, NonNegativeLength
+from ..unit_parsing import registry
 
 
 def _in_si(si_unit: str, human: str):
@@ -55,7 +56,7 @@ class CouplerPoint(StrictModel):
 
 
 class LinkSectionSpec(StrictModel):
-    """Cross-section of every link (seed 001 Figure 3): a bar ``width`` x ``thickness``
+    """Cross-section of every link (Singh & Sanyal 2016, Figure 3): a bar ``width`` x ``thickness``
     between two hollow bosses of ``boss_outer_radius`` / ``boss_inner_radius``."""
 
     width: Length
@@ -81,7 +82,7 @@ def can_assemble_somewhere(crank: float, coupler: float, rocker: float, frame: f
 
 
 class LinkageSection(StrictModel):
-    """The ``linkage:`` section. Optional extras beyond SPEC.md (with defaults):
+    """The ``linkage:`` section. Optional keys (with defaults):
     ``gravity`` (false; g = 9.80665 m/s^2 along -y, the frame line O2->O4 being +x),
     ``crank_angular_acceleration`` (0 rad/s^2), ``rocker_load_torque`` (0 N m, a
     constant torque on the rocker, counter-clockwise positive) and

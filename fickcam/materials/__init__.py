@@ -2,6 +2,18 @@
 
 Public API (architecture.md, "Materials"): ``MaterialSpec``, ``resolve``, ``Material``,
 ``material_state``, ``first_invalid_index``, ``library_table``.
+
+References
+----------
+Chamis, C. C. (1983). Simplified composite micromechanics equations for hygral,
+    thermal and mechanical properties. NASA TM-83320.
+Singh, S. & Sanyal, S. (2016). Variations in geometry, volume, mass and moment of
+    inertia of link of a four bar mechanism made of neat resin under hygrothermal
+    environment. International Journal of Innovative Research in Science, Engineering and
+    Technology (IJIRSET) 5(12).
+Singh, S. & Sanyal, S. (2017). Kinematic and dynamic variations in cam and follower
+    made of composite material under hygrothermal environment. International Journal of
+    Innovative Research in Science, Engineering and Technology (IJIRSET) 6(3).
 """
 from .library import library, library_rows, library_table
 from .material import Material, resolve

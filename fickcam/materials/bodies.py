@@ -2,7 +2,7 @@
 motion) of the moving bodies, from dimensions already scaled by their strains.
 
 Link: a bar of ``length`` between boss centres, ``width`` x ``thickness``, with a
-hollow cylindrical boss of the same thickness at each end (seeds/001_51a6f900df76f3cc.txt
+hollow cylindrical boss of the same thickness at each end (Singh & Sanyal 2016,
 Figure 3 and Table 5). Unlike Table 5, (i) the bar's own term is m (L^2 + W^2)/12 (the
 axis normal to the plane of motion, not m (W^2 + T^2)/12), (ii) each boss is carried to
 the link's centre of mass by the parallel-axis term m_cyl (L/2)^2, and (iii) the bar
@@ -55,7 +55,8 @@ def link_body(length, width, thickness, boss_outer_radius, boss_inner_radius, de
 
 def _aged(body, dry_args, wet_args, dry_density, moisture):
     """(volume, mass, inertia) after swelling: wet dimensions from ``wet_args``, mass
-    m_dry (1 + M/100) (definition of M; not wet density x wet volume as seed 001 Table 6),
+    m_dry (1 + M/100) (definition of M; not wet density x wet volume as Singh & Sanyal 2016,
+    Table 6),
     spread uniformly over the swollen body."""
     _, dry_mass, _ = body(*dry_args, dry_density)
     volume, _, inertia_per_density = body(*wet_args, 1.0)

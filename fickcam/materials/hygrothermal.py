@@ -1,8 +1,9 @@
 """Hygrothermal degradation of the matrix and free hygrothermal strain.
 
 Chamis (1983) NASA TM-83320, hygrothermal degradation equations, as reproduced
-in seeds/000_c9d2754e3bf549ac.txt eqs. 9-11 and Table 10, and
-seeds/001_51a6f900df76f3cc.txt eqs. 4-10.
+in Singh & Sanyal (2017) eqs. 9-11 and Table 10, and Singh & Sanyal (2016) eqs. 4-10.
+
+The papers are cited in full in :mod:`fickcam.materials`.
 """
 from __future__ import annotations
 
@@ -11,8 +12,8 @@ import numpy as np
 KELVIN_OFFSET = 273.15
 
 #: Temperature scale in which Tgw = f(M) Tgd is evaluated. The relation is a
-#: multiplicative fit, so the scale matters: the seeds apply it in degC
-#: (seed 000 Table 10 step 4: 157 degC -> 148 degC), Chamis' report in degF.
+#: multiplicative fit, so the scale matters: Singh & Sanyal (2016, 2017) apply it in degC
+#: (Singh & Sanyal 2017, Table 10 step 4: 157 degC -> 148 degC), Chamis' report in degF.
 TG_SCALES = ("celsius", "fahrenheit", "kelvin")
 
 
@@ -37,7 +38,8 @@ def _from_scale(value, scale: str):
 
 
 def wet_tg_factor(matrix_moisture):
-    """0.005 M^2 - 0.1 M + 1, M = matrix moisture in weight % (Chamis 1983; seed 000 eq. 11,
+    """0.005 M^2 - 0.1 M + 1, M = matrix moisture in weight % (Chamis 1983; Singh & Sanyal
+    2017 eq. 11,
     stated for M < 10 %)."""
     m = np.asarray(matrix_moisture, float)
     return 0.005 * m ** 2 - 0.1 * m + 1.0
@@ -45,14 +47,14 @@ def wet_tg_factor(matrix_moisture):
 
 def wet_glass_transition_temperature(dry_tg, matrix_moisture, scale: str = "celsius"):
     """Tgw = (0.005 M^2 - 0.1 M + 1) Tgd, evaluated in ``scale`` (K in, K out).
-    Chamis 1983; seed 000 eq. 11 and Table 10 step 4 (degC)."""
+    Chamis 1983; Singh & Sanyal 2017 eq. 11 and Table 10 step 4 (degC)."""
     return _from_scale(wet_tg_factor(matrix_moisture) * _to_scale(dry_tg, scale), scale)
 
 
 def property_retention(wet_tg, temperature, dry_tg, reference_temperature):
     """P/P0 = sqrt((Tgw - T) / (Tgd - T0)) for mechanical matrix properties (Chamis 1983;
-    seed 000 Table 10 step 5, seed 001 eq. 9). Temperature differences, so any scale.
-    NaN where T >= Tgw (outside the model's domain)."""
+    Singh & Sanyal 2017 Table 10 step 5; Singh & Sanyal 2016 eq. 9). Temperature
+    differences, so any scale. NaN where T >= Tgw (outside the model's domain)."""
     ratio = (np.asarray(wet_tg, float) - temperature) / (dry_tg - reference_temperature)
     with np.errstate(invalid="ignore"):
         return np.where(ratio > 0.0, np.sqrt(np.where(ratio > 0.0, ratio, 1.0)), np.nan)
@@ -60,7 +62,7 @@ def property_retention(wet_tg, temperature, dry_tg, reference_temperature):
 
 def thermal_property_factor(retention):
     """Thermal matrix properties scale by the reciprocal, P0/P (Chamis 1983: 'the effects on
-    the thermal properties are the reciprocal'; seed 000 eq. 10)."""
+    the thermal properties are the reciprocal'; Singh & Sanyal 2017 eq. 10)."""
     return 1.0 / np.asarray(retention, float)
 
 
@@ -87,7 +89,8 @@ def secant_thermal_factor(wet_tg, temperature, dry_tg, reference_temperature):
 
 
 def free_strain(alpha, beta, temperature, reference_temperature, moisture, initial_moisture):
-    """eps = alpha (T - T0) + beta (M - M0) (seed 000 eqs. 4, 7, 8; seed 001 eq. 13).
+    """eps = alpha (T - T0) + beta (M - M0) (Singh & Sanyal 2017 eqs. 4, 7,
+    8; Singh & Sanyal 2016 eq. 13).
     For a non-uniform field, M is the volume mean: the volume average of beta M (exact
     for the outer radius of an axisymmetric disc and for a symmetric sheet)."""
     return alpha * (np.asarray(temperature, float) - reference_temperature) + beta * (
@@ -95,7 +98,8 @@ def free_strain(alpha, beta, temperature, reference_temperature, moisture, initi
 
 
 def wet_mass(dry_mass, moisture):
-    """m = m_dry (1 + M/100), M in weight % of dry mass (definition, seed 000 eq. 3)."""
+    """m = m_dry (1 + M/100), M in weight % of dry mass (definition; Singh & Sanyal
+    2017 eq. 3)."""
     return dry_mass * (1.0 + np.asarray(moisture, float) / 100.0)
 
 

@@ -3,11 +3,13 @@
 Chamis, C. C. (1983) "Simplified composite micromechanics equations for hygral,
 thermal and mechanical properties", NASA TM-83320 (tables of geometric,
 mechanical, thermal and hygral equations), as reproduced in
-seeds/000_c9d2754e3bf549ac.txt Tables 2-5. The seed typesets the transverse
+Singh & Sanyal (2017) Tables 2-5. That paper typesets the transverse
 and shear moduli as Em / ((1 - Em/Ef22)(1 - sqrt(kf))); the published form
-Em / (1 - sqrt(kf) (1 - Em/Ef22)) is used here (it reproduces the seed's own
+Em / (1 - sqrt(kf) (1 - Em/Ef22)) is used here (it reproduces the paper's own
 8.29 GPa, Table 9). Notation: kf, km, kv fibre, matrix, void volume ratios.
 All functions are vectorised over numpy arrays.
+
+The papers are cited in full in :mod:`fickcam.materials`.
 """
 from __future__ import annotations
 
@@ -15,23 +17,25 @@ import numpy as np
 
 
 def fiber_volume_ratio(fiber_weight_fraction, fiber_density, matrix_density, void_ratio=0.0):
-    """kf = (1 - kv) / (1 + (rho_f/rho_m)(1/lambda_f - 1)) (Chamis 1983; seed 000 Table 2)."""
+    """kf = (1 - kv) / (1 + (rho_f/rho_m)(1/lambda_f - 1)) (Chamis 1983; Singh & Sanyal
+    2017 Table 2)."""
     lam = np.asarray(fiber_weight_fraction, float)
     return (1.0 - void_ratio) / (1.0 + (fiber_density / matrix_density) * (1.0 / lam - 1.0))
 
 
 def matrix_volume_ratio(fiber_ratio, void_ratio=0.0):
-    """km = 1 - kf - kv (partial volumes, seed 000 Table 2)."""
+    """km = 1 - kf - kv (partial volumes, Singh & Sanyal 2017 Table 2)."""
     return 1.0 - np.asarray(fiber_ratio, float) - void_ratio
 
 
 def ply_density(kf, km, fiber_density, matrix_density):
-    """rho_l = kf rho_f + km rho_m (seed 000 Table 2; voids weightless)."""
+    """rho_l = kf rho_f + km rho_m (Singh & Sanyal 2017 Table 2; voids weightless)."""
     return kf * fiber_density + km * matrix_density
 
 
 def rule_of_mixtures(kf, km, fiber_value, matrix_value):
-    """P_l11 = kf P_f11 + km P_m: E11, nu12, K11 (Chamis 1983; seed 000 Tables 3-4)."""
+    """P_l11 = kf P_f11 + km P_m: E11, nu12, K11 (Chamis 1983; Singh & Sanyal 2017 Tables
+    3-4)."""
     return kf * fiber_value + km * matrix_value
 
 
@@ -42,54 +46,57 @@ def transverse_inverse_mixture(kf, matrix_value, fiber_value):
 
 
 def matrix_shear_modulus(youngs_modulus, poisson_ratio):
-    """Gm = Em / (2 (1 + nu_m)) (isotropic matrix, seed 000 section IV)."""
+    """Gm = Em / (2 (1 + nu_m)) (isotropic matrix, Singh & Sanyal 2017 section IV)."""
     return youngs_modulus / (2.0 * (1.0 + poisson_ratio))
 
 
 def transverse_poisson_ratio(transverse_modulus, transverse_shear_modulus):
-    """nu23 = E22 / (2 G23) - 1 (Chamis 1983; seed 000 Table 3 typesets Em for E22)."""
+    """nu23 = E22 / (2 G23) - 1 (Chamis 1983; Singh & Sanyal 2017
+    Table 3 typesets Em for E22)."""
     return transverse_modulus / (2.0 * transverse_shear_modulus) - 1.0
 
 
 def longitudinal_expansion(kf, km, fiber_alpha11, fiber_e11, matrix_alpha, matrix_e, ply_e11):
-    """alpha_l11 = (kf alpha_f11 Ef11 + km alpha_m Em) / E_l11 (Chamis 1983; seed 000 Table 4)."""
+    """alpha_l11 = (kf alpha_f11 Ef11 + km alpha_m Em) / E_l11 (Chamis 1983; Singh & Sanyal
+    2017 Table 4)."""
     return (kf * fiber_alpha11 * fiber_e11 + km * matrix_alpha * matrix_e) / ply_e11
 
 
 def transverse_expansion(kf, fiber_alpha22, matrix_alpha, matrix_nu, fiber_e11, ply_e11):
     """alpha_l22 = alpha_f22 sqrt(kf) + (1 - sqrt(kf))(1 + kf nu_m Ef11/E_l11) alpha_m
-    (Chamis 1983; seed 000 Table 4)."""
+    (Chamis 1983; Singh & Sanyal 2017 Table 4)."""
     root = np.sqrt(kf)
     return fiber_alpha22 * root + (1.0 - root) * (1.0 + kf * matrix_nu * fiber_e11 / ply_e11) * matrix_alpha
 
 
 def transverse_conductivity(kf, fiber_k22, matrix_k):
     """K_l22 = (1 - sqrt(kf)) K_m + K_m sqrt(kf) / (1 - sqrt(kf)(1 - K_m/K_f22))
-    (Chamis 1983; the seed's Table 4 typesets the last factor as (1 - k_m/k_f))."""
+    (Chamis 1983; Singh & Sanyal 2017 Table 4 typesets the last factor as (1 - k_m/k_f))."""
     root = np.sqrt(kf)
     return (1.0 - root) * matrix_k + matrix_k * root / (1.0 - root * (1.0 - matrix_k / fiber_k22))
 
 
 def longitudinal_moisture_expansion(km, matrix_beta, matrix_e, ply_e11):
-    """beta_l11 = beta_m km Em / E_l11 (Chamis 1983, fibres do not swell; seed 000 Table 5)."""
+    """beta_l11 = beta_m km Em / E_l11 (Chamis 1983, fibres do not swell; Singh & Sanyal
+    2017 Table 5)."""
     return matrix_beta * km * matrix_e / ply_e11
 
 
 def transverse_moisture_expansion(kf, matrix_beta, matrix_e, ply_e22):
     """beta_l22 = beta_m (1 - sqrt(kf)) [1 + Em (1 - sqrt(kf)) sqrt(kf) /
-    (sqrt(kf) E_l22 + (1 - sqrt(kf)) Em)] (Chamis 1983; seed 000 Table 5)."""
+    (sqrt(kf) E_l22 + (1 - sqrt(kf)) Em)] (Chamis 1983; Singh & Sanyal 2017 Table 5)."""
     root = np.sqrt(kf)
     return matrix_beta * (1.0 - root) * (
         1.0 + matrix_e * (1.0 - root) * root / (root * ply_e22 + (1.0 - root) * matrix_e))
 
 
 def longitudinal_diffusivity(kf, matrix_d):
-    """D_l11 = (1 - kf) D_m (Chamis 1983; seed 000 Table 5)."""
+    """D_l11 = (1 - kf) D_m (Chamis 1983; Singh & Sanyal 2017 Table 5)."""
     return (1.0 - kf) * matrix_d
 
 
 def transverse_diffusivity(kf, matrix_d, model: str = "chamis"):
-    """D_l22 = (1 - sqrt(kf)) D_m (Chamis 1983; seed 000 Table 5), or
+    """D_l22 = (1 - sqrt(kf)) D_m (Chamis 1983; Singh & Sanyal 2017 Table 5), or
     ``model="shen_springer"``: (1 - 2 sqrt(kf/pi)) D_m (Shen & Springer 1976,
     J. Compos. Mater. 10:2-20, eq. 19, impermeable square-packed fibres)."""
     if model == "shen_springer":
@@ -98,8 +105,8 @@ def transverse_diffusivity(kf, matrix_d, model: str = "chamis"):
 
 
 def ply_moisture(matrix_moisture, matrix_beta_per_fraction, km, kv, matrix_density, ply_density_):
-    """M_l = M_m (3 beta_m km + kv) rho_m / rho_l (Chamis 1983; seed 000 section IV and
-    Table 10 step 2). beta_m here in strain per unit weight fraction (= 100 x per %);
+    """M_l = M_m (3 beta_m km + kv) rho_m / rho_l (Chamis 1983; Singh & Sanyal
+    2017 section IV and Table 10 step 2). beta_m here in strain per unit weight fraction (= 100 x per %);
     3 beta_m ~ 1 for epoxies, when M_l is the matrix weight share of M_m."""
     return matrix_moisture * (3.0 * matrix_beta_per_fraction * km + kv) * matrix_density / ply_density_
 

@@ -1,4 +1,4 @@
-"""Scene schema of one entry under ``materials:`` (SPEC.md section 1)."""
+"""Scene schema of one entry under ``materials:``."""
 from __future__ import annotations
 
 from typing import Annotated, Literal

@@ -1,6 +1,6 @@
 """Material state over ageing time: wet Tg, retention, moduli, strains, density.
 
-Order per time (Chamis 1983 NASA TM-83320; seeds/000_c9d2754e3bf549ac.txt Table 10):
+Order per time (Chamis 1983 NASA TM-83320; Singh & Sanyal 2017, Table 10):
 ply moisture (diffusion) -> matrix moisture (Chamis M_l relation, inverted) -> wet Tg
 -> retention P/P0 -> degraded matrix -> micromechanics -> ply properties -> free strain.
 Expansion coefficients are reported as Chamis' instantaneous values (alpha_m P0/P); the

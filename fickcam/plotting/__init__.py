@@ -9,9 +9,9 @@ import importlib
 from pathlib import Path
 
 from ..errors import InputError
-from .common import age_label, ages, days, drift_panel, figure, finish_plan_view, legend_outside, save_figure, tidy_ticks
+from .common import age_colour, age_label, ages, days, drift_panel, figure, finish_plan_view, legend_outside, save_figure, tidy_ticks
 
-__all__ = ["KINDS", "available_kinds", "plot", "age_label", "ages", "days", "drift_panel", "figure", "finish_plan_view", "legend_outside", "save_figure", "tidy_ticks"]
+__all__ = ["KINDS", "available_kinds", "plot", "age_colour", "age_label", "ages", "days", "drift_panel", "figure", "finish_plan_view", "legend_outside", "save_figure", "tidy_ticks"]
 
 # kind -> (module, function, variables the kind needs)
 KINDS = {

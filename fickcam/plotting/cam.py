@@ -9,8 +9,8 @@ from pathlib import Path
 import numpy as np
 
 from ..schema import design_name
-from .common import (age_label, ages, days, drift_panel, figure,
-                     finish_plan_view, legend_outside, save_figure)
+from .common import (age_colour, age_label, ages, days, drift_panel, exaggerated_outlines,
+                     figure, legend_outside, length_drift_panel, reference_curve, save_figure)
 
 KINEMATICS = (("follower_displacement", "displacement [mm]", 1e3),
               ("follower_velocity", "velocity [m/s]", 1.0),
@@ -42,7 +42,7 @@ def _panels(plt, ds, rows, title, drift=None):
     t = days(ds)
     for ax, (name, ylabel, scale) in zip(axes[:, 0], present):
         for k in ages(ds):
-            ax.plot(angle, ds[name].isel(time=k).values * scale, color=f"C{k % 10}", label=age_label(t[k]))
+            ax.plot(angle, ds[name].isel(time=k).values * scale, color=age_colour(ds, k), label=age_label(t[k]))
         ax.set_ylabel(ylabel)
         ax.grid(alpha=0.3)
     if with_drift:
@@ -67,16 +67,47 @@ def plot_kinematics(ds, outdir) -> list[Path]:
                            outdir / "cam_kinematics.png")]
     written.append(_drift(plt, ds, outdir, name, rows))
     if "profile_x" in ds:
-        fig, ax = plt.subplots(figsize=(6, 6))
-        t = days(ds)
-        for k in sorted({0, ds.sizes["time"] - 1}):
-            x = np.append(ds["profile_x"].isel(time=k).values, ds["profile_x"].isel(time=k).values[0])
-            y = np.append(ds["profile_y"].isel(time=k).values, ds["profile_y"].isel(time=k).values[0])
-            ax.plot(x * 1e3, y * 1e3, color=f"C{k % 10}", label=age_label(t[k]))
-        ax.plot([0], [0], "k+")
-        finish_plan_view(ax, f"{name}: working profile")
-        written.append(save_figure(fig, outdir / "cam_profile.png"))
+        written.append(_profile(plt, ds, outdir, name))
     return written
+
+
+def polar(x, y) -> tuple[np.ndarray, np.ndarray]:
+    """(polar angle [deg] in [0, 360), radius) of points (x, y) in the cam frame."""
+    return np.degrees(np.arctan2(y, x)) % 360.0, np.hypot(x, y)
+
+
+def radial_deviation(reference, x, y) -> np.ndarray:
+    """The radius of the profile points (x, y) minus the ``reference`` (polar angle [deg],
+    ascending; radius) at the reference's polar angles: the aged radius is interpolated
+    there, as a roundness gauge reads a profile."""
+    angle, radius = reference
+    aged_angle, aged_radius = polar(x, y)
+    order = np.argsort(aged_angle)
+    return np.interp(angle, aged_angle[order], aged_radius[order], period=360.0) - radius
+
+
+def _profile(plt, ds, outdir, name) -> Path:
+    """cam_profile.png: the working profile with its drift from the design (else from the
+    first ageing time) exaggerated by a stated factor, and the radial deviation against
+    the polar angle."""
+    picks = ages(ds)
+    (x, y), against = reference_curve(ds, ("profile_x", "profile_y"))
+    angle, radius = polar(x, y)
+    order = np.argsort(angle)
+    angle, radius = angle[order], radius[order]
+    deviation = {k: radial_deviation((angle, radius), ds["profile_x"].isel(time=k).values,
+                                     ds["profile_y"].isel(time=k).values) for k in picks}
+    unit = np.radians(angle)
+    fig, (plan, over) = plt.subplots(1, 2, figsize=(12, 5.6), gridspec_kw={"width_ratios": [1, 1.3]})
+    exaggerated_outlines(plan, ds, (radius * np.cos(unit), radius * np.sin(unit)),
+                         {k: (dr * np.cos(unit), dr * np.sin(unit)) for k, dr in deviation.items()},
+                         picks, f"{name}: working profile", against)
+    plan.plot([0], [0], "k+")
+    length_drift_panel(over, ds, angle, deviation, "polar angle on the cam [deg]",
+                       "radius − design radius" if against == "design" else f"radius − radius at {against}",
+                       f"radial deviation of the working profile from {'the ' * (against == 'design')}{against}")
+    over.axhline(0.0, color="k", lw=0.8, ls="--")
+    return save_figure(fig, outdir / "cam_profile.png")
 
 
 def _drift(plt, ds, outdir, name, rows) -> Path:
@@ -88,12 +119,12 @@ def _drift(plt, ds, outdir, name, rows) -> Path:
     for ax, (var, ylabel, scale) in zip(axes, (rows[0], rows[2])):
         first = ds[var].isel(time=0).values
         for k in ages(ds)[1:]:
-            ax.plot(angle, (ds[var].isel(time=k).values - first) * scale, color=f"C{k % 10}",
+            ax.plot(angle, (ds[var].isel(time=k).values - first) * scale, color=age_colour(ds, k),
                     label=age_label(t[k]))
         ax.set_ylabel(f"change in {ylabel}")
         ax.grid(alpha=0.3)
     axes[0].set_title(f"{name}: drift from t = {t[0]:g} d")
-    axes[0].legend(fontsize=8)
+    legend_outside(axes[0])
     axes[-1].set_xlabel("cam angle [deg]")
     return save_figure(fig, outdir / "cam_drift.png")
 

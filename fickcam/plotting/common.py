@@ -19,20 +19,41 @@ def days(ds):
     """Ageing times of ``ds`` in days (float array)."""
     import numpy as np
 
-    return ds["time"].values / np.timedelta64(1, "D")
+    return np.asarray(ds["time"].values, float)
+
+
+#: a mechanism's motion: ageing times where it is NaN have no valid state (beyond the wet Tg)
+MOTIONS = ("follower_displacement", "follower_arm_angle", "rocker_angle")
 
 
 def ages(ds, most: int = 4) -> list[int]:
-    """Indices of up to ``most`` ageing times spread from the first to the last."""
+    """Indices of up to ``most`` ageing times spread from the first to the last, among
+    those where the mechanism has a valid state (a line to draw)."""
     import numpy as np
 
-    n = ds.sizes["time"]
-    return sorted(set(np.linspace(0, n - 1, min(n, most)).round().astype(int).tolist()))
+    valid = np.arange(ds.sizes["time"])
+    motion = next((name for name in MOTIONS if name in ds), None)
+    if motion is not None:
+        values = ds[motion].transpose("time", ...).values.reshape(valid.size, -1)
+        valid = valid[np.isfinite(values).any(axis=1)] if np.isfinite(values).any() else valid
+    n = valid.size
+    return sorted(set(valid[np.linspace(0, n - 1, min(n, most)).round().astype(int)].tolist()))
+
+
+def age_colour(ds, k: int):
+    """The colour of ageing index ``k`` of ``ds`` in every figure of the result: viridis
+    from the first ageing time (dark) to the last (green), so order reads as time."""
+    from matplotlib import colormaps
+
+    return colormaps["viridis"](0.85 * k / max(ds.sizes["time"] - 1, 1))
 
 
 def age_label(t_days: float) -> str:
-    """Legend text of an ageing time in days."""
-    return f"t = {t_days:g} d"
+    """Legend text of an ageing time: in days, or hours or minutes below a day."""
+    if t_days == 0 or t_days >= 1:
+        return f"t = {t_days:g} d"
+    hours = t_days * 24.0
+    return f"t = {hours:.4g} h" if hours >= 1 else f"t = {hours * 60:.4g} min"
 
 
 def finish_plan_view(ax, title: str) -> None:
@@ -43,6 +64,72 @@ def finish_plan_view(ax, title: str) -> None:
     ax.set_title(title)
     ax.legend(fontsize=8)
     ax.grid(alpha=0.3)
+
+
+def length_scale(largest: float) -> tuple[float, str]:
+    """(scale from m, unit) to show lengths up to ``largest`` [m]: µm below a millimetre."""
+    return (1e6, "µm") if largest < 1e-3 else (1e3, "mm")
+
+
+def exaggeration(size: float, deviation: float) -> float:
+    """A factor of 1, 2 or 5 x 10^n that makes the largest ``deviation`` about 8 % of
+    ``size`` (1: the deviation is shown as it is)."""
+    import math
+
+    if not deviation > 0 or deviation >= 0.08 * size:
+        return 1.0
+    wanted = 0.08 * size / deviation
+    decade = 10.0 ** math.floor(math.log10(wanted))
+    return max(f * decade for f in (1.0, 2.0, 5.0) if f * decade <= wanted)
+
+
+def reference_curve(ds, names) -> tuple[tuple, str]:
+    """The as-designed values of the variables ``names`` and ``"design"``, or, in a result
+    without them, their values at the first ageing time and its label."""
+    from ..schema import design_name
+
+    if all(design_name(n) in ds for n in names):
+        return tuple(ds[design_name(n)].values for n in names), "design"
+    return tuple(ds[n].isel(time=0).values for n in names), age_label(days(ds)[0])
+
+
+def exaggerated_outlines(ax, ds, reference, deviations, picks, what: str,
+                         against: str = "design") -> None:
+    """Plan view in mm: ``reference`` (x, y) [m] dashed (labelled ``against``), and for
+    each ageing index in ``picks`` the reference plus its deviation (dx, dy) [m]
+    (``deviations[k]``) multiplied by one stated factor, so that sub-millimetre drift shows."""
+    import numpy as np
+
+    x, y = reference
+    size = float(np.ptp(np.concatenate([x, y])))
+    largest = max(float(np.nanmax(np.hypot(*deviations[k]))) for k in picks)
+    factor = exaggeration(size, largest)
+    ax.plot(np.append(x, x[0]) * 1e3, np.append(y, y[0]) * 1e3, "k--", lw=1, label=against)
+    t = days(ds)
+    for k in picks:
+        dx, dy = deviations[k]
+        ax.plot(np.append(x + factor * dx, x[0] + factor * dx[0]) * 1e3,
+                np.append(y + factor * dy, y[0] + factor * dy[0]) * 1e3,
+                color=age_colour(ds, k), label=age_label(t[k]))
+    shown = f"deviation from {'the ' * (against == 'design')}{against} ×{factor:g}" if factor > 1 \
+        else "to scale"
+    finish_plan_view(ax, f"{what}\n({shown})")
+
+
+def length_drift_panel(ax, ds, x, lengths: dict, xlabel: str, quantity: str, title: str) -> None:
+    """A line per ageing index ``k`` of ``lengths[k]`` [m] against ``x``, in µm or mm as
+    their size asks; the y label is ``quantity`` with that unit."""
+    import numpy as np
+
+    scale, units = length_scale(max(float(np.nanmax(np.abs(v))) for v in lengths.values()))
+    t = days(ds)
+    for k, values in lengths.items():
+        ax.plot(x, values * scale, color=age_colour(ds, k), label=age_label(t[k]))
+    ax.set_xlabel(xlabel)
+    ax.set_ylabel(f"{quantity} [{units}]")
+    ax.set_title(title, fontsize=10)
+    ax.grid(alpha=0.3)
+    legend_outside(ax)
 
 
 def tidy_ticks(fig) -> None:
@@ -73,7 +160,7 @@ def drift_panel(ax, x, ds, name: str, picks, scale: float, ylabel: str) -> None:
     shown = []
     for k in picks:
         shown.append(change.isel(time=k).values * scale)
-        ax.plot(x, shown[-1], color=f"C{k % 10}", label=age_label(t[k]))
+        ax.plot(x, shown[-1], color=age_colour(ds, k), label=age_label(t[k]))
     ax.axhline(0.0, color="k", lw=0.8, ls="--")
     ax.set_ylabel(ylabel)
     ax.grid(alpha=0.3)

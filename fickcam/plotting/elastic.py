@@ -26,7 +26,6 @@ def plot(ds, outdir) -> list[Path]:
     written = []
     if "elastic_deflection" in ds:
         fig = _panels(plt, ds, CONTACT, f"{name}: cam plate under the contact force")
-        fig.axes[0].legend(fontsize=8, loc="upper left")
         written.append(save_figure(fig, outdir / "elastic_contact.png"))
     if "swelling_stress_tensile" in ds:
         written.append(_over_ageing(plt, ds, outdir, name))

@@ -7,7 +7,7 @@ from pathlib import Path
 from ..errors import format_duration
 from ..limits import stored_limits, worst_value
 from ..query import drift
-from .common import age_label, ages, days, figure, save_figure
+from .common import age_colour, age_label, ages, days, figure, save_figure
 
 ANGLES = ("cam_angle", "crank_angle")
 
@@ -17,25 +17,35 @@ def _units(limit) -> tuple[float, str]:
     return limit.display_scale, limit.display_units or limit.units
 
 
+def worst_label(variable: str, kind: str, over_cycle: bool) -> str:
+    """What :func:`~fickcam.limits.worst_value` gives, in words: ``|x - design|`` for a
+    deviation, the largest or smallest value over the cycle for a max or min."""
+    if kind == "deviation":
+        return f"largest |{variable} − design|" if over_cycle else f"|{variable} − design|"
+    if not over_cycle:
+        return variable
+    return f"{'largest' if kind == 'max' else 'smallest'} {variable} over the cycle"
+
+
 def _over_time(ax, ds, limit) -> None:
-    """The worst value per ageing time, the limits dashed, the crossing marked."""
+    """The worst value per ageing time, the limits dashed, the crossing marked; the y label
+    names what is plotted (|x - design| for a deviation)."""
     t = days(ds)
     scale, units = _units(limit)
     kinds = [k for k in ("deviation", "max", "min") if getattr(limit, k) is not None]
-    over = " over the cycle" if ds[limit.variable].ndim > 1 else ""
+    over = ds[limit.variable].ndim > 1
     for kind in kinds:
-        label = "largest |x - design|" + over if kind == "deviation" else (f"{kind}{over}" if over
-                                                                          else limit.variable)
-        ax.plot(t, worst_value(ds, limit.variable, kind) * scale, "-o", ms=3, label=label)
+        ax.plot(t, worst_value(ds, limit.variable, kind) * scale, "-o", ms=3, color="C0",
+                label=worst_label(limit.variable, kind, over))
         ax.axhline(getattr(limit, kind) * scale, color="r", lw=1.2, ls="--", label=f"limit ({kind})")
     failed = float(ds["time_out_of_spec"].sel(limit=limit.variable))
     if not math.isnan(failed):
         ax.axvline(failed, color="k", lw=1, ls=":",
                    label=f"out of spec at {format_duration(failed * 86400)}")
     ax.set_xlabel("ageing time [d]")
-    ax.set_ylabel(f"{limit.variable} [{units}]")
+    ax.set_ylabel(_wrapped(f"{worst_label(limit.variable, kinds[0], over)} [{units}]"))
     ax.set_title(f"{limit.variable}: {limit.text}", fontsize=10)
-    ax.legend(fontsize=7)
+    _legend_below(ax)
     ax.grid(alpha=0.3)
 
 
@@ -48,7 +58,8 @@ def _over_cycle(ax, ds, limit, dim: str) -> None:
         values = array.isel(time=k)
         if values.ndim > 1:  # e.g. joint forces: the worst over the other dimension
             values = values.max([d for d in values.dims if d != dim])
-        ax.plot(ds[dim].values, values.values, label=age_label(days(ds)[k]))
+        ax.plot(ds[dim].values, values.values, color=age_colour(ds, k),
+                label=age_label(days(ds)[k]))
     if deviation:
         band = limit.deviation * scale
         ax.fill_between(ds[dim].values, -band, band, color="g", alpha=0.12,
@@ -58,10 +69,22 @@ def _over_cycle(ax, ds, limit, dim: str) -> None:
             ax.axhline(getattr(limit, kind) * scale, color="r", lw=1.2, ls="--",
                        label=f"limit ({kind})")
     ax.set_xlabel(f"{dim.replace('_', ' ')} [deg]")
-    prefix = "drift of " if deviation else ""
-    ax.set_ylabel(f"{prefix}{limit.variable} [{units}]")
-    ax.legend(fontsize=7)
+    suffix = " − design" if deviation else ""
+    ax.set_ylabel(_wrapped(f"{limit.variable}{suffix} [{units}]"))
+    _legend_below(ax)
     ax.grid(alpha=0.3)
+
+
+def _legend_below(ax) -> None:
+    """The legend under the axes, where it covers no curve."""
+    ax.legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.2), ncols=2, frameon=False)
+
+
+def _wrapped(label: str, width: int = 34) -> str:
+    """An axis label broken into lines of about ``width`` characters (a limits row is short)."""
+    import textwrap
+
+    return "\n".join(textwrap.wrap(label, width))
 
 
 def plot(ds, outdir) -> list[Path]:
@@ -71,7 +94,7 @@ def plot(ds, outdir) -> list[Path]:
     cycle = {limit.variable: next((d for d in ds[limit.variable].dims if d in ANGLES), None)
              for limit in limits}
     columns = 2 if any(cycle.values()) else 1
-    fig, axes = plt.subplots(len(limits), columns, figsize=(5.5 * columns, 3.4 * len(limits)),
+    fig, axes = plt.subplots(len(limits), columns, figsize=(5.5 * columns, 4.3 * len(limits)),
                              squeeze=False)
     for row, limit in zip(axes, limits):
         _over_time(row[0], ds, limit)

@@ -1,5 +1,5 @@
-"""Four-bar over ageing: coupler curves, rocker angle and its drift (as seed 001,
-seeds/001_51a6f900df76f3cc.txt Figs. 6-9, plots theta_41 - theta_4) against the design
+"""Four-bar over ageing: coupler curves, rocker angle and its drift (as Singh & Sanyal
+2016, Figs. 6-9, plot theta_41 - theta_4) against the design
 and against t = 0, transmission angle and input torque."""
 from __future__ import annotations
 
@@ -8,8 +8,8 @@ from pathlib import Path
 import numpy as np
 
 from ..schema import design_name
-from .common import (age_label, ages, days, drift_panel, figure,
-                     finish_plan_view, legend_outside, save_figure)
+from .common import (age_colour, age_label, ages, days, drift_panel, exaggerated_outlines,
+                     figure, legend_outside, length_drift_panel, reference_curve, save_figure)
 
 
 def _wrapped_degrees(x):
@@ -21,7 +21,7 @@ def _over_crank(ax, ds, name, picks, t, ylabel, transform=None, style="-", prefi
     crank = ds["crank_angle"].values
     for k in picks:
         y = ds[name].isel(time=k).values
-        ax.plot(crank, transform(y) if transform else y, style, color=f"C{k % 10}",
+        ax.plot(crank, transform(y) if transform else y, style, color=age_colour(ds, k),
                 label=prefix + age_label(t[k]))
     ax.set_ylabel(ylabel)
     ax.grid(alpha=0.3)
@@ -38,13 +38,8 @@ def plot(ds, outdir) -> list[Path]:
     name = ds.attrs.get("scene_name", "")
     written = []
 
-    fig, ax = plt.subplots(figsize=(6.5, 6))
     if "coupler_point_x" in ds:
-        for k in picks:
-            x, y = (_closed(ds[c].isel(time=k).values) * 1e3 for c in ("coupler_point_x", "coupler_point_y"))
-            ax.plot(x, y, color=f"C{k % 10}", label=age_label(t[k]))
-    finish_plan_view(ax, f"{name}: coupler curve")
-    written.append(save_figure(fig, outdir / "linkage_coupler_curve.png"))
+        written.append(_coupler_figure(plt, ds, picks, t, name, outdir))
 
     written.append(_rocker_figure(plt, ds, picks, t, name, outdir))
 
@@ -60,6 +55,27 @@ def plot(ds, outdir) -> list[Path]:
     bottom.set_xlabel("crank angle theta2 [deg]")
     written.append(save_figure(fig, outdir / "linkage_transmission_torque.png"))
     return written
+
+
+def _coupler_figure(plt, ds, picks, t, name, outdir) -> Path:
+    """linkage_coupler_curve.png: the coupler curve with its drift from the design (else
+    from the first ageing time) exaggerated by a stated factor, and the coupler point's
+    distance from that position at each crank angle."""
+    names = ("coupler_point_x", "coupler_point_y")
+    reference, against = reference_curve(ds, names)
+    deviation = {k: tuple(ds[c].isel(time=k).values - r for c, r in zip(names, reference))
+                 for k in picks}
+    fig, (plan, over) = plt.subplots(1, 2, figsize=(12, 5.6), gridspec_kw={"width_ratios": [1, 1.3]})
+    exaggerated_outlines(plan, ds, reference, deviation, picks, f"{name}: coupler curve", against)
+    distance = {k: np.hypot(*d) for k, d in deviation.items()}
+    crank = _closed(ds["crank_angle"].values)
+    crank[-1] += 360.0
+    length_drift_panel(over, ds, crank, {k: _closed(d) for k, d in distance.items()},
+                       "crank angle theta2 [deg]", f"coupler point distance from {against}",
+                       "coupler point: distance from its "
+                       + ("as-designed position" if against == "design" else f"position at {against}"))
+    over.set_ylim(bottom=0.0)
+    return save_figure(fig, outdir / "linkage_coupler_curve.png")
 
 
 def _closed(values: np.ndarray) -> np.ndarray:

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from .common import age_label, ages, days, figure, save_figure
+from .common import age_colour, age_label, ages, days, figure, legend_outside, save_figure
 
 ANGLE_PANELS = (("follower_displacement", "dynamic_follower_displacement", "displacement [mm]", 1e3),
                 (None, "dynamic_displacement_error", "dynamic − kinematic [mm]", 1e3),
@@ -27,7 +27,7 @@ def _over_angle(plt, ds, outdir, name) -> Path:
     t = days(ds)
     for ax, (rigid, elastic, ylabel, scale) in zip(axes, ANGLE_PANELS):
         for k in ages(ds):
-            color = f"C{k % 10}"
+            color = age_colour(ds, k)
             if rigid is not None:
                 ax.plot(angle, ds[rigid].isel(time=k).values * scale, "--", color=color, lw=0.9)
             ax.plot(angle, ds[elastic].isel(time=k).values * scale, color=color, label=age_label(t[k]))
@@ -35,7 +35,7 @@ def _over_angle(plt, ds, outdir, name) -> Path:
         ax.grid(alpha=0.3)
     axes[2].axhline(0.0, color="k", lw=0.6)
     axes[0].set_title(f"{name}: elastic follower (solid) vs rigid (dashed)")
-    axes[0].legend(fontsize=8)
+    legend_outside(axes[0])
     axes[-1].set_xlabel("cam angle [deg]")
     return save_figure(fig, outdir / "cam_vibration.png")
 

@@ -1,4 +1,4 @@
-"""Sweeps and Monte Carlo over many scenes on dask.distributed (SPEC.md §2).
+"""Sweeps and Monte Carlo over many scenes on dask.distributed.
 
 ``run_sweep(sweep_path, output, workers=None, scheduler=None, progress=False)``
 is what ``fickcam sweep`` calls. dask is imported only when a sweep runs, so

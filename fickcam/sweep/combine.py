@@ -15,6 +15,7 @@ from collections.abc import Mapping
 import numpy as np
 
 from .._version import __version__
+from ..dataset import ageing_seconds
 from .journal import CaseArrays
 from .spec import Sweep
 
@@ -130,7 +131,7 @@ def stack_cases(case, n: int):
                 stack = stacks[name] = np.empty((n,) + values.shape, values.dtype)
             elif np.result_type(stack, values) != stack.dtype:  # bool cases and NaN ones
                 stack = stacks[name] = stack.astype(np.result_type(stack, values))
-            stack[index] = values
+            stack[index, ...] = values  # a 0-d text array: its item, not the array object
     data = {name: xr.Variable(("case",) + dims, stacks[name], attrs)
             for name, (dims, _, attrs) in first.data.items()}
     return xr.Dataset(data, coords={name: xr.Variable(*v) for name, v in first.coords.items()})
@@ -175,7 +176,7 @@ def case_ends(ds) -> np.ndarray:
     """Each case's last ageing time with a value (s; NaN for a case without any): the
     ageing times of cases that vary the history's length differ (``every`` ends on each
     case's own history), and the combined result holds NaN at the others' times."""
-    times = ds["time"].values / np.timedelta64(1, "s")
+    times = ageing_seconds(ds)
     held = np.zeros((ds.sizes["case"], times.size), bool)
     for variable in ds.data_vars.values():
         if variable.dims[:2] == ("case", "time") and variable.dtype.kind in "fc":
@@ -193,7 +194,7 @@ def early_ends(ds) -> str | None:
         return None
     ends = case_ends(ds)
     ok = (ds["case_status"].values == "ok") if "case_status" in ds.coords else np.isfinite(ends)
-    last = float(ds["time"].values[-1] / np.timedelta64(1, "s"))
+    last = float(ageing_seconds(ds)[-1])
     early = np.flatnonzero(ok & np.isfinite(ends) & (ends < last))
     if not early.size:
         return None

@@ -16,7 +16,7 @@ import math
 
 import numpy as np
 
-from ..units import to_si
+from ..unit_parsing import to_si
 
 #: group -> (key, fickcam.units dimension or None, unit written into the scene, drawn as log)
 GROUPS = {

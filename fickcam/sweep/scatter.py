@@ -40,7 +40,7 @@ def fractions(ds):
     ``cases_out_of_spec`` (time, limit), for a combined sweep result with limits."""
     import xarray as xr
 
-    ages = ds["time"].values / np.timedelta64(1, "D")
+    ages = np.asarray(ds["time"].values, float)
     ran = (np.asarray(ds["case_status"].values) == "ok") if "case_status" in ds.coords else \
         np.ones(ds.sizes["case"], bool)
     failed = ds["time_out_of_spec"].transpose("case", "limit").values
@@ -63,7 +63,7 @@ def summary_lines(ds) -> list[str]:
     if "fraction_out_of_spec" not in ds:
         return []
     n = int(ds["cases_out_of_spec"].attrs.get("cases", 0))
-    ages = ds["time"].values / np.timedelta64(1, "D")
+    ages = np.asarray(ds["time"].values, float)
     lines = [f"out of spec (of {n} case(s) that ran; Wilson 95 % interval):"]
     for limit in ds["limit"].values:
         cells = []

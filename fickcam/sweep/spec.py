@@ -1,4 +1,4 @@
-"""Sweep files (SPEC.md §2): a base scene plus what to vary, by dotted path.
+"""Sweep files: a base scene plus what to vary, by dotted path.
 
 A sweep file names a ``base`` scene (relative to the sweep file) and either a
 ``grid`` (every combination of the listed values, the last key varying
@@ -37,7 +37,7 @@ Scalar = Union[bool, int, float, str]
 
 def _number_and_unit(value: Any) -> tuple[float, str]:
     """``0.6`` → (0.6, ""), ``"65 %"`` → (65.0, "%"); ValueError if not a number."""
-    from ..units import split_number_unit
+    from ..unit_parsing import split_number_unit
 
     if isinstance(value, bool):
         raise ValueError(f"expected a number, got {value!r}")
@@ -232,7 +232,7 @@ _LABELS = {
 
 
 def _is_angular(text: str) -> bool:
-    from ..units import registry
+    from ..unit_parsing import registry
 
     _, unit = _number_and_unit(text)
     try:
@@ -245,7 +245,7 @@ def _is_angular(text: str) -> bool:
 def infer_dimension(text: str, si_value: float) -> str | None:
     """The dimension whose SI conversion of ``text`` (a number with a unit) gives
     ``si_value`` — the value the scene model made of it."""
-    from ..units import to_si
+    from ..unit_parsing import to_si
 
     angular = _is_angular(text)
     for dimension in _LABELS:
@@ -303,7 +303,7 @@ class Parameter:
     def coordinate(self, raws: list):
         """Coordinate values for the result (SI, angles in degrees, speeds in rpm);
         NaN for a value that cannot be read (its case fails validation)."""
-        from ..units import to_si
+        from ..unit_parsing import to_si
 
         if self.dimension is None:
             numbers = [_bare_number(r) for r in raws]

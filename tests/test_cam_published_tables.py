@@ -1,9 +1,10 @@
-"""The seed papers' cam numbers, reproduced under each paper's own conventions, with
-each slip named where it is met.
+"""The published cam papers' numbers, reproduced under each paper's own conventions,
+with each slip named where it is met.
 
-seeds/000_c9d2754e3bf549ac.txt (Singh & Sanyal 2017) Tables 18-19, seeds/004_101c340ef7457bc8.txt
-(Yadav et al. 2017) worked example and wear figure, seeds/003_b8317aa6e553b071.txt (eccentric
-cam, Table 5.3 dial gauge, Table 5.8 contact force).
+Singh & Sanyal (2017) Tables 18-19, Yadav et al. (2017) worked example and wear figure,
+Madhukar et al. (2023) (eccentric cam, Table 5.3 dial gauge, Table 5.8 contact force).
+
+The papers are cited in full in :mod:`fickcam.cam`.
 """
 import logging
 import math
@@ -22,7 +23,7 @@ from tolerance import roundoff
 log = logging.getLogger(__name__)
 INCH = 0.0254
 
-# ---------------------------------------------------------------- seed 000
+# ---------------------------------------------------------------- Singh & Sanyal 2017
 
 # Table 18: angle, y, y1 (hygrothermal), y', y'1, y'', y''1, y''', y'''1 (inch, per normalised angle)
 TABLE_18 = [
@@ -53,10 +54,10 @@ TABLE_19 = [
     (255, 3.0653, 3.2057, 1299.7, 1319.6, 1402.8, 1422.9, -51.495, -53.033),
 ]
 # The paper's swelling of the pitch circle (p. 281): eps = alpha dT + beta dm
-SEED000_STRAIN = 70e-6 * 90 + 3.09e-3 * 3  # 0.01557 -> R_p 3.14 -> 3.189 in, h 1.5 -> 1.523 in
+SINGH2017_STRAIN = 70e-6 * 90 + 3.09e-3 * 3  # 0.01557 -> R_p 3.14 -> 3.189 in, h 1.5 -> 1.523 in
 
 
-def seed000_kinematics(lift_inch):
+def singh2017_kinematics(lift_inch):
     """Table 18's convention: SHM y = h/2 (1 - cos(pi k)) with k = theta/180 deg taken from
     the absolute cam angle (not (theta - 105)/75 as its text says), derivatives per k, inch."""
     angles = np.array([row[0] for row in TABLE_18], float)
@@ -64,16 +65,16 @@ def seed000_kinematics(lift_inch):
     return lift_inch * s, lift_inch * s1, lift_inch * s2, lift_inch * s3
 
 
-def test_seed000_pitch_circle_swelling_gives_the_aged_lift():
-    assert 3.14 * SEED000_STRAIN == pytest.approx(0.04889, abs=1e-5)
-    assert 1.5 * (1 + SEED000_STRAIN) == pytest.approx(1.523, abs=5e-4)
+def test_singh2017_pitch_circle_swelling_gives_the_aged_lift():
+    assert 3.14 * SINGH2017_STRAIN == pytest.approx(0.04889, abs=1e-5)
+    assert 1.5 * (1 + SINGH2017_STRAIN) == pytest.approx(1.523, abs=5e-4)
 
 
 @pytest.mark.parametrize("column, aged", [(0, False), (0, True), (1, False), (1, True),
                                           (2, False), (2, True), (3, False), (3, True)])
-def test_seed000_table18_reproduced_per_normalised_angle(column, aged):
-    lift = 1.5 * (1 + SEED000_STRAIN) if aged else 1.5
-    ours = seed000_kinematics(lift)[column]
+def test_singh2017_table18_reproduced_per_normalised_angle(column, aged):
+    lift = 1.5 * (1 + SINGH2017_STRAIN) if aged else 1.5
+    ours = singh2017_kinematics(lift)[column]
     paper = np.array([row[1 + 2 * column + aged] for row in TABLE_18])
     # slips in the table: y' (normal) at 195 deg is printed -0.609 (truncated -0.6098), y'
     # (aged) at 255 deg -2.318 (transposed digits of -2.3108); its text prints the SHM
@@ -84,13 +85,13 @@ def test_seed000_table18_reproduced_per_normalised_angle(column, aged):
     assert np.allclose(ours, paper, rtol=2e-3, atol=2e-3), np.c_[ours, paper]
 
 
-def test_seed000_table19_reproduced_with_its_sign_and_speed_slips():
+def test_singh2017_table19_reproduced_with_its_sign_and_speed_slips():
     """Table 19: F_i = -m y'' (the cam must supply +m y''; the paper flips the inertia
     term), F_s = k y with k in N/inch and y in inch, R = P + F_i + F_s and T = R y'/omega
     with omega = 62 rad/s (its inputs say 62.83; 62 reproduces every row), in 'N inch'
     although y' is per normalised angle. Masses 1.6 kg dry, 1.648 kg aged (3 % gain)."""
     for aged in (False, True):
-        y, y1, y2, _ = seed000_kinematics(1.5 * (1 + SEED000_STRAIN) if aged else 1.5)
+        y, y1, y2, _ = singh2017_kinematics(1.5 * (1 + SINGH2017_STRAIN) if aged else 1.5)
         mass = 1.648 if aged else 1.6
         inertia = -mass * y2
         spring = 1376.7 * y
@@ -104,7 +105,7 @@ def test_seed000_table19_reproduced_with_its_sign_and_speed_slips():
         assert not np.allclose(resultant * y1 / 62.83, paper[:, 3], rtol=5e-3, atol=1e-3)
 
 
-def test_seed000_scene_in_si_scales_lift_and_follower_motion_by_the_strain():
+def test_singh2017_scene_in_si_scales_lift_and_follower_motion_by_the_strain():
     """The same cam in SI (configs/singh2017_cam.yaml): dwell 105, SHM rise/return 1.5 in over
     75 deg, roller 0.6 in, Rb 1.94 in; isotropic swelling by the paper's 1.557 % scales the
     lift to 1.523 in and every derivative by the same factor."""
@@ -117,7 +118,7 @@ def test_seed000_scene_in_si_scales_lift_and_follower_motion_by_the_strain():
                        roller_radius=0.6 * INCH, spring_rate=1376.7 / INCH, external_load=100.0)
     theta = np.radians(np.arange(0.0, 360.0, 1.0))
     dry = cam_response(design, CamState(cam_surface_modulus=8e9), theta).variables
-    eps = SEED000_STRAIN
+    eps = SINGH2017_STRAIN
     wet = cam_response(design, CamState(eps, eps, eps, 1.648, 8e9), theta).variables
     assert wet["lift"] / INCH == pytest.approx(1.523, abs=5e-4)
     for name in ("follower_displacement", "follower_velocity", "follower_acceleration"):
@@ -129,14 +130,14 @@ def test_seed000_scene_in_si_scales_lift_and_follower_motion_by_the_strain():
         -1.5 * INCH * math.pi ** 2 / (2 * beta ** 2) * 62.83 ** 2, rel=1e-12)
 
 
-# ---------------------------------------------------------------- seed 004
+# ---------------------------------------------------------------- Yadav et al. 2017
 
-SEED004 = dict(h=0.0254, beta=math.radians(100), rpm=900.0, k=19345.95, preload_travel=0.009,
+YADAV2017 = dict(h=0.0254, beta=math.radians(100), rpm=900.0, k=19345.95, preload_travel=0.009,
                weight=8.896, mu=0.05, l1=0.00785, l2=0.074, d=0.0157, alpha=math.radians(10))
 
 
-def seed004_design():
-    s = SEED004
+def yadav2017_design():
+    s = YADAV2017
     segments = segments_from_spec([Segment(rise=s["h"], over=s["beta"], law="cycloidal"),
                                    Segment(**{"return": s["h"]}, over=s["beta"], law="cycloidal"),
                                    Segment(dwell=2 * math.pi - 2 * s["beta"])])
@@ -146,15 +147,15 @@ def seed004_design():
                      guide_factor=dyn.guide_friction_factor(s["mu"], s["l1"], s["l2"], s["d"]))
 
 
-def test_seed004_worked_example_at_75_deg_of_the_cycloidal_rise():
+def test_yadav2017_worked_example_at_75_deg_of_the_cycloidal_rise():
     """y = 0.0230 m, v = 1.3716 m/s, a = -464.82 m/s^2, F_s = 619.0 N, P = 197.56 N,
     F_n = 202.75 N, T = 2.905 N m, F_f = 10.14 N, all within 1 %. The paper: spring rate
     19345.95 N/m is printed as 773/0.040, which is 19325 N/m (we keep the rate it uses);
     it leaves out the follower's weight (gravity off); its 'y = 0.0230 m/s' is a length;
     the 10 deg in F_n and T is an assumed obliquity: a flat face perpendicular to its axis
     has pressure angle 0, so the full model gives F_n = P (shown at the end)."""
-    s = SEED004
-    design = seed004_design()
+    s = YADAV2017
+    design = yadav2017_design()
     theta = np.array([math.radians(75)])
     r = cam_response(design, CamState(cam_surface_modulus=110e9), theta).variables
     y, v, a = (r[n][0] for n in ("follower_displacement", "follower_velocity",
@@ -180,35 +181,35 @@ def test_seed004_worked_example_at_75_deg_of_the_cycloidal_rise():
     assert r["friction_force"][0] == pytest.approx(s["mu"] * axial, rel=1e-12)
 
 
-def test_seed004_wear_figure_does_not_follow_from_its_inputs():
+def test_yadav2017_wear_figure_does_not_follow_from_its_inputs():
     """Z = l a0 (P0/H1)^a1 (H2/H1)^a2 mu^a3 with l = 0.07 m, a0 = 1.13e-5, P0 = 255.3e6,
     H1 = 450, H2 = 370, mu = 0.05 and Table 2.1's exponents gives 16.63 um; the paper prints
     14.68 um (13 % lower; its formula also shows mu^a1 for mu^a3)."""
     z = dyn.empirical_wear_depth(0.07, 255.3e6, 450.0, 370.0, 0.05)
-    log.info("seed 004 wear: %.4g um (paper 14.68 um)", z * 1e6)
+    log.info("Yadav et al. 2017 wear: %.4g um (paper 14.68 um)", z * 1e6)
     assert z * 1e6 == pytest.approx(16.634, rel=1e-3)
     assert abs(z * 1e6 - 14.68) / 14.68 > 0.1
 
 
-# ---------------------------------------------------------------- seed 003
+# ---------------------------------------------------------------- Madhukar et al. 2023
 
 TABLE_5_3 = np.array([0.1, 0.325, 0.64, 1.15, 1.72, 2.45, 3.31, 4.4, 4.83, 5.65, 6.41, 7.12, 7.8,
                       8.39, 8.78, 9.06, 9.19, 9.21, 9.03, 8.79, 8.48, 7.92, 7.3, 6.64, 6.0, 5.28,
                       4.55, 3.72, 3.03, 2.32, 1.69, 1.08, 0.63, 0.27, 0.17, 0.1]) * 1e-3  # 10..360 deg
 
 
-def seed003_design(kind="roller", speed=1.0, offset=0.0):
+def madhukar2023_design(kind="roller", speed=1.0, offset=0.0):
     return CamDesign("eccentric", 0.023 - 0.004, 0.01, speed, kind, 0.737, eccentricity=0.004,
                      disc_radius=0.023, roller_radius=0.010 if kind == "roller" else 0.0,
                      offset=offset, spring_rate=660.02, gravity=True)
 
 
-def test_seed003_eccentric_cam_follows_the_exact_geometry():
+def test_madhukar2023_eccentric_cam_follows_the_exact_geometry():
     """Radial roller: y = -e cos(theta) + sqrt((R + r)^2 - e^2 sin^2 theta) - (R + r - e),
     flat face: y = e (1 - cos theta) (pure SHM), both with their derivatives."""
     e, big, r = 0.004, 0.023, 0.010
     theta = np.radians(np.arange(0.0, 360.0, 5.0))
-    roller = cam_response(seed003_design(), CamState(cam_surface_modulus=3e9), theta).variables
+    roller = cam_response(madhukar2023_design(), CamState(cam_surface_modulus=3e9), theta).variables
     exact = -e * np.cos(theta) + np.sqrt((big + r) ** 2 - (e * np.sin(theta)) ** 2) - (big + r - e)
     # the geometric path: Chebyshev fit of degree N = 96, round-off N eps |Y| in Y and
     # N^2 eps |Y| in dY/dtheta (Trefethen, Spectral Methods in MATLAB, ch. 6)
@@ -221,12 +222,12 @@ def test_seed003_eccentric_cam_follows_the_exact_geometry():
                                atol=roundoff(size, operations=10 * 96 ** 2))
 
 
-def test_seed003_eccentric_flat_face_is_exact_simple_harmonic_motion():
+def test_madhukar2023_eccentric_flat_face_is_exact_simple_harmonic_motion():
     """Flat face on the eccentric disc: y = e (1 - cos theta) (pure SHM) with its exact
     derivatives, equal up to round-off of the terms (no spectral differentiation)."""
     e = 0.004
     theta = np.radians(np.arange(0.0, 360.0, 5.0))
-    flat = cam_response(seed003_design("flat", speed=10.0), CamState(cam_surface_modulus=3e9),
+    flat = cam_response(madhukar2023_design("flat", speed=10.0), CamState(cam_surface_modulus=3e9),
                         theta).variables
     exact = {"follower_displacement": e * (1 - np.cos(theta)),
              "follower_velocity": 10 * e * np.sin(theta),
@@ -246,7 +247,7 @@ def test_swollen_eccentric_flat_face_matches_the_geometric_route(strain_x, strai
     spectral k-th derivative carries round-off about eps N^(2k) |Y| (N |Y| eps for the
     least-squares fit itself; Trefethen, Spectral
     Methods in MATLAB, ch. 6), which sets the tolerance; extremes agree to round-off."""
-    design = seed003_design("flat", speed=1.0)
+    design = madhukar2023_design("flat", speed=1.0)
     state = CamState(cam_strain_x=strain_x, cam_strain_y=strain_y)
     theta = np.linspace(0.0, 2 * np.pi, 73)
     closed, closed_extremes = follower_heights(design, state, theta)
@@ -260,25 +261,26 @@ def test_swollen_eccentric_flat_face_matches_the_geometric_route(strain_x, strai
     np.testing.assert_allclose(closed_extremes, spectral_extremes, rtol=0, atol=roundoff(size))
 
 
-def test_seed003_dial_gauge_rms_against_the_exact_geometry():
+def test_madhukar2023_dial_gauge_rms_against_the_exact_geometry():
     """Table 5.3 (hand-turned, dial gauge zeroed at the lowest position) against the exact
     eccentric-roller geometry: the gauge overshoots the 2e = 8 mm stroke (9.21 mm at
     180 deg), so the RMS is about 0.8 mm; we require < 1 mm and report it."""
     theta = np.radians(np.arange(10.0, 361.0, 10.0))
-    y = cam_response(seed003_design(), CamState(cam_surface_modulus=3e9),
+    y = cam_response(madhukar2023_design(), CamState(cam_surface_modulus=3e9),
                      theta).variables["follower_displacement"]
     rms = float(np.sqrt(np.mean((y - TABLE_5_3) ** 2)))
-    log.warning("seed 003 Table 5.3 RMS vs exact geometry: %.4f mm (max |diff| %.3f mm)",
+    log.warning("Madhukar et al. 2023 Table 5.3 RMS vs exact geometry: %.4f mm (max |diff| %.3f mm)",
                 rms * 1e3, np.max(np.abs(y - TABLE_5_3)) * 1e3)
     assert 0.3e-3 < rms < 1.0e-3
 
 
-def test_seed003_contact_force_extremes_at_hand_speed():
+def test_madhukar2023_contact_force_extremes_at_hand_speed():
     """F_c = m y'' + s y + m g (sec. 5.5) at omega = 1 rad/s (its code's w = 1): from m g =
     7.23 N at the lowest point to m g + s 2e = 12.51 N at 180 deg. The paper's Table 5.8
-    gives 7.35 / 12.74 N (its y passes degrees to sin/cos, seeds/README.md); within 2 %."""
+    gives 7.35 / 12.74 N (its code's y passes degrees to sin/cos, which expect radians);
+    within 2 %."""
     theta = np.radians(np.arange(0.0, 360.0, 1.0))
-    force = cam_response(seed003_design(), CamState(cam_surface_modulus=3e9),
+    force = cam_response(madhukar2023_design(), CamState(cam_surface_modulus=3e9),
                          theta).variables["contact_force"]
     axial_min = 0.737 * dyn.STANDARD_GRAVITY
     assert force.min() == pytest.approx(axial_min, rel=1e-3)  # + m e omega^2 (R + r)/(R + r - e)

@@ -1,5 +1,12 @@
-"""Seed 002 (Al-Shamma & Yousuf 2011, seeds/002_86df1b5c018ead04.txt): where its
-analytical plate solution fails, and its box cam through fickcam's plane-stress model."""
+"""Al-Shamma & Yousuf (2011): where its analytical plate solution fails, and its box cam
+through fickcam's plane-stress model.
+
+References
+----------
+Al-Shamma, F. & Yousuf, L. S. (2011). Predictive model of orthotropic un-symmetric
+    box cam based on deflection and countered by segments of circular-arc contact
+    profiles. Global Journal of Researches in Engineering (A) 11(7).
+"""
 from pathlib import Path
 
 import numpy as np
@@ -54,7 +61,7 @@ def test_sine_derivatives_agree_with_finite_differences():
 
 
 @pytest.mark.parametrize("r, theta", [(0.025, 0.5), (0.025, 2.0), (0.04, 1.0), (0.06, 3.0)])
-def test_seed002_homogeneous_solution_does_not_satisfy_its_plate_equation(r, theta):
+def test_alshamma2011_homogeneous_solution_does_not_satisfy_its_plate_equation(r, theta):
     """w_H = A sin(r theta) + B cos(r theta) (eq. 4) is not a solution of eq. (3) with
     q = 0: the residual L[w_H] is of the size of its largest term, not zero. (The paper's
     eq. 5 then 'solves' for w_H in terms of itself; eqs. 5-9 inherit the error.)"""
@@ -65,7 +72,7 @@ def test_seed002_homogeneous_solution_does_not_satisfy_its_plate_equation(r, the
     assert abs(residual) > 0.1 * max(abs(x) for x in terms)
 
 
-def test_seed002_particular_solution_is_not_one():
+def test_alshamma2011_particular_solution_is_not_one():
     """w_P = C r theta with C = q r^3 / (theta D_theta) (eqs. 6-7): C is not a constant,
     and w_P = q r^4 / D_theta gives L[w_P] = q (72 D_r - 8 D_theta) / D_theta, which is q
     only if D_r / D_theta = 1/8; here the residual is 100x q."""
@@ -81,12 +88,13 @@ def test_seed002_particular_solution_is_not_one():
 ANSYS_RANGE = (0.0031101e-3, 0.047361e-3)
 
 
-def test_seed002_box_cam_deflection_against_the_ansys_magnitudes():
-    """The seed 002 scene (its clamped radius, fibre fraction, harmonic motion; the rest
-    fickcam's assumptions, see the scene) deflects in its plane by micrometres, the order
-    of the paper's ANSYS tables read as mm; the paper's load cannot be evaluated (sigma_y,
-    L and L1 of its eq. 10 are not given), so only the order is compared. Moisture softens
-    the matrix, so the aged cam deflects more."""
+@pytest.mark.slow
+def test_alshamma2011_box_cam_deflection_against_the_ansys_magnitudes():
+    """The Al-Shamma & Yousuf 2011 scene (its clamped radius, fibre fraction, harmonic
+    motion; the rest fickcam's assumptions, see the scene) deflects in its plane by
+    micrometres, the order of the paper's ANSYS tables read as mm; the paper's load cannot
+    be evaluated (sigma_y, L and L1 of its eq. 10 are not given), so only the order is
+    compared. Moisture softens the matrix, so the aged cam deflects more."""
     doc = yaml.safe_load((Path(__file__).resolve().parents[1] / "configs" /
                           "alshamma2011_box_cam.yaml").read_text())
     doc["outputs"] = {"ageing_times": ["0 d", "60 d"], "angle_step": "15 deg"}

@@ -19,7 +19,7 @@ from fickcam.compensation.core import made_value
 from fickcam.linkage.positions import continuous, positions
 
 DT, DM = 95.0, 7.0
-ALPHA, BETA = 62.6e-6, 3.02e-3   # R914, seed 001 Table 4 (wet alpha, 1/K; beta, 1/%M)
+ALPHA, BETA = 62.6e-6, 3.02e-3   # R914, Singh & Sanyal 2016 Table 4 (wet alpha, 1/K; beta, 1/%M)
 STEEL_ALPHA = 12.0e-6            # 1/K, fickcam/data/materials.yaml
 RESIN_STRAIN = ALPHA * DT + BETA * DM   # eqs. 11-13
 FRAME_STRAIN = STEEL_ALPHA * DT         # eq. 14, metal frame

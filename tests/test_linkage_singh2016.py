@@ -1,11 +1,15 @@
-"""Seed 001 (seeds/001_51a6f900df76f3cc.txt, Singh & Sanyal 2016): the three test
+"""Singh & Sanyal (2016): the three test
 four-bars of neat R914, 3502 and 8551-7 resin at dm = equilibrium moisture (Table 4)
 and dT = 95 degC, steel frame; angular shifts of coupler and rocker (eqs. 15-18,
 Figs. 6-9) and link mass / inertia growth (Table 6).
 
 The paper's link growth eq. 14 reads a_1 = a (alpha dT + beta dm); it means
-a_1 = a (1 + alpha dT + beta dm) (seeds/README.md), which is what is reproduced here.
-The wet CTE of Table 4 is used (the links are hot and wet)."""
+a_1 = a (1 + alpha dT + beta dm) (the printed form is the change of length, not the
+wet length), which is what is reproduced here. The wet CTE of Table 4 is used (the links
+are hot and wet).
+
+The paper is cited in full in :mod:`fickcam.linkage`.
+"""
 import numpy as np
 import pytest
 
@@ -14,20 +18,21 @@ from fickcam.materials.bodies import aged_link_body, link_body
 
 DT = 95.0  # K
 STEEL_ALPHA = 12.0e-6  # 1/K, fickcam/data/materials.yaml (handbook carbon steel)
-# seed 001 Table 4: wet alpha (1/K), beta (1/%M), equilibrium moisture (%M)
+# Singh & Sanyal 2016 Table 4: wet alpha (1/K), beta (1/%M), equilibrium moisture (%M)
 RESINS = {"R914": (62.6e-6, 3.02e-3, 7.0), "3502": (55.5e-6, 2.70e-3, 5.0),
           "8551-7": (70.0e-6, 3.09e-3, 2.0)}
-# seed 001 sec. V: the three linkages (a, b, c, d) in m
+# Singh & Sanyal 2016 sec. V: the three linkages (a, b, c, d) in m
 CASES = {"case 1": (0.005, 0.125, 0.125, 0.120), "case 2": (0.115, 0.120, 0.120, 0.120),
          "fig 4-5": (0.100, 0.160, 0.160, 0.200)}
 THETA2 = np.radians(np.arange(0.0, 360.0, 0.5))
-# seed 001 Table 6, a = 100 mm link: mass (g) and inertia (g mm^2), dry -> hygrothermal
+# Singh & Sanyal 2016 Table 6, a = 100 mm link: mass (g) and inertia (g mm^2), dry ->
+# hygrothermal
 TABLE6 = {"R914": ((147, 158), (7132765, 8622622)), "3502": ((147, 154), (7132765, 8161202)),
           "8551-7": ((147, 150), (7132765, 7612314))}
 
 
 def strain(resin):
-    """eps = alpha dT + beta dm (seed 001 eqs. 4, 7, 8, 13)."""
+    """eps = alpha dT + beta dm (Singh & Sanyal 2016 eqs. 4, 7, 8, 13)."""
     alpha, beta, mm = RESINS[resin]
     return alpha * DT + beta * mm
 
@@ -45,7 +50,7 @@ def shift_table():
     return {(case, resin): shifts(case, resin) for case in CASES for resin in RESINS}
 
 
-def test_seed_linkages_assemble_over_the_whole_revolution_dry_and_aged():
+def test_the_papers_linkages_assemble_over_the_whole_revolution_dry_and_aged():
     for case, (a, b, c, d) in CASES.items():
         for eps in [0.0] + [strain(r) for r in RESINS]:
             t3, t4 = positions(a * (1 + eps), b * (1 + eps), c * (1 + eps), d * (1 + STEEL_ALPHA * DT), THETA2)
