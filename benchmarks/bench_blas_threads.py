@@ -47,28 +47,27 @@ def _run_config(config: str, **options):
 
 def _records_scene(case: str, constant: bool, folder: Path):
     """A bench --records scene: a year of Greensboro's record, or its mean climate."""
-    from fickcam.bench_records import CASES, MONTH_HOURS, _record_csv, _scene
+    from climate_records import CASES, MONTH_HOURS, record_csv, record_scene
     from fickcam.simulate import run
 
-    path, celsius, humidity = _record_csv(folder, 12)
+    path, celsius, humidity = record_csv(folder, 12)
     environment = ({"history": [{"duration": f"{12 * MONTH_HOURS} h",
                                  "temperature": f"{celsius:.2f} degC",
                                  "relative_humidity": f"{humidity:.2f} %"}]} if constant else
                    {"history_file": str(path)})
-    scene = _scene(ROOT / CASES[case], environment, 12)
+    scene = record_scene(ROOT / CASES[case], environment, 12)
     return lambda: run(scene)
 
 
 def _solid_plate():
-    """The bench's 3-D solid D(c) plate (``fickcam.bench_sorption``, k = 2) at 3e-2."""
-    from fickcam.bench import D_REF, _uptake_times
-    from fickcam.bench_sorption import _law, sorption_cases
+    """The bench's 3-D solid D(c) plate (``diffusion_tradeoff.py``, k = 2) at 3e-2."""
+    from diffusion_tradeoff import D_REF, sorption_cases, sorption_law, uptake_times
     from fickcam.diffusion import Diffusivity, Exposure, solve
 
     name, plate, kind, _, accuracies = sorption_cases(False)[-1]
-    times = _uptake_times(plate)
+    times = uptake_times(plate)
     exposure = Exposure.piecewise([0.0, times[-1]], 300.0, [1.0], 0.0)
-    law = _law(kind, D_REF, plate.thickness)
+    law = sorption_law(kind, D_REF, plate.thickness)
     return lambda: solve(plate, Diffusivity((D_REF,) * 3, 0.0), exposure, times,
                          accuracy=accuracies[-1], model="solid", sorption=law)
 

@@ -8,7 +8,7 @@ correction.
     python benchmarks/dc_defect_correction.py plate-order [K [absorption|desorption]]
                                                   # the 3-D plans' order (exponent K, 2)
     python benchmarks/dc_defect_correction.py skin-margin [M ...] # drying: estimate / error
-    python benchmarks/dc_defect_correction.py demo-cam           # the README table
+    python benchmarks/dc_defect_correction.py demo-cam           # the validation table
     python benchmarks/dc_defect_correction.py fickian-reference  # why not Fick at Crank's mean D
     python benchmarks/dc_defect_correction.py planform-sequence [K [A]]  # 1x-8x planforms
     python benchmarks/dc_defect_correction.py soak-dry           # wetted, then dried: plans, CPU

@@ -19,11 +19,13 @@ def load_scene(source, *, file_name: str | None = None):
     return _load(source, file_name=file_name)
 
 
-def run(scene, *, accuracy: float | None = None, progress: bool = False):
-    """Run one scene (a path, a dict or a loaded scene) and return an xarray.Dataset."""
+def run(scene, *, accuracy: float | None = None, progress: bool = False, settings=None):
+    """Run one scene (a path, a dict or a loaded scene) and return an xarray.Dataset;
+    ``settings``: the diffusion solvers' tuned limits (``fickcam.diffusion.SolverSettings``,
+    e.g. its cell caps; None: the defaults)."""
     from .simulate import run as _run
 
-    return _run(scene, accuracy=accuracy, progress=progress)
+    return _run(scene, accuracy=accuracy, progress=progress, settings=settings)
 
 
 def compensate(scene, *, at=None, over=None, accuracy: float | None = None,

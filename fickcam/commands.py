@@ -137,21 +137,23 @@ BENCH_EXPECTED = {False: "about 3 min", True: "about 10 s"}
 
 
 def _cmd_bench(args) -> int:
+    """The benchmarks of the source checkout (``benchmarks/``): not part of a wheel."""
+    from .checkout import benchmark
+
     if args.records:
         from .extras import require
 
         require("weather")  # the records bench reads a TMY3 year that pvlib ships
-        from .bench_records import (format_record_table, format_year_accuracy,
-                                    run_record_bench, year_accuracy)
-
-        print(format_record_table(run_record_bench(months=(1, 3) if args.quick else (1, 3, 12))))
+        records = benchmark("climate_records")
+        print(records.format_record_table(
+            records.run_record_bench(months=(1, 3) if args.quick else (1, 3, 12))))
         if not args.quick:
-            print(format_year_accuracy(year_accuracy()))
+            print(records.format_year_accuracy(records.year_accuracy()))
         return 0
-    from .bench import format_table, row_count, run_bench
     from .messages import progress_bar
 
-    total = row_count(args.quick)
+    tradeoff = benchmark("diffusion_tradeoff")
+    total = tradeoff.row_count(args.quick)
     log.info("bench: %d rows, expected %s on an idle 2-core machine%s", total,
              BENCH_EXPECTED[args.quick], "" if args.quick else " (--quick: "
              f"{BENCH_EXPECTED[True]})")
@@ -164,8 +166,8 @@ def _cmd_bench(args) -> int:
             started.append(label)  # (a disabled bar, --quiet, keeps no postfix)
             bar.set_postfix_str(label)
 
-        rows = run_bench(quick=args.quick, progress=starting)
-    print(format_table(rows))
+        rows = tradeoff.run_bench(quick=args.quick, progress=starting)
+    print(tradeoff.format_table(rows))
     return 0
 
 

@@ -179,3 +179,17 @@ def _is_terminal(stream) -> bool:
         return bool(stream.isatty())
     except (AttributeError, ValueError):  # no isatty, or a closed stream
         return False
+
+
+@contextlib.contextmanager
+def quieter(logger: str, level: int):
+    """Raise ``logger``'s level to at least ``level`` for a while (not below what it was),
+    restoring it after: a library's chatter held back where fickcam calls it, never by
+    changing the library's logger for good."""
+    target = logging.getLogger(logger)
+    old = target.level
+    target.setLevel(max(level, target.getEffectiveLevel()))
+    try:
+        yield
+    finally:
+        target.setLevel(old)

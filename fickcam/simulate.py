@@ -58,10 +58,15 @@ def every_step_times(step: float, end: float) -> np.ndarray:
     return np.append(times, end) if end > times[-1] else times
 
 
-def diffusion_options(scene: Scene, accuracy: float | None) -> dict:
+def diffusion_options(scene: Scene, accuracy: float | None, settings=None) -> dict:
+    """The scene's diffusion section, ``accuracy`` (when given) in place of its own, and the
+    solvers' tuned limits (``settings``, a ``diffusion.SolverSettings``; None: the defaults)."""
+    from .diffusion import SolverSettings
+
     section = scene.model.diffusion
     return {"accuracy": accuracy if accuracy is not None else section.accuracy,
-            "model": section.model, "surface_layer_depth": section.surface_layer_depth}
+            "model": section.model, "surface_layer_depth": section.surface_layer_depth,
+            "settings": SolverSettings() if settings is None else settings}
 
 
 def part_model(options: dict, part: str) -> str:
@@ -106,7 +111,8 @@ def plan_parts(scene: Scene, accuracy: float | None = None):
                                       accuracy=options["accuracy"],
                                       model=part_model(options, part.name),
                                       sorption=part.material.sorption_law(),
-                                      surface_layer_depth=options["surface_layer_depth"])))
+                                      surface_layer_depth=options["surface_layer_depth"],
+                                      settings=options["settings"])))
     return environment, times, options, plans
 
 
@@ -114,16 +120,19 @@ def plan_parts(scene: Scene, accuracy: float | None = None):
 
 
 @on_one_blas_thread  # the caller's BLAS threads are restored on return (fickcam.blas)
-def run(scene, *, accuracy: float | None = None, progress: bool = False):
-    """Run one scene and return its xarray.Dataset."""
+def run(scene, *, accuracy: float | None = None, progress: bool = False, settings=None):
+    """Run one scene and return its xarray.Dataset; ``settings``: the
+    diffusion solvers' tuned limits (``diffusion.SolverSettings``; None: the defaults)."""
     started = _time.perf_counter()
     scene = load_scene(scene)
     environment = scene_environment(scene)
     times = ageing_times(scene, environment)
     parts = build_parts(scene)
-    ds, histories = _age(scene, environment, times, accuracy, progress, parts=parts)
+    ds, histories = _age(scene, environment, times, accuracy, progress, parts=parts,
+                         settings=settings)
     if scene.limits:
-        limits, searched = _limits(ds, scene, environment, times, accuracy, parts, histories)
+        limits, searched = _limits(ds, scene, environment, times, accuracy, parts, histories,
+                                   settings)
         notices = [*ds.attrs["notices"], *searched]
         ds = ds.merge(limits, compat="override")
         ds.attrs["notices"] = notices
@@ -133,14 +142,14 @@ def run(scene, *, accuracy: float | None = None, progress: bool = False):
 
 
 def _age(scene: Scene, environment: Environment, times: np.ndarray, accuracy: float | None,
-         progress: bool, parts: list[Part] | None = None):
+         progress: bool, parts: list[Part] | None = None, settings=None):
     """The Dataset of ``scene`` at ageing ``times`` (s) and the part histories;
     ``parts``: the scene's parts when already built (their outline expansions are cached
     per part object)."""
     from .dataset import build_dataset
 
     values, coords, notices, histories = _aged_values(scene, environment, times, accuracy,
-                                                      progress, parts)
+                                                      progress, parts, settings=settings)
     design_scene = scene.as_designed()  # differs where the scene is made to compensate
     designs = [design_part(part, environment) for part in build_parts(design_scene)]
     values.update(design_values(design_scene, designs))
@@ -189,7 +198,7 @@ def climate_values(environment: Environment, edges: np.ndarray) -> dict[str, np.
 
 def _aged_values(scene: Scene, environment: Environment, times: np.ndarray,
                  accuracy: float | None, progress: bool, parts: list[Part] | None = None,
-                 stored: tuple[np.ndarray, list[PartHistory]] | None = None):
+                 stored: tuple[np.ndarray, list[PartHistory]] | None = None, settings=None):
     """(values, coords, notices, part histories) of ``scene`` at ageing ``times`` (s): every
     variable but the as-designed ones, as SI arrays keyed by schema name.
     ``stored``: the stored run's times and part histories (the limit search): diffusion is
@@ -197,7 +206,7 @@ def _aged_values(scene: Scene, environment: Environment, times: np.ndarray,
     and its material state the stored run's past (validity up to the wet Tg): extended from
     the stored solve where it can (``DiffusionResult.extend``: only the new times are
     summed), else re-solved at both; the part histories are then taken at ``times``."""
-    options = diffusion_options(scene, accuracy)
+    options = diffusion_options(scene, accuracy, settings)
     parts = build_parts(scene) if parts is None else parts
     notices: list[str] = list(environment.notes)
     from .elastic.parts import elastic_parts
@@ -256,7 +265,7 @@ def _aged_values(scene: Scene, environment: Environment, times: np.ndarray,
 
 
 def _limits(ds, scene: Scene, environment: Environment, times, accuracy: float | None,
-            parts: list[Part], histories: list[PartHistory]):
+            parts: list[Part], histories: list[PartHistory], settings=None):
     """(limit_ratio (time, limit) and time_out_of_spec (limit) of the scene's limits, each
     crossing located by re-running the model inside its bracketing interval; the search's
     notices, ``_search_notices``)."""
@@ -285,7 +294,7 @@ def _limits(ds, scene: Scene, environment: Environment, times, accuracy: float |
         limited variables go into the Dataset, beside the stored run's as-designed values."""
         at = np.asarray(at, float)
         values, coords, _, aged = _aged_values(scene, environment, at, accuracy, False, parts,
-                                               stored=(times, histories))
+                                               stored=(times, histories), settings=settings)
         for history in aged:
             if history.diffusion is not None:
                 searched[history.part.name] = max(searched.get(history.part.name, 0.0),
@@ -302,17 +311,28 @@ def _limits(ds, scene: Scene, environment: Environment, times, accuracy: float |
     crossings = first_crossings(search_times, search, evaluate)
     return (build_dataset({"limit_ratio": stored, "time_out_of_spec": crossings},
                           {"time": times, "limit": [limit.variable for limit in scene.limits]}),
-            _search_notices(searched, histories, diffusion_options(scene, accuracy)["accuracy"]))
+            search_notices(searched, {h.part.name: h.diffusion.error_estimate for h in histories
+                                      if h.diffusion is not None},
+                           diffusion_options(scene, accuracy)["accuracy"]))
 
 
-def _search_notices(searched: dict[str, float], histories: list[PartHistory],
-                    accuracy: float) -> list[str]:
+def search_notices(searched: dict[str, float], stored: dict[str, float],
+                   accuracy: float) -> list[str]:
     """Notices (also logged) for the parts whose diffusion at the limit search's times
     (read between the stored solve's steps, ``DiffusionResult.extend``: the stored estimate
     plus the interpolation's) is estimated above the requested accuracy while the stored
-    run's was not (that one is already noticed)."""
-    stored = {h.part.name: h.diffusion.error_estimate for h in histories
-              if h.diffusion is not None}
+    run's was not (that one is already noticed).
+
+    Parameters
+    ----------
+    searched : dict of str to float
+        Part name -> largest diffusion error estimate over the search's solves [-]
+        (relative to the moisture swing).
+    stored : dict of str to float
+        Part name -> error estimate of the stored run's solve [-].
+    accuracy : float
+        The requested accuracy [-].
+    """
     notices = [f"{name}: estimated diffusion error {estimate:.1e} at the limit search's "
                f"times above the requested accuracy {accuracy:g} (the crossing times carry it)"
                for name, estimate in searched.items()
@@ -350,7 +370,8 @@ def age_part(part: Part, environment: Environment, times, options: dict, scene: 
                                accuracy=options["accuracy"], model=part_model(options, part.name),
                                surface_layer_depth=options["surface_layer_depth"],
                                store_fields=scene.model.outputs.fields or keep_field,
-                               part=part.name, sorption=part.material.sorption_law())
+                               part=part.name, sorption=part.material.sorption_law(),
+                               settings=options["settings"])
         if solved is not None:
             solved[alike] = result
         mean, surface = result.mean, result.surface  # total (free + bound) moisture

@@ -188,3 +188,25 @@ def test_no_private_name_is_imported_across_diffusion_modules():
                 private += [f"{path.relative_to(PACKAGE)}:{node.lineno} {a.name}"
                             for a in node.names if a.name.startswith("_")]
     assert private == []
+
+
+def modules_importing(library: str) -> list[str]:
+    """The fickcam modules that import ``library`` anywhere (at the top or in a function)."""
+    found = []
+    for path in sorted(PACKAGE.rglob("*.py")):
+        for node in _imports(ast.parse(path.read_text()), everywhere=True):
+            names = ([alias.name for alias in node.names] if isinstance(node, ast.Import)
+                     else [node.module or ""] if node.level == 0 else [])
+            if any(name == library or name.startswith(library + ".") for name in names):
+                found.append(_module_name(path))
+                break
+    return found
+
+
+def test_fipy_is_imported_in_one_backend_module():
+    assert modules_importing("fipy") == ["fickcam.diffusion.operators.fipy_backend"]
+
+
+def test_the_benchmarks_are_not_in_the_installed_package():
+    """They read the repository's configs/ and tests/data/: they live in benchmarks/."""
+    assert not list(PACKAGE.glob("bench*.py"))

@@ -3,15 +3,13 @@ threads are the same before and after, also when the run fails, and the limit le
 every result of the demo scene bit-identical."""
 from __future__ import annotations
 
-from contextlib import nullcontext
+import logging
 from pathlib import Path
 
 import numpy as np
 import pytest
 from threadpoolctl import threadpool_info, threadpool_limits
 
-import fickcam.blas
-import fickcam.simulate
 from fickcam.errors import SceneError
 from fickcam.simulate import run
 
@@ -24,29 +22,37 @@ def blas_threads() -> dict[str, int]:
     return {p["filepath"]: p["num_threads"] for p in threadpool_info() if p["user_api"] == "blas"}
 
 
+class ThreadsSeen(logging.Handler):
+    """Each loaded BLAS library's threads whenever fickcam logs (a run logs each diffusion
+    solve at DEBUG): the threads inside the run, seen through the logging API."""
+
+    def __init__(self):
+        super().__init__(logging.DEBUG)
+        self.seen: list[dict[str, int]] = []
+
+    def emit(self, record):
+        self.seen.append(blas_threads())
+
+
 @pytest.fixture(scope="module")
 def demo_runs():
-    """The demo run with the limit, then without it, the caller having set its own limit
-    first: (threads seen inside the limited run, the caller's threads after it, its
-    result, the result without the limit, threads seen inside that run)."""
-    seen = []
-    mechanisms = fickcam.simulate.mechanism_values
-
-    def spying(*args, **kwargs):
-        seen.append(blas_threads())
-        return mechanisms(*args, **kwargs)
-
-    patch = pytest.MonkeyPatch()
-    patch.setattr(fickcam.simulate, "mechanism_values", spying)
+    """The demo run with the limit, then without it (``run.__wrapped__``: the function the
+    limit wraps), the caller having set its own limit first: (threads seen inside the
+    limited run, the caller's threads after it, its result, the result without the limit,
+    threads seen inside that run)."""
+    spy, logger = ThreadsSeen(), logging.getLogger("fickcam")
+    level = logger.level
+    logger.addHandler(spy)
+    logger.setLevel(logging.DEBUG)
     try:
         with threadpool_limits(CALLER_THREADS, "blas"):
             limited = run(DEMO)
-            inside, after = list(seen), blas_threads()
-            patch.setattr(fickcam.blas, "one_blas_thread", nullcontext)
-            default = run(DEMO)
-            unlimited = seen[len(inside):]
+            inside, after = list(spy.seen), blas_threads()
+            default = run.__wrapped__(DEMO)
+            unlimited = spy.seen[len(inside):]
     finally:
-        patch.undo()
+        logger.removeHandler(spy)
+        logger.setLevel(level)
     return inside, after, limited, default, unlimited
 
 

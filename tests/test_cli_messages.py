@@ -1,6 +1,7 @@
 """What the command line prints on stderr: fickcam's own notices once, no library chatter,
 no notes with --quiet; `fickcam bench` shows progress and an expected duration."""
 import os
+import shutil
 import subprocess
 import sys
 from pathlib import Path
@@ -8,8 +9,9 @@ from pathlib import Path
 import pytest
 import yaml
 
-import fickcam.bench
+from fickcam.checkout import benchmark, repository_root
 from fickcam.cli import main
+from fickcam.errors import InputError
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -60,30 +62,45 @@ def test_fipy_solver_chatter_stays_off_stderr():
 
 
 def test_bench_quick_is_quick_and_shows_progress_and_expected_duration(monkeypatch, capsys):
-    quick = fickcam.bench._cases(True)
+    tradeoff = benchmark("diffusion_tradeoff")  # benchmarks/, loaded from this checkout
+    quick = tradeoff.bench_cases(True)
     assert all("solid" not in case.models for case in quick)
-    assert fickcam.bench.row_count(True) < fickcam.bench.row_count(False) / 2
+    assert tradeoff.row_count(True) < tradeoff.row_count(False) / 2
     started = []
 
     def fake(quick, progress):
-        for k in range(fickcam.bench.row_count(quick)):
+        for k in range(tradeoff.row_count(quick)):
             progress(f"row {k}")
             started.append(k)
         return []
 
-    monkeypatch.setattr(fickcam.bench, "run_bench", fake)
+    monkeypatch.setattr(tradeoff, "run_bench", fake)  # the benchmark script's, not fickcam's
     assert main(["bench", "--quick"]) == 0
     err = capsys.readouterr().err
-    assert len(started) == fickcam.bench.row_count(True)
+    assert len(started) == tradeoff.row_count(True)
     assert "fickcam: note: bench:" in err and "expected about 10 s" in err
 
 
-def test_quick_benchmark_script_keeps_the_committed_results(tmp_path, monkeypatch):
-    import importlib.util
+def test_no_checkout_is_found_outside_a_clone(tmp_path):
+    assert repository_root() == ROOT
+    with pytest.raises(InputError, match="run this from a clone of the repository"):
+        repository_root([tmp_path, *tmp_path.parents])
 
-    spec = importlib.util.spec_from_file_location("tradeoff", ROOT / "benchmarks" / "diffusion_tradeoff.py")
-    script = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(script)
+
+def test_bench_from_an_installed_copy_outside_a_clone_is_refused_in_one_line(tmp_path):
+    """The package alone (as a wheel installs it), run from a folder outside any clone."""
+    site = tmp_path / "site"
+    shutil.copytree(ROOT / "fickcam", site / "fickcam",
+                    ignore=shutil.ignore_patterns("__pycache__"))
+    done = subprocess.run([sys.executable, "-m", "fickcam.cli", "bench", "--quick"],
+                          capture_output=True, text=True, cwd=tmp_path, timeout=120,
+                          env=dict(os.environ, PYTHONPATH=str(site)))
+    assert done.returncode == 2 and done.stdout == ""
+    assert done.stderr.count("\n") == 1 and "clone of the repository" in done.stderr, done.stderr
+
+
+def test_quick_benchmark_script_keeps_the_committed_results(tmp_path, monkeypatch):
+    script = benchmark("diffusion_tradeoff")
     monkeypatch.setattr(script, "run_bench", lambda quick: [])
     monkeypatch.setattr(script, "RESULTS", tmp_path / "results")
     monkeypatch.setattr(sys, "argv", ["diffusion_tradeoff.py", "--quick"])

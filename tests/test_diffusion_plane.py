@@ -2,6 +2,7 @@
 with the 2-D mesh, times the exact sheet, against exact solutions."""
 from __future__ import annotations
 
+from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
@@ -10,7 +11,8 @@ from scipy.optimize import brentq
 from scipy.spatial import cKDTree
 from scipy.special import j0, j1, y0, y1
 
-from fickcam.diffusion import Bar, CamPlate, Diffusivity, Disc, Exposure, LinkBar, plan, solve
+from fickcam.diffusion import (Bar, CamPlate, Diffusivity, Disc, Exposure, LinkBar, SolverSettings,
+                               plan, solve)
 from fickcam.diffusion.accuracy import error_model
 from fickcam.diffusion.exact import series
 from fickcam.diffusion.forcing.clock import RescaledTime
@@ -309,13 +311,13 @@ def test_plan_estimate_is_the_error_solve_reports(part):
     assert result.error_estimate <= 1e-3
 
 
-def test_a_capped_plane_plan_says_its_error_exceeds_the_accuracy(monkeypatch):
+def test_a_capped_plane_plan_says_its_error_exceeds_the_accuracy():
     """Capped at 300 nodes, 1e-4 cannot be met: plan and solve both say so, and the
     estimate still bounds the true error (the run turns it into a notice)."""
-    monkeypatch.setitem(error_model.MAX_CELLS, "plane", 300)
+    capped = SolverSettings(cells=replace(error_model.MAX_CELLS, plane=300))
     plate = bored_plate(0.02, 6e-3, 5e-3)
-    chosen = plan(plate, ISOTROPIC, HISTORY, TIMES, accuracy=1e-4)
-    result = solve(plate, ISOTROPIC, HISTORY, TIMES, accuracy=1e-4)
+    chosen = plan(plate, ISOTROPIC, HISTORY, TIMES, accuracy=1e-4, settings=capped)
+    result = solve(plate, ISOTROPIC, HISTORY, TIMES, accuracy=1e-4, settings=capped)
     assert chosen.error_estimate > 1e-4 and "above the requested accuracy" in chosen.reason
     assert result.error_estimate > 1e-4
     assert relative(result.mean, annulus_history(0.02, 6e-3, 5e-3, TIMES)) <= result.error_estimate
@@ -398,13 +400,14 @@ def test_demo_cam_meets_the_accuracy_against_a_space_extrapolated_fine_mesh():
         assert true <= result.error_estimate <= 1e-3
 
 
-def test_a_run_notes_a_part_whose_estimated_error_exceeds_the_accuracy(monkeypatch):
+def test_a_run_notes_a_part_whose_estimated_error_exceeds_the_accuracy():
     """The demo scene at 1e-4 with the plane mesh capped at 300 nodes: the cam's estimate
     exceeds the accuracy and the run says so among its notices (logged as warnings)."""
     import fickcam
 
-    monkeypatch.setitem(error_model.MAX_CELLS, "plane", 300)
-    notices = fickcam.run(CONFIGS / "singh2017_cam.yaml", accuracy=1e-4).attrs["notices"]
+    capped = SolverSettings(cells=replace(error_model.MAX_CELLS, plane=300))
+    notices = fickcam.run(CONFIGS / "singh2017_cam.yaml", accuracy=1e-4,
+                          settings=capped).attrs["notices"]
     assert any(n.startswith("cam: estimated diffusion error") and "above the requested accuracy"
                in n for n in notices)
     assert not any(n.startswith("follower: estimated") for n in notices)

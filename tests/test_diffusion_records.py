@@ -6,11 +6,13 @@ exactly; tau from a fine trapezoid rule)."""
 import numpy as np
 import pytest
 
-from fickcam.bench_records import modal_disc_mean
+from fickcam.checkout import benchmark
 from fickcam.diffusion import Bar, Diffusivity, Disc, Exposure, Sheet, plan, solve
 from fickcam.diffusion.models.analytic import exact_history, record_history
 
 DAY = 86400.0
+RECORDS = benchmark("climate_records")  # the modal reference of benchmarks/
+modal_disc_mean = RECORDS.modal_disc_mean
 ARRHENIUS = Diffusivity((2e-5, 2e-5, 1e-5), 40e3)
 
 
@@ -48,15 +50,11 @@ def test_steps_stay_exact_just_after_they_happen():
 
 def greensboro_weeks(weeks, initial_moisture=0.0):
     pytest.importorskip("pvlib")
-    from fickcam.bench_records import greensboro
-
-    return greensboro(24 * 7 * weeks + 1, initial_moisture)
+    return RECORDS.greensboro(24 * 7 * weeks + 1, initial_moisture)
 
 
 def nylon_moisture(temperature, humidity):
-    from fickcam.bench_records import isotherm
-
-    return isotherm(temperature, humidity)
+    return RECORDS.isotherm(temperature, humidity)
 
 
 def record_swing(environment) -> float:
@@ -110,7 +108,8 @@ def circular_plate(radius, thickness):
 def test_plane_model_under_three_weeks_of_a_tmy3_record_matches_the_exact_modal_disc():
     """The plane path (planform mesh x exact sheet, superposed by the tabulated sum) on a
     CamPlate that is a full circle, against the finite cylinder's modes advanced exactly
-    through the record (``bench_records.modal_disc_mean``: errs by a few 1e-6)."""
+    through the record (``modal_disc_mean`` of ``benchmarks/climate_records.py``: errs by a
+    few 1e-6)."""
     first = greensboro_weeks(3)
     start = float(nylon_moisture(first.temperature(0.0), first.relative_humidity(0.0)))
     environment = greensboro_weeks(3, start)

@@ -1,4 +1,8 @@
 """Plane-stress finite elements (fickcam.elastic.fem) against exact elasticity solutions."""
+import logging
+import subprocess
+import sys
+
 import numpy as np
 import pytest
 from scipy.integrate import cumulative_trapezoid
@@ -162,3 +166,37 @@ def test_uniform_moisture_gives_free_swelling_and_no_stress():
     x, y = pe.mesh.p
     expected = np.column_stack([2e-4 * (x - x.mean()), 6e-3 * (y - y.mean())])
     assert np.allclose(displacement, expected, rtol=0, atol=1e-9 * 6e-3 * 0.02)
+
+
+def test_importing_the_model_leaves_scikit_fems_logger_and_the_solve_keeps_it_quiet():
+    """Importing fickcam.elastic.fem changes no other library's logging; a model's
+    assembly and solve hold scikit-fem's INFO lines back (one per mesh, basis and
+    assembly) and give its logger back as it was."""
+    code = ("import logging; import fickcam.elastic.fem; "
+            "print(logging.getLogger('skfem').level)")
+    done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                          timeout=120)
+    assert done.returncode == 0 and done.stdout.strip() == str(logging.NOTSET), done.stderr
+    heard = []
+
+    class Heard(logging.Handler):
+        def emit(self, record):
+            heard.append(record)
+
+    skfem_log, listener = logging.getLogger("skfem"), Heard(logging.DEBUG)
+    level = skfem_log.level
+    skfem_log.addHandler(listener)
+    skfem_log.setLevel(logging.DEBUG)
+    try:
+        points, triangles = _square(4, 0.05)
+        pe = PlaneElasticity(points, triangles, 0.003, order=1)
+        q = isotropic_stiffness(70e9, 0.3)
+        solve = pe.factorise(pe.stiffness(q), pe.statically_determinate_support())
+        u = solve(pe.eigenstrain_load(q, (1e-3, 1e-3, 0.0)))
+        pe.stress(u, q, (1e-3, 1e-3, 0.0))
+        pe.strain_operator()
+        assert skfem_log.level == logging.DEBUG
+    finally:
+        skfem_log.removeHandler(listener)
+        skfem_log.setLevel(level)
+    assert [r.getMessage() for r in heard if r.levelno < logging.WARNING] == []

@@ -12,9 +12,9 @@ import pytest
 from fickcam.diffusion import Bar, CamPlate, Diffusivity, Exposure, Sheet, solve
 from fickcam.diffusion.models.analytic import exact_history_field
 from fickcam.diffusion.nonfickian import corrected_product
-from fickcam.diffusion.nonfickian.corrected_fields import field_errors, stored
+from fickcam.diffusion.nonfickian.corrected_fields import field_errors
 from fickcam.diffusion.nonfickian.corrected_pieces import bar_coordinates
-from fickcam.diffusion.nonfickian.corrected_product import corrected_levels
+from fickcam.diffusion.nonfickian.corrected_product import corrected_levels, refined_run
 from fickcam.diffusion.planform.admissible import cell_areas
 from fickcam.diffusion.problem.sorption import ConcentrationDependent
 
@@ -70,24 +70,18 @@ def test_fickian_corrected_fields_are_the_exact_block_at_the_cell_points(part):
 
 
 @pytest.mark.slow
-def test_dc_fields_under_auto_are_corrected_and_consistent_with_the_mean(monkeypatch):
+def test_dc_fields_under_auto_are_corrected_and_consistent_with_the_mean():
     """k = 2 absorbing on the 4 x 3 x 2 mm plate, ``auto`` with fields stored: the
-    corrected product's fields (``corrected_product.solve_corrected`` hands its run to
-    ``corrected_fields.stored``), their error told in the reason. Their volume mean is the
-    corrected mean to the point values' quadrature (for Fick the exact field's own: 1.6e-2
-    of the swing at tau* = 0.01 on these 1 200 cells), at most half the coarse cells'
-    distance to it (measured 0.26-0.38 of it where that exceeds 1e-5), within the fields'
-    indicated error."""
-    runs = []
-
-    def kept(run, reason):
-        runs.append(run)
-        return stored(run, reason)
-    monkeypatch.setattr(corrected_product, "stored", kept)
+    corrected product's fields (``corrected_product.solve_corrected`` hands its run,
+    ``refined_run``, to ``corrected_fields.stored``), their error told in the reason.
+    Their volume mean is the corrected mean to the point values' quadrature (for Fick the
+    exact field's own: 1.6e-2 of the swing at tau* = 0.01 on these 1 200 cells), at most
+    half the coarse cells' distance to it (measured 0.26-0.38 of it where that exceeds
+    1e-5), within the fields' indicated error."""
     result = solve(PLATE, ISOTROPIC, WET, TIMES, accuracy=3e-2, sorption=law(2.0),
                    store_fields=True)
     assert "fields: the finest mesh's cells x the sheet's and the planform's" in result.reason
-    run, = runs
+    run = refined_run(PLATE, ISOTROPIC, law(2.0), WET, TIMES, 3e-2, store_fields=True)[0]
     fields, errors = field_errors(run)
     np.testing.assert_array_equal(result.fields, fields)
     corrected = np.abs(volume_mean(run, fields) - result.mean) / MM

@@ -3,6 +3,7 @@ parts (Bar, CamPlate, LinkBar): FiPy sweeps on the mesh cut at its mirror planes
 Fick (k = 0), the sheet (the centre of a wide bar), conservation, refinement, the
 direction of Crank's sorption/desorption asymmetry and the extremes of k."""
 import json
+from dataclasses import replace
 from pathlib import Path
 from types import SimpleNamespace
 
@@ -11,7 +12,8 @@ import pytest
 from hypothesis import example, given, settings
 from hypothesis import strategies as st
 
-from fickcam.diffusion import Bar, CamPlate, Diffusivity, Exposure, Sheet, plan, solve
+from fickcam.diffusion import (Bar, CamPlate, Diffusivity, Exposure, Sheet, SolverSettings, plan,
+                               solve)
 from fickcam.diffusion.accuracy import error_model
 from fickcam.diffusion.accuracy.error_model import LAYER_TOLERANCE
 from fickcam.diffusion.forcing.clock import scales as scales_of
@@ -101,7 +103,7 @@ def test_bar_estimate_bounds_the_error_against_an_independent_reference(k, start
 
 
 @pytest.mark.slow
-def test_the_cell_cap_counts_the_octant_the_sweeps_solve(monkeypatch):
+def test_the_cell_cap_counts_the_octant_the_sweeps_solve():
     """``MAX_CELLS["solid"]`` bounds the cells of the linear system. The D(c) sweeps solve
     one octant of a bar, so the cap counts the octant: with the cap at 2 000, the 6 x 4 x 2
     mm bar absorbing (k = 2) at 3e-2 needs 1 078 octant cells (8 624 on the whole bar,
@@ -109,16 +111,17 @@ def test_the_cell_cap_counts_the_octant_the_sweeps_solve(monkeypatch):
     its estimate bounds the error against the independent method of lines
     (``BAR_REFERENCE``; measured: estimate 1.6e-2, mean error 3.2e-3, layer 5.4e-3). The
     Fickian solid solves the whole bar and is capped by it at the same cap."""
-    monkeypatch.setitem(error_model.MAX_CELLS, "solid", 2000)
+    capped = SolverSettings(cells=replace(error_model.MAX_CELLS, solid=2000))
     times = np.array(BAR_REFERENCE["tau"]) * H ** 2 / D
     absorbing, accuracy = exposure(0.0, MM, times[-1]), 3e-2
     chosen = plan(BAR, ISOTROPIC, absorbing, times, accuracy=accuracy, sorption=law(2),
-                  model="solid")
+                  model="solid", settings=capped)
     assert chosen.cells <= 2000 < 8 * chosen.cells and "capped" not in chosen.reason
-    fick = plan(BAR, ISOTROPIC, absorbing, times, accuracy=accuracy, model="solid")
+    fick = plan(BAR, ISOTROPIC, absorbing, times, accuracy=accuracy, model="solid",
+                settings=capped)
     assert fick.cells <= 2000 and "capped" in fick.reason
     result = solve(BAR, ISOTROPIC, absorbing, times, accuracy=accuracy, sorption=law(2),
-                   model="solid")
+                   model="solid", settings=capped)
     stored = BAR_REFERENCE["k2_absorption"]
     error = np.max(np.abs(result.mean - np.array(stored["mean"]))) / MM
     layer = np.max(np.abs(result.surface - np.array(stored["layer"]))) / MM

@@ -9,8 +9,8 @@ from dataclasses import replace
 import numpy as np
 import pytest
 
-from fickcam.bench_two_phase import CONFIGS, REFERENCE, cam_problem, true_error
 from fickcam.blas import one_blas_thread
+from fickcam.checkout import benchmark
 from fickcam.diffusion import CamPlate, Diffusivity, Disc, SolverSettings, plan, solve
 from fickcam.diffusion.accuracy.error_model import LAYER_TOLERANCE
 from fickcam.diffusion.exact.modes import cylinder_factor
@@ -24,6 +24,10 @@ from fickcam.diffusion.problem.scaling import stretch_of
 from fickcam.diffusion.problem.sorption import Langmuir, Rate
 from fickcam.environment import Environment
 from tolerance import roundoff
+
+CAM = benchmark("two_phase_cam_records")  # the cam's problem and its fine references
+CONFIGS, REFERENCE, cam_problem, true_error = (CAM.CONFIGS, CAM.REFERENCE, CAM.cam_problem,
+                                               CAM.true_error)
 
 DAY = 86400.0
 DEPTH = 5e-4

@@ -18,6 +18,7 @@ before it (tests/test_architecture.py holds the order):
 FiPy is imported inside the backend's functions only, so importing this package stays
 light.
 """
+from .accuracy.error_model import CellCaps
 from .dispatch import MODELS, SolverSettings, plan, solve
 from .problem.exposure import GAS_CONSTANT, Diffusivity, Exposure
 from .problem.geometry import Bar, CamPlate, Disc, Geometry, LinkBar, Sheet
@@ -25,4 +26,4 @@ from .problem.results import DiffusionResult, Plan
 
 __all__ = ["GAS_CONSTANT", "Diffusivity", "Exposure", "Bar", "CamPlate", "Disc",
            "Geometry", "LinkBar", "Sheet", "MODELS", "DiffusionResult", "Plan", "SolverSettings",
-           "plan", "solve"]
+           "CellCaps", "plan", "solve"]

@@ -28,7 +28,8 @@ from typing import Callable
 import numpy as np
 
 from ..errors import InputError
-from .accuracy.error_model import ANALYTIC_ERROR, LAYER_TOLERANCE, PLANFORM_SHARE
+from .accuracy.error_model import (ANALYTIC_ERROR, LAYER_TOLERANCE, MAX_CELLS, PLANFORM_SHARE,
+                                   CellCaps)
 from .exact.separable import exact_available
 from .forcing.clock import RescaledTime
 from .forcing.clock import scales as scales_of
@@ -67,9 +68,10 @@ class FickModel:
     """One Fickian model of the registry: the parts it applies to, why it does not apply to
     a part (``refusal``), its plan and its solve.
 
-    ``plan(geometry, diffusivity, exposure, times, accuracy, depth) -> Plan`` and
+    ``plan(geometry, diffusivity, exposure, times, accuracy, depth, caps) -> Plan`` and
     ``solve(geometry, diffusivity, exposure, times, chosen, accuracy, depth, store_fields,
-    part) -> DiffusionResult`` (depth: the contact layer's [m]; times [s])."""
+    part) -> DiffusionResult`` (depth: the contact layer's [m]; times [s]; caps: the
+    ``CellCaps`` of the run's ``SolverSettings``)."""
 
     name: str
     parts: tuple[type, ...]
@@ -91,7 +93,7 @@ class FickModel:
         return None
 
 
-def _plan_analytic(geometry, diffusivity, exposure, times, accuracy, depth) -> Plan:
+def _plan_analytic(geometry, diffusivity, exposure, times, accuracy, depth, caps) -> Plan:
     if is_long_record(exposure):
         return Plan("analytic", 0, 0, f"exact Crank series, tabulated once and superposed "
                     f"over the {exposure.ramp.size}-segment record in closed form per row "
@@ -114,12 +116,12 @@ def _scaled_history(geometry, diffusivity, exposure, times):
     return scales.tau_star(exposure.change_times), scales.tau_star(np.asarray(times, float))
 
 
-def _plan_plane(geometry, diffusivity, exposure, times, accuracy, depth) -> Plan:
+def _plan_plane(geometry, diffusivity, exposure, times, accuracy, depth, caps) -> Plan:
     """The outline's expansion, then a graded mesh; a long record's sum takes its share."""
     change, outputs = _scaled_history(geometry, diffusivity, exposure, times)
     share = 1.0 - RECORD_SHARE if is_long_record(exposure) else 1.0
     return plan_plane(geometry, diffusivity, change, outputs, exposure.ramp, share * accuracy,
-                      depth)
+                      depth, caps)
 
 
 def _solve_plane(geometry, diffusivity, exposure, times, chosen, accuracy, depth, store_fields,
@@ -130,8 +132,8 @@ def _solve_plane(geometry, diffusivity, exposure, times, chosen, accuracy, depth
 
 def _finite_volume(name: str, parts: tuple[type, ...]) -> FickModel:
     """A finite-volume model (``models.finite_volume``) of these parts."""
-    def planned(geometry, diffusivity, exposure, times, accuracy, depth) -> Plan:
-        return _direct_plan(geometry, diffusivity, name, exposure, times, accuracy)
+    def planned(geometry, diffusivity, exposure, times, accuracy, depth, caps) -> Plan:
+        return _direct_plan(geometry, diffusivity, name, exposure, times, accuracy, caps=caps)
 
     def solved(geometry, diffusivity, exposure, times, chosen, accuracy, depth, store_fields,
                part) -> DiffusionResult:
@@ -194,13 +196,24 @@ def _two_phase_model(geometry, model: str) -> str:
 
 @dataclass(frozen=True)
 class SolverSettings:
-    """The solvers' tuned limits, frozen: when a concentration-dependent step's sweeps stop
-    (``sweeps``) and how a two-phase planform is refined (``planform``: its cap, refinement
-    apart). The defaults are the run's; a caller (a test) passes others instead of changing
-    module values."""
+    """The solvers' tuned limits, frozen. The defaults are the run's; a caller (a test)
+    passes others (``fickcam.run(scene, settings=...)``, ``plan``, ``solve``) instead of
+    changing module values.
+
+    Attributes
+    ----------
+    sweeps : Sweeps
+        When a concentration-dependent step's sweeps stop.
+    planform : Refinement
+        How a two-phase planform is refined (its cap in cells, refinement apart).
+    cells : CellCaps
+        The most cells [-] of the linear system each mesh model may assemble
+        (e.g. ``SolverSettings(cells=CellCaps(plane=300))``).
+    """
 
     sweeps: Sweeps = SWEEPS
     planform: Refinement = REFINEMENT
+    cells: CellCaps = MAX_CELLS
 
 
 SETTINGS = SolverSettings()
@@ -217,17 +230,17 @@ def plan(geometry, diffusivity: Diffusivity, exposure: Exposure, times: np.ndarr
     if is_nonlinear(sorption) and _nonlinear_route(geometry, model, sorption, exposure,
                                                    times, accuracy) == "fick":
         return _as_fick(plan, geometry, diffusivity, exposure, times, sorption, accuracy,
-                        model, surface_layer_depth)
+                        model, surface_layer_depth, settings=settings)
     if is_langmuir(sorption) or is_nonlinear(sorption):
         depth = LAYER_DEPTH if surface_layer_depth is None else surface_layer_depth
         return _plan_sorption(geometry, diffusivity, exposure, times, accuracy, model, sorption,
-                              depth, settings.planform)
+                              depth, settings)
     return _fick_model(geometry, model).plan(geometry, diffusivity, exposure, times, accuracy,
-                                             surface_layer_depth)
+                                             surface_layer_depth, settings.cells)
 
 
 def _plan_sorption(geometry, diffusivity, exposure, times, accuracy, model, sorption,
-                   depth, refinement: Refinement = REFINEMENT) -> Plan:
+                   depth, settings: SolverSettings) -> Plan:
     law = describe(sorption)
     if is_nonlinear(sorption) and _nonlinear_route(geometry, model, sorption, exposure,
                                                    times, accuracy) == "corrected":
@@ -238,7 +251,7 @@ def _plan_sorption(geometry, diffusivity, exposure, times, accuracy, model, sorp
         # the 3-D cells cut at the mirror planes (``symmetry_cuts``)
         mirror_cut = chosen == "solid"
         direct = nonlinear_plan(lambda d, a, at: _direct_plan(geometry, d, chosen, exposure, at, a,
-                                                              mirror_cut),
+                                                              mirror_cut, settings.cells),
                                 diffusivity, sorption, exposure, times, accuracy)
         mirror = {Bar: "; solved on one octant (mirror planes)",
                   CamPlate: "; solved on half the thickness (mid-plane mirror)",
@@ -250,15 +263,17 @@ def _plan_sorption(geometry, diffusivity, exposure, times, accuracy, model, sorp
                     "2x2 free/bound system advanced exactly through the history", accuracy)
     if chosen == "plane":
         return _plan_planform(geometry, diffusivity, exposure, times, accuracy, sorption, depth,
-                              refinement)
-    direct = _direct_plan(geometry, diffusivity, chosen, exposure, times, accuracy)
+                              settings.planform)
+    direct = _direct_plan(geometry, diffusivity, chosen, exposure, times, accuracy,
+                          caps=settings.cells)
     return replace(direct, reason=f"{law}; {direct.reason}")
 
 
 def _direct_plan(geometry, diffusivity, chosen, exposure, times, accuracy,
-                 mirrored: bool = False) -> Plan:
+                 mirrored: bool = False, caps: CellCaps = MAX_CELLS) -> Plan:
     change, outputs = _scaled_history(geometry, diffusivity, exposure, times)
-    return plan_direct(geometry, diffusivity, chosen, change, outputs, accuracy, exposure, mirrored)
+    return plan_direct(geometry, diffusivity, chosen, change, outputs, accuracy, exposure, mirrored,
+                       caps)
 
 
 def _plan_planform(geometry, diffusivity, exposure, times, accuracy, sorption, depth,
@@ -297,13 +312,16 @@ def _refined(geometry, diffusivity, exposure, times: tuple, accuracy, sorption, 
              growth, refinement: Refinement) -> RefinedPlanform:
     """``planform_modes.refined_planform`` of the two-phase history (the march on each mesh,
     most of whose cost is the planform operators): its mesh error is ``PLANFORM_SHARE`` of
-    the accuracy, the march the rest. Cached: ``plan`` and ``solve`` share it."""
+    the accuracy, the march the rest. Cached: ``plan`` and ``solve`` share it (its
+    histories' arrays read-only)."""
     times = np.asarray(times, float)
     share, scale = PLANFORM_SHARE * accuracy, 1.0 / max(swing(exposure), 1e-300)
 
     def measure(source):
         history, estimate = langmuir_history(geometry, diffusivity, sorption, exposure, times,
                                              accuracy - share, depth, source)
+        for values in history.values():
+            values.setflags(write=False)   # cached with the refinement: shared, never copied
         compared = [history["mean"], history["bound"], history["surface"] / LAYER_TOLERANCE]
         return np.stack(compared) * scale, (history, estimate)
 
@@ -367,7 +385,8 @@ def solve(geometry, diffusivity: Diffusivity, exposure: Exposure, times: np.ndar
              if is_nonlinear(sorption) else "")
     if route == "fick":
         return _as_fick(solve, geometry, diffusivity, exposure, times, sorption, accuracy, model,
-                        surface_layer_depth, store_fields=store_fields, part=part)
+                        surface_layer_depth, store_fields=store_fields, part=part,
+                        settings=settings)
     chosen = plan(geometry, diffusivity, exposure, times, accuracy, model, sorption,
                   surface_layer_depth, settings)
     if route:   # D(c): ``extend`` reads between the steps where the cells stay (``dense_output``)
@@ -443,9 +462,10 @@ def _langmuir_modes(geometry, diffusivity, exposure, times, chosen, sorption, de
 
 
 def _langmuir_result(times, history, estimate, chosen) -> DiffusionResult:
-    """(copies: a planform's histories stay cached for the next plan and solve)"""
-    return DiffusionResult(times, history["mean"].copy(), history["surface"].copy(), chosen.model,
-                           chosen.cells, 0, estimate, chosen.reason, bound=history["bound"].copy())
+    """The result of a two-phase modal history (a planform's: read-only, cached with its
+    refinement for the next plan and solve)."""
+    return DiffusionResult(times, history["mean"], history["surface"], chosen.model,
+                           chosen.cells, 0, estimate, chosen.reason, bound=history["bound"])
 
 
 def read_ages(clock, exposure, times, most: int = 256) -> np.ndarray:

@@ -12,11 +12,11 @@ from __future__ import annotations
 
 import logging
 import time
-from contextlib import contextmanager
 from dataclasses import dataclass
 from pathlib import Path
 
 from ..errors import FickcamError, SceneError
+from ..messages import quieter
 
 log = logging.getLogger(__name__)
 
@@ -30,18 +30,6 @@ class CaseTask:
     values: dict         # the raw values this case sets, by dotted path
     label: str           # e.g. "sweep.yaml case 7", names the scene in messages
     base_dir: str        # folder that relative paths in the scene refer to
-
-
-@contextmanager
-def quieter(logger: str, level: int):
-    """Raise ``logger``'s level to at least ``level`` for a while (not below what it was)."""
-    target = logging.getLogger(logger)
-    old = target.level
-    target.setLevel(max(level, target.getEffectiveLevel()))
-    try:
-        yield
-    finally:
-        target.setLevel(old)
 
 
 def case_scene(task: CaseTask):

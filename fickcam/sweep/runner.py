@@ -23,7 +23,8 @@ from pathlib import Path
 
 from ..errors import FickcamError, InputError
 from ..extras import installed, require
-from .case import CaseTask, quieter, run_case
+from ..messages import quieter
+from .case import CaseTask, run_case
 from .combine import combine, early_ends
 from .journal import decode_arrays
 from .scheduler import probe

@@ -51,6 +51,7 @@ k = 2 drying bar at 3e-3 (94 656 cells, 240 steps) 1 188 CPU s, 2.1 GB (load 3-1
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -81,8 +82,24 @@ def space_error(earliest: float) -> float:
 
 # Planner choices (not measured)
 FIRST_STEP = 1e-6        # first step after a change, scaled time tau D / L^2
-MAX_CELLS = {"slab": 4000, "axisymmetric": 40_000, "solid": 120_000, "plane": 40_000}
-# ... cells of the linear system (a mirrored D(c) part: the cells it solves; see above)
+
+
+@dataclass(frozen=True)
+class CellCaps:
+    """The most cells of the linear system each direct model may assemble (a mirrored D(c)
+    part: the cells it solves; see above), ``caps["solid"]`` by model name. A run passes
+    others through ``SolverSettings.cells``, never by changing ``MAX_CELLS``."""
+
+    slab: int = 4000
+    axisymmetric: int = 40_000
+    solid: int = 120_000
+    plane: int = 40_000
+
+    def __getitem__(self, model: str) -> int:
+        return getattr(self, model)
+
+
+MAX_CELLS = CellCaps()
 MIN_CELLS_PER_AXIS = 4
 MIN_STEPS_PER_DOUBLING = 4
 EXPANSION_SHARE = 0.25   # plane: share of the accuracy allowed to the short-time expansion

@@ -145,13 +145,19 @@ ROOT_TABLE = 4096  # J0 roots made at once (8 ms) for every smaller count asked 
 @lru_cache(maxsize=8)
 def bessel_roots(count: int) -> np.ndarray:
     """First ``count`` positive roots beta_n of J0 (the first ``ROOT_TABLE`` from one table:
-    scipy's roots do not depend on how many are asked for)."""
-    return _root_table()[:count] if count <= ROOT_TABLE else jn_zeros(0, count)
+    scipy's roots do not depend on how many are asked for). Read-only (cached)."""
+    if count <= ROOT_TABLE:
+        return _root_table()[:count]   # a view of a read-only table: read-only
+    roots = jn_zeros(0, count)
+    roots.setflags(write=False)
+    return roots
 
 
 @lru_cache(maxsize=1)
 def _root_table() -> np.ndarray:
-    return jn_zeros(0, ROOT_TABLE)
+    table = jn_zeros(0, ROOT_TABLE)
+    table.setflags(write=False)
+    return table
 
 
 def roots_for(fourier_min: float) -> np.ndarray:
@@ -182,7 +188,9 @@ def cylinder_short_coefficients() -> np.ndarray:
     ratio = np.zeros(n)
     for k in range(n):  # power-series division numerator / denominator
         ratio[k] = numerator[k] - np.dot(ratio[:k], denominator[k:0:-1])
-    return 2.0 * ratio / gamma((np.arange(n) + 3) / 2.0)
+    coefficients = 2.0 * ratio / gamma((np.arange(n) + 3) / 2.0)
+    coefficients.setflags(write=False)   # cached: shared by every caller
+    return coefficients
 
 
 def cylinder_uptake_short(fourier):

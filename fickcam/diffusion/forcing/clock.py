@@ -69,8 +69,12 @@ class RescaledTime:
 @lru_cache(maxsize=16)
 def clock_of(diffusivity: Diffusivity, exposure: Exposure) -> RescaledTime:
     """The ``RescaledTime`` of a (diffusivity, exposure), built once: plan, scales and the
-    superposition share it (a year of hourly rows integrates 8760 ramps)."""
-    return RescaledTime(diffusivity, exposure)
+    superposition share it (a year of hourly rows integrates 8760 ramps); the tables it
+    made itself are read-only."""
+    clock = RescaledTime(diffusivity, exposure)
+    for array in (clock.held_rate, clock.cumulative):
+        array.setflags(write=False)
+    return clock
 
 
 def reference_factor(diffusivity: Diffusivity, exposure: Exposure) -> float:

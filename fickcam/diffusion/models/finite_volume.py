@@ -15,7 +15,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..accuracy.error_model import (FIRST_STEP, MAX_CELLS, MIN_STEPS_PER_DOUBLING,
+from ..accuracy.error_model import (FIRST_STEP, MAX_CELLS, CellCaps, MIN_STEPS_PER_DOUBLING,
                                     PAIR_TO_EXTRAPOLATED, TIME_ERROR, space_error)
 from ..forcing.clock import Scales
 from ..forcing.clock import scales as scales_of
@@ -32,13 +32,14 @@ from ..stepping.march import march
 
 
 def plan_direct(geometry, diffusivity, model: str, change: np.ndarray, outputs: np.ndarray,
-                accuracy: float, exposure: Exposure, mirrored: bool = False) -> Plan:
+                accuracy: float, exposure: Exposure, mirrored: bool = False,
+                caps: CellCaps = MAX_CELLS) -> Plan:
     """Cells from the spatial error model, steps per doubling from the time error model,
     each taking half the accuracy. ``mirrored``: the solve keeps the part cut at its
     mirror planes (``symmetry_cuts``, the D(c) sweeps); the plan's cells and the cap
-    (``MAX_CELLS``: cells of the linear system) count that cut part."""
+    (``caps``: cells of the linear system) count that cut part."""
     t_lo = step_plans.earliest_output(change, outputs)
-    cells = _cells(geometry, diffusivity, model, accuracy, t_lo,
+    cells = _cells(geometry, diffusivity, accuracy, t_lo, caps[model],
                    halved_axes(geometry) if mirrored else ())
     per_doubling = max(MIN_STEPS_PER_DOUBLING, math.ceil(math.sqrt(TIME_ERROR / (0.5 * accuracy))))
     nodes = step_plans.step_nodes(change, outputs, FIRST_STEP, per_doubling, exposure.ramp)
@@ -53,21 +54,20 @@ def plan_direct(geometry, diffusivity, model: str, change: np.ndarray, outputs: 
     reason = (f"{why}; cells from accuracy ({cells.note}, earliest output "
               f"tau*={t_lo:.2g}), backward Euler {per_doubling} steps/doubling + Richardson")
     if estimate > accuracy:
-        reason += f"; capped at {MAX_CELLS[model]} cells: error above the requested accuracy"
+        reason += f"; capped at {caps[model]} cells: error above the requested accuracy"
     return Plan(model, cells.solved, int(steps), reason, float(estimate), cells.cells,
                 per_doubling, finest=cells.finest, growth=cells.growth)
 
 
-def _cells(geometry, diffusivity, model: str, accuracy: float, t_lo: float, halved=()):
+def _cells(geometry, diffusivity, accuracy: float, t_lo: float, cap: int, halved=()):
     """The cells of a direct model (``sizing``): prisms for a CamPlate or LinkBar, graded
-    or uniform for a Disc or Bar, uniform for the slab; ``halved``: the axes the solve
-    cuts at their mirror plane."""
+    or uniform for a Disc or Bar, uniform for the slab; at most ``cap`` solved; ``halved``:
+    the axes the solve cuts at their mirror plane."""
     d = diffusivity.pre_exponential
     if isinstance(geometry, (CamPlate, LinkBar)):
-        return sizing.prism_layout(geometry, d, accuracy, t_lo, MAX_CELLS[model],
-                                   space_error(t_lo), halved)
-    return sizing.choose(geometry, sizing.extents(geometry, d), accuracy, t_lo,
-                         MAX_CELLS[model], space_error(t_lo), halved)
+        return sizing.prism_layout(geometry, d, accuracy, t_lo, cap, space_error(t_lo), halved)
+    return sizing.choose(geometry, sizing.extents(geometry, d), accuracy, t_lo, cap,
+                         space_error(t_lo), halved)
 
 
 def discretise(geometry, diffusivity: Diffusivity, cells: tuple[int, ...],

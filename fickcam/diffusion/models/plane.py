@@ -34,7 +34,7 @@ from functools import lru_cache
 import numpy as np
 
 from ..accuracy.error_model import (EXPANSION_SHARE, LAYER_TOLERANCE, FIRST_STEP, GROWTH_REACH,
-                                    MAX_CELLS, MESH_ERROR, MIN_CELLS_PER_AXIS,
+                                    MAX_CELLS, MESH_ERROR, MIN_CELLS_PER_AXIS, CellCaps,
                                     MIN_STEPS_PER_DOUBLING, PAIR_TO_TIME_ERROR, PLANE_PAIR,
                                     space_error)
 from ..forcing.clock import scales as scales_of
@@ -159,11 +159,15 @@ def planform_response(geometry, finest: float, growth: float, d: tuple, layer_de
     """(P1 operator, unit-step response, time-error pair) of the planform: what ``solve_plane``
     marches, cached by the exact inputs that determine it (geometries compare by value), so
     re-runs at other output times (the limit search) and sweep cases that share the part,
-    its diffusivity ratios and its plan (a climate sweep at one temperature) march once."""
+    its diffusivity ratios and its plan (a climate sweep at one temperature) march once.
+    The response's arrays are read-only."""
     mesh = planform_mesh(geometry, finest, growth, stretch_of(d))
     planar = plane_operator(mesh, geometry, layer_depth, d)
     response, pair = step_response(planar, end, per_doubling, first_step,
                                    keep_fields=keep_fields, part=part)
+    for array in (response.nodes, response.mean, response.layer, response.fields):
+        if array is not None:
+            array.setflags(write=False)   # cached: shared by every solve that reads it
     return planar, response, pair
 
 
@@ -181,7 +185,7 @@ def expansion_error_at(expansion, ages: np.ndarray) -> float:
 
 
 def plan_plane(geometry, diffusivity, change: np.ndarray, outputs: np.ndarray, ramp,
-               accuracy: float, layer_depth: float | None = None):
+               accuracy: float, layer_depth: float | None = None, caps: CellCaps = MAX_CELLS):
     """What ``solve_plane`` will do and the error it will report, by the blend's error model
     at the ages the outputs read (``step_plans.output_ages``): the expansion up to its switch
     (error ``EXPANSION_SHARE`` x accuracy); after it a graded P1 mesh whose relative error
@@ -190,7 +194,8 @@ def plan_plane(geometry, diffusivity, change: np.ndarray, outputs: np.ndarray, r
     PAIR_TO_TIME_ERROR (PLANE_PAIR F(end) / m)^2 (at most ``TIME_SHARE`` of it), leaves of
     ``DESIGN_MARGIN`` x accuracy. The cells are those of the mesh ``solve`` builds. The
     plan reads nothing of the contact layer: ``layer_depth`` (the solve's) only lets plan
-    and solve share the expansion (``expansion_of``)."""
+    and solve share the expansion (``expansion_of``); ``caps``: the most nodes of the
+    mesh and cells of the sheet."""
     d = tuple(float(v) for v in diffusivity.pre_exponential)
     tolerance = EXPANSION_SHARE * accuracy
     expansion = expansion_of(geometry, d, layer_depth)
@@ -204,8 +209,8 @@ def plan_plane(geometry, diffusivity, change: np.ndarray, outputs: np.ndarray, r
                        math.ceil(pair * math.sqrt(PAIR_TO_TIME_ERROR / (TIME_SHARE * accuracy))))
     time_error = PAIR_TO_TIME_ERROR * (pair / per_doubling) ** 2
     design, leak, peak = _design(expansion, switch, end, ages, perimeter, area, tightest,
-                                 accuracy, time_error)
-    sheet = min(MAX_CELLS["slab"], max(MIN_CELLS_PER_AXIS, math.ceil(
+                                 accuracy, time_error, caps.plane)
+    sheet = min(caps.slab, max(MIN_CELLS_PER_AXIS, math.ceil(
         1.0 / math.sqrt(0.5 * accuracy * max(t_lo, switch)
                         / (3 * space_error(max(t_lo, switch)))))))
     reason = (f"2-D outline x exact sheet: short-time expansion of the outline up to "
@@ -219,7 +224,7 @@ def plan_plane(geometry, diffusivity, change: np.ndarray, outputs: np.ndarray, r
     at_switch = expansion_error_at(expansion, ages[ages <= switch]) if switch > 0 else 0.0
     estimate = max(at_switch, (design.relative_error + leak) * peak) + time_error
     if estimate > accuracy:
-        reason += f"; capped at {MAX_CELLS['plane']} nodes: error above the requested accuracy"
+        reason += f"; capped at {caps.plane} nodes: error above the requested accuracy"
     mesh = planform_mesh(geometry, design.finest, design.growth, stretch_of(d))
     nodes = int(np.count_nonzero(~mesh.on_outline))
     steps = geometric_steps(0.0, end, mesh_first_step(design.finest, switch), per_doubling)
@@ -228,7 +233,8 @@ def plan_plane(geometry, diffusivity, change: np.ndarray, outputs: np.ndarray, r
                 growth=design.growth)
 
 
-def _design(expansion, switch, end, ages, perimeter, area, tightest, accuracy, time_error):
+def _design(expansion, switch, end, ages, perimeter, area, tightest, accuracy, time_error,
+            cap: int):
     """(MeshDesign, leak, peak): the mesh meeting what the time error leaves of
     ``DESIGN_MARGIN`` x accuracy at every time from the switch (or the first output) to
     the last output (so the contact layer, which the design does not model, keeps its
@@ -243,7 +249,7 @@ def _design(expansion, switch, end, ages, perimeter, area, tightest, accuracy, t
     target = max((DESIGN_MARGIN * accuracy - time_error)
                  / max(peak_weight(perimeter, area, span), 1e-300) - leak, 0.1 * accuracy)
     design = (mesh_design if expansion is not None else uniform_design)(
-        target, start, perimeter if expansion is not None else area, tightest, MAX_CELLS["plane"])
+        target, start, perimeter if expansion is not None else area, tightest, cap)
     return design, leak, peak
 
 

@@ -376,6 +376,26 @@ def extension(run: CorrectedMeshes, result: DiffusionResult, accuracy: float,
                      product, run.scale, accuracy, resolve, run.setting.part)
 
 
+def refined_run(geometry, diffusivity, law, exposure, times, accuracy: float, *,
+                surface_layer_depth=LAYER_DEPTH, store_fields=False, part="",
+                sweeps: Sweeps = SWEEPS) -> tuple[CorrectedMeshes, tuple, float, float]:
+    """The nested meshes ``solve_corrected`` ends on, with its (mean, layer) values, the
+    3-D change's estimate and the rest of the estimate: ``corrected_levels``' two meshes,
+    a further one while the total is above the accuracy and the rest below it."""
+    run = corrected_levels(geometry, diffusivity, law, exposure, times, accuracy,
+                           surface_layer_depth=surface_layer_depth,
+                           store_fields=store_fields, part=part, sweeps=sweeps)
+    estimated = partial(estimate_parts, margin=skin_margin(law, exposure, times))
+    values, three_d_error, rest = estimated(run)
+    while rest < accuracy < rest + three_d_error:
+        finer = run.finer(store_fields)
+        if finer is None:
+            break
+        run = finer
+        values, three_d_error, rest = estimated(run)
+    return run, values, three_d_error, rest
+
+
 def solve_corrected(geometry, diffusivity, law, exposure, times, accuracy: float, *,
                     surface_layer_depth=LAYER_DEPTH, store_fields=False, part="",
                     reason="", sweeps: Sweeps = SWEEPS) -> DiffusionResult:
@@ -389,18 +409,11 @@ def solve_corrected(geometry, diffusivity, law, exposure, times, accuracy: float
     ``store_fields``: the finest 3-D mesh's cells corrected cell by cell
     (``corrected_fields.stored``; a Bar's in its own frame, ``bar_coordinates``)."""
     times = np.asarray(times, float)
-    run = corrected_levels(geometry, diffusivity, law, exposure, times, accuracy,
-                           surface_layer_depth=surface_layer_depth,
-                           store_fields=store_fields, part=part, sweeps=sweeps)
+    run, values, three_d_error, rest = refined_run(
+        geometry, diffusivity, law, exposure, times, accuracy,
+        surface_layer_depth=surface_layer_depth, store_fields=store_fields, part=part,
+        sweeps=sweeps)
     sheet = run.sheet
-    estimated = partial(estimate_parts, margin=skin_margin(law, exposure, times))
-    values, three_d_error, rest = estimated(run)
-    while rest < accuracy < rest + three_d_error:
-        finer = run.finer(store_fields)
-        if finer is None:
-            break
-        run = finer
-        values, three_d_error, rest = estimated(run)
     estimate = three_d_error + rest
     fine = run.marched[-1]
     note = (f"{reason.split(TARGET)[0]}; measured: sheet {sheet.error_estimate:.1e}, "

@@ -230,11 +230,14 @@ def short_time(part, scale: np.ndarray, layer_depth: float, spacing: float) -> S
 def outline_chords(part, scale: tuple[float, float], spacing: float):
     """``inward_chords`` of the part's outline (``boundary_loops`` at ``spacing``) scaled by
     ``scale``: plan and solve ask for the expansion at two layer depths, which leave the
-    chords alone (half the expansion's cost)."""
+    chords alone (half the expansion's cost). Read-only arrays (cached)."""
     loops, _ = boundary_loops(part, spacing)
     factor = np.asarray(scale)
-    return inward_chords([loop * factor[None, :] for loop in loops],
-                         0.25 * spacing * float(np.max(factor)))
+    chords = inward_chords([loop * factor[None, :] for loop in loops],
+                           0.25 * spacing * float(np.max(factor)))
+    for array in chords:
+        array.setflags(write=False)   # cached: shared by every caller
+    return chords
 
 
 def inward_chords(loops: list[np.ndarray], spacing: float) -> tuple[np.ndarray, np.ndarray]:

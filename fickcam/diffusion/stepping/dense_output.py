@@ -52,7 +52,7 @@ log = logging.getLogger(__name__)
 INTERPOLATION_SHARE = 1.0  # of the accuracy: a larger interpolation estimate re-solves (the
 #   demo cam's, 4 steps per doubling: 6.5e-5 (k = 1) to 3.7e-4 (k = 2); benchmarks/dc_extend.py).
 #   The extended estimate (the stored one + this) can pass the accuracy below it: the limit
-#   search then says so (``simulate._search_notices``)
+#   search then says so (``simulate.search_notices``)
 
 
 @dataclass(frozen=True)

@@ -378,7 +378,7 @@ _TABLES: OrderedDict = OrderedDict()
 
 def _kept(same: KernelKey | None, grid: tuple, build) -> Table:
     """The table of kernel ``same`` on ``grid`` from an earlier solve, else ``build()``
-    (kept, the least recently used dropped past ``KEPT_TABLES``)."""
+    (kept, read-only, the least recently used dropped past ``KEPT_TABLES``)."""
     if same is None:
         return build()
     key = (same.key, grid)
@@ -386,6 +386,9 @@ def _kept(same: KernelKey | None, grid: tuple, build) -> Table:
         _TABLES.move_to_end(key)
         return _TABLES[key][0]
     table = build()
+    for array in (table.kernel, table.integral, table.raw):
+        if array is not None:
+            array.setflags(write=False)   # kept: later solves read the same arrays
     _TABLES[key] = (table, same.holds)
     while len(_TABLES) > KEPT_TABLES:
         _TABLES.popitem(last=False)
