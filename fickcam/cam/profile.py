@@ -53,9 +53,27 @@ class CamProfile:
     spline: object  # scipy BSpline, u -> (x, y)
     points: int     # how many points it was made from
 
+    @functools.cached_property
+    def pieces(self):
+        """The spline as a :class:`scipy.interpolate.PPoly` (coefficients (6, pieces, 2)):
+        the same curve, evaluated several times faster."""
+        from scipy.interpolate import PPoly
+
+        t, c, k = self.spline.tck
+        x, y = (PPoly.from_spline((t, c[:, j], k)) for j in (0, 1))
+        return PPoly(np.stack([x.c, y.c], axis=-1), x.x, extrapolate="periodic")
+
+    @functools.cached_property
+    def samples(self):
+        """(u, x, y, dx/du, dy/du) at max(4 points, ANGLE_NODES) + 1 evenly spaced u in
+        [0, 1] (m): the dense table from which the contact of any aged profile starts."""
+        count = max(4 * self.points, ANGLE_NODES)
+        u = np.arange(count + 1) / count
+        return (u,) + self.at(u) + self.at(u, 1)
+
     def at(self, u, derivative: int = 0):
         """(x, y) of the profile (or its u-derivative) at u (taken modulo 1)."""
-        xy = self.spline(np.mod(u, 1.0), nu=derivative)
+        xy = self.pieces(np.mod(u, 1.0), nu=derivative)
         return xy[..., 0], xy[..., 1]
 
     def outline(self, n: int):
@@ -214,6 +232,8 @@ def write_profile_dxf(path, x, y) -> Path:
 # ------------------------------------------------------------------ kinematics
 
 
+
+
 @dataclass(frozen=True)
 class _Contact:
     """The aged profile seen by one follower: returns theta(u) (mod 2 pi), Y(u) and
@@ -230,6 +250,10 @@ class _Contact:
 
     def __call__(self, u):
         (wx, wy), (tx, ty) = self.profile.at(u), self.profile.at(u, 1)
+        return self.touching(wx, wy, tx, ty)
+
+    def touching(self, wx, wy, tx, ty):
+        """(theta, Y, dY/dtheta) of dry profile points W (m) with tangents T = dW/du (m)."""
         sx, sy = 1 + self.strain_x, 1 + self.strain_y
         wx, wy, tx, ty = sx * wx, sy * wy, sx * tx, sy * ty
         nx, ny = _outward_normal(tx, ty)
@@ -253,47 +277,116 @@ def _wrap(angle):
     return np.mod(angle + np.pi, TWO_PI) - np.pi
 
 
-def contact_parameters(contact: _Contact, theta, samples: int, steps: int = 40):
-    """u at which each cam angle theta touches: a start from the dense table of
-    theta(u) (monotone: the contact runs clockwise round the profile), then Newton."""
-    u_table = np.arange(samples + 1) / samples
-    table = np.unwrap(contact(u_table)[0])
+def contact_table(contact: _Contact):
+    """(theta, u): the cam angle at which each of the profile's dense samples touches,
+    unwrapped and decreasing (the contact runs clockwise round the profile), for the
+    starts of :func:`solve_contact`; ValueError where theta(u) is not monotone."""
+    u_table, w_x, w_y, t_x, t_y = contact.profile.samples
+    table = np.unwrap(contact.touching(w_x, w_y, t_x, t_y)[0])
     if not (np.all(np.diff(table) < 0) or np.all(np.diff(table) > 0)):
         raise ValueError("the profile does not touch the follower at one point per cam "
                          "angle (undercut or concave beyond the roller)")
     if table[-1] > table[0]:
-        table, u_table = table[::-1], u_table[::-1]
-    target = table[0] - np.mod(table[0] - np.asarray(theta, float), TWO_PI)
-    u = np.interp(target, table[::-1], u_table[::-1])
+        return table[::-1], u_table[::-1]
+    return table, u_table
+
+
+def solve_contact(contact: _Contact, table, theta, steps: int = 40):
+    """u at which each cam angle theta [rad] touches: a start interpolated in ``table``
+    (:func:`contact_table`), then Newton's method on theta(u) = theta with a central
+    difference slope, until the step is below 1e-12 of the profile (a picometre)."""
+    angles, u_table = table
+    target = angles[0] - np.mod(angles[0] - np.asarray(theta, float), TWO_PI)
+    u = np.interp(target, angles[::-1], u_table[::-1])
     h = 1e-7
+    n = u.size
     for _ in range(steps):
-        miss = _wrap(contact(u)[0] - target)
-        slope = _wrap(contact(u + h)[0] - contact(u - h)[0]) / (2 * h)
+        turned = contact(np.concatenate([u, u + h, u - h]))[0]
+        miss = _wrap(turned[:n] - target)
+        slope = _wrap(turned[n:2 * n] - turned[2 * n:]) / (2 * h)
         step = miss / slope
         u = u - step
-        if np.max(np.abs(step), initial=0.0) < 1e-12:  # u: below a picometre of profile
+        if np.max(np.abs(step), initial=0.0) < 1e-12:
             break
     return u
 
 
-def profile_motion(profile: CamProfile, strain_x: float, strain_y: float, roller: float,
-                   offset: float, flat: bool, theta, arm=None, base: float = 0.0):
-    """(Y, dY/dtheta, d2Y/dtheta2, d3Y/dtheta3) at cam angles theta and (lowest, highest)
-    Y over the turn for the aged profile (see the module docstring); with ``arm`` (a grown
-    :class:`fickcam.cam.arm.Arm`) Y is the arm angle from its dry ``base`` angle, dY/dtheta
-    from :func:`fickcam.cam.arm.arm_slope`."""
+def piece_roots(curve):
+    """The real roots of a scalar :class:`scipy.interpolate.PPoly` inside its breakpoints,
+    sorted: every piece whose polynomial can reach zero (its value at the left end no
+    larger than the bound sum_k |c_k| dx^k on its change over the piece) solved at once,
+    as the eigenvalues of the stacked companion matrices (numpy.linalg.eigvals)."""
+    c, x = curve.c, curve.x
+    width = np.diff(x)
+    degree = c.shape[0] - 1
+    powers = width[None, :] ** np.arange(degree, 0, -1)[:, None]
+    reach = np.sum(np.abs(c[:-1]) * powers, axis=0)
+    pieces = np.nonzero((np.abs(c[-1]) <= reach) & (reach > 0))[0]
+    if not pieces.size:
+        return np.empty(0)
+    lead = c[0, pieces]
+    # a vanishing leading coefficient would blow the companion matrix up: drop to the
+    # highest non-negligible power (relative to the piece's reach)
+    scale = np.where(np.abs(lead) * width[pieces] ** degree > 1e-14 * reach[pieces], lead, np.nan)
+    companion = np.zeros((pieces.size, degree, degree))
+    companion[:, 0, :] = -c[1:, pieces].T / scale[:, None]
+    companion[:, np.arange(1, degree), np.arange(degree - 1)] = 1.0
+    good = np.isfinite(scale)
+    local = np.full((pieces.size, degree), np.nan, complex)
+    local[good] = np.linalg.eigvals(companion[good])
+    for k in np.nonzero(~good)[0]:  # rare: a lower-degree piece
+        r = np.roots(c[:, pieces[k]])
+        local[k, :r.size] = r
+    real = np.abs(local.imag) <= 1e-9 * width[pieces, None]
+    inside = real & (local.real >= 0) & (local.real <= width[pieces, None])
+    roots = (x[pieces, None] + local.real)[inside]
+    return np.unique(roots)
+
+
+@dataclass(frozen=True, eq=False)
+class ProfileMotion:
+    """The follower motion of one aged profile, solved once: the contact table, the
+    periodic quintic spline of dY/dtheta on the uniform angle grid and (lowest, highest) Y.
+    Called with cam angles theta [rad] it returns (Y [m or rad], dY/dtheta, d2Y/dtheta2,
+    d3Y/dtheta3): Y and dY/dtheta from the contact at theta (Newton from the table), the
+    higher derivatives from the spline."""
+
+    contact: _Contact
+    table: tuple
+    slope: object  # scipy BSpline of dY/dtheta over [0, 2 pi], periodic
+    extremes: tuple
+
+    def __call__(self, theta):
+        theta = np.mod(np.asarray(theta, float), TWO_PI)
+        _, height, slope = self.contact(solve_contact(self.contact, self.table, theta))
+        return height, slope, self.slope(theta, nu=1), self.slope(theta, nu=2)
+
+
+def aged_profile_motion(profile: CamProfile, strain_x: float, strain_y: float, roller: float,
+                        offset: float, flat: bool, arm=None, base: float = 0.0) -> ProfileMotion:
+    """The :class:`ProfileMotion` of ``profile`` swollen by strains [-] (x, y), seen by a
+    roller of radius ``roller`` [m] (0: knife edge) or a flat face, on the follower line
+    x = ``offset`` [m]; with ``arm`` (a grown :class:`fickcam.cam.arm.Arm`) Y is the arm
+    angle [rad] from its dry ``base`` angle [rad]. The contact is solved once on the uniform
+    angle grid, vectorised; the extremes of Y are the grid's and those at the roots of the
+    slope spline (:func:`piece_roots`)."""
     from scipy.interpolate import PPoly, make_interp_spline
 
     contact = _Contact(profile, strain_x, strain_y, roller, offset, flat, arm, base)
-    samples = max(4 * profile.points, ANGLE_NODES)
+    table = contact_table(contact)
     grid = TWO_PI * np.arange(ANGLE_NODES + 1) / ANGLE_NODES
-    theta = np.mod(np.asarray(theta, float), TWO_PI)
-    _, height, slope = contact(contact_parameters(contact, np.r_[grid[:-1], theta], samples))
-    spline = make_interp_spline(grid, np.r_[slope[:ANGLE_NODES], slope[0]], k=DEGREE,
-                                bc_type="periodic")
-    turning = PPoly.from_spline(spline).roots(extrapolate=False)
-    turning = np.unique(np.mod(turning[np.isfinite(turning)], TWO_PI))
-    extremes = np.r_[height, contact(contact_parameters(contact, turning, samples))[1]
+    _, height, slope = contact(solve_contact(contact, table, grid[:-1]))
+    spline = make_interp_spline(grid, np.r_[slope, slope[0]], k=DEGREE, bc_type="periodic")
+    turning = np.unique(np.mod(piece_roots(PPoly.from_spline(spline)), TWO_PI))
+    extremes = np.r_[height, contact(solve_contact(contact, table, turning))[1]
                      if turning.size else []]
-    derivatives = (slope[ANGLE_NODES:], spline(theta, nu=1), spline(theta, nu=2))
-    return (height[ANGLE_NODES:],) + derivatives, (float(extremes.min()), float(extremes.max()))
+    return ProfileMotion(contact, table, spline, (float(extremes.min()), float(extremes.max())))
+
+
+def profile_motion(profile: CamProfile, strain_x: float, strain_y: float, roller: float,
+                   offset: float, flat: bool, theta, arm=None, base: float = 0.0):
+    """(Y, dY/dtheta, d2Y/dtheta2, d3Y/dtheta3) at cam angles theta [rad] and (lowest,
+    highest) Y over the turn for the aged profile (:func:`aged_profile_motion`, whose
+    arguments these are)."""
+    motion = aged_profile_motion(profile, strain_x, strain_y, roller, offset, flat, arm, base)
+    return motion(theta), motion.extremes
