@@ -81,7 +81,7 @@ def test_the_motion_at_any_angle_is_the_motion_on_the_whole_turn():
 
 
 @settings(max_examples=30, deadline=None)
-@given(st.lists(st.floats(-1.0, 1.0), min_size=12, max_size=40),
+@given(st.lists(st.floats(-1.0, 1.0, allow_subnormal=False), min_size=12, max_size=40),
        st.integers(1, 5), st.floats(-0.5, 0.5))
 def test_piece_roots_are_the_roots_scipy_finds(values, degree, shift):
     """piece_roots solves only the pieces that can reach zero; it finds the roots
@@ -96,4 +96,4 @@ def test_piece_roots_are_the_roots_scipy_finds(values, degree, shift):
     simple = expected[np.abs(curve.derivative()(expected)) > 1e-6]  # a tangential root is
     # ill-posed for either method
     assert all(np.min(np.abs(found - r), initial=np.inf) < 1e-9 for r in simple)
-    assert np.all(np.abs(curve(found)) < 1e-9 * np.max(np.abs(curve.c)))
+    assert np.all(np.abs(curve(found)) <= 1e-9 * np.max(np.abs(curve.c)))

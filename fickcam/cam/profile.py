@@ -8,13 +8,17 @@ Practical Guide to Splines, 2001, ch. XIII). Swelling maps it by D = diag(1 + ep
 1 + eps_y) (tangents too). The follower touches the aged profile where, after turning
 the cam by theta, the roller centre W + R n (knife: W) lies on the follower line x = e,
 or (flat face) where the outward normal n points along +y (kinematic inversion, Norton,
-Design of Machinery 5th ed., sec. 8.6); u(theta) is found by Newton's method. From the
+Design of Machinery 5th ed., sec. 8.6); u(theta) is found by Newton's method, started
+from a table of theta(u) over the profile's dense samples. From the
 same contact, without differentiating data (a swinging arm: :func:`fickcam.cam.arm.arm_slope`):
 knife/roller dY/dtheta = e + Y tan(phi),
 tan(phi) = (R(theta) T)_y / (R(theta) T)_x with T the profile tangent (the pitch curve is
 parallel to the working profile; Norton eq. 8.31); flat dY/dtheta = (R(theta) W)_x
 (Norton eq. 8.38). The second and third derivatives come from a periodic quintic spline
-of dY/dtheta on a uniform grid of cam angles.
+of dY/dtheta on a uniform grid of cam angles, the extremes of Y from the roots of that
+spline. All of it is solved once per aged state (:func:`aged_profile_motion`); any later
+angle (the output grid, the jump-speed search) costs one vectorised Newton solve from
+the table. The dry spline is evaluated as a :class:`scipy.interpolate.PPoly`.
 """
 from __future__ import annotations
 
@@ -235,9 +239,16 @@ def write_profile_dxf(path, x, y) -> Path:
 
 
 @dataclass(frozen=True)
-class _Contact:
-    """The aged profile seen by one follower: returns theta(u) (mod 2 pi), Y(u) and
-    dY/dtheta(u) at the contact of profile point u."""
+class AgedContact:
+    """The aged profile seen by one follower. Called with profile parameters u [-] it
+    returns (theta [rad, mod 2 pi], Y [m; an arm: rad], dY/dtheta [m/rad; an arm: -]) at
+    the contact of profile point u: the cam angle at which u touches, the follower height
+    (or arm angle) then, and its rate over the cam angle.
+
+    Attributes: ``profile`` (dry), ``strain_x``, ``strain_y`` [-] of the cam, ``roller``
+    [m] (0: knife edge), ``offset`` [m] of the follower line x = offset, ``flat`` (a flat
+    face), ``arm`` (a grown :class:`fickcam.cam.arm.Arm`, or None: translating) and its
+    dry ``base`` angle [rad]."""
 
     profile: CamProfile
     strain_x: float
@@ -253,7 +264,8 @@ class _Contact:
         return self.touching(wx, wy, tx, ty)
 
     def touching(self, wx, wy, tx, ty):
-        """(theta, Y, dY/dtheta) of dry profile points W (m) with tangents T = dW/du (m)."""
+        """(theta [rad], Y, dY/dtheta) of dry profile points W [m] with tangents
+        T = dW/du [m] (as ``__call__``, from points already evaluated)."""
         sx, sy = 1 + self.strain_x, 1 + self.strain_y
         wx, wy, tx, ty = sx * wx, sy * wy, sx * tx, sy * ty
         nx, ny = _outward_normal(tx, ty)
@@ -277,10 +289,25 @@ def _wrap(angle):
     return np.mod(angle + np.pi, TWO_PI) - np.pi
 
 
-def contact_table(contact: _Contact):
-    """(theta, u): the cam angle at which each of the profile's dense samples touches,
-    unwrapped and decreasing (the contact runs clockwise round the profile), for the
-    starts of :func:`solve_contact`; ValueError where theta(u) is not monotone."""
+def contact_table(contact: AgedContact):
+    """The cam angle at which each of the profile's dense samples touches.
+
+    Parameters
+    ----------
+    contact : AgedContact
+        The aged profile and its follower.
+
+    Returns
+    -------
+    (theta, u) : tuple of ndarray
+        theta [rad] unwrapped and decreasing (the contact runs clockwise round the
+        profile) and the samples' u [-]: the starts of :func:`solve_contact`.
+
+    Raises
+    ------
+    ValueError
+        Where theta(u) is not monotone (an undercut, or concave beyond the roller).
+    """
     u_table, w_x, w_y, t_x, t_y = contact.profile.samples
     table = np.unwrap(contact.touching(w_x, w_y, t_x, t_y)[0])
     if not (np.all(np.diff(table) < 0) or np.all(np.diff(table) > 0)):
@@ -291,10 +318,28 @@ def contact_table(contact: _Contact):
     return table, u_table
 
 
-def solve_contact(contact: _Contact, table, theta, steps: int = 40):
-    """u at which each cam angle theta [rad] touches: a start interpolated in ``table``
-    (:func:`contact_table`), then Newton's method on theta(u) = theta with a central
-    difference slope, until the step is below 1e-12 of the profile (a picometre)."""
+def solve_contact(contact: AgedContact, table, theta, steps: int = 40):
+    """The profile point touching at each cam angle: a start interpolated in ``table``,
+    then Newton's method on theta(u) = theta (central-difference slope, the three
+    evaluations in one call), until every step is below 1e-12 in u (a picometre of
+    profile); vectorised over theta.
+
+    Parameters
+    ----------
+    contact : AgedContact
+        The aged profile and its follower.
+    table : tuple of ndarray
+        (theta [rad], u [-]) from :func:`contact_table` for this ``contact``.
+    theta : array_like
+        Cam angles [rad], any range.
+    steps : int
+        Most Newton steps.
+
+    Returns
+    -------
+    ndarray
+        u [-] (the chord fraction round the profile) for each theta.
+    """
     angles, u_table = table
     target = angles[0] - np.mod(angles[0] - np.asarray(theta, float), TWO_PI)
     u = np.interp(target, angles[::-1], u_table[::-1])
@@ -312,10 +357,22 @@ def solve_contact(contact: _Contact, table, theta, steps: int = 40):
 
 
 def piece_roots(curve):
-    """The real roots of a scalar :class:`scipy.interpolate.PPoly` inside its breakpoints,
-    sorted: every piece whose polynomial can reach zero (its value at the left end no
-    larger than the bound sum_k |c_k| dx^k on its change over the piece) solved at once,
-    as the eigenvalues of the stacked companion matrices (numpy.linalg.eigvals)."""
+    """The real roots of a piecewise polynomial inside its breakpoints, solving only the
+    pieces that can reach zero: those whose value at the left end is no larger than the
+    bound sum_k |c_k| dx^k on the change over the piece. Those are solved at once, as the
+    eigenvalues of their stacked companion matrices (numpy.linalg.eigvals), in place of
+    :meth:`scipy.interpolate.PPoly.roots`, which solves every piece in turn.
+
+    Parameters
+    ----------
+    curve : scipy.interpolate.PPoly
+        Scalar piecewise polynomial of x [any unit].
+
+    Returns
+    -------
+    ndarray
+        Its real roots [unit of x], sorted, unique.
+    """
     c, x = curve.c, curve.x
     width = np.diff(x)
     degree = c.shape[0] - 1
@@ -334,24 +391,32 @@ def piece_roots(curve):
     good = np.isfinite(scale)
     local = np.full((pieces.size, degree), np.nan, complex)
     local[good] = np.linalg.eigvals(companion[good])
-    for k in np.nonzero(~good)[0]:  # rare: a lower-degree piece
-        r = np.roots(c[:, pieces[k]])
+    for k in np.nonzero(~good)[0]:  # rare: a piece of lower degree
+        negligible = np.abs(c[:-1, pieces[k]]) * powers[:, pieces[k]] <= 1e-14 * reach[pieces[k]]
+        leading = int(np.argmin(negligible)) if not negligible.all() else degree
+        r = np.roots(c[leading:, pieces[k]])
         local[k, :r.size] = r
-    real = np.abs(local.imag) <= 1e-9 * width[pieces, None]
-    inside = real & (local.real >= 0) & (local.real <= width[pieces, None])
-    roots = (x[pieces, None] + local.real)[inside]
+    span = width[pieces, None]
+    real = np.abs(local.imag) <= 1e-9 * span
+    inside = real & (local.real >= -1e-12 * span) & (local.real <= (1 + 1e-12) * span)
+    roots = (x[pieces, None] + np.clip(local.real, 0.0, span))[inside]
     return np.unique(roots)
 
 
 @dataclass(frozen=True, eq=False)
 class ProfileMotion:
-    """The follower motion of one aged profile, solved once: the contact table, the
-    periodic quintic spline of dY/dtheta on the uniform angle grid and (lowest, highest) Y.
-    Called with cam angles theta [rad] it returns (Y [m or rad], dY/dtheta, d2Y/dtheta2,
-    d3Y/dtheta3): Y and dY/dtheta from the contact at theta (Newton from the table), the
-    higher derivatives from the spline."""
+    """The follower motion of one aged profile, solved once (:func:`aged_profile_motion`).
 
-    contact: _Contact
+    Called with cam angles theta [rad] (any range), it returns (Y [m], dY/dtheta [m/rad],
+    d2Y/dtheta2 [m/rad^2], d3Y/dtheta3 [m/rad^3]); a swinging arm's Y is its angle [rad].
+    Y and dY/dtheta come from the contact at theta itself (:func:`solve_contact` from the
+    table: one vectorised Newton solve), the higher derivatives from the spline.
+
+    Attributes: ``contact`` (:class:`AgedContact`), ``table`` (:func:`contact_table`),
+    ``slope`` (the periodic quintic BSpline of dY/dtheta over [0, 2 pi]) and
+    ``extremes`` (lowest, highest Y over the turn)."""
+
+    contact: AgedContact
     table: tuple
     slope: object  # scipy BSpline of dY/dtheta over [0, 2 pi], periodic
     extremes: tuple
@@ -364,15 +429,35 @@ class ProfileMotion:
 
 def aged_profile_motion(profile: CamProfile, strain_x: float, strain_y: float, roller: float,
                         offset: float, flat: bool, arm=None, base: float = 0.0) -> ProfileMotion:
-    """The :class:`ProfileMotion` of ``profile`` swollen by strains [-] (x, y), seen by a
-    roller of radius ``roller`` [m] (0: knife edge) or a flat face, on the follower line
-    x = ``offset`` [m]; with ``arm`` (a grown :class:`fickcam.cam.arm.Arm`) Y is the arm
-    angle [rad] from its dry ``base`` angle [rad]. The contact is solved once on the uniform
-    angle grid, vectorised; the extremes of Y are the grid's and those at the roots of the
-    slope spline (:func:`piece_roots`)."""
+    """The follower motion of an aged profile, solved once: the contact on the uniform
+    grid of ANGLE_NODES cam angles (one vectorised Newton solve), the periodic quintic
+    spline of dY/dtheta through it, and the extremes of Y: the grid's and those at the
+    roots of the slope spline (:func:`piece_roots`).
+
+    Parameters
+    ----------
+    profile : CamProfile
+        The dry profile.
+    strain_x, strain_y : float
+        Swelling strains of the cam along x and y [-].
+    roller : float
+        Roller radius [m] (0: knife edge; ignored for a flat face).
+    offset : float
+        Offset of the follower line x = offset [m].
+    flat : bool
+        A flat-faced follower.
+    arm : fickcam.cam.arm.Arm, optional
+        A swinging arm, already grown: Y is then its angle [rad] from ``base``.
+    base : float
+        The arm's dry base angle [rad].
+
+    Returns
+    -------
+    ProfileMotion
+    """
     from scipy.interpolate import PPoly, make_interp_spline
 
-    contact = _Contact(profile, strain_x, strain_y, roller, offset, flat, arm, base)
+    contact = AgedContact(profile, strain_x, strain_y, roller, offset, flat, arm, base)
     table = contact_table(contact)
     grid = TWO_PI * np.arange(ANGLE_NODES + 1) / ANGLE_NODES
     _, height, slope = contact(solve_contact(contact, table, grid[:-1]))
@@ -385,8 +470,8 @@ def aged_profile_motion(profile: CamProfile, strain_x: float, strain_y: float, r
 
 def profile_motion(profile: CamProfile, strain_x: float, strain_y: float, roller: float,
                    offset: float, flat: bool, theta, arm=None, base: float = 0.0):
-    """(Y, dY/dtheta, d2Y/dtheta2, d3Y/dtheta3) at cam angles theta [rad] and (lowest,
-    highest) Y over the turn for the aged profile (:func:`aged_profile_motion`, whose
-    arguments these are)."""
+    """(Y [m], dY/dtheta [m/rad], d2Y/dtheta2 [m/rad^2], d3Y/dtheta3 [m/rad^3]) at cam
+    angles ``theta`` [rad], and (lowest, highest) Y [m] over the turn, of the aged profile;
+    the other parameters are those of :func:`aged_profile_motion` (an arm's Y in rad)."""
     motion = aged_profile_motion(profile, strain_x, strain_y, roller, offset, flat, arm, base)
     return motion(theta), motion.extremes
