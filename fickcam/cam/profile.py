@@ -299,9 +299,10 @@ def contact_table(contact: AgedContact):
 
     Returns
     -------
-    (theta, u) : tuple of ndarray
+    (theta, u, rate) : tuple of ndarray
         theta [rad] unwrapped and decreasing (the contact runs clockwise round the
-        profile) and the samples' u [-]: the starts of :func:`solve_contact`.
+        profile), the samples' u [-] and dtheta/du [rad] there (second-order differences
+        of the table): the starts and the slopes of :func:`solve_contact`.
 
     Raises
     ------
@@ -313,23 +314,26 @@ def contact_table(contact: AgedContact):
     if not (np.all(np.diff(table) < 0) or np.all(np.diff(table) > 0)):
         raise ValueError("the profile does not touch the follower at one point per cam "
                          "angle (undercut or concave beyond the roller)")
+    rate = np.gradient(table, u_table, edge_order=2)
     if table[-1] > table[0]:
-        return table[::-1], u_table[::-1]
-    return table, u_table
+        return table[::-1], u_table[::-1], rate[::-1]
+    return table, u_table, rate
 
 
 def solve_contact(contact: AgedContact, table, theta, steps: int = 40):
-    """The profile point touching at each cam angle: a start interpolated in ``table``,
-    then Newton's method on theta(u) = theta (central-difference slope, the three
-    evaluations in one call), until every step is below 1e-12 in u (a picometre of
-    profile); vectorised over theta.
+    """The profile point touching at each cam angle: a start and a slope dtheta/du
+    interpolated in ``table``, then Newton's method on theta(u) = theta with that slope,
+    until every step is below 1e-12 in u (a picometre of profile); vectorised over theta.
+    The table's samples are so close (spacing du <= 1/2048) that the start and the slope
+    are right to O(du^2): each step gains about nine digits, and two steps settle.
 
     Parameters
     ----------
     contact : AgedContact
         The aged profile and its follower.
     table : tuple of ndarray
-        (theta [rad], u [-]) from :func:`contact_table` for this ``contact``.
+        (theta [rad], u [-], dtheta/du [rad]) from :func:`contact_table` for this
+        ``contact``.
     theta : array_like
         Cam angles [rad], any range.
     steps : int
@@ -340,16 +344,12 @@ def solve_contact(contact: AgedContact, table, theta, steps: int = 40):
     ndarray
         u [-] (the chord fraction round the profile) for each theta.
     """
-    angles, u_table = table
+    angles, u_table, rate = table
     target = angles[0] - np.mod(angles[0] - np.asarray(theta, float), TWO_PI)
     u = np.interp(target, angles[::-1], u_table[::-1])
-    h = 1e-7
-    n = u.size
+    slope = np.interp(target, angles[::-1], rate[::-1])
     for _ in range(steps):
-        turned = contact(np.concatenate([u, u + h, u - h]))[0]
-        miss = _wrap(turned[:n] - target)
-        slope = _wrap(turned[n:2 * n] - turned[2 * n:]) / (2 * h)
-        step = miss / slope
+        step = _wrap(contact(u)[0] - target) / slope
         u = u - step
         if np.max(np.abs(step), initial=0.0) < 1e-12:
             break
