@@ -109,14 +109,13 @@ def motion_function(design: CamDesign, state: CamState):
         return (lambda theta: _closed_form(design, state, theta)[0],
                 _closed_form(design, state, np.zeros(1))[1])
     if design.kind == "profile":
-        from .profile import profile_motion
+        from .profile import aged_profile_motion
 
-        aged = (design.profile, state.cam_strain_x, state.cam_strain_y,
-                design.roller_radius * (1 + state.roller_strain), design.offset,
-                design.follower_kind == "flat")
         arm = {} if design.arm is None else _grown_arm(design, state.arm_strain)
-        return (lambda theta: profile_motion(*aged, theta, **arm)[0],
-                profile_motion(*aged, np.zeros(1), **arm)[1])
+        motion = aged_profile_motion(design.profile, state.cam_strain_x, state.cam_strain_y,
+                                     design.roller_radius * (1 + state.roller_strain),
+                                     design.offset, design.follower_kind == "flat", **arm)
+        return motion, motion.extremes
     if design.kind == "eccentric" and design.follower_kind == "flat":
         return (lambda theta: _eccentric_flat(design, state, theta)[0],
                 _eccentric_flat(design, state, np.zeros(1))[1])
