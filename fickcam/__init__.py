@@ -13,7 +13,28 @@ __all__ = ["load_scene", "run", "save", "open_result", "compensate", "fit_weight
 
 
 def load_scene(source, *, file_name: str | None = None):
-    """Read and validate a scene from a YAML path or a dict; values in SI after validation."""
+    """Read and validate a scene from a YAML path or a dict; values in SI after validation.
+
+    Parameters
+    ----------
+    source : str, pathlib.Path, dict or Scene
+        A YAML scene file, the scene as a dict (as ``yaml.safe_load`` gives it), or an
+        already loaded :class:`fickcam.scene.Scene` (returned as is). Quantities are
+        written with units ("3 mm", "60 d"), see the scene reference.
+    file_name : str, optional
+        The name that error messages give a dict scene (default ``<dict>``).
+
+    Returns
+    -------
+    fickcam.scene.Scene
+        The validated scene; every quantity in SI (m, s, K, Pa, rad).
+
+    Raises
+    ------
+    fickcam.errors.SceneError
+        When the file cannot be read or a key is missing, misspelt, out of range or
+        in a wrong unit: one line per problem, naming file, line and key.
+    """
     from .scene import load_scene as _load
 
     return _load(source, file_name=file_name)
@@ -22,7 +43,33 @@ def load_scene(source, *, file_name: str | None = None):
 def run(scene, *, accuracy: float | None = None, progress: bool = False, settings=None):
     """Run one scene (a path, a dict or a loaded scene) and return an xarray.Dataset;
     ``settings``: the diffusion solvers' tuned limits (``fickcam.diffusion.SolverSettings``,
-    e.g. its cell caps; None: the defaults)."""
+    e.g. its cell caps; None: the defaults).
+
+    Parameters
+    ----------
+    scene : str, pathlib.Path, dict or Scene
+        The scene, as :func:`load_scene` takes it.
+    accuracy : float, optional
+        The diffusion's relative accuracy [-] (a fraction of the moisture swing), in place
+        of the scene's ``diffusion.accuracy``; None: the scene's (default 1e-3).
+    progress : bool
+        Show a progress bar over the parts.
+    settings : fickcam.diffusion.SolverSettings, optional
+        The diffusion solvers' tuned limits; None: the defaults.
+
+    Returns
+    -------
+    xarray.Dataset
+        The result: ``time`` in days, lengths in mm, angles in degrees, moisture in
+        weight %, each variable with its ``units`` attribute (see the result reference).
+
+    Raises
+    ------
+    fickcam.errors.SceneError
+        When the scene does not validate.
+    fickcam.errors.PhysicsDomainError
+        When the ageing leaves a model's range of validity.
+    """
     from .simulate import run as _run
 
     return _run(scene, accuracy=accuracy, progress=progress, settings=settings)
@@ -37,7 +84,39 @@ def compensate(scene, *, at=None, over=None, accuracy: float | None = None,
     Returns a ``Compensation`` (``.made``,
     ``.iterations``, ``.residual``, ``.before`` and ``.after``: the runs of the design and
     of the made scene; its table, report and written scene come from
-    ``fickcam.compensation.dimension_table``, ``report`` and ``write_scene``)."""
+    ``fickcam.compensation.dimension_table``, ``report`` and ``write_scene``).
+
+    Parameters
+    ----------
+    scene : str, pathlib.Path, dict or Scene
+        The design, as :func:`load_scene` takes it.
+    at : str or float, optional
+        The ageing time [s] at which the mechanism must have its design geometry: a
+        duration with units ("60 d") or seconds as a number.
+    over : tuple of (str or float), optional
+        The window (T1, T2) [s] over which the largest deviation is made smallest
+        (durations with units, or seconds); exactly one of ``at`` and ``over``.
+    accuracy : float, optional
+        The diffusion's relative accuracy [-]; None: the scene's.
+    keep_limits : bool
+        With ``at``: when the made mechanism breaks a limit of the scene between
+        delivery and the end of the history, compensate over that whole life instead.
+    points : bool
+        Make a cam given by its motion-law parameters as a cam given by points.
+
+    Returns
+    -------
+    fickcam.compensation.Compensation
+        The made dimensions and the runs before and after.
+
+    Raises
+    ------
+    fickcam.errors.InputError
+        When ``at`` and ``over`` are both given or both missing, a time is outside the
+        scene's history, or ``keep_limits`` is given without ``at``.
+    fickcam.errors.SceneError
+        When the scene does not validate.
+    """
     from .compensation import compensate as _compensate
 
     return _compensate(scene, at=at, over=over, accuracy=accuracy, keep_limits=keep_limits,
@@ -45,14 +124,43 @@ def compensate(scene, *, at=None, over=None, accuracy: float | None = None,
 
 
 def save(dataset, path):
-    """Write a result atomically (temporary file in the target folder, then rename)."""
+    """Write a result atomically (temporary file in the target folder, then rename).
+
+    Parameters
+    ----------
+    dataset : xarray.Dataset
+        A result of :func:`run` (or a selection of its variables).
+    path : str or pathlib.Path
+        The netCDF-4 (HDF5) file to write; its folder is created when missing.
+
+    Returns
+    -------
+    pathlib.Path
+        The path written.
+    """
     from .store import save as _save
 
     return _save(dataset, path)
 
 
 def open_result(path):
-    """Open a result file written by :func:`save` as an xarray.Dataset."""
+    """Open a result file written by :func:`save` as an xarray.Dataset.
+
+    Parameters
+    ----------
+    path : str or pathlib.Path
+        The result file.
+
+    Returns
+    -------
+    xarray.Dataset
+        The result, loaded into memory, ``time`` in days [d].
+
+    Raises
+    ------
+    fickcam.errors.InputError
+        When the file is missing or is not a fickcam result.
+    """
     from .store import open_result as _open
 
     return _open(path)
@@ -60,7 +168,24 @@ def open_result(path):
 
 def fit_weight_gain(data, matrix: str, **options):
     """Calibrate D0, Ea, a, b from ASTM D5229 weight-gain data (a CSV path); see
-    :func:`fickcam.fit.fit_weight_gain` for the options."""
+    :func:`fickcam.fit.fit_weight_gain` for the options.
+
+    Parameters
+    ----------
+    data : str or pathlib.Path
+        The weight-gain CSV (see the materials guide for its columns).
+    matrix : str
+        The library matrix material the coupons are made of (its activation energy and
+        humidity exponent stand in when the data hold one condition only).
+    **options
+        ``fiber``, ``fiber_volume_fraction`` and ``name``, passed to
+        :func:`fickcam.fit.fit_weight_gain`.
+
+    Returns
+    -------
+    fickcam.fit.report.FitReport
+        The fitted parameters with their 95 % intervals, per coupon and per condition.
+    """
     from .fit import fit_weight_gain as _fit
 
     return _fit(data, matrix, **options)
