@@ -21,7 +21,27 @@ def _chosen(ds, variables):
 
 def export_csv(ds, path, variables=None) -> Path:
     """Tidy CSV: columns variable, units, one per dimension (time in days as
-    ``time_d``; blank where a variable lacks that dimension) and value."""
+    ``time_d``; blank where a variable lacks that dimension) and value.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        A result.
+    path : str or pathlib.Path
+        The CSV file to write (atomically).
+    variables : list of str, optional
+        The variables to write; None: all of them.
+
+    Returns
+    -------
+    pathlib.Path
+        The path written.
+
+    Raises
+    ------
+    fickcam.errors.InputError
+        When a variable asked for is not in the result.
+    """
     names = _chosen(ds, variables)
     dims: list[str] = []
     for name in names:
@@ -45,7 +65,27 @@ def export_csv(ds, path, variables=None) -> Path:
 
 
 def export_json(ds, path, variables=None) -> Path:
-    """JSON: coordinates and, per variable, dims, units, long_name and nested data."""
+    """JSON: coordinates and, per variable, dims, units, long_name and nested data.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        A result.
+    path : str or pathlib.Path
+        The JSON file to write (atomically); NaN is written as null.
+    variables : list of str, optional
+        The variables to write; None: all of them.
+
+    Returns
+    -------
+    pathlib.Path
+        The path written.
+
+    Raises
+    ------
+    fickcam.errors.InputError
+        When a variable asked for is not in the result.
+    """
     names = _chosen(ds, variables)
     coords = {}
     for name in ds.coords:
@@ -68,6 +108,27 @@ def export_json(ds, path, variables=None) -> Path:
 
 
 def export_netcdf(ds, path, variables=None) -> Path:
+    """netCDF-4 (HDF5): the chosen variables, written by :func:`fickcam.save`.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        A result.
+    path : str or pathlib.Path
+        The netCDF file to write (atomically).
+    variables : list of str, optional
+        The variables to write; None: all of them.
+
+    Returns
+    -------
+    pathlib.Path
+        The path written.
+
+    Raises
+    ------
+    fickcam.errors.InputError
+        When a variable asked for is not in the result.
+    """
     from .store import save
 
     names = _chosen(ds, variables)
@@ -78,6 +139,31 @@ EXPORTERS = {"csv": export_csv, "json": export_json, "netcdf": export_netcdf}
 
 
 def export(ds, path, fmt: str, variables=None) -> Path:
+    """Write a result in the format ``fmt`` (``fickcam export``).
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        A result.
+    path : str or pathlib.Path
+        The file to write (atomically).
+    fmt : {"csv", "json", "netcdf"}
+        The format: tidy CSV (:func:`export_csv`), JSON (:func:`export_json`) or
+        netCDF-4 (:func:`export_netcdf`).
+    variables : list of str, optional
+        The variables to write; None: all of them.
+
+    Returns
+    -------
+    pathlib.Path
+        The path written.
+
+    Raises
+    ------
+    fickcam.errors.InputError
+        When the format is unknown or a variable asked for is not in the result.
+    """
+
     if fmt not in EXPORTERS:
         raise InputError(f"unknown export format {fmt!r} (csv, netcdf or json)")
     return EXPORTERS[fmt](ds, path, variables)

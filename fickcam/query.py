@@ -26,6 +26,37 @@ def select(ds, variable: str, *, time=None, part=None, cam_angle=None, crank_ang
     degrees. Interpolation is linear in time and angle; outside the stored range it is
     an error, not an extrapolation. ``attrs["selection"]`` says what was answered, e.g.
     ``time = 45 d (interpolated between 30 d and 60 d)``.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        A result (:func:`fickcam.run` or :func:`fickcam.open_result`).
+    variable : str
+        The result variable, e.g. ``pressure_angle_max`` (``fickcam schema`` lists them).
+    time : str or float, optional
+        The ageing time [s]: a duration with units ("45 d") or seconds as a number.
+    part : str, optional
+        The part's name, for variables with a ``part`` dimension.
+    cam_angle : float, optional
+        The cam angle [degree] (wrapped into [0, 360)).
+    crank_angle : float, optional
+        The four-bar's crank angle [degree] (wrapped into [0, 360)).
+    link : str, optional
+        The link's name, for variables with a ``link`` dimension.
+    against : {"design", "start"}, optional
+        Answer the variable's :func:`drift` from the design or from the first ageing time
+        instead of the variable itself.
+
+    Returns
+    -------
+    xarray.DataArray
+        The selection, in the variable's stored unit (its ``units`` attribute).
+
+    Raises
+    ------
+    fickcam.errors.InputError
+        When the variable, part or link is not in the result, the variable lacks the
+        dimension asked for, or the time or angle is outside the stored range.
     """
     if variable not in ds.data_vars:
         raise InputError(unknown_variable(variable, ds.data_vars))
@@ -90,7 +121,29 @@ def drift(ds, name: str, against: str = "design"):
     """``name`` minus its as-designed value (``against="design"``: ``<name>_design``, dry at
     the reference temperature) or minus its value at the first ageing time
     (``against="start"``), as an xarray.DataArray in the stored unit. Angles (degrees)
-    are wrapped into [-180, 180)."""
+    are wrapped into [-180, 180).
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        A result.
+    name : str
+        A variable that changes with ageing time.
+    against : {"design", "start"}
+        The reference: the as-designed value or the value at the first ageing time.
+
+    Returns
+    -------
+    xarray.DataArray
+        The change, in the variable's stored unit.
+
+    Raises
+    ------
+    fickcam.errors.InputError
+        When the variable is missing, does not change with time, has no as-designed value,
+        or ``against`` is neither "design" nor "start".
+    """
+
     if name not in ds.data_vars:
         raise InputError(f"variable {name!r} is not in this result")
     array = ds[name]
