@@ -225,7 +225,40 @@ def plan(geometry, diffusivity: Diffusivity, exposure: Exposure, times: np.ndarr
     """The model, cells and steps ``solve`` will use, and why, without solving
     (``sorption``: a law of ``problem.sorption``, None for Fick; ``surface_layer_depth``:
     the solve's, so that a plane plan and its solve share one outline expansion;
-    ``settings``: the solve's)."""
+    ``settings``: the solve's).
+
+    Parameters
+    ----------
+    geometry : Sheet, Disc, Bar, CamPlate or LinkBar
+        The part, dry dimensions [m].
+    diffusivity : Diffusivity
+        D(T) along the part axes [m^2/s].
+    exposure : Exposure
+        The surface history: temperature [K] and surface moisture [weight %] over time.
+    times : numpy.ndarray
+        The times at which moisture is wanted [s].
+    accuracy : float
+        The relative accuracy [-] asked for, a fraction of the moisture swing, in (0, 1).
+    model : str
+        One of ``MODELS``; "auto" chooses.
+    sorption : optional
+        A sorption law of ``fickcam.diffusion.problem.sorption``; None: Fick's law.
+    surface_layer_depth : float, optional
+        The depth of the contact layer [m]; None: ``LAYER_DEPTH`` (5e-4 m).
+    settings : SolverSettings
+        The solvers' tuned limits.
+
+    Returns
+    -------
+    Plan
+        The model, its cells and steps, the error estimate [-] and why.
+
+    Raises
+    ------
+    fickcam.errors.InputError
+        When the model is unknown or does not apply to the part, the geometry is not
+        one of the five, or the accuracy is outside (0, 1).
+    """
     _validate(geometry, model, accuracy)
     if is_nonlinear(sorption) and _nonlinear_route(geometry, model, sorption, exposure,
                                                    times, accuracy) == "fick":
@@ -379,7 +412,46 @@ def solve(geometry, diffusivity: Diffusivity, exposure: Exposure, times: np.ndar
     """Moisture (weight %) of one part at ``times`` (s) under ``exposure``; with a
     ``sorption`` law (``problem.sorption``) the mean and surface are the total (free +
     bound) moisture and, for Langmuir, ``bound`` the bound-water mean. ``settings``: the
-    solvers' tuned limits (``SolverSettings``)."""
+    solvers' tuned limits (``SolverSettings``).
+
+    Parameters
+    ----------
+    geometry : Sheet, Disc, Bar, CamPlate or LinkBar
+        The part, dry dimensions [m].
+    diffusivity : Diffusivity
+        D(T) along the part axes [m^2/s].
+    exposure : Exposure
+        The surface history: temperature [K] and surface moisture [weight %] over time.
+    times : array_like
+        The times at which moisture is wanted [s].
+    accuracy : float
+        The relative accuracy [-] asked for, a fraction of the moisture swing, in (0, 1).
+    model : str
+        One of ``MODELS``; "auto" chooses (the exact series where it applies).
+    surface_layer_depth : float
+        The depth of the contact layer whose mean is reported as ``surface`` [m].
+    store_fields : bool
+        Keep the moisture field of every cell at every time (``fields``).
+    part : str
+        The part's name, for log messages.
+    sorption : optional
+        A sorption law of ``fickcam.diffusion.problem.sorption``; None: Fick's law.
+    settings : SolverSettings
+        The solvers' tuned limits.
+
+    Returns
+    -------
+    DiffusionResult
+        Mean and contact-layer moisture [weight %] at ``times``, with the model used and
+        its error estimate [-].
+
+    Raises
+    ------
+    fickcam.errors.InputError
+        When the model is unknown or does not apply to the part, or the accuracy is
+        outside (0, 1).
+    """
+
     times = np.asarray(times, float)
     route = (_nonlinear_route(geometry, model, sorption, exposure, times, accuracy)
              if is_nonlinear(sorption) else "")

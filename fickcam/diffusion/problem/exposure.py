@@ -20,6 +20,21 @@ class Exposure:
     held, stepping at t_k (False). ``temperature(t)`` (K) and
     ``surface_moisture(t)`` (weight %, the saturation value Mm(T, RH) of this
     part's material) are right-continuous functions of time arrays.
+
+    Parameters
+    ----------
+    change_times : numpy.ndarray
+        The segment boundaries [s], shape (n+1,), 0 first and the history's end last.
+    ramp : numpy.ndarray of bool
+        Per segment, shape (n,): linear from the previous segment's end values (True)
+        or held (False).
+    temperature : callable
+        t [s] -> the surface temperature [K], right-continuous.
+    surface_moisture : callable
+        t [s] -> the surface moisture [weight %] (the saturation value Mm(T, RH) of the
+        part's material), right-continuous.
+    initial_moisture : float
+        The part's uniform moisture at t = 0 [weight %].
     """
 
     change_times: np.ndarray
@@ -44,7 +59,25 @@ class Exposure:
                   ramp=None) -> "Exposure":
         """Segments with temperature ``temperatures[k]`` (K) and surface moisture
         ``surface_values[k]`` (weight %) on [t_k, t_k+1): held, or, where
-        ``ramp[k]``, linear from the previous segment's values (tests, bench)."""
+        ``ramp[k]``, linear from the previous segment's values (tests, bench).
+
+        Parameters
+        ----------
+        change_times : array_like
+            The segment boundaries [s], shape (n+1,).
+        temperatures : float or array_like
+            Each segment's temperature [K], shape (n,) (a scalar: all of them).
+        surface_values : float or array_like
+            Each segment's surface moisture [weight %], shape (n,).
+        initial_moisture : float
+            The moisture at t = 0 [weight %].
+        ramp : array_like of bool, optional
+            Per segment: linear from the previous segment's values; None: all held.
+
+        Returns
+        -------
+        Exposure
+        """
         edges = np.asarray(change_times, float)
         n = edges.size - 1
         ramp = np.zeros(n, bool) if ramp is None else np.asarray(ramp, bool)
@@ -62,7 +95,21 @@ class Diffusivity:
     Mater. 10:2-20, eq. 9. One activation energy for all directions, so the
     history enters only through the rescaled time tau = integral of
     exp(-Ea/RT(t)) dt.
+
+    Parameters
+    ----------
+    pre_exponential : tuple of float
+        D0 along the part axes x, y, z [m^2/s].
+    activation_energy : float
+        Ea [J/mol].
+
+    References
+    ----------
+    C.-H. Shen and G. S. Springer, "Moisture absorption and desorption of composite
+    materials", *Journal of Composite Materials* 10(1), 2-20, 1976,
+    doi:10.1177/002199837601000101.
     """
+
 
     pre_exponential: tuple[float, float, float]
     activation_energy: float

@@ -8,7 +8,32 @@ import numpy as np
 
 @dataclass(frozen=True)
 class Plan:
-    """What ``solve`` will do for one part (printed by ``fickcam check``)."""
+    """What ``solve`` will do for one part (printed by ``fickcam check``).
+
+    Parameters
+    ----------
+    model : str
+        The model chosen.
+    cells : int
+        Its cells [-] (0 for a series).
+    steps : int
+        Its time steps [-] (0 for a series).
+    reason : str
+        Why this model, these cells and steps.
+    error_estimate : float
+        The estimated error [-], a fraction of the moisture swing.
+    cells_per_axis : tuple of int
+        The cells along each axis [-], where the mesh is a grid.
+    steps_per_doubling : int
+        Time steps per doubling of the (rescaled) time [-].
+    expansion_tolerance : float
+        Plane model: the short-time expansion's error allowance [-].
+    finest : float
+        Graded meshes: the finest spacing at the exposed faces, in units of the
+        thickness [-]; 0 for a uniform grid.
+    growth : float
+        Graded meshes: the growth per cell away from the exposed faces [-].
+    """
 
     model: str
     cells: int
@@ -25,7 +50,34 @@ class Plan:
 
 @dataclass
 class DiffusionResult:
-    """Moisture of one part at the requested times (weight %)."""
+    """Moisture of one part at the requested times (weight %).
+
+    Parameters
+    ----------
+    times : numpy.ndarray
+        The times [s].
+    mean : numpy.ndarray
+        The part's mean moisture at ``times`` [weight %].
+    surface : numpy.ndarray
+        The contact layer's mean moisture at ``times`` [weight %].
+    model : str
+        The model that solved.
+    cells, steps : int
+        Its cells and time steps [-].
+    error_estimate : float
+        The estimated error [-], a fraction of the moisture swing.
+    reason : str
+        Why this model.
+    fields : numpy.ndarray, optional
+        The moisture of every cell at every time [weight %], when asked for.
+    bound : numpy.ndarray, optional
+        Two-phase (Langmuir) sorption: the bound-water mean [weight %].
+    cell_coordinates : dict of str to numpy.ndarray
+        The cells' centres [m] per axis, with ``fields``.
+    extend : callable, optional
+        ``extend(at)`` [s]: this result with rows at ``at`` added.
+    """
+
 
     times: np.ndarray
     mean: np.ndarray
