@@ -95,6 +95,26 @@ def stored_value(value, var: Var, *, difference: bool = False) -> float:
     A bare number is SI (as everywhere in a scene; percent for % variables).
     ``difference``: a temperature step, so degC/degF mean kelvin-sized steps.
     Angles are told apart from plain numbers (pint's radian is dimensionless).
+
+    Parameters
+    ----------
+    value : float or str
+        The bound as written: a number (SI, or % for % variables) or a string with
+        units ("0.2 mm", "3 deg").
+    var : fickcam.schema.Var
+        The result variable the bound applies to.
+    difference : bool
+        A temperature difference [K] (a deviation), not an absolute temperature.
+
+    Returns
+    -------
+    float
+        The value in the variable's stored unit (its schema ``units``).
+
+    Raises
+    ------
+    ValueError
+        When the unit is unknown or of the wrong dimension.
     """
     number, unit = number_and_unit(value)
     if not unit:
@@ -114,7 +134,28 @@ def stored_value(value, var: Var, *, difference: bool = False) -> float:
 
 
 def parse_limit(name: str, spec: LimitSpec, sections: set[str]) -> Limit:
-    """Validate one limit against the schema; ValueError(reason) if it cannot apply."""
+    """Validate one limit against the schema; ValueError(reason) if it cannot apply.
+
+    Parameters
+    ----------
+    name : str
+        The result variable limited.
+    spec : LimitSpec
+        The scene's entry: ``deviation``, ``max`` and/or ``min`` as written, with units.
+    sections : set of str
+        The mechanism sections the scene has ("cam", "linkage").
+
+    Returns
+    -------
+    Limit
+        The bounds in the variable's stored unit.
+
+    Raises
+    ------
+    ValueError
+        When the variable does not vary with ageing time, its section is missing, a
+        bound is in a wrong unit, a deviation is not positive or min is above max.
+    """
     var = VARIABLES.get(name)
     if var is None or "time" not in var.dims or var.section == "fields" or not var.units:
         raise ValueError(f"no result variable {name!r} that varies with ageing time "
@@ -170,7 +211,22 @@ def _time_first(array) -> np.ndarray:
 
 def worst_value(ds, variable: str, kind: str) -> np.ndarray:
     """Over ageing time: the largest (``max``) or smallest (``min``) value over the
-    other dimensions, or the largest |x - x_design| (``deviation``)."""
+    other dimensions, or the largest |x - x_design| (``deviation``).
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        A result.
+    variable : str
+        A variable with a ``time`` dimension.
+    kind : {"max", "min", "deviation"}
+        Which extreme.
+
+    Returns
+    -------
+    numpy.ndarray
+        One value per ageing time, in the variable's stored unit.
+    """
     if kind == "deviation":
         return _per_time(np.abs(_time_first(drift(ds, variable, "design"))), np.nanmax)
     return _per_time(_time_first(ds[variable]), np.nanmax if kind == "max" else np.nanmin)
@@ -188,7 +244,21 @@ def _design_size(ds, variable: str, kind: str) -> float:
 
 
 def limit_ratio(ds, limit: Limit) -> np.ndarray:
-    """The limit ratio over ageing time (1 at the limit, above 1 out of spec)."""
+    """The limit ratio over ageing time (1 at the limit, above 1 out of spec).
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        A result.
+    limit : Limit
+        The limit, bounds in the variable's stored unit.
+
+    Returns
+    -------
+    numpy.ndarray
+        The ratio [-] per ageing time: the worst of |deviation| / allowed deviation and
+        1 + (value - bound) / |bound| for max and min; NaN where the value is unknown.
+    """
     ratios = []
     if limit.deviation is not None:
         ratios.append(worst_value(ds, limit.variable, "deviation") / limit.deviation)
@@ -273,7 +343,23 @@ def first_crossings(times: np.ndarray, ratios: np.ndarray,
     TOLERANCE of its stored interval or FLOOR seconds; the crossing is then
     interpolated linearly inside it (a guarded regula falsi: the model is re-run about
     2 + 2 times per limit instead of 2 x 9).
+
+    Parameters
+    ----------
+    times : numpy.ndarray
+        The stored ageing times [s], increasing.
+    ratios : numpy.ndarray
+        The limit ratios [-] at ``times``, shape (time, limit).
+    evaluate : callable
+        ``evaluate(ts)`` with ``ts`` ageing times [s]: the ratios [-] there, shape
+        (len(ts), limit).
+
+    Returns
+    -------
+    numpy.ndarray
+        Per limit, the first ageing time out of spec [s]; NaN where it stays in spec.
     """
+
     times = np.asarray(times, float)
     ratios = np.asarray(ratios, float).reshape(len(times), -1)
     found = np.full(ratios.shape[1], np.nan)

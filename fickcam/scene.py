@@ -355,7 +355,27 @@ def _design_model(model: SceneModel, doc: YamlDocument, base_dir: Path, findings
 
 
 def load_scene(source, *, file_name: str | None = None) -> Scene:
-    """Load a scene from a YAML path, a YAML text-free dict, or return a Scene as is."""
+    """Load a scene from a YAML path, a YAML text-free dict, or return a Scene as is.
+
+    Parameters
+    ----------
+    source : str, pathlib.Path, dict or Scene
+        A YAML scene file, the scene as a dict, or a loaded Scene (returned as is).
+    file_name : str, optional
+        The name that error messages give a dict scene (default ``<dict>``); a dict's
+        relative file paths are read from the current folder.
+
+    Returns
+    -------
+    Scene
+        The validated scene, quantities in SI (m, s, K, Pa, rad).
+
+    Raises
+    ------
+    fickcam.errors.SceneError
+        One problem per fault, each naming file, line and key.
+    """
+
     if isinstance(source, Scene):
         return source
     if isinstance(source, dict):

@@ -134,7 +134,26 @@ def _rows(path: Path, reader: _Reader) -> list[tuple[int, list[str]]]:
 
 
 def read_weight_gain(path) -> list[Specimen]:
-    """Read and validate a weight-gain CSV; raise SceneError listing every fault."""
+    """Read and validate a weight-gain CSV; raise SceneError listing every fault.
+
+    Parameters
+    ----------
+    path : str or pathlib.Path
+        The CSV: one row per weighing, a ``specimen`` column and columns with units in
+        their header (``temperature [degC]``, ``time [h]``, ``mass [g]``, ...).
+
+    Returns
+    -------
+    list of Specimen
+        The coupons, in SI: conditions [K, %], dimensions [m], times [s], moisture
+        [weight %].
+
+    Raises
+    ------
+    fickcam.errors.SceneError
+        Every fault, each with file, line and column.
+    """
+
     path = Path(path)
     reader = _Reader(str(path))
     rows = _rows(path, reader)

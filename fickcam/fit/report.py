@@ -137,7 +137,37 @@ def fit_weight_gain(data, matrix: str, fiber: str | None = None,
 
     Coupons of a composite are taken as unidirectional with the fibres along their
     length (D along the length = D11, across the width = D22 = through the thickness).
+
+    Parameters
+    ----------
+    data : str, pathlib.Path or list of Specimen
+        The weight-gain CSV (:func:`read_weight_gain`), or coupons already read.
+    matrix : str
+        The library matrix material of the coupons; its activation energy and humidity
+        exponent stand in where the data hold one temperature or one humidity only.
+    fiber : str, optional
+        The library fibre, for composite coupons.
+    fiber_volume_fraction : float, optional
+        The coupons' fibre volume fraction [-], with ``fiber``.
+    name : str, optional
+        The fitted material's name; None: the CSV file's stem.
+
+    Returns
+    -------
+    FitReport
+        Per coupon and per condition: D [m^2/s] and Mm [weight %] with 95 % intervals,
+        the non-Fickian test; across conditions the Arrhenius law (D0 [m^2/s],
+        Ea [J/mol]) and the saturation law Mm = a (RH/100)^b.
+
+    Raises
+    ------
+    fickcam.errors.SceneError
+        When the CSV cannot be read or a cell is faulty (file, line and column).
+    fickcam.errors.InputError
+        When the matrix or fibre is not in the library.
     """
+
+
     material = _material(matrix, fiber, fiber_volume_fraction)
     specimens = read_weight_gain(data) if isinstance(data, (str, Path)) else list(data)
     source = Path(data).name if isinstance(data, (str, Path)) else "<specimens>"

@@ -36,7 +36,30 @@ def available_kinds(ds) -> list[str]:
 
 
 def plot(ds, outdir, kind: str = "all") -> list[Path]:
-    """Write the figures of ``kind`` (or every kind the result supports) to ``outdir``."""
+    """Write the figures of ``kind`` (or every kind the result supports) to ``outdir``.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        A result (of a run or of a sweep).
+    outdir : str or pathlib.Path
+        The folder the PNG files are written to (created when missing).
+    kind : str
+        One of ``KINDS`` ("uptake", "kinematics", "dynamics", "vibration", "linkage",
+        "fields", "elastic", "limits", "sweep"), or "all": every kind the result has
+        data for.
+
+    Returns
+    -------
+    list of pathlib.Path
+        The files written.
+
+    Raises
+    ------
+    fickcam.errors.InputError
+        When the kind is unknown or the result holds no data for it.
+    """
+
     outdir = Path(outdir)
     outdir.mkdir(parents=True, exist_ok=True)
     kinds = available_kinds(ds) if kind == "all" else [kind]

@@ -57,7 +57,20 @@ def _panels(plt, ds, rows, title, drift=None):
 def plot_kinematics(ds, outdir) -> list[Path]:
     """cam_kinematics.png (S/V/A/J vs cam angle at up to four ages), cam_drift.png (change
     of displacement and acceleration since the first age) and, when the profile is
-    stored, cam_profile.png (working profile, first vs last age)."""
+    stored, cam_profile.png (working profile, first vs last age).
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        A result.
+    outdir : str or pathlib.Path
+        The folder the PNG files are written to.
+
+    Returns
+    -------
+    list of pathlib.Path
+        The files written.
+    """
     plt = figure()
     outdir = Path(outdir)
     outdir.mkdir(parents=True, exist_ok=True)
@@ -131,7 +144,20 @@ def _drift(plt, ds, outdir, name, rows) -> Path:
 
 def plot_dynamics(ds, outdir) -> list[Path]:
     """cam_dynamics.png (contact force, torque, stress vs cam angle at up to four ages) and
-    cam_jump_stress.png (jump speed and peak Hertz stress vs ageing time)."""
+    cam_jump_stress.png (jump speed and peak Hertz stress vs ageing time).
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        A result.
+    outdir : str or pathlib.Path
+        The folder the PNG files are written to.
+
+    Returns
+    -------
+    list of pathlib.Path
+        The files written.
+    """
     plt = figure()
     outdir = Path(outdir)
     outdir.mkdir(parents=True, exist_ok=True)

@@ -18,7 +18,20 @@ CONTACT = (("elastic_deflection", "deflection [µm]", 1e6),
 
 def plot(ds, outdir) -> list[Path]:
     """elastic_contact.png (when the cam is elastic), swelling_stress.png and
-    swelling_field_<part>.png (when swelling stresses are stored)."""
+    swelling_field_<part>.png (when swelling stresses are stored).
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        A result.
+    outdir : str or pathlib.Path
+        The folder the PNG files are written to.
+
+    Returns
+    -------
+    list of pathlib.Path
+        The files written.
+    """
     plt = figure()
     outdir = Path(outdir)
     outdir.mkdir(parents=True, exist_ok=True)

@@ -13,7 +13,20 @@ PANELS = 4
 
 
 def plot(ds, outdir) -> list[Path]:
-    """One PNG per part with stored fields: up to four ageing times side by side."""
+    """One PNG per part with stored fields: up to four ageing times side by side.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        A result.
+    outdir : str or pathlib.Path
+        The folder the PNG files are written to.
+
+    Returns
+    -------
+    list of pathlib.Path
+        The files written.
+    """
     written = []
     for part in ds["part"].values:
         field = ds["moisture"].sel(part=part).values          # (time, cell)

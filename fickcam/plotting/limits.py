@@ -88,7 +88,20 @@ def _wrapped(label: str, width: int = 34) -> str:
 
 
 def plot(ds, outdir) -> list[Path]:
-    """limits.png: one row per limit, over ageing time and (angle variables) over the cycle."""
+    """limits.png: one row per limit, over ageing time and (angle variables) over the cycle.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        A result.
+    outdir : str or pathlib.Path
+        The folder the PNG files are written to.
+
+    Returns
+    -------
+    list of pathlib.Path
+        The files written.
+    """
     plt = figure()
     limits = list(stored_limits(ds).values())
     cycle = {limit.variable: next((d for d in ds[limit.variable].dims if d in ANGLES), None)

@@ -29,7 +29,20 @@ def _over_crank(ax, ds, name, picks, t, ylabel, transform=None, style="-", prefi
 
 def plot(ds, outdir) -> list[Path]:
     """Three figures: linkage_coupler_curve.png, linkage_rocker.png (angle and drift
-    vs crank angle), linkage_transmission_torque.png."""
+    vs crank angle), linkage_transmission_torque.png.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        A result.
+    outdir : str or pathlib.Path
+        The folder the PNG files are written to.
+
+    Returns
+    -------
+    list of pathlib.Path
+        The files written.
+    """
     plt = figure()
     outdir = Path(outdir)
     outdir.mkdir(parents=True, exist_ok=True)

@@ -252,7 +252,22 @@ def plot_out_of_spec(ds, outdir: Path) -> list[Path]:
 
 
 def plot(ds, outdir, time_index: int = -1) -> list[Path]:
-    """Figures of a sweep result; outputs are taken at ageing time ``time_index`` (last)."""
+    """Figures of a sweep result; outputs are taken at ageing time ``time_index`` (last).
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        A result of a sweep (a ``case`` dimension).
+    outdir : str or pathlib.Path
+        The folder the PNG files are written to.
+    time_index : int
+        The ageing time [-] (an index into ``time``) the outputs are taken at; -1: the last.
+
+    Returns
+    -------
+    list of pathlib.Path
+        The files written.
+    """
     outdir = Path(outdir)
     if not parameters(ds) or "time" not in ds.dims:
         return []

@@ -13,7 +13,20 @@ ANGLE_PANELS = (("follower_displacement", "dynamic_follower_displacement", "disp
 
 
 def plot(ds, outdir) -> list[Path]:
-    """cam_vibration.png and cam_vibration_ageing.png."""
+    """cam_vibration.png and cam_vibration_ageing.png.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        A result.
+    outdir : str or pathlib.Path
+        The folder the PNG files are written to.
+
+    Returns
+    -------
+    list of pathlib.Path
+        The files written.
+    """
     plt = figure()
     outdir = Path(outdir)
     outdir.mkdir(parents=True, exist_ok=True)

@@ -15,7 +15,20 @@ CLIMATE = (("temperature", "temperature [degC]", -273.15, "C3"),
 
 def plot(ds, outdir) -> list[Path]:
     """uptake.png: temperature, relative humidity (each on its own axes, so neither hides
-    the other) and the mean and surface moisture of each part over ageing time."""
+    the other) and the mean and surface moisture of each part over ageing time.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        A result.
+    outdir : str or pathlib.Path
+        The folder the PNG files are written to.
+
+    Returns
+    -------
+    list of pathlib.Path
+        The files written.
+    """
     plt = figure()
     fig, (t_ax, rh_ax, moist_ax) = plt.subplots(
         3, 1, figsize=(7, 8), sharex=True, gridspec_kw={"height_ratios": [1, 1, 2]})

@@ -187,7 +187,34 @@ def run_sweep(sweep_path, output, workers: int | None = None, scheduler: str | N
     base scene and fickcam version) are reused, not recomputed, even after a
     ``kill -9``. The work folder ``OUTPUT.parts`` is removed once the result is
     written.
+
+    Parameters
+    ----------
+    sweep_path : str or pathlib.Path
+        The sweep file (YAML: a ``base`` scene and a ``grid`` or ``random`` section).
+    output : str or pathlib.Path
+        The result file to write (netCDF-4, compressed, written atomically).
+    workers : int, optional
+        Local worker processes (dask.distributed); None or 1: in this process.
+    scheduler : str, optional
+        The address of a running dask scheduler (a cluster), instead of local workers.
+    progress : bool
+        Show a progress bar over the cases.
+
+    Returns
+    -------
+    pathlib.Path
+        The result file, one ``case`` dimension over every case (failed cases hold NaN
+        and say why in ``case_status`` and ``case_message``).
+
+    Raises
+    ------
+    fickcam.errors.SceneError
+        When the sweep file or its base scene does not validate.
+    fickcam.extras.MissingExtra
+        When workers or a scheduler are asked for without dask.distributed installed.
     """
+
     from ..store import save
 
     started = time.perf_counter()

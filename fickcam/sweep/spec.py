@@ -464,7 +464,25 @@ def _history_file_problems(model: SweepModel, doc, base_dir: Path) -> list[Probl
 
 
 def load_sweep(source) -> Sweep:
-    """Read and validate a sweep file; raise SceneError (one Problem per fault)."""
+    """Read and validate a sweep file; raise SceneError (one Problem per fault).
+
+    Parameters
+    ----------
+    source : str or pathlib.Path
+        The sweep file; its ``base`` scene is read relative to its folder.
+
+    Returns
+    -------
+    Sweep
+        The validated sweep with its expanded cases.
+
+    Raises
+    ------
+    fickcam.errors.SceneError
+        When the sweep file or its base scene does not validate (file, line and key of
+        each fault).
+    """
+
     from ..scene import problems_from_validation, read_yaml, validate_document
 
     doc = read_yaml(source, what="sweep")
