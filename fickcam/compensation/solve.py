@@ -183,7 +183,41 @@ def compensate(scene, at=None, over=None, *, accuracy: float | None = None,
     the dimensions for that whole life instead (minimax over it). ``points``: make a cam
     given by its parameters as points (x and y compensated apart). Returns a
     :class:`Compensation` with the design's and the made scene's runs; its scene is
-    written by :func:`fickcam.compensation.write_scene`."""
+    written by :func:`fickcam.compensation.write_scene`.
+
+    Parameters
+    ----------
+    scene : str, pathlib.Path, dict or Scene
+        The design, as :func:`fickcam.load_scene` takes it.
+    at : str or float, optional
+        The ageing time [s] at which the mechanism must have its design geometry (a
+        duration with units, or seconds).
+    over : tuple of (str or float), optional
+        The window (T1, T2) [s] over which the largest deviation is made smallest;
+        exactly one of ``at`` and ``over``.
+    accuracy : float, optional
+        The diffusion's relative accuracy [-]; None: the scene's.
+    plot : bool
+        Also run the check runs on a regular grid over the whole history (the
+        compensation figure shows the part before and after a window too).
+    keep_limits : bool
+        With ``at``: compensate over the whole life when a limit fails.
+    points : bool
+        Make a parametric cam as a cam given by points.
+
+    Returns
+    -------
+    Compensation
+        The made dimensions [m], the iterations, the residual and the runs before and
+        after.
+
+    Raises
+    ------
+    fickcam.errors.InputError
+        When ``at`` and ``over`` are both given or both missing, a time is outside the
+        scene's history, or ``keep_limits`` is given without ``at``.
+    """
+
     from ..scene import design_data, load_scene
 
     scene = load_scene(scene)
