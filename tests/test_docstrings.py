@@ -1,0 +1,161 @@
+"""The public entry points document their parameters (numpydoc): a ``Parameters``
+section naming every parameter with its type, and a ``[unit]`` on every physical one.
+
+The section is read with a small parser of the numpydoc layout (a header underlined with
+dashes, then ``name : type`` lines each followed by an indented description), so the test
+runs without numpydoc installed.
+"""
+from __future__ import annotations
+
+import importlib
+import inspect
+import re
+
+import pytest
+
+# entry point -> its physical parameters (each needs a ``[unit]`` in its description)
+ENTRY_POINTS = {
+    "fickcam.load_scene": (),
+    "fickcam.run": ("accuracy",),
+    "fickcam.save": (),
+    "fickcam.open_result": (),
+    "fickcam.compensate": ("at", "over", "accuracy"),
+    "fickcam.fit_weight_gain": (),
+    "fickcam.scene.load_scene": (),
+    "fickcam.query.select": ("time", "cam_angle", "crank_angle"),
+    "fickcam.query.drift": (),
+    "fickcam.export.export": (),
+    "fickcam.export.export_csv": (),
+    "fickcam.export.export_json": (),
+    "fickcam.export.export_netcdf": (),
+    "fickcam.diffusion.solve": ("times", "accuracy", "surface_layer_depth"),
+    "fickcam.diffusion.plan": ("times", "accuracy", "surface_layer_depth"),
+    "fickcam.diffusion.Sheet": ("thickness",),
+    "fickcam.diffusion.Disc": ("outer_radius", "thickness", "inner_radius"),
+    "fickcam.diffusion.Bar": ("length", "width", "thickness"),
+    "fickcam.diffusion.CamPlate": ("profile_x", "profile_y", "thickness", "bore_radius"),
+    "fickcam.diffusion.LinkBar": ("length", "width", "thickness", "boss_outer_radius",
+                                  "boss_inner_radius"),
+    "fickcam.diffusion.Exposure": ("change_times", "temperature", "surface_moisture",
+                                   "initial_moisture"),
+    "fickcam.diffusion.Exposure.piecewise": ("change_times", "temperatures",
+                                             "surface_values", "initial_moisture"),
+    "fickcam.diffusion.Diffusivity": ("pre_exponential", "activation_energy"),
+    "fickcam.diffusion.DiffusionResult": ("times", "mean", "surface", "error_estimate"),
+    "fickcam.compensation.compensate": ("at", "over", "accuracy"),
+    "fickcam.sweep.run_sweep": (),
+    "fickcam.sweep.load_sweep": (),
+    "fickcam.fit.fit_weight_gain": ("fiber_volume_fraction",),
+    "fickcam.fit.read_weight_gain": (),
+    "fickcam.limits.stored_value": (),
+    "fickcam.limits.parse_limit": (),
+    "fickcam.limits.worst_value": (),
+    "fickcam.limits.limit_ratio": (),
+    "fickcam.limits.first_crossings": ("times", "ratios"),
+    "fickcam.plotting.plot": (),
+    "fickcam.materials.hygrothermal.wet_glass_transition_temperature": ("dry_tg",
+                                                                        "matrix_moisture"),
+    "fickcam.materials.hygrothermal.property_retention": ("wet_tg", "temperature", "dry_tg",
+                                                          "reference_temperature"),
+    "fickcam.materials.hygrothermal.free_strain": ("alpha", "beta", "temperature",
+                                                   "reference_temperature", "moisture",
+                                                   "initial_moisture"),
+}
+
+_HEADER = re.compile(r"^(?P<title>[A-Z][A-Za-z ]+)\n-{3,}$", re.MULTILINE)
+_ENTRY = re.compile(r"^(?P<names>\*{0,2}\w+(?:, \*{0,2}\w+)*)(?: : (?P<type>\S.*))?$")
+_UNIT = re.compile(r"\[[^\]]+\]")
+
+
+def _entry_point(dotted: str):
+    module_name, _, rest = dotted.partition(".")
+    target = importlib.import_module(module_name)
+    parts = rest.split(".")
+    for k, part in enumerate(parts):
+        if not hasattr(target, part):  # a sub-module not imported by its package
+            target = importlib.import_module(".".join([module_name, *parts[:k + 1]]))
+        else:
+            target = getattr(target, part)
+    return target
+
+
+def sections(doc: str) -> dict[str, str]:
+    """The docstring's numpydoc sections, title -> body (dedented)."""
+    text = inspect.cleandoc(doc or "")
+    headers = list(_HEADER.finditer(text))
+    return {h["title"].strip(): text[h.end():(headers[k + 1].start() if k + 1 < len(headers)
+                                               else len(text))]
+            for k, h in enumerate(headers)}
+
+
+def parameter_entries(body: str) -> dict[str, tuple[str, str]]:
+    """``name -> (type, description)`` of a Parameters section (``a, b : float`` names
+    two parameters)."""
+    entries: dict[str, tuple[str, str]] = {}
+    names: list[str] = []
+    for line in body.splitlines():
+        match = _ENTRY.match(line)
+        if match:
+            names = [n.lstrip("*") for n in match["names"].split(", ")]
+            for name in names:
+                entries[name] = (match["type"] or "", "")
+        elif line.startswith(" ") and names:
+            for name in names:
+                kind, description = entries[name]
+                entries[name] = (kind, f"{description} {line.strip()}")
+    return entries
+
+
+def signature_parameters(target) -> list[str]:
+    function = target.__init__ if inspect.isclass(target) and not hasattr(
+        target, "__dataclass_fields__") else target
+    if inspect.isclass(target) and hasattr(target, "__dataclass_fields__"):
+        return list(target.__dataclass_fields__)
+    return [name for name in inspect.signature(function).parameters
+            if name not in ("self", "cls")]
+
+
+@pytest.mark.parametrize("dotted", sorted(ENTRY_POINTS))
+def test_entry_point_documents_every_parameter(dotted):
+    target = _entry_point(dotted)
+    expected = signature_parameters(target)
+    found = sections(target.__doc__)
+    if not expected:
+        return
+    assert "Parameters" in found, f"{dotted}: no numpydoc Parameters section"
+    documented = parameter_entries(found["Parameters"])
+    missing = [name for name in expected if name not in documented]
+    assert not missing, f"{dotted}: parameters not documented: {', '.join(missing)}"
+    extra = [name for name in documented if name not in expected]
+    assert not extra, f"{dotted}: documents parameters it does not take: {', '.join(extra)}"
+
+
+@pytest.mark.parametrize("dotted", sorted(d for d, physical in ENTRY_POINTS.items() if physical))
+def test_physical_parameters_carry_a_unit(dotted):
+    documented = parameter_entries(sections(_entry_point(dotted).__doc__)["Parameters"])
+    without = [name for name in ENTRY_POINTS[dotted]
+               if not _UNIT.search(documented.get(name, ("", ""))[1])]
+    assert not without, f"{dotted}: no [unit] for {', '.join(without)}"
+
+
+def test_the_parser_reads_a_numpydoc_section():
+    doc = """Summary.
+
+    Parameters
+    ----------
+    length, width : float
+        The sides [m].
+    flag : bool
+        A switch.
+
+    Returns
+    -------
+    float
+        The area [m^2].
+    """
+    found = sections(doc)
+    assert set(found) == {"Parameters", "Returns"}
+    entries = parameter_entries(found["Parameters"])
+    assert entries == {"length": ("float", " The sides [m]."), "width": ("float", " The sides [m]."),
+                       "flag": ("bool", " A switch.")}
+    assert sections("One line, no sections.") == {}
