@@ -60,7 +60,18 @@ class Material:
 
     # ---------------------------------------------------------------- moisture
     def matrix_moisture(self, ply_moisture):
-        """Matrix moisture (weight %) from the part's (ply) moisture via Chamis' relation."""
+        """Matrix moisture (weight %) from the part's (ply) moisture via Chamis' relation.
+
+        Parameters
+        ----------
+        ply_moisture : float or array_like
+            The part's (ply) moisture [weight %].
+
+        Returns
+        -------
+        numpy.ndarray
+            The matrix moisture [weight %] (the same for a neat resin).
+        """
         if self.fiber is None:
             return np.asarray(ply_moisture, float)
         return mm.matrix_moisture(ply_moisture, self._beta_fraction, self.matrix_ratio,
@@ -69,7 +80,28 @@ class Material:
     def saturation_moisture(self, temperature, relative_humidity_percent):
         """Saturation moisture of the part (weight %) at T (K) and RH (%): matrix
         Mm = a (RH/100)^b (temperature-independent, Shen & Springer 1976; Chamis 1983 with
-        b = 1), carried to the ply by Chamis' M_l relation for composites."""
+        b = 1), carried to the ply by Chamis' M_l relation for composites.
+
+        Parameters
+        ----------
+        temperature : float or array_like
+            The temperature [K] (the law does not depend on it; it sets the shape).
+        relative_humidity_percent : float or array_like
+            The relative humidity [%].
+
+        Returns
+        -------
+        numpy.ndarray
+            The saturation moisture of the part [weight %]; 0 for a material that does
+            not absorb.
+
+        References
+        ----------
+        C.-H. Shen and G. S. Springer, "Moisture absorption and desorption of composite
+        materials", *Journal of Composite Materials* 10(1), 2-20, 1976,
+        doi:10.1177/002199837601000101.
+        """
+
         rh = np.asarray(relative_humidity_percent, float) + 0.0 * np.asarray(temperature, float)
         if not self.absorbs:
             return np.zeros_like(rh)

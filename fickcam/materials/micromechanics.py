@@ -18,7 +18,22 @@ import numpy as np
 
 def fiber_volume_ratio(fiber_weight_fraction, fiber_density, matrix_density, void_ratio=0.0):
     """kf = (1 - kv) / (1 + (rho_f/rho_m)(1/lambda_f - 1)) (Chamis 1983; Singh & Sanyal
-    2017 Table 2)."""
+    2017 Table 2).
+
+    Parameters
+    ----------
+    fiber_weight_fraction : float or array_like
+        The fibre weight fraction lambda_f [-].
+    fiber_density, matrix_density : float
+        The densities rho_f and rho_m [kg/m^3].
+    void_ratio : float
+        The void volume ratio kv [-].
+
+    Returns
+    -------
+    numpy.ndarray
+        The fibre volume ratio kf [-].
+    """
     lam = np.asarray(fiber_weight_fraction, float)
     return (1.0 - void_ratio) / (1.0 + (fiber_density / matrix_density) * (1.0 / lam - 1.0))
 
@@ -91,14 +106,48 @@ def transverse_moisture_expansion(kf, matrix_beta, matrix_e, ply_e22):
 
 
 def longitudinal_diffusivity(kf, matrix_d):
-    """D_l11 = (1 - kf) D_m (Chamis 1983; Singh & Sanyal 2017 Table 5)."""
+    """D_l11 = (1 - kf) D_m (Chamis 1983; Singh & Sanyal 2017 Table 5).
+
+    Parameters
+    ----------
+    kf : float or array_like
+        The fibre volume ratio [-].
+    matrix_d : float or array_like
+        The matrix diffusivity D_m [m^2/s].
+
+    Returns
+    -------
+    numpy.ndarray
+        The ply diffusivity along the fibres [m^2/s].
+    """
     return (1.0 - kf) * matrix_d
 
 
 def transverse_diffusivity(kf, matrix_d, model: str = "chamis"):
     """D_l22 = (1 - sqrt(kf)) D_m (Chamis 1983; Singh & Sanyal 2017 Table 5), or
     ``model="shen_springer"``: (1 - 2 sqrt(kf/pi)) D_m (Shen & Springer 1976,
-    J. Compos. Mater. 10:2-20, eq. 19, impermeable square-packed fibres)."""
+    J. Compos. Mater. 10:2-20, eq. 19, impermeable square-packed fibres).
+
+    Parameters
+    ----------
+    kf : float or array_like
+        The fibre volume ratio [-].
+    matrix_d : float or array_like
+        The matrix diffusivity D_m [m^2/s].
+    model : {"chamis", "shen_springer"}
+        Which relation.
+
+    Returns
+    -------
+    numpy.ndarray
+        The ply diffusivity across the fibres [m^2/s].
+
+    References
+    ----------
+    C.-H. Shen and G. S. Springer, "Moisture absorption and desorption of composite
+    materials", *Journal of Composite Materials* 10(1), 2-20, 1976,
+    doi:10.1177/002199837601000101.
+    """
     if model == "shen_springer":
         return (1.0 - 2.0 * np.sqrt(kf / np.pi)) * matrix_d
     return (1.0 - np.sqrt(kf)) * matrix_d
@@ -107,12 +156,47 @@ def transverse_diffusivity(kf, matrix_d, model: str = "chamis"):
 def ply_moisture(matrix_moisture, matrix_beta_per_fraction, km, kv, matrix_density, ply_density_):
     """M_l = M_m (3 beta_m km + kv) rho_m / rho_l (Chamis 1983; Singh & Sanyal
     2017 section IV and Table 10 step 2). beta_m here in strain per unit weight fraction (= 100 x per %);
-    3 beta_m ~ 1 for epoxies, when M_l is the matrix weight share of M_m."""
+    3 beta_m ~ 1 for epoxies, when M_l is the matrix weight share of M_m.
+
+    Parameters
+    ----------
+    matrix_moisture : float or array_like
+        The matrix moisture M_m [weight %].
+    matrix_beta_per_fraction : float
+        The matrix moisture expansion beta_m [-] (strain per unit weight fraction).
+    km, kv : float
+        The matrix and void volume ratios [-].
+    matrix_density, ply_density_ : float
+        The densities rho_m and rho_l [kg/m^3].
+
+    Returns
+    -------
+    numpy.ndarray
+        The ply moisture M_l [weight %].
+    """
     return matrix_moisture * (3.0 * matrix_beta_per_fraction * km + kv) * matrix_density / ply_density_
 
 
 def matrix_moisture(ply_moisture_, matrix_beta_per_fraction, km, kv, matrix_density, ply_density_):
-    """Inverse of :func:`ply_moisture`: M_m from the ply (diffusion) moisture M_l."""
+    """Inverse of :func:`ply_moisture`: M_m from the ply (diffusion) moisture M_l.
+
+    Parameters
+    ----------
+    ply_moisture_ : float or array_like
+        The ply moisture M_l [weight %].
+    matrix_beta_per_fraction : float
+        The matrix moisture expansion beta_m [-] (strain per unit weight fraction).
+    km, kv : float
+        The matrix and void volume ratios [-].
+    matrix_density, ply_density_ : float
+        The densities rho_m and rho_l [kg/m^3].
+
+    Returns
+    -------
+    numpy.ndarray
+        The matrix moisture M_m [weight %].
+    """
+
     return ply_moisture_ * ply_density_ / ((3.0 * matrix_beta_per_fraction * km + kv) * matrix_density)
 
 

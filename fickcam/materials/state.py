@@ -44,7 +44,24 @@ def wet_tg_and_retention(material, ply_moisture, temperature, reference_temperat
     """(matrix moisture %, wet Tg K, retention) at the given ply moisture. A thermoset takes
     Chamis' wet Tg and retention; a thermoplastic with a moisture-modulus table takes its
     retention from the table (water plasticises it, Tg NaN); metals and materials with
-    neither have Tg NaN and retention 1."""
+    neither have Tg NaN and retention 1.
+
+    Parameters
+    ----------
+    material : Material
+        The part's material.
+    ply_moisture : array_like
+        The ply (diffusion) moisture [weight %].
+    temperature : array_like
+        The service temperature [K].
+    reference_temperature : float
+        The temperature T0 of the dry properties [K].
+
+    Returns
+    -------
+    tuple of numpy.ndarray
+        The matrix moisture [weight %], the wet Tg [K] and the retention P/P0 [-].
+    """
     temperature = np.asarray(temperature, float)
     matrix_m = np.asarray(material.matrix_moisture(ply_moisture), float) + 0.0 * temperature
     tgd = material.dry_glass_transition_temperature
@@ -76,7 +93,21 @@ def surface_in_plane_modulus(material, props):
 
 
 def first_invalid_index(temperature, *wet_tgs) -> int | None:
-    """Index of the first time at which T >= any of the given wet Tg arrays, else None."""
+    """Index of the first time at which T >= any of the given wet Tg arrays, else None.
+
+    Parameters
+    ----------
+    temperature : array_like
+        The service temperature at each time [K].
+    *wet_tgs : array_like
+        Wet glass transition temperatures at each time [K] (NaN: none).
+
+    Returns
+    -------
+    int or None
+        The first index reached, or None.
+    """
+
     temperature = np.asarray(temperature, float)
     reached = np.zeros(temperature.shape, bool)
     for tg in wet_tgs:
@@ -109,6 +140,43 @@ def material_state(material, temperature, moisture, surface_moisture, reference_
     (bulk or surface) hold NaN in the degraded properties and ``within_wet_tg`` False.
     With ``raise_on_wet_tg`` (needs ``times``) a :class:`PhysicsDomainError` is raised
     at the first such time; it carries ``.index`` and ``.state`` (results before it).
+
+    Parameters
+    ----------
+    material : Material
+        The part's material (:func:`fickcam.materials.resolve`).
+    temperature : array_like
+        The service temperature at each ageing time [K].
+    moisture : array_like
+        The part's volume-mean ply moisture [weight %].
+    surface_moisture : array_like
+        The contact layer's ply moisture [weight %].
+    reference_temperature : float
+        The temperature T0 of the dry, strain-free design [K].
+    initial_moisture : float
+        The moisture M0 of the strain-free design [weight %].
+    part : str
+        The part's name, for messages.
+    times : array_like, optional
+        The ageing times [s] (needed with ``raise_on_wet_tg``).
+    raise_on_wet_tg : bool
+        Raise at the first time the temperature reaches a wet Tg.
+
+    Returns
+    -------
+    dict of str to numpy.ndarray
+        The state variables, in SI (moisture in weight %), named as in the schema.
+
+    Raises
+    ------
+    fickcam.errors.PhysicsDomainError
+        With ``raise_on_wet_tg``, when the temperature reaches the bulk or the surface
+        wet glass transition temperature.
+
+    References
+    ----------
+    C. C. Chamis, "Simplified composite micromechanics equations for hygral, thermal
+    and mechanical properties", NASA TM-83320, 1983.
     """
     temperature = np.asarray(temperature, float)
     mean = np.asarray(moisture, float) + 0.0 * temperature
