@@ -60,6 +60,16 @@ ENTRY_POINTS = {
     "fickcam.materials.hygrothermal.free_strain": ("alpha", "beta", "temperature",
                                                    "reference_temperature", "moisture",
                                                    "initial_moisture"),
+    "fickcam.cam.dynamics.pressure_angle": ("height", "dy", "offset"),
+    "fickcam.cam.dynamics.pitch_radius_of_curvature": ("height", "dy", "d2y", "offset"),
+    "fickcam.cam.dynamics.axial_force": ("mass", "acceleration", "spring_rate",
+                                         "spring_deflection", "preload", "external_load"),
+    "fickcam.cam.dynamics.jump_speed": ("mass", "d2y", "holding_force"),
+    "fickcam.cam.dynamics.effective_modulus": ("e1", "nu1", "e2", "nu2"),
+    "fickcam.cam.dynamics.hertz_line_pressure": ("force", "length", "cam_radius",
+                                                 "follower_radius", "e_star"),
+    "fickcam.cam.dynamics.archard_wear_per_revolution": ("coefficient", "hardness", "force",
+                                                         "length", "slide_ratio"),
 }
 
 _HEADER = re.compile(r"^(?P<title>[A-Z][A-Za-z ]+)\n-{3,}$", re.MULTILINE)

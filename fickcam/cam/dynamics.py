@@ -16,14 +16,54 @@ STANDARD_GRAVITY = 9.80665  # m/s^2
 
 def pressure_angle(height, dy, offset):
     """phi = atan((dy/dtheta - e)/(s0 + y)) with s0 + y the pitch-point height
-    (Norton, Design of Machinery 5th ed., eq. 8.31)."""
+    (Norton, Design of Machinery 5th ed., eq. 8.31).
+
+    Parameters
+    ----------
+    height : float or array_like
+        The pitch-point height s0 + y above the cam axis [m].
+    dy : float or array_like
+        The follower velocity per cam angle dy/dtheta [m/rad].
+    offset : float
+        The follower's offset e from the cam axis [m].
+
+    Returns
+    -------
+    numpy.ndarray
+        The pressure angle phi [rad].
+
+    References
+    ----------
+    R. L. Norton, *Design of Machinery*, 5th ed., McGraw-Hill, 2012, eq. 8.31.
+    """
     return np.arctan2(dy - offset, height)
 
 
 def pitch_radius_of_curvature(height, dy, d2y, offset):
     """Radius of curvature of the pitch curve of a translating (offset) follower, from
     the follower motion alone (kinematic inversion; reduces to Norton eq. 8.34,
-    rho = (R^2 + y'^2)^1.5/(R^2 + 2 y'^2 - R y''), for e = 0). Positive = convex."""
+    rho = (R^2 + y'^2)^1.5/(R^2 + 2 y'^2 - R y''), for e = 0). Positive = convex.
+
+    Parameters
+    ----------
+    height : float or array_like
+        The pitch-point height s0 + y [m].
+    dy : float or array_like
+        dy/dtheta [m/rad].
+    d2y : float or array_like
+        d2y/dtheta2 [m/rad^2].
+    offset : float
+        The follower's offset e [m].
+
+    Returns
+    -------
+    numpy.ndarray
+        The pitch curve's radius of curvature [m], positive where convex.
+
+    References
+    ----------
+    R. L. Norton, *Design of Machinery*, 5th ed., McGraw-Hill, 2012, eq. 8.34.
+    """
     ax, ay = height, dy - offset
     bx, by = 2.0 * dy - offset, d2y - height
     return np.hypot(ax, ay) ** 3 / -(ax * by - ay * bx)
@@ -39,7 +79,30 @@ def axial_force(mass, acceleration, spring_rate, spring_deflection, preload, ext
     """Force the cam must supply along the follower axis: m a + k x + F0 + P (+ m g)
     (Newton along the axis; Norton, Design of Machinery 5th ed., ch. 15; Madhukar et al.
     2023 sec. 5.5 F_c = m y'' + s y + m g; Singh & Sanyal 2017 Table 19 adds the inertia
-    term with the opposite sign, F_i = -m y'', a slip)."""
+    term with the opposite sign, F_i = -m y'', a slip).
+
+    Parameters
+    ----------
+    mass : float
+        The follower train's effective mass [kg].
+    acceleration : float or array_like
+        The follower acceleration [m/s^2].
+    spring_rate : float
+        The return spring's rate [N/m].
+    spring_deflection : float or array_like
+        The spring's deflection from its preloaded length [m].
+    preload : float
+        The spring preload [N].
+    external_load : float or array_like
+        The external load along the axis [N].
+    gravity : bool
+        Add the follower's weight (a vertical follower lifting against gravity).
+
+    Returns
+    -------
+    numpy.ndarray
+        The axial force [N].
+    """
     weight = mass * STANDARD_GRAVITY if gravity else 0.0
     return mass * acceleration + spring_rate * spring_deflection + preload + external_load + weight
 
@@ -72,7 +135,23 @@ def power_torque(force, phi, dy):
 def jump_speed(mass, d2y, holding_force):
     """Smallest cam speed at which m omega^2 y''(theta) + S(theta) reaches zero somewhere
     (contact force vanishes: jump; Norton sec. 15.x 'follower jump'); S = spring + preload +
-    load (+ weight) >= 0 are speed-independent. inf if y'' never goes negative, 0 if S <= 0."""
+    load (+ weight) >= 0 are speed-independent. inf if y'' never goes negative, 0 if S <= 0.
+
+    Parameters
+    ----------
+    mass : float
+        The follower train's effective mass [kg].
+    d2y : numpy.ndarray
+        d2y/dtheta2 over the cycle [m/rad^2].
+    holding_force : numpy.ndarray
+        The speed-independent force S pressing the follower on the cam [N].
+
+    Returns
+    -------
+    float
+        The jump speed [rad/s]; inf when the follower never pulls away, 0 when S <= 0
+        somewhere.
+    """
     holding_force = np.asarray(holding_force, float)
     if np.any(holding_force <= 0.0):
         return 0.0
@@ -83,7 +162,25 @@ def jump_speed(mass, d2y, holding_force):
 
 
 def effective_modulus(e1, nu1, e2, nu2):
-    """E* with 1/E* = (1 - nu1^2)/E1 + (1 - nu2^2)/E2 (Johnson, Contact Mechanics 1985, eq. 4.22)."""
+    """E* with 1/E* = (1 - nu1^2)/E1 + (1 - nu2^2)/E2 (Johnson, Contact Mechanics 1985, eq. 4.22).
+
+    Parameters
+    ----------
+    e1, e2 : float or array_like
+        The Young's moduli of the two bodies [Pa].
+    nu1, nu2 : float or array_like
+        Their Poisson's ratios [-].
+
+    Returns
+    -------
+    numpy.ndarray
+        The contact modulus E* [Pa].
+
+    References
+    ----------
+    K. L. Johnson, *Contact Mechanics*, Cambridge University Press, 1985,
+    doi:10.1017/CBO9781139171731.
+    """
     return 1.0 / ((1.0 - nu1 ** 2) / e1 + (1.0 - nu2 ** 2) / e2)
 
 
@@ -91,7 +188,31 @@ def hertz_line_pressure(force, length, cam_radius, follower_radius, e_star):
     """Peak Hertz pressure of two cylinders in line contact, p0 = sqrt(F E*/(pi L R)),
     1/R = 1/rho_cam + 1/R_follower (a flat face: 1/R_follower = 0; a concave cam: rho < 0)
     (Johnson 1985 eq. 4.45; Norton, Machine Design, eq. 7.22). 0 where F <= 0, NaN where
-    the curvatures give no contact ellipse (1/R <= 0)."""
+    the curvatures give no contact ellipse (1/R <= 0).
+
+    Parameters
+    ----------
+    force : float or array_like
+        The contact force [N].
+    length : float
+        The contact length along the cylinders' axes [m].
+    cam_radius : float or array_like
+        The cam profile's radius of curvature [m] (negative where concave).
+    follower_radius : float or None
+        The roller's radius [m]; None for a flat face.
+    e_star : float or array_like
+        The contact modulus E* [Pa] (:func:`effective_modulus`).
+
+    Returns
+    -------
+    numpy.ndarray
+        The peak pressure p0 [Pa].
+
+    References
+    ----------
+    K. L. Johnson, *Contact Mechanics*, Cambridge University Press, 1985, eq. 4.45,
+    doi:10.1017/CBO9781139171731.
+    """
     inverse = 1.0 / cam_radius + (0.0 if follower_radius is None else 1.0 / follower_radius)
     load = np.maximum(force, 0.0)
     with np.errstate(invalid="ignore", divide="ignore"):
@@ -101,7 +222,24 @@ def hertz_line_pressure(force, length, cam_radius, follower_radius, e_star):
 
 def hertz_line_half_width(pressure, cam_radius, follower_radius, e_star):
     """Half-width b of the line-contact strip, from p0 = E* b / (2 R) (Johnson 1985 eq. 4.43),
-    with 1/R as in :func:`hertz_line_pressure`."""
+    with 1/R as in :func:`hertz_line_pressure`.
+
+    Parameters
+    ----------
+    pressure : float or array_like
+        The peak pressure p0 [Pa].
+    cam_radius : float or array_like
+        The cam profile's radius of curvature [m].
+    follower_radius : float or None
+        The roller's radius [m]; None for a flat face.
+    e_star : float or array_like
+        The contact modulus E* [Pa].
+
+    Returns
+    -------
+    numpy.ndarray
+        The half-width b [m].
+    """
     inverse = 1.0 / cam_radius + (0.0 if follower_radius is None else 1.0 / follower_radius)
     with np.errstate(invalid="ignore", divide="ignore"):
         return np.where(inverse > 0, 2.0 * pressure / (e_star * inverse), np.nan)
@@ -122,7 +260,33 @@ def archard_wear_per_revolution(coefficient, hardness, force, length, slide_rati
     """Wear depth of the cam surface per revolution at each profile point (Archard: depth
     rate = K/H p v_s; integrated over one pass through a contact of load F/L per unit width,
     travelling along the cam at omega rho while sliding at v_s: h = K/H (F/L) v_s/(omega rho))
-    (Archard 1953; Rothbart 2004 ch. 12)."""
+    (Archard 1953; Rothbart 2004 ch. 12).
+
+    Parameters
+    ----------
+    coefficient : float
+        Archard's dimensionless wear coefficient K [-].
+    hardness : float
+        The cam surface's hardness H [Pa].
+    force : float or array_like
+        The contact force [N].
+    length : float
+        The contact length [m].
+    slide_ratio : float or array_like
+        The sliding speed over the contact's travel speed along the cam,
+        v_s / (omega rho) [-].
+
+    Returns
+    -------
+    numpy.ndarray
+        The wear depth per revolution [m].
+
+    References
+    ----------
+    J. F. Archard, "Contact and rubbing of flat surfaces", *Journal of Applied Physics*
+    24(8), 981-988, 1953, doi:10.1063/1.1721448.
+    """
+
     return coefficient / hardness * np.maximum(force, 0.0) / length * slide_ratio
 
 
