@@ -74,13 +74,45 @@ class Train:
 
 def rod_stiffness(modulus: float, length: float, diameter: float) -> float:
     """k = E A/L of a round stem in tension/compression, A = pi d^2/4 (Gere & Goodno,
-    Mechanics of Materials, eq. 2.3)."""
+    Mechanics of Materials, eq. 2.3).
+
+    Parameters
+    ----------
+    modulus : float
+        Young's modulus E [Pa].
+    length : float
+        The stem's length L [m].
+    diameter : float
+        Its diameter d [m].
+
+    Returns
+    -------
+    float
+        The axial stiffness k [N/m].
+    """
     return modulus * math.pi * diameter ** 2 / 4.0 / length
 
 
 def lever_stiffness(modulus: float, length: float, width: float, height: float) -> float:
     """k = 3 E I/L^3 at the tip of a cantilever lever, I = w h^3/12 (Gere & Goodno,
-    Table H-1, case 4)."""
+    Table H-1, case 4).
+
+    Parameters
+    ----------
+    modulus : float
+        Young's modulus E [Pa].
+    length : float
+        The lever's length L from its support to the tip [m].
+    width : float
+        The section's width w [m].
+    height : float
+        The section's height h, in the direction of the load [m].
+
+    Returns
+    -------
+    float
+        The tip stiffness k [N/m].
+    """
     return 3.0 * modulus * width * height ** 3 / 12.0 / length ** 3
 
 
@@ -136,7 +168,25 @@ def cycloidal_residual_amplitude(lift: float, rise_time: float, natural_frequenc
     Derivation (Duhamel; Koster 1974 sec. 3.2; Norton sec. 15.x): u = x - g s obeys
     u'' + wn^2 u = -g s'', s'' = (2 pi h/t1^2) sin(a t), a = 2 pi/t1, so after the rise
     A = g/wn |int_0^t1 s'' e^{-i wn t} dt| = g/wn (2 pi h/t1^2) a |1 - e^{-i wn t1}|/|a^2 - wn^2|,
-    and |1 - e^{-i wn t1}| = 2 |sin(wn t1/2)|. r = 1 is the removable limit g h/2."""
+    and |1 - e^{-i wn t1}| = 2 |sin(wn t1/2)|. r = 1 is the removable limit g h/2.
+
+    Parameters
+    ----------
+    lift : float
+        The rise h [m].
+    rise_time : float
+        The rise's duration t1 [s].
+    natural_frequency : float
+        The follower's natural angular frequency wn [rad/s].
+    static_ratio : float
+        g = k/(k + k_s) [-], the static share of the cam's motion the mass follows.
+
+    Returns
+    -------
+    float
+        The residual vibration amplitude [m].
+    """
+
     r = rise_time * natural_frequency / (2.0 * math.pi)
     if abs(r - 1.0) < 1e-9:
         return static_ratio * lift / 2.0

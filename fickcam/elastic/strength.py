@@ -25,7 +25,25 @@ import numpy as np
 
 def ply_strengths(material, retention) -> dict[str, np.ndarray] | None:
     """Xt, Xc, Yt, Yc, S (Pa) of the ply (or the isotropic material) at retention P/P0;
-    None when the library gives no strengths (metals)."""
+    None when the library gives no strengths (metals).
+
+    Parameters
+    ----------
+    material : fickcam.materials.Material
+        The part's material.
+    retention : float or array_like
+        The hygrothermal retention P/P0 of the matrix [-].
+
+    Returns
+    -------
+    dict of str to numpy.ndarray or None
+        The strengths Xt, Xc, Yt, Yc, S [Pa] (compressive ones positive).
+
+    References
+    ----------
+    C. C. Chamis, "Simplified composite micromechanics equations for strength,
+    fracture toughness and environmental effects", NASA TM-83696, 1984.
+    """
     m = material.matrix
     if material.kind == "metal" or "tensile_strength" not in m:
         return None
@@ -45,7 +63,28 @@ def ply_strengths(material, retention) -> dict[str, np.ndarray] | None:
 
 def tsai_wu_index(s1, s2, s12, strengths: dict) -> np.ndarray:
     """1/R of the Tsai-Wu criterion for ply-axis stresses (arrays broadcast with the
-    strengths)."""
+    strengths).
+
+    Parameters
+    ----------
+    s1, s2 : float or array_like
+        The normal stresses along and across the fibres [Pa].
+    s12 : float or array_like
+        The in-plane shear stress [Pa].
+    strengths : dict of str to float or array_like
+        Xt, Xc, Yt, Yc, S [Pa] (:func:`ply_strengths`).
+
+    Returns
+    -------
+    numpy.ndarray
+        The failure index 1/R [-]: 1 at failure, proportional to the load.
+
+    References
+    ----------
+    S. W. Tsai and E. M. Wu, "A general theory of strength for anisotropic materials",
+    *Journal of Composite Materials* 5(1), 58-80, 1971, doi:10.1177/002199837100500106.
+    """
+
     xt, xc, yt, yc, s = (strengths[k] for k in ("Xt", "Xc", "Yt", "Yc", "S"))
     f11, f22 = 1.0 / (xt * xc), 1.0 / (yt * yc)
     f12 = -0.5 * np.sqrt(f11 * f22)
