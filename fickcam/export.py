@@ -25,22 +25,13 @@ def export_csv(ds, path, variables=None) -> Path:
 
     Parameters
     ----------
-    ds : xarray.Dataset
-        A result.
-    path : str or pathlib.Path
-        The CSV file to write (atomically).
-    variables : list of str, optional
-        The variables to write; None: all of them.
+    ds, path, variables
+        As in :func:`export`; ``path`` is the CSV file.
 
     Returns
     -------
     pathlib.Path
-        The path written.
-
-    Raises
-    ------
-    fickcam.errors.InputError
-        When a variable asked for is not in the result.
+        The tidy CSV file.
     """
     names = _chosen(ds, variables)
     dims: list[str] = []
@@ -69,22 +60,13 @@ def export_json(ds, path, variables=None) -> Path:
 
     Parameters
     ----------
-    ds : xarray.Dataset
-        A result.
-    path : str or pathlib.Path
-        The JSON file to write (atomically); NaN is written as null.
-    variables : list of str, optional
-        The variables to write; None: all of them.
+    ds, path, variables
+        As in :func:`export` (NaN is written as null).
 
     Returns
     -------
     pathlib.Path
-        The path written.
-
-    Raises
-    ------
-    fickcam.errors.InputError
-        When a variable asked for is not in the result.
+        The JSON document, one line.
     """
     names = _chosen(ds, variables)
     coords = {}
@@ -112,22 +94,13 @@ def export_netcdf(ds, path, variables=None) -> Path:
 
     Parameters
     ----------
-    ds : xarray.Dataset
-        A result.
-    path : str or pathlib.Path
-        The netCDF file to write (atomically).
-    variables : list of str, optional
-        The variables to write; None: all of them.
+    ds, path, variables
+        As in :func:`export`; the file is netCDF-4 (HDF5).
 
     Returns
     -------
     pathlib.Path
-        The path written.
-
-    Raises
-    ------
-    fickcam.errors.InputError
-        When a variable asked for is not in the result.
+        What :func:`fickcam.save` wrote.
     """
     from .store import save
 
@@ -163,7 +136,6 @@ def export(ds, path, fmt: str, variables=None) -> Path:
     fickcam.errors.InputError
         When the format is unknown or a variable asked for is not in the result.
     """
-
     if fmt not in EXPORTERS:
         raise InputError(f"unknown export format {fmt!r} (csv, netcdf or json)")
     return EXPORTERS[fmt](ds, path, variables)

@@ -143,7 +143,6 @@ def drift(ds, name: str, against: str = "design"):
         When the variable is missing, does not change with time, has no as-designed value,
         or ``against`` is neither "design" nor "start".
     """
-
     if name not in ds.data_vars:
         raise InputError(f"variable {name!r} is not in this result")
     array = ds[name]

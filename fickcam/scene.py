@@ -375,7 +375,6 @@ def load_scene(source, *, file_name: str | None = None) -> Scene:
     fickcam.errors.SceneError
         One problem per fault, each naming file, line and key.
     """
-
     if isinstance(source, Scene):
         return source
     if isinstance(source, dict):

@@ -286,7 +286,6 @@ def archard_wear_per_revolution(coefficient, hardness, force, length, slide_rati
     J. F. Archard, "Contact and rubbing of flat surfaces", *Journal of Applied Physics*
     24(8), 981-988, 1953, doi:10.1063/1.1721448.
     """
-
     return coefficient / hardness * np.maximum(force, 0.0) / length * slide_ratio
 
 

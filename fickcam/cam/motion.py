@@ -24,35 +24,13 @@ PI = math.pi
 
 def uniform_velocity(x):
     """S = x (Norton sec. 8.3, 'constant velocity'; Singh & Sanyal 2017 Table 17). Infinite
-    acceleration at both ends.
-
-    Parameters
-    ----------
-    x : float or array_like
-        The normalised position in the segment, (theta - theta_0)/beta [-], in [0, 1].
-
-    Returns
-    -------
-    tuple of numpy.ndarray
-        S, S', S'', S''' [-] (derivatives with respect to x).
-    """
+    acceleration at both ends."""
     x = np.asarray(x, float)
     return x, np.ones_like(x), np.zeros_like(x), np.zeros_like(x)
 
 
 def simple_harmonic(x):
-    """S = (1 - cos pi x)/2 (Norton eq. 8.6; Singh & Sanyal 2017 Table 17 and p. 281).
-
-    Parameters
-    ----------
-    x : float or array_like
-        The normalised position in the segment, (theta - theta_0)/beta [-], in [0, 1].
-
-    Returns
-    -------
-    tuple of numpy.ndarray
-        S, S', S'', S''' [-] (derivatives with respect to x).
-    """
+    """S = (1 - cos pi x)/2 (Norton eq. 8.6; Singh & Sanyal 2017 Table 17 and p. 281)."""
     x = np.asarray(x, float)
     return ((1 - np.cos(PI * x)) / 2, PI / 2 * np.sin(PI * x), PI ** 2 / 2 * np.cos(PI * x),
             -PI ** 3 / 2 * np.sin(PI * x))
@@ -60,18 +38,7 @@ def simple_harmonic(x):
 
 def cycloidal(x):
     """S = x - sin(2 pi x)/(2 pi) (Norton eq. 8.7; Singh & Sanyal 2017 Table 17;
-    Yadav et al. 2017 p. 2).
-
-    Parameters
-    ----------
-    x : float or array_like
-        The normalised position in the segment, (theta - theta_0)/beta [-], in [0, 1].
-
-    Returns
-    -------
-    tuple of numpy.ndarray
-        S, S', S'', S''' [-] (derivatives with respect to x).
-    """
+    Yadav et al. 2017 p. 2)."""
     x = np.asarray(x, float)
     w = 2 * PI
     return (x - np.sin(w * x) / w, 1 - np.cos(w * x), w * np.sin(w * x), w ** 2 * np.cos(w * x))
@@ -85,34 +52,12 @@ def _polynomial(coefficients, x):
 
 
 def polynomial_345(x):
-    """S = 10 x^3 - 15 x^4 + 6 x^5 (Norton eq. 8.24).
-
-    Parameters
-    ----------
-    x : float or array_like
-        The normalised position in the segment, (theta - theta_0)/beta [-], in [0, 1].
-
-    Returns
-    -------
-    tuple of numpy.ndarray
-        S, S', S'', S''' [-] (derivatives with respect to x).
-    """
+    """S = 10 x^3 - 15 x^4 + 6 x^5 (Norton eq. 8.24)."""
     return _polynomial([0, 0, 0, 10, -15, 6], x)
 
 
 def polynomial_4567(x):
-    """S = 35 x^4 - 84 x^5 + 70 x^6 - 20 x^7 (Norton eq. 8.25).
-
-    Parameters
-    ----------
-    x : float or array_like
-        The normalised position in the segment, (theta - theta_0)/beta [-], in [0, 1].
-
-    Returns
-    -------
-    tuple of numpy.ndarray
-        S, S', S'', S''' [-] (derivatives with respect to x).
-    """
+    """S = 35 x^4 - 84 x^5 + 70 x^6 - 20 x^7 (Norton eq. 8.25)."""
     return _polynomial([0, 0, 0, 0, 35, -84, 70, -20], x)
 
 
@@ -183,52 +128,19 @@ _MODIFIED_SINE = (
 def constant_acceleration(x):
     """Parabolic: S = 2 x^2 (x <= 1/2), 1 - 2 (1 - x)^2 (Norton sec. 8.3; Singh & Sanyal
     2017 Table 17, whose second half is misprinted as h[1 - 2{1 - k^2}]). Infinite jerk at
-    ends and middle.
-
-    Parameters
-    ----------
-    x : float or array_like
-        The normalised position in the segment, (theta - theta_0)/beta [-], in [0, 1].
-
-    Returns
-    -------
-    tuple of numpy.ndarray
-        S, S', S'', S''' [-] (derivatives with respect to x).
-    """
+    ends and middle."""
     return _piecewise(_CONSTANT_ACCELERATION, x)
 
 
 def modified_trapezoidal(x):
     """Modified trapezoid: sine ramps of period 1/2 over x in [0, 1/8], [3/8, 5/8], [7/8, 1]
-    and constant acceleration between (Norton eq. 8.15, peak C_a = 4.8881).
-
-    Parameters
-    ----------
-    x : float or array_like
-        The normalised position in the segment, (theta - theta_0)/beta [-], in [0, 1].
-
-    Returns
-    -------
-    tuple of numpy.ndarray
-        S, S', S'', S''' [-] (derivatives with respect to x).
-    """
+    and constant acceleration between (Norton eq. 8.15, peak C_a = 4.8881)."""
     return _piecewise(_MODIFIED_TRAPEZOIDAL, x)
 
 
 def modified_sine(x):
     """Modified sine: sine of period 1/2 over [0, 1/8] and [7/8, 1], of period 3/2 between
-    (Norton eq. 8.18, peak C_a = 5.5280).
-
-    Parameters
-    ----------
-    x : float or array_like
-        The normalised position in the segment, (theta - theta_0)/beta [-], in [0, 1].
-
-    Returns
-    -------
-    tuple of numpy.ndarray
-        S, S', S'', S''' [-] (derivatives with respect to x).
-    """
+    (Norton eq. 8.18, peak C_a = 5.5280)."""
     return _piecewise(_MODIFIED_SINE, x)
 
 
@@ -352,7 +264,6 @@ def time_derivatives(per_angle, omega):
     tuple of numpy.ndarray
         y [m], v [m/s], a [m/s^2], j [m/s^3].
     """
-
     y, d1, d2, d3 = per_angle
     return y, d1 * omega, d2 * omega ** 2, d3 * omega ** 3
 

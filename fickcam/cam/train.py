@@ -186,7 +186,6 @@ def cycloidal_residual_amplitude(lift: float, rise_time: float, natural_frequenc
     float
         The residual vibration amplitude [m].
     """
-
     r = rise_time * natural_frequency / (2.0 * math.pi)
     if abs(r - 1.0) < 1e-9:
         return static_ratio * lift / 2.0

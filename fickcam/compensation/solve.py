@@ -217,7 +217,6 @@ def compensate(scene, at=None, over=None, *, accuracy: float | None = None,
         When ``at`` and ``over`` are both given or both missing, a time is outside the
         scene's history, or ``keep_limits`` is given without ``at``.
     """
-
     from ..scene import design_data, load_scene
 
     scene = load_scene(scene)

@@ -416,18 +416,15 @@ def solve(geometry, diffusivity: Diffusivity, exposure: Exposure, times: np.ndar
 
     Parameters
     ----------
-    geometry : Sheet, Disc, Bar, CamPlate or LinkBar
-        The part, dry dimensions [m].
-    diffusivity : Diffusivity
-        D(T) along the part axes [m^2/s].
-    exposure : Exposure
-        The surface history: temperature [K] and surface moisture [weight %] over time.
+    geometry, diffusivity, exposure
+        The part [m], its D(T) [m^2/s] and its surface history, as in :func:`plan`.
     times : array_like
-        The times at which moisture is wanted [s].
+        The times [s] at which the moisture is wanted, from 0 (the start of the history).
     accuracy : float
-        The relative accuracy [-] asked for, a fraction of the moisture swing, in (0, 1).
+        The relative accuracy [-], in (0, 1), a fraction of the moisture swing.
     model : str
         One of ``MODELS``; "auto" chooses (the exact series where it applies).
+
     surface_layer_depth : float
         The depth of the contact layer whose mean is reported as ``surface`` [m].
     store_fields : bool
@@ -451,7 +448,6 @@ def solve(geometry, diffusivity: Diffusivity, exposure: Exposure, times: np.ndar
         When the model is unknown or does not apply to the part, or the accuracy is
         outside (0, 1).
     """
-
     times = np.asarray(times, float)
     route = (_nonlinear_route(geometry, model, sorption, exposure, times, accuracy)
              if is_nonlinear(sorption) else "")

@@ -84,7 +84,6 @@ def tsai_wu_index(s1, s2, s12, strengths: dict) -> np.ndarray:
     S. W. Tsai and E. M. Wu, "A general theory of strength for anisotropic materials",
     *Journal of Composite Materials* 5(1), 58-80, 1971, doi:10.1177/002199837100500106.
     """
-
     xt, xc, yt, yc, s = (strengths[k] for k in ("Xt", "Xc", "Yt", "Yc", "S"))
     f11, f22 = 1.0 / (xt * xc), 1.0 / (yt * yc)
     f12 = -0.5 * np.sqrt(f11 * f22)

@@ -153,7 +153,6 @@ def read_weight_gain(path) -> list[Specimen]:
     fickcam.errors.SceneError
         Every fault, each with file, line and column.
     """
-
     path = Path(path)
     reader = _Reader(str(path))
     rows = _rows(path, reader)

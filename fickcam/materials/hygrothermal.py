@@ -160,19 +160,14 @@ def secant_thermal_factor(wet_tg, temperature, dry_tg, reference_temperature):
 
     Parameters
     ----------
-    wet_tg : float or array_like
-        The wet glass transition temperature Tgw [K].
-    temperature : float or array_like
-        The service temperature T [K].
-    dry_tg : float
-        The dry glass transition temperature Tgd [K].
-    reference_temperature : float
-        The reference temperature T0 [K].
+    wet_tg, temperature, dry_tg, reference_temperature
+        Tgw, T, Tgd and T0 [K], as in :func:`property_retention`.
 
     Returns
     -------
     numpy.ndarray
         The secant factor [-] on the matrix expansion coefficient; NaN where T >= Tgw.
+
     """
     tgw = np.asarray(wet_tg, float)
     t = np.asarray(temperature, float) + 0.0 * tgw
@@ -261,5 +256,4 @@ def wet_density(dry_density, moisture, strain_x, strain_y, strain_z):
     numpy.ndarray
         The wet density [kg/m^3].
     """
-
     return wet_mass(dry_density, moisture) / ((1.0 + strain_x) * (1.0 + strain_y) * (1.0 + strain_z))

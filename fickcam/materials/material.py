@@ -101,7 +101,6 @@ class Material:
         materials", *Journal of Composite Materials* 10(1), 2-20, 1976,
         doi:10.1177/002199837601000101.
         """
-
         rh = np.asarray(relative_humidity_percent, float) + 0.0 * np.asarray(temperature, float)
         if not self.absorbs:
             return np.zeros_like(rh)

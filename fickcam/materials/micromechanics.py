@@ -130,11 +130,10 @@ def transverse_diffusivity(kf, matrix_d, model: str = "chamis"):
 
     Parameters
     ----------
-    kf : float or array_like
-        The fibre volume ratio [-].
-    matrix_d : float or array_like
-        The matrix diffusivity D_m [m^2/s].
+    kf, matrix_d
+        As in :func:`longitudinal_diffusivity`: kf [-], D_m [m^2/s].
     model : {"chamis", "shen_springer"}
+
         Which relation.
 
     Returns
@@ -184,19 +183,15 @@ def matrix_moisture(ply_moisture_, matrix_beta_per_fraction, km, kv, matrix_dens
     ----------
     ply_moisture_ : float or array_like
         The ply moisture M_l [weight %].
-    matrix_beta_per_fraction : float
-        The matrix moisture expansion beta_m [-] (strain per unit weight fraction).
-    km, kv : float
-        The matrix and void volume ratios [-].
-    matrix_density, ply_density_ : float
-        The densities rho_m and rho_l [kg/m^3].
+    matrix_beta_per_fraction, km, kv, matrix_density, ply_density_
+        As in :func:`ply_moisture` ([-], [-], [-], [kg/m^3], [kg/m^3]).
 
     Returns
+
     -------
     numpy.ndarray
         The matrix moisture M_m [weight %].
     """
-
     return ply_moisture_ * ply_density_ / ((3.0 * matrix_beta_per_fraction * km + kv) * matrix_density)
 
 

@@ -107,7 +107,6 @@ def first_invalid_index(temperature, *wet_tgs) -> int | None:
     int or None
         The first index reached, or None.
     """
-
     temperature = np.asarray(temperature, float)
     reached = np.zeros(temperature.shape, bool)
     for tg in wet_tgs:

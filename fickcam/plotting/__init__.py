@@ -59,7 +59,6 @@ def plot(ds, outdir, kind: str = "all") -> list[Path]:
     fickcam.errors.InputError
         When the kind is unknown or the result holds no data for it.
     """
-
     outdir = Path(outdir)
     outdir.mkdir(parents=True, exist_ok=True)
     kinds = available_kinds(ds) if kind == "all" else [kind]

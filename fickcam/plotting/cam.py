@@ -62,14 +62,14 @@ def plot_kinematics(ds, outdir) -> list[Path]:
     Parameters
     ----------
     ds : xarray.Dataset
-        A result.
+        A cam result (``pressure_angle`` over the cam angle).
     outdir : str or pathlib.Path
-        The folder the PNG files are written to.
+        Where the two or three PNG files go (created if missing).
 
     Returns
     -------
     list of pathlib.Path
-        The files written.
+        cam_kinematics.png, cam_drift.png and, with a stored profile, cam_profile.png.
     """
     plt = figure()
     outdir = Path(outdir)
@@ -149,14 +149,14 @@ def plot_dynamics(ds, outdir) -> list[Path]:
     Parameters
     ----------
     ds : xarray.Dataset
-        A result.
+        A cam result with ``contact_force``.
     outdir : str or pathlib.Path
-        The folder the PNG files are written to.
+        The folder for both figures.
 
     Returns
     -------
     list of pathlib.Path
-        The files written.
+        The paths of cam_dynamics.png and cam_jump_stress.png.
     """
     plt = figure()
     outdir = Path(outdir)

@@ -23,14 +23,14 @@ def plot(ds, outdir) -> list[Path]:
     Parameters
     ----------
     ds : xarray.Dataset
-        A result.
+        A result with ``failure_index`` (an elastic scene).
     outdir : str or pathlib.Path
-        The folder the PNG files are written to.
+        Folder of the elastic figures.
 
     Returns
     -------
     list of pathlib.Path
-        The files written.
+        Every figure drawn; none when nothing elastic is stored.
     """
     plt = figure()
     outdir = Path(outdir)

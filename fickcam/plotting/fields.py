@@ -18,14 +18,14 @@ def plot(ds, outdir) -> list[Path]:
     Parameters
     ----------
     ds : xarray.Dataset
-        A result.
+        A result holding the ``moisture`` fields of its parts.
     outdir : str or pathlib.Path
-        The folder the PNG files are written to.
+        One PNG per part goes here.
 
     Returns
     -------
     list of pathlib.Path
-        The files written.
+        One path per part with a stored field.
     """
     written = []
     for part in ds["part"].values:

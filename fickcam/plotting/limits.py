@@ -93,14 +93,14 @@ def plot(ds, outdir) -> list[Path]:
     Parameters
     ----------
     ds : xarray.Dataset
-        A result.
+        A result of a scene with ``limits`` (its ``limit_ratio``).
     outdir : str or pathlib.Path
-        The folder the PNG files are written to.
+        Where limits.png is saved.
 
     Returns
     -------
     list of pathlib.Path
-        The files written.
+        [limits.png], or no path without stored limits.
     """
     plt = figure()
     limits = list(stored_limits(ds).values())

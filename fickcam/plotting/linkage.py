@@ -34,14 +34,14 @@ def plot(ds, outdir) -> list[Path]:
     Parameters
     ----------
     ds : xarray.Dataset
-        A result.
+        A four-bar result (``rocker_angle`` over the crank angle).
     outdir : str or pathlib.Path
-        The folder the PNG files are written to.
+        Output folder of the three linkage figures.
 
     Returns
     -------
     list of pathlib.Path
-        The files written.
+        Coupler curve, rocker and transmission-torque figures, in that order.
     """
     plt = figure()
     outdir = Path(outdir)

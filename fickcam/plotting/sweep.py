@@ -259,14 +259,15 @@ def plot(ds, outdir, time_index: int = -1) -> list[Path]:
     ds : xarray.Dataset
         A result of a sweep (a ``case`` dimension).
     outdir : str or pathlib.Path
-        The folder the PNG files are written to.
+        The sweep figures are written here.
     time_index : int
         The ageing time [-] (an index into ``time``) the outputs are taken at; -1: the last.
 
     Returns
     -------
     list of pathlib.Path
-        The files written.
+        The figures drawn; none without varied parameters or ageing times.
+
     """
     outdir = Path(outdir)
     if not parameters(ds) or "time" not in ds.dims:

@@ -18,14 +18,14 @@ def plot(ds, outdir) -> list[Path]:
     Parameters
     ----------
     ds : xarray.Dataset
-        A result.
+        A cam result with the vibrating train's ``dynamic_contact_force``.
     outdir : str or pathlib.Path
-        The folder the PNG files are written to.
+        Folder for the vibration PNGs.
 
     Returns
     -------
     list of pathlib.Path
-        The files written.
+        cam_vibration.png and cam_vibration_ageing.png.
     """
     plt = figure()
     outdir = Path(outdir)

@@ -20,14 +20,14 @@ def plot(ds, outdir) -> list[Path]:
     Parameters
     ----------
     ds : xarray.Dataset
-        A result.
+        Any run's result (``moisture_content`` of each part).
     outdir : str or pathlib.Path
-        The folder the PNG files are written to.
+        uptake.png is written here.
 
     Returns
     -------
     list of pathlib.Path
-        The files written.
+        A one-element list: uptake.png.
     """
     plt = figure()
     fig, (t_ax, rh_ax, moist_ax) = plt.subplots(

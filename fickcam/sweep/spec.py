@@ -482,7 +482,6 @@ def load_sweep(source) -> Sweep:
         When the sweep file or its base scene does not validate (file, line and key of
         each fault).
     """
-
     from ..scene import problems_from_validation, read_yaml, validate_document
 
     doc = read_yaml(source, what="sweep")

@@ -132,7 +132,6 @@ class LinkBar:
         The radius of the bosses' holes [m].
     """
 
-
     length: float
     width: float
     thickness: float

@@ -78,7 +78,6 @@ class DiffusionResult:
         ``extend(at)`` [s]: this result with rows at ``at`` added.
     """
 
-
     times: np.ndarray
     mean: np.ndarray
     surface: np.ndarray
