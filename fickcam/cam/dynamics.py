@@ -70,7 +70,20 @@ def pitch_radius_of_curvature(height, dy, d2y, offset):
 
 
 def flat_radius_of_curvature(height, d2y):
-    """rho = Rb + y + y'' for a flat-faced follower (Norton eq. 8.36), height = Rb + y."""
+    """rho = Rb + y + y'' for a flat-faced follower (Norton eq. 8.36), height = Rb + y.
+
+    Parameters
+    ----------
+    height : float or array_like
+        Rb + y [m].
+    d2y : float or array_like
+        y'' = d2y/dtheta2 [m/rad^2].
+
+    Returns
+    -------
+    numpy.ndarray
+        The cam's radius of curvature under the face [m].
+    """
     return height + d2y
 
 
@@ -109,26 +122,90 @@ def axial_force(mass, acceleration, spring_rate, spring_deflection, preload, ext
 
 def guide_friction_factor(mu, overhang, guide_length, stem_diameter):
     """G = 2 mu l1/l2 + mu - mu^2 d/l2 of a stem in a guide bush (Yadav et al. 2017
-    p. 3; Rothbart, Cam Design Handbook 2004, ch. 6)."""
+    p. 3; Rothbart, Cam Design Handbook 2004, ch. 6).
+
+    Parameters
+    ----------
+    mu : float
+        The stem-bush friction coefficient [-].
+    overhang : float
+        The stem's length l1 beyond the bush, to the contact [m].
+    guide_length : float
+        The bush's length l2 [m].
+    stem_diameter : float
+        The stem's diameter d [m].
+
+    Returns
+    -------
+    float
+        The guide friction factor G [-].
+    """
     return 2.0 * mu * overhang / guide_length + mu - mu ** 2 * stem_diameter / guide_length
 
 
 def normal_force(axial, phi, velocity, guide_factor):
     """Contact force along the common normal: Fn = F / (cos phi - s G |sin phi|), s = sign
     of the follower velocity (guide friction opposes the motion) (Yadav et al. 2017 p. 3,
-    F_n = P/(cos a - G sin a) while rising)."""
+    F_n = P/(cos a - G sin a) while rising).
+
+    Parameters
+    ----------
+    axial : float or array_like
+        The axial force F [N] (:func:`axial_force`).
+    phi : float or array_like
+        The pressure angle [rad].
+    velocity : float or array_like
+        The follower velocity (its sign matters) [m/s].
+    guide_factor : float
+        G [-] (:func:`guide_friction_factor`).
+
+    Returns
+    -------
+    numpy.ndarray
+        The normal contact force Fn [N].
+    """
     return axial / (np.cos(phi) - np.sign(velocity) * guide_factor * np.abs(np.sin(phi)))
 
 
 def contact_torque(contact_x, contact_y, force, phi):
     """Torque the camshaft supplies: the moment about the cam axis of the contact force
-    on the follower, Fn (-sin phi, cos phi), at the contact point."""
+    on the follower, Fn (-sin phi, cos phi), at the contact point.
+
+    Parameters
+    ----------
+    contact_x, contact_y : float or array_like
+        The contact point relative to the cam axis [m].
+    force : float or array_like
+        The normal contact force Fn [N].
+    phi : float or array_like
+        The pressure angle [rad].
+
+    Returns
+    -------
+    numpy.ndarray
+        The camshaft torque [N m].
+    """
     return contact_x * force * np.cos(phi) + contact_y * force * np.sin(phi)
 
 
 def power_torque(force, phi, dy):
     """T = Fn cos(phi) dy/dtheta, from T omega = (Fn cos phi) v (power balance; Yadav et
-    al. 2017 p. 3: T0 = Fn (y'/omega) cos a)."""
+    al. 2017 p. 3: T0 = Fn (y'/omega) cos a).
+
+    Parameters
+    ----------
+    force : float or array_like
+        The normal contact force Fn [N].
+    phi : float or array_like
+        The pressure angle [rad].
+    dy : float or array_like
+        dy/dtheta [m/rad].
+
+    Returns
+    -------
+    numpy.ndarray
+        The camshaft torque [N m].
+    """
     return force * np.cos(phi) * dy
 
 
@@ -252,7 +329,20 @@ SUBSURFACE_SHEAR_DEPTH = 0.786
 
 
 def subsurface_shear(pressure, half_width):
-    """(tau_max, depth) below a line contact: 0.30 p0 at z = 0.786 b (Johnson 1985 §4.2)."""
+    """(tau_max, depth) below a line contact: 0.30 p0 at z = 0.786 b (Johnson 1985 §4.2).
+
+    Parameters
+    ----------
+    pressure : float or array_like
+        The peak Hertz pressure p0 [Pa].
+    half_width : float or array_like
+        The contact half-width b [m].
+
+    Returns
+    -------
+    tuple of numpy.ndarray
+        The largest principal shear stress [Pa] and its depth below the surface [m].
+    """
     return SUBSURFACE_SHEAR_RATIO * pressure, SUBSURFACE_SHEAR_DEPTH * half_width
 
 
@@ -293,6 +383,27 @@ def empirical_wear_depth(sliding_length, pressure, hardness_1, hardness_2, mu,
                          a0=1.13e-5, a1=1.00, a2=2.69, a3=3.23):
     """Linear wear Z = l a0 (P0/H1)^a1 (H2/H1)^a2 mu^a3 (Yadav et al. 2017 p. 3
     and Table 2.1; the printed formula has mu^a1, the coefficients table and the worked
-    example use a3). Units as the paper: P0 in Pa over hardness numbers, l in m."""
+    example use a3). Units as the paper: P0 in Pa over hardness numbers, l in m.
+
+    Parameters
+    ----------
+    sliding_length : float or array_like
+        The sliding distance l [m].
+    pressure : float or array_like
+        The contact pressure P0 [Pa].
+    hardness_1, hardness_2 : float
+        The hardness numbers H1 and H2 of the worn surface and its counterpart (as the
+        paper's fit takes them).
+    mu : float
+        The friction coefficient [-].
+    a0, a1, a2, a3 : float
+        The fit's coefficients (Yadav et al. 2017, Table 2.1).
+
+    Returns
+    -------
+    numpy.ndarray
+        The linear wear Z [m].
+    """
+
     return sliding_length * a0 * (pressure / hardness_1) ** a1 * (hardness_2 / hardness_1) ** a2 \
         * mu ** a3
