@@ -32,7 +32,22 @@ def _strip_of_disc(radius, half_width, centre_distance):
 
 def link_section(length, width, boss_outer_radius, boss_inner_radius):
     """(area, polar second moment about the centre) of the link outline in its plane.
-    NaN where the outline is not a link (width > 2 Ro, Ri >= Ro, or bosses overlapping)."""
+    NaN where the outline is not a link (width > 2 Ro, Ri >= Ro, or bosses overlapping).
+
+    Parameters
+    ----------
+    length : float or array_like
+        The distance between the boss centres [m].
+    width : float or array_like
+        The bar's width [m].
+    boss_outer_radius, boss_inner_radius : float or array_like
+        The bosses' outer radius and hole radius [m].
+
+    Returns
+    -------
+    tuple of numpy.ndarray
+        The area [m^2] and the polar second moment about the centre [m^4].
+    """
     L, W, ro, ri = (np.asarray(a, float) for a in (length, width, boss_outer_radius, boss_inner_radius))
     d = L / 2.0
     strip_area, strip_j = _strip_of_disc(ro, W / 2.0, d)
@@ -47,7 +62,22 @@ def link_section(length, width, boss_outer_radius, boss_inner_radius):
 
 def link_body(length, width, thickness, boss_outer_radius, boss_inner_radius, density):
     """(volume m^3, mass kg, inertia about the centre of mass kg m^2) of a link of uniform
-    ``density``: V = T A, m = rho V, I = rho T J (J = polar second moment of the outline)."""
+    ``density``: V = T A, m = rho V, I = rho T J (J = polar second moment of the outline).
+
+    Parameters
+    ----------
+    length, width, boss_outer_radius, boss_inner_radius
+        The outline [m], as in :func:`link_section`.
+    thickness : float or array_like
+        The link's thickness T [m].
+    density : float or array_like
+        rho [kg/m^3].
+
+    Returns
+    -------
+    tuple of numpy.ndarray
+        Volume [m^3], mass [kg] and inertia about the centre of mass [kg m^2].
+    """
     area, polar = link_section(length, width, boss_outer_radius, boss_inner_radius)
     volume = np.asarray(thickness, float) * area
     return volume, density * volume, density * np.asarray(thickness, float) * polar
@@ -71,7 +101,24 @@ def _stretch(value, strain):
 def aged_link_body(length, width, thickness, boss_outer_radius, boss_inner_radius, dry_density,
                    moisture, strain_axial, strain_transverse, strain_thickness):
     """Link after swelling: length scales by (1 + eps_axial), width by (1 + eps_transverse),
-    thickness by (1 + eps_thickness), boss radii by the mean in-plane strain."""
+    thickness by (1 + eps_thickness), boss radii by the mean in-plane strain.
+
+    Parameters
+    ----------
+    length, width, thickness, boss_outer_radius, boss_inner_radius
+        The dry link [m], as in :func:`link_body`.
+    dry_density : float
+        The link's dry density [kg/m^3].
+    moisture : float or array_like
+        The link's mean moisture M [weight %].
+    strain_axial, strain_transverse, strain_thickness : float or array_like
+        The free strains along the link, across it and through its thickness [-].
+
+    Returns
+    -------
+    tuple of numpy.ndarray
+        The swollen link's volume [m^3], its wet mass [kg] and inertia [kg m^2].
+    """
     radial = 0.5 * (np.asarray(strain_axial, float) + strain_transverse)
     dry = (length, width, thickness, boss_outer_radius, boss_inner_radius)
     wet = (_stretch(length, strain_axial), _stretch(width, strain_transverse),
@@ -83,7 +130,24 @@ def aged_link_body(length, width, thickness, boss_outer_radius, boss_inner_radiu
 def aged_disc_body(outer_radius, thickness, inner_radius, dry_density, moisture, strain_radial,
                    strain_thickness):
     """Disc or annulus after swelling (radii by the in-plane, thickness by the through-thickness
-    strain)."""
+    strain).
+
+    Parameters
+    ----------
+    outer_radius, thickness, inner_radius
+        The dry disc [m], as in :func:`disc_body`.
+    dry_density : float
+        The density before moisture uptake [kg/m^3].
+    moisture : float or array_like
+        The mean moisture [weight %].
+    strain_radial, strain_thickness : float or array_like
+        The free strains in the plane and through the thickness [-].
+
+    Returns
+    -------
+    tuple of numpy.ndarray
+        (volume [m^3], mass [kg], inertia about the axis [kg m^2]) after swelling.
+    """
     dry = (outer_radius, thickness, inner_radius)
     wet = (_stretch(outer_radius, strain_radial), _stretch(thickness, strain_thickness),
            _stretch(inner_radius, strain_radial))
@@ -93,7 +157,25 @@ def aged_disc_body(outer_radius, thickness, inner_radius, dry_density, moisture,
 def aged_plate_body(profile_x, profile_y, thickness, bore_radius, dry_density, moisture,
                     strain_x, strain_y, strain_thickness):
     """Cam plate after swelling: profile x by (1 + eps_x), y by (1 + eps_y) (cam axes), bore
-    by the mean in-plane strain; strains may be arrays of shape (k,) -> results (k,)."""
+    by the mean in-plane strain; strains may be arrays of shape (k,) -> results (k,).
+
+    Parameters
+    ----------
+    profile_x, profile_y, thickness, bore_radius
+        The dry cam plate [m], as in :func:`plate_body`.
+    dry_density : float
+        Dry density [kg/m^3].
+    moisture : float or array_like
+        Mean moisture content of the plate [weight %].
+    strain_x, strain_y, strain_thickness : float or array_like
+        The free strains along the cam axes x, y and through the thickness [-].
+
+    Returns
+    -------
+    tuple of numpy.ndarray
+        Volume [m^3], mass [kg] and inertia about the cam's axis of rotation
+        [kg m^2], each of shape (k,) for strains of shape (k,).
+    """
     sx = np.asarray(strain_x, float)[..., None]
     sy = np.asarray(strain_y, float)[..., None]
     bore = _stretch(bore_radius, 0.5 * (np.asarray(strain_x, float) + strain_y))
@@ -104,7 +186,24 @@ def aged_plate_body(profile_x, profile_y, thickness, bore_radius, dry_density, m
 
 
 def disc_body(outer_radius, thickness, inner_radius=0.0, density=1.0):
-    """(volume, mass, inertia about the axis) of a disc or annulus: I = m (Ro^2 + Ri^2)/2."""
+    """(volume, mass, inertia about the axis) of a disc or annulus: I = m (Ro^2 + Ri^2)/2.
+
+    Parameters
+    ----------
+    outer_radius : float or array_like
+        Ro [m].
+    thickness : float or array_like
+        The disc's thickness [m].
+    inner_radius : float or array_like
+        Ri [m]; 0 for a full disc.
+    density : float
+        The uniform density [kg/m^3].
+
+    Returns
+    -------
+    tuple of numpy.ndarray
+        Volume [m^3], mass [kg] and inertia about the disc's axis [kg m^2].
+    """
     ro, ri, t = (np.asarray(a, float) for a in (outer_radius, inner_radius, thickness))
     volume = np.pi * (ro ** 2 - ri ** 2) * t
     mass = density * volume
@@ -130,7 +229,26 @@ def polygon_section(x, y):
 
 def plate_body(profile_x, profile_y, thickness, bore_radius=0.0, density=1.0):
     """(volume, mass, inertia about the origin = the cam's axis of rotation) of a prismatic
-    cam plate with a centred bore of ``bore_radius``."""
+    cam plate with a centred bore of ``bore_radius``.
+
+    Parameters
+    ----------
+    profile_x, profile_y : array_like
+        The outline [m], counter-clockwise about the axis of rotation, last point not
+        repeated.
+    thickness : float
+        The plate's thickness [m].
+    bore_radius : float
+        The bore's radius [m].
+    density : float
+        The plate's uniform density [kg/m^3].
+
+    Returns
+    -------
+    tuple of numpy.ndarray
+        The plate's volume [m^3], mass [kg] and inertia about its axis [kg m^2].
+    """
+
     area, _, _, polar = polygon_section(profile_x, profile_y)
     area = area - np.pi * bore_radius ** 2
     polar = polar - np.pi * bore_radius ** 4 / 2.0
