@@ -57,7 +57,27 @@ def cam_plate_model(points, triangles, thickness: float, bore_radius: float, spa
 
 
 def hertz_half_width(force, peak_pressure, length):
-    """b = 2 F / (pi p0 L): line contact under an elliptical pressure (Johnson 1985 eq. 4.44)."""
+    """b = 2 F / (pi p0 L): line contact under an elliptical pressure (Johnson 1985 eq. 4.44).
+
+    Parameters
+    ----------
+    force : float or array_like
+        The contact force F [N].
+    peak_pressure : float or array_like
+        The Hertz peak pressure p0 [Pa].
+    length : float
+        The contact length L [m].
+
+    Returns
+    -------
+    numpy.ndarray
+        The half-width b [m]; 0 where p0 <= 0.
+
+    References
+    ----------
+    K. L. Johnson, *Contact Mechanics*, Cambridge University Press, 1985, eq. 4.44,
+    doi:10.1017/CBO9781139171731.
+    """
     force, peak_pressure = np.asarray(force, float), np.asarray(peak_pressure, float)
     with np.errstate(invalid="ignore", divide="ignore"):
         return np.where(peak_pressure > 0, 2.0 * force / (np.pi * peak_pressure * length), 0.0)
@@ -109,7 +129,24 @@ def half_plane_log_coefficient(q, tangent_angle):
     normal, C = a_nn (beta1 + beta2) / pi, (beta1 + beta2)^2 = (2 a_nt + a66)/a_nn +
     2 sqrt(a_tt/a_nn) (Lekhnitskii, Anisotropic Plates 1968, sec. 28; isotropic:
     C = 2 / (pi E), Johnson 1985 eq. 2.19b). Exact along material axes (checked against the
-    finite elements in the tests); in between the coupling terms a16, a26 are neglected."""
+    finite elements in the tests); in between the coupling terms a16, a26 are neglected.
+
+    Parameters
+    ----------
+    q : array_like
+        The plane-stress stiffness Q, shape (3, 3) [Pa].
+    tangent_angle : float or array_like
+        The surface's direction from the x axis [rad].
+
+    Returns
+    -------
+    numpy.ndarray
+        C [1/Pa].
+
+    References
+    ----------
+    S. G. Lekhnitskii, *Anisotropic Plates*, Gordon and Breach, 1968, sec. 28.
+    """
     a_tt, a_nn, a_nt, a66 = rotated_compliance(q, tangent_angle)
     return np.sqrt(a_nn * (2 * a_nt + a66) + 2 * a_nn * np.sqrt(a_tt * a_nn)) / np.pi
 
@@ -117,7 +154,26 @@ def half_plane_log_coefficient(q, tangent_angle):
 def indentation_below_mesh(force, half_width, spread, coefficient, thickness):
     """Extra approach of an elliptical line load of half-width b over the same load spread
     over w > b: C P ln(w / b), P = F / t: two loads of the same shape on a half-plane
-    differ by the log of their widths (see :func:`half_plane_log_coefficient`)."""
+    differ by the log of their widths (see :func:`half_plane_log_coefficient`).
+
+    Parameters
+    ----------
+    force : float or array_like
+        The contact force F [N].
+    half_width : float or array_like
+        The Hertz half-width b [m].
+    spread : float or array_like
+        The half-width w the mesh spreads the load over [m].
+    coefficient : float or array_like
+        C [1/Pa] (:func:`half_plane_log_coefficient`).
+    thickness : float
+        The plate's thickness t [m].
+
+    Returns
+    -------
+    numpy.ndarray
+        The extra approach [m].
+    """
     force = np.maximum(np.asarray(force, float), 0.0)
     with np.errstate(divide="ignore", invalid="ignore"):
         ratio = np.where(half_width > 0, spread / np.maximum(half_width, 1e-300), 1.0)
@@ -167,12 +223,39 @@ def contact_response(model: CamPlateModel, q, contact, force, half_width,
 
 def follower_shift(deflection, pressure_angle):
     """Follower displacement lost to a profile deflection delta along the normal:
-    delta / cos(phi) (the pitch curve offset by delta along its normal)."""
+    delta / cos(phi) (the pitch curve offset by delta along its normal).
+
+    Parameters
+    ----------
+    deflection : float or array_like
+        The profile's deflection delta along the common normal [m].
+    pressure_angle : float or array_like
+        phi [rad].
+
+    Returns
+    -------
+    numpy.ndarray
+        The follower displacement lost [m].
+    """
     return np.asarray(deflection, float) / np.cos(np.asarray(pressure_angle, float))
 
 
 def lift_error(displacement, shift) -> float:
-    """Rigid lift minus the lift of the deflected follower motion (m; > 0: lift lost)."""
+    """Rigid lift minus the lift of the deflected follower motion (m; > 0: lift lost).
+
+    Parameters
+    ----------
+    displacement : array_like
+        The rigid follower displacement over the cycle [m].
+    shift : array_like
+        The displacement lost at each angle [m] (:func:`follower_shift`).
+
+    Returns
+    -------
+    float
+        The lift lost [m].
+    """
+
     displacement = np.asarray(displacement, float)
     deflected = displacement - np.asarray(shift, float)
     return float(np.ptp(displacement) - np.ptp(deflected))

@@ -48,7 +48,27 @@ def quiet_skfem(method):
 
 def reduced_stiffness(e1, e2, g12, nu12) -> np.ndarray:
     """Plane-stress Q (3 x 3, Voigt xx, yy, xy) of an orthotropic ply, axis 1 = x
-    (Jones 1999 eq. 2.61); arrays broadcast (shape (3, 3, ...))."""
+    (Jones 1999 eq. 2.61); arrays broadcast (shape (3, 3, ...)).
+
+    Parameters
+    ----------
+    e1, e2 : float or array_like
+        The Young's moduli along the axes 1 (= x) and 2 [Pa].
+    g12 : float or array_like
+        The in-plane shear modulus [Pa].
+    nu12 : float or array_like
+        The major Poisson's ratio [-].
+
+    Returns
+    -------
+    numpy.ndarray
+        Q [Pa], shape (3, 3, ...).
+
+    References
+    ----------
+    R. M. Jones, *Mechanics of Composite Materials*, 2nd ed., Taylor & Francis, 1999,
+    eq. 2.61.
+    """
     e1, e2, g12, nu12 = (np.asarray(v, float) for v in (e1, e2, g12, nu12))
     nu21 = nu12 * e2 / e1
     d = 1.0 - nu12 * nu21
@@ -59,7 +79,20 @@ def reduced_stiffness(e1, e2, g12, nu12) -> np.ndarray:
 
 
 def isotropic_stiffness(e, nu) -> np.ndarray:
-    """Plane-stress Q of an isotropic material (E1 = E2 = E, G = E / (2 (1 + nu)))."""
+    """Plane-stress Q of an isotropic material (E1 = E2 = E, G = E / (2 (1 + nu))).
+
+    Parameters
+    ----------
+    e : float or array_like
+        Young's modulus [Pa].
+    nu : float or array_like
+        Poisson's ratio [-].
+
+    Returns
+    -------
+    numpy.ndarray
+        Q [Pa], shape (3, 3, ...).
+    """
     return reduced_stiffness(e, e, np.asarray(e, float) / (2.0 * (1.0 + np.asarray(nu, float))), nu)
 
 
@@ -295,7 +328,19 @@ class PlaneElasticity:
 
 def principal_stresses(sigma) -> tuple[np.ndarray, np.ndarray]:
     """(largest, smallest) in-plane principal stress of Voigt stresses (3, ...):
-    (sxx + syy)/2 +- sqrt(((sxx - syy)/2)^2 + sxy^2) (Timoshenko & Goodier 1970, sec. 9)."""
+    (sxx + syy)/2 +- sqrt(((sxx - syy)/2)^2 + sxy^2) (Timoshenko & Goodier 1970, sec. 9).
+
+    Parameters
+    ----------
+    sigma : array_like
+        The stresses sxx, syy, sxy [Pa], shape (3, ...).
+
+    Returns
+    -------
+    tuple of numpy.ndarray
+        The largest and the smallest principal stress [Pa].
+    """
+
     sxx, syy, sxy = sigma
     centre = 0.5 * (sxx + syy)
     radius = np.hypot(0.5 * (sxx - syy), sxy)
