@@ -35,7 +35,20 @@ def rotate(angle, x, y):
 
 def prime_height(prime_radius: float, offset: float) -> float:
     """Height of the follower's pitch point on the prime circle: sqrt(Rp^2 - e^2)
-    (Norton eq. 8.31 denominator)."""
+    (Norton eq. 8.31 denominator).
+
+    Parameters
+    ----------
+    prime_radius : float
+        The prime circle's radius Rp [m].
+    offset : float
+        The follower's offset e [m].
+
+    Returns
+    -------
+    float
+        The height [m].
+    """
     return float(np.sqrt(prime_radius ** 2 - offset ** 2))
 
 
@@ -185,7 +198,23 @@ def pieces_of(design):
 
 
 def working_outline(design, strain_x: float = 0.0, strain_y: float = 0.0, n: int = 720):
-    """Closed working profile (x, y) in m, counter-clockwise, last point != first."""
+    """Closed working profile (x, y) in m, counter-clockwise, last point != first.
+
+    Parameters
+    ----------
+    design : CamDesign
+        The cam.
+    strain_x, strain_y : float
+        Uniform free strains of the plate along the cam axes [-].
+    n : int
+        The number of points.
+
+    Returns
+    -------
+    tuple of numpy.ndarray
+        x and y [m] of the outline.
+    """
+
     if design.kind == "profile":
         x, y = design.profile.outline(n)
         return (1 + strain_x) * x, (1 + strain_y) * y

@@ -159,14 +159,44 @@ def local_properties(material, moisture, temperature, reference):
 
 
 def free_strain(props, moisture_change, temperature_change) -> tuple:
-    """(exx, eyy, gxy) = alpha dT + beta dM along the axes of ``props`` (arrays broadcast)."""
+    """(exx, eyy, gxy) = alpha dT + beta dM along the axes of ``props`` (arrays broadcast).
+
+    Parameters
+    ----------
+    props : dict of str to array_like
+        Ply properties (:meth:`fickcam.materials.Material.ply_properties`): alpha11,
+        alpha22 [1/K], beta11, beta22 [1/weight %].
+    moisture_change : float or array_like
+        dM from the strain-free moisture [weight %].
+    temperature_change : float or array_like
+        dT from the strain-free temperature [K].
+
+    Returns
+    -------
+    tuple of numpy.ndarray
+        The free strains exx, eyy and gxy [-] (gxy = 0 along the property axes).
+    """
     return (props["alpha11"] * temperature_change + props["beta11"] * moisture_change,
             props["alpha22"] * temperature_change + props["beta22"] * moisture_change,
             0.0 * moisture_change)
 
 
 def to_ply_axes(strain, angle) -> tuple:
-    """Engineering strains (xx, yy, xy) in axes turned by ``angle`` (Jones 1999 eq. 2.80)."""
+    """Engineering strains (xx, yy, xy) in axes turned by ``angle`` (Jones 1999 eq. 2.80).
+
+    Parameters
+    ----------
+    strain : tuple of array_like
+        exx, eyy, gxy [-] in the x, y axes.
+    angle : float or array_like
+        The turn of the new axes from x, counter-clockwise [rad].
+
+    Returns
+    -------
+    tuple of numpy.ndarray
+        The engineering strains [-] in the turned axes.
+    """
+
     exx, eyy, gxy = strain
     c, s = np.cos(angle), np.sin(angle)
     return (c * c * exx + s * s * eyy + c * s * gxy,

@@ -224,7 +224,22 @@ def resolve(name: str, spec, library=None) -> Material:
 
     ``library`` (optional) is a dict shaped like ``fickcam/data/materials.yaml``
     (group -> name -> values) to use instead of the built-in one.
+
+    Parameters
+    ----------
+    name : str
+        The scene's name for the material (messages, the result's ``material``).
+    spec : MaterialSpec
+        The validated scene entry: a library name and overrides (values in SI).
+    library : dict, optional
+        A library to use instead of the built-in one.
+
+    Returns
+    -------
+    Material
+        The material, every value in SI (moisture in weight %).
     """
+
     def lookup(group: str, key: str) -> dict:
         if library is not None:
             return dict(library[group][key])

@@ -36,7 +36,20 @@ _SURFACE = ("e11", "e22", "g12", "nu12")
 def moisture_modulus_retention(table, moisture):
     """E(M)/E_dry of a thermoplastic from its moisture-modulus table (library
     ``moisture_modulus: {moisture: [...] %, retention: [...]}``, sourced per material):
-    piecewise linear in the moisture content, held beyond the last entry."""
+    piecewise linear in the moisture content, held beyond the last entry.
+
+    Parameters
+    ----------
+    table : dict
+        ``moisture`` [weight %] and ``retention`` [-] columns, moisture increasing.
+    moisture : float or array_like
+        The moisture content [weight %].
+
+    Returns
+    -------
+    numpy.ndarray
+        E(M)/E_dry [-].
+    """
     return np.interp(moisture, table["moisture"], table["retention"])
 
 
@@ -86,7 +99,26 @@ def _secant_factor(material, wet_tg, temperature, reference_temperature):
 def surface_in_plane_modulus(material, props):
     """One in-plane modulus of the contact layer: the rotational (laminate-invariant) average
     (U1^2 - U4^2)/U1 of the ply for a UD composite, whose contact direction turns around a
-    cam profile (Tsai & Hahn 1980 ch. 7); the modulus itself for isotropic and QI."""
+    cam profile (Tsai & Hahn 1980 ch. 7); the modulus itself for isotropic and QI.
+
+    Parameters
+    ----------
+    material : Material
+        The cam's material.
+    props : dict of str to array_like
+        Its ply properties (:meth:`Material.ply_properties`), moduli [Pa].
+
+    Returns
+    -------
+    numpy.ndarray
+        The in-plane modulus [Pa].
+
+    References
+    ----------
+    S. W. Tsai and H. T. Hahn, *Introduction to Composite Materials*, Technomic, 1980,
+    ch. 7.
+    """
+
     if material.fiber is None or material.layup == "quasi_isotropic":
         return np.asarray(props["e11"], float)
     return quasi_isotropic_elastic(props["e11"], props["e22"], props["g12"], props["nu12"])[0]
