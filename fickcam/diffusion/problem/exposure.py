@@ -49,7 +49,18 @@ class Exposure:
 
     def surface_before(self, t) -> np.ndarray:
         """The left limit g(t-) of the right-continuous surface history: its value just
-        before ``t`` (the largest float below it); g(0-) is the initial moisture."""
+        before ``t`` (the largest float below it); g(0-) is the initial moisture.
+
+        Parameters
+        ----------
+        t : float or array_like
+            The time [s].
+
+        Returns
+        -------
+        numpy.ndarray
+            g(t-) [weight %].
+        """
         t = np.asarray(t, float)
         value = np.asarray(self.surface_moisture(np.nextafter(t, -np.inf)), float)
         return np.where(t <= self.change_times[0], self.initial_moisture, value)
@@ -115,11 +126,34 @@ class Diffusivity:
     activation_energy: float
 
     def arrhenius_factor(self, temperature: np.ndarray) -> np.ndarray:
-        """exp(-Ea / (R T)), dimensionless."""
+        """exp(-Ea / (R T)), dimensionless.
+
+        Parameters
+        ----------
+        temperature : float or array_like
+            T [K].
+
+        Returns
+        -------
+        numpy.ndarray
+            The Arrhenius factor [-].
+        """
         return np.exp(-self.activation_energy / (GAS_CONSTANT * np.asarray(temperature, float)))
 
     def __call__(self, temperature: np.ndarray) -> np.ndarray:
-        """Principal diffusivities, shape (..., 3), m^2/s."""
+        """Principal diffusivities, shape (..., 3), m^2/s.
+
+        Parameters
+        ----------
+        temperature : float or array_like
+            The temperature [K], any shape (...).
+
+
+        Returns
+        -------
+        numpy.ndarray
+            D along x, y, z [m^2/s], shape (..., 3).
+        """
         factor = self.arrhenius_factor(temperature)[..., None]
         return factor * np.asarray(self.pre_exponential, float)
 
@@ -136,7 +170,19 @@ def _piecewise_function(edges: np.ndarray, ramp: np.ndarray, values: np.ndarray)
 
 
 def sample_times(exposure: Exposure) -> np.ndarray:
-    """Nine samples per segment (its edges included): where T and g are looked at."""
+    """Nine samples per segment (its edges included): where T and g are looked at.
+
+    Parameters
+    ----------
+    exposure : Exposure
+        The surface history.
+
+    Returns
+    -------
+    numpy.ndarray
+        The sample times [s], increasing.
+    """
+
     edges = np.asarray(exposure.change_times, float)
     share = np.linspace(0.0, 1.0, 9)[:-1]
     inner = edges[:-1, None] + np.diff(edges)[:, None] * share[None, :]
