@@ -39,67 +39,222 @@ def fiber_volume_ratio(fiber_weight_fraction, fiber_density, matrix_density, voi
 
 
 def matrix_volume_ratio(fiber_ratio, void_ratio=0.0):
-    """km = 1 - kf - kv (partial volumes, Singh & Sanyal 2017 Table 2)."""
+    """km = 1 - kf - kv (partial volumes, Singh & Sanyal 2017 Table 2).
+
+    Parameters
+    ----------
+    fiber_ratio : float or array_like
+        kf [-].
+    void_ratio : float
+        kv [-].
+
+    Returns
+    -------
+    numpy.ndarray
+        km [-].
+    """
     return 1.0 - np.asarray(fiber_ratio, float) - void_ratio
 
 
 def ply_density(kf, km, fiber_density, matrix_density):
-    """rho_l = kf rho_f + km rho_m (Singh & Sanyal 2017 Table 2; voids weightless)."""
+    """rho_l = kf rho_f + km rho_m (Singh & Sanyal 2017 Table 2; voids weightless).
+
+    Parameters
+    ----------
+    kf, km : float or array_like
+        The fibre and matrix volume ratios [-].
+    fiber_density, matrix_density : float
+        rho_f and rho_m [kg/m^3].
+
+    Returns
+    -------
+    numpy.ndarray
+        The ply density rho_l [kg/m^3].
+    """
     return kf * fiber_density + km * matrix_density
 
 
 def rule_of_mixtures(kf, km, fiber_value, matrix_value):
     """P_l11 = kf P_f11 + km P_m: E11, nu12, K11 (Chamis 1983; Singh & Sanyal 2017 Tables
-    3-4)."""
+    3-4).
+
+    Parameters
+    ----------
+    kf, km : float or array_like
+        Volume ratios of fibre and matrix [-].
+    fiber_value, matrix_value : float or array_like
+        The property along the fibre and of the matrix, in one unit (Pa for moduli,
+        W/(m K) for conductivities, - for Poisson's ratios).
+
+    Returns
+    -------
+    numpy.ndarray
+        The ply's property along the fibres, in that unit.
+    """
     return kf * fiber_value + km * matrix_value
 
 
 def transverse_inverse_mixture(kf, matrix_value, fiber_value):
-    """P_l22 = P_m / (1 - sqrt(kf)(1 - P_m/P_f22)): E22, G12, G23 (Chamis 1983, published form)."""
+    """P_l22 = P_m / (1 - sqrt(kf)(1 - P_m/P_f22)): E22, G12, G23 (Chamis 1983, published form).
+
+    Parameters
+    ----------
+    kf : float or array_like
+        The fibre volume ratio [-].
+    matrix_value, fiber_value : float or array_like
+        The matrix's modulus and the fibre's transverse (or shear) modulus [Pa].
+
+    Returns
+    -------
+    numpy.ndarray
+        The ply's transverse (or shear) modulus [Pa].
+    """
     root = np.sqrt(kf)
     return matrix_value / (1.0 - root * (1.0 - matrix_value / fiber_value))
 
 
 def matrix_shear_modulus(youngs_modulus, poisson_ratio):
-    """Gm = Em / (2 (1 + nu_m)) (isotropic matrix, Singh & Sanyal 2017 section IV)."""
+    """Gm = Em / (2 (1 + nu_m)) (isotropic matrix, Singh & Sanyal 2017 section IV).
+
+    Parameters
+    ----------
+    youngs_modulus : float or array_like
+        Em [Pa].
+    poisson_ratio : float
+        nu_m [-].
+
+    Returns
+    -------
+    numpy.ndarray
+        Gm [Pa].
+    """
     return youngs_modulus / (2.0 * (1.0 + poisson_ratio))
 
 
 def transverse_poisson_ratio(transverse_modulus, transverse_shear_modulus):
     """nu23 = E22 / (2 G23) - 1 (Chamis 1983; Singh & Sanyal 2017
-    Table 3 typesets Em for E22)."""
+    Table 3 typesets Em for E22).
+
+    Parameters
+    ----------
+    transverse_modulus : float or array_like
+        E22 [Pa].
+    transverse_shear_modulus : float or array_like
+        G23 [Pa].
+
+    Returns
+    -------
+    numpy.ndarray
+        nu23 [-].
+    """
     return transverse_modulus / (2.0 * transverse_shear_modulus) - 1.0
 
 
 def longitudinal_expansion(kf, km, fiber_alpha11, fiber_e11, matrix_alpha, matrix_e, ply_e11):
     """alpha_l11 = (kf alpha_f11 Ef11 + km alpha_m Em) / E_l11 (Chamis 1983; Singh & Sanyal
-    2017 Table 4)."""
+    2017 Table 4).
+
+    Parameters
+    ----------
+    kf, km : float or array_like
+        The fibre and matrix volume ratios [-].
+    fiber_alpha11, matrix_alpha : float or array_like
+        alpha_f11 and alpha_m [1/K].
+    fiber_e11, matrix_e, ply_e11 : float or array_like
+        Ef11, Em and E_l11 [Pa].
+
+    Returns
+    -------
+    numpy.ndarray
+        alpha_l11 [1/K].
+    """
     return (kf * fiber_alpha11 * fiber_e11 + km * matrix_alpha * matrix_e) / ply_e11
 
 
 def transverse_expansion(kf, fiber_alpha22, matrix_alpha, matrix_nu, fiber_e11, ply_e11):
     """alpha_l22 = alpha_f22 sqrt(kf) + (1 - sqrt(kf))(1 + kf nu_m Ef11/E_l11) alpha_m
-    (Chamis 1983; Singh & Sanyal 2017 Table 4)."""
+    (Chamis 1983; Singh & Sanyal 2017 Table 4).
+
+    Parameters
+    ----------
+    kf : float or array_like
+        The fibre volume ratio [-].
+    fiber_alpha22, matrix_alpha : float or array_like
+        alpha_f22 and alpha_m [1/K].
+    matrix_nu : float
+        nu_m [-].
+    fiber_e11, ply_e11 : float or array_like
+        Ef11 and E_l11 [Pa].
+
+    Returns
+    -------
+    numpy.ndarray
+        alpha_l22 [1/K].
+    """
     root = np.sqrt(kf)
     return fiber_alpha22 * root + (1.0 - root) * (1.0 + kf * matrix_nu * fiber_e11 / ply_e11) * matrix_alpha
 
 
 def transverse_conductivity(kf, fiber_k22, matrix_k):
     """K_l22 = (1 - sqrt(kf)) K_m + K_m sqrt(kf) / (1 - sqrt(kf)(1 - K_m/K_f22))
-    (Chamis 1983; Singh & Sanyal 2017 Table 4 typesets the last factor as (1 - k_m/k_f))."""
+    (Chamis 1983; Singh & Sanyal 2017 Table 4 typesets the last factor as (1 - k_m/k_f)).
+
+    Parameters
+    ----------
+    kf : float or array_like
+        The fibre volume ratio [-].
+    fiber_k22, matrix_k : float or array_like
+        K_f22 and K_m [W/(m K)].
+
+    Returns
+    -------
+    numpy.ndarray
+        K_l22 [W/(m K)].
+    """
     root = np.sqrt(kf)
     return (1.0 - root) * matrix_k + matrix_k * root / (1.0 - root * (1.0 - matrix_k / fiber_k22))
 
 
 def longitudinal_moisture_expansion(km, matrix_beta, matrix_e, ply_e11):
     """beta_l11 = beta_m km Em / E_l11 (Chamis 1983, fibres do not swell; Singh & Sanyal
-    2017 Table 5)."""
+    2017 Table 5).
+
+    Parameters
+    ----------
+    km : float or array_like
+        The matrix volume ratio [-].
+    matrix_beta : float or array_like
+        beta_m [1/weight %].
+    matrix_e, ply_e11 : float or array_like
+        Em and E_l11 [Pa].
+
+    Returns
+    -------
+    numpy.ndarray
+        beta_l11 [1/weight %].
+    """
     return matrix_beta * km * matrix_e / ply_e11
 
 
 def transverse_moisture_expansion(kf, matrix_beta, matrix_e, ply_e22):
     """beta_l22 = beta_m (1 - sqrt(kf)) [1 + Em (1 - sqrt(kf)) sqrt(kf) /
-    (sqrt(kf) E_l22 + (1 - sqrt(kf)) Em)] (Chamis 1983; Singh & Sanyal 2017 Table 5)."""
+    (sqrt(kf) E_l22 + (1 - sqrt(kf)) Em)] (Chamis 1983; Singh & Sanyal 2017 Table 5).
+
+    Parameters
+    ----------
+    kf : float or array_like
+        Fibre volume ratio [-].
+    matrix_beta : float or array_like
+        The matrix moisture expansion beta_m [1/weight %].
+    matrix_e, ply_e22 : float or array_like
+        Em and E_l22 [Pa].
+
+    Returns
+    -------
+    numpy.ndarray
+        beta_l22, in the unit of ``matrix_beta``.
+    """
+
     root = np.sqrt(kf)
     return matrix_beta * (1.0 - root) * (
         1.0 + matrix_e * (1.0 - root) * root / (root * ply_e22 + (1.0 - root) * matrix_e))
