@@ -35,17 +35,13 @@ def select(ds, variable: str, *, time=None, part=None, cam_angle=None, crank_ang
         The result variable, e.g. ``pressure_angle_max`` (``fickcam schema`` lists them).
     time : str or float, optional
         The ageing time [s]: a duration with units ("45 d") or seconds as a number.
-    part : str, optional
-        The part's name, for variables with a ``part`` dimension.
-    cam_angle : float, optional
-        The cam angle [degree] (wrapped into [0, 360)).
-    crank_angle : float, optional
-        The four-bar's crank angle [degree] (wrapped into [0, 360)).
-    link : str, optional
-        The link's name, for variables with a ``link`` dimension.
+    part, link : str, optional
+        The part's or the link's name, for variables with that dimension.
+    cam_angle, crank_angle : float, optional
+        The cam angle or the four-bar's crank angle [degree], wrapped into [0, 360).
     against : {"design", "start"}, optional
-        Answer the variable's :func:`drift` from the design or from the first ageing time
-        instead of the variable itself.
+        Answer the :func:`drift` from the design or the first ageing time instead.
+
 
     Returns
     -------

@@ -70,6 +70,14 @@ ENTRY_POINTS = {
                                                  "follower_radius", "e_star"),
     "fickcam.cam.dynamics.archard_wear_per_revolution": ("coefficient", "hardness", "force",
                                                          "length", "slide_ratio"),
+    "fickcam.cam.motion.follower_motion": ("theta",),
+    "fickcam.elastic.contact.hertz_half_width": ("force", "peak_pressure", "length"),
+    "fickcam.elastic.strength.tsai_wu_index": ("s1", "s2", "s12"),
+    "fickcam.materials.bodies.disc_body": ("outer_radius", "thickness", "inner_radius",
+                                           "density"),
+    "fickcam.materials.state.material_state": ("temperature", "moisture", "surface_moisture",
+                                               "reference_temperature", "initial_moisture"),
+    "fickcam.materials.micromechanics.transverse_diffusivity": ("kf", "matrix_d"),
 }
 
 _HEADER = re.compile(r"^(?P<title>[A-Z][A-Za-z ]+)\n-{3,}$", re.MULTILINE)
@@ -166,6 +174,6 @@ def test_the_parser_reads_a_numpydoc_section():
     found = sections(doc)
     assert set(found) == {"Parameters", "Returns"}
     entries = parameter_entries(found["Parameters"])
-    assert entries == {"length": ("float", " The sides [m]."), "width": ("float", " The sides [m]."),
-                       "flag": ("bool", " A switch.")}
+    sides = ("float", " The sides [m].")
+    assert entries == {"length": sides, "width": sides, "flag": ("bool", " A switch.")}
     assert sections("One line, no sections.") == {}

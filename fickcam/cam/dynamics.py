@@ -404,6 +404,5 @@ def empirical_wear_depth(sliding_length, pressure, hardness_1, hardness_2, mu,
     numpy.ndarray
         The linear wear Z [m].
     """
-
     return sliding_length * a0 * (pressure / hardness_1) ** a1 * (hardness_2 / hardness_1) ** a2 \
         * mu ** a3

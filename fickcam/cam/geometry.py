@@ -214,7 +214,6 @@ def working_outline(design, strain_x: float = 0.0, strain_y: float = 0.0, n: int
     tuple of numpy.ndarray
         x and y [m] of the outline.
     """
-
     if design.kind == "profile":
         x, y = design.profile.outline(n)
         return (1 + strain_x) * x, (1 + strain_y) * y

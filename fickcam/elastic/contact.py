@@ -255,7 +255,6 @@ def lift_error(displacement, shift) -> float:
     float
         The lift lost [m].
     """
-
     displacement = np.asarray(displacement, float)
     deflected = displacement - np.asarray(shift, float)
     return float(np.ptp(displacement) - np.ptp(deflected))

@@ -340,7 +340,6 @@ def principal_stresses(sigma) -> tuple[np.ndarray, np.ndarray]:
     tuple of numpy.ndarray
         The largest and the smallest principal stress [Pa].
     """
-
     sxx, syy, sxy = sigma
     centre = 0.5 * (sxx + syy)
     radius = np.hypot(0.5 * (sxx - syy), sxy)

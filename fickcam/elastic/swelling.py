@@ -196,7 +196,6 @@ def to_ply_axes(strain, angle) -> tuple:
     tuple of numpy.ndarray
         The engineering strains [-] in the turned axes.
     """
-
     exx, eyy, gxy = strain
     c, s = np.cos(angle), np.sin(angle)
     return (c * c * exx + s * s * eyy + c * s * gxy,

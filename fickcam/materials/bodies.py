@@ -248,7 +248,6 @@ def plate_body(profile_x, profile_y, thickness, bore_radius=0.0, density=1.0):
     tuple of numpy.ndarray
         The plate's volume [m^3], mass [kg] and inertia about its axis [kg m^2].
     """
-
     area, _, _, polar = polygon_section(profile_x, profile_y)
     area = area - np.pi * bore_radius ** 2
     polar = polar - np.pi * bore_radius ** 4 / 2.0

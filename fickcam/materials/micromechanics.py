@@ -254,7 +254,6 @@ def transverse_moisture_expansion(kf, matrix_beta, matrix_e, ply_e22):
     numpy.ndarray
         beta_l22, in the unit of ``matrix_beta``.
     """
-
     root = np.sqrt(kf)
     return matrix_beta * (1.0 - root) * (
         1.0 + matrix_e * (1.0 - root) * root / (root * ply_e22 + (1.0 - root) * matrix_e))

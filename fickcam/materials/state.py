@@ -118,7 +118,6 @@ def surface_in_plane_modulus(material, props):
     S. W. Tsai and H. T. Hahn, *Introduction to Composite Materials*, Technomic, 1980,
     ch. 7.
     """
-
     if material.fiber is None or material.layup == "quasi_isotropic":
         return np.asarray(props["e11"], float)
     return quasi_isotropic_elastic(props["e11"], props["e22"], props["g12"], props["nu12"])[0]
@@ -163,51 +162,25 @@ def wet_tg_error(part, times, index, temperature, state) -> PhysicsDomainError:
 
 def material_state(material, temperature, moisture, surface_moisture, reference_temperature,
                    initial_moisture, part: str = "", times=None, raise_on_wet_tg: bool = False):
-    """State of one part at each ageing time (arrays of the length of ``temperature``).
-
-    Inputs: temperature (K), moisture = volume-mean ply moisture and surface_moisture =
-    contact-layer moisture (weight %), reference temperature T0 (K), initial moisture
-    M0 (weight %). Returns SI arrays named as in :mod:`fickcam.schema` (section parts). Times with T >= wet Tg
-    (bulk or surface) hold NaN in the degraded properties and ``within_wet_tg`` False.
-    With ``raise_on_wet_tg`` (needs ``times``) a :class:`PhysicsDomainError` is raised
-    at the first such time; it carries ``.index`` and ``.state`` (results before it).
+    """State of one part at each ageing time: SI arrays (moisture in weight %) named as in
+    :mod:`fickcam.schema`, of the length of ``temperature``; times with T >= wet Tg (bulk or
+    surface) hold NaN and ``within_wet_tg`` False (Chamis 1983).
 
     Parameters
     ----------
     material : Material
-        The part's material (:func:`fickcam.materials.resolve`).
-    temperature : array_like
-        The service temperature at each ageing time [K].
-    moisture : array_like
-        The part's volume-mean ply moisture [weight %].
-    surface_moisture : array_like
-        The contact layer's ply moisture [weight %].
-    reference_temperature : float
-        The temperature T0 of the dry, strain-free design [K].
-    initial_moisture : float
-        The moisture M0 of the strain-free design [weight %].
-    part : str
-        The part's name, for messages.
-    times : array_like, optional
-        The ageing times [s] (needed with ``raise_on_wet_tg``).
-    raise_on_wet_tg : bool
-        Raise at the first time the temperature reaches a wet Tg.
+    temperature, moisture, surface_moisture : array_like
+        Service temperature [K], volume-mean and contact-layer ply moisture [weight %].
+    reference_temperature, initial_moisture : float
+        T0 [K] and M0 [weight %] of the dry, strain-free design.
+    part, times, raise_on_wet_tg
+        With ``raise_on_wet_tg`` (needs the ageing ``times`` [s]) a PhysicsDomainError naming
+        ``part`` is raised at the first such time, carrying ``.index`` and ``.state`` (results
+        before it).
 
     Returns
     -------
     dict of str to numpy.ndarray
-        The state variables, in SI (moisture in weight %), named as in the schema.
-
-    Raises
-    ------
-    fickcam.errors.PhysicsDomainError
-        With ``raise_on_wet_tg``, when the temperature reaches the bulk or the surface
-        wet glass transition temperature.
-
-    References
-    ----------
-    C. C. Chamis, "Simplified composite micromechanics equations for hygral, thermal
-    and mechanical properties", NASA TM-83320, 1983.
     """
     temperature = np.asarray(temperature, float)
     mean = np.asarray(moisture, float) + 0.0 * temperature

@@ -182,7 +182,6 @@ def sample_times(exposure: Exposure) -> np.ndarray:
     numpy.ndarray
         The sample times [s], increasing.
     """
-
     edges = np.asarray(exposure.change_times, float)
     share = np.linspace(0.0, 1.0, 9)[:-1]
     inner = edges[:-1, None] + np.diff(edges)[:, None] * share[None, :]
