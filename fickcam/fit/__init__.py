@@ -11,7 +11,20 @@ from .report import FitReport, fit_weight_gain
 
 
 def plot_fit(report, path):
-    """Moisture gain vs sqrt(time) per condition with the fitted curves and residuals (PNG)."""
+    """Moisture gain vs sqrt(time) per condition with the fitted curves and residuals (PNG).
+
+    Parameters
+    ----------
+    report : FitReport
+        A fit (:func:`fit_weight_gain`).
+    path : str or pathlib.Path
+        The PNG file to write.
+
+    Returns
+    -------
+    pathlib.Path
+        The figure's path.
+    """
     from .plot import plot_fit as _plot
 
     return _plot(report, path)

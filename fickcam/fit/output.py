@@ -97,7 +97,19 @@ def _fit_record(report: FitReport, m: dict) -> list[str]:
 
 
 def materials_yaml(report: FitReport) -> str:
-    """The ``materials:`` block, ready to paste into a scene."""
+    """The ``materials:`` block, ready to paste into a scene.
+
+    Parameters
+    ----------
+    report : FitReport
+        A fit (:func:`fickcam.fit.fit_weight_gain`).
+
+    Returns
+    -------
+    str
+        YAML text with comments; D0 in m^2/s, Ea in kJ/mol, the saturation
+        coefficient in %.
+    """
     m = report.matrix_values()
     composite = [f"    fiber: {report.fiber}", f"    fiber_volume_fraction: {report.fiber_volume_fraction:g}"] \
         if report.fiber else []
@@ -127,7 +139,18 @@ def _row(label: str, count: int, c) -> str:
 def parameter_table(report: FitReport) -> str:
     """Per condition (and below it each of its specimens): D (full series) with its
     interval, D5229 initial slope and edge correction, Mm with its interval and
-    equilibrium, the non-Fickian test; then the laws."""
+    equilibrium, the non-Fickian test; then the laws.
+
+    Parameters
+    ----------
+    report : FitReport
+        The fit to print.
+
+    Returns
+    -------
+    str
+        The table (D in m^2/s, Mm in %), one line per row.
+    """
     head = (f"{'condition':<22} {'n':>3} {'D m^2/s':>10} {'95 % interval':>23} {'D5229 slope':>11} "
             f"{'edge-corr.':>10} {'Mm %':>7} {'95 % interval':>17} {'equil.':>6} {'Fick':>5}")
     lines = [head, "-" * len(head)]
