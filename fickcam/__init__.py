@@ -27,7 +27,8 @@ def load_scene(source, *, file_name: str | None = None):
     Returns
     -------
     fickcam.scene.Scene
-        The validated scene; every quantity in SI (m, s, K, Pa, rad).
+        The validated scene; every quantity in SI (m, s, K, Pa, rad), moisture in
+        weight % and relative humidity in %.
 
     Raises
     ------
@@ -60,15 +61,18 @@ def run(scene, *, accuracy: float | None = None, progress: bool = False, setting
     Returns
     -------
     xarray.Dataset
-        The result: ``time`` in days, lengths in mm, angles in degrees, moisture in
-        weight %, each variable with its ``units`` attribute (see the result reference).
+        The result, SI but for ``time`` in days, angles in degrees and moisture in
+        weight %; each variable carries its ``units`` attribute (see the result reference).
 
     Raises
     ------
     fickcam.errors.SceneError
         When the scene does not validate.
-    fickcam.errors.PhysicsDomainError
-        When the ageing leaves a model's range of validity.
+    fickcam.errors.SolverError
+        When a diffusion solve fails (a linear solve or a concentration-dependent
+        step does not converge). A part whose service temperature reaches its wet glass
+        transition temperature is not an error: a notice says so, and that part's later
+        values are NaN.
     """
     from .simulate import run as _run
 

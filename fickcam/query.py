@@ -42,7 +42,6 @@ def select(ds, variable: str, *, time=None, part=None, cam_angle=None, crank_ang
     against : {"design", "start"}, optional
         Answer the :func:`drift` from the design or the first ageing time instead.
 
-
     Returns
     -------
     xarray.DataArray

@@ -121,7 +121,6 @@ class Diffusivity:
     doi:10.1177/002199837601000101.
     """
 
-
     pre_exponential: tuple[float, float, float]
     activation_energy: float
 
@@ -147,7 +146,6 @@ class Diffusivity:
         ----------
         temperature : float or array_like
             The temperature [K], any shape (...).
-
 
         Returns
         -------
