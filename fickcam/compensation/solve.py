@@ -208,7 +208,7 @@ def compensate(scene, at=None, over=None, *, accuracy: float | None = None,
     Returns
     -------
     Compensation
-        The made dimensions [m], the iterations, the residual and the runs before and
+        The made dimensions (SI), the iterations, the residual and the runs before and
         after.
 
     Raises
