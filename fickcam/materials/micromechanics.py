@@ -337,8 +337,10 @@ def matrix_moisture(ply_moisture_, matrix_beta_per_fraction, km, kv, matrix_dens
     ----------
     ply_moisture_ : float or array_like
         The ply moisture M_l [weight %].
-    matrix_beta_per_fraction, km, kv, matrix_density, ply_density_
-        As in :func:`ply_moisture` ([-], [-], [-], [kg/m^3], [kg/m^3]).
+    matrix_beta_per_fraction, km, kv : float
+        beta_m and the volume ratios, as in :func:`ply_moisture` [-].
+    matrix_density, ply_density_ : float
+        rho_m and rho_l [kg/m^3].
 
     Returns
 
