@@ -41,7 +41,27 @@ SCAN_LIMIT = 2.0
 @dataclass(frozen=True)
 class Train:
     """Follower train at one ageing time (SI): stiffness k, mass m, return spring k_s,
-    damping ratio zeta, constant load P on the mass."""
+    damping ratio zeta, constant load P on the mass.
+
+    Parameters
+    ----------
+    stiffness : float
+        The train's stiffness k [N/m].
+    mass : float
+        The lumped follower mass m [kg].
+    spring_rate : float
+        The return spring's rate k_s [N/m].
+    damping_ratio : float
+        zeta [-].
+    load : float
+        The constant load P on the mass [N].
+
+    References
+    ----------
+    R. L. Norton, *Design of Machinery*, 5th ed., McGraw-Hill, 2012, sec. 15.1-15.3.
+
+    M. P. Koster, *Vibrations of Cam Mechanisms*, Macmillan, 1974.
+    """
 
     stiffness: float
     mass: float
@@ -120,7 +140,22 @@ def lever_stiffness(modulus: float, length: float, width: float, height: float) 
 
 
 def transfer(train: Train, omega: float, n) -> np.ndarray:
-    """H_n = X_n/S_n = (k + i n omega c)/(k + k_s - m (n omega)^2 + i n omega c)."""
+    """H_n = X_n/S_n = (k + i n omega c)/(k + k_s - m (n omega)^2 + i n omega c).
+
+    Parameters
+    ----------
+    train : Train
+        The follower train.
+    omega : float
+        The cam speed [rad/s].
+    n : int or array_like
+        The harmonic orders [-].
+
+    Returns
+    -------
+    numpy.ndarray
+        H_n [-], complex.
+    """
     w = np.asarray(n, float) * omega
     num = train.stiffness + 1j * w * train.damping
     return num / (train.total_stiffness - train.mass * w ** 2 + 1j * w * train.damping)
@@ -155,7 +190,22 @@ def from_rest(train: Train, omega: float, x_harmonics, s0: float, theta):
 
 def free_amplitude(train: Train, offset, velocity):
     """Amplitude of the damped free vibration that starts from an offset u and velocity v
-    about the equilibrium: sqrt(u^2 + ((v + zeta wn u)/wd)^2)."""
+    about the equilibrium: sqrt(u^2 + ((v + zeta wn u)/wd)^2).
+
+    Parameters
+    ----------
+    train : Train
+        The follower train.
+    offset : float or array_like
+        The start offset u from the equilibrium [m].
+    velocity : float or array_like
+        The start velocity v [m/s].
+
+    Returns
+    -------
+    numpy.ndarray
+        The amplitude [m].
+    """
     wn, wd = train.natural_frequency, train.damped_frequency
     return np.hypot(offset, (velocity + train.damping_ratio * wn * offset) / wd)
 
