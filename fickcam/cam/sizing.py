@@ -29,13 +29,39 @@ ARM_SCAN = 64
 
 @dataclass(frozen=True)
 class Limits:
+    """The sizing limits (``fickcam size``).
+
+    Parameters
+    ----------
+    pressure_angle : float
+        The largest |pressure angle| [rad] (default 30 deg).
+    radius_of_curvature : float
+        The smallest convex working radius of curvature [m]; the profile must stay convex
+        (> 0) in any case.
+    """
+
     pressure_angle: float = math.radians(30.0)  # largest |pressure angle| (rad)
     radius_of_curvature: float = 0.0            # smallest convex working radius (m); > 0 always
 
 
 def worst(design, state=None, step: float = SIZE_STEP) -> tuple[float, float]:
     """(largest |pressure angle| rad, smallest convex working radius of curvature m; -inf
-    where the profile has a cusp or undercut) of ``design`` at ``state`` (dry by default)."""
+    where the profile has a cusp or undercut) of ``design`` at ``state`` (dry by default).
+
+    Parameters
+    ----------
+    design : CamDesign
+        The cam.
+    state : CamState, optional
+        Its aged state; None: dry at the reference temperature.
+    step : float
+        The cam angle step of the check [rad].
+
+    Returns
+    -------
+    tuple of float
+        The largest |pressure angle| [rad] and the smallest convex radius of curvature [m].
+    """
     from .design import CamState
     from .oscillating import follower_response
 
@@ -113,7 +139,31 @@ def _smallest_in_reach(design, ok, lowest: float, highest: float) -> float:
 
 
 def smallest_base_circle(design, limits: Limits) -> dict[str, float]:
-    """Smallest dry base circle radius for each limit and overall (m)."""
+    """Smallest dry base circle radius for each limit and overall (m).
+
+    Parameters
+    ----------
+    design : CamDesign
+        A cam given by motion segments.
+    limits : Limits
+        The pressure angle [rad] and radius of curvature [m] limits.
+
+    Returns
+    -------
+    dict of str to float
+        ``pressure_angle``, ``radius_of_curvature`` (the smallest radius meeting each
+        limit) and ``base_circle_radius`` (both) [m].
+
+    Raises
+    ------
+    ValueError
+        When the cam is not given by motion segments, or no base circle (below 100 m,
+        or within a swinging arm's reach) meets the limits.
+
+    References
+    ----------
+    R. L. Norton, *Design of Machinery*, 5th ed., McGraw-Hill, 2012, sec. 8.7.
+    """
     if design.kind != "motion":
         raise ValueError("sizing needs a cam given by motion segments (not eccentric)")
     # the prime circle must clear the offset, and the bore needs room
