@@ -26,7 +26,20 @@ from .oscillating import follower_response
 
 
 def scene_parts(section, materials) -> list[tuple]:
-    """(part name, material name, diffusion geometry, dry mass kg) for cam and follower."""
+    """(part name, material name, diffusion geometry, dry mass kg) for cam and follower.
+
+    Parameters
+    ----------
+    section : CamSection
+        The scene's validated ``cam:`` section (SI).
+    materials : dict of str to Material
+        The scene's materials by name (their dry densities [kg/m^3] give the cam's mass).
+
+    Returns
+    -------
+    list of tuple
+        One (name, material name, geometry with dimensions [m], dry mass [kg]) per part.
+    """
     from ..diffusion.problem.geometry import Bar, CamPlate, Disc
     from ..materials.bodies import plate_body
 
@@ -59,7 +72,22 @@ def _at(state: dict, name: str, k: int, default=None):
 
 
 def cam_state(design, histories: dict, k: int) -> CamState:
-    """The :class:`CamState` at ageing index k from the part histories."""
+    """The :class:`CamState` at ageing index k from the part histories.
+
+    Parameters
+    ----------
+    design : CamDesign
+        The dry design.
+    histories : dict of str to PartHistory
+        The ``cam`` (and ``follower``) histories: strains [-], moisture [weight %],
+        moduli [Pa] over ageing time.
+    k : int
+        The ageing time's index.
+
+    Returns
+    -------
+    CamState
+    """
     cam = histories["cam"].state
     follower = histories.get("follower")
     fstate = follower.state if follower is not None else {}
@@ -81,7 +109,28 @@ def cam_state(design, histories: dict, k: int) -> CamState:
 
 def scene_response(section, histories: dict, times, angles, valid, on_step=lambda: None) -> Response:
     """The cam over ageing: variables (time, ...) and notices; ``wear_depth`` accumulates
-    the deepest Archard wear rate over the ageing times (trapezoid rule)."""
+    the deepest Archard wear rate over the ageing times (trapezoid rule).
+
+    Parameters
+    ----------
+    section : CamSection
+        The scene's validated ``cam:`` section (SI).
+    histories : dict of str to PartHistory
+        The parts' histories by name.
+    times : array_like
+        The ageing times [s].
+    angles : array_like
+        The cam angles [rad] of the outputs over a turn.
+    valid : array_like of bool
+        Per ageing time: the parts are within their models' range (False: NaN there).
+    on_step : callable
+        Called once per ageing time evaluated (a progress bar).
+
+    Returns
+    -------
+    fickcam.response.Response
+        Variables over (time, ...) in SI, and the notices.
+    """
     design = design_from_scene(section)
     if design.polydyne_speed is not None:
         from .polydyne import polydyne_design

@@ -78,7 +78,18 @@ def _train(stiffness) -> tuple | None:
 
 def design_from_scene(section) -> CamDesign:
     """CamDesign from a validated :class:`~fickcam.cam.spec.CamSection` (or the dict of a
-    scene's ``cam:`` section, validated here)."""
+    scene's ``cam:`` section, validated here).
+
+    Parameters
+    ----------
+    section : CamSection or dict
+        The validated section, or the dict of a scene's ``cam:`` section (validated here).
+
+    Returns
+    -------
+    CamDesign
+        The dry design at the reference temperature, in SI.
+    """
     if isinstance(section, dict):
         from .spec import CamSection
 
