@@ -359,7 +359,6 @@ def first_crossings(times: np.ndarray, ratios: np.ndarray,
     numpy.ndarray
         Per limit, the first ageing time out of spec [s]; NaN where it stays in spec.
     """
-
     times = np.asarray(times, float)
     ratios = np.asarray(ratios, float).reshape(len(times), -1)
     found = np.full(ratios.shape[1], np.nan)

@@ -166,7 +166,6 @@ def fit_weight_gain(data, matrix: str, fiber: str | None = None,
     fickcam.errors.InputError
         When the matrix or fibre is not in the library.
     """
-
     material = _material(matrix, fiber, fiber_volume_fraction)
     specimens = read_weight_gain(data) if isinstance(data, (str, Path)) else list(data)
     source = Path(data).name if isinstance(data, (str, Path)) else "<specimens>"

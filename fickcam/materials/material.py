@@ -239,7 +239,6 @@ def resolve(name: str, spec, library=None) -> Material:
     Material
         The material, every value in SI (moisture in weight %).
     """
-
     def lookup(group: str, key: str) -> dict:
         if library is not None:
             return dict(library[group][key])

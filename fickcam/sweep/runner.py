@@ -214,7 +214,6 @@ def run_sweep(sweep_path, output, workers: int | None = None, scheduler: str | N
     fickcam.extras.MissingExtra
         When workers or a scheduler are asked for without dask.distributed installed.
     """
-
     from ..store import save
 
     started = time.perf_counter()

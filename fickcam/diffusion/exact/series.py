@@ -102,7 +102,23 @@ def sheet_uptake(fourier):
     """F(t*) = (M - M0)/(Ms - M0) of a sheet exposed on both faces,
     t* = D t / h^2. Short times: F = 4 sqrt(t*) [pi^-1/2 + 2 sum (-1)^n
     ierfc(n / (2 sqrt t*))] (Crank 1975 eq. 4.20 with l = h/2); long times:
-    F = 1 - sum 8/((2n+1)^2 pi^2) exp(-(2n+1)^2 pi^2 t*) (Crank 1975 eq. 4.18)."""
+    F = 1 - sum 8/((2n+1)^2 pi^2) exp(-(2n+1)^2 pi^2 t*) (Crank 1975 eq. 4.18).
+
+    Parameters
+    ----------
+    fourier : float or array_like
+        The Fourier number t* = D t / h^2 [-], h the full thickness.
+
+    Returns
+    -------
+    numpy.ndarray
+        The fractional uptake F [-].
+
+    References
+    ----------
+    J. Crank, *The Mathematics of Diffusion*, 2nd ed., Oxford: Clarendon Press, 1975,
+    eqs. 4.18 and 4.20.
+    """
     return _by_regime(SHEET_SWITCH, _sheet_uptake_images, _sheet_uptake_series, fourier)
 
 
@@ -134,7 +150,20 @@ def _sheet_profile_series(z, fourier):
 
 def sheet_profile(z, fourier):
     """Fractional concentration at z/h in [0, 1] (broadcast with t*). Short
-    times: erfc images (Crank 1975 eq. 4.15); long times: Crank eq. 4.17."""
+    times: erfc images (Crank 1975 eq. 4.15); long times: Crank eq. 4.17.
+
+    Parameters
+    ----------
+    z : float or array_like
+        The depth as a fraction of the thickness, z/h [-].
+    fourier : float or array_like
+        t* = D t / h^2 [-].
+
+    Returns
+    -------
+    numpy.ndarray
+        The fractional concentration (c - c0)/(cs - c0) [-].
+    """
     return _by_regime(SHEET_SWITCH, _sheet_profile_images, _sheet_profile_series, fourier, z)
 
 
@@ -214,7 +243,23 @@ def cylinder_uptake(fourier_r):
     """Fractional uptake of an infinite solid cylinder, t* = D t / a^2:
     F = 1 - sum 4/(a^2 alpha_n^2) exp(-D alpha_n^2 t) (Crank 1975 eq. 5.23) for
     t* >= 1e-4, the short-time expansion (Crank eq. 5.24, carried to
-    9 terms, error < 1e-17) below."""
+    9 terms, error < 1e-17) below.
+
+    Parameters
+    ----------
+    fourier_r : float or array_like
+        t* = D t / a^2 [-], a the radius.
+
+    Returns
+    -------
+    numpy.ndarray
+        The fractional uptake [-], in [0, 1].
+
+    References
+    ----------
+    J. Crank, *The Mathematics of Diffusion*, 2nd ed., Oxford: Clarendon Press, 1975,
+    eqs. 5.23 and 5.24.
+    """
     fourier = np.maximum(np.asarray(fourier_r, float), 0.0)
     short = fourier < CYLINDER_SWITCH
     long_t = np.where(short, CYLINDER_SWITCH, fourier)

@@ -157,6 +157,35 @@ def two_phase_sheet_uptake(t, diffusivity: float, thickness: float, gamma: float
     eq. 4.18). Exact per mode (module docstring); the series is truncated where its
     remainder falls below ``tolerance`` (a fraction of Mm; a fit to data of 1e-3
     scatter may pass 1e-7 and run much faster).
+
+    Parameters
+    ----------
+    t : float or array_like
+        The times [s].
+    diffusivity : float
+        D of the free water [m^2/s].
+    thickness : float
+        h [m].
+    gamma, beta : float
+        The binding and release rates [1/s].
+    tolerance : float
+        The series' truncation error [-], a fraction of Mm.
+
+    Returns
+    -------
+    TwoPhaseUptake
+        Total, free and bound uptake [-], fractions of Mm.
+
+    Raises
+    ------
+    ValueError
+        When D or h is not positive.
+
+    References
+    ----------
+    H. G. Carter and K. G. Kibler, "Langmuir-type model for anomalous moisture diffusion
+    in composite resins", *Journal of Composite Materials* 12(2), 118-131, 1978,
+    doi:10.1177/002199837801200201.
     """
     if diffusivity <= 0 or thickness <= 0:
         raise ValueError("diffusivity and thickness must be positive")
@@ -210,7 +239,24 @@ def carter_kibler_approximation(t, diffusivity: float, thickness: float, gamma: 
     M/Mm = beta/(gamma+beta) exp(-gamma t) [1 - 8/pi^2 sum exp(-kappa k^2 t)/k^2]
            + beta/(gamma+beta) (exp(-beta t) - exp(-gamma t)) + (1 - exp(-beta t)),
 
-    k odd. Kept as a check of the exact solution in its regime, not used for fitting."""
+    k odd. Kept as a check of the exact solution in its regime, not used for fitting.
+
+    Parameters
+    ----------
+    t : float or array_like
+        Times since the exposure began [s].
+    diffusivity, thickness : float
+        D [m^2/s] and h [m].
+    gamma, beta : float
+        Binding and release rates [1/s], each much below kappa / 2.
+    terms : int
+        The odd modes summed.
+
+    Returns
+    -------
+    numpy.ndarray
+        M/Mm [-].
+    """
     t = np.maximum(np.asarray(t, float), 0.0)
     kappa = np.pi ** 2 * diffusivity / thickness ** 2
     k = 2.0 * np.arange(terms) + 1.0
