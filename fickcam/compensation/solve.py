@@ -90,19 +90,46 @@ def write_points(path, points: np.ndarray) -> Path:
     return write_profile_csv(path, points[:, 0], points[:, 1])
 
 
-def run_at(data: dict, base_dir: Path, times: np.ndarray, accuracy):
-    """The scene mapping run at ageing ``times`` (s) only, fields off, no file."""
-    from ..simulate import run
-
+def scene_at(data: dict, base_dir: Path, times: np.ndarray):
+    """The scene mapping validated with ageing ``times`` (s) only, fields off, no file."""
     data = copy.deepcopy(data)
     outputs = dict(data.get("outputs") or {})
     outputs.update(ageing_times=[float(t) for t in times], fields=False)
     outputs.pop("file", None)
     data["outputs"] = outputs
-    ds = run(scene_from(data, base_dir, "<compensation>"), accuracy=accuracy)
+    return scene_from(data, base_dir, "<compensation>")
+
+
+def run_at(data: dict, base_dir: Path, times: np.ndarray, accuracy, diffusions=None):
+    """The scene mapping run at ageing ``times`` (s) only, fields off, no file;
+    ``diffusions``: diffusion results already solved at ``times`` (:func:`part_states`)."""
+    from ..simulate import run
+
+    ds = run(scene_at(data, base_dir, times), accuracy=accuracy, diffusions=diffusions)
     if ds.sizes["time"] != len(times):
         raise FickcamError("compensation: a run did not keep the ageing times it was given")
     return ds
+
+
+def part_states(data: dict, base_dir: Path, times: np.ndarray, accuracy, names: set):
+    """(the material state of the parts ``names`` of the scene mapping at ageing ``times``
+    (s), as a Dataset; their diffusion results, keyed as a run keys them): what a run of
+    the scene computes for those parts, without its mechanisms, limits and other parts."""
+    from ..dataset import build_dataset
+    from ..elastic.parts import elastic_parts
+    from ..parts import build_parts, part_values
+    from ..simulate import age_part, diffusion_options, scene_environment
+
+    scene = scene_at(data, base_dir, times)
+    environment = scene_environment(scene)
+    options = diffusion_options(scene, accuracy)
+    elastic = elastic_parts(scene.model)
+    solved: dict = {}
+    histories = [age_part(part, environment, times, options, scene, [],
+                          keep_field=part.name in elastic, solved=solved)
+                 for part in build_parts(scene) if part.name in names]
+    coords = {"time": times, "part": [h.part.name for h in histories]}
+    return build_dataset(part_values(histories), coords), solved
 
 
 def _seconds(value) -> float:
@@ -156,21 +183,26 @@ def check_times(scene, times: np.ndarray, life: tuple[float, float], *, plot: bo
 def fixed_point(scene, data: dict, targets: list, times: np.ndarray, check: np.ndarray,
                 start, accuracy):
     """(made values, the run of the made scene at ``check``, iterations, strains at
-    ``times``) from ``start``, the run of the design at ``check``."""
+    ``times``) from ``start``, the run of the design at ``check``. Each iteration computes
+    only the targets' parts (:func:`part_states`: their diffusion for the made size and
+    material state); the made scene is run once, when the dimensions have settled, with
+    the diffusion of the last iteration (solved for those very dimensions)."""
     at = np.searchsorted(check, times)
+    names = {t.part for t in targets}
     made = [t.design for t in targets]
-    ds = start
+    ds, solved, trial = start, None, data
     with tempfile.TemporaryDirectory(prefix="fickcam-compensate-") as folder, quiet_runs():
         for iteration in range(MAX_ITERATIONS + 1):
             strains = [part_strain(ds, t)[at] for t in targets]
             new = [made_value(t.design, s) for t, s in zip(targets, strains)]
             if iteration and converged(made, new, targets):
-                return made, ds, iteration, strains
+                after = run_at(trial, scene.base_dir, check, accuracy, diffusions=solved)
+                return made, after, iteration, strains
             made = new
             trial, points = write_made(data, scene, targets, made, Path(folder) / "trial.csv")
             if points is not None:
                 write_points(Path(folder) / "trial.csv", points)
-            ds = run_at(trial, scene.base_dir, check, accuracy)
+            ds, solved = part_states(trial, scene.base_dir, check, accuracy, names)
     raise FickcamError(f"compensation did not settle in {MAX_ITERATIONS} iterations")
 
 
