@@ -1,13 +1,22 @@
-"""The fixed point of compensation: run the scene with the current made dimensions,
-read each part's strain at the ageing times compensated for, make the dimensions
-anew (:mod:`fickcam.compensation.core`), until they stop moving.
+"""The fixed point of compensation: compute each part's strain at the ageing times
+compensated for with the current made dimensions, make the dimensions anew
+(:mod:`fickcam.compensation.core`), until they stop moving.
 
-Every run is made at the *check times*: the scene's ageing times inside the life asked
-about, its ends, the times compensated for (and, when asked, a regular grid for a plot or
-for the wider window of ``keep_limits``), with the scene's own angle step and limits. So
-the first run (the design) is both the fixed point's start and the uncompensated part of
-the limits report, and the run that shows the fixed point has settled is the compensated
-part: compensating at one time costs the design run and one run per iteration.
+Two runs of the whole scene are made, both at the *check times*: the scene's ageing times
+inside the life asked about, its ends, the times compensated for (and, when asked, the
+scene's ageing times over the whole history for a plot, or the grid of the wider window of
+``keep_limits``), with the scene's own angle step and limits. The run of the design is both
+the fixed point's start and the uncompensated part of the report; the run of the made
+scene, once the dimensions have settled, is the compensated part. In between, each
+iteration computes only the parts whose dimensions are made (their diffusion at the made
+size and their material state): no mechanisms, no limit search. The made scene's run takes
+its diffusion from the last iteration, solved for those very dimensions.
+
+The moisture a part takes up depends on its dry dimensions only through its size (a
+disc's radius, a link's outline), weakly: a 1 % smaller nylon disc (23 mm radius, 10 mm
+thick) or R914 link (100 to 160 mm long) changes the mean moisture by at most 1.7e-3 or
+8e-4 of itself over the history. So the first iteration (from the design's diffusion)
+lands within a few 1e-3 of the compensation and the next one or two settle it.
 """
 from __future__ import annotations
 
@@ -21,10 +30,6 @@ import numpy as np
 from ..errors import FickcamError, InputError, format_duration
 from .core import (MAX_ITERATIONS, scene_from, Compensation, converged, made_value, part_strain, quiet_runs,
                    residual, window_times)
-
-#: ageing times across the history at which a --plot draws the drift
-PLOT_POINTS = 49
-
 
 def length_text(value: float, digits: int = 6) -> str:
     """A length for the written scene in mm, to the nanometre (``digits`` decimals of mm)."""
@@ -166,15 +171,15 @@ def compensation_times(scene, at, over) -> tuple[np.ndarray, tuple[float, float]
 def check_times(scene, times: np.ndarray, life: tuple[float, float], *, plot: bool = False,
                 wide: bool = False) -> np.ndarray:
     """The ageing times (s) of every run (module docstring): the scene's ageing times
-    inside ``life``, its ends and ``times``; ``plot``: a regular grid of PLOT_POINTS over
-    the whole history (the plot shows the part before and after a window too); ``wide``:
-    the grid of a window over the whole life."""
+    inside ``life``, its ends and ``times``; ``plot``: the scene's ageing times over the
+    whole history too (the plot shows the part before and after a window, from the runs
+    the compensation makes anyway); ``wide``: the grid of a window over the whole life."""
     from ..simulate import ageing_times, scene_environment
 
     environment = scene_environment(scene)
     stored = ageing_times(scene, environment)
     inside = stored[(stored >= life[0]) & (stored <= life[1])]
-    extra = [np.linspace(0.0, environment.end, PLOT_POINTS)] if plot else []
+    extra = [stored] if plot else []
     if wide:
         extra.append(window_times(*life, stored))
     return np.unique(np.concatenate([inside, np.array(life), times, *extra]))
