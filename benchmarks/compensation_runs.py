@@ -11,7 +11,9 @@ configs/fourbar_r914_humid.yaml (an R914 four-bar with its own limits). For each
 ``compensate(scene, over=("0 d", "2 years"))`` and the same with ``plot=True`` (what
 ``--plot`` adds to the runs; the PNG itself is not drawn) are each timed in a fresh
 Python process (caches empty, as a user's command starts), from after the imports to the
-returned result; the four alternate within a repeat so that a change in the machine's load
+returned result ("fresh"), then again in that process ("warm": the imports' and solvers'
+first-use costs paid, so a designer's second compensation in a session, or one in a
+notebook); the four alternate within a repeat so that a change in the machine's load
 reaches all. The diffusion solves of each are counted from the solver's debug records.
 Medians of the repeats, the ratios to the run's median, the machine (CPU model, cores,
 load average) and the commit are printed and written to
@@ -55,9 +57,16 @@ logger.setLevel(logging.DEBUG)
 logger.addHandler(handler)
 scene = fickcam.load_scene(sys.argv[1])
 work = json.loads(sys.argv[2])
-started = time.perf_counter()
-fickcam.run(scene) if work is None else compensate(scene, **work)
-print(json.dumps({"seconds": time.perf_counter() - started, "solves": len(solves)}))
+
+def once():
+    started = time.perf_counter()
+    fickcam.run(scene) if work is None else compensate(scene, **work)
+    return time.perf_counter() - started
+
+
+seconds = once()
+counted = len(solves)
+print(json.dumps({"seconds": seconds, "solves": counted, "again": once()}))
 """
 
 
@@ -85,15 +94,19 @@ def timed(scene: Path, work) -> dict:
 
 
 def measure(scene: Path, repeats: int) -> dict:
-    """Median seconds of each WORK over ``repeats``, the ratios to the run, the solves."""
+    """Median seconds (fresh and warm) of each WORK over ``repeats``, the ratios to the
+    run's, the diffusion solves (fresh)."""
     found = {what: [] for what in WORK}
     for _ in range(repeats):
         for what, work in WORK.items():
             found[what].append(timed(scene, work))
-    medians = {what: statistics.median(r["seconds"] for r in rows) for what, rows in found.items()}
-    return {what: {"median_s": medians[what], "runs_worth": medians[what] / medians["run"],
-                   "seconds": [r["seconds"] for r in rows],
-                   "diffusion_solves": rows[-1]["solves"]} for what, rows in found.items()}
+    row = {}
+    for kind, key in (("fresh", "seconds"), ("warm", "again")):
+        medians = {what: statistics.median(r[key] for r in rows) for what, rows in found.items()}
+        row[kind] = {what: {"median_s": medians[what], "runs_worth": medians[what] / medians["run"],
+                            "seconds": [r[key] for r in rows]} for what, rows in found.items()}
+    row["diffusion_solves"] = {what: rows[-1]["solves"] for what, rows in found.items()}
+    return row
 
 
 def main(argv=None) -> None:
@@ -111,9 +124,13 @@ def main(argv=None) -> None:
                    "repeats": args.repeats} | measure(two_year_scene(name, limits, Path(folder)),
                                                       args.repeats)
             rows.append(row)
-            print(f"{name}: run {row['run']['median_s']:.3f} s; " + ", ".join(
-                f"{what} {row[what]['median_s']:.3f} s = {row[what]['runs_worth']:.2f} runs "
-                f"({row[what]['diffusion_solves']} solves)" for what in WORK if what != "run"))
+            for kind in ("fresh", "warm"):
+                timing = row[kind]
+                print(f"{name} {kind}: run {timing['run']['median_s']:.3f} s; " + ", ".join(
+                    f"{what} {timing[what]['median_s']:.3f} s = {timing[what]['runs_worth']:.2f}"
+                    f" runs" for what in WORK if what != "run"))
+            print(f"{name} diffusion solves: " + ", ".join(
+                f"{what} {count}" for what, count in row["diffusion_solves"].items()))
     record = {"benchmark": "fickcam compensate --at / --over two years, in runs of the scene",
               "target_runs": {"at": 3, "over": 10}, "commit": commit(),
               "date": datetime.datetime.now(datetime.timezone.utc).isoformat(timespec="seconds"),
