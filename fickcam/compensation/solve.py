@@ -243,7 +243,7 @@ def fixed_point(scene, data: dict, targets: list, times: np.ndarray, check: np.n
                       [float(np.max(np.abs(np.asarray(n) - m))) for n, m in zip(new, made)])
             settled = iteration if iteration and converged(made, new, targets) else 0
             if not settled and iteration and settles_next(previous, made, new, targets):
-                previous, made, settled = made, new, iteration + 1
+                made, settled = new, iteration + 1
                 trial = made_trial(data, scene, targets, made, Path(folder))
             if settled:
                 after = run_at(trial, scene.base_dir, check, accuracy,
