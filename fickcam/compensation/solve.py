@@ -125,9 +125,28 @@ def run_at(data: dict, base_dir: Path, times: np.ndarray, accuracy, diffusions=N
 
 
 def part_states(data: dict, base_dir: Path, times: np.ndarray, accuracy, names: set):
-    """(the material state of the parts ``names`` of the scene mapping at ageing ``times``
-    (s), as a Dataset; their diffusion results by part name): what a run of the scene
-    computes for those parts, without its mechanisms, limits and other parts."""
+    """What a run of the scene computes for the parts ``names``, without its mechanisms,
+    limits and other parts: their diffusion and material state.
+
+    Parameters
+    ----------
+    data : dict
+        The scene mapping (as YAML gives it), relative paths from ``base_dir``.
+    base_dir : pathlib.Path
+        The folder the scene's relative paths start from.
+    times : numpy.ndarray
+        Ageing times [s].
+    accuracy : float or None
+        The diffusion's requested accuracy [-] (None: the scene's).
+    names : set of str
+        The parts to compute.
+
+    Returns
+    -------
+    tuple
+        (xarray.Dataset of the parts' state variables over (time, part); dict of part
+        name -> its ``DiffusionResult`` at ``times``, None for a part that does not absorb).
+    """
     from ..dataset import build_dataset
     from ..elastic.parts import elastic_parts
     from ..parts import build_parts, part_values
@@ -147,9 +166,21 @@ def part_states(data: dict, base_dir: Path, times: np.ndarray, accuracy, names: 
 
 
 def diffusions_for(data: dict, base_dir: Path, times: np.ndarray, by_name: dict) -> dict:
-    """The diffusion results ``by_name`` (part name -> result at ``times``) keyed for a
-    run of the scene mapping at ``times`` (``simulate.run(diffusions=...)``), as
-    :func:`fickcam.simulate.age_part` keys them: shape, material, fields kept."""
+    """The diffusion results ``by_name`` keyed for a run of the scene mapping at ``times``
+    (``simulate.run(diffusions=...)``), as :func:`fickcam.simulate.age_part` keys them:
+    the part's shape (of this scene mapping), material and whether fields are kept.
+
+    Parameters
+    ----------
+    data : dict
+        The scene mapping to be run.
+    base_dir : pathlib.Path
+        The folder the scene's relative paths start from.
+    times : numpy.ndarray
+        Ageing times of the run [s], those of the results.
+    by_name : dict
+        Part name -> ``DiffusionResult`` (:func:`part_states`).
+    """
     from ..elastic.parts import elastic_parts
     from ..parts import build_parts
 
@@ -210,7 +241,15 @@ def check_times(scene, times: np.ndarray, life: tuple[float, float], *, plot: bo
 def settles_next(previous: list, made: list, new: list, targets: list) -> bool:
     """True when the move after ``made`` -> ``new`` is predicted within the fixed point's
     tolerances: the iteration contracts by q = |new - made| / |made - previous| per
-    step (linear convergence), so the next move is about q |new - made|."""
+    step (linear convergence), so the next move is about q |new - made|.
+
+    Parameters
+    ----------
+    previous, made, new : list
+        Three successive iterates of every target [m] (floats or arrays).
+    targets : list of Target
+        The targets, whose design values [m] scale the relative tolerance.
+    """
     predicted = []
     for before, now, after in zip(previous, made, new):
         step, last = np.abs(np.asarray(after) - now), np.abs(np.asarray(now) - before)
