@@ -120,16 +120,20 @@ def plan_parts(scene: Scene, accuracy: float | None = None):
 
 
 @on_one_blas_thread  # the caller's BLAS threads are restored on return (fickcam.blas)
-def run(scene, *, accuracy: float | None = None, progress: bool = False, settings=None):
+def run(scene, *, accuracy: float | None = None, progress: bool = False, settings=None,
+        diffusions: dict | None = None):
     """Run one scene and return its xarray.Dataset; ``settings``: the
-    diffusion solvers' tuned limits (``diffusion.SolverSettings``; None: the defaults)."""
+    diffusion solvers' tuned limits (``diffusion.SolverSettings``; None: the defaults);
+    ``diffusions``: diffusion results already solved for this scene's ageing times, by
+    (geometry, material name, fields kept) as :func:`age_part` keys them (parts that
+    match take them instead of solving again)."""
     started = _time.perf_counter()
     scene = load_scene(scene)
     environment = scene_environment(scene)
     times = ageing_times(scene, environment)
     parts = build_parts(scene)
     ds, histories = _age(scene, environment, times, accuracy, progress, parts=parts,
-                         settings=settings)
+                         settings=settings, diffusions=diffusions)
     if scene.limits:
         limits, searched = _limits(ds, scene, environment, times, accuracy, parts, histories,
                                    settings)
@@ -142,14 +146,15 @@ def run(scene, *, accuracy: float | None = None, progress: bool = False, setting
 
 
 def _age(scene: Scene, environment: Environment, times: np.ndarray, accuracy: float | None,
-         progress: bool, parts: list[Part] | None = None, settings=None):
+         progress: bool, parts: list[Part] | None = None, settings=None, diffusions=None):
     """The Dataset of ``scene`` at ageing ``times`` (s) and the part histories;
     ``parts``: the scene's parts when already built (their outline expansions are cached
     per part object)."""
     from .dataset import build_dataset
 
     values, coords, notices, histories = _aged_values(scene, environment, times, accuracy,
-                                                      progress, parts, settings=settings)
+                                                      progress, parts, settings=settings,
+                                                      diffusions=diffusions)
     design_scene = scene.as_designed()  # differs where the scene is made to compensate
     designs = [design_part(part, environment) for part in build_parts(design_scene)]
     values.update(design_values(design_scene, designs))
@@ -198,7 +203,8 @@ def climate_values(environment: Environment, edges: np.ndarray) -> dict[str, np.
 
 def _aged_values(scene: Scene, environment: Environment, times: np.ndarray,
                  accuracy: float | None, progress: bool, parts: list[Part] | None = None,
-                 stored: tuple[np.ndarray, list[PartHistory]] | None = None, settings=None):
+                 stored: tuple[np.ndarray, list[PartHistory]] | None = None, settings=None,
+                 diffusions: dict | None = None):
     """(values, coords, notices, part histories) of ``scene`` at ageing ``times`` (s): every
     variable but the as-designed ones, as SI arrays keyed by schema name.
     ``stored``: the stored run's times and part histories (the limit search): diffusion is
@@ -218,7 +224,7 @@ def _aged_values(scene: Scene, environment: Environment, times: np.ndarray,
     bar = progress_bar(len(parts), enabled=progress, eta=False, desc=f"{scene.name}: diffusion",
                        unit="parts", leave=False)
 
-    histories, solved = [], {}
+    histories, solved = [], dict(diffusions or {})
     stored_times, befores = stored if stored is not None else (None, [None] * len(parts))
     for part, before in zip(parts, befores):
         bar.set_postfix_str(part.name)
