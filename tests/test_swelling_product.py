@@ -16,7 +16,7 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-from hypothesis import given, settings
+from hypothesis import example, given, settings
 from hypothesis import strategies as st
 
 from annulus_reference import Annulus
@@ -56,6 +56,7 @@ fractions = st.lists(st.floats(0.0, 1.0), min_size=1, max_size=12)
 @settings(max_examples=60, deadline=None)
 @given(planform=fractions, fourier=st.floats(1e-3, 1.0), initial=st.floats(0.0, 3.0),
        surface=st.floats(0.0, 3.0), level=st.integers(1, 8))
+@example(planform=[0.5], fourier=1.0, initial=2.225073858507e-311, surface=0.0, level=1)
 def test_product_form_rebuilds_a_separable_field_from_one_level(planform, fourier, initial,
                                                                  surface, level):
     """Ms - M = (Ms - M0) U_p U_s(z) (absorption or desorption, any uniform M0): given the

@@ -11,9 +11,13 @@ from __future__ import annotations
 import numpy as np
 
 EPS = float(np.finfo(float).eps)
+TINY = float(np.finfo(float).tiny)  # the underflow threshold: below it results are subnormal
 
 
 def roundoff(*magnitudes, operations: int = 64) -> float:
-    """Absolute tolerance ``operations * eps * max|magnitude|`` (Higham sec. 3.1)."""
+    """Absolute tolerance ``operations * (eps * max|magnitude| + tiny)`` (Higham sec. 3.1;
+    the model of floating-point arithmetic with underflow, sec. 2.1: each operation errs by
+    at most eps relative plus the underflow threshold absolute, so magnitudes that are zero
+    still allow a subnormal result)."""
     scale = max(float(np.max(np.abs(m))) for m in magnitudes)
-    return operations * EPS * scale
+    return operations * (EPS * scale + TINY)
