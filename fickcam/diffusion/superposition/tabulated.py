@@ -58,7 +58,7 @@ JUMP_FLOOR = 1e-9        # ... and steps of K below this (of the unit step) are 
 SECTIONS = 3             # rounds locating a step, each cutting its interval into
 SECTION_POINTS = 15      #   16 (to 16^-3 = 2.4e-4 of a cell: Ms moves little over it)
 CHUNK = 4096             # ages per kernel call (fields: memory)
-KEPT_READINGS = 16       # grid readings kept per record (each outputs x grid points, twice)
+KEPT_READING_BYTES = 2 ** 28  # grid readings kept per record (outputs x grid points, x2)
 
 
 @dataclass(frozen=True)
@@ -222,13 +222,17 @@ class Sources:
     readings: OrderedDict = field(default_factory=OrderedDict, compare=False, repr=False)
 
     def kept(self, key, build):
-        """``build()`` once per ``key`` (the least recently used dropped past
-        ``KEPT_READINGS``)."""
+        """``build()`` (arrays) once per ``key``; the least recently used dropped while
+        the kept arrays pass ``KEPT_READING_BYTES``."""
         if key in self.readings:
             self.readings.move_to_end(key)
             return self.readings[key]
         value = self.readings[key] = build()
-        while len(self.readings) > KEPT_READINGS:
+        def size(kept):  # an array, or a tuple of arrays
+            return sum(part.nbytes for part in kept) if isinstance(kept, tuple) else kept.nbytes
+
+        while (len(self.readings) > 1 and
+               sum(size(kept) for kept in self.readings.values()) > KEPT_READING_BYTES):
             self.readings.popitem(last=False)
         return value
 
@@ -248,7 +252,8 @@ def sources(force: Forcing) -> Sources:
 
     def reading(coefficient):
         row, node = np.nonzero((ages > 0) & (coefficient != 0)[None, :])
-        return row, ages[row, node], coefficient[node], np.log(ages[row, node])
+        age = ages[row, node]
+        return row, age, coefficient[node], np.log(age)
     return Sources(reading(jumps), reading(change), force.outputs.size)
 
 
@@ -288,13 +293,11 @@ def _gathered_weights(table: Table, where: Sources) -> tuple[np.ndarray, np.ndar
     interpolation weights summed per output row and grid point."""
     size, n = table.kernel.shape[0], where.outputs
     w0 = math.exp(table.start)
-    (rows, logs, coefficient), (low_rows, low) = where.kept(
-        ("split steps", table.start), lambda: _split(where.steps, w0, 0.5))
+    (rows, logs, coefficient), (low_rows, low) = _split(where.steps, w0, 0.5)
     index, weights = _lagrange(table, logs)
     on_kernel = _gather(rows, index, coefficient * weights, n, size)
     on_kernel[:, 0] += np.bincount(low_rows, low, minlength=n)
-    (rows, logs, coefficient), (low_rows, low) = where.kept(
-        ("split slopes", table.start), lambda: _split(where.slopes, w0, 1.5))
+    (rows, logs, coefficient), (low_rows, low) = _split(where.slopes, w0, 1.5)
     on_integral, on_k = _hermite_gathered(table, rows, logs, coefficient[:, 0], n)
     on_integral[:, 0] += np.bincount(low_rows, low, minlength=n)
     on_kernel += on_k
