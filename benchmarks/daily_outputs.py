@@ -17,12 +17,7 @@ commit are printed and written to ``benchmarks/results/daily_outputs.json``.
 from __future__ import annotations
 
 import argparse
-import datetime
-import json
 import os
-import statistics
-import subprocess
-import sys
 import tempfile
 from pathlib import Path
 
@@ -37,16 +32,8 @@ WEATHER = "pvlib:723170TYA.CSV"
 #: (scene, what it is)
 SCENES = (("eccentric_cam_greensboro.yaml", "nylon eccentric cam, roller follower"),
           ("fourbar_r914_humid.yaml", "R914 resin four-bar, steel frame"))
-ONE_RUN = """
-import json, sys, time
-import fickcam, fickcam.simulate
-scene = fickcam.load_scene(sys.argv[1])
-started = time.perf_counter()
-result = fickcam.run(scene)
-seconds = time.perf_counter() - started
-started = time.perf_counter()
-fickcam.run(scene)
-again = time.perf_counter() - started
+POINTS = benchmark("points_cam", ROOT)  # machine(), one_run(), write_record(), TIMED_RUNS
+ONE_RUN = POINTS.TIMED_RUNS + """
 print(json.dumps({"seconds": seconds, "again": again, "outputs": result.sizes["time"]}))
 """
 
@@ -66,38 +53,24 @@ def year_scene(name: str, folder: Path, ageing_times) -> Path:
     return copy
 
 
-def one_run(scene: Path) -> dict:
-    """Seconds of one run in a fresh process (and again, warm), and its output count."""
-    done = subprocess.run([sys.executable, "-c", ONE_RUN, str(scene)], capture_output=True,
-                          text=True, check=True, cwd=scene.parent)
-    return json.loads(done.stdout.splitlines()[-1])
-
-
 def compare(name: str, folder: Path, repeats: int) -> dict:
     """Median seconds of ``repeats`` runs of each kind and their ratio."""
     daily_yaml = year_scene(name, folder, {"every": "1 d"})
     ten_yaml = year_scene(name, folder, [f"{day:.4g} d" for day in np.linspace(0, 365, 10)])
     daily, ten = [], []
     for _ in range(repeats):
-        ten.append(one_run(ten_yaml))
-        daily.append(one_run(daily_yaml))
-    row = {"scene": f"configs/{name}", "weather": WEATHER, "runs": repeats,
-           "outputs": {"daily": daily[-1]["outputs"], "ten": ten[-1]["outputs"]}}
-    for run, what in (("seconds", "fresh"), ("again", "warm")):
-        ten_s = statistics.median(r[run] for r in ten)
-        daily_s = statistics.median(r[run] for r in daily)
-        row[what] = {"ten_outputs_s": ten_s, "daily_outputs_s": daily_s, "ratio": daily_s / ten_s,
-                     "ten_outputs_runs_s": [r[run] for r in ten],
-                     "daily_outputs_runs_s": [r[run] for r in daily]}
-    return row
+        ten.append(POINTS.one_run(ten_yaml, ONE_RUN))
+        daily.append(POINTS.one_run(daily_yaml, ONE_RUN))
+    return {"scene": f"configs/{name}", "weather": WEATHER, "runs": repeats,
+            "outputs": {"daily": daily[-1]["outputs"], "ten": ten[-1]["outputs"]}} | \
+        POINTS.medians(ten, daily, ("ten_outputs", "daily_outputs"))
 
 
 def main(argv=None) -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--repeats", type=int, default=3, help="runs of each scene (median)")
     args = parser.parse_args(argv)
-    stamp = benchmark("points_cam", ROOT)  # machine() and commit()
-    about = stamp.machine()
+    about = POINTS.machine()
     print(f"machine: {about['cpu']}, {about['cores']} logical cores, Python {about['python']}; "
           f"load average {os.getloadavg()[0]:.2f} (other work skews wall times)")
     rows = []
@@ -110,12 +83,8 @@ def main(argv=None) -> None:
                 print(f"{name:30s} {what}: 10 outputs {timing['ten_outputs_s']:6.3f} s, "
                       f"{row['outputs']['daily']} daily {timing['daily_outputs_s']:6.3f} s, "
                       f"ratio {timing['ratio']:5.2f}")
-    record = {"benchmark": "daily outputs over a TMY3 year / 10 outputs, one run each",
-              "target_ratio": 3.0, "commit": stamp.commit(),
-              "date": datetime.datetime.now(datetime.timezone.utc).isoformat(timespec="seconds"),
-              "machine": about, "load_average": os.getloadavg()[0], "scenes": rows}
-    RESULT.write_text(json.dumps(record, indent=1) + "\n")
-    print(f"wrote {RESULT.relative_to(ROOT)}")
+    POINTS.write_record(RESULT, "daily outputs over a TMY3 year / 10 outputs, one run each",
+                        3.0, about, rows)
 
 
 if __name__ == "__main__":
