@@ -66,7 +66,7 @@ def test_zoomed_minimum_finds_the_minimum_as_a_bounded_brent_search_does(functio
     brent = minimize_scalar(function, bounds=(0.0, 1.0), method="bounded",
                             options={"xatol": 1e-12})
     found = zoomed_minimum(function, 0.0, 1.0)
-    # the zoom ends within 1 / 32^7 ~ 3e-11 of the minimiser: a slope-1 kink moves by that
+    # the zoom ends within 1 / 128^5 ~ 3e-11 of the minimiser: a slope-1 kink moves by that
     assert least - 1e-15 <= found <= least + 5e-11
     assert found <= brent.fun + 1e-14
 
