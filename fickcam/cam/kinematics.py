@@ -5,8 +5,9 @@ Swelling scales the profile (isotropic: every cam dimension by 1 + eps, the roll
 1 + eps_roller) or distorts it (anisotropic: x by 1 + eps_x, y by 1 + eps_y); the
 follower motion is in closed form where the aged motion is the design motion scaled by
 1 + eps (isotropic cam with a flat follower, or a radial knife/roller that swells like
-the cam, as Singh & Sanyal (2017) scale their pitch circle and lift), otherwise
-found geometrically (:mod:`fickcam.cam.geometry`).
+the cam, as Singh & Sanyal (2017) scale their pitch circle and lift), or where the
+eccentric disc keeps its circle (a flat face on any swollen disc; a knife or roller on a
+uniformly swollen one), otherwise found geometrically (:mod:`fickcam.cam.geometry`).
 
 The papers are cited in full in :mod:`fickcam.cam`.
 """
