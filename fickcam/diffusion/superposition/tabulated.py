@@ -297,9 +297,11 @@ def _gathered_weights(table: Table, where: Sources) -> tuple[np.ndarray, np.ndar
     index, weights = _lagrange(table, logs)
     on_kernel = _gather(rows, index, coefficient * weights, n, size)
     on_kernel[:, 0] += np.bincount(low_rows, low, minlength=n)
-    (rows, logs, coefficient), (low_rows, low) = _split(where.slopes, w0, 1.5)
-    on_integral, on_k = _hermite_gathered(table, rows, logs, coefficient[:, 0], n)
-    on_integral[:, 0] += np.bincount(low_rows, low, minlength=n)
+    rows, ages, coefficient, logs = where.slopes  # the many: no copies, those below weigh 0
+    below = ages < w0
+    on_integral, on_k = _hermite_gathered(table, rows, logs, np.where(below, 0.0, coefficient), n)
+    on_integral[:, 0] += np.bincount(rows[below], coefficient[below] * (ages[below] / w0) ** 1.5,
+                                     minlength=n)
     on_kernel += on_k
     return on_kernel, on_integral
 
