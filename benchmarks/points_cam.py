@@ -40,7 +40,9 @@ SCENES = (("eccentric_cam.yaml", "eccentric disc"),
           ("nylon_swinging_arm.yaml", "motion program, swinging arm"),
           ("singh2017_cam.yaml", "motion program, CFRP"))
 LAWS = ("eccentric", "motion", "base_circle_radius")
-ONE_RUN = """
+#: a fresh process's run of the scene named by its argument: ``result``, ``seconds`` (the
+#: first run, after the imports) and ``again`` (the same run warm)
+TIMED_RUNS = """
 import json, sys, time
 import numpy as np
 import scipy.interpolate, scipy.optimize
@@ -52,6 +54,8 @@ seconds = time.perf_counter() - started
 started = time.perf_counter()
 fickcam.run(scene)
 again = time.perf_counter() - started
+"""
+ONE_RUN = TIMED_RUNS + """
 motion = result["follower_displacement" if "follower_displacement" in result
                 else "follower_arm_angle"].values
 print(json.dumps({"seconds": seconds, "again": again, "motion": motion.tolist(),
@@ -101,9 +105,10 @@ def points_scene(name: str, folder: Path) -> Path:
     return copy
 
 
-def one_run(scene: Path) -> dict:
-    """Seconds of one run in a fresh process, and what it found."""
-    done = subprocess.run([sys.executable, "-c", ONE_RUN, str(scene)], capture_output=True,
+def one_run(scene: Path, program: str = ONE_RUN) -> dict:
+    """Seconds of one run in a fresh process, and what it found (the last line that
+    ``program``, given the scene's path, prints: JSON)."""
+    done = subprocess.run([sys.executable, "-c", program, str(scene)], capture_output=True,
                           text=True, check=True, cwd=scene.parent)
     return json.loads(done.stdout.splitlines()[-1])
 
@@ -119,15 +124,21 @@ def compare(name: str, points_yaml: Path, repeats: int) -> dict:
     gap = max(abs(x - y) for row_a, row_b in zip(a["motion"], b["motion"])
               for x, y in zip(row_a, row_b))
     jump = max(abs(x / y - 1) for x, y in zip(b["jump_speed"], a["jump_speed"]))
-    row = {"scene": f"configs/{name}", "runs": repeats}
-    for run, what in (("seconds", "fresh"), ("again", "warm")):
-        closed_s = statistics.median(r[run] for r in closed)
-        points_s = statistics.median(r[run] for r in points)
-        row[what] = {"closed_form_s": closed_s, "points_s": points_s, "ratio": points_s / closed_s,
-                     "closed_form_runs_s": [r[run] for r in closed],
-                     "points_runs_s": [r[run] for r in points]}
+    row = {"scene": f"configs/{name}", "runs": repeats} | medians(closed, points)
     return row | {"motion_difference_over_lift": gap / a["lift"],
                   "jump_speed_relative_difference": jump}
+
+
+def medians(reference: list, other: list, names=("closed_form", "points")) -> dict:
+    """Per kind of timing ("fresh": the first run, "warm": again): the median seconds of
+    the ``reference`` and ``other`` runs, their ratio other / reference, every run's."""
+    row = {}
+    for run, what in (("seconds", "fresh"), ("again", "warm")):
+        low, high = (statistics.median(r[run] for r in runs) for runs in (reference, other))
+        row[what] = {f"{names[0]}_s": low, f"{names[1]}_s": high, "ratio": high / low,
+                     f"{names[0]}_runs_s": [r[run] for r in reference],
+                     f"{names[1]}_runs_s": [r[run] for r in other]}
+    return row
 
 
 def main(argv=None) -> None:
@@ -149,12 +160,17 @@ def main(argv=None) -> None:
             print(f"{'':24s} ({kind}; points - closed form: motion "
                   f"{row['motion_difference_over_lift']:.1e} of the lift, jump speed "
                   f"{row['jump_speed_relative_difference']:.1e} relative)")
-    record = {"benchmark": "cam given by points / the same cam in closed form, one run each",
-              "target_ratio": 2.0, "commit": commit(),
+    write_record(RESULT, "cam given by points / the same cam in closed form, one run each",
+                 2.0, about, rows)
+
+
+def write_record(path: Path, what: str, target: float, about: dict, rows: list) -> None:
+    """Write the benchmark's rows as JSON with the commit, date, machine and load."""
+    record = {"benchmark": what, "target_ratio": target, "commit": commit(),
               "date": datetime.datetime.now(datetime.timezone.utc).isoformat(timespec="seconds"),
               "machine": about, "load_average": os.getloadavg()[0], "scenes": rows}
-    RESULT.write_text(json.dumps(record, indent=1) + "\n")
-    print(f"wrote {RESULT.relative_to(ROOT)}")
+    path.write_text(json.dumps(record, indent=1) + "\n")
+    print(f"wrote {path.relative_to(ROOT)}")
 
 
 if __name__ == "__main__":

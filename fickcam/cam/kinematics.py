@@ -5,8 +5,9 @@ Swelling scales the profile (isotropic: every cam dimension by 1 + eps, the roll
 1 + eps_roller) or distorts it (anisotropic: x by 1 + eps_x, y by 1 + eps_y); the
 follower motion is in closed form where the aged motion is the design motion scaled by
 1 + eps (isotropic cam with a flat follower, or a radial knife/roller that swells like
-the cam, as Singh & Sanyal (2017) scale their pitch circle and lift), otherwise
-found geometrically (:mod:`fickcam.cam.geometry`).
+the cam, as Singh & Sanyal (2017) scale their pitch circle and lift), or where the
+eccentric disc keeps its circle (a flat face on any swollen disc; a knife or roller on a
+uniformly swollen one), otherwise found geometrically (:mod:`fickcam.cam.geometry`).
 
 The papers are cited in full in :mod:`fickcam.cam`.
 """
@@ -80,6 +81,31 @@ def _eccentric_flat(design: CamDesign, state: CamState, theta):
     return heights, _support_extremes(support, e_y, a, big_b)
 
 
+def _eccentric_pitch(design: CamDesign, state: CamState, theta):
+    """Knife or roller on the uniformly swollen eccentric disc, in closed form: the pitch
+    curve is the circle of radius rho = R (1 + eps) + r_roller about the disc centre
+    c = R(theta) (0, -e (1 + eps)) (kinematic inversion, Norton sec. 8.6), met by the
+    follower's line x = offset at Y = -e' cos theta + f, f = sqrt(g),
+    g = rho^2 - (offset - e' sin theta)^2 (Y = R + r - e cos theta for a centred
+    follower with e << R is the disc's near-SHM). The derivatives of f follow from
+    f^2 = g as for the flat face; Y is extreme where the axis, the disc centre and the
+    pitch point are collinear: |P| = rho -/+ e', Y = sqrt(|P|^2 - offset^2)."""
+    theta = np.asarray(theta, float)
+    e = design.eccentricity * (1 + state.cam_strain_y)
+    rho = design.disc_radius * (1 + state.cam_strain_x) + \
+        design.roller_radius * (1 + state.roller_strain)
+    c, s = np.cos(theta), np.sin(theta)
+    u, u1, u2, u3 = design.offset - e * s, -e * c, e * s, e * c
+    f = np.sqrt(rho * rho - u * u)
+    g1, g2, g3 = -2 * u * u1, -2 * (u1 * u1 + u * u2), -2 * (3 * u1 * u2 + u * u3)
+    f1 = g1 / (2 * f)
+    f2 = (g2 / 2 - f1 ** 2) / f
+    f3 = (g3 / 2 - 3 * f1 * f2) / f
+    heights = (-e * c + f, e * s + f1, e * c + f2, -e * s + f3)
+    extremes = tuple(math.sqrt(reach ** 2 - design.offset ** 2) for reach in (rho - e, rho + e))
+    return heights, extremes
+
+
 def _support_extremes(support, e_y, a, big_b):
     """(lowest, highest) of the support function: theta = 0, pi and, for a flattened disc,
     the interior stationary points where e_y f = 2 B cos theta, i.e.
@@ -119,6 +145,10 @@ def motion_function(design: CamDesign, state: CamState):
     if design.kind == "eccentric" and design.follower_kind == "flat":
         return (lambda theta: _eccentric_flat(design, state, theta)[0],
                 _eccentric_flat(design, state, np.zeros(1))[1])
+    if (design.kind == "eccentric" and design.arm is None
+            and state.cam_strain_x == state.cam_strain_y):
+        return (lambda theta: _eccentric_pitch(design, state, theta)[0],
+                _eccentric_pitch(design, state, np.zeros(1))[1])
     fitted, origin, extremes = fit_geometric_motion(
         design, pieces_of(design), state.cam_strain_x, state.cam_strain_y,
         design.roller_radius * (1 + state.roller_strain),

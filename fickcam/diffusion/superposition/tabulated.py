@@ -32,7 +32,7 @@ from __future__ import annotations
 
 import math
 from collections import OrderedDict
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, field, replace
 from functools import lru_cache
 
 import numpy as np
@@ -58,6 +58,7 @@ JUMP_FLOOR = 1e-9        # ... and steps of K below this (of the unit step) are 
 SECTIONS = 3             # rounds locating a step, each cutting its interval into
 SECTION_POINTS = 15      #   16 (to 16^-3 = 2.4e-4 of a cell: Ms moves little over it)
 CHUNK = 4096             # ages per kernel call (fields: memory)
+KEPT_READING_BYTES = 2 ** 28  # grid readings kept per record (outputs x grid points, x2)
 
 
 @dataclass(frozen=True)
@@ -181,31 +182,59 @@ def _lagrange(table: Table, logs: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     return base[:, None] + np.arange(4), weights
 
 
-def _hermite(table: Table, logs: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Indices (k, 2) and weights on I and on K (k, 2) reading I at ages (their ``logs``):
-    the cubic Hermite interpolant in x = log age with the exact slopes dI/dx = K e^x, so
-    that a difference I(a) - I(b) (a ramp piece) is as accurate as K itself, to O(h^3)."""
+def _hermite_gathered(table: Table, rows, logs, coefficient, outputs: int):
+    """(outputs, grid points) weights on I and on K reading I at ages (their ``logs``,
+    output ``rows``, times ``coefficient``): the cubic Hermite interpolant in x = log age
+    with the exact slopes dI/dx = K e^x, so that a difference I(a) - I(b) (a ramp piece) is
+    as accurate as K itself, to O(h^3). Each basis function is summed on its own (a
+    reading of every (output, node) pair: the cost of many outputs)."""
     size = table.kernel.shape[0]
     x = (logs - table.start) / table.step
-    base = np.clip(np.floor(x).astype(int), 0, size - 2)
+    base = np.clip(np.floor(x).astype(np.intp), 0, size - 2)
     t = x - base
-    on_i, on_k = np.empty((t.size, 2)), np.empty((t.size, 2))
-    on_i[:, 0], on_k[:, 0] = (1 + 2 * t) * (1 - t) ** 2, t * (1 - t) ** 2   # h00, h10
-    on_i[:, 1], on_k[:, 1] = t * t * (3 - 2 * t), t * t * (t - 1)          # h01, h11
-    grid = np.exp(table.start + table.step * np.arange(size))[base]  # the grid's ages
-    on_k[:, 0] *= table.step * grid
-    on_k[:, 1] *= table.step * (grid * math.exp(table.step))
-    return base[:, None] + np.arange(2), on_i, on_k
+    tt, ss = t * t, (1.0 - t) * (1.0 - t)
+    at = rows * size + base            # the cell's left grid point; its right one is at + 1
+    cells = outputs * size
+
+    def summed(weights):
+        return np.bincount(at, weights, minlength=cells + 1)
+
+    slope = coefficient * (table.step * np.exp(table.start + table.step * np.arange(size)))[base]
+    on_i = summed(coefficient * ((1 + 2 * t) * ss))          # h00
+    on_i[1:] += summed(coefficient * (tt * (3 - 2 * t)))[:-1]  # h01
+    on_k = summed(slope * (t * ss))                          # h10
+    on_k[1:] += summed(slope * (tt * (t - 1)))[:-1] * math.exp(table.step)  # h11
+    return on_i[:cells].reshape(outputs, size), on_k[:cells].reshape(outputs, size)
 
 
 @dataclass(frozen=True)
 class Sources:
     """Where Duhamel's sum reads the tables: output row, age, coefficient and log age (taken
-    once for every table read), for the steps (K) and the changes of slope (I)."""
+    once for every table read), for the steps (K) and the changes of slope (I).
+    ``readings`` keeps what depends on the grid and not on the kernel (the interpolation
+    weights gathered per output and grid point, the steps of K summed at an age), so that
+    every kernel read on one grid (mean, contact layer, fields, every part sharing the
+    record) costs a matrix product, not a pass over every (output, node) pair."""
 
     steps: tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]
     slopes: tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]
     outputs: int
+    readings: OrderedDict = field(default_factory=OrderedDict, compare=False, repr=False)
+
+    def kept(self, key, build):
+        """``build()`` (arrays) once per ``key``; the least recently used dropped while
+        the kept arrays pass ``KEPT_READING_BYTES``."""
+        if key in self.readings:
+            self.readings.move_to_end(key)
+            return self.readings[key]
+        value = self.readings[key] = build()
+        def size(kept):  # an array, or a tuple of arrays
+            return sum(part.nbytes for part in kept) if isinstance(kept, tuple) else kept.nbytes
+
+        while (len(self.readings) > 1 and
+               sum(size(kept) for kept in self.readings.values()) > KEPT_READING_BYTES):
+            self.readings.popitem(last=False)
+        return value
 
 
 def sources(force: Forcing) -> Sources:
@@ -223,14 +252,15 @@ def sources(force: Forcing) -> Sources:
 
     def reading(coefficient):
         row, node = np.nonzero((ages > 0) & (coefficient != 0)[None, :])
-        return row, ages[row, node], coefficient[node], np.log(ages[row, node])
+        age = ages[row, node]
+        return row, age, coefficient[node], np.log(age)
     return Sources(reading(jumps), reading(change), force.outputs.size)
 
 
 def _gather(rows, index, weights, outputs: int, size: int) -> np.ndarray:
     """(outputs, size): the weights summed per output row and grid point (``index`` (k, j)
-    of grid points, or their flat positions ``rows * size + index`` already)."""
-    flat = (rows[:, None] * size + index).ravel() if index.ndim > 1 else index
+    of grid points)."""
+    flat = (rows[:, None] * size + index).ravel()
     summed = np.bincount(flat, weights.ravel(), minlength=outputs * size)
     return summed.astype(float, copy=False).reshape(outputs, size)  # float even when empty
 
@@ -248,24 +278,32 @@ def read(table: Table, where: Sources) -> tuple[np.ndarray, np.ndarray]:
     """M - M0 at the outputs, shape (outputs, m), from ``table`` and from its every second
     point (``Table.coarse``, the same first age: the readings share their split): steps
     read K (Lagrange), slope changes read I (Hermite, with K as its slope)."""
-    w0 = math.exp(table.start)
-    steps, slopes = _split(where.steps, w0, 0.5), _split(where.slopes, w0, 1.5)
-    return tuple(_read_split(each, steps, slopes, where) for each in (table, table.coarse()))
+    return tuple(_read_one(each, where) for each in (table, table.coarse()))
 
 
-def _read_split(table: Table, steps, slopes, where: Sources) -> np.ndarray:
+def _read_one(table: Table, where: Sources) -> np.ndarray:
+    on_kernel, on_integral = where.kept(
+        ("grid", table.start, table.step, table.kernel.shape[0]),
+        lambda: _gathered_weights(table, where))
+    return on_kernel @ table.kernel + on_integral @ table.integral + _read_jumps(table, where)
+
+
+def _gathered_weights(table: Table, where: Sources) -> tuple[np.ndarray, np.ndarray]:
+    """(outputs, grid points) weights on K and on I: every (output, node) pair's
+    interpolation weights summed per output row and grid point."""
     size, n = table.kernel.shape[0], where.outputs
-    (rows, logs, coefficient), (low_rows, low) = steps
+    w0 = math.exp(table.start)
+    (rows, logs, coefficient), (low_rows, low) = _split(where.steps, w0, 0.5)
     index, weights = _lagrange(table, logs)
     on_kernel = _gather(rows, index, coefficient * weights, n, size)
     on_kernel[:, 0] += np.bincount(low_rows, low, minlength=n)
-    (rows, logs, coefficient), (low_rows, low) = slopes
-    index, on_i, on_k = _hermite(table, logs)
-    flat = (rows[:, None] * size + index).ravel()
-    on_integral = _gather(rows, flat, coefficient * on_i, n, size)
-    on_integral[:, 0] += np.bincount(low_rows, low, minlength=n)
-    on_kernel += _gather(rows, flat, coefficient * on_k, n, size)
-    return on_kernel @ table.kernel + on_integral @ table.integral + _read_jumps(table, where)
+    rows, ages, coefficient, logs = where.slopes  # the many: no copies, those below weigh 0
+    below = ages < w0
+    on_integral, on_k = _hermite_gathered(table, rows, logs, np.where(below, 0.0, coefficient), n)
+    on_integral[:, 0] += np.bincount(rows[below], coefficient[below] * (ages[below] / w0) ** 1.5,
+                                     minlength=n)
+    on_kernel += on_k
+    return on_kernel, on_integral
 
 
 def _read_jumps(table: Table, where: Sources) -> np.ndarray:
@@ -273,13 +311,18 @@ def _read_jumps(table: Table, where: Sources) -> np.ndarray:
     for each change of slope (the integral of a step)."""
     total = np.zeros((where.outputs, table.kernel.shape[1]))
     for age, size in table.jumps:
-        rows, ages, coefficient, _ = where.steps
-        after = np.bincount(rows, coefficient * (ages > age), minlength=where.outputs)
-        rows, ages, coefficient, _ = where.slopes
-        ramp = np.bincount(rows, coefficient * np.maximum(ages - age, 0.0),
-                           minlength=where.outputs)
-        total += (after + ramp)[:, None] * size[None, :]
+        total += where.kept(("jump", age), lambda age=age: _past_step(age, where))[:, None] \
+            * size[None, :]
     return total
+
+
+def _past_step(age: float, where: Sources) -> np.ndarray:
+    """Per output: the steps of Ms older than ``age`` plus the ramps' rise past it."""
+    rows, ages, coefficient, _ = where.steps
+    after = np.bincount(rows, coefficient * (ages > age), minlength=where.outputs)
+    rows, ages, coefficient, _ = where.slopes
+    ramp = np.bincount(rows, coefficient * np.maximum(ages - age, 0.0), minlength=where.outputs)
+    return after + ramp
 
 
 @dataclass(frozen=True)
