@@ -197,7 +197,8 @@ def _hermite_gathered(table: Table, rows, logs, coefficient, outputs: int):
     cells = outputs * size
 
     def summed(weights):
-        return np.bincount(at, weights, minlength=cells + 1)
+        # (an empty ``at`` gives integers from bincount: the sums are floats)
+        return np.bincount(at, weights, minlength=cells + 1).astype(float, copy=False)
 
     slope = coefficient * (table.step * np.exp(table.start + table.step * np.arange(size)))[base]
     on_i = summed(coefficient * ((1 + 2 * t) * ss))          # h00
@@ -261,7 +262,7 @@ def _gather(rows, index, weights, outputs: int, size: int) -> np.ndarray:
     """(outputs, size): the weights summed per output row and grid point (``index`` (k, j)
     of grid points)."""
     flat = (rows[:, None] * size + index).ravel()
-    summed = np.bincount(flat, weights.ravel(), minlength=outputs * size)
+    summed = np.bincount(flat, weights.ravel(), minlength=outputs * size).astype(float, copy=False)
     return summed.astype(float, copy=False).reshape(outputs, size)  # float even when empty
 
 
