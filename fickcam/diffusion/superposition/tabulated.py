@@ -58,6 +58,7 @@ JUMP_FLOOR = 1e-9        # ... and steps of K below this (of the unit step) are 
 SECTIONS = 3             # rounds locating a step, each cutting its interval into
 SECTION_POINTS = 15      #   16 (to 16^-3 = 2.4e-4 of a cell: Ms moves little over it)
 CHUNK = 4096             # ages per kernel call (fields: memory)
+PAIR_CHUNK = 2 ** 17     # (output, node) pairs binned at once (in cache: ~1 MB an array)
 KEPT_READING_BYTES = 2 ** 28  # grid readings kept per record (outputs x grid points, x2)
 
 
@@ -219,26 +220,46 @@ def _lattice_sums(where: "Sources", lattice: Lattice) -> tuple[np.ndarray, np.nd
     """Per output and cell of the ``lattice``: the moments sum c u^q (q = 0..3) of the
     slope changes c at u, their place in the cell (0 to 1), shape (4, outputs, cells),
     and below its ``young`` cell sum c a^1.5 (the short-time law's), (outputs, cells).
-    One pass over every (output, node) pair for all the grids on the lattice."""
+    One pass over every (output, node) pair for all the grids on the lattice, in blocks
+    of ``PAIR_CHUNK`` pairs (that stay in the processor's cache)."""
     rows, ages, coefficient, logs = where.slopes
-    cells, bottom = lattice.cells, lattice.bottom
-    place = (logs - lattice.end) / lattice.step
-    cell = np.minimum(np.floor(place), -1.0)
-    u = place - cell
-    at = rows * cells + (np.maximum(cell, bottom - 1.0) - (bottom - 1.0)).astype(np.intp)
+    parts = [_lattice_part(lattice, rows[at:at + PAIR_CHUNK], ages[at:at + PAIR_CHUNK],
+                           coefficient[at:at + PAIR_CHUNK], logs[at:at + PAIR_CHUNK])
+             for at in range(0, logs.size, PAIR_CHUNK)]
+    cells = (np.concatenate([np.empty(0, np.intp)] + [part[0] for part in parts]),
+             np.concatenate([np.empty((4, 0))] + [part[1] for part in parts], axis=1))
+    young = (np.concatenate([np.empty(0, np.intp)] + [part[2] for part in parts]),
+             np.concatenate([np.empty(0)] + [part[3] for part in parts]))
 
     def summed(at, weights):
         # (an empty ``at`` gives integers from bincount: the sums are floats)
-        return np.bincount(at, weights, minlength=where.outputs * cells).astype(
-            float, copy=False).reshape(where.outputs, cells)
+        return np.bincount(at, weights, minlength=where.outputs * lattice.cells).astype(
+            float, copy=False).reshape(where.outputs, lattice.cells)
+    return np.stack([summed(cells[0], moment) for moment in cells[1]]), summed(*young)
 
-    moments, power = [], coefficient
-    for _ in range(4):
-        moments.append(summed(at, power))
-        power = power * u
+
+def _lattice_part(lattice: Lattice, rows, ages, coefficient, logs):
+    """(output x lattice cell index, the four moments' sums) of each run of pairs in one
+    cell (the pairs of a cell are neighbours: ages fall along an output's row), and
+    (index, c a^1.5) of the pairs below the ``young`` cell, of a block of pairs."""
+    u = logs - lattice.end        # (in place from here: every array is one per pair)
+    u /= lattice.step
+    cell = np.floor(u)
+    np.minimum(cell, -1.0, out=cell)
+    u -= cell
     young = np.flatnonzero(cell < lattice.young)
-    short = coefficient[young] * ages[young] * np.sqrt(ages[young])
-    return np.stack(moments), summed(at[young], short)
+    np.maximum(cell, lattice.bottom - 1.0, out=cell)
+    cell -= lattice.bottom - 1.0
+    at = rows * lattice.cells
+    at += cell.astype(np.intp)
+    powers = np.empty((4, u.size))
+    powers[0] = coefficient
+    for q in range(1, 4):
+        np.multiply(powers[q - 1], u, out=powers[q])
+    runs = np.flatnonzero(np.diff(at, prepend=-1))
+    short = ages[young]
+    return (at[runs], np.add.reduceat(powers, runs, axis=1), at[young],
+            coefficient[young] * short * np.sqrt(short))
 
 
 def _hermite_gathered(table: Table, sums: tuple[np.ndarray, np.ndarray], per: int,
