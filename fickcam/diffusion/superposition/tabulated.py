@@ -221,11 +221,8 @@ def _lattice_sums(where: "Sources", lattice: Lattice) -> tuple[np.ndarray, np.nd
     slope changes c at u, their place in the cell (0 to 1), shape (4, outputs, cells),
     and below its ``young`` cell sum c a^1.5 (the short-time law's), (outputs, cells).
     One pass over every (output, node) pair for all the grids on the lattice, in blocks
-    of ``PAIR_CHUNK`` pairs (that stay in the processor's cache)."""
-    rows, ages, coefficient, logs = where.slopes
-    parts = [_lattice_part(lattice, rows[at:at + PAIR_CHUNK], ages[at:at + PAIR_CHUNK],
-                           coefficient[at:at + PAIR_CHUNK], logs[at:at + PAIR_CHUNK])
-             for at in range(0, logs.size, PAIR_CHUNK)]
+    of about ``PAIR_CHUNK`` pairs (that stay in the processor's cache)."""
+    parts = [_lattice_part(lattice, *block) for block in where.slopes.blocks(PAIR_CHUNK)]
     cells = (np.concatenate([np.empty(0, np.intp)] + [part[0] for part in parts]),
              np.concatenate([np.empty((4, 0))] + [part[1] for part in parts], axis=1))
     young = (np.concatenate([np.empty(0, np.intp)] + [part[2] for part in parts]),
@@ -296,15 +293,15 @@ def _hermite_gathered(table: Table, sums: tuple[np.ndarray, np.ndarray], per: in
 @dataclass(frozen=True)
 class Sources:
     """Where Duhamel's sum reads the tables: output row, age, coefficient and log age (taken
-    once for every table read), for the steps (K) and the changes of slope (I); ``ramps``
-    the slope changes' prefix sums (``Ramps``).
+    once for every table read) of the steps (K), the changes of slope (I) as ``Pairs``
+    (many: listed block by block when read), and their prefix sums (``Ramps``).
     ``readings`` keeps what depends on the grid and not on the kernel (the interpolation
     weights gathered per output and grid point, the steps of K summed at an age), so that
     every kernel read on one grid (mean, contact layer, fields, every part sharing the
     record) costs a matrix product, not a pass over every (output, node) pair."""
 
     steps: tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]
-    slopes: tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]
+    slopes: "Pairs"
     outputs: int
     ramps: "Ramps"
     readings: OrderedDict = field(default_factory=OrderedDict, compare=False, repr=False)
@@ -354,6 +351,42 @@ class Ramps:
         return before * self.changes[n] - self.moments[n]
 
 
+@dataclass(frozen=True)
+class Pairs:
+    """Every (output, node) pair of a node older than the output and a nonzero
+    coefficient, listed by blocks of outputs (``block``, ``blocks``) rather than kept
+    (there are outputs x nodes / 2 of them)."""
+
+    tau: np.ndarray          # the nodes' rescaled times (rising)
+    coefficient: np.ndarray  # and their coefficients (none zero)
+    at: np.ndarray           # the outputs' rescaled times
+    older: np.ndarray        # per output: how many of the nodes are older (a leading run)
+
+    @classmethod
+    def of(cls, tau: np.ndarray, coefficient: np.ndarray, at: np.ndarray) -> "Pairs":
+        nodes = np.flatnonzero(coefficient)
+        return cls(tau[nodes], coefficient[nodes], at,
+                   np.searchsorted(tau[nodes], at, side="left"))
+
+    def block(self, first: int, last: int):
+        """(output row, age, coefficient, log age) of the pairs of outputs first..last-1,
+        by output, then by node."""
+        older = self.older[first:last]
+        rows = np.repeat(np.arange(first, last), older)
+        node = np.arange(rows.size) - np.repeat(np.cumsum(older) - older, older)
+        ages = self.at[rows] - self.tau[node]
+        return rows, ages, self.coefficient[node], np.log(ages)
+
+    def blocks(self, size: int):
+        """``block`` of successive outputs, about ``size`` pairs each (an output's pairs
+        together)."""
+        pairs = np.cumsum(self.older)
+        total = int(pairs[-1]) if pairs.size else 0
+        cuts = np.searchsorted(pairs, np.arange(size, total, size), side="right")
+        edges = np.unique(np.concatenate([[0], cuts, [self.at.size]]))
+        return (self.block(first, last) for first, last in zip(edges[:-1], edges[1:]))
+
+
 def sources(force: Forcing) -> Sources:
     """J_i = Ms(tau_i) - Ms(tau_i-) and s_i - s_i-1 at every node older than each output
     (tau rises with the nodes: the nodes older than an output are a leading run)."""
@@ -367,16 +400,8 @@ def sources(force: Forcing) -> Sources:
     slope = np.concatenate([np.where(sliver, 0.0, rise / np.where(sliver, 1.0, dtau)), [0.0]])
     change = np.diff(np.concatenate([[0.0], slope]))
     at = tau[force.outputs]
-
-    def reading(coefficient):
-        nodes = np.flatnonzero(coefficient)
-        older = np.searchsorted(tau[nodes], at, side="left")   # per output
-        row = np.repeat(np.arange(at.size), older)
-        node = nodes[np.arange(row.size) - np.repeat(np.cumsum(older) - older, older)]
-        age = at[row] - tau[node]
-        return row, age, coefficient[node], np.log(age)
-    return Sources(reading(jumps), reading(change), force.outputs.size,
-                   Ramps.of(tau, change, force.outputs))
+    return Sources(Pairs.of(tau, jumps, at).block(0, at.size), Pairs.of(tau, change, at),
+                   force.outputs.size, Ramps.of(tau, change, force.outputs))
 
 
 def _gather(rows, index, weights, outputs: int, size: int) -> np.ndarray:
