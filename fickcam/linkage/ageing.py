@@ -45,25 +45,34 @@ def scene_parts(section, materials) -> list[tuple]:
     return parts
 
 
-def link_state(section, histories, k: int):
-    """(lengths, masses, inertias) of crank, coupler, rocker, frame at ageing index k."""
+def link_states(section, histories):
+    """(lengths, masses, inertias) of crank, coupler, rocker, frame at every ageing time,
+    each shape (times, 4): the bodies are vectorised over the times (one evaluation for
+    the whole history, not one per ageing time)."""
     from ..materials.bodies import aged_link_body
 
     s = section.section
     lengths, masses, inertias = [], [], []
     for link in LINKS:
         state = histories[link].state
-        eps_x = float(state["strain_longitudinal"][k])
+        eps_x = np.asarray(state["strain_longitudinal"], float)
         length = getattr(section, link)
         _, mass, inertia = aged_link_body(
             length, s.width, s.thickness, s.boss_outer_radius, s.boss_inner_radius,
-            histories[link].part.material.dry_density, float(state["moisture_content"][k]),
-            eps_x, float(state["strain_transverse"][k]),
-            float(state["strain_through_thickness"][k]))
+            histories[link].part.material.dry_density,
+            np.asarray(state["moisture_content"], float), eps_x,
+            np.asarray(state["strain_transverse"], float),
+            np.asarray(state["strain_through_thickness"], float))
         lengths.append(length * (1.0 + eps_x))
-        masses.append(float(mass))
-        inertias.append(float(inertia))
-    return np.array(lengths), np.array(masses), np.array(inertias)
+        masses.append(mass)
+        inertias.append(inertia)
+    return tuple(np.stack(np.broadcast_arrays(*values), axis=-1)
+                 for values in (lengths, masses, inertias))
+
+
+def link_state(section, histories, k: int):
+    """(lengths, masses, inertias) of crank, coupler, rocker, frame at ageing index k."""
+    return tuple(values[k] for values in link_states(section, histories))
 
 
 def scene_response(section, histories: dict, times, angles, valid, on_step=lambda: None) -> Response:
@@ -74,9 +83,10 @@ def scene_response(section, histories: dict, times, angles, valid, on_step=lambd
     valid = np.asarray(valid, bool)
     computed = np.nonzero(valid)[0]
     ends = {int(computed[0]), int(computed[-1])} if computed.size else set()
+    states = link_states(section, histories)
 
     def evaluate(k: int) -> Response:
-        lengths, masses, inertias = link_state(section, histories, k)
+        lengths, masses, inertias = (values[k] for values in states)
         state = FourBarState(tuple(lengths), tuple(masses[:3]), tuple(inertias[:3]),
                              tuple(section.centre_of_mass))
         response = fourbar_response(design, state, angles)
