@@ -1,8 +1,7 @@
 """The tabulated Duhamel sum's readings (diffusion/superposition/tabulated.py), gathered
 for every output at once, against each (output, node) pair's interpolant evaluated on
 its own and summed exactly (math.fsum); the ramps' rise past an age against its
-definition; a long record's output ages (diffusion/stepping/step_plans.py) against the
-ages of every output and source.
+definition.
 
 The gathered sums differ from the exact sums of the same interpolants by round-off only:
 the bound used is a small multiple of the unit round-off times the sum of the terms'
@@ -15,7 +14,6 @@ import pytest
 from scipy.special import erf
 
 from fickcam.diffusion.forcing.record import Forcing
-from fickcam.diffusion.stepping.step_plans import AGES_PER_DECADE, output_ages
 from fickcam.diffusion.superposition.tabulated import read, sources, tabulate
 
 EPS = np.finfo(float).eps
@@ -54,7 +52,7 @@ def lagrange_weights(x, base):
     return nodes, weights
 
 
-def pair_terms(table, where, force):
+def pair_terms(table, where):
     """Per output, the terms c_i I~(a_i) (slope changes) and J_i K~(a_i) (steps) of every
     pair, each interpolant evaluated on its own."""
     size = table.kernel.shape[0]
@@ -87,7 +85,7 @@ def test_gathered_readings_equal_every_pairs_interpolant_summed_exactly(per_deca
     table = tabulate(kernel, first, last, per_decade)
     assert table.jumps == ()
     for each, gathered in zip((table, table.coarse()), read(table, where, first)):
-        terms = pair_terms(each, where, force)
+        terms = pair_terms(each, where)
         for output in range(where.outputs):
             for column in range(2):
                 parts = [value[rows == output, column] for rows, value in terms]
@@ -107,23 +105,3 @@ def test_the_ramps_rise_past_an_age_is_the_sum_over_every_pair():
             mine = terms[rows == output]
             scale = math.fsum(np.abs(c[rows == output]) * ages[rows == output])
             assert abs(rise[output] - math.fsum(mine)) <= SUMMATION * 4 * scale + 1e-300
-
-
-def test_output_ages_keep_each_bins_least_and_largest_age_with_clustered_sources():
-    """Sources in tight clusters (many bins' edges between two neighbours, and many
-    sources within one bin) and 60 outputs: still the least and the largest distinct age
-    of every 1/64-decade bin of all the outputs' ages."""
-    rng = np.random.default_rng(11)
-    centres = np.sort(rng.uniform(0.0, 50.0, 120))
-    change = np.unique(np.concatenate(
-        [[0.0], (centres[:, None] + rng.uniform(0.0, 1e-6, (120, 30))).ravel(), [50.0]]))
-    ramp = rng.random(change.size - 1) < 0.5
-    outputs = np.linspace(0.0, 50.0, 60)
-    edges = np.unique(np.concatenate(
-        [change[:1], change[1:-1][~ramp[1:]], change[-1:]]
-        + [np.linspace(a, b, 17) for a, b, r in zip(change[1:-1], change[2:], ramp[1:]) if r]))
-    ages = np.unique((outputs[:, None] - edges[None, :]).ravel())
-    ages = ages[ages > 0]
-    bins = np.floor(np.log10(ages) * AGES_PER_DECADE)
-    ends = [ages[bins == b][[0, -1]] for b in np.unique(bins)]
-    assert np.array_equal(output_ages(change, outputs, ramp), np.unique(np.concatenate(ends)))
