@@ -22,6 +22,7 @@ from __future__ import annotations
 import hashlib
 import re
 import shlex
+import traceback
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -92,8 +93,14 @@ def _mark(lines: list[str], fence: int) -> str:
 
 
 def blocks(page: Path) -> list[Block]:
-    """Every fenced code block of ``page``, in order (indented ones in list items too)."""
-    name = page.relative_to(ROOT).as_posix()
+    """Every fenced code block of a page of the repository, in order."""
+    return blocks_of(page, ROOT)
+
+
+def blocks_of(page: Path, root: Path) -> list[Block]:
+    """Every fenced code block of ``page``, named from ``root``, in order (indented ones in
+    list items too)."""
+    name = page.relative_to(root).as_posix()
     lines = page.read_text().split("\n")
     found = []
     k = 0
@@ -266,3 +273,80 @@ def test_no_page_names_a_file_outside_the_repository(page):
     text = page.read_text()
     for outside in ("SPEC.md", "../shared", "seeds/", "/work/"):
         assert outside not in text, f"{page.name} names {outside}"
+
+
+def test_a_failing_block_names_its_page_and_line(tmp_path, monkeypatch, command_cache):
+    monkeypatch.chdir(tmp_path)
+    page = tmp_path / "page.md"
+    page.write_text("# A page\n\n```python\nx = 1\nundefined_name\n```\n\n"
+                    "```console\n$ fickcam check missing.yaml\n```\n")
+    python, console = blocks_of(page, tmp_path)
+    with pytest.raises(AssertionError, match=r"page\.md:3: the python block fails: NameError") as info:
+        _run_block(python, {}, tmp_path, command_cache)
+    assert 'File "page.md", line 5' in "".join(traceback.format_tb(info.value.__cause__.__traceback__))
+    with pytest.raises(AssertionError, match=r"page\.md:9: `fickcam check missing.yaml` exits with status 2"):
+        _run_block(console, {}, tmp_path, command_cache)
+
+
+# What a new user comes for, and the page and heading that answers it
+TASKS = {
+    "write a scene for an eccentric nylon cam": ("guide/scenes", "A first scene: an eccentric nylon cam"),
+    "age it through a weather file": ("guide/climates", "Age a part through a weather file"),
+    "state a limit and find when it fails": ("guide/limits", "State a limit and find when it fails"),
+    "get the dimensions to make": ("guide/limits", "Compensation: the dimensions to make"),
+    "fit a material from coupon weighings": (
+        "guide/materials", "Calibrating a material from weight-gain data (`fickcam fit`)"),
+    "run 1,000 Monte Carlo cases on a cluster": (
+        "guide/sweeps-montecarlo", "Run 1,000 Monte Carlo cases on a cluster"),
+    "plot a result in Jupyter": ("guide/results-python", "Plot a result in Jupyter"),
+}
+TOCTREE = re.compile(r"^```\{toctree\}\n(.*?)^```", re.MULTILINE | re.DOTALL)
+LINK = re.compile(r"\]\((?!https?:|mailto:)([^)#\s]+)(?:#[^)\s]*)?\)")
+
+
+def _document(page: Path) -> str:
+    """A page's Sphinx document name (``guide/limits``)."""
+    return page.relative_to(DOCS).with_suffix("").as_posix()
+
+
+def _linked(page: Path) -> set[str]:
+    """The documents one click away from ``page``: its toctree entries and its links."""
+    text = page.read_text()
+    targets = [line.strip() for tree in TOCTREE.findall(text) for line in tree.split("\n")
+               if line.strip() and not line.strip().startswith(":")]
+    targets += LINK.findall(text)
+    found = set()
+    for target in targets:
+        path = (page.parent / target).resolve()
+        if path.suffix in ("", ".md") and path.is_relative_to(DOCS.resolve()):
+            found.add(path.relative_to(DOCS.resolve()).with_suffix("").as_posix())
+    return found
+
+
+def clicks_from_index() -> dict[str, int]:
+    """The fewest clicks from the documentation index to every page of ``docs/``."""
+    pages = {_document(p): p for p in DOCS.rglob("*.md") if "_build" not in p.parts}
+    clicks = {"index": 0}
+    frontier = ["index"]
+    while frontier:
+        following = []
+        for name in frontier:
+            for linked in _linked(pages[name]) if name in pages else ():
+                if linked not in clicks:
+                    clicks[linked] = clicks[name] + 1
+                    following.append(linked)
+        frontier = following
+    return clicks
+
+
+def _headings(page: Path) -> set[str]:
+    return {line.lstrip("#").strip() for line in page.read_text().split("\n")
+            if re.match(r"^#{1,6} ", line)}
+
+
+@pytest.mark.parametrize("task", TASKS)
+def test_each_task_is_within_two_clicks_of_the_index(task):
+    document, heading = TASKS[task]
+    clicks = clicks_from_index()
+    assert clicks.get(document, 99) <= 2, f"{task}: {document} is not within two clicks of the index"
+    assert heading in _headings(DOCS / f"{document}.md"), f"{task}: no heading '{heading}'"
