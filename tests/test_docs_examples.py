@@ -47,7 +47,8 @@ NOT_RUN = {
     ("docs/guide/sweeps-montecarlo.md", "needs a batch system (SLURM) and dask-jobqueue"),
 }
 
-OPENING = re.compile(r"^(?P<indent>\s*)(?P<fence>`{3,})(?P<directive>\{code-block\})?\s*(?P<lang>[\w-]*)\s*$")
+# an opening fence: ```lang, or ```{directive} argument (``{code-block} yaml``: lang yaml)
+OPENING = re.compile(r"^(?P<indent>\s*)(?P<fence>`{3,})\s*(?:\{(?P<directive>[\w-]+)\})?\s*(?P<lang>[^`\s]*).*$")
 OPTION = re.compile(r"^:(?P<key>[\w-]+):\s*(?P<value>.*)$")
 NOT_RUN_MARK = re.compile(r"^%\s*not run:\s*(?P<reason>.+)$")
 SHELLS = ("bash", "console", "sh", "shell")
@@ -110,13 +111,14 @@ def blocks_of(page: Path, root: Path) -> list[Block]:
             k += 1
             continue
         indent, fence = len(opening["indent"]), opening["fence"]
-        options, first = (_options(lines, k + 1, indent) if opening["directive"]
-                          else ({}, k + 1))
+        directive = opening["directive"]
+        lang = opening["lang"] if directive in (None, "code-block") else f"{{{directive}}}"
+        options, first = (_options(lines, k + 1, indent) if directive else ({}, k + 1))
         end = first
         while end < len(lines) and lines[end].strip() != fence:
             end += 1
         text = "\n".join(line[indent:] for line in lines[first:end])
-        found.append(Block(name, k + 1, first + 1, opening["lang"], options.get("caption", ""),
+        found.append(Block(name, k + 1, first + 1, lang, options.get("caption", ""),
                            text, _mark(lines, k)))
         k = end + 1
     return found
@@ -350,3 +352,24 @@ def test_each_task_is_within_two_clicks_of_the_index(task):
     clicks = clicks_from_index()
     assert clicks.get(document, 99) <= 2, f"{task}: {document} is not within two clicks of the index"
     assert heading in _headings(DOCS / f"{document}.md"), f"{task}: no heading '{heading}'"
+
+
+def _slug(heading: str) -> str:
+    """A heading's anchor, as GitHub and MyST make it."""
+    return re.sub(r"[^\w\- ]", "", heading.lower()).replace(" ", "-")
+
+
+@pytest.mark.parametrize("page", ["README.md", "CONTRIBUTING.md"])
+def test_every_link_of_the_readme_resolves(page):
+    """The README and CONTRIBUTING are read on the repository's front page, outside the
+    Sphinx build that checks the other pages' links: each relative link names a file of the
+    repository and, after ``#``, one of its headings."""
+    text = (ROOT / page).read_text()
+    links = re.findall(r"\]\((?!https?:|mailto:)([^)\s]+)\)", text)
+    assert links
+    for link in links:
+        path, _, anchor = link.partition("#")
+        target = ROOT / path
+        assert target.exists(), f"{page}: {link} names no file"
+        if anchor:
+            assert anchor in {_slug(h) for h in _headings(target)}, f"{page}: {link}: no such heading"
