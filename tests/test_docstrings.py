@@ -78,6 +78,32 @@ ENTRY_POINTS = {
     "fickcam.materials.state.material_state": ("temperature", "moisture", "surface_moisture",
                                                "reference_temperature", "initial_moisture"),
     "fickcam.materials.micromechanics.transverse_diffusivity": ("kf", "matrix_d"),
+    "fickcam.linkage.positions.rocker_angle": ("a", "b", "c", "d", "theta2"),
+    "fickcam.linkage.positions.coupler_angle": ("a", "b", "c", "d", "theta2"),
+    "fickcam.linkage.positions.positions": ("a", "b", "c", "d", "theta2"),
+    "fickcam.linkage.positions.continuous": ("theta",),
+    "fickcam.linkage.positions.transmission_angle": ("theta3", "theta4"),
+    "fickcam.linkage.positions.joint_positions": ("a", "b", "c", "d", "theta2", "theta3",
+                                                  "theta4"),
+    "fickcam.linkage.positions.coupler_point": ("a", "theta2", "theta3", "distance", "angle"),
+    "fickcam.linkage.positions.assembly_gaps": ("theta2",),
+    "fickcam.linkage.positions.toggle_crank_angles": ("a", "b", "c", "d"),
+    "fickcam.linkage.classify.grashof_condition": ("a", "b", "c", "d"),
+    "fickcam.linkage.classify.grashof_class": ("a", "b", "c", "d", "tolerance"),
+    "fickcam.linkage.classify.class_changes": ("times",),
+    "fickcam.cam.spline.SplineLaw": ("degree", "x", "s", "start", "end"),
+    "fickcam.cam.spline.end_condition_count": ("degree",),
+    "fickcam.cam.spline.spline_motion": ("x",),
+    "fickcam.cam.spline.spline_law": ("points", "height", "span", "degree", "start", "end"),
+    "fickcam.diffusion.exact.modes.Factor": ("rates", "mean", "core", "core_share"),
+    "fickcam.diffusion.exact.modes.sheet_factor": ("length", "d0", "depth", "count"),
+    "fickcam.diffusion.exact.modes.cylinder_factor": ("radius", "d0", "depth", "count"),
+    "fickcam.diffusion.exact.modes.factors": ("d0", "depth", "counts"),
+    "fickcam.diffusion.exact.modes.dimensions": (),
+    "fickcam.diffusion.exact.modes.Modes": ("rates", "mean", "layer", "tail_rate"),
+    "fickcam.diffusion.exact.modes.product_modes": ("d0", "depth", "counts"),
+    "fickcam.diffusion.exact.modes.lump": ("per_octave",),
+    "fickcam.diffusion.exact.modes.step_corrections": ("d0", "depth", "response"),
 }
 
 _HEADER = re.compile(r"^(?P<title>[A-Z][A-Za-z ]+)\n-{3,}$", re.MULTILINE)
@@ -177,3 +203,14 @@ def test_the_parser_reads_a_numpydoc_section():
     sides = ("float", " The sides [m].")
     assert entries == {"length": sides, "width": sides, "flag": ("bool", " A switch.")}
     assert sections("One line, no sections.") == {}
+
+
+#: modules whose documented functions also state what they return
+RETURNING = ("fickcam.linkage.positions.", "fickcam.linkage.classify.", "fickcam.cam.spline.",
+             "fickcam.diffusion.exact.modes.")
+
+
+@pytest.mark.parametrize("dotted", sorted(d for d in ENTRY_POINTS if d.startswith(RETURNING)
+                                          and not inspect.isclass(_entry_point(d))))
+def test_entry_point_documents_what_it_returns(dotted):
+    assert "Returns" in sections(_entry_point(dotted).__doc__), f"{dotted}: no Returns section"
