@@ -104,6 +104,26 @@ ENTRY_POINTS = {
     "fickcam.diffusion.exact.modes.product_modes": ("d0", "depth", "counts"),
     "fickcam.diffusion.exact.modes.lump": ("per_octave",),
     "fickcam.diffusion.exact.modes.step_corrections": ("d0", "depth", "response"),
+    "fickcam.linkage.kinematics.angular_velocities": ("a", "b", "c", "theta2", "theta3",
+                                                      "theta4", "omega2"),
+    "fickcam.linkage.kinematics.angular_accelerations": ("a", "b", "c", "theta2", "omega2",
+                                                         "omega3", "omega4", "alpha2"),
+    "fickcam.linkage.kinematics.rotating_point": ("r", "theta", "omega", "alpha"),
+    "fickcam.linkage.kinematics.centre_of_mass_motion": ("lengths", "fractions", "thetas",
+                                                         "omegas", "alphas"),
+    "fickcam.linkage.dynamics.kinetostatics": ("masses", "inertias", "com_acceleration",
+                                               "alphas", "pins", "com_position", "gravity",
+                                               "rocker_torque"),
+    "fickcam.linkage.dynamics.kinetic_energy": ("masses", "inertias", "com_velocity",
+                                                "omegas"),
+    "fickcam.linkage.dynamics.rms": ("values",),
+    "fickcam.linkage.model.FourBarDesign": ("crank", "coupler", "rocker", "frame",
+                                            "coupler_point_distance", "coupler_point_angle",
+                                            "crank_speed", "crank_angular_acceleration",
+                                            "rocker_load_torque"),
+    "fickcam.linkage.model.FourBarState": ("link_lengths", "link_masses", "link_inertias",
+                                           "centre_of_mass", "coupler_point_distance"),
+    "fickcam.linkage.model.fourbar_response": ("crank_angle",),
 }
 
 _HEADER = re.compile(r"^(?P<title>[A-Z][A-Za-z ]+)\n-{3,}$", re.MULTILINE)
@@ -206,8 +226,9 @@ def test_the_parser_reads_a_numpydoc_section():
 
 
 #: modules whose documented functions also state what they return
-RETURNING = ("fickcam.linkage.positions.", "fickcam.linkage.classify.", "fickcam.cam.spline.",
-             "fickcam.diffusion.exact.modes.")
+RETURNING = ("fickcam.linkage.positions.", "fickcam.linkage.classify.",
+             "fickcam.linkage.kinematics.", "fickcam.linkage.dynamics.", "fickcam.linkage.model.",
+             "fickcam.cam.spline.", "fickcam.diffusion.exact.modes.")
 
 
 @pytest.mark.parametrize("dotted", sorted(d for d in ENTRY_POINTS if d.startswith(RETURNING)
