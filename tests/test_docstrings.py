@@ -124,6 +124,21 @@ ENTRY_POINTS = {
     "fickcam.linkage.model.FourBarState": ("link_lengths", "link_masses", "link_inertias",
                                            "centre_of_mass", "coupler_point_distance"),
     "fickcam.linkage.model.fourbar_response": ("crank_angle",),
+    "fickcam.cam.profile.periodic_spline": ("x", "y"),
+    "fickcam.cam.profile.counter_clockwise": ("x", "y"),
+    "fickcam.cam.profile.working_from_pitch": ("x", "y", "roller_radius"),
+    "fickcam.cam.profile.make_profile": ("x", "y", "roller_radius"),
+    "fickcam.cam.profile.read_profile_csv": (),
+    "fickcam.cam.profile.load_profile": ("roller_radius",),
+    "fickcam.cam.profile.write_profile_csv": ("x", "y"),
+    "fickcam.cam.profile.dxf_module": (),
+    "fickcam.cam.profile.write_profile_dxf": ("x", "y"),
+    "fickcam.cam.profile.profile_motion": ("strain_x", "strain_y", "roller", "offset", "theta",
+                                           "base"),
+    "fickcam.cam.profile.contact_table": (),
+    "fickcam.cam.profile.solve_contact": ("theta",),
+    "fickcam.cam.profile.aged_profile_motion": ("strain_x", "strain_y", "roller", "offset",
+                                                "base"),
 }
 
 _HEADER = re.compile(r"^(?P<title>[A-Z][A-Za-z ]+)\n-{3,}$", re.MULTILINE)
@@ -228,7 +243,7 @@ def test_the_parser_reads_a_numpydoc_section():
 #: modules whose documented functions also state what they return
 RETURNING = ("fickcam.linkage.positions.", "fickcam.linkage.classify.",
              "fickcam.linkage.kinematics.", "fickcam.linkage.dynamics.", "fickcam.linkage.model.",
-             "fickcam.cam.spline.", "fickcam.diffusion.exact.modes.")
+             "fickcam.cam.spline.", "fickcam.cam.profile.", "fickcam.diffusion.exact.modes.")
 
 
 @pytest.mark.parametrize("dotted", sorted(d for d in ENTRY_POINTS if d.startswith(RETURNING)
