@@ -139,6 +139,32 @@ ENTRY_POINTS = {
     "fickcam.cam.profile.solve_contact": ("theta",),
     "fickcam.cam.profile.aged_profile_motion": ("strain_x", "strain_y", "roller", "offset",
                                                 "base"),
+    "fickcam.cam.arm.Arm": ("pivot_x", "pivot_y", "length", "face_offset", "inertia",
+                            "spring_rate", "spring_preload", "load_torque"),
+    "fickcam.cam.arm.perp": (),
+    "fickcam.cam.arm.cross": (),
+    "fickcam.cam.arm.roller_arm_opening": ("d", "length", "radius"),
+    "fickcam.cam.arm.roller_base_angle": ("prime_radius", "length"),
+    "fickcam.cam.arm.face_opening": ("d", "face_offset", "support"),
+    "fickcam.cam.arm.face_base_angle": ("base_radius", "face_offset"),
+    "fickcam.cam.arm.roller_centre": ("phi0", "psi", "d1", "d2"),
+    "fickcam.cam.arm.pitch_derivatives": ("centre", "velocity", "acceleration"),
+    "fickcam.cam.arm.pitch_radius_of_curvature": ("a", "b"),
+    "fickcam.cam.arm.pitch_normal": ("a",),
+    "fickcam.cam.arm.face_support": ("gamma0", "psi", "d1", "d2"),
+    "fickcam.cam.arm.face_envelope": ("p", "p1", "p2", "g1", "g2"),
+    "fickcam.cam.arm.pressure_angle": ("ux", "uy", "nx", "ny"),
+    "fickcam.cam.arm.rotate": ("angle", "x", "y"),
+    "fickcam.cam.arm.Contact": ("x", "y", "nx", "ny", "lever", "pressure_angle", "pitch_radius",
+                                "radius"),
+    "fickcam.cam.arm.roller_contact": ("phi0", "roller", "psi", "d1", "d2"),
+    "fickcam.cam.arm.face_contact": ("gamma0", "psi", "d1", "d2"),
+    "fickcam.cam.arm.dry_profile": ("base_radius", "roller", "theta", "motion"),
+    "fickcam.cam.arm.aged_roller_contact": ("phi0_dry", "length", "wx", "wy", "nx", "ny",
+                                            "roller"),
+    "fickcam.cam.arm.aged_face_contact": ("gamma0_dry", "face_offset", "wx", "wy", "nx", "ny"),
+    "fickcam.cam.arm.arm_slope": ("px", "py", "nx", "ny"),
+    "fickcam.cam.arm.aged_profile_contact": ("base", "roller", "wx", "wy", "nx", "ny"),
 }
 
 _HEADER = re.compile(r"^(?P<title>[A-Z][A-Za-z ]+)\n-{3,}$", re.MULTILINE)
@@ -243,7 +269,8 @@ def test_the_parser_reads_a_numpydoc_section():
 #: modules whose documented functions also state what they return
 RETURNING = ("fickcam.linkage.positions.", "fickcam.linkage.classify.",
              "fickcam.linkage.kinematics.", "fickcam.linkage.dynamics.", "fickcam.linkage.model.",
-             "fickcam.cam.spline.", "fickcam.cam.profile.", "fickcam.diffusion.exact.modes.")
+             "fickcam.cam.spline.", "fickcam.cam.profile.", "fickcam.cam.arm.",
+             "fickcam.diffusion.exact.modes.")
 
 
 @pytest.mark.parametrize("dotted", sorted(d for d in ENTRY_POINTS if d.startswith(RETURNING)
