@@ -165,6 +165,10 @@ ENTRY_POINTS = {
     "fickcam.cam.arm.aged_face_contact": ("gamma0_dry", "face_offset", "wx", "wy", "nx", "ny"),
     "fickcam.cam.arm.arm_slope": ("px", "py", "nx", "ny"),
     "fickcam.cam.arm.aged_profile_contact": ("base", "roller", "wx", "wy", "nx", "ny"),
+    "fickcam.linkage.ageing.scene_parts": (),
+    "fickcam.linkage.ageing.link_state": (),
+    "fickcam.linkage.ageing.scene_response": ("times", "angles"),
+    "fickcam.linkage.spec.can_assemble_somewhere": ("crank", "coupler", "rocker", "frame"),
 }
 
 _HEADER = re.compile(r"^(?P<title>[A-Z][A-Za-z ]+)\n-{3,}$", re.MULTILINE)
@@ -269,6 +273,7 @@ def test_the_parser_reads_a_numpydoc_section():
 #: modules whose documented functions also state what they return
 RETURNING = ("fickcam.linkage.positions.", "fickcam.linkage.classify.",
              "fickcam.linkage.kinematics.", "fickcam.linkage.dynamics.", "fickcam.linkage.model.",
+             "fickcam.linkage.ageing.", "fickcam.linkage.spec.can",
              "fickcam.cam.spline.", "fickcam.cam.profile.", "fickcam.cam.arm.",
              "fickcam.diffusion.exact.modes.")
 

@@ -75,7 +75,19 @@ class LinkSectionSpec(StrictModel):
 
 
 def can_assemble_somewhere(crank: float, coupler: float, rocker: float, frame: float) -> bool:
-    """True if some crank angle closes the loop: [|d - a|, d + a] meets [|b - c|, b + c]."""
+    """True if some crank angle closes the loop: [|d - a|, d + a] meets [|b - c|, b + c]
+    (the diagonal from the crank pin to the rocker pivot must be spanned by both sides).
+
+    Parameters
+    ----------
+    crank, coupler, rocker, frame : float
+        Link lengths a, b, c, d [m].
+
+    Returns
+    -------
+    bool
+        Whether the loop closes at some crank angle (to a relative 1e-12).
+    """
     low = max(abs(frame - crank), abs(coupler - rocker))
     high = min(frame + crank, coupler + rocker)
     return low <= high * (1.0 + 1e-12)
