@@ -142,8 +142,7 @@ def roller_base_angle(arm: Arm, prime_radius: float, length: float | None = None
 
     References
     ----------
-    Norton, R. L. (2012). Design of Machinery: An Introduction to the Synthesis and
-        Analysis of Mechanisms and Machines, 5th ed. New York: McGraw-Hill, sec. 8.6.
+    Norton (2012), sec. 8.6; in full in :mod:`fickcam.cam`.
     """
     delta = roller_arm_opening(arm.pivot_distance, length or arm.length, prime_radius)
     return float(arm.pivot_angle + np.pi + arm.sense * delta)
@@ -189,11 +188,6 @@ def face_base_angle(arm: Arm, base_radius: float, face_offset: float | None = No
     -------
     float
         gamma0 [rad] in the fixed frame.
-
-    References
-    ----------
-    Norton, R. L. (2012). Design of Machinery: An Introduction to the Synthesis and
-        Analysis of Mechanisms and Machines, 5th ed. New York: McGraw-Hill, sec. 8.6.
     """
     offset = arm.face_offset if face_offset is None else face_offset
     delta = face_opening(arm.pivot_distance, offset, base_radius)
@@ -245,11 +239,6 @@ def pitch_derivatives(centre, velocity, acceleration):
     -------
     tuple
         (a [m/rad], b [m/rad^2]), each an (x, y) pair.
-
-    References
-    ----------
-    Norton, R. L. (2012). Design of Machinery: An Introduction to the Synthesis and
-        Analysis of Mechanisms and Machines, 5th ed. New York: McGraw-Hill, sec. 8.6.
     """
     (cx, cy), (vx, vy), (ax2, ay2) = centre, velocity, acceleration
     jx, jy = perp(cx, cy)
@@ -311,8 +300,7 @@ def face_support(arm: Arm, gamma0: float, psi, d1, d2):
     gamma0 : float
         The face-normal angle on the base circle [rad] (:func:`face_base_angle`).
     psi, d1, d2 : array_like
-        The arm's angular motion psi(theta) [rad] and its first two derivatives per
-        radian of cam angle [rad/rad, rad/rad^2].
+        The angular motion [rad] and its derivatives, as :func:`roller_centre` takes them.
 
     Returns
     -------
@@ -344,11 +332,6 @@ def face_envelope(p, p1, p2, g1, g2):
     -------
     tuple of numpy.ndarray
         (dp/dgamma [m/rad], rho [m]).
-
-    References
-    ----------
-    Norton, R. L. (2012). Design of Machinery: An Introduction to the Synthesis and
-        Analysis of Mechanisms and Machines, 5th ed. New York: McGraw-Hill, sec. 8.6.
     """
     gt, gtt = g1 - 1.0, g2
     pg = p1 / gt
@@ -450,20 +433,12 @@ def roller_contact(arm: Arm, phi0: float, roller: float, psi, d1, d2) -> Contact
     roller : float
         Roller radius Rf [m].
     psi, d1, d2 : array_like
-        The arm's angular motion psi(theta) [rad] and its first two derivatives per
-        radian of cam angle [rad/rad, rad/rad^2].
+        The angular motion [rad] and its derivatives, as :func:`roller_centre` takes them.
 
     Returns
     -------
     Contact
         At each cam angle.
-
-    References
-    ----------
-    Norton, R. L. (2012). Design of Machinery: An Introduction to the Synthesis and
-        Analysis of Mechanisms and Machines, 5th ed. New York: McGraw-Hill, sec. 8.6.
-    Chen, F. Y. (1982). Mechanics and Design of Cam Mechanisms. New York: Pergamon
-        Press, ch. 4.
     """
     centre, velocity, acceleration = roller_centre(arm, phi0, psi, d1, d2)
     a, b = pitch_derivatives(centre, velocity, acceleration)
@@ -485,20 +460,12 @@ def face_contact(arm: Arm, gamma0: float, psi, d1, d2) -> Contact:
     gamma0 : float
         The face-normal angle on the base circle [rad].
     psi, d1, d2 : array_like
-        The arm's angular motion psi(theta) [rad] and its first two derivatives per
-        radian of cam angle [rad/rad, rad/rad^2].
+        The angular motion [rad] and its derivatives, as :func:`roller_centre` takes them.
 
     Returns
     -------
     Contact
-        At each cam angle.
-
-    References
-    ----------
-    Norton, R. L. (2012). Design of Machinery: An Introduction to the Synthesis and
-        Analysis of Mechanisms and Machines, 5th ed. New York: McGraw-Hill, sec. 8.6.
-    Chen, F. Y. (1982). Mechanics and Design of Cam Mechanisms. New York: Pergamon
-        Press, ch. 4.
+        At each cam angle; its pitch radius is the working profile's own.
     """
     gamma, p, p1, p2 = face_support(arm, gamma0, psi, d1, d2)
     pg, rho = face_envelope(p, p1, p2, arm.sense * d1, arm.sense * d2)
@@ -534,11 +501,6 @@ def dry_profile(arm: Arm, kind: str, base_radius: float, roller: float, theta, m
     -------
     tuple of numpy.ndarray
         (W0x, W0y [m], T0x, T0y [-]) in the cam frame.
-
-    References
-    ----------
-    Norton, R. L. (2012). Design of Machinery: An Introduction to the Synthesis and
-        Analysis of Mechanisms and Machines, 5th ed. New York: McGraw-Hill, sec. 8.6.
     """
     psi, d1, d2 = motion[:3]
     if kind == "flat":
@@ -576,11 +538,6 @@ def aged_roller_contact(arm: Arm, phi0_dry: float, length: float, wx, wy, nx, ny
     -------
     tuple of numpy.ndarray
         (theta [rad], psi [rad]).
-
-    References
-    ----------
-    Norton, R. L. (2012). Design of Machinery: An Introduction to the Synthesis and
-        Analysis of Mechanisms and Machines, 5th ed. New York: McGraw-Hill, sec. 8.6.
     """
     qx, qy = wx + roller * nx, wy + roller * ny
     delta = roller_arm_opening(arm.pivot_distance, length, np.hypot(qx, qy))
@@ -597,25 +554,16 @@ def aged_face_contact(arm: Arm, gamma0_dry: float, face_offset: float, wx, wy, n
     Parameters
     ----------
     arm : Arm
-        The swinging arm (SI).
-    gamma0_dry : float
-        The dry face's base angle [rad].
-    face_offset : float
-        The aged face offset from the pivot [m].
-    wx, wy : array_like
-        Aged working-profile points W in the cam frame [m].
-    nx, ny : array_like
-        Their outward unit normals n [-].
+        The swinging arm (SI), grown.
+    gamma0_dry, face_offset : float
+        The dry face's base angle [rad] and the aged face's offset from the pivot [m].
+    wx, wy, nx, ny : array_like
+        Aged profile points W [m] and their outward unit normals n [-], cam frame.
 
     Returns
     -------
-    tuple of numpy.ndarray
-        (theta [rad], psi [rad]).
-
-    References
-    ----------
-    Norton, R. L. (2012). Design of Machinery: An Introduction to the Synthesis and
-        Analysis of Mechanisms and Machines, 5th ed. New York: McGraw-Hill, sec. 8.6.
+    theta, psi : numpy.ndarray
+        The cam angle at which each point touches, and the arm's angle then [rad].
     """
     delta = face_opening(arm.pivot_distance, face_offset, wx * nx + wy * ny)
     gamma = arm.pivot_angle - arm.sense * delta
@@ -645,10 +593,8 @@ def arm_slope(arm: Arm, px, py, nx, ny):
 
     References
     ----------
-    Norton, R. L. (2012). Design of Machinery: An Introduction to the Synthesis and
-        Analysis of Mechanisms and Machines, 5th ed. New York: McGraw-Hill, sec. 8.6.
-    Chen, F. Y. (1982). Mechanics and Design of Cam Mechanisms. New York: Pergamon
-        Press, ch. 4.
+    Norton (2012), sec. 8.6; in full in :mod:`fickcam.cam`.
+    Chen (1982), ch. 4; in full in :mod:`fickcam.cam`.
     """
     jx, jy = perp(px, py)
     ax, ay = perp(px - arm.pivot_x, py - arm.pivot_y)
@@ -661,30 +607,19 @@ def aged_profile_contact(arm: Arm, kind: str, base: float, roller: float, wx, wy
 
     Parameters
     ----------
-    arm : Arm
-        The swinging arm (SI).
-    kind : {"roller", "flat"}
-        The follower's face.
+    arm, kind
+        As in :func:`dry_profile`, the arm grown.
     base : float
         The dry base angle [rad] (phi0 or gamma0).
     roller : float
         The aged roller radius [m].
-    wx, wy : array_like
-        Aged working-profile points W in the cam frame [m].
-    nx, ny : array_like
-        Their outward unit normals n [-].
+    wx, wy, nx, ny : array_like
+        Aged profile points W [m] and their outward unit normals n [-], cam frame.
 
     Returns
     -------
     tuple of numpy.ndarray
         (theta [rad], psi [rad], dpsi/dtheta [rad/rad]).
-
-    References
-    ----------
-    Norton, R. L. (2012). Design of Machinery: An Introduction to the Synthesis and
-        Analysis of Mechanisms and Machines, 5th ed. New York: McGraw-Hill, sec. 8.6.
-    Chen, F. Y. (1982). Mechanics and Design of Cam Mechanisms. New York: Pergamon
-        Press, ch. 4.
     """
     if kind == "flat":
         theta, psi = aged_face_contact(arm, base, arm.face_offset, wx, wy, nx, ny)

@@ -107,8 +107,7 @@ def periodic_spline(x, y):
 
     References
     ----------
-    de Boor, C. (2001). A Practical Guide to Splines, revised ed. New York: Springer,
-        ch. XIII.
+    de Boor (2001), ch. XIII; in full in :mod:`fickcam.cam`.
     """
     from scipy.interpolate import make_interp_spline
 
@@ -161,8 +160,7 @@ def working_from_pitch(x, y, roller_radius: float):
 
     References
     ----------
-    Norton, R. L. (2012). Design of Machinery: An Introduction to the Synthesis and
-        Analysis of Mechanisms and Machines, 5th ed. New York: McGraw-Hill, sec. 8.6.
+    Norton (2012), sec. 8.6; in full in :mod:`fickcam.cam`.
     """
     spline = periodic_spline(*counter_clockwise(x, y))
     u = np.arange(4 * len(x)) / (4 * len(x))
@@ -621,22 +619,11 @@ def profile_motion(profile: CamProfile, strain_x: float, strain_y: float, roller
 
     Parameters
     ----------
-    profile : CamProfile
-        The dry profile.
-    strain_x, strain_y : float
-        Swelling strains of the cam along x and y [-].
-    roller : float
-        Roller radius [m] (0: knife edge).
-    offset : float
-        Offset of the follower line x = offset [m].
-    flat : bool
-        A flat-faced follower.
+    profile, strain_x, strain_y, roller, offset, flat, arm, base
+        As in :func:`aged_profile_motion`: the dry profile, the cam's strains [-], the
+        roller radius and follower offset [m], a flat face, the arm and its base angle [rad].
     theta : array_like
         Cam angles [rad].
-    arm : fickcam.cam.arm.Arm, optional
-        A swinging arm, already grown.
-    base : float
-        The arm's dry base angle [rad].
 
     Returns
     -------
@@ -646,8 +633,7 @@ def profile_motion(profile: CamProfile, strain_x: float, strain_y: float, roller
 
     References
     ----------
-    Norton, R. L. (2012). Design of Machinery: An Introduction to the Synthesis and
-        Analysis of Mechanisms and Machines, 5th ed. New York: McGraw-Hill, secs. 8.6-8.7.
+    Norton (2012), secs. 8.6-8.7; in full in :mod:`fickcam.cam`.
     """
     motion = aged_profile_motion(profile, strain_x, strain_y, roller, offset, flat, arm, base)
     return motion(theta), motion.extremes

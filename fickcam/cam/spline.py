@@ -84,8 +84,7 @@ def spline_motion(law: SplineLaw, x):
 
     References
     ----------
-    Norton, R. L. (2012). Design of Machinery: An Introduction to the Synthesis and
-        Analysis of Mechanisms and Machines, 5th ed. New York: McGraw-Hill, ch. 8.
+    Norton (2012), ch. 8; in full in :mod:`fickcam.cam`.
     """
     x = np.asarray(x, float)
     curve = bspline(law)

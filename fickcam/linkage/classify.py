@@ -31,8 +31,7 @@ def grashof_condition(a, b, c, d) -> float:
 
     References
     ----------
-    Norton, R. L. (2012). Design of Machinery: An Introduction to the Synthesis and
-    Analysis of Mechanisms and Machines, 5th ed. New York: McGraw-Hill, sec. 2.12.
+    Norton (2012), sec. 2.12; in full in :mod:`fickcam.linkage`.
     """
     s = np.sort(np.array([a, b, c, d], float))
     return float((s[1] + s[2] - s[0] - s[3]) / s.sum())
@@ -59,8 +58,7 @@ def grashof_class(a, b, c, d, tolerance: float = 1e-9) -> str:
 
     References
     ----------
-    Norton, R. L. (2012). Design of Machinery: An Introduction to the Synthesis and
-    Analysis of Mechanisms and Machines, 5th ed. New York: McGraw-Hill, sec. 2.12.
+    Norton (2012), sec. 2.12; in full in :mod:`fickcam.linkage`.
     """
     margin = grashof_condition(a, b, c, d)
     if abs(margin) <= tolerance:

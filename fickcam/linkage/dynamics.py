@@ -54,8 +54,7 @@ def kinetostatics(masses, inertias, com_acceleration, alphas, pins, com_position
 
     References
     ----------
-    Norton, R. L. (2012). Design of Machinery: An Introduction to the Synthesis and
-        Analysis of Mechanisms and Machines, 5th ed. New York: McGraw-Hill, sec. 11.5.
+    Norton (2012), sec. 11.5; in full in :mod:`fickcam.linkage`.
     """
     o2, pa, pb, o4 = pins
     g2, g3, g4 = com_position
@@ -107,10 +106,8 @@ def kinetic_energy(masses, inertias, com_velocity, omegas):
 
     Parameters
     ----------
-    masses : sequence of float
-        Crank, coupler and rocker masses [kg].
-    inertias : sequence of float
-        Their moments of inertia about their centres of mass [kg m^2].
+    masses, inertias : sequence of float
+        As in :func:`kinetostatics`: masses [kg], inertias [kg m^2].
     com_velocity : array_like of complex
         (3, n) velocities of the centres of mass [m/s].
     omegas : sequence of array_like

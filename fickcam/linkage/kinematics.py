@@ -30,8 +30,7 @@ def angular_velocities(a, b, c, theta2, theta3, theta4, omega2):
 
     References
     ----------
-    Norton, R. L. (2012). Design of Machinery: An Introduction to the Synthesis and
-        Analysis of Mechanisms and Machines, 5th ed. New York: McGraw-Hill, sec. 6.7.
+    Norton (2012), sec. 6.7; in full in :mod:`fickcam.linkage`.
     """
     omega3 = a * omega2 * np.sin(theta4 - theta2) / (b * np.sin(theta3 - theta4))
     omega4 = a * omega2 * np.sin(theta2 - theta3) / (c * np.sin(theta4 - theta3))
@@ -60,11 +59,6 @@ def angular_accelerations(a, b, c, theta2, theta3, theta4, omega2, omega3, omega
     -------
     tuple of numpy.ndarray
         (alpha3, alpha4) [rad/s^2].
-
-    References
-    ----------
-    Norton, R. L. (2012). Design of Machinery: An Introduction to the Synthesis and
-        Analysis of Mechanisms and Machines, 5th ed. New York: McGraw-Hill, sec. 7.3.
     """
     A, B = c * np.sin(theta4), b * np.sin(theta3)
     D, E = c * np.cos(theta4), b * np.cos(theta3)
@@ -96,11 +90,6 @@ def rotating_point(r, theta, omega, alpha):
     -------
     tuple of numpy.ndarray
         (R [m], V [m/s], A [m/s^2]) as x + i y, relative to the pivot.
-
-    References
-    ----------
-    Norton, R. L. (2012). Design of Machinery: An Introduction to the Synthesis and
-        Analysis of Mechanisms and Machines, 5th ed. New York: McGraw-Hill, eqs. 6.7 and 7.4.
     """
     R = r * np.exp(1j * np.asarray(theta))
     return R, 1j * omega * R, (1j * alpha - np.asarray(omega) ** 2) * R
@@ -129,11 +118,6 @@ def centre_of_mass_motion(lengths, fractions, thetas, omegas, alphas):
     tuple of numpy.ndarray
         Positions [m], velocities [m/s] and accelerations [m/s^2] as x + i y, each of
         shape (3,) + the angles' shape (crank, coupler, rocker).
-
-    References
-    ----------
-    Norton, R. L. (2012). Design of Machinery: An Introduction to the Synthesis and
-        Analysis of Mechanisms and Machines, 5th ed. New York: McGraw-Hill, eqs. 6.5 and 7.4.
     """
     a, b, c, d = lengths
     crank_pin = rotating_point(a, thetas[0], omegas[0], alphas[0])

@@ -128,8 +128,7 @@ def fourbar_response(design: FourBarDesign, state: FourBarState, crank_angle) ->
 
     References
     ----------
-    Norton, R. L. (2012). Design of Machinery: An Introduction to the Synthesis and
-        Analysis of Mechanisms and Machines, 5th ed. New York: McGraw-Hill, chs. 4, 6, 7
+    Norton (2012), chs. 4, 6, 7; in full in :mod:`fickcam.linkage`.
         and 11.
     """
     theta2 = np.asarray(crank_angle, float)

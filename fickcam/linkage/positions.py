@@ -62,10 +62,7 @@ def rocker_angle(a, b, c, d, theta2, assembly="open"):
 
     References
     ----------
-    Norton, R. L. (2012). Design of Machinery: An Introduction to the Synthesis and
-    Analysis of Mechanisms and Machines, 5th ed. New York: McGraw-Hill.
-    Freudenstein, F. (1955). Approximate synthesis of four-bar linkages. Transactions of
-    the ASME 77, 853-861.
+    Norton (2012), sec. 4.5, and Freudenstein (1955); in full in :mod:`fickcam.linkage`.
     """
     theta2 = np.asarray(theta2, float)
     k1, k2, k3 = d / a, d / c, (a * a - b * b + c * c + d * d) / (2.0 * a * c)
@@ -84,24 +81,13 @@ def coupler_angle(a, b, c, d, theta2, assembly="open"):
 
     Parameters
     ----------
-    a, b, c, d : float
-        Crank, coupler, rocker and frame lengths [m] (any one length unit).
-    theta2 : array_like
-        Crank angles [rad].
-    assembly : {"open", "crossed"}
-        The branch (see the module docstring).
+    a, b, c, d, theta2, assembly
+        As in :func:`rocker_angle`: lengths [m], crank angles [rad], branch.
 
     Returns
     -------
     numpy.ndarray
         theta3 [rad]; NaN where the linkage does not assemble.
-
-    References
-    ----------
-    Norton, R. L. (2012). Design of Machinery: An Introduction to the Synthesis and
-    Analysis of Mechanisms and Machines, 5th ed. New York: McGraw-Hill.
-    Freudenstein, F. (1955). Approximate synthesis of four-bar linkages. Transactions of
-    the ASME 77, 853-861.
     """
     theta2 = np.asarray(theta2, float)
     k1, k4, k5 = d / a, d / b, (c * c - d * d - a * a - b * b) / (2.0 * a * b)
@@ -120,21 +106,16 @@ def positions(a, b, c, d, theta2, assembly="open"):
     Parameters
     ----------
     a, b, c, d : float
-        Crank, coupler, rocker and frame lengths [m] (any one length unit).
+        Link lengths [m], in the order of :func:`rocker_angle`.
     theta2 : array_like
         Crank angles [rad].
     assembly : {"open", "crossed"}
-        The branch (see the module docstring).
+        The branch.
 
     Returns
     -------
-    tuple of numpy.ndarray
-        (theta3, theta4) [rad].
-
-    References
-    ----------
-    Norton, R. L. (2012). Design of Machinery: An Introduction to the Synthesis and
-    Analysis of Mechanisms and Machines, 5th ed. New York: McGraw-Hill.
+    theta3, theta4 : numpy.ndarray
+        Coupler and rocker angles [rad].
     """
     theta3 = coupler_angle(a, b, c, d, theta2, assembly)
     theta4 = rocker_angle(a, b, c, d, theta2, assembly)
@@ -181,11 +162,6 @@ def transmission_angle(theta3, theta4):
     -------
     numpy.ndarray
         mu [rad] in [0, pi/2].
-
-    References
-    ----------
-    Norton, R. L. (2012). Design of Machinery: An Introduction to the Synthesis and
-    Analysis of Mechanisms and Machines, 5th ed. New York: McGraw-Hill.
     """
     tr = np.abs(np.mod(np.asarray(theta3) - np.asarray(theta4), np.pi))
     return np.where(tr > np.pi / 2, np.pi - tr, tr)
@@ -196,10 +172,8 @@ def joint_positions(a, b, c, d, theta2, theta3, theta4):
 
     Parameters
     ----------
-    a, b, c, d : float
-        Crank, coupler, rocker and frame lengths [m] (any one length unit).
-    theta2 : array_like
-        Crank angles [rad].
+    a, b, c, d, theta2
+        Lengths [m] and crank angles [rad], as :func:`rocker_angle` takes them.
     theta3, theta4 : array_like
         Coupler and rocker angles [rad] at ``theta2`` (``theta4`` is not needed: B is
         reached through the coupler; it is taken for a uniform signature).
@@ -209,11 +183,6 @@ def joint_positions(a, b, c, d, theta2, theta3, theta4):
     tuple of numpy.ndarray
         (O2, A, B, O4) as x + i y [m] (the lengths' unit), O2 at the origin and O4 at
         (d, 0).
-
-    References
-    ----------
-    Norton, R. L. (2012). Design of Machinery: An Introduction to the Synthesis and
-    Analysis of Mechanisms and Machines, 5th ed. New York: McGraw-Hill.
     """
     A = a * np.exp(1j * np.asarray(theta2))
     B = A + b * np.exp(1j * np.asarray(theta3))
@@ -241,11 +210,6 @@ def coupler_point(a, theta2, theta3, distance, angle):
     -------
     tuple of numpy.ndarray
         (x, y) [m], the frame's axes (O2 at the origin).
-
-    References
-    ----------
-    Norton, R. L. (2012). Design of Machinery: An Introduction to the Synthesis and
-    Analysis of Mechanisms and Machines, 5th ed. New York: McGraw-Hill.
     """
     p = a * np.exp(1j * np.asarray(theta2)) + distance * np.exp(1j * (np.asarray(theta3) + angle))
     return p.real, p.imag
@@ -296,21 +260,14 @@ def toggle_crank_angles(a, b, c, d, assembly="open"):
 
     Parameters
     ----------
-    a, b, c, d : float
-        Crank, coupler, rocker and frame lengths [m] (any one length unit).
-    assembly : {"open", "crossed"}
-        The branch (see the module docstring).
+    a, b, c, d, assembly
+        The lengths [m] and the branch, as :func:`rocker_angle` takes them.
 
     Returns
     -------
     dict of str to list of float
         ``extended``, ``folded`` and ``crank_limits`` -> the crank angles [rad] on the
         branch, sorted (empty where there are none).
-
-    References
-    ----------
-    Norton, R. L. (2012). Design of Machinery: An Introduction to the Synthesis and
-    Analysis of Mechanisms and Machines, 5th ed. New York: McGraw-Hill.
     """
     def on_branch(candidates, residual):
         found = [float(np.mod(t, 2 * np.pi)) for t in candidates
