@@ -169,6 +169,9 @@ ENTRY_POINTS = {
     "fickcam.linkage.ageing.link_state": (),
     "fickcam.linkage.ageing.scene_response": ("times", "angles"),
     "fickcam.linkage.spec.can_assemble_somewhere": ("crank", "coupler", "rocker", "frame"),
+    "fickcam.cam.profile.CamProfile": ("spline",),
+    "fickcam.cam.profile.AgedContact": ("strain_x", "strain_y", "roller", "offset", "base"),
+    "fickcam.cam.profile.ProfileMotion": ("table", "extremes"),
 }
 
 _HEADER = re.compile(r"^(?P<title>[A-Z][A-Za-z ]+)\n-{3,}$", re.MULTILINE)

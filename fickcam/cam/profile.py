@@ -51,8 +51,16 @@ def _rotate(angle, x, y):
 
 @dataclass(frozen=True, eq=False)
 class CamProfile:
-    """A closed dry working profile: periodic quintic spline (m, cam frame,
-    counter-clockwise) of the chord fraction u in [0, 1)."""
+    """A closed dry working profile.
+
+    Parameters
+    ----------
+    spline : scipy.interpolate.BSpline
+        Periodic quintic spline u -> (x, y) [m] in the cam frame, counter-clockwise, of the
+        chord fraction u in [0, 1) [-] (:func:`periodic_spline`).
+    points : int
+        How many points it was made from.
+    """
 
     spline: object  # scipy BSpline, u -> (x, y)
     points: int     # how many points it was made from
@@ -388,10 +396,23 @@ class AgedContact:
     the contact of profile point u: the cam angle at which u touches, the follower height
     (or arm angle) then, and its rate over the cam angle.
 
-    Attributes: ``profile`` (dry), ``strain_x``, ``strain_y`` [-] of the cam, ``roller``
-    [m] (0: knife edge), ``offset`` [m] of the follower line x = offset, ``flat`` (a flat
-    face), ``arm`` (a grown :class:`fickcam.cam.arm.Arm`, or None: translating) and its
-    dry ``base`` angle [rad]."""
+    Parameters
+    ----------
+    profile : CamProfile
+        The dry profile.
+    strain_x, strain_y : float
+        The cam's swelling strains along x and y [-].
+    roller : float
+        Roller radius [m] (0: knife edge).
+    offset : float
+        Offset of the follower line x = offset [m].
+    flat : bool
+        A flat-faced follower.
+    arm : fickcam.cam.arm.Arm or None
+        A swinging arm, grown; None: a translating follower.
+    base : float
+        The arm's dry base angle [rad].
+    """
 
     profile: CamProfile
     strain_x: float
@@ -555,9 +576,18 @@ class ProfileMotion:
     Y and dY/dtheta come from the contact at theta itself (:func:`solve_contact` from the
     table: one vectorised Newton solve), the higher derivatives from the spline.
 
-    Attributes: ``contact`` (:class:`AgedContact`), ``table`` (:func:`contact_table`),
-    ``slope`` (the periodic quintic BSpline of dY/dtheta over [0, 2 pi]) and
-    ``extremes`` (lowest, highest Y over the turn)."""
+    Parameters
+    ----------
+    contact : AgedContact
+        The aged profile and its follower.
+    table : tuple of numpy.ndarray
+        The contact's table (:func:`contact_table`): theta [rad], u [-], dtheta/du [rad].
+    slope : scipy.interpolate.BSpline
+        Periodic quintic spline of dY/dtheta [m/rad; an arm: -] over theta in [0, 2 pi]
+        [rad].
+    extremes : tuple of float
+        (lowest, highest) Y over the turn [m; an arm: rad].
+    """
 
     contact: AgedContact
     table: tuple
