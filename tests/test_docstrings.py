@@ -172,6 +172,12 @@ ENTRY_POINTS = {
     "fickcam.cam.profile.CamProfile": ("spline",),
     "fickcam.cam.profile.AgedContact": ("strain_x", "strain_y", "roller", "offset", "base"),
     "fickcam.cam.profile.ProfileMotion": ("table", "extremes"),
+    "fickcam.linkage.spec.CouplerPoint": ("distance", "angle"),
+    "fickcam.linkage.spec.LinkSectionSpec": ("width", "thickness", "boss_outer_radius",
+                                             "boss_inner_radius"),
+    "fickcam.linkage.spec.LinkageSection": ("crank", "coupler", "rocker", "frame", "crank_speed",
+                                            "crank_angular_acceleration", "rocker_load_torque",
+                                            "centre_of_mass"),
 }
 
 _HEADER = re.compile(r"^(?P<title>[A-Z][A-Za-z ]+)\n-{3,}$", re.MULTILINE)
@@ -219,6 +225,8 @@ def parameter_entries(body: str) -> dict[str, tuple[str, str]]:
 
 
 def signature_parameters(target) -> list[str]:
+    if inspect.isclass(target) and hasattr(target, "model_fields"):  # a pydantic model
+        return list(target.model_fields)
     function = target.__init__ if inspect.isclass(target) and not hasattr(
         target, "__dataclass_fields__") else target
     if inspect.isclass(target) and hasattr(target, "__dataclass_fields__"):
