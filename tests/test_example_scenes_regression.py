@@ -20,7 +20,18 @@ same way. A value may differ from its reference by
   moves a quantity by ``e`` times its moisture-driven drift, max|q(t) - q(t0)| over the
   ageing times, so that product (with the sum of both runs' largest estimates) is allowed
   on top of round-off. Quantities that do not age (the as-designed ``*_design`` values)
-  get round-off only.
+  get round-off only;
+- plus, for the time out of spec, the limit search's own tolerance: it locates a crossing
+  to ``limits.TOLERANCE`` of its bracketing interval (at most the longest interval between
+  stored ageing times) or to ``limits.FLOOR``, and another round-off may end its rounds
+  elsewhere within that;
+- plus, for the follower's acceleration and jerk of a cam whose aged motion is a spectral
+  fit of its geometry (an anisotropically swollen motion cam, a swinging arm:
+  ``FITTED``), the fit's error: its jerk errs by up to ~1.3e-5 of the largest jerk and its
+  acceleration by ~3e-8 (the eccentric disc's same fit against its closed form), and the
+  fit's least-squares solve runs through BLAS, whose kernel moves it within that error
+  (measured: 2.6e-6 of the box cam's jerk, in a dwell where the exact jerk is 0, under
+  ``OPENBLAS_CORETYPE=Prescott``).
 
 Variables added after 5559169 are listed in ``ADDED`` (no reference), and the result
 must hold every reference variable. Ageing times are compared where both runs have them
@@ -42,7 +53,9 @@ import numpy as np
 import pytest
 
 import fickcam
-from example_reference import KEPT, in_days, read, subsample
+from fickcam.limits import FLOOR, TOLERANCE
+
+from example_reference import DAY, KEPT, in_days, read, subsample
 from tolerance import roundoff
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -95,6 +108,12 @@ CHANGED = {
         "swelling_stress_field": 0.5, "swelling_stress_tensile": 0.3}.items()},
     ("alshamma2011_box_cam", "jump_speed"): (3e-10, _JUMP),
 }
+#: scenes whose aged follower motion is a spectral fit of the cam's geometry, and the fit's
+#: error relative to the largest value of each variable
+FITTED = {"alshamma2011_box_cam", "nylon_swinging_arm"}
+FIT_ERROR = {"follower_jerk": 2e-5, "follower_arm_angular_jerk": 2e-5,
+             "follower_acceleration": 5e-8, "follower_arm_angular_acceleration": 5e-8}
+
 # the contact force's axial part less the axial load: zero without guide friction (1e-13 N
 # of round-off), so its round-off is relative to the contact force it is computed from
 SCALE_OF = {("singh2017_cam_compensated", "guide_friction_force"): "contact_force"}
@@ -157,6 +176,11 @@ def test_example_scene_gives_the_results_of_5559169(name):
         allowed = (roundoff(np.nan_to_num(_numbers(scale)), np.nan_to_num(new),
                             operations=OPERATIONS)
                    + estimate * _drift(old, SCENES[name]["dims"][variable]))
+        if variable == "time_out_of_spec":
+            allowed += max(TOLERANCE * float(np.max(np.diff(reference["time"]))),
+                           FLOOR / DAY)
+        if name in FITTED and variable in FIT_ERROR:
+            allowed += FIT_ERROR[variable] * float(np.nanmax(np.abs(old)))
         change = CHANGED.get((name, variable))
         if change is not None:
             allowed = max(allowed, change[0] * float(np.nanmax(np.abs(old))))
