@@ -58,7 +58,23 @@ def end_condition_count(degree: int) -> int:
 
 @functools.lru_cache(maxsize=64)
 def bspline(law: SplineLaw):
-    """The interpolating B-spline of ``law`` (raises ValueError if scipy cannot build it)."""
+    """The interpolating B-spline of ``law`` (cached by law: the law is hashable).
+
+    Parameters
+    ----------
+    law : SplineLaw
+        The normalised points and end conditions.
+
+    Returns
+    -------
+    scipy.interpolate.BSpline
+        S(x) [-] of the normalised angle x [-].
+
+    Raises
+    ------
+    ValueError
+        Where scipy cannot build it (and numpy.linalg.LinAlgError for a singular system).
+    """
     from scipy.interpolate import make_interp_spline
 
     conditions = ([(j + 1, v) for j, v in enumerate(law.start)],
