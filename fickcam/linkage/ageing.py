@@ -29,7 +29,21 @@ def _link_material(section, link: str) -> str:
 
 
 def scene_parts(section, materials) -> list[tuple]:
-    """(part name, material name, diffusion geometry, dry mass kg) for each link."""
+    """The links as parts that age: each a link bar with bosses.
+
+    Parameters
+    ----------
+    section : LinkageSection
+        The scene's validated ``linkage:`` section (lengths and section in m).
+    materials : dict of str to Material
+        The scene's materials by name; the links' dry densities [kg/m^3] give their masses.
+
+    Returns
+    -------
+    list of tuple
+        (link name, material name, LinkBar with dimensions [m], dry mass [kg]) for crank,
+        coupler, rocker and frame.
+    """
     from ..diffusion.problem.geometry import LinkBar
     from ..materials.bodies import link_body
 
@@ -46,9 +60,22 @@ def scene_parts(section, materials) -> list[tuple]:
 
 
 def link_states(section, histories):
-    """(lengths, masses, inertias) of crank, coupler, rocker, frame at every ageing time,
-    each shape (times, 4): the bodies are vectorised over the times (one evaluation for
-    the whole history, not one per ageing time)."""
+    """The swollen links at every ageing time: lengths grown by the longitudinal strain,
+    masses and inertias of the swollen, wet bodies, evaluated for the whole history at once.
+
+    Parameters
+    ----------
+    section : LinkageSection
+        The scene's validated ``linkage:`` section (dry lengths [m]).
+    histories : dict of str to PartHistory
+        Each link's history: strains [-] and moisture [weight %] over ageing time.
+
+    Returns
+    -------
+    tuple of numpy.ndarray
+        Lengths [m], masses [kg] and moments of inertia about the centres of mass
+        [kg m^2] of crank, coupler, rocker and frame, each of shape (ageing times, 4).
+    """
     from ..materials.bodies import aged_link_body
 
     s = section.section
@@ -71,14 +98,51 @@ def link_states(section, histories):
 
 
 def link_state(section, histories, k: int):
-    """(lengths, masses, inertias) of crank, coupler, rocker, frame at ageing index k."""
+    """The swollen links at one ageing time (see `link_states`).
+
+    Parameters
+    ----------
+    section : LinkageSection
+        The scene's validated ``linkage:`` section (dry lengths [m]).
+    histories : dict of str to PartHistory
+        Each link's history: strains [-] and moisture [weight %] over ageing time.
+    k : int
+        Index of the ageing time [-].
+
+    Returns
+    -------
+    tuple of numpy.ndarray
+        Lengths [m], masses [kg] and moments of inertia [kg m^2] of crank, coupler,
+        rocker and frame, each of shape (4,).
+    """
     return tuple(values[k] for values in link_states(section, histories))
 
 
 def scene_response(section, histories: dict, times, angles, valid, on_step=lambda: None) -> Response:
     """The linkage over ageing: variables (time, ...) and notices, including a warning
     where ageing changes the Grashof class or removes the crank's full rotation.
-    Toggle positions are reported at the first and last computed ageing time."""
+    Toggle positions are reported at the first and last computed ageing time.
+
+    Parameters
+    ----------
+    section : LinkageSection
+        The validated ``linkage:`` section of the scene.
+    histories : dict of str to PartHistory
+        The links' histories, by link name.
+    times : array_like
+        Ageing times [s].
+    angles : array_like
+        Crank angles over one turn [rad].
+    valid : array_like of bool
+        Per ageing time, whether every link is within its model's range (NaN where not).
+    on_step : callable
+        Called after each ageing time is evaluated (progress).
+
+    Returns
+    -------
+    fickcam.response.Response
+        SI variables over (time, ...) and the notices.
+    """
     design = FourBarDesign.from_section(section)
     valid = np.asarray(valid, bool)
     computed = np.nonzero(valid)[0]
