@@ -167,6 +167,7 @@ ENTRY_POINTS = {
     "fickcam.cam.arm.aged_profile_contact": ("base", "roller", "wx", "wy", "nx", "ny"),
     "fickcam.linkage.ageing.scene_parts": (),
     "fickcam.linkage.ageing.link_state": (),
+    "fickcam.linkage.ageing.link_states": (),
     "fickcam.linkage.ageing.scene_response": ("times", "angles"),
     "fickcam.linkage.spec.can_assemble_somewhere": ("crank", "coupler", "rocker", "frame"),
     "fickcam.cam.profile.CamProfile": ("spline",),
