@@ -2,7 +2,8 @@
 
     python benchmarks/diffusion_tradeoff.py [--quick] [--out benchmarks/results]
 
-Writes ``bench.md`` (the table `fickcam bench` prints), ``bench.csv`` and
+Writes ``bench.md`` (the table `fickcam bench` prints), ``bench.csv``, ``bench.json``
+(the same rows with the commit, date, machine and load, for the benchmarks page) and
 ``error_vs_time.png`` (error against the exact solution vs CPU time, log-log,
 one marker series per geometry and model) for the benchmarks page. A ``--quick`` run
 only prints its table (it must not replace the committed full results) unless
@@ -44,6 +45,7 @@ from __future__ import annotations
 import argparse
 import csv
 import logging
+import os
 import time
 from dataclasses import dataclass
 from pathlib import Path
@@ -230,6 +232,15 @@ def format_table(rows: list[dict]) -> str:
     return "\n".join(lines)
 
 
+def result_table(rows: list[dict]) -> dict:
+    """The rows as a table of a result file (the numbers formatted as ``format_table``)."""
+    return {"columns": ["geometry", "model", "accuracy", "cells", "steps", "CPU s", "error",
+                        "estimate", "reference"],
+            "rows": [[r["geometry"], r["model"], f"{r['accuracy']:.0e}", r["cells"], r["steps"],
+                      f"{r['cpu_time']:.4f}", f"{r['error']:.1e}", f"{r['error_estimate']:.1e}",
+                      r["reference"]] for r in rows]}
+
+
 # ------------------------------------------------ non-Fickian sorption rows
 EXPONENT = 2.0
 EXCHANGE = 0.1   # gamma = beta = EXCHANGE pi^2 D / h^2
@@ -369,6 +380,7 @@ def main() -> None:
     args = parser.parse_args()
     logging.basicConfig(level=logging.WARNING, format="%(message)s")  # libraries: warnings only
     log.setLevel(logging.INFO)
+    load = os.getloadavg()[0]
     rows = run_bench(quick=args.quick)
     if args.out is None and args.quick:
         log.info("%s", format_table(rows))
@@ -376,6 +388,10 @@ def main() -> None:
         return
     args.out = args.out or RESULTS
     args.out.mkdir(parents=True, exist_ok=True)
+    from stamp import write_result
+
+    write_result(args.out / "bench.json", "speed and accuracy of the diffusion engine",
+                 "python benchmarks/diffusion_tradeoff.py", {"bench": result_table(rows)}, load)
     (args.out / "bench.md").write_text("```\n" + format_table(rows) + "\n```\n")
     with open(args.out / "bench.csv", "w", newline="") as handle:
         writer = csv.DictWriter(handle, fieldnames=list(rows[0]))
