@@ -16,6 +16,8 @@ from pathlib import Path
 
 from points_cam import commit, machine
 
+ROOT = Path(__file__).resolve().parents[1]
+
 
 def stamp(command: str, load_at_start: float | None = None) -> dict:
     """The command, commit, date, machine and load average of a measurement ending now."""
@@ -35,4 +37,5 @@ def write_result(path: Path, what: str, command: str, tables: dict[str, dict],
     temporary = path.with_suffix(path.suffix + ".tmp")
     temporary.write_text(json.dumps(record, indent=1, ensure_ascii=False) + "\n")
     temporary.replace(path)
-    print(f"wrote {path}")
+    shown = path.resolve()
+    print(f"wrote {shown.relative_to(ROOT) if shown.is_relative_to(ROOT) else shown}")

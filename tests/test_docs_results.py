@@ -106,7 +106,7 @@ def test_a_transcribed_table_says_so_with_its_own_stamp(tmp_path):
                              "tables": {"t": {"columns": ["a"], "rows": [[1]], **own},
                                         "u": {"columns": ["a"], "rows": [[2]]}}})
     stamp = results.result_markdown(path, "t").strip().splitlines()[-1]
-    assert "Transcribed from the documentation of commit `def5678`" in stamp
+    assert "Transcribed from commit `def5678`" in stamp
     assert "`python benchmarks/y.py`" in stamp and "load average 6-10" in stamp
     assert "not re-run" in stamp
 

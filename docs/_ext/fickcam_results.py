@@ -14,8 +14,9 @@ A result file is JSON with ``command``, ``commit``, ``date``, ``machine`` and
 measured apart from the others. Files written by the older benchmark scripts
 (``daily_outputs.json``, ``compensation_runs.json``, ``points_cam.json``) keep their own
 layout; :data:`VIEWS` turns each into a table. A file marked ``"transcribed": true``
-holds numbers measured before the benchmark wrote result files, copied from the text of
-the commit its stamp names, and says so under the table.
+holds numbers measured before the benchmark wrote result files, copied from the commit
+its stamp names (its documentation, or a file the script wrote), and says so under the
+table.
 
 The functions that build the Markdown need no Sphinx, so the test suite checks them.
 """
@@ -138,9 +139,8 @@ def stamp_text(record: dict) -> str:
     where = (f"{_machine_text(record['machine'])}, load average "
              f"{_load_text(record['load_average'])}")
     if record.get("transcribed"):
-        measured = (f"Transcribed from the documentation of commit `{record['commit']}` "
-                    f"({date}), where they were written down after measuring them on {where}; "
-                    "not re-run since")
+        measured = (f"Transcribed from commit `{record['commit']}` ({date}), measured on "
+                    f"{where}; not re-run since")
     else:
         measured = f"Measured on commit `{record['commit']}` ({date}), {where}"
     return f"Reproduce: `{record['command']}`. {measured}."
