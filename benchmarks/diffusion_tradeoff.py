@@ -359,19 +359,20 @@ def write_figure(rows: list[dict], path: Path) -> Path:
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    fig, ax = plt.subplots(figsize=(7, 5))
+    fig, ax = plt.subplots(figsize=(9, 5))
     series: dict[tuple[str, str], list[dict]] = {}
     for row in rows:
         if np.isfinite(row["cpu_time"]) and row["error"] > 0:
             series.setdefault((row["geometry"], row["model"]), []).append(row)
-    for (geometry, model), points in series.items():
+    markers = "os^Dv"  # with the 10 colours: 50 series told apart
+    for k, ((geometry, model), points) in enumerate(series.items()):
         points.sort(key=lambda r: r["cpu_time"])
-        ax.loglog([p["cpu_time"] for p in points], [p["error"] for p in points], "o-",
-                  label=f"{geometry}: {model}")
+        ax.loglog([p["cpu_time"] for p in points], [p["error"] for p in points],
+                  markers[k // 10 % len(markers)] + "-", label=f"{geometry}: {model}")
     ax.set_xlabel("CPU time per full uptake curve [s]")
     ax.set_ylabel("max error of the mean uptake (fraction of the step)")
     ax.grid(alpha=0.3, which="both")
-    ax.legend(fontsize=7)
+    ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0))  # beside, not over
     fig.savefig(path, dpi=120, bbox_inches="tight")
     plt.close(fig)
     return path
