@@ -1,7 +1,7 @@
 """Throughput of a Monte Carlo of the demo cam (configs/singh2017_cam.yaml) on 2
 LocalCluster workers, and what one case costs against one run in a warm process.
 
-    python benchmarks/bench_montecarlo.py            # 1000 cases (issue 17's target)
+    python benchmarks/bench_montecarlo.py            # 1000 cases (the target case count)
     python benchmarks/bench_montecarlo.py --quick    # 100 cases
     python benchmarks/bench_montecarlo.py --cases 8 --scaling-cases 8
 
