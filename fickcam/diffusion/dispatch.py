@@ -22,7 +22,6 @@ from __future__ import annotations
 
 import logging
 from dataclasses import dataclass, replace
-from functools import lru_cache
 from typing import Callable
 
 import numpy as np
@@ -45,6 +44,7 @@ from .nonfickian.planform_modes import (REFINEMENT, RefinedPlanform, Refinement,
                                         planform_source, refined_planform)
 from .nonfickian.two_phase_mesh import two_phase_marcher
 from .nonfickian.two_phase_modes import langmuir_history
+from .problem.cache import RunCache, run_cache
 from .problem.exposure import Diffusivity, Exposure, swing
 from .problem.geometry import LAYER_DEPTH, Bar, CamPlate, Disc, LinkBar, Sheet
 from .problem.results import DiffusionResult, Plan
@@ -68,10 +68,10 @@ class FickModel:
     """One Fickian model of the registry: the parts it applies to, why it does not apply to
     a part (``refusal``), its plan and its solve.
 
-    ``plan(geometry, diffusivity, exposure, times, accuracy, depth, caps) -> Plan`` and
-    ``solve(geometry, diffusivity, exposure, times, chosen, accuracy, depth, store_fields,
-    part) -> DiffusionResult`` (depth: the contact layer's [m]; times [s]; caps: the
-    ``CellCaps`` of the run's ``SolverSettings``)."""
+    ``plan(geometry, diffusivity, exposure, times, accuracy, depth, caps, cache) -> Plan``
+    and ``solve(geometry, diffusivity, exposure, times, chosen, accuracy, depth, store_fields,
+    part, cache) -> DiffusionResult`` (depth: the contact layer's [m]; times [s]; caps: the
+    ``CellCaps`` of the run's ``SolverSettings``; cache: the run's ``RunCache``)."""
 
     name: str
     parts: tuple[type, ...]
@@ -93,7 +93,8 @@ class FickModel:
         return None
 
 
-def _plan_analytic(geometry, diffusivity, exposure, times, accuracy, depth, caps) -> Plan:
+def _plan_analytic(geometry, diffusivity, exposure, times, accuracy, depth, caps,
+                   cache) -> Plan:
     if is_long_record(exposure):
         return Plan("analytic", 0, 0, f"exact Crank series, tabulated once and superposed "
                     f"over the {exposure.ramp.size}-segment record in closed form per row "
@@ -104,41 +105,44 @@ def _plan_analytic(geometry, diffusivity, exposure, times, accuracy, depth, caps
 
 
 def _solve_analytic(geometry, diffusivity, exposure, times, chosen, accuracy, depth,
-                    store_fields, part) -> DiffusionResult:
+                    store_fields, part, cache) -> DiffusionResult:
     record = accuracy if is_long_record(exposure) else None
     return solve_analytic(geometry, diffusivity, exposure, times, depth, store_fields, chosen,
-                          record)
+                          record, cache)
 
 
-def _scaled_history(geometry, diffusivity, exposure, times):
+def _scaled_history(geometry, diffusivity, exposure, times, cache: RunCache):
     """tau* of the exposure's changes and of the outputs."""
-    scales = scales_of(geometry, diffusivity, exposure)
+    scales = scales_of(geometry, diffusivity, exposure, cache)
     return scales.tau_star(exposure.change_times), scales.tau_star(np.asarray(times, float))
 
 
-def _plan_plane(geometry, diffusivity, exposure, times, accuracy, depth, caps) -> Plan:
+def _plan_plane(geometry, diffusivity, exposure, times, accuracy, depth, caps, cache) -> Plan:
     """The outline's expansion, then a graded mesh; a long record's sum takes its share."""
-    change, outputs = _scaled_history(geometry, diffusivity, exposure, times)
+    change, outputs = _scaled_history(geometry, diffusivity, exposure, times, cache)
     share = 1.0 - RECORD_SHARE if is_long_record(exposure) else 1.0
     return plan_plane(geometry, diffusivity, change, outputs, exposure.ramp, share * accuracy,
-                      depth, caps)
+                      depth, caps, cache)
 
 
 def _solve_plane(geometry, diffusivity, exposure, times, chosen, accuracy, depth, store_fields,
-                 part) -> DiffusionResult:
+                 part, cache) -> DiffusionResult:
     return solve_plane(geometry, diffusivity, exposure, times, chosen, accuracy=accuracy,
-                       surface_layer_depth=depth, store_fields=store_fields, part=part)
+                       surface_layer_depth=depth, store_fields=store_fields, part=part,
+                       cache=cache)
 
 
 def _finite_volume(name: str, parts: tuple[type, ...]) -> FickModel:
     """A finite-volume model (``models.finite_volume``) of these parts."""
-    def planned(geometry, diffusivity, exposure, times, accuracy, depth, caps) -> Plan:
-        return _direct_plan(geometry, diffusivity, name, exposure, times, accuracy, caps=caps)
+    def planned(geometry, diffusivity, exposure, times, accuracy, depth, caps, cache) -> Plan:
+        return _direct_plan(geometry, diffusivity, name, exposure, times, accuracy, caps=caps,
+                            cache=cache)
 
     def solved(geometry, diffusivity, exposure, times, chosen, accuracy, depth, store_fields,
-               part) -> DiffusionResult:
+               part, cache) -> DiffusionResult:
         return solve_direct(geometry, diffusivity, exposure, times, chosen,
-                            surface_layer_depth=depth, store_fields=store_fields, part=part)
+                            surface_layer_depth=depth, store_fields=store_fields, part=part,
+                            cache=cache)
     return FickModel(name, parts, planned, solved)
 
 
@@ -221,11 +225,12 @@ SETTINGS = SolverSettings()
 
 def plan(geometry, diffusivity: Diffusivity, exposure: Exposure, times: np.ndarray,
          accuracy: float = 1e-3, model: str = "auto", sorption=None,
-         surface_layer_depth: float | None = None, settings: SolverSettings = SETTINGS) -> Plan:
+         surface_layer_depth: float | None = None, settings: SolverSettings = SETTINGS,
+         cache: RunCache | None = None) -> Plan:
     """The model, cells and steps ``solve`` will use, and why, without solving
     (``sorption``: a law of ``problem.sorption``, None for Fick; ``surface_layer_depth``:
     the solve's, so that a plane plan and its solve share one outline expansion;
-    ``settings``: the solve's).
+    ``settings``: the solve's; ``cache``: the run's, which the solve then reads).
 
     Parameters
     ----------
@@ -247,6 +252,9 @@ def plan(geometry, diffusivity: Diffusivity, exposure: Exposure, times: np.ndarr
         The depth of the contact layer [m]; None: ``LAYER_DEPTH`` (5e-4 m).
     settings : SolverSettings
         The solvers' tuned limits.
+    cache : RunCache, optional
+        What the run's plans and solves build once and share (meshes, step responses,
+        tables); None: a fresh one, kept only for this call.
 
     Returns
     -------
@@ -260,20 +268,21 @@ def plan(geometry, diffusivity: Diffusivity, exposure: Exposure, times: np.ndarr
         one of the five, or the accuracy is outside (0, 1).
     """
     _validate(geometry, model, accuracy)
+    cache = run_cache(cache)
     if is_nonlinear(sorption) and _nonlinear_route(geometry, model, sorption, exposure,
                                                    times, accuracy) == "fick":
         return _as_fick(plan, geometry, diffusivity, exposure, times, sorption, accuracy,
-                        model, surface_layer_depth, settings=settings)
+                        model, surface_layer_depth, settings=settings, cache=cache)
     if is_langmuir(sorption) or is_nonlinear(sorption):
         depth = LAYER_DEPTH if surface_layer_depth is None else surface_layer_depth
         return _plan_sorption(geometry, diffusivity, exposure, times, accuracy, model, sorption,
-                              depth, settings)
+                              depth, settings, cache)
     return _fick_model(geometry, model).plan(geometry, diffusivity, exposure, times, accuracy,
-                                             surface_layer_depth, settings.cells)
+                                             surface_layer_depth, settings.cells, cache)
 
 
 def _plan_sorption(geometry, diffusivity, exposure, times, accuracy, model, sorption,
-                   depth, settings: SolverSettings) -> Plan:
+                   depth, settings: SolverSettings, cache: RunCache) -> Plan:
     law = describe(sorption)
     if is_nonlinear(sorption) and _nonlinear_route(geometry, model, sorption, exposure,
                                                    times, accuracy) == "corrected":
@@ -284,7 +293,7 @@ def _plan_sorption(geometry, diffusivity, exposure, times, accuracy, model, sorp
         # the 3-D cells cut at the mirror planes (``symmetry_cuts``)
         mirror_cut = chosen == "solid"
         direct = nonlinear_plan(lambda d, a, at: _direct_plan(geometry, d, chosen, exposure, at, a,
-                                                              mirror_cut, settings.cells),
+                                                              mirror_cut, settings.cells, cache),
                                 diffusivity, sorption, exposure, times, accuracy)
         mirror = {Bar: "; solved on one octant (mirror planes)",
                   CamPlate: "; solved on half the thickness (mid-plane mirror)",
@@ -296,26 +305,27 @@ def _plan_sorption(geometry, diffusivity, exposure, times, accuracy, model, sorp
                     "2x2 free/bound system advanced exactly through the history", accuracy)
     if chosen == "plane":
         return _plan_planform(geometry, diffusivity, exposure, times, accuracy, sorption, depth,
-                              settings.planform)
+                              settings.planform, cache)
     direct = _direct_plan(geometry, diffusivity, chosen, exposure, times, accuracy,
-                          caps=settings.cells)
+                          caps=settings.cells, cache=cache)
     return replace(direct, reason=f"{law}; {direct.reason}")
 
 
 def _direct_plan(geometry, diffusivity, chosen, exposure, times, accuracy,
-                 mirrored: bool = False, caps: CellCaps = MAX_CELLS) -> Plan:
-    change, outputs = _scaled_history(geometry, diffusivity, exposure, times)
+                 mirrored: bool = False, caps: CellCaps = MAX_CELLS,
+                 cache: RunCache | None = None) -> Plan:
+    change, outputs = _scaled_history(geometry, diffusivity, exposure, times, cache)
     return plan_direct(geometry, diffusivity, chosen, change, outputs, accuracy, exposure, mirrored,
-                       caps)
+                       caps, cache)
 
 
 def _plan_planform(geometry, diffusivity, exposure, times, accuracy, sorption, depth,
-                   refinement: Refinement) -> Plan:
+                   refinement: Refinement, cache: RunCache) -> Plan:
     """The planform mesh the solve will use: the first mesh from the error model, refined
     from the two-phase histories it measures (``refined``, kept for the solve, so that
     ``fickcam check`` shows the refined mesh and a run pays for it once)."""
     design, refined = _planform_refinement(geometry, diffusivity, exposure, times, accuracy,
-                                           sorption, depth, refinement)
+                                           sorption, depth, refinement, cache)
     _, estimate = refined.result
     capped = ("" if refined.error <= PLANFORM_SHARE * accuracy else
               f"; capped at {refinement.cap} cells: error above the requested accuracy")
@@ -330,37 +340,36 @@ def _plan_planform(geometry, diffusivity, exposure, times, accuracy, sorption, d
 
 
 def _planform_refinement(geometry, diffusivity, exposure, times, accuracy, sorption, depth,
-                         refinement: Refinement):
-    """(first mesh, ``_refined``) of a two-phase CamPlate or LinkBar."""
-    scales = scales_of(geometry, diffusivity, exposure)
-    t_lo = earliest_output(scales.tau_star(exposure.change_times),
-                           scales.tau_star(np.asarray(times, float)))
+                         refinement: Refinement, cache: RunCache):
+    """(first mesh, ``_refined``) of a two-phase CamPlate or LinkBar, the refinement kept in
+    the run's ``cache``: ``plan`` and ``solve`` share it."""
+    scales = scales_of(geometry, diffusivity, exposure, cache)
+    times = np.asarray(times, float)
+    t_lo = earliest_output(scales.tau_star(exposure.change_times), scales.tau_star(times))
     design = planform_design(geometry, diffusivity.pre_exponential, accuracy, t_lo)
-    return design, _refined(geometry, diffusivity, exposure, tuple(np.asarray(times, float)),
-                            accuracy, sorption, depth, design.finest, design.growth, refinement)
+    key = ("two-phase planform refinement", geometry, diffusivity, exposure, times.tobytes(),
+           accuracy, sorption, depth, design.finest, design.growth, refinement)
+    return design, cache.get(key, lambda: _refined(
+        geometry, diffusivity, exposure, times, accuracy, sorption, depth, design.finest,
+        design.growth, refinement, cache))
 
 
-@lru_cache(maxsize=4)
-def _refined(geometry, diffusivity, exposure, times: tuple, accuracy, sorption, depth, finest,
-             growth, refinement: Refinement) -> RefinedPlanform:
+def _refined(geometry, diffusivity, exposure, times: np.ndarray, accuracy, sorption, depth,
+             finest, growth, refinement: Refinement, cache: RunCache) -> RefinedPlanform:
     """``planform_modes.refined_planform`` of the two-phase history (the march on each mesh,
     most of whose cost is the planform operators): its mesh error is ``PLANFORM_SHARE`` of
-    the accuracy, the march the rest. Cached: ``plan`` and ``solve`` share it (its
-    histories' arrays read-only)."""
-    times = np.asarray(times, float)
+    the accuracy, the march the rest."""
     share, scale = PLANFORM_SHARE * accuracy, 1.0 / max(swing(exposure), 1e-300)
 
     def measure(source):
         history, estimate = langmuir_history(geometry, diffusivity, sorption, exposure, times,
                                              accuracy - share, depth, source)
-        for values in history.values():
-            values.setflags(write=False)   # cached with the refinement: shared, never copied
         compared = [history["mean"], history["bound"], history["surface"] / LAYER_TOLERANCE]
         return np.stack(compared) * scale, (history, estimate)
 
     ages = read_ages(RescaledTime(diffusivity, exposure), exposure, times)
     return refined_planform(geometry, diffusivity.pre_exponential, depth, finest, growth, ages,
-                            share, measure, refinement)
+                            share, measure, refinement, cache)
 
 
 def _nonlinear_model(geometry, model: str) -> str:
@@ -408,11 +417,11 @@ def _as_fick(call, geometry, diffusivity, exposure, times, sorption, accuracy, m
 def solve(geometry, diffusivity: Diffusivity, exposure: Exposure, times: np.ndarray, *,
           accuracy: float = 1e-3, model: str = "auto", surface_layer_depth: float = LAYER_DEPTH,
           store_fields: bool = False, part: str = "", sorption=None,
-          settings: SolverSettings = SETTINGS) -> DiffusionResult:
+          settings: SolverSettings = SETTINGS, cache: RunCache | None = None) -> DiffusionResult:
     """Moisture (weight %) of one part at ``times`` (s) under ``exposure``; with a
     ``sorption`` law (``problem.sorption``) the mean and surface are the total (free +
     bound) moisture and, for Langmuir, ``bound`` the bound-water mean. ``settings``: the
-    solvers' tuned limits (``SolverSettings``).
+    solvers' tuned limits (``SolverSettings``); ``cache``: the run's (``RunCache``).
 
     Parameters
     ----------
@@ -424,7 +433,6 @@ def solve(geometry, diffusivity: Diffusivity, exposure: Exposure, times: np.ndar
         The relative accuracy [-], in (0, 1), a fraction of the moisture swing.
     model : str
         One of ``MODELS``; "auto" chooses (the exact series where it applies).
-
     surface_layer_depth : float
         The depth of the contact layer whose mean is reported as ``surface`` [m].
     store_fields : bool
@@ -435,6 +443,10 @@ def solve(geometry, diffusivity: Diffusivity, exposure: Exposure, times: np.ndar
         A sorption law of ``fickcam.diffusion.problem.sorption``; None: Fick's law.
     settings : SolverSettings
         The solvers' tuned limits.
+    cache : RunCache, optional
+        What the run's plans and solves build once and share (meshes, step responses,
+        tables; read-only); None: a fresh one, kept only for this call (and the result's
+        ``extend``).
 
     Returns
     -------
@@ -449,23 +461,18 @@ def solve(geometry, diffusivity: Diffusivity, exposure: Exposure, times: np.ndar
         outside (0, 1).
     """
     times = np.asarray(times, float)
+    cache = run_cache(cache)
     route = (_nonlinear_route(geometry, model, sorption, exposure, times, accuracy)
              if is_nonlinear(sorption) else "")
     if route == "fick":
         return _as_fick(solve, geometry, diffusivity, exposure, times, sorption, accuracy, model,
                         surface_layer_depth, store_fields=store_fields, part=part,
-                        settings=settings)
+                        settings=settings, cache=cache)
     chosen = plan(geometry, diffusivity, exposure, times, accuracy, model, sorption,
-                  surface_layer_depth, settings)
-    if route:   # D(c): ``extend`` reads between the steps where the cells stay (``dense_output``)
-        def again(at):
-            return plan(geometry, diffusivity, exposure, at, accuracy, model, sorption,
-                        surface_layer_depth, settings)
-
-        def resolve(at):
-            return solve(geometry, diffusivity, exposure, at, accuracy=accuracy, model=model,
-                         surface_layer_depth=surface_layer_depth, part=part, sorption=sorption,
-                         settings=settings)
+                  surface_layer_depth, settings, cache)
+    # D(c): ``extend`` reads between the steps where the cells stay (``dense_output``)
+    again, resolve = _replanned(geometry, diffusivity, exposure, accuracy, model, sorption,
+                                surface_layer_depth, part, settings, cache)
     if route == "corrected":
         return held_to_plan(solve_corrected(
             geometry, diffusivity, sorption, exposure, times, accuracy,
@@ -476,44 +483,60 @@ def solve(geometry, diffusivity: Diffusivity, exposure: Exposure, times: np.ndar
     if route:
         return held_to_plan(_solve_sorption(geometry, diffusivity, exposure, times, chosen,
                                             sorption, surface_layer_depth, store_fields, part,
-                                            accuracy, settings), chosen, again, resolve)
+                                            accuracy, settings, cache), chosen, again, resolve)
     if sorption is not None and (is_langmuir(sorption) or is_nonlinear(sorption)):
         return _solve_sorption(geometry, diffusivity, exposure, times, chosen, sorption,
-                               surface_layer_depth, store_fields, part, accuracy, settings)
+                               surface_layer_depth, store_fields, part, accuracy, settings, cache)
     return FICK_MODELS[chosen.model].solve(geometry, diffusivity, exposure, times, chosen,
-                                           accuracy, surface_layer_depth, store_fields, part)
+                                           accuracy, surface_layer_depth, store_fields, part,
+                                           cache)
+
+
+def _replanned(geometry, diffusivity, exposure, accuracy, model, sorption, depth, part,
+               settings: SolverSettings, cache: RunCache):
+    """(plan at other times, solve at other times) of this part, as ``solve`` was asked."""
+    def again(at):
+        return plan(geometry, diffusivity, exposure, at, accuracy, model, sorption, depth,
+                    settings, cache)
+
+    def resolve(at):
+        return solve(geometry, diffusivity, exposure, at, accuracy=accuracy, model=model,
+                     surface_layer_depth=depth, part=part, sorption=sorption,
+                     settings=settings, cache=cache)
+    return again, resolve
 
 
 def _solve_sorption(geometry, diffusivity, exposure, times, chosen: Plan, sorption, depth,
-                    store_fields, part, accuracy,
-                    settings: SolverSettings = SETTINGS) -> DiffusionResult:
+                    store_fields, part, accuracy, settings: SolverSettings,
+                    cache: RunCache) -> DiffusionResult:
     if chosen.model in ("analytic", "plane"):
         return _langmuir_modes(geometry, diffusivity, exposure, times, chosen, sorption, depth,
-                               accuracy, settings.planform)
+                               accuracy, settings.planform, cache)
     if is_langmuir(sorption):
         return solve_direct(geometry, diffusivity, exposure, times, chosen,
                             surface_layer_depth=depth, store_fields=store_fields, part=part,
-                            marcher=two_phase_marcher(sorption, exposure))
+                            marcher=two_phase_marcher(sorption, exposure), cache=cache)
     return solve_nonlinear(geometry, diffusivity, sorption, exposure, times, chosen,
                            surface_layer_depth=depth, store_fields=store_fields, part=part,
                            sweeps=settings.sweeps)
 
 
 def _langmuir_modes(geometry, diffusivity, exposure, times, chosen, sorption, depth, accuracy,
-                    refinement: Refinement = REFINEMENT):
+                    refinement: Refinement, cache: RunCache):
     """The exact two-phase modal march; for a CamPlate or LinkBar on its planform's
-    quadrature (``planform_modes``), the histories of the plan's refined mesh (``_refined``)."""
+    quadrature (``planform_modes``), the histories of the plan's refined mesh (``_refined``,
+    from the run's ``cache``)."""
     if chosen.model != "plane":
         history, estimate = langmuir_history(geometry, diffusivity, sorption, exposure, times,
                                              accuracy, depth)
         return _langmuir_result(times, history, estimate, chosen)
     _, refined = _planform_refinement(geometry, diffusivity, exposure, times, accuracy, sorption,
-                                      depth, refinement)
+                                      depth, refinement, cache)
     history, _ = refined.result
-    result = _langmuir_result(times, history, chosen.error_estimate, chosen)
+    stored = _langmuir_result(times, history, chosen.error_estimate, chosen)
     source = planform_source(geometry, diffusivity.pre_exponential, lanczos_spectrum(
         planform_operator(geometry, diffusivity.pre_exponential, depth, refined.finest,
-                          refined.growth), refined.steps))
+                          refined.growth, cache), refined.steps))
 
     def extend(at) -> DiffusionResult:
         """The limit search's extra times on this refined mesh (no new refinement): the
@@ -523,15 +546,14 @@ def _langmuir_modes(geometry, diffusivity, exposure, times, chosen, sorption, de
         extra, _ = langmuir_history(geometry, diffusivity, sorption, exposure, both,
                                     (1.0 - PLANFORM_SHARE) * accuracy, depth, source)
         rows = np.searchsorted(both, new)
-        return result.merged(new, extra["mean"][rows], extra["surface"][rows],
+        return stored.merged(new, extra["mean"][rows], extra["surface"][rows],
                              extra["bound"][rows])
-    result.extend = extend
-    return result
+    return replace(stored, extend=extend)
 
 
 def _langmuir_result(times, history, estimate, chosen) -> DiffusionResult:
-    """The result of a two-phase modal history (a planform's: read-only, cached with its
-    refinement for the next plan and solve)."""
+    """The result of a two-phase modal history (a planform's: read-only, kept in the run's
+    cache with its refinement for the next plan and solve)."""
     return DiffusionResult(times, history["mean"], history["surface"], chosen.model,
                            chosen.cells, 0, estimate, chosen.reason, bound=history["bound"])
 

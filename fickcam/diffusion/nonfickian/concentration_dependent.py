@@ -248,16 +248,15 @@ def solve_nonlinear(geometry, diffusivity, law, exposure, times, chosen, *,
                              combine(coarse.layer, fine.layer), chosen.model, weights.cells,
                              coarse.steps + fine.steps, estimate, chosen.reason)
     if store_fields:
-        result.fields = combine(coarse.fields, fine.fields)
-        result.cell_coordinates = weights.coordinates
-    else:  # the limit search's extra times, read between the steps (``dense_output``)
-        result.extend = Extension(
-            result, [StepRecord.of(plans[0], coarse, fine, scales, exposure)],
-            lambda values, _: (values[0][:, 0], values[0][:, 1]), swing(exposure, times) or 1.0,
-            chosen.error_estimate, lambda both: solve_nonlinear(
-                geometry, diffusivity, law, exposure, both, chosen,
-                surface_layer_depth=surface_layer_depth, part=part, sweeps=sweeps), part)
-    return result
+        return replace(result, fields=combine(coarse.fields, fine.fields),
+                       cell_coordinates=weights.coordinates)
+    # the limit search's extra times, read between the steps (``dense_output``)
+    return replace(result, extend=Extension(
+        result, [StepRecord.of(plans[0], coarse, fine, scales, exposure)],
+        lambda values, _: (values[0][:, 0], values[0][:, 1]), swing(exposure, times) or 1.0,
+        chosen.error_estimate, lambda both: solve_nonlinear(
+            geometry, diffusivity, law, exposure, both, chosen,
+            surface_layer_depth=surface_layer_depth, part=part, sweeps=sweeps), part))
 
 
 def wettest(exposure, times) -> float:

@@ -426,15 +426,14 @@ def solve_corrected(geometry, diffusivity, law, exposure, times, accuracy: float
                              fine.cells + run.planform_cells,
                              sum(m.plate.steps for m in run.marched), float(estimate), note)
     if store_fields:
-        result.fields, result.reason = stored(run, result.reason)
-        result.cell_coordinates = fine.coordinates
-        if isinstance(geometry, Bar):
-            result.cell_coordinates = bar_coordinates(geometry, diffusivity, fine.coordinates)
-    else:   # the limit search's extra times: read between the marches' steps (``dense_output``)
-        result.extend = extension(run, result, accuracy, lambda both: solve_corrected(
-            geometry, diffusivity, law, exposure, both, accuracy,
-            surface_layer_depth=surface_layer_depth, part=part, reason=reason))
-    return result
+        fields, note = stored(run, result.reason)
+        coordinates = (bar_coordinates(geometry, diffusivity, fine.coordinates)
+                       if isinstance(geometry, Bar) else fine.coordinates)
+        return replace(result, fields=fields, reason=note, cell_coordinates=coordinates)
+    # the limit search's extra times: read between the marches' steps (``dense_output``)
+    return replace(result, extend=extension(run, result, accuracy, lambda both: solve_corrected(
+        geometry, diffusivity, law, exposure, both, accuracy,
+        surface_layer_depth=surface_layer_depth, part=part, reason=reason)))
 
 
 def plan_corrected(geometry, diffusivity, law, exposure, times, accuracy: float) -> Plan:
