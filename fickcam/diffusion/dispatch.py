@@ -45,6 +45,7 @@ from .nonfickian.planform_modes import (REFINEMENT, RefinedPlanform, Refinement,
 from .nonfickian.two_phase_mesh import two_phase_marcher
 from .nonfickian.two_phase_modes import langmuir_history
 from .problem.cache import RunCache, run_cache
+from .problem.definition import DiffusionProblem
 from .problem.exposure import Diffusivity, Exposure, swing
 from .problem.geometry import LAYER_DEPTH, Bar, CamPlate, Disc, LinkBar, Sheet
 from .problem.results import DiffusionResult, Plan
@@ -68,10 +69,9 @@ class FickModel:
     """One Fickian model of the registry: the parts it applies to, why it does not apply to
     a part (``refusal``), its plan and its solve.
 
-    ``plan(geometry, diffusivity, exposure, times, accuracy, depth, caps, cache) -> Plan``
-    and ``solve(geometry, diffusivity, exposure, times, chosen, accuracy, depth, store_fields,
-    part, cache) -> DiffusionResult`` (depth: the contact layer's [m]; times [s]; caps: the
-    ``CellCaps`` of the run's ``SolverSettings``; cache: the run's ``RunCache``)."""
+    ``plan(problem, caps, cache) -> Plan`` and ``solve(problem, chosen, cache) ->
+    DiffusionResult`` (problem: a ``DiffusionProblem``; caps: the ``CellCaps`` of the run's
+    ``SolverSettings``; chosen: the plan; cache: the run's ``RunCache``)."""
 
     name: str
     parts: tuple[type, ...]
@@ -93,56 +93,44 @@ class FickModel:
         return None
 
 
-def _plan_analytic(geometry, diffusivity, exposure, times, accuracy, depth, caps,
-                   cache) -> Plan:
+def _plan_analytic(problem: DiffusionProblem, caps, cache) -> Plan:
+    exposure = problem.exposure
     if is_long_record(exposure):
         return Plan("analytic", 0, 0, f"exact Crank series, tabulated once and superposed "
                     f"over the {exposure.ramp.size}-segment record in closed form per row "
-                    "(cost linear in the rows)", accuracy)
+                    "(cost linear in the rows)", problem.accuracy)
     return Plan("analytic", 0, 0, "exact Crank series with Duhamel superposition in "
                 "rescaled time (linear, one Arrhenius factor): cheapest and exact",
                 ANALYTIC_ERROR)
 
 
-def _solve_analytic(geometry, diffusivity, exposure, times, chosen, accuracy, depth,
-                    store_fields, part, cache) -> DiffusionResult:
-    record = accuracy if is_long_record(exposure) else None
-    return solve_analytic(geometry, diffusivity, exposure, times, depth, store_fields, chosen,
-                          record, cache)
+def _solve_analytic(problem: DiffusionProblem, chosen: Plan, cache) -> DiffusionResult:
+    record = problem.accuracy if is_long_record(problem.exposure) else None
+    return solve_analytic(problem, chosen, record, cache)
 
 
-def _scaled_history(geometry, diffusivity, exposure, times, cache: RunCache):
+def _scaled_history(problem: DiffusionProblem, cache: RunCache):
     """tau* of the exposure's changes and of the outputs."""
-    scales = scales_of(geometry, diffusivity, exposure, cache)
-    return scales.tau_star(exposure.change_times), scales.tau_star(np.asarray(times, float))
+    scales = scales_of(problem.geometry, problem.diffusivity, problem.exposure, cache)
+    return scales.tau_star(problem.exposure.change_times), scales.tau_star(problem.times)
 
 
-def _plan_plane(geometry, diffusivity, exposure, times, accuracy, depth, caps, cache) -> Plan:
+def _plan_plane(problem: DiffusionProblem, caps, cache) -> Plan:
     """The outline's expansion, then a graded mesh; a long record's sum takes its share."""
-    change, outputs = _scaled_history(geometry, diffusivity, exposure, times, cache)
-    share = 1.0 - RECORD_SHARE if is_long_record(exposure) else 1.0
-    return plan_plane(geometry, diffusivity, change, outputs, exposure.ramp, share * accuracy,
-                      depth, caps, cache)
-
-
-def _solve_plane(geometry, diffusivity, exposure, times, chosen, accuracy, depth, store_fields,
-                 part, cache) -> DiffusionResult:
-    return solve_plane(geometry, diffusivity, exposure, times, chosen, accuracy=accuracy,
-                       surface_layer_depth=depth, store_fields=store_fields, part=part,
-                       cache=cache)
+    change, outputs = _scaled_history(problem, cache)
+    share = 1.0 - RECORD_SHARE if is_long_record(problem.exposure) else 1.0
+    return plan_plane(problem.geometry, problem.diffusivity, change, outputs,
+                      problem.exposure.ramp, share * problem.accuracy,
+                      problem.surface_layer_depth, caps, cache)
 
 
 def _finite_volume(name: str, parts: tuple[type, ...]) -> FickModel:
     """A finite-volume model (``models.finite_volume``) of these parts."""
-    def planned(geometry, diffusivity, exposure, times, accuracy, depth, caps, cache) -> Plan:
-        return _direct_plan(geometry, diffusivity, name, exposure, times, accuracy, caps=caps,
-                            cache=cache)
+    def planned(problem: DiffusionProblem, caps, cache) -> Plan:
+        return _direct_plan(problem, name, caps=caps, cache=cache)
 
-    def solved(geometry, diffusivity, exposure, times, chosen, accuracy, depth, store_fields,
-               part, cache) -> DiffusionResult:
-        return solve_direct(geometry, diffusivity, exposure, times, chosen,
-                            surface_layer_depth=depth, store_fields=store_fields, part=part,
-                            cache=cache)
+    def solved(problem: DiffusionProblem, chosen: Plan, cache) -> DiffusionResult:
+        return solve_direct(problem, chosen, cache=cache)
     return FickModel(name, parts, planned, solved)
 
 
@@ -153,7 +141,7 @@ FICK_MODELS = {model.name: model for model in (
     FickModel("analytic", (Sheet, Bar, Disc), _plan_analytic, _solve_analytic, exact=True),
     _finite_volume("slab", (Sheet,)),
     _finite_volume("axisymmetric", (Disc,)),
-    FickModel("plane", (CamPlate, LinkBar), _plan_plane, _solve_plane),
+    FickModel("plane", (CamPlate, LinkBar), _plan_plane, solve_plane),
     _finite_volume("solid", (Bar, CamPlate, LinkBar)))}
 MODELS = ("auto", *FICK_MODELS)
 PARTS = (Sheet, Disc, Bar, CamPlate, LinkBar)
@@ -165,7 +153,8 @@ def numerical_model(geometry) -> str:
                 if not model.exact and model.applies(geometry))
 
 
-def _validate(geometry, model: str, accuracy: float) -> None:
+def _validate(problem: DiffusionProblem) -> None:
+    geometry, model, accuracy = problem.geometry, problem.model, problem.accuracy
     if model not in MODELS:
         raise InputError(f"diffusion.model {model!r}: one of {', '.join(MODELS)}")
     if type(geometry) not in PARTS:
@@ -267,69 +256,87 @@ def plan(geometry, diffusivity: Diffusivity, exposure: Exposure, times: np.ndarr
         When the model is unknown or does not apply to the part, the geometry is not
         one of the five, or the accuracy is outside (0, 1).
     """
-    _validate(geometry, model, accuracy)
+    return plan_problem(DiffusionProblem(geometry, diffusivity, exposure, times, accuracy, model,
+                                         surface_layer_depth, sorption=sorption),
+                        settings, cache)
+
+
+def plan_problem(problem: DiffusionProblem, settings: SolverSettings = SETTINGS,
+                 cache: RunCache | None = None) -> Plan:
+    """:func:`plan` of a ``DiffusionProblem`` (its ``store_fields`` and ``part`` unread).
+
+    Parameters
+    ----------
+    problem : DiffusionProblem
+        The part, its diffusivity, exposure and times [s], and how they are asked for.
+    settings : SolverSettings
+        The solvers' tuned limits.
+    cache : RunCache, optional
+        The run's cache; None: a fresh one.
+
+    Returns
+    -------
+    Plan
+        The model, its cells and steps, the error estimate [-] and why.
+    """
+    _validate(problem)
     cache = run_cache(cache)
-    if is_nonlinear(sorption) and _nonlinear_route(geometry, model, sorption, exposure,
-                                                   times, accuracy) == "fick":
-        return _as_fick(plan, geometry, diffusivity, exposure, times, sorption, accuracy,
-                        model, surface_layer_depth, settings=settings, cache=cache)
+    sorption = problem.sorption
+    if is_nonlinear(sorption) and _nonlinear_route(problem) == "fick":
+        return _as_fick(plan_problem, problem, settings, cache)
     if is_langmuir(sorption) or is_nonlinear(sorption):
-        depth = LAYER_DEPTH if surface_layer_depth is None else surface_layer_depth
-        return _plan_sorption(geometry, diffusivity, exposure, times, accuracy, model, sorption,
-                              depth, settings, cache)
-    return _fick_model(geometry, model).plan(geometry, diffusivity, exposure, times, accuracy,
-                                             surface_layer_depth, settings.cells, cache)
+        if problem.surface_layer_depth is None:
+            problem = replace(problem, surface_layer_depth=LAYER_DEPTH)
+        return _plan_sorption(problem, settings, cache)
+    return _fick_model(problem.geometry, problem.model).plan(problem, settings.cells, cache)
 
 
-def _plan_sorption(geometry, diffusivity, exposure, times, accuracy, model, sorption,
-                   depth, settings: SolverSettings, cache: RunCache) -> Plan:
+def _plan_sorption(problem: DiffusionProblem, settings: SolverSettings, cache: RunCache) -> Plan:
+    geometry, sorption = problem.geometry, problem.sorption
     law = describe(sorption)
-    if is_nonlinear(sorption) and _nonlinear_route(geometry, model, sorption, exposure,
-                                                   times, accuracy) == "corrected":
-        corrected = plan_corrected(geometry, diffusivity, sorption, exposure, times, accuracy)
+    if is_nonlinear(sorption) and _nonlinear_route(problem) == "corrected":
+        corrected = plan_corrected(geometry, problem.diffusivity, sorption, problem.exposure,
+                                   problem.times, problem.accuracy)
         return replace(corrected, reason=f"{law}; {corrected.reason}")
     if is_nonlinear(sorption):
-        chosen = _nonlinear_model(geometry, model)
+        chosen = _nonlinear_model(geometry, problem.model)
         # the 3-D cells cut at the mirror planes (``symmetry_cuts``)
         mirror_cut = chosen == "solid"
-        direct = nonlinear_plan(lambda d, a, at: _direct_plan(geometry, d, chosen, exposure, at, a,
-                                                              mirror_cut, settings.cells, cache),
-                                diffusivity, sorption, exposure, times, accuracy)
+        direct = nonlinear_plan(
+            lambda d, a, at: _direct_plan(replace(problem, diffusivity=d, accuracy=a, times=at),
+                                          chosen, mirror_cut, settings.cells, cache),
+            problem.diffusivity, sorption, problem.exposure, problem.times, problem.accuracy)
         mirror = {Bar: "; solved on one octant (mirror planes)",
                   CamPlate: "; solved on half the thickness (mid-plane mirror)",
                   LinkBar: "; solved on half the thickness (mid-plane mirror)"}
         return replace(direct, reason=f"{law}; {direct.reason}{mirror.get(type(geometry), '')}")
-    chosen = _two_phase_model(geometry, model)
+    chosen = _two_phase_model(geometry, problem.model)
     if chosen == "analytic":
         return Plan("analytic", 0, 0, f"{law}: exact Fickian modes of the part, each a "
-                    "2x2 free/bound system advanced exactly through the history", accuracy)
+                    "2x2 free/bound system advanced exactly through the history",
+                    problem.accuracy)
     if chosen == "plane":
-        return _plan_planform(geometry, diffusivity, exposure, times, accuracy, sorption, depth,
-                              settings.planform, cache)
-    direct = _direct_plan(geometry, diffusivity, chosen, exposure, times, accuracy,
-                          caps=settings.cells, cache=cache)
+        return _plan_planform(problem, settings.planform, cache)
+    direct = _direct_plan(problem, chosen, caps=settings.cells, cache=cache)
     return replace(direct, reason=f"{law}; {direct.reason}")
 
 
-def _direct_plan(geometry, diffusivity, chosen, exposure, times, accuracy,
-                 mirrored: bool = False, caps: CellCaps = MAX_CELLS,
-                 cache: RunCache | None = None) -> Plan:
-    change, outputs = _scaled_history(geometry, diffusivity, exposure, times, cache)
-    return plan_direct(geometry, diffusivity, chosen, change, outputs, accuracy, exposure, mirrored,
-                       caps, cache)
+def _direct_plan(problem: DiffusionProblem, chosen: str, mirrored: bool = False,
+                 caps: CellCaps = MAX_CELLS, cache: RunCache | None = None) -> Plan:
+    change, outputs = _scaled_history(problem, cache)
+    return plan_direct(problem.geometry, problem.diffusivity, chosen, change, outputs,
+                       problem.accuracy, problem.exposure, mirrored, caps, cache)
 
 
-def _plan_planform(geometry, diffusivity, exposure, times, accuracy, sorption, depth,
-                   refinement: Refinement, cache: RunCache) -> Plan:
+def _plan_planform(problem: DiffusionProblem, refinement: Refinement, cache: RunCache) -> Plan:
     """The planform mesh the solve will use: the first mesh from the error model, refined
     from the two-phase histories it measures (``refined``, kept for the solve, so that
     ``fickcam check`` shows the refined mesh and a run pays for it once)."""
-    design, refined = _planform_refinement(geometry, diffusivity, exposure, times, accuracy,
-                                           sorption, depth, refinement, cache)
+    design, refined = _planform_refinement(problem, refinement, cache)
     _, estimate = refined.result
-    capped = ("" if refined.error <= PLANFORM_SHARE * accuracy else
+    capped = ("" if refined.error <= PLANFORM_SHARE * problem.accuracy else
               f"; capped at {refinement.cap} cells: error above the requested accuracy")
-    return Plan("plane", refined.cells, 0, f"{describe(sorption)}: the planform's FiPy "
+    return Plan("plane", refined.cells, 0, f"{describe(problem.sorption)}: the planform's FiPy "
                 f"operator (first mesh {design.note}, about {int(np.prod(design.cells))} cells; "
                 f"refined from the two-phase histories on {refined.levels} meshes to "
                 f"{refined.cells} cells), its decay seen by the mean and layer as a "
@@ -339,31 +346,32 @@ def _plan_planform(geometry, diffusivity, exposure, times, accuracy, sorption, d
                 finest=refined.finest, growth=refined.growth)
 
 
-def _planform_refinement(geometry, diffusivity, exposure, times, accuracy, sorption, depth,
-                         refinement: Refinement, cache: RunCache):
+def _planform_refinement(problem: DiffusionProblem, refinement: Refinement, cache: RunCache):
     """(first mesh, ``_refined``) of a two-phase CamPlate or LinkBar, the refinement kept in
     the run's ``cache``: ``plan`` and ``solve`` share it."""
+    geometry, diffusivity, exposure = problem.geometry, problem.diffusivity, problem.exposure
     scales = scales_of(geometry, diffusivity, exposure, cache)
-    times = np.asarray(times, float)
-    t_lo = earliest_output(scales.tau_star(exposure.change_times), scales.tau_star(times))
-    design = planform_design(geometry, diffusivity.pre_exponential, accuracy, t_lo)
-    key = ("two-phase planform refinement", geometry, diffusivity, exposure, times.tobytes(),
-           accuracy, sorption, depth, design.finest, design.growth, refinement)
-    return design, cache.get(key, lambda: _refined(
-        geometry, diffusivity, exposure, times, accuracy, sorption, depth, design.finest,
-        design.growth, refinement, cache))
+    t_lo = earliest_output(scales.tau_star(exposure.change_times), scales.tau_star(problem.times))
+    design = planform_design(geometry, diffusivity.pre_exponential, problem.accuracy, t_lo)
+    key = ("two-phase planform refinement", geometry, diffusivity, exposure,
+           problem.times.tobytes(), problem.accuracy, problem.sorption,
+           problem.surface_layer_depth, design.finest, design.growth, refinement)
+    return design, cache.get(key, lambda: _refined(problem, design.finest, design.growth,
+                                                   refinement, cache))
 
 
-def _refined(geometry, diffusivity, exposure, times: np.ndarray, accuracy, sorption, depth,
-             finest, growth, refinement: Refinement, cache: RunCache) -> RefinedPlanform:
+def _refined(problem: DiffusionProblem, finest, growth, refinement: Refinement,
+             cache: RunCache) -> RefinedPlanform:
     """``planform_modes.refined_planform`` of the two-phase history (the march on each mesh,
     most of whose cost is the planform operators): its mesh error is ``PLANFORM_SHARE`` of
     the accuracy, the march the rest."""
+    geometry, diffusivity, exposure = problem.geometry, problem.diffusivity, problem.exposure
+    times, accuracy, depth = problem.times, problem.accuracy, problem.surface_layer_depth
     share, scale = PLANFORM_SHARE * accuracy, 1.0 / max(swing(exposure), 1e-300)
 
     def measure(source):
-        history, estimate = langmuir_history(geometry, diffusivity, sorption, exposure, times,
-                                             accuracy - share, depth, source)
+        history, estimate = langmuir_history(geometry, diffusivity, problem.sorption, exposure,
+                                             times, accuracy - share, depth, source)
         compared = [history["mean"], history["bound"], history["surface"] / LAYER_TOLERANCE]
         return np.stack(compared) * scale, (history, estimate)
 
@@ -385,7 +393,7 @@ def _nonlinear_model(geometry, model: str) -> str:
     return numerical_model(geometry) if model in ("auto", "analytic") else model
 
 
-def _nonlinear_route(geometry, model: str, sorption, exposure, times, accuracy) -> str:
+def _nonlinear_route(problem: DiffusionProblem) -> str:
     """How ``auto`` solves D(c) on a Bar, CamPlate or LinkBar: ``fick`` where f is one
     number over the moisture the part meets (k = 0: Fick with D f, the Fickian models'
     own result), else ``corrected`` (``corrected_product``: the D(c) sheet x planform corrected on
@@ -393,23 +401,24 @@ def _nonlinear_route(geometry, model: str, sorption, exposure, times, accuracy) 
     Bar (the prism of its rectangular section, its thickness the fastest axis) from
     ``BAR_CORRECTED_FROM`` down, above it ``finite_volume`` (the octant's cells). ``solid``:
     ``finite_volume`` always (the 3-D cells alone, the check)."""
-    if model != "auto" or not isinstance(geometry, (Bar, CamPlate, LinkBar)):
+    geometry = problem.geometry
+    if problem.model != "auto" or not isinstance(geometry, (Bar, CamPlate, LinkBar)):
         return "direct"
-    if spread(sorption, exposure, times) <= 1.0 + 1e-12:
+    if spread(problem.sorption, problem.exposure, problem.times) <= 1.0 + 1e-12:
         return "fick"
-    if isinstance(geometry, Bar) and accuracy > BAR_CORRECTED_FROM:
+    if isinstance(geometry, Bar) and problem.accuracy > BAR_CORRECTED_FROM:
         return "direct"
     return "corrected"
 
 
-def _as_fick(call, geometry, diffusivity, exposure, times, sorption, accuracy, model, depth,
-             **options):
-    """``call`` (plan or solve) for Fick with D f(c0): f is constant where the part goes."""
-    factor = float(sorption.factor(exposure.initial_moisture))
+def _as_fick(call, problem: DiffusionProblem, settings: SolverSettings, cache: RunCache):
+    """``call`` (plan or solve of a problem) for Fick with D f(c0): f is constant where the
+    part goes."""
+    sorption, diffusivity = problem.sorption, problem.diffusivity
+    factor = float(sorption.factor(problem.exposure.initial_moisture))
     scaled = Diffusivity(tuple(d * factor for d in diffusivity.pre_exponential),
                          diffusivity.activation_energy)
-    done = call(geometry, scaled, exposure, times, accuracy=accuracy, model=model,
-                surface_layer_depth=depth, **options)
+    done = call(replace(problem, diffusivity=scaled, sorption=None), settings, cache)
     return replace(done, reason=f"{describe(sorption)} is {factor:g} over the moisture met: "
                                 f"Fick with D x {factor:g}; {done.reason}")
 
@@ -460,78 +469,90 @@ def solve(geometry, diffusivity: Diffusivity, exposure: Exposure, times: np.ndar
         When the model is unknown or does not apply to the part, or the accuracy is
         outside (0, 1).
     """
-    times = np.asarray(times, float)
+    return solve_problem(DiffusionProblem(geometry, diffusivity, exposure, times, accuracy, model,
+                                          surface_layer_depth, store_fields, part, sorption),
+                         settings, cache)
+
+
+def solve_problem(problem: DiffusionProblem, settings: SolverSettings = SETTINGS,
+                  cache: RunCache | None = None) -> DiffusionResult:
+    """:func:`solve` of a ``DiffusionProblem``: plan it (``plan_problem``), then run the
+    plan's model.
+
+    Parameters
+    ----------
+    problem : DiffusionProblem
+        The part, its diffusivity, exposure and times [s], and how they are asked for.
+    settings : SolverSettings
+        The solvers' tuned limits.
+    cache : RunCache, optional
+        The run's cache; None: a fresh one (kept by the result's ``extend``).
+
+    Returns
+    -------
+    DiffusionResult
+        Mean and contact-layer moisture [weight %] at the problem's times.
+    """
     cache = run_cache(cache)
-    route = (_nonlinear_route(geometry, model, sorption, exposure, times, accuracy)
-             if is_nonlinear(sorption) else "")
+    sorption = problem.sorption
+    route = _nonlinear_route(problem) if is_nonlinear(sorption) else ""
     if route == "fick":
-        return _as_fick(solve, geometry, diffusivity, exposure, times, sorption, accuracy, model,
-                        surface_layer_depth, store_fields=store_fields, part=part,
-                        settings=settings, cache=cache)
-    chosen = plan(geometry, diffusivity, exposure, times, accuracy, model, sorption,
-                  surface_layer_depth, settings, cache)
+        return _as_fick(solve_problem, problem, settings, cache)
+    chosen = plan_problem(problem, settings, cache)
     # D(c): ``extend`` reads between the steps where the cells stay (``dense_output``)
-    again, resolve = _replanned(geometry, diffusivity, exposure, accuracy, model, sorption,
-                                surface_layer_depth, part, settings, cache)
+    again, resolve = _replanned(problem, settings, cache)
     if route == "corrected":
         return held_to_plan(solve_corrected(
-            geometry, diffusivity, sorption, exposure, times, accuracy,
-            surface_layer_depth=surface_layer_depth, store_fields=store_fields, part=part,
-            reason=chosen.reason, sweeps=settings.sweeps), chosen, again, resolve)
-    log.debug("%s: %s, %d cells, %d steps (%s)", part or type(geometry).__name__, chosen.model,
-              chosen.cells, chosen.steps, chosen.reason)
+            problem.geometry, problem.diffusivity, sorption, problem.exposure, problem.times,
+            problem.accuracy, surface_layer_depth=problem.surface_layer_depth,
+            store_fields=problem.store_fields, part=problem.part, reason=chosen.reason,
+            sweeps=settings.sweeps), chosen, again, resolve)
+    log.debug("%s: %s, %d cells, %d steps (%s)", problem.name, chosen.model, chosen.cells,
+              chosen.steps, chosen.reason)
     if route:
-        return held_to_plan(_solve_sorption(geometry, diffusivity, exposure, times, chosen,
-                                            sorption, surface_layer_depth, store_fields, part,
-                                            accuracy, settings, cache), chosen, again, resolve)
-    if sorption is not None and (is_langmuir(sorption) or is_nonlinear(sorption)):
-        return _solve_sorption(geometry, diffusivity, exposure, times, chosen, sorption,
-                               surface_layer_depth, store_fields, part, accuracy, settings, cache)
-    return FICK_MODELS[chosen.model].solve(geometry, diffusivity, exposure, times, chosen,
-                                           accuracy, surface_layer_depth, store_fields, part,
-                                           cache)
+        return held_to_plan(_solve_sorption(problem, chosen, settings, cache), chosen, again,
+                            resolve)
+    if is_langmuir(sorption) or is_nonlinear(sorption):
+        return _solve_sorption(problem, chosen, settings, cache)
+    return FICK_MODELS[chosen.model].solve(problem, chosen, cache)
 
 
-def _replanned(geometry, diffusivity, exposure, accuracy, model, sorption, depth, part,
-               settings: SolverSettings, cache: RunCache):
-    """(plan at other times, solve at other times) of this part, as ``solve`` was asked."""
+def _replanned(problem: DiffusionProblem, settings: SolverSettings, cache: RunCache):
+    """(plan at other times, solve at other times, no fields) of this problem."""
     def again(at):
-        return plan(geometry, diffusivity, exposure, at, accuracy, model, sorption, depth,
-                    settings, cache)
+        return plan_problem(problem.at(at), settings, cache)
 
     def resolve(at):
-        return solve(geometry, diffusivity, exposure, at, accuracy=accuracy, model=model,
-                     surface_layer_depth=depth, part=part, sorption=sorption,
-                     settings=settings, cache=cache)
+        return solve_problem(replace(problem.at(at), store_fields=False), settings, cache)
     return again, resolve
 
 
-def _solve_sorption(geometry, diffusivity, exposure, times, chosen: Plan, sorption, depth,
-                    store_fields, part, accuracy, settings: SolverSettings,
+def _solve_sorption(problem: DiffusionProblem, chosen: Plan, settings: SolverSettings,
                     cache: RunCache) -> DiffusionResult:
     if chosen.model in ("analytic", "plane"):
-        return _langmuir_modes(geometry, diffusivity, exposure, times, chosen, sorption, depth,
-                               accuracy, settings.planform, cache)
-    if is_langmuir(sorption):
-        return solve_direct(geometry, diffusivity, exposure, times, chosen,
-                            surface_layer_depth=depth, store_fields=store_fields, part=part,
-                            marcher=two_phase_marcher(sorption, exposure), cache=cache)
-    return solve_nonlinear(geometry, diffusivity, sorption, exposure, times, chosen,
-                           surface_layer_depth=depth, store_fields=store_fields, part=part,
+        return _langmuir_modes(problem, chosen, settings.planform, cache)
+    if is_langmuir(problem.sorption):
+        return solve_direct(problem, chosen, cache=cache,
+                            marcher=two_phase_marcher(problem.sorption, problem.exposure))
+    return solve_nonlinear(problem.geometry, problem.diffusivity, problem.sorption,
+                           problem.exposure, problem.times, chosen,
+                           surface_layer_depth=problem.surface_layer_depth,
+                           store_fields=problem.store_fields, part=problem.part,
                            sweeps=settings.sweeps)
 
 
-def _langmuir_modes(geometry, diffusivity, exposure, times, chosen, sorption, depth, accuracy,
-                    refinement: Refinement, cache: RunCache):
+def _langmuir_modes(problem: DiffusionProblem, chosen: Plan, refinement: Refinement,
+                    cache: RunCache):
     """The exact two-phase modal march; for a CamPlate or LinkBar on its planform's
     quadrature (``planform_modes``), the histories of the plan's refined mesh (``_refined``,
     from the run's ``cache``)."""
+    geometry, diffusivity, exposure = problem.geometry, problem.diffusivity, problem.exposure
+    times, accuracy, depth = problem.times, problem.accuracy, problem.surface_layer_depth
     if chosen.model != "plane":
-        history, estimate = langmuir_history(geometry, diffusivity, sorption, exposure, times,
-                                             accuracy, depth)
+        history, estimate = langmuir_history(geometry, diffusivity, problem.sorption, exposure,
+                                             times, accuracy, depth)
         return _langmuir_result(times, history, estimate, chosen)
-    _, refined = _planform_refinement(geometry, diffusivity, exposure, times, accuracy, sorption,
-                                      depth, refinement, cache)
+    _, refined = _planform_refinement(problem, refinement, cache)
     history, _ = refined.result
     stored = _langmuir_result(times, history, chosen.error_estimate, chosen)
     source = planform_source(geometry, diffusivity.pre_exponential, lanczos_spectrum(
@@ -543,7 +564,7 @@ def _langmuir_modes(geometry, diffusivity, exposure, times, chosen, sorption, de
         march through the stored and new times together, the new rows kept."""
         new = np.setdiff1d(np.asarray(at, float), times)
         both = np.union1d(times, new)
-        extra, _ = langmuir_history(geometry, diffusivity, sorption, exposure, both,
+        extra, _ = langmuir_history(geometry, diffusivity, problem.sorption, exposure, both,
                                     (1.0 - PLANFORM_SHARE) * accuracy, depth, source)
         rows = np.searchsorted(both, new)
         return stored.merged(new, extra["mean"][rows], extra["surface"][rows],

@@ -8,6 +8,7 @@ import numpy as np
 
 from ..exact.separable import saturation_tau, step_field, step_response
 from ..problem.cache import RunCache, run_cache
+from ..problem.definition import DiffusionProblem
 from ..problem.geometry import LAYER_DEPTH, Bar, Disc, Sheet
 from ..problem.results import DiffusionResult, Plan
 from ..superposition.duhamel import duhamel
@@ -62,12 +63,13 @@ def record_history(geometry, diffusivity, exposure, times, accuracy,
     return {"mean": values[:, 0], "surface": values[:, 1]}, error, record
 
 
-def solve_analytic(geometry, diffusivity, exposure, times, depth, store_fields,
-                   chosen: Plan, record_accuracy: float | None = None,
+def solve_analytic(problem: DiffusionProblem, chosen: Plan, record_accuracy: float | None = None,
                    cache: RunCache | None = None) -> DiffusionResult:
-    """The exact mean and contact-layer history (and fields on request); with
-    ``record_accuracy`` (a long record) by the tabulated sum, and the result carries its
-    error estimate; ``cache``: the run's."""
+    """The exact mean and contact-layer history (and fields on request) of a ``problem``;
+    with ``record_accuracy`` (a long record) by the tabulated sum, and the result carries
+    its error estimate; ``cache``: the run's."""
+    geometry, diffusivity, exposure = problem.geometry, problem.diffusivity, problem.exposure
+    times, depth = problem.times, problem.surface_layer_depth
     estimate, record = chosen.error_estimate, None
     if record_accuracy is None:
         history = exact_history(geometry, diffusivity, exposure, times, depth, cache)
@@ -76,7 +78,7 @@ def solve_analytic(geometry, diffusivity, exposure, times, depth, store_fields,
                                                    record_accuracy, depth, cache)
     mean, surface = history["mean"], history["surface"]
     fields, coordinates = (_analytic_fields(geometry, diffusivity, exposure, times, record, cache)
-                           if store_fields else (None, {}))
+                           if problem.store_fields else (None, {}))
     return DiffusionResult(times, np.asarray(mean, float), np.asarray(surface, float),
                            "analytic", 0 if fields is None else fields.shape[1], 0, estimate,
                            chosen.reason, fields=fields, cell_coordinates=coordinates)

@@ -24,8 +24,9 @@ from ..operators.prisms import prism
 from ..operators.symmetry_cuts import halved_axes
 from ..planform.admissible import band_share
 from ..problem.cache import RunCache
+from ..problem.definition import DiffusionProblem
 from ..problem.exposure import Diffusivity, Exposure, swing
-from ..problem.geometry import LAYER_DEPTH, Bar, CamPlate, Disc, LinkBar, Sheet
+from ..problem.geometry import Bar, CamPlate, Disc, LinkBar, Sheet
 from ..problem.results import DiffusionResult, Plan
 from ..problem.scaling import stretch_of
 from ..stepping import step_plans
@@ -131,14 +132,15 @@ def step_plan(exposure, times, scales: Scales, per_doubling: int,
                     np.searchsorted(nodes, change[:-1]))
 
 
-def solve_direct(geometry, diffusivity, exposure, times, chosen: Plan, *,
-                 surface_layer_depth: float = LAYER_DEPTH, store_fields: bool = False,
-                 part: str = "", extrapolate: bool = True, disc=None,
-                 marcher=march, cache: RunCache | None = None) -> DiffusionResult:
-    """March a Sheet, Disc, Bar or prisms of a CamPlate or LinkBar on its FiPy mesh
-    (Richardson pair in time); ``disc``: an operator built by the caller instead;
+def solve_direct(problem: DiffusionProblem, chosen: Plan, *, extrapolate: bool = True,
+                 disc=None, marcher=march, cache: RunCache | None = None) -> DiffusionResult:
+    """March a Sheet, Disc, Bar or prisms of a CamPlate or LinkBar (``problem``) on its FiPy
+    mesh (Richardson pair in time); ``disc``: an operator built by the caller instead;
     ``marcher``: ``march.march`` or one with its arguments (``two_phase_mesh``: two-phase, whose
     history also carries the bound-water mean); ``cache``: the run's."""
+    geometry, diffusivity, exposure = problem.geometry, problem.diffusivity, problem.exposure
+    times, surface_layer_depth = problem.times, problem.surface_layer_depth
+    store_fields, part = problem.store_fields, problem.part
     scales = scales_of(geometry, diffusivity, exposure, cache)
     if disc is None:
         disc = discretise(geometry, diffusivity, chosen.cells_per_axis, surface_layer_depth,

@@ -45,7 +45,8 @@ from ..planform.outline import outline_extent
 from ..planform.short_time import expansion_of, sheet_fraction, weighted
 from ..planform.triangles import triangulate
 from ..problem.cache import RunCache, run_cache
-from ..problem.geometry import LAYER_DEPTH
+from ..problem.definition import DiffusionProblem
+
 from ..problem.results import DiffusionResult, Plan
 from ..problem.scaling import planar_scale, stretch_of
 from ..stepping.step_plans import earliest_output, geometric_steps, output_ages
@@ -254,15 +255,15 @@ def _design(expansion, switch, end, ages, perimeter, area, tightest, accuracy, t
 # ------------------------------------------------------------------ solve
 
 
-def solve_plane(geometry, diffusivity, exposure, times, chosen, *, accuracy: float,
-                surface_layer_depth: float = LAYER_DEPTH, store_fields: bool = False,
-                part: str = "", cache: RunCache | None = None):
+def solve_plane(problem: DiffusionProblem, chosen: Plan, cache: RunCache | None = None):
     """CamPlate / LinkBar: planform step response x sheet step response, Duhamel over the
     history (``PrismSuperposition``); the estimate adds the error of the sum itself on long
     records. ``cache``: the run's (None: a fresh one)."""
     cache = run_cache(cache)
+    geometry, diffusivity, exposure = problem.geometry, problem.diffusivity, problem.exposure
+    times, accuracy, part = problem.times, problem.accuracy, problem.part
+    surface_layer_depth, store_fields = problem.surface_layer_depth, problem.store_fields
     d = tuple(float(v) for v in diffusivity.pre_exponential)
-    times = np.asarray(times, float)
     scales = scales_of(geometry, diffusivity, exposure, cache)
     outputs = scales.tau_star(times)
     ages = output_ages(scales.tau_star(exposure.change_times), outputs, exposure.ramp,
