@@ -32,7 +32,7 @@ from .accuracy.error_model import (ANALYTIC_ERROR, LAYER_TOLERANCE, MAX_CELLS, P
 from .exact.separable import exact_available
 from .forcing.clock import RescaledTime
 from .forcing.clock import scales as scales_of
-from .forcing.record import RECORD_SHARE, is_long_record
+from .forcing.record import is_long_record
 from .models.analytic import solve_analytic
 from .models.finite_volume import plan_direct, solve_direct
 from .models.plane import plan_plane, solve_plane
@@ -109,25 +109,10 @@ def _solve_analytic(problem: DiffusionProblem, chosen: Plan, cache) -> Diffusion
     return solve_analytic(problem, chosen, record, cache)
 
 
-def _scaled_history(problem: DiffusionProblem, cache: RunCache):
-    """tau* of the exposure's changes and of the outputs."""
-    scales = scales_of(problem.geometry, problem.diffusivity, problem.exposure, cache)
-    return scales.tau_star(problem.exposure.change_times), scales.tau_star(problem.times)
-
-
-def _plan_plane(problem: DiffusionProblem, caps, cache) -> Plan:
-    """The outline's expansion, then a graded mesh; a long record's sum takes its share."""
-    change, outputs = _scaled_history(problem, cache)
-    share = 1.0 - RECORD_SHARE if is_long_record(problem.exposure) else 1.0
-    return plan_plane(problem.geometry, problem.diffusivity, change, outputs,
-                      problem.exposure.ramp, share * problem.accuracy,
-                      problem.surface_layer_depth, caps, cache)
-
-
 def _finite_volume(name: str, parts: tuple[type, ...]) -> FickModel:
     """A finite-volume model (``models.finite_volume``) of these parts."""
     def planned(problem: DiffusionProblem, caps, cache) -> Plan:
-        return _direct_plan(problem, name, caps=caps, cache=cache)
+        return plan_direct(problem, name, caps=caps, cache=cache)
 
     def solved(problem: DiffusionProblem, chosen: Plan, cache) -> DiffusionResult:
         return solve_direct(problem, chosen, cache=cache)
@@ -141,7 +126,7 @@ FICK_MODELS = {model.name: model for model in (
     FickModel("analytic", (Sheet, Bar, Disc), _plan_analytic, _solve_analytic, exact=True),
     _finite_volume("slab", (Sheet,)),
     _finite_volume("axisymmetric", (Disc,)),
-    FickModel("plane", (CamPlate, LinkBar), _plan_plane, solve_plane),
+    FickModel("plane", (CamPlate, LinkBar), plan_plane, solve_plane),
     _finite_volume("solid", (Bar, CamPlate, LinkBar)))}
 MODELS = ("auto", *FICK_MODELS)
 PARTS = (Sheet, Disc, Bar, CamPlate, LinkBar)
@@ -303,8 +288,8 @@ def _plan_sorption(problem: DiffusionProblem, settings: SolverSettings, cache: R
         # the 3-D cells cut at the mirror planes (``symmetry_cuts``)
         mirror_cut = chosen == "solid"
         direct = nonlinear_plan(
-            lambda d, a, at: _direct_plan(replace(problem, diffusivity=d, accuracy=a, times=at),
-                                          chosen, mirror_cut, settings.cells, cache),
+            lambda d, a, at: plan_direct(replace(problem, diffusivity=d, accuracy=a, times=at),
+                                         chosen, mirror_cut, settings.cells, cache),
             problem.diffusivity, sorption, problem.exposure, problem.times, problem.accuracy)
         mirror = {Bar: "; solved on one octant (mirror planes)",
                   CamPlate: "; solved on half the thickness (mid-plane mirror)",
@@ -317,15 +302,8 @@ def _plan_sorption(problem: DiffusionProblem, settings: SolverSettings, cache: R
                     problem.accuracy)
     if chosen == "plane":
         return _plan_planform(problem, settings.planform, cache)
-    direct = _direct_plan(problem, chosen, caps=settings.cells, cache=cache)
+    direct = plan_direct(problem, chosen, caps=settings.cells, cache=cache)
     return replace(direct, reason=f"{law}; {direct.reason}")
-
-
-def _direct_plan(problem: DiffusionProblem, chosen: str, mirrored: bool = False,
-                 caps: CellCaps = MAX_CELLS, cache: RunCache | None = None) -> Plan:
-    change, outputs = _scaled_history(problem, cache)
-    return plan_direct(problem.geometry, problem.diffusivity, chosen, change, outputs,
-                       problem.accuracy, problem.exposure, mirrored, caps, cache)
 
 
 def _plan_planform(problem: DiffusionProblem, refinement: Refinement, cache: RunCache) -> Plan:
@@ -534,11 +512,7 @@ def _solve_sorption(problem: DiffusionProblem, chosen: Plan, settings: SolverSet
     if is_langmuir(problem.sorption):
         return solve_direct(problem, chosen, cache=cache,
                             marcher=two_phase_marcher(problem.sorption, problem.exposure))
-    return solve_nonlinear(problem.geometry, problem.diffusivity, problem.sorption,
-                           problem.exposure, problem.times, chosen,
-                           surface_layer_depth=problem.surface_layer_depth,
-                           store_fields=problem.store_fields, part=problem.part,
-                           sweeps=settings.sweeps)
+    return solve_nonlinear(problem, chosen, settings.sweeps, cache)
 
 
 def _langmuir_modes(problem: DiffusionProblem, chosen: Plan, refinement: Refinement,

@@ -25,7 +25,7 @@ from ..operators.symmetry_cuts import halved_axes
 from ..planform.admissible import band_share
 from ..problem.cache import RunCache
 from ..problem.definition import DiffusionProblem
-from ..problem.exposure import Diffusivity, Exposure, swing
+from ..problem.exposure import Diffusivity, swing
 from ..problem.geometry import Bar, CamPlate, Disc, LinkBar, Sheet
 from ..problem.results import DiffusionResult, Plan
 from ..problem.scaling import stretch_of
@@ -33,14 +33,17 @@ from ..stepping import step_plans
 from ..stepping.march import march
 
 
-def plan_direct(geometry, diffusivity, model: str, change: np.ndarray, outputs: np.ndarray,
-                accuracy: float, exposure: Exposure, mirrored: bool = False,
+def plan_direct(problem: DiffusionProblem, model: str, mirrored: bool = False,
                 caps: CellCaps = MAX_CELLS, cache: RunCache | None = None) -> Plan:
     """Cells from the spatial error model, steps per doubling from the time error model,
-    each taking half the accuracy. ``mirrored``: the solve keeps the part cut at its
-    mirror planes (``symmetry_cuts``, the D(c) sweeps); the plan's cells and the cap
+    each taking half the problem's accuracy. ``mirrored``: the solve keeps the part cut at
+    its mirror planes (``symmetry_cuts``, the D(c) sweeps); the plan's cells and the cap
     (``caps``: cells of the linear system) count that cut part; ``cache``: the run's, which
     keeps a planform's cells for the solve."""
+    geometry, diffusivity, exposure = problem.geometry, problem.diffusivity, problem.exposure
+    accuracy = problem.accuracy
+    scales = scales_of(geometry, diffusivity, exposure, cache)
+    change, outputs = scales.tau_star(exposure.change_times), scales.tau_star(problem.times)
     t_lo = step_plans.earliest_output(change, outputs)
     cells = _cells(geometry, diffusivity, accuracy, t_lo, caps[model],
                    halved_axes(geometry) if mirrored else (), cache)

@@ -181,8 +181,7 @@ def expansion_error_at(expansion, ages: np.ndarray) -> float:
     return float(np.max(weighted(expansion.uptake_error(ages), sheet_fraction(ages))))
 
 
-def plan_plane(geometry, diffusivity, change: np.ndarray, outputs: np.ndarray, ramp,
-               accuracy: float, layer_depth: float | None = None, caps: CellCaps = MAX_CELLS,
+def plan_plane(problem: DiffusionProblem, caps: CellCaps = MAX_CELLS,
                cache: RunCache | None = None):
     """What ``solve_plane`` will do and the error it will report, by the blend's error model
     at the ages the outputs read (``step_plans.output_ages``): the expansion up to its switch
@@ -190,11 +189,17 @@ def plan_plane(geometry, diffusivity, change: np.ndarray, outputs: np.ndarray, r
     at half the switch (``mesh_design`` plus the expansion's own relative error there) times
     the largest uptake x sheet fraction at the later ages takes what the time error,
     PAIR_TO_TIME_ERROR (PLANE_PAIR F(end) / m)^2 (at most ``TIME_SHARE`` of it), leaves of
-    ``DESIGN_MARGIN`` x accuracy. The cells are those of the mesh ``solve`` builds. The
-    plan reads nothing of the contact layer: ``layer_depth`` (the solve's) only lets plan
-    and solve share the expansion (``expansion_of``); ``caps``: the most nodes of the
-    mesh and cells of the sheet; ``cache``: the run's (None: a fresh one)."""
+    ``DESIGN_MARGIN`` x accuracy (a long record's sum takes ``RECORD_SHARE`` of it first).
+    The cells are those of the mesh ``solve`` builds. The plan reads nothing of the contact
+    layer: the problem's layer depth (the solve's) only lets plan and solve share the
+    expansion (``expansion_of``); ``caps``: the most nodes of the mesh and cells of the
+    sheet; ``cache``: the run's (None: a fresh one)."""
     cache = run_cache(cache)
+    geometry, diffusivity, exposure = problem.geometry, problem.diffusivity, problem.exposure
+    scales = scales_of(geometry, diffusivity, exposure, cache)
+    change, outputs = scales.tau_star(exposure.change_times), scales.tau_star(problem.times)
+    ramp, layer_depth = exposure.ramp, problem.surface_layer_depth
+    accuracy = (1.0 - RECORD_SHARE if is_long_record(exposure) else 1.0) * problem.accuracy
     d = tuple(float(v) for v in diffusivity.pre_exponential)
     tolerance = EXPANSION_SHARE * accuracy
     expansion = expansion_of(geometry, d, layer_depth, cache)
