@@ -1,5 +1,8 @@
-"""The dispatcher: ``plan`` (which model, cells and steps a solve will use, and why)
-and ``solve`` (run that plan).
+"""The dispatcher: ``plan_problem`` (which model, cells and steps a solve will use, and
+why) and ``solve_problem`` (run that plan) of a ``DiffusionProblem``; ``plan`` and ``solve``
+are their keyword conveniences. The registry ``ROUTES`` holds each law's routes (Fick,
+Langmuir, concentration-dependent D), each saying why it does not take a problem, planning
+and solving; ``auto`` takes the first that does (``route_of``).
 
 Models (``diffusion.model``), each a ``FickModel`` of the registry ``FICK_MODELS``, which
 says which parts it applies to, why not where it does not, and plans and solves:
@@ -165,13 +168,6 @@ def _fick_model(geometry, model: str) -> FickModel:
     return FICK_MODELS[model]
 
 
-def _two_phase_model(geometry, model: str) -> str:
-    """Langmuir sorption: the exact modes where the part has them; a CamPlate or LinkBar
-    ``plane``: its planform's quadrature x the exact sheet (``planform_modes``), or ``solid``
-    prisms; else the direct finite volumes (``two_phase_mesh``)."""
-    return _fick_model(geometry, model).name
-
-
 @dataclass(frozen=True)
 class SolverSettings:
     """The solvers' tuned limits, frozen. The defaults are the run's; a caller (a test)
@@ -208,22 +204,12 @@ def plan(geometry, diffusivity: Diffusivity, exposure: Exposure, times: np.ndarr
 
     Parameters
     ----------
-    geometry : Sheet, Disc, Bar, CamPlate or LinkBar
-        The part, dry dimensions [m].
-    diffusivity : Diffusivity
-        D(T) along the part axes [m^2/s].
-    exposure : Exposure
-        The surface history: temperature [K] and surface moisture [weight %] over time.
-    times : numpy.ndarray
-        The times at which moisture is wanted [s].
-    accuracy : float
-        The relative accuracy [-] asked for, a fraction of the moisture swing, in (0, 1).
-    model : str
-        One of ``MODELS``; "auto" chooses.
-    sorption : optional
-        A sorption law of ``fickcam.diffusion.problem.sorption``; None: Fick's law.
+    geometry, diffusivity, exposure, times, accuracy, model, sorption
+        The part [m], its D(T) [m^2/s], its surface history, the times [s], the relative
+        accuracy [-] and the model asked for: the fields of :class:`DiffusionProblem`.
     surface_layer_depth : float, optional
-        The depth of the contact layer [m]; None: ``LAYER_DEPTH`` (5e-4 m).
+        The depth of the contact layer [m]; None: not given (a Fickian plan does not
+        read it; a sorption plan takes ``LAYER_DEPTH``, 5e-4 m).
     settings : SolverSettings
         The solvers' tuned limits.
     cache : RunCache, optional
@@ -248,7 +234,8 @@ def plan(geometry, diffusivity: Diffusivity, exposure: Exposure, times: np.ndarr
 
 def plan_problem(problem: DiffusionProblem, settings: SolverSettings = SETTINGS,
                  cache: RunCache | None = None) -> Plan:
-    """:func:`plan` of a ``DiffusionProblem`` (its ``store_fields`` and ``part`` unread).
+    """:func:`plan` of a ``DiffusionProblem`` (its ``store_fields`` and ``part`` unread): the
+    registry's route for the problem (``route_of``) plans it.
 
     Parameters
     ----------
@@ -265,45 +252,7 @@ def plan_problem(problem: DiffusionProblem, settings: SolverSettings = SETTINGS,
         The model, its cells and steps, the error estimate [-] and why.
     """
     _validate(problem)
-    cache = run_cache(cache)
-    sorption = problem.sorption
-    if is_nonlinear(sorption) and _nonlinear_route(problem) == "fick":
-        return _as_fick(plan_problem, problem, settings, cache)
-    if is_langmuir(sorption) or is_nonlinear(sorption):
-        if problem.surface_layer_depth is None:
-            problem = replace(problem, surface_layer_depth=LAYER_DEPTH)
-        return _plan_sorption(problem, settings, cache)
-    return _fick_model(problem.geometry, problem.model).plan(problem, settings.cells, cache)
-
-
-def _plan_sorption(problem: DiffusionProblem, settings: SolverSettings, cache: RunCache) -> Plan:
-    geometry, sorption = problem.geometry, problem.sorption
-    law = describe(sorption)
-    if is_nonlinear(sorption) and _nonlinear_route(problem) == "corrected":
-        corrected = plan_corrected(geometry, problem.diffusivity, sorption, problem.exposure,
-                                   problem.times, problem.accuracy)
-        return replace(corrected, reason=f"{law}; {corrected.reason}")
-    if is_nonlinear(sorption):
-        chosen = _nonlinear_model(geometry, problem.model)
-        # the 3-D cells cut at the mirror planes (``symmetry_cuts``)
-        mirror_cut = chosen == "solid"
-        direct = nonlinear_plan(
-            lambda d, a, at: plan_direct(replace(problem, diffusivity=d, accuracy=a, times=at),
-                                         chosen, mirror_cut, settings.cells, cache),
-            problem.diffusivity, sorption, problem.exposure, problem.times, problem.accuracy)
-        mirror = {Bar: "; solved on one octant (mirror planes)",
-                  CamPlate: "; solved on half the thickness (mid-plane mirror)",
-                  LinkBar: "; solved on half the thickness (mid-plane mirror)"}
-        return replace(direct, reason=f"{law}; {direct.reason}{mirror.get(type(geometry), '')}")
-    chosen = _two_phase_model(geometry, problem.model)
-    if chosen == "analytic":
-        return Plan("analytic", 0, 0, f"{law}: exact Fickian modes of the part, each a "
-                    "2x2 free/bound system advanced exactly through the history",
-                    problem.accuracy)
-    if chosen == "plane":
-        return _plan_planform(problem, settings.planform, cache)
-    direct = plan_direct(problem, chosen, caps=settings.cells, cache=cache)
-    return replace(direct, reason=f"{law}; {direct.reason}")
+    return route_of(problem).plan(problem, settings, run_cache(cache))
 
 
 def _plan_planform(problem: DiffusionProblem, refinement: Refinement, cache: RunCache) -> Plan:
@@ -356,37 +305,6 @@ def _refined(problem: DiffusionProblem, finest, growth, refinement: Refinement,
     ages = read_ages(RescaledTime(diffusivity, exposure), exposure, times)
     return refined_planform(geometry, diffusivity.pre_exponential, depth, finest, growth, ages,
                             share, measure, refinement, cache)
-
-
-def _nonlinear_model(geometry, model: str) -> str:
-    """Concentration-dependent D: FiPy sweeps on the part's own mesh: the slab (Sheet),
-    the (r, z) grid (Disc), 3-D cells cut at the mirror planes (Bar, CamPlate, LinkBar:
-    ``symmetry_cuts``). No exact series and no planform x sheet product exist for D(c) (the
-    Laplacian no longer separates): ``analytic`` means the mesh model, ``plane`` is refused."""
-    if model == "plane":
-        raise InputError(f"diffusion.model {model} has no concentration-dependent form (D(c) "
-                         f"does not separate); use solid or auto for a {type(geometry).__name__}")
-    if isinstance(geometry, (Bar, CamPlate, LinkBar)):
-        return "solid"
-    return numerical_model(geometry) if model in ("auto", "analytic") else model
-
-
-def _nonlinear_route(problem: DiffusionProblem) -> str:
-    """How ``auto`` solves D(c) on a Bar, CamPlate or LinkBar: ``fick`` where f is one
-    number over the moisture the part meets (k = 0: Fick with D f, the Fickian models'
-    own result), else ``corrected`` (``corrected_product``: the D(c) sheet x planform corrected on
-    coarse 3-D cells; far cheaper than the 3-D cells alone at the same accuracy), for a
-    Bar (the prism of its rectangular section, its thickness the fastest axis) from
-    ``BAR_CORRECTED_FROM`` down, above it ``finite_volume`` (the octant's cells). ``solid``:
-    ``finite_volume`` always (the 3-D cells alone, the check)."""
-    geometry = problem.geometry
-    if problem.model != "auto" or not isinstance(geometry, (Bar, CamPlate, LinkBar)):
-        return "direct"
-    if spread(problem.sorption, problem.exposure, problem.times) <= 1.0 + 1e-12:
-        return "fick"
-    if isinstance(geometry, Bar) and problem.accuracy > BAR_CORRECTED_FROM:
-        return "direct"
-    return "corrected"
 
 
 def _as_fick(call, problem: DiffusionProblem, settings: SolverSettings, cache: RunCache):
@@ -454,15 +372,13 @@ def solve(geometry, diffusivity: Diffusivity, exposure: Exposure, times: np.ndar
 
 def solve_problem(problem: DiffusionProblem, settings: SolverSettings = SETTINGS,
                   cache: RunCache | None = None) -> DiffusionResult:
-    """:func:`solve` of a ``DiffusionProblem``: plan it (``plan_problem``), then run the
-    plan's model.
+    """:func:`solve` of a ``DiffusionProblem``: the registry's route for the problem
+    (``route_of``) plans and solves it.
 
     Parameters
     ----------
-    problem : DiffusionProblem
-        The part, its diffusivity, exposure and times [s], and how they are asked for.
-    settings : SolverSettings
-        The solvers' tuned limits.
+    problem, settings
+        As in :func:`plan_problem`.
     cache : RunCache, optional
         The run's cache; None: a fresh one (kept by the result's ``extend``).
 
@@ -471,48 +387,225 @@ def solve_problem(problem: DiffusionProblem, settings: SolverSettings = SETTINGS
     DiffusionResult
         Mean and contact-layer moisture [weight %] at the problem's times.
     """
-    cache = run_cache(cache)
-    sorption = problem.sorption
-    route = _nonlinear_route(problem) if is_nonlinear(sorption) else ""
-    if route == "fick":
-        return _as_fick(solve_problem, problem, settings, cache)
+    _validate(problem)
+    return route_of(problem).solve(problem, settings, run_cache(cache))
+
+
+# ---------------------------------------------------------------- the routes' registry
+
+
+@dataclass(frozen=True)
+class Route:
+    """One way of solving a problem, an entry of ``ROUTES``: why it does not take a problem
+    (``refusal(problem)``: a sentence a user can read; None where it does), its plan and
+    its solve. ``plan(problem, settings, cache) -> Plan``; ``solve(problem, settings,
+    cache) -> DiffusionResult`` (it plans first where it needs the plan)."""
+
+    name: str
+    refusal: Callable
+    plan: Callable
+    solve: Callable
+
+
+def route_of(problem: DiffusionProblem) -> Route:
+    """The first route of the problem's law (``ROUTES``, in the order ``auto`` prefers them)
+    that takes the problem; an ``InputError`` with the last refusal where none does."""
+    why = None
+    for route in ROUTES[law_of(problem.sorption)]:
+        why = route.refusal(problem)
+        if why is None:
+            return route
+    raise InputError(why)
+
+
+def law_of(sorption) -> str:
+    """The registry's key of a sorption law: fick (None), langmuir or nonlinear."""
+    if is_nonlinear(sorption):
+        return "nonlinear"
+    return "langmuir" if is_langmuir(sorption) else "fick"
+
+
+def _with_layer(problem: DiffusionProblem) -> DiffusionProblem:
+    """The problem with its contact layer given (a plan alone may leave it None)."""
+    if problem.surface_layer_depth is None:
+        return replace(problem, surface_layer_depth=LAYER_DEPTH)
+    return problem
+
+
+def _planned(problem: DiffusionProblem, settings: SolverSettings, cache: RunCache) -> Plan:
+    """The problem's plan, logged."""
     chosen = plan_problem(problem, settings, cache)
-    # D(c): ``extend`` reads between the steps where the cells stay (``dense_output``)
-    again, resolve = _replanned(problem, settings, cache)
-    if route == "corrected":
-        return held_to_plan(solve_corrected(
-            problem.geometry, problem.diffusivity, sorption, problem.exposure, problem.times,
-            problem.accuracy, surface_layer_depth=problem.surface_layer_depth,
-            store_fields=problem.store_fields, part=problem.part, reason=chosen.reason,
-            sweeps=settings.sweeps), chosen, again, resolve)
     log.debug("%s: %s, %d cells, %d steps (%s)", problem.name, chosen.model, chosen.cells,
               chosen.steps, chosen.reason)
-    if route:
-        return held_to_plan(_solve_sorption(problem, chosen, settings, cache), chosen, again,
-                            resolve)
-    if is_langmuir(sorption) or is_nonlinear(sorption):
-        return _solve_sorption(problem, chosen, settings, cache)
+    return chosen
+
+
+def _always(problem: DiffusionProblem) -> None:
+    return None
+
+
+# Fick: the Fickian model of ``FICK_MODELS`` that ``auto`` or ``diffusion.model`` picks
+def _plan_fick(problem: DiffusionProblem, settings: SolverSettings, cache: RunCache) -> Plan:
+    return _fick_model(problem.geometry, problem.model).plan(problem, settings.cells, cache)
+
+
+def _solve_fick(problem: DiffusionProblem, settings: SolverSettings,
+                cache: RunCache) -> DiffusionResult:
+    chosen = _planned(problem, settings, cache)
     return FICK_MODELS[chosen.model].solve(problem, chosen, cache)
 
 
-def _replanned(problem: DiffusionProblem, settings: SolverSettings, cache: RunCache):
-    """(plan at other times, solve at other times, no fields) of this problem."""
+# Langmuir (two-phase): the Fickian model that ``auto`` or ``diffusion.model`` picks decides
+# how: its exact modes, a CamPlate's or LinkBar's planform quadrature x the exact sheet
+# (``planform_modes``), else the direct finite volumes (``two_phase_mesh``)
+def _two_phase_refusal(fickian: str):
+    """Refuses a problem whose Fickian model is not ``fickian``."""
+    def refusal(problem: DiffusionProblem) -> str | None:
+        chosen = _fick_model(problem.geometry, problem.model).name
+        return None if chosen == fickian else f"the part's Fickian model is {chosen}"
+    return refusal
+
+
+def _plan_two_phase_modes(problem, settings, cache) -> Plan:
+    return Plan("analytic", 0, 0, f"{describe(problem.sorption)}: exact Fickian modes of the "
+                "part, each a 2x2 free/bound system advanced exactly through the history",
+                problem.accuracy)
+
+
+def _plan_two_phase_planform(problem, settings, cache) -> Plan:
+    return _plan_planform(_with_layer(problem), settings.planform, cache)
+
+
+def _solve_two_phase_modes(problem, settings, cache) -> DiffusionResult:
+    return _langmuir_modes(problem, _planned(problem, settings, cache), settings.planform, cache)
+
+
+def _plan_two_phase_mesh(problem, settings, cache) -> Plan:
+    chosen = _fick_model(problem.geometry, problem.model).name
+    direct = plan_direct(_with_layer(problem), chosen, caps=settings.cells, cache=cache)
+    return replace(direct, reason=f"{describe(problem.sorption)}; {direct.reason}")
+
+
+def _solve_two_phase_mesh(problem, settings, cache) -> DiffusionResult:
+    return solve_direct(problem, _planned(problem, settings, cache), cache=cache,
+                        marcher=two_phase_marcher(problem.sorption, problem.exposure))
+
+
+# Concentration-dependent D: Fick with D f where f is one number, the corrected product
+# (auto on a Bar, CamPlate or LinkBar), else the part's own mesh swept per step
+def _prism_under_auto(problem: DiffusionProblem) -> str | None:
+    if problem.model != "auto" or not isinstance(problem.geometry, (Bar, CamPlate, LinkBar)):
+        return "auto on a Bar, CamPlate or LinkBar only"
+    return None
+
+
+def _constant_factor_refusal(problem: DiffusionProblem) -> str | None:
+    """Fick with D f takes a D(c) problem where f is one number over the moisture the part
+    meets (k = 0: the Fickian models' own result)."""
+    why = _prism_under_auto(problem)
+    if why is None and spread(problem.sorption, problem.exposure, problem.times) > 1.0 + 1e-12:
+        return "D(c) changes over the moisture the part meets"
+    return why
+
+
+def _corrected_refusal(problem: DiffusionProblem) -> str | None:
+    """The D(c) sheet x planform corrected on coarse 3-D cells (``corrected_product``) is far
+    cheaper than the 3-D cells alone at the same accuracy; for a Bar (the prism of its
+    rectangular section) from ``BAR_CORRECTED_FROM`` down, above it its octant's cells."""
+    if isinstance(problem.geometry, Bar) and problem.accuracy > BAR_CORRECTED_FROM:
+        return f"a Bar's octant is cheaper above accuracy {BAR_CORRECTED_FROM:g}"
+    return _prism_under_auto(problem)
+
+
+def _swept_refusal(problem: DiffusionProblem) -> str | None:
+    """No exact series and no planform x sheet product exist for D(c) (the Laplacian no
+    longer separates): ``plane`` is refused (``analytic`` means the mesh model)."""
+    if problem.model == "plane":
+        return (f"diffusion.model plane has no concentration-dependent form (D(c) does not "
+                f"separate); use solid or auto for a {type(problem.geometry).__name__}")
+    return None
+
+
+def _plan_corrected(problem, settings, cache) -> Plan:
+    corrected = plan_corrected(problem.geometry, problem.diffusivity, problem.sorption,
+                               problem.exposure, problem.times, problem.accuracy)
+    return replace(corrected, reason=f"{describe(problem.sorption)}; {corrected.reason}")
+
+
+def _solve_corrected(problem, settings, cache) -> DiffusionResult:
+    chosen = plan_problem(problem, settings, cache)
+    return _held(problem, settings, cache, chosen, solve_corrected(
+        problem.geometry, problem.diffusivity, problem.sorption, problem.exposure,
+        problem.times, problem.accuracy, surface_layer_depth=problem.surface_layer_depth,
+        store_fields=problem.store_fields, part=problem.part, reason=chosen.reason,
+        sweeps=settings.sweeps))
+
+
+def _swept_mesh(geometry, model: str) -> str:
+    """The D(c) sweeps' mesh: the slab (Sheet), the (r, z) grid (Disc), 3-D cells cut at
+    the mirror planes (Bar, CamPlate, LinkBar: ``symmetry_cuts``)."""
+    if isinstance(geometry, (Bar, CamPlate, LinkBar)):
+        return "solid"
+    return numerical_model(geometry) if model in ("auto", "analytic") else model
+
+
+MIRRORS = {Bar: "; solved on one octant (mirror planes)",
+           CamPlate: "; solved on half the thickness (mid-plane mirror)",
+           LinkBar: "; solved on half the thickness (mid-plane mirror)"}
+
+
+def _plan_swept(problem, settings, cache) -> Plan:
+    problem = _with_layer(problem)
+    chosen = _swept_mesh(problem.geometry, problem.model)
+    mirror_cut = chosen == "solid"   # the 3-D cells cut at the mirror planes
+    direct = nonlinear_plan(
+        lambda d, a, at: plan_direct(replace(problem, diffusivity=d, accuracy=a, times=at),
+                                     chosen, mirror_cut, settings.cells, cache),
+        problem.diffusivity, problem.sorption, problem.exposure, problem.times, problem.accuracy)
+    return replace(direct, reason=f"{describe(problem.sorption)}; {direct.reason}"
+                                  f"{MIRRORS.get(type(problem.geometry), '')}")
+
+
+def _solve_swept(problem, settings, cache) -> DiffusionResult:
+    chosen = _planned(problem, settings, cache)
+    return _held(problem, settings, cache, chosen,
+                 solve_nonlinear(problem, chosen, settings.sweeps, cache))
+
+
+def _held(problem, settings, cache, chosen: Plan, result: DiffusionResult) -> DiffusionResult:
+    """A D(c) result whose ``extend`` reads between the steps where the cells stay and
+    solves again where a plan at the new times has other cells (``dense_output``)."""
     def again(at):
         return plan_problem(problem.at(at), settings, cache)
 
     def resolve(at):
         return solve_problem(replace(problem.at(at), store_fields=False), settings, cache)
-    return again, resolve
+    return held_to_plan(result, chosen, again, resolve)
 
 
-def _solve_sorption(problem: DiffusionProblem, chosen: Plan, settings: SolverSettings,
-                    cache: RunCache) -> DiffusionResult:
-    if chosen.model in ("analytic", "plane"):
-        return _langmuir_modes(problem, chosen, settings.planform, cache)
-    if is_langmuir(problem.sorption):
-        return solve_direct(problem, chosen, cache=cache,
-                            marcher=two_phase_marcher(problem.sorption, problem.exposure))
-    return solve_nonlinear(problem, chosen, settings.sweeps, cache)
+def _plan_as_fick(problem, settings, cache) -> Plan:
+    return _as_fick(plan_problem, problem, settings, cache)
+
+
+def _solve_as_fick(problem, settings, cache) -> DiffusionResult:
+    return _as_fick(solve_problem, problem, settings, cache)
+
+
+# Each law's routes, in the order ``auto`` prefers them (``route_of`` takes the first that
+# takes the problem)
+ROUTES = {
+    "fick": (Route("fick", _always, _plan_fick, _solve_fick),),
+    "langmuir": (
+        Route("two-phase modes", _two_phase_refusal("analytic"), _plan_two_phase_modes,
+              _solve_two_phase_modes),
+        Route("two-phase planform", _two_phase_refusal("plane"), _plan_two_phase_planform,
+              _solve_two_phase_modes),
+        Route("two-phase mesh", _always, _plan_two_phase_mesh, _solve_two_phase_mesh)),
+    "nonlinear": (
+        Route("Fick with D f", _constant_factor_refusal, _plan_as_fick, _solve_as_fick),
+        Route("corrected product", _corrected_refusal, _plan_corrected, _solve_corrected),
+        Route("swept mesh", _swept_refusal, _plan_swept, _solve_swept)),
+}
 
 
 def _langmuir_modes(problem: DiffusionProblem, chosen: Plan, refinement: Refinement,
@@ -520,6 +613,7 @@ def _langmuir_modes(problem: DiffusionProblem, chosen: Plan, refinement: Refinem
     """The exact two-phase modal march; for a CamPlate or LinkBar on its planform's
     quadrature (``planform_modes``), the histories of the plan's refined mesh (``_refined``,
     from the run's ``cache``)."""
+    problem = _with_layer(problem)
     geometry, diffusivity, exposure = problem.geometry, problem.diffusivity, problem.exposure
     times, accuracy, depth = problem.times, problem.accuracy, problem.surface_layer_depth
     if chosen.model != "plane":
