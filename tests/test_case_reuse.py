@@ -54,10 +54,28 @@ def test_a_repeated_geometry_reuses_the_step_response_and_gives_the_same_numbers
     shared = RunCache()
 
     def responses():
-        return [key for key in shared.keys() if key[0] == "planform response"]
+        return {key for key in shared.keys() if key[0] == "planform response"}
     first = fickcam.run(scene(), cache=shared)
     marched = responses()
     again = fickcam.run(scene(), cache=shared)
     assert marched and responses() == marched, "the repeat marched again"
     xr.testing.assert_identical(again.drop_attrs(), first.drop_attrs())
     xr.testing.assert_identical(fresh(scene()).drop_attrs(), first.drop_attrs())
+
+
+def test_a_sweep_worker_passes_its_cache_to_each_case():
+    """``run_case`` with the worker's cache: a second case of the same part marches nothing
+    again; the records agree."""
+    from fickcam.sweep.case import CaseTask, run_case
+
+    data = yaml.safe_load(small_base())
+    data.pop("limits")
+    task = CaseTask(0, data, {}, "case 0", ".")
+    worker = RunCache()
+    first, _ = run_case(task, worker)
+    def responses():
+        return {key for key in worker.keys() if key[0] == "planform response"}
+    marched = responses()
+    second, _ = run_case(task, worker)
+    assert first["status"] == second["status"] == "ok"
+    assert marched and responses() == marched
