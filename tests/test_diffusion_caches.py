@@ -148,9 +148,10 @@ def test_a_run_cache_is_freed_with_its_run():
     class Owner:
         def __init__(self, cache):
             self.cache = cache
-    owner = cache.get("owner", lambda: Owner(cache))
+    made = Owner(cache)
+    owner = cache.get("owner", lambda: made)
     cache.get("reading", lambda: np.zeros(5), owner=owner)
     gone = weakref.ref(cache)
-    del cache, owner
+    del cache, owner, made
     gc.collect()
     assert gone() is None
