@@ -142,16 +142,16 @@ def test_a_run_cache_is_freed_with_its_run():
     reference to the cache from outside: a dropped cache is collected."""
     import gc
     import weakref
+    from functools import partial
 
     cache = RunCache()
 
     class Owner:
         def __init__(self, cache):
             self.cache = cache
-    made = Owner(cache)
-    owner = cache.get("owner", lambda: made)
-    cache.get("reading", lambda: np.zeros(5), owner=owner)
+    owner = cache.get("owner", partial(Owner, cache))
+    cache.get("reading", partial(np.zeros, 5), owner=owner)
     gone = weakref.ref(cache)
-    del cache, owner, made
+    del cache, owner
     gc.collect()
     assert gone() is None
