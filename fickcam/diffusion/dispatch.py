@@ -527,18 +527,14 @@ def _swept_refusal(problem: DiffusionProblem) -> str | None:
 
 
 def _plan_corrected(problem, settings, cache) -> Plan:
-    corrected = plan_corrected(problem.geometry, problem.diffusivity, problem.sorption,
-                               problem.exposure, problem.times, problem.accuracy)
+    corrected = plan_corrected(problem)
     return replace(corrected, reason=f"{describe(problem.sorption)}; {corrected.reason}")
 
 
 def _solve_corrected(problem, settings, cache) -> DiffusionResult:
     chosen = plan_problem(problem, settings, cache)
-    return _held(problem, settings, cache, chosen, solve_corrected(
-        problem.geometry, problem.diffusivity, problem.sorption, problem.exposure,
-        problem.times, problem.accuracy, surface_layer_depth=problem.surface_layer_depth,
-        store_fields=problem.store_fields, part=problem.part, reason=chosen.reason,
-        sweeps=settings.sweeps))
+    return _held(problem, settings, cache, chosen,
+                 solve_corrected(problem, chosen.reason, settings.sweeps))
 
 
 def _swept_mesh(geometry, model: str) -> str:
