@@ -37,8 +37,6 @@ source_suffix = {".md": "markdown", ".rst": "restructuredtext"}
 myst_enable_extensions = ["dollarmath", "colon_fence"]
 myst_heading_anchors = 3
 exclude_patterns = ["_build", "_tools", "Thumbs.db", ".DS_Store"]
-# docs/sweeps.md is a section-level page (its first heading is ##)
-suppress_warnings = ["myst.header"]
 templates_path = ["_templates"]
 
 autosummary_generate = True
