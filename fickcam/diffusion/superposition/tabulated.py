@@ -37,7 +37,7 @@ import numpy as np
 
 from ..forcing.clock import clock_of
 from ..forcing.record import Forcing, forcing
-from ..problem.cache import RunCache
+from ..problem.cache import RunCache, run_cache
 from ..problem.exposure import swing as swing_of
 
 FIRST_PER_DECADE = 16    # grid points per decade of age to start with; doubled while the
@@ -375,10 +375,10 @@ class Pairs:
         return (self.block(first, last) for first, last in zip(edges[:-1], edges[1:]))
 
 
-def sources(force: Forcing, cache: RunCache) -> Sources:
+def sources(force: Forcing, cache: RunCache | None = None) -> Sources:
     """J_i = Ms(tau_i) - Ms(tau_i-) and s_i - s_i-1 at every node older than each output
     (tau rises with the nodes: the nodes older than an output are a leading run; their
-    readings kept in the run's ``cache``)."""
+    readings kept in the run's ``cache``; None: a fresh one)."""
     tau = force.tau
     dtau = np.diff(tau)
     rise = force.left[1:] - force.right[:-1]
@@ -390,7 +390,8 @@ def sources(force: Forcing, cache: RunCache) -> Sources:
     change = np.diff(np.concatenate([[0.0], slope]))
     at = tau[force.outputs]
     return Sources(Pairs.of(tau, jumps, at).block(0, at.size), Pairs.of(tau, change, at),
-                   force.outputs.size, Ramps.of(tau, change, force.outputs), cache)
+                   force.outputs.size, Ramps.of(tau, change, force.outputs),
+                   run_cache(cache))
 
 
 def _gather(rows, index, weights, outputs: int, size: int) -> np.ndarray:
