@@ -109,12 +109,16 @@ class _Collector:
 def run_here(sweep: Sweep, folder: WorkFolder, indices, *, progress: bool = False,
              done: int = 0) -> dict[int, dict]:
     """Run the cases ``indices`` one after the other in this process (no dask); return
-    their records. Caches of meshes and step responses carry over from case to case."""
+    their records. One ``diffusion.RunCache`` serves every case: meshes, step responses
+    and tables carry over from case to case."""
+    from ..diffusion import RunCache
+
+    cache = RunCache()
     collector = _Collector(sweep, folder, progress, done)
     try:
         for index in indices:
             task = case_task(sweep, index)
-            record, payload = run_case(task)
+            record, payload = run_case(task, cache)
             collector.add(record, payload, task.label)
     finally:
         collector.bar.close()
