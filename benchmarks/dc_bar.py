@@ -2,8 +2,7 @@
 and ``auto`` above ``dispatch.BAR_CORRECTED_FROM``;
 ``diffusion/nonfickian/concentration_dependent.py``) and the corrected product of its
 rectangular section (``auto`` from there down; ``diffusion/nonfickian/corrected_product.py``):
-accuracy, honesty of the estimate and cost against independent references
-(issue 13).
+accuracy, honesty of the estimate and cost against independent references.
 
     python benchmarks/dc_bar.py reference   # tests/data/dc_bar_reference.json (method of lines)
     python benchmarks/dc_bar.py small [K ...] [--at A ...] [--only DIRECTION]

@@ -1,4 +1,4 @@
-"""Stored fields of the corrected product (``diffusion/nonfickian/corrected_fields.py``, issue 13): the
+"""Stored fields of the corrected product (``diffusion/nonfickian/corrected_fields.py``): the
 finest nested 3-D mesh's cells corrected cell by cell, against the exact Fickian block
 and against the corrected mean, and what keeping them costs.
 

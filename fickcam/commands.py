@@ -132,7 +132,7 @@ def _cmd_plot(args) -> int:
     return 0
 
 
-#: wall time of `fickcam bench`, measured on the project's idle 2-core machine
+#: wall time of `fickcam bench` (measured: benchmarks/results/tuned_constants.md)
 BENCH_EXPECTED = {False: "about 3 min", True: "about 10 s"}
 
 

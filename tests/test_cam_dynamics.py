@@ -225,3 +225,22 @@ def test_profile_csv_round_trips(tmp_path):
     table = np.loadtxt(path, delimiter=",", skiprows=1)
     assert table.shape == (360, 2)
     assert np.allclose(table, np.c_[working_profile(design("flat"), 0.01, 0.01, n=360)], rtol=1e-8)
+
+
+def test_a_spring_without_preload_holds_the_follower_where_the_cam_pushes_it():
+    """S = k (y - y_low) vanishes at the lowest point, where y'' > 0: the cam's acceleration
+    holds the follower there, so the jump speed is where S / (-m y'') is least over y'' < 0
+    (at the running speed that gives a vanishing contact force), not 0; a follower pulled
+    off (S < 0) or unloaded where y'' < 0 is not held at any speed."""
+    d = design("roller", law="cycloidal", spring_preload=0.0, external_load=0.0,
+               gravity=False)
+    response = cam_response(d, STATE, THETA).variables
+    jump = response["jump_speed"]
+    assert 0 < jump < np.inf
+    at_jump = cam_response(CamDesign(**{**d.__dict__, "speed": jump}), STATE, THETA)
+    force = at_jump.variables["contact_force"]
+    assert force.min() >= -1e-9 * force.max()
+    y2 = np.array([1.0, -2.0, 0.5])
+    assert dyn.jump_speed(1.0, y2, np.array([0.0, 4.0, 1.0])) == pytest.approx(math.sqrt(2.0))
+    assert dyn.jump_speed(1.0, y2, np.array([-1.0, 4.0, 1.0])) == 0.0
+    assert dyn.jump_speed(1.0, y2, np.array([1.0, 0.0, 1.0])) == 0.0

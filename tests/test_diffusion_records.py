@@ -189,19 +189,44 @@ def test_a_plane_result_extended_to_new_times_equals_a_solve_at_both_sets_of_tim
         assert np.array_equal(getattr(extended, name)[kept], getattr(stored, name))
 
 
-def test_output_ages_of_a_long_record_are_its_ages_least_and_largest_per_bin():
-    """Thinned row by row (no sort of every output x source age), the output ages are still
-    exactly the least and the largest distinct age of each 1/64-decade bin of all of them."""
-    from fickcam.diffusion.stepping.step_plans import AGES_PER_DECADE, output_ages
+def bins_ends_of_every_age(change, outputs, ramp):
+    """The least and the largest distinct age of each 1/64-decade bin of every output's
+    ages to every source (a step's start, 17 points across a ramp): the definition."""
+    from fickcam.diffusion.stepping.step_plans import AGES_PER_DECADE
 
-    rng = np.random.default_rng(7)
-    change = np.concatenate([[0.0], np.cumsum(rng.uniform(0.2, 1.0, 3000) * 1e-3)])
-    ramp, outputs = rng.random(3000) < 0.8, np.linspace(0.0, change[-1], 9)
     edges = np.unique(np.concatenate(
         [change[:1], change[1:-1][~ramp[1:]], change[-1:]]
         + [np.linspace(a, b, 17) for a, b, r in zip(change[1:-1], change[2:], ramp[1:]) if r]))
     ages = np.unique((outputs[:, None] - edges[None, :]).ravel())
     ages = ages[ages > 0]
     bins = np.floor(np.log10(ages) * AGES_PER_DECADE)
-    ends = [ages[bins == b][[0, -1]] for b in np.unique(bins)]
-    assert np.array_equal(output_ages(change, outputs, ramp), np.unique(np.concatenate(ends)))
+    return np.unique(np.concatenate([ages[bins == b][[0, -1]] for b in np.unique(bins)]))
+
+
+def test_output_ages_of_a_long_record_are_its_ages_least_and_largest_per_bin():
+    """Thinned row by row (no sort of every output x source age), the output ages are still
+    exactly the least and the largest distinct age of each 1/64-decade bin of all of them."""
+    from fickcam.diffusion.stepping.step_plans import output_ages
+
+    rng = np.random.default_rng(7)
+    change = np.concatenate([[0.0], np.cumsum(rng.uniform(0.2, 1.0, 3000) * 1e-3)])
+    ramp, outputs = rng.random(3000) < 0.8, np.linspace(0.0, change[-1], 9)
+    assert np.array_equal(output_ages(change, outputs, ramp),
+                          bins_ends_of_every_age(change, outputs, ramp))
+
+
+def test_output_ages_keep_each_bins_least_and_largest_age_with_clustered_sources():
+    """Sources in tight clusters (many bins' edges between two neighbours, and many
+    sources within one bin) and 60 outputs: still the least and the largest distinct age
+    of every 1/64-decade bin of all the outputs' ages (each output's bins' ends found by
+    bisection, the bins read only either side of each edge)."""
+    from fickcam.diffusion.stepping.step_plans import output_ages
+
+    rng = np.random.default_rng(11)
+    centres = np.sort(rng.uniform(0.0, 50.0, 120))
+    change = np.unique(np.concatenate(
+        [[0.0], (centres[:, None] + rng.uniform(0.0, 1e-6, (120, 30))).ravel(), [50.0]]))
+    ramp = rng.random(change.size - 1) < 0.5
+    outputs = np.linspace(0.0, 50.0, 60)
+    assert np.array_equal(output_ages(change, outputs, ramp),
+                          bins_ends_of_every_age(change, outputs, ramp))

@@ -78,6 +78,107 @@ ENTRY_POINTS = {
     "fickcam.materials.state.material_state": ("temperature", "moisture", "surface_moisture",
                                                "reference_temperature", "initial_moisture"),
     "fickcam.materials.micromechanics.transverse_diffusivity": ("kf", "matrix_d"),
+    "fickcam.linkage.positions.rocker_angle": ("a", "b", "c", "d", "theta2"),
+    "fickcam.linkage.positions.coupler_angle": ("a", "b", "c", "d", "theta2"),
+    "fickcam.linkage.positions.positions": ("a", "b", "c", "d", "theta2"),
+    "fickcam.linkage.positions.continuous": ("theta",),
+    "fickcam.linkage.positions.transmission_angle": ("theta3", "theta4"),
+    "fickcam.linkage.positions.joint_positions": ("a", "b", "c", "d", "theta2", "theta3",
+                                                  "theta4"),
+    "fickcam.linkage.positions.coupler_point": ("a", "theta2", "theta3", "distance", "angle"),
+    "fickcam.linkage.positions.assembly_gaps": ("theta2",),
+    "fickcam.linkage.positions.toggle_crank_angles": ("a", "b", "c", "d"),
+    "fickcam.linkage.classify.grashof_condition": ("a", "b", "c", "d"),
+    "fickcam.linkage.classify.grashof_class": ("a", "b", "c", "d", "tolerance"),
+    "fickcam.linkage.classify.class_changes": ("times",),
+    "fickcam.cam.spline.SplineLaw": ("degree", "x", "s", "start", "end"),
+    "fickcam.cam.spline.end_condition_count": ("degree",),
+    "fickcam.cam.spline.spline_motion": ("x",),
+    "fickcam.cam.spline.spline_law": ("points", "height", "span", "degree", "start", "end"),
+    "fickcam.diffusion.exact.modes.Factor": ("rates", "mean", "core", "core_share"),
+    "fickcam.diffusion.exact.modes.sheet_factor": ("length", "d0", "depth", "count"),
+    "fickcam.diffusion.exact.modes.cylinder_factor": ("radius", "d0", "depth", "count"),
+    "fickcam.diffusion.exact.modes.factors": ("d0", "depth", "counts"),
+    "fickcam.diffusion.exact.modes.dimensions": (),
+    "fickcam.diffusion.exact.modes.Modes": ("rates", "mean", "layer", "tail_rate"),
+    "fickcam.diffusion.exact.modes.product_modes": ("d0", "depth", "counts"),
+    "fickcam.diffusion.exact.modes.lump": ("per_octave",),
+    "fickcam.diffusion.exact.modes.step_corrections": ("d0", "depth", "response"),
+    "fickcam.linkage.kinematics.angular_velocities": ("a", "b", "c", "theta2", "theta3",
+                                                      "theta4", "omega2"),
+    "fickcam.linkage.kinematics.angular_accelerations": ("a", "b", "c", "theta2", "omega2",
+                                                         "omega3", "omega4", "alpha2"),
+    "fickcam.linkage.kinematics.rotating_point": ("r", "theta", "omega", "alpha"),
+    "fickcam.linkage.kinematics.centre_of_mass_motion": ("lengths", "fractions", "thetas",
+                                                         "omegas", "alphas"),
+    "fickcam.linkage.dynamics.kinetostatics": ("masses", "inertias", "com_acceleration",
+                                               "alphas", "pins", "com_position", "gravity",
+                                               "rocker_torque"),
+    "fickcam.linkage.dynamics.kinetic_energy": ("masses", "inertias", "com_velocity",
+                                                "omegas"),
+    "fickcam.linkage.dynamics.rms": ("values",),
+    "fickcam.linkage.model.FourBarDesign": ("crank", "coupler", "rocker", "frame",
+                                            "coupler_point_distance", "coupler_point_angle",
+                                            "crank_speed", "crank_angular_acceleration",
+                                            "rocker_load_torque"),
+    "fickcam.linkage.model.FourBarState": ("link_lengths", "link_masses", "link_inertias",
+                                           "centre_of_mass", "coupler_point_distance"),
+    "fickcam.linkage.model.fourbar_response": ("crank_angle",),
+    "fickcam.cam.profile.periodic_spline": ("x", "y"),
+    "fickcam.cam.profile.counter_clockwise": ("x", "y"),
+    "fickcam.cam.profile.working_from_pitch": ("x", "y", "roller_radius"),
+    "fickcam.cam.profile.make_profile": ("x", "y", "roller_radius"),
+    "fickcam.cam.profile.read_profile_csv": (),
+    "fickcam.cam.profile.load_profile": ("roller_radius",),
+    "fickcam.cam.profile.write_profile_csv": ("x", "y"),
+    "fickcam.cam.profile.dxf_module": (),
+    "fickcam.cam.profile.write_profile_dxf": ("x", "y"),
+    "fickcam.cam.profile.profile_motion": ("strain_x", "strain_y", "roller", "offset", "theta",
+                                           "base"),
+    "fickcam.cam.profile.contact_table": (),
+    "fickcam.cam.profile.solve_contact": ("theta",),
+    "fickcam.cam.profile.aged_profile_motion": ("strain_x", "strain_y", "roller", "offset",
+                                                "base"),
+    "fickcam.cam.arm.Arm": ("pivot_x", "pivot_y", "length", "face_offset", "inertia",
+                            "spring_rate", "spring_preload", "load_torque"),
+    "fickcam.cam.arm.perp": (),
+    "fickcam.cam.arm.cross": (),
+    "fickcam.cam.arm.roller_arm_opening": ("d", "length", "radius"),
+    "fickcam.cam.arm.roller_base_angle": ("prime_radius", "length"),
+    "fickcam.cam.arm.face_opening": ("d", "face_offset", "support"),
+    "fickcam.cam.arm.face_base_angle": ("base_radius", "face_offset"),
+    "fickcam.cam.arm.roller_centre": ("phi0", "psi", "d1", "d2"),
+    "fickcam.cam.arm.pitch_derivatives": ("centre", "velocity", "acceleration"),
+    "fickcam.cam.arm.pitch_radius_of_curvature": ("a", "b"),
+    "fickcam.cam.arm.pitch_normal": ("a",),
+    "fickcam.cam.arm.face_support": ("gamma0", "psi", "d1", "d2"),
+    "fickcam.cam.arm.face_envelope": ("p", "p1", "p2", "g1", "g2"),
+    "fickcam.cam.arm.pressure_angle": ("ux", "uy", "nx", "ny"),
+    "fickcam.cam.arm.rotate": ("angle", "x", "y"),
+    "fickcam.cam.arm.Contact": ("x", "y", "nx", "ny", "lever", "pressure_angle", "pitch_radius",
+                                "radius"),
+    "fickcam.cam.arm.roller_contact": ("phi0", "roller", "psi", "d1", "d2"),
+    "fickcam.cam.arm.face_contact": ("gamma0", "psi", "d1", "d2"),
+    "fickcam.cam.arm.dry_profile": ("base_radius", "roller", "theta", "motion"),
+    "fickcam.cam.arm.aged_roller_contact": ("phi0_dry", "length", "wx", "wy", "nx", "ny",
+                                            "roller"),
+    "fickcam.cam.arm.aged_face_contact": ("gamma0_dry", "face_offset", "wx", "wy", "nx", "ny"),
+    "fickcam.cam.arm.arm_slope": ("px", "py", "nx", "ny"),
+    "fickcam.cam.arm.aged_profile_contact": ("base", "roller", "wx", "wy", "nx", "ny"),
+    "fickcam.linkage.ageing.scene_parts": (),
+    "fickcam.linkage.ageing.link_state": (),
+    "fickcam.linkage.ageing.link_states": (),
+    "fickcam.linkage.ageing.scene_response": ("times", "angles"),
+    "fickcam.linkage.spec.can_assemble_somewhere": ("crank", "coupler", "rocker", "frame"),
+    "fickcam.cam.profile.CamProfile": ("spline",),
+    "fickcam.cam.profile.AgedContact": ("strain_x", "strain_y", "roller", "offset", "base"),
+    "fickcam.cam.profile.ProfileMotion": ("table", "extremes"),
+    "fickcam.linkage.spec.CouplerPoint": ("distance", "angle"),
+    "fickcam.linkage.spec.LinkSectionSpec": ("width", "thickness", "boss_outer_radius",
+                                             "boss_inner_radius"),
+    "fickcam.linkage.spec.LinkageSection": ("crank", "coupler", "rocker", "frame", "crank_speed",
+                                            "crank_angular_acceleration", "rocker_load_torque",
+                                            "centre_of_mass"),
 }
 
 _HEADER = re.compile(r"^(?P<title>[A-Z][A-Za-z ]+)\n-{3,}$", re.MULTILINE)
@@ -125,6 +226,8 @@ def parameter_entries(body: str) -> dict[str, tuple[str, str]]:
 
 
 def signature_parameters(target) -> list[str]:
+    if inspect.isclass(target) and hasattr(target, "model_fields"):  # a pydantic model
+        return list(target.model_fields)
     function = target.__init__ if inspect.isclass(target) and not hasattr(
         target, "__dataclass_fields__") else target
     if inspect.isclass(target) and hasattr(target, "__dataclass_fields__"):
@@ -177,3 +280,17 @@ def test_the_parser_reads_a_numpydoc_section():
     sides = ("float", " The sides [m].")
     assert entries == {"length": sides, "width": sides, "flag": ("bool", " A switch.")}
     assert sections("One line, no sections.") == {}
+
+
+#: modules whose documented functions also state what they return
+RETURNING = ("fickcam.linkage.positions.", "fickcam.linkage.classify.",
+             "fickcam.linkage.kinematics.", "fickcam.linkage.dynamics.", "fickcam.linkage.model.",
+             "fickcam.linkage.ageing.", "fickcam.linkage.spec.can",
+             "fickcam.cam.spline.", "fickcam.cam.profile.", "fickcam.cam.arm.",
+             "fickcam.diffusion.exact.modes.")
+
+
+@pytest.mark.parametrize("dotted", sorted(d for d in ENTRY_POINTS if d.startswith(RETURNING)
+                                          and not inspect.isclass(_entry_point(d))))
+def test_entry_point_documents_what_it_returns(dotted):
+    assert "Returns" in sections(_entry_point(dotted).__doc__), f"{dotted}: no Returns section"

@@ -15,19 +15,21 @@ from fickcam.plotting import tidy_ticks
 CONFIGS = Path(__file__).resolve().parents[1] / "configs"
 
 
-@pytest.fixture
-def figures(monkeypatch):
-    """The figures the plot functions make, by file name, drawn (ticks laid out)."""
-    kept = {}
+class Kept(dict):
+    """A figure writer for the plot functions' ``save`` argument that keeps each figure,
+    drawn (ticks laid out), by file name instead of writing it."""
 
-    def keep(fig, path):
+    def __call__(self, fig, path):
         tidy_ticks(fig)
         fig.canvas.draw()
-        kept[Path(path).name] = fig
+        self[Path(path).name] = fig
         return Path(path)
 
-    for module in ("cam", "linkage", "uptake", "sweep"):
-        monkeypatch.setattr(f"fickcam.plotting.{module}.save_figure", keep)
+
+@pytest.fixture
+def figures():
+    """The figures the plot functions make, by file name."""
+    kept = Kept()
     yield kept
     import matplotlib.pyplot as plt
 
@@ -62,7 +64,7 @@ def legend_clear_of_axes(ax, legend) -> bool:
 
 
 def test_kinematics_has_a_displacement_drift_panel_against_the_design(cam, figures, tmp_path):
-    plotting.plot(cam, tmp_path, "kinematics")
+    plotting.plot(cam, tmp_path, "kinematics", save=figures)
     fig = figures["cam_kinematics.png"]
     drift_ax = fig.axes[-1]
     assert "− design" in drift_ax.get_ylabel() and "[mm]" in drift_ax.get_ylabel()
@@ -75,7 +77,7 @@ def test_kinematics_has_a_displacement_drift_panel_against_the_design(cam, figur
 
 
 def test_dynamics_shows_the_stress_change_and_the_design_values(cam, figures, tmp_path):
-    plotting.plot(cam, tmp_path, "dynamics")
+    plotting.plot(cam, tmp_path, "dynamics", save=figures)
     assert "Hertz stress [MPa]\n− design" == figures["cam_dynamics.png"].axes[-1].get_ylabel()
     top = figures["cam_jump_stress.png"].axes[0]
     design = [line for line in top.get_lines() if line.get_linestyle() == "--"]
@@ -84,7 +86,7 @@ def test_dynamics_shows_the_stress_change_and_the_design_values(cam, figures, tm
 
 @pytest.mark.slow
 def test_linkage_drift_against_design_and_start_and_a_closed_coupler_curve(fourbar, figures, tmp_path):
-    plotting.plot(fourbar, tmp_path, "linkage")
+    plotting.plot(fourbar, tmp_path, "linkage", save=figures)
     rocker = figures["linkage_rocker.png"].axes
     assert [ax.get_ylabel() for ax in rocker] == ["rocker angle theta4 [deg]", "theta4 − design [deg]",
                                                   "change since t = 0 [deg]"]
@@ -96,7 +98,7 @@ def test_linkage_drift_against_design_and_start_and_a_closed_coupler_curve(fourb
 
 
 def test_uptake_legend_names_only_parts_that_take_up_moisture(fourbar, figures, tmp_path):
-    plotting.plot(fourbar, tmp_path, "uptake")
+    plotting.plot(fourbar, tmp_path, "uptake", save=figures)
     ax = figures["uptake.png"].axes[2]
     labels = [t.get_text() for t in ax.get_legend().get_texts()]
     assert labels == ["crank", "coupler", "rocker", "volume mean", "surface layer"]  # no steel frame
@@ -129,7 +131,7 @@ def sweep_result(kind: str) -> xr.Dataset:
 
 
 def test_grid_sweep_legends_speak_the_sweep_files_units(figures, tmp_path):
-    plotting.plot(sweep_result("grid"), tmp_path, "sweep")
+    plotting.plot(sweep_result("grid"), tmp_path, "sweep", save=figures)
     ax = figures["sweep_jump_speed.png"].axes[0]
     assert [t.get_text() for t in ax.get_legend().get_texts()] == ["temperature = 60 degC",
                                                                    "temperature = 85 degC"]
@@ -137,7 +139,7 @@ def test_grid_sweep_legends_speak_the_sweep_files_units(figures, tmp_path):
 
 
 def test_monte_carlo_ticks_neither_crowd_nor_hide_behind_an_offset(figures, tmp_path):
-    plotting.plot(sweep_result("monte_carlo"), tmp_path, "sweep")
+    plotting.plot(sweep_result("monte_carlo"), tmp_path, "sweep", save=figures)
     fig = figures["sweep_jump_speed.png"]
     renderer = fig.canvas.get_renderer()
     for ax in fig.axes:
@@ -166,7 +168,7 @@ def test_a_sweep_over_weather_files_compares_the_sites_over_ageing_time(figures,
                     "value_labels": '{"pvlib:703165TY.csv": "Sand Point, AK"}'}),
                 "case_status": ("case", np.array(["ok", "ok"], dtype=object))},
         attrs={"scene_name": "cam", "sweep_kind": "grid"})
-    plotting.plot(result, tmp_path, "sweep")
+    plotting.plot(result, tmp_path, "sweep", save=figures)
     at_age = figures["sweep_jump_speed.png"].axes[0]
     assert all(line.get_linestyle() == "None" for line in at_age.get_lines())
     over_time = figures["sweep_jump_speed_over_time.png"].axes[0]

@@ -1,4 +1,4 @@
-"""Large meshes: a part's FiPy diffusion solve with PETSc under MPI (docs/sweeps.md).
+"""Large meshes: a part's FiPy diffusion solve with PETSc under MPI (docs/guide/sweeps-montecarlo.md).
 
 Runs the moisture uptake of Singh & Sanyal 2016's crank (a 100 x 30 x 10 mm bar, all faces
 wet, non-dimensional time D t / h^2) on a FiPy Grid3D twice: serially, and with
@@ -61,7 +61,7 @@ def _run(command, tmp_path, solvers: str) -> dict:
 @pytest.mark.skipif(not _has(PYTHON, "petsc4py, fipy"),
                     reason="petsc4py is not importable: PyPI ships PETSc/petsc4py only as source "
                            "that builds PETSc itself; install them from conda-forge or Debian "
-                           "(python3-petsc4py) and set FICKCAM_PETSC_PYTHON (docs/sweeps.md)")
+                           "(python3-petsc4py) and set FICKCAM_PETSC_PYTHON (docs/guide/sweeps-montecarlo.md)")
 @pytest.mark.skipif(shutil.which("mpirun") is None, reason="mpirun (an MPI launcher) is not installed")
 def test_fipy_solve_with_petsc_under_mpi_matches_the_serial_solve(tmp_path):
     serial = _run([PYTHON], tmp_path, "scipy")

@@ -8,6 +8,10 @@ Public API: :class:`CamSection` (scene section), :class:`CamDesign`,
 
 References
 ----------
+Chen, F. Y. (1982). Mechanics and Design of Cam Mechanisms. New York: Pergamon Press.
+de Boor, C. (2001). A Practical Guide to Splines, revised ed. New York: Springer.
+Norton, R. L. (2012). Design of Machinery: An Introduction to the Synthesis and Analysis
+    of Mechanisms and Machines, 5th ed. New York: McGraw-Hill.
 Al-Shamma, F. & Yousuf, L. S. (2011). Predictive model of orthotropic un-symmetric
     box cam based on deflection and countered by segments of circular-arc contact
     profiles. Global Journal of Researches in Engineering (A) 11(7).

@@ -212,7 +212,10 @@ def power_torque(force, phi, dy):
 def jump_speed(mass, d2y, holding_force):
     """Smallest cam speed at which m omega^2 y''(theta) + S(theta) reaches zero somewhere
     (contact force vanishes: jump; Norton sec. 15.x 'follower jump'); S = spring + preload +
-    load (+ weight) >= 0 are speed-independent. inf if y'' never goes negative, 0 if S <= 0.
+    load (+ weight) are speed-independent. The contact force m omega^2 y'' + S first vanishes
+    where S / (-m y'') is least over y'' < 0; a follower that is not held (S < 0 somewhere,
+    or S = 0 where y'' < 0) leaves the cam at any speed (0). Where S = 0 and y'' > 0 (a spring
+    without preload at the lowest point) the cam's own acceleration holds the follower on.
 
     Parameters
     ----------
@@ -226,13 +229,16 @@ def jump_speed(mass, d2y, holding_force):
     Returns
     -------
     float
-        The jump speed [rad/s]; inf when the follower never pulls away, 0 when S <= 0
-        somewhere.
+        The jump speed [rad/s]; inf when the follower never pulls away, 0 when it is not
+        held: S < 0 somewhere, or S = 0 where y'' < 0 (S within round-off of its largest
+        value counts as 0).
     """
     holding_force = np.asarray(holding_force, float)
-    if np.any(holding_force <= 0.0):
-        return 0.0
+    d2y = np.asarray(d2y, float)
+    zero = 16 * np.finfo(float).eps * float(np.max(np.abs(holding_force), initial=0.0))
     pulling = d2y < 0.0
+    if np.any(holding_force < -zero) or np.any(holding_force[pulling] <= zero):
+        return 0.0
     if not np.any(pulling):
         return float("inf")
     return float(np.sqrt(np.min(holding_force[pulling] / (-mass * d2y[pulling]))))

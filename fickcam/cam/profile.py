@@ -51,8 +51,16 @@ def _rotate(angle, x, y):
 
 @dataclass(frozen=True, eq=False)
 class CamProfile:
-    """A closed dry working profile: periodic quintic spline (m, cam frame,
-    counter-clockwise) of the chord fraction u in [0, 1)."""
+    """A closed dry working profile.
+
+    Parameters
+    ----------
+    spline : scipy.interpolate.BSpline
+        Periodic quintic spline u -> (x, y) [m] in the cam frame, counter-clockwise, of the
+        chord fraction u in [0, 1) [-] (:func:`periodic_spline`).
+    points : int
+        How many points it was made from.
+    """
 
     spline: object  # scipy BSpline, u -> (x, y)
     points: int     # how many points it was made from
@@ -92,7 +100,23 @@ class CamProfile:
 
 
 def periodic_spline(x, y):
-    """Periodic quintic interpolating spline through a closed polygon (chord parameter)."""
+    """Periodic quintic interpolating spline through a closed polygon (chord parameter).
+
+    Parameters
+    ----------
+    x, y : array_like
+        Profile points in the cam frame [m].
+        (the closing point not repeated).
+
+    Returns
+    -------
+    scipy.interpolate.BSpline
+        (x, y)(u) [m] over the cumulative chord fraction u in [0, 1] [-], periodic.
+
+    References
+    ----------
+    de Boor (2001), ch. XIII; in full in :mod:`fickcam.cam`.
+    """
     from scipy.interpolate import make_interp_spline
 
     xy = np.c_[x, y]
@@ -102,7 +126,18 @@ def periodic_spline(x, y):
 
 
 def counter_clockwise(x, y):
-    """The polygon in counter-clockwise order (shoelace area > 0), closing point dropped."""
+    """The polygon in counter-clockwise order (shoelace area > 0), closing point dropped.
+
+    Parameters
+    ----------
+    x, y : array_like
+        Profile points in the cam frame [m].
+
+    Returns
+    -------
+    tuple of numpy.ndarray
+        (x, y) [m], counter-clockwise.
+    """
     x, y = np.asarray(x, float), np.asarray(y, float)
     if np.hypot(x[-1] - x[0], y[-1] - y[0]) <= 1e-12 * np.max(np.hypot(x, y)):
         x, y = x[:-1], y[:-1]
@@ -116,7 +151,25 @@ def _outward_normal(tx, ty):
 
 
 def working_from_pitch(x, y, roller_radius: float):
-    """Working profile points W = P - R n from pitch-curve points P (Norton eq. 8.32)."""
+    """Working profile points W = P - R n from pitch-curve points P (Norton eq. 8.32),
+    n the pitch curve's outward normal.
+
+    Parameters
+    ----------
+    x, y : array_like
+        Pitch-curve points, counter-clockwise [m].
+    roller_radius : float
+        Roller radius R [m].
+
+    Returns
+    -------
+    tuple of numpy.ndarray
+        The working profile's (x, y) [m].
+
+    References
+    ----------
+    Norton (2012), sec. 8.6; in full in :mod:`fickcam.cam`.
+    """
     spline = periodic_spline(*counter_clockwise(x, y))
     u = np.arange(4 * len(x)) / (4 * len(x))
     (px, py), (tx, ty) = spline(u).T, spline(u, nu=1).T
@@ -125,8 +178,23 @@ def working_from_pitch(x, y, roller_radius: float):
 
 
 def make_profile(x, y, curve: str = "working", roller_radius: float = 0.0) -> CamProfile:
-    """A :class:`CamProfile` from profile points (m); a pitch curve is first moved in by
-    the roller radius."""
+    """A :class:`CamProfile` from profile points; a pitch curve is first moved in by
+    the roller radius.
+
+    Parameters
+    ----------
+    x, y : array_like
+        Profile points in the cam frame [m].
+    curve : {"working", "pitch"}
+        What the points are.
+    roller_radius : float
+        Roller radius [m] (used for a pitch curve).
+
+    Returns
+    -------
+    CamProfile
+        The closed dry working profile.
+    """
     x, y = counter_clockwise(x, y)
     if curve == "pitch" and roller_radius > 0:
         x, y = working_from_pitch(x, y, roller_radius)
@@ -149,7 +217,25 @@ def _column_scale(cell: str, path) -> tuple[str, float]:
 def read_profile_csv(path) -> tuple[np.ndarray, np.ndarray, str]:
     """(x, y in m, 'working' | 'pitch') from a CSV whose header names the columns with
     units: ``x [mm], y [mm]`` (working profile) or ``pitch_x [in], pitch_y [in]``
-    (pitch curve); '#' lines are comments, no unit means metres."""
+    (pitch curve); '#' lines are comments, no unit means metres.
+
+    Parameters
+    ----------
+    path : str or pathlib.Path
+        The CSV file.
+
+    Returns
+    -------
+    tuple
+        (x [m], y [m], "working" or "pitch").
+
+    Raises
+    ------
+    ValueError
+        One line naming the file (and the line) when it is missing, unreadable, empty,
+        has other columns or a header cell that is not 'name [unit]', a row that is not two
+        numbers, values that are not finite, or too few points.
+    """
     try:
         with open(path, newline="", encoding="utf-8") as handle:
             rows = [(n, r) for n, r in enumerate(csv.reader(handle), start=1)
@@ -191,7 +277,27 @@ def _load(path: str, mtime: float, curve_roller: float, mirror: bool = False) ->
 
 def load_profile(path, roller_radius: float = 0.0, mirror: bool = False) -> CamProfile:
     """The :class:`CamProfile` of a profile file (cached while the file is unchanged);
-    ``mirror``: its mirror image x -> -x (a clockwise cam, :mod:`fickcam.cam.kinematics`)."""
+    ``mirror``: its mirror image x -> -x (a clockwise cam, :mod:`fickcam.cam.kinematics`).
+
+    Parameters
+    ----------
+    path : str or pathlib.Path
+        The profile file (:func:`read_profile_csv`).
+    roller_radius : float
+        Roller radius [m], to move a pitch curve in to the working profile.
+    mirror : bool
+        Whether to mirror the points (x -> -x).
+
+    Returns
+    -------
+    CamProfile
+        The closed dry working profile.
+
+    Raises
+    ------
+    ValueError
+        As :func:`read_profile_csv`.
+    """
     path = str(Path(path))
     try:
         mtime = os.path.getmtime(path)
@@ -201,7 +307,23 @@ def load_profile(path, roller_radius: float = 0.0, mirror: bool = False) -> CamP
 
 
 def write_profile_csv(path, x, y, curve: str = "working") -> Path:
-    """Write profile points (m) as CSV in mm with units in the header (readable back)."""
+    """Write profile points as CSV in mm with units in the header (readable back), through
+    a temporary file and a rename.
+
+    Parameters
+    ----------
+    path : str or pathlib.Path
+        The CSV file to write.
+    x, y : array_like
+        Profile points [m].
+    curve : {"working", "pitch"}
+        What the points are (it names the columns).
+
+    Returns
+    -------
+    pathlib.Path
+        ``path``.
+    """
     names = ("x [mm]", "y [mm]") if curve == "working" else ("pitch_x [mm]", "pitch_y [mm]")
     with replaced_atomically(path) as tmp:
         np.savetxt(tmp, np.c_[x, y] * 1e3, delimiter=",", header=",".join(names), comments="",
@@ -211,14 +333,43 @@ def write_profile_csv(path, x, y, curve: str = "working") -> Path:
 
 def dxf_module():
     """ezdxf, or the one-line refusal with its install command (:func:`fickcam.extras.require`):
-    a command that will write DXF asks first, before it computes anything."""
+    a command that will write DXF asks first, before it computes anything.
+
+    Returns
+    -------
+    module
+        ezdxf.
+
+    Raises
+    ------
+    fickcam.extras.MissingExtra
+        Without the extra ``fickcam[dxf]``.
+    """
     return require("dxf", advice="or write the profile as .csv")
 
 
 def write_profile_dxf(path, x, y) -> Path:
     """Write a closed profile (m) as a DXF closed polyline in mm (ezdxf), with the cam
     axis marked by a point at the origin. Needs the extra ``fickcam[dxf]`` (ezdxf):
-    without it, :class:`~fickcam.extras.MissingExtra` and no file."""
+    without it, :class:`~fickcam.extras.MissingExtra` and no file.
+
+    Parameters
+    ----------
+    path : str or pathlib.Path
+        The DXF file to write.
+    x, y : array_like
+        Profile points [m].
+
+    Returns
+    -------
+    pathlib.Path
+        ``path``.
+
+    Raises
+    ------
+    fickcam.extras.MissingExtra
+        Without ezdxf.
+    """
     import logging
 
     ezdxf = dxf_module()
@@ -245,10 +396,23 @@ class AgedContact:
     the contact of profile point u: the cam angle at which u touches, the follower height
     (or arm angle) then, and its rate over the cam angle.
 
-    Attributes: ``profile`` (dry), ``strain_x``, ``strain_y`` [-] of the cam, ``roller``
-    [m] (0: knife edge), ``offset`` [m] of the follower line x = offset, ``flat`` (a flat
-    face), ``arm`` (a grown :class:`fickcam.cam.arm.Arm`, or None: translating) and its
-    dry ``base`` angle [rad]."""
+    Parameters
+    ----------
+    profile : CamProfile
+        The dry profile.
+    strain_x, strain_y : float
+        The cam's swelling strains along x and y [-].
+    roller : float
+        Roller radius [m] (0: knife edge).
+    offset : float
+        Offset of the follower line x = offset [m].
+    flat : bool
+        A flat-faced follower.
+    arm : fickcam.cam.arm.Arm or None
+        A swinging arm, grown; None: a translating follower.
+    base : float
+        The arm's dry base angle [rad].
+    """
 
     profile: CamProfile
     strain_x: float
@@ -412,9 +576,18 @@ class ProfileMotion:
     Y and dY/dtheta come from the contact at theta itself (:func:`solve_contact` from the
     table: one vectorised Newton solve), the higher derivatives from the spline.
 
-    Attributes: ``contact`` (:class:`AgedContact`), ``table`` (:func:`contact_table`),
-    ``slope`` (the periodic quintic BSpline of dY/dtheta over [0, 2 pi]) and
-    ``extremes`` (lowest, highest Y over the turn)."""
+    Parameters
+    ----------
+    contact : AgedContact
+        The aged profile and its follower.
+    table : tuple of numpy.ndarray
+        The contact's table (:func:`contact_table`): theta [rad], u [-], dtheta/du [rad].
+    slope : scipy.interpolate.BSpline
+        Periodic quintic spline of dY/dtheta [m/rad; an arm: -] over theta in [0, 2 pi]
+        [rad].
+    extremes : tuple of float
+        (lowest, highest) Y over the turn [m; an arm: rad].
+    """
 
     contact: AgedContact
     table: tuple
@@ -472,6 +645,25 @@ def profile_motion(profile: CamProfile, strain_x: float, strain_y: float, roller
                    offset: float, flat: bool, theta, arm=None, base: float = 0.0):
     """(Y [m], dY/dtheta [m/rad], d2Y/dtheta2 [m/rad^2], d3Y/dtheta3 [m/rad^3]) at cam
     angles ``theta`` [rad], and (lowest, highest) Y [m] over the turn, of the aged profile;
-    the other parameters are those of :func:`aged_profile_motion` (an arm's Y in rad)."""
+    the other parameters are those of :func:`aged_profile_motion` (an arm's Y in rad).
+
+    Parameters
+    ----------
+    profile, strain_x, strain_y, roller, offset, flat, arm, base
+        As in :func:`aged_profile_motion`: the dry profile, the cam's strains [-], the
+        roller radius and follower offset [m], a flat face, the arm and its base angle [rad].
+    theta : array_like
+        Cam angles [rad].
+
+    Returns
+    -------
+    tuple
+        ((Y [m], dY/dtheta [m/rad], d2Y/dtheta2 [m/rad^2], d3Y/dtheta3 [m/rad^3]),
+        (lowest, highest) Y [m]); an arm's Y in rad.
+
+    References
+    ----------
+    Norton (2012), secs. 8.6-8.7; in full in :mod:`fickcam.cam`.
+    """
     motion = aged_profile_motion(profile, strain_x, strain_y, roller, offset, flat, arm, base)
     return motion(theta), motion.extremes

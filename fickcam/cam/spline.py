@@ -19,8 +19,19 @@ import numpy as np
 
 @dataclass(frozen=True)
 class SplineLaw:
-    """Normalised spline data (hashable): degree k, knots x and values S, end derivatives
-    (j = 1 .. (k-1)/2) at x = 0 and x = 1."""
+    """Normalised spline data (hashable).
+
+    Parameters
+    ----------
+    degree : int
+        The spline's degree k [-], odd.
+    x : tuple of float
+        The points' normalised angles, angle / span [-], from 0 to 1.
+    s : tuple of float
+        The points' normalised distances, distance / height [-], from 0 to 1.
+    start, end : tuple of float
+        The derivatives d^j S / dx^j, j = 1 .. (k-1)/2, at x = 0 and at x = 1 [-].
+    """
 
     degree: int
     x: tuple[float, ...]
@@ -30,13 +41,40 @@ class SplineLaw:
 
 
 def end_condition_count(degree: int) -> int:
-    """(k - 1)/2 derivatives fixed at each end of a spline of odd degree k."""
+    """(k - 1)/2 derivatives fixed at each end of a spline of odd degree k.
+
+    Parameters
+    ----------
+    degree : int
+        The degree k [-].
+
+    Returns
+    -------
+    int
+        The number of end conditions at each end [-].
+    """
     return (degree - 1) // 2
 
 
 @functools.lru_cache(maxsize=64)
 def bspline(law: SplineLaw):
-    """The interpolating B-spline of ``law`` (raises ValueError if scipy cannot build it)."""
+    """The interpolating B-spline of ``law`` (cached by law: the law is hashable).
+
+    Parameters
+    ----------
+    law : SplineLaw
+        The normalised points and end conditions.
+
+    Returns
+    -------
+    scipy.interpolate.BSpline
+        S(x) [-] of the normalised angle x [-].
+
+    Raises
+    ------
+    ValueError
+        Where scipy cannot build it (and numpy.linalg.LinAlgError for a singular system).
+    """
     from scipy.interpolate import make_interp_spline
 
     conditions = ([(j + 1, v) for j, v in enumerate(law.start)],
@@ -46,15 +84,60 @@ def bspline(law: SplineLaw):
 
 
 def spline_motion(law: SplineLaw, x):
-    """(S, S', S'', S''') of the spline at normalised x (extrapolated outside [0, 1])."""
+    """(S, S', S'', S''') of the spline at normalised x (extrapolated outside [0, 1]).
+
+    Parameters
+    ----------
+    law : SplineLaw
+        The normalised spline.
+    x : array_like
+        Normalised angles, angle / span [-].
+
+    Returns
+    -------
+    tuple of numpy.ndarray
+        S and its first three derivatives with respect to x [-].
+
+    References
+    ----------
+    Norton (2012), ch. 8; in full in :mod:`fickcam.cam`.
+    """
     x = np.asarray(x, float)
     curve = bspline(law)
     return tuple(curve.derivative(j)(x) if j else curve(x) for j in range(4))
 
 
 def spline_law(points, height: float, span: float, degree: int, start=None, end=None) -> SplineLaw:
-    """Normalise user points (angle rad, distance m) of a segment of ``height`` over ``span``;
-    ValueError where they do not start at (0, 0), end at (span, |height|), or increase."""
+    """Normalise user points of a segment of ``height`` over ``span`` and check that a
+    spline goes through them.
+
+    Parameters
+    ----------
+    points : sequence of (float, float)
+        (angle within the segment [rad], distance travelled from its start [m]), from
+        (0, 0) to (span, |height|), angles strictly increasing.
+    height : float
+        The segment's rise (positive) or return (negative) [m].
+    span : float
+        The segment's cam angle [rad].
+    degree : int
+        The spline's degree [-]: 1, 3, 5 or 7.
+    start, end : sequence of float, optional
+        The normalised end derivatives d^j S / dx^j [-], j = 1 .. (degree-1)/2; None:
+        zero (a smooth start from and stop into a dwell).
+
+    Returns
+    -------
+    SplineLaw
+        The normalised points and end conditions.
+
+    Raises
+    ------
+    ValueError
+        Where the points do not start at (0, 0), end at (span, |height|) or increase,
+        the degree is even, the end conditions are not (degree-1)/2 each, or scipy finds
+        no spline through them.
+    """
     angles = np.array([p[0] for p in points], float)
     distance = np.array([p[1] for p in points], float)
     h = abs(height)

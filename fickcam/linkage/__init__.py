@@ -8,6 +8,10 @@ Public API: :class:`LinkageSection` (scene section), :class:`FourBarDesign`,
 
 References
 ----------
+Freudenstein, F. (1955). Approximate synthesis of four-bar linkages. Transactions of the
+    ASME 77, 853-861.
+Norton, R. L. (2012). Design of Machinery: An Introduction to the Synthesis and Analysis
+    of Mechanisms and Machines, 5th ed. New York: McGraw-Hill.
 Singh, S. & Sanyal, S. (2016). Variations in geometry, volume, mass and moment of
     inertia of link of a four bar mechanism made of neat resin under hygrothermal
     environment. International Journal of Innovative Research in Science, Engineering and

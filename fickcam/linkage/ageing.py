@@ -29,7 +29,21 @@ def _link_material(section, link: str) -> str:
 
 
 def scene_parts(section, materials) -> list[tuple]:
-    """(part name, material name, diffusion geometry, dry mass kg) for each link."""
+    """The links as parts that age: each a link bar with bosses.
+
+    Parameters
+    ----------
+    section : LinkageSection
+        The scene's validated ``linkage:`` section (lengths and section in m).
+    materials : dict of str to Material
+        The scene's materials by name; the links' dry densities [kg/m^3] give their masses.
+
+    Returns
+    -------
+    list of tuple
+        (link name, material name, LinkBar with dimensions [m], dry mass [kg]) for crank,
+        coupler, rocker and frame.
+    """
     from ..diffusion.problem.geometry import LinkBar
     from ..materials.bodies import link_body
 
@@ -45,38 +59,98 @@ def scene_parts(section, materials) -> list[tuple]:
     return parts
 
 
-def link_state(section, histories, k: int):
-    """(lengths, masses, inertias) of crank, coupler, rocker, frame at ageing index k."""
+def link_states(section, histories):
+    """The swollen links at every ageing time: lengths grown by the longitudinal strain,
+    masses and inertias of the swollen, wet bodies, evaluated for the whole history at once.
+
+    Parameters
+    ----------
+    section : LinkageSection
+        The scene's validated ``linkage:`` section (dry lengths [m]).
+    histories : dict of str to PartHistory
+        Each link's history: strains [-] and moisture [weight %] over ageing time.
+
+    Returns
+    -------
+    tuple of numpy.ndarray
+        Lengths [m], masses [kg] and moments of inertia about the centres of mass
+        [kg m^2] of crank, coupler, rocker and frame, each of shape (ageing times, 4).
+    """
     from ..materials.bodies import aged_link_body
 
     s = section.section
     lengths, masses, inertias = [], [], []
     for link in LINKS:
         state = histories[link].state
-        eps_x = float(state["strain_longitudinal"][k])
+        eps_x = np.asarray(state["strain_longitudinal"], float)
         length = getattr(section, link)
         _, mass, inertia = aged_link_body(
             length, s.width, s.thickness, s.boss_outer_radius, s.boss_inner_radius,
-            histories[link].part.material.dry_density, float(state["moisture_content"][k]),
-            eps_x, float(state["strain_transverse"][k]),
-            float(state["strain_through_thickness"][k]))
+            histories[link].part.material.dry_density,
+            np.asarray(state["moisture_content"], float), eps_x,
+            np.asarray(state["strain_transverse"], float),
+            np.asarray(state["strain_through_thickness"], float))
         lengths.append(length * (1.0 + eps_x))
-        masses.append(float(mass))
-        inertias.append(float(inertia))
-    return np.array(lengths), np.array(masses), np.array(inertias)
+        masses.append(mass)
+        inertias.append(inertia)
+    return tuple(np.stack(np.broadcast_arrays(*values), axis=-1)
+                 for values in (lengths, masses, inertias))
+
+
+def link_state(section, histories, k: int):
+    """The swollen links at one ageing time (see `link_states`).
+
+    Parameters
+    ----------
+    section : LinkageSection
+        The scene's validated ``linkage:`` section (dry lengths [m]).
+    histories : dict of str to PartHistory
+        Each link's history: strains [-] and moisture [weight %] over ageing time.
+    k : int
+        Index of the ageing time [-].
+
+    Returns
+    -------
+    tuple of numpy.ndarray
+        Lengths [m], masses [kg] and moments of inertia [kg m^2] of crank, coupler,
+        rocker and frame, each of shape (4,).
+    """
+    return tuple(values[k] for values in link_states(section, histories))
 
 
 def scene_response(section, histories: dict, times, angles, valid, on_step=lambda: None) -> Response:
     """The linkage over ageing: variables (time, ...) and notices, including a warning
     where ageing changes the Grashof class or removes the crank's full rotation.
-    Toggle positions are reported at the first and last computed ageing time."""
+    Toggle positions are reported at the first and last computed ageing time.
+
+    Parameters
+    ----------
+    section : LinkageSection
+        The validated ``linkage:`` section of the scene.
+    histories : dict of str to PartHistory
+        The links' histories, by link name.
+    times : array_like
+        Ageing times [s].
+    angles : array_like
+        Crank angles over one turn [rad].
+    valid : array_like of bool
+        Per ageing time, whether every link is within its model's range (NaN where not).
+    on_step : callable
+        Called after each ageing time is evaluated (progress).
+
+    Returns
+    -------
+    fickcam.response.Response
+        SI variables over (time, ...) and the notices.
+    """
     design = FourBarDesign.from_section(section)
     valid = np.asarray(valid, bool)
     computed = np.nonzero(valid)[0]
     ends = {int(computed[0]), int(computed[-1])} if computed.size else set()
+    states = link_states(section, histories)
 
     def evaluate(k: int) -> Response:
-        lengths, masses, inertias = link_state(section, histories, k)
+        lengths, masses, inertias = (values[k] for values in states)
         state = FourBarState(tuple(lengths), tuple(masses[:3]), tuple(inertias[:3]),
                              tuple(section.centre_of_mass))
         response = fourbar_response(design, state, angles)

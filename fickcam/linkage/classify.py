@@ -17,7 +17,22 @@ FULL_ROTATION = {CRANK_ROCKER, DOUBLE_CRANK, CHANGE_POINT}
 
 def grashof_condition(a, b, c, d) -> float:
     """(P + Q) - (S + L), relative to the sum of the lengths: > 0 Grashof, = 0 change
-    point, < 0 non-Grashof (Norton eq. 2.8)."""
+    point, < 0 non-Grashof (Norton eq. 2.8).
+
+    Parameters
+    ----------
+    a, b, c, d : float
+        Crank, coupler, rocker and frame lengths [m] (any one length unit).
+
+    Returns
+    -------
+    float
+        (P + Q - S - L) / (S + L + P + Q) [-].
+
+    References
+    ----------
+    Norton (2012), sec. 2.12; in full in :mod:`fickcam.linkage`.
+    """
     s = np.sort(np.array([a, b, c, d], float))
     return float((s[1] + s[2] - s[0] - s[3]) / s.sum())
 
@@ -26,8 +41,25 @@ def grashof_class(a, b, c, d, tolerance: float = 1e-9) -> str:
     """Class of the four-bar with crank a, coupler b, rocker c, frame d (Norton sec. 2.12):
     Grashof with the crank shortest -> crank-rocker, frame shortest -> double-crank,
     coupler or rocker shortest -> double-rocker; S + L = P + Q -> change-point;
-    S + L > P + Q -> non-Grashof (triple rocker). ``tolerance`` is relative to the
-    sum of the lengths."""
+    S + L > P + Q -> non-Grashof (triple rocker).
+
+    Parameters
+    ----------
+    a, b, c, d : float
+        Crank, coupler, rocker and frame lengths [m] (any one length unit).
+    tolerance : float
+        A margin :func:`grashof_condition` within this of zero is a change point [-]
+        (relative to the sum of the lengths).
+
+    Returns
+    -------
+    str
+        "crank-rocker", "double-crank", "double-rocker", "change-point" or "non-Grashof".
+
+    References
+    ----------
+    Norton (2012), sec. 2.12; in full in :mod:`fickcam.linkage`.
+    """
     margin = grashof_condition(a, b, c, d)
     if abs(margin) <= tolerance:
         return CHANGE_POINT
@@ -39,8 +71,21 @@ def grashof_class(a, b, c, d, tolerance: float = 1e-9) -> str:
 
 def class_changes(classes, times) -> list[str]:
     """Notices where ageing changes the Grashof class, and a warning when the crank
-    loses (or regains) its full rotation. ``classes`` are strings per ageing time
-    ('' where not computed), ``times`` in s."""
+    loses (or regains) its full rotation.
+
+    Parameters
+    ----------
+    classes : sequence of str
+        The class at each ageing time ('' where not computed).
+    times : array_like
+        The ageing times [s].
+
+    Returns
+    -------
+    list of str
+        The notices, in time order; a regained rotation is a note
+        (:func:`fickcam.messages.note`).
+    """
     from ..errors import format_duration
     from ..messages import note
 

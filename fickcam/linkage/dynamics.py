@@ -24,15 +24,38 @@ def _cross_row(rx, ry):
 
 def kinetostatics(masses, inertias, com_acceleration, alphas, pins, com_position,
                   gravity: float = 0.0, rocker_torque: float = 0.0):
-    """Solve Norton eq. 11.10 at every crank angle.
+    """Solve Norton eq. 11.10 at every crank angle (the module docstring names the
+    unknowns).
 
-    masses, inertias: (3,) for crank, coupler, rocker (kg, kg m^2 about the centre of mass);
-    com_acceleration: complex (3, n) accelerations of the centres of mass;
-    alphas: (alpha2, alpha3, alpha4) arrays (n,);
-    pins: complex (O2, A, B, O4) positions (n,); com_position: complex (3, n);
-    gravity: g in m/s^2 (0 to ignore); rocker_torque: external torque on the rocker
-    (N m, counter-clockwise positive; Norton's T4).
-    Returns (joint forces, complex (4, n) at O2, A, B, O4 as defined above; T12 (n,))."""
+    Parameters
+    ----------
+    masses : sequence of float
+        Crank, coupler and rocker masses [kg].
+    inertias : sequence of float
+        Their moments of inertia about their centres of mass [kg m^2].
+    com_acceleration : array_like of complex
+        (3, n) accelerations of the centres of mass [m/s^2], x + i y.
+    alphas : sequence of array_like
+        (alpha2, alpha3, alpha4), each (n,) [rad/s^2].
+    pins : sequence of array_like of complex
+        Positions of O2, A, B and O4, each (n,) [m].
+    com_position : array_like of complex
+        (3, n) positions of the centres of mass [m].
+    gravity : float
+        g along -y [m/s^2]; 0 ignores gravity.
+    rocker_torque : float
+        External torque on the rocker [N m], counter-clockwise positive (Norton's T4).
+
+    Returns
+    -------
+    tuple
+        The joint forces, complex (4, n) [N] at O2, A, B and O4 (F12, F32, F43, F14), and
+        the driving torque T12, (n,) [N m]; NaN where the positions are not finite.
+
+    References
+    ----------
+    Norton (2012), sec. 11.5; in full in :mod:`fickcam.linkage`.
+    """
     o2, pa, pb, o4 = pins
     g2, g3, g4 = com_position
     n = np.broadcast(o2, g2).shape[-1]
@@ -79,13 +102,39 @@ def kinetostatics(masses, inertias, com_acceleration, alphas, pins, com_position
 
 
 def kinetic_energy(masses, inertias, com_velocity, omegas):
-    """KE = sum_j (m_j |v_Gj|^2 + I_Gj omega_j^2) / 2 (J) over crank, coupler, rocker."""
+    """KE = sum_j (m_j |v_Gj|^2 + I_Gj omega_j^2) / 2 over crank, coupler, rocker.
+
+    Parameters
+    ----------
+    masses, inertias : sequence of float
+        As in :func:`kinetostatics`: masses [kg], inertias [kg m^2].
+    com_velocity : array_like of complex
+        (3, n) velocities of the centres of mass [m/s].
+    omegas : sequence of array_like
+        (omega2, omega3, omega4) [rad/s].
+
+    Returns
+    -------
+    numpy.ndarray
+        The kinetic energy at each crank angle [J].
+    """
     m = np.asarray(masses, float)[:, None]
     inertia = np.asarray(inertias, float)[:, None]
     return 0.5 * np.sum(m * np.abs(com_velocity) ** 2 + inertia * np.asarray(omegas) ** 2, axis=0)
 
 
 def rms(values):
-    """Root mean square over the finite samples (uniform crank-angle grid)."""
+    """Root mean square over the finite samples (uniform crank-angle grid).
+
+    Parameters
+    ----------
+    values : array_like
+        Samples [any unit], NaN where undefined.
+
+    Returns
+    -------
+    float
+        Their RMS [the samples' unit]; NaN when none is finite.
+    """
     values = np.asarray(values, float)
     return float(np.sqrt(np.nanmean(values ** 2))) if np.isfinite(values).any() else float("nan")

@@ -29,9 +29,27 @@ log = logging.getLogger(__name__)
 
 @dataclass(frozen=True)
 class FourBarDesign:
-    """The dry four-bar (SI): link lengths (crank a, coupler b, rocker c, frame d),
-    coupler point (distance from A, angle from A->B), crank speed and acceleration,
-    branch, gravity and the external torque on the rocker."""
+    """The dry four-bar (SI).
+
+    Parameters
+    ----------
+    crank, coupler, rocker, frame : float
+        Link lengths a, b, c, d [m], pin to pin.
+    coupler_point_distance : float
+        Distance of the coupler point from the crank pin A [m].
+    coupler_point_angle : float
+        Its angle from the coupler line A->B [rad].
+    crank_speed : float
+        The crank's angular velocity [rad/s].
+    crank_angular_acceleration : float
+        The crank's angular acceleration [rad/s^2].
+    assembly : {"open", "crossed"}
+        The branch (:mod:`fickcam.linkage.positions`).
+    gravity : bool
+        Whether the links' weight acts (along -y).
+    rocker_load_torque : float
+        External torque on the rocker [N m], counter-clockwise positive.
+    """
 
     crank: float
     coupler: float
@@ -60,11 +78,23 @@ class FourBarDesign:
 
 @dataclass(frozen=True)
 class FourBarState:
-    """The four-bar at one ageing time (SI): swollen link lengths (crank, coupler,
-    rocker, frame), masses and inertias about each centre of mass (crank, coupler,
-    rocker), centres of mass as fractions of each pin-to-pin length from its first pin
-    (O2, A, O4), and the coupler point distance (None: the design's, scaled with the
-    coupler's length)."""
+    """The four-bar at one ageing time (SI).
+
+    Parameters
+    ----------
+    link_lengths : tuple of float
+        Swollen crank, coupler, rocker and frame lengths [m].
+    link_masses : tuple of float
+        Crank, coupler and rocker masses [kg].
+    link_inertias : tuple of float
+        Their moments of inertia about their centres of mass [kg m^2].
+    centre_of_mass : tuple of float
+        Each centre of mass as a fraction of the pin-to-pin length from its first pin
+        (O2, A, O4) [-].
+    coupler_point_distance : float or None
+        Distance of the coupler point from A [m]; None: the design's, scaled with the
+        coupler's length.
+    """
 
     link_lengths: tuple[float, float, float, float]
     link_masses: tuple[float, float, float] = (0.0, 0.0, 0.0)
@@ -78,11 +108,29 @@ def _fmt_range(lo: float, hi: float) -> str:
 
 
 def fourbar_response(design: FourBarDesign, state: FourBarState, crank_angle) -> Response:
-    """Positions, class, kinematics and kinetostatics over ``crank_angle`` (rad, a grid
-    over one revolution). Returns SI arrays (angles in rad); see the "linkage" rows of
-    :data:`fickcam.schema.VARIABLES` for names,
-    dims and units. Crank angles at which the aged
-    linkage cannot assemble hold NaN and are named in the notices."""
+    """Positions, class, kinematics and kinetostatics over ``crank_angle``. Crank angles
+    at which the aged linkage cannot assemble hold NaN and are named in the notices.
+
+    Parameters
+    ----------
+    design : FourBarDesign
+        The dry four-bar (its speed, branch, coupler point angle and loads are used).
+    state : FourBarState
+        The four-bar at this ageing time.
+    crank_angle : array_like
+        A grid over one revolution [rad].
+
+    Returns
+    -------
+    fickcam.response.Response
+        SI arrays (angles in rad), named, dimensioned and in the units of the "linkage"
+        rows of :data:`fickcam.schema.VARIABLES`, and the notices.
+
+    References
+    ----------
+    Norton (2012), chs. 4, 6, 7; in full in :mod:`fickcam.linkage`.
+        and 11.
+    """
     theta2 = np.asarray(crank_angle, float)
     a, b, c, d = (float(x) for x in state.link_lengths)
     branch = design.assembly

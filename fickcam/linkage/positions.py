@@ -44,7 +44,26 @@ def rocker_angle(a, b, c, d, theta2, assembly="open"):
     """theta4 (rad), Norton eqs. 4.8a and 4.10 (Freudenstein):
     K1 = d/a, K2 = d/c, K3 = (a^2 - b^2 + c^2 + d^2)/(2 a c);
     A = cos t2 - K1 - K2 cos t2 + K3, B = -2 sin t2, C = K1 - (K2 + 1) cos t2 + K3;
-    theta4 = 2 atan[(-B -/+ sqrt(B^2 - 4 A C)) / (2 A)] (minus: open)."""
+    theta4 = 2 atan[(-B -/+ sqrt(B^2 - 4 A C)) / (2 A)] (minus: open).
+
+    Parameters
+    ----------
+    a, b, c, d : float
+        Crank, coupler, rocker and frame lengths [m] (any one length unit).
+    theta2 : array_like
+        Crank angles [rad].
+    assembly : {"open", "crossed"}
+        The branch (see the module docstring).
+
+    Returns
+    -------
+    numpy.ndarray
+        theta4 [rad]; NaN where the linkage does not assemble.
+
+    References
+    ----------
+    Norton (2012), sec. 4.5, and Freudenstein (1955); in full in :mod:`fickcam.linkage`.
+    """
     theta2 = np.asarray(theta2, float)
     k1, k2, k3 = d / a, d / c, (a * a - b * b + c * c + d * d) / (2.0 * a * c)
     cos2 = np.cos(theta2)
@@ -58,7 +77,18 @@ def coupler_angle(a, b, c, d, theta2, assembly="open"):
     """theta3 (rad), Norton eqs. 4.11-4.13 (Freudenstein): K4 = d/b,
     K5 = (c^2 - d^2 - a^2 - b^2)/(2 a b); D = cos t2 - K1 + K4 cos t2 + K5,
     E = -2 sin t2, F = K1 + (K4 - 1) cos t2 + K5;
-    theta3 = 2 atan[(-E -/+ sqrt(E^2 - 4 D F)) / (2 D)] (minus: open)."""
+    theta3 = 2 atan[(-E -/+ sqrt(E^2 - 4 D F)) / (2 D)] (minus: open).
+
+    Parameters
+    ----------
+    a, b, c, d, theta2, assembly
+        As in :func:`rocker_angle`: lengths [m], crank angles [rad], branch.
+
+    Returns
+    -------
+    numpy.ndarray
+        theta3 [rad]; NaN where the linkage does not assemble.
+    """
     theta2 = np.asarray(theta2, float)
     k1, k4, k5 = d / a, d / b, (c * c - d * d - a * a - b * b) / (2.0 * a * b)
     cos2 = np.cos(theta2)
@@ -71,7 +101,22 @@ def coupler_angle(a, b, c, d, theta2, assembly="open"):
 def positions(a, b, c, d, theta2, assembly="open"):
     """(theta3, theta4) in rad on the ``assembly`` branch, both NaN where either equation
     finds no assembly (Norton eqs. 4.10b and 4.13), and where the crank pin A falls on
-    the rocker pivot O4 (a = d at theta2 = 0: B is undetermined)."""
+    the rocker pivot O4 (a = d at theta2 = 0: B is undetermined).
+
+    Parameters
+    ----------
+    a, b, c, d : float
+        Link lengths [m], in the order of :func:`rocker_angle`.
+    theta2 : array_like
+        Crank angles [rad].
+    assembly : {"open", "crossed"}
+        The branch.
+
+    Returns
+    -------
+    theta3, theta4 : numpy.ndarray
+        Coupler and rocker angles [rad].
+    """
     theta3 = coupler_angle(a, b, c, d, theta2, assembly)
     theta4 = rocker_angle(a, b, c, d, theta2, assembly)
     diagonal = np.abs(a * np.exp(1j * np.asarray(theta2, float)) - d)
@@ -81,7 +126,18 @@ def positions(a, b, c, d, theta2, assembly="open"):
 
 def continuous(theta):
     """Angles wrapped to (-pi, pi] at the first finite sample and unwrapped along the
-    last axis across NaN gaps (branch continuity for plotting and differencing)."""
+    last axis across NaN gaps (branch continuity for plotting and differencing).
+
+    Parameters
+    ----------
+    theta : array_like
+        Angles [rad], NaN where undefined; the last axis is the crank angle.
+
+    Returns
+    -------
+    numpy.ndarray
+        The same shape [rad], NaN kept.
+    """
     theta = np.asarray(theta, float)
     out = np.full_like(theta, np.nan)
     flat_in, flat_out = theta.reshape(-1, theta.shape[-1]), out.reshape(-1, theta.shape[-1])
@@ -95,13 +151,39 @@ def continuous(theta):
 
 def transmission_angle(theta3, theta4):
     """Acute transmission angle mu in [0, pi/2] between coupler and rocker, Norton
-    eq. 4.32: theta_tr = |theta3 - theta4| (mod pi); mu = pi - theta_tr if > pi/2."""
+    eq. 4.32: theta_tr = |theta3 - theta4| (mod pi); mu = pi - theta_tr if > pi/2.
+
+    Parameters
+    ----------
+    theta3, theta4 : array_like
+        Coupler and rocker angles [rad].
+
+    Returns
+    -------
+    numpy.ndarray
+        mu [rad] in [0, pi/2].
+    """
     tr = np.abs(np.mod(np.asarray(theta3) - np.asarray(theta4), np.pi))
     return np.where(tr > np.pi / 2, np.pi - tr, tr)
 
 
 def joint_positions(a, b, c, d, theta2, theta3, theta4):
-    """Complex positions of O2, A, B (from the crank side) and O4 (Norton eq. 4.5)."""
+    """Complex positions of O2, A, B (from the crank side) and O4 (Norton eq. 4.5).
+
+    Parameters
+    ----------
+    a, b, c, d, theta2
+        Lengths [m] and crank angles [rad], as :func:`rocker_angle` takes them.
+    theta3, theta4 : array_like
+        Coupler and rocker angles [rad] at ``theta2`` (``theta4`` is not needed: B is
+        reached through the coupler; it is taken for a uniform signature).
+
+    Returns
+    -------
+    tuple of numpy.ndarray
+        (O2, A, B, O4) as x + i y [m] (the lengths' unit), O2 at the origin and O4 at
+        (d, 0).
+    """
     A = a * np.exp(1j * np.asarray(theta2))
     B = A + b * np.exp(1j * np.asarray(theta3))
     return np.zeros_like(A), A, B, d + 0.0 * A
@@ -109,14 +191,46 @@ def joint_positions(a, b, c, d, theta2, theta3, theta4):
 
 def coupler_point(a, theta2, theta3, distance, angle):
     """Coupler point P = a e^{i theta2} + p e^{i (theta3 + delta3)} (Norton eq. 4.31),
-    returned as (x, y) in m."""
+    returned as (x, y) in m.
+
+    Parameters
+    ----------
+    a : float
+        Crank length [m].
+    theta2 : array_like
+        Crank angles [rad].
+    theta3 : array_like
+        Coupler angles [rad] at ``theta2``.
+    distance : float
+        Distance p of the point from the crank pin A [m].
+    angle : float
+        Angle delta3 of the point from the coupler line A->B [rad].
+
+    Returns
+    -------
+    tuple of numpy.ndarray
+        (x, y) [m], the frame's axes (O2 at the origin).
+    """
     p = a * np.exp(1j * np.asarray(theta2)) + distance * np.exp(1j * (np.asarray(theta3) + angle))
     return p.real, p.imag
 
 
 def assembly_gaps(theta2, ok):
     """Contiguous ranges (start, end) in rad of crank angles (sorted grid over one turn)
-    where ``ok`` is False; a gap running through 360 deg is joined with one at 0."""
+    where ``ok`` is False; a gap running through 360 deg is joined with one at 0.
+
+    Parameters
+    ----------
+    theta2 : array_like
+        Crank angles over one turn, sorted [rad].
+    ok : array_like of bool
+        Where the linkage assembles.
+
+    Returns
+    -------
+    list of tuple of float
+        (start, end) [rad] of each gap, the first and last crank angle in it.
+    """
     theta2, ok = np.asarray(theta2), np.asarray(ok, bool)
     bad = ~ok
     if not bad.any():
@@ -142,7 +256,19 @@ def toggle_crank_angles(a, b, c, d, assembly="open"):
     the rocker at its two limits (Norton sec. 4.13, Fig. 4-19). ``crank_limits``: coupler
     and rocker collinear, where a non-rotating input stops, Norton eq. 4.33:
     theta2 = +/- acos[(a^2 + d^2 - b^2 - c^2)/(2 a d) +/- b c/(a d)].
-    Candidates are checked on the chosen branch; NaN if absent."""
+    Candidates are checked on the chosen branch; none if absent.
+
+    Parameters
+    ----------
+    a, b, c, d, assembly
+        The lengths [m] and the branch, as :func:`rocker_angle` takes them.
+
+    Returns
+    -------
+    dict of str to list of float
+        ``extended``, ``folded`` and ``crank_limits`` -> the crank angles [rad] on the
+        branch, sorted (empty where there are none).
+    """
     def on_branch(candidates, residual):
         found = [float(np.mod(t, 2 * np.pi)) for t in candidates
                  if np.isfinite(t) and residual(t) < 1e-6]

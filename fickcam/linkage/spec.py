@@ -48,16 +48,36 @@ AngularAcceleration = _in_si("rad/s**2", "an angular acceleration (e.g. '10 rad/
 
 
 class CouplerPoint(StrictModel):
-    """Point P on the coupler: ``distance`` from the crank-coupler pin A, at ``angle``
-    (counter-clockwise) from the line A->B (Norton eq. 4.31)."""
+    """Point P on the coupler (Norton eq. 4.31).
+
+    Parameters
+    ----------
+    distance : float
+        Distance from the crank-coupler pin A [m].
+    angle : float
+        Angle from the line A->B, counter-clockwise [rad].
+    """
 
     distance: NonNegativeLength
     angle: Angle = 0.0
 
 
 class LinkSectionSpec(StrictModel):
-    """Cross-section of every link (Singh & Sanyal 2016, Figure 3): a bar ``width`` x ``thickness``
-    between two hollow bosses of ``boss_outer_radius`` / ``boss_inner_radius``."""
+    """Cross-section of every link (Singh & Sanyal 2016, Figure 3): a bar between two
+    hollow bosses.
+
+    Parameters
+    ----------
+    width, thickness : float
+        The bar's width and thickness [m].
+    boss_outer_radius, boss_inner_radius : float
+        The bosses' outer radius and their holes' radius [m].
+
+    Raises
+    ------
+    ValueError
+        (to pydantic) A hole as large as its boss, or a bar wider than its bosses.
+    """
 
     width: Length
     thickness: Length
@@ -75,19 +95,63 @@ class LinkSectionSpec(StrictModel):
 
 
 def can_assemble_somewhere(crank: float, coupler: float, rocker: float, frame: float) -> bool:
-    """True if some crank angle closes the loop: [|d - a|, d + a] meets [|b - c|, b + c]."""
+    """True if some crank angle closes the loop: [|d - a|, d + a] meets [|b - c|, b + c]
+    (the diagonal from the crank pin to the rocker pivot must be spanned by both sides).
+
+    Parameters
+    ----------
+    crank, coupler, rocker, frame : float
+        Link lengths a, b, c, d [m].
+
+    Returns
+    -------
+    bool
+        Whether the loop closes at some crank angle (to a relative 1e-12).
+    """
     low = max(abs(frame - crank), abs(coupler - rocker))
     high = min(frame + crank, coupler + rocker)
     return low <= high * (1.0 + 1e-12)
 
 
 class LinkageSection(StrictModel):
-    """The ``linkage:`` section. Optional keys (with defaults):
-    ``gravity`` (false; g = 9.80665 m/s^2 along -y, the frame line O2->O4 being +x),
-    ``crank_angular_acceleration`` (0 rad/s^2), ``rocker_load_torque`` (0 N m, a
-    constant torque on the rocker, counter-clockwise positive) and
-    ``centre_of_mass`` (fractions along crank, coupler, rocker; 0.5 each) and ``elastic``
-    (false; true: swelling stress and failure index of the links, :mod:`fickcam.elastic`)."""
+    """The ``linkage:`` section, in SI once validated.
+
+    Parameters
+    ----------
+    material : str
+        The links' material (a name under ``materials:``).
+    frame_material : str or None
+        The frame's; None: the links'.
+    crank, coupler, rocker, frame : float
+        Link lengths a, b, c, d, pin to pin [m].
+    coupler_point : CouplerPoint
+        The coupler point.
+    section : LinkSectionSpec
+        Every link's cross-section.
+    crank_speed : float
+        The crank's angular velocity [rad/s].
+    assembly : {"open", "crossed"}
+        The branch (:mod:`fickcam.linkage.positions`).
+    gravity : bool
+        Whether the links' weight acts (g = 9.80665 m/s^2 along -y, the frame line O2->O4
+        being +x).
+    crank_angular_acceleration : float
+        The crank's angular acceleration [rad/s^2].
+    rocker_load_torque : float
+        A constant torque on the rocker [N m], counter-clockwise positive.
+    centre_of_mass : tuple of float
+        Centres of mass as fractions of the crank's, coupler's and rocker's pin-to-pin
+        lengths from their first pins [-].
+    elastic : bool
+        Whether to compute the links' swelling stress and failure index
+        (:mod:`fickcam.elastic`).
+
+    Raises
+    ------
+    ValueError
+        (to pydantic) A linkage that cannot assemble at any crank angle, bosses that
+        overlap on a link, or a centre-of-mass fraction outside [0, 1].
+    """
 
     material: str
     frame_material: str | None = None

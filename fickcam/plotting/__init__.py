@@ -1,6 +1,7 @@
 """Figures (PNG) from a result Dataset; one module per kind of plot.
 
-Each module exposes functions ``(ds, outdir) -> list[Path]``; matplotlib is
+Each module exposes functions ``(ds, outdir, save=save_figure) -> list[Path]``, where
+``save(fig, path)`` writes each figure; matplotlib is
 imported inside them (Agg backend), so ``import fickcam.plotting`` stays light.
 """
 from __future__ import annotations
@@ -35,7 +36,7 @@ def available_kinds(ds) -> list[str]:
     return [k for k, (_, _, needs) in KINDS.items() if k != "sweep" and all(n in names for n in needs)]
 
 
-def plot(ds, outdir, kind: str = "all") -> list[Path]:
+def plot(ds, outdir, kind: str = "all", save=save_figure) -> list[Path]:
     """Write the figures of ``kind`` (or every kind the result supports) to ``outdir``.
 
     Parameters
@@ -48,6 +49,11 @@ def plot(ds, outdir, kind: str = "all") -> list[Path]:
         One of ``KINDS`` ("uptake", "kinematics", "dynamics", "vibration", "linkage",
         "fields", "elastic", "limits", "sweep"), or "all": every kind the result has
         data for.
+    save : callable
+        ``save(fig, path) -> path`` writes one figure and returns the path written; the
+        default, :func:`save_figure`, writes the file atomically and closes the figure.
+        Another writer (a different format, or one that keeps the figures open to look
+        at or to test) goes here.
 
     Returns
     -------
@@ -72,5 +78,5 @@ def plot(ds, outdir, kind: str = "all") -> list[Path]:
     for name in kinds:
         module_name, function, _ = KINDS[name]
         module = importlib.import_module(f".{module_name}", __name__)
-        written += getattr(module, function)(ds, outdir)
+        written += getattr(module, function)(ds, outdir, save=save)
     return written

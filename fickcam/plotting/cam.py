@@ -54,7 +54,7 @@ def _panels(plt, ds, rows, title, drift=None):
     return fig
 
 
-def plot_kinematics(ds, outdir) -> list[Path]:
+def plot_kinematics(ds, outdir, save=save_figure) -> list[Path]:
     """cam_kinematics.png (S/V/A/J vs cam angle at up to four ages), cam_drift.png (change
     of displacement and acceleration since the first age) and, when the profile is
     stored, cam_profile.png (working profile, first vs last age).
@@ -65,6 +65,8 @@ def plot_kinematics(ds, outdir) -> list[Path]:
         A cam result (``pressure_angle`` over the cam angle).
     outdir : str or pathlib.Path
         Where the two or three PNG files go (created if missing).
+    save : callable
+        Writes one figure: ``save(fig, path) -> path`` (default :func:`save_figure`).
 
     Returns
     -------
@@ -76,11 +78,11 @@ def plot_kinematics(ds, outdir) -> list[Path]:
     outdir.mkdir(parents=True, exist_ok=True)
     name = ds.attrs.get("scene_name", "")
     rows = kinematic_rows(ds)
-    written = [save_figure(_panels(plt, ds, rows, f"{name}: follower motion", drift=rows[0]),
-                           outdir / "cam_kinematics.png")]
-    written.append(_drift(plt, ds, outdir, name, rows))
+    written = [save(_panels(plt, ds, rows, f"{name}: follower motion", drift=rows[0]),
+                    outdir / "cam_kinematics.png")]
+    written.append(_drift(plt, ds, outdir, name, rows, save))
     if "profile_x" in ds:
-        written.append(_profile(plt, ds, outdir, name))
+        written.append(_profile(plt, ds, outdir, name, save))
     return written
 
 
@@ -99,7 +101,7 @@ def radial_deviation(reference, x, y) -> np.ndarray:
     return np.interp(angle, aged_angle[order], aged_radius[order], period=360.0) - radius
 
 
-def _profile(plt, ds, outdir, name) -> Path:
+def _profile(plt, ds, outdir, name, save) -> Path:
     """cam_profile.png: the working profile with its drift from the design (else from the
     first ageing time) exaggerated by a stated factor, and the radial deviation against
     the polar angle."""
@@ -120,10 +122,10 @@ def _profile(plt, ds, outdir, name) -> Path:
                        "radius − design radius" if against == "design" else f"radius − radius at {against}",
                        f"radial deviation of the working profile from {'the ' * (against == 'design')}{against}")
     over.axhline(0.0, color="k", lw=0.8, ls="--")
-    return save_figure(fig, outdir / "cam_profile.png")
+    return save(fig, outdir / "cam_profile.png")
 
 
-def _drift(plt, ds, outdir, name, rows) -> Path:
+def _drift(plt, ds, outdir, name, rows, save) -> Path:
     """cam_drift.png: displacement and acceleration minus their values at the first age,
     i.e. how far the follower drifts out of its as-made motion."""
     fig, axes = plt.subplots(2, 1, figsize=(7.5, 5.5), sharex=True)
@@ -139,10 +141,10 @@ def _drift(plt, ds, outdir, name, rows) -> Path:
     axes[0].set_title(f"{name}: drift from t = {t[0]:g} d")
     legend_outside(axes[0])
     axes[-1].set_xlabel("cam angle [deg]")
-    return save_figure(fig, outdir / "cam_drift.png")
+    return save(fig, outdir / "cam_drift.png")
 
 
-def plot_dynamics(ds, outdir) -> list[Path]:
+def plot_dynamics(ds, outdir, save=save_figure) -> list[Path]:
     """cam_dynamics.png (contact force, torque, stress vs cam angle at up to four ages) and
     cam_jump_stress.png (jump speed and peak Hertz stress vs ageing time).
 
@@ -152,6 +154,8 @@ def plot_dynamics(ds, outdir) -> list[Path]:
         A cam result with ``contact_force``.
     outdir : str or pathlib.Path
         The folder for both figures.
+    save : callable
+        Writes one figure: ``save(fig, path) -> path`` (default :func:`save_figure`).
 
     Returns
     -------
@@ -162,8 +166,8 @@ def plot_dynamics(ds, outdir) -> list[Path]:
     outdir = Path(outdir)
     outdir.mkdir(parents=True, exist_ok=True)
     name = ds.attrs.get("scene_name", "")
-    written = [save_figure(_panels(plt, ds, DYNAMICS, f"{name}: forces", drift=DYNAMICS[-1]),
-                           outdir / "cam_dynamics.png")]
+    written = [save(_panels(plt, ds, DYNAMICS, f"{name}: forces", drift=DYNAMICS[-1]),
+                    outdir / "cam_dynamics.png")]
     fig, (top, bottom) = plt.subplots(2, 1, figsize=(7.5, 5.5), sharex=True)
     t = days(ds)
     if "jump_speed" in ds:
@@ -180,7 +184,7 @@ def plot_dynamics(ds, outdir) -> list[Path]:
     bottom.set_ylabel("peak Hertz stress [MPa]")
     bottom.set_xlabel("ageing time [d]")
     bottom.grid(alpha=0.3)
-    written.append(save_figure(fig, outdir / "cam_jump_stress.png"))
+    written.append(save(fig, outdir / "cam_jump_stress.png"))
     return written
 
 

@@ -16,7 +16,7 @@ CONTACT = (("elastic_deflection", "deflection [µm]", 1e6),
            ("elastic_stress_compressive", "largest compression [MPa]", 1e-6))
 
 
-def plot(ds, outdir) -> list[Path]:
+def plot(ds, outdir, save=save_figure) -> list[Path]:
     """elastic_contact.png (when the cam is elastic), swelling_stress.png and
     swelling_field_<part>.png (when swelling stresses are stored).
 
@@ -26,6 +26,8 @@ def plot(ds, outdir) -> list[Path]:
         A result with ``failure_index`` (an elastic scene).
     outdir : str or pathlib.Path
         Folder of the elastic figures.
+    save : callable
+        Writes one figure: ``save(fig, path) -> path`` (default :func:`save_figure`).
 
     Returns
     -------
@@ -39,16 +41,16 @@ def plot(ds, outdir) -> list[Path]:
     written = []
     if "elastic_deflection" in ds:
         fig = _panels(plt, ds, CONTACT, f"{name}: cam plate under the contact force")
-        written.append(save_figure(fig, outdir / "elastic_contact.png"))
+        written.append(save(fig, outdir / "elastic_contact.png"))
     if "swelling_stress_tensile" in ds:
-        written.append(_over_ageing(plt, ds, outdir, name))
+        written.append(_over_ageing(plt, ds, outdir, name, save))
     if "swelling_stress_field" in ds:
-        written += [_field(plt, ds, part, outdir, name) for part in ds["part"].values
+        written += [_field(plt, ds, part, outdir, name, save) for part in ds["part"].values
                     if np.isfinite(ds["swelling_stress_field"].sel(part=part).values).any()]
     return written
 
 
-def _over_ageing(plt, ds, outdir: Path, name: str) -> Path:
+def _over_ageing(plt, ds, outdir: Path, name: str, save) -> Path:
     """Largest tension and compression, and the failure index, of each part over ageing."""
     fig, (top, bottom) = plt.subplots(2, 1, figsize=(7.5, 6), sharex=True)
     t = days(ds)
@@ -69,10 +71,10 @@ def _over_ageing(plt, ds, outdir: Path, name: str) -> Path:
     for ax in (top, bottom):
         ax.grid(alpha=0.3)
         ax.legend(fontsize=8)
-    return save_figure(fig, outdir / "swelling_stress.png")
+    return save(fig, outdir / "swelling_stress.png")
 
 
-def _field(plt, ds, part, outdir: Path, name: str) -> Path:
+def _field(plt, ds, part, outdir: Path, name: str, save) -> Path:
     """The part's face stress at the time of its largest failure index (element centroids)."""
     row = ds.sel(part=part)
     stress = row["swelling_stress_field"].values
@@ -91,4 +93,4 @@ def _field(plt, ds, part, outdir: Path, name: str) -> Path:
     ax.set_ylabel("y [mm]")
     ax.set_title(f"{name}: {part}, stress at the faces\nt = {when:g} d (largest failure index)",
                  fontsize=10)
-    return save_figure(fig, outdir / f"swelling_field_{part}.png")
+    return save(fig, outdir / f"swelling_field_{part}.png")

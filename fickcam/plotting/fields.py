@@ -12,7 +12,7 @@ from .common import ages, days, figure, save_figure
 PANELS = 4
 
 
-def plot(ds, outdir) -> list[Path]:
+def plot(ds, outdir, save=save_figure) -> list[Path]:
     """One PNG per part with stored fields: up to four ageing times side by side.
 
     Parameters
@@ -21,6 +21,8 @@ def plot(ds, outdir) -> list[Path]:
         A result holding the ``moisture`` fields of its parts.
     outdir : str or pathlib.Path
         One PNG per part goes here.
+    save : callable
+        Writes one figure: ``save(fig, path) -> path`` (default :func:`save_figure`).
 
     Returns
     -------
@@ -34,7 +36,7 @@ def plot(ds, outdir) -> list[Path]:
             continue
         coords = {axis: ds[f"cell_{axis}"].sel(part=part).values for axis in "xyz"
                   if f"cell_{axis}" in ds}
-        written.append(_plot_part(ds, str(part), field, coords, Path(outdir)))
+        written.append(_plot_part(ds, str(part), field, coords, Path(outdir), save))
     return written
 
 
@@ -50,7 +52,7 @@ def _mid_slice(coords, valid, axes) -> np.ndarray:
     return valid & (np.abs(z - middle) <= nearest * (1 + 1e-9) + 1e-15)
 
 
-def _plot_part(ds, part, field, coords, outdir: Path) -> Path:
+def _plot_part(ds, part, field, coords, outdir: Path, save) -> Path:
     plt = figure()
     t = days(ds)
     valid = np.isfinite(field).any(axis=0)
@@ -84,7 +86,7 @@ def _plot_part(ds, part, field, coords, outdir: Path) -> Path:
         panels[0][0].set_ylabel(f"{second} [mm]")
         fig.colorbar(image, ax=panels[0].tolist(), label="moisture [wt %]")
         fig.suptitle(f"{part}: moisture field")
-    return save_figure(fig, outdir / f"fields_{part}.png")
+    return save(fig, outdir / f"fields_{part}.png")
 
 
 def _cell_triangulation(x, y, stretch: float = 4.0):

@@ -87,7 +87,7 @@ def _wrapped(label: str, width: int = 34) -> str:
     return "\n".join(textwrap.wrap(label, width))
 
 
-def plot(ds, outdir) -> list[Path]:
+def plot(ds, outdir, save=save_figure) -> list[Path]:
     """limits.png: one row per limit, over ageing time and (angle variables) over the cycle.
 
     Parameters
@@ -96,6 +96,8 @@ def plot(ds, outdir) -> list[Path]:
         A result of a scene with ``limits`` (its ``limit_ratio``).
     outdir : str or pathlib.Path
         Where limits.png is saved.
+    save : callable
+        Writes one figure: ``save(fig, path) -> path`` (default :func:`save_figure`).
 
     Returns
     -------
@@ -117,4 +119,4 @@ def plot(ds, outdir) -> list[Path]:
             row[1].set_axis_off()
     fig.suptitle(f"{ds.attrs.get('scene_name', '')}: limits", y=1.0)
     fig.tight_layout()
-    return [save_figure(fig, Path(outdir) / "limits.png")]
+    return [save(fig, Path(outdir) / "limits.png")]

@@ -27,7 +27,7 @@ def _over_crank(ax, ds, name, picks, t, ylabel, transform=None, style="-", prefi
     ax.grid(alpha=0.3)
 
 
-def plot(ds, outdir) -> list[Path]:
+def plot(ds, outdir, save=save_figure) -> list[Path]:
     """Three figures: linkage_coupler_curve.png, linkage_rocker.png (angle and drift
     vs crank angle), linkage_transmission_torque.png.
 
@@ -37,6 +37,8 @@ def plot(ds, outdir) -> list[Path]:
         A four-bar result (``rocker_angle`` over the crank angle).
     outdir : str or pathlib.Path
         Output folder of the three linkage figures.
+    save : callable
+        Writes one figure: ``save(fig, path) -> path`` (default :func:`save_figure`).
 
     Returns
     -------
@@ -52,9 +54,9 @@ def plot(ds, outdir) -> list[Path]:
     written = []
 
     if "coupler_point_x" in ds:
-        written.append(_coupler_figure(plt, ds, picks, t, name, outdir))
+        written.append(_coupler_figure(plt, ds, picks, t, name, outdir, save))
 
-    written.append(_rocker_figure(plt, ds, picks, t, name, outdir))
+    written.append(_rocker_figure(plt, ds, picks, t, name, outdir, save))
 
     # no drift panel here: the transmission angle folds at 90 deg (the acute angle), so its
     # difference jumps where the aged and design curves fold at different crank angles
@@ -66,11 +68,11 @@ def plot(ds, outdir) -> list[Path]:
     legend_outside(top)
     top.set_title(f"{name}: transmission angle and input torque")
     bottom.set_xlabel("crank angle theta2 [deg]")
-    written.append(save_figure(fig, outdir / "linkage_transmission_torque.png"))
+    written.append(save(fig, outdir / "linkage_transmission_torque.png"))
     return written
 
 
-def _coupler_figure(plt, ds, picks, t, name, outdir) -> Path:
+def _coupler_figure(plt, ds, picks, t, name, outdir, save) -> Path:
     """linkage_coupler_curve.png: the coupler curve with its drift from the design (else
     from the first ageing time) exaggerated by a stated factor, and the coupler point's
     distance from that position at each crank angle."""
@@ -88,7 +90,7 @@ def _coupler_figure(plt, ds, picks, t, name, outdir) -> Path:
                        "coupler point: distance from its "
                        + ("as-designed position" if against == "design" else f"position at {against}"))
     over.set_ylim(bottom=0.0)
-    return save_figure(fig, outdir / "linkage_coupler_curve.png")
+    return save(fig, outdir / "linkage_coupler_curve.png")
 
 
 def _closed(values: np.ndarray) -> np.ndarray:
@@ -97,7 +99,7 @@ def _closed(values: np.ndarray) -> np.ndarray:
     return np.append(values, values[:1])
 
 
-def _rocker_figure(plt, ds, picks, t, name, outdir) -> Path:
+def _rocker_figure(plt, ds, picks, t, name, outdir, save) -> Path:
     """linkage_rocker.png: theta4, then theta4 and theta3 minus the design (the t = 0 line:
     the thermal change alone), then minus their t = 0 values (the moisture drift)."""
     with_design = design_name("rocker_angle") in ds
@@ -118,4 +120,4 @@ def _rocker_figure(plt, ds, picks, t, name, outdir) -> Path:
     legend_outside(axes[0])
     legend_outside(axes[-1])
     axes[-1].set_xlabel("crank angle theta2 [deg]")
-    return save_figure(fig, outdir / "linkage_rocker.png")
+    return save(fig, outdir / "linkage_rocker.png")

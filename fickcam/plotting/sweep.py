@@ -120,7 +120,7 @@ def _axis_values(values: np.ndarray, names: dict | None = None):
     return np.asarray([labels.index(v) for v in values], float), ticks
 
 
-def plot_grid(ds, outdir: Path, age_index: int) -> list[Path]:
+def plot_grid(ds, outdir: Path, age_index: int, save=save_figure) -> list[Path]:
     plt = figure()
     names = parameters(ds)
     x_name, others = names[0], names[1:]
@@ -149,11 +149,11 @@ def plot_grid(ds, outdir: Path, age_index: int) -> list[Path]:
         if others:
             legend_outside(ax)
         ax.grid(alpha=0.3)
-        written.append(save_figure(fig, outdir / f"sweep_{key}.png"))
+        written.append(save(fig, outdir / f"sweep_{key}.png"))
     return written
 
 
-def plot_histories(ds, outdir: Path) -> list[Path]:
+def plot_histories(ds, outdir: Path, save=save_figure) -> list[Path]:
     """A grid over text values (``environment.history_file``: weather files of several
     sites): each output over ageing time, one line per case labelled by its values, so
     the sites' seasons and drift are compared, not only their last values."""
@@ -176,7 +176,7 @@ def plot_histories(ds, outdir: Path) -> list[Path]:
                      + (f", {failed} failed case(s) left out" if failed else ""), fontsize=10)
         legend_outside(ax)
         ax.grid(alpha=0.3)
-        written.append(save_figure(fig, outdir / f"sweep_{key}_over_time.png"))
+        written.append(save(fig, outdir / f"sweep_{key}_over_time.png"))
     return written
 
 
@@ -184,7 +184,7 @@ def _has_text_values(ds) -> bool:
     return any(ds[name].values.dtype.kind not in "fiub" for name in parameters(ds))
 
 
-def plot_monte_carlo(ds, outdir: Path, age_index: int) -> list[Path]:
+def plot_monte_carlo(ds, outdir: Path, age_index: int, save=save_figure) -> list[Path]:
     plt = figure()
     names = parameters(ds)[:4]
     ok = _ok(ds)
@@ -217,11 +217,11 @@ def plot_monte_carlo(ds, outdir: Path, age_index: int) -> list[Path]:
                 ax.set_ylabel(f"at {age:g} d: {label}")
         for ax in axes[0]:
             ax.grid(alpha=0.3)
-        written.append(save_figure(fig, outdir / f"sweep_{key}.png"))
+        written.append(save(fig, outdir / f"sweep_{key}.png"))
     return written
 
 
-def plot_out_of_spec(ds, outdir: Path) -> list[Path]:
+def plot_out_of_spec(ds, outdir: Path, save=save_figure) -> list[Path]:
     """The fraction of cases out of spec by each ageing time, per limit, with its
     Wilson 95 % interval (fickcam.sweep.scatter): a step curve from every case's
     continuous time out of spec, the stored ageing times marked."""
@@ -248,10 +248,10 @@ def plot_out_of_spec(ds, outdir: Path) -> list[Path]:
                  "(band: Wilson 95 % interval)", fontsize=9)
     ax.legend(fontsize=8)
     ax.grid(alpha=0.3)
-    return [save_figure(fig, outdir / "sweep_out_of_spec.png")]
+    return [save(fig, outdir / "sweep_out_of_spec.png")]
 
 
-def plot(ds, outdir, time_index: int = -1) -> list[Path]:
+def plot(ds, outdir, time_index: int = -1, save=save_figure) -> list[Path]:
     """Figures of a sweep result; outputs are taken at ageing time ``time_index`` (last).
 
     Parameters
@@ -262,6 +262,8 @@ def plot(ds, outdir, time_index: int = -1) -> list[Path]:
         The sweep figures are written here.
     time_index : int
         The ageing time [-] (an index into ``time``) the outputs are taken at; -1: the last.
+    save : callable
+        Writes one figure: ``save(fig, path) -> path`` (default :func:`save_figure`).
 
     Returns
     -------
@@ -274,8 +276,8 @@ def plot(ds, outdir, time_index: int = -1) -> list[Path]:
         return []
     outdir.mkdir(parents=True, exist_ok=True)
     age_index = int(np.arange(ds.sizes["time"])[time_index])
-    written = plot_out_of_spec(ds, outdir) if "fraction_out_of_spec" in ds else []
+    written = plot_out_of_spec(ds, outdir, save) if "fraction_out_of_spec" in ds else []
     if ds.attrs.get("sweep_kind") == "monte_carlo":
-        return written + plot_monte_carlo(ds, outdir, age_index)
-    written += plot_grid(ds, outdir, age_index)
-    return written + (plot_histories(ds, outdir) if _has_text_values(ds) else [])
+        return written + plot_monte_carlo(ds, outdir, age_index, save)
+    written += plot_grid(ds, outdir, age_index, save)
+    return written + (plot_histories(ds, outdir, save) if _has_text_values(ds) else [])

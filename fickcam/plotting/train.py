@@ -12,7 +12,7 @@ ANGLE_PANELS = (("follower_displacement", "dynamic_follower_displacement", "disp
                 ("contact_force", "dynamic_contact_force", "contact force [N]", 1.0))
 
 
-def plot(ds, outdir) -> list[Path]:
+def plot(ds, outdir, save=save_figure) -> list[Path]:
     """cam_vibration.png and cam_vibration_ageing.png.
 
     Parameters
@@ -21,6 +21,8 @@ def plot(ds, outdir) -> list[Path]:
         A cam result with the vibrating train's ``dynamic_contact_force``.
     outdir : str or pathlib.Path
         Folder for the vibration PNGs.
+    save : callable
+        Writes one figure: ``save(fig, path) -> path`` (default :func:`save_figure`).
 
     Returns
     -------
@@ -31,10 +33,10 @@ def plot(ds, outdir) -> list[Path]:
     outdir = Path(outdir)
     outdir.mkdir(parents=True, exist_ok=True)
     name = ds.attrs.get("scene_name", "")
-    return [_over_angle(plt, ds, outdir, name), _over_ageing(plt, ds, outdir, name)]
+    return [_over_angle(plt, ds, outdir, name, save), _over_ageing(plt, ds, outdir, name, save)]
 
 
-def _over_angle(plt, ds, outdir, name) -> Path:
+def _over_angle(plt, ds, outdir, name, save) -> Path:
     fig, axes = plt.subplots(3, 1, figsize=(7.5, 8), sharex=True)
     angle = ds["cam_angle"].values
     t = days(ds)
@@ -50,10 +52,10 @@ def _over_angle(plt, ds, outdir, name) -> Path:
     axes[0].set_title(f"{name}: elastic follower (solid) vs rigid (dashed)")
     legend_outside(axes[0])
     axes[-1].set_xlabel("cam angle [deg]")
-    return save_figure(fig, outdir / "cam_vibration.png")
+    return save(fig, outdir / "cam_vibration.png")
 
 
-def _over_ageing(plt, ds, outdir, name) -> Path:
+def _over_ageing(plt, ds, outdir, name, save) -> Path:
     fig, axes = plt.subplots(3, 1, figsize=(7.5, 7.5), sharex=True)
     t = days(ds)
     axes[0].plot(t, ds["natural_frequency"].values, "o-")
@@ -69,4 +71,4 @@ def _over_ageing(plt, ds, outdir, name) -> Path:
     for ax in axes:
         ax.grid(alpha=0.3)
     axes[0].set_title(f"{name}: follower train over ageing")
-    return save_figure(fig, outdir / "cam_vibration_ageing.png")
+    return save(fig, outdir / "cam_vibration_ageing.png")

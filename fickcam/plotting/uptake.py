@@ -13,7 +13,7 @@ CLIMATE = (("temperature", "temperature [degC]", -273.15, "C3"),
            ("relative_humidity", "relative humidity [%]", 0.0, "C0"))
 
 
-def plot(ds, outdir) -> list[Path]:
+def plot(ds, outdir, save=save_figure) -> list[Path]:
     """uptake.png: temperature, relative humidity (each on its own axes, so neither hides
     the other) and the mean and surface moisture of each part over ageing time.
 
@@ -23,6 +23,8 @@ def plot(ds, outdir) -> list[Path]:
         Any run's result (``moisture_content`` of each part).
     outdir : str or pathlib.Path
         uptake.png is written here.
+    save : callable
+        Writes one figure: ``save(fig, path) -> path`` (default :func:`save_figure`).
 
     Returns
     -------
@@ -36,7 +38,7 @@ def plot(ds, outdir) -> list[Path]:
         _climate_panel(ax, ds, *row)
     t_ax.set_title(f"{ds.attrs.get('scene_name', '')}: climate and moisture uptake")
     _moisture_panel(moist_ax, ds, days(ds))
-    return [save_figure(fig, Path(outdir) / "uptake.png")]
+    return [save(fig, Path(outdir) / "uptake.png")]
 
 
 def climate_edges(centres_days: np.ndarray) -> np.ndarray:

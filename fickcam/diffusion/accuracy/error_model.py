@@ -38,15 +38,8 @@ Measured (upper ends of the measured ranges, so estimates err on the safe side):
 ``MAX_CELLS`` is a choice, not a measurement: the most cells of the linear system a
 direct model assembles, counted on what is solved (``sizing.unknowns``): the whole part
 for Fick; for the D(c) sweeps the octant of a Bar or half the thickness of a CamPlate or
-LinkBar (``symmetry_cuts``). What the solid cap costs (benchmarks/dc_bar.py cap: the 6 x 4 x 2
-mm bar drying, k = 1, at 1e-3, capped at 101 185 octant cells; one BLAS thread, 2-core
-machine under a load of ~10): FiPy's assembly of the octant 1.4 CPU s; a SuperLU
-factorisation of a step's system (minimum-degree ordering, as ``concentration_dependent.Lagged``)
-9.0e7 non-zeros in L + U (890 a cell), peak resident memory 2.3 GB, 48 CPU s; a
-triangular solve on those factors 0.14 CPU s.
-A whole D(c) march near the cap (benchmarks/dc_bar.py small, k = 0 at 1e-3: 111 996
-octant cells, 291 steps of the Richardson pair) 935 CPU s, 3.2 s a step, 2.6 GB peak; the
-k = 2 drying bar at 3e-3 (94 656 cells, 240 steps) 1 188 CPU s, 2.1 GB (load 3-10).
+LinkBar (``symmetry_cuts``). What the solid cap costs (CPU time and memory of a
+factorisation and of a whole D(c) march near it) is measured in benchmarks/results/tuned_constants.md.
 """
 from __future__ import annotations
 

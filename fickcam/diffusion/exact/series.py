@@ -168,7 +168,8 @@ def sheet_profile(z, fourier):
 
 
 # ------------------------------------------------------------------ cylinder
-ROOT_TABLE = 4096  # J0 roots made at once (8 ms) for every smaller count asked for
+ROOT_TABLE = 4096  # J0 roots made at once for every smaller count asked for (measured:
+#   benchmarks/results/tuned_constants.md)
 
 
 @lru_cache(maxsize=8)

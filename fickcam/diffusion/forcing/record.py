@@ -12,9 +12,7 @@ import numpy as np
 from .clock import RescaledTime
 
 LONG_RECORD = 32         # records with this many segments take the tabulated sum; shorter
-#   histories keep Duhamel's panels, exact to 1e-8 and under ~0.7 s there (measured: disc
-#   r20 x 5 mm, 32 ramps, 13 outputs: panels 0.68 s, tabulated 0.03 s at accuracy 1e-3;
-#   8 ramps: 0.20 s against 0.01 s)
+#   histories keep Duhamel's panels, exact to 1e-8 (measured: benchmarks/results/tuned_constants.md)
 RECORD_SHARE = 0.2       # share of the accuracy a numerical model (plane) leaves to the sum
 #   over a long record (Ms interpolation + tabulation); the exact paths give it all
 MAX_PIECES = 512         # pieces per row at most

@@ -60,8 +60,7 @@ MAX_SWEEPS = 60
 LAG_ITERATIONS = 15  # CG iterations on the lagged factors before a refactorisation
 LINEAR_TOLERANCE = 1e-12
 FORCING = 0.01  # a sweep's CG stops at FORCING x the residual of the iterate it starts from
-# (0.1 was somewhat cheaper but left the converged steps so near SWEEP_TOLERANCE that 16-64-cell
-# sheets differing by 8e-9 of Mm at tau* = 0.3 showed orders 1.6-1.8; 0.01: 2.00)
+# (measured: benchmarks/results/tuned_constants.md)
 
 
 @dataclass(frozen=True)
@@ -80,7 +79,8 @@ SWEEPS = Sweeps()
 
 SKIN_CELLS_MARGIN = 1.0  # skin: cells at D_min for accuracy / (1 + it (sqrt(ratio) - 1))
 ABSORPTION_MARGIN = 2.0  # no skin: cells sized at D_max for accuracy / ABSORPTION_MARGIN
-SPACE_TO_ERROR = 1.0  # error / (m x the space estimate of the cells' plan): 0.5-1.0 measured
+SPACE_TO_ERROR = 1.0  # error / (m x the space estimate of the cells' plan) (measured:
+#   benchmarks/results/tuned_constants.md)
 
 
 def fastest(diffusivity: Diffusivity, law, exposure, times) -> Diffusivity:

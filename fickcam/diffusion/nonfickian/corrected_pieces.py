@@ -38,11 +38,8 @@ from ..stepping.dense_output import StepRecord
 from .concentration_dependent import (SWEEPS, Faces, Sweeps, fastest, nonlinear_plan,
                                       solve_nonlinear, sweep_march, wettest)
 
-SHEET_SHARE = 0.1          # the fine sheet's accuracy: this share of the requested one. Not
-#   loosened at loose accuracies: on the demo cam (k = 2) at 1e-2 the sheet takes 1.2 CPU s
-#   (74 cells, estimate 8.6e-4) of the run's 28-30; at 0.25 0.5 s (2.0e-3), and the
-#   1.2e-3 it would add to the estimate is what lets the planform stop at 2x
-#   (``corrected_product.refined_reference``)
+SHEET_SHARE = 0.1          # the fine sheet's accuracy: this share of the requested one, not
+#   loosened at loose accuracies (measured: benchmarks/results/tuned_constants.md)
 
 
 @dataclass(frozen=True)

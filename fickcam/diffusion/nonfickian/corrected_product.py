@@ -99,9 +99,7 @@ MESH_LEVELS = (4.0, 0.5)   # accuracies of the coarsest 3-D plan (then refined b
 #                            starts from
 NESTED_CELLS = 30_000      # the finest nested 3-D mesh tried (cells on half the thickness)
 CROSS_CELLS = 60_000       # the ``cross``'s largest (2 x the finest): half the solid cap
-#   (``error_model.MAX_CELLS``). The 60 x 8 x 4 mm link (k = 2, absorbing, 1e-3; 18 210 cells, its
-#   cross 36 420): 6.4e-4 in 229 CPU s, where 32 000 left it "capped" at 1.3e-3 (72 s); the
-#   6 x 4 x 2 mm drying bar's cross has 30 608 (benchmarks/dc_bar.py, auto)
+#   (``error_model.MAX_CELLS``; measured: benchmarks/results/tuned_constants.md)
 
 
 @dataclass(frozen=True)
@@ -119,37 +117,19 @@ MESH_CAPS = MeshCaps()
 
 BASE_PER_ACCURACY = 1.0 / 3e-3  # the coarsest 3-D plan's accuracy per requested accuracy,
 #   within MESH_LEVELS (``base_level``): 0.5 at 1e-3 and below, 1.0 at 3e-3, 3.3 at 1e-2, 4.0
-#   from 1.2e-2 up. On the demo cam (k = 2) at 1e-3 the 1.0 plan's nested pair changed by
-#   5.2e-4 where the rest of the estimate left 4.4e-4 (and a third mesh would have 224 000
-#   cells); the 0.5 plan's pair by 2.9e-4 (estimate 8.0e-4). At 3e-3 the 6 x 4 x 2 mm bar
-#   drying (k = 2) on the 1.5 plan (500 x; 5 064 cells refined) changed by 3.1e-3 with its skin
-#   margin (estimate 3.9e-3, capped; 3.0e-3 on the 1.0 plan); the cam on the 4.0 plan by
-#   9.7e-4 (estimate 1.9e-3, 77 CPU s against 135 on the 1.5 plan). At 1e-2 the cam's 4.0
-#   plan pair (892 + 7 128 cells) changed by 9.8e-4, the 3.3 plan's (8 088 cells refined) by
-#   7.6e-4 (benchmarks/dc_defect_correction.py corrected cam-2 A[@B]; dc_bar.py corrected 2
-#   --at 3e-3 --only desorption with this constant at 500)
+#   from 1.2e-2 up (measured: benchmarks/results/tuned_constants.md)
 MIN_Z_WIDTHS = 2           # z widths on the half thickness of the coarsest 3-D plan at least
-#   (``base_plan``): the 4 x 3 x 2 mm plate absorbing (k = 2) at 1e-2 has one on the 4.0 plan
-#   (18 x 1 cells): estimate 8.7e-3 / distance to the stored 3-D run 5.6e-3 = 1.5; on the
-#   2.0 plan (29 x 2): 5.9e-3 / 2.1e-3 = 2.9 (benchmarks/dc_defect_correction.py corrected
-#   plate-2-absorption 1e-2@4, @2)
+#   (``base_plan``; measured: benchmarks/results/tuned_constants.md)
 SKIN_ESTIMATE_MARGIN = 1.0  # on the two-mesh 3-D change of a drying part (``skin_margin``),
-#   the cells' margin (``concentration_dependent.SKIN_CELLS_MARGIN``). Set on the non-nested 1 and
-# 0.5
-#   plans of the 4 x 3 x 2 mm plate drying at 1e-2 (benchmarks/dc_defect_correction.py
-#   skin-margin: estimate / distance to the stored 3-D runs 4.0 (k = 2) and 2.3 (k = 3),
-#   a safety of 2 needing 0.71). On nested meshes drying converges slower than absorbing
-#   (k = 2: order 1.3 against 2.5, ``nested``), so the finer mesh's error, about 1.5 x the
-#   next change, is close to the change itself: the margin stays
+#   the cells' margin (``concentration_dependent.SKIN_CELLS_MARGIN``; measured:
+#   benchmarks/results/tuned_constants.md)
 TARGET = "; est. = the target: the run measures its own and warns above it"
 ORDER_ONE = 1.0 / (2.0 - 1.0)  # the finer of two nested 3-D meshes' error / the change
-#   between them at order 1 (refinement ratio 2; a higher order gives less). Before, the two
-#   meshes were the graded 1 and 0.5 plans (w0 ratio sqrt 2, z cells 4, 6, 6, 8 over the
-#   plans 1-0.125 of the 4 x 3 x 2 mm plate: not nested, observed orders -10 to 12) and the
-#   factor 1 / (sqrt 2 - 1) = 2.4 an upper-bound guess
+#   between them at order 1 (refinement ratio 2; a higher order gives less; what it replaced:
+#   benchmarks/results/tuned_constants.md)
 REFINE = (2.0, 4.0, 8.0)   # planform refinements (finest and growth / R) for Richardson;
-#   8 where 4 leaves more than ``PLANFORM_SHARE`` (the bar, k = 2 absorbing at 1e-3: 8.7e-4
-#   at x 4, 2 889 cells; x 8 11 569 cells)
+#   8 where 4 leaves more than ``PLANFORM_SHARE`` (measured:
+#   benchmarks/results/tuned_constants.md)
 PLANFORM_CELLS = 60_000    # the finest planform tried
 
 

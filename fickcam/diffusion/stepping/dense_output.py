@@ -49,8 +49,8 @@ from .step_plans import earliest_output
 
 log = logging.getLogger(__name__)
 
-INTERPOLATION_SHARE = 1.0  # of the accuracy: a larger interpolation estimate re-solves (the
-#   demo cam's, 4 steps per doubling: 6.5e-5 (k = 1) to 3.7e-4 (k = 2); benchmarks/dc_extend.py).
+INTERPOLATION_SHARE = 1.0  # of the accuracy: a larger interpolation estimate re-solves
+#   (measured: benchmarks/results/tuned_constants.md).
 #   The extended estimate (the stored one + this) can pass the accuracy below it: the limit
 #   search then says so (``simulate.search_notices``)
 

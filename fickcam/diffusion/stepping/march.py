@@ -15,8 +15,8 @@ from ...errors import SolverError
 from ..operators.discretisation import Discretisation
 
 DIRECT_LIMIT = {1: 10**9, 2: 40_000, 3: 30_000}  # cells per dimension count; above: CG
-# (3-D sparse LU fills in as cells^2.1 on FiPy's grids, plain CG stays near linear:
-# 62 500-cell bar, 17 s/step LU against 0.2 s/step CG)
+# (3-D sparse LU fills in as cells^2.1 on FiPy's grids, plain CG stays near linear;
+# measured: benchmarks/results/tuned_constants.md)
 RESIDUAL_TOLERANCE = 1e-9
 ORDERING = "MMD_AT_PLUS_A"  # minimum degree on A + A^T, diagonal pivots: K is symmetric (SuperLU)
 _FACTOR_CACHE_SIZE = 64

@@ -118,12 +118,15 @@ def _output_ages(change_stars: np.ndarray, output_stars: np.ndarray, ramp: np.nd
     spread = np.asarray(ramp, bool) & (np.arange(start.size) > 0)
     share = np.linspace(0.0, 1.0, ramp_points)[None, :] * spread[:, None]
     sources = np.unique(start[:, None] + (stop - start)[:, None] * share)
-    age = np.asarray(output_stars, float)[:, None] - sources[None, :]
-    if np.count_nonzero(age > 0, axis=1).max(initial=0) > MAX_AGES:
+    outputs = np.asarray(output_stars, float)
+    older = np.searchsorted(sources, outputs, side="left")  # each output's ages > 0
+    if older.max(initial=0) > MAX_AGES:
         # more than MAX_AGES distinct ages in one output's row alone: thin each row (its
         # ages fall along it) to its bins' ends, then those (the same least and largest)
-        return _thinned(np.unique(np.concatenate([_bin_ends(row[row > 0]) for row in age])))
-    found = np.unique(age[age > 0])
+        return _thinned(np.unique(np.concatenate(
+            [np.empty(0)] + [_bin_ends(out, sources[:n]) for out, n in zip(outputs, older)])))
+    found = np.unique(np.concatenate(
+        [np.empty(0)] + [out - sources[:n] for out, n in zip(outputs, older)]))
     if found.size == 0:
         return np.array([1.0])
     return found if found.size <= MAX_AGES else _thinned(found)
@@ -141,9 +144,28 @@ def _thinned(found: np.ndarray) -> np.ndarray:
     return np.unique(found[np.concatenate([first, last])])
 
 
-def _bin_ends(row: np.ndarray) -> np.ndarray:
-    """The first and the last of ``row`` (monotone) in each bin it crosses."""
-    if row.size == 0:
-        return row
-    turns = np.flatnonzero(np.diff(_bins(row)))
-    return row[np.concatenate([[0], turns, turns + 1, [row.size - 1]])]
+def _bin_ends(output: float, sources: np.ndarray) -> np.ndarray:
+    """The first and the last of the ages ``output - sources`` (``sources`` rising, all
+    before the output: the ages fall along them) in each bin they cross, without reading
+    every age: each bin's edge is located among the sources by bisection, the bins are
+    read at the sources either side of it, and between two read sources whose bins differ
+    but which are not neighbours every source is read (so the ends are those the bins of
+    every age give)."""
+    size = sources.size
+    if size == 0:
+        return np.empty(0)
+
+    def ages(at):
+        return output - sources[at]
+
+    ends = np.array([0, size - 1])
+    newest, oldest = _bins(ages(ends))
+    edges = 10.0 ** (np.arange(oldest + 1.0, newest + 1.0) / AGES_PER_DECADE)
+    near = np.searchsorted(sources, output - edges, side="right")
+    probe = np.unique(np.clip(np.concatenate([near - 1, near, ends]), 0, size - 1))
+    gaps = np.flatnonzero(np.diff(_bins(ages(probe))))
+    apart = probe[gaps + 1] > probe[gaps] + 1
+    turns = np.concatenate([probe[gaps[~apart]]] + [
+        probe[g] + np.flatnonzero(np.diff(_bins(ages(np.arange(probe[g], probe[g + 1] + 1)))))
+        for g in gaps[apart]])
+    return ages(np.concatenate([ends, turns, turns + 1]))

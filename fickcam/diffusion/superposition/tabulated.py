@@ -58,6 +58,7 @@ JUMP_FLOOR = 1e-9        # ... and steps of K below this (of the unit step) are 
 SECTIONS = 3             # rounds locating a step, each cutting its interval into
 SECTION_POINTS = 15      #   16 (to 16^-3 = 2.4e-4 of a cell: Ms moves little over it)
 CHUNK = 4096             # ages per kernel call (fields: memory)
+PAIR_CHUNK = 2 ** 17     # (output, node) pairs binned at once (in cache: ~1 MB an array)
 KEPT_READING_BYTES = 2 ** 28  # grid readings kept per record (outputs x grid points, x2)
 
 
@@ -67,6 +68,7 @@ class Table:
     less the steps of K (``jumps``: age and size (m,)), which are summed exactly."""
 
     start: float
+    end: float     # log of the last age: every grid of a record ends there
     step: float
     kernel: np.ndarray
     integral: np.ndarray
@@ -75,8 +77,8 @@ class Table:
 
     def coarse(self) -> "Table":
         """Every second grid point: the reading whose difference measures the error."""
-        return Table(self.start, 2.0 * self.step, self.kernel[::2], self.integral[::2],
-                     self.jumps)
+        return Table(self.start, self.end, 2.0 * self.step, self.kernel[::2],
+                     self.integral[::2], self.jumps)
 
 
 def _evaluate(kernel, ages: np.ndarray) -> np.ndarray:
@@ -123,7 +125,7 @@ def tabulate(kernel, first: float, last: float, per_decade: int,
                             (windows[-1:, :, ::-1] @ _FIRST_CELL)]) * step
     integral = np.cumsum(np.concatenate([(2.0 / 3.0) * values[:1] * math.exp(x[0]), cells]),
                          axis=0)
-    return Table(float(x[0]), step, values, integral, tuple(jumps), raw)
+    return Table(float(x[0]), float(x[-1]), step, values, integral, tuple(jumps), raw)
 
 
 def _jumps(kernel, x: np.ndarray, values: np.ndarray) -> list[tuple[float, np.ndarray]]:
@@ -182,44 +184,126 @@ def _lagrange(table: Table, logs: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     return base[:, None] + np.arange(4), weights
 
 
-def _hermite_gathered(table: Table, rows, logs, coefficient, outputs: int):
-    """(outputs, grid points) weights on I and on K reading I at ages (their ``logs``,
-    output ``rows``, times ``coefficient``): the cubic Hermite interpolant in x = log age
-    with the exact slopes dI/dx = K e^x, so that a difference I(a) - I(b) (a ramp piece) is
-    as accurate as K itself, to O(h^3). Each basis function is summed on its own (a
-    reading of every (output, node) pair: the cost of many outputs)."""
-    size = table.kernel.shape[0]
-    x = (logs - table.start) / table.step
-    base = np.clip(np.floor(x).astype(np.intp), 0, size - 2)
-    t = x - base
-    tt, ss = t * t, (1.0 - t) * (1.0 - t)
-    at = rows * size + base            # the cell's left grid point; its right one is at + 1
-    cells = outputs * size
+@dataclass(frozen=True)
+class Lattice:
+    """Cells of log age [end + j step, end + (j + 1) step), j = ``bottom``..-1 (the last age
+    in cell -1; younger ages in one more cell before ``bottom``), on which the readings of
+    the slope changes are binned; the short-time law's sums kept below cell ``young``."""
 
-    def summed(weights):
+    end: float
+    step: float
+    bottom: int
+    young: int
+
+    @property
+    def cells(self) -> int:
+        return 1 - self.bottom
+
+
+def _lattice(table: Table, first: float) -> tuple[Lattice, int]:
+    """(the lattice the readings of ``table`` are gathered on, lattice cells per table
+    cell). Its points, ``MAX_PER_DECADE`` a decade back from the last age, hold the points
+    of every refined grid of the record (each ends at the last age and halves the step of
+    the one before), so that the pairs are binned once for all of them; a table off it (a
+    capped density) is its own. Cells from 2 decades below the record's ``first`` age
+    [rescaled s] (no grid starts lower; every grid starts at or below it)."""
+    finest = math.log(10.0) / MAX_PER_DECADE
+    ratio = table.step / finest
+    if ratio >= 1.0 and ratio == int(ratio) and int(ratio) & (int(ratio) - 1) == 0:
+        bottom = math.floor((math.log(first) - table.end) / finest) - 2 * MAX_PER_DECADE
+        return Lattice(table.end, finest, bottom, bottom + 2 * MAX_PER_DECADE + 1), int(ratio)
+    bottom = 1 - table.kernel.shape[0]
+    return Lattice(table.end, table.step, bottom, bottom), 1
+
+
+def _lattice_sums(where: "Sources", lattice: Lattice) -> tuple[np.ndarray, np.ndarray]:
+    """Per output and cell of the ``lattice``: the moments sum c u^q (q = 0..3) of the
+    slope changes c at u, their place in the cell (0 to 1), shape (4, outputs, cells),
+    and below its ``young`` cell sum c a^1.5 (the short-time law's), (outputs, cells).
+    One pass over every (output, node) pair for all the grids on the lattice, in blocks
+    of about ``PAIR_CHUNK`` pairs (that stay in the processor's cache)."""
+    parts = [_lattice_part(lattice, *block) for block in where.slopes.blocks(PAIR_CHUNK)]
+    cells = (np.concatenate([np.empty(0, np.intp)] + [part[0] for part in parts]),
+             np.concatenate([np.empty((4, 0))] + [part[1] for part in parts], axis=1))
+    young = (np.concatenate([np.empty(0, np.intp)] + [part[2] for part in parts]),
+             np.concatenate([np.empty(0)] + [part[3] for part in parts]))
+
+    def summed(at, weights):
         # (an empty ``at`` gives integers from bincount: the sums are floats)
-        return np.bincount(at, weights, minlength=cells + 1).astype(float, copy=False)
+        return np.bincount(at, weights, minlength=where.outputs * lattice.cells).astype(
+            float, copy=False).reshape(where.outputs, lattice.cells)
+    return np.stack([summed(cells[0], moment) for moment in cells[1]]), summed(*young)
 
-    slope = coefficient * (table.step * np.exp(table.start + table.step * np.arange(size)))[base]
-    on_i = summed(coefficient * ((1 + 2 * t) * ss))          # h00
-    on_i[1:] += summed(coefficient * (tt * (3 - 2 * t)))[:-1]  # h01
-    on_k = summed(slope * (t * ss))                          # h10
-    on_k[1:] += summed(slope * (tt * (t - 1)))[:-1] * math.exp(table.step)  # h11
-    return on_i[:cells].reshape(outputs, size), on_k[:cells].reshape(outputs, size)
+
+def _lattice_part(lattice: Lattice, rows, ages, coefficient, logs):
+    """(output x lattice cell index, the four moments' sums) of each run of pairs in one
+    cell (the pairs of a cell are neighbours: ages fall along an output's row), and
+    (index, c a^1.5) of the pairs below the ``young`` cell, of a block of pairs."""
+    u = logs - lattice.end        # (in place from here: every array is one per pair)
+    u /= lattice.step
+    cell = np.floor(u)
+    np.minimum(cell, -1.0, out=cell)
+    u -= cell
+    young = np.flatnonzero(cell < lattice.young)
+    np.maximum(cell, lattice.bottom - 1.0, out=cell)
+    cell -= lattice.bottom - 1.0
+    at = rows * lattice.cells
+    at += cell.astype(np.intp)
+    powers = np.empty((4, u.size))
+    powers[0] = coefficient
+    for q in range(1, 4):
+        np.multiply(powers[q - 1], u, out=powers[q])
+    runs = np.flatnonzero(np.diff(at, prepend=-1))
+    short = ages[young]
+    return (at[runs], np.add.reduceat(powers, runs, axis=1), at[young],
+            coefficient[young] * short * np.sqrt(short))
+
+
+def _hermite_gathered(table: Table, sums: tuple[np.ndarray, np.ndarray], per: int,
+                      bottom: int) -> tuple[np.ndarray, np.ndarray]:
+    """(outputs, grid points) weights on I and on K reading I at every slope change's age:
+    the cubic Hermite interpolant in x = log age with the exact slopes dI/dx = K e^x, so
+    that a difference I(a) - I(b) (a ramp piece) is as accurate as K itself, to O(h^3);
+    below the grid I = I(w0) (a / w0)^1.5. Summed from a lattice's ``sums``
+    (``_lattice_sums``, ``per`` lattice cells a table cell): in a table cell, t = (o + u)
+    / per at the o-th lattice cell, so sum c t^p = sum_q C(p, q) o^(p-q) / per^p
+    sum c u^q, and the basis functions are cubics in t."""
+    moments, short = sums
+    size, outputs = table.kernel.shape[0], moments.shape[1]
+    origin = -per * (size - 1) - (bottom - 1)   # the table's first cell on the lattice
+    offset = np.arange(per, dtype=float)
+    expand = np.zeros((4, 4, per))      # [p, q, o]: C(p, q) o^(p-q) / per^p
+    for p in range(4):
+        for q in range(p + 1):
+            expand[p, q] = math.comb(p, q) * offset ** (p - q) / per ** p
+    within = moments[:, :, origin:].reshape(4, outputs, size - 1, per)
+    t0, t1, t2, t3 = (expand.reshape(4, 4 * per)
+                      @ within.transpose(0, 3, 1, 2).reshape(4 * per, -1)
+                      ).reshape(4, outputs, size - 1)
+    slope = table.step * np.exp(table.start + table.step * np.arange(size - 1))
+    on_i, on_k = np.zeros((outputs, size)), np.zeros((outputs, size))
+    on_i[:, :-1] = t0 - 3.0 * t2 + 2.0 * t3               # h00 = (1 + 2t)(1 - t)^2
+    on_i[:, 1:] += 3.0 * t2 - 2.0 * t3                    # h01 = t^2 (3 - 2t)
+    on_k[:, :-1] = slope * (t1 - 2.0 * t2 + t3)           # h10 = t (1 - t)^2
+    on_k[:, 1:] += slope * math.exp(table.step) * (t3 - t2)  # h11 = t^2 (t - 1)
+    on_i[:, 0] += np.sum(short[:, :origin], axis=1) / math.exp(1.5 * table.start)
+    return on_i, on_k
 
 
 @dataclass(frozen=True)
 class Sources:
     """Where Duhamel's sum reads the tables: output row, age, coefficient and log age (taken
-    once for every table read), for the steps (K) and the changes of slope (I).
+    once for every table read) of the steps (K), the changes of slope (I) as ``Pairs``
+    (many: listed block by block when read), and their prefix sums (``Ramps``).
     ``readings`` keeps what depends on the grid and not on the kernel (the interpolation
     weights gathered per output and grid point, the steps of K summed at an age), so that
     every kernel read on one grid (mean, contact layer, fields, every part sharing the
     record) costs a matrix product, not a pass over every (output, node) pair."""
 
     steps: tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]
-    slopes: tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]
+    slopes: "Pairs"
     outputs: int
+    ramps: "Ramps"
     readings: OrderedDict = field(default_factory=OrderedDict, compare=False, repr=False)
 
     def kept(self, key, build):
@@ -238,8 +322,74 @@ class Sources:
         return value
 
 
+@dataclass(frozen=True)
+class Ramps:
+    """The slope changes c_i at their rescaled times r_i (from the record's first node),
+    with the prefix sums C_n = sum_{i<n} c_i and S_n = sum_{i<n} c_i r_i, and the outputs'
+    times R_k: the ramps' rise past an age w at output k, sum_{r_i < R_k - w} c_i (R_k - w
+    - r_i) = (R_k - w) C_n - S_n, is read without a pass over the (output, node) pairs."""
+
+    times: np.ndarray
+    changes: np.ndarray
+    moments: np.ndarray
+    outputs: np.ndarray
+
+    @classmethod
+    def of(cls, tau: np.ndarray, change: np.ndarray, outputs: np.ndarray) -> "Ramps":
+        nodes = np.flatnonzero(change)
+        times = tau[nodes] - tau[0]
+
+        def prefix(values):
+            return np.concatenate([[0.0], np.cumsum(values)])
+        return cls(times, prefix(change[nodes]), prefix(change[nodes] * times),
+                   tau[outputs] - tau[0])
+
+    def rise_past(self, age: float) -> np.ndarray:
+        """Per output: sum_i c_i (a_i - ``age``)+ over the slope changes, a_i their ages."""
+        before = self.outputs - age
+        n = np.searchsorted(self.times, before, side="left")
+        return before * self.changes[n] - self.moments[n]
+
+
+@dataclass(frozen=True)
+class Pairs:
+    """Every (output, node) pair of a node older than the output and a nonzero
+    coefficient, listed by blocks of outputs (``block``, ``blocks``) rather than kept
+    (there are outputs x nodes / 2 of them)."""
+
+    tau: np.ndarray          # the nodes' rescaled times (rising)
+    coefficient: np.ndarray  # and their coefficients (none zero)
+    at: np.ndarray           # the outputs' rescaled times
+    older: np.ndarray        # per output: how many of the nodes are older (a leading run)
+
+    @classmethod
+    def of(cls, tau: np.ndarray, coefficient: np.ndarray, at: np.ndarray) -> "Pairs":
+        nodes = np.flatnonzero(coefficient)
+        return cls(tau[nodes], coefficient[nodes], at,
+                   np.searchsorted(tau[nodes], at, side="left"))
+
+    def block(self, first: int, last: int):
+        """(output row, age, coefficient, log age) of the pairs of outputs first..last-1,
+        by output, then by node."""
+        older = self.older[first:last]
+        rows = np.repeat(np.arange(first, last), older)
+        node = np.arange(rows.size) - np.repeat(np.cumsum(older) - older, older)
+        ages = self.at[rows] - self.tau[node]
+        return rows, ages, self.coefficient[node], np.log(ages)
+
+    def blocks(self, size: int):
+        """``block`` of successive outputs, about ``size`` pairs each (an output's pairs
+        together)."""
+        pairs = np.cumsum(self.older)
+        total = int(pairs[-1]) if pairs.size else 0
+        cuts = np.searchsorted(pairs, np.arange(size, total, size), side="right")
+        edges = np.unique(np.concatenate([[0], cuts, [self.at.size]]))
+        return (self.block(first, last) for first, last in zip(edges[:-1], edges[1:]))
+
+
 def sources(force: Forcing) -> Sources:
-    """J_i = Ms(tau_i) - Ms(tau_i-) and s_i - s_i-1 at every node older than each output."""
+    """J_i = Ms(tau_i) - Ms(tau_i-) and s_i - s_i-1 at every node older than each output
+    (tau rises with the nodes: the nodes older than an output are a leading run)."""
     tau = force.tau
     dtau = np.diff(tau)
     rise = force.left[1:] - force.right[:-1]
@@ -249,13 +399,9 @@ def sources(force: Forcing) -> Sources:
     jumps[1:] += np.where(sliver, rise, 0.0)
     slope = np.concatenate([np.where(sliver, 0.0, rise / np.where(sliver, 1.0, dtau)), [0.0]])
     change = np.diff(np.concatenate([[0.0], slope]))
-    ages = tau[force.outputs][:, None] - tau[None, :]
-
-    def reading(coefficient):
-        row, node = np.nonzero((ages > 0) & (coefficient != 0)[None, :])
-        age = ages[row, node]
-        return row, age, coefficient[node], np.log(age)
-    return Sources(reading(jumps), reading(change), force.outputs.size)
+    at = tau[force.outputs]
+    return Sources(Pairs.of(tau, jumps, at).block(0, at.size), Pairs.of(tau, change, at),
+                   force.outputs.size, Ramps.of(tau, change, force.outputs))
 
 
 def _gather(rows, index, weights, outputs: int, size: int) -> np.ndarray:
@@ -275,34 +421,34 @@ def _split(reading, w0: float, power: float):
             (rows[below], coefficient[below] * (ages[below] / w0) ** power))
 
 
-def read(table: Table, where: Sources) -> tuple[np.ndarray, np.ndarray]:
+def read(table: Table, where: Sources, first: float) -> tuple[np.ndarray, np.ndarray]:
     """M - M0 at the outputs, shape (outputs, m), from ``table`` and from its every second
     point (``Table.coarse``, the same first age: the readings share their split): steps
-    read K (Lagrange), slope changes read I (Hermite, with K as its slope)."""
-    return tuple(_read_one(each, where) for each in (table, table.coarse()))
+    read K (Lagrange), slope changes read I (Hermite, with K as its slope); ``first``
+    [rescaled s] the record's first age (where its lattice starts, ``_lattice``)."""
+    return tuple(_read_one(each, where, first) for each in (table, table.coarse()))
 
 
-def _read_one(table: Table, where: Sources) -> np.ndarray:
+def _read_one(table: Table, where: Sources, first: float) -> np.ndarray:
     on_kernel, on_integral = where.kept(
         ("grid", table.start, table.step, table.kernel.shape[0]),
-        lambda: _gathered_weights(table, where))
+        lambda: _gathered_weights(table, where, first))
     return on_kernel @ table.kernel + on_integral @ table.integral + _read_jumps(table, where)
 
 
-def _gathered_weights(table: Table, where: Sources) -> tuple[np.ndarray, np.ndarray]:
+def _gathered_weights(table: Table, where: Sources, first: float) -> tuple[np.ndarray, np.ndarray]:
     """(outputs, grid points) weights on K and on I: every (output, node) pair's
-    interpolation weights summed per output row and grid point."""
+    interpolation weights summed per output row and grid point (the slope changes through
+    the record's lattice, ``_lattice``; ``first`` [rescaled s] the record's first age)."""
     size, n = table.kernel.shape[0], where.outputs
     w0 = math.exp(table.start)
     (rows, logs, coefficient), (low_rows, low) = _split(where.steps, w0, 0.5)
     index, weights = _lagrange(table, logs)
     on_kernel = _gather(rows, index, coefficient * weights, n, size)
     on_kernel[:, 0] += np.bincount(low_rows, low, minlength=n)
-    rows, ages, coefficient, logs = where.slopes  # the many: no copies, those below weigh 0
-    below = ages < w0
-    on_integral, on_k = _hermite_gathered(table, rows, logs, np.where(below, 0.0, coefficient), n)
-    on_integral[:, 0] += np.bincount(rows[below], coefficient[below] * (ages[below] / w0) ** 1.5,
-                                     minlength=n)
+    lattice, per = _lattice(table, first)
+    sums = where.kept(("lattice", lattice), lambda: _lattice_sums(where, lattice))
+    on_integral, on_k = _hermite_gathered(table, sums, per, lattice.bottom)
     on_kernel += on_k
     return on_kernel, on_integral
 
@@ -321,9 +467,7 @@ def _past_step(age: float, where: Sources) -> np.ndarray:
     """Per output: the steps of Ms older than ``age`` plus the ramps' rise past it."""
     rows, ages, coefficient, _ = where.steps
     after = np.bincount(rows, coefficient * (ages > age), minlength=where.outputs)
-    rows, ages, coefficient, _ = where.slopes
-    ramp = np.bincount(rows, coefficient * np.maximum(ages - age, 0.0), minlength=where.outputs)
-    return after + ramp
+    return after + where.ramps.rise_past(age)
 
 
 @dataclass(frozen=True)
@@ -382,7 +526,7 @@ class LongRecord:
             if per_decade < start and 2 * per_decade <= min(MAX_PER_DECADE, cap):
                 per_decade *= 2
                 continue
-            fine, coarse = read(table, self.where)
+            fine, coarse = read(table, self.where, self.first)
             change = float(np.max(np.abs(fine - coarse), initial=0.0))
             if (not refine or change <= TABLE_SHARE * looser * self.tolerance
                     or 2 * per_decade > min(MAX_PER_DECADE, cap)):
