@@ -1,27 +1,31 @@
 """Throughput of a Monte Carlo of the demo cam (configs/singh2017_cam.yaml) on 2
 LocalCluster workers, and what one case costs against one run in a warm process.
 
-    python benchmarks/bench_montecarlo.py            # 1000 cases (the target case count)
+    python benchmarks/bench_montecarlo.py            # 1000 cases, 3 sweeps (target: 60 s)
     python benchmarks/bench_montecarlo.py --quick    # 100 cases
-    python benchmarks/bench_montecarlo.py --cases 8 --scaling-cases 8
+    python benchmarks/bench_montecarlo.py --repeats 1 --scaling-cases 100
 
 The sweep draws the fibre volume fraction, the service temperature and the cam
 thickness (so no two cases share a geometry or a climate: nothing is reused
 across cases). Every sweep runs from a fresh folder, cluster start-up and the
 final write included (that is what a user waits for). First the 1 -> 2 worker
-scaling, measured in this same run on the first ``--scaling-cases`` draws (1
-worker runs in the process, 2 on a LocalCluster); then the whole sweep on
-``--workers`` workers: wall time, cases per second per worker, the cost of a
-case (wall x workers / cases) as a ratio to one warm single run, and the CPU
-seconds per case of this process and every worker (rusage: comparable on a
-loaded machine). Then ``--check`` cases of the result are compared with single
-runs of the same scene (numpy.testing.assert_allclose, rtol 1e-9: a case must be
-its single run). The load average is printed because other work on the machine
-skews wall times.
+scaling, when asked for, measured in this same run on the first ``--scaling-cases``
+draws (1 worker runs in the process, 2 on a LocalCluster); then the whole sweep,
+``--repeats`` times, on ``--workers`` workers: wall time, cases per second per worker,
+the whole sweep as a multiple of one warm single run, the cost of a case (wall x
+workers / cases) as a ratio to one warm single run, and the CPU seconds per case of
+this process and every worker (rusage: comparable on a loaded machine); medians over
+the repeats. Then ``--check`` cases of the result are compared with single runs of
+the same scene (numpy.testing.assert_allclose, rtol 1e-9: a case must be its single
+run). The medians, every sweep's figures, the machine, its load average (other work on
+the machine skews wall times) and the commit go to
+``benchmarks/results/montecarlo.json``.
 """
 from __future__ import annotations
 
 import argparse
+import datetime
+import json
 import logging
 import os
 import resource
@@ -37,8 +41,11 @@ from fickcam.store import open_result
 from fickcam.sweep import run_sweep
 from fickcam.sweep.case import CaseTask, case_scene
 from fickcam.sweep.spec import load_sweep
+from points_cam import commit, machine  # the sibling benchmark's machine stamp
 
 ROOT = Path(__file__).resolve().parents[1]
+RESULT = ROOT / "benchmarks" / "results" / "montecarlo.json"
+TARGET_S = 60.0  # 1000 cases on 2 workers
 BASE = ROOT / "configs" / "singh2017_cam.yaml"
 SWEEP = """base: {base}
 samples: {cases}
@@ -93,43 +100,76 @@ def check_cases(sweep_file: Path, output: Path, count: int) -> int:
     return len(picks)
 
 
+def scaling(folder: Path, cases: int) -> dict:
+    """Wall seconds of the first ``cases`` draws on 1 and on 2 workers."""
+    sweep_file = folder / "scaling.yaml"
+    sweep_file.write_text(SWEEP.format(base=BASE, cases=cases))
+    walls = {w: time_sweep(sweep_file, folder / f"scaling-{w}.h5", w)[0] for w in (1, 2)}
+    print(f"scaling 1 -> 2 workers on {cases} cases: {walls[1]:.1f} s -> {walls[2]:.1f} s, "
+          f"{walls[1] / walls[2]:.2f} x (load {os.getloadavg()[0]:.1f})")
+    return {"cases": cases, "one_worker_s": walls[1], "two_workers_s": walls[2]}
+
+
+def sweeps(folder: Path, cases: int, workers: int, repeats: int, single: float) -> tuple:
+    """``repeats`` sweeps of ``cases`` draws from fresh folders: (their rows, the sweep file,
+    the last result file)."""
+    sweep_file = folder / "montecarlo.yaml"
+    sweep_file.write_text(SWEEP.format(base=BASE, cases=cases))
+    print(f"{'workers':>8} {'wall s':>8} {'cases/s/worker':>15} {'x single':>9} "
+          f"{'case/single':>12} {'CPU s/case':>11} {'load':>6}")
+    rows = []
+    for repeat in range(repeats):
+        output = folder / f"montecarlo-{repeat}.h5"
+        load = os.getloadavg()[0]
+        wall, cpu = time_sweep(sweep_file, output, workers)
+        rows.append({"wall_s": wall, "cpu_s_per_case": cpu / cases, "load_average": load,
+                     "sweep_over_single": wall / single,
+                     "case_over_single": wall * workers / cases / single})
+        print(f"{workers:>8} {wall:>8.1f} {cases / wall / workers:>15.2f} {wall / single:>9.0f} "
+              f"{wall * workers / cases / single:>12.2f} {cpu / cases:>11.3f} {load:>6.1f}",
+              flush=True)
+    return rows, sweep_file, output
+
+
 def main(argv=None) -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--cases", type=int, default=1000)
     parser.add_argument("--quick", action="store_true", help="100 cases")
     parser.add_argument("--workers", type=int, default=2)
-    parser.add_argument("--scaling-cases", type=int, default=100,
-                        help="draws run on 1 and on 2 workers for the scaling")
+    parser.add_argument("--repeats", type=int, default=3, help="sweeps (median)")
+    parser.add_argument("--scaling-cases", type=int, default=0,
+                        help="draws run on 1 and on 2 workers for the scaling (0: none)")
     parser.add_argument("--check", type=int, default=20, help="cases compared with single runs")
     args = parser.parse_args(argv)
     logging.basicConfig(level=logging.ERROR)
     cases = 100 if args.quick else args.cases
     single = single_run_time()
-    print(f"Monte Carlo of {BASE.name}: {cases} cases, {os.cpu_count()} cores, "
+    about = machine()
+    print(f"Monte Carlo of {BASE.name}: {cases} cases, {about['cpu']}, {about['cores']} cores, "
           f"load {os.getloadavg()[0]:.1f}; one warm single run {single:.3f} s")
     with tempfile.TemporaryDirectory() as folder:
-        sweep_file = Path(folder) / "montecarlo.yaml"
-        scaling = min(args.scaling_cases, cases)
-        if scaling:
-            sweep_file.write_text(SWEEP.format(base=BASE, cases=scaling))
-            walls = {w: time_sweep(sweep_file, Path(folder) / f"scaling-{w}.h5", w)[0]
-                     for w in (1, 2)}
-            print(f"scaling 1 -> 2 workers on {scaling} cases: {walls[1]:.1f} s -> "
-                  f"{walls[2]:.1f} s, {walls[1] / walls[2]:.2f} x (load {os.getloadavg()[0]:.1f})")
-        sweep_file.write_text(SWEEP.format(base=BASE, cases=cases))
-        load = os.getloadavg()[0]
-        output = Path(folder) / "montecarlo.h5"
-        wall, cpu = time_sweep(sweep_file, output, args.workers)
-        print(f"{'workers':>8} {'wall s':>8} {'cases/s/worker':>15} {'case/single':>12} "
-              f"{'CPU s/case':>11} {'load':>6}")
-        print(f"{args.workers:>8} {wall:>8.1f} {cases / wall / args.workers:>15.2f} "
-              f"{wall * args.workers / cases / single:>12.2f} {cpu / cases:>11.3f} {load:>6.1f}",
-              flush=True)
-        print(f"result file: {output.stat().st_size / 1e6:.1f} MB "
-              f"({output.stat().st_size / cases / 1e3:.0f} kB per case); this process's peak "
+        folder = Path(folder)
+        scaled = scaling(folder, min(args.scaling_cases, cases)) if args.scaling_cases else None
+        rows, sweep_file, output = sweeps(folder, cases, args.workers, args.repeats, single)
+        size = output.stat().st_size
+        print(f"result file: {size / 1e6:.1f} MB ({size / cases / 1e3:.0f} kB per case); "
+              f"this process's peak "
               f"memory {resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1e3:.0f} MB")
         checked = check_cases(sweep_file, output, min(args.check, cases))
         print(f"{checked} cases of the {args.workers}-worker result equal their single runs")
+    medians = {key: statistics.median(row[key] for row in rows) for key in rows[0]}
+    print(f"median of {len(rows)}: {medians['wall_s']:.1f} s for {cases} cases on "
+          f"{args.workers} workers (target {TARGET_S:g} s for 1000 on 2), "
+          f"{medians['sweep_over_single']:.0f} warm single runs")
+    record = {"benchmark": f"Monte Carlo of {BASE.name} on {args.workers} workers / one warm "
+                           f"single run", "target_s": TARGET_S, "commit": commit(),
+              "date": datetime.datetime.now(datetime.timezone.utc).isoformat(timespec="seconds"),
+              "machine": about, "load_average": os.getloadavg()[0], "cases": cases,
+              "workers": args.workers, "single_run_s": single, "median": medians,
+              "sweeps": rows, "scaling": scaled, "cases_checked_equal_to_single_runs": checked,
+              "result_file_mb": size / 1e6}
+    RESULT.write_text(json.dumps(record, indent=1) + "\n")
+    print(f"wrote {RESULT.relative_to(ROOT)}")
 
 
 if __name__ == "__main__":

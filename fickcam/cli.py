@@ -14,6 +14,9 @@ from .commands import COMMANDS
 from .errors import FickcamError, InputError, SceneError
 from .messages import error_line, terminal_messages
 
+#: the commands that may use dask (the ``sweep`` extra; ``bench`` runs the checkout's
+#: benchmark scripts); any other command, as its own process, runs without it
+USES_DASK = frozenset({"sweep", "bench"})
 
 def process_main() -> int:
     """The `fickcam` command as its own process. The interpreter's garbage collections
@@ -31,8 +34,23 @@ def main(argv: list[str] | None = None, whole_process: bool = False) -> int:
     an input file's problems as ``FILE:LINE key: reason``)."""
     args = _parser().parse_args(argv)
     args.whole_process = whole_process
+    if whole_process and args.command not in USES_DASK:
+        without_dask()
     with terminal_messages(args.verbose - args.quiet):
         return _run_command(args)
+
+
+def without_dask() -> None:
+    """Make this process run as an install without dask would: whenever dask is installed,
+    pint imports ``dask.base`` when it is imported and xarray imports ``dask.array`` for its
+    first Variable (0.2 CPU s of the demo run, a tenth of it), though no result outside a
+    sweep is a dask array. ``None`` in ``sys.modules`` is the import system's own mark of a
+    module that cannot be imported: ``import dask`` raises ImportError and
+    ``importlib.util.find_spec("dask")`` returns None, which both libraries take as dask not
+    installed. Only for a whole process (:func:`process_main`) that has not imported dask:
+    in a caller's process it would hide dask from the caller's own code."""
+    if "dask" not in sys.modules:
+        sys.modules["dask"] = None
 
 
 def _run_command(args) -> int:

@@ -182,3 +182,14 @@ def test_more_cases_than_are_kept_in_flight_all_complete_once(scheduler, tmp_pat
         records = compute_cases(sweep, folder, range(40), client)
     assert sorted(records) == list(range(40))
     assert sorted(folder.journal.read()) == list(range(40))
+
+
+@pytest.mark.parametrize("cases, threads", [(1, 2), (3, 2), (17, 1), (1000, 2), (1000, 64)])
+def test_batches_hold_every_case_once_in_order_and_keep_every_thread_busy(cases, threads):
+    from fickcam.sweep.runner import BATCHES_PER_THREAD, MAX_BATCH, batches
+
+    indices = list(range(5, 5 + cases))
+    split = batches(indices, threads)
+    assert [i for batch in split for i in batch] == indices
+    assert all(1 <= len(batch) <= MAX_BATCH for batch in split)
+    assert len(split) >= min(cases, BATCHES_PER_THREAD * threads)

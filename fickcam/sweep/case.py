@@ -100,3 +100,10 @@ def run_case(task: CaseTask, cache=None) -> tuple[dict, bytes]:
     if retry:
         record["retry"] = True
     return record, encode_case(record, dataset if status == "ok" else None)
+
+
+def run_cases(tasks: list[CaseTask]) -> list[tuple[dict, bytes]]:
+    """Run a batch of cases one after the other (one worker task); their records and journal
+    payloads, in order. The worker's caches of meshes and step responses carry over from
+    case to case, so cases alike in their parts' geometry and material solve those once."""
+    return [run_case(task) for task in tasks]

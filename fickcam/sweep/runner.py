@@ -24,7 +24,7 @@ from pathlib import Path
 from ..errors import FickcamError, InputError
 from ..extras import installed, require
 from ..messages import quieter
-from .case import CaseTask, run_case
+from .case import CaseTask, run_case, run_cases
 from .combine import combine, early_ends
 from .journal import decode_arrays
 from .scheduler import probe
@@ -125,50 +125,75 @@ def run_here(sweep: Sweep, folder: WorkFolder, indices, *, progress: bool = Fals
     return collector.records
 
 
+#: batches per worker thread at least (the last ones end together, within one batch)
+BATCHES_PER_THREAD = 8
+#: cases per batch at most (a lost worker costs little, the progress bar moves)
+MAX_BATCH = 10
+
+
+def batches(indices, threads: int) -> list[list[int]]:
+    """The cases ``indices`` as consecutive batches, each one worker task: a task costs the
+    scheduler, the client and the worker a few milliseconds whatever it holds, a case about
+    a tenth of a second. Consecutive cases of a grid differ in its last parameter only, so
+    a batch mostly holds cases whose parts share their geometry and material, and its worker
+    solves what they share once (:func:`~.case.run_cases`)."""
+    indices = list(indices)
+    size = max(1, min(MAX_BATCH, len(indices) // (BATCHES_PER_THREAD * max(threads, 1))))
+    return [indices[start:start + size] for start in range(0, len(indices), size)]
+
+
 def compute_cases(sweep: Sweep, folder: WorkFolder, indices, client, *, progress: bool = False,
                   done: int = 0) -> dict[int, dict]:
-    """Run the cases ``indices`` on ``client``; return their records as they finish.
+    """Run the cases ``indices`` on ``client`` in batches (:func:`batches`); return their
+    records, each batch's appended to the journal as it finishes.
 
-    At most a few cases per worker thread are in flight at once, so neither the
-    client nor the scheduler holds the scenes of a large sweep all together. A
-    case whose task itself broke (e.g. its worker died) is returned as failed and
-    marked ``retry``, so a resumed sweep runs it again.
+    At most a few batches per worker thread are in flight at once, so neither the
+    client nor the scheduler holds the scenes of a large sweep all together. The cases
+    of a batch whose task itself broke (e.g. its worker died) are returned as failed and
+    marked ``retry``, so a resumed sweep runs them again.
     """
     from distributed import as_completed
 
     run_id = uuid.uuid4().hex[:12]  # keys unique per run: never reuse another run's result
-    waiting = iter(indices)
+    threads = sum(client.nthreads().values())
+    waiting = iter(batches(indices, threads))
     in_flight: dict = {}
     finished = as_completed()
 
     def submit_next() -> None:
-        index = next(waiting, None)
-        if index is not None:
-            task = case_task(sweep, index)
-            future = client.submit(run_case, task, key=f"fickcam-case-{run_id}-{index}", pure=False)
-            in_flight[future] = (index, task.label, task.values)
+        batch = next(waiting, None)
+        if batch is not None:
+            tasks = [case_task(sweep, index) for index in batch]
+            future = client.submit(run_cases, tasks, key=f"fickcam-cases-{run_id}-{batch[0]}",
+                                   pure=False)
+            in_flight[future] = tasks
             finished.add(future)
 
-    for _ in range(max(16, 4 * sum(client.nthreads().values()))):
+    for _ in range(max(4, 3 * threads)):
         submit_next()
     collector = _Collector(sweep, folder, progress, done)
     try:
         for future in finished:
-            index, label, values = in_flight.pop(future)
+            tasks = in_flight.pop(future)
             try:
-                record, payload = future.result()
-            except Exception as exc:  # noqa: BLE001 - the worker, not the case, failed
-                record = {"index": index, "status": "failed", "values": values,
-                          "message": f"did not finish: {type(exc).__name__}: {exc}", "retry": True}
-                payload = None
+                results = future.result()
+            except Exception as exc:  # noqa: BLE001 - the worker, not the cases, failed
+                results = [(unfinished(task, exc), None) for task in tasks]
             future.release()
             submit_next()
-            collector.add(record, payload, label)
+            for task, (record, payload) in zip(tasks, results):
+                collector.add(record, payload, task.label)
     finally:
         collector.bar.close()
         if in_flight:
             client.cancel(list(in_flight))
     return collector.records
+
+
+def unfinished(task: CaseTask, exc: BaseException) -> dict:
+    """The record of a case whose worker task broke: failed, to be run again on resume."""
+    return {"index": task.index, "status": "failed", "values": task.values,
+            "message": f"did not finish: {type(exc).__name__}: {exc}", "retry": True}
 
 
 def in_process(workers: int | None, scheduler: str | None, n_cases: int) -> bool:
