@@ -106,4 +106,5 @@ def run_cases(tasks: list[CaseTask]) -> list[tuple[dict, bytes]]:
     """Run a batch of cases one after the other (one worker task); their records and journal
     payloads, in order. The worker's caches of meshes and step responses carry over from
     case to case, so cases alike in their parts' geometry and material solve those once."""
-    return [run_case(task) for task in tasks]
+    cache = worker_cache()
+    return [run_case(task, cache) for task in tasks]
