@@ -23,7 +23,21 @@ log = logging.getLogger(__name__)
 
 @dataclass(frozen=True)
 class CaseTask:
-    """Everything a worker needs for one case (small and picklable)."""
+    """Everything a worker needs for one case (small and picklable).
+
+    Parameters
+    ----------
+    index : int
+        The case's index.
+    scene : dict
+        The case's scene as plain YAML data.
+    values : dict
+        The raw values this case sets, by dotted path.
+    label : str
+        Names the scene in messages (``"sweep.yaml case 7"``).
+    base_dir : str
+        The folder that relative paths in the scene refer to.
+    """
 
     index: int
     scene: dict          # the case's scene as plain YAML data
@@ -33,7 +47,23 @@ class CaseTask:
 
 
 def case_scene(task: CaseTask):
-    """Validate the case's scene exactly as `fickcam run` would validate its file."""
+    """Validate the case's scene exactly as ``fickcam run`` would validate its file.
+
+    Parameters
+    ----------
+    task : CaseTask
+        The case.
+
+    Returns
+    -------
+    fickcam.scene.Scene
+        The validated scene.
+
+    Raises
+    ------
+    fickcam.errors.SceneError
+        When a value of the case is invalid.
+    """
     import yaml
 
     from ..scene import parse_yaml, validate_document
@@ -43,8 +73,22 @@ def case_scene(task: CaseTask):
 
 
 def failure_message(exc: BaseException) -> str:
-    """One line saying why a case failed (scene problems by key path, no line numbers:
-    the case's scene is not a file the user wrote)."""
+    """One line saying why a case failed.
+
+    Scene problems are given by key path, without line numbers: the case's scene is not a
+    file the user wrote.
+
+    Parameters
+    ----------
+    exc : BaseException
+        What the case raised.
+
+    Returns
+    -------
+    str
+        The reason; an exception other than a :class:`~fickcam.errors.FickcamError` is
+        ``internal error: TYPE: message``.
+    """
     if isinstance(exc, SceneError):
         return "; ".join(f"{p.key}: {p.reason}" if p.key else p.reason for p in exc.problems)
     if isinstance(exc, FickcamError):
@@ -53,7 +97,24 @@ def failure_message(exc: BaseException) -> str:
 
 
 def run_case(task: CaseTask) -> tuple[dict, bytes]:
-    """Run one case; return its record and its journal payload (record and result)."""
+    """Run one case; return its record and its journal payload (record and result).
+
+    Whatever goes wrong becomes a ``failed`` record with its message, never an exception; a
+    failure that is not the scene's fault is marked ``retry``.
+
+    Parameters
+    ----------
+    task : CaseTask
+        The case.
+
+    Returns
+    -------
+    record : dict
+        ``index``, ``status`` ("ok" or "failed"), ``message``, ``values``, ``wall_time`` [s]
+        and, when rerun on resume, ``retry``.
+    payload : bytes
+        The journal entry (:func:`fickcam.sweep.journal.encode_case`).
+    """
     from ..simulate import run
     from .journal import encode_case
 
