@@ -26,9 +26,36 @@ SUMMARY_INTERVALS = 1000
 
 @dataclass(frozen=True, eq=False)
 class Environment(Segments):
-    """Piecewise history (the ``Segments`` fields: ``change_times`` (n+1, s), segment
-    end values ``temperature_end`` / ``humidity_end`` (n), ``ramp`` flags (n) and the
-    values at t = 0), with what a run needs besides."""
+    """A piecewise climate history, with what a run needs besides.
+
+    Parameters
+    ----------
+    change_times : numpy.ndarray
+        (n + 1,): the segments' start and end times [s].
+    temperature_end : numpy.ndarray
+        (n,): each segment's temperature at its end [K].
+    humidity_end : numpy.ndarray
+        (n,): each segment's relative humidity at its end [%].
+    ramp : numpy.ndarray of bool
+        (n,): the segment ramps linearly from the previous values.
+    temperature_start : float
+        The temperature at t = 0 [K].
+    humidity_start : float
+        The relative humidity at t = 0 [%].
+    reference_temperature : float
+        The temperature at which the parts are made and dry [K].
+    initial_moisture : float
+        The parts' moisture at t = 0 [wt %].
+    source : str
+        Where the history comes from, for messages.
+    notes : tuple of str
+        What a run should be told (e.g. a record held past its end).
+    state_times : numpy.ndarray, optional
+        States given directly (``environment.state``): their times [s]; None for a climate
+        history.
+    state_moisture : numpy.ndarray, optional
+        Their moisture [wt %], NaN where the state gives a relative humidity instead.
+    """
 
     reference_temperature: float
     initial_moisture: float

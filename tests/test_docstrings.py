@@ -364,7 +364,7 @@ def signature_parameters(target) -> list[str]:
     function = target.__init__ if inspect.isclass(target) and not hasattr(
         target, "__dataclass_fields__") else target
     if inspect.isclass(target) and hasattr(target, "__dataclass_fields__"):
-        return list(target.__dataclass_fields__)
+        return [name for name, spec in target.__dataclass_fields__.items() if spec.init]
     return [name for name in inspect.signature(function).parameters
             if name not in ("self", "cls")]
 
