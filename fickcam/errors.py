@@ -17,7 +17,7 @@ class FickcamError(Exception):
 
     Parameters
     ----------
-    *args
+    *args, **kwargs
         The message (the arguments of :class:`Exception`).
     """
 
@@ -70,7 +70,7 @@ class InputError(FickcamError):
 
     Parameters
     ----------
-    *args
+    *args, **kwargs
         The message (the arguments of :class:`Exception`).
     """
 

@@ -53,8 +53,8 @@ class MissingExtra(InputError, ValueError):
 
     Parameters
     ----------
-    *args
-        The message (:func:`install_hint`).
+    *args, **kwargs
+        The message (:func:`install_hint`), as for :class:`Exception`.
     """
 
 
