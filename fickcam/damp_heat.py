@@ -103,7 +103,7 @@ class SteadyTest:
 
 @dataclass(frozen=True)
 class CyclicTest:
-    """A cyclic damp-heat test: per cycle a rise, a hold at the upper temperature, a fall and a hold low.
+    """A cyclic damp-heat test: per cycle a rise, an upper hold, a fall and a lower hold.
 
     Parameters
     ----------

@@ -205,7 +205,7 @@ def diffusion_attrs(history: PartHistory) -> dict:
 
 
 def field_values(histories: list[PartHistory], times) -> tuple[dict, dict]:
-    """(values, coords): moisture fields of every absorbing part, padded with NaN to a common cell count.
+    """(values, coords): the absorbing parts' moisture fields, NaN-padded to one cell count.
 
     Parameters
     ----------

@@ -60,7 +60,9 @@ class Verdict(IntEnum):
 
 @dataclass(frozen=True)
 class Band:
-    """Plausible values in [``low``, ``high``]; unusual ones in [``least``, ``most``]; the rest implausible.
+    """Plausible values in [``low``, ``high``], unusual ones in [``least``, ``most``].
+
+    The rest are implausible.
 
     Parameters
     ----------
@@ -488,7 +490,7 @@ def _mm(metres: float) -> str:
 
 
 def geometry_findings(doc) -> Findings:
-    """Bare lengths and speeds of the ``cam:`` and ``linkage:`` sections judged against their own mechanism.
+    """Bare lengths and speeds of ``cam:`` and ``linkage:`` judged against their own mechanism.
 
     They are read from the YAML, so that a slip is named even where it also breaks a check of
     the section; bare length and speed bounds of ``limits:`` are judged likewise.

@@ -368,7 +368,7 @@ def validate_document(doc: YamlDocument, *, base_dir: Path) -> Scene:
 
 
 def design_data(data: dict) -> dict:
-    """A scene mapping as designed: its ``design:`` overrides merged into ``cam:`` and ``linkage:``.
+    """A scene mapping as designed: its ``design:`` merged into ``cam:`` and ``linkage:``.
 
     A design cam shape replaces the made one; ``design:`` is dropped.
 

@@ -101,7 +101,9 @@ StandardTest = Literal["steady_damp_heat", "damp_heat_85_85", "cyclic_damp_heat"
 
 
 class EnvironmentSection(StrictModel):
-    """``environment:``: the reference state and exactly one climate: segments, a record, a standard test or states.
+    """``environment:``: the reference state and exactly one climate.
+
+    The climate is segments, a record, a standard test or states given directly.
 
     Parameters
     ----------

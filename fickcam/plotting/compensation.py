@@ -17,7 +17,7 @@ def _spec_text(ds, variable: str) -> str:
 
 
 def plot_against_band(before, after, path, window=()) -> Path:
-    """One panel per ``deviation`` limit: the worst deviation before and after compensation, the band shaded.
+    """One panel per ``deviation`` limit: the worst deviation before and after compensation.
 
     Each panel shows the largest |x - design| over the cycle at every ageing time for both
     results.

@@ -145,7 +145,9 @@ def _axis_values(values: np.ndarray, names: dict | None = None):
 
 
 def plot_grid(ds, outdir: Path, age_index: int, save=save_figure) -> list[Path]:
-    """Each output at one ageing time against the first varied value, a line per combination of the others.
+    """Each output at one ageing time against the first varied value.
+
+    One line per combination of the other varied values.
 
     Parameters
     ----------
@@ -243,7 +245,9 @@ def _has_text_values(ds) -> bool:
 
 
 def plot_monte_carlo(ds, outdir: Path, age_index: int, save=save_figure) -> list[Path]:
-    """Per output: its 5-25-50-75-95 % quantile fan over ageing time and scatter against the varied values.
+    """Per output: its quantile fan over ageing time and its scatter against the varied values.
+
+    The fan shows the 5, 25, 50, 75 and 95 % quantiles.
 
     Parameters
     ----------
@@ -298,7 +302,9 @@ def plot_monte_carlo(ds, outdir: Path, age_index: int, save=save_figure) -> list
 
 
 def plot_out_of_spec(ds, outdir: Path, save=save_figure) -> list[Path]:
-    """The fraction of cases out of spec by each ageing time, per limit, with its Wilson 95 % interval.
+    """The fraction of cases out of spec by each ageing time, per limit, with its 95 % interval.
+
+    The interval is Wilson's score interval.
 
     A step curve from every case's continuous time out of spec
     (:func:`fickcam.sweep.scatter.out_of_spec_counts`), the stored ageing times marked.

@@ -342,7 +342,9 @@ def _is_angular(text: str) -> bool:
 
 
 def infer_dimension(text: str, si_value: float) -> str | None:
-    """The dimension whose SI conversion of ``text`` gives ``si_value``, the value the scene model made of it.
+    """The dimension whose SI conversion of ``text`` gives ``si_value``.
+
+    ``si_value`` is the value the scene model made of it.
 
     Parameters
     ----------
