@@ -210,18 +210,22 @@ def standard_climate(name: str, *, cycles: int | None = None, duration: float | 
 
     References
     ----------
-    .. [1] IEC 60068-2-78, Environmental testing - Part 2-78: Tests - Test Cab: Damp heat,
-       steady state, International Electrotechnical Commission, 2012.
-    .. [2] JEDEC JESD22-A101, Steady-state temperature-humidity bias life test, JEDEC Solid
-       State Technology Association.
-    .. [3] IEC 61215-2, Terrestrial photovoltaic (PV) modules - Design qualification and type
-       approval - Part 2: Test procedures (MQT 13, damp heat), International
-       Electrotechnical Commission, 2021.
-    .. [4] IEC 60068-2-30, Environmental testing - Part 2-30: Tests - Test Db: Damp heat,
-       cyclic (12 h + 12 h cycle), International Electrotechnical Commission, 2005.
-    .. [5] OIML R 60-2, Metrological regulation for load cells - Part 2: Metrological controls
-       and performance tests, International Organization of Legal Metrology, 2017,
-       s. 2.10.5.12.
+    IEC 60068-2-78, Environmental testing - Part 2-78: Tests - Test Cab: Damp heat,
+    steady state, International Electrotechnical Commission, 2012.
+
+    JEDEC JESD22-A101, Steady-state temperature-humidity bias life test, JEDEC Solid
+    State Technology Association.
+
+    IEC 61215-2, Terrestrial photovoltaic (PV) modules - Design qualification and type
+    approval - Part 2: Test procedures (MQT 13, damp heat), International
+    Electrotechnical Commission, 2021.
+
+    IEC 60068-2-30, Environmental testing - Part 2-30: Tests - Test Db: Damp heat,
+    cyclic (12 h + 12 h cycle), International Electrotechnical Commission, 2005.
+
+    OIML R 60-2, Metrological regulation for load cells - Part 2: Metrological controls
+    and performance tests, International Organization of Legal Metrology, 2017,
+    s. 2.10.5.12.
     """
     test = STANDARD_TESTS[name]
     if isinstance(test, CyclicTest):

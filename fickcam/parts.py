@@ -139,9 +139,9 @@ def part_mass(history: PartHistory) -> np.ndarray:
 
     References
     ----------
-    .. [1] S. Singh and S. Sanyal, "Kinematic and dynamic variations in cam and follower made
-       of composite material under hygrothermal environment", International Journal of
-       Innovative Research in Science, Engineering and Technology 6 (3), 2017.
+    S. Singh and S. Sanyal, "Kinematic and dynamic variations in cam and follower made
+    of composite material under hygrothermal environment", International Journal of
+    Innovative Research in Science, Engineering and Technology 6 (3), 2017.
     """
     dry = history.part.dry_mass
     moisture = np.asarray(history.state["moisture_content"], float)

@@ -739,8 +739,8 @@ def history_findings(model, doc, environment, materials: dict) -> Findings:
 
     References
     ----------
-    .. [1] J. Crank, *The Mathematics of Diffusion*, 2nd ed., Oxford University Press, 1975,
-       eq. 4.20.
+    J. Crank, *The Mathematics of Diffusion*, 2nd ed., Oxford University Press, 1975,
+    eq. 4.20.
     """
     findings = Findings([], [])
     section = model.environment

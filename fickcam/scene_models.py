@@ -71,10 +71,10 @@ class StateSpec(StrictModel):
 
     References
     ----------
-    .. [1] S. Singh and S. Sanyal, "Variations in geometry, volume, mass and moment of
-       inertia of link of a four bar mechanism made of neat resin under hygrothermal
-       environment", International Journal of Innovative Research in Science, Engineering
-       and Technology 5 (12), 2016.
+    S. Singh and S. Sanyal, "Variations in geometry, volume, mass and moment of
+    inertia of link of a four bar mechanism made of neat resin under hygrothermal
+    environment", International Journal of Innovative Research in Science, Engineering
+    and Technology 5 (12), 2016.
     """
 
     time: NonNegativeTime = 0.0

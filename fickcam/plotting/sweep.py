@@ -325,8 +325,9 @@ def plot_out_of_spec(ds, outdir: Path, save=save_figure) -> list[Path]:
 
     References
     ----------
-    .. [1] E. B. Wilson, "Probable inference, the law of succession, and statistical
-       inference", Journal of the American Statistical Association 22 (158), 209-212, 1927.
+    E. B. Wilson, "Probable inference, the law of succession, and statistical
+    inference", Journal of the American Statistical Association 22 (158), 209-212, 1927,
+    doi:10.1080/01621459.1927.10502953.
     """
     from ..sweep.scatter import out_of_spec_counts, wilson_interval
 

@@ -36,10 +36,12 @@ def wilson_interval(k: int, n: int, confidence: float = CONFIDENCE) -> tuple[flo
 
     References
     ----------
-    .. [1] E. B. Wilson, "Probable inference, the law of succession, and statistical
-       inference", Journal of the American Statistical Association 22 (158), 209-212, 1927.
-    .. [2] L. D. Brown, T. T. Cai and A. DasGupta, "Interval estimation for a binomial
-       proportion", Statistical Science 16 (2), 101-133, 2001.
+    E. B. Wilson, "Probable inference, the law of succession, and statistical
+    inference", Journal of the American Statistical Association 22 (158), 209-212, 1927,
+    doi:10.1080/01621459.1927.10502953.
+
+    L. D. Brown, T. T. Cai and A. DasGupta, "Interval estimation for a binomial
+    proportion", Statistical Science 16 (2), 101-133, 2001, doi:10.1214/ss/1009213286.
     """
     from scipy.stats import binomtest
 
@@ -93,10 +95,12 @@ def fractions(ds):
 
     References
     ----------
-    .. [1] E. B. Wilson, "Probable inference, the law of succession, and statistical
-       inference", Journal of the American Statistical Association 22 (158), 209-212, 1927.
-    .. [2] L. D. Brown, T. T. Cai and A. DasGupta, "Interval estimation for a binomial
-       proportion", Statistical Science 16 (2), 101-133, 2001.
+    E. B. Wilson, "Probable inference, the law of succession, and statistical
+    inference", Journal of the American Statistical Association 22 (158), 209-212, 1927,
+    doi:10.1080/01621459.1927.10502953.
+
+    L. D. Brown, T. T. Cai and A. DasGupta, "Interval estimation for a binomial
+    proportion", Statistical Science 16 (2), 101-133, 2001, doi:10.1214/ss/1009213286.
     """
     import xarray as xr
 
