@@ -71,7 +71,7 @@ def default_output(scene) -> Path:
     Parameters
     ----------
     scene : fickcam.scene.Scene
-        A validated scene.
+        The scene being run.
 
     Returns
     -------

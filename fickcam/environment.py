@@ -30,18 +30,10 @@ class Environment(Segments):
 
     Parameters
     ----------
-    change_times : numpy.ndarray
-        (n + 1,): the segments' start and end times [s].
-    temperature_end : numpy.ndarray
-        (n,): each segment's temperature at its end [K].
-    humidity_end : numpy.ndarray
-        (n,): each segment's relative humidity at its end [%].
-    ramp : numpy.ndarray of bool
-        (n,): the segment ramps linearly from the previous values.
-    temperature_start : float
-        The temperature at t = 0 [K].
-    humidity_start : float
-        The relative humidity at t = 0 [%].
+    change_times, temperature_end, humidity_end, ramp, temperature_start, humidity_start
+        The history as :class:`~fickcam.damp_heat.Segments` holds it: change times [s],
+        end temperatures [K] and humidities [%], ramp flags, and the values at t = 0
+        [K, %].
     reference_temperature : float
         The temperature at which the parts are made and dry [K].
     initial_moisture : float

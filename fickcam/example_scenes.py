@@ -107,7 +107,7 @@ def copy_to(target, which: list[str] | None = None) -> list[Path]:
     Returns
     -------
     list of pathlib.Path
-        The files written.
+        The copies, in ``target``.
 
     Raises
     ------

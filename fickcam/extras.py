@@ -81,7 +81,7 @@ def installed(name: str) -> bool:
     Parameters
     ----------
     name : str
-        A key of :data:`EXTRAS`.
+        The extra (``"dxf"``, ``"weather"``, ``"sweep"``).
 
     Returns
     -------
@@ -100,7 +100,7 @@ def require(name: str, advice: str = ""):
     Parameters
     ----------
     name : str
-        A key of :data:`EXTRAS`.
+        The extra, a key of :data:`EXTRAS`.
     advice : str
         What else the user can do, appended in brackets (``"or run with --workers 1"``).
 

@@ -187,10 +187,9 @@ def site_name(text: str, base_dir: Path) -> str:
 
     Parameters
     ----------
-    text : str
-        The ``history_file`` value.
-    base_dir : pathlib.Path
-        The scene's folder.
+    text, base_dir
+        The ``history_file`` value and the scene's folder, as for
+        :func:`resolve_record_path`.
 
     Returns
     -------

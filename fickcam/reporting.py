@@ -301,7 +301,7 @@ def limit_lines(ds) -> list[str]:
     Parameters
     ----------
     ds : xarray.Dataset
-        A result.
+        A run's result, with the limits its scene set.
 
     Returns
     -------

@@ -202,7 +202,7 @@ def open_result(path):
     Parameters
     ----------
     path : str or pathlib.Path
-        The result file.
+        A netCDF/HDF5 file written by :func:`save`.
 
     Returns
     -------

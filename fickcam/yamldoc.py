@@ -155,7 +155,7 @@ def parse_yaml(text: str, *, file: str = "<scene>", what: str = "scene") -> Yaml
     Returns
     -------
     YamlDocument
-        The mapping and its lines.
+        The mapping, with the line of every key path.
 
     Raises
     ------

@@ -34,7 +34,7 @@ def available_kinds(ds) -> list[str]:
     Parameters
     ----------
     ds : xarray.Dataset
-        A result.
+        A result of a run or of a sweep.
 
     Returns
     -------

@@ -241,9 +241,9 @@ def length_drift_panel(ax, ds, x, lengths: dict, xlabel: str, quantity: str, tit
     Parameters
     ----------
     ax : matplotlib.axes.Axes
-        The axes.
+        The panel.
     ds : xarray.Dataset
-        The result (ageing times, colours).
+        The result, for its ageing times and their colours.
     x : array_like
         The abscissa [unit named in ``xlabel``].
     lengths : dict of int to numpy.ndarray

@@ -79,7 +79,7 @@ def parameters(ds) -> list[str]:
     Parameters
     ----------
     ds : xarray.Dataset
-        A sweep result.
+        A sweep's combined result, its varied values as coordinates along ``case``.
 
     Returns
     -------
@@ -207,10 +207,8 @@ def plot_histories(ds, outdir: Path, save=save_figure) -> list[Path]:
     ----------
     ds : xarray.Dataset
         A sweep result.
-    outdir : pathlib.Path
-        The folder the figures go to (``sweep_<output>_over_time.png``).
-    save : callable
-        ``save(fig, path) -> path`` (:func:`~fickcam.plotting.common.save_figure`).
+    outdir, save
+        As for :func:`plot_grid`; the figures are ``sweep_<output>_over_time.png``.
 
     Returns
     -------
@@ -253,12 +251,10 @@ def plot_monte_carlo(ds, outdir: Path, age_index: int, save=save_figure) -> list
     ----------
     ds : xarray.Dataset
         A Monte Carlo sweep's result.
-    outdir : pathlib.Path
-        The folder the figures go to (``sweep_<output>.png``).
+    outdir, save
+        As for :func:`plot_grid`.
     age_index : int
         The ageing time of the scatter panels, an index along ``time``.
-    save : callable
-        ``save(fig, path) -> path`` (:func:`~fickcam.plotting.common.save_figure`).
 
     Returns
     -------
@@ -313,10 +309,8 @@ def plot_out_of_spec(ds, outdir: Path, save=save_figure) -> list[Path]:
     ----------
     ds : xarray.Dataset
         A sweep result with ``time_out_of_spec`` and ``fraction_out_of_spec``.
-    outdir : pathlib.Path
-        The folder the figure goes to (``sweep_out_of_spec.png``).
-    save : callable
-        ``save(fig, path) -> path`` (:func:`~fickcam.plotting.common.save_figure`).
+    outdir, save
+        As for :func:`plot_grid`; the figure is ``sweep_out_of_spec.png``.
 
     Returns
     -------

@@ -52,7 +52,7 @@ def case_scene(task: CaseTask):
     Parameters
     ----------
     task : CaseTask
-        The case.
+        The case, its scene as YAML data.
 
     Returns
     -------

@@ -256,7 +256,7 @@ def case_ends(ds) -> np.ndarray:
     Parameters
     ----------
     ds : xarray.Dataset
-        A combined sweep result.
+        A combined sweep result (NaN where a case holds no value).
 
     Returns
     -------

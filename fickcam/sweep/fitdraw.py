@@ -86,10 +86,8 @@ def draw_fitted(path: str, base_data: dict, rng: np.random.Generator, count: int
 
     Parameters
     ----------
-    path : str
-        ``materials.NAME.fit``.
-    base_data : dict
-        The base scene as read from YAML.
+    path, base_data
+        As for :func:`fitted_parameters`.
     rng : numpy.random.Generator
         The sweep's generator.
     count : int

@@ -136,7 +136,7 @@ def decode_arrays(payload: bytes) -> CaseArrays | None:
     Parameters
     ----------
     payload : bytes
-        A payload of :func:`encode_case`.
+        What :func:`encode_case` wrote for the case (an ok case's holds its arrays).
 
     Returns
     -------
@@ -165,7 +165,7 @@ def decode_dataset(payload: bytes):
     Parameters
     ----------
     payload : bytes
-        A payload of :func:`encode_case`.
+        As for :func:`decode_arrays`.
 
     Returns
     -------

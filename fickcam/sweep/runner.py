@@ -201,23 +201,17 @@ def compute_cases(sweep: Sweep, folder: WorkFolder, indices, client, *, progress
 
     Parameters
     ----------
-    sweep : fickcam.sweep.spec.Sweep
-        The sweep.
-    folder : fickcam.sweep.workdir.WorkFolder
-        Its work folder (each finished case is appended to the journal there).
-    indices : iterable of int
-        The cases to run.
+    sweep, folder, indices
+        The sweep, its work folder and the cases to run, as for :func:`run_here`.
     client : distributed.Client
         Where the cases run (:func:`dask_client`).
-    progress : bool
-        Show a progress bar over the cases.
-    done : int
-        Cases already finished, where the bar starts [1].
+    progress, done
+        The progress bar, and the count of cases already finished [1] it starts from.
 
     Returns
     -------
     dict of int to dict
-        Case index -> its record (:func:`fickcam.sweep.case.run_case`).
+        The records of the cases, by index, as :func:`run_here` gives them.
     """
     from distributed import as_completed
 

@@ -91,16 +91,8 @@ def fractions(ds):
     -------
     xarray.Dataset
         ``fraction_out_of_spec``, ``fraction_out_of_spec_low`` and ``_high`` [%] and
-        ``cases_out_of_spec`` [1] over (time, limit); the last carries ``cases`` = n.
-
-    References
-    ----------
-    E. B. Wilson, "Probable inference, the law of succession, and statistical
-    inference", Journal of the American Statistical Association 22 (158), 209-212, 1927,
-    doi:10.1080/01621459.1927.10502953.
-
-    L. D. Brown, T. T. Cai and A. DasGupta, "Interval estimation for a binomial
-    proportion", Statistical Science 16 (2), 101-133, 2001, doi:10.1214/ss/1009213286.
+        ``cases_out_of_spec`` [1] over (time, limit); the last carries ``cases`` = n. The
+        bounds are :func:`wilson_interval`'s (see its references).
     """
     import xarray as xr
 
