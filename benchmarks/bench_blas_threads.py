@@ -30,7 +30,8 @@ MONTE_CARLO_CASES = 4
 
 
 def clear_caches() -> None:
-    """Empty every functools cache of fickcam's modules (meshes, step responses, tables)."""
+    """Empty every functools cache of fickcam's modules (each run keeps its meshes, step
+    responses and tables in a ``RunCache`` of its own; what is left are constant tables)."""
     for name, module in list(sys.modules.items()):
         if name.startswith("fickcam"):
             for value in vars(module).values():

@@ -1,7 +1,7 @@
 """Throughput of a Monte Carlo of the demo cam (configs/singh2017_cam.yaml) on 2
 LocalCluster workers, and what one case costs against one run in a warm process.
 
-    python benchmarks/bench_montecarlo.py            # 1000 cases (issue 17's target)
+    python benchmarks/bench_montecarlo.py            # 1000 cases (the target case count)
     python benchmarks/bench_montecarlo.py --quick    # 100 cases
     python benchmarks/bench_montecarlo.py --cases 8 --scaling-cases 8
 
@@ -32,7 +32,6 @@ from pathlib import Path
 
 import numpy as np
 
-from fickcam.diffusion.models.plane import CASE_CACHES
 from fickcam.simulate import run
 from fickcam.store import open_result
 from fickcam.sweep import run_sweep
@@ -52,14 +51,12 @@ random:
 
 
 def single_run_time(repeats: int = 3) -> float:
-    """Median wall time (s) of one run of the base scene in a warm process, its caches of
-    meshes and step responses emptied first: what a case of this sweep costs, none of
-    whose geometries repeats."""
+    """Median wall time (s) of one run of the base scene in a warm process, with a cache of
+    its own (a fresh ``RunCache``: no mesh or step response kept): what a case of this sweep
+    costs, none of whose geometries repeats."""
     run(BASE)
     times = []
     for _ in range(repeats):
-        for cache in CASE_CACHES:
-            cache.cache_clear()
         started = time.perf_counter()
         run(BASE)
         times.append(time.perf_counter() - started)

@@ -7,7 +7,7 @@ Prints, per worker count, the wall time and the CPU time (the process and every
 process it started: rusage of the children, so other work on a shared machine
 does not count) of `fickcam sweep --workers N`, and the same for one
 `fickcam run` of the base scene (median of ``--singles`` runs); then the sweep's
-cost in single runs. Issue 17 asks for the 9 cases on 1 worker to cost less than
+cost in single runs. The target: the 9 cases on 1 worker cost less than
 3 single runs. The load average is printed because other work skews wall times.
 """
 from __future__ import annotations

@@ -23,6 +23,7 @@ exponent is the slope of log(cost) against log(rows).
 from __future__ import annotations
 
 import argparse
+import os
 import tempfile
 import time
 from pathlib import Path
@@ -226,12 +227,36 @@ def format_record_table(rows: list[dict]) -> str:
     return "\n".join([header, "-" * len(header), *body])
 
 
+def result_tables(rows: list[dict], year: dict) -> dict[str, dict]:
+    """The cost table and the year's accuracy as the tables of a result file."""
+    cost = {"columns": [title for _, title, _, _ in COLUMNS],
+            "rows": [[f"{row[key]:{form}}" for key, _, _, form in COLUMNS] for row in rows]}
+    accuracy = {"columns": ["case", "rows", "outputs", "requested", "error (of the swing)",
+                            "estimate", "CPU s"],
+                "rows": [["solid disc r 10 mm, 4 mm, daily at 12:30, vs its modes", year["rows"],
+                          year["outputs"], f"{year['accuracy']:g}", f"{year['error']:.1e}",
+                          f"{year['estimate']:.1e}", f"{year['cost']:.2f}"]]}
+    return {"cost": cost, "year": accuracy}
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--months", type=int, nargs="+", default=[1, 3, 12])
+    parser.add_argument("--out", type=Path, default=None,
+                        help="result file to write (JSON with the commit, date, machine and "
+                             "load), e.g. benchmarks/results/climate_records.json")
     args = parser.parse_args()
-    print(format_record_table(run_record_bench(tuple(args.months))))
-    print(format_year_accuracy(year_accuracy()))
+    load = os.getloadavg()[0]
+    rows = run_record_bench(tuple(args.months))
+    print(format_record_table(rows))
+    year = year_accuracy()
+    print(format_year_accuracy(year))
+    if args.out is not None:
+        from stamp import write_result
+
+        write_result(args.out, "climate records against a constant climate; a year's accuracy",
+                     "python benchmarks/climate_records.py --out "
+                     "benchmarks/results/climate_records.json", result_tables(rows, year), load)
 
 
 if __name__ == "__main__":

@@ -2,8 +2,7 @@
 and ``auto`` above ``dispatch.BAR_CORRECTED_FROM``;
 ``diffusion/nonfickian/concentration_dependent.py``) and the corrected product of its
 rectangular section (``auto`` from there down; ``diffusion/nonfickian/corrected_product.py``):
-accuracy, honesty of the estimate and cost against independent references
-(issue 13).
+accuracy, honesty of the estimate and cost against independent references.
 
     python benchmarks/dc_bar.py reference   # tests/data/dc_bar_reference.json (method of lines)
     python benchmarks/dc_bar.py small [K ...] [--at A ...] [--only DIRECTION]
@@ -185,13 +184,13 @@ def reference() -> None:
 def measure(size, k: float, direction: str, accuracy: float, reference_mean, reference_layer):
     """One run of ``ROUTE`` (``solid`` at k = 0, which ``auto`` would hand to the exact
     block): (estimate, mean error, layer error, cells, steps, CPU s)."""
-    from fickcam.diffusion import solve
+    from fickcam.diffusion import DiffusionProblem, solve
     from fickcam.diffusion.nonfickian.corrected_product import solve_corrected
 
     bar, d, exposure, times, law, _, _ = case(size, direction, k)
     started = time.process_time()
     if ROUTE == "corrected":
-        result = solve_corrected(bar, d, law, exposure, times, accuracy)
+        result = solve_corrected(DiffusionProblem(bar, d, exposure, times, accuracy, sorption=law))
     else:
         result = solve(bar, d, exposure, times, accuracy=accuracy, sorption=law,
                        model="solid" if k == 0 else ROUTE)

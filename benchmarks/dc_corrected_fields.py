@@ -1,4 +1,4 @@
-"""Stored fields of the corrected product (``diffusion/nonfickian/corrected_fields.py``, issue 13): the
+"""Stored fields of the corrected product (``diffusion/nonfickian/corrected_fields.py``): the
 finest nested 3-D mesh's cells corrected cell by cell, against the exact Fickian block
 and against the corrected mean, and what keeping them costs.
 
@@ -39,7 +39,7 @@ from pathlib import Path
 import numpy as np
 from scipy.spatial import cKDTree
 
-from fickcam.diffusion import Bar, CamPlate, Diffusivity, Exposure, Sheet, solve
+from fickcam.diffusion import Bar, CamPlate, DiffusionProblem, Diffusivity, Exposure, Sheet, solve
 from fickcam.diffusion.models.analytic import exact_history_field
 from fickcam.diffusion.nonfickian.corrected_product import corrected_levels, solve_corrected
 from fickcam.diffusion.planform.cell_moments import gradient_matrix
@@ -211,8 +211,9 @@ def cost():
     accuracy = float(sys.argv[3]) if len(sys.argv) > 3 else 3e-2
     for store in (False, True):
         began = time.process_time()
-        result = solve_corrected(PLATE, ISOTROPIC, ConcentrationDependent(MM, exponent=k),
-                                 exposure(0.0, MM), TIMES, accuracy, store_fields=store)
+        result = solve_corrected(DiffusionProblem(
+            PLATE, ISOTROPIC, exposure(0.0, MM), TIMES, accuracy, store_fields=store,
+            sorption=ConcentrationDependent(MM, exponent=k)))
         print(f"plate k = {k:g} at {accuracy:g} store_fields={store}: "
               f"{time.process_time() - began:.1f} CPU s, {result.cells} cells; "
               f"{result.reason.split('; measured: ')[-1]}", flush=True)

@@ -232,6 +232,7 @@ def plate_record() -> None:
 def skin_margins(*margins: str) -> None:
     """The drying plates (k = 2, 3) at accuracy 1e-2 with ``corrected_product.SKIN_ESTIMATE_MARGIN`` set
     to each of ``margins`` (default 0, 1, 4): the estimate / the distance to the stored run."""
+    from fickcam.diffusion import DiffusionProblem
     from fickcam.diffusion.nonfickian import corrected_product
 
     kept = corrected_product.SKIN_ESTIMATE_MARGIN
@@ -241,7 +242,8 @@ def skin_margins(*margins: str) -> None:
             for k in (2.0, 3.0):
                 plate, d, exposure, times, law = plate_case("desorption", k)
                 stored = json.loads(reference_file(k).read_text())["desorption"]
-                result = corrected_product.solve_corrected(plate, d, law, exposure, times, 1e-2)
+                result = corrected_product.solve_corrected(
+                    DiffusionProblem(plate, d, exposure, times, 1e-2, sorption=law))
                 error = corrected_product.gap((result.mean, result.surface),
                                    (np.asarray(stored["mean"]), np.asarray(stored["layer"])), MM)
                 print(f"| {margin:g} | {k:g} | {result.error_estimate:.2e} | {error:.2e} | "
@@ -334,7 +336,7 @@ def demo_cam(k: float):
 
 
 def cam_table(exponents=(0.0, 1.0, 2.0), accuracies=(1e-2, 3e-3, 1e-3)) -> None:
-    from fickcam.diffusion import solve
+    from fickcam.diffusion import DiffusionProblem, solve
     from fickcam.diffusion.nonfickian.corrected_product import solve_corrected
 
     for k in exponents:
@@ -344,11 +346,13 @@ def cam_table(exponents=(0.0, 1.0, 2.0), accuracies=(1e-2, 3e-3, 1e-3)) -> None:
             exact = solve(geometry, d, exposure, times, accuracy=1e-5, model="plane")
             reference, label = (exact.mean, exact.surface), "plane 1e-5"
         else:
-            fine = solve_corrected(geometry, d, law, exposure, times, 1e-3)
+            fine = solve_corrected(DiffusionProblem(geometry, d, exposure, times, 1e-3,
+                                                    sorption=law))
             reference, label = (fine.mean, fine.surface), "corrected 1e-3"
         for accuracy in accuracies:
             start = time.process_time()
-            result = solve_corrected(geometry, d, law, exposure, times, accuracy)
+            result = solve_corrected(DiffusionProblem(geometry, d, exposure, times, accuracy,
+                                                      sorption=law))
             cpu = time.process_time() - start
             mean = np.max(np.abs(result.mean - reference[0])) / swing
             layer = np.max(np.abs(result.surface - reference[1])) / swing
@@ -568,6 +572,7 @@ def cross_run(case: str, accuracy: str) -> None:
 def corrected_run(case: str, accuracy: str) -> None:
     """``corrected CASE A[@B]``: B forces the coarsest nested plan's accuracy (as is, even
     with one z width: ``corrected_product.base_level`` and ``MIN_Z_WIDTHS`` set for the run)."""
+    from fickcam.diffusion import DiffusionProblem
     from fickcam.diffusion.nonfickian import corrected_product
     from fickcam.diffusion.nonfickian.corrected_product import gap, solve_corrected
 
@@ -578,7 +583,8 @@ def corrected_run(case: str, accuracy: str) -> None:
         corrected_product.base_level, corrected_product.MIN_Z_WIDTHS = (lambda a: float(base)), 1
     start = time.process_time()
     try:
-        result = solve_corrected(geometry, d, law, exposure, times, float(accuracy))
+        result = solve_corrected(DiffusionProblem(geometry, d, exposure, times, float(accuracy),
+                                                  sorption=law))
     finally:
         corrected_product.base_level, corrected_product.MIN_Z_WIDTHS = kept
     line = (f"{case} at {accuracy}: {time.process_time() - start:.1f} CPU s, {result.cells} "

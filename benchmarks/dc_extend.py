@@ -41,7 +41,7 @@ def distance(mean, layer, other_mean, other_layer, swing) -> np.ndarray:
 
 
 def sheet() -> None:
-    from fickcam.diffusion import Diffusivity, Exposure, Sheet, plan, solve
+    from fickcam.diffusion import DiffusionProblem, Diffusivity, Exposure, Sheet, plan, solve
     from fickcam.diffusion.nonfickian.concentration_dependent import solve_nonlinear
     from fickcam.diffusion.problem.sorption import ConcentrationDependent
 
@@ -59,7 +59,8 @@ def sheet() -> None:
         stored = solve(Sheet(h), diffusivity, exposure, times, accuracy=accuracy, sorption=law)
         mean, layer, estimate = stored.extend.interpolated(new)
         chosen = plan(Sheet(h), diffusivity, exposure, times, accuracy, sorption=law)
-        same = solve_nonlinear(Sheet(h), diffusivity, law, exposure, both, chosen)
+        same = solve_nonlinear(DiffusionProblem(Sheet(h), diffusivity, exposure, both,
+                                                sorption=law), chosen)
         rows = np.searchsorted(both, new)
         gap = distance(mean, layer, same.mean[rows], same.surface[rows], mm)
         print(f"| {accuracy:g} | {chosen.steps_per_doubling} | {stored.error_estimate:.1e} | "

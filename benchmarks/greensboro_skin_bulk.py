@@ -1,4 +1,4 @@
-"""The demo cam's skin against its bulk through Greensboro NC's TMY3 year (issue 20).
+"""The demo cam's skin against its bulk through Greensboro NC's TMY3 year.
 
     python benchmarks/greensboro_skin_bulk.py [--out docs/images/greensboro_skin_bulk.png]
 

@@ -1,6 +1,7 @@
 """Sphinx configuration of the fickcam documentation (MyST Markdown, napoleon for the
 numpydoc docstrings, autosummary over the package, reference pages generated from the
-code by ``_ext/fickcam_reference.py``)."""
+code by ``_ext/fickcam_reference.py``, tables of measurements rendered from
+``benchmarks/results/`` by ``_ext/fickcam_results.py``)."""
 import importlib.util
 import re
 from pathlib import Path
@@ -25,6 +26,7 @@ def _load_local_extension(name: str):
 
 _reference = _load_local_extension("fickcam_reference")
 _gallery = _load_local_extension("fickcam_gallery")
+_results = _load_local_extension("fickcam_results")
 
 extensions = [
     "myst_parser",
@@ -91,4 +93,5 @@ def plain_text_docstring(app, what, name, obj, options, lines):
 def setup(app):
     _reference.setup(app)
     _gallery.setup(app)
+    _results.setup(app)
     app.connect("autodoc-process-docstring", plain_text_docstring)

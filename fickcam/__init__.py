@@ -41,10 +41,12 @@ def load_scene(source, *, file_name: str | None = None):
     return _load(source, file_name=file_name)
 
 
-def run(scene, *, accuracy: float | None = None, progress: bool = False, settings=None):
+def run(scene, *, accuracy: float | None = None, progress: bool = False, settings=None,
+        cache=None):
     """Run one scene (a path, a dict or a loaded scene) and return an xarray.Dataset;
     ``settings``: the diffusion solvers' tuned limits (``fickcam.diffusion.SolverSettings``,
-    e.g. its cell caps; None: the defaults).
+    e.g. its cell caps; None: the defaults); ``cache``: a ``fickcam.diffusion.RunCache`` to
+    share between runs (None: a fresh one, dropped with the run).
 
     Parameters
     ----------
@@ -57,6 +59,10 @@ def run(scene, *, accuracy: float | None = None, progress: bool = False, setting
         Show a progress bar over the parts.
     settings : fickcam.diffusion.SolverSettings, optional
         The diffusion solvers' tuned limits; None: the defaults.
+    cache : fickcam.diffusion.RunCache, optional
+        What the diffusion solves build once and read again (meshes, step responses,
+        tables), read-only. Runs given the same cache reuse each other's solves (scenes
+        that share a part, its material and its climate); None: a fresh one per run.
 
     Returns
     -------
@@ -76,7 +82,7 @@ def run(scene, *, accuracy: float | None = None, progress: bool = False, setting
     """
     from .simulate import run as _run
 
-    return _run(scene, accuracy=accuracy, progress=progress, settings=settings)
+    return _run(scene, accuracy=accuracy, progress=progress, settings=settings, cache=cache)
 
 
 def compensate(scene, *, at=None, over=None, accuracy: float | None = None,

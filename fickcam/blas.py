@@ -6,7 +6,7 @@ pool of worker threads for them, which then spin idle between calls: on the proj
 machine, limited to one thread, a demo-cam run took 0.68 x the CPU time, the four-bar
 through a year 0.72 x and a 4-case Monte Carlo 0.85 x, while the large solves (the
 two-phase demo cam's Lanczos on its 58 k-cell planform, a 3-D solid plate) kept their
-wall time within 2 % (benchmarks/bench_blas_threads.py, benchmarks/results/blas_threads.md).
+wall time within 2 % (benchmarks/bench_blas_threads.py, benchmarks/results/blas_threads.json).
 The limit is scoped (``threadpoolctl``): the caller's BLAS threads are restored on return.
 """
 from __future__ import annotations

@@ -58,15 +58,17 @@ def every_step_times(step: float, end: float) -> np.ndarray:
     return np.append(times, end) if end > times[-1] else times
 
 
-def diffusion_options(scene: Scene, accuracy: float | None, settings=None) -> dict:
-    """The scene's diffusion section, ``accuracy`` (when given) in place of its own, and the
-    solvers' tuned limits (``settings``, a ``diffusion.SolverSettings``; None: the defaults)."""
-    from .diffusion import SolverSettings
+def diffusion_options(scene: Scene, accuracy: float | None, settings=None, cache=None) -> dict:
+    """The scene's diffusion section, ``accuracy`` (when given) in place of its own, the
+    solvers' tuned limits (``settings``, a ``diffusion.SolverSettings``; None: the defaults)
+    and the run's cache (``cache``, a ``diffusion.RunCache``; None: a fresh one)."""
+    from .diffusion import RunCache, SolverSettings
 
     section = scene.model.diffusion
     return {"accuracy": accuracy if accuracy is not None else section.accuracy,
             "model": section.model, "surface_layer_depth": section.surface_layer_depth,
-            "settings": SolverSettings() if settings is None else settings}
+            "settings": SolverSettings() if settings is None else settings,
+            "cache": RunCache() if cache is None else cache}
 
 
 def part_model(options: dict, part: str) -> str:
@@ -112,7 +114,7 @@ def plan_parts(scene: Scene, accuracy: float | None = None):
                                       model=part_model(options, part.name),
                                       sorption=part.material.sorption_law(),
                                       surface_layer_depth=options["surface_layer_depth"],
-                                      settings=options["settings"])))
+                                      settings=options["settings"], cache=options["cache"])))
     return environment, times, options, plans
 
 
@@ -121,22 +123,27 @@ def plan_parts(scene: Scene, accuracy: float | None = None):
 
 @on_one_blas_thread  # the caller's BLAS threads are restored on return (fickcam.blas)
 def run(scene, *, accuracy: float | None = None, progress: bool = False, settings=None,
-        diffusions: dict | None = None):
+        diffusions: dict | None = None, cache=None):
     """Run one scene and return its xarray.Dataset; ``settings``: the
     diffusion solvers' tuned limits (``diffusion.SolverSettings``; None: the defaults);
     ``diffusions``: diffusion results already solved for this scene's ageing times, by
     (geometry, material name, fields kept) as :func:`age_part` keys them (parts that
-    match take them instead of solving again)."""
+    match take them instead of solving again); ``cache``: what the diffusion solves build
+    once and share (``diffusion.RunCache``): the run's plans, solves and limit search share
+    it; None: a fresh one for this run (a sweep worker passes its own to every case)."""
+    from .diffusion import RunCache
+
     started = _time.perf_counter()
+    cache = RunCache() if cache is None else cache
     scene = load_scene(scene)
     environment = scene_environment(scene)
     times = ageing_times(scene, environment)
     parts = build_parts(scene)
     ds, histories = _age(scene, environment, times, accuracy, progress, parts=parts,
-                         settings=settings, diffusions=diffusions)
+                         settings=settings, diffusions=diffusions, cache=cache)
     if scene.limits:
         limits, searched = _limits(ds, scene, environment, times, accuracy, parts, histories,
-                                   settings)
+                                   settings, cache)
         notices = [*ds.attrs["notices"], *searched]
         ds = ds.merge(limits, compat="override")
         ds.attrs["notices"] = notices
@@ -146,7 +153,8 @@ def run(scene, *, accuracy: float | None = None, progress: bool = False, setting
 
 
 def _age(scene: Scene, environment: Environment, times: np.ndarray, accuracy: float | None,
-         progress: bool, parts: list[Part] | None = None, settings=None, diffusions=None):
+         progress: bool, parts: list[Part] | None = None, settings=None, diffusions=None,
+         cache=None):
     """The Dataset of ``scene`` at ageing ``times`` (s) and the part histories;
     ``parts``: the scene's parts when already built (their outline expansions are cached
     per part object)."""
@@ -154,7 +162,7 @@ def _age(scene: Scene, environment: Environment, times: np.ndarray, accuracy: fl
 
     values, coords, notices, histories = _aged_values(scene, environment, times, accuracy,
                                                       progress, parts, settings=settings,
-                                                      diffusions=diffusions)
+                                                      diffusions=diffusions, cache=cache)
     design_scene = scene.as_designed()  # differs where the scene is made to compensate
     designs = [design_part(part, environment) for part in build_parts(design_scene)]
     values.update(design_values(design_scene, designs))
@@ -204,7 +212,7 @@ def climate_values(environment: Environment, edges: np.ndarray) -> dict[str, np.
 def _aged_values(scene: Scene, environment: Environment, times: np.ndarray,
                  accuracy: float | None, progress: bool, parts: list[Part] | None = None,
                  stored: tuple[np.ndarray, list[PartHistory]] | None = None, settings=None,
-                 diffusions: dict | None = None):
+                 diffusions: dict | None = None, cache=None):
     """(values, coords, notices, part histories) of ``scene`` at ageing ``times`` (s): every
     variable but the as-designed ones, as SI arrays keyed by schema name.
     ``stored``: the stored run's times and part histories (the limit search): diffusion is
@@ -212,7 +220,7 @@ def _aged_values(scene: Scene, environment: Environment, times: np.ndarray,
     and its material state the stored run's past (validity up to the wet Tg): extended from
     the stored solve where it can (``DiffusionResult.extend``: only the new times are
     summed), else re-solved at both; the part histories are then taken at ``times``."""
-    options = diffusion_options(scene, accuracy, settings)
+    options = diffusion_options(scene, accuracy, settings, cache)
     parts = build_parts(scene) if parts is None else parts
     notices: list[str] = list(environment.notes)
     from .elastic.parts import elastic_parts
@@ -271,7 +279,7 @@ def _aged_values(scene: Scene, environment: Environment, times: np.ndarray,
 
 
 def _limits(ds, scene: Scene, environment: Environment, times, accuracy: float | None,
-            parts: list[Part], histories: list[PartHistory], settings=None):
+            parts: list[Part], histories: list[PartHistory], settings=None, cache=None):
     """(limit_ratio (time, limit) and time_out_of_spec (limit) of the scene's limits, each
     crossing located by re-running the model inside its bracketing interval; the search's
     notices, ``_search_notices``)."""
@@ -300,7 +308,8 @@ def _limits(ds, scene: Scene, environment: Environment, times, accuracy: float |
         limited variables go into the Dataset, beside the stored run's as-designed values."""
         at = np.asarray(at, float)
         values, coords, _, aged = _aged_values(scene, environment, at, accuracy, False, parts,
-                                               stored=(times, histories), settings=settings)
+                                               stored=(times, histories), settings=settings,
+                                               cache=cache)
         for history in aged:
             if history.diffusion is not None:
                 searched[history.part.name] = max(searched.get(history.part.name, 0.0),
@@ -377,7 +386,7 @@ def age_part(part: Part, environment: Environment, times, options: dict, scene: 
                                surface_layer_depth=options["surface_layer_depth"],
                                store_fields=scene.model.outputs.fields or keep_field,
                                part=part.name, sorption=part.material.sorption_law(),
-                               settings=options["settings"])
+                               settings=options["settings"], cache=options["cache"])
         if solved is not None:
             solved[alike] = result
         mean, surface = result.mean, result.surface  # total (free + bound) moisture

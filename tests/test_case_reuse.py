@@ -1,17 +1,15 @@
-"""What sweep cases reuse from earlier cases in the same process (the planform mesh, its
-operator and unit-step response, the outline expansion) is keyed by the exact inputs:
+"""What sweep cases reuse from earlier cases given the same run cache (the planform mesh,
+its operator and unit-step response, the outline expansion) is keyed by the exact inputs:
 a case that changes the cam thickness or the fibre fraction never gets a stale entry,
-and a case that repeats a geometry gets the same numbers as a fresh process."""
+and a case that repeats a geometry gets the same numbers as a fresh cache."""
 import numpy as np
 import pytest
 import xarray as xr
 import yaml
 
 import fickcam
-from fickcam.diffusion import CamPlate
-from fickcam.diffusion.models.plane import CASE_CACHES, planform_response
+from fickcam.diffusion import CamPlate, RunCache
 from test_sweep_run import small_base
-
 
 
 def scene(**changes):
@@ -25,9 +23,7 @@ def scene(**changes):
 
 
 def fresh(data):
-    """The run in a process whose caches are empty."""
-    for cache in CASE_CACHES:
-        cache.cache_clear()
+    """The run with a cache of its own."""
     return fickcam.run(data)
 
 
@@ -47,16 +43,39 @@ def test_cam_plates_are_equal_exactly_when_their_values_are():
 @pytest.mark.slow
 @pytest.mark.parametrize("change", [{"thickness": "12.5 mm"}, {"fraction": 0.55}])
 def test_a_changed_thickness_or_fibre_fraction_never_reuses_a_stale_entry(change):
-    base, changed = scene(), scene(**change)
-    fresh(base)
-    after_base = fickcam.run(changed)  # the base case's entries are in the caches
+    base, changed, shared = scene(), scene(**change), RunCache()
+    fickcam.run(base, cache=shared)
+    after_base = fickcam.run(changed, cache=shared)  # the base case's entries are in it
     xr.testing.assert_identical(after_base.drop_attrs(), fresh(changed).drop_attrs())
-    assert not after_base.equals(fickcam.run(base))
+    assert not after_base.equals(fickcam.run(base, cache=shared))
 
 
 def test_a_repeated_geometry_reuses_the_step_response_and_gives_the_same_numbers():
-    first = fresh(scene())
-    misses = planform_response.cache_info().misses
-    again = fickcam.run(scene())
-    assert planform_response.cache_info().misses == misses, "the repeat marched again"
+    shared = RunCache()
+
+    def responses():
+        return {key for key in shared.keys() if key[0] == "planform response"}
+    first = fickcam.run(scene(), cache=shared)
+    marched = responses()
+    again = fickcam.run(scene(), cache=shared)
+    assert marched and responses() == marched, "the repeat marched again"
     xr.testing.assert_identical(again.drop_attrs(), first.drop_attrs())
+    xr.testing.assert_identical(fresh(scene()).drop_attrs(), first.drop_attrs())
+
+
+def test_a_sweep_worker_passes_its_cache_to_each_case():
+    """``run_case`` with the worker's cache: a second case of the same part marches nothing
+    again; the records agree."""
+    from fickcam.sweep.case import CaseTask, run_case
+
+    data = yaml.safe_load(small_base())
+    data.pop("limits")
+    task = CaseTask(0, data, {}, "case 0", ".")
+    worker = RunCache()
+    first, _ = run_case(task, worker)
+    def responses():
+        return {key for key in worker.keys() if key[0] == "planform response"}
+    marched = responses()
+    second, _ = run_case(task, worker)
+    assert first["status"] == second["status"] == "ok"
+    assert marched and responses() == marched

@@ -145,23 +145,29 @@ def test_fields_on_a_record_take_the_tabulated_sum_and_match_duhamel():
 
 def test_a_plane_solve_repeated_on_a_record_reuses_its_tables_and_a_thicker_part_does_not():
     """A limit search re-solves a part at more ageing times: the step-response tables of a
-    record are taken from the first solve (same results to the last bit, nothing tabulated
-    again); a part of another thickness never reads them."""
-    from fickcam.diffusion.superposition import tabulated
+    record are taken from the first solve of the run (same results to the last bit, nothing
+    tabulated again); a part of another thickness never reads them."""
+    from fickcam.diffusion import RunCache
 
     environment = greensboro_weeks(1)
     diffusivity = Diffusivity((0.4,) * 3, 50e3)
     exposure = environment.exposure(nylon_moisture)
     times = np.linspace(0.0, environment.end, 6)
-    first = solve(circular_plate(0.01, 0.004), diffusivity, exposure, times, accuracy=1e-3)
-    kept = dict(tabulated._TABLES)
+    cache = RunCache()
+
+    def tables():
+        return {key for key in cache.keys() if key[0] == "duhamel table"}
+    first = solve(circular_plate(0.01, 0.004), diffusivity, exposure, times, accuracy=1e-3,
+                  cache=cache)
+    kept = tables()
     assert kept  # the record's mean and contact-layer tables
-    again = solve(circular_plate(0.01, 0.004), diffusivity, exposure, times, accuracy=1e-3)
+    again = solve(circular_plate(0.01, 0.004), diffusivity, exposure, times, accuracy=1e-3,
+                  cache=cache)
     assert np.array_equal(first.mean, again.mean) and np.array_equal(first.surface, again.surface)
-    assert tabulated._TABLES.keys() == kept.keys()
-    thicker = solve(circular_plate(0.01, 0.005), diffusivity, exposure, times, accuracy=1e-3)
-    assert set(tabulated._TABLES) - set(kept)  # its own tables
-    tabulated._TABLES.clear()
+    assert tables() == kept
+    thicker = solve(circular_plate(0.01, 0.005), diffusivity, exposure, times, accuracy=1e-3,
+                    cache=cache)
+    assert tables() - kept  # its own tables
     alone = solve(circular_plate(0.01, 0.005), diffusivity, exposure, times, accuracy=1e-3)
     assert np.array_equal(thicker.mean, alone.mean)  # as if no thinner tables were kept
 

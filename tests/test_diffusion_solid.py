@@ -8,7 +8,8 @@ from functools import lru_cache
 import numpy as np
 import pytest
 
-from fickcam.diffusion import Bar, CamPlate, Diffusivity, Exposure, LinkBar, Plan, plan, solve
+from fickcam.diffusion import (Bar, CamPlate, Diffusivity, DiffusionProblem, Exposure, LinkBar, Plan,
+                              plan, solve)
 from fickcam.diffusion.accuracy import error_model
 from fickcam.diffusion.models import analytic
 from fickcam.diffusion.models.finite_volume import solve_direct
@@ -115,8 +116,8 @@ def march_pair(part, disc, diffusivity, per_doubling: int = 4):
     """Backward Euler on the solve's step plan and on its bisection, Richardson-combined
     (``solve_direct``), on a given operator."""
     chosen = Plan("solid", disc.cells, 0, "3-D reference", 0.0, (), per_doubling)
-    return solve_direct(part, diffusivity, UP_DOWN, TIMES, chosen, disc=disc,
-                        surface_layer_depth=LAYER)
+    return solve_direct(DiffusionProblem(part, diffusivity, UP_DOWN, TIMES,
+                                         surface_layer_depth=LAYER), chosen, disc=disc)
 
 
 def reference(part, outline: float, diffusivity, mirrors, finest_z: float = 0.1):
@@ -259,8 +260,8 @@ def test_solid_prisms_stay_bounded_and_finite_from_saturated_to_dry():
     history = Exposure.piecewise([0.0, 30 * DAY, 200 * DAY], 330.0, [2.0, 0.0], 1.0)
     times = np.array([0, 10, 30, 31, 40, 60, 100, 200]) * DAY
     chosen = plan(plate, ISOTROPIC, history, times, accuracy=0.1, model="solid")
-    plain = solve_direct(plate, ISOTROPIC, history, times, chosen, store_fields=True,
-                         extrapolate=False)
+    plain = solve_direct(DiffusionProblem(plate, ISOTROPIC, history, times, store_fields=True),
+                         chosen, extrapolate=False)
     combined = solve(plate, ISOTROPIC, history, times, accuracy=0.1, model="solid",
                      store_fields=True)
     for result, slack in ((plain, 1e-12), (combined, 2e-3)):

@@ -276,6 +276,7 @@ ENTRY_POINTS = {
     "fickcam.sweep.case.case_scene": (),
     "fickcam.sweep.case.failure_message": (),
     "fickcam.sweep.case.run_case": (),
+    "fickcam.sweep.case.worker_cache": (),
     "fickcam.sweep.fitdraw.fitted_parameters": (),
     "fickcam.sweep.fitdraw.draw_fitted": ("count",),
     "fickcam.sweep.workdir.write_json": (),

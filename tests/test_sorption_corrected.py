@@ -11,7 +11,8 @@ import numpy as np
 import pytest
 from hypothesis import given, settings, strategies as st
 
-from fickcam.diffusion import Bar, CamPlate, Diffusivity, Exposure, plan, solve
+from fickcam.diffusion import (Bar, CamPlate, DiffusionProblem, Diffusivity, Exposure, plan,
+                               solve)
 from fickcam.diffusion.accuracy.error_model import LAYER_TOLERANCE
 from fickcam.diffusion.accuracy.grid_convergence import three_levels
 from fickcam.diffusion.nonfickian.corrected_pieces import as_prism, bar_coordinates
@@ -338,7 +339,8 @@ def test_a_fickian_bar_through_the_corrected_product_is_the_exact_block(start=0.
     through the thickness and the faces' layer over the section): both within the run's
     estimate of the exact block."""
     wet = Exposure.piecewise([0.0, BAR_TIMES[-1]], [330.0], [surface], initial_moisture=start)
-    result = solve_corrected(BAR, ISOTROPIC, law(0.0), wet, BAR_TIMES, 3e-2)
+    result = solve_corrected(DiffusionProblem(BAR, ISOTROPIC, wet, BAR_TIMES, 3e-2,
+                                              sorption=law(0.0)))
     exact = solve(BAR, ISOTROPIC, wet, BAR_TIMES, model="analytic")
     assert np.max(np.abs(result.mean - exact.mean)) / MM <= result.error_estimate
     assert np.max(np.abs(result.surface - exact.surface)) / MM <= result.error_estimate

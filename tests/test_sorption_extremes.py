@@ -6,7 +6,7 @@ import pytest
 from hypothesis import example, given, settings
 from hypothesis import strategies as st
 
-from fickcam.diffusion import solve
+from fickcam.diffusion import DiffusionProblem, solve
 from fickcam.diffusion.exact.two_phase import two_phase_sheet_uptake
 from fickcam.diffusion.problem.exposure import Diffusivity, Exposure
 from fickcam.diffusion.problem.geometry import CamPlate, Disc, Sheet
@@ -119,7 +119,8 @@ def test_corrected_plate_extremes_stay_bounded_and_agree_with_the_3d_cells(expon
     exposure = Exposure.piecewise(changes[0], [330.0] * len(changes[1]), changes[1],
                                   initial_moisture=initial)
     law = ConcentrationDependent(MM, exponent=exponent)
-    corrected = solve_corrected(PLATE, ISOTROPIC, law, exposure, PLATE_TIMES, 0.3)
+    corrected = solve_corrected(DiffusionProblem(PLATE, ISOTROPIC, exposure, PLATE_TIMES, 0.3,
+                                                 sorption=law))
     alone = solve(PLATE, ISOTROPIC, exposure, PLATE_TIMES, accuracy=MESH_LEVELS[-1],
                   model="solid", sorption=law)
     swing = max(abs(wet - initial), abs(late - initial))

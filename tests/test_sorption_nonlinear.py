@@ -145,8 +145,7 @@ def test_the_skin_is_resolved_from_its_start_on():
     one sample of it), the skin's cells (smallest D) are sized at the outputs after it, the
     wetting outputs take the largest D's cells; the plan covers both (no wider first row, no
     faster growth) with far fewer cells than the skin's cells at every output (35 568)."""
-    from fickcam.diffusion import CamPlate
-    from fickcam.diffusion.forcing.clock import scales as scales_of
+    from fickcam.diffusion import CamPlate, DiffusionProblem
     from fickcam.diffusion.models.finite_volume import plan_direct
 
     tau = H ** 2 / D
@@ -157,10 +156,8 @@ def test_the_skin_is_resolved_from_its_start_on():
     asked = []
 
     def planner(d, a, outputs):
-        s = scales_of(plate, d, history)
         asked.append((a, np.asarray(outputs, float),
-                      plan_direct(plate, d, "solid", s.tau_star(history.change_times),
-                                  s.tau_star(np.asarray(outputs, float)), a, history)))
+                      plan_direct(DiffusionProblem(plate, d, history, outputs, a), "solid")))
         return asked[-1][2]
 
     start = concentration_dependent.skin_start(law, history)

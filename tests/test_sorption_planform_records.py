@@ -172,7 +172,7 @@ def _modelled_level(coefficients):
     """A stand-in for ``planform_modes._level`` whose compared values (mean, layer) err exactly
     by ``coefficients`` @ (w0^2, g^2), on the cells the planform would have (0.8 x the
     cap's cheap count, as measured on the demo cam)."""
-    def level(geometry, d, depth, finest, growth, ages, tolerance, measure):
+    def level(geometry, d, depth, finest, growth, ages, tolerance, measure, cache):
         cells = int(0.8 * estimated_prism_cells(geometry, finest, growth, stretch_of(d))[0])
         values = COMPARED_VALUES + coefficients @ np.array([[finest ** 2],
                                                                       [growth ** 2]])

@@ -113,18 +113,22 @@ def scene_at(data: dict, base_dir: Path, times: np.ndarray):
     return scene_from(data, base_dir, "<compensation>")
 
 
-def run_at(data: dict, base_dir: Path, times: np.ndarray, accuracy, diffusions=None):
+def run_at(data: dict, base_dir: Path, times: np.ndarray, accuracy, diffusions=None,
+           cache=None):
     """The scene mapping run at ageing ``times`` (s) only, fields off, no file;
-    ``diffusions``: diffusion results already solved at ``times`` (:func:`part_states`)."""
+    ``diffusions``: diffusion results already solved at ``times`` (:func:`part_states`);
+    ``cache``: the compensation's ``diffusion.RunCache`` (its runs share it)."""
     from ..simulate import run
 
-    ds = run(scene_at(data, base_dir, times), accuracy=accuracy, diffusions=diffusions)
+    ds = run(scene_at(data, base_dir, times), accuracy=accuracy, diffusions=diffusions,
+             cache=cache)
     if ds.sizes["time"] != len(times):
         raise FickcamError("compensation: a run did not keep the ageing times it was given")
     return ds
 
 
-def part_states(data: dict, base_dir: Path, times: np.ndarray, accuracy, names: set):
+def part_states(data: dict, base_dir: Path, times: np.ndarray, accuracy, names: set,
+                cache=None):
     """What a run of the scene computes for the parts ``names``, without its mechanisms,
     limits and other parts: their diffusion and material state.
 
@@ -140,6 +144,8 @@ def part_states(data: dict, base_dir: Path, times: np.ndarray, accuracy, names: 
         The diffusion's requested accuracy [-] (None: the scene's).
     names : set of str
         The parts to compute.
+    cache : fickcam.diffusion.RunCache, optional
+        The compensation's cache, which its runs share; None: a fresh one.
 
     Returns
     -------
@@ -154,7 +160,7 @@ def part_states(data: dict, base_dir: Path, times: np.ndarray, accuracy, names: 
 
     scene = scene_at(data, base_dir, times)
     environment = scene_environment(scene)
-    options = diffusion_options(scene, accuracy)
+    options = diffusion_options(scene, accuracy, cache=cache)
     elastic = elastic_parts(scene.model)
     solved: dict = {}  # parts alike share a solve, as in a run
     histories = [age_part(part, environment, times, options, scene, [],
@@ -259,7 +265,7 @@ def settles_next(previous: list, made: list, new: list, targets: list) -> bool:
 
 
 def fixed_point(scene, data: dict, targets: list, times: np.ndarray, check: np.ndarray,
-                start, accuracy):
+                start, accuracy, cache=None):
     """(made values, the run of the made scene at ``check``, iterations, strains at
     ``times``) from ``start``, the run of the design at ``check``.
 
@@ -269,7 +275,7 @@ def fixed_point(scene, data: dict, targets: list, times: np.ndarray, check: np.n
     (:func:`settles_next`), the last dimensions are made without solving their diffusion
     again: their strains differ from the last iteration's by less than the tolerances'
     share of the compensation. The made scene is run once, at the end, with the diffusion
-    of the last iteration."""
+    of the last iteration. ``cache``: the compensation's ``diffusion.RunCache``."""
     at = np.searchsorted(check, times)
     names = {t.part for t in targets}
     made = previous = [t.design for t in targets]
@@ -286,11 +292,11 @@ def fixed_point(scene, data: dict, targets: list, times: np.ndarray, check: np.n
                 trial = made_trial(data, scene, targets, made, Path(folder))
             if settled:
                 after = run_at(trial, scene.base_dir, check, accuracy,
-                               diffusions_for(trial, scene.base_dir, check, solved))
+                               diffusions_for(trial, scene.base_dir, check, solved), cache)
                 return made, after, settled, strains
             previous, made = made, new
             trial = made_trial(data, scene, targets, made, Path(folder))
-            ds, solved = part_states(trial, scene.base_dir, check, accuracy, names)
+            ds, solved = part_states(trial, scene.base_dir, check, accuracy, names, cache)
     raise FickcamError(f"compensation did not settle in {MAX_ITERATIONS} iterations")
 
 
@@ -346,8 +352,10 @@ def compensate(scene, at=None, over=None, *, accuracy: float | None = None,
         When ``at`` and ``over`` are both given or both missing, a time is outside the
         scene's history, or ``keep_limits`` is given without ``at``.
     """
+    from ..diffusion import RunCache
     from ..scene import design_data, load_scene
 
+    cache = RunCache()   # every run of this compensation shares it
     scene = load_scene(scene)
     times, life = compensation_times(scene, at, over)
     if keep_limits and at is None:
@@ -358,9 +366,9 @@ def compensate(scene, at=None, over=None, *, accuracy: float | None = None,
     targets = _targets(design, points)
     data = design_data(copy.deepcopy(scene.document.data))
     with quiet_runs():
-        before = run_at(data, scene.base_dir, check, accuracy)
+        before = run_at(data, scene.base_dir, check, accuracy, cache=cache)
     made, after, iterations, strains = fixed_point(design, data, targets, times, check, before,
-                                                   accuracy)
+                                                   accuracy, cache)
     comp = Compensation(targets, made, times, iterations, data, scene=scene, life=life,
                         check=check, before=before, after=after,
                         residual=[residual(t.design, m, s)
@@ -368,7 +376,7 @@ def compensate(scene, at=None, over=None, *, accuracy: float | None = None,
     if wide and comp.fails():
         window = window_times(*life, check)
         made, after, iterations, strains = fixed_point(design, data, targets, window, check,
-                                                       before, accuracy)
+                                                       before, accuracy, cache)
         comp = comp.widened(window, made, after, iterations,
                             [residual(t.design, m, s) for t, m, s in zip(targets, made, strains)])
     return comp

@@ -3,7 +3,9 @@
 The sub-packages are the stages of the data flow, each importing only the ones listed
 before it (tests/test_architecture.py holds the order):
 
-- ``problem``: what is solved (geometries, exposure, diffusivity, sorption laws, results);
+- ``problem``: what is solved (geometries, exposure, diffusivity, sorption laws, the frozen
+  ``DiffusionProblem`` that carries them, results) and the run's cache (``RunCache``: what
+  plans and solves build once, read-only);
 - ``accuracy``: the error model every plan sizes its cells and steps with;
 - ``forcing``: the climate as the solvers see it (the rescaled clock, long records);
 - ``exact``: closed-form series (the exact path);
@@ -19,11 +21,14 @@ FiPy is imported inside the backend's functions only, so importing this package 
 light.
 """
 from .accuracy.error_model import CellCaps
-from .dispatch import MODELS, SolverSettings, plan, solve
+from .dispatch import MODELS, SolverSettings, plan, plan_problem, solve, solve_problem
+from .problem.cache import RunCache
+from .problem.definition import DiffusionProblem
 from .problem.exposure import GAS_CONSTANT, Diffusivity, Exposure
 from .problem.geometry import Bar, CamPlate, Disc, Geometry, LinkBar, Sheet
 from .problem.results import DiffusionResult, Plan
 
 __all__ = ["GAS_CONSTANT", "Diffusivity", "Exposure", "Bar", "CamPlate", "Disc",
            "Geometry", "LinkBar", "Sheet", "MODELS", "DiffusionResult", "Plan", "SolverSettings",
-           "CellCaps", "plan", "solve"]
+           "CellCaps", "RunCache", "DiffusionProblem", "plan", "plan_problem", "solve",
+           "solve_problem"]

@@ -1,5 +1,8 @@
-"""The dispatcher: ``plan`` (which model, cells and steps a solve will use, and why)
-and ``solve`` (run that plan).
+"""The dispatcher: ``plan_problem`` (which model, cells and steps a solve will use, and
+why) and ``solve_problem`` (run that plan) of a ``DiffusionProblem``; ``plan`` and ``solve``
+are their keyword conveniences. The registry ``ROUTES`` holds each law's routes (Fick,
+Langmuir, concentration-dependent D), each saying why it does not take a problem, planning
+and solving; ``auto`` takes the first that does (``route_of``).
 
 Models (``diffusion.model``), each a ``FickModel`` of the registry ``FICK_MODELS``, which
 says which parts it applies to, why not where it does not, and plans and solves:
@@ -22,7 +25,6 @@ from __future__ import annotations
 
 import logging
 from dataclasses import dataclass, replace
-from functools import lru_cache
 from typing import Callable
 
 import numpy as np
@@ -33,7 +35,7 @@ from .accuracy.error_model import (ANALYTIC_ERROR, LAYER_TOLERANCE, MAX_CELLS, P
 from .exact.separable import exact_available
 from .forcing.clock import RescaledTime
 from .forcing.clock import scales as scales_of
-from .forcing.record import RECORD_SHARE, is_long_record
+from .forcing.record import is_long_record
 from .models.analytic import solve_analytic
 from .models.finite_volume import plan_direct, solve_direct
 from .models.plane import plan_plane, solve_plane
@@ -45,6 +47,8 @@ from .nonfickian.planform_modes import (REFINEMENT, RefinedPlanform, Refinement,
                                         planform_source, refined_planform)
 from .nonfickian.two_phase_mesh import two_phase_marcher
 from .nonfickian.two_phase_modes import langmuir_history
+from .problem.cache import RunCache, run_cache
+from .problem.definition import DiffusionProblem
 from .problem.exposure import Diffusivity, Exposure, swing
 from .problem.geometry import LAYER_DEPTH, Bar, CamPlate, Disc, LinkBar, Sheet
 from .problem.results import DiffusionResult, Plan
@@ -68,10 +72,9 @@ class FickModel:
     """One Fickian model of the registry: the parts it applies to, why it does not apply to
     a part (``refusal``), its plan and its solve.
 
-    ``plan(geometry, diffusivity, exposure, times, accuracy, depth, caps) -> Plan`` and
-    ``solve(geometry, diffusivity, exposure, times, chosen, accuracy, depth, store_fields,
-    part) -> DiffusionResult`` (depth: the contact layer's [m]; times [s]; caps: the
-    ``CellCaps`` of the run's ``SolverSettings``)."""
+    ``plan(problem, caps, cache) -> Plan`` and ``solve(problem, chosen, cache) ->
+    DiffusionResult`` (problem: a ``DiffusionProblem``; caps: the ``CellCaps`` of the run's
+    ``SolverSettings``; chosen: the plan; cache: the run's ``RunCache``)."""
 
     name: str
     parts: tuple[type, ...]
@@ -93,52 +96,29 @@ class FickModel:
         return None
 
 
-def _plan_analytic(geometry, diffusivity, exposure, times, accuracy, depth, caps) -> Plan:
+def _plan_analytic(problem: DiffusionProblem, caps, cache) -> Plan:
+    exposure = problem.exposure
     if is_long_record(exposure):
         return Plan("analytic", 0, 0, f"exact Crank series, tabulated once and superposed "
                     f"over the {exposure.ramp.size}-segment record in closed form per row "
-                    "(cost linear in the rows)", accuracy)
+                    "(cost linear in the rows)", problem.accuracy)
     return Plan("analytic", 0, 0, "exact Crank series with Duhamel superposition in "
                 "rescaled time (linear, one Arrhenius factor): cheapest and exact",
                 ANALYTIC_ERROR)
 
 
-def _solve_analytic(geometry, diffusivity, exposure, times, chosen, accuracy, depth,
-                    store_fields, part) -> DiffusionResult:
-    record = accuracy if is_long_record(exposure) else None
-    return solve_analytic(geometry, diffusivity, exposure, times, depth, store_fields, chosen,
-                          record)
-
-
-def _scaled_history(geometry, diffusivity, exposure, times):
-    """tau* of the exposure's changes and of the outputs."""
-    scales = scales_of(geometry, diffusivity, exposure)
-    return scales.tau_star(exposure.change_times), scales.tau_star(np.asarray(times, float))
-
-
-def _plan_plane(geometry, diffusivity, exposure, times, accuracy, depth, caps) -> Plan:
-    """The outline's expansion, then a graded mesh; a long record's sum takes its share."""
-    change, outputs = _scaled_history(geometry, diffusivity, exposure, times)
-    share = 1.0 - RECORD_SHARE if is_long_record(exposure) else 1.0
-    return plan_plane(geometry, diffusivity, change, outputs, exposure.ramp, share * accuracy,
-                      depth, caps)
-
-
-def _solve_plane(geometry, diffusivity, exposure, times, chosen, accuracy, depth, store_fields,
-                 part) -> DiffusionResult:
-    return solve_plane(geometry, diffusivity, exposure, times, chosen, accuracy=accuracy,
-                       surface_layer_depth=depth, store_fields=store_fields, part=part)
+def _solve_analytic(problem: DiffusionProblem, chosen: Plan, cache) -> DiffusionResult:
+    record = problem.accuracy if is_long_record(problem.exposure) else None
+    return solve_analytic(problem, chosen, record, cache)
 
 
 def _finite_volume(name: str, parts: tuple[type, ...]) -> FickModel:
     """A finite-volume model (``models.finite_volume``) of these parts."""
-    def planned(geometry, diffusivity, exposure, times, accuracy, depth, caps) -> Plan:
-        return _direct_plan(geometry, diffusivity, name, exposure, times, accuracy, caps=caps)
+    def planned(problem: DiffusionProblem, caps, cache) -> Plan:
+        return plan_direct(problem, name, caps=caps, cache=cache)
 
-    def solved(geometry, diffusivity, exposure, times, chosen, accuracy, depth, store_fields,
-               part) -> DiffusionResult:
-        return solve_direct(geometry, diffusivity, exposure, times, chosen,
-                            surface_layer_depth=depth, store_fields=store_fields, part=part)
+    def solved(problem: DiffusionProblem, chosen: Plan, cache) -> DiffusionResult:
+        return solve_direct(problem, chosen, cache=cache)
     return FickModel(name, parts, planned, solved)
 
 
@@ -149,7 +129,7 @@ FICK_MODELS = {model.name: model for model in (
     FickModel("analytic", (Sheet, Bar, Disc), _plan_analytic, _solve_analytic, exact=True),
     _finite_volume("slab", (Sheet,)),
     _finite_volume("axisymmetric", (Disc,)),
-    FickModel("plane", (CamPlate, LinkBar), _plan_plane, _solve_plane),
+    FickModel("plane", (CamPlate, LinkBar), plan_plane, solve_plane),
     _finite_volume("solid", (Bar, CamPlate, LinkBar)))}
 MODELS = ("auto", *FICK_MODELS)
 PARTS = (Sheet, Disc, Bar, CamPlate, LinkBar)
@@ -161,7 +141,8 @@ def numerical_model(geometry) -> str:
                 if not model.exact and model.applies(geometry))
 
 
-def _validate(geometry, model: str, accuracy: float) -> None:
+def _validate(problem: DiffusionProblem) -> None:
+    geometry, model, accuracy = problem.geometry, problem.model, problem.accuracy
     if model not in MODELS:
         raise InputError(f"diffusion.model {model!r}: one of {', '.join(MODELS)}")
     if type(geometry) not in PARTS:
@@ -185,13 +166,6 @@ def _fick_model(geometry, model: str) -> FickModel:
         raise InputError(f"diffusion.model {model} is not available for this "
                          f"{type(geometry).__name__}: {why}")
     return FICK_MODELS[model]
-
-
-def _two_phase_model(geometry, model: str) -> str:
-    """Langmuir sorption: the exact modes where the part has them; a CamPlate or LinkBar
-    ``plane``: its planform's quadrature x the exact sheet (``planform_modes``), or ``solid``
-    prisms; else the direct finite volumes (``two_phase_mesh``)."""
-    return _fick_model(geometry, model).name
 
 
 @dataclass(frozen=True)
@@ -221,32 +195,26 @@ SETTINGS = SolverSettings()
 
 def plan(geometry, diffusivity: Diffusivity, exposure: Exposure, times: np.ndarray,
          accuracy: float = 1e-3, model: str = "auto", sorption=None,
-         surface_layer_depth: float | None = None, settings: SolverSettings = SETTINGS) -> Plan:
+         surface_layer_depth: float | None = None, settings: SolverSettings = SETTINGS,
+         cache: RunCache | None = None) -> Plan:
     """The model, cells and steps ``solve`` will use, and why, without solving
     (``sorption``: a law of ``problem.sorption``, None for Fick; ``surface_layer_depth``:
     the solve's, so that a plane plan and its solve share one outline expansion;
-    ``settings``: the solve's).
+    ``settings``: the solve's; ``cache``: the run's, which the solve then reads).
 
     Parameters
     ----------
-    geometry : Sheet, Disc, Bar, CamPlate or LinkBar
-        The part, dry dimensions [m].
-    diffusivity : Diffusivity
-        D(T) along the part axes [m^2/s].
-    exposure : Exposure
-        The surface history: temperature [K] and surface moisture [weight %] over time.
-    times : numpy.ndarray
-        The times at which moisture is wanted [s].
-    accuracy : float
-        The relative accuracy [-] asked for, a fraction of the moisture swing, in (0, 1).
-    model : str
-        One of ``MODELS``; "auto" chooses.
-    sorption : optional
-        A sorption law of ``fickcam.diffusion.problem.sorption``; None: Fick's law.
+    geometry, diffusivity, exposure, times, accuracy, model, sorption
+        The part [m], its D(T) [m^2/s], its surface history, the times [s], the relative
+        accuracy [-] and the model asked for: the fields of :class:`DiffusionProblem`.
     surface_layer_depth : float, optional
-        The depth of the contact layer [m]; None: ``LAYER_DEPTH`` (5e-4 m).
+        The depth of the contact layer [m]; None: not given (a Fickian plan does not
+        read it; a sorption plan takes ``LAYER_DEPTH``, 5e-4 m).
     settings : SolverSettings
         The solvers' tuned limits.
+    cache : RunCache, optional
+        What the run's plans and solves build once and share (meshes, step responses,
+        tables); None: a fresh one, kept only for this call.
 
     Returns
     -------
@@ -259,67 +227,43 @@ def plan(geometry, diffusivity: Diffusivity, exposure: Exposure, times: np.ndarr
         When the model is unknown or does not apply to the part, the geometry is not
         one of the five, or the accuracy is outside (0, 1).
     """
-    _validate(geometry, model, accuracy)
-    if is_nonlinear(sorption) and _nonlinear_route(geometry, model, sorption, exposure,
-                                                   times, accuracy) == "fick":
-        return _as_fick(plan, geometry, diffusivity, exposure, times, sorption, accuracy,
-                        model, surface_layer_depth, settings=settings)
-    if is_langmuir(sorption) or is_nonlinear(sorption):
-        depth = LAYER_DEPTH if surface_layer_depth is None else surface_layer_depth
-        return _plan_sorption(geometry, diffusivity, exposure, times, accuracy, model, sorption,
-                              depth, settings)
-    return _fick_model(geometry, model).plan(geometry, diffusivity, exposure, times, accuracy,
-                                             surface_layer_depth, settings.cells)
+    return plan_problem(DiffusionProblem(geometry, diffusivity, exposure, times, accuracy, model,
+                                         surface_layer_depth, sorption=sorption),
+                        settings, cache)
 
 
-def _plan_sorption(geometry, diffusivity, exposure, times, accuracy, model, sorption,
-                   depth, settings: SolverSettings) -> Plan:
-    law = describe(sorption)
-    if is_nonlinear(sorption) and _nonlinear_route(geometry, model, sorption, exposure,
-                                                   times, accuracy) == "corrected":
-        corrected = plan_corrected(geometry, diffusivity, sorption, exposure, times, accuracy)
-        return replace(corrected, reason=f"{law}; {corrected.reason}")
-    if is_nonlinear(sorption):
-        chosen = _nonlinear_model(geometry, model)
-        # the 3-D cells cut at the mirror planes (``symmetry_cuts``)
-        mirror_cut = chosen == "solid"
-        direct = nonlinear_plan(lambda d, a, at: _direct_plan(geometry, d, chosen, exposure, at, a,
-                                                              mirror_cut, settings.cells),
-                                diffusivity, sorption, exposure, times, accuracy)
-        mirror = {Bar: "; solved on one octant (mirror planes)",
-                  CamPlate: "; solved on half the thickness (mid-plane mirror)",
-                  LinkBar: "; solved on half the thickness (mid-plane mirror)"}
-        return replace(direct, reason=f"{law}; {direct.reason}{mirror.get(type(geometry), '')}")
-    chosen = _two_phase_model(geometry, model)
-    if chosen == "analytic":
-        return Plan("analytic", 0, 0, f"{law}: exact Fickian modes of the part, each a "
-                    "2x2 free/bound system advanced exactly through the history", accuracy)
-    if chosen == "plane":
-        return _plan_planform(geometry, diffusivity, exposure, times, accuracy, sorption, depth,
-                              settings.planform)
-    direct = _direct_plan(geometry, diffusivity, chosen, exposure, times, accuracy,
-                          caps=settings.cells)
-    return replace(direct, reason=f"{law}; {direct.reason}")
+def plan_problem(problem: DiffusionProblem, settings: SolverSettings = SETTINGS,
+                 cache: RunCache | None = None) -> Plan:
+    """:func:`plan` of a ``DiffusionProblem`` (its ``store_fields`` and ``part`` unread): the
+    registry's route for the problem (``route_of``) plans it.
+
+    Parameters
+    ----------
+    problem : DiffusionProblem
+        The part, its diffusivity, exposure and times [s], and how they are asked for.
+    settings : SolverSettings
+        The solvers' tuned limits.
+    cache : RunCache, optional
+        The run's cache; None: a fresh one.
+
+    Returns
+    -------
+    Plan
+        The model, its cells and steps, the error estimate [-] and why.
+    """
+    _validate(problem)
+    return route_of(problem).plan(problem, settings, run_cache(cache))
 
 
-def _direct_plan(geometry, diffusivity, chosen, exposure, times, accuracy,
-                 mirrored: bool = False, caps: CellCaps = MAX_CELLS) -> Plan:
-    change, outputs = _scaled_history(geometry, diffusivity, exposure, times)
-    return plan_direct(geometry, diffusivity, chosen, change, outputs, accuracy, exposure, mirrored,
-                       caps)
-
-
-def _plan_planform(geometry, diffusivity, exposure, times, accuracy, sorption, depth,
-                   refinement: Refinement) -> Plan:
+def _plan_planform(problem: DiffusionProblem, refinement: Refinement, cache: RunCache) -> Plan:
     """The planform mesh the solve will use: the first mesh from the error model, refined
     from the two-phase histories it measures (``refined``, kept for the solve, so that
     ``fickcam check`` shows the refined mesh and a run pays for it once)."""
-    design, refined = _planform_refinement(geometry, diffusivity, exposure, times, accuracy,
-                                           sorption, depth, refinement)
+    design, refined = _planform_refinement(problem, refinement, cache)
     _, estimate = refined.result
-    capped = ("" if refined.error <= PLANFORM_SHARE * accuracy else
+    capped = ("" if refined.error <= PLANFORM_SHARE * problem.accuracy else
               f"; capped at {refinement.cap} cells: error above the requested accuracy")
-    return Plan("plane", refined.cells, 0, f"{describe(sorption)}: the planform's FiPy "
+    return Plan("plane", refined.cells, 0, f"{describe(problem.sorption)}: the planform's FiPy "
                 f"operator (first mesh {design.note}, about {int(np.prod(design.cells))} cells; "
                 f"refined from the two-phase histories on {refined.levels} meshes to "
                 f"{refined.cells} cells), its decay seen by the mean and layer as a "
@@ -329,78 +273,48 @@ def _plan_planform(geometry, diffusivity, exposure, times, accuracy, sorption, d
                 finest=refined.finest, growth=refined.growth)
 
 
-def _planform_refinement(geometry, diffusivity, exposure, times, accuracy, sorption, depth,
-                         refinement: Refinement):
-    """(first mesh, ``_refined``) of a two-phase CamPlate or LinkBar."""
-    scales = scales_of(geometry, diffusivity, exposure)
-    t_lo = earliest_output(scales.tau_star(exposure.change_times),
-                           scales.tau_star(np.asarray(times, float)))
-    design = planform_design(geometry, diffusivity.pre_exponential, accuracy, t_lo)
-    return design, _refined(geometry, diffusivity, exposure, tuple(np.asarray(times, float)),
-                            accuracy, sorption, depth, design.finest, design.growth, refinement)
+def _planform_refinement(problem: DiffusionProblem, refinement: Refinement, cache: RunCache):
+    """(first mesh, ``_refined``) of a two-phase CamPlate or LinkBar, the refinement kept in
+    the run's ``cache``: ``plan`` and ``solve`` share it."""
+    geometry, diffusivity, exposure = problem.geometry, problem.diffusivity, problem.exposure
+    scales = scales_of(geometry, diffusivity, exposure, cache)
+    t_lo = earliest_output(scales.tau_star(exposure.change_times), scales.tau_star(problem.times))
+    design = planform_design(geometry, diffusivity.pre_exponential, problem.accuracy, t_lo)
+    key = ("two-phase planform refinement", geometry, diffusivity, exposure,
+           problem.times.tobytes(), problem.accuracy, problem.sorption,
+           problem.surface_layer_depth, design.finest, design.growth, refinement)
+    return design, cache.get(key, lambda: _refined(problem, design.finest, design.growth,
+                                                   refinement, cache))
 
 
-@lru_cache(maxsize=4)
-def _refined(geometry, diffusivity, exposure, times: tuple, accuracy, sorption, depth, finest,
-             growth, refinement: Refinement) -> RefinedPlanform:
+def _refined(problem: DiffusionProblem, finest, growth, refinement: Refinement,
+             cache: RunCache) -> RefinedPlanform:
     """``planform_modes.refined_planform`` of the two-phase history (the march on each mesh,
     most of whose cost is the planform operators): its mesh error is ``PLANFORM_SHARE`` of
-    the accuracy, the march the rest. Cached: ``plan`` and ``solve`` share it (its
-    histories' arrays read-only)."""
-    times = np.asarray(times, float)
+    the accuracy, the march the rest."""
+    geometry, diffusivity, exposure = problem.geometry, problem.diffusivity, problem.exposure
+    times, accuracy, depth = problem.times, problem.accuracy, problem.surface_layer_depth
     share, scale = PLANFORM_SHARE * accuracy, 1.0 / max(swing(exposure), 1e-300)
 
     def measure(source):
-        history, estimate = langmuir_history(geometry, diffusivity, sorption, exposure, times,
-                                             accuracy - share, depth, source)
-        for values in history.values():
-            values.setflags(write=False)   # cached with the refinement: shared, never copied
+        history, estimate = langmuir_history(geometry, diffusivity, problem.sorption, exposure,
+                                             times, accuracy - share, depth, source)
         compared = [history["mean"], history["bound"], history["surface"] / LAYER_TOLERANCE]
         return np.stack(compared) * scale, (history, estimate)
 
     ages = read_ages(RescaledTime(diffusivity, exposure), exposure, times)
     return refined_planform(geometry, diffusivity.pre_exponential, depth, finest, growth, ages,
-                            share, measure, refinement)
+                            share, measure, refinement, cache)
 
 
-def _nonlinear_model(geometry, model: str) -> str:
-    """Concentration-dependent D: FiPy sweeps on the part's own mesh: the slab (Sheet),
-    the (r, z) grid (Disc), 3-D cells cut at the mirror planes (Bar, CamPlate, LinkBar:
-    ``symmetry_cuts``). No exact series and no planform x sheet product exist for D(c) (the
-    Laplacian no longer separates): ``analytic`` means the mesh model, ``plane`` is refused."""
-    if model == "plane":
-        raise InputError(f"diffusion.model {model} has no concentration-dependent form (D(c) "
-                         f"does not separate); use solid or auto for a {type(geometry).__name__}")
-    if isinstance(geometry, (Bar, CamPlate, LinkBar)):
-        return "solid"
-    return numerical_model(geometry) if model in ("auto", "analytic") else model
-
-
-def _nonlinear_route(geometry, model: str, sorption, exposure, times, accuracy) -> str:
-    """How ``auto`` solves D(c) on a Bar, CamPlate or LinkBar: ``fick`` where f is one
-    number over the moisture the part meets (k = 0: Fick with D f, the Fickian models'
-    own result), else ``corrected`` (``corrected_product``: the D(c) sheet x planform corrected on
-    coarse 3-D cells; far cheaper than the 3-D cells alone at the same accuracy), for a
-    Bar (the prism of its rectangular section, its thickness the fastest axis) from
-    ``BAR_CORRECTED_FROM`` down, above it ``finite_volume`` (the octant's cells). ``solid``:
-    ``finite_volume`` always (the 3-D cells alone, the check)."""
-    if model != "auto" or not isinstance(geometry, (Bar, CamPlate, LinkBar)):
-        return "direct"
-    if spread(sorption, exposure, times) <= 1.0 + 1e-12:
-        return "fick"
-    if isinstance(geometry, Bar) and accuracy > BAR_CORRECTED_FROM:
-        return "direct"
-    return "corrected"
-
-
-def _as_fick(call, geometry, diffusivity, exposure, times, sorption, accuracy, model, depth,
-             **options):
-    """``call`` (plan or solve) for Fick with D f(c0): f is constant where the part goes."""
-    factor = float(sorption.factor(exposure.initial_moisture))
+def _as_fick(call, problem: DiffusionProblem, settings: SolverSettings, cache: RunCache):
+    """``call`` (plan or solve of a problem) for Fick with D f(c0): f is constant where the
+    part goes."""
+    sorption, diffusivity = problem.sorption, problem.diffusivity
+    factor = float(sorption.factor(problem.exposure.initial_moisture))
     scaled = Diffusivity(tuple(d * factor for d in diffusivity.pre_exponential),
                          diffusivity.activation_energy)
-    done = call(geometry, scaled, exposure, times, accuracy=accuracy, model=model,
-                surface_layer_depth=depth, **options)
+    done = call(replace(problem, diffusivity=scaled, sorption=None), settings, cache)
     return replace(done, reason=f"{describe(sorption)} is {factor:g} over the moisture met: "
                                 f"Fick with D x {factor:g}; {done.reason}")
 
@@ -408,11 +322,11 @@ def _as_fick(call, geometry, diffusivity, exposure, times, sorption, accuracy, m
 def solve(geometry, diffusivity: Diffusivity, exposure: Exposure, times: np.ndarray, *,
           accuracy: float = 1e-3, model: str = "auto", surface_layer_depth: float = LAYER_DEPTH,
           store_fields: bool = False, part: str = "", sorption=None,
-          settings: SolverSettings = SETTINGS) -> DiffusionResult:
+          settings: SolverSettings = SETTINGS, cache: RunCache | None = None) -> DiffusionResult:
     """Moisture (weight %) of one part at ``times`` (s) under ``exposure``; with a
     ``sorption`` law (``problem.sorption``) the mean and surface are the total (free +
     bound) moisture and, for Langmuir, ``bound`` the bound-water mean. ``settings``: the
-    solvers' tuned limits (``SolverSettings``).
+    solvers' tuned limits (``SolverSettings``); ``cache``: the run's (``RunCache``).
 
     Parameters
     ----------
@@ -424,7 +338,6 @@ def solve(geometry, diffusivity: Diffusivity, exposure: Exposure, times: np.ndar
         The relative accuracy [-], in (0, 1), a fraction of the moisture swing.
     model : str
         One of ``MODELS``; "auto" chooses (the exact series where it applies).
-
     surface_layer_depth : float
         The depth of the contact layer whose mean is reported as ``surface`` [m].
     store_fields : bool
@@ -435,6 +348,10 @@ def solve(geometry, diffusivity: Diffusivity, exposure: Exposure, times: np.ndar
         A sorption law of ``fickcam.diffusion.problem.sorption``; None: Fick's law.
     settings : SolverSettings
         The solvers' tuned limits.
+    cache : RunCache, optional
+        What the run's plans and solves build once and share (meshes, step responses,
+        tables; read-only); None: a fresh one, kept only for this call (and the result's
+        ``extend``).
 
     Returns
     -------
@@ -448,90 +365,280 @@ def solve(geometry, diffusivity: Diffusivity, exposure: Exposure, times: np.ndar
         When the model is unknown or does not apply to the part, or the accuracy is
         outside (0, 1).
     """
-    times = np.asarray(times, float)
-    route = (_nonlinear_route(geometry, model, sorption, exposure, times, accuracy)
-             if is_nonlinear(sorption) else "")
-    if route == "fick":
-        return _as_fick(solve, geometry, diffusivity, exposure, times, sorption, accuracy, model,
-                        surface_layer_depth, store_fields=store_fields, part=part,
-                        settings=settings)
-    chosen = plan(geometry, diffusivity, exposure, times, accuracy, model, sorption,
-                  surface_layer_depth, settings)
-    if route:   # D(c): ``extend`` reads between the steps where the cells stay (``dense_output``)
-        def again(at):
-            return plan(geometry, diffusivity, exposure, at, accuracy, model, sorption,
-                        surface_layer_depth, settings)
-
-        def resolve(at):
-            return solve(geometry, diffusivity, exposure, at, accuracy=accuracy, model=model,
-                         surface_layer_depth=surface_layer_depth, part=part, sorption=sorption,
-                         settings=settings)
-    if route == "corrected":
-        return held_to_plan(solve_corrected(
-            geometry, diffusivity, sorption, exposure, times, accuracy,
-            surface_layer_depth=surface_layer_depth, store_fields=store_fields, part=part,
-            reason=chosen.reason, sweeps=settings.sweeps), chosen, again, resolve)
-    log.debug("%s: %s, %d cells, %d steps (%s)", part or type(geometry).__name__, chosen.model,
-              chosen.cells, chosen.steps, chosen.reason)
-    if route:
-        return held_to_plan(_solve_sorption(geometry, diffusivity, exposure, times, chosen,
-                                            sorption, surface_layer_depth, store_fields, part,
-                                            accuracy, settings), chosen, again, resolve)
-    if sorption is not None and (is_langmuir(sorption) or is_nonlinear(sorption)):
-        return _solve_sorption(geometry, diffusivity, exposure, times, chosen, sorption,
-                               surface_layer_depth, store_fields, part, accuracy, settings)
-    return FICK_MODELS[chosen.model].solve(geometry, diffusivity, exposure, times, chosen,
-                                           accuracy, surface_layer_depth, store_fields, part)
+    return solve_problem(DiffusionProblem(geometry, diffusivity, exposure, times, accuracy, model,
+                                          surface_layer_depth, store_fields, part, sorption),
+                         settings, cache)
 
 
-def _solve_sorption(geometry, diffusivity, exposure, times, chosen: Plan, sorption, depth,
-                    store_fields, part, accuracy,
-                    settings: SolverSettings = SETTINGS) -> DiffusionResult:
-    if chosen.model in ("analytic", "plane"):
-        return _langmuir_modes(geometry, diffusivity, exposure, times, chosen, sorption, depth,
-                               accuracy, settings.planform)
-    if is_langmuir(sorption):
-        return solve_direct(geometry, diffusivity, exposure, times, chosen,
-                            surface_layer_depth=depth, store_fields=store_fields, part=part,
-                            marcher=two_phase_marcher(sorption, exposure))
-    return solve_nonlinear(geometry, diffusivity, sorption, exposure, times, chosen,
-                           surface_layer_depth=depth, store_fields=store_fields, part=part,
-                           sweeps=settings.sweeps)
+def solve_problem(problem: DiffusionProblem, settings: SolverSettings = SETTINGS,
+                  cache: RunCache | None = None) -> DiffusionResult:
+    """:func:`solve` of a ``DiffusionProblem``: the registry's route for the problem
+    (``route_of``) plans and solves it.
+
+    Parameters
+    ----------
+    problem, settings
+        As in :func:`plan_problem`.
+    cache : RunCache, optional
+        The run's cache; None: a fresh one (kept by the result's ``extend``).
+
+    Returns
+    -------
+    DiffusionResult
+        Mean and contact-layer moisture [weight %] at the problem's times.
+    """
+    _validate(problem)
+    return route_of(problem).solve(problem, settings, run_cache(cache))
 
 
-def _langmuir_modes(geometry, diffusivity, exposure, times, chosen, sorption, depth, accuracy,
-                    refinement: Refinement = REFINEMENT):
+# ---------------------------------------------------------------- the routes' registry
+
+
+@dataclass(frozen=True)
+class Route:
+    """One way of solving a problem, an entry of ``ROUTES``: why it does not take a problem
+    (``refusal(problem)``: a sentence a user can read; None where it does), its plan and
+    its solve. ``plan(problem, settings, cache) -> Plan``; ``solve(problem, settings,
+    cache) -> DiffusionResult`` (it plans first where it needs the plan)."""
+
+    name: str
+    refusal: Callable
+    plan: Callable
+    solve: Callable
+
+
+def route_of(problem: DiffusionProblem) -> Route:
+    """The first route of the problem's law (``ROUTES``, in the order ``auto`` prefers them)
+    that takes the problem; an ``InputError`` with the last refusal where none does."""
+    why = None
+    for route in ROUTES[law_of(problem.sorption)]:
+        why = route.refusal(problem)
+        if why is None:
+            return route
+    raise InputError(why)
+
+
+def law_of(sorption) -> str:
+    """The registry's key of a sorption law: fick (None), langmuir or nonlinear."""
+    if is_nonlinear(sorption):
+        return "nonlinear"
+    return "langmuir" if is_langmuir(sorption) else "fick"
+
+
+def _with_layer(problem: DiffusionProblem) -> DiffusionProblem:
+    """The problem with its contact layer given (a plan alone may leave it None)."""
+    if problem.surface_layer_depth is None:
+        return replace(problem, surface_layer_depth=LAYER_DEPTH)
+    return problem
+
+
+def _planned(problem: DiffusionProblem, settings: SolverSettings, cache: RunCache) -> Plan:
+    """The problem's plan, logged."""
+    chosen = plan_problem(problem, settings, cache)
+    log.debug("%s: %s, %d cells, %d steps (%s)", problem.name, chosen.model, chosen.cells,
+              chosen.steps, chosen.reason)
+    return chosen
+
+
+def _always(problem: DiffusionProblem) -> None:
+    return None
+
+
+# Fick: the Fickian model of ``FICK_MODELS`` that ``auto`` or ``diffusion.model`` picks
+def _plan_fick(problem: DiffusionProblem, settings: SolverSettings, cache: RunCache) -> Plan:
+    return _fick_model(problem.geometry, problem.model).plan(problem, settings.cells, cache)
+
+
+def _solve_fick(problem: DiffusionProblem, settings: SolverSettings,
+                cache: RunCache) -> DiffusionResult:
+    chosen = _planned(problem, settings, cache)
+    return FICK_MODELS[chosen.model].solve(problem, chosen, cache)
+
+
+# Langmuir (two-phase): the Fickian model that ``auto`` or ``diffusion.model`` picks decides
+# how: its exact modes, a CamPlate's or LinkBar's planform quadrature x the exact sheet
+# (``planform_modes``), else the direct finite volumes (``two_phase_mesh``)
+def _two_phase_refusal(fickian: str):
+    """Refuses a problem whose Fickian model is not ``fickian``."""
+    def refusal(problem: DiffusionProblem) -> str | None:
+        chosen = _fick_model(problem.geometry, problem.model).name
+        return None if chosen == fickian else f"the part's Fickian model is {chosen}"
+    return refusal
+
+
+def _plan_two_phase_modes(problem, settings, cache) -> Plan:
+    return Plan("analytic", 0, 0, f"{describe(problem.sorption)}: exact Fickian modes of the "
+                "part, each a 2x2 free/bound system advanced exactly through the history",
+                problem.accuracy)
+
+
+def _plan_two_phase_planform(problem, settings, cache) -> Plan:
+    return _plan_planform(_with_layer(problem), settings.planform, cache)
+
+
+def _solve_two_phase_modes(problem, settings, cache) -> DiffusionResult:
+    return _langmuir_modes(problem, _planned(problem, settings, cache), settings.planform, cache)
+
+
+def _plan_two_phase_mesh(problem, settings, cache) -> Plan:
+    chosen = _fick_model(problem.geometry, problem.model).name
+    direct = plan_direct(_with_layer(problem), chosen, caps=settings.cells, cache=cache)
+    return replace(direct, reason=f"{describe(problem.sorption)}; {direct.reason}")
+
+
+def _solve_two_phase_mesh(problem, settings, cache) -> DiffusionResult:
+    return solve_direct(problem, _planned(problem, settings, cache), cache=cache,
+                        marcher=two_phase_marcher(problem.sorption, problem.exposure))
+
+
+# Concentration-dependent D: Fick with D f where f is one number, the corrected product
+# (auto on a Bar, CamPlate or LinkBar), else the part's own mesh swept per step
+def _prism_under_auto(problem: DiffusionProblem) -> str | None:
+    if problem.model != "auto" or not isinstance(problem.geometry, (Bar, CamPlate, LinkBar)):
+        return "auto on a Bar, CamPlate or LinkBar only"
+    return None
+
+
+def _constant_factor_refusal(problem: DiffusionProblem) -> str | None:
+    """Fick with D f takes a D(c) problem where f is one number over the moisture the part
+    meets (k = 0: the Fickian models' own result)."""
+    why = _prism_under_auto(problem)
+    if why is None and spread(problem.sorption, problem.exposure, problem.times) > 1.0 + 1e-12:
+        return "D(c) changes over the moisture the part meets"
+    return why
+
+
+def _corrected_refusal(problem: DiffusionProblem) -> str | None:
+    """The D(c) sheet x planform corrected on coarse 3-D cells (``corrected_product``) is far
+    cheaper than the 3-D cells alone at the same accuracy; for a Bar (the prism of its
+    rectangular section) from ``BAR_CORRECTED_FROM`` down, above it its octant's cells."""
+    if isinstance(problem.geometry, Bar) and problem.accuracy > BAR_CORRECTED_FROM:
+        return f"a Bar's octant is cheaper above accuracy {BAR_CORRECTED_FROM:g}"
+    return _prism_under_auto(problem)
+
+
+def _swept_refusal(problem: DiffusionProblem) -> str | None:
+    """No exact series and no planform x sheet product exist for D(c) (the Laplacian no
+    longer separates): ``plane`` is refused (``analytic`` means the mesh model)."""
+    if problem.model == "plane":
+        return (f"diffusion.model plane has no concentration-dependent form (D(c) does not "
+                f"separate); use solid or auto for a {type(problem.geometry).__name__}")
+    return None
+
+
+def _plan_corrected(problem, settings, cache) -> Plan:
+    corrected = plan_corrected(problem)
+    return replace(corrected, reason=f"{describe(problem.sorption)}; {corrected.reason}")
+
+
+def _solve_corrected(problem, settings, cache) -> DiffusionResult:
+    chosen = plan_problem(problem, settings, cache)
+    return _held(problem, settings, cache, chosen,
+                 solve_corrected(problem, chosen.reason, settings.sweeps))
+
+
+def _swept_mesh(geometry, model: str) -> str:
+    """The D(c) sweeps' mesh: the slab (Sheet), the (r, z) grid (Disc), 3-D cells cut at
+    the mirror planes (Bar, CamPlate, LinkBar: ``symmetry_cuts``)."""
+    if isinstance(geometry, (Bar, CamPlate, LinkBar)):
+        return "solid"
+    return numerical_model(geometry) if model in ("auto", "analytic") else model
+
+
+MIRRORS = {Bar: "; solved on one octant (mirror planes)",
+           CamPlate: "; solved on half the thickness (mid-plane mirror)",
+           LinkBar: "; solved on half the thickness (mid-plane mirror)"}
+
+
+def _plan_swept(problem, settings, cache) -> Plan:
+    problem = _with_layer(problem)
+    chosen = _swept_mesh(problem.geometry, problem.model)
+    mirror_cut = chosen == "solid"   # the 3-D cells cut at the mirror planes
+    direct = nonlinear_plan(
+        lambda d, a, at: plan_direct(replace(problem, diffusivity=d, accuracy=a, times=at),
+                                     chosen, mirror_cut, settings.cells, cache),
+        problem.diffusivity, problem.sorption, problem.exposure, problem.times, problem.accuracy)
+    return replace(direct, reason=f"{describe(problem.sorption)}; {direct.reason}"
+                                  f"{MIRRORS.get(type(problem.geometry), '')}")
+
+
+def _solve_swept(problem, settings, cache) -> DiffusionResult:
+    chosen = _planned(problem, settings, cache)
+    return _held(problem, settings, cache, chosen,
+                 solve_nonlinear(problem, chosen, settings.sweeps, cache))
+
+
+def _held(problem, settings, cache, chosen: Plan, result: DiffusionResult) -> DiffusionResult:
+    """A D(c) result whose ``extend`` reads between the steps where the cells stay and
+    solves again where a plan at the new times has other cells (``dense_output``)."""
+    def again(at):
+        return plan_problem(problem.at(at), settings, cache)
+
+    def resolve(at):
+        return solve_problem(replace(problem.at(at), store_fields=False), settings, cache)
+    return held_to_plan(result, chosen, again, resolve)
+
+
+def _plan_as_fick(problem, settings, cache) -> Plan:
+    return _as_fick(plan_problem, problem, settings, cache)
+
+
+def _solve_as_fick(problem, settings, cache) -> DiffusionResult:
+    return _as_fick(solve_problem, problem, settings, cache)
+
+
+# Each law's routes, in the order ``auto`` prefers them (``route_of`` takes the first that
+# takes the problem)
+ROUTES = {
+    "fick": (Route("fick", _always, _plan_fick, _solve_fick),),
+    "langmuir": (
+        Route("two-phase modes", _two_phase_refusal("analytic"), _plan_two_phase_modes,
+              _solve_two_phase_modes),
+        Route("two-phase planform", _two_phase_refusal("plane"), _plan_two_phase_planform,
+              _solve_two_phase_modes),
+        Route("two-phase mesh", _always, _plan_two_phase_mesh, _solve_two_phase_mesh)),
+    "nonlinear": (
+        Route("Fick with D f", _constant_factor_refusal, _plan_as_fick, _solve_as_fick),
+        Route("corrected product", _corrected_refusal, _plan_corrected, _solve_corrected),
+        Route("swept mesh", _swept_refusal, _plan_swept, _solve_swept)),
+}
+
+
+def _langmuir_modes(problem: DiffusionProblem, chosen: Plan, refinement: Refinement,
+                    cache: RunCache):
     """The exact two-phase modal march; for a CamPlate or LinkBar on its planform's
-    quadrature (``planform_modes``), the histories of the plan's refined mesh (``_refined``)."""
+    quadrature (``planform_modes``), the histories of the plan's refined mesh (``_refined``,
+    from the run's ``cache``)."""
+    problem = _with_layer(problem)
+    geometry, diffusivity, exposure = problem.geometry, problem.diffusivity, problem.exposure
+    times, accuracy, depth = problem.times, problem.accuracy, problem.surface_layer_depth
     if chosen.model != "plane":
-        history, estimate = langmuir_history(geometry, diffusivity, sorption, exposure, times,
-                                             accuracy, depth)
+        history, estimate = langmuir_history(geometry, diffusivity, problem.sorption, exposure,
+                                             times, accuracy, depth)
         return _langmuir_result(times, history, estimate, chosen)
-    _, refined = _planform_refinement(geometry, diffusivity, exposure, times, accuracy, sorption,
-                                      depth, refinement)
+    _, refined = _planform_refinement(problem, refinement, cache)
     history, _ = refined.result
-    result = _langmuir_result(times, history, chosen.error_estimate, chosen)
+    stored = _langmuir_result(times, history, chosen.error_estimate, chosen)
     source = planform_source(geometry, diffusivity.pre_exponential, lanczos_spectrum(
         planform_operator(geometry, diffusivity.pre_exponential, depth, refined.finest,
-                          refined.growth), refined.steps))
+                          refined.growth, cache), refined.steps))
 
     def extend(at) -> DiffusionResult:
         """The limit search's extra times on this refined mesh (no new refinement): the
         march through the stored and new times together, the new rows kept."""
         new = np.setdiff1d(np.asarray(at, float), times)
         both = np.union1d(times, new)
-        extra, _ = langmuir_history(geometry, diffusivity, sorption, exposure, both,
+        extra, _ = langmuir_history(geometry, diffusivity, problem.sorption, exposure, both,
                                     (1.0 - PLANFORM_SHARE) * accuracy, depth, source)
         rows = np.searchsorted(both, new)
-        return result.merged(new, extra["mean"][rows], extra["surface"][rows],
+        return stored.merged(new, extra["mean"][rows], extra["surface"][rows],
                              extra["bound"][rows])
-    result.extend = extend
-    return result
+    return replace(stored, extend=extend)
 
 
 def _langmuir_result(times, history, estimate, chosen) -> DiffusionResult:
-    """The result of a two-phase modal history (a planform's: read-only, cached with its
-    refinement for the next plan and solve)."""
+    """The result of a two-phase modal history (a planform's: read-only, kept in the run's
+    cache with its refinement for the next plan and solve)."""
     return DiffusionResult(times, history["mean"], history["surface"], chosen.model,
                            chosen.cells, 0, estimate, chosen.reason, bound=history["bound"])
 

@@ -7,6 +7,9 @@ solver failure, even a bug) becomes a ``failed`` record with its message; it
 never stops the other cases. Failures that are not the scene's fault (anything
 but a :class:`~fickcam.errors.FickcamError`) are marked ``retry``: a resumed
 sweep runs those cases again.
+
+A worker runs its cases with one ``diffusion.RunCache`` (``worker_cache``: one per worker
+process), so cases that share a part, its material and its climate reuse its solves.
 """
 from __future__ import annotations
 
@@ -19,6 +22,8 @@ from ..errors import FickcamError, SceneError
 from ..messages import quieter
 
 log = logging.getLogger(__name__)
+
+CACHE_ATTRIBUTE = "fickcam_run_cache"  # where a dask worker keeps its cases' cache
 
 
 @dataclass(frozen=True)
@@ -96,7 +101,33 @@ def failure_message(exc: BaseException) -> str:
     return f"internal error: {type(exc).__name__}: {exc}"
 
 
-def run_case(task: CaseTask) -> tuple[dict, bytes]:
+def worker_cache():
+    """The ``diffusion.RunCache`` of this dask worker process, shared by its cases.
+
+    Made by the worker's first case and kept on the worker; outside a dask worker a fresh
+    one.
+
+    Returns
+    -------
+    fickcam.diffusion.RunCache
+        The cache.
+    """
+    from ..diffusion import RunCache
+
+    try:
+        from distributed import get_worker
+
+        worker = get_worker()
+    except (ImportError, ValueError):   # not installed, or not on a worker
+        return RunCache()
+    cache = getattr(worker, CACHE_ATTRIBUTE, None)
+    if cache is None:
+        cache = RunCache()
+        setattr(worker, CACHE_ATTRIBUTE, cache)
+    return cache
+
+
+def run_case(task: CaseTask, cache=None) -> tuple[dict, bytes]:
     """Run one case; return its record and its journal payload (record and result).
 
     Whatever goes wrong becomes a ``failed`` record with its message, never an exception; a
@@ -106,6 +137,9 @@ def run_case(task: CaseTask) -> tuple[dict, bytes]:
     ----------
     task : CaseTask
         The case.
+    cache : fickcam.diffusion.RunCache, optional
+        The worker's cache, shared by its cases; None: the dask worker's
+        (:func:`worker_cache`).
 
     Returns
     -------
@@ -123,7 +157,7 @@ def run_case(task: CaseTask) -> tuple[dict, bytes]:
     dataset = None
     try:
         with quieter("fickcam.simulate", logging.ERROR):  # its notices go into the record
-            dataset = run(case_scene(task))
+            dataset = run(case_scene(task), cache=worker_cache() if cache is None else cache)
         notices = dataset.attrs.get("notices") or []
         status, message = "ok", "; ".join(str(n) for n in notices)
     except Exception as exc:  # noqa: BLE001 - a case's failure is data, not a crash

@@ -159,7 +159,8 @@ def run_here(sweep: Sweep, folder: WorkFolder, indices, *, progress: bool = Fals
              done: int = 0) -> dict[int, dict]:
     """Run the cases ``indices`` one after the other in this process (no dask).
 
-    Caches of meshes and step responses carry over from case to case.
+    One ``diffusion.RunCache`` serves every case: meshes, step responses and tables carry
+    over from case to case.
 
     Parameters
     ----------
@@ -179,11 +180,14 @@ def run_here(sweep: Sweep, folder: WorkFolder, indices, *, progress: bool = Fals
     dict of int to dict
         Case index -> its record (:func:`fickcam.sweep.case.run_case`).
     """
+    from ..diffusion import RunCache
+
+    cache = RunCache()
     collector = _Collector(sweep, folder, progress, done)
     try:
         for index in indices:
             task = case_task(sweep, index)
-            record, payload = run_case(task)
+            record, payload = run_case(task, cache)
             collector.add(record, payload, task.label)
     finally:
         collector.bar.close()

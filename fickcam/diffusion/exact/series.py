@@ -8,7 +8,7 @@ is used.
 """
 from __future__ import annotations
 
-from functools import lru_cache
+from functools import cache
 
 import numpy as np
 from scipy.special import erfc, gamma, j0, j1, jn_zeros
@@ -172,10 +172,10 @@ ROOT_TABLE = 4096  # J0 roots made at once for every smaller count asked for (me
 #   benchmarks/results/tuned_constants.md)
 
 
-@lru_cache(maxsize=8)
 def bessel_roots(count: int) -> np.ndarray:
     """First ``count`` positive roots beta_n of J0 (the first ``ROOT_TABLE`` from one table:
-    scipy's roots do not depend on how many are asked for). Read-only (cached)."""
+    scipy's roots do not depend on how many are asked for; more are made on each call).
+    Read-only."""
     if count <= ROOT_TABLE:
         return _root_table()[:count]   # a view of a read-only table: read-only
     roots = jn_zeros(0, count)
@@ -183,7 +183,7 @@ def bessel_roots(count: int) -> np.ndarray:
     return roots
 
 
-@lru_cache(maxsize=1)
+@cache   # a constant of mathematics made on first use (32 kB), not a run's state
 def _root_table() -> np.ndarray:
     table = jn_zeros(0, ROOT_TABLE)
     table.setflags(write=False)
@@ -196,7 +196,7 @@ def roots_for(fourier_min: float) -> np.ndarray:
     return bessel_roots(min(count, 200_000))
 
 
-@lru_cache(maxsize=1)
+@cache   # constants of mathematics made on first use, not a run's state
 def cylinder_short_coefficients() -> np.ndarray:
     """Coefficients of F(t*) = sum_k b_k t*^((k+1)/2) for the solid cylinder.
 

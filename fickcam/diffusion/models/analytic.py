@@ -7,6 +7,8 @@ from __future__ import annotations
 import numpy as np
 
 from ..exact.separable import saturation_tau, step_field, step_response
+from ..problem.cache import RunCache, run_cache
+from ..problem.definition import DiffusionProblem
 from ..problem.geometry import LAYER_DEPTH, Bar, Disc, Sheet
 from ..problem.results import DiffusionResult, Plan
 from ..superposition.duhamel import duhamel
@@ -28,61 +30,64 @@ def _at_points(geometry, d0, points):
     return kernel
 
 
-def exact_history(geometry, diffusivity, exposure, times, surface_layer_depth=LAYER_DEPTH):
+def exact_history(geometry, diffusivity, exposure, times, surface_layer_depth=LAYER_DEPTH,
+                  cache: RunCache | None = None):
     """Volume-mean and contact-layer-mean moisture (weight %) at ``times`` (s)
-    for any ``Exposure`` of a part with an exact step response."""
+    for any ``Exposure`` of a part with an exact step response (``cache``: the run's)."""
     d0 = diffusivity.pre_exponential
     result = (duhamel(_mean_and_layer(geometry, d0, surface_layer_depth), diffusivity, exposure,
-                      times, saturation_tau(geometry, d0)) + exposure.initial_moisture)
+                      times, saturation_tau(geometry, d0), cache=cache)
+              + exposure.initial_moisture)
     return {"mean": result[:, 0], "surface": result[:, 1]}
 
 
-def exact_history_field(geometry, diffusivity, exposure, times, points):
+def exact_history_field(geometry, diffusivity, exposure, times, points,
+                        cache: RunCache | None = None):
     """Moisture (weight %) at ``points`` (see ``separable.step_field``), shape
     (n_times, n_points)."""
     d0 = diffusivity.pre_exponential
     return duhamel(_at_points(geometry, d0, points), diffusivity, exposure, times,
-                   saturation_tau(geometry, d0), chunk=8) + exposure.initial_moisture
+                   saturation_tau(geometry, d0), chunk=8, cache=cache) + exposure.initial_moisture
 
 
 def record_history(geometry, diffusivity, exposure, times, accuracy,
-                   surface_layer_depth=LAYER_DEPTH):
+                   surface_layer_depth=LAYER_DEPTH, cache: RunCache | None = None):
     """``exact_history`` over a long record by the tabulated sum, with its error estimate
     (relative to the record's largest swing |Ms - M0|, as ``accuracy`` is) and the
     ``LongRecord`` the fields reuse."""
     d0 = diffusivity.pre_exponential
     record = LongRecord.of(diffusivity, exposure, times, saturation_tau(geometry, d0)[0],
-                           accuracy)
+                           accuracy, run_cache(cache))
     values, error, _ = record.superpose(_mean_and_layer(geometry, d0, surface_layer_depth))
     values = values + exposure.initial_moisture
     return {"mean": values[:, 0], "surface": values[:, 1]}, error, record
 
 
-def solve_analytic(geometry, diffusivity, exposure, times, depth, store_fields,
-                   chosen: Plan, record_accuracy: float | None = None) -> DiffusionResult:
-    """The exact mean and contact-layer history (and fields on request); with
-    ``record_accuracy`` (a long record) by the tabulated sum, and the result carries its
-    error estimate."""
+def solve_analytic(problem: DiffusionProblem, chosen: Plan, record_accuracy: float | None = None,
+                   cache: RunCache | None = None) -> DiffusionResult:
+    """The exact mean and contact-layer history (and fields on request) of a ``problem``;
+    with ``record_accuracy`` (a long record) by the tabulated sum, and the result carries
+    its error estimate; ``cache``: the run's."""
+    geometry, diffusivity, exposure = problem.geometry, problem.diffusivity, problem.exposure
+    times, depth = problem.times, problem.surface_layer_depth
     estimate, record = chosen.error_estimate, None
     if record_accuracy is None:
-        history = exact_history(geometry, diffusivity, exposure, times, surface_layer_depth=depth)
+        history = exact_history(geometry, diffusivity, exposure, times, depth, cache)
     else:
         history, estimate, record = record_history(geometry, diffusivity, exposure, times,
-                                                   record_accuracy, surface_layer_depth=depth)
+                                                   record_accuracy, depth, cache)
     mean, surface = history["mean"], history["surface"]
-    result = DiffusionResult(times, np.asarray(mean, float), np.asarray(surface, float),
-                             "analytic", 0, 0, estimate, chosen.reason)
-    if store_fields:
-        fields, coordinates = _analytic_fields(geometry, diffusivity, exposure, times, record)
-        result.fields, result.cell_coordinates = fields, coordinates
-        result.cells = fields.shape[1]
-    return result
+    fields, coordinates = (_analytic_fields(geometry, diffusivity, exposure, times, record, cache)
+                           if problem.store_fields else (None, {}))
+    return DiffusionResult(times, np.asarray(mean, float), np.asarray(surface, float),
+                           "analytic", 0 if fields is None else fields.shape[1], 0, estimate,
+                           chosen.reason, fields=fields, cell_coordinates=coordinates)
 
 
 FIELD_POINTS = {Sheet: (40,), Disc: (24, 12), Bar: (16, 12, 8)}  # cell centres for exact fields
 
 
-def _analytic_fields(geometry, diffusivity, exposure, times, record):
+def _analytic_fields(geometry, diffusivity, exposure, times, record, cache):
     """Exact fields at the centres of a structured grid (``FIELD_POINTS`` cells per axis);
     cell_x/y/z are the coordinates (a Disc: x = r)."""
     def centres(length, count):
@@ -100,7 +105,7 @@ def _analytic_fields(geometry, diffusivity, exposure, times, record):
     grids = np.meshgrid(*axes.values(), indexing="ij")
     points = {name: grid.ravel() for name, grid in zip(axes, grids)}
     if record is None:
-        fields = exact_history_field(geometry, diffusivity, exposure, times, points)
+        fields = exact_history_field(geometry, diffusivity, exposure, times, points, cache)
     else:
         kernel = _at_points(geometry, diffusivity.pre_exponential, points)
         fields = record.field(kernel) + exposure.initial_moisture

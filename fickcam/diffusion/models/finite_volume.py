@@ -23,24 +23,30 @@ from ..operators import grids, sizing
 from ..operators.prisms import prism
 from ..operators.symmetry_cuts import halved_axes
 from ..planform.admissible import band_share
-from ..problem.exposure import Diffusivity, Exposure, swing
-from ..problem.geometry import LAYER_DEPTH, Bar, CamPlate, Disc, LinkBar, Sheet
+from ..problem.cache import RunCache
+from ..problem.definition import DiffusionProblem
+from ..problem.exposure import Diffusivity, swing
+from ..problem.geometry import Bar, CamPlate, Disc, LinkBar, Sheet
 from ..problem.results import DiffusionResult, Plan
 from ..problem.scaling import stretch_of
 from ..stepping import step_plans
 from ..stepping.march import march
 
 
-def plan_direct(geometry, diffusivity, model: str, change: np.ndarray, outputs: np.ndarray,
-                accuracy: float, exposure: Exposure, mirrored: bool = False,
-                caps: CellCaps = MAX_CELLS) -> Plan:
+def plan_direct(problem: DiffusionProblem, model: str, mirrored: bool = False,
+                caps: CellCaps = MAX_CELLS, cache: RunCache | None = None) -> Plan:
     """Cells from the spatial error model, steps per doubling from the time error model,
-    each taking half the accuracy. ``mirrored``: the solve keeps the part cut at its
-    mirror planes (``symmetry_cuts``, the D(c) sweeps); the plan's cells and the cap
-    (``caps``: cells of the linear system) count that cut part."""
+    each taking half the problem's accuracy. ``mirrored``: the solve keeps the part cut at
+    its mirror planes (``symmetry_cuts``, the D(c) sweeps); the plan's cells and the cap
+    (``caps``: cells of the linear system) count that cut part; ``cache``: the run's, which
+    keeps a planform's cells for the solve."""
+    geometry, diffusivity, exposure = problem.geometry, problem.diffusivity, problem.exposure
+    accuracy = problem.accuracy
+    scales = scales_of(geometry, diffusivity, exposure, cache)
+    change, outputs = scales.tau_star(exposure.change_times), scales.tau_star(problem.times)
     t_lo = step_plans.earliest_output(change, outputs)
     cells = _cells(geometry, diffusivity, accuracy, t_lo, caps[model],
-                   halved_axes(geometry) if mirrored else ())
+                   halved_axes(geometry) if mirrored else (), cache)
     per_doubling = max(MIN_STEPS_PER_DOUBLING, math.ceil(math.sqrt(TIME_ERROR / (0.5 * accuracy))))
     nodes = step_plans.step_nodes(change, outputs, FIRST_STEP, per_doubling, exposure.ramp)
     steps = 3 * (nodes.size - 1)  # coarse march + bisected march
@@ -59,19 +65,22 @@ def plan_direct(geometry, diffusivity, model: str, change: np.ndarray, outputs: 
                 per_doubling, finest=cells.finest, growth=cells.growth)
 
 
-def _cells(geometry, diffusivity, accuracy: float, t_lo: float, cap: int, halved=()):
+def _cells(geometry, diffusivity, accuracy: float, t_lo: float, cap: int, halved=(),
+           cache: RunCache | None = None):
     """The cells of a direct model (``sizing``): prisms for a CamPlate or LinkBar, graded
     or uniform for a Disc or Bar, uniform for the slab; at most ``cap`` solved; ``halved``:
     the axes the solve cuts at their mirror plane."""
     d = diffusivity.pre_exponential
     if isinstance(geometry, (CamPlate, LinkBar)):
-        return sizing.prism_layout(geometry, d, accuracy, t_lo, cap, space_error(t_lo), halved)
+        return sizing.prism_layout(geometry, d, accuracy, t_lo, cap, space_error(t_lo), halved,
+                                   cache)
     return sizing.choose(geometry, sizing.extents(geometry, d), accuracy, t_lo, cap,
                          space_error(t_lo), halved)
 
 
 def discretise(geometry, diffusivity: Diffusivity, cells: tuple[int, ...],
-               surface_layer_depth: float, finest: float = 0.0, growth: float = 0.0):
+               surface_layer_depth: float, finest: float = 0.0, growth: float = 0.0,
+               cache: RunCache | None = None):
     """The FiPy-assembled operator of a Sheet, Disc or Bar on ``cells`` (uniform), or
     graded from ``finest`` by ``growth`` (scaled units, ``sizing``); of a CamPlate or
     LinkBar on prisms (graded: ``finest`` > 0)."""
@@ -88,7 +97,7 @@ def discretise(geometry, diffusivity: Diffusivity, cells: tuple[int, ...],
         return grids.bar(geometry.length, geometry.width, geometry.thickness, cells,
                       surface_layer_depth, d, widths=widths)
     if isinstance(geometry, (CamPlate, LinkBar)):
-        tess = sizing.planform_cells(geometry, finest, growth, stretch_of(d))
+        tess = sizing.planform_cells(geometry, finest, growth, stretch_of(d), cache)
         return prism(tess, geometry.thickness, sizing.prism_widths(finest, growth)
                      * geometry.thickness, band_share(tess, surface_layer_depth), d)
     raise TypeError(f"no direct finite-volume model for {type(geometry).__name__}")
@@ -126,18 +135,19 @@ def step_plan(exposure, times, scales: Scales, per_doubling: int,
                     np.searchsorted(nodes, change[:-1]))
 
 
-def solve_direct(geometry, diffusivity, exposure, times, chosen: Plan, *,
-                 surface_layer_depth: float = LAYER_DEPTH, store_fields: bool = False,
-                 part: str = "", extrapolate: bool = True, disc=None,
-                 marcher=march) -> DiffusionResult:
-    """March a Sheet, Disc, Bar or prisms of a CamPlate or LinkBar on its FiPy mesh
-    (Richardson pair in time); ``disc``: an operator built by the caller instead;
+def solve_direct(problem: DiffusionProblem, chosen: Plan, *, extrapolate: bool = True,
+                 disc=None, marcher=march, cache: RunCache | None = None) -> DiffusionResult:
+    """March a Sheet, Disc, Bar or prisms of a CamPlate or LinkBar (``problem``) on its FiPy
+    mesh (Richardson pair in time); ``disc``: an operator built by the caller instead;
     ``marcher``: ``march.march`` or one with its arguments (``two_phase_mesh``: two-phase, whose
-    history also carries the bound-water mean)."""
-    scales = scales_of(geometry, diffusivity, exposure)
+    history also carries the bound-water mean); ``cache``: the run's."""
+    geometry, diffusivity, exposure = problem.geometry, problem.diffusivity, problem.exposure
+    times, surface_layer_depth = problem.times, problem.surface_layer_depth
+    store_fields, part = problem.store_fields, problem.part
+    scales = scales_of(geometry, diffusivity, exposure, cache)
     if disc is None:
         disc = discretise(geometry, diffusivity, chosen.cells_per_axis, surface_layer_depth,
-                          chosen.finest, chosen.growth)
+                          chosen.finest, chosen.growth, cache)
     runs = []
     for bisect in (False, True):
         steps = step_plan(exposure, times, scales, chosen.steps_per_doubling, bisect)
@@ -147,15 +157,13 @@ def solve_direct(geometry, diffusivity, exposure, times, chosen: Plan, *,
     coarse, fine = runs
     combine, estimate = richardson_pair(chosen, coarse, fine, swing(exposure, times) or 1.0,
                                     extrapolate)
-    result = DiffusionResult(
+    bound = getattr(coarse, "bound", None)
+    return DiffusionResult(
         times, combine(coarse.mean, fine.mean), combine(coarse.layer, fine.layer), chosen.model,
-        disc.cells, coarse.steps + fine.steps, estimate, chosen.reason)
-    if getattr(coarse, "bound", None) is not None:
-        result.bound = combine(coarse.bound, fine.bound)
-    if store_fields:
-        result.fields = combine(coarse.fields, fine.fields)
-        result.cell_coordinates = disc.coordinates
-    return result
+        disc.cells, coarse.steps + fine.steps, estimate, chosen.reason,
+        fields=combine(coarse.fields, fine.fields) if store_fields else None,
+        bound=None if bound is None else combine(bound, fine.bound),
+        cell_coordinates=disc.coordinates if store_fields else {})
 
 
 def richardson_pair(chosen: Plan, coarse, fine, scale: float, extrapolate: bool):

@@ -29,7 +29,6 @@ from __future__ import annotations
 import logging
 import math
 from dataclasses import dataclass, replace
-from functools import lru_cache
 
 import numpy as np
 
@@ -43,9 +42,11 @@ from ..operators import grids
 from ..operators.grading import MAX_GROWTH
 from ..operators.p1 import plane_operator
 from ..planform.outline import outline_extent
-from ..planform.short_time import expansion_of, outline_chords, sheet_fraction, weighted
+from ..planform.short_time import expansion_of, sheet_fraction, weighted
 from ..planform.triangles import triangulate
-from ..problem.geometry import LAYER_DEPTH
+from ..problem.cache import RunCache, run_cache
+from ..problem.definition import DiffusionProblem
+
 from ..problem.results import DiffusionResult, Plan
 from ..problem.scaling import planar_scale, stretch_of
 from ..stepping.step_plans import earliest_output, geometric_steps, output_ages
@@ -146,34 +147,30 @@ def _planform_size(part, d, expansion) -> tuple[float, float, float]:
 
 
 
-@lru_cache(maxsize=8)
-def planform_mesh(part, finest: float, growth: float, stretch: tuple[float, float]):
-    """The triangle mesh plan and solve share (``triangles.triangulate``; ``finest`` scaled)."""
-    return triangulate(part, finest * part.thickness, growth=growth, stretch=stretch)
+def planform_mesh(part, finest: float, growth: float, stretch: tuple[float, float],
+                  cache: RunCache):
+    """The triangle mesh plan and solve share (``triangles.triangulate``; ``finest`` scaled),
+    made once per run (``cache``)."""
+    return cache.get(("planform mesh", part, finest, growth, stretch), lambda: triangulate(
+        part, finest * part.thickness, growth=growth, stretch=stretch))
 
 
-@lru_cache(maxsize=8)
 def planform_response(geometry, finest: float, growth: float, d: tuple, layer_depth: float,
                       end: float, per_doubling: int, first_step: float, keep_fields: bool,
-                      part: str):
+                      part: str, cache: RunCache):
     """(P1 operator, unit-step response, time-error pair) of the planform: what ``solve_plane``
-    marches, cached by the exact inputs that determine it (geometries compare by value), so
-    re-runs at other output times (the limit search) and sweep cases that share the part,
-    its diffusivity ratios and its plan (a climate sweep at one temperature) march once.
-    The response's arrays are read-only."""
-    mesh = planform_mesh(geometry, finest, growth, stretch_of(d))
-    planar = plane_operator(mesh, geometry, layer_depth, d)
-    response, pair = step_response(planar, end, per_doubling, first_step,
-                                   keep_fields=keep_fields, part=part)
-    for array in (response.nodes, response.mean, response.layer, response.fields):
-        if array is not None:
-            array.setflags(write=False)   # cached: shared by every solve that reads it
-    return planar, response, pair
-
-
-#: what a process keeps between the runs of one geometry (sweep cases): clear these for
-#: the cost of a run whose geometry is new
-CASE_CACHES = (planform_response, planform_mesh, expansion_of, outline_chords)
+    marches, kept in the run's ``cache`` by the exact inputs that determine it (geometries
+    compare by value), so re-runs at other output times (the limit search) and the cases of
+    a sweep worker that share the part, its diffusivity ratios and its plan (a climate sweep
+    at one temperature) march once. The response's arrays are read-only."""
+    def build():
+        mesh = planform_mesh(geometry, finest, growth, stretch_of(d), cache)
+        planar = plane_operator(mesh, geometry, layer_depth, d)
+        response, pair = step_response(planar, end, per_doubling, first_step,
+                                       keep_fields=keep_fields, part=part)
+        return planar, response, pair
+    return cache.get(("planform response", geometry, finest, growth, d, layer_depth, end,
+                      per_doubling, first_step, keep_fields), build)
 
 
 def expansion_error_at(expansion, ages: np.ndarray) -> float:
@@ -184,23 +181,30 @@ def expansion_error_at(expansion, ages: np.ndarray) -> float:
     return float(np.max(weighted(expansion.uptake_error(ages), sheet_fraction(ages))))
 
 
-def plan_plane(geometry, diffusivity, change: np.ndarray, outputs: np.ndarray, ramp,
-               accuracy: float, layer_depth: float | None = None, caps: CellCaps = MAX_CELLS):
+def plan_plane(problem: DiffusionProblem, caps: CellCaps = MAX_CELLS,
+               cache: RunCache | None = None):
     """What ``solve_plane`` will do and the error it will report, by the blend's error model
     at the ages the outputs read (``step_plans.output_ages``): the expansion up to its switch
     (error ``EXPANSION_SHARE`` x accuracy); after it a graded P1 mesh whose relative error
     at half the switch (``mesh_design`` plus the expansion's own relative error there) times
     the largest uptake x sheet fraction at the later ages takes what the time error,
     PAIR_TO_TIME_ERROR (PLANE_PAIR F(end) / m)^2 (at most ``TIME_SHARE`` of it), leaves of
-    ``DESIGN_MARGIN`` x accuracy. The cells are those of the mesh ``solve`` builds. The
-    plan reads nothing of the contact layer: ``layer_depth`` (the solve's) only lets plan
-    and solve share the expansion (``expansion_of``); ``caps``: the most nodes of the
-    mesh and cells of the sheet."""
+    ``DESIGN_MARGIN`` x accuracy (a long record's sum takes ``RECORD_SHARE`` of it first).
+    The cells are those of the mesh ``solve`` builds. The plan reads nothing of the contact
+    layer: the problem's layer depth (the solve's) only lets plan and solve share the
+    expansion (``expansion_of``); ``caps``: the most nodes of the mesh and cells of the
+    sheet; ``cache``: the run's (None: a fresh one)."""
+    cache = run_cache(cache)
+    geometry, diffusivity, exposure = problem.geometry, problem.diffusivity, problem.exposure
+    scales = scales_of(geometry, diffusivity, exposure, cache)
+    change, outputs = scales.tau_star(exposure.change_times), scales.tau_star(problem.times)
+    ramp, layer_depth = exposure.ramp, problem.surface_layer_depth
+    accuracy = (1.0 - RECORD_SHARE if is_long_record(exposure) else 1.0) * problem.accuracy
     d = tuple(float(v) for v in diffusivity.pre_exponential)
     tolerance = EXPANSION_SHARE * accuracy
-    expansion = expansion_of(geometry, d, layer_depth)
+    expansion = expansion_of(geometry, d, layer_depth, cache)
     end = max(float(np.max(outputs)), 10 * FIRST_STEP)
-    ages = output_ages(change, outputs, ramp)
+    ages = output_ages(change, outputs, ramp, cache=cache)
     t_lo = earliest_output(change, outputs)
     switch = 0.0 if expansion is None else expansion.switch(tolerance)
     perimeter, area, tightest = _planform_size(geometry, d, expansion)
@@ -225,7 +229,7 @@ def plan_plane(geometry, diffusivity, change: np.ndarray, outputs: np.ndarray, r
     estimate = max(at_switch, (design.relative_error + leak) * peak) + time_error
     if estimate > accuracy:
         reason += f"; capped at {caps.plane} nodes: error above the requested accuracy"
-    mesh = planform_mesh(geometry, design.finest, design.growth, stretch_of(d))
+    mesh = planform_mesh(geometry, design.finest, design.growth, stretch_of(d), cache)
     nodes = int(np.count_nonzero(~mesh.on_outline))
     steps = geometric_steps(0.0, end, mesh_first_step(design.finest, switch), per_doubling)
     return Plan("plane", nodes + sheet, 3 * (steps.size - 1), reason, float(estimate),
@@ -256,28 +260,30 @@ def _design(expansion, switch, end, ages, perimeter, area, tightest, accuracy, t
 # ------------------------------------------------------------------ solve
 
 
-def solve_plane(geometry, diffusivity, exposure, times, chosen, *, accuracy: float,
-                surface_layer_depth: float = LAYER_DEPTH, store_fields: bool = False,
-                part: str = ""):
+def solve_plane(problem: DiffusionProblem, chosen: Plan, cache: RunCache | None = None):
     """CamPlate / LinkBar: planform step response x sheet step response, Duhamel over the
     history (``PrismSuperposition``); the estimate adds the error of the sum itself on long
-    records."""
+    records. ``cache``: the run's (None: a fresh one)."""
+    cache = run_cache(cache)
+    geometry, diffusivity, exposure = problem.geometry, problem.diffusivity, problem.exposure
+    times, accuracy, part = problem.times, problem.accuracy, problem.part
+    surface_layer_depth, store_fields = problem.surface_layer_depth, problem.store_fields
     d = tuple(float(v) for v in diffusivity.pre_exponential)
-    times = np.asarray(times, float)
-    scales = scales_of(geometry, diffusivity, exposure)
+    scales = scales_of(geometry, diffusivity, exposure, cache)
     outputs = scales.tau_star(times)
-    ages = output_ages(scales.tau_star(exposure.change_times), outputs, exposure.ramp)
+    ages = output_ages(scales.tau_star(exposure.change_times), outputs, exposure.ramp,
+                       cache=cache)
     end = max(float(outputs.max()), 10 * FIRST_STEP)
-    expansion = expansion_of(geometry, d, surface_layer_depth)
+    expansion = expansion_of(geometry, d, surface_layer_depth, cache)
     tolerance = chosen.expansion_tolerance
     switch = expansion.switch(tolerance) if expansion is not None and tolerance > 0 else 0.0
-    history = PrismSuperposition.of(geometry, diffusivity, exposure, times, accuracy)
+    history = PrismSuperposition.of(geometry, diffusivity, exposure, times, accuracy, cache)
     if switch >= end and not store_fields:
         return _expansion_only(expansion, ages, history, chosen, part)
     planar, u_plane, pair_plane = planform_response(
         geometry, chosen.finest, chosen.growth, d, surface_layer_depth, end,
         chosen.steps_per_doubling, mesh_first_step(chosen.finest, 0.0 if store_fields else switch),
-        store_fields, part)
+        store_fields, part, cache)
     (plane_mean, mean_error), (plane_layer, _) = (
         _planform_fractions(u_plane, values, expansion, which, tolerance)
         for values, which in ((u_plane.mean, "mean"), (u_plane.layer, "layer")))
@@ -311,12 +317,14 @@ def solve_plane(geometry, diffusivity, exposure, times, chosen, *, accuracy: flo
     n_z = chosen.cells_per_axis[-1]
     result = DiffusionResult(times, mean, layer, "plane", planar.cells + n_z,
                              3 * (u_plane.nodes.size - 1), float(estimate), chosen.reason)
-    if store_fields:
-        result.fields, result.cell_coordinates = _plane_fields(
-            geometry, history, u_plane, planar, chosen, end, surface_layer_depth, part)
-    elif history.record is not None:
-        result.extend = extension(result, lambda at: superposed(history.at(at), levels))
     log.debug("%s plane: %d nodes x %d sheet cells", part, planar.cells, n_z)
+    if store_fields:
+        fields, coordinates = _plane_fields(geometry, history, u_plane, planar, chosen, end,
+                                            surface_layer_depth, part)
+        return replace(result, fields=fields, cell_coordinates=coordinates)
+    if history.record is not None:
+        return replace(result, extend=extension(result, lambda at: superposed(history.at(at),
+                                                                               levels)))
     return result
 
 
@@ -392,13 +400,16 @@ class PrismSuperposition:
     times: np.ndarray
     geometry: object
     record: LongRecord | None
+    cache: RunCache   # the run's
 
     @classmethod
-    def of(cls, geometry, diffusivity, exposure, times, accuracy: float) -> "PrismSuperposition":
+    def of(cls, geometry, diffusivity, exposure, times, accuracy: float,
+           cache: RunCache) -> "PrismSuperposition":
         d = tuple(float(v) for v in diffusivity.pre_exponential)
         record = (LongRecord.of(diffusivity, exposure, times, _diffusion_times(geometry, d)[0],
-                                RECORD_SHARE * accuracy) if is_long_record(exposure) else None)
-        return cls(diffusivity, exposure, np.asarray(times, float), geometry, record)
+                                RECORD_SHARE * accuracy, cache)
+                  if is_long_record(exposure) else None)
+        return cls(diffusivity, exposure, np.asarray(times, float), geometry, record, cache)
 
     def at(self, times) -> "PrismSuperposition":
         """The same history read at other ``times`` inside the outputs' span (a long record
@@ -420,7 +431,7 @@ class PrismSuperposition:
         if self.record is None:
             return self.exposure.initial_moisture + duhamel(
                 kernel, self.diffusivity, self.exposure, self.times,
-                _diffusion_times(self.geometry, d), chunk=chunk), 0.0, 0
+                _diffusion_times(self.geometry, d), chunk=chunk, cache=self.cache), 0.0, 0
         if fields:
             return self.exposure.initial_moisture + self.record.field(kernel), 0.0, 0
         if same is not None:

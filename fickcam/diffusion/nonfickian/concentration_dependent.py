@@ -49,8 +49,10 @@ from ..accuracy.error_model import TIME_ERROR
 from ..forcing.clock import scales as scales_of
 from ..models.finite_volume import discretise, richardson_pair, step_plan
 from ..operators.symmetry_cuts import mirrored
+from ..problem.cache import RunCache
+from ..problem.definition import DiffusionProblem
 from ..problem.exposure import Diffusivity, sample_times, swing
-from ..problem.geometry import LAYER_DEPTH, Disc, Sheet
+from ..problem.geometry import Disc, Sheet
 from ..problem.results import DiffusionResult
 from ..stepping.dense_output import Extension, StepRecord
 from ..stepping.march import ORDERING, History, rounded_steps, norm
@@ -224,19 +226,23 @@ def _skin_sizing(planner, slow_d, fast_d, accuracy, times, start, margin, wet_ma
     return [best, skin, soak]
 
 
-def solve_nonlinear(geometry, diffusivity, law, exposure, times, chosen, *,
-                    surface_layer_depth=LAYER_DEPTH, store_fields=False,
-                    part="", sweeps: Sweeps = SWEEPS) -> DiffusionResult:
-    """Mean and contact-layer moisture (weight %) at ``times`` (s): the Richardson pair of
-    swept backward-Euler marches (module docstring). ``chosen`` was planned with
-    ``fastest(...)``; ``sweeps``: when each step's sweeps stop."""
+def solve_nonlinear(problem: DiffusionProblem, chosen, sweeps: Sweeps = SWEEPS,
+                    cache: RunCache | None = None) -> DiffusionResult:
+    """Mean and contact-layer moisture (weight %) at the ``problem``'s times (s), its
+    ``sorption`` a ``ConcentrationDependent`` law: the Richardson pair of swept
+    backward-Euler marches (module docstring). ``chosen`` was planned with
+    ``fastest(...)``; ``sweeps``: when each step's sweeps stop; ``cache``: the run's."""
+    geometry, diffusivity, law = problem.geometry, problem.diffusivity, problem.sorption
+    exposure, times, part = problem.exposure, problem.times, problem.part
+    surface_layer_depth, store_fields = problem.surface_layer_depth, problem.store_fields
     scaled = fastest(diffusivity, law, exposure, times)
-    scales = scales_of(geometry, scaled, exposure)
+    scales = scales_of(geometry, scaled, exposure, cache)
     weights = (discretise(geometry, scaled, chosen.cells_per_axis, surface_layer_depth,
-                          chosen.finest, chosen.growth) if isinstance(geometry, (Sheet, Disc))
+                          chosen.finest, chosen.growth, cache)
+               if isinstance(geometry, (Sheet, Disc))
                else mirrored(geometry, tuple(float(v) for v in scaled.pre_exponential),
                              chosen.cells_per_axis, chosen.finest, chosen.growth,
-                             surface_layer_depth))
+                             surface_layer_depth, cache))
     faces = Faces.of(weights)
     top = law.largest_factor(wettest(exposure, times))
     plans = [step_plan(exposure, times, scales, chosen.steps_per_doubling, bisect)
@@ -248,16 +254,14 @@ def solve_nonlinear(geometry, diffusivity, law, exposure, times, chosen, *,
                              combine(coarse.layer, fine.layer), chosen.model, weights.cells,
                              coarse.steps + fine.steps, estimate, chosen.reason)
     if store_fields:
-        result.fields = combine(coarse.fields, fine.fields)
-        result.cell_coordinates = weights.coordinates
-    else:  # the limit search's extra times, read between the steps (``dense_output``)
-        result.extend = Extension(
-            result, [StepRecord.of(plans[0], coarse, fine, scales, exposure)],
-            lambda values, _: (values[0][:, 0], values[0][:, 1]), swing(exposure, times) or 1.0,
-            chosen.error_estimate, lambda both: solve_nonlinear(
-                geometry, diffusivity, law, exposure, both, chosen,
-                surface_layer_depth=surface_layer_depth, part=part, sweeps=sweeps), part)
-    return result
+        return replace(result, fields=combine(coarse.fields, fine.fields),
+                       cell_coordinates=weights.coordinates)
+    # the limit search's extra times, read between the steps (``dense_output``)
+    return replace(result, extend=Extension(
+        result, [StepRecord.of(plans[0], coarse, fine, scales, exposure)],
+        lambda values, _: (values[0][:, 0], values[0][:, 1]), swing(exposure, times) or 1.0,
+        chosen.error_estimate, lambda both: solve_nonlinear(
+            replace(problem.at(both), store_fields=False), chosen, sweeps, cache), part))
 
 
 def wettest(exposure, times) -> float:

@@ -31,6 +31,7 @@ from ..operators.prisms import prism
 from ..operators.symmetry_cuts import half
 from ..planform.admissible import band_share, refine
 from ..planform.cell_moments import corrected_weights
+from ..problem.definition import DiffusionProblem
 from ..problem.geometry import LAYER_DEPTH, Bar, CamPlate, Sheet
 from ..problem.results import DiffusionResult, Plan
 from ..problem.scaling import stretch_of
@@ -234,9 +235,8 @@ def steps_for(accuracy: float) -> int:
 def level_plan(geometry, diffusivity, law, exposure, times, mesh_accuracy, per_doubling) -> Plan:
     """A 3-D plan: ``nonlinear_plan``'s cells at ``mesh_accuracy``, ``per_doubling`` steps."""
     def planner(d, a, outputs):
-        s = scales_of(geometry, d, exposure)
-        return plan_direct(geometry, d, "solid", s.tau_star(exposure.change_times),
-                           s.tau_star(outputs), a, exposure, mirrored=True)
+        return plan_direct(DiffusionProblem(geometry, d, exposure, outputs, a), "solid",
+                           mirrored=True)
     chosen = nonlinear_plan(planner, diffusivity, law, exposure, times, mesh_accuracy)
     return replace(chosen, steps_per_doubling=per_doubling)
 
@@ -249,12 +249,11 @@ def sheet_reference(geometry, diffusivity, law, exposure, times, accuracy,
     sheet = Sheet(geometry.thickness)
 
     def planner(d, a, outputs):
-        s = scales_of(sheet, d, exposure)
-        return plan_direct(sheet, d, "slab", s.tau_star(exposure.change_times),
-                           s.tau_star(outputs), a, exposure)
+        return plan_direct(DiffusionProblem(sheet, d, exposure, outputs, a), "slab")
     chosen = nonlinear_plan(planner, diffusivity, law, exposure, times, SHEET_SHARE * accuracy)
-    return solve_nonlinear(sheet, diffusivity, law, exposure, times, chosen,
-                           surface_layer_depth=depth, store_fields=store_fields, sweeps=sweeps)
+    return solve_nonlinear(DiffusionProblem(sheet, diffusivity, exposure, times,
+                                            surface_layer_depth=depth, store_fields=store_fields,
+                                            sorption=law), chosen, sweeps)
 
 
 @dataclass(frozen=True)

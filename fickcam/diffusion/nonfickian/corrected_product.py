@@ -82,6 +82,7 @@ from ..accuracy.error_model import LAYER_TOLERANCE, PAIR_TO_EXTRAPOLATED, PLANFO
 from ..accuracy.grid_convergence import taken, three_levels
 from ..operators.sizing import prism_widths
 from ..operators.symmetry_cuts import half
+from ..problem.definition import DiffusionProblem
 from ..problem.exposure import swing
 from ..problem.geometry import LAYER_DEPTH, Bar
 from ..problem.results import DiffusionResult, Plan
@@ -376,10 +377,10 @@ def refined_run(geometry, diffusivity, law, exposure, times, accuracy: float, *,
     return run, values, three_d_error, rest
 
 
-def solve_corrected(geometry, diffusivity, law, exposure, times, accuracy: float, *,
-                    surface_layer_depth=LAYER_DEPTH, store_fields=False, part="",
-                    reason="", sweeps: Sweeps = SWEEPS) -> DiffusionResult:
-    """Mean and contact layer (weight %) at ``times``: the corrected product (module
+def solve_corrected(problem: DiffusionProblem, reason: str = "",
+                    sweeps: Sweeps = SWEEPS) -> DiffusionResult:
+    """Mean and contact layer (weight %) at the ``problem``'s times, its ``sorption`` a
+    ``ConcentrationDependent`` law (``reason``: the plan's): the corrected product (module
     docstring) on two nested 3-D meshes (``corrected_levels``; their change the estimate
     of what does not separate, ``unseparated``), a further one (8 x the cells, or where
     that passes ``NESTED_CELLS`` once the ``cross`` around the finest) while the total is
@@ -388,10 +389,12 @@ def solve_corrected(geometry, diffusivity, law, exposure, times, accuracy: float
     estimates and the time error of the marches (``PAIR_TO_EXTRAPOLATED`` pair^2).
     ``store_fields``: the finest 3-D mesh's cells corrected cell by cell
     (``corrected_fields.stored``; a Bar's in its own frame, ``bar_coordinates``)."""
-    times = np.asarray(times, float)
+    geometry, diffusivity, law = problem.geometry, problem.diffusivity, problem.sorption
+    exposure, times, accuracy = problem.exposure, problem.times, problem.accuracy
+    surface_layer_depth, store_fields = problem.surface_layer_depth, problem.store_fields
     run, values, three_d_error, rest = refined_run(
         geometry, diffusivity, law, exposure, times, accuracy,
-        surface_layer_depth=surface_layer_depth, store_fields=store_fields, part=part,
+        surface_layer_depth=surface_layer_depth, store_fields=store_fields, part=problem.part,
         sweeps=sweeps)
     sheet = run.sheet
     estimate = three_d_error + rest
@@ -406,23 +409,23 @@ def solve_corrected(geometry, diffusivity, law, exposure, times, accuracy: float
                              fine.cells + run.planform_cells,
                              sum(m.plate.steps for m in run.marched), float(estimate), note)
     if store_fields:
-        result.fields, result.reason = stored(run, result.reason)
-        result.cell_coordinates = fine.coordinates
-        if isinstance(geometry, Bar):
-            result.cell_coordinates = bar_coordinates(geometry, diffusivity, fine.coordinates)
-    else:   # the limit search's extra times: read between the marches' steps (``dense_output``)
-        result.extend = extension(run, result, accuracy, lambda both: solve_corrected(
-            geometry, diffusivity, law, exposure, both, accuracy,
-            surface_layer_depth=surface_layer_depth, part=part, reason=reason))
-    return result
+        fields, note = stored(run, result.reason)
+        coordinates = (bar_coordinates(geometry, diffusivity, fine.coordinates)
+                       if isinstance(geometry, Bar) else fine.coordinates)
+        return replace(result, fields=fields, reason=note, cell_coordinates=coordinates)
+    # the limit search's extra times: read between the marches' steps (``dense_output``)
+    return replace(result, extend=extension(run, result, accuracy, lambda both: solve_corrected(
+        replace(problem.at(both), store_fields=False), reason)))
 
 
-def plan_corrected(geometry, diffusivity, law, exposure, times, accuracy: float) -> Plan:
-    """What ``solve_corrected`` will start from: the coarsest 3-D plan (refined by 2,
-    nested, once or twice, or by direction: ``CorrectedMeshes.finer``), the planform refined up to
-    ``PLANFORM_CELLS``, the accuracy as the target its measured estimate is held to (the
-    solve reports the estimate)."""
-    geometry, diffusivity, bar = as_prism(geometry, diffusivity)
+def plan_corrected(problem: DiffusionProblem) -> Plan:
+    """What ``solve_corrected`` will start from for a D(c) ``problem``: the coarsest 3-D plan
+    (refined by 2, nested, once or twice, or by direction: ``CorrectedMeshes.finer``), the
+    planform refined up to ``PLANFORM_CELLS``, the accuracy as the target its measured
+    estimate is held to (the solve reports the estimate)."""
+    law, exposure, times, accuracy = (problem.sorption, problem.exposure, problem.times,
+                                      problem.accuracy)
+    geometry, diffusivity, bar = as_prism(problem.geometry, problem.diffusivity)
     level, chosen = base_plan(partial(level_plan, geometry, diffusivity, law, exposure, times,
                                       per_doubling=steps_for(accuracy)), accuracy)
     section = (" (the bar as the prism of its rectangular section, its thickness the fastest "

@@ -55,8 +55,7 @@ References
 from __future__ import annotations
 
 import logging
-from dataclasses import dataclass, replace
-from functools import lru_cache
+from dataclasses import dataclass, field, replace
 from typing import Callable
 
 import numpy as np
@@ -71,6 +70,7 @@ from ..exact.series import sheet_uptake
 from ..operators import sizing
 from ..operators.prisms import planar
 from ..planform.cell_moments import corrected_weights
+from ..problem.cache import RunCache, run_cache
 from ..problem.scaling import axis_scale, stretch_of
 from ..stepping.march import ORDERING
 from .two_phase_modes import ModeSource
@@ -109,28 +109,34 @@ class Planform:
     mean: np.ndarray
     layer: np.ndarray
     cells: int
+    cache: RunCache = field(default_factory=RunCache, repr=False)  # the run's: its LU, Lanczos
 
 
-@lru_cache(maxsize=4)
-def planform_operator(geometry, d, depth: float, finest: float, growth: float) -> Planform:
-    """The planform's FiPy operator (module docstring) on the graded admissible cells."""
-    tess = sizing.planform_cells(geometry, finest, growth, stretch_of(d))
-    coordinates = axis_scale(geometry.thickness, d[1], d[2]) / float(tess.stretch[1])
-    disc = planar(tess, coordinates, np.ones(tess.cells))  # (plain band weights unused)
-    root = np.sqrt(disc.volumes)
-    inverse = sparse.diags(1.0 / root)
-    scale = d[2] / geometry.thickness ** 2   # scaled -> rescaled time
-    operator = scale * (inverse @ disc.stiffness @ inverse)
-    mean, layer = corrected_weights(tess, depth)
-    return Planform(operator.tocsc(), root, mean / root, layer / root, tess.cells)
+def planform_operator(geometry, d, depth: float, finest: float, growth: float,
+                      cache: RunCache | None = None) -> Planform:
+    """The planform's FiPy operator (module docstring) on the graded admissible cells, made
+    once per run (``cache``; None: a fresh one)."""
+    cache = run_cache(cache)
+
+    def build():
+        tess = sizing.planform_cells(geometry, finest, growth, stretch_of(d), cache)
+        coordinates = axis_scale(geometry.thickness, d[1], d[2]) / float(tess.stretch[1])
+        disc = planar(tess, coordinates, np.ones(tess.cells))  # (plain band weights unused)
+        root = np.sqrt(disc.volumes)
+        inverse = sparse.diags(1.0 / root)
+        scale = d[2] / geometry.thickness ** 2   # scaled -> rescaled time
+        operator = scale * (inverse @ disc.stiffness @ inverse)
+        mean, layer = corrected_weights(tess, depth)
+        return Planform(operator.tocsc(), root, mean / root, layer / root, tess.cells, cache)
+    return cache.get(("planform operator", geometry, d, depth, finest, growth), build)
 
 
-@lru_cache(maxsize=4)
 def _factor(planform: Planform):
     """Sparse LU of the symmetric positive definite S: symmetric ordering, diagonal pivots
-    (as ``march``)."""
-    return splu(planform.operator, permc_spec=ORDERING, diag_pivot_thresh=0.0,
-                options={"SymmetricMode": True})
+    (as ``march``), once per planform in the run's cache."""
+    return planform.cache.get(("planform LU",), lambda: splu(
+        planform.operator, permc_spec=ORDERING, diag_pivot_thresh=0.0,
+        options={"SymmetricMode": True}), owner=planform)
 
 
 class _Recurrence:
@@ -167,28 +173,22 @@ class _Recurrence:
         return min(len(self.alpha), max(steps, 1))
 
 
-@lru_cache(maxsize=4)
-def _recurrence(planform: Planform) -> _Recurrence:
-    return _Recurrence(planform)
-
-
-@lru_cache(maxsize=8)
 def lanczos_spectrum(planform: Planform, steps: int):
     """(rates, mean amplitudes, layer amplitudes): the ``steps``-point Gauss quadrature of
     the planform's decay (module docstring), from the first ``steps`` rows of the Lanczos
-    recurrence (``_Recurrence``). Read-only arrays (cached)."""
-    recurrence = _recurrence(planform)
-    steps = recurrence.run(steps)
-    alpha, beta = np.array(recurrence.alpha[:steps]), np.array(recurrence.beta[:steps - 1])
-    theta, vectors = eigh_tridiagonal(alpha, beta)
-    first = recurrence.norm * vectors[0]
-    rates = 1.0 / theta
-    basis = recurrence.basis[:steps]
-    mean = (planform.mean @ basis.T @ vectors) * first
-    layer = (planform.layer @ basis.T @ vectors) * first
-    for array in (rates, mean, layer):
-        array.flags.writeable = False
-    return rates, mean, layer
+    recurrence (``_Recurrence``, one per planform in the run's cache, run further on
+    demand). Read-only arrays (kept in the run's cache)."""
+    def build():
+        recurrence = planform.cache.get(("lanczos recurrence",), lambda: _Recurrence(planform),
+                                        owner=planform)
+        taken = recurrence.run(steps)
+        alpha, beta = np.array(recurrence.alpha[:taken]), np.array(recurrence.beta[:taken - 1])
+        theta, vectors = eigh_tridiagonal(alpha, beta)
+        first = recurrence.norm * vectors[0]
+        basis = recurrence.basis[:taken]
+        return (1.0 / theta, (planform.mean @ basis.T @ vectors) * first,
+                (planform.layer @ basis.T @ vectors) * first)
+    return planform.cache.get(("lanczos spectrum", steps), build, owner=planform)
 
 
 def planar_fraction(spectrum, ages) -> np.ndarray:
@@ -263,10 +263,10 @@ class RefinedPlanform:
     growth: float
 
 
-def _level(geometry, d, depth, finest, growth, ages, tolerance, measure):
+def _level(geometry, d, depth, finest, growth, ages, tolerance, measure, cache: RunCache):
     """(compared values, payload, cells, steps, quadrature change) of ``measure`` on the
-    product modes of the mesh (finest, growth)."""
-    planform = planform_operator(geometry, d, depth, finest, growth)
+    product modes of the mesh (finest, growth); ``cache``: the run's."""
+    planform = planform_operator(geometry, d, depth, finest, growth, cache)
     steps, change = lanczos_count(planform, ages, tolerance)
     values, payload = measure(planform_source(geometry, d, lanczos_spectrum(planform, steps)))
     return np.asarray(values, float), payload, planform.cells, steps, change
@@ -276,7 +276,7 @@ def _level(geometry, d, depth, finest, growth, ages, tolerance, measure):
 class Refinement:
     """How ``refined_planform`` refines: up to ``cap`` cells, w0 and g ``apart`` where
     together cannot meet the tolerance under the cap, each mesh measured by ``level``
-    (``(geometry, d, depth, finest, growth, ages, tolerance, measure)`` -> (compared values,
+    (``(geometry, d, depth, finest, growth, ages, tolerance, measure, cache)`` -> (compared values,
     payload, cells, steps, quadrature change)). The defaults are the run's; tests pass
     others (a smaller cap, a modelled level) instead of changing the module."""
 
@@ -289,8 +289,8 @@ REFINEMENT = Refinement()
 
 
 def refined_planform(geometry, d, depth: float, finest: float, growth: float, ages,
-                     tolerance: float, measure,
-                     refinement: Refinement = REFINEMENT) -> RefinedPlanform:
+                     tolerance: float, measure, refinement: Refinement = REFINEMENT,
+                     cache: RunCache | None = None) -> RefinedPlanform:
     """Refine the first mesh (``planform_design``) by r = w0 / w0' (finest width and growth
     together) until the Richardson estimate |y' - y| / (r^2 - 1) of what ``measure(source)``
     compares (its first return: the two-phase history relative to the swing, the layer's
@@ -299,15 +299,18 @@ def refined_planform(geometry, d, depth: float, finest: float, growth: float, ag
     the cap's r would leave the estimate above the tolerance, w0 and g are refined apart
     (``_separately``); if that ends above the tolerance too (the prediction at the cap is
     only as good as the coarse meshes' estimate), together on, and the lower estimate is
-    kept. The error is infinite if the mesh cannot be refined."""
+    kept. The error is infinite if the mesh cannot be refined. ``cache``: the run's (None: a
+    fresh one), which keeps each mesh's operator for the solve."""
+    cache = run_cache(cache)
     ages = np.asarray(ages, float)
     ages = ages[ages > 0]
-    coarse = refinement.level(geometry, d, depth, finest, growth, ages, tolerance, measure)
+    coarse = refinement.level(geometry, d, depth, finest, growth, ages, tolerance, measure,
+                              cache)
     ratio, levels, apart = 2.0, 1, None
     while True:
         try:
             fine = refinement.level(geometry, d, depth, finest / ratio, growth / ratio, ages,
-                                    tolerance, measure)
+                                    tolerance, measure, cache)
         except InputError:
             break
         levels += 1
@@ -322,7 +325,7 @@ def refined_planform(geometry, d, depth: float, finest: float, growth: float, ag
                   finest, growth, fine[2], error, mesh / reach ** 2 + fine[4])
         if refinement.apart and apart is None and mesh / reach ** 2 > tolerance - fine[4]:
             apart = _separately(geometry, d, depth, (finest, growth, fine), ages, tolerance,
-                                measure, levels, refinement)
+                                measure, levels, refinement, cache)
             if apart is not None and apart.error <= tolerance:
                 return apart
             levels = levels if apart is None else apart.levels
@@ -385,7 +388,8 @@ def _target(geometry, d, parts, meshes, budget: float, cap: int):
     return None if best is None else best[1:]
 
 
-def _separately(geometry, d, depth, start, ages, tolerance, measure, levels, refinement):
+def _separately(geometry, d, depth, start, ages, tolerance, measure, levels, refinement,
+                cache: RunCache):
     """Refine w0 and g apart from the mesh ``start`` (finest, growth, ``_level``): one mesh
     with w0 / 2 alone and one with g / 2 alone give each term's own Richardson difference
     (``error_coefficients``); the mesh of the fewest cells predicted to meet the tolerance follows
@@ -397,7 +401,7 @@ def _separately(geometry, d, depth, start, ages, tolerance, measure, levels, ref
     try:
         for w, g in ((finest / 2.0, growth), (finest, growth / 2.0)):
             meshes.append((w, g, refinement.level(geometry, d, depth, w, g, ages, tolerance,
-                                                  measure)))
+                                                  measure, cache)))
     except InputError:
         return None
     levels += 2
@@ -418,7 +422,7 @@ def _separately(geometry, d, depth, start, ages, tolerance, measure, levels, ref
             return RefinedPlanform(last[1], last[0], level[3], levels, level[1], w, g)
         try:
             meshes.append((*target, refinement.level(geometry, d, depth, *target, ages, tolerance,
-                                                     measure)))
+                                                     measure, cache)))
         except InputError:
             return RefinedPlanform(last[1], last[0], level[3], levels, level[1], w, g)
         levels += 1

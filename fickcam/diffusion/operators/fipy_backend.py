@@ -34,7 +34,6 @@ References
 """
 from __future__ import annotations
 
-from functools import lru_cache
 
 import numpy as np
 from scipy import sparse
@@ -154,10 +153,10 @@ def centred_mesh(dimensions: int, vertex_coords: np.ndarray, face_vertex_ids: np
     return mesh
 
 
-@lru_cache(maxsize=2)
 def _centred_mesh_class(dimensions: int):
     """The subclass of FiPy's ``Mesh2D`` or ``Mesh`` behind ``centred_mesh`` (private
-    FiPy API: ``_calcCellCenters``, ``_calcFaceCenters``)."""
+    FiPy API: ``_calcCellCenters``, ``_calcFaceCenters``), made per mesh (a class costs
+    microseconds beside the mesh)."""
     from fipy.meshes.mesh import Mesh
     from fipy.meshes.mesh2D import Mesh2D
 

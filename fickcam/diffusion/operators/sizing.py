@@ -25,7 +25,6 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from functools import lru_cache
 
 import numpy as np
 
@@ -33,6 +32,7 @@ from ..accuracy.error_model import GROWTH_ERROR, MIN_CELLS_PER_AXIS
 from ..planform.admissible import admissible
 from ..planform.outline import outline_extent
 from ..planform.triangles import triangulate
+from ..problem.cache import RunCache, run_cache
 from ..problem.geometry import Bar, CamPlate, Disc, LinkBar, Sheet
 from ..problem.scaling import axis_scale, stretch_of
 from .grading import MAX_GROWTH, graded_widths, growth_rate
@@ -173,12 +173,15 @@ def choose(geometry, extents, accuracy: float, t_lo: float, cap: int,
 # ----------------------------------------------------------------- prisms
 
 
-@lru_cache(maxsize=8)
-def planform_cells(part, finest: float, growth: float, stretch: tuple[float, float]):
+def planform_cells(part, finest: float, growth: float, stretch: tuple[float, float],
+                   cache: RunCache | None = None):
     """Admissible cells (``admissible.Tessellation``) of a CamPlate or LinkBar planform, rows
-    graded from the outline: ``finest`` and the spacing in stretched (scaled) units."""
-    mesh = triangulate(part, finest * part.thickness, growth=growth, stretch=stretch)
-    return admissible(mesh, part, stretch)
+    graded from the outline: ``finest`` and the spacing in stretched (scaled) units; made
+    once per run (``cache``; None: a fresh one): plan and solve share them."""
+    def build():
+        mesh = triangulate(part, finest * part.thickness, growth=growth, stretch=stretch)
+        return admissible(mesh, part, stretch)
+    return run_cache(cache).get(("planform cells", part, finest, growth, stretch), build)
 
 
 def prism_widths(finest: float, growth: float) -> np.ndarray:
@@ -187,7 +190,7 @@ def prism_widths(finest: float, growth: float) -> np.ndarray:
 
 
 def prism_layout(geometry, d, accuracy: float, t_lo: float, cap: int,
-                 space_error: float, halved=()) -> Layout:
+                 space_error: float, halved=(), cache: RunCache | None = None) -> Layout:
     """Graded prism cells: planform rows and z widths with the same w0 and g (three
     graded directions in the error model); ``halved`` (1,): the solve keeps half the
     thickness (``symmetry_cuts``), which the cap counts."""
@@ -197,7 +200,7 @@ def prism_layout(geometry, d, accuracy: float, t_lo: float, cap: int,
     layout = graded((1.0, 1.0, 1.0), ("both",) * 3, accuracy, t_lo, cap, space_error,
                     lambda w0, g: estimated_prism_cells(geometry, w0, g, stretch), halved)
     finest = min(layout.finest, widest_row(geometry, stretch))
-    planform = planform_cells(geometry, finest, layout.growth, stretch)
+    planform = planform_cells(geometry, finest, layout.growth, stretch, cache)
     cells = (planform.cells, prism_widths(finest, layout.growth).size)
     return Layout(cells, layout.space_error, finest, layout.growth, layout.note, layout.halved)
 

@@ -20,6 +20,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..planform.admissible import band_share
+from ..problem.cache import RunCache
 from ..problem.geometry import Bar, CamPlate, LinkBar
 from ..problem.scaling import axis_scale, stretch_of
 from . import sizing
@@ -47,12 +48,12 @@ def half(widths: np.ndarray) -> np.ndarray:
 
 
 def mirrored(geometry, d, cells, finest: float, growth: float,
-             layer_depth: float) -> Discretisation:
+             layer_depth: float, cache: RunCache | None = None) -> Discretisation:
     """The FiPy operator of the mirror part of a Bar (octant) or a CamPlate or LinkBar
     (half thickness), graded from ``finest`` by ``growth`` (scaled units, ``sizing``), or
     a Bar on uniform ``cells`` (rounded up to even counts) when ``finest`` is 0."""
     if isinstance(geometry, (CamPlate, LinkBar)):
-        tess = sizing.planform_cells(geometry, finest, growth, stretch_of(d))
+        tess = sizing.planform_cells(geometry, finest, growth, stretch_of(d), cache)
         z = half(sizing.prism_widths(finest, growth)) * geometry.thickness
         return prism(tess, geometry.thickness, z, band_share(tess, layer_depth), d,
                      mid_plane=True)

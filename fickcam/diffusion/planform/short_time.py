@@ -3,12 +3,13 @@ error indicator, and the sheet fraction it is weighted by (the plane model's pro
 from __future__ import annotations
 
 from dataclasses import dataclass
-from functools import cached_property, lru_cache
+from functools import cached_property
 
 import numpy as np
 from scipy.special import erf, erfc
 
 from ..exact.series import cylinder_short_coefficients, ierfc, sheet_uptake
+from ..problem.cache import RunCache, run_cache
 from ..problem.scaling import planar_scale
 from .outline import boundary_loops
 from .polygon import CORNER_TURN, Wall, loop_length, resample_loop, turning_angles, vertex_normals
@@ -160,12 +161,15 @@ def corner_coefficient(gamma: np.ndarray) -> np.ndarray:
     return np.trapezoid(integrand, x, axis=1)
 
 
-@lru_cache(maxsize=16)  # plan and solve of one part share it (parts are immutable)
-def expansion_of(part, d, layer_depth: float | None = None) -> ShortTime | None:
+def expansion_of(part, d, layer_depth: float | None = None,
+                 cache: RunCache | None = None) -> ShortTime | None:
     """The outline's short-time expansion in scaled coordinates as plan and solve both see it
-    (circles sampled at thickness / 20 or finer); None when the outline has none."""
+    (circles sampled at thickness / 20 or finer); None when the outline has none. Made once
+    per run (``cache``; None: a fresh one): plan and solve of one part share it."""
+    cache = run_cache(cache)
     depth = part.thickness / 100 if layer_depth is None else layer_depth
-    return short_time(part, np.asarray(planar_scale(part, d)), depth, part.thickness / 20)
+    return cache.get(("outline expansion", part, d, depth), lambda: short_time(
+        part, np.asarray(planar_scale(part, d)), depth, part.thickness / 20, cache))
 
 
 def weighted(indicator, weight):
@@ -181,8 +185,10 @@ def sheet_fraction(tau):
     return 1.0 - sheet_uptake(np.maximum(tau, 0.0))
 
 
-def short_time(part, scale: np.ndarray, layer_depth: float, spacing: float) -> ShortTime | None:
-    """The expansion's coefficients in scaled coordinates (x' = x * scale)."""
+def short_time(part, scale: np.ndarray, layer_depth: float, spacing: float,
+               cache: RunCache | None = None) -> ShortTime | None:
+    """The expansion's coefficients in scaled coordinates (x' = x * scale); ``cache``: the
+    run's, which keeps the outline's chords for the other layer depth."""
     found = boundary_loops(part, spacing)
     if found is None:
         return None
@@ -192,7 +198,8 @@ def short_time(part, scale: np.ndarray, layer_depth: float, spacing: float) -> S
     moments = np.zeros(_disc_coefficients().size)
     weights, depths, curvatures = [], [], []
     scaled = [loop * scale[None, :] for loop in loops]
-    chords, chord_lengths = outline_chords(part, tuple(float(s) for s in scale), spacing)
+    chords, chord_lengths = outline_chords(part, tuple(float(s) for s in scale), spacing,
+                                           run_cache(cache))
     for loop, p, is_contact in zip(loops, scaled, contact):
         length = np.hypot(*(np.roll(p, -1, axis=0) - p).T)
         turn = turning_angles(p)
@@ -226,18 +233,16 @@ def short_time(part, scale: np.ndarray, layer_depth: float, spacing: float) -> S
                      chords, chord_lengths)
 
 
-@lru_cache(maxsize=16)
-def outline_chords(part, scale: tuple[float, float], spacing: float):
+def outline_chords(part, scale: tuple[float, float], spacing: float, cache: RunCache):
     """``inward_chords`` of the part's outline (``boundary_loops`` at ``spacing``) scaled by
-    ``scale``: plan and solve ask for the expansion at two layer depths, which leave the
-    chords alone (half the expansion's cost). Read-only arrays (cached)."""
-    loops, _ = boundary_loops(part, spacing)
-    factor = np.asarray(scale)
-    chords = inward_chords([loop * factor[None, :] for loop in loops],
-                           0.25 * spacing * float(np.max(factor)))
-    for array in chords:
-        array.setflags(write=False)   # cached: shared by every caller
-    return chords
+    ``scale``, once per run (``cache``): plan and solve ask for the expansion at two layer
+    depths, which leave the chords alone (half the expansion's cost). Read-only arrays."""
+    def build():
+        loops, _ = boundary_loops(part, spacing)
+        factor = np.asarray(scale)
+        return inward_chords([loop * factor[None, :] for loop in loops],
+                             0.25 * spacing * float(np.max(factor)))
+    return cache.get(("outline chords", part, scale, spacing), build)
 
 
 def inward_chords(loops: list[np.ndarray], spacing: float) -> tuple[np.ndarray, np.ndarray]:

@@ -48,9 +48,10 @@ class Plan:
     growth: float = 0.0      # graded meshes: growth per cell/row away from them
 
 
-@dataclass
+@dataclass(frozen=True)
 class DiffusionResult:
-    """Moisture of one part at the requested times (weight %).
+    """Moisture of one part at the requested times (weight %), frozen at construction (a
+    changed result is a new one, ``dataclasses.replace``).
 
     Parameters
     ----------
@@ -75,7 +76,7 @@ class DiffusionResult:
     cell_coordinates : dict of str to numpy.ndarray
         The cells' centres [m] per axis, with ``fields``.
     extend : callable, optional
-        ``extend(at)`` [s]: this result with rows at ``at`` added.
+        ``extend(at)`` [s]: this result with rows at ``at`` added (a new result).
     """
 
     times: np.ndarray

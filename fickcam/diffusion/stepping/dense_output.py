@@ -164,11 +164,10 @@ class Extension:
                      "%.1e > %.1e): solved again", self.what or result.model, new.size, worst,
                      INTERPOLATION_SHARE * self.accuracy)
             return self.resolve(both)
-        extended = result.merged(new, mean, layer)
-        extended.error_estimate = result.error_estimate + worst
-        extended.reason = (f"{result.reason}; {new.size} times read between the march's steps "
-                           f"(interpolation estimate {worst:.1e})")
-        return extended
+        return replace(result.merged(new, mean, layer),
+                       error_estimate=result.error_estimate + worst,
+                       reason=f"{result.reason}; {new.size} times read between the march's "
+                              f"steps (interpolation estimate {worst:.1e})")
 
 
 def held_to_plan(result, chosen, replan, resolve):

@@ -6,11 +6,11 @@ factorisation serves a whole block); requested output times are step boundaries.
 """
 from __future__ import annotations
 
-from functools import lru_cache
 
 import numpy as np
 
 from ..accuracy.error_model import FIRST_STEP
+from ..problem.cache import RunCache, run_cache
 
 
 def geometric_steps(start: float, stop: float, first_step: float,
@@ -89,20 +89,14 @@ MAX_AGES = 2048       # the largest in each bin of 1/AGES_PER_DECADE decade
 
 
 def output_ages(change_stars: np.ndarray, output_stars: np.ndarray, ramp: np.ndarray,
-                ramp_points: int = 17) -> np.ndarray:
-    """``_output_ages``, computed once for the plan and the solve of every part with the
-    same scaled history (the links of a four-bar; a year of rows costs ~0.05 s), read-only."""
+                ramp_points: int = 17, cache: RunCache | None = None) -> np.ndarray:
+    """``_output_ages``, computed once per run (``cache``; None: a fresh one) for the plan
+    and the solve of every part with the same scaled history (the links of a four-bar; a
+    year of rows costs ~0.05 s), read-only."""
     arrays = (np.asarray(change_stars, float), np.asarray(output_stars, float),
               np.asarray(ramp, bool))
-    return _ages_of(*(a.tobytes() for a in arrays), ramp_points)
-
-
-@lru_cache(maxsize=8)
-def _ages_of(change: bytes, outputs: bytes, ramp: bytes, ramp_points: int) -> np.ndarray:
-    ages = _output_ages(np.frombuffer(change), np.frombuffer(outputs),
-                        np.frombuffer(ramp, bool), ramp_points)
-    ages.setflags(write=False)
-    return ages
+    return run_cache(cache).get(("output ages", *(a.tobytes() for a in arrays), ramp_points),
+                                lambda: _output_ages(*arrays, ramp_points))
 
 
 def _output_ages(change_stars: np.ndarray, output_stars: np.ndarray, ramp: np.ndarray,

@@ -25,6 +25,7 @@ import numpy as np
 
 from ..exact.series import SATURATION_FOURIER
 from ..forcing.clock import clock_of
+from ..problem.cache import RunCache, run_cache
 
 GAUSS_NODES = 16
 PANEL_RATIO = 8.0
@@ -95,12 +96,14 @@ def _ramp_integral(kernel, clock, exposure, start, end, times, first_age, satura
     return body + tail.reshape(tail.shape + (1,) * (body.ndim - 1))
 
 
-def duhamel(kernel, diffusivity, exposure, times, diffusion_times, chunk=64):
+def duhamel(kernel, diffusivity, exposure, times, diffusion_times, chunk=64,
+            cache: RunCache | None = None):
     """M(t) - M0 in weight %, shape (n_times, ...kernel outputs); ``kernel(tau)`` takes
     rescaled times of any shape; ``diffusion_times`` = (fastest, slowest) L^2 / D0 of
-    the part (rescaled s): the first panel's scale and the age past which K = 1."""
+    the part (rescaled s): the first panel's scale and the age past which K = 1; ``cache``:
+    the run's (None: a fresh one)."""
     times = np.asarray(times, float)
-    clock = clock_of(diffusivity, exposure)
+    clock = clock_of(diffusivity, exposure, run_cache(cache))
     edges = clock.edges
     fastest, slowest = diffusion_times
     rate = diffusivity.arrhenius_factor(exposure.temperature(np.linspace(edges[0], edges[-1], 257)))

@@ -31,14 +31,13 @@ References
 from __future__ import annotations
 
 import math
-from collections import OrderedDict
 from dataclasses import dataclass, field, replace
-from functools import lru_cache
 
 import numpy as np
 
 from ..forcing.clock import clock_of
 from ..forcing.record import Forcing, forcing
+from ..problem.cache import RunCache, run_cache
 from ..problem.exposure import swing as swing_of
 
 FIRST_PER_DECADE = 16    # grid points per decade of age to start with; doubled while the
@@ -46,7 +45,6 @@ MAX_PER_DECADE = 256     #   grid and its every second point read differently
 SHORT_TIME = 1e-6        # the grid starts at this share of the fastest diffusion time
 #   (below it K = K(w0) sqrt(w / w0), Crank eq. 4.20, relative error ~sqrt(1e-6); the
 #   ages there weigh ~w0^1.5)
-KEPT_TABLES = 32           # tables kept between solves of one part (a run's limit search)
 TABLE_ENTRIES = 20_000_000  # grid points x kernel outputs at most (fields: memory)
 INTERPOLATION_SHARE = 0.25  # share of the tolerance for Ms piecewise linear in tau
 TABLE_SHARE = 0.25          # share of the tolerance for the tabulation
@@ -59,7 +57,6 @@ SECTIONS = 3             # rounds locating a step, each cutting its interval int
 SECTION_POINTS = 15      #   16 (to 16^-3 = 2.4e-4 of a cell: Ms moves little over it)
 CHUNK = 4096             # ages per kernel call (fields: memory)
 PAIR_CHUNK = 2 ** 17     # (output, node) pairs binned at once (in cache: ~1 MB an array)
-KEPT_READING_BYTES = 2 ** 28  # grid readings kept per record (outputs x grid points, x2)
 
 
 @dataclass(frozen=True)
@@ -295,8 +292,9 @@ class Sources:
     """Where Duhamel's sum reads the tables: output row, age, coefficient and log age (taken
     once for every table read) of the steps (K), the changes of slope (I) as ``Pairs``
     (many: listed block by block when read), and their prefix sums (``Ramps``).
-    ``readings`` keeps what depends on the grid and not on the kernel (the interpolation
-    weights gathered per output and grid point, the steps of K summed at an age), so that
+    ``kept`` keeps (in the run's cache) what depends on the grid and not on the kernel (the
+    interpolation weights gathered per output and grid point, the steps of K summed at an
+    age), so that
     every kernel read on one grid (mean, contact layer, fields, every part sharing the
     record) costs a matrix product, not a pass over every (output, node) pair."""
 
@@ -304,22 +302,12 @@ class Sources:
     slopes: "Pairs"
     outputs: int
     ramps: "Ramps"
-    readings: OrderedDict = field(default_factory=OrderedDict, compare=False, repr=False)
+    cache: RunCache = field(compare=False, repr=False)   # the run's: keeps the readings
 
     def kept(self, key, build):
-        """``build()`` (arrays) once per ``key``; the least recently used dropped while
-        the kept arrays pass ``KEPT_READING_BYTES``."""
-        if key in self.readings:
-            self.readings.move_to_end(key)
-            return self.readings[key]
-        value = self.readings[key] = build()
-        def size(kept):  # an array, or a tuple of arrays
-            return sum(part.nbytes for part in kept) if isinstance(kept, tuple) else kept.nbytes
-
-        while (len(self.readings) > 1 and
-               sum(size(kept) for kept in self.readings.values()) > KEPT_READING_BYTES):
-            self.readings.popitem(last=False)
-        return value
+        """``build()`` (arrays, read-only) once per ``key`` in the run's cache, as long as
+        these sources live."""
+        return self.cache.get(("duhamel reading", key), build, owner=self)
 
 
 @dataclass(frozen=True)
@@ -387,9 +375,10 @@ class Pairs:
         return (self.block(first, last) for first, last in zip(edges[:-1], edges[1:]))
 
 
-def sources(force: Forcing) -> Sources:
+def sources(force: Forcing, cache: RunCache | None = None) -> Sources:
     """J_i = Ms(tau_i) - Ms(tau_i-) and s_i - s_i-1 at every node older than each output
-    (tau rises with the nodes: the nodes older than an output are a leading run)."""
+    (tau rises with the nodes: the nodes older than an output are a leading run; their
+    readings kept in the run's ``cache``; None: a fresh one)."""
     tau = force.tau
     dtau = np.diff(tau)
     rise = force.left[1:] - force.right[:-1]
@@ -401,7 +390,8 @@ def sources(force: Forcing) -> Sources:
     change = np.diff(np.concatenate([[0.0], slope]))
     at = tau[force.outputs]
     return Sources(Pairs.of(tau, jumps, at).block(0, at.size), Pairs.of(tau, change, at),
-                   force.outputs.size, Ramps.of(tau, change, force.outputs))
+                   force.outputs.size, Ramps.of(tau, change, force.outputs),
+                   run_cache(cache))
 
 
 def _gather(rows, index, weights, outputs: int, size: int) -> np.ndarray:
@@ -484,23 +474,27 @@ class LongRecord:
     last: float
     exposure: object
     clock: object
+    cache: RunCache = field(compare=False, repr=False)   # the run's: tables and readings
 
     @classmethod
-    def of(cls, diffusivity, exposure, times, fastest: float, accuracy: float) -> "LongRecord":
-        """``fastest``: the part's shortest diffusion time L^2 / D0 (rescaled s)."""
-        force, where, swing, tolerance = _forced(diffusivity, exposure,
-                                                 np.asarray(times, float).tobytes(), accuracy)
+    def of(cls, diffusivity, exposure, times, fastest: float, accuracy: float,
+           cache: RunCache) -> "LongRecord":
+        """``fastest``: the part's shortest diffusion time L^2 / D0 (rescaled s); ``cache``:
+        the run's."""
+        force, where, swing, tolerance = cache.get(
+            ("long record", diffusivity, exposure, np.asarray(times, float).tobytes(), accuracy),
+            lambda: _forced(diffusivity, exposure, np.asarray(times, float), accuracy, cache))
         first = SHORT_TIME * fastest
         last = float(np.max(force.tau[force.outputs] - force.tau[0], initial=0.0))
         return cls(force, where, swing, tolerance, first, max(last, 10.0 * first),
-                   exposure, clock_of(diffusivity, exposure))
+                   exposure, clock_of(diffusivity, exposure, cache), cache)
 
     def at(self, times) -> "LongRecord":
         """This record read at other ``times`` inside its outputs' span (the limit search):
         the nodes gain ``times`` as a solve at both sets would have them, the tables keep
         their grid (``last``), and the sum reads the new outputs only."""
         force = self.force.with_outputs(self.exposure, self.clock, times)
-        return replace(self, force=force, where=sources(force))
+        return replace(self, force=force, where=sources(force, self.cache))
 
     def superpose(self, kernel, per_decade: int = FIRST_PER_DECADE, refine: bool = True,
                   looser: float = 1.0, same: "KernelKey | None" = None,
@@ -520,7 +514,7 @@ class LongRecord:
         per_decade = min(per_decade, cap)
         table = None
         while True:
-            table = _kept(same, (self.first, self.last, per_decade),
+            table = self._kept(same, (self.first, self.last, per_decade),
                           lambda coarser=table: tabulate(kernel, self.first, self.last,
                                                          per_decade, coarser))
             if per_decade < start and 2 * per_decade <= min(MAX_PER_DECADE, cap):
@@ -535,21 +529,27 @@ class LongRecord:
         error = (change + self.force.interpolation) / max(self.swing, 1e-300)
         return fine.reshape((fine.shape[0],) + shape), error, per_decade
 
+    def _kept(self, same: "KernelKey | None", grid: tuple, build) -> Table:
+        """The table of kernel ``same`` on ``grid`` from an earlier solve of the run, else
+        ``build()`` (kept in the run's cache, read-only)."""
+        if same is None:
+            return build()
+        return self.cache.get(("duhamel table", same.key, grid), build, holds=same.holds)
+
     def field(self, kernel) -> np.ndarray:
         """M - M0 of a wide kernel (a field's cells): one table at ``FIELD_PER_DECADE``,
         not refined (a run's estimate is the mean's)."""
         return self.superpose(kernel, FIELD_PER_DECADE, refine=False)[0]
 
 
-@lru_cache(maxsize=16)
-def _forced(diffusivity, exposure, times: bytes, accuracy: float):
-    """(Forcing, Sources, swing, tolerance) of a record at ``times`` (their bytes), made
-    once for the parts that share a material and its exposure (the links of a four-bar)."""
-    clock = clock_of(diffusivity, exposure)
+def _forced(diffusivity, exposure, times: np.ndarray, accuracy: float, cache: RunCache):
+    """(Forcing, Sources, swing, tolerance) of a record at ``times``, made once per run for
+    the parts that share a material and its exposure (the links of a four-bar)."""
+    clock = clock_of(diffusivity, exposure, cache)
     swing = swing_of(exposure)
     tolerance = accuracy * max(swing, 1e-300)
-    force = forcing(exposure, clock, np.frombuffer(times), INTERPOLATION_SHARE * tolerance)
-    return force, sources(force), swing, tolerance
+    force = forcing(exposure, clock, times, INTERPOLATION_SHARE * tolerance)
+    return force, sources(force, cache), swing, tolerance
 
 
 @dataclass(frozen=True, eq=False)
@@ -559,25 +559,3 @@ class KernelKey:
 
     key: tuple
     holds: tuple = ()
-
-
-_TABLES: OrderedDict = OrderedDict()
-
-
-def _kept(same: KernelKey | None, grid: tuple, build) -> Table:
-    """The table of kernel ``same`` on ``grid`` from an earlier solve, else ``build()``
-    (kept, read-only, the least recently used dropped past ``KEPT_TABLES``)."""
-    if same is None:
-        return build()
-    key = (same.key, grid)
-    if key in _TABLES:
-        _TABLES.move_to_end(key)
-        return _TABLES[key][0]
-    table = build()
-    for array in (table.kernel, table.integral, table.raw):
-        if array is not None:
-            array.setflags(write=False)   # kept: later solves read the same arrays
-    _TABLES[key] = (table, same.holds)
-    while len(_TABLES) > KEPT_TABLES:
-        _TABLES.popitem(last=False)
-    return table
