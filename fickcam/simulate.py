@@ -69,7 +69,7 @@ def diffusion_options(scene: Scene, accuracy: float | None, settings=None) -> di
             "settings": SolverSettings() if settings is None else settings}
 
 
-def part_model(options: dict, part: str) -> str:
+def _part_model(options: dict, part: str) -> str:
     """The diffusion model asked for ``part`` (``diffusion.model``: one name or per part)."""
     model = options["model"]
     return model.get(part, "auto") if isinstance(model, dict) else model
@@ -109,7 +109,7 @@ def plan_parts(scene: Scene, accuracy: float | None = None):
         diffusivity = part.material.diffusivity_for(part.geometry)
         plans.append((part, _for_part(part.name, plan, part.geometry, diffusivity, exposure, times,
                                       accuracy=options["accuracy"],
-                                      model=part_model(options, part.name),
+                                      model=_part_model(options, part.name),
                                       sorption=part.material.sorption_law(),
                                       surface_layer_depth=options["surface_layer_depth"],
                                       settings=options["settings"])))
@@ -157,7 +157,7 @@ def _age(scene: Scene, environment: Environment, times: np.ndarray, accuracy: fl
                                                       diffusions=diffusions)
     design_scene = scene.as_designed()  # differs where the scene is made to compensate
     designs = [design_part(part, environment) for part in build_parts(design_scene)]
-    values.update(design_values(design_scene, designs))
+    values.update(_design_values(design_scene, designs))
     if environment.state_times is None and times[-1] > 0:  # states given directly: no climate
         edges = summary_edges(times[-1])
         values.update(climate_values(environment, edges))
@@ -252,7 +252,7 @@ def _aged_values(scene: Scene, environment: Environment, times: np.ndarray,
         np.ones_like(times, bool)
     mechanisms = mechanism_values(scene, histories, times, valid_all, bar.update)
     values.update(mechanisms.variables)
-    coords.update(mechanism_coords(scene))
+    coords.update(_mechanism_coords(scene))
     notices += mechanisms.notices
     if elastic:
         from .elastic.parts import swelling_variables
@@ -373,7 +373,7 @@ def age_part(part: Part, environment: Environment, times, options: dict, scene: 
         if result is None:
             result = _for_part(part.name, solve, part.geometry,
                                part.material.diffusivity_for(part.geometry), exposure, times,
-                               accuracy=options["accuracy"], model=part_model(options, part.name),
+                               accuracy=options["accuracy"], model=_part_model(options, part.name),
                                surface_layer_depth=options["surface_layer_depth"],
                                store_fields=scene.model.outputs.fields or keep_field,
                                part=part.name, sorption=part.material.sorption_law(),
@@ -422,7 +422,7 @@ def _state(part: Part, temperature, mean, surface, environment: Environment, tim
                           part=part.name, times=times)
 
 
-def mechanism_coords(scene: Scene) -> dict:
+def _mechanism_coords(scene: Scene) -> dict:
     """The angle (and link, joint) coordinates of the mechanisms a scene models."""
     coords: dict = {}
     angles = _angle_grid(scene.model.outputs.angle_step)
@@ -465,7 +465,7 @@ def mechanism_values(scene: Scene, histories: list[PartHistory], times, valid,
     return response
 
 
-def design_values(scene: Scene, designs: list[PartHistory]) -> dict[str, np.ndarray]:
+def _design_values(scene: Scene, designs: list[PartHistory]) -> dict[str, np.ndarray]:
     """``<name>_design`` for every variable the schema marks: the material state and the
     mechanisms evaluated for the design (one time, then the time axis dropped). The
     design's notices repeat those at t = 0 and are not reported."""

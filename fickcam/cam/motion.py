@@ -24,13 +24,43 @@ PI = math.pi
 
 def uniform_velocity(x):
     """S = x (Norton sec. 8.3, 'constant velocity'; Singh & Sanyal 2017 Table 17). Infinite
-    acceleration at both ends."""
+    acceleration at both ends.
+
+    Parameters
+    ----------
+    x : float or array_like
+        Fraction of the segment, (theta - theta_0)/beta [-].
+
+    Returns
+    -------
+    tuple of numpy.ndarray
+        S, dS/dx, d2S/dx2, d3S/dx3 [-].
+
+    References
+    ----------
+    Norton (2012), sec. 8.3; Singh & Sanyal (2017), Table 17; in full in :mod:`fickcam.cam`.
+    """
     x = np.asarray(x, float)
     return x, np.ones_like(x), np.zeros_like(x), np.zeros_like(x)
 
 
 def simple_harmonic(x):
-    """S = (1 - cos pi x)/2 (Norton eq. 8.6; Singh & Sanyal 2017 Table 17 and p. 281)."""
+    """S = (1 - cos pi x)/2 (Norton eq. 8.6; Singh & Sanyal 2017 Table 17 and p. 281).
+
+    Parameters
+    ----------
+    x : float or array_like
+        Fraction of the segment, (theta - theta_0)/beta [-].
+
+    Returns
+    -------
+    tuple of numpy.ndarray
+        S, dS/dx, d2S/dx2, d3S/dx3 [-].
+
+    References
+    ----------
+    Norton (2012), eq. 8.6; Singh & Sanyal (2017), Table 17; in full in :mod:`fickcam.cam`.
+    """
     x = np.asarray(x, float)
     return ((1 - np.cos(PI * x)) / 2, PI / 2 * np.sin(PI * x), PI ** 2 / 2 * np.cos(PI * x),
             -PI ** 3 / 2 * np.sin(PI * x))
@@ -38,7 +68,22 @@ def simple_harmonic(x):
 
 def cycloidal(x):
     """S = x - sin(2 pi x)/(2 pi) (Norton eq. 8.7; Singh & Sanyal 2017 Table 17;
-    Yadav et al. 2017 p. 2)."""
+    Yadav et al. 2017 p. 2).
+
+    Parameters
+    ----------
+    x : float or array_like
+        Fraction of the segment, (theta - theta_0)/beta [-].
+
+    Returns
+    -------
+    tuple of numpy.ndarray
+        S, dS/dx, d2S/dx2, d3S/dx3 [-].
+
+    References
+    ----------
+    Norton (2012), eq. 8.7; Singh & Sanyal (2017), Table 17; in full in :mod:`fickcam.cam`.
+    """
     x = np.asarray(x, float)
     w = 2 * PI
     return (x - np.sin(w * x) / w, 1 - np.cos(w * x), w * np.sin(w * x), w ** 2 * np.cos(w * x))
@@ -52,12 +97,42 @@ def _polynomial(coefficients, x):
 
 
 def polynomial_345(x):
-    """S = 10 x^3 - 15 x^4 + 6 x^5 (Norton eq. 8.24)."""
+    """S = 10 x^3 - 15 x^4 + 6 x^5 (Norton eq. 8.24).
+
+    Parameters
+    ----------
+    x : float or array_like
+        Fraction of the segment, (theta - theta_0)/beta [-].
+
+    Returns
+    -------
+    tuple of numpy.ndarray
+        S, dS/dx, d2S/dx2, d3S/dx3 [-].
+
+    References
+    ----------
+    Norton (2012), eq. 8.24; in full in :mod:`fickcam.cam`.
+    """
     return _polynomial([0, 0, 0, 10, -15, 6], x)
 
 
 def polynomial_4567(x):
-    """S = 35 x^4 - 84 x^5 + 70 x^6 - 20 x^7 (Norton eq. 8.25)."""
+    """S = 35 x^4 - 84 x^5 + 70 x^6 - 20 x^7 (Norton eq. 8.25).
+
+    Parameters
+    ----------
+    x : float or array_like
+        Fraction of the segment, (theta - theta_0)/beta [-].
+
+    Returns
+    -------
+    tuple of numpy.ndarray
+        S, dS/dx, d2S/dx2, d3S/dx3 [-].
+
+    References
+    ----------
+    Norton (2012), eq. 8.25; in full in :mod:`fickcam.cam`.
+    """
     return _polynomial([0, 0, 0, 0, 35, -84, 70, -20], x)
 
 
@@ -128,19 +203,64 @@ _MODIFIED_SINE = (
 def constant_acceleration(x):
     """Parabolic: S = 2 x^2 (x <= 1/2), 1 - 2 (1 - x)^2 (Norton sec. 8.3; Singh & Sanyal
     2017 Table 17, whose second half is misprinted as h[1 - 2{1 - k^2}]). Infinite jerk at
-    ends and middle."""
+    ends and middle.
+
+    Parameters
+    ----------
+    x : float or array_like
+        Fraction of the segment, (theta - theta_0)/beta [-].
+
+    Returns
+    -------
+    tuple of numpy.ndarray
+        S, dS/dx, d2S/dx2, d3S/dx3 [-].
+
+    References
+    ----------
+    Norton (2012), sec. 8.3; in full in :mod:`fickcam.cam`.
+    """
     return _piecewise(_CONSTANT_ACCELERATION, x)
 
 
 def modified_trapezoidal(x):
     """Modified trapezoid: sine ramps of period 1/2 over x in [0, 1/8], [3/8, 5/8], [7/8, 1]
-    and constant acceleration between (Norton eq. 8.15, peak C_a = 4.8881)."""
+    and constant acceleration between (Norton eq. 8.15, peak C_a = 4.8881).
+
+    Parameters
+    ----------
+    x : float or array_like
+        Fraction of the segment, (theta - theta_0)/beta [-].
+
+    Returns
+    -------
+    tuple of numpy.ndarray
+        S, dS/dx, d2S/dx2, d3S/dx3 [-].
+
+    References
+    ----------
+    Norton (2012), eq. 8.15; in full in :mod:`fickcam.cam`.
+    """
     return _piecewise(_MODIFIED_TRAPEZOIDAL, x)
 
 
 def modified_sine(x):
     """Modified sine: sine of period 1/2 over [0, 1/8] and [7/8, 1], of period 3/2 between
-    (Norton eq. 8.18, peak C_a = 5.5280)."""
+    (Norton eq. 8.18, peak C_a = 5.5280).
+
+    Parameters
+    ----------
+    x : float or array_like
+        Fraction of the segment, (theta - theta_0)/beta [-].
+
+    Returns
+    -------
+    tuple of numpy.ndarray
+        S, dS/dx, d2S/dx2, d3S/dx3 [-].
+
+    References
+    ----------
+    Norton (2012), eq. 8.18; in full in :mod:`fickcam.cam`.
+    """
     return _piecewise(_MODIFIED_SINE, x)
 
 
@@ -154,7 +274,26 @@ LAW_FUNCTIONS = {f.__name__: f for f in (uniform_velocity, constant_acceleration
 
 @dataclass(frozen=True)
 class MotionSegment:
-    """One segment of the design motion (SI): start angle, span, signed height, law."""
+    """One segment of the design motion (SI): start angle, span, signed height, law.
+
+    Parameters
+    ----------
+    start : float
+        Cam angle where the segment starts [rad].
+    span : float
+        Cam angle the segment spans [rad].
+    height : float
+        Signed lift over the segment: + rise, - return, 0 dwell [m].
+    level : float
+        Follower position at the segment start [m].
+    law : str or None
+        Name of the motion law (a key of ``LAW_FUNCTIONS`` or ``"spline"``); None for a
+        dwell.
+    spline : SplineLaw or None
+        The normalised law of a ``spline`` segment (:mod:`fickcam.cam.spline`).
+    correction : tuple of complex
+        Fourier harmonics of a polydyne correction [m] (:mod:`fickcam.cam.polydyne`).
+    """
 
     start: float
     span: float
@@ -166,7 +305,19 @@ class MotionSegment:
 
 
 def segments_from_spec(specs) -> tuple[MotionSegment, ...]:
-    """Turn scene segments (objects with .angle, .height, .law) into MotionSegments."""
+    """Turn scene segments into :class:`MotionSegment` s laid end to end from 0 rad.
+
+    Parameters
+    ----------
+    specs : sequence of Segment
+        Scene segments with ``.angle`` [rad], ``.height`` [m], ``.law`` and, for a spline,
+        ``.spline``.
+
+    Returns
+    -------
+    tuple of MotionSegment
+        The segments, each starting where the previous one ends, at the level it reached.
+    """
     out, start, level = [], 0.0, 0.0
     for s in specs:
         out.append(MotionSegment(start, float(s.angle), float(s.height), level,
@@ -188,15 +339,28 @@ def _spline_of(spec):
 
 
 def segment_motion(segment: MotionSegment, theta):
-    """(y, y', y'', y''') per radian of cam angle inside one segment (theta in rad), with
-    the segment's polydyne correction when it has one."""
-    law = law_motion(segment, theta)
+    """(y, y', y'', y''') per radian of cam angle inside one segment, with the segment's
+    polydyne correction when it has one.
+
+    Parameters
+    ----------
+    segment : MotionSegment
+        The segment.
+    theta : float or array_like
+        Cam angle, inside the segment [rad].
+
+    Returns
+    -------
+    tuple of numpy.ndarray
+        y [m], dy/dtheta [m/rad], d2y/dtheta2 [m/rad^2], d3y/dtheta3 [m/rad^3].
+    """
+    law = _law_motion(segment, theta)
     if not segment.correction:
         return law
     return tuple(a + b for a, b in zip(law, correction_motion(np.asarray(segment.correction), theta)))
 
 
-def law_motion(segment: MotionSegment, theta):
+def _law_motion(segment: MotionSegment, theta):
     """The segment's own law (no polydyne correction), as :func:`segment_motion`."""
     theta = np.asarray(theta, float)
     if segment.law is None or segment.height == 0.0:
@@ -241,7 +405,7 @@ def follower_motion(segments, theta, corrected: bool = True):
     for k, seg in enumerate(segments):
         last = k == len(segments) - 1
         inside = (theta >= seg.start) & ((theta < seg.start + seg.span) | last)
-        for o, v in zip(out, law_motion(seg, theta[inside])):
+        for o, v in zip(out, _law_motion(seg, theta[inside])):
             o[inside] = v
     if corrected and segments[0].correction:
         coefficients = np.asarray(segments[0].correction)
@@ -271,7 +435,25 @@ def time_derivatives(per_angle, omega):
 def joint_notices(segments, tolerance: float = 1e-9) -> list[str]:
     """Warnings where the motion leaves infinite acceleration (velocity step) or infinite
     jerk (acceleration step) at a segment joint or inside a law (Norton sec. 8.2, the
-    'fundamental law of cam design')."""
+    'fundamental law of cam design').
+
+    Parameters
+    ----------
+    segments : sequence of MotionSegment
+        The motion over one turn.
+    tolerance : float
+        Step in velocity (times the span) or in acceleration (times the span squared)
+        that counts as a jump, relative to the largest lift [-].
+
+    Returns
+    -------
+    list of str
+        One sentence per joint or law with a step; empty when the motion is smooth.
+
+    References
+    ----------
+    Norton (2012), sec. 8.2; in full in :mod:`fickcam.cam`.
+    """
     notices = []
     lift = max(abs(s.height) for s in segments) or 1.0
     n = len(segments)

@@ -38,7 +38,7 @@ def follower_response(design: CamDesign, state: CamState, cam_angle) -> Response
     return cam_response(design, state, cam_angle)
 
 
-def aged_arm(design: CamDesign, state: CamState) -> tuple[geo.Arm, float]:
+def _aged_arm(design: CamDesign, state: CamState) -> tuple[geo.Arm, float]:
     """The arm with its length and face offset grown by the follower's strain along it and
     its inertia by the follower's moisture mass ratio m/m_dry, and its dry base angle."""
     ratio = 1.0 if state.follower_mass is None else state.follower_mass / design.follower_mass
@@ -46,16 +46,16 @@ def aged_arm(design: CamDesign, state: CamState) -> tuple[geo.Arm, float]:
     return replace(grown["arm"], inertia=grown["arm"].inertia * ratio), grown["base"]
 
 
-def arm_contact(design: CamDesign, state: CamState, psi, d1, d2) -> geo.Contact:
+def _arm_contact(design: CamDesign, state: CamState, psi, d1, d2) -> geo.Contact:
     """Contact geometry of the aged arm at arm angles psi from the dry base position."""
-    arm, base = aged_arm(design, state)
+    arm, base = _aged_arm(design, state)
     if design.follower_kind == "flat":
         return geo.face_contact(arm, base, psi, d1, d2)
     return geo.roller_contact(arm, base, design.roller_radius * (1 + state.roller_strain),
                               psi, d1, d2)
 
 
-def holding_torque(arm: geo.Arm, psi):
+def _holding_torque(arm: geo.Arm, psi):
     """Speed-independent torque the cam must supply about the pivot: k_t psi + T_0 + T_load
     (psi from the dry base position, where the spring has its preload)."""
     return arm.spring_rate * psi + arm.spring_preload + arm.load_torque
@@ -74,14 +74,14 @@ def arm_response(design: CamDesign, state: CamState, cam_angle) -> Response:
     omega = design.speed
     motion, (lowest, highest) = motion_function(design, state)
     psi, d1, d2, d3 = motion(theta)
-    arm = aged_arm(design, state)[0]
-    contact = arm_contact(design, state, psi, d1, d2)
+    arm = _aged_arm(design, state)[0]
+    contact = _arm_contact(design, state, psi, d1, d2)
     roller = design.roller_radius * (1 + state.roller_strain)
     notices = joint_notices(design.segments) if design.kind == "motion" else []
     notices += _geometry_notices(design, theta, contact.pressure_angle, contact.pitch_radius,
                                  contact.radius, roller)
 
-    holding = holding_torque(arm, psi)
+    holding = _holding_torque(arm, psi)
     needed = arm.inertia * d2 * omega ** 2 + holding
     with np.errstate(divide="ignore", invalid="ignore"):
         force = needed / contact.lever
@@ -91,7 +91,7 @@ def arm_response(design: CamDesign, state: CamState, cam_angle) -> Response:
                        f"(pressure angle {math.degrees(contact.pressure_angle[stuck[0]]):.4g} deg) "
                        f"at {math.degrees(theta[stuck[0]]):.4g} deg")
     jump = continuous_jump_speed(design, motion, arm.inertia, theta, d2, holding,
-                                 holding_of=lambda angle: holding_torque(arm, angle))
+                                 holding_of=lambda angle: _holding_torque(arm, angle))
     notices += _jump_notices(theta, needed, jump, omega)
     stress, shear, shear_depth = hertz_contact(design, state, force, contact.radius, roller)
     sliding = design.follower_kind == "flat"
@@ -138,5 +138,4 @@ def describe_arm(design: CamDesign) -> str:
             f"curvature {np.nanmin(v['radius_of_curvature']) * 1e3:.4g} mm")
 
 
-__all__ = ["aged_arm", "arm_contact", "arm_response", "describe_arm", "follower_response",
-           "holding_torque"]
+__all__ = ["arm_response", "describe_arm", "follower_response"]

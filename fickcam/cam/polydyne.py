@@ -25,7 +25,7 @@ from .fourier import harmonics
 from .train import FINE, Train, transfer
 
 
-def correction_harmonics(segments, train: Train, speed: float) -> np.ndarray:
+def _correction_harmonics(segments, train: Train, speed: float) -> np.ndarray:
     """Harmonics of e - P/k = s - y for the chosen motion ``segments`` at cam speed ``speed``."""
     from .motion import follower_motion
 
@@ -45,5 +45,5 @@ def polydyne_design(design, modulus: float | None):
 
     state = CamState(follower_train_modulus=modulus)
     train = train_of(design, state, 0.0)
-    coefficients = tuple(correction_harmonics(design.segments, train, design.polydyne_speed))
+    coefficients = tuple(_correction_harmonics(design.segments, train, design.polydyne_speed))
     return replace(design, segments=tuple(replace(s, correction=coefficients) for s in design.segments))

@@ -68,11 +68,11 @@ def worst(design, state=None, step: float = SIZE_STEP) -> tuple[float, float]:
     theta = np.arange(0.0, 2 * math.pi, step)
     v = follower_response(design, state or CamState(), theta).variables
     return (float(np.max(np.abs(v["pressure_angle"]))),
-            smallest_convex_radius(design.follower_kind, v["radius_of_curvature"],
+            _smallest_convex_radius(design.follower_kind, v["radius_of_curvature"],
                                    v["pitch_radius_of_curvature"]))
 
 
-def smallest_convex_radius(kind: str, rho, pitch) -> float:
+def _smallest_convex_radius(kind: str, rho, pitch) -> float:
     """Smallest working radius of curvature where the pitch curve is convex (m); a flat
     follower's profile must be convex everywhere (rho <= 0 is a cusp), a roller's working
     profile has an undercut where rho = rho_pitch - R_f <= 0 on a convex pitch curve."""
@@ -185,7 +185,7 @@ def aged_check(ds, limits: Limits, kind: str) -> str:
     """Whether the last valid ageing time of a (sized) result still meets the limits."""
     last = ds.isel(time=int(np.flatnonzero(np.isfinite(ds["base_circle_radius"].values))[-1]))
     phi = math.radians(float(np.nanmax(np.abs(last["pressure_angle"].values))))  # stored in deg
-    rho = smallest_convex_radius(kind, last["radius_of_curvature"].values,
+    rho = _smallest_convex_radius(kind, last["radius_of_curvature"].values,
                                  last["pitch_radius_of_curvature"].values)
     days = float(last["time"])
     ok = all(within(limits, phi, rho))

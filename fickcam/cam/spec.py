@@ -301,7 +301,7 @@ class CamSection(_Strict):
     @classmethod
     def _closed_turn(cls, value):
         if value is not None:
-            check_motion(value)
+            _check_motion(value)
         return value
 
     @model_validator(mode="after")
@@ -343,7 +343,7 @@ class CamSection(_Strict):
         return self
 
 
-def check_motion(segments) -> None:
+def _check_motion(segments) -> None:
     """Raise ValueError unless the segments add up to 360 deg and close (rises = returns)."""
     if not segments:
         raise ValueError("motion needs at least one segment")
@@ -365,5 +365,4 @@ def check_motion(segments) -> None:
 
 
 __all__ = ["Angle", "CamSection", "Eccentric", "Follower", "Guide", "LAWS", "Lever", "Rod", "Segment",
-           "SwingingArm", "TrainSection", "Wear", "arm_problems",
-           "check_motion"]
+           "SwingingArm", "TrainSection", "Wear", "arm_problems"]

@@ -161,7 +161,7 @@ def transfer(train: Train, omega: float, n) -> np.ndarray:
     return num / (train.total_stiffness - train.mass * w ** 2 + 1j * w * train.damping)
 
 
-def steady_harmonics(train: Train, omega: float, s_harmonics) -> np.ndarray:
+def _steady_harmonics(train: Train, omega: float, s_harmonics) -> np.ndarray:
     """X_n of the periodic steady state; the constant load shifts the mean (n = 0) only."""
     n = np.arange(len(s_harmonics))
     x = transfer(train, omega, n) * s_harmonics
@@ -172,7 +172,7 @@ def steady_harmonics(train: Train, omega: float, s_harmonics) -> np.ndarray:
 # ------------------------------------------------------------------ start from rest
 
 
-def from_rest(train: Train, omega: float, x_harmonics, s0: float, theta):
+def _from_rest(train: Train, omega: float, x_harmonics, s0: float, theta):
     """(x, x') over the first turn when the mass starts at rest in equilibrium at theta = 0:
     the periodic solution plus the free vibration u = e^{-zeta wn t}(A cos wd t + B sin wd t)
     that makes up the initial difference (superposition; Norton sec. 10.x). zeta < 1."""
@@ -245,10 +245,10 @@ def cycloidal_residual_amplitude(lift: float, rise_time: float, natural_frequenc
 # ------------------------------------------------------------------ jump
 
 
-def lowest_axial_force(train: Train, omega: float, s_harmonics, s_fine, ds_fine):
+def _lowest_axial_force(train: Train, omega: float, s_harmonics, s_fine, ds_fine):
     """Smallest F_c = k (s - x) + c (s' - x') over the fine grid at cam speed omega."""
     size = len(ds_fine)
-    x_harm = steady_harmonics(train, omega, s_harmonics)
+    x_harm = _steady_harmonics(train, omega, s_harmonics)
     deflection = s_fine - on_grid(x_harm, size)
     rate = omega * ds_fine - on_grid(x_harm, size, 1, omega)
     return float(np.min(train.stiffness * deflection + train.damping * rate))
@@ -261,7 +261,7 @@ def dynamic_jump_speed(train: Train, s_harmonics, s_fine, ds_fine, upper: float)
     from scipy.optimize import brentq
 
     def margin(omega):
-        return lowest_axial_force(train, omega, s_harmonics, s_fine, ds_fine)
+        return _lowest_axial_force(train, omega, s_harmonics, s_fine, ds_fine)
 
     if margin(0.0) <= 0.0:
         return 0.0
@@ -312,7 +312,7 @@ class SteadyState:
     x_harmonics: np.ndarray
 
 
-def steady_state(design, state) -> SteadyState:
+def _steady_state(design, state) -> SteadyState:
     """:class:`SteadyState` of ``design`` at ageing state ``state`` (needs design.train)."""
     from . import dynamics as dyn
     from .kinematics import dry_lowest_height, follower_heights
@@ -325,7 +325,7 @@ def steady_state(design, state) -> SteadyState:
     train = train_of(design, state, float(holding[0] - design.spring_rate * (height[0] - lowest)))
     s_harm = harmonics(height - lowest)
     return SteadyState(train, lowest, height - lowest, d1, d2, holding, s_harm,
-                       steady_harmonics(train, design.speed, s_harm))
+                       _steady_harmonics(train, design.speed, s_harm))
 
 
 def dynamic_response(design, state, cam_angle, rigid) -> Response:
@@ -339,7 +339,7 @@ def dynamic_response(design, state, cam_angle, rigid) -> Response:
 
     theta = np.asarray(cam_angle, float)
     omega = design.speed
-    steady = steady_state(design, state)
+    steady = _steady_state(design, state)
     train, x_harm = steady.train, steady.x_harmonics
     (s, ds, _, _), _ = follower_heights(design, state, theta)
     s = s - steady.lowest
@@ -355,7 +355,7 @@ def dynamic_response(design, state, cam_angle, rigid) -> Response:
         "dynamic_follower_displacement": x,
         "dynamic_displacement_error": x - s,
         "dynamic_contact_force": force,
-        "startup_follower_displacement": from_rest(train, omega, x_harm, steady.s[0], theta)[0],
+        "startup_follower_displacement": _from_rest(train, omega, x_harm, steady.s[0], theta)[0],
         "natural_frequency": train.natural_frequency / (2 * np.pi),
         "follower_train_stiffness": train.stiffness,
         "dynamic_jump_speed": jump,
@@ -390,9 +390,9 @@ def residual_vibrations(design, state, steady: SteadyState | None = None) -> np.
     events = np.asarray(_events(design) if design.kind == "motion" else [], float)
     if events.size == 0:
         return np.zeros(0)
-    steady = steady or steady_state(design, state)
+    steady = steady or _steady_state(design, state)
     train = steady.train
-    x, dx = from_rest(train, design.speed, steady.x_harmonics, float(steady.s[0]), events)
+    x, dx = _from_rest(train, design.speed, steady.x_harmonics, float(steady.s[0]), events)
     s_end = follower_heights(design, state, events)[0][0] - steady.lowest
     return free_amplitude(train, x - train.equilibrium(s_end), dx)
 

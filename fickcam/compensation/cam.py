@@ -40,7 +40,7 @@ IN_PLANE = ("strain_longitudinal", "strain_transverse")
 ARM_NAMES = {"length": "arm length", "face_offset": "arm face offset"}
 
 
-def given_by_points(section, points: bool = False) -> bool:
+def _given_by_points(section, points: bool = False) -> bool:
     """True when the made cam is written as points: a profile file, a swinging arm's cam,
     or any cam when ``points`` is asked for."""
     return points or section.profile_file is not None or section.follower.arm is not None
@@ -50,10 +50,10 @@ def _segment_name(index: int, segment) -> str:
     return f"{segment.kind} of segment {index + 1}"
 
 
-def shape_targets(section, points: bool = False) -> list[Target]:
+def _shape_targets(section, points: bool = False) -> list[Target]:
     """The cam's own dimensions, in the form it was given in (module docstring), or its
     points when ``points`` is asked for."""
-    if given_by_points(section, points):
+    if _given_by_points(section, points):
         x, y = working_profile(design_from_scene(section), n=PROFILE_POINTS)
         return [Target("cam", PROFILE_NAMES[0], "cam", ("strain_longitudinal",), x),
                 Target("cam", PROFILE_NAMES[1], "cam", ("strain_transverse",), y)]
@@ -71,9 +71,9 @@ def shape_targets(section, points: bool = False) -> list[Target]:
 
 
 def targets(section, points: bool = False) -> list[Target]:
-    """The cam's dimensions (:func:`shape_targets`) and, for an ageing follower, its roller
+    """The cam's dimensions (``_shape_targets``) and, for an ageing follower, its roller
     radius and its arm's length or face offset."""
-    found = shape_targets(section, points)
+    found = _shape_targets(section, points)
     follower = section.follower
     if follower.kind == "roller" and follower.material:
         found.append(Target("follower", "roller radius", "follower", IN_PLANE,

@@ -96,15 +96,15 @@ def part_strain(ds, target: Target) -> np.ndarray:
     return np.mean(values, axis=0)
 
 
-def midrange(strain: np.ndarray) -> float:
+def _midrange(strain: np.ndarray) -> float:
     """(eps_min + eps_max) / 2: the minimax strain of a window (one time: that strain)."""
     return 0.5 * (float(np.min(strain)) + float(np.max(strain)))
 
 
 def made_value(design, strain: np.ndarray):
     """L_made = L_design / (1 + eps_mid) (see the module docstring)."""
-    return np.asarray(design) / (1.0 + midrange(strain)) if np.ndim(design) else \
-        float(design) / (1.0 + midrange(strain))
+    return np.asarray(design) / (1.0 + _midrange(strain)) if np.ndim(design) else \
+        float(design) / (1.0 + _midrange(strain))
 
 
 def residual(design, made, strain: np.ndarray) -> float:

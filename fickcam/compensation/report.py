@@ -28,7 +28,7 @@ def days(seconds: float) -> str:
     return f"{seconds / DAY:.4g} d"
 
 
-def dimension_rows(comp: Compensation) -> list[tuple]:
+def _dimension_rows(comp: Compensation) -> list[tuple]:
     """(group, dimension, design m, made m) per scalar target; a cam given by points
     gives its smallest and largest radius and its extents."""
     from .cam import profile_radii
@@ -42,14 +42,14 @@ def dimension_table(comp: Compensation) -> str:
     """The table per part: dimension, design, to make, change in µm and %."""
     lines = [f"{'part':<9} {'dimension':<26} {'design mm':>13} {'to make mm':>13} "
              f"{'change µm':>11} {'change %':>9}"]
-    for group, name, design, made in dimension_rows(comp):
+    for group, name, design, made in _dimension_rows(comp):
         change = made - design
         lines.append(f"{group:<9} {name:<26} {design * 1e3:13.6f} {made * 1e3:13.6f} "
                      f"{change * 1e6:+11.2f} {change / design * 100:+9.4f}")
     return "\n".join(lines)
 
 
-def when_text(comp: Compensation) -> str:
+def _when_text(comp: Compensation) -> str:
     """'at 60 d' or 'over 0 d to 365 d (minimax, 38 ageing times)'."""
     times = comp.times
     if times.size == 1:
@@ -60,10 +60,10 @@ def when_text(comp: Compensation) -> str:
 def header(comp: Compensation, scene) -> str:
     """One line: what was compensated for and how the fixed point went."""
     return (f"{scene.name}: dry dimensions at the reference temperature to make, "
-            f"{when_text(comp)}; fixed point settled after {comp.iterations} iteration(s)")
+            f"{_when_text(comp)}; fixed point settled after {comp.iterations} iteration(s)")
 
 
-def residual_lines(comp: Compensation) -> list[str]:
+def _residual_lines(comp: Compensation) -> list[str]:
     """For a window: the largest deviation left on each target (m -> µm)."""
     if comp.times.size == 1:
         return []
@@ -149,7 +149,7 @@ def _failures(comp: Compensation, ds, brief: bool = False) -> list[str]:
     return found
 
 
-def worse_line(comp: Compensation) -> list[str]:
+def _worse_line(comp: Compensation) -> list[str]:
     """'further out of spec than as designed at 2 of 6 ageing times (0 d, 7 d)', by the
     largest limit ratio at each time; nothing where compensation never makes it worse."""
     names = comp.after.limit.values
@@ -163,7 +163,7 @@ def worse_line(comp: Compensation) -> list[str]:
             f"{times.size} ageing times ({', '.join(days(t) for t in times[worse])})"]
 
 
-def advice_lines(comp: Compensation, scene) -> list[str]:
+def _advice_lines(comp: Compensation, scene) -> list[str]:
     """What the limits say about the compensation asked for, and what to do instead."""
     if "limit_ratio" not in comp.after:
         return []
@@ -171,12 +171,12 @@ def advice_lines(comp: Compensation, scene) -> list[str]:
     failures = _failures(comp, comp.after)
     lines = []
     if comp.asked is not None:
-        lines.append(f"--keep-limits: compensating {when_text(comp.asked)} broke "
+        lines.append(f"--keep-limits: compensating {_when_text(comp.asked)} broke "
                      + ", ".join(_failures(comp.asked, comp.asked.after, brief=True))
                      + f"; made for the whole life, {life}, instead")
     if not failures:
         return lines + [f"every limit holds from {life} as compensated"]
-    lines += ["as compensated: " + "; ".join(failures)] + worse_line(comp)
+    lines += ["as compensated: " + "; ".join(failures)] + _worse_line(comp)
     if comp.times.size == 1:
         lines.append(f"Compensating at one time cannot hold the part from delivery on. Make it "
                      f"for its whole life instead (minimax: closest to the design over it):\n"
@@ -190,7 +190,7 @@ def advice_lines(comp: Compensation, scene) -> list[str]:
     return lines
 
 
-def largest_deviation(ds, name: str) -> np.ndarray | None:
+def _largest_deviation(ds, name: str) -> np.ndarray | None:
     """Largest |value - design value| over the cycle at each ageing time (stored unit;
     :func:`fickcam.query.drift` against the result's as-designed state, which for a
     compensated scene is its ``design:``); the coupler point is the distance between the
@@ -208,7 +208,7 @@ def largest_deviation(ds, name: str) -> np.ndarray | None:
     return np.nanmax(np.abs(change), axis=-1)
 
 
-def shown_times(comp: Compensation) -> np.ndarray:
+def _shown_times(comp: Compensation) -> np.ndarray:
     """The ageing times (s) the drift table shows: the scene's inside the life, its ends
     and the ends of the compensation."""
     from ..simulate import ageing_times, scene_environment
@@ -219,19 +219,19 @@ def shown_times(comp: Compensation) -> np.ndarray:
     return np.unique(np.concatenate([inside, np.array(comp.life), comp.times[[0, -1]]]))
 
 
-def drift_lines(comp: Compensation) -> list[str]:
+def _drift_lines(comp: Compensation) -> list[str]:
     """The drift of the key outputs from the design, before and after compensation."""
     columns = []
     for name, label, scale, unit in KEY_OUTPUTS:
-        old = largest_deviation(comp.before, name)
+        old = _largest_deviation(comp.before, name)
         if old is not None:
-            new = largest_deviation(comp.after, name)
+            new = _largest_deviation(comp.after, name)
             columns.append((f"{label} {unit}", old * scale, new * scale))
     if not columns:
         return []
     lines = ["largest deviation from the design over the cycle (before -> after compensation):",
              f"  {'time':>9}  " + "  ".join(f"{title:>26}" for title, _, _ in columns)]
-    for k in np.flatnonzero(np.isin(comp.check, shown_times(comp))):
+    for k in np.flatnonzero(np.isin(comp.check, _shown_times(comp))):
         cells = "  ".join(f"{old[k]:12.4g} -> {new[k]:10.4g}" for _, old, new in columns)
         lines.append(f"  {days(comp.check[k]):>9}  {cells}")
     return lines
@@ -242,8 +242,8 @@ def report(comp: Compensation, scene) -> str:
     the runs the compensation made)."""
     from .cam import anisotropy_note
 
-    lines = [header(comp, scene), dimension_table(comp)] + residual_lines(comp) + \
-        limit_lines(comp) + advice_lines(comp, scene) + anisotropy_note(comp) + drift_lines(comp)
+    lines = [header(comp, scene), dimension_table(comp)] + _residual_lines(comp) + \
+        limit_lines(comp) + _advice_lines(comp, scene) + anisotropy_note(comp) + _drift_lines(comp)
     return "\n".join(lines)
 
 
@@ -261,7 +261,7 @@ def scene_text(comp: Compensation, scene, data: dict, folder: Path) -> str:
     if isinstance(shape.get("profile_file"), str):
         shape["profile_file"] = relative_to(shape["profile_file"], scene.base_dir, folder)
     data["name"] = f"{scene.name}-compensated"
-    data["description"] = f"{scene.model.description} (compensated {when_text(comp)})".strip()
+    data["description"] = f"{scene.model.description} (compensated {_when_text(comp)})".strip()
     outputs = dict(data.get("outputs") or {})
     outputs["file"] = f"outputs/{data['name']}.h5"
     data["outputs"] = outputs

@@ -103,7 +103,7 @@ def write_points(path, points: np.ndarray) -> Path:
     return write_profile_csv(path, points[:, 0], points[:, 1])
 
 
-def scene_at(data: dict, base_dir: Path, times: np.ndarray):
+def _scene_at(data: dict, base_dir: Path, times: np.ndarray):
     """The scene mapping validated with ageing ``times`` (s) only, fields off, no file."""
     data = copy.deepcopy(data)
     outputs = dict(data.get("outputs") or {})
@@ -113,12 +113,12 @@ def scene_at(data: dict, base_dir: Path, times: np.ndarray):
     return scene_from(data, base_dir, "<compensation>")
 
 
-def run_at(data: dict, base_dir: Path, times: np.ndarray, accuracy, diffusions=None):
+def _run_at(data: dict, base_dir: Path, times: np.ndarray, accuracy, diffusions=None):
     """The scene mapping run at ageing ``times`` (s) only, fields off, no file;
     ``diffusions``: diffusion results already solved at ``times`` (:func:`part_states`)."""
     from ..simulate import run
 
-    ds = run(scene_at(data, base_dir, times), accuracy=accuracy, diffusions=diffusions)
+    ds = run(_scene_at(data, base_dir, times), accuracy=accuracy, diffusions=diffusions)
     if ds.sizes["time"] != len(times):
         raise FickcamError("compensation: a run did not keep the ageing times it was given")
     return ds
@@ -152,7 +152,7 @@ def part_states(data: dict, base_dir: Path, times: np.ndarray, accuracy, names: 
     from ..parts import build_parts, part_values
     from ..simulate import age_part, diffusion_options, scene_environment
 
-    scene = scene_at(data, base_dir, times)
+    scene = _scene_at(data, base_dir, times)
     environment = scene_environment(scene)
     options = diffusion_options(scene, accuracy)
     elastic = elastic_parts(scene.model)
@@ -184,7 +184,7 @@ def diffusions_for(data: dict, base_dir: Path, times: np.ndarray, by_name: dict)
     from ..elastic.parts import elastic_parts
     from ..parts import build_parts
 
-    scene = scene_at(data, base_dir, times)
+    scene = _scene_at(data, base_dir, times)
     elastic = elastic_parts(scene.model)
     return {(part.geometry, part.material_name, part.name in elastic): by_name[part.name]
             for part in build_parts(scene) if by_name.get(part.name) is not None}
@@ -199,7 +199,7 @@ def _seconds(value) -> float:
         raise InputError(f"compensation time: {exc}") from None
 
 
-def compensation_times(scene, at, over) -> tuple[np.ndarray, tuple[float, float]]:
+def _compensation_times(scene, at, over) -> tuple[np.ndarray, tuple[float, float]]:
     """([T] for ``at`` or the window grid for ``over``, the life asked about: the window,
     or delivery to the end of the history for ``at``), s; refuses times outside the
     history."""
@@ -221,7 +221,7 @@ def compensation_times(scene, at, over) -> tuple[np.ndarray, tuple[float, float]
             (seconds[0], seconds[1]))
 
 
-def check_times(scene, times: np.ndarray, life: tuple[float, float], *, plot: bool = False,
+def _check_times(scene, times: np.ndarray, life: tuple[float, float], *, plot: bool = False,
                 wide: bool = False) -> np.ndarray:
     """The ageing times (s) of every run (module docstring): the scene's ageing times
     inside ``life``, its ends and ``times``; ``plot``: the scene's ageing times over the
@@ -258,7 +258,7 @@ def settles_next(previous: list, made: list, new: list, targets: list) -> bool:
     return converged(new, predicted, targets)
 
 
-def fixed_point(scene, data: dict, targets: list, times: np.ndarray, check: np.ndarray,
+def _fixed_point(scene, data: dict, targets: list, times: np.ndarray, check: np.ndarray,
                 start, accuracy):
     """(made values, the run of the made scene at ``check``, iterations, strains at
     ``times``) from ``start``, the run of the design at ``check``.
@@ -283,18 +283,18 @@ def fixed_point(scene, data: dict, targets: list, times: np.ndarray, check: np.n
             settled = iteration if iteration and converged(made, new, targets) else 0
             if not settled and iteration and settles_next(previous, made, new, targets):
                 made, settled = new, iteration + 1
-                trial = made_trial(data, scene, targets, made, Path(folder))
+                trial = _made_trial(data, scene, targets, made, Path(folder))
             if settled:
-                after = run_at(trial, scene.base_dir, check, accuracy,
+                after = _run_at(trial, scene.base_dir, check, accuracy,
                                diffusions_for(trial, scene.base_dir, check, solved))
                 return made, after, settled, strains
             previous, made = made, new
-            trial = made_trial(data, scene, targets, made, Path(folder))
+            trial = _made_trial(data, scene, targets, made, Path(folder))
             ds, solved = part_states(trial, scene.base_dir, check, accuracy, names)
     raise FickcamError(f"compensation did not settle in {MAX_ITERATIONS} iterations")
 
 
-def made_trial(data: dict, scene, targets: list, made: list, folder: Path) -> dict:
+def _made_trial(data: dict, scene, targets: list, made: list, folder: Path) -> dict:
     """The scene mapping with the ``made`` dimensions (a cam given by points: its points
     written in ``folder``)."""
     trial, points = write_made(data, scene, targets, made, folder / "trial.csv")
@@ -349,17 +349,17 @@ def compensate(scene, at=None, over=None, *, accuracy: float | None = None,
     from ..scene import design_data, load_scene
 
     scene = load_scene(scene)
-    times, life = compensation_times(scene, at, over)
+    times, life = _compensation_times(scene, at, over)
     if keep_limits and at is None:
         raise InputError("--keep-limits goes with --at (a window is already its own life)")
     wide = keep_limits and bool(scene.limits)
-    check = check_times(scene, times, life, plot=plot, wide=wide)
+    check = _check_times(scene, times, life, plot=plot, wide=wide)
     design = scene.as_designed()  # a compensated scene is compensated anew
     targets = _targets(design, points)
     data = design_data(copy.deepcopy(scene.document.data))
     with quiet_runs():
-        before = run_at(data, scene.base_dir, check, accuracy)
-    made, after, iterations, strains = fixed_point(design, data, targets, times, check, before,
+        before = _run_at(data, scene.base_dir, check, accuracy)
+    made, after, iterations, strains = _fixed_point(design, data, targets, times, check, before,
                                                    accuracy)
     comp = Compensation(targets, made, times, iterations, data, scene=scene, life=life,
                         check=check, before=before, after=after,
@@ -367,7 +367,7 @@ def compensate(scene, at=None, over=None, *, accuracy: float | None = None,
                                   for t, m, s in zip(targets, made, strains)])
     if wide and comp.fails():
         window = window_times(*life, check)
-        made, after, iterations, strains = fixed_point(design, data, targets, window, check,
+        made, after, iterations, strains = _fixed_point(design, data, targets, window, check,
                                                        before, accuracy)
         comp = comp.widened(window, made, after, iterations,
                             [residual(t.design, m, s) for t, m, s in zip(targets, made, strains)])

@@ -95,7 +95,7 @@ def contact_loads(model: CamPlateModel, contact, force, half_width) -> np.ndarra
     along the inward normal, spread as p ~ sqrt(1 - s^2/b^2); b is widened to 1.5 mesh
     spacings where it is narrower (a point load the mesh cannot resolve)."""
     direction = -model.normals[_nearest(model, contact)]                      # (n, 2) into the cam
-    width = spread_width(model, half_width)
+    width = _spread_width(model, half_width)
     distance = np.linalg.norm(model.points[None, :, :] - contact[:, None, :], axis=2)
     shape = np.sqrt(np.clip(1.0 - (distance / width[:, None]) ** 2, 0.0, None))  # (n, q)
     total = (shape * model.lengths[None, :]).sum(axis=1) * model.elasticity.thickness
@@ -104,13 +104,13 @@ def contact_loads(model: CamPlateModel, contact, force, half_width) -> np.ndarra
     return np.asarray(model.operator @ traction.T)
 
 
-def spread_width(model: CamPlateModel, half_width) -> np.ndarray:
+def _spread_width(model: CamPlateModel, half_width) -> np.ndarray:
     """The half-width the load is spread over in the plate: b, or ``RESOLVED`` mesh spacings
     where b is narrower."""
     return np.maximum(np.nan_to_num(np.asarray(half_width, float)), RESOLVED * model.spacing)
 
 
-def rotated_compliance(q, angle):
+def _rotated_compliance(q, angle):
     """(a11, a22, a12, a66) of the plane-stress compliance S = Q^-1 in axes turned by
     ``angle`` from x (Jones 1999 eq. 2.97; the coupling terms a16, a26 are not returned)."""
     a = np.linalg.inv(np.asarray(q, float))
@@ -147,7 +147,7 @@ def half_plane_log_coefficient(q, tangent_angle):
     ----------
     S. G. Lekhnitskii, *Anisotropic Plates*, Gordon and Breach, 1968, sec. 28.
     """
-    a_tt, a_nn, a_nt, a66 = rotated_compliance(q, tangent_angle)
+    a_tt, a_nn, a_nt, a66 = _rotated_compliance(q, tangent_angle)
     return np.sqrt(a_nn * (2 * a_nt + a66) + 2 * a_nn * np.sqrt(a_tt * a_nn)) / np.pi
 
 
@@ -216,7 +216,7 @@ def contact_response(model: CamPlateModel, q, contact, force, half_width,
     normal = model.normals[_nearest(model, contact)]
     tangent = np.arctan2(normal[:, 0], -normal[:, 1])
     coefficient = half_plane_log_coefficient(q if q_skin is None else q_skin, tangent)
-    deflection += indentation_below_mesh(force, half_width, spread_width(model, half_width),
+    deflection += indentation_below_mesh(force, half_width, _spread_width(model, half_width),
                                          coefficient, pe.thickness)
     return ContactResult(deflection, tensile, compressive)
 

@@ -84,7 +84,7 @@ def check_fickian(specimens: list[Specimen], fick: FickFit, in_plane=(1.0, 1.0))
     residuals = [fick.saturation.value * fickian_fraction(s, fick.diffusivity.value, in_plane) - s.moisture
                  for s in specimens]
     p_runs = runs_test(residuals)
-    langmuir = fit_langmuir(specimens, fick, in_plane) if p_runs < SIGNIFICANCE else None
+    langmuir = _fit_langmuir(specimens, fick, in_plane) if p_runs < SIGNIFICANCE else None
     return AnomalyTest(p_runs, langmuir)
 
 
@@ -121,7 +121,7 @@ def _nested_fick_ssr(specimens, fick: FickFit, in_plane) -> float:
     return null.ssr
 
 
-def fit_langmuir(specimens: list[Specimen], fick: FickFit, in_plane=(1.0, 1.0)) -> LangmuirFit:
+def _fit_langmuir(specimens: list[Specimen], fick: FickFit, in_plane=(1.0, 1.0)) -> LangmuirFit:
     """Least-squares two-phase fit (best of a few starts) and the F test against Fick."""
     residual = _residual(specimens, in_plane)
     best: LeastSquares | None = None

@@ -42,7 +42,7 @@ def _name_text(value):
 LibraryName = Annotated[str, BeforeValidator(_name_text)]
 
 
-def unknown_name_reason(key: str, name: str) -> str:
+def _unknown_name_reason(key: str, name: str) -> str:
     """Why ``key: name`` is refused: the name belongs to another kind, or the known names."""
     for other, group in KIND_GROUPS.items():
         if other != key and name in known_names(group):
@@ -257,7 +257,7 @@ class MaterialSpec(MatrixProperties):
         for key, group in KIND_GROUPS.items():
             name = getattr(self, key)
             if name is not None and name not in known_names(group):
-                raise ValueError(unknown_name_reason(key, name))
+                raise ValueError(_unknown_name_reason(key, name))
         composite = self.fiber is not None
         if composite:
             if (self.fiber_volume_fraction is None) == (self.fiber_weight_fraction is None):
