@@ -32,7 +32,22 @@ from .motion import joint_notices
 
 
 def follower_response(design: CamDesign, state: CamState, cam_angle) -> Response:
-    """:func:`arm_response` for a swinging arm, else :func:`~fickcam.cam.model.cam_response`."""
+    """:func:`arm_response` for a swinging arm, else :func:`~fickcam.cam.model.cam_response`.
+
+    Parameters
+    ----------
+    design : CamDesign
+        The dry design (SI).
+    state : CamState
+        The aged state.
+    cam_angle : array_like
+        Cam angles [rad].
+
+    Returns
+    -------
+    Response
+        The follower's variables (SI) and the notices.
+    """
     if design.arm is not None:
         return arm_response(design, state, cam_angle)
     return cam_response(design, state, cam_angle)
@@ -69,7 +84,26 @@ def arm_response(design: CamDesign, state: CamState, cam_angle) -> Response:
     design.speed, pressure_angle, radius_of_curvature (working profile),
     pitch_radius_of_curvature, contact_force (N), arm_torque (N m, about the pivot),
     cam_torque (N m), friction_force and friction_torque (sliding flat face), contact_stress,
-    subsurface_shear_stress/depth, profile_x/profile_y (contact point, cam frame)."""
+    subsurface_shear_stress/depth, profile_x/profile_y (contact point, cam frame).
+
+    Parameters
+    ----------
+    design : CamDesign
+        The dry design with its arm (SI: lengths [m], inertia [kg m^2], speed [rad/s]).
+    state : CamState
+        The aged state.
+    cam_angle : array_like
+        Cam angles [rad].
+
+    Returns
+    -------
+    Response
+        The variables above (SI) and the notices.
+
+    References
+    ----------
+    Norton (2012), sec. 8.6; Chen (1982), ch. 4; in full in :mod:`fickcam.cam`.
+    """
     theta = np.asarray(cam_angle, float)
     omega = design.speed
     motion, (lowest, highest) = motion_function(design, state)
@@ -123,7 +157,18 @@ def arm_response(design: CamDesign, state: CamState, cam_angle) -> Response:
 
 def describe_arm(design: CamDesign) -> str:
     """One line for `fickcam check`: the arm, where it sits on the base circle, and the dry
-    design's largest pressure angle and smallest radius of curvature."""
+    design's largest pressure angle and smallest radius of curvature.
+
+    Parameters
+    ----------
+    design : CamDesign
+        The dry design with its arm.
+
+    Returns
+    -------
+    str
+        The line, in mm and degrees.
+    """
     arm = design.arm
     theta = np.radians(np.arange(0.0, 360.0, 0.25))
     v = arm_response(design, CamState(), theta).variables

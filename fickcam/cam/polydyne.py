@@ -37,7 +37,25 @@ def _correction_harmonics(segments, train: Train, speed: float) -> np.ndarray:
 
 def polydyne_design(design, modulus: float | None):
     """``design`` with its segments carrying the polydyne correction, for the train at the
-    as-designed state (dry mass; a rod/lever with the dry modulus ``modulus``)."""
+    as-designed state (dry mass; a rod/lever with the dry modulus ``modulus``).
+
+    Parameters
+    ----------
+    design : CamDesign
+        The design, with its polydyne speed [rad/s].
+    modulus : float or None
+        Dry modulus of the rod or lever [Pa]; None for a train given by its stiffness.
+
+    Returns
+    -------
+    CamDesign
+        The design whose segments carry the correction harmonics [m].
+
+    References
+    ----------
+    Stoddart, D. A. (1953). Polydyne cam design. Machine Design 25.
+    Norton (2012), ch. 15; in full in :mod:`fickcam.cam`.
+    """
     from dataclasses import replace
 
     from .design import CamState

@@ -257,7 +257,28 @@ def _lowest_axial_force(train: Train, omega: float, s_harmonics, s_fine, ds_fine
 def dynamic_jump_speed(train: Train, s_harmonics, s_fine, ds_fine, upper: float) -> float:
     """Lowest cam speed at which the steady-state contact force reaches zero somewhere:
     scan SCAN_SPEEDS speeds up to ``upper``, then Brent on the first sign change. 0 if the
-    follower is not held at rest, inf if it never separates below ``upper``."""
+    follower is not held at rest, inf if it never separates below ``upper``.
+
+    Parameters
+    ----------
+    train : Train
+        The follower train (SI).
+    s_harmonics : numpy.ndarray
+        Harmonics of the cam motion s [m] (:func:`fickcam.cam.fourier.harmonics`).
+    s_fine, ds_fine : numpy.ndarray
+        The cam motion s [m] and ds/dtheta [m/rad] on the fine grid of a turn.
+    upper : float
+        Highest cam speed scanned [rad/s].
+
+    Returns
+    -------
+    float
+        The dynamic jump speed [rad/s].
+
+    References
+    ----------
+    Norton (2012), sec. 15.1-15.3; Koster (1974); in full in :class:`Train`.
+    """
     from scipy.optimize import brentq
 
     def margin(omega):
@@ -278,7 +299,23 @@ def dynamic_jump_speed(train: Train, s_harmonics, s_fine, ds_fine, upper: float)
 
 
 def train_of(design, state, load: float) -> Train:
-    """The follower train of ``design`` at ageing state ``state`` (needs design.train)."""
+    """The follower train of ``design`` at ageing state ``state`` (needs design.train): its
+    stiffness given, or that of a rod or lever of the aged modulus.
+
+    Parameters
+    ----------
+    design : CamDesign
+        The design (train kind and sizes [m], spring rate [N/m], damping ratio [-]).
+    state : CamState
+        The aged state (train modulus [Pa], follower mass [kg]).
+    load : float
+        Constant load on the follower mass [N].
+
+    Returns
+    -------
+    Train
+        The train.
+    """
     kind, *sizes = design.train
     if kind == "stiffness":
         k = sizes[0]
@@ -300,7 +337,25 @@ def _events(design):
 class SteadyState:
     """The train and its periodic steady state at the scene speed, on the fine grid:
     cam motion s (m, from the aged lowest position), ds/dtheta, d2s/dtheta2, the rigid
-    holding force (N), and the harmonics of s and of the mass position x."""
+    holding force (N), and the harmonics of s and of the mass position x.
+
+    Parameters
+    ----------
+    train : Train
+        The follower train.
+    lowest : float
+        Aged lowest follower position, the origin of s [m].
+    s : numpy.ndarray
+        Cam motion [m].
+    ds : numpy.ndarray
+        ds/dtheta [m/rad].
+    d2s : numpy.ndarray
+        d2s/dtheta2 [m/rad^2].
+    holding : numpy.ndarray
+        Rigid holding force (spring, preload, load) [N].
+    s_harmonics, x_harmonics : numpy.ndarray
+        Harmonics of s and of the mass position x [m].
+    """
 
     train: Train
     lowest: float
@@ -333,7 +388,31 @@ def dynamic_response(design, state, cam_angle, rigid) -> Response:
     from the rigid variables ``rigid`` (pressure angle) of
     :func:`~fickcam.cam.model.cam_response`. Displacements are measured like
     follower_displacement, from the lowest rigid position: the static compression of the
-    train under the load P shows as a constant offset -P/(k + k_s)."""
+    train under the load P shows as a constant offset -P/(k + k_s).
+
+    Parameters
+    ----------
+    design : CamDesign
+        The design (SI; speed [rad/s]).
+    state : CamState
+        The aged state.
+    cam_angle : array_like
+        Cam angles [rad].
+    rigid : Mapping
+        Variables of the rigid follower; its pressure_angle [rad] is used.
+
+    Returns
+    -------
+    Response
+        dynamic_follower_displacement, dynamic_displacement_error,
+        startup_follower_displacement [m], dynamic_contact_force [N], natural_frequency
+        [Hz], follower_train_stiffness [N/m], dynamic_jump_speed [rad/s],
+        residual_vibration [m], minimum_dynamic_contact_force [N], and the notices.
+
+    References
+    ----------
+    Norton (2012), sec. 15.1-15.3; Koster (1974); in full in :class:`Train`.
+    """
     from . import dynamics as dyn
     from .kinematics import follower_heights
 
@@ -384,7 +463,26 @@ def _polydyne_variables(design, theta, x) -> dict:
 def residual_vibrations(design, state, steady: SteadyState | None = None) -> np.ndarray:
     """Free-vibration amplitude (m) at the start of each dwell that follows a rise or return,
     over the first turn from rest (Koster 1974 sec. 3.2 'residual vibration'); empty for an
-    eccentric cam or a motion without such a dwell."""
+    eccentric cam or a motion without such a dwell.
+
+    Parameters
+    ----------
+    design : CamDesign
+        The design (SI).
+    state : CamState
+        The aged state.
+    steady : SteadyState, optional
+        The steady state, if already computed.
+
+    Returns
+    -------
+    numpy.ndarray
+        The amplitude at each such dwell [m].
+
+    References
+    ----------
+    Koster, M. P. (1974). Vibrations of Cam Mechanisms, sec. 3.2. London: Macmillan.
+    """
     from .kinematics import follower_heights
 
     events = np.asarray(_events(design) if design.kind == "motion" else [], float)
