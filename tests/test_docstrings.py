@@ -257,6 +257,29 @@ ENTRY_POINTS = {
     "fickcam.compensation.linkage.targets": (),
     "fickcam.compensation.linkage.write": ("made",),
     "fickcam.compensation.linkage.design_entry": (),
+    "fickcam.compensation.solve.length_text": ("value",),
+    "fickcam.compensation.solve.with_design": (),
+    "fickcam.compensation.solve.write_made": ("made",),
+    "fickcam.compensation.solve.write_points": ("points",),
+    "fickcam.compensation.report.days": ("seconds",),
+    "fickcam.compensation.report.dimension_table": (),
+    "fickcam.compensation.report.header": (),
+    "fickcam.compensation.report.worst": ("ratio", "times"),
+    "fickcam.compensation.report.out_of_spec_spans": ("ratio", "times"),
+    "fickcam.compensation.report.limit_lines": (),
+    "fickcam.compensation.report.report": (),
+    "fickcam.compensation.report.scene_text": (),
+    "fickcam.compensation.report.write_scene": (),
+    "fickcam.compensation.report.write_files": (),
+    "fickcam.simulate.scene_environment": (),
+    "fickcam.simulate.ageing_times": (),
+    "fickcam.simulate.every_step_times": ("step", "end"),
+    "fickcam.simulate.diffusion_options": ("accuracy",),
+    "fickcam.simulate.plan_parts": ("accuracy",),
+    "fickcam.simulate.run": ("accuracy",),
+    "fickcam.simulate.age_part": ("times",),
+    "fickcam.simulate.design_part": (),
+    "fickcam.simulate.mechanism_values": ("times",),
 }
 
 _HEADER = re.compile(r"^(?P<title>[A-Z][A-Za-z ]+)\n-{3,}$", re.MULTILINE)
@@ -265,14 +288,17 @@ _UNIT = re.compile(r"\[[^\]]+\]")
 
 
 def _entry_point(dotted: str):
-    module_name, _, rest = dotted.partition(".")
-    target = importlib.import_module(module_name)
-    parts = rest.split(".")
-    for k, part in enumerate(parts):
-        if not hasattr(target, part):  # a sub-module not imported by its package
-            target = importlib.import_module(".".join([module_name, *parts[:k + 1]]))
-        else:
-            target = getattr(target, part)
+    """The object a dotted name names, through its longest importable module (a package may
+    export a function under its sub-module's name, e.g. ``fickcam.compensation.report``)."""
+    parts = dotted.split(".")
+    for k in range(len(parts), 0, -1):
+        try:
+            target = importlib.import_module(".".join(parts[:k]))
+        except ModuleNotFoundError:
+            continue
+        break
+    for part in parts[k:]:
+        target = getattr(target, part)
     return target
 
 

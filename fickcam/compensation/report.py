@@ -24,7 +24,18 @@ DAY = 86400.0
 
 
 def days(seconds: float) -> str:
-    """An ageing time as the user's scenes give them: '182.6 d'."""
+    """An ageing time as the user's scenes give them: '182.6 d'.
+
+    Parameters
+    ----------
+    seconds : float
+        The ageing time [s].
+
+    Returns
+    -------
+    str
+        The time in days, 4 significant digits.
+    """
     return f"{seconds / DAY:.4g} d"
 
 
@@ -39,7 +50,18 @@ def _dimension_rows(comp: Compensation) -> list[tuple]:
 
 
 def dimension_table(comp: Compensation) -> str:
-    """The table per part: dimension, design, to make, change in µm and %."""
+    """The table per part: dimension, design, to make, change in µm and %.
+
+    Parameters
+    ----------
+    comp : Compensation
+        The compensation.
+
+    Returns
+    -------
+    str
+        The table (lengths in mm).
+    """
     lines = [f"{'part':<9} {'dimension':<26} {'design mm':>13} {'to make mm':>13} "
              f"{'change µm':>11} {'change %':>9}"]
     for group, name, design, made in _dimension_rows(comp):
@@ -58,7 +80,20 @@ def _when_text(comp: Compensation) -> str:
 
 
 def header(comp: Compensation, scene) -> str:
-    """One line: what was compensated for and how the fixed point went."""
+    """One line: what was compensated for and how the fixed point went.
+
+    Parameters
+    ----------
+    comp : Compensation
+        The compensation.
+    scene : Scene
+        The design scene.
+
+    Returns
+    -------
+    str
+        The line.
+    """
     return (f"{scene.name}: dry dimensions at the reference temperature to make, "
             f"{_when_text(comp)}; fixed point settled after {comp.iterations} iteration(s)")
 
@@ -77,7 +112,20 @@ def _residual_lines(comp: Compensation) -> list[str]:
 
 
 def worst(ratio: np.ndarray, times: np.ndarray) -> tuple[float, float]:
-    """(largest limit ratio, the ageing time of it) over a run's times; NaN where unknown."""
+    """(largest limit ratio, the ageing time of it) over a run's times; NaN where unknown.
+
+    Parameters
+    ----------
+    ratio : numpy.ndarray
+        Limit ratio at each time (1 at the limit) [-].
+    times : numpy.ndarray
+        The ageing times [s].
+
+    Returns
+    -------
+    tuple of float
+        The largest ratio [-] and its time [s].
+    """
     if not np.isfinite(ratio).any():
         return math.nan, math.nan
     k = int(np.nanargmax(ratio))
@@ -86,7 +134,20 @@ def worst(ratio: np.ndarray, times: np.ndarray) -> tuple[float, float]:
 
 def out_of_spec_spans(ratio: np.ndarray, times: np.ndarray) -> list[str]:
     """Each stretch of ageing times out of spec (ratio above 1): 'at 0 d, back in spec by
-    7 d', 'from 30 d to 90 d, back in spec by 120 d', 'from 300 d to the end'."""
+    7 d', 'from 30 d to 90 d, back in spec by 120 d', 'from 300 d to the end'.
+
+    Parameters
+    ----------
+    ratio : numpy.ndarray
+        Limit ratio at each time [-].
+    times : numpy.ndarray
+        The ageing times [s].
+
+    Returns
+    -------
+    list of str
+        One phrase per stretch.
+    """
     above = ratio > 1.0
     spans = []
     k = 0
@@ -118,7 +179,18 @@ def _cell(times: np.ndarray, ratio: np.ndarray) -> str:
 
 def limit_lines(comp: Compensation) -> list[str]:
     """The scene's limits over the life: worst ratio (1 at the limit), when, and whether
-    it holds, as designed and as compensated."""
+    it holds, as designed and as compensated.
+
+    Parameters
+    ----------
+    comp : Compensation
+        The compensation (its runs before and after).
+
+    Returns
+    -------
+    list of str
+        The lines.
+    """
     from ..limits import stored_limits
 
     if "limit_ratio" not in comp.before:
@@ -239,7 +311,20 @@ def _drift_lines(comp: Compensation) -> list[str]:
 
 def report(comp: Compensation, scene) -> str:
     """Everything `fickcam compensate` prints before the files it wrote (no runs: it reads
-    the runs the compensation made)."""
+    the runs the compensation made).
+
+    Parameters
+    ----------
+    comp : Compensation
+        The compensation.
+    scene : Scene
+        The design scene.
+
+    Returns
+    -------
+    str
+        The report.
+    """
     from .cam import anisotropy_note
 
     lines = [header(comp, scene), dimension_table(comp)] + _residual_lines(comp) + \
@@ -252,7 +337,24 @@ def report(comp: Compensation, scene) -> str:
 
 def scene_text(comp: Compensation, scene, data: dict, folder: Path) -> str:
     """The compensated scene's YAML: the made dimensions, ``design:`` the drawing's intent,
-    paths relative to ``folder``, the table and the limits as comments."""
+    paths relative to ``folder``, the table and the limits as comments.
+
+    Parameters
+    ----------
+    comp : Compensation
+        The compensation.
+    scene : Scene
+        The design scene.
+    data : dict
+        The made scene mapping (changed in place: name, outputs, paths).
+    folder : pathlib.Path
+        The folder the scene is written to.
+
+    Returns
+    -------
+    str
+        The YAML text.
+    """
     environment = data.get("environment") or {}
     if isinstance(environment.get("history_file"), str) and ":" not in environment["history_file"]:
         environment["history_file"] = relative_to(environment["history_file"], scene.base_dir,
@@ -285,7 +387,18 @@ def _drawing_writer(data: dict, points, base_dir: Path, path: Path):
 
 def write_scene(comp: Compensation, scene, path, *, profile=None, plot=None) -> Path:
     """Write the compensated scene and what goes with it (:func:`write_files`); returns the
-    scene's path."""
+    scene's path.
+
+    Parameters
+    ----------
+    comp, scene, path, profile, plot
+        As :func:`write_files` takes them.
+
+    Returns
+    -------
+    pathlib.Path
+        The scene's path.
+    """
     return write_files(comp, scene, path, profile=profile, plot=plot)[0]
 
 
@@ -294,7 +407,26 @@ def write_files(comp: Compensation, scene, path, *, profile=None, plot=None) -> 
     ``<stem>_cam_profile.csv``), and when asked the made cam's profile (``profile``, .csv
     or .dxf) and the drift against the bands (``plot``, PNG); all together through
     temporary files and renames, so that nothing is written if one fails. Returns the
-    paths written, the scene's first."""
+    paths written, the scene's first.
+
+    Parameters
+    ----------
+    comp : Compensation
+        The compensation.
+    scene : Scene
+        The design scene.
+    path : str or pathlib.Path
+        The scene file to write.
+    profile : str or pathlib.Path, optional
+        Also write the made cam's profile here (.csv or .dxf).
+    plot : str or pathlib.Path, optional
+        Also draw the drift against the bands here (PNG).
+
+    Returns
+    -------
+    list of pathlib.Path
+        The paths written, the scene's first.
+    """
     from ..store import replaced_together
     from .cam import profile_path
     from .solve import write_made, write_points

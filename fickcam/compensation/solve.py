@@ -40,7 +40,20 @@ log = logging.getLogger(__name__)
 
 
 def length_text(value: float, digits: int = 6) -> str:
-    """A length for the written scene in mm, to the nanometre (``digits`` decimals of mm)."""
+    """A length for the written scene in mm, to the nanometre (``digits`` decimals of mm).
+
+    Parameters
+    ----------
+    value : float
+        The length [m].
+    digits : int
+        Decimals of the millimetres.
+
+    Returns
+    -------
+    str
+        E.g. ``"12.345678 mm"``.
+    """
     return f"{value * 1e3:.{digits}f} mm"
 
 
@@ -60,7 +73,22 @@ def _targets(scene, points: bool) -> list:
 def with_design(data: dict, design: dict, targets: list) -> dict:
     """The made scene mapping with its ``design:`` section (``design`` is the design's
     mapping): what its as-designed values, drift and limits are measured against; placed
-    after the mechanism sections."""
+    after the mechanism sections.
+
+    Parameters
+    ----------
+    data : dict
+        The made scene mapping.
+    design : dict
+        The design scene mapping.
+    targets : list of Target
+        The dimensions compensated.
+
+    Returns
+    -------
+    dict
+        A new mapping with the ``design:`` section.
+    """
     from . import cam, linkage
 
     entry = {}
@@ -80,7 +108,26 @@ def with_design(data: dict, design: dict, targets: list) -> dict:
 def write_made(data: dict, scene, targets: list, made: list, profile: Path):
     """(a copy of the scene mapping ``data`` (as designed) with the made dimensions and a
     ``design:`` section, the made cam's points or None): a cam given by points names
-    ``profile``, where the caller writes its points."""
+    ``profile``, where the caller writes its points.
+
+    Parameters
+    ----------
+    data : dict
+        The scene mapping as designed (not changed).
+    scene : Scene
+        The design scene.
+    targets : list of Target
+        The dimensions.
+    made : list
+        Their made values [m].
+    profile : pathlib.Path
+        File name of the made cam's points.
+
+    Returns
+    -------
+    tuple
+        (the made scene mapping, the made points (n, 2) [m] or None).
+    """
     design, data = data, copy.deepcopy(data)
     cam_part = [(t, m) for t, m in zip(targets, made) if t.group in ("cam", "follower")]
     link_part = [(t, m) for t, m in zip(targets, made) if t.group not in ("cam", "follower")]
@@ -97,7 +144,20 @@ def write_made(data: dict, scene, targets: list, made: list, profile: Path):
 
 
 def write_points(path, points: np.ndarray) -> Path:
-    """A made cam's points (m) as the profile CSV a scene reads (mm, units in the header)."""
+    """A made cam's points as the profile CSV a scene reads (mm, units in the header).
+
+    Parameters
+    ----------
+    path : str or pathlib.Path
+        The CSV file.
+    points : numpy.ndarray
+        The points, shape (n, 2) [m].
+
+    Returns
+    -------
+    pathlib.Path
+        The path written.
+    """
     from ..cam.profile import write_profile_csv
 
     return write_profile_csv(path, points[:, 0], points[:, 1])
