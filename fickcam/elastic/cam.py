@@ -52,7 +52,27 @@ def cam_elastic_response(section, cam_state: dict, variables: dict, valid) -> Re
     """elastic_deflection, elastic_stress_tensile, elastic_stress_compressive (time,
     cam_angle) and elastic_lift_error (time) from the cam's
     material state and the rigid cam results (contact force and stress, contact point,
-    pressure angle, follower displacement)."""
+    pressure angle, follower displacement).
+
+    Parameters
+    ----------
+    section : CamSection
+        The scene's ``cam`` section.
+    cam_state : dict
+        The cam's material state over ageing times: bulk and ``surface_`` ply moduli [Pa]
+        and Poisson's ratio [-].
+    variables : dict
+        The rigid cam results over (time, cam_angle): contact_force [N], contact_stress
+        [Pa], profile_x/profile_y [m], pressure angle [rad], follower displacement [m].
+    valid : array_like of bool
+        Which ageing times to solve (the others stay NaN).
+
+    Returns
+    -------
+    Response
+        elastic_deflection [m], elastic_stress_tensile/compressive [Pa] over (time,
+        cam_angle) and elastic_lift_error [m] over time.
+    """
     from ..cam.design import design_from_scene
     from .mesh import planform_mesh
 

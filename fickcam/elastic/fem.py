@@ -156,7 +156,21 @@ def _q_arguments(q, basis) -> dict:
 @dataclass
 class PlaneElasticity:
     """A plane-stress model on ``points`` (n, 2) / ``triangles`` (m, 3), thickness ``t`` (m),
-    Lagrange elements of ``order`` 1 or 2. Nodal fields (moisture) are P1 on ``points``."""
+    Lagrange elements of ``order`` 1 or 2. Nodal fields (moisture) are P1 on ``points``.
+
+    Parameters
+    ----------
+    points : numpy.ndarray
+        Vertices, shape (n, 2) [m].
+    triangles : numpy.ndarray
+        Vertex indices, shape (m, 3).
+    thickness : float
+        The plate's thickness [m].
+    order : int
+        Lagrange element order (1 or 2).
+    mesh, basis : object
+        Built from the above (scikit-fem mesh and vector basis).
+    """
 
     points: np.ndarray
     triangles: np.ndarray

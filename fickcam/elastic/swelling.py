@@ -50,7 +50,18 @@ def _part_plate(geometry):
 
 
 def plate_size(plate) -> float:
-    """Largest planform dimension (m)."""
+    """Largest planform dimension.
+
+    Parameters
+    ----------
+    plate : CamPlate or LinkBar
+        The planform.
+
+    Returns
+    -------
+    float
+        The dimension [m].
+    """
     from ..diffusion.problem.geometry import CamPlate
 
     if isinstance(plate, CamPlate):
@@ -127,7 +138,24 @@ def through_thickness(in_plane, depth: float, sheet: SheetProfile | None
     (times, depths, nodes), and its thickness mean (times, nodes), from the in-plane field
     ``in_plane`` (times, nodes) on the level ``depth`` [m] below a face, as the product
     of the planform's and the sheet's unaccomplished fractions (``thickness``); without
-    a sheet, the in-plane field alone (one layer)."""
+    a sheet, the in-plane field alone (one layer).
+
+    Parameters
+    ----------
+    in_plane : numpy.ndarray
+        Moisture on the level ``depth``, shape (times, nodes) [weight %].
+    depth : float
+        Depth of that level below a face [m].
+    sheet : SheetProfile or None
+        The exact sheet of the part's thickness.
+
+    Returns
+    -------
+    layers : numpy.ndarray
+        Moisture at the sheet's depths, shape (times, depths, nodes) [weight %].
+    mean : numpy.ndarray
+        Thickness mean, shape (times, nodes) [weight %].
+    """
     if sheet is None:
         return in_plane[:, None, :], in_plane
     surface = sheet.surface[:, None]
@@ -318,7 +346,35 @@ def swelling_history(geometry, material, result, state: dict, temperature, refer
     for one part (NaN where the part is not valid or has no field), and ``field`` /
     ``points``: the face stress field (element centroids, m) at the worst time (largest
     failure index, else largest compression); ``sheet``: the exact sheet of the part's
-    thickness under its exposure (``plate_moisture``; None: the in-plane field alone)."""
+    thickness under its exposure (``plate_moisture``; None: the in-plane field alone).
+
+    Parameters
+    ----------
+    geometry : Geometry
+        The part's diffusion geometry (dimensions [m]).
+    material : Material
+        Its material.
+    result : DiffusionResult or None
+        Its diffusion result, with moisture fields.
+    state : dict
+        Its material state over ageing times (moduli [Pa], expansion coefficients).
+    temperature : numpy.ndarray
+        Temperature at the ageing times [K].
+    reference : float
+        Reference (stress-free) temperature [K].
+    initial_moisture : float
+        Stress-free moisture [weight %].
+    valid : array_like of bool
+        Which ageing times to solve.
+    sheet : SheetProfile, optional
+        The exact sheet of the part's thickness.
+
+    Returns
+    -------
+    dict
+        swelling_stress_tensile/compressive [Pa] and failure_index [-] over ageing times,
+        and ``field`` [Pa] / ``points`` [m] of the worst time.
+    """
     from .mesh import planform_mesh
 
     n = len(temperature)
