@@ -55,7 +55,8 @@ class FitReport:
     in_plane : tuple of float
         In-plane over through-thickness diffusivity along length and width [-].
     notes : list of str
-        Sentences for the user (values taken from the library, fits that failed).
+        Sentences for the user (values taken from the library, equilibrium not reached,
+        parameters the weighings do not determine).
 
     References
     ----------

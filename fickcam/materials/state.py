@@ -148,7 +148,26 @@ def first_invalid_index(temperature, *wet_tgs) -> int | None:
 
 def wet_tg_error(part, times, index, temperature, state) -> PhysicsDomainError:
     """The error for T reaching the wet Tg at ``index``; carries ``index`` and ``state``
-    (every variable truncated to the valid times before ``index``)."""
+    (every variable truncated to the valid times before ``index``).
+
+    Parameters
+    ----------
+    part : str
+        The part's name.
+    times : numpy.ndarray
+        Ageing times [s].
+    index : int
+        The first time at which T reaches the wet Tg.
+    temperature : numpy.ndarray
+        Service temperature at the ageing times [K].
+    state : dict
+        The material state over the ageing times (temperatures [K], moisture [weight %]).
+
+    Returns
+    -------
+    PhysicsDomainError
+        The error, with ``index`` and the truncated ``state``.
+    """
     tg = min(state["glass_transition_temperature"][index], state["surface_glass_transition_temperature"][index])
     message = (f"service temperature {temperature[index] - KELVIN_OFFSET:.1f} degC reached the wet Tg "
                f"{tg - KELVIN_OFFSET:.1f} degC (mean moisture {state['moisture_content'][index]:.3g} %, "
