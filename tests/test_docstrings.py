@@ -360,6 +360,20 @@ ENTRY_POINTS = {
     "fickcam.materials.library.library_table": (),
     "fickcam.materials.library.find_entry": (),
     "fickcam.materials.library.entry_text": (),
+    "fickcam.cam.spec.Spline": ("points", "start_derivatives", "end_derivatives"),
+    "fickcam.cam.spec.Segment": ("dwell", "rise", "return_", "over"),
+    "fickcam.cam.spec.Eccentric": ("eccentricity", "radius"),
+    "fickcam.cam.spec.Guide": ("friction_coefficient", "overhang", "length", "diameter"),
+    "fickcam.cam.spec.Wear": ("archard_coefficient", "hardness"),
+    "fickcam.cam.spec.Rod": ("length", "diameter"),
+    "fickcam.cam.spec.Lever": ("length", "width", "height"),
+    "fickcam.cam.spec.TrainSection": (),
+    "fickcam.cam.spec.Follower": ("roller_radius", "offset", "mass", "spring_rate",
+                                  "spring_preload", "external_load", "width",
+                                  "friction_coefficient", "modulus", "poisson_ratio",
+                                  "stiffness", "damping_ratio"),
+    "fickcam.cam.spec.Polydyne": ("speed",),
+    "fickcam.cam.spec.CamSection": ("base_circle_radius", "thickness", "bore_radius", "speed"),
 }
 
 _HEADER = re.compile(r"^(?P<title>[A-Z][A-Za-z ]+)\n-{3,}$", re.MULTILINE)
