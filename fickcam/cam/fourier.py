@@ -92,10 +92,8 @@ def at_angles(coefficients, theta, order: int = 0, omega: float = 1.0):
         The harmonics X_n [unit of s].
     theta : float or array_like
         Cam angles [rad].
-    order : int
-        Order of the time derivative.
-    omega : float
-        Cam speed [rad/s].
+    order, omega
+        As :func:`series` takes them: derivative order, cam speed [rad/s].
 
     Returns
     -------

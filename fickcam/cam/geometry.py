@@ -268,14 +268,8 @@ def geometric_motion(design, pieces, strain_x, strain_y, roller_radius, theta, n
 
     Parameters
     ----------
-    design : CamDesign
-        The dry design, lengths [m].
-    pieces : sequence of tuple
-        (segment, psi_start [rad], psi_end [rad]) per piece (:func:`pieces_of`).
-    strain_x, strain_y : float
-        Swelling strain of the cam plate along its x and y axes [-].
-    roller_radius : float
-        The (aged) roller radius [m].
+    design, pieces, strain_x, strain_y, roller_radius
+        As :func:`fit_geometric_motion` takes them: lengths [m], angles [rad], strains [-].
     theta : float or array_like
         Cam angles [rad].
     nodes : int

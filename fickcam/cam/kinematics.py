@@ -153,9 +153,9 @@ def motion_function(design: CamDesign, state: CamState):
     Parameters
     ----------
     design : CamDesign
-        The dry design, lengths [m].
+        The dry design: its kind, follower and lengths [m].
     state : CamState
-        The aged state (strains [-]).
+        The aged state: plate, roller and arm strains [-].
 
     Returns
     -------
@@ -278,12 +278,8 @@ def write_profile_csv(path, design: CamDesign, strain_x: float = 0.0, strain_y: 
     ----------
     path : str or os.PathLike
         The CSV file to write.
-    design : CamDesign
-        The dry design, lengths [m].
-    strain_x, strain_y : float
-        Swelling strain of the plate along its x and y axes [-].
-    n : int
-        Number of outline points.
+    design, strain_x, strain_y, n
+        The outline, as :func:`working_profile` takes it (strains [-]).
 
     Returns
     -------

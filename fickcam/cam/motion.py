@@ -21,10 +21,7 @@ from .fourier import at_angles, correction_motion
 
 PI = math.pi
 
-
-def uniform_velocity(x):
-    """S = x (Norton sec. 8.3, 'constant velocity'; Singh & Sanyal 2017 Table 17). Infinite
-    acceleration at both ends.
+_LAW_SECTIONS = """
 
     Parameters
     ----------
@@ -38,52 +35,40 @@ def uniform_velocity(x):
 
     References
     ----------
-    Norton (2012), sec. 8.3; Singh & Sanyal (2017), Table 17; in full in :mod:`fickcam.cam`.
+    {}; in full in :mod:`fickcam.cam`.
     """
+
+
+def _law(reference: str):
+    """Give a motion law the numpydoc sections every law shares (its argument, its
+    results) and its source."""
+    def documented(function):
+        if function.__doc__:  # None under python -OO
+            function.__doc__ = function.__doc__.rstrip() + _LAW_SECTIONS.format(reference)
+        return function
+    return documented
+
+
+@_law('Norton (2012), sec. 8.3; Singh & Sanyal (2017), Table 17')
+def uniform_velocity(x):
+    """S = x (Norton sec. 8.3, 'constant velocity'; Singh & Sanyal 2017 Table 17). Infinite
+    acceleration at both ends."""
     x = np.asarray(x, float)
     return x, np.ones_like(x), np.zeros_like(x), np.zeros_like(x)
 
 
+@_law('Norton (2012), eq. 8.6; Singh & Sanyal (2017), Table 17')
 def simple_harmonic(x):
-    """S = (1 - cos pi x)/2 (Norton eq. 8.6; Singh & Sanyal 2017 Table 17 and p. 281).
-
-    Parameters
-    ----------
-    x : float or array_like
-        Fraction of the segment, (theta - theta_0)/beta [-].
-
-    Returns
-    -------
-    tuple of numpy.ndarray
-        S, dS/dx, d2S/dx2, d3S/dx3 [-].
-
-    References
-    ----------
-    Norton (2012), eq. 8.6; Singh & Sanyal (2017), Table 17; in full in :mod:`fickcam.cam`.
-    """
+    """S = (1 - cos pi x)/2 (Norton eq. 8.6; Singh & Sanyal 2017 Table 17 and p. 281)."""
     x = np.asarray(x, float)
     return ((1 - np.cos(PI * x)) / 2, PI / 2 * np.sin(PI * x), PI ** 2 / 2 * np.cos(PI * x),
             -PI ** 3 / 2 * np.sin(PI * x))
 
 
+@_law('Norton (2012), eq. 8.7; Singh & Sanyal (2017), Table 17')
 def cycloidal(x):
     """S = x - sin(2 pi x)/(2 pi) (Norton eq. 8.7; Singh & Sanyal 2017 Table 17;
-    Yadav et al. 2017 p. 2).
-
-    Parameters
-    ----------
-    x : float or array_like
-        Fraction of the segment, (theta - theta_0)/beta [-].
-
-    Returns
-    -------
-    tuple of numpy.ndarray
-        S, dS/dx, d2S/dx2, d3S/dx3 [-].
-
-    References
-    ----------
-    Norton (2012), eq. 8.7; Singh & Sanyal (2017), Table 17; in full in :mod:`fickcam.cam`.
-    """
+    Yadav et al. 2017 p. 2)."""
     x = np.asarray(x, float)
     w = 2 * PI
     return (x - np.sin(w * x) / w, 1 - np.cos(w * x), w * np.sin(w * x), w ** 2 * np.cos(w * x))
@@ -96,43 +81,15 @@ def _polynomial(coefficients, x):
     return poly(x), poly.deriv(1)(x), poly.deriv(2)(x), poly.deriv(3)(x)
 
 
+@_law('Norton (2012), eq. 8.24')
 def polynomial_345(x):
-    """S = 10 x^3 - 15 x^4 + 6 x^5 (Norton eq. 8.24).
-
-    Parameters
-    ----------
-    x : float or array_like
-        Fraction of the segment, (theta - theta_0)/beta [-].
-
-    Returns
-    -------
-    tuple of numpy.ndarray
-        S, dS/dx, d2S/dx2, d3S/dx3 [-].
-
-    References
-    ----------
-    Norton (2012), eq. 8.24; in full in :mod:`fickcam.cam`.
-    """
+    """S = 10 x^3 - 15 x^4 + 6 x^5 (Norton eq. 8.24)."""
     return _polynomial([0, 0, 0, 10, -15, 6], x)
 
 
+@_law('Norton (2012), eq. 8.25')
 def polynomial_4567(x):
-    """S = 35 x^4 - 84 x^5 + 70 x^6 - 20 x^7 (Norton eq. 8.25).
-
-    Parameters
-    ----------
-    x : float or array_like
-        Fraction of the segment, (theta - theta_0)/beta [-].
-
-    Returns
-    -------
-    tuple of numpy.ndarray
-        S, dS/dx, d2S/dx2, d3S/dx3 [-].
-
-    References
-    ----------
-    Norton (2012), eq. 8.25; in full in :mod:`fickcam.cam`.
-    """
+    """S = 35 x^4 - 84 x^5 + 70 x^6 - 20 x^7 (Norton eq. 8.25)."""
     return _polynomial([0, 0, 0, 0, 35, -84, 70, -20], x)
 
 
@@ -200,67 +157,25 @@ _MODIFIED_SINE = (
     _Piece(7 / 8, 1.0, 0.0, 0.0, -1.0, _K))
 
 
+@_law('Norton (2012), sec. 8.3')
 def constant_acceleration(x):
     """Parabolic: S = 2 x^2 (x <= 1/2), 1 - 2 (1 - x)^2 (Norton sec. 8.3; Singh & Sanyal
     2017 Table 17, whose second half is misprinted as h[1 - 2{1 - k^2}]). Infinite jerk at
-    ends and middle.
-
-    Parameters
-    ----------
-    x : float or array_like
-        Fraction of the segment, (theta - theta_0)/beta [-].
-
-    Returns
-    -------
-    tuple of numpy.ndarray
-        S, dS/dx, d2S/dx2, d3S/dx3 [-].
-
-    References
-    ----------
-    Norton (2012), sec. 8.3; in full in :mod:`fickcam.cam`.
-    """
+    ends and middle."""
     return _piecewise(_CONSTANT_ACCELERATION, x)
 
 
+@_law('Norton (2012), eq. 8.15')
 def modified_trapezoidal(x):
     """Modified trapezoid: sine ramps of period 1/2 over x in [0, 1/8], [3/8, 5/8], [7/8, 1]
-    and constant acceleration between (Norton eq. 8.15, peak C_a = 4.8881).
-
-    Parameters
-    ----------
-    x : float or array_like
-        Fraction of the segment, (theta - theta_0)/beta [-].
-
-    Returns
-    -------
-    tuple of numpy.ndarray
-        S, dS/dx, d2S/dx2, d3S/dx3 [-].
-
-    References
-    ----------
-    Norton (2012), eq. 8.15; in full in :mod:`fickcam.cam`.
-    """
+    and constant acceleration between (Norton eq. 8.15, peak C_a = 4.8881)."""
     return _piecewise(_MODIFIED_TRAPEZOIDAL, x)
 
 
+@_law('Norton (2012), eq. 8.18')
 def modified_sine(x):
     """Modified sine: sine of period 1/2 over [0, 1/8] and [7/8, 1], of period 3/2 between
-    (Norton eq. 8.18, peak C_a = 5.5280).
-
-    Parameters
-    ----------
-    x : float or array_like
-        Fraction of the segment, (theta - theta_0)/beta [-].
-
-    Returns
-    -------
-    tuple of numpy.ndarray
-        S, dS/dx, d2S/dx2, d3S/dx3 [-].
-
-    References
-    ----------
-    Norton (2012), eq. 8.18; in full in :mod:`fickcam.cam`.
-    """
+    (Norton eq. 8.18, peak C_a = 5.5280)."""
     return _piecewise(_MODIFIED_SINE, x)
 
 

@@ -91,9 +91,9 @@ def arm_response(design: CamDesign, state: CamState, cam_angle) -> Response:
     design : CamDesign
         The dry design with its arm (SI: lengths [m], inertia [kg m^2], speed [rad/s]).
     state : CamState
-        The aged state.
+        The aged state: cam, roller and arm strains [-], moduli [Pa].
     cam_angle : array_like
-        Cam angles [rad].
+        Cam angles at which the arm is evaluated [rad].
 
     Returns
     -------

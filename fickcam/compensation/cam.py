@@ -197,7 +197,7 @@ def profile_radii(comp) -> list[tuple]:
     Parameters
     ----------
     comp : Compensation
-        The compensation.
+        The compensation: design and made profile points [m].
 
     Returns
     -------
@@ -276,7 +276,7 @@ def anisotropy_note(comp) -> list[str]:
     Parameters
     ----------
     comp : Compensation
-        The compensation (its ``before`` run).
+        The compensation: its run as designed (in-plane strains [-]).
 
     Returns
     -------

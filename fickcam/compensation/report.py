@@ -55,7 +55,7 @@ def dimension_table(comp: Compensation) -> str:
     Parameters
     ----------
     comp : Compensation
-        The compensation.
+        The compensation: its targets and made values [m].
 
     Returns
     -------
@@ -85,9 +85,9 @@ def header(comp: Compensation, scene) -> str:
     Parameters
     ----------
     comp : Compensation
-        The compensation.
+        The compensation: when it was made for and its iterations.
     scene : Scene
-        The design scene.
+        The design scene (its name).
 
     Returns
     -------
@@ -316,9 +316,9 @@ def report(comp: Compensation, scene) -> str:
     Parameters
     ----------
     comp : Compensation
-        The compensation.
+        The compensation, with its runs as designed and as made.
     scene : Scene
-        The design scene.
+        The design scene (its name and limits).
 
     Returns
     -------
@@ -342,9 +342,9 @@ def scene_text(comp: Compensation, scene, data: dict, folder: Path) -> str:
     Parameters
     ----------
     comp : Compensation
-        The compensation.
+        The compensation (the table and limits written as comments).
     scene : Scene
-        The design scene.
+        The design scene (its name, description and folder).
     data : dict
         The made scene mapping (changed in place: name, outputs, paths).
     folder : pathlib.Path
@@ -412,9 +412,9 @@ def write_files(comp: Compensation, scene, path, *, profile=None, plot=None) -> 
     Parameters
     ----------
     comp : Compensation
-        The compensation.
+        The compensation (its made scene mapping, targets and made values).
     scene : Scene
-        The design scene.
+        The design scene, as designed.
     path : str or pathlib.Path
         The scene file to write.
     profile : str or pathlib.Path, optional

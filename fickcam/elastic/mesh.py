@@ -15,9 +15,9 @@ class PlateMesh:
     Parameters
     ----------
     points : numpy.ndarray
-        Vertices, shape (n, 2) [m].
+        The planform's vertices, shape (n, 2) [m].
     triangles : numpy.ndarray
-        Vertex indices, shape (m, 3).
+        Three vertex indices per triangle, shape (m, 3).
     """
 
     points: np.ndarray

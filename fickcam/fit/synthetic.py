@@ -45,14 +45,9 @@ def synthetic_specimen(name, temperature, relative_humidity, thickness, times, s
 
     Parameters
     ----------
-    name : str
-        The coupon's name.
-    temperature : float
-        Exposure temperature [K].
-    relative_humidity : float
-        Exposure relative humidity [%].
-    thickness : float
-        Thickness [m].
+    name, temperature, relative_humidity, thickness
+        The coupon's name and conditions, as :class:`~fickcam.fit.data.Specimen` holds
+        them: temperature [K], relative humidity [%], thickness [m].
     times : array_like
         Weighing times [s].
     saturation : float
@@ -172,7 +167,7 @@ def write_example(path) -> Path:
     Parameters
     ----------
     path : str or pathlib.Path
-        The CSV file.
+        Where the example CSV goes.
 
     Returns
     -------

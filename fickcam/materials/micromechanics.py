@@ -363,9 +363,10 @@ def reduced_stiffness(e11, e22, g12, nu12):
     e11, e22 : float or array_like
         The ply's moduli along and across the fibres [Pa].
     g12 : float or array_like
-        The in-plane shear modulus [Pa].
+        G12, the in-plane shear modulus [Pa].
     nu12 : float or array_like
-        The major Poisson's ratio [-].
+        nu12, the strain across over the strain along the fibres under a load along
+        them [-].
 
     Returns
     -------
@@ -427,12 +428,9 @@ def quasi_isotropic_expansion(e11, e22, g12, nu12, coefficient11, coefficient22)
 
     Parameters
     ----------
-    e11, e22 : float or array_like
-        The ply's moduli along and across the fibres [Pa].
-    g12 : float or array_like
-        The ply's in-plane shear modulus [Pa].
-    nu12 : float or array_like
-        The ply's major Poisson's ratio [-].
+    e11, e22, g12, nu12 : float or array_like
+        The ply's elastic constants, as :func:`quasi_isotropic_elastic` takes them: moduli
+        [Pa], Poisson's ratio [-].
     coefficient11, coefficient22 : float or array_like
         The ply's expansion coefficients along and across the fibres: thermal [1/K] or
         moisture [1/weight %].
