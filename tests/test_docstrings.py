@@ -408,8 +408,8 @@ _UNIT = re.compile(r"\[[^\]]+\]")
 
 
 def _entry_point(dotted: str):
-    """The object a dotted name names, through its longest importable module (a package may
-    export a function under its sub-module's name, e.g. ``fickcam.compensation.report``)."""
+    """The object a dotted name names, through its longest importable module (so that a
+    sub-module wins over a package attribute of the same name)."""
     parts = dotted.split(".")
     for k in range(len(parts), 0, -1):
         try:
