@@ -200,6 +200,12 @@ def material_state(material, temperature, moisture, surface_moisture, reference_
     Returns
     -------
     dict of str to numpy.ndarray
+
+    Raises
+    ------
+    fickcam.errors.PhysicsDomainError
+        With ``raise_on_wet_tg``, where the service temperature reaches the wet glass
+        transition temperature (:func:`wet_tg_error`).
     """
     temperature = np.asarray(temperature, float)
     mean = np.asarray(moisture, float) + 0.0 * temperature
