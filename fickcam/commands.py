@@ -253,8 +253,8 @@ def _cmd_sweep(args) -> int:
 
 
 def _cmd_compensate(args) -> int:
-    from .compensation import compensate, report
-    from .compensation.report import write_files
+    from .compensation import compensate
+    from .compensation.report import report, write_files
     from .scene import load_scene
 
     if args.profile is not None:
