@@ -168,6 +168,9 @@ class PlaneElasticity:
         The plate's thickness [m].
     order : int
         Lagrange element order (1 or 2).
+
+    Attributes
+    ----------
     mesh, basis : object
         Built from the above (scikit-fem mesh and vector basis).
     """
