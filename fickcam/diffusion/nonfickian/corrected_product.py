@@ -415,7 +415,7 @@ def solve_corrected(problem: DiffusionProblem, reason: str = "",
         return replace(result, fields=fields, reason=note, cell_coordinates=coordinates)
     # the limit search's extra times: read between the marches' steps (``dense_output``)
     return replace(result, extend=extension(run, result, accuracy, lambda both: solve_corrected(
-        replace(problem.at(both), store_fields=False), reason)))
+        replace(problem.at(both), store_fields=False), reason, sweeps)))
 
 
 def plan_corrected(problem: DiffusionProblem) -> Plan:
