@@ -25,10 +25,6 @@ from __future__ import annotations
 import json
 from pathlib import Path
 
-from docutils import nodes
-from docutils.statemachine import StringList
-from sphinx.util.docutils import SphinxDirective
-
 ROOT = Path(__file__).resolve().parents[2]
 RESULTS = ROOT / "benchmarks" / "results"
 STAMP_KEYS = ("command", "commit", "date", "machine", "load_average")
@@ -195,25 +191,34 @@ def result_markdown(path: Path, name: str | None = None) -> str:
 
 # -- Sphinx -----------------------------------------------------------------------------
 
-class ResultTable(SphinxDirective):
-    """``{result-table} benchmarks/results/FILE.json`` with an optional ``:table: NAME``."""
+def result_table_directive():
+    """The ``{result-table}`` directive. docutils and Sphinx are imported here only, so that
+    the functions above run with the test extra alone (the suite checks them)."""
+    from docutils import nodes
+    from docutils.statemachine import StringList
+    from sphinx.util.docutils import SphinxDirective
 
-    required_arguments = 1
-    option_spec = {"table": lambda text: text.strip()}
+    class ResultTable(SphinxDirective):
+        """``{result-table} benchmarks/results/FILE.json`` with an optional ``:table: NAME``."""
 
-    def run(self):
-        path = ROOT / self.arguments[0]
-        self.env.note_dependency(str(path))
-        try:
-            text = result_markdown(path, self.options.get("table"))
-        except (OSError, KeyError, ValueError) as error:
-            raise self.error(f"result-table {self.arguments[0]}: {error}") from error
-        container = nodes.container(classes=["result-table"])
-        self.state.nested_parse(StringList(text.splitlines(), source=str(path)),
-                                self.content_offset, container)
-        return [container]
+        required_arguments = 1
+        option_spec = {"table": lambda text: text.strip()}
+
+        def run(self):
+            path = ROOT / self.arguments[0]
+            self.env.note_dependency(str(path))
+            try:
+                text = result_markdown(path, self.options.get("table"))
+            except (OSError, KeyError, ValueError) as error:
+                raise self.error(f"result-table {self.arguments[0]}: {error}") from error
+            container = nodes.container(classes=["result-table"])
+            self.state.nested_parse(StringList(text.splitlines(), source=str(path)),
+                                    self.content_offset, container)
+            return [container]
+
+    return ResultTable
 
 
 def setup(app):
-    app.add_directive("result-table", ResultTable)
+    app.add_directive("result-table", result_table_directive())
     return {"parallel_read_safe": True, "parallel_write_safe": True}
