@@ -179,6 +179,21 @@ ENTRY_POINTS = {
     "fickcam.linkage.spec.LinkageSection": ("crank", "coupler", "rocker", "frame", "crank_speed",
                                             "crank_angular_acceleration", "rocker_load_torque",
                                             "centre_of_mass"),
+    # diffusion: problem, stepping, superposition, forcing, non-Fickian
+    "fickcam.diffusion.problem.cache.freeze": (),
+    "fickcam.diffusion.problem.cache.size_of": (),
+    "fickcam.diffusion.problem.cache.run_cache": (),
+    "fickcam.diffusion.problem.scaling.axis_scale": ("length", "d_axis", "d_ref"),
+    "fickcam.diffusion.problem.scaling.stretch_of": ("d",),
+    "fickcam.diffusion.problem.scaling.planar_scale": ("part", "d"),
+    "fickcam.diffusion.problem.sorption.Rate": ("pre_exponential", "activation_energy"),
+    "fickcam.diffusion.problem.sorption.Langmuir": ("binding", "release"),
+    "fickcam.diffusion.problem.sorption.ConcentrationDependent": ("reference_moisture",
+                                                                  "exponent", "ratios",
+                                                                  "factors"),
+    "fickcam.diffusion.problem.sorption.is_langmuir": (),
+    "fickcam.diffusion.problem.sorption.is_nonlinear": (),
+    "fickcam.diffusion.problem.sorption.describe": (),
 }
 
 _HEADER = re.compile(r"^(?P<title>[A-Z][A-Za-z ]+)\n-{3,}$", re.MULTILINE)
