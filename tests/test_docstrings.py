@@ -214,6 +214,18 @@ ENTRY_POINTS = {
     "fickcam.diffusion.stepping.dense_output.lagrange": ("x",),
     "fickcam.diffusion.stepping.dense_output.Extension": ("scale", "accuracy"),
     "fickcam.diffusion.stepping.dense_output.held_to_plan": (),
+    "fickcam.diffusion.forcing.clock.RescaledTime": (),
+    "fickcam.diffusion.forcing.clock.clock_of": (),
+    "fickcam.diffusion.forcing.clock.reference_factor": (),
+    "fickcam.diffusion.forcing.clock.rescaled_time": ("t", "a_ref"),
+    "fickcam.diffusion.forcing.clock.Scales": ("a_ref", "d_ref", "length"),
+    "fickcam.diffusion.forcing.clock.scales": (),
+    "fickcam.diffusion.forcing.record.is_long_record": (),
+    "fickcam.diffusion.forcing.record.Forcing": ("tau", "right", "left", "interpolation", "nodes"),
+    "fickcam.diffusion.forcing.record.linear_pieces": ("tolerance",),
+    "fickcam.diffusion.forcing.record.forcing": ("times", "tolerance"),
+    "fickcam.diffusion.superposition.duhamel.surface_jumps": (),
+    "fickcam.diffusion.superposition.duhamel.duhamel": ("kernel", "times", "diffusion_times"),
 }
 
 _HEADER = re.compile(r"^(?P<title>[A-Z][A-Za-z ]+)\n-{3,}$", re.MULTILINE)
