@@ -226,6 +226,16 @@ ENTRY_POINTS = {
     "fickcam.diffusion.forcing.record.forcing": ("times", "tolerance"),
     "fickcam.diffusion.superposition.duhamel.surface_jumps": (),
     "fickcam.diffusion.superposition.duhamel.duhamel": ("kernel", "times", "diffusion_times"),
+    "fickcam.diffusion.superposition.tabulated.Table": ("start", "end", "step", "kernel", "integral"),
+    "fickcam.diffusion.superposition.tabulated.tabulate": ("kernel", "first", "last"),
+    "fickcam.diffusion.superposition.tabulated.Lattice": ("end", "step"),
+    "fickcam.diffusion.superposition.tabulated.Sources": ("steps", "slopes"),
+    "fickcam.diffusion.superposition.tabulated.Ramps": ("times", "changes", "moments", "outputs"),
+    "fickcam.diffusion.superposition.tabulated.Pairs": ("tau", "coefficient", "at"),
+    "fickcam.diffusion.superposition.tabulated.sources": ("force",),
+    "fickcam.diffusion.superposition.tabulated.read": ("first",),
+    "fickcam.diffusion.superposition.tabulated.LongRecord": ("swing", "tolerance", "first", "last"),
+    "fickcam.diffusion.superposition.tabulated.KernelKey": (),
 }
 
 _HEADER = re.compile(r"^(?P<title>[A-Z][A-Za-z ]+)\n-{3,}$", re.MULTILINE)
