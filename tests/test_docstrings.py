@@ -236,6 +236,17 @@ ENTRY_POINTS = {
     "fickcam.diffusion.superposition.tabulated.read": ("first",),
     "fickcam.diffusion.superposition.tabulated.LongRecord": ("swing", "tolerance", "first", "last"),
     "fickcam.diffusion.superposition.tabulated.KernelKey": (),
+    "fickcam.diffusion.nonfickian.two_phase_mesh.TwoPhaseHistory": ("mean", "layer", "bound", "fields"),
+    "fickcam.diffusion.nonfickian.two_phase_mesh.two_phase_marcher": (),
+    "fickcam.diffusion.nonfickian.two_phase_mesh.march_coupled": ("nodes", "free_before", "binding", "release",
+                                        "initial", "initial_share", "labels"),
+    "fickcam.diffusion.nonfickian.two_phase_modes.Nodes": ("t", "tau", "free_right", "free_left", "gamma", "beta",
+                                 "ratio", "initial_bound", "interpolation"),
+    "fickcam.diffusion.nonfickian.two_phase_modes.march_nodes": ("times", "tolerance"),
+    "fickcam.diffusion.nonfickian.two_phase_modes.march_modes": ("rates", "amplitudes"),
+    "fickcam.diffusion.nonfickian.two_phase_modes.ModeSource": ("modes", "response"),
+    "fickcam.diffusion.nonfickian.two_phase_modes.separable_source": ("d0", "depth"),
+    "fickcam.diffusion.nonfickian.two_phase_modes.langmuir_history": ("times", "accuracy", "surface_layer_depth"),
 }
 
 _HEADER = re.compile(r"^(?P<title>[A-Z][A-Za-z ]+)\n-{3,}$", re.MULTILINE)
