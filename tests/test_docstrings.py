@@ -247,6 +247,21 @@ ENTRY_POINTS = {
     "fickcam.diffusion.nonfickian.two_phase_modes.ModeSource": ("modes", "response"),
     "fickcam.diffusion.nonfickian.two_phase_modes.separable_source": ("d0", "depth"),
     "fickcam.diffusion.nonfickian.two_phase_modes.langmuir_history": ("times", "accuracy", "surface_layer_depth"),
+    "fickcam.diffusion.nonfickian.concentration_dependent.Sweeps": ("tolerance", "forcing"),
+    "fickcam.diffusion.nonfickian.concentration_dependent.fastest": ("diffusivity", "times"),
+    "fickcam.diffusion.nonfickian.concentration_dependent.slowest": ("diffusivity", "times"),
+    "fickcam.diffusion.nonfickian.concentration_dependent.spread": ("times",),
+    "fickcam.diffusion.nonfickian.concentration_dependent.skin_start": (),
+    "fickcam.diffusion.nonfickian.concentration_dependent.dries_to_a_skin": (),
+    "fickcam.diffusion.nonfickian.concentration_dependent.Sizing": ("margin",),
+    "fickcam.diffusion.nonfickian.concentration_dependent.nonlinear_plan": ("diffusivity", "times", "accuracy"),
+    "fickcam.diffusion.nonfickian.concentration_dependent.solve_nonlinear": ("problem",),
+    "fickcam.diffusion.nonfickian.concentration_dependent.wettest": ("times",),
+    "fickcam.diffusion.nonfickian.concentration_dependent.Faces": ("transmissibility", "boundary", "volumes"),
+    "fickcam.diffusion.nonfickian.concentration_dependent.sweep_march": ("top", "initial"),
+    "fickcam.diffusion.nonfickian.concentration_dependent.Lagged": (),
+    "fickcam.diffusion.nonfickian.concentration_dependent.extrapolated": ("before", "latest", "dt_before", "dt", "g"),
+    "fickcam.diffusion.nonfickian.concentration_dependent.sweep_step": ("old", "g", "top", "dt", "time", "guess"),
 }
 
 _HEADER = re.compile(r"^(?P<title>[A-Z][A-Za-z ]+)\n-{3,}$", re.MULTILINE)
