@@ -262,6 +262,17 @@ ENTRY_POINTS = {
     "fickcam.diffusion.nonfickian.concentration_dependent.Lagged": (),
     "fickcam.diffusion.nonfickian.concentration_dependent.extrapolated": ("before", "latest", "dt_before", "dt", "g"),
     "fickcam.diffusion.nonfickian.concentration_dependent.sweep_step": ("old", "g", "top", "dt", "time", "guess"),
+    "fickcam.diffusion.nonfickian.corrected_fields.planform_at": ("values", "points"),
+    "fickcam.diffusion.nonfickian.corrected_fields.reading": ("points",),
+    "fickcam.diffusion.nonfickian.corrected_fields.exposed_points": (),
+    "fickcam.diffusion.nonfickian.corrected_fields.sheet_at": ("z_sheet", "unaccomplished", "z", "thickness"),
+    "fickcam.diffusion.nonfickian.corrected_fields.References": ("sheet", "planform", "coarser"),
+    "fickcam.diffusion.nonfickian.corrected_fields.corrected_fields": ("sheet_ref", "planform_ref", "surface"),
+    "fickcam.diffusion.nonfickian.corrected_fields.restricted": (),
+    "fickcam.diffusion.nonfickian.corrected_fields.unseparated_share": ("fields", "surface"),
+    "fickcam.diffusion.nonfickian.corrected_fields.FieldErrors": ("correction", "sheet", "planform", "three_d"),
+    "fickcam.diffusion.nonfickian.corrected_fields.field_errors": (),
+    "fickcam.diffusion.nonfickian.corrected_fields.stored": (),
 }
 
 _HEADER = re.compile(r"^(?P<title>[A-Z][A-Za-z ]+)\n-{3,}$", re.MULTILINE)
