@@ -77,7 +77,7 @@ def two_phase_marcher(law, exposure):
     -------
     callable
         ``march(disc, nodes, surface_values, initial, outputs, times, ...)`` returning a
-        ``TwoPhaseHistory`` (moisture in weight %).
+        ``TwoPhaseHistory`` (moisture [weight %]).
 
     References
     ----------

@@ -250,7 +250,7 @@ def separable_source(geometry, d0, depth) -> ModeSource:
     Parameters
     ----------
     geometry : Sheet, Bar or Disc
-        The part (lengths in m).
+        The part (lengths [m]).
     d0 : sequence of float
         The principal pre-exponential diffusivities (D_x, D_y, D_z) [m^2/s].
     depth : float
@@ -284,7 +284,7 @@ def langmuir_history(geometry, diffusivity, law, exposure, times, accuracy,
     Parameters
     ----------
     geometry : Sheet, Bar, Disc, CamPlate or LinkBar
-        The part (lengths in m).
+        The part (lengths [m]).
     diffusivity : Diffusivity
         The material's diffusivity (pre-exponential [m^2/s], activation energy [J/mol]).
     law : Langmuir
