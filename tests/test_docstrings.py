@@ -293,6 +293,23 @@ ENTRY_POINTS = {
     "fickcam.diffusion.nonfickian.corrected_pieces.SharedInputs": ("times", "d", "top", "depth"),
     "fickcam.diffusion.nonfickian.corrected_pieces.MeshMarches": ("coordinates", "union"),
     "fickcam.diffusion.nonfickian.corrected_pieces.three_d": (),
+    "fickcam.diffusion.nonfickian.corrected_product.MeshCaps": ("nested", "cross"),
+    "fickcam.diffusion.nonfickian.corrected_product.skin_margin": ("times",),
+    "fickcam.diffusion.nonfickian.corrected_product.CorrectedMeshes": ("results", "planform_error", "factor", "scale"),
+    "fickcam.diffusion.nonfickian.corrected_product.base_level": ("accuracy",),
+    "fickcam.diffusion.nonfickian.corrected_product.base_plan": ("accuracy",),
+    "fickcam.diffusion.nonfickian.corrected_product.surface_of": (),
+    "fickcam.diffusion.nonfickian.corrected_product.corrected_levels": ("geometry", "times", "accuracy", "surface_layer_depth"),
+    "fickcam.diffusion.nonfickian.corrected_product.estimate_parts": ("margin",),
+    "fickcam.diffusion.nonfickian.corrected_product.unseparated": ("margin",),
+    "fickcam.diffusion.nonfickian.corrected_product.finest": ("results",),
+    "fickcam.diffusion.nonfickian.corrected_product.extension": ("accuracy",),
+    "fickcam.diffusion.nonfickian.corrected_product.refined_run": ("geometry", "times", "accuracy", "surface_layer_depth"),
+    "fickcam.diffusion.nonfickian.corrected_product.solve_corrected": ("problem",),
+    "fickcam.diffusion.nonfickian.corrected_product.plan_corrected": ("problem",),
+    "fickcam.diffusion.nonfickian.corrected_product.refined_reference": ("accuracy", "scale"),
+    "fickcam.diffusion.nonfickian.corrected_product.gap": ("a", "b", "scale"),
+    "fickcam.diffusion.nonfickian.corrected_product.combined": ("pairs",),
 }
 
 _HEADER = re.compile(r"^(?P<title>[A-Z][A-Za-z ]+)\n-{3,}$", re.MULTILINE)
