@@ -188,14 +188,15 @@ ENTRY_POINTS = {
     "fickcam.diffusion.problem.scaling.planar_scale": ("part", "d"),
     "fickcam.diffusion.problem.sorption.Rate": ("pre_exponential", "activation_energy"),
     "fickcam.diffusion.problem.sorption.Langmuir": ("binding", "release"),
-    "fickcam.diffusion.problem.sorption.ConcentrationDependent": ("reference_moisture",
-                                                                  "exponent", "ratios",
-                                                                  "factors"),
+    "fickcam.diffusion.problem.sorption.ConcentrationDependent":
+        ("reference_moisture", "exponent", "ratios", "factors"),
     "fickcam.diffusion.problem.sorption.is_langmuir": (),
     "fickcam.diffusion.problem.sorption.is_nonlinear": (),
     "fickcam.diffusion.problem.sorption.describe": (),
-    "fickcam.diffusion.stepping.step_plans.geometric_steps": ("start", "stop", "first_step", "max_step"),
-    "fickcam.diffusion.stepping.step_plans.step_nodes": ("change_taus", "output_taus", "first_step"),
+    "fickcam.diffusion.stepping.step_plans.geometric_steps":
+        ("start", "stop", "first_step", "max_step"),
+    "fickcam.diffusion.stepping.step_plans.step_nodes":
+        ("change_taus", "output_taus", "first_step"),
     "fickcam.diffusion.stepping.step_plans.drop_slivers": ("nodes", "first_step"),
     "fickcam.diffusion.stepping.step_plans.nearest_nodes": ("nodes", "values"),
     "fickcam.diffusion.stepping.step_plans.inverse_time": ("tau_nodes", "change_times"),
@@ -206,7 +207,8 @@ ENTRY_POINTS = {
     "fickcam.diffusion.stepping.step_response.blend": ("values", "tolerance"),
     "fickcam.diffusion.stepping.march.ThetaStepper": (),
     "fickcam.diffusion.stepping.march.History": ("mean", "layer", "fields", "track"),
-    "fickcam.diffusion.stepping.march.march": ("nodes", "surface_values", "initial", "times", "surface_before"),
+    "fickcam.diffusion.stepping.march.march":
+        ("nodes", "surface_values", "initial", "times", "surface_before"),
     "fickcam.diffusion.stepping.march.held_values": ("ending", "initial"),
     "fickcam.diffusion.stepping.march.norm": (),
     "fickcam.diffusion.stepping.march.rounded_steps": ("steps",),
@@ -226,7 +228,8 @@ ENTRY_POINTS = {
     "fickcam.diffusion.forcing.record.forcing": ("times", "tolerance"),
     "fickcam.diffusion.superposition.duhamel.surface_jumps": (),
     "fickcam.diffusion.superposition.duhamel.duhamel": ("kernel", "times", "diffusion_times"),
-    "fickcam.diffusion.superposition.tabulated.Table": ("start", "end", "step", "kernel", "integral"),
+    "fickcam.diffusion.superposition.tabulated.Table":
+        ("start", "end", "step", "kernel", "integral"),
     "fickcam.diffusion.superposition.tabulated.tabulate": ("kernel", "first", "last"),
     "fickcam.diffusion.superposition.tabulated.Lattice": ("end", "step"),
     "fickcam.diffusion.superposition.tabulated.Sources": ("steps", "slopes"),
@@ -236,17 +239,20 @@ ENTRY_POINTS = {
     "fickcam.diffusion.superposition.tabulated.read": ("first",),
     "fickcam.diffusion.superposition.tabulated.LongRecord": ("swing", "tolerance", "first", "last"),
     "fickcam.diffusion.superposition.tabulated.KernelKey": (),
-    "fickcam.diffusion.nonfickian.two_phase_mesh.TwoPhaseHistory": ("mean", "layer", "bound", "fields"),
+    "fickcam.diffusion.nonfickian.two_phase_mesh.TwoPhaseHistory":
+        ("mean", "layer", "bound", "fields"),
     "fickcam.diffusion.nonfickian.two_phase_mesh.two_phase_marcher": (),
-    "fickcam.diffusion.nonfickian.two_phase_mesh.march_coupled": ("nodes", "free_before", "binding", "release",
-                                        "initial", "initial_share", "labels"),
-    "fickcam.diffusion.nonfickian.two_phase_modes.Nodes": ("t", "tau", "free_right", "free_left", "gamma", "beta",
-                                 "ratio", "initial_bound", "interpolation"),
+    "fickcam.diffusion.nonfickian.two_phase_mesh.march_coupled":
+        ("nodes", "free_before", "binding", "release", "initial", "initial_share", "labels"),
+    "fickcam.diffusion.nonfickian.two_phase_modes.Nodes":
+        ("t", "tau", "free_right", "free_left", "gamma", "beta", "ratio", "initial_bound",
+         "interpolation"),
     "fickcam.diffusion.nonfickian.two_phase_modes.march_nodes": ("times", "tolerance"),
     "fickcam.diffusion.nonfickian.two_phase_modes.march_modes": ("rates", "amplitudes"),
     "fickcam.diffusion.nonfickian.two_phase_modes.ModeSource": ("modes", "response"),
     "fickcam.diffusion.nonfickian.two_phase_modes.separable_source": ("d0", "depth"),
-    "fickcam.diffusion.nonfickian.two_phase_modes.langmuir_history": ("times", "accuracy", "surface_layer_depth"),
+    "fickcam.diffusion.nonfickian.two_phase_modes.langmuir_history":
+        ("times", "accuracy", "surface_layer_depth"),
     "fickcam.diffusion.nonfickian.concentration_dependent.Sweeps": ("tolerance", "forcing"),
     "fickcam.diffusion.nonfickian.concentration_dependent.fastest": ("diffusivity", "times"),
     "fickcam.diffusion.nonfickian.concentration_dependent.slowest": ("diffusivity", "times"),
@@ -254,26 +260,34 @@ ENTRY_POINTS = {
     "fickcam.diffusion.nonfickian.concentration_dependent.skin_start": (),
     "fickcam.diffusion.nonfickian.concentration_dependent.dries_to_a_skin": (),
     "fickcam.diffusion.nonfickian.concentration_dependent.Sizing": ("margin",),
-    "fickcam.diffusion.nonfickian.concentration_dependent.nonlinear_plan": ("diffusivity", "times", "accuracy"),
+    "fickcam.diffusion.nonfickian.concentration_dependent.nonlinear_plan":
+        ("diffusivity", "times", "accuracy"),
     "fickcam.diffusion.nonfickian.concentration_dependent.solve_nonlinear": ("problem",),
     "fickcam.diffusion.nonfickian.concentration_dependent.wettest": ("times",),
-    "fickcam.diffusion.nonfickian.concentration_dependent.Faces": ("transmissibility", "boundary", "volumes"),
+    "fickcam.diffusion.nonfickian.concentration_dependent.Faces":
+        ("transmissibility", "boundary", "volumes"),
     "fickcam.diffusion.nonfickian.concentration_dependent.sweep_march": ("top", "initial"),
     "fickcam.diffusion.nonfickian.concentration_dependent.Lagged": (),
-    "fickcam.diffusion.nonfickian.concentration_dependent.extrapolated": ("before", "latest", "dt_before", "dt", "g"),
-    "fickcam.diffusion.nonfickian.concentration_dependent.sweep_step": ("old", "g", "top", "dt", "time", "guess"),
+    "fickcam.diffusion.nonfickian.concentration_dependent.extrapolated":
+        ("before", "latest", "dt_before", "dt", "g"),
+    "fickcam.diffusion.nonfickian.concentration_dependent.sweep_step":
+        ("old", "g", "top", "dt", "time", "guess"),
     "fickcam.diffusion.nonfickian.corrected_fields.planform_at": ("values", "points"),
     "fickcam.diffusion.nonfickian.corrected_fields.reading": ("points",),
     "fickcam.diffusion.nonfickian.corrected_fields.exposed_points": (),
-    "fickcam.diffusion.nonfickian.corrected_fields.sheet_at": ("z_sheet", "unaccomplished", "z", "thickness"),
+    "fickcam.diffusion.nonfickian.corrected_fields.sheet_at":
+        ("z_sheet", "unaccomplished", "z", "thickness"),
     "fickcam.diffusion.nonfickian.corrected_fields.References": ("sheet", "planform", "coarser"),
-    "fickcam.diffusion.nonfickian.corrected_fields.corrected_fields": ("sheet_ref", "planform_ref", "surface"),
+    "fickcam.diffusion.nonfickian.corrected_fields.corrected_fields":
+        ("sheet_ref", "planform_ref", "surface"),
     "fickcam.diffusion.nonfickian.corrected_fields.restricted": (),
     "fickcam.diffusion.nonfickian.corrected_fields.unseparated_share": ("fields", "surface"),
-    "fickcam.diffusion.nonfickian.corrected_fields.FieldErrors": ("correction", "sheet", "planform", "three_d"),
+    "fickcam.diffusion.nonfickian.corrected_fields.FieldErrors":
+        ("correction", "sheet", "planform", "three_d"),
     "fickcam.diffusion.nonfickian.corrected_fields.field_errors": (),
     "fickcam.diffusion.nonfickian.corrected_fields.stored": (),
-    "fickcam.diffusion.nonfickian.corrected_pieces.CombinedMarch": ("mean", "layer", "fields", "pair"),
+    "fickcam.diffusion.nonfickian.corrected_pieces.CombinedMarch":
+        ("mean", "layer", "fields", "pair"),
     "fickcam.diffusion.nonfickian.corrected_pieces.as_prism": ("geometry", "diffusivity"),
     "fickcam.diffusion.nonfickian.corrected_pieces.bar_size": (),
     "fickcam.diffusion.nonfickian.corrected_pieces.section_axes": ("diffusivity",),
@@ -285,7 +299,8 @@ ENTRY_POINTS = {
     "fickcam.diffusion.nonfickian.corrected_pieces.cross": (),
     "fickcam.diffusion.nonfickian.corrected_pieces.combination": (),
     "fickcam.diffusion.nonfickian.corrected_pieces.richardson_march": ("top", "times"),
-    "fickcam.diffusion.nonfickian.corrected_pieces.unaccomplished_ratio": ("reference", "coarse", "floor"),
+    "fickcam.diffusion.nonfickian.corrected_pieces.unaccomplished_ratio":
+        ("reference", "coarse", "floor"),
     "fickcam.diffusion.nonfickian.corrected_pieces.corrected": ("surface", "union"),
     "fickcam.diffusion.nonfickian.corrected_pieces.steps_for": ("accuracy",),
     "fickcam.diffusion.nonfickian.corrected_pieces.level_plan": ("times", "mesh_accuracy"),
@@ -295,21 +310,39 @@ ENTRY_POINTS = {
     "fickcam.diffusion.nonfickian.corrected_pieces.three_d": (),
     "fickcam.diffusion.nonfickian.corrected_product.MeshCaps": ("nested", "cross"),
     "fickcam.diffusion.nonfickian.corrected_product.skin_margin": ("times",),
-    "fickcam.diffusion.nonfickian.corrected_product.CorrectedMeshes": ("results", "planform_error", "factor", "scale"),
+    "fickcam.diffusion.nonfickian.corrected_product.CorrectedMeshes":
+        ("results", "planform_error", "factor", "scale"),
     "fickcam.diffusion.nonfickian.corrected_product.base_level": ("accuracy",),
     "fickcam.diffusion.nonfickian.corrected_product.base_plan": ("accuracy",),
     "fickcam.diffusion.nonfickian.corrected_product.surface_of": (),
-    "fickcam.diffusion.nonfickian.corrected_product.corrected_levels": ("geometry", "times", "accuracy", "surface_layer_depth"),
+    "fickcam.diffusion.nonfickian.corrected_product.corrected_levels":
+        ("geometry", "times", "accuracy", "surface_layer_depth"),
     "fickcam.diffusion.nonfickian.corrected_product.estimate_parts": ("margin",),
     "fickcam.diffusion.nonfickian.corrected_product.unseparated": ("margin",),
     "fickcam.diffusion.nonfickian.corrected_product.finest": ("results",),
     "fickcam.diffusion.nonfickian.corrected_product.extension": ("accuracy",),
-    "fickcam.diffusion.nonfickian.corrected_product.refined_run": ("geometry", "times", "accuracy", "surface_layer_depth"),
+    "fickcam.diffusion.nonfickian.corrected_product.refined_run":
+        ("geometry", "times", "accuracy", "surface_layer_depth"),
     "fickcam.diffusion.nonfickian.corrected_product.solve_corrected": ("problem",),
     "fickcam.diffusion.nonfickian.corrected_product.plan_corrected": ("problem",),
     "fickcam.diffusion.nonfickian.corrected_product.refined_reference": ("accuracy", "scale"),
     "fickcam.diffusion.nonfickian.corrected_product.gap": ("a", "b", "scale"),
     "fickcam.diffusion.nonfickian.corrected_product.combined": ("pairs",),
+    "fickcam.diffusion.nonfickian.planform_modes.planform_design": ("d", "accuracy", "t_lo"),
+    "fickcam.diffusion.nonfickian.planform_modes.Planform": ("operator",),
+    "fickcam.diffusion.nonfickian.planform_modes.planform_operator":
+        ("d", "depth", "finest", "growth"),
+    "fickcam.diffusion.nonfickian.planform_modes.lanczos_spectrum": (),
+    "fickcam.diffusion.nonfickian.planform_modes.planar_fraction": ("spectrum", "ages"),
+    "fickcam.diffusion.nonfickian.planform_modes.lanczos_count": ("ages", "tolerance"),
+    "fickcam.diffusion.nonfickian.planform_modes.whole_at_start": ("spectrum",),
+    "fickcam.diffusion.nonfickian.planform_modes.planform_source": ("d", "spectrum"),
+    "fickcam.diffusion.nonfickian.planform_modes.RefinedPlanform": ("error", "finest", "growth"),
+    "fickcam.diffusion.nonfickian.planform_modes.Refinement": ("cap",),
+    "fickcam.diffusion.nonfickian.planform_modes.refined_planform":
+        ("d", "depth", "finest", "growth", "ages", "tolerance"),
+    "fickcam.diffusion.nonfickian.planform_modes.error_coefficients": ("meshes",),
+    "fickcam.diffusion.nonfickian.planform_modes.mesh_error": ("finest", "growth"),
 }
 
 _HEADER = re.compile(r"^(?P<title>[A-Z][A-Za-z ]+)\n-{3,}$", re.MULTILINE)
