@@ -113,9 +113,9 @@ def reference_factor(diffusivity: Diffusivity, exposure: Exposure) -> float:
     Parameters
     ----------
     diffusivity : Diffusivity
-        The material's diffusivity (its activation energy [J/mol]).
+        Gives the factor exp(-Ea/(R T)) (Ea [J/mol]).
     exposure : Exposure
-        The history (times [s], temperature [K]).
+        Its temperatures [K] at the sample times [s].
 
     Returns
     -------
@@ -133,9 +133,9 @@ def rescaled_time(diffusivity: Diffusivity, exposure: Exposure, t: np.ndarray,
     Parameters
     ----------
     diffusivity : Diffusivity
-        The material's diffusivity (its activation energy [J/mol]).
+        The Arrhenius law of the material (Ea [J/mol]).
     exposure : Exposure
-        The history (times [s], temperature [K]).
+        The temperature history (T [K] over t [s]).
     t : numpy.ndarray
         Physical times [s].
     cache : RunCache, optional

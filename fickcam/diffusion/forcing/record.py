@@ -129,9 +129,9 @@ def forcing(exposure, clock: RescaledTime, times, tolerance) -> Forcing:
     Parameters
     ----------
     exposure : Exposure
-        The record (surface moisture [weight %] against time [s]).
+        The long record: its rows' times [s] and surface moisture [weight %].
     clock : RescaledTime
-        Its rescaled clock.
+        t [s] -> tau [s] for that record.
     times : numpy.ndarray
         The output times [s].
     tolerance : float

@@ -151,14 +151,12 @@ def slowest(diffusivity: Diffusivity, law, exposure, times) -> Diffusivity:
 def spread(law, exposure, times) -> float:
     """The ratio of the largest to the smallest diffusivity factor the part meets.
 
-    max f / min f over the moisture the part meets.
-
     Parameters
     ----------
     law : ConcentrationDependent
-        The factor f(c/Mm_ref) [-].
+        The law f(c/Mm_ref) [-] compared at its ends.
     exposure : Exposure
-        The history (surface moisture [weight %]).
+        Its surface values [weight %] set the wettest moisture.
     times : numpy.ndarray
         The output times [s].
 
@@ -174,9 +172,8 @@ def spread(law, exposure, times) -> float:
 def skin_start(law, exposure) -> float | None:
     """When the surface may first dry to a skin of low diffusivity.
 
-    When the surface may first dry to a skin (s), or None if it never does: the sample
-    (``exposure.sample_times``) before the first one whose surface moisture has a D below the
-    largest D met before (initial moisture, earlier surface values). From then on the part
+    It is the sample (``exposure.sample_times``) before the first one whose surface
+    moisture has a D below the largest D met before (initial moisture, earlier surface values). From then on the part
     has a skin where the whole drop of c crosses a layer sqrt(D_min t) deep (desorption when
     D rises with c, Crank 1975 §9.3-9.4, absorption when it falls); before it, none.
 
@@ -212,9 +209,9 @@ def dries_to_a_skin(law, exposure) -> bool:
     Parameters
     ----------
     law : ConcentrationDependent
-        The factor f(c/Mm_ref) [-].
+        The moisture dependence f [-] of D.
     exposure : Exposure
-        The history (surface moisture [weight %]).
+        The exposure whose surface values [weight %] are read.
 
     Returns
     -------
@@ -292,13 +289,13 @@ def nonlinear_plan(planner, diffusivity, law, exposure, times, accuracy: float):
     planner : callable
         ``planner(diffusivity, accuracy, outputs)``: the Fickian direct plan of the part.
     diffusivity : Diffusivity
-        The material's diffusivity (pre-exponential [m^2/s], activation energy [J/mol]).
+        D of the material at f = 1 (D0 [m^2/s], Ea [J/mol]).
     law : ConcentrationDependent
-        The factor f(c/Mm_ref) [-].
+        f(c/Mm_ref) [-], which sets the spread of D.
     exposure : Exposure
-        The history (times [s], temperature [K], surface moisture [weight %]).
+        What the part is exposed to: times [s], T [K], surface moisture [weight %].
     times : numpy.ndarray
-        The output times [s].
+        The times [s] the plan must reach.
     accuracy : float
         The requested error relative to the swing [-].
 

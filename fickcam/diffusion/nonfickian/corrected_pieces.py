@@ -160,9 +160,9 @@ def bar_coordinates(bar: Bar, diffusivity, coordinates: dict) -> dict:
     Parameters
     ----------
     bar : Bar
-        The bar (sizes [m]).
+        The bar the cells belong to (its sizes [m]).
     diffusivity : Diffusivity
-        Its pre-exponential diffusivities per axis [m^2/s].
+        D0 along its three axes [m^2/s], which order them.
     coordinates : dict
         The prism cells' centres "x", "y", "z" [m] in ``as_prism``'s frame.
 
@@ -478,7 +478,7 @@ def steps_for(accuracy: float) -> int:
     Parameters
     ----------
     accuracy : float
-        The requested error relative to the swing [-].
+        The accuracy [-] asked of the solve; the time error gets half.
 
     Returns
     -------
@@ -496,15 +496,15 @@ def level_plan(geometry, diffusivity, law, exposure, times, mesh_accuracy, per_d
     Parameters
     ----------
     geometry : CamPlate or LinkBar
-        The prism part (lengths [m]).
+        The part the 3-D mesh covers (sizes [m]).
     diffusivity : Diffusivity
-        The material's diffusivity (pre-exponential [m^2/s]).
+        D0 of the material per axis [m^2/s].
     law : ConcentrationDependent
-        The factor f(c/Mm_ref) [-].
+        How D scales with the local moisture, f [-].
     exposure : Exposure
-        The history (times [s], temperature [K], moisture [weight %]).
+        Temperatures [K] and surface moisture [weight %] over time [s].
     times : numpy.ndarray
-        The output times [s].
+        Times of the outputs [s].
     mesh_accuracy : float
         The accuracy [-] the cells are sized for.
     per_doubling : int
@@ -535,13 +535,13 @@ def sheet_reference(geometry, diffusivity, law, exposure, times, accuracy,
     geometry : CamPlate, LinkBar or Bar
         The part; its ``thickness`` [m] is the sheet's.
     diffusivity : Diffusivity
-        The material's diffusivity (pre-exponential [m^2/s]).
+        D0 per axis [m^2/s]; the sheet takes the through-thickness one.
     law : ConcentrationDependent
-        The factor f(c/Mm_ref) [-].
+        The sheet's moisture dependence f [-].
     exposure : Exposure
-        The history (times [s], temperature [K], moisture [weight %]).
+        The sheet's exposure (t [s], T [K], surface moisture [weight %]).
     times : numpy.ndarray
-        The output times [s].
+        Output times [s] of the sheet.
     accuracy : float
         The requested accuracy [-] (the sheet takes ``SHEET_SHARE`` of it).
     depth : float
@@ -575,13 +575,13 @@ class SharedInputs:
     Parameters
     ----------
     geometry : CamPlate or LinkBar
-        The prism part (lengths [m]).
+        The prism every march meshes (sizes [m]).
     law : ConcentrationDependent
-        The factor f(c/Mm_ref) [-].
+        The law f(c/Mm_ref) [-] every sweep reads.
     exposure : Exposure
-        The history (times [s], temperature [K], moisture [weight %]).
+        The shared exposure: t [s], T [K], surface moisture [weight %].
     times : numpy.ndarray
-        The output times [s].
+        The outputs every march records [s].
     d : tuple of float
         The scaled diffusivity D0 max f per axis [m^2/s].
     top : float

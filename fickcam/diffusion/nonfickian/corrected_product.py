@@ -156,11 +156,11 @@ def skin_margin(law, exposure, times) -> float:
     Parameters
     ----------
     law : ConcentrationDependent
-        The factor f(c/Mm_ref) [-].
+        f(c/Mm_ref) [-], the law whose spread sets the margin.
     exposure : Exposure
-        The history (times [s], temperature [K], moisture [weight %]).
+        The exposure (surface moisture [weight %] over time [s]).
     times : numpy.ndarray
-        The output times [s].
+        Output times [s].
 
     Returns
     -------
@@ -264,7 +264,7 @@ def base_level(accuracy: float) -> float:
     Parameters
     ----------
     accuracy : float
-        The requested error relative to the swing [-].
+        The solve's accuracy [-] (relative to the moisture swing).
 
     Returns
     -------
@@ -292,7 +292,7 @@ def base_plan(plan_at, accuracy: float, caps: MeshCaps = MESH_CAPS) -> tuple[flo
     plan_at : callable
         accuracy [-] -> the 3-D plan for it.
     accuracy : float
-        The requested error relative to the swing [-].
+        What the solve must reach [-], relative to the swing.
     caps : MeshCaps
         The largest meshes allowed.
 
@@ -372,9 +372,9 @@ def corrected_levels(geometry, diffusivity, law, exposure, times, accuracy: floa
     store_fields : bool
         Keep every mesh's fields and the references'.
     part : str
-        The part's name, for errors.
+        Names the part in solver errors.
     sweeps : Sweeps
-        When each step's sweeps stop.
+        The sweeps' stopping rule, for every march.
 
     Returns
     -------
@@ -583,19 +583,19 @@ def refined_run(geometry, diffusivity, law, exposure, times, accuracy: float, *,
     Parameters
     ----------
     geometry : Bar, CamPlate or LinkBar
-        The part (lengths [m]).
+        The part whose meshes are refined (sizes [m]).
     diffusivity : Diffusivity
-        The material's diffusivity (pre-exponential [m^2/s], activation energy [J/mol]).
+        D0 per axis [m^2/s] and the activation energy [J/mol].
     law : ConcentrationDependent
-        The factor f(c/Mm_ref) [-].
+        The moisture dependence f(c/Mm_ref) [-] of D.
     exposure : Exposure
-        The history (times [s], temperature [K], moisture [weight %]).
+        Change times [s], temperatures [K], surface moisture [weight %].
     times : numpy.ndarray
-        The output times [s].
+        When the results are wanted [s].
     accuracy : float
-        The requested error relative to the swing [-].
+        The error [-] allowed, as a share of the moisture swing.
     surface_layer_depth : float
-        The contact layer's depth [m].
+        How deep the contact layer reaches [m].
     store_fields : bool
         Keep the finest mesh's fields.
     part : str

@@ -99,9 +99,9 @@ def planform_design(geometry, d, accuracy: float, t_lo: float) -> sizing.Layout:
     Parameters
     ----------
     geometry : CamPlate or LinkBar
-        The prism part (lengths [m]).
+        The cam plate or link to mesh (sizes [m]).
     d : tuple of float
-        The principal diffusivities (D_x, D_y, D_z) [m^2/s].
+        Its diffusivities along x, y, z [m^2/s].
     accuracy : float
         The requested error relative to the swing [-].
     t_lo : float
@@ -484,11 +484,11 @@ def refined_planform(geometry, d, depth: float, finest: float, growth: float, ag
     Parameters
     ----------
     geometry : CamPlate or LinkBar
-        The prism part (lengths [m]).
+        The cam plate or link whose planform is refined (sizes [m]).
     d : tuple of float
-        The principal diffusivities (D_x, D_y, D_z) [m^2/s].
+        D along x, y and through the thickness [m^2/s].
     depth : float
-        The contact layer's depth [m].
+        Depth of the contact layer read [m].
     finest : float
         The first mesh's finest width w0 [-] (scaled).
     growth : float

@@ -286,13 +286,13 @@ def langmuir_history(geometry, diffusivity, law, exposure, times, accuracy,
     geometry : Sheet, Bar, Disc, CamPlate or LinkBar
         The part (lengths [m]).
     diffusivity : Diffusivity
-        The material's diffusivity (pre-exponential [m^2/s], activation energy [J/mol]).
+        D0 [m^2/s] and Ea [J/mol] of the free water's diffusion.
     law : Langmuir
         The two-phase law (rates [1/s]).
     exposure : Exposure
-        The history (times [s], temperature [K], moisture [weight %]).
+        Times [s], temperatures [K] and total surface moisture [weight %].
     times : numpy.ndarray
-        The output times [s].
+        Where the history is read [s].
     accuracy : float
         The requested error relative to the swing [-].
     surface_layer_depth : float

@@ -178,12 +178,12 @@ def is_nonlinear(sorption) -> bool:
     Parameters
     ----------
     sorption : Langmuir, ConcentrationDependent or None
-        The material's sorption law (None: Fickian).
+        A law of the material, or None for plain Fick.
 
     Returns
     -------
     bool
-        True for a ``ConcentrationDependent`` diffusivity.
+        Whether D depends on the moisture (a ``ConcentrationDependent`` law).
     """
     return isinstance(sorption, ConcentrationDependent)
 
@@ -194,7 +194,7 @@ def describe(sorption) -> str:
     Parameters
     ----------
     sorption : Langmuir, ConcentrationDependent or None
-        The material's sorption law (None: Fickian).
+        The law to describe (None: Fickian diffusion).
 
     Returns
     -------

@@ -198,9 +198,9 @@ def output_ages(change_stars: np.ndarray, output_stars: np.ndarray, ramp: np.nda
     Parameters
     ----------
     change_stars : numpy.ndarray
-        The change times in scaled time [-], rising.
+        tau* of the exposure's changes [-], rising.
     output_stars : numpy.ndarray
-        The output times in scaled time [-].
+        tau* of the outputs [-].
     ramp : numpy.ndarray of bool
         Per segment, whether the surface value ramps over it.
     ramp_points : int
