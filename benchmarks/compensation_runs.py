@@ -33,7 +33,7 @@ from pathlib import Path
 
 import yaml
 
-from points_cam import commit, machine  # the sibling benchmark's machine stamp
+from points_cam import announced_machine, commit  # the sibling benchmark's machine stamp
 
 ROOT = Path(__file__).resolve().parents[1]
 RESULT = ROOT / "benchmarks" / "results" / "compensation_runs.json"
@@ -119,10 +119,8 @@ def main(argv=None) -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--repeats", type=int, default=5, help="repeats of each (median)")
     args = parser.parse_args(argv)
-    about = machine()
     load = os.getloadavg()
-    print(f"machine: {about['cpu']}, {about['cores']} logical cores, Python {about['python']}; "
-          f"load average {load[0]:.2f} (other work skews wall times)")
+    about = announced_machine()
     rows = []
     with tempfile.TemporaryDirectory() as folder:
         for name, limits in SCENES:

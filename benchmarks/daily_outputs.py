@@ -70,9 +70,7 @@ def main(argv=None) -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--repeats", type=int, default=3, help="runs of each scene (median)")
     args = parser.parse_args(argv)
-    about = POINTS.machine()
-    print(f"machine: {about['cpu']}, {about['cores']} logical cores, Python {about['python']}; "
-          f"load average {os.getloadavg()[0]:.2f} (other work skews wall times)")
+    about = POINTS.announced_machine()
     rows = []
     with tempfile.TemporaryDirectory() as folder:
         for name, kind in SCENES:

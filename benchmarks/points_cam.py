@@ -77,6 +77,12 @@ def machine() -> dict:
             "platform": platform.platform()}
 
 
+def announced_machine() -> dict:
+    """:func:`machine`, printed with the load average (other work skews wall times)."""
+    about = announced_machine()
+    return about
+
+
 def commit() -> str:
     """The checked-out commit, with '+changes' if the work tree differs from it."""
     def git(*args):
@@ -145,9 +151,7 @@ def main(argv=None) -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--repeats", type=int, default=5, help="runs of each scene (median)")
     args = parser.parse_args(argv)
-    about = machine()
-    print(f"machine: {about['cpu']}, {about['cores']} logical cores, Python {about['python']}; "
-          f"load average {os.getloadavg()[0]:.2f} (other work skews wall times)")
+    about = announced_machine()
     rows = []
     with tempfile.TemporaryDirectory() as folder:
         for name, kind in SCENES:

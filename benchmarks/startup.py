@@ -32,7 +32,7 @@ import tempfile
 import time
 from pathlib import Path
 
-from points_cam import commit, machine  # the sibling benchmark's machine stamp
+from points_cam import announced_machine, commit  # the sibling benchmark's machine stamp
 
 ROOT = Path(__file__).resolve().parents[1]
 RESULT = ROOT / "benchmarks" / "results" / "startup.json"
@@ -87,9 +87,7 @@ def main(argv=None) -> None:
     parser.add_argument("--repeats", type=int, default=7, help="runs of each (median)")
     args = parser.parse_args(argv)
     compileall.compile_dir(ROOT / "fickcam", quiet=1)
-    about = machine()
-    print(f"machine: {about['cpu']}, {about['cores']} logical cores, Python {about['python']}; "
-          f"load average {os.getloadavg()[0]:.2f} (other work skews wall times)")
+    about = announced_machine()
     runs: dict[str, list[tuple[float, float]]] = {"floor": [], "demo": []}
     with tempfile.TemporaryDirectory() as folder:
         output = Path(folder) / "cam.h5"

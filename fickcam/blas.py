@@ -24,7 +24,18 @@ def one_blas_thread():
 
 
 def on_one_blas_thread(function):
-    """``function`` run inside :func:`one_blas_thread` (a decorator)."""
+    """``function`` run inside :func:`one_blas_thread` (a decorator).
+
+    Parameters
+    ----------
+    function : callable
+        The function to limit.
+
+    Returns
+    -------
+    callable
+        A wrapper that calls ``function`` with every BLAS library on one thread.
+    """
     @functools.wraps(function)
     def limited(*args, **kwargs):
         with one_blas_thread():

@@ -17,13 +17,34 @@ MARKERS = ("pyproject.toml", "fickcam/__init__.py", "benchmarks")
 
 
 def is_checkout(folder: Path) -> bool:
-    """Whether ``folder`` is the root of a fickcam source checkout."""
+    """Whether ``folder`` is the root of a fickcam source checkout.
+
+    Parameters
+    ----------
+    folder : pathlib.Path
+        The folder.
+
+    Returns
+    -------
+    bool
+        True when it holds every one of :data:`MARKERS`.
+    """
     return all((folder / marker).exists() for marker in MARKERS)
 
 
 def repository_root(places: list[Path] | None = None) -> Path:
-    """The first fickcam checkout among ``places``; by default the folder this package
-    was installed from (an editable install), then the current directory and its parents.
+    """The first fickcam checkout among ``places``.
+
+    Parameters
+    ----------
+    places : list of pathlib.Path, optional
+        Folders to try, in order; by default the folder this package was installed from (an
+        editable install), then the current directory and its parents.
+
+    Returns
+    -------
+    pathlib.Path
+        The checkout's root.
 
     Raises
     ------

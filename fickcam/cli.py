@@ -29,9 +29,24 @@ def process_main() -> int:
 
 
 def main(argv: list[str] | None = None, whole_process: bool = False) -> int:
-    """Run the ``fickcam`` command line on ``argv`` and return its exit status; what it
-    writes on stderr follows :mod:`fickcam.messages` (``fickcam: error|warning|note: ...``,
-    an input file's problems as ``FILE:LINE key: reason``)."""
+    """Run the ``fickcam`` command line on ``argv`` and return its exit status.
+
+    What it writes on stderr follows :mod:`fickcam.messages` (``fickcam: error|warning|note:
+    ...``, an input file's problems as ``FILE:LINE key: reason``).
+
+    Parameters
+    ----------
+    argv : list of str, optional
+        The arguments after ``fickcam``; None for ``sys.argv[1:]``.
+    whole_process : bool
+        The command is the whole process (:func:`process_main`), not a call from a caller's
+        process (tests, notebooks).
+
+    Returns
+    -------
+    int
+        The exit status: 0 success, 1 failure, 2 bad input.
+    """
     args = _parser().parse_args(argv)
     args.whole_process = whole_process
     if whole_process and args.command not in USES_DASK:

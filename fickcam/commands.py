@@ -35,8 +35,22 @@ def _cmd_run(args) -> int:
 
 
 def notices_line(notices, quiet: int) -> str:
-    """Under the run summary: how many warnings and notes the run reported on stderr
-    (the notes hidden by ``-q``); all are in the result's ``notices`` attribute."""
+    """Under the run summary: how many warnings and notes the run reported on stderr.
+
+    All of them are kept in the result's ``notices`` attribute.
+
+    Parameters
+    ----------
+    notices : iterable of str
+        The run's notices.
+    quiet : int
+        The ``-q`` count: with one or more, the notes were hidden and the line says so.
+
+    Returns
+    -------
+    str
+        The indented line.
+    """
     from .messages import count_levels
 
     counts = count_levels(notices)
@@ -52,7 +66,18 @@ def notices_line(notices, quiet: int) -> str:
 
 
 def default_output(scene) -> Path:
-    """The scene's ``outputs.file`` or ``outputs/<name>.h5`` (relative to the working folder)."""
+    """The scene's ``outputs.file`` or ``outputs/<name>.h5`` (relative to the working folder).
+
+    Parameters
+    ----------
+    scene : fickcam.scene.Scene
+        The scene being run.
+
+    Returns
+    -------
+    pathlib.Path
+        The result file to write.
+    """
     if scene.model.outputs.file:
         return Path(scene.model.outputs.file)
     return Path("outputs") / f"{scene.name}.h5"
@@ -228,8 +253,8 @@ def _cmd_sweep(args) -> int:
 
 
 def _cmd_compensate(args) -> int:
-    from .compensation import compensate, report
-    from .compensation.report import write_files
+    from .compensation import compensate
+    from .compensation.report import report, write_files
     from .scene import load_scene
 
     if args.profile is not None:

@@ -36,8 +36,23 @@ ZERO_CELSIUS = 273.15
 
 @dataclass(frozen=True)
 class Segments:
-    """A history as change times (n+1, s), end values (n) and ramp flags (n),
-    starting from ``temperature_start`` / ``humidity_start``."""
+    """A climate history as change times, end values and ramp flags.
+
+    Parameters
+    ----------
+    change_times : numpy.ndarray
+        (n + 1,): the segments' start and end times [s].
+    temperature_end : numpy.ndarray
+        (n,): each segment's temperature at its end [K].
+    humidity_end : numpy.ndarray
+        (n,): each segment's relative humidity at its end [%].
+    ramp : numpy.ndarray of bool
+        (n,): the segment ramps linearly from the previous values (else it holds its own).
+    temperature_start : float
+        The temperature before the first segment [K].
+    humidity_start : float
+        The relative humidity before the first segment [%].
+    """
 
     change_times: np.ndarray
     temperature_end: np.ndarray
@@ -49,12 +64,37 @@ class Segments:
 
 @dataclass(frozen=True)
 class SteadyTest:
+    """A steady damp-heat test: one climate held for a duration.
+
+    Parameters
+    ----------
+    temperature : float
+        The test temperature [K].
+    relative_humidity : float
+        The test relative humidity [%].
+    default_duration : float
+        The duration when the scene gives none [s].
+    source : str
+        The standard and its tolerances, for messages.
+    """
     temperature: float      # K
     relative_humidity: float  # %
     default_duration: float  # s
     source: str
 
     def segments(self, duration: float | None) -> Segments:
+        """The test's history: one held segment.
+
+        Parameters
+        ----------
+        duration : float, optional
+            How long [s]; None for the default duration.
+
+        Returns
+        -------
+        Segments
+            The history.
+        """
         end = self.default_duration if duration is None else duration
         return Segments(np.array([0.0, end]), np.array([self.temperature]),
                         np.array([self.relative_humidity]), np.array([False]),
@@ -63,6 +103,31 @@ class SteadyTest:
 
 @dataclass(frozen=True)
 class CyclicTest:
+    """A cyclic damp-heat test: per cycle a rise, an upper hold, a fall and a lower hold.
+
+    Parameters
+    ----------
+    upper_temperatures : tuple of float
+        The standard's upper temperatures (severities) [K].
+    lower_temperature : float
+        The lower temperature [K].
+    humid : float
+        The relative humidity during the rise, the fall and at the lower temperature [%].
+    upper_humidity : float
+        The relative humidity at the upper temperature [%].
+    rise : float
+        The duration of the rise [s].
+    hold_until : float
+        When the upper hold ends, from the start of the cycle [s].
+    fall : float
+        The duration of the fall [s].
+    cycle : float
+        The cycle's length [s].
+    default_cycles : int
+        The number of cycles when the scene gives none [1].
+    source : str
+        The standard, for messages.
+    """
     upper_temperatures: tuple[float, ...]  # K, the standard's severities
     lower_temperature: float  # K
     humid: float   # % RH during rise, fall and at the lower temperature
@@ -75,7 +140,20 @@ class CyclicTest:
     source: str
 
     def segments(self, cycles: int | None, upper_temperature: float | None) -> Segments:
-        """Per cycle: ramp up, hold at the upper temperature, ramp down, hold low."""
+        """Per cycle: ramp up, hold at the upper temperature, ramp down, hold low.
+
+        Parameters
+        ----------
+        cycles : int, optional
+            The number of cycles [1]; None for the default.
+        upper_temperature : float, optional
+            The upper temperature [K]; None for the highest severity.
+
+        Returns
+        -------
+        Segments
+            The history, starting from the lower temperature and humid state.
+        """
         upper = self.upper_temperatures[-1] if upper_temperature is None else upper_temperature
         count = self.default_cycles if cycles is None else cycles
         offsets = np.array([self.rise, self.hold_until, self.hold_until + self.fall, self.cycle])
@@ -103,7 +181,52 @@ STANDARD_TESTS = {
 
 def standard_climate(name: str, *, cycles: int | None = None, duration: float | None = None,
                  upper_temperature: float | None = None) -> Segments:
-    """The history of standard test ``name`` (see the module docstring)."""
+    """The history of a standard damp-heat test, by name.
+
+    Nominal values sit at the centre of the standard's tolerance band (the module's
+    docstring lists the tests and their sources).
+
+    Parameters
+    ----------
+    name : {"steady_damp_heat", "damp_heat_85_85", "cyclic_damp_heat"}
+        The test.
+    cycles : int, optional
+        Cyclic test: the number of 24 h cycles [1].
+    duration : float, optional
+        Steady tests: how long [s].
+    upper_temperature : float, optional
+        Cyclic test: the upper temperature [K], 40 or 55 degC.
+
+    Returns
+    -------
+    Segments
+        The history.
+
+    Raises
+    ------
+    ValueError
+        For a duration given to the cyclic test, cycles or an upper temperature given to a
+        steady one, or an upper temperature the standard does not have.
+
+    References
+    ----------
+    IEC 60068-2-78, Environmental testing - Part 2-78: Tests - Test Cab: Damp heat,
+    steady state, International Electrotechnical Commission, 2012.
+
+    JEDEC JESD22-A101, Steady-state temperature-humidity bias life test, JEDEC Solid
+    State Technology Association.
+
+    IEC 61215-2, Terrestrial photovoltaic (PV) modules - Design qualification and type
+    approval - Part 2: Test procedures (MQT 13, damp heat), International
+    Electrotechnical Commission, 2021.
+
+    IEC 60068-2-30, Environmental testing - Part 2-30: Tests - Test Db: Damp heat,
+    cyclic (12 h + 12 h cycle), International Electrotechnical Commission, 2005.
+
+    OIML R 60-2, Metrological regulation for load cells - Part 2: Metrological controls
+    and performance tests, International Organization of Legal Metrology, 2017,
+    s. 2.10.5.12.
+    """
     test = STANDARD_TESTS[name]
     if isinstance(test, CyclicTest):
         if duration is not None:

@@ -42,8 +42,20 @@ def ageing_seconds(ds) -> np.ndarray:
 
 
 def ageing_time_days(seconds):
-    """The ``ageing_time`` coordinate along ``time``: the same float days (units ``d``),
-    kept beside ``time`` for code written when ``time`` was a timedelta."""
+    """The ``ageing_time`` coordinate along ``time``: the same float days (units ``d``).
+
+    It is kept beside ``time`` for code written when ``time`` was a timedelta.
+
+    Parameters
+    ----------
+    seconds : array_like
+        The ageing times [s].
+
+    Returns
+    -------
+    xarray.Variable
+        The ageing times [d].
+    """
     import xarray as xr
 
     units, long_name = COORDINATES["ageing_time"]
@@ -76,13 +88,33 @@ def with_time_in_days(ds):
 
 
 def build_dataset(values: dict, coords: dict, attrs: dict | None = None):
-    """An xarray.Dataset with every variable of ``values`` (SI arrays keyed by
-    schema name) stored in its schema unit, with ``units`` and ``long_name``.
+    """An xarray.Dataset with every variable of ``values`` stored in its schema unit.
 
-    ``coords`` gives ``time`` in seconds (stored as float days, units ``d``) and the
-    other coordinates as the schema expects (angles in rad, names as strings);
-    ``ageing_time`` (the same days) is added beside ``time``. Variables a scene does
-    not model are simply absent from ``values``.
+    Each variable gets ``units`` and ``long_name``; ``ageing_time`` (the same days as
+    ``time``) is added beside ``time``. Variables a scene does not model are simply absent
+    from ``values``.
+
+    Parameters
+    ----------
+    values : dict of str to array_like
+        Schema name -> values [SI units; scaled to the schema's stored unit here].
+    coords : dict of str to array_like
+        ``time`` [s] (stored as float days) and the other coordinates as the schema expects
+        (angles [rad], stored in degrees; names as strings).
+    attrs : dict, optional
+        The dataset's attributes.
+
+    Returns
+    -------
+    xarray.Dataset
+        The result.
+
+    Raises
+    ------
+    KeyError
+        For a name the schema does not declare.
+    ValueError
+        For values whose shape does not match the variable's dimensions.
     """
     import xarray as xr
 

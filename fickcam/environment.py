@@ -26,9 +26,28 @@ SUMMARY_INTERVALS = 1000
 
 @dataclass(frozen=True, eq=False)
 class Environment(Segments):
-    """Piecewise history (the ``Segments`` fields: ``change_times`` (n+1, s), segment
-    end values ``temperature_end`` / ``humidity_end`` (n), ``ramp`` flags (n) and the
-    values at t = 0), with what a run needs besides."""
+    """A piecewise climate history, with what a run needs besides.
+
+    Parameters
+    ----------
+    change_times, temperature_end, humidity_end, ramp, temperature_start, humidity_start
+        The history as :class:`~fickcam.damp_heat.Segments` holds it: change times [s],
+        end temperatures [K] and humidities [%], ramp flags, and the values at t = 0
+        [K, %].
+    reference_temperature : float
+        The temperature at which the parts are made and dry [K].
+    initial_moisture : float
+        The parts' moisture at t = 0 [wt %].
+    source : str
+        Where the history comes from, for messages.
+    notes : tuple of str
+        What a run should be told (e.g. a record held past its end).
+    state_times : numpy.ndarray, optional
+        States given directly (``environment.state``): their times [s]; None for a climate
+        history.
+    state_moisture : numpy.ndarray, optional
+        Their moisture [wt %], NaN where the state gives a relative humidity instead.
+    """
 
     reference_temperature: float
     initial_moisture: float

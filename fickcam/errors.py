@@ -10,12 +10,35 @@ from dataclasses import dataclass
 
 
 class FickcamError(Exception):
-    """Base class of the errors fickcam raises deliberately."""
+    """Base class of the errors fickcam raises deliberately.
+
+    The command line shows one line for each (exit 2 for bad input, 1 otherwise), never a
+    traceback.
+
+    Parameters
+    ----------
+    *args, **kwargs
+        The message (the arguments of :class:`Exception`).
+    """
 
 
 @dataclass(frozen=True)
 class Problem:
-    """One thing wrong with an input file: where it is and why it is wrong."""
+    """One thing wrong with an input file: where it is and why it is wrong.
+
+    Shown as ``FILE:LINE key: reason``.
+
+    Parameters
+    ----------
+    file : str
+        The file's name.
+    line : int or None
+        The line, from 1; None when not known.
+    key : str
+        The dotted key path ("" for the whole file).
+    reason : str
+        Why it is wrong, in one line.
+    """
 
     file: str
     line: int | None
@@ -29,7 +52,13 @@ class Problem:
 
 
 class SceneError(FickcamError):
-    """A scene (or sweep) file is invalid; carries one :class:`Problem` per fault."""
+    """A scene (or sweep) file is invalid; carries one :class:`Problem` per fault.
+
+    Parameters
+    ----------
+    problems : list of Problem
+        The faults; the message has one line per fault.
+    """
 
     def __init__(self, problems: list[Problem]):
         self.problems = list(problems)
@@ -37,15 +66,30 @@ class SceneError(FickcamError):
 
 
 class InputError(FickcamError):
-    """Bad input that is not a scene file (a result path, a query argument...)."""
+    """Bad input that is not a scene file (a result path, a query argument...).
+
+    Parameters
+    ----------
+    *args, **kwargs
+        The message (the arguments of :class:`Exception`).
+    """
 
 
 class PhysicsDomainError(FickcamError):
     """The physics stopped being valid for a part at some ageing time.
 
-    ``part`` names the part, ``time`` is the ageing time in seconds at which the
-    model left its domain (e.g. service temperature reached the wet Tg, or the
-    linkage cannot assemble).
+    E.g. the service temperature reached the wet Tg, or the linkage cannot assemble.
+
+    Parameters
+    ----------
+    part : str
+        The part.
+    time : float
+        The ageing time at which the model left its domain [s].
+    message : str
+        Why.
+    span : float, optional
+        The run's last ageing time [s], to choose the unit ``time`` is shown in.
     """
 
     def __init__(self, part: str, time: float, message: str, span: float | None = None):
@@ -56,7 +100,19 @@ class PhysicsDomainError(FickcamError):
 
 
 class SolverError(FickcamError):
-    """A linear solve failed to converge: names the part, step and time."""
+    """A linear solve failed to converge: names the part, step and time.
+
+    Parameters
+    ----------
+    part : str
+        The part.
+    step : int
+        The time step [1].
+    time : float
+        The ageing time of the step [s].
+    message : str
+        The solver's reason.
+    """
 
     def __init__(self, part: str, step: int, time: float, message: str):
         self.part, self.step, self.time = part, int(step), float(time)

@@ -27,7 +27,23 @@ def names() -> list[str]:
 
 
 def path(name: str) -> Path:
-    """The file of example ``name`` (with or without ``.yaml``); InputError if unknown."""
+    """The file of example ``name``.
+
+    Parameters
+    ----------
+    name : str
+        The example, with or without ``.yaml``.
+
+    Returns
+    -------
+    pathlib.Path
+        Its file.
+
+    Raises
+    ------
+    fickcam.errors.InputError
+        When there is no such example (naming those there are).
+    """
     stem = name[:-5] if name.endswith(".yaml") else name
     file = folder() / f"{stem}.yaml"
     if not file.is_file():
@@ -36,7 +52,23 @@ def path(name: str) -> Path:
 
 
 def describe(name: str) -> str:
-    """One line: the scene's description, or what a sweep varies."""
+    """One line: the scene's description, or what a sweep varies.
+
+    Parameters
+    ----------
+    name : str
+        The example.
+
+    Returns
+    -------
+    str
+        The line.
+
+    Raises
+    ------
+    fickcam.errors.InputError
+        When there is no such example.
+    """
     data = yaml.safe_load(path(name).read_text(encoding="utf-8")) or {}
     if "base" in data:
         varied = ", ".join(data.get("grid") or data.get("random") or {})
@@ -63,8 +95,25 @@ def _uses(file: Path) -> list[str]:
 
 
 def copy_to(target, which: list[str] | None = None) -> list[Path]:
-    """Copy the named examples (all when none is named, with the files they use) into
-    ``target``; existing files are not overwritten (InputError naming them)."""
+    """Copy the named examples, with the files they use, into ``target``.
+
+    Parameters
+    ----------
+    target : str or pathlib.Path
+        The folder (made if needed).
+    which : list of str, optional
+        The examples; all of them (and their climate and profile files) when None or empty.
+
+    Returns
+    -------
+    list of pathlib.Path
+        The copies, in ``target``.
+
+    Raises
+    ------
+    fickcam.errors.InputError
+        When a file would be overwritten (nothing is copied then) or an example is unknown.
+    """
     target = Path(target)
     files = ([path(n) for n in which] if which else
              sorted(p for p in folder().iterdir() if p.suffix in SUFFIXES))

@@ -18,8 +18,19 @@ from .errors import InputError
 
 @dataclass(frozen=True)
 class Extra:
-    """One optional extra: its name in ``fickcam[...]``, the module it provides (as
-    imported, and as users know it) and what needs it (the start of the refusal)."""
+    """One optional extra of ``pip install "fickcam[NAME]"``.
+
+    Parameters
+    ----------
+    name : str
+        Its name in ``fickcam[...]``.
+    module : str
+        The module it provides, as imported (``distributed``).
+    package : str
+        That module as users know it (``dask.distributed``).
+    purpose : str
+        What needs it: the start of the refusal.
+    """
 
     name: str
     module: str
@@ -36,18 +47,47 @@ EXTRAS = {
 
 
 class MissingExtra(InputError, ValueError):
-    """A command (or a scene's file) needs an optional extra that is not installed. A
-    ValueError too, so that a scene's checks report it at the key that needs it."""
+    """A command (or a scene's file) needs an optional extra that is not installed.
+
+    A ValueError too, so that a scene's checks report it at the key that needs it.
+
+    Parameters
+    ----------
+    *args, **kwargs
+        The message (:func:`install_hint`), as for :class:`Exception`.
+    """
 
 
 def install_hint(name: str) -> str:
-    """``PURPOSE needs PACKAGE: pip install "fickcam[NAME]"``."""
+    """``PURPOSE needs PACKAGE: pip install "fickcam[NAME]"``.
+
+    Parameters
+    ----------
+    name : str
+        A key of :data:`EXTRAS`.
+
+    Returns
+    -------
+    str
+        The line.
+    """
     extra = EXTRAS[name]
     return f'{extra.purpose} needs {extra.package}: pip install "fickcam[{extra.name}]"'
 
 
 def installed(name: str) -> bool:
-    """Whether the extra ``name``'s module can be imported (found, not imported)."""
+    """Whether the extra ``name``'s module can be imported (found, not imported).
+
+    Parameters
+    ----------
+    name : str
+        The extra (``"dxf"``, ``"weather"``, ``"sweep"``).
+
+    Returns
+    -------
+    bool
+        True when its module is imported already or can be found.
+    """
     module = EXTRAS[name].module
     if module in sys.modules:
         return sys.modules[module] is not None
@@ -55,8 +95,25 @@ def installed(name: str) -> bool:
 
 
 def require(name: str, advice: str = ""):
-    """The module of the extra ``name``, imported; :class:`MissingExtra` (exit status 2,
-    one line with the install command and ``advice``) when it is not installed."""
+    """The module of the extra ``name``, imported.
+
+    Parameters
+    ----------
+    name : str
+        The extra, a key of :data:`EXTRAS`.
+    advice : str
+        What else the user can do, appended in brackets (``"or run with --workers 1"``).
+
+    Returns
+    -------
+    module
+        The imported module.
+
+    Raises
+    ------
+    MissingExtra
+        When it is not installed: one line with the install command (exit status 2).
+    """
     try:
         return importlib.import_module(EXTRAS[name].module)
     except ImportError:

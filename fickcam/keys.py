@@ -39,8 +39,21 @@ def _step(annotation, key) -> list:
 
 
 def valid_keys(model: type[BaseModel], loc: tuple) -> list[str]:
-    """Field names of the model(s) at ``loc`` (the location of an unknown key, which is
-    its last element). Union branch tags in ``loc`` (class names) are skipped."""
+    """Field names of the model(s) at ``loc``, the location of an unknown key.
+
+    Parameters
+    ----------
+    model : type of pydantic.BaseModel
+        The top model (e.g. the scene's).
+    loc : tuple of str or int
+        pydantic's location of the unknown key, which is its last element; union branch tags
+        (class names) in it are skipped.
+
+    Returns
+    -------
+    list of str
+        The field names of every model found there, without repeats.
+    """
     current = [model]
     for key in loc[:-1]:
         below = [a for t in current for a in _step(t, key)]
@@ -54,7 +67,20 @@ def valid_keys(model: type[BaseModel], loc: tuple) -> list[str]:
 
 
 def closest_key(model: type[BaseModel] | None, loc: tuple) -> str | None:
-    """The valid key nearest to the unknown one at ``loc``, if any is close."""
+    """The valid key nearest to the unknown one at ``loc``, if any is close.
+
+    Parameters
+    ----------
+    model : type of pydantic.BaseModel or None
+        The top model; None gives None.
+    loc : tuple of str or int
+        pydantic's location of the unknown key (its last element).
+
+    Returns
+    -------
+    str or None
+        The suggestion (:func:`closest_names`), or None.
+    """
     if model is None or not loc or not isinstance(loc[-1], str):
         return None
     matches = closest_names(loc[-1], valid_keys(model, loc), n=1)
@@ -62,8 +88,23 @@ def closest_key(model: type[BaseModel] | None, loc: tuple) -> str | None:
 
 
 def closest_names(name: str, names, n: int = 3) -> list[str]:
-    """Up to ``n`` of ``names`` nearest to the unknown ``name`` (difflib's ratio >= 0.6,
-    closest first; else those it begins, 'spring' for 'spring_rate')."""
+    """Up to ``n`` of ``names`` nearest to the unknown ``name``.
+
+    Parameters
+    ----------
+    name : str
+        The unknown name.
+    names : iterable of str
+        The valid names.
+    n : int
+        The most suggestions returned [1].
+
+    Returns
+    -------
+    list of str
+        Those with difflib's ratio >= 0.6, closest first; when none is, those that ``name``
+        begins (``spring_rate`` for ``spring``).
+    """
     names = list(names)
     matches = difflib.get_close_matches(name, names, n=n, cutoff=0.6)
     if not matches and name:
@@ -72,8 +113,18 @@ def closest_names(name: str, names, n: int = 3) -> list[str]:
 
 
 def short_names(paths: list[str]) -> dict[str, str]:
-    """The shortest tail of each dotted path that tells the paths apart
-    (``environment.history.0.temperature`` → ``temperature``)."""
+    """The shortest tail of each dotted path that tells the paths apart.
+
+    Parameters
+    ----------
+    paths : list of str
+        Dotted paths (``environment.history.0.temperature``).
+
+    Returns
+    -------
+    dict of str to str
+        Each path -> its shortest distinct tail (``temperature``).
+    """
     depth = 1
     while True:
         tails = {p: ".".join(p.split(".")[-depth:]) for p in paths}

@@ -39,7 +39,20 @@ SECANT_ROUNDS = 3
 
 
 class LimitSpec(StrictModel):
-    """One entry of the scene's ``limits:`` section (values as written, with units)."""
+    """One entry of the scene's ``limits:`` section (values as written, with units).
+
+    At least one of the three bounds must be given.
+
+    Parameters
+    ----------
+    deviation : float or str, optional
+        The largest allowed change from the as-designed value [unit of the variable, e.g.
+        ``"0.05 mm"``].
+    max : float or str, optional
+        The largest allowed value [unit of the variable].
+    min : float or str, optional
+        The smallest allowed value [unit of the variable].
+    """
 
     deviation: Any = None
     max: Any = None
@@ -54,7 +67,27 @@ class LimitSpec(StrictModel):
 
 @dataclass(frozen=True)
 class Limit:
-    """A validated limit: bounds in the variable's stored unit (schema ``units``)."""
+    """A validated limit: bounds in the variable's stored unit (schema ``units``).
+
+    Parameters
+    ----------
+    variable : str
+        The result variable it bounds.
+    units : str
+        The variable's stored unit (the schema's).
+    deviation : float, optional
+        The largest allowed change from the as-designed value [``units``].
+    max : float, optional
+        The largest allowed value [``units``].
+    min : float, optional
+        The smallest allowed value [``units``].
+    text : str
+        The limit as the scene wrote it, for messages.
+    display_units : str
+        The unit the scene wrote, for plots ("" = the stored unit).
+    display_scale : float
+        Display value / stored value [display unit / stored unit].
+    """
 
     variable: str
     units: str
@@ -72,7 +105,20 @@ class Limit:
 
 
 def from_attrs(variable: str, attrs: dict) -> Limit:
-    """The Limit stored in a result's ``limits`` attribute."""
+    """The Limit stored in a result's ``limits`` attribute.
+
+    Parameters
+    ----------
+    variable : str
+        The variable it bounds.
+    attrs : dict
+        Its entry of the attribute (:meth:`Limit.as_attrs`).
+
+    Returns
+    -------
+    Limit
+        The limit, bounds in the stored unit.
+    """
     return Limit(variable, attrs.get("units", ""), attrs.get("deviation"), attrs.get("max"),
                  attrs.get("min"), attrs.get("text", ""), attrs.get("display_units", ""),
                  attrs.get("display_scale", 1.0))
@@ -388,6 +434,17 @@ def first_crossings(times: np.ndarray, ratios: np.ndarray,
 
 
 def stored_limits(ds) -> dict[str, Limit]:
-    """The limits recorded in a result (``limits`` attribute), by variable."""
+    """The limits recorded in a result (``limits`` attribute), by variable.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        A result.
+
+    Returns
+    -------
+    dict of str to Limit
+        Empty when the scene set none.
+    """
     recorded = ds.attrs.get("limits") or {}
     return {name: from_attrs(name, attrs) for name, attrs in recorded.items()}

@@ -20,9 +20,25 @@ def over_ageing(times: np.ndarray, valid: np.ndarray, evaluate: Callable[[int], 
                 on_step: Callable[[], object] = lambda: None) -> Response:
     """Evaluate ``evaluate(k)`` at every valid ageing time k and stack the results.
 
-    Scalars become arrays over time, arrays over angle become (time, angle);
-    invalid times stay NaN (or '' for text). Identical notices at several times
-    are reported once, with the first time and how often they recur.
+    Scalars become arrays over time, arrays over angle become (time, angle); invalid times
+    stay NaN (or '' for text). Identical notices at several times are reported once, with
+    the first time and how often they recur.
+
+    Parameters
+    ----------
+    times : numpy.ndarray
+        The ageing times [s].
+    valid : numpy.ndarray of bool
+        Where the mechanism is evaluated (its parts are in their model's domain).
+    evaluate : callable
+        ``evaluate(k) -> Response`` at ageing index k.
+    on_step : callable
+        Called after each ageing time (a progress bar's update).
+
+    Returns
+    -------
+    Response
+        The stacked variables [their SI units] and the notices, each with its ageing time.
     """
     stacked: dict[str, np.ndarray] = {}
     seen: dict[str, list[float]] = {}
@@ -52,7 +68,22 @@ def over_ageing(times: np.ndarray, valid: np.ndarray, evaluate: Callable[[int], 
 
 
 def first_change(values: np.ndarray, times: np.ndarray, what: str) -> list[str]:
-    """Notices where a per-time label (e.g. the Grashof class) changes."""
+    """Notices where a per-time label (e.g. the Grashof class) changes.
+
+    Parameters
+    ----------
+    values : numpy.ndarray of str
+        The label at each ageing time ("" where unknown: no change is told across it).
+    times : numpy.ndarray
+        The ageing times [s].
+    what : str
+        What the label is, for the notice.
+
+    Returns
+    -------
+    list of str
+        ``at t = ...: WHAT changed from A to B``, one per change.
+    """
     notices = []
     span = float(np.max(times)) if len(times) else None
     for k in range(1, len(values)):

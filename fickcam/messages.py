@@ -38,45 +38,130 @@ LEVELS = {1: logging.DEBUG, 0: logging.INFO, -1: logging.WARNING, -2: logging.ER
 
 
 def line(level: int, message: str) -> str:
-    """``fickcam: LEVEL: message``, the form of every line fickcam writes on stderr (but a
-    problem in an input file, which starts with its ``FILE:LINE key``)."""
+    """``fickcam: LEVEL: message``, the form of every line fickcam writes on stderr.
+
+    A problem in an input file is the exception: it starts with its ``FILE:LINE key``.
+
+    Parameters
+    ----------
+    level : int
+        A :mod:`logging` level (``logging.WARNING``...); an unknown one is shown as ``note``.
+    message : str
+        The text after the level.
+
+    Returns
+    -------
+    str
+        The line, without a trailing newline.
+    """
     return f"{PROGRAM}: {LABELS.get(level, 'note')}: {message}"
 
 
 def error_line(message: str) -> str:
-    """``fickcam: error: message``: a command that failed."""
+    """``fickcam: error: message``: the line of a command that failed.
+
+    Parameters
+    ----------
+    message : str
+        What failed, in one line.
+
+    Returns
+    -------
+    str
+        The line, without a trailing newline.
+    """
     return line(logging.ERROR, message)
 
 
 class Note(str):
-    """A notice that informs (shown as ``note:``); a plain ``str`` notice warns."""
+    """A notice that informs (shown as ``note:``); a plain ``str`` notice warns.
+
+    Parameters
+    ----------
+    *args, **kwargs
+        The arguments of :class:`str` (the notice's text).
+    """
 
     level = logging.INFO
 
 
 def note(text: str) -> Note:
-    """``text`` as an informational notice (e.g. the Grashof class of a four-bar)."""
+    """``text`` as an informational notice (e.g. the Grashof class of a four-bar).
+
+    Parameters
+    ----------
+    text : str
+        The notice.
+
+    Returns
+    -------
+    Note
+        ``text`` marked to be logged at INFO.
+    """
     return Note(text)
 
 
 def level_of(notice: str) -> int:
-    """The logging level of a notice: INFO for a :class:`Note`, WARNING otherwise."""
+    """The logging level of a notice: INFO for a :class:`Note`, WARNING otherwise.
+
+    Parameters
+    ----------
+    notice : str
+        A notice of a run (a :class:`Note` or a plain string).
+
+    Returns
+    -------
+    int
+        ``logging.INFO`` or ``logging.WARNING``.
+    """
     return getattr(notice, "level", logging.WARNING)
 
 
 def restated(notice: str, text: str) -> str:
-    """``text`` (a notice said again, e.g. with its ageing time) with ``notice``'s level."""
+    """``text`` (a notice said again, e.g. with its ageing time) with ``notice``'s level.
+
+    Parameters
+    ----------
+    notice : str
+        The original notice, whose level (:class:`Note` or plain) is kept.
+    text : str
+        The new wording.
+
+    Returns
+    -------
+    str
+        ``text`` as a :class:`Note` if ``notice`` is one, else as a plain string.
+    """
     return Note(text) if isinstance(notice, Note) else text
 
 
 def log_notices(logger: logging.Logger, notices) -> None:
-    """Log each notice at its level (:func:`level_of`)."""
+    """Log each notice at its level (:func:`level_of`).
+
+    Parameters
+    ----------
+    logger : logging.Logger
+        Where the notices go.
+    notices : iterable of str
+        The notices, in order.
+    """
     for notice in notices:
         logger.log(level_of(notice), "%s", notice)
 
 
 def count_levels(notices) -> dict[str, int]:
-    """How many warnings and notes ``notices`` hold: ``{"warning": 3, "note": 4}``."""
+    """How many warnings and notes ``notices`` hold: ``{"warning": 3, "note": 4}``.
+
+    Parameters
+    ----------
+    notices : iterable of str
+        The notices of a run.
+
+    Returns
+    -------
+    dict of str to int
+        Counts under ``"warning"`` and ``"note"`` [1].
+    """
     counts = {"warning": 0, "note": 0}
     for notice in notices:
         counts[LABELS[level_of(notice)]] += 1
@@ -183,9 +268,18 @@ def _is_terminal(stream) -> bool:
 
 @contextlib.contextmanager
 def quieter(logger: str, level: int):
-    """Raise ``logger``'s level to at least ``level`` for a while (not below what it was),
-    restoring it after: a library's chatter held back where fickcam calls it, never by
-    changing the library's logger for good."""
+    """Raise ``logger``'s level to at least ``level`` for a while, restoring it after.
+
+    A library's chatter is held back where fickcam calls it, never by changing the library's
+    logger for good; the level is never lowered below what it was.
+
+    Parameters
+    ----------
+    logger : str
+        The logger's name (e.g. ``"distributed"``).
+    level : int
+        The least :mod:`logging` level it shows while inside.
+    """
     target = logging.getLogger(logger)
     old = target.level
     target.setLevel(max(level, target.getEffectiveLevel()))

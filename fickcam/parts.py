@@ -16,7 +16,21 @@ import numpy as np
 
 @dataclass
 class Part:
-    """One body that ages: its name, material, diffusion geometry and dry mass."""
+    """One body that ages: its name, material, diffusion geometry and dry mass.
+
+    Parameters
+    ----------
+    name : str
+        The part (``cam``, ``follower``, ``crank``...).
+    material_name : str
+        Its scene material's name.
+    material : fickcam.materials.Material
+        The resolved material.
+    geometry : object or None
+        Its diffusion geometry (:mod:`fickcam.diffusion`); None when the part does not absorb.
+    dry_mass : float, optional
+        Its dry mass [kg]; None when not known.
+    """
 
     name: str
     material_name: str
@@ -27,7 +41,19 @@ class Part:
 
 @dataclass
 class PartHistory:
-    """What diffusion and the material state give for one part over ageing."""
+    """What diffusion and the material state give for one part over ageing.
+
+    Parameters
+    ----------
+    part : Part
+        The part.
+    diffusion : fickcam.diffusion.DiffusionResult or None
+        Its moisture uptake; None when it does not absorb or its state is given.
+    state : dict
+        Material state variables by schema name, each over the ageing times [schema units].
+    valid : numpy.ndarray of bool, optional
+        Over ageing times: where the part's state is in the model's domain.
+    """
 
     part: Part
     diffusion: object | None
@@ -35,8 +61,20 @@ class PartHistory:
     valid: np.ndarray | None = None  # bool over ageing times
 
     def at_rows(self, rows: np.ndarray) -> "PartHistory":
-        """The history at the ageing times ``rows`` (indices) only: every array over time
-        (state, validity, moisture and fields) taken at those rows."""
+        """The history at the ageing times ``rows`` only.
+
+        Every array over time (state, validity, moisture and fields) is taken at those rows.
+
+        Parameters
+        ----------
+        rows : numpy.ndarray of int
+            Indices along the ageing times.
+
+        Returns
+        -------
+        PartHistory
+            A new history.
+        """
         n = len(self.valid)
 
         def take(value):
@@ -53,7 +91,18 @@ class PartHistory:
 
 
 def build_parts(scene) -> list[Part]:
-    """The parts a scene models, in a fixed order (cam, follower, links)."""
+    """The parts a scene models, in a fixed order (cam, follower, links).
+
+    Parameters
+    ----------
+    scene : fickcam.scene.Scene
+        A validated scene.
+
+    Returns
+    -------
+    list of Part
+        The parts; one whose material does not absorb has no diffusion geometry.
+    """
     parts: list[Part] = []
     model = scene.model
     if model.cam is not None:
@@ -73,16 +122,49 @@ def build_parts(scene) -> list[Part]:
 
 
 def part_mass(history: PartHistory) -> np.ndarray:
-    """m = m_dry (1 + M/100) (Singh & Sanyal 2017 eq. 3 inverted), NaN where not given."""
+    """The part's mass with its moisture, m = m_dry (1 + M/100).
+
+    This is the weight-gain definition of moisture content, M = 100 (m - m_dry)/m_dry,
+    inverted (Singh & Sanyal 2017, eq. 3).
+
+    Parameters
+    ----------
+    history : PartHistory
+        The part's history, with ``moisture_content`` [wt %] in its state.
+
+    Returns
+    -------
+    numpy.ndarray
+        The mass over ageing times [kg]; NaN where the dry mass is not given.
+
+    References
+    ----------
+    S. Singh and S. Sanyal, "Kinematic and dynamic variations in cam and follower made
+    of composite material under hygrothermal environment", International Journal of
+    Innovative Research in Science, Engineering and Technology 6 (3), 2017.
+    """
     dry = history.part.dry_mass
     moisture = np.asarray(history.state["moisture_content"], float)
     return np.full_like(moisture, np.nan) if dry is None else dry * (1 + moisture / 100.0)
 
 
 def part_values(histories: list[PartHistory]) -> dict[str, np.ndarray]:
-    """Every state variable of the parts as a (time, part) array (the schema names them;
-    an unknown name fails when the Dataset is built). Numbers are NaN at the times a
-    part is not computed; flags (bool) are kept as they are."""
+    """Every state variable of the parts as a (time, part) array.
+
+    The schema names them (an unknown name fails when the Dataset is built). Numbers are
+    NaN at the times a part is not computed; flags (bool) are kept as they are. ``mass``
+    (:func:`part_mass`) is added.
+
+    Parameters
+    ----------
+    histories : list of PartHistory
+        One per part, in the parts' order.
+
+    Returns
+    -------
+    dict of str to numpy.ndarray
+        Variable name -> (time, part) values [schema units].
+    """
     states = [dict(h.state, mass=part_mass(h)) for h in histories]
     names = list(dict.fromkeys(name for state in states for name in state))
     values = {}
@@ -97,7 +179,20 @@ def part_values(histories: list[PartHistory]) -> dict[str, np.ndarray]:
 
 
 def diffusion_attrs(history: PartHistory) -> dict:
-    """The diffusion plan and error a part's result records in the dataset attributes."""
+    """The diffusion plan and error a part's result records in the dataset attributes.
+
+    Parameters
+    ----------
+    history : PartHistory
+        The part's history.
+
+    Returns
+    -------
+    dict
+        ``model``, ``error_estimate`` [-], ``cells`` [1], ``steps`` [1] and ``reason``
+        (``model`` is "state" for a state given directly, "none" for a part that does not
+        absorb).
+    """
     result = history.diffusion
     if result is None and history.part.geometry is not None:
         return {"model": "state", "error_estimate": 0.0, "cells": 0, "steps": 0,
@@ -110,8 +205,23 @@ def diffusion_attrs(history: PartHistory) -> dict:
 
 
 def field_values(histories: list[PartHistory], times) -> tuple[dict, dict]:
-    """(values, coords): moisture fields of every absorbing part, padded with NaN to a
-    common cell count; empty when no part stored fields."""
+    """(values, coords): the absorbing parts' moisture fields, NaN-padded to one cell count.
+
+    Parameters
+    ----------
+    histories : list of PartHistory
+        One per part.
+    times : array_like
+        The ageing times [s] (their count sizes the arrays).
+
+    Returns
+    -------
+    values : dict of str to numpy.ndarray
+        ``moisture`` (time, part, cell) [wt %] and ``cell_x``, ``cell_y``, ``cell_z``
+        (part, cell), the cells' coordinates [m]; empty when no part stored fields.
+    coords : dict of str to numpy.ndarray
+        ``cell``: the cell index.
+    """
     with_fields = [h for h in histories if h.diffusion is not None and
                    getattr(h.diffusion, "fields", None) is not None]
     if not with_fields:

@@ -40,6 +40,19 @@ from .unit_parsing import is_bare_number, to_si
 
 
 class Verdict(IntEnum):
+    """How a bare value reads: plausible, unusual (warned about) or implausible (refused).
+
+    A worse verdict is larger (:class:`enum.IntEnum`).
+
+    Attributes
+    ----------
+    PLAUSIBLE : int
+        0: the value reads as meant.
+    UNUSUAL : int
+        1: possible but unusual, while another unit gives an ordinary value: warned about.
+    IMPLAUSIBLE : int
+        2: almost certainly a unit slip: refused.
+    """
     PLAUSIBLE = 0
     UNUSUAL = 1
     IMPLAUSIBLE = 2
@@ -47,8 +60,18 @@ class Verdict(IntEnum):
 
 @dataclass(frozen=True)
 class Band:
-    """Plausible values in [``low``, ``high``]; unusual ones in [``least``, ``most``]; the
-    rest implausible (SI, or multiples of a reference when used through :meth:`times`)."""
+    """Plausible values in [``low``, ``high``], unusual ones in [``least``, ``most``].
+
+    The rest are implausible.
+
+    Parameters
+    ----------
+    low, high : float
+        The plausible range [SI unit of the value, or multiples of a reference length when
+        used through :meth:`times`].
+    least, most : float
+        The wider range of unusual values [same unit].
+    """
 
     low: float
     high: float
@@ -56,6 +79,18 @@ class Band:
     most: float = math.inf
 
     def verdict(self, value: float) -> Verdict:
+        """The verdict of ``value``: plausible, unusual or implausible.
+
+        Parameters
+        ----------
+        value : float
+            The value [the band's unit].
+
+        Returns
+        -------
+        Verdict
+            PLAUSIBLE inside [low, high], UNUSUAL inside [least, most], else IMPLAUSIBLE.
+        """
         if self.low <= value <= self.high:
             return Verdict.PLAUSIBLE
         if self.least <= value <= self.most:
@@ -63,16 +98,41 @@ class Band:
         return Verdict.IMPLAUSIBLE
 
     def times(self, scale: float) -> "Band":
-        """This band of ratios as values: every bound multiplied by ``scale``."""
+        """This band of ratios as values: every bound multiplied by ``scale``.
+
+        Parameters
+        ----------
+        scale : float
+            The reference value [SI unit].
+
+        Returns
+        -------
+        Band
+            The band in that unit.
+        """
         return Band(self.low * scale, self.high * scale, self.least * scale, self.most * scale)
 
 
 @dataclass(frozen=True)
 class Reading:
-    """How a bare value of one key is judged: ``what`` it is (in messages), its
-    ``dimension`` and SI ``unit``, a ``verdict`` of its SI value and the ``alternatives``
-    (unit, factor on the number) a slip most likely meant, the first plausible one
-    suggested; ``context`` says what the verdict was judged against."""
+    """How a bare value of one key is judged.
+
+    Parameters
+    ----------
+    what : str
+        What it is, in messages (``"cam thickness"``).
+    dimension : str
+        Its dimension (a key of :data:`fickcam.unit_parsing.SI_UNITS`).
+    unit : str
+        The SI unit a bare number is read in (``"m"``).
+    verdict : callable
+        ``verdict(value [SI]) -> Verdict``.
+    alternatives : tuple of (str, float)
+        (unit, factor on the number) a slip most likely meant, in order; the first plausible
+        one is suggested.
+    context : str
+        What the verdict was judged against, for messages.
+    """
 
     what: str
     dimension: str
@@ -93,7 +153,20 @@ def _alternatives(number: float, reading: Reading) -> list[tuple[Verdict, str, s
 
 
 def plausible_units(number: float, reading: Reading) -> list[str]:
-    """The units that read a bare ``number`` plausibly, in the reading's order."""
+    """The units that read a bare ``number`` plausibly, in the reading's order.
+
+    Parameters
+    ----------
+    number : float
+        The bare number [``reading.unit``].
+    reading : Reading
+        How values of its key are judged.
+
+    Returns
+    -------
+    list of str
+        The alternative units that give a plausible value.
+    """
     return [unit for verdict, _, unit in _alternatives(number, reading)
             if verdict is Verdict.PLAUSIBLE]
 
@@ -140,7 +213,20 @@ def bare_judgement(number: float, reading: Reading) -> tuple[Verdict, str] | Non
 
 
 def refusal(value, reading: Reading) -> str | None:
-    """Why a bare scene value is refused on its own (no context), or None."""
+    """Why a bare scene value is refused on its own (no context), or None.
+
+    Parameters
+    ----------
+    value : object
+        The scene value as written; values with units are never judged.
+    reading : Reading
+        How values of its key are judged.
+
+    Returns
+    -------
+    str or None
+        The one-line reason with the likely unit, when the value is implausible.
+    """
     if not is_bare_number(value):
         return None
     judged = bare_judgement(float(value), reading)
@@ -206,7 +292,17 @@ RIM_SPEED = Band(0.0, 10.0, 0.0, 50.0)
 
 @dataclass(frozen=True)
 class Member:
-    """A length of a mechanism judged as a multiple of its reference length."""
+    """A length of a mechanism judged as a multiple of its reference length.
+
+    Parameters
+    ----------
+    path : tuple of str
+        Its keys below the mechanism's section.
+    what : str
+        What it is, in messages.
+    ratio : Band
+        The plausible and unusual values, as multiples of the reference length [-].
+    """
 
     path: tuple
     what: str
@@ -241,7 +337,20 @@ SWING = Band(0.0, math.radians(60.0), 0.0, math.radians(90.0))
 
 
 def raw_value(data, path: tuple):
-    """The value at ``path`` in the YAML data, None where the path does not lead."""
+    """The value at ``path`` in the YAML data, None where the path does not lead.
+
+    Parameters
+    ----------
+    data : dict
+        The scene as read from YAML.
+    path : tuple of str or int
+        The keys.
+
+    Returns
+    -------
+    object or None
+        The value as written.
+    """
     for key in path:
         if isinstance(data, dict):
             data = data.get(key)
@@ -253,7 +362,20 @@ def raw_value(data, path: tuple):
 
 
 def si_value(value, dimension: str) -> float | None:
-    """``value`` in SI, None when it cannot be read (validation says why elsewhere)."""
+    """``value`` in SI, None when it cannot be read (validation says why elsewhere).
+
+    Parameters
+    ----------
+    value : object
+        A scene value as written.
+    dimension : str
+        Its dimension (a key of :data:`fickcam.unit_parsing.SI_UNITS`).
+
+    Returns
+    -------
+    float or None
+        The value [SI unit of ``dimension``].
+    """
     try:
         return to_si(value, dimension)
     except ValueError:
@@ -262,14 +384,39 @@ def si_value(value, dimension: str) -> float | None:
 
 @dataclass
 class Findings:
-    """Problems with bare values: ``errors`` refuse the scene, ``warnings`` are told."""
+    """Problems with bare values: ``errors`` refuse the scene, ``warnings`` are told.
+
+    Parameters
+    ----------
+    errors : list of fickcam.errors.Problem
+        Implausible values.
+    warnings : list of fickcam.errors.Problem
+        Unusual values.
+    """
 
     errors: list[Problem]
     warnings: list[Problem]
 
     def judge(self, doc, path: tuple, reading: Reading) -> bool:
-        """Judge the bare value at ``path``; True when it was refused. Only positive values
-        are judged: zero and negative ones are left to the section's own checks."""
+        """Judge the bare value at ``path``; True when it was refused.
+
+        Only positive values are judged: zero and negative ones are left to the section's own
+        checks.
+
+        Parameters
+        ----------
+        doc : fickcam.yamldoc.YamlDocument
+            The scene file (for the problem's line).
+        path : tuple of str or int
+            The value's keys.
+        reading : Reading
+            How it is judged.
+
+        Returns
+        -------
+        bool
+            True when the value was refused (added to ``errors``).
+        """
         value = raw_value(doc.data, path)
         if not is_bare_number(value) or not float(value) > 0:
             return False
@@ -284,9 +431,21 @@ class Findings:
 
 @dataclass(frozen=True)
 class Scale:
-    """A mechanism's size: its reference ``length`` [m] (the cam's base circle or disc
-    radius, a four-bar's median bar) with the words that say so, and the ``radius`` [m] of
-    the point whose speed judges its rotational speed (rim, crank pin)."""
+    """A mechanism's size, that its lengths and speed are judged against.
+
+    Parameters
+    ----------
+    length : float
+        The reference length [m]: the cam's base circle or disc radius, a four-bar's median
+        bar.
+    context : str
+        Words that say so, for messages.
+    radius : float
+        The radius of the point whose speed judges the rotational speed [m] (rim, crank
+        pin).
+    where : str
+        That point, in words.
+    """
 
     length: float
     context: str
@@ -331,9 +490,21 @@ def _mm(metres: float) -> str:
 
 
 def geometry_findings(doc) -> Findings:
-    """Bare lengths and speeds of the ``cam:`` and ``linkage:`` sections judged against
-    their own mechanism (read from the YAML, so that a slip is named even where it also
-    breaks a check of the section)."""
+    """Bare lengths and speeds of ``cam:`` and ``linkage:`` judged against their own mechanism.
+
+    They are read from the YAML, so that a slip is named even where it also breaks a check of
+    the section; bare length and speed bounds of ``limits:`` are judged likewise.
+
+    Parameters
+    ----------
+    doc : fickcam.yamldoc.YamlDocument
+        The scene file.
+
+    Returns
+    -------
+    Findings
+        The refused and the unusual values.
+    """
     findings = Findings([], [])
     scales = {}
     if isinstance(doc.data.get("cam"), dict):
@@ -480,8 +651,17 @@ def plate_uptake(diffusivity: float, time: float, half_thickness: float) -> floa
 
 @dataclass(frozen=True)
 class Absorber:
-    """The part that takes up water fastest: its name, half-thickness [m] and its fastest
-    diffusivity [m2/s] at the hottest point of the history."""
+    """The part that takes up water fastest.
+
+    Parameters
+    ----------
+    name : str
+        The part.
+    half_thickness : float
+        Its half-thickness [m].
+    diffusivity : float
+        Its fastest diffusivity at the hottest point of the history [m^2/s].
+    """
 
     name: str
     half_thickness: float
@@ -535,8 +715,33 @@ def _days(seconds: float) -> str:
 
 
 def history_findings(model, doc, environment, materials: dict) -> Findings:
-    """Bare climate-history lengths judged by the uptake of the fastest-absorbing part over
-    the whole history; bare output times against the history they sample."""
+    """Bare climate-history lengths judged by the uptake of the fastest-absorbing part.
+
+    A history (or a segment of it) in which the parts take up almost nothing ages nothing
+    (Fickian uptake of a plate); bare output times are judged against the history they
+    sample.
+
+    Parameters
+    ----------
+    model : fickcam.scene_models.SceneModel
+        The validated scene.
+    doc : fickcam.yamldoc.YamlDocument
+        The scene file.
+    environment : fickcam.environment.Environment
+        The scene's climate.
+    materials : dict
+        Scene material name -> resolved :class:`~fickcam.materials.Material`.
+
+    Returns
+    -------
+    Findings
+        The refused and the unusual values.
+
+    References
+    ----------
+    J. Crank, *The Mathematics of Diffusion*, 2nd ed., Oxford University Press, 1975,
+    eq. 4.20.
+    """
     findings = Findings([], [])
     section = model.environment
     kelvin = environment.hottest()[1]

@@ -98,8 +98,21 @@ def select(ds, variable: str, *, time=None, part=None, cam_angle=None, crank_ang
 
 
 def unknown_variable(name: str, known) -> str:
-    """Why ``name`` cannot be queried: the closest names the result has (a misspelling),
-    not all of them."""
+    """Why ``name`` cannot be queried: the closest names the result has, not all of them.
+
+    Parameters
+    ----------
+    name : str
+        The variable asked for.
+    known : iterable of str
+        The variables the result holds.
+
+    Returns
+    -------
+    str
+        One line: a variable of the schema the scene does not compute, or a misspelling with
+        the nearest names (:func:`fickcam.keys.closest_names`).
+    """
     near = closest_names(name, sorted(known))
     if name in VARIABLES:  # spelt right, but the scene does not compute it
         what = (f"this result holds no {name} (a {VARIABLES[name].section} variable: the scene "
@@ -225,8 +238,19 @@ def _own_points(array, dim, grid, value):
 
 
 def swept_values(array) -> dict[str, np.ndarray]:
-    """The varied values of a sweep result along ``case``, in the units the sweep file
-    gave them: ``{"temperature [degC]": [60, 85, ...]}`` (empty for a single run)."""
+    """The varied values of a sweep result along ``case``, in the units the sweep file gave them.
+
+    Parameters
+    ----------
+    array : xarray.DataArray or xarray.Dataset
+        A selection of a sweep result (coordinates along ``case`` with a ``dotted_path``).
+
+    Returns
+    -------
+    dict of str to numpy.ndarray
+        ``{"temperature [degC]": [60, 85, ...]}``, each varied value by its shortest distinct
+        name and given unit; empty for a single run.
+    """
     from .unit_parsing import convert
 
     swept = [name for name, coord in array.coords.items()
@@ -245,8 +269,23 @@ def swept_values(array) -> dict[str, np.ndarray]:
 
 
 def to_records(array) -> tuple[list[str], list[list]]:
-    """(columns, rows) of a DataArray in tidy form: one column per dim (and, for a sweep,
-    per varied value, beside ``case``) + value."""
+    """(columns, rows) of a DataArray in tidy form.
+
+    One column per dimension (``time`` as ``time_d``, in days) and, for a sweep, one per
+    varied value beside ``case``, then ``value``.
+
+    Parameters
+    ----------
+    array : xarray.DataArray
+        A selection (:func:`select`).
+
+    Returns
+    -------
+    columns : list of str
+        The column names.
+    rows : list of list
+        One row per element, plain Python values.
+    """
     dims = list(array.dims)
     swept = swept_values(array) if "case" in dims else {}
     columns = [("time_d" if d == "time" else d) for d in dims] + ["value"]
@@ -274,11 +313,39 @@ def _plain(value):
 
 def format_result(array, variable: str, fmt: str = "table", against: str | None = None,
                   limit: str | None = None, units: str | None = None) -> str:
-    """Render a selection as an aligned table, CSV or JSON (of the drift ``against`` the
-    design or the start when given) in ``units`` (default: the variable's display unit,
-    as in the run summary: mm, MPa, degC); ``limit`` (the variable's limit and when it
-    fails) goes under the table and into the JSON, not into the CSV. Every column is
-    headed ``name [unit]`` (``time [d]``, ``cam_angle [degree]``, ``lift [mm]``)."""
+    """Render a selection as an aligned table, CSV or JSON.
+
+    Every column is headed ``name [unit]`` (``time [d]``, ``cam_angle [degree]``,
+    ``lift [mm]``); the ageing time is shown in one unit chosen from the result's span.
+
+    Parameters
+    ----------
+    array : xarray.DataArray
+        A selection (:func:`select`), in the variable's stored unit.
+    variable : str
+        Its schema name.
+    fmt : {"table", "csv", "json"}
+        The form.
+    against : {"design", "start"}, optional
+        The selection is the drift against the design or the start (a temperature change
+        stays in K).
+    limit : str, optional
+        The variable's limit and when it fails: under the table and in the JSON, not in the
+        CSV.
+    units : str, optional
+        A pint unit to show the values in; default the variable's display unit (mm, MPa,
+        degC).
+
+    Returns
+    -------
+    str
+        The text, without a trailing newline.
+
+    Raises
+    ------
+    fickcam.errors.InputError
+        For an unknown ``fmt`` or a unit the variable cannot be shown in.
+    """
     values, unit = shown_values(array, variable, units, drift=against is not None)
     columns, rows = to_records(array.copy(data=values) if array.dtype.kind in "fc" else array)
     label = variable if against is None else f"{variable} drift vs {against}"
@@ -319,8 +386,20 @@ COLUMN_UNITS = {"cam_angle": "degree", "crank_angle": "degree"}
 
 
 def column_label(name: str, time_name: str = "d") -> str:
-    """A column's heading, ``name [unit]`` (``time_d`` → ``time [d]``, or in the unit of
-    time ``time_name``)."""
+    """A column's heading, ``name [unit]`` (``time_d`` is shown as ``time [d]``).
+
+    Parameters
+    ----------
+    name : str
+        The column (a dimension of the result, or ``time_d``).
+    time_name : str
+        The unit the ageing time is shown in (``"d"``, ``"h"``, ``"year"``...).
+
+    Returns
+    -------
+    str
+        The heading; a name without unit stays bare.
+    """
     if name in TIME_COLUMNS:
         return _labelled("time", time_name)
     return _labelled(name, COLUMN_UNITS.get(name, ""))

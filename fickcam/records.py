@@ -43,7 +43,19 @@ _TMY3_HEADER_LINES = 2  # site line, column names
 
 
 class RecordError(ValueError):
-    """A problem in a climate record, located as ``file:LINE column: reason``."""
+    """A problem in a climate record, located as ``file:LINE column: reason``.
+
+    Parameters
+    ----------
+    path : pathlib.Path
+        The record file (its name is shown).
+    line : int or None
+        The line, from 1; None when the problem is the whole file's.
+    column : str or None
+        The column, if one is at fault.
+    reason : str
+        What is wrong.
+    """
 
     def __init__(self, path: Path, line: int | None, column: str | None, reason: str):
         where = f"{Path(path).name}:{line}" if line is not None else Path(path).name
@@ -52,8 +64,24 @@ class RecordError(ValueError):
 
 @dataclass(frozen=True)
 class ClimateRecord:
-    """Samples of T(t) and RH(t), linear between rows; ``period`` (s) when the
-    record is a weather year that repeats, else None (the last state holds)."""
+    """Samples of T(t) and RH(t), linear between rows.
+
+    Parameters
+    ----------
+    time : numpy.ndarray
+        The sample times from the record's start [s], increasing.
+    temperature : numpy.ndarray
+        The air temperature [K].
+    relative_humidity : numpy.ndarray
+        The relative humidity [%].
+    source : str
+        Where the record comes from, for messages.
+    period : float, optional
+        The period [s] when the record is a weather year that repeats; None when the last
+        state holds after its end.
+    site : str
+        A weather file's site (``"Greensboro Piedmont Triad Int, NC"``), else "".
+    """
 
     time: np.ndarray
     temperature: np.ndarray
@@ -67,7 +95,18 @@ class ClimateRecord:
         return float(self.time[-1])
 
     def covering(self, until: float) -> "ClimateRecord":
-        """The record repeated (if periodic) until it reaches ``until`` (s)."""
+        """The record repeated (if periodic) until it reaches ``until``.
+
+        Parameters
+        ----------
+        until : float
+            The time it must cover [s].
+
+        Returns
+        -------
+        ClimateRecord
+            This record when it is not periodic or already long enough.
+        """
         if self.period is None or until <= self.end:
             return self
         repeats = math.ceil((until - self.end) / self.period) + 1
@@ -79,8 +118,21 @@ class ClimateRecord:
                              self.site)
 
     def cut(self, until: float) -> "ClimateRecord":
-        """The rows up to the first at or past ``until`` (s): a run computes nothing past
-        its last ageing time (a year of hourly rows read for a month costs a month)."""
+        """The rows up to the first at or past ``until``.
+
+        A run computes nothing past its last ageing time (a year of hourly rows read for a month
+        costs a month).
+
+        Parameters
+        ----------
+        until : float
+            The last time needed [s].
+
+        Returns
+        -------
+        ClimateRecord
+            The shortened record (this one when nothing is cut).
+        """
         last = max(int(np.searchsorted(self.time, until, side="left")), 1)
         if last >= self.time.size - 1:
             return self
@@ -90,9 +142,30 @@ class ClimateRecord:
 
 
 def resolve_record_path(text: str, base_dir: Path) -> Path:
-    """A scene's ``history_file``: relative to the scene, or ``pvlib:NAME`` for
-    a file shipped in pvlib's data folder (e.g. ``pvlib:723170TYA.CSV``,
-    Greensboro NC; ``pvlib:703165TY.csv``, Sand Point AK)."""
+    """The file a scene's ``history_file`` names.
+
+    Relative to the scene, or ``pvlib:NAME`` for a file shipped in pvlib's data folder (e.g.
+    ``pvlib:723170TYA.CSV``, Greensboro NC; ``pvlib:703165TY.csv``, Sand Point AK).
+
+    Parameters
+    ----------
+    text : str
+        The ``history_file`` value.
+    base_dir : pathlib.Path
+        The scene's folder.
+
+    Returns
+    -------
+    pathlib.Path
+        The file (not checked to exist, but for ``pvlib:``).
+
+    Raises
+    ------
+    ValueError
+        When pvlib ships no such file (naming the weather files it has).
+    fickcam.extras.MissingExtra
+        For ``pvlib:`` without pvlib installed.
+    """
     if text.startswith(PVLIB_PREFIX):
         pvlib = require("weather")
         folder = Path(pvlib.__file__).parent / "data"
@@ -108,9 +181,21 @@ def resolve_record_path(text: str, base_dir: Path) -> Path:
 
 
 def site_name(text: str, base_dir: Path) -> str:
-    """The site of the weather file a scene's ``history_file`` names (TMY3 ``Name``, ``State``;
-    EPW ``city``, ``state-prov``, as pvlib reads them), for legends; "" for a chamber log or
-    a file that cannot be read here."""
+    """The site of the weather file a scene's ``history_file`` names, for legends.
+
+    TMY3 ``Name``, ``State``; EPW ``city``, ``state-prov``, as pvlib reads them.
+
+    Parameters
+    ----------
+    text, base_dir
+        The ``history_file`` value and the scene's folder, as for
+        :func:`resolve_record_path`.
+
+    Returns
+    -------
+    str
+        ``"NAME, REGION"``; "" for a chamber log or a file that cannot be read here.
+    """
     try:
         return read_record(resolve_record_path(text, base_dir)).site
     except ValueError:
@@ -125,9 +210,28 @@ def _site(name, region) -> str:
 
 
 def read_record(path: Path) -> ClimateRecord:
-    """Read a chamber CSV, a TMY3 CSV or an EPW file (chosen by its content); a file read
-    before and not changed since (same size and modification time) is not read again
-    (a scene's check and its run, a sweep's cases)."""
+    """Read a chamber CSV, a TMY3 CSV or an EPW file (chosen by its content).
+
+    A file read before and not changed since (same size and modification time) is not read
+    again (a scene's check and its run, a sweep's cases); the arrays are then shared and
+    read-only.
+
+    Parameters
+    ----------
+    path : pathlib.Path
+        The record file.
+
+    Returns
+    -------
+    ClimateRecord
+        The record, in SI (s, K) and % RH.
+
+    Raises
+    ------
+    ValueError
+        When the file is missing or unreadable; :class:`RecordError` (a ValueError) with its
+        line and column for a problem inside it.
+    """
     path = Path(path)
     try:
         stat = path.stat()
@@ -165,7 +269,25 @@ def _read_record(path: Path) -> ClimateRecord:
 
 # -------------------------------------------------------------- chamber CSV
 def read_history_csv(path: Path) -> ClimateRecord:
-    """Columns time, temperature, relative_humidity with units in the header."""
+    """Read a chamber log: columns time, temperature, relative_humidity with units in the header.
+
+    Parameters
+    ----------
+    path : pathlib.Path
+        The CSV file (``time [h], temperature [degC], relative_humidity [%]``).
+
+    Returns
+    -------
+    ClimateRecord
+        The record, in SI (s, K) and % RH; not periodic.
+
+    Raises
+    ------
+    RecordError
+        With file, line and column for a missing column, a value that is not a number, a
+        time that does not increase, or a column without unit whose values are almost
+        certainly a unit slip.
+    """
     path = Path(path)
     try:
         with open(path, newline="", encoding="utf-8") as handle:

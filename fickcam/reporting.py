@@ -40,7 +40,22 @@ def _model_text(model) -> str:
 
 
 def describe_plan(scene, accuracy: float | None = None) -> str:
-    """The plan `fickcam check` prints: parts, diffusion model, cells, steps."""
+    """The plan ``fickcam check`` prints: parts, diffusion model, cells, steps.
+
+    Parameters
+    ----------
+    scene : fickcam.scene.Scene
+        A validated scene.
+    accuracy : float, optional
+        The diffusion accuracy asked for [-] (relative error of the mean moisture); None for
+        the scene's own.
+
+    Returns
+    -------
+    str
+        Lines: the climate, each part's diffusion model with its cells, steps and estimated
+        error, the mechanisms, the follower and the limits.
+    """
     from .simulate import STATE_GIVEN, plan_parts
 
     environment, times, options, plans = plan_parts(scene, accuracy)
@@ -77,7 +92,22 @@ def describe_plan(scene, accuracy: float | None = None) -> str:
 
 
 def display(name: str, values):
-    """(values in the variable's display unit, that unit): ``lift`` in mm, not m."""
+    """(values in the variable's display unit, that unit): ``lift`` in mm, not m.
+
+    Parameters
+    ----------
+    name : str
+        A schema variable.
+    values : float or array_like
+        Its values in the stored unit [schema ``units``].
+
+    Returns
+    -------
+    values : numpy.ndarray
+        The values [display unit].
+    unit : str
+        The display unit (``"1"`` for none).
+    """
     var = VARIABLES[name]
     return convert(values, var.units, var.display), var.display or var.units or "1"
 
@@ -89,8 +119,21 @@ def _finite_ends(values: np.ndarray) -> tuple[int, int] | None:
 
 
 def peak(values: np.ndarray) -> int | None:
-    """Index of the interior extreme of a history that goes up and down (the value
-    furthest from the start that lies beyond both ends), None for a monotonic one."""
+    """Index of the interior extreme of a history that goes up and down.
+
+    The extreme is the value furthest from the start that lies beyond both ends by more than
+    :data:`PEAK_SHARE` of the history's range.
+
+    Parameters
+    ----------
+    values : numpy.ndarray
+        A history over ageing times (NaN where unknown) [any unit].
+
+    Returns
+    -------
+    int or None
+        The index, or None for a monotonic history (or fewer than three finite values).
+    """
     ends = _finite_ends(values)
     if ends is None or ends[1] - ends[0] < 2:
         return None
@@ -208,8 +251,21 @@ def _table(rows: list[list[str]], header: list[str]) -> list[str]:
 
 
 def limit_line(ds, name: str) -> str | None:
-    """One line on a limit of a result: its band and whether/when it fails (the run
-    summary, under a query's table)."""
+    """One line on a limit of a result: its band and whether and when it fails.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        A result with ``time_out_of_spec`` and ``limit_ratio``.
+    name : str
+        The limited variable.
+
+    Returns
+    -------
+    str or None
+        The line (for the run summary, under a query's table); None when the result holds
+        no such limit.
+    """
     limit = stored_limits(ds).get(name)
     if limit is None or "time_out_of_spec" not in ds:
         return None
@@ -240,7 +296,18 @@ def _span(ds) -> float:
 
 
 def limit_lines(ds) -> list[str]:
-    """The summary's limit lines: the first limit to fail and when, then each limit."""
+    """The summary's limit lines: the first limit to fail and when, then each limit.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        A run's result, with the limits its scene set.
+
+    Returns
+    -------
+    list of str
+        Indented lines; empty when the result holds no limits.
+    """
     limits = stored_limits(ds)
     if not limits or "time_out_of_spec" not in ds:
         return []
@@ -257,8 +324,23 @@ def limit_lines(ds) -> list[str]:
 
 
 def summary(ds, *, notices: bool = True) -> str:
-    """A few lines a user reads after `fickcam run`: each key output as design → t = 0 →
-    end with its drift against both, and the peak of a history that goes up and down."""
+    """The lines a user reads after ``fickcam run``.
+
+    Each key output as design, t = 0 and end with its drift against both, the peak of a
+    history that goes up and down, the cycle and swelling lines and the limits.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        A single run's result.
+    notices : bool
+        List the run's notices at the end (the command line logs them instead).
+
+    Returns
+    -------
+    str
+        The summary, without a trailing newline.
+    """
     seconds = ageing_seconds(ds)
     lines = [f"{ds.attrs.get('scene_name', '')}: {len(seconds)} ageing times to "
              f"{format_duration(seconds[-1])}, wall time {float(ds.attrs.get('wall_time', 0)):.2f} s"]
@@ -312,9 +394,22 @@ def _sweep_cell(ds, name: str, case: int) -> str:
 
 
 def sweep_summary(ds) -> str:
-    """One line per case after `fickcam sweep`: the varied values as the sweep file gave
-    them, the status and, at the last ageing time, the moisture (largest part) and the key
-    outputs with their drift against the design."""
+    """One line per case after ``fickcam sweep``.
+
+    The varied values as the sweep file gave them, the status and, at the last ageing time,
+    the moisture (wettest part) and the key outputs with their drift against the design; at
+    most :data:`SWEEP_ROWS` cases.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        A sweep's combined result (dimension ``case``).
+
+    Returns
+    -------
+    str
+        The table, without a trailing newline.
+    """
     from .query import swept_values
 
     swept = swept_values(ds)

@@ -8,12 +8,16 @@ import numpy as np
 
 @dataclass
 class Response:
-    """Arrays named after schema variables (SI, angles in rad) and user notices.
+    """What a mechanism model returns at one ageing time: schema-named arrays and user notices.
 
-    ``variables`` maps a schema name (see :mod:`fickcam.schema`) to a scalar or
-    an array over the mechanism angle; ``notices`` are one-line warnings the run
-    reports (e.g. "follower jumps at 312 deg"), without the ageing time, which
-    the orchestrator adds.
+    Parameters
+    ----------
+    variables : dict of str to numpy.ndarray
+        Schema name (:mod:`fickcam.schema`) -> a scalar or an array over the mechanism angle
+        [SI units, angles in rad].
+    notices : list of str
+        One-line warnings the run reports (e.g. "follower jumps at 312 deg"), without the
+        ageing time, which the orchestrator adds.
     """
 
     variables: dict[str, np.ndarray] = field(default_factory=dict)

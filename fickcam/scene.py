@@ -46,8 +46,23 @@ CAM_SHAPE_KEYS = ("base_circle_radius", "motion", "eccentric", "profile_file")
 
 
 def merged(made: dict, overrides: dict, replace_whole: tuple = ()) -> dict:
-    """``made`` with ``overrides`` applied (mappings merged key by key); when the overrides
-    name any of ``replace_whole``, all of those keys of ``made`` are dropped first."""
+    """``made`` with ``overrides`` applied, mappings merged key by key.
+
+    Parameters
+    ----------
+    made : dict
+        A section as made.
+    overrides : dict
+        The keys that differ (nested mappings hold only their differing keys).
+    replace_whole : tuple of str
+        Keys that go together: when the overrides name any of them, all of them are dropped
+        from ``made`` first (a cam's shape: ``motion``, ``eccentric``, ``profile_file``...).
+
+    Returns
+    -------
+    dict
+        A new mapping; ``made`` is unchanged.
+    """
     out = {k: v for k, v in made.items()
            if not (k in replace_whole and any(key in overrides for key in replace_whole))}
     for key, value in overrides.items():
@@ -58,7 +73,29 @@ def merged(made: dict, overrides: dict, replace_whole: tuple = ()) -> dict:
 
 @dataclass
 class Scene:
-    """A validated scene: the pydantic model plus where it came from."""
+    """A validated scene: the pydantic model plus where it came from.
+
+    Parameters
+    ----------
+    model : fickcam.scene_models.SceneModel
+        The validated content (SI values).
+    file : str
+        The scene file's name.
+    text : str
+        Its text.
+    base_dir : pathlib.Path
+        Its folder (relative paths of the scene are read from there).
+    document : fickcam.yamldoc.YamlDocument, optional
+        The parsed file, with the line of every key.
+    materials : dict
+        Scene material name -> resolved :class:`~fickcam.materials.Material`.
+    design_model : fickcam.scene_models.SceneModel, optional
+        The mechanisms as designed (from ``design:``).
+    limits : list of fickcam.limits.Limit
+        The limits, in scene order.
+    warnings : list of fickcam.errors.Problem
+        Unusual bare values and other notes told at validation.
+    """
 
     model: SceneModel
     file: str
@@ -279,7 +316,29 @@ def _limits(model: SceneModel, doc: YamlDocument) -> tuple[list, list[Problem]]:
 
 
 def validate_document(doc: YamlDocument, *, base_dir: Path) -> Scene:
-    """Validate a parsed YAML document into a Scene or raise SceneError."""
+    """Validate a parsed YAML document into a Scene.
+
+    Bare lengths and speeds that are almost certainly unit slips are named first; then the
+    sections, the checks across sections (materials, parts, wet Tg, ageing times), a cam's
+    profile file, the ``design:`` section and the limits. Warnings are logged.
+
+    Parameters
+    ----------
+    doc : fickcam.yamldoc.YamlDocument
+        The parsed scene file.
+    base_dir : pathlib.Path
+        The folder relative paths of the scene are read from.
+
+    Returns
+    -------
+    Scene
+        The validated scene.
+
+    Raises
+    ------
+    fickcam.errors.SceneError
+        With one ``FILE:LINE key: reason`` problem per fault.
+    """
     # A bare length or speed that is almost certainly a unit slip is named first: it would
     # otherwise surface as whatever check of its section it breaks.
     findings = geometry_findings(doc)
@@ -309,8 +368,20 @@ def validate_document(doc: YamlDocument, *, base_dir: Path) -> Scene:
 
 
 def design_data(data: dict) -> dict:
-    """A scene mapping as designed: its ``design:`` overrides merged into ``cam:`` and
-    ``linkage:`` (a design cam shape replaces the made one), ``design:`` dropped."""
+    """A scene mapping as designed: its ``design:`` merged into ``cam:`` and ``linkage:``.
+
+    A design cam shape replaces the made one; ``design:`` is dropped.
+
+    Parameters
+    ----------
+    data : dict
+        The scene as read from YAML.
+
+    Returns
+    -------
+    dict
+        A new mapping.
+    """
     design = data.get("design") or {}
     out = {k: v for k, v in data.items() if k != "design"}
     for section in ("cam", "linkage"):

@@ -28,7 +28,19 @@ from .units import (
 
 
 class HistorySegment(StrictModel):
-    """One segment of the climate history (held, or a linear ramp)."""
+    """One segment of the climate history (held, or a linear ramp).
+
+    Parameters
+    ----------
+    duration : float
+        How long the segment lasts [s] (a scene gives e.g. ``"30 d"``).
+    temperature : float
+        The air temperature [K] (``"85 degC"``).
+    relative_humidity : float
+        The relative humidity [%].
+    ramp : bool
+        Ramp linearly from the previous segment's climate to this one's (not the first).
+    """
 
     duration: Duration
     temperature: Temperature
@@ -37,11 +49,33 @@ class HistorySegment(StrictModel):
 
 
 class StateSpec(StrictModel):
-    """A state given directly: uniform moisture and temperature in every
-    part, no diffusion. Moisture is ``moisture`` (the same weight % in every absorbing
-    part) or ``relative_humidity`` (each part at its material's equilibrium moisture
-    Mm(RH), as Singh & Sanyal 2016 take 'maximum moisture absorption'); temperature is
-    ``temperature`` or ``temperature_rise`` above the reference temperature."""
+    """A state given directly: uniform moisture and temperature in every part, no diffusion.
+
+    Moisture is ``moisture`` (the same weight % in every absorbing part) or
+    ``relative_humidity`` (each part at its material's equilibrium moisture Mm(RH), as Singh
+    & Sanyal take 'maximum moisture absorption'); temperature is ``temperature`` or
+    ``temperature_rise`` above the reference temperature.
+
+    Parameters
+    ----------
+    time : float
+        The ageing time of the state [s].
+    moisture : float, optional
+        The moisture content of every absorbing part [wt %].
+    relative_humidity : float, optional
+        The relative humidity the parts are in equilibrium with [%].
+    temperature : float, optional
+        The temperature [K].
+    temperature_rise : float, optional
+        The temperature above the reference temperature [K].
+
+    References
+    ----------
+    S. Singh and S. Sanyal, "Variations in geometry, volume, mass and moment of
+    inertia of link of a four bar mechanism made of neat resin under hygrothermal
+    environment", International Journal of Innovative Research in Science, Engineering
+    and Technology 5 (12), 2016.
+    """
 
     time: NonNegativeTime = 0.0
     moisture: NonNegativePercent | None = None
@@ -67,6 +101,31 @@ StandardTest = Literal["steady_damp_heat", "damp_heat_85_85", "cyclic_damp_heat"
 
 
 class EnvironmentSection(StrictModel):
+    """``environment:``: the reference state and exactly one climate.
+
+    The climate is segments, a record, a standard test or states given directly.
+
+    Parameters
+    ----------
+    reference_temperature : float
+        The temperature at which the parts are made and dry [K] (23 degC by default).
+    initial_moisture : float
+        The parts' moisture at t = 0 [wt %].
+    history : list of HistorySegment, optional
+        The climate as segments.
+    history_file : str, optional
+        A climate record: chamber CSV, TMY3 CSV, EPW, or ``pvlib:NAME``.
+    test : {"steady_damp_heat", "damp_heat_85_85", "cyclic_damp_heat"}, optional
+        A standard damp-heat test (:mod:`fickcam.damp_heat`).
+    cycles : int, optional
+        ``cyclic_damp_heat``: the number of 24 h cycles [1].
+    duration : float, optional
+        Steady tests: how long [s].
+    upper_temperature : float, optional
+        ``cyclic_damp_heat``: the upper temperature [K] (40 or 55 degC).
+    state : list of StateSpec, optional
+        States given directly, no diffusion (one mapping or a list of them).
+    """
     reference_temperature: Temperature = 296.15
     initial_moisture: NonNegativePercent = 0.0
     history: list[HistorySegment] | None = None
@@ -109,13 +168,36 @@ class EnvironmentSection(StrictModel):
 
 
 def last_ageing_time(outputs) -> float | None:
-    """The last ageing time an ``outputs:`` section lists (None for ``every``)."""
+    """The last ageing time an ``outputs:`` section lists (None for ``every``).
+
+    Parameters
+    ----------
+    outputs : OutputsSection
+        The section.
+
+    Returns
+    -------
+    float or None
+        The last listed ageing time [s].
+    """
     times = outputs.ageing_times
     return times[-1] if isinstance(times, list) else None
 
 
 class DiffusionSection(StrictModel):
     # one model for every part, or per part name (parts not named: auto)
+    """``diffusion:``: the model of moisture transport in the parts and its accuracy.
+
+    Parameters
+    ----------
+    model : str or dict of str to str
+        One model for every part, or per part name (parts not named: ``auto``); one of
+        :data:`fickcam.diffusion.MODELS`.
+    accuracy : float
+        The relative accuracy asked of the mean moisture [-], in (0, 0.1].
+    surface_layer_depth : float
+        The depth below the surface over which the surface layer's moisture is averaged [m].
+    """
     model: Union[str, dict[str, str]] = "auto"
     accuracy: float = Field(1e-3, gt=0, le=0.1)
     surface_layer_depth: Length = 5e-4
@@ -132,10 +214,30 @@ class DiffusionSection(StrictModel):
 
 
 class EveryStep(StrictModel):
+    """``ageing_times: {every: ...}``: ageing times at a fixed step to the end of the climate.
+
+    Parameters
+    ----------
+    every : float
+        The step [s].
+    """
     every: Duration
 
 
 class OutputsSection(StrictModel):
+    """``outputs:``: when and how finely the result is computed, and where it is written.
+
+    Parameters
+    ----------
+    ageing_times : list of float or EveryStep, optional
+        The ageing times [s], strictly increasing, or a step; None for the default times.
+    angle_step : float
+        The step of the cam or crank angle [rad], at most 30 deg.
+    fields : bool
+        Also store the moisture fields through each part.
+    file : str, optional
+        The result file to write.
+    """
     ageing_times: Union[list[NonNegativeTime], EveryStep, None] = None
     angle_step: PositiveAngle = math.radians(1.0)
     fields: bool = False
@@ -160,16 +262,50 @@ class OutputsSection(StrictModel):
 
 
 class DesignSection(StrictModel):
-    """``design:``: the geometry the mechanism must have in service, where the ``cam:`` /
-    ``linkage:`` sections give the dimensions as made (``fickcam compensate`` writes it).
-    Each entry holds only the keys that differ from the made section; the as-designed
-    state (``<name>_design``, drift, limits) is computed from it."""
+    """``design:``: the geometry the mechanism must have in service.
+
+    The ``cam:`` / ``linkage:`` sections then give the dimensions as made (``fickcam
+    compensate`` writes it). Each entry holds only the keys that differ from the made
+    section; the as-designed state (``<name>_design``, drift, limits) is computed from it.
+
+    Parameters
+    ----------
+    cam : dict, optional
+        The keys of ``cam:`` that differ in the design, as written [units as in ``cam:``].
+    linkage : dict, optional
+        The keys of ``linkage:`` that differ in the design [units as in ``linkage:``].
+    """
 
     cam: dict | None = None
     linkage: dict | None = None
 
 
 class SceneModel(StrictModel):
+    """A whole scene file, validated: the climate, the materials, the mechanism and the outputs.
+
+    Parameters
+    ----------
+    name : str
+        The scene's name (not blank).
+    description : str
+        Free text.
+    environment : EnvironmentSection
+        The climate.
+    materials : dict of str to MaterialSpec
+        Scene material name -> its specification (a library name or properties).
+    cam : CamSection, optional
+        A cam and follower.
+    linkage : LinkageSection, optional
+        A four-bar linkage.
+    diffusion : DiffusionSection
+        The diffusion model and accuracy.
+    outputs : OutputsSection
+        Ageing times, angle step, fields, file.
+    design : DesignSection, optional
+        The in-service geometry, where the mechanism sections give it as made.
+    limits : dict of str to fickcam.limits.LimitSpec, optional
+        Result variable -> its limit.
+    """
     name: str = Field(min_length=1)
     description: str = ""
     environment: EnvironmentSection

@@ -25,6 +25,26 @@ RPM = 60.0 / (2.0 * math.pi)
 
 @dataclass(frozen=True)
 class Var:
+    """One result variable of the schema.
+
+    Parameters
+    ----------
+    dims : tuple of str
+        Its dimensions (``time``, ``part``, ``cam_angle``...).
+    units : str
+        Its stored unit (UDUNITS spelling: ``m``, ``N m``, ``degree``, ``1``).
+    long_name : str
+        What it is.
+    section : str
+        Where it comes from: environment, parts, cam, linkage, elastic, limits or fields.
+    scale : float
+        Stored value / SI value [stored unit / SI unit] (e.g. 180/pi for degrees).
+    design : bool, optional
+        Store ``<name>_design`` too; None: yes for a time-dependent variable of the material
+        state or a mechanism.
+    display : str
+        The unit a person reads it in (the summary); "" for the stored unit.
+    """
     dims: tuple[str, ...]
     units: str
     long_name: str
@@ -261,7 +281,18 @@ VARIABLES: dict[str, Var] = {
 
 
 def design_name(name: str) -> str:
-    """The name of the as-designed value of ``name`` (``lift`` → ``lift_design``)."""
+    """The name of the as-designed value of ``name`` (``lift`` gives ``lift_design``).
+
+    Parameters
+    ----------
+    name : str
+        A variable.
+
+    Returns
+    -------
+    str
+        ``<name>_design``.
+    """
     return f"{name}_design"
 
 

@@ -27,13 +27,38 @@ log = logging.getLogger(__name__)
 
 
 def scene_environment(scene: Scene) -> Environment:
-    """The scene's climate history (a weather year repeated to its last ageing time)."""
+    """The scene's climate history (a weather year repeated to its last ageing time).
+
+    Parameters
+    ----------
+    scene : Scene
+        The loaded scene.
+
+    Returns
+    -------
+    Environment
+        Temperature [K] and surface moisture over time [s].
+    """
     return Environment.from_section(scene.model.environment, base_dir=scene.base_dir,
                                     until=last_ageing_time(scene.model.outputs))
 
 
 def ageing_times(scene: Scene, environment: Environment) -> np.ndarray:
-    """Ageing times in s: the scene's list, a regular ``every`` grid, or 11 points."""
+    """Ageing times: the environment's state times when it gives the moisture directly,
+    else the scene's list, a regular ``every`` grid, or 11 points.
+
+    Parameters
+    ----------
+    scene : Scene
+        The loaded scene.
+    environment : Environment
+        Its climate history (end time [s]).
+
+    Returns
+    -------
+    numpy.ndarray
+        The ageing times [s].
+    """
     if environment.state_times is not None:
         return environment.state_times.copy()
     requested = scene.model.outputs.ageing_times
@@ -49,7 +74,20 @@ def every_step_times(step: float, end: float) -> np.ndarray:
     """0, step, 2 step, ... up to ``end`` (s), and ``end`` itself when the steps do not
     land on it: the history's last state is always reported (two years every 30 d:
     0, 30, ..., 720 d and 730.5 d). A step that lands within 1e-9 ``end`` of the end is
-    moved onto it rather than followed by a sliver."""
+    moved onto it rather than followed by a sliver.
+
+    Parameters
+    ----------
+    step : float
+        The step [s].
+    end : float
+        The last ageing time [s].
+
+    Returns
+    -------
+    numpy.ndarray
+        The ageing times [s].
+    """
     count = int(np.floor(end / step * (1 + 1e-12)))
     times = step * np.arange(count + 1)
     if count and end - times[-1] <= 1e-9 * end:
@@ -60,8 +98,25 @@ def every_step_times(step: float, end: float) -> np.ndarray:
 
 def diffusion_options(scene: Scene, accuracy: float | None, settings=None, cache=None) -> dict:
     """The scene's diffusion section, ``accuracy`` (when given) in place of its own, the
-    solvers' tuned limits (``settings``, a ``diffusion.SolverSettings``; None: the defaults)
-    and the run's cache (``cache``, a ``diffusion.RunCache``; None: a fresh one)."""
+    solvers' tuned limits and the run's cache.
+
+    Parameters
+    ----------
+    scene : Scene
+        The loaded scene.
+    accuracy : float or None
+        Relative accuracy of the diffusion [-]; None: the scene's.
+    settings : SolverSettings, optional
+        The solvers' tuned limits; None: the defaults.
+    cache : RunCache, optional
+        What the run's diffusion solves build once and share; None: a fresh one.
+
+    Returns
+    -------
+    dict
+        accuracy [-], model, surface_layer_depth [m], settings and cache, as
+        :func:`fickcam.diffusion.solve` takes them.
+    """
     from .diffusion import RunCache, SolverSettings
 
     section = scene.model.diffusion
@@ -71,7 +126,7 @@ def diffusion_options(scene: Scene, accuracy: float | None, settings=None, cache
             "cache": RunCache() if cache is None else cache}
 
 
-def part_model(options: dict, part: str) -> str:
+def _part_model(options: dict, part: str) -> str:
     """The diffusion model asked for ``part`` (``diffusion.model``: one name or per part)."""
     model = options["model"]
     return model.get(part, "auto") if isinstance(model, dict) else model
@@ -93,7 +148,20 @@ STATE_GIVEN = "state"
 def plan_parts(scene: Scene, accuracy: float | None = None):
     """What `fickcam check` shows: (environment, ageing times, diffusion options, [(part,
     diffusion Plan, None for a part that does not absorb, or STATE_GIVEN where the
-    environment gives the moisture directly)]), planned as :func:`run` does."""
+    environment gives the moisture directly)]), planned as :func:`run` does.
+
+    Parameters
+    ----------
+    scene : Scene
+        The loaded scene.
+    accuracy : float, optional
+        Relative accuracy of the diffusion [-]; None: the scene's.
+
+    Returns
+    -------
+    tuple
+        (environment, ageing times [s], diffusion options, list of (part, plan)).
+    """
     from .diffusion import plan
 
     environment = scene_environment(scene)
@@ -111,7 +179,7 @@ def plan_parts(scene: Scene, accuracy: float | None = None):
         diffusivity = part.material.diffusivity_for(part.geometry)
         plans.append((part, _for_part(part.name, plan, part.geometry, diffusivity, exposure, times,
                                       accuracy=options["accuracy"],
-                                      model=part_model(options, part.name),
+                                      model=_part_model(options, part.name),
                                       sorption=part.material.sorption_law(),
                                       surface_layer_depth=options["surface_layer_depth"],
                                       settings=options["settings"], cache=options["cache"])))
@@ -128,9 +196,38 @@ def run(scene, *, accuracy: float | None = None, progress: bool = False, setting
     diffusion solvers' tuned limits (``diffusion.SolverSettings``; None: the defaults);
     ``diffusions``: diffusion results already solved for this scene's ageing times, by
     (geometry, material name, fields kept) as :func:`age_part` keys them (parts that
-    match take them instead of solving again); ``cache``: what the diffusion solves build
-    once and share (``diffusion.RunCache``): the run's plans, solves and limit search share
-    it; None: a fresh one for this run (a sweep worker passes its own to every case)."""
+    match take them instead of solving again); ``cache``: what the diffusion solves share.
+
+    Parameters
+    ----------
+    scene : str, pathlib.Path, dict or Scene
+        The scene, as :func:`fickcam.load_scene` takes it.
+    accuracy : float, optional
+        Relative accuracy of the diffusion [-] (a fraction of the moisture swing); None:
+        the scene's.
+    progress : bool
+        Show a progress bar over the parts.
+    settings : SolverSettings, optional
+        The diffusion solvers' tuned limits; None: the defaults.
+    diffusions : dict, optional
+        Diffusion results already solved, keyed as :func:`age_part` keys them.
+    cache : RunCache, optional
+        What the diffusion solves build once and share: the run's plans, solves and limit
+        search share it; None: a fresh one for this run (a sweep worker passes its own to
+        every case).
+
+    Returns
+    -------
+    xarray.Dataset
+        The result (time in days, angles in degrees, moisture in weight %, else SI).
+
+    Raises
+    ------
+    fickcam.errors.SceneError
+        When the scene does not validate.
+    fickcam.errors.SolverError
+        When a diffusion solve fails.
+    """
     from .diffusion import RunCache
 
     started = _time.perf_counter()
@@ -165,7 +262,7 @@ def _age(scene: Scene, environment: Environment, times: np.ndarray, accuracy: fl
                                                       diffusions=diffusions, cache=cache)
     design_scene = scene.as_designed()  # differs where the scene is made to compensate
     designs = [design_part(part, environment) for part in build_parts(design_scene)]
-    values.update(design_values(design_scene, designs))
+    values.update(_design_values(design_scene, designs))
     if environment.state_times is None and times[-1] > 0:  # states given directly: no climate
         edges = summary_edges(times[-1])
         values.update(climate_values(environment, edges))
@@ -260,7 +357,7 @@ def _aged_values(scene: Scene, environment: Environment, times: np.ndarray,
         np.ones_like(times, bool)
     mechanisms = mechanism_values(scene, histories, times, valid_all, bar.update)
     values.update(mechanisms.variables)
-    coords.update(mechanism_coords(scene))
+    coords.update(_mechanism_coords(scene))
     notices += mechanisms.notices
     if elastic:
         from .elastic.parts import swelling_variables
@@ -364,7 +461,34 @@ def age_part(part: Part, environment: Environment, times, options: dict, scene: 
     ``before``: a DiffusionResult of this part at some of ``times``, extended to the others
     where it can be (``_extended``) instead of solving again; ``solved``: the diffusion
     results of the run's earlier parts by shape, material and fields kept (parts alike in
-    all three absorb alike, e.g. a four-bar's coupler and rocker: solved once)."""
+    all three absorb alike, e.g. a four-bar's coupler and rocker: solved once).
+
+    Parameters
+    ----------
+    part : Part
+        The part (geometry [m], material).
+    environment : Environment
+        The climate history (temperature [K], surface moisture).
+    times : array_like
+        Ageing times [s].
+    options : dict
+        Diffusion options (:func:`diffusion_options`).
+    scene : Scene
+        The loaded scene.
+    notices : list of str
+        Notices so far; this part's are appended.
+    keep_field : bool
+        Keep the moisture field even when the scene stores none.
+    before : DiffusionResult, optional
+        A result of this part at some of ``times``, to extend.
+    solved : dict, optional
+        Diffusion results of earlier parts, added to in place.
+
+    Returns
+    -------
+    PartHistory
+        The part's diffusion result, material state and validity at each time.
+    """
     from .diffusion import solve
 
     temperature = environment.temperature(times)
@@ -382,7 +506,7 @@ def age_part(part: Part, environment: Environment, times, options: dict, scene: 
         if result is None:
             result = _for_part(part.name, solve, part.geometry,
                                part.material.diffusivity_for(part.geometry), exposure, times,
-                               accuracy=options["accuracy"], model=part_model(options, part.name),
+                               accuracy=options["accuracy"], model=_part_model(options, part.name),
                                surface_layer_depth=options["surface_layer_depth"],
                                store_fields=scene.model.outputs.fields or keep_field,
                                part=part.name, sorption=part.material.sorption_law(),
@@ -415,7 +539,20 @@ def _extended(before, times):
 
 def design_part(part: Part, environment: Environment) -> PartHistory:
     """The as-designed state of one part: dry (no moisture) at the reference temperature,
-    by the same material-state model, as a history of one time."""
+    by the same material-state model, as a history of one time.
+
+    Parameters
+    ----------
+    part : Part
+        The part.
+    environment : Environment
+        The climate history (its reference temperature [K]).
+
+    Returns
+    -------
+    PartHistory
+        The dry state at one time.
+    """
     reference = np.array([environment.reference_temperature])
     dry = np.zeros(1)
     state = _state(part, reference, dry, dry, environment, np.zeros(1))
@@ -431,7 +568,7 @@ def _state(part: Part, temperature, mean, surface, environment: Environment, tim
                           part=part.name, times=times)
 
 
-def mechanism_coords(scene: Scene) -> dict:
+def _mechanism_coords(scene: Scene) -> dict:
     """The angle (and link, joint) coordinates of the mechanisms a scene models."""
     coords: dict = {}
     angles = _angle_grid(scene.model.outputs.angle_step)
@@ -446,7 +583,26 @@ def mechanism_coords(scene: Scene) -> dict:
 
 def mechanism_values(scene: Scene, histories: list[PartHistory], times, valid,
                      on_step=lambda: None):
-    """The cam, then the four-bar, at every valid ageing time: a Response over time."""
+    """The cam, then the four-bar, at every valid ageing time: a Response over time.
+
+    Parameters
+    ----------
+    scene : Scene
+        The loaded scene.
+    histories : list of PartHistory
+        The parts' ageing.
+    times : array_like
+        Ageing times [s].
+    valid : array_like of bool
+        Which times every part is valid at (below its wet glass transition).
+    on_step : callable
+        Called once per mechanism evaluation (progress).
+
+    Returns
+    -------
+    Response
+        The mechanism variables over time and angle (SI) and the notices.
+    """
     from .response import Response
 
     response = Response()
@@ -474,7 +630,7 @@ def mechanism_values(scene: Scene, histories: list[PartHistory], times, valid,
     return response
 
 
-def design_values(scene: Scene, designs: list[PartHistory]) -> dict[str, np.ndarray]:
+def _design_values(scene: Scene, designs: list[PartHistory]) -> dict[str, np.ndarray]:
     """``<name>_design`` for every variable the schema marks: the material state and the
     mechanisms evaluated for the design (one time, then the time axis dropped). The
     design's notices repeat those at t = 0 and are not reported."""

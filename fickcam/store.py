@@ -38,8 +38,20 @@ def _umask_mode() -> int:
 
 
 def temporary_beside(path: Path, suffix: str = ".tmp") -> str:
-    """A new temporary file in ``path``'s folder, with the usual permissions, its name
-    ending in ``suffix``."""
+    """A new temporary file in ``path``'s folder, with the usual permissions.
+
+    Parameters
+    ----------
+    path : pathlib.Path
+        The file it will replace.
+    suffix : str
+        The end of its name.
+
+    Returns
+    -------
+    str
+        The temporary file's path (created empty, mode as ``open(path, 'w')`` would give).
+    """
     fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=suffix, dir=path.parent)
     os.fchmod(fd, _umask_mode())
     os.close(fd)
@@ -48,9 +60,21 @@ def temporary_beside(path: Path, suffix: str = ".tmp") -> str:
 
 @contextmanager
 def replaced_atomically(path) -> Iterator[str]:
-    """A temporary file beside ``path`` (its folder made if needed) for the block to write;
-    renamed over ``path`` when the block ends, removed if it raises: ``path`` is never
-    left half written."""
+    """A temporary file beside ``path`` for the block to write, renamed over ``path`` at its end.
+
+    The folder is made if needed; the file is removed if the block raises: ``path`` is never
+    left half written.
+
+    Parameters
+    ----------
+    path : str or pathlib.Path
+        The file to write.
+
+    Yields
+    ------
+    str
+        The temporary file's path.
+    """
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
     tmp = temporary_beside(path)
@@ -63,7 +87,20 @@ def replaced_atomically(path) -> Iterator[str]:
 
 
 def write_text_atomically(path, text: str) -> Path:
-    """Write ``text`` (UTF-8) to ``path`` through a temporary file and a rename."""
+    """Write ``text`` (UTF-8) to ``path`` through a temporary file and a rename.
+
+    Parameters
+    ----------
+    path : str or pathlib.Path
+        The file to write (its folder is made if needed).
+    text : str
+        Its whole content.
+
+    Returns
+    -------
+    pathlib.Path
+        ``path``.
+    """
     with replaced_atomically(path) as tmp, open(tmp, "w", encoding="utf-8", newline="") as handle:
         handle.write(text)
     return Path(path)
@@ -101,10 +138,27 @@ def _coordinates_first(ds):
 
 
 def save(dataset, path, compress: bool = False) -> Path:
-    """Write ``dataset`` to ``path`` atomically and return the path. ``compress``: numbers
-    deflated (zlib level 1 after the byte shuffle, lossless; h5py chooses the chunks): the
-    demo cam's sweep results shrink 1.5-2.2 x for about 40 % more write time; a single run is
-    written plain (small, and read at once)."""
+    """Write ``dataset`` to ``path`` (netCDF4/HDF5) atomically and return the path.
+
+    The data go to a temporary file in the target folder, flushed to disk and renamed over the
+    target, so a crash leaves the old file or the new one, never a damaged one. Dict and list
+    attributes are stored as JSON.
+
+    Parameters
+    ----------
+    dataset : xarray.Dataset
+        A result (:func:`fickcam.run`, a sweep's combined result).
+    path : str or pathlib.Path
+        The file to write (its folder is made if needed).
+    compress : bool
+        Deflate the numbers (zlib level 1 after the byte shuffle, lossless): the demo cam's
+        sweep results shrink 1.5-2.2 x for about 40 % more write time.
+
+    Returns
+    -------
+    pathlib.Path
+        ``path``.
+    """
     path = Path(path)
     folder = path.parent if str(path.parent) else Path(".")
     folder.mkdir(parents=True, exist_ok=True)
@@ -141,8 +195,26 @@ JSON_ATTRIBUTES = ("diffusion", "notices", "sweep_parameters", "limits")
 
 
 def open_result(path):
-    """Open a result written by :func:`save`: ``time`` in float days (a file written when
-    fickcam stored a timedelta ``time`` is read into days too)."""
+    """Open a result written by :func:`save`, with ``time`` in float days.
+
+    A file written when fickcam stored a timedelta ``time`` is read into days too; the JSON
+    attributes (:data:`JSON_ATTRIBUTES`) are decoded.
+
+    Parameters
+    ----------
+    path : str or pathlib.Path
+        A netCDF/HDF5 file written by :func:`save`.
+
+    Returns
+    -------
+    xarray.Dataset
+        The result, loaded into memory (the file is closed).
+
+    Raises
+    ------
+    fickcam.errors.InputError
+        When the file does not exist or is not a netCDF/HDF5 result.
+    """
     import xarray as xr
 
     from .dataset import with_time_in_days
@@ -168,9 +240,22 @@ def open_result(path):
 
 @contextmanager
 def replaced_together(paths) -> Iterator[list[str]]:
-    """Temporary files beside each of ``paths`` (ending in the target's suffix, for writers
-    that go by it) for the block to write; all renamed over their targets when the block
-    ends, all removed if it raises: the targets are written all or none."""
+    """Temporary files beside each of ``paths`` for the block to write, renamed all together.
+
+    Each temporary name ends in its target's suffix (for writers that go by it); all are
+    renamed over their targets when the block ends, all removed if it raises: the targets are
+    written all or none.
+
+    Parameters
+    ----------
+    paths : iterable of str or pathlib.Path
+        The files to write (their folders are made if needed).
+
+    Yields
+    ------
+    list of str
+        The temporary files, in the order of ``paths``.
+    """
     paths = [Path(p) for p in paths]
     temps: list[str] = []
     try:

@@ -68,6 +68,25 @@ def registry():
 
 
 def split_number_unit(text: str) -> tuple[float, str]:
+    """The leading number of ``text`` and the unit text after it.
+
+    Parameters
+    ----------
+    text : str
+        A number, optionally followed by a unit: ``"1.5 in"``, ``"30d"``, ``"1e-3"``.
+
+    Returns
+    -------
+    number : float
+        The number, in the unit given.
+    unit : str
+        The text after the number, stripped ("" when there is none).
+
+    Raises
+    ------
+    ValueError
+        When ``text`` does not start with a number.
+    """
     match = _NUMBER_THEN_UNIT.match(text)
     if not match:
         raise ValueError(f"cannot read {text!r} as a number with units")
@@ -75,7 +94,25 @@ def split_number_unit(text: str) -> tuple[float, str]:
 
 
 def number_and_unit(value: Any) -> tuple[float, str]:
-    """(finite number, unit text) of a bare number or a string with units ("" = none)."""
+    """(finite number, unit text) of a bare number or a string with units ("" = none).
+
+    Parameters
+    ----------
+    value : float or str
+        A scene value: a number, or a string such as ``"113 degC"``.
+
+    Returns
+    -------
+    number : float
+        The finite number, in the unit given.
+    unit : str
+        The unit text ("" for a bare number).
+
+    Raises
+    ------
+    ValueError
+        For a boolean, None, another type, text that is not a number, or a non-finite number.
+    """
     if isinstance(value, bool) or value is None:
         raise ValueError(f"expected a number or a string with units, got {value!r}")
     if isinstance(value, (int, float)):
@@ -124,9 +161,27 @@ def _human(dimension: str) -> str:
 def to_si(value: Any, dimension: str) -> float:
     """Convert a scene value to a float in the SI unit of ``dimension``.
 
-    Raises ``ValueError`` with a one-line reason (wrong dimension, unknown unit,
-    not a number), naming the unit a misread spelling most likely meant. Strings such as
-    ``"1e-3"`` (which YAML leaves as text) are accepted as numbers.
+    Strings such as ``"1e-3"`` (which YAML leaves as text) are accepted as numbers; a bare
+    number is taken as SI (percent for ``"percent"``). Workshop spellings (``RPM``, ``%RH``)
+    are read as meant (:data:`SHOP_UNITS`).
+
+    Parameters
+    ----------
+    value : float or str
+        A bare number [SI unit of ``dimension``] or a string with units (``"600 rpm"``).
+    dimension : str
+        A key of :data:`SI_UNITS` (``"length"``, ``"temperature"``, ``"angular_speed"``...).
+
+    Returns
+    -------
+    float
+        The value in the SI unit of ``dimension`` [:data:`SI_UNITS`].
+
+    Raises
+    ------
+    ValueError
+        With a one-line reason (wrong dimension, unknown unit, not a number), naming the
+        unit a misread or ambiguous spelling most likely meant (:data:`LIKELY_UNITS`).
     """
     si_unit = SI_UNITS[dimension]
     if isinstance(value, bool) or value is None:
@@ -155,7 +210,18 @@ def to_si(value: Any, dimension: str) -> float:
 
 
 def is_bare_number(value: Any) -> bool:
-    """True for a number without units (a YAML number, or text such as '1e-3')."""
+    """True for a number without units (a YAML number, or text such as ``'1e-3'``).
+
+    Parameters
+    ----------
+    value : object
+        A scene value.
+
+    Returns
+    -------
+    bool
+        False for booleans, strings with a unit and every other type.
+    """
     if isinstance(value, bool):
         return False
     if isinstance(value, (int, float)):
@@ -167,8 +233,26 @@ def is_bare_number(value: Any) -> bool:
 
 
 def temperature_difference(value: Any) -> float:
-    """A temperature difference in K: ``"95 K"``, ``"95 degC"`` or ``"171 degF"`` are read as
-    differences (a rise of 95 degC is 95 K, not 368.15 K); a bare number is K."""
+    """A temperature difference in K.
+
+    ``"95 K"``, ``"95 degC"`` or ``"171 degF"`` are read as differences (a rise of 95 degC is
+    95 K, not 368.15 K); a bare number is K.
+
+    Parameters
+    ----------
+    value : float or str
+        The difference, bare [K] or with units.
+
+    Returns
+    -------
+    float
+        The difference [K].
+
+    Raises
+    ------
+    ValueError
+        As :func:`to_si` (not a temperature, unknown unit).
+    """
     if isinstance(value, str):
         value = re.sub(r"(?<![A-Za-z_])(deg_?C|degC|°C|celsius|deg_?F|degF|°F|fahrenheit)\b",
                        lambda m: "delta_degF" if "F" in m.group(1) or "fahr" in m.group(1)
@@ -177,7 +261,24 @@ def temperature_difference(value: Any) -> float:
 
 
 def parse_duration(text: Any) -> float:
-    """A duration such as ``"6 months"``, ``"30d"`` or ``3600`` (s) in seconds."""
+    """A duration such as ``"6 months"``, ``"30d"`` or ``3600`` (s) in seconds.
+
+    Parameters
+    ----------
+    text : float or str
+        The duration, bare [s] or with a time unit (a unit written against the number, as in
+        ``"30d"``, is accepted).
+
+    Returns
+    -------
+    float
+        The duration [s].
+
+    Raises
+    ------
+    ValueError
+        As :func:`to_si` (not a time, unknown unit).
+    """
     if isinstance(text, str):
         text = re.sub(r"^\s*([-+]?[\d.eE+-]+)\s*([A-Za-z])", r"\1 \2", text)
     return to_si(text, "time")
@@ -187,8 +288,30 @@ _PINT_NAMES = {"%": "percent", "1": "dimensionless", "": "dimensionless"}
 
 
 def convert(values, unit: str, to: str):
-    """``values`` (numbers or an array) from ``unit`` to ``to`` for display (``K`` →
-    ``degC``, ``m`` → ``mm``, ``%`` understood); the values unchanged when the units agree."""
+    """``values`` from ``unit`` to ``to`` for display (``K`` to ``degC``, ``m`` to ``mm``).
+
+    ``%`` and ``1`` are understood; the values are returned unchanged when the units agree or
+    ``to`` is empty.
+
+    Parameters
+    ----------
+    values : float or array_like
+        The values [``unit``].
+    unit : str
+        Their unit, a pint expression (``"K"``, ``"m"``, ``"%"``, ``"1"``).
+    to : str
+        The unit wanted.
+
+    Returns
+    -------
+    numpy.ndarray
+        The values [``to``].
+
+    Raises
+    ------
+    pint.errors.DimensionalityError
+        When ``unit`` cannot be converted to ``to``.
+    """
     import numpy as np
 
     values = np.asarray(values, float)

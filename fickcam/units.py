@@ -16,9 +16,28 @@ from .unit_parsing import is_bare_number, temperature_difference, to_si
 
 def quantity(dimension: str, *, positive: bool = False, nonnegative: bool = False,
              upper: float | None = None, bare: str | None = None):
-    """A pydantic type: a value of ``dimension`` converted to SI, with bounds. ``bare`` names
-    the reading of :mod:`fickcam.plausibility` that refuses implausible values given
-    without units (``"temperature"``: 40 meant 40 degC, not 40 K)."""
+    """A pydantic type: a value of ``dimension`` converted to SI, with bounds.
+
+    Parameters
+    ----------
+    dimension : str
+        A key of :data:`fickcam.unit_parsing.SI_UNITS` (``"length"``, ``"temperature"``...).
+    positive : bool
+        Refuse values that are not > 0.
+    nonnegative : bool
+        Refuse values < 0.
+    upper : float, optional
+        The largest value allowed [SI unit of ``dimension``]; None for no bound.
+    bare : str, optional
+        The reading of :data:`fickcam.plausibility.BARE_READINGS` that refuses implausible
+        values given without units (``"temperature"``: 40 meant 40 degC, not 40 K).
+
+    Returns
+    -------
+    typing.Annotated
+        ``float`` with validators that convert (:func:`fickcam.unit_parsing.to_si`) and check;
+        a value breaking a bound fails validation with a one-line reason.
+    """
 
     def read(value):
         x = to_si(value, dimension)

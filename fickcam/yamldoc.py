@@ -49,7 +49,19 @@ def _line_map(node, path: tuple = (), lines: dict | None = None) -> dict[tuple, 
 
 @dataclass
 class YamlDocument:
-    """A parsed YAML mapping with the line of every key path."""
+    """A parsed YAML mapping with the line of every key path.
+
+    Parameters
+    ----------
+    data : dict
+        The mapping.
+    lines : dict of tuple to int
+        Key path (keys and list indices) -> its line, from 1.
+    file : str
+        The file's name, for problems.
+    text : str
+        The file's text.
+    """
 
     data: dict
     lines: dict[tuple, int]
@@ -57,7 +69,18 @@ class YamlDocument:
     text: str
 
     def line_of(self, path: tuple) -> int | None:
-        """Line of ``path`` or of its nearest ancestor that has one."""
+        """Line of ``path`` or of its nearest ancestor that has one.
+
+        Parameters
+        ----------
+        path : tuple of str or int
+            A key path.
+
+        Returns
+        -------
+        int or None
+            The line, from 1 (1 when no ancestor has one; None for an empty file).
+        """
         path = tuple(path)
         while path:
             if path in self.lines:
@@ -66,12 +89,44 @@ class YamlDocument:
         return 1 if self.text.strip() else None
 
     def problem(self, path: tuple, reason: str) -> Problem:
+        """A :class:`~fickcam.errors.Problem` at ``path``'s line.
+
+        Parameters
+        ----------
+        path : tuple of str or int
+            The key path at fault.
+        reason : str
+            Why, in one line.
+
+        Returns
+        -------
+        fickcam.errors.Problem
+            The problem, its key the dotted path.
+        """
         key = ".".join(str(p) for p in path)
         return Problem(self.file, self.line_of(path), key, reason)
 
 
 def read_yaml(source: str | os.PathLike, *, what: str = "scene") -> YamlDocument:
-    """Read a YAML mapping safely, with line numbers; raise SceneError on faults."""
+    """Read a YAML mapping safely, with line numbers.
+
+    Parameters
+    ----------
+    source : str or os.PathLike
+        The file.
+    what : str
+        What the file is, for messages (``"scene"``, ``"sweep"``).
+
+    Returns
+    -------
+    YamlDocument
+        The mapping and its lines.
+
+    Raises
+    ------
+    fickcam.errors.SceneError
+        When the file is missing or unreadable, or as :func:`parse_yaml`.
+    """
     path = Path(source)
     file = str(source)
     try:
@@ -86,6 +141,28 @@ def read_yaml(source: str | os.PathLike, *, what: str = "scene") -> YamlDocument
 
 
 def parse_yaml(text: str, *, file: str = "<scene>", what: str = "scene") -> YamlDocument:
+    """Parse YAML text safely (``yaml.SafeLoader``, duplicate keys refused), with line numbers.
+
+    Parameters
+    ----------
+    text : str
+        The YAML.
+    file : str
+        The file's name, for problems.
+    what : str
+        What the text is, for messages.
+
+    Returns
+    -------
+    YamlDocument
+        The mapping, with the line of every key path.
+
+    Raises
+    ------
+    fickcam.errors.SceneError
+        For an empty document, a syntax error, a tag (never executed), a duplicate key or a
+        document that is not a mapping, with its line.
+    """
     loader = None
     try:
         loader = _LineLoader(text)
@@ -115,8 +192,24 @@ def parse_yaml(text: str, *, file: str = "<scene>", what: str = "scene") -> Yaml
 
 def problems_from_validation(error: ValidationError, doc: YamlDocument,
                              prefix: tuple = (), model=None) -> list[Problem]:
-    """One Problem per pydantic error, located at its key path's line; an unknown key of
-    ``model`` (the validated pydantic class) names the closest valid key."""
+    """One Problem per pydantic error, located at its key path's line.
+
+    Parameters
+    ----------
+    error : pydantic.ValidationError
+        The validation error.
+    doc : YamlDocument
+        The file validated.
+    prefix : tuple of str or int
+        The key path of the validated section inside ``doc``.
+    model : type of pydantic.BaseModel, optional
+        The validated class: an unknown key names the closest valid key.
+
+    Returns
+    -------
+    list of fickcam.errors.Problem
+        The problems, in pydantic's order.
+    """
     problems = []
     for item in error.errors(include_url=False):
         loc = tuple(p for p in item["loc"] if not (isinstance(p, str) and p.startswith("function-")))

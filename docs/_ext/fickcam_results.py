@@ -80,12 +80,38 @@ def points_cam_table(record: dict) -> dict:
             "rows": rows}
 
 
+def startup_table(record: dict) -> dict:
+    """``startup.json``: the demo run as a whole process against the import floor."""
+    floor, demo = record["floor"], record["demo"]
+    return {"columns": ["process (median of runs)", "wall [s]", "CPU [s]"],
+            "rows": [["imports of what any run needs (the floor)", f"{floor['wall_s']:.2f}",
+                      f"{floor['cpu_s']:.2f}"],
+                     [f"`{record['command']}`", f"{demo['wall_s']:.2f}", f"{demo['cpu_s']:.2f}"],
+                     ["ratio to the floor", f"{record['ratio_wall']:.2f}",
+                      f"{record['ratio_cpu']:.2f}"]]}
+
+
+def montecarlo_table(record: dict) -> dict:
+    """``montecarlo.json``: a Monte Carlo sweep's wall time and cost per case."""
+    median = record["median"]
+    return {"columns": ["cases", "workers", "wall [s]", "CPU per case [s]",
+                        "a case / one warm single run", "result file [MB]",
+                        "cases checked equal to single runs"],
+            "rows": [[str(record["cases"]), str(record["workers"]), f"{median['wall_s']:.0f}",
+                      f"{median['cpu_s_per_case']:.3f}", f"{median['case_over_single']:.2f}",
+                      f"{record['result_file_mb']:.0f}",
+                      str(record["cases_checked_equal_to_single_runs"])]]}
+
+
 VIEWS = {"daily_outputs.json": daily_outputs_table,
          "compensation_runs.json": compensation_runs_table,
-         "points_cam.json": points_cam_table}
+         "points_cam.json": points_cam_table,
+         "startup.json": startup_table,
+         "montecarlo.json": montecarlo_table}
 COMMANDS = {"daily_outputs.json": "python benchmarks/daily_outputs.py",
             "compensation_runs.json": "python benchmarks/compensation_runs.py",
-            "points_cam.json": "python benchmarks/points_cam.py"}
+            "points_cam.json": "python benchmarks/points_cam.py",
+            "montecarlo.json": "python benchmarks/bench_montecarlo.py"}
 
 
 # -- Markdown ---------------------------------------------------------------------------

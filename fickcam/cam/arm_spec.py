@@ -18,7 +18,27 @@ class SwingingArm(StrictModel):
     face line, the pivot on the follower's side (flat only, default 0); ``rises``: the sense
     in which the arm turns as the follower rises; ``inertia`` of arm and roller about the
     pivot; a torsional return spring ``spring_rate`` (N m/rad) with ``spring_preload`` (N m)
-    at the dry cam's lowest position, and a constant ``load_torque`` (N m) against the rise."""
+    at the dry cam's lowest position, and a constant ``load_torque`` (N m) against the rise.
+
+    Parameters
+    ----------
+    pivot : tuple of float
+        The pivot's x and y in the fixed frame [m].
+    length : float or None
+        Pivot to roller centre [m] (roller only).
+    face_offset : float
+        Pivot to the face line [m] (flat only).
+    rises : {"counter_clockwise", "clockwise"}
+        The sense in which the arm turns as the follower rises.
+    inertia : float
+        Moment of inertia of arm and roller about the pivot [kg m^2].
+    spring_rate : float
+        Torsional return spring rate [N m/rad].
+    spring_preload : float
+        Spring torque at the dry cam's lowest position [N m].
+    load_torque : float
+        Constant torque against the rise [N m].
+    """
 
     pivot: tuple[SignedLength, SignedLength]
     length: Length | None = None
@@ -43,7 +63,18 @@ def arm_problems(section) -> list[tuple[tuple, str]]:
     """(key path inside ``cam:``, reason) for what the motion and the follower cannot do
     together: rises as lengths on a swinging arm (or angles on a translating follower), an arm
     that cannot reach the base circle or that would swing through the line from the cam axis
-    to its pivot (:mod:`fickcam.cam.arm`)."""
+    to its pivot (:mod:`fickcam.cam.arm`).
+
+    Parameters
+    ----------
+    section : CamSection
+        The validated ``cam`` section.
+
+    Returns
+    -------
+    list of tuple
+        (key path, reason) per problem; empty when there is none.
+    """
     arm = section.follower.arm
     problems = []
     for k, segment in enumerate(section.motion or ()):
@@ -62,7 +93,22 @@ def arm_problems(section) -> list[tuple[tuple, str]]:
 
 def reach_problems(section, rb: float, swing: float = 0.0) -> list[tuple[tuple, str]]:
     """An arm that cannot touch a base circle of radius ``rb`` or would swing through the line
-    from the cam axis to its pivot on a swing of ``swing`` rad (see :func:`arm_problems`)."""
+    from the cam axis to its pivot on a swing of ``swing`` rad (see :func:`arm_problems`).
+
+    Parameters
+    ----------
+    section : CamSection
+        The validated ``cam`` section.
+    rb : float
+        Base circle radius [m].
+    swing : float
+        The arm's swing [rad].
+
+    Returns
+    -------
+    list of tuple
+        (key path, reason) per problem; empty when there is none.
+    """
     from .arm import Arm, face_opening, roller_arm_opening
 
     arm = section.follower.arm

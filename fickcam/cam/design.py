@@ -10,7 +10,70 @@ from .motion import segments_from_spec
 
 @dataclass(frozen=True)
 class CamDesign:
-    """The dry cam and follower (SI, angles in rad, speed in rad/s)."""
+    """The dry cam and follower (SI, angles in rad, speed in rad/s).
+
+    Parameters
+    ----------
+    kind : str
+        ``"motion"``, ``"eccentric"`` or ``"profile"``.
+    base_circle_radius : float
+        Base circle radius Rb [m].
+    thickness : float
+        Cam plate thickness [m].
+    speed : float
+        Cam speed [rad/s].
+    follower_kind : str
+        ``"knife"``, ``"roller"`` or ``"flat"``.
+    follower_mass : float
+        Follower mass [kg].
+    segments : tuple of MotionSegment
+        The design motion (kind ``"motion"``).
+    eccentricity : float
+        Eccentric disc's offset from the axis [m].
+    disc_radius : float
+        Eccentric disc's radius [m].
+    bore_radius : float
+        Bore radius [m].
+    roller_radius : float
+        Roller radius Rf [m].
+    offset : float
+        Follower offset e from the cam axis [m].
+    spring_rate : float
+        Return spring rate [N/m].
+    spring_preload : float
+        Spring force at the lowest dry position [N].
+    external_load : float
+        Constant load on the follower [N].
+    follower_width : float or None
+        Follower face width [m]; None: the cam's thickness.
+    friction_coefficient : float
+        Friction coefficient at the contact [-].
+    guide_factor : float
+        Guide friction factor G [-] (:func:`fickcam.cam.dynamics.normal_force`).
+    gravity : bool
+        Add the follower's weight to the load.
+    archard_coefficient : float
+        Archard wear coefficient [-].
+    hardness : float or None
+        Hardness of the worn surface [Pa]; None: no wear.
+    follower_modulus : float
+        Follower's Young's modulus [Pa].
+    follower_poisson : float
+        Follower's Poisson's ratio [-].
+    profile : CamProfile or None
+        The cam given by points (kind ``"profile"``).
+    train : tuple or None
+        The elastic follower train: ``("stiffness", k [N/m])``, ``("rod", L [m], d [m])``
+        or ``("lever", L [m], w [m], h [m])``; None: rigid.
+    damping_ratio : float
+        Damping ratio of the train [-].
+    polydyne_speed : float or None
+        Design speed of a polydyne cam [rad/s].
+    arm : Arm or None
+        The swinging arm (:class:`fickcam.cam.arm.Arm`); None: translating follower.
+    clockwise : bool
+        The cam turns clockwise (computed as its mirror image x -> -x).
+    """
 
     kind: str                      # motion | eccentric | profile
     base_circle_radius: float
@@ -50,7 +113,29 @@ class CamDesign:
 @dataclass(frozen=True)
 class CamState:
     """Ageing-time state: cam in-plane strains along x (fibre) and y, roller strain,
-    follower mass (kg), cam surface-layer modulus/Poisson ratio, follower modulus/Poisson."""
+    follower mass (kg), cam surface-layer modulus/Poisson ratio, follower modulus/Poisson.
+
+    Parameters
+    ----------
+    cam_strain_x, cam_strain_y : float
+        Cam plate's in-plane strains along x (fibre) and y [-].
+    roller_strain : float
+        Roller's strain [-].
+    follower_mass : float or None
+        Aged follower mass [kg]; None: the design's.
+    cam_surface_modulus : float
+        Young's modulus of the cam's wet surface layer [Pa].
+    cam_surface_poisson : float
+        Its Poisson's ratio [-].
+    follower_modulus : float or None
+        Aged follower modulus [Pa]; None: the design's.
+    follower_poisson : float or None
+        Aged follower Poisson's ratio [-]; None: the design's.
+    follower_train_modulus : float or None
+        Aged modulus of a rod or lever train [Pa]; None: the design's.
+    arm_strain : float
+        Swinging arm's strain along its length and face offset [-].
+    """
 
     cam_strain_x: float = 0.0
     cam_strain_y: float = 0.0

@@ -28,7 +28,20 @@ TWO_PI = 2.0 * np.pi
 
 
 def rotate(angle, x, y):
-    """R(angle) (x, y), counter-clockwise, vectorised."""
+    """R(angle) (x, y): the point turned counter-clockwise about the origin, vectorised.
+
+    Parameters
+    ----------
+    angle : float or array_like
+        Angle of rotation, counter-clockwise [rad].
+    x, y : float or array_like
+        The point's coordinates [m].
+
+    Returns
+    -------
+    tuple of numpy.ndarray
+        The turned point's x and y [m].
+    """
     c, s = np.cos(angle), np.sin(angle)
     return c * x - s * y, s * x + c * y
 
@@ -59,7 +72,27 @@ def dry_profile(design, segment, psi):
     Knife: W0 = R(-psi) (e, s0 + y); roller: pitch point minus Rf along the outward
     normal (Norton eq. 8.32); flat: W0 = R(-psi) (dy/dpsi, Rb + y) (Norton eq. 8.38);
     eccentric: a circle of radius R about (0, -eccentricity) (Madhukar et
-    al. 2023, Fig. 5.1, lowest follower position at theta = 0)."""
+    al. 2023, Fig. 5.1, lowest follower position at theta = 0).
+
+    Parameters
+    ----------
+    design : CamDesign
+        The dry design (:class:`fickcam.cam.design.CamDesign`), lengths [m].
+    segment : MotionSegment or None
+        The motion segment containing psi; None for the eccentric disc.
+    psi : float or array_like
+        Design cam angle [rad].
+
+    Returns
+    -------
+    tuple of numpy.ndarray
+        W0_x, W0_y [m] and the unit tangent T0_x, T0_y [-].
+
+    References
+    ----------
+    Norton (2012), eqs. 8.32 and 8.38; Madhukar et al. (2023), Fig. 5.1; in full in
+    :mod:`fickcam.cam`.
+    """
     psi = np.asarray(psi, float)
     if design.arm is not None:
         return arm.dry_profile(design.arm, design.follower_kind, design.base_circle_radius,
@@ -85,7 +118,7 @@ def dry_profile(design, segment, psi):
     return wx, wy, tx, ty
 
 
-def aged_contact(design, segment, psi, strain_x, strain_y, roller_radius, arm_strain=0.0):
+def _aged_contact(design, segment, psi, strain_x, strain_y, roller_radius, arm_strain=0.0):
     """(theta, Y) for aged profile points psi: the cam angle at which psi touches the
     follower and the follower height then (pitch point for knife/roller, face for flat;
     a swinging arm's angle from its dry base position, :mod:`fickcam.cam.arm`, whose length
@@ -135,7 +168,7 @@ def _solve_psi(contact, theta_target, guess, steps: int = 30):
     return psi
 
 
-def lobatto(n: int) -> np.ndarray:
+def _lobatto(n: int) -> np.ndarray:
     """Chebyshev-Lobatto points on [-1, 1], increasing."""
     return -np.cos(np.pi * np.arange(n + 1) / n)
 
@@ -144,17 +177,48 @@ def fit_geometric_motion(design, pieces, strain_x, strain_y, roller_radius, node
                          arm_strain: float = 0.0):
     """The aged follower height as Chebyshev series, one per design piece: a tuple of
     ((series and its first three derivatives), theta_start, theta_end), the angle origin,
-    and (lowest, highest) Y over the turn. ``pieces`` are (segment, psi_start, psi_end)."""
+    and (lowest, highest) Y over the turn. ``pieces`` are (segment, psi_start, psi_end).
+
+    Each swollen profile point psi is put where it touches the follower (Newton on the
+    contact angle) at the Chebyshev-Lobatto nodes of its piece, and the height there is
+    fitted by a Chebyshev series of degree ``nodes``.
+
+    Parameters
+    ----------
+    design : CamDesign
+        The dry design, lengths [m].
+    pieces : sequence of tuple
+        (segment, psi_start [rad], psi_end [rad]) per piece (:func:`pieces_of`).
+    strain_x, strain_y : float
+        Swelling strain of the cam plate along its x and y axes [-].
+    roller_radius : float
+        The (aged) roller radius [m].
+    nodes : int
+        Degree of each Chebyshev series.
+    arm_strain : float
+        Swelling strain of a swinging arm's length and face offset [-].
+
+    Returns
+    -------
+    fitted : tuple
+        ((Y, dY/dtheta, d2Y/dtheta2, d3Y/dtheta3 series), theta_start [rad],
+        theta_end [rad]) per piece.
+    origin : float
+        Cam angle where the first piece starts [rad].
+    extremes : tuple of float
+        Lowest and highest Y over the turn: follower height [m], or arm angle [rad] for a
+        swinging arm.
+    """
     lowest, highest = np.inf, -np.inf
     spans = []
     for segment, a, b in pieces:
-        contact = (lambda s, seg=segment: aged_contact(design, seg, s, strain_x, strain_y,
+        contact = (lambda s, seg=segment: _aged_contact(design, seg, s, strain_x, strain_y,
                                                        roller_radius, arm_strain))
         ta, tb = contact(np.array([a, b]))[0]
         spans.append((contact, ta, tb))
     fitted = []
     for contact, ta, tb in spans:
-        t_nodes = ta + (tb - ta) * (lobatto(nodes) + 1) / 2
+        t_nodes = ta + (tb - ta) * (_lobatto(nodes) + 1) / 2
         psi = _solve_psi(contact, t_nodes, t_nodes)  # swelling shifts theta(psi) only slightly
         series = chebyshev.Chebyshev.fit(t_nodes, contact(psi)[1], nodes, domain=[ta, tb])
         fitted.append(((series,) + tuple(series.deriv(k) for k in (1, 2, 3)), ta, tb))
@@ -167,7 +231,23 @@ def fit_geometric_motion(design, pieces, strain_x, strain_y, roller_radius, node
 
 
 def evaluate_geometric_motion(fitted, origin, theta):
-    """(Y, dY/dtheta, d2Y, d3Y) at cam angles ``theta`` from :func:`fit_geometric_motion`."""
+    """(Y, dY/dtheta, d2Y, d3Y) at cam angles ``theta`` from :func:`fit_geometric_motion`.
+
+    Parameters
+    ----------
+    fitted : tuple
+        The per-piece series of :func:`fit_geometric_motion`.
+    origin : float
+        Cam angle where the first piece starts [rad].
+    theta : float or array_like
+        Cam angles, taken modulo 2 pi [rad].
+
+    Returns
+    -------
+    tuple of numpy.ndarray
+        Y [m] and its first three derivatives [m/rad^k] (arm angle [rad] and [rad/rad^k]
+        for a swinging arm).
+    """
     theta = np.mod(np.asarray(theta, float), TWO_PI)
     out = [np.full(theta.shape, np.nan) for _ in range(4)]
     shifted = origin + np.mod(theta - origin, TWO_PI)
@@ -184,14 +264,42 @@ def evaluate_geometric_motion(fitted, origin, theta):
 
 def geometric_motion(design, pieces, strain_x, strain_y, roller_radius, theta, nodes: int = 40):
     """Follower height Y and dY/dtheta, d2Y, d3Y at cam angles ``theta`` for the aged
-    geometry, and (lowest, highest) Y over the turn. ``pieces`` are (segment, psi_start, psi_end)."""
+    geometry, and (lowest, highest) Y over the turn. ``pieces`` are (segment, psi_start, psi_end).
+
+    Parameters
+    ----------
+    design, pieces, strain_x, strain_y, roller_radius
+        As :func:`fit_geometric_motion` takes them: lengths [m], angles [rad], strains [-].
+    theta : float or array_like
+        Cam angles [rad].
+    nodes : int
+        Degree of each Chebyshev series.
+
+    Returns
+    -------
+    motion : tuple of numpy.ndarray
+        Y [m] and its first three derivatives [m/rad^k] (arm angle [rad] for an arm).
+    extremes : tuple of float
+        Lowest and highest Y over the turn [m] ([rad] for an arm).
+    """
     fitted, origin, extremes = fit_geometric_motion(design, pieces, strain_x, strain_y,
                                                     roller_radius, nodes)
     return evaluate_geometric_motion(fitted, origin, theta), extremes
 
 
 def pieces_of(design):
-    """(segment, psi_start, psi_end) for each design segment (one piece for the disc)."""
+    """(segment, psi_start, psi_end) for each design segment (one piece for the disc).
+
+    Parameters
+    ----------
+    design : CamDesign
+        The dry design.
+
+    Returns
+    -------
+    tuple of tuple
+        (MotionSegment or None, psi_start [rad], psi_end [rad]) per piece.
+    """
     if design.kind == "eccentric":
         return ((None, 0.0, TWO_PI),)
     return tuple((s, s.start, s.start + s.span) for s in design.segments)

@@ -123,14 +123,48 @@ def _support_extremes(support, e_y, a, big_b):
 
 def follower_heights(design: CamDesign, state: CamState, theta):
     """(Y, dY/dtheta, d2Y/dtheta2, d3Y/dtheta3), (lowest, highest) Y: the follower's pitch point
-    (face for a flat follower) above the cam axis at cam angles theta (rad)."""
+    (face for a flat follower) above the cam axis at cam angles theta.
+
+    Parameters
+    ----------
+    design : CamDesign
+        The dry design, lengths [m].
+    state : CamState
+        The aged state (strains [-]).
+    theta : float or array_like
+        Cam angles [rad].
+
+    Returns
+    -------
+    motion : tuple of numpy.ndarray
+        Y [m] and dY/dtheta [m/rad], d2Y/dtheta2 [m/rad^2], d3Y/dtheta3 [m/rad^3]; a
+        swinging arm's angle [rad] and its derivatives [rad/rad^k] instead.
+    extremes : tuple of float
+        Lowest and highest Y over the turn [m] ([rad] for an arm).
+    """
     motion, extremes = motion_function(design, state)
     return motion(theta), extremes
 
 
 def motion_function(design: CamDesign, state: CamState):
     """(theta -> (Y, dY, d2Y, d3Y), (lowest, highest) Y): the closed form where it exists,
-    else the aged geometry's spectral fit, made once and evaluated at any angle."""
+    else the aged geometry's spectral fit, made once and evaluated at any angle.
+
+    Parameters
+    ----------
+    design : CamDesign
+        The dry design: its kind, follower and lengths [m].
+    state : CamState
+        The aged state: plate, roller and arm strains [-].
+
+    Returns
+    -------
+    motion : callable
+        theta [rad] -> (Y [m], dY/dtheta [m/rad], d2Y/dtheta2 [m/rad^2],
+        d3Y/dtheta3 [m/rad^3]); a swinging arm's angle [rad] instead of Y.
+    extremes : tuple of float
+        Lowest and highest Y over the turn [m] ([rad] for an arm).
+    """
     if _scales_exactly(design, state):
         return (lambda theta: _closed_form(design, state, theta)[0],
                 _closed_form(design, state, np.zeros(1))[1])
@@ -172,7 +206,18 @@ def _grown_arm(design: CamDesign, strain: float) -> dict:
 
 @functools.lru_cache(maxsize=64)
 def dry_lowest_height(design: CamDesign) -> float:
-    """Lowest follower height of the dry cam: where the spring has its preload."""
+    """Lowest follower height of the dry cam: where the spring has its preload.
+
+    Parameters
+    ----------
+    design : CamDesign
+        The dry design, lengths [m].
+
+    Returns
+    -------
+    float
+        The lowest Y of :func:`follower_heights` for the dry cam [m] ([rad] for an arm).
+    """
     return follower_heights(design, CamState(), np.linspace(0, 2 * np.pi, 8, endpoint=False))[1][0]
 
 
@@ -180,7 +225,22 @@ def working_profile(design: CamDesign, strain_x: float = 0.0, strain_y: float = 
                     n: int = 720):
     """Closed counter-clockwise outline (x, y) of the working profile (m), cam frame as seen
     from the front, last point != first, for the diffusion mesh
-    (:class:`fickcam.diffusion.CamPlate`)."""
+    (:class:`fickcam.diffusion.CamPlate`).
+
+    Parameters
+    ----------
+    design : CamDesign
+        The dry design, lengths [m].
+    strain_x, strain_y : float
+        Swelling strain of the plate along its x and y axes [-].
+    n : int
+        Number of outline points.
+
+    Returns
+    -------
+    tuple of numpy.ndarray
+        The outline's x and y [m].
+    """
     x, y = working_outline(design, strain_x, strain_y, n)
     if design.clockwise:  # mirror back, still counter-clockwise
         return -x[::-1].copy(), y[::-1].copy()
@@ -189,14 +249,43 @@ def working_profile(design: CamDesign, strain_x: float = 0.0, strain_y: float = 
 
 def cam_frame_point(design: CamDesign, theta, x, y):
     """Fixed-frame point (x, y) at cam angle theta in the cam frame, seen from the front:
-    R(-theta) (x, y), mirrored back for a clockwise cam."""
+    R(-theta) (x, y), mirrored back for a clockwise cam.
+
+    Parameters
+    ----------
+    design : CamDesign
+        The design (its turning sense).
+    theta : float or array_like
+        Cam angle [rad].
+    x, y : float or array_like
+        The point in the fixed frame [m].
+
+    Returns
+    -------
+    tuple of numpy.ndarray
+        The point's x and y in the cam frame [m].
+    """
     px, py = rotate(-theta, x, y)
     return (-px if design.clockwise else px), py
 
 
 def write_profile_csv(path, design: CamDesign, strain_x: float = 0.0, strain_y: float = 0.0,
                       n: int = 720):
-    """Write the working profile (cam frame, counter-clockwise) as CSV columns x_m, y_m."""
+    """Write the working profile (cam frame, counter-clockwise) as CSV columns x_m, y_m,
+    through a temporary file renamed into place.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The CSV file to write.
+    design, strain_x, strain_y, n
+        The outline, as :func:`working_profile` takes it (strains [-]).
+
+    Returns
+    -------
+    str or os.PathLike
+        ``path``.
+    """
     from ..store import replaced_atomically
 
     x, y = working_profile(design, strain_x, strain_y, n)

@@ -61,7 +61,26 @@ def cam_response(design: CamDesign, state: CamState, cam_angle) -> Response:
     friction_force (N, sliding friction at the contact), guide_friction_force (N),
     friction_torque (N m), contact_stress (Pa, Hertz p0), subsurface_shear_stress (Pa) and
     subsurface_shear_depth (m) under it, profile_x/profile_y (m, working
-    profile point in contact, cam frame), wear_per_revolution (m)."""
+    profile point in contact, cam frame), wear_per_revolution (m).
+
+    Parameters
+    ----------
+    design : CamDesign
+        The dry design (SI: lengths [m], speed [rad/s], masses [kg], forces [N]).
+    state : CamState
+        The aged state: strains [-], moduli [Pa], follower mass [kg].
+    cam_angle : array_like
+        Cam angles [rad].
+
+    Returns
+    -------
+    Response
+        The variables above, in SI, and the notices (one sentence each).
+
+    References
+    ----------
+    Norton (2012), ch. 8; Chen (1982); in full in :mod:`fickcam.cam`.
+    """
     theta = np.asarray(cam_angle, float)
     omega = design.speed
     mass = design.follower_mass if state.follower_mass is None else state.follower_mass
@@ -131,7 +150,20 @@ def cam_response(design: CamDesign, state: CamState, cam_angle) -> Response:
 
 
 def aged_base_circle(design: CamDesign, state: CamState) -> float:
-    """Smallest radius of the aged cam (a distorted base circle: its smaller semi-axis)."""
+    """Smallest radius of the aged cam (a distorted base circle: its smaller semi-axis).
+
+    Parameters
+    ----------
+    design : CamDesign
+        The dry design, lengths [m].
+    state : CamState
+        The aged state (plate strains [-]).
+
+    Returns
+    -------
+    float
+        The radius [m].
+    """
     if design.kind == "profile":
         return design.profile.radii(state.cam_strain_x, state.cam_strain_y)[0]
     return design.base_circle_radius * (1.0 + min(state.cam_strain_x, state.cam_strain_y))
@@ -139,7 +171,30 @@ def aged_base_circle(design: CamDesign, state: CamState) -> float:
 
 def hertz_contact(design: CamDesign, state: CamState, force, rho, roller):
     """(p0, tau_max, its depth) of the Hertz line contact of the cam (working radius rho)
-    with the roller (radius ``roller``) or flat face; NaN for a knife edge (dynamics module)."""
+    with the roller (radius ``roller``) or flat face; NaN for a knife edge (dynamics module).
+
+    Parameters
+    ----------
+    design : CamDesign
+        The design (follower kind, contact length [m], follower modulus [Pa]).
+    state : CamState
+        The aged state (surface modulus [Pa], Poisson's ratios [-]).
+    force : array_like
+        Normal contact force [N].
+    rho : array_like
+        Radius of curvature of the working profile [m].
+    roller : float
+        Roller radius [m].
+
+    Returns
+    -------
+    tuple of numpy.ndarray
+        Peak pressure p0 [Pa], largest subsurface shear stress [Pa] and its depth [m].
+
+    References
+    ----------
+    The Hertz line contact of :mod:`fickcam.cam.dynamics`, whose sources are cited there.
+    """
     if design.follower_kind == "knife":
         nothing = np.full_like(np.asarray(force, float), np.nan)
         return nothing, nothing, nothing
@@ -169,7 +224,34 @@ def continuous_jump_speed(design: CamDesign, motion, mass: float, theta, d2, hol
     ``motion`` is the aged motion (:func:`motion_function`), ``d2`` and ``holding`` its grid
     values of d2Y/dtheta2 and of the speed-independent holding force; ``holding_of(Y)`` gives
     the holding force (a swinging arm's torque, with ``mass`` its inertia) at any Y
-    (default: the translating follower's spring, preload, load and weight)."""
+    (default: the translating follower's spring, preload, load and weight).
+
+    Parameters
+    ----------
+    design : CamDesign
+        The design (spring rate [N/m], preload [N], external load [N], gravity).
+    motion : callable
+        theta [rad] -> (Y, dY, d2Y, d3Y) of the aged motion (:func:`motion_function`).
+    mass : float
+        Follower mass [kg] (a swinging arm's inertia [kg m^2]).
+    theta : numpy.ndarray
+        The angle grid [rad].
+    d2 : numpy.ndarray
+        d2Y/dtheta2 on the grid [m/rad^2] ([rad/rad^2] for an arm).
+    holding : numpy.ndarray
+        Speed-independent holding force on the grid [N] ([N m] for an arm).
+    holding_of : callable, optional
+        Y -> holding force [N] ([N m]).
+
+    Returns
+    -------
+    float
+        The jump speed [rad/s]; inf where nothing pulls the follower off.
+
+    References
+    ----------
+    Norton (2012), ch. 15 (follower jump); in full in :mod:`fickcam.cam`.
+    """
     on_grid = dyn.jump_speed(mass, d2, holding)
     if not np.isfinite(on_grid) or on_grid == 0.0 or theta.size < 3:
         return on_grid
@@ -195,7 +277,24 @@ def continuous_jump_speed(design: CamDesign, motion, mass: float, theta, d2, hol
 def zoomed_minimum(function, low: float, high: float, points: int = SEARCH_POINTS,
                    rounds: int = SEARCH_ROUNDS) -> float:
     """The smallest value of a vectorised ``function`` on [low, high]: ``points`` + 1 equally
-    spaced values a round, then the two intervals beside the smallest, ``rounds`` times."""
+    spaced values a round, then the two intervals beside the smallest, ``rounds`` times.
+
+    Parameters
+    ----------
+    function : callable
+        Vectorised function of one variable.
+    low, high : float
+        The interval searched [unit of the variable].
+    points : int
+        Intervals per round.
+    rounds : int
+        Number of rounds.
+
+    Returns
+    -------
+    float
+        The smallest value found [unit of the function].
+    """
     best = np.inf
     for _ in range(rounds):
         angles = np.linspace(low, high, points + 1)

@@ -21,7 +21,35 @@ from .fourier import at_angles, correction_motion
 
 PI = math.pi
 
+_LAW_SECTIONS = """
 
+    Parameters
+    ----------
+    x : float or array_like
+        Fraction of the segment, (theta - theta_0)/beta [-].
+
+    Returns
+    -------
+    tuple of numpy.ndarray
+        S, dS/dx, d2S/dx2, d3S/dx3 [-].
+
+    References
+    ----------
+    {}; in full in :mod:`fickcam.cam`.
+    """
+
+
+def _law(reference: str):
+    """Give a motion law the numpydoc sections every law shares (its argument, its
+    results) and its source."""
+    def documented(function):
+        if function.__doc__:  # None under python -OO
+            function.__doc__ = function.__doc__.rstrip() + _LAW_SECTIONS.format(reference)
+        return function
+    return documented
+
+
+@_law('Norton (2012), sec. 8.3; Singh & Sanyal (2017), Table 17')
 def uniform_velocity(x):
     """S = x (Norton sec. 8.3, 'constant velocity'; Singh & Sanyal 2017 Table 17). Infinite
     acceleration at both ends."""
@@ -29,6 +57,7 @@ def uniform_velocity(x):
     return x, np.ones_like(x), np.zeros_like(x), np.zeros_like(x)
 
 
+@_law('Norton (2012), eq. 8.6; Singh & Sanyal (2017), Table 17')
 def simple_harmonic(x):
     """S = (1 - cos pi x)/2 (Norton eq. 8.6; Singh & Sanyal 2017 Table 17 and p. 281)."""
     x = np.asarray(x, float)
@@ -36,6 +65,7 @@ def simple_harmonic(x):
             -PI ** 3 / 2 * np.sin(PI * x))
 
 
+@_law('Norton (2012), eq. 8.7; Singh & Sanyal (2017), Table 17')
 def cycloidal(x):
     """S = x - sin(2 pi x)/(2 pi) (Norton eq. 8.7; Singh & Sanyal 2017 Table 17;
     Yadav et al. 2017 p. 2)."""
@@ -51,11 +81,13 @@ def _polynomial(coefficients, x):
     return poly(x), poly.deriv(1)(x), poly.deriv(2)(x), poly.deriv(3)(x)
 
 
+@_law('Norton (2012), eq. 8.24')
 def polynomial_345(x):
     """S = 10 x^3 - 15 x^4 + 6 x^5 (Norton eq. 8.24)."""
     return _polynomial([0, 0, 0, 10, -15, 6], x)
 
 
+@_law('Norton (2012), eq. 8.25')
 def polynomial_4567(x):
     """S = 35 x^4 - 84 x^5 + 70 x^6 - 20 x^7 (Norton eq. 8.25)."""
     return _polynomial([0, 0, 0, 0, 35, -84, 70, -20], x)
@@ -125,6 +157,7 @@ _MODIFIED_SINE = (
     _Piece(7 / 8, 1.0, 0.0, 0.0, -1.0, _K))
 
 
+@_law('Norton (2012), sec. 8.3')
 def constant_acceleration(x):
     """Parabolic: S = 2 x^2 (x <= 1/2), 1 - 2 (1 - x)^2 (Norton sec. 8.3; Singh & Sanyal
     2017 Table 17, whose second half is misprinted as h[1 - 2{1 - k^2}]). Infinite jerk at
@@ -132,12 +165,14 @@ def constant_acceleration(x):
     return _piecewise(_CONSTANT_ACCELERATION, x)
 
 
+@_law('Norton (2012), eq. 8.15')
 def modified_trapezoidal(x):
     """Modified trapezoid: sine ramps of period 1/2 over x in [0, 1/8], [3/8, 5/8], [7/8, 1]
     and constant acceleration between (Norton eq. 8.15, peak C_a = 4.8881)."""
     return _piecewise(_MODIFIED_TRAPEZOIDAL, x)
 
 
+@_law('Norton (2012), eq. 8.18')
 def modified_sine(x):
     """Modified sine: sine of period 1/2 over [0, 1/8] and [7/8, 1], of period 3/2 between
     (Norton eq. 8.18, peak C_a = 5.5280)."""
@@ -154,7 +189,26 @@ LAW_FUNCTIONS = {f.__name__: f for f in (uniform_velocity, constant_acceleration
 
 @dataclass(frozen=True)
 class MotionSegment:
-    """One segment of the design motion (SI): start angle, span, signed height, law."""
+    """One segment of the design motion (SI): start angle, span, signed height, law.
+
+    Parameters
+    ----------
+    start : float
+        Cam angle where the segment starts [rad].
+    span : float
+        Cam angle the segment spans [rad].
+    height : float
+        Signed lift over the segment: + rise, - return, 0 dwell [m].
+    level : float
+        Follower position at the segment start [m].
+    law : str or None
+        Name of the motion law (a key of ``LAW_FUNCTIONS`` or ``"spline"``); None for a
+        dwell.
+    spline : SplineLaw or None
+        The normalised law of a ``spline`` segment (:mod:`fickcam.cam.spline`).
+    correction : tuple of complex
+        Fourier harmonics of a polydyne correction [m] (:mod:`fickcam.cam.polydyne`).
+    """
 
     start: float
     span: float
@@ -166,7 +220,19 @@ class MotionSegment:
 
 
 def segments_from_spec(specs) -> tuple[MotionSegment, ...]:
-    """Turn scene segments (objects with .angle, .height, .law) into MotionSegments."""
+    """Turn scene segments into :class:`MotionSegment` s laid end to end from 0 rad.
+
+    Parameters
+    ----------
+    specs : sequence of Segment
+        Scene segments with ``.angle`` [rad], ``.height`` [m], ``.law`` and, for a spline,
+        ``.spline``.
+
+    Returns
+    -------
+    tuple of MotionSegment
+        The segments, each starting where the previous one ends, at the level it reached.
+    """
     out, start, level = [], 0.0, 0.0
     for s in specs:
         out.append(MotionSegment(start, float(s.angle), float(s.height), level,
@@ -188,15 +254,28 @@ def _spline_of(spec):
 
 
 def segment_motion(segment: MotionSegment, theta):
-    """(y, y', y'', y''') per radian of cam angle inside one segment (theta in rad), with
-    the segment's polydyne correction when it has one."""
-    law = law_motion(segment, theta)
+    """(y, y', y'', y''') per radian of cam angle inside one segment, with the segment's
+    polydyne correction when it has one.
+
+    Parameters
+    ----------
+    segment : MotionSegment
+        The segment.
+    theta : float or array_like
+        Cam angle, inside the segment [rad].
+
+    Returns
+    -------
+    tuple of numpy.ndarray
+        y [m], dy/dtheta [m/rad], d2y/dtheta2 [m/rad^2], d3y/dtheta3 [m/rad^3].
+    """
+    law = _law_motion(segment, theta)
     if not segment.correction:
         return law
     return tuple(a + b for a, b in zip(law, correction_motion(np.asarray(segment.correction), theta)))
 
 
-def law_motion(segment: MotionSegment, theta):
+def _law_motion(segment: MotionSegment, theta):
     """The segment's own law (no polydyne correction), as :func:`segment_motion`."""
     theta = np.asarray(theta, float)
     if segment.law is None or segment.height == 0.0:
@@ -241,7 +320,7 @@ def follower_motion(segments, theta, corrected: bool = True):
     for k, seg in enumerate(segments):
         last = k == len(segments) - 1
         inside = (theta >= seg.start) & ((theta < seg.start + seg.span) | last)
-        for o, v in zip(out, law_motion(seg, theta[inside])):
+        for o, v in zip(out, _law_motion(seg, theta[inside])):
             o[inside] = v
     if corrected and segments[0].correction:
         coefficients = np.asarray(segments[0].correction)
@@ -271,7 +350,25 @@ def time_derivatives(per_angle, omega):
 def joint_notices(segments, tolerance: float = 1e-9) -> list[str]:
     """Warnings where the motion leaves infinite acceleration (velocity step) or infinite
     jerk (acceleration step) at a segment joint or inside a law (Norton sec. 8.2, the
-    'fundamental law of cam design')."""
+    'fundamental law of cam design').
+
+    Parameters
+    ----------
+    segments : sequence of MotionSegment
+        The motion over one turn.
+    tolerance : float
+        Step in velocity (times the span) or in acceleration (times the span squared)
+        that counts as a jump, relative to the largest lift [-].
+
+    Returns
+    -------
+    list of str
+        One sentence per joint or law with a step; empty when the motion is smooth.
+
+    References
+    ----------
+    Norton (2012), sec. 8.2; in full in :mod:`fickcam.cam`.
+    """
     notices = []
     lift = max(abs(s.height) for s in segments) or 1.0
     n = len(segments)

@@ -32,13 +32,28 @@ from .motion import joint_notices
 
 
 def follower_response(design: CamDesign, state: CamState, cam_angle) -> Response:
-    """:func:`arm_response` for a swinging arm, else :func:`~fickcam.cam.model.cam_response`."""
+    """:func:`arm_response` for a swinging arm, else :func:`~fickcam.cam.model.cam_response`.
+
+    Parameters
+    ----------
+    design : CamDesign
+        The dry design (SI).
+    state : CamState
+        The aged state.
+    cam_angle : array_like
+        Cam angles [rad].
+
+    Returns
+    -------
+    Response
+        The follower's variables (SI) and the notices.
+    """
     if design.arm is not None:
         return arm_response(design, state, cam_angle)
     return cam_response(design, state, cam_angle)
 
 
-def aged_arm(design: CamDesign, state: CamState) -> tuple[geo.Arm, float]:
+def _aged_arm(design: CamDesign, state: CamState) -> tuple[geo.Arm, float]:
     """The arm with its length and face offset grown by the follower's strain along it and
     its inertia by the follower's moisture mass ratio m/m_dry, and its dry base angle."""
     ratio = 1.0 if state.follower_mass is None else state.follower_mass / design.follower_mass
@@ -46,16 +61,16 @@ def aged_arm(design: CamDesign, state: CamState) -> tuple[geo.Arm, float]:
     return replace(grown["arm"], inertia=grown["arm"].inertia * ratio), grown["base"]
 
 
-def arm_contact(design: CamDesign, state: CamState, psi, d1, d2) -> geo.Contact:
+def _arm_contact(design: CamDesign, state: CamState, psi, d1, d2) -> geo.Contact:
     """Contact geometry of the aged arm at arm angles psi from the dry base position."""
-    arm, base = aged_arm(design, state)
+    arm, base = _aged_arm(design, state)
     if design.follower_kind == "flat":
         return geo.face_contact(arm, base, psi, d1, d2)
     return geo.roller_contact(arm, base, design.roller_radius * (1 + state.roller_strain),
                               psi, d1, d2)
 
 
-def holding_torque(arm: geo.Arm, psi):
+def _holding_torque(arm: geo.Arm, psi):
     """Speed-independent torque the cam must supply about the pivot: k_t psi + T_0 + T_load
     (psi from the dry base position, where the spring has its preload)."""
     return arm.spring_rate * psi + arm.spring_preload + arm.load_torque
@@ -69,19 +84,38 @@ def arm_response(design: CamDesign, state: CamState, cam_angle) -> Response:
     design.speed, pressure_angle, radius_of_curvature (working profile),
     pitch_radius_of_curvature, contact_force (N), arm_torque (N m, about the pivot),
     cam_torque (N m), friction_force and friction_torque (sliding flat face), contact_stress,
-    subsurface_shear_stress/depth, profile_x/profile_y (contact point, cam frame)."""
+    subsurface_shear_stress/depth, profile_x/profile_y (contact point, cam frame).
+
+    Parameters
+    ----------
+    design : CamDesign
+        The dry design with its arm (SI: lengths [m], inertia [kg m^2], speed [rad/s]).
+    state : CamState
+        The aged state: cam, roller and arm strains [-], moduli [Pa].
+    cam_angle : array_like
+        Cam angles at which the arm is evaluated [rad].
+
+    Returns
+    -------
+    Response
+        The variables above (SI) and the notices.
+
+    References
+    ----------
+    Norton (2012), sec. 8.6; Chen (1982), ch. 4; in full in :mod:`fickcam.cam`.
+    """
     theta = np.asarray(cam_angle, float)
     omega = design.speed
     motion, (lowest, highest) = motion_function(design, state)
     psi, d1, d2, d3 = motion(theta)
-    arm = aged_arm(design, state)[0]
-    contact = arm_contact(design, state, psi, d1, d2)
+    arm = _aged_arm(design, state)[0]
+    contact = _arm_contact(design, state, psi, d1, d2)
     roller = design.roller_radius * (1 + state.roller_strain)
     notices = joint_notices(design.segments) if design.kind == "motion" else []
     notices += _geometry_notices(design, theta, contact.pressure_angle, contact.pitch_radius,
                                  contact.radius, roller)
 
-    holding = holding_torque(arm, psi)
+    holding = _holding_torque(arm, psi)
     needed = arm.inertia * d2 * omega ** 2 + holding
     with np.errstate(divide="ignore", invalid="ignore"):
         force = needed / contact.lever
@@ -91,7 +125,7 @@ def arm_response(design: CamDesign, state: CamState, cam_angle) -> Response:
                        f"(pressure angle {math.degrees(contact.pressure_angle[stuck[0]]):.4g} deg) "
                        f"at {math.degrees(theta[stuck[0]]):.4g} deg")
     jump = continuous_jump_speed(design, motion, arm.inertia, theta, d2, holding,
-                                 holding_of=lambda angle: holding_torque(arm, angle))
+                                 holding_of=lambda angle: _holding_torque(arm, angle))
     notices += _jump_notices(theta, needed, jump, omega)
     stress, shear, shear_depth = hertz_contact(design, state, force, contact.radius, roller)
     sliding = design.follower_kind == "flat"
@@ -123,7 +157,18 @@ def arm_response(design: CamDesign, state: CamState, cam_angle) -> Response:
 
 def describe_arm(design: CamDesign) -> str:
     """One line for `fickcam check`: the arm, where it sits on the base circle, and the dry
-    design's largest pressure angle and smallest radius of curvature."""
+    design's largest pressure angle and smallest radius of curvature.
+
+    Parameters
+    ----------
+    design : CamDesign
+        The dry design with its arm.
+
+    Returns
+    -------
+    str
+        The line, in mm and degrees.
+    """
     arm = design.arm
     theta = np.radians(np.arange(0.0, 360.0, 0.25))
     v = arm_response(design, CamState(), theta).variables
@@ -138,5 +183,4 @@ def describe_arm(design: CamDesign) -> str:
             f"curvature {np.nanmin(v['radius_of_curvature']) * 1e3:.4g} mm")
 
 
-__all__ = ["aged_arm", "arm_contact", "arm_response", "describe_arm", "follower_response",
-           "holding_torque"]
+__all__ = ["arm_response", "describe_arm", "follower_response"]

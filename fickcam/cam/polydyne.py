@@ -25,7 +25,7 @@ from .fourier import harmonics
 from .train import FINE, Train, transfer
 
 
-def correction_harmonics(segments, train: Train, speed: float) -> np.ndarray:
+def _correction_harmonics(segments, train: Train, speed: float) -> np.ndarray:
     """Harmonics of e - P/k = s - y for the chosen motion ``segments`` at cam speed ``speed``."""
     from .motion import follower_motion
 
@@ -37,7 +37,25 @@ def correction_harmonics(segments, train: Train, speed: float) -> np.ndarray:
 
 def polydyne_design(design, modulus: float | None):
     """``design`` with its segments carrying the polydyne correction, for the train at the
-    as-designed state (dry mass; a rod/lever with the dry modulus ``modulus``)."""
+    as-designed state (dry mass; a rod/lever with the dry modulus ``modulus``).
+
+    Parameters
+    ----------
+    design : CamDesign
+        The design, with its polydyne speed [rad/s].
+    modulus : float or None
+        Dry modulus of the rod or lever [Pa]; None for a train given by its stiffness.
+
+    Returns
+    -------
+    CamDesign
+        The design whose segments carry the correction harmonics [m].
+
+    References
+    ----------
+    Stoddart, D. A. (1953). Polydyne cam design. Machine Design 25.
+    Norton (2012), ch. 15; in full in :mod:`fickcam.cam`.
+    """
     from dataclasses import replace
 
     from .design import CamState
@@ -45,5 +63,5 @@ def polydyne_design(design, modulus: float | None):
 
     state = CamState(follower_train_modulus=modulus)
     train = train_of(design, state, 0.0)
-    coefficients = tuple(correction_harmonics(design.segments, train, design.polydyne_speed))
+    coefficients = tuple(_correction_harmonics(design.segments, train, design.polydyne_speed))
     return replace(design, segments=tuple(replace(s, correction=coefficients) for s in design.segments))

@@ -68,11 +68,11 @@ def worst(design, state=None, step: float = SIZE_STEP) -> tuple[float, float]:
     theta = np.arange(0.0, 2 * math.pi, step)
     v = follower_response(design, state or CamState(), theta).variables
     return (float(np.max(np.abs(v["pressure_angle"]))),
-            smallest_convex_radius(design.follower_kind, v["radius_of_curvature"],
+            _smallest_convex_radius(design.follower_kind, v["radius_of_curvature"],
                                    v["pitch_radius_of_curvature"]))
 
 
-def smallest_convex_radius(kind: str, rho, pitch) -> float:
+def _smallest_convex_radius(kind: str, rho, pitch) -> float:
     """Smallest working radius of curvature where the pitch curve is convex (m); a flat
     follower's profile must be convex everywhere (rho <= 0 is a cusp), a roller's working
     profile has an undercut where rho = rho_pitch - R_f <= 0 on a convex pitch curve."""
@@ -82,11 +82,42 @@ def smallest_convex_radius(kind: str, rho, pitch) -> float:
 
 
 def within(limits: Limits, phi: float, rho: float) -> tuple[bool, bool]:
-    """(pressure angle within its limit, radius of curvature within its limit)."""
+    """(pressure angle within its limit, radius of curvature within its limit).
+
+    Parameters
+    ----------
+    limits : Limits
+        The limits.
+    phi : float
+        Largest |pressure angle| [rad].
+    rho : float
+        Smallest convex working radius of curvature [m].
+
+    Returns
+    -------
+    tuple of bool
+        Whether each meets its limit.
+    """
     return phi <= limits.pressure_angle + 1e-12, rho > 0.0 and rho >= limits.radius_of_curvature
 
 
 def meets(design, limits: Limits, state=None) -> tuple[bool, bool]:
+    """:func:`within` for the worst pressure angle and radius of curvature of ``design``.
+
+    Parameters
+    ----------
+    design : CamDesign
+        The cam.
+    limits : Limits
+        The limits.
+    state : CamState, optional
+        Its aged state; None: dry.
+
+    Returns
+    -------
+    tuple of bool
+        (pressure angle within its limit, radius of curvature within its limit).
+    """
     return within(limits, *worst(design, state))
 
 
@@ -114,7 +145,19 @@ def arm_reach(design) -> tuple[float, float]:
     """(lowest, highest) base circle radius a swinging arm can follow through its swing
     beta (:mod:`fickcam.cam.arm`): a roller needs |d - l| < Rb + Rf and an opening angle
     delta + beta < pi, i.e. (Rb + Rf)^2 < d^2 + l^2 + 2 d l cos(beta) (law of cosines); a
-    flat face needs d cos(beta) > Rb + f."""
+    flat face needs d cos(beta) > Rb + f.
+
+    Parameters
+    ----------
+    design : CamDesign
+        The design with its arm (pivot distance d, length l, face offset f, roller
+        radius Rf [m]; swing [rad]).
+
+    Returns
+    -------
+    tuple of float
+        The lowest and highest base circle radius [m].
+    """
     arm, swing = design.arm, max(np.cumsum([s.height for s in design.segments]))
     d = arm.pivot_distance
     if design.follower_kind == "flat":
@@ -182,10 +225,25 @@ def smallest_base_circle(design, limits: Limits) -> dict[str, float]:
 
 
 def aged_check(ds, limits: Limits, kind: str) -> str:
-    """Whether the last valid ageing time of a (sized) result still meets the limits."""
+    """Whether the last valid ageing time of a (sized) result still meets the limits.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        The result (pressure angle stored in [deg], radii [m], time [d]).
+    limits : Limits
+        The limits.
+    kind : str
+        The follower kind (``"flat"``, ``"roller"``, ``"knife"``).
+
+    Returns
+    -------
+    str
+        One sentence for the user.
+    """
     last = ds.isel(time=int(np.flatnonzero(np.isfinite(ds["base_circle_radius"].values))[-1]))
     phi = math.radians(float(np.nanmax(np.abs(last["pressure_angle"].values))))  # stored in deg
-    rho = smallest_convex_radius(kind, last["radius_of_curvature"].values,
+    rho = _smallest_convex_radius(kind, last["radius_of_curvature"].values,
                                  last["pitch_radius_of_curvature"].values)
     days = float(last["time"])
     ok = all(within(limits, phi, rho))

@@ -47,7 +47,17 @@ class Spline(_Strict):
     """A ``spline`` law: ``points`` [angle within the segment, distance travelled from its
     start] from [0 deg, 0] to [over, rise/return]; ``degree`` (5: C4 inside); the
     derivatives dS/dx, d2S/dx2, ... of the normalised law at the segment's start and end,
-    (degree - 1)/2 each, zero by default (see :mod:`fickcam.cam.spline`)."""
+    (degree - 1)/2 each, zero by default (see :mod:`fickcam.cam.spline`).
+
+    Parameters
+    ----------
+    points : list of tuple
+        (angle within the segment [rad], distance travelled from its start [m]) pairs.
+    degree : int
+        Odd spline degree, 1 to 9.
+    start_derivatives, end_derivatives : list of float, optional
+        dS/dx, d2S/dx2, ... of the normalised law at the start and end [-].
+    """
 
     points: list[tuple[Angle, SignedLength]]
     degree: int = Field(default=5, ge=1, le=9)
@@ -83,7 +93,23 @@ Lift = Annotated[float, BeforeValidator(_lift), AfterValidator(_positive)]
 class Segment(_Strict):
     """One motion segment: ``{dwell: angle}``, ``{rise: length, over: angle, law: name}``
     or ``{return: length, over: angle, law: name}``; a swinging arm's rise and return are
-    angles (``{rise: 15 deg, ...}``; a bare number is m or rad)."""
+    angles (``{rise: 15 deg, ...}``; a bare number is m or rad).
+
+    Parameters
+    ----------
+    dwell : float, optional
+        Angle of a dwell [rad].
+    rise : float, optional
+        Lift of a rise [m] (a swinging arm's: [rad]).
+    return_ : float, optional
+        Fall of a return (scene key ``return``) [m] (a swinging arm's: [rad]).
+    over : float, optional
+        Cam angle of a rise or return [rad].
+    law : str, optional
+        The motion law's name.
+    spline : Spline, optional
+        The points of a ``spline`` law.
+    """
 
     dwell: PositiveAngle | None = None
     rise: Lift | None = None
@@ -141,7 +167,15 @@ class Segment(_Strict):
 
 
 class Eccentric(_Strict):
-    """Circular disc of ``radius`` turning about a point ``eccentricity`` from its centre."""
+    """Circular disc of ``radius`` turning about a point ``eccentricity`` from its centre.
+
+    Parameters
+    ----------
+    eccentricity : float
+        Distance from the disc's centre to the rotation axis [m].
+    radius : float
+        The disc's radius [m].
+    """
 
     eccentricity: Length
     radius: Length
@@ -157,7 +191,19 @@ class Guide(_Strict):
     """Follower stem in a guide bush (Yadav et al. 2017, cited in full in
     :mod:`fickcam.cam`; Rothbart, Cam Design Handbook 2004, ch. 6):
     ``overhang`` l1 from the contact to the near bush end, bush ``length`` l2, stem
-    ``diameter`` d, guide friction coefficient."""
+    ``diameter`` d, guide friction coefficient.
+
+    Parameters
+    ----------
+    friction_coefficient : float
+        Friction coefficient in the bush [-].
+    overhang : float
+        l1, contact to the near bush end [m].
+    length : float
+        l2, the bush's length [m].
+    diameter : float
+        d, the stem's diameter [m].
+    """
 
     friction_coefficient: float = Field(ge=0.0, le=1.0)
     overhang: NonNegativeLength
@@ -167,21 +213,47 @@ class Guide(_Strict):
 
 class Wear(_Strict):
     """Archard wear: dimensionless coefficient K and the cam surface hardness H
-    (wear depth rate = K/H x pressure x sliding speed)."""
+    (wear depth rate = K/H x pressure x sliding speed).
+
+    Parameters
+    ----------
+    archard_coefficient : float
+        K [-].
+    hardness : float
+        H [Pa].
+    """
 
     archard_coefficient: float = Field(ge=0.0)
     hardness: Pressure
 
 
 class Rod(_Strict):
-    """A round follower stem loaded along its axis: k = E pi d^2/(4 L)."""
+    """A round follower stem loaded along its axis: k = E pi d^2/(4 L).
+
+    Parameters
+    ----------
+    length : float
+        L [m].
+    diameter : float
+        d [m].
+    """
 
     length: Length
     diameter: Length
 
 
 class Lever(_Strict):
-    """A cantilever lever loaded at its tip: k = 3 E I/L^3, I = width height^3/12."""
+    """A cantilever lever loaded at its tip: k = 3 E I/L^3, I = width height^3/12.
+
+    Parameters
+    ----------
+    length : float
+        L [m].
+    width : float
+        Width [m].
+    height : float
+        Height, in the direction of the load [m].
+    """
 
     length: Length
     width: Length
@@ -191,7 +263,15 @@ class Lever(_Strict):
 class TrainSection(_Strict):
     """``follower.stiffness`` given by the follower's geometry: exactly one of ``rod`` or
     ``lever``; E is the follower material's aged longitudinal modulus at each ageing time
-    (``follower.modulus`` when the follower has no material)."""
+    (``follower.modulus`` when the follower has no material).
+
+    Parameters
+    ----------
+    rod : Rod, optional
+        A round stem loaded along its axis.
+    lever : Lever, optional
+        A cantilever lever loaded at its tip.
+    """
 
     rod: Rod | None = None
     lever: Lever | None = None
@@ -216,7 +296,43 @@ class Follower(_Strict):
     contact (sliding: knife and flat), ``modulus`` (210 GPa) / ``poisson_ratio`` (0.3)
     used when the follower has no absorbing material, ``guide`` (none). ``stiffness``
     (absent: rigid follower) is the follower train stiffness, N/m or a
-    :class:`TrainSection`; ``damping_ratio`` (0.05) its damping (:mod:`fickcam.cam.train`)."""
+    :class:`TrainSection`; ``damping_ratio`` (0.05) its damping (:mod:`fickcam.cam.train`).
+
+    Parameters
+    ----------
+    kind : {"knife", "roller", "flat"}
+        The follower's contact.
+    roller_radius : float, optional
+        Roller radius [m] (roller only).
+    offset : float
+        Offset of the follower's axis from the cam axis [m].
+    mass : float
+        Follower mass [kg].
+    material : str, optional
+        Material of an absorbing follower (roller or arm).
+    spring_rate : float
+        Return spring rate [N/m].
+    spring_preload : float
+        Spring force at the dry cam's lowest position [N].
+    external_load : float
+        Constant load against the lift [N].
+    width : float, optional
+        Contact length for Hertz [m]; default the cam's thickness.
+    friction_coefficient : float
+        Friction coefficient at the cam contact [-].
+    modulus : float
+        Young's modulus [Pa] when the follower has no absorbing material.
+    poisson_ratio : float
+        Poisson's ratio [-] then.
+    guide : Guide, optional
+        The stem's guide bush.
+    stiffness : float or TrainSection, optional
+        Follower train stiffness [N/m], or the geometry that gives it; absent: rigid.
+    damping_ratio : float
+        Damping ratio of the train [-].
+    arm : SwingingArm, optional
+        A swinging arm instead of a translating follower.
+    """
 
     kind: Literal["knife", "roller", "flat"]
     roller_radius: Length | None = None
@@ -261,7 +377,13 @@ class Follower(_Strict):
 
 class Polydyne(_Strict):
     """``cam.polydyne``: cut the cam so that the elastic follower (``follower.stiffness``)
-    follows the chosen motion at ``speed`` (default: the cam's speed); ``true`` = {}."""
+    follows the chosen motion at ``speed`` (default: the cam's speed); ``true`` = {}.
+
+    Parameters
+    ----------
+    speed : float, optional
+        The design speed [rad/s]; default the cam's.
+    """
 
     speed: AngularSpeed | None = None
 
@@ -275,7 +397,39 @@ class CamSection(_Strict):
     at ``speed`` in ``direction`` (counter_clockwise, seen from the front); the follower moves
     along +y at x = offset, or swings about ``follower.arm.pivot``. A clockwise cam is
     computed as its mirror image x -> -x (a counter-clockwise cam seen from the back), and
-    profile points are mirrored back on output."""
+    profile points are mirrored back on output.
+
+    Parameters
+    ----------
+    material : str
+        The cam plate's material.
+    base_circle_radius : float, optional
+        Base circle radius [m] (a cam given by its motion).
+    thickness : float
+        Plate thickness [m].
+    bore_radius : float
+        Bore radius [m].
+    speed : float
+        Cam speed [rad/s].
+    follower : Follower
+        The follower.
+    motion : list of Segment, optional
+        The design motion over one turn.
+    eccentric : Eccentric, optional
+        An eccentric disc instead of a motion.
+    profile_file : str, optional
+        A CSV or DXF file of profile points instead of a motion.
+    gravity : bool
+        Weight of the follower along its axis, against the lift.
+    wear : Wear, optional
+        Archard wear.
+    elastic : bool
+        Compute the elastic deflection and swelling stress.
+    polydyne : Polydyne, optional
+        Cut the cam for the elastic follower.
+    direction : {"counter_clockwise", "clockwise"}
+        Turning sense, seen from the front.
+    """
 
     material: str
     base_circle_radius: Length | None = None
@@ -301,7 +455,7 @@ class CamSection(_Strict):
     @classmethod
     def _closed_turn(cls, value):
         if value is not None:
-            check_motion(value)
+            _check_motion(value)
         return value
 
     @model_validator(mode="after")
@@ -343,7 +497,7 @@ class CamSection(_Strict):
         return self
 
 
-def check_motion(segments) -> None:
+def _check_motion(segments) -> None:
     """Raise ValueError unless the segments add up to 360 deg and close (rises = returns)."""
     if not segments:
         raise ValueError("motion needs at least one segment")
@@ -365,5 +519,4 @@ def check_motion(segments) -> None:
 
 
 __all__ = ["Angle", "CamSection", "Eccentric", "Follower", "Guide", "LAWS", "Lever", "Rod", "Segment",
-           "SwingingArm", "TrainSection", "Wear", "arm_problems",
-           "check_motion"]
+           "SwingingArm", "TrainSection", "Wear", "arm_problems"]

@@ -161,7 +161,7 @@ def transfer(train: Train, omega: float, n) -> np.ndarray:
     return num / (train.total_stiffness - train.mass * w ** 2 + 1j * w * train.damping)
 
 
-def steady_harmonics(train: Train, omega: float, s_harmonics) -> np.ndarray:
+def _steady_harmonics(train: Train, omega: float, s_harmonics) -> np.ndarray:
     """X_n of the periodic steady state; the constant load shifts the mean (n = 0) only."""
     n = np.arange(len(s_harmonics))
     x = transfer(train, omega, n) * s_harmonics
@@ -172,7 +172,7 @@ def steady_harmonics(train: Train, omega: float, s_harmonics) -> np.ndarray:
 # ------------------------------------------------------------------ start from rest
 
 
-def from_rest(train: Train, omega: float, x_harmonics, s0: float, theta):
+def _from_rest(train: Train, omega: float, x_harmonics, s0: float, theta):
     """(x, x') over the first turn when the mass starts at rest in equilibrium at theta = 0:
     the periodic solution plus the free vibration u = e^{-zeta wn t}(A cos wd t + B sin wd t)
     that makes up the initial difference (superposition; Norton sec. 10.x). zeta < 1."""
@@ -245,10 +245,10 @@ def cycloidal_residual_amplitude(lift: float, rise_time: float, natural_frequenc
 # ------------------------------------------------------------------ jump
 
 
-def lowest_axial_force(train: Train, omega: float, s_harmonics, s_fine, ds_fine):
+def _lowest_axial_force(train: Train, omega: float, s_harmonics, s_fine, ds_fine):
     """Smallest F_c = k (s - x) + c (s' - x') over the fine grid at cam speed omega."""
     size = len(ds_fine)
-    x_harm = steady_harmonics(train, omega, s_harmonics)
+    x_harm = _steady_harmonics(train, omega, s_harmonics)
     deflection = s_fine - on_grid(x_harm, size)
     rate = omega * ds_fine - on_grid(x_harm, size, 1, omega)
     return float(np.min(train.stiffness * deflection + train.damping * rate))
@@ -257,11 +257,32 @@ def lowest_axial_force(train: Train, omega: float, s_harmonics, s_fine, ds_fine)
 def dynamic_jump_speed(train: Train, s_harmonics, s_fine, ds_fine, upper: float) -> float:
     """Lowest cam speed at which the steady-state contact force reaches zero somewhere:
     scan SCAN_SPEEDS speeds up to ``upper``, then Brent on the first sign change. 0 if the
-    follower is not held at rest, inf if it never separates below ``upper``."""
+    follower is not held at rest, inf if it never separates below ``upper``.
+
+    Parameters
+    ----------
+    train : Train
+        The follower train (SI).
+    s_harmonics : numpy.ndarray
+        Harmonics of the cam motion s [m] (:func:`fickcam.cam.fourier.harmonics`).
+    s_fine, ds_fine : numpy.ndarray
+        The cam motion s [m] and ds/dtheta [m/rad] on the fine grid of a turn.
+    upper : float
+        Highest cam speed scanned [rad/s].
+
+    Returns
+    -------
+    float
+        The dynamic jump speed [rad/s].
+
+    References
+    ----------
+    Norton (2012), sec. 15.1-15.3; Koster (1974); in full in :class:`Train`.
+    """
     from scipy.optimize import brentq
 
     def margin(omega):
-        return lowest_axial_force(train, omega, s_harmonics, s_fine, ds_fine)
+        return _lowest_axial_force(train, omega, s_harmonics, s_fine, ds_fine)
 
     if margin(0.0) <= 0.0:
         return 0.0
@@ -278,7 +299,23 @@ def dynamic_jump_speed(train: Train, s_harmonics, s_fine, ds_fine, upper: float)
 
 
 def train_of(design, state, load: float) -> Train:
-    """The follower train of ``design`` at ageing state ``state`` (needs design.train)."""
+    """The follower train of ``design`` at ageing state ``state`` (needs design.train): its
+    stiffness given, or that of a rod or lever of the aged modulus.
+
+    Parameters
+    ----------
+    design : CamDesign
+        The design (train kind and sizes [m], spring rate [N/m], damping ratio [-]).
+    state : CamState
+        The aged state (train modulus [Pa], follower mass [kg]).
+    load : float
+        Constant load on the follower mass [N].
+
+    Returns
+    -------
+    Train
+        The train.
+    """
     kind, *sizes = design.train
     if kind == "stiffness":
         k = sizes[0]
@@ -300,7 +337,25 @@ def _events(design):
 class SteadyState:
     """The train and its periodic steady state at the scene speed, on the fine grid:
     cam motion s (m, from the aged lowest position), ds/dtheta, d2s/dtheta2, the rigid
-    holding force (N), and the harmonics of s and of the mass position x."""
+    holding force (N), and the harmonics of s and of the mass position x.
+
+    Parameters
+    ----------
+    train : Train
+        The follower train.
+    lowest : float
+        Aged lowest follower position, the origin of s [m].
+    s : numpy.ndarray
+        Cam motion [m].
+    ds : numpy.ndarray
+        ds/dtheta [m/rad].
+    d2s : numpy.ndarray
+        d2s/dtheta2 [m/rad^2].
+    holding : numpy.ndarray
+        Rigid holding force (spring, preload, load) [N].
+    s_harmonics, x_harmonics : numpy.ndarray
+        Harmonics of s and of the mass position x [m].
+    """
 
     train: Train
     lowest: float
@@ -312,7 +367,7 @@ class SteadyState:
     x_harmonics: np.ndarray
 
 
-def steady_state(design, state) -> SteadyState:
+def _steady_state(design, state) -> SteadyState:
     """:class:`SteadyState` of ``design`` at ageing state ``state`` (needs design.train)."""
     from . import dynamics as dyn
     from .kinematics import dry_lowest_height, follower_heights
@@ -325,7 +380,7 @@ def steady_state(design, state) -> SteadyState:
     train = train_of(design, state, float(holding[0] - design.spring_rate * (height[0] - lowest)))
     s_harm = harmonics(height - lowest)
     return SteadyState(train, lowest, height - lowest, d1, d2, holding, s_harm,
-                       steady_harmonics(train, design.speed, s_harm))
+                       _steady_harmonics(train, design.speed, s_harm))
 
 
 def dynamic_response(design, state, cam_angle, rigid) -> Response:
@@ -333,13 +388,37 @@ def dynamic_response(design, state, cam_angle, rigid) -> Response:
     from the rigid variables ``rigid`` (pressure angle) of
     :func:`~fickcam.cam.model.cam_response`. Displacements are measured like
     follower_displacement, from the lowest rigid position: the static compression of the
-    train under the load P shows as a constant offset -P/(k + k_s)."""
+    train under the load P shows as a constant offset -P/(k + k_s).
+
+    Parameters
+    ----------
+    design : CamDesign
+        The design (SI; speed [rad/s]).
+    state : CamState
+        The aged state.
+    cam_angle : array_like
+        Cam angles [rad].
+    rigid : Mapping
+        Variables of the rigid follower; its pressure_angle [rad] is used.
+
+    Returns
+    -------
+    Response
+        dynamic_follower_displacement, dynamic_displacement_error,
+        startup_follower_displacement [m], dynamic_contact_force [N], natural_frequency
+        [Hz], follower_train_stiffness [N/m], dynamic_jump_speed [rad/s],
+        residual_vibration [m], minimum_dynamic_contact_force [N], and the notices.
+
+    References
+    ----------
+    Norton (2012), sec. 15.1-15.3; Koster (1974); in full in :class:`Train`.
+    """
     from . import dynamics as dyn
     from .kinematics import follower_heights
 
     theta = np.asarray(cam_angle, float)
     omega = design.speed
-    steady = steady_state(design, state)
+    steady = _steady_state(design, state)
     train, x_harm = steady.train, steady.x_harmonics
     (s, ds, _, _), _ = follower_heights(design, state, theta)
     s = s - steady.lowest
@@ -355,7 +434,7 @@ def dynamic_response(design, state, cam_angle, rigid) -> Response:
         "dynamic_follower_displacement": x,
         "dynamic_displacement_error": x - s,
         "dynamic_contact_force": force,
-        "startup_follower_displacement": from_rest(train, omega, x_harm, steady.s[0], theta)[0],
+        "startup_follower_displacement": _from_rest(train, omega, x_harm, steady.s[0], theta)[0],
         "natural_frequency": train.natural_frequency / (2 * np.pi),
         "follower_train_stiffness": train.stiffness,
         "dynamic_jump_speed": jump,
@@ -384,15 +463,34 @@ def _polydyne_variables(design, theta, x) -> dict:
 def residual_vibrations(design, state, steady: SteadyState | None = None) -> np.ndarray:
     """Free-vibration amplitude (m) at the start of each dwell that follows a rise or return,
     over the first turn from rest (Koster 1974 sec. 3.2 'residual vibration'); empty for an
-    eccentric cam or a motion without such a dwell."""
+    eccentric cam or a motion without such a dwell.
+
+    Parameters
+    ----------
+    design : CamDesign
+        The design (SI).
+    state : CamState
+        The aged state.
+    steady : SteadyState, optional
+        The steady state, if already computed.
+
+    Returns
+    -------
+    numpy.ndarray
+        The amplitude at each such dwell [m].
+
+    References
+    ----------
+    Koster, M. P. (1974). Vibrations of Cam Mechanisms, sec. 3.2. London: Macmillan.
+    """
     from .kinematics import follower_heights
 
     events = np.asarray(_events(design) if design.kind == "motion" else [], float)
     if events.size == 0:
         return np.zeros(0)
-    steady = steady or steady_state(design, state)
+    steady = steady or _steady_state(design, state)
     train = steady.train
-    x, dx = from_rest(train, design.speed, steady.x_harmonics, float(steady.s[0]), events)
+    x, dx = _from_rest(train, design.speed, steady.x_harmonics, float(steady.s[0]), events)
     s_end = follower_heights(design, state, events)[0][0] - steady.lowest
     return free_amplitude(train, x - train.equilibrium(s_end), dx)
 

@@ -3,10 +3,11 @@ the mechanism has its design geometry at an ageing time, or stays closest to it 
 window (minimax); `fickcam compensate` and :func:`fickcam.compensate`.
 
 Public API: :func:`compensate` -> :class:`Compensation`, :func:`write_scene`,
-:func:`dimension_table`, :func:`report`.
+:func:`dimension_table`; the printed report is
+:func:`fickcam.compensation.report.report`.
 """
 from .core import Compensation, Target
-from .report import dimension_table, report, write_scene
+from .report import dimension_table, write_scene
 from .solve import compensate
 
-__all__ = ["Compensation", "Target", "compensate", "dimension_table", "report", "write_scene"]
+__all__ = ["Compensation", "Target", "compensate", "dimension_table", "write_scene"]

@@ -40,7 +40,7 @@ IN_PLANE = ("strain_longitudinal", "strain_transverse")
 ARM_NAMES = {"length": "arm length", "face_offset": "arm face offset"}
 
 
-def given_by_points(section, points: bool = False) -> bool:
+def _given_by_points(section, points: bool = False) -> bool:
     """True when the made cam is written as points: a profile file, a swinging arm's cam,
     or any cam when ``points`` is asked for."""
     return points or section.profile_file is not None or section.follower.arm is not None
@@ -50,10 +50,10 @@ def _segment_name(index: int, segment) -> str:
     return f"{segment.kind} of segment {index + 1}"
 
 
-def shape_targets(section, points: bool = False) -> list[Target]:
+def _shape_targets(section, points: bool = False) -> list[Target]:
     """The cam's own dimensions, in the form it was given in (module docstring), or its
     points when ``points`` is asked for."""
-    if given_by_points(section, points):
+    if _given_by_points(section, points):
         x, y = working_profile(design_from_scene(section), n=PROFILE_POINTS)
         return [Target("cam", PROFILE_NAMES[0], "cam", ("strain_longitudinal",), x),
                 Target("cam", PROFILE_NAMES[1], "cam", ("strain_transverse",), y)]
@@ -71,9 +71,22 @@ def shape_targets(section, points: bool = False) -> list[Target]:
 
 
 def targets(section, points: bool = False) -> list[Target]:
-    """The cam's dimensions (:func:`shape_targets`) and, for an ageing follower, its roller
-    radius and its arm's length or face offset."""
-    found = shape_targets(section, points)
+    """The cam's dimensions (``_shape_targets``) and, for an ageing follower, its roller
+    radius and its arm's length or face offset.
+
+    Parameters
+    ----------
+    section : CamSection
+        The design's validated ``cam`` section.
+    points : bool
+        Compensate the working profile's points (x and y apart) instead of the parameters.
+
+    Returns
+    -------
+    list of Target
+        The dimensions, design values [m].
+    """
+    found = _shape_targets(section, points)
     follower = section.follower
     if follower.kind == "roller" and follower.material:
         found.append(Target("follower", "roller radius", "follower", IN_PLANE,
@@ -92,7 +105,20 @@ def _by_name(targets, made) -> dict:
 
 
 def profile_path(folder: Path, stem: str) -> Path:
-    """Where the made points of a cam given by points go: beside the scene."""
+    """Where the made points of a cam given by points go: beside the scene.
+
+    Parameters
+    ----------
+    folder : pathlib.Path
+        The made scene's folder.
+    stem : str
+        The made scene's file name without suffix.
+
+    Returns
+    -------
+    pathlib.Path
+        ``folder/<stem>_cam_profile.csv``.
+    """
     return Path(folder) / f"{stem}_cam_profile.csv"
 
 
@@ -119,7 +145,28 @@ def write(data: dict, section, targets, made, profile, length_text) -> np.ndarra
     """Put the made cam into the scene's ``cam:`` mapping (in place; ``section`` is the
     design's validated ``cam``): its parameters, or for a cam given by points the file
     name ``profile`` (the points, returned as an
-    (n, 2) array in m, are the caller's to write there); the roller radius and arm."""
+    (n, 2) array in m, are the caller's to write there); the roller radius and arm.
+
+    Parameters
+    ----------
+    data : dict
+        The made scene's YAML mapping, changed in place.
+    section : CamSection
+        The design's validated ``cam`` section.
+    targets : list of Target
+        The dimensions.
+    made : list
+        Their made values [m].
+    profile : str
+        File name of the made points (a cam given by points).
+    length_text : callable
+        Length [m] -> the text the scene stores.
+
+    Returns
+    -------
+    numpy.ndarray or None
+        The made points, shape (n, 2) [m], or None for a parametric cam.
+    """
     cam = data["cam"]
     shape = _by_name(targets, made)
     points = None
@@ -145,7 +192,18 @@ def write(data: dict, section, targets, made, profile, length_text) -> np.ndarra
 
 
 def profile_radii(comp) -> list[tuple]:
-    """Table rows of a cam given by points: its smallest and largest radius and extents."""
+    """Table rows of a cam given by points: its smallest and largest radius and extents.
+
+    Parameters
+    ----------
+    comp : Compensation
+        The compensation: design and made profile points [m].
+
+    Returns
+    -------
+    list of tuple
+        (group, name, design [m], made [m]) rows; empty for a parametric cam.
+    """
     shape = {t.name: (t.design, m) for t, m in zip(comp.targets, comp.made)
              if t.name in PROFILE_NAMES}
     if len(shape) < 2:
@@ -159,7 +217,20 @@ def profile_radii(comp) -> list[tuple]:
 
 
 def design_entry(section: dict, targets) -> dict:
-    """The ``design:`` entry of a compensated scene: the design's shape (and roller)."""
+    """The ``design:`` entry of a compensated scene: the design's shape (and roller).
+
+    Parameters
+    ----------
+    section : dict
+        The design scene's ``cam`` mapping.
+    targets : list of Target
+        The dimensions compensated.
+
+    Returns
+    -------
+    dict
+        The entry, lengths as the scene gives them.
+    """
     from ..scene import CAM_SHAPE_KEYS
 
     entry = {key: section[key] for key in CAM_SHAPE_KEYS if key in section}
@@ -174,7 +245,22 @@ def design_entry(section: dict, targets) -> dict:
 
 
 def made_outline(data: dict, base_dir: Path, points: int):
-    """(x, y) in m of the made cam's dry working profile, from the made scene mapping."""
+    """(x, y) of the made cam's dry working profile, from the made scene mapping.
+
+    Parameters
+    ----------
+    data : dict
+        The made scene's YAML mapping.
+    base_dir : pathlib.Path
+        The folder its relative paths start from.
+    points : int
+        Number of outline points.
+
+    Returns
+    -------
+    tuple of numpy.ndarray
+        x and y [m].
+    """
     section = scene_from(data, base_dir, "<compensated scene>").model.cam
     return working_profile(design_from_scene(section), n=points)
 
@@ -185,7 +271,18 @@ ANISOTROPY = 0.1
 
 
 def anisotropy_note(comp) -> list[str]:
-    """A line when a cam made in its parameters swells anisotropically over the life."""
+    """A line when a cam made in its parameters swells anisotropically over the life.
+
+    Parameters
+    ----------
+    comp : Compensation
+        The compensation: its run as designed (in-plane strains [-]).
+
+    Returns
+    -------
+    list of str
+        The line, or nothing.
+    """
     if comp.before is None or "cam" not in getattr(comp.before, "part", []) or \
             any(t.name in PROFILE_NAMES for t in comp.targets) or \
             not any(t.group == "cam" for t in comp.targets):

@@ -41,7 +41,21 @@ WINDOW_POINTS = 33
 class Target:
     """A dimension (or an array of profile coordinates) that swells with one part's strain:
     ``part`` (result part), ``strains`` (result variables averaged into the strain that
-    acts on it), ``group``/``name`` (table row), ``design`` (m)."""
+    acts on it), ``group``/``name`` (table row), ``design`` (m).
+
+    Parameters
+    ----------
+    group : str
+        The table group (a part or link name).
+    name : str
+        The dimension's name in the table.
+    part : str
+        The result part whose strain acts on the dimension.
+    strains : tuple of str
+        Result variables averaged into that strain.
+    design : float or numpy.ndarray
+        The design value(s) [m].
+    """
 
     group: str
     name: str
@@ -55,7 +69,38 @@ class Compensation:
     """What :func:`fickcam.compensate` found: the made value of every target (m), the
     ageing times it was made for, the iterations the fixed point took, the scene (YAML
     data, as designed) that makes it, and the runs of the design (``before``) and of the
-    made scene (``after``) at the ``check`` times (s) across the ``life`` asked about."""
+    made scene (``after``) at the ``check`` times (s) across the ``life`` asked about.
+
+    Parameters
+    ----------
+    targets : list of Target
+        The dimensions compensated.
+    made : list
+        The made (dry) value of each target [m].
+    times : numpy.ndarray
+        Ageing times made for: [T] or the window's grid [s].
+    iterations : int
+        Fixed-point iterations taken.
+    scene_data : dict
+        The made scene's YAML mapping.
+    residual : list of float
+        Largest |L_made (1 + eps) - L_design| per target over the window [m].
+    scene : Scene, optional
+        The design scene.
+    life : tuple of float
+        Start and end of the life asked about [s].
+    check : numpy.ndarray, optional
+        Ageing times of ``before`` and ``after`` [s].
+    before, after : xarray.Dataset, optional
+        Runs of the design and of the made scene.
+    asked : object, optional
+        What was asked, when the life was widened to keep the limits.
+
+    References
+    ----------
+    Singh & Sanyal (2016), eqs. 11-14; Singh & Sanyal (2017), p. 281; in full in
+    :mod:`fickcam.materials`.
+    """
 
     targets: list[Target]
     made: list
@@ -91,30 +136,85 @@ class Compensation:
 
 
 def part_strain(ds, target: Target) -> np.ndarray:
-    """The strain acting on ``target`` at every ageing time of a result (mean of its variables)."""
+    """The strain acting on ``target`` at every ageing time of a result (mean of its variables).
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        A result with a ``part`` dimension.
+    target : Target
+        The dimension.
+
+    Returns
+    -------
+    numpy.ndarray
+        The strain eps(t) [-].
+    """
     values = [ds[name].sel(part=target.part).values for name in target.strains]
     return np.mean(values, axis=0)
 
 
-def midrange(strain: np.ndarray) -> float:
+def _midrange(strain: np.ndarray) -> float:
     """(eps_min + eps_max) / 2: the minimax strain of a window (one time: that strain)."""
     return 0.5 * (float(np.min(strain)) + float(np.max(strain)))
 
 
 def made_value(design, strain: np.ndarray):
-    """L_made = L_design / (1 + eps_mid) (see the module docstring)."""
-    return np.asarray(design) / (1.0 + midrange(strain)) if np.ndim(design) else \
-        float(design) / (1.0 + midrange(strain))
+    """L_made = L_design / (1 + eps_mid), eps_mid the middle of the strain's range: the
+    minimax made value over the window (see the module docstring).
+
+    Parameters
+    ----------
+    design : float or array_like
+        L_design [m].
+    strain : numpy.ndarray
+        The strain over the window [-].
+
+    Returns
+    -------
+    float or numpy.ndarray
+        L_made [m].
+    """
+    return np.asarray(design) / (1.0 + _midrange(strain)) if np.ndim(design) else \
+        float(design) / (1.0 + _midrange(strain))
 
 
 def residual(design, made, strain: np.ndarray) -> float:
-    """max_t |L_made (1 + eps(t)) - L_design| over the window, largest over an array (m)."""
+    """max_t |L_made (1 + eps(t)) - L_design| over the window, largest over an array.
+
+    Parameters
+    ----------
+    design : float or array_like
+        L_design [m].
+    made : float or array_like
+        L_made [m].
+    strain : numpy.ndarray
+        eps(t) over the window [-].
+
+    Returns
+    -------
+    float
+        The largest deviation [m].
+    """
     grown = np.multiply.outer(1.0 + np.asarray(strain), np.asarray(made))
     return float(np.max(np.abs(grown - np.asarray(design))))
 
 
 def converged(old: list, new: list, targets: list[Target]) -> bool:
-    """True when every made value moved less than the tolerances (module constants)."""
+    """True when every made value moved less than the tolerances (module constants).
+
+    Parameters
+    ----------
+    old, new : list
+        Made values of the previous and this iteration [m].
+    targets : list of Target
+        The dimensions (their design values [m]).
+
+    Returns
+    -------
+    bool
+        Whether the fixed point has converged.
+    """
     for before, after, target in zip(old, new, targets):
         moved = np.max(np.abs(np.asarray(after) - np.asarray(before)))
         change = np.max(np.abs(np.asarray(target.design) - np.asarray(after)))
@@ -137,7 +237,20 @@ def quiet_runs():
 
 def window_times(start: float, end: float, stored: np.ndarray) -> np.ndarray:
     """Ageing times (s) on which a window's strain extremes are found: a regular grid of
-    :data:`WINDOW_POINTS` and the scene's stored times inside the window."""
+    :data:`WINDOW_POINTS` and the scene's stored times inside the window.
+
+    Parameters
+    ----------
+    start, end : float
+        The window [s].
+    stored : numpy.ndarray
+        The scene's stored ageing times [s].
+
+    Returns
+    -------
+    numpy.ndarray
+        Sorted ageing times [s]; ``[start]`` for an empty window.
+    """
     if end <= start:
         return np.array([float(start)])
     inside = stored[(stored >= start) & (stored <= end)]
@@ -145,7 +258,20 @@ def window_times(start: float, end: float, stored: np.ndarray) -> np.ndarray:
 
 
 def relative_to(path: str, old_dir: Path, new_dir: Path) -> str:
-    """A path of the scene (relative to ``old_dir``) rewritten relative to ``new_dir``."""
+    """A path of the scene (relative to ``old_dir``) rewritten relative to ``new_dir``.
+
+    Parameters
+    ----------
+    path : str
+        The path as the scene gives it.
+    old_dir, new_dir : pathlib.Path
+        The folders it was and will be relative to.
+
+    Returns
+    -------
+    str
+        The rewritten path.
+    """
     import os
 
     resolved = (old_dir / path).resolve()
@@ -153,7 +279,27 @@ def relative_to(path: str, old_dir: Path, new_dir: Path) -> str:
 
 
 def scene_from(data: dict, base_dir: Path, file_name: str):
-    """Validate a scene mapping whose relative paths are relative to ``base_dir``."""
+    """Validate a scene mapping whose relative paths are relative to ``base_dir``.
+
+    Parameters
+    ----------
+    data : dict
+        The scene's YAML mapping.
+    base_dir : pathlib.Path
+        The folder its relative paths start from.
+    file_name : str
+        The name its messages give the scene.
+
+    Returns
+    -------
+    Scene
+        The validated scene.
+
+    Raises
+    ------
+    SceneError
+        When the mapping is not a valid scene.
+    """
     from ..scene import parse_yaml, validate_document
 
     doc = parse_yaml(yaml.safe_dump(data, sort_keys=False), file=file_name)

@@ -12,7 +12,18 @@ LONGITUDINAL = ("strain_longitudinal",)
 
 
 def targets(section) -> list[Target]:
-    """Link lengths (crank, coupler, rocker, frame) and the coupler point distance."""
+    """Link lengths (crank, coupler, rocker, frame) and the coupler point distance.
+
+    Parameters
+    ----------
+    section : LinkageSection
+        The design's validated ``linkage`` section.
+
+    Returns
+    -------
+    list of Target
+        The dimensions, design values [m].
+    """
     found = [Target(link, "length", link, LONGITUDINAL, float(getattr(section, link)))
              for link in LINKS]
     if section.coupler_point.distance > 0:
@@ -22,7 +33,19 @@ def targets(section) -> list[Target]:
 
 
 def write(data: dict, targets: list[Target], made: list, length_text) -> None:
-    """Put the made values into the scene's ``linkage:`` mapping (in place)."""
+    """Put the made values into the scene's ``linkage:`` mapping (in place).
+
+    Parameters
+    ----------
+    data : dict
+        The made scene's YAML mapping.
+    targets : list of Target
+        The dimensions.
+    made : list
+        Their made values [m].
+    length_text : callable
+        Length [m] -> the text the scene stores.
+    """
     linkage = data["linkage"]
     for target, value in zip(targets, made):
         if target.name == "length":
@@ -34,5 +57,16 @@ def write(data: dict, targets: list[Target], made: list, length_text) -> None:
 
 
 def design_entry(section: dict) -> dict:
-    """The ``design:`` entry of a compensated scene: the design's link lengths and point."""
+    """The ``design:`` entry of a compensated scene: the design's link lengths and point.
+
+    Parameters
+    ----------
+    section : dict
+        The design scene's ``linkage`` mapping.
+
+    Returns
+    -------
+    dict
+        The entry, lengths as the scene gives them.
+    """
     return {key: section[key] for key in LINKS + ("coupler_point",) if key in section}

@@ -24,11 +24,22 @@ DAY = 86400.0
 
 
 def days(seconds: float) -> str:
-    """An ageing time as the user's scenes give them: '182.6 d'."""
+    """An ageing time as the user's scenes give them: '182.6 d'.
+
+    Parameters
+    ----------
+    seconds : float
+        The ageing time [s].
+
+    Returns
+    -------
+    str
+        The time in days, 4 significant digits.
+    """
     return f"{seconds / DAY:.4g} d"
 
 
-def dimension_rows(comp: Compensation) -> list[tuple]:
+def _dimension_rows(comp: Compensation) -> list[tuple]:
     """(group, dimension, design m, made m) per scalar target; a cam given by points
     gives its smallest and largest radius and its extents."""
     from .cam import profile_radii
@@ -39,17 +50,28 @@ def dimension_rows(comp: Compensation) -> list[tuple]:
 
 
 def dimension_table(comp: Compensation) -> str:
-    """The table per part: dimension, design, to make, change in µm and %."""
+    """The table per part: dimension, design, to make, change in µm and %.
+
+    Parameters
+    ----------
+    comp : Compensation
+        The compensation: its targets and made values [m].
+
+    Returns
+    -------
+    str
+        The table (lengths in mm).
+    """
     lines = [f"{'part':<9} {'dimension':<26} {'design mm':>13} {'to make mm':>13} "
              f"{'change µm':>11} {'change %':>9}"]
-    for group, name, design, made in dimension_rows(comp):
+    for group, name, design, made in _dimension_rows(comp):
         change = made - design
         lines.append(f"{group:<9} {name:<26} {design * 1e3:13.6f} {made * 1e3:13.6f} "
                      f"{change * 1e6:+11.2f} {change / design * 100:+9.4f}")
     return "\n".join(lines)
 
 
-def when_text(comp: Compensation) -> str:
+def _when_text(comp: Compensation) -> str:
     """'at 60 d' or 'over 0 d to 365 d (minimax, 38 ageing times)'."""
     times = comp.times
     if times.size == 1:
@@ -58,12 +80,25 @@ def when_text(comp: Compensation) -> str:
 
 
 def header(comp: Compensation, scene) -> str:
-    """One line: what was compensated for and how the fixed point went."""
+    """One line: what was compensated for and how the fixed point went.
+
+    Parameters
+    ----------
+    comp : Compensation
+        The compensation: when it was made for and its iterations.
+    scene : Scene
+        The design scene (its name).
+
+    Returns
+    -------
+    str
+        The line.
+    """
     return (f"{scene.name}: dry dimensions at the reference temperature to make, "
-            f"{when_text(comp)}; fixed point settled after {comp.iterations} iteration(s)")
+            f"{_when_text(comp)}; fixed point settled after {comp.iterations} iteration(s)")
 
 
-def residual_lines(comp: Compensation) -> list[str]:
+def _residual_lines(comp: Compensation) -> list[str]:
     """For a window: the largest deviation left on each target (m -> µm)."""
     if comp.times.size == 1:
         return []
@@ -77,7 +112,20 @@ def residual_lines(comp: Compensation) -> list[str]:
 
 
 def worst(ratio: np.ndarray, times: np.ndarray) -> tuple[float, float]:
-    """(largest limit ratio, the ageing time of it) over a run's times; NaN where unknown."""
+    """(largest limit ratio, the ageing time of it) over a run's times; NaN where unknown.
+
+    Parameters
+    ----------
+    ratio : numpy.ndarray
+        Limit ratio at each time (1 at the limit) [-].
+    times : numpy.ndarray
+        The ageing times [s].
+
+    Returns
+    -------
+    tuple of float
+        The largest ratio [-] and its time [s].
+    """
     if not np.isfinite(ratio).any():
         return math.nan, math.nan
     k = int(np.nanargmax(ratio))
@@ -86,7 +134,20 @@ def worst(ratio: np.ndarray, times: np.ndarray) -> tuple[float, float]:
 
 def out_of_spec_spans(ratio: np.ndarray, times: np.ndarray) -> list[str]:
     """Each stretch of ageing times out of spec (ratio above 1): 'at 0 d, back in spec by
-    7 d', 'from 30 d to 90 d, back in spec by 120 d', 'from 300 d to the end'."""
+    7 d', 'from 30 d to 90 d, back in spec by 120 d', 'from 300 d to the end'.
+
+    Parameters
+    ----------
+    ratio : numpy.ndarray
+        Limit ratio at each time [-].
+    times : numpy.ndarray
+        The ageing times [s].
+
+    Returns
+    -------
+    list of str
+        One phrase per stretch.
+    """
     above = ratio > 1.0
     spans = []
     k = 0
@@ -118,7 +179,18 @@ def _cell(times: np.ndarray, ratio: np.ndarray) -> str:
 
 def limit_lines(comp: Compensation) -> list[str]:
     """The scene's limits over the life: worst ratio (1 at the limit), when, and whether
-    it holds, as designed and as compensated."""
+    it holds, as designed and as compensated.
+
+    Parameters
+    ----------
+    comp : Compensation
+        The compensation (its runs before and after).
+
+    Returns
+    -------
+    list of str
+        The lines.
+    """
     from ..limits import stored_limits
 
     if "limit_ratio" not in comp.before:
@@ -149,7 +221,7 @@ def _failures(comp: Compensation, ds, brief: bool = False) -> list[str]:
     return found
 
 
-def worse_line(comp: Compensation) -> list[str]:
+def _worse_line(comp: Compensation) -> list[str]:
     """'further out of spec than as designed at 2 of 6 ageing times (0 d, 7 d)', by the
     largest limit ratio at each time; nothing where compensation never makes it worse."""
     names = comp.after.limit.values
@@ -163,7 +235,7 @@ def worse_line(comp: Compensation) -> list[str]:
             f"{times.size} ageing times ({', '.join(days(t) for t in times[worse])})"]
 
 
-def advice_lines(comp: Compensation, scene) -> list[str]:
+def _advice_lines(comp: Compensation, scene) -> list[str]:
     """What the limits say about the compensation asked for, and what to do instead."""
     if "limit_ratio" not in comp.after:
         return []
@@ -171,12 +243,12 @@ def advice_lines(comp: Compensation, scene) -> list[str]:
     failures = _failures(comp, comp.after)
     lines = []
     if comp.asked is not None:
-        lines.append(f"--keep-limits: compensating {when_text(comp.asked)} broke "
+        lines.append(f"--keep-limits: compensating {_when_text(comp.asked)} broke "
                      + ", ".join(_failures(comp.asked, comp.asked.after, brief=True))
                      + f"; made for the whole life, {life}, instead")
     if not failures:
         return lines + [f"every limit holds from {life} as compensated"]
-    lines += ["as compensated: " + "; ".join(failures)] + worse_line(comp)
+    lines += ["as compensated: " + "; ".join(failures)] + _worse_line(comp)
     if comp.times.size == 1:
         lines.append(f"Compensating at one time cannot hold the part from delivery on. Make it "
                      f"for its whole life instead (minimax: closest to the design over it):\n"
@@ -190,7 +262,7 @@ def advice_lines(comp: Compensation, scene) -> list[str]:
     return lines
 
 
-def largest_deviation(ds, name: str) -> np.ndarray | None:
+def _largest_deviation(ds, name: str) -> np.ndarray | None:
     """Largest |value - design value| over the cycle at each ageing time (stored unit;
     :func:`fickcam.query.drift` against the result's as-designed state, which for a
     compensated scene is its ``design:``); the coupler point is the distance between the
@@ -208,7 +280,7 @@ def largest_deviation(ds, name: str) -> np.ndarray | None:
     return np.nanmax(np.abs(change), axis=-1)
 
 
-def shown_times(comp: Compensation) -> np.ndarray:
+def _shown_times(comp: Compensation) -> np.ndarray:
     """The ageing times (s) the drift table shows: the scene's inside the life, its ends
     and the ends of the compensation."""
     from ..simulate import ageing_times, scene_environment
@@ -219,19 +291,19 @@ def shown_times(comp: Compensation) -> np.ndarray:
     return np.unique(np.concatenate([inside, np.array(comp.life), comp.times[[0, -1]]]))
 
 
-def drift_lines(comp: Compensation) -> list[str]:
+def _drift_lines(comp: Compensation) -> list[str]:
     """The drift of the key outputs from the design, before and after compensation."""
     columns = []
     for name, label, scale, unit in KEY_OUTPUTS:
-        old = largest_deviation(comp.before, name)
+        old = _largest_deviation(comp.before, name)
         if old is not None:
-            new = largest_deviation(comp.after, name)
+            new = _largest_deviation(comp.after, name)
             columns.append((f"{label} {unit}", old * scale, new * scale))
     if not columns:
         return []
     lines = ["largest deviation from the design over the cycle (before -> after compensation):",
              f"  {'time':>9}  " + "  ".join(f"{title:>26}" for title, _, _ in columns)]
-    for k in np.flatnonzero(np.isin(comp.check, shown_times(comp))):
+    for k in np.flatnonzero(np.isin(comp.check, _shown_times(comp))):
         cells = "  ".join(f"{old[k]:12.4g} -> {new[k]:10.4g}" for _, old, new in columns)
         lines.append(f"  {days(comp.check[k]):>9}  {cells}")
     return lines
@@ -239,11 +311,24 @@ def drift_lines(comp: Compensation) -> list[str]:
 
 def report(comp: Compensation, scene) -> str:
     """Everything `fickcam compensate` prints before the files it wrote (no runs: it reads
-    the runs the compensation made)."""
+    the runs the compensation made).
+
+    Parameters
+    ----------
+    comp : Compensation
+        The compensation, with its runs as designed and as made.
+    scene : Scene
+        The design scene (its name and limits).
+
+    Returns
+    -------
+    str
+        The report.
+    """
     from .cam import anisotropy_note
 
-    lines = [header(comp, scene), dimension_table(comp)] + residual_lines(comp) + \
-        limit_lines(comp) + advice_lines(comp, scene) + anisotropy_note(comp) + drift_lines(comp)
+    lines = [header(comp, scene), dimension_table(comp)] + _residual_lines(comp) + \
+        limit_lines(comp) + _advice_lines(comp, scene) + anisotropy_note(comp) + _drift_lines(comp)
     return "\n".join(lines)
 
 
@@ -252,7 +337,24 @@ def report(comp: Compensation, scene) -> str:
 
 def scene_text(comp: Compensation, scene, data: dict, folder: Path) -> str:
     """The compensated scene's YAML: the made dimensions, ``design:`` the drawing's intent,
-    paths relative to ``folder``, the table and the limits as comments."""
+    paths relative to ``folder``, the table and the limits as comments.
+
+    Parameters
+    ----------
+    comp : Compensation
+        The compensation (the table and limits written as comments).
+    scene : Scene
+        The design scene (its name, description and folder).
+    data : dict
+        The made scene mapping (changed in place: name, outputs, paths).
+    folder : pathlib.Path
+        The folder the scene is written to.
+
+    Returns
+    -------
+    str
+        The YAML text.
+    """
     environment = data.get("environment") or {}
     if isinstance(environment.get("history_file"), str) and ":" not in environment["history_file"]:
         environment["history_file"] = relative_to(environment["history_file"], scene.base_dir,
@@ -261,7 +363,7 @@ def scene_text(comp: Compensation, scene, data: dict, folder: Path) -> str:
     if isinstance(shape.get("profile_file"), str):
         shape["profile_file"] = relative_to(shape["profile_file"], scene.base_dir, folder)
     data["name"] = f"{scene.name}-compensated"
-    data["description"] = f"{scene.model.description} (compensated {when_text(comp)})".strip()
+    data["description"] = f"{scene.model.description} (compensated {_when_text(comp)})".strip()
     outputs = dict(data.get("outputs") or {})
     outputs["file"] = f"outputs/{data['name']}.h5"
     data["outputs"] = outputs
@@ -285,7 +387,18 @@ def _drawing_writer(data: dict, points, base_dir: Path, path: Path):
 
 def write_scene(comp: Compensation, scene, path, *, profile=None, plot=None) -> Path:
     """Write the compensated scene and what goes with it (:func:`write_files`); returns the
-    scene's path."""
+    scene's path.
+
+    Parameters
+    ----------
+    comp, scene, path, profile, plot
+        As :func:`write_files` takes them.
+
+    Returns
+    -------
+    pathlib.Path
+        The scene's path.
+    """
     return write_files(comp, scene, path, profile=profile, plot=plot)[0]
 
 
@@ -294,7 +407,26 @@ def write_files(comp: Compensation, scene, path, *, profile=None, plot=None) -> 
     ``<stem>_cam_profile.csv``), and when asked the made cam's profile (``profile``, .csv
     or .dxf) and the drift against the bands (``plot``, PNG); all together through
     temporary files and renames, so that nothing is written if one fails. Returns the
-    paths written, the scene's first."""
+    paths written, the scene's first.
+
+    Parameters
+    ----------
+    comp : Compensation
+        The compensation (its made scene mapping, targets and made values).
+    scene : Scene
+        The design scene, as designed.
+    path : str or pathlib.Path
+        The scene file to write.
+    profile : str or pathlib.Path, optional
+        Also write the made cam's profile here (.csv or .dxf).
+    plot : str or pathlib.Path, optional
+        Also draw the drift against the bands here (PNG).
+
+    Returns
+    -------
+    list of pathlib.Path
+        The paths written, the scene's first.
+    """
     from ..store import replaced_together
     from .cam import profile_path
     from .solve import write_made, write_points

@@ -40,7 +40,20 @@ log = logging.getLogger(__name__)
 
 
 def length_text(value: float, digits: int = 6) -> str:
-    """A length for the written scene in mm, to the nanometre (``digits`` decimals of mm)."""
+    """A length for the written scene in mm, to the nanometre (``digits`` decimals of mm).
+
+    Parameters
+    ----------
+    value : float
+        The length [m].
+    digits : int
+        Decimals of the millimetres.
+
+    Returns
+    -------
+    str
+        E.g. ``"12.345678 mm"``.
+    """
     return f"{value * 1e3:.{digits}f} mm"
 
 
@@ -60,7 +73,22 @@ def _targets(scene, points: bool) -> list:
 def with_design(data: dict, design: dict, targets: list) -> dict:
     """The made scene mapping with its ``design:`` section (``design`` is the design's
     mapping): what its as-designed values, drift and limits are measured against; placed
-    after the mechanism sections."""
+    after the mechanism sections.
+
+    Parameters
+    ----------
+    data : dict
+        The made scene mapping.
+    design : dict
+        The design scene mapping.
+    targets : list of Target
+        The dimensions compensated.
+
+    Returns
+    -------
+    dict
+        A new mapping with the ``design:`` section.
+    """
     from . import cam, linkage
 
     entry = {}
@@ -80,7 +108,26 @@ def with_design(data: dict, design: dict, targets: list) -> dict:
 def write_made(data: dict, scene, targets: list, made: list, profile: Path):
     """(a copy of the scene mapping ``data`` (as designed) with the made dimensions and a
     ``design:`` section, the made cam's points or None): a cam given by points names
-    ``profile``, where the caller writes its points."""
+    ``profile``, where the caller writes its points.
+
+    Parameters
+    ----------
+    data : dict
+        The scene mapping as designed (not changed).
+    scene : Scene
+        The design scene.
+    targets : list of Target
+        The dimensions.
+    made : list
+        Their made values [m].
+    profile : pathlib.Path
+        File name of the made cam's points.
+
+    Returns
+    -------
+    tuple
+        (the made scene mapping, the made points (n, 2) [m] or None).
+    """
     design, data = data, copy.deepcopy(data)
     cam_part = [(t, m) for t, m in zip(targets, made) if t.group in ("cam", "follower")]
     link_part = [(t, m) for t, m in zip(targets, made) if t.group not in ("cam", "follower")]
@@ -97,13 +144,26 @@ def write_made(data: dict, scene, targets: list, made: list, profile: Path):
 
 
 def write_points(path, points: np.ndarray) -> Path:
-    """A made cam's points (m) as the profile CSV a scene reads (mm, units in the header)."""
+    """A made cam's points as the profile CSV a scene reads (mm, units in the header).
+
+    Parameters
+    ----------
+    path : str or pathlib.Path
+        The CSV file.
+    points : numpy.ndarray
+        The points, shape (n, 2) [m].
+
+    Returns
+    -------
+    pathlib.Path
+        The path written.
+    """
     from ..cam.profile import write_profile_csv
 
     return write_profile_csv(path, points[:, 0], points[:, 1])
 
 
-def scene_at(data: dict, base_dir: Path, times: np.ndarray):
+def _scene_at(data: dict, base_dir: Path, times: np.ndarray):
     """The scene mapping validated with ageing ``times`` (s) only, fields off, no file."""
     data = copy.deepcopy(data)
     outputs = dict(data.get("outputs") or {})
@@ -113,14 +173,14 @@ def scene_at(data: dict, base_dir: Path, times: np.ndarray):
     return scene_from(data, base_dir, "<compensation>")
 
 
-def run_at(data: dict, base_dir: Path, times: np.ndarray, accuracy, diffusions=None,
-           cache=None):
+def _run_at(data: dict, base_dir: Path, times: np.ndarray, accuracy, diffusions=None,
+            cache=None):
     """The scene mapping run at ageing ``times`` (s) only, fields off, no file;
     ``diffusions``: diffusion results already solved at ``times`` (:func:`part_states`);
     ``cache``: the compensation's ``diffusion.RunCache`` (its runs share it)."""
     from ..simulate import run
 
-    ds = run(scene_at(data, base_dir, times), accuracy=accuracy, diffusions=diffusions,
+    ds = run(_scene_at(data, base_dir, times), accuracy=accuracy, diffusions=diffusions,
              cache=cache)
     if ds.sizes["time"] != len(times):
         raise FickcamError("compensation: a run did not keep the ageing times it was given")
@@ -158,7 +218,7 @@ def part_states(data: dict, base_dir: Path, times: np.ndarray, accuracy, names: 
     from ..parts import build_parts, part_values
     from ..simulate import age_part, diffusion_options, scene_environment
 
-    scene = scene_at(data, base_dir, times)
+    scene = _scene_at(data, base_dir, times)
     environment = scene_environment(scene)
     options = diffusion_options(scene, accuracy, cache=cache)
     elastic = elastic_parts(scene.model)
@@ -190,7 +250,7 @@ def diffusions_for(data: dict, base_dir: Path, times: np.ndarray, by_name: dict)
     from ..elastic.parts import elastic_parts
     from ..parts import build_parts
 
-    scene = scene_at(data, base_dir, times)
+    scene = _scene_at(data, base_dir, times)
     elastic = elastic_parts(scene.model)
     return {(part.geometry, part.material_name, part.name in elastic): by_name[part.name]
             for part in build_parts(scene) if by_name.get(part.name) is not None}
@@ -205,7 +265,7 @@ def _seconds(value) -> float:
         raise InputError(f"compensation time: {exc}") from None
 
 
-def compensation_times(scene, at, over) -> tuple[np.ndarray, tuple[float, float]]:
+def _compensation_times(scene, at, over) -> tuple[np.ndarray, tuple[float, float]]:
     """([T] for ``at`` or the window grid for ``over``, the life asked about: the window,
     or delivery to the end of the history for ``at``), s; refuses times outside the
     history."""
@@ -227,7 +287,7 @@ def compensation_times(scene, at, over) -> tuple[np.ndarray, tuple[float, float]
             (seconds[0], seconds[1]))
 
 
-def check_times(scene, times: np.ndarray, life: tuple[float, float], *, plot: bool = False,
+def _check_times(scene, times: np.ndarray, life: tuple[float, float], *, plot: bool = False,
                 wide: bool = False) -> np.ndarray:
     """The ageing times (s) of every run (module docstring): the scene's ageing times
     inside ``life``, its ends and ``times``; ``plot``: the scene's ageing times over the
@@ -264,8 +324,8 @@ def settles_next(previous: list, made: list, new: list, targets: list) -> bool:
     return converged(new, predicted, targets)
 
 
-def fixed_point(scene, data: dict, targets: list, times: np.ndarray, check: np.ndarray,
-                start, accuracy, cache=None):
+def _fixed_point(scene, data: dict, targets: list, times: np.ndarray, check: np.ndarray,
+                 start, accuracy, cache=None):
     """(made values, the run of the made scene at ``check``, iterations, strains at
     ``times``) from ``start``, the run of the design at ``check``.
 
@@ -289,18 +349,18 @@ def fixed_point(scene, data: dict, targets: list, times: np.ndarray, check: np.n
             settled = iteration if iteration and converged(made, new, targets) else 0
             if not settled and iteration and settles_next(previous, made, new, targets):
                 made, settled = new, iteration + 1
-                trial = made_trial(data, scene, targets, made, Path(folder))
+                trial = _made_trial(data, scene, targets, made, Path(folder))
             if settled:
-                after = run_at(trial, scene.base_dir, check, accuracy,
+                after = _run_at(trial, scene.base_dir, check, accuracy,
                                diffusions_for(trial, scene.base_dir, check, solved), cache)
                 return made, after, settled, strains
             previous, made = made, new
-            trial = made_trial(data, scene, targets, made, Path(folder))
+            trial = _made_trial(data, scene, targets, made, Path(folder))
             ds, solved = part_states(trial, scene.base_dir, check, accuracy, names, cache)
     raise FickcamError(f"compensation did not settle in {MAX_ITERATIONS} iterations")
 
 
-def made_trial(data: dict, scene, targets: list, made: list, folder: Path) -> dict:
+def _made_trial(data: dict, scene, targets: list, made: list, folder: Path) -> dict:
     """The scene mapping with the ``made`` dimensions (a cam given by points: its points
     written in ``folder``)."""
     trial, points = write_made(data, scene, targets, made, folder / "trial.csv")
@@ -357,26 +417,26 @@ def compensate(scene, at=None, over=None, *, accuracy: float | None = None,
 
     cache = RunCache()   # every run of this compensation shares it
     scene = load_scene(scene)
-    times, life = compensation_times(scene, at, over)
+    times, life = _compensation_times(scene, at, over)
     if keep_limits and at is None:
         raise InputError("--keep-limits goes with --at (a window is already its own life)")
     wide = keep_limits and bool(scene.limits)
-    check = check_times(scene, times, life, plot=plot, wide=wide)
+    check = _check_times(scene, times, life, plot=plot, wide=wide)
     design = scene.as_designed()  # a compensated scene is compensated anew
     targets = _targets(design, points)
     data = design_data(copy.deepcopy(scene.document.data))
     with quiet_runs():
-        before = run_at(data, scene.base_dir, check, accuracy, cache=cache)
-    made, after, iterations, strains = fixed_point(design, data, targets, times, check, before,
-                                                   accuracy, cache)
+        before = _run_at(data, scene.base_dir, check, accuracy, cache=cache)
+    made, after, iterations, strains = _fixed_point(design, data, targets, times, check, before,
+                                                    accuracy, cache)
     comp = Compensation(targets, made, times, iterations, data, scene=scene, life=life,
                         check=check, before=before, after=after,
                         residual=[residual(t.design, m, s)
                                   for t, m, s in zip(targets, made, strains)])
     if wide and comp.fails():
         window = window_times(*life, check)
-        made, after, iterations, strains = fixed_point(design, data, targets, window, check,
-                                                       before, accuracy, cache)
+        made, after, iterations, strains = _fixed_point(design, data, targets, window, check,
+                                                        before, accuracy, cache)
         comp = comp.widened(window, made, after, iterations,
                             [residual(t.design, m, s) for t, m, s in zip(targets, made, strains)])
     return comp

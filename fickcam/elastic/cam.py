@@ -28,7 +28,7 @@ PROFILE_SAMPLES = 400   # mesh spacing = profile perimeter / this
 GROWTH = 0.2            # row-to-row growth of the graded mesh
 
 
-def ply_stiffness(state: dict, k: int, prefix: str = "") -> np.ndarray:
+def _ply_stiffness(state: dict, k: int, prefix: str = "") -> np.ndarray:
     """Plane-stress Q of the part's ply axes at ageing index k from its material state
     (``prefix`` 'surface_': the wet contact skin)."""
     def at(name):
@@ -37,7 +37,7 @@ def ply_stiffness(state: dict, k: int, prefix: str = "") -> np.ndarray:
                              at("shear_modulus"), at("poisson_ratio"))
 
 
-def cam_plate(design):
+def _cam_plate(design):
     """The dry working profile as a plate held at its bore, and the mesh spacing."""
     from ..cam.kinematics import working_profile
     from ..diffusion.problem.geometry import CamPlate
@@ -52,12 +52,32 @@ def cam_elastic_response(section, cam_state: dict, variables: dict, valid) -> Re
     """elastic_deflection, elastic_stress_tensile, elastic_stress_compressive (time,
     cam_angle) and elastic_lift_error (time) from the cam's
     material state and the rigid cam results (contact force and stress, contact point,
-    pressure angle, follower displacement)."""
+    pressure angle, follower displacement).
+
+    Parameters
+    ----------
+    section : CamSection
+        The scene's ``cam`` section.
+    cam_state : dict
+        The cam's material state over ageing times: bulk and ``surface_`` ply moduli [Pa]
+        and Poisson's ratio [-].
+    variables : dict
+        The rigid cam results over (time, cam_angle): contact_force [N], contact_stress
+        [Pa], profile_x/profile_y [m], pressure angle [rad], follower displacement [m].
+    valid : array_like of bool
+        Which ageing times to solve (the others stay NaN).
+
+    Returns
+    -------
+    Response
+        elastic_deflection [m], elastic_stress_tensile/compressive [Pa] over (time,
+        cam_angle) and elastic_lift_error [m] over time.
+    """
     from ..cam.design import design_from_scene
     from .mesh import planform_mesh
 
     design = design_from_scene(section)
-    plate, spacing = cam_plate(design)
+    plate, spacing = _cam_plate(design)
     mesh = planform_mesh(plate, spacing, GROWTH)
     model = cam_plate_model(mesh.points, mesh.triangles, design.thickness, design.bore_radius, spacing)
     log.debug("cam plate: %d nodes, %d dofs, spacing %.3g mm", len(mesh.points),
@@ -70,8 +90,8 @@ def cam_elastic_response(section, cam_state: dict, variables: dict, valid) -> Re
     for k in np.flatnonzero(np.asarray(valid, bool)):
         contact = np.column_stack([variables["profile_x"][k], variables["profile_y"][k]])
         width = hertz_half_width(force[k], variables["contact_stress"][k], design.contact_length)
-        result = contact_response(model, ply_stiffness(cam_state, k), contact, force[k], width,
-                                  ply_stiffness(cam_state, k, "surface_"))
+        result = contact_response(model, _ply_stiffness(cam_state, k), contact, force[k], width,
+                                  _ply_stiffness(cam_state, k, "surface_"))
         out["elastic_deflection"][k] = result.deflection
         out["elastic_stress_tensile"][k] = result.tensile
         out["elastic_stress_compressive"][k] = result.compressive

@@ -32,7 +32,27 @@ RESOLVED = 3.0
 
 @dataclass
 class CamPlateModel:
-    """The plate's elements, the held bore dofs and the profile's quadrature points."""
+    """The plate's elements, the held bore dofs and the profile's quadrature points.
+
+    Parameters
+    ----------
+    elasticity : PlaneElasticity
+        The plate's plane-stress elements.
+    held : numpy.ndarray
+        The dofs held fixed on the bore.
+    points : numpy.ndarray
+        Quadrature points on the profile facets, shape (q, 2) [m].
+    normals : numpy.ndarray
+        Outward unit normals there, shape (q, 2) [-].
+    lengths : numpy.ndarray
+        Quadrature weights times facet lengths, without the thickness, shape (q,) [m].
+    operator : scipy.sparse matrix
+        Traction at the points [Pa] -> load vector [N], shape (dofs, 2q).
+    strain : scipy.sparse matrix
+        Dofs [m] -> element-centroid strains [-], shape (3 elements, dofs).
+    spacing : float
+        Mesh spacing along the profile [m].
+    """
 
     elasticity: PlaneElasticity
     held: np.ndarray
@@ -47,7 +67,28 @@ class CamPlateModel:
 def cam_plate_model(points, triangles, thickness: float, bore_radius: float, spacing: float,
                     order: int = 2) -> CamPlateModel:
     """Elements of a cam plate mesh held on the bore circle (radius ``bore_radius`` about
-    the origin, the rotation axis)."""
+    the origin, the rotation axis).
+
+    Parameters
+    ----------
+    points : array_like
+        Mesh vertices, shape (n, 2) [m].
+    triangles : array_like
+        Vertex indices, shape (m, 3).
+    thickness : float
+        The plate's thickness [m].
+    bore_radius : float
+        The bore's radius [m].
+    spacing : float
+        Mesh spacing along the profile [m].
+    order : int
+        Lagrange element order (1 or 2).
+
+    Returns
+    -------
+    CamPlateModel
+        The model.
+    """
     pe = PlaneElasticity(points, triangles, thickness, order)
     on_bore = pe.boundary_facets(lambda x, y: np.hypot(x, y) < bore_radius + 0.25 * spacing)
     profile = pe.boundary_facets(lambda x, y: np.hypot(x, y) >= bore_radius + 0.25 * spacing)
@@ -93,9 +134,26 @@ def _nearest(model: CamPlateModel, contact) -> np.ndarray:
 def contact_loads(model: CamPlateModel, contact, force, half_width) -> np.ndarray:
     """Load vectors (dofs, n): at each contact point (n, 2; cam frame) the force F pressing
     along the inward normal, spread as p ~ sqrt(1 - s^2/b^2); b is widened to 1.5 mesh
-    spacings where it is narrower (a point load the mesh cannot resolve)."""
+    spacings where it is narrower (a point load the mesh cannot resolve).
+
+    Parameters
+    ----------
+    model : CamPlateModel
+        The plate.
+    contact : numpy.ndarray
+        Contact points, cam frame, shape (n, 2) [m].
+    force : array_like
+        Contact force at each point [N] (negative taken as 0).
+    half_width : array_like
+        Hertz half-width b at each point [m].
+
+    Returns
+    -------
+    numpy.ndarray
+        Load vectors, shape (dofs, n) [N].
+    """
     direction = -model.normals[_nearest(model, contact)]                      # (n, 2) into the cam
-    width = spread_width(model, half_width)
+    width = _spread_width(model, half_width)
     distance = np.linalg.norm(model.points[None, :, :] - contact[:, None, :], axis=2)
     shape = np.sqrt(np.clip(1.0 - (distance / width[:, None]) ** 2, 0.0, None))  # (n, q)
     total = (shape * model.lengths[None, :]).sum(axis=1) * model.elasticity.thickness
@@ -104,13 +162,13 @@ def contact_loads(model: CamPlateModel, contact, force, half_width) -> np.ndarra
     return np.asarray(model.operator @ traction.T)
 
 
-def spread_width(model: CamPlateModel, half_width) -> np.ndarray:
+def _spread_width(model: CamPlateModel, half_width) -> np.ndarray:
     """The half-width the load is spread over in the plate: b, or ``RESOLVED`` mesh spacings
     where b is narrower."""
     return np.maximum(np.nan_to_num(np.asarray(half_width, float)), RESOLVED * model.spacing)
 
 
-def rotated_compliance(q, angle):
+def _rotated_compliance(q, angle):
     """(a11, a22, a12, a66) of the plane-stress compliance S = Q^-1 in axes turned by
     ``angle`` from x (Jones 1999 eq. 2.97; the coupling terms a16, a26 are not returned)."""
     a = np.linalg.inv(np.asarray(q, float))
@@ -147,7 +205,7 @@ def half_plane_log_coefficient(q, tangent_angle):
     ----------
     S. G. Lekhnitskii, *Anisotropic Plates*, Gordon and Breach, 1968, sec. 28.
     """
-    a_tt, a_nn, a_nt, a66 = rotated_compliance(q, tangent_angle)
+    a_tt, a_nn, a_nt, a66 = _rotated_compliance(q, tangent_angle)
     return np.sqrt(a_nn * (2 * a_nt + a66) + 2 * a_nn * np.sqrt(a_tt * a_nn)) / np.pi
 
 
@@ -183,7 +241,17 @@ def indentation_below_mesh(force, half_width, spread, coefficient, thickness):
 @dataclass(frozen=True)
 class ContactResult:
     """Per cam angle: deflection along the common normal (m, towards the cam), largest
-    tensile and compressive principal stress in the plate (Pa)."""
+    tensile and compressive principal stress in the plate (Pa).
+
+    Parameters
+    ----------
+    deflection : numpy.ndarray
+        Deflection along the common normal, towards the cam [m].
+    tensile : numpy.ndarray
+        Largest tensile principal stress [Pa].
+    compressive : numpy.ndarray
+        Largest compressive (most negative) principal stress [Pa].
+    """
 
     deflection: np.ndarray
     tensile: np.ndarray
@@ -194,7 +262,28 @@ def contact_response(model: CamPlateModel, q, contact, force, half_width,
                      q_skin=None) -> ContactResult:
     """Solve the plate for every contact load with one factorisation of K(Q); a Hertz
     half-width below the mesh adds the half-plane indentation of the wet skin (stiffness
-    ``q_skin``, default Q) between b and the resolved spread."""
+    ``q_skin``, default Q) between b and the resolved spread.
+
+    Parameters
+    ----------
+    model : CamPlateModel
+        The plate.
+    q : array_like
+        Plane-stress stiffness matrix Q of the plate, 3 x 3 [Pa].
+    contact : numpy.ndarray
+        Contact points, cam frame, shape (n, 2) [m].
+    force : numpy.ndarray
+        Contact forces [N].
+    half_width : numpy.ndarray
+        Hertz half-widths [m].
+    q_skin : array_like, optional
+        Q of the wet skin [Pa]; default ``q``.
+
+    Returns
+    -------
+    ContactResult
+        Deflection [m] and principal stresses [Pa] per contact.
+    """
     pe = model.elasticity
     solve = pe.factorise(pe.stiffness(q), model.held)
     n = len(force)
@@ -216,7 +305,7 @@ def contact_response(model: CamPlateModel, q, contact, force, half_width,
     normal = model.normals[_nearest(model, contact)]
     tangent = np.arctan2(normal[:, 0], -normal[:, 1])
     coefficient = half_plane_log_coefficient(q if q_skin is None else q_skin, tangent)
-    deflection += indentation_below_mesh(force, half_width, spread_width(model, half_width),
+    deflection += indentation_below_mesh(force, half_width, _spread_width(model, half_width),
                                          coefficient, pe.thickness)
     return ContactResult(deflection, tensile, compressive)
 

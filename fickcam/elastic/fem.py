@@ -35,7 +35,7 @@ from skfem.helpers import sym_grad
 from ..messages import quieter
 
 
-def quiet_skfem(method):
+def _quiet_skfem(method):
     """``method`` with scikit-fem's logger at WARNING at least while it runs (it logs each
     mesh, basis and assembly at INFO), restored after: importing this module leaves
     scikit-fem's logging as it was."""
@@ -156,7 +156,24 @@ def _q_arguments(q, basis) -> dict:
 @dataclass
 class PlaneElasticity:
     """A plane-stress model on ``points`` (n, 2) / ``triangles`` (m, 3), thickness ``t`` (m),
-    Lagrange elements of ``order`` 1 or 2. Nodal fields (moisture) are P1 on ``points``."""
+    Lagrange elements of ``order`` 1 or 2. Nodal fields (moisture) are P1 on ``points``.
+
+    Parameters
+    ----------
+    points : numpy.ndarray
+        Vertices, shape (n, 2) [m].
+    triangles : numpy.ndarray
+        Vertex indices, shape (m, 3).
+    thickness : float
+        The plate's thickness [m].
+    order : int
+        Lagrange element order (1 or 2).
+
+    Attributes
+    ----------
+    mesh, basis : object
+        Built from the above (scikit-fem mesh and vector basis).
+    """
 
     points: np.ndarray
     triangles: np.ndarray
@@ -165,7 +182,7 @@ class PlaneElasticity:
     mesh: object = field(init=False, repr=False)
     basis: object = field(init=False, repr=False)
 
-    @quiet_skfem
+    @_quiet_skfem
     def __post_init__(self):
         self.mesh = skfem.MeshTri(np.asarray(self.points, float).T.copy(),
                                   np.asarray(self.triangles, np.int64).T.copy())
@@ -178,7 +195,7 @@ class PlaneElasticity:
     def dofs(self) -> int:
         return self.basis.N
 
-    @quiet_skfem
+    @_quiet_skfem
     def stiffness(self, q) -> sparse.csr_matrix:
         """K for Q constant, per element or per quadrature point."""
         return _stiffness_form.assemble(self.basis, t=self.thickness, **_q_arguments(q, self.basis))
@@ -187,7 +204,7 @@ class PlaneElasticity:
         """A P1 nodal field at the quadrature points, (n_elements, n_points)."""
         return np.asarray(self._p1.interpolate(np.asarray(nodal, float)))
 
-    @quiet_skfem
+    @_quiet_skfem
     def eigenstrain_load(self, q, strain) -> np.ndarray:
         """Load vector of the free strain eps* = (exx, eyy, gxy), each a scalar or an array
         per element / per quadrature point."""
@@ -195,18 +212,18 @@ class PlaneElasticity:
         return _eigenstrain_form.assemble(self.basis, t=self.thickness, exx=exx, eyy=eyy, gxy=gxy,
                                           **_q_arguments(q, self.basis))
 
-    @quiet_skfem
+    @_quiet_skfem
     def boundary_facets(self, keep) -> np.ndarray:
         """Boundary facets whose midpoints (2, k) satisfy ``keep(x, y)``."""
         facets = self.mesh.boundary_facets()
         mid = self.mesh.p[:, self.mesh.facets[:, facets]].mean(axis=1)
         return facets[keep(mid[0], mid[1])]
 
-    @quiet_skfem
+    @_quiet_skfem
     def facet_dofs(self, facets) -> np.ndarray:
         return self.basis.get_dofs(facets).flatten()
 
-    @quiet_skfem
+    @_quiet_skfem
     def traction_operator(self, facets):
         """(points (q, 2), normals (q, 2), weights (q,), P (dofs x 2q)) on the facets: a
         traction (tx, ty) at the facet quadrature points gives the load P @ [tx; ty]
@@ -283,13 +300,13 @@ class PlaneElasticity:
         return np.asarray(u, float) - rigid
 
     # ------------------------------------------------------------ results
-    @quiet_skfem
+    @_quiet_skfem
     def strain(self, u) -> tuple:
         """(exx, eyy, gxy) at the quadrature points, each (n_elements, n_points)."""
         field_ = self.basis.interpolate(u)
         return tuple(np.asarray(e) for e in _voigt(sym_grad(field_)))
 
-    @quiet_skfem
+    @_quiet_skfem
     def stress(self, u, q, free_strain=(0.0, 0.0, 0.0)) -> np.ndarray:
         """sigma = Q (eps - eps*) at the quadrature points, (3, n_elements, n_points)."""
         eps = self.strain(u)
@@ -297,7 +314,7 @@ class PlaneElasticity:
         qf = _q_field(q, self.basis)
         return np.array(_stress_of(qf, tuple(e - s for e, s in zip(eps, star))))
 
-    @quiet_skfem
+    @_quiet_skfem
     def strain_operator(self):
         """(E, centroids): the sparse map from dofs to the strains (exx, eyy, gxy) at the
         element centroids, rows [exx of every element; eyy ...; gxy ...], and the centroids
@@ -316,7 +333,7 @@ class PlaneElasticity:
                                    shape=(3 * n, self.dofs))
         return matrix, self.mesh.p[:, self.mesh.t].mean(axis=1).T
 
-    @quiet_skfem
+    @_quiet_skfem
     def quadrature_points(self) -> np.ndarray:
         """(2, n_elements, n_points) coordinates of the quadrature points."""
         return np.asarray(self.basis.global_coordinates())

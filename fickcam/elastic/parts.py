@@ -11,7 +11,18 @@ SWELLING = ("swelling_stress_tensile", "swelling_stress_compressive", "failure_i
 
 
 def elastic_parts(model) -> set[str]:
-    """Names of the parts whose swelling stress the scene asks for."""
+    """Names of the parts whose swelling stress the scene asks for.
+
+    Parameters
+    ----------
+    model : SceneModel
+        The validated scene.
+
+    Returns
+    -------
+    set of str
+        The part names.
+    """
     names: set[str] = set()
     if model.cam is not None and model.cam.elastic:
         names.add("cam")
@@ -22,7 +33,22 @@ def elastic_parts(model) -> set[str]:
 
 def sheet_profile(part, environment, times) -> SheetProfile | None:
     """``exact_sheet`` of the part's thickness under its exposure, with its
-    through-thickness diffusivity; None for a part without a diffusion geometry."""
+    through-thickness diffusivity; None for a part without a diffusion geometry.
+
+    Parameters
+    ----------
+    part : Part
+        The part (thickness [m], material).
+    environment : Environment
+        The climate history.
+    times : array_like
+        Ageing times [s].
+
+    Returns
+    -------
+    SheetProfile or None
+        The sheet's moisture [weight %] through the thickness.
+    """
     from ..diffusion import Diffusivity
 
     if part.geometry is None:
@@ -77,7 +103,28 @@ def swelling_variables(histories, names: set[str], environment, times, temperatu
                        ) -> tuple[dict[str, np.ndarray], dict]:
     """(values, coords): (time, part) arrays of the swelling variables (NaN for parts not
     asked for) and each part's face stress field at its worst time over (part,
-    stress_point), padded with NaN."""
+    stress_point), padded with NaN.
+
+    Parameters
+    ----------
+    histories : list of PartHistory
+        The parts' ageing.
+    names : set of str
+        The parts asked for (:func:`elastic_parts`).
+    environment : Environment
+        The climate history (reference temperature [K], initial moisture [weight %]).
+    times : array_like
+        Ageing times [s].
+    temperature : numpy.ndarray
+        Temperature at the ageing times [K].
+
+    Returns
+    -------
+    values : dict
+        swelling_stress_tensile/compressive [Pa] and failure_index [-] over (time, part).
+    coords : dict
+        The face stress fields [Pa] and their points [m] over (part, stress_point).
+    """
     from .swelling import swelling_history
 
     out = {name: np.full((len(temperature), len(histories)), np.nan) for name in SWELLING}

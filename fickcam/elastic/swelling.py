@@ -1,7 +1,7 @@
 """Hygrothermal (swelling) stress of a free part at each ageing time.
 
 The moisture field of the diffusion engine on the level of the thickness nearest the
-mid-plane (``nodal_moisture``), carried through the thickness with the exact sheet of the
+mid-plane (``_nodal_moisture``), carried through the thickness with the exact sheet of the
 same exposure as the product of the planform's and the sheet's unaccomplished fractions
 (``thickness``; Crank 1975 §5.3), makes the free strain eps* = alpha dT + beta (M - M0)
 along the ply axes (Chamis, Simplified composite micromechanics equations for
@@ -37,7 +37,7 @@ GROWTH = 0.1      # row-to-row growth inward
 QI_PLIES = np.radians([0.0, 45.0, 90.0, -45.0])
 
 
-def part_plate(geometry):
+def _part_plate(geometry):
     """The planform to mesh for a diffusion geometry (a disc about its own centre), or None."""
     from ..diffusion.problem.geometry import CamPlate, Disc, LinkBar
     from .mesh import disc_plate
@@ -50,7 +50,18 @@ def part_plate(geometry):
 
 
 def plate_size(plate) -> float:
-    """Largest planform dimension (m)."""
+    """Largest planform dimension.
+
+    Parameters
+    ----------
+    plate : CamPlate or LinkBar
+        The planform.
+
+    Returns
+    -------
+    float
+        The dimension [m].
+    """
     from ..diffusion.problem.geometry import CamPlate
 
     if isinstance(plate, CamPlate):
@@ -81,7 +92,7 @@ def mid_plane_cells(coordinates: dict, thickness: float) -> np.ndarray:
     return distance <= distance.min() + 1e-9 * thickness
 
 
-def level_depth(coordinates: dict, thickness: float) -> float:
+def _level_depth(coordinates: dict, thickness: float) -> float:
     """Depth below the nearer face [m] of the level ``mid_plane_cells`` picks."""
     if "z" not in coordinates:
         return 0.5 * thickness
@@ -89,7 +100,7 @@ def level_depth(coordinates: dict, thickness: float) -> float:
     return float(np.mean(np.minimum(z, thickness - z)))
 
 
-def nodal_moisture(result, geometry, points, surface, outline=None) -> np.ndarray:
+def _nodal_moisture(result, geometry, points, surface, outline=None) -> np.ndarray:
     """(times, nodes) moisture [weight %] at the mesh vertices ``points`` [m] on the level
     of the engine's stored field nearest the mid-plane (``mid_plane_cells``), with the
     surface value ``surface`` (times,) on the exposed outline: a disc's radial profile
@@ -127,7 +138,24 @@ def through_thickness(in_plane, depth: float, sheet: SheetProfile | None
     (times, depths, nodes), and its thickness mean (times, nodes), from the in-plane field
     ``in_plane`` (times, nodes) on the level ``depth`` [m] below a face, as the product
     of the planform's and the sheet's unaccomplished fractions (``thickness``); without
-    a sheet, the in-plane field alone (one layer)."""
+    a sheet, the in-plane field alone (one layer).
+
+    Parameters
+    ----------
+    in_plane : numpy.ndarray
+        Moisture on the level ``depth``, shape (times, nodes) [weight %].
+    depth : float
+        Depth of that level below a face [m].
+    sheet : SheetProfile or None
+        The exact sheet of the part's thickness.
+
+    Returns
+    -------
+    layers : numpy.ndarray
+        Moisture at the sheet's depths, shape (times, depths, nodes) [weight %].
+    mean : numpy.ndarray
+        Thickness mean, shape (times, nodes) [weight %].
+    """
     if sheet is None:
         return in_plane[:, None, :], in_plane
     surface = sheet.surface[:, None]
@@ -146,7 +174,7 @@ def _thermal_factor(material, wet_tg, temperature, reference):
     return secant_thermal_factor(wet_tg, temperature, tgd, reference)
 
 
-def local_properties(material, moisture, temperature, reference):
+def _local_properties(material, moisture, temperature, reference):
     """(laminate props, ply props, retention) at each element's moisture."""
     from ..materials.state import wet_tg_and_retention
 
@@ -251,7 +279,7 @@ def stress_at_time(pe: PlaneElasticity, material, layers, mean, temperature, ref
         magnitude at the face (the first layer), element mean [Pa].
     """
     average = pe.nodal_at_points(mean)                       # (elements, points)
-    laminate, ply, retention = local_properties(material, average.mean(axis=1), temperature,
+    laminate, ply, retention = _local_properties(material, average.mean(axis=1), temperature,
                                                 reference)
     q = _stiffness(laminate)                                  # (3, 3, elements)
     lam, d_t = _columns(laminate), temperature - reference
@@ -306,8 +334,8 @@ def plate_moisture(result, geometry, points, surface, sheet: SheetProfile | None
         first, and the thickness mean (times, nodes) (``through_thickness``).
     """
     surface = np.asarray(surface, float) if sheet is None else sheet.surface
-    in_plane = nodal_moisture(result, geometry, points, surface, outline)
-    depth = level_depth(result.cell_coordinates, geometry.thickness)
+    in_plane = _nodal_moisture(result, geometry, points, surface, outline)
+    depth = _level_depth(result.cell_coordinates, geometry.thickness)
     return through_thickness(in_plane, depth, sheet)
 
 
@@ -318,13 +346,41 @@ def swelling_history(geometry, material, result, state: dict, temperature, refer
     for one part (NaN where the part is not valid or has no field), and ``field`` /
     ``points``: the face stress field (element centroids, m) at the worst time (largest
     failure index, else largest compression); ``sheet``: the exact sheet of the part's
-    thickness under its exposure (``plate_moisture``; None: the in-plane field alone)."""
+    thickness under its exposure (``plate_moisture``; None: the in-plane field alone).
+
+    Parameters
+    ----------
+    geometry : Geometry
+        The part's diffusion geometry (dimensions [m]).
+    material : Material
+        Its material.
+    result : DiffusionResult or None
+        Its diffusion result, with moisture fields.
+    state : dict
+        Its material state over ageing times (moduli [Pa], expansion coefficients).
+    temperature : numpy.ndarray
+        Temperature at the ageing times [K].
+    reference : float
+        Reference (stress-free) temperature [K].
+    initial_moisture : float
+        Stress-free moisture [weight %].
+    valid : array_like of bool
+        Which ageing times to solve.
+    sheet : SheetProfile, optional
+        The exact sheet of the part's thickness.
+
+    Returns
+    -------
+    dict
+        swelling_stress_tensile/compressive [Pa] and failure_index [-] over ageing times,
+        and ``field`` [Pa] / ``points`` [m] of the worst time.
+    """
     from .mesh import planform_mesh
 
     n = len(temperature)
     out = {name: np.full(n, np.nan) for name in
            ("swelling_stress_tensile", "swelling_stress_compressive", "failure_index")}
-    plate = part_plate(geometry)
+    plate = _part_plate(geometry)
     if plate is None or result is None or getattr(result, "fields", None) is None:
         return out
     mesh = planform_mesh(plate, plate_size(plate) / ROWS, GROWTH)

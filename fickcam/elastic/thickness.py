@@ -49,7 +49,7 @@ import numpy as np
 class SheetProfile:
     """The exact moisture of an infinite sheet of the part's thickness under its exposure.
 
-    Attributes
+    Parameters
     ----------
     depths : numpy.ndarray
         Depths below a face [m], shape (n,), increasing from 0 (the face) to half the

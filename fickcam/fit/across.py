@@ -24,7 +24,21 @@ SIGMA_FLOOR = 1e-9   # a condition fitted without residual (noiseless data) stil
 @dataclass(frozen=True)
 class LawFit:
     """Two parameters of a law across conditions, their covariance and where they
-    came from (``first_from``/``second_from``: 'data' or 'library')."""
+    came from (``first_from``/``second_from``: 'data' or 'library').
+
+    Parameters
+    ----------
+    first : Estimate
+        D0 [m^2/s] or a [weight %].
+    second : Estimate
+        Ea [J/mol] or b [-].
+    covariance : numpy.ndarray
+        Covariance of (ln D0 [-], Ea [J/mol]) or of (a [weight %], b [-]).
+    first_from, second_from : str
+        ``"data"`` or ``"library"``.
+    points : int
+        Conditions fitted.
+    """
 
     first: Estimate
     second: Estimate
@@ -72,7 +86,25 @@ def _log_d_se(fit: FickFit) -> float:
 
 def arrhenius(conditions: list[FickFit], library_activation_energy: float) -> LawFit:
     """ln D = ln D0 - Ea/(R T) through the conditions' D; one temperature: Ea from the
-    library, D0 = D exp(Ea/(R T)) (its interval from D's alone)."""
+    library, D0 = D exp(Ea/(R T)) (its interval from D's alone).
+
+    Parameters
+    ----------
+    conditions : list of FickFit
+        The conditions' fits (temperature [K], D [m^2/s]).
+    library_activation_energy : float
+        Ea to use with one temperature [J/mol].
+
+    Returns
+    -------
+    LawFit
+        D0 [m^2/s] and Ea [J/mol].
+
+    References
+    ----------
+    Shen, C.-H. & Springer, G. S. (1976). Moisture absorption and desorption of composite
+    materials. Journal of Composite Materials 10(1), 2-20, eq. 9.
+    """
     inverse_t = np.array([1.0 / c.temperature for c in conditions])
     log_d = np.log([c.diffusivity.value for c in conditions])
     sigma = np.maximum([_log_d_se(c) for c in conditions], SIGMA_FLOOR)
@@ -98,7 +130,27 @@ def arrhenius(conditions: list[FickFit], library_activation_energy: float) -> La
 
 def saturation_law(conditions: list[FickFit], library_exponent: float) -> LawFit:
     """Mm = a (RH/100)^b through the conditions' Mm (temperature-independent, as in the
-    library); one humidity: b from the library, a = Mm / (RH/100)^b."""
+    library); one humidity: b from the library, a = Mm / (RH/100)^b.
+
+    Parameters
+    ----------
+    conditions : list of FickFit
+        The conditions' fits (relative humidity [%], Mm [weight %]).
+    library_exponent : float
+        b to use with one humidity [-].
+
+    Returns
+    -------
+    LawFit
+        a [weight %] and b [-].
+
+    References
+    ----------
+    Shen & Springer (1976), eq. 10 (see :func:`arrhenius`).
+    Loos, A. C. & Springer, G. S. (1979). Moisture absorption of graphite-epoxy
+    composites immersed in liquids and in humid air. Journal of Composite Materials 13(2),
+    131-147.
+    """
     rh = np.array([c.relative_humidity / 100.0 for c in conditions])
     mm = np.array([c.saturation.value for c in conditions])
     sigma = np.maximum([np.sqrt(c.covariance[1, 1]) for c in conditions], SIGMA_FLOOR)

@@ -33,7 +33,32 @@ BOUND_SHARES = (0.15, 0.4)        # gamma/(gamma+beta) at the starts
 @dataclass(frozen=True)
 class LangmuirFit:
     """Two-phase fit of one condition: free-water D (m^2/s), total Mm (%), binding
-    rate gamma and release rate beta (1/s), with 95 % intervals; F test against Fick."""
+    rate gamma and release rate beta (1/s), with 95 % intervals; F test against Fick.
+
+    Parameters
+    ----------
+    diffusivity : Estimate
+        Free-water diffusivity D [m^2/s].
+    saturation : Estimate
+        Total saturation moisture Mm [weight %].
+    binding_rate : Estimate
+        gamma [1/s].
+    release_rate : Estimate
+        beta [1/s].
+    covariance : numpy.ndarray
+        Covariance of (ln D, Mm [weight %], ln gamma, ln beta).
+    ssr : float
+        Sum of squared residuals [(weight %)^2].
+    f_statistic : float
+        Extra-sum-of-squares F against the Fickian fit [-].
+    p_value : float
+        Its p-value [-].
+
+    References
+    ----------
+    Carter, H. G. & Kibler, K. G. (1978). Langmuir-type model for anomalous moisture
+    diffusion in composite resins. Journal of Composite Materials 12(2), 118-131.
+    """
 
     diffusivity: Estimate
     saturation: Estimate
@@ -48,7 +73,15 @@ class LangmuirFit:
 
 @dataclass(frozen=True)
 class AnomalyTest:
-    """Runs test of the Fickian residuals and, when it fires, the two-phase fit."""
+    """Runs test of the Fickian residuals and, when it fires, the two-phase fit.
+
+    Parameters
+    ----------
+    runs_p_value : float
+        p-value of the runs test [-].
+    langmuir : LangmuirFit or None
+        The two-phase fit, made only when the runs test fires.
+    """
 
     runs_p_value: float
     langmuir: LangmuirFit | None
@@ -62,7 +95,23 @@ class AnomalyTest:
 def runs_test(residual_groups) -> float:
     """One-sided p-value of too few runs of equal sign (Wald & Wolfowitz 1940): per
     group R runs, E = 2 n+ n- / n + 1, Var = 2 n+ n- (2 n+ n- - n) / (n^2 (n - 1));
-    groups pooled by summing R, E and Var; normal approximation. Zeros are dropped."""
+    groups pooled by summing R, E and Var; normal approximation. Zeros are dropped.
+
+    Parameters
+    ----------
+    residual_groups : iterable of numpy.ndarray
+        Residuals of each specimen in time order [weight %].
+
+    Returns
+    -------
+    float
+        The p-value [-].
+
+    References
+    ----------
+    Wald, A. & Wolfowitz, J. (1940). On a test whether two samples are from the same
+    population. Annals of Mathematical Statistics 11(2), 147-162.
+    """
     runs = expected = variance = 0.0
     for residuals in residual_groups:
         signs = np.sign(residuals[residuals != 0])
@@ -80,11 +129,32 @@ def runs_test(residual_groups) -> float:
 
 
 def check_fickian(specimens: list[Specimen], fick: FickFit, in_plane=(1.0, 1.0)) -> AnomalyTest:
-    """Runs test on the Fickian fit's residuals; the two-phase fit and F test if it fires."""
+    """Runs test on the Fickian fit's residuals; the two-phase fit and F test if it fires.
+
+    Parameters
+    ----------
+    specimens : list of Specimen
+        Coupons of one condition.
+    fick : FickFit
+        Their Fickian fit.
+    in_plane : tuple of float
+        In-plane over through-thickness diffusivity along length and width [-].
+
+    Returns
+    -------
+    AnomalyTest
+        The runs test and, when it fires, the two-phase fit.
+
+    References
+    ----------
+    Wald & Wolfowitz (1940), see :func:`runs_test`; Carter & Kibler (1978), see
+    :class:`LangmuirFit`; Bates, D. M. & Watts, D. G. (1988). Nonlinear Regression
+    Analysis and Its Applications, sec. 3.10. New York: Wiley.
+    """
     residuals = [fick.saturation.value * fickian_fraction(s, fick.diffusivity.value, in_plane) - s.moisture
                  for s in specimens]
     p_runs = runs_test(residuals)
-    langmuir = fit_langmuir(specimens, fick, in_plane) if p_runs < SIGNIFICANCE else None
+    langmuir = _fit_langmuir(specimens, fick, in_plane) if p_runs < SIGNIFICANCE else None
     return AnomalyTest(p_runs, langmuir)
 
 
@@ -121,7 +191,7 @@ def _nested_fick_ssr(specimens, fick: FickFit, in_plane) -> float:
     return null.ssr
 
 
-def fit_langmuir(specimens: list[Specimen], fick: FickFit, in_plane=(1.0, 1.0)) -> LangmuirFit:
+def _fit_langmuir(specimens: list[Specimen], fick: FickFit, in_plane=(1.0, 1.0)) -> LangmuirFit:
     """Least-squares two-phase fit (best of a few starts) and the F test against Fick."""
     residual = _residual(specimens, in_plane)
     best: LeastSquares | None = None

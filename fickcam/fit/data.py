@@ -35,7 +35,27 @@ MIN_WEIGHINGS = 3   # two parameters (D, Mm) and one degree of freedom for their
 @dataclass(frozen=True, eq=False)
 class Specimen:
     """One coupon: conditions (K, %), dimensions (m; width/length None = sealed
-    edges), weighing times (s), moisture content (weight %) and their CSV lines."""
+    edges), weighing times (s), moisture content (weight %) and their CSV lines.
+
+    Parameters
+    ----------
+    name : str
+        The coupon's name.
+    temperature : float
+        Exposure temperature [K].
+    relative_humidity : float
+        Exposure relative humidity [%].
+    thickness : float
+        Thickness [m].
+    width, length : float or None
+        In-plane sides [m]; None: edges sealed.
+    time : numpy.ndarray
+        Weighing times [s].
+    moisture : numpy.ndarray
+        Moisture content [weight %].
+    lines : numpy.ndarray
+        CSV line of each weighing.
+    """
 
     name: str
     temperature: float
@@ -54,6 +74,18 @@ class Specimen:
 
 
 def condition_label(condition: tuple[float, float]) -> str:
+    """A condition as the user reads it: '85 degC / 85 % RH'.
+
+    Parameters
+    ----------
+    condition : tuple of float
+        Temperature [K] and relative humidity [%].
+
+    Returns
+    -------
+    str
+        The label.
+    """
     return f"{condition[0] - 273.15:g} degC / {condition[1]:g} % RH"
 
 

@@ -46,7 +46,21 @@ def _draw_condition(ax, res_ax, report, condition, anomaly, color, times):
 
 
 def plot_fit(report: FitReport, path) -> Path:
-    """Write the figure to ``path`` (PNG)."""
+    """Write the figure to ``path`` (PNG): moisture gain against sqrt(time) per condition
+    with the fitted curves, and the Fickian residuals.
+
+    Parameters
+    ----------
+    report : FitReport
+        The fit.
+    path : str or pathlib.Path
+        The PNG file.
+
+    Returns
+    -------
+    pathlib.Path
+        The path written.
+    """
     plt = figure()
     fig, (ax, res_ax) = plt.subplots(2, 1, figsize=(8, 7), sharex=True,
                                      gridspec_kw={"height_ratios": [3, 1.2]})

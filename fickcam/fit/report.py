@@ -22,7 +22,46 @@ class FitReport:
     """Everything ``fickcam fit`` finds. Ply (coupon) values throughout; for a
     composite ``diffusivity_factor`` = D22/Dm and ``moisture_factor`` = M_ply/M_matrix
     (Chamis 1983, as the scene's material model uses them) map them to the matrix
-    overrides a scene takes (``matrix_values``)."""
+    overrides a scene takes (``matrix_values``).
+
+    Parameters
+    ----------
+    name : str
+        The material's name.
+    source : str
+        The data file.
+    matrix : str
+        The matrix (library name).
+    fiber : str or None
+        The fibre of a composite.
+    fiber_volume_fraction : float or None
+        The composite's fibre volume fraction [-].
+    specimens : list of Specimen
+        The coupons.
+    specimen_fits : list of FickFit
+        One Fickian fit per coupon.
+    conditions : list of FickFit
+        One Fickian fit per condition.
+    anomalies : list of AnomalyTest
+        The anomaly test per condition.
+    arrhenius : LawFit
+        D0 [m^2/s] and Ea [J/mol].
+    saturation : LawFit
+        a [weight %] and b [-] of Mm = a (RH/100)^b.
+    diffusivity_factor : float
+        D22/Dm of the composite [-].
+    moisture_factor : float
+        M_ply/M_matrix of the composite [-].
+    in_plane : tuple of float
+        In-plane over through-thickness diffusivity along length and width [-].
+    notes : list of str
+        Sentences for the user (values taken from the library, equilibrium not reached,
+        parameters the weighings do not determine).
+
+    References
+    ----------
+    Chamis (1983); in full in :mod:`fickcam.materials`.
+    """
 
     name: str
     source: str

@@ -23,7 +23,15 @@ SLOPE_LIMIT = 0.5                   # initial-slope points: M below this share o
 
 @dataclass(frozen=True)
 class Estimate:
-    """A fitted value with its 95 % interval (same units)."""
+    """A fitted value with its 95 % interval (same units).
+
+    Parameters
+    ----------
+    value : float
+        The estimate [unit of the quantity].
+    low, high : float
+        The ends of its 95 % interval [unit of the quantity].
+    """
 
     value: float
     low: float
@@ -38,7 +46,20 @@ LOG_LIMIT = 700.0   # |ln| of the interval ends: exp stays finite and nonzero (1
 
 def log_estimate(centre: float, half: float) -> Estimate:
     """exp of a value estimated as a logarithm, interval symmetric in the log (ends
-    clipped to exp(+-700) so that a useless interval still prints as numbers)."""
+    clipped to exp(+-700) so that a useless interval still prints as numbers).
+
+    Parameters
+    ----------
+    centre : float
+        The estimate of the logarithm [-].
+    half : float
+        Half-width of its interval [-].
+
+    Returns
+    -------
+    Estimate
+        exp(centre) and its interval [unit of the quantity].
+    """
     def bounded(x):
         return float(np.exp(np.clip(x, -LOG_LIMIT, LOG_LIMIT)))
     return Estimate(bounded(centre), bounded(centre - half), bounded(centre + half))
@@ -46,7 +67,21 @@ def log_estimate(centre: float, half: float) -> Estimate:
 
 @dataclass(frozen=True)
 class LeastSquares:
-    """Solution x, covariance of x, sum of squared residuals, points, dof, residuals."""
+    """Solution x, covariance of x, sum of squared residuals, points, dof, residuals.
+
+    Parameters
+    ----------
+    x : numpy.ndarray
+        The parameters found [their units].
+    covariance : numpy.ndarray
+        Their covariance [products of their units]; NaN when not determined.
+    ssr : float
+        Sum of squared residuals [unit of the residuals squared].
+    points : int
+        Residuals that carry information.
+    residuals : numpy.ndarray
+        The residuals at the solution [unit of the data].
+    """
 
     x: np.ndarray
     covariance: np.ndarray
@@ -82,7 +117,27 @@ def solve_least_squares(residual, x0, x_scale) -> LeastSquares:
     scatter. With n <= p nothing is left to estimate s from: the covariance is NaN (the
     parameters are not determined, and the report says so), not the zero that an exact fit
     through p points gives (or, by round-off, a negative variance on one machine and a
-    tiny positive one on another)."""
+    tiny positive one on another).
+
+    Parameters
+    ----------
+    residual : callable
+        Parameters -> residuals.
+    x0 : array_like
+        Starting parameters [their units].
+    x_scale : array_like
+        Typical size of each parameter [its unit].
+
+    Returns
+    -------
+    LeastSquares
+        The solution and its covariance.
+
+    References
+    ----------
+    Bates, D. M. & Watts, D. G. (1988). Nonlinear Regression Analysis and Its
+    Applications. New York: Wiley.
+    """
     result = least_squares(residual, np.asarray(x0, float), x_scale=np.asarray(x_scale, float),
                            method="trf", xtol=1e-12, ftol=1e-12, gtol=1e-12, max_nfev=400)
     r = result.fun
@@ -99,7 +154,39 @@ def solve_least_squares(residual, x0, x_scale) -> LeastSquares:
 
 @dataclass(frozen=True)
 class FickFit:
-    """Fickian fit of one specimen or one condition group (several specimens)."""
+    """Fickian fit of one specimen or one condition group (several specimens).
+
+    Parameters
+    ----------
+    label : str
+        The specimen's name or the condition's label.
+    specimens : tuple of str
+        The specimens fitted.
+    temperature : float
+        Exposure temperature [K].
+    relative_humidity : float
+        Exposure relative humidity [%].
+    diffusivity : Estimate
+        Through-thickness diffusivity D, edges exact [m^2/s].
+    saturation : Estimate
+        Saturation moisture Mm [weight %].
+    covariance : numpy.ndarray
+        Covariance of (ln D [-], Mm [weight %]).
+    residual_sd : float
+        Standard deviation of the residuals [weight %].
+    points : int
+        Weighings fitted.
+    ssr : float
+        Sum of squared residuals [(weight %)^2].
+    initial_slope_diffusivity : float
+        ASTM D5229 apparent D, no edge correction [m^2/s].
+    edge_corrected_diffusivity : float
+        The same after the Shen & Springer edge correction [m^2/s].
+    at_equilibrium : bool
+        Whether every specimen reached D5229 effective equilibrium.
+    fraction_reached : float
+        Smallest fitted M/Mm at the last weighing [-].
+    """
 
     label: str
     specimens: tuple[str, ...]
@@ -124,7 +211,23 @@ class FickFit:
 
 def reached_equilibrium(specimen: Specimen) -> bool:
     """D5229 procedure A: the moisture content changes by less than 0.020 % over each
-    of two consecutive reference time periods (7 +/- 0.5 d) ending at the last weighing."""
+    of two consecutive reference time periods (7 +/- 0.5 d) ending at the last weighing.
+
+    Parameters
+    ----------
+    specimen : Specimen
+        The coupon (weighing times [s], moisture [weight %]).
+
+    Returns
+    -------
+    bool
+        Whether it reached effective moisture equilibrium.
+
+    References
+    ----------
+    ASTM D5229/D5229M, Standard Test Method for Moisture Absorption Properties and
+    Equilibrium Conditioning of Polymer Matrix Composite Materials, procedure A.
+    """
     t, m = specimen.time, specimen.moisture
     index = [t.size - 1]
     for _ in range(2):
@@ -139,7 +242,24 @@ def reached_equilibrium(specimen: Specimen) -> bool:
 def initial_slope_diffusivity(specimen: Specimen, saturation: float) -> float:
     """ASTM D5229 eq. 4: D = pi (h / (4 Mm))^2 ((M2 - M1)/(sqrt t2 - sqrt t1))^2, the
     slope taken by least squares over the weighings below half of Mm (NaN if fewer
-    than two). Apparent: it includes the edges' uptake."""
+    than two). Apparent: it includes the edges' uptake.
+
+    Parameters
+    ----------
+    specimen : Specimen
+        The coupon (thickness h [m], weighing times [s], moisture [weight %]).
+    saturation : float
+        Its saturation moisture Mm [weight %].
+
+    Returns
+    -------
+    float
+        The apparent diffusivity [m^2/s].
+
+    References
+    ----------
+    ASTM D5229/D5229M, eq. 4 (see :func:`reached_equilibrium`).
+    """
     early = (specimen.moisture <= SLOPE_LIMIT * saturation) & (specimen.time > 0)
     if np.count_nonzero(early) < 2:
         return float("nan")
@@ -160,7 +280,22 @@ def _start(specimens, in_plane) -> tuple[float, float]:
 
 def fit_fickian(specimens: list[Specimen], in_plane=(1.0, 1.0), label: str | None = None) -> FickFit:
     """Fit M(t) = Mm F(D t) to every weighing of ``specimens`` (same condition), one D
-    and one Mm shared; F is the exact sheet or box series (``models.fickian_fraction``)."""
+    and one Mm shared; F is the exact sheet or box series (``models.fickian_fraction``).
+
+    Parameters
+    ----------
+    specimens : list of Specimen
+        Coupons of one condition (dimensions [m], times [s], moisture [weight %]).
+    in_plane : tuple of float
+        In-plane over through-thickness diffusivity along length and width [-].
+    label : str, optional
+        The fit's label; default the specimen's name or the condition.
+
+    Returns
+    -------
+    FickFit
+        The fit.
+    """
     def residual(x):
         diffusivity, saturation = np.exp(x[0]), x[1]
         return np.concatenate([saturation * fickian_fraction(s, diffusivity, in_plane) - s.moisture

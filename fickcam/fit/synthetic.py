@@ -20,7 +20,18 @@ EARLY_DAYS = (1.0, 2.0, 3.0, 4.0, 5.0, 7.0, 10.0, 14.0)
 def d5229_times(end_days: float) -> np.ndarray:
     """Weighing times (s): dry at 0, 1/2/4/8 h, days 1-5, 7, 10, 14, then weekly to
     ``end_days`` (a D5229 procedure A schedule: frequent early, a 7-day reference
-    period later)."""
+    period later).
+
+    Parameters
+    ----------
+    end_days : float
+        The last weighing [d].
+
+    Returns
+    -------
+    numpy.ndarray
+        The weighing times [s].
+    """
     hours = np.array(EARLY_HOURS) / 24.0
     days = np.array([d for d in EARLY_DAYS if d <= end_days])
     weekly = np.arange(21.0, end_days + 1e-9, 7.0)
@@ -30,7 +41,35 @@ def d5229_times(end_days: float) -> np.ndarray:
 def synthetic_specimen(name, temperature, relative_humidity, thickness, times, saturation,
                        diffusivity, rng, noise, width=None, length=None, gamma=0.0, beta=0.0):
     """One coupon: M = Mm F(t) + N(0, noise^2) (weight %); F Fickian (gamma = 0) or
-    two-phase. ``noise`` is an absolute scatter in weight %."""
+    two-phase. ``noise`` is an absolute scatter in weight %.
+
+    Parameters
+    ----------
+    name, temperature, relative_humidity, thickness
+        The coupon's name and conditions, as :class:`~fickcam.fit.data.Specimen` holds
+        them: temperature [K], relative humidity [%], thickness [m].
+    times : array_like
+        Weighing times [s].
+    saturation : float
+        Mm [weight %].
+    diffusivity : float
+        Through-thickness diffusivity D [m^2/s].
+    rng : numpy.random.Generator
+        The random numbers.
+    noise : float
+        Standard deviation of the scatter [weight %].
+    width, length : float, optional
+        In-plane sides [m]; None: edges sealed.
+    gamma : float
+        Binding rate of the two-phase model [1/s]; 0: Fickian.
+    beta : float
+        Release rate [1/s].
+
+    Returns
+    -------
+    Specimen
+        The coupon.
+    """
     specimen = Specimen(name, temperature, relative_humidity, thickness, width, length,
                         np.asarray(times, float), np.zeros(len(times)), np.arange(len(times)) + 2)
     if gamma > 0:
@@ -52,7 +91,24 @@ def write_weight_gain_csv(specimens, path, comments=(), dry_mass_g: float | None
     """Write coupons as a tidy CSV (``# comments`` first). With ``dry_mass_g`` the
     masses are written (dry_mass, mass in g, 5 decimals like a 0.01 mg balance),
     else the moisture content in %. Coupons with sealed edges among open ones get empty
-    width and length cells."""
+    width and length cells.
+
+    Parameters
+    ----------
+    specimens : list of Specimen
+        The coupons (SI; moisture [weight %]).
+    path : str or pathlib.Path
+        The CSV file.
+    comments : sequence of str
+        Comment lines written first.
+    dry_mass_g : float, optional
+        Dry mass [g]: write masses instead of moisture content.
+
+    Returns
+    -------
+    pathlib.Path
+        The path written.
+    """
     path = Path(path)
     with open(path, "w", newline="", encoding="utf-8") as handle:
         for line in comments:
@@ -89,7 +145,14 @@ EXAMPLE_DRY_MASS_G = 6.35          # 50 x 50 x 2 mm of a 1.27 g/cm3 resin
 
 
 def example_arrhenius() -> tuple[float, float]:
-    """(D0 m^2/s, Ea J/mol) through the two published diffusivities."""
+    """(D0 m^2/s, Ea J/mol) of the Arrhenius law through the example's two diffusivities
+    (at 20 and 85 degC).
+
+    Returns
+    -------
+    tuple of float
+        D0 [m^2/s] and Ea [J/mol].
+    """
     from ..diffusion.problem.exposure import GAS_CONSTANT
 
     t1, t2 = 293.15, 358.15
@@ -99,7 +162,18 @@ def example_arrhenius() -> tuple[float, float]:
 
 def write_example(path) -> Path:
     """The SYNTHETIC example shipped as configs/weight_gain_synthetic_epoxy.csv: two
-    50 x 50 x 2 mm coupons (edges open) per condition, weighed 70 days."""
+    50 x 50 x 2 mm coupons (edges open) per condition, weighed 70 days.
+
+    Parameters
+    ----------
+    path : str or pathlib.Path
+        Where the example CSV goes.
+
+    Returns
+    -------
+    pathlib.Path
+        The path written.
+    """
     rng = np.random.default_rng(EXAMPLE_SEED)
     d0, ea = example_arrhenius()
     from ..diffusion.problem.exposure import GAS_CONSTANT

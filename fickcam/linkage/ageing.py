@@ -98,14 +98,14 @@ def link_states(section, histories):
 
 
 def link_state(section, histories, k: int):
-    """The swollen links at one ageing time (see `link_states`).
+    """The swollen links at one ageing time: one row of :func:`link_states`.
 
     Parameters
     ----------
     section : LinkageSection
-        The scene's validated ``linkage:`` section (dry lengths [m]).
+        The ``linkage:`` section, as for :func:`link_states` (lengths [m]).
     histories : dict of str to PartHistory
-        Each link's history: strains [-] and moisture [weight %] over ageing time.
+        The links' histories, as for :func:`link_states` (strains [-], moisture [weight %]).
     k : int
         Index of the ageing time [-].
 

@@ -214,7 +214,25 @@ def polygon_section(x, y):
     """Shoelace formulas for a closed polygon (last point not repeated, counter-clockwise;
     points along the last axis, leading axes vectorised):
     (area, centroid x, centroid y, polar second moment about the origin)
-    (e.g. Bourke 1988, 'Calculating the area and centroid of a polygon'; Steger 1996)."""
+    (e.g. Bourke 1988, 'Calculating the area and centroid of a polygon'; Steger 1996).
+
+    Parameters
+    ----------
+    x, y : array_like
+        The vertices, along the last axis [m].
+
+    Returns
+    -------
+    tuple of numpy.ndarray
+        Area [m^2], centroid x and y [m], polar second moment of area about the origin
+        [m^4].
+
+    References
+    ----------
+    Bourke, P. (1988). Calculating the area and centroid of a polygon.
+    Steger, C. (1996). On the calculation of arbitrary moments of polygons. Technical
+    report, Technische Universitaet Muenchen.
+    """
     x, y = np.asarray(x, float), np.asarray(y, float)
     x, y = np.broadcast_arrays(x, y)
     xn, yn = np.roll(x, -1, axis=-1), np.roll(y, -1, axis=-1)

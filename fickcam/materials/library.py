@@ -40,13 +40,30 @@ def _numbers(node):
 
 
 def library() -> dict:
-    """A deep copy of the whole library: group -> name -> values (SI)."""
+    """A deep copy of the whole library: group -> name -> values (SI).
+
+    Returns
+    -------
+    dict
+        group -> name -> values (SI; moisture in weight %).
+    """
     return copy.deepcopy(_load())
 
 
 def library_name(name) -> str:
     """The library name that ``name`` means: itself, an alias (``PA66`` -> ``nylon``), or
-    either written in another case; ``name`` unchanged when it means none."""
+    either written in another case; ``name`` unchanged when it means none.
+
+    Parameters
+    ----------
+    name : str
+        A name as a user writes it.
+
+    Returns
+    -------
+    str
+        The library name.
+    """
     text = str(name)
     folded = text.casefold()
     names = {str(key).casefold(): str(key) for group in GROUPS for key in _load()[group]}
@@ -55,17 +72,57 @@ def library_name(name) -> str:
 
 
 def aliases_of(name: str) -> list[str]:
-    """The aliases of a library name, in :data:`ALIASES` order."""
+    """The aliases of a library name, in :data:`ALIASES` order.
+
+    Parameters
+    ----------
+    name : str
+        A library name.
+
+    Returns
+    -------
+    list of str
+        Its aliases.
+    """
     return [alias for alias, entry in ALIASES.items() if entry == name]
 
 
 def known_names(group: str) -> list[str]:
-    """Names in one library group (``fibers``, ``matrices``, ``plastics``, ``metals``)."""
+    """Names in one library group (``fibers``, ``matrices``, ``plastics``, ``metals``).
+
+    Parameters
+    ----------
+    group : str
+        The group.
+
+    Returns
+    -------
+    list of str
+        Its names, sorted.
+    """
     return sorted(_load()[group])
 
 
 def entry(group: str, name: str) -> dict:
-    """One library entry (a copy)."""
+    """One library entry (a copy).
+
+    Parameters
+    ----------
+    group : str
+        The group.
+    name : str
+        The library name.
+
+    Returns
+    -------
+    dict
+        Its values (SI).
+
+    Raises
+    ------
+    KeyError
+        When the group or the name is not in the library.
+    """
     return copy.deepcopy(_load()[group][name])
 
 
@@ -74,7 +131,15 @@ def _fmt(value) -> str:
 
 
 def library_rows() -> list[dict]:
-    """One row per material: group, name, density, modulus, alpha, beta, Tgd, Mm(100 %), source."""
+    """One row per material: group, name, density, modulus, alpha, beta, Tgd, Mm(100 %), source.
+
+    Returns
+    -------
+    list of dict
+        Rows with density_kg_m3 [kg/m^3], modulus_GPa [GPa], alpha_per_K [1/K],
+        beta_per_pct [1/weight %], dry_tg_degC [degC], saturation_pct [weight %], aliases
+        and sources.
+    """
     rows = []
     for group in GROUPS:
         for name, values in sorted(_load()[group].items()):
@@ -94,7 +159,13 @@ def library_rows() -> list[dict]:
 
 
 def library_table() -> str:
-    """The library as text for ``fickcam materials``: key values, then each source."""
+    """The library as text for ``fickcam materials``: key values, then each source.
+
+    Returns
+    -------
+    str
+        The table.
+    """
     head = f"{'group':<9} {'name':<10} {'rho kg/m3':>9} {'E GPa':>7} {'alpha 1/K':>10} " \
            f"{'beta 1/%':>9} {'Tgd degC':>8} {'Mm(100%)':>8}"
     lines = [head, "-" * len(head)]
@@ -144,7 +215,23 @@ _GAS_CONSTANT = 8.314462618  # J/(mol K)
 
 def find_entry(name: str) -> tuple[str, dict]:
     """(group, entry) of a library name or alias, matched without regard to case; KeyError
-    if none."""
+    if none.
+
+    Parameters
+    ----------
+    name : str
+        A library name or alias, in any case.
+
+    Returns
+    -------
+    tuple
+        (group, a copy of the entry (SI)).
+
+    Raises
+    ------
+    KeyError
+        When the name is not in the library.
+    """
     name = library_name(name)
     for group in GROUPS:
         if name in _load()[group]:
@@ -176,7 +263,23 @@ def _retention_line(table: dict) -> str:
 
 def entry_text(name: str) -> str:
     """One library entry for ``fickcam materials NAME``: every value with its unit, the
-    diffusivity and saturation laws, and the sources."""
+    diffusivity and saturation laws, and the sources.
+
+    Parameters
+    ----------
+    name : str
+        A library name or alias.
+
+    Returns
+    -------
+    str
+        The text.
+
+    Raises
+    ------
+    KeyError
+        When the name is not in the library.
+    """
     group, values = find_entry(name)
     name = library_name(name)
     also = ", ".join(aliases_of(name))

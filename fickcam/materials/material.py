@@ -20,6 +20,36 @@ class Material:
 
     ``matrix`` holds the isotropic constituent (matrix, neat resin, plastic or metal),
     ``fiber`` the fibre of a composite (else None). Plain data only: picklable.
+
+    Parameters
+    ----------
+    name : str
+        The material's name.
+    kind : str
+        ``"composite"``, ``"resin"``, ``"plastic"`` or ``"metal"``.
+    matrix : dict
+        The isotropic constituent's values (SI; moisture in weight %).
+    fiber : dict or None
+        The fibre's values (SI); None but for a composite.
+    fiber_ratio : float
+        Fibre volume fraction kf [-].
+    void_ratio : float
+        Void volume fraction kv [-].
+    layup : str
+        ``"unidirectional"`` or ``"quasi_isotropic"``.
+    transverse_diffusivity_model : str
+        ``"chamis"`` or ``"shen_springer"``.
+    wet_tg_scale : str
+        Temperature scale of the wet Tg formula: ``"celsius"``, ``"fahrenheit"`` or
+        ``"kelvin"``.
+    sources : tuple of str
+        Where the values come from.
+    sorption : dict or None
+        The scene's ``sorption`` (SI); None: Fickian.
+
+    References
+    ----------
+    Chamis (1983); in full in :mod:`fickcam.materials`.
     """
 
     name: str

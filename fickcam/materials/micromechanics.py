@@ -356,13 +356,34 @@ def matrix_moisture(ply_moisture_, matrix_beta_per_fraction, km, kv, matrix_dens
 
 def reduced_stiffness(e11, e22, g12, nu12):
     """Plane-stress reduced stiffnesses Q11, Q22, Q12, Q66 (Jones 1999, Mechanics of
-    Composite Materials, eq. 2.61)."""
+    Composite Materials, eq. 2.61).
+
+    Parameters
+    ----------
+    e11, e22 : float or array_like
+        The ply's moduli along and across the fibres [Pa].
+    g12 : float or array_like
+        G12, the in-plane shear modulus [Pa].
+    nu12 : float or array_like
+        nu12, the strain across over the strain along the fibres under a load along
+        them [-].
+
+    Returns
+    -------
+    tuple
+        Q11, Q22, Q12, Q66 [Pa].
+
+    References
+    ----------
+    Jones, R. M. (1999). Mechanics of Composite Materials, 2nd ed. Philadelphia: Taylor &
+    Francis.
+    """
     nu21 = nu12 * e22 / e11
     denom = 1.0 - nu12 * nu21
     return e11 / denom, e22 / denom, nu12 * e22 / denom, g12
 
 
-def quasi_isotropic_invariants(q11, q22, q12, q66):
+def _quasi_isotropic_invariants(q11, q22, q12, q66):
     """U1, U4, U5 (Tsai & Hahn 1980, Introduction to Composite Materials, ch. 7;
     Jones 1999 eq. 4.93): a quasi-isotropic laminate has A/h = [[U1, U4], [U4, U1]],
     A66/h = U5."""
@@ -374,8 +395,28 @@ def quasi_isotropic_invariants(q11, q22, q12, q66):
 
 def quasi_isotropic_elastic(e11, e22, g12, nu12):
     """In-plane E, G, nu of a quasi-isotropic laminate: E = (U1^2 - U4^2)/U1,
-    G = U5, nu = U4/U1 (Tsai & Hahn 1980 ch. 7)."""
-    u1, u4, u5 = quasi_isotropic_invariants(*reduced_stiffness(e11, e22, g12, nu12))
+    G = U5, nu = U4/U1 (Tsai & Hahn 1980 ch. 7).
+
+    Parameters
+    ----------
+    e11, e22 : float or array_like
+        The ply's moduli along and across the fibres [Pa].
+    g12 : float or array_like
+        The ply's in-plane shear modulus [Pa].
+    nu12 : float or array_like
+        The ply's major Poisson's ratio [-].
+
+    Returns
+    -------
+    tuple
+        The laminate's E [Pa], G [Pa] and nu [-].
+
+    References
+    ----------
+    Tsai, S. W. & Hahn, H. T. (1980). Introduction to Composite Materials. Westport, CT:
+    Technomic.
+    """
+    u1, u4, u5 = _quasi_isotropic_invariants(*reduced_stiffness(e11, e22, g12, nu12))
     return (u1 ** 2 - u4 ** 2) / u1, u5, u4 / u1
 
 
@@ -383,7 +424,27 @@ def quasi_isotropic_expansion(e11, e22, g12, nu12, coefficient11, coefficient22)
     """In-plane expansion coefficient (thermal or moisture) of a quasi-isotropic laminate:
     rotational average of the ply's Q.alpha over (A11 + A12)/h =
     (Q11 a1 + Q12 (a1 + a2) + Q22 a2) / (Q11 + Q22 + 2 Q12) (Tsai & Hahn 1980 ch. 7,
-    laminate thermal forces; Jones 1999 section 4.8)."""
+    laminate thermal forces; Jones 1999 section 4.8).
+
+    Parameters
+    ----------
+    e11, e22, g12, nu12 : float or array_like
+        The ply's elastic constants, as :func:`quasi_isotropic_elastic` takes them: moduli
+        [Pa], Poisson's ratio [-].
+    coefficient11, coefficient22 : float or array_like
+        The ply's expansion coefficients along and across the fibres: thermal [1/K] or
+        moisture [1/weight %].
+
+    Returns
+    -------
+    float or numpy.ndarray
+        The laminate's in-plane coefficient [unit of the coefficients].
+
+    References
+    ----------
+    Tsai & Hahn (1980), ch. 7; Jones (1999), sec. 4.8 (in full in
+    :func:`quasi_isotropic_elastic` and :func:`reduced_stiffness`).
+    """
     q11, q22, q12, _ = reduced_stiffness(e11, e22, g12, nu12)
     return (q11 * coefficient11 + q12 * (coefficient11 + coefficient22) + q22 * coefficient22) / (
         q11 + q22 + 2.0 * q12)

@@ -42,7 +42,7 @@ def _name_text(value):
 LibraryName = Annotated[str, BeforeValidator(_name_text)]
 
 
-def unknown_name_reason(key: str, name: str) -> str:
+def _unknown_name_reason(key: str, name: str) -> str:
     """Why ``key: name`` is refused: the name belongs to another kind, or the known names."""
     for other, group in KIND_GROUPS.items():
         if other != key and name in known_names(group):
@@ -54,14 +54,35 @@ def unknown_name_reason(key: str, name: str) -> str:
 
 
 class DiffusivitySpec(StrictModel):
-    """D = pre_exponential exp(-activation_energy / (R T)) (Shen & Springer 1976)."""
+    """D = pre_exponential exp(-activation_energy / (R T)) (Shen & Springer 1976).
+
+    Parameters
+    ----------
+    pre_exponential : float
+        D0 [m^2/s].
+    activation_energy : float
+        Ea [J/mol].
+
+    References
+    ----------
+    Shen, C.-H. & Springer, G. S. (1976). Moisture absorption and desorption of composite
+    materials. Journal of Composite Materials 10(1), 2-20.
+    """
 
     pre_exponential: Diffusivity
     activation_energy: MolarEnergy
 
 
 class RateSpec(StrictModel):
-    """rate = pre_exponential exp(-activation_energy / (R T)), 1/s; a plain rate is constant."""
+    """rate = pre_exponential exp(-activation_energy / (R T)), 1/s; a plain rate is constant.
+
+    Parameters
+    ----------
+    pre_exponential : float
+        The rate's pre-exponential factor [1/s].
+    activation_energy : float
+        Ea [J/mol]; 0: a constant rate.
+    """
 
     pre_exponential: NonNegativeRate
     activation_energy: MolarEnergy = 0.0
@@ -75,7 +96,15 @@ ArrheniusRate = Annotated[RateSpec, BeforeValidator(_plain_rate)]
 
 
 class DiffusivityTable(StrictModel):
-    """D/D(T) (``diffusivity_ratio``) against c/Mm (``moisture_ratio``, increasing)."""
+    """D/D(T) (``diffusivity_ratio``) against c/Mm (``moisture_ratio``, increasing).
+
+    Parameters
+    ----------
+    moisture_ratio : list of float
+        c/Mm, increasing [-].
+    diffusivity_ratio : list of float
+        D/D(T) at each [-].
+    """
 
     moisture_ratio: list[NonNegativeFloat]
     diffusivity_ratio: list[PositiveFloat]
@@ -97,7 +126,24 @@ class SorptionSpec(StrictModel):
     """``materials.NAME.sorption``: ``fickian`` (default), ``langmuir`` (Carter & Kibler
     1978: ``binding_rate`` gamma, ``release_rate`` beta, each a rate or {pre_exponential,
     activation_energy}) or ``concentration_dependent`` (D = D(T) exp(``exponent`` c/Mm), or
-    ``table``: D/D(T) against c/Mm, Mm the saturation at 100 % RH)."""
+    ``table``: D/D(T) against c/Mm, Mm the saturation at 100 % RH).
+
+    Parameters
+    ----------
+    model : {"fickian", "langmuir", "concentration_dependent"}
+        The sorption model.
+    binding_rate, release_rate : RateSpec, optional
+        gamma and beta of ``langmuir`` [1/s].
+    exponent : float, optional
+        k of D = D(T) exp(k c/Mm) [-].
+    table : DiffusivityTable, optional
+        D/D(T) against c/Mm.
+
+    References
+    ----------
+    Carter, H. G. & Kibler, K. G. (1978). Langmuir-type model for anomalous moisture
+    diffusion in composite resins. Journal of Composite Materials 12(2), 118-131.
+    """
 
     model: Literal["fickian", "langmuir", "concentration_dependent"]
     binding_rate: ArrheniusRate | None = None
@@ -125,7 +171,15 @@ class SorptionSpec(StrictModel):
 
 
 class SaturationSpec(StrictModel):
-    """Mm = coefficient (RH/100)^exponent, weight %."""
+    """Mm = coefficient (RH/100)^exponent, weight %.
+
+    Parameters
+    ----------
+    coefficient : float
+        Mm at 100 % RH [weight %].
+    exponent : float
+        The exponent [-].
+    """
 
     coefficient: NonNegativePercent
     exponent: PositiveFloat = 1.0
@@ -145,7 +199,19 @@ Covariance = Annotated[tuple[tuple[float, float], tuple[float, float]], AfterVal
 
 
 class FitIntervals(StrictModel):
-    """95 % intervals (low, high) of the fitted values."""
+    """95 % intervals (low, high) of the fitted values.
+
+    Parameters
+    ----------
+    pre_exponential : tuple of float, optional
+        Of D0 [m^2/s].
+    activation_energy : tuple of float, optional
+        Of Ea [J/mol].
+    coefficient : tuple of float, optional
+        Of the saturation coefficient [weight %].
+    exponent : tuple of float, optional
+        Of the saturation exponent [-].
+    """
 
     pre_exponential: tuple[Diffusivity, Diffusivity] | None = None
     activation_energy: tuple[SignedMolarEnergy, SignedMolarEnergy] | None = None
@@ -155,14 +221,34 @@ class FitIntervals(StrictModel):
 
 class FitCovariance(StrictModel):
     """``diffusivity``: covariance of (ln pre_exponential, activation_energy [J/mol]);
-    ``saturation``: of (coefficient [%], exponent). SI numbers."""
+    ``saturation``: of (coefficient [%], exponent). SI numbers.
+
+    Parameters
+    ----------
+    diffusivity : tuple of tuple, optional
+        2 x 2 covariance of (ln D0 [-], Ea [J/mol]).
+    saturation : tuple of tuple, optional
+        2 x 2 covariance of (coefficient [weight %], exponent [-]).
+    """
 
     diffusivity: Covariance | None = None
     saturation: Covariance | None = None
 
 
 class PlyValues(StrictModel):
-    """What composite coupons gave before the map to the matrix overrides."""
+    """What composite coupons gave before the map to the matrix overrides.
+
+    Parameters
+    ----------
+    pre_exponential : float
+        The ply's D0 [m^2/s].
+    coefficient : float
+        The ply's saturation coefficient [weight %].
+    diffusivity_factor : float
+        D22/Dm [-].
+    moisture_factor : float
+        M_ply/M_matrix [-].
+    """
 
     pre_exponential: Diffusivity
     coefficient: NonNegativePercent
@@ -171,6 +257,20 @@ class PlyValues(StrictModel):
 
 
 class NonFickianCondition(StrictModel):
+    """A condition whose weighings Fick does not describe, and its two-phase fit.
+
+    Parameters
+    ----------
+    condition : str
+        The condition's label.
+    p_value : float
+        p-value of the F test against Fick [-].
+    diffusivity : float
+        Free-water diffusivity [m^2/s].
+    binding_rate, release_rate : float
+        gamma and beta [1/s].
+    """
+
     condition: str
     p_value: float
     diffusivity: Diffusivity
@@ -180,7 +280,23 @@ class NonFickianCondition(StrictModel):
 
 class FitRecord(StrictModel):
     """``materials.NAME.fit``: written by ``fickcam fit`` beside the values it found;
-    validated, not used by a run (a Monte Carlo sweep may draw from ``covariance``)."""
+    validated, not used by a run (a Monte Carlo sweep may draw from ``covariance``).
+
+    Parameters
+    ----------
+    source : str
+        The weight-gain file fitted.
+    interval_95 : FitIntervals, optional
+        95 % intervals of the values.
+    covariance : FitCovariance, optional
+        Their covariances.
+    activation_energy_from, exponent_from : {"data", "library"}
+        Where Ea and the saturation exponent came from.
+    ply : PlyValues, optional
+        The composite coupons' own values.
+    non_fickian : list of NonFickianCondition
+        Conditions Fick does not describe.
+    """
 
     source: str
     interval_95: FitIntervals | None = None
@@ -192,7 +308,29 @@ class FitRecord(StrictModel):
 
 
 class MatrixProperties(StrictModel):
-    """Overrides of an isotropic material (neat resin, matrix, plastic, metal)."""
+    """Overrides of an isotropic material (neat resin, matrix, plastic, metal).
+
+    Parameters
+    ----------
+    youngs_modulus : float, optional
+        E [Pa].
+    poisson_ratio : float, optional
+        nu [-].
+    density : float, optional
+        rho [kg/m^3].
+    dry_glass_transition_temperature : float, optional
+        Tgd [K].
+    thermal_expansion : float, optional
+        alpha [1/K].
+    moisture_expansion : float, optional
+        beta [1/weight %].
+    conductivity : float, optional
+        K [W/(m K)].
+    diffusivity : DiffusivitySpec, optional
+        D(T).
+    saturation : SaturationSpec, optional
+        Mm(RH).
+    """
 
     youngs_modulus: Pressure | None = None
     poisson_ratio: float | None = None
@@ -206,7 +344,23 @@ class MatrixProperties(StrictModel):
 
 
 class FiberProperties(StrictModel):
-    """Overrides of a (transversely isotropic) fibre."""
+    """Overrides of a (transversely isotropic) fibre.
+
+    Parameters
+    ----------
+    longitudinal_modulus, transverse_modulus : float, optional
+        E11 and E22 [Pa].
+    shear_modulus, transverse_shear_modulus : float, optional
+        G12 and G23 [Pa].
+    poisson_ratio : float, optional
+        nu12 [-].
+    density : float, optional
+        rho [kg/m^3].
+    thermal_expansion_longitudinal, thermal_expansion_transverse : float, optional
+        alpha11 and alpha22 [1/K].
+    conductivity_longitudinal, conductivity_transverse : float, optional
+        K11 and K22 [W/(m K)].
+    """
 
     longitudinal_modulus: Pressure | None = None
     transverse_modulus: Pressure | None = None
@@ -228,6 +382,41 @@ class MaterialSpec(MatrixProperties):
     metal. For a composite they override the MATRIX (the ply follows by Chamis
     micromechanics); ``matrix_properties`` is the same thing spelled explicitly and
     ``fiber_properties`` overrides the fibre.
+
+    Parameters
+    ----------
+    youngs_modulus, density, dry_glass_transition_temperature : float, optional
+        Overrides [Pa], [kg/m^3], [K] (see :class:`MatrixProperties`).
+    thermal_expansion, moisture_expansion, conductivity : float, optional
+        Overrides [1/K], [1/weight %], [W/(m K)].
+    poisson_ratio : float, optional
+        Override of nu [-].
+    diffusivity, saturation : optional
+        Overrides of D(T) [m^2/s] and Mm(RH) [weight %].
+    fiber, matrix, plastic, metal : str, optional
+        Library names (or aliases).
+    fiber_volume_fraction, fiber_weight_fraction : float, optional
+        Fibre fraction of a composite [-] (one of them).
+    void_volume_fraction : float
+        Void fraction [-].
+    layup : {"unidirectional", "quasi_isotropic"}
+        The composite's layup.
+    transverse_diffusivity_model : {"chamis", "shen_springer"}
+        Micromechanics of the transverse diffusivity.
+    wet_tg_scale : {"celsius", "fahrenheit", "kelvin"}
+        Temperature scale of the wet Tg formula.
+    matrix_properties : MatrixProperties, optional
+        Overrides of a composite's matrix.
+    fiber_properties : FiberProperties, optional
+        Overrides of its fibre.
+    fit : FitRecord, optional
+        What ``fickcam fit`` found.
+    sorption : SorptionSpec, optional
+        A non-Fickian sorption model.
+
+    References
+    ----------
+    Chamis (1983); in full in :mod:`fickcam.materials`.
     """
 
     fiber: LibraryName | None = None
@@ -257,7 +446,7 @@ class MaterialSpec(MatrixProperties):
         for key, group in KIND_GROUPS.items():
             name = getattr(self, key)
             if name is not None and name not in known_names(group):
-                raise ValueError(unknown_name_reason(key, name))
+                raise ValueError(_unknown_name_reason(key, name))
         composite = self.fiber is not None
         if composite:
             if (self.fiber_volume_fraction is None) == (self.fiber_weight_fraction is None):

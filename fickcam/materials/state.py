@@ -148,7 +148,26 @@ def first_invalid_index(temperature, *wet_tgs) -> int | None:
 
 def wet_tg_error(part, times, index, temperature, state) -> PhysicsDomainError:
     """The error for T reaching the wet Tg at ``index``; carries ``index`` and ``state``
-    (every variable truncated to the valid times before ``index``)."""
+    (every variable truncated to the valid times before ``index``).
+
+    Parameters
+    ----------
+    part : str
+        The part's name.
+    times : numpy.ndarray
+        Ageing times [s].
+    index : int
+        The first time at which T reaches the wet Tg.
+    temperature : numpy.ndarray
+        Service temperature at the ageing times [K].
+    state : dict
+        The material state over the ageing times (temperatures [K], moisture [weight %]).
+
+    Returns
+    -------
+    PhysicsDomainError
+        The error, with ``index`` and the truncated ``state``.
+    """
     tg = min(state["glass_transition_temperature"][index], state["surface_glass_transition_temperature"][index])
     message = (f"service temperature {temperature[index] - KELVIN_OFFSET:.1f} degC reached the wet Tg "
                f"{tg - KELVIN_OFFSET:.1f} degC (mean moisture {state['moisture_content'][index]:.3g} %, "
@@ -181,6 +200,12 @@ def material_state(material, temperature, moisture, surface_moisture, reference_
     Returns
     -------
     dict of str to numpy.ndarray
+
+    Raises
+    ------
+    fickcam.errors.PhysicsDomainError
+        With ``raise_on_wet_tg``, where the service temperature reaches the wet glass
+        transition temperature (:func:`wet_tg_error`).
     """
     temperature = np.asarray(temperature, float)
     mean = np.asarray(moisture, float) + 0.0 * temperature

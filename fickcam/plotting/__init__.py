@@ -29,7 +29,18 @@ KINDS = {
 
 
 def available_kinds(ds) -> list[str]:
-    """The plot kinds this result has data for."""
+    """The plot kinds this result has data for.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        A result of a run or of a sweep.
+
+    Returns
+    -------
+    list of str
+        Keys of :data:`KINDS`; ``["sweep"]`` for a sweep result (a ``case`` dimension).
+    """
     if "case" in ds.dims:  # a sweep result: one figure set over its varied parameters
         return ["sweep"]
     names = set(ds.variables)

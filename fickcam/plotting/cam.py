@@ -26,7 +26,19 @@ DYNAMICS = (("contact_force", "contact force [N]", 1.0), ("cam_torque", "cam tor
 
 
 def kinematic_rows(ds):
-    """The S/V/A/J rows of a translating follower, or of a swinging arm."""
+    """The S/V/A/J rows of a translating follower, or of a swinging arm.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        A cam result.
+
+    Returns
+    -------
+    tuple
+        (variable, axis label, scale from the stored unit) per panel row: :data:`KINEMATICS`
+        when the result holds ``follower_displacement``, else :data:`ARM_KINEMATICS`.
+    """
     return KINEMATICS if "follower_displacement" in ds else ARM_KINEMATICS
 
 
@@ -87,14 +99,41 @@ def plot_kinematics(ds, outdir, save=save_figure) -> list[Path]:
 
 
 def polar(x, y) -> tuple[np.ndarray, np.ndarray]:
-    """(polar angle [deg] in [0, 360), radius) of points (x, y) in the cam frame."""
+    """(polar angle, radius) of points (x, y) in the cam frame.
+
+    Parameters
+    ----------
+    x, y : numpy.ndarray
+        The points [m].
+
+    Returns
+    -------
+    angle : numpy.ndarray
+        The polar angle [degree], in [0, 360).
+    radius : numpy.ndarray
+        The distance from the cam centre [m].
+    """
     return np.degrees(np.arctan2(y, x)) % 360.0, np.hypot(x, y)
 
 
 def radial_deviation(reference, x, y) -> np.ndarray:
-    """The radius of the profile points (x, y) minus the ``reference`` (polar angle [deg],
-    ascending; radius) at the reference's polar angles: the aged radius is interpolated
-    there, as a roundness gauge reads a profile."""
+    """The radius of the profile points (x, y) minus the ``reference`` at its polar angles.
+
+    The aged radius is interpolated (periodically) at the reference's polar angles, as a
+    roundness gauge reads a profile.
+
+    Parameters
+    ----------
+    reference : tuple of numpy.ndarray
+        (polar angle [degree], ascending; radius [m]) of the reference profile (:func:`polar`).
+    x, y : numpy.ndarray
+        The points of the profile compared [m].
+
+    Returns
+    -------
+    numpy.ndarray
+        Radius minus reference radius at each reference angle [m].
+    """
     angle, radius = reference
     aged_angle, aged_radius = polar(x, y)
     order = np.argsort(aged_angle)

@@ -16,7 +16,18 @@ def figure():
 
 
 def days(ds):
-    """Ageing times of ``ds`` in days (float array)."""
+    """Ageing times of ``ds`` in days.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        A result (``time`` in days, as :func:`fickcam.open_result` gives it).
+
+    Returns
+    -------
+    numpy.ndarray
+        The ageing times [d], float.
+    """
     import numpy as np
 
     return np.asarray(ds["time"].values, float)
@@ -27,8 +38,23 @@ MOTIONS = ("follower_displacement", "follower_arm_angle", "rocker_angle")
 
 
 def ages(ds, most: int = 4) -> list[int]:
-    """Indices of up to ``most`` ageing times spread from the first to the last, among
-    those where the mechanism has a valid state (a line to draw)."""
+    """Indices of up to ``most`` ageing times spread from the first to the last.
+
+    Only ageing times where the mechanism has a valid state (a finite motion, a line to draw)
+    are picked.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        A result.
+    most : int
+        The most indices returned [1].
+
+    Returns
+    -------
+    list of int
+        Ascending indices along ``time``.
+    """
     import numpy as np
 
     valid = np.arange(ds.sizes["time"])
@@ -41,15 +67,40 @@ def ages(ds, most: int = 4) -> list[int]:
 
 
 def age_colour(ds, k: int):
-    """The colour of ageing index ``k`` of ``ds`` in every figure of the result: viridis
-    from the first ageing time (dark) to the last (green), so order reads as time."""
+    """The colour of ageing index ``k`` of ``ds`` in every figure of the result.
+
+    viridis from the first ageing time (dark) to the last (green), so order reads as time.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        A result.
+    k : int
+        An index along ``time``.
+
+    Returns
+    -------
+    tuple of float
+        An RGBA colour.
+    """
     from matplotlib import colormaps
 
     return colormaps["viridis"](0.85 * k / max(ds.sizes["time"] - 1, 1))
 
 
 def age_label(t_days: float) -> str:
-    """Legend text of an ageing time: in days, or hours or minutes below a day."""
+    """Legend text of an ageing time: in days, or hours or minutes below a day.
+
+    Parameters
+    ----------
+    t_days : float
+        The ageing time [d].
+
+    Returns
+    -------
+    str
+        ``"t = 30 d"``, ``"t = 5 h"`` or ``"t = 20 min"``.
+    """
     if t_days == 0 or t_days >= 1:
         return f"t = {t_days:g} d"
     hours = t_days * 24.0
@@ -57,7 +108,15 @@ def age_label(t_days: float) -> str:
 
 
 def finish_plan_view(ax, title: str) -> None:
-    """Equal-aspect x-y axes in mm with title, legend and grid (profiles, coupler curves)."""
+    """Equal-aspect x-y axes in mm with title, legend and grid (profiles, coupler curves).
+
+    Parameters
+    ----------
+    ax : matplotlib.axes.Axes
+        The axes, with curves drawn in mm.
+    title : str
+        Their title.
+    """
     ax.set_aspect("equal", adjustable="datalim")
     ax.set_xlabel("x [mm]")
     ax.set_ylabel("y [mm]")
@@ -67,13 +126,39 @@ def finish_plan_view(ax, title: str) -> None:
 
 
 def length_scale(largest: float) -> tuple[float, str]:
-    """(scale from m, unit) to show lengths up to ``largest`` [m]: µm below a millimetre."""
+    """(scale from m, unit) to show lengths up to ``largest``: µm below a millimetre.
+
+    Parameters
+    ----------
+    largest : float
+        The largest length to show [m].
+
+    Returns
+    -------
+    scale : float
+        Displayed value / value in m [unit/m]: 1e6 or 1e3.
+    unit : str
+        ``"µm"`` or ``"mm"``.
+    """
     return (1e6, "µm") if largest < 1e-3 else (1e3, "mm")
 
 
 def exaggeration(size: float, deviation: float) -> float:
-    """A factor of 1, 2 or 5 x 10^n that makes the largest ``deviation`` about 8 % of
-    ``size`` (1: the deviation is shown as it is)."""
+    """A factor of 1, 2 or 5 x 10^n that makes the largest ``deviation`` about 8 % of ``size``.
+
+    Parameters
+    ----------
+    size : float
+        The size of the outline drawn [m].
+    deviation : float
+        The largest deviation from it [m].
+
+    Returns
+    -------
+    float
+        The factor [-]: the largest of 1, 2, 5 x 10^n not above 0.08 ``size``/``deviation``;
+        1 (the deviation shown as it is) when it is already that large, or not positive.
+    """
     import math
 
     if not deviation > 0 or deviation >= 0.08 * size:
@@ -84,8 +169,22 @@ def exaggeration(size: float, deviation: float) -> float:
 
 
 def reference_curve(ds, names) -> tuple[tuple, str]:
-    """The as-designed values of the variables ``names`` and ``"design"``, or, in a result
-    without them, their values at the first ageing time and its label."""
+    """The as-designed values of the variables ``names``, or their values at the first ageing time.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        A result.
+    names : sequence of str
+        Variables with an as-designed counterpart (``<name>_design``).
+
+    Returns
+    -------
+    values : tuple of numpy.ndarray
+        One array per name [stored unit].
+    label : str
+        ``"design"``, or the first ageing time's label in a result without design values.
+    """
     from ..schema import design_name
 
     if all(design_name(n) in ds for n in names):
@@ -95,9 +194,29 @@ def reference_curve(ds, names) -> tuple[tuple, str]:
 
 def exaggerated_outlines(ax, ds, reference, deviations, picks, what: str,
                          against: str = "design") -> None:
-    """Plan view in mm: ``reference`` (x, y) [m] dashed (labelled ``against``), and for
-    each ageing index in ``picks`` the reference plus its deviation (dx, dy) [m]
-    (``deviations[k]``) multiplied by one stated factor, so that sub-millimetre drift shows."""
+    """Plan view in mm of a reference outline and its aged outlines, deviations magnified.
+
+    ``reference`` is drawn dashed; for each ageing index in ``picks`` the reference plus its
+    deviation multiplied by one stated factor (:func:`exaggeration`), so that
+    sub-millimetre drift shows.
+
+    Parameters
+    ----------
+    ax : matplotlib.axes.Axes
+        The axes.
+    ds : xarray.Dataset
+        The result (ageing times, colours).
+    reference : tuple of numpy.ndarray
+        (x, y) of the reference outline [m].
+    deviations : mapping of int to tuple of numpy.ndarray
+        (dx, dy) from the reference at each ageing index [m].
+    picks : sequence of int
+        The ageing indices drawn.
+    what : str
+        The title's first line.
+    against : str
+        The reference's legend label (``"design"`` or an ageing time).
+    """
     import numpy as np
 
     x, y = reference
@@ -117,8 +236,25 @@ def exaggerated_outlines(ax, ds, reference, deviations, picks, what: str,
 
 
 def length_drift_panel(ax, ds, x, lengths: dict, xlabel: str, quantity: str, title: str) -> None:
-    """A line per ageing index ``k`` of ``lengths[k]`` [m] against ``x``, in µm or mm as
-    their size asks; the y label is ``quantity`` with that unit."""
+    """A line per ageing index of a length against ``x``, in µm or mm as their size asks.
+
+    Parameters
+    ----------
+    ax : matplotlib.axes.Axes
+        The panel.
+    ds : xarray.Dataset
+        The result, for its ageing times and their colours.
+    x : array_like
+        The abscissa [unit named in ``xlabel``].
+    lengths : dict of int to numpy.ndarray
+        Ageing index -> the lengths along ``x`` [m].
+    xlabel : str
+        The x label, with its unit.
+    quantity : str
+        The y label, without unit (the unit chosen is appended).
+    title : str
+        The panel's title.
+    """
     import numpy as np
 
     scale, units = length_scale(max(float(np.nanmax(np.abs(v))) for v in lengths.values()))
@@ -133,8 +269,15 @@ def length_drift_panel(ax, ds, x, lengths: dict, xlabel: str, quantity: str, tit
 
 
 def tidy_ticks(fig) -> None:
-    """Plain, few tick labels on every linear axis left to matplotlib's defaults: no
-    offset (``+1.4377e-2``), no crowding (``0.009960.00997``): at most 5 ticks on x, 6 on y."""
+    """Plain, few tick labels on every linear axis left to matplotlib's defaults.
+
+    No offset (``+1.4377e-2``), no crowding: at most 5 ticks on x, 6 on y.
+
+    Parameters
+    ----------
+    fig : matplotlib.figure.Figure
+        The figure, changed in place.
+    """
     from matplotlib.ticker import AutoLocator, MaxNLocator, ScalarFormatter
 
     for ax in fig.axes:
@@ -148,9 +291,33 @@ def tidy_ticks(fig) -> None:
 
 
 def drift_panel(ax, x, ds, name: str, picks, scale: float, ylabel: str) -> None:
-    """``name`` minus its as-designed value over an angle, a line per ageing index in
-    ``picks`` (the t = 0 line is the thermal change alone; the others add the moisture),
-    in the unit ``ylabel`` names (``scale`` from the stored unit); nothing without a design."""
+    """``name`` minus its as-designed value over an angle, a line per ageing index in ``picks``.
+
+    The t = 0 line is the thermal change alone; the others add the moisture. A spike at a
+    step of the curve is clipped from the y range, and the panel says so.
+
+    Parameters
+    ----------
+    ax : matplotlib.axes.Axes
+        The axes.
+    x : array_like
+        The angles [degree].
+    ds : xarray.Dataset
+        A result holding ``name`` and ``<name>_design``.
+    name : str
+        The variable.
+    picks : sequence of int
+        The ageing indices drawn.
+    scale : float
+        Displayed value / stored value [display unit / stored unit].
+    ylabel : str
+        The y label, naming the displayed unit.
+
+    Raises
+    ------
+    fickcam.errors.InputError
+        When the result holds no as-designed value of ``name`` (:func:`fickcam.query.drift`).
+    """
     from ..query import drift
 
     import numpy as np
@@ -186,13 +353,33 @@ def _clip_spikes(ax, values) -> None:
 
 
 def legend_outside(ax, **kwargs) -> None:
-    """The legend to the right of the axes, where it hides no curve."""
+    """The legend to the right of the axes, where it hides no curve.
+
+    Parameters
+    ----------
+    ax : matplotlib.axes.Axes
+        The axes.
+    **kwargs
+        Passed to :meth:`matplotlib.axes.Axes.legend`.
+    """
     ax.legend(fontsize=8, loc="upper left", bbox_to_anchor=(1.01, 1.0), borderaxespad=0.0, **kwargs)
 
 
 def save_figure(fig, path: Path) -> Path:
-    """Write ``fig`` to ``path`` (format by its suffix) through a temporary file and a
-    rename, and close it."""
+    """Write ``fig`` to ``path`` through a temporary file and a rename, and close it.
+
+    Parameters
+    ----------
+    fig : matplotlib.figure.Figure
+        The figure (its ticks are tidied first, :func:`tidy_ticks`).
+    path : pathlib.Path
+        The file; its suffix gives the format (png by default), 120 dpi.
+
+    Returns
+    -------
+    pathlib.Path
+        ``path``.
+    """
     from ..store import replaced_atomically
 
     tidy_ticks(fig)

@@ -17,9 +17,27 @@ def _spec_text(ds, variable: str) -> str:
 
 
 def plot_against_band(before, after, path, window=()) -> Path:
-    """One panel per ``deviation`` limit of ``before``: the largest |x - design| over the
-    cycle at every ageing time for both results, the band shaded; ``window``: the ageing
-    times compensated for (days, dotted)."""
+    """One panel per ``deviation`` limit: the worst deviation before and after compensation.
+
+    Each panel shows the largest |x - design| over the cycle at every ageing time for both
+    results.
+
+    Parameters
+    ----------
+    before : xarray.Dataset
+        The result as designed (its limits are drawn).
+    after : xarray.Dataset
+        The result of the compensated design.
+    path : str or pathlib.Path
+        The figure file.
+    window : sequence of float
+        The ageing times compensated for [d], drawn dotted.
+
+    Returns
+    -------
+    pathlib.Path
+        The file written.
+    """
     from ..limits import stored_limits, worst_value
 
     limits = [limit for limit in stored_limits(before).values()

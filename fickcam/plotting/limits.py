@@ -18,8 +18,23 @@ def _units(limit) -> tuple[float, str]:
 
 
 def worst_label(variable: str, kind: str, over_cycle: bool) -> str:
-    """What :func:`~fickcam.limits.worst_value` gives, in words: ``|x - design|`` for a
-    deviation, the largest or smallest value over the cycle for a max or min."""
+    """What :func:`~fickcam.limits.worst_value` gives, in words.
+
+    Parameters
+    ----------
+    variable : str
+        The limited variable.
+    kind : {"deviation", "max", "min"}
+        The kind of limit.
+    over_cycle : bool
+        The variable varies over the cycle (the worst over it is taken).
+
+    Returns
+    -------
+    str
+        ``|x - design|`` for a deviation, the largest or smallest value over the cycle for a
+        max or min.
+    """
     if kind == "deviation":
         return f"largest |{variable} − design|" if over_cycle else f"|{variable} − design|"
     if not over_cycle:

@@ -31,7 +31,20 @@ def _peak(array, dim):
 
 
 def outputs(ds) -> dict[str, tuple[str, object]]:
-    """name -> (axis label, DataArray over (case, time)) for the outputs ``ds`` has."""
+    """The outputs of a sweep result that its figures show, with their axis labels.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        A sweep result.
+
+    Returns
+    -------
+    dict of str to tuple of (str, xarray.DataArray)
+        name -> (axis label with unit, values over (case, time) in that unit): lift change
+        [mm], jump speed [rpm], peak torques [N m], moisture [wt %], transmission angle and
+        rocker shift [deg], those ``ds`` has.
+    """
     found: dict[str, tuple[str, object]] = {}
     if "lift" in ds:
         found["lift_change"] = ("lift change since age 0 [mm]",
@@ -61,7 +74,18 @@ def outputs(ds) -> dict[str, tuple[str, object]]:
 
 
 def parameters(ds) -> list[str]:
-    """Names of the varied values: the coordinates along ``case`` that a sweep path set."""
+    """Names of the varied values: the coordinates along ``case`` that a sweep path set.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        A sweep's combined result, its varied values as coordinates along ``case``.
+
+    Returns
+    -------
+    list of str
+        The coordinate names, in the sweep file's order.
+    """
     return [name for name, coord in ds.coords.items()
             if coord.dims == ("case",) and "dotted_path" in coord.attrs]
 
@@ -121,6 +145,26 @@ def _axis_values(values: np.ndarray, names: dict | None = None):
 
 
 def plot_grid(ds, outdir: Path, age_index: int, save=save_figure) -> list[Path]:
+    """Each output at one ageing time against the first varied value.
+
+    One line per combination of the other varied values.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        A grid sweep's result.
+    outdir : pathlib.Path
+        The folder the figures go to (``sweep_<output>.png``).
+    age_index : int
+        The ageing time shown, an index along ``time``.
+    save : callable
+        ``save(fig, path) -> path`` (:func:`~fickcam.plotting.common.save_figure`).
+
+    Returns
+    -------
+    list of pathlib.Path
+        The files written.
+    """
     plt = figure()
     names = parameters(ds)
     x_name, others = names[0], names[1:]
@@ -154,9 +198,23 @@ def plot_grid(ds, outdir: Path, age_index: int, save=save_figure) -> list[Path]:
 
 
 def plot_histories(ds, outdir: Path, save=save_figure) -> list[Path]:
-    """A grid over text values (``environment.history_file``: weather files of several
-    sites): each output over ageing time, one line per case labelled by its values, so
-    the sites' seasons and drift are compared, not only their last values."""
+    """Each output over ageing time, one line per case labelled by its values.
+
+    For a grid over text values (``environment.history_file``: weather files of several
+    sites), so the sites' seasons and drift are compared, not only their last values.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        A sweep result.
+    outdir, save
+        As for :func:`plot_grid`; the figures are ``sweep_<output>_over_time.png``.
+
+    Returns
+    -------
+    list of pathlib.Path
+        The files written.
+    """
     plt = figure()
     names = parameters(ds)
     ok = _ok(ds)
@@ -185,6 +243,24 @@ def _has_text_values(ds) -> bool:
 
 
 def plot_monte_carlo(ds, outdir: Path, age_index: int, save=save_figure) -> list[Path]:
+    """Per output: its quantile fan over ageing time and its scatter against the varied values.
+
+    The fan shows the 5, 25, 50, 75 and 95 % quantiles.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        A Monte Carlo sweep's result.
+    outdir, save
+        As for :func:`plot_grid`.
+    age_index : int
+        The ageing time of the scatter panels, an index along ``time``.
+
+    Returns
+    -------
+    list of pathlib.Path
+        The files written.
+    """
     plt = figure()
     names = parameters(ds)[:4]
     ok = _ok(ds)
@@ -222,9 +298,31 @@ def plot_monte_carlo(ds, outdir: Path, age_index: int, save=save_figure) -> list
 
 
 def plot_out_of_spec(ds, outdir: Path, save=save_figure) -> list[Path]:
-    """The fraction of cases out of spec by each ageing time, per limit, with its
-    Wilson 95 % interval (fickcam.sweep.scatter): a step curve from every case's
-    continuous time out of spec, the stored ageing times marked."""
+    """The fraction of cases out of spec by each ageing time, per limit, with its 95 % interval.
+
+    The interval is Wilson's score interval.
+
+    A step curve from every case's continuous time out of spec
+    (:func:`fickcam.sweep.scatter.out_of_spec_counts`), the stored ageing times marked.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        A sweep result with ``time_out_of_spec`` and ``fraction_out_of_spec``.
+    outdir, save
+        As for :func:`plot_grid`; the figure is ``sweep_out_of_spec.png``.
+
+    Returns
+    -------
+    list of pathlib.Path
+        The file written.
+
+    References
+    ----------
+    E. B. Wilson, "Probable inference, the law of succession, and statistical
+    inference", Journal of the American Statistical Association 22 (158), 209-212, 1927,
+    doi:10.1080/01621459.1927.10502953.
+    """
     from ..sweep.scatter import out_of_spec_counts, wilson_interval
 
     plt = figure()

@@ -42,8 +42,20 @@ def plot(ds, outdir, save=save_figure) -> list[Path]:
 
 
 def climate_edges(centres_days: np.ndarray) -> np.ndarray:
-    """The interval edges [d] of a climate summary from its interval middles (the intervals
-    start at 0 and follow each other; the last may be shorter)."""
+    """The interval edges of a climate summary from its interval middles.
+
+    The intervals start at 0 and follow each other; the last may be shorter.
+
+    Parameters
+    ----------
+    centres_days : numpy.ndarray
+        The middles of the intervals [d].
+
+    Returns
+    -------
+    numpy.ndarray
+        The edges, one more than the middles [d].
+    """
     edges = np.zeros(centres_days.size + 1)
     for i, centre in enumerate(centres_days):
         edges[i + 1] = 2.0 * centre - edges[i]

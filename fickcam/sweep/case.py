@@ -28,7 +28,21 @@ CACHE_ATTRIBUTE = "fickcam_run_cache"  # where a dask worker keeps its cases' ca
 
 @dataclass(frozen=True)
 class CaseTask:
-    """Everything a worker needs for one case (small and picklable)."""
+    """Everything a worker needs for one case (small and picklable).
+
+    Parameters
+    ----------
+    index : int
+        The case's index.
+    scene : dict
+        The case's scene as plain YAML data.
+    values : dict
+        The raw values this case sets, by dotted path.
+    label : str
+        Names the scene in messages (``"sweep.yaml case 7"``).
+    base_dir : str
+        The folder that relative paths in the scene refer to.
+    """
 
     index: int
     scene: dict          # the case's scene as plain YAML data
@@ -38,7 +52,23 @@ class CaseTask:
 
 
 def case_scene(task: CaseTask):
-    """Validate the case's scene exactly as `fickcam run` would validate its file."""
+    """Validate the case's scene exactly as ``fickcam run`` would validate its file.
+
+    Parameters
+    ----------
+    task : CaseTask
+        The case, its scene as YAML data.
+
+    Returns
+    -------
+    fickcam.scene.Scene
+        The validated scene.
+
+    Raises
+    ------
+    fickcam.errors.SceneError
+        When a value of the case is invalid.
+    """
     import yaml
 
     from ..scene import parse_yaml, validate_document
@@ -48,8 +78,22 @@ def case_scene(task: CaseTask):
 
 
 def failure_message(exc: BaseException) -> str:
-    """One line saying why a case failed (scene problems by key path, no line numbers:
-    the case's scene is not a file the user wrote)."""
+    """One line saying why a case failed.
+
+    Scene problems are given by key path, without line numbers: the case's scene is not a
+    file the user wrote.
+
+    Parameters
+    ----------
+    exc : BaseException
+        What the case raised.
+
+    Returns
+    -------
+    str
+        The reason; an exception other than a :class:`~fickcam.errors.FickcamError` is
+        ``internal error: TYPE: message``.
+    """
     if isinstance(exc, SceneError):
         return "; ".join(f"{p.key}: {p.reason}" if p.key else p.reason for p in exc.problems)
     if isinstance(exc, FickcamError):
@@ -58,8 +102,16 @@ def failure_message(exc: BaseException) -> str:
 
 
 def worker_cache():
-    """The ``diffusion.RunCache`` of this dask worker process, made by its first case and
-    kept on the worker; outside a dask worker a fresh one."""
+    """The ``diffusion.RunCache`` of this dask worker process, shared by its cases.
+
+    Made by the worker's first case and kept on the worker; outside a dask worker a fresh
+    one.
+
+    Returns
+    -------
+    fickcam.diffusion.RunCache
+        The cache.
+    """
     from ..diffusion import RunCache
 
     try:
@@ -77,8 +129,26 @@ def worker_cache():
 
 def run_case(task: CaseTask, cache=None) -> tuple[dict, bytes]:
     """Run one case; return its record and its journal payload (record and result).
-    ``cache``: the worker's ``diffusion.RunCache``, shared by its cases (None: the dask
-    worker's, ``worker_cache``)."""
+
+    Whatever goes wrong becomes a ``failed`` record with its message, never an exception; a
+    failure that is not the scene's fault is marked ``retry``.
+
+    Parameters
+    ----------
+    task : CaseTask
+        The case.
+    cache : fickcam.diffusion.RunCache, optional
+        The worker's cache, shared by its cases; None: the dask worker's
+        (:func:`worker_cache`).
+
+    Returns
+    -------
+    record : dict
+        ``index``, ``status`` ("ok" or "failed"), ``message``, ``values``, ``wall_time`` [s]
+        and, when rerun on resume, ``retry``.
+    payload : bytes
+        The journal entry (:func:`fickcam.sweep.journal.encode_case`).
+    """
     from ..simulate import run
     from .journal import encode_case
 
@@ -105,6 +175,17 @@ def run_case(task: CaseTask, cache=None) -> tuple[dict, bytes]:
 def run_cases(tasks: list[CaseTask]) -> list[tuple[dict, bytes]]:
     """Run a batch of cases one after the other (one worker task); their records and journal
     payloads, in order. The worker's caches of meshes and step responses carry over from
-    case to case, so cases alike in their parts' geometry and material solve those once."""
+    case to case, so cases alike in their parts' geometry and material solve those once.
+
+    Parameters
+    ----------
+    tasks : list of CaseTask
+        The batch's cases, in order.
+
+    Returns
+    -------
+    list of tuple of (dict, bytes)
+        Each case's record and journal payload, as :func:`run_case` gives them.
+    """
     cache = worker_cache()
     return [run_case(task, cache) for task in tasks]

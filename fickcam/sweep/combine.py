@@ -21,7 +21,18 @@ from .spec import Sweep
 
 
 def missing_like(template):
-    """A case without data: the template's variables filled with NaN (text with "")."""
+    """A case without data: the template's variables filled with NaN (text with "").
+
+    Parameters
+    ----------
+    template : xarray.Dataset
+        The result of a case that ran.
+
+    Returns
+    -------
+    xarray.Dataset
+        Its layout, NaN data (integers and booleans become float NaN, text empty).
+    """
     import xarray as xr
 
     filled = {}
@@ -37,7 +48,22 @@ def missing_like(template):
 
 
 def case_coordinates(sweep: Sweep, records: dict[int, dict]) -> dict:
-    """Coordinates along ``case``: parameters, status, message, wall time."""
+    """Coordinates along ``case``: the varied values, description, status, message, wall time.
+
+    Parameters
+    ----------
+    sweep : fickcam.sweep.spec.Sweep
+        The sweep.
+    records : dict of int to dict
+        Case index -> its journal record (``status``, ``message``, ``wall_time`` [s]); a case
+        without one is "failed", "not run".
+
+    Returns
+    -------
+    dict of str to xarray.Variable
+        The coordinates: each varied value in SI (angles in degrees, speeds in rpm) with the
+        unit the sweep file wrote as ``given_units``; ``case_wall_time`` [s].
+    """
     import xarray as xr
 
     n = len(sweep.cases)
@@ -79,6 +105,22 @@ def _site_labels(files, base_dir) -> dict:
 
 
 def sweep_attributes(sweep: Sweep, records: dict[int, dict], started: float | None) -> dict:
+    """The global attributes of a sweep's result: its files and texts, counts, version.
+
+    Parameters
+    ----------
+    sweep : fickcam.sweep.spec.Sweep
+        The sweep.
+    records : dict of int to dict
+        Case index -> its journal record (cases without an ``ok`` one count as failed).
+    started : float, optional
+        ``time.perf_counter()`` when the sweep started [s]; gives ``wall_time``.
+
+    Returns
+    -------
+    dict
+        The attributes (CF-1.8), with ``samples`` and ``seed`` for a Monte Carlo sweep.
+    """
     failed = [i for i in range(len(sweep.cases)) if records.get(i, {}).get("status") != "ok"]
     attrs = {
         "title": f"fickcam sweep: {sweep.base_data.get('name', '')}",
@@ -110,11 +152,25 @@ def _dataset(case):
 
 
 def stack_cases(case, n: int):
-    """The ``n`` cases along a new leading ``case`` dimension; ``case(i)`` gives case i's
-    Dataset or :class:`~.journal.CaseArrays` (the journal decodes it on demand). When every
-    case has the same variables and coordinates (a sweep that varies no ageing times or
-    angles) each case is copied into preallocated arrays and let go, so only the stacks
-    and one case are held; else ``xarray.concat`` (outer join) of them all."""
+    """The ``n`` cases along a new leading ``case`` dimension.
+
+    When every case has the same variables and coordinates (a sweep that varies no ageing
+    times or angles) each case is copied into preallocated arrays and let go, so only the
+    stacks and one case are held; else ``xarray.concat`` (outer join) of them all.
+
+    Parameters
+    ----------
+    case : callable
+        ``case(i)`` gives case i's Dataset or :class:`~.journal.CaseArrays` (the journal
+        decodes it on demand).
+    n : int
+        The number of cases [1].
+
+    Returns
+    -------
+    xarray.Dataset
+        The stacked cases (without the ``case`` coordinates of :func:`case_coordinates`).
+    """
     import xarray as xr
 
     first = _arrays(case(0))
@@ -151,9 +207,28 @@ def _same_layout(first: CaseArrays, other: CaseArrays) -> bool:
 
 def combine(sweep: Sweep, records: dict[int, dict], cases: Mapping,
             started: float | None = None):
-    """The sweep's Dataset from its records and the result Datasets of its ok cases
-    (``cases``: index -> Dataset or :class:`~.journal.CaseArrays`, e.g. the journal's
-    :class:`~.runner.JournalCases`)."""
+    """The sweep's Dataset from its records and the results of its ok cases.
+
+    Failed cases hold NaN (:func:`missing_like`); with limits, the fractions out of spec
+    (:func:`fickcam.sweep.scatter.fractions`) are added.
+
+    Parameters
+    ----------
+    sweep : fickcam.sweep.spec.Sweep
+        The sweep.
+    records : dict of int to dict
+        Case index -> its journal record.
+    cases : Mapping
+        Index -> Dataset or :class:`~.journal.CaseArrays` of each ok case (e.g. the
+        journal's :class:`~.runner.JournalCases`).
+    started : float, optional
+        ``time.perf_counter()`` when the sweep started [s].
+
+    Returns
+    -------
+    xarray.Dataset
+        The combined result along ``case``; only coordinates and attributes when no case ran.
+    """
     import xarray as xr
 
     coords = case_coordinates(sweep, records)
@@ -173,9 +248,21 @@ def combine(sweep: Sweep, records: dict[int, dict], cases: Mapping,
 
 
 def case_ends(ds) -> np.ndarray:
-    """Each case's last ageing time with a value (s; NaN for a case without any): the
-    ageing times of cases that vary the history's length differ (``every`` ends on each
-    case's own history), and the combined result holds NaN at the others' times."""
+    """Each case's last ageing time with a value.
+
+    The ageing times of cases that vary the history's length differ (``every`` ends on each
+    case's own history), and the combined result holds NaN at the others' times.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        A combined sweep result (NaN where a case holds no value).
+
+    Returns
+    -------
+    numpy.ndarray
+        (case,): the last ageing time holding a finite value [s]; NaN for a case without any.
+    """
     times = ageing_seconds(ds)
     held = np.zeros((ds.sizes["case"], times.size), bool)
     for variable in ds.data_vars.values():
@@ -186,8 +273,20 @@ def case_ends(ds) -> np.ndarray:
 
 
 def early_ends(ds) -> str | None:
-    """One line when some ok cases end before the result's last ageing time (their cells
-    at that time are empty in the sweep's table and plots), else None."""
+    """One line when some ok cases end before the result's last ageing time, else None.
+
+    Their cells at that time are empty in the sweep's table and plots.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        A combined sweep result.
+
+    Returns
+    -------
+    str or None
+        The line, naming the cases and when they end.
+    """
     from ..errors import format_duration
 
     if "time" not in ds.dims or "case" not in ds.dims:

@@ -46,7 +46,26 @@ def _covariances(name: str, material: dict) -> dict:
 
 
 def fitted_parameters(path: str, base_data: dict) -> list[tuple[str, str | None]]:
-    """(dotted path, dimension) of every value a covariance draw of ``path`` sets."""
+    """(dotted path, dimension) of every value a covariance draw of ``path`` sets.
+
+    Parameters
+    ----------
+    path : str
+        ``materials.NAME.fit``.
+    base_data : dict
+        The base scene as read from YAML.
+
+    Returns
+    -------
+    list of tuple of (str, str or None)
+        The dotted paths of the fitted values and their dimensions (None for a bare number).
+
+    Raises
+    ------
+    ValueError
+        When ``path`` is not ``materials.NAME.fit``, the material or its ``fit.covariance``
+        is absent, or a fitted value is not in the base scene.
+    """
     name, material = _material(path, base_data)
     out = []
     for group in _covariances(name, material):
@@ -59,7 +78,32 @@ def fitted_parameters(path: str, base_data: dict) -> list[tuple[str, str | None]
 
 
 def draw_fitted(path: str, base_data: dict, rng: np.random.Generator, count: int) -> dict[str, list]:
-    """``count`` draws of each fitted value, by dotted path (strings with units)."""
+    """``count`` joint draws of each fitted value, by dotted path.
+
+    (ln D0, Ea) and (a, b) are drawn as bivariate normals centred on the base scene's values
+    with the recorded covariances (``numpy.random.Generator.multivariate_normal``); D0 is
+    log-normal, so it stays positive.
+
+    Parameters
+    ----------
+    path, base_data
+        As for :func:`fitted_parameters`.
+    rng : numpy.random.Generator
+        The sweep's generator.
+    count : int
+        The number of draws [1].
+
+    Returns
+    -------
+    dict of str to list
+        Dotted path -> the draws, as strings with units (``m^2/s``, ``J/mol``, ``%``) or bare
+        floats (the exponent).
+
+    Raises
+    ------
+    ValueError
+        As :func:`fitted_parameters`.
+    """
     name, material = _material(path, base_data)
     out: dict[str, list] = {}
     for group, covariance in _covariances(name, material).items():

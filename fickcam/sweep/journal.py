@@ -40,7 +40,28 @@ def _plain(value):
 
 
 def encode_case(record: dict, dataset=None) -> bytes:
-    """A case's journal payload: its record and (ok cases) every variable of its result."""
+    """A case's journal payload: its record and (ok cases) every variable of its result.
+
+    The payload is the JSON header's length, the header (the record and each variable's
+    name, dims, attributes and place) and the numbers' raw bytes; text goes into the header.
+
+    Parameters
+    ----------
+    record : dict
+        The case's record (status, message, values, wall time [s]).
+    dataset : xarray.Dataset, optional
+        The result of an ok case; None for a failed one.
+
+    Returns
+    -------
+    bytes
+        The payload.
+
+    Raises
+    ------
+    TypeError
+        For an attribute JSON cannot hold (other than numpy scalars and arrays).
+    """
     variables, blobs, offset = [], [], 0
     for name, variable in ({} if dataset is None else dataset.variables).items():
         data = np.asarray(variable.values)
@@ -64,14 +85,34 @@ def _header(payload: bytes) -> tuple[dict, int]:
 
 
 def decode_record(payload: bytes) -> dict:
+    """The record stored in a journal payload.
+
+    Parameters
+    ----------
+    payload : bytes
+        A payload of :func:`encode_case`.
+
+    Returns
+    -------
+    dict
+        The case's record.
+    """
     return _header(payload)[0]["record"]
 
 
 @dataclass(frozen=True)
 class CaseArrays:
-    """A case's result as plain arrays, name -> (dims, values, attrs) for its data
-    variables and its coordinates: what stacking the cases needs, without the cost of an
-    xarray.Dataset per case (20 ms for the demo cam's 133 variables)."""
+    """A case's result as plain arrays, without the cost of an xarray.Dataset per case.
+
+    (20 ms for the demo cam's 133 variables.)
+
+    Parameters
+    ----------
+    data : dict
+        Data variable name -> (dims, values, attrs).
+    coords : dict
+        Coordinate name -> (dims, values, attrs).
+    """
 
     data: dict
     coords: dict
@@ -90,7 +131,18 @@ class CaseArrays:
 
 
 def decode_arrays(payload: bytes) -> CaseArrays | None:
-    """The result of an ok case's payload as arrays (None for a failed case)."""
+    """The result of an ok case's payload as arrays (None for a failed case).
+
+    Parameters
+    ----------
+    payload : bytes
+        What :func:`encode_case` wrote for the case (an ok case's holds its arrays).
+
+    Returns
+    -------
+    CaseArrays or None
+        The arrays (numbers are read-only views of ``payload``).
+    """
     header, start = _header(payload)
     if not header["variables"]:
         return None
@@ -108,14 +160,35 @@ def decode_arrays(payload: bytes) -> CaseArrays | None:
 
 
 def decode_dataset(payload: bytes):
-    """The result Dataset of an ok case's payload (None for a failed case)."""
+    """The result Dataset of an ok case's payload (None for a failed case).
+
+    Parameters
+    ----------
+    payload : bytes
+        As for :func:`decode_arrays`.
+
+    Returns
+    -------
+    xarray.Dataset or None
+        The case's result.
+    """
     arrays = decode_arrays(payload)
     return None if arrays is None else arrays.to_dataset()
 
 
 @dataclass(frozen=True)
 class Entry:
-    """Where a case's payload lies in the journal, and its record."""
+    """Where a case's payload lies in the journal, and its record.
+
+    Parameters
+    ----------
+    record : dict
+        The case's record.
+    offset : int
+        The payload's first byte in the file [byte].
+    size : int
+        The payload's length [byte].
+    """
 
     record: dict
     offset: int
@@ -123,7 +196,13 @@ class Entry:
 
 
 class Journal:
-    """The append-only case file of one sweep (``OUT.parts/cases.journal``)."""
+    """The append-only case file of one sweep (``OUT.parts/cases.journal``).
+
+    Parameters
+    ----------
+    path : pathlib.Path
+        The journal file (it need not exist yet).
+    """
 
     def __init__(self, path: Path):
         self.path = Path(path)

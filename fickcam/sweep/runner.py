@@ -35,14 +35,38 @@ log = logging.getLogger(__name__)
 
 
 def case_task(sweep: Sweep, index: int) -> CaseTask:
-    """The worker task of case ``index``."""
+    """The worker task of case ``index``.
+
+    Parameters
+    ----------
+    sweep : fickcam.sweep.spec.Sweep
+        The sweep.
+    index : int
+        The case's index.
+
+    Returns
+    -------
+    fickcam.sweep.case.CaseTask
+        Its scene, values, label and base folder.
+    """
     case = sweep.cases[index]
     return CaseTask(index=index, scene=sweep.scene_dict(case), values=case.values,
                     label=f"{Path(sweep.file).name} case {index}", base_dir=str(sweep.base_dir))
 
 
 def default_workers(n_cases: int) -> int:
-    """One worker process per core, but no more than there are cases."""
+    """One worker process per core, but no more than there are cases.
+
+    Parameters
+    ----------
+    n_cases : int
+        The cases to run [1].
+
+    Returns
+    -------
+    int
+        The number of workers [1], at least 1.
+    """
     return max(1, min(os.cpu_count() or 1, n_cases))
 
 
@@ -53,8 +77,33 @@ def require_distributed() -> None:
 
 @contextmanager
 def dask_client(workers: int | None, scheduler: str | None, n_cases: int):
-    """A distributed.Client: to ``scheduler`` if given, else to a new LocalCluster
-    (closed again on exit); dask's INFO chatter is kept off fickcam's stderr."""
+    """A distributed.Client to ``scheduler`` if given, else to a new LocalCluster.
+
+    The cluster is closed again on exit; dask's INFO chatter is kept off fickcam's stderr.
+
+    Parameters
+    ----------
+    workers : int, optional
+        Local worker processes [1]; None: :func:`default_workers`.
+    scheduler : str, optional
+        The address of a running dask scheduler.
+    n_cases : int
+        The cases to run [1].
+
+    Yields
+    ------
+    distributed.Client
+        The client.
+
+    Raises
+    ------
+    fickcam.extras.MissingExtra
+        When dask.distributed is not installed.
+    fickcam.errors.FickcamError
+        When the scheduler cannot be reached.
+    fickcam.errors.InputError
+        When fewer than one worker is asked for.
+    """
     require_distributed()  # importing it sets its loggers' levels: do that first
     with quieter("distributed", logging.WARNING), _connect(workers, scheduler, n_cases) as client:
         yield client
@@ -108,9 +157,29 @@ class _Collector:
 
 def run_here(sweep: Sweep, folder: WorkFolder, indices, *, progress: bool = False,
              done: int = 0) -> dict[int, dict]:
-    """Run the cases ``indices`` one after the other in this process (no dask); return
-    their records. One ``diffusion.RunCache`` serves every case: meshes, step responses
-    and tables carry over from case to case."""
+    """Run the cases ``indices`` one after the other in this process (no dask).
+
+    One ``diffusion.RunCache`` serves every case: meshes, step responses and tables carry
+    over from case to case.
+
+    Parameters
+    ----------
+    sweep : fickcam.sweep.spec.Sweep
+        The sweep.
+    folder : fickcam.sweep.workdir.WorkFolder
+        Its work folder (each finished case is appended to the journal there).
+    indices : iterable of int
+        The cases to run.
+    progress : bool
+        Show a progress bar over the cases.
+    done : int
+        Cases already finished, where the bar starts [1].
+
+    Returns
+    -------
+    dict of int to dict
+        Case index -> its record (:func:`fickcam.sweep.case.run_case`).
+    """
     from ..diffusion import RunCache
 
     cache = RunCache()
@@ -136,7 +205,20 @@ def batches(indices, threads: int) -> list[list[int]]:
     scheduler, the client and the worker a few milliseconds whatever it holds, a case about
     a tenth of a second. Consecutive cases of a grid differ in its last parameter only, so
     a batch mostly holds cases whose parts share their geometry and material, and its worker
-    solves what they share once (:func:`~.case.run_cases`)."""
+    solves what they share once (:func:`~.case.run_cases`).
+
+    Parameters
+    ----------
+    indices : iterable of int
+        The cases to run, in order.
+    threads : int
+        Worker threads of the cluster [1].
+
+    Returns
+    -------
+    list of list of int
+        The batches, consecutive, of at most ``MAX_BATCH`` cases each.
+    """
     indices = list(indices)
     size = max(1, min(MAX_BATCH, len(indices) // (BATCHES_PER_THREAD * max(threads, 1))))
     return [indices[start:start + size] for start in range(0, len(indices), size)]
@@ -151,6 +233,20 @@ def compute_cases(sweep: Sweep, folder: WorkFolder, indices, client, *, progress
     client nor the scheduler holds the scenes of a large sweep all together. The cases
     of a batch whose task itself broke (e.g. its worker died) are returned as failed and
     marked ``retry``, so a resumed sweep runs them again.
+
+    Parameters
+    ----------
+    sweep, folder, indices
+        The sweep, its work folder and the cases to run, as for :func:`run_here`.
+    client : distributed.Client
+        Where the cases run (:func:`dask_client`).
+    progress, done
+        The progress bar, and the count of cases already finished [1] it starts from.
+
+    Returns
+    -------
+    dict of int to dict
+        The records of the cases, by index, as :func:`run_here` gives them.
     """
     from distributed import as_completed
 
@@ -191,14 +287,44 @@ def compute_cases(sweep: Sweep, folder: WorkFolder, indices, client, *, progress
 
 
 def unfinished(task: CaseTask, exc: BaseException) -> dict:
-    """The record of a case whose worker task broke: failed, to be run again on resume."""
+    """The record of a case whose worker task broke: failed, to be run again on resume.
+
+    Parameters
+    ----------
+    task : CaseTask
+        The case.
+    exc : BaseException
+        What broke its task.
+
+    Returns
+    -------
+    dict
+        The case's record, with ``status`` "failed" and ``retry`` set.
+    """
     return {"index": task.index, "status": "failed", "values": task.values,
             "message": f"did not finish: {type(exc).__name__}: {exc}", "retry": True}
 
 
 def in_process(workers: int | None, scheduler: str | None, n_cases: int) -> bool:
-    """Whether the cases run here: one worker asked for (or one case), or no worker count
-    given and dask.distributed not installed; never with a scheduler."""
+    """Whether the cases run in this process.
+
+    They do when one worker is asked for (or there is one case), or no worker count is given
+    and dask.distributed is not installed; never with a scheduler.
+
+    Parameters
+    ----------
+    workers : int, optional
+        The worker processes asked for [1].
+    scheduler : str, optional
+        The address of a dask scheduler.
+    n_cases : int
+        The cases to run [1].
+
+    Returns
+    -------
+    bool
+        True to run here.
+    """
     if scheduler:
         return False
     if workers is None and not installed("sweep"):
@@ -281,9 +407,17 @@ def run_sweep(sweep_path, output, workers: int | None = None, scheduler: str | N
 
 
 class JournalCases(Mapping):
-    """The results of a sweep's ok cases (:class:`~.journal.CaseArrays`), each decoded from
-    the journal when asked for (so building the result holds one case at a time besides
-    the stacked arrays)."""
+    """The results of a sweep's ok cases, each decoded from the journal when asked for.
+
+    Building the result thus holds one case at a time besides the stacked arrays.
+
+    Parameters
+    ----------
+    folder : fickcam.sweep.workdir.WorkFolder
+        The work folder holding the journal.
+    entries : dict of int to fickcam.sweep.journal.Entry
+        Case index -> where its payload lies.
+    """
 
     def __init__(self, folder: WorkFolder, entries: dict):
         self.folder, self.entries = folder, entries
@@ -302,7 +436,22 @@ class JournalCases(Mapping):
 
 
 def finished_cases(folder: WorkFolder, sweep: Sweep, records: dict[int, dict]) -> JournalCases:
-    """The ok cases among ``records``, as they are in the journal."""
+    """The ok cases among ``records``, as they are in the journal.
+
+    Parameters
+    ----------
+    folder : fickcam.sweep.workdir.WorkFolder
+        The work folder.
+    sweep : fickcam.sweep.spec.Sweep
+        The sweep.
+    records : dict of int to dict
+        Case index -> its record.
+
+    Returns
+    -------
+    JournalCases
+        Index -> the case's arrays, decoded on demand.
+    """
     entries = folder.finished(sweep.identity, len(sweep.cases))
     return JournalCases(folder, {index: entries[index] for index, record in records.items()
                                  if record["status"] == "ok" and index in entries})

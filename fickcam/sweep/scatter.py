@@ -18,7 +18,31 @@ CONFIDENCE = 0.95
 
 
 def wilson_interval(k: int, n: int, confidence: float = CONFIDENCE) -> tuple[float, float]:
-    """(low, high) of the binomial proportion k/n, Wilson score interval; NaN for n = 0."""
+    """(low, high) of the binomial proportion k/n, Wilson score interval; NaN for n = 0.
+
+    Parameters
+    ----------
+    k : int
+        Successes (cases out of spec) [1].
+    n : int
+        Trials (cases that ran) [1].
+    confidence : float
+        The confidence level [-], 0.95 by default.
+
+    Returns
+    -------
+    low, high : float
+        The interval's ends, as fractions [-] (NaN, NaN when n = 0).
+
+    References
+    ----------
+    E. B. Wilson, "Probable inference, the law of succession, and statistical
+    inference", Journal of the American Statistical Association 22 (158), 209-212, 1927,
+    doi:10.1080/01621459.1927.10502953.
+
+    L. D. Brown, T. T. Cai and A. DasGupta, "Interval estimation for a binomial
+    proportion", Statistical Science 16 (2), 101-133, 2001, doi:10.1214/ss/1009213286.
+    """
     from scipy.stats import binomtest
 
     if n == 0:
@@ -29,15 +53,47 @@ def wilson_interval(k: int, n: int, confidence: float = CONFIDENCE) -> tuple[flo
 
 def out_of_spec_counts(time_out_of_spec_days: np.ndarray, ages_days: np.ndarray,
                        ran: np.ndarray) -> tuple[np.ndarray, int]:
-    """(k over (time, limit), n): cases of ``ran`` out of spec by each age."""
+    """(k over (time, limit), n): cases of ``ran`` out of spec by each age.
+
+    A case is out of spec by age t when its ``time_out_of_spec`` is at or before t (NaN,
+    never out of spec, counts as in spec).
+
+    Parameters
+    ----------
+    time_out_of_spec_days : numpy.ndarray
+        (case, limit): when each case first leaves each limit [d], NaN for never.
+    ages_days : numpy.ndarray
+        The ages counted at [d].
+    ran : numpy.ndarray of bool
+        (case,): the cases that ran (failed cases are left out of n).
+
+    Returns
+    -------
+    k : numpy.ndarray of int
+        (age, limit): cases out of spec by each age [1].
+    n : int
+        Cases that ran [1].
+    """
     failed_at = np.asarray(time_out_of_spec_days, float)[np.asarray(ran, bool)]  # (case, limit)
     by_age = failed_at[None, :, :] <= np.asarray(ages_days, float)[:, None, None] * (1 + 1e-12)
     return by_age.sum(axis=1), int(failed_at.shape[0])
 
 
 def fractions(ds):
-    """``fraction_out_of_spec`` and its 95 % bounds (time, limit, %), and
-    ``cases_out_of_spec`` (time, limit), for a combined sweep result with limits."""
+    """The fraction of cases out of spec with its Wilson 95 % bounds, and the counts.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        A combined sweep result with limits (``time_out_of_spec`` over case and limit).
+
+    Returns
+    -------
+    xarray.Dataset
+        ``fraction_out_of_spec``, ``fraction_out_of_spec_low`` and ``_high`` [%] and
+        ``cases_out_of_spec`` [1] over (time, limit); the last carries ``cases`` = n. The
+        bounds are :func:`wilson_interval`'s (see its references).
+    """
     import xarray as xr
 
     ages = np.asarray(ds["time"].values, float)
@@ -59,7 +115,18 @@ def fractions(ds):
 
 
 def summary_lines(ds) -> list[str]:
-    """Per limit: the fraction out of spec at each stored ageing time, with its interval."""
+    """Per limit: the fraction out of spec at each stored ageing time, with its interval.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        A sweep result with :func:`fractions`' variables.
+
+    Returns
+    -------
+    list of str
+        A heading and one line per limit; empty without fractions.
+    """
     if "fraction_out_of_spec" not in ds:
         return []
     n = int(ds["cases_out_of_spec"].attrs.get("cases", 0))

@@ -24,7 +24,27 @@ EXAMPLE = "tcp://HOST:8786"
 
 
 def scheduler_address(address: str) -> tuple[str, str, int | None]:
-    """(scheme, host, port) of a dask address; InputError (exit 2) for one that is not."""
+    """(scheme, host, port) of a dask scheduler address.
+
+    Parameters
+    ----------
+    address : str
+        The address, e.g. ``tcp://HOST:8786``.
+
+    Returns
+    -------
+    scheme : str
+        ``tcp``, ``tls``, ``ucx``...
+    host : str
+        The host (the whole location for a scheme other than tcp and tls).
+    port : int or None
+        The port (None for a scheme other than tcp and tls).
+
+    Raises
+    ------
+    fickcam.errors.InputError
+        For an http address, an unknown scheme or an address without a valid host.
+    """
     from distributed.comm.addressing import parse_address, parse_host_port
 
     text = address.strip()
@@ -48,9 +68,27 @@ def scheduler_address(address: str) -> tuple[str, str, int | None]:
 
 
 def probe(address: str, timeout: float | None = None) -> None:
-    """Raise unless a dask scheduler answers at ``address`` within ``timeout`` seconds:
-    InputError (exit 2) for a malformed address, an unknown host or another kind of
-    server there; FickcamError (exit 1) when nothing answers (refused, unreachable)."""
+    """Raise unless a dask scheduler answers at ``address`` within ``timeout``.
+
+    For TCP a plain socket checks that something listens there and greets as a dask
+    scheduler does (a first frame of at most :data:`MAX_HANDSHAKE_BYTES`); other schemes are
+    left to dask's own timeout.
+
+    Parameters
+    ----------
+    address : str
+        The scheduler's address.
+    timeout : float, optional
+        How long to wait for the connection and the greeting [s]; :data:`PROBE_TIMEOUT` by
+        default.
+
+    Raises
+    ------
+    fickcam.errors.InputError
+        For a malformed address, an unknown host or another kind of server there (exit 2).
+    fickcam.errors.FickcamError
+        When nothing answers: refused, unreachable or silent (exit 1).
+    """
     timeout = PROBE_TIMEOUT if timeout is None else timeout
     scheme, host, port = scheduler_address(address)
     if scheme != "tcp":  # tls, ucx, ws, inproc: left to dask's own timeout

@@ -48,8 +48,24 @@ def _number_and_unit(value: Any) -> tuple[float, str]:
 
 
 class Distribution(StrictModel):
-    """One random input: exactly one of normal, uniform, lognormal (+ optional unit), or
-    ``covariance: true`` on ``materials.NAME.fit`` (:mod:`fickcam.sweep.fitdraw`)."""
+    """One random input of a Monte Carlo sweep.
+
+    Exactly one of normal, uniform, lognormal (with an optional unit), or
+    ``covariance: true`` on ``materials.NAME.fit`` (:mod:`fickcam.sweep.fitdraw`).
+
+    Parameters
+    ----------
+    normal : tuple of (float or str, float or str), optional
+        Mean and standard deviation [unit of the varied value, e.g. ``["85 degC", "2 K"]``].
+    uniform : tuple of (float or str, float or str), optional
+        Low and high ends [unit of the varied value]; low < high.
+    lognormal : tuple of (float, float), optional
+        Mean and standard deviation of ln(value) [-] (the value in ``unit``).
+    covariance : True, optional
+        Draw a material fit's values jointly from its covariance (takes no unit).
+    unit : str, optional
+        The unit of bare parameters [e.g. ``"mm"``]; not with parameters that carry one.
+    """
 
     normal: tuple[Union[float, str], Union[float, str]] | None = None    # mean, standard deviation
     uniform: tuple[Union[float, str], Union[float, str]] | None = None   # low, high
@@ -98,7 +114,20 @@ class Distribution(StrictModel):
         return value
 
     def draw(self, rng: np.random.Generator, count: int) -> list:
-        """``count`` values for the scene: floats, or strings with the draw unit."""
+        """``count`` values for the scene: floats, or strings with the draw unit.
+
+        Parameters
+        ----------
+        rng : numpy.random.Generator
+            The sweep's generator (seeded: reproducible).
+        count : int
+            The number of draws [1].
+
+        Returns
+        -------
+        list of float or str
+            The draws, in :attr:`draw_unit` (bare floats when it is "").
+        """
         first, second = self.parameters
         if self.law == "normal":
             numbers = rng.normal(first, second, count)
@@ -128,6 +157,22 @@ def _common_unit(values, explicit: str | None) -> str:
 
 
 class SweepModel(StrictModel):
+    """A sweep file: a base scene and either a grid or Monte Carlo draws.
+
+    Parameters
+    ----------
+    base : str
+        The base scene's file, relative to the sweep file.
+    grid : dict of str to list, optional
+        Dotted path -> the values it takes [units as in a scene]; every combination is a case,
+        the last path varying fastest.
+    samples : int, optional
+        The number of Monte Carlo cases [1]; with ``random`` only.
+    random : dict of str to Distribution, optional
+        Dotted path -> its distribution.
+    seed : int
+        The random generator's seed (the draws are reproducible).
+    """
     base: str = Field(min_length=1)
     grid: dict[str, list[Scalar]] | None = None
     samples: int | None = Field(None, ge=1)
@@ -169,7 +214,26 @@ class SweepModel(StrictModel):
 
 
 def split_path(path: str, data: dict) -> tuple:
-    """``"environment.history.0.temperature"`` → keys into ``data``; ValueError if absent."""
+    """The keys into ``data`` of a dotted path (``"environment.history.0.temperature"``).
+
+    Parameters
+    ----------
+    path : str
+        The dotted path; list items by their index.
+    data : dict
+        The base scene, as read from YAML.
+
+    Returns
+    -------
+    tuple of str or int
+        The keys, one per step.
+
+    Raises
+    ------
+    ValueError
+        With a one-line reason when a step is absent, an index is out of range, or the path
+        names a section rather than a value.
+    """
     keys: list = []
     node: Any = data
     for part in path.split("."):
@@ -195,7 +259,20 @@ def split_path(path: str, data: dict) -> tuple:
 
 
 def get_path(data, keys: tuple):
-    """The value at ``keys`` in nested dicts/lists or pydantic models."""
+    """The value at ``keys`` in nested dicts/lists or pydantic models.
+
+    Parameters
+    ----------
+    data : dict or pydantic.BaseModel
+        The scene (as read, or validated).
+    keys : tuple of str or int
+        The keys (:func:`split_path`).
+
+    Returns
+    -------
+    object
+        The value.
+    """
     node = data
     for key in keys:
         if isinstance(node, (dict, list)):
@@ -206,6 +283,17 @@ def get_path(data, keys: tuple):
 
 
 def set_path(data: dict, keys: tuple, value) -> None:
+    """Set the value at ``keys`` in nested dicts/lists, in place.
+
+    Parameters
+    ----------
+    data : dict
+        The scene, as read from YAML.
+    keys : tuple of str or int
+        The keys (:func:`split_path`).
+    value : object
+        The new value.
+    """
     node = data
     for key in keys[:-1]:
         node = node[key]
@@ -213,7 +301,18 @@ def set_path(data: dict, keys: tuple, value) -> None:
 
 
 def netcdf_name(path: str) -> str:
-    """A coordinate name for a dotted path: dots become double underscores."""
+    """A coordinate name for a dotted path: dots become double underscores.
+
+    Parameters
+    ----------
+    path : str
+        The dotted path.
+
+    Returns
+    -------
+    str
+        ``environment__history__0__temperature``.
+    """
     return path.replace(".", "__")
 
 
@@ -243,8 +342,23 @@ def _is_angular(text: str) -> bool:
 
 
 def infer_dimension(text: str, si_value: float) -> str | None:
-    """The dimension whose SI conversion of ``text`` (a number with a unit) gives
-    ``si_value`` — the value the scene model made of it."""
+    """The dimension whose SI conversion of ``text`` gives ``si_value``.
+
+    ``si_value`` is the value the scene model made of it.
+
+    Parameters
+    ----------
+    text : str
+        A number with a unit, as written.
+    si_value : float
+        What the scene model read it as [SI unit of its dimension].
+
+    Returns
+    -------
+    str or None
+        The dimension (a key of :data:`fickcam.unit_parsing.SI_UNITS`), or None when none
+        matches.
+    """
     from ..unit_parsing import to_si
 
     angular = _is_angular(text)
@@ -276,7 +390,18 @@ def _bare_number(value) -> float | None:
 
 @dataclass(frozen=True)
 class Parameter:
-    """One varied scene value: its dotted path, keys into the scene, and dimension."""
+    """One varied scene value: its dotted path, keys into the scene, and dimension.
+
+    Parameters
+    ----------
+    path : str
+        The dotted path.
+    keys : tuple of str or int
+        Its keys (:func:`split_path`).
+    dimension : str or None
+        A dimension of :data:`fickcam.unit_parsing.SI_UNITS`, or None for bare numbers and
+        text.
+    """
 
     path: str
     keys: tuple
@@ -322,7 +447,15 @@ class Parameter:
 
 @dataclass(frozen=True)
 class Case:
-    """One scene of the sweep: its index and the raw values it sets, by dotted path."""
+    """One scene of the sweep: its index and the raw values it sets, by dotted path.
+
+    Parameters
+    ----------
+    index : int
+        The case's index, from 0.
+    values : dict
+        Dotted path -> the value as the sweep file gives it (with its unit).
+    """
 
     index: int
     values: dict
@@ -330,7 +463,29 @@ class Case:
 
 @dataclass
 class Sweep:
-    """A validated sweep file with its expanded cases."""
+    """A validated sweep file with its expanded cases.
+
+    Parameters
+    ----------
+    file : str
+        The sweep file's path.
+    text : str
+        Its text.
+    model : SweepModel
+        Its validated content.
+    base_file : str
+        The base scene's path.
+    base_text : str
+        Its text.
+    base_dir : pathlib.Path
+        Its folder (relative paths of the scene are read from there).
+    base_data : dict
+        The base scene as read from YAML.
+    parameters : list of Parameter
+        The varied values.
+    cases : list of Case
+        The cases, in order.
+    """
 
     file: str
     text: str

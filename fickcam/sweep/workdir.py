@@ -22,7 +22,20 @@ JOURNAL = "cases.journal"
 
 
 def write_json(data: dict, path: Path) -> Path:
-    """Write JSON atomically (temporary file in the same folder, then rename)."""
+    """Write JSON atomically (temporary file in the same folder, flushed, then renamed).
+
+    Parameters
+    ----------
+    data : dict
+        What to write.
+    path : pathlib.Path
+        The file (its folder must exist).
+
+    Returns
+    -------
+    pathlib.Path
+        ``path``.
+    """
     fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
     try:
         with os.fdopen(fd, "w", encoding="utf-8") as handle:
@@ -38,7 +51,13 @@ def write_json(data: dict, path: Path) -> Path:
 
 @dataclass(frozen=True)
 class WorkFolder:
-    """Paths of the per-case files of one sweep."""
+    """Paths of the per-case files of one sweep.
+
+    Parameters
+    ----------
+    path : pathlib.Path
+        The work folder (``OUT.parts`` next to the result).
+    """
 
     path: Path
 
