@@ -21,9 +21,23 @@ _TAU_NODES, _TAU_WEIGHTS = np.polynomial.legendre.leggauss(TAU_NODES)
 
 
 class RescaledTime:
-    """tau(t) = integral_0^t exp(-Ea / (R T(s))) ds for an ``Exposure``: exact on
-    held segments, Gauss-Legendre (12 nodes, analytic integrand: exact to
-    ~1e-15 for a 40 K ramp at Ea = 40 kJ/mol) on ramps."""
+    """The rescaled clock tau(t) = integral_0^t exp(-Ea / (R T(s))) ds of an exposure.
+
+    Exact on held segments; Gauss-Legendre (12 nodes, analytic integrand: exact to
+    ~1e-15 for a 40 K ramp at Ea = 40 kJ/mol) on ramps. Calling it with physical times
+    t [s] returns tau [s] (seconds weighted by the Arrhenius factor, which is [-]).
+
+    Parameters
+    ----------
+    diffusivity : Diffusivity
+        Gives the Arrhenius factor exp(-Ea/(R T)) [-] of a temperature [K].
+    exposure : Exposure
+        The history: change times [s], temperature [K].
+
+    References
+    ----------
+    Crank (1975) §7.2, eq. 7.5 (module docstring).
+    """
 
     def __init__(self, diffusivity, exposure):
         self.rate = diffusivity.arrhenius_factor
@@ -66,9 +80,25 @@ class RescaledTime:
 
 
 def clock_of(diffusivity: Diffusivity, exposure: Exposure, cache: RunCache) -> RescaledTime:
-    """The ``RescaledTime`` of a (diffusivity, exposure), built once per run (``cache``):
-    plan, scales and the superposition share it (a year of hourly rows integrates 8760
-    ramps, 0.07 s); the tables it made itself are read-only."""
+    """The ``RescaledTime`` of a (diffusivity, exposure), built once per run.
+
+    The plan, the scales and the superposition share it (a year of hourly rows
+    integrates 8760 ramps, 0.07 s); the tables it made itself are read-only.
+
+    Parameters
+    ----------
+    diffusivity : Diffusivity
+        The material's diffusivity (its activation energy [J/mol]).
+    exposure : Exposure
+        The history (times [s], temperature [K]).
+    cache : RunCache
+        The run's cache.
+
+    Returns
+    -------
+    RescaledTime
+        The clock, t [s] -> tau [s].
+    """
     def build():
         clock = RescaledTime(diffusivity, exposure)
         for array in (clock.held_rate, clock.cumulative):
@@ -78,21 +108,65 @@ def clock_of(diffusivity: Diffusivity, exposure: Exposure, cache: RunCache) -> R
 
 
 def reference_factor(diffusivity: Diffusivity, exposure: Exposure) -> float:
-    """a_ref = the largest Arrhenius factor met in the history (the hottest segment)."""
+    """The largest Arrhenius factor met in the history, a_ref (the hottest segment's).
+
+    Parameters
+    ----------
+    diffusivity : Diffusivity
+        Gives the factor exp(-Ea/(R T)) (Ea [J/mol]).
+    exposure : Exposure
+        Its temperatures [K] at the sample times [s].
+
+    Returns
+    -------
+    float
+        a_ref = max exp(-Ea / (R T)) [-] over the sampled history.
+    """
     t = sample_times(exposure)
     return float(np.max(diffusivity.arrhenius_factor(exposure.temperature(t))))
 
 
 def rescaled_time(diffusivity: Diffusivity, exposure: Exposure, t: np.ndarray,
                   cache: RunCache | None = None, a_ref: float | None = None) -> np.ndarray:
-    """tau(t) / a_ref: the rescaled time in seconds at the reference temperature."""
+    """The rescaled time tau(t) / a_ref: seconds at the reference (hottest) temperature.
+
+    Parameters
+    ----------
+    diffusivity : Diffusivity
+        The Arrhenius law of the material (Ea [J/mol]).
+    exposure : Exposure
+        The temperature history (T [K] over t [s]).
+    t : numpy.ndarray
+        Physical times [s].
+    cache : RunCache, optional
+        The run's cache (None: a fresh one).
+    a_ref : float, optional
+        The reference Arrhenius factor [-] (None: ``reference_factor``).
+
+    Returns
+    -------
+    numpy.ndarray
+        The rescaled times [s].
+    """
     a_ref = reference_factor(diffusivity, exposure) if a_ref is None else a_ref
     return clock_of(diffusivity, exposure, run_cache(cache))(np.asarray(t, float)) / a_ref
 
 
 @dataclass(frozen=True)
 class Scales:
-    """Rescaled time and the length scale of the non-dimensional problem."""
+    """Rescaled time and the length scale of the non-dimensional problem.
+
+    Parameters
+    ----------
+    a_ref : float
+        The reference (largest) Arrhenius factor [-].
+    d_ref : float
+        The through-thickness diffusivity at the reference temperature [m^2/s].
+    length : float
+        The part's thickness [m].
+    clock : RescaledTime
+        The rescaled clock, t [s] -> tau [s].
+    """
 
     a_ref: float
     d_ref: float      # through-thickness D at the reference (hottest) temperature, m^2/s
@@ -110,8 +184,24 @@ class Scales:
 
 def scales(geometry, diffusivity: Diffusivity, exposure: Exposure,
            cache: RunCache | None = None) -> Scales:
-    """The scales of a part: reference factor, its D_z there, its thickness (the clock
-    from the run's ``cache``; None: a fresh one)."""
+    """The scales of a part: reference factor, its D_z there, its thickness, the clock.
+
+    Parameters
+    ----------
+    geometry : Sheet, Disc, Bar, CamPlate or LinkBar
+        The part; its ``thickness`` [m] is the length scale.
+    diffusivity : Diffusivity
+        The material's diffusivity (pre-exponential factors [m^2/s]).
+    exposure : Exposure
+        The history (times [s], temperature [K]).
+    cache : RunCache, optional
+        The run's cache for the clock (None: a fresh one).
+
+    Returns
+    -------
+    Scales
+        a_ref [-], D_z at the reference temperature [m^2/s], thickness [m] and clock.
+    """
     a_ref = reference_factor(diffusivity, exposure)
     return Scales(a_ref, float(diffusivity.pre_exponential[2]) * a_ref,
                   float(geometry.thickness), clock_of(diffusivity, exposure, run_cache(cache)))

@@ -19,14 +19,40 @@ MAX_PIECES = 512         # pieces per row at most
 
 
 def is_long_record(exposure) -> bool:
-    """Records of ``LONG_RECORD`` segments or more (hourly weather, chamber logs)."""
+    """Tell whether an exposure is a long record (hourly weather, chamber logs).
+
+    Parameters
+    ----------
+    exposure : Exposure
+        The history.
+
+    Returns
+    -------
+    bool
+        True for ``LONG_RECORD`` segments or more.
+    """
     return np.asarray(exposure.ramp).size >= LONG_RECORD
 
 
 @dataclass(frozen=True)
 class Forcing:
-    """Ms at the nodes of the march: its right values, left limits, rescaled times, and
-    where the outputs sit."""
+    """The surface moisture Ms at the nodes of the tabulated sum, and where outputs sit.
+
+    Parameters
+    ----------
+    tau : numpy.ndarray
+        The nodes' rescaled times [s].
+    right : numpy.ndarray
+        Ms at the nodes [weight %] (right values).
+    left : numpy.ndarray
+        Ms just before the nodes [weight %] (left limits).
+    outputs : numpy.ndarray of int
+        The node index of each requested time.
+    interpolation : float
+        Bound of |Ms - its piecewise-linear-in-tau stand-in| [weight %].
+    nodes : numpy.ndarray or None
+        The nodes' physical times [s], where known.
+    """
 
     tau: np.ndarray
     right: np.ndarray
@@ -53,9 +79,28 @@ class Forcing:
 
 
 def linear_pieces(exposure, clock, tolerance) -> tuple[np.ndarray, float]:
-    """Pieces per row so that Ms is linear in tau within ``tolerance``: the deviation from
-    linear, largest of three interior samples (the rate may change several-fold along a
-    row, so the tau-midpoint is not the t-midpoint), falls as 1 / pieces^2 (smooth Ms)."""
+    """Pieces per row so that Ms is linear in the rescaled time within ``tolerance``.
+
+    The deviation from linear, the largest of three interior samples (the rate may change
+    several-fold along a row, so the tau-midpoint is not the t-midpoint), falls as
+    1 / pieces^2 for a smooth Ms.
+
+    Parameters
+    ----------
+    exposure : Exposure
+        The record (surface moisture [weight %] against time [s]).
+    clock : RescaledTime
+        Its rescaled clock.
+    tolerance : float
+        The deviation from linear allowed [weight %].
+
+    Returns
+    -------
+    pieces : numpy.ndarray of int
+        Pieces per row, 1 to ``MAX_PIECES``.
+    interpolation : float
+        The bound of the deviation left [weight %].
+    """
     edges = clock.edges
     start, end = edges[:-1], edges[1:]
     rows = np.arange(start.size)
@@ -75,8 +120,28 @@ def linear_pieces(exposure, clock, tolerance) -> tuple[np.ndarray, float]:
 
 
 def forcing(exposure, clock: RescaledTime, times, tolerance) -> Forcing:
-    """Nodes: the rows' edges, rows cut into pieces (``linear_pieces``), and the output times
-    (rows past the last output are left out: nothing there reaches an output)."""
+    """The forcing of a long record on its nodes, for the tabulated Duhamel sum.
+
+    The nodes are the rows' edges, the rows cut into pieces (``linear_pieces``), and the
+    output times; rows past the last output are left out (nothing there reaches an
+    output).
+
+    Parameters
+    ----------
+    exposure : Exposure
+        The long record: its rows' times [s] and surface moisture [weight %].
+    clock : RescaledTime
+        t [s] -> tau [s] for that record.
+    times : numpy.ndarray
+        The output times [s].
+    tolerance : float
+        The deviation from linear in tau allowed [weight %].
+
+    Returns
+    -------
+    Forcing
+        Ms and the rescaled time at the nodes.
+    """
     edges = clock.edges
     pieces, interpolation = linear_pieces(exposure, clock, tolerance)
     row = np.repeat(np.arange(pieces.size), pieces)

@@ -67,10 +67,22 @@ FORCING = 0.01  # a sweep's CG stops at FORCING x the residual of the iterate it
 
 @dataclass(frozen=True)
 class Sweeps:
-    """When a step's Picard sweeps stop: at ``tolerance`` x the right side, or with a
+    """When a step's Picard sweeps stop, and how exactly each sweep solves.
+
+    The sweeps stop at ``tolerance`` x the right side, or with a
     ``SolverError`` after ``most`` sweeps; each sweep's linear system solved to ``forcing``
     x the residual of the iterate it starts from (``sweep_step``). The defaults are the run's;
-    tests pass others instead of changing the module's values."""
+    tests pass others instead of changing the module's values.
+
+    Parameters
+    ----------
+    tolerance : float
+        The residual [-], relative to the right side, at which a step's sweeps stop.
+    most : int
+        Sweeps allowed before ``SolverError``.
+    forcing : float
+        Each sweep's linear solve stops at this share [-] of the residual it starts from.
+    """
 
     tolerance: float = SWEEP_TOLERANCE
     most: int = MAX_SWEEPS
@@ -86,32 +98,101 @@ SPACE_TO_ERROR = 1.0  # error / (m x the space estimate of the cells' plan) (mea
 
 
 def fastest(diffusivity: Diffusivity, law, exposure, times) -> Diffusivity:
-    """The diffusivity scaled by the largest f met up to the wettest surface value: the
-    scale of the plan (cells and steps) and of the march."""
+    """The diffusivity scaled by the largest factor f met: the plan's and march's scale.
+
+    f is read up to the wettest surface value; the result scales the plan (cells and
+    steps) and the march.
+
+    Parameters
+    ----------
+    diffusivity : Diffusivity
+        The material's diffusivity (pre-exponential [m^2/s], activation energy [J/mol]).
+    law : ConcentrationDependent
+        The factor f(c/Mm_ref) [-].
+    exposure : Exposure
+        The history (times [s], temperature [K], surface moisture [weight %]).
+    times : numpy.ndarray
+        The output times [s].
+
+    Returns
+    -------
+    Diffusivity
+        D0 max f [m^2/s] per axis, the same activation energy.
+    """
     factor = law.largest_factor(wettest(exposure, times))
     return Diffusivity(tuple(d * factor for d in diffusivity.pre_exponential),
                        diffusivity.activation_energy)
 
 
 def slowest(diffusivity: Diffusivity, law, exposure, times) -> Diffusivity:
-    """The diffusivity scaled by the smallest f met: the scale of the steepest layer."""
+    """The diffusivity scaled by the smallest factor f met: the steepest layer's scale.
+
+    Parameters
+    ----------
+    diffusivity : Diffusivity
+        Pre-exponential factors [m^2/s] and activation energy [J/mol] of the material.
+    law : ConcentrationDependent
+        f(c/Mm_ref) [-], read from dry to the wettest moisture met.
+    exposure : Exposure
+        Times [s], temperatures [K] and surface moisture [weight %] of the history.
+    times : numpy.ndarray
+        The outputs [s].
+
+    Returns
+    -------
+    Diffusivity
+        D0 min f [m^2/s] per axis, the same activation energy.
+    """
     values = law.factor(np.linspace(0.0, wettest(exposure, times), 65))
     return Diffusivity(tuple(d * float(np.min(values)) for d in diffusivity.pre_exponential),
                        diffusivity.activation_energy)
 
 
 def spread(law, exposure, times) -> float:
-    """max f / min f over the moisture the part meets."""
+    """The ratio of the largest to the smallest diffusivity factor the part meets.
+
+    Parameters
+    ----------
+    law : ConcentrationDependent
+        The law f(c/Mm_ref) [-] compared at its ends.
+    exposure : Exposure
+        Its surface values [weight %] set the wettest moisture.
+    times : numpy.ndarray
+        The output times [s].
+
+    Returns
+    -------
+    float
+        max f / min f [-] over the moisture from 0 to the wettest value met.
+    """
     values = law.factor(np.linspace(0.0, wettest(exposure, times), 65))
     return float(np.max(values) / np.min(values))
 
 
 def skin_start(law, exposure) -> float | None:
-    """When the surface may first dry to a skin (s), or None if it never does: the sample
-    (``exposure.sample_times``) before the first one whose surface moisture has a D below the
-    largest D met before (initial moisture, earlier surface values). From then on the part
+    """When the surface may first dry to a skin of low diffusivity.
+
+    It is the sample (``exposure.sample_times``) before the first one whose surface
+    moisture has a D below the largest D met before (initial moisture, earlier surface values). From then on the part
     has a skin where the whole drop of c crosses a layer sqrt(D_min t) deep (desorption when
-    D rises with c, Crank 1975 §9.3-9.4, absorption when it falls); before it, none."""
+    D rises with c, Crank 1975 §9.3-9.4, absorption when it falls); before it, none.
+
+    Parameters
+    ----------
+    law : ConcentrationDependent
+        The factor f(c/Mm_ref) [-].
+    exposure : Exposure
+        The history (times [s], surface and initial moisture [weight %]).
+
+    Returns
+    -------
+    float or None
+        The time [s] the skin may start, or None.
+
+    References
+    ----------
+    Crank (1975) §9.3-9.4, cited in the module docstring.
+    """
     t = sample_times(exposure)
     g = np.asarray(exposure.surface_moisture(t), float)
     f = law.factor(np.concatenate([[exposure.initial_moisture], g]))
@@ -123,15 +204,40 @@ def skin_start(law, exposure) -> float | None:
 
 
 def dries_to_a_skin(law, exposure) -> bool:
-    """Whether the surface ever dries to a skin (``skin_start``)."""
+    """Whether the surface ever dries to a skin (``skin_start``).
+
+    Parameters
+    ----------
+    law : ConcentrationDependent
+        The moisture dependence f [-] of D.
+    exposure : Exposure
+        The exposure whose surface values [weight %] are read.
+
+    Returns
+    -------
+    bool
+        True when ``skin_start`` finds a start.
+    """
     return skin_start(law, exposure) is not None
 
 
 @dataclass(frozen=True)
 class Sizing:
-    """One constraint on the cells of a nonlinear plan: the Fickian ``plan`` of one D for
+    """One constraint on the cells of a nonlinear plan.
+
+    One constraint on the cells of a nonlinear plan: the Fickian ``plan`` of one D for
     accuracy / ``margin`` at some of the outputs (the earliest of them sets the layer to
-    resolve); ``why`` for the plan's reason."""
+    resolve); ``why`` for the plan's reason.
+
+    Parameters
+    ----------
+    plan : Plan
+        The Fickian plan of one D.
+    margin : float
+        m: the plan was made for accuracy / m [-].
+    why : str
+        The reason given in the plan.
+    """
 
     plan: object
     margin: float
@@ -152,7 +258,9 @@ class Sizing:
 
 
 def nonlinear_plan(planner, diffusivity, law, exposure, times, accuracy: float):
-    """The direct plan of a concentration-dependent part: steps from the fastest D (its
+    """The direct plan (cells and steps) of a concentration-dependent part.
+
+    The direct plan of a concentration-dependent part: steps from the fastest D (its
     scaled time is the march's). PrismCells: those of the fastest D at accuracy / m, m =
     ``ABSORPTION_MARGIN``, unless the surface dries to a skin (``skin_start``); then
     those of the slowest D at accuracy / m, m = 1 + SKIN_CELLS_MARGIN (sqrt(max f / min f) - 1),
@@ -174,7 +282,28 @@ def nonlinear_plan(planner, diffusivity, law, exposure, times, accuracy: float):
     0.32, 4 up to 0.28, so ``SKIN_CELLS_MARGIN`` = 1 keeps a safety of 3 at 0.77-0.88 of the
     CPU of 4 (k = 5). The estimate: SPACE_TO_ERROR m x the space estimate of the cells' plan
     (the larger over the constraints met).
-    ``planner(diffusivity, accuracy, outputs)``: the Fickian direct plan of the part."""
+    ``planner(diffusivity, accuracy, outputs)``: the Fickian direct plan of the part.
+
+    Parameters
+    ----------
+    planner : callable
+        ``planner(diffusivity, accuracy, outputs)``: the Fickian direct plan of the part.
+    diffusivity : Diffusivity
+        D of the material at f = 1 (D0 [m^2/s], Ea [J/mol]).
+    law : ConcentrationDependent
+        f(c/Mm_ref) [-], which sets the spread of D.
+    exposure : Exposure
+        What the part is exposed to: times [s], T [K], surface moisture [weight %].
+    times : numpy.ndarray
+        The times [s] the plan must reach.
+    accuracy : float
+        The requested error relative to the swing [-].
+
+    Returns
+    -------
+    Plan
+        The steps of the fastest D and the chosen cells, with their error estimate [-].
+    """
     times = np.asarray(times, float)
     fast_d = fastest(diffusivity, law, exposure, times)
     fast = planner(fast_d, accuracy, times)
@@ -228,10 +357,35 @@ def _skin_sizing(planner, slow_d, fast_d, accuracy, times, start, margin, wet_ma
 
 def solve_nonlinear(problem: DiffusionProblem, chosen, sweeps: Sweeps = SWEEPS,
                     cache: RunCache | None = None) -> DiffusionResult:
-    """Mean and contact-layer moisture (weight %) at the ``problem``'s times (s), its
+    """Solve a concentration-dependent problem by swept backward Euler.
+
+    Mean and contact-layer moisture (weight %) at the ``problem``'s times (s), its
     ``sorption`` a ``ConcentrationDependent`` law: the Richardson pair of swept
     backward-Euler marches (module docstring). ``chosen`` was planned with
-    ``fastest(...)``; ``sweeps``: when each step's sweeps stop; ``cache``: the run's."""
+    ``fastest(...)``; ``sweeps``: when each step's sweeps stop; ``cache``: the run's.
+
+    Parameters
+    ----------
+    problem : DiffusionProblem
+        The part, material, exposure and output times [s]; its ``sorption`` a
+        ``ConcentrationDependent`` law.
+    chosen : Plan
+        The plan, made with ``fastest(...)``.
+    sweeps : Sweeps
+        When each step's sweeps stop.
+    cache : RunCache, optional
+        The run's cache (None: a fresh one).
+
+    Returns
+    -------
+    DiffusionResult
+        Mean and contact-layer moisture [weight %] at the times, the error estimate [-].
+
+    Raises
+    ------
+    SolverError
+        When a step's sweeps do not converge.
+    """
     geometry, diffusivity, law = problem.geometry, problem.diffusivity, problem.sorption
     exposure, times, part = problem.exposure, problem.times, problem.part
     surface_layer_depth, store_fields = problem.surface_layer_depth, problem.store_fields
@@ -265,20 +419,51 @@ def solve_nonlinear(problem: DiffusionProblem, chosen, sweeps: Sweeps = SWEEPS,
 
 
 def wettest(exposure, times) -> float:
-    """The largest moisture the part meets (surface values, initial moisture)."""
+    """The largest moisture the part meets (surface values, initial moisture).
+
+    Parameters
+    ----------
+    exposure : Exposure
+        The history (surface and initial moisture [weight %]).
+    times : numpy.ndarray
+        The output times [s].
+
+    Returns
+    -------
+    float
+        The largest moisture [weight %].
+    """
     edges = np.concatenate([exposure.change_times, np.asarray(times, float)])
     return max(float(np.max(exposure.surface_moisture(edges))), exposure.initial_moisture)
 
 
 @dataclass(frozen=True)
 class Faces:
-    """FiPy's unit operator taken apart by face: the interior faces (cells i < j, their
+    """FiPy's unit operator taken apart by face, to rebuild it for any coefficient.
+
+    FiPy's unit operator taken apart by face: the interior faces (cells i < j, their
     transmissibility area/distance), each cell's exposed-face transmissibility, volumes.
     FiPy builds DiffusionTerm(coeff) from exactly these, times the coefficient at the face
     (``fipy_backend.assemble``), so the operator of any face coefficient (here the mean
     of f between the face's two sides) follows without re-assembly. The CSR pattern of
     that operator (``indptr``, ``indices``; ``order`` takes the values [upper, lower,
-    diagonal] to it) is fixed, so a sweep only fills its values."""
+    diagonal] to it) is fixed, so a sweep only fills its values.
+
+    Parameters
+    ----------
+    rows, cols : numpy.ndarray of int
+        The cells either side of each interior face (rows < cols).
+    transmissibility : numpy.ndarray
+        Each interior face's area / distance in scaled coordinates [-].
+    boundary : numpy.ndarray
+        Each cell's exposed-face transmissibility [-].
+    volumes : numpy.ndarray
+        The cells' scaled volumes [-].
+    indptr, indices : numpy.ndarray of int
+        The fixed CSR pattern of the operator.
+    order : numpy.ndarray of int
+        Takes the values [upper, lower, diagonal] to that pattern.
+    """
 
     rows: np.ndarray
     cols: np.ndarray
@@ -317,9 +502,45 @@ class Faces:
 
 def sweep_march(faces: Faces, weights, law, top, steps, initial, keep_fields, part,
                 columns=(), sweeps: Sweeps = SWEEPS) -> History:
-    """Backward Euler in scaled time, each step swept to convergence (module docstring).
+    """March a concentration-dependent operator, each step swept to convergence.
+
+    Backward Euler in scaled time, each step swept to convergence (module docstring).
     The history's ``track``: the mean, the layer and the weighted sums of ``columns`` (cell
-    weight vectors) at every node (``dense_output``)."""
+    weight vectors) at every node (``dense_output``).
+
+    Parameters
+    ----------
+    faces : Faces
+        The operator taken apart by face.
+    weights : Discretisation
+        Its mean and layer weights.
+    law : ConcentrationDependent
+        The factor f(c/Mm_ref) [-].
+    top : float
+        The largest f met [-], which scales the march.
+    steps : StepPlan
+        Nodes in scaled time [-], outputs, surface moisture before each node [weight %].
+    initial : float
+        The initial moisture [weight %].
+    keep_fields : bool
+        Also return the cell values.
+    part : str
+        The part's name, for error messages.
+    columns : tuple of numpy.ndarray
+        More cell weight vectors to track at every node.
+    sweeps : Sweeps
+        When each step's sweeps stop.
+
+    Returns
+    -------
+    History
+        Mean and layer moisture [weight %] at the outputs, and the ``track``.
+
+    Raises
+    ------
+    SolverError
+        When a step's sweeps do not converge.
+    """
     c = np.full(faces.volumes.size, float(initial))
     want = {int(k) for k in steps.outputs}
     record = {0: c.copy()} if 0 in want else {}
@@ -344,7 +565,9 @@ def sweep_march(faces: Faces, weights, law, top, steps, initial, keep_fields, pa
 
 
 class Lagged:
-    """Solves the SPD systems (M/dt + K(c)) x = b of a march: conjugate gradients
+    """Solve a march's SPD systems by CG on lagged LU factors.
+
+    Solves the SPD systems (M/dt + K(c)) x = b of a march: conjugate gradients
     preconditioned by the LU factors of an earlier system (its coefficient moves little
     from sweep to sweep and step to step; a doubled dt bounds the condition number by 2),
     refactorised (SuperLU, symmetric ordering) when CG needs more than ``LAG_ITERATIONS``.
@@ -352,7 +575,13 @@ class Lagged:
     The CG is scipy's: written out without its per-call set-up it saved no more than the
     machine's noise (``march-cost``: 3-D 4.1-4.6 against 4.7-5.7 CPU s, sheet 1.1-1.6
     against 1.3-1.4, side by side on a loaded machine); the fixed CSR pattern of ``Faces``
-    is what made the sweeps cheaper."""
+    is what made the sweeps cheaper.
+
+    Examples
+    --------
+    ``Lagged().solve(matrix, rhs, guess)`` factorises on its first call and preconditions
+    with those factors afterwards.
+    """
 
     def __init__(self):
         self.lu = None
@@ -373,24 +602,88 @@ class Lagged:
 
 
 def extrapolated(before, latest, dt_before, dt, g) -> np.ndarray:
-    """The first iterate of a step: the last two states extrapolated linearly in time
+    """The first iterate of a step: the last two states extrapolated in time.
+
+    The first iterate of a step: the last two states extrapolated linearly in time
     (the step's explicit predictor), held within the range of the latest state and the
     surface value (the backward-Euler step keeps it: a discrete maximum principle). Only
-    where the sweeps start: their converged state does not depend on it."""
+    where the sweeps start: their converged state does not depend on it.
+
+    Parameters
+    ----------
+    before, latest : numpy.ndarray
+        The states [weight %] at the two last nodes.
+    dt_before : float
+        The previous step [-] (scaled time).
+    dt : float
+        This step [-] (scaled time).
+    g : float
+        The surface moisture [weight %] over the step.
+
+    Returns
+    -------
+    numpy.ndarray
+        The first iterate [weight %].
+    """
     guess = latest + (dt / dt_before) * (latest - before)
     return np.clip(guess, min(float(latest.min()), g), max(float(latest.max()), g))
 
 
 def sweep_step(faces: Faces, old, g, law, top, dt, part, index, time, solver=None,
                guess=None, sweeps: Sweeps = SWEEPS) -> np.ndarray:
-    """Picard sweeps (M/dt + K(c)) c_new = M old/dt + f(g) with K from the latest iterate
+    """One backward-Euler step of the nonlinear operator, by Picard sweeps.
+
+    Picard sweeps (M/dt + K(c)) c_new = M old/dt + f(g) with K from the latest iterate
     (the first: ``guess``, else ``old``), until the residual of the new iterate in its own
     operator (the next sweep's) is below ``sweeps.tolerance`` of the right side; SolverError
     if ``sweeps.most`` do not get there. Each sweep's linear system is solved only to
     ``sweeps.forcing`` x the residual of the iterate it starts from (inexact Picard: the forcing
     terms of inexact Newton, Eisenstat & Walker 1996, SIAM J. Sci. Comput. 17:16-32): an
     early sweep's system is itself off by that residual, and the stopping test is on the
-    nonlinear residual, so the converged step is unchanged."""
+    nonlinear residual, so the converged step is unchanged.
+
+    Parameters
+    ----------
+    faces : Faces
+        The operator taken apart by face.
+    old : numpy.ndarray
+        The state at the step's start [weight %].
+    g : float
+        The surface moisture [weight %] at the step's end.
+    law : ConcentrationDependent
+        The factor f(c/Mm_ref) [-].
+    top : float
+        The largest f met [-], which scales the march.
+    dt : float
+        The step [-] (scaled time).
+    part : str
+        The part's name, for errors.
+    index : int
+        The step's number, for errors.
+    time : float
+        The step's end [s], for errors.
+    solver : Lagged, optional
+        The lagged solver to reuse (None: a fresh one).
+    guess : numpy.ndarray, optional
+        The first iterate [weight %] (None: ``old``).
+    sweeps : Sweeps
+        When the sweeps stop.
+
+    Returns
+    -------
+    numpy.ndarray
+        The state at the step's end [weight %].
+
+    Raises
+    ------
+    SolverError
+        When ``sweeps.most`` sweeps do not reach ``sweeps.tolerance``.
+
+    References
+    ----------
+    Eisenstat, S. C. & Walker, H. F. (1996). Choosing the forcing terms in an inexact Newton
+    method. SIAM Journal on Scientific Computing 17(1):16-32. doi:10.1137/0917003
+    """
     solver = solver or Lagged()
     mass = faces.volumes / dt
     c = old if guess is None else guess

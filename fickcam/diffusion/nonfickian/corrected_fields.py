@@ -43,20 +43,56 @@ from .corrected_pieces import ROUND_OFF, unaccomplished_ratio as ratio
 
 
 def planform_at(tess, values: np.ndarray, points: np.ndarray, surface: bool = True):
-    """``values`` (rows: times or layers; columns: the cells of ``tess``) read at ``points``
-    (stretched coordinates, (n, 2)) by ``reading``."""
+    """Read planform cell values at points by linear interpolation.
+
+    ``values`` (rows: times or layers; columns: the cells of ``tess``) read at ``points``
+    (stretched coordinates, (n, 2)) by ``reading``.
+
+    Parameters
+    ----------
+    tess : Tessellation
+        The planform's cells (their centres in stretched coordinates [-]).
+    values : numpy.ndarray
+        Rows (times or layers) of cell values [weight %], shape (rows, cells).
+    points : numpy.ndarray
+        Where to read, stretched coordinates [-], shape (n, 2).
+    surface : bool
+        Add the exposed outline as nodes of value 0 (``reading``).
+
+    Returns
+    -------
+    numpy.ndarray
+        The values read [weight %], shape (rows, n).
+    """
     return (reading(tess, points, surface) @ values.T).T
 
 
 def reading(tess, points: np.ndarray, surface: bool = True) -> sparse.csr_matrix:
-    """(points, cells): linear interpolation on the Delaunay triangles of the cell points
+    """The sparse matrix that reads a planform's cell values at points.
+
+    (points, cells): linear interpolation on the Delaunay triangles of the cell points
     (scipy.spatial / Qhull), mirrored across the tessellation's mirror lines (insulated:
     the field is even there), with ``surface`` the exposed outline's vertices and side
     midpoints as further nodes of value 0 (U = g - c vanishes there); a point outside them
     all takes its nearest cell's value. Second order for a smooth field. Measured on the
     6 x 4 x 2 mm bar's section (Fickian planform of 902 cells read at the 3-D mesh's 516):
     error 2.2e-2 of the swing at tau* = 0.01, against 6.8e-2 by the nearest cell's value
-    plus its least-squares gradient (``cell_moments.gradient_matrix``)."""
+    plus its least-squares gradient (``cell_moments.gradient_matrix``).
+
+    Parameters
+    ----------
+    tess : Tessellation
+        The planform's cells, outline and mirror lines (stretched coordinates [-]).
+    points : numpy.ndarray
+        Where to read, stretched coordinates [-], shape (n, 2).
+    surface : bool
+        Add the exposed outline's vertices and side midpoints as nodes of value 0.
+
+    Returns
+    -------
+    scipy.sparse.csr_matrix
+        The interpolation weights [-], shape (points, cells).
+    """
     nodes, cell = tess.centres, np.arange(tess.cells)
     if surface:
         boundary = exposed_points(tess)
@@ -83,8 +119,21 @@ def reading(tess, points: np.ndarray, surface: bool = True) -> sparse.csr_matrix
 
 
 def exposed_points(tess) -> np.ndarray:
-    """The vertices and side midpoints of the outline's exposed sides (not on a mirror
-    line), stretched coordinates."""
+    """The vertices and side midpoints of a planform's exposed outline.
+
+    The vertices and side midpoints of the outline's exposed sides (not on a mirror
+    line), stretched coordinates.
+
+    Parameters
+    ----------
+    tess : Tessellation
+        The planform's triangles and mirror lines.
+
+    Returns
+    -------
+    numpy.ndarray
+        The points, stretched coordinates [-], shape (n, 2).
+    """
     edges, side = unique_edges(tess.triangles)
     outer = edges[np.bincount(side.ravel(), minlength=len(edges)) == 1]
     ends = tess.points[outer]                      # (sides, 2, 2)
@@ -97,8 +146,27 @@ def exposed_points(tess) -> np.ndarray:
 
 def sheet_at(z_sheet: np.ndarray, unaccomplished: np.ndarray, z: np.ndarray,
              thickness: float) -> np.ndarray:
-    """The sheet's U (times, cells at ``z_sheet``, m from a face, the whole thickness)
-    read at ``z`` by linear interpolation, U = 0 at both faces."""
+    """Read a sheet's unaccomplished moisture U at depths, linearly, U = 0 at its faces.
+
+    The sheet's U (times, cells at ``z_sheet``, m from a face, the whole thickness)
+    read at ``z`` by linear interpolation, U = 0 at both faces.
+
+    Parameters
+    ----------
+    z_sheet : numpy.ndarray
+        The sheet's cell centres, distance from a face [m].
+    unaccomplished : numpy.ndarray
+        The sheet's U = g - c [weight %], shape (times, cells).
+    z : numpy.ndarray
+        Where to read [m] from the same face.
+    thickness : float
+        The sheet's thickness [m].
+
+    Returns
+    -------
+    numpy.ndarray
+        U read at ``z`` [weight %], shape (times, len(z)).
+    """
     knots = np.concatenate([[0.0], z_sheet, [thickness]])
     values = np.pad(unaccomplished, ((0, 0), (1, 1)))
     return np.stack([np.interp(z, knots, row) for row in values])
@@ -106,14 +174,26 @@ def sheet_at(z_sheet: np.ndarray, unaccomplished: np.ndarray, z: np.ndarray,
 
 @dataclass(frozen=True)
 class References:
-    """The references' U at the cell points of a 3-D mesh (``corrected_pieces.PrismCells``): the
+    """The sheet's and the planforms' reference U at the cell points of a 3-D mesh.
+
+    The references' U at the cell points of a 3-D mesh (``corrected_pieces.PrismCells``): the
     fine
     sheet's at its z centres (times, z widths), the finest planform's and the one refined
     once less at its planform cells (times, cells). The field takes the finest planform
     alone: the Richardson combination f + (f - c) / 3 the mean takes (``defect.
     refined_reference``) raised the Fickian field's error on the 4 x 3 x 2 mm plate at
     3e-2 from 5.7e-3 to 8.8e-3 of the swing (tau* = 0.01): point values read between
-    non-nested cells are not in the asymptotic range there."""
+    non-nested cells are not in the asymptotic range there.
+
+    Parameters
+    ----------
+    sheet : numpy.ndarray
+        The fine sheet's U [weight %] at the mesh's z centres, shape (times, z widths).
+    planform : numpy.ndarray
+        The finest planform's U [weight %] at the mesh's planform cells, (times, cells).
+    coarser : numpy.ndarray
+        The planform refined once less, U [weight %], (times, cells).
+    """
 
     sheet: np.ndarray
     planform: np.ndarray
@@ -135,11 +215,32 @@ class References:
 
 def corrected_fields(level, cells, sheet_ref: np.ndarray, planform_ref: np.ndarray,
                      surface: np.ndarray) -> np.ndarray:
-    """(times, cells) c of a 3-D mesh's cells (``corrected_pieces.MeshMarches`` marched with its
+    """A 3-D mesh's cell moisture corrected by the sheet's and the planform's references.
+
+    (times, cells) c of a 3-D mesh's cells (``corrected_pieces.MeshMarches`` marched with its
     fields
     kept on ``cells``, ``corrected_pieces.PrismCells``) corrected by the sheet's and the planform's
     reference U at its points (``References``); ``surface``: g at the outputs (module
-    docstring)."""
+    docstring).
+
+    Parameters
+    ----------
+    level : MeshMarches
+        The 3-D mesh's marches with their fields kept on ``cells``.
+    cells : PrismCells
+        The mesh's cells.
+    sheet_ref : numpy.ndarray
+        The sheet's reference U [weight %] at the z centres, (times, z widths).
+    planform_ref : numpy.ndarray
+        The planform's reference U [weight %] at the planform cells, (times, cells).
+    surface : numpy.ndarray
+        The surface moisture g [weight %] at the outputs.
+
+    Returns
+    -------
+    numpy.ndarray
+        The corrected moisture c [weight %], shape (times, cells).
+    """
     g = surface[:, None]
     floor = ROUND_OFF * max(float(np.max(np.abs(surface))), 1e-300)
     through = ratio(sheet_ref, g - level.slab.fields, floor)
@@ -149,10 +250,27 @@ def corrected_fields(level, cells, sheet_ref: np.ndarray, planform_ref: np.ndarr
 
 
 def restricted(fields: np.ndarray, cells, coarse) -> np.ndarray:
-    """A field (times, cells) on ``cells`` (``PrismCells.refined`` of ``coarse``) read at
+    """A field on refined prism cells read at the coarser cells' points.
+
+    A field (times, cells) on ``cells`` (``PrismCells.refined`` of ``coarse``) read at
     ``coarse``'s cell points: each coarse z width is two fine ones (the mean of the two at
     their shared node, linear), the planform by ``planform_at`` without the outline's
-    nodes (the field, Q - 1 in ``field_errors``, need not vanish there)."""
+    nodes (the field, Q - 1 in ``field_errors``, need not vanish there).
+
+    Parameters
+    ----------
+    fields : numpy.ndarray
+        Values on ``cells``, shape (times, cells), in any unit.
+    cells : PrismCells
+        The fine cells, ``coarse`` refined.
+    coarse : PrismCells
+        The cells to read at.
+
+    Returns
+    -------
+    numpy.ndarray
+        The values at ``coarse``'s cell points, shape (times, coarse cells), in the same unit.
+    """
     times = fields.shape[0]
     layers = fields.reshape(times, coarse.z.size, 2, cells.tess.cells).mean(axis=2)
     flat = layers.reshape(times * coarse.z.size, cells.tess.cells)
@@ -160,10 +278,31 @@ def restricted(fields: np.ndarray, cells, coarse) -> np.ndarray:
 
 
 def unseparated_share(fields, references: References, surface) -> tuple:
-    """(Q - 1, S_ref P_ref / |g|max) per cell: Q = U / (S_ref P_ref / |g|max), the part of a
+    """The share of a corrected field's U that the references' product does not give.
+
+    (Q - 1, S_ref P_ref / |g|max) per cell: Q = U / (S_ref P_ref / |g|max), the part of a
     corrected field's U that the product of the references does not give (constant in
     space for Fick up to the marches' time error, Crank 1975 §4.3); Q - 1 = 0 where the
-    product is within round-off of zero."""
+    product is within round-off of zero.
+
+    Parameters
+    ----------
+    fields : numpy.ndarray
+        A corrected field c [weight %], shape (times, cells).
+    references : References
+        The sheet's and the planform's U [weight %].
+    surface : numpy.ndarray
+        The surface moisture g [weight %] at the outputs.
+
+    Returns
+    -------
+    tuple of numpy.ndarray
+        Q - 1 [-] and S_ref P_ref / |g|max [weight %] per cell, shape (times, cells).
+
+    References
+    ----------
+    Crank (1975) §4.3, cited in the module docstring.
+    """
     g = surface[:, None]
     product = (references.sheet[:, :, None] * references.planform[:, None, :]).reshape(
         len(surface), -1)
@@ -173,7 +312,21 @@ def unseparated_share(fields, references: References, surface) -> tuple:
 
 @dataclass(frozen=True)
 class FieldErrors:
-    """What is known of a corrected field's error (``field_errors``), relative to the swing."""
+    """What is known of a corrected field's error, each relative to the swing.
+
+    What is known of a corrected field's error (``field_errors``), relative to the swing.
+
+    Parameters
+    ----------
+    correction : float
+        The largest |corrected - coarse| [-]: the coarse cells' own error, indicated.
+    sheet : float
+        The fine sheet's estimate [-] (its mean's).
+    planform : float
+        The finest planform's error [-], second order.
+    three_d : float
+        The change from the coarser nested mesh [-].
+    """
 
     correction: float   # largest |corrected - coarse|: the coarse cells' own error, indicated
     sheet: float        # the fine sheet's estimate (its mean's)
@@ -194,7 +347,9 @@ class FieldErrors:
 
 
 def field_errors(run) -> tuple[np.ndarray, FieldErrors]:
-    """(fields, errors) of ``run`` (``corrected_product.CorrectedMeshes`` on nested meshes,
+    """The finest nested mesh's corrected fields and what is known of their error.
+
+    (fields, errors) of ``run`` (``corrected_product.CorrectedMeshes`` on nested meshes,
     ``store_fields``):
     the finest nested mesh's cells corrected (``corrected_fields``) and
     what is known of their error, relative to the swing: the largest correction (the
@@ -213,7 +368,20 @@ def field_errors(run) -> tuple[np.ndarray, FieldErrors]:
     finer field's error is about that change (``corrected_product.ORDER_ONE``). Their sum, the
     fields' error indicated, was 2.2 (plate) and 1.4 (6 x 4 x 2 mm bar) x the Fickian
     fields' largest error at 3e-2 (``benchmarks/dc_corrected_fields.py fickian``). None of
-    it is in the result's estimate, which is the mean's and the layer's."""
+    it is in the result's estimate, which is the mean's and the layer's.
+
+    Parameters
+    ----------
+    run : CorrectedMeshes
+        The corrected product on nested meshes, solved with ``store_fields``.
+
+    Returns
+    -------
+    fields : numpy.ndarray
+        The finest mesh's corrected moisture [weight %], shape (times, cells).
+    errors : FieldErrors
+        What is known of their error [-].
+    """
     setting = run.setting
     surface = np.asarray(setting.exposure.surface_before(setting.times), float)
 
@@ -241,6 +409,23 @@ def field_errors(run) -> tuple[np.ndarray, FieldErrors]:
 
 
 def stored(run, reason: str) -> tuple[np.ndarray, str]:
-    """(fields, reason): ``field_errors``' fields, and ``reason`` with their errors."""
+    """The corrected fields, and the result's reason with their errors.
+
+    (fields, reason): ``field_errors``' fields, and ``reason`` with their errors.
+
+    Parameters
+    ----------
+    run : CorrectedMeshes
+        The corrected product on nested meshes, solved with ``store_fields``.
+    reason : str
+        The result's reason so far.
+
+    Returns
+    -------
+    fields : numpy.ndarray
+        The corrected moisture [weight %], shape (times, cells).
+    reason : str
+        ``reason`` with the fields' errors appended.
+    """
     fields, errors = field_errors(run)
     return fields, reason + errors.note()

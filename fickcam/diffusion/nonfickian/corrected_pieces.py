@@ -45,7 +45,27 @@ SHEET_SHARE = 0.1          # the fine sheet's accuracy: this share of the reques
 
 @dataclass(frozen=True)
 class CombinedMarch:
-    """A Richardson-combined march (2 fine - coarse in time) and its time pair."""
+    """A Richardson-combined march (2 fine - coarse in time) and its time pair.
+
+    Parameters
+    ----------
+    mean : numpy.ndarray
+        The mean moisture [weight %] at the outputs.
+    layer : numpy.ndarray
+        The contact layer's mean moisture [weight %].
+    fields : numpy.ndarray or None
+        The cell moisture [weight %], (outputs, cells), when kept.
+    steps : int
+        Steps of both marches.
+    pair : float
+        The largest |fine - coarse| of the mean [weight %] (the time-error indicator).
+    track : StepRecord or None
+        (mean, layer) at every step, for ``extend``.
+    grid : Tessellation or None
+        A planform march's cells (for ``corrected_fields``).
+    coarser : tuple or None
+        The planform reference refined once less and the Richardson weight [-] on the change.
+    """
 
     mean: np.ndarray
     layer: np.ndarray
@@ -60,11 +80,30 @@ class CombinedMarch:
 
 
 def as_prism(geometry, diffusivity):
-    """(prism, diffusivity, faces_layer): a Bar as the CamPlate of its rectangular section,
+    """A part as a prism: a Bar as the CamPlate of its section, others as they are.
+
+    (prism, diffusivity, faces_layer): a Bar as the CamPlate of its rectangular section,
     its thickness the axis of the smallest size^2 / D (the sheet factor, measured on the
     finest grid, carries the fastest direction), D permuted to (in-plane x, y, thickness);
     ``faces_layer``: the Bar's contact layer is within the depth of any of its six faces
-    (``symmetry_cuts.octant``), so its two faces count too. A CamPlate or LinkBar as it is."""
+    (``symmetry_cuts.octant``), so its two faces count too. A CamPlate or LinkBar as it is.
+
+    Parameters
+    ----------
+    geometry : Bar, CamPlate or LinkBar
+        The part (lengths [m]).
+    diffusivity : Diffusivity
+        The material's diffusivity (pre-exponential factors [m^2/s] per axis).
+
+    Returns
+    -------
+    prism : CamPlate or LinkBar
+        The part as a prism (lengths [m]).
+    diffusivity : Diffusivity
+        D permuted to (in-plane x, y, thickness) [m^2/s].
+    faces_layer : bool
+        True for a Bar: its contact layer includes the two faces.
+    """
     if not isinstance(geometry, Bar):
         return geometry, diffusivity, False
     order = section_axes(geometry, diffusivity)
@@ -75,19 +114,63 @@ def as_prism(geometry, diffusivity):
 
 
 def bar_size(bar: Bar) -> np.ndarray:
+    """A Bar's three sizes.
+
+    Parameters
+    ----------
+    bar : Bar
+        The bar.
+
+    Returns
+    -------
+    numpy.ndarray
+        Its length, width and thickness [m].
+    """
     return np.array([bar.length, bar.width, bar.thickness])
 
 
 def section_axes(bar: Bar, diffusivity) -> list[int]:
-    """The Bar's axes as (section x, section y, thickness): slowest first (``as_prism``)."""
+    """A Bar's axes as (section x, section y, thickness), slowest first.
+
+    The Bar's axes as (section x, section y, thickness): slowest first (``as_prism``).
+
+    Parameters
+    ----------
+    bar : Bar
+        The bar (sizes [m]).
+    diffusivity : Diffusivity
+        Its pre-exponential diffusivities per axis [m^2/s].
+
+    Returns
+    -------
+    list of int
+        The axis indices, by size^2 / D [s] from the slowest to the fastest.
+    """
     size, d0 = bar_size(bar), np.asarray(diffusivity.pre_exponential, float)
     return sorted(range(3), key=lambda i: (size[i] ** 2 / d0[i], -i))[::-1]
 
 
 def bar_coordinates(bar: Bar, diffusivity, coordinates: dict) -> dict:
-    """The prism cells' centres (``as_prism``'s frame: the section centred, z from a face
+    """Prism cell centres carried back into a Bar's own frame.
+
+    The prism cells' centres (``as_prism``'s frame: the section centred, z from a face
     to the mid-plane) in the Bar's own x, y, z (from its corner: the section whole, the
-    thickness axis its exposed half, as the octant's cells are from the exposed faces)."""
+    thickness axis its exposed half, as the octant's cells are from the exposed faces).
+
+    Parameters
+    ----------
+    bar : Bar
+        The bar the cells belong to (its sizes [m]).
+    diffusivity : Diffusivity
+        D0 along its three axes [m^2/s], which order them.
+    coordinates : dict
+        The prism cells' centres "x", "y", "z" [m] in ``as_prism``'s frame.
+
+    Returns
+    -------
+    dict
+        The centres "x", "y", "z" [m] in the Bar's own frame.
+    """
     order, size = section_axes(bar, diffusivity), bar_size(bar)
     shifted = (coordinates["x"] + 0.5 * size[order[0]], coordinates["y"] + 0.5 * size[order[1]],
                coordinates["z"])
@@ -95,15 +178,43 @@ def bar_coordinates(bar: Bar, diffusivity, coordinates: dict) -> dict:
 
 
 def z_band(z_widths: np.ndarray, depth: float) -> np.ndarray:
-    """Fraction of each z cell (m, from the exposed face) within ``depth`` of that face."""
+    """The fraction of each z cell within a depth of the exposed face.
+
+    Fraction of each z cell (m, from the exposed face) within ``depth`` of that face.
+
+    Parameters
+    ----------
+    z_widths : numpy.ndarray
+        The z cells' widths [m], from the exposed face.
+    depth : float
+        The contact layer's depth [m].
+
+    Returns
+    -------
+    numpy.ndarray
+        The fraction [-] of each cell within ``depth`` of the face.
+    """
     nodes = np.concatenate([[0.0], np.cumsum(z_widths)])
     inside = interval_overlap(nodes[:-1], nodes[1:], -1.0, depth)
     return inside / z_widths
 
 
 def half_slab(z_widths: np.ndarray) -> Discretisation:
-    """FiPy Grid1D of a half thickness on ``z_widths`` (scaled, from the exposed face at
-    z = 0; the other end is the mid-plane mirror, insulated)."""
+    """The 1-D operator of a half thickness on given z widths.
+
+    FiPy Grid1D of a half thickness on ``z_widths`` (scaled, from the exposed face at
+    z = 0; the other end is the mid-plane mirror, insulated).
+
+    Parameters
+    ----------
+    z_widths : numpy.ndarray
+        The cell widths [-] (scaled by the thickness), from the exposed face.
+
+    Returns
+    -------
+    Discretisation
+        The operator, mean and layer weights the cell volumes.
+    """
     mesh = interval_mesh(np.asarray(z_widths, float))
     exposed = np.asarray(mesh.exteriorFaces, bool) & np.isclose(
         np.asarray(mesh.faceCenters)[0], 0.0, atol=1e-12)
@@ -113,12 +224,33 @@ def half_slab(z_widths: np.ndarray) -> Discretisation:
 
 
 def planform_disc(geometry, d, tess, depth: float):
-    """(Discretisation, corrected weights): the planform alone (a prism of infinite
+    """The planform alone as an operator, with second-order mean and layer weights.
+
+    (Discretisation, corrected weights): the planform alone (a prism of infinite
     thickness) on the admissible cells ``tess``, one layer of the mirrored prisms with its
     exposed face's coupling 8 V (half-layer height 1/4 scaled) taken out of the boundary
     vector (as ``planform_modes.planform_operator``); its mean and layer weights the plate's
     (cell volumes, band shares: the same discrete product), and ``cell_moments``'
-    second-order (mean, layer) weights on u - g beside."""
+    second-order (mean, layer) weights on u - g beside.
+
+    Parameters
+    ----------
+    geometry : CamPlate or LinkBar
+        The prism part; its ``thickness`` [m] scales the coordinates.
+    d : tuple of float
+        The diffusivities (D_x, D_y, D_z) [m^2/s] of the march.
+    tess : Tessellation
+        The admissible planform cells.
+    depth : float
+        The contact layer's depth [m].
+
+    Returns
+    -------
+    disc : Discretisation
+        The planform's operator.
+    weights : tuple of numpy.ndarray
+        ``cell_moments``' second-order (mean, layer) weights [-] on u - g.
+    """
     disc = prism(tess, geometry.thickness, np.array([0.5 * geometry.thickness]),
                  band_share(tess, depth), d, mid_plane=True)
     return (replace(disc, boundary=disc.boundary - 8.0 * disc.volumes),
@@ -127,8 +259,18 @@ def planform_disc(geometry, d, tess, depth: float):
 
 @dataclass(frozen=True)
 class PrismCells:
-    """A 3-D mesh of the mirrored prisms: admissible planform cells (``admissible.Tessellation``)
-    x z widths (scaled, exposed face to mid-plane)."""
+    """A 3-D mesh of mirrored prisms: planform cells times z widths.
+
+    A 3-D mesh of the mirrored prisms: admissible planform cells (``admissible.Tessellation``)
+    x z widths (scaled, exposed face to mid-plane).
+
+    Parameters
+    ----------
+    tess : Tessellation
+        The admissible planform cells.
+    z : numpy.ndarray
+        The z widths [-] (scaled by the thickness), exposed face to mid-plane.
+    """
 
     tess: object
     z: np.ndarray
@@ -156,15 +298,41 @@ class PrismCells:
 
 
 def cross(p: int, z: int) -> tuple[list, list]:
-    """The combination around mesh (p, z) (``corrected_product.combination``): its base (p-1, z-1)
-    refined along z once and twice, and along the planform once and twice."""
+    """The meshes of the combination around mesh (p, z).
+
+    The combination around mesh (p, z) (``corrected_product.combination``): its base (p-1, z-1)
+    refined along z once and twice, and along the planform once and twice.
+
+    Parameters
+    ----------
+    p, z : int
+        The mesh's planform and z refinement levels.
+
+    Returns
+    -------
+    tuple of list
+        The z chain and the planform chain of (p, z) levels.
+    """
     return ([(p - 1, z - 1), (p - 1, z), (p - 1, z + 1)],
             [(p - 1, z - 1), (p, z - 1), (p + 1, z - 1)])
 
 
 def combination(lattice: list) -> tuple[list, list] | None:
-    """Indices (into ``lattice``) of the ``cross`` around the finest mesh (the last), or
-    None where it is not all there."""
+    """Indices of the cross around the finest mesh, if all its meshes were marched.
+
+    Indices (into ``lattice``) of the ``cross`` around the finest mesh (the last), or
+    None where it is not all there.
+
+    Parameters
+    ----------
+    lattice : list of tuple
+        The (p, z) levels of the meshes marched, finest last.
+
+    Returns
+    -------
+    tuple of list of int or None
+        The indices of the two chains, or None.
+    """
     index = {key: i for i, key in enumerate(lattice)}
     chains = cross(*lattice[-1])
     if not all(key in index for chain in chains for key in chain):
@@ -174,8 +342,41 @@ def combination(lattice: list) -> tuple[list, list] | None:
 
 def richardson_march(disc, law, top, exposure, times, scales, per_doubling, keep, part,
                      columns=(), sweeps: Sweeps = SWEEPS) -> CombinedMarch:
-    """The swept backward-Euler march (``concentration_dependent``) on the plan's steps and on them
-    bisected, combined 2 fine - coarse; its track: (mean, layer, ``columns``' sums)."""
+    """A swept march and the same on bisected steps, combined 2 fine - coarse.
+
+    The swept backward-Euler march (``concentration_dependent``) on the plan's steps and on them
+    bisected, combined 2 fine - coarse; its track: (mean, layer, ``columns``' sums).
+
+    Parameters
+    ----------
+    disc : Discretisation
+        The operator in scaled coordinates.
+    law : ConcentrationDependent
+        The factor f(c/Mm_ref) [-].
+    top : float
+        The largest f met [-].
+    exposure : Exposure
+        The history (times [s], temperature [K], moisture [weight %]).
+    times : numpy.ndarray
+        The output times [s].
+    scales : Scales
+        The part's time and length scales.
+    per_doubling : int
+        Steps of equal size before the step doubles.
+    keep : bool
+        Keep the cell values.
+    part : str
+        The part's name, for errors.
+    columns : tuple of numpy.ndarray
+        More cell weight vectors to track.
+    sweeps : Sweeps
+        When each step's sweeps stop.
+
+    Returns
+    -------
+    CombinedMarch
+        The combined means [weight %] and the time-error indicator.
+    """
     faces = Faces.of(disc)
     plans = [step_plan(exposure, times, scales, per_doubling, bisect) for bisect in (False, True)]
     coarse, fine = (sweep_march(faces, disc, law, top, steps, exposure.initial_moisture, keep,
@@ -190,14 +391,33 @@ ROUND_OFF = 1e-9   # of the largest |surface value|: a coarse U this small keeps
 
 
 def unaccomplished_ratio(reference: np.ndarray, coarse: np.ndarray, floor: float) -> np.ndarray:
-    """reference / coarse (unaccomplished uptakes), 1 where |coarse| <= ``floor``."""
+    """The ratio of two unaccomplished uptakes, 1 where the coarse one is round-off.
+
+    reference / coarse (unaccomplished uptakes), 1 where |coarse| <= ``floor``.
+
+    Parameters
+    ----------
+    reference : numpy.ndarray
+        The reference's unaccomplished uptake U [weight %].
+    coarse : numpy.ndarray
+        The coarse grid's U [weight %].
+    floor : float
+        |coarse| at or below which the ratio is 1 [weight %].
+
+    Returns
+    -------
+    numpy.ndarray
+        The ratio [-].
+    """
     small = np.abs(coarse) <= floor
     return np.where(small, 1.0, reference / np.where(small, 1.0, coarse))
 
 
 def corrected(plate: CombinedMarch, sheet: tuple, planform: tuple, surface: np.ndarray,
               union=None):
-    """(mean, layer): the plate's U = g - c times the ratio of the fine reference's U to the
+    """The coarse plate's moisture corrected by its factors' references.
+
+    (mean, layer): the plate's U = g - c times the ratio of the fine reference's U to the
     coarse grid's, for the sheet (the layer spans the thickness) and for the planform
     (its mean, its band for the layer). A ratio is 1 where the coarse grid's U is within
     round-off of zero. ``sheet``, ``planform``: (coarse CombinedMarch, fine reference
@@ -206,7 +426,30 @@ def corrected(plate: CombinedMarch, sheet: tuple, planform: tuple, surface: np.n
     sheet layer's volume fractions; the layer is then the band through the thickness or
     the sheet's layer over the planform, whose U for the product of Fick (Crank 1975
     §4.3) is beta Ub S + zeta Sl (P - beta Ub) (P, Ub: the planform's mean and band; S,
-    Sl: the sheet's mean and layer) with the coarse factors or the references."""
+    Sl: the sheet's mean and layer) with the coarse factors or the references.
+
+    Parameters
+    ----------
+    plate : CombinedMarch
+        The coarse 3-D march (moisture [weight %]).
+    sheet : tuple of CombinedMarch
+        The coarse grid's sheet and its fine reference.
+    planform : tuple of CombinedMarch
+        The coarse grid's planform and its fine reference.
+    surface : numpy.ndarray
+        The surface moisture g [weight %] at the outputs.
+    union : tuple of float, optional
+        A Bar's (beta, zeta) volume fractions [-].
+
+    Returns
+    -------
+    mean, layer : numpy.ndarray
+        The corrected mean and layer moisture [weight %].
+
+    References
+    ----------
+    Crank (1975) §4.3; Stetter (1978) (module docstring).
+    """
     floor = ROUND_OFF * max(float(np.max(np.abs(surface))), 1e-300)
 
     def ratio(fine, coarse):   # of the unaccomplished uptakes U = g - c
@@ -227,13 +470,51 @@ def corrected(plate: CombinedMarch, sheet: tuple, planform: tuple, surface: np.n
 
 
 def steps_for(accuracy: float) -> int:
-    """Steps per doubling for the time error TIME_ERROR / m^2 at half the accuracy
-    (``finite_volume.plan_direct``)."""
+    """Steps per doubling for a time error of half the accuracy.
+
+    Steps per doubling for the time error TIME_ERROR / m^2 at half the accuracy
+    (``finite_volume.plan_direct``).
+
+    Parameters
+    ----------
+    accuracy : float
+        The accuracy [-] asked of the solve; the time error gets half.
+
+    Returns
+    -------
+    int
+        Steps per doubling m, at least ``MIN_STEPS_PER_DOUBLING``.
+    """
     return max(MIN_STEPS_PER_DOUBLING, math.ceil(math.sqrt(TIME_ERROR / (0.5 * accuracy))))
 
 
 def level_plan(geometry, diffusivity, law, exposure, times, mesh_accuracy, per_doubling) -> Plan:
-    """A 3-D plan: ``nonlinear_plan``'s cells at ``mesh_accuracy``, ``per_doubling`` steps."""
+    """A 3-D plan of the corrected product's coarse mesh.
+
+    A 3-D plan: ``nonlinear_plan``'s cells at ``mesh_accuracy``, ``per_doubling`` steps.
+
+    Parameters
+    ----------
+    geometry : CamPlate or LinkBar
+        The part the 3-D mesh covers (sizes [m]).
+    diffusivity : Diffusivity
+        D0 of the material per axis [m^2/s].
+    law : ConcentrationDependent
+        How D scales with the local moisture, f [-].
+    exposure : Exposure
+        Temperatures [K] and surface moisture [weight %] over time [s].
+    times : numpy.ndarray
+        Times of the outputs [s].
+    mesh_accuracy : float
+        The accuracy [-] the cells are sized for.
+    per_doubling : int
+        Steps per doubling.
+
+    Returns
+    -------
+    Plan
+        The 3-D plan.
+    """
     def planner(d, a, outputs):
         return plan_direct(DiffusionProblem(geometry, d, exposure, outputs, a), "solid",
                            mirrored=True)
@@ -244,8 +525,37 @@ def level_plan(geometry, diffusivity, law, exposure, times, mesh_accuracy, per_d
 def sheet_reference(geometry, diffusivity, law, exposure, times, accuracy,
                     depth=LAYER_DEPTH, store_fields=False,
                     sweeps: Sweeps = SWEEPS) -> DiffusionResult:
-    """The D(c) sheet of the part's thickness at ``SHEET_SHARE`` x the accuracy (FiPy slab;
-    its layer within ``depth`` of a face; its cells' fields with ``store_fields``)."""
+    """The fine concentration-dependent sheet of the part's thickness.
+
+    The D(c) sheet of the part's thickness at ``SHEET_SHARE`` x the accuracy (FiPy slab;
+    its layer within ``depth`` of a face; its cells' fields with ``store_fields``).
+
+    Parameters
+    ----------
+    geometry : CamPlate, LinkBar or Bar
+        The part; its ``thickness`` [m] is the sheet's.
+    diffusivity : Diffusivity
+        D0 per axis [m^2/s]; the sheet takes the through-thickness one.
+    law : ConcentrationDependent
+        The sheet's moisture dependence f [-].
+    exposure : Exposure
+        The sheet's exposure (t [s], T [K], surface moisture [weight %]).
+    times : numpy.ndarray
+        Output times [s] of the sheet.
+    accuracy : float
+        The requested accuracy [-] (the sheet takes ``SHEET_SHARE`` of it).
+    depth : float
+        The contact layer's depth [m].
+    store_fields : bool
+        Keep the cells' fields.
+    sweeps : Sweeps
+        When each step's sweeps stop.
+
+    Returns
+    -------
+    DiffusionResult
+        The sheet's mean and layer moisture [weight %].
+    """
     sheet = Sheet(geometry.thickness)
 
     def planner(d, a, outputs):
@@ -258,7 +568,39 @@ def sheet_reference(geometry, diffusivity, law, exposure, times, accuracy,
 
 @dataclass(frozen=True)
 class SharedInputs:
-    """What every march of one solve shares: law, scaled D, its top factor, scales."""
+    """What every march of one corrected solve shares.
+
+    What every march of one solve shares: law, scaled D, its top factor, scales.
+
+    Parameters
+    ----------
+    geometry : CamPlate or LinkBar
+        The prism every march meshes (sizes [m]).
+    law : ConcentrationDependent
+        The law f(c/Mm_ref) [-] every sweep reads.
+    exposure : Exposure
+        The shared exposure: t [s], T [K], surface moisture [weight %].
+    times : numpy.ndarray
+        The outputs every march records [s].
+    d : tuple of float
+        The scaled diffusivity D0 max f per axis [m^2/s].
+    top : float
+        The largest f met [-].
+    scales : Scales
+        The part's time and length scales.
+    depth : float
+        The contact layer's depth [m].
+    per_doubling : int
+        Steps per doubling.
+    part : str
+        The part's name, for errors.
+    faces_layer : bool
+        The layer includes the two faces (a Bar's).
+    keep_fields : bool
+        The planform marches keep their fields.
+    sweeps : Sweeps
+        When each step's sweeps stop.
+    """
 
     geometry: object
     law: object
@@ -314,7 +656,27 @@ class SharedInputs:
 
 @dataclass(frozen=True)
 class MeshMarches:
-    """One 3-D plan's marches: the plate, its z widths as a sheet, its planform alone."""
+    """One 3-D mesh's marches: the plate, its z widths as a sheet, its planform alone.
+
+    One 3-D plan's marches: the plate, its z widths as a sheet, its planform alone.
+
+    Parameters
+    ----------
+    plan : Plan
+        The mesh's plan.
+    plate, slab, planform : CombinedMarch
+        The 3-D march, its z widths as a sheet, its planform alone (moisture [weight %]).
+    moments : CombinedMarch
+        The planform march read with ``cell_moments``' weights.
+    cells : int
+        The 3-D mesh's cells.
+    planform_cells : int
+        The planform's cells.
+    coordinates : dict
+        The cell centres [m].
+    union : tuple of float or None
+        A Bar's layer fractions (beta, zeta) [-].
+    """
 
     plan: Plan
     plate: CombinedMarch
@@ -329,7 +691,26 @@ class MeshMarches:
 
 def three_d(setting: SharedInputs, chosen: Plan, keep: bool,
             cells: PrismCells | None = None) -> MeshMarches:
-    """The marches of one 3-D mesh: ``cells``, or the graded cells of ``chosen``."""
+    """March one 3-D mesh, its sheet and its planform.
+
+    The marches of one 3-D mesh: ``cells``, or the graded cells of ``chosen``.
+
+    Parameters
+    ----------
+    setting : SharedInputs
+        What the solve's marches share.
+    chosen : Plan
+        The plan whose graded cells are used when ``cells`` is None.
+    keep : bool
+        Keep the cell values.
+    cells : PrismCells, optional
+        The mesh's cells.
+
+    Returns
+    -------
+    MeshMarches
+        The mesh's marches (moisture [weight %]).
+    """
     cells = cells or PrismCells.of(setting.geometry, setting.d, chosen)
     geometry = setting.geometry
     disc = prism(cells.tess, geometry.thickness, cells.z * geometry.thickness,

@@ -105,10 +105,20 @@ CROSS_CELLS = 60_000       # the ``cross``'s largest (2 x the finest): half the 
 
 @dataclass(frozen=True)
 class MeshCaps:
-    """The largest 3-D meshes the corrected product refines to [cells on half the
+    """The largest 3-D meshes the corrected product refines to.
+
+    The largest 3-D meshes the corrected product refines to [cells on half the
     thickness]: the next nested mesh (8 x the finest) within ``nested``, the ``cross``'s
     largest (2 x the finest) within ``cross``. The defaults are the run's; tests pass
-    smaller ones instead of changing the module's values."""
+    smaller ones instead of changing the module's values.
+
+    Parameters
+    ----------
+    nested : int
+        The largest next nested mesh [cells on half the thickness].
+    cross : int
+        The largest mesh of the ``cross`` [cells on half the thickness].
+    """
 
     nested: int = NESTED_CELLS
     cross: int = CROSS_CELLS
@@ -135,11 +145,28 @@ PLANFORM_CELLS = 60_000    # the finest planform tried
 
 
 def skin_margin(law, exposure, times) -> float:
-    """1 unless the surface dries to a skin (``concentration_dependent.dries_to_a_skin``); then
+    """The margin on the 3-D change of a part that dries to a skin (1 otherwise).
+
+    1 unless the surface dries to a skin (``concentration_dependent.dries_to_a_skin``); then
     1 + SKIN_ESTIMATE_MARGIN (sqrt(max f / min f) - 1), as the cells' margin of
     ``nonlinear_plan``, on the change between two nested 3-D meshes (``unseparated``; three
     meshes measure their order and take no margin): drying converges at a lower order than
-    absorbing (``SKIN_ESTIMATE_MARGIN``; benchmarks/dc_defect_correction.py nested)."""
+    absorbing (``SKIN_ESTIMATE_MARGIN``; benchmarks/dc_defect_correction.py nested).
+
+    Parameters
+    ----------
+    law : ConcentrationDependent
+        f(c/Mm_ref) [-], the law whose spread sets the margin.
+    exposure : Exposure
+        The exposure (surface moisture [weight %] over time [s]).
+    times : numpy.ndarray
+        Output times [s].
+
+    Returns
+    -------
+    float
+        The margin m [-] on the change between two nested meshes.
+    """
     if not dries_to_a_skin(law, exposure):
         return 1.0
     return 1.0 + SKIN_ESTIMATE_MARGIN * (math.sqrt(spread(law, exposure, times)) - 1.0)
@@ -147,8 +174,36 @@ def skin_margin(law, exposure, times) -> float:
 
 @dataclass(frozen=True)
 class CorrectedMeshes:
-    """The corrected result on each 3-D mesh of one solve, all with the same sheet and
-    planform references."""
+    """The corrected result on each 3-D mesh of one solve, sharing its references.
+
+    The corrected result on each 3-D mesh of one solve, all with the same sheet and
+    planform references.
+
+    Parameters
+    ----------
+    marched : list of MeshMarches
+        The marches per mesh, the finest last.
+    results : list of tuple
+        The corrected (mean, layer) [weight %] per mesh.
+    sheet : DiffusionResult
+        The sheet reference.
+    planform : CombinedMarch
+        The planform reference.
+    planform_error : float
+        Its error estimate [-], relative to the swing.
+    planform_cells : int
+        Its cells.
+    factor : float
+        The planform's refinement R [-].
+    scale : float
+        The swing [weight %] the estimates are relative to.
+    setting : SharedInputs
+        What the marches share.
+    meshes : list of PrismCells
+        The cells per mesh.
+    keys : list of tuple
+        (planform, z) halvings of each mesh from the first; () for the diagonal.
+    """
 
     marched: list      # MeshMarches per mesh, the finest last
     results: list      # (mean, layer) corrected, per mesh
@@ -201,13 +256,28 @@ class CorrectedMeshes:
 
 
 def base_level(accuracy: float) -> float:
-    """The accuracy of the coarsest 3-D plan: ``BASE_PER_ACCURACY`` x the requested one, at
-    most ``MESH_LEVELS[0]``, at least ``MESH_LEVELS[-1]``."""
+    """The accuracy the coarsest 3-D plan is made for.
+
+    The accuracy of the coarsest 3-D plan: ``BASE_PER_ACCURACY`` x the requested one, at
+    most ``MESH_LEVELS[0]``, at least ``MESH_LEVELS[-1]``.
+
+    Parameters
+    ----------
+    accuracy : float
+        The solve's accuracy [-] (relative to the moisture swing).
+
+    Returns
+    -------
+    float
+        The coarsest plan's accuracy [-].
+    """
     return min(MESH_LEVELS[0], max(MESH_LEVELS[-1], BASE_PER_ACCURACY * accuracy))
 
 
 def base_plan(plan_at, accuracy: float, caps: MeshCaps = MESH_CAPS) -> tuple[float, Plan]:
-    """(its accuracy, the coarsest 3-D plan): ``plan_at(base_level(accuracy))``, the level
+    """The coarsest 3-D plan of the corrected product, and its accuracy.
+
+    (its accuracy, the coarsest 3-D plan): ``plan_at(base_level(accuracy))``, the level
     doubled (up to ``MESH_LEVELS[0]``) while the ``cross`` around the pair (16 x the base's
     cells) would pass ``caps.cross`` (so a large part has a further mesh), then halved
     (down to ``MESH_LEVELS[-1]``) while the plan has fewer than ``MIN_Z_WIDTHS`` z widths on
@@ -215,7 +285,24 @@ def base_plan(plan_at, accuracy: float, caps: MeshCaps = MESH_CAPS) -> tuple[flo
     drying on the 0.5 plan (7 904 cells) "capped" at 2.0e-3 in 334 CPU s, on the 1.0 plan
     (3 681) 6.7e-4 in 404 s with the cross; absorbing 6.4e-4 in 229 s, 8.1e-4 in 81 s. The
     demo cam (0.5 plan 7 272 cells) on the 1.0 plan: 7.2e-4 in 433 s, six meshes, against
-    8.0e-4 in 309 s on the 0.5 plan's pair, 7.4e-5 apart (``gap``; dc_defect_correction.py)."""
+    8.0e-4 in 309 s on the 0.5 plan's pair, 7.4e-5 apart (``gap``; dc_defect_correction.py).
+
+    Parameters
+    ----------
+    plan_at : callable
+        accuracy [-] -> the 3-D plan for it.
+    accuracy : float
+        What the solve must reach [-], relative to the swing.
+    caps : MeshCaps
+        The largest meshes allowed.
+
+    Returns
+    -------
+    level : float
+        The plan's accuracy [-].
+    plan : Plan
+        The coarsest 3-D plan.
+    """
     level = base_level(accuracy)
     chosen = plan_at(level)
     while level < MESH_LEVELS[0] and 16 * chosen.cells > caps.cross:
@@ -229,21 +316,71 @@ def base_plan(plan_at, accuracy: float, caps: MeshCaps = MESH_CAPS) -> tuple[flo
 
 
 def surface_of(setting: SharedInputs) -> np.ndarray:
-    """g(t-) at the outputs: the state the unaccomplished uptakes are measured from."""
+    """The surface moisture just before each output.
+
+    g(t-) at the outputs: the state the unaccomplished uptakes are measured from.
+
+    Parameters
+    ----------
+    setting : SharedInputs
+        The solve's exposure and output times [s].
+
+    Returns
+    -------
+    numpy.ndarray
+        g(t-) [weight %] at the outputs.
+    """
     return np.asarray(setting.exposure.surface_before(setting.times), float)
 
 
 def corrected_levels(geometry, diffusivity, law, exposure, times, accuracy: float,
                      meshes: int = 2, *, plans=None, base=None, surface_layer_depth=LAYER_DEPTH,
                      store_fields=False, part="", sweeps: Sweeps = SWEEPS) -> CorrectedMeshes:
-    """The corrected product (module docstring) on ``meshes`` nested 3-D meshes: the graded
+    """The corrected product on nested (or given) 3-D meshes.
+
+    The corrected product (module docstring) on ``meshes`` nested 3-D meshes: the graded
     cells of the ``base_plan`` plan, each next one refined by 2 in every direction
     (``PrismCells.refined``); or, with ``plans`` (accuracies of ``nonlinear_plan``, coarsest
     first), on those plans' graded cells (not nested; ``benchmarks/dc_defect_correction.py
     plate-order``). ``base``: the coarsest nested plan's accuracy instead of ``base_plan``'s.
     The planform reference is refined from the ``MESH_LEVELS[-1]`` plan's graded planform.
     ``store_fields`` keeps every mesh's fields and the references' (``corrected_fields``);
-    ``sweeps``: when each step's sweeps stop, in every march."""
+    ``sweeps``: when each step's sweeps stop, in every march.
+
+    Parameters
+    ----------
+    geometry : Bar, CamPlate or LinkBar
+        The part (lengths [m]).
+    diffusivity : Diffusivity
+        The material's diffusivity (pre-exponential [m^2/s], activation energy [J/mol]).
+    law : ConcentrationDependent
+        The factor f(c/Mm_ref) [-].
+    exposure : Exposure
+        The history (times [s], temperature [K], moisture [weight %]).
+    times : numpy.ndarray
+        The output times [s].
+    accuracy : float
+        The requested error relative to the swing [-].
+    meshes : int
+        The nested meshes marched.
+    plans : sequence of float, optional
+        Accuracies [-] of ``nonlinear_plan`` for non-nested meshes, coarsest first.
+    base : float, optional
+        The coarsest nested plan's accuracy [-] (None: ``base_plan``'s).
+    surface_layer_depth : float
+        The contact layer's depth [m].
+    store_fields : bool
+        Keep every mesh's fields and the references'.
+    part : str
+        Names the part in solver errors.
+    sweeps : Sweeps
+        The sweeps' stopping rule, for every march.
+
+    Returns
+    -------
+    CorrectedMeshes
+        The corrected results per mesh and their references.
+    """
     times = np.asarray(times, float)
     geometry, diffusivity, faces_layer = as_prism(geometry, diffusivity)
     setting = SharedInputs.of(geometry, diffusivity, law, exposure, times, surface_layer_depth,
@@ -279,9 +416,28 @@ def corrected_levels(geometry, diffusivity, law, exposure, times, accuracy: floa
 
 
 def estimate_parts(run: CorrectedMeshes, margin: float) -> tuple[tuple, float, float]:
-    """((mean, layer), 3-D term, rest): ``unseparated``'s values and estimate, and the rest
+    """The corrected values and the two parts of their error estimate.
+
+    ((mean, layer), 3-D term, rest): ``unseparated``'s values and estimate, and the rest
     of the estimate: the sheet's, the planform's and the marches' time error
-    (``PAIR_TO_EXTRAPOLATED`` pair^2)."""
+    (``PAIR_TO_EXTRAPOLATED`` pair^2).
+
+    Parameters
+    ----------
+    run : CorrectedMeshes
+        The solve's meshes.
+    margin : float
+        The margin [-] on a two-mesh change (``skin_margin``).
+
+    Returns
+    -------
+    values : tuple of numpy.ndarray
+        (mean, layer) [weight %].
+    three_d : float
+        The 3-D term of the estimate [-].
+    rest : float
+        The rest of the estimate [-].
+    """
     values, three_d_error = unseparated(run, margin)
     pair = max(run.marched[-1].plate.pair, run.planform.pair) / run.scale
     rest = run.sheet.error_estimate + run.planform_error + PAIR_TO_EXTRAPOLATED * pair ** 2
@@ -289,7 +445,9 @@ def estimate_parts(run: CorrectedMeshes, margin: float) -> tuple[tuple, float, f
 
 
 def unseparated(run: CorrectedMeshes, margin: float) -> tuple[tuple, float]:
-    """((mean, layer), estimate) of the 3-D cells (``finest``). On the diagonal (each mesh
+    """The 3-D cells' corrected values and the estimate of what does not separate.
+
+    ((mean, layer), estimate) of the 3-D cells (``finest``). On the diagonal (each mesh
     refined by 2 in every direction), two meshes: the finer one's result, its estimate the
     change between them x ``ORDER_ONE`` x ``margin`` (``skin_margin``); three or more: the
     last three by ``three_levels`` (mean and layer each; the second-order extrapolation
@@ -301,7 +459,27 @@ def unseparated(run: CorrectedMeshes, margin: float) -> tuple[tuple, float]:
     step and estimate by ``three_levels`` on its chain; plus the mixed difference M =
     R(I, J) - R(I, J-1) - R(I-1, J) + R(I-1, J-1) x ``margin``: for a mixed term c a^p b^z
     (a, b <= 1/2: order >= 1 in each direction) the combination's is c (ab + a^2 + b^2 -
-    a - b), within |M| = |c| (1 - a)(1 - b)."""
+    a - b), within |M| = |c| (1 - a)(1 - b).
+
+    Parameters
+    ----------
+    run : CorrectedMeshes
+        The solve's meshes.
+    margin : float
+        The margin [-] on a two-mesh change and on the mixed term.
+
+    Returns
+    -------
+    values : tuple of numpy.ndarray
+        (mean, layer) [weight %].
+    estimate : float
+        The 3-D cells' error estimate [-], relative to the swing.
+
+    References
+    ----------
+    Griebel, M., Schneider, M. & Zenger, C. (1992). A combination technique for the solution
+    of sparse grid problems. In Iterative Methods in Linear Algebra, 263-281. Elsevier.
+    """
     values, checks = finest(run.results, run.lattice)
     if len(checks) == 1 and checks[0] is None:
         return values, gap(run.results[-2], values, run.scale) * ORDER_ONE * margin
@@ -316,10 +494,27 @@ def unseparated(run: CorrectedMeshes, margin: float) -> tuple[tuple, float]:
 
 
 def finest(results: list, lattice: list | None = None) -> tuple[tuple, list]:
-    """((mean, layer), [checks per chain] or [None]): what ``unseparated`` takes from the
+    """The values ``unseparated`` takes from the nested meshes' corrected results.
+
+    ((mean, layer), [checks per chain] or [None]): what ``unseparated`` takes from the
     corrected results of the nested meshes (the finest last; ``lattice``: their keys): on
     the diagonal the last three's ``three_levels`` (the finest alone if fewer), or the
-    ``combination``'s z and planform chains'."""
+    ``combination``'s z and planform chains'.
+
+    Parameters
+    ----------
+    results : list of tuple
+        Corrected (mean, layer) [weight %] per mesh, the finest last.
+    lattice : list of tuple, optional
+        The meshes' (planform, z) keys (None: the diagonal).
+
+    Returns
+    -------
+    values : tuple of numpy.ndarray
+        (mean, layer) [weight %].
+    checks : list
+        ``three_levels``' checks per chain, or [None].
+    """
     lattice = lattice or [(i, i) for i in range(len(results))]
     chains = combination(lattice[:len(results)])
     if chains is None:
@@ -339,8 +534,27 @@ def finest(results: list, lattice: list | None = None) -> tuple[tuple, list]:
 
 def extension(run: CorrectedMeshes, result: DiffusionResult, accuracy: float,
               resolve) -> Extension:
-    """``result.extend`` (``dense_output``): the corrected product of every nested mesh read
-    between the marches' steps, combined as ``finest`` combines the solve's."""
+    """A corrected solve's ``extend``: its product read between the marches' steps.
+
+    ``result.extend`` (``dense_output``): the corrected product of every nested mesh read
+    between the marches' steps, combined as ``finest`` combines the solve's.
+
+    Parameters
+    ----------
+    run : CorrectedMeshes
+        The solve's meshes and references.
+    result : DiffusionResult
+        The solve's result.
+    accuracy : float
+        The requested error [-].
+    resolve : callable
+        times [s] -> the solve at them (the fallback).
+
+    Returns
+    -------
+    Extension
+        The result's ``extend``.
+    """
     exposure, meshes = run.setting.exposure, run.marched
     tracks = [track for m in meshes for track in (m.plate.track, m.slab.track,
                                                   m.planform.track)]
@@ -360,9 +574,46 @@ def extension(run: CorrectedMeshes, result: DiffusionResult, accuracy: float,
 def refined_run(geometry, diffusivity, law, exposure, times, accuracy: float, *,
                 surface_layer_depth=LAYER_DEPTH, store_fields=False, part="",
                 sweeps: Sweeps = SWEEPS) -> tuple[CorrectedMeshes, tuple, float, float]:
-    """The nested meshes ``solve_corrected`` ends on, with its (mean, layer) values, the
+    """The nested meshes a corrected solve ends on, refined while that helps.
+
+    The nested meshes ``solve_corrected`` ends on, with its (mean, layer) values, the
     3-D change's estimate and the rest of the estimate: ``corrected_levels``' two meshes,
-    a further one while the total is above the accuracy and the rest below it."""
+    a further one while the total is above the accuracy and the rest below it.
+
+    Parameters
+    ----------
+    geometry : Bar, CamPlate or LinkBar
+        The part whose meshes are refined (sizes [m]).
+    diffusivity : Diffusivity
+        D0 per axis [m^2/s] and the activation energy [J/mol].
+    law : ConcentrationDependent
+        The moisture dependence f(c/Mm_ref) [-] of D.
+    exposure : Exposure
+        Change times [s], temperatures [K], surface moisture [weight %].
+    times : numpy.ndarray
+        When the results are wanted [s].
+    accuracy : float
+        The error [-] allowed, as a share of the moisture swing.
+    surface_layer_depth : float
+        How deep the contact layer reaches [m].
+    store_fields : bool
+        Keep the finest mesh's fields.
+    part : str
+        The part's name, for errors.
+    sweeps : Sweeps
+        When each step's sweeps stop.
+
+    Returns
+    -------
+    run : CorrectedMeshes
+        The meshes.
+    values : tuple of numpy.ndarray
+        (mean, layer) [weight %].
+    three_d : float
+        The 3-D change's estimate [-].
+    rest : float
+        The rest of the estimate [-].
+    """
     run = corrected_levels(geometry, diffusivity, law, exposure, times, accuracy,
                            surface_layer_depth=surface_layer_depth,
                            store_fields=store_fields, part=part, sweeps=sweeps)
@@ -379,7 +630,9 @@ def refined_run(geometry, diffusivity, law, exposure, times, accuracy: float, *,
 
 def solve_corrected(problem: DiffusionProblem, reason: str = "",
                     sweeps: Sweeps = SWEEPS) -> DiffusionResult:
-    """Mean and contact layer (weight %) at the ``problem``'s times, its ``sorption`` a
+    """Solve a concentration-dependent prism part by the corrected product.
+
+    Mean and contact layer (weight %) at the ``problem``'s times, its ``sorption`` a
     ``ConcentrationDependent`` law (``reason``: the plan's): the corrected product (module
     docstring) on two nested 3-D meshes (``corrected_levels``; their change the estimate
     of what does not separate, ``unseparated``), a further one (8 x the cells, or where
@@ -388,7 +641,28 @@ def solve_corrected(problem: DiffusionProblem, reason: str = "",
     it: the finer meshes cost only a run that would otherwise miss its accuracy); plus the sheet's and the planform's
     estimates and the time error of the marches (``PAIR_TO_EXTRAPOLATED`` pair^2).
     ``store_fields``: the finest 3-D mesh's cells corrected cell by cell
-    (``corrected_fields.stored``; a Bar's in its own frame, ``bar_coordinates``)."""
+    (``corrected_fields.stored``; a Bar's in its own frame, ``bar_coordinates``).
+
+    Parameters
+    ----------
+    problem : DiffusionProblem
+        The part, material, exposure, output times [s] and accuracy [-]; its ``sorption`` a
+        ``ConcentrationDependent`` law.
+    reason : str
+        The plan's reason.
+    sweeps : Sweeps
+        When each step's sweeps stop.
+
+    Returns
+    -------
+    DiffusionResult
+        Mean and contact-layer moisture [weight %], the error estimate [-].
+
+    Raises
+    ------
+    SolverError
+        When a step's sweeps do not converge.
+    """
     geometry, diffusivity, law = problem.geometry, problem.diffusivity, problem.sorption
     exposure, times, accuracy = problem.exposure, problem.times, problem.accuracy
     surface_layer_depth, store_fields = problem.surface_layer_depth, problem.store_fields
@@ -419,10 +693,23 @@ def solve_corrected(problem: DiffusionProblem, reason: str = "",
 
 
 def plan_corrected(problem: DiffusionProblem) -> Plan:
-    """What ``solve_corrected`` will start from for a D(c) ``problem``: the coarsest 3-D plan
+    """The plan a corrected solve starts from.
+
+    What ``solve_corrected`` will start from for a D(c) ``problem``: the coarsest 3-D plan
     (refined by 2, nested, once or twice, or by direction: ``CorrectedMeshes.finer``), the
     planform refined up to ``PLANFORM_CELLS``, the accuracy as the target its measured
-    estimate is held to (the solve reports the estimate)."""
+    estimate is held to (the solve reports the estimate).
+
+    Parameters
+    ----------
+    problem : DiffusionProblem
+        The part, material, exposure, output times [s] and accuracy [-].
+
+    Returns
+    -------
+    Plan
+        The coarsest 3-D plan, its estimate the requested accuracy [-].
+    """
     law, exposure, times, accuracy = (problem.sorption, problem.exposure, problem.times,
                                       problem.accuracy)
     geometry, diffusivity, bar = as_prism(problem.geometry, problem.diffusivity)
@@ -441,7 +728,9 @@ def plan_corrected(problem: DiffusionProblem) -> Plan:
 
 def refined_reference(setting: SharedInputs, start: Plan, level: MeshMarches, sheet: CombinedMarch,
                       accuracy: float, scale, total=None):
-    """(planform reference CombinedMarch, estimate, planform cells, factor R): the graded planform
+    """The planform reference, refined by Richardson steps until it is accurate enough.
+
+    (planform reference CombinedMarch, estimate, planform cells, factor R): the graded planform
     of
     the plan ``start`` refined by R in ``REFINE`` (finest and growth / R) until the estimate
     is ``PLANFORM_SHARE`` of the accuracy, or ``total(reference, estimate, cells, R)`` (the
@@ -460,7 +749,30 @@ def refined_reference(setting: SharedInputs, start: Plan, level: MeshMarches, sh
     and the layer each by ``three_levels`` (the corrected result is affine in the planform
     reference, so its changes are the reference's).
     Before, the second extrapolation with a third of its change from the first (Romberg's
-    check): on the demo cam (k = 2, 1e-3) an estimate 9.0e-4 for an error 1.8e-4."""
+    check): on the demo cam (k = 2, 1e-3) an estimate 9.0e-4 for an error 1.8e-4.
+
+    Parameters
+    ----------
+    setting : SharedInputs
+        What the marches share.
+    start : Plan
+        The plan whose graded planform is refined.
+    level : MeshMarches
+        The mesh whose corrected result measures the change.
+    sheet : CombinedMarch
+        The sheet reference.
+    accuracy : float
+        The requested error [-].
+    scale : float
+        The swing [weight %] the estimates are relative to.
+    total : callable, optional
+        (reference, estimate, cells, R) -> the solve's whole estimate [-].
+
+    Returns
+    -------
+    tuple
+        The planform reference (CombinedMarch), its estimate [-], its cells and R [-].
+    """
     surface = np.asarray(setting.exposure.surface_before(setting.times), float)
 
     def result(reference):
@@ -489,17 +801,49 @@ def refined_reference(setting: SharedInputs, start: Plan, level: MeshMarches, sh
 
 
 def gap(a, b, scale: float) -> float:
-    """The larger of the mean's and the layer's (/ ``LAYER_TOLERANCE``) largest difference,
-    relative to ``scale``."""
+    """The largest difference of two (mean, layer) results, the layer's scaled down.
+
+    The larger of the mean's and the layer's (/ ``LAYER_TOLERANCE``) largest difference,
+    relative to ``scale``.
+
+    Parameters
+    ----------
+    a, b : tuple of numpy.ndarray
+        (mean, layer) [weight %] of two results.
+    scale : float
+        The swing [weight %].
+
+    Returns
+    -------
+    float
+        The difference [-], relative to ``scale``.
+    """
     return max(float(np.max(np.abs(a[0] - b[0]))),
                float(np.max(np.abs(a[1] - b[1]))) / LAYER_TOLERANCE) / scale
 
 
 def combined(pairs, mean_rule, layer_rule=None):
-    """The last of ``pairs`` (marches with mean, layer and a ``StepRecord`` of the two, as
+    """The last march with its values combined from all of them.
+
+    The last of ``pairs`` (marches with mean, layer and a ``StepRecord`` of the two, as
     ``corrected_product.CombinedMarch``) with its mean, layer and track ``mean_rule`` /
     ``layer_rule`` (pointwise
-    in time: a Richardson or three-mesh combination) of ``pairs``' own."""
+    in time: a Richardson or three-mesh combination) of ``pairs``' own.
+
+    Parameters
+    ----------
+    pairs : sequence of CombinedMarch
+        Marches with mean, layer [weight %] and a ``StepRecord``.
+    mean_rule : callable
+        Combines the marches' means pointwise in time.
+    layer_rule : callable, optional
+        Combines their layers (None: ``mean_rule``).
+
+    Returns
+    -------
+    CombinedMarch
+        The last march with the combined mean, layer and track [weight %].
+    """
     layer_rule = layer_rule or mean_rule
     track = pairs[-1].track
     if track is not None:

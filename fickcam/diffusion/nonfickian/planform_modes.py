@@ -91,8 +91,27 @@ SPLIT_GRID = 49       # ... searched on this many ratios each (geometric)
 
 
 def planform_design(geometry, d, accuracy: float, t_lo: float) -> sizing.Layout:
-    """The first mesh: graded planform rows (w0, g) from the error model, shrunk under
-    ``FIRST_CAP`` cells (``refined_planform`` refines it from the measured error)."""
+    """The first planform mesh of the two-phase modal solve.
+
+    The first mesh: graded planform rows (w0, g) from the error model, shrunk under
+    ``FIRST_CAP`` cells (``refined_planform`` refines it from the measured error).
+
+    Parameters
+    ----------
+    geometry : CamPlate or LinkBar
+        The cam plate or link to mesh (sizes [m]).
+    d : tuple of float
+        Its diffusivities along x, y, z [m^2/s].
+    accuracy : float
+        The requested error relative to the swing [-].
+    t_lo : float
+        The earliest output after a change, scaled time [-].
+
+    Returns
+    -------
+    Layout
+        The graded rows (finest width w0 [-], growth g [-]) of the first mesh.
+    """
     stretch = stretch_of(d)
     return sizing.graded((1.0, 1.0), ("both", "both"), accuracy, t_lo, FIRST_CAP,
                          space_error(t_lo), lambda w0, g: (
@@ -101,8 +120,26 @@ def planform_design(geometry, d, accuracy: float, t_lo: float) -> sizing.Layout:
 
 @dataclass(frozen=True, eq=False)
 class Planform:
-    """S = M^-1/2 K_p M^-1/2 (rescaled 1/s) and the vectors of the mean (v = M^1/2 1 / V)
-    and the layer (the band's M^1/2 share / V_band) against M^1/2 1."""
+    """The symmetrised planform operator and its mean and layer vectors.
+
+    S = M^-1/2 K_p M^-1/2 (rescaled 1/s) and the vectors of the mean (v = M^1/2 1 / V)
+    and the layer (the band's M^1/2 share / V_band) against M^1/2 1.
+
+    Parameters
+    ----------
+    operator : scipy.sparse.csc_matrix
+        S = M^-1/2 K_p M^-1/2 [1/s] (per rescaled second).
+    start : numpy.ndarray
+        M^1/2 1, the Lanczos start vector [-].
+    mean : numpy.ndarray
+        The mean's vector against M^1/2 1 [-].
+    layer : numpy.ndarray
+        The layer's vector against M^1/2 1 [-].
+    cells : int
+        The planform's cells.
+    cache : RunCache
+        The run's cache (its LU, its Lanczos recurrence).
+    """
 
     operator: sparse.csc_matrix
     start: np.ndarray
@@ -114,8 +151,31 @@ class Planform:
 
 def planform_operator(geometry, d, depth: float, finest: float, growth: float,
                       cache: RunCache | None = None) -> Planform:
-    """The planform's FiPy operator (module docstring) on the graded admissible cells, made
-    once per run (``cache``; None: a fresh one)."""
+    """The planform's symmetrised FiPy operator on graded admissible cells.
+
+    The planform's FiPy operator (module docstring) on the graded admissible cells, made
+    once per run (``cache``; None: a fresh one).
+
+    Parameters
+    ----------
+    geometry : CamPlate or LinkBar
+        The prism part (lengths [m]).
+    d : tuple of float
+        The principal diffusivities (D_x, D_y, D_z) [m^2/s].
+    depth : float
+        The contact layer's depth [m].
+    finest : float
+        The finest cell width w0 [-] (scaled).
+    growth : float
+        The cells' growth rate g [-].
+    cache : RunCache, optional
+        The run's cache (None: a fresh one).
+
+    Returns
+    -------
+    Planform
+        The operator [1/s] and its vectors.
+    """
     cache = run_cache(cache)
 
     def build():
@@ -174,10 +234,27 @@ class _Recurrence:
 
 
 def lanczos_spectrum(planform: Planform, steps: int):
-    """(rates, mean amplitudes, layer amplitudes): the ``steps``-point Gauss quadrature of
+    """The Gauss quadrature of the planform's decay from the Lanczos recurrence.
+
+    (rates, mean amplitudes, layer amplitudes): the ``steps``-point Gauss quadrature of
     the planform's decay (module docstring), from the first ``steps`` rows of the Lanczos
     recurrence (``_Recurrence``, one per planform in the run's cache, run further on
-    demand). Read-only arrays (kept in the run's cache)."""
+    demand). Read-only arrays (kept in the run's cache).
+
+    Parameters
+    ----------
+    planform : Planform
+        The planform operator.
+    steps : int
+        Lanczos steps, the quadrature's points.
+
+    Returns
+    -------
+    rates : numpy.ndarray
+        The quadrature's decay rates [1/s] (per rescaled second).
+    mean, layer : numpy.ndarray
+        Their amplitudes in the mean and in the layer [-].
+    """
     def build():
         recurrence = planform.cache.get(("lanczos recurrence",), lambda: _Recurrence(planform),
                                         owner=planform)
@@ -192,15 +269,49 @@ def lanczos_spectrum(planform: Planform, steps: int):
 
 
 def planar_fraction(spectrum, ages) -> np.ndarray:
-    """(ages, 2): the planform's unsaturated mean and layer fractions of a unit step."""
+    """The planform's unsaturated mean and layer fractions after a unit step.
+
+    (ages, 2): the planform's unsaturated mean and layer fractions of a unit step.
+
+    Parameters
+    ----------
+    spectrum : tuple of numpy.ndarray
+        (rates [1/s], mean amplitudes [-], layer amplitudes [-]).
+    ages : numpy.ndarray
+        Rescaled ages since the step [s].
+
+    Returns
+    -------
+    numpy.ndarray
+        The unsaturated mean and layer fractions [-], shape (ages, 2).
+    """
     rates, mean, layer = spectrum
     return np.exp(-np.outer(np.asarray(ages, float), rates)) @ np.stack([mean, layer], axis=1)
 
 
 def lanczos_count(planform: Planform, ages, tolerance: float) -> tuple[int, float]:
-    """Lanczos steps whose quadrature of the unit-step response at ``ages`` moves by less
+    """How many Lanczos steps the quadrature of the unit-step response needs.
+
+    Lanczos steps whose quadrature of the unit-step response at ``ages`` moves by less
     than ``LANCZOS_SHARE`` x ``tolerance`` when halved, and that change (the mean's; the
-    layer's / ``LAYER_TOLERANCE``)."""
+    layer's / ``LAYER_TOLERANCE``).
+
+    Parameters
+    ----------
+    planform : Planform
+        The planform operator.
+    ages : numpy.ndarray
+        Rescaled ages [s] at which the response is compared.
+    tolerance : float
+        The error allowed [-], relative to the swing.
+
+    Returns
+    -------
+    steps : int
+        The Lanczos steps.
+    change : float
+        The change when halved [-].
+    """
     steps = FIRST_LANCZOS
     previous = planar_fraction(lanczos_spectrum(planform, steps), ages)
     while True:
@@ -215,11 +326,24 @@ def lanczos_count(planform: Planform, ages, tolerance: float) -> tuple[int, floa
 
 
 def whole_at_start(spectrum):
-    """The quadrature with the amplitudes of the mean and of the layer summing to 1 (the
+    """The quadrature with its mean and layer amplitudes summing to 1.
+
+    The quadrature with the amplitudes of the mean and of the layer summing to 1 (the
     part starts whole at its initial value): the corrected means (``cell_moments``) sum to
     1 - sum grad u . (c - x) of a unit field that steps to 0 at the surface, the share of
     the edge cells between their circumcentres and the surface, which settles within the
-    finest cells' time w0^2/D; it is given to the fastest quadrature node."""
+    finest cells' time w0^2/D; it is given to the fastest quadrature node.
+
+    Parameters
+    ----------
+    spectrum : tuple of numpy.ndarray
+        (rates [1/s], mean amplitudes [-], layer amplitudes [-]).
+
+    Returns
+    -------
+    tuple of numpy.ndarray
+        The same rates [1/s]; amplitudes [-] that sum to 1.
+    """
     rates, mean, layer = (np.array(a) for a in spectrum)
     fastest = np.argmax(rates)
     mean[fastest] += 1.0 - mean.sum()
@@ -228,8 +352,29 @@ def whole_at_start(spectrum):
 
 
 def planform_source(geometry, d, spectrum) -> ModeSource:
-    """The product modes (planform quadrature x ``count`` sheet modes) and the unit-step
-    response of the same planform quadrature times Crank's sheet (eq. 4.18)."""
+    """The mode source of a prism part: planform quadrature times sheet modes.
+
+    The product modes (planform quadrature x ``count`` sheet modes) and the unit-step
+    response of the same planform quadrature times Crank's sheet (eq. 4.18).
+
+    Parameters
+    ----------
+    geometry : CamPlate or LinkBar
+        The prism part; its ``thickness`` [m] is the sheet's.
+    d : tuple of float
+        The principal diffusivities (D_x, D_y, D_z) [m^2/s].
+    spectrum : tuple of numpy.ndarray
+        The planform quadrature: (rates [1/s], mean [-], layer [-]).
+
+    Returns
+    -------
+    ModeSource
+        The product modes and the exact unit-step response.
+
+    References
+    ----------
+    Crank, J. (1975). The Mathematics of Diffusion, 2nd ed. Oxford: Clarendon Press.
+    """
     spectrum = whole_at_start(spectrum)
     rates, mean, layer = spectrum
 
@@ -250,9 +395,29 @@ def planform_source(geometry, d, spectrum) -> ModeSource:
 
 @dataclass(frozen=True)
 class RefinedPlanform:
-    """The finest planform used: the estimated error of its mesh and quadrature (fraction
+    """The finest planform a refinement used, and what it measured.
+
+    The finest planform used: the estimated error of its mesh and quadrature (fraction
     of the swing), cells, Lanczos steps, meshes built, what ``measure`` gave on it, and its
-    finest width and growth (scaled)."""
+    finest width and growth (scaled).
+
+    Parameters
+    ----------
+    error : float
+        The estimated error of its mesh and quadrature [-], relative to the swing.
+    cells : int
+        Its cells.
+    steps : int
+        Its Lanczos steps.
+    levels : int
+        The meshes built.
+    result : object
+        What ``measure`` gave on it.
+    finest : float
+        Its finest cell width w0 [-] (scaled).
+    growth : float
+        Its growth rate g [-].
+    """
 
     error: float
     cells: int
@@ -274,11 +439,23 @@ def _level(geometry, d, depth, finest, growth, ages, tolerance, measure, cache: 
 
 @dataclass(frozen=True)
 class Refinement:
-    """How ``refined_planform`` refines: up to ``cap`` cells, w0 and g ``apart`` where
+    """How ``refined_planform`` refines.
+
+    How ``refined_planform`` refines: up to ``cap`` cells, w0 and g ``apart`` where
     together cannot meet the tolerance under the cap, each mesh measured by ``level``
     (``(geometry, d, depth, finest, growth, ages, tolerance, measure, cache)`` -> (compared values,
     payload, cells, steps, quadrature change)). The defaults are the run's; tests pass
-    others (a smaller cap, a modelled level) instead of changing the module."""
+    others (a smaller cap, a modelled level) instead of changing the module.
+
+    Parameters
+    ----------
+    cap : int
+        The largest mesh [cells].
+    apart : bool
+        Refine w0 and g apart where together cannot meet the tolerance.
+    level : callable
+        Measures one mesh.
+    """
 
     cap: int = PLANFORM_CAP
     apart: bool = True
@@ -291,7 +468,9 @@ REFINEMENT = Refinement()
 def refined_planform(geometry, d, depth: float, finest: float, growth: float, ages,
                      tolerance: float, measure, refinement: Refinement = REFINEMENT,
                      cache: RunCache | None = None) -> RefinedPlanform:
-    """Refine the first mesh (``planform_design``) by r = w0 / w0' (finest width and growth
+    """Refine the planform mesh until the Richardson estimate meets the tolerance.
+
+    Refine the first mesh (``planform_design``) by r = w0 / w0' (finest width and growth
     together) until the Richardson estimate |y' - y| / (r^2 - 1) of what ``measure(source)``
     compares (its first return: the two-phase history relative to the swing, the layer's
     / ``LAYER_TOLERANCE``; the second is kept), plus the quadrature's change at ``ages``
@@ -300,7 +479,37 @@ def refined_planform(geometry, d, depth: float, finest: float, growth: float, ag
     (``_separately``); if that ends above the tolerance too (the prediction at the cap is
     only as good as the coarse meshes' estimate), together on, and the lower estimate is
     kept. The error is infinite if the mesh cannot be refined. ``cache``: the run's (None: a
-    fresh one), which keeps each mesh's operator for the solve."""
+    fresh one), which keeps each mesh's operator for the solve.
+
+    Parameters
+    ----------
+    geometry : CamPlate or LinkBar
+        The cam plate or link whose planform is refined (sizes [m]).
+    d : tuple of float
+        D along x, y and through the thickness [m^2/s].
+    depth : float
+        Depth of the contact layer read [m].
+    finest : float
+        The first mesh's finest width w0 [-] (scaled).
+    growth : float
+        Its growth rate g [-].
+    ages : numpy.ndarray
+        Rescaled ages [s] at which the quadrature is checked.
+    tolerance : float
+        The error allowed [-], relative to the swing.
+    measure : callable
+        source -> (compared values [-], payload).
+    refinement : Refinement
+        How to refine.
+    cache : RunCache, optional
+        The run's cache (None: a fresh one).
+
+    Returns
+    -------
+    RefinedPlanform
+        The finest planform used and its error estimate [-] (infinite if the mesh cannot be
+        refined).
+    """
     cache = run_cache(cache)
     ages = np.asarray(ages, float)
     ages = ages[ages > 0]
@@ -345,20 +554,56 @@ def _lower(together: RefinedPlanform, apart) -> RefinedPlanform:
 
 
 def error_coefficients(meshes) -> np.ndarray:
-    """(2, compared values): the error coefficients (alpha, beta) of y = y* + alpha w0^2 +
+    """The error coefficients of y = y* + alpha w0^2 + beta g^2 through the meshes.
+
+    (2, compared values): the error coefficients (alpha, beta) of y = y* + alpha w0^2 +
     beta g^2 through the ``meshes`` (finest, growth, ``_level``; three or more, not on one
     line in (w0^2, g^2)), each compared value on its own: Richardson extrapolation in two
     step sizes, exact through three meshes (where two differ from the third in w0 or g
     alone, each term is its own one-parameter Richardson difference), least squares through
-    more (Eca & Hoekstra 2014, J. Comput. Phys. 262:104, §3: more grids than unknowns)."""
+    more (Eca & Hoekstra 2014, J. Comput. Phys. 262:104, §3: more grids than unknowns).
+
+    Parameters
+    ----------
+    meshes : sequence of tuple
+        (finest w0 [-], growth g [-], ``_level``'s result) per mesh.
+
+    Returns
+    -------
+    numpy.ndarray
+        (alpha, beta) per compared value, shape (2, values), in the values' unit.
+
+    References
+    ----------
+    Eca, L. & Hoekstra, M. (2014). A procedure for the estimation of the numerical
+    uncertainty of CFD calculations based on grid refinement studies. Journal of
+    Computational Physics 262:104-130. doi:10.1016/j.jcp.2014.01.006
+    """
     steps = np.array([[1.0, w ** 2, g ** 2] for w, g, _ in meshes])
     values = np.stack([level[0].ravel() for _, _, level in meshes])
     return np.linalg.lstsq(steps, values, rcond=None)[0][1:]
 
 
 def mesh_error(parts, finest: float, growth: float) -> float:
-    """The mesh error of (finest, growth): the w0 and g terms' magnitudes added, the
-    largest over the compared values (their signs are not trusted to cancel)."""
+    """The predicted mesh error of a (finest, growth) mesh.
+
+    The mesh error of (finest, growth): the w0 and g terms' magnitudes added, the
+    largest over the compared values (their signs are not trusted to cancel).
+
+    Parameters
+    ----------
+    parts : numpy.ndarray
+        (alpha, beta) per compared value (``error_coefficients``).
+    finest : float
+        The finest width w0 [-] (scaled).
+    growth : float
+        The growth rate g [-].
+
+    Returns
+    -------
+    float
+        The predicted mesh error [-], relative to the swing.
+    """
     return float(np.max(np.abs(parts[0]) * finest ** 2 + np.abs(parts[1]) * growth ** 2,
                         initial=0.0))
 

@@ -33,8 +33,23 @@ from ..stepping.march import ThetaStepper, rounded_steps
 
 @dataclass
 class TwoPhaseHistory:
-    """What a two-phase march records at the outputs: total mean and layer mean, the
-    bound mean, the total fields on request (``march.History``'s fields plus ``bound``)."""
+    """What a two-phase march records at the outputs (``march.History`` plus ``bound``).
+
+    Parameters
+    ----------
+    mean : numpy.ndarray
+        The total (free + bound) mean moisture [weight %] at each output.
+    layer : numpy.ndarray
+        The total mean moisture of the surface layer [weight %].
+    bound : numpy.ndarray
+        The bound water's mean [weight %].
+    fields : numpy.ndarray or None
+        The total moisture per cell [weight %], shape (outputs, cells), on request.
+    steps : int
+        Steps taken.
+    factorisations : int
+        Sparse factorisations made.
+    """
 
     mean: np.ndarray
     layer: np.ndarray
@@ -45,9 +60,29 @@ class TwoPhaseHistory:
 
 
 def two_phase_marcher(law, exposure):
-    """A march with ``march.march``'s arguments for the two-phase law ``law``: the surface
-    values (total Ms) become the free share at the node's temperature; the exchange over a
-    step is gamma(T) and beta(T) at its middle times its physical duration."""
+    """A march taking ``march.march``'s arguments that solves the two-phase law instead.
+
+    The surface values (total Ms) become the free share at the node's temperature; the
+    exchange over a step is gamma(T) and beta(T) at its middle times its physical
+    duration.
+
+    Parameters
+    ----------
+    law : Langmuir
+        The two-phase law (rates [1/s] of temperature [K]).
+    exposure : Exposure
+        The history (times [s], temperature [K]).
+
+    Returns
+    -------
+    callable
+        ``march(disc, nodes, surface_values, initial, outputs, times, ...)`` returning a
+        ``TwoPhaseHistory`` (moisture [weight %]).
+
+    References
+    ----------
+    Carter & Kibler (1978), cited in the module docstring.
+    """
     def march_two_phase(disc, nodes, surface_values, initial, outputs, times=None, *,
                         keep_fields=False, part="", surface_before=None, **_):
         times = np.asarray(nodes if times is None else times, float)
@@ -63,9 +98,44 @@ def two_phase_marcher(law, exposure):
 
 def march_coupled(disc, nodes, free_before, binding, release, initial,
                   initial_share, outputs, labels, keep_fields, part) -> TwoPhaseHistory:
-    """Backward Euler on the block system (module docstring). ``binding``/``release``:
-    gamma h and beta h of each step (physical duration h); ``free_before[k]`` the free
-    surface value at the end of the step ending at node k (the left limit there)."""
+    """Backward Euler on the free/bound block system, the bound block eliminated.
+
+    See the module docstring for the scheme.
+
+    Parameters
+    ----------
+    disc : Discretisation
+        The operator in scaled coordinates.
+    nodes : numpy.ndarray
+        The step boundaries in scaled time [-].
+    free_before : numpy.ndarray
+        The free surface moisture [weight %] at the end of the step ending at each node
+        (the left limit there).
+    binding, release : numpy.ndarray
+        gamma h and beta h of each step [-] (h its physical duration).
+    initial : float
+        The initial total moisture [weight %].
+    initial_share : float
+        The free share of it [-].
+    outputs : numpy.ndarray of int
+        The node indices recorded.
+    labels : numpy.ndarray
+        The nodes' times [s], labelling errors.
+    keep_fields : bool
+        Also return the cell values.
+    part : str
+        The part's name, for error messages.
+
+    Returns
+    -------
+    TwoPhaseHistory
+        Total, layer and bound means [weight %] at the outputs.
+
+    Raises
+    ------
+    SolverError
+        When a step's linear solve fails.
+    """
     stepper = ThetaStepper(disc, part)
     n = np.full(disc.cells, initial_share * float(initial))
     bound = np.full(disc.cells, (1.0 - initial_share) * float(initial))

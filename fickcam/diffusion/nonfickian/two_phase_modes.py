@@ -49,8 +49,29 @@ INTERPOLATION_SHARE = 0.25  # share of the tolerance for Ms piecewise linear bet
 
 @dataclass(frozen=True)
 class Nodes:
-    """Where the march stops: physical and rescaled times, the free surface value n_s
-    (right values and left limits), the exchange rates of each interval, its w2 = gamma/beta."""
+    """Where the modal two-phase march stops, and the forcing between its stops.
+
+    Parameters
+    ----------
+    t : numpy.ndarray
+        The nodes' physical times [s].
+    tau : numpy.ndarray
+        Their rescaled times [s].
+    free_right : numpy.ndarray
+        The free surface moisture n_s at the nodes [weight %] (right values).
+    free_left : numpy.ndarray
+        n_s just before the nodes [weight %] (left limits).
+    gamma, beta : numpy.ndarray
+        The binding and release rates of each interval [1/s].
+    ratio : numpy.ndarray
+        w2 = gamma/beta of each interval [-].
+    outputs : numpy.ndarray of int
+        The node index of each requested time.
+    initial_bound : float
+        The bound moisture at t = 0 [weight %].
+    interpolation : float
+        The bound of the error of Ms linear between nodes and rates frozen [weight %].
+    """
 
     t: np.ndarray
     tau: np.ndarray
@@ -65,7 +86,29 @@ class Nodes:
 
 
 def march_nodes(law, diffusivity, exposure, times, tolerance) -> Nodes:
-    """Edges, ramp rows cut where Ms departs from linear (``record.linear_pieces``), outputs."""
+    """The stops of the modal two-phase march: edges, cut ramp rows, and the outputs.
+
+    Ramp rows are cut where Ms departs from linear (``record.linear_pieces``) or where
+    freezing the exchange rates over a piece would err by more than ``tolerance``.
+
+    Parameters
+    ----------
+    law : Langmuir
+        The two-phase law (rates [1/s]).
+    diffusivity : Diffusivity
+        The material's diffusivity (its activation energy [J/mol]).
+    exposure : Exposure
+        The history (times [s], temperature [K], moisture [weight %]).
+    times : numpy.ndarray
+        The output times [s].
+    tolerance : float
+        The error allowed for the piecewise forcing [weight %].
+
+    Returns
+    -------
+    Nodes
+        The stops and the forcing.
+    """
     clock = RescaledTime(diffusivity, exposure)
     edges = clock.edges
     pieces, interpolation = linear_pieces(exposure, clock, tolerance)
@@ -113,8 +156,30 @@ def _exchange_pieces(law, clock, exposure, tolerance) -> tuple[np.ndarray, np.nd
 
 
 def march_modes(rates, amplitudes, nodes: Nodes) -> np.ndarray:
-    """(free, bound) projected on ``amplitudes`` (modes x k) at the outputs, shape
-    (n_outputs, 2, k): the kept modes advanced exactly, the rest in the infinite-rate limit."""
+    """Advance the free and bound water's modal coefficients exactly through the history.
+
+    The kept modes are advanced by the exact 2x2 propagator of each interval; the rest
+    are taken in the infinite-rate limit (free water at n_s, bound water relaxing
+    locally).
+
+    Parameters
+    ----------
+    rates : numpy.ndarray
+        The modes' decay rates D0 lambda_k per rescaled second [1/s].
+    amplitudes : numpy.ndarray
+        The modes' amplitudes in k weighted means (volume, layer), shape (modes, k) [-].
+    nodes : Nodes
+        The stops and the forcing.
+
+    Returns
+    -------
+    numpy.ndarray
+        (free, bound) means [weight %] at the outputs, shape (n_outputs, 2, k).
+
+    References
+    ----------
+    Carter & Kibler (1978), cited in the module docstring.
+    """
     kept = amplitudes.sum(axis=0)
     p = np.full(rates.size, nodes.free_left[0])
     q = np.full(rates.size, nodes.initial_bound)
@@ -157,9 +222,21 @@ def _record(out, want, node, p, q, q_rest, amplitudes, kept, free_now) -> None:
 
 @dataclass(frozen=True)
 class ModeSource:
-    """Where the Fickian modes of a part come from: ``modes(counts)`` (product modes,
-    ``counts`` per doubled direction, before lumping) and ``response(age)`` (the exact
-    unit-step mean and layer uptake, for the step corrections)."""
+    """Where the Fickian modes of a part come from.
+
+    Parameters
+    ----------
+    modes : callable
+        ``modes(counts)``: the product modes, ``counts`` per doubled direction, before
+        lumping (``exact.modes.Modes``, rates in [1/s]).
+    response : callable
+        ``response(age)``: the exact unit-step mean and layer uptake [-] at a rescaled age
+        [s], for the step corrections.
+    directions : int
+        The number of directions whose mode counts are doubled.
+    fixed : int
+        Modes of a direction kept whole (a planform's), multiplying the counts.
+    """
 
     modes: object
     response: object
@@ -168,7 +245,22 @@ class ModeSource:
 
 
 def separable_source(geometry, d0, depth) -> ModeSource:
-    """Sheet, Bar, solid Disc: ``modes.product_modes`` and ``separable.step_response``."""
+    """The mode source of a separable part (Sheet, Bar, solid Disc).
+
+    Parameters
+    ----------
+    geometry : Sheet, Bar or Disc
+        The part (lengths [m]).
+    d0 : sequence of float
+        The principal pre-exponential diffusivities (D_x, D_y, D_z) [m^2/s].
+    depth : float
+        The surface layer's depth [m].
+
+    Returns
+    -------
+    ModeSource
+        ``modes.product_modes`` and ``separable.step_response`` of the part.
+    """
     return ModeSource(lambda counts: product_modes(geometry, d0, depth, counts),
                       lambda age: step_response(geometry, d0, age, depth), dimensions(geometry))
 
@@ -184,10 +276,43 @@ def _history(source: ModeSource, nodes: Nodes, counts, per_octave) -> np.ndarray
 
 def langmuir_history(geometry, diffusivity, law, exposure, times, accuracy,
                      surface_layer_depth=LAYER_DEPTH, source: ModeSource | None = None):
-    """Total mean, contact-layer mean and bound mean (weight %) at ``times`` (s), and the
-    error estimate relative to the largest swing |Ms - M0| (the change when modes and bins
-    are doubled plus the interpolation bound of ramps). ``source``: the part's modes
-    (default: the separable Sheet, Bar or solid Disc)."""
+    """Two-phase (Langmuir-type) moisture of a part over an exposure, by exact modes.
+
+    Mode counts and rate bins are doubled until the result changes by less than the
+    accuracy's share.
+
+    Parameters
+    ----------
+    geometry : Sheet, Bar, Disc, CamPlate or LinkBar
+        The part (lengths [m]).
+    diffusivity : Diffusivity
+        D0 [m^2/s] and Ea [J/mol] of the free water's diffusion.
+    law : Langmuir
+        The two-phase law (rates [1/s]).
+    exposure : Exposure
+        Times [s], temperatures [K] and total surface moisture [weight %].
+    times : numpy.ndarray
+        Where the history is read [s].
+    accuracy : float
+        The requested error relative to the swing [-].
+    surface_layer_depth : float
+        The contact layer's depth [m].
+    source : ModeSource, optional
+        The part's modes (None: the separable Sheet, Bar or solid Disc).
+
+    Returns
+    -------
+    dict
+        "mean" (total), "surface" (contact-layer total) and "bound" [weight %] at
+        ``times``.
+    float
+        The error estimate relative to the largest swing |Ms - M0| [-] (the change when
+        modes and bins are doubled plus the interpolation bound of ramps).
+
+    References
+    ----------
+    Carter & Kibler (1978), cited in the module docstring.
+    """
     times = np.asarray(times, float)
     source = source or separable_source(geometry, diffusivity.pre_exponential, surface_layer_depth)
     swing = swing_of(exposure)

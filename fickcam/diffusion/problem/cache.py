@@ -32,9 +32,21 @@ NOT_DATA = (type, types.FunctionType, types.MethodType, types.BuiltinFunctionTyp
 
 
 def freeze(value):
-    """``value`` with every array it holds read-only (in place), returned: arrays, and the
-    items of tuples, lists, dicts and dataclass fields, recursively. Other objects are
-    left as they are."""
+    """Make every array ``value`` holds read-only, in place, and return ``value``.
+
+    Arrays, and the items of tuples, lists, dicts and dataclass fields, are visited
+    recursively (each object once); other objects are left as they are.
+
+    Parameters
+    ----------
+    value : object
+        The value to freeze: an array or a container of arrays.
+
+    Returns
+    -------
+    object
+        ``value`` itself, its arrays no longer writeable.
+    """
     _freeze(value, set())
     return value
 
@@ -57,9 +69,22 @@ def _freeze(value, seen: set) -> None:
 
 
 def size_of(value) -> int:
-    """Bytes of the arrays ``value`` holds [B]: arrays, sparse matrices, and the items of
-    tuples, lists, dicts, dataclass fields and plain objects' attributes, each counted
-    once."""
+    """Count the bytes of the arrays ``value`` holds.
+
+    Arrays, sparse matrices and SuperLU factorisations are counted, and the items of
+    tuples, lists, dicts, dataclass fields and plain objects' attributes are visited; each
+    object is counted once, a view not at all (its base is).
+
+    Parameters
+    ----------
+    value : object
+        The value to measure.
+
+    Returns
+    -------
+    int
+        The bytes [B] of the arrays held.
+    """
     return _size(value, set())
 
 
@@ -183,5 +208,16 @@ def _forget(reference: weakref.ref, key) -> None:
 
 
 def run_cache(cache: RunCache | None) -> RunCache:
-    """``cache``, or a fresh ``RunCache`` when None (a solve or plan called alone)."""
+    """Return ``cache``, or a fresh ``RunCache`` when it is None (a solve or plan called alone).
+
+    Parameters
+    ----------
+    cache : RunCache or None
+        The run's cache, if the caller has one.
+
+    Returns
+    -------
+    RunCache
+        The cache to use.
+    """
     return RunCache() if cache is None else cache

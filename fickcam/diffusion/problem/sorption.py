@@ -34,7 +34,15 @@ TABLE_WIDTH = 1e-7  # c/Mm intervals narrower than this take the table's f at th
 
 @dataclass(frozen=True)
 class Rate:
-    """rate(T) = pre_exponential exp(-activation_energy / (R T)), 1/s (Arrhenius)."""
+    """An Arrhenius rate, rate(T) = pre_exponential exp(-activation_energy / (R T)).
+
+    Parameters
+    ----------
+    pre_exponential : float
+        The rate at infinite temperature [1/s].
+    activation_energy : float
+        Its activation energy [J/mol]; 0 makes the rate constant.
+    """
 
     pre_exponential: float
     activation_energy: float = 0.0
@@ -46,7 +54,19 @@ class Rate:
 
 @dataclass(frozen=True)
 class Langmuir:
-    """Carter & Kibler's two-phase model: ``binding`` gamma(T), ``release`` beta(T)."""
+    """Carter & Kibler's two-phase (Langmuir-type) sorption law.
+
+    Parameters
+    ----------
+    binding : Rate
+        gamma(T), the rate [1/s] at which free water is bound.
+    release : Rate
+        beta(T), the rate [1/s] at which bound water is released.
+
+    References
+    ----------
+    Carter & Kibler (1978), cited in the module docstring.
+    """
 
     binding: Rate
     release: Rate
@@ -64,8 +84,26 @@ class Langmuir:
 
 @dataclass(frozen=True)
 class ConcentrationDependent:
-    """D(c, T)/D(T) = exp(k c/Mm_ref) (``exponent`` k; Crank 1975 §9.3) or the table
-    (``ratios`` c/Mm_ref, ``factors`` D/D(T)), interpolated linearly, held beyond it."""
+    """A diffusivity that depends on the local moisture: D(c, T) = D(T) f(c/Mm_ref).
+
+    f is exp(k c/Mm_ref) when ``exponent`` k is given (Crank 1975 §9.3), else the table
+    ``factors`` against ``ratios``, interpolated linearly and held beyond its ends.
+
+    Parameters
+    ----------
+    reference_moisture : float
+        Mm_ref, the material's saturation at 100 % RH [weight %].
+    exponent : float or None
+        k of the exponential law [-]; None for the table.
+    ratios : tuple of float
+        The table's c/Mm_ref [-], increasing.
+    factors : tuple of float
+        The table's D/D(T) [-] at those ratios.
+
+    References
+    ----------
+    Crank (1975), cited in the module docstring.
+    """
 
     reference_moisture: float            # Mm_ref, weight %
     exponent: float | None = None
@@ -119,15 +157,50 @@ def _sinh_ratio(x: np.ndarray) -> np.ndarray:
 
 
 def is_langmuir(sorption) -> bool:
+    """Tell whether a sorption law is the two-phase (Langmuir-type) one.
+
+    Parameters
+    ----------
+    sorption : Langmuir, ConcentrationDependent or None
+        The material's sorption law (None: Fickian).
+
+    Returns
+    -------
+    bool
+        True for a ``Langmuir`` law.
+    """
     return isinstance(sorption, Langmuir)
 
 
 def is_nonlinear(sorption) -> bool:
+    """Tell whether a sorption law makes the diffusion equation nonlinear.
+
+    Parameters
+    ----------
+    sorption : Langmuir, ConcentrationDependent or None
+        A law of the material, or None for plain Fick.
+
+    Returns
+    -------
+    bool
+        Whether D depends on the moisture (a ``ConcentrationDependent`` law).
+    """
     return isinstance(sorption, ConcentrationDependent)
 
 
 def describe(sorption) -> str:
-    """One line for ``fickcam check``."""
+    """Describe a sorption law in one line, as ``fickcam check`` prints it.
+
+    Parameters
+    ----------
+    sorption : Langmuir, ConcentrationDependent or None
+        The law to describe (None: Fickian diffusion).
+
+    Returns
+    -------
+    str
+        The law and its constants (rates in 1/s).
+    """
     if isinstance(sorption, Langmuir):
         return (f"two-phase (Langmuir) sorption, gamma0 {sorption.binding.pre_exponential:.3g} 1/s, "
                 f"beta0 {sorption.release.pre_exponential:.3g} 1/s")

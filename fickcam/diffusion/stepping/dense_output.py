@@ -57,8 +57,24 @@ INTERPOLATION_SHARE = 1.0  # of the accuracy: a larger interpolation estimate re
 
 @dataclass(frozen=True)
 class StepRecord:
-    """Weighted sums (columns: mean, layer, ...) of a Richardson-combined march at every
-    node of its coarse step plan (``finite_volume.StepPlan``)."""
+    """Weighted sums of a Richardson-combined march at every node of its coarse plan.
+
+    The columns are the mean, the layer and any other weighted sums asked; the plan is
+    ``finite_volume.StepPlan``'s coarse one.
+
+    Parameters
+    ----------
+    nodes : numpy.ndarray
+        The nodes' scaled times tau* [-].
+    values : numpy.ndarray
+        The weighted sums [weight %], shape (nodes, columns).
+    surface : numpy.ndarray
+        The surface moisture g(t-) [weight %] at the nodes.
+    changes : numpy.ndarray
+        The scaled times [-] of the exposure's changes.
+    tau_star : callable
+        Physical time [s] -> scaled time [-].
+    """
 
     nodes: np.ndarray     # tau* of the nodes
     values: np.ndarray    # (nodes, columns)
@@ -112,7 +128,24 @@ class StepRecord:
 
 
 def lagrange(x: np.ndarray, at: float) -> np.ndarray:
-    """Weights of the Lagrange polynomial through nodes ``x`` evaluated at ``at``."""
+    """Weights of the Lagrange interpolating polynomial through ``x``, evaluated at ``at``.
+
+    Parameters
+    ----------
+    x : numpy.ndarray
+        The distinct nodes (here log of the age, [-]).
+    at : float
+        Where the polynomial is evaluated, in the nodes' scale.
+
+    Returns
+    -------
+    numpy.ndarray
+        w with sum_k w_k y_k the polynomial's value at ``at`` [-].
+
+    References
+    ----------
+    Burden, R. L. & Faires, J. D. Numerical Analysis, Thm 3.3 (module docstring).
+    """
     weights = np.ones(x.size)
     for k in range(x.size):
         others = np.delete(x, k)
@@ -121,10 +154,26 @@ def lagrange(x: np.ndarray, at: float) -> np.ndarray:
 
 
 class Extension:
-    """``DiffusionResult.extend`` from ``tracks``: ``combine(values, times)`` turns the
-    tracks' columns at ``times`` (one (n, columns) array per track) into (mean, layer);
-    ``scale`` the swing the estimate is relative to; ``accuracy`` the requested one;
-    ``resolve(times)`` the solve at ``times`` (the fallback)."""
+    """``DiffusionResult.extend`` read between a march's steps, re-solving when unsure.
+
+    Parameters
+    ----------
+    result : DiffusionResult
+        The stored solve.
+    tracks : iterable of StepRecord
+        The marches' records.
+    combine : callable
+        ``combine(values, times)``: the tracks' columns at ``times`` (one (n, columns)
+        array per track) -> (mean, layer) [weight %].
+    scale : float
+        The moisture swing [weight %] the estimate is relative to.
+    accuracy : float
+        The requested relative accuracy [-].
+    resolve : callable
+        ``resolve(times)``: the solve at ``times`` [s] (the fallback).
+    what : str
+        Names the solve in log messages.
+    """
 
     def __init__(self, result, tracks, combine, scale: float, accuracy: float, resolve,
                  what: str = ""):
@@ -171,8 +220,24 @@ class Extension:
 
 
 def held_to_plan(result, chosen, replan, resolve):
-    """``result`` with its ``Extension`` (if any) re-solving by ``resolve(times)`` where
-    ``replan(times)`` has other cells than ``chosen``, the plan ``result`` was solved on."""
+    """Make a result's ``Extension`` re-solve where the plan for the new times changes cells.
+
+    Parameters
+    ----------
+    result : DiffusionResult
+        The solve; its ``extend`` is adjusted in place when it is an ``Extension``.
+    chosen : Plan
+        The plan ``result`` was solved on.
+    replan : callable
+        times [s] -> the plan for them.
+    resolve : callable
+        times [s] -> the solve at them.
+
+    Returns
+    -------
+    DiffusionResult
+        ``result``.
+    """
     extension = result.extend
     if isinstance(extension, Extension):
         def cells(plan):

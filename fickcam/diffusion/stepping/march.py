@@ -24,7 +24,9 @@ _FACTOR_CACHE_BYTES = 2 * 1024 ** 3
 
 
 class ThetaStepper:
-    """theta-scheme steps (M/dt + theta K) c_new = (M/dt - (1-theta) K) c_old
+    """Theta-scheme time steps of a discretised diffusion operator.
+
+    (M/dt + theta K) c_new = (M/dt - (1-theta) K) c_old
     + (theta g_new + (1-theta) g_old) f (Crank 1975, §8.2.4; theta = 1 backward
     Euler, 1/2 Crank-Nicolson). Backward Euler is bounded for M-matrix operators
     at any step (maximum principle: Morton & Mayers 2005, §2.11); Crank-Nicolson is not.
@@ -34,6 +36,25 @@ class ThetaStepper:
     them and ``_FACTOR_CACHE_BYTES`` in all, least recently used dropped; meshes above
     ``DIRECT_LIMIT`` cells use conjugate gradients with a Jacobi preconditioner
     (the matrix is symmetric positive definite on orthogonal meshes).
+
+    Parameters
+    ----------
+    disc : Discretisation
+        The operator (mass M, stiffness K, boundary vector f) in scaled coordinates.
+    part : str
+        The part's name, for error messages.
+
+    Raises
+    ------
+    SolverError
+        From ``step``, when a linear solve fails or leaves a residual above
+        ``RESIDUAL_TOLERANCE``.
+
+    References
+    ----------
+    - Crank, J. (1975). The Mathematics of Diffusion, 2nd ed. Oxford: Clarendon Press.
+    - Morton, K. W. & Mayers, D. F. (2005). Numerical Solution of Partial Differential
+      Equations, 2nd ed. Cambridge University Press. doi:10.1017/CBO9780511812248
     """
 
     def __init__(self, disc: Discretisation, part: str = ""):
@@ -116,7 +137,23 @@ class ThetaStepper:
 
 @dataclass
 class History:
-    """Cell values integrated at the output nodes of a march."""
+    """Cell values integrated at the output nodes of a march.
+
+    Parameters
+    ----------
+    mean : numpy.ndarray
+        The mean moisture [weight %] at each output node.
+    layer : numpy.ndarray
+        The surface layer's mean moisture [weight %] at each output node.
+    fields : numpy.ndarray or None
+        The cell values [weight %], shape (outputs, cells), when kept.
+    steps : int
+        Steps taken.
+    factorisations : int
+        Sparse factorisations made.
+    track : numpy.ndarray or None
+        A swept march's weighted sums at every node [weight %] (``dense_output``).
+    """
 
     mean: np.ndarray
     layer: np.ndarray
@@ -132,14 +169,52 @@ def march(disc: Discretisation, nodes: np.ndarray, surface_values: np.ndarray,
           keep_fields: bool = False, part: str = "", scheme: str = "backward_euler",
           restarts: np.ndarray | None = None, restart_steps: int = 2,
           surface_before: np.ndarray | None = None) -> History:
-    """March over the step boundaries ``nodes`` (scaled time) with the surface
-    value ``surface_values[k]`` at ``nodes[k]`` (right-continuous; a step
-    ending at a jump uses ``surface_before[k]``, the left limit); records the
-    state at the node indices ``outputs``. ``times`` (s) only label errors.
+    """March an operator over given step boundaries and record the outputs.
 
-    ``scheme`` ``crank_nicolson`` takes ``restart_steps`` backward-Euler steps
-    from every node index in ``restarts`` (t = 0 and each environment change),
-    which damps the oscillation of the stiff modes a jump excites.
+    The surface value is ``surface_values[k]`` at ``nodes[k]`` (right-continuous; a step
+    ending at a jump uses ``surface_before[k]``, the left limit). ``scheme``
+    ``crank_nicolson`` takes ``restart_steps`` backward-Euler steps from every node index
+    in ``restarts`` (t = 0 and each environment change), which damps the oscillation of
+    the stiff modes a jump excites.
+
+    Parameters
+    ----------
+    disc : Discretisation
+        The operator in scaled coordinates.
+    nodes : numpy.ndarray
+        The step boundaries in scaled time tau* [-], rising.
+    surface_values : numpy.ndarray
+        The surface moisture [weight %] at each node (right limit).
+    initial : float
+        The uniform initial moisture [weight %].
+    outputs : numpy.ndarray of int
+        The node indices whose state is recorded.
+    times : numpy.ndarray, optional
+        The physical times [s] of the nodes; they only label errors.
+    keep_fields : bool
+        Also return the cell values.
+    part : str
+        The part's name, for error messages.
+    scheme : str
+        ``"backward_euler"`` or ``"crank_nicolson"``.
+    restarts : numpy.ndarray of int, optional
+        Node indices after which Crank-Nicolson restarts with backward Euler (None: 0).
+    restart_steps : int
+        Backward-Euler steps at each restart.
+    surface_before : numpy.ndarray, optional
+        The surface moisture [weight %] just before each node (left limit; None: no jumps).
+
+    Returns
+    -------
+    History
+        The mean and layer moisture [weight %] at the outputs, and the march's counts.
+
+    Raises
+    ------
+    ValueError
+        For an unknown ``scheme``.
+    SolverError
+        When a step's linear solve fails.
     """
     stepper = ThetaStepper(disc, part)
     c = np.full(disc.cells, float(initial))
@@ -172,8 +247,23 @@ def march(disc: Discretisation, nodes: np.ndarray, surface_values: np.ndarray,
 
 
 def held_values(ending: np.ndarray, initial: float) -> np.ndarray:
-    """The value of nodes held at the surface value at each node of the march: the
-    state's own ``initial`` at node 0 (before any jump there), the left limit after."""
+    """The value of the nodes held at the surface value, at each node of the march.
+
+    Node 0 holds the state's own ``initial`` (before any jump there); later nodes the
+    left limit of the surface value.
+
+    Parameters
+    ----------
+    ending : numpy.ndarray
+        The surface moisture [weight %] at the end of each step (left limit).
+    initial : float
+        The initial moisture [weight %].
+
+    Returns
+    -------
+    numpy.ndarray
+        The held nodes' moisture [weight %] at each node.
+    """
     held = np.asarray(ending, float).copy()
     held[0] = initial
     return held
@@ -185,8 +275,21 @@ def _factor_bytes(matrix, lu) -> int:
 
 
 def norm(vector: np.ndarray) -> float:
-    """Euclidean norm without BLAS (a threaded ddot costs about a millisecond per call
-    here, more than the triangular solves of a small mesh)."""
+    """Euclidean norm of a vector, computed without BLAS.
+
+    A threaded ddot costs about a millisecond per call here, more than the triangular
+    solves of a small mesh.
+
+    Parameters
+    ----------
+    vector : numpy.ndarray
+        A 1-D array, in any unit.
+
+    Returns
+    -------
+    float
+        sqrt(sum of squares), in the vector's unit.
+    """
     return float(np.sqrt(np.einsum("i,i->", vector, vector)))
 
 
@@ -202,6 +305,17 @@ def _tridiagonal(matrix: sparse.csr_matrix) -> np.ndarray | None:
 
 
 def rounded_steps(steps: np.ndarray) -> np.ndarray:
-    """Steps rounded to 12 significant digits so equal blocks share one factorisation."""
+    """Round steps to 12 significant digits so that equal blocks share one factorisation.
+
+    Parameters
+    ----------
+    steps : numpy.ndarray
+        The step sizes [-] (scaled time).
+
+    Returns
+    -------
+    numpy.ndarray
+        The rounded steps [-].
+    """
     return np.array([float(f"{s:.12g}") for s in steps])
 

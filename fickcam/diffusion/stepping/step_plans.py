@@ -15,8 +15,27 @@ from ..problem.cache import RunCache, run_cache
 
 def geometric_steps(start: float, stop: float, first_step: float,
                     steps_per_doubling: int, max_step: float = np.inf) -> np.ndarray:
-    """Step boundaries from ``start`` to ``stop``: ``first_step`` doubling every
-    ``steps_per_doubling`` steps, at most ``max_step``; the last step is cut to end at ``stop``."""
+    """Step boundaries from ``start`` to ``stop`` with geometrically growing steps.
+
+    The step begins at ``first_step`` and doubles every ``steps_per_doubling`` steps,
+    capped at ``max_step``; the last step is cut to end at ``stop``.
+
+    Parameters
+    ----------
+    start, stop : float
+        The first and the last boundary, in scaled time tau* [-].
+    first_step : float
+        The first step [-] (scaled time).
+    steps_per_doubling : int
+        Steps of equal size before the step doubles.
+    max_step : float
+        The largest step allowed [-] (scaled time).
+
+    Returns
+    -------
+    numpy.ndarray
+        The boundaries [-], rising from ``start`` to ``stop``.
+    """
     nodes = [start]
     dt, k = first_step, 0
     while nodes[-1] < stop:
@@ -30,10 +49,30 @@ def geometric_steps(start: float, stop: float, first_step: float,
 def step_nodes(change_taus: np.ndarray, output_taus: np.ndarray, first_step: float,
                steps_per_doubling: int, ramp: np.ndarray | None = None,
                ramp_steps: int = 32) -> np.ndarray:
-    """All step boundaries in tau: geometric from each change, with the outputs inserted.
+    """All step boundaries in scaled time: geometric from each change, outputs inserted.
 
     Inside a ramp segment the step is also limited to 1/``ramp_steps`` of the
     ramp so that the moving surface value is followed.
+
+    Parameters
+    ----------
+    change_taus : numpy.ndarray
+        The environment's change times, scaled (tau*) [-], rising.
+    output_taus : numpy.ndarray
+        The requested output times, scaled [-].
+    first_step : float
+        The step [-] each geometric sequence starts from.
+    steps_per_doubling : int
+        Steps of equal size before the step doubles.
+    ramp : numpy.ndarray of bool, optional
+        Per segment, whether the surface value ramps over it (None: all held).
+    ramp_steps : int
+        The least number of steps across a ramp segment.
+
+    Returns
+    -------
+    numpy.ndarray
+        The unique step boundaries [-], rising, round-off slivers merged.
     """
     change_taus = np.asarray(change_taus, float)
     pieces = []
@@ -48,14 +87,41 @@ def step_nodes(change_taus: np.ndarray, output_taus: np.ndarray, first_step: flo
 
 
 def drop_slivers(nodes: np.ndarray, first_step: float) -> np.ndarray:
-    """Merge step boundaries closer than 1e-9 of the first step (round-off duplicates)."""
+    """Merge step boundaries closer than 1e-9 of the first step (round-off duplicates).
+
+    Parameters
+    ----------
+    nodes : numpy.ndarray
+        Rising step boundaries in scaled time [-].
+    first_step : float
+        The first step [-], the scale of what counts as a duplicate.
+
+    Returns
+    -------
+    numpy.ndarray
+        ``nodes`` with each boundary too close to its predecessor removed [-].
+    """
     keep = np.concatenate([[True], np.diff(nodes) > 1e-9 * first_step])
     return nodes[keep]
 
 
 def nearest_nodes(nodes: np.ndarray, values: np.ndarray) -> np.ndarray:
-    """Index of the node nearest each value (an output merged into a node by
-    ``drop_slivers`` maps to that node, not to the next one)."""
+    """Find the index of the node nearest each value.
+
+    An output merged into a node by ``drop_slivers`` maps to that node, not to the next.
+
+    Parameters
+    ----------
+    nodes : numpy.ndarray
+        Rising step boundaries [-] (scaled time).
+    values : numpy.ndarray
+        The times to locate [-], in the same scale.
+
+    Returns
+    -------
+    numpy.ndarray of int
+        For each value, the index of its nearest node.
+    """
     nodes, values = np.asarray(nodes, float), np.asarray(values, float)
     upper = np.clip(np.searchsorted(nodes, values), 1, max(nodes.size - 1, 1))
     lower = upper - 1
@@ -64,8 +130,25 @@ def nearest_nodes(nodes: np.ndarray, values: np.ndarray) -> np.ndarray:
 
 
 def inverse_time(tau_nodes: np.ndarray, tau_of_t, change_times: np.ndarray) -> np.ndarray:
-    """t(tau) by interpolating tau(t) sampled at 257 points per segment (exact on held
-    segments, where tau is linear in t; tau is strictly increasing)."""
+    """Physical times of scaled-time nodes: t(tau*), the inverse of the clock.
+
+    tau*(t) is sampled at 257 points per segment and interpolated linearly (exact on
+    held segments, where tau* is linear in t; tau* is strictly increasing).
+
+    Parameters
+    ----------
+    tau_nodes : numpy.ndarray
+        The scaled times to map back [-].
+    tau_of_t : callable
+        The clock: physical time [s] -> scaled time [-].
+    change_times : numpy.ndarray
+        The environment's change times [s], the segments' edges.
+
+    Returns
+    -------
+    numpy.ndarray
+        The physical times [s] of ``tau_nodes``.
+    """
     edges = np.asarray(change_times, float)
     samples = np.unique(np.concatenate([np.linspace(a, b, 257) for a, b in
                                         zip(edges[:-1], edges[1:])]))
@@ -75,7 +158,21 @@ def inverse_time(tau_nodes: np.ndarray, tau_of_t, change_times: np.ndarray) -> n
 
 
 def earliest_output(change_stars: np.ndarray, output_stars: np.ndarray) -> float:
-    """Smallest positive time from an environment change to a later output (scaled)."""
+    """Shortest time from an environment change to a later output.
+
+    Parameters
+    ----------
+    change_stars : numpy.ndarray
+        The change times in scaled time [-], rising.
+    output_stars : numpy.ndarray
+        The output times in scaled time [-].
+
+    Returns
+    -------
+    float
+        The least positive gap [-], at least 1000 first steps; 1 if no output follows a
+        change.
+    """
     gaps = []
     for tau in output_stars:
         before = change_stars[change_stars < tau]
@@ -90,9 +187,36 @@ MAX_AGES = 2048       # the largest in each bin of 1/AGES_PER_DECADE decade
 
 def output_ages(change_stars: np.ndarray, output_stars: np.ndarray, ramp: np.ndarray,
                 ramp_points: int = 17, cache: RunCache | None = None) -> np.ndarray:
-    """``_output_ages``, computed once per run (``cache``; None: a fresh one) for the plan
-    and the solve of every part with the same scaled history (the links of a four-bar; a
-    year of rows costs ~0.05 s), read-only."""
+    """The ages at which the outputs read the response to each surface change.
+
+    An age is tau*_out - tau*_change > 0 (the terms of Duhamel's sum, Crank 1975 eq.
+    4.34): one per step, ``ramp_points`` spread over each ramp segment; a long record's
+    ages are thinned to the least and largest of each 1/64 decade. Computed once per run
+    for the plan and the solve of every part with the same scaled history (the links of
+    a four-bar; a year of rows costs ~0.05 s).
+
+    Parameters
+    ----------
+    change_stars : numpy.ndarray
+        tau* of the exposure's changes [-], rising.
+    output_stars : numpy.ndarray
+        tau* of the outputs [-].
+    ramp : numpy.ndarray of bool
+        Per segment, whether the surface value ramps over it.
+    ramp_points : int
+        Sources spread over each ramp segment.
+    cache : RunCache, optional
+        The run's cache (None: a fresh one).
+
+    Returns
+    -------
+    numpy.ndarray
+        The distinct ages [-], rising, read-only.
+
+    References
+    ----------
+    Crank, J. (1975). The Mathematics of Diffusion, 2nd ed. Oxford: Clarendon Press.
+    """
     arrays = (np.asarray(change_stars, float), np.asarray(output_stars, float),
               np.asarray(ramp, bool))
     return run_cache(cache).get(("output ages", *(a.tobytes() for a in arrays), ramp_points),

@@ -18,7 +18,19 @@ log = logging.getLogger(__name__)
 
 @dataclass(frozen=True)
 class StepResponse:
-    """Unsaturated fraction u(tau*) of a unit surface step on geometric nodes."""
+    """Unsaturated fraction u(tau*) of a unit surface step, on geometric nodes.
+
+    Parameters
+    ----------
+    nodes : numpy.ndarray
+        The scaled times tau* [-], ``nodes[0] = 0``.
+    mean : numpy.ndarray
+        The unsaturated fraction of the mean content [-] at each node, shape (n,).
+    layer : numpy.ndarray
+        The unsaturated fraction of the surface layer's content [-], shape (n,).
+    fields : numpy.ndarray or None
+        The unsaturated fraction in each cell [-], shape (n, cells), when kept.
+    """
 
     nodes: np.ndarray        # scaled time, nodes[0] = 0
     mean: np.ndarray         # (n,)
@@ -42,10 +54,35 @@ class StepResponse:
 
 def step_response(disc, end: float, per_doubling: int, first_step: float, *,
                   keep_fields: bool = False, part: str = "") -> tuple[StepResponse, float]:
-    """Backward-Euler unit-step response, Richardson-extrapolated in time; also
-    the largest coarse/fine difference of the mean (the time-error indicator). The
-    fields come from the operator with its mass lumped (``Discretisation.lumped``:
-    the operator itself for finite volumes), whose fields are bounded."""
+    """Backward-Euler unit-step response, Richardson-extrapolated in time.
+
+    The march runs on geometric steps and on the steps halved; 2 fine - coarse is the
+    response. The fields come from the operator with its mass lumped
+    (``Discretisation.lumped``: the operator itself for finite volumes), whose fields
+    are bounded.
+
+    Parameters
+    ----------
+    disc : Discretisation
+        The spatial operator in scaled coordinates.
+    end : float
+        The last scaled time tau* [-] to reach.
+    per_doubling : int
+        Steps of equal size before the step doubles.
+    first_step : float
+        The first step [-] (scaled time).
+    keep_fields : bool
+        Also keep the cell values.
+    part : str
+        The part's name, for progress messages.
+
+    Returns
+    -------
+    StepResponse
+        The extrapolated unsaturated fractions [-].
+    float
+        The largest coarse/fine difference of the mean [-] (the time-error indicator).
+    """
     nodes = geometric_steps(0.0, end, first_step, per_doubling)
     fine = np.sort(np.concatenate([nodes, 0.5 * (nodes[1:] + nodes[:-1])]))
     grids = [(grid, np.searchsorted(grid, nodes)) for grid in (nodes, fine)]
@@ -71,8 +108,10 @@ def _unit_march(disc, grid: np.ndarray, outputs: np.ndarray, keep_fields: bool, 
 
 def blend(response: StepResponse, values: np.ndarray, series, indicator, tolerance: float,
           weight):
-    """Unsaturated fraction from the short-time expansion ``series`` up to a switch node
-    and from the mesh after it, and the bound of its error at any tau* (``error_at``).
+    """Join a short-time expansion and the mesh's step response, with an error bound.
+
+    The unsaturated fraction comes from the short-time expansion ``series`` up to a
+    switch node and from the mesh after it; ``error_at`` bounds its error at any tau*.
     Errors are weighted by ``weight``, the sheet's unsaturated fraction that multiplies
     the planform's in the product.
 
@@ -83,8 +122,31 @@ def blend(response: StepResponse, values: np.ndarray, series, indicator, toleran
     indicator) / uptake; by the error model of ``p1``, MESH_ERROR (h0 / sqrt(tau) +
     GROWTH_REACH g)^2, it only falls with time, so the least of these bounds over the
     octave before the switch holds after it, and the mesh's error there is that ratio
-    times the uptake. Before the switch the error is the weighted indicator. Returns
-    (fraction, error_at), error_at None where the mesh alone serves (no switch)."""
+    times the uptake. Before the switch the error is the weighted indicator.
+
+    Parameters
+    ----------
+    response : StepResponse
+        The mesh's step response (its nodes in scaled time [-]).
+    values : numpy.ndarray
+        The mesh's unsaturated fraction [-] at the response's nodes.
+    series : callable
+        tau* [-] -> the expansion's uptake fraction [-].
+    indicator : callable
+        tau* [-] -> the expansion's error indicator [-].
+    tolerance : float
+        The error [-] below which the expansion is kept.
+    weight : callable
+        tau* [-] -> the weight [-] applied to errors.
+
+    Returns
+    -------
+    fraction : callable
+        tau* [-] -> the unsaturated fraction [-].
+    error_at : callable or None
+        tau* [-] -> the bound of its error [-]; None where the mesh alone serves (no
+        switch).
+    """
     nodes = response.nodes[1:]
     w = weight(nodes)
     expected = weighted(indicator(nodes), w)

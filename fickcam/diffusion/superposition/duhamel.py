@@ -50,7 +50,18 @@ _DIFF = _differentiation_matrix(_NODES)
 
 
 def surface_jumps(exposure) -> np.ndarray:
-    """dMs_k = Ms(t_k) - Ms(t_k-) at each segment start (Ms(0-) = M0)."""
+    """The jumps of the surface moisture, dMs_k = Ms(t_k) - Ms(t_k-), at each segment start.
+
+    Parameters
+    ----------
+    exposure : Exposure
+        The history; Ms(0-) is its initial moisture M0.
+
+    Returns
+    -------
+    numpy.ndarray
+        One jump per segment [weight %] (0 where Ms is continuous).
+    """
     edges = np.asarray(exposure.change_times, float)[:-1]
     after = np.asarray(exposure.surface_moisture(edges), float)
     return after - exposure.surface_before(edges)
@@ -98,10 +109,35 @@ def _ramp_integral(kernel, clock, exposure, start, end, times, first_age, satura
 
 def duhamel(kernel, diffusivity, exposure, times, diffusion_times, chunk=64,
             cache: RunCache | None = None):
-    """M(t) - M0 in weight %, shape (n_times, ...kernel outputs); ``kernel(tau)`` takes
-    rescaled times of any shape; ``diffusion_times`` = (fastest, slowest) L^2 / D0 of
-    the part (rescaled s): the first panel's scale and the age past which K = 1; ``cache``:
-    the run's (None: a fresh one)."""
+    """Duhamel's sum of unit-step responses over an exposure: M(t) - M0.
+
+    Parameters
+    ----------
+    kernel : callable
+        K(tau): the unit-step response [-] at rescaled ages tau [s] of any shape.
+    diffusivity : Diffusivity
+        The material's diffusivity (its activation energy [J/mol]).
+    exposure : Exposure
+        The history (times [s], temperature [K], surface moisture [weight %]).
+    times : numpy.ndarray
+        The output times [s].
+    diffusion_times : tuple of float
+        (fastest, slowest) L^2 / D0 of the part [s] (rescaled): the first panel's scale
+        and the age past which K = 1.
+    chunk : int
+        Output times summed at once (bounds the memory).
+    cache : RunCache, optional
+        The run's cache (None: a fresh one).
+
+    Returns
+    -------
+    numpy.ndarray
+        M(t) - M0 [weight %], shape (n_times, ...kernel outputs).
+
+    References
+    ----------
+    Carslaw & Jaeger (1959) §1.14; Crank (1975) eq. 4.34 (module docstring).
+    """
     times = np.asarray(times, float)
     clock = clock_of(diffusivity, exposure, run_cache(cache))
     edges = clock.edges

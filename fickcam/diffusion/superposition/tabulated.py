@@ -61,8 +61,28 @@ PAIR_CHUNK = 2 ** 17     # (output, node) pairs binned at once (in cache: ~1 MB 
 
 @dataclass(frozen=True)
 class Table:
-    """K and I = int_0^w K at the ages w_j = exp(start + j step) (rescaled s), shape (n, m),
-    less the steps of K (``jumps``: age and size (m,)), which are summed exactly."""
+    """A unit-step response K and its running integral I, tabulated uniformly in log age.
+
+    The ages are w_j = exp(start + j step) (rescaled seconds); the steps of K
+    (``jumps``) are taken out of both and summed exactly.
+
+    Parameters
+    ----------
+    start : float
+        log of the first age, log(w_0 / 1 s) [-].
+    end : float
+        log of the last age [-]: every grid of a record ends there.
+    step : float
+        The grid spacing in log age [-].
+    kernel : numpy.ndarray
+        K [-] at the grid's ages, shape (n, m) for m kernel outputs.
+    integral : numpy.ndarray
+        I = int_0^w K [s] at the grid's ages, shape (n, m).
+    jumps : tuple
+        The steps of K: pairs of age [s] and size [-] (shape (m,)).
+    raw : numpy.ndarray or None
+        K with its steps [-] (what a finer table reuses).
+    """
 
     start: float
     end: float     # log of the last age: every grid of a record ends there
@@ -93,12 +113,34 @@ _FIRST_CELL = np.array([9.0, 19.0, -5.0, 1.0]) / 24.0
 
 def tabulate(kernel, first: float, last: float, per_decade: int,
              coarser: "Table | None" = None) -> Table:
-    """K and I on an odd number of points from ``first`` or below to ``last`` (so that
+    """Tabulate a step response K and its running integral I on a grid in log age.
+
+    The grid has an odd number of points from ``first`` or below to ``last`` (so that
     every second point, ``Table.coarse``, also covers it), ``per_decade`` points a decade.
     Steps of K (``_jumps``) are taken out first. I(w0) = (2/3) K(w0) w0 (K ~ sqrt(w)
-    below), then each cell integrates the cubic through four grid values of
-    K(e^x) e^x (smooth in x): K is evaluated at the grid points only, and not again where
-    the ``coarser`` table (half the points a decade) has them; its steps are kept."""
+    below, Crank 1975 eq. 4.20), then each cell integrates the cubic through four grid
+    values of K(e^x) e^x (smooth in x): K is evaluated at the grid points only, and not
+    again where the ``coarser`` table (half the points a decade) has them; its steps are
+    kept.
+
+    Parameters
+    ----------
+    kernel : callable
+        K(w): the unit-step response [-] at rescaled ages w [s].
+    first : float
+        The youngest age to cover [s] (rescaled).
+    last : float
+        The oldest age [s] (rescaled), the grid's end.
+    per_decade : int
+        Grid points per decade of age.
+    coarser : Table, optional
+        The same kernel's table at half the density, whose values are reused.
+
+    Returns
+    -------
+    Table
+        K [-] and I [s] on the grid.
+    """
     step = math.log(10.0) / per_decade
     half = max(3, math.ceil(math.log(max(last / first, 1.0)) / (2.0 * step)))
     back = np.arange(2 * half, -1, -1)  # points counted from the end
@@ -183,9 +225,23 @@ def _lagrange(table: Table, logs: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
 
 @dataclass(frozen=True)
 class Lattice:
-    """Cells of log age [end + j step, end + (j + 1) step), j = ``bottom``..-1 (the last age
-    in cell -1; younger ages in one more cell before ``bottom``), on which the readings of
-    the slope changes are binned; the short-time law's sums kept below cell ``young``."""
+    """Cells in log age on which the readings of the slope changes are binned.
+
+    Cell j is [end + j step, end + (j + 1) step), j = ``bottom``..-1 (the last age in
+    cell -1; younger ages in one more cell before ``bottom``); the short-time law's sums
+    are kept below cell ``young``.
+
+    Parameters
+    ----------
+    end : float
+        log of the last age [-] (age in rescaled seconds).
+    step : float
+        The cells' width in log age [-].
+    bottom : int
+        Index of the first cell.
+    young : int
+        Cells below this index are read by the short-time law.
+    """
 
     end: float
     step: float
@@ -289,14 +345,30 @@ def _hermite_gathered(table: Table, sums: tuple[np.ndarray, np.ndarray], per: in
 
 @dataclass(frozen=True)
 class Sources:
-    """Where Duhamel's sum reads the tables: output row, age, coefficient and log age (taken
+    """Where Duhamel's sum reads the tables, shared by every kernel read on a record.
+
+    Output row, age, coefficient and log age (taken
     once for every table read) of the steps (K), the changes of slope (I) as ``Pairs``
     (many: listed block by block when read), and their prefix sums (``Ramps``).
     ``kept`` keeps (in the run's cache) what depends on the grid and not on the kernel (the
     interpolation weights gathered per output and grid point, the steps of K summed at an
     age), so that
     every kernel read on one grid (mean, contact layer, fields, every part sharing the
-    record) costs a matrix product, not a pass over every (output, node) pair."""
+    record) costs a matrix product, not a pass over every (output, node) pair.
+
+    Parameters
+    ----------
+    steps : tuple of numpy.ndarray
+        Per (output, step of Ms) pair: output row, age [s], jump [weight %], log age [-].
+    slopes : Pairs
+        The (output, change of slope) pairs; the coefficients in [weight %/s].
+    outputs : int
+        The number of outputs.
+    ramps : Ramps
+        The slope changes' prefix sums.
+    cache : RunCache
+        The run's cache, which keeps the readings.
+    """
 
     steps: tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]
     slopes: "Pairs"
@@ -315,7 +387,19 @@ class Ramps:
     """The slope changes c_i at their rescaled times r_i (from the record's first node),
     with the prefix sums C_n = sum_{i<n} c_i and S_n = sum_{i<n} c_i r_i, and the outputs'
     times R_k: the ramps' rise past an age w at output k, sum_{r_i < R_k - w} c_i (R_k - w
-    - r_i) = (R_k - w) C_n - S_n, is read without a pass over the (output, node) pairs."""
+    - r_i) = (R_k - w) C_n - S_n, is read without a pass over the (output, node) pairs.
+
+    Parameters
+    ----------
+    times : numpy.ndarray
+        r_i, the slope changes' rescaled times from the first node [s].
+    changes : numpy.ndarray
+        C_n, prefix sums of the slope changes [weight %/s].
+    moments : numpy.ndarray
+        S_n, prefix sums of c_i r_i [weight %].
+    outputs : numpy.ndarray
+        R_k, the outputs' rescaled times from the first node [s].
+    """
 
     times: np.ndarray
     changes: np.ndarray
@@ -343,7 +427,19 @@ class Ramps:
 class Pairs:
     """Every (output, node) pair of a node older than the output and a nonzero
     coefficient, listed by blocks of outputs (``block``, ``blocks``) rather than kept
-    (there are outputs x nodes / 2 of them)."""
+    (there are outputs x nodes / 2 of them).
+
+    Parameters
+    ----------
+    tau : numpy.ndarray
+        The nodes' rescaled times [s], rising.
+    coefficient : numpy.ndarray
+        Their coefficients (none zero): jumps [weight %] or slope changes [weight %/s].
+    at : numpy.ndarray
+        The outputs' rescaled times [s].
+    older : numpy.ndarray of int
+        Per output, how many of the nodes are older (a leading run).
+    """
 
     tau: np.ndarray          # the nodes' rescaled times (rising)
     coefficient: np.ndarray  # and their coefficients (none zero)
@@ -376,9 +472,24 @@ class Pairs:
 
 
 def sources(force: Forcing, cache: RunCache | None = None) -> Sources:
-    """J_i = Ms(tau_i) - Ms(tau_i-) and s_i - s_i-1 at every node older than each output
-    (tau rises with the nodes: the nodes older than an output are a leading run; their
-    readings kept in the run's ``cache``; None: a fresh one)."""
+    """The steps and slope changes of Ms that Duhamel's sum reads, at each output.
+
+    J_i = Ms(tau_i) - Ms(tau_i-) and s_i - s_i-1 at every node older than each output
+    (tau rises with the nodes: the nodes older than an output are a leading run).
+    Pieces shorter than ``SLIVER`` of the span act as steps.
+
+    Parameters
+    ----------
+    force : Forcing
+        Ms [weight %] and the rescaled time [s] at the record's nodes.
+    cache : RunCache, optional
+        The run's cache, which keeps the readings (None: a fresh one).
+
+    Returns
+    -------
+    Sources
+        The jumps [weight %] and slope changes [weight %/s] per output.
+    """
     tau = force.tau
     dtau = np.diff(tau)
     rise = force.left[1:] - force.right[:-1]
@@ -412,10 +523,26 @@ def _split(reading, w0: float, power: float):
 
 
 def read(table: Table, where: Sources, first: float) -> tuple[np.ndarray, np.ndarray]:
-    """M - M0 at the outputs, shape (outputs, m), from ``table`` and from its every second
-    point (``Table.coarse``, the same first age: the readings share their split): steps
-    read K (Lagrange), slope changes read I (Hermite, with K as its slope); ``first``
-    [rescaled s] the record's first age (where its lattice starts, ``_lattice``)."""
+    """Duhamel's sum M - M0 at the outputs, from a table and from its every second point.
+
+    Steps of Ms read K (four-point Lagrange in log age), slope changes read I (cubic
+    Hermite, with K as its slope); the coarse reading (``Table.coarse``, the same first
+    age: the readings share their split) measures the tabulation error.
+
+    Parameters
+    ----------
+    table : Table
+        The tabulated step response.
+    where : Sources
+        Where the sum reads it.
+    first : float
+        The record's first age [s] (rescaled), where its lattice starts.
+
+    Returns
+    -------
+    fine, coarse : numpy.ndarray
+        M - M0 [weight %], shape (outputs, m), from the table and its every second point.
+    """
     return tuple(_read_one(each, where, first) for each in (table, table.coarse()))
 
 
@@ -462,9 +589,31 @@ def _past_step(age: float, where: Sources) -> np.ndarray:
 
 @dataclass(frozen=True)
 class LongRecord:
-    """One long record's forcing at the outputs, shared by every kernel superposed over it
-    (mean, contact layer, fields); ``tolerance`` in weight % (accuracy x swing); ``last``
-    the oldest age the outputs read (the tables' end)."""
+    """One long record's forcing at the outputs, shared by every kernel superposed over it.
+
+    The kernels are the mean, the contact layer and the fields.
+
+    Parameters
+    ----------
+    force : Forcing
+        Ms and the rescaled time at the record's nodes.
+    where : Sources
+        Where the sum reads the tables.
+    swing : float
+        The record's moisture swing [weight %].
+    tolerance : float
+        The error allowed [weight %] (accuracy x swing).
+    first : float
+        The youngest age tabulated [s] (rescaled).
+    last : float
+        The oldest age the outputs read [s] (rescaled), the tables' end.
+    exposure : Exposure
+        The record.
+    clock : RescaledTime
+        Its rescaled clock.
+    cache : RunCache
+        The run's cache: tables and readings.
+    """
 
     force: Forcing
     where: Sources
@@ -554,8 +703,16 @@ def _forced(diffusivity, exposure, times: np.ndarray, accuracy: float, cache: Ru
 
 @dataclass(frozen=True, eq=False)
 class KernelKey:
-    """Names a kernel across solves: ``key`` (hashable) and the objects its ids stand for,
-    ``holds``, kept alive with the tables so that no id is reused while they are kept."""
+    """Names a kernel across solves, so that its tables are reused.
+
+    Parameters
+    ----------
+    key : tuple
+        Hashable: what the kernel is and what it depends on.
+    holds : tuple
+        The objects whose ids ``key`` holds, kept alive with the tables so that no id is
+        reused while they are kept.
+    """
 
     key: tuple
     holds: tuple = ()
