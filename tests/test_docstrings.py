@@ -225,6 +225,38 @@ ENTRY_POINTS = {
     "fickcam.diffusion.models.plane.PrismSuperposition": ("diffusivity", "exposure", "times",
                                                          "geometry"),
     "fickcam.diffusion.models.plane.extension": ("result", "superposed"),
+    "fickcam.diffusion.exact.separable.exact_available": ("geometry",),
+    "fickcam.diffusion.exact.separable.step_response": ("geometry", "pre_exponential", "tau",
+                                                        "surface_layer_depth"),
+    "fickcam.diffusion.exact.separable.step_field": ("geometry", "pre_exponential", "tau",
+                                                     "points"),
+    "fickcam.diffusion.exact.separable.saturation_tau": ("geometry", "pre_exponential"),
+    "fickcam.diffusion.exact.series.ierfc": ("x",),
+    "fickcam.diffusion.exact.series.sheet_interval_mean_images": ("z1", "z2", "fourier"),
+    "fickcam.diffusion.exact.series.sheet_interval_mean_series": ("z1", "z2", "fourier"),
+    "fickcam.diffusion.exact.series.sheet_interval_mean": ("z1", "z2", "fourier"),
+    "fickcam.diffusion.exact.series.sheet_series_remainder": ("fourier", "n_terms"),
+    "fickcam.diffusion.exact.series.bessel_roots": ("count",),
+    "fickcam.diffusion.exact.series.roots_for": ("fourier_min",),
+    "fickcam.diffusion.exact.series.cylinder_short_coefficients": (),
+    "fickcam.diffusion.exact.series.cylinder_uptake_short": ("fourier",),
+    "fickcam.diffusion.exact.series.cylinder_core_deficit": ("rho", "fourier", "roots"),
+    "fickcam.diffusion.exact.series.cylinder_core_mean": ("rho", "fourier_r"),
+    "fickcam.diffusion.exact.series.cylinder_profile": ("r", "fourier_r"),
+    "fickcam.diffusion.exact.two_phase.TwoPhaseUptake": ("total", "free", "bound"),
+    "fickcam.diffusion.exact.two_phase.equilibrium_shares": ("gamma", "beta"),
+    "fickcam.diffusion.exact.two_phase.Propagator": ("a11", "a12", "a21", "a22", "m", "c", "d",
+                                                     "c_int", "d_int"),
+    "fickcam.diffusion.exact.two_phase.exchange_propagator": ("rate", "t", "gamma", "beta"),
+    "fickcam.diffusion.exact.two_phase.two_phase_mode_deficit": ("rate", "t", "gamma", "beta"),
+    "fickcam.diffusion.exact.two_phase.two_phase_sheet_profile": ("z", "t", "diffusivity",
+                                                                  "thickness", "gamma", "beta",
+                                                                  "tolerance"),
+    "fickcam.diffusion.accuracy.error_model.space_error": ("earliest",),
+    "fickcam.diffusion.accuracy.error_model.CellCaps": ("slab", "axisymmetric", "solid",
+                                                        "plane"),
+    "fickcam.diffusion.accuracy.grid_convergence.taken": (),
+    "fickcam.diffusion.accuracy.grid_convergence.three_levels": (),
 }
 
 _HEADER = re.compile(r"^(?P<title>[A-Z][A-Za-z ]+)\n-{3,}$", re.MULTILINE)
@@ -334,7 +366,8 @@ RETURNING = ("fickcam.linkage.positions.", "fickcam.linkage.classify.",
              "fickcam.linkage.ageing.", "fickcam.linkage.spec.can",
              "fickcam.cam.spline.", "fickcam.cam.profile.", "fickcam.cam.arm.",
              "fickcam.diffusion.exact.modes.", "fickcam.diffusion.dispatch.",
-             "fickcam.diffusion.models.")
+             "fickcam.diffusion.models.", "fickcam.diffusion.exact.",
+             "fickcam.diffusion.accuracy.")
 
 
 @pytest.mark.parametrize("dotted", sorted(d for d in ENTRY_POINTS if d.startswith(RETURNING)
