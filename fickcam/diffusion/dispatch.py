@@ -155,7 +155,7 @@ def numerical_model(geometry) -> str:
     Parameters
     ----------
     geometry : Sheet, Disc, Bar, CamPlate or LinkBar
-        The part, its lengths in [m].
+        The part to mesh (dimensions in [m]).
 
     Returns
     -------

@@ -171,9 +171,10 @@ def step_field(geometry, pre_exponential, tau, points):
     Parameters
     ----------
     geometry : Sheet, Bar or Disc
-        The part (a Disc without bore), its lengths in [m].
+        A Sheet, a Bar or a solid Disc; lengths [m].
     pre_exponential : sequence of float
-        D0 along x, y, z [m^2/s] (a Disc: x = y radial, z axial).
+        The pre-exponential diffusivities per axis [m^2/s]; a Disc's x and y are
+        its radial D0 and must agree.
     tau : array_like
         Rescaled times [s], shape (n_tau,).
     points : dict of str to numpy.ndarray
@@ -188,7 +189,8 @@ def step_field(geometry, pre_exponential, tau, points):
     Raises
     ------
     ValueError
-        When the part has no exact solution, or a Disc's Dx and Dy differ.
+        For a part without a product solution (an annulus, a prism) or a Disc with
+        Dx != Dy.
     """
     _check_exact(geometry, pre_exponential)
     tau = np.maximum(np.asarray(tau, float), 0.0)[:, None]
@@ -215,9 +217,9 @@ def saturation_tau(geometry, pre_exponential) -> tuple[float, float]:
     Parameters
     ----------
     geometry : Sheet, Bar or Disc
-        The part (a Disc without bore), its lengths in [m].
+        The part (Sheet, Bar or Disc), lengths in [m].
     pre_exponential : sequence of float
-        D0 along x, y, z [m^2/s] (a Disc: x = y radial, z axial).
+        D0 per axis x, y, z [m^2/s].
 
     Returns
     -------

@@ -5,6 +5,12 @@ solid cylinder (t* = D t / a^2, a its radius; positions r/a in [0, 1]). Every fr
 is (C - C0) / (Cs - C0): 0 before the step, 1 at saturation. Short times use the erfc
 (image) forms, long times the Fourier/Bessel series, each exact to round-off where it
 is used.
+
+References
+----------
+- Crank, J. (1975). The Mathematics of Diffusion, 2nd ed. Oxford: Clarendon Press.
+- Carslaw, H. S. & Jaeger, J. C. (1959). Conduction of Heat in Solids, 2nd ed. Oxford:
+  Clarendon Press.
 """
 from __future__ import annotations
 
@@ -70,7 +76,7 @@ def sheet_interval_mean_images(z1, z2, fourier):
 
     References
     ----------
-    J. Crank, *The Mathematics of Diffusion*, 2nd ed., Oxford: Clarendon Press, 1975, eqs. 4.15 and 4.20.
+    Crank (1975), eqs. 4.15 and 4.20 (see the module docstring).
     """
     s = 2.0 * np.sqrt(fourier)
     total = 0.0
@@ -89,9 +95,9 @@ def sheet_interval_mean_series(z1, z2, fourier):
     Parameters
     ----------
     z1, z2 : float or array_like
-        The interval's ends as fractions of the thickness, 0 <= z1 < z2 <= 1 [-].
+        Where the interval starts and ends, in units of h [-].
     fourier : float or array_like
-        t* = D t / h^2 [-], h the full thickness.
+        The Fourier number D t / h^2 [-].
 
     Returns
     -------
@@ -100,7 +106,7 @@ def sheet_interval_mean_series(z1, z2, fourier):
 
     References
     ----------
-    J. Crank, *The Mathematics of Diffusion*, 2nd ed., Oxford: Clarendon Press, 1975, eq. 4.17.
+    Crank (1975), eq. 4.17, integrated term by term.
     """
     u1, u2 = z1 - 0.5, z2 - 0.5
     total = 0.0
@@ -134,9 +140,9 @@ def sheet_interval_mean(z1, z2, fourier):
     Parameters
     ----------
     z1, z2 : float or array_like
-        The interval's ends as fractions of the thickness, 0 <= z1 < z2 <= 1 [-].
+        z/h at the interval's two ends, z1 < z2, both in [0, 1] [-].
     fourier : float or array_like
-        t* = D t / h^2 [-], h the full thickness.
+        Scaled time t* of the sheet [-] (both faces exposed, h the whole thickness).
 
     Returns
     -------
@@ -311,7 +317,7 @@ def cylinder_short_coefficients() -> np.ndarray:
 
     References
     ----------
-    J. Crank, *The Mathematics of Diffusion*, 2nd ed., Oxford: Clarendon Press, 1975, §5.3.2 and eq. 5.24.
+    Crank (1975), §5.3.2 and eq. 5.24: the first three coefficients.
     """
     n = CYLINDER_SHORT_TERMS
 
@@ -370,7 +376,7 @@ def cylinder_core_deficit(rho, fourier, roots):
 
     References
     ----------
-    J. Crank, *The Mathematics of Diffusion*, 2nd ed., Oxford: Clarendon Press, 1975, eqs. 5.22 and 5.23.
+    Crank (1975), eq. 5.22 integrated over the core; eq. 5.23 at rho = 1.
     """
     b = roots
     decay = np.exp(-np.multiply.outer(fourier, b * b))
@@ -481,7 +487,7 @@ def cylinder_profile(r, fourier_r):
 
     References
     ----------
-    J. Crank, *The Mathematics of Diffusion*, 2nd ed., Oxford: Clarendon Press, 1975, eq. 5.22 and §5.3.2.
+    Crank (1975), eq. 5.22 (the Bessel series) and §5.3.2 (the short-time form).
     """
     r, fourier = np.broadcast_arrays(np.asarray(r, float),
                                      np.maximum(np.asarray(fourier_r, float), 0.0))

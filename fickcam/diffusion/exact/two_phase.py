@@ -193,9 +193,9 @@ def two_phase_mode_deficit(rate, t, gamma: float, beta: float):
     t : array_like
         The times [s].
     gamma : float
-        The binding rate [1/s].
+        gamma, the rate free water is bound at [1/s].
     beta : float
-        The release rate [1/s].
+        beta, the rate bound water is freed at [1/s].
 
     Returns
     -------
@@ -304,13 +304,13 @@ def two_phase_sheet_profile(z, t, diffusivity: float, thickness: float, gamma: f
     t : float or array_like
         The times [s], broadcast with ``z``.
     diffusivity : float
-        D of the free water [m^2/s].
+        The free water's diffusivity D [m^2/s].
     thickness : float
         The sheet's full thickness h [m].
     gamma, beta : float
-        The binding and release rates [1/s].
+        Binding rate gamma and release rate beta [1/s].
     tolerance : float
-        The series' truncation error [-], a fraction of Mm.
+        Where the mode sums stop: their remainder [-], as a fraction of Mm.
 
     Returns
     -------

@@ -76,13 +76,13 @@ def exact_history_field(geometry, diffusivity, exposure, times, points,
     Parameters
     ----------
     geometry : Sheet, Bar or Disc
-        A part with a separable exact step response, its lengths in [m].
+        The part, a Sheet, Bar or solid Disc [m].
     diffusivity : Diffusivity
-        D(T) = D0 exp(-Ea/(R T)) [m^2/s].
+        Its Arrhenius D(T) [m^2/s]; D0 sets the step response.
     exposure : Exposure
-        The surface history: temperature [K] and surface moisture [weight %].
+        Temperature [K] and surface moisture [weight %] over time.
     times : numpy.ndarray
-        The output times [s], shape (n_times,).
+        When to read the field [s], shape (n_times,).
     points : dict of str to numpy.ndarray
         The points' coordinates [m] by axis name (``z``; ``r``, ``z``; ``x``, ``y``, ``z``).
     cache : RunCache, optional
@@ -107,13 +107,13 @@ def record_history(geometry, diffusivity, exposure, times, accuracy,
     Parameters
     ----------
     geometry : Sheet, Bar or Disc
-        A part with a separable exact step response, its lengths in [m].
+        A part with Crank's exact series (lengths [m]).
     diffusivity : Diffusivity
-        D(T) = D0 exp(-Ea/(R T)) [m^2/s].
+        The diffusivity D0 exp(-Ea / (R T)) [m^2/s].
     exposure : Exposure
-        The surface history: temperature [K] and surface moisture [weight %].
+        The long record of temperature [K] and surface moisture [weight %].
     times : numpy.ndarray
-        The output times [s], shape (n_times,).
+        Output times [s] within the record.
     accuracy : float
         The relative accuracy [-] the tabulated sum is sized for.
     surface_layer_depth : float

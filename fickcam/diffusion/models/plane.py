@@ -95,9 +95,9 @@ def leading_uptake(perimeter: float, area: float, tau):
     Parameters
     ----------
     perimeter : float
-        The outline's perimeter in scaled units (lengths over the thickness) [-].
+        P, the outline's length in thicknesses (anisotropy-scaled) [-].
     area : float
-        The planform's area in scaled units [-].
+        A, the planform's area in thicknesses squared [-].
     tau : array_like
         Scaled time tau* = D t / h^2 [-].
 

@@ -166,9 +166,9 @@ def disc_mesh(outer_radius, thickness, inner_radius, radial_cells, axial_cells, 
     Parameters
     ----------
     outer_radius, thickness, inner_radius : float
-        The disc's radius, thickness and bore radius [m].
+        Outer radius, thickness and inner (bore) radius [m].
     radial_cells, axial_cells : int
-        Uniform cells along r and z [-].
+        Cell counts in r and z when uniform [-].
     radial_d, axial_d : float
         D0 along r and along z [m^2/s].
     widths : tuple of numpy.ndarray, optional

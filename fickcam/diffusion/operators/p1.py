@@ -84,9 +84,9 @@ def consistent_mass(points: np.ndarray, triangles: np.ndarray) -> sparse.csr_mat
     Parameters
     ----------
     points : numpy.ndarray
-        The nodes, shape (n, 2), in scaled coordinates [-].
+        Node coordinates, scaled [-], one row each.
     triangles : numpy.ndarray
-        The triangles' node indices, shape (m, 3).
+        The elements as node triples.
 
     Returns
     -------
@@ -117,9 +117,9 @@ def p1_operator(points: np.ndarray, triangles: np.ndarray, fixed: np.ndarray, la
     Parameters
     ----------
     points : numpy.ndarray
-        The nodes, shape (n, 2), in scaled coordinates [-].
+        The mesh's nodes in scaled coordinates [-], shape (n, 2).
     triangles : numpy.ndarray
-        The triangles' node indices, shape (m, 3).
+        Node triples of the P1 elements, shape (m, 3).
     fixed : numpy.ndarray
         Bool mask (n,) of the outline nodes held at the surface value.
     layer : numpy.ndarray

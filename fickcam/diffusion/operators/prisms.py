@@ -123,7 +123,7 @@ def sides_of_cells(tess) -> tuple[np.ndarray, list[np.ndarray]]:
     Parameters
     ----------
     tess : Tessellation
-        The planform's admissible cells (``admissible.Tessellation``), points [m].
+        The planform's cells, whose sides are wanted (points [m]).
 
     Returns
     -------
@@ -154,9 +154,9 @@ def prism_mesh(tess, scale: float, z_nodes: np.ndarray, mid_plane: bool):
     Parameters
     ----------
     tess : Tessellation
-        The planform's admissible cells (``admissible.Tessellation``), points [m].
+        The cells to extrude (stretched points [m]).
     scale : float
-        Stretched planform -> scaled coordinate factor [1/m].
+        The factor [1/m] taking stretched planform points to the mesh's scaled ones.
     z_nodes : numpy.ndarray
         The layers' boundaries as fractions of the thickness, z / L [-].
     mid_plane : bool

@@ -137,13 +137,13 @@ def octant(bar: Bar, d, cells, finest: float, growth: float,
     bar : Bar
         The bar, its sides in [m].
     d : sequence of float
-        D0 along x, y, z [m^2/s].
+        The bar's pre-exponential diffusivities per axis [m^2/s] (they scale the grid).
     cells : tuple of int
-        Uniform cells per axis of the whole bar [-] (read when ``finest`` is 0).
+        Without grading: the whole bar's cells along x, y, z [-], made even.
     finest : float
-        The finest width in scaled units [-]; 0: uniform.
+        w0, the graded cells' finest scaled width [-] (0 for a uniform grid).
     growth : float
-        The widths' growth [-].
+        g, each width over its neighbour's minus one [-].
     layer_depth : float
         The contact layer's depth [m].
 

@@ -374,7 +374,7 @@ def refine(tess: Tessellation) -> Tessellation:
     Parameters
     ----------
     tess : Tessellation
-        The admissible cells, stretched coordinates [m].
+        The coarse cells (stretched coordinates [m]).
 
     Returns
     -------
@@ -400,7 +400,7 @@ def cell_areas(tess: Tessellation) -> np.ndarray:
     Parameters
     ----------
     tess : Tessellation
-        The admissible cells, stretched coordinates [m].
+        A planform's cells; points in stretched coordinates [m].
 
     Returns
     -------
@@ -418,7 +418,7 @@ def cell_loops(tess: Tessellation) -> list[np.ndarray]:
     Parameters
     ----------
     tess : Tessellation
-        The admissible cells, stretched coordinates [m].
+        The cells whose corners are wanted (stretched coordinates [m]).
 
     Returns
     -------
@@ -448,7 +448,7 @@ def band_share(tess: Tessellation, depth: float) -> np.ndarray:
     Parameters
     ----------
     tess : Tessellation
-        The admissible cells, stretched coordinates [m].
+        The admissible cells; stretched points [m], unstretched by ``physical``.
     depth : float
         The contact layer's depth [m].
 

@@ -180,9 +180,9 @@ def corrected_weights(tess, depth: float) -> tuple[np.ndarray, np.ndarray]:
     Parameters
     ----------
     tess : Tessellation
-        The planform's admissible cells, stretched coordinates [m].
+        The cells whose values the weights multiply (stretched points [m]).
     depth : float
-        The contact layer's depth [m].
+        How deep the band under the contact edge reaches [m].
 
     Returns
     -------

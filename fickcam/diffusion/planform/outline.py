@@ -122,9 +122,9 @@ def arc_circle(cx, cy, radius, spacing) -> np.ndarray:
     Parameters
     ----------
     cx, cy : float
-        The centre [m].
+        Where the circle is centred [m].
     radius : float
-        The radius [m].
+        Its radius [m] (a bore or a boss).
     spacing : float
         The largest gap along the arc [m].
 
@@ -150,7 +150,8 @@ def boundary_loops(part, spacing: float) -> tuple[list[np.ndarray], list[bool]]:
     Returns
     -------
     tuple or None
-        The loops [m] (outer counter-clockwise, holes clockwise) and a contact flag per loop; None for a LinkBar whose bosses overlap.
+        The loops [m] (outer counter-clockwise, holes clockwise) and a contact flag per
+        loop; None for a LinkBar whose bosses overlap.
     """
     if isinstance(part, CamPlate):
         outer = np.column_stack([part.profile_x, part.profile_y]).astype(float)

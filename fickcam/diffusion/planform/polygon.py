@@ -19,7 +19,7 @@ def turning_angles(loop: np.ndarray) -> np.ndarray:
     Parameters
     ----------
     loop : numpy.ndarray
-        The closed polyline's vertices, shape (n, 2) [m] (any length unit; scaled [-] works alike).
+        A closed polyline, one vertex (x, y) a row [m] (or scaled [-]).
 
     Returns
     -------
@@ -38,7 +38,7 @@ def corners_of(loop: np.ndarray) -> np.ndarray:
     Parameters
     ----------
     loop : numpy.ndarray
-        The closed polyline's vertices, shape (n, 2) [m] (any length unit; scaled [-] works alike).
+        The vertices of a closed polyline [m].
 
     Returns
     -------
@@ -55,7 +55,7 @@ def resample_loop(loop: np.ndarray, spacing: float) -> np.ndarray:
     Parameters
     ----------
     loop : numpy.ndarray
-        The closed polyline's vertices, shape (n, 2) [m] (any length unit; scaled [-] works alike).
+        The loop to resample, shape (n, 2) [m].
     spacing : float
         The largest step along the polyline [m], in the loop's unit.
 
@@ -135,7 +135,7 @@ def loop_length(loop: np.ndarray) -> float:
     Parameters
     ----------
     loop : numpy.ndarray
-        The closed polyline's vertices, shape (n, 2) [m] (any length unit; scaled [-] works alike).
+        A closed polyline's vertices [m]; the last joins the first.
 
     Returns
     -------
@@ -169,7 +169,7 @@ def vertex_normals(points: np.ndarray) -> np.ndarray:
     Parameters
     ----------
     points : numpy.ndarray
-        A closed loop's vertices, shape (n, 2) [m].
+        The loop's points [m], material on their left.
 
     Returns
     -------
@@ -274,9 +274,9 @@ def triangle_areas(points: np.ndarray, triangles: np.ndarray) -> np.ndarray:
     Parameters
     ----------
     points : numpy.ndarray
-        The vertices, shape (n, 2) [m].
+        The mesh's nodes [m], one row (x, y) each.
     triangles : numpy.ndarray
-        Vertex indices of each triangle, shape (m, 3).
+        Each triangle's three node indices.
 
     Returns
     -------
@@ -293,7 +293,7 @@ def unique_edges(triangles: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     Parameters
     ----------
     triangles : numpy.ndarray
-        Vertex indices of each triangle, shape (m, 3).
+        The mesh's triangles as node triples, shape (m, 3).
 
     Returns
     -------
@@ -315,9 +315,9 @@ def circumcentres(points: np.ndarray, triangles: np.ndarray) -> np.ndarray:
     Parameters
     ----------
     points : numpy.ndarray
-        The vertices, shape (n, 2) [m].
+        Node coordinates [m], shape (n, 2).
     triangles : numpy.ndarray
-        Vertex indices of each triangle, shape (m, 3).
+        The node triples of the triangles whose circles are wanted.
 
     Returns
     -------
@@ -338,9 +338,9 @@ def centre_offsets(points: np.ndarray, triangles: np.ndarray, centres: np.ndarra
     Parameters
     ----------
     points : numpy.ndarray
-        The vertices, shape (n, 2) [m].
+        Where the nodes lie [m].
     triangles : numpy.ndarray
-        Vertex indices of each triangle, shape (m, 3).
+        The triangles, by their nodes.
     centres : numpy.ndarray
         The triangles' circumcentres [m], shape (m, 2).
 
@@ -396,9 +396,9 @@ def drop_unused(points: np.ndarray, triangles: np.ndarray):
     Parameters
     ----------
     points : numpy.ndarray
-        The vertices, shape (n, 2) [m].
+        All candidate points [m], some perhaps in no triangle.
     triangles : numpy.ndarray
-        Vertex indices of each triangle, shape (m, 3).
+        The triangles, indexing ``points``.
 
     Returns
     -------

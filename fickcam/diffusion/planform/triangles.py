@@ -48,7 +48,7 @@ def fanned(points: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     Parameters
     ----------
     points : numpy.ndarray
-        A closed loop's samples, shape (n, 2) [m].
+        Samples along one closed loop [m], material on the left.
 
     Returns
     -------
@@ -317,9 +317,9 @@ class Triangulation:
     Parameters
     ----------
     points : numpy.ndarray
-        The mesh points [m], shape (n, 2).
+        The nodes in physical coordinates [m].
     triangles : numpy.ndarray
-        Vertex indices, shape (m, 3).
+        Each triangle's three nodes.
     contact_distance : numpy.ndarray
         Each triangle's centroid's distance to the contact edge [m], shape (m,).
     on_outline : numpy.ndarray, optional
