@@ -254,7 +254,7 @@ def inside_polygon(query: np.ndarray, segments: np.ndarray, chunk: int = 2048) -
     References
     ----------
     M. Shimrat, "Algorithm 112: Position of point relative to polygon", *Communications of
-    the ACM* 5(8), 434, 1962, doi:10.1145/368637.368653.
+    the ACM* 5(8), 434, 1962.
     """
     a, b = segments[:, 0], segments[:, 1]
     inside = np.zeros(len(query), bool)
