@@ -437,15 +437,13 @@ def _design(expansion, switch, end, ages, perimeter, area, tightest, accuracy, t
 
 
 def solve_plane(problem: DiffusionProblem, chosen: Plan, cache: RunCache | None = None):
-    """CamPlate / LinkBar: planform step response x sheet step response, Duhamel over the
-    history (``PrismSuperposition``); the estimate adds the error of the sum itself on long
-    records. ``cache``: the run's (None: a fresh one).
+    """Planform x sheet step responses of a CamPlate or LinkBar, Duhamel-superposed over the
+    history (``PrismSuperposition``; Crank 1975 eqs. 4.34, 4.51, see the module docstring).
 
     Parameters
     ----------
     problem : DiffusionProblem
-        The part [m], D(T) [m^2/s], exposure, output times [s], accuracy [-] and contact
-        layer depth [m].
+        The part [m], D(T) [m^2/s], exposure, times [s], accuracy [-], layer depth [m].
     chosen : Plan
         The plan of ``plan_plane``.
     cache : RunCache, optional
@@ -454,11 +452,7 @@ def solve_plane(problem: DiffusionProblem, chosen: Plan, cache: RunCache | None 
     Returns
     -------
     DiffusionResult
-        The mean and contact-layer moisture [weight %] and the error estimate [-].
-
-    References
-    ----------
-    Crank (1975), eqs. 4.34 and 4.51 (see the module docstring).
+        Mean and contact-layer moisture [weight %]; error estimate [-] (+ the sum's own).
     """
     cache = run_cache(cache)
     geometry, diffusivity, exposure = problem.geometry, problem.diffusivity, problem.exposure
