@@ -74,7 +74,21 @@ class FickModel:
 
     ``plan(problem, caps, cache) -> Plan`` and ``solve(problem, chosen, cache) ->
     DiffusionResult`` (problem: a ``DiffusionProblem``; caps: the ``CellCaps`` of the run's
-    ``SolverSettings``; chosen: the plan; cache: the run's ``RunCache``)."""
+    ``SolverSettings``; chosen: the plan; cache: the run's ``RunCache``).
+
+    Parameters
+    ----------
+    name : str
+        The model's name, as ``diffusion.model`` spells it.
+    parts : tuple of type
+        The geometry classes it applies to (``Sheet``, ``Disc``, ...).
+    plan : callable
+        ``plan(problem, caps, cache) -> Plan``: cells, steps and error estimate [-].
+    solve : callable
+        ``solve(problem, chosen, cache) -> DiffusionResult``.
+    exact : bool
+        True for a model that needs a separable exact solution (refused elsewhere).
+    """
 
     name: str
     parts: tuple[type, ...]
@@ -136,7 +150,18 @@ PARTS = (Sheet, Disc, Bar, CamPlate, LinkBar)
 
 
 def numerical_model(geometry) -> str:
-    """The first mesh model that applies to the part: slab, axisymmetric, plane, solid."""
+    """The first mesh model that applies to the part: slab, axisymmetric, plane, solid.
+
+    Parameters
+    ----------
+    geometry : Sheet, Disc, Bar, CamPlate or LinkBar
+        The part to mesh (dimensions in [m]).
+
+    Returns
+    -------
+    str
+        The name of the first non-exact model of ``FICK_MODELS`` whose parts include it.
+    """
     return next(name for name, model in FICK_MODELS.items()
                 if not model.exact and model.applies(geometry))
 
@@ -174,7 +199,7 @@ class SolverSettings:
     passes others (``fickcam.run(scene, settings=...)``, ``plan``, ``solve``) instead of
     changing module values.
 
-    Attributes
+    Parameters
     ----------
     sweeps : Sweeps
         When a concentration-dependent step's sweeps stop.
@@ -399,7 +424,19 @@ class Route:
     """One way of solving a problem, an entry of ``ROUTES``: why it does not take a problem
     (``refusal(problem)``: a sentence a user can read; None where it does), its plan and
     its solve. ``plan(problem, settings, cache) -> Plan``; ``solve(problem, settings,
-    cache) -> DiffusionResult`` (it plans first where it needs the plan)."""
+    cache) -> DiffusionResult`` (it plans first where it needs the plan).
+
+    Parameters
+    ----------
+    name : str
+        The route's name (as logged and shown in a plan).
+    refusal : callable
+        ``refusal(problem) -> str | None``: why the route does not take the problem.
+    plan : callable
+        ``plan(problem, settings, cache) -> Plan``.
+    solve : callable
+        ``solve(problem, settings, cache) -> DiffusionResult``.
+    """
 
     name: str
     refusal: Callable
@@ -409,7 +446,23 @@ class Route:
 
 def route_of(problem: DiffusionProblem) -> Route:
     """The first route of the problem's law (``ROUTES``, in the order ``auto`` prefers them)
-    that takes the problem; an ``InputError`` with the last refusal where none does."""
+    that takes the problem; an ``InputError`` with the last refusal where none does.
+
+    Parameters
+    ----------
+    problem : DiffusionProblem
+        The part [m], diffusivity [m^2/s], exposure, times [s] and sorption law.
+
+    Returns
+    -------
+    Route
+        The first route of ``ROUTES[law_of(problem.sorption)]`` whose refusal is None.
+
+    Raises
+    ------
+    fickcam.errors.InputError
+        When every route of the law refuses the problem (the message is the last refusal).
+    """
     why = None
     for route in ROUTES[law_of(problem.sorption)]:
         why = route.refusal(problem)
@@ -419,7 +472,18 @@ def route_of(problem: DiffusionProblem) -> Route:
 
 
 def law_of(sorption) -> str:
-    """The registry's key of a sorption law: fick (None), langmuir or nonlinear."""
+    """The registry's key of a sorption law: fick (None), langmuir or nonlinear.
+
+    Parameters
+    ----------
+    sorption : object or None
+        A law of ``problem.sorption``; None for Fick.
+
+    Returns
+    -------
+    str
+        ``"nonlinear"`` (a concentration-dependent D), ``"langmuir"`` or ``"fick"``.
+    """
     if is_nonlinear(sorption):
         return "nonlinear"
     return "langmuir" if is_langmuir(sorption) else "fick"
@@ -645,7 +709,24 @@ def _langmuir_result(times, history, estimate, chosen) -> DiffusionResult:
 
 def read_ages(clock, exposure, times, most: int = 256) -> np.ndarray:
     """Rescaled ages (s) the outputs read after each change of the exposure (at most
-    ``most``, spread over their range, the least and largest kept)."""
+    ``most``, spread over their range, the least and largest kept).
+
+    Parameters
+    ----------
+    clock : callable
+        Wall time [s] -> rescaled time [s] (the Arrhenius-weighted clock of the exposure).
+    exposure : Exposure
+        The surface history; its ``change_times`` [s] start each age.
+    times : array_like
+        The output times [s].
+    most : int
+        The most ages returned [-].
+
+    Returns
+    -------
+    numpy.ndarray
+        The sorted, distinct, positive rescaled ages [s] of every output after every change.
+    """
     changes = clock(np.asarray(exposure.change_times, float))
     ages = np.subtract.outer(clock(np.asarray(times, float)), changes).ravel()
     ages = np.unique(ages[ages > 0])

@@ -68,7 +68,18 @@ LAYER_TOLERANCE = 4.0  # the contact layer may be this many times less accurate 
 def space_error(earliest: float) -> float:
     """The factor of the uniform grid's error model at the earliest output tau*_lo
     (``SPACE_ERROR_FACTOR``, interpolated in log tau; held beyond the table: below it the
-    factor only falls, above it the error is below 1e-10 of the step)."""
+    factor only falls, above it the error is below 1e-10 of the step).
+
+    Parameters
+    ----------
+    earliest : float
+        The earliest output's scaled time tau* = D t / L^2 after a change [-].
+
+    Returns
+    -------
+    float
+        The factor [-] of the uniform grid's relative error model at that time.
+    """
     return float(np.interp(math.log(max(earliest, 1e-300)), np.log(SPACE_ERROR_TAU),
                            SPACE_ERROR_FACTOR))
 
@@ -81,7 +92,19 @@ FIRST_STEP = 1e-6        # first step after a change, scaled time tau D / L^2
 class CellCaps:
     """The most cells of the linear system each direct model may assemble (a mirrored D(c)
     part: the cells it solves; see above), ``caps["solid"]`` by model name. A run passes
-    others through ``SolverSettings.cells``, never by changing ``MAX_CELLS``."""
+    others through ``SolverSettings.cells``, never by changing ``MAX_CELLS``.
+
+    Parameters
+    ----------
+    slab : int
+        The most cells [-] of the ``slab`` model (a Sheet through its thickness).
+    axisymmetric : int
+        The most cells [-] of the ``axisymmetric`` model (a Disc in (r, z)).
+    solid : int
+        The most cells [-] of the ``solid`` model (3-D grid or prisms).
+    plane : int
+        The most nodes [-] of the ``plane`` model's planform mesh.
+    """
 
     slab: int = 4000
     axisymmetric: int = 40_000

@@ -18,7 +18,21 @@ import numpy as np
 
 
 def taken(extrapolate: bool, middle, fine):
-    """What ``three_levels`` chose: the 2x Richardson extrapolation, or the finest mesh."""
+    """What ``three_levels`` chose: the 2x Richardson extrapolation, or the finest mesh.
+
+    Parameters
+    ----------
+    extrapolate : bool
+        ``three_levels``'s choice: True takes fine + (fine - middle) / 3.
+    middle, fine : numpy.ndarray
+        The quantity on the middle and the finest mesh, in its own unit (weight % for
+        moisture).
+
+    Returns
+    -------
+    numpy.ndarray
+        The extrapolated or the finest values, in the quantity's unit.
+    """
     return fine + (fine - middle) / 3.0 if extrapolate else fine
 
 
@@ -48,7 +62,25 @@ def three_levels(coarse, middle, fine) -> tuple[bool, float]:
 
     On the demo cam's D(c) planform (k = 2, accuracy 1e-3) the contact layer at 1 d flips
     sign between the meshes (rho = -14): there the extrapolation erred 1.8e-4 of the swing
-    (layer / 4; against the 8x mesh, 108 000 cells), the 4x mesh itself 2e-5."""
+    (layer / 4; against the 8x mesh, 108 000 cells), the 4x mesh itself 2e-5.
+
+    Parameters
+    ----------
+    coarse, middle, fine : numpy.ndarray
+        The quantity over the outputs on meshes each refined 2x from the last, in its own
+        unit (weight % for moisture).
+
+    Returns
+    -------
+    extrapolate : bool
+        Whether the order-2 extrapolation (``taken``) may be used.
+    error : float
+        The error bound of what ``taken`` returns, in the quantity's unit.
+
+    References
+    ----------
+    Roache (1998), ch. 5; Celik et al. (2008), eqs. 1-5 (see the module docstring).
+    """
     changes = (middle - coarse, fine - middle)
     largest = float(np.max(np.abs(changes[1])))
     if largest == 0.0:

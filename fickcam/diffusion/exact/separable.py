@@ -41,7 +41,18 @@ from .series import (cylinder_core_mean, cylinder_profile, cylinder_uptake, shee
 # -------------------------------------------------------- geometry responses
 def exact_available(geometry) -> bool:
     """True when ``step_response`` / ``exact_history`` have an exact solution:
-    Sheet, Bar, and Disc without bore."""
+    Sheet, Bar, and Disc without bore.
+
+    Parameters
+    ----------
+    geometry : Sheet, Disc, Bar, CamPlate or LinkBar
+        The part, its lengths in [m].
+
+    Returns
+    -------
+    bool
+        True for a Sheet, a Bar or a Disc whose inner radius is 0.
+    """
     if isinstance(geometry, Disc):
         return geometry.inner_radius == 0.0
     return isinstance(geometry, (Sheet, Bar))
@@ -110,7 +121,34 @@ def step_response(geometry, pre_exponential, tau, surface_layer_depth=LAYER_DEPT
     """Unit-step response (fraction mean uptake, fraction mean over the contact
     layer) at rescaled times ``tau`` (s; D0_i tau in m^2). Products per
     Crank 1975 §5.3 (1 - F multiplies). See the module docstring for the
-    layer definitions."""
+    layer definitions.
+
+    Parameters
+    ----------
+    geometry : Sheet, Bar or Disc
+        The part (a Disc without bore), its lengths in [m].
+    pre_exponential : sequence of float
+        D0 along x, y, z [m^2/s] (a Disc: x = y radial, z axial).
+    tau : array_like
+        Rescaled times [s] (D0_i tau in [m^2]).
+    surface_layer_depth : float
+        The contact layer's depth [m].
+
+    Returns
+    -------
+    mean, layer : numpy.ndarray
+        The fractional uptake (C - C0) / (Cs - C0) of the volume and of the contact layer
+        [-], each clipped to [0, 1], shaped like ``tau``.
+
+    Raises
+    ------
+    ValueError
+        When the part has no exact solution, or a Disc's Dx and Dy differ.
+
+    References
+    ----------
+    Crank (1975) §5.3; Carslaw & Jaeger (1959) §1.16 (see the module docstring).
+    """
     _check_exact(geometry, pre_exponential)
     tau = np.maximum(np.asarray(tau, float), 0.0)
     if isinstance(geometry, Disc):
@@ -128,7 +166,32 @@ def _point_coordinates(geometry, points):
 
 def step_field(geometry, pre_exponential, tau, points):
     """Fractional concentration, shape (n_tau, n_points), at ``points``
-    (dict of coordinate arrays, see ``_point_coordinates``)."""
+    (dict of coordinate arrays, see ``_point_coordinates``).
+
+    Parameters
+    ----------
+    geometry : Sheet, Bar or Disc
+        A Sheet, a Bar or a solid Disc; lengths [m].
+    pre_exponential : sequence of float
+        The pre-exponential diffusivities per axis [m^2/s]; a Disc's x and y are
+        its radial D0 and must agree.
+    tau : array_like
+        Rescaled times [s], shape (n_tau,).
+    points : dict of str to numpy.ndarray
+        Coordinates [m]: Sheet ``z``; Bar ``x``, ``y``, ``z`` from a corner; Disc ``r``
+        from the axis and ``z`` from a face.
+
+    Returns
+    -------
+    numpy.ndarray
+        The fraction (C - C0) / (Cs - C0) [-], shape (n_tau, n_points).
+
+    Raises
+    ------
+    ValueError
+        For a part without a product solution (an annulus, a prism) or a Disc with
+        Dx != Dy.
+    """
     _check_exact(geometry, pre_exponential)
     tau = np.maximum(np.asarray(tau, float), 0.0)[:, None]
     p = _point_coordinates(geometry, points)
@@ -149,7 +212,20 @@ def step_field(geometry, pre_exponential, tau, points):
 
 def saturation_tau(geometry, pre_exponential) -> tuple[float, float]:
     """(fastest, slowest) rescaled diffusion times L^2/D0 of the part's
-    directions; beyond SATURATION_FOURIER x slowest every response is 1."""
+    directions; beyond SATURATION_FOURIER x slowest every response is 1.
+
+    Parameters
+    ----------
+    geometry : Sheet, Bar or Disc
+        The part (Sheet, Bar or Disc), lengths in [m].
+    pre_exponential : sequence of float
+        D0 per axis x, y, z [m^2/s].
+
+    Returns
+    -------
+    tuple of float
+        The shortest and longest L^2 / D0 over the part's directions [s] of rescaled time.
+    """
     if isinstance(geometry, Disc):
         scales = [geometry.outer_radius ** 2 / pre_exponential[0],
                   geometry.thickness ** 2 / pre_exponential[2]]

@@ -5,6 +5,12 @@ solid cylinder (t* = D t / a^2, a its radius; positions r/a in [0, 1]). Every fr
 is (C - C0) / (Cs - C0): 0 before the step, 1 at saturation. Short times use the erfc
 (image) forms, long times the Fourier/Bessel series, each exact to round-off where it
 is used.
+
+References
+----------
+- Crank, J. (1975). The Mathematics of Diffusion, 2nd ed. Oxford: Clarendon Press.
+- Carslaw, H. S. & Jaeger, J. C. (1959). Conduction of Heat in Solids, 2nd ed. Oxford:
+  Clarendon Press.
 """
 from __future__ import annotations
 
@@ -30,7 +36,23 @@ SATURATION_FOURIER = 8.0  # F = 1 - O(exp(-8 pi^2)) for the sheet, O(exp(-46)) c
 # --------------------------------------------------------------------- sheet
 def ierfc(x):
     """First integral of erfc: ierfc(x) = exp(-x^2)/sqrt(pi) - x erfc(x)
-    (Carslaw & Jaeger 1959, Appendix II)."""
+    (Carslaw & Jaeger 1959, Appendix II).
+
+    Parameters
+    ----------
+    x : float or array_like
+        The argument [-] (0 where x >= 27, below the smallest double).
+
+    Returns
+    -------
+    numpy.ndarray
+        ierfc(x) [-].
+
+    References
+    ----------
+    H. S. Carslaw and J. C. Jaeger, *Conduction of Heat in Solids*, 2nd ed., Oxford:
+    Clarendon Press, 1959, Appendix II.
+    """
     x = np.asarray(x, float)
     finite = np.minimum(x, 27.0)  # ierfc(27) < 1e-318: zero beyond, also for x = inf
     return np.where(x < 27.0, np.exp(-finite * finite) / SQRT_PI - finite * erfc(finite), 0.0)
@@ -38,7 +60,24 @@ def ierfc(x):
 
 def sheet_interval_mean_images(z1, z2, fourier):
     """Mean of the sheet's fractional concentration over [z1, z2] (units of h),
-    short-time image (erfc) form integrated once (Crank 1975 eqs. 4.15, 4.20)."""
+    short-time image (erfc) form integrated once (Crank 1975 eqs. 4.15, 4.20).
+
+    Parameters
+    ----------
+    z1, z2 : float or array_like
+        The interval's ends as fractions of the thickness, 0 <= z1 < z2 <= 1 [-].
+    fourier : float or array_like
+        t* = D t / h^2 [-], h the full thickness.
+
+    Returns
+    -------
+    numpy.ndarray
+        The mean of (C - C0) / (Cs - C0) over the interval [-]; accurate for t* < 0.05.
+
+    References
+    ----------
+    Crank (1975), eqs. 4.15 and 4.20 (see the module docstring).
+    """
     s = 2.0 * np.sqrt(fourier)
     total = 0.0
     for n in range(SHEET_IMAGES):
@@ -51,7 +90,24 @@ def sheet_interval_mean_images(z1, z2, fourier):
 def sheet_interval_mean_series(z1, z2, fourier):
     """Same mean from the Fourier series (Crank 1975 eq. 4.17) integrated over
     [z1, z2]: cos((2n+1) pi u), u = z - 1/2, averages to
-    [sin(k pi u2) - sin(k pi u1)] / (k pi (u2 - u1))."""
+    [sin(k pi u2) - sin(k pi u1)] / (k pi (u2 - u1)).
+
+    Parameters
+    ----------
+    z1, z2 : float or array_like
+        Where the interval starts and ends, in units of h [-].
+    fourier : float or array_like
+        The Fourier number D t / h^2 [-].
+
+    Returns
+    -------
+    numpy.ndarray
+        The interval's fractional mean [-] from ``SHEET_MODES`` modes (for t* >= 0.05).
+
+    References
+    ----------
+    Crank (1975), eq. 4.17, integrated term by term.
+    """
     u1, u2 = z1 - 0.5, z2 - 0.5
     total = 0.0
     for n in range(SHEET_MODES):
@@ -79,7 +135,20 @@ def _by_regime(switch, short_form, long_form, fourier, *positions):
 def sheet_interval_mean(z1, z2, fourier):
     """Fractional mean concentration over z in [z1, z2] (fractions of the
     thickness h, 0 <= z1 < z2 <= 1) of a sheet with both faces stepped to 1 at
-    t = 0; t* = D t / h^2. Image form below t* = 0.05, series above."""
+    t = 0; t* = D t / h^2. Image form below t* = 0.05, series above.
+
+    Parameters
+    ----------
+    z1, z2 : float or array_like
+        z/h at the interval's two ends, z1 < z2, both in [0, 1] [-].
+    fourier : float or array_like
+        Scaled time t* of the sheet [-] (both faces exposed, h the whole thickness).
+
+    Returns
+    -------
+    numpy.ndarray
+        The fractional mean concentration over [z1, z2] [-], clipped to [0, 1].
+    """
     def images(a, b, t):
         return np.where(t > 0, sheet_interval_mean_images(a, b, t), 0.0)
     return _by_regime(SHEET_SWITCH, images, sheet_interval_mean_series, fourier, z1, z2)
@@ -125,7 +194,20 @@ def sheet_uptake(fourier):
 def sheet_series_remainder(fourier, n_terms):
     """Bound on the error of truncating Crank eq. 4.18 after ``n_terms`` modes:
     sum_{n >= N} 8/((2n+1)^2 pi^2) exp(-(2n+1)^2 pi^2 t*) <= first omitted term
-    / (1 - exp(-8 pi^2 t*)) (geometric majorant)."""
+    / (1 - exp(-8 pi^2 t*)) (geometric majorant).
+
+    Parameters
+    ----------
+    fourier : float or array_like
+        t* = D t / h^2 [-].
+    n_terms : int
+        The modes kept, N [-].
+
+    Returns
+    -------
+    numpy.ndarray
+        An upper bound of the truncation error of the uptake F [-] (inf at t* = 0).
+    """
     fourier = np.asarray(fourier, float)
     k = 2 * n_terms + 1
     first = 8.0 / (k * np.pi) ** 2 * np.exp(-(k * np.pi) ** 2 * fourier)
@@ -175,7 +257,18 @@ ROOT_TABLE = 4096  # J0 roots made at once for every smaller count asked for (me
 def bessel_roots(count: int) -> np.ndarray:
     """First ``count`` positive roots beta_n of J0 (the first ``ROOT_TABLE`` from one table:
     scipy's roots do not depend on how many are asked for; more are made on each call).
-    Read-only."""
+    Read-only.
+
+    Parameters
+    ----------
+    count : int
+        How many roots [-].
+
+    Returns
+    -------
+    numpy.ndarray
+        beta_1 < ... < beta_count, J0(beta_n) = 0 [-], read-only.
+    """
     if count <= ROOT_TABLE:
         return _root_table()[:count]   # a view of a read-only table: read-only
     roots = jn_zeros(0, count)
@@ -191,7 +284,18 @@ def _root_table() -> np.ndarray:
 
 
 def roots_for(fourier_min: float) -> np.ndarray:
-    """Enough J0 roots that exp(-beta_N^2 t*) < exp(-EXP_CUTOFF) for t* >= fourier_min."""
+    """Enough J0 roots that exp(-beta_N^2 t*) < exp(-EXP_CUTOFF) for t* >= fourier_min.
+
+    Parameters
+    ----------
+    fourier_min : float
+        The least t* = D t / a^2 the series is summed at [-].
+
+    Returns
+    -------
+    numpy.ndarray
+        The first roots of J0 [-] (at most 200 000), read-only.
+    """
     count = int(np.sqrt(EXP_CUTOFF / max(fourier_min, 1e-12)) / np.pi) + 2
     return bessel_roots(min(count, 200_000))
 
@@ -204,7 +308,17 @@ def cylinder_short_coefficients() -> np.ndarray:
     (Crank 1975 §5.3.2, transform of eq. 5.22). With the Hankel
     expansions I_nu(q) ~ e^q/sqrt(2 pi q) sum (-1)^k a_k(nu) q^-k,
     I1/I0 = sum c_k q^-k and term-by-term inversion gives
-    b_k = 2 c_k / Gamma((k + 3)/2); the first three are Crank eq. 5.24."""
+    b_k = 2 c_k / Gamma((k + 3)/2); the first three are Crank eq. 5.24.
+
+    Returns
+    -------
+    numpy.ndarray
+        b_0 ... b_8 [-], read-only.
+
+    References
+    ----------
+    Crank (1975), §5.3.2 and eq. 5.24: the first three coefficients.
+    """
     n = CYLINDER_SHORT_TERMS
 
     def hankel(nu):
@@ -224,7 +338,18 @@ def cylinder_short_coefficients() -> np.ndarray:
 
 
 def cylinder_uptake_short(fourier):
-    """Short-time expansion (Crank 1975 eq. 5.24 continued)."""
+    """Short-time expansion (Crank 1975 eq. 5.24 continued).
+
+    Parameters
+    ----------
+    fourier : float or array_like
+        t* = D t / a^2 [-], a the radius; meant for t* < ``CYLINDER_SWITCH``.
+
+    Returns
+    -------
+    numpy.ndarray
+        The solid cylinder's fractional uptake sum_k b_k t*^((k+1)/2) [-].
+    """
     b = cylinder_short_coefficients()
     root = np.sqrt(fourier)
     return sum(b[k] * root ** (k + 1) for k in range(b.size))
@@ -233,7 +358,26 @@ def cylinder_uptake_short(fourier):
 def cylinder_core_deficit(rho, fourier, roots):
     """1 - (mean concentration over r/a < rho), from Crank 1975 eq. 5.22
     integrated over the core: 4 sum exp(-b^2 t) J1(b rho)/(b^2 rho J1(b));
-    for rho = 1 this is Crank eq. 5.23."""
+    for rho = 1 this is Crank eq. 5.23.
+
+    Parameters
+    ----------
+    rho : numpy.ndarray
+        The core's radius as a fraction of the cylinder's, in (0, 1] [-].
+    fourier : numpy.ndarray
+        t* = D t / a^2 [-], broadcast with ``rho``.
+    roots : numpy.ndarray
+        The roots beta_n of J0 summed over [-].
+
+    Returns
+    -------
+    numpy.ndarray
+        1 - the core's fractional mean concentration [-].
+
+    References
+    ----------
+    Crank (1975), eq. 5.22 integrated over the core; eq. 5.23 at rho = 1.
+    """
     b = roots
     decay = np.exp(-np.multiply.outer(fourier, b * b))
     weight = 4.0 * j1(np.multiply.outer(rho, b)) / (b * b * rho[..., None] * j1(b))
@@ -272,7 +416,20 @@ def cylinder_uptake(fourier_r):
 def cylinder_core_mean(rho, fourier_r):
     """Fractional mean concentration over the core r/a < rho of a solid
     cylinder (rho in (0, 1]). Before the front reaches the core
-    ((1 - rho)/(2 sqrt t*) > 6.5) the core is dry to 1e-19."""
+    ((1 - rho)/(2 sqrt t*) > 6.5) the core is dry to 1e-19.
+
+    Parameters
+    ----------
+    rho : float or array_like
+        The core's relative radius r/a in (0, 1] [-].
+    fourier_r : float or array_like
+        t* = D t / a^2 [-], broadcast with ``rho``.
+
+    Returns
+    -------
+    numpy.ndarray
+        The core's fractional mean concentration [-], in [0, 1].
+    """
     rho, fourier = np.broadcast_arrays(np.asarray(rho, float),
                                        np.maximum(np.asarray(fourier_r, float), 0.0))
     if rho.size == 0:
@@ -314,7 +471,24 @@ def cylinder_profile(r, fourier_r):
     """Fractional concentration at r/a in [0, 1] of a solid cylinder
     (broadcast with t*): C = 1 - 2 sum exp(-b^2 t*) J0(b r)/(b J1(b))
     (Crank 1975 eq. 5.22) for t* >= 1e-6; below, the short-time form
-    (error O(t*^3/2) < 1e-9)."""
+    (error O(t*^3/2) < 1e-9).
+
+    Parameters
+    ----------
+    r : float or array_like
+        The radius as a fraction of the cylinder's, r/a [-].
+    fourier_r : float or array_like
+        t* = D t / a^2 [-].
+
+    Returns
+    -------
+    numpy.ndarray
+        The fractional concentration (C - C0) / (Cs - C0) [-], in [0, 1].
+
+    References
+    ----------
+    Crank (1975), eq. 5.22 (the Bessel series) and §5.3.2 (the short-time form).
+    """
     r, fourier = np.broadcast_arrays(np.asarray(r, float),
                                      np.maximum(np.asarray(fourier_r, float), 0.0))
     short = fourier < CYLINDER_PROFILE_SWITCH

@@ -45,7 +45,17 @@ EXP_CUTOFF = 44.0         # a free-water mode with exp(-D lambda t) < exp(-44) i
 @dataclass(frozen=True)
 class TwoPhaseUptake:
     """Fractions of the total equilibrium content Mm at the requested times:
-    ``total`` = ``free`` + ``bound``; at equilibrium free -> beta/(gamma+beta)."""
+    ``total`` = ``free`` + ``bound``; at equilibrium free -> beta/(gamma+beta).
+
+    Parameters
+    ----------
+    total : numpy.ndarray
+        The total uptake M/Mm [-].
+    free : numpy.ndarray
+        The free (mobile) water n/Mm [-].
+    bound : numpy.ndarray
+        The bound water N/Mm [-].
+    """
 
     total: np.ndarray
     free: np.ndarray
@@ -54,7 +64,29 @@ class TwoPhaseUptake:
 
 def equilibrium_shares(gamma: float, beta: float) -> tuple[float, float]:
     """(free, bound) shares of Mm at equilibrium: beta/(gamma+beta), gamma/(gamma+beta)
-    (Carter & Kibler 1978, gamma n_inf = beta N_inf). gamma = 0 is Fickian: (1, 0)."""
+    (Carter & Kibler 1978, gamma n_inf = beta N_inf). gamma = 0 is Fickian: (1, 0).
+
+    Parameters
+    ----------
+    gamma : float
+        The binding rate [1/s].
+    beta : float
+        The release rate [1/s].
+
+    Returns
+    -------
+    tuple of float
+        The free and the bound share of the equilibrium content Mm [-].
+
+    Raises
+    ------
+    ValueError
+        When a rate is negative, or gamma > 0 with beta = 0.
+
+    References
+    ----------
+    Carter & Kibler (1978), see the module docstring.
+    """
     if gamma < 0 or beta < 0:
         raise ValueError("binding and release rates must not be negative")
     if gamma == 0.0:
@@ -69,7 +101,19 @@ class Propagator:
     """exp(A t) = c I + d (A - m I) and its integral int_0^t exp(A u) du = C I + D (A - m I)
     for A = [[-(rate + gamma), beta], [gamma, -beta]] (Cayley-Hamilton / Sylvester for
     2x2 matrices; eigenvalues m +- s <= 0): c = exp(mt) cosh(st), d = exp(mt) sinh(st)/s,
-    C and D the same integrated. Arrays broadcast over modes and times."""
+    C and D the same integrated. Arrays broadcast over modes and times.
+
+    Parameters
+    ----------
+    a11, a12, a21, a22 : numpy.ndarray
+        The entries of A [1/s].
+    m : numpy.ndarray
+        tr A / 2 [1/s].
+    c, d : numpy.ndarray
+        The coefficients of exp(A t): c [-] and d [s].
+    c_int, d_int : numpy.ndarray
+        The same of its time integral: C [s] and D [s^2].
+    """
 
     a11: np.ndarray
     a12: np.ndarray
@@ -97,7 +141,26 @@ def _phi(rate, t):
 def exchange_propagator(rate, t, gamma, beta) -> Propagator:
     """The per-mode 2x2 propagator of free and bound water (module docstring): mode decay
     ``rate`` = D lambda (1/s), exchange rates ``gamma``, ``beta`` (1/s), time ``t`` (s);
-    all broadcast. The s -> 0 limits are taken in closed form."""
+    all broadcast. The s -> 0 limits are taken in closed form.
+
+    Parameters
+    ----------
+    rate : array_like
+        The mode's diffusive decay rate D lambda_k [1/s].
+    t : array_like
+        The times [s].
+    gamma, beta : array_like
+        The binding and release rates [1/s].
+
+    Returns
+    -------
+    Propagator
+        exp(A t) and its integral over [0, t], broadcast over the inputs.
+
+    References
+    ----------
+    Carter & Kibler (1978), see the module docstring.
+    """
     rate, t, gamma, beta = np.broadcast_arrays(*(np.asarray(v, float) for v in (rate, t, gamma, beta)))
     a11, a22 = -(rate + gamma), -beta
     m = 0.5 * (a11 + a22)
@@ -121,7 +184,29 @@ def two_phase_mode_deficit(rate, t, gamma: float, beta: float):
     """(free, bound) deficits of one mode with diffusive decay rate ``rate`` = D lambda
     (1/s) at times ``t`` (s), starting from the equilibrium shares (free, bound):
     exp(A t) x0 with A = [[-(rate + gamma), beta], [gamma, -beta]]. Broadcasts
-    ``rate`` against ``t``; usable for any geometry whose Fickian modes are known."""
+    ``rate`` against ``t``; usable for any geometry whose Fickian modes are known.
+
+    Parameters
+    ----------
+    rate : array_like
+        The mode's decay rate D lambda [1/s].
+    t : array_like
+        The times [s].
+    gamma : float
+        gamma, the rate free water is bound at [1/s].
+    beta : float
+        beta, the rate bound water is freed at [1/s].
+
+    Returns
+    -------
+    free, bound : numpy.ndarray
+        The free and bound deficits of the mode [-], fractions of Mm.
+
+    Raises
+    ------
+    ValueError
+        From :func:`equilibrium_shares` for rates it refuses.
+    """
     free0, bound0 = equilibrium_shares(gamma, beta)
     return exchange_propagator(rate, t, gamma, beta).apply(free0, bound0)
 
@@ -210,7 +295,33 @@ def two_phase_sheet_profile(z, t, diffusivity: float, thickness: float, gamma: f
     """Local free and bound water (fractions of Mm) at z/h in [0, 1] and times ``t``
     (s): ``z`` and ``t`` broadcast, e.g. z[None, :] against t[:, None]. Same modes
     as :func:`two_phase_sheet_uptake` with sin(k pi z/h) 4/(k pi) in place of the
-    mode means; the bound limit is summed in closed form."""
+    mode means; the bound limit is summed in closed form.
+
+    Parameters
+    ----------
+    z : float or array_like
+        The depth as a fraction of the thickness, z/h [-].
+    t : float or array_like
+        The times [s], broadcast with ``z``.
+    diffusivity : float
+        The free water's diffusivity D [m^2/s].
+    thickness : float
+        The sheet's full thickness h [m].
+    gamma, beta : float
+        Binding rate gamma and release rate beta [1/s].
+    tolerance : float
+        Where the mode sums stop: their remainder [-], as a fraction of Mm.
+
+    Returns
+    -------
+    TwoPhaseUptake
+        The local total, free and bound water [-], fractions of Mm, shaped as the
+        broadcast of ``z`` and ``t``.
+
+    References
+    ----------
+    Carter & Kibler (1978), eqs. 1-2 (see the module docstring).
+    """
     free0, bound0 = equilibrium_shares(gamma, beta)
     z, t = np.broadcast_arrays(np.asarray(z, float), np.maximum(np.asarray(t, float), 0.0))
     _, k, rate = _sheet_modes(t, diffusivity, thickness, gamma, beta, tolerance)

@@ -33,7 +33,34 @@ def _at_points(geometry, d0, points):
 def exact_history(geometry, diffusivity, exposure, times, surface_layer_depth=LAYER_DEPTH,
                   cache: RunCache | None = None):
     """Volume-mean and contact-layer-mean moisture (weight %) at ``times`` (s)
-    for any ``Exposure`` of a part with an exact step response (``cache``: the run's)."""
+    for any ``Exposure`` of a part with an exact step response (``cache``: the run's).
+
+    Parameters
+    ----------
+    geometry : Sheet, Bar or Disc
+        A part with a separable exact step response, its lengths in [m].
+    diffusivity : Diffusivity
+        D(T) = D0 exp(-Ea/(R T)) [m^2/s].
+    exposure : Exposure
+        The surface history: temperature [K] and surface moisture [weight %].
+    times : numpy.ndarray
+        The output times [s], shape (n_times,).
+    surface_layer_depth : float
+        The depth of the contact layer whose mean is returned as ``surface`` [m].
+    cache : RunCache, optional
+        The run's cache of step-response tables; None: a fresh one.
+
+    Returns
+    -------
+    dict
+        ``mean`` and ``surface``: the volume mean and the contact-layer mean [weight %],
+        each shape (n_times,).
+
+    References
+    ----------
+    Crank, J., *The Mathematics of Diffusion*, 2nd ed., Oxford University Press, 1975
+    (the step responses; superposed by Duhamel's theorem, see ``superposition.duhamel``).
+    """
     d0 = diffusivity.pre_exponential
     result = (duhamel(_mean_and_layer(geometry, d0, surface_layer_depth), diffusivity, exposure,
                       times, saturation_tau(geometry, d0), cache=cache)
@@ -44,7 +71,28 @@ def exact_history(geometry, diffusivity, exposure, times, surface_layer_depth=LA
 def exact_history_field(geometry, diffusivity, exposure, times, points,
                         cache: RunCache | None = None):
     """Moisture (weight %) at ``points`` (see ``separable.step_field``), shape
-    (n_times, n_points)."""
+    (n_times, n_points).
+
+    Parameters
+    ----------
+    geometry : Sheet, Bar or Disc
+        The part, a Sheet, Bar or solid Disc [m].
+    diffusivity : Diffusivity
+        Its Arrhenius D(T) [m^2/s]; D0 sets the step response.
+    exposure : Exposure
+        Temperature [K] and surface moisture [weight %] over time.
+    times : numpy.ndarray
+        When to read the field [s], shape (n_times,).
+    points : dict of str to numpy.ndarray
+        The points' coordinates [m] by axis name (``z``; ``r``, ``z``; ``x``, ``y``, ``z``).
+    cache : RunCache, optional
+        The run's cache; None: a fresh one.
+
+    Returns
+    -------
+    numpy.ndarray
+        The moisture [weight %] at each point, shape (n_times, n_points).
+    """
     d0 = diffusivity.pre_exponential
     return duhamel(_at_points(geometry, d0, points), diffusivity, exposure, times,
                    saturation_tau(geometry, d0), chunk=8, cache=cache) + exposure.initial_moisture
@@ -54,7 +102,34 @@ def record_history(geometry, diffusivity, exposure, times, accuracy,
                    surface_layer_depth=LAYER_DEPTH, cache: RunCache | None = None):
     """``exact_history`` over a long record by the tabulated sum, with its error estimate
     (relative to the record's largest swing |Ms - M0|, as ``accuracy`` is) and the
-    ``LongRecord`` the fields reuse."""
+    ``LongRecord`` the fields reuse.
+
+    Parameters
+    ----------
+    geometry : Sheet, Bar or Disc
+        A part with Crank's exact series (lengths [m]).
+    diffusivity : Diffusivity
+        The diffusivity D0 exp(-Ea / (R T)) [m^2/s].
+    exposure : Exposure
+        The long record of temperature [K] and surface moisture [weight %].
+    times : numpy.ndarray
+        Output times [s] within the record.
+    accuracy : float
+        The relative accuracy [-] the tabulated sum is sized for.
+    surface_layer_depth : float
+        The contact layer's depth [m].
+    cache : RunCache, optional
+        The run's cache; None: a fresh one.
+
+    Returns
+    -------
+    history : dict
+        ``mean`` and ``surface`` [weight %], each shape (n_times,).
+    error : float
+        The sum's error estimate [-], relative to the record's largest swing.
+    record : LongRecord
+        The tabulated record, reused for the fields.
+    """
     d0 = diffusivity.pre_exponential
     record = LongRecord.of(diffusivity, exposure, times, saturation_tau(geometry, d0)[0],
                            accuracy, run_cache(cache))
@@ -67,7 +142,26 @@ def solve_analytic(problem: DiffusionProblem, chosen: Plan, record_accuracy: flo
                    cache: RunCache | None = None) -> DiffusionResult:
     """The exact mean and contact-layer history (and fields on request) of a ``problem``;
     with ``record_accuracy`` (a long record) by the tabulated sum, and the result carries
-    its error estimate; ``cache``: the run's."""
+    its error estimate; ``cache``: the run's.
+
+    Parameters
+    ----------
+    problem : DiffusionProblem
+        The part [m], D(T) [m^2/s], exposure, times [s] and contact-layer depth [m].
+    chosen : Plan
+        The plan (its reason and error estimate [-] are carried to the result).
+    record_accuracy : float, optional
+        The relative accuracy [-] of the tabulated sum over a long record; None: Duhamel's
+        panels over the few segments.
+    cache : RunCache, optional
+        The run's cache; None: a fresh one.
+
+    Returns
+    -------
+    DiffusionResult
+        The mean and contact-layer moisture [weight %] at the times, fields when the
+        problem stores them (at a structured grid's cell centres [m]).
+    """
     geometry, diffusivity, exposure = problem.geometry, problem.diffusivity, problem.exposure
     times, depth = problem.times, problem.surface_layer_depth
     estimate, record = chosen.error_estimate, None

@@ -39,7 +39,27 @@ def plan_direct(problem: DiffusionProblem, model: str, mirrored: bool = False,
     each taking half the problem's accuracy. ``mirrored``: the solve keeps the part cut at
     its mirror planes (``symmetry_cuts``, the D(c) sweeps); the plan's cells and the cap
     (``caps``: cells of the linear system) count that cut part; ``cache``: the run's, which
-    keeps a planform's cells for the solve."""
+    keeps a planform's cells for the solve.
+
+    Parameters
+    ----------
+    problem : DiffusionProblem
+        The part [m], D(T) [m^2/s], exposure, output times [s] and relative accuracy [-].
+    model : str
+        ``slab``, ``axisymmetric`` or ``solid``.
+    mirrored : bool
+        True where the solve keeps only the part cut at its mirror planes.
+    caps : CellCaps
+        The most cells [-] of each model's linear system.
+    cache : RunCache, optional
+        The run's cache; None: a fresh one.
+
+    Returns
+    -------
+    Plan
+        The cells per axis, the steps (coarse and bisected marches), steps per doubling of
+        scaled time, the grading and the error estimate [-] (space + time).
+    """
     geometry, diffusivity, exposure = problem.geometry, problem.diffusivity, problem.exposure
     accuracy = problem.accuracy
     scales = scales_of(geometry, diffusivity, exposure, cache)
@@ -83,7 +103,35 @@ def discretise(geometry, diffusivity: Diffusivity, cells: tuple[int, ...],
                cache: RunCache | None = None):
     """The FiPy-assembled operator of a Sheet, Disc or Bar on ``cells`` (uniform), or
     graded from ``finest`` by ``growth`` (scaled units, ``sizing``); of a CamPlate or
-    LinkBar on prisms (graded: ``finest`` > 0)."""
+    LinkBar on prisms (graded: ``finest`` > 0).
+
+    Parameters
+    ----------
+    geometry : Sheet, Disc, Bar, CamPlate or LinkBar
+        The part, its lengths in [m].
+    diffusivity : Diffusivity
+        Its D0 per axis [m^2/s] scales the grading.
+    cells : tuple of int
+        Cells per axis [-] of a uniform grid.
+    surface_layer_depth : float
+        The contact layer's depth [m] (its cells' weights are kept).
+    finest : float
+        The finest cell's width in scaled units [-]; 0: uniform.
+    growth : float
+        The ratio of neighbouring widths minus one [-].
+    cache : RunCache, optional
+        The run's cache (a planform's cells); None: a fresh one.
+
+    Returns
+    -------
+    Discretisation
+        The assembled operator, the cell volumes [m^3] and the contact-layer weights.
+
+    Raises
+    ------
+    TypeError
+        For a geometry none of the direct models take.
+    """
     d = tuple(float(v) for v in diffusivity.pre_exponential)
     widths = (sizing.physical_widths(geometry, sizing.extents(geometry, d), d, finest,
                                      growth)
@@ -105,7 +153,23 @@ def discretise(geometry, diffusivity: Diffusivity, cells: tuple[int, ...],
 
 @dataclass(frozen=True)
 class StepPlan:
-    """Step boundaries in scaled time with the surface value at each and the outputs."""
+    """Step boundaries in scaled time with the surface value at each and the outputs.
+
+    Parameters
+    ----------
+    nodes : numpy.ndarray
+        The step boundaries in scaled time tau* [-].
+    times : numpy.ndarray
+        The physical time of each node [s].
+    surface : numpy.ndarray
+        g(t) at each node, right-continuous [weight %].
+    surface_before : numpy.ndarray
+        g(t-) at each node, the value a step ending there sees [weight %].
+    outputs : numpy.ndarray
+        The node index of each requested time [-].
+    restarts : numpy.ndarray
+        The node index of each environment change [-].
+    """
 
     nodes: np.ndarray
     times: np.ndarray       # s, the physical time of each node
@@ -117,7 +181,26 @@ class StepPlan:
 
 def step_plan(exposure, times, scales: Scales, per_doubling: int,
               bisect: bool = False) -> StepPlan:
-    """Nodes of the march (``bisect``: every step halved, for the Richardson pair)."""
+    """Nodes of the march (``bisect``: every step halved, for the Richardson pair).
+
+    Parameters
+    ----------
+    exposure : Exposure
+        The surface history [weight %] and its change times [s].
+    times : numpy.ndarray
+        The output times [s].
+    scales : Scales
+        The problem's time scales (wall time [s] -> scaled time tau* [-]).
+    per_doubling : int
+        Geometric steps per doubling of scaled time [-].
+    bisect : bool
+        True: every step halved.
+
+    Returns
+    -------
+    StepPlan
+        The nodes, their times [s], surface values [weight %], outputs and restarts.
+    """
     tau_star = scales.tau_star
     change = tau_star(exposure.change_times)
     outputs = tau_star(times)
@@ -140,7 +223,34 @@ def solve_direct(problem: DiffusionProblem, chosen: Plan, *, extrapolate: bool =
     """March a Sheet, Disc, Bar or prisms of a CamPlate or LinkBar (``problem``) on its FiPy
     mesh (Richardson pair in time); ``disc``: an operator built by the caller instead;
     ``marcher``: ``march.march`` or one with its arguments (``two_phase_mesh``: two-phase, whose
-    history also carries the bound-water mean); ``cache``: the run's."""
+    history also carries the bound-water mean); ``cache``: the run's.
+
+    Parameters
+    ----------
+    problem : DiffusionProblem
+        The part [m], D(T) [m^2/s], exposure, output times [s], contact-layer depth [m].
+    chosen : Plan
+        The plan of ``plan_direct``: cells, steps per doubling, grading.
+    extrapolate : bool
+        True: Richardson's 2 fine - coarse; False: the bisected march alone.
+    disc : Discretisation, optional
+        An operator built by the caller; None: ``discretise`` builds it.
+    marcher : callable
+        The march (``march.march`` or one with the same arguments).
+    cache : RunCache, optional
+        The run's cache; None: a fresh one.
+
+    Returns
+    -------
+    DiffusionResult
+        The mean and contact-layer moisture [weight %] at the times and the error
+        estimate [-].
+
+    References
+    ----------
+    Richardson, L. F., Gaunt, J. A., "The deferred approach to the limit", *Philosophical
+    Transactions of the Royal Society A* 226, 299-361, 1927, doi:10.1098/rsta.1927.0008.
+    """
     geometry, diffusivity, exposure = problem.geometry, problem.diffusivity, problem.exposure
     times, surface_layer_depth = problem.times, problem.surface_layer_depth
     store_fields, part = problem.store_fields, problem.part
@@ -169,7 +279,26 @@ def solve_direct(problem: DiffusionProblem, chosen: Plan, *, extrapolate: bool =
 def richardson_pair(chosen: Plan, coarse, fine, scale: float, extrapolate: bool):
     """(combine, estimate): 2 fine - coarse (or the fine march alone) and its error: the
     plan's estimate, unless the march's own indicator (space part of the plan + the pair's
-    time error, ``PAIR_TO_EXTRAPOLATED`` d^2 extrapolated, d alone) says more."""
+    time error, ``PAIR_TO_EXTRAPOLATED`` d^2 extrapolated, d alone) says more.
+
+    Parameters
+    ----------
+    chosen : Plan
+        The plan: its error estimate [-] and steps per doubling.
+    coarse, fine : object
+        The marches on the plan's steps and on them bisected (``mean`` [weight %]).
+    scale : float
+        The swing |Ms - M0| the error is relative to [weight %].
+    extrapolate : bool
+        True: combine as 2 fine - coarse; False: take the fine march.
+
+    Returns
+    -------
+    combine : callable
+        ``combine(coarse_values, fine_values)``: the combined values.
+    estimate : float
+        The error estimate [-], relative to ``scale``.
+    """
     pair = float(np.max(np.abs(fine.mean - coarse.mean))) / scale
     space = chosen.error_estimate - TIME_ERROR / chosen.steps_per_doubling ** 2
     if extrapolate:

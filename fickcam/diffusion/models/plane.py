@@ -67,7 +67,22 @@ FIELD_CHUNK = 8      # output times per Duhamel pass of the fields (memory)
 def peak_weight(perimeter: float, area: float, ages: np.ndarray) -> float:
     """Largest planform uptake x sheet unsaturated fraction at ``ages``, the factor that
     turns a relative planform error into an error of the mean (``leading_uptake``); 0
-    without ages."""
+    without ages.
+
+    Parameters
+    ----------
+    perimeter : float
+        The outline's perimeter in scaled units (lengths over the thickness) [-].
+    area : float
+        The planform's area in scaled units [-].
+    ages : numpy.ndarray
+        The scaled ages tau* the outputs read [-].
+
+    Returns
+    -------
+    float
+        max over the ages of the leading uptake times the sheet's unsaturated fraction [-].
+    """
     if np.size(ages) == 0:
         return 0.0
     return float(np.max(leading_uptake(perimeter, area, ages) * sheet_fraction(ages)))
@@ -75,14 +90,45 @@ def peak_weight(perimeter: float, area: float, ages: np.ndarray) -> float:
 
 def leading_uptake(perimeter: float, area: float, tau):
     """min(1, 2 P sqrt(tau / pi) / A): the planform uptake's leading term (Crank 1975 eq. 4.20
-    per unit edge), an upper bound for convex outlines."""
+    per unit edge), an upper bound for convex outlines.
+
+    Parameters
+    ----------
+    perimeter : float
+        P, the outline's length in thicknesses (anisotropy-scaled) [-].
+    area : float
+        A, the planform's area in thicknesses squared [-].
+    tau : array_like
+        Scaled time tau* = D t / h^2 [-].
+
+    Returns
+    -------
+    numpy.ndarray
+        The planform's fractional uptake, at most 1 [-].
+
+    References
+    ----------
+    Crank (1975), eq. 4.20 (see the module docstring).
+    """
     return np.minimum(1.0, 2.0 * perimeter * np.sqrt(np.asarray(tau, float) / np.pi) / area)
 
 
 @dataclass(frozen=True)
 class MeshDesign:
     """The graded mesh for a target: finest spacing h0 and growth g (scaled units), the
-    estimated number of nodes and the relative uptake error it leaves at ``start``."""
+    estimated number of nodes and the relative uptake error it leaves at ``start``.
+
+    Parameters
+    ----------
+    finest : float
+        The finest node spacing h0 in scaled units [-] (0 growth: the uniform spacing).
+    growth : float
+        The growth g of the spacing from row to row [-].
+    nodes : int
+        The estimated number of nodes [-].
+    relative_error : float
+        The relative error of the planform uptake it leaves at the design time [-].
+    """
 
     finest: float
     growth: float
@@ -99,7 +145,26 @@ def mesh_design(target: float, start: float, perimeter: float, tightest: float,
     cheapest split at
     h0 / sqrt(t) = GROWTH_REACH g = S / 2, S = sqrt(target / MESH_ERROR); g is at most
     ``grading.MAX_GROWTH``, h0 gives ``FEATURE_POINTS`` points round the tightest curve
-    (curvature ``tightest``), and both coarsen together when the nodes exceed ``cap``."""
+    (curvature ``tightest``), and both coarsen together when the nodes exceed ``cap``.
+
+    Parameters
+    ----------
+    target : float
+        The relative uptake error aimed at [-].
+    start : float
+        The scaled time tau* from which the target holds [-].
+    perimeter : float
+        The outline's scaled perimeter [-].
+    tightest : float
+        The largest curvature of the outline in scaled units [-].
+    cap : int
+        The most nodes [-].
+
+    Returns
+    -------
+    MeshDesign
+        h0, g, the node count and the relative error the design leaves at ``start``.
+    """
     reach = math.sqrt(max(target, 1e-300) / MESH_ERROR)
     growth = min(MAX_GROWTH, 0.5 * reach / GROWTH_REACH)
     finest = min((reach - GROWTH_REACH * growth) * math.sqrt(start),
@@ -116,7 +181,26 @@ def mesh_design(target: float, start: float, perimeter: float, tightest: float,
 def uniform_design(target: float, start: float, area: float, tightest: float,
                    cap: int) -> MeshDesign:
     """The uniform lattice of outlines without loops (``triangulate`` falls back to it):
-    r = MESH_ERROR h^2 / t, about 2 area / (sqrt 3 h^2) nodes, at most ``cap``."""
+    r = MESH_ERROR h^2 / t, about 2 area / (sqrt 3 h^2) nodes, at most ``cap``.
+
+    Parameters
+    ----------
+    target : float
+        The relative uptake error aimed at [-].
+    start : float
+        The scaled time tau* from which it holds [-].
+    area : float
+        The planform's scaled area [-].
+    tightest : float
+        The largest scaled curvature of the outline [-].
+    cap : int
+        The most nodes [-].
+
+    Returns
+    -------
+    MeshDesign
+        The spacing h (``finest``), growth 0, nodes and the relative error at ``start``.
+    """
     spacing = min(math.sqrt(max(target, 1e-300) * start / MESH_ERROR),
                   2 * math.pi / (FEATURE_POINTS * max(tightest, 1e-9)))
     spacing = max(spacing, math.sqrt(2 * area / (math.sqrt(3) * cap)))
@@ -128,7 +212,20 @@ def mesh_first_step(finest: float, switch: float) -> float:
     """First step of the mesh's march where the expansion serves the outputs before
     ``switch``: h0^2 / 16 (before that the mesh resolves nothing) or six doublings before
     half the switch, the larger (backward Euler damps the start: results moved by the time
-    error only, 2e-5 on the fourbar link); the common first step without an expansion."""
+    error only, 2e-5 on the fourbar link); the common first step without an expansion.
+
+    Parameters
+    ----------
+    finest : float
+        The mesh's finest scaled spacing h0 [-].
+    switch : float
+        The scaled time at which the expansion hands over to the mesh [-]; 0: none.
+
+    Returns
+    -------
+    float
+        The first step in scaled time tau* [-].
+    """
     if switch <= 0:
         return FIRST_STEP
     return max(FIRST_STEP, MESH_FIRST_STEP * finest ** 2, switch / 2 ** MESH_LEAD_DOUBLINGS)
@@ -150,7 +247,26 @@ def _planform_size(part, d, expansion) -> tuple[float, float, float]:
 def planform_mesh(part, finest: float, growth: float, stretch: tuple[float, float],
                   cache: RunCache):
     """The triangle mesh plan and solve share (``triangles.triangulate``; ``finest`` scaled),
-    made once per run (``cache``)."""
+    made once per run (``cache``).
+
+    Parameters
+    ----------
+    part : CamPlate or LinkBar
+        The prismatic part, its lengths in [m].
+    finest : float
+        The finest spacing in thicknesses [-].
+    growth : float
+        The spacing's growth from row to row [-].
+    stretch : tuple of float
+        The planar axes' stretch sqrt(D_z / D_x), sqrt(D_z / D_y) of an anisotropic D [-].
+    cache : RunCache
+        The run's cache.
+
+    Returns
+    -------
+    Triangulation
+        The graded triangle mesh of the outline (points in [m]).
+    """
     return cache.get(("planform mesh", part, finest, growth, stretch), lambda: triangulate(
         part, finest * part.thickness, growth=growth, stretch=stretch))
 
@@ -162,7 +278,39 @@ def planform_response(geometry, finest: float, growth: float, d: tuple, layer_de
     marches, kept in the run's ``cache`` by the exact inputs that determine it (geometries
     compare by value), so re-runs at other output times (the limit search) and the cases of
     a sweep worker that share the part, its diffusivity ratios and its plan (a climate sweep
-    at one temperature) march once. The response's arrays are read-only."""
+    at one temperature) march once. The response's arrays are read-only.
+
+    Parameters
+    ----------
+    geometry : CamPlate or LinkBar
+        The part, its lengths in [m].
+    finest : float
+        The mesh's finest spacing in thicknesses [-].
+    growth : float
+        The spacing's growth [-].
+    d : tuple of float
+        D0 along x, y, z [m^2/s].
+    layer_depth : float
+        The contact layer's depth [m].
+    end : float
+        The last scaled time tau* the response covers [-].
+    per_doubling : int
+        Backward-Euler steps per doubling of scaled time [-].
+    first_step : float
+        The first step in scaled time [-].
+    keep_fields : bool
+        True: keep the nodal fields of the response.
+    part : str
+        The part's name (progress messages).
+    cache : RunCache
+        The run's cache.
+
+    Returns
+    -------
+    tuple
+        The P1 operator, the unit-step response (uptake fractions [-] over scaled time)
+        and the time-error pair [-].
+    """
     def build():
         mesh = planform_mesh(geometry, finest, growth, stretch_of(d), cache)
         planar = plane_operator(mesh, geometry, layer_depth, d)
@@ -175,7 +323,20 @@ def planform_response(geometry, finest: float, growth: float, d: tuple, layer_de
 
 def expansion_error_at(expansion, ages: np.ndarray) -> float:
     """The expansion's error indicator x the sheet's unsaturated fraction, largest at the
-    ``ages`` the outputs read (0 without ages)."""
+    ``ages`` the outputs read (0 without ages).
+
+    Parameters
+    ----------
+    expansion : ShortTime
+        The outline's short-time expansion.
+    ages : numpy.ndarray
+        The scaled ages tau* the outputs read [-].
+
+    Returns
+    -------
+    float
+        The largest weighted error indicator [-].
+    """
     if np.size(ages) == 0:
         return 0.0
     return float(np.max(weighted(expansion.uptake_error(ages), sheet_fraction(ages))))
@@ -193,7 +354,22 @@ def plan_plane(problem: DiffusionProblem, caps: CellCaps = MAX_CELLS,
     The cells are those of the mesh ``solve`` builds. The plan reads nothing of the contact
     layer: the problem's layer depth (the solve's) only lets plan and solve share the
     expansion (``expansion_of``); ``caps``: the most nodes of the mesh and cells of the
-    sheet; ``cache``: the run's (None: a fresh one)."""
+    sheet; ``cache``: the run's (None: a fresh one).
+
+    Parameters
+    ----------
+    problem : DiffusionProblem
+        The part [m], D(T) [m^2/s], exposure, output times [s] and relative accuracy [-].
+    caps : CellCaps
+        The most nodes [-] of the planform mesh and cells of the sheet.
+    cache : RunCache, optional
+        The run's cache; None: a fresh one.
+
+    Returns
+    -------
+    Plan
+        The mesh's nodes, the steps, the grading and the error estimate [-].
+    """
     cache = run_cache(cache)
     geometry, diffusivity, exposure = problem.geometry, problem.diffusivity, problem.exposure
     scales = scales_of(geometry, diffusivity, exposure, cache)
@@ -261,9 +437,23 @@ def _design(expansion, switch, end, ages, perimeter, area, tightest, accuracy, t
 
 
 def solve_plane(problem: DiffusionProblem, chosen: Plan, cache: RunCache | None = None):
-    """CamPlate / LinkBar: planform step response x sheet step response, Duhamel over the
-    history (``PrismSuperposition``); the estimate adds the error of the sum itself on long
-    records. ``cache``: the run's (None: a fresh one)."""
+    """Planform x sheet step responses of a CamPlate or LinkBar, Duhamel-superposed over the
+    history (``PrismSuperposition``; Crank 1975 eqs. 4.34, 4.51, see the module docstring).
+
+    Parameters
+    ----------
+    problem : DiffusionProblem
+        The part [m], D(T) [m^2/s], exposure, times [s], accuracy [-], layer depth [m].
+    chosen : Plan
+        The plan of ``plan_plane``.
+    cache : RunCache, optional
+        The run's cache; None: a fresh one.
+
+    Returns
+    -------
+    DiffusionResult
+        Mean and contact-layer moisture [weight %]; error estimate [-] (+ the sum's own).
+    """
     cache = run_cache(cache)
     geometry, diffusivity, exposure = problem.geometry, problem.diffusivity, problem.exposure
     times, accuracy, part = problem.times, problem.accuracy, problem.part
@@ -393,7 +583,23 @@ class PrismSuperposition:
     """How ``solve_plane`` superposes over the exposure: Duhamel's panels (``duhamel``) for
     a few segments; for a long record (``record.is_long_record``) the tabulated sum of
     ``tabulated``, cost linear in the rows, shared by the mean, the layer and the fields,
-    within ``RECORD_SHARE`` of the accuracy (``plan`` designs the rest)."""
+    within ``RECORD_SHARE`` of the accuracy (``plan`` designs the rest).
+
+    Parameters
+    ----------
+    diffusivity : Diffusivity
+        D(T) [m^2/s].
+    exposure : Exposure
+        The surface history [weight %] over time [s].
+    times : numpy.ndarray
+        The output times [s].
+    geometry : CamPlate or LinkBar
+        The part, its lengths in [m].
+    record : LongRecord or None
+        The tabulated sum of a long record; None: Duhamel's panels.
+    cache : RunCache
+        The run's cache.
+    """
 
     diffusivity: object
     exposure: object
@@ -445,7 +651,20 @@ def extension(result: DiffusionResult, superposed):
     """``DiffusionResult.extend`` of a plane solve over a long record: the result at its
     times and ``at`` (inside their span) together, the new rows summed with the stored plan,
     planform response, forcing and tables (``PrismSuperposition.at``), the stored rows as they
-    are."""
+    are.
+
+    Parameters
+    ----------
+    result : DiffusionResult
+        The stored solve, its times [s].
+    superposed : callable
+        ``superposed(times) -> (mean, _, layer, _)`` [weight %] at other times [s].
+
+    Returns
+    -------
+    callable
+        ``extend(at) -> DiffusionResult``: the result at its times and ``at`` [s].
+    """
 
     def extend(at) -> DiffusionResult:
         at = np.asarray(at, float)

@@ -36,7 +36,32 @@ class Discretisation:
     FiPy's finite volumes: M = diag(volumes). The hand-written P1 elements of the plane
     model (``p1``) add a consistent ``mass`` and nodes held at the surface value g
     (eliminated): their mass coupling ``held_mass`` (M_fb 1, the jump term of a change
-    of g) and their shares of the mean and the layer (``held_mean``, ``held_layer``)."""
+    of g) and their shares of the mean and the layer (``held_mean``, ``held_layer``).
+
+    Parameters
+    ----------
+    volumes : numpy.ndarray
+        The scaled cell volumes [-], shape (n,): the lumped mass M = diag(volumes).
+    stiffness : scipy.sparse.csr_matrix
+        K [-], shape (n, n).
+    boundary : numpy.ndarray
+        f [-], shape (n,): the coupling to a unit surface value.
+    mean_weights : numpy.ndarray
+        Weights [-] of the volume mean, summing to 1 with ``held_mean``.
+    layer_weights : numpy.ndarray
+        Weights [-] of the contact-layer mean, summing to 1 with ``held_layer``.
+    coordinates : dict of str to numpy.ndarray
+        The physical cell centres [m] by axis name.
+    mass : scipy.sparse.csr_matrix, optional
+        The consistent mass [-]; None: diag(volumes).
+    held_mass : numpy.ndarray, optional
+        M_fb 1 of the nodes held at the surface value [-].
+    held_mean, held_layer : float
+        The held nodes' shares of the mean and of the layer mean [-].
+    factors : OrderedDict
+        (dt, theta) -> (matrix, LU): the factorisations every march on this operator
+        shares.
+    """
 
     volumes: np.ndarray            # (n,) scaled cell volumes (M = diag(volumes)), lumped mass
     stiffness: sparse.csr_matrix   # K, (n, n)

@@ -82,7 +82,20 @@ def assemble(mesh, corrected: bool = False, exposed: np.ndarray | None = None
 
 def interval_mesh(dx, nx: int | None = None):
     """FiPy ``Grid1D`` from x = 0 [-]: ``nx`` cells of width ``dx``, or (``nx`` None) cells
-    of the widths in the array ``dx``."""
+    of the widths in the array ``dx``.
+
+    Parameters
+    ----------
+    dx : float or numpy.ndarray
+        The cell width, or the widths, in scaled units [-].
+    nx : int, optional
+        The number of cells [-]; None: one per width of ``dx``.
+
+    Returns
+    -------
+    fipy.Grid1D
+        The 1-D mesh.
+    """
     from fipy import Grid1D
 
     return Grid1D(dx=dx, nx=nx)
@@ -91,7 +104,20 @@ def interval_mesh(dx, nx: int | None = None):
 def cylindrical_mesh(radial: dict, axial: dict, inner_radius: float):
     """FiPy ``CylindricalGrid2D`` in (r, z) [-]: each axis a count ``n`` and a spacing
     ``d`` (uniform) or ``n = None`` and the array of widths ``d``; the axis starts at
-    ``inner_radius`` [-] (the bore), z at 0."""
+    ``inner_radius`` [-] (the bore), z at 0.
+
+    Parameters
+    ----------
+    radial, axial : dict
+        ``{"n": count or None, "d": spacing or widths}`` of r and z, scaled [-].
+    inner_radius : float
+        Where r starts, scaled [-] (0: a solid disc).
+
+    Returns
+    -------
+    fipy.CylindricalGrid2D
+        The axisymmetric mesh in (r, z).
+    """
     from fipy import CylindricalGrid2D
 
     return CylindricalGrid2D(nr=radial["n"], nz=axial["n"], dr=radial["d"], dz=axial["d"],
@@ -100,7 +126,18 @@ def cylindrical_mesh(radial: dict, axial: dict, inner_radius: float):
 
 def box_mesh(axes: list[dict]):
     """FiPy ``Grid3D`` [-]: each of x, y, z a count ``n`` and a spacing ``d`` (uniform) or
-    ``n = None`` and the array of widths ``d``."""
+    ``n = None`` and the array of widths ``d``.
+
+    Parameters
+    ----------
+    axes : list of dict
+        ``{"n": count or None, "d": spacing or widths}`` of x, y and z, scaled [-].
+
+    Returns
+    -------
+    fipy.Grid3D
+        The box mesh from the origin.
+    """
     from fipy import Grid3D
 
     x, y, z = axes

@@ -30,7 +30,18 @@ MAX_GROWTH = 0.25  # at most 25 % wider than the neighbour
 
 
 def growth_rate(tolerance: float) -> float:
-    """The growth g whose own error GROWTH_ERROR g^2 is ``tolerance``, at most ``MAX_GROWTH``."""
+    """The growth g whose own error GROWTH_ERROR g^2 is ``tolerance``, at most ``MAX_GROWTH``.
+
+    Parameters
+    ----------
+    tolerance : float
+        The relative error [-] the grading may add.
+
+    Returns
+    -------
+    float
+        g, the relative growth of a cell's width over its neighbour's [-].
+    """
     return min(MAX_GROWTH, math.sqrt(max(tolerance, 0.0) / GROWTH_ERROR))
 
 
@@ -38,7 +49,33 @@ def graded_widths(length: float, finest: float, growth: float, ends: str = "both
     """Widths of cells across ``length``, ``finest`` at the exposed end(s)
     (``ends``: ``both``, ``low`` or ``high``), each at most (1 + ``growth``) times
     its neighbour; uniform when ``growth`` is 0. The widths sum to ``length`` and
-    none exceeds ``finest`` at the exposed faces (they are scaled down to fit)."""
+    none exceeds ``finest`` at the exposed faces (they are scaled down to fit).
+
+    Parameters
+    ----------
+    length : float
+        The span to cover [m] (or scaled [-]; the widths take its unit).
+    finest : float
+        The width at the exposed end(s), in ``length``'s unit [m].
+    growth : float
+        g, the relative growth from a cell to the next [-]; 0: uniform.
+    ends : str
+        The exposed end(s): ``both``, ``low`` or ``high``.
+
+    Returns
+    -------
+    numpy.ndarray
+        The widths from the low end, summing to ``length`` [m].
+
+    Raises
+    ------
+    ValueError
+        When ``ends`` is none of the three, or ``length`` or ``finest`` is not positive.
+
+    References
+    ----------
+    Manteuffel & White (1986), see the module docstring.
+    """
     if ends not in ("both", "low", "high"):
         raise ValueError(f"ends {ends!r}: both, low or high")
     if not (length > 0 and finest > 0):

@@ -46,7 +46,24 @@ from .discretisation import Discretisation
 
 def cotangent_stiffness(points: np.ndarray, triangles: np.ndarray) -> sparse.csr_matrix:
     """P1 stiffness K_jk = -(1/2) sum over the triangles at edge jk of cot(angle opposite),
-    K_jj = -sum_k K_jk (Duffin 1959; Pinkall & Polthier 1993)."""
+    K_jj = -sum_k K_jk (Duffin 1959; Pinkall & Polthier 1993).
+
+    Parameters
+    ----------
+    points : numpy.ndarray
+        The nodes, shape (n, 2), in scaled coordinates [-].
+    triangles : numpy.ndarray
+        The triangles' node indices, shape (m, 3).
+
+    Returns
+    -------
+    scipy.sparse.csr_matrix
+        K, shape (n, n) [-] (the Laplacian's stiffness is scale-free in 2-D).
+
+    References
+    ----------
+    Duffin (1959); Pinkall & Polthier (1993): see the module docstring.
+    """
     n = len(points)
     corners = points[triangles]
     rows, cols, values = [], [], []
@@ -62,7 +79,20 @@ def cotangent_stiffness(points: np.ndarray, triangles: np.ndarray) -> sparse.csr
 
 
 def consistent_mass(points: np.ndarray, triangles: np.ndarray) -> sparse.csr_matrix:
-    """P1 mass M_jk = sum over triangles |T| (1 + delta_jk) / 12."""
+    """P1 mass M_jk = sum over triangles |T| (1 + delta_jk) / 12.
+
+    Parameters
+    ----------
+    points : numpy.ndarray
+        Node coordinates, scaled [-], one row each.
+    triangles : numpy.ndarray
+        The elements as node triples.
+
+    Returns
+    -------
+    scipy.sparse.csr_matrix
+        M, shape (n, n), in the points' units squared ([-] when scaled).
+    """
     n = len(points)
     local = (np.ones((3, 3)) + np.eye(3)).ravel() / 12.0
     values = triangle_areas(points, triangles)[:, None] * local[None, :]
@@ -82,7 +112,31 @@ def p1_operator(points: np.ndarray, triangles: np.ndarray, fixed: np.ndarray, la
     (1-D; Thomée 2006 ch. 15), fields down to -0.5 of the step at early outputs of coarse
     meshes; it serves the fields. (Lumping only the early steps spoils the accuracy for
     long after: 3.5x the error at 10 h0^2 on a link.) ``layer`` (n,): the integral
-    weights of the contact layer (any scale)."""
+    weights of the contact layer (any scale).
+
+    Parameters
+    ----------
+    points : numpy.ndarray
+        The mesh's nodes in scaled coordinates [-], shape (n, 2).
+    triangles : numpy.ndarray
+        Node triples of the P1 elements, shape (m, 3).
+    fixed : numpy.ndarray
+        Bool mask (n,) of the outline nodes held at the surface value.
+    layer : numpy.ndarray
+        The contact layer's integral weight of each node (n,), any scale.
+    coordinates : dict of str to numpy.ndarray
+        Physical node coordinates [m] by axis name, each (n,).
+
+    Returns
+    -------
+    Discretisation
+        The operator on the free nodes, with the consistent mass and the held nodes'
+        mass coupling and shares of the mean and the layer [-].
+
+    References
+    ----------
+    Thomée (2006), ch. 1 and 15 (see the module docstring).
+    """
     stiffness = cotangent_stiffness(points, triangles)
     mass = consistent_mass(points, triangles)
     free = ~fixed
@@ -103,7 +157,26 @@ def layer_weights(points: np.ndarray, triangles: np.ndarray, distance, depth: fl
                   subdivisions: int = 4) -> np.ndarray:
     """Integral of each hat function over the layer {distance(x) <= depth}: the midpoint
     rule on ``subdivisions``^2 sub-triangles of every triangle (``distance(points, bound)``
-    may return inf beyond ``bound``)."""
+    may return inf beyond ``bound``).
+
+    Parameters
+    ----------
+    points : numpy.ndarray
+        The nodes, shape (n, 2) [m].
+    triangles : numpy.ndarray
+        The triangles' node indices, shape (m, 3).
+    distance : callable
+        ``distance(xy, bound)``: each point's distance to the contact edge [m].
+    depth : float
+        The layer's depth [m].
+    subdivisions : int
+        Sub-triangles per triangle edge of the midpoint rule [-].
+
+    Returns
+    -------
+    numpy.ndarray
+        The integral of each node's hat function over the layer [m^2], shape (n,).
+    """
     n = subdivisions
     up = [(i + 1 / 3, j + 1 / 3) for i in range(n) for j in range(n - i)]
     down = [(i + 2 / 3, j + 2 / 3) for i in range(n - 1) for j in range(n - 1 - i)]
@@ -122,7 +195,24 @@ def layer_weights(points: np.ndarray, triangles: np.ndarray, distance, depth: fl
 def plane_operator(mesh: Triangulation, part, layer_depth: float, d) -> Discretisation:
     """P1 finite elements of the in-plane problem in scaled coordinates (``triangles``), the
     outline nodes held at the surface value; layer: the integrals of the hat functions
-    over the band within ``layer_depth`` of the contact edge (at least the first row)."""
+    over the band within ``layer_depth`` of the contact edge (at least the first row).
+
+    Parameters
+    ----------
+    mesh : Triangulation
+        The planform's triangle mesh [m] (``triangles.triangulate``).
+    part : CamPlate or LinkBar
+        The part; its thickness [m] scales the coordinates.
+    layer_depth : float
+        The contact layer's depth [m].
+    d : sequence of float
+        D0 along x, y, z [m^2/s].
+
+    Returns
+    -------
+    Discretisation
+        The P1 operator in scaled coordinates, node coordinates ``x``, ``y`` [m].
+    """
     depth = max(layer_depth, 1.0001 * float(mesh.contact_distance.min()))
     layer = layer_weights(mesh.points, mesh.triangles, mesh.contact, depth)
     scaled = mesh.points * np.asarray(planar_scale(part, d))[None, :]

@@ -27,7 +27,33 @@ def prism(tess, thickness: float, z_widths: np.ndarray, layer_share: np.ndarray,
     mid-layer, so every line between neighbouring cell points is normal to their
     face (see ``admissible``) and FiPy's two-point flux is consistent. Layer: cells
     weighted by ``layer_share`` (fraction of the planform cell within the contact
-    band), over the whole thickness, as in the plane model."""
+    band), over the whole thickness, as in the plane model.
+
+    Parameters
+    ----------
+    tess : Tessellation
+        The planform's admissible cells (``admissible.Tessellation``), points [m].
+    thickness : float
+        The part's thickness [m].
+    z_widths : numpy.ndarray
+        The layers' widths from a face [m].
+    layer_share : numpy.ndarray
+        Each planform cell's share within the contact band [-].
+    d : tuple of float
+        D0 along x, y, z [m^2/s].
+    mid_plane : bool
+        True: the widths cover half the thickness and the top is an insulated mirror.
+
+    Returns
+    -------
+    Discretisation
+        The prisms' operator, cell centres ``x``, ``y``, ``z`` [m].
+
+    Raises
+    ------
+    ValueError
+        When the tessellation was stretched for another ratio of in-plane diffusivities.
+    """
     scale = np.array([axis_scale(thickness, d[i], d[2]) for i in range(2)]) / tess.stretch
     if not np.isclose(scale[0], scale[1], rtol=1e-9):
         raise ValueError("the tessellation was stretched for another diffusivity ratio")
@@ -51,7 +77,26 @@ def planar(tess, scale: float, layer_share: np.ndarray) -> Discretisation:
     and FiPy's two-point flux is consistent (Eymard, Gallouet & Herbin 2000, Definition
     9.1; see ``admissible``). Coordinates: stretched planform x ``scale`` (scaled units).
     Every outline side holds the surface value; the mirror lines are insulated.
-    Layer: cells weighted by ``layer_share`` (fraction within the contact band)."""
+    Layer: cells weighted by ``layer_share`` (fraction within the contact band).
+
+    Parameters
+    ----------
+    tess : Tessellation
+        The planform's admissible cells (``admissible.Tessellation``), points [m].
+    scale : float
+        Stretched planform -> scaled coordinate factor [1/m].
+    layer_share : numpy.ndarray
+        Each cell's share within the contact band [-].
+
+    Returns
+    -------
+    Discretisation
+        The planar operator, cell centres ``x``, ``y`` [m].
+
+    References
+    ----------
+    Eymard, Gallouet & Herbin (2000), Definition 9.1 (see ``fipy_backend``).
+    """
     sides, cell_sides = sides_of_cells(tess)
     cell_faces = _padded(cell_sides, max(s.size for s in cell_sides))
     mesh = centred_mesh(2, tess.points.T * scale, sides.T, cell_faces, tess.centres.T * scale)
@@ -73,7 +118,20 @@ def _padded(rows: list[np.ndarray], width: int) -> np.ndarray:
 
 def sides_of_cells(tess) -> tuple[np.ndarray, list[np.ndarray]]:
     """Planform edges that bound a cell (between two cells or on the outline), and the
-    indices of those edges around each cell."""
+    indices of those edges around each cell.
+
+    Parameters
+    ----------
+    tess : Tessellation
+        The planform's cells, whose sides are wanted (points [m]).
+
+    Returns
+    -------
+    sides : numpy.ndarray
+        The bounding edges' vertex pairs, shape (s, 2).
+    cell_sides : list of numpy.ndarray
+        Indices into ``sides`` around each cell.
+    """
     edges, side_edge = unique_edges(tess.triangles)
     pairs = np.unique(np.column_stack([side_edge.ravel(), np.repeat(tess.cell_of, 3)]), axis=0)
     cells_at = np.bincount(pairs[:, 0], minlength=len(edges))        # distinct cells at an edge
@@ -91,7 +149,26 @@ def prism_mesh(tess, scale: float, z_nodes: np.ndarray, mid_plane: bool):
     and the mask of its insulated faces (mirror lines; the top with ``mid_plane``).
     Numbering: vertex p of level k is k n + p; the planform cells' faces at level k
     come first (k c + cell), then the side faces of layer k (k s + side); cell
-    c of layer k is k c + cell."""
+    c of layer k is k c + cell.
+
+    Parameters
+    ----------
+    tess : Tessellation
+        The cells to extrude (stretched points [m]).
+    scale : float
+        The factor [1/m] taking stretched planform points to the mesh's scaled ones.
+    z_nodes : numpy.ndarray
+        The layers' boundaries as fractions of the thickness, z / L [-].
+    mid_plane : bool
+        True: the top is the insulated mid-plane.
+
+    Returns
+    -------
+    mesh : fipy.meshes.mesh.Mesh
+        The prisms in scaled coordinates [-].
+    insulated : numpy.ndarray
+        Bool mask of the insulated faces.
+    """
     n, cells, layers = len(tess.points), tess.cells, z_nodes.size - 1
     sides, cell_sides = sides_of_cells(tess)
     vertices = np.vstack([np.tile(tess.points.T * scale, layers + 1),

@@ -42,7 +42,23 @@ CAP_STEP = 1.15  # the finest width grows by this factor until the cells fit the
 
 @dataclass(frozen=True)
 class Layout:
-    """Cells per axis (a prism: planform cells, z cells), and the grading if any."""
+    """Cells per axis (a prism: planform cells, z cells), and the grading if any.
+
+    Parameters
+    ----------
+    cells : tuple of int
+        Cells per axis [-] of the whole part.
+    space_error : float
+        The spatial error estimate [-], relative to the swing.
+    finest : float
+        The finest cells' width in scaled units [-]; 0: uniform.
+    growth : float
+        The widths' growth from cell to cell [-].
+    note : str
+        A few words for the plan's reason.
+    halved : tuple of int
+        The axes the solve cuts at their mirror plane.
+    """
 
     cells: tuple[int, ...]
     space_error: float
@@ -63,13 +79,39 @@ class Layout:
 
 def unknowns(cells, halved=()) -> int:
     """Cells of the linear system on ``cells`` per axis: the axes in ``halved`` cut at
-    their mirror plane (``symmetry_cuts``: half of the count rounded up to even)."""
+    their mirror plane (``symmetry_cuts``: half of the count rounded up to even).
+
+    Parameters
+    ----------
+    cells : sequence of int
+        Cells per axis of the whole part [-].
+    halved : sequence of int
+        The axes cut in two.
+
+    Returns
+    -------
+    int
+        The cells the solve assembles [-].
+    """
     return int(math.prod(-(-c // 2) if axis in halved else c for axis, c in enumerate(cells)))
 
 
 def extents(geometry, d) -> tuple[float, ...]:
     """Scaled extents of the numerical model's axes: each physical extent times
-    sqrt(D_z / D_i) / L (``scaling``)."""
+    sqrt(D_z / D_i) / L (``scaling``).
+
+    Parameters
+    ----------
+    geometry : Sheet, Disc, Bar, CamPlate or LinkBar
+        The part, its lengths in [m].
+    d : sequence of float
+        D0 along x, y, z [m^2/s].
+
+    Returns
+    -------
+    tuple of float
+        The scaled extent of each axis [-] (the thickness: 1).
+    """
     h = float(geometry.thickness)
     if isinstance(geometry, Sheet):
         return (1.0,)
@@ -84,7 +126,18 @@ def extents(geometry, d) -> tuple[float, ...]:
 
 def exposed_ends(geometry) -> tuple[str, ...]:
     """Which ends of each axis are exposed: a Disc's radius only at the rim unless it has
-    a bore; every face of a Bar; the faces of a prism (z)."""
+    a bore; every face of a Bar; the faces of a prism (z).
+
+    Parameters
+    ----------
+    geometry : Sheet, Disc, Bar, CamPlate or LinkBar
+        The part.
+
+    Returns
+    -------
+    tuple of str
+        ``both``, ``low`` or ``high`` per axis (as ``grading.graded_widths`` takes).
+    """
     if isinstance(geometry, Disc):
         return ("both" if geometry.inner_radius > 0 else "high", "both")
     return ("both",) * (3 if isinstance(geometry, Bar) else 1)
@@ -93,7 +146,28 @@ def exposed_ends(geometry) -> tuple[str, ...]:
 def uniform(extents, accuracy: float, t_lo: float, cap: int, space_error: float,
             halved=()) -> Layout:
     """Equal cells on every axis (see the module docstring), shrunk to the cap; a
-    ``halved`` axis has an even count (its mirror plane a face) and half of it solved."""
+    ``halved`` axis has an even count (its mirror plane a face) and half of it solved.
+
+    Parameters
+    ----------
+    extents : sequence of float
+        The axes' scaled extents [-].
+    accuracy : float
+        The relative accuracy asked for [-]; the space error takes half of it.
+    t_lo : float
+        The earliest output's scaled time tau* [-].
+    cap : int
+        The most cells [-] of the linear system.
+    space_error : float
+        The error model's factor S [-] (``error_model.space_error``).
+    halved : sequence of int
+        Axes cut at their mirror plane.
+
+    Returns
+    -------
+    Layout
+        The uniform cells and their error estimate [-].
+    """
     dimensions = len(extents)
     spacing = math.sqrt(0.5 * accuracy * t_lo / (space_error * dimensions))
     parts = [2 if axis in halved else 1 for axis in range(dimensions)]
@@ -111,24 +185,97 @@ def uniform(extents, accuracy: float, t_lo: float, cap: int, space_error: float,
 
 def graded_error(finest: float, growth: float, t_lo: float, axes: int,
                  space_error: float) -> float:
+    """The spatial error of a graded layout: n (S w0^2 / tau*_lo + GROWTH_ERROR g^2).
+
+    Parameters
+    ----------
+    finest : float
+        w0, the finest scaled width [-].
+    growth : float
+        g [-].
+    t_lo : float
+        The earliest output's scaled time [-].
+    axes : int
+        The graded axes n [-].
+    space_error : float
+        S [-].
+
+    Returns
+    -------
+    float
+        The relative error estimate [-].
+    """
     return axes * (space_error * finest ** 2 / t_lo + GROWTH_ERROR * growth ** 2)
 
 
 def graded_design(accuracy: float, t_lo: float, axes: int, space_error: float):
-    """(w0, g) spending half the spatial budget 0.5 a on each error term."""
+    """(w0, g) spending half the spatial budget 0.5 a on each error term.
+
+    Parameters
+    ----------
+    accuracy : float
+        a, the relative accuracy [-].
+    t_lo : float
+        The earliest output's scaled time [-].
+    axes : int
+        The graded axes [-].
+    space_error : float
+        S [-].
+
+    Returns
+    -------
+    tuple of float
+        The finest scaled width w0 [-] and the growth g [-].
+    """
     finest = math.sqrt(0.25 * accuracy * t_lo / (space_error * axes))
     return finest, growth_rate(0.25 * accuracy / axes)
 
 
 def axis_widths(extents, ends, finest: float, growth: float) -> tuple[np.ndarray, ...]:
-    """Scaled cell widths of each axis, graded towards its exposed ends."""
+    """Scaled cell widths of each axis, graded towards its exposed ends.
+
+    Parameters
+    ----------
+    extents : sequence of float
+        The axes' scaled extents [-].
+    ends : sequence of str
+        Each axis' exposed ends (``exposed_ends``).
+    finest : float
+        w0 [-], held to half of each extent.
+    growth : float
+        g [-].
+
+    Returns
+    -------
+    tuple of numpy.ndarray
+        The scaled widths of each axis [-].
+    """
     return tuple(graded_widths(e, min(finest, 0.5 * e), growth, end)
                  for e, end in zip(extents, ends))
 
 
 def physical_widths(geometry, extents, d, finest: float, growth: float) -> tuple[np.ndarray, ...]:
     """Graded cell widths (m) of a Disc (r, z) or Bar (x, y, z): the scaled widths times
-    L sqrt(D_i / D_z) (Crank 1975 eq. 2.13)."""
+    L sqrt(D_i / D_z) (Crank 1975 eq. 2.13).
+
+    Parameters
+    ----------
+    geometry : Disc or Bar
+        The part, its lengths in [m].
+    extents : sequence of float
+        The scaled extents of its axes [-] (``extents``).
+    d : sequence of float
+        D0 along x, y, z [m^2/s].
+    finest : float
+        w0 [-].
+    growth : float
+        g [-].
+
+    Returns
+    -------
+    tuple of numpy.ndarray
+        The widths of each axis [m].
+    """
     axes = (0, 1, 2) if isinstance(geometry, Bar) else (0, 2)
     scaled = axis_widths(extents, exposed_ends(geometry), finest, growth)
     return tuple(w / axis_scale(geometry.thickness, d[i], d[2]) for w, i in zip(scaled, axes))
@@ -138,7 +285,32 @@ def graded(extents, ends, accuracy: float, t_lo: float, cap: int, space_error: f
            count=None, halved=()) -> Layout:
     """Graded cells (see the module docstring); ``count(finest, growth)`` gives the cells
     per axis (default: the graded widths of ``extents``), ``halved`` the axes the solve
-    cuts at their mirror plane (``unknowns``: what the cap counts)."""
+    cuts at their mirror plane (``unknowns``: what the cap counts).
+
+    Parameters
+    ----------
+    extents : sequence of float
+        Scaled extents of the axes [-].
+    ends : sequence of str
+        Each axis' exposed ends.
+    accuracy : float
+        Relative accuracy [-]; half of it is the spatial budget.
+    t_lo : float
+        Earliest output, scaled time tau* [-].
+    cap : int
+        Most cells [-] of the linear system; w0 and g coarsen until it holds.
+    space_error : float
+        The error model's factor S [-].
+    count : callable, optional
+        ``count(finest, growth)`` -> cells per axis.
+    halved : sequence of int
+        Axes cut at their mirror plane.
+
+    Returns
+    -------
+    Layout
+        The graded cells, w0, g and the error estimate [-].
+    """
     count = count or (lambda w0, g: tuple(w.size for w in axis_widths(extents, ends, w0, g)))
     axes = len(extents)
     finest, growth = graded_design(accuracy, t_lo, axes, space_error)
@@ -157,7 +329,30 @@ def choose(geometry, extents, accuracy: float, t_lo: float, cap: int,
     system: ``halved`` axes cut at their mirror plane), else uniform; when either is shrunk
     to the cap (its error above the accuracy), the one of smaller error (a capped uniform
     grid has fewer cells but, on a drying D(c) link bar at 3e-3, 5x the error of the
-    capped graded one: benchmarks/dc_bar.py link)."""
+    capped graded one: benchmarks/dc_bar.py link).
+
+    Parameters
+    ----------
+    geometry : Sheet, Disc or Bar
+        The part [m] (only a Disc or Bar may be graded).
+    extents : sequence of float
+        Its axes' scaled extents [-].
+    accuracy : float
+        The relative accuracy [-].
+    t_lo : float
+        The earliest output's tau* [-].
+    cap : int
+        The cell cap [-].
+    space_error : float
+        S [-].
+    halved : sequence of int
+        Mirror-cut axes.
+
+    Returns
+    -------
+    Layout
+        The graded or the uniform layout.
+    """
     flat = uniform(extents, accuracy, t_lo, cap, space_error, halved)
     if not isinstance(geometry, (Disc, Bar)):
         return flat
@@ -177,7 +372,26 @@ def planform_cells(part, finest: float, growth: float, stretch: tuple[float, flo
                    cache: RunCache | None = None):
     """Admissible cells (``admissible.Tessellation``) of a CamPlate or LinkBar planform, rows
     graded from the outline: ``finest`` and the spacing in stretched (scaled) units; made
-    once per run (``cache``; None: a fresh one): plan and solve share them."""
+    once per run (``cache``; None: a fresh one): plan and solve share them.
+
+    Parameters
+    ----------
+    part : CamPlate or LinkBar
+        The part, its lengths in [m].
+    finest : float
+        The first row's spacing in thicknesses [-].
+    growth : float
+        The rows' growth [-].
+    stretch : tuple of float
+        sqrt(D_z / D_x), sqrt(D_z / D_y) [-].
+    cache : RunCache, optional
+        The run's cache.
+
+    Returns
+    -------
+    Tessellation
+        The Delaunay-admissible cells of the planform.
+    """
     def build():
         mesh = triangulate(part, finest * part.thickness, growth=growth, stretch=stretch)
         return admissible(mesh, part, stretch)
@@ -185,7 +399,20 @@ def planform_cells(part, finest: float, growth: float, stretch: tuple[float, flo
 
 
 def prism_widths(finest: float, growth: float) -> np.ndarray:
-    """Scaled z widths of a prism, graded towards both faces."""
+    """Scaled z widths of a prism, graded towards both faces.
+
+    Parameters
+    ----------
+    finest : float
+        w0 in thicknesses [-], held to half the thickness.
+    growth : float
+        g [-].
+
+    Returns
+    -------
+    numpy.ndarray
+        The widths as fractions of the thickness [-], summing to 1.
+    """
     return graded_widths(1.0, min(finest, 0.5), growth, "both")
 
 
@@ -193,7 +420,37 @@ def prism_layout(geometry, d, accuracy: float, t_lo: float, cap: int,
                  space_error: float, halved=(), cache: RunCache | None = None) -> Layout:
     """Graded prism cells: planform rows and z widths with the same w0 and g (three
     graded directions in the error model); ``halved`` (1,): the solve keeps half the
-    thickness (``symmetry_cuts``), which the cap counts."""
+    thickness (``symmetry_cuts``), which the cap counts.
+
+    Parameters
+    ----------
+    geometry : CamPlate or LinkBar
+        The part, lengths in [m].
+    d : sequence of float
+        D0 along x, y, z [m^2/s].
+    accuracy : float
+        The relative accuracy [-].
+    t_lo : float
+        Scaled time tau* of the earliest output [-].
+    cap : int
+        Most cells of the solve [-].
+    space_error : float
+        S [-].
+    halved : sequence of int
+        (1,) where the solve keeps half the thickness.
+    cache : RunCache, optional
+        The run's cache (the planform's cells).
+
+    Returns
+    -------
+    Layout
+        (planform cells, z cells), w0, g and the error estimate [-].
+
+    Raises
+    ------
+    TypeError
+        For a part that is not a CamPlate or LinkBar.
+    """
     if not isinstance(geometry, (CamPlate, LinkBar)):
         raise TypeError(f"no prism layout for {type(geometry).__name__}")
     stretch = stretch_of(d)
@@ -210,7 +467,20 @@ def widest_row(part, stretch) -> float:
     ``prism_widths`` holds the z widths to half the thickness. A late first output makes the
     error model's w0 grow without bound (w0 ~ sqrt(accuracy t_lo)); rows wider than the
     planform leave the outline mesher no points (seen: the 4 x 3 x 2 mm plate, k = 5, first
-    output 0.1 h^2/D: w0 = 6.4e4). Narrower rows only lower the error, so the estimate holds."""
+    output 0.1 h^2/D: w0 = 6.4e4). Narrower rows only lower the error, so the estimate holds.
+
+    Parameters
+    ----------
+    part : CamPlate or LinkBar
+        The part, lengths in [m].
+    stretch : tuple of float
+        The in-plane stretch sqrt(D_z / D_i) [-].
+
+    Returns
+    -------
+    float
+        The widest first row in thicknesses [-].
+    """
     extent = np.asarray(outline_extent(part)) * np.asarray(stretch) / part.thickness
     return 0.5 * float(extent.min())
 
@@ -219,7 +489,24 @@ def estimated_prism_cells(part, finest: float, growth: float, stretch) -> tuple[
     """Cheap count for the cap: rows of spacing s(d) ~ w0 + g d at depth d under an
     outline of scaled perimeter P make about (2 / (sqrt(3)/2)) P integral dd / s^2
     triangles (two per rhombus of an equilateral lattice), up to the half width D:
-    integral = D / (w0 (w0 + g D))."""
+    integral = D / (w0 (w0 + g D)).
+
+    Parameters
+    ----------
+    part : CamPlate or LinkBar
+        The part, lengths in [m].
+    finest : float
+        w0 in thicknesses [-].
+    growth : float
+        g [-].
+    stretch : tuple of float
+        The in-plane stretch [-].
+
+    Returns
+    -------
+    tuple of int
+        The estimated planform triangles and the z cells [-].
+    """
     extent = np.asarray(outline_extent(part)) * np.asarray(stretch) / part.thickness
     perimeter, depth = 2.0 * float(extent.sum()), 0.5 * float(extent.min())
     rows = depth / (finest * (finest + growth * depth))

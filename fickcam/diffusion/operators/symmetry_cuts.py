@@ -32,7 +32,23 @@ from .prisms import prism
 
 def halved_axes(geometry) -> tuple[int, ...]:
     """The axes of the layout's cells (``sizing.Layout``) that ``symmetry_cuts`` cuts in two:
-    x, y, z of a Bar (octant), z of a CamPlate or LinkBar (cells: planform, z)."""
+    x, y, z of a Bar (octant), z of a CamPlate or LinkBar (cells: planform, z).
+
+    Parameters
+    ----------
+    geometry : Bar, CamPlate or LinkBar
+        The part, its lengths in [m].
+
+    Returns
+    -------
+    tuple of int
+        The layout axes cut: (0, 1, 2) for a Bar, (1,) for a prism.
+
+    Raises
+    ------
+    TypeError
+        For any other part.
+    """
     if isinstance(geometry, Bar):
         return (0, 1, 2)
     if isinstance(geometry, (CamPlate, LinkBar)):
@@ -41,7 +57,23 @@ def halved_axes(geometry) -> tuple[int, ...]:
 
 
 def half(widths: np.ndarray) -> np.ndarray:
-    """The first half of a symmetric ``both``-graded axis (an even count of cells)."""
+    """The first half of a symmetric ``both``-graded axis (an even count of cells).
+
+    Parameters
+    ----------
+    widths : numpy.ndarray
+        The axis' cell widths [m] (or scaled [-]).
+
+    Returns
+    -------
+    numpy.ndarray
+        The widths up to the mid-plane, in the same unit [m].
+
+    Raises
+    ------
+    ValueError
+        When the count of cells is odd.
+    """
     if widths.size % 2:
         raise ValueError("a mirrored axis needs an even number of cells")
     return widths[:widths.size // 2]
@@ -51,7 +83,39 @@ def mirrored(geometry, d, cells, finest: float, growth: float,
              layer_depth: float, cache: RunCache | None = None) -> Discretisation:
     """The FiPy operator of the mirror part of a Bar (octant) or a CamPlate or LinkBar
     (half thickness), graded from ``finest`` by ``growth`` (scaled units, ``sizing``), or
-    a Bar on uniform ``cells`` (rounded up to even counts) when ``finest`` is 0."""
+    a Bar on uniform ``cells`` (rounded up to even counts) when ``finest`` is 0.
+
+    Parameters
+    ----------
+    geometry : Bar, CamPlate or LinkBar
+        The part, its lengths in [m].
+    d : sequence of float
+        D0 along x, y, z [m^2/s].
+    cells : tuple of int
+        Uniform cells per axis of the whole Bar [-] (read when ``finest`` is 0).
+    finest : float
+        The finest width in scaled units [-]; 0: uniform.
+    growth : float
+        The widths' growth from cell to cell [-].
+    layer_depth : float
+        The contact layer's depth [m].
+    cache : RunCache, optional
+        The run's cache (a planform's cells); None: a fresh one.
+
+    Returns
+    -------
+    Discretisation
+        The operator of the mirror part, cell centres [m].
+
+    Raises
+    ------
+    TypeError
+        For a part that is not a Bar, CamPlate or LinkBar.
+
+    References
+    ----------
+    Crank (1975) §4.3.1 (see the module docstring).
+    """
     if isinstance(geometry, (CamPlate, LinkBar)):
         tess = sizing.planform_cells(geometry, finest, growth, stretch_of(d), cache)
         z = half(sizing.prism_widths(finest, growth)) * geometry.thickness
@@ -66,7 +130,28 @@ def octant(bar: Bar, d, cells, finest: float, growth: float,
            layer_depth: float) -> Discretisation:
     """The octant x, y, z <= half of a Bar on FiPy's Grid3D: the faces x = 0, y = 0, z = 0
     exposed, the three mid-planes insulated (FiPy's default for unconstrained faces).
-    Layer: within ``layer_depth`` of an exposed face (the whole bar's layer, by symmetry)."""
+    Layer: within ``layer_depth`` of an exposed face (the whole bar's layer, by symmetry).
+
+    Parameters
+    ----------
+    bar : Bar
+        The bar, its sides in [m].
+    d : sequence of float
+        The bar's pre-exponential diffusivities per axis [m^2/s] (they scale the grid).
+    cells : tuple of int
+        Without grading: the whole bar's cells along x, y, z [-], made even.
+    finest : float
+        w0, the graded cells' finest scaled width [-] (0 for a uniform grid).
+    growth : float
+        g, each width over its neighbour's minus one [-].
+    layer_depth : float
+        The contact layer's depth [m].
+
+    Returns
+    -------
+    Discretisation
+        The octant's operator, cell centres ``x``, ``y``, ``z`` [m].
+    """
     size = np.array([bar.length, bar.width, bar.thickness])
     full = (sizing.physical_widths(bar, sizing.extents(bar, d), d, finest, growth) if finest > 0
             else tuple(np.full(n, s / n) for s, n in zip(size, (2 * -(-c // 2) for c in cells))))

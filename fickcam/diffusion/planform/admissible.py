@@ -59,7 +59,27 @@ CUT_SNAP = 0.3  # a point this many of its shortest edges from a mirror line mov
 
 @dataclass(frozen=True)
 class Tessellation:
-    """Delaunay-admissible polygon cells of a planform (stretched coordinates, m)."""
+    """Delaunay-admissible polygon cells of a planform (stretched coordinates, m).
+
+    Parameters
+    ----------
+    points : numpy.ndarray
+        The vertices in stretched coordinates [m], shape (n, 2).
+    triangles : numpy.ndarray
+        The Delaunay triangles' vertex indices, shape (m, 3).
+    cell_of : numpy.ndarray
+        The cell of each triangle, shape (m,).
+    centres : numpy.ndarray
+        Each cell's circumcentre [m], shape (c, 2).
+    outline : numpy.ndarray
+        The outline polygon's segments [m], shape (k, 2, 2) (refinement keeps it).
+    contact : numpy.ndarray
+        The contact edge's segments [m], shape (j, 2, 2).
+    stretch : numpy.ndarray
+        stretched = physical x stretch, per axis [-] (the larger 1).
+    mirrors : tuple
+        ((axis, value [m]), ...): the insulated lines of mirror symmetry, stretched.
+    """
 
     points: np.ndarray     # (n, 2) stretched coordinates
     triangles: np.ndarray  # (m, 3)
@@ -186,7 +206,35 @@ def _contact_segments(part, segments: np.ndarray, stretch: np.ndarray) -> np.nda
 
 def tessellation(points: np.ndarray, outline: np.ndarray, contact: np.ndarray,
                  stretch: np.ndarray, drop_interior: bool) -> Tessellation:
-    """Admissible cells of ``points`` inside the polygon ``outline`` (stretched coordinates)."""
+    """Admissible cells of ``points`` inside the polygon ``outline`` (stretched coordinates).
+
+    Parameters
+    ----------
+    points : numpy.ndarray
+        Candidate points, stretched [m], shape (n, 2).
+    outline : numpy.ndarray
+        The outline's segments, stretched [m], shape (k, 2, 2).
+    contact : numpy.ndarray
+        The contact edge's segments, stretched [m].
+    stretch : numpy.ndarray
+        The per-axis stretch [-].
+    drop_interior : bool
+        True: drop interior points that encroach a boundary segment (else split the segment).
+
+    Returns
+    -------
+    Tessellation
+        The cells, their circumcentres and the conforming outline.
+
+    Raises
+    ------
+    fickcam.errors.InputError
+        When the triangulation does not follow the outline (use the plane model).
+
+    References
+    ----------
+    Eymard, Gallouet & Herbin (2000), Definition 9.1; Ruppert (1995), §3 (module docstring).
+    """
     boundary_points = np.unique(outline.reshape(-1, 2), axis=0)
     points = np.unique(np.vstack([boundary_points, points]), axis=0)
     points, segments = _conform(points, outline, drop_interior)
@@ -205,7 +253,29 @@ def admissible(triangulation, part, stretch=(1.0, 1.0), mirrors=()) -> Tessellat
     """Admissible cells from the points and the outline (boundary edges) of a
     ``planform.Triangulation`` (physical m); ``stretch`` per axis (only the ratio matters).
     ``mirrors``: lines (axis, value in m) of mirror symmetry; only the side
-    x_axis >= value is kept and the cut is an insulated boundary (``grids.prism``)."""
+    x_axis >= value is kept and the cut is an insulated boundary (``grids.prism``).
+
+    Parameters
+    ----------
+    triangulation : Triangulation
+        The planform's triangle mesh [m] (``triangles.triangulate``).
+    part : CamPlate or LinkBar
+        The part (its bore is not a contact edge).
+    stretch : sequence of float
+        sqrt(D_z / D_x), sqrt(D_z / D_y) [-]; only their ratio matters.
+    mirrors : sequence of tuple
+        (axis, value [m]) lines of mirror symmetry.
+
+    Returns
+    -------
+    Tessellation
+        The admissible cells of the kept side.
+
+    Raises
+    ------
+    fickcam.errors.InputError
+        When the triangulation does not follow the outline.
+    """
     stretch = np.asarray(stretch, float) / max(stretch)
     points = np.asarray(triangulation.points, float) * stretch[None, :]
     triangles = np.asarray(triangulation.triangles)
@@ -299,7 +369,18 @@ def _clip_segments(segments: np.ndarray, axis: int, value: float) -> np.ndarray:
 
 def refine(tess: Tessellation) -> Tessellation:
     """Nested refinement: every edge's midpoint added, re-triangulated (red refinement where
-    that is Delaunay), outline segments halved."""
+    that is Delaunay), outline segments halved.
+
+    Parameters
+    ----------
+    tess : Tessellation
+        The coarse cells (stretched coordinates [m]).
+
+    Returns
+    -------
+    Tessellation
+        The refined cells, whose points include the coarse ones.
+    """
     edges, _ = unique_edges(tess.triangles)
     points = np.vstack([tess.points, tess.points[edges].mean(axis=1)])
     return _with_mirrors(tessellation(points, _halves(tess.outline), tess.contact, tess.stretch,
@@ -314,14 +395,36 @@ def _halves(segments: np.ndarray) -> np.ndarray:
 
 
 def cell_areas(tess: Tessellation) -> np.ndarray:
-    """Area of each cell (stretched coordinates)."""
+    """Area of each cell (stretched coordinates).
+
+    Parameters
+    ----------
+    tess : Tessellation
+        A planform's cells; points in stretched coordinates [m].
+
+    Returns
+    -------
+    numpy.ndarray
+        The cells' areas in stretched coordinates [m^2].
+    """
     return np.bincount(tess.cell_of, triangle_areas(tess.points, tess.triangles),
                        minlength=tess.cells)
 
 
 def cell_loops(tess: Tessellation) -> list[np.ndarray]:
     """Vertex loop of each cell, counter-clockwise (a merged cell is cyclic, so convex:
-    its vertices sorted by angle about the centre)."""
+    its vertices sorted by angle about the centre).
+
+    Parameters
+    ----------
+    tess : Tessellation
+        The cells whose corners are wanted (stretched coordinates [m]).
+
+    Returns
+    -------
+    list of numpy.ndarray
+        The vertex indices round each cell.
+    """
     loops: list[np.ndarray] = [np.empty(0, int)] * tess.cells
     single = np.bincount(tess.cell_of, minlength=tess.cells) == 1
     for cell in np.flatnonzero(~single):
@@ -340,7 +443,20 @@ def cell_loops(tess: Tessellation) -> list[np.ndarray]:
 def band_share(tess: Tessellation, depth: float) -> np.ndarray:
     """Fraction of each cell's area within ``depth`` (physical m) of the contact edge,
     with the distance interpolated linearly over each triangle (exact area of the
-    sublevel set of a linear function, below)."""
+    sublevel set of a linear function, below).
+
+    Parameters
+    ----------
+    tess : Tessellation
+        The admissible cells; stretched points [m], unstretched by ``physical``.
+    depth : float
+        The contact layer's depth [m].
+
+    Returns
+    -------
+    numpy.ndarray
+        Each cell's share of area within the layer [-], in [0, 1].
+    """
     physical = tess.physical(tess.points)
     distance = segment_distance(physical, tess.physical(tess.contact.reshape(-1, 2)).reshape(
         -1, 2, 2))
@@ -354,7 +470,20 @@ def linear_sublevel_fraction(values: np.ndarray, level: float) -> np.ndarray:
     (m, 3) is <= ``level``: with sorted values v1 <= v2 <= v3 it is
     (l - v1)^2 / ((v2 - v1)(v3 - v1)) for v1 <= l <= v2 and
     1 - (v3 - l)^2 / ((v3 - v1)(v3 - v2)) for v2 <= l <= v3 (the cut is a triangle
-    similar to a corner of the triangle)."""
+    similar to a corner of the triangle).
+
+    Parameters
+    ----------
+    values : numpy.ndarray
+        The function at each triangle's vertices, shape (m, 3) (a distance [m]).
+    level : float
+        The level, in the values' unit [m].
+
+    Returns
+    -------
+    numpy.ndarray
+        The fraction of each triangle's area at or below the level [-].
+    """
     v1, v2, v3 = np.sort(values, axis=1).T
     below, above = (v2 - v1) * (v3 - v1), (v3 - v1) * (v3 - v2)  # 0 only where unused
     low = np.divide((level - v1) ** 2, below, out=np.zeros_like(v1), where=below > 0)

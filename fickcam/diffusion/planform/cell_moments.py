@@ -51,7 +51,24 @@ def sublevel_moments(corners: np.ndarray, values: np.ndarray, level: float):
     """(area, first moment) of the part of each triangle (``corners`` (m, 3, 2)) where the
     linear interpolant of its vertex ``values`` (m, 3) is <= ``level``: with sorted values
     v1 <= v2 <= v3, the corner triangle at v1 cut at ``level`` (level <= v2), else the
-    whole minus the corner triangle at v3 (the cuts of ``admissible.linear_sublevel_fraction``)."""
+    whole minus the corner triangle at v3 (the cuts of ``admissible.linear_sublevel_fraction``).
+
+    Parameters
+    ----------
+    corners : numpy.ndarray
+        The triangles' corners, shape (m, 3, 2) [m].
+    values : numpy.ndarray
+        The function at the corners, shape (m, 3) (a distance [m]).
+    level : float
+        The level, in the values' unit [m].
+
+    Returns
+    -------
+    area : numpy.ndarray
+        The sublevel part's area of each triangle [m^2].
+    moment : numpy.ndarray
+        Its first moment, area x centroid [m^3], shape (m, 2).
+    """
     order = np.argsort(values, axis=1)
     v = np.take_along_axis(values, order, axis=1)
     p = np.take_along_axis(corners, order[:, :, None], axis=1)
@@ -97,7 +114,22 @@ def _links(tess):
 def gradient_matrix(tess) -> sparse.csr_matrix:
     """(2 cells, cells): rows 2i, 2i + 1 the least-squares gradient of cell i from the
     values at its neighbours' circumcentres and 0 (the surface value of an unsaturated
-    fraction) at its exposed sides' midpoints (module docstring)."""
+    fraction) at its exposed sides' midpoints (module docstring).
+
+    Parameters
+    ----------
+    tess : Tessellation
+        The planform's admissible cells, stretched coordinates [m].
+
+    Returns
+    -------
+    scipy.sparse.csr_matrix
+        The gradient operator [1/m], shape (2 cells, cells).
+
+    References
+    ----------
+    Barth (1991); Blazek (2015), §5.3.4 (see the module docstring).
+    """
     i, j, offset = _links(tess)
     normal = np.zeros((tess.cells, 2, 2))
     np.add.at(normal, i, offset[:, :, None] * offset[:, None, :])
@@ -115,7 +147,20 @@ def contact_distance(tess, depth: float) -> np.ndarray:
     """Distance (physical m) of each mesh point to the contact edge, exact at the corners of
     every triangle that can reach within ``depth`` of it (the band's cuts interpolate them),
     2 x that reach elsewhere (only that it exceeds ``depth`` matters): a point within
-    ``depth`` of a segment is within ``depth`` + half its length of its midpoint."""
+    ``depth`` of a segment is within ``depth`` + half its length of its midpoint.
+
+    Parameters
+    ----------
+    tess : Tessellation
+        The planform's admissible cells, stretched coordinates [m].
+    depth : float
+        The contact layer's depth [m].
+
+    Returns
+    -------
+    numpy.ndarray
+        The distance of each point [m] (exact near the band, 2 x the reach elsewhere).
+    """
     points = tess.physical(tess.points)
     segments = tess.physical(tess.contact.reshape(-1, 2)).reshape(-1, 2, 2)
     reach = depth + 0.5 * float(np.max(np.hypot(*(segments[:, 1] - segments[:, 0]).T)))
@@ -130,7 +175,22 @@ def contact_distance(tess, depth: float) -> np.ndarray:
 def corrected_weights(tess, depth: float) -> tuple[np.ndarray, np.ndarray]:
     """(mean, layer) weights on the cell values: sum_K |R_K| u_K + grad u_K . |R_K| (c_K -
     x_K) over the whole cells and over their parts within ``depth`` (physical m) of the
-    contact edge, each divided by its region's area (module docstring)."""
+    contact edge, each divided by its region's area (module docstring).
+
+    Parameters
+    ----------
+    tess : Tessellation
+        The cells whose values the weights multiply (stretched points [m]).
+    depth : float
+        How deep the band under the contact edge reaches [m].
+
+    Returns
+    -------
+    mean : numpy.ndarray
+        Weights [-] giving the planform mean from the cell values.
+    layer : numpy.ndarray
+        Weights [-] giving the mean over the band within ``depth`` of the contact edge.
+    """
     corners = tess.points[tess.triangles]
     distance = contact_distance(tess, depth)
     whole = _triangle(corners[:, 0], corners[:, 1], corners[:, 2])

@@ -15,7 +15,17 @@ ARC_POINTS = 1024  # samples of a full circle in the outline (chord error (2 pi 
 
 @dataclass(frozen=True)
 class Outline:
-    """A planform: ``inside(x, y)``, boundary samples (all edges) and the contact edge."""
+    """A planform: ``inside(x, y)``, boundary samples (all edges) and the contact edge.
+
+    Parameters
+    ----------
+    part : CamPlate or LinkBar
+        The part whose planform this is (lengths in [m]).
+    boundary : numpy.ndarray
+        Points along every edge [m], shape (n, 2).
+    contact : numpy.ndarray
+        Points along the contact edge [m], shape (m, 2).
+    """
 
     part: object
     boundary: np.ndarray   # (n, 2) points along every edge, spacing <= requested
@@ -26,7 +36,20 @@ class Outline:
 
 
 def inside_part(part, x, y) -> np.ndarray:
-    """Which points (x, y) (m, 1-D arrays) lie inside the planform."""
+    """Which points (x, y) (m, 1-D arrays) lie inside the planform.
+
+    Parameters
+    ----------
+    part : CamPlate or LinkBar
+        The prismatic part, its lengths in [m].
+    x, y : array_like
+        The points' coordinates [m], 1-D.
+
+    Returns
+    -------
+    numpy.ndarray
+        True inside the material (outside any bore).
+    """
     x, y = np.asarray(x, float), np.asarray(y, float)
     if isinstance(part, CamPlate):
         segments = polygon_segments(part.profile_x, part.profile_y)
@@ -40,7 +63,20 @@ def inside_part(part, x, y) -> np.ndarray:
 
 
 def outline(part, spacing: float) -> Outline:
-    """Boundary samples of a CamPlate (contact: the profile) or LinkBar (contact: every edge)."""
+    """Boundary samples of a CamPlate (contact: the profile) or LinkBar (contact: every edge).
+
+    Parameters
+    ----------
+    part : CamPlate or LinkBar
+        The prismatic part, its lengths in [m].
+    spacing : float
+        The largest gap between samples [m].
+
+    Returns
+    -------
+    Outline
+        The planform with its boundary and contact samples [m].
+    """
     if isinstance(part, CamPlate):
         profile = resample_polyline(np.asarray(part.profile_x), np.asarray(part.profile_y), spacing)
         bore = (circle(0.0, 0.0, part.bore_radius, spacing) if part.bore_radius > 0
@@ -63,19 +99,60 @@ def outline(part, spacing: float) -> Outline:
 
 
 def outline_extent(part) -> tuple[float, float]:
-    """Bounding-box size of the planform (m)."""
+    """Bounding-box size of the planform (m).
+
+    Parameters
+    ----------
+    part : CamPlate or LinkBar
+        The prismatic part, its lengths in [m].
+
+    Returns
+    -------
+    tuple of float
+        The width along x and the height along y [m].
+    """
     if isinstance(part, CamPlate):
         return (float(np.ptp(part.profile_x)), float(np.ptp(part.profile_y)))
     return (part.length + 2 * part.boss_outer_radius, max(part.width, 2 * part.boss_outer_radius))
 
 
 def arc_circle(cx, cy, radius, spacing) -> np.ndarray:
+    """A circle sampled at least ``ARC_POINTS`` times (``polygon.circle``).
+
+    Parameters
+    ----------
+    cx, cy : float
+        Where the circle is centred [m].
+    radius : float
+        Its radius [m] (a bore or a boss).
+    spacing : float
+        The largest gap along the arc [m].
+
+    Returns
+    -------
+    numpy.ndarray
+        Counter-clockwise points [m], shape (k, 2).
+    """
     return circle(cx, cy, radius, min(spacing, 2 * np.pi * radius / ARC_POINTS))
 
 
 def boundary_loops(part, spacing: float) -> tuple[list[np.ndarray], list[bool]]:
     """Closed polylines (material on the left: outer CCW, holes CW) and whether each
-    is a contact edge; None when the outline is not covered (overlapping bosses)."""
+    is a contact edge; None when the outline is not covered (overlapping bosses).
+
+    Parameters
+    ----------
+    part : CamPlate or LinkBar
+        The prismatic part, its lengths in [m].
+    spacing : float
+        The largest gap along straight pieces and arcs [m].
+
+    Returns
+    -------
+    tuple or None
+        The loops [m] (outer counter-clockwise, holes clockwise) and a contact flag per
+        loop; None for a LinkBar whose bosses overlap.
+    """
     if isinstance(part, CamPlate):
         outer = np.column_stack([part.profile_x, part.profile_y]).astype(float)
         loops, contact = [outer], [True]
@@ -104,7 +181,24 @@ def boundary_loops(part, spacing: float) -> tuple[list[np.ndarray], list[bool]]:
 
 def narrow_boss_outline(length: float, half: float, radius: float, spacing: float) -> np.ndarray:
     """Counter-clockwise outline of a bar of half-width ``half`` with half discs of a smaller
-    ``radius`` on its ends (x = 0 and x = length): straight pieces every <= ``spacing``."""
+    ``radius`` on its ends (x = 0 and x = length): straight pieces every <= ``spacing``.
+
+    Parameters
+    ----------
+    length : float
+        The distance between the boss centres [m].
+    half : float
+        The bar's half-width [m].
+    radius : float
+        The bosses' radius [m], below ``half``.
+    spacing : float
+        The largest gap along the straight pieces [m].
+
+    Returns
+    -------
+    numpy.ndarray
+        The outline's points [m], shape (k, 2).
+    """
     count = max(ARC_POINTS // 2, math.ceil(np.pi * radius / spacing))
     arc = np.linspace(0.5 * np.pi, 1.5 * np.pi, count, endpoint=False)
 

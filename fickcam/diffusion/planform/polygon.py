@@ -14,7 +14,18 @@ CORNER_TURN = 0.2  # rad: a vertex turning more is a corner, less samples a smoo
 
 
 def turning_angles(loop: np.ndarray) -> np.ndarray:
-    """Signed turn (rad, left positive) of a closed polyline at each vertex."""
+    """Signed turn (rad, left positive) of a closed polyline at each vertex.
+
+    Parameters
+    ----------
+    loop : numpy.ndarray
+        A closed polyline, one vertex (x, y) a row [m] (or scaled [-]).
+
+    Returns
+    -------
+    numpy.ndarray
+        The turn at each vertex [rad], in (-pi, pi].
+    """
     edge = np.roll(loop, -1, axis=0) - loop
     incoming = np.roll(edge, 1, axis=0)
     return np.arctan2(incoming[:, 0] * edge[:, 1] - incoming[:, 1] * edge[:, 0],
@@ -22,13 +33,37 @@ def turning_angles(loop: np.ndarray) -> np.ndarray:
 
 
 def corners_of(loop: np.ndarray) -> np.ndarray:
-    """Indices of the vertices of a closed polyline that turn by more than ``CORNER_TURN``."""
+    """Indices of the vertices of a closed polyline that turn by more than ``CORNER_TURN``.
+
+    Parameters
+    ----------
+    loop : numpy.ndarray
+        The vertices of a closed polyline [m].
+
+    Returns
+    -------
+    numpy.ndarray
+        The corners' vertex indices (|turn| >= 0.2 rad).
+    """
     return np.flatnonzero(np.abs(turning_angles(loop)) >= CORNER_TURN)
 
 
 def resample_loop(loop: np.ndarray, spacing: float) -> np.ndarray:
     """Points along a closed polyline at equal arc steps <= ``spacing`` between its corners
-    (corners kept as points)."""
+    (corners kept as points).
+
+    Parameters
+    ----------
+    loop : numpy.ndarray
+        The loop to resample, shape (n, 2) [m].
+    spacing : float
+        The largest step along the polyline [m], in the loop's unit.
+
+    Returns
+    -------
+    numpy.ndarray
+        The resampled points, shape (k, 2) [m].
+    """
     closed = np.vstack([loop, loop[:1]])
     arc = np.concatenate([[0.0], np.cumsum(np.hypot(*np.diff(closed, axis=0).T))])
     total = arc[-1]
@@ -44,7 +79,22 @@ def resample_loop(loop: np.ndarray, spacing: float) -> np.ndarray:
 
 def resample_polyline(px, py, spacing: float, closed: bool = True) -> np.ndarray:
     """Points every <= ``spacing`` along a polyline (closed: back to the start), each
-    vertex kept."""
+    vertex kept.
+
+    Parameters
+    ----------
+    px, py : array_like
+        The vertices' coordinates [m].
+    spacing : float
+        The largest gap between points [m].
+    closed : bool
+        True: the last vertex joins the first.
+
+    Returns
+    -------
+    numpy.ndarray
+        The points, shape (k, 2) [m]; an open polyline ends on its last vertex.
+    """
     pts = np.column_stack([px, py]).astype(float)
     if closed:
         pts = np.vstack([pts, pts[:1]])
@@ -58,25 +108,74 @@ def resample_polyline(px, py, spacing: float, closed: bool = True) -> np.ndarray
 
 
 def circle(cx: float, cy: float, radius: float, spacing: float) -> np.ndarray:
-    """Counter-clockwise points every <= ``spacing`` round a circle (at least 12)."""
+    """Counter-clockwise points every <= ``spacing`` round a circle (at least 12).
+
+    Parameters
+    ----------
+    cx, cy : float
+        The centre [m].
+    radius : float
+        The radius [m].
+    spacing : float
+        The largest gap along the circle [m].
+
+    Returns
+    -------
+    numpy.ndarray
+        The points, shape (k, 2) [m], from angle 0.
+    """
     count = max(12, math.ceil(2 * np.pi * radius / spacing))
     angle = 2 * np.pi * np.arange(count) / count
     return np.column_stack([cx + radius * np.cos(angle), cy + radius * np.sin(angle)])
 
 
 def loop_length(loop: np.ndarray) -> float:
+    """The perimeter of a closed polyline.
+
+    Parameters
+    ----------
+    loop : numpy.ndarray
+        A closed polyline's vertices [m]; the last joins the first.
+
+    Returns
+    -------
+    float
+        The sum of its edges' lengths [m].
+    """
     return float(np.sum(np.hypot(*(np.roll(loop, -1, axis=0) - loop).T)))
 
 
 def edge_normals(points: np.ndarray) -> np.ndarray:
-    """Unit normals to the left of each edge i -> i+1 (towards the material)."""
+    """Unit normals to the left of each edge i -> i+1 (towards the material).
+
+    Parameters
+    ----------
+    points : numpy.ndarray
+        A closed loop's vertices, shape (n, 2) [m].
+
+    Returns
+    -------
+    numpy.ndarray
+        The unit normals [-], shape (n, 2).
+    """
     edge = np.roll(points, -1, axis=0) - points
     edge /= np.hypot(*edge.T)[:, None]
     return np.column_stack([-edge[:, 1], edge[:, 0]])
 
 
 def vertex_normals(points: np.ndarray) -> np.ndarray:
-    """Unit bisectors of the normals of the two edges at each vertex."""
+    """Unit bisectors of the normals of the two edges at each vertex.
+
+    Parameters
+    ----------
+    points : numpy.ndarray
+        The loop's points [m], material on their left.
+
+    Returns
+    -------
+    numpy.ndarray
+        The unit vertex normals [-], shape (n, 2), to the left of the loop.
+    """
     after = edge_normals(points)
     both = np.roll(after, 1, axis=0) + after
     return both / np.hypot(*both.T)[:, None]
@@ -85,7 +184,17 @@ def vertex_normals(points: np.ndarray) -> np.ndarray:
 @dataclass(frozen=True)
 class Wall:
     """Signed distance to an outline from dense samples: the distance to the nearest sample,
-    inside where the offset from it points along its inward normal."""
+    inside where the offset from it points along its inward normal.
+
+    Parameters
+    ----------
+    samples : numpy.ndarray
+        Dense points along the outline, shape (n, 2) [m].
+    normals : numpy.ndarray
+        The inward unit normal at each sample [-].
+    tree : scipy.spatial.cKDTree
+        The samples' search tree.
+    """
 
     samples: np.ndarray
     normals: np.ndarray
@@ -109,13 +218,44 @@ class Wall:
 
 
 def polygon_segments(px, py) -> np.ndarray:
-    """(n, 2, 2) segments of the closed polygon with vertices (px, py)."""
+    """(n, 2, 2) segments of the closed polygon with vertices (px, py).
+
+    Parameters
+    ----------
+    px, py : array_like
+        The vertices' coordinates [m].
+
+    Returns
+    -------
+    numpy.ndarray
+        Each edge's start and end [m], shape (n, 2, 2), the last closing the loop.
+    """
     vertices = np.column_stack([px, py]).astype(float)
     return np.stack([vertices, np.roll(vertices, -1, axis=0)], axis=1)
 
 
 def inside_polygon(query: np.ndarray, segments: np.ndarray, chunk: int = 2048) -> np.ndarray:
-    """Even-odd ray casting against a set of segments (Shimrat 1962, CACM algorithm 112)."""
+    """Even-odd ray casting against a set of segments (Shimrat 1962, CACM algorithm 112).
+
+    Parameters
+    ----------
+    query : numpy.ndarray
+        The points, shape (q, 2) [m].
+    segments : numpy.ndarray
+        The polygons' edges, shape (n, 2, 2) [m].
+    chunk : int
+        Points tested at once (memory).
+
+    Returns
+    -------
+    numpy.ndarray
+        True for a point inside (an odd number of crossings).
+
+    References
+    ----------
+    M. Shimrat, "Algorithm 112: Position of point relative to polygon", *Communications of
+    the ACM* 5(8), 434, 1962.
+    """
     a, b = segments[:, 0], segments[:, 1]
     inside = np.zeros(len(query), bool)
     for lo in range(0, len(query), chunk):
@@ -129,12 +269,39 @@ def inside_polygon(query: np.ndarray, segments: np.ndarray, chunk: int = 2048) -
 
 
 def triangle_areas(points: np.ndarray, triangles: np.ndarray) -> np.ndarray:
+    """The area of each triangle (half the cross product of two sides).
+
+    Parameters
+    ----------
+    points : numpy.ndarray
+        The mesh's nodes [m], one row (x, y) each.
+    triangles : numpy.ndarray
+        Each triangle's three node indices.
+
+    Returns
+    -------
+    numpy.ndarray
+        The areas [m^2], shape (m,).
+    """
     a, b, c = (points[triangles[:, k]] for k in range(3))
     return 0.5 * np.abs((b - a)[:, 0] * (c - a)[:, 1] - (b - a)[:, 1] * (c - a)[:, 0])
 
 
 def unique_edges(triangles: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """(edges (e, 2) sorted, (m, 3) edge of each triangle side k = (k, k+1))."""
+    """(edges (e, 2) sorted, (m, 3) edge of each triangle side k = (k, k+1)).
+
+    Parameters
+    ----------
+    triangles : numpy.ndarray
+        The mesh's triangles as node triples, shape (m, 3).
+
+    Returns
+    -------
+    edges : numpy.ndarray
+        The distinct edges, each (low, high) vertex index, sorted.
+    side_edge : numpy.ndarray
+        The index into ``edges`` of each triangle's side k, shape (m, 3).
+    """
     sides = np.sort(np.stack([triangles[:, [0, 1]], triangles[:, [1, 2]], triangles[:, [2, 0]]],
                              axis=1).reshape(-1, 2), axis=1)
     edges, inverse = np.unique(sides, axis=0, return_inverse=True)
@@ -143,7 +310,20 @@ def unique_edges(triangles: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
 
 def circumcentres(points: np.ndarray, triangles: np.ndarray) -> np.ndarray:
     """Centre of each triangle's circumscribed circle (intersection of the perpendicular
-    bisectors, in coordinates relative to the first vertex)."""
+    bisectors, in coordinates relative to the first vertex).
+
+    Parameters
+    ----------
+    points : numpy.ndarray
+        Node coordinates [m], shape (n, 2).
+    triangles : numpy.ndarray
+        The node triples of the triangles whose circles are wanted.
+
+    Returns
+    -------
+    numpy.ndarray
+        The circumcentres [m], shape (m, 2).
+    """
     a, b, c = (points[triangles[:, k]] for k in range(3))
     (bx, by), (cx, cy) = (b - a).T, (c - a).T
     twice = 2.0 * (bx * cy - by * cx)
@@ -153,7 +333,22 @@ def circumcentres(points: np.ndarray, triangles: np.ndarray) -> np.ndarray:
 
 def centre_offsets(points: np.ndarray, triangles: np.ndarray, centres: np.ndarray) -> np.ndarray:
     """(m, 3) signed distance from each triangle's circumcentre to its side k, positive
-    towards the triangle's interior (the triangle's half of the dual edge)."""
+    towards the triangle's interior (the triangle's half of the dual edge).
+
+    Parameters
+    ----------
+    points : numpy.ndarray
+        Where the nodes lie [m].
+    triangles : numpy.ndarray
+        The triangles, by their nodes.
+    centres : numpy.ndarray
+        The triangles' circumcentres [m], shape (m, 2).
+
+    Returns
+    -------
+    numpy.ndarray
+        The signed distances [m], shape (m, 3).
+    """
     out = np.empty(triangles.shape)
     for k in range(3):
         a, b, c = (points[triangles[:, (k + j) % 3]] for j in range(3))
@@ -165,7 +360,22 @@ def centre_offsets(points: np.ndarray, triangles: np.ndarray, centres: np.ndarra
 
 
 def segment_distance(query: np.ndarray, segments: np.ndarray, chunk: int = 1024) -> np.ndarray:
-    """Distance from each point to the nearest of ``segments`` (exact, by chunks)."""
+    """Distance from each point to the nearest of ``segments`` (exact, by chunks).
+
+    Parameters
+    ----------
+    query : numpy.ndarray
+        The points, shape (q, 2) [m].
+    segments : numpy.ndarray
+        The segments, shape (n, 2, 2) [m].
+    chunk : int
+        Points measured at once (memory).
+
+    Returns
+    -------
+    numpy.ndarray
+        The distances [m], shape (q,).
+    """
     a, b = segments[:, 0], segments[:, 1]
     edge = b - a
     length2 = np.maximum(np.einsum("ij,ij->i", edge, edge), np.finfo(float).tiny)
@@ -181,7 +391,24 @@ def segment_distance(query: np.ndarray, segments: np.ndarray, chunk: int = 1024)
 
 def drop_unused(points: np.ndarray, triangles: np.ndarray):
     """(points, triangles, used): the points some triangle uses, triangles renumbered, and
-    the old index of each kept point."""
+    the old index of each kept point.
+
+    Parameters
+    ----------
+    points : numpy.ndarray
+        All candidate points [m], some perhaps in no triangle.
+    triangles : numpy.ndarray
+        The triangles, indexing ``points``.
+
+    Returns
+    -------
+    points : numpy.ndarray
+        The used points [m].
+    triangles : numpy.ndarray
+        The triangles renumbered to them.
+    used : numpy.ndarray
+        The old index of each kept point.
+    """
     used = np.unique(triangles)
     renumber = np.full(len(points), -1)
     renumber[used] = np.arange(used.size)

@@ -44,7 +44,50 @@ class ShortTime:
     contact edge follows the half-space solution erfc(x / 2 sqrt t) (Crank 1975 eq. 2.45)
     with first-order curvature terms, averaged over the depth; its indicator is the
     second-order size kappa^2 delta (sqrt t + delta) / 2 (3-13x the error measured on
-    discs)."""
+    discs).
+
+    All lengths are scaled (physical x sqrt(D_z / D_i) / thickness) and so dimensionless.
+
+    Parameters
+    ----------
+    area : float
+        A, the planform's scaled area [-].
+    perimeter : float
+        P, its scaled perimeter [-].
+    corner_sum : float
+        sum_i c(gamma_i) over corners and smooth turning [-].
+    curvature_square : float
+        K_2 = integral kappa^2 ds over smooth arcs [-].
+    curvature_cube : float
+        K_3 = integral kappa^3 ds (signed) over smooth arcs [-].
+    curvature_moments : numpy.ndarray
+        integral |kappa|^k ds over smooth arcs, k = 0..8 [-].
+    corner_curvature : float
+        The sum over corners of the adjacent |kappa| [-].
+    max_curvature : float
+        The largest |kappa| of the outline [-].
+    contact_weights : numpy.ndarray
+        The contact segments' edge-length weights [-], summing to 1.
+    contact_depths : numpy.ndarray
+        The scaled layer depth along each contact segment [-].
+    contact_curvature : numpy.ndarray
+        The scaled curvature of each contact segment [-].
+    contact_kappa_square : float
+        The layer-weighted mean of kappa^2 over the contact edge [-].
+    chords : numpy.ndarray
+        The inward normals' lengths inside the part (``inward_chords``) [-].
+    chord_lengths : numpy.ndarray
+        The outline length each chord stands for [-].
+
+    References
+    ----------
+    - Carslaw & Jaeger (1959) §13.3; Crank (1975) eqs. 2.45 and 5.24 (see ``exact.separable``).
+    - M. van den Berg and S. Srisatkunarajah, "Heat flow and Brownian motion for a region
+      in R^2 with a polygonal boundary", *Probability Theory and Related Fields* 86,
+      41-52, 1990.
+    - M. van den Berg and P. B. Gilkey, "Heat content asymptotics of a Riemannian manifold
+      with boundary", *Journal of Functional Analysis* 120, 48-71, 1994.
+    """
 
     area: float
     perimeter: float
@@ -129,7 +172,25 @@ def layer_integrals(z):
     cancellation for small z); the second, by parts with erfc' = -2 exp(-s^2)/sqrt(pi)
     (Abramowitz & Stegun 1964 eq. 7.1.19) and int_0^z s^2 exp(-s^2) ds = sqrt(pi) erf(z)/4
     - z exp(-z^2)/2, is z^2 erfc(z)/2 + erf(z)/4 - z exp(-z^2)/(2 sqrt(pi)). Exact where
-    the 12-point Gauss rule they replace was not (sqrt(t) << delta: a steep erfc)."""
+    the 12-point Gauss rule they replace was not (sqrt(t) << delta: a steep erfc).
+
+    Parameters
+    ----------
+    z : array_like
+        The upper limit delta / (2 sqrt t) [-] (held at 40, where erfc is 0).
+
+    Returns
+    -------
+    first : numpy.ndarray
+        int_0^z erfc(s) ds [-].
+    second : numpy.ndarray
+        int_0^z s erfc(s) ds [-].
+
+    References
+    ----------
+    M. Abramowitz and I. A. Stegun, *Handbook of Mathematical Functions*, National Bureau
+    of Standards, 1964, eq. 7.1.19; Carslaw & Jaeger (1959), Appendix II.
+    """
     z = np.minimum(np.asarray(z, float), 40.0)  # erfc(40) = 0: both integrals are complete
     tail = erfc(z)
     first = z * tail - np.expm1(-z * z) / np.sqrt(np.pi)
@@ -154,7 +215,22 @@ def _disc_coefficients() -> np.ndarray:
 def corner_coefficient(gamma: np.ndarray) -> np.ndarray:
     """c(gamma) = integral_0^inf 4 sinh((pi - gamma) x) / (sinh(pi x) cosh(gamma x)) dx
     (van den Berg & Srisatkunarajah 1990; c(pi/2) = 4/pi reproduces the product of
-    two half-spaces, Crank 1975 eq. 4.51), by the trapezoidal rule on [0, 60/pi]."""
+    two half-spaces, Crank 1975 eq. 4.51), by the trapezoidal rule on [0, 60/pi].
+
+    Parameters
+    ----------
+    gamma : numpy.ndarray
+        The corners' interior angles [rad], in (0, 2 pi).
+
+    Returns
+    -------
+    numpy.ndarray
+        c(gamma) [-], the corner's coefficient of -t in the uptake times A.
+
+    References
+    ----------
+    van den Berg & Srisatkunarajah (1990), see ``ShortTime``.
+    """
     gamma = np.asarray(gamma, float)[:, None]
     x = np.linspace(1e-9, 60 / np.pi, 6001)[None, :]
     integrand = 4 * np.sinh((np.pi - gamma) * x) / (np.sinh(np.pi * x) * np.cosh(gamma * x))
@@ -165,7 +241,24 @@ def expansion_of(part, d, layer_depth: float | None = None,
                  cache: RunCache | None = None) -> ShortTime | None:
     """The outline's short-time expansion in scaled coordinates as plan and solve both see it
     (circles sampled at thickness / 20 or finer); None when the outline has none. Made once
-    per run (``cache``; None: a fresh one): plan and solve of one part share it."""
+    per run (``cache``; None: a fresh one): plan and solve of one part share it.
+
+    Parameters
+    ----------
+    part : CamPlate or LinkBar
+        The prismatic part, its lengths in [m].
+    d : tuple of float
+        D0 along x, y, z [m^2/s].
+    layer_depth : float, optional
+        The contact layer's depth [m]; None: thickness / 100.
+    cache : RunCache, optional
+        The run's cache.
+
+    Returns
+    -------
+    ShortTime or None
+        The expansion; None when the outline has none (overlapping bosses, or no contact layer).
+    """
     cache = run_cache(cache)
     depth = part.thickness / 100 if layer_depth is None else layer_depth
     return cache.get(("outline expansion", part, d, depth), lambda: short_time(
@@ -173,7 +266,20 @@ def expansion_of(part, d, layer_depth: float | None = None,
 
 
 def weighted(indicator, weight):
-    """indicator x weight, infinite wherever the indicator is (also where the weight is 0)."""
+    """indicator x weight, infinite wherever the indicator is (also where the weight is 0).
+
+    Parameters
+    ----------
+    indicator : array_like
+        An error indicator [-] (inf: no bound).
+    weight : array_like
+        Its weight [-], e.g. the sheet's unsaturated fraction.
+
+    Returns
+    -------
+    numpy.ndarray
+        The product [-], inf where the indicator is not finite.
+    """
     indicator = np.asarray(indicator, float)
     with np.errstate(invalid="ignore"):  # inf x 0
         product = indicator * weight
@@ -181,14 +287,44 @@ def weighted(indicator, weight):
 
 
 def sheet_fraction(tau):
-    """Unsaturated fraction of the through-thickness sheet, exact (Crank 1975 eqs. 4.18 / 4.20)."""
+    """Unsaturated fraction of the through-thickness sheet, exact (Crank 1975 eqs. 4.18 / 4.20).
+
+    Parameters
+    ----------
+    tau : array_like
+        Scaled time tau* = D_z t / h^2 [-].
+
+    Returns
+    -------
+    numpy.ndarray
+        1 - F(tau*) [-].
+    """
     return 1.0 - sheet_uptake(np.maximum(tau, 0.0))
 
 
 def short_time(part, scale: np.ndarray, layer_depth: float, spacing: float,
                cache: RunCache | None = None) -> ShortTime | None:
     """The expansion's coefficients in scaled coordinates (x' = x * scale); ``cache``: the
-    run's, which keeps the outline's chords for the other layer depth."""
+    run's, which keeps the outline's chords for the other layer depth.
+
+    Parameters
+    ----------
+    part : CamPlate or LinkBar
+        The prismatic part, its lengths in [m].
+    scale : numpy.ndarray
+        Physical -> scaled in-plane factors sqrt(D_z / D_i) / thickness [1/m].
+    layer_depth : float
+        The contact layer's depth [m].
+    spacing : float
+        The largest gap along the outline's arcs [m].
+    cache : RunCache, optional
+        The run's cache.
+
+    Returns
+    -------
+    ShortTime or None
+        The coefficients; None without loops, with a clockwise outline or without a contact layer.
+    """
     found = boundary_loops(part, spacing)
     if found is None:
         return None
@@ -236,7 +372,24 @@ def short_time(part, scale: np.ndarray, layer_depth: float, spacing: float,
 def outline_chords(part, scale: tuple[float, float], spacing: float, cache: RunCache):
     """``inward_chords`` of the part's outline (``boundary_loops`` at ``spacing``) scaled by
     ``scale``, once per run (``cache``): plan and solve ask for the expansion at two layer
-    depths, which leave the chords alone (half the expansion's cost). Read-only arrays."""
+    depths, which leave the chords alone (half the expansion's cost). Read-only arrays.
+
+    Parameters
+    ----------
+    part : CamPlate or LinkBar
+        The prismatic part, its lengths in [m].
+    scale : tuple of float
+        Physical -> scaled in-plane factors [1/m].
+    spacing : float
+        The outline's sampling [m].
+    cache : RunCache
+        The run's cache.
+
+    Returns
+    -------
+    tuple of numpy.ndarray
+        The chords and the outline length each stands for, scaled [-].
+    """
     def build():
         loops, _ = boundary_loops(part, spacing)
         factor = np.asarray(scale)
@@ -249,7 +402,22 @@ def inward_chords(loops: list[np.ndarray], spacing: float) -> tuple[np.ndarray, 
     """(chord, outline length it stands for) at ``CHORD_RAYS`` points evenly spaced along
     each closed polyline of ``loops`` (material on the left): the length of the inward
     normal ray inside the outline, marched on a geometric grid against the signed distance
-    of ``polygon.Wall`` (each ray only until it leaves), then bisected."""
+    of ``polygon.Wall`` (each ray only until it leaves), then bisected.
+
+    Parameters
+    ----------
+    loops : list of numpy.ndarray
+        Closed polylines, material on the left, scaled [-].
+    spacing : float
+        The wall's sampling and the first ray step, scaled [-].
+
+    Returns
+    -------
+    chords : numpy.ndarray
+        The inward chords' lengths [-].
+    lengths : numpy.ndarray
+        The outline length each stands for [-].
+    """
     wall = Wall.of(loops, spacing)
     rays = [resample_loop(loop, loop_length(loop) / CHORD_RAYS) for loop in loops]
     start = np.vstack(rays)

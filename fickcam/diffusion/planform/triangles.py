@@ -43,7 +43,20 @@ MIN_GAP = 0.7                # points closer than this many local spacings are d
 
 def fanned(points: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """Points with offset normals: the bisector at ordinary vertices and a fan of normals
-    every ``FAN_STEP`` at reflex corners (right turns), whose offsets are arcs."""
+    every ``FAN_STEP`` at reflex corners (right turns), whose offsets are arcs.
+
+    Parameters
+    ----------
+    points : numpy.ndarray
+        Samples along one closed loop [m], material on the left.
+
+    Returns
+    -------
+    points : numpy.ndarray
+        The samples, a reflex corner repeated once per normal of its fan [m].
+    normals : numpy.ndarray
+        The unit offset normal of each [-].
+    """
     after = edge_normals(points)
     before = np.roll(after, 1, axis=0)
     turn = np.arctan2(before[:, 0] * after[:, 1] - before[:, 1] * after[:, 0],
@@ -98,7 +111,22 @@ def _sparse_enough(candidates: np.ndarray, placed: np.ndarray, gap: float) -> np
 
 def row_spacings(finest: float, growth: float, coarsest: float):
     """(spacing, depth) of successive rows: s_k = min(h0 (1+g)^k, coarsest),
-    d_k = d_{k-1} + (sqrt 3 / 2)(s_{k-1} + s_k) / 2."""
+    d_k = d_{k-1} + (sqrt 3 / 2)(s_{k-1} + s_k) / 2.
+
+    Parameters
+    ----------
+    finest : float
+        h0, the outline's spacing [m].
+    growth : float
+        g, the spacing's growth per row [-].
+    coarsest : float
+        The largest spacing [m].
+
+    Returns
+    -------
+    iterator of tuple
+        (s_k, d_k) for k = 1, 2, ...: each row's spacing and depth [m], endless.
+    """
     spacing, depth = finest, 0.0
     while True:
         wider = min(spacing * (1.0 + growth), coarsest)
@@ -109,7 +137,28 @@ def row_spacings(finest: float, growth: float, coarsest: float):
 
 def graded_points(loops: list[np.ndarray], finest: float, growth: float,
                   coarsest: float = np.inf) -> tuple[np.ndarray, np.ndarray, Wall]:
-    """(outline points, interior points, wall) of a graded mesh (see the module docstring)."""
+    """(outline points, interior points, wall) of a graded mesh (see the module docstring).
+
+    Parameters
+    ----------
+    loops : list of numpy.ndarray
+        Closed outline polylines, material on the left, mesh coordinates [m].
+    finest : float
+        h0, the spacing along the outline [m].
+    growth : float
+        g, the growth per row [-].
+    coarsest : float
+        The spacing at which rows stop and a lattice fills the rest [m].
+
+    Returns
+    -------
+    boundary : numpy.ndarray
+        The outline samples [m].
+    interior : numpy.ndarray
+        The rows' and lattice's points [m].
+    wall : Wall
+        The outline's signed distance.
+    """
     boundary = np.vstack([resample_loop(loop, finest) for loop in loops])
     wall = Wall.of(loops, finest / 4)
     placed = boundary
@@ -135,7 +184,20 @@ def graded_points(loops: list[np.ndarray], finest: float, growth: float,
 
 
 def hex_lattice(lo: np.ndarray, hi: np.ndarray, spacing: float) -> np.ndarray:
-    """Points of a hexagonal lattice of side ``spacing`` covering the box [lo, hi]."""
+    """Points of a hexagonal lattice of side ``spacing`` covering the box [lo, hi].
+
+    Parameters
+    ----------
+    lo, hi : numpy.ndarray
+        The box's lower-left and upper-right corners [m].
+    spacing : float
+        The lattice's side [m].
+
+    Returns
+    -------
+    numpy.ndarray
+        The lattice points [m], shape (k, 2).
+    """
     rows = np.arange(lo[1], hi[1] + spacing, ROW * spacing)
     xs = np.arange(lo[0], hi[0] + spacing, spacing)
     return np.vstack([np.column_stack([xs + 0.5 * spacing * (i % 2), np.full(xs.size, y)])
@@ -152,7 +214,22 @@ def _lattice_fill(placed: np.ndarray, wall: Wall, spacing: float, depth: float) 
 
 def delaunay_inside(points: np.ndarray, wall: Wall, finest: float) -> np.ndarray:
     """Delaunay triangles whose centroid is inside the outline (slivers of collinear
-    outline points dropped)."""
+    outline points dropped).
+
+    Parameters
+    ----------
+    points : numpy.ndarray
+        The mesh points [m].
+    wall : Wall
+        The outline's signed distance.
+    finest : float
+        The finest spacing [m] (slivers below 1e-6 finest^2 are dropped).
+
+    Returns
+    -------
+    numpy.ndarray
+        The kept triangles' vertex indices, shape (m, 3).
+    """
     triangles = Delaunay(points).simplices
     corners = points[triangles]
     inside = wall.distance(corners.mean(axis=1))[1]
@@ -160,7 +237,20 @@ def delaunay_inside(points: np.ndarray, wall: Wall, finest: float) -> np.ndarray
 
 
 def angles(points: np.ndarray, triangles: np.ndarray) -> np.ndarray:
-    """(m, 3) interior angles (rad) of each triangle."""
+    """(m, 3) interior angles (rad) of each triangle.
+
+    Parameters
+    ----------
+    points : numpy.ndarray
+        The vertices [m].
+    triangles : numpy.ndarray
+        Vertex indices, shape (m, 3).
+
+    Returns
+    -------
+    numpy.ndarray
+        The angle at each corner [rad], shape (m, 3).
+    """
     corners = points[triangles]
     out = []
     for i in range(3):
@@ -173,7 +263,17 @@ def angles(points: np.ndarray, triangles: np.ndarray) -> np.ndarray:
 
 @dataclass(frozen=True)
 class GradedMesh:
-    """Points (mesh coordinates), triangles and which points lie on the outline."""
+    """Points (mesh coordinates), triangles and which points lie on the outline.
+
+    Parameters
+    ----------
+    points : numpy.ndarray
+        The mesh points [m], shape (n, 2).
+    triangles : numpy.ndarray
+        Vertex indices, shape (m, 3).
+    on_outline : numpy.ndarray
+        True for a point on the outline, shape (n,).
+    """
 
     points: np.ndarray
     triangles: np.ndarray
@@ -182,7 +282,24 @@ class GradedMesh:
 
 def graded_mesh(loops: list[np.ndarray], finest: float, growth: float,
                 coarsest: float = np.inf) -> GradedMesh:
-    """Triangulated graded points; unused points removed."""
+    """Triangulated graded points; unused points removed.
+
+    Parameters
+    ----------
+    loops : list of numpy.ndarray
+        Closed outline polylines, material on the left, mesh coordinates [m].
+    finest : float
+        h0 along the outline [m].
+    growth : float
+        g per row [-].
+    coarsest : float
+        The spacing where rows give way to a lattice [m].
+
+    Returns
+    -------
+    GradedMesh
+        The points, triangles and outline flags.
+    """
     boundary, interior, wall = graded_points(loops, finest, growth, coarsest)
     points = np.vstack([boundary, interior])
     triangles = delaunay_inside(points, wall, finest)
@@ -195,7 +312,21 @@ def graded_mesh(loops: list[np.ndarray], finest: float, growth: float,
 class Triangulation:
     """Triangles of a planform (physical metres) with each triangle's distance to the contact
     edge; ``on_outline`` marks the points on the outline, ``contact(points, bound)`` gives
-    their distance to the contact edge (inf beyond ``bound``)."""
+    their distance to the contact edge (inf beyond ``bound``).
+
+    Parameters
+    ----------
+    points : numpy.ndarray
+        The nodes in physical coordinates [m].
+    triangles : numpy.ndarray
+        Each triangle's three nodes.
+    contact_distance : numpy.ndarray
+        Each triangle's centroid's distance to the contact edge [m], shape (m,).
+    on_outline : numpy.ndarray, optional
+        True for a point on the outline, shape (n,).
+    contact : callable, optional
+        ``contact(points, bound)``: distance [m] to the contact edge, inf beyond ``bound``.
+    """
 
     points: np.ndarray      # (n, 2)
     triangles: np.ndarray   # (m, 3)
@@ -213,7 +344,28 @@ def triangulate(part, spacing: float, *, growth: float | None = None,
     the coordinates (stretch_x x, stretch_y y), where ``spacing`` is measured and the
     triangles are near-equilateral (the scaled coordinates of anisotropic diffusion,
     Crank 1975 eq. 2.13). Outlines without closed loops (a LinkBar whose bosses are
-    narrower than the bar, or overlap) get the uniform lattice."""
+    narrower than the bar, or overlap) get the uniform lattice.
+
+    Parameters
+    ----------
+    part : CamPlate or LinkBar
+        The part, its lengths in [m].
+    spacing : float
+        The edge length along the outline [m], in stretched coordinates.
+    growth : float, optional
+        g, the rows' growth [-]; None: a uniform lattice.
+    stretch : tuple of float
+        sqrt(D_z / D_x), sqrt(D_z / D_y) [-].
+
+    Returns
+    -------
+    Triangulation
+        The triangles in physical coordinates [m].
+
+    References
+    ----------
+    Crank (1975), eqs. 2.13 and 2.45 (see the module docstring).
+    """
     found = None if growth is None else boundary_loops(part, spacing / max(stretch))
     if found is None:
         return _lattice_triangulation(part, spacing / max(stretch))
