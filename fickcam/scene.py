@@ -332,7 +332,7 @@ def validate_document(doc: YamlDocument, *, base_dir: Path) -> Scene:
     Returns
     -------
     Scene
-        The validated scene.
+        The scene, validated against the models.
 
     Raises
     ------

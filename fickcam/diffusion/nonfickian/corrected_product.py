@@ -661,7 +661,7 @@ def solve_corrected(problem: DiffusionProblem, reason: str = "",
     Raises
     ------
     SolverError
-        When a step's sweeps do not converge.
+        When the sweeps of a step of one of the marches do not converge.
     """
     geometry, diffusivity, law = problem.geometry, problem.diffusivity, problem.sorption
     exposure, times, accuracy = problem.exposure, problem.times, problem.accuracy
