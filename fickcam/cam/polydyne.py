@@ -53,7 +53,7 @@ def polydyne_design(design, modulus: float | None):
 
     References
     ----------
-    Stoddart, D. A. (1953). Polydyne cam design. Machine Design 25.
+    Stoddart, D. (1953). Polydyne cam design. Machine Design 25(1), January 1953.
     Norton (2012), ch. 15; in full in :mod:`fickcam.cam`.
     """
     from dataclasses import replace

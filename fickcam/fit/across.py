@@ -1,6 +1,6 @@
 """Across conditions: Arrhenius D(T) = D0 exp(-Ea/(R T)) (Shen & Springer 1976 eq. 9)
 from the conditions' D, and the saturation law Mm = a (RH/100)^b (Shen & Springer 1976
-eq. 10; Loos & Springer 1979) from their Mm. Weighted least squares
+eq. 10) from their Mm. Weighted least squares
 (scipy.optimize.curve_fit) with the single-condition standard errors as sigma; when
 the points scatter more than those errors allow (chi^2/dof > 1) the covariance is
 scaled by chi^2/dof (Birge ratio) and the t quantile is used.
@@ -147,9 +147,6 @@ def saturation_law(conditions: list[FickFit], library_exponent: float) -> LawFit
     References
     ----------
     Shen & Springer (1976), eq. 10 (see :func:`arrhenius`).
-    Loos, A. C. & Springer, G. S. (1979). Moisture absorption of graphite-epoxy
-    composites immersed in liquids and in humid air. Journal of Composite Materials 13(2),
-    131-147.
     """
     rh = np.array([c.relative_humidity / 100.0 for c in conditions])
     mm = np.array([c.saturation.value for c in conditions])

@@ -111,6 +111,7 @@ def runs_test(residual_groups) -> float:
     ----------
     Wald, A. & Wolfowitz, J. (1940). On a test whether two samples are from the same
     population. Annals of Mathematical Statistics 11(2), 147-162.
+    doi:10.1214/aoms/1177731909
     """
     runs = expected = variance = 0.0
     for residuals in residual_groups:

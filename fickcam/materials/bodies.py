@@ -214,7 +214,7 @@ def polygon_section(x, y):
     """Shoelace formulas for a closed polygon (last point not repeated, counter-clockwise;
     points along the last axis, leading axes vectorised):
     (area, centroid x, centroid y, polar second moment about the origin)
-    (e.g. Bourke 1988, 'Calculating the area and centroid of a polygon'; Steger 1996).
+    (Steger 1996, the moments of order 0, 1 and 2).
 
     Parameters
     ----------
@@ -229,9 +229,9 @@ def polygon_section(x, y):
 
     References
     ----------
-    Bourke, P. (1988). Calculating the area and centroid of a polygon.
     Steger, C. (1996). On the calculation of arbitrary moments of polygons. Technical
-    report, Technische Universitaet Muenchen.
+    Report FGBV-96-05, Forschungsgruppe Bildverstehen, Informatik IX, Technische
+    Universitaet Muenchen.
     """
     x, y = np.asarray(x, float), np.asarray(y, float)
     x, y = np.broadcast_arrays(x, y)

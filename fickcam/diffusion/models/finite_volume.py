@@ -249,7 +249,7 @@ def solve_direct(problem: DiffusionProblem, chosen: Plan, *, extrapolate: bool =
     References
     ----------
     Richardson, L. F., Gaunt, J. A., "The deferred approach to the limit", *Philosophical
-    Transactions of the Royal Society A* 226, 299-361, 1927, doi:10.1098/rsta.1927.0008.
+    Transactions of the Royal Society A* 226, 299-349, 1927, doi:10.1098/rsta.1927.0008.
     """
     geometry, diffusivity, exposure = problem.geometry, problem.diffusivity, problem.exposure
     times, surface_layer_depth = problem.times, problem.surface_layer_depth

@@ -478,7 +478,8 @@ def unseparated(run: CorrectedMeshes, margin: float) -> tuple[tuple, float]:
     References
     ----------
     Griebel, M., Schneider, M. & Zenger, C. (1992). A combination technique for the solution
-    of sparse grid problems. In Iterative Methods in Linear Algebra, 263-281. Elsevier.
+    of sparse grid problems. In de Groen, P. & Beauwens, R. (eds.), Iterative Methods in
+    Linear Algebra, 263-281. Amsterdam: North-Holland (Elsevier).
     """
     values, checks = finest(run.results, run.lattice)
     if len(checks) == 1 and checks[0] is None:

@@ -83,7 +83,7 @@ class ShortTime:
     ----------
     - Carslaw & Jaeger (1959) §13.3; Crank (1975) eqs. 2.45 and 5.24 (see ``exact.separable``).
     - M. van den Berg and S. Srisatkunarajah, "Heat flow and Brownian motion for a region
-      in R^2 with a polygonal boundary", *Probability Theory and Related Fields* 86,
+      in R^2 with a polygonal boundary", *Probability Theory and Related Fields* 86(1),
       41-52, 1990.
     - M. van den Berg and P. B. Gilkey, "Heat content asymptotics of a Riemannian manifold
       with boundary", *Journal of Functional Analysis* 120, 48-71, 1994.

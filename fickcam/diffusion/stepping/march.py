@@ -54,7 +54,8 @@ class ThetaStepper:
     ----------
     - Crank, J. (1975). The Mathematics of Diffusion, 2nd ed. Oxford: Clarendon Press.
     - Morton, K. W. & Mayers, D. F. (2005). Numerical Solution of Partial Differential
-      Equations, 2nd ed. Cambridge University Press. doi:10.1017/CBO9780511812248
+      Equations: An Introduction, 2nd ed. Cambridge University Press.
+      doi:10.1017/CBO9780511812248
     """
 
     def __init__(self, disc: Discretisation, part: str = ""):
