@@ -2,7 +2,7 @@
 
 Frame (as :mod:`fickcam.cam.geometry`): the cam turns counter-clockwise about the
 origin by theta; a point p of the cam frame is at R(theta) p in the fixed frame
-(kinematic inversion, Norton, Design of Machinery 5th ed., sec. 8.6; Chen, Mechanics and
+(kinematic inversion, Norton, Design of Machinery 5th ed., ch. 8; Chen, Mechanics and
 Design of Cam Mechanisms 1982, ch. 4; Rothbart, Cam Design Handbook 2004, ch. 3). The
 arm turns about the fixed pivot A = d (cos alpha, sin alpha) by its angular motion
 psi(theta) (the motion laws, in rad), in the sense ``sense`` (+1 counter-clockwise, -1
@@ -142,7 +142,7 @@ def roller_base_angle(arm: Arm, prime_radius: float, length: float | None = None
 
     References
     ----------
-    Norton (2012), sec. 8.6; in full in :mod:`fickcam.cam`.
+    Norton (2012), ch. 8; in full in :mod:`fickcam.cam`.
     """
     delta = roller_arm_opening(arm.pivot_distance, length or arm.length, prime_radius)
     return float(arm.pivot_angle + np.pi + arm.sense * delta)
@@ -227,7 +227,7 @@ def roller_centre(arm: Arm, phi0: float, psi, d1, d2):
 def pitch_derivatives(centre, velocity, acceleration):
     """(a, b): R(theta) times the first and second theta-derivatives of the pitch curve
     P = R(-theta) C in the cam frame, a = C' - J C, b = a' - J a with a' = C'' - J C'
-    (d/dtheta R(-theta) = -R(-theta) J; Norton sec. 8.6 kinematic inversion).
+    (d/dtheta R(-theta) = -R(-theta) J; Norton ch. 8 kinematic inversion).
 
     Parameters
     ----------
@@ -317,7 +317,7 @@ def face_envelope(p, p1, p2, g1, g2):
     """(dp/dgamma, rho) of the cam outline as the envelope of the face lines n(gamma).X = p
     in the cam frame, gamma = gamma_f - theta: the contact point is X = p n + p_gamma n'
     and the radius of curvature rho = p + p_gamma,gamma (support function of a convex
-    curve; reduces to Norton eq. 8.36, rho = Rb + y + y'', for a translating face).
+    curve; reduces to Norton ch. 8, rho = Rb + y + y'', for a translating face).
     ``g1``, ``g2`` are dgamma_f/dtheta and d2gamma_f/dtheta2.
 
     Parameters
@@ -575,7 +575,7 @@ def arm_slope(arm: Arm, px, py, nx, ny):
     (velocity J P per unit cam speed, counter-clockwise) and the arm point at P (velocity
     sense psi' J (P - A)) move alike, so psi' = (J P . N) / (sense J (P - A) . N), P the
     roller centre or the face contact (the normal-velocity condition of higher pairs;
-    Norton sec. 8.6, Chen 1982 ch. 4).
+    Norton ch. 8, Chen 1982 ch. 4).
 
     Parameters
     ----------
@@ -593,7 +593,7 @@ def arm_slope(arm: Arm, px, py, nx, ny):
 
     References
     ----------
-    Norton (2012), sec. 8.6; in full in :mod:`fickcam.cam`.
+    Norton (2012), ch. 8; in full in :mod:`fickcam.cam`.
     Chen (1982), ch. 4; in full in :mod:`fickcam.cam`.
     """
     jx, jy = perp(px, py)

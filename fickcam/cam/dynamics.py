@@ -16,7 +16,7 @@ STANDARD_GRAVITY = 9.80665  # m/s^2
 
 def pressure_angle(height, dy, offset):
     """phi = atan((dy/dtheta - e)/(s0 + y)) with s0 + y the pitch-point height
-    (Norton, Design of Machinery 5th ed., eq. 8.31).
+    (Norton, Design of Machinery 5th ed., ch. 8).
 
     Parameters
     ----------
@@ -34,14 +34,14 @@ def pressure_angle(height, dy, offset):
 
     References
     ----------
-    R. L. Norton, *Design of Machinery*, 5th ed., McGraw-Hill, 2012, eq. 8.31.
+    R. L. Norton, *Design of Machinery*, 5th ed., McGraw-Hill, 2012, ch. 8.
     """
     return np.arctan2(dy - offset, height)
 
 
 def pitch_radius_of_curvature(height, dy, d2y, offset):
     """Radius of curvature of the pitch curve of a translating (offset) follower, from
-    the follower motion alone (kinematic inversion; reduces to Norton eq. 8.34,
+    the follower motion alone (kinematic inversion; reduces to Norton ch. 8,
     rho = (R^2 + y'^2)^1.5/(R^2 + 2 y'^2 - R y''), for e = 0). Positive = convex.
 
     Parameters
@@ -62,7 +62,7 @@ def pitch_radius_of_curvature(height, dy, d2y, offset):
 
     References
     ----------
-    R. L. Norton, *Design of Machinery*, 5th ed., McGraw-Hill, 2012, eq. 8.34.
+    R. L. Norton, *Design of Machinery*, 5th ed., McGraw-Hill, 2012, ch. 8.
     """
     ax, ay = height, dy - offset
     bx, by = 2.0 * dy - offset, d2y - height
@@ -70,7 +70,7 @@ def pitch_radius_of_curvature(height, dy, d2y, offset):
 
 
 def flat_radius_of_curvature(height, d2y):
-    """rho = Rb + y + y'' for a flat-faced follower (Norton eq. 8.36), height = Rb + y.
+    """rho = Rb + y + y'' for a flat-faced follower (Norton ch. 8), height = Rb + y.
 
     Parameters
     ----------
@@ -211,7 +211,7 @@ def power_torque(force, phi, dy):
 
 def jump_speed(mass, d2y, holding_force):
     """Smallest cam speed at which m omega^2 y''(theta) + S(theta) reaches zero somewhere
-    (contact force vanishes: jump; Norton sec. 15.x 'follower jump'); S = spring + preload +
+    (contact force vanishes: jump; Norton ch. 15 'follower jump'); S = spring + preload +
     load (+ weight) are speed-independent. The contact force m omega^2 y'' + S first vanishes
     where S / (-m y'') is least over y'' < 0; a follower that is not held (S < 0 somewhere,
     or S = 0 where y'' < 0) leaves the cam at any speed (0). Where S = 0 and y'' > 0 (a spring

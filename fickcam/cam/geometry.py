@@ -48,7 +48,7 @@ def rotate(angle, x, y):
 
 def prime_height(prime_radius: float, offset: float) -> float:
     """Height of the follower's pitch point on the prime circle: sqrt(Rp^2 - e^2)
-    (Norton eq. 8.31 denominator).
+    (its denominator in Norton ch. 8).
 
     Parameters
     ----------
@@ -70,7 +70,7 @@ def dry_profile(design, segment, psi):
     design angle psi inside ``segment`` (a MotionSegment, or None for the eccentric disc).
 
     Knife: W0 = R(-psi) (e, s0 + y); roller: pitch point minus Rf along the outward
-    normal (Norton eq. 8.32); flat: W0 = R(-psi) (dy/dpsi, Rb + y) (Norton eq. 8.38);
+    normal (Norton ch. 8); flat: W0 = R(-psi) (dy/dpsi, Rb + y) (Norton ch. 8);
     eccentric: a circle of radius R about (0, -eccentricity) (Madhukar et
     al. 2023, Fig. 5.1, lowest follower position at theta = 0).
 
@@ -90,7 +90,7 @@ def dry_profile(design, segment, psi):
 
     References
     ----------
-    Norton (2012), eqs. 8.32 and 8.38; Madhukar et al. (2023), Fig. 5.1; in full in
+    Norton (2012), ch. 8; Madhukar et al. (2023), Fig. 5.1; in full in
     :mod:`fickcam.cam`.
     """
     psi = np.asarray(psi, float)

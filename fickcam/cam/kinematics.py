@@ -57,7 +57,7 @@ def _eccentric_flat(design: CamDesign, state: CamState, theta):
     """Flat face on the (swollen) eccentric disc, in closed form: the face height is the
     support function of the ellipse with centre (0, -e_y) and semi-axes a = R(1 + eps_x),
     b = R(1 + eps_y) in the direction n = (sin theta, cos theta) (kinematic inversion,
-    Norton sec. 8.6): Y = -e_y cos theta + f, f = sqrt(A + B cos 2 theta),
+    Norton ch. 8): Y = -e_y cos theta + f, f = sqrt(A + B cos 2 theta),
     A = (a^2 + b^2)/2, B = (b^2 - a^2)/2; a circle (a = b) gives pure SHM
     Y = R - e cos theta (Madhukar et al. 2023 sec. 5.2). The derivatives of f
     follow from differentiating f^2 = g three times."""
@@ -84,7 +84,7 @@ def _eccentric_flat(design: CamDesign, state: CamState, theta):
 def _eccentric_pitch(design: CamDesign, state: CamState, theta):
     """Knife or roller on the uniformly swollen eccentric disc, in closed form: the pitch
     curve is the circle of radius rho = R (1 + eps) + r_roller about the disc centre
-    c = R(theta) (0, -e (1 + eps)) (kinematic inversion, Norton sec. 8.6), met by the
+    c = R(theta) (0, -e (1 + eps)) (kinematic inversion, Norton ch. 8), met by the
     follower's line x = offset at Y = -e' cos theta + f, f = sqrt(g),
     g = rho^2 - (offset - e' sin theta)^2 (Y = R + r - e cos theta for a centred
     follower with e << R is the disc's near-SHM). The derivatives of f follow from

@@ -25,7 +25,7 @@ from .motion import joint_notices
 
 log = logging.getLogger(__name__)
 
-#: Norton (Design of Machinery, sec. 8.7) keeps the pressure angle of a translating
+#: Norton (Design of Machinery, ch. 8) keeps the pressure angle of a translating
 #: follower below 30 deg and the pitch radius of curvature above 2-3 roller radii
 PRESSURE_ANGLE_LIMIT = math.radians(30.0)
 CURVATURE_RATIO_LIMIT = 2.0
@@ -311,7 +311,7 @@ def _where(theta, index) -> str:
 
 
 def _geometry_notices(design, theta, phi, rho_pitch, rho, roller) -> list[str]:
-    """Undercut, cusp, small curvature and steep pressure angle (Norton sec. 8.7; a flat-face
+    """Undercut, cusp, small curvature and steep pressure angle (Norton ch. 8; a flat-face
     arm has a pressure angle too)."""
     notices = []
     if design.follower_kind == "flat":

@@ -49,25 +49,25 @@ def _law(reference: str):
     return documented
 
 
-@_law('Norton (2012), sec. 8.3; Singh & Sanyal (2017), Table 17')
+@_law('Norton (2012), ch. 8; Singh & Sanyal (2017), Table 17')
 def uniform_velocity(x):
-    """S = x (Norton sec. 8.3, 'constant velocity'; Singh & Sanyal 2017 Table 17). Infinite
+    """S = x (Norton ch. 8, 'constant velocity'; Singh & Sanyal 2017 Table 17). Infinite
     acceleration at both ends."""
     x = np.asarray(x, float)
     return x, np.ones_like(x), np.zeros_like(x), np.zeros_like(x)
 
 
-@_law('Norton (2012), eq. 8.6; Singh & Sanyal (2017), Table 17')
+@_law('Norton (2012), ch. 8; Singh & Sanyal (2017), Table 17')
 def simple_harmonic(x):
-    """S = (1 - cos pi x)/2 (Norton eq. 8.6; Singh & Sanyal 2017 Table 17 and p. 281)."""
+    """S = (1 - cos pi x)/2 (Norton ch. 8; Singh & Sanyal 2017 Table 17 and p. 281)."""
     x = np.asarray(x, float)
     return ((1 - np.cos(PI * x)) / 2, PI / 2 * np.sin(PI * x), PI ** 2 / 2 * np.cos(PI * x),
             -PI ** 3 / 2 * np.sin(PI * x))
 
 
-@_law('Norton (2012), eq. 8.7; Singh & Sanyal (2017), Table 17')
+@_law('Norton (2012), ch. 8; Singh & Sanyal (2017), Table 17')
 def cycloidal(x):
-    """S = x - sin(2 pi x)/(2 pi) (Norton eq. 8.7; Singh & Sanyal 2017 Table 17;
+    """S = x - sin(2 pi x)/(2 pi) (Norton ch. 8; Singh & Sanyal 2017 Table 17;
     Yadav et al. 2017 p. 2)."""
     x = np.asarray(x, float)
     w = 2 * PI
@@ -81,15 +81,15 @@ def _polynomial(coefficients, x):
     return poly(x), poly.deriv(1)(x), poly.deriv(2)(x), poly.deriv(3)(x)
 
 
-@_law('Norton (2012), eq. 8.24')
+@_law('Norton (2012), ch. 8')
 def polynomial_345(x):
-    """S = 10 x^3 - 15 x^4 + 6 x^5 (Norton eq. 8.24)."""
+    """S = 10 x^3 - 15 x^4 + 6 x^5 (Norton ch. 8)."""
     return _polynomial([0, 0, 0, 10, -15, 6], x)
 
 
-@_law('Norton (2012), eq. 8.25')
+@_law('Norton (2012), ch. 8')
 def polynomial_4567(x):
-    """S = 35 x^4 - 84 x^5 + 70 x^6 - 20 x^7 (Norton eq. 8.25)."""
+    """S = 35 x^4 - 84 x^5 + 70 x^6 - 20 x^7 (Norton ch. 8)."""
     return _polynomial([0, 0, 0, 0, 35, -84, 70, -20], x)
 
 
@@ -157,25 +157,25 @@ _MODIFIED_SINE = (
     _Piece(7 / 8, 1.0, 0.0, 0.0, -1.0, _K))
 
 
-@_law('Norton (2012), sec. 8.3')
+@_law('Norton (2012), ch. 8')
 def constant_acceleration(x):
-    """Parabolic: S = 2 x^2 (x <= 1/2), 1 - 2 (1 - x)^2 (Norton sec. 8.3; Singh & Sanyal
+    """Parabolic: S = 2 x^2 (x <= 1/2), 1 - 2 (1 - x)^2 (Norton ch. 8; Singh & Sanyal
     2017 Table 17, whose second half is misprinted as h[1 - 2{1 - k^2}]). Infinite jerk at
     ends and middle."""
     return _piecewise(_CONSTANT_ACCELERATION, x)
 
 
-@_law('Norton (2012), eq. 8.15')
+@_law('Norton (2012), ch. 8')
 def modified_trapezoidal(x):
     """Modified trapezoid: sine ramps of period 1/2 over x in [0, 1/8], [3/8, 5/8], [7/8, 1]
-    and constant acceleration between (Norton eq. 8.15, peak C_a = 4.8881)."""
+    and constant acceleration between (Norton ch. 8, peak C_a = 4.8881)."""
     return _piecewise(_MODIFIED_TRAPEZOIDAL, x)
 
 
-@_law('Norton (2012), eq. 8.18')
+@_law('Norton (2012), ch. 8')
 def modified_sine(x):
     """Modified sine: sine of period 1/2 over [0, 1/8] and [7/8, 1], of period 3/2 between
-    (Norton eq. 8.18, peak C_a = 5.5280)."""
+    (Norton ch. 8, peak C_a = 5.5280)."""
     return _piecewise(_MODIFIED_SINE, x)
 
 
@@ -313,7 +313,7 @@ def follower_motion(segments, theta, corrected: bool = True):
 
     References
     ----------
-    R. L. Norton, *Design of Machinery*, 5th ed., McGraw-Hill, 2012, sec. 8.3.
+    R. L. Norton, *Design of Machinery*, 5th ed., McGraw-Hill, 2012, ch. 8.
     """
     theta = np.mod(np.asarray(theta, float), 2 * PI)
     out = [np.zeros_like(theta) for _ in range(4)]
@@ -349,7 +349,7 @@ def time_derivatives(per_angle, omega):
 
 def joint_notices(segments, tolerance: float = 1e-9) -> list[str]:
     """Warnings where the motion leaves infinite acceleration (velocity step) or infinite
-    jerk (acceleration step) at a segment joint or inside a law (Norton sec. 8.2, the
+    jerk (acceleration step) at a segment joint or inside a law (Norton ch. 8, the
     'fundamental law of cam design').
 
     Parameters
@@ -367,7 +367,7 @@ def joint_notices(segments, tolerance: float = 1e-9) -> list[str]:
 
     References
     ----------
-    Norton (2012), sec. 8.2; in full in :mod:`fickcam.cam`.
+    Norton (2012), ch. 8; in full in :mod:`fickcam.cam`.
     """
     notices = []
     lift = max(abs(s.height) for s in segments) or 1.0

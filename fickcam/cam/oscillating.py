@@ -102,7 +102,7 @@ def arm_response(design: CamDesign, state: CamState, cam_angle) -> Response:
 
     References
     ----------
-    Norton (2012), sec. 8.6; Chen (1982), ch. 4; in full in :mod:`fickcam.cam`.
+    Norton (2012), ch. 8; Chen (1982), ch. 4; in full in :mod:`fickcam.cam`.
     """
     theta = np.asarray(cam_angle, float)
     omega = design.speed

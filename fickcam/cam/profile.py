@@ -8,13 +8,13 @@ Practical Guide to Splines, 2001, ch. XIII). Swelling maps it by D = diag(1 + ep
 1 + eps_y) (tangents too). The follower touches the aged profile where, after turning
 the cam by theta, the roller centre W + R n (knife: W) lies on the follower line x = e,
 or (flat face) where the outward normal n points along +y (kinematic inversion, Norton,
-Design of Machinery 5th ed., sec. 8.6); u(theta) is found by Newton's method, started
+Design of Machinery 5th ed., ch. 8); u(theta) is found by Newton's method, started
 from a table of theta(u) over the profile's dense samples. From the
 same contact, without differentiating data (a swinging arm: :func:`fickcam.cam.arm.arm_slope`):
 knife/roller dY/dtheta = e + Y tan(phi),
 tan(phi) = (R(theta) T)_y / (R(theta) T)_x with T the profile tangent (the pitch curve is
-parallel to the working profile; Norton eq. 8.31); flat dY/dtheta = (R(theta) W)_x
-(Norton eq. 8.38). The second and third derivatives come from a periodic quintic spline
+parallel to the working profile; Norton ch. 8); flat dY/dtheta = (R(theta) W)_x
+(Norton ch. 8). The second and third derivatives come from a periodic quintic spline
 of dY/dtheta on a uniform grid of cam angles, the extremes of Y from the roots of that
 spline. All of it is solved once per aged state (:func:`aged_profile_motion`); any later
 angle (the output grid, the jump-speed search) costs one vectorised Newton solve from
@@ -151,7 +151,7 @@ def _outward_normal(tx, ty):
 
 
 def working_from_pitch(x, y, roller_radius: float):
-    """Working profile points W = P - R n from pitch-curve points P (Norton eq. 8.32),
+    """Working profile points W = P - R n from pitch-curve points P (Norton ch. 8),
     n the pitch curve's outward normal.
 
     Parameters
@@ -168,7 +168,7 @@ def working_from_pitch(x, y, roller_radius: float):
 
     References
     ----------
-    Norton (2012), sec. 8.6; in full in :mod:`fickcam.cam`.
+    Norton (2012), ch. 8; in full in :mod:`fickcam.cam`.
     """
     spline = periodic_spline(*counter_clockwise(x, y))
     u = np.arange(4 * len(x)) / (4 * len(x))
@@ -663,7 +663,7 @@ def profile_motion(profile: CamProfile, strain_x: float, strain_y: float, roller
 
     References
     ----------
-    Norton (2012), secs. 8.6-8.7; in full in :mod:`fickcam.cam`.
+    Norton (2012), ch. 8; in full in :mod:`fickcam.cam`.
     """
     motion = aged_profile_motion(profile, strain_x, strain_y, roller, offset, flat, arm, base)
     return motion(theta), motion.extremes

@@ -205,7 +205,7 @@ def smallest_base_circle(design, limits: Limits) -> dict[str, float]:
 
     References
     ----------
-    R. L. Norton, *Design of Machinery*, 5th ed., McGraw-Hill, 2012, sec. 8.7.
+    R. L. Norton, *Design of Machinery*, 5th ed., McGraw-Hill, 2012, ch. 8.
     """
     if design.kind != "motion":
         raise ValueError("sizing needs a cam given by motion segments (not eccentric)")

@@ -4,7 +4,7 @@ The cam imposes the displacement s(t) on one end of the follower train (stiffnes
 internal damping c in parallel with it); the other end is the lumped follower mass m,
 held against the cam by the return spring k_s and the constant load P (preload, external
 load, weight and the spring compression from a swollen base circle), acting on the mass
-(Norton, Design of Machinery 5th ed., sec. 15.1-15.3, Fig. 15-1; Koster, Vibrations of
+(Norton, Design of Machinery 5th ed., ch. 15; Koster, Vibrations of
 Cam Mechanisms, 1974, ch. 2):
 
     m x'' + c (x' - s') + k (x - s) + k_s x + P = 0,       F_c = k (s - x) + c (s' - x'),
@@ -17,7 +17,7 @@ F_c -> m s'' + k_s s + P, the rigid follower of :mod:`fickcam.cam.dynamics`.
 The periodic steady state at a constant cam speed omega is exact through the Fourier
 series of s(theta): each harmonic n passes with the transfer function
 H_n = (k + i n omega c)/(k + k_s - m n^2 omega^2 + i n omega c) (linear system,
-Norton eq. 15.x frequency response; Koster sec. 2.3). The coefficients come from the
+Norton ch. 15 frequency response; Koster sec. 2.3). The coefficients come from the
 FFT of s on a fine grid (aliasing error ~ N^-p for a motion with p-1 continuous
 derivatives) and the series is summed at any angle.
 """
@@ -58,7 +58,7 @@ class Train:
 
     References
     ----------
-    R. L. Norton, *Design of Machinery*, 5th ed., McGraw-Hill, 2012, sec. 15.1-15.3.
+    R. L. Norton, *Design of Machinery*, 5th ed., McGraw-Hill, 2012, ch. 15.
 
     M. P. Koster, *Vibrations of Cam Mechanisms*, Macmillan, 1974.
     """
@@ -75,12 +75,12 @@ class Train:
 
     @property
     def natural_frequency(self) -> float:
-        """omega_n = sqrt((k + k_s)/m) (rad/s) (Norton eq. 15.1c with k_eff = k + k_s)."""
+        """omega_n = sqrt((k + k_s)/m) (rad/s) (Norton ch. 15 with k_eff = k + k_s)."""
         return math.sqrt(self.total_stiffness / self.mass)
 
     @property
     def damping(self) -> float:
-        """c = 2 zeta sqrt(k_eff m) (Norton eq. 10.x, critical damping 2 sqrt(k m))."""
+        """c = 2 zeta sqrt(k_eff m) (Norton ch. 10, critical damping 2 sqrt(k m))."""
         return 2.0 * self.damping_ratio * math.sqrt(self.total_stiffness * self.mass)
 
     @property
@@ -175,7 +175,7 @@ def _steady_harmonics(train: Train, omega: float, s_harmonics) -> np.ndarray:
 def _from_rest(train: Train, omega: float, x_harmonics, s0: float, theta):
     """(x, x') over the first turn when the mass starts at rest in equilibrium at theta = 0:
     the periodic solution plus the free vibration u = e^{-zeta wn t}(A cos wd t + B sin wd t)
-    that makes up the initial difference (superposition; Norton sec. 10.x). zeta < 1."""
+    that makes up the initial difference (superposition; Norton ch. 10). zeta < 1."""
     theta = np.asarray(theta, float)
     t = theta / omega
     u0 = train.equilibrium(s0) - series(x_harmonics, 0.0)
@@ -215,7 +215,7 @@ def cycloidal_residual_amplitude(lift: float, rise_time: float, natural_frequenc
     """Residual vibration after a cycloidal rise of ``lift`` in ``rise_time`` on an undamped
     SDOF follower starting at rest: A = g h |sin(pi r)|/(pi r |1 - r^2|), r = t1 f_n, g = k/(k+k_s).
 
-    Derivation (Duhamel; Koster 1974 sec. 3.2; Norton sec. 15.x): u = x - g s obeys
+    Derivation (Duhamel; Koster 1974 sec. 3.2; Norton ch. 15): u = x - g s obeys
     u'' + wn^2 u = -g s'', s'' = (2 pi h/t1^2) sin(a t), a = 2 pi/t1, so after the rise
     A = g/wn |int_0^t1 s'' e^{-i wn t} dt| = g/wn (2 pi h/t1^2) a |1 - e^{-i wn t1}|/|a^2 - wn^2|,
     and |1 - e^{-i wn t1}| = 2 |sin(wn t1/2)|. r = 1 is the removable limit g h/2.
@@ -277,7 +277,7 @@ def dynamic_jump_speed(train: Train, s_harmonics, s_fine, ds_fine, upper: float)
 
     References
     ----------
-    Norton (2012), sec. 15.1-15.3; Koster (1974); in full in :class:`Train`.
+    Norton (2012), ch. 15; Koster (1974); in full in :class:`Train`.
     """
     from scipy.optimize import brentq
 
@@ -411,7 +411,7 @@ def dynamic_response(design, state, cam_angle, rigid) -> Response:
 
     References
     ----------
-    Norton (2012), sec. 15.1-15.3; Koster (1974); in full in :class:`Train`.
+    Norton (2012), ch. 15; Koster (1974); in full in :class:`Train`.
     """
     from . import dynamics as dyn
     from .kinematics import follower_heights

@@ -1,4 +1,4 @@
-"""Grashof classification (Norton, Design of Machinery 5th ed., sec. 2.12, eq. 2.8:
+"""Grashof classification (Norton, Design of Machinery 5th ed., ch. 2:
 S + L <= P + Q) with the crank (link 2) as input and link 1 as the frame."""
 from __future__ import annotations
 
@@ -17,7 +17,7 @@ FULL_ROTATION = {CRANK_ROCKER, DOUBLE_CRANK, CHANGE_POINT}
 
 def grashof_condition(a, b, c, d) -> float:
     """(P + Q) - (S + L), relative to the sum of the lengths: > 0 Grashof, = 0 change
-    point, < 0 non-Grashof (Norton eq. 2.8).
+    point, < 0 non-Grashof (Norton ch. 2).
 
     Parameters
     ----------
@@ -31,14 +31,14 @@ def grashof_condition(a, b, c, d) -> float:
 
     References
     ----------
-    Norton (2012), sec. 2.12; in full in :mod:`fickcam.linkage`.
+    Norton (2012), ch. 2; in full in :mod:`fickcam.linkage`.
     """
     s = np.sort(np.array([a, b, c, d], float))
     return float((s[1] + s[2] - s[0] - s[3]) / s.sum())
 
 
 def grashof_class(a, b, c, d, tolerance: float = 1e-9) -> str:
-    """Class of the four-bar with crank a, coupler b, rocker c, frame d (Norton sec. 2.12):
+    """Class of the four-bar with crank a, coupler b, rocker c, frame d (Norton ch. 2):
     Grashof with the crank shortest -> crank-rocker, frame shortest -> double-crank,
     coupler or rocker shortest -> double-rocker; S + L = P + Q -> change-point;
     S + L > P + Q -> non-Grashof (triple rocker).
@@ -58,7 +58,7 @@ def grashof_class(a, b, c, d, tolerance: float = 1e-9) -> str:
 
     References
     ----------
-    Norton (2012), sec. 2.12; in full in :mod:`fickcam.linkage`.
+    Norton (2012), ch. 2; in full in :mod:`fickcam.linkage`.
     """
     margin = grashof_condition(a, b, c, d)
     if abs(margin) <= tolerance:

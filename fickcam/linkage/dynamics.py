@@ -1,5 +1,5 @@
 """Kinetostatic (Newton-Euler) force analysis of the four-bar: joint forces and the
-input torque, Norton, Design of Machinery 5th ed., sec. 11.5, eqs. 11.8-11.10.
+input torque, Norton, Design of Machinery 5th ed., ch. 11.
 
 Unknowns per crank angle, x = [F12x, F12y, F32x, F32y, F43x, F43y, F14x, F14y, T12]:
 F_ij is the force of link i on link j (1 = frame), so F12 acts on the crank at O2,
@@ -24,7 +24,7 @@ def _cross_row(rx, ry):
 
 def kinetostatics(masses, inertias, com_acceleration, alphas, pins, com_position,
                   gravity: float = 0.0, rocker_torque: float = 0.0):
-    """Solve Norton eq. 11.10 at every crank angle (the module docstring names the
+    """Solve Norton ch. 11 at every crank angle (the module docstring names the
     unknowns).
 
     Parameters
@@ -54,7 +54,7 @@ def kinetostatics(masses, inertias, com_acceleration, alphas, pins, com_position
 
     References
     ----------
-    Norton (2012), sec. 11.5; in full in :mod:`fickcam.linkage`.
+    Norton (2012), ch. 11; in full in :mod:`fickcam.linkage`.
     """
     o2, pa, pb, o4 = pins
     g2, g3, g4 = com_position

@@ -10,7 +10,7 @@ import numpy as np
 
 
 def angular_velocities(a, b, c, theta2, theta3, theta4, omega2):
-    """(omega3, omega4) in rad/s, Norton eq. 6.18a-b:
+    """(omega3, omega4) in rad/s, Norton ch. 6:
     omega3 = a omega2 sin(t4 - t2) / (b sin(t3 - t4)),
     omega4 = a omega2 sin(t2 - t3) / (c sin(t4 - t3)).
 
@@ -30,7 +30,7 @@ def angular_velocities(a, b, c, theta2, theta3, theta4, omega2):
 
     References
     ----------
-    Norton (2012), sec. 6.7; in full in :mod:`fickcam.linkage`.
+    Norton (2012), ch. 6; in full in :mod:`fickcam.linkage`.
     """
     omega3 = a * omega2 * np.sin(theta4 - theta2) / (b * np.sin(theta3 - theta4))
     omega4 = a * omega2 * np.sin(theta2 - theta3) / (c * np.sin(theta4 - theta3))
@@ -38,7 +38,7 @@ def angular_velocities(a, b, c, theta2, theta3, theta4, omega2):
 
 
 def angular_accelerations(a, b, c, theta2, theta3, theta4, omega2, omega3, omega4, alpha2=0.0):
-    """(alpha3, alpha4) in rad/s^2, Norton eq. 7.12a-b:
+    """(alpha3, alpha4) in rad/s^2, Norton ch. 7:
     alpha3 = (C D - A F)/(A E - B D), alpha4 = (C E - B F)/(A E - B D) with
     A = c sin t4, B = b sin t3, D = c cos t4, E = b cos t3,
     C = a alpha2 sin t2 + a omega2^2 cos t2 + b omega3^2 cos t3 - c omega4^2 cos t4,
@@ -73,7 +73,7 @@ def angular_accelerations(a, b, c, theta2, theta3, theta4, omega2, omega3, omega
 def rotating_point(r, theta, omega, alpha):
     """Position, velocity and acceleration (complex, m, m/s, m/s^2) of a point at radius
     r on a link turning at theta, omega, alpha about a fixed or moving origin:
-    R = r e^{i theta}, V = i omega R (Norton eq. 6.7), A = (i alpha - omega^2) R (eq. 7.4).
+    R = r e^{i theta}, V = i omega R (Norton ch. 6), A = (i alpha - omega^2) R (ch. 7).
 
     Parameters
     ----------

@@ -41,7 +41,7 @@ def _half_angle_root(p, q, r, sigma):
 
 
 def rocker_angle(a, b, c, d, theta2, assembly="open"):
-    """theta4 (rad), Norton eqs. 4.8a and 4.10 (Freudenstein):
+    """theta4 (rad), Norton ch. 4 (Freudenstein):
     K1 = d/a, K2 = d/c, K3 = (a^2 - b^2 + c^2 + d^2)/(2 a c);
     A = cos t2 - K1 - K2 cos t2 + K3, B = -2 sin t2, C = K1 - (K2 + 1) cos t2 + K3;
     theta4 = 2 atan[(-B -/+ sqrt(B^2 - 4 A C)) / (2 A)] (minus: open).
@@ -62,7 +62,7 @@ def rocker_angle(a, b, c, d, theta2, assembly="open"):
 
     References
     ----------
-    Norton (2012), sec. 4.5, and Freudenstein (1955); in full in :mod:`fickcam.linkage`.
+    Norton (2012), ch. 4, and Freudenstein (1955); in full in :mod:`fickcam.linkage`.
     """
     theta2 = np.asarray(theta2, float)
     k1, k2, k3 = d / a, d / c, (a * a - b * b + c * c + d * d) / (2.0 * a * c)
@@ -74,7 +74,7 @@ def rocker_angle(a, b, c, d, theta2, assembly="open"):
 
 
 def coupler_angle(a, b, c, d, theta2, assembly="open"):
-    """theta3 (rad), Norton eqs. 4.11-4.13 (Freudenstein): K4 = d/b,
+    """theta3 (rad), Norton ch. 4 (Freudenstein): K4 = d/b,
     K5 = (c^2 - d^2 - a^2 - b^2)/(2 a b); D = cos t2 - K1 + K4 cos t2 + K5,
     E = -2 sin t2, F = K1 + (K4 - 1) cos t2 + K5;
     theta3 = 2 atan[(-E -/+ sqrt(E^2 - 4 D F)) / (2 D)] (minus: open).
@@ -100,7 +100,7 @@ def coupler_angle(a, b, c, d, theta2, assembly="open"):
 
 def positions(a, b, c, d, theta2, assembly="open"):
     """(theta3, theta4) in rad on the ``assembly`` branch, both NaN where either equation
-    finds no assembly (Norton eqs. 4.10b and 4.13), and where the crank pin A falls on
+    finds no assembly (Norton ch. 4), and where the crank pin A falls on
     the rocker pivot O4 (a = d at theta2 = 0: B is undetermined).
 
     Parameters
@@ -168,7 +168,7 @@ def transmission_angle(theta3, theta4):
 
 
 def joint_positions(a, b, c, d, theta2, theta3, theta4):
-    """Complex positions of O2, A, B (from the crank side) and O4 (Norton eq. 4.5).
+    """Complex positions of O2, A, B (from the crank side) and O4 (Norton ch. 4).
 
     Parameters
     ----------
@@ -190,7 +190,7 @@ def joint_positions(a, b, c, d, theta2, theta3, theta4):
 
 
 def coupler_point(a, theta2, theta3, distance, angle):
-    """Coupler point P = a e^{i theta2} + p e^{i (theta3 + delta3)} (Norton eq. 4.31),
+    """Coupler point P = a e^{i theta2} + p e^{i (theta3 + delta3)} (Norton ch. 4),
     returned as (x, y) in m.
 
     Parameters
@@ -253,8 +253,8 @@ def toggle_crank_angles(a, b, c, d, assembly="open"):
     """Crank angles (rad, in [0, 2 pi)) of the toggle positions on this branch.
 
     ``extended`` / ``folded``: crank and coupler collinear (O2 B = b + a or |b - a|),
-    the rocker at its two limits (Norton sec. 4.13, Fig. 4-19). ``crank_limits``: coupler
-    and rocker collinear, where a non-rotating input stops, Norton eq. 4.33:
+    the rocker at its two limits (Norton ch. 4). ``crank_limits``: coupler
+    and rocker collinear, where a non-rotating input stops, Norton ch. 4:
     theta2 = +/- acos[(a^2 + d^2 - b^2 - c^2)/(2 a d) +/- b c/(a d)].
     Candidates are checked on the chosen branch; none if absent.
 

@@ -5,7 +5,7 @@ a link or a four-bar: non-positive lengths, bosses that would overlap on a link,
 a bar wider than its bosses, a hole as large as its boss, and a linkage that
 cannot assemble at any crank angle (the diagonal O4-A ranges over
 [|d - a|, d + a] while the coupler-rocker dyad spans [|b - c|, b + c]; Norton,
-Design of Machinery 5th ed., sec. 4.5 and 4.13).
+Design of Machinery 5th ed., ch. 4).
 """
 from __future__ import annotations
 
@@ -48,7 +48,7 @@ AngularAcceleration = _in_si("rad/s**2", "an angular acceleration (e.g. '10 rad/
 
 
 class CouplerPoint(StrictModel):
-    """Point P on the coupler (Norton eq. 4.31).
+    """Point P on the coupler (Norton ch. 4).
 
     Parameters
     ----------
