@@ -170,7 +170,7 @@ def layer_integrals(z):
     1/sqrt(pi) - ierfc(z) (Carslaw & Jaeger 1959 Appendix II, ierfc(z) = exp(-z^2)/sqrt(pi)
     - z erfc(z)), written z erfc(z) - expm1(-z^2)/sqrt(pi) (two positive terms, no
     cancellation for small z); the second, by parts with erfc' = -2 exp(-s^2)/sqrt(pi)
-    (Abramowitz & Stegun 1964 eq. 7.1.19) and int_0^z s^2 exp(-s^2) ds = sqrt(pi) erf(z)/4
+    (Abramowitz & Stegun 1964 §7.1) and int_0^z s^2 exp(-s^2) ds = sqrt(pi) erf(z)/4
     - z exp(-z^2)/2, is z^2 erfc(z)/2 + erf(z)/4 - z exp(-z^2)/(2 sqrt(pi)). Exact where
     the 12-point Gauss rule they replace was not (sqrt(t) << delta: a steep erfc).
 
@@ -189,7 +189,7 @@ def layer_integrals(z):
     References
     ----------
     M. Abramowitz and I. A. Stegun, *Handbook of Mathematical Functions*, National Bureau
-    of Standards, 1964, eq. 7.1.19; Carslaw & Jaeger (1959), Appendix II.
+    of Standards, 1964, §7.1; Carslaw & Jaeger (1959), Appendix II.
     """
     z = np.minimum(np.asarray(z, float), 40.0)  # erfc(40) = 0: both integrals are complete
     tail = erfc(z)

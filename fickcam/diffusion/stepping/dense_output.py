@@ -12,8 +12,9 @@ exponential late (Crank 1975 eq. 4.18, 4.17), is smooth there. A new time is rea
 Lagrange cubic through the 4 nodes of its segment about it, in log(age), and by the
 quadratics through the first 3 and the last 3 of them; the larger difference, the size of
 the cubic's last term, is the estimate of a quadratic's error and so bounds the cubic's (the error of Lagrange
-interpolation is the next divided difference times the nodal polynomial: Burden & Faires,
-Numerical Analysis, Thm 3.3; Stoer & Bulirsch, Introduction to Numerical Analysis §2.1.4).
+interpolation is the next divided difference times the nodal polynomial: Hildebrand, F. B.
+(1956), Introduction to Numerical Analysis, New York: McGraw-Hill, pp. 43-44; Stoer &
+Bulirsch, Introduction to Numerical Analysis §2.1.4).
 A segment is (change, next change]: the node at a change ends the segment before it (the
 state there is the march's at t-, read with g(t-) as the outputs are), and no stencil
 reaches past it, so nothing is interpolated across an exposure change.
@@ -144,7 +145,7 @@ def lagrange(x: np.ndarray, at: float) -> np.ndarray:
 
     References
     ----------
-    Burden, R. L. & Faires, J. D. Numerical Analysis, Thm 3.3 (module docstring).
+    Hildebrand (1956), pp. 43-44 (module docstring).
     """
     weights = np.ones(x.size)
     for k in range(x.size):
