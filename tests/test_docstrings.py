@@ -639,8 +639,7 @@ ENTRY_POINTS = {
     "fickcam.diffusion.stepping.step_response.blend": ("values", "tolerance"),
     "fickcam.diffusion.stepping.march.ThetaStepper": (),
     "fickcam.diffusion.stepping.march.History": ("mean", "layer", "fields", "track"),
-    "fickcam.diffusion.stepping.march.march":
-        ("nodes", "surface_values", "initial", "times", "surface_before"),
+    "fickcam.diffusion.stepping.march.march": ("steps", "initial", "restart_steps"),
     "fickcam.diffusion.stepping.march.held_values": ("ending", "initial"),
     "fickcam.diffusion.stepping.march.norm": (),
     "fickcam.diffusion.stepping.march.rounded_steps": ("steps",),
@@ -674,8 +673,10 @@ ENTRY_POINTS = {
     "fickcam.diffusion.nonfickian.two_phase_mesh.TwoPhaseHistory":
         ("mean", "layer", "bound", "fields"),
     "fickcam.diffusion.nonfickian.two_phase_mesh.two_phase_marcher": (),
+    "fickcam.diffusion.nonfickian.two_phase_mesh.Exchange":
+        ("binding", "release", "initial_share"),
     "fickcam.diffusion.nonfickian.two_phase_mesh.march_coupled":
-        ("nodes", "free_before", "binding", "release", "initial", "initial_share", "labels"),
+        ("steps", "free_before", "exchange", "initial"),
     "fickcam.diffusion.nonfickian.two_phase_modes.Nodes":
         ("t", "tau", "free_right", "free_left", "gamma", "beta", "ratio", "initial_bound",
          "interpolation"),
@@ -794,9 +795,11 @@ ENTRY_POINTS = {
     "fickcam.diffusion.models.finite_volume.discretise": ("geometry", "diffusivity", "cells",
                                                           "surface_layer_depth", "finest",
                                                           "growth"),
-    "fickcam.diffusion.models.finite_volume.StepPlan": ("nodes", "times", "surface",
-                                                        "surface_before", "outputs",
-                                                        "restarts"),
+    "fickcam.diffusion.stepping.step_plans.StepPlan": ("nodes", "times", "surface",
+                                                       "surface_before", "outputs",
+                                                       "restarts"),
+    "fickcam.diffusion.stepping.step_plans.StepPlan.without_jumps": ("nodes", "surface",
+                                                                     "outputs", "times"),
     "fickcam.diffusion.models.finite_volume.step_plan": ("exposure", "times", "scales",
                                                          "per_doubling"),
     "fickcam.diffusion.models.finite_volume.solve_direct": ("problem",),

@@ -60,7 +60,7 @@ class StepRecord:
     """Weighted sums of a Richardson-combined march at every node of its coarse plan.
 
     The columns are the mean, the layer and any other weighted sums asked; the plan is
-    ``finite_volume.StepPlan``'s coarse one.
+    ``step_plans.StepPlan``'s coarse one.
 
     Parameters
     ----------
