@@ -699,12 +699,13 @@ ENTRY_POINTS = {
     "fickcam.diffusion.nonfickian.concentration_dependent.wettest": ("times",),
     "fickcam.diffusion.nonfickian.concentration_dependent.Faces":
         ("transmissibility", "boundary", "volumes"),
-    "fickcam.diffusion.nonfickian.concentration_dependent.sweep_march": ("top", "initial"),
+    "fickcam.diffusion.nonfickian.concentration_dependent.SweptMarch": ("law", "top"),
+    "fickcam.diffusion.nonfickian.concentration_dependent.sweep_march": ("shared", "initial"),
     "fickcam.diffusion.nonfickian.concentration_dependent.Lagged": (),
     "fickcam.diffusion.nonfickian.concentration_dependent.extrapolated":
         ("before", "latest", "dt_before", "dt", "g"),
     "fickcam.diffusion.nonfickian.concentration_dependent.sweep_step":
-        ("old", "g", "top", "dt", "time", "guess"),
+        ("shared", "old", "g", "dt", "time", "guess"),
     "fickcam.diffusion.nonfickian.corrected_fields.planform_at": ("values", "points"),
     "fickcam.diffusion.nonfickian.corrected_fields.reading": ("points",),
     "fickcam.diffusion.nonfickian.corrected_fields.exposed_points": (),

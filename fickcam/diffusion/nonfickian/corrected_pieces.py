@@ -37,7 +37,7 @@ from ..problem.results import DiffusionResult, Plan
 from ..problem.scaling import stretch_of
 from ..stepping.dense_output import StepRecord
 from .concentration_dependent import (SWEEPS, Faces, Sweeps, fastest, nonlinear_plan,
-                                      solve_nonlinear, sweep_march, wettest)
+                                      SweptMarch, solve_nonlinear, sweep_march, wettest)
 
 SHEET_SHARE = 0.1          # the fine sheet's accuracy: this share of the requested one, not
 #   loosened at loose accuracies (measured: benchmarks/results/tuned_constants.md)
@@ -377,10 +377,10 @@ def richardson_march(disc, law, top, exposure, times, scales, per_doubling, keep
     CombinedMarch
         The combined means [weight %] and the time-error indicator.
     """
-    faces = Faces.of(disc)
+    shared = SweptMarch(Faces.of(disc), law, top, part, sweeps)
     plans = [step_plan(exposure, times, scales, per_doubling, bisect) for bisect in (False, True)]
-    coarse, fine = (sweep_march(faces, disc, law, top, steps, exposure.initial_moisture, keep,
-                                part, columns, sweeps) for steps in plans)
+    coarse, fine = (sweep_march(shared, disc, steps, exposure.initial_moisture, keep, columns)
+                    for steps in plans)
     fields = 2.0 * fine.fields - coarse.fields if keep else None
     return CombinedMarch(2.0 * fine.mean - coarse.mean, 2.0 * fine.layer - coarse.layer, fields,
                 coarse.steps + fine.steps, float(np.max(np.abs(fine.mean - coarse.mean))),
