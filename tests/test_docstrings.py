@@ -749,14 +749,12 @@ ENTRY_POINTS = {
     "fickcam.diffusion.nonfickian.corrected_product.base_level": ("accuracy",),
     "fickcam.diffusion.nonfickian.corrected_product.base_plan": ("accuracy",),
     "fickcam.diffusion.nonfickian.corrected_product.surface_of": (),
-    "fickcam.diffusion.nonfickian.corrected_product.corrected_levels":
-        ("geometry", "times", "accuracy", "surface_layer_depth"),
+    "fickcam.diffusion.nonfickian.corrected_product.corrected_levels": ("problem", "base"),
     "fickcam.diffusion.nonfickian.corrected_product.estimate_parts": ("margin",),
     "fickcam.diffusion.nonfickian.corrected_product.unseparated": ("margin",),
     "fickcam.diffusion.nonfickian.corrected_product.finest": ("results",),
     "fickcam.diffusion.nonfickian.corrected_product.extension": ("accuracy",),
-    "fickcam.diffusion.nonfickian.corrected_product.refined_run":
-        ("geometry", "times", "accuracy", "surface_layer_depth"),
+    "fickcam.diffusion.nonfickian.corrected_product.refined_run": ("problem",),
     "fickcam.diffusion.nonfickian.corrected_product.solve_corrected": ("problem",),
     "fickcam.diffusion.nonfickian.corrected_product.plan_corrected": ("problem",),
     "fickcam.diffusion.nonfickian.corrected_product.refined_reference": ("accuracy", "scale"),

@@ -205,8 +205,8 @@ def nested_plate():
     estimate still covers the finer mesh's error (below)."""
     from fickcam.diffusion.nonfickian.corrected_product import corrected_levels
     small = CamPlate(np.array([0, 3e-3, 3e-3, 0.0]), np.array([0, 0, 2e-3, 2e-3]), H)
-    return corrected_levels(small, ISOTROPIC, law(2.0), exposure(0.0, MM), TIMES[:4], 1e-2, 3,
-                            base=1.0)
+    return corrected_levels(DiffusionProblem(small, ISOTROPIC, exposure(0.0, MM), TIMES[:4], 1e-2,
+                                             sorption=law(2.0)), 3, base=1.0)
 
 
 @pytest.mark.slow
