@@ -732,13 +732,15 @@ ENTRY_POINTS = {
     "fickcam.diffusion.nonfickian.corrected_pieces.PrismCells": ("z",),
     "fickcam.diffusion.nonfickian.corrected_pieces.cross": (),
     "fickcam.diffusion.nonfickian.corrected_pieces.combination": (),
-    "fickcam.diffusion.nonfickian.corrected_pieces.richardson_march": ("top", "times"),
+    "fickcam.diffusion.nonfickian.corrected_pieces.richardson_march": ("setting",),
     "fickcam.diffusion.nonfickian.corrected_pieces.unaccomplished_ratio":
         ("reference", "coarse", "floor"),
     "fickcam.diffusion.nonfickian.corrected_pieces.corrected": ("surface", "union"),
     "fickcam.diffusion.nonfickian.corrected_pieces.steps_for": ("accuracy",),
     "fickcam.diffusion.nonfickian.corrected_pieces.level_plan": ("times", "mesh_accuracy"),
-    "fickcam.diffusion.nonfickian.corrected_pieces.sheet_reference": ("times", "accuracy", "depth"),
+    "fickcam.diffusion.nonfickian.corrected_pieces.sheet_reference": ("problem", "geometry"),
+    "fickcam.diffusion.nonfickian.corrected_pieces.SharedInputs.of":
+        ("problem", "geometry", "diffusivity", "per_doubling"),
     "fickcam.diffusion.nonfickian.corrected_pieces.SharedInputs": ("times", "d", "top", "depth"),
     "fickcam.diffusion.nonfickian.corrected_pieces.MeshMarches": ("coordinates", "union"),
     "fickcam.diffusion.nonfickian.corrected_pieces.three_d": (),

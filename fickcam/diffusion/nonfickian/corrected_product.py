@@ -370,12 +370,11 @@ def corrected_levels(problem: DiffusionProblem, meshes: int = 2, *, plans=None, 
     """
     law, exposure, times, accuracy = (problem.sorption, problem.exposure, problem.times,
                                       problem.accuracy)
-    surface_layer_depth, store_fields = problem.surface_layer_depth, problem.store_fields
+    store_fields = problem.store_fields
     geometry, diffusivity, faces_layer = as_prism(problem.geometry, problem.diffusivity)
-    setting = SharedInputs.of(geometry, diffusivity, law, exposure, times, surface_layer_depth,
-                         steps_for(accuracy), problem.part, faces_layer, store_fields, sweeps)
-    sheet = sheet_reference(geometry, diffusivity, law, exposure, times, accuracy,
-                            surface_layer_depth, store_fields, sweeps)
+    setting = SharedInputs.of(problem, geometry, diffusivity, steps_for(accuracy), faces_layer,
+                              sweeps)
+    sheet = sheet_reference(problem, geometry, diffusivity, sweeps)
     reference = CombinedMarch(sheet.mean, sheet.surface)
 
     def planned(a):
