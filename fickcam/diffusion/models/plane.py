@@ -271,9 +271,8 @@ def planform_mesh(part, finest: float, growth: float, stretch: tuple[float, floa
         part, finest * part.thickness, growth=growth, stretch=stretch))
 
 
-def planform_response(geometry, finest: float, growth: float, d: tuple, layer_depth: float,
-                      end: float, per_doubling: int, first_step: float, keep_fields: bool,
-                      part: str, cache: RunCache):
+def planform_response(problem: DiffusionProblem, chosen: Plan, end: float, first_step: float,
+                      cache: RunCache):
     """(P1 operator, unit-step response, time-error pair) of the planform: what ``solve_plane``
     marches, kept in the run's ``cache`` by the exact inputs that determine it (geometries
     compare by value), so re-runs at other output times (the limit search) and the cases of
@@ -282,26 +281,17 @@ def planform_response(geometry, finest: float, growth: float, d: tuple, layer_de
 
     Parameters
     ----------
-    geometry : CamPlate or LinkBar
-        The part, its lengths in [m].
-    finest : float
-        The mesh's finest spacing in thicknesses [-].
-    growth : float
-        The spacing's growth [-].
-    d : tuple of float
-        D0 along x, y, z [m^2/s].
-    layer_depth : float
-        The contact layer's depth [m].
+    problem : DiffusionProblem
+        The part (a CamPlate or LinkBar, lengths [m]), D0 along x, y, z [m^2/s], the
+        contact layer's depth [m], whether to keep the response's nodal fields and the
+        part's name (progress messages).
+    chosen : Plan
+        The plane plan: the mesh's finest spacing in thicknesses [-], the spacing's growth
+        [-] and the backward-Euler steps per doubling of scaled time [-].
     end : float
         The last scaled time tau* the response covers [-].
-    per_doubling : int
-        Backward-Euler steps per doubling of scaled time [-].
     first_step : float
         The first step in scaled time [-].
-    keep_fields : bool
-        True: keep the nodal fields of the response.
-    part : str
-        The part's name (progress messages).
     cache : RunCache
         The run's cache.
 
@@ -311,11 +301,16 @@ def planform_response(geometry, finest: float, growth: float, d: tuple, layer_de
         The P1 operator, the unit-step response (uptake fractions [-] over scaled time)
         and the time-error pair [-].
     """
+    geometry, layer_depth, keep_fields = (problem.geometry, problem.surface_layer_depth,
+                                          problem.store_fields)
+    d = tuple(float(v) for v in problem.diffusivity.pre_exponential)
+    finest, growth, per_doubling = chosen.finest, chosen.growth, chosen.steps_per_doubling
+
     def build():
         mesh = planform_mesh(geometry, finest, growth, stretch_of(d), cache)
         planar = plane_operator(mesh, geometry, layer_depth, d)
         response, pair = step_response(planar, end, per_doubling, first_step,
-                                       keep_fields=keep_fields, part=part)
+                                       keep_fields=keep_fields, part=problem.part)
         return planar, response, pair
     return cache.get(("planform response", geometry, finest, growth, d, layer_depth, end,
                       per_doubling, first_step, keep_fields), build)
@@ -471,9 +466,8 @@ def solve_plane(problem: DiffusionProblem, chosen: Plan, cache: RunCache | None 
     if switch >= end and not store_fields:
         return _expansion_only(expansion, ages, history, chosen, part)
     planar, u_plane, pair_plane = planform_response(
-        geometry, chosen.finest, chosen.growth, d, surface_layer_depth, end,
-        chosen.steps_per_doubling, mesh_first_step(chosen.finest, 0.0 if store_fields else switch),
-        store_fields, part, cache)
+        problem, chosen, end, mesh_first_step(chosen.finest, 0.0 if store_fields else switch),
+        cache)
     (plane_mean, mean_error), (plane_layer, _) = (
         _planform_fractions(u_plane, values, expansion, which, tolerance)
         for values, which in ((u_plane.mean, "mean"), (u_plane.layer, "layer")))
