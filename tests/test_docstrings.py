@@ -773,8 +773,9 @@ ENTRY_POINTS = {
     "fickcam.diffusion.nonfickian.planform_modes.planform_source": ("d", "spectrum"),
     "fickcam.diffusion.nonfickian.planform_modes.RefinedPlanform": ("error", "finest", "growth"),
     "fickcam.diffusion.nonfickian.planform_modes.Refinement": ("cap",),
-    "fickcam.diffusion.nonfickian.planform_modes.refined_planform":
-        ("d", "depth", "finest", "growth", "ages", "tolerance"),
+    "fickcam.diffusion.nonfickian.planform_modes.PlanformMeasure":
+        ("d", "depth", "ages", "tolerance"),
+    "fickcam.diffusion.nonfickian.planform_modes.refined_planform": ("task", "finest", "growth"),
     "fickcam.diffusion.nonfickian.planform_modes.error_coefficients": ("meshes",),
     "fickcam.diffusion.nonfickian.planform_modes.mesh_error": ("finest", "growth"),
     # diffusion: dispatch, models, exact, accuracy, operators, planform
