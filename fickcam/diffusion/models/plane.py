@@ -231,16 +231,37 @@ def mesh_first_step(finest: float, switch: float) -> float:
     return max(FIRST_STEP, MESH_FIRST_STEP * finest ** 2, switch / 2 ** MESH_LEAD_DOUBLINGS)
 
 
-def _planform_size(part, d, expansion) -> tuple[float, float, float]:
+@dataclass(frozen=True)
+class PlanformSize:
+    """The outline's size in scaled coordinates.
+
+    Parameters
+    ----------
+    perimeter : float
+        The scaled perimeter [-].
+    area : float
+        The scaled area [-].
+    tightest : float
+        The largest curvature of the outline [-] (scaled).
+    """
+
+    perimeter: float
+    area: float
+    tightest: float
+
+
+def _planform_size(part, d, expansion) -> PlanformSize:
     """Scaled perimeter, area and largest curvature of the outline (an outline without an
     expansion: bounding box and hole circumferences, area of the box)."""
     if expansion is not None:
-        return expansion.perimeter, expansion.area, max(expansion.max_curvature, 1e-9)
+        return PlanformSize(expansion.perimeter, expansion.area,
+                            max(expansion.max_curvature, 1e-9))
     scale = np.asarray(planar_scale(part, d))
     width, height = np.asarray(outline_extent(part)) * scale
     holes = 4 * math.pi * getattr(part, "boss_inner_radius", 0.0) * float(scale.max())
     radius = getattr(part, "boss_inner_radius", 0.0) or getattr(part, "boss_outer_radius", 1.0)
-    return 2 * (width + height) + holes, width * height, 1.0 / (radius * float(scale.min()))
+    return PlanformSize(2 * (width + height) + holes, width * height,
+                        1.0 / (radius * float(scale.min())))
 
 
 
@@ -378,13 +399,13 @@ def plan_plane(problem: DiffusionProblem, caps: CellCaps = MAX_CELLS,
     ages = output_ages(change, outputs, ramp, cache=cache)
     t_lo = earliest_output(change, outputs)
     switch = 0.0 if expansion is None else expansion.switch(tolerance)
-    perimeter, area, tightest = _planform_size(geometry, d, expansion)
-    pair = PLANE_PAIR * float(leading_uptake(perimeter, area, end))  # times 1 / m
+    size = _planform_size(geometry, d, expansion)
+    pair = PLANE_PAIR * float(leading_uptake(size.perimeter, size.area, end))  # times 1 / m
     per_doubling = max(MIN_STEPS_PER_DOUBLING,
                        math.ceil(pair * math.sqrt(PAIR_TO_TIME_ERROR / (TIME_SHARE * accuracy))))
     time_error = PAIR_TO_TIME_ERROR * (pair / per_doubling) ** 2
-    design, leak, peak = _design(expansion, switch, end, ages, perimeter, area, tightest,
-                                 accuracy, time_error, caps.plane)
+    design, leak, peak = _design(expansion, switch, end, ages, size, accuracy, time_error,
+                                 caps.plane)
     sheet = min(caps.slab, max(MIN_CELLS_PER_AXIS, math.ceil(
         1.0 / math.sqrt(0.5 * accuracy * max(t_lo, switch)
                         / (3 * space_error(max(t_lo, switch)))))))
@@ -408,14 +429,14 @@ def plan_plane(problem: DiffusionProblem, caps: CellCaps = MAX_CELLS,
                 growth=design.growth)
 
 
-def _design(expansion, switch, end, ages, perimeter, area, tightest, accuracy, time_error,
-            cap: int):
+def _design(expansion, switch, end, ages, size: PlanformSize, accuracy, time_error, cap: int):
     """(MeshDesign, leak, peak): the mesh meeting what the time error leaves of
     ``DESIGN_MARGIN`` x accuracy at every time from the switch (or the first output) to
     the last output (so the contact layer, which the design does not model, keeps its
     margin however sparse the outputs); ``leak`` is the expansion's relative error at half
     the switch (the blend's first bound), ``peak`` the weight at the ages the outputs read
     after the switch (for the estimate)."""
+    perimeter, area, tightest = size.perimeter, size.area, size.tightest
     first = float(np.min(ages))
     start = 0.5 * min(switch, end) if switch > 0 else first
     span = np.geomspace(max(switch, first, 1e-9), max(end, switch, first, 1e-9), 200)
