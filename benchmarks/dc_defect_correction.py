@@ -69,6 +69,8 @@ from pathlib import Path
 import numpy as np
 import yaml
 
+from fickcam.diffusion import DiffusionProblem
+
 ROOT = Path(__file__).resolve().parents[1]
 REFERENCE = ROOT / "tests" / "data" / "dc_plate_reference.json"
 REFERENCE_ACCURACY = {"absorption": 1e-2, "desorption": 3e-2}  # desorption: 106 CPU s already
@@ -120,7 +122,7 @@ def soak_dry(exponents=(3.0, 5.0), accuracy=0.1, reference_accuracy=0.03) -> Non
         plate, d, exposure, times, law = soak_dry_case(k)
         level, chosen = base_plan(lambda a: level_plan(plate, d, law, exposure, times, a,
                                                        steps_for(accuracy)), accuracy)
-        cells = PrismCells.of(plate, SharedInputs.of(plate, d, law, exposure, times, 5e-4, 4, "").d, chosen)
+        cells = PrismCells.of(plate, SharedInputs.of(DiffusionProblem(plate, d, exposure, times, sorption=law), plate, d, 4).d, chosen)
         print(f"k {k:g}, 3-D plan {level:g}: {cells.cells} cells, 2x {cells.refined().cells}, "
               f"w0 {chosen.finest:.3g}, growth {chosen.growth:.3g}", flush=True)
         runs = []
@@ -169,7 +171,8 @@ def march_cost() -> None:
                                   [MM, 0.4 * MM])
     plate = CamPlate(np.array([0, 4e-3, 4e-3, 0.0]), np.array([0, 0, 3e-3, 3e-3]), H)
     law, d = ConcentrationDependent(MM, exponent=5.0), Diffusivity((D, D, D), 0.0)
-    setting = SharedInputs.of(plate, d, law, exposure, times, 5e-4, 4, "")
+    setting = SharedInputs.of(DiffusionProblem(plate, d, exposure, times, sorption=law), plate, d,
+                              4)
     chosen = level_plan(plate, d, law, exposure, times, 1.0, 4)
     for name, disc in (("sheet", half_slab(half(sizing.prism_widths(0.07, 0.229)))),
                        ("3-D", mirrored(plate, setting.d, chosen.cells_per_axis, chosen.finest,
@@ -232,7 +235,6 @@ def plate_record() -> None:
 def skin_margins(*margins: str) -> None:
     """The drying plates (k = 2, 3) at accuracy 1e-2 with ``corrected_product.SKIN_ESTIMATE_MARGIN`` set
     to each of ``margins`` (default 0, 1, 4): the estimate / the distance to the stored run."""
-    from fickcam.diffusion import DiffusionProblem
     from fickcam.diffusion.nonfickian import corrected_product
 
     kept = corrected_product.SKIN_ESTIMATE_MARGIN
@@ -269,8 +271,8 @@ def plate_order(exponent: str = "2", *directions: str) -> None:
     for direction in directions or ("absorption", "desorption"):
         plate, d, exposure, times, law = plate_case(direction, k)
         start = time.process_time()
-        run = corrected_levels(plate, d, law, exposure, times, ORDER_ACCURACY,
-                               plans=ORDER_LEVELS)
+        run = corrected_levels(DiffusionProblem(plate, d, exposure, times, ORDER_ACCURACY,
+                                                sorption=law), plans=ORDER_LEVELS)
         widths = np.array([m.plan.finest for m in run.marched])
         known = k == stored["exponent"]
         print(f"## k = {k:g}, {direction}, accuracy {ORDER_ACCURACY:g}: "
@@ -336,7 +338,7 @@ def demo_cam(k: float):
 
 
 def cam_table(exponents=(0.0, 1.0, 2.0), accuracies=(1e-2, 3e-3, 1e-3)) -> None:
-    from fickcam.diffusion import DiffusionProblem, solve
+    from fickcam.diffusion import solve
     from fickcam.diffusion.nonfickian.corrected_product import solve_corrected
 
     for k in exponents:
@@ -372,9 +374,10 @@ def planform_sequence(exponent: str = "2", accuracy: str = "1e-3") -> None:
 
     k, accuracy = float(exponent), float(accuracy)
     geometry, d, exposure, times, law = demo_cam(k)
-    setting = corrected_product.SharedInputs.of(geometry, d, law, exposure, times, 5e-4,
-                                corrected_product.steps_for(accuracy), "cam")
-    sheet = corrected_product.sheet_reference(geometry, d, law, exposure, times, accuracy)
+    problem = DiffusionProblem(geometry, d, exposure, times, accuracy, part="cam", sorption=law)
+    setting = corrected_product.SharedInputs.of(problem, geometry, d,
+                                                corrected_product.steps_for(accuracy))
+    sheet = corrected_product.sheet_reference(problem, geometry, d)
     chosen = corrected_product.level_plan(geometry, d, law, exposure, times, corrected_product.MESH_LEVELS[-1],
                                setting.per_doubling)
     level = corrected_product.three_d(setting, chosen, False)
@@ -419,7 +422,8 @@ def fickian_reference() -> None:
     mm = float(exposure.surface_moisture(times[-1:])[0])
     factor = crank_mean_factor(law, 0.0, mm)
     top = law.largest_factor(wettest(exposure, times))
-    setting = SharedInputs.of(geometry, d, law, exposure, times, 5e-4, 4, "")
+    setting = SharedInputs.of(DiffusionProblem(geometry, d, exposure, times, sorption=law),
+                              geometry, d, 4)
     constant = Constant(factor)
     fine = np.full(1000, 0.5 / 1000)
     tau = setting.scales.tau_star(np.asarray(times, float))
@@ -497,8 +501,9 @@ def nested(case: str, accuracy: str, *meshes: str) -> None:
     geometry, d, exposure, times, law = named_case(case)
     accuracy, _, base = accuracy.partition("@")
     start = time.process_time()
-    run = corrected_product.corrected_levels(geometry, d, law, exposure, times, float(accuracy), 1,
-                                  plans=(float(base),) if base else None)
+    run = corrected_product.corrected_levels(
+        DiffusionProblem(geometry, d, exposure, times, float(accuracy), sorption=law), 1,
+        plans=(float(base),) if base else None)
     print(f"{case} at {accuracy}: references {time.process_time() - start:.1f} CPU s, sheet "
           f"est. {run.sheet.error_estimate:.1e}, planform x{run.factor:g} est. "
           f"{run.planform_error:.1e}", flush=True)
@@ -552,7 +557,8 @@ def cross_run(case: str, accuracy: str) -> None:
 
     geometry, d, exposure, times, law = named_case(case)
     start = time.process_time()
-    run = corrected_product.corrected_levels(geometry, d, law, exposure, times, float(accuracy), 3)
+    run = corrected_product.corrected_levels(
+        DiffusionProblem(geometry, d, exposure, times, float(accuracy), sorption=law), 3)
     middle = time.process_time()
     two = replace(run, results=run.results[:2], marched=run.marched[:2], meshes=run.meshes[:2])
     corrected_product.NESTED_CELLS, corrected_product.CROSS_CELLS = 4 * run.meshes[1].cells, 2 * run.meshes[1].cells
@@ -572,7 +578,6 @@ def cross_run(case: str, accuracy: str) -> None:
 def corrected_run(case: str, accuracy: str) -> None:
     """``corrected CASE A[@B]``: B forces the coarsest nested plan's accuracy (as is, even
     with one z width: ``corrected_product.base_level`` and ``MIN_Z_WIDTHS`` set for the run)."""
-    from fickcam.diffusion import DiffusionProblem
     from fickcam.diffusion.nonfickian import corrected_product
     from fickcam.diffusion.nonfickian.corrected_product import gap, solve_corrected
 

@@ -11,7 +11,8 @@ import numpy as np
 import pytest
 
 import fickcam
-from fickcam.diffusion import CamPlate, Diffusivity, Exposure, RunCache, solve
+from fickcam.diffusion import (CamPlate, DiffusionProblem, Diffusivity, Exposure, Plan, RunCache,
+                               solve)
 from fickcam.diffusion.exact.series import ROOT_TABLE, bessel_roots, cylinder_short_coefficients
 from fickcam.diffusion.forcing.clock import clock_of
 from fickcam.diffusion.models.plane import planform_response
@@ -104,8 +105,10 @@ def test_the_clock_outline_chords_and_output_ages_are_read_only():
 
 
 def test_a_planform_step_response_is_read_only():
-    _, response, _ = planform_response(PLATE, 0.2, 1.4, D, 5e-4, 1.0, 4, 1e-6, False, "",
-                                       RunCache())
+    problem = DiffusionProblem(PLATE, Diffusivity(D, 0.0), Exposure.piecewise([0.0, 1.0], [330.0], [1.0]),
+                               [1.0])
+    chosen = Plan("plane", 0, 0, "", 0.0, steps_per_doubling=4, finest=0.2, growth=1.4)
+    _, response, _ = planform_response(problem, chosen, 1.0, 1e-6, RunCache())
     assert_read_only(response.nodes, response.mean, response.layer)
 
 

@@ -12,6 +12,7 @@ from scipy.linalg import eigh
 
 from fickcam.diffusion.operators import grids
 from fickcam.diffusion.stepping import march
+from fickcam.diffusion.stepping.step_plans import StepPlan
 
 pytest.importorskip("fipy")
 
@@ -67,7 +68,8 @@ def test_richardson_pair_in_time_is_second_order():
 
     def backward_euler(steps):
         nodes = np.linspace(0.0, T_STAR, steps + 1)
-        return march.march(disc, nodes, np.ones(steps + 1), 0.0, np.array([steps])).mean[0]
+        plan = StepPlan.without_jumps(nodes, np.ones(steps + 1), np.array([steps]))
+        return march.march(disc, plan, 0.0).mean[0]
     errors = [abs(2 * backward_euler(2 * n) - backward_euler(n) - reference)
               for n in (40, 80, 160, 320)]
     assert observed_order(errors)[-1] == pytest.approx(2.0, abs=0.1)

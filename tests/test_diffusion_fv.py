@@ -12,6 +12,7 @@ from fickcam.diffusion import CamPlate, LinkBar
 from fickcam.diffusion.operators import discretisation, fipy_backend, grids, prisms
 from fickcam.diffusion.planform import outline, admissible, triangles
 from fickcam.diffusion.stepping import march
+from fickcam.diffusion.stepping.step_plans import StepPlan
 from fickcam.errors import SolverError
 from tolerance import roundoff
 
@@ -39,7 +40,8 @@ def extracted_steps(mesh, dt, steps, corrected=False):
     ones = np.ones(volumes.size)
     disc = discretisation.Discretisation(volumes, stiffness, boundary, ones / ones.sum(), ones / ones.sum())
     nodes = dt * np.arange(steps + 1)
-    history = march.march(disc, nodes, np.ones(steps + 1), 0.0, np.array([steps]), keep_fields=True)
+    history = march.march(disc, StepPlan.without_jumps(nodes, np.ones(steps + 1), np.array([steps])),
+                          0.0, keep_fields=True)
     return history.fields[0]
 
 
@@ -110,8 +112,8 @@ def test_backward_euler_stays_between_initial_and_surface_values(fourier, initia
     """Maximum principle: every cell between c0 and g at any Fourier number, monotone in time."""
     disc = cached_sheet(cells)
     nodes = fourier * np.arange(4)
-    history = march.march(disc, nodes, np.full(4, surface), initial, np.arange(4),
-                       keep_fields=True)
+    history = march.march(disc, StepPlan.without_jumps(nodes, np.full(4, surface), np.arange(4)),
+                          initial, keep_fields=True)
     lo, hi = min(initial, surface), max(initial, surface)
     span = max(hi, 1.0)
     fields = history.fields
@@ -139,8 +141,10 @@ def test_mass_balance_closes_each_step(dt, surface, initial):
 def test_failed_solve_names_part_step_and_time():
     disc = cached_sheet(10)
     with pytest.raises(SolverError) as caught:
-        march.march(disc, np.array([0.0, 1.0, 2.0]), np.array([1.0, np.nan, np.nan]), 0.0,
-                 np.array([2]), np.array([0.0, 3600.0, 7200.0]), part="cam")
+        march.march(disc, StepPlan.without_jumps(np.array([0.0, 1.0, 2.0]),
+                                                 np.array([1.0, np.nan, np.nan]), np.array([2]),
+                                                 np.array([0.0, 3600.0, 7200.0])),
+                    0.0, part="cam")
     assert caught.value.part == "cam" and caught.value.step == 1
     assert "cam" in str(caught.value) and "step 1" in str(caught.value)
 
@@ -150,8 +154,9 @@ def test_backward_euler_bounded_where_crank_nicolson_overshoots():
     with two BE steps) overshoots saturation, BE does not (the reason BE is the default)."""
     disc = cached_sheet(50)
     nodes = np.concatenate([[0.0], 1e-6 * 2.0 ** np.arange(25)])
-    fields = {scheme: march.march(disc, nodes, np.ones(nodes.size), 0.0, np.arange(nodes.size),
-                               keep_fields=True, scheme=scheme, restart_steps=2).fields
+    steps = StepPlan.without_jumps(nodes, np.ones(nodes.size), np.arange(nodes.size))
+    fields = {scheme: march.march(disc, steps, 0.0, keep_fields=True, scheme=scheme,
+                                  restart_steps=2).fields
               for scheme in ("backward_euler", "crank_nicolson")}
     assert fields["backward_euler"].max() <= 1.0 + 1e-14
     assert fields["crank_nicolson"].max() > 1.0 + 1e-3

@@ -18,6 +18,7 @@ from fickcam.diffusion.operators.grading import graded_widths
 from fickcam.diffusion.planform import polygon, admissible, triangles
 from fickcam.diffusion.problem import scaling
 from fickcam.diffusion.stepping import march
+from fickcam.diffusion.stepping.step_plans import StepPlan
 
 pytest.importorskip("fipy")
 
@@ -103,7 +104,8 @@ def test_mid_plane_mirror_reproduces_the_full_thickness():
     full = prisms.prism(tess, h, widths, share, (D, D, D))
     half = prisms.prism(tess, h, widths[:widths.size // 2], share, (D, D, D), mid_plane=True)
     nodes = np.concatenate([[0.0], np.geomspace(1e-4, 0.3, 12)])
-    runs = [march.march(disc, nodes, np.ones(nodes.size), 0.0, np.arange(nodes.size))
+    steps = StepPlan.without_jumps(nodes, np.ones(nodes.size), np.arange(nodes.size))
+    runs = [march.march(disc, steps, 0.0)
             for disc in (full, half)]
     assert np.allclose(runs[0].mean, runs[1].mean, rtol=0, atol=1e-12)
     assert np.allclose(runs[0].layer, runs[1].layer, rtol=0, atol=1e-12)
@@ -190,7 +192,8 @@ def test_prism_reference_converges_at_second_order_in_space():
     for _ in range(3):
         disc = prisms.prism(tess, LINK.thickness, widths, admissible.band_share(tess, LAYER),
                         (D, D, D), mid_plane=True)
-        run = march.march(disc, nodes, np.ones(nodes.size), 0.0, np.array([4, 5]))
+        run = march.march(disc, StepPlan.without_jumps(nodes, np.ones(nodes.size),
+                                                       np.array([4, 5])), 0.0)
         levels.append(np.concatenate([run.mean, run.layer]))
         tess, widths = admissible.refine(tess), np.repeat(0.5 * widths, 2)
     first, second = levels[0] - levels[1], levels[1] - levels[2]

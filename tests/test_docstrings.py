@@ -639,8 +639,7 @@ ENTRY_POINTS = {
     "fickcam.diffusion.stepping.step_response.blend": ("values", "tolerance"),
     "fickcam.diffusion.stepping.march.ThetaStepper": (),
     "fickcam.diffusion.stepping.march.History": ("mean", "layer", "fields", "track"),
-    "fickcam.diffusion.stepping.march.march":
-        ("nodes", "surface_values", "initial", "times", "surface_before"),
+    "fickcam.diffusion.stepping.march.march": ("steps", "initial", "restart_steps"),
     "fickcam.diffusion.stepping.march.held_values": ("ending", "initial"),
     "fickcam.diffusion.stepping.march.norm": (),
     "fickcam.diffusion.stepping.march.rounded_steps": ("steps",),
@@ -674,8 +673,10 @@ ENTRY_POINTS = {
     "fickcam.diffusion.nonfickian.two_phase_mesh.TwoPhaseHistory":
         ("mean", "layer", "bound", "fields"),
     "fickcam.diffusion.nonfickian.two_phase_mesh.two_phase_marcher": (),
+    "fickcam.diffusion.nonfickian.two_phase_mesh.Exchange":
+        ("binding", "release", "initial_share"),
     "fickcam.diffusion.nonfickian.two_phase_mesh.march_coupled":
-        ("nodes", "free_before", "binding", "release", "initial", "initial_share", "labels"),
+        ("steps", "free_before", "exchange", "initial"),
     "fickcam.diffusion.nonfickian.two_phase_modes.Nodes":
         ("t", "tau", "free_right", "free_left", "gamma", "beta", "ratio", "initial_bound",
          "interpolation"),
@@ -698,12 +699,13 @@ ENTRY_POINTS = {
     "fickcam.diffusion.nonfickian.concentration_dependent.wettest": ("times",),
     "fickcam.diffusion.nonfickian.concentration_dependent.Faces":
         ("transmissibility", "boundary", "volumes"),
-    "fickcam.diffusion.nonfickian.concentration_dependent.sweep_march": ("top", "initial"),
+    "fickcam.diffusion.nonfickian.concentration_dependent.SweptMarch": ("law", "top"),
+    "fickcam.diffusion.nonfickian.concentration_dependent.sweep_march": ("shared", "initial"),
     "fickcam.diffusion.nonfickian.concentration_dependent.Lagged": (),
     "fickcam.diffusion.nonfickian.concentration_dependent.extrapolated":
         ("before", "latest", "dt_before", "dt", "g"),
     "fickcam.diffusion.nonfickian.concentration_dependent.sweep_step":
-        ("old", "g", "top", "dt", "time", "guess"),
+        ("shared", "old", "g", "dt", "time", "guess"),
     "fickcam.diffusion.nonfickian.corrected_fields.planform_at": ("values", "points"),
     "fickcam.diffusion.nonfickian.corrected_fields.reading": ("points",),
     "fickcam.diffusion.nonfickian.corrected_fields.exposed_points": (),
@@ -730,13 +732,15 @@ ENTRY_POINTS = {
     "fickcam.diffusion.nonfickian.corrected_pieces.PrismCells": ("z",),
     "fickcam.diffusion.nonfickian.corrected_pieces.cross": (),
     "fickcam.diffusion.nonfickian.corrected_pieces.combination": (),
-    "fickcam.diffusion.nonfickian.corrected_pieces.richardson_march": ("top", "times"),
+    "fickcam.diffusion.nonfickian.corrected_pieces.richardson_march": ("setting",),
     "fickcam.diffusion.nonfickian.corrected_pieces.unaccomplished_ratio":
         ("reference", "coarse", "floor"),
     "fickcam.diffusion.nonfickian.corrected_pieces.corrected": ("surface", "union"),
     "fickcam.diffusion.nonfickian.corrected_pieces.steps_for": ("accuracy",),
     "fickcam.diffusion.nonfickian.corrected_pieces.level_plan": ("times", "mesh_accuracy"),
-    "fickcam.diffusion.nonfickian.corrected_pieces.sheet_reference": ("times", "accuracy", "depth"),
+    "fickcam.diffusion.nonfickian.corrected_pieces.sheet_reference": ("problem", "geometry"),
+    "fickcam.diffusion.nonfickian.corrected_pieces.SharedInputs.of":
+        ("problem", "geometry", "diffusivity", "per_doubling"),
     "fickcam.diffusion.nonfickian.corrected_pieces.SharedInputs": ("times", "d", "top", "depth"),
     "fickcam.diffusion.nonfickian.corrected_pieces.MeshMarches": ("coordinates", "union"),
     "fickcam.diffusion.nonfickian.corrected_pieces.three_d": (),
@@ -747,14 +751,12 @@ ENTRY_POINTS = {
     "fickcam.diffusion.nonfickian.corrected_product.base_level": ("accuracy",),
     "fickcam.diffusion.nonfickian.corrected_product.base_plan": ("accuracy",),
     "fickcam.diffusion.nonfickian.corrected_product.surface_of": (),
-    "fickcam.diffusion.nonfickian.corrected_product.corrected_levels":
-        ("geometry", "times", "accuracy", "surface_layer_depth"),
+    "fickcam.diffusion.nonfickian.corrected_product.corrected_levels": ("problem", "base"),
     "fickcam.diffusion.nonfickian.corrected_product.estimate_parts": ("margin",),
     "fickcam.diffusion.nonfickian.corrected_product.unseparated": ("margin",),
     "fickcam.diffusion.nonfickian.corrected_product.finest": ("results",),
     "fickcam.diffusion.nonfickian.corrected_product.extension": ("accuracy",),
-    "fickcam.diffusion.nonfickian.corrected_product.refined_run":
-        ("geometry", "times", "accuracy", "surface_layer_depth"),
+    "fickcam.diffusion.nonfickian.corrected_product.refined_run": ("problem",),
     "fickcam.diffusion.nonfickian.corrected_product.solve_corrected": ("problem",),
     "fickcam.diffusion.nonfickian.corrected_product.plan_corrected": ("problem",),
     "fickcam.diffusion.nonfickian.corrected_product.refined_reference": ("accuracy", "scale"),
@@ -771,8 +773,9 @@ ENTRY_POINTS = {
     "fickcam.diffusion.nonfickian.planform_modes.planform_source": ("d", "spectrum"),
     "fickcam.diffusion.nonfickian.planform_modes.RefinedPlanform": ("error", "finest", "growth"),
     "fickcam.diffusion.nonfickian.planform_modes.Refinement": ("cap",),
-    "fickcam.diffusion.nonfickian.planform_modes.refined_planform":
-        ("d", "depth", "finest", "growth", "ages", "tolerance"),
+    "fickcam.diffusion.nonfickian.planform_modes.PlanformMeasure":
+        ("d", "depth", "ages", "tolerance"),
+    "fickcam.diffusion.nonfickian.planform_modes.refined_planform": ("task", "finest", "growth"),
     "fickcam.diffusion.nonfickian.planform_modes.error_coefficients": ("meshes",),
     "fickcam.diffusion.nonfickian.planform_modes.mesh_error": ("finest", "growth"),
     # diffusion: dispatch, models, exact, accuracy, operators, planform
@@ -794,9 +797,11 @@ ENTRY_POINTS = {
     "fickcam.diffusion.models.finite_volume.discretise": ("geometry", "diffusivity", "cells",
                                                           "surface_layer_depth", "finest",
                                                           "growth"),
-    "fickcam.diffusion.models.finite_volume.StepPlan": ("nodes", "times", "surface",
-                                                        "surface_before", "outputs",
-                                                        "restarts"),
+    "fickcam.diffusion.stepping.step_plans.StepPlan": ("nodes", "times", "surface",
+                                                       "surface_before", "outputs",
+                                                       "restarts"),
+    "fickcam.diffusion.stepping.step_plans.StepPlan.without_jumps": ("nodes", "surface",
+                                                                     "outputs", "times"),
     "fickcam.diffusion.models.finite_volume.step_plan": ("exposure", "times", "scales",
                                                          "per_doubling"),
     "fickcam.diffusion.models.finite_volume.solve_direct": ("problem",),
@@ -812,8 +817,7 @@ ENTRY_POINTS = {
                                                       "cap"),
     "fickcam.diffusion.models.plane.mesh_first_step": ("finest", "switch"),
     "fickcam.diffusion.models.plane.planform_mesh": ("part", "finest", "growth", "stretch"),
-    "fickcam.diffusion.models.plane.planform_response": ("geometry", "finest", "growth", "d",
-                                                         "layer_depth", "end", "per_doubling",
+    "fickcam.diffusion.models.plane.planform_response": ("problem", "chosen", "end",
                                                          "first_step"),
     "fickcam.diffusion.models.plane.expansion_error_at": ("ages",),
     "fickcam.diffusion.models.plane.plan_plane": ("problem", "caps"),

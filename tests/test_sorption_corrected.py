@@ -205,8 +205,8 @@ def nested_plate():
     estimate still covers the finer mesh's error (below)."""
     from fickcam.diffusion.nonfickian.corrected_product import corrected_levels
     small = CamPlate(np.array([0, 3e-3, 3e-3, 0.0]), np.array([0, 0, 2e-3, 2e-3]), H)
-    return corrected_levels(small, ISOTROPIC, law(2.0), exposure(0.0, MM), TIMES[:4], 1e-2, 3,
-                            base=1.0)
+    return corrected_levels(DiffusionProblem(small, ISOTROPIC, exposure(0.0, MM), TIMES[:4], 1e-2,
+                                             sorption=law(2.0)), 3, base=1.0)
 
 
 @pytest.mark.slow
@@ -433,11 +433,11 @@ def test_the_planform_stops_at_2x_only_when_the_whole_estimate_meets_the_accurac
                                                                steps_for, three_d)
 
     times, wet, accuracy = TIMES[:4], exposure(0.0, MM), 0.1   # the marches' steps at 0.1
-    setting = SharedInputs.of(PLATE, ISOTROPIC, law(2.0), wet, times, 5e-4, steps_for(accuracy),
-                              "")
+    problem = DiffusionProblem(PLATE, ISOTROPIC, wet, times, accuracy, sorption=law(2.0))
+    setting = SharedInputs.of(problem, PLATE, ISOTROPIC, steps_for(accuracy))
     start = level_plan(PLATE, ISOTROPIC, law(2.0), wet, times, MESH_LEVELS[-1],
                        setting.per_doubling)
-    fine_sheet = sheet_reference(PLATE, ISOTROPIC, law(2.0), wet, times, accuracy)
+    fine_sheet = sheet_reference(problem, PLATE, ISOTROPIC)
     coarse = level_plan(PLATE, ISOTROPIC, law(2.0), wet, times, 2.0, setting.per_doubling)
     sheet, level = CombinedMarch(fine_sheet.mean, fine_sheet.surface), three_d(setting, coarse,
                                  False)

@@ -9,7 +9,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from fickcam.diffusion import Bar, CamPlate, Diffusivity, Exposure, Sheet, solve
+from fickcam.diffusion import Bar, CamPlate, DiffusionProblem, Diffusivity, Exposure, Sheet, solve
 from fickcam.diffusion.models.analytic import exact_history_field
 from fickcam.diffusion.nonfickian import corrected_product
 from fickcam.diffusion.nonfickian.corrected_fields import field_errors
@@ -49,7 +49,8 @@ def test_fickian_corrected_fields_are_the_exact_block_at_the_cell_points(part):
     (``benchmarks/dc_corrected_fields.py fickian``): plate 5.7e-3 of the swing against
     9.3e-2 (indicated 1.3e-2), bar 2.2e-2 against 9.5e-2 (indicated 3.1e-2), both at
     tau* = 0.01; the plate's volume means within 4.2e-4 of the exact point values'."""
-    run = corrected_levels(part, ISOTROPIC, law(0.0), WET, TIMES, 3e-2, store_fields=True)
+    run = corrected_levels(DiffusionProblem(part, ISOTROPIC, WET, TIMES, 3e-2, store_fields=True,
+                                            sorption=law(0.0)))
     fields, errors = field_errors(run)
     coordinates = run.marched[-1].coordinates
     if isinstance(part, Bar):
@@ -81,7 +82,8 @@ def test_dc_fields_under_auto_are_corrected_and_consistent_with_the_mean():
     result = solve(PLATE, ISOTROPIC, WET, TIMES, accuracy=3e-2, sorption=law(2.0),
                    store_fields=True)
     assert "fields: the finest mesh's cells x the sheet's and the planform's" in result.reason
-    run = refined_run(PLATE, ISOTROPIC, law(2.0), WET, TIMES, 3e-2, store_fields=True)[0]
+    run = refined_run(DiffusionProblem(PLATE, ISOTROPIC, WET, TIMES, 3e-2, store_fields=True,
+                                       sorption=law(2.0)))[0]
     fields, errors = field_errors(run)
     np.testing.assert_array_equal(result.fields, fields)
     corrected = np.abs(volume_mean(run, fields) - result.mean) / MM
@@ -137,7 +139,8 @@ def test_dc_fields_at_the_centre_of_a_wide_plate_are_the_dc_sheet():
     wide = CamPlate(np.array([0, side, side, 0.0]), np.array([0, 0, side, side]), H)
     times = TIMES[:2]
     wet = Exposure.piecewise([0.0, times[-1]], [330.0], [MM], initial_moisture=0.0)
-    run = corrected_levels(wide, ISOTROPIC, law(2.0), wet, times, 3e-2, store_fields=True)
+    run = corrected_levels(DiffusionProblem(wide, ISOTROPIC, wet, times, 3e-2, store_fields=True,
+                                            sorption=law(2.0)))
     fields, errors = field_errors(run)
     sheet = solve(Sheet(H), ISOTROPIC, wet, times, accuracy=1e-3, sorption=law(2.0),
                   model="slab", store_fields=True)
@@ -159,8 +162,8 @@ def test_fields_after_the_cross_are_the_diagonal_finest_meshs_and_its_coarser_ne
     their indicated errors still come from the finest mesh and the next coarser one on the
     diagonal, so they are the two-mesh run's exactly (k = 2 absorbing, 3 x 2 x 2 mm plate)."""
     small = CamPlate(np.array([0, 3e-3, 3e-3, 0.0]), np.array([0, 0, 2e-3, 2e-3]), H)
-    run = corrected_levels(small, ISOTROPIC, law(2.0), WET, TIMES[:4], 1e-2, 2, base=1.0,
-                           store_fields=True)
+    run = corrected_levels(DiffusionProblem(small, ISOTROPIC, WET, TIMES[:4], 1e-2,
+                                            store_fields=True, sorption=law(2.0)), 2, base=1.0)
     caps = corrected_product.MeshCaps(nested=4 * run.meshes[1].cells,
                                       cross=2 * run.meshes[1].cells)
     crossed = run.finer(store_fields=True, caps=caps)

@@ -118,8 +118,9 @@ def test_operator_sweeps_are_fipys_own_sweeps():
     law = ConcentrationDependent(MM, exponent=3.0)
     weights = discretise(Sheet(H), ISOTROPIC, (20,), 5e-4)
     start = np.linspace(0.2, 1.5, 20)
-    ours = concentration_dependent.sweep_step(concentration_dependent.Faces.of(weights), start,
-                                              MM, law, 20.0, 1e-3, "", 1, 0.0)
+    shared = concentration_dependent.SweptMarch(concentration_dependent.Faces.of(weights), law,
+                                                20.0)
+    ours = concentration_dependent.sweep_step(shared, start, MM, 1e-3, 1, 0.0)
     c = CellVariable(mesh=Grid1D(nx=20, dx=0.05), value=start, hasOld=True)
     c.constrain(MM, c.mesh.exteriorFaces)
     coefficient = FaceVariable(mesh=c.mesh, value=1.0)

@@ -199,7 +199,8 @@ def test_sweeps_conserve_mass_uptake_equals_the_surface_flux():
     c = np.zeros(weights.cells)
     influx = 0.0
     for dt in np.geomspace(1e-4, 5e-2, 12):
-        new = concentration_dependent.sweep_step(faces, c, MM, strong, top, dt, "bar", 1, 0.0)
+        new = concentration_dependent.sweep_step(
+            concentration_dependent.SweptMarch(faces, strong, top, "bar"), c, MM, dt, 1, 0.0)
         influx += dt * float(np.sum(strong.mean_factor(new, MM) / top * faces.boundary
                                     * (MM - new)))
         c = new
@@ -219,17 +220,18 @@ def test_inexact_sweeps_from_the_extrapolated_state_converge_to_the_exact_sweeps
     nodes = np.concatenate([[0.0], np.cumsum(np.geomspace(1e-4, 2e-2, 20))])  # scaled time
     steps = SimpleNamespace(nodes=nodes, surface_before=np.full(21, MM), times=nodes,
                             outputs=np.arange(0, 21, 5))
-    fast = concentration_dependent.sweep_march(faces, weights, strong, top, steps, 0.0, True, "")
-    exact_sweeps = concentration_dependent.Sweeps(forcing=0.0)
-    c, exact = np.zeros(weights.cells), [np.zeros(weights.cells)]
+    fast = concentration_dependent.sweep_march(
+        concentration_dependent.SweptMarch(faces, strong, top), weights, steps, 0.0, True)
+    exact = concentration_dependent.SweptMarch(faces, strong, top, "bar",
+                                               concentration_dependent.Sweeps(forcing=0.0))
+    c, states = np.zeros(weights.cells), [np.zeros(weights.cells)]
     for k, dt in enumerate(rounded_steps(np.diff(nodes)), start=1):
-        c = concentration_dependent.sweep_step(faces, c, MM, strong, top, dt, "bar", k, 0.0,
-                                               sweeps=exact_sweeps)
+        c = concentration_dependent.sweep_step(exact, c, MM, dt, k, 0.0)
         if k % 5 == 0:
-            exact.append(c)
+            states.append(c)
     assert fast.fields.shape == (5, weights.cells)
     assert 0.1 < fast.mean[-1] / MM < 0.9  # mid-uptake: the sweeps had work to do
-    assert np.max(np.abs(fast.fields - np.array(exact))) / MM < 1e-8
+    assert np.max(np.abs(fast.fields - np.array(states))) / MM < 1e-8
 
 
 @pytest.mark.slow
@@ -259,9 +261,9 @@ def refined_histories(operators, k, start=0.0, surface=MM, per_doubling=8):
     scaled = concentration_dependent.fastest(ISOTROPIC, strong, wet, TIMES)
     steps = step_plan(wet, TIMES, scales_of(Sheet(H), scaled, wet), per_doubling)
     top = strong.largest_factor(MM)
-    runs = [concentration_dependent.sweep_march(concentration_dependent.Faces.of(w), w, strong,
-                                                top, steps, start, False,
-                                  "") for w in operators]
+    runs = [concentration_dependent.sweep_march(
+        concentration_dependent.SweptMarch(concentration_dependent.Faces.of(w), strong, top), w,
+        steps, start) for w in operators]
     return [np.concatenate([run.mean[1:], run.layer[1:]]) / MM for run in runs]
 
 

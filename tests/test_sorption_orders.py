@@ -13,7 +13,8 @@ from scipy.linalg import eigh
 from fickcam.diffusion import solve
 from fickcam.diffusion.exact.two_phase import (equilibrium_shares, two_phase_mode_deficit,
                                                two_phase_sheet_uptake)
-from fickcam.diffusion.nonfickian.two_phase_mesh import march_coupled
+from fickcam.diffusion.nonfickian.two_phase_mesh import Exchange, march_coupled
+from fickcam.diffusion.stepping.step_plans import StepPlan
 from fickcam.diffusion.operators import grids
 from fickcam.diffusion.problem.exposure import Diffusivity, Exposure
 from fickcam.diffusion.problem.geometry import Disc, Sheet
@@ -64,8 +65,8 @@ def coupled_march(disc, steps):
     free_share, _ = equilibrium_shares(GAMMA, BETA)
     surface = np.full(nodes.size, free_share)
     dt = np.diff(nodes)
-    run = march_coupled(disc, nodes, surface, GAMMA * dt, BETA * dt, 0.0, free_share,
-                        np.array([steps]), nodes, False, "sheet")
+    run = march_coupled(disc, StepPlan.without_jumps(nodes, surface, np.array([steps])), surface,
+                        Exchange(GAMMA * dt, BETA * dt, free_share), 0.0, part="sheet")
     return run.mean[0]
 
 

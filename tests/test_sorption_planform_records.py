@@ -172,8 +172,9 @@ def _modelled_level(coefficients):
     """A stand-in for ``planform_modes._level`` whose compared values (mean, layer) err exactly
     by ``coefficients`` @ (w0^2, g^2), on the cells the planform would have (0.8 x the
     cap's cheap count, as measured on the demo cam)."""
-    def level(geometry, d, depth, finest, growth, ages, tolerance, measure, cache):
-        cells = int(0.8 * estimated_prism_cells(geometry, finest, growth, stretch_of(d))[0])
+    def level(task, finest, growth, cache):
+        cells = int(0.8 * estimated_prism_cells(task.geometry, finest, growth,
+                                                stretch_of(task.d))[0])
         values = COMPARED_VALUES + coefficients @ np.array([[finest ** 2],
                                                                       [growth ** 2]])
         return values, None, cells, 0, 0.0
@@ -193,8 +194,8 @@ def test_w0_and_growth_refined_apart_meet_a_tolerance_together_cannot_under_the_
     modelled = planform_modes.Refinement(level=_modelled_level(coefficients))
 
     def refined(refinement):
-        return planform_modes.refined_planform(plate, (D,) * 3, DEPTH, 0.12, 0.25, [1.0], 5e-5,
-                                               None, refinement)
+        task = planform_modes.PlanformMeasure(plate, (D,) * 3, DEPTH, [1.0], 5e-5, None)
+        return planform_modes.refined_planform(task, 0.12, 0.25, refinement)
     apart = refined(modelled)
     exact = np.max(np.abs(coefficients @ np.array([apart.finest ** 2, apart.growth ** 2])))
     assert exact <= apart.error + roundoff(COMPARED_VALUES)

@@ -42,8 +42,8 @@ from .models.plane import plan_plane, solve_plane
 from .nonfickian.concentration_dependent import (SWEEPS, Sweeps, nonlinear_plan, solve_nonlinear,
                                                  spread)
 from .nonfickian.corrected_product import plan_corrected, solve_corrected
-from .nonfickian.planform_modes import (REFINEMENT, RefinedPlanform, Refinement,
-                                        lanczos_spectrum, planform_design, planform_operator,
+from .nonfickian.planform_modes import (REFINEMENT, PlanformMeasure, RefinedPlanform,
+                                        Refinement, lanczos_spectrum, planform_design, planform_operator,
                                         planform_source, refined_planform)
 from .nonfickian.two_phase_mesh import two_phase_marcher
 from .nonfickian.two_phase_modes import langmuir_history
@@ -328,8 +328,8 @@ def _refined(problem: DiffusionProblem, finest, growth, refinement: Refinement,
         return np.stack(compared) * scale, (history, estimate)
 
     ages = read_ages(RescaledTime(diffusivity, exposure), exposure, times)
-    return refined_planform(geometry, diffusivity.pre_exponential, depth, finest, growth, ages,
-                            share, measure, refinement, cache)
+    task = PlanformMeasure(geometry, diffusivity.pre_exponential, depth, ages, share, measure)
+    return refined_planform(task, finest, growth, refinement, cache)
 
 
 def _as_fick(call, problem: DiffusionProblem, settings: SolverSettings, cache: RunCache):

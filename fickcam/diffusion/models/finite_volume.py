@@ -31,6 +31,7 @@ from ..problem.results import DiffusionResult, Plan
 from ..problem.scaling import stretch_of
 from ..stepping import step_plans
 from ..stepping.march import march
+from ..stepping.step_plans import StepPlan
 
 
 def plan_direct(problem: DiffusionProblem, model: str, mirrored: bool = False,
@@ -151,34 +152,6 @@ def discretise(geometry, diffusivity: Diffusivity, cells: tuple[int, ...],
     raise TypeError(f"no direct finite-volume model for {type(geometry).__name__}")
 
 
-@dataclass(frozen=True)
-class StepPlan:
-    """Step boundaries in scaled time with the surface value at each and the outputs.
-
-    Parameters
-    ----------
-    nodes : numpy.ndarray
-        The step boundaries in scaled time tau* [-].
-    times : numpy.ndarray
-        The physical time of each node [s].
-    surface : numpy.ndarray
-        g(t) at each node, right-continuous [weight %].
-    surface_before : numpy.ndarray
-        g(t-) at each node, the value a step ending there sees [weight %].
-    outputs : numpy.ndarray
-        The node index of each requested time [-].
-    restarts : numpy.ndarray
-        The node index of each environment change [-].
-    """
-
-    nodes: np.ndarray
-    times: np.ndarray       # s, the physical time of each node
-    surface: np.ndarray     # weight %, g(t) at each node (right-continuous)
-    surface_before: np.ndarray  # weight %, g(t-) at each node (left limit: a step ending there)
-    outputs: np.ndarray     # node index of each requested time
-    restarts: np.ndarray    # node index of each environment change
-
-
 def step_plan(exposure, times, scales: Scales, per_doubling: int,
               bisect: bool = False) -> StepPlan:
     """Nodes of the march (``bisect``: every step halved, for the Richardson pair).
@@ -261,9 +234,8 @@ def solve_direct(problem: DiffusionProblem, chosen: Plan, *, extrapolate: bool =
     runs = []
     for bisect in (False, True):
         steps = step_plan(exposure, times, scales, chosen.steps_per_doubling, bisect)
-        runs.append(marcher(disc, steps.nodes, steps.surface, exposure.initial_moisture,
-                          steps.outputs, steps.times, keep_fields=store_fields, part=part,
-                          surface_before=steps.surface_before))
+        runs.append(marcher(disc, steps, exposure.initial_moisture, keep_fields=store_fields,
+                            part=part))
     coarse, fine = runs
     combine, estimate = richardson_pair(chosen, coarse, fine, swing(exposure, times) or 1.0,
                                     extrapolate)

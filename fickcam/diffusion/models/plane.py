@@ -231,16 +231,37 @@ def mesh_first_step(finest: float, switch: float) -> float:
     return max(FIRST_STEP, MESH_FIRST_STEP * finest ** 2, switch / 2 ** MESH_LEAD_DOUBLINGS)
 
 
-def _planform_size(part, d, expansion) -> tuple[float, float, float]:
+@dataclass(frozen=True)
+class PlanformSize:
+    """The outline's size in scaled coordinates.
+
+    Parameters
+    ----------
+    perimeter : float
+        The scaled perimeter [-].
+    area : float
+        The scaled area [-].
+    tightest : float
+        The largest curvature of the outline [-] (scaled).
+    """
+
+    perimeter: float
+    area: float
+    tightest: float
+
+
+def _planform_size(part, d, expansion) -> PlanformSize:
     """Scaled perimeter, area and largest curvature of the outline (an outline without an
     expansion: bounding box and hole circumferences, area of the box)."""
     if expansion is not None:
-        return expansion.perimeter, expansion.area, max(expansion.max_curvature, 1e-9)
+        return PlanformSize(expansion.perimeter, expansion.area,
+                            max(expansion.max_curvature, 1e-9))
     scale = np.asarray(planar_scale(part, d))
     width, height = np.asarray(outline_extent(part)) * scale
     holes = 4 * math.pi * getattr(part, "boss_inner_radius", 0.0) * float(scale.max())
     radius = getattr(part, "boss_inner_radius", 0.0) or getattr(part, "boss_outer_radius", 1.0)
-    return 2 * (width + height) + holes, width * height, 1.0 / (radius * float(scale.min()))
+    return PlanformSize(2 * (width + height) + holes, width * height,
+                        1.0 / (radius * float(scale.min())))
 
 
 
@@ -271,9 +292,8 @@ def planform_mesh(part, finest: float, growth: float, stretch: tuple[float, floa
         part, finest * part.thickness, growth=growth, stretch=stretch))
 
 
-def planform_response(geometry, finest: float, growth: float, d: tuple, layer_depth: float,
-                      end: float, per_doubling: int, first_step: float, keep_fields: bool,
-                      part: str, cache: RunCache):
+def planform_response(problem: DiffusionProblem, chosen: Plan, end: float, first_step: float,
+                      cache: RunCache):
     """(P1 operator, unit-step response, time-error pair) of the planform: what ``solve_plane``
     marches, kept in the run's ``cache`` by the exact inputs that determine it (geometries
     compare by value), so re-runs at other output times (the limit search) and the cases of
@@ -282,26 +302,17 @@ def planform_response(geometry, finest: float, growth: float, d: tuple, layer_de
 
     Parameters
     ----------
-    geometry : CamPlate or LinkBar
-        The part, its lengths in [m].
-    finest : float
-        The mesh's finest spacing in thicknesses [-].
-    growth : float
-        The spacing's growth [-].
-    d : tuple of float
-        D0 along x, y, z [m^2/s].
-    layer_depth : float
-        The contact layer's depth [m].
+    problem : DiffusionProblem
+        The part (a CamPlate or LinkBar, lengths [m]), D0 along x, y, z [m^2/s], the
+        contact layer's depth [m], whether to keep the response's nodal fields and the
+        part's name (progress messages).
+    chosen : Plan
+        The plane plan: the mesh's finest spacing in thicknesses [-], the spacing's growth
+        [-] and the backward-Euler steps per doubling of scaled time [-].
     end : float
         The last scaled time tau* the response covers [-].
-    per_doubling : int
-        Backward-Euler steps per doubling of scaled time [-].
     first_step : float
         The first step in scaled time [-].
-    keep_fields : bool
-        True: keep the nodal fields of the response.
-    part : str
-        The part's name (progress messages).
     cache : RunCache
         The run's cache.
 
@@ -311,11 +322,16 @@ def planform_response(geometry, finest: float, growth: float, d: tuple, layer_de
         The P1 operator, the unit-step response (uptake fractions [-] over scaled time)
         and the time-error pair [-].
     """
+    geometry, layer_depth, keep_fields = (problem.geometry, problem.surface_layer_depth,
+                                          problem.store_fields)
+    d = tuple(float(v) for v in problem.diffusivity.pre_exponential)
+    finest, growth, per_doubling = chosen.finest, chosen.growth, chosen.steps_per_doubling
+
     def build():
         mesh = planform_mesh(geometry, finest, growth, stretch_of(d), cache)
         planar = plane_operator(mesh, geometry, layer_depth, d)
         response, pair = step_response(planar, end, per_doubling, first_step,
-                                       keep_fields=keep_fields, part=part)
+                                       keep_fields=keep_fields, part=problem.part)
         return planar, response, pair
     return cache.get(("planform response", geometry, finest, growth, d, layer_depth, end,
                       per_doubling, first_step, keep_fields), build)
@@ -383,13 +399,13 @@ def plan_plane(problem: DiffusionProblem, caps: CellCaps = MAX_CELLS,
     ages = output_ages(change, outputs, ramp, cache=cache)
     t_lo = earliest_output(change, outputs)
     switch = 0.0 if expansion is None else expansion.switch(tolerance)
-    perimeter, area, tightest = _planform_size(geometry, d, expansion)
-    pair = PLANE_PAIR * float(leading_uptake(perimeter, area, end))  # times 1 / m
+    size = _planform_size(geometry, d, expansion)
+    pair = PLANE_PAIR * float(leading_uptake(size.perimeter, size.area, end))  # times 1 / m
     per_doubling = max(MIN_STEPS_PER_DOUBLING,
                        math.ceil(pair * math.sqrt(PAIR_TO_TIME_ERROR / (TIME_SHARE * accuracy))))
     time_error = PAIR_TO_TIME_ERROR * (pair / per_doubling) ** 2
-    design, leak, peak = _design(expansion, switch, end, ages, perimeter, area, tightest,
-                                 accuracy, time_error, caps.plane)
+    design, leak, peak = _design(expansion, switch, end, ages, size, accuracy, time_error,
+                                 caps.plane)
     sheet = min(caps.slab, max(MIN_CELLS_PER_AXIS, math.ceil(
         1.0 / math.sqrt(0.5 * accuracy * max(t_lo, switch)
                         / (3 * space_error(max(t_lo, switch)))))))
@@ -413,14 +429,14 @@ def plan_plane(problem: DiffusionProblem, caps: CellCaps = MAX_CELLS,
                 growth=design.growth)
 
 
-def _design(expansion, switch, end, ages, perimeter, area, tightest, accuracy, time_error,
-            cap: int):
+def _design(expansion, switch, end, ages, size: PlanformSize, accuracy, time_error, cap: int):
     """(MeshDesign, leak, peak): the mesh meeting what the time error leaves of
     ``DESIGN_MARGIN`` x accuracy at every time from the switch (or the first output) to
     the last output (so the contact layer, which the design does not model, keeps its
     margin however sparse the outputs); ``leak`` is the expansion's relative error at half
     the switch (the blend's first bound), ``peak`` the weight at the ages the outputs read
     after the switch (for the estimate)."""
+    perimeter, area, tightest = size.perimeter, size.area, size.tightest
     first = float(np.min(ages))
     start = 0.5 * min(switch, end) if switch > 0 else first
     span = np.geomspace(max(switch, first, 1e-9), max(end, switch, first, 1e-9), 200)
@@ -471,9 +487,8 @@ def solve_plane(problem: DiffusionProblem, chosen: Plan, cache: RunCache | None 
     if switch >= end and not store_fields:
         return _expansion_only(expansion, ages, history, chosen, part)
     planar, u_plane, pair_plane = planform_response(
-        geometry, chosen.finest, chosen.growth, d, surface_layer_depth, end,
-        chosen.steps_per_doubling, mesh_first_step(chosen.finest, 0.0 if store_fields else switch),
-        store_fields, part, cache)
+        problem, chosen, end, mesh_first_step(chosen.finest, 0.0 if store_fields else switch),
+        cache)
     (plane_mean, mean_error), (plane_layer, _) = (
         _planform_fractions(u_plane, values, expansion, which, tolerance)
         for values, which in ((u_plane.mean, "mean"), (u_plane.layer, "layer")))

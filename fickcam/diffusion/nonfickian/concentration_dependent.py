@@ -397,12 +397,12 @@ def solve_nonlinear(problem: DiffusionProblem, chosen, sweeps: Sweeps = SWEEPS,
                else mirrored(geometry, tuple(float(v) for v in scaled.pre_exponential),
                              chosen.cells_per_axis, chosen.finest, chosen.growth,
                              surface_layer_depth, cache))
-    faces = Faces.of(weights)
-    top = law.largest_factor(wettest(exposure, times))
+    shared = SweptMarch(Faces.of(weights), law, law.largest_factor(wettest(exposure, times)),
+                        part, sweeps)
     plans = [step_plan(exposure, times, scales, chosen.steps_per_doubling, bisect)
              for bisect in (False, True)]
-    coarse, fine = (sweep_march(faces, weights, law, top, steps, exposure.initial_moisture,
-                                store_fields, part, sweeps=sweeps) for steps in plans)
+    coarse, fine = (sweep_march(shared, weights, steps, exposure.initial_moisture, store_fields)
+                    for steps in plans)
     combine, estimate = richardson_pair(chosen, coarse, fine, swing(exposure, times) or 1.0, True)
     result = DiffusionResult(times, combine(coarse.mean, fine.mean),
                              combine(coarse.layer, fine.layer), chosen.model, weights.cells,
@@ -500,8 +500,34 @@ class Faces:
                 edge * g)
 
 
-def sweep_march(faces: Faces, weights, law, top, steps, initial, keep_fields, part,
-                columns=(), sweeps: Sweeps = SWEEPS) -> History:
+@dataclass(frozen=True)
+class SweptMarch:
+    """What every step of a swept march shares: the operator, the law, its scale, the part
+    and when the sweeps stop.
+
+    Parameters
+    ----------
+    faces : Faces
+        The operator taken apart by face.
+    law : ConcentrationDependent
+        The factor f(c/Mm_ref) [-].
+    top : float
+        The largest f met [-], which scales the march.
+    part : str
+        The part's name, for errors.
+    sweeps : Sweeps
+        When each step's sweeps stop.
+    """
+
+    faces: Faces
+    law: object
+    top: float
+    part: str = ""
+    sweeps: Sweeps = SWEEPS
+
+
+def sweep_march(shared: SweptMarch, weights, steps, initial, keep_fields=False,
+                columns=()) -> History:
     """March a concentration-dependent operator, each step swept to convergence.
 
     Backward Euler in scaled time, each step swept to convergence (module docstring).
@@ -510,26 +536,20 @@ def sweep_march(faces: Faces, weights, law, top, steps, initial, keep_fields, pa
 
     Parameters
     ----------
-    faces : Faces
-        The operator taken apart by face.
+    shared : SweptMarch
+        The operator, the law f [-], its scale top [-], the part's name and the sweeps'
+        stopping rule.
     weights : Discretisation
         Its mean and layer weights.
-    law : ConcentrationDependent
-        The factor f(c/Mm_ref) [-].
-    top : float
-        The largest f met [-], which scales the march.
     steps : StepPlan
-        Nodes in scaled time [-], outputs, surface moisture before each node [weight %].
+        Nodes in scaled time [-], their times [s], outputs, surface moisture before each
+        node [weight %].
     initial : float
         The initial moisture [weight %].
     keep_fields : bool
         Also return the cell values.
-    part : str
-        The part's name, for error messages.
     columns : tuple of numpy.ndarray
         More cell weight vectors to track at every node.
-    sweeps : Sweeps
-        When each step's sweeps stop.
 
     Returns
     -------
@@ -541,7 +561,7 @@ def sweep_march(faces: Faces, weights, law, top, steps, initial, keep_fields, pa
     SolverError
         When a step's sweeps do not converge.
     """
-    c = np.full(faces.volumes.size, float(initial))
+    c = np.full(shared.faces.volumes.size, float(initial))
     want = {int(k) for k in steps.outputs}
     record = {0: c.copy()} if 0 in want else {}
     sums = np.column_stack([weights.mean_weights, weights.layer_weights, *columns])
@@ -553,8 +573,7 @@ def sweep_march(faces: Faces, weights, law, top, steps, initial, keep_fields, pa
         g = float(steps.surface_before[k])
         guess = None if previous is None else extrapolated(previous, c, dts[k - 2], dt, g)
         previous = c
-        c = sweep_step(faces, c, g, law, top, dt, part, k, steps.times[k], solver, guess,
-                       sweeps)
+        c = sweep_step(shared, c, g, dt, k, steps.times[k], solver, guess)
         track.append(c @ sums)
         if k in want:
             record[k] = c.copy()
@@ -629,35 +648,30 @@ def extrapolated(before, latest, dt_before, dt, g) -> np.ndarray:
     return np.clip(guess, min(float(latest.min()), g), max(float(latest.max()), g))
 
 
-def sweep_step(faces: Faces, old, g, law, top, dt, part, index, time, solver=None,
-               guess=None, sweeps: Sweeps = SWEEPS) -> np.ndarray:
+def sweep_step(shared: SweptMarch, old, g, dt, index, time, solver=None,
+               guess=None) -> np.ndarray:
     """One backward-Euler step of the nonlinear operator, by Picard sweeps.
 
     Picard sweeps (M/dt + K(c)) c_new = M old/dt + f(g) with K from the latest iterate
     (the first: ``guess``, else ``old``), until the residual of the new iterate in its own
-    operator (the next sweep's) is below ``sweeps.tolerance`` of the right side; SolverError
-    if ``sweeps.most`` do not get there. Each sweep's linear system is solved only to
-    ``sweeps.forcing`` x the residual of the iterate it starts from (inexact Picard: the forcing
+    operator (the next sweep's) is below ``shared.sweeps.tolerance`` of the right side;
+    SolverError if ``shared.sweeps.most`` do not get there. Each sweep's linear system is
+    solved only to ``shared.sweeps.forcing`` x the residual of the iterate it starts from (inexact Picard: the forcing
     terms of inexact Newton, Eisenstat & Walker 1996, SIAM J. Sci. Comput. 17:16-32): an
     early sweep's system is itself off by that residual, and the stopping test is on the
     nonlinear residual, so the converged step is unchanged.
 
     Parameters
     ----------
-    faces : Faces
-        The operator taken apart by face.
+    shared : SweptMarch
+        The operator, the law f [-], its scale top [-], the part's name and the sweeps'
+        stopping rule.
     old : numpy.ndarray
         The state at the step's start [weight %].
     g : float
         The surface moisture [weight %] at the step's end.
-    law : ConcentrationDependent
-        The factor f(c/Mm_ref) [-].
-    top : float
-        The largest f met [-], which scales the march.
     dt : float
         The step [-] (scaled time).
-    part : str
-        The part's name, for errors.
     index : int
         The step's number, for errors.
     time : float
@@ -666,8 +680,6 @@ def sweep_step(faces: Faces, old, g, law, top, dt, part, index, time, solver=Non
         The lagged solver to reuse (None: a fresh one).
     guess : numpy.ndarray, optional
         The first iterate [weight %] (None: ``old``).
-    sweeps : Sweeps
-        When the sweeps stop.
 
     Returns
     -------
@@ -677,13 +689,14 @@ def sweep_step(faces: Faces, old, g, law, top, dt, part, index, time, solver=Non
     Raises
     ------
     SolverError
-        When ``sweeps.most`` sweeps do not reach ``sweeps.tolerance``.
+        When ``shared.sweeps.most`` sweeps do not reach ``shared.sweeps.tolerance``.
 
     References
     ----------
     Eisenstat, S. C. & Walker, H. F. (1996). Choosing the forcing terms in an inexact Newton
     method. SIAM Journal on Scientific Computing 17(1):16-32. doi:10.1137/0917003
     """
+    faces, law, top, sweeps = shared.faces, shared.law, shared.top, shared.sweeps
     solver = solver or Lagged()
     mass = faces.volumes / dt
     c = old if guess is None else guess
@@ -699,5 +712,5 @@ def sweep_step(faces: Faces, old, g, law, top, dt, part, index, time, solver=Non
             break
         if residual <= sweeps.tolerance:
             return c
-    raise SolverError(part, index, time, f"concentration-dependent sweeps did not converge: "
+    raise SolverError(shared.part, index, time, f"concentration-dependent sweeps did not converge: "
                       f"residual {residual:.2e} after {sweeps.most} sweeps")

@@ -32,12 +32,12 @@ from ..operators.symmetry_cuts import half
 from ..planform.admissible import band_share, refine
 from ..planform.cell_moments import corrected_weights
 from ..problem.definition import DiffusionProblem
-from ..problem.geometry import LAYER_DEPTH, Bar, CamPlate, Sheet
+from ..problem.geometry import Bar, CamPlate, Sheet
 from ..problem.results import DiffusionResult, Plan
 from ..problem.scaling import stretch_of
 from ..stepping.dense_output import StepRecord
 from .concentration_dependent import (SWEEPS, Faces, Sweeps, fastest, nonlinear_plan,
-                                      solve_nonlinear, sweep_march, wettest)
+                                      SweptMarch, solve_nonlinear, sweep_march, wettest)
 
 SHEET_SHARE = 0.1          # the fine sheet's accuracy: this share of the requested one, not
 #   loosened at loose accuracies (measured: benchmarks/results/tuned_constants.md)
@@ -340,8 +340,8 @@ def combination(lattice: list) -> tuple[list, list] | None:
     return tuple([index[key] for key in chain] for chain in chains)
 
 
-def richardson_march(disc, law, top, exposure, times, scales, per_doubling, keep, part,
-                     columns=(), sweeps: Sweeps = SWEEPS) -> CombinedMarch:
+def richardson_march(setting: "SharedInputs", disc, keep: bool = False,
+                     columns=()) -> CombinedMarch:
     """A swept march and the same on bisected steps, combined 2 fine - coarse.
 
     The swept backward-Euler march (``concentration_dependent``) on the plan's steps and on them
@@ -349,38 +349,28 @@ def richardson_march(disc, law, top, exposure, times, scales, per_doubling, keep
 
     Parameters
     ----------
+    setting : SharedInputs
+        What every march of the solve shares: the law f [-], its largest factor top [-],
+        the exposure (times [s], temperature [K], moisture [weight %]), the output times
+        [s], the scales, the steps per doubling, the part's name and the sweeps' rule.
     disc : Discretisation
         The operator in scaled coordinates.
-    law : ConcentrationDependent
-        The factor f(c/Mm_ref) [-].
-    top : float
-        The largest f met [-].
-    exposure : Exposure
-        The history (times [s], temperature [K], moisture [weight %]).
-    times : numpy.ndarray
-        The output times [s].
-    scales : Scales
-        The part's time and length scales.
-    per_doubling : int
-        Steps of equal size before the step doubles.
     keep : bool
         Keep the cell values.
-    part : str
-        The part's name, for errors.
     columns : tuple of numpy.ndarray
         More cell weight vectors to track.
-    sweeps : Sweeps
-        When each step's sweeps stop.
 
     Returns
     -------
     CombinedMarch
         The combined means [weight %] and the time-error indicator.
     """
-    faces = Faces.of(disc)
-    plans = [step_plan(exposure, times, scales, per_doubling, bisect) for bisect in (False, True)]
-    coarse, fine = (sweep_march(faces, disc, law, top, steps, exposure.initial_moisture, keep,
-                                part, columns, sweeps) for steps in plans)
+    exposure, scales = setting.exposure, setting.scales
+    shared = SweptMarch(Faces.of(disc), setting.law, setting.top, setting.part, setting.sweeps)
+    plans = [step_plan(exposure, setting.times, scales, setting.per_doubling, bisect)
+             for bisect in (False, True)]
+    coarse, fine = (sweep_march(shared, disc, steps, exposure.initial_moisture, keep, columns)
+                    for steps in plans)
     fields = 2.0 * fine.fields - coarse.fields if keep else None
     return CombinedMarch(2.0 * fine.mean - coarse.mean, 2.0 * fine.layer - coarse.layer, fields,
                 coarse.steps + fine.steps, float(np.max(np.abs(fine.mean - coarse.mean))),
@@ -522,32 +512,25 @@ def level_plan(geometry, diffusivity, law, exposure, times, mesh_accuracy, per_d
     return replace(chosen, steps_per_doubling=per_doubling)
 
 
-def sheet_reference(geometry, diffusivity, law, exposure, times, accuracy,
-                    depth=LAYER_DEPTH, store_fields=False,
+def sheet_reference(problem: DiffusionProblem, geometry, diffusivity,
                     sweeps: Sweeps = SWEEPS) -> DiffusionResult:
     """The fine concentration-dependent sheet of the part's thickness.
 
     The D(c) sheet of the part's thickness at ``SHEET_SHARE`` x the accuracy (FiPy slab;
-    its layer within ``depth`` of a face; its cells' fields with ``store_fields``).
+    its layer within the problem's contact-layer depth of a face; its cells' fields when the
+    problem stores them).
 
     Parameters
     ----------
+    problem : DiffusionProblem
+        The sheet's moisture dependence f [-] (``sorption``), exposure (t [s], T [K],
+        surface moisture [weight %]), output times [s], the requested accuracy [-] (the
+        sheet takes ``SHEET_SHARE`` of it), the contact layer's depth [m] and whether to keep
+        the cells' fields.
     geometry : CamPlate, LinkBar or Bar
         The part; its ``thickness`` [m] is the sheet's.
     diffusivity : Diffusivity
         D0 per axis [m^2/s]; the sheet takes the through-thickness one.
-    law : ConcentrationDependent
-        The sheet's moisture dependence f [-].
-    exposure : Exposure
-        The sheet's exposure (t [s], T [K], surface moisture [weight %]).
-    times : numpy.ndarray
-        Output times [s] of the sheet.
-    accuracy : float
-        The requested accuracy [-] (the sheet takes ``SHEET_SHARE`` of it).
-    depth : float
-        The contact layer's depth [m].
-    store_fields : bool
-        Keep the cells' fields.
     sweeps : Sweeps
         When each step's sweeps stop.
 
@@ -556,13 +539,16 @@ def sheet_reference(geometry, diffusivity, law, exposure, times, accuracy,
     DiffusionResult
         The sheet's mean and layer moisture [weight %].
     """
+    law, exposure, times = problem.sorption, problem.exposure, problem.times
     sheet = Sheet(geometry.thickness)
 
     def planner(d, a, outputs):
         return plan_direct(DiffusionProblem(sheet, d, exposure, outputs, a), "slab")
-    chosen = nonlinear_plan(planner, diffusivity, law, exposure, times, SHEET_SHARE * accuracy)
+    chosen = nonlinear_plan(planner, diffusivity, law, exposure, times,
+                            SHEET_SHARE * problem.accuracy)
     return solve_nonlinear(DiffusionProblem(sheet, diffusivity, exposure, times,
-                                            surface_layer_depth=depth, store_fields=store_fields,
+                                            surface_layer_depth=problem.surface_layer_depth,
+                                            store_fields=problem.store_fields,
                                             sorption=law), chosen, sweeps)
 
 
@@ -617,19 +603,41 @@ class SharedInputs:
     sweeps: Sweeps = SWEEPS     # when each step's sweeps stop
 
     @classmethod
-    def of(cls, geometry, diffusivity, law, exposure, times, depth, per_doubling, part,
-           faces_layer=False, keep_fields=False, sweeps: Sweeps = SWEEPS):
+    def of(cls, problem: DiffusionProblem, geometry, diffusivity, per_doubling: int,
+           faces_layer: bool = False, sweeps: Sweeps = SWEEPS) -> "SharedInputs":
+        """What the marches of a corrected solve of ``problem`` share.
+
+        Parameters
+        ----------
+        problem : DiffusionProblem
+            The exposure, output times [s], contact-layer depth [m], whether the planform
+            marches keep their fields, the part's name and the ``sorption`` law f [-].
+        geometry : CamPlate or LinkBar
+            The prism every march meshes (sizes [m]).
+        diffusivity : Diffusivity
+            Its D0 per axis [m^2/s] and activation energy [J/mol].
+        per_doubling : int
+            Steps per doubling [-].
+        faces_layer : bool
+            The layer includes the two faces (a Bar's).
+        sweeps : Sweeps
+            When each step's sweeps stop.
+
+        Returns
+        -------
+        SharedInputs
+            The shared inputs.
+        """
+        law, exposure, times = problem.sorption, problem.exposure, problem.times
         scaled = fastest(diffusivity, law, exposure, times)
         return cls(geometry, law, exposure, np.asarray(times, float),
                    tuple(float(v) for v in scaled.pre_exponential),
                    law.largest_factor(wettest(exposure, times)),
-                   scales_of(geometry, scaled, exposure), depth, per_doubling, part, faces_layer,
-                   keep_fields, sweeps)
+                   scales_of(geometry, scaled, exposure), problem.surface_layer_depth,
+                   per_doubling, problem.part, faces_layer, problem.store_fields, sweeps)
 
     def run(self, disc, keep: bool = False, columns=()) -> CombinedMarch:
-        return richardson_march(disc, self.law, self.top, self.exposure, self.times,
-                                self.scales, self.per_doubling, keep, self.part, columns,
-                                self.sweeps)
+        return richardson_march(self, disc, keep, columns)
 
     def planform(self, finest: float, growth: float) -> tuple[CombinedMarch, CombinedMarch, int]:
         """(the plate's weights, ``cell_moments``' weights, cells) of the planform's march on

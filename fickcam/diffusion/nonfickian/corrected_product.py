@@ -84,7 +84,7 @@ from ..operators.sizing import prism_widths
 from ..operators.symmetry_cuts import half
 from ..problem.definition import DiffusionProblem
 from ..problem.exposure import swing
-from ..problem.geometry import LAYER_DEPTH, Bar
+from ..problem.geometry import Bar
 from ..problem.results import DiffusionResult, Plan
 from ..stepping.dense_output import Extension
 from .concentration_dependent import SWEEPS, Sweeps, dries_to_a_skin, spread
@@ -333,9 +333,8 @@ def surface_of(setting: SharedInputs) -> np.ndarray:
     return np.asarray(setting.exposure.surface_before(setting.times), float)
 
 
-def corrected_levels(geometry, diffusivity, law, exposure, times, accuracy: float,
-                     meshes: int = 2, *, plans=None, base=None, surface_layer_depth=LAYER_DEPTH,
-                     store_fields=False, part="", sweeps: Sweeps = SWEEPS) -> CorrectedMeshes:
+def corrected_levels(problem: DiffusionProblem, meshes: int = 2, *, plans=None, base=None,
+                     sweeps: Sweeps = SWEEPS) -> CorrectedMeshes:
     """The corrected product on nested (or given) 3-D meshes.
 
     The corrected product (module docstring) on ``meshes`` nested 3-D meshes: the graded
@@ -344,35 +343,23 @@ def corrected_levels(geometry, diffusivity, law, exposure, times, accuracy: floa
     first), on those plans' graded cells (not nested; ``benchmarks/dc_defect_correction.py
     plate-order``). ``base``: the coarsest nested plan's accuracy instead of ``base_plan``'s.
     The planform reference is refined from the ``MESH_LEVELS[-1]`` plan's graded planform.
-    ``store_fields`` keeps every mesh's fields and the references' (``corrected_fields``);
-    ``sweeps``: when each step's sweeps stop, in every march.
+    The problem's ``store_fields`` keeps every mesh's fields and the references'
+    (``corrected_fields``); ``sweeps``: when each step's sweeps stop, in every march.
 
     Parameters
     ----------
-    geometry : Bar, CamPlate or LinkBar
-        The part (lengths [m]).
-    diffusivity : Diffusivity
-        The material's diffusivity (pre-exponential [m^2/s], activation energy [J/mol]).
-    law : ConcentrationDependent
-        The factor f(c/Mm_ref) [-].
-    exposure : Exposure
-        The history (times [s], temperature [K], moisture [weight %]).
-    times : numpy.ndarray
-        The output times [s].
-    accuracy : float
-        The requested error relative to the swing [-].
+    problem : DiffusionProblem
+        The part (a Bar, CamPlate or LinkBar, lengths [m]), its diffusivity ([m^2/s],
+        [J/mol]), the history (times [s], temperature [K], moisture [weight %]), the output
+        times [s], the requested error relative to the swing [-], the contact layer's depth
+        [m], whether to keep the fields, the part's name and its ``sorption``, the
+        ``ConcentrationDependent`` factor f(c/Mm_ref) [-].
     meshes : int
         The nested meshes marched.
     plans : sequence of float, optional
         Accuracies [-] of ``nonlinear_plan`` for non-nested meshes, coarsest first.
     base : float, optional
         The coarsest nested plan's accuracy [-] (None: ``base_plan``'s).
-    surface_layer_depth : float
-        The contact layer's depth [m].
-    store_fields : bool
-        Keep every mesh's fields and the references'.
-    part : str
-        Names the part in solver errors.
     sweeps : Sweeps
         The sweeps' stopping rule, for every march.
 
@@ -381,12 +368,13 @@ def corrected_levels(geometry, diffusivity, law, exposure, times, accuracy: floa
     CorrectedMeshes
         The corrected results per mesh and their references.
     """
-    times = np.asarray(times, float)
-    geometry, diffusivity, faces_layer = as_prism(geometry, diffusivity)
-    setting = SharedInputs.of(geometry, diffusivity, law, exposure, times, surface_layer_depth,
-                         steps_for(accuracy), part, faces_layer, store_fields, sweeps)
-    sheet = sheet_reference(geometry, diffusivity, law, exposure, times, accuracy,
-                            surface_layer_depth, store_fields, sweeps)
+    law, exposure, times, accuracy = (problem.sorption, problem.exposure, problem.times,
+                                      problem.accuracy)
+    store_fields = problem.store_fields
+    geometry, diffusivity, faces_layer = as_prism(problem.geometry, problem.diffusivity)
+    setting = SharedInputs.of(problem, geometry, diffusivity, steps_for(accuracy), faces_layer,
+                              sweeps)
+    sheet = sheet_reference(problem, geometry, diffusivity, sweeps)
     reference = CombinedMarch(sheet.mean, sheet.surface)
 
     def planned(a):
@@ -572,8 +560,7 @@ def extension(run: CorrectedMeshes, result: DiffusionResult, accuracy: float,
                      product, run.scale, accuracy, resolve, run.setting.part)
 
 
-def refined_run(geometry, diffusivity, law, exposure, times, accuracy: float, *,
-                surface_layer_depth=LAYER_DEPTH, store_fields=False, part="",
+def refined_run(problem: DiffusionProblem,
                 sweeps: Sweeps = SWEEPS) -> tuple[CorrectedMeshes, tuple, float, float]:
     """The nested meshes a corrected solve ends on, refined while that helps.
 
@@ -583,24 +570,13 @@ def refined_run(geometry, diffusivity, law, exposure, times, accuracy: float, *,
 
     Parameters
     ----------
-    geometry : Bar, CamPlate or LinkBar
-        The part whose meshes are refined (sizes [m]).
-    diffusivity : Diffusivity
-        D0 per axis [m^2/s] and the activation energy [J/mol].
-    law : ConcentrationDependent
-        The moisture dependence f(c/Mm_ref) [-] of D.
-    exposure : Exposure
-        Change times [s], temperatures [K], surface moisture [weight %].
-    times : numpy.ndarray
-        When the results are wanted [s].
-    accuracy : float
-        The error [-] allowed, as a share of the moisture swing.
-    surface_layer_depth : float
-        How deep the contact layer reaches [m].
-    store_fields : bool
-        Keep the finest mesh's fields.
-    part : str
-        The part's name, for errors.
+    problem : DiffusionProblem
+        The part whose meshes are refined (a Bar, CamPlate or LinkBar, sizes [m]), D0 per
+        axis [m^2/s] and the activation energy [J/mol], the exposure (change times [s],
+        temperatures [K], surface moisture [weight %]), when the results are wanted [s], the
+        error allowed [-] as a share of the moisture swing, how deep the contact layer
+        reaches [m], whether to keep the finest mesh's fields, the part's name and its
+        ``sorption``, the moisture dependence f(c/Mm_ref) [-] of D.
     sweeps : Sweeps
         When each step's sweeps stop.
 
@@ -615,10 +591,10 @@ def refined_run(geometry, diffusivity, law, exposure, times, accuracy: float, *,
     rest : float
         The rest of the estimate [-].
     """
-    run = corrected_levels(geometry, diffusivity, law, exposure, times, accuracy,
-                           surface_layer_depth=surface_layer_depth,
-                           store_fields=store_fields, part=part, sweeps=sweeps)
-    estimated = partial(estimate_parts, margin=skin_margin(law, exposure, times))
+    accuracy, store_fields = problem.accuracy, problem.store_fields
+    run = corrected_levels(problem, sweeps=sweeps)
+    estimated = partial(estimate_parts, margin=skin_margin(problem.sorption, problem.exposure,
+                                                           problem.times))
     values, three_d_error, rest = estimated(run)
     while rest < accuracy < rest + three_d_error:
         finer = run.finer(store_fields)
@@ -664,13 +640,9 @@ def solve_corrected(problem: DiffusionProblem, reason: str = "",
     SolverError
         When the sweeps of a step of one of the marches do not converge.
     """
-    geometry, diffusivity, law = problem.geometry, problem.diffusivity, problem.sorption
-    exposure, times, accuracy = problem.exposure, problem.times, problem.accuracy
-    surface_layer_depth, store_fields = problem.surface_layer_depth, problem.store_fields
-    run, values, three_d_error, rest = refined_run(
-        geometry, diffusivity, law, exposure, times, accuracy,
-        surface_layer_depth=surface_layer_depth, store_fields=store_fields, part=problem.part,
-        sweeps=sweeps)
+    geometry, diffusivity = problem.geometry, problem.diffusivity
+    times, accuracy, store_fields = problem.times, problem.accuracy, problem.store_fields
+    run, values, three_d_error, rest = refined_run(problem, sweeps)
     sheet = run.sheet
     estimate = three_d_error + rest
     fine = run.marched[-1]

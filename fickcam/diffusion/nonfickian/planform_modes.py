@@ -428,12 +428,42 @@ class RefinedPlanform:
     growth: float
 
 
-def _level(geometry, d, depth, finest, growth, ages, tolerance, measure, cache: RunCache):
-    """(compared values, payload, cells, steps, quadrature change) of ``measure`` on the
+@dataclass(frozen=True)
+class PlanformMeasure:
+    """What a planform refinement measures on each of its meshes.
+
+    Parameters
+    ----------
+    geometry : CamPlate or LinkBar
+        The cam plate or link whose planform is refined (sizes [m]).
+    d : tuple of float
+        D along x, y and through the thickness [m^2/s].
+    depth : float
+        Depth of the contact layer read [m].
+    ages : numpy.ndarray
+        Rescaled ages [s] at which the quadrature is checked.
+    tolerance : float
+        The error allowed [-], relative to the swing.
+    measure : callable
+        source -> (compared values [-], payload).
+    """
+
+    geometry: object
+    d: tuple
+    depth: float
+    ages: np.ndarray
+    tolerance: float
+    measure: Callable
+
+
+def _level(task: PlanformMeasure, finest, growth, cache: RunCache):
+    """(compared values, payload, cells, steps, quadrature change) of ``task.measure`` on the
     product modes of the mesh (finest, growth); ``cache``: the run's."""
-    planform = planform_operator(geometry, d, depth, finest, growth, cache)
-    steps, change = lanczos_count(planform, ages, tolerance)
-    values, payload = measure(planform_source(geometry, d, lanczos_spectrum(planform, steps)))
+    geometry, d = task.geometry, task.d
+    planform = planform_operator(geometry, d, task.depth, finest, growth, cache)
+    steps, change = lanczos_count(planform, task.ages, task.tolerance)
+    values, payload = task.measure(planform_source(geometry, d,
+                                                   lanczos_spectrum(planform, steps)))
     return np.asarray(values, float), payload, planform.cells, steps, change
 
 
@@ -443,8 +473,8 @@ class Refinement:
 
     How ``refined_planform`` refines: up to ``cap`` cells, w0 and g ``apart`` where
     together cannot meet the tolerance under the cap, each mesh measured by ``level``
-    (``(geometry, d, depth, finest, growth, ages, tolerance, measure, cache)`` -> (compared values,
-    payload, cells, steps, quadrature change)). The defaults are the run's; tests pass
+    (``(task, finest, growth, cache)`` -> (compared values, payload, cells, steps, quadrature
+    change), ``task`` a ``PlanformMeasure``). The defaults are the run's; tests pass
     others (a smaller cap, a modelled level) instead of changing the module.
 
     Parameters
@@ -465,8 +495,8 @@ class Refinement:
 REFINEMENT = Refinement()
 
 
-def refined_planform(geometry, d, depth: float, finest: float, growth: float, ages,
-                     tolerance: float, measure, refinement: Refinement = REFINEMENT,
+def refined_planform(task: PlanformMeasure, finest: float, growth: float,
+                     refinement: Refinement = REFINEMENT,
                      cache: RunCache | None = None) -> RefinedPlanform:
     """Refine the planform mesh until the Richardson estimate meets the tolerance.
 
@@ -483,22 +513,14 @@ def refined_planform(geometry, d, depth: float, finest: float, growth: float, ag
 
     Parameters
     ----------
-    geometry : CamPlate or LinkBar
-        The cam plate or link whose planform is refined (sizes [m]).
-    d : tuple of float
-        D along x, y and through the thickness [m^2/s].
-    depth : float
-        Depth of the contact layer read [m].
+    task : PlanformMeasure
+        The part (sizes [m]), D per axis [m^2/s], the contact layer's depth [m], the
+        rescaled ages [s] at which the quadrature is checked, the error allowed [-]
+        relative to the swing and the ``measure``, source -> (compared values [-], payload).
     finest : float
         The first mesh's finest width w0 [-] (scaled).
     growth : float
         Its growth rate g [-].
-    ages : numpy.ndarray
-        Rescaled ages [s] at which the quadrature is checked.
-    tolerance : float
-        The error allowed [-], relative to the swing.
-    measure : callable
-        source -> (compared values [-], payload).
     refinement : Refinement
         How to refine.
     cache : RunCache, optional
@@ -511,15 +533,14 @@ def refined_planform(geometry, d, depth: float, finest: float, growth: float, ag
         refined).
     """
     cache = run_cache(cache)
-    ages = np.asarray(ages, float)
-    ages = ages[ages > 0]
-    coarse = refinement.level(geometry, d, depth, finest, growth, ages, tolerance, measure,
-                              cache)
+    ages = np.asarray(task.ages, float)
+    task = replace(task, ages=ages[ages > 0])
+    tolerance = task.tolerance
+    coarse = refinement.level(task, finest, growth, cache)
     ratio, levels, apart = 2.0, 1, None
     while True:
         try:
-            fine = refinement.level(geometry, d, depth, finest / ratio, growth / ratio, ages,
-                                    tolerance, measure, cache)
+            fine = refinement.level(task, finest / ratio, growth / ratio, cache)
         except InputError:
             break
         levels += 1
@@ -533,8 +554,7 @@ def refined_planform(geometry, d, depth: float, finest: float, growth: float, ag
         log.debug("planform w0 %.3g g %.3g: %d cells, estimate %.2e; at the cap together %.2e",
                   finest, growth, fine[2], error, mesh / reach ** 2 + fine[4])
         if refinement.apart and apart is None and mesh / reach ** 2 > tolerance - fine[4]:
-            apart = _separately(geometry, d, depth, (finest, growth, fine), ages, tolerance,
-                                measure, levels, refinement, cache)
+            apart = _separately(task, (finest, growth, fine), levels, refinement, cache)
             if apart is not None and apart.error <= tolerance:
                 return apart
             levels = levels if apart is None else apart.levels
@@ -633,20 +653,19 @@ def _target(geometry, d, parts, meshes, budget: float, cap: int):
     return None if best is None else best[1:]
 
 
-def _separately(geometry, d, depth, start, ages, tolerance, measure, levels, refinement,
-                cache: RunCache):
+def _separately(task: PlanformMeasure, start, levels, refinement, cache: RunCache):
     """Refine w0 and g apart from the mesh ``start`` (finest, growth, ``_level``): one mesh
     with w0 / 2 alone and one with g / 2 alone give each term's own Richardson difference
     (``error_coefficients``); the mesh of the fewest cells predicted to meet the tolerance follows
     (``_target``), its estimate from all the meshes apart (least squares), and so on while
     the last mesh is under half the cap. The cheapest mesh whose estimate meets the
     tolerance is kept, else the last. None if a probe mesh cannot be built."""
+    geometry, d, tolerance = task.geometry, task.d, task.tolerance
     finest, growth, _ = start
     meshes = [start]
     try:
         for w, g in ((finest / 2.0, growth), (finest, growth / 2.0)):
-            meshes.append((w, g, refinement.level(geometry, d, depth, w, g, ages, tolerance,
-                                                  measure, cache)))
+            meshes.append((w, g, refinement.level(task, w, g, cache)))
     except InputError:
         return None
     levels += 2
@@ -666,8 +685,7 @@ def _separately(geometry, d, depth, start, ages, tolerance, measure, levels, ref
         if target is None or np.allclose(target, (w, g), rtol=1e-3):
             return RefinedPlanform(last[1], last[0], level[3], levels, level[1], w, g)
         try:
-            meshes.append((*target, refinement.level(geometry, d, depth, *target, ages, tolerance,
-                                                     measure, cache)))
+            meshes.append((*target, refinement.level(task, *target, cache)))
         except InputError:
             return RefinedPlanform(last[1], last[0], level[3], levels, level[1], w, g)
         levels += 1

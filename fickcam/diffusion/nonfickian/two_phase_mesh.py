@@ -29,6 +29,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..stepping.march import ThetaStepper, rounded_steps
+from ..stepping.step_plans import StepPlan
 
 
 @dataclass
@@ -76,28 +77,46 @@ def two_phase_marcher(law, exposure):
     Returns
     -------
     callable
-        ``march(disc, nodes, surface_values, initial, outputs, times, ...)`` returning a
+        ``march(disc, steps, initial, keep_fields=..., part=...)`` returning a
         ``TwoPhaseHistory`` (moisture [weight %]).
 
     References
     ----------
     Carter & Kibler (1978), cited in the module docstring.
     """
-    def march_two_phase(disc, nodes, surface_values, initial, outputs, times=None, *,
-                        keep_fields=False, part="", surface_before=None, **_):
-        times = np.asarray(nodes if times is None else times, float)
+    def march_two_phase(disc, steps: StepPlan, initial, *, keep_fields=False, part="", **_):
+        times = np.asarray(steps.times, float)
         share = law.free_share(exposure.temperature(times))
         share_before = law.free_share(exposure.temperature(np.nextafter(times, -np.inf)))
-        ending = surface_values if surface_before is None else surface_before
         gamma, beta = law.rates(exposure.temperature(0.5 * (times[1:] + times[:-1])))
         duration = np.diff(times)
-        return march_coupled(disc, nodes, share_before * ending, gamma * duration, beta * duration, initial, share[0], outputs,
-                             times, keep_fields, part)
+        return march_coupled(disc, steps, share_before * steps.surface_before,
+                             Exchange(gamma * duration, beta * duration, share[0]), initial,
+                             keep_fields=keep_fields, part=part)
     return march_two_phase
 
 
-def march_coupled(disc, nodes, free_before, binding, release, initial,
-                  initial_share, outputs, labels, keep_fields, part) -> TwoPhaseHistory:
+@dataclass(frozen=True)
+class Exchange:
+    """The free/bound water exchange of each step of a two-phase march.
+
+    Parameters
+    ----------
+    binding : numpy.ndarray
+        gamma h of each step [-] (h its physical duration).
+    release : numpy.ndarray
+        beta h of each step [-].
+    initial_share : float
+        The free share of the initial moisture [-].
+    """
+
+    binding: np.ndarray
+    release: np.ndarray
+    initial_share: float
+
+
+def march_coupled(disc, steps: StepPlan, free_before, exchange: Exchange, initial, *,
+                  keep_fields=False, part="") -> TwoPhaseHistory:
     """Backward Euler on the free/bound block system, the bound block eliminated.
 
     See the module docstring for the scheme.
@@ -106,21 +125,16 @@ def march_coupled(disc, nodes, free_before, binding, release, initial,
     ----------
     disc : Discretisation
         The operator in scaled coordinates.
-    nodes : numpy.ndarray
-        The step boundaries in scaled time [-].
+    steps : StepPlan
+        The step boundaries in scaled time [-], their times [s] (labelling errors) and the
+        node indices recorded; its surface values are not read.
     free_before : numpy.ndarray
         The free surface moisture [weight %] at the end of the step ending at each node
         (the left limit there).
-    binding, release : numpy.ndarray
-        gamma h and beta h of each step [-] (h its physical duration).
+    exchange : Exchange
+        gamma h and beta h of each step [-] and the initial free share [-].
     initial : float
         The initial total moisture [weight %].
-    initial_share : float
-        The free share of it [-].
-    outputs : numpy.ndarray of int
-        The node indices recorded.
-    labels : numpy.ndarray
-        The nodes' times [s], labelling errors.
     keep_fields : bool
         Also return the cell values.
     part : str
@@ -137,14 +151,16 @@ def march_coupled(disc, nodes, free_before, binding, release, initial,
         When a step's linear solve fails.
     """
     stepper = ThetaStepper(disc, part)
+    nodes, outputs, labels = steps.nodes, steps.outputs, steps.times
+    binding, release, initial_share = exchange.binding, exchange.release, exchange.initial_share
     n = np.full(disc.cells, initial_share * float(initial))
     bound = np.full(disc.cells, (1.0 - initial_share) * float(initial))
     want = set(int(k) for k in outputs)
     record = {}
     if 0 in want:
         record[0] = (n.copy(), bound.copy())
-    steps = rounded_steps(np.diff(nodes))
-    for k, dt in enumerate(steps, start=1):
+    sizes = rounded_steps(np.diff(nodes))
+    for k, dt in enumerate(sizes, start=1):
         gdt, bdt = binding[k - 1], release[k - 1]
         effective = 1.0 / (1.0 / dt + gdt / dt / (1.0 + bdt))
         source = effective * (n / dt + bdt / dt * bound / (1.0 + bdt))
@@ -157,4 +173,4 @@ def march_coupled(disc, nodes, free_before, binding, release, initial,
     total = free + held
     return TwoPhaseHistory(total @ disc.mean_weights, total @ disc.layer_weights,
                            held @ disc.mean_weights, total if keep_fields else None,
-                           int(steps.size), stepper.factorisations)
+                           int(sizes.size), stepper.factorisations)

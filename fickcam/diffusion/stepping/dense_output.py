@@ -41,7 +41,7 @@ from __future__ import annotations
 
 import logging
 from dataclasses import dataclass, replace
-from typing import Callable
+from typing import Callable, Sequence
 
 import numpy as np
 
@@ -61,7 +61,7 @@ class StepRecord:
     """Weighted sums of a Richardson-combined march at every node of its coarse plan.
 
     The columns are the mean, the layer and any other weighted sums asked; the plan is
-    ``finite_volume.StepPlan``'s coarse one.
+    ``step_plans.StepPlan``'s coarse one.
 
     Parameters
     ----------
@@ -154,6 +154,7 @@ def lagrange(x: np.ndarray, at: float) -> np.ndarray:
     return weights
 
 
+@dataclass(frozen=True, eq=False)
 class Extension:
     """``DiffusionResult.extend`` read between a march's steps, re-solving when unsure.
 
@@ -174,13 +175,19 @@ class Extension:
         ``resolve(times)``: the solve at ``times`` [s] (the fallback).
     what : str
         Names the solve in log messages.
+    fits : callable, optional
+        ``fits(times)``: whether a solve at ``times`` [s] keeps the stored solve's cells
+        (None: always).
     """
 
-    def __init__(self, result, tracks, combine, scale: float, accuracy: float, resolve,
-                 what: str = ""):
-        self.result, self.tracks, self.combine = result, list(tracks), combine
-        self.scale, self.accuracy, self.resolve, self.what = scale, accuracy, resolve, what
-        self.fits: Callable[[np.ndarray], bool] | None = None   # the same cells at times?
+    result: object
+    tracks: Sequence
+    combine: Callable
+    scale: float
+    accuracy: float
+    resolve: Callable
+    what: str = ""
+    fits: Callable[[np.ndarray], bool] | None = None
 
     def younger(self, times) -> bool:
         """Whether ``times`` have an output younger after its change than the stored ones
@@ -221,12 +228,12 @@ class Extension:
 
 
 def held_to_plan(result, chosen, replan, resolve):
-    """Make a result's ``Extension`` re-solve where the plan for the new times changes cells.
+    """A result whose ``Extension`` re-solves where the plan for the new times changes cells.
 
     Parameters
     ----------
     result : DiffusionResult
-        The solve; its ``extend`` is adjusted in place when it is an ``Extension``.
+        The solve.
     chosen : Plan
         The plan ``result`` was solved on.
     replan : callable
@@ -237,13 +244,15 @@ def held_to_plan(result, chosen, replan, resolve):
     Returns
     -------
     DiffusionResult
-        ``result``.
+        ``result``, its ``extend`` (when an ``Extension``) built again with ``fits`` and
+        ``resolve``.
     """
     extension = result.extend
-    if isinstance(extension, Extension):
-        def cells(plan):
-            return plan.cells, tuple(plan.cells_per_axis), plan.finest, plan.growth
-        stored = cells(chosen)
-        extension.fits = lambda both: cells(replan(both)) == stored
-        extension.resolve = resolve
-    return result
+    if not isinstance(extension, Extension):
+        return result
+
+    def cells(plan):
+        return plan.cells, tuple(plan.cells_per_axis), plan.finest, plan.growth
+    stored = cells(chosen)
+    return replace(result, extend=replace(
+        extension, fits=lambda both: cells(replan(both)) == stored, resolve=resolve))

@@ -13,6 +13,7 @@ from scipy.sparse import linalg as splinalg
 
 from ...errors import SolverError
 from ..operators.discretisation import Discretisation
+from .step_plans import StepPlan
 
 DIRECT_LIMIT = {1: 10**9, 2: 40_000, 3: 30_000}  # cells per dimension count; above: CG
 # (3-D sparse LU fills in as cells^2.1 on FiPy's grids, plain CG stays near linear;
@@ -165,45 +166,34 @@ class History:
     track: np.ndarray | None = None
 
 
-def march(disc: Discretisation, nodes: np.ndarray, surface_values: np.ndarray,
-          initial: float, outputs: np.ndarray, times: np.ndarray | None = None, *,
-          keep_fields: bool = False, part: str = "", scheme: str = "backward_euler",
-          restarts: np.ndarray | None = None, restart_steps: int = 2,
-          surface_before: np.ndarray | None = None) -> History:
-    """March an operator over given step boundaries and record the outputs.
+def march(disc: Discretisation, steps: StepPlan, initial: float, *, keep_fields: bool = False,
+          part: str = "", scheme: str = "backward_euler", restart_steps: int = 2) -> History:
+    """March an operator over a plan's step boundaries and record its outputs.
 
-    The surface value is ``surface_values[k]`` at ``nodes[k]`` (right-continuous; a step
-    ending at a jump uses ``surface_before[k]``, the left limit). ``scheme``
+    The surface value is ``steps.surface[k]`` at ``steps.nodes[k]`` (right-continuous; a
+    step ending at a jump uses ``steps.surface_before[k]``, the left limit). ``scheme``
     ``crank_nicolson`` takes ``restart_steps`` backward-Euler steps from every node index
-    in ``restarts`` (t = 0 and each environment change), which damps the oscillation of
-    the stiff modes a jump excites.
+    in ``steps.restarts`` (t = 0 and each environment change), which damps the oscillation
+    of the stiff modes a jump excites.
 
     Parameters
     ----------
     disc : Discretisation
         The operator in scaled coordinates.
-    nodes : numpy.ndarray
-        The step boundaries in scaled time tau* [-], rising.
-    surface_values : numpy.ndarray
-        The surface moisture [weight %] at each node (right limit).
+    steps : StepPlan
+        The step boundaries in scaled time tau* [-], their times [s] (labelling errors),
+        the surface moisture [weight %] at each (right and left limits), the node indices
+        recorded and those Crank-Nicolson restarts after.
     initial : float
         The uniform initial moisture [weight %].
-    outputs : numpy.ndarray of int
-        The node indices whose state is recorded.
-    times : numpy.ndarray, optional
-        The physical times [s] of the nodes; they only label errors.
     keep_fields : bool
         Also return the cell values.
     part : str
         The part's name, for error messages.
     scheme : str
         ``"backward_euler"`` or ``"crank_nicolson"``.
-    restarts : numpy.ndarray of int, optional
-        Node indices after which Crank-Nicolson restarts with backward Euler (None: 0).
     restart_steps : int
-        Backward-Euler steps at each restart.
-    surface_before : numpy.ndarray, optional
-        The surface moisture [weight %] just before each node (left limit; None: no jumps).
+        Backward-Euler steps at each restart [-].
 
     Returns
     -------
@@ -217,6 +207,7 @@ def march(disc: Discretisation, nodes: np.ndarray, surface_values: np.ndarray,
     SolverError
         When a step's linear solve fails.
     """
+    nodes, outputs = steps.nodes, steps.outputs
     stepper = ThetaStepper(disc, part)
     c = np.full(disc.cells, float(initial))
     want = np.zeros(nodes.size, bool)
@@ -224,26 +215,25 @@ def march(disc: Discretisation, nodes: np.ndarray, surface_values: np.ndarray,
     theta = np.ones(nodes.size)
     if scheme == "crank_nicolson":
         theta[:] = 0.5
-        for start in (np.array([0]) if restarts is None else restarts):
+        for start in steps.restarts:
             theta[start + 1:start + 1 + restart_steps] = 1.0
     elif scheme != "backward_euler":
         raise ValueError(f"unknown time scheme {scheme!r}")
     record = {k: None for k in np.unique(outputs)}
     if 0 in record:
         record[0] = c.copy()
-    steps = rounded_steps(np.diff(nodes))
-    labels = nodes if times is None else times
-    ending = surface_values if surface_before is None else surface_before
+    sizes = rounded_steps(np.diff(nodes))
+    labels, surface, ending = steps.times, steps.surface, steps.surface_before
     held = held_values(ending, initial)
-    for k, dt in enumerate(steps, start=1):
-        c = stepper.step(c, dt, surface_values[k - 1], ending[k], k, labels[k], theta[k],
+    for k, dt in enumerate(sizes, start=1):
+        c = stepper.step(c, dt, surface[k - 1], ending[k], k, labels[k], theta[k],
                          held[k] - held[k - 1])
         if want[k]:
             record[k] = c.copy()
     states = np.array([record[k] for k in outputs])
     return History(mean=states @ disc.mean_weights + disc.held_mean * held[outputs],
                    layer=states @ disc.layer_weights + disc.held_layer * held[outputs],
-                   fields=states if keep_fields else None, steps=int(steps.size),
+                   fields=states if keep_fields else None, steps=int(sizes.size),
                    factorisations=stepper.factorisations)
 
 

@@ -6,11 +6,64 @@ factorisation serves a whole block); requested output times are step boundaries.
 """
 from __future__ import annotations
 
+from dataclasses import dataclass
 
 import numpy as np
 
 from ..accuracy.error_model import FIRST_STEP
 from ..problem.cache import RunCache, run_cache
+
+
+@dataclass(frozen=True)
+class StepPlan:
+    """Step boundaries in scaled time with the surface value at each and the outputs.
+
+    Parameters
+    ----------
+    nodes : numpy.ndarray
+        The step boundaries in scaled time tau* [-].
+    times : numpy.ndarray
+        The physical time of each node [s].
+    surface : numpy.ndarray
+        g(t) at each node, right-continuous [weight %].
+    surface_before : numpy.ndarray
+        g(t-) at each node, the value a step ending there sees [weight %].
+    outputs : numpy.ndarray
+        The node index of each requested time [-].
+    restarts : numpy.ndarray
+        The node index of each environment change [-].
+    """
+
+    nodes: np.ndarray
+    times: np.ndarray       # s, the physical time of each node
+    surface: np.ndarray     # weight %, g(t) at each node (right-continuous)
+    surface_before: np.ndarray  # weight %, g(t-) at each node (left limit: a step ending there)
+    outputs: np.ndarray     # node index of each requested time
+    restarts: np.ndarray    # node index of each environment change
+
+    @classmethod
+    def without_jumps(cls, nodes: np.ndarray, surface: np.ndarray, outputs: np.ndarray,
+                      times: np.ndarray | None = None) -> "StepPlan":
+        """A plan whose surface value has no jumps at the nodes, restarted only at 0.
+
+        Parameters
+        ----------
+        nodes : numpy.ndarray
+            The step boundaries in scaled time tau* [-], rising.
+        surface : numpy.ndarray
+            The surface moisture at each node [weight %].
+        outputs : numpy.ndarray of int
+            The node indices recorded [-].
+        times : numpy.ndarray, optional
+            The physical times of the nodes [s]; None: the nodes themselves label errors.
+
+        Returns
+        -------
+        StepPlan
+            The plan, its left limits its surface values.
+        """
+        return cls(nodes, nodes if times is None else times, surface, surface, outputs,
+                   np.array([0]))
 
 
 def geometric_steps(start: float, stop: float, first_step: float,

@@ -11,6 +11,7 @@ from scipy.interpolate import PchipInterpolator
 
 from ..planform.short_time import weighted
 from . import march as marching
+from .step_plans import StepPlan
 from .step_plans import geometric_steps
 
 log = logging.getLogger(__name__)
@@ -102,8 +103,8 @@ def step_response(disc, end: float, per_doubling: int, first_step: float, *,
 
 def _unit_march(disc, grid: np.ndarray, outputs: np.ndarray, keep_fields: bool, part: str):
     """A unit step of the surface value at t = 0 from 0 (``march.march``)."""
-    return marching.march(disc, grid, np.ones(grid.size), 0.0, outputs, keep_fields=keep_fields,
-                          part=part)
+    return marching.march(disc, StepPlan.without_jumps(grid, np.ones(grid.size), outputs), 0.0,
+                          keep_fields=keep_fields, part=part)
 
 
 def blend(response: StepResponse, values: np.ndarray, series, indicator, tolerance: float,
