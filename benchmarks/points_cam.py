@@ -79,7 +79,9 @@ def machine() -> dict:
 
 def announced_machine() -> dict:
     """:func:`machine`, printed with the load average (other work skews wall times)."""
-    about = announced_machine()
+    about = machine()
+    print(f"machine: {about['cpu']}, {about['cores']} logical cores, Python {about['python']}; "
+          f"load average {os.getloadavg()[0]:.2f} (other work skews wall times)")
     return about
 
 
