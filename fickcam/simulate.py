@@ -117,13 +117,13 @@ def diffusion_options(scene: Scene, accuracy: float | None, settings=None, cache
         accuracy [-], model, surface_layer_depth [m], settings and cache, as
         :func:`fickcam.diffusion.solve` takes them.
     """
-    from .diffusion import RunCache, SolverSettings
+    from .diffusion import SolverSettings, run_cache
 
     section = scene.model.diffusion
     return {"accuracy": accuracy if accuracy is not None else section.accuracy,
             "model": section.model, "surface_layer_depth": section.surface_layer_depth,
             "settings": SolverSettings() if settings is None else settings,
-            "cache": RunCache() if cache is None else cache}
+            "cache": run_cache(cache)}
 
 
 def _part_model(options: dict, part: str) -> str:
@@ -228,10 +228,10 @@ def run(scene, *, accuracy: float | None = None, progress: bool = False, setting
     fickcam.errors.SolverError
         When a diffusion solve fails.
     """
-    from .diffusion import RunCache
+    from .diffusion import run_cache
 
     started = _time.perf_counter()
-    cache = RunCache() if cache is None else cache
+    cache = run_cache(cache)
     scene = load_scene(scene)
     environment = scene_environment(scene)
     times = ageing_times(scene, environment)

@@ -22,7 +22,7 @@ light.
 """
 from .accuracy.error_model import CellCaps
 from .dispatch import MODELS, SolverSettings, plan, plan_problem, solve, solve_problem
-from .problem.cache import RunCache
+from .problem.cache import RunCache, run_cache
 from .problem.definition import DiffusionProblem
 from .problem.exposure import GAS_CONSTANT, Diffusivity, Exposure
 from .problem.geometry import Bar, CamPlate, Disc, Geometry, LinkBar, Sheet
@@ -30,5 +30,5 @@ from .problem.results import DiffusionResult, Plan
 
 __all__ = ["GAS_CONSTANT", "Diffusivity", "Exposure", "Bar", "CamPlate", "Disc",
            "Geometry", "LinkBar", "Sheet", "MODELS", "DiffusionResult", "Plan", "SolverSettings",
-           "CellCaps", "RunCache", "DiffusionProblem", "plan", "plan_problem", "solve",
+           "CellCaps", "RunCache", "run_cache", "DiffusionProblem", "plan", "plan_problem", "solve",
            "solve_problem"]
