@@ -38,7 +38,7 @@ from .forcing.clock import scales as scales_of
 from .forcing.record import is_long_record
 from .models.analytic import solve_analytic
 from .models.finite_volume import plan_direct, solve_direct
-from .models.plane import plan_plane, solve_plane
+from .models.plane import PanelExtension, plan_plane, solve_plane
 from .nonfickian.concentration_dependent import (SWEEPS, Sweeps, nonlinear_plan, solve_nonlinear,
                                                  spread)
 from .nonfickian.corrected_product import plan_corrected, solve_corrected
@@ -516,7 +516,12 @@ def _plan_fick(problem: DiffusionProblem, settings: SolverSettings, cache: RunCa
 def _solve_fick(problem: DiffusionProblem, settings: SolverSettings,
                 cache: RunCache) -> DiffusionResult:
     chosen = _planned(problem, settings, cache)
-    return FICK_MODELS[chosen.model].solve(problem, chosen, cache)
+    result = FICK_MODELS[chosen.model].solve(problem, chosen, cache)
+    if isinstance(result.extend, PanelExtension):  # its plan at new times: this run's settings
+        return replace(result, extend=replace(
+            result.extend, replan=lambda at: plan_problem(problem.at(at), settings, cache),
+            resolve=lambda at: solve_problem(problem.at(at), settings, cache)))
+    return result
 
 
 # Langmuir (two-phase): the Fickian model that ``auto`` or ``diffusion.model`` picks decides

@@ -4,6 +4,8 @@ history in rescaled time, for the Sheet, the Bar and the solid Disc: by Duhamel'
 the rows) over a long record."""
 from __future__ import annotations
 
+from dataclasses import replace
+
 import numpy as np
 
 from ..exact.separable import saturation_tau, step_field, step_response
@@ -173,9 +175,21 @@ def solve_analytic(problem: DiffusionProblem, chosen: Plan, record_accuracy: flo
     mean, surface = history["mean"], history["surface"]
     fields, coordinates = (_analytic_fields(geometry, diffusivity, exposure, times, record, cache)
                            if problem.store_fields else (None, {}))
-    return DiffusionResult(times, np.asarray(mean, float), np.asarray(surface, float),
-                           "analytic", 0 if fields is None else fields.shape[1], 0, estimate,
-                           chosen.reason, fields=fields, cell_coordinates=coordinates)
+    result = DiffusionResult(times, np.asarray(mean, float), np.asarray(surface, float),
+                             "analytic", 0 if fields is None else fields.shape[1], 0, estimate,
+                             chosen.reason, fields=fields, cell_coordinates=coordinates)
+    if record is not None or problem.store_fields:
+        return result
+
+    def extend(at) -> DiffusionResult:
+        """The result at its times and ``at`` together (the limit search's): Duhamel's sum
+        at each new time is its own, and the plan does not depend on the times."""
+        new = np.setdiff1d(np.asarray(at, float), times)
+        if not new.size:
+            return replace(result, extend=None)
+        extra = exact_history(geometry, diffusivity, exposure, new, depth, cache)
+        return result.merged(new, extra["mean"], extra["surface"])
+    return replace(result, extend=extend)
 
 
 FIELD_POINTS = {Sheet: (40,), Disc: (24, 12), Bar: (16, 12, 8)}  # cell centres for exact fields

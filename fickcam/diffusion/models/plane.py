@@ -8,8 +8,8 @@ eq. 4.51 for a rectangular block; the argument is the same for any planform
 because the Laplacian separates). A history is then the Duhamel sum over the
 surface history in rescaled time (``duhamel``; Crank 1975 §4.2.1, eq. 4.34): Duhamel's
 panels for a few segments, the tabulated sum over a long record (``tabulated``), and a
-stored record solve read at more times (``extension``, the limit search), all in
-``PrismSuperposition``.
+stored solve read at more times (the limit search: ``extension`` over a record,
+``PanelExtension`` over panels), all in ``PrismSuperposition``.
 
 The planform's unit-step response comes from the exact short-time expansion of
 the outline (``short_time``) up to a switch time and from P1 finite elements on
@@ -477,15 +477,14 @@ def solve_plane(problem: DiffusionProblem, chosen: Plan, cache: RunCache | None 
     d = tuple(float(v) for v in diffusivity.pre_exponential)
     scales = scales_of(geometry, diffusivity, exposure, cache)
     outputs = scales.tau_star(times)
-    ages = output_ages(scales.tau_star(exposure.change_times), outputs, exposure.ramp,
-                       cache=cache)
     end = max(float(outputs.max()), 10 * FIRST_STEP)
     expansion = expansion_of(geometry, d, surface_layer_depth, cache)
     tolerance = chosen.expansion_tolerance
     switch = expansion.switch(tolerance) if expansion is not None and tolerance > 0 else 0.0
     history = PrismSuperposition.of(geometry, diffusivity, exposure, times, accuracy, cache)
     if switch >= end and not store_fields:
-        return _expansion_only(expansion, ages, history, chosen, part)
+        return _expansion_only(expansion, _ages(scales, exposure, times, cache), history,
+                               chosen, part)
     planar, u_plane, pair_plane = planform_response(
         problem, chosen, end, mesh_first_step(chosen.finest, 0.0 if store_fields else switch),
         cache)
@@ -512,10 +511,8 @@ def solve_plane(problem: DiffusionProblem, chosen: Plan, cache: RunCache | None 
 
     mean, sum_error, layer, levels = superposed(history)
     time_error = PAIR_TO_TIME_ERROR * pair_plane ** 2  # the sheet is exact
-    # the plan's estimate, unless the blend's own bound at the ages read says more (no
-    # expansion for this outline: the plan's model, with its time part)
-    observed = (float(np.max(mean_error(ages))) + time_error if mean_error is not None
-                else chosen.error_estimate)
+    observed_at = _observed(chosen, mean_error, time_error, scales, exposure, cache)
+    observed = observed_at(times)
     estimate = max(chosen.error_estimate, observed) + sum_error
     log.debug("%s plane: error estimate %.2g (observed %.2g, sum %.2g)", part, estimate,
               observed, sum_error)
@@ -530,7 +527,26 @@ def solve_plane(problem: DiffusionProblem, chosen: Plan, cache: RunCache | None 
     if history.record is not None:
         return replace(result, extend=extension(result, lambda at: superposed(history.at(at),
                                                                                levels)))
-    return result
+    return replace(result, extend=PanelExtension(
+        result, chosen, lambda at: superposed(replace(history, times=np.asarray(at, float))),
+        observed_at))
+
+
+def _ages(scales, exposure, times, cache: RunCache) -> np.ndarray:
+    """The scaled ages the output ``times`` [s] read (``step_plans.output_ages``)."""
+    return output_ages(scales.tau_star(exposure.change_times), scales.tau_star(times),
+                       exposure.ramp, cache=cache)
+
+
+def _observed(chosen: Plan, mean_error, time_error: float, scales, exposure, cache: RunCache):
+    """``observed(times)``: the plan's estimate, unless the blend's own bound (``mean_error``)
+    at the ages ``times`` [s] read says more, with the time error (no expansion for this
+    outline: the plan's model, with its time part)."""
+    def observed(times) -> float:
+        if mean_error is None:
+            return chosen.error_estimate
+        return float(np.max(mean_error(_ages(scales, exposure, times, cache)))) + time_error
+    return observed
 
 
 def _planform_fractions(response, values, expansion, which: str, tolerance: float):
@@ -687,3 +703,62 @@ def extension(result: DiffusionResult, superposed):
         mean, _, layer, _ = superposed(new)
         return result.merged(new, mean, layer)
     return extend
+
+
+#: what a plane plan fixes of the solve besides its estimate: the mesh, the sheet, the steps
+#: and the expansion's share (the planform response ``planform_response`` keys on these)
+def _solve_fixed(chosen: Plan) -> tuple:
+    return (chosen.cells, tuple(chosen.cells_per_axis), chosen.steps, chosen.steps_per_doubling,
+            chosen.expansion_tolerance, chosen.finest, chosen.growth)
+
+
+@dataclass(frozen=True, eq=False)
+class PanelExtension:
+    """``DiffusionResult.extend`` of a plane solve by Duhamel's panels (a few exposure
+    segments): the result at its times and ``at`` (inside their span) together, the new rows
+    summed with the stored planform response and expansion (each output time's sum is its
+    own: the rows are those a solve at both would give), the stored rows as they are. With
+    ``replan`` (the dispatcher binds it), the plan of the stored and new times together must
+    fix the solve as the stored plan did (``_solve_fixed``: e.g. a new time younger than
+    every stored output sizes other cells), else ``resolve`` solves at both again; its
+    estimate is then that plan's, or the blend's own bound at the ages the times read,
+    the larger, as a solve at both reports.
+
+    Parameters
+    ----------
+    result : DiffusionResult
+        The stored solve, its times [s].
+    chosen : Plan
+        The plan it was solved on.
+    superposed : callable
+        ``superposed(times) -> (mean, _, layer, _)`` [weight %] at other times [s].
+    observed : callable
+        ``observed(times) -> float``: the blend's own estimate [-] at the ages ``times`` [s]
+        read (the plan's where the outline has no expansion).
+    replan : callable, optional
+        ``replan(times) -> Plan``: the plan for ``times`` [s]; None: the stored plan holds.
+    resolve : callable, optional
+        ``resolve(times) -> DiffusionResult``: the solve at ``times`` [s] (with ``replan``).
+    """
+
+    result: DiffusionResult
+    chosen: Plan
+    superposed: object
+    observed: object
+    replan: object = None
+    resolve: object = None
+
+    def __call__(self, at) -> DiffusionResult:
+        result = self.result
+        new = np.setdiff1d(np.asarray(at, float), result.times)
+        both = np.union1d(result.times, new)
+        again = self.chosen if self.replan is None else self.replan(both)
+        if _solve_fixed(again) != _solve_fixed(self.chosen):
+            log.info("%s: the plan at %d new times changes the solve: solved again",
+                     result.model, new.size)
+            return self.resolve(both)
+        if not new.size:
+            return replace(result, extend=None)
+        mean, _, layer, _ = self.superposed(new)
+        return replace(result.merged(new, mean, layer), reason=again.reason,
+                       error_estimate=float(max(again.error_estimate, self.observed(both))))
