@@ -151,17 +151,38 @@ class ShortTime:
         return 0.5 * self.contact_kappa_square * depth * (np.sqrt(tau) + depth)
 
     def switch(self, tolerance: float) -> float:
-        """Largest scaled time (on a log grid) up to which the uptake error indicator times
-        the sheet's unsaturated fraction (Crank 1975 eq. 4.18) stays <= tolerance."""
-        grid, error = self.weighted_error
-        ok = error <= tolerance
-        return float(grid[np.argmin(ok) - 1] if not ok.all() else grid[-1]) if ok[0] else 0.0
+        """Largest scaled time (on a log grid, ``SWITCH_GRID``) up to which the uptake error
+        indicator times the sheet's unsaturated fraction (Crank 1975 eq. 4.18) stays <=
+        tolerance: the grid is read in blocks up to its first point above (the later ones,
+        where every chord's facing edge counts, are not needed); kept per tolerance."""
+        if tolerance not in self._switches:
+            self._switches[tolerance] = _first_above(self.weighted_error_at, tolerance)
+        return self._switches[tolerance]
+
+    def weighted_error_at(self, tau) -> np.ndarray:
+        """The uptake error indicator x the sheet's unsaturated fraction at scaled ``tau``."""
+        return weighted(self.uptake_error(tau), sheet_fraction(tau))
 
     @cached_property
-    def weighted_error(self) -> tuple[np.ndarray, np.ndarray]:
-        """(tau, indicator x sheet unsaturated fraction) on a log grid, 100 points a decade."""
-        grid = np.geomspace(1e-8, 1e4, 1201)
-        return grid, weighted(self.uptake_error(grid), sheet_fraction(grid))
+    def _switches(self) -> dict:
+        return {}
+
+
+SWITCH_GRID = np.geomspace(1e-8, 1e4, 1201)   # 100 points a decade
+SWITCH_BLOCK = 100
+
+
+def _first_above(error_at, tolerance: float) -> float:
+    """The ``SWITCH_GRID`` point before the first where ``error_at`` exceeds ``tolerance``
+    (0 at the first point, the last point where none does), read a block at a time."""
+    grid = SWITCH_GRID
+    for start in range(0, grid.size, SWITCH_BLOCK):
+        error = error_at(grid[start:start + SWITCH_BLOCK])
+        above = np.flatnonzero(~(error <= tolerance))
+        if above.size:
+            first = start + int(above[0])
+            return float(grid[first - 1]) if first > 0 else 0.0
+    return float(grid[-1])
 
 
 def layer_integrals(z):
