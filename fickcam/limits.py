@@ -18,7 +18,7 @@ the model inside the bracketing interval (:func:`first_crossings`).
 from __future__ import annotations
 
 import re
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Any, Callable
 
 import numpy as np
@@ -36,6 +36,10 @@ FLOOR = 3600.0
 POINTS = 4
 #: rounds after the first that evaluate only two times straddling the secant's root
 SECANT_ROUNDS = 3
+#: a round's samples close a bracket when the cubic through the four about its crossing and
+#: the quadratics through three of them put the crossing within this share of the tolerance
+#: of each other (the quadratics' error, which bounds the cubic's: ``_interpolated``)
+INTERPOLATION_SHARE = 0.5
 
 
 class LimitSpec(StrictModel):
@@ -342,12 +346,20 @@ class _Bracket:
     #: on one side of a curved ratio (plain regula falsi does)
     w_lo: float = 1.0
     w_hi: float = 1.0
+    #: every time evaluated in the stored interval and its ratio (its ends included)
+    samples: dict = field(default_factory=dict)
+    #: the crossing read off the samples' interpolants (``_interpolated``), which closes it
+    read: float | None = None
+
+    def __post_init__(self):
+        self.samples.update({float(self.lo): float(self.r_lo), float(self.hi): float(self.r_hi)})
 
     def open(self) -> bool:
-        return self.hi - self.lo > self.tolerance
+        return self.read is None and self.hi - self.lo > self.tolerance
 
     def narrow(self, inner: np.ndarray, values: np.ndarray) -> None:
-        """Keep the sub-interval of the first crossing among ``inner`` times."""
+        """Keep the sub-interval of the first crossing among ``inner`` times; close the
+        bracket where the samples' interpolants agree on the crossing (``_interpolated``)."""
         grid = np.concatenate([[self.lo], inner, [self.hi]])
         ratio = np.concatenate([[self.r_lo], values, [self.r_hi]])
         k = _first_above(ratio[1:]) + 1  # the last value (r_hi) is above 1
@@ -355,6 +367,11 @@ class _Bracket:
         self.w_lo = 0.5 * self.w_lo if kept_lo and not kept_hi else 1.0
         self.w_hi = 0.5 * self.w_hi if kept_hi and not kept_lo else 1.0
         self.lo, self.hi, self.r_lo, self.r_hi = grid[k - 1], grid[k], ratio[k - 1], ratio[k]
+        self.samples.update(zip(np.asarray(inner, float).tolist(),
+                                np.asarray(values, float).tolist()))
+        if self.open():
+            self.read = _interpolated(self.samples, self.lo, self.hi,
+                                      INTERPOLATION_SHARE * self.tolerance)
 
     def inner(self, round_: int) -> np.ndarray:
         """The times to evaluate this round: POINTS equally spaced ones (the first round,
@@ -370,10 +387,53 @@ class _Bracket:
         return np.unique(around[(around > self.lo) & (around < self.hi)])
 
     def root(self) -> float:
-        """The linear interpolant's root in the bracket (error below its width)."""
+        """The crossing read off the interpolants where they closed the bracket, else the
+        linear interpolant's root in the bracket (error below its width)."""
+        if self.read is not None:
+            return self.read
         if not np.isfinite(self.r_lo) or self.r_hi == self.r_lo:
             return float(self.hi)
         return float(self.lo + (1.0 - self.r_lo) / (self.r_hi - self.r_lo) * (self.hi - self.lo))
+
+
+def _interpolated(samples: dict, lo: float, hi: float, within: float) -> float | None:
+    """The crossing of 1 in [lo, hi] (r(lo) <= 1 < r(hi)) of the cubic through the four
+    samples about it, when the quadratics through three of them that hold both ends put
+    it within ``within`` of the cubic's (the next term's size: it estimates the quadratic's
+    error, which bounds the cubic's; Hildebrand 1956 pp. 43-44, as ``dense_output``); else
+    None (too few or unknown samples, or they disagree).
+
+    The samples are a round's model evaluations (the first round's equally spaced ones
+    about the first crossing), so this closes a bracket a round or more before it narrows
+    to the tolerance, where the ratio is smooth on the scale of the samples' spacing."""
+    times = np.array(sorted(samples))
+    k = int(np.searchsorted(times, lo))
+    if times.size < 4 or times[k] != lo or times[k + 1] != hi:
+        return None
+    four = np.arange(4) + min(max(k - 1, 0), times.size - 4)
+    t = times[four]
+    r = np.array([samples[v] for v in t])
+    if not np.isfinite(r).all():
+        return None
+    cubic = _crossing(t, r, lo, hi)
+    estimates = [abs(_crossing(t[three], r[three], lo, hi) - cubic)
+                 for three in (slice(0, 3), slice(1, 4)) if lo in t[three] and hi in t[three]]
+    return cubic if estimates and max(estimates) <= within else None
+
+
+def _crossing(t: np.ndarray, r: np.ndarray, lo: float, hi: float) -> float:
+    """Where the polynomial through (t, r) crosses 1 in [lo, hi] (it interpolates r(lo) <=
+    1 < r(hi): a sign change), by Brent's method on the scaled time."""
+    from scipy.optimize import brentq
+
+    x = (t - lo) / (hi - lo)
+    coefficients = np.polynomial.polynomial.polyfit(x, r - 1.0, x.size - 1)
+    ends = np.polynomial.polynomial.polyval([0.0, 1.0], coefficients)
+    if not ends[0] <= 0.0 < ends[1]:   # the fit's round-off at a sample on 1: the ends
+        return float(lo if ends[0] > 0.0 else hi)
+    root = brentq(lambda u: np.polynomial.polynomial.polyval(u, coefficients), 0.0, 1.0,
+                  xtol=1e-12)
+    return float(lo + root * (hi - lo))
 
 
 def first_crossings(times: np.ndarray, ratios: np.ndarray,
