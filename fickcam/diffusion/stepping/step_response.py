@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import logging
 from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
 from scipy.interpolate import PchipInterpolator
@@ -43,7 +44,8 @@ class StepResponse:
         the first step (Crank 1975 eq. 4.20: early uptake grows as sqrt(t))."""
         tau = np.asarray(tau, float)
         first = self.nodes[1]
-        spline = PchipInterpolator(np.log(self.nodes[1:]), values[1:], axis=0, extrapolate=True)
+        spline = (self._mean_spline if values is self.mean else
+                  self._layer_spline if values is self.layer else self._spline(values))
         inside = np.clip(tau, first, self.nodes[-1])
         out = spline(np.log(inside))
         early = tau < first
@@ -51,6 +53,19 @@ class StepResponse:
             ratio = np.sqrt(np.clip(tau[early], 0.0, None) / first)
             out[early] = 1.0 - (1.0 - values[1]) * (ratio[:, None] if values.ndim > 1 else ratio)
         return out
+
+
+    def _spline(self, values: np.ndarray) -> PchipInterpolator:
+        return PchipInterpolator(np.log(self.nodes[1:]), values[1:], axis=0, extrapolate=True)
+
+    @cached_property
+    def _mean_spline(self) -> PchipInterpolator:
+        """The mean's interpolant, built once (the response is read at every solve's times)."""
+        return self._spline(self.mean)
+
+    @cached_property
+    def _layer_spline(self) -> PchipInterpolator:
+        return self._spline(self.layer)
 
 
 def step_response(disc, end: float, per_doubling: int, first_step: float, *,
