@@ -18,13 +18,18 @@ The papers are cited in full in :mod:`fickcam.cam`.
 """
 from __future__ import annotations
 
+from dataclasses import dataclass
+
 import numpy as np
-from numpy.polynomial import chebyshev
+from numpy.polynomial import chebyshev, polyutils
 
 from . import arm
 from .motion import segment_motion
 
 TWO_PI = 2.0 * np.pi
+EPS = float(np.finfo(float).eps)
+#: Newton on the contact angle stops at steps below this many units in the last place of psi
+STEP_ULPS = 8
 
 
 def rotate(angle, x, y):
@@ -118,12 +123,14 @@ def dry_profile(design, segment, psi):
     return wx, wy, tx, ty
 
 
-def _aged_contact(design, segment, psi, strain_x, strain_y, roller_radius, arm_strain=0.0):
-    """(theta, Y) for aged profile points psi: the cam angle at which psi touches the
+def _aged_contact(design, psi, dry, strain_x, strain_y, roller_radius, arm_strain):
+    """(theta, Y) for aged profile points psi, whose dry points and tangents are ``dry`` =
+    (W0x, W0y, T0x, T0y) (:func:`dry_profile`): the cam angle at which psi touches the
     follower and the follower height then (pitch point for knife/roller, face for flat;
     a swinging arm's angle from its dry base position, :mod:`fickcam.cam.arm`, whose length
-    and face offset grow by 1 + ``arm_strain``)."""
-    wx, wy, tx, ty = dry_profile(design, segment, psi)
+    and face offset grow by 1 + ``arm_strain``). Elementwise: the strains and the roller
+    radius may be arrays, one value per point."""
+    wx, wy, tx, ty = dry
     wx, wy = (1 + strain_x) * wx, (1 + strain_y) * wy
     tx, ty = (1 + strain_x) * tx, (1 + strain_y) * ty
     norm = np.hypot(tx, ty)
@@ -142,6 +149,21 @@ def _aged_contact(design, segment, psi, strain_x, strain_y, roller_radius, arm_s
     return theta, height
 
 
+def _pieces_contact(design, segments, label, strain_x, strain_y, roller_radius, arm_strain):
+    """:func:`_aged_contact` of points psi of several pieces at once, ``label`` (an array of
+    piece indices, one per point) telling which piece's dry profile each point is on."""
+    masks = [label == k for k in range(len(segments))]
+
+    def contact(psi):
+        dry = [np.empty(psi.shape) for _ in range(4)]
+        for segment, inside in zip(segments, masks):
+            for whole, part in zip(dry, dry_profile(design, segment, psi[inside])):
+                whole[inside] = part
+        return _aged_contact(design, psi, dry, strain_x, strain_y, roller_radius, arm_strain)
+
+    return contact
+
+
 def _arm_contact(design, wx, wy, nx, ny, roller_radius, grow):
     """(theta, arm angle) of aged profile points on a swinging arm grown by ``grow``."""
     a = design.arm
@@ -154,7 +176,8 @@ def _arm_contact(design, wx, wy, nx, ny, roller_radius, grow):
 
 def _solve_psi(contact, theta_target, guess, steps: int = 30):
     """psi with contact(psi)[0] = theta_target (Newton, central-difference slope; the three
-    points in one call)."""
+    points in one call), until the largest step is a few units in the last place of psi
+    (the round-off of theta(psi) then moves psi back and forth by about that much)."""
     psi = np.array(guess, float)
     h = 1e-6
     n = psi.size
@@ -163,7 +186,8 @@ def _solve_psi(contact, theta_target, guess, steps: int = 30):
         slope = (theta[n:2 * n] - theta[2 * n:]) / (2 * h)
         step = (theta[:n] - theta_target) / slope
         psi = psi - step
-        if np.max(np.abs(step), initial=0.0) < 1e-15:
+        largest = max(1.0, np.max(np.abs(psi), initial=0.0))
+        if np.max(np.abs(step), initial=0.0) <= STEP_ULPS * EPS * largest:
             break
     return psi
 
@@ -173,15 +197,80 @@ def _lobatto(n: int) -> np.ndarray:
     return -np.cos(np.pi * np.arange(n + 1) / n)
 
 
+@dataclass(frozen=True)
+class PiecewiseMotion:
+    """The aged follower motion as one Chebyshev series per design piece, with its first
+    three derivatives (:func:`fit_geometric_motion`).
+
+    Parameters
+    ----------
+    starts, ends : numpy.ndarray
+        Cam angles where each piece starts and ends [rad].
+    offsets, scales : numpy.ndarray
+        Each piece's map of the cam angle onto [-1, 1]: x = offset + scale theta [-], [1/rad].
+    table : numpy.ndarray
+        Coefficients (term, order, piece): Y and its derivatives d^kY/dtheta^k, k = 1..3,
+        each derivative padded with zeros past its last term [m/rad^k] ([rad/rad^k] for an
+        arm).
+    """
+
+    starts: np.ndarray
+    ends: np.ndarray
+    offsets: np.ndarray
+    scales: np.ndarray
+    table: np.ndarray
+
+
+def _clenshaw(table, x):
+    """Chebyshev sums, ``table`` (terms, ...) and x broadcast against table[0]: the Clenshaw
+    recursion of numpy.polynomial.chebyshev.chebval step by step (the same round-off)."""
+    x2 = 2 * x
+    c0, c1 = table[-2], table[-1]
+    for i in range(3, len(table) + 1):
+        c0, c1 = table[-i] - c1, c0 + c1 * x2
+    return c0 + c1 * x
+
+
+def _series_table(coef, mapping):
+    """Coefficients (term, order, piece) of Y and dY, d2Y, d3Y per piece from Y's
+    coefficients (term, piece), each derivative padded with zeros: the series
+    Chebyshev.fit(...).deriv(k) make, all pieces at once (chebder multiplies by the scale
+    before each differentiation, here each piece's own)."""
+    table = np.zeros((len(coef), 4, coef.shape[1]))
+    table[:, 0] = coef
+    scales = np.array([scl for _, scl in mapping])
+    for k in (1, 2, 3):
+        coef = chebyshev.chebder(coef * scales, 1, 1.0)
+        table[:len(coef), k] = coef
+    return table
+
+
+def _turning_points(table, starts, ends):
+    """Real roots of each piece's dY/dtheta strictly inside the piece [rad] (the companion
+    matrices' eigenvalues in one call where the pieces' degrees agree)."""
+    slopes = [polyutils.as_series([table[:, 1, p]])[0] for p in range(table.shape[2])]
+    if len({len(c) for c in slopes}) == 1 and len(slopes[0]) > 2:
+        stack = np.stack([chebyshev.chebcompanion(c)[::-1, ::-1] for c in slopes])
+        roots = list(np.linalg.eigvals(stack))
+    else:
+        roots = [chebyshev.chebroots(c) for c in slopes]
+    turning = []
+    for r, ta, tb in zip(roots, starts, ends):
+        back_off, back_scl = polyutils.mapparms([-1.0, 1.0], [ta, tb])
+        r = back_off + back_scl * r
+        turning.append(r.real[(np.abs(r.imag) < 1e-9) & (r.real > ta) & (r.real < tb)])
+    return turning
+
+
 def fit_geometric_motion(design, pieces, strain_x, strain_y, roller_radius, nodes: int = 40,
                          arm_strain: float = 0.0):
-    """The aged follower height as Chebyshev series, one per design piece: a tuple of
-    ((series and its first three derivatives), theta_start, theta_end), the angle origin,
-    and (lowest, highest) Y over the turn. ``pieces`` are (segment, psi_start, psi_end).
+    """The aged follower height as Chebyshev series, one per design piece (a
+    :class:`PiecewiseMotion`), the angle origin, and (lowest, highest) Y over the turn.
+    ``pieces`` are (segment, psi_start, psi_end).
 
     Each swollen profile point psi is put where it touches the follower (Newton on the
-    contact angle) at the Chebyshev-Lobatto nodes of its piece, and the height there is
-    fitted by a Chebyshev series of degree ``nodes``.
+    contact angle, all pieces in one solve) at the Chebyshev-Lobatto nodes of its piece,
+    and the height there is fitted by a Chebyshev series of degree ``nodes``.
 
     Parameters
     ----------
@@ -200,42 +289,57 @@ def fit_geometric_motion(design, pieces, strain_x, strain_y, roller_radius, node
 
     Returns
     -------
-    fitted : tuple
-        ((Y, dY/dtheta, d2Y/dtheta2, d3Y/dtheta3 series), theta_start [rad],
-        theta_end [rad]) per piece.
+    fitted : PiecewiseMotion
+        The series of Y and of dY/dtheta, d2Y/dtheta2, d3Y/dtheta3 per piece, with the
+        cam angles where the pieces start and end [rad].
     origin : float
         Cam angle where the first piece starts [rad].
     extremes : tuple of float
         Lowest and highest Y over the turn: follower height [m], or arm angle [rad] for a
         swinging arm.
     """
-    lowest, highest = np.inf, -np.inf
-    spans = []
-    for segment, a, b in pieces:
-        contact = (lambda s, seg=segment: _aged_contact(design, seg, s, strain_x, strain_y,
-                                                       roller_radius, arm_strain))
-        ta, tb = contact(np.array([a, b]))[0]
-        spans.append((contact, ta, tb))
-    fitted = []
-    for contact, ta, tb in spans:
-        t_nodes = ta + (tb - ta) * (_lobatto(nodes) + 1) / 2
-        psi = _solve_psi(contact, t_nodes, t_nodes)  # swelling shifts theta(psi) only slightly
-        series = chebyshev.Chebyshev.fit(t_nodes, contact(psi)[1], nodes, domain=[ta, tb])
-        fitted.append(((series,) + tuple(series.deriv(k) for k in (1, 2, 3)), ta, tb))
-        turning = series.deriv().roots()
-        turning = turning.real[(np.abs(turning.imag) < 1e-9) & (turning.real > ta) &
-                               (turning.real < tb)]
-        extremes = series(np.r_[ta, tb, turning])
-        lowest, highest = min(lowest, float(extremes.min())), max(highest, float(extremes.max()))
-    return tuple(fitted), spans[0][1], (lowest, highest)
+    segments = [segment for segment, _, _ in pieces]
+    count = len(pieces)
+    ends = np.array([[a, b] for _, a, b in pieces], float).ravel()
+    spans = _pieces_contact(design, segments, np.repeat(np.arange(count), 2), strain_x,
+                            strain_y, roller_radius, arm_strain)(ends)[0]
+    starts, stops = spans[0::2], spans[1::2]
+    size = nodes + 1
+    label = np.repeat(np.arange(count), size)
+    contact = _pieces_contact(design, segments, np.tile(label, 3), strain_x, strain_y,
+                              roller_radius, arm_strain)
+    t_nodes = np.concatenate([ta + (tb - ta) * (_lobatto(nodes) + 1) / 2
+                              for ta, tb in zip(starts, stops)])
+    # swelling shifts theta(psi) only slightly: the nodes are the first guess
+    psi = _solve_psi(contact, t_nodes, t_nodes)
+    heights = _pieces_contact(design, segments, label, strain_x, strain_y, roller_radius,
+                              arm_strain)(psi)[1]
+    coef = np.empty((size, count))
+    mapping = []
+    for k, (ta, tb) in enumerate(zip(starts, stops)):
+        group = slice(k * size, (k + 1) * size)
+        coef[:, k] = chebyshev.chebfit(polyutils.mapdomain(t_nodes[group], [ta, tb], [-1.0, 1.0]),
+                                       heights[group], nodes)
+        mapping.append(polyutils.mapparms([ta, tb], [-1.0, 1.0]))
+    table = _series_table(coef, mapping)
+    fitted = PiecewiseMotion(starts, stops, np.array([m[0] for m in mapping]),
+                             np.array([m[1] for m in mapping]), table)
+    turning = _turning_points(table, starts, stops)
+    at = [np.r_[ta, tb, points] for ta, tb, points in zip(starts, stops, turning)]
+    piece = np.repeat(np.arange(count), [len(a) for a in at])
+    at = np.concatenate(at)
+    extremes = _clenshaw(table[:, 0, piece], fitted.offsets[piece] + fitted.scales[piece] * at)
+    lowest, highest = float(extremes.min()), float(extremes.max())
+    return fitted, float(starts[0]), (lowest, highest)
 
 
 def evaluate_geometric_motion(fitted, origin, theta):
-    """(Y, dY/dtheta, d2Y, d3Y) at cam angles ``theta`` from :func:`fit_geometric_motion`.
+    """(Y, dY/dtheta, d2Y, d3Y) at cam angles ``theta`` from :func:`fit_geometric_motion`
+    (all pieces and orders in one Clenshaw recursion; NaN outside every piece).
 
     Parameters
     ----------
-    fitted : tuple
+    fitted : PiecewiseMotion
         The per-piece series of :func:`fit_geometric_motion`.
     origin : float
         Cam angle where the first piece starts [rad].
@@ -249,17 +353,17 @@ def evaluate_geometric_motion(fitted, origin, theta):
         for a swinging arm).
     """
     theta = np.mod(np.asarray(theta, float), TWO_PI)
-    out = [np.full(theta.shape, np.nan) for _ in range(4)]
     shifted = origin + np.mod(theta - origin, TWO_PI)
-    for series, ta, tb in fitted:
+    piece = np.full(theta.shape, -1)
+    for k, (ta, tb) in enumerate(zip(fitted.starts, fitted.ends)):
         inside = (shifted >= ta) & (shifted < tb) if tb < origin + TWO_PI - 1e-12 else \
             (shifted >= ta)
-        if not inside.any():  # the search for the jump speed reads one angle at a time
-            continue
-        at = shifted[inside]
-        for k in range(4):
-            out[k][inside] = series[k](at)
-    return tuple(out)
+        piece[inside] = k
+    known = np.maximum(piece, 0)
+    x = fitted.offsets[known] + fitted.scales[known] * shifted
+    values = _clenshaw(fitted.table[:, :, known], x)  # (order, angle)
+    values[:, piece < 0] = np.nan
+    return tuple(values)
 
 
 def geometric_motion(design, pieces, strain_x, strain_y, roller_radius, theta, nodes: int = 40):
