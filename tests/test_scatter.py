@@ -21,6 +21,18 @@ def test_wilson_interval_matches_its_closed_form(k, n):
     assert high == pytest.approx(min(centre + half, 1.0), abs=1e-12)
 
 
+@pytest.mark.parametrize("confidence", [0.9, 0.95, 0.99])
+def test_wilson_interval_is_scipys_binomial_interval(confidence):
+    """The interval scipy.stats.binomtest gives (method "wilson"), to round-off."""
+    from scipy.stats import binomtest
+
+    for n in (1, 2, 7, 100, 1000, 12345):
+        for k in sorted({0, 1, n // 3, n // 2, n - 1, n}):
+            ci = binomtest(k, n).proportion_ci(confidence_level=confidence, method="wilson")
+            assert wilson_interval(k, n, confidence) == pytest.approx((ci.low, ci.high),
+                                                                      rel=1e-14, abs=1e-15)
+
+
 def test_wilson_interval_covers_the_true_fraction_95_percent_of_the_time():
     """3 % of parts out of spec, samples of 200: the interval holds the truth in
     about 95 % of 4000 repeated sweeps (binomial spread of the coverage: ±0.7 %)."""

@@ -73,7 +73,8 @@ def case_scene(task: CaseTask):
 
     from ..scene import parse_yaml, validate_document
 
-    text = yaml.safe_dump(task.scene, sort_keys=False, allow_unicode=True)
+    text = yaml.dump(task.scene, Dumper=getattr(yaml, "CSafeDumper", yaml.SafeDumper),
+                     sort_keys=False, allow_unicode=True)
     return validate_document(parse_yaml(text, file=task.label), base_dir=Path(task.base_dir))
 
 
