@@ -561,8 +561,9 @@ def cross_run(case: str, accuracy: str) -> None:
         DiffusionProblem(geometry, d, exposure, times, float(accuracy), sorption=law), 3)
     middle = time.process_time()
     two = replace(run, results=run.results[:2], marched=run.marched[:2], meshes=run.meshes[:2])
-    corrected_product.NESTED_CELLS, corrected_product.CROSS_CELLS = 4 * run.meshes[1].cells, 2 * run.meshes[1].cells
-    crossed = two.finer()
+    # the diagonal's third mesh taken as past the cap: the cross comes next
+    caps = corrected_product.MeshCaps(nested=4 * run.meshes[1].cells, cross=2 * run.meshes[1].cells)
+    crossed = two.finer(caps=caps)
     end, scale, r = time.process_time(), run.scale, dict(zip(crossed.keys, crossed.results))
     (two_v, two_e), (three_v, three_e), (cross_v, cross_e) = (
         corrected_product.unseparated(levels, 1.0) for levels in (two, run, crossed))

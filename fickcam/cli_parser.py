@@ -201,7 +201,8 @@ def _design_commands(sub) -> None:
 
     size = _command(sub, "size", "smallest base circle meeting pressure-angle and curvature limits",
                     "Find the smallest base circle radius whose dry cam keeps the pressure angle "
-                    "and the working radius of curvature within the limits (Norton sec. 8.7), "
+                    "and the working radius of curvature within the limits (Norton, Design of "
+                    "Machinery, 2012, sec. 8.7), "
                     "then run the scene with it and say whether the aged cam still meets them "
                     "at the end of the ageing.",
                     "fickcam size configs/singh2017_cam.yaml",
