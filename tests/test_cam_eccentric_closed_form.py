@@ -6,6 +6,7 @@ its derivatives with finite differences of its own height; the jump speed's sear
 the closed form is the one from the construction."""
 from __future__ import annotations
 
+import functools
 from dataclasses import replace
 
 import numpy as np
@@ -79,7 +80,7 @@ def test_jump_speed_from_the_closed_form_is_that_of_the_construction(kind, rolle
     fitted, origin, _ = fit_geometric_motion(design, pieces_of(design), state.cam_strain_x,
                                              state.cam_strain_y,
                                              roller * (1 + state.roller_strain), nodes=96)
-    spectral = (lambda angles: evaluate_geometric_motion(fitted, origin, angles))
+    spectral = functools.partial(evaluate_geometric_motion, fitted, origin)
     speeds = []
     for motion in (motion_function(design, state)[0], spectral):
         height, _, d2, _ = motion(theta)

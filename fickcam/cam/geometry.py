@@ -333,9 +333,10 @@ def fit_geometric_motion(design, pieces, strain_x, strain_y, roller_radius, node
     return fitted, float(starts[0]), (lowest, highest)
 
 
-def evaluate_geometric_motion(fitted, origin, theta):
+def evaluate_geometric_motion(fitted, origin, theta, orders=(0, 1, 2, 3)):
     """(Y, dY/dtheta, d2Y, d3Y) at cam angles ``theta`` from :func:`fit_geometric_motion`
-    (all pieces and orders in one Clenshaw recursion; NaN outside every piece).
+    (all pieces and the orders asked for in one Clenshaw recursion; NaN outside every
+    piece).
 
     Parameters
     ----------
@@ -345,12 +346,14 @@ def evaluate_geometric_motion(fitted, origin, theta):
         Cam angle where the first piece starts [rad].
     theta : float or array_like
         Cam angles, taken modulo 2 pi [rad].
+    orders : tuple of int
+        The derivative orders returned, each in 0..3 [-] (all four by default).
 
     Returns
     -------
     tuple of numpy.ndarray
         Y [m] and its first three derivatives [m/rad^k] (arm angle [rad] and [rad/rad^k]
-        for a swinging arm).
+        for a swinging arm), or those of ``orders``, in that order.
     """
     theta = np.mod(np.asarray(theta, float), TWO_PI)
     shifted = origin + np.mod(theta - origin, TWO_PI)
@@ -361,7 +364,7 @@ def evaluate_geometric_motion(fitted, origin, theta):
         piece[inside] = k
     known = np.maximum(piece, 0)
     x = fitted.offsets[known] + fitted.scales[known] * shifted
-    values = _clenshaw(fitted.table[:, :, known], x)  # (order, angle)
+    values = _clenshaw(fitted.table[:, list(orders)][:, :, known], x)  # (order, angle)
     values[:, piece < 0] = np.nan
     return tuple(values)
 

@@ -146,6 +146,28 @@ def follower_heights(design: CamDesign, state: CamState, theta):
     return motion(theta), extremes
 
 
+#: the derivative orders of a follower motion: Y, dY/dtheta, d2Y/dtheta2, d3Y/dtheta3
+ORDERS = (0, 1, 2, 3)
+
+
+def picked(values: tuple, orders: tuple) -> tuple:
+    """The derivative ``orders`` of a motion's (Y, dY, d2Y, d3Y), in that order.
+
+    Parameters
+    ----------
+    values : tuple of numpy.ndarray
+        Y [m] and its first three derivatives [m/rad^k] (an arm's angle [rad/rad^k]).
+    orders : tuple of int
+        The orders wanted, each in 0..3.
+
+    Returns
+    -------
+    tuple of numpy.ndarray
+        The values of those orders.
+    """
+    return tuple(values[k] for k in orders)
+
+
 def motion_function(design: CamDesign, state: CamState):
     """(theta -> (Y, dY, d2Y, d3Y), (lowest, highest) Y): the closed form where it exists,
     else the aged geometry's spectral fit, made once and evaluated at any angle.
@@ -160,13 +182,16 @@ def motion_function(design: CamDesign, state: CamState):
     Returns
     -------
     motion : callable
-        theta [rad] -> (Y [m], dY/dtheta [m/rad], d2Y/dtheta2 [m/rad^2],
-        d3Y/dtheta3 [m/rad^3]); a swinging arm's angle [rad] instead of Y.
+        ``motion(theta, orders=ORDERS)``: theta [rad] -> (Y [m], dY/dtheta [m/rad],
+        d2Y/dtheta2 [m/rad^2], d3Y/dtheta3 [m/rad^3]), or only the derivative orders
+        ``orders`` asked for, in that order (a fitted or profile motion then sums only
+        those); a swinging arm's angle [rad] instead of Y.
     extremes : tuple of float
         Lowest and highest Y over the turn [m] ([rad] for an arm).
     """
     if _scales_exactly(design, state):
-        return (lambda theta: _closed_form(design, state, theta)[0],
+        return (lambda theta, orders=ORDERS: picked(_closed_form(design, state, theta)[0],
+                                                    orders),
                 _closed_form(design, state, np.zeros(1))[1])
     if design.kind == "profile":
         from .profile import aged_profile_motion
@@ -177,17 +202,20 @@ def motion_function(design: CamDesign, state: CamState):
                                      design.offset, design.follower_kind == "flat", **arm)
         return motion, motion.extremes
     if design.kind == "eccentric" and design.follower_kind == "flat":
-        return (lambda theta: _eccentric_flat(design, state, theta)[0],
+        return (lambda theta, orders=ORDERS: picked(_eccentric_flat(design, state, theta)[0],
+                                                    orders),
                 _eccentric_flat(design, state, np.zeros(1))[1])
     if (design.kind == "eccentric" and design.arm is None
             and state.cam_strain_x == state.cam_strain_y):
-        return (lambda theta: _eccentric_pitch(design, state, theta)[0],
+        return (lambda theta, orders=ORDERS: picked(_eccentric_pitch(design, state, theta)[0],
+                                                    orders),
                 _eccentric_pitch(design, state, np.zeros(1))[1])
     fitted, origin, extremes = fit_geometric_motion(
         design, pieces_of(design), state.cam_strain_x, state.cam_strain_y,
         design.roller_radius * (1 + state.roller_strain),
         nodes=96 if design.kind == "eccentric" else 40, arm_strain=state.arm_strain)
-    return (lambda theta: evaluate_geometric_motion(fitted, origin, theta)), extremes
+    return (lambda theta, orders=ORDERS: evaluate_geometric_motion(fitted, origin, theta,
+                                                                   orders)), extremes
 
 
 def _grown_arm(design: CamDesign, strain: float) -> dict:

@@ -231,7 +231,8 @@ def continuous_jump_speed(design: CamDesign, motion, mass: float, theta, d2, hol
     design : CamDesign
         The design (spring rate [N/m], preload [N], external load [N], gravity).
     motion : callable
-        theta [rad] -> (Y, dY, d2Y, d3Y) of the aged motion (:func:`motion_function`).
+        theta [rad] -> (Y, dY, d2Y, d3Y) of the aged motion (:func:`motion_function`; only
+        Y and d2Y are asked for).
     mass : float
         Follower mass [kg] (a swinging arm's inertia [kg m^2]).
     theta : numpy.ndarray
@@ -263,7 +264,7 @@ def continuous_jump_speed(design: CamDesign, motion, mass: float, theta, d2, hol
     low_height = dry_lowest_height(design)
 
     def ratio(angles):
-        height, _, d2, _ = motion(angles)
+        height, d2 = motion(angles, orders=(0, 2))
         holding = dyn.axial_force(mass, 0.0, design.spring_rate, height - low_height,
                                   design.spring_preload, design.external_load, design.gravity) \
             if holding_of is None else holding_of(height)

@@ -572,7 +572,8 @@ class ProfileMotion:
     """The follower motion of one aged profile, solved once (:func:`aged_profile_motion`).
 
     Called with cam angles theta [rad] (any range), it returns (Y [m], dY/dtheta [m/rad],
-    d2Y/dtheta2 [m/rad^2], d3Y/dtheta3 [m/rad^3]); a swinging arm's Y is its angle [rad].
+    d2Y/dtheta2 [m/rad^2], d3Y/dtheta3 [m/rad^3]), or the derivative orders ``orders``
+    (each in 0..3) in that order; a swinging arm's Y is its angle [rad].
     Y and dY/dtheta come from the contact at theta itself (:func:`solve_contact` from the
     table: one vectorised Newton solve), the higher derivatives from the spline.
 
@@ -594,10 +595,11 @@ class ProfileMotion:
     slope: object  # scipy BSpline of dY/dtheta over [0, 2 pi], periodic
     extremes: tuple
 
-    def __call__(self, theta):
+    def __call__(self, theta, orders=(0, 1, 2, 3)):
         theta = np.mod(np.asarray(theta, float), TWO_PI)
         _, height, slope = self.contact(solve_contact(self.contact, self.table, theta))
-        return height, slope, self.slope(theta, nu=1), self.slope(theta, nu=2)
+        found = {0: height, 1: slope}  # the higher orders from the spline, when asked for
+        return tuple(found[k] if k in found else self.slope(theta, nu=k - 1) for k in orders)
 
 
 def aged_profile_motion(profile: CamProfile, strain_x: float, strain_y: float, roller: float,
