@@ -9,7 +9,8 @@ hourly, shipped with pvlib: needs the weather extra) once with ``ageing_times: {
 1 d}`` (366 outputs, day 0 to day 365) and once with 10 ageing times evenly spread over
 the same year. Every run is one ``fickcam.run`` in a fresh Python process (its caches
 empty, as a user's run starts), timed from after the imports to the returned dataset
-("fresh"), then run again in that process ("warm": the diffusion's tables kept); the two
+("fresh"), then run again in that process ("warm": the first-use costs paid; a run keeps
+its diffusion cache to itself, so the diffusion is solved again); the two
 kinds alternate so that a change in the machine's load reaches both. Medians of the
 repeats, the ratios of the medians, the machine (CPU model, cores, load average) and the
 commit are printed and written to ``benchmarks/results/daily_outputs.json``.

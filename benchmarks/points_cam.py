@@ -9,8 +9,9 @@ For each scene below, ``fickcam profile`` writes the cam's dry working profile a
 scene reads them through ``cam.profile_file``. Every run is one ``fickcam.run`` in a
 fresh Python process (its own caches empty, as a user's run starts), timed from after
 the imports to the returned dataset ("fresh"), then run again in that process ("warm":
-the diffusion's caches filled, so mostly the mechanism); the two kinds alternate so that a change in the
-machine's load reaches both. Medians of the repeats, the ratios of the medians, the
+the first-use costs paid; a run keeps its diffusion cache to itself, so the diffusion is
+solved again); the two kinds alternate so that a change in the machine's load reaches
+both. Medians of the repeats, the ratios of the medians, the
 machine (CPU model, cores, load average) and the commit are printed and written to
 ``benchmarks/results/points_cam.json``. The results of the two kinds are also compared
 (the largest difference of the follower displacement, or arm angle, over its lift,
