@@ -223,6 +223,8 @@ RAW_CASES = [
     ("duplicate-key", CAM_SCENE.replace("name: test-cam", "name: test-cam\nname: again"), "duplicate"),
     ("top-level-list", "- name: x\n", "mapping"),
     ("binary-garbage", "\x00\x01\x02", "YAML"),
+    ("tab-indent", "name: x\nenvironment:\n\thistory: []\n", ":3: YAML syntax"),
+    ("tab-indent-hint", "name: x\nenvironment:\n\thistory: []\n", "a tab: YAML indents with spaces"),
 ]
 
 
