@@ -24,7 +24,7 @@ import numpy as np
 from numpy.polynomial import chebyshev, polyutils
 
 from . import arm
-from .motion import segment_motion
+from .motion import ORDERS, segment_motion
 
 TWO_PI = 2.0 * np.pi
 EPS = float(np.finfo(float).eps)
@@ -221,16 +221,6 @@ class PiecewiseMotion:
     table: np.ndarray
 
 
-def _clenshaw(table, x):
-    """Chebyshev sums, ``table`` (terms, ...) and x broadcast against table[0]: the Clenshaw
-    recursion of numpy.polynomial.chebyshev.chebval step by step (the same round-off)."""
-    x2 = 2 * x
-    c0, c1 = table[-2], table[-1]
-    for i in range(3, len(table) + 1):
-        c0, c1 = table[-i] - c1, c0 + c1 * x2
-    return c0 + c1 * x
-
-
 def _series_table(coef, mapping):
     """Coefficients (term, order, piece) of Y and dY, d2Y, d3Y per piece from Y's
     coefficients (term, piece), each derivative padded with zeros: the series
@@ -328,15 +318,16 @@ def fit_geometric_motion(design, pieces, strain_x, strain_y, roller_radius, node
     at = [np.r_[ta, tb, points] for ta, tb, points in zip(starts, stops, turning)]
     piece = np.repeat(np.arange(count), [len(a) for a in at])
     at = np.concatenate(at)
-    extremes = _clenshaw(table[:, 0, piece], fitted.offsets[piece] + fitted.scales[piece] * at)
+    extremes = chebyshev.chebval(fitted.offsets[piece] + fitted.scales[piece] * at,
+                                 table[:, 0, piece], tensor=False)
     lowest, highest = float(extremes.min()), float(extremes.max())
     return fitted, float(starts[0]), (lowest, highest)
 
 
-def evaluate_geometric_motion(fitted, origin, theta, orders=(0, 1, 2, 3)):
+def evaluate_geometric_motion(fitted, origin, theta, orders=ORDERS):
     """(Y, dY/dtheta, d2Y, d3Y) at cam angles ``theta`` from :func:`fit_geometric_motion`
-    (all pieces and the orders asked for in one Clenshaw recursion; NaN outside every
-    piece).
+    (all pieces and the orders asked for in one Clenshaw recursion, numpy's ``chebval``;
+    NaN outside every piece).
 
     Parameters
     ----------
@@ -364,7 +355,8 @@ def evaluate_geometric_motion(fitted, origin, theta, orders=(0, 1, 2, 3)):
         piece[inside] = k
     known = np.maximum(piece, 0)
     x = fitted.offsets[known] + fitted.scales[known] * shifted
-    values = _clenshaw(fitted.table[:, list(orders)][:, :, known], x)  # (order, angle)
+    # each angle's own piece: x broadcast over the (order, angle) columns of its series
+    values = chebyshev.chebval(x, fitted.table[:, list(orders)][:, :, known], tensor=False)
     values[:, piece < 0] = np.nan
     return tuple(values)
 

@@ -21,7 +21,7 @@ import numpy as np
 from .design import CamDesign, CamState
 from .geometry import (evaluate_geometric_motion, fit_geometric_motion, pieces_of, prime_height,
                        rotate, working_outline)
-from .motion import follower_motion
+from .motion import ORDERS, follower_motion
 
 
 def _scales_exactly(design: CamDesign, state: CamState) -> bool:
@@ -144,10 +144,6 @@ def follower_heights(design: CamDesign, state: CamState, theta):
     """
     motion, extremes = motion_function(design, state)
     return motion(theta), extremes
-
-
-#: the derivative orders of a follower motion: Y, dY/dtheta, d2Y/dtheta2, d3Y/dtheta3
-ORDERS = (0, 1, 2, 3)
 
 
 def picked(values: tuple, orders: tuple) -> tuple:

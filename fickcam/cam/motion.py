@@ -19,6 +19,9 @@ import numpy as np
 
 from .fourier import at_angles, correction_motion
 
+#: the derivative orders of a follower motion: Y, dY/dtheta, d2Y/dtheta2, d3Y/dtheta3
+ORDERS = (0, 1, 2, 3)
+
 PI = math.pi
 
 _LAW_SECTIONS = """

@@ -34,6 +34,7 @@ import numpy as np
 from ..extras import require
 from ..store import replaced_atomically
 from .arm import aged_profile_contact
+from .motion import ORDERS
 
 TWO_PI = 2.0 * np.pi
 _HEADER = re.compile(r"^\s*(?P<name>[A-Za-z_]+)\s*(?:[\[(](?P<unit>[^\])]*)[\])])?\s*$")
@@ -595,7 +596,7 @@ class ProfileMotion:
     slope: object  # scipy BSpline of dY/dtheta over [0, 2 pi], periodic
     extremes: tuple
 
-    def __call__(self, theta, orders=(0, 1, 2, 3)):
+    def __call__(self, theta, orders=ORDERS):
         theta = np.mod(np.asarray(theta, float), TWO_PI)
         _, height, slope = self.contact(solve_contact(self.contact, self.table, theta))
         found = {0: height, 1: slope}  # the higher orders from the spline, when asked for
