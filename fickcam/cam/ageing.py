@@ -22,6 +22,7 @@ from ..mechanisms import over_ageing
 from ..response import Response
 from .design import CamState, design_from_scene
 from .kinematics import working_profile
+from .model import cam_response, closed_form_jump_speeds
 from .oscillating import follower_response
 
 
@@ -139,10 +140,15 @@ def scene_response(section, histories: dict, times, angles, valid, on_step=lambd
         dry = None if follower is None else float(follower.part.material.ply_properties(1.0)["e11"])
         design = polydyne_design(design, dry)
     times = np.asarray(times, float)
+    valid = np.asarray(valid, bool)
+    states = {k: cam_state(design, histories, k) for k in np.flatnonzero(valid).tolist()}
+    # the closed-form motions' jump speeds, searched for all ageing times at once
+    jumps = closed_form_jump_speeds(design, states, angles)
 
     def evaluate(k: int) -> Response:
-        state = cam_state(design, histories, k)
-        response = follower_response(design, state, angles)
+        state = states[k]
+        response = cam_response(design, state, angles, jump_speed=jumps[k]) if k in jumps \
+            else follower_response(design, state, angles)
         if design.train is not None:  # elastic follower train (Norton ch. 15)
             from .train import dynamic_response
 
@@ -151,7 +157,7 @@ def scene_response(section, histories: dict, times, angles, valid, on_step=lambd
             response.notices.extend(elastic.notices)
         return response
 
-    result = over_ageing(times, np.asarray(valid, bool), evaluate, on_step)
+    result = over_ageing(times, valid, evaluate, on_step)
     rate = result.variables.get("wear_rate")
     if rate is not None:
         steps = np.diff(times) * 0.5 * (rate[1:] + rate[:-1])

@@ -51,23 +51,24 @@ def rotate(angle, x, y):
     return c * x - s * y, s * x + c * y
 
 
-def prime_height(prime_radius: float, offset: float) -> float:
+def prime_height(prime_radius, offset: float):
     """Height of the follower's pitch point on the prime circle: sqrt(Rp^2 - e^2)
     (its denominator in Norton ch. 8).
 
     Parameters
     ----------
-    prime_radius : float
-        The prime circle's radius Rp [m].
+    prime_radius : float or numpy.ndarray
+        The prime circle's radius Rp [m] (one per ageing time, for a stacked state).
     offset : float
         The follower's offset e [m].
 
     Returns
     -------
-    float
-        The height [m].
+    float or numpy.ndarray
+        The height [m], of the shape of ``prime_radius``.
     """
-    return float(np.sqrt(prime_radius ** 2 - offset ** 2))
+    height = np.sqrt(prime_radius ** 2 - offset ** 2)
+    return float(height) if np.ndim(height) == 0 else height
 
 
 def dry_profile(design, segment, psi):

@@ -15,6 +15,7 @@ from __future__ import annotations
 
 import functools
 import math
+from typing import Callable, NamedTuple
 
 import numpy as np
 
@@ -39,21 +40,41 @@ def _scales_exactly(design: CamDesign, state: CamState) -> bool:
                                      state.roller_strain == state.cam_strain_x)
 
 
-def _closed_form(design: CamDesign, state: CamState, theta):
-    scale = 1.0 + state.cam_strain_x
-    y, d1, d2, d3 = follower_motion(design.segments, theta)
+def _scaled_heights(design: CamDesign, state: CamState, theta):
+    """The design motion scaled by 1 + eps_x above the aged prime circle (an arm: its angle)."""
+    theta = np.asarray(theta, float)
+    y, d1, d2, d3 = (np.reshape(v, theta.shape)
+                     for v in follower_motion(design.segments, theta.ravel()))
     if design.arm is not None:  # the arm angle from its dry base position
-        return (y, d1, d2, d3), (0.0, _design_lift(design))
-    base = design.base_circle_radius * scale
+        return y, d1, d2, d3
+    scale = 1.0 + state.cam_strain_x
+    floor = _scaled_floor(design, state)
+    return floor + scale * y, scale * d1, scale * d2, scale * d3
+
+
+def _scaled_floor(design: CamDesign, state: CamState):
+    base = design.base_circle_radius * (1.0 + state.cam_strain_x)
     if design.follower_kind == "flat":
-        floor = base
-    else:
-        floor = prime_height(base + design.roller_radius * (1 + state.roller_strain), design.offset)
-    return (floor + scale * y, scale * d1, scale * d2, scale * d3), \
-        (floor, floor + scale * _design_lift(design))
+        return base
+    return prime_height(base + design.roller_radius * (1 + state.roller_strain), design.offset)
 
 
-def _eccentric_flat(design: CamDesign, state: CamState, theta):
+def _scaled_extremes(design: CamDesign, state: CamState) -> tuple[float, float]:
+    if design.arm is not None:
+        return 0.0, _design_lift(design)
+    floor = _scaled_floor(design, state)
+    return floor, floor + (1.0 + state.cam_strain_x) * _design_lift(design)
+
+
+def _flat_support(design: CamDesign, state: CamState):
+    """e_y, a, A and B of the flat face's support function on the swollen disc."""
+    e_y = design.eccentricity * (1 + state.cam_strain_y)
+    a = design.disc_radius * (1 + state.cam_strain_x)
+    b = design.disc_radius * (1 + state.cam_strain_y)
+    return e_y, a, (a * a + b * b) / 2, (b * b - a * a) / 2
+
+
+def _eccentric_flat_heights(design: CamDesign, state: CamState, theta):
     """Flat face on the (swollen) eccentric disc, in closed form: the face height is the
     support function of the ellipse with centre (0, -e_y) and semi-axes a = R(1 + eps_x),
     b = R(1 + eps_y) in the direction n = (sin theta, cos theta) (kinematic inversion,
@@ -62,14 +83,7 @@ def _eccentric_flat(design: CamDesign, state: CamState, theta):
     Y = R - e cos theta (Madhukar et al. 2023 sec. 5.2). The derivatives of f
     follow from differentiating f^2 = g three times."""
     theta = np.asarray(theta, float)
-    e_y = design.eccentricity * (1 + state.cam_strain_y)
-    a = design.disc_radius * (1 + state.cam_strain_x)
-    b = design.disc_radius * (1 + state.cam_strain_y)
-    big_a, big_b = (a * a + b * b) / 2, (b * b - a * a) / 2
-
-    def support(t):
-        return -e_y * np.cos(t) + np.sqrt(big_a + big_b * np.cos(2 * t))
-
+    e_y, _, big_a, big_b = _flat_support(design, state)
     f = np.sqrt(big_a + big_b * np.cos(2 * theta))
     g1, g2, g3 = (-2 * big_b * np.sin(2 * theta), -4 * big_b * np.cos(2 * theta),
                   8 * big_b * np.sin(2 * theta))
@@ -77,39 +91,14 @@ def _eccentric_flat(design: CamDesign, state: CamState, theta):
     f2 = (g2 / 2 - f1 ** 2) / f
     f3 = (g3 / 2 - 3 * f1 * f2) / f
     c, s = np.cos(theta), np.sin(theta)
-    heights = (support(theta), e_y * s + f1, e_y * c + f2, -e_y * s + f3)
-    return heights, _support_extremes(support, e_y, a, big_b)
+    return -e_y * c + f, e_y * s + f1, e_y * c + f2, -e_y * s + f3
 
 
-def _eccentric_pitch(design: CamDesign, state: CamState, theta):
-    """Knife or roller on the uniformly swollen eccentric disc, in closed form: the pitch
-    curve is the circle of radius rho = R (1 + eps) + r_roller about the disc centre
-    c = R(theta) (0, -e (1 + eps)) (kinematic inversion, Norton ch. 8), met by the
-    follower's line x = offset at Y = -e' cos theta + f, f = sqrt(g),
-    g = rho^2 - (offset - e' sin theta)^2 (Y = R + r - e cos theta for a centred
-    follower with e << R is the disc's near-SHM). The derivatives of f follow from
-    f^2 = g as for the flat face; Y is extreme where the axis, the disc centre and the
-    pitch point are collinear: |P| = rho -/+ e', Y = sqrt(|P|^2 - offset^2)."""
-    theta = np.asarray(theta, float)
-    e = design.eccentricity * (1 + state.cam_strain_y)
-    rho = design.disc_radius * (1 + state.cam_strain_x) + \
-        design.roller_radius * (1 + state.roller_strain)
-    c, s = np.cos(theta), np.sin(theta)
-    u, u1, u2, u3 = design.offset - e * s, -e * c, e * s, e * c
-    f = np.sqrt(rho * rho - u * u)
-    g1, g2, g3 = -2 * u * u1, -2 * (u1 * u1 + u * u2), -2 * (3 * u1 * u2 + u * u3)
-    f1 = g1 / (2 * f)
-    f2 = (g2 / 2 - f1 ** 2) / f
-    f3 = (g3 / 2 - 3 * f1 * f2) / f
-    heights = (-e * c + f, e * s + f1, e * c + f2, -e * s + f3)
-    extremes = tuple(math.sqrt(reach ** 2 - design.offset ** 2) for reach in (rho - e, rho + e))
-    return heights, extremes
-
-
-def _support_extremes(support, e_y, a, big_b):
+def _eccentric_flat_extremes(design: CamDesign, state: CamState) -> tuple[float, float]:
     """(lowest, highest) of the support function: theta = 0, pi and, for a flattened disc,
     the interior stationary points where e_y f = 2 B cos theta, i.e.
     cos^2 theta = e_y^2 a^2 / (2 B (2 B - e_y^2))."""
+    e_y, a, _, big_b = _flat_support(design, state)
     candidates = [0.0, np.pi]
     denominator = 2 * big_b * (2 * big_b - e_y ** 2)
     if denominator > 0:
@@ -117,8 +106,112 @@ def _support_extremes(support, e_y, a, big_b):
         if c2 <= 1:
             c = math.sqrt(c2)
             candidates += [math.acos(c), math.acos(-c), -math.acos(c), -math.acos(-c)]
-    values = support(np.array(candidates))
+    values = _eccentric_flat_heights(design, state, np.array(candidates))[0]
     return float(values.min()), float(values.max())
+
+
+def _pitch_circle(design: CamDesign, state: CamState):
+    """e' and rho: the swollen disc centre's distance from the axis and the pitch circle's
+    radius."""
+    return (design.eccentricity * (1 + state.cam_strain_y),
+            design.disc_radius * (1 + state.cam_strain_x) +
+            design.roller_radius * (1 + state.roller_strain))
+
+
+def _eccentric_pitch_heights(design: CamDesign, state: CamState, theta):
+    """Knife or roller on the uniformly swollen eccentric disc, in closed form: the pitch
+    curve is the circle of radius rho = R (1 + eps) + r_roller about the disc centre
+    c = R(theta) (0, -e (1 + eps)) (kinematic inversion, Norton ch. 8), met by the
+    follower's line x = offset at Y = -e' cos theta + f, f = sqrt(g),
+    g = rho^2 - (offset - e' sin theta)^2 (Y = R + r - e cos theta for a centred
+    follower with e << R is the disc's near-SHM). The derivatives of f follow from
+    f^2 = g as for the flat face."""
+    theta = np.asarray(theta, float)
+    e, rho = _pitch_circle(design, state)
+    c, s = np.cos(theta), np.sin(theta)
+    u, u1, u2, u3 = design.offset - e * s, -e * c, e * s, e * c
+    f = np.sqrt(rho * rho - u * u)
+    g1, g2, g3 = -2 * u * u1, -2 * (u1 * u1 + u * u2), -2 * (3 * u1 * u2 + u * u3)
+    f1 = g1 / (2 * f)
+    f2 = (g2 / 2 - f1 ** 2) / f
+    f3 = (g3 / 2 - 3 * f1 * f2) / f
+    return -e * c + f, e * s + f1, e * c + f2, -e * s + f3
+
+
+def _eccentric_pitch_extremes(design: CamDesign, state: CamState) -> tuple[float, float]:
+    """Y is extreme where the axis, the disc centre and the pitch point are collinear:
+    |P| = rho -/+ e', Y = sqrt(|P|^2 - offset^2)."""
+    e, rho = _pitch_circle(design, state)
+    return tuple(math.sqrt(reach ** 2 - design.offset ** 2) for reach in (rho - e, rho + e))
+
+
+class ClosedForm(NamedTuple):
+    """An aged motion in closed form.
+
+    ``heights(design, state, theta)`` gives (Y, dY, d2Y, d3Y) [m/rad^k] at cam angles theta
+    [rad]; it is elementwise in theta and in the state's strains, so a state stacked over
+    ageing times (:func:`stacked_state`, strains of shape (n, 1)) gives rows over time.
+    ``extremes(design, state)`` gives the (lowest, highest) Y [m] of one state.
+    """
+
+    heights: Callable
+    extremes: Callable
+
+
+SCALED = ClosedForm(_scaled_heights, _scaled_extremes)
+ECCENTRIC_FLAT = ClosedForm(_eccentric_flat_heights, _eccentric_flat_extremes)
+ECCENTRIC_PITCH = ClosedForm(_eccentric_pitch_heights, _eccentric_pitch_extremes)
+
+
+def closed_form(design: CamDesign, state: CamState) -> ClosedForm | None:
+    """The closed form of the aged motion, or None where the aged geometry must be fitted.
+
+    Parameters
+    ----------
+    design : CamDesign
+        The dry design (its kind and follower; lengths [m]).
+    state : CamState
+        The aged state (strains [-] of the plate along x and y, the roller and the arm).
+
+    Returns
+    -------
+    ClosedForm or None
+        The design motion scaled by 1 + eps (:data:`SCALED`), the flat face on the eccentric
+        disc (:data:`ECCENTRIC_FLAT`) or a knife or roller on the uniformly swollen
+        eccentric disc (:data:`ECCENTRIC_PITCH`); None for a cam given by points and for
+        any other aged geometry.
+    """
+    if _scales_exactly(design, state):
+        return SCALED
+    if design.kind != "eccentric":
+        return None
+    if design.follower_kind == "flat":
+        return ECCENTRIC_FLAT
+    if design.arm is None and state.cam_strain_x == state.cam_strain_y:
+        return ECCENTRIC_PITCH
+    return None
+
+
+def stacked_state(states) -> CamState:
+    """The strains of several states as columns (n, 1), for a :class:`ClosedForm`'s
+    ``heights`` over ageing times.
+
+    Parameters
+    ----------
+    states : sequence of CamState
+        The states, one per ageing time (strains [-]).
+
+    Returns
+    -------
+    CamState
+        A state whose cam, roller and arm strains [-] are arrays of shape (n, 1); its
+        other fields are those of a default state.
+    """
+    def column(name):
+        return np.array([getattr(state, name) for state in states], float)[:, None]
+
+    return CamState(cam_strain_x=column("cam_strain_x"), cam_strain_y=column("cam_strain_y"),
+                    roller_strain=column("roller_strain"), arm_strain=column("arm_strain"))
 
 
 def follower_heights(design: CamDesign, state: CamState, theta):
@@ -185,10 +278,10 @@ def motion_function(design: CamDesign, state: CamState):
     extremes : tuple of float
         Lowest and highest Y over the turn [m] ([rad] for an arm).
     """
-    if _scales_exactly(design, state):
-        return (lambda theta, orders=ORDERS: picked(_closed_form(design, state, theta)[0],
-                                                    orders),
-                _closed_form(design, state, np.zeros(1))[1])
+    form = closed_form(design, state)
+    if form is not None:
+        return (lambda theta, orders=ORDERS: picked(form.heights(design, state, theta), orders),
+                form.extremes(design, state))
     if design.kind == "profile":
         from .profile import aged_profile_motion
 
@@ -197,15 +290,6 @@ def motion_function(design: CamDesign, state: CamState):
                                      design.roller_radius * (1 + state.roller_strain),
                                      design.offset, design.follower_kind == "flat", **arm)
         return motion, motion.extremes
-    if design.kind == "eccentric" and design.follower_kind == "flat":
-        return (lambda theta, orders=ORDERS: picked(_eccentric_flat(design, state, theta)[0],
-                                                    orders),
-                _eccentric_flat(design, state, np.zeros(1))[1])
-    if (design.kind == "eccentric" and design.arm is None
-            and state.cam_strain_x == state.cam_strain_y):
-        return (lambda theta, orders=ORDERS: picked(_eccentric_pitch(design, state, theta)[0],
-                                                    orders),
-                _eccentric_pitch(design, state, np.zeros(1))[1])
     fitted, origin, extremes = fit_geometric_motion(
         design, pieces_of(design), state.cam_strain_x, state.cam_strain_y,
         design.roller_radius * (1 + state.roller_strain),

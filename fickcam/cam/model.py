@@ -20,8 +20,9 @@ from ..messages import note
 from ..response import Response
 from . import dynamics as dyn
 from .design import CamDesign, CamState
-from .kinematics import cam_frame_point, dry_lowest_height, motion_function
-from .motion import joint_notices
+from .kinematics import (cam_frame_point, closed_form, dry_lowest_height, motion_function, picked,
+                         stacked_state)
+from .motion import ORDERS, joint_notices
 
 log = logging.getLogger(__name__)
 
@@ -48,7 +49,8 @@ def _slide_ratio(design, height, rho):
     return height / np.abs(rho)
 
 
-def cam_response(design: CamDesign, state: CamState, cam_angle) -> Response:
+def cam_response(design: CamDesign, state: CamState, cam_angle,
+                 jump_speed: float | None = None) -> Response:
     """Kinematics, dynamics and contact of the (aged) cam at cam angles (rad).
 
     Scalars: base_circle_radius, lift (m), jump_speed (rad/s; the schema stores rpm),
@@ -71,6 +73,10 @@ def cam_response(design: CamDesign, state: CamState, cam_angle) -> Response:
         The aged state: strains [-], moduli [Pa], follower mass [kg].
     cam_angle : array_like
         Cam angles [rad].
+    jump_speed : float, optional
+        The jump speed [rad/s] where it was already searched for this state together with
+        other ageing times (:func:`closed_form_jump_speeds`); by default it is searched here
+        (:func:`continuous_jump_speed`).
 
     Returns
     -------
@@ -83,7 +89,7 @@ def cam_response(design: CamDesign, state: CamState, cam_angle) -> Response:
     """
     theta = np.asarray(cam_angle, float)
     omega = design.speed
-    mass = design.follower_mass if state.follower_mass is None else state.follower_mass
+    mass = _follower_mass(design, state)
     roller = design.roller_radius * (1 + state.roller_strain)
     motion, (lowest, highest) = motion_function(design, state)
     height, d1, d2, d3 = motion(theta)
@@ -101,9 +107,7 @@ def cam_response(design: CamDesign, state: CamState, cam_angle) -> Response:
     notices += _geometry_notices(design, theta, phi, rho_pitch, rho, roller)
 
     velocity, acceleration = d1 * omega, d2 * omega ** 2
-    deflection = height - dry_lowest_height(design)
-    holding = dyn.axial_force(mass, 0.0, design.spring_rate, deflection, design.spring_preload,
-                              design.external_load, design.gravity)
+    holding = _holding_force(design, mass, height)
     axial = holding + mass * acceleration
     force = dyn.normal_force(axial, phi, velocity, design.guide_factor)
     cx, cy = _contact_point(design, height, d1, phi, roller)
@@ -111,7 +115,8 @@ def cam_response(design: CamDesign, state: CamState, cam_angle) -> Response:
     sliding = design.follower_kind != "roller"
     friction = design.friction_coefficient * np.maximum(force, 0.0) * sliding
     lever = np.abs(cx * np.sin(phi) - cy * np.cos(phi))
-    jump = continuous_jump_speed(design, motion, mass, theta, d2, holding)
+    jump = continuous_jump_speed(design, motion, mass, theta, d2, holding) \
+        if jump_speed is None else jump_speed
     notices += _jump_notices(theta, axial, jump, omega)
 
     if design.follower_kind == "knife":
@@ -214,17 +219,22 @@ SEARCH_POINTS = 256
 SEARCH_ROUNDS = 5
 
 
+def _follower_mass(design: CamDesign, state: CamState) -> float:
+    return design.follower_mass if state.follower_mass is None else state.follower_mass
+
+
+def _holding_force(design: CamDesign, mass, height):
+    """The speed-independent force holding a translating follower on the cam: spring,
+    preload, load and weight (:func:`fickcam.cam.dynamics.axial_force` at no acceleration)."""
+    return dyn.axial_force(mass, 0.0, design.spring_rate, height - dry_lowest_height(design),
+                           design.spring_preload, design.external_load, design.gravity)
+
+
 def continuous_jump_speed(design: CamDesign, motion, mass: float, theta, d2, holding,
                           holding_of=None) -> float:
     """The jump speed as the minimum over the continuous cam angle, not the angle grid:
-    omega_jump^2 = min S(theta) / (-m y''(theta)) over y'' < 0 (see dyn.jump_speed). The
-    grid's smallest ratio brackets the minimum between its neighbours, where
-    :func:`zoomed_minimum` on the closed-form or spectral motion finds it; at an
-    acceleration jump (a segment joint) it converges to the one-sided limit.
-    ``motion`` is the aged motion (:func:`motion_function`), ``d2`` and ``holding`` its grid
-    values of d2Y/dtheta2 and of the speed-independent holding force; ``holding_of(Y)`` gives
-    the holding force (a swinging arm's torque, with ``mass`` its inertia) at any Y
-    (default: the translating follower's spring, preload, load and weight).
+    omega_jump^2 = min S(theta) / (-m y''(theta)) over y'' < 0 (see dyn.jump_speed): the
+    search of :func:`continuous_jump_speeds` for one ageing time.
 
     Parameters
     ----------
@@ -253,39 +263,130 @@ def continuous_jump_speed(design: CamDesign, motion, mass: float, theta, d2, hol
     ----------
     Norton (2012), ch. 15 (follower jump); in full in :mod:`fickcam.cam`.
     """
-    on_grid = dyn.jump_speed(mass, d2, holding)
-    if not np.isfinite(on_grid) or on_grid == 0.0 or theta.size < 3:
+    def rows(angles, orders=ORDERS):  # the one time's motion at angles of shape (1, k)
+        return tuple(np.reshape(value, angles.shape) for value in motion(angles.ravel(), orders))
+
+    return float(continuous_jump_speeds(design, rows, [mass], theta, np.asarray(d2)[None],
+                                        np.asarray(holding)[None], holding_of)[0])
+
+
+def continuous_jump_speeds(design: CamDesign, motion, masses, theta, d2, holding,
+                           holding_of=None) -> np.ndarray:
+    """The jump speeds of several ageing times at once, each the minimum over the continuous
+    cam angle: omega_jump^2 = min S(theta) / (-m y''(theta)) over y'' < 0 (see
+    dyn.jump_speed). Each time's smallest ratio on the grid brackets its minimum between
+    its neighbours, where :func:`zoomed_minimum` on the closed-form or spectral motion
+    finds it, all times in the same rounds; at an acceleration jump (a segment joint) it
+    converges to the one-sided limit.
+
+    Parameters
+    ----------
+    design : CamDesign
+        The design (spring rate [N/m], preload [N], external load [N], gravity).
+    motion : callable
+        ``motion(angles, orders)``: angles [rad] of shape (n, k), one row per ageing time ->
+        the aged motion's derivatives ``orders`` (Y [m], d2Y [m/rad^2]) at them, each (n, k).
+    masses : array_like
+        Follower mass per ageing time [kg] (a swinging arm's inertia [kg m^2]), shape (n,).
+    theta : numpy.ndarray
+        The angle grid [rad], shape (m,).
+    d2 : numpy.ndarray
+        d2Y/dtheta2 on the grid [m/rad^2] ([rad/rad^2] for an arm), shape (n, m).
+    holding : numpy.ndarray
+        Speed-independent holding force on the grid [N] ([N m] for an arm), shape (n, m).
+    holding_of : callable, optional
+        Y -> holding force [N] ([N m]) (default: the translating follower's spring,
+        preload, load and weight).
+
+    Returns
+    -------
+    numpy.ndarray
+        The jump speeds [rad/s], shape (n,); inf where nothing pulls the follower off, 0
+        where it is not held.
+
+    References
+    ----------
+    Norton (2012), ch. 15 (follower jump); in full in :mod:`fickcam.cam`.
+    """
+    masses = np.asarray(masses, float)
+    on_grid = np.array([dyn.jump_speed(mass, row_d2, row_holding)
+                        for mass, row_d2, row_holding in zip(masses, d2, holding)])
+    searched = np.isfinite(on_grid) & (on_grid != 0.0)
+    if not searched.any() or theta.size < 3:
         return on_grid
     spacing = float(np.median(np.diff(np.sort(theta))))
-    pulling = d2 < 0.0
-    ratios = np.full(theta.shape, np.inf)
-    ratios[pulling] = holding[pulling] / (-mass * d2[pulling])
-    centre = float(theta[int(np.argmin(ratios))])
-    low_height = dry_lowest_height(design)
+    mass = masses[:, None]
+    with np.errstate(divide="ignore", invalid="ignore"):
+        ratios = np.where(d2 < 0.0, holding / (-mass * d2), np.inf)
+    centre = theta[np.argmin(ratios, axis=1)]
 
     def ratio(angles):
         height, d2 = motion(angles, orders=(0, 2))
-        holding = dyn.axial_force(mass, 0.0, design.spring_rate, height - low_height,
-                                  design.spring_preload, design.external_load, design.gravity) \
-            if holding_of is None else holding_of(height)
+        holding = _holding_force(design, mass, height) if holding_of is None \
+            else holding_of(height)
         with np.errstate(divide="ignore", invalid="ignore"):
             return np.where(d2 < 0.0, holding / (-mass * d2), np.inf)  # not pulling: no bound
 
-    best = min(zoomed_minimum(ratio, centre - spacing, centre + spacing), on_grid ** 2)
-    return float(np.sqrt(best))
+    best = np.minimum(zoomed_minimum(ratio, centre - spacing, centre + spacing), on_grid ** 2)
+    return np.where(searched, np.sqrt(best), on_grid)
 
 
-def zoomed_minimum(function, low: float, high: float, points: int = SEARCH_POINTS,
-                   rounds: int = SEARCH_ROUNDS) -> float:
+def closed_form_jump_speeds(design: CamDesign, states: dict, theta) -> dict:
+    """The jump speeds of the ageing times whose aged motion has a closed form, searched for
+    all of them at once (:func:`continuous_jump_speeds`); a translating follower only.
+
+    Parameters
+    ----------
+    design : CamDesign
+        The dry design (SI).
+    states : dict of int to CamState
+        The aged state at each ageing index.
+    theta : numpy.ndarray
+        The angle grid [rad].
+
+    Returns
+    -------
+    dict of int to float
+        The jump speed [rad/s] by ageing index, for the indices whose motion is in closed
+        form (:func:`~fickcam.cam.kinematics.closed_form`); the others are left to
+        :func:`cam_response`.
+    """
+    if design.arm is not None:
+        return {}
+    theta = np.asarray(theta, float)
+    groups: dict = {}
+    for k, state in states.items():
+        form = closed_form(design, state)
+        if form is not None:
+            groups.setdefault(form, []).append(k)
+    speeds = {}
+    for form, indices in groups.items():
+        stacked = stacked_state([states[k] for k in indices])
+        masses = np.array([_follower_mass(design, states[k]) for k in indices], float)
+
+        def motion(angles, orders=ORDERS, form=form, stacked=stacked):
+            return picked(form.heights(design, stacked, angles), orders)
+
+        height, d2 = np.broadcast_arrays(*motion(theta, orders=(0, 2)))
+        holding = _holding_force(design, masses[:, None], height)
+        speeds.update(zip(indices, continuous_jump_speeds(design, motion, masses, theta, d2,
+                                                          holding).tolist()))
+    return speeds
+
+
+def zoomed_minimum(function, low, high, points: int = SEARCH_POINTS,
+                   rounds: int = SEARCH_ROUNDS):
     """The smallest value of a vectorised ``function`` on [low, high]: ``points`` + 1 equally
-    spaced values a round, then the two intervals beside the smallest, ``rounds`` times.
+    spaced values a round, then the two intervals beside the smallest, ``rounds`` times;
+    for several intervals at once where ``low`` and ``high`` are arrays.
 
     Parameters
     ----------
     function : callable
-        Vectorised function of one variable.
-    low, high : float
-        The interval searched [unit of the variable].
+        Vectorised function of one variable: values at points of shape (points + 1,), or
+        (n, points + 1) for n intervals, one row each.
+    low, high : float or numpy.ndarray
+        The interval searched [unit of the variable], or n intervals, shape (n,).
     points : int
         Intervals per round.
     rounds : int
@@ -293,18 +394,20 @@ def zoomed_minimum(function, low: float, high: float, points: int = SEARCH_POINT
 
     Returns
     -------
-    float
-        The smallest value found [unit of the function].
+    float or numpy.ndarray
+        The smallest value found [unit of the function], one per interval.
     """
-    best = np.inf
+    low, high = np.asarray(low, float), np.asarray(high, float)
+    best = np.full(low.shape, np.inf)
     for _ in range(rounds):
-        angles = np.linspace(low, high, points + 1)
+        angles = np.linspace(low, high, points + 1, axis=-1)
         values = function(angles)
-        k = int(np.argmin(values))
-        best = min(best, float(values[k]))
+        k = np.argmin(values, axis=-1)[..., None]
+        best = np.fmin(best, np.take_along_axis(values, k, axis=-1)[..., 0])
+        at = np.take_along_axis(angles, k, axis=-1)[..., 0]
         step = (high - low) / points
-        low, high = max(angles[k] - step, low), min(angles[k] + step, high)
-    return best
+        low, high = np.maximum(at - step, low), np.minimum(at + step, high)
+    return float(best) if best.ndim == 0 else best
 
 
 def _where(theta, index) -> str:
