@@ -9,7 +9,7 @@ import atexit
 import gc
 import sys
 
-from .cli_parser import _parser  # noqa: F401  (re-exported: tests build the parser from here)
+from .cli_parser import build_parser
 from .commands import COMMANDS
 from .errors import FickcamError, InputError, SceneError
 from .messages import error_line, terminal_messages
@@ -47,7 +47,7 @@ def main(argv: list[str] | None = None, whole_process: bool = False) -> int:
     int
         The exit status: 0 success, 1 failure, 2 bad input.
     """
-    args = _parser().parse_args(argv)
+    args = build_parser().parse_args(argv)
     args.whole_process = whole_process
     if whole_process and args.command not in USES_DASK:
         without_dask()

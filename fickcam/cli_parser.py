@@ -28,7 +28,15 @@ def _verbosity(command) -> None:
                             "no summary")
 
 
-def _parser() -> argparse.ArgumentParser:
+def build_parser() -> argparse.ArgumentParser:
+    """The ``fickcam`` argument parser: every command, its options, help and examples.
+
+    Returns
+    -------
+    argparse.ArgumentParser
+        A new parser (the command line, the generated command-line reference and the tests
+        build theirs from here).
+    """
     parser = argparse.ArgumentParser(
         prog="fickcam",
         description="Moisture uptake in polymer/composite cams, followers and four-bar "
@@ -227,7 +235,3 @@ def _sweep_command(sub) -> None:
     group.add_argument("--scheduler", help="address of a running dask scheduler, tcp://HOST:PORT")
     sweep.add_argument("-o", "--output", required=True)
 
-
-def build_parser() -> argparse.ArgumentParser:
-    """The ``fickcam`` argument parser (for the generated command-line reference)."""
-    return _parser()

@@ -7,7 +7,7 @@ from pathlib import Path
 import numpy as np
 
 from .errors import InputError
-from .query import _csv_cell, to_records
+from .query import csv_cell, to_records
 from .store import write_text_atomically
 
 
@@ -47,8 +47,8 @@ def export_csv(ds, path, variables=None) -> Path:
         units = ds[name].attrs.get("units", "")
         for row in rows:
             cells = [name, units]
-            cells += [_csv_cell(row[position[c]]) if c in position else "" for c in header_dims]
-            cells.append(_csv_cell(row[-1]))
+            cells += [csv_cell(row[position[c]]) if c in position else "" for c in header_dims]
+            cells.append(csv_cell(row[-1]))
             lines.append(",".join(cells))
     path = Path(path)
     write_text_atomically(path, "\n".join(lines) + "\n")

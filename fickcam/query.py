@@ -365,7 +365,7 @@ def format_result(array, variable: str, fmt: str = "table", against: str | None 
                           | ({"drift_against": against} if against else {}))
     if fmt == "csv":  # tidy: the selected values as columns of their own
         lines = [",".join([*fixed, *header])]
-        lines += [",".join(_csv_cell(v) for v in [*fixed.values(), *row]) for row in rows]
+        lines += [",".join(csv_cell(v) for v in [*fixed.values(), *row]) for row in rows]
         return "\n".join(lines)
     if fmt != "table":
         raise InputError(f"unknown format {fmt!r} (table, csv or json)")
@@ -465,7 +465,19 @@ def _is_offset(unit: str) -> bool:
         return False
 
 
-def _csv_cell(value) -> str:
+def csv_cell(value) -> str:
+    """A CSV cell that reads back as the same value: a float at full precision (its repr).
+
+    Parameters
+    ----------
+    value : float, int or str
+        The value, in the unit of its column.
+
+    Returns
+    -------
+    str
+        The cell's text.
+    """
     return repr(value) if isinstance(value, float) else str(value)
 
 

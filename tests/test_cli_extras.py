@@ -9,7 +9,8 @@ import xarray as xr
 import yaml
 
 from fickcam import example_scenes
-from fickcam.cli import _parser, main
+from fickcam.cli import main
+from fickcam.cli_parser import build_parser
 from fickcam.query import format_result, select
 from fickcam.reporting import sweep_summary
 from fickcam.sweep.spec import load_sweep
@@ -49,7 +50,7 @@ def test_examples_are_packaged_in_the_wheel():
 
 
 def test_every_subcommand_help_has_a_description_and_an_example():
-    parser = _parser()
+    parser = build_parser()
     commands = next(a for a in parser._actions if isinstance(a, argparse._SubParsersAction))
     for name, sub in commands.choices.items():
         assert sub.description and len(sub.description) > 30, name

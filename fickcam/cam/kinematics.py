@@ -285,7 +285,7 @@ def motion_function(design: CamDesign, state: CamState):
     if design.kind == "profile":
         from .profile import aged_profile_motion
 
-        arm = {} if design.arm is None else _grown_arm(design, state.arm_strain)
+        arm = {} if design.arm is None else grown_arm(design, state.arm_strain)
         motion = aged_profile_motion(design.profile, state.cam_strain_x, state.cam_strain_y,
                                      design.roller_radius * (1 + state.roller_strain),
                                      design.offset, design.follower_kind == "flat", **arm)
@@ -298,9 +298,23 @@ def motion_function(design: CamDesign, state: CamState):
                                                                    orders)), extremes
 
 
-def _grown_arm(design: CamDesign, strain: float) -> dict:
-    """``arm`` (length and face offset grown by 1 + strain) and its dry ``base`` angle, for
-    :func:`fickcam.cam.profile.profile_motion`."""
+def grown_arm(design: CamDesign, strain: float) -> dict:
+    """The swinging arm grown by the follower's swelling, and its dry base angle.
+
+    Parameters
+    ----------
+    design : CamDesign
+        The dry design with its arm (lengths [m]).
+    strain : float
+        The follower's swelling strain along the arm [-].
+
+    Returns
+    -------
+    dict
+        ``arm``: the :class:`~fickcam.cam.arm.Arm` with its length and face offset [m]
+        grown by 1 + strain; ``base``: its dry base angle [rad]; the keywords of
+        :func:`fickcam.cam.profile.profile_motion`.
+    """
     from dataclasses import replace
 
     from . import arm

@@ -104,7 +104,7 @@ def cam_response(design: CamDesign, state: CamState, cam_angle,
         phi = dyn.pressure_angle(height, d1, design.offset)
         rho_pitch = dyn.pitch_radius_of_curvature(height, d1, d2, design.offset)
         rho = rho_pitch - roller
-    notices += _geometry_notices(design, theta, phi, rho_pitch, rho, roller)
+    notices += geometry_notices(design, theta, phi, rho_pitch, rho, roller)
 
     velocity, acceleration = d1 * omega, d2 * omega ** 2
     holding = _holding_force(design, mass, height)
@@ -117,7 +117,7 @@ def cam_response(design: CamDesign, state: CamState, cam_angle,
     lever = np.abs(cx * np.sin(phi) - cy * np.cos(phi))
     jump = continuous_jump_speed(design, motion, mass, theta, d2, holding) \
         if jump_speed is None else jump_speed
-    notices += _jump_notices(theta, axial, jump, omega)
+    notices += jump_notices(theta, axial, jump, omega)
 
     if design.follower_kind == "knife":
         notices.append(note("knife-edge follower: Hertz line-contact stress is not defined"))
@@ -414,9 +414,28 @@ def _where(theta, index) -> str:
     return f"{math.degrees(theta[index]):.4g} deg"
 
 
-def _geometry_notices(design, theta, phi, rho_pitch, rho, roller) -> list[str]:
+def geometry_notices(design: CamDesign, theta, phi, rho_pitch, rho, roller) -> list[str]:
     """Undercut, cusp, small curvature and steep pressure angle (Norton ch. 8; a flat-face
-    arm has a pressure angle too)."""
+    arm has a pressure angle too).
+
+    Parameters
+    ----------
+    design : CamDesign
+        The design (its follower kind and arm).
+    theta : numpy.ndarray
+        Cam angles [rad].
+    phi : numpy.ndarray
+        Pressure angle at them [rad].
+    rho_pitch, rho : numpy.ndarray
+        Radius of curvature of the pitch curve and of the working profile [m].
+    roller : float
+        The (aged) roller radius [m].
+
+    Returns
+    -------
+    list of str
+        One sentence per problem found, at the first angle where it occurs.
+    """
     notices = []
     if design.follower_kind == "flat":
         bad = np.nonzero(rho <= 0)[0]
@@ -443,7 +462,26 @@ def _geometry_notices(design, theta, phi, rho_pitch, rho, roller) -> list[str]:
     return notices
 
 
-def _jump_notices(theta, axial, jump, omega) -> list[str]:
+def jump_notices(theta, axial, jump: float, omega: float) -> list[str]:
+    """The notice that the follower jumps, where the running speed reaches the jump speed.
+
+    Parameters
+    ----------
+    theta : numpy.ndarray
+        Cam angles [rad].
+    axial : numpy.ndarray
+        The force the cam must supply at them [N] (an arm's torque [N m]): the notice
+        names the angle where it is least.
+    jump : float
+        The jump speed [rad/s].
+    omega : float
+        The running speed [rad/s].
+
+    Returns
+    -------
+    list of str
+        One sentence, or none where the running speed is below the jump speed.
+    """
     if omega < jump:
         return []
     k = int(np.argmin(axial))

@@ -25,9 +25,9 @@ import numpy as np
 from ..response import Response
 from . import arm as geo
 from .design import CamDesign, CamState
-from .kinematics import _grown_arm, cam_frame_point, motion_function
-from .model import (_geometry_notices, _jump_notices, aged_base_circle, cam_response,
-                    continuous_jump_speed, hertz_contact)
+from .kinematics import cam_frame_point, grown_arm, motion_function
+from .model import (aged_base_circle, cam_response, continuous_jump_speed, geometry_notices,
+                    hertz_contact, jump_notices)
 from .motion import joint_notices
 
 
@@ -57,7 +57,7 @@ def _aged_arm(design: CamDesign, state: CamState) -> tuple[geo.Arm, float]:
     """The arm with its length and face offset grown by the follower's strain along it and
     its inertia by the follower's moisture mass ratio m/m_dry, and its dry base angle."""
     ratio = 1.0 if state.follower_mass is None else state.follower_mass / design.follower_mass
-    grown = _grown_arm(design, state.arm_strain)
+    grown = grown_arm(design, state.arm_strain)
     return replace(grown["arm"], inertia=grown["arm"].inertia * ratio), grown["base"]
 
 
@@ -112,7 +112,7 @@ def arm_response(design: CamDesign, state: CamState, cam_angle) -> Response:
     contact = _arm_contact(design, state, psi, d1, d2)
     roller = design.roller_radius * (1 + state.roller_strain)
     notices = joint_notices(design.segments) if design.kind == "motion" else []
-    notices += _geometry_notices(design, theta, contact.pressure_angle, contact.pitch_radius,
+    notices += geometry_notices(design, theta, contact.pressure_angle, contact.pitch_radius,
                                  contact.radius, roller)
 
     holding = _holding_torque(arm, psi)
@@ -126,7 +126,7 @@ def arm_response(design: CamDesign, state: CamState, cam_angle) -> Response:
                        f"at {math.degrees(theta[stuck[0]]):.4g} deg")
     jump = continuous_jump_speed(design, motion, arm.inertia, theta, d2, holding,
                                  holding_of=lambda angle: _holding_torque(arm, angle))
-    notices += _jump_notices(theta, needed, jump, omega)
+    notices += jump_notices(theta, needed, jump, omega)
     stress, shear, shear_depth = hertz_contact(design, state, force, contact.radius, roller)
     sliding = design.follower_kind == "flat"
     friction = design.friction_coefficient * np.maximum(force, 0.0) * sliding

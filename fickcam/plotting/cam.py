@@ -42,10 +42,29 @@ def kinematic_rows(ds):
     return KINEMATICS if "follower_displacement" in ds else ARM_KINEMATICS
 
 
-def _panels(plt, ds, rows, title, drift=None):
+def angle_panels(plt, ds, rows, title: str, drift=None):
     """One panel per (variable, label, scale) in ``rows`` against the cam angle, a line per
     age, and, when ``drift`` = (variable, label, scale) and the result holds its design,
-    a last panel of its change from the design (invisible at full scale)."""
+    a last panel of its change from the design (invisible at full scale).
+
+    Parameters
+    ----------
+    plt : module
+        ``matplotlib.pyplot``.
+    ds : xarray.Dataset
+        The result, over (time, cam_angle) in SI.
+    rows : sequence of tuple
+        (variable, axis label, scale from SI to the label's unit) per panel.
+    title : str
+        The figure's title.
+    drift : tuple, optional
+        (variable, label, scale) of the panel of change from the design.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        The figure (not saved).
+    """
     present = [r for r in rows if r[0] in ds]
     with_drift = drift is not None and design_name(drift[0]) in ds
     n = len(present) + with_drift
@@ -90,7 +109,7 @@ def plot_kinematics(ds, outdir, save=save_figure) -> list[Path]:
     outdir.mkdir(parents=True, exist_ok=True)
     name = ds.attrs.get("scene_name", "")
     rows = kinematic_rows(ds)
-    written = [save(_panels(plt, ds, rows, f"{name}: follower motion", drift=rows[0]),
+    written = [save(angle_panels(plt, ds, rows, f"{name}: follower motion", drift=rows[0]),
                     outdir / "cam_kinematics.png")]
     written.append(_drift(plt, ds, outdir, name, rows, save))
     if "profile_x" in ds:
@@ -205,7 +224,7 @@ def plot_dynamics(ds, outdir, save=save_figure) -> list[Path]:
     outdir = Path(outdir)
     outdir.mkdir(parents=True, exist_ok=True)
     name = ds.attrs.get("scene_name", "")
-    written = [save(_panels(plt, ds, DYNAMICS, f"{name}: forces", drift=DYNAMICS[-1]),
+    written = [save(angle_panels(plt, ds, DYNAMICS, f"{name}: forces", drift=DYNAMICS[-1]),
                     outdir / "cam_dynamics.png")]
     fig, (top, bottom) = plt.subplots(2, 1, figsize=(7.5, 5.5), sharex=True)
     t = days(ds)

@@ -8,8 +8,8 @@ from pathlib import Path
 import numpy as np
 
 from .common import days, figure, save_figure
-from .cam import _panels
-from .fields import _cell_triangulation
+from .cam import angle_panels
+from .fields import cell_triangulation
 
 CONTACT = (("elastic_deflection", "deflection [µm]", 1e6),
            ("elastic_stress_tensile", "largest tension [MPa]", 1e-6),
@@ -40,7 +40,7 @@ def plot(ds, outdir, save=save_figure) -> list[Path]:
     name = ds.attrs.get("scene_name", "")
     written = []
     if "elastic_deflection" in ds:
-        fig = _panels(plt, ds, CONTACT, f"{name}: cam plate under the contact force")
+        fig = angle_panels(plt, ds, CONTACT, f"{name}: cam plate under the contact force")
         written.append(save(fig, outdir / "elastic_contact.png"))
     if "swelling_stress_tensile" in ds:
         written.append(_over_ageing(plt, ds, outdir, name, save))
@@ -85,7 +85,7 @@ def _field(plt, ds, part, outdir: Path, name: str, save) -> Path:
     when = days(ds)[int(np.nanargmin(worst))]
     limit = float(np.max(np.abs(stress[keep]))) * 1e-6 or 1.0
     fig, ax = plt.subplots(figsize=(7.5, 6))
-    shown = ax.tripcolor(_cell_triangulation(x, y), stress[keep] * 1e-6, shading="gouraud",
+    shown = ax.tripcolor(cell_triangulation(x, y), stress[keep] * 1e-6, shading="gouraud",
                          cmap="RdBu_r", vmin=-limit, vmax=limit)
     fig.colorbar(shown, ax=ax, label="principal stress of larger magnitude [MPa]")
     ax.set_aspect("equal")

@@ -77,7 +77,7 @@ def _plot_part(ds, part, field, coords, outdir: Path, save) -> Path:
         fig, panels = plt.subplots(1, len(indices), figsize=(3.2 * len(indices), 3.4),
                                    squeeze=False)
         first, second = axes[:2]
-        triangulation = _cell_triangulation(coords[first][valid] * 1e3, coords[second][valid] * 1e3)
+        triangulation = cell_triangulation(coords[first][valid] * 1e3, coords[second][valid] * 1e3)
         for ax, k in zip(panels[0], indices):
             image = ax.tripcolor(triangulation, field[k, valid], shading="gouraud", vmin=lo, vmax=hi)
             ax.set_aspect("equal")
@@ -89,10 +89,24 @@ def _plot_part(ds, part, field, coords, outdir: Path, save) -> Path:
     return save(fig, outdir / f"fields_{part}.png")
 
 
-def _cell_triangulation(x, y, stretch: float = 4.0):
+def cell_triangulation(x, y, stretch: float = 4.0):
     """Delaunay triangulation of the cell centres with the triangles that bridge
     holes and concave notches (an edge much longer than the local cell size)
-    masked, so a bore is drawn empty rather than interpolated across."""
+    masked, so a bore is drawn empty rather than interpolated across.
+
+    Parameters
+    ----------
+    x, y : numpy.ndarray
+        The cell centres [any one length unit, the same for both].
+    stretch : float
+        A triangle is masked where its longest edge exceeds this many times the largest
+        of its corners' shortest edges [-].
+
+    Returns
+    -------
+    matplotlib.tri.Triangulation
+        The triangulation, with its mask set.
+    """
     import matplotlib.tri as mtri
 
     triangulation = mtri.Triangulation(x, y)
