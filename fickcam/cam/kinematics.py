@@ -204,14 +204,14 @@ def stacked_state(states) -> CamState:
     Returns
     -------
     CamState
-        A state whose cam, roller and arm strains [-] are arrays of shape (n, 1); its
-        other fields are those of a default state.
+        A state whose cam and roller strains [-], the ones the closed forms read, are
+        arrays of shape (n, 1); its other fields are those of a default state.
     """
     def column(name):
         return np.array([getattr(state, name) for state in states], float)[:, None]
 
     return CamState(cam_strain_x=column("cam_strain_x"), cam_strain_y=column("cam_strain_y"),
-                    roller_strain=column("roller_strain"), arm_strain=column("arm_strain"))
+                    roller_strain=column("roller_strain"))
 
 
 def follower_heights(design: CamDesign, state: CamState, theta):

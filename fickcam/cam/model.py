@@ -8,6 +8,10 @@ geometry: in closed form where the aged motion is the design motion scaled by
 the cam, as Singh & Sanyal (2017) scale their pitch circle and lift), otherwise
 geometrically (:mod:`fickcam.cam.geometry`). The follower's frame (offset, spring seat)
 does not swell, so a swollen base circle also compresses the spring.
+
+The jump speed is searched between the angle grid's points (:func:`continuous_jump_speed`);
+where the aged motion is in closed form, for all ageing times at once
+(:func:`closed_form_jump_speeds`, whose speeds :func:`cam_response` is then given).
 """
 from __future__ import annotations
 
