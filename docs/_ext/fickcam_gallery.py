@@ -46,7 +46,7 @@ def draw_figures(scene: Path, outdir: Path) -> list[Path]:
         return sorted(outdir.glob("*.png"))
     for old in outdir.glob("*.png"):
         old.unlink()
-    return sorted(plot(fickcam.run(fickcam.load_scene(scene)), outdir, "all"))
+    return sorted(plot(fickcam.run(fickcam.load_scene(scene)), outdir, "all").paths)
 
 
 def scene_page(scene: Path, shows: str, figures: list[Path], folder: Path) -> str:
