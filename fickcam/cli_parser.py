@@ -24,8 +24,8 @@ def _verbosity(command) -> None:
     group.add_argument("-v", "--verbose", action="count", default=0,
                        help="also debug details of the work")
     group.add_argument("-q", "--quiet", action="count", default=0,
-                       help="no notes and no progress bar (the summary stays); -qq: errors only, "
-                            "no summary")
+                       help="errors only on stderr: no warnings, notes or progress bar (the "
+                            "summary on stdout stays); -qq: no summary either")
 
 
 def build_parser() -> argparse.ArgumentParser:

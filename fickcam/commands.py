@@ -44,7 +44,8 @@ def notices_line(notices, quiet: int) -> str:
     notices : iterable of str
         The run's notices.
     quiet : int
-        The ``-q`` count: with one or more, the notes were hidden and the line says so.
+        The ``-q`` count: with one or more, the warnings and notes were hidden and the line
+        says so.
 
     Returns
     -------
@@ -58,8 +59,8 @@ def notices_line(notices, quiet: int) -> str:
         return "  no warnings or notes"
     warnings = f"{counts['warning']} warning(s)" if counts["warning"] else ""
     notes = f"{counts['note']} note(s)" if counts["note"] else ""
-    if quiet and notes:
-        said = f"{warnings} above, " * bool(warnings) + f"{notes} hidden by -q"
+    if quiet:
+        said = " and ".join(text for text in (warnings, notes) if text) + " hidden by -q"
     else:
         said = " and ".join(text for text in (warnings, notes) if text) + " above"
     return f"  {said} (all kept in the result's notices attribute)"

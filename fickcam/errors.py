@@ -22,6 +22,40 @@ class FickcamError(Exception):
     """
 
 
+class UserInputError(FickcamError):
+    """A mistake in what the user gave (a scene, a path, an argument), told by its message
+    alone: IPython and Jupyter show these without a traceback (``_render_traceback_``), as
+    the command line does; the frames inside fickcam would only hide the file, line and
+    key. Every other error keeps its full traceback.
+
+    Parameters
+    ----------
+    *args, **kwargs
+        The message (the arguments of :class:`Exception`).
+    """
+
+    def _render_traceback_(self) -> list[str]:
+        """What IPython shows for this error: ``SceneError: FILE:LINE key: reason``, one
+        line per problem, no frames."""
+        first, *rest = str(self).splitlines() or [""]
+        return [f"\x1b[0;31m{type(self).__name__}\x1b[0m: {first}", *rest]
+
+
+class FickcamWarning(UserWarning):
+    """A result that is computed but needs attention (a follower that jumps, a part past its
+    wet glass transition, a limit search less accurate than asked).
+
+    Python users get these through :mod:`warnings` and filter them the usual way, e.g.
+    ``warnings.simplefilter("ignore", fickcam.FickcamWarning)``; the command line shows
+    them as ``fickcam: warning: ...`` lines.
+
+    Parameters
+    ----------
+    *args
+        The message (the arguments of :class:`Warning`).
+    """
+
+
 @dataclass(frozen=True)
 class Problem:
     """One thing wrong with an input file: where it is and why it is wrong.
@@ -51,7 +85,7 @@ class Problem:
         return f"{where}{key}: {self.reason}"
 
 
-class SceneError(FickcamError):
+class SceneError(UserInputError):
     """A scene (or sweep) file is invalid; carries one :class:`Problem` per fault.
 
     Parameters
@@ -65,7 +99,7 @@ class SceneError(FickcamError):
         super().__init__("\n".join(str(p) for p in self.problems))
 
 
-class InputError(FickcamError):
+class InputError(UserInputError):
     """Bad input that is not a scene file (a result path, a query argument...).
 
     Parameters

@@ -11,12 +11,18 @@ A problem in an input file keeps the compiler's ``FILE:LINE key: reason`` form; 
 line starts with ``fickcam:`` and its level. The levels are the :mod:`logging` module's:
 ``error`` (ERROR: the command failed), ``warning`` (WARNING: the result is computed but
 something in it needs attention), ``note`` (INFO: what the run found, for information) and
-``debug`` (DEBUG: details of the work, shown with ``-v``). ``-q`` hides the notes and the
-progress bar, ``-qq`` also the warnings and the summary.
+``debug`` (DEBUG: details of the work, shown with ``-v``). ``-q`` leaves the errors only
+on stderr (no warnings, notes or progress bar), ``-qq`` also drops the summary on stdout.
 
 Notices a run collects (``Response.notices``, the result's ``notices`` attribute) are plain
-strings and warn; a notice made with :func:`note` informs. :func:`log_notices` logs each at
-its level.
+strings and warn; a notice made with :func:`note` informs. :func:`log_notices` reports each
+at its level.
+
+Who hears what: a warning (:func:`warn`) reaches a Python caller as a
+:class:`~fickcam.errors.FickcamWarning` through :mod:`warnings`, and the command line as a
+``fickcam: warning:`` line; notes and debug details go to the ``fickcam`` logger (INFO and
+DEBUG), which says nothing until its user switches it on (``logging.basicConfig`` or a
+handler of their own). ``-q`` leaves only the errors.
 
 Progress bars (:func:`progress_bar`) appear only on a terminal (or as a notebook widget),
 never as carriage-return frames in a log or a pipe.
@@ -24,17 +30,27 @@ never as carriage-return frames in a log or a pipe.
 from __future__ import annotations
 
 import contextlib
+import contextvars
 import logging
+import os
 import sys
+import warnings
+
+from .errors import FickcamWarning
 
 PROGRAM = "fickcam"
+
+#: True while the command line shows the messages (:func:`terminal_messages`): warnings are
+#: then log records on its stderr, not Python warnings
+_ON_TERMINAL = contextvars.ContextVar("fickcam_on_terminal", default=False)
 
 #: the word each logging level is shown with
 LABELS = {logging.DEBUG: "debug", logging.INFO: "note", logging.WARNING: "warning",
           logging.ERROR: "error", logging.CRITICAL: "error"}
 
-#: the level of fickcam's logger for each verbosity (``-v``: +1, ``-q``: -1, ``-qq``: -2)
-LEVELS = {1: logging.DEBUG, 0: logging.INFO, -1: logging.WARNING, -2: logging.ERROR}
+#: the level of fickcam's logger for each verbosity (``-v``: +1, ``-q``: -1, ``-qq``: -2):
+#: ``-q`` leaves the errors only
+LEVELS = {1: logging.DEBUG, 0: logging.INFO, -1: logging.ERROR, -2: logging.ERROR}
 
 
 def line(level: int, message: str) -> str:
@@ -135,18 +151,51 @@ def restated(notice: str, text: str) -> str:
     return Note(text) if isinstance(notice, Note) else text
 
 
+def warn(message: str, *args) -> None:
+    """Report a warning: a :class:`~fickcam.errors.FickcamWarning` to a Python caller
+    (pointing at the caller's line, not fickcam's), a ``fickcam: warning:`` line on the
+    command line (:func:`terminal_messages`).
+
+    Parameters
+    ----------
+    message : str
+        The warning; with ``args``, a ``%``-format (as :mod:`logging` takes it).
+    *args
+        Values for the ``%``-format.
+    """
+    text = message % args if args else message
+    if _ON_TERMINAL.get():
+        logging.getLogger(PROGRAM).warning("%s", text)
+    else:
+        warnings.warn(text, FickcamWarning, stacklevel=_callers_level())
+
+
+def _callers_level() -> int:
+    """The ``stacklevel`` of :func:`warnings.warn`, called from :func:`warn`, that names the
+    first frame outside the fickcam package (the user's line)."""
+    package = os.path.dirname(os.path.abspath(__file__)) + os.sep
+    frame, level = sys._getframe(1), 1  # noqa: SLF001 (the standard way to walk the stack)
+    while frame is not None and frame.f_code.co_filename.startswith(package):
+        frame, level = frame.f_back, level + 1
+    return level
+
+
 def log_notices(logger: logging.Logger, notices) -> None:
-    """Log each notice at its level (:func:`level_of`).
+    """Report each notice at its level (:func:`level_of`): warnings through :func:`warn`,
+    notes on ``logger`` at INFO.
 
     Parameters
     ----------
     logger : logging.Logger
-        Where the notices go.
+        Where the notes go.
     notices : iterable of str
         The notices, in order.
     """
     for notice in notices:
-        logger.log(level_of(notice), "%s", notice)
+        if level_of(notice) >= logging.WARNING:
+            warn(notice)
+        else:
+            logger.log(level_of(notice), "%s", notice)
 
 
 def count_levels(notices) -> dict[str, int]:
@@ -216,9 +265,11 @@ def terminal_messages(verbosity: int = 0):
     if quiet_root:
         root.addHandler(others)
         root.setLevel(logging.WARNING)
+    on_terminal = _ON_TERMINAL.set(True)
     try:
         yield
     finally:
+        _ON_TERMINAL.reset(on_terminal)
         ours.removeHandler(handler)
         ours.setLevel(saved[0])
         ours.propagate = saved[1]
@@ -234,8 +285,14 @@ COUNT_BAR = "{desc}: {n_fmt}/{total_fmt} {unit} [{elapsed}{postfix}]"
 
 
 def progress_bar(total: int, *, enabled: bool = True, eta: bool = True, **options):
-    """A tqdm bar on stderr, shown only when ``enabled`` and stderr is a terminal (or as a
-    widget in a notebook): never as ``\\r`` frames in a log or a pipe.
+    """A progress bar: tqdm's text bar on a terminal's stderr, one bar in a notebook (a widget
+    with ipywidgets, else text that redraws in place), and none in a log or a pipe.
+
+    In a notebook the bar is one output that each step redraws; inside
+    :func:`progress_summary` the bars of a task share it, and it is replaced by the task's
+    summary line at the end, so a saved notebook keeps that line, not a stale frame.
+    tqdm's own notebook detection (``tqdm.auto``) is not used: without ipywidgets it warns
+    (``TqdmWarning: IProgress not found``) on import.
 
     Parameters
     ----------
@@ -249,14 +306,152 @@ def progress_bar(total: int, *, enabled: bool = True, eta: bool = True, **option
         the time spent, not a remaining time it cannot know.
     **options
         Passed to tqdm (``desc``, ``unit``, ``leave``, ``initial``...).
-    """
-    from tqdm.asyncio import tqdm as console_bar
-    from tqdm.auto import tqdm
 
-    widget = tqdm is not console_bar  # tqdm.auto chose a notebook widget
-    shown = enabled and (widget or _is_terminal(sys.stderr))
+    Returns
+    -------
+    tqdm.std.tqdm
+        The bar (disabled where nothing is shown); use it as tqdm's.
+    """
+    from tqdm.std import tqdm
+
     options["bar_format"] = ETA_BAR if eta else COUNT_BAR
-    return tqdm(total=total, disable=not shown, **options)
+    session = _SESSION.get()
+    place = notebook_kind() if enabled else None
+    if place is None:
+        shown = enabled and _is_terminal(sys.stderr)
+        bar = tqdm(total=total, disable=not shown, file=sys.stderr, **options)
+    else:
+        bar = _notebook_bar(place, total, session, options)
+    if session is not None and enabled:
+        session.steps.append(f"{total} {options.get('unit', 'steps')}")
+    return bar
+
+
+def notebook_kind() -> str | None:
+    """Where a bar is shown in this process: ``"widget"`` in a Jupyter kernel with
+    ipywidgets, ``"text"`` in one without, None outside a kernel (a terminal, a script,
+    IPython in a terminal).
+
+    Returns
+    -------
+    str or None
+        ``"widget"``, ``"text"`` or None.
+    """
+    import importlib.util
+
+    shell = getattr(sys.modules.get("IPython"), "get_ipython", lambda: None)()
+    if shell is None or "IPKernelApp" not in getattr(shell, "config", {}):
+        return None
+    return "widget" if importlib.util.find_spec("ipywidgets") is not None else "text"
+
+
+class OutputLine:
+    """One line of text as a notebook output (``text/plain``): a task's summary, or a text
+    progress bar's latest frame.
+
+    Parameters
+    ----------
+    text : str
+        The line.
+    """
+
+    def __init__(self, text: str):
+        self.text = text
+
+    def __repr__(self) -> str:
+        return self.text
+
+
+class _FrameWriter:
+    """A file for tqdm's text bar that shows its latest frame in a notebook output, in place
+    (``\\r`` frames would pile up in the saved notebook)."""
+
+    def __init__(self, handle):
+        self.handle = handle
+
+    def write(self, text: str) -> None:
+        frame = text.replace("\r", "").strip()
+        if frame:
+            self.handle.update(OutputLine(frame))
+
+    def flush(self) -> None:
+        """Nothing is buffered."""
+
+
+def _notebook_bar(place: str, total: int, session, options: dict):
+    """A bar shown in one notebook output (the session's, else its own)."""
+    from IPython.display import display
+
+    handle = session.handle if session is not None else None
+    if handle is None:
+        handle = display(OutputLine(options.get("desc", "")), display_id=True)
+        if session is not None:
+            session.handle = handle
+    if place == "widget":
+        from tqdm.notebook import tqdm as widget_bar
+
+        options.pop("bar_format")  # the widget draws its own bar
+        bar = widget_bar(total=total, display=False, **options)
+        handle.update(bar.container)
+        return bar
+    from tqdm.std import tqdm
+
+    return tqdm(total=total, file=_FrameWriter(handle), ncols=100, **options)
+
+
+#: the task whose progress bars share one place (:func:`progress_summary`)
+_SESSION = contextvars.ContextVar("fickcam_progress", default=None)
+
+
+class _Session:
+    """The bars of one task and the notebook output they share."""
+
+    def __init__(self, what: str):
+        import time
+
+        self.what, self.started, self.steps, self.handle = what, time.perf_counter(), [], None
+
+    def summary(self) -> str:
+        import time
+
+        took = time.perf_counter() - self.started
+        return f"{PROGRAM}: {self.what}: {', '.join(self.steps) or 'done'} in {took:.3g} s"
+
+
+@contextlib.contextmanager
+def progress_summary(what: str, enabled: bool = True):
+    """While inside, the progress bars of one task (``what``: ``run singh2017-cam``) share
+    one place; on leaving, one line says what ran and how long it took: ``fickcam: run
+    singh2017-cam: 2 parts, 5 ageing times in 3.1 s``.
+
+    In a notebook the line replaces the bars' output, so it stays in the saved notebook;
+    elsewhere it is written on stderr. Nothing happens when ``enabled`` is False or on the
+    command line, which prints its own summary.
+
+    Parameters
+    ----------
+    what : str
+        The task, as the summary names it.
+    enabled : bool
+        Whether progress was asked for.
+    """
+    if not enabled or _ON_TERMINAL.get() or _SESSION.get() is not None:
+        yield
+        return
+    session = _Session(what)
+    token = _SESSION.set(session)
+    try:
+        yield
+    finally:
+        _SESSION.reset(token)
+        if session.handle is not None:
+            session.handle.update(OutputLine(session.summary()))
+        elif notebook_kind() is not None:
+            from IPython.display import display
+
+            display(OutputLine(session.summary()))
+        else:
+            print(session.summary(), file=sys.stderr)
 
 
 def _is_terminal(stream) -> bool:

@@ -93,7 +93,7 @@ def select(ds, variable: str, *, time=None, part=None, cam_angle=None, crank_ang
     array.attrs["selection"] = ", ".join(answered)
     array.attrs["selected"] = selected
     if "time" in ds.coords:  # the result's last ageing time: its times' unit (format_result)
-        array.attrs["time_span"] = float(ageing_seconds(ds)[-1])
+        array.attrs["time_span_s"] = float(ageing_seconds(ds)[-1])  # [s], named with its unit
     return array
 
 
@@ -349,7 +349,7 @@ def format_result(array, variable: str, fmt: str = "table", against: str | None 
     values, unit = shown_values(array, variable, units, drift=against is not None)
     columns, rows = to_records(array.copy(data=values) if array.dtype.kind in "fc" else array)
     label = variable if against is None else f"{variable} drift vs {against}"
-    span = array.attrs.get("time_span")  # one unit of time for the table, from the result's
+    span = array.attrs.get("time_span_s")  # one unit of time for the table, from the result's
     time_name, days = time_unit(span) if span is not None else ("d", 86400.0)
     days /= 86400.0  # (the rows hold days)
     fixed = array.attrs.get("selected", {})

@@ -342,8 +342,9 @@ def summary(ds, *, notices: bool = True) -> str:
         The summary, without a trailing newline.
     """
     seconds = ageing_seconds(ds)
+    wall = float(ds.attrs.get("wall_time_s", ds.attrs.get("wall_time", 0.0)))  # older files
     lines = [f"{ds.attrs.get('scene_name', '')}: {len(seconds)} ageing times to "
-             f"{format_duration(seconds[-1])}, wall time {float(ds.attrs.get('wall_time', 0)):.2f} s"]
+             f"{format_duration(seconds[-1])}, wall time {wall:.2f} s"]
     diffusion = ds.attrs.get("diffusion", {})
     if isinstance(diffusion, dict) and diffusion:
         lines.append("  diffusion: " + ", ".join(

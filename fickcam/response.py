@@ -22,3 +22,25 @@ class Response:
 
     variables: dict[str, np.ndarray] = field(default_factory=dict)
     notices: list[str] = field(default_factory=list)
+
+
+def peak(values: np.ndarray, axis: int = -1) -> np.ndarray:
+    """The largest finite value along ``axis``; NaN where there is none (an ageing time past
+    a part's wet glass transition), told by the array, not by a numpy warning.
+
+    Parameters
+    ----------
+    values : numpy.ndarray
+        E.g. a force over (time, cam angle) [any unit].
+    axis : int
+        The axis reduced.
+
+    Returns
+    -------
+    numpy.ndarray
+        The peaks [``values``' unit], NaN where ``values`` holds nothing finite.
+    """
+    values = np.asarray(values, float)
+    finite = np.isfinite(values)
+    largest = np.max(np.where(finite, values, -np.inf), axis=axis)
+    return np.where(finite.any(axis=axis), largest, np.nan)

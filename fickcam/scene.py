@@ -18,6 +18,7 @@ from pydantic import ValidationError
 
 from .errors import Problem, SceneError, format_duration
 from .limits import parse_limit
+from .messages import warn
 from .plausibility import Findings, geometry_findings, history_findings
 from .scene_models import (  # noqa: F401  (re-exported: fickcam.scene is their public home)
     DesignSection,
@@ -110,6 +111,22 @@ class Scene:
     @property
     def name(self) -> str:
         return self.model.name
+
+    def __repr__(self) -> str:
+        from .scene_display import scene_text
+
+        return scene_text(self.name, self.file, self._as_written())
+
+    def _repr_html_(self) -> str:
+        from .scene_display import scene_html
+
+        return scene_html(self.name, self.file, self._as_written())
+
+    def _as_written(self) -> dict:
+        """The scene's mapping as its user wrote it (units as text)."""
+        if self.document is not None:
+            return self.document.data
+        return yaml.safe_load(self.text) or {} if self.text else {}
 
     def as_designed(self) -> "Scene":
         """This scene with its mechanisms as designed (``design:``), or itself."""
@@ -361,7 +378,7 @@ def validate_document(doc: YamlDocument, *, base_dir: Path) -> Scene:
         raise SceneError(problems)
     findings.warnings += _alias_notes(doc)
     for warning in findings.warnings:
-        log.warning("%s", warning)
+        warn("%s", warning)
     return Scene(model=model, file=doc.file, text=doc.text, base_dir=base_dir, document=doc,
                  materials=resolved, design_model=design_model, limits=limits,
                  warnings=findings.warnings)

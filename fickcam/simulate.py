@@ -15,7 +15,7 @@ from ._version import __version__
 from .blas import on_one_blas_thread
 from .environment import Environment, summary_edges
 from .errors import InputError, SceneError
-from .messages import log_notices, progress_bar
+from .messages import log_notices, progress_bar, progress_summary
 from .parts import Part, PartHistory, build_parts, diffusion_attrs, field_values, part_values
 from .scene import EveryStep, Scene, last_ageing_time, load_scene
 from .schema import VARIABLES, design_name
@@ -206,7 +206,9 @@ def run(scene, *, accuracy: float | None = None, progress: bool = False, setting
         Relative accuracy of the diffusion [-] (a fraction of the moisture swing); None:
         the scene's.
     progress : bool
-        Show a progress bar over the parts.
+        Show progress: a bar over the parts' diffusion, then one over the ageing times'
+        mechanisms, and at the end a line saying what ran and how long it took
+        (:func:`fickcam.messages.progress_summary`).
     settings : SolverSettings, optional
         The diffusion solvers' tuned limits; None: the defaults.
     diffusions : dict, optional
@@ -233,19 +235,20 @@ def run(scene, *, accuracy: float | None = None, progress: bool = False, setting
     started = _time.perf_counter()
     cache = run_cache(cache)
     scene = load_scene(scene)
-    environment = scene_environment(scene)
-    times = ageing_times(scene, environment)
-    parts = build_parts(scene)
-    ds, histories = _age(scene, environment, times, accuracy, progress, parts=parts,
-                         settings=settings, diffusions=diffusions, cache=cache)
-    if scene.limits:
-        limits, searched = _limits(ds, scene, environment, times, accuracy, parts, histories,
-                                   settings, cache)
-        notices = [*ds.attrs["notices"], *searched]
-        ds = ds.merge(limits, compat="override")
-        ds.attrs["notices"] = notices
-        ds.attrs["limits"] = {limit.variable: limit.as_attrs() for limit in scene.limits}
-    ds.attrs["wall_time"] = _time.perf_counter() - started
+    with progress_summary(f"run {scene.name}", progress):
+        environment = scene_environment(scene)
+        times = ageing_times(scene, environment)
+        parts = build_parts(scene)
+        ds, histories = _age(scene, environment, times, accuracy, progress, parts=parts,
+                             settings=settings, diffusions=diffusions, cache=cache)
+        if scene.limits:
+            limits, searched = _limits(ds, scene, environment, times, accuracy, parts,
+                                       histories, settings, cache)
+            notices = [*ds.attrs["notices"], *searched]
+            ds = ds.merge(limits, compat="override")
+            ds.attrs["notices"] = notices
+            ds.attrs["limits"] = {limit.variable: limit.as_attrs() for limit in scene.limits}
+    ds.attrs["wall_time_s"] = _time.perf_counter() - started  # [s], named with its unit
     return ds
 
 

@@ -73,7 +73,7 @@ def test_result_attributes_record_version_scene_diffusion_and_wall_time(fourbar)
     assert set(attrs["diffusion"]) == set(fourbar.part.values.tolist())
     for part, info in attrs["diffusion"].items():
         assert {"model", "error_estimate", "cells", "steps"} <= set(info)
-    assert float(attrs["wall_time"]) > 0
+    assert float(attrs["wall_time_s"]) > 0
 
 
 def test_ageing_time_is_in_days(fourbar):

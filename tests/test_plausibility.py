@@ -1,7 +1,6 @@
 """Bare numbers that are almost certainly unit slips are refused (or warned about) at their
 key's line with the likely unit, judged against their own part; plausible bare values,
 values with units and every shipped scene pass silently."""
-import logging
 import math
 import re
 import subprocess
@@ -108,16 +107,19 @@ def test_an_unusual_duration_is_named_when_the_output_times_do_not_fit_it(tmp_pa
     assert "did you mean '1000 h'?" in err and "ageing_times" not in err
 
 
-def test_an_unusual_bare_speed_is_warned_about_and_the_scene_still_loads(tmp_path, caplog):
+def test_an_unusual_bare_speed_is_warned_about_and_the_scene_still_loads(tmp_path):
     """600 rad/s puts the 27 mm rim of the eccentric cam at 16 m/s: possible, unusual."""
+    from fickcam import FickcamWarning
+
     path = _scene(tmp_path, "eccentric_cam.yaml", "speed: 300 rpm", "speed: 600")
-    with caplog.at_level(logging.WARNING, logger="fickcam"):
+    with pytest.warns(FickcamWarning) as said:
         scene = load_scene(path)
     assert scene.model.cam.speed == 600.0  # the value is kept: bare numbers stay SI
     [warning] = scene.warnings
     assert warning.key == "cam.speed" and "did you mean '600 rpm'?" in warning.reason
     assert warning.line == _line_of(path, "speed: 600")
-    assert str(warning) in caplog.text
+    assert [str(w.message) for w in said] == [str(warning)]
+    assert said[0].filename == __file__  # the warning points at the caller's line
 
 
 @pytest.mark.parametrize("example, old, new", [
@@ -132,18 +134,16 @@ def test_an_unusual_bare_speed_is_warned_about_and_the_scene_still_loads(tmp_pat
     ("singh2017_cam.yaml", "{deviation: 0.25 mm}", "{deviation: 0.00025}"),
     ("singh2017_cam.yaml", "{min: 1000 rpm}", "{min: 104.7}"),
 ])
-def test_plausible_bare_values_pass_without_a_warning(tmp_path, caplog, example, old, new):
+def test_plausible_bare_values_pass_without_a_warning(tmp_path, recwarn, example, old, new):
     path = _scene(tmp_path, example, old, new)
-    with caplog.at_level(logging.WARNING, logger="fickcam"):
-        scene = load_scene(path)
-    assert scene.warnings == [] and caplog.text == ""
+    scene = load_scene(path)
+    assert scene.warnings == [] and not recwarn.list
 
 
 @pytest.mark.parametrize("path", SCENES, ids=[p.name for p in SCENES])
-def test_every_shipped_scene_loads_without_a_warning(path, caplog):
-    with caplog.at_level(logging.WARNING, logger="fickcam"):
-        scene = load_scene(path)
-    assert scene.warnings == [] and caplog.text == ""
+def test_every_shipped_scene_loads_without_a_warning(path, recwarn):
+    scene = load_scene(path)
+    assert scene.warnings == [] and not recwarn.list
 
 
 def test_the_command_line_prints_one_line_and_no_traceback(tmp_path):

@@ -36,7 +36,7 @@ def write_sweep(folder: Path) -> Path:
 def without_timings(ds):
     """The result but for what measures time (case_wall_time, the sweep's wall_time)."""
     ds = ds.drop_vars("case_wall_time")
-    ds.attrs.pop("wall_time")
+    ds.attrs.pop("wall_time_s")
     return ds
 
 

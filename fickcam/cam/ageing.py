@@ -19,7 +19,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..mechanisms import over_ageing
-from ..response import Response
+from ..response import Response, peak
 from .design import CamState, design_from_scene
 from .kinematics import working_profile
 from .model import cam_response, closed_form_jump_speeds
@@ -164,11 +164,8 @@ def scene_response(section, histories: dict, times, angles, valid, on_step=lambd
         result.variables["wear_depth"] = np.concatenate([[0.0], np.cumsum(steps)])
     force = result.variables.get("contact_force")
     if force is not None:
-        result.variables["peak_contact_force"] = np.nanmax(force, axis=1)
-        result.variables["peak_cam_torque"] = np.nanmax(np.abs(result.variables["cam_torque"]), axis=1)
+        result.variables["peak_contact_force"] = peak(force, axis=1)
+        result.variables["peak_cam_torque"] = peak(np.abs(result.variables["cam_torque"]), axis=1)
         for name in ("contact_stress", "subsurface_shear_stress"):
-            stress = result.variables[name]
-            known = np.isfinite(stress).any(axis=1)
-            result.variables[f"peak_{name}"] = np.where(
-                known, np.max(np.where(np.isfinite(stress), stress, -np.inf), axis=1), np.nan)
+            result.variables[f"peak_{name}"] = peak(result.variables[name], axis=1)
     return result

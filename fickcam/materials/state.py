@@ -14,6 +14,7 @@ import logging
 import numpy as np
 
 from ..errors import PhysicsDomainError
+from ..messages import warn
 from .micromechanics import quasi_isotropic_elastic
 from .hygrothermal import (
     KELVIN_OFFSET,
@@ -214,8 +215,8 @@ def material_state(material, temperature, moisture, surface_moisture, reference_
     matrix_s, tgw_s, retention_s = wet_tg_and_retention(material, surface, temperature,
                                                         reference_temperature)
     if np.nanmax(matrix_s, initial=0.0) > 10.0:
-        log.warning("%s: matrix moisture %.3g %% exceeds 10 %%, the range of Chamis' wet-Tg fit",
-                    part or material.name, np.nanmax(matrix_s))
+        warn("%s: matrix moisture %.3g %% exceeds 10 %%, the range of Chamis' wet-Tg fit",
+             part or material.name, np.nanmax(matrix_s))
     bulk = material.ply_properties(retention)
     skin = material.ply_properties(retention_s)
     secant = material.ply_properties(retention, _secant_factor(material, tgw, temperature,

@@ -114,7 +114,7 @@ def sweep_attributes(sweep: Sweep, records: dict[int, dict], started: float | No
     records : dict of int to dict
         Case index -> its journal record (cases without an ``ok`` one count as failed).
     started : float, optional
-        ``time.perf_counter()`` when the sweep started [s]; gives ``wall_time``.
+        ``time.perf_counter()`` when the sweep started [s]; gives ``wall_time_s``.
 
     Returns
     -------
@@ -139,7 +139,7 @@ def sweep_attributes(sweep: Sweep, records: dict[int, dict], started: float | No
     if sweep.kind == "monte_carlo":
         attrs.update(samples=sweep.model.samples, seed=sweep.model.seed)
     if started is not None:
-        attrs["wall_time"] = time.perf_counter() - started
+        attrs["wall_time_s"] = time.perf_counter() - started  # [s], named with its unit
     return attrs
 
 

@@ -14,7 +14,6 @@ journal in memory and written once.
 from __future__ import annotations
 
 import json
-import logging
 import os
 import struct
 import zlib
@@ -23,7 +22,8 @@ from pathlib import Path
 
 import numpy as np
 
-log = logging.getLogger(__name__)
+from ..messages import warn
+
 
 MAGIC = b"FKJ1"
 HEAD = struct.Struct("<4sQI")  # magic, payload length, CRC-32 of the payload
@@ -226,8 +226,8 @@ class Journal:
                 entries[int(record["index"])] = Entry(record, end + HEAD.size, size)
                 end += HEAD.size + size
             if end < os.fstat(handle.fileno()).st_size:
-                log.warning("%s: dropped a partly written case at byte %d (it runs again)",
-                            self.path, end)
+                warn("%s: dropped a partly written case at byte %d (it runs again)",
+                     self.path, end)
                 handle.truncate(end)
         return entries
 

@@ -23,7 +23,7 @@ from pathlib import Path
 
 from ..errors import FickcamError, InputError
 from ..extras import installed, require
-from ..messages import quieter
+from ..messages import quieter, warn
 from .case import CaseTask, run_case, run_cases
 from .combine import combine, early_ends
 from .journal import decode_arrays
@@ -148,7 +148,7 @@ class _Collector:
         if payload is not None:
             self.journal.append(payload)
         if record["status"] != "ok":
-            log.warning("%s failed: %s", label, record["message"])
+            warn("%s failed: %s", label, record["message"])
             self.failed += 1
             self.bar.set_postfix(failed=self.failed, refresh=False)
         self.records[record["index"]] = record
@@ -391,18 +391,18 @@ def run_sweep(sweep_path, output, workers: int | None = None, scheduler: str | N
     failed = sorted(i for i, r in records.items() if r["status"] != "ok")
     if failed:
         shown = ", ".join(str(i) for i in failed[:20]) + (" ..." if len(failed) > 20 else "")
-        log.warning("%d of %d case(s) failed (case_status, case_message in the result): %s",
-                    len(failed), len(sweep.cases), shown)
+        warn("%d of %d case(s) failed (case_status, case_message in the result): %s",
+             len(failed), len(sweep.cases), shown)
     result = combine(sweep, records, finished_cases(folder, sweep, records), started=started)
     short = early_ends(result)
     if short:
-        log.warning(short)
+        warn(short)
     save(result, output, compress=True)
     if not any(r.get("retry") for r in records.values()):
         folder.remove_own_files()
     else:
-        log.warning("kept %s: rerun the same command to retry the cases that did not finish",
-                    folder.path)
+        warn("kept %s: rerun the same command to retry the cases that did not finish",
+             folder.path)
     return output
 
 

@@ -6,16 +6,15 @@ identity still matches.
 from __future__ import annotations
 
 import json
-import logging
 import os
 import tempfile
 from dataclasses import dataclass
 from pathlib import Path
 
 from ..errors import InputError
+from ..messages import warn
 from .journal import Entry, Journal
 
-log = logging.getLogger(__name__)
 
 MANIFEST = "manifest.json"
 JOURNAL = "cases.journal"
@@ -95,8 +94,8 @@ class WorkFolder:
                 manifest = json.loads(manifest_path.read_text(encoding="utf-8"))
                 if manifest.get("identity") == identity:
                     return self._finished_entries(n_cases)
-                log.warning("%s holds cases of a different sweep (the sweep file, base scene or "
-                            "fickcam version changed): starting over", self.path)
+                warn("%s holds cases of a different sweep (the sweep file, base scene or "
+                     "fickcam version changed): starting over", self.path)
                 self.remove_own_files()
         self.path.mkdir(parents=True, exist_ok=True)
         write_json({"identity": identity, "cases": n_cases}, manifest_path)
@@ -115,4 +114,4 @@ class WorkFolder:
         try:
             self.path.rmdir()
         except OSError:
-            log.warning("left %s in place: it holds files fickcam did not write", self.path)
+            warn("left %s in place: it holds files fickcam did not write", self.path)

@@ -754,7 +754,7 @@ class PanelExtension:
         both = np.union1d(result.times, new)
         again = self.chosen if self.replan is None else self.replan(both)
         if _solve_fixed(again) != _solve_fixed(self.chosen):
-            log.info("%s: the plan at %d new times changes the solve: solved again",
+            log.debug("%s: the plan at %d new times changes the solve: solved again",
                      result.model, new.size)
             return self.resolve(both)
         if not new.size:

@@ -211,13 +211,13 @@ class Extension:
         new = np.setdiff1d(np.asarray(at, float), result.times)
         both = np.union1d(result.times, new)
         if self.younger(both) or (self.fits is not None and not self.fits(both)):
-            log.info("%s: %d new times need other cells than the stored solve's: solved again",
+            log.debug("%s: %d new times need other cells than the stored solve's: solved again",
                      self.what or result.model, new.size)
             return self.resolve(both)
         mean, layer, estimate = self.interpolated(new)
         worst = float(np.max(estimate, initial=0.0))
         if worst > INTERPOLATION_SHARE * self.accuracy:
-            log.info("%s: %d new times not read between the steps (interpolation estimate "
+            log.debug("%s: %d new times not read between the steps (interpolation estimate "
                      "%.1e > %.1e): solved again", self.what or result.model, new.size, worst,
                      INTERPOLATION_SHARE * self.accuracy)
             return self.resolve(both)
