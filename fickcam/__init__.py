@@ -18,6 +18,19 @@ __all__ = ["load_scene", "run", "save", "open_result", "compensate", "fit_weight
 # handler (logging.basicConfig), never Python's last-resort bare lines
 _logging.getLogger(__name__).addHandler(_logging.NullHandler())
 
+#: sub-packages reached as attributes (``fickcam.plotting.plot(ds)``), imported on first use
+_SUBMODULES = ("plotting", "query", "export", "scene", "messages", "errors")
+
+
+def __getattr__(name: str):
+    """``fickcam.plotting`` and the other sub-packages of :data:`_SUBMODULES`, imported
+    when first reached, so that ``import fickcam`` stays light."""
+    if name in _SUBMODULES:
+        import importlib
+
+        return importlib.import_module(f".{name}", __name__)
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+
 
 def load_scene(source, *, file_name: str | None = None):
     """Read and validate a scene from a YAML path or a dict; values in SI after validation.

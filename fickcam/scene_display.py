@@ -7,9 +7,9 @@ import html
 
 import yaml
 
-#: the sections shown, in order, with their headings
-SECTIONS = (("parts", "parts"), ("materials", "materials"), ("environment", "climate"),
-            ("outputs", "outputs"), ("limits", "limits"))
+#: the sections shown after the parts, in order, with their headings
+SECTIONS = (("materials", "materials"), ("environment", "climate"), ("outputs", "outputs"),
+            ("limits", "limits"))
 
 #: the longest value of the text repr [characters]; the HTML table shows all
 WIDTH = 96
@@ -34,6 +34,25 @@ def flow(value) -> str:
     return text.strip().removesuffix("...").strip()
 
 
+def entries(value) -> str:
+    """A section as written, its entries in one line without the outer braces:
+    ``cfrp: {fiber: T300, matrix: 8551-7}, steel: {metal: steel}``.
+
+    Parameters
+    ----------
+    value : object
+        A section of a scene (a mapping; anything else as :func:`flow` writes it).
+
+    Returns
+    -------
+    str
+        The text.
+    """
+    if isinstance(value, dict) and value:
+        return ", ".join(f"{key}: {flow(entry)}" for key, entry in value.items())
+    return flow(value)
+
+
 def segment(step) -> str:
     """A climate segment in words: ``60 d at 113 degC, 80 % RH`` (else as written).
 
@@ -55,8 +74,8 @@ def segment(step) -> str:
     return flow(step)
 
 
-def parts(data: dict) -> str:
-    """The mechanism's parts as written: the cam and its follower, or the four-bar's links.
+def parts(data: dict) -> list[tuple[str, str]]:
+    """The mechanism's parts as written: the cam and its follower, or the four-bar.
 
     Parameters
     ----------
@@ -65,18 +84,18 @@ def parts(data: dict) -> str:
 
     Returns
     -------
-    str
-        ``cam: {...}; follower: {...}`` or ``linkage: {...}``.
+    list of tuple of (str, str)
+        (``cam``, its keys but the follower), (``follower``, ...) or (``linkage``, ...).
     """
     said = []
     cam = data.get("cam")
     if isinstance(cam, dict):
-        said.append(f"cam: {flow({k: v for k, v in cam.items() if k != 'follower'})}")
+        said.append(("cam", entries({k: v for k, v in cam.items() if k != "follower"})))
         if "follower" in cam:
-            said.append(f"follower: {flow(cam['follower'])}")
+            said.append(("follower", entries(cam["follower"])))
     if "linkage" in data:
-        said.append(f"linkage: {flow(data['linkage'])}")
-    return "; ".join(said)
+        said.append(("linkage", entries(data["linkage"])))
+    return said
 
 
 def climate(data: dict) -> str:
@@ -97,7 +116,7 @@ def climate(data: dict) -> str:
     history = environment.get("history") if isinstance(environment, dict) else None
     if isinstance(history, list):
         return "; then ".join(segment(step) for step in history)
-    return flow(environment)
+    return entries(environment)
 
 
 def rows(data: dict) -> list[tuple[str, str]]:
@@ -113,10 +132,10 @@ def rows(data: dict) -> list[tuple[str, str]]:
     list of tuple of (str, str)
         In the order of :data:`SECTIONS`.
     """
-    texts = {"parts": parts(data), "environment": climate(data)}
-    found = []
+    texts = {"environment": climate(data)}
+    found = parts(data)
     for key, heading in SECTIONS:
-        text = texts[key] if key in texts else flow(data[key]) if key in data else ""
+        text = texts[key] if key in texts else entries(data[key]) if key in data else ""
         if text:
             found.append((heading, text))
     return found

@@ -161,9 +161,7 @@ def test_a_sweep_whose_cases_end_at_different_times_says_which_end_early():
     ds = two_cases().assign_coords(case_status=("case", np.array(["ok", "ok"], dtype=object)))
     np.testing.assert_array_equal(case_ends(ds) / DAY, [45, 100])
     assert early_ends(ds) == (
-        "1 case(s) end before the last ageing time, 100 d (case 0 at 45 d): the table and "
-        "the sweep plots at 100 d leave them empty; fickcam query --time reads each case at "
-        "its own ageing times")
+        "1 case(s) end before 100 d (case 0 at 45 d): empty there in the table and plots")
     assert early_ends(ds.isel(case=[1])) is None
     failed = ds.assign_coords(case_status=("case", np.array(["failed", "ok"], dtype=object)))
     assert early_ends(failed) is None  # a failed case has no values at all: said elsewhere

@@ -6,7 +6,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ..plotting.common import figure, save_figure
+from ..plotting.common import figure, legend, save_figure
 from .models import fickian_fraction, two_phase_fraction
 from .report import FitReport
 
@@ -71,7 +71,7 @@ def plot_fit(report: FitReport, path) -> Path:
     ax.set_ylabel("moisture gain M [wt %]")
     origin = "" if report.source.startswith("<") else f" from {report.source}"
     ax.set_title(f"{report.name}: weight gain{origin} (points) and fits (lines)")
-    ax.legend(fontsize=8, loc="lower right")
+    legend(ax, fontsize=8, loc="lower right")
     ax.grid(alpha=0.3)
     top = ax.secondary_xaxis("top", functions=(lambda x: np.square(x), lambda t: np.sqrt(np.maximum(t, 0))))
     top.set_xlabel("time [d]")

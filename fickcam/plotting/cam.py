@@ -9,7 +9,7 @@ from pathlib import Path
 import numpy as np
 
 from ..schema import design_name
-from .common import (age_colour, age_label, ages, days, drift_panel, exaggerated_outlines,
+from .common import (legend, age_colour, age_label, ages, days, drift_panel, exaggerated_outlines,
                      figure, legend_outside, length_drift_panel, reference_curve, save_figure, Figures, returns_figures)
 
 KINEMATICS = (("follower_displacement", "displacement [mm]", 1e3),
@@ -249,4 +249,4 @@ def _design_line(ax, ds, name: str, scale: float) -> None:
     if design_name(name) in ds:
         ax.axhline(float(ds[design_name(name)]) * scale, color="k", ls="--", lw=1,
                    label="design (dry, reference temperature)")
-    ax.legend(fontsize=8)
+    legend(ax, fontsize=8)

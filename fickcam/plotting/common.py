@@ -264,7 +264,7 @@ def finish_plan_view(ax, title: str) -> None:
     ax.set_xlabel("x [mm]")
     ax.set_ylabel("y [mm]")
     ax.set_title(title)
-    ax.legend(fontsize=8)
+    legend(ax, fontsize=8)
     ax.grid(alpha=0.3)
 
 
@@ -495,6 +495,21 @@ def _clip_spikes(ax, values) -> None:
                 ha="right", va="bottom", fontsize=7, color="0.4")
 
 
+def legend(ax, **kwargs) -> None:
+    """``ax``'s legend, drawn only when a curve has a label (an ageing time past a part's wet
+    glass transition draws none): no matplotlib warning about an empty legend.
+
+    Parameters
+    ----------
+    ax : matplotlib.axes.Axes
+        The axes.
+    **kwargs
+        Passed to :meth:`matplotlib.axes.Axes.legend`.
+    """
+    if ax.get_legend_handles_labels()[0]:
+        ax.legend(**kwargs)
+
+
 def legend_outside(ax, **kwargs) -> None:
     """The legend to the right of the axes, where it hides no curve.
 
@@ -505,7 +520,8 @@ def legend_outside(ax, **kwargs) -> None:
     **kwargs
         Passed to :meth:`matplotlib.axes.Axes.legend`.
     """
-    ax.legend(fontsize=8, loc="upper left", bbox_to_anchor=(1.01, 1.0), borderaxespad=0.0, **kwargs)
+    legend(ax, fontsize=8, loc="upper left", bbox_to_anchor=(1.01, 1.0), borderaxespad=0.0,
+           **kwargs)
 
 
 def save_figure(fig, path: Path) -> Path:

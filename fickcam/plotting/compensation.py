@@ -7,7 +7,7 @@ from pathlib import Path
 
 import numpy as np
 
-from .common import days, figure, save_figure
+from .common import legend, days, figure, save_figure
 
 
 def _spec_text(ds, variable: str) -> str:
@@ -66,7 +66,7 @@ def plot_against_band(before, after, path, window=()) -> Path:
         ax.set_title(f"{limit.variable}: {limit.text}", fontsize=10)
         ax.set_ylim(bottom=0.0)
         ax.grid(alpha=0.3)
-        ax.legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.16))
+        legend(ax, fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.16))
     if not limits:
         axes[0][0].text(0.5, 0.5, "the scene has no deviation limits", ha="center",
                         transform=axes[0][0].transAxes)

@@ -7,7 +7,7 @@ from pathlib import Path
 
 import numpy as np
 
-from .common import days, figure, Figures, returns_figures, save_figure
+from .common import legend, days, figure, Figures, returns_figures, save_figure
 from .cam import angle_panels
 from .fields import cell_triangulation
 
@@ -69,7 +69,7 @@ def _over_ageing(plt, ds, outdir: Path, name: str, save) -> Path:
     bottom.set_xlabel("ageing time [d]")
     for ax in (top, bottom):
         ax.grid(alpha=0.3)
-        ax.legend(fontsize=8)
+        legend(ax, fontsize=8)
     return save(fig, outdir / "swelling_stress.png")
 
 

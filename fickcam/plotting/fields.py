@@ -7,7 +7,7 @@ from pathlib import Path
 
 import numpy as np
 
-from .common import age_label, ages, days, figure, Figures, returns_figures, save_figure
+from .common import legend, age_label, ages, days, figure, Figures, returns_figures, save_figure
 
 PANELS = 4
 
@@ -72,7 +72,7 @@ def _plot_part(ds, part, field, coords, outdir: Path, save) -> Path:
                     label=age_label(t[k], t[-1]))
         ax.set_xlabel(f"{axis} [mm]")
         ax.set_ylabel("moisture [wt %]")
-        ax.legend(fontsize=8)
+        legend(ax, fontsize=8)
         ax.set_title(f"{part}: moisture through the thickness")
     else:
         fig, panels = plt.subplots(1, len(indices), figsize=(3.2 * len(indices), 3.4),

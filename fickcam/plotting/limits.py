@@ -7,7 +7,7 @@ from pathlib import Path
 from ..errors import format_duration
 from ..limits import stored_limits, worst_value
 from ..query import drift
-from .common import age_colour, age_label, ages, days, figure, Figures, returns_figures, save_figure
+from .common import legend, age_colour, age_label, ages, days, figure, Figures, returns_figures, save_figure
 
 ANGLES = ("cam_angle", "crank_angle")
 
@@ -92,7 +92,7 @@ def _over_cycle(ax, ds, limit, dim: str) -> None:
 
 def _legend_below(ax) -> None:
     """The legend under the axes, where it covers no curve."""
-    ax.legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.2), ncols=2, frameon=False)
+    legend(ax, fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.2), ncols=2, frameon=False)
 
 
 def _wrapped(label: str, width: int = 34) -> str:

@@ -19,7 +19,7 @@ from pathlib import Path
 
 import numpy as np
 
-from .common import days, figure, legend_outside, Figures, returns_figures, save_figure
+from .common import legend, days, figure, legend_outside, Figures, returns_figures, save_figure
 
 QUANTILES = (0.05, 0.25, 0.5, 0.75, 0.95)
 
@@ -282,7 +282,7 @@ def plot_monte_carlo(ds, outdir=None, age_index: int = -1, save=None) -> Figures
             fan.fill_between(t, q[0], q[4], alpha=0.2, color="C0", label="5-95 %")
             fan.fill_between(t, q[1], q[3], alpha=0.4, color="C0", label="25-75 %")
             fan.plot(t, q[2], "C0-", label="median")
-            fan.legend(fontsize=7)
+            legend(fan, fontsize=7)
         fan.set_xlabel("ageing time [d]")
         fan.set_ylabel(label)
         fan.set_title(_title(ds, key, age), fontsize=9)
@@ -348,7 +348,7 @@ def plot_out_of_spec(ds, outdir=None, save=None) -> Figures:
     ax.set_ylim(-2, 102)
     ax.set_title(f"{ds.attrs.get('scene_name', '')}: out of spec by each age, {n} case(s) "
                  "(band: Wilson 95 % interval)", fontsize=9)
-    ax.legend(fontsize=8)
+    legend(ax, fontsize=8)
     ax.grid(alpha=0.3)
     return [save(fig, outdir / "sweep_out_of_spec.png")]
 

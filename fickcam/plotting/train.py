@@ -5,7 +5,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from .common import age_colour, age_label, ages, days, figure, legend_outside, Figures, returns_figures, save_figure
+from .common import legend, age_colour, age_label, ages, days, figure, legend_outside, Figures, returns_figures, save_figure
 
 ANGLE_PANELS = (("follower_displacement", "dynamic_follower_displacement", "displacement [mm]", 1e3),
                 (None, "dynamic_displacement_error", "dynamic − kinematic [mm]", 1e3),
@@ -63,7 +63,7 @@ def _over_ageing(plt, ds, outdir, name, save) -> Path:
     if "jump_speed" in ds:
         axes[1].plot(t, ds["jump_speed"].values, "s--", label="rigid")
     axes[1].set_ylabel("jump speed [rpm]")
-    axes[1].legend(fontsize=8)
+    legend(axes[1], fontsize=8)
     axes[2].plot(t, ds["residual_vibration"].values * 1e3, "o-", color="C3")
     axes[2].set_ylabel("residual vibration [mm]")
     axes[2].set_xlabel("ageing time [d]")

@@ -297,8 +297,7 @@ def early_ends(ds) -> str | None:
     early = np.flatnonzero(ok & np.isfinite(ends) & (ends < last))
     if not early.size:
         return None
-    shown = ", ".join(f"case {k} at {format_duration(ends[k])}" for k in early[:5])
-    more = f" and {early.size - 5} more" if early.size > 5 else ""
-    return (f"{early.size} case(s) end before the last ageing time, {format_duration(last)} "
-            f"({shown}{more}): the table and the sweep plots at {format_duration(last)} leave "
-            f"them empty; fickcam query --time reads each case at its own ageing times")
+    shown = ", ".join(f"{k} at {format_duration(ends[k], last)}" for k in early[:3])
+    more = f", {early.size - 3} more" if early.size > 3 else ""
+    return (f"{early.size} case(s) end before {format_duration(last)} (case {shown}{more}): "
+            f"empty there in the table and plots")

@@ -1,0 +1,73 @@
+"""Every line on the terminal is fickcam's own: after a part reaches its wet glass
+transition no numpy warning (``RuntimeWarning: All-NaN slice encountered``) reaches
+stderr, ``-q`` leaves nothing but errors, solver details wait for ``-v``, and the same
+scene in Python warns with FickcamWarning only."""
+from __future__ import annotations
+
+import os
+import subprocess
+import sys
+import warnings
+from pathlib import Path
+
+import pytest
+import yaml
+
+import fickcam
+
+ROOT = Path(__file__).resolve().parents[1]
+FOREIGN = ("Warning:", "Traceback", "site-packages", "warnings.warn", "All-NaN")
+
+
+@pytest.fixture(scope="module")
+def hot_cam(tmp_path_factory):
+    """The demo cam at 150 degC: both parts pass their wet Tg at 30 d of 60."""
+    data = yaml.safe_load((ROOT / "configs" / "singh2017_cam.yaml").read_text())
+    data["environment"]["history"] = [{"duration": "60 d", "temperature": "150 degC",
+                                       "relative_humidity": "85 %"}]
+    data["outputs"] = {"ageing_times": ["0 d", "30 d", "60 d"], "angle_step": "6 deg"}
+    path = tmp_path_factory.mktemp("hot") / "hot_cam.yaml"
+    path.write_text(yaml.safe_dump(data))
+    return path
+
+
+def cli(*argv, cwd):
+    return subprocess.run([sys.executable, "-m", "fickcam.cli", *map(str, argv)], cwd=cwd,
+                          capture_output=True, text=True, timeout=600,
+                          env=dict(os.environ, PYTHONPATH=str(ROOT)))
+
+
+def test_a_wet_tg_stop_prints_only_fickcams_lines_and_quiet_prints_none(hot_cam):
+    loud = cli("run", hot_cam, "-o", "loud.h5", cwd=hot_cam.parent)
+    quiet = cli("run", hot_cam, "-o", "quiet.h5", "-q", cwd=hot_cam.parent)
+    assert loud.returncode == quiet.returncode == 0, loud.stderr
+    lines = loud.stderr.splitlines()
+    assert any("reached the wet Tg" in line for line in lines)
+    assert all(line.startswith(("fickcam: warning: ", "fickcam: note: ")) for line in lines), \
+        loud.stderr
+    assert not any(text in loud.stderr for text in FOREIGN)
+    assert "solved again" not in loud.stderr  # a solver's detail: debug level (-v)
+    assert quiet.stderr == "" and "hidden by -q" in quiet.stdout
+
+
+def test_in_python_the_same_scene_warns_with_fickcam_warnings_only(hot_cam):
+    with warnings.catch_warnings(record=True) as seen:
+        warnings.simplefilter("always")
+        warnings.filterwarnings("ignore", category=DeprecationWarning)
+        fickcam.run(hot_cam)
+    assert seen and all(issubclass(w.category, fickcam.FickcamWarning) for w in seen), \
+        [f"{w.category.__name__}: {w.message}" for w in seen]
+    assert all(w.filename == __file__ for w in seen)  # at the caller's line, not fickcam's
+
+
+def test_a_notice_at_several_ageing_times_is_one_line_with_their_range(hot_cam):
+    with warnings.catch_warnings(record=True) as seen:
+        warnings.simplefilter("always", fickcam.FickcamWarning)
+        ds = fickcam.run(dict(yaml.safe_load(hot_cam.read_text()),
+                              environment={"history": [{"duration": "60 d",
+                                                        "temperature": "40 degC",
+                                                        "relative_humidity": "50 %"}]}))
+    jumps = [str(w.message) for w in seen if "acceleration jumps at the 105 deg" in str(w.message)]
+    assert jumps == ["at t = 0 d to 60 d (3 ageing times): acceleration jumps at the 105 deg "
+                     "joint: infinite jerk there (dwell -> simple_harmonic)"]
+    assert ds.attrs["notices"].count(jumps[0]) == 1
