@@ -45,6 +45,7 @@ NOT_RUN = {
     ("docs/guide/sweeps-montecarlo.md", "needs a dask scheduler at tcp://HOST:8786"),
     ("docs/guide/sweeps-montecarlo.md", "starts a dask scheduler and workers on several machines"),
     ("docs/guide/sweeps-montecarlo.md", "needs a batch system (SLURM) and dask-jobqueue"),
+    ("docs/guide/results-python.md", "changes the logging set-up of the whole session"),
 }
 
 # an opening fence: ```lang, or ```{directive} argument (``{code-block} yaml``: lang yaml)
