@@ -6,6 +6,9 @@ shows a traceback for them.
 """
 from __future__ import annotations
 
+import contextlib
+import contextvars
+import re
 from dataclasses import dataclass
 
 
@@ -161,9 +164,55 @@ TIME_UNITS = (("s", 1.0, 120.0), ("min", 60.0, 2 * 3600.0), ("h", 3600.0, 2 * 86
               ("d", 86400.0, 3 * 365.25 * 86400.0), ("yr", 365.25 * 86400.0, float("inf")))
 
 
+#: the unit the scene's author wrote its times in, while a run or its report is told
+#: (:func:`times_in`); None: chosen from the span
+_WRITTEN = contextvars.ContextVar("fickcam_time_unit", default=None)
+
+#: how a time unit may be written in a scene -> its name in :data:`TIME_UNITS`
+SPELLINGS = {"s": "s", "sec": "s", "second": "s", "seconds": "s", "min": "min",
+             "minute": "min", "minutes": "min", "h": "h", "hr": "h", "hour": "h", "hours": "h",
+             "d": "d", "day": "d", "days": "d", "yr": "yr", "year": "yr", "years": "yr",
+             "a": "yr"}
+
+
+def written_unit(text) -> str | None:
+    """The time unit of a duration as written (``"1826 d"`` -> ``"d"``), if it is one of
+    :data:`TIME_UNITS`.
+
+    Parameters
+    ----------
+    text : object
+        A value of a scene (``"60 d"``, ``"5 years"``, a bare number...).
+
+    Returns
+    -------
+    str or None
+        ``s``, ``min``, ``h``, ``d`` or ``yr``; None for a bare number, weeks, months...
+    """
+    match = re.fullmatch(r"\s*[-+\d.eE]+\s*([A-Za-z]+)\s*", str(text))
+    return SPELLINGS.get(match.group(1)) if match else None
+
+
+@contextlib.contextmanager
+def times_in(unit: str | None):
+    """While inside, every time is told in ``unit`` (the one the scene's author wrote its
+    times in), whatever the run's span; None changes nothing.
+
+    Parameters
+    ----------
+    unit : str or None
+        ``s``, ``min``, ``h``, ``d`` or ``yr``.
+    """
+    token = _WRITTEN.set(unit if unit in {name for name, _, _ in TIME_UNITS} else None)
+    try:
+        yield
+    finally:
+        _WRITTEN.reset(token)
+
+
 def time_unit(span: float) -> tuple[str, float]:
     """The unit that suits durations up to ``span``: one unit for every time of a run,
-    chosen from its last ageing time.
+    chosen from its last ageing time, or the one its scene's author wrote (:func:`times_in`).
 
     Parameters
     ----------
@@ -175,6 +224,9 @@ def time_unit(span: float) -> tuple[str, float]:
     tuple of (str, float)
         The unit's name (``s``, ``min``, ``h``, ``d`` or ``yr``) and its length [s].
     """
+    written = _WRITTEN.get()
+    if written is not None:
+        return next((name, seconds) for name, seconds, _ in TIME_UNITS if name == written)
     span = abs(float(span))
     return next(((name, seconds) for name, seconds, longest in TIME_UNITS if span < longest),
                 ("d", 86400.0))  # no span (NaN: no case of a sweep ran): days, as results store

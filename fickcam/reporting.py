@@ -13,7 +13,7 @@ import math
 import numpy as np
 
 from .dataset import ageing_seconds
-from .errors import format_duration
+from .errors import format_duration, times_in
 from .limits import stored_limits
 from .query import drift
 from .schema import VARIABLES, design_name
@@ -341,6 +341,12 @@ def summary(ds, *, notices: bool = True) -> str:
     str
         The summary, without a trailing newline.
     """
+    with times_in(ds.attrs.get("time_unit") or None):
+        return _summary(ds, notices)
+
+
+def _summary(ds, notices: bool) -> str:
+    """:func:`summary`'s lines, times in the unit in force."""
     seconds = ageing_seconds(ds)
     wall = float(ds.attrs.get("wall_time_s", ds.attrs.get("wall_time", 0.0)))  # older files
     lines = [f"{ds.attrs.get('scene_name', '')}: {len(seconds)} ageing times to "

@@ -14,7 +14,7 @@ import numpy as np
 from ._version import __version__
 from .blas import on_one_blas_thread
 from .environment import Environment, summary_edges
-from .errors import InputError, SceneError
+from .errors import InputError, SceneError, times_in
 from .messages import log_notices, progress_bar, progress_summary
 from .parts import Part, PartHistory, build_parts, diffusion_attrs, field_values, part_values
 from .scene import EveryStep, Scene, last_ageing_time, load_scene
@@ -235,7 +235,7 @@ def run(scene, *, accuracy: float | None = None, progress: bool = False, setting
     started = _time.perf_counter()
     cache = run_cache(cache)
     scene = load_scene(scene)
-    with progress_summary(f"run {scene.name}", progress):
+    with progress_summary(f"run {scene.name}", progress), times_in(scene.time_unit):
         environment = scene_environment(scene)
         times = ageing_times(scene, environment)
         parts = build_parts(scene)
@@ -249,6 +249,7 @@ def run(scene, *, accuracy: float | None = None, progress: bool = False, setting
             ds.attrs["notices"] = notices
             ds.attrs["limits"] = {limit.variable: limit.as_attrs() for limit in scene.limits}
     ds.attrs["wall_time_s"] = _time.perf_counter() - started  # [s], named with its unit
+    ds.attrs["time_unit"] = scene.time_unit or ""  # the unit the scene wrote its times in
     return ds
 
 

@@ -71,3 +71,19 @@ def test_a_notice_at_several_ageing_times_is_one_line_with_their_range(hot_cam):
     assert jumps == ["at t = 0 d to 60 d (3 ageing times): acceleration jumps at the 105 deg "
                      "joint: infinite jerk there (dwell -> simple_harmonic)"]
     assert ds.attrs["notices"].count(jumps[0]) == 1
+
+
+def test_times_are_told_in_the_unit_the_scene_wrote_them_in(tmp_path):
+    """A five-year history written in days is reported in days, not years."""
+    data = yaml.safe_load((ROOT / "configs" / "fourbar_r914_humid.yaml").read_text())
+    data["environment"]["history"][0]["duration"] = "1826 d"
+    data["outputs"] = {"ageing_times": ["0 d", "30 d", "1826 d"], "angle_step": "10 deg"}
+    path = tmp_path / "five_years.yaml"
+    path.write_text(yaml.safe_dump(data))
+    done = cli("run", path, "-o", "five.h5", cwd=tmp_path)
+    assert done.returncode == 0, done.stderr
+    assert "3 ageing times to 1826 d" in done.stdout and " yr" not in done.stdout + done.stderr
+    data["environment"]["history"][0]["duration"] = "5 yr"  # written in years: years
+    data["outputs"]["ageing_times"] = ["0 yr", "0.1 yr", "5 yr"]
+    path.write_text(yaml.safe_dump(data))
+    assert "3 ageing times to 5 yr" in cli("run", path, "-o", "five.h5", cwd=tmp_path).stdout

@@ -125,6 +125,8 @@ def returns_figures(draw):
     """
     import functools
 
+    from ..errors import times_in
+
     @functools.wraps(draw)
     def wrapper(ds, outdir=None, *args, save=None, **kwargs):
         figures, write = Figures(), save_figure if save is None else save
@@ -139,7 +141,8 @@ def returns_figures(draw):
 
         if outdir is not None:
             Path(outdir).mkdir(parents=True, exist_ok=True)
-        draw(ds, Path("." if outdir is None else outdir), *args, save=keep, **kwargs)
+        with times_in(getattr(ds, "attrs", {}).get("time_unit") or None):  # the scene's unit
+            draw(ds, Path("." if outdir is None else outdir), *args, save=keep, **kwargs)
         return figures
 
     return wrapper
