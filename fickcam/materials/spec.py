@@ -4,7 +4,7 @@ from __future__ import annotations
 from typing import Annotated, Literal
 
 import numpy as np
-from pydantic import AfterValidator, BeforeValidator, NonNegativeFloat, PositiveFloat, model_validator
+from pydantic import AfterValidator, BeforeValidator, Field, NonNegativeFloat, PositiveFloat, model_validator
 
 from ..units import (
     StrictModel,
@@ -330,6 +330,14 @@ class MatrixProperties(StrictModel):
         D(T).
     saturation : SaturationSpec, optional
         Mm(RH).
+    melting_temperature : float, optional
+        Melting point of a semicrystalline thermoplastic [K]: a climate at or above it is
+        refused.
+    service_temperature : float, optional
+        Maximum continuous service temperature [K]: a climate above it is warned.
+    heat_deflection_temperature : float, optional
+        Heat deflection temperature at 1.80 MPa [K]: the service limit where no
+        ``service_temperature`` is given.
     """
 
     youngs_modulus: Pressure | None = None
@@ -341,6 +349,14 @@ class MatrixProperties(StrictModel):
     conductivity: PositiveFloat | None = None  # W/(m K)
     diffusivity: DiffusivitySpec | None = None
     saturation: SaturationSpec | None = None
+    melting_temperature: Temperature | None = Field(
+        None, description="melting point of a semicrystalline thermoplastic; a climate at or "
+                          "above it is refused")
+    service_temperature: Temperature | None = Field(
+        None, description="maximum continuous service temperature; a climate above it is warned")
+    heat_deflection_temperature: Temperature | None = Field(
+        None, description="heat deflection temperature at 1.80 MPa (ISO 75); the service limit "
+                          "where service_temperature is not given")
 
 
 class FiberProperties(StrictModel):
@@ -393,6 +409,8 @@ class MaterialSpec(MatrixProperties):
         Override of nu [-].
     diffusivity, saturation : optional
         Overrides of D(T) [m^2/s] and Mm(RH) [weight %].
+    melting_temperature, service_temperature, heat_deflection_temperature : float, optional
+        Temperature limits [K] (see :class:`MatrixProperties`).
     fiber, matrix, plastic, metal : str, optional
         Library names (or aliases).
     fiber_volume_fraction, fiber_weight_fraction : float, optional
