@@ -22,7 +22,7 @@ from dataclasses import dataclass, field
 from typing import Any, Callable
 
 import numpy as np
-from pydantic import model_validator
+from pydantic import Field, model_validator
 
 from .query import drift
 from .schema import VARIABLES, Var, design_name
@@ -58,9 +58,10 @@ class LimitSpec(StrictModel):
         The smallest allowed value [unit of the variable].
     """
 
-    deviation: Any = None
-    max: Any = None
-    min: Any = None
+    deviation: Any = Field(
+        None, description="Largest allowed change from the as-designed value, in the variable's unit")
+    max: Any = Field(None, description="Largest allowed value, in the variable's unit")
+    min: Any = Field(None, description="Smallest allowed value, in the variable's unit")
 
     @model_validator(mode="after")
     def _something(self):
