@@ -34,6 +34,7 @@ extensions = [
     "sphinx.ext.autosummary",
     "sphinx.ext.napoleon",
     "sphinx.ext.mathjax",
+    "sphinx.ext.intersphinx",
 ]
 source_suffix = {".md": "markdown", ".rst": "restructuredtext"}
 myst_enable_extensions = ["dollarmath", "colon_fence"]
@@ -48,8 +49,41 @@ autodoc_typehints = "none"
 napoleon_numpy_docstring = True
 napoleon_google_docstring = False
 
-html_theme = "alabaster"
+html_theme = "pydata_sphinx_theme"
 html_title = f"fickcam {release}"
+html_static_path = ["_static"]
+html_css_files = ["fickcam.css"]
+html_theme_options = {
+    "navbar_start": ["navbar-logo", "version"],
+    "navbar_align": "left",
+    "header_links_before_dropdown": 6,
+    "show_toc_level": 2,
+    "show_prev_next": True,
+    "secondary_sidebar_items": ["page-toc", "sourcelink"],
+    "footer_start": ["copyright"],
+    "footer_end": ["sphinx-version", "theme-version"],
+    "navigation_with_keys": False,
+    "logo": {"text": "fickcam"},
+}
+html_sidebars = {"index": [], "changelog": []}
+html_show_sourcelink = False
+
+# Intersphinx: the inventories are text files committed in ``_inventories/`` (generated
+# from the installed packages by ``_tools/inventories.py``), so the build never downloads
+# them; the links point to each project's published documentation.
+_INVENTORIES = Path(__file__).parent / "_inventories"
+intersphinx_mapping = {
+    name: (url, str(_INVENTORIES / f"{name}.txt"))
+    for name, url in {
+        "python": "https://docs.python.org/3/",
+        "numpy": "https://numpy.org/doc/stable/",
+        "scipy": "https://docs.scipy.org/doc/scipy/",
+        "xarray": "https://docs.xarray.dev/en/stable/",
+        "matplotlib": "https://matplotlib.org/stable/",
+        "pint": "https://pint.readthedocs.io/en/stable/",
+        "fipy": "https://www.ctcms.nist.gov/fipy/",
+    }.items()
+}
 
 
 _TRAILING_UNDERSCORE = re.compile(r"(?<=\w)_(?=[\s,.;:)'\"]|$)")
