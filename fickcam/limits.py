@@ -117,7 +117,7 @@ def from_attrs(variable: str, attrs: dict) -> Limit:
     variable : str
         The variable it bounds.
     attrs : dict
-        Its entry of the attribute (:meth:`Limit.as_attrs`).
+        Its entry of the attribute (``Limit.as_attrs``).
 
     Returns
     -------
@@ -444,7 +444,7 @@ def first_crossings(times: np.ndarray, ratios: np.ndarray,
 
     The stored times bracket each crossing; ``evaluate(ts)`` re-runs the model at
     ageing times ``ts`` and returns the ratios there (len(ts), limit). Each round
-    evaluates the model once for all open brackets, at the times :meth:`_Bracket.inner`
+    evaluates the model once for all open brackets, at the times ``_Bracket.inner``
     picks (POINTS equally spaced first, then two straddling the secant's root), and
     keeps the sub-interval of the first crossing, until each bracket is no wider than
     TOLERANCE of its stored interval or FLOOR seconds; the crossing is then

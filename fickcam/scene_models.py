@@ -205,7 +205,7 @@ class DiffusionSection(StrictModel):
     ----------
     model : str or dict of str to str
         One model for every part, or per part name (parts not named: ``auto``); one of
-        :data:`fickcam.diffusion.MODELS`.
+        ``fickcam.diffusion.MODELS``.
     accuracy : float
         The relative accuracy asked of the mean moisture [-], in (0, 0.1].
     surface_layer_depth : float

@@ -1,7 +1,7 @@
 """Write the intersphinx inventories of ``docs/_inventories/`` from the installed packages.
 
-The documentation links names of numpy, SciPy, xarray, matplotlib, pint, FiPy and the
-standard library to their projects' published pages. Sphinx reads each project's
+The documentation links names of numpy, SciPy, xarray, matplotlib, pint, FiPy, pydantic,
+dask.distributed and the standard library to their projects' published pages. Sphinx reads each project's
 ``objects.inv`` to know where a name is documented; the machines that build these docs
 may not reach those sites, so the inventories are committed here as small text files
 (Sphinx's inventory format version 1: ``name role page``), one per project, holding the
@@ -31,13 +31,16 @@ NAMES = {
         "pathlib.Path", "collections.abc.Callable", "collections.abc.Iterable",
         "collections.abc.Mapping", "collections.abc.Sequence", "argparse.ArgumentParser",
         "argparse.Namespace", "typing.Any", "logging.Logger", "os.PathLike",
-        "concurrent.futures.Executor", "dataclasses.dataclass",
+        "concurrent.futures.Executor", "dataclasses.dataclass", "None", "True", "False",
+        "callable", "contextlib.contextmanager", "collections.namedtuple",
+        "collections.abc.Generator", "logging", "enum.IntEnum", "numbers.Number",
     ],
     "numpy": [
         "numpy.ndarray", "numpy.float64", "numpy.array", "numpy.asarray", "numpy.interp",
         "numpy.linalg.solve", "numpy.polynomial.chebyshev.chebval",
         "numpy.random.Generator", "numpy.random.default_rng", "numpy.typing.ArrayLike",
         "numpy.typing.NDArray", "numpy.errstate", "numpy.gradient", "numpy.trapezoid",
+        "numpy", "numpy.inf", "numpy.nan", "numpy.random.RandomState",
     ],
     "scipy": [
         "scipy.optimize.brentq", "scipy.optimize.least_squares", "scipy.optimize.minimize",
@@ -46,6 +49,7 @@ NAMES = {
         "scipy.linalg.expm", "scipy.sparse.csr_matrix", "scipy.sparse.linalg.splu",
         "scipy.interpolate.CubicSpline", "scipy.interpolate.make_interp_spline",
         "scipy.interpolate.BSpline", "scipy.special.erfc", "scipy.stats.f",
+        "scipy.interpolate.PPoly", "scipy.interpolate.PPoly.roots",
     ],
     "xarray": [
         "xarray.Dataset", "xarray.DataArray", "xarray.open_dataset", "xarray.load_dataset",
@@ -55,8 +59,13 @@ NAMES = {
     "matplotlib": [
         "matplotlib.figure.Figure", "matplotlib.axes.Axes", "matplotlib.pyplot.subplots",
         "matplotlib.pyplot.figure", "matplotlib.pyplot.show", "matplotlib.figure.Figure.savefig",
+        "matplotlib.axes.Axes.legend",
     ],
     "pint": ["pint.UnitRegistry", "pint.Quantity", "pint.Unit", "pint.errors.DimensionalityError"],
+    "pydantic": ["pydantic.BaseModel", "pydantic.functional_validators.BeforeValidator",
+                 "pydantic.functional_validators.AfterValidator", "pydantic.types.Tag",
+                 "pydantic.types.Discriminator"],
+    "distributed": ["distributed.LocalCluster", "distributed.Client"],
     "fipy": ["fipy", "fipy.CellVariable", "fipy.TransientTerm", "fipy.DiffusionTerm",
              "fipy.Grid1D", "fipy.Grid2D", "fipy.Grid3D", "fipy.CylindricalGrid2D"],
 }
@@ -65,6 +74,9 @@ NAMES = {
 SPECIAL_PAGES = {
     ("numpy", "numpy.typing."): "reference/typing.html",
     ("numpy", "numpy.random.Generator"): "reference/random/generator.html",
+    ("numpy", "numpy.random.RandomState"): "reference/random/legacy.html",
+    ("numpy", "numpy.inf"): "reference/constants.html",
+    ("numpy", "numpy.nan"): "reference/constants.html",
     ("matplotlib", "matplotlib.axes.Axes"): "api/_as_gen/matplotlib.axes.Axes.html",
     ("matplotlib", "matplotlib.figure.Figure"): "api/_as_gen/matplotlib.figure.Figure.html",
     ("pint", "pint."): "api/base.html",
@@ -75,8 +87,12 @@ PYTHON_PAGES = {
     "argparse": "library/argparse.html", "typing": "library/typing.html",
     "logging": "library/logging.html", "os": "library/os.html",
     "concurrent": "library/concurrent.futures.html", "dataclasses": "library/dataclasses.html",
+    "contextlib": "library/contextlib.html", "enum": "library/enum.html",
+    "numbers": "library/numbers.html",
 }
-BUILTIN_TYPES = {"float", "int", "str", "bool", "dict", "list", "tuple", "bytes", "object"}
+PYTHON_CONSTANTS = {"None", "True", "False"}
+BUILTIN_TYPES = {"float", "int", "str", "bool", "dict", "list", "tuple", "bytes", "object",
+                 "callable"}
 
 
 def resolve(name: str):
@@ -98,6 +114,8 @@ def role(name: str, obj) -> str:
     """The inventory role: mod, class, exception, function, method or data."""
     if inspect.ismodule(obj):
         return "mod"
+    if name in PYTHON_CONSTANTS:
+        return "data"
     if name.startswith("numpy.typing."):
         return "data"  # type aliases
     if inspect.isclass(obj):
@@ -115,15 +133,22 @@ def page(project: str, name: str, kind: str) -> str:
         if where == project and name.startswith(prefix) and kind != "method":
             return special
     if project == "python":
+        if name in PYTHON_CONSTANTS:
+            return "library/constants.html"
         if "." not in name:
             return PYTHON_PAGES["builtins" if name in BUILTIN_TYPES else "exceptions"]
         return PYTHON_PAGES[name.split(".")[0]]
     if project == "fipy":
         return "fipy/generated/fipy.html"
+    if project == "distributed":
+        return "api.html"
+    if project == "pydantic":
+        module = name.rsplit(".", 1)[0]
+        return "api/base_model/" if module == "pydantic" else f"api/{module.split('.')[1]}/"
     if project == "matplotlib":
         return f"api/_as_gen/{name}.html"
     if project == "numpy":
-        return f"reference/generated/{name}.html"
+        return "reference/index.html" if kind == "mod" else f"reference/generated/{name}.html"
     if project == "scipy":
         return f"reference/generated/{name}.html"
     return f"generated/{name}.html"  # xarray
@@ -132,7 +157,7 @@ def page(project: str, name: str, kind: str) -> str:
 def inventory(project: str, names: list[str]) -> str:
     """The inventory of ``project`` as text (format version 1)."""
     import importlib.metadata as metadata
-    distribution = {"python": None, "fipy": "fipy"}.get(project, project)
+    distribution = {"python": None}.get(project, project)
     version = metadata.version(distribution) if distribution else "3"
     lines = ["# Sphinx inventory version 1", f"# Project: {project}", f"# Version: {version}"]
     for name in sorted(names):

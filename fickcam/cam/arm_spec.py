@@ -1,5 +1,5 @@
 """The scene's ``cam.follower.arm`` (a swinging-arm follower, :mod:`fickcam.cam.arm`) and
-what the motion and the arm cannot do together (:func:`arm_problems`, reported by
+what the motion and the arm cannot do together (:func:`~fickcam.cam.arm_spec.arm_problems`, reported by
 :mod:`fickcam.scene` at the key's line)."""
 from __future__ import annotations
 
