@@ -5,6 +5,7 @@ sphinx-gallery from ``examples/``, reference pages generated from the code by
 ``benchmarks/results/`` by ``_ext/fickcam_results.py``."""
 import importlib.util
 import re
+import sys
 from pathlib import Path
 
 import fickcam
@@ -17,16 +18,20 @@ version = release
 
 
 def _load_local_extension(name: str):
-    """A local extension, loaded from its file in ``_ext/`` (no ``sys.path`` edits)."""
+    """A local extension, loaded from its file in ``_ext/`` (no ``sys.path`` edits); it is
+    registered under its name so that objects of it in the configuration can be pickled
+    with Sphinx's environment."""
     path = Path(__file__).parent / "_ext" / f"{name}.py"
     spec = importlib.util.spec_from_file_location(name, path)
     module = importlib.util.module_from_spec(spec)
+    sys.modules[name] = module
     spec.loader.exec_module(module)
     return module
 
 
 _reference = _load_local_extension("fickcam_reference")
 _results = _load_local_extension("fickcam_results")
+_gallery = _load_local_extension("fickcam_gallery")
 
 extensions = [
     "myst_parser",
@@ -45,21 +50,8 @@ exclude_patterns = ["_build", "_tools", "examples", "Thumbs.db", ".DS_Store"]
 # The example gallery: one script per example scene in ``examples/``, run when the docs
 # build; each page shows the printed summary and the figures, with the script and a
 # notebook to download.
-class _TightFigures:
-    """sphinx-gallery's matplotlib scraper, saving each figure as fickcam's own plots are
-    saved: cropped to what is drawn, so that legends outside the axes are kept."""
-
-    def __repr__(self):  # a stable name, so that Sphinx's environment stays cached
-        return "fickcam-tight-figures"
-
-    def __call__(self, block, block_vars, gallery_conf):
-        from sphinx_gallery.scrapers import matplotlib_scraper
-
-        return matplotlib_scraper(block, block_vars, gallery_conf, bbox_inches="tight")
-
-
 sphinx_gallery_conf = {
-    "image_scrapers": (_TightFigures(),),
+    "image_scrapers": (_gallery.TightFigures(),),
     "examples_dirs": "examples",
     "gallery_dirs": "gallery",
     "filename_pattern": r"/plot_",
