@@ -1,6 +1,6 @@
 """Result files: netCDF4/HDF5 through xarray's h5netcdf engine, written atomically.
 
-:func:`save` writes to a temporary file in the target folder, flushes it to
+:func:`~fickcam.store.save` writes to a temporary file in the target folder, flushes it to
 disk and renames it over the target (``os.replace`` is atomic on POSIX), so a
 crash or ``kill -9`` at any moment leaves either the old file or the new one,
 never a damaged file.
@@ -281,7 +281,7 @@ def open_result(path):
     """Open a result written by :func:`save`, with ``time`` in float days.
 
     A file written when fickcam stored a timedelta ``time`` is read into days too; the JSON
-    attributes (:data:`JSON_ATTRIBUTES`) are decoded.
+    attributes (``JSON_ATTRIBUTES``) are decoded.
 
     Parameters
     ----------

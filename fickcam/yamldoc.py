@@ -1,7 +1,7 @@
 """YAML with line numbers: scene and sweep files are read with ``yaml.SafeLoader`` only
 (a ``!!python`` tag is refused, never executed), duplicate keys are refused, and every
 key path is mapped to its line so that each problem is reported as ``scene.yaml:LINE
-key.path: reason`` (pydantic errors included, :func:`problems_from_validation`).
+key.path: reason`` (pydantic errors included, :func:`~fickcam.yamldoc.problems_from_validation`).
 """
 from __future__ import annotations
 

@@ -39,7 +39,7 @@ def available_kinds(ds) -> list[str]:
     Returns
     -------
     list of str
-        Keys of :data:`KINDS`; ``["sweep"]`` for a sweep result (a ``case`` dimension).
+        Keys of ``KINDS``; ``["sweep"]`` for a sweep result (a ``case`` dimension).
     """
     if "case" in ds.dims:  # a sweep result: one figure set over its varied parameters
         return ["sweep"]
@@ -62,7 +62,7 @@ def plot(ds, outdir, kind: str = "all", save=save_figure) -> list[Path]:
         data for.
     save : callable
         ``save(fig, path) -> path`` writes one figure and returns the path written; the
-        default, :func:`save_figure`, writes the file atomically and closes the figure.
+        default, :func:`~fickcam.plotting.common.save_figure`, writes the file atomically and closes the figure.
         Another writer (a different format, or one that keeps the figures open to look
         at or to test) goes here.
 

@@ -36,7 +36,7 @@ def kinematic_rows(ds):
     Returns
     -------
     tuple
-        (variable, axis label, scale from the stored unit) per panel row: :data:`KINEMATICS`
+        (variable, axis label, scale from the stored unit) per panel row: ``KINEMATICS``
         when the result holds ``follower_displacement``, else :data:`ARM_KINEMATICS`.
     """
     return KINEMATICS if "follower_displacement" in ds else ARM_KINEMATICS
@@ -97,7 +97,7 @@ def plot_kinematics(ds, outdir, save=save_figure) -> list[Path]:
     outdir : str or pathlib.Path
         Where the two or three PNG files go (created if missing).
     save : callable
-        Writes one figure: ``save(fig, path) -> path`` (default :func:`save_figure`).
+        Writes one figure: ``save(fig, path) -> path`` (default :func:`~fickcam.plotting.common.save_figure`).
 
     Returns
     -------
@@ -213,7 +213,7 @@ def plot_dynamics(ds, outdir, save=save_figure) -> list[Path]:
     outdir : str or pathlib.Path
         The folder for both figures.
     save : callable
-        Writes one figure: ``save(fig, path) -> path`` (default :func:`save_figure`).
+        Writes one figure: ``save(fig, path) -> path`` (default :func:`~fickcam.plotting.common.save_figure`).
 
     Returns
     -------

@@ -22,7 +22,7 @@ def plot(ds, outdir, save=save_figure) -> list[Path]:
     outdir : str or pathlib.Path
         Folder for the vibration PNGs.
     save : callable
-        Writes one figure: ``save(fig, path) -> path`` (default :func:`save_figure`).
+        Writes one figure: ``save(fig, path) -> path`` (default :func:`~fickcam.plotting.common.save_figure`).
 
     Returns
     -------
