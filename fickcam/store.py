@@ -270,7 +270,14 @@ def _write_netcdf(ds, target: GuardedFile) -> None:
     variable (:func:`hold_attributes`): ``to_netcdf`` and ``H5NetCDFStore.open`` first ask
     dask for its scheduler, which imports dask.distributed (about 0.5 s) even when no variable
     is a dask array. Dask-backed data (a sweep's lazily combined cases) goes through
-    ``to_netcdf``, which computes and writes it (data variables first)."""
+    ``to_netcdf``, which computes and writes it (data variables first). An in-memory dataset
+    whose encodings :mod:`fickcam.ncwrite` knows is written by it in one pass through h5py
+    (the same file, without h5netcdf's per-variable bookkeeping)."""
+    from . import ncwrite
+
+    if ncwrite.writable(ds):
+        ncwrite.write(ds, target)
+        return
     import h5netcdf
     import h5py
 
