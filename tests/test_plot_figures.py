@@ -133,8 +133,8 @@ def sweep_result(kind: str) -> xr.Dataset:
 def test_grid_sweep_legends_speak_the_sweep_files_units(figures, tmp_path):
     plotting.plot(sweep_result("grid"), tmp_path, "sweep", save=figures)
     ax = figures["sweep_jump_speed.png"].axes[0]
-    assert [t.get_text() for t in ax.get_legend().get_texts()] == ["temperature = 60 degC",
-                                                                   "temperature = 85 degC"]
+    assert [t.get_text() for t in ax.get_legend().get_texts()] == ["temperature = 60 °C",
+                                                                   "temperature = 85 °C"]
     assert ax.get_xlabel() == "environment.history.0.relative_humidity [%]"
 
 
@@ -149,7 +149,7 @@ def test_monte_carlo_ticks_neither_crowd_nor_hide_behind_an_offset(figures, tmp_
             boxes = [b for b in boxes if ax.get_window_extent().expanded(1.5, 1.5).overlaps(b)]
             assert not any(a.overlaps(b) for i, a in enumerate(boxes) for b in boxes[i + 1:]), \
                 [t.get_text() for t in axis.get_ticklabels()]
-    assert fig.axes[2].get_xlabel() == "environment.history.0.temperature [degC]"
+    assert fig.axes[2].get_xlabel() == "environment.history.0.temperature [°C]"
 
 
 def test_a_sweep_over_weather_files_compares_the_sites_over_ageing_time(figures, tmp_path):

@@ -41,7 +41,7 @@ def available_kinds(ds) -> list[str]:
     Returns
     -------
     list of str
-        Keys of :data:`KINDS`; ``["sweep"]`` for a sweep result (a ``case`` dimension).
+        Keys of ``KINDS``; ``["sweep"]`` for a sweep result (a ``case`` dimension).
     """
     if "case" in ds.dims:  # a sweep result: one figure set over its varied parameters
         return ["sweep"]
@@ -70,7 +70,7 @@ def plot(ds, outdir=None, kind: str = "all", save=None) -> Figures:
         data for.
     save : callable
         ``save(fig, path) -> path`` writes one figure and returns the path written; the
-        default, :func:`save_figure`, writes the file atomically. Another writer (a
+        default, :func:`~fickcam.plotting.common.save_figure`, writes the file atomically. Another writer (a
         different format) goes here. Used only with ``outdir``.
 
     Returns

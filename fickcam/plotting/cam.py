@@ -36,7 +36,7 @@ def kinematic_rows(ds):
     Returns
     -------
     tuple
-        (variable, axis label, scale from the stored unit) per panel row: :data:`KINEMATICS`
+        (variable, axis label, scale from the stored unit) per panel row: ``KINEMATICS``
         when the result holds ``follower_displacement``, else :data:`ARM_KINEMATICS`.
     """
     return KINEMATICS if "follower_displacement" in ds else ARM_KINEMATICS
@@ -98,7 +98,7 @@ def plot_kinematics(ds, outdir=None, save=None) -> Figures:
     outdir : str or pathlib.Path, optional
         Where the two or three PNG files go (created if missing). None: the figures are only returned.
     save : callable
-        Writes one figure: ``save(fig, path) -> path`` (default :func:`save_figure`).
+        Writes one figure: ``save(fig, path) -> path`` (default :func:`~fickcam.plotting.common.save_figure`).
 
     Returns
     -------
@@ -213,7 +213,7 @@ def plot_dynamics(ds, outdir=None, save=None) -> Figures:
     outdir : str or pathlib.Path, optional
         The folder for both figures. None: the figures are only returned.
     save : callable
-        Writes one figure: ``save(fig, path) -> path`` (default :func:`save_figure`).
+        Writes one figure: ``save(fig, path) -> path`` (default :func:`~fickcam.plotting.common.save_figure`).
 
     Returns
     -------

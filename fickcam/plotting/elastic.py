@@ -28,7 +28,7 @@ def plot(ds, outdir=None, save=None) -> Figures:
     outdir : str or pathlib.Path, optional
         Folder of the elastic figures. None: the figures are only returned.
     save : callable
-        Writes one figure: ``save(fig, path) -> path`` (default :func:`save_figure`).
+        Writes one figure: ``save(fig, path) -> path`` (default :func:`~fickcam.plotting.common.save_figure`).
 
     Returns
     -------

@@ -113,7 +113,7 @@ def plot(ds, outdir=None, save=None) -> Figures:
     outdir : str or pathlib.Path, optional
         Where limits.png is saved. None: the figures are only returned.
     save : callable
-        Writes one figure: ``save(fig, path) -> path`` (default :func:`save_figure`).
+        Writes one figure: ``save(fig, path) -> path`` (default :func:`~fickcam.plotting.common.save_figure`).
 
     Returns
     -------

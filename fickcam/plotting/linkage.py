@@ -39,7 +39,7 @@ def plot(ds, outdir=None, save=None) -> Figures:
     outdir : str or pathlib.Path, optional
         Output folder of the three linkage figures. None: the figures are only returned.
     save : callable
-        Writes one figure: ``save(fig, path) -> path`` (default :func:`save_figure`).
+        Writes one figure: ``save(fig, path) -> path`` (default :func:`~fickcam.plotting.common.save_figure`).
 
     Returns
     -------

@@ -104,7 +104,12 @@ def _shown(ds, name: str) -> tuple[np.ndarray, str]:
 def _label(ds, name: str) -> str:
     _, units = _shown(ds, name)
     path = ds[name].attrs.get("dotted_path", name)
-    return path if units in ("1", "") else f"{path} [{units}]"
+    return path if units in ("1", "") else f"{path} [{_degrees(units)}]"
+
+
+def _degrees(units: str) -> str:
+    """A unit as a reader writes it on a figure: degC as °C."""
+    return units.replace("degC", "°C")
 
 
 def _value_label(ds, name: str, value) -> str:
@@ -113,7 +118,7 @@ def _value_label(ds, name: str, value) -> str:
     short = ds[name].attrs.get("dotted_path", name).split(".")[-1]
     _, units = _shown(ds, name)
     if isinstance(value, float):
-        return f"{short} = {value:g}" + ("" if units in ("1", "") else f" {units}")
+        return f"{short} = {value:g}" + ("" if units in ("1", "") else f" {_degrees(units)}")
     return _sites(ds, name).get(str(value)) or f"{short} = {value}"
 
 
@@ -366,7 +371,7 @@ def plot(ds, outdir=None, time_index: int = -1, save=None) -> Figures:
     time_index : int
         The ageing time [-] (an index into ``time``) the outputs are taken at; -1: the last.
     save : callable
-        Writes one figure: ``save(fig, path) -> path`` (default :func:`save_figure`).
+        Writes one figure: ``save(fig, path) -> path`` (default :func:`~fickcam.plotting.common.save_figure`).
 
     Returns
     -------

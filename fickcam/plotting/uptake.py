@@ -9,7 +9,7 @@ from .common import days, figure, legend_outside, Figures, returns_figures, save
 
 #: names of the climate summary's interval lengths [s]
 INTERVALS = {3600.0: "hourly", 86400.0: "daily", 7 * 86400.0: "weekly", 30 * 86400.0: "30-day"}
-CLIMATE = (("temperature", "temperature [degC]", -273.15, "C3"),
+CLIMATE = (("temperature", "temperature [°C]", -273.15, "C3"),
            ("relative_humidity", "relative humidity [%]", 0.0, "C0"))
 
 
@@ -25,7 +25,7 @@ def plot(ds, outdir=None, save=None) -> Figures:
     outdir : str or pathlib.Path, optional
         uptake.png is written here. None: the figures are only returned.
     save : callable
-        Writes one figure: ``save(fig, path) -> path`` (default :func:`save_figure`).
+        Writes one figure: ``save(fig, path) -> path`` (default :func:`~fickcam.plotting.common.save_figure`).
 
     Returns
     -------
