@@ -7,15 +7,14 @@ from pathlib import Path
 
 import numpy as np
 
-import logging
 
 from ..errors import InputError, Problem, SceneError
+from ..messages import warn
 from . import across
 from .anomalous import AnomalyTest, LangmuirFit, check_fickian
 from .data import Specimen, condition_label, read_weight_gain
 from .single import FickFit, fit_fickian
 
-log = logging.getLogger(__name__)
 
 UNDETERMINED = 10.0       # D interval wider than this factor (or Mm's wider than Mm): not determined
 NEAR_EQUILIBRIUM = 0.99   # fitted M/Mm at the last weighing above which Mm is not called extrapolated
@@ -181,7 +180,7 @@ def _check_temperatures(specimens: list[Specimen], material, name: str, file: st
         for reason in warnings:
             if specimen.temperature not in warned:
                 warned.add(specimen.temperature)
-                log.warning("%s:%s temperature: %s", file, line, reason)
+                warn("%s:%s temperature: %s", file, line, reason)
     if problems:
         raise SceneError(problems)
 
