@@ -7,7 +7,6 @@ from pathlib import Path
 
 import numpy as np
 
-
 from ..errors import InputError, Problem, SceneError
 from ..messages import warn
 from . import across
