@@ -127,15 +127,16 @@ def set_attributes(target, attributes: dict) -> None:
         target[key] = value
 
 
-def write(ds, filename: str) -> None:
+def write(ds, filename) -> None:
     """Write an in-memory dataset (:func:`writable`) to a new netCDF4 file through h5py.
 
     Parameters
     ----------
     ds : xarray.Dataset
         The dataset (attributes already netCDF types: text, numbers, arrays).
-    filename : str
-        The file to create (overwritten).
+    filename : str or file-like
+        The file to create (overwritten), or a binary file object open for writing
+        (h5py writes through it).
     """
     import h5py
 
