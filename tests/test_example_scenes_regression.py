@@ -139,29 +139,10 @@ def _numbers(values: np.ndarray) -> np.ndarray:
     return values.astype(float)
 
 
-def run_without_foreign_warnings(path):
-    """``fickcam.run(path)``, failing on any warning a user would see but a FickcamWarning
-    (numpy's ``All-NaN slice``, a RuntimeWarning, matplotlib's, tqdm's): Python's default
-    filters (deprecations hidden outside ``__main__``), every occurrence recorded."""
-    import warnings
-
-    with warnings.catch_warnings(record=True) as seen:
-        warnings.resetwarnings()
-        warnings.simplefilter("always")
-        for category in (DeprecationWarning, PendingDeprecationWarning, ImportWarning,
-                         ResourceWarning):
-            warnings.filterwarnings("ignore", category=category)
-        result = fickcam.run(path)
-    foreign = [f"{w.category.__name__}: {w.message} ({w.filename}:{w.lineno})" for w in seen
-               if not issubclass(w.category, fickcam.FickcamWarning)]
-    assert not foreign, foreign
-    return result
-
-
-def compared(name: str) -> tuple[dict, dict, dict]:
-    """The reference's variables, today's run of the scene at the same subsample and
-    times, and the run's diffusion summary."""
-    result = in_days(run_without_foreign_warnings(ROOT / "configs" / f"{name}.yaml"))
+def compared(name: str, example_result) -> tuple[dict, dict, dict]:
+    """The reference's variables, today's run of the scene (``example_result``, the session
+    fixture) at the same subsample and times, and the run's diffusion summary."""
+    result = in_days(example_result(name))
     reference = REFERENCE[name]
     full = SCENES[name]["full_sizes"]
     assert {d: s for d, s in result.sizes.items() if d in full and d != "time"} == \
@@ -173,10 +154,10 @@ def compared(name: str) -> tuple[dict, dict, dict]:
 
 @pytest.mark.slow
 @pytest.mark.parametrize("name", sorted(SCENES))
-def test_example_scene_gives_the_results_of_5559169(name):
+def test_example_scene_gives_the_results_of_5559169(name, example_result):
     import json
 
-    reference, now, attrs = compared(name)
+    reference, now, attrs = compared(name, example_result)
     assert set(now.variables) - set(reference) <= ADDED
     missing = set(reference) - set(now.variables)
     assert not missing, f"{name}: variables lost: {sorted(missing)}"
