@@ -459,21 +459,19 @@ class Findings:
 
     def refuse_ambiguous(self, doc, path: tuple, dimension: str) -> bool:
         """Refuse the value at ``path`` when it is a bare number of an ambiguous dimension
-        (:func:`ambiguity`); True when it was refused.
+        (:func:`ambiguity`).
 
         Parameters
         ----------
-        doc : fickcam.yamldoc.YamlDocument
-            The scene file (for the problem's line).
-        path : tuple of str or int
-            The value's keys.
+        doc, path
+            The scene file and the value's keys, as :meth:`judge` takes them.
         dimension : str
-            Its dimension.
+            Its dimension (a key of :data:`AMBIGUOUS` to be refused).
 
         Returns
         -------
         bool
-            True when the value was refused (added to ``errors``).
+            True when refused (added to ``errors``).
         """
         reason = ambiguity(raw_value(doc.data, path), dimension)
         if reason:
@@ -527,6 +525,37 @@ def _length(what: str, band: Band, context: str) -> Reading:
     return Reading(what, "length", "m", band.verdict, LENGTH_ALTERNATIVES, context)
 
 
+def cam_length_reading(what: str, data: dict) -> Reading | None:
+    """How a bare length bound on a cam (``fickcam size --radius-of-curvature``) is judged:
+    as a ``limits:`` bound on one of the cam's lengths, against its base circle (or disc)
+    radius.
+
+    Parameters
+    ----------
+    what : str
+        What it is, in messages.
+    data : dict
+        The scene as read from YAML.
+
+    Returns
+    -------
+    Reading or None
+        None when the scene has no cam with a radius to judge against.
+    """
+    cam = data.get("cam")
+    if not isinstance(cam, dict):
+        return None
+    path, radius = _cam_reference(cam)
+    if radius is None or radius <= 0:
+        return None
+    return _length(what, LIMIT_BOUND.times(radius), _cam_context(path, radius))
+
+
+def _cam_context(path: tuple, radius: float) -> str:
+    """'its base circle radius is 19 mm' (or its disc's), for messages."""
+    return f"its {'disc' if path[-1] == 'radius' else 'base circle'} radius is {_mm(radius)}"
+
+
 def _mm(metres: float) -> str:
     return f"{metres * 1e3:.4g} mm"
 
@@ -577,8 +606,7 @@ def _cam_findings(doc, findings: Findings) -> Scale | None:
             doc, path, _length("cam base circle radius", CAM_RADIUS, "moulded and machined "
                                "cams measure millimetres to decimetres")):
         return None
-    context = f"its base circle radius is {_mm(radius)}" if path[-1] != "radius" else \
-        f"its disc radius is {_mm(radius)}"
+    context = _cam_context(path, radius)
     for member in CAM_MEMBERS:
         findings.judge(doc, ("cam",) + member.path,
                        _length(member.what, member.ratio.times(radius), context))
@@ -802,8 +830,27 @@ def _output_findings(model, doc, end: float, findings: Findings) -> None:
     else:
         return
 
+    findings.judge(doc, path, output_time_reading(what, end))
+
+
+def output_time_reading(what: str, end: float) -> Reading:
+    """How a bare output time (a step, or the last ageing time) is judged: by how many of it
+    fit in the history it samples.
+
+    Parameters
+    ----------
+    what : str
+        What it is, in messages (``"last ageing time"``).
+    end : float
+        The end of the history [s].
+
+    Returns
+    -------
+    Reading
+        More than 1000 of it in the history unusual, more than 10 000 implausible; days,
+        then hours, suggested.
+    """
     def fits(step: float) -> Verdict:
         return SAMPLES.verdict(end / step if step > 0 else 0.0)
 
-    findings.judge(doc, path, Reading(what, "time", "s", fits, HISTORY_ALTERNATIVES,
-                                      f"the history lasts {_days(end)}"))
+    return Reading(what, "time", "s", fits, HISTORY_ALTERNATIVES, f"the history lasts {_days(end)}")
