@@ -179,7 +179,7 @@ def _cmd_plot(args) -> int:
 
     ds = open_result(args.result)
     outdir = Path(args.outdir) if args.outdir else Path(args.result).with_suffix("")
-    for path in plot(ds, outdir, args.kind):
+    for path in plot(ds, outdir, args.kind).paths:
         print(f"wrote {path}")
     return 0
 

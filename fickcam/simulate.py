@@ -115,7 +115,7 @@ def diffusion_options(scene: Scene, accuracy: float | None, settings=None, cache
     -------
     dict
         accuracy [-], model, surface_layer_depth [m], settings and cache, as
-        :func:`fickcam.diffusion.solve` takes them.
+        :func:`fickcam.diffusion.solve <fickcam.diffusion.dispatch.solve>` takes them.
     """
     from .diffusion import SolverSettings, run_cache
 

@@ -231,7 +231,7 @@ def plan(geometry, diffusivity: Diffusivity, exposure: Exposure, times: np.ndarr
     ----------
     geometry, diffusivity, exposure, times, accuracy, model, sorption
         The part [m], its D(T) [m^2/s], its surface history, the times [s], the relative
-        accuracy [-] and the model asked for: the fields of :class:`DiffusionProblem`.
+        accuracy [-] and the model asked for: the fields of :class:`~fickcam.diffusion.problem.definition.DiffusionProblem`.
     surface_layer_depth : float, optional
         The depth of the contact layer [m]; None: not given (a Fickian plan does not
         read it; a sorption plan takes ``LAYER_DEPTH``, 5e-4 m).
@@ -271,7 +271,7 @@ def refuse(problem: DiffusionProblem) -> None:
     Raises
     ------
     fickcam.errors.InputError
-        With the reason, in the words :func:`plan` gives it.
+        With the reason, in the words ``plan`` gives it.
     """
     _validate(problem)
     _fick_model(problem.geometry, problem.model)

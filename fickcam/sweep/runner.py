@@ -374,7 +374,7 @@ def run_sweep(sweep_path, output, workers: int | None = None, scheduler: str | N
     from ..diffusion import run_cache
     from ..scene import load_scene
     from ..simulate import plan_parts
-    from ..store import save
+    from ..store import remove_stale_temporaries, save
 
     started = time.perf_counter()
     if scheduler or (workers or 1) > 1:
@@ -388,6 +388,8 @@ def run_sweep(sweep_path, output, workers: int | None = None, scheduler: str | N
     output = Path(output)
     folder = WorkFolder.next_to(output)
     records = folder.open_for(sweep.identity, len(sweep.cases))
+    for stale in remove_stale_temporaries(output):  # a run killed while it wrote the result
+        log.info("removed %s, left by an interrupted write of %s", stale, output)
     todo = [c.index for c in sweep.cases if c.index not in records]
     if records:
         log.info("resuming: %d of %d case(s) already finished", len(records), len(sweep.cases))
