@@ -163,7 +163,9 @@ def _separate_indented_blocks(lines: list[str]) -> list[str]:
     docstrings indent formulas and lists as plain text)."""
     out = []
     for line in lines:
-        if out and out[-1].strip() and line.strip() and _indent(line) != _indent(out[-1]):
+        comment = out and out[-1].strip() == ".."  # numpydoc's comment keeps its body
+        if (out and out[-1].strip() and line.strip() and _indent(line) != _indent(out[-1])
+                and not comment):
             out.append("")
         out.append(line)
     return out
