@@ -16,8 +16,6 @@ The scene is ``alshamma2011_box_cam.yaml``, one of the examples that come with f
 # :func:`fickcam.run` ages it and returns the result, an :class:`xarray.Dataset`;
 # the summary is what ``fickcam run`` prints.
 
-import tempfile
-
 import fickcam
 from fickcam import example_scenes
 from fickcam.plotting import plot
@@ -27,18 +25,13 @@ ds = fickcam.run(fickcam.load_scene(example_scenes.path("alshamma2011_box_cam"))
 print(summary(ds, notices=False))
 
 
-def show(fig, path):
-    """Keep each figure open, to show it on this page, instead of writing it."""
-    return path
-
-
 # %%
 # Deflection and swelling stress
 # ------------------------------
 # Contact deflection over the cam angle, and the swelling stress and failure index in
 # the plate, at several ages.
 
-figures = plot(ds, tempfile.mkdtemp(), "elastic", save=show)
+figures = plot(ds, kind="elastic")
 
 
 # %%

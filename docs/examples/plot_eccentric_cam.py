@@ -17,8 +17,6 @@ The scene is ``eccentric_cam.yaml``, one of the examples that come with fickcam
 # :func:`fickcam.run` ages it and returns the result, an :class:`xarray.Dataset`;
 # the summary is what ``fickcam run`` prints.
 
-import tempfile
-
 import fickcam
 from fickcam import example_scenes
 from fickcam.plotting import plot
@@ -28,17 +26,12 @@ ds = fickcam.run(fickcam.load_scene(example_scenes.path("eccentric_cam")))
 print(summary(ds, notices=False))
 
 
-def show(fig, path):
-    """Keep each figure open, to show it on this page, instead of writing it."""
-    return path
-
-
 # %%
 # Moisture uptake
 # ---------------
 # The cam's moisture content against ageing time.
 
-figures = plot(ds, tempfile.mkdtemp(), "uptake", save=show)
+figures = plot(ds, kind="uptake")
 
 
 # %%
@@ -47,7 +40,7 @@ figures = plot(ds, tempfile.mkdtemp(), "uptake", save=show)
 # Contact force and Hertz contact stress over one turn at several ages: as the wet
 # surface softens, the peak contact stress falls.
 
-figures = plot(ds, tempfile.mkdtemp(), "dynamics", save=show)
+figures = plot(ds, kind="dynamics")
 
 
 # %%

@@ -16,8 +16,6 @@ The scene is ``eccentric_cam_greensboro.yaml``, one of the examples that come wi
 # :func:`fickcam.run` ages it and returns the result, an :class:`xarray.Dataset`;
 # the summary is what ``fickcam run`` prints.
 
-import tempfile
-
 import fickcam
 from fickcam import example_scenes
 from fickcam.plotting import plot
@@ -27,17 +25,12 @@ ds = fickcam.run(fickcam.load_scene(example_scenes.path("eccentric_cam_greensbor
 print(summary(ds, notices=False))
 
 
-def show(fig, path):
-    """Keep each figure open, to show it on this page, instead of writing it."""
-    return path
-
-
 # %%
 # Moisture through the seasons
 # ----------------------------
 # The cam's moisture against ageing time through the two weather years.
 
-figures = plot(ds, tempfile.mkdtemp(), "uptake", save=show)
+figures = plot(ds, kind="uptake")
 
 
 # %%

@@ -16,8 +16,6 @@ The scene is ``epoxy_follower_vibration.yaml``, one of the examples that come wi
 # :func:`fickcam.run` ages it and returns the result, an :class:`xarray.Dataset`;
 # the summary is what ``fickcam run`` prints.
 
-import tempfile
-
 import fickcam
 from fickcam import example_scenes
 from fickcam.plotting import plot
@@ -27,18 +25,13 @@ ds = fickcam.run(fickcam.load_scene(example_scenes.path("epoxy_follower_vibratio
 print(summary(ds, notices=False))
 
 
-def show(fig, path):
-    """Keep each figure open, to show it on this page, instead of writing it."""
-    return path
-
-
 # %%
 # Dynamic against rigid follower
 # ------------------------------
 # Displacement and contact force of the elastic follower train against the rigid one
 # over a turn, at several ages.
 
-figures = plot(ds, tempfile.mkdtemp(), "vibration", save=show)
+figures = plot(ds, kind="vibration")
 
 
 # %%

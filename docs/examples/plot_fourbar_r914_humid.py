@@ -16,8 +16,6 @@ The scene is ``fourbar_r914_humid.yaml``, one of the examples that come with fic
 # :func:`fickcam.run` ages it and returns the result, an :class:`xarray.Dataset`;
 # the summary is what ``fickcam run`` prints.
 
-import tempfile
-
 import fickcam
 from fickcam import example_scenes
 from fickcam.plotting import plot
@@ -27,18 +25,13 @@ ds = fickcam.run(fickcam.load_scene(example_scenes.path("fourbar_r914_humid")))
 print(summary(ds, notices=False))
 
 
-def show(fig, path):
-    """Keep each figure open, to show it on this page, instead of writing it."""
-    return path
-
-
 # %%
 # Rocker and coupler point
 # ------------------------
 # The rocker angle's and the coupler point's drift from the design over a crank turn at
 # several ages, as the links grow.
 
-figures = plot(ds, tempfile.mkdtemp(), "linkage", save=show)
+figures = plot(ds, kind="linkage")
 
 
 # %%
@@ -47,7 +40,7 @@ figures = plot(ds, tempfile.mkdtemp(), "linkage", save=show)
 # Each limit against ageing time: the rocker and coupler-point limits fail within two
 # days, the transmission angle at about 96 days.
 
-figures = plot(ds, tempfile.mkdtemp(), "limits", save=show)
+figures = plot(ds, kind="limits")
 
 
 # %%

@@ -15,8 +15,6 @@ The scene is ``fourbar_r914_humid_compensated.yaml``, one of the examples that c
 # :func:`fickcam.run` ages it and returns the result, an :class:`xarray.Dataset`;
 # the summary is what ``fickcam run`` prints.
 
-import tempfile
-
 import fickcam
 from fickcam import example_scenes
 from fickcam.plotting import plot
@@ -26,18 +24,13 @@ ds = fickcam.run(fickcam.load_scene(example_scenes.path("fourbar_r914_humid_comp
 print(summary(ds, notices=False))
 
 
-def show(fig, path):
-    """Keep each figure open, to show it on this page, instead of writing it."""
-    return path
-
-
 # %%
 # The limits of the compensated linkage
 # -------------------------------------
 # Each limit against ageing time: after entering the band before 30 days, rocker angle
 # and coupler point stay inside their limits to the end of the year.
 
-figures = plot(ds, tempfile.mkdtemp(), "limits", save=show)
+figures = plot(ds, kind="limits")
 
 
 # %%

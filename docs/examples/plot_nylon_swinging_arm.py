@@ -15,8 +15,6 @@ The scene is ``nylon_swinging_arm.yaml``, one of the examples that come with fic
 # :func:`fickcam.run` ages it and returns the result, an :class:`xarray.Dataset`;
 # the summary is what ``fickcam run`` prints.
 
-import tempfile
-
 import fickcam
 from fickcam import example_scenes
 from fickcam.plotting import plot
@@ -26,18 +24,13 @@ ds = fickcam.run(fickcam.load_scene(example_scenes.path("nylon_swinging_arm")))
 print(summary(ds, notices=False))
 
 
-def show(fig, path):
-    """Keep each figure open, to show it on this page, instead of writing it."""
-    return path
-
-
 # %%
 # Arm angle and pressure angle
 # ----------------------------
 # The arm's angle, angular velocity and acceleration and the pressure angle over one
 # turn, at several ages.
 
-figures = plot(ds, tempfile.mkdtemp(), "kinematics", save=show)
+figures = plot(ds, kind="kinematics")
 
 
 # %%

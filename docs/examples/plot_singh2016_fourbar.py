@@ -16,8 +16,6 @@ The scene is ``singh2016_fourbar.yaml``, one of the examples that come with fick
 # :func:`fickcam.run` ages it and returns the result, an :class:`xarray.Dataset`;
 # the summary is what ``fickcam run`` prints.
 
-import tempfile
-
 import fickcam
 from fickcam import example_scenes
 from fickcam.plotting import plot
@@ -27,18 +25,13 @@ ds = fickcam.run(fickcam.load_scene(example_scenes.path("singh2016_fourbar")))
 print(summary(ds, notices=False))
 
 
-def show(fig, path):
-    """Keep each figure open, to show it on this page, instead of writing it."""
-    return path
-
-
 # %%
 # Moisture uptake of the links
 # ----------------------------
 # Mean moisture of each link against ageing time, until the run stops a part whose
 # surface layer reaches its wet glass transition temperature (a notice says when).
 
-figures = plot(ds, tempfile.mkdtemp(), "uptake", save=show)
+figures = plot(ds, kind="uptake")
 
 
 # %%

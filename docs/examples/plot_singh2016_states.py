@@ -16,8 +16,6 @@ The scene is ``singh2016_states.yaml``, one of the examples that come with fickc
 # :func:`fickcam.run` ages it and returns the result, an :class:`xarray.Dataset`;
 # the summary is what ``fickcam run`` prints.
 
-import tempfile
-
 import fickcam
 from fickcam import example_scenes
 from fickcam.plotting import plot
@@ -27,17 +25,12 @@ ds = fickcam.run(fickcam.load_scene(example_scenes.path("singh2016_states")))
 print(summary(ds, notices=False))
 
 
-def show(fig, path):
-    """Keep each figure open, to show it on this page, instead of writing it."""
-    return path
-
-
 # %%
 # Rocker angle in three states
 # ----------------------------
 # The rocker angle's shift from the design over a crank turn in each state.
 
-figures = plot(ds, tempfile.mkdtemp(), "linkage", save=show)
+figures = plot(ds, kind="linkage")
 
 
 # %%

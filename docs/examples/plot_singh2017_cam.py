@@ -18,8 +18,6 @@ The scene is ``singh2017_cam.yaml``, one of the examples that come with fickcam
 # :func:`fickcam.run` ages it and returns the result, an :class:`xarray.Dataset`;
 # the summary is what ``fickcam run`` prints.
 
-import tempfile
-
 import fickcam
 from fickcam import example_scenes
 from fickcam.plotting import plot
@@ -27,11 +25,6 @@ from fickcam.reporting import summary
 
 ds = fickcam.run(fickcam.load_scene(example_scenes.path("singh2017_cam")))
 print(summary(ds, notices=False))
-
-
-def show(fig, path):
-    """Keep each figure open, to show it on this page, instead of writing it."""
-    return path
 
 
 # %%
@@ -42,7 +35,7 @@ def show(fig, path):
 # days; the right-hand panel shows where in the turn the deviation is. Jump speed,
 # contact stress and subsurface shear stress stay clear of their limits.
 
-figures = plot(ds, tempfile.mkdtemp(), "limits", save=show)
+figures = plot(ds, kind="limits")
 
 
 # %%

@@ -16,8 +16,6 @@ The scene is ``singh2017_cam_compensated.yaml``, one of the examples that come w
 # :func:`fickcam.run` ages it and returns the result, an :class:`xarray.Dataset`;
 # the summary is what ``fickcam run`` prints.
 
-import tempfile
-
 import fickcam
 from fickcam import example_scenes
 from fickcam.plotting import plot
@@ -27,18 +25,13 @@ ds = fickcam.run(fickcam.load_scene(example_scenes.path("singh2017_cam_compensat
 print(summary(ds, notices=False))
 
 
-def show(fig, path):
-    """Keep each figure open, to show it on this page, instead of writing it."""
-    return path
-
-
 # %%
 # The limits of the compensated cam
 # ---------------------------------
 # The follower's largest deviation from the designed motion now stays far inside the
 # 0.25 mm band for the whole 60 days; the other limits hold as before.
 
-figures = plot(ds, tempfile.mkdtemp(), "limits", save=show)
+figures = plot(ds, kind="limits")
 
 
 # %%

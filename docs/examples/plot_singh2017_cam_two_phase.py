@@ -16,8 +16,6 @@ The scene is ``singh2017_cam_two_phase.yaml``, one of the examples that come wit
 # :func:`fickcam.run` ages it and returns the result, an :class:`xarray.Dataset`;
 # the summary is what ``fickcam run`` prints.
 
-import tempfile
-
 import fickcam
 from fickcam import example_scenes
 from fickcam.plotting import plot
@@ -27,17 +25,12 @@ ds = fickcam.run(fickcam.load_scene(example_scenes.path("singh2017_cam_two_phase
 print(summary(ds, notices=False))
 
 
-def show(fig, path):
-    """Keep each figure open, to show it on this page, instead of writing it."""
-    return path
-
-
 # %%
 # Free and bound water
 # --------------------
 # Moisture of cam and follower against ageing time.
 
-figures = plot(ds, tempfile.mkdtemp(), "uptake", save=show)
+figures = plot(ds, kind="uptake")
 
 
 # %%

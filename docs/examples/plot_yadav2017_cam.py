@@ -16,8 +16,6 @@ The scene is ``yadav2017_cam.yaml``, one of the examples that come with fickcam
 # :func:`fickcam.run` ages it and returns the result, an :class:`xarray.Dataset`;
 # the summary is what ``fickcam run`` prints.
 
-import tempfile
-
 import fickcam
 from fickcam import example_scenes
 from fickcam.plotting import plot
@@ -27,17 +25,12 @@ ds = fickcam.run(fickcam.load_scene(example_scenes.path("yadav2017_cam")))
 print(summary(ds, notices=False))
 
 
-def show(fig, path):
-    """Keep each figure open, to show it on this page, instead of writing it."""
-    return path
-
-
 # %%
 # Kinematics
 # ----------
 # Follower lift, velocity, acceleration and pressure angle over one turn.
 
-figures = plot(ds, tempfile.mkdtemp(), "kinematics", save=show)
+figures = plot(ds, kind="kinematics")
 
 
 # %%

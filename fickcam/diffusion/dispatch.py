@@ -257,6 +257,27 @@ def plan(geometry, diffusivity: Diffusivity, exposure: Exposure, times: np.ndarr
                         settings, cache)
 
 
+def refuse(problem: DiffusionProblem) -> None:
+    """Refuse, before any work, a problem that no model can plan: an unknown model, a
+    model that does not apply to the part's shape or has no solution for it, an accuracy
+    outside (0, 1), no route of its sorption law. A run checks every part so before it
+    plans or solves the first (a refusal costs nothing then).
+
+    Parameters
+    ----------
+    problem : DiffusionProblem
+        The part [m], diffusivity [m^2/s], exposure, times [s], accuracy [-] and model.
+
+    Raises
+    ------
+    fickcam.errors.InputError
+        With the reason, in the words :func:`plan` gives it.
+    """
+    _validate(problem)
+    _fick_model(problem.geometry, problem.model)
+    route_of(problem)
+
+
 def plan_problem(problem: DiffusionProblem, settings: SolverSettings = SETTINGS,
                  cache: RunCache | None = None) -> Plan:
     """:func:`plan` of a ``DiffusionProblem`` (its ``store_fields`` and ``part`` unread): the

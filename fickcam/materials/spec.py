@@ -355,6 +355,14 @@ class MatrixProperties(StrictModel):
         D(T).
     saturation : SaturationSpec, optional
         Mm(RH).
+    melting_temperature : float, optional
+        Melting point of a semicrystalline thermoplastic [K]: a climate at or above it is
+        refused.
+    service_temperature : float, optional
+        Maximum continuous service temperature [K]: a climate above it is warned.
+    heat_deflection_temperature : float, optional
+        Heat deflection temperature at 1.80 MPa [K]: the service limit where no
+        ``service_temperature`` is given.
     """
 
     youngs_modulus: Pressure | None = Field(
@@ -374,6 +382,14 @@ class MatrixProperties(StrictModel):
         None, description="Moisture diffusivity D(T), Arrhenius in temperature [m^2/s]")
     saturation: SaturationSpec | None = Field(
         None, description="Equilibrium moisture content Mm(RH) [weight %]")
+    melting_temperature: Temperature | None = Field(
+        None, description="Melting point of a semicrystalline thermoplastic; a climate at or "
+                          "above it is refused [K]")
+    service_temperature: Temperature | None = Field(
+        None, description="Maximum continuous service temperature; a climate above it is warned [K]")
+    heat_deflection_temperature: Temperature | None = Field(
+        None, description="Heat deflection temperature at 1.80 MPa (ISO 75); the service limit "
+                          "where service_temperature is not given [K]")
 
 
 class FiberProperties(StrictModel):
@@ -434,6 +450,8 @@ class MaterialSpec(MatrixProperties):
         Override of nu [-].
     diffusivity, saturation : optional
         Overrides of D(T) [m^2/s] and Mm(RH) [weight %].
+    melting_temperature, service_temperature, heat_deflection_temperature : float, optional
+        Temperature limits [K] (see :class:`MatrixProperties`).
     fiber, matrix, plastic, metal : str, optional
         Library names (or aliases).
     fiber_volume_fraction, fiber_weight_fraction : float, optional
