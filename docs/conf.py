@@ -158,12 +158,35 @@ def _indent(line: str) -> int:
     return len(line) - len(line.lstrip())
 
 
+def _reference_entries(lines: list[str]) -> list[str]:
+    """The entries under a module docstring's ``References`` heading, one paragraph each:
+    an entry starts at the margin and its continuation lines are indented."""
+    out, inside = [], False
+    for line in lines:
+        if line.strip() == "References":
+            inside = True
+        elif set(line.strip()) == {"-"} and out and out[-1].strip() != "References":
+            inside = False  # the next section's heading
+            if len(out) > 1 and out[-2].strip():  # its title was joined as an entry's line
+                out.insert(len(out) - 1, "")
+        elif inside and line.strip() and not set(line.strip()) <= {"-"}:
+            if _indent(line) > 0:  # a continuation of the entry above
+                out[-1] = f"{out[-1]} {line.strip()}"
+                continue
+            if out and out[-1].strip() and not set(out[-1].strip()) <= {"-"}:
+                out.append("")
+        out.append(line)
+    return out
+
+
 def _separate_indented_blocks(lines: list[str]) -> list[str]:
     """A blank line wherever the indentation changes between two text lines (module
     docstrings indent formulas and lists as plain text)."""
     out = []
-    for line in lines:
-        if out and out[-1].strip() and line.strip() and _indent(line) != _indent(out[-1]):
+    for line in _reference_entries(lines):
+        comment = out and out[-1].strip() == ".."  # numpydoc's comment keeps its body
+        if (out and out[-1].strip() and line.strip() and _indent(line) != _indent(out[-1])
+                and not comment):
             out.append("")
         out.append(line)
     return out

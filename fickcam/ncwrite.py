@@ -5,7 +5,7 @@ looks every dimension and variable up in the file again for each variable it wri
 attaches each variable to its dimension scales one call at a time (each call rewrites the
 scale's whole list of the variables attached to it). For a result's ~140 small variables
 that bookkeeping, not the numbers, was most of the write. :func:`write` lays out the same
-file in one pass: xarray's own CF encoding (:func:`xarray.conventions.cf_encoder`), then
+file in one pass: xarray's own CF encoding (``xarray.conventions.cf_encoder``), then
 each variable as an HDF5 dataset with its attributes, and each dimension scale's list of
 the variables attached to it written once, at the end.
 

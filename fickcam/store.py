@@ -112,7 +112,7 @@ class GuardedFile:
     HDF5 cannot recover from a write that fails half-way (a full disk): every later call
     fails, h5py's objects fail again as they are freed, and the interpreter can crash at exit.
     Through this file, HDF5 sees every write succeed: the first :class:`OSError` is kept in
-    :attr:`error`, the writes after it only advance :attr:`size`, and the caller, once HDF5
+    ``error``, the writes after it only advance ``size``, and the caller, once HDF5
     has closed the file, removes it and reports the error with the size the whole file needed.
 
     Parameters
@@ -183,7 +183,7 @@ class GuardedFile:
         return True
 
     def close(self, sync: bool = True) -> None:
-        """Sync to the disk (``sync``) and close; a failure is kept in :attr:`error`."""
+        """Sync to the disk (``sync``) and close; a failure is kept in ``error``."""
         if sync:
             self._guard(os.fsync, self._file.fileno())
         try:

@@ -59,7 +59,7 @@ NAMES = {
     "matplotlib": [
         "matplotlib.figure.Figure", "matplotlib.axes.Axes", "matplotlib.pyplot.subplots",
         "matplotlib.pyplot.figure", "matplotlib.pyplot.show", "matplotlib.figure.Figure.savefig",
-        "matplotlib.axes.Axes.legend",
+        "matplotlib.axes.Axes.legend", "matplotlib.figure.Figure.subplots",
     ],
     "pint": ["pint.UnitRegistry", "pint.Quantity", "pint.Unit", "pint.errors.DimensionalityError"],
     "pydantic": ["pydantic.BaseModel", "pydantic.functional_validators.BeforeValidator",

@@ -1,5 +1,5 @@
-"""The dry cam and follower (:class:`CamDesign`), their state at one ageing time
-(:class:`CamState`), and the design read from a scene's ``cam:`` section."""
+"""The dry cam and follower (:class:`~fickcam.cam.design.CamDesign`), their state at one ageing time
+(:class:`~fickcam.cam.design.CamState`), and the design read from a scene's ``cam:`` section."""
 from __future__ import annotations
 
 from dataclasses import dataclass

@@ -1,4 +1,5 @@
-"""A swinging-arm (oscillating) follower at one ageing time: :func:`~fickcam.cam.oscillating.arm_response`, and
+r"""A swinging-arm (oscillating) follower at one ageing time:
+:func:`~fickcam.cam.oscillating.arm_response`, and
 :func:`~fickcam.cam.oscillating.follower_response`, the response of either follower type.
 
 The aged arm angle psi(theta) comes from the aged cam geometry (:mod:`fickcam.cam.geometry`
@@ -8,7 +9,10 @@ the torsional spring's seat do not swell, so an arm lifted by a swollen base cir
 winds up its spring. Kinetostatics about the pivot (Norton, Design of Machinery 5th ed.,
 sec. 8.x 'dynamic force analysis' and ch. 15 for an oscillating follower; Chen 1982 ch. 9):
 
-    T_arm = I psi'' omega^2 + k_t (psi - psi_0) + T_0 + T_load,   Fn = T_arm / lever,
+.. math::
+
+    T_{arm} = I \psi'' \omega^2 + k_t (\psi - \psi_0) + T_0 + T_{load}, \qquad
+    F_n = T_{arm} / \mathrm{lever},
 
 with lever = l cos(alpha) for a roller (the force acts along the common normal through the
 roller centre) and sense (X - A) x N for a flat face; the camshaft torque is the moment

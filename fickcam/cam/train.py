@@ -1,25 +1,34 @@
-"""Elastic follower train: Norton's single-degree-of-freedom model of a cam follower.
+r"""Elastic follower train: Norton's single-degree-of-freedom model of a cam follower.
 
-The cam imposes the displacement s(t) on one end of the follower train (stiffness k,
-internal damping c in parallel with it); the other end is the lumped follower mass m,
-held against the cam by the return spring k_s and the constant load P (preload, external
-load, weight and the spring compression from a swollen base circle), acting on the mass
-(Norton, Design of Machinery 5th ed., ch. 15; Koster, Vibrations of
-Cam Mechanisms, 1974, ch. 2):
+The cam imposes the displacement :math:`s(t)` on one end of the follower train (stiffness
+:math:`k`, internal damping :math:`c` in parallel with it); the other end is the lumped
+follower mass :math:`m`, held against the cam by the return spring :math:`k_s` and the
+constant load :math:`P` (preload, external load, weight and the spring compression from a
+swollen base circle), acting on the mass (Norton, Design of Machinery 5th ed., ch. 15;
+Koster, Vibrations of Cam Mechanisms, 1974, ch. 2):
 
-    m x'' + c (x' - s') + k (x - s) + k_s x + P = 0,       F_c = k (s - x) + c (s' - x'),
+.. math::
 
-F_c the force the cam transmits along the follower axis (contact is lost where it would
-be negative). c = 2 zeta sqrt((k + k_s) m), omega_n = sqrt((k + k_s)/m). Damping sits in
-the train (material damping), so that k -> inf gives x -> s and
-F_c -> m s'' + k_s s + P, the rigid follower of :mod:`fickcam.cam.dynamics`.
+    m \ddot x + c (\dot x - \dot s) + k (x - s) + k_s x + P = 0, \qquad
+    F_c = k (s - x) + c (\dot s - \dot x),
 
-The periodic steady state at a constant cam speed omega is exact through the Fourier
-series of s(theta): each harmonic n passes with the transfer function
-H_n = (k + i n omega c)/(k + k_s - m n^2 omega^2 + i n omega c) (linear system,
-Norton ch. 15 frequency response; Koster sec. 2.3). The coefficients come from the
-FFT of s on a fine grid (aliasing error ~ N^-p for a motion with p-1 continuous
-derivatives) and the series is summed at any angle.
+:math:`F_c` the force the cam transmits along the follower axis (contact is lost where
+it would be negative), with :math:`c = 2 \zeta \sqrt{(k + k_s) m}` and
+:math:`\omega_n = \sqrt{(k + k_s)/m}`. Damping sits in the train (material damping), so
+that :math:`k \to \infty` gives :math:`x \to s` and :math:`F_c \to m \ddot s + k_s s + P`,
+the rigid follower of :mod:`fickcam.cam.dynamics`.
+
+The periodic steady state at a constant cam speed :math:`\omega` is exact through the
+Fourier series of :math:`s(\theta)`: each harmonic :math:`n` passes with the transfer
+function
+
+.. math::
+
+    H_n = \frac{k + i n \omega c}{k + k_s - m n^2 \omega^2 + i n \omega c}
+
+(linear system, Norton ch. 15 frequency response; Koster sec. 2.3). The coefficients
+come from the FFT of :math:`s` on a fine grid (aliasing error of order :math:`N^{-p}` for
+a motion with :math:`p - 1` continuous derivatives) and the series is summed at any angle.
 """
 from __future__ import annotations
 

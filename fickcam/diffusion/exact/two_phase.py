@@ -1,10 +1,13 @@
-"""Exact solution of the two-phase (Langmuir-type) moisture model in a sheet.
+r"""Exact solution of the two-phase (Langmuir-type) moisture model in a sheet.
 
-Carter & Kibler (1978), J. Compos. Mater. 12:118-131, eqs. 1-2: free water n
-diffuses with D and is bound at rate gamma; bound water N is released at rate
-beta:
+Carter & Kibler (1978), J. Compos. Mater. 12:118-131, eqs. 1-2: free water :math:`n`
+diffuses with :math:`D` and is bound at rate :math:`\gamma`; bound water :math:`N` is
+released at rate :math:`\beta`:
 
-    dn/dt = D d2n/dz2 - gamma n + beta N,      dN/dt = gamma n - beta N.
+.. math::
+
+    \frac{\partial n}{\partial t} = D \frac{\partial^2 n}{\partial z^2} - \gamma n + \beta N,
+    \qquad \frac{\partial N}{\partial t} = \gamma n - \beta N.
 
 At equilibrium gamma n_inf = beta N_inf, so of the total equilibrium content
 Mm = n_inf + N_inf the free share is beta/(gamma+beta) and the bound share
