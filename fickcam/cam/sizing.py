@@ -292,8 +292,13 @@ def smallest_base_circle(design, limits: Limits, states=(None,)) -> dict[str, fl
     limits = limits.for_design(design)
     lowest = floor(design)[0]
     states = tuple(states)
-    angle_ok = lambda d: meets(d, limits, states)[0]  # noqa: E731
-    curvature_ok = lambda d: meets(d, limits, states)[1]  # noqa: E731
+
+    def angle_ok(d) -> bool:
+        return meets(d, limits, states)[0]
+
+    def curvature_ok(d) -> bool:
+        return meets(d, limits, states)[1]
+
     if design.arm is not None:
         low, high = arm_reach(design)
         low = max(low, lowest)
