@@ -28,6 +28,8 @@ SIZE_TOLERANCE = 1e-7
 SIZE_STEP = math.radians(0.25)
 #: base circle radii scanned across a swinging arm's reach
 ARM_SCAN = 64
+#: the aged search brackets the dry answer by this share first (strains are far smaller)
+NEAR = 0.02
 #: a smallest radius of curvature below this share of the base circle is a nearly
 #: pointed profile (told as a degenerate answer)
 POINTED = 0.01
@@ -177,8 +179,16 @@ def meets(design, limits: Limits, states=(None,)) -> tuple[bool, bool]:
     return all(f[0] for f in found), all(f[1] for f in found)
 
 
-def _smallest(design, ok, lowest: float) -> float:
-    """Smallest Rb >= lowest with ok(design at Rb) (bisection; ok monotone in Rb)."""
+def _smallest(design, ok, lowest: float, near: float | None = None) -> float:
+    """Smallest Rb >= lowest with ok(design at Rb) (bisection; ok monotone in Rb); ``near``:
+    a size close to the answer (the dry one, for the aged search), bracketed first."""
+    if near is not None:
+        low, high = max(lowest, near * (1 - NEAR)), near * (1 + NEAR)
+        if ok(replace(design, base_circle_radius=high)):
+            if not ok(replace(design, base_circle_radius=low)):
+                return _bisect(design, ok, low, high)
+            if low == lowest:
+                return lowest
     high = max(2 * lowest, design.base_circle_radius, 1e-3)
     while not ok(replace(design, base_circle_radius=high)):
         high *= 2
@@ -257,7 +267,7 @@ def floor(design) -> tuple[float, str]:
     return (value + SIZE_TOLERANCE, reason) if value > 0 else (SIZE_TOLERANCE, "zero")
 
 
-def smallest_base_circle(design, limits: Limits, states=(None,)) -> dict[str, float]:
+def smallest_base_circle(design, limits: Limits, states=(None,), near: dict | None = None) -> dict[str, float]:
     """Smallest base circle radius for each limit and overall (m), in every state.
 
     Parameters
@@ -269,6 +279,9 @@ def smallest_base_circle(design, limits: Limits, states=(None,)) -> dict[str, fl
         default, :func:`default_radius_of_curvature`).
     states : sequence of CamState or None
         The states the cam must meet them in (None: dry); default: dry only.
+    near : dict of str to float, optional
+        Sizes close to the answers (e.g. the dry ones for an aged search) [m], tried first
+        as brackets (within :data:`NEAR`) of a translating follower's bisections.
 
     Returns
     -------
@@ -305,8 +318,9 @@ def smallest_base_circle(design, limits: Limits, states=(None,)) -> dict[str, fl
         angle = _smallest_in_reach(design, angle_ok, low, high)
         curvature = _smallest_in_reach(design, curvature_ok, low, high)
     else:
-        angle = _smallest(design, angle_ok, lowest)
-        curvature = _smallest(design, curvature_ok, lowest)
+        near = near or {}
+        angle = _smallest(design, angle_ok, lowest, near.get("pressure_angle"))
+        curvature = _smallest(design, curvature_ok, lowest, near.get("radius_of_curvature"))
     return {"pressure_angle": angle, "radius_of_curvature": curvature,
             "base_circle_radius": max(angle, curvature), "floor": lowest}
 

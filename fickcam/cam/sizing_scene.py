@@ -20,7 +20,7 @@ import math
 import numpy as np
 
 from .sizing import (SIZE_TOLERANCE, Limits, aged_states, default_radius_of_curvature,
-                     degenerate_notes, smallest_base_circle, worst)
+                     degenerate_notes, meets, smallest_base_circle, worst)
 
 #: most runs of the scene one sizing makes
 MAX_RUNS = 5
@@ -69,7 +69,7 @@ class Sizing:
         on the size, the aged check, and what to set where a bound makes it degenerate."""
         lines = [f"{self.name}: smallest base circle radius {self.radius * 1e3:.3f} mm, dry and "
                  f"aged (the scene has {self.design.base_circle_radius * 1e3:.3f} mm; "
-                 f"dry alone {self.dry['base_circle_radius'] * 1e3:.3f} mm)",
+                 f"dry alone {_rounded_up(self.dry['base_circle_radius']) * 1e3:.3f} mm)",
                  f"  {self._needs()}"]
         lines += [f"  {line}" for line in (self._moisture(), self._aged()) if line]
         lines += [f"  note: {line}" for line in self._degenerate()]
@@ -84,7 +84,7 @@ class Sizing:
         def need(key: str) -> str:
             if self.sizes[key] <= self.sizes["floor"] + SIZE_TOLERANCE:
                 return "met at any size"
-            return f"needs {self.sizes[key] * 1e3:.3f} mm"
+            return f"needs {_rounded_up(self.sizes[key]) * 1e3:.3f} mm"
 
         return (f"pressure angle <= {math.degrees(self.limits.pressure_angle):g} deg "
                 f"{need('pressure_angle')}; radius of curvature "
@@ -107,7 +107,7 @@ class Sizing:
                 f"({change[k] / np.nanmax(np.abs(m0)) * 100:.2g} % relative, at t = "
                 f"{float(last['time'][k]):.4g} d), its strains by {max(strains):.2g}: sized with "
                 f"the moisture at {start * 1e3:.3f} mm the answer was "
-                f"{self.first['base_circle_radius'] * 1e3:.3f} mm ({len(self.runs)} runs of the scene)")
+                f"{_rounded_up(self.first['base_circle_radius']) * 1e3:.3f} mm ({len(self.runs)} runs of the scene)")
 
     def _aged(self) -> str:
         design = dataclasses.replace(self.design, base_circle_radius=self.radius)
@@ -166,15 +166,16 @@ def size_scene(scene, limits: Limits) -> Sizing:
     start = design.base_circle_radius
     with _told_once():
         runs = [(start, run(bare))]
-        first = sizes = _sized(design, limits, runs[-1][1])
+        first = sizes = _sized(design, limits, runs[-1][1], dry)
         target = _rounded_up(sizes["base_circle_radius"])
-        # run again where the last run's size falls short of the one its moisture asks
-        while len(runs) < MAX_RUNS and (target > runs[-1][0] + 1e-12 or
-                                        (len(runs) == 1 and abs(target - start) > 1e-12)):
+        while len(runs) < MAX_RUNS and abs(target - runs[-1][0]) > 1e-12:
             runs.append((target, run(_with_radius(bare, target))))
-            sizes = _sized(design, limits, runs[-1][1])
-            target = _rounded_up(sizes["base_circle_radius"])
-    answer = runs[-1][0] if target <= runs[-1][0] + 1e-12 else target
+            own = [state for _, state in aged_states(runs[-1][1], design)]
+            if all(meets(dataclasses.replace(design, base_circle_radius=target), limits, own)):
+                break  # the size meets the limits with its own moisture too
+            sizes = _sized(design, limits, runs[-1][1], dry)
+            target = max(target, _rounded_up(sizes["base_circle_radius"]))
+    answer = runs[-1][0] if len(runs) > 1 or abs(target - start) <= 1e-12 else target
     return Sizing(scene.name, design, limits, dry, {**sizes, "base_circle_radius": answer}, runs, first)
 
 
@@ -205,6 +206,12 @@ def _told_once():
             handler.removeFilter(once)
 
 
-def _sized(design, limits: Limits, ds) -> dict:
-    """:func:`smallest_base_circle` dry and in the aged states of result ``ds``."""
-    return smallest_base_circle(design, limits, [None, *(state for _, state in aged_states(ds, design))])
+def _sized(design, limits: Limits, ds, dry: dict) -> dict:
+    """:func:`smallest_base_circle` in the aged states of result ``ds`` and dry (the larger
+    of each; both checks are monotone in the base circle), the aged bisections bracketed
+    first about the ``dry`` sizes [m]."""
+    states = [state for _, state in aged_states(ds, design)]
+    if not states:
+        return dry
+    aged = smallest_base_circle(design, limits, states, near=dry)
+    return {key: max(aged[key], dry[key]) for key in aged}
