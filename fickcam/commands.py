@@ -96,6 +96,7 @@ def _cmd_size(args) -> int:
     from .cam.sizing import Limits
     from .cam.sizing_scene import size_scene
     from .scene import load_scene
+    from .simulate import plan_parts
     from .unit_parsing import to_si
 
     try:
@@ -107,6 +108,7 @@ def _cmd_size(args) -> int:
     scene = load_scene(args.scene)
     if scene.model.cam is None:
         raise InputError("the scene has no cam: section to size")
+    plan_parts(scene)  # every refusal of `fickcam check` before the search and the run
     try:
         sizing = size_scene(scene, limits)
     except ValueError as exc:
@@ -144,7 +146,7 @@ def _cmd_plot(args) -> int:
 
     ds = open_result(args.result)
     outdir = Path(args.outdir) if args.outdir else Path(args.result).with_suffix("")
-    for path in plot(ds, outdir, args.kind):
+    for path in plot(ds, outdir, args.kind).paths:
         print(f"wrote {path}")
     return 0
 

@@ -22,7 +22,7 @@ from dataclasses import dataclass, field
 from typing import Any, Callable
 
 import numpy as np
-from pydantic import model_validator
+from pydantic import Field, model_validator
 
 from .query import drift
 from .schema import VARIABLES, Var, design_name
@@ -58,9 +58,10 @@ class LimitSpec(StrictModel):
         The smallest allowed value [unit of the variable].
     """
 
-    deviation: Any = None
-    max: Any = None
-    min: Any = None
+    deviation: Any = Field(
+        None, description="Largest allowed change from the as-designed value, in the variable's unit")
+    max: Any = Field(None, description="Largest allowed value, in the variable's unit")
+    min: Any = Field(None, description="Smallest allowed value, in the variable's unit")
 
     @model_validator(mode="after")
     def _something(self):
@@ -116,7 +117,7 @@ def from_attrs(variable: str, attrs: dict) -> Limit:
     variable : str
         The variable it bounds.
     attrs : dict
-        Its entry of the attribute (:meth:`Limit.as_attrs`).
+        Its entry of the attribute (``Limit.as_attrs``).
 
     Returns
     -------
@@ -443,7 +444,7 @@ def first_crossings(times: np.ndarray, ratios: np.ndarray,
 
     The stored times bracket each crossing; ``evaluate(ts)`` re-runs the model at
     ageing times ``ts`` and returns the ratios there (len(ts), limit). Each round
-    evaluates the model once for all open brackets, at the times :meth:`_Bracket.inner`
+    evaluates the model once for all open brackets, at the times ``_Bracket.inner``
     picks (POINTS equally spaced first, then two straddling the secant's root), and
     keeps the sub-interval of the first crossing, until each bracket is no wider than
     TOLERANCE of its stored interval or FLOOR seconds; the crossing is then

@@ -88,7 +88,7 @@ class Scene:
     document : fickcam.yamldoc.YamlDocument, optional
         The parsed file, with the line of every key.
     materials : dict
-        Scene material name -> resolved :class:`~fickcam.materials.Material`.
+        Scene material name -> resolved :class:`fickcam.materials.material.Material`.
     design_model : fickcam.scene_models.SceneModel, optional
         The mechanisms as designed (from ``design:``).
     limits : list of fickcam.limits.Limit

@@ -195,7 +195,7 @@ def _groups(specimens: list[Specimen]) -> list[list[Specimen]]:
 
 def fit_weight_gain(data, matrix: str, fiber: str | None = None,
                     fiber_volume_fraction: float | None = None, name: str | None = None) -> FitReport:
-    """Calibrate from a weight-gain CSV (path) or a list of :class:`Specimen`.
+    """Calibrate from a weight-gain CSV (path) or a list of :class:`~fickcam.fit.data.Specimen`.
 
     Coupons of a composite are taken as unidirectional with the fibres along their
     length (D along the length = D11, across the width = D22 = through the thickness).
@@ -203,7 +203,7 @@ def fit_weight_gain(data, matrix: str, fiber: str | None = None,
     Parameters
     ----------
     data : str, pathlib.Path or list of Specimen
-        The weight-gain CSV (:func:`read_weight_gain`), or coupons already read.
+        The weight-gain CSV (:func:`~fickcam.fit.data.read_weight_gain`), or coupons already read.
     matrix : str
         The library matrix material of the coupons; its activation energy and humidity
         exponent stand in where the data hold one temperature or one humidity only.
