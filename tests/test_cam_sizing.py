@@ -97,6 +97,7 @@ limits:
 """
 
 
+@pytest.mark.slow
 def test_size_sizes_dry_and_aged_in_at_most_five_runs(tmp_path, capsys, monkeypatch):
     scene = tmp_path / "cam.yaml"
     scene.write_text(SCENE)
