@@ -105,8 +105,8 @@ class Sizing:
         return (f"moisture: the cam's mean moisture at {self.runs[-1][0] * 1e3:.3f} mm differs from "
                 f"that at {start * 1e3:.3f} mm by at most {change[k]:.2g} % moisture "
                 f"({change[k] / np.nanmax(np.abs(m0)) * 100:.2g} % relative, at t = "
-                f"{float(last['time'][k]):.4g} d), its strains by {max(strains):.2g}: sized with "
-                f"the moisture at {start * 1e3:.3f} mm the answer was "
+                f"{float(last['time'][k]):.4g} d), its strains by {max(strains):.2g}; sized with "
+                f"the moisture at {start * 1e3:.3f} mm: "
                 f"{_rounded_up(self.first['base_circle_radius']) * 1e3:.3f} mm ({len(self.runs)} runs of the scene)")
 
     def _aged(self) -> str:
