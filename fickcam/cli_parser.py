@@ -218,20 +218,23 @@ def _design_commands(sub) -> None:
     fit.add_argument("--plot", help="PNG of the data, fitted curves and residuals")
 
     size = _command(sub, "size", "smallest base circle meeting pressure-angle and curvature limits",
-                    "Find the smallest base circle radius whose dry cam keeps the pressure angle "
-                    "and the working radius of curvature within the limits (Norton, Design of "
-                    "Machinery, 2012, sec. 8.7), "
-                    "then run the scene with it and say whether the aged cam still meets them "
-                    "at the end of the ageing.",
+                    "Find the smallest base circle radius whose cam keeps the pressure angle "
+                    "and the working radius of curvature within the limits, dry and at the "
+                    "strains of its ageing (Norton, Design of Machinery, 2012, sec. 8.7). The "
+                    "search is geometry alone: one run of the scene gives the aged strains, a "
+                    "run at the answer says how much the moisture changes with the size "
+                    "(at most 5 runs).",
                     "fickcam size configs/singh2017_cam.yaml",
                     "fickcam size scene.yaml --pressure-angle 25deg --radius-of-curvature 5mm")
     size.add_argument("scene")
     size.add_argument("--pressure-angle", default="30 deg",
                       help="largest |pressure angle| with its unit (30 deg; a bare number is "
                            "radians, as in a scene)")
-    size.add_argument("--radius-of-curvature", default="0 mm",
-                      help="smallest convex working radius of curvature with its unit (0: no "
-                           "cusp or undercut; a bare number is metres, as in a scene)")
+    size.add_argument("--radius-of-curvature", default=None,
+                      help="smallest convex working radius of curvature with its unit (default: "
+                           "the roller's radius for a roller follower, Norton's rule; a positive "
+                           "radius for a flat face or knife; a bare number is metres, as in a "
+                           "scene)")
 
 
 def _sweep_command(sub) -> None:

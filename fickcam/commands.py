@@ -112,39 +112,27 @@ def _cmd_check(args) -> int:
 
 
 def _cmd_size(args) -> int:
-    import dataclasses
-    import math
-
-    from .cam import design_from_scene
-    from .cam.sizing import Limits, aged_check, smallest_base_circle
-    from .scene import load_scene
-    from .simulate import plan_parts, run
+    from .cam.sizing import Limits
+    from .cam.sizing_scene import size_scene
     from .cli_values import option_value
     from .plausibility import cam_length_reading
+    from .scene import load_scene
+    from .simulate import plan_parts
     from .units import NonNegativeLength, PositiveAngle
 
+    pressure_angle = option_value("--pressure-angle", args.pressure_angle, PositiveAngle)
     scene = load_scene(args.scene)
     if scene.model.cam is None:
         raise InputError("the scene has no cam: section to size")
+    curvature = None if args.radius_of_curvature is None else option_value(
+        "--radius-of-curvature", args.radius_of_curvature, NonNegativeLength,
+        cam_length_reading("smallest radius of curvature", scene.document.data))
     plan_parts(scene)  # every refusal of `fickcam check` before the search and the run
     try:
-        limits = Limits(option_value("--pressure-angle", args.pressure_angle, PositiveAngle),
-                        option_value("--radius-of-curvature", args.radius_of_curvature,
-                                     NonNegativeLength, cam_length_reading(
-                                         "smallest radius of curvature", scene.document.data)))
-        sizes = smallest_base_circle(design_from_scene(scene.model.cam), limits)
+        sizing = size_scene(scene, Limits(pressure_angle, curvature))
     except ValueError as exc:
         raise InputError(str(exc)) from None
-    radius = sizes["base_circle_radius"]
-    design = design_from_scene(scene.model.cam)
-    print(f"{scene.name}: smallest base circle radius {radius * 1e3:.4f} mm "
-          f"(pressure angle <= {math.degrees(limits.pressure_angle):g} deg needs "
-          f"{sizes['pressure_angle'] * 1e3:.4f} mm; radius of curvature >= "
-          f"{limits.radius_of_curvature * 1e3:g} mm needs {sizes['radius_of_curvature'] * 1e3:.4f} mm); "
-          f"the scene has {scene.model.cam.base_circle_radius * 1e3:.4f} mm")
-    cam = scene.model.cam.model_copy(update={"base_circle_radius": radius})
-    ds = run(dataclasses.replace(scene, model=scene.model.model_copy(update={"cam": cam})))
-    print(aged_check(ds, limits, design.follower_kind))
+    print(sizing.text())
     return 0
 
 

@@ -1,13 +1,19 @@
 """Cam sizing: the smallest base circle meets the limits and anything smaller does not;
-`fickcam size` reports it and the aged check."""
+a roller's radius of curvature defaults to the roller's radius (Norton); a size that a
+bound makes degenerate says so; `fickcam size` sizes dry and aged in at most five runs
+of the scene, and says how much the moisture depends on the size."""
 import math
+from collections import Counter
 from dataclasses import replace
 
 import pytest
 
+import fickcam.diffusion
+import fickcam.simulate
 from fickcam.cam import CamDesign
 from fickcam.cam.motion import segments_from_spec
-from fickcam.cam.sizing import Limits, smallest_base_circle, worst
+from fickcam.cam.sizing import Limits, degenerate_notes, smallest_base_circle, worst
+from fickcam.cam.sizing_scene import MAX_RUNS
 from fickcam.cam.spec import Segment
 from fickcam.cli import main
 
@@ -15,8 +21,8 @@ from fickcam.cli import main
 def design(kind="roller", offset=0.0):
     segments = segments_from_spec([Segment(dwell=math.radians(90)),
                                    Segment(rise=0.02, over=math.radians(90), law="cycloidal"),
-                                   Segment(dwell=math.radians(60)),
-                                   Segment(**{"return": 0.02}, over=math.radians(120), law="polynomial_345")])
+                                   Segment(dwell=math.radians(90)),
+                                   Segment(**{"return": 0.02}, over=math.radians(90), law="polynomial_345")])
     return CamDesign("motion", 0.05, 0.01, 60.0, kind, 0.5, segments=segments,
                      roller_radius=0.008 if kind == "roller" else 0.0, offset=offset)
 
@@ -24,25 +30,58 @@ def design(kind="roller", offset=0.0):
 @pytest.mark.parametrize("kind, offset, limits", [
     ("roller", 0.0, Limits(math.radians(30), 0.0)),
     ("roller", 0.006, Limits(math.radians(25), 0.004)),
+    ("roller", 0.0, Limits(math.radians(30))),
     ("flat", 0.0, Limits(math.radians(30), 0.01)),
 ])
 def test_smallest_base_circle_is_the_boundary_of_the_limits(kind, offset, limits):
     d = design(kind, offset)
     size = smallest_base_circle(d, limits)["base_circle_radius"]
+    least = limits.for_design(d).radius_of_curvature
     phi, rho = worst(replace(d, base_circle_radius=size))
-    assert phi <= limits.pressure_angle + 1e-12 and rho >= limits.radius_of_curvature and rho > 0
+    assert phi <= limits.pressure_angle + 1e-12 and rho >= least and rho > 0
     phi, rho = worst(replace(d, base_circle_radius=size - 2e-6))
-    assert phi > limits.pressure_angle or rho < limits.radius_of_curvature or rho <= 0
+    assert phi > limits.pressure_angle or rho < least or rho <= 0
 
 
-def test_size_command_reports_the_radius_and_the_aged_check(tmp_path, capsys):
-    scene = tmp_path / "cam.yaml"
-    scene.write_text("""
+def test_a_roller_s_radius_of_curvature_defaults_to_the_roller_s_radius():
+    d = design()
+    size = smallest_base_circle(d, Limits(math.radians(30)))["radius_of_curvature"]
+    assert worst(replace(d, base_circle_radius=size))[1] >= d.roller_radius
+    assert worst(replace(d, base_circle_radius=size - 2e-6))[1] < d.roller_radius
+    assert Limits().for_design(design("flat")).radius_of_curvature == 0.0
+
+
+def test_a_size_that_no_limit_sets_says_which_bound_and_what_to_set():
+    over = math.radians(150)  # 2 mm rise and return over 150 deg each, 6 mm roller
+    segments = segments_from_spec([Segment(rise=0.002, over=over, law="cycloidal"),
+                                   Segment(dwell=math.radians(30)),
+                                   Segment(**{"return": 0.002}, over=over, law="cycloidal"),
+                                   Segment(dwell=math.radians(30))])
+    gentle = CamDesign("motion", 0.03, 0.01, 30.0, "roller", 0.3, segments=segments, roller_radius=0.006)
+    sizes = smallest_base_circle(gentle, Limits(math.radians(25), 0.0))
+    assert sizes["base_circle_radius"] == sizes["floor"] < 1e-6
+    notes = degenerate_notes(gentle, sizes)
+    assert len(notes) == 1 and "no limit sets this size" in notes[0]
+    assert "cam.bore_radius" in notes[0] and "--radius-of-curvature" in notes[0]
+    sized = smallest_base_circle(gentle, Limits(math.radians(25)))  # the designer's default
+    assert sized["base_circle_radius"] > 1e-3 and degenerate_notes(gentle, sized) == []
+
+
+def test_a_nearly_pointed_profile_is_told():
+    flat = design("flat")
+    sizes = smallest_base_circle(flat, Limits(math.radians(30)))
+    notes = degenerate_notes(flat, sizes)
+    assert len(notes) == 1 and "nearly pointed" in notes[0] and "--radius-of-curvature" in notes[0]
+    wider = smallest_base_circle(flat, Limits(math.radians(30), 0.005))
+    assert degenerate_notes(flat, wider) == []
+
+
+SCENE = """
 name: sized
-environment: {history: [{duration: 30 d, temperature: 60 degC, relative_humidity: 50 %}]}
-materials: {steel: {metal: steel}}
+environment: {history: [{duration: 60 d, temperature: 40 degC, relative_humidity: 85 %}]}
+materials: {pom: {plastic: acetal}}
 cam:
-  material: steel
+  material: pom
   base_circle_radius: 30 mm
   thickness: 10 mm
   speed: 300 rpm
@@ -50,13 +89,45 @@ cam:
   motion:
     - dwell: 90 deg
     - {rise: 20 mm, over: 90 deg, law: cycloidal}
-    - dwell: 60 deg
-    - {return: 20 mm, over: 120 deg, law: polynomial_345}
-outputs: {ageing_times: [0 d, 30 d], angle_step: 2 deg}
-""")
+    - dwell: 90 deg
+    - {return: 20 mm, over: 90 deg, law: polynomial_345}
+outputs: {ageing_times: {every: 10 d}, angle_step: 2 deg}
+limits:
+  follower_position: {deviation: 0.01 mm}
+"""
+
+
+@pytest.mark.slow
+def test_size_sizes_dry_and_aged_in_at_most_five_runs(tmp_path, capsys, monkeypatch):
+    scene = tmp_path / "cam.yaml"
+    scene.write_text(SCENE)
+    counts = Counter()
+
+    def counted(name, function):
+        def call(*args, **kwargs):
+            counts[name] += 1
+            return function(*args, **kwargs)
+        return call
+
+    monkeypatch.setattr(fickcam.simulate, "run", counted("runs", fickcam.simulate.run))
+    monkeypatch.setattr(fickcam.diffusion, "solve", counted("solves", fickcam.diffusion.solve))
     assert main(["size", str(scene), "--pressure-angle", "30 deg"]) == 0
     out = capsys.readouterr().out
-    expected = smallest_base_circle(design(), Limits(math.radians(30), 0.0))["base_circle_radius"]
-    assert f"smallest base circle radius {expected * 1e3:.4f} mm" in out
-    assert "aged at t = 30 d" in out and "meets the limits" in out
+    assert 2 <= counts["runs"] <= MAX_RUNS and counts["solves"] == counts["runs"]  # the cam alone absorbs
+    dry = smallest_base_circle(replace(design(), base_circle_radius=0.03),
+                               Limits(math.radians(30)))["base_circle_radius"]
+    assert f"dry alone {math.ceil(dry * 1e6 - 1e-6) / 1e3:.3f} mm" in out
+    assert "moisture: the cam's mean moisture at" in out and "runs of the scene" in out
+    assert "aged, with the sized cam's own moisture" in out and "meets the limits" in out
+    assert "NOT" not in out and "note:" not in out
     assert main(["size", str(scene), "--pressure-angle", "30 kg"]) == 2
+
+
+def test_a_cam_that_cannot_be_sized_is_refused_before_any_run(tmp_path, capsys, monkeypatch):
+    scene = tmp_path / "cam.yaml"
+    scene.write_text(SCENE.replace("base_circle_radius: 30 mm", "eccentric: {eccentricity: 4 mm, radius: 23 mm}")
+                     .split("  motion:")[0] + "outputs: {ageing_times: [0 d, 60 d]}\n")
+    counts = Counter()
+    monkeypatch.setattr(fickcam.simulate, "run", lambda *a, **k: counts.update(["runs"]))
+    assert main(["size", str(scene)]) == 2
+    assert counts["runs"] == 0 and "motion segments" in capsys.readouterr().err

@@ -1,8 +1,8 @@
-"""Cam sizing (`fickcam size`): the smallest base circle radius whose dry cam keeps the
-pressure angle and the radius of curvature within limits, and whether the aged cam of
-that size still does at the end of the ageing (Norton, Design of Machinery 5th ed.,
-sec. 8.7: 'sizing the cam', pressure angle below about 30 deg, no undercut, radius of
-curvature of the working profile above a minimum).
+"""Cam sizing (`fickcam size`): the smallest base circle radius whose cam keeps the
+pressure angle and the radius of curvature within limits, dry and at the strains of its
+ageing (Norton, Design of Machinery 5th ed., sec. 8.7: 'sizing the cam', pressure angle
+below about 30 deg, no undercut, radius of curvature of the working profile above a
+minimum).
 
 Both checks are monotone in the base circle radius Rb for a translating follower (the
 pressure angle atan((y' - e)/(s0 + y)) falls and the convex radius of curvature grows
@@ -11,6 +11,9 @@ swinging arm on a fixed pivot reaches only a band of base circles (:func:`arm_re
 its pressure angle need not fall with Rb (the arm turns towards the cam axis as Rb grows),
 so each check is scanned over that band (ARM_SCAN radii) and the first radius that meets
 it refined by bisection against the one before.
+
+The search is geometry alone: an aged cam enters it through its strains
+(:func:`aged_states`), which a run of the scene gives; no diffusion is solved here.
 """
 from __future__ import annotations
 
@@ -25,6 +28,11 @@ SIZE_TOLERANCE = 1e-7
 SIZE_STEP = math.radians(0.25)
 #: base circle radii scanned across a swinging arm's reach
 ARM_SCAN = 64
+#: the aged search brackets the dry answer by this share first (strains are far smaller)
+NEAR = 0.02
+#: a smallest radius of curvature below this share of the base circle is a nearly
+#: pointed profile (told as a degenerate answer)
+POINTED = 0.01
 
 
 @dataclass(frozen=True)
@@ -35,13 +43,59 @@ class Limits:
     ----------
     pressure_angle : float
         The largest |pressure angle| [rad] (default 30 deg).
-    radius_of_curvature : float
+    radius_of_curvature : float or None
         The smallest convex working radius of curvature [m]; the profile must stay convex
-        (> 0) in any case.
+        (> 0) in any case. None: the designer's default for the follower
+        (:func:`default_radius_of_curvature`).
     """
 
     pressure_angle: float = math.radians(30.0)  # largest |pressure angle| (rad)
-    radius_of_curvature: float = 0.0            # smallest convex working radius (m); > 0 always
+    radius_of_curvature: float | None = None    # smallest convex working radius (m); > 0 always
+
+    def for_design(self, design) -> Limits:
+        """These limits with the default radius of curvature of ``design``'s follower
+        filled in.
+
+        Parameters
+        ----------
+        design : CamDesign
+            The cam.
+
+        Returns
+        -------
+        Limits
+            The limits, ``radius_of_curvature`` given [m].
+        """
+        if self.radius_of_curvature is not None:
+            return self
+        return replace(self, radius_of_curvature=default_radius_of_curvature(design))
+
+
+def default_radius_of_curvature(design) -> float:
+    """The smallest working radius of curvature a designer asks by default [m].
+
+    A roller follower: the roller's radius. Norton's rule keeps the smallest radius of
+    curvature of the pitch curve at 2 to 3 times the roller's radius; at 2 times, the
+    working profile (the pitch curve less the roller) keeps one roller radius. A flat face
+    or a knife edge: a positive radius (0 here; :func:`within` asks > 0 in any case).
+
+    Parameters
+    ----------
+    design : CamDesign
+        The cam (follower kind, roller radius [m]).
+
+    Returns
+    -------
+    float
+        The radius [m].
+
+    References
+    ----------
+    R. L. Norton, *Cam Design and Manufacturing Handbook*, 2nd ed., Industrial Press, 2009,
+    ch. 7 (radius of curvature); R. L. Norton, *Design of Machinery*, 5th ed., McGraw-Hill,
+    2012, sec. 8.7.
+    """
+    return float(design.roller_radius) if design.follower_kind == "roller" else 0.0
 
 
 def worst(design, state=None, step: float = SIZE_STEP) -> tuple[float, float]:
@@ -87,7 +141,7 @@ def within(limits: Limits, phi: float, rho: float) -> tuple[bool, bool]:
     Parameters
     ----------
     limits : Limits
-        The limits.
+        The limits (``radius_of_curvature`` None: 0).
     phi : float
         Largest |pressure angle| [rad].
     rho : float
@@ -98,11 +152,13 @@ def within(limits: Limits, phi: float, rho: float) -> tuple[bool, bool]:
     tuple of bool
         Whether each meets its limit.
     """
-    return phi <= limits.pressure_angle + 1e-12, rho > 0.0 and rho >= limits.radius_of_curvature
+    return (phi <= limits.pressure_angle + 1e-12,
+            rho > 0.0 and rho >= (limits.radius_of_curvature or 0.0))
 
 
-def meets(design, limits: Limits, state=None) -> tuple[bool, bool]:
-    """:func:`within` for the worst pressure angle and radius of curvature of ``design``.
+def meets(design, limits: Limits, states=(None,)) -> tuple[bool, bool]:
+    """:func:`within` for the worst pressure angle and radius of curvature of ``design``
+    over ``states``.
 
     Parameters
     ----------
@@ -110,19 +166,29 @@ def meets(design, limits: Limits, state=None) -> tuple[bool, bool]:
         The cam.
     limits : Limits
         The limits.
-    state : CamState, optional
-        Its aged state; None: dry.
+    states : sequence of CamState or None
+        The states to check (None: dry).
 
     Returns
     -------
     tuple of bool
-        (pressure angle within its limit, radius of curvature within its limit).
+        (pressure angle within its limit, radius of curvature within its limit), each in
+        every state.
     """
-    return within(limits, *worst(design, state))
+    found = [within(limits, *worst(design, state)) for state in states]
+    return all(f[0] for f in found), all(f[1] for f in found)
 
 
-def _smallest(design, ok, lowest: float) -> float:
-    """Smallest Rb >= lowest with ok(design at Rb) (bisection; ok monotone in Rb)."""
+def _smallest(design, ok, lowest: float, near: float | None = None) -> float:
+    """Smallest Rb >= lowest with ok(design at Rb) (bisection; ok monotone in Rb); ``near``:
+    a size close to the answer (the dry one, for the aged search), bracketed first."""
+    if near is not None:
+        low, high = max(lowest, near * (1 - NEAR)), near * (1 + NEAR)
+        if ok(replace(design, base_circle_radius=high)):
+            if not ok(replace(design, base_circle_radius=low)):
+                return _bisect(design, ok, low, high)
+            if low == lowest:
+                return lowest
     high = max(2 * lowest, design.base_circle_radius, 1e-3)
     while not ok(replace(design, base_circle_radius=high)):
         high *= 2
@@ -181,21 +247,48 @@ def _smallest_in_reach(design, ok, lowest: float, highest: float) -> float:
     return _bisect(design, ok, float(radii[k - 1]), float(radii[k]))
 
 
-def smallest_base_circle(design, limits: Limits) -> dict[str, float]:
-    """Smallest dry base circle radius for each limit and overall (m).
+def floor(design) -> tuple[float, str]:
+    """(the smallest base circle the cam's geometry allows [m], what sets it): the prime
+    circle must clear the follower offset, and the bore needs room.
+
+    Parameters
+    ----------
+    design : CamDesign
+        The cam (offset, roller and bore radius [m]).
+
+    Returns
+    -------
+    tuple
+        The radius [m] (one SIZE_TOLERANCE above the bound) and its reason.
+    """
+    reasons = [(abs(design.offset) - design.roller_radius, "the follower offset less the roller radius"),
+               (design.bore_radius, "the bore radius")]
+    value, reason = max(reasons, key=lambda r: r[0])
+    return (value + SIZE_TOLERANCE, reason) if value > 0 else (SIZE_TOLERANCE, "zero")
+
+
+def smallest_base_circle(design, limits: Limits, states=(None,), near: dict | None = None) -> dict[str, float]:
+    """Smallest base circle radius for each limit and overall (m), in every state.
 
     Parameters
     ----------
     design : CamDesign
         A cam given by motion segments.
     limits : Limits
-        The pressure angle [rad] and radius of curvature [m] limits.
+        The pressure angle [rad] and radius of curvature [m] limits (None: the follower's
+        default, :func:`default_radius_of_curvature`).
+    states : sequence of CamState or None
+        The states the cam must meet them in (None: dry); default: dry only.
+    near : dict of str to float, optional
+        Sizes close to the answers (e.g. the dry ones for an aged search) [m], tried first
+        as brackets (within :data:`NEAR`) of a translating follower's bisections.
 
     Returns
     -------
     dict of str to float
         ``pressure_angle``, ``radius_of_curvature`` (the smallest radius meeting each
-        limit) and ``base_circle_radius`` (both) [m].
+        limit), ``base_circle_radius`` (both) and ``floor`` (the smallest the geometry
+        allows, :func:`floor`) [m].
 
     Raises
     ------
@@ -209,44 +302,105 @@ def smallest_base_circle(design, limits: Limits) -> dict[str, float]:
     """
     if design.kind != "motion":
         raise ValueError("sizing needs a cam given by motion segments (not eccentric)")
-    # the prime circle must clear the offset, and the bore needs room
-    lowest = max(abs(design.offset) - design.roller_radius, design.bore_radius, 0.0) + SIZE_TOLERANCE
+    limits = limits.for_design(design)
+    lowest = floor(design)[0]
+    states = tuple(states)
+
+    def angle_ok(d) -> bool:
+        return meets(d, limits, states)[0]
+
+    def curvature_ok(d) -> bool:
+        return meets(d, limits, states)[1]
+
     if design.arm is not None:
         low, high = arm_reach(design)
         low = max(low, lowest)
-        angle = _smallest_in_reach(design, lambda d: meets(d, limits)[0], low, high)
-        curvature = _smallest_in_reach(design, lambda d: meets(d, limits)[1], low, high)
-        return {"pressure_angle": angle, "radius_of_curvature": curvature,
-                "base_circle_radius": max(angle, curvature)}
-    angle = _smallest(design, lambda d: meets(d, limits)[0], lowest)
-    curvature = _smallest(design, lambda d: meets(d, limits)[1], lowest)
+        angle = _smallest_in_reach(design, angle_ok, low, high)
+        curvature = _smallest_in_reach(design, curvature_ok, low, high)
+    else:
+        near = near or {}
+        angle = _smallest(design, angle_ok, lowest, near.get("pressure_angle"))
+        curvature = _smallest(design, curvature_ok, lowest, near.get("radius_of_curvature"))
     return {"pressure_angle": angle, "radius_of_curvature": curvature,
-            "base_circle_radius": max(angle, curvature)}
+            "base_circle_radius": max(angle, curvature), "floor": lowest}
 
 
-def aged_check(ds, limits: Limits, kind: str) -> str:
-    """Whether the last valid ageing time of a (sized) result still meets the limits.
+def aged_states(ds, design, extremes: bool = True) -> list[tuple]:
+    """The cam's aged states, from a result of its scene.
+
+    The pressure angle and the radius of curvature depend on the ageing time only through
+    the cam's in-plane strains and the roller's or arm's strain; each grows or shrinks
+    the part it belongs to, so the worst of a check lies at an extreme of one of them:
+    ``extremes`` keeps only the ageing times that hold one.
 
     Parameters
     ----------
     ds : xarray.Dataset
-        The result (pressure angle stored in [deg], radii [m], time [d]).
-    limits : Limits
-        The limits.
-    kind : str
-        The follower kind (``"flat"``, ``"roller"``, ``"knife"``).
+        A result of the scene (strains [-] over (time, part), time [d]).
+    design : CamDesign
+        The cam (follower kind; a swinging arm or not).
+    extremes : bool
+        Keep only the times of the extreme strains; False: every valid ageing time.
 
     Returns
     -------
-    str
-        One sentence for the user.
+    list of tuple
+        (ageing time [d], CamState), valid times only.
     """
-    last = ds.isel(time=int(np.flatnonzero(np.isfinite(ds["base_circle_radius"].values))[-1]))
-    phi = math.radians(float(np.nanmax(np.abs(last["pressure_angle"].values))))  # stored in deg
-    rho = _smallest_convex_radius(kind, last["radius_of_curvature"].values,
-                                 last["pitch_radius_of_curvature"].values)
-    days = float(last["time"])
-    ok = all(within(limits, phi, rho))
-    return (f"aged at t = {days:g} d: largest pressure angle {math.degrees(phi):.4g} deg, smallest "
-            f"convex radius of curvature {rho * 1e3:.4g} mm: "
-            f"{'still meets the limits' if ok else 'NO LONGER meets the limits'}")
+    from .design import CamState
+
+    def strain(part: str, name: str) -> np.ndarray:
+        if part not in ds["part"].values:
+            return np.zeros(ds.sizes["time"])
+        return np.asarray(ds[name].sel(part=part).values, float)
+
+    x, y = strain("cam", "strain_longitudinal"), strain("cam", "strain_transverse")
+    follower = 0.5 * (strain("follower", "strain_longitudinal") + strain("follower", "strain_transverse"))
+    roller = follower if design.follower_kind == "roller" else np.zeros_like(x)
+    arm = strain("follower", "strain_longitudinal") if design.arm is not None else np.zeros_like(x)
+    valid = np.flatnonzero(np.isfinite(x) & np.isfinite(y) & np.isfinite(roller) & np.isfinite(arm))
+    if valid.size == 0:
+        return []
+    picks = sorted({int(valid[f(series[valid])]) for series in (x, y, roller, arm)
+                    for f in (np.argmin, np.argmax)}) if extremes else valid.tolist()
+    days = np.asarray(ds["time"].values, float)
+    return [(float(days[k]), CamState(cam_strain_x=float(x[k]), cam_strain_y=float(y[k]),
+                                      roller_strain=float(roller[k]), arm_strain=float(arm[k])))
+            for k in picks]
+
+
+def degenerate_notes(design, sizes: dict) -> list[str]:
+    """What a size that a bound makes degenerate must tell: which bound, and what to set.
+
+    Parameters
+    ----------
+    design : CamDesign
+        The cam.
+    sizes : dict of str to float
+        :func:`smallest_base_circle` of it [m].
+
+    Returns
+    -------
+    list of str
+        One line per finding; empty when the limits set the size.
+    """
+    notes = []
+    radius = sizes["base_circle_radius"]
+    low, reason = floor(design)
+    if radius <= low + SIZE_TOLERANCE:
+        if reason == "zero":
+            default = (f" (the roller's radius, {design.roller_radius * 1e3:g} mm, by default)"
+                       if design.follower_kind == "roller" else "")
+            notes.append(f"no limit sets this size: every base circle down to {low * 1e3:.4f} mm "
+                         f"meets both limits, so the answer is the bound of the search, not a "
+                         f"design; set cam.bore_radius to the shaft's radius, or a larger "
+                         f"--radius-of-curvature{default}")
+        else:
+            notes.append(f"{reason} sets this size ({low * 1e3:.4f} mm): both limits are met "
+                         f"below it")
+    rho = worst(replace(design, base_circle_radius=radius))[1]
+    if 0 < rho < POINTED * radius and sizes["radius_of_curvature"] >= sizes["pressure_angle"]:
+        notes.append(f"the radius of curvature bound sets this size, and the profile is nearly "
+                     f"pointed there (smallest radius {rho * 1e3:.3g} mm); set "
+                     f"--radius-of-curvature to the smallest radius the contact stress allows")
+    return notes
