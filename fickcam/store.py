@@ -524,8 +524,8 @@ def open_result(path):
     Returns
     -------
     xarray.Dataset
-        The result, loaded into memory (the file is closed); a file above
-        :data:`CHUNKED_ABOVE` is read lazily instead: each variable is read when its values
+        The result, loaded into memory (the file is closed); a result above
+        :data:`CHUNKED_ABOVE` (in memory) is read lazily instead: each variable is read when its values
         are asked for, only the chunks asked for (the file stays open until the Dataset is
         closed or freed).
 
@@ -543,7 +543,7 @@ def open_result(path):
         raise InputError(f"{path}: no such result file")
     try:
         ds = xr.open_dataset(path, engine="h5netcdf", decode_timedelta=True)
-        if path.stat().st_size <= CHUNKED_ABOVE:
+        if ds.nbytes <= CHUNKED_ABOVE:  # the shapes only: nothing is read for it
             ds.load()
             ds.close()
         ds = with_time_in_days(ds)
