@@ -458,6 +458,9 @@ def save(dataset, path, compress: bool = False) -> Path:
         target = GuardedFile(tmp)
         try:
             _write_netcdf(ds, target)
+        except Exception:
+            if target.error is None:  # else HDF5 tripped over what the failed write lost
+                raise
         finally:
             target.close()
         if target.error is not None:
