@@ -25,6 +25,7 @@ def _cmd_run(args) -> int:
     if args.accuracy is not None and not (0 < args.accuracy <= 0.1):
         raise InputError("--accuracy must lie in (0, 0.1]")
     output = Path(args.output) if args.output else default_output(scene)
+    result_fits(scene, output)
     ds = run(scene, accuracy=args.accuracy, progress=not args.quiet)
     save(ds, output)
     if args.quiet < 2:
@@ -32,6 +33,31 @@ def _cmd_run(args) -> int:
         print(notices_line(ds.attrs.get("notices", []), args.quiet))
         print(f"wrote {output}")
     return 0
+
+
+def result_fits(scene, output: Path) -> None:
+    """Before a run: warn of a result above 1 GiB, with the settings that shrink it, and
+    refuse one that the disk at ``output`` cannot hold (:mod:`fickcam.resultsize`).
+
+    Parameters
+    ----------
+    scene : fickcam.scene.Scene
+        The scene to run.
+    output : pathlib.Path
+        The result file.
+
+    Raises
+    ------
+    fickcam.errors.WriteError
+        When the disk cannot hold the result.
+    """
+    from .resultsize import check_space, estimate, size_warning
+
+    size = estimate(scene)
+    warning = size_warning(size)
+    if warning:
+        log.warning(warning)
+    check_space(size, output)
 
 
 def notices_line(notices, quiet: int) -> str:
@@ -87,8 +113,13 @@ def _cmd_check(args) -> int:
     from .scene import load_scene
     from .reporting import describe_plan
 
+    from .resultsize import estimate, size_warning
+
     scene = load_scene(args.scene)
     print(describe_plan(scene))
+    warning = size_warning(estimate(scene))
+    if warning:
+        log.warning(warning)
     return 0
 
 
