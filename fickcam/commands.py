@@ -110,10 +110,9 @@ def default_output(scene) -> Path:
 
 
 def _cmd_check(args) -> int:
-    from .scene import load_scene
     from .reporting import describe_plan
-
     from .resultsize import estimate, size_warning
+    from .scene import load_scene
 
     scene = load_scene(args.scene)
     print(describe_plan(scene))
