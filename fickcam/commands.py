@@ -24,6 +24,7 @@ def _cmd_run(args) -> int:
     if args.whole_process:
         gc.freeze()  # the modules loaded so far live to the end: the run's collections skip them
     output = Path(args.output) if args.output else default_output(scene)
+    result_fits(scene, output)
     ds = run(scene, accuracy=accuracy, progress=not args.quiet)
     save(ds, output)
     if args.quiet < 2:
@@ -50,6 +51,31 @@ def scene_accuracy(text) -> float | None:
     from .scene import DiffusionSection
 
     return field_value("--accuracy", text, DiffusionSection, "accuracy")
+
+
+def result_fits(scene, output: Path) -> None:
+    """Before a run: warn of a result above 1 GiB, with the settings that shrink it, and
+    refuse one that the disk at ``output`` cannot hold (:mod:`fickcam.resultsize`).
+
+    Parameters
+    ----------
+    scene : fickcam.scene.Scene
+        The scene to run.
+    output : pathlib.Path
+        The result file.
+
+    Raises
+    ------
+    fickcam.errors.WriteError
+        When the disk cannot hold the result.
+    """
+    from .resultsize import check_space, estimate, size_warning
+
+    size = estimate(scene)
+    warning = size_warning(size)
+    if warning:
+        log.warning(warning)
+    check_space(size, output)
 
 
 def notices_line(notices, quiet: int) -> str:
@@ -103,11 +129,15 @@ def default_output(scene) -> Path:
 
 
 def _cmd_check(args) -> int:
-    from .scene import load_scene
     from .reporting import describe_plan
+    from .resultsize import estimate, size_warning
+    from .scene import load_scene
 
     scene = load_scene(args.scene)
     print(describe_plan(scene))
+    warning = size_warning(estimate(scene))
+    if warning:
+        log.warning(warning)
     return 0
 
 

@@ -56,6 +56,7 @@ def describe_plan(scene, accuracy: float | None = None) -> str:
         Lines: the climate, each part's diffusion model with its cells, steps and estimated
         error, the mechanisms, the follower and the limits.
     """
+    from .resultsize import estimate as result_size
     from .simulate import STATE_GIVEN, plan_parts
 
     environment, times, options, plans = plan_parts(scene, accuracy)
@@ -85,6 +86,8 @@ def describe_plan(scene, accuracy: float | None = None) -> str:
     if scene.limits:
         lines.append("  limits: " + "; ".join(f"{limit.variable} {limit.text}"
                                              for limit in scene.limits))
+    cells = max((p.cells for _, p in plans if hasattr(p, "cells")), default=0)
+    lines.append(f"  result: {result_size(scene, times, cells).text()}")
     return "\n".join(lines)
 
 

@@ -77,12 +77,9 @@ def check_bounds(text: str, *, file: str = "<scene>", what: str = "scene") -> No
 
     Parameters
     ----------
-    text : str
-        The YAML.
-    file : str
-        The file's name, for problems.
-    what : str
-        What the text is, for messages (``"scene"``, ``"sweep"``).
+    text, file, what : str
+        The YAML, the file's name and what it is (``"scene"``, ``"sweep"``), as for
+        :func:`parse_yaml`.
 
     Raises
     ------
