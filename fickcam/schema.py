@@ -262,6 +262,9 @@ VARIABLES: dict[str, Var] = {
                        "limits"),
     "time_out_of_spec": Var(("limit",), "d", "first ageing time the limit fails (NaN: never)",
                             "limits", 1.0 / 86400.0),
+    "time_out_of_spec_error": Var(("limit",), "d", "estimated error of time_out_of_spec: the "
+                                  "search's, at most 0.1 % of it or 1 h (finer with a finer "
+                                  "diffusion accuracy)", "limits", 1.0 / 86400.0),
     # a sweep with limits: scatter (fickcam.sweep.scatter)
     "fraction_out_of_spec": Var(("time", "limit"), "%", "fraction of the cases out of spec by this "
                                 "ageing time", "limits", 100.0),

@@ -377,11 +377,12 @@ def _aged_values(scene: Scene, environment: Environment, times: np.ndarray,
 
 def _limits(ds, scene: Scene, environment: Environment, times, accuracy: float | None,
             parts: list[Part], histories: list[PartHistory], settings=None, cache=None):
-    """(limit_ratio (time, limit) and time_out_of_spec (limit) of the scene's limits, each
-    crossing located by re-running the model inside its bracketing interval; the search's
-    notices, ``_search_notices``)."""
+    """(limit_ratio (time, limit), time_out_of_spec (limit) and its error estimate of the
+    scene's limits, each crossing located by re-running the model inside its bracketing
+    interval to the crossing's own tolerance (``limits.Tolerance``, finer where the
+    diffusion accuracy asked is); the search's notices, ``_search_notices``)."""
     from .dataset import build_dataset
-    from .limits import first_crossings, limit_ratio
+    from .limits import Tolerance, first_crossings, limit_ratio
 
     missing = [limit for limit in scene.limits if limit.variable not in ds]
     if missing:
@@ -420,12 +421,14 @@ def _limits(ds, scene: Scene, environment: Environment, times, accuracy: float |
     search_times, search = times, stored
     if times[0] > 0 and (stored[0] > 1).any():  # out of spec at the first stored time: since?
         search_times, search = np.concatenate([[0.0], times]), np.vstack([evaluate([0.0]), stored])
-    crossings = first_crossings(search_times, search, evaluate)
-    return (build_dataset({"limit_ratio": stored, "time_out_of_spec": crossings},
+    asked = diffusion_options(scene, accuracy)["accuracy"]
+    crossings, errors = first_crossings(search_times, search, evaluate,
+                                        Tolerance.for_accuracy(asked))
+    return (build_dataset({"limit_ratio": stored, "time_out_of_spec": crossings,
+                           "time_out_of_spec_error": errors},
                           {"time": times, "limit": [limit.variable for limit in scene.limits]}),
             search_notices(searched, {h.part.name: h.diffusion.error_estimate for h in histories
-                                      if h.diffusion is not None},
-                           diffusion_options(scene, accuracy)["accuracy"]))
+                                      if h.diffusion is not None}, asked))
 
 
 def search_notices(searched: dict[str, float], stored: dict[str, float],
