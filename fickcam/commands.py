@@ -125,14 +125,15 @@ def _cmd_size(args) -> int:
 
 def _cmd_query(args) -> int:
     from .reporting import limit_line
-    from .query import format_result, select
+    from .query import format_result, select, time_units
     from .store import open_result
 
     ds = open_result(args.result)
     array = select(ds, args.variable, time=args.time, part=args.part, link=args.link,
                    cam_angle=args.cam_angle, crank_angle=args.crank_angle, against=args.drift)
     print(format_result(array, args.variable, args.format, args.drift,
-                        limit=limit_line(ds, args.variable), units=args.units))
+                        limit=limit_line(ds, args.variable),
+                        units=args.units or time_units(ds, args.variable)))
     return 0
 
 

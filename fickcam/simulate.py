@@ -96,6 +96,40 @@ def every_step_times(step: float, end: float) -> np.ndarray:
     return np.append(times, end) if end > times[-1] else times
 
 
+def written_time_unit(scene: Scene) -> str:
+    """The unit the scene's ageing times were written in (else its history's durations),
+    as the time unit its reports use (``errors.written_unit``: a month in days); "" where
+    they are bare numbers or a climate record sets them (the reports then choose by span).
+
+    Parameters
+    ----------
+    scene : Scene
+        The loaded scene.
+
+    Returns
+    -------
+    str
+        ``"s"``, ``"min"``, ``"h"``, ``"d"``, ``"yr"`` or ``""``.
+    """
+    from .errors import written_unit
+    from .unit_parsing import parse_duration, split_number_unit
+
+    data = scene.document.data if scene.document is not None else {}
+    requested = (data.get("outputs") or {}).get("ageing_times")
+    texts = [requested.get("every")] if isinstance(requested, dict) else list(requested or [])
+    history = (data.get("environment") or {}).get("history")
+    if not texts and isinstance(history, list):
+        texts = [segment.get("duration") for segment in history if isinstance(segment, dict)]
+    for text in reversed(texts):
+        try:
+            unit = split_number_unit(text)[1] if isinstance(text, str) else ""
+            if unit:
+                return written_unit(parse_duration(f"1 {unit}"))[0]
+        except ValueError:  # validated already; a spelling this does not read: by span
+            continue
+    return ""
+
+
 def diffusion_options(scene: Scene, accuracy: float | None, settings=None, cache=None) -> dict:
     """The scene's diffusion section, ``accuracy`` (when given) in place of its own, the
     solvers' tuned limits and the run's cache.
@@ -245,6 +279,7 @@ def run(scene, *, accuracy: float | None = None, progress: bool = False, setting
         ds = ds.merge(limits, compat="override")
         ds.attrs["notices"] = notices
         ds.attrs["limits"] = {limit.variable: limit.as_attrs() for limit in scene.limits}
+    ds.attrs["time_unit"] = written_time_unit(scene)
     ds.attrs["wall_time"] = _time.perf_counter() - started
     return ds
 
