@@ -44,6 +44,9 @@ INTERPOLATION_SHARE = 0.5
 #: the times evaluated either side of a guessed crossing are at least and at most these
 #: shares of the tolerance away from it (twice the guess's error estimate, within them)
 STRADDLE = (0.05, 0.45)
+#: at most this many of the climate's change times inside a bracket are sampled in its
+#: first round (evenly chosen where there are more)
+CLIMATE_NODES = 256
 
 
 class LimitSpec(StrictModel):
@@ -400,6 +403,8 @@ class _Bracket:
     samples: dict = field(default_factory=dict)
     #: the rounds of model evaluations that narrowed it
     rounds: int = 0
+    #: the climate's change times inside the bracket, sampled in its first round
+    nodes: np.ndarray = field(default_factory=lambda: np.empty(0))
 
     def __post_init__(self):
         self.samples.update({float(self.lo): float(self.r_lo), float(self.hi): float(self.r_hi)})
@@ -424,14 +429,17 @@ class _Bracket:
         """The times to evaluate this round: two times either side of the best guess at
         the crossing (``guess``), twice its error estimate away but within STRADDLE of the
         tolerance, so a good guess closes the bracket in one round, narrow; POINTS equally spaced in the square root of the time instead in the first
-        round, which looks for the first crossing inside the bracket, unless the stored
-        times about it already agree on the crossing (``_interpolated``), and once
-        SECANT_ROUNDS of guesses have not closed it."""
-        agreed = _interpolated(self.samples, self.lo, self.hi,
-                               INTERPOLATION_SHARE * self.tolerance.at(self.lo))
-        if (self.rounds == 0 and agreed is None) or self.rounds > SECANT_ROUNDS \
+        round, which looks for the first crossing inside the bracket, with the climate's
+        change times inside it (a ratio that a climate record drives up and down peaks
+        there), unless the stored times about it already agree on the crossing
+        (``_interpolated``) in a steady climate, and once SECANT_ROUNDS of guesses have not
+        closed it."""
+        agreed = self.nodes.size == 0 and _interpolated(
+            self.samples, self.lo, self.hi, INTERPOLATION_SHARE * self.tolerance.at(self.lo))
+        if (self.rounds == 0 and not agreed) or self.rounds > SECANT_ROUNDS \
                 or not np.isfinite(self.r_lo):
-            return np.linspace(*_root_time([self.lo, self.hi]), POINTS + 2)[1:-1] ** 2
+            even = np.linspace(*_root_time([self.lo, self.hi]), POINTS + 2)[1:-1] ** 2
+            return np.union1d(even, self.nodes) if self.rounds == 0 else even
         guess, estimate = self.guess()
         tolerance = self.tolerance.at(self.lo)
         half = np.clip(2.0 * estimate, *np.multiply(STRADDLE, tolerance))
@@ -509,9 +517,10 @@ def _crossing(x: np.ndarray, r: np.ndarray, lo: float, hi: float) -> float:
     return float(lo + root * (hi - lo))
 
 
-def _brackets(times: np.ndarray, ratios: np.ndarray, tolerance: Tolerance):
+def _brackets(times: np.ndarray, ratios: np.ndarray, tolerance: Tolerance, nodes: np.ndarray):
     """(crossings found at the first stored time, {limit: _Bracket}): the stored interval
-    of each limit's first crossing, its samples the stored times either side of it."""
+    of each limit's first crossing, its samples the stored times either side of it, its
+    nodes the climate's change times inside it (at most CLIMATE_NODES)."""
     found = np.full((2, ratios.shape[1]), np.nan)
     brackets: dict[int, _Bracket] = {}
     for j in range(ratios.shape[1]):
@@ -521,15 +530,20 @@ def _brackets(times: np.ndarray, ratios: np.ndarray, tolerance: Tolerance):
         elif index is not None:
             near = [i for i in (index - 2, index + 1) if 0 <= i < times.size
                     and np.isfinite(ratios[i, j])]
-            brackets[j] = _Bracket(times[index - 1], times[index], ratios[index - 1, j],
-                                   ratios[index, j], tolerance,
-                                   samples={float(times[i]): float(ratios[i, j]) for i in near})
+            lo, hi = times[index - 1], times[index]
+            inside = nodes[(nodes > lo) & (nodes < hi)]
+            if inside.size > CLIMATE_NODES:
+                inside = inside[np.linspace(0, inside.size - 1, CLIMATE_NODES).astype(int)]
+            brackets[j] = _Bracket(lo, hi, ratios[index - 1, j], ratios[index, j], tolerance,
+                                   samples={float(times[i]): float(ratios[i, j]) for i in near},
+                                   nodes=inside)
     return found, brackets
 
 
 def first_crossings(times: np.ndarray, ratios: np.ndarray,
                     evaluate: Callable[[np.ndarray], np.ndarray],
-                    tolerance: Tolerance = Tolerance()) -> tuple[np.ndarray, np.ndarray]:
+                    tolerance: Tolerance = Tolerance(),
+                    nodes=()) -> tuple[np.ndarray, np.ndarray]:
     """The first ageing time (s) at which each column of ``ratios`` (time, limit)
     exceeds 1, and its error estimate; NaN where it never does, the first stored time
     (error 0) where it already does.
@@ -557,6 +571,10 @@ def first_crossings(times: np.ndarray, ratios: np.ndarray,
         (len(ts), limit).
     tolerance : Tolerance
         The error each crossing may carry (by default 0.1 % of it, or 1 h).
+    nodes : array_like
+        The climate's change times [s] (a record's rows, a history's segment ends): the
+        first round samples those inside a bracket too, where a ratio the climate drives up
+        and down peaks, so a first crossing between stored times is not passed over.
 
     Returns
     -------
@@ -566,7 +584,7 @@ def first_crossings(times: np.ndarray, ratios: np.ndarray,
     """
     times = np.asarray(times, float)
     ratios = np.asarray(ratios, float).reshape(len(times), -1)
-    found, brackets = _brackets(times, ratios, tolerance)
+    found, brackets = _brackets(times, ratios, tolerance, np.asarray(nodes, float))
     while any(b.open() for b in brackets.values()):
         inner = {j: b.inner() for j, b in brackets.items() if b.open()}
         at = np.unique(np.concatenate(list(inner.values())))

@@ -458,7 +458,7 @@ def _limits(ds, scene: Scene, environment: Environment, times, accuracy: float |
         search_times, search = np.concatenate([[0.0], times]), np.vstack([evaluate([0.0]), stored])
     asked = diffusion_options(scene, accuracy)["accuracy"]
     crossings, errors = first_crossings(search_times, search, evaluate,
-                                        Tolerance.for_accuracy(asked))
+                                        Tolerance.for_accuracy(asked), environment.change_times)
     return (build_dataset({"limit_ratio": stored, "time_out_of_spec": crossings,
                            "time_out_of_spec_error": errors},
                           {"time": times, "limit": [limit.variable for limit in scene.limits]}),
