@@ -13,7 +13,9 @@ and turns it into a *limit ratio*, 1 at the limit and above 1 out of spec:
 with s = |b|, or for a zero bound the size of the as-designed value. With
 several entries the ratio is the largest of them. The first ageing time at
 which a ratio exceeds 1 is located on the continuous ageing time by re-running
-the model inside the bracketing interval (:func:`first_crossings`).
+the model inside the bracketing interval (:func:`first_crossings`), in the square
+root of the time, to the crossing's own tolerance (:class:`Tolerance`: 0.1 % of it
+or 1 h), with an error bound beside it.
 """
 from __future__ import annotations
 
