@@ -52,12 +52,13 @@ def floor_command() -> list[str]:
     return [sys.executable, "-c", f"import {FLOOR_IMPORTS}"]
 
 
-def timed(command: list[str]) -> tuple[float, float]:
-    """(wall s, CPU s) of ``command`` as a whole process."""
+def timed(command: list[str], stdout=subprocess.DEVNULL, check: bool = True) -> tuple[float, float]:
+    """(wall s, CPU s of it and the processes it waited for) of ``command`` as a whole
+    process; its output to ``stdout`` (a file) or nowhere."""
     before = resource.getrusage(resource.RUSAGE_CHILDREN)
     started = time.perf_counter()
-    subprocess.run(command, check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
-                   cwd=ROOT)
+    subprocess.run(command, check=check, stdout=stdout, stderr=subprocess.STDOUT
+                   if stdout is not subprocess.DEVNULL else subprocess.DEVNULL, cwd=ROOT)
     wall = time.perf_counter() - started
     after = resource.getrusage(resource.RUSAGE_CHILDREN)
     return wall, (after.ru_utime + after.ru_stime) - (before.ru_utime + before.ru_stime)

@@ -154,7 +154,7 @@ def save(dataset, path):
 
 
 def open_result(path):
-    """Open a result file written by :func:`save` as an xarray.Dataset.
+    """Open a result file written by :func:`~fickcam.save` as an xarray.Dataset.
 
     Parameters
     ----------
@@ -178,7 +178,7 @@ def open_result(path):
 
 def fit_weight_gain(data, matrix: str, **options):
     """Calibrate D0, Ea, a, b from ASTM D5229 weight-gain data (a CSV path); see
-    :func:`fickcam.fit.fit_weight_gain` for the options.
+    :func:`fickcam.fit_weight_gain` for the options.
 
     Parameters
     ----------
@@ -189,7 +189,7 @@ def fit_weight_gain(data, matrix: str, **options):
         humidity exponent stand in when the data hold one condition only).
     **options
         ``fiber``, ``fiber_volume_fraction`` and ``name``, passed to
-        :func:`fickcam.fit.fit_weight_gain`.
+        :func:`fickcam.fit_weight_gain`.
 
     Returns
     -------

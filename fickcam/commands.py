@@ -99,12 +99,13 @@ def _cmd_size(args) -> int:
     from .cam import design_from_scene
     from .cam.sizing import Limits, aged_check, smallest_base_circle
     from .scene import load_scene
-    from .simulate import run
+    from .simulate import plan_parts, run
     from .unit_parsing import to_si
 
     scene = load_scene(args.scene)
     if scene.model.cam is None:
         raise InputError("the scene has no cam: section to size")
+    plan_parts(scene)  # every refusal of `fickcam check` before the search and the run
     try:
         limits = Limits(to_si(args.pressure_angle, "angle"), to_si(args.radius_of_curvature, "length"))
         sizes = smallest_base_circle(design_from_scene(scene.model.cam), limits)
@@ -153,7 +154,7 @@ def _cmd_plot(args) -> int:
 
     ds = open_result(args.result)
     outdir = Path(args.outdir) if args.outdir else Path(args.result).with_suffix("")
-    for path in plot(ds, outdir, args.kind):
+    for path in plot(ds, outdir, args.kind).paths:
         print(f"wrote {path}")
     return 0
 

@@ -226,3 +226,13 @@ def format_duration(seconds: float, span: float | None = None) -> str:
     """
     name, unit = time_unit(seconds if span is None else span)
     return f"{float(seconds) / unit:.4g} {name}"
+
+
+class WriteError(FickcamError):
+    """A file could not be written (the disk is full, a size limit): nothing was replaced.
+
+    Parameters
+    ----------
+    *args, **kwargs
+        The message (the arguments of :class:`Exception`), naming the file.
+    """

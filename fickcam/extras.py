@@ -64,7 +64,7 @@ def install_hint(name: str) -> str:
     Parameters
     ----------
     name : str
-        A key of :data:`EXTRAS`.
+        A key of ``EXTRAS``.
 
     Returns
     -------
@@ -100,7 +100,7 @@ def require(name: str, advice: str = ""):
     Parameters
     ----------
     name : str
-        The extra, a key of :data:`EXTRAS`.
+        The extra, a key of ``EXTRAS``.
     advice : str
         What else the user can do, appended in brackets (``"or run with --workers 1"``).
 

@@ -24,7 +24,7 @@ from dataclasses import dataclass, field
 from typing import Any, Callable
 
 import numpy as np
-from pydantic import model_validator
+from pydantic import Field, model_validator
 
 from .query import drift
 from .schema import VARIABLES, Var, design_name
@@ -67,9 +67,10 @@ class LimitSpec(StrictModel):
         The smallest allowed value [unit of the variable].
     """
 
-    deviation: Any = None
-    max: Any = None
-    min: Any = None
+    deviation: Any = Field(
+        None, description="Largest allowed change from the as-designed value, in the variable's unit")
+    max: Any = Field(None, description="Largest allowed value, in the variable's unit")
+    min: Any = Field(None, description="Smallest allowed value, in the variable's unit")
 
     @model_validator(mode="after")
     def _something(self):
@@ -125,7 +126,7 @@ def from_attrs(variable: str, attrs: dict) -> Limit:
     variable : str
         The variable it bounds.
     attrs : dict
-        Its entry of the attribute (:meth:`Limit.as_attrs`).
+        Its entry of the attribute (``Limit.as_attrs``).
 
     Returns
     -------
@@ -553,14 +554,11 @@ def first_crossings(times: np.ndarray, ratios: np.ndarray,
     The stored times bracket each crossing; ``evaluate(ts)`` re-runs the model at
     ageing times ``ts`` and returns the ratios there (len(ts), limit). The search runs
     in the square root of the time, in which a ratio driven by moisture uptake is nearly
-    linear. A bracket closes, before any evaluation where the stored times about it
-    suffice, when the interpolants through its samples agree on the crossing within half
-    its ``tolerance`` (``_interpolated``: their disagreement is the error estimate), or
-    when it is no wider than the tolerance (the crossing linear inside it; the error
-    estimate its larger distance to the ends). Each round evaluates the model once for
-    all open brackets, at the times :meth:`_Bracket.inner` picks (POINTS equally spaced
-    first, then two straddling the secant's root), and keeps the sub-interval of the
-    first crossing.
+    linear. Each round evaluates the model once for all open brackets, at the times
+    ``_Bracket.inner`` picks (POINTS equally spaced and the climate's change times inside
+    the bracket first, then two straddling the best guess), and keeps the sub-interval of
+    the first crossing, until each bracket is no wider than its ``tolerance``; the
+    crossing is read inside it, its error bound the larger distance to the ends.
 
     Parameters
     ----------

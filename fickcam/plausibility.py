@@ -122,7 +122,7 @@ class Reading:
     what : str
         What it is, in messages (``"cam thickness"``).
     dimension : str
-        Its dimension (a key of :data:`fickcam.unit_parsing.SI_UNITS`).
+        Its dimension (a key of ``fickcam.unit_parsing.SI_UNITS``).
     unit : str
         The SI unit a bare number is read in (``"m"``).
     verdict : callable
@@ -369,7 +369,7 @@ def si_value(value, dimension: str) -> float | None:
     value : object
         A scene value as written.
     dimension : str
-        Its dimension (a key of :data:`fickcam.unit_parsing.SI_UNITS`).
+        Its dimension (a key of ``fickcam.unit_parsing.SI_UNITS``).
 
     Returns
     -------
@@ -681,7 +681,7 @@ def fastest_absorber(model, materials: dict, temperature: float) -> Absorber | N
     model : SceneModel
         The validated scene.
     materials : dict
-        Scene material name -> resolved :class:`~fickcam.materials.Material`.
+        Scene material name -> resolved :class:`fickcam.materials.material.Material`.
     temperature : float
         Where the diffusivities are taken [K].
 
@@ -730,7 +730,7 @@ def history_findings(model, doc, environment, materials: dict) -> Findings:
     environment : fickcam.environment.Environment
         The scene's climate.
     materials : dict
-        Scene material name -> resolved :class:`~fickcam.materials.Material`.
+        Scene material name -> resolved :class:`fickcam.materials.material.Material`.
 
     Returns
     -------

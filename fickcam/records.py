@@ -29,6 +29,7 @@ from pathlib import Path
 
 import numpy as np
 
+from .csvrows import CsvError, numbered_rows
 from .extras import require
 from .unit_parsing import to_si
 
@@ -39,7 +40,16 @@ PVLIB_PREFIX = "pvlib:"
 # dictionary: missing dry-bulb is 99.9 degC, missing relative humidity 999 %.
 _EPW_MISSING = {"temp_air": 99.9, "relative_humidity": 999.0}
 _EPW_HEADER_LINES = 8   # LOCATION ... DATA PERIODS
+# the columns read, by their index in a row: EPW data dictionary (dry bulb 7th, RH 9th
+# field); TMY3 (Wilcox & Marion 2008, Table 1-1: dry-bulb 32nd, RH 38th)
+_EPW_COLUMNS = {"temp_air": 6, "relative_humidity": 8}
+_TMY3_COLUMNS = {"temp_air": 31, "relative_humidity": 37}
 _TMY3_HEADER_LINES = 2  # site line, column names
+#: the hourly rows of a weather year (TMY3 and EPW: 365 days; 8784 in a leap year's file)
+YEAR_HOURS = (8760, 8784)
+#: how many lines before the last one its form is compared with (:func:`check_last_line`)
+NEIGHBOURS = 24
+_FIRST_LINE_CHARS = 4096  # what is read of the first line to tell the three formats apart
 
 
 class RecordError(ValueError):
@@ -255,7 +265,7 @@ def _read_unchanged(path: str, size: int, modified: int) -> ClimateRecord:
 def _read_record(path: Path) -> ClimateRecord:
     try:
         with open(path, newline="", encoding="utf-8", errors="replace") as handle:
-            first = handle.readline()
+            first = handle.readline(_FIRST_LINE_CHARS)  # enough to tell the format
     except FileNotFoundError:
         raise ValueError(f"history file {str(path)!r} not found") from None
     except OSError as exc:
@@ -291,10 +301,11 @@ def read_history_csv(path: Path) -> ClimateRecord:
     path = Path(path)
     try:
         with open(path, newline="", encoding="utf-8") as handle:
-            rows = [(line, row) for line, row in enumerate(csv.reader(handle), start=1)
-                    if _holds_data(row)]
+            rows = [(line, row) for line, row in numbered_rows(handle) if _holds_data(row)]
     except FileNotFoundError:
         raise ValueError(f"history file {str(path)!r} not found") from None
+    except CsvError as exc:
+        raise RecordError(path, exc.line, None, exc.reason) from None
     except (OSError, UnicodeDecodeError) as exc:
         raise ValueError(f"cannot read history file {str(path)!r}: {exc}") from None
     if not rows:
@@ -310,6 +321,7 @@ def read_history_csv(path: Path) -> ClimateRecord:
     missing = set(_COLUMNS) - set(units)
     if missing:
         raise RecordError(path, header_line, None, f"no column {', '.join(sorted(missing))}")
+    check_last_line(path, rows[1:], {name: index for name, (index, _) in units.items()})
     lines = np.array([line for line, _ in rows[1:]])
     columns = {name: _column(path, rows[1:], name, index, unit)
                for name, (index, unit) in units.items()}
@@ -319,6 +331,70 @@ def read_history_csv(path: Path) -> ClimateRecord:
     return _checked(path, lines, columns["time"], columns["temperature"],
                     columns["relative_humidity"], f"chamber record {path.name}", None,
                     must_start_at_zero=True)
+
+
+def _ends_with_newline(path: Path) -> bool:
+    with open(path, "rb") as handle:
+        handle.seek(0, 2)
+        if handle.tell() == 0:
+            return True
+        handle.seek(-1, 2)
+        return handle.read(1) in (b"\n", b"\r")
+
+
+def _form(cell: str) -> tuple[int, int] | None:
+    """(digits, decimals) of a number as written; None for one in exponent form."""
+    text = cell.strip()
+    if "e" in text.lower():
+        return None
+    digits = sum(ch.isdigit() for ch in text)
+    return digits, len(text.partition(".")[2]) if "." in text else 0
+
+
+def check_last_line(path: Path, rows: list[tuple[int, list[str]]], columns: dict[str, int]) -> None:
+    """Refuse a last line that the file's end cut short.
+
+    A file that ends inside a line (no new line after it) was probably cut while it was
+    written or copied: its last line is then held to the form of the :data:`NEIGHBOURS`
+    lines before it. It must have as many fields, and each column read must have as many
+    decimals, and no fewer digits than the fewest of those lines: ``97,112.86,7`` after lines
+    ending in ``70.19`` is a relative humidity torn from 70.19 %, not 7 %.
+
+    Parameters
+    ----------
+    path : pathlib.Path
+        The file.
+    rows : list of (int, list of str)
+        Its data rows, each with its line (from 1).
+    columns : dict of str to int
+        The columns read -> their index in a row.
+
+    Raises
+    ------
+    RecordError
+        At the last line, naming the field or the column that is short.
+    """
+    if len(rows) < 2 or _ends_with_newline(path):
+        return
+    line, last = rows[-1]
+    before = [row for _, row in rows[-1 - NEIGHBOURS:-1]]
+    fields = min(len(row) for row in before)
+    advice = "complete it and end the file with a new line, or remove it"
+    if len(last) < fields:
+        raise RecordError(path, line, None, f"the file ends inside this line, which has "
+                          f"{len(last)} field(s) where the lines before have {fields}: it looks "
+                          f"cut short; {advice}")
+    for name, index in columns.items():
+        forms = [_form(row[index]) for row in before if index < len(row)]
+        mine = _form(last[index])
+        if mine is None or not forms or None in forms:
+            continue
+        digits, decimals = min(f[0] for f in forms), min(f[1] for f in forms)
+        if mine[1] < decimals or mine[0] < digits:
+            raise RecordError(path, line, name, (
+                f"the file ends inside this line, and {last[index].strip()!r} is shorter than "
+                f"the column on the lines before ({digits} digits, {decimals} decimals): it "
+                f"looks cut short; {advice}"))
 
 
 def _unit_slip(path, header_line: int, name: str, values: np.ndarray) -> None:
@@ -422,6 +498,19 @@ def _looks_like_tmy3(first_line: str) -> bool:
     return len(fields) == 7 and fields[0].strip().isdigit() and len(fields[0].strip()) == 6
 
 
+def _whole_year(path: Path, rows: int, first_data_line: int, columns: dict[str, int]) -> None:
+    """Refuse a weather file that does not hold a year of hourly rows, or whose last line
+    is torn (:func:`check_last_line`)."""
+    if rows not in YEAR_HOURS:
+        short = "it looks cut short" if rows < YEAR_HOURS[0] else "more than one year"
+        raise RecordError(path, first_data_line + rows - 1 if rows else None, None, (
+            f"{rows:,} hourly rows where a weather year has {YEAR_HOURS[0]:,} ({short})"))
+    if not _ends_with_newline(path):
+        with open(path, newline="", encoding="utf-8", errors="replace") as handle:
+            tail = list(numbered_rows(handle))[-1 - NEIGHBOURS:]
+        check_last_line(path, tail, columns)
+
+
 def _weather_record(path, frame, first_data_line, missing, source, site) -> ClimateRecord:
     """Hourly dry-bulb (degC) and RH (%) of one weather year, as a periodic record."""
     lines = first_data_line + np.arange(len(frame))
@@ -454,6 +543,7 @@ def _read_tmy3(path: Path) -> ClimateRecord:
         raise
     except Exception as exc:  # pvlib raises several types on malformed files
         raise RecordError(path, None, None, f"not a readable TMY3 file ({exc})") from None
+    _whole_year(path, len(frame), _TMY3_HEADER_LINES + 1, _TMY3_COLUMNS)
     name = str(meta.get("Name", "")).strip('"').strip()
     source = f"TMY3 {name}, {meta.get('State', '')} (USAF {meta.get('USAF', '?')})"
     return _weather_record(path, frame, _TMY3_HEADER_LINES + 1,
@@ -471,6 +561,7 @@ def _read_epw(path: Path) -> ClimateRecord:
         raise
     except Exception as exc:
         raise RecordError(path, None, None, f"not a readable EPW file ({exc})") from None
+    _whole_year(path, len(frame), _EPW_HEADER_LINES + 1, _EPW_COLUMNS)
     source = f"EPW {meta.get('city', '')}, {meta.get('country', '')}".strip(", ")
     return _weather_record(path, frame, _EPW_HEADER_LINES + 1, _EPW_MISSING, source,
                            _site(meta.get("city"), meta.get("state-prov")))

@@ -88,7 +88,7 @@ class Scene:
     document : fickcam.yamldoc.YamlDocument, optional
         The parsed file, with the line of every key.
     materials : dict
-        Scene material name -> resolved :class:`~fickcam.materials.Material`.
+        Scene material name -> resolved :class:`fickcam.materials.material.Material`.
     design_model : fickcam.scene_models.SceneModel, optional
         The mechanisms as designed (from ``design:``).
     limits : list of fickcam.limits.Limit
@@ -165,7 +165,7 @@ def _cross_checks(model: SceneModel, doc: YamlDocument, base_dir: Path,
         return problems, resolved
     durations = history_findings(model, doc, environment, resolved)
     problems += durations.errors
-    problems += _glass_transition_problems(model, doc, environment, resolved)
+    problems += _temperature_limit_problems(model, doc, environment, resolved, findings)
     problems += _model_name_problems(model, doc)
     timing = [] if durations.errors else _ageing_time_problems(model, doc, environment)
     # a slipped duration is the cause: name it, not the output times it cuts short
@@ -231,21 +231,23 @@ def _alias_notes(doc: YamlDocument) -> list[Problem]:
             for key in KIND_GROUPS if str(spec.get(key, "")).casefold() in notes]
 
 
-def _glass_transition_problems(model: SceneModel, doc: YamlDocument, environment,
-                               resolved: dict) -> list[Problem]:
-    """The service temperature must stay below the dry Tg of every absorbing material in use."""
+def _temperature_limit_problems(model: SceneModel, doc: YamlDocument, environment,
+                                resolved: dict, findings: Findings) -> list[Problem]:
+    """The hottest climate must stay below the dry Tg of every thermoset and the melting
+    point of every thermoplastic in use (refused at the climate's line); above a material's
+    service limit it is warned once per material (``findings``)."""
+    from .materials import temperature_limit_reasons
+
     problems: list[Problem] = []
     hottest_index, hottest = environment.hottest()
+    path = (("environment", "history", hottest_index, "temperature")
+            if model.environment.history is not None else
+            ("environment", "test" if model.environment.test else
+             "state" if model.environment.state is not None else "history_file"))
     for name, material in resolved.items():
-        tg = getattr(material, "dry_glass_transition_temperature", None)
-        if tg is not None and hottest >= tg:
-            path = (("environment", "history", hottest_index, "temperature")
-                    if model.environment.history is not None else
-                    ("environment", "test" if model.environment.test else
-                     "state" if model.environment.state is not None else "history_file"))
-            problems.append(doc.problem(
-                path, f"{hottest - 273.15:.1f} degC is at or above the dry Tg of material "
-                      f"{name!r} ({tg - 273.15:.1f} degC)"))
+        refusals, warnings = temperature_limit_reasons(material, name, hottest)
+        problems += [doc.problem(path, reason) for reason in refusals]
+        findings.warnings += [doc.problem(path, reason) for reason in warnings]
     return problems
 
 

@@ -42,10 +42,12 @@ class HistorySegment(StrictModel):
         Ramp linearly from the previous segment's climate to this one's (not the first).
     """
 
-    duration: Duration
-    temperature: Temperature
-    relative_humidity: RelativeHumidity
-    ramp: bool = False
+    duration: Duration = Field(description="How long the segment lasts [s]")
+    temperature: Temperature = Field(description="Air temperature during the segment [K]")
+    relative_humidity: RelativeHumidity = Field(
+        description="Relative humidity of the air during the segment [%]")
+    ramp: bool = Field(
+        False, description="Ramp linearly from the previous segment's climate instead of stepping")
 
 
 class StateSpec(StrictModel):
@@ -77,11 +79,14 @@ class StateSpec(StrictModel):
     and Technology 5 (12), 2016.
     """
 
-    time: NonNegativeTime = 0.0
-    moisture: NonNegativePercent | None = None
-    relative_humidity: RelativeHumidity | None = None
-    temperature: Temperature | None = None
-    temperature_rise: TemperatureRise | None = None
+    time: NonNegativeTime = Field(0.0, description="Ageing time at which the state holds [s]")
+    moisture: NonNegativePercent | None = Field(
+        None, description="Moisture content of every absorbing part [weight %]")
+    relative_humidity: RelativeHumidity | None = Field(
+        None, description="Relative humidity every part is in equilibrium with [%]")
+    temperature: Temperature | None = Field(None, description="Temperature of every part [K]")
+    temperature_rise: TemperatureRise | None = Field(
+        None, description="Temperature of every part above the reference temperature [K]")
 
     @model_validator(mode="after")
     def _one_of_each(self):
@@ -126,16 +131,24 @@ class EnvironmentSection(StrictModel):
     state : list of StateSpec, optional
         States given directly, no diffusion (one mapping or a list of them).
     """
-    reference_temperature: Temperature = 296.15
-    initial_moisture: NonNegativePercent = 0.0
-    history: list[HistorySegment] | None = None
-    history_file: str | None = None          # chamber CSV, TMY3 CSV, EPW, or pvlib:NAME
-    test: StandardTest | None = None         # a standard damp-heat test (fickcam.damp_heat)
-    cycles: int | None = Field(None, gt=0)   # cyclic_damp_heat: number of 24 h cycles
-    duration: Duration | None = None         # steady tests: how long
-    upper_temperature: Temperature | None = None  # cyclic_damp_heat: 40 or 55 degC
+    reference_temperature: Temperature = Field(
+        296.15, description="Temperature at which the parts are made and dry [K]")
+    initial_moisture: NonNegativePercent = Field(
+        0.0, description="Moisture content of every part at time 0 [weight %]")
+    history: list[HistorySegment] | None = Field(
+        None, description="The climate as a list of segments, each held or ramped")
+    history_file: str | None = Field(
+        None, description="A climate record: chamber CSV, TMY3 CSV, EPW file, or pvlib:NAME")
+    test: StandardTest | None = Field(
+        None, description="A standard damp-heat test instead of a history")
+    cycles: int | None = Field(
+        None, gt=0, description="Number of 24 h cycles of cyclic_damp_heat [1]")
+    duration: Duration | None = Field(None, description="Duration of a steady damp-heat test [s]")
+    upper_temperature: Temperature | None = Field(
+        None, description="Upper temperature of cyclic_damp_heat, 40 or 55 °C [K]")
     # states given directly, no diffusion: one mapping or a list of them
-    state: Annotated[list[StateSpec] | None, BeforeValidator(_as_list)] = None
+    state: Annotated[list[StateSpec] | None, BeforeValidator(_as_list)] = Field(
+        None, description="Moisture and temperature given directly at ageing times, no diffusion")
 
     @model_validator(mode="after")
     def _one_history(self):
@@ -192,15 +205,18 @@ class DiffusionSection(StrictModel):
     ----------
     model : str or dict of str to str
         One model for every part, or per part name (parts not named: ``auto``); one of
-        :data:`fickcam.diffusion.MODELS`.
+        ``fickcam.diffusion.MODELS``.
     accuracy : float
         The relative accuracy asked of the mean moisture [-], in (0, 0.1].
     surface_layer_depth : float
         The depth below the surface over which the surface layer's moisture is averaged [m].
     """
-    model: Union[str, dict[str, str]] = "auto"
-    accuracy: float = Field(1e-3, gt=0, le=0.1)
-    surface_layer_depth: Length = 5e-4
+    model: Union[str, dict[str, str]] = Field(
+        "auto", description="Diffusion model for every part, or one per part name (others auto)")
+    accuracy: float = Field(
+        1e-3, gt=0, le=0.1, description="Relative accuracy asked of the mean moisture, at most 0.1 [1]")
+    surface_layer_depth: Length = Field(
+        5e-4, description="Depth below the surface over which the surface moisture is averaged [m]")
 
     @field_validator("model")
     @classmethod
@@ -221,7 +237,7 @@ class EveryStep(StrictModel):
     every : float
         The step [s].
     """
-    every: Duration
+    every: Duration = Field(description="Step between ageing times, to the end of the climate [s]")
 
 
 class OutputsSection(StrictModel):
@@ -238,10 +254,12 @@ class OutputsSection(StrictModel):
     file : str, optional
         The result file to write.
     """
-    ageing_times: Union[list[NonNegativeTime], EveryStep, None] = None
-    angle_step: PositiveAngle = math.radians(1.0)
-    fields: bool = False
-    file: str | None = None
+    ageing_times: Union[list[NonNegativeTime], EveryStep, None] = Field(
+        None, description="Ageing times at which the mechanism is computed, a list or every: STEP [s]")
+    angle_step: PositiveAngle = Field(
+        math.radians(1.0), description="Step of the cam or crank angle, at most 30 deg [rad]")
+    fields: bool = Field(False, description="Whether to store the moisture field through each part")
+    file: str | None = Field(None, description="The result file to write")
 
     @field_validator("ageing_times")
     @classmethod
@@ -276,8 +294,10 @@ class DesignSection(StrictModel):
         The keys of ``linkage:`` that differ in the design [units as in ``linkage:``].
     """
 
-    cam: dict | None = None
-    linkage: dict | None = None
+    cam: dict | None = Field(
+        None, description="The cam keys whose designed value differs from the made one, in cam's units")
+    linkage: dict | None = Field(
+        None, description="The linkage keys whose designed value differs from the made one, in linkage's units")
 
 
 class SceneModel(StrictModel):
@@ -306,16 +326,24 @@ class SceneModel(StrictModel):
     limits : dict of str to fickcam.limits.LimitSpec, optional
         Result variable -> its limit.
     """
-    name: str = Field(min_length=1)
-    description: str = ""
-    environment: EnvironmentSection
-    materials: dict[str, MaterialSpec] = Field(min_length=1)
-    cam: CamSection | None = None
-    linkage: LinkageSection | None = None
-    diffusion: DiffusionSection = DiffusionSection()
-    outputs: OutputsSection = OutputsSection()
-    design: DesignSection | None = None
-    limits: dict[str, LimitSpec] | None = None
+    name: str = Field(
+        min_length=1, description="The scene's name, written into the result and its plots")
+    description: str = Field(
+        "", description="Free text saying what the scene is, shown as the title of its page")
+    environment: EnvironmentSection = Field(
+        description="The climate the parts age in, and the reference state they are made in")
+    materials: dict[str, MaterialSpec] = Field(
+        min_length=1, description="The materials, each under a name you choose (a library name or properties)")
+    cam: CamSection | None = Field(None, description="A cam and its follower")
+    linkage: LinkageSection | None = Field(None, description="A four-bar linkage")
+    diffusion: DiffusionSection = Field(
+        DiffusionSection(), description="How moisture moves through the parts, and how accurately")
+    outputs: OutputsSection = Field(
+        OutputsSection(), description="When and how finely the result is computed, and where it is written")
+    design: DesignSection | None = Field(
+        None, description="The geometry the mechanism must have in service, when cam/linkage give it as made")
+    limits: dict[str, LimitSpec] | None = Field(
+        None, description="A limit per result variable (its name as the key); a result out of it fails")
 
     @field_validator("name")
     @classmethod

@@ -11,7 +11,7 @@ Every time-dependent variable of the material state and of the mechanisms
 ``<name>_design`` (the same dims without ``time``): the value the same models
 give for the design, dry at the reference temperature. ``Var.design`` turns it
 on or off per variable; the rows are generated from this table
-(:func:`design_name`, :data:`DESIGN_NOTE`). ``Var.display`` is the unit a
+(:func:`design_name`, ``DESIGN_NOTE``). ``Var.display`` is the unit a
 person reads the value in (the run summary), converted from ``units`` by pint.
 """
 from __future__ import annotations

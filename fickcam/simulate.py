@@ -149,7 +149,7 @@ def diffusion_options(scene: Scene, accuracy: float | None, settings=None, cache
     -------
     dict
         accuracy [-], model, surface_layer_depth [m], settings and cache, as
-        :func:`fickcam.diffusion.solve` takes them.
+        :func:`fickcam.diffusion.solve <fickcam.diffusion.dispatch.solve>` takes them.
     """
     from .diffusion import SolverSettings, run_cache
 
@@ -179,10 +179,16 @@ STATE_GIVEN = "state"
 
 
 @on_one_blas_thread  # a two-phase plate's plan runs its planform refinement (as ``run``)
-def plan_parts(scene: Scene, accuracy: float | None = None):
+def plan_parts(scene: Scene, accuracy: float | None = None, *, parts: list[Part] | None = None,
+               settings=None, cache=None):
     """What `fickcam check` shows: (environment, ageing times, diffusion options, [(part,
     diffusion Plan, None for a part that does not absorb, or STATE_GIVEN where the
     environment gives the moisture directly)]), planned as :func:`run` does.
+
+    :func:`run` plans first too, with its own cache (its solves then read the plans): a
+    diffusion model that does not apply to a part, or any other refusal of the planning,
+    comes before any part is solved, as it does in `fickcam check`. The cheap refusals of
+    every part (the model asked for against the part's shape) come before any plan.
 
     Parameters
     ----------
@@ -190,33 +196,45 @@ def plan_parts(scene: Scene, accuracy: float | None = None):
         The loaded scene.
     accuracy : float, optional
         Relative accuracy of the diffusion [-]; None: the scene's.
+    parts : list of Part, optional
+        The scene's parts when already built (a run's: their outline expansions are kept
+        per part object); None: built here.
+    settings : SolverSettings, optional
+        The solvers' tuned limits; None: the defaults.
+    cache : RunCache, optional
+        The run's cache, which its solves then read; None: a fresh one.
 
     Returns
     -------
     tuple
         (environment, ageing times [s], diffusion options, list of (part, plan)).
+
+    Raises
+    ------
+    fickcam.errors.InputError
+        Naming the part, when its diffusion cannot be planned (a model that does not
+        apply to its shape, an outline that cannot be meshed).
     """
-    from .diffusion import plan
+    from .diffusion import DiffusionProblem, plan_problem, refuse
 
     environment = scene_environment(scene)
     times = ageing_times(scene, environment)
-    options = diffusion_options(scene, accuracy)
-    plans = []
-    for part in build_parts(scene):
-        if part.geometry is None:
-            plans.append((part, None))
+    options = diffusion_options(scene, accuracy, settings, cache)
+    problems = []
+    for part in build_parts(scene) if parts is None else parts:
+        if part.geometry is None or environment.state_times is not None:
+            problems.append((part, None))
             continue
-        if environment.state_times is not None:
-            plans.append((part, STATE_GIVEN))
-            continue
-        exposure = environment.exposure(part.material.saturation_moisture)
-        diffusivity = part.material.diffusivity_for(part.geometry)
-        plans.append((part, _for_part(part.name, plan, part.geometry, diffusivity, exposure, times,
-                                      accuracy=options["accuracy"],
-                                      model=_part_model(options, part.name),
-                                      sorption=part.material.sorption_law(),
-                                      surface_layer_depth=options["surface_layer_depth"],
-                                      settings=options["settings"], cache=options["cache"])))
+        problem = DiffusionProblem(
+            part.geometry, part.material.diffusivity_for(part.geometry),
+            environment.exposure(part.material.saturation_moisture), times,
+            options["accuracy"], _part_model(options, part.name),
+            options["surface_layer_depth"], sorption=part.material.sorption_law())
+        _for_part(part.name, refuse, problem)  # every part's before the first costly plan
+        problems.append((part, problem))
+    plans = [(part, (None if part.geometry is None else STATE_GIVEN) if problem is None else
+              _for_part(part.name, plan_problem, problem, options["settings"], options["cache"]))
+             for part, problem in problems]
     return environment, times, options, plans
 
 
@@ -270,6 +288,8 @@ def run(scene, *, accuracy: float | None = None, progress: bool = False, setting
     environment = scene_environment(scene)
     times = ageing_times(scene, environment)
     parts = build_parts(scene)
+    # every refusal of `fickcam check` before any solve; the solves read the plans cached
+    plan_parts(scene, accuracy, parts=parts, settings=settings, cache=cache)
     ds, histories = _age(scene, environment, times, accuracy, progress, parts=parts,
                          settings=settings, diffusions=diffusions, cache=cache)
     if scene.limits:

@@ -1,6 +1,6 @@
 """Result files: netCDF4/HDF5 through xarray's h5netcdf engine, written atomically.
 
-:func:`save` writes to a temporary file in the target folder, flushes it to
+:func:`~fickcam.store.save` writes to a temporary file in the target folder, flushes it to
 disk and renames it over the target (``os.replace`` is atomic on POSIX), so a
 crash or ``kill -9`` at any moment leaves either the old file or the new one,
 never a damaged file.
@@ -14,7 +14,7 @@ from collections.abc import Iterator
 from contextlib import contextmanager
 from pathlib import Path
 
-from .errors import InputError
+from .errors import InputError, WriteError
 
 
 def _netcdf_attrs(attrs: dict) -> dict:
@@ -106,32 +106,202 @@ def write_text_atomically(path, text: str) -> Path:
     return Path(path)
 
 
-def _write_netcdf(ds, filename: str) -> None:
+class GuardedFile:
+    """A binary file for HDF5's file-object driver that never shows HDF5 a failed write.
+
+    HDF5 cannot recover from a write that fails half-way (a full disk): every later call
+    fails, h5py's objects fail again as they are freed, and the interpreter can crash at exit.
+    Through this file, HDF5 sees every write succeed: the first :class:`OSError` is kept in
+    :attr:`error`, the writes after it only advance :attr:`size`, and the caller, once HDF5
+    has closed the file, removes it and reports the error with the size the whole file needed.
+
+    Parameters
+    ----------
+    path : str or pathlib.Path
+        The file to write (created or truncated).
+
+    Attributes
+    ----------
+    error : OSError or None
+        The first write that failed.
+    size : int
+        The file's size had every write succeeded [bytes].
+    """
+
+    def __init__(self, path):
+        self.path = str(path)
+        self.error: OSError | None = None
+        self.size = 0
+        self._file = open(path, "w+b", buffering=0)  # unbuffered: a seek never writes
+
+    def _guard(self, call, *args):
+        if self.error is None:
+            try:
+                return call(*args)
+            except OSError as exc:
+                self.error = exc
+        return None
+
+    def seek(self, offset: int, whence: int = 0) -> int:
+        return self._file.seek(offset, whence)
+
+    def tell(self) -> int:
+        return self._file.tell()
+
+    def readinto(self, buffer) -> int:
+        return self._file.readinto(buffer)
+
+    def read(self, size: int = -1) -> bytes:
+        return self._file.read(size)
+
+    def write(self, data) -> int:
+        view = memoryview(data).cast("B")
+        end = self._file.tell() + view.nbytes
+        self.size = max(self.size, end)
+        done = 0
+        while self.error is None and done < view.nbytes:  # a raw write may write less
+            done += self._guard(self._file.write, view[done:]) or 0
+        self._file.seek(end)  # as if all written: HDF5 goes on from its end
+        return view.nbytes
+
+    def truncate(self, size: int | None = None) -> int:
+        size = self._file.tell() if size is None else size
+        self.size = size
+        self._guard(self._file.truncate, size)
+        return size
+
+    def flush(self) -> None:
+        self._guard(self._file.flush)
+
+    def seekable(self) -> bool:
+        return True
+
+    def readable(self) -> bool:
+        return True
+
+    def writable(self) -> bool:
+        return True
+
+    def close(self, sync: bool = True) -> None:
+        """Sync to the disk (``sync``) and close; a failure is kept in :attr:`error`."""
+        if sync:
+            self._guard(os.fsync, self._file.fileno())
+        try:
+            self._file.close()
+        except OSError as exc:
+            self.error = self.error or exc
+
+    @property
+    def closed(self) -> bool:
+        return self._file.closed
+
+
+def free_space(folder) -> int | None:
+    """The bytes free to this user on ``folder``'s file system (None when unknown).
+
+    Parameters
+    ----------
+    folder : str or pathlib.Path
+        An existing folder.
+
+    Returns
+    -------
+    int or None
+        The free space [bytes].
+    """
+    import shutil
+
+    try:
+        return shutil.disk_usage(folder).free
+    except OSError:
+        return None
+
+
+def byte_size(count: float) -> str:
+    """``4.8 GB``, ``478 kB``: a size in bytes for people (decimal units, 3 digits).
+
+    Parameters
+    ----------
+    count : float
+        The size [bytes].
+
+    Returns
+    -------
+    str
+        The size with its unit.
+    """
+    for unit, scale in (("GB", 1e9), ("MB", 1e6), ("kB", 1e3)):
+        if count >= scale:
+            return f"{count / scale:.3g} {unit}"
+    return f"{count:.0f} B"
+
+
+def write_failure(path: Path, error: OSError, needed: int | None, kept: bool) -> WriteError:
+    """The one line for a result that could not be written: the path, why, the space.
+
+    Parameters
+    ----------
+    path : pathlib.Path
+        The file that was to be written.
+    error : OSError
+        The failure (a full disk, a file size limit, a quota).
+    needed : int or None
+        The size the file needed [bytes].
+    kept : bool
+        Whether an earlier file at ``path`` is still there, untouched.
+
+    Returns
+    -------
+    fickcam.errors.WriteError
+        The error to raise.
+    """
+    reason = error.strerror or str(error)
+    free = free_space(path.parent if str(path.parent) else ".")
+    space = "" if needed is None else f": the result needs {byte_size(needed)}" + (
+        "" if free is None else f", {byte_size(free)} free there")
+    earlier = "the earlier file there is kept" if kept else "nothing was written"
+    return WriteError(f"{path}: cannot write ({reason.lower()}){space}; {earlier}")
+
+
+def _write_netcdf(ds, target: GuardedFile) -> None:
     """What ``ds.to_netcdf(filename, engine="h5netcdf")`` writes for in-memory data, through
     xarray's own store on an open h5netcdf.File, with the coordinates created first
     (:func:`coordinates_first`) and the number variables' attributes written in one go per
     variable (:func:`hold_attributes`): ``to_netcdf`` and ``H5NetCDFStore.open`` first ask
     dask for its scheduler, which imports dask.distributed (about 0.5 s) even when no variable
     is a dask array. Dask-backed data (a sweep's lazily combined cases) goes through
-    ``to_netcdf``, which computes and writes it (data variables first)."""
-    if any(variable.chunks is not None for variable in ds.variables.values()):
-        ds.to_netcdf(filename, engine="h5netcdf")
+    ``to_netcdf``, which computes and writes it (data variables first). An in-memory dataset
+    whose encodings :mod:`fickcam.ncwrite` knows is written by it in one pass through h5py
+    (the same file, without h5netcdf's per-variable bookkeeping)."""
+    from . import ncwrite
+
+    if ncwrite.writable(ds):
+        ncwrite.write(ds, target)
         return
     import h5netcdf
-    from xarray.backends import H5NetCDFStore
+    import h5py
 
-    held: dict[str, dict] = {}
-
-    def encoder(variables: dict, attributes: dict) -> tuple[dict, dict]:
-        variables, attributes = coordinates_first(variables, attributes, tuple(ds.coords))
-        return hold_attributes(variables, held), attributes
-
-    store = H5NetCDFStore(h5netcdf.File(filename, "w"), mode="w")  # .open() asks dask too
+    h5file = h5py.File(target, "w", track_order=True)  # as h5netcdf would make it
     try:
-        ds.dump_to_store(store, encoder=encoder)
-        write_held_attributes(store.ds, held)
+        if any(variable.chunks is not None for variable in ds.variables.values()):
+            ds.to_netcdf(h5file, engine="h5netcdf")
+            return
+        from xarray.backends import H5NetCDFStore
+
+        held: dict[str, dict] = {}
+
+        def encoder(variables: dict, attributes: dict) -> tuple[dict, dict]:
+            variables, attributes = coordinates_first(variables, attributes, tuple(ds.coords))
+            return hold_attributes(variables, held), attributes
+
+        store = H5NetCDFStore(h5netcdf.File(h5file, "w"), mode="w")  # .open() asks dask too
+        try:
+            ds.dump_to_store(store, encoder=encoder)
+            write_held_attributes(store.ds, held)
+        finally:
+            store.close()
     finally:
-        store.close()
+        h5file.close()  # here, not when the interpreter frees it
 
 
 def coordinates_first(variables: dict, attributes: dict, coordinates=()) -> tuple[dict, dict]:
@@ -256,9 +426,14 @@ def save(dataset, path, compress: bool = False) -> Path:
             variable.encoding.update(zlib=True, complevel=1, shuffle=True)
     tmp = temporary_beside(path)
     try:
-        _write_netcdf(ds, tmp)
-        with open(tmp, "rb+") as handle:
-            os.fsync(handle.fileno())
+        target = GuardedFile(tmp)
+        try:
+            _write_netcdf(ds, target)
+        finally:
+            target.close()
+        if target.error is not None:
+            Path(tmp).unlink(missing_ok=True)  # before the free space is measured
+            raise write_failure(path, target.error, target.size, path.exists())
         os.replace(tmp, path)
     except BaseException:
         Path(tmp).unlink(missing_ok=True)
@@ -274,6 +449,35 @@ def save(dataset, path, compress: bool = False) -> Path:
     return path
 
 
+def remove_stale_temporaries(path) -> list[Path]:
+    """Remove the temporary files an interrupted :func:`save` of ``path`` left beside it.
+
+    A process killed while it wrote ``path`` leaves its hidden ``.NAME.XXXXXXXX.tmp`` (the
+    name :func:`temporary_beside` gives). Only for a writer that owns ``path`` (a sweep with
+    its work folder): another process writing ``path`` at the same moment would lose its
+    temporary file.
+
+    Parameters
+    ----------
+    path : str or pathlib.Path
+        The file whose temporaries to remove.
+
+    Returns
+    -------
+    list of pathlib.Path
+        The files removed.
+    """
+    import re
+
+    path = Path(path)
+    pattern = re.compile(rf"\.{re.escape(path.name)}\.[A-Za-z0-9_]{{8}}\.tmp")
+    folder = path.parent if str(path.parent) else Path(".")
+    removed = [p for p in folder.glob(f".{path.name}.*.tmp") if pattern.fullmatch(p.name)]
+    for stale in removed:
+        stale.unlink(missing_ok=True)
+    return removed
+
+
 JSON_ATTRIBUTES = ("diffusion", "notices", "sweep_parameters", "limits")
 
 
@@ -281,7 +485,7 @@ def open_result(path):
     """Open a result written by :func:`save`, with ``time`` in float days.
 
     A file written when fickcam stored a timedelta ``time`` is read into days too; the JSON
-    attributes (:data:`JSON_ATTRIBUTES`) are decoded.
+    attributes (``JSON_ATTRIBUTES``) are decoded.
 
     Parameters
     ----------

@@ -170,12 +170,12 @@ def to_si(value: Any, dimension: str) -> float:
     value : float or str
         A bare number [SI unit of ``dimension``] or a string with units (``"600 rpm"``).
     dimension : str
-        A key of :data:`SI_UNITS` (``"length"``, ``"temperature"``, ``"angular_speed"``...).
+        A key of ``SI_UNITS`` (``"length"``, ``"temperature"``, ``"angular_speed"``...).
 
     Returns
     -------
     float
-        The value in the SI unit of ``dimension`` [:data:`SI_UNITS`].
+        The value in the SI unit of ``dimension`` [``SI_UNITS``].
 
     Raises
     ------

@@ -1,5 +1,5 @@
 """The pydantic types of scene values: a value of a dimension converted to SI with bounds
-(:func:`quantity`), and the strict base model of every scene section.
+(:func:`~fickcam.units.quantity`), and the strict base model of every scene section.
 
 Parsing and conversion are in :mod:`fickcam.unit_parsing`; bare
 values that are almost certainly unit slips are refused through :mod:`fickcam.plausibility`.
@@ -21,7 +21,7 @@ def quantity(dimension: str, *, positive: bool = False, nonnegative: bool = Fals
     Parameters
     ----------
     dimension : str
-        A key of :data:`fickcam.unit_parsing.SI_UNITS` (``"length"``, ``"temperature"``...).
+        A key of ``fickcam.unit_parsing.SI_UNITS`` (``"length"``, ``"temperature"``...).
     positive : bool
         Refuse values that are not > 0.
     nonnegative : bool

@@ -1,7 +1,12 @@
 """YAML with line numbers: scene and sweep files are read with ``yaml.SafeLoader`` only
 (a ``!!python`` tag is refused, never executed), duplicate keys are refused, and every
 key path is mapped to its line so that each problem is reported as ``scene.yaml:LINE
-key.path: reason`` (pydantic errors included, :func:`problems_from_validation`).
+key.path: reason`` (pydantic errors included, :func:`~fickcam.yamldoc.problems_from_validation`).
+
+A document is bounded before it is built (:func:`~fickcam.yamldoc.check_bounds`): its size in bytes, and,
+from the parser's events alone, its number of values and its depth once every alias is
+expanded. An alias bomb (nine levels of nine-fold aliases: billions of values from a
+kilobyte) is refused at the alias that crosses the bound, without building anything.
 """
 from __future__ import annotations
 
@@ -16,6 +21,14 @@ from pydantic import ValidationError
 from .errors import Problem, SceneError
 from .keys import closest_key
 
+
+#: the largest scene or sweep file read [bytes] (the example scenes are under 3 kB)
+MAX_BYTES = 2 * 2**20
+#: the most values (keys, scalars, lists and mappings) a document may hold once its
+#: aliases are expanded: each use of an alias counts its whole anchored value
+MAX_NODES = 100_000
+#: the deepest nesting of lists and mappings, aliases expanded (a scene nests about 6)
+MAX_DEPTH = 40
 
 #: PyYAML's safe loader, on libyaml's parser where PyYAML was built with it (the same
 #: documents, nodes and marks; parsing several times faster)
@@ -41,6 +54,85 @@ def _tab_at(text: str, mark) -> bool:
     """Whether the character at a YAML error's mark is a tab (libyaml's message omits it)."""
     lines = text.splitlines()
     return mark.line < len(lines) and lines[mark.line][mark.column:mark.column + 1] == "\t"
+
+
+def _too_large(file: str, what: str, size: int) -> SceneError:
+    return SceneError([Problem(file, None, "", f"{what} refused: {size / 2**20:.1f} MiB; a "
+                               f"{what} file is at most {MAX_BYTES / 2**20:g} MiB")])
+
+
+def _bound_problem(file: str, what: str, mark, reason: str) -> SceneError:
+    return SceneError([Problem(file, mark.line + 1 if mark is not None else None, "",
+                               f"{what} refused: {reason}")])
+
+
+def check_bounds(text: str, *, file: str = "<scene>", what: str = "scene") -> None:
+    """Refuse a YAML document larger than the bounds, before any of it is built.
+
+    The parser's events are read once: each scalar, list and mapping counts one value, each
+    alias the values of its anchor (its whole subtree, as walking the built document would
+    visit it), and the depth is the nesting of the expanded tree. The first event past a
+    bound stops the reading, so the time and memory are those of :data:`MAX_NODES` events at
+    most.
+
+    Parameters
+    ----------
+    text : str
+        The YAML.
+    file : str
+        The file's name, for problems.
+    what : str
+        What the text is, for messages (``"scene"``, ``"sweep"``).
+
+    Raises
+    ------
+    fickcam.errors.SceneError
+        One problem, at the line where the document passes :data:`MAX_BYTES`,
+        :data:`MAX_NODES` or :data:`MAX_DEPTH`.
+    yaml.YAMLError
+        For a syntax error met on the way (reported by :func:`parse_yaml`).
+    """
+    size = len(text.encode("utf-8", errors="surrogatepass"))
+    if size > MAX_BYTES:
+        raise _too_large(file, what, size)
+    anchored: dict[str, tuple[int, int]] = {}  # anchor -> (values, depth) of its subtree
+    open_nodes: list[list] = []  # [values so far, deepest child, anchor] per open collection
+    total = 0
+    loader = _SAFE_LOADER(text)
+    try:
+        while not loader.check_event(yaml.StreamEndEvent):
+            event = loader.get_event()
+            if isinstance(event, (yaml.MappingStartEvent, yaml.SequenceStartEvent)):
+                open_nodes.append([1, 0, event.anchor])
+                values, depth = 1, 0  # its depth is that of the open collections
+            elif isinstance(event, (yaml.MappingEndEvent, yaml.SequenceEndEvent)):
+                values, below, anchor = open_nodes.pop()
+                if anchor is not None:
+                    anchored[anchor] = (values, below + 1)
+                if open_nodes:
+                    open_nodes[-1][0] += values
+                    open_nodes[-1][1] = max(open_nodes[-1][1], below + 1)
+                continue
+            elif isinstance(event, (yaml.ScalarEvent, yaml.AliasEvent)):
+                values, depth = anchored.get(event.anchor, (1, 0)) \
+                    if isinstance(event, yaml.AliasEvent) else (1, 0)
+                if isinstance(event, yaml.ScalarEvent) and event.anchor is not None:
+                    anchored[event.anchor] = (1, 0)
+                if open_nodes:
+                    open_nodes[-1][0] += values
+                    open_nodes[-1][1] = max(open_nodes[-1][1], depth)
+            else:
+                continue
+            total += values
+            if total > MAX_NODES:
+                raise _bound_problem(file, what, event.start_mark, (
+                    f"more than {MAX_NODES:,} values once its aliases are expanded "
+                    f"(each use of an alias counts all of its values)"))
+            if len(open_nodes) + depth > MAX_DEPTH:
+                raise _bound_problem(file, what, event.start_mark, (
+                    f"nested more than {MAX_DEPTH} levels deep once its aliases are expanded"))
+    finally:
+        loader.dispose()
 
 
 def _line_map(node, path: tuple = (), lines: dict | None = None) -> dict[tuple, int]:
@@ -141,7 +233,11 @@ def read_yaml(source: str | os.PathLike, *, what: str = "scene") -> YamlDocument
     path = Path(source)
     file = str(source)
     try:
-        text = path.read_text(encoding="utf-8")
+        with open(path, "rb") as handle:  # no more than the bound is read
+            data = handle.read(MAX_BYTES + 1)
+            if len(data) > MAX_BYTES:
+                raise _too_large(file, what, max(os.fstat(handle.fileno()).st_size, len(data)))
+        text = data.decode("utf-8")
     except FileNotFoundError:
         raise SceneError([Problem(file, None, "", f"no such {what} file")]) from None
     except IsADirectoryError:
@@ -176,6 +272,7 @@ def parse_yaml(text: str, *, file: str = "<scene>", what: str = "scene") -> Yaml
     """
     loader = None
     try:
+        check_bounds(text, file=file, what=what)
         loader = _LineLoader(text)
         node = loader.get_single_node()
         if node is None:

@@ -57,7 +57,7 @@ def test_kinematics_and_dynamics_plots_are_written(dataset, tmp_path):
     from fickcam.plotting.cam import plot_dynamics, plot_kinematics
 
     ds, _ = dataset
-    written = plot_kinematics(ds, tmp_path) + plot_dynamics(ds, tmp_path)
+    written = plot_kinematics(ds, tmp_path).paths + plot_dynamics(ds, tmp_path).paths
     assert [p.name for p in written] == ["cam_kinematics.png", "cam_drift.png", "cam_profile.png",
                                          "cam_dynamics.png", "cam_jump_stress.png"]
     assert all(p.exists() and p.stat().st_size > 5000 for p in written)

@@ -50,12 +50,17 @@ def _samples(record):
 
 
 def _write_epw(path, temperatures, humidities):
+    """An EPW year (8760 hourly rows, as the format has): ``temperatures`` and ``humidities``
+    repeated over it."""
+    import pandas as pd
+
     header = ["LOCATION,Testville,ST,USA,TMY3,999999,36.1,-79.9,-5.0,273.0"] + [
         f"HEADER{k},..." for k in range(6)] + ["DATA PERIODS,1,1,Data,Sunday, 1/ 1,12/31"]
     rows = []
-    for k, (temp, rh) in enumerate(zip(temperatures, humidities)):
-        day, hour = divmod(k, 24)
-        fields = ["1999", "1", str(day + 1), str(hour + 1), "0", "?", f"{temp}", "0.0", f"{rh}"]
+    hours = pd.date_range("1999-01-01", periods=8760, freq="h")
+    for when, temp, rh in zip(hours, np.resize(temperatures, 8760), np.resize(humidities, 8760)):
+        fields = ["1999", str(when.month), str(when.day), str(when.hour + 1), "0", "?",
+                  f"{temp}", "0.0", f"{rh}"]
         fields += ["101300"] + ["0"] * 25
         rows.append(",".join(fields))
     path.write_text("\n".join(header + rows) + "\n")
@@ -66,8 +71,8 @@ def test_epw_file_reads_through_pvlib(tmp_path):
     temps = np.round(10 + 5 * np.sin(np.arange(48) / 24 * 2 * np.pi), 1)
     _write_epw(path, temps, np.full(48, 80))
     record = read_record(path)
-    assert np.allclose(record.temperature - 273.15, temps)
-    assert np.all(record.relative_humidity == 80) and record.period == 48 * HOUR
+    assert np.allclose(record.temperature - 273.15, np.resize(temps, 8760))
+    assert np.all(record.relative_humidity == 80) and record.period == 8760 * HOUR
     assert record.site == "Testville, ST"  # the LOCATION line's city and state-prov
 
 

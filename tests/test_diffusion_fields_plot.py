@@ -46,7 +46,7 @@ def test_stored_fields_integrate_to_the_mean(results):
 
 @pytest.mark.slow
 def test_fields_plot_writes_one_png_per_part(results, tmp_path):
-    written = fields.plot(fields_dataset(results), tmp_path)
+    written = fields.plot(fields_dataset(results), tmp_path).paths
     assert sorted(p.name for p in written) == ["fields_block.png", "fields_crank.png",
                                                "fields_sheet.png"]
     assert all(p.stat().st_size > 1000 for p in written)

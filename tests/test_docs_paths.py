@@ -1,13 +1,14 @@
 """Every source path the documentation names in backticks (``diffusion/x.py``,
 ``fickcam/cam/model.py``, ``benchmarks/y.py``) exists, so that a page cannot keep pointing
-at a module after it moves. The changelog is history and may name old places."""
+at a module after it moves. The development log is history and may name old places."""
 import pathlib
 import re
 
 ROOT = pathlib.Path(__file__).resolve().parents[1]
 PAGES = [p for p in [ROOT / "README.md", ROOT / "CONTRIBUTING.md",
                      *sorted((ROOT / "docs").rglob("*.md"))]
-         if p.name != "changelog.md" and "_build" not in p.parts and "_autosummary" not in p.parts]
+         if p.name not in ("changelog.md", "development-log.md") and "_build" not in p.parts
+         and "_autosummary" not in p.parts]
 PATH = re.compile(r"`((?:[A-Za-z0-9_.-]+/)+[A-Za-z0-9_.-]+\.py)`")
 
 

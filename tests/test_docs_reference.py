@@ -115,3 +115,29 @@ def test_every_command_and_option_is_in_the_cli_reference():
         missing = {option for option in options - {"-h", "--help"}
                    if f"`{option}`" not in sections[command]}
         assert not missing, f"fickcam {command}: options missing from the reference: {missing}"
+
+
+def test_every_scene_key_has_a_one_line_meaning_with_its_unit():
+    """Every key of the scene models carries ``Field(description=...)``: one line, and for a
+    quantity its unit in brackets (``[m]``, ``[K]``, ``[1]`` for a ratio)."""
+    rows = reference.scene_key_rows()
+    missing = [row["key"] for row in rows if not row["description"]]
+    assert not missing, f"scene keys without Field(description=...): {missing}"
+    multi = [row["key"] for row in rows if "\n" in row["description"] or len(row["description"]) > 110]
+    assert not multi, f"scene key meanings longer than one line: {multi}"
+    no_unit = [row["key"] for row in rows
+               if row["type"] == "quantity" and not re.search(r"\[[^\]]+\]", row["description"])
+               and "variable's unit" not in row["description"]]
+    assert not no_unit, f"quantity keys whose meaning gives no [unit]: {no_unit}"
+
+
+def test_the_scene_reference_shows_the_meaning_column():
+    markdown = reference.scene_reference_markdown()
+    assert "| key | meaning | type |" in markdown
+    assert "| `environment.state.temperature_rise` | Temperature of every part above" in markdown
+
+
+def test_every_result_variable_and_coordinate_has_a_meaning():
+    short = [name for name, var in schema.VARIABLES.items() if len(var.long_name.split()) < 2]
+    assert not short, f"result variables without a meaning: {short}"
+    assert all(meaning.strip() for _, meaning in schema.COORDINATES.values())

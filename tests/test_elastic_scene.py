@@ -57,7 +57,7 @@ def test_elastic_plots_are_written(humid_disc, tmp_path):
     from fickcam.plotting import available_kinds, plot
 
     assert "elastic" in available_kinds(humid_disc)
-    names = sorted(p.name for p in plot(humid_disc, tmp_path, kind="elastic"))
+    names = sorted(p.name for p in plot(humid_disc, tmp_path, kind="elastic").paths)
     assert names == ["elastic_contact.png", "swelling_field_cam.png", "swelling_stress.png"]
     assert humid_disc.swelling_stress_field.dims == ("part", "stress_point")
 

@@ -27,7 +27,7 @@ def tiny_dataset():
 def test_linkage_plots_are_written(tmp_path):
     from fickcam.plotting.linkage import plot
 
-    written = plot(tiny_dataset(), tmp_path)
+    written = plot(tiny_dataset(), tmp_path).paths
     assert [p.name for p in written] == ["linkage_coupler_curve.png", "linkage_rocker.png",
                                          "linkage_transmission_torque.png"]
     assert all(p.exists() and p.stat().st_size > 5000 for p in written)

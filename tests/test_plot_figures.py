@@ -133,8 +133,8 @@ def sweep_result(kind: str) -> xr.Dataset:
 def test_grid_sweep_legends_speak_the_sweep_files_units(figures, tmp_path):
     plotting.plot(sweep_result("grid"), tmp_path, "sweep", save=figures)
     ax = figures["sweep_jump_speed.png"].axes[0]
-    assert [t.get_text() for t in ax.get_legend().get_texts()] == ["temperature = 60 degC",
-                                                                   "temperature = 85 degC"]
+    assert [t.get_text() for t in ax.get_legend().get_texts()] == ["temperature = 60 °C",
+                                                                   "temperature = 85 °C"]
     assert ax.get_xlabel() == "environment.history.0.relative_humidity [%]"
 
 
@@ -149,7 +149,7 @@ def test_monte_carlo_ticks_neither_crowd_nor_hide_behind_an_offset(figures, tmp_
             boxes = [b for b in boxes if ax.get_window_extent().expanded(1.5, 1.5).overlaps(b)]
             assert not any(a.overlaps(b) for i, a in enumerate(boxes) for b in boxes[i + 1:]), \
                 [t.get_text() for t in axis.get_ticklabels()]
-    assert fig.axes[2].get_xlabel() == "environment.history.0.temperature [degC]"
+    assert fig.axes[2].get_xlabel() == "environment.history.0.temperature [°C]"
 
 
 def test_a_sweep_over_weather_files_compares_the_sites_over_ageing_time(figures, tmp_path):
@@ -177,3 +177,28 @@ def test_a_sweep_over_weather_files_compares_the_sites_over_ageing_time(figures,
     assert [t.get_text() for t in at_age.get_xticklabels()] == [
         "Sand Point, AK", "pvlib:723170TYA.CSV"]
     assert [line.get_ydata()[-1] for line in over_time.get_lines()] == [588.9, 588.5]
+
+
+def test_plotting_leaves_the_backend_and_pyplot_alone_and_returns_its_figures(cam, tmp_path,
+                                                                              monkeypatch):
+    import matplotlib
+    import matplotlib.pyplot as plt
+    from matplotlib.figure import Figure
+
+    backend, open_figures = matplotlib.get_backend(), plt.get_fignums()
+    monkeypatch.chdir(tmp_path)
+    shown = plotting.plot(cam)  # no folder: figures only
+    assert matplotlib.get_backend() == backend and plt.get_fignums() == open_figures
+    assert shown and all(isinstance(fig, Figure) for fig in shown) and shown.paths == []
+    assert not list(tmp_path.iterdir())
+    assert [fig.get_label() for fig in shown][:2] == ["uptake", "cam_kinematics"]
+    assert shown._repr_html_().count("data:image/png;base64,") == len(shown)
+    written = plotting.plot(cam, tmp_path / "out", "uptake")
+    assert [p.name for p in written.paths] == ["uptake.png"] and len(written) == 1
+
+
+def test_no_plot_module_touches_pyplot_or_the_backend():
+    package = Path(fickcam.__file__).parent
+    for path in [*package.glob("plotting/*.py"), package / "fit" / "plot.py"]:
+        text = path.read_text()
+        assert "matplotlib.use(" not in text and "import matplotlib.pyplot" not in text, path

@@ -11,6 +11,7 @@ import numpy as np
 import pytest
 import xarray as xr
 
+from fickcam import ncwrite
 from fickcam.dataset import build_dataset
 from fickcam.store import open_result, save
 
@@ -21,14 +22,20 @@ def _dataset(value):
     return build_dataset({"temperature": np.full(3, value)}, {"time": [0.0, 1.0, 2.0]}, {})
 
 
-def test_failure_while_writing_keeps_the_old_file_and_leaves_no_temporary(tmp_path, monkeypatch):
+@pytest.mark.parametrize("writer", ["h5py", "xarray"])
+def test_failure_while_writing_keeps_the_old_file_and_leaves_no_temporary(tmp_path, monkeypatch,
+                                                                          writer):
     path = tmp_path / "r.h5"
     save(_dataset(300.0), path)
 
-    def broken(self, store, **kwargs):  # the temporary file is open and half written
+    def broken(*args, **kwargs):  # the temporary file is open and half written
         raise OSError("disk full")
 
-    monkeypatch.setattr(xr.Dataset, "dump_to_store", broken)
+    if writer == "h5py":
+        monkeypatch.setattr(ncwrite, "set_attributes", broken)
+    else:  # the datasets fickcam.ncwrite does not take
+        monkeypatch.setattr(ncwrite, "writable", lambda ds: False)
+        monkeypatch.setattr(xr.Dataset, "dump_to_store", broken)
     with pytest.raises(OSError):
         save(_dataset(400.0), path)
     monkeypatch.undo()

@@ -178,7 +178,7 @@ def test_lift_change_is_measured_from_the_first_ageing_time_in_mm():
 def test_sweep_plots_one_figure_per_output_through_fickcam_plot(kind, tmp_path):
     from fickcam.plotting import plot
 
-    written = plot(synthetic_sweep(kind), tmp_path, "sweep")
+    written = plot(synthetic_sweep(kind), tmp_path, "sweep").paths
     assert sorted(p.name for p in written) == ["sweep_cam_moisture.png", "sweep_lift_change.png"]
     assert all(p.stat().st_size > 1000 for p in written)
 

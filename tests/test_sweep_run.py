@@ -162,7 +162,7 @@ def test_grid_plots_show_each_output_against_the_varied_values(interrupted_then_
     from fickcam.plotting.sweep import outputs, plot
 
     _, _, result, _ = interrupted_then_resumed
-    written = plot(result, tmp_path)
+    written = plot(result, tmp_path).paths
     assert {p.name for p in written} >= {"sweep_lift_change.png", "sweep_jump_speed.png",
                                          "sweep_peak_cam_torque.png"}
     change = outputs(result)["lift_change"][1]

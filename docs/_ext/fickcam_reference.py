@@ -179,7 +179,8 @@ def scene_reference_markdown() -> str:
              "is built. `NAME` stands for a name you choose (a material, a limited variable). "
              "A quantity is a number in the SI unit given (a percentage for `%`) or a string with "
              "its unit (`\"30 mm\"`, `\"113 degC\"`, `\"60 d\"`); defaults are in that SI unit. "
-             "The example is the first value the key takes in the example scenes of `configs/`. "
+             "The meaning gives the unit of a quantity in brackets. The example is the first "
+             "value the key takes in the example scenes (`fickcam examples --copy DIR`). "
              "A key that is not listed is refused as `scene.yaml:LINE key: unknown key; did you "
              "mean ...?`, and a value out of its bounds or of the wrong dimension as "
              "`scene.yaml:LINE key: reason`, exit status 2.", ""]
@@ -193,11 +194,12 @@ def scene_reference_markdown() -> str:
         if heading != section:
             section = heading
             lines += ["", f"## `{heading}`" if heading in sections else "## Top level", "",
-                      "| key | type | SI unit | bounds | default | allowed values | example |",
-                      "|---|---|---|---|---|---|---|"]
+                      "| key | meaning | type | SI unit | bounds | default | allowed values "
+                      "| example |", "|---|---|---|---|---|---|---|---|"]
         example = examples.get(row["key"])
         shown = "" if example is None else f"`{_cell(str(example))}`"
-        lines.append(f"| `{row['key']}` | {_cell(row['type'])} | {row['unit']} | {row['bounds']} "
+        lines.append(f"| `{row['key']}` | {_cell(row['description'])} | {_cell(row['type'])} "
+                     f"| {row['unit']} | {row['bounds']} "
                      f"| {_cell(row['default'])} | {row['allowed']} | {shown} |")
     return "\n".join(lines) + "\n"
 

@@ -2,7 +2,7 @@
 
 No table of measurements in the documentation is typed by hand: a page names a result
 file and one of its tables, and the build renders the table with the command that
-reproduces it and the file's stamp (commit, date, machine, load average) under it::
+reproduces it, the date and the machine under it::
 
     ```{result-table} benchmarks/results/dc_bar.json
     :table: octant
@@ -17,6 +17,10 @@ layout; :data:`VIEWS` turns each into a table. A file marked ``"transcribed": tr
 holds numbers measured before the benchmark wrote result files, copied from the commit
 its stamp names (its documentation, or a file the script wrote), and says so under the
 table.
+
+The full stamp of every table (the commit and the machine's load average as well) is for
+developers: the build writes it to the measurement record, ``docs/measurements.md``
+(:func:`measurement_record_markdown`), in the development section.
 
 The functions that build the Markdown need no Sphinx, so the test suite checks them.
 """
@@ -134,7 +138,11 @@ def table_of(record: dict, name: str | None, filename: str) -> dict:
 
 
 def _cell(value) -> str:
-    return str(value).replace("|", "\\|").replace("\n", " ")
+    """A table cell; a value not measured (``nan``) shows as a dash."""
+    text = str(value)
+    if text.lower() == "nan":
+        return "–"
+    return text.replace("|", "\\|").replace("\n", " ")
 
 
 def _load_text(load) -> str:
@@ -168,6 +176,40 @@ def stamp_text(record: dict) -> str:
     return f"Reproduce: `{record['command']}`. {measured}."
 
 
+def reader_stamp(record: dict) -> str:
+    """One line for the reader: the command that reproduces the numbers, when and where
+    they were measured (the commit and the load are in the measurement record)."""
+    stamp_text(record)  # every stamp key present
+    measured = f"measured {record['date'][:10]} on {_machine_text(record['machine'])}"
+    if record.get("transcribed"):
+        measured = f"numbers transcribed from an earlier measurement, {measured}"
+    return f"Reproduce with `{record['command']}` ({measured})."
+
+
+def _stamped(record: dict, table: dict) -> dict:
+    """A table's stamp: the file's, with the keys the table carries itself."""
+    return {**record, **{key: table[key] for key in STAMP_KEYS + ("transcribed",) if key in table}}
+
+
+def measurement_record_markdown(folder: Path = RESULTS) -> str:
+    """The measurement record: every result file's tables with their full stamps."""
+    lines = ["# Measurement record", "",
+             "Where each table of measurements on the Validation and Benchmarks pages comes "
+             "from: the result file, the command, and the commit, date, machine and load "
+             "average it was measured at. Generated from `benchmarks/results/` when the "
+             "documentation is built.", ""]
+    for path in sorted(folder.glob("*.json")):
+        record = load_result(path)
+        names = [None] if path.name in VIEWS else list(record["tables"])
+        lines += [f"## `{path.name}`", ""]
+        for name in names:
+            table = table_of(record, name, path.name)
+            label = f"`{name}`: " if name else ""
+            lines += [f"- {label}{stamp_text(_stamped(record, table))}"]
+        lines.append("")
+    return "\n".join(lines)
+
+
 def result_markdown(path: Path, name: str | None = None) -> str:
     """The table ``name`` of the result file ``path`` as MyST Markdown, its stamp under it."""
     record = load_result(path)
@@ -183,9 +225,7 @@ def result_markdown(path: Path, name: str | None = None) -> str:
     lines += [""]
     if table.get("note"):
         lines += [table["note"], ""]
-    stamp = stamp_text({**record, **{key: table[key] for key in STAMP_KEYS + ("transcribed",)
-                                     if key in table}})
-    lines += [f"*{stamp}*", ""]
+    lines += [f"*{reader_stamp(_stamped(record, table))}*", ""]
     return "\n".join(lines)
 
 
@@ -219,6 +259,49 @@ def result_table_directive():
     return ResultTable
 
 
+def error_vs_accuracy_figure(out: Path, path: Path = RESULTS / "bench.json") -> Path:
+    """Draw the error of each diffusion model against the accuracy asked of it, from the
+    benchmark's result file (closed-form rows, exact to round-off, and the plain FiPy
+    rows, which take no accuracy, left out)."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    rows = load_result(path)["tables"]["bench"]["rows"]
+    models: dict[str, list[tuple[float, float]]] = {}
+    for geometry, model, accuracy, *_, error, _estimate, _reference in rows:
+        if model in ("analytic", "fipy-naive"):
+            continue
+        label = f"{model}: {geometry.split(': ')[0]}"
+        models.setdefault(label, []).append((float(accuracy), float(error)))
+    fig, ax = plt.subplots(figsize=(9.0, 4.8), layout="constrained")
+    for k, (label, points) in enumerate(sorted(models.items())):
+        points.sort()
+        ax.plot(*zip(*points), marker="osD^v<>ph*"[k % 10], color=plt.cm.tab20(k % 20),
+                label=label)
+    line = [1e-4, 1e-1]
+    ax.plot(line, line, "k--", lw=1, label="error = accuracy asked")
+    ax.set(xscale="log", yscale="log", xlabel="accuracy asked (relative)",
+           ylabel="error of the mean uptake against\nthe reference (relative)",
+           title="Each model's error stays below the accuracy asked")
+    ax.grid(True, which="both", alpha=0.3)
+    ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0))
+    out.parent.mkdir(parents=True, exist_ok=True)
+    fig.savefig(out, dpi=130)
+    plt.close(fig)
+    return out
+
+
+def _write_record(app) -> None:
+    figure = Path(app.srcdir) / "_generated" / "error_vs_accuracy.png"
+    error_vs_accuracy_figure(figure)
+    path = Path(app.srcdir) / "measurements.md"
+    text = measurement_record_markdown()
+    if not path.exists() or path.read_text() != text:
+        path.write_text(text)
+
+
 def setup(app):
     app.add_directive("result-table", result_table_directive())
+    app.connect("builder-inited", _write_record)
     return {"parallel_read_safe": True, "parallel_write_safe": True}

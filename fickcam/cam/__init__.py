@@ -1,10 +1,10 @@
 """Cam and translating follower over ageing: motion laws, profile, curvature,
 kinematics, dynamics, jump, Hertz contact stress, friction and wear.
 
-Public API: :class:`CamSection` (scene section), :class:`CamDesign`,
-:class:`CamState`, :func:`design_from_scene`, :func:`cam_response`,
-:func:`working_profile`, and for :mod:`fickcam.simulate` :func:`scene_parts`,
-:func:`scene_response`.
+Public API: :class:`~fickcam.cam.spec.CamSection` (scene section), :class:`~fickcam.cam.design.CamDesign`,
+:class:`~fickcam.cam.design.CamState`, :func:`~fickcam.cam.design.design_from_scene`, :func:`~fickcam.cam.model.cam_response`,
+:func:`~fickcam.cam.kinematics.working_profile`, and for :mod:`fickcam.simulate` :func:`~fickcam.cam.ageing.scene_parts`,
+:func:`~fickcam.cam.ageing.scene_response`.
 
 References
 ----------

@@ -2,7 +2,7 @@
 :func:`~fickcam.cam.model.cam_response`, and the response stacked over ageing times
 (called by :mod:`fickcam.simulate`).
 
-Parts: ``cam`` (a :class:`~fickcam.diffusion.CamPlate` of the dry working profile) and,
+Parts: ``cam`` (a :class:`fickcam.diffusion.problem.geometry.CamPlate` of the dry working profile) and,
 when the follower names a material, ``follower`` (a roller: a disc of the roller radius
 and the contact width; a knife or flat follower: a bar of the contact width, stem
 length 4 x width; a swinging arm: a bar of the arm length, or the pivot distance for a
@@ -73,7 +73,7 @@ def _at(state: dict, name: str, k: int, default=None):
 
 
 def cam_state(design, histories: dict, k: int) -> CamState:
-    """The :class:`CamState` at ageing index k from the part histories.
+    """The :class:`~fickcam.cam.design.CamState` at ageing index k from the part histories.
 
     Parameters
     ----------

@@ -1,11 +1,13 @@
 """The scene's ``cam.follower.arm`` (a swinging-arm follower, :mod:`fickcam.cam.arm`) and
-what the motion and the arm cannot do together (:func:`arm_problems`, reported by
+what the motion and the arm cannot do together (:func:`~fickcam.cam.arm_spec.arm_problems`, reported by
 :mod:`fickcam.scene` at the key's line)."""
 from __future__ import annotations
 
 import itertools
 import math
 from typing import Literal
+
+from pydantic import Field
 
 from ..units import (Length, MomentOfInertia, SignedLength, StrictModel, Torque,
                      TorsionalStiffness)
@@ -40,14 +42,21 @@ class SwingingArm(StrictModel):
         Constant torque against the rise [N m].
     """
 
-    pivot: tuple[SignedLength, SignedLength]
-    length: Length | None = None
-    face_offset: SignedLength = 0.0
-    rises: Literal["counter_clockwise", "clockwise"] = "counter_clockwise"
-    inertia: MomentOfInertia
-    spring_rate: TorsionalStiffness = 0.0
-    spring_preload: Torque = 0.0
-    load_torque: Torque = 0.0
+    pivot: tuple[SignedLength, SignedLength] = Field(
+        description="x and y of the arm's pivot in the fixed frame [m]")
+    length: Length | None = Field(
+        None, description="Distance from the pivot to the roller centre (roller only) [m]")
+    face_offset: SignedLength = Field(
+        0.0, description="Distance from the pivot to the face line (flat face only) [m]")
+    rises: Literal["counter_clockwise", "clockwise"] = Field(
+        "counter_clockwise", description="The sense in which the arm turns as the follower rises")
+    inertia: MomentOfInertia = Field(
+        description="Moment of inertia of arm and roller about the pivot [kg m^2]")
+    spring_rate: TorsionalStiffness = Field(
+        0.0, description="Rate of the torsional return spring [N m/rad]")
+    spring_preload: Torque = Field(
+        0.0, description="Spring torque at the dry cam's lowest position [N m]")
+    load_torque: Torque = Field(0.0, description="Constant torque against the rise [N m]")
 
 
 #: translating-follower keys that have a torsional counterpart on (or no meaning for) an arm

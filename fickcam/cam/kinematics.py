@@ -176,9 +176,9 @@ def closed_form(design: CamDesign, state: CamState) -> ClosedForm | None:
     Returns
     -------
     ClosedForm or None
-        The design motion scaled by 1 + eps (:data:`SCALED`), the flat face on the eccentric
-        disc (:data:`ECCENTRIC_FLAT`) or a knife or roller on the uniformly swollen
-        eccentric disc (:data:`ECCENTRIC_PITCH`); None for a cam given by points and for
+        The design motion scaled by 1 + eps (``SCALED``), the flat face on the eccentric
+        disc (``ECCENTRIC_FLAT``) or a knife or roller on the uniformly swollen
+        eccentric disc (``ECCENTRIC_PITCH``); None for a cam given by points and for
         any other aged geometry.
     """
     if _scales_exactly(design, state):
@@ -347,7 +347,7 @@ def working_profile(design: CamDesign, strain_x: float = 0.0, strain_y: float = 
                     n: int = 720):
     """Closed counter-clockwise outline (x, y) of the working profile (m), cam frame as seen
     from the front, last point != first, for the diffusion mesh
-    (:class:`fickcam.diffusion.CamPlate`).
+    (:class:`fickcam.diffusion.problem.geometry.CamPlate`).
 
     Parameters
     ----------

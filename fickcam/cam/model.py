@@ -1,4 +1,4 @@
-"""The cam and follower at one ageing time: :func:`cam_response`.
+"""The cam and follower at one ageing time: :func:`~fickcam.cam.model.cam_response`.
 
 The design motion defines the dry profile; swelling scales it (isotropic: every
 cam dimension by 1 + eps, the roller by 1 + eps_roller) or distorts it (anisotropic:
@@ -245,7 +245,7 @@ def continuous_jump_speed(design: CamDesign, motion, mass: float, theta, d2, hol
     design : CamDesign
         The design (spring rate [N/m], preload [N], external load [N], gravity).
     motion : callable
-        theta [rad] -> (Y, dY, d2Y, d3Y) of the aged motion (:func:`motion_function`; only
+        theta [rad] -> (Y, dY, d2Y, d3Y) of the aged motion (:func:`~fickcam.cam.kinematics.motion_function`; only
         Y and d2Y are asked for).
     mass : float
         Follower mass [kg] (a swinging arm's inertia [kg m^2]).

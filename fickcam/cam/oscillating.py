@@ -1,5 +1,5 @@
-"""A swinging-arm (oscillating) follower at one ageing time: :func:`arm_response`, and
-:func:`follower_response`, the response of either follower type.
+"""A swinging-arm (oscillating) follower at one ageing time: :func:`~fickcam.cam.oscillating.arm_response`, and
+:func:`~fickcam.cam.oscillating.follower_response`, the response of either follower type.
 
 The aged arm angle psi(theta) comes from the aged cam geometry (:mod:`fickcam.cam.geometry`
 with :mod:`fickcam.cam.arm`): the cam and the roller swell with their strains, the arm's

@@ -22,7 +22,6 @@ the table. The dry spline is evaluated as a :class:`scipy.interpolate.PPoly`.
 """
 from __future__ import annotations
 
-import csv
 import functools
 import os
 import re
@@ -31,6 +30,7 @@ from pathlib import Path
 
 import numpy as np
 
+from ..csvrows import CsvError, numbered_rows
 from ..extras import require
 from ..store import replaced_atomically
 from .arm import aged_profile_contact
@@ -239,10 +239,12 @@ def read_profile_csv(path) -> tuple[np.ndarray, np.ndarray, str]:
     """
     try:
         with open(path, newline="", encoding="utf-8") as handle:
-            rows = [(n, r) for n, r in enumerate(csv.reader(handle), start=1)
+            rows = [(n, r) for n, r in numbered_rows(handle)
                     if r and not r[0].lstrip().startswith("#")]
     except FileNotFoundError:
         raise ValueError(f"profile file {str(path)!r} not found") from None
+    except CsvError as exc:
+        raise ValueError(f"profile file {str(path)!r}: {exc}") from None
     except (OSError, UnicodeDecodeError) as exc:
         raise ValueError(f"cannot read profile file {str(path)!r}: {exc}") from None
     if not rows:

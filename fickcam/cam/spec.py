@@ -59,10 +59,13 @@ class Spline(_Strict):
         dS/dx, d2S/dx2, ... of the normalised law at the start and end [-].
     """
 
-    points: list[tuple[Angle, SignedLength]]
-    degree: int = Field(default=5, ge=1, le=9)
-    start_derivatives: list[float] | None = None
-    end_derivatives: list[float] | None = None
+    points: list[tuple[Angle, SignedLength]] = Field(
+        description="(angle in the segment [rad], distance travelled from its start [m]) pairs")
+    degree: int = Field(default=5, ge=1, le=9, description="Odd degree of the spline, 1 to 9 [1]")
+    start_derivatives: list[float] | None = Field(
+        None, description="dS/dx, d2S/dx2, ... of the normalised law at the segment's start [1]")
+    end_derivatives: list[float] | None = Field(
+        None, description="dS/dx, d2S/dx2, ... of the normalised law at the segment's end [1]")
 
 
 def _lift(value):
@@ -111,12 +114,14 @@ class Segment(_Strict):
         The points of a ``spline`` law.
     """
 
-    dwell: PositiveAngle | None = None
-    rise: Lift | None = None
-    return_: Lift | None = Field(default=None, alias="return")
-    over: PositiveAngle | None = None
-    law: Law | None = None
-    spline: Spline | None = None
+    dwell: PositiveAngle | None = Field(None, description="Cam angle of a dwell [rad]")
+    rise: Lift | None = Field(None, description="Lift of a rise (an angle for a swinging arm) [m]")
+    return_: Lift | None = Field(
+        default=None, alias="return", description="Fall of a return (an angle for a swinging arm) [m]")
+    over: PositiveAngle | None = Field(
+        None, description="Cam angle over which a rise or return happens [rad]")
+    law: Law | None = Field(None, description="The motion law of a rise or return")
+    spline: Spline | None = Field(None, description="The points of a spline law")
     _angular: bool | None = PrivateAttr(default=None)
 
     @model_validator(mode="wrap")
@@ -177,8 +182,9 @@ class Eccentric(_Strict):
         The disc's radius [m].
     """
 
-    eccentricity: Length
-    radius: Length
+    eccentricity: Length = Field(
+        description="Distance from the disc's centre to the rotation axis [m]")
+    radius: Length = Field(description="Radius of the disc [m]")
 
     @model_validator(mode="after")
     def _axis_inside(self):
@@ -205,10 +211,12 @@ class Guide(_Strict):
         d, the stem's diameter [m].
     """
 
-    friction_coefficient: float = Field(ge=0.0, le=1.0)
-    overhang: NonNegativeLength
-    length: Length
-    diameter: NonNegativeLength = 0.0
+    friction_coefficient: float = Field(
+        ge=0.0, le=1.0, description="Friction coefficient in the guide bush [1]")
+    overhang: NonNegativeLength = Field(
+        description="Distance from the cam contact to the near end of the bush, l1 [m]")
+    length: Length = Field(description="Length of the bush, l2 [m]")
+    diameter: NonNegativeLength = Field(0.0, description="Diameter of the stem in the bush [m]")
 
 
 class Wear(_Strict):
@@ -223,8 +231,8 @@ class Wear(_Strict):
         H [Pa].
     """
 
-    archard_coefficient: float = Field(ge=0.0)
-    hardness: Pressure
+    archard_coefficient: float = Field(ge=0.0, description="Archard wear coefficient K [1]")
+    hardness: Pressure = Field(description="Hardness H of the worn surface [Pa]")
 
 
 class Rod(_Strict):
@@ -238,8 +246,8 @@ class Rod(_Strict):
         d [m].
     """
 
-    length: Length
-    diameter: Length
+    length: Length = Field(description="Length of the stem [m]")
+    diameter: Length = Field(description="Diameter of the stem [m]")
 
 
 class Lever(_Strict):
@@ -255,9 +263,9 @@ class Lever(_Strict):
         Height, in the direction of the load [m].
     """
 
-    length: Length
-    width: Length
-    height: Length
+    length: Length = Field(description="Length of the lever to the load [m]")
+    width: Length = Field(description="Width of the lever [m]")
+    height: Length = Field(description="Height of the lever, in the direction of the load [m]")
 
 
 class TrainSection(_Strict):
@@ -273,8 +281,8 @@ class TrainSection(_Strict):
         A cantilever lever loaded at its tip.
     """
 
-    rod: Rod | None = None
-    lever: Lever | None = None
+    rod: Rod | None = Field(None, description="A round stem loaded along its axis")
+    lever: Lever | None = Field(None, description="A cantilever lever loaded at its tip")
 
     @model_validator(mode="after")
     def _one(self):
@@ -334,22 +342,34 @@ class Follower(_Strict):
         A swinging arm instead of a translating follower.
     """
 
-    kind: Literal["knife", "roller", "flat"]
-    roller_radius: Length | None = None
-    offset: SignedLength = 0.0
-    mass: Mass
-    material: str | None = None
-    spring_rate: Stiffness = 0.0
-    spring_preload: Force = 0.0
-    external_load: Force = 0.0
-    width: Length | None = None
-    friction_coefficient: float = Field(default=0.0, ge=0.0, le=1.0)
-    modulus: Pressure = 210e9
-    poisson_ratio: float = Field(default=0.3, ge=0.0, lt=0.5)
-    guide: Guide | None = None
-    stiffness: TrainStiffness | None = None
-    damping_ratio: float = Field(default=0.05, ge=0.0, lt=1.0)
-    arm: SwingingArm | None = None
+    kind: Literal["knife", "roller", "flat"] = Field(
+        description="The follower's contact with the cam")
+    roller_radius: Length | None = Field(
+        None, description="Radius of the roller (roller follower only) [m]")
+    offset: SignedLength = Field(
+        0.0, description="Offset of the follower's axis from the cam axis [m]")
+    mass: Mass = Field(description="Mass of the follower train [kg]")
+    material: str | None = Field(
+        None, description="Material of an absorbing follower (a name under materials)")
+    spring_rate: Stiffness = Field(0.0, description="Rate of the return spring [N/m]")
+    spring_preload: Force = Field(
+        0.0, description="Spring force at the dry cam's lowest position [N]")
+    external_load: Force = Field(0.0, description="Constant load against the lift [N]")
+    width: Length | None = Field(
+        None, description="Contact length for the Hertz stress; default the cam's thickness [m]")
+    friction_coefficient: float = Field(
+        default=0.0, ge=0.0, le=1.0, description="Friction coefficient at the cam contact [1]")
+    modulus: Pressure = Field(
+        210e9, description="Young's modulus of a follower with no absorbing material [Pa]")
+    poisson_ratio: float = Field(
+        default=0.3, ge=0.0, lt=0.5, description="Poisson's ratio of a follower with no absorbing material [1]")
+    guide: Guide | None = Field(None, description="The guide bush of a translating follower's stem")
+    stiffness: TrainStiffness | None = Field(
+        None, description="Stiffness of the follower train, or the rod or lever that gives it; absent: rigid [N/m]")
+    damping_ratio: float = Field(
+        default=0.05, ge=0.0, lt=1.0, description="Damping ratio of the follower train [1]")
+    arm: SwingingArm | None = Field(
+        None, description="A swinging arm instead of a translating follower")
 
     @model_validator(mode="after")
     def _roller_needs_radius(self):
@@ -385,7 +405,8 @@ class Polydyne(_Strict):
         The design speed [rad/s]; default the cam's.
     """
 
-    speed: AngularSpeed | None = None
+    speed: AngularSpeed | None = Field(
+        None, description="Speed the cam is cut for; default the cam's speed [rad/s]")
 
 
 class CamSection(_Strict):
@@ -431,20 +452,29 @@ class CamSection(_Strict):
         Turning sense, seen from the front.
     """
 
-    material: str
-    base_circle_radius: Length | None = None
-    thickness: Length
-    bore_radius: NonNegativeLength = 0.0
-    speed: AngularSpeed
-    follower: Follower
-    motion: list[Segment] | None = None
-    eccentric: Eccentric | None = None
-    profile_file: str | None = None
-    gravity: bool = False
-    wear: Wear | None = None
-    elastic: bool = False
-    polydyne: Polydyne | None = None
-    direction: Literal["counter_clockwise", "clockwise"] = "counter_clockwise"
+    material: str = Field(description="The cam plate's material (a name under materials)")
+    base_circle_radius: Length | None = Field(
+        None, description="Radius of the base circle of a cam given by its motion [m]")
+    thickness: Length = Field(description="Thickness of the cam plate [m]")
+    bore_radius: NonNegativeLength = Field(
+        0.0, description="Radius of the bore the shaft passes through [m]")
+    speed: AngularSpeed = Field(description="Cam speed [rad/s]")
+    follower: Follower = Field(description="The follower")
+    motion: list[Segment] | None = Field(
+        None, description="The design motion over one turn, as dwell, rise and return segments")
+    eccentric: Eccentric | None = Field(
+        None, description="An eccentric disc cam instead of a motion")
+    profile_file: str | None = Field(
+        None, description="A CSV or DXF file of profile points instead of a motion")
+    gravity: bool = Field(
+        False, description="Whether the follower's weight acts along its axis, against the lift")
+    wear: Wear | None = Field(None, description="Archard wear of the cam surface")
+    elastic: bool = Field(
+        False, description="Whether to compute the cam's elastic deflection and swelling stress")
+    polydyne: Polydyne | None = Field(
+        None, description="Cut the cam so that the elastic follower moves as designed")
+    direction: Literal["counter_clockwise", "clockwise"] = Field(
+        "counter_clockwise", description="Turning sense of the cam, seen from the front")
 
     @field_validator("polydyne", mode="before")
     @classmethod

@@ -2,8 +2,8 @@
 the mechanism has its design geometry at an ageing time, or stays closest to it over a
 window (minimax); `fickcam compensate` and :func:`fickcam.compensate`.
 
-Public API: :func:`compensate` -> :class:`Compensation`, :func:`write_scene`,
-:func:`dimension_table`; the printed report is
+Public API: :func:`~fickcam.compensation.solve.compensate` -> :class:`~fickcam.compensation.core.Compensation`, :func:`~fickcam.compensation.report.write_scene`,
+:func:`~fickcam.compensation.report.dimension_table`; the printed report is
 :func:`fickcam.compensation.report.report`.
 """
 from .core import Compensation, Target

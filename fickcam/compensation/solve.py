@@ -377,8 +377,8 @@ def compensate(scene, at=None, over=None, *, accuracy: float | None = None,
     one of the scene's limits failing between delivery and the end of the history, make
     the dimensions for that whole life instead (minimax over it). ``points``: make a cam
     given by its parameters as points (x and y compensated apart). Returns a
-    :class:`Compensation` with the design's and the made scene's runs; its scene is
-    written by :func:`fickcam.compensation.write_scene`.
+    :class:`~fickcam.compensation.core.Compensation` with the design's and the made scene's runs; its scene is
+    written by :func:`fickcam.compensation.report.write_scene`.
 
     Parameters
     ----------

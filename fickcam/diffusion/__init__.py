@@ -21,7 +21,7 @@ FiPy is imported inside the backend's functions only, so importing this package 
 light.
 """
 from .accuracy.error_model import CellCaps
-from .dispatch import MODELS, SolverSettings, plan, plan_problem, solve, solve_problem
+from .dispatch import MODELS, SolverSettings, plan, plan_problem, refuse, solve, solve_problem
 from .problem.cache import RunCache, run_cache
 from .problem.definition import DiffusionProblem
 from .problem.exposure import GAS_CONSTANT, Diffusivity, Exposure
@@ -30,5 +30,5 @@ from .problem.results import DiffusionResult, Plan
 
 __all__ = ["GAS_CONSTANT", "Diffusivity", "Exposure", "Bar", "CamPlate", "Disc",
            "Geometry", "LinkBar", "Sheet", "MODELS", "DiffusionResult", "Plan", "SolverSettings",
-           "CellCaps", "RunCache", "run_cache", "DiffusionProblem", "plan", "plan_problem", "solve",
-           "solve_problem"]
+           "CellCaps", "RunCache", "run_cache", "DiffusionProblem", "plan", "plan_problem", "refuse",
+           "solve", "solve_problem"]

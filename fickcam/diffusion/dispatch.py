@@ -231,7 +231,7 @@ def plan(geometry, diffusivity: Diffusivity, exposure: Exposure, times: np.ndarr
     ----------
     geometry, diffusivity, exposure, times, accuracy, model, sorption
         The part [m], its D(T) [m^2/s], its surface history, the times [s], the relative
-        accuracy [-] and the model asked for: the fields of :class:`DiffusionProblem`.
+        accuracy [-] and the model asked for: the fields of :class:`~fickcam.diffusion.problem.definition.DiffusionProblem`.
     surface_layer_depth : float, optional
         The depth of the contact layer [m]; None: not given (a Fickian plan does not
         read it; a sorption plan takes ``LAYER_DEPTH``, 5e-4 m).
@@ -255,6 +255,27 @@ def plan(geometry, diffusivity: Diffusivity, exposure: Exposure, times: np.ndarr
     return plan_problem(DiffusionProblem(geometry, diffusivity, exposure, times, accuracy, model,
                                          surface_layer_depth, sorption=sorption),
                         settings, cache)
+
+
+def refuse(problem: DiffusionProblem) -> None:
+    """Refuse, before any work, a problem that no model can plan: an unknown model, a
+    model that does not apply to the part's shape or has no solution for it, an accuracy
+    outside (0, 1), no route of its sorption law. A run checks every part so before it
+    plans or solves the first (a refusal costs nothing then).
+
+    Parameters
+    ----------
+    problem : DiffusionProblem
+        The part [m], diffusivity [m^2/s], exposure, times [s], accuracy [-] and model.
+
+    Raises
+    ------
+    fickcam.errors.InputError
+        With the reason, in the words :func:`plan` gives it.
+    """
+    _validate(problem)
+    _fick_model(problem.geometry, problem.model)
+    route_of(problem)
 
 
 def plan_problem(problem: DiffusionProblem, settings: SolverSettings = SETTINGS,

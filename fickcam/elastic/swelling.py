@@ -192,7 +192,7 @@ def free_strain(props, moisture_change, temperature_change) -> tuple:
     Parameters
     ----------
     props : dict of str to array_like
-        Ply properties (:meth:`fickcam.materials.Material.ply_properties`): alpha11,
+        Ply properties (:meth:`fickcam.materials.material.Material.ply_properties`): alpha11,
         alpha22 [1/K], beta11, beta22 [1/weight %].
     moisture_change : float or array_like
         dM from the strain-free moisture [weight %].

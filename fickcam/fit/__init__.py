@@ -1,6 +1,6 @@
 """Calibrate a material's moisture parameters from ASTM D5229 weight-gain data.
 
-``fit_weight_gain(csv, matrix=...)`` returns a :class:`FitReport` (a dataclass;
+``fit_weight_gain(csv, matrix=...)`` returns a :class:`~fickcam.fit.report.FitReport` (a dataclass;
 ``.to_dataset()`` gives an xarray Dataset); ``materials_yaml`` writes the
 scene-ready ``materials:`` block, ``parameter_table`` the printed table,
 ``plot_fit`` the figure (matplotlib is imported only when it draws).
@@ -16,7 +16,7 @@ def plot_fit(report, path):
     Parameters
     ----------
     report : FitReport
-        A fit (:func:`fit_weight_gain`).
+        A fit (:func:`~fickcam.fit_weight_gain`).
     path : str or pathlib.Path
         The PNG file to write.
 

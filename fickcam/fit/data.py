@@ -11,13 +11,13 @@ Every fault is a ``file:LINE column: reason`` problem (exit 2 at the command lin
 """
 from __future__ import annotations
 
-import csv
 import re
 from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
 
+from ..csvrows import CsvError, numbered_rows
 from ..errors import Problem, SceneError
 from ..unit_parsing import to_si
 
@@ -156,9 +156,11 @@ _EXAMPLE_UNITS = {"temperature": "degC", "relative_humidity": "%", "thickness": 
 def _rows(path: Path, reader: _Reader) -> list[tuple[int, list[str]]]:
     try:
         with open(path, newline="", encoding="utf-8") as handle:
-            numbered = list(enumerate(csv.reader(handle), start=1))
+            numbered = list(numbered_rows(handle))
     except FileNotFoundError:
         raise SceneError([Problem(reader.file, None, "", "no such data file")]) from None
+    except CsvError as exc:
+        raise SceneError([Problem(reader.file, exc.line, "", exc.reason)]) from None
     except (OSError, UnicodeDecodeError) as exc:
         raise SceneError([Problem(reader.file, None, "", f"cannot read: {exc}")]) from None
     return [(n, row) for n, row in numbered if row and any(c.strip() for c in row)

@@ -102,7 +102,7 @@ def materials_yaml(report: FitReport) -> str:
     Parameters
     ----------
     report : FitReport
-        A fit (:func:`fickcam.fit.fit_weight_gain`).
+        A fit (:func:`fickcam.fit_weight_gain`).
 
     Returns
     -------

@@ -7,11 +7,15 @@ from pathlib import Path
 
 import numpy as np
 
-from ..errors import InputError
+import logging
+
+from ..errors import InputError, Problem, SceneError
 from . import across
 from .anomalous import AnomalyTest, LangmuirFit, check_fickian
 from .data import Specimen, condition_label, read_weight_gain
 from .single import FickFit, fit_fickian
+
+log = logging.getLogger(__name__)
 
 UNDETERMINED = 10.0       # D interval wider than this factor (or Mm's wider than Mm): not determined
 NEAR_EQUILIBRIUM = 0.99   # fitted M/Mm at the last weighing above which Mm is not called extrapolated
@@ -163,6 +167,25 @@ def _material(matrix: str, fiber: str | None, fiber_volume_fraction: float | Non
         raise InputError(f"--matrix/--fiber: {reasons}") from None
 
 
+def _check_temperatures(specimens: list[Specimen], material, name: str, file: str) -> None:
+    """Coupons aged at or above the material's dry Tg or melting point are refused at their
+    first line; above its service limit they are warned once per temperature."""
+    from ..materials import temperature_limit_reasons
+
+    problems, warned = [], set()
+    for specimen in specimens:
+        refusals, warnings = temperature_limit_reasons(material, name, specimen.temperature)
+        line = int(specimen.lines[0]) if len(specimen.lines) else None
+        problems += [Problem(file, line, "temperature", f"specimen {specimen.name!r}: {reason}")
+                     for reason in refusals]
+        for reason in warnings:
+            if specimen.temperature not in warned:
+                warned.add(specimen.temperature)
+                log.warning("%s:%s temperature: %s", file, line, reason)
+    if problems:
+        raise SceneError(problems)
+
+
 def _groups(specimens: list[Specimen]) -> list[list[Specimen]]:
     groups: dict[tuple, list[Specimen]] = {}
     for s in specimens:
@@ -172,7 +195,7 @@ def _groups(specimens: list[Specimen]) -> list[list[Specimen]]:
 
 def fit_weight_gain(data, matrix: str, fiber: str | None = None,
                     fiber_volume_fraction: float | None = None, name: str | None = None) -> FitReport:
-    """Calibrate from a weight-gain CSV (path) or a list of :class:`Specimen`.
+    """Calibrate from a weight-gain CSV (path) or a list of :class:`~fickcam.fit.data.Specimen`.
 
     Coupons of a composite are taken as unidirectional with the fibres along their
     length (D along the length = D11, across the width = D22 = through the thickness).
@@ -180,7 +203,7 @@ def fit_weight_gain(data, matrix: str, fiber: str | None = None,
     Parameters
     ----------
     data : str, pathlib.Path or list of Specimen
-        The weight-gain CSV (:func:`read_weight_gain`), or coupons already read.
+        The weight-gain CSV (:func:`~fickcam.fit.data.read_weight_gain`), or coupons already read.
     matrix : str
         The library matrix material of the coupons; its activation energy and humidity
         exponent stand in where the data hold one temperature or one humidity only.
@@ -208,6 +231,7 @@ def fit_weight_gain(data, matrix: str, fiber: str | None = None,
     material = _material(matrix, fiber, fiber_volume_fraction)
     specimens = read_weight_gain(data) if isinstance(data, (str, Path)) else list(data)
     source = Path(data).name if isinstance(data, (str, Path)) else "<specimens>"
+    _check_temperatures(specimens, material, matrix, str(data) if isinstance(data, (str, Path)) else source)
     f11, f22 = material.principal_diffusivity_factors()
     in_plane = (f11 / f22, 1.0)
     groups = _groups(specimens)

@@ -1,10 +1,10 @@
 """Four-bar linkage over ageing: positions (Freudenstein), Grashof class,
 transmission angle, coupler curve, velocities, accelerations and kinetostatics.
 
-Public API: :class:`LinkageSection` (scene section), :class:`FourBarDesign`,
-:class:`FourBarState`, :func:`fourbar_response`, :func:`class_changes`,
-:func:`grashof_class`, and for :mod:`fickcam.simulate` :func:`scene_parts`,
-:func:`scene_response`, ``LINKS`` and ``JOINTS`` (coordinate values).
+Public API: :class:`~fickcam.linkage.spec.LinkageSection` (scene section), :class:`~fickcam.linkage.model.FourBarDesign`,
+:class:`~fickcam.linkage.model.FourBarState`, :func:`~fickcam.linkage.model.fourbar_response`, :func:`~fickcam.linkage.classify.class_changes`,
+:func:`~fickcam.linkage.classify.grashof_class`, and for :mod:`fickcam.simulate` :func:`~fickcam.linkage.ageing.scene_parts`,
+:func:`~fickcam.linkage.ageing.scene_response`, ``LINKS`` and ``JOINTS`` (coordinate values).
 
 References
 ----------

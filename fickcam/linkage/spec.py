@@ -12,7 +12,7 @@ from __future__ import annotations
 import math
 from typing import Annotated, Literal
 
-from pydantic import BeforeValidator, model_validator
+from pydantic import BeforeValidator, Field, model_validator
 
 from ..units import StrictModel, Angle, AngularSpeed, Length, NonNegativeLength
 from ..unit_parsing import registry
@@ -58,8 +58,10 @@ class CouplerPoint(StrictModel):
         Angle from the line A->B, counter-clockwise [rad].
     """
 
-    distance: NonNegativeLength
-    angle: Angle = 0.0
+    distance: NonNegativeLength = Field(
+        description="Distance of the coupler point from the crank-coupler pin A [m]")
+    angle: Angle = Field(
+        0.0, description="Angle of the coupler point from the line A to B, counter-clockwise [rad]")
 
 
 class LinkSectionSpec(StrictModel):
@@ -79,10 +81,11 @@ class LinkSectionSpec(StrictModel):
         (to pydantic) A hole as large as its boss, or a bar wider than its bosses.
     """
 
-    width: Length
-    thickness: Length
-    boss_outer_radius: Length
-    boss_inner_radius: NonNegativeLength
+    width: Length = Field(description="Width of each bar [m]")
+    thickness: Length = Field(description="Thickness of each bar [m]")
+    boss_outer_radius: Length = Field(description="Outer radius of the bosses at the pins [m]")
+    boss_inner_radius: NonNegativeLength = Field(
+        description="Radius of the pin holes in the bosses [m]")
 
     @model_validator(mode="after")
     def _is_a_link(self):
@@ -153,21 +156,28 @@ class LinkageSection(StrictModel):
         overlap on a link, or a centre-of-mass fraction outside [0, 1].
     """
 
-    material: str
-    frame_material: str | None = None
-    crank: Length
-    coupler: Length
-    rocker: Length
-    frame: Length
-    coupler_point: CouplerPoint
-    section: LinkSectionSpec
-    crank_speed: AngularSpeed
-    assembly: Literal["open", "crossed"] = "open"
-    gravity: bool = False
-    crank_angular_acceleration: AngularAcceleration = 0.0
-    rocker_load_torque: Torque = 0.0
-    centre_of_mass: tuple[float, float, float] = (0.5, 0.5, 0.5)
-    elastic: bool = False
+    material: str = Field(description="The links' material (a name under materials)")
+    frame_material: str | None = Field(
+        None, description="The frame's material; default the links' material")
+    crank: Length = Field(description="Crank length a, pin to pin [m]")
+    coupler: Length = Field(description="Coupler length b, pin to pin [m]")
+    rocker: Length = Field(description="Rocker length c, pin to pin [m]")
+    frame: Length = Field(description="Frame length d, between the fixed pivots [m]")
+    coupler_point: CouplerPoint = Field(description="The coupler point whose path is traced")
+    section: LinkSectionSpec = Field(description="Cross-section of every link")
+    crank_speed: AngularSpeed = Field(description="Angular velocity of the crank [rad/s]")
+    assembly: Literal["open", "crossed"] = Field(
+        "open", description="The branch the linkage is assembled in")
+    gravity: bool = Field(
+        False, description="Whether the links' weight acts (along -y, the frame line along +x)")
+    crank_angular_acceleration: AngularAcceleration = Field(
+        0.0, description="Angular acceleration of the crank [rad/s^2]")
+    rocker_load_torque: Torque = Field(
+        0.0, description="Constant torque on the rocker, counter-clockwise positive [N m]")
+    centre_of_mass: tuple[float, float, float] = Field(
+        (0.5, 0.5, 0.5), description="Centres of mass of crank, coupler, rocker as fractions of their lengths [1]")
+    elastic: bool = Field(
+        False, description="Whether to compute the links' swelling stress and failure index")
 
     @model_validator(mode="after")
     def _is_a_four_bar(self):

@@ -16,9 +16,10 @@ Singh, S. & Sanyal, S. (2017). Kinematic and dynamic variations in cam and follo
     Innovative Research in Science, Engineering and Technology (IJIRSET) 6(3).
 """
 from .library import library_rows, library_table
-from .material import Material, resolve
+from .material import Material, resolve, temperature_limit_reasons
 from .spec import MaterialSpec
 from .state import first_invalid_index, material_state, wet_tg_and_retention
 
 __all__ = ["Material", "MaterialSpec", "first_invalid_index",
-           "library_rows", "library_table", "material_state", "resolve", "wet_tg_and_retention"]
+           "library_rows", "library_table", "material_state", "resolve", "temperature_limit_reasons",
+           "wet_tg_and_retention"]

@@ -130,27 +130,35 @@ def _fmt(value) -> str:
     return "-" if value is None else f"{value:.4g}"
 
 
+def _celsius(kelvin) -> float | None:
+    return None if kelvin is None else kelvin - 273.15
+
+
 def library_rows() -> list[dict]:
-    """One row per material: group, name, density, modulus, alpha, beta, Tgd, Mm(100 %), source.
+    """One row per material: group, name, density, modulus, alpha, beta, Tgd, melting point,
+    service limit, Mm(100 %), source.
 
     Returns
     -------
     list of dict
         Rows with density_kg_m3 [kg/m^3], modulus_GPa [GPa], alpha_per_K [1/K],
-        beta_per_pct [1/weight %], dry_tg_degC [degC], saturation_pct [weight %], aliases
-        and sources.
+        beta_per_pct [1/weight %], dry_tg_degC [degC], melting_degC [degC], service_degC
+        [degC] (the maximum continuous service temperature, else the heat deflection
+        temperature), saturation_pct [weight %], aliases and sources.
     """
     rows = []
     for group in GROUPS:
         for name, values in sorted(_load()[group].items()):
-            tg = values.get("dry_glass_transition_temperature")
+            service = values.get("service_temperature", values.get("heat_deflection_temperature"))
             rows.append({
                 "group": group, "name": name,
                 "density_kg_m3": values.get("density"),
                 "modulus_GPa": (values.get("youngs_modulus") or values.get("longitudinal_modulus")) / 1e9,
                 "alpha_per_K": values.get("thermal_expansion", values.get("thermal_expansion_longitudinal")),
                 "beta_per_pct": values.get("moisture_expansion"),
-                "dry_tg_degC": None if tg is None else tg - 273.15,
+                "dry_tg_degC": _celsius(values.get("dry_glass_transition_temperature")),
+                "melting_degC": _celsius(values.get("melting_temperature")),
+                "service_degC": _celsius(service),
                 "saturation_pct": (values.get("saturation") or {}).get("coefficient"),
                 "aliases": aliases_of(name),
                 "sources": " ".join(values["sources"].split()),
@@ -167,16 +175,19 @@ def library_table() -> str:
         The table.
     """
     head = f"{'group':<9} {'name':<10} {'rho kg/m3':>9} {'E GPa':>7} {'alpha 1/K':>10} " \
-           f"{'beta 1/%':>9} {'Tgd degC':>8} {'Mm(100%)':>8}"
+           f"{'beta 1/%':>9} {'Tgd degC':>8} {'Tm degC':>7} {'Tmax degC':>9} {'Mm(100%)':>8}"
     lines = [head, "-" * len(head)]
     rows = library_rows()
     for r in rows:
         lines.append(f"{r['group']:<9} {r['name']:<10} {_fmt(r['density_kg_m3']):>9} "
                      f"{_fmt(r['modulus_GPa']):>7} {_fmt(r['alpha_per_K']):>10} "
                      f"{_fmt(r['beta_per_pct']):>9} {_fmt(r['dry_tg_degC']):>8} "
+                     f"{_fmt(r['melting_degC']):>7} {_fmt(r['service_degC']):>9} "
                      f"{_fmt(r['saturation_pct']):>8}")
     known = [f"{', '.join(r['aliases'])} = {r['name']}" for r in rows if r["aliases"]]
     lines += ["", f"Also known as: {'; '.join(known)}"]
+    lines += ["", "Tm: melting point; Tmax: maximum continuous service temperature, else heat "
+                  "deflection temperature at 1.80 MPa; '-': none (metals, fibres) or not known"]
     lines += ["", "Sources (ASSUMPTION = fickcam's choice, override in the scene):"]
     lines += [f"  {r['name']}: {r['sources']}" for r in rows]
     return "\n".join(lines)
@@ -192,6 +203,11 @@ _SHOWN = {
     "transverse_shear_modulus": ("transverse shear modulus G23", "GPa", 1e-9, 0.0),
     "poisson_ratio": ("Poisson ratio", "", 1.0, 0.0),
     "dry_glass_transition_temperature": ("dry glass transition temperature", "degC", 1.0, -273.15),
+    "melting_temperature": ("melting point", "degC", 1.0, -273.15),
+    "service_temperature": ("maximum continuous service temperature", "degC", 1.0, -273.15),
+    "heat_deflection_temperature": ("heat deflection temp. (1.80 MPa)", "degC", 1.0, -273.15),
+    "glass_transition_dry": ("glass transition (DSC), dry", "degC", 1.0, -273.15),
+    "glass_transition_wet": ("glass transition (DSC), wet", "degC", 1.0, -273.15),
     "thermal_expansion": ("thermal expansion", "1/K", 1.0, 0.0),
     "thermal_expansion_wet": ("thermal expansion, wet", "1/K", 1.0, 0.0),
     "thermal_expansion_longitudinal": ("thermal expansion, longitudinal", "1/K", 1.0, 0.0),
@@ -289,6 +305,8 @@ def entry_text(name: str) -> str:
         if key in _SHOWN:
             label, unit, factor, offset = _SHOWN[key]
             shown = "none" if value is None else f"{value * factor + offset:.4g} {unit}"
+            if value is None and key == "dry_glass_transition_temperature":
+                shown = "none (Chamis' wet-Tg law not applied)"
             if key.endswith("_strength") and group in STRENGTH_SOURCES:
                 shown = f"{shown:<12} ({STRENGTH_SOURCES[group]})"
             lines.append(f"  {label:<36} {shown}".rstrip())

@@ -8,7 +8,7 @@ import numpy as np
 from ..diffusion.problem.exposure import Diffusivity
 from ..diffusion.problem.sorption import ConcentrationDependent, Langmuir, Rate
 from . import micromechanics as mm
-from .hygrothermal import thermal_property_factor
+from .hygrothermal import KELVIN_OFFSET, thermal_property_factor
 from .library import entry
 
 PER_PERCENT_TO_PER_FRACTION = 100.0  # beta per weight % -> per unit weight fraction
@@ -83,6 +83,21 @@ class Material:
     @property
     def dry_glass_transition_temperature(self) -> float | None:
         return self.matrix.get("dry_glass_transition_temperature")
+
+    @property
+    def melting_temperature(self) -> float | None:
+        return self.matrix.get("melting_temperature")
+
+    @property
+    def service_limit(self) -> tuple[float, str] | None:
+        """(temperature [K], what it is) above which the part is warned: the maximum
+        continuous service temperature, else the heat deflection temperature; None: neither
+        is known."""
+        if self.matrix.get("service_temperature") is not None:
+            return self.matrix["service_temperature"], "maximum continuous service temperature"
+        if self.matrix.get("heat_deflection_temperature") is not None:
+            return self.matrix["heat_deflection_temperature"], "heat deflection temperature (1.80 MPa)"
+        return None
 
     @property
     def _beta_fraction(self) -> float:
@@ -228,6 +243,45 @@ class Material:
         if self.layup == "quasi_isotropic":
             props = _quasi_isotropic(props)
         return props
+
+
+def temperature_limit_reasons(material: Material, name: str, temperature: float) -> tuple[list[str], list[str]]:
+    """Why a climate at ``temperature`` is refused (at or above the dry Tg of a thermoset or
+    the melting point of a thermoplastic) or warned (above the service limit), for material
+    ``name``.
+
+    Parameters
+    ----------
+    material : Material
+        The material.
+    name : str
+        Its name, as the user wrote it.
+    temperature : float
+        The hottest temperature of the climate [K].
+
+    Returns
+    -------
+    tuple of list of str
+        (reasons to refuse, reasons to warn), each one line.
+    """
+    def celsius(kelvin: float) -> str:
+        return f"{kelvin - KELVIN_OFFSET:.1f} degC"
+
+    refusals, warnings = [], []
+    tg = material.dry_glass_transition_temperature
+    if tg is not None and temperature >= tg:
+        refusals.append(f"{celsius(temperature)} is at or above the dry Tg of material {name!r} "
+                        f"({celsius(tg)})")
+    melting = material.melting_temperature
+    if melting is not None and temperature >= melting:
+        refusals.append(f"{celsius(temperature)} is at or above the melting point of material "
+                        f"{name!r} ({celsius(melting)})")
+    limit = material.service_limit
+    if not refusals and limit is not None and temperature > limit[0]:
+        warnings.append(f"{celsius(temperature)} is above the {limit[1]} of material {name!r} "
+                        f"({celsius(limit[0])}): the part may soften, creep or deform, which "
+                        f"fickcam does not model")
+    return refusals, warnings
 
 
 def _quasi_isotropic(p: dict) -> dict:

@@ -4,7 +4,8 @@ from __future__ import annotations
 from typing import Annotated, Literal
 
 import numpy as np
-from pydantic import AfterValidator, BeforeValidator, NonNegativeFloat, PositiveFloat, model_validator
+from pydantic import (AfterValidator, BeforeValidator, Field, NonNegativeFloat, PositiveFloat,
+                      model_validator)
 
 from ..units import (
     StrictModel,
@@ -69,8 +70,9 @@ class DiffusivitySpec(StrictModel):
     materials. Journal of Composite Materials 10(1), 2-20.
     """
 
-    pre_exponential: Diffusivity
-    activation_energy: MolarEnergy
+    pre_exponential: Diffusivity = Field(description="D0 of D = D0 exp(-Ea/(R T)) [m^2/s]")
+    activation_energy: MolarEnergy = Field(
+        description="Activation energy Ea of the diffusivity [J/mol]")
 
 
 class RateSpec(StrictModel):
@@ -84,8 +86,9 @@ class RateSpec(StrictModel):
         Ea [J/mol]; 0: a constant rate.
     """
 
-    pre_exponential: NonNegativeRate
-    activation_energy: MolarEnergy = 0.0
+    pre_exponential: NonNegativeRate = Field(description="Pre-exponential factor of the rate [1/s]")
+    activation_energy: MolarEnergy = Field(
+        0.0, description="Activation energy of the rate; 0 for a constant rate [J/mol]")
 
 
 def _plain_rate(value):
@@ -106,8 +109,10 @@ class DiffusivityTable(StrictModel):
         D/D(T) at each [-].
     """
 
-    moisture_ratio: list[NonNegativeFloat]
-    diffusivity_ratio: list[PositiveFloat]
+    moisture_ratio: list[NonNegativeFloat] = Field(
+        description="Moisture over equilibrium moisture c/Mm, increasing [1]")
+    diffusivity_ratio: list[PositiveFloat] = Field(
+        description="Diffusivity over D(T) at each moisture ratio [1]")
 
     @model_validator(mode="after")
     def _pairs(self):
@@ -145,11 +150,16 @@ class SorptionSpec(StrictModel):
     diffusion in composite resins. Journal of Composite Materials 12(2), 118-131.
     """
 
-    model: Literal["fickian", "langmuir", "concentration_dependent"]
-    binding_rate: ArrheniusRate | None = None
-    release_rate: ArrheniusRate | None = None
-    exponent: float | None = None
-    table: DiffusivityTable | None = None
+    model: Literal["fickian", "langmuir", "concentration_dependent"] = Field(
+        description="The sorption model")
+    binding_rate: ArrheniusRate | None = Field(
+        None, description="langmuir: rate gamma at which free water is bound [1/s]")
+    release_rate: ArrheniusRate | None = Field(
+        None, description="langmuir: rate beta at which bound water is released [1/s]")
+    exponent: float | None = Field(
+        None, description="concentration_dependent: k of D = D(T) exp(k c/Mm) [1]")
+    table: DiffusivityTable | None = Field(
+        None, description="concentration_dependent: D/D(T) tabulated against c/Mm")
 
     @model_validator(mode="after")
     def _keys_of_the_model(self):
@@ -181,8 +191,9 @@ class SaturationSpec(StrictModel):
         The exponent [-].
     """
 
-    coefficient: NonNegativePercent
-    exponent: PositiveFloat = 1.0
+    coefficient: NonNegativePercent = Field(
+        description="Equilibrium moisture at 100 % RH, a of Mm = a (RH/100)^b [weight %]")
+    exponent: PositiveFloat = Field(1.0, description="Exponent b of Mm = a (RH/100)^b [1]")
 
 
 def _covariance(matrix: tuple[tuple[float, float], tuple[float, float]]):
@@ -213,10 +224,14 @@ class FitIntervals(StrictModel):
         Of the saturation exponent [-].
     """
 
-    pre_exponential: tuple[Diffusivity, Diffusivity] | None = None
-    activation_energy: tuple[SignedMolarEnergy, SignedMolarEnergy] | None = None
-    coefficient: tuple[SignedPercent, SignedPercent] | None = None
-    exponent: tuple[float, float] | None = None
+    pre_exponential: tuple[Diffusivity, Diffusivity] | None = Field(
+        None, description="95 % interval of the diffusivity's D0 [m^2/s]")
+    activation_energy: tuple[SignedMolarEnergy, SignedMolarEnergy] | None = Field(
+        None, description="95 % interval of the diffusivity's activation energy [J/mol]")
+    coefficient: tuple[SignedPercent, SignedPercent] | None = Field(
+        None, description="95 % interval of the saturation coefficient [weight %]")
+    exponent: tuple[float, float] | None = Field(
+        None, description="95 % interval of the saturation exponent [1]")
 
 
 class FitCovariance(StrictModel):
@@ -231,8 +246,10 @@ class FitCovariance(StrictModel):
         2 x 2 covariance of (coefficient [weight %], exponent [-]).
     """
 
-    diffusivity: Covariance | None = None
-    saturation: Covariance | None = None
+    diffusivity: Covariance | None = Field(
+        None, description="2 x 2 covariance of (ln D0 [1], Ea [J/mol])")
+    saturation: Covariance | None = Field(
+        None, description="2 x 2 covariance of (coefficient [weight %], exponent [1])")
 
 
 class PlyValues(StrictModel):
@@ -250,10 +267,13 @@ class PlyValues(StrictModel):
         M_ply/M_matrix [-].
     """
 
-    pre_exponential: Diffusivity
-    coefficient: NonNegativePercent
-    diffusivity_factor: PositiveFloat
-    moisture_factor: PositiveFloat
+    pre_exponential: Diffusivity = Field(description="The ply's D0 [m^2/s]")
+    coefficient: NonNegativePercent = Field(
+        description="The ply's saturation coefficient [weight %]")
+    diffusivity_factor: PositiveFloat = Field(
+        description="Ply transverse diffusivity over matrix diffusivity, D22/Dm [1]")
+    moisture_factor: PositiveFloat = Field(
+        description="Ply moisture over matrix moisture, M_ply/M_matrix [1]")
 
 
 class NonFickianCondition(StrictModel):
@@ -271,11 +291,12 @@ class NonFickianCondition(StrictModel):
         gamma and beta [1/s].
     """
 
-    condition: str
-    p_value: float
-    diffusivity: Diffusivity
-    binding_rate: Rate
-    release_rate: Rate
+    condition: str = Field(description="The condition's label (its temperature and humidity)")
+    p_value: float = Field(
+        description="p-value of the F test of the two-phase model against Fick [1]")
+    diffusivity: Diffusivity = Field(description="Diffusivity of the free water [m^2/s]")
+    binding_rate: Rate = Field(description="Rate gamma at which free water is bound [1/s]")
+    release_rate: Rate = Field(description="Rate beta at which bound water is released [1/s]")
 
 
 class FitRecord(StrictModel):
@@ -298,13 +319,17 @@ class FitRecord(StrictModel):
         Conditions Fick does not describe.
     """
 
-    source: str
-    interval_95: FitIntervals | None = None
-    covariance: FitCovariance | None = None
-    activation_energy_from: Literal["data", "library"] = "data"
-    exponent_from: Literal["data", "library"] = "data"
-    ply: PlyValues | None = None
-    non_fickian: list[NonFickianCondition] = []
+    source: str = Field(description="The weight-gain file that was fitted")
+    interval_95: FitIntervals | None = Field(
+        None, description="95 % confidence intervals of the fitted values")
+    covariance: FitCovariance | None = Field(None, description="Covariances of the fitted values")
+    activation_energy_from: Literal["data", "library"] = Field(
+        "data", description="Whether the activation energy came from the data or the library")
+    exponent_from: Literal["data", "library"] = Field(
+        "data", description="Whether the saturation exponent came from the data or the library")
+    ply: PlyValues | None = Field(None, description="The composite coupons' own fitted values")
+    non_fickian: list[NonFickianCondition] = Field(
+        [], description="Conditions whose uptake Fick's law does not describe")
 
 
 class MatrixProperties(StrictModel):
@@ -330,17 +355,41 @@ class MatrixProperties(StrictModel):
         D(T).
     saturation : SaturationSpec, optional
         Mm(RH).
+    melting_temperature : float, optional
+        Melting point of a semicrystalline thermoplastic [K]: a climate at or above it is
+        refused.
+    service_temperature : float, optional
+        Maximum continuous service temperature [K]: a climate above it is warned.
+    heat_deflection_temperature : float, optional
+        Heat deflection temperature at 1.80 MPa [K]: the service limit where no
+        ``service_temperature`` is given.
     """
 
-    youngs_modulus: Pressure | None = None
-    poisson_ratio: float | None = None
-    density: Density | None = None
-    dry_glass_transition_temperature: Temperature | None = None
-    thermal_expansion: ExpansionCoefficient | None = None
-    moisture_expansion: float | None = None  # strain per weight % of moisture
-    conductivity: PositiveFloat | None = None  # W/(m K)
-    diffusivity: DiffusivitySpec | None = None
-    saturation: SaturationSpec | None = None
+    youngs_modulus: Pressure | None = Field(
+        None, description="Young's modulus E, replacing the library value [Pa]")
+    poisson_ratio: float | None = Field(
+        None, description="Poisson's ratio, replacing the library value [1]")
+    density: Density | None = Field(
+        None, description="Density, replacing the library value [kg/m^3]")
+    dry_glass_transition_temperature: Temperature | None = Field(
+        None, description="Glass transition temperature when dry [K]")
+    thermal_expansion: ExpansionCoefficient | None = Field(
+        None, description="Coefficient of thermal expansion [1/K]")
+    moisture_expansion: float | None = Field(
+        None, description="Swelling strain per weight % of moisture [1/weight %]")
+    conductivity: PositiveFloat | None = Field(None, description="Thermal conductivity [W/(m K)]")
+    diffusivity: DiffusivitySpec | None = Field(
+        None, description="Moisture diffusivity D(T), Arrhenius in temperature [m^2/s]")
+    saturation: SaturationSpec | None = Field(
+        None, description="Equilibrium moisture content Mm(RH) [weight %]")
+    melting_temperature: Temperature | None = Field(
+        None, description="Melting point of a semicrystalline thermoplastic; a climate at or "
+                          "above it is refused [K]")
+    service_temperature: Temperature | None = Field(
+        None, description="Maximum continuous service temperature; a climate above it is warned [K]")
+    heat_deflection_temperature: Temperature | None = Field(
+        None, description="Heat deflection temperature at 1.80 MPa (ISO 75); the service limit "
+                          "where service_temperature is not given [K]")
 
 
 class FiberProperties(StrictModel):
@@ -362,16 +411,24 @@ class FiberProperties(StrictModel):
         K11 and K22 [W/(m K)].
     """
 
-    longitudinal_modulus: Pressure | None = None
-    transverse_modulus: Pressure | None = None
-    shear_modulus: Pressure | None = None
-    transverse_shear_modulus: Pressure | None = None
-    poisson_ratio: float | None = None
-    density: Density | None = None
-    thermal_expansion_longitudinal: ExpansionCoefficient | None = None
-    thermal_expansion_transverse: ExpansionCoefficient | None = None
-    conductivity_longitudinal: PositiveFloat | None = None
-    conductivity_transverse: PositiveFloat | None = None
+    longitudinal_modulus: Pressure | None = Field(
+        None, description="Fibre modulus along the fibre, E11 [Pa]")
+    transverse_modulus: Pressure | None = Field(
+        None, description="Fibre modulus across the fibre, E22 [Pa]")
+    shear_modulus: Pressure | None = Field(
+        None, description="Fibre in-plane shear modulus, G12 [Pa]")
+    transverse_shear_modulus: Pressure | None = Field(
+        None, description="Fibre transverse shear modulus, G23 [Pa]")
+    poisson_ratio: float | None = Field(None, description="Fibre Poisson's ratio nu12 [1]")
+    density: Density | None = Field(None, description="Fibre density [kg/m^3]")
+    thermal_expansion_longitudinal: ExpansionCoefficient | None = Field(
+        None, description="Fibre thermal expansion along the fibre, alpha11 [1/K]")
+    thermal_expansion_transverse: ExpansionCoefficient | None = Field(
+        None, description="Fibre thermal expansion across the fibre, alpha22 [1/K]")
+    conductivity_longitudinal: PositiveFloat | None = Field(
+        None, description="Fibre thermal conductivity along the fibre, K11 [W/(m K)]")
+    conductivity_transverse: PositiveFloat | None = Field(
+        None, description="Fibre thermal conductivity across the fibre, K22 [W/(m K)]")
 
 
 class MaterialSpec(MatrixProperties):
@@ -393,6 +450,8 @@ class MaterialSpec(MatrixProperties):
         Override of nu [-].
     diffusivity, saturation : optional
         Overrides of D(T) [m^2/s] and Mm(RH) [weight %].
+    melting_temperature, service_temperature, heat_deflection_temperature : float, optional
+        Temperature limits [K] (see :class:`MatrixProperties`).
     fiber, matrix, plastic, metal : str, optional
         Library names (or aliases).
     fiber_volume_fraction, fiber_weight_fraction : float, optional
@@ -419,20 +478,32 @@ class MaterialSpec(MatrixProperties):
     Chamis (1983); in full in :mod:`fickcam.materials`.
     """
 
-    fiber: LibraryName | None = None
-    matrix: LibraryName | None = None
-    plastic: LibraryName | None = None
-    metal: LibraryName | None = None
-    fiber_volume_fraction: Fraction | None = None
-    fiber_weight_fraction: Fraction | None = None
-    void_volume_fraction: Fraction = 0.0
-    layup: Literal["unidirectional", "quasi_isotropic"] = "unidirectional"
-    transverse_diffusivity_model: Literal["chamis", "shen_springer"] = "chamis"
-    wet_tg_scale: Literal["celsius", "fahrenheit", "kelvin"] = "celsius"
-    matrix_properties: MatrixProperties | None = None
-    fiber_properties: FiberProperties | None = None
-    fit: FitRecord | None = None
-    sorption: SorptionSpec | None = None
+    fiber: LibraryName | None = Field(
+        None, description="Library fibre of a composite (needs matrix)")
+    matrix: LibraryName | None = Field(
+        None, description="Library resin: the matrix of a composite, or a neat resin alone")
+    plastic: LibraryName | None = Field(None, description="Library plastic (e.g. nylon, POM)")
+    metal: LibraryName | None = Field(None, description="Library metal, which absorbs no moisture")
+    fiber_volume_fraction: Fraction | None = Field(
+        None, description="Fibre volume fraction of a composite [1]")
+    fiber_weight_fraction: Fraction | None = Field(
+        None, description="Fibre weight fraction of a composite, instead of the volume fraction [1]")
+    void_volume_fraction: Fraction = Field(
+        0.0, description="Void volume fraction of a composite [1]")
+    layup: Literal["unidirectional", "quasi_isotropic"] = Field(
+        "unidirectional", description="Ply layup of the composite")
+    transverse_diffusivity_model: Literal["chamis", "shen_springer"] = Field(
+        "chamis", description="Micromechanics model of the composite's transverse diffusivity")
+    wet_tg_scale: Literal["celsius", "fahrenheit", "kelvin"] = Field(
+        "celsius", description="Temperature scale the wet glass transition formula is applied in")
+    matrix_properties: MatrixProperties | None = Field(
+        None, description="Properties replacing the library values of the composite's matrix")
+    fiber_properties: FiberProperties | None = Field(
+        None, description="Properties replacing the library values of the composite's fibre")
+    fit: FitRecord | None = Field(
+        None, description="What fickcam fit found from weight-gain data (written by fickcam fit)")
+    sorption: SorptionSpec | None = Field(
+        None, description="A non-Fickian sorption model of the material")
 
     @model_validator(mode="after")
     def _one_kind(self):

@@ -106,7 +106,7 @@ def surface_in_plane_modulus(material, props):
     material : Material
         The cam's material.
     props : dict of str to array_like
-        Its ply properties (:meth:`Material.ply_properties`), moduli [Pa].
+        Its ply properties (:meth:`fickcam.materials.material.Material.ply_properties`), moduli [Pa].
 
     Returns
     -------

@@ -1,8 +1,10 @@
-"""Figures (PNG) from a result Dataset; one module per kind of plot.
+"""Figures from a result Dataset; one module per kind of plot.
 
-Each module exposes functions ``(ds, outdir, save=save_figure) -> list[Path]``, where
-``save(fig, path)`` writes each figure; matplotlib is
-imported inside them (Agg backend), so ``import fickcam.plotting`` stays light.
+Each module exposes functions ``(ds, outdir=None, save=None) -> Figures``: the figures
+are :class:`matplotlib.figure.Figure` objects made without pyplot (the caller's backend is
+never changed), returned so that a notebook shows them, and written as PNG files to
+``outdir`` when it is given. matplotlib is imported inside them, so ``import
+fickcam.plotting`` stays light.
 """
 from __future__ import annotations
 
@@ -10,9 +12,9 @@ import importlib
 from pathlib import Path
 
 from ..errors import InputError
-from .common import age_colour, age_label, ages, days, drift_panel, figure, finish_plan_view, legend_outside, save_figure, tidy_ticks
+from .common import Figures, age_colour, age_label, ages, days, drift_panel, figure, finish_plan_view, legend_outside, returns_figures, save_figure, tidy_ticks
 
-__all__ = ["KINDS", "available_kinds", "plot", "age_colour", "age_label", "ages", "days", "drift_panel", "figure", "finish_plan_view", "legend_outside", "save_figure", "tidy_ticks"]
+__all__ = ["KINDS", "Figures", "available_kinds", "plot", "returns_figures", "age_colour", "age_label", "ages", "days", "drift_panel", "figure", "finish_plan_view", "legend_outside", "save_figure", "tidy_ticks"]
 
 # kind -> (module, function, variables the kind needs)
 KINDS = {
@@ -39,7 +41,7 @@ def available_kinds(ds) -> list[str]:
     Returns
     -------
     list of str
-        Keys of :data:`KINDS`; ``["sweep"]`` for a sweep result (a ``case`` dimension).
+        Keys of ``KINDS``; ``["sweep"]`` for a sweep result (a ``case`` dimension).
     """
     if "case" in ds.dims:  # a sweep result: one figure set over its varied parameters
         return ["sweep"]
@@ -47,37 +49,41 @@ def available_kinds(ds) -> list[str]:
     return [k for k, (_, _, needs) in KINDS.items() if k != "sweep" and all(n in names for n in needs)]
 
 
-def plot(ds, outdir, kind: str = "all", save=save_figure) -> list[Path]:
-    """Write the figures of ``kind`` (or every kind the result supports) to ``outdir``.
+@returns_figures
+def plot(ds, outdir=None, kind: str = "all", save=None) -> Figures:
+    """The figures of ``kind`` (or of every kind the result supports), written as PNG files
+    to ``outdir`` when it is given.
+
+    In a notebook the returned figures show inline; matplotlib's backend and pyplot's
+    figures are left as they were.
 
     Parameters
     ----------
     ds : xarray.Dataset
         A result (of a run or of a sweep).
-    outdir : str or pathlib.Path
-        The folder the PNG files are written to (created when missing).
+    outdir : str or pathlib.Path, optional
+        The folder the PNG files are written to (created when missing); None: the
+        figures are only returned.
     kind : str
         One of ``KINDS`` ("uptake", "kinematics", "dynamics", "vibration", "linkage",
         "fields", "elastic", "limits", "sweep"), or "all": every kind the result has
         data for.
     save : callable
         ``save(fig, path) -> path`` writes one figure and returns the path written; the
-        default, :func:`save_figure`, writes the file atomically and closes the figure.
-        Another writer (a different format, or one that keeps the figures open to look
-        at or to test) goes here.
+        default, :func:`~fickcam.plotting.common.save_figure`, writes the file atomically. Another writer (a
+        different format) goes here. Used only with ``outdir``.
 
     Returns
     -------
-    list of pathlib.Path
-        The files written.
+    Figures
+        The figures (a list of :class:`matplotlib.figure.Figure`, each labelled with its
+        file's stem), shown inline in a notebook; ``.paths``: the files written.
 
     Raises
     ------
     fickcam.errors.InputError
         When the kind is unknown or the result holds no data for it.
     """
-    outdir = Path(outdir)
-    outdir.mkdir(parents=True, exist_ok=True)
     kinds = available_kinds(ds) if kind == "all" else [kind]
     if kind != "all":
         if kind not in KINDS:
@@ -85,9 +91,7 @@ def plot(ds, outdir, kind: str = "all", save=save_figure) -> list[Path]:
         if kind not in available_kinds(ds):
             raise InputError(f"this result has no data for --kind {kind} "
                              f"(available: {', '.join(available_kinds(ds)) or 'none'})")
-    written: list[Path] = []
     for name in kinds:
         module_name, function, _ = KINDS[name]
         module = importlib.import_module(f".{module_name}", __name__)
-        written += getattr(module, function)(ds, outdir, save=save)
-    return written
+        getattr(module, function)(ds, outdir, save=save)

@@ -10,7 +10,7 @@ import numpy as np
 
 from ..schema import design_name
 from .common import (age_colour, age_label, ages, days, drift_panel, exaggerated_outlines,
-                     figure, legend_outside, length_drift_panel, reference_curve, save_figure)
+                     figure, legend_outside, length_drift_panel, reference_curve, save_figure, Figures, returns_figures)
 
 KINEMATICS = (("follower_displacement", "displacement [mm]", 1e3),
               ("follower_velocity", "velocity [m/s]", 1.0),
@@ -36,7 +36,7 @@ def kinematic_rows(ds):
     Returns
     -------
     tuple
-        (variable, axis label, scale from the stored unit) per panel row: :data:`KINEMATICS`
+        (variable, axis label, scale from the stored unit) per panel row: ``KINEMATICS``
         when the result holds ``follower_displacement``, else :data:`ARM_KINEMATICS`.
     """
     return KINEMATICS if "follower_displacement" in ds else ARM_KINEMATICS
@@ -50,7 +50,7 @@ def angle_panels(plt, ds, rows, title: str, drift=None):
     Parameters
     ----------
     plt : module
-        ``matplotlib.pyplot``.
+        The figure maker (:func:`~fickcam.plotting.common.figure`).
     ds : xarray.Dataset
         The result, over (time, cam_angle) in SI.
     rows : sequence of tuple
@@ -73,7 +73,7 @@ def angle_panels(plt, ds, rows, title: str, drift=None):
     t = days(ds)
     for ax, (name, ylabel, scale) in zip(axes[:, 0], present):
         for k in ages(ds):
-            ax.plot(angle, ds[name].isel(time=k).values * scale, color=age_colour(ds, k), label=age_label(t[k]))
+            ax.plot(angle, ds[name].isel(time=k).values * scale, color=age_colour(ds, k), label=age_label(t[k], t[-1]))
         ax.set_ylabel(ylabel)
         ax.grid(alpha=0.3)
     if with_drift:
@@ -85,7 +85,8 @@ def angle_panels(plt, ds, rows, title: str, drift=None):
     return fig
 
 
-def plot_kinematics(ds, outdir, save=save_figure) -> list[Path]:
+@returns_figures
+def plot_kinematics(ds, outdir=None, save=None) -> Figures:
     """cam_kinematics.png (S/V/A/J vs cam angle at up to four ages), cam_drift.png (change
     of displacement and acceleration since the first age) and, when the profile is
     stored, cam_profile.png (working profile, first vs last age).
@@ -94,19 +95,17 @@ def plot_kinematics(ds, outdir, save=save_figure) -> list[Path]:
     ----------
     ds : xarray.Dataset
         A cam result (``pressure_angle`` over the cam angle).
-    outdir : str or pathlib.Path
-        Where the two or three PNG files go (created if missing).
+    outdir : str or pathlib.Path, optional
+        Where the two or three PNG files go (created if missing). None: the figures are only returned.
     save : callable
-        Writes one figure: ``save(fig, path) -> path`` (default :func:`save_figure`).
+        Writes one figure: ``save(fig, path) -> path`` (default :func:`~fickcam.plotting.common.save_figure`).
 
     Returns
     -------
-    list of pathlib.Path
-        cam_kinematics.png, cam_drift.png and, with a stored profile, cam_profile.png.
+    Figures
+        The figures, shown inline in a notebook; ``.paths``: the files written. cam_kinematics.png, cam_drift.png and, with a stored profile, cam_profile.png.
     """
     plt = figure()
-    outdir = Path(outdir)
-    outdir.mkdir(parents=True, exist_ok=True)
     name = ds.attrs.get("scene_name", "")
     rows = kinematic_rows(ds)
     written = [save(angle_panels(plt, ds, rows, f"{name}: follower motion", drift=rows[0]),
@@ -193,7 +192,7 @@ def _drift(plt, ds, outdir, name, rows, save) -> Path:
         first = ds[var].isel(time=0).values
         for k in ages(ds)[1:]:
             ax.plot(angle, (ds[var].isel(time=k).values - first) * scale, color=age_colour(ds, k),
-                    label=age_label(t[k]))
+                    label=age_label(t[k], t[-1]))
         ax.set_ylabel(f"change in {ylabel}")
         ax.grid(alpha=0.3)
     axes[0].set_title(f"{name}: drift from t = {t[0]:g} d")
@@ -202,7 +201,8 @@ def _drift(plt, ds, outdir, name, rows, save) -> Path:
     return save(fig, outdir / "cam_drift.png")
 
 
-def plot_dynamics(ds, outdir, save=save_figure) -> list[Path]:
+@returns_figures
+def plot_dynamics(ds, outdir=None, save=None) -> Figures:
     """cam_dynamics.png (contact force, torque, stress vs cam angle at up to four ages) and
     cam_jump_stress.png (jump speed and peak Hertz stress vs ageing time).
 
@@ -210,19 +210,17 @@ def plot_dynamics(ds, outdir, save=save_figure) -> list[Path]:
     ----------
     ds : xarray.Dataset
         A cam result with ``contact_force``.
-    outdir : str or pathlib.Path
-        The folder for both figures.
+    outdir : str or pathlib.Path, optional
+        The folder for both figures. None: the figures are only returned.
     save : callable
-        Writes one figure: ``save(fig, path) -> path`` (default :func:`save_figure`).
+        Writes one figure: ``save(fig, path) -> path`` (default :func:`~fickcam.plotting.common.save_figure`).
 
     Returns
     -------
-    list of pathlib.Path
-        The paths of cam_dynamics.png and cam_jump_stress.png.
+    Figures
+        The figures, shown inline in a notebook; ``.paths``: the files written. The paths of cam_dynamics.png and cam_jump_stress.png.
     """
     plt = figure()
-    outdir = Path(outdir)
-    outdir.mkdir(parents=True, exist_ok=True)
     name = ds.attrs.get("scene_name", "")
     written = [save(angle_panels(plt, ds, DYNAMICS, f"{name}: forces", drift=DYNAMICS[-1]),
                     outdir / "cam_dynamics.png")]

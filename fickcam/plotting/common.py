@@ -1,18 +1,153 @@
 """Helpers every plot module shares: the figure factory, ageing times in days, labels,
-ticks, drift panels, legends, the plan-view finisher and the atomic save."""
+ticks, drift panels, legends, the plan-view finisher and the atomic save.
+
+Figures are :class:`matplotlib.figure.Figure` objects made without pyplot: they need no
+display and never change the caller's backend or pyplot's list of open figures.
+"""
 from __future__ import annotations
 
 from pathlib import Path
 
 
-def figure():
-    """A new (figure, pyplot) pair on the Agg backend (no display needed)."""
-    import matplotlib
+class FigureMaker:
+    """Makes figures without pyplot: ``subplots`` as :func:`matplotlib.pyplot.subplots` takes
+    it, on a :class:`matplotlib.figure.Figure` that belongs to no backend (PNG and the other
+    file formats are drawn by matplotlib's own renderers, without a display)."""
 
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    @property
+    def rcParams(self):  # noqa: N802 (pyplot's name, so that plot code reads the same)
+        """matplotlib's settings (colour cycle, fonts)."""
+        import matplotlib
 
-    return plt
+        return matplotlib.rcParams
+
+    @staticmethod
+    def subplots(nrows: int = 1, ncols: int = 1, *, figsize=None, layout=None, **options):
+        """A new figure and its axes, as :func:`matplotlib.pyplot.subplots` returns them.
+
+        Parameters
+        ----------
+        nrows, ncols : int
+            The grid of axes [1].
+        figsize : tuple of float, optional
+            Width and height [inch].
+        layout : str, optional
+            The figure's layout engine (``"constrained"``, ``"tight"``); None: none.
+        **options
+            Passed to :meth:`matplotlib.figure.Figure.subplots` (``sharex``, ``squeeze``,
+            ``gridspec_kw``...).
+
+        Returns
+        -------
+        tuple
+            (:class:`matplotlib.figure.Figure`, axes).
+        """
+        from matplotlib.backends.backend_agg import FigureCanvasAgg
+        from matplotlib.figure import Figure
+
+        fig = Figure(figsize=figsize, layout=layout)
+        FigureCanvasAgg(fig)  # drawn by Agg whatever pyplot's backend is: no display needed
+        return fig, fig.subplots(nrows, ncols, **options)
+
+
+class Figures(list):
+    """The figures a plotting function drew: a list of :class:`matplotlib.figure.Figure`,
+    shown inline in a notebook (one image each), and ``paths``, the files written (empty
+    when no folder was given).
+
+    Parameters
+    ----------
+    figures : iterable of matplotlib.figure.Figure
+        The figures, in order.
+    """
+
+    def __init__(self, figures=()):
+        super().__init__(figures)
+        self.paths: list[Path] = []
+
+    def __repr__(self) -> str:
+        names = ", ".join(fig.get_label() or "figure" for fig in self)
+        return f"<{len(self)} fickcam figure{'s' * (len(self) != 1)}: {names}>"
+
+    def _repr_html_(self) -> str:
+        import base64
+
+        return "".join(f'<img src="data:image/png;base64,{base64.b64encode(png(fig)).decode()}"'
+                       f' alt="{fig.get_label()}"/>' for fig in self)
+
+    def _ipython_display_(self) -> None:
+        from IPython.display import Image, display
+
+        for fig in self:
+            display(Image(data=png(fig), format="png"))
+
+
+def png(fig, dpi: float = 100.0) -> bytes:
+    """``fig`` as PNG bytes, trimmed to what is drawn.
+
+    Parameters
+    ----------
+    fig : matplotlib.figure.Figure
+        The figure.
+    dpi : float
+        Its resolution [dots per inch].
+
+    Returns
+    -------
+    bytes
+        The PNG file's content.
+    """
+    import io
+
+    buffer = io.BytesIO()
+    fig.savefig(buffer, format="png", dpi=dpi, bbox_inches="tight")
+    return buffer.getvalue()
+
+
+def returns_figures(draw):
+    """Make a plotting function ``draw(ds, outdir, *args, save=...)`` return its figures.
+
+    The wrapped function takes ``outdir`` optionally: without it the figures are only
+    returned (a notebook shows them); with it each is also written there by ``save(fig,
+    path)`` (default :func:`save_figure`). It returns :class:`Figures`, whose ``paths`` are
+    the files written. ``draw`` calls ``save(fig, path)`` once per figure, where ``path``
+    names the figure (its stem becomes the figure's label).
+
+    Parameters
+    ----------
+    draw : callable
+        The plotting function.
+
+    Returns
+    -------
+    callable
+        The wrapped function.
+    """
+    import functools
+
+    @functools.wraps(draw)
+    def wrapper(ds, outdir=None, *args, save=None, **kwargs):
+        figures, write = Figures(), save_figure if save is None else save
+
+        def keep(fig, path):
+            tidy_ticks(fig)
+            fig.set_label(Path(path).stem)
+            if outdir is not None:
+                figures.paths.append(write(fig, path))
+            figures.append(fig)
+            return fig
+
+        if outdir is not None:
+            Path(outdir).mkdir(parents=True, exist_ok=True)
+        draw(ds, Path("." if outdir is None else outdir), *args, save=keep, **kwargs)
+        return figures
+
+    return wrapper
+
+
+def figure() -> FigureMaker:
+    """The maker of new figures (:class:`FigureMaker`): no pyplot, no backend change."""
+    return FigureMaker()
 
 
 def days(ds):
@@ -88,23 +223,31 @@ def age_colour(ds, k: int):
     return colormaps["viridis"](0.85 * k / max(ds.sizes["time"] - 1, 1))
 
 
-def age_label(t_days: float) -> str:
-    """Legend text of an ageing time: in days, or hours or minutes below a day.
+def age_label(t_days: float, span_days: float | None = None) -> str:
+    """Legend text of an ageing time, in the run's natural unit and to four digits at most.
 
     Parameters
     ----------
     t_days : float
         The ageing time [d].
+    span_days : float, optional
+        The run's last ageing time [d], so that every label of a run shares one unit (a
+        3-hour history in h, a 60-day one in d, a 5-year one in yr); by default the
+        ageing time itself.
 
     Returns
     -------
     str
-        ``"t = 30 d"``, ``"t = 5 h"`` or ``"t = 20 min"``.
+        ``"t = 30 d"``, ``"t = 2.5 h"`` or ``"t = 20 min"``.
     """
-    if t_days == 0 or t_days >= 1:
-        return f"t = {t_days:g} d"
-    hours = t_days * 24.0
-    return f"t = {hours:.4g} h" if hours >= 1 else f"t = {hours * 60:.4g} min"
+    from ..errors import format_duration
+
+    span = None if span_days is None else float(span_days) * DAY
+    return f"t = {format_duration(float(t_days) * DAY, span)}"
+
+
+#: one day [s]
+DAY = 86400.0
 
 
 def finish_plan_view(ax, title: str) -> None:
@@ -189,7 +332,7 @@ def reference_curve(ds, names) -> tuple[tuple, str]:
 
     if all(design_name(n) in ds for n in names):
         return tuple(ds[design_name(n)].values for n in names), "design"
-    return tuple(ds[n].isel(time=0).values for n in names), age_label(days(ds)[0])
+    return tuple(ds[n].isel(time=0).values for n in names), age_label(days(ds)[0], days(ds)[-1])
 
 
 def exaggerated_outlines(ax, ds, reference, deviations, picks, what: str,
@@ -229,7 +372,7 @@ def exaggerated_outlines(ax, ds, reference, deviations, picks, what: str,
         dx, dy = deviations[k]
         ax.plot(np.append(x + factor * dx, x[0] + factor * dx[0]) * 1e3,
                 np.append(y + factor * dy, y[0] + factor * dy[0]) * 1e3,
-                color=age_colour(ds, k), label=age_label(t[k]))
+                color=age_colour(ds, k), label=age_label(t[k], t[-1]))
     shown = f"deviation from {'the ' * (against == 'design')}{against} ×{factor:g}" if factor > 1 \
         else "to scale"
     finish_plan_view(ax, f"{what}\n({shown})")
@@ -260,7 +403,7 @@ def length_drift_panel(ax, ds, x, lengths: dict, xlabel: str, quantity: str, tit
     scale, units = length_scale(max(float(np.nanmax(np.abs(v))) for v in lengths.values()))
     t = days(ds)
     for k, values in lengths.items():
-        ax.plot(x, values * scale, color=age_colour(ds, k), label=age_label(t[k]))
+        ax.plot(x, values * scale, color=age_colour(ds, k), label=age_label(t[k], t[-1]))
     ax.set_xlabel(xlabel)
     ax.set_ylabel(f"{quantity} [{units}]")
     ax.set_title(title, fontsize=10)
@@ -327,7 +470,7 @@ def drift_panel(ax, x, ds, name: str, picks, scale: float, ylabel: str) -> None:
     shown = []
     for k in picks:
         shown.append(change.isel(time=k).values * scale)
-        ax.plot(x, shown[-1], color=age_colour(ds, k), label=age_label(t[k]))
+        ax.plot(x, shown[-1], color=age_colour(ds, k), label=age_label(t[k], t[-1]))
     ax.axhline(0.0, color="k", lw=0.8, ls="--")
     ax.set_ylabel(ylabel)
     ax.grid(alpha=0.3)
@@ -366,7 +509,7 @@ def legend_outside(ax, **kwargs) -> None:
 
 
 def save_figure(fig, path: Path) -> Path:
-    """Write ``fig`` to ``path`` through a temporary file and a rename, and close it.
+    """Write ``fig`` to ``path`` through a temporary file and a rename.
 
     Parameters
     ----------
@@ -386,7 +529,4 @@ def save_figure(fig, path: Path) -> Path:
     with replaced_atomically(path) as tmp:
         fig.savefig(tmp, format=Path(path).suffix.lstrip(".").lower() or "png", dpi=120,
                     bbox_inches="tight")
-    import matplotlib.pyplot as plt
-
-    plt.close(fig)
     return path

@@ -7,7 +7,7 @@ from pathlib import Path
 
 import numpy as np
 
-from .common import days, figure, save_figure
+from .common import days, figure, Figures, returns_figures, save_figure
 from .cam import angle_panels
 from .fields import cell_triangulation
 
@@ -16,7 +16,8 @@ CONTACT = (("elastic_deflection", "deflection [µm]", 1e6),
            ("elastic_stress_compressive", "largest compression [MPa]", 1e-6))
 
 
-def plot(ds, outdir, save=save_figure) -> list[Path]:
+@returns_figures
+def plot(ds, outdir=None, save=None) -> Figures:
     """elastic_contact.png (when the cam is elastic), swelling_stress.png and
     swelling_field_<part>.png (when swelling stresses are stored).
 
@@ -24,19 +25,17 @@ def plot(ds, outdir, save=save_figure) -> list[Path]:
     ----------
     ds : xarray.Dataset
         A result with ``failure_index`` (an elastic scene).
-    outdir : str or pathlib.Path
-        Folder of the elastic figures.
+    outdir : str or pathlib.Path, optional
+        Folder of the elastic figures. None: the figures are only returned.
     save : callable
-        Writes one figure: ``save(fig, path) -> path`` (default :func:`save_figure`).
+        Writes one figure: ``save(fig, path) -> path`` (default :func:`~fickcam.plotting.common.save_figure`).
 
     Returns
     -------
-    list of pathlib.Path
-        Every figure drawn; none when nothing elastic is stored.
+    Figures
+        The figures, shown inline in a notebook; ``.paths``: the files written. Every figure drawn; none when nothing elastic is stored.
     """
     plt = figure()
-    outdir = Path(outdir)
-    outdir.mkdir(parents=True, exist_ok=True)
     name = ds.attrs.get("scene_name", "")
     written = []
     if "elastic_deflection" in ds:

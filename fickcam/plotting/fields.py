@@ -7,27 +7,28 @@ from pathlib import Path
 
 import numpy as np
 
-from .common import ages, days, figure, save_figure
+from .common import age_label, ages, days, figure, Figures, returns_figures, save_figure
 
 PANELS = 4
 
 
-def plot(ds, outdir, save=save_figure) -> list[Path]:
+@returns_figures
+def plot(ds, outdir=None, save=None) -> Figures:
     """One PNG per part with stored fields: up to four ageing times side by side.
 
     Parameters
     ----------
     ds : xarray.Dataset
         A result holding the ``moisture`` fields of its parts.
-    outdir : str or pathlib.Path
-        One PNG per part goes here.
+    outdir : str or pathlib.Path, optional
+        One PNG per part goes here. None: the figures are only returned.
     save : callable
-        Writes one figure: ``save(fig, path) -> path`` (default :func:`save_figure`).
+        Writes one figure: ``save(fig, path) -> path`` (default :func:`~fickcam.plotting.common.save_figure`).
 
     Returns
     -------
-    list of pathlib.Path
-        One path per part with a stored field.
+    Figures
+        The figures, shown inline in a notebook; ``.paths``: the files written. One path per part with a stored field.
     """
     written = []
     for part in ds["part"].values:
@@ -68,7 +69,7 @@ def _plot_part(ds, part, field, coords, outdir: Path, save) -> Path:
         order = np.argsort(coords[axis][valid])
         for k in indices:
             ax.plot(coords[axis][valid][order] * 1e3, field[k, valid][order],
-                    label=f"{t[k]:g} d")
+                    label=age_label(t[k], t[-1]))
         ax.set_xlabel(f"{axis} [mm]")
         ax.set_ylabel("moisture [wt %]")
         ax.legend(fontsize=8)
@@ -81,7 +82,7 @@ def _plot_part(ds, part, field, coords, outdir: Path, save) -> Path:
         for ax, k in zip(panels[0], indices):
             image = ax.tripcolor(triangulation, field[k, valid], shading="gouraud", vmin=lo, vmax=hi)
             ax.set_aspect("equal")
-            ax.set_title(f"{t[k]:g} d", fontsize=9)
+            ax.set_title(age_label(t[k], t[-1]), fontsize=9)
             ax.set_xlabel(f"{first} [mm]")
         panels[0][0].set_ylabel(f"{second} [mm]")
         fig.colorbar(image, ax=panels[0].tolist(), label="moisture [wt %]")

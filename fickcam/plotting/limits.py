@@ -6,7 +6,7 @@ from pathlib import Path
 
 from ..limits import stored_limits, worst_value
 from ..query import drift
-from .common import age_colour, age_label, ages, days, figure, save_figure
+from .common import age_colour, age_label, ages, days, figure, Figures, returns_figures, save_figure
 
 ANGLES = ("cam_angle", "crank_angle")
 
@@ -75,7 +75,7 @@ def _over_cycle(ax, ds, limit, dim: str) -> None:
         if values.ndim > 1:  # e.g. joint forces: the worst over the other dimension
             values = values.max([d for d in values.dims if d != dim])
         ax.plot(ds[dim].values, values.values, color=age_colour(ds, k),
-                label=age_label(days(ds)[k]))
+                label=age_label(days(ds)[k], days(ds)[-1]))
     if deviation:
         band = limit.deviation * scale
         ax.fill_between(ds[dim].values, -band, band, color="g", alpha=0.12,
@@ -103,22 +103,23 @@ def _wrapped(label: str, width: int = 34) -> str:
     return "\n".join(textwrap.wrap(label, width))
 
 
-def plot(ds, outdir, save=save_figure) -> list[Path]:
+@returns_figures
+def plot(ds, outdir=None, save=None) -> Figures:
     """limits.png: one row per limit, over ageing time and (angle variables) over the cycle.
 
     Parameters
     ----------
     ds : xarray.Dataset
         A result of a scene with ``limits`` (its ``limit_ratio``).
-    outdir : str or pathlib.Path
-        Where limits.png is saved.
+    outdir : str or pathlib.Path, optional
+        Where limits.png is saved. None: the figures are only returned.
     save : callable
-        Writes one figure: ``save(fig, path) -> path`` (default :func:`save_figure`).
+        Writes one figure: ``save(fig, path) -> path`` (default :func:`~fickcam.plotting.common.save_figure`).
 
     Returns
     -------
-    list of pathlib.Path
-        [limits.png], or no path without stored limits.
+    Figures
+        The figures, shown inline in a notebook; ``.paths``: the files written. [limits.png], or no path without stored limits.
     """
     plt = figure()
     limits = list(stored_limits(ds).values())

@@ -9,7 +9,7 @@ import numpy as np
 
 from ..schema import design_name
 from .common import (age_colour, age_label, ages, days, drift_panel, exaggerated_outlines,
-                     figure, legend_outside, length_drift_panel, reference_curve, save_figure)
+                     figure, legend_outside, length_drift_panel, reference_curve, save_figure, Figures, returns_figures)
 
 
 def _wrapped_degrees(x):
@@ -22,12 +22,13 @@ def _over_crank(ax, ds, name, picks, t, ylabel, transform=None, style="-", prefi
     for k in picks:
         y = ds[name].isel(time=k).values
         ax.plot(crank, transform(y) if transform else y, style, color=age_colour(ds, k),
-                label=prefix + age_label(t[k]))
+                label=prefix + age_label(t[k], t[-1]))
     ax.set_ylabel(ylabel)
     ax.grid(alpha=0.3)
 
 
-def plot(ds, outdir, save=save_figure) -> list[Path]:
+@returns_figures
+def plot(ds, outdir=None, save=None) -> Figures:
     """Three figures: linkage_coupler_curve.png, linkage_rocker.png (angle and drift
     vs crank angle), linkage_transmission_torque.png.
 
@@ -35,19 +36,17 @@ def plot(ds, outdir, save=save_figure) -> list[Path]:
     ----------
     ds : xarray.Dataset
         A four-bar result (``rocker_angle`` over the crank angle).
-    outdir : str or pathlib.Path
-        Output folder of the three linkage figures.
+    outdir : str or pathlib.Path, optional
+        Output folder of the three linkage figures. None: the figures are only returned.
     save : callable
-        Writes one figure: ``save(fig, path) -> path`` (default :func:`save_figure`).
+        Writes one figure: ``save(fig, path) -> path`` (default :func:`~fickcam.plotting.common.save_figure`).
 
     Returns
     -------
-    list of pathlib.Path
-        Coupler curve, rocker and transmission-torque figures, in that order.
+    Figures
+        The figures, shown inline in a notebook; ``.paths``: the files written. Coupler curve, rocker and transmission-torque figures, in that order.
     """
     plt = figure()
-    outdir = Path(outdir)
-    outdir.mkdir(parents=True, exist_ok=True)
     t = days(ds)
     picks = ages(ds)
     name = ds.attrs.get("scene_name", "")

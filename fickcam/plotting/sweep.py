@@ -19,7 +19,7 @@ from pathlib import Path
 
 import numpy as np
 
-from .common import days, figure, legend_outside, save_figure
+from .common import days, figure, legend_outside, Figures, returns_figures, save_figure
 
 QUANTILES = (0.05, 0.25, 0.5, 0.75, 0.95)
 
@@ -104,7 +104,12 @@ def _shown(ds, name: str) -> tuple[np.ndarray, str]:
 def _label(ds, name: str) -> str:
     _, units = _shown(ds, name)
     path = ds[name].attrs.get("dotted_path", name)
-    return path if units in ("1", "") else f"{path} [{units}]"
+    return path if units in ("1", "") else f"{path} [{_degrees(units)}]"
+
+
+def _degrees(units: str) -> str:
+    """A unit as a reader writes it on a figure: degC as °C."""
+    return units.replace("degC", "°C")
 
 
 def _value_label(ds, name: str, value) -> str:
@@ -113,7 +118,7 @@ def _value_label(ds, name: str, value) -> str:
     short = ds[name].attrs.get("dotted_path", name).split(".")[-1]
     _, units = _shown(ds, name)
     if isinstance(value, float):
-        return f"{short} = {value:g}" + ("" if units in ("1", "") else f" {units}")
+        return f"{short} = {value:g}" + ("" if units in ("1", "") else f" {_degrees(units)}")
     return _sites(ds, name).get(str(value)) or f"{short} = {value}"
 
 
@@ -144,7 +149,8 @@ def _axis_values(values: np.ndarray, names: dict | None = None):
     return np.asarray([labels.index(v) for v in values], float), ticks
 
 
-def plot_grid(ds, outdir: Path, age_index: int, save=save_figure) -> list[Path]:
+@returns_figures
+def plot_grid(ds, outdir=None, age_index: int = -1, save=None) -> Figures:
     """Each output at one ageing time against the first varied value.
 
     One line per combination of the other varied values.
@@ -153,7 +159,7 @@ def plot_grid(ds, outdir: Path, age_index: int, save=save_figure) -> list[Path]:
     ----------
     ds : xarray.Dataset
         A grid sweep's result.
-    outdir : pathlib.Path
+    outdir : pathlib.Path, optional
         The folder the figures go to (``sweep_<output>.png``).
     age_index : int
         The ageing time shown, an index along ``time``.
@@ -162,8 +168,8 @@ def plot_grid(ds, outdir: Path, age_index: int, save=save_figure) -> list[Path]:
 
     Returns
     -------
-    list of pathlib.Path
-        The files written.
+    Figures
+        The figures, shown inline in a notebook; ``.paths``: the files written.
     """
     plt = figure()
     names = parameters(ds)
@@ -197,7 +203,8 @@ def plot_grid(ds, outdir: Path, age_index: int, save=save_figure) -> list[Path]:
     return written
 
 
-def plot_histories(ds, outdir: Path, save=save_figure) -> list[Path]:
+@returns_figures
+def plot_histories(ds, outdir=None, save=None) -> Figures:
     """Each output over ageing time, one line per case labelled by its values.
 
     For a grid over text values (``environment.history_file``: weather files of several
@@ -212,8 +219,8 @@ def plot_histories(ds, outdir: Path, save=save_figure) -> list[Path]:
 
     Returns
     -------
-    list of pathlib.Path
-        The files written.
+    Figures
+        The figures, shown inline in a notebook; ``.paths``: the files written.
     """
     plt = figure()
     names = parameters(ds)
@@ -242,7 +249,8 @@ def _has_text_values(ds) -> bool:
     return any(ds[name].values.dtype.kind not in "fiub" for name in parameters(ds))
 
 
-def plot_monte_carlo(ds, outdir: Path, age_index: int, save=save_figure) -> list[Path]:
+@returns_figures
+def plot_monte_carlo(ds, outdir=None, age_index: int = -1, save=None) -> Figures:
     """Per output: its quantile fan over ageing time and its scatter against the varied values.
 
     The fan shows the 5, 25, 50, 75 and 95 % quantiles.
@@ -258,8 +266,8 @@ def plot_monte_carlo(ds, outdir: Path, age_index: int, save=save_figure) -> list
 
     Returns
     -------
-    list of pathlib.Path
-        The files written.
+    Figures
+        The figures, shown inline in a notebook; ``.paths``: the files written.
     """
     plt = figure()
     names = parameters(ds)[:4]
@@ -297,7 +305,8 @@ def plot_monte_carlo(ds, outdir: Path, age_index: int, save=save_figure) -> list
     return written
 
 
-def plot_out_of_spec(ds, outdir: Path, save=save_figure) -> list[Path]:
+@returns_figures
+def plot_out_of_spec(ds, outdir=None, save=None) -> Figures:
     """The fraction of cases out of spec by each ageing time, per limit, with its 95 % interval.
 
     The interval is Wilson's score interval.
@@ -314,8 +323,8 @@ def plot_out_of_spec(ds, outdir: Path, save=save_figure) -> list[Path]:
 
     Returns
     -------
-    list of pathlib.Path
-        The file written.
+    Figures
+        The figures, shown inline in a notebook; ``.paths``: the files written. The file written.
 
     References
     ----------
@@ -349,33 +358,33 @@ def plot_out_of_spec(ds, outdir: Path, save=save_figure) -> list[Path]:
     return [save(fig, outdir / "sweep_out_of_spec.png")]
 
 
-def plot(ds, outdir, time_index: int = -1, save=save_figure) -> list[Path]:
+@returns_figures
+def plot(ds, outdir=None, time_index: int = -1, save=None) -> Figures:
     """Figures of a sweep result; outputs are taken at ageing time ``time_index`` (last).
 
     Parameters
     ----------
     ds : xarray.Dataset
         A result of a sweep (a ``case`` dimension).
-    outdir : str or pathlib.Path
-        The sweep figures are written here.
+    outdir : str or pathlib.Path, optional
+        The sweep figures are written here. None: the figures are only returned.
     time_index : int
         The ageing time [-] (an index into ``time``) the outputs are taken at; -1: the last.
     save : callable
-        Writes one figure: ``save(fig, path) -> path`` (default :func:`save_figure`).
+        Writes one figure: ``save(fig, path) -> path`` (default :func:`~fickcam.plotting.common.save_figure`).
 
     Returns
     -------
-    list of pathlib.Path
-        The figures drawn; none without varied parameters or ageing times.
+    Figures
+        The figures, shown inline in a notebook; ``.paths``: the files written. The figures drawn; none without varied parameters or ageing times.
 
     """
     outdir = Path(outdir)
     if not parameters(ds) or "time" not in ds.dims:
         return []
-    outdir.mkdir(parents=True, exist_ok=True)
     age_index = int(np.arange(ds.sizes["time"])[time_index])
-    written = plot_out_of_spec(ds, outdir, save) if "fraction_out_of_spec" in ds else []
+    written = plot_out_of_spec(ds, outdir, save=save) if "fraction_out_of_spec" in ds else []
     if ds.attrs.get("sweep_kind") == "monte_carlo":
-        return written + plot_monte_carlo(ds, outdir, age_index, save)
-    written += plot_grid(ds, outdir, age_index, save)
-    return written + (plot_histories(ds, outdir, save) if _has_text_values(ds) else [])
+        return written + plot_monte_carlo(ds, outdir, age_index, save=save)
+    written += plot_grid(ds, outdir, age_index, save=save)
+    return written + (plot_histories(ds, outdir, save=save) if _has_text_values(ds) else [])

@@ -5,33 +5,32 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from .common import age_colour, age_label, ages, days, figure, legend_outside, save_figure
+from .common import age_colour, age_label, ages, days, figure, legend_outside, Figures, returns_figures, save_figure
 
 ANGLE_PANELS = (("follower_displacement", "dynamic_follower_displacement", "displacement [mm]", 1e3),
                 (None, "dynamic_displacement_error", "dynamic − kinematic [mm]", 1e3),
                 ("contact_force", "dynamic_contact_force", "contact force [N]", 1.0))
 
 
-def plot(ds, outdir, save=save_figure) -> list[Path]:
+@returns_figures
+def plot(ds, outdir=None, save=None) -> Figures:
     """cam_vibration.png and cam_vibration_ageing.png.
 
     Parameters
     ----------
     ds : xarray.Dataset
         A cam result with the vibrating train's ``dynamic_contact_force``.
-    outdir : str or pathlib.Path
-        Folder for the vibration PNGs.
+    outdir : str or pathlib.Path, optional
+        Folder for the vibration PNGs. None: the figures are only returned.
     save : callable
-        Writes one figure: ``save(fig, path) -> path`` (default :func:`save_figure`).
+        Writes one figure: ``save(fig, path) -> path`` (default :func:`~fickcam.plotting.common.save_figure`).
 
     Returns
     -------
-    list of pathlib.Path
-        cam_vibration.png and cam_vibration_ageing.png.
+    Figures
+        The figures, shown inline in a notebook; ``.paths``: the files written. cam_vibration.png and cam_vibration_ageing.png.
     """
     plt = figure()
-    outdir = Path(outdir)
-    outdir.mkdir(parents=True, exist_ok=True)
     name = ds.attrs.get("scene_name", "")
     return [_over_angle(plt, ds, outdir, name, save), _over_ageing(plt, ds, outdir, name, save)]
 
@@ -45,7 +44,7 @@ def _over_angle(plt, ds, outdir, name, save) -> Path:
             color = age_colour(ds, k)
             if rigid is not None:
                 ax.plot(angle, ds[rigid].isel(time=k).values * scale, "--", color=color, lw=0.9)
-            ax.plot(angle, ds[elastic].isel(time=k).values * scale, color=color, label=age_label(t[k]))
+            ax.plot(angle, ds[elastic].isel(time=k).values * scale, color=color, label=age_label(t[k], t[-1]))
         ax.set_ylabel(ylabel)
         ax.grid(alpha=0.3)
     axes[2].axhline(0.0, color="k", lw=0.6)

@@ -5,15 +5,16 @@ from pathlib import Path
 
 import numpy as np
 
-from .common import days, figure, legend_outside, save_figure
+from .common import days, figure, legend_outside, Figures, returns_figures, save_figure
 
 #: names of the climate summary's interval lengths [s]
 INTERVALS = {3600.0: "hourly", 86400.0: "daily", 7 * 86400.0: "weekly", 30 * 86400.0: "30-day"}
-CLIMATE = (("temperature", "temperature [degC]", -273.15, "C3"),
+CLIMATE = (("temperature", "temperature [°C]", -273.15, "C3"),
            ("relative_humidity", "relative humidity [%]", 0.0, "C0"))
 
 
-def plot(ds, outdir, save=save_figure) -> list[Path]:
+@returns_figures
+def plot(ds, outdir=None, save=None) -> Figures:
     """uptake.png: temperature, relative humidity (each on its own axes, so neither hides
     the other) and the mean and surface moisture of each part over ageing time.
 
@@ -21,15 +22,15 @@ def plot(ds, outdir, save=save_figure) -> list[Path]:
     ----------
     ds : xarray.Dataset
         Any run's result (``moisture_content`` of each part).
-    outdir : str or pathlib.Path
-        uptake.png is written here.
+    outdir : str or pathlib.Path, optional
+        uptake.png is written here. None: the figures are only returned.
     save : callable
-        Writes one figure: ``save(fig, path) -> path`` (default :func:`save_figure`).
+        Writes one figure: ``save(fig, path) -> path`` (default :func:`~fickcam.plotting.common.save_figure`).
 
     Returns
     -------
-    list of pathlib.Path
-        A one-element list: uptake.png.
+    Figures
+        The figures, shown inline in a notebook; ``.paths``: the files written. A one-element list: uptake.png.
     """
     plt = figure()
     fig, (t_ax, rh_ax, moist_ax) = plt.subplots(

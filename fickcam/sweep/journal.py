@@ -23,6 +23,9 @@ from pathlib import Path
 
 import numpy as np
 
+from ..errors import WriteError
+from ..store import byte_size
+
 log = logging.getLogger(__name__)
 
 MAGIC = b"FKJ1"
@@ -233,8 +236,15 @@ class Journal:
 
     def append(self, payload: bytes) -> None:
         """Add one case (one write of header and payload; flushed to the OS at once)."""
-        with open(self.path, "ab") as handle:
-            handle.write(HEAD.pack(MAGIC, len(payload), zlib.crc32(payload)) + payload)
+        frame = HEAD.pack(MAGIC, len(payload), zlib.crc32(payload)) + payload
+        try:
+            with open(self.path, "ab") as handle:
+                handle.write(frame)
+        except OSError as exc:  # a torn frame is cut off when the sweep resumes
+            reason = (exc.strerror or str(exc)).lower()
+            raise WriteError(f"{self.path}: cannot add a finished case ({reason}): it needs "
+                             f"{byte_size(len(frame))} more; the cases written so far are "
+                             f"kept, and the same command resumes from them") from None
 
     def payload(self, entry: Entry) -> bytes:
         with open(self.path, "rb") as handle:

@@ -156,7 +156,7 @@ class _Collector:
 
 
 def run_here(sweep: Sweep, folder: WorkFolder, indices, *, progress: bool = False,
-             done: int = 0) -> dict[int, dict]:
+             done: int = 0, cache=None) -> dict[int, dict]:
     """Run the cases ``indices`` one after the other in this process (no dask).
 
     One ``diffusion.RunCache`` serves every case: meshes, step responses and tables carry
@@ -174,15 +174,17 @@ def run_here(sweep: Sweep, folder: WorkFolder, indices, *, progress: bool = Fals
         Show a progress bar over the cases.
     done : int
         Cases already finished, where the bar starts [1].
+    cache : fickcam.diffusion.RunCache, optional
+        The cache the cases share (the base scene's plans already in it); None: a fresh one.
 
     Returns
     -------
     dict of int to dict
         Case index -> its record (:func:`fickcam.sweep.case.run_case`).
     """
-    from ..diffusion import RunCache
+    from ..diffusion import run_cache
 
-    cache = RunCache()
+    cache = run_cache(cache)
     collector = _Collector(sweep, folder, progress, done)
     try:
         for index in indices:
@@ -369,21 +371,31 @@ def run_sweep(sweep_path, output, workers: int | None = None, scheduler: str | N
     fickcam.extras.MissingExtra
         When workers or a scheduler are asked for without dask.distributed installed.
     """
-    from ..store import save
+    from ..diffusion import run_cache
+    from ..scene import load_scene
+    from ..simulate import plan_parts
+    from ..store import remove_stale_temporaries, save
 
     started = time.perf_counter()
     if scheduler or (workers or 1) > 1:
         require_distributed()  # before the sweep file is read
     sweep = load_sweep(sweep_path)
     here = in_process(workers, scheduler, len(sweep.cases))
+    # the base scene as `fickcam check` takes it (its parts planned) before any case; a
+    # case's own refusals come before its solves (``fickcam.run`` plans first)
+    cache = run_cache(None)
+    plan_parts(load_scene(sweep.base_file), cache=cache)
     output = Path(output)
     folder = WorkFolder.next_to(output)
     records = folder.open_for(sweep.identity, len(sweep.cases))
+    for stale in remove_stale_temporaries(output):  # a run killed while it wrote the result
+        log.info("removed %s, left by an interrupted write of %s", stale, output)
     todo = [c.index for c in sweep.cases if c.index not in records]
     if records:
         log.info("resuming: %d of %d case(s) already finished", len(records), len(sweep.cases))
     if todo and (here or in_process(workers, scheduler, len(todo))):
-        records.update(run_here(sweep, folder, todo, progress=progress, done=len(records)))
+        records.update(run_here(sweep, folder, todo, progress=progress, done=len(records),
+                                cache=cache))
     elif todo:
         with dask_client(workers, scheduler, len(todo)) as client:
             records.update(compute_cases(sweep, folder, todo, client, progress=progress,

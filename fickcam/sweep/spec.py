@@ -356,7 +356,7 @@ def infer_dimension(text: str, si_value: float) -> str | None:
     Returns
     -------
     str or None
-        The dimension (a key of :data:`fickcam.unit_parsing.SI_UNITS`), or None when none
+        The dimension (a key of ``fickcam.unit_parsing.SI_UNITS``), or None when none
         matches.
     """
     from ..unit_parsing import to_si
@@ -399,7 +399,7 @@ class Parameter:
     keys : tuple of str or int
         Its keys (:func:`split_path`).
     dimension : str or None
-        A dimension of :data:`fickcam.unit_parsing.SI_UNITS`, or None for bare numbers and
+        A dimension of ``fickcam.unit_parsing.SI_UNITS``, or None for bare numbers and
         text.
     """
 

@@ -8,7 +8,6 @@ from dataclasses import dataclass
 from functools import cached_property
 
 import numpy as np
-from scipy.interpolate import PchipInterpolator
 
 from ..planform.short_time import weighted
 from . import march as marching
@@ -55,16 +54,18 @@ class StepResponse:
         return out
 
 
-    def _spline(self, values: np.ndarray) -> PchipInterpolator:
+    def _spline(self, values: np.ndarray):
+        from scipy.interpolate import PchipInterpolator
+
         return PchipInterpolator(np.log(self.nodes[1:]), values[1:], axis=0, extrapolate=True)
 
     @cached_property
-    def _mean_spline(self) -> PchipInterpolator:
+    def _mean_spline(self):
         """The mean's interpolant, built once (the response is read at every solve's times)."""
         return self._spline(self.mean)
 
     @cached_property
-    def _layer_spline(self) -> PchipInterpolator:
+    def _layer_spline(self):
         return self._spline(self.layer)
 
 
