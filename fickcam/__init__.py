@@ -102,7 +102,8 @@ def compensate(scene, *, at=None, over=None, accuracy: float | None = None,
         The design, as :func:`load_scene` takes it.
     at : str or float, optional
         The ageing time [s] at which the mechanism must have its design geometry: a
-        duration with units ("60 d") or seconds as a number.
+        duration with units ("60 d") or seconds as a number (a bare number is judged as a
+        scene's ageing time is: ``45`` is refused with '45 d' suggested).
     over : tuple of (str or float), optional
         The window (T1, T2) [s] over which the largest deviation is made smallest
         (durations with units, or seconds); exactly one of ``at`` and ``over``.

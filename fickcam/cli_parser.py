@@ -62,7 +62,7 @@ def _scene_commands(sub) -> None:
                    "fickcam run scene.yaml --accuracy 1e-4 --quiet")
     run.add_argument("scene", help="scene file (YAML)")
     run.add_argument("-o", "--output", help="result file (default: the scene's outputs.file)")
-    run.add_argument("--accuracy", type=float, help="override diffusion.accuracy")
+    run.add_argument("--accuracy", help="override diffusion.accuracy (in (0, 0.1])")
 
     check = _command(sub, "check", "validate a scene and print the plan",
                      "Validate a scene without running it and print the plan the run uses: "
@@ -80,15 +80,20 @@ def _result_commands(sub) -> None:
                      "shown beside each case.",
                      'fickcam query outputs/cam.h5 lift --time "45 d"',
                      "fickcam query outputs/cam.h5 lift --drift design",
-                     "fickcam query outputs/cam.h5 contact_force --time 30d --cam-angle 120 --format json",
+                     'fickcam query outputs/cam.h5 contact_force --time 30d --cam-angle "120 deg" '
+                     '--format json',
                      "fickcam query outputs/cam.h5 lift --units um --format csv > lift.csv")
     query.add_argument("result", help="result file (.h5)")
     query.add_argument("variable", help="a variable name (fickcam schema lists them)")
-    query.add_argument("--time", help='ageing time with its unit, e.g. "30 d", "6 months" (a bare number is refused)')
+    query.add_argument("--time", help='ageing time with its unit, e.g. "30 d", "6 months" (a bare '
+                       'number is seconds, as in a scene, and refused when it is almost '
+                       'certainly a slip: 45 -> did you mean "45 d"?)')
     query.add_argument("--part")
     query.add_argument("--link")
-    query.add_argument("--cam-angle", type=float, help="degrees")
-    query.add_argument("--crank-angle", type=float, help="degrees")
+    for mechanism, example in (("cam", "120 deg"), ("crank", "90 deg")):
+        query.add_argument(f"--{mechanism}-angle", metavar="ANGLE",
+                           help=f'{mechanism} angle with its unit, e.g. "{example}" (a bare '
+                                "number is radians, as in a scene)")
     query.add_argument("--format", choices=("table", "csv", "json"), default="table")
     query.add_argument("--units", help="unit to show the values in, e.g. um, MPa, degF (default: "
                                        "the variable's display unit, as in the run summary)")
@@ -165,9 +170,12 @@ def _design_commands(sub) -> None:
         'fickcam compensate configs/fourbar_r914_humid.yaml --over "30 d" "365 d" --plot band.png')
     compensate.add_argument("scene")
     when = compensate.add_mutually_exclusive_group(required=True)
-    when.add_argument("--at", metavar="TIME", help='ageing time with units, e.g. "60 d"')
+    when.add_argument("--at", metavar="TIME", help='ageing time with units, e.g. "60 d" (a bare '
+                      'number is seconds, as in a scene, and refused when it is almost certainly '
+                      'a slip: 45 -> did you mean "45 d"?)')
     when.add_argument("--over", nargs=2, metavar=("T1", "T2"),
-                      help="a service window: minimise the largest deviation over it")
+                      help='a service window, e.g. 0 "60 d": minimise the largest deviation over '
+                           "it (times as --at; 0 needs no unit)")
     compensate.add_argument("--keep-limits", action="store_true",
                             help="with --at: if that breaks one of the scene's limits between "
                                  "delivery and the end of the history, make the part for that "
@@ -181,7 +189,7 @@ def _design_commands(sub) -> None:
     compensate.add_argument("--profile", metavar="PATH",
                             help="also write the made cam's dry working profile for manufacture, "
                                  "in mm: PATH.csv, or PATH.dxf (needs the dxf extra)")
-    compensate.add_argument("--accuracy", type=float, help="override diffusion.accuracy")
+    compensate.add_argument("--accuracy", help="override diffusion.accuracy (in (0, 0.1])")
     compensate.add_argument("--plot", metavar="PNG", help="also draw the drift of every "
                             "deviation limit against its band, as designed and compensated")
 
@@ -202,7 +210,9 @@ def _design_commands(sub) -> None:
     fit.add_argument("data", help="weight-gain CSV (one row per weighing, units in the header)")
     fit.add_argument("--matrix", required=True, help="library matrix (resin) of the coupons")
     fit.add_argument("--fiber", help="library fibre of composite coupons")
-    fit.add_argument("--fiber-volume-fraction", type=float, help="fibre volume fraction of the coupons")
+    fit.add_argument("--fiber-volume-fraction",
+                     help="fibre volume fraction of the coupons, e.g. 0.6 (a fraction, as in a "
+                          "scene)")
     fit.add_argument("--name", help="material name in the YAML (default: the CSV's stem)")
     fit.add_argument("-o", "--output", required=True, help="YAML file with the materials: block")
     fit.add_argument("--plot", help="PNG of the data, fitted curves and residuals")
@@ -216,9 +226,12 @@ def _design_commands(sub) -> None:
                     "fickcam size configs/singh2017_cam.yaml",
                     "fickcam size scene.yaml --pressure-angle 25deg --radius-of-curvature 5mm")
     size.add_argument("scene")
-    size.add_argument("--pressure-angle", default="30 deg", help="largest |pressure angle| (30 deg)")
+    size.add_argument("--pressure-angle", default="30 deg",
+                      help="largest |pressure angle| with its unit (30 deg; a bare number is "
+                           "radians, as in a scene)")
     size.add_argument("--radius-of-curvature", default="0 mm",
-                      help="smallest convex working radius of curvature (0: no cusp or undercut)")
+                      help="smallest convex working radius of curvature with its unit (0: no "
+                           "cusp or undercut; a bare number is metres, as in a scene)")
 
 
 def _sweep_command(sub) -> None:

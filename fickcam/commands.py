@@ -19,19 +19,37 @@ def _cmd_run(args) -> int:
     from .simulate import run
     from .store import save
 
+    accuracy = scene_accuracy(args.accuracy)
     scene = load_scene(args.scene)
     if args.whole_process:
         gc.freeze()  # the modules loaded so far live to the end: the run's collections skip them
-    if args.accuracy is not None and not (0 < args.accuracy <= 0.1):
-        raise InputError("--accuracy must lie in (0, 0.1]")
     output = Path(args.output) if args.output else default_output(scene)
-    ds = run(scene, accuracy=args.accuracy, progress=not args.quiet)
+    ds = run(scene, accuracy=accuracy, progress=not args.quiet)
     save(ds, output)
     if args.quiet < 2:
         print(summary(ds, notices=False))  # the run has logged them on stderr
         print(notices_line(ds.attrs.get("notices", []), args.quiet))
         print(f"wrote {output}")
     return 0
+
+
+def scene_accuracy(text) -> float | None:
+    """``--accuracy`` read as the scene's ``diffusion.accuracy`` (a fraction in (0, 0.1]).
+
+    Parameters
+    ----------
+    text : str or None
+        The option as given; None when it was not.
+
+    Returns
+    -------
+    float or None
+        The relative accuracy [-]; None: the scene's.
+    """
+    from .cli_values import field_value
+    from .scene import DiffusionSection
+
+    return field_value("--accuracy", text, DiffusionSection, "accuracy")
 
 
 def notices_line(notices, quiet: int) -> str:
@@ -100,14 +118,19 @@ def _cmd_size(args) -> int:
     from .cam.sizing import Limits, aged_check, smallest_base_circle
     from .scene import load_scene
     from .simulate import plan_parts, run
-    from .unit_parsing import to_si
+    from .cli_values import option_value
+    from .plausibility import cam_length_reading
+    from .units import NonNegativeLength, PositiveAngle
 
     scene = load_scene(args.scene)
     if scene.model.cam is None:
         raise InputError("the scene has no cam: section to size")
     plan_parts(scene)  # every refusal of `fickcam check` before the search and the run
     try:
-        limits = Limits(to_si(args.pressure_angle, "angle"), to_si(args.radius_of_curvature, "length"))
+        limits = Limits(option_value("--pressure-angle", args.pressure_angle, PositiveAngle),
+                        option_value("--radius-of-curvature", args.radius_of_curvature,
+                                     NonNegativeLength, cam_length_reading(
+                                         "smallest radius of curvature", scene.document.data)))
         sizes = smallest_base_circle(design_from_scene(scene.model.cam), limits)
     except ValueError as exc:
         raise InputError(str(exc)) from None
@@ -125,13 +148,16 @@ def _cmd_size(args) -> int:
 
 
 def _cmd_query(args) -> int:
+    from .cli_values import angle_degrees
     from .reporting import limit_line
     from .query import format_result, select, time_units
     from .store import open_result
 
     ds = open_result(args.result)
     array = select(ds, args.variable, time=args.time, part=args.part, link=args.link,
-                   cam_angle=args.cam_angle, crank_angle=args.crank_angle, against=args.drift)
+                   cam_angle=angle_degrees("--cam-angle", args.cam_angle),
+                   crank_angle=angle_degrees("--crank-angle", args.crank_angle),
+                   against=args.drift)
     print(format_result(array, args.variable, args.format, args.drift,
                         limit=limit_line(ds, args.variable),
                         units=args.units or time_units(ds, args.variable)))
@@ -271,7 +297,7 @@ def _cmd_compensate(args) -> int:
     scene = load_scene(args.scene)
     if args.profile is not None and scene.model.cam is None:
         raise InputError(f"{args.scene}: --profile needs a cam (the scene has none)")
-    comp = compensate(scene, at=args.at, over=args.over, accuracy=args.accuracy,
+    comp = compensate(scene, at=args.at, over=args.over, accuracy=scene_accuracy(args.accuracy),
                       plot=args.plot is not None, keep_limits=args.keep_limits,
                       points=args.points)
     output = Path(args.output) if args.output else Path(f"{Path(args.scene).stem}_compensated.yaml")
@@ -304,13 +330,17 @@ def _cmd_profile(args) -> int:
 
 
 def _cmd_fit(args) -> int:
+    from .cli_values import field_value
     from .fit import fit_weight_gain, materials_yaml, parameter_table, plot_fit
+    from .materials import MaterialSpec
     from .store import write_text_atomically
 
     if (args.fiber is None) != (args.fiber_volume_fraction is None):
         raise InputError("--fiber and --fiber-volume-fraction go together")
+    fraction = field_value("--fiber-volume-fraction", args.fiber_volume_fraction, MaterialSpec,
+                           "fiber_volume_fraction")
     report = fit_weight_gain(args.data, args.matrix, fiber=args.fiber,
-                             fiber_volume_fraction=args.fiber_volume_fraction, name=args.name)
+                             fiber_volume_fraction=fraction, name=args.name)
     output = write_text_atomically(args.output, materials_yaml(report))
     print(parameter_table(report))
     print(f"wrote {output}")

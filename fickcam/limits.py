@@ -26,6 +26,7 @@ from typing import Any, Callable
 import numpy as np
 from pydantic import Field, model_validator
 
+from .plausibility import ambiguity
 from .query import drift
 from .schema import VARIABLES, Var, design_name
 from .units import StrictModel
@@ -152,7 +153,8 @@ def _pint_units(units: str) -> str:
 def stored_value(value, var: Var, *, difference: bool = False) -> float:
     """``value`` (number or string with units) in ``var``'s stored unit.
 
-    A bare number is SI (as everywhere in a scene; percent for % variables).
+    A bare number is SI (as everywhere in a scene; percent for % variables), except a bare
+    rotational speed, which is refused (rad/s or rpm?).
     ``difference``: a temperature step, so degC/degF mean kelvin-sized steps.
     Angles are told apart from plain numbers (pint's radian is dimensionless).
 
@@ -174,9 +176,12 @@ def stored_value(value, var: Var, *, difference: bool = False) -> float:
     Raises
     ------
     ValueError
-        When the unit is unknown or of the wrong dimension.
+        When the unit is unknown or of the wrong dimension, or a speed has none.
     """
     number, unit = number_and_unit(value)
+    slip = ambiguity(value, "angular_speed") if var.units == "rpm" else None
+    if slip:
+        raise ValueError(slip)
     if not unit:
         return number * var.scale
     ureg = registry()

@@ -16,13 +16,14 @@ Each value is judged against its own part, not one global bound:
 - a cam's lengths against its base circle (or disc) radius, a four-bar's against its other
   bars; the base circle and the bars themselves against the size of a moulded or machined
   mechanism part;
-- a speed by the speed of the part's rim (cam) or crank pin (four-bar);
+- a rotational speed never: a bare one is refused whatever its size, since rad/s and rpm
+  are both common and a factor of 9.55 apart (``speed: 200`` meant '200 rpm');
 - a climate history's length by how far water gets into the parts over it (Fickian uptake
   of a plate, Crank, *The Mathematics of Diffusion*, 2nd ed., 1975, eq. 4.20: a history in
   which the parts take up almost nothing ages nothing), and an output time against the
   history it samples;
-- a bound of ``limits:`` on a mechanism's length or speed as that mechanism's own lengths
-  and speeds.
+- a bound of ``limits:`` on a mechanism's length as that mechanism's own lengths (a bare
+  bound on a speed is refused as any bare speed is).
 
 The bounds are fickcam's judgement of what a polymer mechanism part can be; they only
 decide when to ask for a unit, never change a value.
@@ -264,6 +265,39 @@ ANGLE = Reading("angle", "angle", "rad", _angle_verdict, (("deg", 1.0),),
 BARE_READINGS = {"temperature": TEMPERATURE, "relative_humidity": RELATIVE_HUMIDITY,
                  "angle": ANGLE}
 
+#: dimensions whose bare numbers are refused whatever their size: no reading of them is
+#: safe. A rotational speed in rad/s and in rpm differ by a factor of 9.55 and both are
+#: common in machine design: (the units a bare number may have meant, the first suggested)
+AMBIGUOUS = {"angular_speed": ("rpm", "rad/s")}
+_AMBIGUOUS_WHAT = {"angular_speed": "a rotational speed"}
+
+
+def ambiguity(value, dimension: str) -> str | None:
+    """Why a bare value of an ambiguous dimension (:data:`AMBIGUOUS`) is refused, or None.
+
+    Zero needs no unit; values with units are never refused here.
+
+    Parameters
+    ----------
+    value : object
+        The value as written (a number, or a string with or without a unit).
+    dimension : str
+        Its dimension (a key of :data:`fickcam.unit_parsing.SI_UNITS`).
+
+    Returns
+    -------
+    str or None
+        The one-line reason, suggesting the likely unit (``did you mean '200 rpm'?``).
+    """
+    if dimension not in AMBIGUOUS or not is_bare_number(value) or float(value) == 0:
+        return None
+    number = f"{float(value):g}"
+    meant, other = AMBIGUOUS[dimension]
+    return (f"{number} without a unit is ambiguous for {_AMBIGUOUS_WHAT[dimension]} ({meant} "
+            f"or {other}): did you mean '{number} {meant}'? Give the unit ('{number} {meant}' "
+            f"or '{number} {other}')")
+
+
 #: a climate record's length in s: a record shorter than a day is not an ageing history
 RECORD_LENGTH = Reading("climate record length", "time", "s",
                         Band(86400.0, math.inf, 86400.0).verdict,
@@ -274,8 +308,6 @@ RECORD_LENGTH = Reading("climate record length", "time", "s",
 
 #: lengths a slip most likely meant: millimetres, then inches
 LENGTH_ALTERNATIVES = (("mm", 1.0), ("in", 1.0))
-#: rotational speeds: revolutions per minute
-SPEED_ALTERNATIVES = (("rpm", 1.0),)
 #: history lengths: days, then hours; a standard test's: hours first (its durations are
 #: specified in hours, e.g. 1000 h at 85 degC / 85 % RH)
 HISTORY_ALTERNATIVES = (("d", 1.0), ("h", 1.0))
@@ -285,9 +317,6 @@ TEST_ALTERNATIVES = (("h", 1.0), ("d", 1.0))
 CAM_RADIUS = Band(2e-3, 0.5, 0.5e-3, 2.0)
 #: a four-bar's bar length, m
 BAR_LENGTH = Band(10e-3, 2.0, 2e-3, 10.0)
-#: the speed of a cam's rim or a crank pin, m/s: beyond 10 m/s polymer cams and links are
-#: rare; beyond 50 m/s (a 0.1 m cam at 4800 rpm) they are not made
-RIM_SPEED = Band(0.0, 10.0, 0.0, 50.0)
 
 
 @dataclass(frozen=True)
@@ -428,10 +457,31 @@ class Findings:
             doc.problem(path, reason))
         return verdict is Verdict.IMPLAUSIBLE
 
+    def refuse_ambiguous(self, doc, path: tuple, dimension: str) -> bool:
+        """Refuse the value at ``path`` when it is a bare number of an ambiguous dimension
+        (:func:`ambiguity`).
+
+        Parameters
+        ----------
+        doc, path
+            The scene file and the value's keys, as :meth:`judge` takes them.
+        dimension : str
+            Its dimension (a key of :data:`AMBIGUOUS` to be refused).
+
+        Returns
+        -------
+        bool
+            True when refused (added to ``errors``).
+        """
+        reason = ambiguity(raw_value(doc.data, path), dimension)
+        if reason:
+            self.errors.append(doc.problem(path, reason))
+        return reason is not None
+
 
 @dataclass(frozen=True)
 class Scale:
-    """A mechanism's size, that its lengths and speed are judged against.
+    """A mechanism's size, that its lengths are judged against.
 
     Parameters
     ----------
@@ -440,17 +490,10 @@ class Scale:
         bar.
     context : str
         Words that say so, for messages.
-    radius : float
-        The radius of the point whose speed judges the rotational speed [m] (rim, crank
-        pin).
-    where : str
-        That point, in words.
     """
 
     length: float
     context: str
-    radius: float
-    where: str
 
 
 #: a limit's bare length bound as a multiple of its mechanism's reference length: a
@@ -460,29 +503,57 @@ LIMIT_BOUND = Band(0.0, 5.0, 0.0, 25.0)
 
 
 def _limit_findings(doc, findings: Findings, scales: dict[str, Scale]) -> None:
-    """Bare bounds of ``limits:`` on a mechanism's lengths (m) and speeds (rpm variables)
-    judged as the mechanism's own lengths and speeds."""
+    """Bare bounds of ``limits:`` on a mechanism's lengths (m) judged as the mechanism's own
+    lengths; bare bounds on its speeds (rpm variables) refused as any bare speed is."""
     from .schema import VARIABLES
 
     for name, spec in doc.data["limits"].items():
         var = VARIABLES.get(name)
-        scale = scales.get(getattr(var, "section", None))
-        if scale is None or not isinstance(spec, dict):
+        if var is None or not isinstance(spec, dict):
             continue
+        scale = scales.get(var.section)
         for key in ("deviation", "max", "min"):
-            what = f"{name} {key}"
-            if var.units == "m":
+            if var.units == "rpm":
+                findings.refuse_ambiguous(doc, ("limits", name, key), "angular_speed")
+            elif var.units == "m" and scale is not None:
                 band = LIMIT_DEVIATION if key == "deviation" else LIMIT_BOUND
-                reading = _length(what, band.times(scale.length), scale.context)
-            elif var.units == "rpm":
-                reading = _speed(what, spec.get(key), scale.radius, scale.where)
-            else:
-                continue
-            findings.judge(doc, ("limits", name, key), reading)
+                findings.judge(doc, ("limits", name, key),
+                               _length(f"{name} {key}", band.times(scale.length), scale.context))
 
 
 def _length(what: str, band: Band, context: str) -> Reading:
     return Reading(what, "length", "m", band.verdict, LENGTH_ALTERNATIVES, context)
+
+
+def cam_length_reading(what: str, data: dict) -> Reading | None:
+    """How a bare length bound on a cam (``fickcam size --radius-of-curvature``) is judged:
+    as a ``limits:`` bound on one of the cam's lengths, against its base circle (or disc)
+    radius.
+
+    Parameters
+    ----------
+    what : str
+        What it is, in messages.
+    data : dict
+        The scene as read from YAML.
+
+    Returns
+    -------
+    Reading or None
+        None when the scene has no cam with a radius to judge against.
+    """
+    cam = data.get("cam")
+    if not isinstance(cam, dict):
+        return None
+    path, radius = _cam_reference(cam)
+    if radius is None or radius <= 0:
+        return None
+    return _length(what, LIMIT_BOUND.times(radius), _cam_context(path, radius))
+
+
+def _cam_context(path: tuple, radius: float) -> str:
+    """'its base circle radius is 19 mm' (or its disc's), for messages."""
+    return f"its {'disc' if path[-1] == 'radius' else 'base circle'} radius is {_mm(radius)}"
 
 
 def _mm(metres: float) -> str:
@@ -490,7 +561,8 @@ def _mm(metres: float) -> str:
 
 
 def geometry_findings(doc) -> Findings:
-    """Bare lengths and speeds of ``cam:`` and ``linkage:`` judged against their own mechanism.
+    """Bare lengths of ``cam:`` and ``linkage:`` judged against their own mechanism, their
+    bare speeds refused (:func:`ambiguity`).
 
     They are read from the YAML, so that a slip is named even where it also breaks a check of
     the section; bare length and speed bounds of ``limits:`` are judged likewise.
@@ -524,15 +596,17 @@ def _cam_reference(cam: dict) -> tuple[tuple, float | None]:
 
 
 def _cam_findings(doc, findings: Findings) -> Scale | None:
-    """Judge the cam's bare lengths and speeds; its scale, None when it has none."""
+    """Judge the cam's bare lengths, refuse its bare speeds; its scale, None when it has
+    none."""
     cam = doc.data["cam"]
+    for key in (("speed",), ("polydyne", "speed")):
+        findings.refuse_ambiguous(doc, ("cam",) + key, "angular_speed")
     path, radius = _cam_reference(cam)
     if radius is None or radius <= 0 or findings.judge(
             doc, path, _length("cam base circle radius", CAM_RADIUS, "moulded and machined "
                                "cams measure millimetres to decimetres")):
         return None
-    context = f"its base circle radius is {_mm(radius)}" if path[-1] != "radius" else \
-        f"its disc radius is {_mm(radius)}"
+    context = _cam_context(path, radius)
     for member in CAM_MEMBERS:
         findings.judge(doc, ("cam",) + member.path,
                        _length(member.what, member.ratio.times(radius), context))
@@ -544,21 +618,7 @@ def _cam_findings(doc, findings: Findings) -> Scale | None:
             if key in segment:
                 findings.judge(doc, ("cam", "motion", k, key), swing if arm else
                                _length(key, LIFT.times(radius), context))
-    if findings.errors:  # the rim is not known while a length is refused
-        return None
-    outer = _cam_outer_radius(cam, radius)
-    for key in (("speed",), ("polydyne", "speed")):
-        findings.judge(doc, ("cam",) + key, _speed("cam speed", raw_value(cam, key), outer,
-                                                   "its rim"))
-    return Scale(radius, context, outer, "its rim")
-
-
-def _cam_outer_radius(cam: dict, radius: float) -> float:
-    """The largest radius of a cam (m), near enough: a disc's radius plus its eccentricity,
-    or the base circle radius plus the largest rise."""
-    eccentricity = si_value(raw_value(cam, ("eccentric", "eccentricity")), "length")
-    rises = [si_value(s.get("rise"), "length") for _, s in _segments(cam)]
-    return radius + max([x for x in rises if x and x > 0] + [eccentricity or 0.0])
+    return Scale(radius, context)
 
 
 def _segments(cam: dict) -> list[tuple[int, dict]]:
@@ -569,19 +629,11 @@ def _segments(cam: dict) -> list[tuple[int, dict]]:
         if isinstance(motion, list) else []
 
 
-def _speed(what: str, value, radius: float, where: str) -> Reading:
-    """A rotational speed judged by the speed it gives a point ``radius`` [m] from the axis
-    (``value``: the speed as given, for the message)."""
-    omega = si_value(value, "angular_speed") or 0.0
-    return Reading(what, "angular_speed", "rad/s", lambda w: RIM_SPEED.verdict(w * radius),
-                   SPEED_ALTERNATIVES, f"{where}, {_mm(radius)} from the axis, would run at "
-                   f"{omega * radius:.3g} m/s; polymer parts rarely run above "
-                   f"{RIM_SPEED.high:g} m/s")
-
-
 def _linkage_findings(doc, findings: Findings) -> Scale | None:
-    """Judge the four-bar's bare lengths and speed; its scale, None when it has none."""
+    """Judge the four-bar's bare lengths, refuse its bare speed; its scale, None when it has
+    none."""
     linkage = doc.data["linkage"]
+    findings.refuse_ambiguous(doc, ("linkage", "crank_speed"), "angular_speed")
     bars = {name: si_value(linkage.get(name), "length") for name in BARS}
     bars = {name: value for name, value in bars.items() if value is not None and value > 0}
     refused = False
@@ -594,10 +646,7 @@ def _linkage_findings(doc, findings: Findings) -> Scale | None:
     for member in LINKAGE_MEMBERS:
         findings.judge(doc, ("linkage",) + member.path,
                        _length(member.what, member.ratio.times(reference), context))
-    crank = bars.get("crank", reference)
-    findings.judge(doc, ("linkage", "crank_speed"),
-                   _speed("crank speed", linkage.get("crank_speed"), crank, "the crank pin"))
-    return Scale(reference, context, crank, "the crank pin")
+    return Scale(reference, context)
 
 
 def _bar_reading(linkage: dict, bars: dict[str, float], name: str) -> Reading:
@@ -781,8 +830,27 @@ def _output_findings(model, doc, end: float, findings: Findings) -> None:
     else:
         return
 
+    findings.judge(doc, path, output_time_reading(what, end))
+
+
+def output_time_reading(what: str, end: float) -> Reading:
+    """How a bare output time (a step, or the last ageing time) is judged: by how many of it
+    fit in the history it samples.
+
+    Parameters
+    ----------
+    what : str
+        What it is, in messages (``"last ageing time"``).
+    end : float
+        The end of the history [s].
+
+    Returns
+    -------
+    Reading
+        More than 1000 of it in the history unusual, more than 10 000 implausible; days,
+        then hours, suggested.
+    """
     def fits(step: float) -> Verdict:
         return SAMPLES.verdict(end / step if step > 0 else 0.0)
 
-    findings.judge(doc, path, Reading(what, "time", "s", fits, HISTORY_ALTERNATIVES,
-                                      f"the history lasts {_days(end)}"))
+    return Reading(what, "time", "s", fits, HISTORY_ALTERNATIVES, f"the history lasts {_days(end)}")

@@ -10,11 +10,11 @@ import json
 
 import numpy as np
 
+from .cli_values import ageing_time
 from .dataset import ageing_seconds
 from .errors import InputError, format_duration, time_unit
 from .keys import closest_names, short_names
 from .schema import VARIABLES, design_name
-from .unit_parsing import is_bare_number, parse_duration
 
 def select(ds, variable: str, *, time=None, part=None, cam_angle=None, crank_angle=None, link=None,
            against: str | None = None):
@@ -22,8 +22,8 @@ def select(ds, variable: str, *, time=None, part=None, cam_angle=None, crank_ang
     start) restricted/interpolated as asked.
 
     ``time`` is a duration (string with units, or seconds as a number from Python; a bare
-    number as text, as ``--time 45`` gives, is refused: it needs a unit); angles in
-    degrees. Interpolation is linear in time and angle; outside the stored range it is
+    number as text, as ``--time 45`` gives, is read and judged as a scene's ageing time:
+    45 s is refused with '45 d' suggested); angles in degrees. Interpolation is linear in time and angle; outside the stored range it is
     an error, not an extrapolation. ``attrs["selection"]`` says what was answered, e.g.
     ``time = 45 d (interpolated between 30 d and 60 d)``.
 
@@ -81,8 +81,8 @@ def select(ds, variable: str, *, time=None, part=None, cam_angle=None, crank_ang
     if time is not None:
         if "time" not in array.dims:
             raise InputError(f"{variable} does not vary with time")
-        seconds = _seconds(time)
         stored = ageing_seconds(ds)
+        seconds = ageing_time("--time", time, stored[-1]) if isinstance(time, str) else float(time)
         if seconds < stored[0] - 1e-9 or seconds > stored[-1] + 1e-9:
             raise InputError(f"time {time} is outside the stored ageing times "
                              f"({stored[0] / 86400:g} to {stored[-1] / 86400:g} d)")
@@ -175,17 +175,6 @@ def drift(ds, name: str, against: str = "design"):
         change = (change + 180.0) % 360.0 - 180.0
     return change.assign_attrs(units=array.attrs.get("units", ""),
                                long_name=f"{array.attrs.get('long_name', name)}: change from {what}")
-
-
-def _seconds(time) -> float:
-    """An ageing time in seconds; text must carry a unit (``45`` alone is refused)."""
-    if isinstance(time, str) and is_bare_number(time):
-        raise InputError(f"--time {time.strip()} has no unit: write e.g. '{time.strip()} d' "
-                         f"(days) or '{time.strip()} s'")
-    try:
-        return parse_duration(time) if isinstance(time, str) else float(time)
-    except ValueError as exc:
-        raise InputError(f"--time: {exc}") from None
 
 
 def _answered(dim, value, between, show) -> str:

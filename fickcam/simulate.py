@@ -215,6 +215,11 @@ def plan_parts(scene: Scene, accuracy: float | None = None, *, parts: list[Part]
         Naming the part, when its diffusion cannot be planned (a model that does not
         apply to its shape, an outline that cannot be meshed).
     """
+    return _planned_parts(scene, accuracy, parts, settings, cache)
+
+
+def _planned_parts(scene: Scene, accuracy, parts, settings, cache):
+    """:func:`plan_parts` in the caller's BLAS threads (:func:`run` has limited them)."""
     from .diffusion import DiffusionProblem, plan_problem, refuse
 
     environment = scene_environment(scene)
@@ -289,7 +294,7 @@ def run(scene, *, accuracy: float | None = None, progress: bool = False, setting
     times = ageing_times(scene, environment)
     parts = build_parts(scene)
     # every refusal of `fickcam check` before any solve; the solves read the plans cached
-    plan_parts(scene, accuracy, parts=parts, settings=settings, cache=cache)
+    _planned_parts(scene, accuracy, parts, settings, cache)
     ds, histories = _age(scene, environment, times, accuracy, progress, parts=parts,
                          settings=settings, diffusions=diffusions, cache=cache)
     if scene.limits:

@@ -10,7 +10,7 @@ from typing import Annotated
 
 from pydantic import AfterValidator, BaseModel, BeforeValidator, ConfigDict
 
-from .plausibility import BARE_READINGS, refusal
+from .plausibility import BARE_READINGS, ambiguity, refusal
 from .unit_parsing import is_bare_number, temperature_difference, to_si
 
 
@@ -30,7 +30,9 @@ def quantity(dimension: str, *, positive: bool = False, nonnegative: bool = Fals
         The largest value allowed [SI unit of ``dimension``]; None for no bound.
     bare : str, optional
         The reading of :data:`fickcam.plausibility.BARE_READINGS` that refuses implausible
-        values given without units (``"temperature"``: 40 meant 40 degC, not 40 K).
+        values given without units (``"temperature"``: 40 meant 40 degC, not 40 K). A bare
+        value of an ambiguous dimension (a rotational speed) is refused whatever its size
+        (``fickcam.plausibility.ambiguity``).
 
     Returns
     -------
@@ -41,6 +43,9 @@ def quantity(dimension: str, *, positive: bool = False, nonnegative: bool = Fals
 
     def read(value):
         x = to_si(value, dimension)
+        slip = ambiguity(value, dimension)  # a bare speed: rad/s or rpm?
+        if slip:
+            raise ValueError(slip)
         if bare is not None and is_bare_number(value):
             reason = refusal(value, BARE_READINGS[bare])
             if reason:

@@ -185,13 +185,13 @@ def test_compensation_time_outside_the_history_is_refused(capsys):
 
 
 @pytest.mark.slow
-def test_compensated_example_scenes_stay_in_their_bands_over_their_windows():
+def test_compensated_example_scenes_stay_in_their_bands_over_their_windows(example_result):
     """configs/*_compensated.yaml (written by fickcam compensate --over): the demo cam
     inside its 0.25 mm band for all 60 d, the R914 four-bar inside every deviation band
     from 30 d to a year (it cannot be held through its first weeks of uptake)."""
-    cam = fickcam.run(CONFIGS / "singh2017_cam_compensated.yaml")
+    cam = example_result("singh2017_cam_compensated")
     assert np.all(cam.limit_ratio.sel(limit="follower_displacement").values <= 1.0)
-    fourbar = fickcam.run(CONFIGS / "fourbar_r914_humid_compensated.yaml")
+    fourbar = example_result("fourbar_r914_humid_compensated")
     window = fourbar.ageing_time.values >= 30.0
     for name in ("rocker_angle", "coupler_point_x", "coupler_point_y"):
         assert np.all(fourbar.limit_ratio.sel(limit=name).values[window] <= 1.0), name

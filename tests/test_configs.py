@@ -18,15 +18,8 @@ STEEL_ALPHA = 12e-6  # 1/K, fickcam/data/materials.yaml (steel)
 
 
 @pytest.fixture(scope="module")
-def results():
-    cache = {}
-
-    def run(name):
-        if name not in cache:
-            cache[name] = fickcam.run(CONFIGS / f"{name}.yaml")
-        return cache[name]
-
-    return run
+def results(example_result):
+    return example_result
 
 
 def test_yadav2017_steel_cam_grows_by_alpha_dt_only(results):

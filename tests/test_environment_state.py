@@ -14,8 +14,8 @@ T0, RISE = 296.15, 95.0
 
 
 @pytest.fixture(scope="module")
-def states():
-    return fickcam.run(CONFIGS / "singh2016_states.yaml")
+def states(example_result):
+    return example_result("singh2016_states")
 
 
 def test_states_are_uniform_and_taken_as_given(states):

@@ -148,10 +148,10 @@ def _numbers(values: np.ndarray) -> np.ndarray:
     return values.astype(float)
 
 
-def compared(name: str) -> tuple[dict, dict, dict]:
-    """The reference's variables, today's run of the scene at the same subsample and
-    times, and the run's diffusion summary."""
-    result = in_days(fickcam.run(ROOT / "configs" / f"{name}.yaml"))
+def compared(name: str, example_result) -> tuple[dict, dict, dict]:
+    """The reference's variables, today's run of the scene (``example_result``, the session
+    fixture) at the same subsample and times, and the run's diffusion summary."""
+    result = in_days(example_result(name))
     reference = REFERENCE[name]
     full = SCENES[name]["full_sizes"]
     assert {d: s for d, s in result.sizes.items() if d in full and d != "time"} == \
@@ -163,10 +163,10 @@ def compared(name: str) -> tuple[dict, dict, dict]:
 
 @pytest.mark.slow
 @pytest.mark.parametrize("name", sorted(SCENES))
-def test_example_scene_gives_the_results_of_5559169(name):
+def test_example_scene_gives_the_results_of_5559169(name, example_result):
     import json
 
-    reference, now, attrs = compared(name)
+    reference, now, attrs = compared(name, example_result)
     assert set(now.variables) - set(reference) <= ADDED
     missing = set(reference) - set(now.variables)
     assert not missing, f"{name}: variables lost: {sorted(missing)}"

@@ -11,10 +11,12 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+import yaml
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from fickcam.cli import main
+from fickcam.errors import SceneError
 from fickcam.materials.library import find_entry, library_table
 from fickcam.plausibility import (CAM_MEMBERS, CAM_RADIUS, LENGTH_ALTERNATIVES, Band, Reading,
                                   Verdict, bare_judgement, plate_uptake)
@@ -48,19 +50,16 @@ SLIPS = [
     ("singh2017_cam.yaml", "base_circle_radius: 1.94 in", "base_circle_radius: 25",
      "cam.base_circle_radius", "25 mm"),
     ("singh2017_cam.yaml", "{rise: 1.5 in,", "{rise: 38,", "cam.motion.1.rise", "38 mm"),
-    ("singh2017_cam.yaml", "speed: 600 rpm", "speed: 600", "cam.speed", "600 rpm"),
     ("singh2017_cam.yaml", "[0 d, 1 d, 7 d, 30 d, 60 d]", "[0, 1, 7, 30, 60]",
      "outputs.ageing_times.4", "60 d"),
     ("singh2016_fourbar.yaml", "crank: 100 mm", "crank: 100", "linkage.crank", "100 mm"),
     ("singh2016_fourbar.yaml", "thickness: 10 mm,", "thickness: 10,", "linkage.section.thickness", "10 mm"),
-    ("singh2016_fourbar.yaml", "crank_speed: 100 rpm", "crank_speed: 600", "linkage.crank_speed", "600 rpm"),
     ("singh2017_cam.yaml", "dwell: 105 deg", "dwell: 105", "cam.motion.0.dwell", "105 deg"),
     ("nylon_swinging_arm.yaml", "{rise: 20 deg,", "{rise: 20,", "cam.motion.1.rise", "20 deg"),
     ("singh2017_cam_compensated.yaml", "base_circle_radius: 1.94 in", "base_circle_radius: 49",
      "design.cam.base_circle_radius", "49 mm"),
     ("singh2017_cam.yaml", "{deviation: 0.25 mm}", "{deviation: 0.25}",
      "limits.follower_displacement.deviation", "0.25 mm"),
-    ("singh2017_cam.yaml", "{min: 1000 rpm}", "{min: 1000}", "limits.jump_speed.min", "1000 rpm"),
     ("fourbar_r914_humid.yaml", "coupler_point_x: {deviation: 1 mm}", "coupler_point_x: {deviation: 1}",
      "limits.coupler_point_x.deviation", "1 mm"),
 ]
@@ -108,29 +107,47 @@ def test_an_unusual_duration_is_named_when_the_output_times_do_not_fit_it(tmp_pa
     assert "did you mean '1000 h'?" in err and "ageing_times" not in err
 
 
-def test_an_unusual_bare_speed_is_warned_about_and_the_scene_still_loads(tmp_path, caplog):
-    """600 rad/s puts the 27 mm rim of the eccentric cam at 16 m/s: possible, unusual."""
-    path = _scene(tmp_path, "eccentric_cam.yaml", "speed: 300 rpm", "speed: 600")
-    with caplog.at_level(logging.WARNING, logger="fickcam"):
-        scene = load_scene(path)
-    assert scene.model.cam.speed == 600.0  # the value is kept: bare numbers stay SI
-    [warning] = scene.warnings
-    assert warning.key == "cam.speed" and "did you mean '600 rpm'?" in warning.reason
-    assert warning.line == _line_of(path, "speed: 600")
-    assert str(warning) in caplog.text
+BARE_SPEEDS = [
+    # example, old, new, key: rad/s and rpm are both common, a factor of 9.55 apart
+    ("singh2017_cam.yaml", "speed: 600 rpm", "speed: 200", "cam.speed"),
+    ("eccentric_cam.yaml", "speed: 300 rpm", "speed: 31.4", "cam.speed"),  # 300 rpm in rad/s
+    ("singh2016_fourbar.yaml", "crank_speed: 100 rpm", "crank_speed: 600", "linkage.crank_speed"),
+    ("singh2017_cam.yaml", "{min: 1000 rpm}", "{min: 1000}", "limits.jump_speed.min"),
+    ("singh2017_cam.yaml", "{min: 1000 rpm}", "{min: 104.7}", "limits.jump_speed.min"),
+]
+
+
+@pytest.mark.parametrize("example, old, new, key", BARE_SPEEDS, ids=[s[2] for s in BARE_SPEEDS])
+def test_a_bare_speed_is_refused_whatever_its_size_with_rpm_suggested(tmp_path, capsys, example,
+                                                                       old, new, key):
+    path = _scene(tmp_path, example, old, new)
+    assert main(["check", str(path)]) == 2
+    err = capsys.readouterr().err.strip()
+    number = re.search(r"[\d.]+\}?$", new).group(0).rstrip("}")
+    assert err == (f"{path}:{_line_of(path, new)} {key}: {number} without a unit is ambiguous for "
+                   f"a rotational speed (rpm or rad/s): did you mean '{number} rpm'? Give the "
+                   f"unit ('{number} rpm' or '{number} rad/s')")
+
+
+def test_a_bare_speed_is_refused_in_a_scene_given_as_a_mapping_and_zero_is_judged_as_zero():
+    scene = yaml.safe_load((EXAMPLES / "eccentric_cam.yaml").read_text())
+    for speed, reason in ((62.83, "did you mean '62.83 rpm'?"), (0, "must be positive")):
+        scene["cam"]["speed"] = speed
+        with pytest.raises(SceneError) as refused:
+            load_scene(scene)
+        [problem] = refused.value.problems
+        assert problem.key == "cam.speed" and reason in problem.reason
 
 
 @pytest.mark.parametrize("example, old, new", [
     ("eccentric_cam.yaml", "thickness: 10 mm", "thickness: 0.01"),
     ("eccentric_cam.yaml", "roller_radius: 10 mm", "roller_radius: 0.01"),
     ("eccentric_cam.yaml", "duration: 180 d", "duration: 15552000"),
-    ("eccentric_cam.yaml", "speed: 300 rpm", "speed: 31.4"),
     ("eccentric_cam.yaml", "every: 30 d", "every: 2592000"),
     ("singh2016_fourbar.yaml", "crank: 100 mm", "crank: 0.1"),
     ("singh2016_fourbar.yaml", "duration: 3 h", "duration: 10800"),
     ("eccentric_cam.yaml", "thickness: 10 mm", "thickness: 12 m"),  # a unit says what is meant
     ("singh2017_cam.yaml", "{deviation: 0.25 mm}", "{deviation: 0.00025}"),
-    ("singh2017_cam.yaml", "{min: 1000 rpm}", "{min: 104.7}"),
 ])
 def test_plausible_bare_values_pass_without_a_warning(tmp_path, caplog, example, old, new):
     path = _scene(tmp_path, example, old, new)

@@ -64,8 +64,10 @@ def test_bad_queries_are_refused_with_reason(stored, kwargs, fragment):
 
 
 def test_a_bare_query_time_is_refused_naming_the_units(stored):
-    """`--time 45` would be 45 s (SI): the query asks for a unit instead."""
-    with pytest.raises(InputError, match=r"--time 45 has no unit: write e.g. '45 d'"):
+    """`--time 45` would be 45 s (SI), a slip in a history of days: judged as a scene's
+    ageing time, it is refused with the likely unit."""
+    with pytest.raises(InputError, match=r"^--time 45: 45 s is an implausible ageing time "
+                                         r"\(the history lasts .*\): did you mean '45 d'\?"):
         select(stored, "lift", time="45")
 
 

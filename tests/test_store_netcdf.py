@@ -73,14 +73,17 @@ def layout(path) -> dict:
         for name, obj in file.items():
             objects[name] = {**described(obj), "dtype": obj.dtype.str, "shape": obj.shape,
                              "maxshape": obj.maxshape, "chunks": obj.chunks,
-                             "filters": (obj.compression, obj.compression_opts, obj.shuffle),
+                             "filters": (obj.compression, obj.compression_opts, obj.shuffle,
+                                         obj.fletcher32),
                              "fill": repr(obj.fillvalue)}
     return objects
 
 
-@pytest.mark.parametrize("compress", [False, True])
-def test_the_file_is_the_one_h5netcdf_writes(tmp_path, monkeypatch, compress):
+@pytest.mark.parametrize("compress, chunked", [(False, False), (True, False), (True, True)])
+def test_the_file_is_the_one_h5netcdf_writes(tmp_path, monkeypatch, compress, chunked):
     ds = dataset()
+    if chunked:  # chunks and a checksum asked for in a variable's encoding
+        ds.profile_x.encoding.update(chunksizes=(2, 7), fletcher32=True)
     save(ds, tmp_path / "h5py.h5", compress=compress)
     via_xarray(ds, tmp_path / "xarray.h5", monkeypatch, compress)
     assert written_by(tmp_path / "h5py.h5") == "h5py"

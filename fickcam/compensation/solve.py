@@ -26,7 +26,6 @@ from __future__ import annotations
 
 import copy
 import logging
-import math
 import tempfile
 from pathlib import Path
 
@@ -167,7 +166,8 @@ def _scene_at(data: dict, base_dir: Path, times: np.ndarray):
     """The scene mapping validated with ageing ``times`` (s) only, fields off, no file."""
     data = copy.deepcopy(data)
     outputs = dict(data.get("outputs") or {})
-    outputs.update(ageing_times=[float(t) for t in times], fields=False)
+    # with their unit: a time the user gave with one is not judged again as a bare number
+    outputs.update(ageing_times=[f"{float(t)!r} s" for t in times], fields=False)
     outputs.pop("file", None)
     data["outputs"] = outputs
     return scene_from(data, base_dir, "<compensation>")
@@ -256,28 +256,21 @@ def diffusions_for(data: dict, base_dir: Path, times: np.ndarray, by_name: dict)
             for part in build_parts(scene) if by_name.get(part.name) is not None}
 
 
-def _seconds(value) -> float:
-    from ..unit_parsing import parse_duration
-
-    try:
-        return parse_duration(value) if isinstance(value, str) else float(value)
-    except ValueError as exc:
-        raise InputError(f"compensation time: {exc}") from None
-
-
 def _compensation_times(scene, at, over) -> tuple[np.ndarray, tuple[float, float]]:
     """([T] for ``at`` or the window grid for ``over``, the life asked about: the window,
     or delivery to the end of the history for ``at``), s; refuses times outside the
     history."""
+    from ..cli_values import ageing_time
     from ..simulate import ageing_times, scene_environment
 
     environment = scene_environment(scene)
     if (at is None) == (over is None):
         raise InputError("give exactly one of --at TIME or --over T1 T2")
-    seconds = [_seconds(value) for value in ([at] if at is not None else list(over))]
-    for s in seconds:
-        if not 0.0 <= s <= environment.end * (1 + 1e-12) or not math.isfinite(s):
-            raise InputError(f"compensation time {format_duration(s)} is outside the scene's "
+    given = [("--at", at)] if at is not None else [("--over", value) for value in over]
+    seconds = [ageing_time(option, value, environment.end) for option, value in given]
+    for (option, value), s in zip(given, seconds):
+        if not s <= environment.end * (1 + 1e-12):
+            raise InputError(f"{option} {value}: {format_duration(s)} is outside the scene's "
                              f"history (0 to {format_duration(environment.end)})")
     if at is not None:
         return np.array(seconds), (0.0, float(environment.end))
@@ -386,7 +379,8 @@ def compensate(scene, at=None, over=None, *, accuracy: float | None = None,
         The design, as :func:`fickcam.load_scene` takes it.
     at : str or float, optional
         The ageing time [s] at which the mechanism must have its design geometry (a
-        duration with units, or seconds).
+        duration with units, or seconds: a bare number is judged as a scene's ageing time
+        is, so ``45`` is refused with '45 d' suggested).
     over : tuple of (str or float), optional
         The window (T1, T2) [s] over which the largest deviation is made smallest;
         exactly one of ``at`` and ``over``.

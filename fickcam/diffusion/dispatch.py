@@ -271,7 +271,7 @@ def refuse(problem: DiffusionProblem) -> None:
     Raises
     ------
     fickcam.errors.InputError
-        With the reason, in the words :func:`plan` gives it.
+        With the reason, in the words ``plan`` gives it.
     """
     _validate(problem)
     _fick_model(problem.geometry, problem.model)
