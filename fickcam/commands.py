@@ -169,7 +169,7 @@ def _cmd_size(args) -> int:
 def _cmd_query(args) -> int:
     from .cli_values import angle_degrees
     from .reporting import limit_line
-    from .query import format_result, select
+    from .query import format_result, select, time_units
     from .store import open_result
 
     ds = open_result(args.result)
@@ -178,7 +178,8 @@ def _cmd_query(args) -> int:
                    crank_angle=angle_degrees("--crank-angle", args.crank_angle),
                    against=args.drift)
     print(format_result(array, args.variable, args.format, args.drift,
-                        limit=limit_line(ds, args.variable), units=args.units))
+                        limit=limit_line(ds, args.variable),
+                        units=args.units or time_units(ds, args.variable)))
     return 0
 
 

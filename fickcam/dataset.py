@@ -41,6 +41,30 @@ def ageing_seconds(ds) -> np.ndarray:
     return np.asarray(ds["time"].values, float) * DAY
 
 
+def report_time_unit(ds) -> tuple[str, float]:
+    """The unit a result's times are reported in: the one its scene's ageing times were
+    written in (attribute ``time_unit``), else the one that suits its last ageing time.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        A result.
+
+    Returns
+    -------
+    tuple of (str, float)
+        The unit's name and its length [s].
+    """
+    from .errors import TIME_UNITS, time_unit
+
+    name = ds.attrs.get("time_unit", "")
+    known = {unit: length for unit, length, _ in TIME_UNITS}
+    if name in known:
+        return name, known[name]
+    has_times = "time" in ds.coords and ds.sizes.get("time", 0) > 0
+    return time_unit(ageing_seconds(ds)[-1] if has_times else float("nan"))
+
+
 def ageing_time_days(seconds):
     """The ``ageing_time`` coordinate along ``time``: the same float days (units ``d``).
 

@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import contextlib
 import contextvars
-import re
+import math
 from dataclasses import dataclass
 
 
@@ -168,31 +168,6 @@ TIME_UNITS = (("s", 1.0, 120.0), ("min", 60.0, 2 * 3600.0), ("h", 3600.0, 2 * 86
 #: (:func:`times_in`); None: chosen from the span
 _WRITTEN = contextvars.ContextVar("fickcam_time_unit", default=None)
 
-#: how a time unit may be written in a scene -> its name in :data:`TIME_UNITS`
-SPELLINGS = {"s": "s", "sec": "s", "second": "s", "seconds": "s", "min": "min",
-             "minute": "min", "minutes": "min", "h": "h", "hr": "h", "hour": "h", "hours": "h",
-             "d": "d", "day": "d", "days": "d", "yr": "yr", "year": "yr", "years": "yr",
-             "a": "yr"}
-
-
-def written_unit(text) -> str | None:
-    """The time unit of a duration as written (``"1826 d"`` -> ``"d"``), if it is one of
-    :data:`TIME_UNITS`.
-
-    Parameters
-    ----------
-    text : object
-        A value of a scene (``"60 d"``, ``"5 years"``, a bare number...).
-
-    Returns
-    -------
-    str or None
-        ``s``, ``min``, ``h``, ``d`` or ``yr``; None for a bare number, weeks, months...
-    """
-    match = re.fullmatch(r"\s*[-+\d.eE]+\s*([A-Za-z]+)\s*", str(text))
-    return SPELLINGS.get(match.group(1)) if match else None
-
-
 @contextlib.contextmanager
 def times_in(unit: str | None):
     """While inside, every time is told in ``unit`` (the one the scene's author wrote its
@@ -230,6 +205,72 @@ def time_unit(span: float) -> tuple[str, float]:
     span = abs(float(span))
     return next(((name, seconds) for name, seconds, longest in TIME_UNITS if span < longest),
                 ("d", 86400.0))  # no span (NaN: no case of a sweep ran): days, as results store
+
+
+def unit_of_length(seconds: float) -> tuple[str, float]:
+    """The unit of :data:`TIME_UNITS` a duration written in a unit of ``seconds`` is shown
+    in: the longest not longer than it (a month or a week in days, a year in years).
+
+    Parameters
+    ----------
+    seconds : float
+        The length of the unit written [s].
+
+    Returns
+    -------
+    tuple of (str, float)
+        The unit's name and its length [s].
+    """
+    fits = [(name, length) for name, length, _ in TIME_UNITS if length <= seconds * (1 + 1e-9)]
+    return fits[-1] if fits else TIME_UNITS[0][:2]
+
+
+def supported_digits(value: float, error: float) -> str:
+    """``value`` with only the digits ``error`` supports: rounded to the smallest power of
+    ten not below the error (19.9943 +- 0.017 as ``20.0``, 0.1356 +- 0.002 as ``0.14``), so
+    it is within one unit of its last digit and a half of the truth; four significant
+    digits where the error is 0 or unknown.
+
+    Parameters
+    ----------
+    value : float
+        The value [any unit].
+    error : float
+        Its error estimate [the same unit].
+
+    Returns
+    -------
+    str
+        The value's text.
+    """
+    if not (math.isfinite(error) and error > 0.0) or not math.isfinite(value):
+        return f"{value:.4g}"
+    exponent = math.ceil(math.log10(error))
+    return f"{round(value, -exponent):.{max(0, -exponent)}f}"
+
+
+def format_time(seconds: float, unit: tuple[str, float], error: float | None = None) -> str:
+    """A time in ``unit``; with ``error``, only the digits it supports
+    (:func:`supported_digits`), else up to six significant digits (a stored ageing time).
+
+    Parameters
+    ----------
+    seconds : float
+        The time [s].
+    unit : tuple of (str, float)
+        The unit's name and its length [s] (:func:`time_unit`, :func:`unit_of_length`).
+    error : float, optional
+        The time's error estimate [s].
+
+    Returns
+    -------
+    str
+        ``"20.0 d"``, ``"3.3 h"``, ``"730.5 d"``.
+    """
+    name, length = unit
+    if error is None:
+        return f"{float(seconds) / length:g} {name}"
+    return f"{supported_digits(float(seconds) / length, float(error) / length)} {name}"
 
 
 def format_duration(seconds: float, span: float | None = None) -> str:

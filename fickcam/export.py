@@ -108,6 +108,33 @@ def export_netcdf(ds, path, variables=None) -> Path:
     return save(ds[names], path)
 
 
+def with_supported_digits(ds):
+    """A copy of ``ds`` whose variables with an error estimate (the schema's ``error``,
+    e.g. ``time_out_of_spec``) hold only the digits it supports, as the CSV and JSON
+    exports write them (the estimate is written beside them; netCDF keeps every digit).
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        A result.
+
+    Returns
+    -------
+    xarray.Dataset
+        The copy.
+    """
+    from .query import supported_values
+    from .schema import VARIABLES
+
+    out = ds.copy()
+    for name in ds.data_vars:
+        error = VARIABLES[name].error if name in VARIABLES else ""
+        if error in ds and ds[error].dims == ds[name].dims:
+            out[name] = ds[name].copy(data=supported_values(ds[name].values, ds[error].values,
+                                                            text=False))
+    return out
+
+
 EXPORTERS = {"csv": export_csv, "json": export_json, "netcdf": export_netcdf}
 
 
@@ -138,4 +165,4 @@ def export(ds, path, fmt: str, variables=None) -> Path:
     """
     if fmt not in EXPORTERS:
         raise InputError(f"unknown export format {fmt!r} (csv, netcdf or json)")
-    return EXPORTERS[fmt](ds, path, variables)
+    return EXPORTERS[fmt](ds if fmt == "netcdf" else with_supported_digits(ds), path, variables)

@@ -13,7 +13,9 @@ and turns it into a *limit ratio*, 1 at the limit and above 1 out of spec:
 with s = |b|, or for a zero bound the size of the as-designed value. With
 several entries the ratio is the largest of them. The first ageing time at
 which a ratio exceeds 1 is located on the continuous ageing time by re-running
-the model inside the bracketing interval (:func:`first_crossings`).
+the model inside the bracketing interval (:func:`first_crossings`), in the square
+root of the time, to the crossing's own tolerance (:class:`Tolerance`: 0.1 % of it
+or 1 h), with an error bound beside it.
 """
 from __future__ import annotations
 
@@ -30,17 +32,24 @@ from .schema import VARIABLES, Var, design_name
 from .units import StrictModel
 from .unit_parsing import number_and_unit, registry, split_number_unit
 
-#: the crossing is located to this fraction of its bracketing interval, or to FLOOR s
-TOLERANCE = 0.01
+#: a crossing time's own tolerance: this share of the crossing time, or FLOOR s,
+#: whichever is larger (both scaled down where the scene asks a finer diffusion accuracy)
+RELATIVE = 1e-3
 FLOOR = 3600.0
 #: model evaluations per bracket in a sampling round (the first, and any after SECANT_ROUNDS)
 POINTS = 4
 #: rounds after the first that evaluate only two times straddling the secant's root
 SECANT_ROUNDS = 3
-#: a round's samples close a bracket when the cubic through the four about its crossing and
+#: a bracket closes when the cubic through the four samples about its crossing and
 #: the quadratics through three of them put the crossing within this share of the tolerance
 #: of each other (the quadratics' error, which bounds the cubic's: ``_interpolated``)
 INTERPOLATION_SHARE = 0.5
+#: the times evaluated either side of a guessed crossing are at least and at most these
+#: shares of the tolerance away from it (twice the guess's error estimate, within them)
+STRADDLE = (0.05, 0.45)
+#: at most this many of the climate's change times inside a bracket are sampled in its
+#: first round (evenly chosen where there are more)
+CLIMATE_NODES = 256
 
 
 class LimitSpec(StrictModel):
@@ -333,9 +342,55 @@ def limit_ratio(ds, limit: Limit) -> np.ndarray:
 # ----------------------------------------------------------------- crossing
 
 
+@dataclass(frozen=True)
+class Tolerance:
+    """The error a crossing time may carry: ``relative`` of the crossing time or ``floor``,
+    whichever is larger.
+
+    Parameters
+    ----------
+    relative : float
+        Share of the crossing time [-].
+    floor : float
+        The smallest tolerance [s].
+    """
+
+    relative: float = RELATIVE
+    floor: float = FLOOR
+
+    @classmethod
+    def for_accuracy(cls, accuracy: float | None) -> "Tolerance":
+        """RELATIVE and FLOOR, both scaled by ``accuracy`` / RELATIVE where the accuracy
+        asked of the diffusion is finer than RELATIVE.
+
+        Parameters
+        ----------
+        accuracy : float or None
+            The relative accuracy asked of the diffusion [-]; None: the defaults.
+
+        Returns
+        -------
+        Tolerance
+            The crossing's tolerance.
+        """
+        scale = min(1.0, accuracy / RELATIVE) if accuracy else 1.0
+        return cls(RELATIVE * scale, FLOOR * scale)
+
+    def at(self, time: float) -> float:
+        """The tolerance of a crossing at ``time`` [s], in s."""
+        return max(self.relative * float(time), self.floor)
+
+
 def _first_above(ratio: np.ndarray) -> int | None:
     above = np.flatnonzero(np.asarray(ratio, float) > 1.0)  # NaN compares False
     return int(above[0]) if above.size else None
+
+
+def _root_time(times):
+    """The search's variable, the square root of the ageing time [s^0.5]: moisture uptake
+    goes as its square root at first (Crank 1975, eq. 4.20), so a ratio driven by it is
+    nearly linear in it where it is far from linear in the time itself."""
+    return np.sqrt(np.maximum(np.asarray(times, float), 0.0))
 
 
 @dataclass
@@ -346,26 +401,27 @@ class _Bracket:
     hi: float
     r_lo: float
     r_hi: float
-    tolerance: float
+    tolerance: Tolerance
     #: Illinois weights (Dowell & Jarratt 1971) of the ends' distances from 1 in the secant:
     #: halved each round an end is kept while the other moves, so the secant cannot stall
     #: on one side of a curved ratio (plain regula falsi does)
     w_lo: float = 1.0
     w_hi: float = 1.0
-    #: every time evaluated in the stored interval and its ratio (its ends included)
+    #: every time evaluated or stored about the bracket and its ratio (its ends included)
     samples: dict = field(default_factory=dict)
-    #: the crossing read off the samples' interpolants (``_interpolated``), which closes it
-    read: float | None = None
+    #: the rounds of model evaluations that narrowed it
+    rounds: int = 0
+    #: the climate's change times inside the bracket, sampled in its first round
+    nodes: np.ndarray = field(default_factory=lambda: np.empty(0))
 
     def __post_init__(self):
         self.samples.update({float(self.lo): float(self.r_lo), float(self.hi): float(self.r_hi)})
 
     def open(self) -> bool:
-        return self.read is None and self.hi - self.lo > self.tolerance
+        return self.hi - self.lo > self.tolerance.at(self.lo)
 
     def narrow(self, inner: np.ndarray, values: np.ndarray) -> None:
-        """Keep the sub-interval of the first crossing among ``inner`` times; close the
-        bracket where the samples' interpolants agree on the crossing (``_interpolated``)."""
+        """Keep the sub-interval of the first crossing among ``inner`` times."""
         grid = np.concatenate([[self.lo], inner, [self.hi]])
         ratio = np.concatenate([[self.r_lo], values, [self.r_hi]])
         k = _first_above(ratio[1:]) + 1  # the last value (r_hi) is above 1
@@ -375,43 +431,67 @@ class _Bracket:
         self.lo, self.hi, self.r_lo, self.r_hi = grid[k - 1], grid[k], ratio[k - 1], ratio[k]
         self.samples.update(zip(np.asarray(inner, float).tolist(),
                                 np.asarray(values, float).tolist()))
-        if self.open():
-            self.read = _interpolated(self.samples, self.lo, self.hi,
-                                      INTERPOLATION_SHARE * self.tolerance)
+        self.rounds += 1
 
-    def inner(self, round_: int) -> np.ndarray:
-        """The times to evaluate this round: POINTS equally spaced ones (the first round,
-        which looks for the first crossing inside the bracket, and once secant rounds have
-        not closed it), else two times 0.45 tolerance either side of the secant's root, so
-        a ratio that is nearly linear over the bracket closes it in one round."""
-        if round_ == 0 or round_ > SECANT_ROUNDS or not np.isfinite(self.r_lo):
-            return np.linspace(self.lo, self.hi, POINTS + 2)[1:-1]
-        half = 0.45 * self.tolerance
-        low, high = 1.0 - self.w_lo * (1.0 - self.r_lo), 1.0 + self.w_hi * (self.r_hi - 1.0)
-        secant = self.lo + (1.0 - low) / (high - low) * (self.hi - self.lo)
-        around = np.clip(secant + np.array([-half, half]), self.lo, self.hi)
+    def inner(self) -> np.ndarray:
+        """The times to evaluate this round: two times either side of the best guess at
+        the crossing (``guess``), twice its error estimate away but within STRADDLE of the
+        tolerance, so a good guess closes the bracket in one round, narrow; POINTS equally spaced in the square root of the time instead in the first
+        round, which looks for the first crossing inside the bracket, with the climate's
+        change times inside it (a ratio that a climate record drives up and down peaks
+        there), unless the stored times about it already agree on the crossing
+        (``_interpolated``) in a steady climate, and once SECANT_ROUNDS of guesses have not
+        closed it."""
+        agreed = self.nodes.size == 0 and _interpolated(
+            self.samples, self.lo, self.hi, INTERPOLATION_SHARE * self.tolerance.at(self.lo))
+        if (self.rounds == 0 and not agreed) or self.rounds > SECANT_ROUNDS \
+                or not np.isfinite(self.r_lo):
+            even = np.linspace(*_root_time([self.lo, self.hi]), POINTS + 2)[1:-1] ** 2
+            return np.union1d(even, self.nodes) if self.rounds == 0 else even
+        guess, estimate = self.guess()
+        tolerance = self.tolerance.at(self.lo)
+        half = np.clip(2.0 * estimate, *np.multiply(STRADDLE, tolerance))
+        around = np.clip(guess + np.array([-half, half]), self.lo, self.hi)
         return np.unique(around[(around > self.lo) & (around < self.hi)])
 
-    def root(self) -> float:
-        """The crossing read off the interpolants where they closed the bracket, else the
-        linear interpolant's root in the bracket (error below its width)."""
-        if self.read is not None:
-            return self.read
+    def guess(self) -> tuple[float, float]:
+        """(crossing [s], its error estimate [s]): read off the cubic through the samples
+        about it where the quadratics put it within a quarter of the bracket of the
+        cubic's, else the root of the Illinois secant in the square root of the time (its
+        estimate infinite)."""
+        read = _interpolated(self.samples, self.lo, self.hi, 0.25 * (self.hi - self.lo))
+        if read is not None:
+            return read
+        ends = _root_time([self.lo, self.hi])
+        low, high = 1.0 - self.w_lo * (1.0 - self.r_lo), 1.0 + self.w_hi * (self.r_hi - 1.0)
+        return float((ends[0] + (1.0 - low) / (high - low) * (ends[1] - ends[0])) ** 2), np.inf
+
+    def root(self) -> tuple[float, float]:
+        """(crossing [s], its error bound [s]) in the closed bracket: read off the cubic
+        through the samples about it (else linear in the square root of the time), within
+        the larger of its distances to the bracket's ends."""
         if not np.isfinite(self.r_lo) or self.r_hi == self.r_lo:
-            return float(self.hi)
-        return float(self.lo + (1.0 - self.r_lo) / (self.r_hi - self.r_lo) * (self.hi - self.lo))
+            return float(self.hi), float(self.hi - self.lo)
+        read = _interpolated(self.samples, self.lo, self.hi, np.inf)
+        if read is None:
+            ends = _root_time([self.lo, self.hi])
+            share = (1.0 - self.r_lo) / (self.r_hi - self.r_lo)
+            read = ((ends[0] + share * (ends[1] - ends[0])) ** 2, 0.0)
+        crossing = float(np.clip(read[0], self.lo, self.hi))
+        return crossing, max(crossing - self.lo, self.hi - crossing)
 
 
-def _interpolated(samples: dict, lo: float, hi: float, within: float) -> float | None:
-    """The crossing of 1 in [lo, hi] (r(lo) <= 1 < r(hi)) of the cubic through the four
-    samples about it, when the quadratics through three of them that hold both ends put
-    it within ``within`` of the cubic's (the next term's size: it estimates the quadratic's
-    error, which bounds the cubic's; Hildebrand 1956 pp. 43-44, as ``dense_output``); else
-    None (too few or unknown samples, or they disagree).
+def _interpolated(samples: dict, lo: float, hi: float,
+                  within: float) -> tuple[float, float] | None:
+    """(crossing, error estimate) of 1 in [lo, hi] (r(lo) <= 1 < r(hi)) of the cubic in
+    the square root of the time through the four samples about it, when the quadratics
+    through three of them that hold both ends put it within ``within`` of the cubic's;
+    the larger distance is the estimate (the next term's size: it estimates the
+    quadratic's error, which bounds the cubic's; Hildebrand 1956 pp. 43-44, as
+    ``dense_output``); else None (too few or unknown samples, or they disagree).
 
-    The samples are a round's model evaluations (the first round's equally spaced ones
-    about the first crossing), so this closes a bracket a round or more before it narrows
-    to the tolerance, where the ratio is smooth on the scale of the samples' spacing."""
+    An estimate, not a bound (samples far apart about a crossing near 0 can agree on a
+    wrong one), so it only picks where the model is evaluated next."""
     times = np.array(sorted(samples))
     k = int(np.searchsorted(times, lo))
     if times.size < 4 or times[k] != lo or times[k + 1] != hi:
@@ -421,40 +501,69 @@ def _interpolated(samples: dict, lo: float, hi: float, within: float) -> float |
     r = np.array([samples[v] for v in t])
     if not np.isfinite(r).all():
         return None
-    cubic = _crossing(t, r, lo, hi)
-    estimates = [abs(_crossing(t[three], r[three], lo, hi) - cubic)
+    u, ends = _root_time(t), _root_time([lo, hi])
+    cubic = _crossing(u, r, *ends) ** 2
+    estimates = [abs(_crossing(u[three], r[three], *ends) ** 2 - cubic)
                  for three in (slice(0, 3), slice(1, 4)) if lo in t[three] and hi in t[three]]
-    return cubic if estimates and max(estimates) <= within else None
+    if not estimates or max(estimates) > within:
+        return None
+    return float(cubic), float(max(estimates))
 
 
-def _crossing(t: np.ndarray, r: np.ndarray, lo: float, hi: float) -> float:
-    """Where the polynomial through (t, r) crosses 1 in [lo, hi] (it interpolates r(lo) <=
-    1 < r(hi): a sign change), by Brent's method on the scaled time."""
+def _crossing(x: np.ndarray, r: np.ndarray, lo: float, hi: float) -> float:
+    """Where the polynomial through (x, r) crosses 1 in [lo, hi] (it interpolates r(lo) <=
+    1 < r(hi): a sign change), by Brent's method on the scaled variable."""
     from scipy.optimize import brentq
 
-    x = (t - lo) / (hi - lo)
+    x = (x - lo) / (hi - lo)
     coefficients = np.polynomial.polynomial.polyfit(x, r - 1.0, x.size - 1)
     ends = np.polynomial.polynomial.polyval([0.0, 1.0], coefficients)
     if not ends[0] <= 0.0 < ends[1]:   # the fit's round-off at a sample on 1: the ends
         return float(lo if ends[0] > 0.0 else hi)
-    root = brentq(lambda u: np.polynomial.polynomial.polyval(u, coefficients), 0.0, 1.0,
+    root = brentq(lambda v: np.polynomial.polynomial.polyval(v, coefficients), 0.0, 1.0,
                   xtol=1e-12)
     return float(lo + root * (hi - lo))
 
 
+def _brackets(times: np.ndarray, ratios: np.ndarray, tolerance: Tolerance, nodes: np.ndarray):
+    """(crossings found at the first stored time, {limit: _Bracket}): the stored interval
+    of each limit's first crossing, its samples the stored times either side of it, its
+    nodes the climate's change times inside it (at most CLIMATE_NODES)."""
+    found = np.full((2, ratios.shape[1]), np.nan)
+    brackets: dict[int, _Bracket] = {}
+    for j in range(ratios.shape[1]):
+        index = _first_above(ratios[:, j])
+        if index == 0:
+            found[:, j] = times[0], 0.0
+        elif index is not None:
+            near = [i for i in (index - 2, index + 1) if 0 <= i < times.size
+                    and np.isfinite(ratios[i, j])]
+            lo, hi = times[index - 1], times[index]
+            inside = nodes[(nodes > lo) & (nodes < hi)]
+            if inside.size > CLIMATE_NODES:
+                inside = inside[np.linspace(0, inside.size - 1, CLIMATE_NODES).astype(int)]
+            brackets[j] = _Bracket(lo, hi, ratios[index - 1, j], ratios[index, j], tolerance,
+                                   samples={float(times[i]): float(ratios[i, j]) for i in near},
+                                   nodes=inside)
+    return found, brackets
+
+
 def first_crossings(times: np.ndarray, ratios: np.ndarray,
-                    evaluate: Callable[[np.ndarray], np.ndarray]) -> np.ndarray:
+                    evaluate: Callable[[np.ndarray], np.ndarray],
+                    tolerance: Tolerance = Tolerance(),
+                    nodes=()) -> tuple[np.ndarray, np.ndarray]:
     """The first ageing time (s) at which each column of ``ratios`` (time, limit)
-    exceeds 1; NaN where it never does, the first stored time where it already does.
+    exceeds 1, and its error estimate; NaN where it never does, the first stored time
+    (error 0) where it already does.
 
     The stored times bracket each crossing; ``evaluate(ts)`` re-runs the model at
-    ageing times ``ts`` and returns the ratios there (len(ts), limit). Each round
-    evaluates the model once for all open brackets, at the times ``_Bracket.inner``
-    picks (POINTS equally spaced first, then two straddling the secant's root), and
-    keeps the sub-interval of the first crossing, until each bracket is no wider than
-    TOLERANCE of its stored interval or FLOOR seconds; the crossing is then
-    interpolated linearly inside it (a guarded regula falsi: the model is re-run about
-    2 + 2 times per limit instead of 2 x 9).
+    ageing times ``ts`` and returns the ratios there (len(ts), limit). The search runs
+    in the square root of the time, in which a ratio driven by moisture uptake is nearly
+    linear. Each round evaluates the model once for all open brackets, at the times
+    ``_Bracket.inner`` picks (POINTS equally spaced and the climate's change times inside
+    the bracket first, then two straddling the best guess), and keeps the sub-interval of
+    the first crossing, until each bracket is no wider than its ``tolerance``; the
+    crossing is read inside it, its error bound the larger distance to the ends.
 
     Parameters
     ----------
@@ -465,35 +574,31 @@ def first_crossings(times: np.ndarray, ratios: np.ndarray,
     evaluate : callable
         ``evaluate(ts)`` with ``ts`` ageing times [s]: the ratios [-] there, shape
         (len(ts), limit).
+    tolerance : Tolerance
+        The error each crossing may carry (by default 0.1 % of it, or 1 h).
+    nodes : array_like
+        The climate's change times [s] (a record's rows, a history's segment ends): the
+        first round samples those inside a bracket too, where a ratio the climate drives up
+        and down peaks, so a first crossing between stored times is not passed over.
 
     Returns
     -------
-    numpy.ndarray
-        Per limit, the first ageing time out of spec [s]; NaN where it stays in spec.
+    tuple of numpy.ndarray
+        Per limit, the first ageing time out of spec [s] (NaN where it stays in spec) and
+        its error estimate [s] (never above the tolerance).
     """
     times = np.asarray(times, float)
     ratios = np.asarray(ratios, float).reshape(len(times), -1)
-    found = np.full(ratios.shape[1], np.nan)
-    brackets: dict[int, _Bracket] = {}
-    for j in range(ratios.shape[1]):
-        index = _first_above(ratios[:, j])
-        if index == 0:
-            found[j] = times[0]
-        elif index is not None:
-            lo, hi = times[index - 1], times[index]
-            brackets[j] = _Bracket(lo, hi, ratios[index - 1, j], ratios[index, j],
-                                   max(TOLERANCE * (hi - lo), FLOOR))
-    round_ = 0
+    found, brackets = _brackets(times, ratios, tolerance, np.asarray(nodes, float))
     while any(b.open() for b in brackets.values()):
-        inner = {j: b.inner(round_) for j, b in brackets.items() if b.open()}
-        round_ += 1
+        inner = {j: b.inner() for j, b in brackets.items() if b.open()}
         at = np.unique(np.concatenate(list(inner.values())))
         values = np.asarray(evaluate(at), float).reshape(len(at), -1)
         for j, ts in inner.items():
             brackets[j].narrow(ts, values[np.searchsorted(at, ts), j])
     for j, bracket in brackets.items():
-        found[j] = bracket.root()
-    return found
+        found[:, j] = bracket.root()
+    return found[0], found[1]
 
 
 # ------------------------------------------------------------------ reading

@@ -90,6 +90,9 @@ def select(ds, variable: str, *, time=None, part=None, cam_angle=None, crank_ang
         answered.append(_answered("time", seconds, between,
                                   lambda x: format_duration(x, stored[-1])))
         selected["time_d"] = seconds / 86400
+    error = VARIABLES[variable].error if variable in VARIABLES and against is None else ""
+    if error in ds and set(ds[error].dims) == set(array.dims):  # its error estimate, alike
+        array.attrs["error"] = ds[error].transpose(*array.dims).values
     array.attrs["selection"] = ", ".join(answered)
     array.attrs["selected"] = selected
     if "time" in ds.coords:  # the result's last ageing time: its times' unit (format_result)
@@ -336,6 +339,10 @@ def format_result(array, variable: str, fmt: str = "table", against: str | None 
         For an unknown ``fmt`` or a unit the variable cannot be shown in.
     """
     values, unit = shown_values(array, variable, units, drift=against is not None)
+    if "error" in array.attrs:  # only the digits the error estimate supports
+        values = supported_values(values, shown_values(array.copy(data=array.attrs["error"]),
+                                                       variable, unit, drift=True)[0],
+                                  text=fmt != "json")
     columns, rows = to_records(array.copy(data=values) if array.dtype.kind in "fc" else array)
     label = variable if against is None else f"{variable} drift vs {against}"
     span = array.attrs.get("time_span_s")  # one unit of time for the table, from the result's
@@ -468,6 +475,52 @@ def csv_cell(value) -> str:
         The cell's text.
     """
     return repr(value) if isinstance(value, float) else str(value)
+
+
+def supported_values(values, errors, text: bool = True) -> np.ndarray:
+    """``values`` with only the digits their ``errors`` support
+    (:func:`fickcam.errors.supported_digits`), as text or as the numbers the text reads.
+
+    Parameters
+    ----------
+    values, errors : array_like
+        The values and their error estimates [the same unit].
+    text : bool
+        Text (a table, CSV) rather than numbers (JSON).
+
+    Returns
+    -------
+    numpy.ndarray
+        Of str, or of float.
+    """
+    from .errors import supported_digits
+
+    cells = [supported_digits(float(v), float(e)) for v, e in
+             zip(np.ravel(values), np.ravel(np.broadcast_to(errors, np.shape(values))))]
+    shaped = np.array(cells, dtype=object).reshape(np.shape(values))
+    return shaped if text else shaped.astype(float)
+
+
+def time_units(ds, variable: str) -> str | None:
+    """The unit a time-valued variable (``time_out_of_spec``) is shown in by default: the
+    result's time unit (:func:`fickcam.dataset.report_time_unit`); None for others.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        The result.
+    variable : str
+        The variable asked for.
+
+    Returns
+    -------
+    str or None
+        A pint unit (``d``, ``h``, ``yr``), or None: the variable's own display unit.
+    """
+    from .dataset import report_time_unit
+
+    var = VARIABLES.get(variable)
+    return report_time_unit(ds)[0] if var is not None and var.units == "d" else None
 
 
 def _table_cell(value) -> str:

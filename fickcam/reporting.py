@@ -12,8 +12,8 @@ import math
 
 import numpy as np
 
-from .dataset import ageing_seconds
-from .errors import format_duration, times_in
+from .dataset import ageing_seconds, report_time_unit
+from .errors import format_duration, format_time, times_in
 from .limits import stored_limits
 from .query import drift
 from .schema import VARIABLES, design_name
@@ -253,6 +253,52 @@ def _table(rows: list[list[str]], header: list[str]) -> list[str]:
 # ------------------------------------------------------------------- limits
 
 
+def crossing(ds, name: str) -> tuple[float, float | None]:
+    """When a limit of a result first fails and that time's error estimate [s] (NaN: it
+    holds; the estimate None in a result written before it was stored).
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        A result with ``time_out_of_spec``.
+    name : str
+        The limited variable.
+
+    Returns
+    -------
+    tuple of (float, float or None)
+        The time [s] and its error estimate [s].
+    """
+    failed = float(ds["time_out_of_spec"].sel(limit=name)) * 86400.0
+    if "time_out_of_spec_error" not in ds:
+        return failed, None
+    return failed, float(ds["time_out_of_spec_error"].sel(limit=name)) * 86400.0
+
+
+def crossing_text(ds, name: str) -> str:
+    """When a limit first fails, in the result's time unit, with only the digits its error
+    estimate supports (``"20.0 d"``); "never" where it holds.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        A result with ``time_out_of_spec``.
+    name : str
+        The limited variable.
+
+    Returns
+    -------
+    str
+        The time's text.
+    """
+    failed, error = crossing(ds, name)
+    if math.isnan(failed):
+        return "never"
+    unit = report_time_unit(ds)
+    return format_time(failed, unit, error) if error is not None else \
+        f"{failed / unit[1]:.4g} {unit[0]}"
+
+
 def limit_line(ds, name: str) -> str | None:
     """One line on a limit of a result: its band and whether and when it fails.
 
@@ -272,30 +318,25 @@ def limit_line(ds, name: str) -> str | None:
     limit = stored_limits(ds).get(name)
     if limit is None or "time_out_of_spec" not in ds:
         return None
-    failed = float(ds["time_out_of_spec"].sel(limit=name)) * 86400.0
+    failed = crossing(ds, name)[0]
     ratio = np.asarray(ds["limit_ratio"].sel(limit=name).values, float)
     times = ageing_seconds(ds)
+    unit = report_time_unit(ds)
     known = np.flatnonzero(np.isfinite(ratio))
     last = int(known[-1]) if known.size else 0
     # no ratio past a part's leaving the model's domain: the limit is judged up to there only
-    unknown = (f"; no value after {format_duration(times[last], times[-1])}, see the notices"
+    unknown = (f"; no value after {format_time(times[last], unit)}, see the notices"
                if last < times.size - 1 else "")
     if math.isnan(failed):
-        state = (f"holds to {format_duration(times[last], times[-1])} (largest ratio "
+        state = (f"holds to {format_time(times[last], unit)} (largest ratio "
                  f"{np.nanmax(ratio):.4f}{unknown})")
     elif failed <= times[0]:
         state = f"out of spec from the start (ratio {ratio[0]:.4f}{unknown})"
     else:
-        state = (f"out of spec from {format_duration(failed, times[-1])} "
-                 f"(ratio {ratio[last]:.4f} at {format_duration(times[last], times[-1])}"
-                 f"{unknown})")
+        state = (f"out of spec from {crossing_text(ds, name)} "
+                 f"(ratio {ratio[last]:.4f} at {format_time(times[last], unit)}{unknown})")
     band = limit.text + (" around the as-designed value" if limit.deviation is not None else "")
     return f"{name} ({band}): {state}"
-
-
-def _span(ds) -> float:
-    """The last ageing time of a result [s]: its times are all given in the unit that suits it."""
-    return float(ageing_seconds(ds)[-1])
 
 
 def limit_lines(ds) -> list[str]:
@@ -314,13 +355,12 @@ def limit_lines(ds) -> list[str]:
     limits = stored_limits(ds)
     if not limits or "time_out_of_spec" not in ds:
         return []
-    failed = {name: float(ds["time_out_of_spec"].sel(limit=name)) for name in limits}
+    failed = {name: crossing(ds, name)[0] for name in limits}
     failing = sorted((t, name) for name, t in failed.items() if not math.isnan(t))
     if failing:
-        t, name = failing[0]
+        name = failing[0][1]
         head = (f"  first limit to fail: {name} ({limits[name].text}) at "
-                f"{format_duration(t * 86400, _span(ds))}; {len(failing)} of {len(limits)} limit(s) "
-                f"fail")
+                f"{crossing_text(ds, name)}; {len(failing)} of {len(limits)} limit(s) fail")
     else:
         head = f"  all {len(limits)} limit(s) hold"
     return [head] + [f"    {limit_line(ds, name)}" for name in limits]

@@ -112,24 +112,6 @@ class Scene:
     def name(self) -> str:
         return self.model.name
 
-    @property
-    def time_unit(self) -> str | None:
-        """The unit the scene writes its times in (its last ageing time's, else its
-        history's last duration's): reports tell times in it. None: not one of ``s``,
-        ``min``, ``h``, ``d``, ``yr`` (weeks, bare seconds), chosen from the span then."""
-        from .errors import written_unit
-
-        data = self._as_written()
-        outputs = data.get("outputs") if isinstance(data.get("outputs"), dict) else {}
-        times = outputs.get("ageing_times")
-        environment = data.get("environment") if isinstance(data.get("environment"), dict) else {}
-        history = environment.get("history")
-        said = [times[-1] if isinstance(times, list) and times else
-                times.get("every") if isinstance(times, dict) else None,
-                history[-1].get("duration") if isinstance(history, list) and history
-                and isinstance(history[-1], dict) else None]
-        return next((unit for unit in map(written_unit, said) if unit), None)
-
     def __repr__(self) -> str:
         from .scene_display import scene_text
 

@@ -44,6 +44,9 @@ class Var:
         state or a mechanism.
     display : str
         The unit a person reads it in (the summary); "" for the stored unit.
+    error : str
+        The variable holding its error estimate (same dims and unit), by which reports
+        print only the digits it supports; "" for none.
     """
     dims: tuple[str, ...]
     units: str
@@ -53,6 +56,7 @@ class Var:
     design: bool | None = None  # store "<name>_design"; None: yes for a time-dependent
     #                             variable of the material state or a mechanism
     display: str = ""  # unit a person reads it in (summary); "" = the stored unit
+    error: str = ""  # the variable holding its error estimate; "" = none
 
     @property
     def has_design(self) -> bool:
@@ -261,7 +265,10 @@ VARIABLES: dict[str, Var] = {
     "limit_ratio": Var(("time", "limit"), "1", "limit ratio: 1 at the limit, above 1 out of spec",
                        "limits"),
     "time_out_of_spec": Var(("limit",), "d", "first ageing time the limit fails (NaN: never)",
-                            "limits", 1.0 / 86400.0),
+                            "limits", 1.0 / 86400.0, error="time_out_of_spec_error"),
+    "time_out_of_spec_error": Var(("limit",), "d", "estimated error of time_out_of_spec: the "
+                                  "search's, at most 0.1 % of it or 1 h (finer with a finer "
+                                  "diffusion accuracy)", "limits", 1.0 / 86400.0),
     # a sweep with limits: scatter (fickcam.sweep.scatter)
     "fraction_out_of_spec": Var(("time", "limit"), "%", "fraction of the cases out of spec by this "
                                 "ageing time", "limits", 100.0),

@@ -96,6 +96,40 @@ def every_step_times(step: float, end: float) -> np.ndarray:
     return np.append(times, end) if end > times[-1] else times
 
 
+def written_time_unit(scene: Scene) -> str:
+    """The unit the scene's ageing times were written in (else its history's durations),
+    as the time unit its reports use (``errors.unit_of_length``: a month in days); "" where
+    they are bare numbers or a climate record sets them (the reports then choose by span).
+
+    Parameters
+    ----------
+    scene : Scene
+        The loaded scene.
+
+    Returns
+    -------
+    str
+        ``"s"``, ``"min"``, ``"h"``, ``"d"``, ``"yr"`` or ``""``.
+    """
+    from .errors import unit_of_length
+    from .unit_parsing import parse_duration, split_number_unit
+
+    data = scene.document.data if scene.document is not None else {}
+    requested = (data.get("outputs") or {}).get("ageing_times")
+    texts = [requested.get("every")] if isinstance(requested, dict) else list(requested or [])
+    history = (data.get("environment") or {}).get("history")
+    if not texts and isinstance(history, list):
+        texts = [segment.get("duration") for segment in history if isinstance(segment, dict)]
+    for text in reversed(texts):
+        try:
+            unit = split_number_unit(text)[1] if isinstance(text, str) else ""
+            if unit:
+                return unit_of_length(parse_duration(f"1 {unit}"))[0]
+        except ValueError:  # validated already; a spelling this does not read: by span
+            continue
+    return ""
+
+
 def diffusion_options(scene: Scene, accuracy: float | None, settings=None, cache=None) -> dict:
     """The scene's diffusion section, ``accuracy`` (when given) in place of its own, the
     solvers' tuned limits and the run's cache.
@@ -258,7 +292,8 @@ def run(scene, *, accuracy: float | None = None, progress: bool = False, setting
     started = _time.perf_counter()
     cache = run_cache(cache)
     scene = load_scene(scene)
-    with progress_summary(f"run {scene.name}", progress), times_in(scene.time_unit):
+    unit = written_time_unit(scene)  # the unit the scene wrote its times in: reports use it
+    with progress_summary(f"run {scene.name}", progress), times_in(unit or None):
         environment = scene_environment(scene)
         times = ageing_times(scene, environment)
         parts = build_parts(scene)
@@ -274,7 +309,7 @@ def run(scene, *, accuracy: float | None = None, progress: bool = False, setting
             ds.attrs["notices"] = notices
             ds.attrs["limits"] = {limit.variable: limit.as_attrs() for limit in scene.limits}
     ds.attrs["wall_time_s"] = _time.perf_counter() - started  # [s], named with its unit
-    ds.attrs["time_unit"] = scene.time_unit or ""  # the unit the scene wrote its times in
+    ds.attrs["time_unit"] = unit
     return ds
 
 
@@ -406,11 +441,12 @@ def _aged_values(scene: Scene, environment: Environment, times: np.ndarray,
 
 def _limits(ds, scene: Scene, environment: Environment, times, accuracy: float | None,
             parts: list[Part], histories: list[PartHistory], settings=None, cache=None):
-    """(limit_ratio (time, limit) and time_out_of_spec (limit) of the scene's limits, each
-    crossing located by re-running the model inside its bracketing interval; the search's
-    notices, ``_search_notices``)."""
+    """(limit_ratio (time, limit), time_out_of_spec (limit) and its error estimate of the
+    scene's limits, each crossing located by re-running the model inside its bracketing
+    interval to the crossing's own tolerance (``limits.Tolerance``, finer where the
+    diffusion accuracy asked is); the search's notices, ``_search_notices``)."""
     from .dataset import build_dataset
-    from .limits import first_crossings, limit_ratio
+    from .limits import Tolerance, first_crossings, limit_ratio
 
     missing = [limit for limit in scene.limits if limit.variable not in ds]
     if missing:
@@ -449,12 +485,14 @@ def _limits(ds, scene: Scene, environment: Environment, times, accuracy: float |
     search_times, search = times, stored
     if times[0] > 0 and (stored[0] > 1).any():  # out of spec at the first stored time: since?
         search_times, search = np.concatenate([[0.0], times]), np.vstack([evaluate([0.0]), stored])
-    crossings = first_crossings(search_times, search, evaluate)
-    return (build_dataset({"limit_ratio": stored, "time_out_of_spec": crossings},
+    asked = diffusion_options(scene, accuracy)["accuracy"]
+    crossings, errors = first_crossings(search_times, search, evaluate,
+                                        Tolerance.for_accuracy(asked), environment.change_times)
+    return (build_dataset({"limit_ratio": stored, "time_out_of_spec": crossings,
+                           "time_out_of_spec_error": errors},
                           {"time": times, "limit": [limit.variable for limit in scene.limits]}),
             search_notices(searched, {h.part.name: h.diffusion.error_estimate for h in histories
-                                      if h.diffusion is not None},
-                           diffusion_options(scene, accuracy)["accuracy"]))
+                                      if h.diffusion is not None}, asked))
 
 
 def search_notices(searched: dict[str, float], stored: dict[str, float],

@@ -140,7 +140,7 @@ def test_a_stored_time_next_to_a_missing_value_is_read_as_stored():
 def test_a_limit_is_said_to_hold_only_as_far_as_the_model_computed_it(tmp_path):
     """The R914 four-bar leaves the model's domain (wet Tg) between 2 h 20 min and 2 h
     30 min of its 3 h history: its limit holds to 2 h (the last ageing time with values),
-    not to 3 h."""
+    not to 3 h, said in the minutes the ageing times were written in."""
     import fickcam
     from fickcam.reporting import limit_line
 
@@ -152,7 +152,8 @@ def test_a_limit_is_said_to_hold_only_as_far_as_the_model_computed_it(tmp_path):
     ds = fickcam.run(path)
     assert ds.time.values[-1] == pytest.approx(3 / 24)  # days
     line = limit_line(ds, "rocker_angle")
-    assert "holds to 2 h (" in line and "no value after 2 h, see the notices" in line, line
+    assert "holds to 120 min (" in line and "no value after 120 min, see the notices" in line, \
+        line
 
 
 def test_a_sweep_whose_cases_end_at_different_times_says_which_end_early():

@@ -11,9 +11,13 @@ from .common import legend, days, figure, save_figure
 
 
 def _spec_text(ds, variable: str) -> str:
-    """'out of spec at 41.2 d' or 'in spec throughout' from the result's time_out_of_spec."""
+    """'out of spec at 41.2 d' or 'in spec throughout' from the result's time_out_of_spec
+    (only the digits its error estimate supports, in the result's time unit)."""
+    from ..reporting import crossing_text
+
     failed = float(ds["time_out_of_spec"].sel(limit=variable))
-    return "in spec throughout" if math.isnan(failed) else f"out of spec at {failed:.3g} d"
+    return "in spec throughout" if math.isnan(failed) else \
+        f"out of spec at {crossing_text(ds, variable)}"
 
 
 def plot_against_band(before, after, path, window=()) -> Path:

@@ -4,7 +4,6 @@ from __future__ import annotations
 import math
 from pathlib import Path
 
-from ..errors import format_duration
 from ..limits import stored_limits, worst_value
 from ..query import drift
 from .common import legend, age_colour, age_label, ages, days, figure, Figures, returns_figures, save_figure
@@ -55,8 +54,10 @@ def _over_time(ax, ds, limit) -> None:
         ax.axhline(getattr(limit, kind) * scale, color="r", lw=1.2, ls="--", label=f"limit ({kind})")
     failed = float(ds["time_out_of_spec"].sel(limit=limit.variable))
     if not math.isnan(failed):
+        from ..reporting import crossing_text
+
         ax.axvline(failed, color="k", lw=1, ls=":",
-                   label=f"out of spec at {format_duration(failed * 86400)}")
+                   label=f"out of spec at {crossing_text(ds, limit.variable)}")
     ax.set_xlabel("ageing time [d]")
     ax.set_ylabel(_wrapped(f"{worst_label(limit.variable, kinds[0], over)} [{units}]"))
     ax.set_title(f"{limit.variable}: {limit.text}", fontsize=10)
