@@ -48,7 +48,7 @@ class FickcamWarning(UserWarning):
     """A result that is computed but needs attention (a follower that jumps, a part past its
     wet glass transition, a limit search less accurate than asked).
 
-    Python users get these through :mod:`warnings` and filter them the usual way, e.g.
+    Python users get these through the ``warnings`` module and filter them the usual way, e.g.
     ``warnings.simplefilter("ignore", fickcam.FickcamWarning)``; the command line shows
     them as ``fickcam: warning: ...`` lines.
 

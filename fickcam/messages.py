@@ -19,7 +19,7 @@ strings and warn; a notice made with :func:`note` informs. :func:`log_notices` r
 at its level.
 
 Who hears what: a warning (:func:`warn`) reaches a Python caller as a
-:class:`~fickcam.errors.FickcamWarning` through :mod:`warnings`, and the command line as a
+:class:`~fickcam.errors.FickcamWarning` through the ``warnings`` module, and the command line as a
 ``fickcam: warning:`` line; notes and debug details go to the ``fickcam`` logger (INFO and
 DEBUG), which says nothing until its user switches it on (``logging.basicConfig`` or a
 handler of their own). ``-q`` leaves only the errors.

@@ -282,7 +282,7 @@ def ambiguity(value, dimension: str) -> str | None:
     value : object
         The value as written (a number, or a string with or without a unit).
     dimension : str
-        Its dimension (a key of :data:`fickcam.unit_parsing.SI_UNITS`).
+        Its dimension (a key of ``fickcam.unit_parsing.SI_UNITS``).
 
     Returns
     -------

@@ -1,5 +1,5 @@
 """`fickcam size` on a scene: the smallest base circle, dry and aged, in at most
-:data:`MAX_RUNS` runs of the scene.
+``MAX_RUNS`` runs of the scene.
 
 The geometry search (:mod:`fickcam.cam.sizing`) needs no diffusion: it reads the aged cam
 through its strains. The moisture history depends on the base circle only through the
@@ -148,7 +148,7 @@ def size_scene(scene, limits: Limits) -> Sizing:
     Returns
     -------
     Sizing
-        The sizes [m] and the runs made (at most :data:`MAX_RUNS`).
+        The sizes [m] and the runs made (at most ``MAX_RUNS``).
 
     Raises
     ------
