@@ -32,6 +32,7 @@ from .scene_models import (  # noqa: F401  (re-exported: fickcam.scene is their 
     StateSpec,
     last_ageing_time,
 )
+from .yamldoc import check_mapping_bounds
 from .yamldoc import (  # noqa: F401  (re-exported)
     YamlDocument,
     parse_yaml,
@@ -468,6 +469,7 @@ def load_scene(source, *, file_name: str | None = None) -> Scene:
     if isinstance(source, Scene):
         return source
     if isinstance(source, dict):
+        check_mapping_bounds(source, file=file_name or "<dict>")
         text = yaml.safe_dump(source, sort_keys=False)
         doc = parse_yaml(text, file=file_name or "<dict>")
         return validate_document(doc, base_dir=Path.cwd())
