@@ -144,13 +144,13 @@ def _cmd_check(args) -> int:
 def _cmd_size(args) -> int:
     from .cam.sizing import Limits
     from .cam.sizing_scene import size_scene
-    from .cli_values import option_value
+    from .cli_values import angle, option_value
     from .plausibility import cam_length_reading
     from .scene import load_scene
     from .simulate import plan_parts
     from .units import NonNegativeLength, PositiveAngle
 
-    pressure_angle = option_value("--pressure-angle", args.pressure_angle, PositiveAngle)
+    pressure_angle = angle("--pressure-angle", args.pressure_angle, PositiveAngle)
     scene = load_scene(args.scene)
     if scene.model.cam is None:
         raise InputError("the scene has no cam: section to size")

@@ -269,10 +269,13 @@ BARE_READINGS = {"temperature": TEMPERATURE, "relative_humidity": RELATIVE_HUMID
 #: safe. A rotational speed in rad/s and in rpm differ by a factor of 9.55 and both are
 #: common in machine design: (the units a bare number may have meant, the first suggested)
 AMBIGUOUS = {"angular_speed": ("rpm", "rad/s")}
-_AMBIGUOUS_WHAT = {"angular_speed": "a rotational speed"}
+#: on the command line an angle is ambiguous too: the results, the reports and every
+#: example give angles in degrees, so a bare ``--cam-angle 5`` means 5 deg as often as 5 rad
+OPTION_AMBIGUOUS = {**AMBIGUOUS, "angle": ("deg", "rad")}
+_AMBIGUOUS_WHAT = {"angular_speed": "a rotational speed", "angle": "an angle"}
 
 
-def ambiguity(value, dimension: str) -> str | None:
+def ambiguity(value, dimension: str, among: dict = AMBIGUOUS) -> str | None:
     """Why a bare value of an ambiguous dimension (:data:`AMBIGUOUS`) is refused, or None.
 
     Zero needs no unit; values with units are never refused here.
@@ -283,16 +286,19 @@ def ambiguity(value, dimension: str) -> str | None:
         The value as written (a number, or a string with or without a unit).
     dimension : str
         Its dimension (a key of ``fickcam.unit_parsing.SI_UNITS``).
+    among : dict
+        The ambiguous dimensions: :data:`AMBIGUOUS` in a scene, :data:`OPTION_AMBIGUOUS`
+        on the command line.
 
     Returns
     -------
     str or None
         The one-line reason, suggesting the likely unit (``did you mean '200 rpm'?``).
     """
-    if dimension not in AMBIGUOUS or not is_bare_number(value) or float(value) == 0:
+    if dimension not in among or not is_bare_number(value) or float(value) == 0:
         return None
     number = f"{float(value):g}"
-    meant, other = AMBIGUOUS[dimension]
+    meant, other = among[dimension]
     return (f"{number} without a unit is ambiguous for {_AMBIGUOUS_WHAT[dimension]} ({meant} "
             f"or {other}): did you mean '{number} {meant}'? Give the unit ('{number} {meant}' "
             f"or '{number} {other}')")
