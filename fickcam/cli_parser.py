@@ -232,9 +232,9 @@ def _design_commands(sub) -> None:
                            "refused: degrees or radians?)")
     size.add_argument("--radius-of-curvature", default=None,
                       help="smallest convex working radius of curvature with its unit (default: "
-                           "the roller's radius for a roller follower, Norton's rule; a positive "
-                           "radius for a flat face or knife; a bare number is metres, as in a "
-                           "scene)")
+                           "the roller's radius for a roller follower, Norton's rule; for a flat "
+                           "face the radius its Hertz contact stress allows; a positive radius "
+                           "for a knife; a bare number is metres, as in a scene)")
 
 
 def _sweep_command(sub) -> None:
