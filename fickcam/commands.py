@@ -17,6 +17,7 @@ def _cmd_run(args) -> int:
     from .scene import load_scene
     from .reporting import summary
     from .simulate import run
+    from .resultsize import result_fits
     from .store import save
 
     accuracy = scene_accuracy(args.accuracy)
@@ -51,31 +52,6 @@ def scene_accuracy(text) -> float | None:
     from .scene import DiffusionSection
 
     return field_value("--accuracy", text, DiffusionSection, "accuracy")
-
-
-def result_fits(scene, output: Path) -> None:
-    """Before a run: warn of a result above 1 GiB, with the settings that shrink it, and
-    refuse one that the disk at ``output`` cannot hold (:mod:`fickcam.resultsize`).
-
-    Parameters
-    ----------
-    scene : fickcam.scene.Scene
-        The scene to run.
-    output : pathlib.Path
-        The result file.
-
-    Raises
-    ------
-    fickcam.errors.WriteError
-        When the disk cannot hold the result.
-    """
-    from .resultsize import check_space, estimate, size_warning
-
-    size = estimate(scene)
-    warning = size_warning(size)
-    if warning:
-        log.warning(warning)
-    check_space(size, output)
 
 
 def notices_line(notices, quiet: int) -> str:
@@ -283,17 +259,16 @@ def _cmd_schema(args) -> int:
 
 
 def _cmd_sweep(args) -> int:
-    from .reporting import sweep_summary
+    from .reporting import sweep_limit_lines, sweep_summary
     from .store import open_result
     from .sweep import run_sweep
-    from .sweep.scatter import summary_lines
 
     run_sweep(args.sweep, args.output, workers=args.workers, scheduler=args.scheduler,
               progress=not args.quiet)
     if args.quiet < 2:
         result = open_result(args.output)
         print(sweep_summary(result))
-        for line in summary_lines(result):
+        for line in sweep_limit_lines(result):
             print(line)
         print(f"wrote {args.output}")
     return 0

@@ -443,6 +443,49 @@ def _sweep_cell(ds, name: str, case: int) -> str:
     return f"{_number(value)} ({_change(change)})" if np.isfinite(change) else _number(value)
 
 
+def sweep_limit_lines(ds) -> list[str]:
+    """Per limit of a sweep: how many of the cases that ran are out of spec by its last
+    ageing time, with the Wilson 95 % interval of that fraction, and when the first and the
+    last of them left it, each case's time as a single run reports it (:func:`crossing_text`:
+    the digits its error estimate supports, in the scene's time unit).
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        A sweep's combined result with limits (``time_out_of_spec`` over case and limit,
+        and the fractions of :func:`fickcam.sweep.scatter.fractions`).
+
+    Returns
+    -------
+    list of str
+        A heading, one line per limit and where the fractions by each ageing time are;
+        empty without fractions.
+    """
+    if "fraction_out_of_spec" not in ds:
+        return []
+    n = int(ds["cases_out_of_spec"].attrs.get("cases", 0))
+    last = ds.isel(time=-1)
+    with times_in(ds.attrs.get("time_unit") or None):
+        by = format_duration(ageing_seconds(ds)[-1])
+    lines = [f"out of spec (of {n} case(s) that ran; Wilson 95 % interval):"]
+    for limit in ds["limit"].values.tolist():
+        row = last.sel(limit=limit)
+        fraction, low, high = (float(row[v]) for v in ("fraction_out_of_spec",
+                                                       "fraction_out_of_spec_low",
+                                                       "fraction_out_of_spec_high"))
+        text = (f"  {limit}: {int(row['cases_out_of_spec'])} of {n} by {by} ({fraction:.3g} % "
+                f"[{low:.3g}, {high:.3g}])")
+        days = ds["time_out_of_spec"].sel(limit=limit).values
+        failed = np.flatnonzero(np.isfinite(days))
+        if failed.size:
+            ends = sorted({int(failed[np.argmin(days[failed])]), int(failed[np.argmax(days[failed])])},
+                          key=lambda case: days[case])
+            when = [f"{crossing_text(ds.isel(case=case), limit)} (case {case})" for case in ends]
+            text += "; first at " + when[0] + (f", last at {when[1]}" if len(when) > 1 else "")
+        lines.append(text)
+    return lines + ["  (the fraction by each ageing time: fickcam query RESULT fraction_out_of_spec)"]
+
+
 def sweep_summary(ds) -> str:
     """One line per case after ``fickcam sweep``.
 

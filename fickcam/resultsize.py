@@ -6,6 +6,8 @@ angles (one per ``angle_step``), links and joints of a four-bar, limits, and the
 each part when ``outputs.fields`` keeps the moisture fields. `fickcam check` prints the
 estimate; `fickcam check` and `fickcam run` warn above :data:`WARN_ABOVE`, with the
 settings that shrink it, and `run` refuses a result the disk cannot hold before it starts.
+A sweep's combined result is its base scene's times its cases, warned of and refused the
+same way before its first case.
 """
 from __future__ import annotations
 
@@ -51,14 +53,17 @@ class ResultSize:
 
     def text(self) -> str:
         """``about 4.8 GB (87,601 ageing times x 360 cam angles)``: the estimate in words."""
-        named = [("time", "ageing times"), ("cam_angle", "cam angles"),
+        named = [("case", "cases"), ("time", "ageing times"), ("cam_angle", "cam angles"),
                  ("crank_angle", "crank angles"), ("cell", "cells")]
-        factors = [f"{self.sizes[dim]:,} {words}" for dim, words in named if self.sizes.get(dim)]
+        factors = [f"{self.sizes[dim]:,} {words}" for dim, words in named
+                   if self.sizes.get(dim) and not (dim == "case" and self.sizes[dim] == 1)]
         return f"about {byte_size(self.bytes)} ({' x '.join(factors)})"
 
     def advice(self) -> str:
         """What shrinks the result, in scene keys."""
         ways = ["fewer ageing times (outputs.ageing_times)"]
+        if self.sizes.get("case", 1) > 1:
+            ways.insert(0, "fewer cases")
         if self.sizes.get("cam_angle") or self.sizes.get("crank_angle"):
             ways.append("a coarser outputs.angle_step")
         if self.fields:
@@ -81,7 +86,7 @@ def _computed(name: str, section: str, scene) -> bool:
     return True
 
 
-def estimate(scene, times=None, cells: int | None = None) -> ResultSize:
+def estimate(scene, times=None, cells: int | None = None, cases: int = 1) -> ResultSize:
     """The result's size, from the scene alone.
 
     Parameters
@@ -93,6 +98,9 @@ def estimate(scene, times=None, cells: int | None = None) -> ResultSize:
     cells : int, optional
         The most cells of a part's moisture field [1], when the fields are kept (None:
         planned here when ``outputs.fields`` is true).
+    cases : int
+        The cases of a sweep whose base scene ``scene`` is [1]: each variable of the
+        combined result holds one case's values per case.
 
     Returns
     -------
@@ -113,14 +121,14 @@ def estimate(scene, times=None, cells: int | None = None) -> ResultSize:
              "cam_angle": angles if model.cam is not None else 0,
              "crank_angle": angles if model.linkage is not None else 0,
              "limit": len(scene.limits or ()), "cell": (cells or 0) if model.outputs.fields else 0,
-             **FOURBAR_POINTS}
+             **FOURBAR_POINTS, "case": cases}
     total = 0
     for name, var in VARIABLES.items():
         if not _computed(name, var.section, scene):
             continue
         points = math.prod(sizes.get(dim, 0) for dim in var.dims)
         if points:
-            total += 8 * points + PER_VARIABLE
+            total += 8 * points * cases + PER_VARIABLE
     return ResultSize(total, sizes, bool(model.outputs.fields))
 
 
@@ -171,3 +179,30 @@ def check_space(size: ResultSize, path) -> None:
         raise WriteError(f"{path}: the result will be {size.text()} and needs{least} "
                          f"{byte_size(needed)} on the disk, which has {byte_size(free)} free: "
                          f"nothing was run; to shrink it: {size.advice()}")
+
+
+def result_fits(scene, output, cases: int = 1) -> None:
+    """Before a run or a sweep: warn of a result above :data:`WARN_ABOVE`, with the
+    settings that shrink it, and refuse one that the disk at ``output`` cannot hold.
+
+    Parameters
+    ----------
+    scene : fickcam.scene.Scene
+        The scene to run, or a sweep's base scene.
+    output : str or pathlib.Path
+        The result file.
+    cases : int
+        The sweep's cases [1]; 1 for a run.
+
+    Raises
+    ------
+    fickcam.errors.WriteError
+        When the disk cannot hold the result.
+    """
+    from .messages import warn
+
+    size = estimate(scene, cases=cases)
+    warning = size_warning(size)
+    if warning:
+        warn(warning)
+    check_space(size, output)

@@ -372,8 +372,9 @@ def run_sweep(sweep_path, output, workers: int | None = None, scheduler: str | N
         When workers or a scheduler are asked for without dask.distributed installed.
     """
     from ..diffusion import run_cache
+    from ..resultsize import result_fits
     from ..scene import load_scene
-    from ..simulate import plan_parts
+    from ..simulate import plan_parts, written_time_unit
     from ..store import remove_stale_temporaries, save
 
     started = time.perf_counter()
@@ -384,8 +385,10 @@ def run_sweep(sweep_path, output, workers: int | None = None, scheduler: str | N
     # the base scene as `fickcam check` takes it (its parts planned) before any case; a
     # case's own refusals come before its solves (``fickcam.run`` plans first)
     cache = run_cache(None)
-    plan_parts(load_scene(sweep.base_file), cache=cache)
+    base = load_scene(sweep.base_file)
+    plan_parts(base, cache=cache)
     output = Path(output)
+    result_fits(base, output, cases=len(sweep.cases))
     folder = WorkFolder.next_to(output)
     records = folder.open_for(sweep.identity, len(sweep.cases))
     for stale in remove_stale_temporaries(output):  # a run killed while it wrote the result
@@ -406,6 +409,7 @@ def run_sweep(sweep_path, output, workers: int | None = None, scheduler: str | N
         warn("%d of %d case(s) failed (case_status, case_message in the result): %s",
              len(failed), len(sweep.cases), shown)
     result = combine(sweep, records, finished_cases(folder, sweep, records), started=started)
+    result.attrs["time_unit"] = written_time_unit(base)  # the reports' unit, as a run's
     short = early_ends(result)
     if short:
         warn(short)
