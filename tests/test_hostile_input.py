@@ -215,6 +215,8 @@ def test_a_resumed_sweep_removes_the_temporary_file_of_a_killed_write(tmp_path):
     from fickcam.sweep import run_sweep
 
     sweep = write_sweep(tmp_path)
+    sweep.write_text("base: base.yaml\ngrid:\n  environment.history.0.relative_humidity: "
+                     "[55 %]\n")  # one case: what is tested is the result's write
     output = tmp_path / "out.h5"
     stale = tmp_path / ".out.h5.k3j_9x2q.tmp"  # what a kill during the result's write leaves
     stale.write_bytes(b"half a result")
