@@ -202,3 +202,37 @@ def test_no_plot_module_touches_pyplot_or_the_backend():
     for path in [*package.glob("plotting/*.py"), package / "fit" / "plot.py"]:
         text = path.read_text()
         assert "matplotlib.use(" not in text and "import matplotlib.pyplot" not in text, path
+
+
+@pytest.mark.parametrize("which", ["fit", "against_band"])
+def test_the_one_figure_plots_return_their_figure_like_every_other(cam, which, tmp_path,
+                                                                   monkeypatch):
+    """``plot_fit`` and ``plot_against_band`` return :class:`Figures` (shown inline in a
+    notebook), write a file only when given one, and leave the backend alone."""
+    import matplotlib
+    import matplotlib.pyplot as plt
+    from matplotlib.figure import Figure
+
+    if which == "fit":
+        from fickcam.fit import fit_weight_gain, plot_fit
+        from fickcam.fit.synthetic import d5229_times, synthetic_specimen
+
+        rng = np.random.default_rng(13)
+        coupons = [synthetic_specimen(f"s{k}", 333.15, 85.0, 2e-3, d5229_times(60.0), 2.0, 5e-12,
+                                      rng, 0.01) for k in range(2)]
+        report = fit_weight_gain(coupons, "3502", name="coupons")
+        draw = lambda path=None: plot_fit(report, path)  # noqa: E731
+    else:
+        from fickcam.plotting.compensation import plot_against_band
+
+        draw = lambda path=None: plot_against_band(cam, cam, path, (0.0, 60.0))  # noqa: E731
+    backend, open_figures = matplotlib.get_backend(), plt.get_fignums()
+    monkeypatch.chdir(tmp_path)
+    shown = draw()
+    assert isinstance(shown, plotting.Figures) and len(shown) == 1 and shown.paths == []
+    assert isinstance(shown[0], Figure) and not list(tmp_path.iterdir())
+    assert shown._repr_html_().count("data:image/png;base64,") == 1
+    assert matplotlib.get_backend() == backend and plt.get_fignums() == open_figures
+    written = draw(tmp_path / "figure.png")
+    assert written.paths == [tmp_path / "figure.png"] and (tmp_path / "figure.png").stat().st_size
+    assert written[0].get_label() == "figure"

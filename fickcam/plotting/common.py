@@ -148,6 +148,35 @@ def returns_figures(draw):
     return wrapper
 
 
+def one_figure(fig, path=None, save=None) -> Figures:
+    """``fig`` as the :class:`Figures` a plotting function returns, written to ``path`` when given.
+
+    For the plotting functions that draw one figure to one file (not a folder of them): the
+    figure is labelled with the file's stem, its ticks are tidied, and it is shown inline
+    in a notebook.
+
+    Parameters
+    ----------
+    fig : matplotlib.figure.Figure
+        The figure.
+    path : str or pathlib.Path, optional
+        The file; its suffix gives the format. None: the figure is only returned.
+    save : callable, optional
+        ``save(fig, path) -> path`` writes the figure; default :func:`save_figure`.
+
+    Returns
+    -------
+    Figures
+        The one figure; ``.paths`` holds ``path`` when it was written.
+    """
+    tidy_ticks(fig)
+    figures = Figures([fig])
+    if path is not None:
+        fig.set_label(Path(path).stem)
+        figures.paths.append((save_figure if save is None else save)(fig, Path(path)))
+    return figures
+
+
 def figure() -> FigureMaker:
     """The maker of new figures (:class:`FigureMaker`): no pyplot, no backend change."""
     return FigureMaker()
