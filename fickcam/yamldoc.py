@@ -158,11 +158,12 @@ def check_mapping_bounds(data, *, file: str = "<dict>", what: str = "scene") -> 
     fickcam.errors.SceneError
         One problem naming the bound passed.
     """
-    total, size = 0, 0
+    total, size = 1, 0
     stack = [(data, 1)]
     while stack:
         value, depth = stack.pop()
-        total += 1 + (len(value) if isinstance(value, dict) else 0)  # a mapping's keys too
+        if isinstance(value, (dict, list, tuple)):  # its items (and keys) count as they come
+            total += len(value) * (2 if isinstance(value, dict) else 1)
         if total > MAX_NODES:
             raise _bound_problem(file, what, None, f"more than {MAX_NODES:,} values (each "
                                  f"place a shared object is used counts all of its values)")
