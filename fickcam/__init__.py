@@ -19,7 +19,7 @@ __all__ = ["load_scene", "run", "save", "open_result", "compensate", "fit_weight
 _logging.getLogger(__name__).addHandler(_logging.NullHandler())
 
 #: sub-packages reached as attributes (``fickcam.plotting.plot(ds)``), imported on first use:
-#: attribute -> module, relative to the package (``fickcam.query`` is the results' query module)
+#: attribute -> module, relative to the package (the attribute ``query`` is ``results.query``)
 _SUBMODULES = {"plotting": ".plotting", "query": ".results.query", "export": ".results.export",
                "scene": ".scene", "results": ".results", "messages": ".messages",
                "errors": ".errors"}
