@@ -18,8 +18,8 @@ import pytest
 import yaml
 
 import fickcam
-from fickcam.limits import FLOOR_SHARE, Tolerance, limit_ratio
-from fickcam.reporting import crossing_text
+from fickcam.results.limits import FLOOR_SHARE, Tolerance, limit_ratio
+from fickcam.cli.reporting import crossing_text
 
 from test_limits import fast_fourbar
 

@@ -5,7 +5,7 @@ import numpy as np
 import pytest
 import xarray as xr
 
-from fickcam.reporting import sweep_limit_lines
+from fickcam.cli.reporting import sweep_limit_lines
 from fickcam.sweep.scatter import fractions, out_of_spec_counts, wilson_interval
 
 Z = 1.959963984540054  # standard normal 97.5 % quantile
