@@ -30,6 +30,7 @@ from typing import Callable
 import numpy as np
 
 from ..errors import InputError
+from .accuracy.budget import check_accuracy
 from .accuracy.error_model import (ANALYTIC_ERROR, LAYER_TOLERANCE, MAX_CELLS, PLANFORM_SHARE,
                                    CellCaps)
 from .exact.separable import exact_available
@@ -48,7 +49,7 @@ from .nonfickian.planform_modes import (REFINEMENT, PlanformMeasure, RefinedPlan
 from .nonfickian.two_phase_mesh import two_phase_marcher
 from .nonfickian.two_phase_modes import langmuir_history
 from .problem.cache import RunCache, run_cache
-from .problem.definition import DiffusionProblem
+from .problem.definition import MODELS, DiffusionProblem
 from .problem.exposure import Diffusivity, Exposure, swing
 from .problem.geometry import LAYER_DEPTH, Bar, CamPlate, Disc, LinkBar, Sheet
 from .problem.results import DiffusionResult, Plan
@@ -145,7 +146,6 @@ FICK_MODELS = {model.name: model for model in (
     _finite_volume("axisymmetric", (Disc,)),
     FickModel("plane", (CamPlate, LinkBar), plan_plane, solve_plane),
     _finite_volume("solid", (Bar, CamPlate, LinkBar)))}
-MODELS = ("auto", *FICK_MODELS)
 PARTS = (Sheet, Disc, Bar, CamPlate, LinkBar)
 
 
@@ -172,8 +172,7 @@ def _validate(problem: DiffusionProblem) -> None:
         raise InputError(f"diffusion.model {model!r}: one of {', '.join(MODELS)}")
     if type(geometry) not in PARTS:
         raise InputError(f"unsupported diffusion geometry {type(geometry).__name__}")
-    if not (0 < accuracy < 1):
-        raise InputError(f"diffusion.accuracy {accuracy!r}: must lie in (0, 1)")
+    check_accuracy(accuracy, "diffusion.accuracy")
     if model != "auto" and not FICK_MODELS[model].applies(geometry):
         allowed = sorted(name for name, m in FICK_MODELS.items() if m.applies(geometry))
         raise InputError(f"diffusion.model {model!r} does not apply to a "
@@ -250,7 +249,7 @@ def plan(geometry, diffusivity: Diffusivity, exposure: Exposure, times: np.ndarr
     ------
     fickcam.errors.InputError
         When the model is unknown or does not apply to the part, the geometry is not
-        one of the five, or the accuracy is outside (0, 1).
+        one of the five, or the accuracy is outside (0, 0.1].
     """
     return plan_problem(DiffusionProblem(geometry, diffusivity, exposure, times, accuracy, model,
                                          surface_layer_depth, sorption=sorption),
@@ -260,8 +259,9 @@ def plan(geometry, diffusivity: Diffusivity, exposure: Exposure, times: np.ndarr
 def refuse(problem: DiffusionProblem) -> None:
     """Refuse, before any work, a problem that no model can plan: an unknown model, a
     model that does not apply to the part's shape or has no solution for it, an accuracy
-    outside (0, 1), no route of its sorption law. A run checks every part so before it
-    plans or solves the first (a refusal costs nothing then).
+    outside (0, 0.1] (``accuracy.budget.check_accuracy``), no route of its sorption law. A
+    run checks every part so before it plans or solves the first (a refusal costs nothing
+    then).
 
     Parameters
     ----------
@@ -381,7 +381,7 @@ def solve(geometry, diffusivity: Diffusivity, exposure: Exposure, times: np.ndar
     times : array_like
         The times [s] at which the moisture is wanted, from 0 (the start of the history).
     accuracy : float
-        The relative accuracy [-], in (0, 1), a fraction of the moisture swing.
+        The relative accuracy [-], in (0, 0.1], a fraction of the moisture swing.
     model : str
         One of ``MODELS``; "auto" chooses (the exact series where it applies).
     surface_layer_depth : float
@@ -409,7 +409,7 @@ def solve(geometry, diffusivity: Diffusivity, exposure: Exposure, times: np.ndar
     ------
     fickcam.errors.InputError
         When the model is unknown or does not apply to the part, or the accuracy is
-        outside (0, 1).
+        outside (0, 0.1].
     """
     return solve_problem(DiffusionProblem(geometry, diffusivity, exposure, times, accuracy, model,
                                           surface_layer_depth, store_fields, part, sorption),
