@@ -336,6 +336,36 @@ def in_process(workers: int | None, scheduler: str | None, n_cases: int) -> bool
     return (workers if workers is not None else default_workers(n_cases)) == 1
 
 
+def checked_base(sweep: Sweep, output: Path, cache):
+    """The sweep's base scene as `fickcam check` takes it (its parts planned, into
+    ``cache``) and its combined result's size judged, before any case; a case's own
+    refusals come before its solves (``fickcam.run`` plans first). A temporary file a
+    killed write of ``output`` left is removed when the result is saved.
+
+    Parameters
+    ----------
+    sweep : fickcam.sweep.spec.Sweep
+        The sweep.
+    output : pathlib.Path
+        Its result file.
+    cache : RunCache
+        The run's cache of diffusion plans.
+
+    Returns
+    -------
+    fickcam.scene.load.Scene
+        The base scene.
+    """
+    from ..results.resultsize import result_fits
+    from ..scene.load import load_scene
+    from ..simulation.simulate import plan_parts
+
+    base = load_scene(sweep.base_file)
+    plan_parts(base, cache=cache)
+    result_fits(base, output, cases=len(sweep.cases))
+    return base
+
+
 def run_sweep(sweep_path, output, workers: int | None = None, scheduler: str | None = None,
               progress: bool = False) -> Path:
     """Run every case of the sweep file ``sweep_path`` and write one result to ``output``.
@@ -372,27 +402,19 @@ def run_sweep(sweep_path, output, workers: int | None = None, scheduler: str | N
         When workers or a scheduler are asked for without dask.distributed installed.
     """
     from ..diffusion import run_cache
-    from ..results.resultsize import result_fits
-    from ..scene.load import load_scene
-    from ..simulation.simulate import plan_parts, written_time_unit
-    from ..results.store import remove_stale_temporaries, save
+    from ..results.store import save
+    from ..simulation.simulate import written_time_unit
 
     started = time.perf_counter()
     if scheduler or (workers or 1) > 1:
         require_distributed()  # before the sweep file is read
     sweep = load_sweep(sweep_path)
     here = in_process(workers, scheduler, len(sweep.cases))
-    # the base scene as `fickcam check` takes it (its parts planned) before any case; a
-    # case's own refusals come before its solves (``fickcam.run`` plans first)
     cache = run_cache(None)
-    base = load_scene(sweep.base_file)
-    plan_parts(base, cache=cache)
     output = Path(output)
-    result_fits(base, output, cases=len(sweep.cases))
+    base = checked_base(sweep, output, cache)
     folder = WorkFolder.next_to(output)
     records = folder.open_for(sweep.identity, len(sweep.cases))
-    for stale in remove_stale_temporaries(output):  # a run killed while it wrote the result
-        log.info("removed %s, left by an interrupted write of %s", stale, output)
     todo = [c.index for c in sweep.cases if c.index not in records]
     if records:
         log.info("resuming: %d of %d case(s) already finished", len(records), len(sweep.cases))
