@@ -14,6 +14,7 @@ log = logging.getLogger("fickcam")
 
 
 def _cmd_run(args) -> int:
+    # deferred: keeps numpy, pydantic, yaml off the start-up path
     from ..scene.load import load_scene
     from .reporting import summary
     from ..simulation.simulate import run
@@ -47,6 +48,7 @@ def scene_accuracy(text) -> float | None:
     float or None
         The relative accuracy [-]; None: the scene's.
     """
+    # deferred: keeps the command's modules off the start-up path
     from ..quantities.options import field_value
     from ..scene.load import DiffusionSection
 
@@ -69,6 +71,7 @@ def result_fits(scene, output: Path) -> None:
     fickcam.errors.WriteError
         When the disk cannot hold the result.
     """
+    # deferred: keeps the command's modules off the start-up path
     from ..results.resultsize import check_space, estimate, size_warning
 
     size = estimate(scene)
@@ -96,6 +99,7 @@ def notices_line(notices, quiet: int) -> str:
     str
         The indented line.
     """
+    # deferred: keeps the command's modules off the start-up path
     from ..messages import count_levels
 
     counts = count_levels(notices)
@@ -129,6 +133,7 @@ def default_output(scene) -> Path:
 
 
 def _cmd_check(args) -> int:
+    # deferred: keeps numpy, pydantic off the start-up path
     from .reporting import describe_plan
     from ..results.resultsize import estimate, size_warning
     from ..scene.load import load_scene
@@ -142,6 +147,7 @@ def _cmd_check(args) -> int:
 
 
 def _cmd_size(args) -> int:
+    # deferred: keeps numpy, pydantic off the start-up path
     from ..cam.sizing import Limits
     from ..cam.sizing_scene import size_scene
     from ..quantities.options import option_value
@@ -167,6 +173,7 @@ def _cmd_size(args) -> int:
 
 
 def _cmd_query(args) -> int:
+    # deferred: keeps the command's modules off the start-up path
     from ..quantities.options import angle_degrees
     from .reporting import limit_line
     from ..results.query import format_result, select, time_units
@@ -184,6 +191,7 @@ def _cmd_query(args) -> int:
 
 
 def _cmd_export(args) -> int:
+    # deferred: keeps numpy, pydantic off the start-up path
     from ..results.export import export
     from ..results.store import open_result
 
@@ -194,6 +202,7 @@ def _cmd_export(args) -> int:
 
 
 def _cmd_plot(args) -> int:
+    # deferred: keeps the command's modules off the start-up path
     from ..plotting import plot
     from ..results.store import open_result
 
@@ -210,9 +219,11 @@ BENCH_EXPECTED = {False: "about 3 min", True: "about 10 s"}
 
 def _cmd_bench(args) -> int:
     """The benchmarks of the source checkout (``benchmarks/``): not part of a wheel."""
+    # deferred: keeps the command's modules off the start-up path
     from .checkout import benchmark
 
     if args.records:
+        # deferred: each command loads what it runs (start-up)
         from ..extras import require
 
         require("weather")  # the records bench reads a TMY3 year that pvlib ships
@@ -222,6 +233,7 @@ def _cmd_bench(args) -> int:
         if not args.quick:
             print(records.format_year_accuracy(records.year_accuracy()))
         return 0
+    # deferred: keeps the command's modules off the start-up path
     from ..messages import progress_bar
 
     tradeoff = benchmark("diffusion_tradeoff")
@@ -244,6 +256,7 @@ def _cmd_bench(args) -> int:
 
 
 def _cmd_materials(args) -> int:
+    # deferred: keeps pydantic off the start-up path
     from ..scene.keys import closest_names
     from ..materials.library import GROUPS, entry_text, find_entry, known_names, library_table
 
@@ -262,6 +275,7 @@ def _cmd_materials(args) -> int:
 
 
 def _cmd_examples(args) -> int:
+    # deferred: keeps yaml off the start-up path
     from ..scene import examples as example_scenes
 
     if args.copy:
@@ -276,6 +290,7 @@ def _cmd_examples(args) -> int:
 
 
 def _cmd_schema(args) -> int:
+    # deferred: keeps the command's modules off the start-up path
     from ..results.schema import markdown_table
 
     print(markdown_table())
@@ -283,6 +298,7 @@ def _cmd_schema(args) -> int:
 
 
 def _cmd_sweep(args) -> int:
+    # deferred: keeps numpy, pydantic off the start-up path
     from .reporting import sweep_summary
     from ..results.store import open_result
     from ..sweep import run_sweep
@@ -300,6 +316,7 @@ def _cmd_sweep(args) -> int:
 
 
 def _cmd_compensate(args) -> int:
+    # deferred: keeps numpy, yaml off the start-up path
     from ..compensation import compensate
     from ..compensation.report import report, write_files
     from ..scene.load import load_scene
@@ -310,6 +327,7 @@ def _cmd_compensate(args) -> int:
             raise InputError(f"--profile {args.profile}: the made cam's profile is written as "
                              f".csv or .dxf (by the suffix)")
         if suffix == ".dxf":  # before any computation: the extra may be missing
+            # deferred: each command loads what it runs (start-up)
             from ..cam.profile import dxf_module
 
             dxf_module()
@@ -329,6 +347,7 @@ def _cmd_compensate(args) -> int:
 
 
 def _cmd_profile(args) -> int:
+    # deferred: keeps numpy, pydantic off the start-up path
     from ..cam.design import design_from_scene
     from ..cam.kinematics import working_profile
     from ..cam.profile import dxf_module, write_profile_csv, write_profile_dxf
@@ -349,6 +368,7 @@ def _cmd_profile(args) -> int:
 
 
 def _cmd_fit(args) -> int:
+    # deferred: keeps the command's modules off the start-up path
     from ..quantities.options import field_value
     from ..fit import fit_weight_gain, materials_yaml, parameter_table, plot_fit
     from ..materials import MaterialSpec

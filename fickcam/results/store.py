@@ -7,6 +7,8 @@ never a damaged file.
 """
 from __future__ import annotations
 
+import shutil
+import re
 import json
 import math
 import os
@@ -240,7 +242,6 @@ def free_space(folder) -> int | None:
     int or None
         The free space [bytes].
     """
-    import shutil
 
     try:
         return shutil.disk_usage(folder).free
@@ -304,11 +305,13 @@ def _write_netcdf(ds, target: GuardedFile) -> None:
     ``to_netcdf``, which computes and writes it (data variables first). An in-memory dataset
     whose encodings :mod:`fickcam.results.ncwrite` knows is written by it in one pass through h5py
     (the same file, without h5netcdf's per-variable bookkeeping)."""
+    # deferred: keeps numpy off the start-up path
     from . import ncwrite
 
     if ncwrite.writable(ds):
         ncwrite.write(ds, target)
         return
+    # deferred: keeps h5netcdf off the start-up path
     import h5netcdf
     import h5py
 
@@ -317,6 +320,7 @@ def _write_netcdf(ds, target: GuardedFile) -> None:
         if any(variable.chunks is not None for variable in ds.variables.values()):
             ds.to_netcdf(h5file, engine="h5netcdf")
             return
+        # deferred: keeps h5netcdf off the start-up path
         from xarray.backends import H5NetCDFStore
 
         held: dict[str, dict] = {}
@@ -506,7 +510,6 @@ def remove_stale_temporaries(path) -> list[Path]:
     list of pathlib.Path
         The files removed.
     """
-    import re
 
     path = Path(path)
     pattern = re.compile(rf"\.{re.escape(path.name)}\.[A-Za-z0-9_]{{8}}\.tmp")
@@ -544,8 +547,10 @@ def open_result(path):
     fickcam.errors.InputError
         When the file does not exist or is not a netCDF/HDF5 result.
     """
+    # deferred: keeps xarray off the start-up path
     import xarray as xr
 
+    # deferred: keeps numpy off the start-up path
     from .dataset import with_time_in_days
 
     path = Path(path)
