@@ -6,6 +6,9 @@ from dataclasses import dataclass
 
 from . import dynamics as dyn
 from .motion import segments_from_spec
+from .spec import CamSection
+from .arm import Arm
+from .profile import load_profile
 
 
 @dataclass(frozen=True)
@@ -176,8 +179,6 @@ def design_from_scene(section) -> CamDesign:
         The dry design at the reference temperature, in SI.
     """
     if isinstance(section, dict):
-        from .spec import CamSection
-
         section = CamSection.model_validate(section)
     f = section.follower
     guide = 0.0 if f.guide is None else dyn.guide_friction_factor(
@@ -197,15 +198,11 @@ def design_from_scene(section) -> CamDesign:
                   polydyne_speed=None if section.polydyne is None else
                   (section.polydyne.speed or section.speed))
     if f.arm is not None:
-        from .arm import Arm
-
         sense = 1 if f.arm.rises == "counter_clockwise" else -1
         common["arm"] = Arm(mirror * f.arm.pivot[0], f.arm.pivot[1], f.arm.length or 0.0,
                             f.arm.face_offset, int(mirror) * sense, f.arm.inertia,
                             f.arm.spring_rate, f.arm.spring_preload, f.arm.load_torque)
     if section.profile_file is not None:
-        from .profile import load_profile
-
         profile = load_profile(section.profile_file, f.roller_radius or 0.0, mirror=mirror < 0)
         return CamDesign("profile", profile.radii()[0], profile=profile, **common)
     if section.eccentric is not None:

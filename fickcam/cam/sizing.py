@@ -21,6 +21,8 @@ import math
 from dataclasses import dataclass, replace
 
 import numpy as np
+from .design import CamState
+from .oscillating import follower_response
 
 #: bisection tolerance on the base circle radius (m)
 SIZE_TOLERANCE = 1e-7
@@ -116,8 +118,6 @@ def worst(design, state=None, step: float = SIZE_STEP) -> tuple[float, float]:
     tuple of float
         The largest |pressure angle| [rad] and the smallest convex radius of curvature [m].
     """
-    from .design import CamState
-    from .oscillating import follower_response
 
     theta = np.arange(0.0, 2 * math.pi, step)
     v = follower_response(design, state or CamState(), theta).variables
@@ -347,7 +347,6 @@ def aged_states(ds, design, extremes: bool = True) -> list[tuple]:
     list of tuple
         (ageing time [d], CamState), valid times only.
     """
-    from .design import CamState
 
     def strain(part: str, name: str) -> np.ndarray:
         if part not in ds["part"].values:

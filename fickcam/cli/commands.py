@@ -14,6 +14,7 @@ log = logging.getLogger("fickcam")
 
 
 def _cmd_run(args) -> int:
+    # deferred: keeps numpy, pydantic, yaml off the start-up path
     from ..scene.load import load_scene
     from .reporting import summary
     from ..simulation.simulate import run
@@ -48,6 +49,7 @@ def scene_accuracy(text) -> float | None:
     float or None
         The relative accuracy [-]; None: the scene's.
     """
+    # deferred: keeps the command's modules off the start-up path
     from ..quantities.options import field_value
     from ..scene.load import DiffusionSection
 
@@ -72,6 +74,7 @@ def notices_line(notices, quiet: int) -> str:
     str
         The indented line.
     """
+    # deferred: keeps the command's modules off the start-up path
     from ..messages import count_levels
 
     counts = count_levels(notices)
@@ -105,6 +108,7 @@ def default_output(scene) -> Path:
 
 
 def _cmd_check(args) -> int:
+    # deferred: keeps numpy, pydantic off the start-up path
     from .reporting import describe_plan
     from ..results.resultsize import estimate, size_warning
     from ..scene.load import load_scene
@@ -118,6 +122,7 @@ def _cmd_check(args) -> int:
 
 
 def _cmd_size(args) -> int:
+    # deferred: keeps numpy, pydantic off the start-up path
     from ..cam.sizing import Limits
     from ..cam.sizing_scene import size_scene
     from ..quantities.options import angle, option_value
@@ -143,6 +148,7 @@ def _cmd_size(args) -> int:
 
 
 def _cmd_query(args) -> int:
+    # deferred: keeps the command's modules off the start-up path
     from ..quantities.options import angle_degrees
     from .reporting import limit_line
     from ..results.query import format_result, select, time_units
@@ -160,6 +166,7 @@ def _cmd_query(args) -> int:
 
 
 def _cmd_export(args) -> int:
+    # deferred: keeps numpy, pydantic off the start-up path
     from ..results.export import export
     from ..results.store import open_result
 
@@ -170,6 +177,7 @@ def _cmd_export(args) -> int:
 
 
 def _cmd_plot(args) -> int:
+    # deferred: keeps the command's modules off the start-up path
     from ..plotting import plot
     from ..results.store import open_result
 
@@ -186,9 +194,11 @@ BENCH_EXPECTED = {False: "about 3 min", True: "about 10 s"}
 
 def _cmd_bench(args) -> int:
     """The benchmarks of the source checkout (``benchmarks/``): not part of a wheel."""
+    # deferred: keeps the command's modules off the start-up path
     from .checkout import benchmark
 
     if args.records:
+        # deferred: each command loads what it runs (start-up)
         from ..extras import require
 
         require("weather")  # the records bench reads a TMY3 year that pvlib ships
@@ -198,6 +208,7 @@ def _cmd_bench(args) -> int:
         if not args.quick:
             print(records.format_year_accuracy(records.year_accuracy()))
         return 0
+    # deferred: keeps the command's modules off the start-up path
     from ..messages import progress_bar
 
     tradeoff = benchmark("diffusion_tradeoff")
@@ -220,6 +231,7 @@ def _cmd_bench(args) -> int:
 
 
 def _cmd_materials(args) -> int:
+    # deferred: keeps pydantic off the start-up path
     from ..scene.keys import closest_names
     from ..materials.library import GROUPS, entry_text, find_entry, known_names, library_table
 
@@ -238,6 +250,7 @@ def _cmd_materials(args) -> int:
 
 
 def _cmd_examples(args) -> int:
+    # deferred: keeps yaml off the start-up path
     from ..scene import examples as example_scenes
 
     if args.copy:
@@ -252,6 +265,7 @@ def _cmd_examples(args) -> int:
 
 
 def _cmd_schema(args) -> int:
+    # deferred: keeps the command's modules off the start-up path
     from ..results.schema import markdown_table
 
     print(markdown_table())
@@ -275,6 +289,7 @@ def _cmd_sweep(args) -> int:
 
 
 def _cmd_compensate(args) -> int:
+    # deferred: keeps numpy, yaml off the start-up path
     from ..compensation import compensate
     from ..compensation.report import report, write_files
     from ..scene.load import load_scene
@@ -285,6 +300,7 @@ def _cmd_compensate(args) -> int:
             raise InputError(f"--profile {args.profile}: the made cam's profile is written as "
                              f".csv or .dxf (by the suffix)")
         if suffix == ".dxf":  # before any computation: the extra may be missing
+            # deferred: each command loads what it runs (start-up)
             from ..cam.profile import dxf_module
 
             dxf_module()
@@ -304,6 +320,7 @@ def _cmd_compensate(args) -> int:
 
 
 def _cmd_profile(args) -> int:
+    # deferred: keeps numpy, pydantic off the start-up path
     from ..cam.design import design_from_scene
     from ..cam.kinematics import working_profile
     from ..cam.profile import dxf_module, write_profile_csv, write_profile_dxf
@@ -324,6 +341,7 @@ def _cmd_profile(args) -> int:
 
 
 def _cmd_fit(args) -> int:
+    # deferred: keeps the command's modules off the start-up path
     from ..quantities.options import field_value
     from ..fit import fit_weight_gain, materials_yaml, parameter_table, plot_fit
     from ..materials import MaterialSpec

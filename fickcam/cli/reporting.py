@@ -18,6 +18,11 @@ from ..results.limits import stored_limits
 from ..results.query import drift
 from ..results.schema import VARIABLES, design_name
 from ..quantities.parsing import convert
+from ..results.resultsize import estimate as result_size
+from ..simulation.simulate import STATE_GIVEN, plan_parts
+from ..results.query import swept_values
+from ..cam.design import design_from_scene
+from ..cam.oscillating import describe_arm
 
 #: scalar results over ageing the summary reports, in this order (when present)
 KEY_OUTPUTS = ("lift", "arm_swing", "base_circle_radius", "jump_speed", "peak_cam_torque",
@@ -56,8 +61,6 @@ def describe_plan(scene, accuracy: float | None = None) -> str:
         Lines: the climate, each part's diffusion model with its cells, steps and estimated
         error, the mechanisms, the follower and the limits.
     """
-    from ..results.resultsize import estimate as result_size
-    from ..simulation.simulate import STATE_GIVEN, plan_parts
 
     environment, times, options, plans = plan_parts(scene, accuracy)
     climate = (f"{len(times)} state(s) given directly (no diffusion)"
@@ -79,9 +82,6 @@ def describe_plan(scene, accuracy: float | None = None) -> str:
     lines.append(f"  mechanisms: {', '.join(mechanisms)}; angle step "
                  f"{np.degrees(scene.model.outputs.angle_step):g} deg")
     if scene.model.cam is not None and scene.model.cam.follower.arm is not None:
-        from ..cam.design import design_from_scene
-        from ..cam.oscillating import describe_arm
-
         lines.append(f"  follower: {describe_arm(design_from_scene(scene.model.cam))}")
     if scene.limits:
         lines.append("  limits: " + "; ".join(f"{limit.variable} {limit.text}"
@@ -503,7 +503,6 @@ def sweep_summary(ds) -> str:
     str
         The table, without a trailing newline.
     """
-    from ..results.query import swept_values
 
     swept = swept_values(ds)
     outputs = _sweep_outputs(ds)

@@ -31,6 +31,8 @@ import numpy as np
 from ..cam.design import design_from_scene
 from ..cam.kinematics import working_profile
 from .core import Target, scene_from
+from ..quantities.parsing import to_si
+from ..scene.load import CAM_SHAPE_KEYS
 
 #: points of a written compensated profile (0.1 deg apart on average)
 PROFILE_POINTS = 3600
@@ -125,7 +127,6 @@ def profile_path(folder: Path, stem: str) -> Path:
 def _motion(section, segments: list, shape: dict, length_text) -> list:
     """The scene's motion segments with the made rises and returns (to the picometre, so
     that they still cancel), a spline law's distances scaled with its segment's lift."""
-    from ..quantities.parsing import to_si
 
     made = copy.deepcopy(segments)
     for index, (given, segment) in enumerate(zip(section.motion, made)):
@@ -231,7 +232,6 @@ def design_entry(section: dict, targets) -> dict:
     dict
         The entry, lengths as the scene gives them.
     """
-    from ..scene.load import CAM_SHAPE_KEYS
 
     entry = {key: section[key] for key in CAM_SHAPE_KEYS if key in section}
     names = {t.name for t in targets}

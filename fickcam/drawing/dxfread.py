@@ -81,6 +81,7 @@ def unit_of(document, given: str | None, path: str) -> float:
     DrawingError
         No unit, an unknown one, or a given unit the header contradicts.
     """
+    # deferred: keeps ezdxf off the start-up path
     from ezdxf.units import METER_FACTOR, unit_name
 
     code = int(document.header.get("$INSUNITS", 0) or 0)
@@ -99,6 +100,7 @@ def unit_of(document, given: str | None, path: str) -> float:
 
 def _likely_unit(document) -> str:
     """`` (the outline is S units across: likely mm); add units: mm`` from the extents."""
+    # deferred: keeps ezdxf off the start-up path
     from ezdxf import bbox
 
     box = bbox.extents(document.modelspace())
@@ -131,6 +133,7 @@ def _entities(space):
 def _piece(entity, unit: float, tolerance: float) -> Piece | None:
     """The entity flattened within ``tolerance`` [m], in metres; None if it is not flat in
     the drawing's plane."""
+    # deferred: keeps ezdxf off the start-up path
     from ezdxf import path as dxfpath
 
     curve = dxfpath.make_path(entity)

@@ -349,6 +349,7 @@ def inside(points: np.ndarray, loop: Loop) -> np.ndarray:
     numpy.ndarray
         True inside.
     """
+    # deferred: keeps matplotlib off the start-up path
     from matplotlib.path import Path
 
     return Path(loop.points, closed=False).contains_points(np.asarray(points, float).reshape(-1, 2))

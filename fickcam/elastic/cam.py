@@ -21,6 +21,10 @@ from ..mechanisms.response import Response
 from .contact import (cam_plate_model, contact_response, follower_shift, hertz_half_width,
                       lift_error)
 from .fem import stiffness_matrix
+from ..cam.kinematics import working_profile
+from ..diffusion.problem.geometry import CamPlate
+from ..cam.design import design_from_scene
+from .mesh import planform_mesh
 
 log = logging.getLogger(__name__)
 
@@ -39,8 +43,6 @@ def _ply_stiffness(state: dict, k: int, prefix: str = "") -> np.ndarray:
 
 def _cam_plate(design):
     """The dry working profile as a plate held at its bore, and the mesh spacing."""
-    from ..cam.kinematics import working_profile
-    from ..diffusion.problem.geometry import CamPlate
 
     x, y = working_profile(design)
     perimeter = float(np.sum(np.hypot(np.diff(x, append=x[:1]), np.diff(y, append=y[:1]))))
@@ -73,8 +75,6 @@ def cam_elastic_response(section, cam_state: dict, variables: dict, valid) -> Re
         elastic_deflection [m], elastic_stress_tensile/compressive [Pa] over (time,
         cam_angle) and elastic_lift_error [m] over time.
     """
-    from ..cam.design import design_from_scene
-    from .mesh import planform_mesh
 
     design = design_from_scene(section)
     plate, spacing = _cam_plate(design)

@@ -12,6 +12,7 @@ about. Every refusal is one line that names the option (``--at 45: ...``).
 """
 from __future__ import annotations
 
+from typing import Annotated
 import logging
 import math
 
@@ -54,8 +55,10 @@ def option_value(option: str, text, kind, reading=None) -> float:
         One line naming the option: not a number, a wrong or ambiguous unit, out of the
         scene's bounds, or a bare number that is almost certainly a unit slip.
     """
+    # deferred: keeps pydantic off the start-up path
     from pydantic import TypeAdapter, ValidationError
 
+    # deferred: keeps the command's modules off the start-up path
     from .plausibility import Verdict, bare_judgement
     from .parsing import is_bare_number
 
@@ -99,6 +102,7 @@ def ageing_time(option: str, text, end: float) -> float:
         history lasts 60 d): did you mean '45 d'? ...``. Whether the time lies inside
         the history is the caller's to say.
     """
+    # deferred: keeps the command's modules off the start-up path
     from .plausibility import output_time_reading
     from .types import NonNegativeTime
 
@@ -189,7 +193,6 @@ def field_value(option: str, text, model, name: str):
     fickcam.errors.InputError
         One line naming the option.
     """
-    from typing import Annotated
 
     if text is None:
         return None

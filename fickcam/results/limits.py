@@ -526,6 +526,7 @@ def _interpolated(samples: dict, lo: float, hi: float,
 def _crossing(x: np.ndarray, r: np.ndarray, lo: float, hi: float) -> float:
     """Where the polynomial through (x, r) crosses 1 in [lo, hi] (it interpolates r(lo) <=
     1 < r(hi): a sign change), by Brent's method on the scaled variable."""
+    # deferred: keeps scipy.optimize off the start-up path
     from scipy.optimize import brentq
 
     x = (x - lo) / (hi - lo)

@@ -17,6 +17,9 @@ from pathlib import Path
 
 from ..errors import WriteError
 from .store import CHUNKED_ABOVE, byte_size, free_space
+from ..simulation.parts import build_parts
+from .schema import VARIABLES
+from ..simulation.simulate import ageing_times, plan_parts, scene_environment
 
 #: a result above this [bytes] is warned of, with the settings that shrink it
 WARN_ABOVE = 2**30
@@ -107,9 +110,6 @@ def estimate(scene, times=None, cells: int | None = None, cases: int = 1) -> Res
     ResultSize
         The estimate, uncompressed.
     """
-    from ..simulation.parts import build_parts
-    from .schema import VARIABLES
-    from ..simulation.simulate import ageing_times, plan_parts, scene_environment
 
     model = scene.model
     if times is None:

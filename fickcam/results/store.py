@@ -7,6 +7,8 @@ never a damaged file.
 """
 from __future__ import annotations
 
+import shutil
+import re
 import json
 import math
 import os
@@ -253,7 +255,6 @@ def free_space(folder) -> int | None:
     int or None
         The free space [bytes].
     """
-    import shutil
 
     try:
         return shutil.disk_usage(folder).free
@@ -317,11 +318,13 @@ def _write_netcdf(ds, target: GuardedFile) -> None:
     ``to_netcdf``, which computes and writes it (data variables first). An in-memory dataset
     whose encodings :mod:`fickcam.results.ncwrite` knows is written by it in one pass through h5py
     (the same file, without h5netcdf's per-variable bookkeeping)."""
+    # deferred: keeps numpy off the start-up path
     from . import ncwrite
 
     if ncwrite.writable(ds):
         ncwrite.write(ds, target)
         return
+    # deferred: keeps h5netcdf off the start-up path
     import h5netcdf
     import h5py
 
@@ -330,6 +333,7 @@ def _write_netcdf(ds, target: GuardedFile) -> None:
         if any(variable.chunks is not None for variable in ds.variables.values()):
             ds.to_netcdf(h5file, engine="h5netcdf")
             return
+        # deferred: keeps h5netcdf off the start-up path
         from xarray.backends import H5NetCDFStore
 
         held: dict[str, dict] = {}
@@ -516,7 +520,6 @@ def remove_stale_temporaries(path) -> list[Path]:
     list of pathlib.Path
         The files removed.
     """
-    import re
 
     if fcntl is None:
         return []
@@ -574,8 +577,10 @@ def open_result(path):
     fickcam.errors.InputError
         When the file does not exist or is not a netCDF/HDF5 result.
     """
+    # deferred: keeps xarray off the start-up path
     import xarray as xr
 
+    # deferred: keeps numpy off the start-up path
     from .dataset import with_time_in_days
 
     path = Path(path)

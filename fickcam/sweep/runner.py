@@ -30,6 +30,11 @@ from .journal import decode_arrays
 from .scheduler import probe
 from .spec import Sweep, load_sweep
 from .workdir import WorkFolder
+from ..diffusion import run_cache
+from ..scene.load import load_scene
+from ..simulation.simulate import plan_parts, written_time_unit
+from ..results.store import remove_stale_temporaries, save
+from ..messages import progress_bar
 
 log = logging.getLogger(__name__)
 
@@ -111,6 +116,7 @@ def dask_client(workers: int | None, scheduler: str | None, n_cases: int):
 
 @contextmanager
 def _connect(workers: int | None, scheduler: str | None, n_cases: int):
+    # deferred: keeps distributed off the start-up path
     from distributed import Client, LocalCluster
 
     if scheduler:
@@ -136,8 +142,6 @@ class _Collector:
     """Appends each finished case to the journal, keeps its record, shows progress."""
 
     def __init__(self, sweep: Sweep, folder: WorkFolder, progress: bool, done: int):
-        from ..messages import progress_bar
-
         self.journal = folder.journal
         self.records: dict[int, dict] = {}
         self.failed = 0
@@ -182,7 +186,6 @@ def run_here(sweep: Sweep, folder: WorkFolder, indices, *, progress: bool = Fals
     dict of int to dict
         Case index -> its record (:func:`fickcam.sweep.case.run_case`).
     """
-    from ..diffusion import run_cache
 
     cache = run_cache(cache)
     collector = _Collector(sweep, folder, progress, done)
@@ -250,6 +253,7 @@ def compute_cases(sweep: Sweep, folder: WorkFolder, indices, client, *, progress
     dict of int to dict
         The records of the cases, by index, as :func:`run_here` gives them.
     """
+    # deferred: keeps distributed off the start-up path
     from distributed import as_completed
 
     run_id = uuid.uuid4().hex[:12]  # keys unique per run: never reuse another run's result
@@ -401,9 +405,6 @@ def run_sweep(sweep_path, output, workers: int | None = None, scheduler: str | N
     fickcam.extras.MissingExtra
         When workers or a scheduler are asked for without dask.distributed installed.
     """
-    from ..diffusion import run_cache
-    from ..results.store import save
-    from ..simulation.simulate import written_time_unit
 
     started = time.perf_counter()
     if scheduler or (workers or 1) > 1:

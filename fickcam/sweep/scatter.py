@@ -14,6 +14,8 @@ from __future__ import annotations
 import numpy as np
 
 from ..results.schema import VARIABLES
+from scipy.special import ndtri
+import xarray as xr
 
 CONFIDENCE = 0.95
 
@@ -48,7 +50,6 @@ def wilson_interval(k: int, n: int, confidence: float = CONFIDENCE) -> tuple[flo
     L. D. Brown, T. T. Cai and A. DasGupta, "Interval estimation for a binomial
     proportion", Statistical Science 16 (2), 101-133, 2001, doi:10.1214/ss/1009213286.
     """
-    from scipy.special import ndtri
 
     if n == 0:
         return np.nan, np.nan
@@ -101,7 +102,6 @@ def fractions(ds):
         ``cases_out_of_spec`` [1] over (time, limit); the last carries ``cases`` = n. The
         bounds are :func:`wilson_interval`'s (see its references).
     """
-    import xarray as xr
 
     ages = np.asarray(ds["time"].values, float)
     ran = (np.asarray(ds["case_status"].values) == "ok") if "case_status" in ds.coords else \
