@@ -22,6 +22,7 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 from .design import CamState
+from .dynamics import SUBSURFACE_SHEAR_RATIO
 from .oscillating import follower_response
 
 #: bisection tolerance on the base circle radius (m)
@@ -462,8 +463,6 @@ def contact_stress_radius(load_modulus, length: float, shear_strength) -> float:
     McGraw-Hill, 2012, sec. 8.7 (a flat face's smallest radius of curvature is chosen for
     the contact stress).
     """
-    from .dynamics import SUBSURFACE_SHEAR_RATIO
-
     allowable = np.asarray(shear_strength, float) / SUBSURFACE_SHEAR_RATIO
     need = np.asarray(load_modulus, float) / (np.pi * length * allowable ** 2)
     need = need[np.isfinite(need)]

@@ -273,6 +273,7 @@ def _cmd_schema(args) -> int:
 
 
 def _cmd_sweep(args) -> int:
+    # deferred: each command loads what it runs (start-up)
     from .reporting import sweep_limit_lines, sweep_summary
     from ..results.store import open_result
     from ..sweep import run_sweep

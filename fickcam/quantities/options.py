@@ -135,6 +135,7 @@ def angle(option: str, text, kind=None) -> float:
         One line naming the option: ``--cam-angle 5: 5 without a unit is ambiguous for an
         angle (deg or rad): did you mean '5 deg'? ...``.
     """
+    # deferred: keeps pydantic off the start-up path
     from .plausibility import OPTION_AMBIGUOUS, ambiguity
     from .types import Angle
 

@@ -16,6 +16,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from ..errors import WriteError
+from ..messages import warn
 from .store import CHUNKED_ABOVE, byte_size, free_space
 from ..simulation.parts import build_parts
 from .schema import VARIABLES
@@ -199,8 +200,6 @@ def result_fits(scene, output, cases: int = 1) -> None:
     fickcam.errors.WriteError
         When the disk cannot hold the result.
     """
-    from ..messages import warn
-
     size = estimate(scene, cases=cases)
     warning = size_warning(size)
     if warning:

@@ -34,6 +34,7 @@ from ..diffusion import run_cache
 from ..scene.load import load_scene
 from ..simulation.simulate import plan_parts, written_time_unit
 from ..results.store import remove_stale_temporaries, save
+from ..results.resultsize import result_fits
 from ..messages import progress_bar
 
 log = logging.getLogger(__name__)
@@ -360,10 +361,6 @@ def checked_base(sweep: Sweep, output: Path, cache):
     fickcam.scene.load.Scene
         The base scene.
     """
-    from ..results.resultsize import result_fits
-    from ..scene.load import load_scene
-    from ..simulation.simulate import plan_parts
-
     base = load_scene(sweep.base_file)
     plan_parts(base, cache=cache)
     result_fits(base, output, cases=len(sweep.cases))
