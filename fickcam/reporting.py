@@ -9,6 +9,7 @@ down, its peak and when it happened.
 from __future__ import annotations
 
 import math
+from collections.abc import Mapping
 
 import numpy as np
 
@@ -34,7 +35,7 @@ PEAK_SHARE = 0.02
 
 
 def _model_text(model) -> str:
-    if isinstance(model, dict):
+    if isinstance(model, Mapping):
         return ", ".join(f"{part}: {name}" for part, name in model.items()) + " (others auto)"
     return model
 
@@ -65,7 +66,7 @@ def describe_plan(scene, accuracy: float | None = None) -> str:
                f"{len(environment.change_times) - 1} segment(s), {format_duration(environment.end)}; "
                f"{len(times)} ageing times")
     lines = [f"scene {scene.name}: valid", f"  environment: {climate}",
-             f"  diffusion: model {_model_text(options['model'])}, accuracy {options['accuracy']:g}"]
+             f"  diffusion: model {_model_text(options.model)}, accuracy {options.accuracy:g}"]
     for part, p in plans:
         head = f"  part {part.name:<9} material {part.material_name}"
         if p is None:

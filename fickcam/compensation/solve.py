@@ -214,18 +214,14 @@ def part_states(data: dict, base_dir: Path, times: np.ndarray, accuracy, names: 
         name -> its ``DiffusionResult`` at ``times``, None for a part that does not absorb).
     """
     from ..dataset import build_dataset
-    from ..elastic.parts import elastic_parts
     from ..parts import build_parts, part_values
-    from ..simulate import age_part, diffusion_options, scene_environment
+    from ..run_options import RunOptions
+    from ..simulate import age_parts, scene_environment
 
     scene = _scene_at(data, base_dir, times)
-    environment = scene_environment(scene)
-    options = diffusion_options(scene, accuracy, cache=cache)
-    elastic = elastic_parts(scene.model)
-    solved: dict = {}  # parts alike share a solve, as in a run
-    histories = [age_part(part, environment, times, options, scene, [],
-                          keep_field=part.name in elastic, solved=solved)
-                 for part in build_parts(scene) if part.name in names]
+    parts = [part for part in build_parts(scene) if part.name in names]
+    histories = age_parts(scene, scene_environment(scene), times,
+                          RunOptions.for_scene(scene, accuracy, cache=cache), parts, [])
     coords = {"time": times, "part": [h.part.name for h in histories]}
     return (build_dataset(part_values(histories), coords),
             {h.part.name: h.diffusion for h in histories})
@@ -233,8 +229,8 @@ def part_states(data: dict, base_dir: Path, times: np.ndarray, accuracy, names: 
 
 def diffusions_for(data: dict, base_dir: Path, times: np.ndarray, by_name: dict) -> dict:
     """The diffusion results ``by_name`` keyed for a run of the scene mapping at ``times``
-    (``simulate.run(diffusions=...)``), as :func:`fickcam.simulate.age_part` keys them:
-    the part's shape (of this scene mapping), material and whether fields are kept.
+    (``simulate.run(diffusions=...)``), by :func:`fickcam.simulate.diffusion_key`: the
+    part's shape (of this scene mapping), material and whether its field is kept.
 
     Parameters
     ----------
@@ -249,10 +245,11 @@ def diffusions_for(data: dict, base_dir: Path, times: np.ndarray, by_name: dict)
     """
     from ..elastic.parts import elastic_parts
     from ..parts import build_parts
+    from ..simulate import diffusion_key
 
     scene = _scene_at(data, base_dir, times)
-    elastic = elastic_parts(scene.model)
-    return {(part.geometry, part.material_name, part.name in elastic): by_name[part.name]
+    elastic = elastic_parts(scene.model)  # its runs keep no fields but these (``_scene_at``)
+    return {diffusion_key(part, part.name in elastic): by_name[part.name]
             for part in build_parts(scene) if by_name.get(part.name) is not None}
 
 
