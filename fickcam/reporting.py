@@ -76,14 +76,9 @@ def describe_plan(scene, accuracy: float | None = None) -> str:
         else:
             lines.append(f"{head}: {type(part.geometry).__name__} → {p.model}, {p.cells} cells, "
                          f"{p.steps} steps, est. error {p.error_estimate:.1e} ({p.reason})")
-    mechanisms = [s for s in ("cam", "linkage") if getattr(scene.model, s) is not None]
-    lines.append(f"  mechanisms: {', '.join(mechanisms)}; angle step "
-                 f"{np.degrees(scene.model.outputs.angle_step):g} deg")
-    if scene.model.cam is not None and scene.model.cam.follower.arm is not None:
-        from .cam.design import design_from_scene
-        from .cam.oscillating import describe_arm
-
-        lines.append(f"  follower: {describe_arm(design_from_scene(scene.model.cam))}")
+    lines.append(f"  mechanisms: {', '.join(m.section_name for m in scene.mechanisms)}; angle "
+                 f"step {np.degrees(scene.model.outputs.angle_step):g} deg")
+    lines += [f"  {line}" for mechanism in scene.mechanisms for line in mechanism.described()]
     if scene.limits:
         lines.append("  limits: " + "; ".join(f"{limit.variable} {limit.text}"
                                              for limit in scene.limits))

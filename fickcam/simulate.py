@@ -15,33 +15,18 @@ from ._version import __version__
 from .blas import on_one_blas_thread
 from .environment import Environment, summary_edges
 from .errors import InputError, SceneError, times_in
+from .mechanisms.response import Response
 from .messages import log_notices, progress_bar, progress_summary
-from .parts import Part, PartHistory, build_parts, diffusion_attrs, field_values, part_values
+from .mechanisms.part import Part
+from .parts import PartHistory, diffusion_attrs, field_values, part_values
 from .run_options import RunOptions
-from .scene import EveryStep, Scene, last_ageing_time, load_scene
+from .scene import EveryStep, Scene, load_scene
 from .schema import VARIABLES, design_name
 
 log = logging.getLogger(__name__)
 
 
 # ----------------------------------------------------------------- planning
-
-
-def scene_environment(scene: Scene) -> Environment:
-    """The scene's climate history (a weather year repeated to its last ageing time).
-
-    Parameters
-    ----------
-    scene : Scene
-        The loaded scene.
-
-    Returns
-    -------
-    Environment
-        Temperature [K] and surface moisture over time [s].
-    """
-    return Environment.from_section(scene.model.environment, base_dir=scene.base_dir,
-                                    until=last_ageing_time(scene.model.outputs))
 
 
 def ageing_times(scene: Scene, environment: Environment) -> np.ndarray:
@@ -162,8 +147,7 @@ def plan_parts(scene: Scene, accuracy: float | None = None, *, parts: list[Part]
     accuracy : float, optional
         Relative accuracy of the diffusion [-]; None: the scene's.
     parts : list of Part, optional
-        The scene's parts when already built (a run's: their outline expansions are kept
-        per part object); None: built here.
+        The parts to plan; None: the scene's.
     settings : SolverSettings, optional
         The solvers' tuned limits; None: the defaults.
     cache : RunCache, optional
@@ -188,10 +172,10 @@ def _planned_parts(scene: Scene, options: RunOptions, parts: list[Part] | None):
     has limited them)."""
     from .diffusion import plan_problem, refuse
 
-    environment = scene_environment(scene)
+    environment = scene.environment
     times = ageing_times(scene, environment)
     problems = []
-    for part in build_parts(scene) if parts is None else parts:
+    for part in scene.parts if parts is None else parts:
         if part.geometry is None or environment.state_times is not None:
             problems.append((part, None))
             continue
@@ -254,9 +238,9 @@ def run(scene, *, accuracy: float | None = None, progress: bool = False, setting
     options = RunOptions.for_scene(scene, accuracy, settings, cache)
     unit = written_time_unit(scene)  # the unit the scene wrote its times in: reports use it
     with progress_summary(f"run {scene.name}", progress), times_in(unit or None):
-        environment = scene_environment(scene)
+        environment = scene.environment
         times = ageing_times(scene, environment)
-        parts = build_parts(scene)
+        parts = list(scene.parts)
         # every refusal of `fickcam check` before any solve; the solves read the plans cached
         _planned_parts(scene, options, parts)
         ds, histories = _age(scene, environment, times, options, progress, parts, diffusions)
@@ -279,9 +263,9 @@ def _age(scene: Scene, environment: Environment, times: np.ndarray, options: Run
 
     values, coords, notices, histories = _aged_values(scene, environment, times, options,
                                                       progress, parts, diffusions)
-    design_scene = scene.as_designed()  # differs where the scene is made to compensate
-    designs = [design_part(part, environment) for part in build_parts(design_scene)]
-    values.update(_design_values(design_scene, designs))
+    as_designed = scene.as_designed()  # differs where the scene is made to compensate
+    dry = [as_designed_part(part, environment) for part in as_designed.parts]
+    values.update(_as_designed_values(as_designed, dry))
     if environment.state_times is None and times[-1] > 0:  # states given directly: no climate
         edges = summary_edges(times[-1])
         values.update(climate_values(environment, edges))
@@ -331,8 +315,6 @@ def _aged_values(scene: Scene, environment: Environment, times: np.ndarray,
     """(values, coords, notices, part histories) of ``scene`` at ageing ``times`` (s): every
     variable but the as-designed ones, as SI arrays keyed by schema name; ``diffusions``:
     results already solved, keyed as :func:`diffusion_key` keys them."""
-    from .elastic.parts import elastic_parts
-
     notices: list[str] = list(environment.notes)
     # diffusion then mechanisms, one bar each: a part's diffusion may cost a thousand times an
     # ageing time's mechanisms, and parts differ a hundredfold (a steel frame: nothing), so
@@ -341,8 +323,7 @@ def _aged_values(scene: Scene, environment: Environment, times: np.ndarray,
                        unit="parts", leave=False)
     histories = age_parts(scene, environment, times, options, parts, notices, diffusions, bar)
     bar.close()
-    return _values(scene, environment, times, histories, notices, elastic_parts(scene.model),
-                   progress)
+    return _values(scene, environment, times, histories, notices, scene.elastic_parts, progress)
 
 
 def age_parts(scene: Scene, environment: Environment, times: np.ndarray, options: RunOptions,
@@ -376,9 +357,7 @@ def age_parts(scene: Scene, environment: Environment, times: np.ndarray, options
     list of PartHistory
         One per part, in order.
     """
-    from .elastic.parts import elastic_parts
-
-    elastic = elastic_parts(scene.model)  # these need their moisture fields
+    elastic = scene.elastic_parts  # these need their moisture fields
     histories, solved = [], dict(diffusions or {})
     for part in parts:
         if bar is not None:
@@ -399,10 +378,8 @@ def _searched_values(scene: Scene, environment: Environment, at: np.ndarray,
     (validity up to the wet Tg): extended from the stored solve where it can
     (``DiffusionResult.extend``: only the new times are summed), else re-solved at both;
     the part histories are then taken at ``at``."""
-    from .elastic.parts import elastic_parts
-
     notices: list[str] = list(environment.notes)
-    elastic = elastic_parts(scene.model)
+    elastic = scene.elastic_parts
     stored_times, befores = stored
     both = np.union1d(stored_times, at)
     rows = np.searchsorted(both, at)
@@ -415,7 +392,7 @@ def _searched_values(scene: Scene, environment: Environment, at: np.ndarray,
 
 
 def _values(scene: Scene, environment: Environment, times: np.ndarray,
-            histories: list[PartHistory], notices: list[str], elastic: set[str],
+            histories: list[PartHistory], notices: list[str], elastic: frozenset[str],
             progress: bool):
     """(values, coords, notices, histories): the climate, the parts' states, the mechanisms,
     the swelling stress of the ``elastic`` parts and the moisture fields at ``times`` (s)
@@ -628,7 +605,7 @@ def _extended(before, times):
     return before.extend(times)
 
 
-def design_part(part: Part, environment: Environment) -> PartHistory:
+def as_designed_part(part: Part, environment: Environment) -> PartHistory:
     """The as-designed state of one part: dry (no moisture) at the reference temperature,
     by the same material-state model, as a history of one time.
 
@@ -661,20 +638,14 @@ def _state(part: Part, temperature, mean, surface, environment: Environment, tim
 
 def _mechanism_coords(scene: Scene) -> dict:
     """The angle (and link, joint) coordinates of the mechanisms a scene models."""
-    coords: dict = {}
     angles = _angle_grid(scene.model.outputs.angle_step)
-    if scene.model.cam is not None:
-        coords["cam_angle"] = angles
-    if scene.model.linkage is not None:
-        from .linkage import JOINTS, LINKS
-
-        coords.update(crank_angle=angles, link=list(LINKS), joint=list(JOINTS))
-    return coords
+    return {name: values for mechanism in scene.mechanisms
+            for name, values in mechanism.coordinates(angles).items()}
 
 
 def mechanism_values(scene: Scene, histories: list[PartHistory], times, valid,
                      on_step=lambda: None):
-    """The cam, then the four-bar, at every valid ageing time: a Response over time.
+    """The scene's mechanisms, in turn, at every valid ageing time: a Response over time.
 
     Parameters
     ----------
@@ -694,42 +665,26 @@ def mechanism_values(scene: Scene, histories: list[PartHistory], times, valid,
     Response
         The mechanism variables over time and angle (SI) and the notices.
     """
-    from .response import Response
-
     response = Response()
     angles = _angle_grid(scene.model.outputs.angle_step)
     by_name = {h.part.name: h for h in histories}
-    if scene.model.cam is not None:
-        from .cam import scene_response as cam_response
-
-        mech = cam_response(scene.model.cam, by_name, times, angles, valid, on_step=on_step)
-        response.variables.update(mech.variables)
-        response.notices += mech.notices
-        if scene.model.cam.elastic:
-            from .elastic.cam import cam_elastic_response
-
-            mech = cam_elastic_response(scene.model.cam, by_name["cam"].state,
-                                        response.variables, valid)
-            response.variables.update(mech.variables)
-            response.notices += mech.notices
-    if scene.model.linkage is not None:
-        from .linkage import scene_response as linkage_response
-
-        mech = linkage_response(scene.model.linkage, by_name, times, angles, valid, on_step=on_step)
+    for mechanism in scene.mechanisms:
+        mech = mechanism.response(by_name, times, angles, valid, on_step=on_step)
         response.variables.update(mech.variables)
         response.notices += mech.notices
     return response
 
 
-def _design_values(scene: Scene, designs: list[PartHistory]) -> dict[str, np.ndarray]:
+def _as_designed_values(scene: Scene, dry: list[PartHistory]) -> dict[str, np.ndarray]:
     """``<name>_design`` for every variable the schema marks: the material state and the
-    mechanisms evaluated for the design (one time, then the time axis dropped). The
-    design's notices repeat those at t = 0 and are not reported."""
-    if not designs:
+    mechanisms of the scene as designed, evaluated for its parts' dry state ``dry`` (one
+    time, then the time axis dropped). These notices repeat those at t = 0 and are not
+    reported."""
+    if not dry:
         return {}
-    values = part_values(designs)
-    valid = np.logical_and.reduce([h.valid for h in designs])
-    mechanisms = mechanism_values(scene, designs, np.zeros(1), valid)
+    values = part_values(dry)
+    valid = np.logical_and.reduce([h.valid for h in dry])
+    mechanisms = mechanism_values(scene, dry, np.zeros(1), valid)
     values.update(mechanisms.variables)
     return {design_name(name): np.asarray(value)[0] for name, value in values.items()
             if VARIABLES[name].has_design}

@@ -157,9 +157,8 @@ def size_scene(scene, limits: Limits) -> Sizing:
         limits); before any run.
     """
     from ..simulate import run
-    from .design import design_from_scene
 
-    design = design_from_scene(scene.model.cam)
+    design = scene.mechanism("cam").design
     limits = limits.for_design(design)
     dry = smallest_base_circle(design, limits)  # refuses a cam it cannot size before any run
     bare = dataclasses.replace(scene, limits=[])  # the sizing reads no limit crossing

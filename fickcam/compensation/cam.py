@@ -28,7 +28,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ..cam.design import design_from_scene
+from ..cam.design import cam_design
 from ..cam.kinematics import working_profile
 from .core import Target, scene_from
 
@@ -54,7 +54,7 @@ def _shape_targets(section, points: bool = False) -> list[Target]:
     """The cam's own dimensions, in the form it was given in (module docstring), or its
     points when ``points`` is asked for."""
     if _given_by_points(section, points):
-        x, y = working_profile(design_from_scene(section), n=PROFILE_POINTS)
+        x, y = working_profile(cam_design(section), n=PROFILE_POINTS)
         return [Target("cam", PROFILE_NAMES[0], "cam", ("strain_longitudinal",), x),
                 Target("cam", PROFILE_NAMES[1], "cam", ("strain_transverse",), y)]
     if section.eccentric is not None:
@@ -262,7 +262,7 @@ def made_outline(data: dict, base_dir: Path, points: int):
         x and y [m].
     """
     section = scene_from(data, base_dir, "<compensated scene>").model.cam
-    return working_profile(design_from_scene(section), n=points)
+    return working_profile(cam_design(section), n=points)
 
 
 #: a parametric cam's in-plane strains differ by more than this fraction of the larger:

@@ -283,10 +283,10 @@ def _largest_deviation(ds, name: str) -> np.ndarray | None:
 def _shown_times(comp: Compensation) -> np.ndarray:
     """The ageing times (s) the drift table shows: the scene's inside the life, its ends
     and the ends of the compensation."""
-    from ..simulate import ageing_times, scene_environment
+    from ..simulate import ageing_times
 
     scene = comp.scene
-    stored = ageing_times(scene, scene_environment(scene))
+    stored = ageing_times(scene, scene.environment)
     inside = stored[(stored >= comp.life[0]) & (stored <= comp.life[1])]
     return np.unique(np.concatenate([inside, np.array(comp.life), comp.times[[0, -1]]]))
 

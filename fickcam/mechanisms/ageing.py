@@ -12,8 +12,8 @@ from typing import Callable
 
 import numpy as np
 
-from .errors import format_duration
-from .messages import restated
+from ..errors import format_duration
+from ..messages import restated
 from .response import Response
 
 
