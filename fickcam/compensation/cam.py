@@ -13,7 +13,7 @@
   scaling its parameters would not give its motion back; its points do.
 
 A roller that takes up moisture: its radius with its mean in-plane strain, as
-:func:`fickcam.cam.ageing.cam_state` ages it; a swinging arm: its length (roller) or face
+:func:`fickcam.cam.mechanism.cam_state` ages it; a swinging arm: its length (roller) or face
 offset (flat) with the follower's strain along it. Cam thickness, bore and the follower's
 offset from the cam axis (set by the frame) are left as designed.
 
@@ -92,7 +92,7 @@ def targets(section, points: bool = False) -> list[Target]:
         found.append(Target("follower", "roller radius", "follower", IN_PLANE,
                             float(follower.roller_radius)))
     arm = follower.arm
-    if arm is not None and follower.material:  # grows along its length (fickcam.cam.ageing)
+    if arm is not None and follower.material:  # grows along its length (fickcam.cam.mechanism)
         key = "length" if follower.kind == "roller" else "face_offset"
         if getattr(arm, key):
             found.append(Target("follower", ARM_NAMES[key], "follower", ("strain_longitudinal",),
