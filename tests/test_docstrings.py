@@ -172,8 +172,6 @@ ENTRY_POINTS = {
     "fickcam.linkage.mechanism.linkage_response": ("times", "angles"),
     "fickcam.cam.mechanism.CamMechanism": (),
     "fickcam.cam.mechanism.CamMechanism.response": ("times", "angles"),
-    "fickcam.cam.mechanism.CamMechanism.read_files": (),
-    "fickcam.cam.mechanism.CamMechanism.absorber_sizes": (),
     "fickcam.cam.mechanism.rigid_response": ("times", "angles"),
     "fickcam.mechanisms.mechanism_types": (),
     "fickcam.mechanisms.scene_sections": (),

@@ -73,34 +73,13 @@ class CamMechanism:
     @staticmethod
     def part_names(section: CamSection) -> tuple[str, ...]:
         """The parts that age, in their order: the cam, and the follower when it names a
-        material.
-
-        Parameters
-        ----------
-        section : CamSection
-            The ``cam:`` section.
-
-        Returns
-        -------
-        tuple of str
-            ``("cam",)`` or ``("cam", "follower")``.
-        """
+        material; see :meth:`fickcam.mechanisms.Mechanism.part_names`."""
         return ("cam", "follower") if section.follower.material else ("cam",)
 
     @staticmethod
     def materials_used(section: CamSection) -> list[tuple[tuple, str]]:
-        """(key path inside the section, material name) of every material it names.
-
-        Parameters
-        ----------
-        section : CamSection
-            The ``cam:`` section.
-
-        Returns
-        -------
-        list of tuple
-            The cam's material, and the follower's when it names one.
-        """
+        """(key path inside the section, material name) of every material it names; see
+        :meth:`fickcam.mechanisms.Mechanism.materials_used`."""
         refs = [(("material",), section.material)]
         if section.follower.material:
             refs.append((("follower", "material"), section.follower.material))
@@ -110,18 +89,8 @@ class CamMechanism:
     def absorber_sizes(section: CamSection) -> list[tuple[str, str, float]]:
         """(part, material name, half-size [m]) of the bodies whose uptake time the scene's
         plausibility readings judge a history's length by: the cam (half of its thickness
-        or radius, whichever is smaller) and a roller (half of its width or diameter).
-
-        Parameters
-        ----------
-        section : CamSection
-            The ``cam:`` section.
-
-        Returns
-        -------
-        list of tuple
-            One per body.
-        """
+        or radius, whichever is smaller) and a roller (half of its width or diameter); see
+        :meth:`fickcam.mechanisms.Mechanism.absorber_sizes`."""
         radius = section.base_circle_radius or (section.eccentric.radius if section.eccentric
                                                 else section.thickness)
         sizes = [("cam", section.material, 0.5 * min(section.thickness, radius))]
@@ -134,18 +103,8 @@ class CamMechanism:
 
     @staticmethod
     def section_problems(section: CamSection) -> list[tuple[tuple, str]]:
-        """(key path inside the section, reason) for a swinging arm that does not fit.
-
-        Parameters
-        ----------
-        section : CamSection
-            The ``cam:`` section.
-
-        Returns
-        -------
-        list of tuple
-            The problems, none when it fits.
-        """
+        """(key path inside the section, reason) for a swinging arm that does not fit; see
+        :meth:`fickcam.mechanisms.Mechanism.section_problems`."""
         return arm_problems(section)
 
     @staticmethod
@@ -154,22 +113,8 @@ class CamMechanism:
         path inside the section, reason), the section with the file's path absolute, the
         profile (:class:`~fickcam.cam.profile.CamProfile`, mirrored for a clockwise cam) or
         None). ``read``: the points of the files this scene's validation has read, by path
-        (a ``design:`` that keeps the shape reads no file twice), added to.
-
-        Parameters
-        ----------
-        section : CamSection
-            The ``cam:`` section.
-        base_dir : pathlib.Path
-            The folder its relative paths start from.
-        read : dict
-            Path -> points already read (:func:`~fickcam.cam.profile.read_profile_csv`).
-
-        Returns
-        -------
-        tuple
-            (problems, section, profile or None).
-        """
+        (a ``design:`` that keeps the shape reads no file twice), added to; see
+        :meth:`fickcam.mechanisms.Mechanism.read_files`."""
         from .profile import profile_of, read_profile_csv
 
         if section.profile_file is None:
@@ -187,18 +132,8 @@ class CamMechanism:
 
     @staticmethod
     def coordinates(angles: np.ndarray) -> dict:
-        """The coordinates of its results: ``cam_angle`` [rad].
-
-        Parameters
-        ----------
-        angles : numpy.ndarray
-            The angles over a turn [rad].
-
-        Returns
-        -------
-        dict
-            Coordinate name -> values.
-        """
+        """The coordinates of its results: ``cam_angle`` [rad]; see
+        :meth:`fickcam.mechanisms.Mechanism.coordinates`."""
         return {"cam_angle": angles}
 
     # ------------------------------------------------------------------ the mechanism

@@ -47,14 +47,14 @@ class LinkageMechanism:
     materials : dict of str to Material
         The scene's resolved materials by name (the links' dry densities [kg/m^3] give
         their masses).
-    profile : None
+    files : None
         Unused: a four-bar reads no file (:meth:`read_files`).
     """
 
     #: the scene's section this mechanism is built from
     section_name = "linkage"
 
-    def __init__(self, section: LinkageSection, materials: dict, profile=None):
+    def __init__(self, section: LinkageSection, materials: dict, files=None):
         self.section = section
         self.materials = materials
         #: the dry four-bar
@@ -63,34 +63,14 @@ class LinkageMechanism:
 
     @staticmethod
     def part_names(section: LinkageSection) -> tuple[str, ...]:
-        """The parts that age: the four links.
-
-        Parameters
-        ----------
-        section : LinkageSection
-            The ``linkage:`` section.
-
-        Returns
-        -------
-        tuple of str
-            ``LINKS``.
-        """
+        """The parts that age: the four links; see
+        :meth:`fickcam.mechanisms.Mechanism.part_names`."""
         return LINKS
 
     @staticmethod
     def materials_used(section: LinkageSection) -> list[tuple[tuple, str]]:
-        """(key path inside the section, material name) of every material it names.
-
-        Parameters
-        ----------
-        section : LinkageSection
-            The ``linkage:`` section.
-
-        Returns
-        -------
-        list of tuple
-            The links' material, and the frame's when it names one.
-        """
+        """(key path inside the section, material name) of every material it names; see
+        :meth:`fickcam.mechanisms.Mechanism.materials_used`."""
         refs = [(("material",), section.material)]
         if section.frame_material:
             refs.append((("frame_material",), section.frame_material))
@@ -100,71 +80,26 @@ class LinkageMechanism:
     def absorber_sizes(section: LinkageSection) -> list[tuple[str, str, float]]:
         """(part, material name, half-size [m]) of the bodies whose uptake time the scene's
         plausibility readings judge a history's length by: the links (half of the
-        section's thickness or width).
-
-        Parameters
-        ----------
-        section : LinkageSection
-            The ``linkage:`` section.
-
-        Returns
-        -------
-        list of tuple
-            One entry, the links.
-        """
+        section's thickness or width); see :meth:`fickcam.mechanisms.Mechanism.absorber_sizes`."""
         s = section.section
         return [("links", section.material, 0.5 * min(s.thickness, s.width))]
 
     @staticmethod
     def section_problems(section: LinkageSection) -> list[tuple[tuple, str]]:
-        """None: a four-bar's section is checked whole by its model.
-
-        Parameters
-        ----------
-        section : LinkageSection
-            The ``linkage:`` section.
-
-        Returns
-        -------
-        list of tuple
-            Empty.
-        """
+        """None: a four-bar's section is checked whole by its model; see
+        :meth:`fickcam.mechanisms.Mechanism.section_problems`."""
         return []
 
     @staticmethod
     def read_files(section: LinkageSection, base_dir, read: dict):
-        """None: a four-bar names no file; (no problems, the section, None).
-
-        Parameters
-        ----------
-        section : LinkageSection
-            The ``linkage:`` section.
-        base_dir : pathlib.Path
-            Unused.
-        read : dict
-            Unused.
-
-        Returns
-        -------
-        tuple
-            ([], section, None).
-        """
+        """None: a four-bar names no file; (no problems, the section, None); see
+        :meth:`fickcam.mechanisms.Mechanism.read_files`."""
         return [], section, None
 
     @staticmethod
     def coordinates(angles: np.ndarray) -> dict:
-        """The coordinates of its results: ``crank_angle`` [rad], ``link`` and ``joint``.
-
-        Parameters
-        ----------
-        angles : numpy.ndarray
-            The angles over a turn [rad].
-
-        Returns
-        -------
-        dict
-            Coordinate name -> values.
-        """
+        """The coordinates of its results: ``crank_angle`` [rad], ``link`` and ``joint``; see
+        :meth:`fickcam.mechanisms.Mechanism.coordinates`."""
         return {"crank_angle": angles, "link": list(LINKS), "joint": list(JOINTS)}
 
     @cached_property

@@ -26,11 +26,21 @@ class Mechanism(Protocol):
     """What a mechanism answers (:class:`fickcam.cam.mechanism.CamMechanism`,
     :class:`fickcam.linkage.mechanism.LinkageMechanism`).
 
-    Its class answers from its scene section alone (before any material is resolved):
-    ``part_names``, ``materials_used``, ``section_problems``, ``read_files``,
-    ``coordinates``. An instance, built once from the validated section, the scene's
-    materials and the files ``read_files`` read, holds what it is made of (its dry
-    ``design``) and answers the run: ``parts``, ``elastic_parts``, ``response``.
+    Its class answers from its scene section alone, before any material is resolved:
+    ``part_names``, ``materials_used``, ``absorber_sizes``, ``section_problems``,
+    ``read_files``, ``coordinates``. An instance, built once from the validated section,
+    the scene's resolved materials and what ``read_files`` read, holds what it is made of
+    (its dry ``design``) and answers the run: ``parts``, ``elastic_parts``, ``described``,
+    ``response``. Its as-designed values are its ``response`` to its parts' dry state.
+
+    Parameters
+    ----------
+    section : pydantic.BaseModel
+        Its validated section of the scene (SI).
+    materials : dict of str to Material
+        The scene's resolved materials by name.
+    files : object, optional
+        What ``read_files`` read for it (a cam's profile); None: nothing, or read here.
     """
 
     #: the key of its section in a scene (``cam``, ``linkage``)
@@ -42,34 +52,135 @@ class Mechanism(Protocol):
 
     @staticmethod
     def part_names(section) -> tuple[str, ...]:
-        """The names of the parts it builds, in their order."""
+        """The names of the parts it builds, in their order: the one place they are given.
+
+        Parameters
+        ----------
+        section : pydantic.BaseModel
+            Its section.
+
+        Returns
+        -------
+        tuple of str
+            Part names, unique in a scene.
+        """
 
     @staticmethod
     def materials_used(section) -> list[tuple[tuple, str]]:
-        """(key path inside the section, material name) of every material it names."""
+        """Every material its section names.
+
+        Parameters
+        ----------
+        section : pydantic.BaseModel
+            Its section.
+
+        Returns
+        -------
+        list of tuple
+            (key path inside the section, material name).
+        """
+
+    @staticmethod
+    def absorber_sizes(section) -> list[tuple[str, str, float]]:
+        """The bodies whose moisture uptake time the plausibility readings judge a bare
+        history length by (:func:`fickcam.plausibility.fastest_absorber`).
+
+        Parameters
+        ----------
+        section : pydantic.BaseModel
+            Its section.
+
+        Returns
+        -------
+        list of tuple
+            (part, material name, half-size [m]).
+        """
 
     @staticmethod
     def section_problems(section) -> list[tuple[tuple, str]]:
-        """(key path inside the section, reason) of what its model cannot check alone."""
+        """What its section's model cannot check alone (a swinging arm that does not fit).
+
+        Parameters
+        ----------
+        section : pydantic.BaseModel
+            Its section.
+
+        Returns
+        -------
+        list of tuple
+            (key path inside the section, reason); empty when there is none.
+        """
 
     @staticmethod
     def read_files(section, base_dir: Path, read: dict) -> tuple[list, object, object]:
-        """(problems, the section with absolute paths, what was read) of the files it names."""
+        """Read the files its section names, once per scene.
+
+        Parameters
+        ----------
+        section : pydantic.BaseModel
+            Its section.
+        base_dir : pathlib.Path
+            The folder the scene's relative paths start from.
+        read : dict
+            What the scene's validation has read so far, by path (added to).
+
+        Returns
+        -------
+        tuple
+            (problems as (key path inside the section, reason), the section with its
+            paths absolute, what was read: the constructor's ``files``).
+        """
 
     @staticmethod
     def coordinates(angles: np.ndarray) -> dict:
-        """Coordinate name -> values of its results (its angle [rad], ...)."""
+        """The coordinates of its results.
+
+        Parameters
+        ----------
+        angles : numpy.ndarray
+            The output angles over a turn [rad].
+
+        Returns
+        -------
+        dict
+            Coordinate name -> values (its angle [rad], and e.g. links and joints).
+        """
 
     @property
     def parts(self) -> tuple[Part, ...]:
         """The bodies that age, in the order of ``part_names``."""
 
     def described(self) -> list[str]:
-        """Lines `fickcam check` prints of it beyond its parts (none: nothing to add)."""
+        """What `fickcam check` prints of it beyond its parts.
+
+        Returns
+        -------
+        list of str
+            Lines without indent; empty when there is nothing to add.
+        """
 
     def response(self, histories: dict, times, angles, valid,
                  on_step: Callable[[], object] = lambda: None) -> Response:
-        """Its variables over (time, ...) [SI] and notices, from the parts' histories by name."""
+        """Its variables over the ageing times, from its parts' histories.
+
+        Parameters
+        ----------
+        histories : dict of str to fickcam.simulation.parts.PartHistory
+            The parts' histories by name (strains [-], moisture [weight %], moduli [Pa]).
+        times : array_like
+            The ageing times [s].
+        angles : array_like
+            The output angles over a turn [rad].
+        valid : array_like of bool
+            Per ageing time: its parts are within their models' range (NaN where not).
+        on_step : callable
+            Called once per ageing time evaluated (a progress bar).
+
+        Returns
+        -------
+        Response
+            Variables over (time, ...) [SI, schema names] and the notices.
+        """
 
 
 def mechanism_types() -> dict[str, type]:
