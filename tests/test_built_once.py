@@ -13,7 +13,7 @@ import pytest
 import fickcam
 from fickcam.cam import mechanism as cam_mechanism
 from fickcam.cam import profile as cam_profile
-from fickcam.environment import Environment
+from fickcam.climate.environment import Environment
 from fickcam.linkage import mechanism as linkage_mechanism
 
 CONFIGS = Path(__file__).resolve().parents[1] / "configs"
@@ -33,7 +33,7 @@ def built(monkeypatch):
 
     monkeypatch.setattr(Environment, "from_section",
                         classmethod(counting("environment", Environment.from_section.__func__)))
-    import fickcam.environment as environment_module
+    import fickcam.climate.environment as environment_module
 
     monkeypatch.setattr(environment_module, "read_record",
                         counting("record", environment_module.read_record))

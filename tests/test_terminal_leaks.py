@@ -32,7 +32,7 @@ def hot_cam(tmp_path_factory):
 
 
 def cli(*argv, cwd):
-    return subprocess.run([sys.executable, "-m", "fickcam.cli", *map(str, argv)], cwd=cwd,
+    return subprocess.run([sys.executable, "-m", "fickcam.cli.main", *map(str, argv)], cwd=cwd,
                           capture_output=True, text=True, timeout=600,
                           env=dict(os.environ, PYTHONPATH=str(ROOT)))
 

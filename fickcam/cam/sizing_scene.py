@@ -156,7 +156,7 @@ def size_scene(scene, limits: Limits) -> Sizing:
         When the cam cannot be sized (not motion segments; no base circle meets the
         limits); before any run.
     """
-    from ..simulate import run
+    from ..simulation.simulate import run
 
     design = scene.mechanism("cam").design
     limits = limits.for_design(design)

@@ -174,7 +174,7 @@ def _run_at(data: dict, base_dir: Path, times: np.ndarray, accuracy, diffusions=
     """The scene mapping run at ageing ``times`` (s) only, fields off, no file;
     ``diffusions``: diffusion results already solved at ``times`` (:func:`part_states`);
     ``cache``: the compensation's ``diffusion.RunCache`` (its runs share it)."""
-    from ..simulate import run
+    from ..simulation.simulate import run
 
     ds = run(_scene_at(data, base_dir, times), accuracy=accuracy, diffusions=diffusions,
              cache=cache)
@@ -209,10 +209,10 @@ def part_states(data: dict, base_dir: Path, times: np.ndarray, accuracy, names: 
         (xarray.Dataset of the parts' state variables over (time, part); dict of part
         name -> its ``DiffusionResult`` at ``times``, None for a part that does not absorb).
     """
-    from ..dataset import build_dataset
-    from ..parts import part_values
-    from ..run_options import RunOptions
-    from ..simulate import age_parts
+    from ..results.dataset import build_dataset
+    from ..simulation.parts import part_values
+    from ..simulation.options import RunOptions
+    from ..simulation.simulate import age_parts
 
     scene = _scene_at(data, base_dir, times)
     parts = [part for part in scene.parts if part.name in names]
@@ -225,7 +225,7 @@ def part_states(data: dict, base_dir: Path, times: np.ndarray, accuracy, names: 
 
 def diffusions_for(data: dict, base_dir: Path, times: np.ndarray, by_name: dict) -> dict:
     """The diffusion results ``by_name`` keyed for a run of the scene mapping at ``times``
-    (``simulate.run(diffusions=...)``), by :func:`fickcam.simulate.diffusion_key`: the
+    (``simulate.run(diffusions=...)``), by :func:`fickcam.simulation.simulate.diffusion_key`: the
     part's shape (of this scene mapping), material and whether its field is kept.
 
     Parameters
@@ -239,7 +239,7 @@ def diffusions_for(data: dict, base_dir: Path, times: np.ndarray, by_name: dict)
     by_name : dict
         Part name -> ``DiffusionResult`` (:func:`part_states`).
     """
-    from ..simulate import diffusion_key
+    from ..simulation.simulate import diffusion_key
 
     scene = _scene_at(data, base_dir, times)
     elastic = scene.elastic_parts  # its runs keep no fields but these (``_scene_at``)
@@ -251,8 +251,8 @@ def _compensation_times(scene, at, over) -> tuple[np.ndarray, tuple[float, float
     """([T] for ``at`` or the window grid for ``over``, the life asked about: the window,
     or delivery to the end of the history for ``at``), s; refuses times outside the
     history."""
-    from ..cli_values import ageing_time
-    from ..simulate import ageing_times
+    from ..quantities.options import ageing_time
+    from ..simulation.simulate import ageing_times
 
     environment = scene.environment
     if (at is None) == (over is None):
@@ -277,7 +277,7 @@ def _check_times(scene, times: np.ndarray, life: tuple[float, float], *, plot: b
     inside ``life``, its ends and ``times``; ``plot``: the scene's ageing times over the
     whole history too (the plot shows the part before and after a window, from the runs
     the compensation makes anyway); ``wide``: the grid of a window over the whole life."""
-    from ..simulate import ageing_times
+    from ..simulation.simulate import ageing_times
 
     environment = scene.environment
     stored = ageing_times(scene, environment)
@@ -398,7 +398,7 @@ def compensate(scene, at=None, over=None, *, accuracy: float | None = None,
         scene's history, or ``keep_limits`` is given without ``at``.
     """
     from ..diffusion import RunCache
-    from ..scene import as_designed_data, load_scene
+    from ..scene.load import as_designed_data, load_scene
 
     cache = RunCache()   # every run of this compensation shares it
     scene = load_scene(scene)

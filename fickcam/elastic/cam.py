@@ -1,6 +1,6 @@
 """The scene's cam plate under its contact force over ageing (``cam.elastic: true``):
 which state and cam results feed :mod:`fickcam.elastic.contact`, and the variables
-stacked over ageing times (called by :mod:`fickcam.simulate`).
+stacked over ageing times (called by :mod:`fickcam.simulation.simulate`).
 
 Mesh: the diffusion engine's graded planform mesh of the dry working profile, spacing
 ``PROFILE_SAMPLES`` per perimeter along the outline, growing by ``GROWTH`` per row

@@ -1,6 +1,6 @@
 """The swelling-stress variables over (time, part) of the parts that get an elastic
 analysis (``cam.elastic``, ``linkage.elastic``: each mechanism's ``elastic_parts``), for
-:mod:`fickcam.simulate`."""
+:mod:`fickcam.simulation.simulate`."""
 from __future__ import annotations
 
 import numpy as np

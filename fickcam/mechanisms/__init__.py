@@ -83,7 +83,7 @@ class Mechanism(Protocol):
     @staticmethod
     def absorber_sizes(section) -> list[tuple[str, str, float]]:
         """The bodies whose moisture uptake time the plausibility readings judge a bare
-        history length by (:func:`fickcam.plausibility.fastest_absorber`).
+        history length by (:func:`fickcam.quantities.plausibility.fastest_absorber`).
 
         Parameters
         ----------
