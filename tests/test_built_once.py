@@ -1,7 +1,8 @@
 """A run builds each thing of its scene once: the climate (and the record it reads), each
 mechanism (its design, polydyne correction, profile and arm), each mechanism's parts and
 the cam's profile file, whatever the run asks of them afterwards (plans, solves, the
-as-designed values, the limit search). Counted, not timed."""
+as-designed values, the limit search); and followed from the run, the scene (or one of its
+sections) enters each module at most twice. Counted, not timed."""
 from __future__ import annotations
 
 from collections import Counter
@@ -63,3 +64,45 @@ def built(monkeypatch):
 def test_a_run_builds_its_climate_mechanisms_parts_and_files_once(name, expected, built):
     fickcam.run(CONFIGS / f"{name}.yaml")
     assert dict(built) == expected
+
+
+def entries_of_the_scene(scene) -> Counter:
+    """Per fickcam module, how many times a run of ``scene`` calls into it from another
+    module passing the scene or one of its sections (its own methods aside)."""
+    import sys
+
+    from fickcam.simulation import simulate
+
+    held = {id(scene), id(scene.model)}
+    for model in (scene.model, scene.as_designed_model):
+        if model is not None:
+            held |= {id(model)} | {id(getattr(model, name)) for name in model.model_fields
+                                    if getattr(model, name) is not None}
+    entries: Counter = Counter()
+
+    def profiler(frame, event, arg):
+        module = frame.f_globals.get("__name__", "")
+        if event != "call" or not module.startswith("fickcam"):
+            return
+        code = frame.f_code
+        names = code.co_varnames[:code.co_argcount + code.co_kwonlyargcount]
+        values = [frame.f_locals.get(name) for name in names]
+        if names and names[0] == "self" and values[0] is scene:
+            return
+        caller = frame.f_back.f_globals.get("__name__", "") if frame.f_back else ""
+        if caller != module and any(id(value) in held for value in values):
+            entries[module] += 1
+
+    sys.setprofile(profiler)
+    try:
+        simulate.run(scene)
+    finally:
+        sys.setprofile(None)
+    return entries
+
+
+@pytest.mark.parametrize("name", ["singh2017_cam", "singh2017_cam_compensated",
+                                  "fourbar_r914_humid_compensated"])
+def test_followed_from_the_run_a_scene_enters_each_module_at_most_twice(name):
+    entries = entries_of_the_scene(fickcam.load_scene(CONFIGS / f"{name}.yaml"))
+    assert entries and max(entries.values()) <= 2, entries

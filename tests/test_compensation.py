@@ -14,7 +14,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 import fickcam
-from fickcam.cli import main
+from fickcam.cli.main import main
 from fickcam.cam.design import CamState, cam_design
 from fickcam.cam.model import cam_response
 from fickcam.compensation import compensate, write_scene

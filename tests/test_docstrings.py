@@ -400,7 +400,7 @@ ENTRY_POINTS = {
     "fickcam.results.dataset.build_dataset": ("values", "coords"),
     "fickcam.cli.commands.notices_line": (),
     "fickcam.cli.commands.default_output": (),
-    "fickcam.cli.main": ("argv",),
+    "fickcam.cli.main.main": ("argv",),
     "fickcam.cli.checkout.is_checkout": (),
     "fickcam.cli.checkout.repository_root": (),
     "fickcam.simulation.blas.on_one_blas_thread": (),

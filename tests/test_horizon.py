@@ -11,7 +11,7 @@ import yaml
 from hypothesis import given
 from hypothesis import strategies as st
 
-from fickcam.cli import main
+from fickcam.cli.main import main
 from fickcam.results.query import select
 from fickcam.scene.load import load_scene
 from fickcam.simulation.simulate import ageing_times, every_step_times

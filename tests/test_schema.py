@@ -56,7 +56,7 @@ def test_no_other_table_of_result_names():
 def test_simulate_does_not_import_the_package_it_belongs_to():
     import ast
 
-    tree = ast.parse((Path(fickcam.__file__).parent / "simulate.py").read_text())
+    tree = ast.parse((Path(fickcam.__file__).parent / "simulation" / "simulate.py").read_text())
     for node in ast.walk(tree):
         if isinstance(node, ast.ImportFrom) and node.level == 1 and node.module is None:
             pytest.fail(f"simulate.py line {node.lineno}: 'from . import ...'")
@@ -65,7 +65,7 @@ def test_simulate_does_not_import_the_package_it_belongs_to():
 def test_the_scene_takes_the_diffusion_model_names_from_the_diffusion_package():
     from fickcam.diffusion import MODELS
 
-    text = (Path(fickcam.__file__).parent / "scene.py").read_text()
+    text = (Path(fickcam.__file__).parent / "scene" / "load.py").read_text()
     assert "axisymmetric" not in text, "scene.py repeats the list of diffusion models"
     for name in MODELS:
         fickcam.load_scene(dict(yaml.safe_load((CONFIGS / "yadav2017_cam.yaml").read_text()),
