@@ -205,4 +205,5 @@ def plain_text_docstring(app, what, name, obj, options, lines):
 def setup(app):
     _reference.setup(app)
     _results.setup(app)
+    _gallery.setup(app)
     app.connect("autodoc-process-docstring", plain_text_docstring)

@@ -117,6 +117,33 @@ def note(text: str) -> Note:
     return Note(text)
 
 
+class DesignNotice(str):
+    """A warning about the design itself, true at every ageing time (a motion law's jump in
+    acceleration): a run tells it once, without ageing times.
+
+    Parameters
+    ----------
+    *args, **kwargs
+        The arguments of :class:`str` (the notice's text).
+    """
+
+
+def design_notice(text: str) -> DesignNotice:
+    """``text`` as a warning about the design, told once whatever the ageing times.
+
+    Parameters
+    ----------
+    text : str
+        The warning.
+
+    Returns
+    -------
+    DesignNotice
+        ``text``, marked as true of the design at every age.
+    """
+    return DesignNotice(text)
+
+
 def level_of(notice: str) -> int:
     """The logging level of a notice: INFO for a :class:`Note`, WARNING otherwise.
 

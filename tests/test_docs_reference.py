@@ -31,8 +31,17 @@ reference = _load_generator()
 
 
 def _listed_keys(markdown: str) -> set[str]:
-    """The keys in the first column of the reference tables."""
-    return set(re.findall(r"^\| `([^`]+)` \|", markdown, flags=re.MULTILINE))
+    """The keys in the first column of the reference tables, each under the dotted name of
+    the section heading above its table (``### `cam.follower``` then ``| `mass` |``)."""
+    keys, section = set(), ""
+    for line in markdown.splitlines():
+        heading = re.match(r"^#+ (?:`([^`]+)`|.*)$", line)
+        if heading:
+            section = heading.group(1) or ""
+        row = re.match(r"^\| `([^`]+)` \|", line)
+        if row:
+            keys.add(f"{section}.{row.group(1)}" if section else row.group(1))
+    return keys
 
 
 def _schema_keys(node: dict, defs: dict, prefix: str, out: set, depth: int = 0) -> None:
@@ -133,8 +142,11 @@ def test_every_scene_key_has_a_one_line_meaning_with_its_unit():
 
 def test_the_scene_reference_shows_the_meaning_column():
     markdown = reference.scene_reference_markdown()
-    assert "| key | meaning | type |" in markdown
-    assert "| `environment.state.temperature_rise` | Temperature of every part above" in markdown
+    assert "| key | meaning | value | default | example |" in markdown
+    state = markdown.split("### `environment.state`\n", 1)[1].split("\n#", 1)[0]
+    assert "| `temperature_rise` | Temperature of every part above" in state
+    assert "| `reference_temperature` | Temperature at which the parts are made and dry [K] | " \
+           "quantity in K, > 0 | `296.15` | `23 degC` |" in markdown
 
 
 def test_every_result_variable_and_coordinate_has_a_meaning():

@@ -84,6 +84,24 @@ def test_no_hand_written_table_on_the_measured_pages(page):
         f"docs/{page}: a fixed-width table in a code block")
 
 
+def test_every_hand_written_validation_table_says_how_to_reproduce_it():
+    """The validation page's own tables (the summary, the crossings) carry a "reproduce
+    with" column or a "Reproduce with" line under them, as the rendered ones do."""
+    lines = (DOCS / "validation.md").read_text().splitlines()
+    tables, start = [], None
+    for k, line in enumerate(lines + [""]):
+        if line.startswith("|") and start is None:
+            start = k
+        elif not line.startswith("|") and start is not None:
+            tables.append((start, k))
+            start = None
+    assert len(tables) >= 2
+    for first, end in tables:
+        after = " ".join(lines[end:end + 3])
+        assert "reproduce with" in lines[first].lower() or "*Reproduce with `" in after, \
+            f"docs/validation.md:{first + 1}: a table without its reproduce-with line"
+
+
 def _write(folder: Path, record: dict) -> Path:
     path = folder / "result.json"
     path.write_text(json.dumps(record))

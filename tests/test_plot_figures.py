@@ -202,3 +202,61 @@ def test_no_plot_module_touches_pyplot_or_the_backend():
     for path in [*package.glob("plotting/*.py"), package / "fit" / "plot.py"]:
         text = path.read_text()
         assert "matplotlib.use(" not in text and "import matplotlib.pyplot" not in text, path
+
+
+@pytest.mark.parametrize("which", ["fit", "against_band"])
+def test_the_one_figure_plots_return_their_figure_like_every_other(cam, which, tmp_path,
+                                                                   monkeypatch):
+    """``plot_fit`` and ``plot_against_band`` return :class:`Figures` (shown inline in a
+    notebook), write a file only when given one, and leave the backend alone."""
+    import matplotlib
+    import matplotlib.pyplot as plt
+    from matplotlib.figure import Figure
+
+    if which == "fit":
+        from fickcam.fit import fit_weight_gain, plot_fit
+        from fickcam.fit.synthetic import d5229_times, synthetic_specimen
+
+        rng = np.random.default_rng(13)
+        coupons = [synthetic_specimen(f"s{k}", 333.15, 85.0, 2e-3, d5229_times(60.0), 2.0, 5e-12,
+                                      rng, 0.01) for k in range(2)]
+        report = fit_weight_gain(coupons, "3502", name="coupons")
+        draw = lambda path=None: plot_fit(report, path)  # noqa: E731
+    else:
+        from fickcam.plotting.compensation import plot_against_band
+
+        draw = lambda path=None: plot_against_band(cam, cam, path, (0.0, 60.0))  # noqa: E731
+    backend, open_figures = matplotlib.get_backend(), plt.get_fignums()
+    monkeypatch.chdir(tmp_path)
+    shown = draw()
+    assert isinstance(shown, plotting.Figures) and len(shown) == 1 and shown.paths == []
+    assert isinstance(shown[0], Figure) and not list(tmp_path.iterdir())
+    assert shown._repr_html_().count("data:image/png;base64,") == 1
+    assert matplotlib.get_backend() == backend and plt.get_fignums() == open_figures
+    written = draw(tmp_path / "figure.png")
+    assert written.paths == [tmp_path / "figure.png"] and (tmp_path / "figure.png").stat().st_size
+    assert written[0].get_label() == "figure"
+
+
+def test_after_a_wet_tg_stop_the_drift_shows_what_was_computed_and_says_where_and_why(figures,
+                                                                                      tmp_path):
+    """20 d at 113 degC, then 150 degC: the parts pass their wet Tg, so the mechanism is
+    computed at 0 and 10 d only. The drift figure draws the 10 d line and its title says
+    from when nothing is computed, and why; with only t = 0 computed it says so in place of
+    empty axes."""
+    data = scene("singh2017_cam", ageing_times=["0 d", "10 d", "30 d"], angle_step="6 deg")
+    data["environment"] = {"history": [
+        {"duration": "20 d", "temperature": "113 degC", "relative_humidity": "80 %"},
+        {"duration": "40 d", "temperature": "150 degC", "relative_humidity": "85 %"}]}
+    hot = fickcam.run(data)
+    plotting.plot(hot, tmp_path, "kinematics", save=figures)
+    top = figures["cam_drift.png"].axes[0]
+    assert [line.get_label() for line in lines_of(top)] == ["t = 10 d"]
+    assert top.get_title().replace("\n", " ") == (
+        "singh2017-cam: drift from t = 0 d not computed from t = 30 d: at 150 °C the cam and "
+        "follower passed their wet Tg (135 °C at t = 10 d)")
+    assert "not computed from t = 30 d" in figures["cam_kinematics.png"].axes[0].get_title()
+    plotting.plot(hot.isel(time=[0, 2]), tmp_path, "kinematics", save=figures)
+    drift = figures["cam_drift.png"].axes
+    assert all("no ageing time after t = 0 d is computed" in [t.get_text() for t in ax.texts]
+               for ax in drift)

@@ -60,17 +60,36 @@ def test_in_python_the_same_scene_warns_with_fickcam_warnings_only(hot_cam):
     assert all(w.filename == __file__ for w in seen)  # at the caller's line, not fickcam's
 
 
-def test_a_notice_at_several_ageing_times_is_one_line_with_their_range(hot_cam):
+def test_a_notice_at_several_ageing_times_is_one_line_and_the_designs_once(hot_cam):
+    """The motion law's acceleration steps are the design's, true at every age: one
+    warning, without ageing times, naming both joints."""
     with warnings.catch_warnings(record=True) as seen:
         warnings.simplefilter("always", fickcam.FickcamWarning)
         ds = fickcam.run(dict(yaml.safe_load(hot_cam.read_text()),
                               environment={"history": [{"duration": "60 d",
                                                         "temperature": "40 degC",
                                                         "relative_humidity": "50 %"}]}))
-    jumps = [str(w.message) for w in seen if "acceleration jumps at the 105 deg" in str(w.message)]
-    assert jumps == ["at t = 0 d to 60 d (3 ageing times): acceleration jumps at the 105 deg "
-                     "joint: infinite jerk there (dwell -> simple_harmonic)"]
+    jumps = [str(w.message) for w in seen if "acceleration jumps" in str(w.message)]
+    assert jumps == ["motion as designed: acceleration jumps at the 105 and 255 deg joints of "
+                     "its simple_harmonic segments: infinite jerk there, which excites "
+                     "vibration (a cycloidal or polynomial law has none)"]
     assert ds.attrs["notices"].count(jumps[0]) == 1
+
+
+def test_merged_notices_give_the_range_over_times_but_keep_alike_notices_of_one_time_apart():
+    from fickcam.mechanisms.ageing import merged_notices
+    from fickcam.messages import design_notice
+
+    day = 86400.0
+    seen = [(0.0, "pressure angle 31 deg near 104 deg"), (0.0, "pressure angle 33 deg near 250 deg"),
+            (0.0, design_notice("motion as designed: steps at 105 deg")),
+            (30 * day, "pressure angle 32 deg near 106 deg"),
+            (30 * day, "pressure angle 34 deg near 250 deg"),
+            (30 * day, design_notice("motion as designed: steps at 105 deg"))]
+    assert merged_notices(seen, 30 * day) == [
+        "at t = 0 d to 30 d (2 ageing times): pressure angle 31–32 deg near 104–106 deg",
+        "at t = 0 d to 30 d (2 ageing times): pressure angle 33–34 deg near 250 deg",
+        "motion as designed: steps at 105 deg"]
 
 
 def test_times_are_told_in_the_unit_the_scene_wrote_them_in(tmp_path):

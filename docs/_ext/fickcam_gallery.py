@@ -44,3 +44,19 @@ class TightFigures:
                 paths.append(path)
         own = figure_rst(paths, gallery_conf["src_dir"]) if paths else ""
         return own + matplotlib_scraper(block, block_vars, gallery_conf, bbox_inches="tight")
+
+
+def script_names_only(app, docname, source):
+    """Sphinx's ``source-read``: a gallery page's output names a script as a reader who
+    downloads it does (``plot_x.py:26: FickcamWarning: ...``), not by the path it was built
+    from."""
+    if docname.startswith("gallery/"):
+        from pathlib import Path
+
+        folder = str(Path(app.srcdir) / "examples") + "/"
+        source[0] = source[0].replace(folder, "")
+
+
+def setup(app):
+    """Register the gallery's page filter."""
+    app.connect("source-read", script_names_only)

@@ -172,11 +172,24 @@ def example_values(folder: Path = EXAMPLES) -> dict[str, object]:
     return found
 
 
+def _value_text(row: dict) -> str:
+    """What a key takes, in one cell: ``quantity in K, > 0``, ``str; one of `a`, `b```."""
+    text = _cell(row["type"]) + (f" in {row['unit']}" if row["unit"] else "")
+    text += f", {row['bounds']}" if row["bounds"] else ""
+    return text + (f"; one of {row['allowed']}" if row["allowed"] else "")
+
+
+SCENE_COLUMNS = ["| key | meaning | value | default | example |", "|---|---|---|---|---|"]
+
+
 def scene_reference_markdown() -> str:
-    """The scene reference page as MyST Markdown."""
+    """The scene reference page as MyST Markdown: a table per section of the scene, each
+    key under the dotted name of the section it is written in."""
     lines = ["# Scene keys", "",
              "Every key a scene accepts, generated from the scene models when the documentation "
-             "is built. `NAME` stands for a name you choose (a material, a limited variable). "
+             "is built, in a table per section: `temperature_rise` under `environment.state` is "
+             "written `environment: {state: {temperature_rise: ...}}`. `NAME` stands for a name "
+             "you choose (a material, a limited variable). "
              "A quantity is a number in the SI unit given (a percentage for `%`) or a string with "
              "its unit (`\"30 mm\"`, `\"113 degC\"`, `\"60 d\"`); defaults are in that SI unit. "
              "The meaning gives the unit of a quantity in brackets. The example is the first "
@@ -184,23 +197,24 @@ def scene_reference_markdown() -> str:
              "A key that is not listed is refused as `scene.yaml:LINE key: unknown key; did you "
              "mean ...?`, and a value out of its bounds or of the wrong dimension as "
              "`scene.yaml:LINE key: reason`, exit status 2.", ""]
-    rows = scene_key_rows()
-    sections = {row["key"].split(".")[0] for row in rows if "." in row["key"]}
     examples = example_values()
-    section = None
-    for row in rows:
-        top = row["key"].split(".")[0]
-        heading = top if top in sections else "top level"
-        if heading != section:
-            section = heading
-            lines += ["", f"## `{heading}`" if heading in sections else "## Top level", "",
-                      "| key | meaning | type | SI unit | bounds | default | allowed values "
-                      "| example |", "|---|---|---|---|---|---|---|---|"]
+    tables: dict[str, list[str]] = {}
+    for row in scene_key_rows():
+        parent, _, leaf = row["key"].rpartition(".")
         example = examples.get(row["key"])
         shown = "" if example is None else f"`{_cell(str(example))}`"
-        lines.append(f"| `{row['key']}` | {_cell(row['description'])} | {_cell(row['type'])} "
-                     f"| {row['unit']} | {row['bounds']} "
-                     f"| {_cell(row['default'])} | {row['allowed']} | {shown} |")
+        tables.setdefault(parent, []).append(
+            f"| `{leaf}` | {_cell(row['description'])} | {_value_text(row)} "
+            f"| {_cell(row['default'])} | {shown} |")
+    opened = set()
+    for parent, rows in tables.items():
+        top = parent.split(".")[0]
+        if parent and top not in opened:  # each section of the scene opens with its own heading
+            lines += ["", f"## `{top}`"]
+            opened.add(top)
+        heading = "## Top level" if not parent else f"### `{parent}`" if "." in parent else ""
+        lines += ["", heading, ""] if heading else [""]
+        lines += [*SCENE_COLUMNS, *rows]
     return "\n".join(lines) + "\n"
 
 

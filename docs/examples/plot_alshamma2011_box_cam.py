@@ -40,3 +40,7 @@ figures = plot(ds, kind="elastic")
 # The summary above gives the cam's moisture and the largest deflection and stress at
 # the start and the end; the figures show how they change over the cam angle and with
 # age.
+#
+# The warning under the run is about the cam as drawn: its simple-harmonic segments step
+# the acceleration at every joint, which excites vibration whatever the cam's age (a
+# cycloidal or polynomial law would not).

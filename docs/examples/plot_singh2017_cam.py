@@ -44,3 +44,8 @@ figures = plot(ds, kind="limits")
 # The cam breaks one tolerance: its follower motion leaves the 0.25 mm band after about
 # 36 days. ``fickcam compensate`` finds the dimensions that keep it in, see
 # :doc:`/guide/limits`.
+#
+# The warning under the run is about the cam as drawn, not its ageing: its
+# simple-harmonic rise and return meet the dwells with a step in acceleration, so the
+# jerk is infinite at 105° and 255° and the follower is kicked there every turn. That is
+# the published design; a cycloidal or polynomial law (``law: cycloidal``) removes it.

@@ -17,6 +17,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..messages import design_notice
 from .fourier import at_angles, correction_motion
 
 #: the derivative orders of a follower motion: Y, dY/dtheta, d2Y/dtheta2, d3Y/dtheta3
@@ -350,6 +351,16 @@ def time_derivatives(per_angle, omega):
     return y, d1 * omega, d2 * omega ** 2, d3 * omega ** 3
 
 
+def _joints(joints) -> str:
+    """``the 105 and 255 deg joints of its simple_harmonic segments`` from (angle [degree],
+    laws meeting there) per joint."""
+    angles = [f"{angle:.4g}" for angle, _ in joints]
+    listed = angles[0] if len(angles) == 1 else ", ".join(angles[:-1]) + " and " + angles[-1]
+    laws = sorted(set().union(*(laws for _, laws in joints)))
+    return (f"the {listed} deg joint{'s' * (len(angles) > 1)}"
+            + (f" of its {' and '.join(laws)} segments" if laws else ""))
+
+
 def joint_notices(segments, tolerance: float = 1e-9) -> list[str]:
     """Warnings where the motion leaves infinite acceleration (velocity step) or infinite
     jerk (acceleration step) at a segment joint or inside a law (Norton ch. 8, the
@@ -365,35 +376,39 @@ def joint_notices(segments, tolerance: float = 1e-9) -> list[str]:
 
     Returns
     -------
-    list of str
-        One sentence per joint or law with a step; empty when the motion is smooth.
+    list of fickcam.messages.DesignNotice
+        One sentence per joint or law with a step, true at every age (a run tells it once);
+        empty when the motion is smooth.
 
     References
     ----------
     Norton (2012), ch. 8; in full in :mod:`fickcam.cam`.
     """
-    notices = []
     lift = max(abs(s.height) for s in segments) or 1.0
+    steps: dict[str, list[tuple[float, set]]] = {"velocity": [], "acceleration": []}
     n = len(segments)
     for k in range(n):
         a, b = segments[k], segments[(k + 1) % n]
         end = segment_motion(a, np.array([a.start + a.span]))
         start = segment_motion(b, np.array([b.start]))
-        where = math.degrees((a.start + a.span) % (2 * PI))
+        where = (math.degrees((a.start + a.span) % (2 * PI)), {a.law, b.law} - {None, ""})
         span = min(a.span, b.span)
         if abs(end[1][0] - start[1][0]) * span > tolerance * lift:
-            notices.append(f"velocity jumps at the {where:.4g} deg joint: infinite acceleration "
-                           f"and jerk there ({a.law or 'dwell'} -> {b.law or 'dwell'})")
+            steps["velocity"].append(where)
         elif abs(end[2][0] - start[2][0]) * span ** 2 > tolerance * lift:
-            notices.append(f"acceleration jumps at the {where:.4g} deg joint: infinite jerk "
-                           f"there ({a.law or 'dwell'} -> {b.law or 'dwell'})")
+            steps["acceleration"].append(where)
+    effect = {"velocity": "infinite acceleration and jerk there, a shock each turn",
+              "acceleration": "infinite jerk there, which excites vibration (a cycloidal or "
+                              "polynomial law has none)"}
+    notices = [f"motion as designed: {what} jumps at {_joints(joints)}: {effect[what]}"
+               for what, joints in steps.items() if joints]
     for seg in segments:
         if seg.law == "constant_acceleration" and seg.height != 0.0:
-            notices.append(f"constant_acceleration leaves infinite jerk at mid-segment "
-                           f"({math.degrees(seg.start + seg.span / 2):.4g} deg)")
+            notices.append(f"motion as designed: constant_acceleration leaves infinite jerk at "
+                           f"mid-segment ({math.degrees(seg.start + seg.span / 2):.4g} deg)")
         if seg.law == "spline" and seg.spline.degree < 5 and len(seg.spline.x) > 2:
             what = "velocity (infinite acceleration)" if seg.spline.degree == 1 else \
                 "acceleration (infinite jerk)" if seg.spline.degree == 3 else ""
-            notices.append(f"a degree-{seg.spline.degree} spline steps its {what} at its inner "
-                           f"points ({math.degrees(seg.start):.4g} deg segment)")
-    return notices
+            notices.append(f"motion as designed: a degree-{seg.spline.degree} spline steps its "
+                           f"{what} at its inner points ({math.degrees(seg.start):.4g} deg segment)")
+    return [design_notice(text) for text in notices]

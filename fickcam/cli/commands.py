@@ -363,7 +363,7 @@ def _cmd_fit(args) -> int:
     print(parameter_table(report))
     print(f"wrote {output}")
     if args.plot:
-        print(f"wrote {plot_fit(report, args.plot)}")
+        print(f"wrote {plot_fit(report, args.plot).paths[0]}")
     return 0
 
 

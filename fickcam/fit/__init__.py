@@ -10,24 +10,28 @@ from .output import materials_yaml, parameter_table
 from .report import FitReport, fit_weight_gain
 
 
-def plot_fit(report, path):
-    """Moisture gain vs sqrt(time) per condition with the fitted curves and residuals (PNG).
+def plot_fit(report, path=None, save=None):
+    """Moisture gain vs sqrt(time) per condition with the fitted curves and residuals.
 
     Parameters
     ----------
     report : FitReport
         A fit (:func:`~fickcam.fit_weight_gain`).
-    path : str or pathlib.Path
-        The PNG file to write.
+    path : str or pathlib.Path, optional
+        The figure file to write (PNG unless its suffix names another format); None: the
+        figure is only returned.
+    save : callable, optional
+        ``save(fig, path) -> path`` writes the figure; default
+        :func:`~fickcam.plotting.common.save_figure` (atomic).
 
     Returns
     -------
-    pathlib.Path
-        The figure's path.
+    fickcam.plotting.Figures
+        The one figure, shown inline in a notebook; ``.paths``: the file written.
     """
     from .plot import plot_fit as _plot
 
-    return _plot(report, path)
+    return _plot(report, path, save)
 
 
 __all__ = ["FitReport", "Specimen", "fit_weight_gain", "materials_yaml", "parameter_table",

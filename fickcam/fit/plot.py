@@ -2,11 +2,9 @@
 convention) with the fitted curves, and the residuals below."""
 from __future__ import annotations
 
-from pathlib import Path
-
 import numpy as np
 
-from ..plotting.common import figure, legend, save_figure
+from ..plotting.common import Figures, figure, legend, one_figure
 from .models import fickian_fraction, two_phase_fraction
 from .report import FitReport
 
@@ -45,21 +43,25 @@ def _draw_condition(ax, res_ax, report, condition, anomaly, color, times):
             label=f"{condition.label}: two-phase (NOT Fickian)")
 
 
-def plot_fit(report: FitReport, path) -> Path:
-    """Write the figure to ``path`` (PNG): moisture gain against sqrt(time) per condition
-    with the fitted curves, and the Fickian residuals.
+def plot_fit(report: FitReport, path=None, save=None) -> Figures:
+    """The fit's figure: moisture gain against sqrt(time) per condition with the fitted
+    curves, and the Fickian residuals; written to ``path`` when it is given.
 
     Parameters
     ----------
     report : FitReport
         The fit.
-    path : str or pathlib.Path
-        The PNG file.
+    path : str or pathlib.Path, optional
+        The figure file (PNG unless its suffix names another format); None: the figure is
+        only returned.
+    save : callable, optional
+        ``save(fig, path) -> path`` writes the figure; default
+        :func:`~fickcam.plotting.common.save_figure` (atomic).
 
     Returns
     -------
-    pathlib.Path
-        The path written.
+    Figures
+        The one figure, shown inline in a notebook; ``.paths``: the file written.
     """
     plt = figure()
     fig, (ax, res_ax) = plt.subplots(2, 1, figsize=(8, 7), sharex=True,
@@ -79,4 +81,5 @@ def plot_fit(report: FitReport, path) -> Path:
     res_ax.set_xlabel("sqrt(time) [sqrt(d)]")
     res_ax.set_ylabel("Fick residual [wt %]")
     res_ax.grid(alpha=0.3)
-    return save_figure(fig, Path(path))
+    fig.set_label(f"fit_{report.name}")
+    return one_figure(fig, path, save)

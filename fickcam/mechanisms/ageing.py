@@ -13,7 +13,7 @@ from typing import Callable
 import numpy as np
 
 from ..errors import format_duration
-from ..messages import restated
+from ..messages import DesignNotice, restated
 from .response import Response
 
 
@@ -70,7 +70,8 @@ NUMBER = re.compile(r"[-+]?\d+(?:\.\d+)?(?:e[-+]?\d+)?")
 def merged_notices(seen, span: float | None) -> list[str]:
     """Notices said at several ageing times, each told once: ``at t = 0 d to 60 d (4 ageing
     times): MESSAGE``, where a number that differs between the times shows its range
-    (``near 104–106 deg``).
+    (``near 104–106 deg``). Notices alike at one time (two joints of a motion) stay apart;
+    a :class:`~fickcam.messages.DesignNotice` is told once, without times.
 
     Parameters
     ----------
@@ -85,11 +86,17 @@ def merged_notices(seen, span: float | None) -> list[str]:
         One notice per group of notices alike but for their numbers, in the order the
         groups first occur; each keeps its level (:func:`~fickcam.messages.restated`).
     """
-    groups: dict[str, list[tuple[float, str]]] = {}
+    groups: dict[tuple, list[tuple[float, str]]] = {}
+    counts: dict[tuple, int] = {}
     for t, message in seen:
-        groups.setdefault(NUMBER.sub("#", message), []).append((t, message))
+        shape = (t, NUMBER.sub("#", message))
+        counts[shape] = counts.get(shape, 0) + 1  # the n-th alike at this time joins the n-th group
+        groups.setdefault((shape[1], counts[shape]), []).append((t, message))
     notices = []
     for said in groups.values():
+        if isinstance(said[0][1], DesignNotice):
+            notices.append(said[0][1])
+            continue
         when = sorted({t for t, _ in said})
         at = format_duration(when[0], span)
         if len(when) > 1:

@@ -10,7 +10,8 @@ import numpy as np
 
 from ..results.schema import design_name
 from .common import (legend, age_colour, age_label, ages, days, drift_panel, exaggerated_outlines,
-                     figure, legend_outside, length_drift_panel, reference_curve, save_figure, Figures, returns_figures)
+                     figure, legend_outside, length_drift_panel, reference_curve, save_figure, Figures, returns_figures,
+                     wet_tg_stop)
 
 KINEMATICS = (("follower_displacement", "displacement [mm]", 1e3),
               ("follower_velocity", "velocity [m/s]", 1.0),
@@ -79,7 +80,8 @@ def angle_panels(plt, ds, rows, title: str, drift=None):
     if with_drift:
         name, ylabel, scale = drift
         drift_panel(axes[-1, 0], angle, ds, name, ages(ds), scale, f"{ylabel}\n− design")
-    axes[0, 0].set_title(title)
+    stop = wet_tg_stop(ds)
+    axes[0, 0].set_title(title + (f"\n{stop}" if stop else ""), fontsize=9 if stop else None)
     legend_outside(axes[0, 0])
     axes[-1, 0].set_xlabel("cam angle [deg]")
     return fig
@@ -184,18 +186,29 @@ def _profile(plt, ds, outdir, name, save) -> Path:
 
 def _drift(plt, ds, outdir, name, rows, save) -> Path:
     """cam_drift.png: displacement and acceleration minus their values at the first age,
-    i.e. how far the follower drifts out of its as-made motion."""
+    i.e. how far the follower drifts out of its as-made motion; after a wet-Tg stop, the
+    ageing times computed and a line saying where and why the rest is not."""
     fig, axes = plt.subplots(2, 1, figsize=(7.5, 5.5), sharex=True)
     angle = ds["cam_angle"].values
     t = days(ds)
+    later = ages(ds)[1:]
     for ax, (var, ylabel, scale) in zip(axes, (rows[0], rows[2])):
         first = ds[var].isel(time=0).values
-        for k in ages(ds)[1:]:
+        for k in later:
             ax.plot(angle, (ds[var].isel(time=k).values - first) * scale, color=age_colour(ds, k),
                     label=age_label(t[k], t[-1]))
+        ax.axhline(0.0, color="k", lw=0.8, ls="--")
         ax.set_ylabel(f"change in {ylabel}")
         ax.grid(alpha=0.3)
-    axes[0].set_title(f"{name}: drift from t = {t[0]:g} d")
+    stop = wet_tg_stop(ds)
+    axes[0].set_title(f"{name}: drift from {age_label(t[0], t[-1])}" + (f"\n{stop}" if stop else ""),
+                      fontsize=9 if stop else None)
+    if not later:  # only the first age computed: nothing to compare with, say so
+        for ax in axes:
+            ax.set_yticks([])
+            ax.text(0.5, 0.5, f"no ageing time after {age_label(t[0], t[-1])} is computed",
+                    transform=ax.transAxes, ha="center", va="center", color="0.3")
+    axes[-1].set_xlim(angle[0], angle[-1])
     legend_outside(axes[0])
     axes[-1].set_xlabel("cam angle [deg]")
     return save(fig, outdir / "cam_drift.png")

@@ -148,6 +148,35 @@ def returns_figures(draw):
     return wrapper
 
 
+def one_figure(fig, path=None, save=None) -> Figures:
+    """``fig`` as the :class:`Figures` a plotting function returns, written to ``path`` when given.
+
+    For the plotting functions that draw one figure to one file (not a folder of them): the
+    figure is labelled with the file's stem, its ticks are tidied, and it is shown inline
+    in a notebook.
+
+    Parameters
+    ----------
+    fig : matplotlib.figure.Figure
+        The figure.
+    path : str or pathlib.Path, optional
+        The file; its suffix gives the format. None: the figure is only returned.
+    save : callable, optional
+        ``save(fig, path) -> path`` writes the figure; default :func:`save_figure`.
+
+    Returns
+    -------
+    Figures
+        The one figure; ``.paths`` holds ``path`` when it was written.
+    """
+    tidy_ticks(fig)
+    figures = Figures([fig])
+    if path is not None:
+        fig.set_label(Path(path).stem)
+        figures.paths.append((save_figure if save is None else save)(fig, Path(path)))
+    return figures
+
+
 def figure() -> FigureMaker:
     """The maker of new figures (:class:`FigureMaker`): no pyplot, no backend change."""
     return FigureMaker()
@@ -202,6 +231,50 @@ def ages(ds, most: int = 4) -> list[int]:
         valid = valid[np.isfinite(values).any(axis=1)] if np.isfinite(values).any() else valid
     n = valid.size
     return sorted(set(valid[np.linspace(0, n - 1, min(n, most)).round().astype(int)].tolist()))
+
+
+def wet_tg_stop(ds) -> str | None:
+    """Where and why the result stops: the sentence a figure prints when parts passed their
+    wet glass transition before the last ageing time (nothing is computed from then on).
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        A result (``within_wet_tg`` over time and part, ``temperature`` over time [K]).
+
+    Returns
+    -------
+    str or None
+        ``"not computed from t = 10 d: at 150 °C the cam and follower passed their wet Tg
+        (157 °C at t = 0 d)"``, in lines of at most 72 characters; None when every ageing
+        time was computed.
+    """
+    import textwrap
+
+    import numpy as np
+
+    if "within_wet_tg" not in ds:
+        return None
+    within = ds["within_wet_tg"].transpose("time", ...).values.astype(bool)
+    stopped = ~within.reshape(within.shape[0], -1).all(axis=1)
+    if not stopped.any():
+        return None
+    k = int(np.argmax(stopped))
+    t = days(ds)
+    parts = [str(p) for p, ok in zip(np.atleast_1d(ds["part"].values), np.atleast_1d(within[k]))
+             if not ok] if "part" in ds.coords else []
+    who = " and ".join([", ".join(parts[:-1]), parts[-1]] if len(parts) > 1 else parts) or "parts"
+    text = f"not computed from {age_label(t[k], t[-1])}: "
+    if "temperature" in ds:
+        text += f"at {float(ds['temperature'].values[k]) - 273.15:.0f} °C "
+    text += f"the {who} passed {'their' if len(parts) != 1 else 'its'} wet Tg"
+    tgs = [ds[name].isel(time=k - 1).values for name in ("glass_transition_temperature",
+                                                          "surface_glass_transition_temperature")
+           if name in ds and k > 0]
+    if tgs and np.isfinite(tgs).any():
+        tg = float(np.nanmin(tgs)) - 273.15
+        text += f" ({tg:.0f} °C at {age_label(t[k - 1], t[-1])})"
+    return "\n".join(textwrap.wrap(text, 72))
 
 
 def age_colour(ds, k: int):

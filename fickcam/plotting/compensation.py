@@ -3,11 +3,10 @@ designed and as made to compensate (`fickcam compensate --plot`)."""
 from __future__ import annotations
 
 import math
-from pathlib import Path
 
 import numpy as np
 
-from .common import legend, days, figure, save_figure
+from .common import Figures, days, figure, legend, one_figure
 
 
 def _spec_text(ds, variable: str) -> str:
@@ -20,7 +19,7 @@ def _spec_text(ds, variable: str) -> str:
         f"out of spec at {crossing_text(ds, variable)}"
 
 
-def plot_against_band(before, after, path, window=()) -> Path:
+def plot_against_band(before, after, path=None, window=(), save=None) -> Figures:
     """One panel per ``deviation`` limit: the worst deviation before and after compensation.
 
     Each panel shows the largest |x - design| over the cycle at every ageing time for both
@@ -32,15 +31,19 @@ def plot_against_band(before, after, path, window=()) -> Path:
         The result as designed (its limits are drawn).
     after : xarray.Dataset
         The result of the compensated design.
-    path : str or pathlib.Path
-        The figure file.
+    path : str or pathlib.Path, optional
+        The figure file (PNG unless its suffix names another format); None: the figure is
+        only returned.
     window : sequence of float
         The ageing times compensated for [d], drawn dotted.
+    save : callable, optional
+        ``save(fig, path) -> path`` writes the figure; default
+        :func:`~fickcam.plotting.common.save_figure` (atomic).
 
     Returns
     -------
-    pathlib.Path
-        The file written.
+    Figures
+        The one figure, shown inline in a notebook; ``.paths``: the file written.
     """
     from ..results.limits import stored_limits, worst_value
 
@@ -76,4 +79,5 @@ def plot_against_band(before, after, path, window=()) -> Path:
                         transform=axes[0][0].transAxes)
     fig.suptitle(f"{before.attrs.get('scene_name', '')}: drift against the band, "
                  f"as designed and compensated", fontsize=11)
-    return save_figure(fig, Path(path))
+    fig.set_label("against_band")
+    return one_figure(fig, path, save)
