@@ -115,10 +115,10 @@ class CamMechanism:
         None). ``read``: the points of the files this scene's validation has read, by path
         (a ``design:`` that keeps the shape reads no file twice), added to; see
         :meth:`fickcam.mechanisms.Mechanism.read_files`."""
-        from .profile import profile_of, read_profile_csv
-
         if section.profile_file is None:
             return [], section, None
+        from .profile import profile_of, read_profile_csv  # only a cam given by points needs it
+
         path = str((base_dir / section.profile_file).resolve())
         section = section.model_copy(update={"profile_file": path})
         try:
