@@ -28,8 +28,9 @@ Yadav, S., Karmarkar, V., Surti, J., Mistry, S. & Vardhe, G. (2017). To study we
     Research Journal of Engineering and Technology (IRJET) 4(4).
 """
 from .design import CamDesign, CamState, cam_design
-from .kinematics import working_profile, write_profile_csv
+from .kinematics import working_profile
 from .model import cam_response
+from .profile import write_profile_csv
 from .spec import CamSection
 
 __all__ = ["CamDesign", "CamSection", "CamState", "cam_design", "cam_response",

@@ -13,6 +13,7 @@ from types import MappingProxyType
 from typing import Mapping
 
 from ..diffusion import DiffusionProblem, RunCache, SolverSettings, run_cache
+from ..diffusion.accuracy.budget import check_accuracy
 
 
 @dataclass(frozen=True)
@@ -52,7 +53,8 @@ class RunOptions:
         scene : fickcam.scene.load.Scene
             The loaded scene.
         accuracy : float, optional
-            Relative accuracy of the diffusion [-] in place of the scene's; None: the scene's.
+            Relative accuracy of the diffusion [-] in place of the scene's, in (0, 0.1]
+            (``check_accuracy``); None: the scene's.
         settings : SolverSettings, optional
             The solvers' tuned limits; None: the defaults.
         cache : RunCache, optional
@@ -65,7 +67,7 @@ class RunOptions:
         """
         section = scene.model.diffusion
         model = section.model
-        return cls(accuracy=section.accuracy if accuracy is None else accuracy,
+        return cls(accuracy=section.accuracy if accuracy is None else check_accuracy(accuracy),
                    model=MappingProxyType(dict(model)) if isinstance(model, dict) else model,
                    surface_layer_depth=section.surface_layer_depth,
                    settings=SolverSettings() if settings is None else settings,
