@@ -1,5 +1,5 @@
 """The dry cam and follower (:class:`~fickcam.cam.design.CamDesign`), their state at one ageing time
-(:class:`~fickcam.cam.design.CamState`), and the design read from a scene's ``cam:`` section."""
+(:class:`~fickcam.cam.design.CamState`), and :func:`cam_design`, the dry design of a scene's ``cam:`` section."""
 from __future__ import annotations
 
 from dataclasses import dataclass
@@ -164,14 +164,18 @@ def _train(stiffness) -> tuple | None:
     return ("lever", lever.length, lever.width, lever.height)
 
 
-def design_from_scene(section) -> CamDesign:
-    """CamDesign from a validated :class:`~fickcam.cam.spec.CamSection` (or the dict of a
-    scene's ``cam:`` section, validated here).
+def cam_design(section, profile=None) -> CamDesign:
+    """The dry cam and follower (:class:`CamDesign`) of a validated
+    :class:`~fickcam.cam.spec.CamSection` (or the dict of a scene's ``cam:`` section,
+    validated here).
 
     Parameters
     ----------
     section : CamSection or dict
         The validated section, or the dict of a scene's ``cam:`` section (validated here).
+    profile : CamProfile, optional
+        A cam given by points: its profile as the scene read it (mirrored for a clockwise
+        cam); None: read from ``section.profile_file``.
 
     Returns
     -------
@@ -203,7 +207,8 @@ def design_from_scene(section) -> CamDesign:
                             f.arm.face_offset, int(mirror) * sense, f.arm.inertia,
                             f.arm.spring_rate, f.arm.spring_preload, f.arm.load_torque)
     if section.profile_file is not None:
-        profile = load_profile(section.profile_file, f.roller_radius or 0.0, mirror=mirror < 0)
+        if profile is None:
+            profile = load_profile(section.profile_file, f.roller_radius or 0.0, mirror=mirror < 0)
         return CamDesign("profile", profile.radii()[0], profile=profile, **common)
     if section.eccentric is not None:
         e, r = section.eccentric.eccentricity, section.eccentric.radius

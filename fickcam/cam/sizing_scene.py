@@ -167,9 +167,8 @@ def size_scene(scene, limits: Limits) -> Sizing:
         limits); before any run.
     """
     from ..simulation.simulate import run
-    from .design import design_from_scene
 
-    design = design_from_scene(scene.model.cam)
+    design = scene.mechanism("cam").design
     given = limits.radius_of_curvature is not None
     limits = limits.for_design(design)
     dry = smallest_base_circle(design, limits)  # refuses a cam it cannot size before any run

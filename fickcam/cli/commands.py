@@ -133,7 +133,7 @@ def _cmd_size(args) -> int:
 
     pressure_angle = angle("--pressure-angle", args.pressure_angle, PositiveAngle)
     scene = load_scene(args.scene)
-    if scene.model.cam is None:
+    if not scene.has("cam"):
         raise InputError("the scene has no cam: section to size")
     curvature = None if args.radius_of_curvature is None else option_value(
         "--radius-of-curvature", args.radius_of_curvature, NonNegativeLength,
@@ -306,7 +306,7 @@ def _cmd_compensate(args) -> int:
 
             dxf_module()
     scene = load_scene(args.scene)
-    if args.profile is not None and scene.model.cam is None:
+    if args.profile is not None and not scene.has("cam"):
         raise InputError(f"{args.scene}: --profile needs a cam (the scene has none)")
     comp = compensate(scene, at=args.at, over=args.over, accuracy=scene_accuracy(args.accuracy),
                       plot=args.plot is not None, keep_limits=args.keep_limits,
@@ -322,7 +322,6 @@ def _cmd_compensate(args) -> int:
 
 def _cmd_profile(args) -> int:
     # deferred: keeps numpy, pydantic off the start-up path
-    from ..cam.design import design_from_scene
     from ..cam.kinematics import working_profile
     from ..cam.profile import dxf_module, write_profile_csv, write_profile_dxf
     from ..scene.load import load_scene
@@ -334,9 +333,9 @@ def _cmd_profile(args) -> int:
     if suffix == ".dxf":
         dxf_module()  # refused before any work without the dxf extra
     scene = load_scene(args.scene)
-    if scene.model.cam is None:
+    if not scene.has("cam"):
         raise InputError(f"{args.scene}: the scene has no cam")
-    x, y = working_profile(design_from_scene(scene.model.cam), n=args.points)
+    x, y = working_profile(scene.mechanism("cam").design, n=args.points)
     print(f"wrote {writers[suffix](args.output, x, y)}")
     return 0
 

@@ -9,6 +9,7 @@ down, its peak and when it happened.
 from __future__ import annotations
 
 import math
+from collections.abc import Mapping
 
 import numpy as np
 
@@ -21,8 +22,6 @@ from ..quantities.parsing import convert
 from ..results.resultsize import estimate as result_size
 from ..simulation.simulate import STATE_GIVEN, plan_parts
 from ..results.query import swept_values
-from ..cam.design import design_from_scene
-from ..cam.oscillating import describe_arm
 
 #: scalar results over ageing the summary reports, in this order (when present)
 KEY_OUTPUTS = ("lift", "arm_swing", "base_circle_radius", "jump_speed", "peak_cam_torque",
@@ -39,7 +38,7 @@ PEAK_SHARE = 0.02
 
 
 def _model_text(model) -> str:
-    if isinstance(model, dict):
+    if isinstance(model, Mapping):
         return ", ".join(f"{part}: {name}" for part, name in model.items()) + " (others auto)"
     return model
 
@@ -68,7 +67,7 @@ def describe_plan(scene, accuracy: float | None = None) -> str:
                f"{len(environment.change_times) - 1} segment(s), {format_duration(environment.end)}; "
                f"{len(times)} ageing times")
     lines = [f"scene {scene.name}: valid", f"  environment: {climate}",
-             f"  diffusion: model {_model_text(options['model'])}, accuracy {options['accuracy']:g}"]
+             f"  diffusion: model {_model_text(options.model)}, accuracy {options.accuracy:g}"]
     for part, p in plans:
         head = f"  part {part.name:<9} material {part.material_name}"
         if p is None:
@@ -78,11 +77,9 @@ def describe_plan(scene, accuracy: float | None = None) -> str:
         else:
             lines.append(f"{head}: {type(part.geometry).__name__} → {p.model}, {p.cells} cells, "
                          f"{p.steps} steps, est. error {p.error_estimate:.1e} ({p.reason})")
-    mechanisms = [s for s in ("cam", "linkage") if getattr(scene.model, s) is not None]
-    lines.append(f"  mechanisms: {', '.join(mechanisms)}; angle step "
-                 f"{np.degrees(scene.model.outputs.angle_step):g} deg")
-    if scene.model.cam is not None and scene.model.cam.follower.arm is not None:
-        lines.append(f"  follower: {describe_arm(design_from_scene(scene.model.cam))}")
+    lines.append(f"  mechanisms: {', '.join(m.section_name for m in scene.mechanisms)}; angle "
+                 f"step {np.degrees(scene.model.outputs.angle_step):g} deg")
+    lines += [f"  {line}" for mechanism in scene.mechanisms for line in mechanism.described()]
     if scene.limits:
         lines.append("  limits: " + "; ".join(f"{limit.variable} {limit.text}"
                                              for limit in scene.limits))

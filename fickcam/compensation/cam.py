@@ -13,7 +13,7 @@
   scaling its parameters would not give its motion back; its points do.
 
 A roller that takes up moisture: its radius with its mean in-plane strain, as
-:func:`fickcam.cam.ageing.cam_state` ages it; a swinging arm: its length (roller) or face
+:func:`fickcam.cam.mechanism.cam_state` ages it; a swinging arm: its length (roller) or face
 offset (flat) with the follower's strain along it. Cam thickness, bore and the follower's
 offset from the cam axis (set by the frame) are left as designed.
 
@@ -28,7 +28,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ..cam.design import design_from_scene
+from ..cam.design import cam_design
 from ..cam.kinematics import working_profile
 from .core import Target, scene_from
 from ..quantities.parsing import to_si
@@ -56,7 +56,7 @@ def _shape_targets(section, points: bool = False) -> list[Target]:
     """The cam's own dimensions, in the form it was given in (module docstring), or its
     points when ``points`` is asked for."""
     if _given_by_points(section, points):
-        x, y = working_profile(design_from_scene(section), n=PROFILE_POINTS)
+        x, y = working_profile(cam_design(section), n=PROFILE_POINTS)
         return [Target("cam", PROFILE_NAMES[0], "cam", ("strain_longitudinal",), x),
                 Target("cam", PROFILE_NAMES[1], "cam", ("strain_transverse",), y)]
     if section.eccentric is not None:
@@ -94,7 +94,7 @@ def targets(section, points: bool = False) -> list[Target]:
         found.append(Target("follower", "roller radius", "follower", IN_PLANE,
                             float(follower.roller_radius)))
     arm = follower.arm
-    if arm is not None and follower.material:  # grows along its length (fickcam.cam.ageing)
+    if arm is not None and follower.material:  # grows along its length (fickcam.cam.mechanism)
         key = "length" if follower.kind == "roller" else "face_offset"
         if getattr(arm, key):
             found.append(Target("follower", ARM_NAMES[key], "follower", ("strain_longitudinal",),
@@ -262,7 +262,7 @@ def made_outline(data: dict, base_dir: Path, points: int):
         x and y [m].
     """
     section = scene_from(data, base_dir, "<compensated scene>").model.cam
-    return working_profile(design_from_scene(section), n=points)
+    return working_profile(cam_design(section), n=points)
 
 
 #: a parametric cam's in-plane strains differ by more than this fraction of the larger:

@@ -14,7 +14,7 @@ from .core import Compensation, relative_to
 from .cam import profile_radii
 from ..results.limits import stored_limits
 from ..results.query import drift
-from ..simulation.simulate import ageing_times, scene_environment
+from ..simulation.simulate import ageing_times
 from .cam import anisotropy_note
 from ..cam.profile import write_profile_csv, write_profile_dxf
 from .cam import PROFILE_POINTS, made_outline
@@ -292,7 +292,7 @@ def _shown_times(comp: Compensation) -> np.ndarray:
     and the ends of the compensation."""
 
     scene = comp.scene
-    stored = ageing_times(scene, scene_environment(scene))
+    stored = ageing_times(scene, scene.environment)
     inside = stored[(stored >= comp.life[0]) & (stored <= comp.life[1])]
     return np.unique(np.concatenate([inside, np.array(comp.life), comp.times[[0, -1]]]))
 

@@ -23,7 +23,6 @@ from .contact import (cam_plate_model, contact_response, follower_shift, hertz_h
 from .fem import stiffness_matrix
 from ..cam.kinematics import working_profile
 from ..diffusion.problem.geometry import CamPlate
-from ..cam.design import design_from_scene
 from .mesh import planform_mesh
 
 log = logging.getLogger(__name__)
@@ -50,7 +49,7 @@ def _cam_plate(design):
     return CamPlate(x, y, design.thickness, design.bore_radius), spacing
 
 
-def cam_elastic_response(section, cam_state: dict, variables: dict, valid) -> Response:
+def cam_elastic_response(design, cam_state: dict, variables: dict, valid) -> Response:
     """elastic_deflection, elastic_stress_tensile, elastic_stress_compressive (time,
     cam_angle) and elastic_lift_error (time) from the cam's
     material state and the rigid cam results (contact force and stress, contact point,
@@ -58,8 +57,8 @@ def cam_elastic_response(section, cam_state: dict, variables: dict, valid) -> Re
 
     Parameters
     ----------
-    section : CamSection
-        The scene's ``cam`` section.
+    design : CamDesign
+        The dry cam (its working profile, thickness and bore [m]).
     cam_state : dict
         The cam's material state over ageing times: bulk and ``surface_`` ply moduli [Pa]
         and Poisson's ratio [-].
@@ -76,7 +75,6 @@ def cam_elastic_response(section, cam_state: dict, variables: dict, valid) -> Re
         cam_angle) and elastic_lift_error [m] over time.
     """
 
-    design = design_from_scene(section)
     plate, spacing = _cam_plate(design)
     mesh = planform_mesh(plate, spacing, GROWTH)
     model = cam_plate_model(mesh.points, mesh.triangles, design.thickness, design.bore_radius, spacing)

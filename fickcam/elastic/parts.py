@@ -1,5 +1,6 @@
-"""Which parts get an elastic analysis (``cam.elastic``, ``linkage.elastic``) and their
-swelling-stress variables over (time, part), for :mod:`fickcam.simulation.simulate`."""
+"""The swelling-stress variables over (time, part) of the parts that get an elastic
+analysis (``cam.elastic``, ``linkage.elastic``: each mechanism's ``elastic_parts``), for
+:mod:`fickcam.simulation.simulate`."""
 from __future__ import annotations
 
 import numpy as np
@@ -8,27 +9,6 @@ from .thickness import SheetProfile
 
 DEPTH_STRIDE = 2   # every other cell of the exact sheet field (40 cells) between face and mid-plane
 SWELLING = ("swelling_stress_tensile", "swelling_stress_compressive", "failure_index")
-
-
-def elastic_parts(model) -> set[str]:
-    """Names of the parts whose swelling stress the scene asks for.
-
-    Parameters
-    ----------
-    model : SceneModel
-        The validated scene.
-
-    Returns
-    -------
-    set of str
-        The part names.
-    """
-    names: set[str] = set()
-    if model.cam is not None and model.cam.elastic:
-        names.add("cam")
-    if model.linkage is not None and model.linkage.elastic:
-        names.update(("crank", "coupler", "rocker", "frame"))
-    return names
 
 
 def sheet_profile(part, environment, times) -> SheetProfile | None:

@@ -727,15 +727,15 @@ class Absorber:
         return plate_uptake(self.diffusivity, time, self.half_thickness)
 
 
-def fastest_absorber(model, materials: dict, temperature: float) -> Absorber | None:
-    """The part that takes up water fastest: the cam (half of its thickness or radius,
-    whichever is smaller), its roller (half of its width or diameter) or the links (half of
-    the section's thickness or width).
+def fastest_absorber(sizes, materials: dict, temperature: float) -> Absorber | None:
+    """The part that takes up water fastest, of the bodies ``sizes`` (each mechanism's
+    ``absorber_sizes``: a cam by half of its thickness or radius, a roller by half of its
+    width or diameter, links by half of their section's thickness or width).
 
     Parameters
     ----------
-    model : SceneModel
-        The validated scene.
+    sizes : list of tuple
+        (part, material name, half-size [m]) per body.
     materials : dict
         Scene material name -> resolved :class:`fickcam.materials.material.Material`.
     temperature : float
@@ -746,20 +746,8 @@ def fastest_absorber(model, materials: dict, temperature: float) -> Absorber | N
     Absorber or None
         None when no part absorbs.
     """
-    parts = []
-    cam = model.cam
-    if cam is not None:
-        radius = cam.base_circle_radius or (cam.eccentric.radius if cam.eccentric else cam.thickness)
-        parts.append(("cam", cam.material, 0.5 * min(cam.thickness, radius)))
-        if cam.follower.material and cam.follower.roller_radius:
-            width = cam.follower.width or cam.thickness
-            parts.append(("follower", cam.follower.material,
-                          0.5 * min(width, 2.0 * cam.follower.roller_radius)))
-    if model.linkage is not None:
-        section = model.linkage.section
-        parts.append(("links", model.linkage.material, 0.5 * min(section.thickness, section.width)))
     found = []
-    for name, material, half in parts:
+    for name, material, half in sizes:
         if material in materials and materials[material].absorbs:
             d = float(max(materials[material].diffusivity_for()(temperature)))
             found.append(Absorber(name, half, d))
@@ -770,7 +758,7 @@ def _days(seconds: float) -> str:
     return f"{seconds:g} s" if seconds < 86400 else f"{seconds / 86400:.4g} d"
 
 
-def history_findings(model, doc, environment, materials: dict) -> Findings:
+def history_findings(model, doc, environment, materials: dict, sizes) -> Findings:
     """Bare climate-history lengths judged by the uptake of the fastest-absorbing part.
 
     A history (or a segment of it) in which the parts take up almost nothing ages nothing
@@ -787,6 +775,9 @@ def history_findings(model, doc, environment, materials: dict) -> Findings:
         The scene's climate.
     materials : dict
         Scene material name -> resolved :class:`fickcam.materials.material.Material`.
+    sizes : list of tuple
+        (part, material name, half-size [m]) of the mechanisms' bodies
+        (:func:`fastest_absorber`).
 
     Returns
     -------
@@ -801,7 +792,7 @@ def history_findings(model, doc, environment, materials: dict) -> Findings:
     findings = Findings([], [])
     section = model.environment
     kelvin = environment.hottest()[1]
-    absorber = fastest_absorber(model, materials, kelvin)
+    absorber = fastest_absorber(sizes, materials, kelvin)
     if absorber is not None and section.history is not None:
         total = environment.end
         for k, segment in enumerate(section.history):

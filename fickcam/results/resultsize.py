@@ -18,9 +18,8 @@ from pathlib import Path
 from ..errors import WriteError
 from ..messages import warn
 from .store import CHUNKED_ABOVE, byte_size, free_space
-from ..simulation.parts import build_parts
 from .schema import VARIABLES
-from ..simulation.simulate import ageing_times, plan_parts, scene_environment
+from ..simulation.simulate import ageing_times, plan_parts
 
 #: a result above this [bytes] is warned of, with the settings that shrink it
 WARN_ABOVE = 2**30
@@ -81,10 +80,11 @@ def _computed(name: str, section: str, scene) -> bool:
     if section == "fields":
         return bool(model.outputs.fields)
     if section == "elastic":
-        return any(getattr(getattr(model, s), "elastic", False) for s in ("cam", "linkage"))
-    if section == "cam" and model.cam is not None:
-        switches = {"arm": model.cam.follower.arm, "stiffness": model.cam.follower.stiffness,
-                    "polydyne": model.cam.polydyne}
+        return bool(scene.elastic_parts)
+    if section == "cam" and scene.has("cam"):
+        cam = scene.mechanism("cam").section
+        switches = {"arm": cam.follower.arm, "stiffness": cam.follower.stiffness,
+                    "polydyne": cam.polydyne}
         return all(switches[switch] is not None for prefix, switch in _OPTIONAL_CAM
                    if name.startswith(prefix))
     return True
@@ -114,15 +114,16 @@ def estimate(scene, times=None, cells: int | None = None, cases: int = 1) -> Res
 
     model = scene.model
     if times is None:
-        times = ageing_times(scene, scene_environment(scene))
+        times = ageing_times(scene, scene.environment)
     if model.outputs.fields and cells is None:
         cells = max((p.cells for _, p in plan_parts(scene)[3] if hasattr(p, "cells")), default=0)
     angles = round(2 * math.pi / model.outputs.angle_step)
-    sizes = {"time": len(times), "part": len(build_parts(scene)),
-             "cam_angle": angles if model.cam is not None else 0,
-             "crank_angle": angles if model.linkage is not None else 0,
+    coordinates = {name: len(values) for mechanism in scene.mechanisms
+                   for name, values in mechanism.coordinates(range(angles)).items()}
+    sizes = {"time": len(times), "part": len(scene.parts), "cam_angle": 0, "crank_angle": 0,
+             **FOURBAR_POINTS, **coordinates,
              "limit": len(scene.limits or ()), "cell": (cells or 0) if model.outputs.fields else 0,
-             **FOURBAR_POINTS, "case": cases}
+             "case": cases}
     total = 0
     for name, var in VARIABLES.items():
         if not _computed(name, var.section, scene):
