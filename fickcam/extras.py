@@ -39,7 +39,7 @@ class Extra:
 
 
 EXTRAS = {
-    "dxf": Extra("dxf", "ezdxf", "ezdxf", "writing DXF drawings"),
+    "dxf": Extra("dxf", "ezdxf", "ezdxf", "reading or writing DXF drawings"),
     "weather": Extra("weather", "pvlib", "pvlib", "reading weather files (TMY3, EPW, pvlib:NAME)"),
     "sweep": Extra("sweep", "distributed", "dask.distributed",
                    "a sweep on several worker processes or on a scheduler"),

@@ -69,7 +69,7 @@ def test_dxf_writer_without_ezdxf_raises_the_one_line_refusal(tmp_path, monkeypa
     from fickcam.cam.profile import write_profile_dxf
 
     hide(monkeypatch, "dxf")
-    with pytest.raises(MissingExtra, match=r'writing DXF drawings needs ezdxf: pip install "fickcam\[dxf\]"'):
+    with pytest.raises(MissingExtra, match=r'reading or writing DXF drawings needs ezdxf: pip install "fickcam\[dxf\]"'):
         write_profile_dxf(tmp_path / "cam.dxf", [0.01, 0.0, -0.01], [0.0, 0.01, 0.0])
     assert written(tmp_path) == []
 
