@@ -77,3 +77,44 @@ def disc_plate(radius: float, thickness: float, bore_radius: float = 0.0, centre
     angle = 2 * np.pi * np.arange(samples) / samples
     return CamPlate(centre[0] + radius * np.cos(angle), centre[1] + radius * np.sin(angle),
                     thickness, bore_radius)
+
+
+def drawn_mesh(loops, spacing: float) -> PlateMesh:
+    """A planform given by closed polygons meshed with every polygon vertex kept, so that the
+    mesh covers exactly the polygon: points every <= ``spacing`` along each loop, a
+    hexagonal lattice of side ``spacing`` inside (no closer than ``MIN_GAP`` spacings to the
+    outline), triangulated by Delaunay and the triangles outside dropped.
+
+    Parameters
+    ----------
+    loops : list of numpy.ndarray
+        Closed polygons [m] (outline counter-clockwise, holes clockwise), shape (n, 2) each.
+    spacing : float
+        The mesh's edge length [m].
+
+    Returns
+    -------
+    PlateMesh
+        The mesh.
+
+    Raises
+    ------
+    ValueError
+        When the triangles do not cover the polygon (a vertex closer to an edge than the
+        mesh can resolve): their area differs from the polygon's by more than 1e-9.
+    """
+    from ..diffusion.planform.polygon import Wall, drop_unused, resample_polyline, triangle_areas
+    from ..diffusion.planform.triangles import MIN_GAP, delaunay_inside, hex_lattice
+
+    boundary = np.vstack([resample_polyline(*loop.T, spacing) for loop in loops])
+    wall = Wall.of(loops, spacing / 8)
+    lattice = hex_lattice(boundary.min(axis=0), boundary.max(axis=0), spacing)
+    gap, inside = wall.distance(lattice)
+    points = np.vstack([boundary, lattice[inside & (gap > MIN_GAP * spacing)]])
+    points, triangles, _ = drop_unused(points, delaunay_inside(points, wall, spacing))
+    covered = triangle_areas(points, triangles).sum()
+    area = sum(0.5 * np.sum(x * np.roll(y, -1) - np.roll(x, -1) * y) for x, y in (l.T for l in loops))
+    if abs(covered - area) > 1e-9 * abs(area):
+        raise ValueError(f"the mesh of spacing {spacing:.3g} m covers {covered:.9g} m^2 of a "
+                         f"planform of {area:.9g} m^2")
+    return PlateMesh(points, triangles)
