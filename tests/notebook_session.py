@@ -68,7 +68,7 @@ coupons = [synthetic_specimen(f"s{k}", 333.15, 85.0, 2e-3, d5229_times(60.0), 2.
            for k in range(2)]
 plot_fit(fit_weight_gain(coupons, "3502", name="coupons"))"""),
     ("select", """\
-from fickcam.query import select
+from fickcam.results.query import select
 select(ds, "lift", time="6 weeks").attrs"""),
     ("bad_scene", """\
 bad = dict(data)
