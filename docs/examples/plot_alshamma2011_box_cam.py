@@ -12,8 +12,8 @@ the elastic part: the deflection under the contact load and the stress from swel
 # ------------------------------------
 
 import fickcam
-from fickcam import example_scenes
-from fickcam.reporting import summary
+from fickcam.scene import examples as example_scenes
+from fickcam.cli.reporting import summary
 
 ds = fickcam.run(example_scenes.path("alshamma2011_box_cam"))
 print(summary(ds, notices=False))

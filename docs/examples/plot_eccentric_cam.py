@@ -13,8 +13,8 @@ surface.
 # ------------------------
 
 import fickcam
-from fickcam import example_scenes
-from fickcam.reporting import summary
+from fickcam.scene import examples as example_scenes
+from fickcam.cli.reporting import summary
 
 ds = fickcam.run(example_scenes.path("eccentric_cam"))
 print(summary(ds, notices=False))

@@ -12,8 +12,8 @@ with pvlib (the ``weather`` extra).
 # --------------------------------
 
 import fickcam
-from fickcam import example_scenes
-from fickcam.reporting import summary
+from fickcam.scene import examples as example_scenes
+from fickcam.cli.reporting import summary
 
 ds = fickcam.run(example_scenes.path("eccentric_cam_greensboro"))
 print(summary(ds, notices=False))

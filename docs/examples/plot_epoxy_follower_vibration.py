@@ -12,8 +12,8 @@ and above a dynamic jump speed the tappet leaves the cam.
 # --------------------------------
 
 import fickcam
-from fickcam import example_scenes
-from fickcam.reporting import summary
+from fickcam.scene import examples as example_scenes
+from fickcam.cli.reporting import summary
 
 ds = fickcam.run(example_scenes.path("epoxy_follower_vibration"))
 print(summary(ds, notices=False))

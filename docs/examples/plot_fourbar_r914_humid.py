@@ -12,8 +12,8 @@ A four-bar linkage of R914 neat resin (crank 100 mm, coupler and rocker 160 mm, 
 # ------------------------------------
 
 import fickcam
-from fickcam import example_scenes
-from fickcam.reporting import summary
+from fickcam.scene import examples as example_scenes
+from fickcam.cli.reporting import summary
 
 ds = fickcam.run(example_scenes.path("fourbar_r914_humid"))
 print(summary(ds, notices=False))

@@ -11,8 +11,8 @@ so that they grow into their design length; ``design:`` keeps the drawing's inte
 # -----------------------------------------
 
 import fickcam
-from fickcam import example_scenes
-from fickcam.reporting import summary
+from fickcam.scene import examples as example_scenes
+from fickcam.cli.reporting import summary
 
 ds = fickcam.run(example_scenes.path("fourbar_r914_humid_compensated"))
 print(summary(ds, notices=False))

@@ -11,8 +11,8 @@ humidity. Both parts absorb water: the arm grows longer while the cam grows larg
 # -------------------------
 
 import fickcam
-from fickcam import example_scenes
-from fickcam.reporting import summary
+from fickcam.scene import examples as example_scenes
+from fickcam.cli.reporting import summary
 
 ds = fickcam.run(example_scenes.path("nylon_swinging_arm"))
 print(summary(ds, notices=False))

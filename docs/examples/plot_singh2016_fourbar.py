@@ -12,8 +12,8 @@ wet resin's glass transition is reached within hours.
 # -----------------------------------------
 
 import fickcam
-from fickcam import example_scenes
-from fickcam.reporting import summary
+from fickcam.scene import examples as example_scenes
+from fickcam.cli.reporting import summary
 
 ds = fickcam.run(example_scenes.path("singh2016_fourbar"))
 print(summary(ds, notices=False))

@@ -12,8 +12,8 @@ hot and dry, then hot at its equilibrium moisture of 5 %, each state given direc
 # -------------------------------------------------
 
 import fickcam
-from fickcam import example_scenes
-from fickcam.reporting import summary
+from fickcam.scene import examples as example_scenes
+from fickcam.cli.reporting import summary
 
 ds = fickcam.run(example_scenes.path("singh2016_states"))
 print(summary(ds, notices=False))

@@ -14,8 +14,8 @@ maximum contact and subsurface shear stresses. This is the demo scene of
 # --------------------------------
 
 import fickcam
-from fickcam import example_scenes
-from fickcam.reporting import summary
+from fickcam.scene import examples as example_scenes
+from fickcam.cli.reporting import summary
 
 ds = fickcam.run(example_scenes.path("singh2017_cam"))
 print(summary(ds, notices=False))

@@ -12,8 +12,8 @@ original geometry kept under ``design:``. Its limits are checked against that de
 # -------------------------------
 
 import fickcam
-from fickcam import example_scenes
-from fickcam.reporting import summary
+from fickcam.scene import examples as example_scenes
+from fickcam.cli.reporting import summary
 
 ds = fickcam.run(example_scenes.path("singh2017_cam_compensated"))
 print(summary(ds, notices=False))

@@ -12,8 +12,8 @@ would have saturated. 180 days at 113 °C and 80 % relative humidity.
 # ----------------------------------
 
 import fickcam
-from fickcam import example_scenes
-from fickcam.reporting import summary
+from fickcam.scene import examples as example_scenes
+from fickcam.cli.reporting import summary
 
 ds = fickcam.run(example_scenes.path("singh2017_cam_two_phase"))
 print(summary(ds, notices=False))

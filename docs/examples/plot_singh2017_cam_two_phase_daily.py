@@ -11,8 +11,8 @@ The two-phase cam aged through a SYNTHETIC daily chamber log (181 readings aroun
 # ------------------------------------
 
 import fickcam
-from fickcam import example_scenes
-from fickcam.reporting import summary
+from fickcam.scene import examples as example_scenes
+from fickcam.cli.reporting import summary
 
 ds = fickcam.run(example_scenes.path("singh2017_cam_two_phase_daily"))
 print(summary(ds, notices=False))

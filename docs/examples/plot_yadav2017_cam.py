@@ -12,8 +12,8 @@ moisture: the scene shows the kinematics and dynamics fickcam computes for any c
 # ---------------------------
 
 import fickcam
-from fickcam import example_scenes
-from fickcam.reporting import summary
+from fickcam.scene import examples as example_scenes
+from fickcam.cli.reporting import summary
 
 ds = fickcam.run(example_scenes.path("yadav2017_cam"))
 print(summary(ds, notices=False))
