@@ -109,11 +109,13 @@ def default_output(scene) -> Path:
 
 def _cmd_check(args) -> int:
     # deferred: keeps numpy, pydantic off the start-up path
-    from .reporting import describe_plan
-    from ..results.resultsize import estimate, size_warning
     from ..scene.load import load_scene
 
     scene = load_scene(args.scene)
+    # deferred until the scene is valid: a refused scene never loads the diffusion engine
+    from .reporting import describe_plan
+    from ..results.resultsize import estimate, size_warning
+
     print(describe_plan(scene))
     warning = size_warning(estimate(scene))
     if warning:
