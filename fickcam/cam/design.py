@@ -1,5 +1,6 @@
-"""The dry cam and follower (:class:`~fickcam.cam.design.CamDesign`), their state at one ageing time
-(:class:`~fickcam.cam.design.CamState`), and :func:`cam_design`, the dry design of a scene's ``cam:`` section."""
+"""The dry cam and follower (:class:`~fickcam.cam.design.CamDesign`), their state at one
+ageing time (:class:`~fickcam.cam.design.CamState`), and
+:func:`~fickcam.cam.design.cam_design`, the dry design of a scene's ``cam:`` section."""
 from __future__ import annotations
 
 from dataclasses import dataclass

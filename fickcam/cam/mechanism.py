@@ -1,7 +1,8 @@
-"""The scene's cam as a mechanism (:class:`CamMechanism`): built once from its ``cam:``
-section, it names its parts and their materials, and answers the run's questions: which
-bodies age, which coordinates its results have, and its response over the ageing times
-(which part state feeds which input of :func:`~fickcam.cam.model.cam_response`).
+"""The scene's cam as a mechanism (:class:`~fickcam.cam.mechanism.CamMechanism`): built once
+from its ``cam:`` section, it names its parts and their materials, and answers the run's
+questions: which bodies age, which coordinates its results have, and its response over the
+ageing times (which part state feeds which input of
+:func:`~fickcam.cam.model.cam_response`).
 
 Parts: ``cam`` (a :class:`fickcam.diffusion.problem.geometry.CamPlate` of the dry working profile) and,
 when the follower names a material, ``follower`` (a roller: a disc of the roller radius

@@ -90,7 +90,7 @@ def swelling_variables(histories, names: set[str], environment, times, temperatu
     histories : list of PartHistory
         The parts' ageing.
     names : set of str
-        The parts asked for (:func:`elastic_parts`).
+        The parts asked for (the scene's ``elastic_parts``).
     environment : Environment
         The climate history (reference temperature [K], initial moisture [weight %]).
     times : array_like

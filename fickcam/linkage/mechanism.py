@@ -1,7 +1,8 @@
-"""The scene's four-bar as a mechanism (:class:`LinkageMechanism`): built once from its
-``linkage:`` section, it names its links and their materials, and answers the run's
-questions: which bodies age, which coordinates its results have, and its response over
-the ageing times (which part state feeds which link).
+"""The scene's four-bar as a mechanism
+(:class:`~fickcam.linkage.mechanism.LinkageMechanism`): built once from its ``linkage:``
+section, it names its links and their materials, and answers the run's questions: which
+bodies age, which coordinates its results have, and its response over the ageing times
+(which part state feeds which link).
 
 Each link (crank, coupler, rocker, frame) is a diffusion part of geometry
 :class:`~fickcam.diffusion.problem.geometry.LinkBar`. At every ageing time its pin-to-pin

@@ -1,5 +1,6 @@
-"""Mechanisms over ageing: what a mechanism is to the rest of fickcam (:class:`Mechanism`),
-and which mechanisms there are (:func:`mechanism_types`, one line each).
+"""Mechanisms over ageing: what a mechanism is to the rest of fickcam
+(:class:`~fickcam.mechanisms.Mechanism`), and which mechanisms there are
+(:func:`~fickcam.mechanisms.mechanism_types`, one line each).
 
 A mechanism is built once, from its section of a validated scene and the scene's resolved
 materials: it names its parts (:class:`~fickcam.mechanisms.part.Part`) and the materials

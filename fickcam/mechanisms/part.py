@@ -1,4 +1,5 @@
-"""A body that ages (:class:`Part`): what a mechanism tells the run of each of its parts."""
+"""A body that ages (:class:`~fickcam.mechanisms.part.Part`): what a mechanism tells the run
+of each of its parts."""
 from __future__ import annotations
 
 from dataclasses import dataclass, field

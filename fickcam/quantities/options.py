@@ -122,7 +122,7 @@ def angle(option: str, text, kind=None) -> float:
     text : str
         The angle as given (``"120 deg"``).
     kind : object, optional
-        The scene's type of the value (default :data:`fickcam.quantities.types.Angle`).
+        The scene's type of the value (default ``fickcam.quantities.types.Angle``).
 
     Returns
     -------

@@ -4,7 +4,7 @@
 all, and the depth of the contact layer), the accuracy (the caller's in place of the
 scene's), the solvers' tuned limits and the run's cache. A run builds it once and passes it
 whole to the plans, the solves, the limit search, compensation and the sweeps' cases, each
-of which asks it for a part's :class:`~fickcam.diffusion.DiffusionProblem`.
+of which asks it for a part's :class:`~fickcam.diffusion.problem.definition.DiffusionProblem`.
 """
 from __future__ import annotations
 
