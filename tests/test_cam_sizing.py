@@ -112,7 +112,8 @@ def test_size_sizes_dry_and_aged_in_at_most_five_runs(tmp_path, capsys, monkeypa
         return call
 
     monkeypatch.setattr(fickcam.simulation.simulate, "run", counted("runs", fickcam.simulation.simulate.run))
-    monkeypatch.setattr(fickcam.diffusion, "solve", counted("solves", fickcam.diffusion.solve))
+    monkeypatch.setattr(fickcam.diffusion, "solve_problem",
+                        counted("solves", fickcam.diffusion.solve_problem))
     assert main(["size", str(scene), "--pressure-angle", "30 deg"]) == 0
     out = capsys.readouterr().out
     assert 2 <= counts["runs"] <= MAX_RUNS and counts["solves"] == counts["runs"]  # the cam alone absorbs
