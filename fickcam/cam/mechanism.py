@@ -169,6 +169,22 @@ class CamMechanism:
                                    float(follower.mass)))
         return tuple(parts)
 
+    def shape_problems(self) -> list[tuple[tuple, str]]:
+        """A dry profile given by motion segments that is no cam: a flat face's profile
+        with a cusp, or a roller's working profile with an undercut (its smallest convex
+        radius of curvature at most 0); see :meth:`fickcam.mechanisms.Mechanism.shape_problems`.
+
+        Returns
+        -------
+        list of tuple
+            ``(("base_circle_radius",), reason)``, the reason naming the smallest base
+            circle whose profile is a cam; empty when the profile is one.
+        """
+        from .sizing import profile_fault  # the sizing's search only for a faulty profile
+
+        fault = profile_fault(self.design)
+        return [] if fault is None else [(("base_circle_radius",), fault)]
+
     def described(self) -> list[str]:
         """What `fickcam check` says of the cam beyond its parts: a swinging arm's
         follower (where it sits, the dry design's pressure angle and curvature).
