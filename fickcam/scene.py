@@ -43,7 +43,7 @@ log = logging.getLogger(__name__)
 
 
 #: keys that together give a cam's shape: a design shape replaces the made one whole
-CAM_SHAPE_KEYS = ("base_circle_radius", "motion", "eccentric", "profile_file")
+CAM_SHAPE_KEYS = ("base_circle_radius", "motion", "eccentric", "profile_file", "drawing")
 
 
 def merged(made: dict, overrides: dict, replace_whole: tuple = ()) -> dict:
@@ -291,20 +291,25 @@ def _ageing_time_problems(model: SceneModel, doc: YamlDocument, environment) -> 
 
 
 def _cam_profile(model: SceneModel, doc: YamlDocument, base_dir: Path) -> tuple[list[Problem], SceneModel]:
-    """Read ``cam.profile_file`` (relative to the scene): problems at its line, and the model
-    with the path made absolute so that the cam can be built from it anywhere."""
+    """Read ``cam.profile_file`` or ``cam.drawing`` (relative to the scene): problems at its
+    line, and the model with the path made absolute (and the drawing's part kept) so that the
+    cam can be built from it anywhere."""
     cam = model.cam
-    if cam is None or cam.profile_file is None:
+    if cam is None or (cam.profile_file is None and cam.drawing is None):
         return [], model
-    from .cam.profile import load_profile
+    if cam.drawing is not None:
+        problems, cam, smallest = _cam_drawing(cam, doc, base_dir, model.diffusion.accuracy)
+        if smallest is None:
+            return problems, model
+    else:
+        from .cam.profile import load_profile
 
-    path = (base_dir / cam.profile_file).resolve()
-    where = ("cam", "profile_file")
-    try:
-        smallest = load_profile(path, cam.follower.roller_radius or 0.0).radii()[0]
-    except (OSError, ValueError) as exc:
-        return [doc.problem(where, str(exc))], model
-    problems = []
+        path = (base_dir / cam.profile_file).resolve()
+        try:
+            smallest = load_profile(path, cam.follower.roller_radius or 0.0).radii()[0]
+        except (OSError, ValueError) as exc:
+            return [doc.problem(("cam", "profile_file"), str(exc))], model
+        problems, cam = [], cam.model_copy(update={"profile_file": str(path)})
     if cam.bore_radius >= smallest:
         problems.append(doc.problem(("cam", "bore_radius"), f"must be smaller than the profile's "
                                                             f"smallest radius ({smallest * 1e3:g} mm)"))
@@ -316,7 +321,42 @@ def _cam_profile(model: SceneModel, doc: YamlDocument, base_dir: Path) -> tuple[
     if cam.follower.kind != "flat" and abs(cam.follower.offset) >= reach:
         problems.append(doc.problem(("cam", "follower", "offset"),
                                     "follower offset must be smaller than the prime circle radius"))
-    return problems, model.model_copy(update={"cam": cam.model_copy(update={"profile_file": str(path)})})
+    return problems, model.model_copy(update={"cam": cam})
+
+
+#: the chord tolerance of a drawing, as a share of its extent times the scene's accuracy: the
+#: chords' sagitta s changes a plate's area, and so its mean moisture, by at most
+#: (2/3) s x perimeter / area, below 0.1 x accuracy for any plate wider than 1/15 of its extent
+CHORD_SHARE = 0.01
+
+
+def _cam_drawing(cam, doc: YamlDocument, base_dir: Path, accuracy: float):
+    """(problems, the cam section with its drawing read, the profile's smallest radius [m] or
+    None) for ``cam.drawing``."""
+    from .drawing.dxfread import read_drawing
+    from .drawing.parts import cam_of
+    from .drawing.planform import DrawingError
+    from .extras import MissingExtra
+
+    where = ("cam", "drawing")
+    path = (base_dir / cam.drawing.file).resolve()
+    try:
+        drawing = read_drawing(path, CHORD_SHARE * accuracy, cam.drawing.units, relative=True)
+        part = cam_of(drawing.planform, drawing.points, cam.drawing.axis_layer)
+    except (DrawingError, MissingExtra) as exc:
+        return [doc.problem(where, str(exc))], cam, None
+    if part.other_holes:
+        sources = ", ".join(h.source for h in part.other_holes)
+        return [doc.problem(where, f"{path}: holes besides the bore ({sources}) are not modelled "
+                                   f"in a cam yet; draw the plate without them")], cam, None
+    problems = []
+    if "bore_radius" in cam.model_fields_set and abs(cam.bore_radius - part.bore_radius) > 1e-9:
+        problems.append(doc.problem(("cam", "bore_radius"), f"the drawing's bore has radius "
+                                    f"{part.bore_radius * 1e3:.6g} mm; leave bore_radius out"))
+    spec = cam.drawing.model_copy(update={"file": str(path)})
+    spec._part = part
+    cam = cam.model_copy(update={"drawing": spec, "bore_radius": part.bore_radius})
+    return problems, cam, part.smallest_radius
 
 
 def _limits(model: SceneModel, doc: YamlDocument) -> tuple[list, list[Problem]]:

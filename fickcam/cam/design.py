@@ -203,6 +203,12 @@ def design_from_scene(section) -> CamDesign:
         common["arm"] = Arm(mirror * f.arm.pivot[0], f.arm.pivot[1], f.arm.length or 0.0,
                             f.arm.face_offset, int(mirror) * sense, f.arm.inertia,
                             f.arm.spring_rate, f.arm.spring_preload, f.arm.load_torque)
+    if section.drawing is not None:
+        from .profile import make_profile
+
+        x, y = section.drawing.part().profile
+        profile = make_profile(-x if mirror < 0 else x, y, "working")
+        return CamDesign("profile", profile.radii()[0], profile=profile, **common)
     if section.profile_file is not None:
         from .profile import load_profile
 
