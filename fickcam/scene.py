@@ -297,13 +297,13 @@ def _cam_profile(model: SceneModel, doc: YamlDocument, base_dir: Path) -> tuple[
     cam = model.cam
     if cam is None or (cam.profile_file is None and cam.drawing is None):
         return [], model
+    from .cam.profile import load_profile
+
     if cam.drawing is not None:
         problems, cam, smallest = _cam_drawing(cam, doc, base_dir, model.diffusion.accuracy)
         if smallest is None:
             return problems, model
     else:
-        from .cam.profile import load_profile
-
         path = (base_dir / cam.profile_file).resolve()
         try:
             smallest = load_profile(path, cam.follower.roller_radius or 0.0).radii()[0]
