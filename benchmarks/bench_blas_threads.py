@@ -41,7 +41,7 @@ def clear_caches() -> None:
 
 
 def _run_config(config: str, **options):
-    from fickcam.simulate import run
+    from fickcam.simulation.simulate import run
 
     return lambda: run(ROOT / config, **options)
 
@@ -49,7 +49,7 @@ def _run_config(config: str, **options):
 def _records_scene(case: str, constant: bool, folder: Path):
     """A bench --records scene: a year of Greensboro's record, or its mean climate."""
     from climate_records import CASES, MONTH_HOURS, record_csv, record_scene
-    from fickcam.simulate import run
+    from fickcam.simulation.simulate import run
 
     path, celsius, humidity = record_csv(folder, 12)
     environment = ({"history": [{"duration": f"{12 * MONTH_HOURS} h",
@@ -97,9 +97,8 @@ def cases(folder: Path) -> dict:
 
 @contextmanager
 def default_threads():
-    """BLAS at its default threads: ``simulate.run``'s own limit (fickcam.blas) lifted."""
-    from fickcam import blas
-
+    """BLAS at its default threads: ``simulate.run``'s own limit (fickcam.simulation.blas) lifted."""
+    from fickcam.simulation import blas
     limit = blas.one_blas_thread
     blas.one_blas_thread = nullcontext
     try:

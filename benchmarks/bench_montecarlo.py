@@ -36,8 +36,8 @@ from pathlib import Path
 
 import numpy as np
 
-from fickcam.simulate import run
-from fickcam.store import open_result
+from fickcam.simulation.simulate import run
+from fickcam.results.store import open_result
 from fickcam.sweep import run_sweep
 from fickcam.sweep.case import CaseTask, case_scene
 from fickcam.sweep.spec import load_sweep

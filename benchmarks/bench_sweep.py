@@ -33,10 +33,10 @@ def children_cpu() -> float:
 
 
 def timed(args: list[str]) -> tuple[float, float]:
-    """(wall s, CPU s) of `python -m fickcam.cli ARGS` and everything it started."""
+    """(wall s, CPU s) of `python -m fickcam.cli.main ARGS` and everything it started."""
     env = dict(os.environ, PYTHONPATH=str(ROOT))
     cpu, started = children_cpu(), time.perf_counter()
-    subprocess.run([sys.executable, "-m", "fickcam.cli", *args], env=env, check=True,
+    subprocess.run([sys.executable, "-m", "fickcam.cli.main", *args], env=env, check=True,
                    stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
     return time.perf_counter() - started, children_cpu() - cpu
 

@@ -51,7 +51,7 @@ def record_scene(config: Path, environment: dict, months: int) -> dict:
 
 def record_csv(folder: Path, months: int) -> tuple[Path, float, float]:
     """The first ``months`` of Greensboro as a CSV history; also its mean T (degC) and RH."""
-    from fickcam.records import read_record, resolve_record_path
+    from fickcam.climate.records import read_record, resolve_record_path
 
     record = read_record(resolve_record_path("pvlib:723170TYA.CSV", ROOT))
     rows = _rows(months)
@@ -70,7 +70,7 @@ def _rows(months: int) -> int:
 
 def _cost(scene: dict) -> float:
     """CPU time (s) of one in-process run of ``scene``."""
-    from fickcam.simulate import run
+    from fickcam.simulation.simulate import run
 
     start = time.process_time()
     run(scene)
@@ -161,8 +161,8 @@ def _cylinder_modes(disc, d0, modes):
 def greensboro(rows: int | None = None, initial_moisture: float | None = None):
     """The first ``rows`` of Greensboro's TMY3 year (all 8760 by default) as an Environment,
     starting at the isotherm's value of its first row unless ``initial_moisture`` is given."""
-    from fickcam.environment import Environment
-    from fickcam.records import read_record, resolve_record_path
+    from fickcam.climate.environment import Environment
+    from fickcam.climate.records import read_record, resolve_record_path
 
     record = read_record(resolve_record_path("pvlib:723170TYA.CSV", ROOT))
     rows = record.time.size if rows is None else rows

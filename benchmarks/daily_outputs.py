@@ -25,7 +25,7 @@ from pathlib import Path
 import numpy as np
 import yaml
 
-from fickcam.checkout import benchmark
+from fickcam.cli.checkout import benchmark
 
 ROOT = Path(__file__).resolve().parents[1]
 RESULT = ROOT / "benchmarks" / "results" / "daily_outputs.json"

@@ -324,8 +324,8 @@ def order_table(title: str, values: np.ndarray, truth: np.ndarray, widths: np.nd
 def demo_cam(k: float):
     """(geometry, diffusivity, exposure, times, law) of the cam of configs/singh2017_cam.yaml
     with ``sorption: {model: concentration_dependent, exponent: k}``."""
-    from fickcam.scene import load_scene
-    from fickcam.simulate import ageing_times, build_parts, scene_environment
+    from fickcam.scene.load import load_scene
+    from fickcam.simulation.simulate import ageing_times, build_parts, scene_environment
 
     raw = yaml.safe_load((ROOT / "configs" / "singh2017_cam.yaml").read_text())
     raw["materials"]["cfrp"]["sorption"] = {"model": "concentration_dependent", "exponent": k}

@@ -52,7 +52,7 @@ from pathlib import Path
 
 import numpy as np
 
-from fickcam.blas import on_one_blas_thread
+from fickcam.simulation.blas import on_one_blas_thread
 
 log = logging.getLogger("benchmarks.diffusion_tradeoff")
 RESULTS = Path(__file__).resolve().parent / "results"
@@ -133,7 +133,7 @@ def _timed(function, repeats: int, warm_up: bool = True):
 def run_bench(quick: bool = False, repeats: int = 3, progress=lambda label: None) -> list[dict]:
     """Rows (geometry, model, accuracy, cells, steps, cpu_time s, error, error_estimate);
     ``progress(label)`` is called as each row starts. BLAS holds one thread, as in a run
-    (``fickcam.blas``): on a loaded machine OpenBLAS's spinning workers otherwise count in
+    (``fickcam.simulation.blas``): on a loaded machine OpenBLAS's spinning workers otherwise count in
     the process's CPU time (the link's solid row: 16 CPU s on one thread, more than 300 s
     wall on two under a load of 4-7)."""
     from fickcam.diffusion import Diffusivity, Exposure, Sheet, solve

@@ -26,9 +26,9 @@ JULY_WEEK = (182.0, 189.0)  # days from 1 January
 def skin_and_bulk(times: np.ndarray):
     """(mean, skin, equilibrium) moisture in weight % of the demo cam at ``times`` (s)."""
     from fickcam.diffusion import solve
-    from fickcam.parts import build_parts
-    from fickcam.scene import load_scene
-    from fickcam.simulate import scene_environment
+    from fickcam.simulation.parts import build_parts
+    from fickcam.scene.load import load_scene
+    from fickcam.simulation.simulate import scene_environment
 
     data = yaml.safe_load((ROOT / "configs" / "singh2017_cam.yaml").read_text())
     data["environment"] = {"reference_temperature": "23 degC",

@@ -47,7 +47,7 @@ TIMED_RUNS = """
 import json, sys, time
 import numpy as np
 import scipy.interpolate, scipy.optimize
-import fickcam, fickcam.simulate
+import fickcam, fickcam.simulation.simulate
 scene = fickcam.load_scene(sys.argv[1])
 started = time.perf_counter()
 result = fickcam.run(scene)
@@ -99,7 +99,7 @@ def commit() -> str:
 def points_scene(name: str, folder: Path) -> Path:
     """A copy of configs/``name`` whose cam is its own dry profile written by
     ``fickcam profile`` (default points)."""
-    from fickcam.cli import main
+    from fickcam.cli.main import main
 
     source = ROOT / "configs" / name
     points = folder / (source.stem + "_points.csv")

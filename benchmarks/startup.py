@@ -45,7 +45,7 @@ IMPORT_LINE = re.compile(r"import time:\s+(\d+) \|\s+(\d+) \|( *)(\S+)")
 
 def demo_command(output: Path) -> list[str]:
     """The demo run as the ``fickcam`` command runs it."""
-    return [sys.executable, "-m", "fickcam.cli", "run", str(DEMO), "-o", str(output)]
+    return [sys.executable, "-m", "fickcam.cli.main", "run", str(DEMO), "-o", str(output)]
 
 
 def floor_command() -> list[str]:

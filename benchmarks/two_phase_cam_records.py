@@ -30,12 +30,12 @@ from pathlib import Path
 
 import numpy as np
 
-from fickcam.blas import one_blas_thread
+from fickcam.simulation.blas import one_blas_thread
 from fickcam.diffusion import CamPlate, Diffusivity, Disc, solve
 from fickcam.diffusion.accuracy.error_model import LAYER_TOLERANCE
 from fickcam.diffusion.problem.exposure import swing as history_swing
-from fickcam.scene import load_scene
-from fickcam.simulate import ageing_times, build_parts, run, scene_environment
+from fickcam.scene.load import load_scene
+from fickcam.simulation.simulate import ageing_times, build_parts, run, scene_environment
 
 ROOT = Path(__file__).resolve().parents[1]
 CONFIGS = {"constant": ROOT / "configs/singh2017_cam_two_phase.yaml",

@@ -96,9 +96,9 @@ numpydoc_xref_aliases = {
 }
 
 # A unit-parsed type (``Length = Annotated[float, BeforeValidator(read), ...]``) is shown
-# as the alias it is; the validators in it are local functions of fickcam.units.quantity,
+# as the alias it is; the validators in it are local functions of fickcam.quantities.types.quantity,
 # documented there, with no page of their own to link to.
-nitpick_ignore_regex = [("py:class", r"fickcam\.units\.quantity\.<locals>\..*"), ("py:class", "lambda")]
+nitpick_ignore_regex = [("py:class", r"fickcam\.quantities\.types\.quantity\.<locals>\..*"), ("py:class", "lambda")]
 
 html_theme = "pydata_sphinx_theme"
 html_title = f"fickcam {release}"

@@ -18,8 +18,11 @@ __all__ = ["load_scene", "run", "save", "open_result", "compensate", "fit_weight
 # handler (logging.basicConfig), never Python's last-resort bare lines
 _logging.getLogger(__name__).addHandler(_logging.NullHandler())
 
-#: sub-packages reached as attributes (``fickcam.plotting.plot(ds)``), imported on first use
-_SUBMODULES = ("plotting", "query", "export", "scene", "messages", "errors")
+#: sub-packages reached as attributes (``fickcam.plotting.plot(ds)``), imported on first use:
+#: attribute -> module, relative to the package (the attribute ``query`` is ``results.query``)
+_SUBMODULES = {"plotting": ".plotting", "query": ".results.query", "export": ".results.export",
+               "scene": ".scene", "results": ".results", "messages": ".messages",
+               "errors": ".errors"}
 
 
 def __getattr__(name: str):
@@ -28,7 +31,7 @@ def __getattr__(name: str):
     if name in _SUBMODULES:
         import importlib
 
-        return importlib.import_module(f".{name}", __name__)
+        return importlib.import_module(_SUBMODULES[name], __name__)
     raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 
@@ -39,14 +42,14 @@ def load_scene(source, *, file_name: str | None = None):
     ----------
     source : str, pathlib.Path, dict or Scene
         A YAML scene file, the scene as a dict (as ``yaml.safe_load`` gives it), or an
-        already loaded :class:`fickcam.scene.Scene` (returned as is). Quantities are
+        already loaded :class:`fickcam.scene.load.Scene` (returned as is). Quantities are
         written with units ("3 mm", "60 d"), see the scene reference.
     file_name : str, optional
         The name that error messages give a dict scene (default ``<dict>``).
 
     Returns
     -------
-    fickcam.scene.Scene
+    fickcam.scene.load.Scene
         The validated scene; every quantity in SI (m, s, K, Pa, rad), moisture in
         weight % and relative humidity in %.
 
@@ -56,7 +59,7 @@ def load_scene(source, *, file_name: str | None = None):
         When the file cannot be read or a key is missing, misspelt, out of range or
         in a wrong unit: one line per problem, naming file, line and key.
     """
-    from .scene import load_scene as _load
+    from .scene.load import load_scene as _load
 
     return _load(source, file_name=file_name)
 
@@ -105,7 +108,7 @@ def run(scene, *, accuracy: float | None = None, progress: bool = False, setting
         transition temperature is not an error: a notice says so, and that part's later
         values are NaN.
     """
-    from .simulate import run as _run
+    from .simulation.simulate import run as _run
 
     return _run(scene, accuracy=accuracy, progress=progress, settings=settings, cache=cache)
 
@@ -174,7 +177,7 @@ def save(dataset, path):
     pathlib.Path
         The path written.
     """
-    from .store import save as _save
+    from .results.store import save as _save
 
     return _save(dataset, path)
 
@@ -197,7 +200,7 @@ def open_result(path):
     fickcam.errors.InputError
         When the file is missing or is not a fickcam result.
     """
-    from .store import open_result as _open
+    from .results.store import open_result as _open
 
     return _open(path)
 

@@ -50,7 +50,7 @@ hot = dict(data, environment={"history": [{"duration": "60 d", "temperature": "1
 hot_ds = fickcam.run(hot)
 fickcam.plotting.plot(hot_ds, kind="kinematics")"""),
     ("select", """\
-from fickcam.query import select
+from fickcam.results.query import select
 select(ds, "lift", time="6 weeks").attrs"""),
     ("bad_scene", """\
 bad = dict(data)

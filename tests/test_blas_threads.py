@@ -1,4 +1,4 @@
-"""A run limits BLAS to one thread only while it runs (fickcam.blas): the caller's BLAS
+"""A run limits BLAS to one thread only while it runs (fickcam.simulation.blas): the caller's BLAS
 threads are the same before and after, also when the run fails, and the limit leaves
 every result of the demo scene bit-identical."""
 from __future__ import annotations
@@ -11,7 +11,7 @@ import pytest
 from threadpoolctl import threadpool_info, threadpool_limits
 
 from fickcam.errors import SceneError
-from fickcam.simulate import run
+from fickcam.simulation.simulate import run
 
 DEMO = Path(__file__).resolve().parents[1] / "configs" / "singh2017_cam.yaml"
 CALLER_THREADS = 2  # what the caller asks for; the run must give it back
@@ -65,7 +65,7 @@ def test_run_uses_one_blas_thread_in_every_blas_library(demo_runs):
 
 def test_without_the_limit_the_run_would_use_the_callers_threads(demo_runs):
     unlimited = demo_runs[4]  # the comparison below compares two thread counts
-    # the run's planning is limited by itself (fickcam.simulate.plan_parts, as `check`);
+    # the run's planning is limited by itself (fickcam.simulation.simulate.plan_parts, as `check`);
     # its solves, unwrapped, run on the caller's threads
     assert unlimited and any(all(threads == CALLER_THREADS for threads in during.values())
                              for during in unlimited)

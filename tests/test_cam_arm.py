@@ -18,7 +18,7 @@ from fickcam.cam.kinematics import motion_function
 from fickcam.cam.model import cam_response
 from fickcam.cam.motion import follower_motion
 from fickcam.cam.oscillating import arm_response
-from fickcam.cli import main
+from fickcam.cli.main import main
 
 THETA = np.radians(np.arange(0.0, 360.0, 1.0))
 #: a swollen, distorted cam, roller and arm (of the order of a year in humid air)
@@ -391,7 +391,7 @@ def test_compensated_swinging_arm_follows_the_design_motion(tmp_path, capsys):
     import yaml
 
     import fickcam
-    from fickcam.scene import load_scene, read_yaml
+    from fickcam.scene.load import load_scene, read_yaml
 
     configs = __import__("pathlib").Path(__file__).resolve().parents[1] / "configs"
     data = read_yaml(configs / "nylon_swinging_arm.yaml").data

@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 from fickcam.cam import CamSection, scene_parts, scene_response
-from fickcam.schema import VARIABLES
+from fickcam.results.schema import VARIABLES
 
 xr = pytest.importorskip("xarray")
 
@@ -32,7 +32,7 @@ def histories(n=3):
 
 @pytest.fixture(scope="module")
 def dataset():
-    from fickcam.dataset import build_dataset
+    from fickcam.results.dataset import build_dataset
 
     times = np.array([0.0, 7.0, 30.0]) * 86400
     angles = np.radians(np.arange(0.0, 360.0, 2.0))

@@ -15,7 +15,7 @@ from fickcam.cam.design import CamState, design_from_scene
 from fickcam.cam.model import cam_response
 from fickcam.cam.profile import (make_profile, profile_motion, read_profile_csv,
                                  write_profile_csv, write_profile_dxf)
-from fickcam.cli import main
+from fickcam.cli.main import main
 
 THETA = np.radians(np.arange(0.0, 360.0, 0.5))
 

@@ -9,13 +9,13 @@ from dataclasses import replace
 import pytest
 
 import fickcam.diffusion
-import fickcam.simulate
+import fickcam.simulation.simulate
 from fickcam.cam import CamDesign
 from fickcam.cam.motion import segments_from_spec
 from fickcam.cam.sizing import Limits, degenerate_notes, smallest_base_circle, worst
 from fickcam.cam.sizing_scene import MAX_RUNS
 from fickcam.cam.spec import Segment
-from fickcam.cli import main
+from fickcam.cli.main import main
 
 
 def design(kind="roller", offset=0.0):
@@ -109,7 +109,7 @@ def test_size_sizes_dry_and_aged_in_at_most_five_runs(tmp_path, capsys, monkeypa
             return function(*args, **kwargs)
         return call
 
-    monkeypatch.setattr(fickcam.simulate, "run", counted("runs", fickcam.simulate.run))
+    monkeypatch.setattr(fickcam.simulation.simulate, "run", counted("runs", fickcam.simulation.simulate.run))
     monkeypatch.setattr(fickcam.diffusion, "solve", counted("solves", fickcam.diffusion.solve))
     assert main(["size", str(scene), "--pressure-angle", "30 deg"]) == 0
     out = capsys.readouterr().out
@@ -128,6 +128,6 @@ def test_a_cam_that_cannot_be_sized_is_refused_before_any_run(tmp_path, capsys, 
     scene.write_text(SCENE.replace("base_circle_radius: 30 mm", "eccentric: {eccentricity: 4 mm, radius: 23 mm}")
                      .split("  motion:")[0] + "outputs: {ageing_times: [0 d, 60 d]}\n")
     counts = Counter()
-    monkeypatch.setattr(fickcam.simulate, "run", lambda *a, **k: counts.update(["runs"]))
+    monkeypatch.setattr(fickcam.simulation.simulate, "run", lambda *a, **k: counts.update(["runs"]))
     assert main(["size", str(scene)]) == 2
     assert counts["runs"] == 0 and "motion segments" in capsys.readouterr().err

@@ -8,11 +8,11 @@ import pytest
 import xarray as xr
 import yaml
 
-from fickcam import example_scenes
-from fickcam.cli import main
-from fickcam.cli_parser import build_parser
-from fickcam.query import format_result, select
-from fickcam.reporting import sweep_summary
+from fickcam.scene import examples as example_scenes
+from fickcam.cli.main import main
+from fickcam.cli.parser import build_parser
+from fickcam.results.query import format_result, select
+from fickcam.cli.reporting import sweep_summary
 from fickcam.sweep.spec import load_sweep
 
 ROOT = Path(__file__).resolve().parents[1]

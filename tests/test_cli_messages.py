@@ -9,8 +9,8 @@ from pathlib import Path
 import pytest
 import yaml
 
-from fickcam.checkout import benchmark, repository_root
-from fickcam.cli import main
+from fickcam.cli.checkout import benchmark, repository_root
+from fickcam.cli.main import main
 from fickcam.errors import InputError
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -18,7 +18,7 @@ ROOT = Path(__file__).resolve().parents[1]
 
 def fickcam_cli(*args, cwd=None):
     env = dict(os.environ, PYTHONPATH=str(ROOT))
-    return subprocess.run([sys.executable, "-m", "fickcam.cli", *args], capture_output=True,
+    return subprocess.run([sys.executable, "-m", "fickcam.cli.main", *args], capture_output=True,
                           text=True, env=env, cwd=cwd, timeout=300)
 
 
@@ -55,7 +55,7 @@ def test_query_does_not_repeat_the_runs_notices(fourbar):
 
 
 def test_fipy_solver_chatter_stays_off_stderr():
-    code = ("import sys; from fickcam.cli import main; main(['schema']); import fipy")
+    code = ("import sys; from fickcam.cli.main import main; main(['schema']); import fipy")
     done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
                           env=dict(os.environ, PYTHONPATH=str(ROOT)), timeout=120)
     assert "PyAMG" not in done.stderr and "Solver suite" not in done.stderr, done.stderr
@@ -92,7 +92,7 @@ def test_bench_from_an_installed_copy_outside_a_clone_is_refused_in_one_line(tmp
     site = tmp_path / "site"
     shutil.copytree(ROOT / "fickcam", site / "fickcam",
                     ignore=shutil.ignore_patterns("__pycache__"))
-    done = subprocess.run([sys.executable, "-m", "fickcam.cli", "bench", "--quick"],
+    done = subprocess.run([sys.executable, "-m", "fickcam.cli.main", "bench", "--quick"],
                           capture_output=True, text=True, cwd=tmp_path, timeout=120,
                           env=dict(os.environ, PYTHONPATH=str(site)))
     assert done.returncode == 2 and done.stdout == ""

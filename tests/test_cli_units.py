@@ -7,7 +7,7 @@ from pathlib import Path
 
 import pytest
 
-from fickcam.cli import main
+from fickcam.cli.main import main
 
 ROOT = Path(__file__).resolve().parents[1]
 DEMO = ROOT / "configs" / "singh2017_cam.yaml"          # 60 d history

@@ -4,10 +4,10 @@ import numpy as np
 import pytest
 
 import fickcam
-from fickcam.damp_heat import STANDARD_TESTS, standard_climate
-from fickcam.environment import Environment
-from fickcam.records import read_record, resolve_record_path
-from fickcam.scene import SceneError
+from fickcam.climate.damp_heat import STANDARD_TESTS, standard_climate
+from fickcam.climate.environment import Environment
+from fickcam.climate.records import read_record, resolve_record_path
+from fickcam.scene.load import SceneError
 
 HOUR, DAY = 3600.0, 86400.0
 pvlib = pytest.importorskip("pvlib")  # the optional extra fickcam[weather]

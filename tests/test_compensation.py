@@ -14,13 +14,13 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 import fickcam
-from fickcam.cli import main
+from fickcam.cli.main import main
 from fickcam.cam.design import CamState, design_from_scene
 from fickcam.cam.model import cam_response
 from fickcam.compensation import compensate, write_scene
 from fickcam.compensation.core import made_value, residual
 from fickcam.linkage import FourBarDesign, FourBarState, fourbar_response
-from fickcam.scene import load_scene, read_yaml
+from fickcam.scene.load import load_scene, read_yaml
 
 CONFIGS = Path(__file__).resolve().parents[1] / "configs"
 DAY = 86400.0
@@ -83,7 +83,7 @@ def test_compensated_scene_keeps_sections_and_names_itself(fourbar_at_end):
 def test_compensated_scene_measures_its_drift_against_the_design_it_was_made_for(fourbar_at_end):
     """The written scene's ``design:`` section: <name>_design, query.drift and limits see the
     intended design, not the smaller made links."""
-    from fickcam.query import drift
+    from fickcam.results.query import drift
 
     scene, _, before, after = fourbar_at_end
     design = FourBarDesign.from_section(scene.model.linkage).lengths

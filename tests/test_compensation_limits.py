@@ -15,8 +15,8 @@ import pytest
 import yaml
 
 import fickcam
-from fickcam.cli import main
-from fickcam.scene import read_yaml
+from fickcam.cli.main import main
+from fickcam.scene.load import read_yaml
 
 CONFIGS = Path(__file__).resolve().parents[1] / "configs"
 DAY = 86400.0
@@ -270,7 +270,7 @@ def test_a_four_bar_made_for_half_a_year_is_said_to_be_worse_when_new(tmp_path):
     old, new = before.limit_ratio.max("limit").values, after.limit_ratio.max("limit").values
     worse = np.flatnonzero((new > old) & (new > 1.0))
     assert worse.size >= 2  # at least delivery and the first week
-    from fickcam.unit_parsing import parse_duration
+    from fickcam.quantities.parsing import parse_duration
 
     stored = [parse_duration(t) / DAY for t in read_yaml(scene).data["outputs"]["ageing_times"]]
     times = ", ".join(f"{stored[k]:.4g} d" for k in worse)

@@ -18,7 +18,7 @@ import pytest
 import yaml
 
 import fickcam
-from fickcam.limits import Tolerance, limit_ratio
+from fickcam.results.limits import Tolerance, limit_ratio
 
 from test_limits import fast_fourbar
 

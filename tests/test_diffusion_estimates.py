@@ -18,9 +18,9 @@ STEP = Exposure.piecewise([0.0, 1e12], 300.0, [1.0], 0.0)
 
 def scene_part(config: str, name: str):
     """(geometry, diffusivity, exposure, ageing times, accuracy) of a part of a config."""
-    from fickcam.environment import Environment
-    from fickcam.scene import load_scene
-    from fickcam.simulate import ageing_times, build_parts
+    from fickcam.climate.environment import Environment
+    from fickcam.scene.load import load_scene
+    from fickcam.simulation.simulate import ageing_times, build_parts
 
     scene = load_scene(CONFIGS / config)
     environment = Environment.from_section(scene.model.environment, base_dir=scene.base_dir)

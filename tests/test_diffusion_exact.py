@@ -17,7 +17,7 @@ from fickcam.diffusion.models.analytic import exact_history, exact_history_field
 
 # ------------------------------------------------------------------ helpers
 def piecewise(edges, ramp, end_values, start):
-    """Right-continuous held/ramped history like fickcam.environment."""
+    """Right-continuous held/ramped history like fickcam.climate.environment."""
     edges, ramp, end_values = (np.asarray(edges, float), np.asarray(ramp, bool),
                                np.asarray(end_values, float))
     begin = np.concatenate([[start], end_values[:-1]])

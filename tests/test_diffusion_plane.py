@@ -328,9 +328,9 @@ def test_a_capped_plane_plan_says_its_error_exceeds_the_accuracy():
 
 def demo_cam():
     """The cam of configs/singh2017_cam.yaml: its CamPlate, diffusivity and exposure."""
-    from fickcam.environment import Environment
-    from fickcam.scene import load_scene
-    from fickcam.simulate import build_parts
+    from fickcam.climate.environment import Environment
+    from fickcam.scene.load import load_scene
+    from fickcam.simulation.simulate import build_parts
 
     scene = load_scene(CONFIGS / "singh2017_cam.yaml")
     environment = Environment.from_section(scene.model.environment, base_dir=scene.base_dir)

@@ -6,7 +6,7 @@ exactly; tau from a fine trapezoid rule)."""
 import numpy as np
 import pytest
 
-from fickcam.checkout import benchmark
+from fickcam.cli.checkout import benchmark
 from fickcam.diffusion import Bar, Diffusivity, Disc, Exposure, Sheet, plan, solve
 from fickcam.diffusion.models.analytic import exact_history, record_history
 

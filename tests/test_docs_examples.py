@@ -30,8 +30,8 @@ import pytest
 import yaml
 
 import fickcam
-from fickcam.cli import main
-from fickcam.cli_parser import build_parser
+from fickcam.cli.main import main
+from fickcam.cli.parser import build_parser
 
 ROOT = Path(__file__).resolve().parents[1]
 DOCS = ROOT / "docs"

@@ -9,8 +9,7 @@ from pathlib import Path
 import pytest
 import yaml
 
-from fickcam import example_scenes
-
+from fickcam.scene import examples as example_scenes
 EXAMPLES = Path(__file__).resolve().parents[1] / "docs" / "examples"
 
 

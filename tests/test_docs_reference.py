@@ -12,9 +12,9 @@ from pathlib import Path
 
 import pytest
 
-from fickcam import schema
-from fickcam.cli_parser import build_parser
-from fickcam.scene_models import SceneModel
+from fickcam.results import schema
+from fickcam.cli.parser import build_parser
+from fickcam.scene.sections import SceneModel
 
 ROOT = Path(__file__).resolve().parents[1]
 

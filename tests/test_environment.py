@@ -4,8 +4,8 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from fickcam.environment import Environment, read_history_csv
-from fickcam.scene import EnvironmentSection
+from fickcam.climate.environment import Environment, read_history_csv
+from fickcam.scene.load import EnvironmentSection
 
 DAY = 86400.0
 

@@ -10,9 +10,9 @@ from pathlib import Path
 import pytest
 import yaml
 
-from fickcam.cli import main
+from fickcam.cli.main import main
 from fickcam.extras import EXTRAS, MissingExtra, installed
-from fickcam.store import replaced_atomically
+from fickcam.results.store import replaced_atomically
 
 ROOT = Path(__file__).resolve().parents[1]
 CONFIGS = ROOT / "configs"

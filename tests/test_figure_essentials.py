@@ -14,7 +14,7 @@ from matplotlib.figure import Figure
 
 import fickcam
 from fickcam import plotting
-from fickcam.environment import piecewise_linear_summary
+from fickcam.climate.environment import piecewise_linear_summary
 
 matplotlib.use("Agg")
 

@@ -5,7 +5,7 @@ import pytest
 import yaml
 
 import fickcam
-from fickcam.cli import main
+from fickcam.cli.main import main
 from fickcam.diffusion.problem.exposure import GAS_CONSTANT
 from fickcam.fit.synthetic import d5229_times, synthetic_specimen, write_weight_gain_csv
 

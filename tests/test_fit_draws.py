@@ -4,7 +4,7 @@ import pytest
 import yaml
 
 import fickcam
-from fickcam.cli import main
+from fickcam.cli.main import main
 from fickcam.sweep import load_sweep
 
 from test_scene_errors import LINKAGE_SCENE

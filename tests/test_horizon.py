@@ -11,10 +11,10 @@ import yaml
 from hypothesis import given
 from hypothesis import strategies as st
 
-from fickcam.cli import main
-from fickcam.query import select
-from fickcam.scene import load_scene
-from fickcam.simulate import ageing_times, every_step_times, scene_environment
+from fickcam.cli.main import main
+from fickcam.results.query import select
+from fickcam.scene.load import load_scene
+from fickcam.simulation.simulate import ageing_times, every_step_times, scene_environment
 
 CONFIGS = Path(__file__).resolve().parents[1] / "configs"
 DAY = 86400.0
@@ -142,7 +142,7 @@ def test_a_limit_is_said_to_hold_only_as_far_as_the_model_computed_it(tmp_path):
     30 min of its 3 h history: its limit holds to 2 h (the last ageing time with values),
     not to 3 h, said in the minutes the ageing times were written in."""
     import fickcam
-    from fickcam.reporting import limit_line
+    from fickcam.cli.reporting import limit_line
 
     scene = yaml.safe_load((CONFIGS / "singh2016_fourbar.yaml").read_text())
     scene["limits"] = {"rocker_angle": {"deviation": "5 deg"}}

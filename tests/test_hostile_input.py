@@ -13,10 +13,10 @@ import numpy as np
 import pytest
 import yaml
 
-from fickcam.cli import main
+from fickcam.cli.main import main
 from fickcam.errors import SceneError
-from fickcam.records import read_record
-from fickcam.yamldoc import MAX_BYTES, MAX_DEPTH, MAX_NODES, parse_yaml, read_yaml
+from fickcam.climate.records import read_record
+from fickcam.scene.yamldoc import MAX_BYTES, MAX_DEPTH, MAX_NODES, parse_yaml, read_yaml
 from test_scene_errors import CAM_SCENE
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -50,8 +50,8 @@ def test_an_alias_bomb_is_refused_at_once_with_little_memory(tmp_path):
     scene.write_text(alias_bomb())  # about 3.9e8 values once expanded; 9**6 on line 7
     child = limited_child(f"""
         import time
-        import fickcam.scene  # the imports first: the refusal is timed alone
-        from fickcam.cli import main
+        import fickcam.scene.load  # the imports first: the refusal is timed alone
+        from fickcam.cli.main import main
         started = time.perf_counter()
         status = main(["check", {str(scene)!r}])
         print(f"{{status}} {{time.perf_counter() - started:.3f}}")
@@ -135,7 +135,7 @@ def test_a_full_disk_gives_one_line_and_keeps_the_earlier_file(tmp_path):
     output = tmp_path / "cam.h5"
     output.write_bytes(b"the earlier result")
     child = limited_child(f"""
-        from fickcam.cli import process_main
+        from fickcam.cli.main import process_main
         sys.argv = ["fickcam", "run", "-q", {str(DEMO)!r}, "-o", {str(output)!r}]
         sys.exit(process_main())
         """, file_size=200_000)

@@ -18,7 +18,7 @@ import pytest
 import xarray as xr
 import yaml
 
-from fickcam.cli import main
+from fickcam.cli.main import main
 
 CONFIGS = Path(__file__).resolve().parents[1] / "configs"
 ACCURACY = 1.8e-3

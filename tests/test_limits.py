@@ -7,11 +7,11 @@ import xarray as xr
 import yaml
 
 import fickcam
-from fickcam.cli import main
-from fickcam.limits import (FLOOR, POINTS, RELATIVE, Limit, LimitSpec, Tolerance,
+from fickcam.cli.main import main
+from fickcam.results.limits import (FLOOR, POINTS, RELATIVE, Limit, LimitSpec, Tolerance,
                             first_crossings, limit_ratio, parse_limit)
-from fickcam.schema import VARIABLES
-from fickcam.simulate import search_notices
+from fickcam.results.schema import VARIABLES
+from fickcam.simulation.simulate import search_notices
 
 from test_scene_errors import LINKAGE_SCENE
 

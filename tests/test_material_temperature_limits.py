@@ -6,7 +6,7 @@ from pathlib import Path
 
 import pytest
 
-from fickcam.cli import main
+from fickcam.cli.main import main
 from fickcam.materials import MaterialSpec, resolve, temperature_limit_reasons
 from fickcam.materials.library import entry, known_names
 

@@ -8,8 +8,8 @@ import pytest
 import yaml
 
 import fickcam
-from fickcam.cli import main
-from fickcam.schema import VARIABLES
+from fickcam.cli.main import main
+from fickcam.results.schema import VARIABLES
 
 ROOT = Path(__file__).resolve().parents[1]
 CONFIGS = ROOT / "configs"

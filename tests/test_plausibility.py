@@ -14,13 +14,13 @@ import yaml
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from fickcam.cli import main
+from fickcam.cli.main import main
 from fickcam.errors import SceneError
 from fickcam.materials.library import find_entry, library_table
-from fickcam.plausibility import (CAM_MEMBERS, CAM_RADIUS, LENGTH_ALTERNATIVES, Band, Reading,
+from fickcam.quantities.plausibility import (CAM_MEMBERS, CAM_RADIUS, LENGTH_ALTERNATIVES, Band, Reading,
                                   Verdict, bare_judgement, plate_uptake)
-from fickcam.scene import load_scene
-from fickcam.unit_parsing import to_si
+from fickcam.scene.load import load_scene
+from fickcam.quantities.parsing import to_si
 
 EXAMPLES = Path(str(resources.files("fickcam") / "examples"))
 SCENES = sorted(p for p in EXAMPLES.glob("*.yaml") if not p.name.startswith("sweep_"))
@@ -163,7 +163,7 @@ def test_every_shipped_scene_loads_without_a_warning(path, recwarn):
 def test_the_command_line_prints_one_line_and_no_traceback(tmp_path):
     path = _scene(tmp_path, "eccentric_cam.yaml", "thickness: 10 mm", "thickness: 12")
     for command in ("check", "run"):
-        done = subprocess.run([sys.executable, "-m", "fickcam.cli", command, str(path)],
+        done = subprocess.run([sys.executable, "-m", "fickcam.cli.main", command, str(path)],
                               capture_output=True, text=True, cwd=tmp_path)
         assert done.returncode == 2, done.stderr
         assert "Traceback" not in done.stderr

@@ -7,11 +7,11 @@ import numpy as np
 import pytest
 import xarray as xr
 
-from fickcam.dataset import build_dataset
+from fickcam.results.dataset import build_dataset
 from fickcam.errors import InputError
-from fickcam.export import export
-from fickcam.query import format_result, select
-from fickcam.store import open_result, save
+from fickcam.results.export import export
+from fickcam.results.query import format_result, select
+from fickcam.results.store import open_result, save
 
 DAY = 86400.0
 

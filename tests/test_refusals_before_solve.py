@@ -7,7 +7,7 @@ from pathlib import Path
 import pytest
 
 import fickcam
-from fickcam.cli import main
+from fickcam.cli.main import main
 from fickcam.diffusion import dispatch
 from fickcam.errors import InputError
 

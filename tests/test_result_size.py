@@ -10,10 +10,10 @@ import pytest
 import xarray as xr
 
 import fickcam
-from fickcam import store
-from fickcam.cli import main
-from fickcam.resultsize import WARN_ABOVE, estimate
-from fickcam.scene import load_scene
+from fickcam.results import store
+from fickcam.cli.main import main
+from fickcam.results.resultsize import WARN_ABOVE, estimate
+from fickcam.scene.load import load_scene
 from test_scene_errors import CAM_SCENE
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -57,8 +57,8 @@ def test_a_result_the_disk_cannot_hold_is_refused_before_the_run(tmp_path, capsy
     def no_run(*args, **kwargs):
         raise AssertionError("the run started")
 
-    monkeypatch.setattr("fickcam.simulate.run", no_run)
-    monkeypatch.setattr("fickcam.resultsize.free_space", lambda folder: 10**9)  # 1 GB free
+    monkeypatch.setattr("fickcam.simulation.simulate.run", no_run)
+    monkeypatch.setattr("fickcam.results.resultsize.free_space", lambda folder: 10**9)  # 1 GB free
     assert main(["run", str(scene), "-o", str(output)]) == 1
     err = capsys.readouterr().err.strip().splitlines()[-1]
     assert re.fullmatch(rf"fickcam: error: {re.escape(str(output))}: the result will be about "
@@ -86,7 +86,7 @@ def test_a_large_result_is_chunked_deflated_and_read_lazily(tmp_path, monkeypatc
     lazy = store.open_result(large)
     assert not lazy["follower_displacement"].variable._in_memory
     eager = store.open_result(small)
-    from fickcam.query import select
+    from fickcam.results.query import select
 
     for time in ("45 d", "60 d"):
         np.testing.assert_array_equal(select(lazy, "follower_displacement", time=time).values,

@@ -7,7 +7,7 @@ import textwrap
 
 import pytest
 
-from fickcam.cli import main
+from fickcam.cli.main import main
 
 CAM_SCENE = textwrap.dedent("""\
     name: test-cam
@@ -267,7 +267,7 @@ def test_several_problems_are_all_reported(tmp_path, capsys):
 def test_command_line_exit_status_and_no_traceback(tmp_path):
     path = tmp_path / "scene.yaml"
     path.write_text(CAM_SCENE.replace("speed: 600 rpm", "speed: -600 rpm"))
-    done = subprocess.run([sys.executable, "-m", "fickcam.cli", "run", str(path)],
+    done = subprocess.run([sys.executable, "-m", "fickcam.cli.main", "run", str(path)],
                           capture_output=True, text=True)
     assert done.returncode == 2
     assert "Traceback" not in done.stderr

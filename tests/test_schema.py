@@ -1,4 +1,4 @@
-"""The schema (fickcam/schema.py) is the one table of result names: every name a model
+"""The schema (fickcam/results/schema.py) is the one table of result names: every name a model
 returns has its row there, and a name it lacks fails instead of being dropped."""
 from pathlib import Path
 
@@ -7,10 +7,10 @@ import pytest
 import yaml
 
 import fickcam
-from fickcam.dataset import build_dataset
-from fickcam.parts import build_parts, part_values
-from fickcam.schema import VARIABLES
-from fickcam.simulate import design_part, mechanism_values, scene_environment
+from fickcam.results.dataset import build_dataset
+from fickcam.simulation.parts import build_parts, part_values
+from fickcam.results.schema import VARIABLES
+from fickcam.simulation.simulate import design_part, mechanism_values, scene_environment
 
 CONFIGS = Path(__file__).resolve().parents[1] / "configs"
 SCENES = sorted(p for p in CONFIGS.glob("*.yaml") if not p.name.startswith("sweep"))
@@ -41,13 +41,13 @@ def test_every_name_the_models_return_is_in_the_schema(name, scene):
 
 
 def test_a_name_the_schema_lacks_fails_instead_of_being_dropped():
-    with pytest.raises(KeyError, match="not declared in fickcam/schema.py"):
+    with pytest.raises(KeyError, match="not declared in fickcam/results/schema.py"):
         build_dataset({"lift": np.zeros(2), "lift_in_furlongs": np.zeros(2)}, {"time": [0.0, 1.0]})
 
 
 def test_no_other_table_of_result_names():
     import fickcam.materials as materials
-    import fickcam.simulate as simulate
+    import fickcam.simulation.simulate as simulate
 
     assert not hasattr(materials, "STATE_VARIABLES")
     assert not hasattr(simulate, "_PART_VARIABLES")
@@ -56,7 +56,7 @@ def test_no_other_table_of_result_names():
 def test_simulate_does_not_import_the_package_it_belongs_to():
     import ast
 
-    tree = ast.parse((Path(fickcam.__file__).parent / "simulate.py").read_text())
+    tree = ast.parse((Path(fickcam.__file__).parent / "simulation" / "simulate.py").read_text())
     for node in ast.walk(tree):
         if isinstance(node, ast.ImportFrom) and node.level == 1 and node.module is None:
             pytest.fail(f"simulate.py line {node.lineno}: 'from . import ...'")
@@ -65,7 +65,7 @@ def test_simulate_does_not_import_the_package_it_belongs_to():
 def test_the_scene_takes_the_diffusion_model_names_from_the_diffusion_package():
     from fickcam.diffusion import MODELS
 
-    text = (Path(fickcam.__file__).parent / "scene.py").read_text()
+    text = (Path(fickcam.__file__).parent / "scene" / "load.py").read_text()
     assert "axisymmetric" not in text, "scene.py repeats the list of diffusion models"
     for name in MODELS:
         fickcam.load_scene(dict(yaml.safe_load((CONFIGS / "yadav2017_cam.yaml").read_text()),

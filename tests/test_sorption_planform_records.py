@@ -9,8 +9,8 @@ from dataclasses import replace
 import numpy as np
 import pytest
 
-from fickcam.blas import one_blas_thread
-from fickcam.checkout import benchmark
+from fickcam.simulation.blas import one_blas_thread
+from fickcam.cli.checkout import benchmark
 from fickcam.diffusion import CamPlate, Diffusivity, Disc, SolverSettings, plan, solve
 from fickcam.diffusion.accuracy.error_model import LAYER_TOLERANCE
 from fickcam.diffusion.exact.modes import cylinder_factor
@@ -22,7 +22,7 @@ from fickcam.diffusion.operators.sizing import estimated_prism_cells
 from fickcam.diffusion.problem.exposure import swing as history_swing
 from fickcam.diffusion.problem.scaling import stretch_of
 from fickcam.diffusion.problem.sorption import Langmuir, Rate
-from fickcam.environment import Environment
+from fickcam.climate.environment import Environment
 from tolerance import roundoff
 
 CAM = benchmark("two_phase_cam_records")  # the cam's problem and its fine references

@@ -7,7 +7,7 @@ import pytest
 import yaml
 
 import fickcam
-from fickcam.cli import main
+from fickcam.cli.main import main
 
 DEMO = (Path(__file__).resolve().parents[1] / "configs" / "singh2017_cam.yaml").read_text()
 SCENE = (DEMO.split("limits:")[0]

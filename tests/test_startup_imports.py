@@ -26,7 +26,7 @@ def imported_after(code: str) -> list[str]:
 def test_the_demo_command_imports_nothing_the_scene_does_not_use(tmp_path):
     output = tmp_path / "demo.h5"
     code = (f"sys.argv = ['fickcam', 'run', '-q', '-q', {str(DEMO)!r}, '-o', {str(output)!r}]\n"
-            "from fickcam.cli import process_main\n"
+            "from fickcam.cli.main import process_main\n"
             "assert process_main() == 0")
     assert imported_after(code) == []
     assert output.is_file()

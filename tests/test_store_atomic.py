@@ -11,9 +11,9 @@ import numpy as np
 import pytest
 import xarray as xr
 
-from fickcam import ncwrite
-from fickcam.dataset import build_dataset
-from fickcam.store import open_result, save
+from fickcam.results import ncwrite
+from fickcam.results.dataset import build_dataset
+from fickcam.results.store import open_result, save
 
 CONFIGS = Path(__file__).resolve().parents[1] / "configs"
 
@@ -33,7 +33,7 @@ def test_failure_while_writing_keeps_the_old_file_and_leaves_no_temporary(tmp_pa
 
     if writer == "h5py":
         monkeypatch.setattr(ncwrite, "set_attributes", broken)
-    else:  # the datasets fickcam.ncwrite does not take
+    else:  # the datasets fickcam.results.ncwrite does not take
         monkeypatch.setattr(ncwrite, "writable", lambda ds: False)
         monkeypatch.setattr(xr.Dataset, "dump_to_store", broken)
     with pytest.raises(OSError):
@@ -65,8 +65,8 @@ def test_dask_backed_data_is_written_not_skipped(tmp_path):
 @pytest.mark.slow
 def test_saving_a_result_does_not_import_dask_distributed(tmp_path):
     code = ("import sys, numpy as np\n"
-            "from fickcam.dataset import build_dataset\n"
-            "from fickcam.store import save\n"
+            "from fickcam.results.dataset import build_dataset\n"
+            "from fickcam.results.store import save\n"
             "save(build_dataset({'temperature': np.ones(2)}, {'time': [0.0, 1.0]}, {}), sys.argv[1])\n"
             "assert 'distributed' not in sys.modules, 'save imported dask.distributed'\n")
     subprocess.run([sys.executable, "-c", code, str(tmp_path / "r.h5")], check=True,
@@ -77,7 +77,7 @@ def test_saving_a_result_does_not_import_dask_distributed(tmp_path):
 def test_kill_9_at_random_moments_never_leaves_an_unreadable_result(tmp_path):
     scene = CONFIGS / "yadav2017_cam.yaml"  # no diffusion: each run is mostly start-up and writing
     target = tmp_path / "existing.h5"
-    command = [sys.executable, "-m", "fickcam.cli", "run", str(scene), "-o", str(target), "--quiet"]
+    command = [sys.executable, "-m", "fickcam.cli.main", "run", str(scene), "-o", str(target), "--quiet"]
     started = time.perf_counter()
     subprocess.run(command, check=True, capture_output=True, cwd=tmp_path)
     duration = time.perf_counter() - started

@@ -9,8 +9,8 @@ import numpy as np
 import pytest
 import xarray as xr
 
-from fickcam import ncwrite
-from fickcam.store import open_result, save
+from fickcam.results import ncwrite
+from fickcam.results.store import open_result, save
 
 #: what the two writers may differ in: the library named in _NCProperties
 WRITER_ATTRIBUTE = "_NCProperties"
@@ -36,7 +36,7 @@ def dataset() -> xr.Dataset:
 
 
 def via_xarray(ds, path, monkeypatch, compress=False):
-    """``save`` through xarray's h5netcdf engine (the writer before fickcam.ncwrite)."""
+    """``save`` through xarray's h5netcdf engine (the writer before fickcam.results.ncwrite)."""
     with monkeypatch.context() as patched:
         patched.setattr(ncwrite, "writable", lambda ds: False)
         save(ds, path, compress=compress)

@@ -1,5 +1,5 @@
 """Per-case bookkeeping (the sweep's journal) and combining along ``case``, with small
-synthetic results (built through fickcam.dataset like a real run), so no physics is
+synthetic results (built through fickcam.results.dataset like a real run), so no physics is
 needed."""
 import json
 from pathlib import Path
@@ -9,7 +9,7 @@ import pytest
 import xarray as xr
 
 import fickcam
-from fickcam.dataset import build_dataset
+from fickcam.results.dataset import build_dataset
 from fickcam.errors import InputError
 from fickcam.sweep import WorkFolder, load_sweep
 from fickcam.sweep.combine import combine, missing_like, stack_cases

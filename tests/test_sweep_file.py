@@ -11,7 +11,7 @@ import yaml
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from fickcam.cli import main
+from fickcam.cli.main import main
 from fickcam.errors import SceneError
 from fickcam.sweep import load_sweep
 

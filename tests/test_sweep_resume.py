@@ -48,7 +48,7 @@ def kill_while_running(sweep_file: Path, output: Path, delay: float) -> dict | N
     its first bytes are journaled; the journal's whole cases at the kill, or None when the sweep
     had already finished (the kill came too late to test anything)."""
     env = dict(os.environ, PYTHONPATH=str(ROOT))
-    process = subprocess.Popen([sys.executable, "-m", "fickcam.cli", "sweep", str(sweep_file),
+    process = subprocess.Popen([sys.executable, "-m", "fickcam.cli.main", "sweep", str(sweep_file),
                                 "--workers", "1", "-o", str(output), "--quiet"], env=env,
                                stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
     journal = WorkFolder.next_to(output).journal

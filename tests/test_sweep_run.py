@@ -10,7 +10,7 @@ import xarray as xr
 import yaml
 
 import fickcam
-from fickcam.cli import main
+from fickcam.cli.main import main
 from fickcam.sweep import WorkFolder, compute_cases, load_sweep, run_sweep
 
 CONFIGS = Path(__file__).resolve().parents[1] / "configs"

@@ -8,7 +8,7 @@ from pathlib import Path
 
 import pytest
 
-from fickcam.cli import main
+from fickcam.cli.main import main
 
 SWEEP = Path(__file__).resolve().parents[1] / "configs" / "sweep_singh2017_climate.yaml"
 SECONDS = 15  # probe timeout 3 s, plus imports: far below dask's own 20 s or a hang

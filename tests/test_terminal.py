@@ -14,12 +14,12 @@ import numpy as np
 import pytest
 import yaml
 
-from fickcam.cli import main
-from fickcam.dataset import build_dataset
+from fickcam.cli.main import main
+from fickcam.results.dataset import build_dataset
 from fickcam.errors import format_duration
 from fickcam.linkage.classify import class_changes
 from fickcam.messages import Note, count_levels, level_of, note, progress_bar, restated
-from fickcam.store import save
+from fickcam.results.store import save
 
 ROOT = Path(__file__).resolve().parents[1]
 DAY = 86400.0

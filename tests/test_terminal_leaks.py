@@ -32,7 +32,7 @@ def hot_cam(tmp_path_factory):
 
 
 def cli(*argv, cwd):
-    return subprocess.run([sys.executable, "-m", "fickcam.cli", *map(str, argv)], cwd=cwd,
+    return subprocess.run([sys.executable, "-m", "fickcam.cli.main", *map(str, argv)], cwd=cwd,
                           capture_output=True, text=True, timeout=600,
                           env=dict(os.environ, PYTHONPATH=str(ROOT)))
 
@@ -77,7 +77,7 @@ def test_a_notice_at_several_ageing_times_is_one_line_and_the_designs_once(hot_c
 
 
 def test_merged_notices_give_the_range_over_times_but_keep_alike_notices_of_one_time_apart():
-    from fickcam.mechanisms import merged_notices
+    from fickcam.mechanisms.ageing import merged_notices
     from fickcam.messages import design_notice
 
     day = 86400.0

@@ -3,7 +3,7 @@ import math
 
 import pytest
 
-from fickcam.unit_parsing import parse_duration, to_si
+from fickcam.quantities.parsing import parse_duration, to_si
 
 
 @pytest.mark.parametrize("text, dimension, expected", [

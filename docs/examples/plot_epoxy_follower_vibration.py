@@ -17,9 +17,9 @@ The scene is ``epoxy_follower_vibration.yaml``, one of the examples that come wi
 # the summary is what ``fickcam run`` prints.
 
 import fickcam
-from fickcam import example_scenes
+from fickcam.scene import examples as example_scenes
 from fickcam.plotting import plot
-from fickcam.reporting import summary
+from fickcam.cli.reporting import summary
 
 ds = fickcam.run(fickcam.load_scene(example_scenes.path("epoxy_follower_vibration")))
 print(summary(ds, notices=False))

@@ -16,9 +16,9 @@ The scene is ``fourbar_r914_humid_compensated.yaml``, one of the examples that c
 # the summary is what ``fickcam run`` prints.
 
 import fickcam
-from fickcam import example_scenes
+from fickcam.scene import examples as example_scenes
 from fickcam.plotting import plot
-from fickcam.reporting import summary
+from fickcam.cli.reporting import summary
 
 ds = fickcam.run(fickcam.load_scene(example_scenes.path("fourbar_r914_humid_compensated")))
 print(summary(ds, notices=False))

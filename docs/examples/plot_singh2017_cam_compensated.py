@@ -17,9 +17,9 @@ The scene is ``singh2017_cam_compensated.yaml``, one of the examples that come w
 # the summary is what ``fickcam run`` prints.
 
 import fickcam
-from fickcam import example_scenes
+from fickcam.scene import examples as example_scenes
 from fickcam.plotting import plot
-from fickcam.reporting import summary
+from fickcam.cli.reporting import summary
 
 ds = fickcam.run(fickcam.load_scene(example_scenes.path("singh2017_cam_compensated")))
 print(summary(ds, notices=False))

@@ -3,7 +3,7 @@ kinematics, dynamics, jump, Hertz contact stress, friction and wear.
 
 Public API: :class:`~fickcam.cam.spec.CamSection` (scene section), :class:`~fickcam.cam.design.CamDesign`,
 :class:`~fickcam.cam.design.CamState`, :func:`~fickcam.cam.design.design_from_scene`, :func:`~fickcam.cam.model.cam_response`,
-:func:`~fickcam.cam.kinematics.working_profile`, and for :mod:`fickcam.simulate` :func:`~fickcam.cam.ageing.scene_parts`,
+:func:`~fickcam.cam.kinematics.working_profile`, and for :mod:`fickcam.simulation.simulate` :func:`~fickcam.cam.ageing.scene_parts`,
 :func:`~fickcam.cam.ageing.scene_response`.
 
 References

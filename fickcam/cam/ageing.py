@@ -1,6 +1,6 @@
 """The scene's cam over ageing: which part state feeds which input of
 :func:`~fickcam.cam.model.cam_response`, and the response stacked over ageing times
-(called by :mod:`fickcam.simulate`).
+(called by :mod:`fickcam.simulation.simulate`).
 
 Parts: ``cam`` (a :class:`fickcam.diffusion.problem.geometry.CamPlate` of the dry working profile) and,
 when the follower names a material, ``follower`` (a roller: a disc of the roller radius
@@ -18,8 +18,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..mechanisms import over_ageing
-from ..response import Response, peak
+from ..mechanisms.ageing import over_ageing
+from ..mechanisms.response import Response, peak
 from .design import CamState, design_from_scene
 from .kinematics import working_profile
 from .model import cam_response, closed_form_jump_speeds
@@ -129,7 +129,7 @@ def scene_response(section, histories: dict, times, angles, valid, on_step=lambd
 
     Returns
     -------
-    fickcam.response.Response
+    fickcam.mechanisms.response.Response
         Variables over (time, ...) in SI, and the notices.
     """
     design = design_from_scene(section)

@@ -1,6 +1,6 @@
 """The scene's ``cam.follower.arm`` (a swinging-arm follower, :mod:`fickcam.cam.arm`) and
 what the motion and the arm cannot do together (:func:`~fickcam.cam.arm_spec.arm_problems`, reported by
-:mod:`fickcam.scene` at the key's line)."""
+:mod:`fickcam.scene.load` at the key's line)."""
 from __future__ import annotations
 
 import itertools
@@ -9,7 +9,7 @@ from typing import Literal
 
 from pydantic import Field
 
-from ..units import (Length, MomentOfInertia, SignedLength, StrictModel, Torque,
+from ..quantities.types import (Length, MomentOfInertia, SignedLength, StrictModel, Torque,
                      TorsionalStiffness)
 
 

@@ -408,7 +408,7 @@ def write_profile_csv(path, design: CamDesign, strain_x: float = 0.0, strain_y: 
     str or os.PathLike
         ``path``.
     """
-    from ..store import replaced_atomically
+    from ..results.store import replaced_atomically
 
     x, y = working_profile(design, strain_x, strain_y, n)
     with replaced_atomically(path) as tmp:

@@ -21,7 +21,7 @@ import math
 import numpy as np
 
 from ..messages import note
-from ..response import Response
+from ..mechanisms.response import Response
 from . import dynamics as dyn
 from .design import CamDesign, CamState
 from .kinematics import (cam_frame_point, closed_form, dry_lowest_height, motion_function, picked,

@@ -26,7 +26,7 @@ from dataclasses import replace
 
 import numpy as np
 
-from ..response import Response
+from ..mechanisms.response import Response
 from . import arm as geo
 from .design import CamDesign, CamState
 from .kinematics import cam_frame_point, grown_arm, motion_function

@@ -30,9 +30,9 @@ from pathlib import Path
 
 import numpy as np
 
-from ..csvrows import CsvError, numbered_rows
+from ..climate.csvrows import CsvError, numbered_rows
 from ..extras import require
-from ..store import replaced_atomically
+from ..results.store import replaced_atomically
 from .arm import aged_profile_contact
 from .motion import ORDERS
 
@@ -206,7 +206,7 @@ def make_profile(x, y, curve: str = "working", roller_radius: float = 0.0) -> Ca
 
 
 def _column_scale(cell: str, path) -> tuple[str, float]:
-    from ..unit_parsing import to_si
+    from ..quantities.parsing import to_si
 
     match = _HEADER.match(cell)
     if not match:

@@ -156,7 +156,7 @@ def size_scene(scene, limits: Limits) -> Sizing:
         When the cam cannot be sized (not motion segments; no base circle meets the
         limits); before any run.
     """
-    from ..simulate import run
+    from ..simulation.simulate import run
     from .design import design_from_scene
 
     design = design_from_scene(scene.model.cam)

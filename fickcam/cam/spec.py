@@ -1,6 +1,6 @@
 """The scene's ``cam:`` section: a plate cam and a translating follower.
 
-Values are parsed to SI by :mod:`fickcam.units` (angles in rad, speed in rad/s).
+Values are parsed to SI by :mod:`fickcam.quantities.types` (angles in rad, speed in rad/s).
 Validation refuses what cannot be a cam: motion segments that do not add up to
 360 deg or do not return the follower to its start, an unknown motion law, a roller
 follower without a roller radius, ``eccentric`` or ``profile_file`` together with ``motion`` or
@@ -11,14 +11,14 @@ from __future__ import annotations
 import math
 from typing import Annotated, Literal
 
-from ..units import StrictModel
+from ..quantities.types import StrictModel
 from .arm_spec import NOT_ON_AN_ARM, SwingingArm, arm_problems
 from pydantic import (AfterValidator, BeforeValidator, ConfigDict, Discriminator, Field, PrivateAttr,
                       Tag, field_validator, model_validator)
 
-from ..units import (Angle, AngularSpeed, Force, Length, Mass, NonNegativeLength, PositiveAngle,
+from ..quantities.types import (Angle, AngularSpeed, Force, Length, Mass, NonNegativeLength, PositiveAngle,
                      Pressure, SignedLength, Stiffness, quantity)
-from ..unit_parsing import is_bare_number, to_si
+from ..quantities.parsing import is_bare_number, to_si
 
 #: follower train stiffness: zero would leave the follower mass unconnected to the cam
 PositiveStiffness = quantity("stiffness", positive=True)

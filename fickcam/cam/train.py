@@ -37,7 +37,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..response import Response
+from ..mechanisms.response import Response
 from .fourier import at_angles, harmonics, on_grid, series
 
 #: samples per revolution for the Fourier coefficients of the cam motion

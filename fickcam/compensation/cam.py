@@ -125,7 +125,7 @@ def profile_path(folder: Path, stem: str) -> Path:
 def _motion(section, segments: list, shape: dict, length_text) -> list:
     """The scene's motion segments with the made rises and returns (to the picometre, so
     that they still cancel), a spline law's distances scaled with its segment's lift."""
-    from ..unit_parsing import to_si
+    from ..quantities.parsing import to_si
 
     made = copy.deepcopy(segments)
     for index, (given, segment) in enumerate(zip(section.motion, made)):
@@ -231,7 +231,7 @@ def design_entry(section: dict, targets) -> dict:
     dict
         The entry, lengths as the scene gives them.
     """
-    from ..scene import CAM_SHAPE_KEYS
+    from ..scene.load import CAM_SHAPE_KEYS
 
     entry = {key: section[key] for key in CAM_SHAPE_KEYS if key in section}
     names = {t.name for t in targets}

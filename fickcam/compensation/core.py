@@ -108,7 +108,7 @@ class Compensation:
     iterations: int
     scene_data: dict
     residual: list = field(default_factory=list)  # largest |made (1 + eps) - design| per target, m
-    scene: object = None                          # the design scene (fickcam.scene.Scene)
+    scene: object = None                          # the design scene (fickcam.scene.load.Scene)
     life: tuple = (0.0, 0.0)                      # s: the window, or delivery to the history's end
     check: np.ndarray = None                      # s: the ageing times of before and after
     before: object = None                         # xarray.Dataset of the design
@@ -226,7 +226,7 @@ def converged(old: list, new: list, targets: list[Target]) -> bool:
 @contextlib.contextmanager
 def quiet_runs():
     """Silence the notices of the intermediate runs (the final runs report them)."""
-    logger = logging.getLogger("fickcam.simulate")
+    logger = logging.getLogger("fickcam.simulation.simulate")
     level = logger.level
     logger.setLevel(logging.ERROR)
     try:
@@ -300,7 +300,7 @@ def scene_from(data: dict, base_dir: Path, file_name: str):
     SceneError
         When the mapping is not a valid scene.
     """
-    from ..scene import parse_yaml, validate_document
+    from ..scene.load import parse_yaml, validate_document
 
     doc = parse_yaml(yaml.safe_dump(data, sort_keys=False), file=file_name)
     return validate_document(doc, base_dir=base_dir)

@@ -191,7 +191,7 @@ def limit_lines(comp: Compensation) -> list[str]:
     list of str
         The lines.
     """
-    from ..limits import stored_limits
+    from ..results.limits import stored_limits
 
     if "limit_ratio" not in comp.before:
         return ["the scene has no limits: section, so the made part is not checked against a "
@@ -264,10 +264,10 @@ def _advice_lines(comp: Compensation, scene) -> list[str]:
 
 def _largest_deviation(ds, name: str) -> np.ndarray | None:
     """Largest |value - design value| over the cycle at each ageing time (stored unit;
-    :func:`fickcam.query.drift` against the result's as-designed state, which for a
+    :func:`fickcam.results.query.drift` against the result's as-designed state, which for a
     compensated scene is its ``design:``); the coupler point is the distance between the
     two points. None where the result lacks ``name``."""
-    from ..query import drift
+    from ..results.query import drift
 
     if name == "coupler_point":
         if "coupler_point_x" not in ds:
@@ -283,7 +283,7 @@ def _largest_deviation(ds, name: str) -> np.ndarray | None:
 def _shown_times(comp: Compensation) -> np.ndarray:
     """The ageing times (s) the drift table shows: the scene's inside the life, its ends
     and the ends of the compensation."""
-    from ..simulate import ageing_times, scene_environment
+    from ..simulation.simulate import ageing_times, scene_environment
 
     scene = comp.scene
     stored = ageing_times(scene, scene_environment(scene))
@@ -427,7 +427,7 @@ def write_files(comp: Compensation, scene, path, *, profile=None, plot=None) -> 
     list of pathlib.Path
         The paths written, the scene's first.
     """
-    from ..store import replaced_together
+    from ..results.store import replaced_together
     from .cam import profile_path
     from .solve import write_made, write_points
 

@@ -178,7 +178,7 @@ def _run_at(data: dict, base_dir: Path, times: np.ndarray, accuracy, diffusions=
     """The scene mapping run at ageing ``times`` (s) only, fields off, no file;
     ``diffusions``: diffusion results already solved at ``times`` (:func:`part_states`);
     ``cache``: the compensation's ``diffusion.RunCache`` (its runs share it)."""
-    from ..simulate import run
+    from ..simulation.simulate import run
 
     ds = run(_scene_at(data, base_dir, times), accuracy=accuracy, diffusions=diffusions,
              cache=cache)
@@ -213,10 +213,10 @@ def part_states(data: dict, base_dir: Path, times: np.ndarray, accuracy, names: 
         (xarray.Dataset of the parts' state variables over (time, part); dict of part
         name -> its ``DiffusionResult`` at ``times``, None for a part that does not absorb).
     """
-    from ..dataset import build_dataset
+    from ..results.dataset import build_dataset
     from ..elastic.parts import elastic_parts
-    from ..parts import build_parts, part_values
-    from ..simulate import age_part, diffusion_options, scene_environment
+    from ..simulation.parts import build_parts, part_values
+    from ..simulation.simulate import age_part, diffusion_options, scene_environment
 
     scene = _scene_at(data, base_dir, times)
     environment = scene_environment(scene)
@@ -233,7 +233,7 @@ def part_states(data: dict, base_dir: Path, times: np.ndarray, accuracy, names: 
 
 def diffusions_for(data: dict, base_dir: Path, times: np.ndarray, by_name: dict) -> dict:
     """The diffusion results ``by_name`` keyed for a run of the scene mapping at ``times``
-    (``simulate.run(diffusions=...)``), as :func:`fickcam.simulate.age_part` keys them:
+    (``simulate.run(diffusions=...)``), as :func:`fickcam.simulation.simulate.age_part` keys them:
     the part's shape (of this scene mapping), material and whether fields are kept.
 
     Parameters
@@ -248,7 +248,7 @@ def diffusions_for(data: dict, base_dir: Path, times: np.ndarray, by_name: dict)
         Part name -> ``DiffusionResult`` (:func:`part_states`).
     """
     from ..elastic.parts import elastic_parts
-    from ..parts import build_parts
+    from ..simulation.parts import build_parts
 
     scene = _scene_at(data, base_dir, times)
     elastic = elastic_parts(scene.model)
@@ -260,8 +260,8 @@ def _compensation_times(scene, at, over) -> tuple[np.ndarray, tuple[float, float
     """([T] for ``at`` or the window grid for ``over``, the life asked about: the window,
     or delivery to the end of the history for ``at``), s; refuses times outside the
     history."""
-    from ..cli_values import ageing_time
-    from ..simulate import ageing_times, scene_environment
+    from ..quantities.options import ageing_time
+    from ..simulation.simulate import ageing_times, scene_environment
 
     environment = scene_environment(scene)
     if (at is None) == (over is None):
@@ -286,7 +286,7 @@ def _check_times(scene, times: np.ndarray, life: tuple[float, float], *, plot: b
     inside ``life``, its ends and ``times``; ``plot``: the scene's ageing times over the
     whole history too (the plot shows the part before and after a window, from the runs
     the compensation makes anyway); ``wide``: the grid of a window over the whole life."""
-    from ..simulate import ageing_times, scene_environment
+    from ..simulation.simulate import ageing_times, scene_environment
 
     environment = scene_environment(scene)
     stored = ageing_times(scene, environment)
@@ -407,7 +407,7 @@ def compensate(scene, at=None, over=None, *, accuracy: float | None = None,
         scene's history, or ``keep_limits`` is given without ``at``.
     """
     from ..diffusion import RunCache
-    from ..scene import design_data, load_scene
+    from ..scene.load import design_data, load_scene
 
     cache = RunCache()   # every run of this compensation shares it
     scene = load_scene(scene)

@@ -65,7 +65,7 @@ def _document(unit: float, layers):
 
 
 def _save(document, path) -> Path:
-    from ..store import replaced_atomically
+    from ..results.store import replaced_atomically
 
     with replaced_atomically(path) as tmp:
         document.saveas(tmp)

@@ -1,6 +1,6 @@
 """The scene's cam plate under its contact force over ageing (``cam.elastic: true``):
 which state and cam results feed :mod:`fickcam.elastic.contact`, and the variables
-stacked over ageing times (called by :mod:`fickcam.simulate`).
+stacked over ageing times (called by :mod:`fickcam.simulation.simulate`).
 
 Mesh: the diffusion engine's graded planform mesh of the dry working profile, spacing
 ``PROFILE_SAMPLES`` per perimeter along the outline, growing by ``GROWTH`` per row
@@ -17,7 +17,7 @@ import logging
 import numpy as np
 
 from ..messages import note
-from ..response import Response
+from ..mechanisms.response import Response
 from .contact import (cam_plate_model, contact_response, follower_shift, hertz_half_width,
                       lift_error)
 from .fem import reduced_stiffness

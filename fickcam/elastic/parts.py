@@ -1,5 +1,5 @@
 """Which parts get an elastic analysis (``cam.elastic``, ``linkage.elastic``) and their
-swelling-stress variables over (time, part), for :mod:`fickcam.simulate`."""
+swelling-stress variables over (time, part), for :mod:`fickcam.simulation.simulate`."""
 from __future__ import annotations
 
 import numpy as np

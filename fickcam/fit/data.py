@@ -17,9 +17,9 @@ from pathlib import Path
 
 import numpy as np
 
-from ..csvrows import CsvError, numbered_rows
+from ..climate.csvrows import CsvError, numbered_rows
 from ..errors import Problem, SceneError
-from ..unit_parsing import to_si
+from ..quantities.parsing import to_si
 
 _HEADER = re.compile(r"^\s*(?P<name>[A-Za-z_]+)\s*(?:\[(?P<unit>[^\]]*)\])?\s*$")
 DIMENSIONS = {"temperature": "temperature", "relative_humidity": "percent", "thickness": "length",

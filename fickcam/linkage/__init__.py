@@ -3,7 +3,7 @@ transmission angle, coupler curve, velocities, accelerations and kinetostatics.
 
 Public API: :class:`~fickcam.linkage.spec.LinkageSection` (scene section), :class:`~fickcam.linkage.model.FourBarDesign`,
 :class:`~fickcam.linkage.model.FourBarState`, :func:`~fickcam.linkage.model.fourbar_response`, :func:`~fickcam.linkage.classify.class_changes`,
-:func:`~fickcam.linkage.classify.grashof_class`, and for :mod:`fickcam.simulate` :func:`~fickcam.linkage.ageing.scene_parts`,
+:func:`~fickcam.linkage.classify.grashof_class`, and for :mod:`fickcam.simulation.simulate` :func:`~fickcam.linkage.ageing.scene_parts`,
 :func:`~fickcam.linkage.ageing.scene_response`, ``LINKS`` and ``JOINTS`` (coordinate values).
 
 References

@@ -1,5 +1,5 @@
 """The scene's four-bar over ageing: which part state feeds which link, and the
-response stacked over ageing times (called by :mod:`fickcam.simulate`).
+response stacked over ageing times (called by :mod:`fickcam.simulation.simulate`).
 
 Each link (crank, coupler, rocker, frame) is a diffusion part of geometry
 :class:`~fickcam.diffusion.problem.geometry.LinkBar`. At every ageing time its pin-to-pin
@@ -16,8 +16,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..mechanisms import over_ageing
-from ..response import Response
+from ..mechanisms.ageing import over_ageing
+from ..mechanisms.response import Response
 from .classify import class_changes
 from .model import FourBarDesign, FourBarState, fourbar_response
 
@@ -140,7 +140,7 @@ def scene_response(section, histories: dict, times, angles, valid, on_step=lambd
 
     Returns
     -------
-    fickcam.response.Response
+    fickcam.mechanisms.response.Response
         SI variables over (time, ...) and the notices.
     """
     design = FourBarDesign.from_section(section)

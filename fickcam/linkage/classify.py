@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..mechanisms import first_change
+from ..mechanisms.ageing import first_change
 
 CRANK_ROCKER = "crank-rocker"
 DOUBLE_CRANK = "double-crank"

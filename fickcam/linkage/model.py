@@ -1,5 +1,5 @@
 """One four-bar at one ageing time: positions, class, velocities, accelerations and
-kinetostatics over the crank angle, as a :class:`fickcam.response.Response`."""
+kinetostatics over the crank angle, as a :class:`fickcam.mechanisms.response.Response`."""
 from __future__ import annotations
 
 import logging
@@ -8,7 +8,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..messages import note
-from ..response import Response
+from ..mechanisms.response import Response
 from .classify import FULL_ROTATION, grashof_class
 from .dynamics import STANDARD_GRAVITY, kinetostatics, rms
 from .kinematics import angular_accelerations, angular_velocities, centre_of_mass_motion
@@ -122,9 +122,9 @@ def fourbar_response(design: FourBarDesign, state: FourBarState, crank_angle) ->
 
     Returns
     -------
-    fickcam.response.Response
+    fickcam.mechanisms.response.Response
         SI arrays (angles in rad), named, dimensioned and in the units of the "linkage"
-        rows of ``fickcam.schema.VARIABLES``, and the notices.
+        rows of ``fickcam.results.schema.VARIABLES``, and the notices.
 
     References
     ----------

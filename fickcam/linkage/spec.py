@@ -1,6 +1,6 @@
 """The scene's ``linkage:`` section: a four-bar with the crank as input.
 
-Values are parsed to SI by :mod:`fickcam.units`. Validation refuses what cannot be
+Values are parsed to SI by :mod:`fickcam.quantities.types`. Validation refuses what cannot be
 a link or a four-bar: non-positive lengths, bosses that would overlap on a link,
 a bar wider than its bosses, a hole as large as its boss, and a linkage that
 cannot assemble at any crank angle (the diagonal O4-A ranges over
@@ -14,12 +14,12 @@ from typing import Annotated, Literal
 
 from pydantic import BeforeValidator, Field, model_validator
 
-from ..units import StrictModel, Angle, AngularSpeed, Length, NonNegativeLength
-from ..unit_parsing import registry
+from ..quantities.types import StrictModel, Angle, AngularSpeed, Length, NonNegativeLength
+from ..quantities.parsing import registry
 
 
 def _in_si(si_unit: str, human: str):
-    """A pydantic float type for a dimension :mod:`fickcam.units` does not list: bare
+    """A pydantic float type for a dimension :mod:`fickcam.quantities.types` does not list: bare
     numbers are SI, strings are parsed by pint and converted to ``si_unit``."""
 
     def parse(value):

@@ -7,7 +7,7 @@ import numpy as np
 from pydantic import (AfterValidator, BeforeValidator, Field, NonNegativeFloat, PositiveFloat,
                       model_validator)
 
-from ..units import (
+from ..quantities.types import (
     StrictModel,
     Density,
     Diffusivity,

@@ -404,7 +404,7 @@ def reference_curve(ds, names) -> tuple[tuple, str]:
     label : str
         ``"design"``, or the first ageing time's label in a result without design values.
     """
-    from ..schema import design_name
+    from ..results.schema import design_name
 
     if all(design_name(n) in ds for n in names):
         return tuple(ds[design_name(n)].values for n in names), "design"
@@ -535,9 +535,9 @@ def drift_panel(ax, x, ds, name: str, picks, scale: float, ylabel: str) -> None:
     Raises
     ------
     fickcam.errors.InputError
-        When the result holds no as-designed value of ``name`` (:func:`fickcam.query.drift`).
+        When the result holds no as-designed value of ``name`` (:func:`fickcam.results.query.drift`).
     """
-    from ..query import drift
+    from ..results.query import drift
 
     import numpy as np
 
@@ -615,7 +615,7 @@ def save_figure(fig, path: Path) -> Path:
     pathlib.Path
         ``path``.
     """
-    from ..store import replaced_atomically
+    from ..results.store import replaced_atomically
 
     tidy_ticks(fig)
     with replaced_atomically(path) as tmp:

@@ -4,8 +4,8 @@ from __future__ import annotations
 import math
 from pathlib import Path
 
-from ..limits import stored_limits, worst_value
-from ..query import drift
+from ..results.limits import stored_limits, worst_value
+from ..results.query import drift
 from .common import legend, age_colour, age_label, ages, days, figure, Figures, returns_figures, save_figure
 
 ANGLES = ("cam_angle", "crank_angle")
@@ -17,7 +17,7 @@ def _units(limit) -> tuple[float, str]:
 
 
 def worst_label(variable: str, kind: str, over_cycle: bool) -> str:
-    """What :func:`~fickcam.limits.worst_value` gives, in words.
+    """What :func:`~fickcam.results.limits.worst_value` gives, in words.
 
     Parameters
     ----------
@@ -54,7 +54,7 @@ def _over_time(ax, ds, limit) -> None:
         ax.axhline(getattr(limit, kind) * scale, color="r", lw=1.2, ls="--", label=f"limit ({kind})")
     failed = float(ds["time_out_of_spec"].sel(limit=limit.variable))
     if not math.isnan(failed):
-        from ..reporting import crossing_text
+        from ..cli.reporting import crossing_text
 
         ax.axvline(failed, color="k", lw=1, ls=":",
                    label=f"out of spec at {crossing_text(ds, limit.variable)}")

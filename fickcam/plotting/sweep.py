@@ -92,7 +92,7 @@ def parameters(ds) -> list[str]:
 
 def _shown(ds, name: str) -> tuple[np.ndarray, str]:
     """A varied value in the unit the sweep file gave it (degC, not K), and that unit."""
-    from ..unit_parsing import convert
+    from ..quantities.parsing import convert
 
     coord = ds[name]
     unit = coord.attrs.get("given_units") or coord.attrs.get("units", "1")

@@ -1,5 +1,5 @@
 """One case of a sweep, as a worker process runs it: scene dict → validated
-scene → :func:`fickcam.simulate.run` → its record and journal payload (the client
+scene → :func:`fickcam.simulation.simulate.run` → its record and journal payload (the client
 appends that to the sweep's journal; the worker writes no file).
 
 Whatever goes wrong in a case (an invalid value, physics out of its domain, a
@@ -61,7 +61,7 @@ def case_scene(task: CaseTask):
 
     Returns
     -------
-    fickcam.scene.Scene
+    fickcam.scene.load.Scene
         The validated scene.
 
     Raises
@@ -71,7 +71,7 @@ def case_scene(task: CaseTask):
     """
     import yaml
 
-    from ..scene import parse_yaml, validate_document
+    from ..scene.load import parse_yaml, validate_document
 
     text = yaml.dump(task.scene, Dumper=getattr(yaml, "CSafeDumper", yaml.SafeDumper),
                      sort_keys=False, allow_unicode=True)
@@ -150,14 +150,14 @@ def run_case(task: CaseTask, cache=None) -> tuple[dict, bytes]:
     payload : bytes
         The journal entry (:func:`fickcam.sweep.journal.encode_case`).
     """
-    from ..simulate import run
+    from ..simulation.simulate import run
     from .journal import encode_case
 
     started = time.perf_counter()
     retry = False
     dataset = None
     try:
-        with quieter("fickcam.simulate", logging.ERROR):  # its notices go into the record
+        with quieter("fickcam.simulation.simulate", logging.ERROR):  # its notices go into the record
             dataset = run(case_scene(task), cache=worker_cache() if cache is None else cache)
         notices = dataset.attrs.get("notices") or []
         status, message = "ok", "; ".join(str(n) for n in notices)

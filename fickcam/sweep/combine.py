@@ -15,7 +15,7 @@ from collections.abc import Mapping
 import numpy as np
 
 from .._version import __version__
-from ..dataset import ageing_seconds
+from ..results.dataset import ageing_seconds
 from .journal import CaseArrays
 from .spec import Sweep
 
@@ -97,7 +97,7 @@ def case_coordinates(sweep: Sweep, records: dict[int, dict]) -> dict:
 def _site_labels(files, base_dir) -> dict:
     """``value_labels``: each weather file's site by the file's own metadata (JSON, value ->
     "Sand Point, AK"), for legends and ticks; {} when no value names a weather file."""
-    from ..records import site_name
+    from ..climate.records import site_name
 
     labels = {str(f): site_name(str(f), base_dir) for f in dict.fromkeys(np.asarray(files).tolist())}
     labels = {value: site for value, site in labels.items() if site}

@@ -16,9 +16,9 @@ import math
 
 import numpy as np
 
-from ..unit_parsing import to_si
+from ..quantities.parsing import to_si
 
-#: group -> (key, fickcam.units dimension or None, unit written into the scene, drawn as log)
+#: group -> (key, fickcam.quantities.types dimension or None, unit written into the scene, drawn as log)
 GROUPS = {
     "diffusivity": (("pre_exponential", "diffusivity", "m^2/s", True),
                     ("activation_energy", "molar_energy", "J/mol", False)),

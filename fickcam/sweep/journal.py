@@ -24,7 +24,7 @@ import numpy as np
 
 from ..errors import WriteError
 from ..messages import warn
-from ..store import byte_size
+from ..results.store import byte_size
 
 
 MAGIC = b"FKJ1"

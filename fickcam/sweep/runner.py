@@ -372,9 +372,9 @@ def run_sweep(sweep_path, output, workers: int | None = None, scheduler: str | N
         When workers or a scheduler are asked for without dask.distributed installed.
     """
     from ..diffusion import run_cache
-    from ..scene import load_scene
-    from ..simulate import plan_parts
-    from ..store import remove_stale_temporaries, save
+    from ..scene.load import load_scene
+    from ..simulation.simulate import plan_parts
+    from ..results.store import remove_stale_temporaries, save
 
     started = time.perf_counter()
     if scheduler or (workers or 1) > 1:

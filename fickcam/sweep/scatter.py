@@ -13,7 +13,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..schema import VARIABLES
+from ..results.schema import VARIABLES
 
 CONFIDENCE = 0.95
 

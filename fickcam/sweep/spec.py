@@ -22,8 +22,8 @@ import numpy as np
 from pydantic import Field, ValidationError, field_validator, model_validator
 
 from .._version import __version__
-from ..keys import short_names
-from ..units import StrictModel
+from ..scene.keys import short_names
+from ..quantities.types import StrictModel
 from ..errors import Problem, SceneError
 
 Scalar = Union[bool, int, float, str]
@@ -37,7 +37,7 @@ Scalar = Union[bool, int, float, str]
 
 def _number_and_unit(value: Any) -> tuple[float, str]:
     """``0.6`` → (0.6, ""), ``"65 %"`` → (65.0, "%"); ValueError if not a number."""
-    from ..unit_parsing import split_number_unit
+    from ..quantities.parsing import split_number_unit
 
     if isinstance(value, bool):
         raise ValueError(f"expected a number, got {value!r}")
@@ -331,7 +331,7 @@ _LABELS = {
 
 
 def _is_angular(text: str) -> bool:
-    from ..unit_parsing import registry
+    from ..quantities.parsing import registry
 
     _, unit = _number_and_unit(text)
     try:
@@ -356,10 +356,10 @@ def infer_dimension(text: str, si_value: float) -> str | None:
     Returns
     -------
     str or None
-        The dimension (a key of ``fickcam.unit_parsing.SI_UNITS``), or None when none
+        The dimension (a key of ``fickcam.quantities.parsing.SI_UNITS``), or None when none
         matches.
     """
-    from ..unit_parsing import to_si
+    from ..quantities.parsing import to_si
 
     angular = _is_angular(text)
     for dimension in _LABELS:
@@ -399,13 +399,13 @@ class Parameter:
     keys : tuple of str or int
         Its keys (:func:`split_path`).
     dimension : str or None
-        A dimension of ``fickcam.unit_parsing.SI_UNITS``, or None for bare numbers and
+        A dimension of ``fickcam.quantities.parsing.SI_UNITS``, or None for bare numbers and
         text.
     """
 
     path: str
     keys: tuple
-    dimension: str | None  # a fickcam.units dimension, or None (bare numbers / text)
+    dimension: str | None  # a fickcam.quantities.types dimension, or None (bare numbers / text)
 
     @property
     def name(self) -> str:
@@ -428,7 +428,7 @@ class Parameter:
     def coordinate(self, raws: list):
         """Coordinate values for the result (SI, angles in degrees, speeds in rpm);
         NaN for a value that cannot be read (its case fails validation)."""
-        from ..unit_parsing import to_si
+        from ..quantities.parsing import to_si
 
         if self.dimension is None:
             numbers = [_bare_number(r) for r in raws]
@@ -575,7 +575,7 @@ def _probe_values(model: SweepModel, path: str, base_value) -> list:
 def _dimension_of(model: SweepModel, path: str, keys: tuple, base_data: dict) -> str | None:
     """Learn the dimension of a scene value by validating the base scene with a
     probe value at ``path`` and comparing the SI value the scene model made of it."""
-    from ..scene import SceneModel
+    from ..scene.load import SceneModel
 
     for probe in _probe_values(model, path, get_path(base_data, keys)):
         data = copy.deepcopy(base_data)
@@ -604,7 +604,7 @@ def _history_file_problems(model: SweepModel, doc, base_dir: Path) -> list[Probl
     """Each climate file a grid names, read before any case runs: a file that is missing,
     or that needs an extra this install lacks (pvlib), is refused at once at its line,
     not found by every case that uses it after the others have run."""
-    from ..records import read_record, resolve_record_path
+    from ..climate.records import read_record, resolve_record_path
 
     problems: list[Problem] = []
     for path, values in (model.grid or {}).items():
@@ -637,7 +637,7 @@ def load_sweep(source) -> Sweep:
         When the sweep file or its base scene does not validate (file, line and key of
         each fault).
     """
-    from ..scene import problems_from_validation, read_yaml, validate_document
+    from ..scene.load import problems_from_validation, read_yaml, validate_document
 
     doc = read_yaml(source, what="sweep")
     try:

@@ -2,7 +2,7 @@
 long record, planform meshes and step responses, Duhamel tables and their readings, a
 two-phase planform's refinement), owned by whoever runs the solves and passed down.
 
-``fickcam.simulate.run`` makes one per run (its plans, solves and the limit search share
+``fickcam.simulation.simulate.run`` makes one per run (its plans, solves and the limit search share
 it), a sweep worker one per worker process (its cases that share a part and material share
 the solves); ``solve`` and ``plan`` make a fresh one when given none. Nothing is kept
 between runs unless the caller hands the same cache on.

@@ -1,0 +1,2 @@
+"""The ``fickcam`` command line: arguments, subcommands and the text they print.
+"""

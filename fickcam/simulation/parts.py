@@ -1,0 +1,243 @@
+"""The bodies a scene ages, and their per-part results gathered into arrays.
+
+A :class:`Part` is one body (cam, follower, a link) with its material and
+diffusion geometry; a :class:`PartHistory` is what diffusion and the material
+state give for it over the ageing times (or, for the as-designed state, at one
+time). :func:`part_values` stacks the histories into ``(time, part)`` arrays
+named after the schema (:mod:`fickcam.results.schema`); :func:`field_values` does the
+same for the moisture fields.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, field, replace
+
+import numpy as np
+
+
+@dataclass
+class Part:
+    """One body that ages: its name, material, diffusion geometry and dry mass.
+
+    Parameters
+    ----------
+    name : str
+        The part (``cam``, ``follower``, ``crank``...).
+    material_name : str
+        Its scene material's name.
+    material : fickcam.materials.Material
+        The resolved material.
+    geometry : object or None
+        Its diffusion geometry (:mod:`fickcam.diffusion`); None when the part does not absorb.
+    dry_mass : float, optional
+        Its dry mass [kg]; None when not known.
+    """
+
+    name: str
+    material_name: str
+    material: object
+    geometry: object | None  # diffusion geometry (None: the part does not absorb)
+    dry_mass: float | None = None
+
+
+@dataclass
+class PartHistory:
+    """What diffusion and the material state give for one part over ageing.
+
+    Parameters
+    ----------
+    part : Part
+        The part.
+    diffusion : fickcam.diffusion.DiffusionResult or None
+        Its moisture uptake; None when it does not absorb or its state is given.
+    state : dict
+        Material state variables by schema name, each over the ageing times [schema units].
+    valid : numpy.ndarray of bool, optional
+        Over ageing times: where the part's state is in the model's domain.
+    """
+
+    part: Part
+    diffusion: object | None
+    state: dict = field(default_factory=dict)
+    valid: np.ndarray | None = None  # bool over ageing times
+
+    def at_rows(self, rows: np.ndarray) -> "PartHistory":
+        """The history at the ageing times ``rows`` only.
+
+        Every array over time (state, validity, moisture and fields) is taken at those rows.
+
+        Parameters
+        ----------
+        rows : numpy.ndarray of int
+            Indices along the ageing times.
+
+        Returns
+        -------
+        PartHistory
+            A new history.
+        """
+        n = len(self.valid)
+
+        def take(value):
+            return value[rows] if np.ndim(value) >= 1 and np.shape(value)[0] == n else value
+
+        result = self.diffusion
+        if result is not None:
+            result = replace(result, times=result.times[rows], mean=result.mean[rows],
+                                         surface=result.surface[rows],
+                                         fields=None if result.fields is None
+                                         else result.fields[rows])
+        return PartHistory(self.part, result, {k: take(v) for k, v in self.state.items()},
+                           self.valid[rows])
+
+
+def build_parts(scene) -> list[Part]:
+    """The parts a scene models, in a fixed order (cam, follower, links).
+
+    Parameters
+    ----------
+    scene : fickcam.scene.load.Scene
+        A validated scene.
+
+    Returns
+    -------
+    list of Part
+        The parts; one whose material does not absorb has no diffusion geometry.
+    """
+    parts: list[Part] = []
+    model = scene.model
+    if model.cam is not None:
+        from ..cam import scene_parts as cam_parts
+
+        parts += [Part(name, mat, scene.materials[mat], geometry, mass)
+                  for name, mat, geometry, mass in cam_parts(model.cam, scene.materials)]
+    if model.linkage is not None:
+        from ..linkage import scene_parts as linkage_parts
+
+        parts += [Part(name, mat, scene.materials[mat], geometry, mass)
+                  for name, mat, geometry, mass in linkage_parts(model.linkage, scene.materials)]
+    for part in parts:
+        if not getattr(part.material, "absorbs", False):
+            part.geometry = None
+    return parts
+
+
+def part_mass(history: PartHistory) -> np.ndarray:
+    """The part's mass with its moisture, m = m_dry (1 + M/100).
+
+    This is the weight-gain definition of moisture content, M = 100 (m - m_dry)/m_dry,
+    inverted (Singh & Sanyal 2017, eq. 3).
+
+    Parameters
+    ----------
+    history : PartHistory
+        The part's history, with ``moisture_content`` [wt %] in its state.
+
+    Returns
+    -------
+    numpy.ndarray
+        The mass over ageing times [kg]; NaN where the dry mass is not given.
+
+    References
+    ----------
+    S. Singh and S. Sanyal, "Kinematic and dynamic variations in cam and follower made
+    of composite material under hygrothermal environment", International Journal of
+    Innovative Research in Science, Engineering and Technology 6 (3), 2017.
+    """
+    dry = history.part.dry_mass
+    moisture = np.asarray(history.state["moisture_content"], float)
+    return np.full_like(moisture, np.nan) if dry is None else dry * (1 + moisture / 100.0)
+
+
+def part_values(histories: list[PartHistory]) -> dict[str, np.ndarray]:
+    """Every state variable of the parts as a (time, part) array.
+
+    The schema names them (an unknown name fails when the Dataset is built). Numbers are
+    NaN at the times a part is not computed; flags (bool) are kept as they are. ``mass``
+    (:func:`part_mass`) is added.
+
+    Parameters
+    ----------
+    histories : list of PartHistory
+        One per part, in the parts' order.
+
+    Returns
+    -------
+    dict of str to numpy.ndarray
+        Variable name -> (time, part) values [schema units].
+    """
+    states = [dict(h.state, mass=part_mass(h)) for h in histories]
+    names = list(dict.fromkeys(name for state in states for name in state))
+    values = {}
+    for name in names:
+        columns = []
+        for history, state in zip(histories, states):
+            value = np.asarray(state.get(name, np.nan))
+            value = np.broadcast_to(value, history.valid.shape)
+            columns.append(value if value.dtype == bool else np.where(history.valid, value, np.nan))
+        values[name] = np.stack(columns, axis=1)
+    return values
+
+
+def diffusion_attrs(history: PartHistory) -> dict:
+    """The diffusion plan and error a part's result records in the dataset attributes.
+
+    Parameters
+    ----------
+    history : PartHistory
+        The part's history.
+
+    Returns
+    -------
+    dict
+        ``model``, ``error_estimate`` [-], ``cells`` [1], ``steps`` [1] and ``reason``
+        (``model`` is "state" for a state given directly, "none" for a part that does not
+        absorb).
+    """
+    result = history.diffusion
+    if result is None and history.part.geometry is not None:
+        return {"model": "state", "error_estimate": 0.0, "cells": 0, "steps": 0,
+                "reason": "uniform moisture given by the environment's state (no diffusion)"}
+    if result is None:
+        return {"model": "none", "error_estimate": 0.0, "cells": 0, "steps": 0,
+                "reason": "material does not absorb moisture"}
+    return {"model": result.model, "error_estimate": float(result.error_estimate),
+            "cells": int(result.cells), "steps": int(result.steps), "reason": result.reason}
+
+
+def field_values(histories: list[PartHistory], times) -> tuple[dict, dict]:
+    """(values, coords): the absorbing parts' moisture fields, NaN-padded to one cell count.
+
+    Parameters
+    ----------
+    histories : list of PartHistory
+        One per part.
+    times : array_like
+        The ageing times [s] (their count sizes the arrays).
+
+    Returns
+    -------
+    values : dict of str to numpy.ndarray
+        ``moisture`` (time, part, cell) [wt %] and ``cell_x``, ``cell_y``, ``cell_z``
+        (part, cell), the cells' coordinates [m]; empty when no part stored fields.
+    coords : dict of str to numpy.ndarray
+        ``cell``: the cell index.
+    """
+    with_fields = [h for h in histories if h.diffusion is not None and
+                   getattr(h.diffusion, "fields", None) is not None]
+    if not with_fields:
+        return {}, {}
+    n_cells = max(h.diffusion.fields.shape[1] for h in with_fields)
+    n_parts = len(histories)
+    moisture = np.full((len(times), n_parts, n_cells), np.nan)
+    cell = {axis: np.full((n_parts, n_cells), np.nan) for axis in ("x", "y", "z")}
+    for index, history in enumerate(histories):
+        result = history.diffusion
+        if result is None or getattr(result, "fields", None) is None:
+            continue
+        n = result.fields.shape[1]
+        moisture[:, index, :n] = result.fields
+        for axis, array in cell.items():
+            if axis in result.cell_coordinates:
+                array[index, :n] = result.cell_coordinates[axis]
+    values = {"moisture": moisture} | {f"cell_{axis}": array for axis, array in cell.items()}
+    return values, {"cell": np.arange(n_cells)}
