@@ -10,7 +10,7 @@ import yaml
 ezdxf = pytest.importorskip("ezdxf")
 
 import fickcam  # noqa: E402
-from fickcam.cli import main  # noqa: E402
+from fickcam.cli.main import main  # noqa: E402
 
 NYLON_CAM = {
     "name": "drawn-cam", "materials": {"nylon": {"plastic": "nylon"}},

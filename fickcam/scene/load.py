@@ -333,10 +333,10 @@ CHORD_SHARE = 0.01
 def _cam_drawing(cam, doc: YamlDocument, base_dir: Path, accuracy: float):
     """(problems, the cam section with its drawing read, the profile's smallest radius [m] or
     None) for ``cam.drawing``."""
-    from .drawing.dxfread import read_drawing
-    from .drawing.parts import cam_of
-    from .drawing.planform import DrawingError
-    from .extras import MissingExtra
+    from ..drawing.dxfread import read_drawing
+    from ..drawing.parts import cam_of
+    from ..drawing.planform import DrawingError
+    from ..extras import MissingExtra
 
     where = ("cam", "drawing")
     path = (base_dir / cam.drawing.file).resolve()
