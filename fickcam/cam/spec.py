@@ -535,7 +535,7 @@ class CamSection(_Strict):
             given = (self.motion, self.base_circle_radius, self.eccentric, self.profile_file,
                      self.drawing)
             if sum(v is not None for v in given) > 1:
-                raise ValueError("give one of drawing, profile_file, eccentric or motion with "
+                raise ValueError("give one of profile_file, drawing, eccentric or motion with "
                                  "base_circle_radius")
             if self.follower.kind == "flat" and self.follower.offset != 0.0:
                 raise ValueError("a flat follower's offset does not change its motion; leave it 0")
