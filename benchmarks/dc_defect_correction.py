@@ -370,7 +370,7 @@ def planform_sequence(exponent: str = "2", accuracy: str = "1e-3") -> None:
     from fickcam.diffusion.nonfickian import corrected_product
     from fickcam.diffusion.problem.exposure import swing
     from fickcam.diffusion.accuracy.grid_convergence import three_levels
-    from fickcam.diffusion.accuracy.error_model import LAYER_TOLERANCE
+    from fickcam.diffusion.accuracy.budget import LAYER_TOLERANCE
 
     k, accuracy = float(exponent), float(accuracy)
     geometry, d, exposure, times, law = demo_cam(k)
@@ -541,7 +541,7 @@ def nested(case: str, accuracy: str, *meshes: str) -> None:
 
 def three_levels_of(results, path, quantity, scale):
     from fickcam.diffusion.accuracy.grid_convergence import three_levels
-    from fickcam.diffusion.accuracy.error_model import LAYER_TOLERANCE
+    from fickcam.diffusion.accuracy.budget import LAYER_TOLERANCE
 
     extrapolate, error = three_levels(*(np.asarray(results[m][quantity]) for m in path))
     return extrapolate, float(f"{error / scale / (LAYER_TOLERANCE if quantity else 1.0):.2e}")

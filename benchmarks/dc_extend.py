@@ -34,7 +34,7 @@ NEW_DAYS = np.linspace(1.5, 59.0, 20)
 
 
 def distance(mean, layer, other_mean, other_layer, swing) -> np.ndarray:
-    from fickcam.diffusion.accuracy.error_model import LAYER_TOLERANCE
+    from fickcam.diffusion.accuracy.budget import LAYER_TOLERANCE
 
     return np.maximum(np.abs(mean - other_mean),
                       np.abs(layer - other_layer) / LAYER_TOLERANCE) / swing

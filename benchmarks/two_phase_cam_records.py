@@ -32,7 +32,7 @@ import numpy as np
 
 from fickcam.simulation.blas import one_blas_thread
 from fickcam.diffusion import CamPlate, Diffusivity, Disc, solve
-from fickcam.diffusion.accuracy.error_model import LAYER_TOLERANCE
+from fickcam.diffusion.accuracy.budget import LAYER_TOLERANCE
 from fickcam.diffusion.problem.exposure import swing as history_swing
 from fickcam.scene.load import load_scene
 from fickcam.simulation.simulate import ageing_times, build_parts, run, scene_environment
@@ -71,7 +71,7 @@ def fine_history(problem, divisors):
     the first (the refinement's own ``_level``, march at 1e-5)."""
     from fickcam.diffusion.nonfickian import planform_modes
     from fickcam.diffusion.forcing.clock import RescaledTime
-    from fickcam.diffusion.dispatch import read_ages
+    from fickcam.diffusion.nonfickian.two_phase_planform import read_ages
     from fickcam.diffusion.nonfickian.two_phase_modes import langmuir_history
 
     geometry, diffusivity, exposure, times, law, depth = problem
@@ -88,13 +88,13 @@ def fine_history(problem, divisors):
 
 def _first_mesh(problem):
     from fickcam.diffusion.forcing.clock import scales as scales_of
-    from fickcam.diffusion.nonfickian.planform_modes import planform_design
+    from fickcam.diffusion.nonfickian.planform_modes import first_planform_mesh
     from fickcam.diffusion.stepping.step_plans import earliest_output
 
     geometry, diffusivity, exposure, times, _, _ = problem
     scales = scales_of(geometry, diffusivity, exposure)
     t_lo = earliest_output(scales.tau_star(exposure.change_times), scales.tau_star(times))
-    design = planform_design(geometry, diffusivity.pre_exponential, 1e-3, t_lo)
+    design = first_planform_mesh(geometry, diffusivity.pre_exponential, 1e-3, t_lo)
     return design.finest, design.growth
 
 

@@ -133,16 +133,6 @@ def test_diffusion_imports_at_module_top_except_heavy_libraries():
     assert late == []
 
 
-def test_diffusion_functions_stay_short():
-    long_functions = []
-    for path in sorted((PACKAGE / "diffusion").rglob("*.py")):
-        for function in _functions(ast.parse(path.read_text())):
-            length = function.end_lineno - function.lineno + 1
-            if length > MAX_FUNCTION_LINES:
-                long_functions.append((path.name, function.name, length))
-    assert long_functions == []
-
-
 # The stages of fickcam/diffusion in the order of its data flow, lowest first: a module in
 # one stage imports only modules of its own stage and of the stages before it. The package
 # itself (``solve``, ``plan``: dispatch) sits on top of them all.
@@ -214,3 +204,73 @@ def test_fipy_is_imported_in_one_backend_module():
 def test_the_benchmarks_are_not_in_the_installed_package():
     """They read the repository's configs/ and tests/data/: they live in benchmarks/."""
     assert not list(PACKAGE.glob("bench*.py"))
+
+
+# The geometries answer what the engine asks of them (``diffusion.problem.geometry``): no
+# module switches on a geometry's class, except to refuse one it cannot take
+GEOMETRY_CLASSES = {"Sheet", "Disc", "Bar", "CamPlate", "LinkBar"}
+GEOMETRY_MODULE = PACKAGE / "diffusion" / "problem" / "geometry.py"
+
+
+def _names_in(node) -> set[str]:
+    return {n.id for n in ast.walk(node) if isinstance(n, ast.Name)} | {
+        n.attr for n in ast.walk(node) if isinstance(n, ast.Attribute)}
+
+
+def _refuses(node, parents) -> bool:
+    """An ``if not isinstance(...)`` (or ``type(...) not in``) whose body raises."""
+    parent = parents.get(node)
+    while parent is not None and not isinstance(parent, ast.If):
+        parent = parents.get(parent)
+    return parent is not None and any(isinstance(s, ast.Raise) for s in parent.body) and (
+        isinstance(parent.test, ast.UnaryOp) and isinstance(parent.test.op, ast.Not)
+        or isinstance(parent.test, ast.Compare)
+        and any(isinstance(op, ast.NotIn) for op in parent.test.ops))
+
+
+def geometry_switches(source: str) -> list[int]:
+    """Lines of ``isinstance(x, <geometry class>)`` and ``type(x) is/in <geometry class>``
+    that do not refuse a type."""
+    tree = ast.parse(source)
+    parents = {child: node for node in ast.walk(tree) for child in ast.iter_child_nodes(node)}
+    found = []
+    for node in ast.walk(tree):
+        if isinstance(node, ast.Call) and getattr(node.func, "id", "") == "isinstance":
+            checked = _names_in(node.args[1]) if len(node.args) > 1 else set()
+        elif isinstance(node, ast.Compare) and isinstance(node.left, ast.Call) and getattr(
+                node.left.func, "id", "") == "type":
+            checked = set().union(*(_names_in(c) for c in node.comparators))
+        else:
+            continue
+        if checked & GEOMETRY_CLASSES and not _refuses(node, parents):
+            found.append(node.lineno)
+    return found
+
+
+def test_the_geometry_switch_check_finds_a_switch():
+    assert geometry_switches("if isinstance(g, (Sheet, Disc)):\n    x = 1\n") == [1]
+    assert geometry_switches("y = 2 if type(g) is Bar else 3\n") == [1]
+    assert geometry_switches("if not isinstance(g, Bar):\n    raise TypeError('no')\n") == []
+    assert geometry_switches("if isinstance(g, dict):\n    x = 1\n") == []
+
+
+def test_no_module_switches_on_a_geometry_class():
+    switches = [f"{path.relative_to(PACKAGE)}:{line}"
+                for path in sorted(PACKAGE.rglob("*.py")) if path != GEOMETRY_MODULE
+                for line in geometry_switches(path.read_text())]
+    assert switches == []
+
+
+#: the two mechanism responses, being split where the mechanisms become objects: this set
+#: only shrinks (empty it when they are)
+LONG_FOR_NOW = {("cam/model.py", "cam_response"), ("linkage/model.py", "fourbar_response")}
+
+
+def test_functions_stay_short_everywhere():
+    long_functions = []
+    for path in sorted(PACKAGE.rglob("*.py")):
+        for function in _functions(ast.parse(path.read_text())):
+            length = function.end_lineno - function.lineno + 1
+            if length > MAX_FUNCTION_LINES:
+                long_functions.append((str(path.relative_to(PACKAGE)), function.name, length))
+    assert [f for f in long_functions if f[:2] not in LONG_FOR_NOW] == []

@@ -221,10 +221,11 @@ def test_working_profile_is_a_closed_counter_clockwise_outline_that_swells(kind)
 def test_profile_csv_round_trips(tmp_path):
     from fickcam.cam import write_profile_csv
 
-    path = write_profile_csv(tmp_path / "profile.csv", design("flat"), 0.01, 0.01, n=360)
+    x, y = working_profile(design("flat"), 0.01, 0.01, n=360)
+    path = write_profile_csv(tmp_path / "profile.csv", x, y)
     table = np.loadtxt(path, delimiter=",", skiprows=1)
     assert table.shape == (360, 2)
-    assert np.allclose(table, np.c_[working_profile(design("flat"), 0.01, 0.01, n=360)], rtol=1e-8)
+    assert np.allclose(table * 1e-3, np.c_[x, y], rtol=0, atol=1e-12)  # mm to 9 decimals
 
 
 def test_a_spring_without_preload_holds_the_follower_where_the_cam_pushes_it():

@@ -94,10 +94,10 @@ def test_a_bare_angle_is_radians_as_in_a_scene(eccentric_result, capsys, option)
     (["size", str(DEMO), "--pressure-angle", "30 kg"], "--pressure-angle 30 kg: '30 kg' has the "
      "wrong dimension: expected an angle (e.g. '75 deg')"),
     (["run", str(DEMO), "--accuracy", "0.5"],
-     "--accuracy 0.5: input should be less than or equal to 0.1"),
+     "--accuracy 0.5: must lie in (0, 0.1]"),
     (["run", str(DEMO), "--accuracy", "x"], "--accuracy x: input should be a valid number"),
     (["compensate", str(DEMO), "--at", "30 d", "--accuracy", "0"],
-     "--accuracy 0: input should be greater than 0"),
+     "--accuracy 0: must lie in (0, 0.1]"),
     (["fit", "coupons.csv", "--matrix", "8551-7", "--fiber", "T300", "--fiber-volume-fraction",
       "60", "-o", "fitted.yaml"], "--fiber-volume-fraction 60: must not exceed 1"),
 ])

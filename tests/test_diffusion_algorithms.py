@@ -12,8 +12,8 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from fickcam.diffusion import Diffusivity, Exposure
-from fickcam.diffusion.planform.polygon import (CORNER_TURN, corners_of, inside_polygon,
-                                                polygon_segments, triangle_areas)
+from fickcam.diffusion.planform.polygon import CORNER_TURN, corners_of, triangle_areas
+from fickcam.diffusion.problem.curves import inside_polygon, polygon_segments
 from fickcam.diffusion.problem import scaling
 
 

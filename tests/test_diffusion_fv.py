@@ -164,7 +164,7 @@ def test_backward_euler_bounded_where_crank_nicolson_overshoots():
 
 def test_link_outline_excludes_holes_and_includes_bosses():
     link = LinkBar(0.1, 0.02, 0.01, 0.015, 0.005)
-    inside = outline.inside_part(link, np.array([0.0, 0.0, 0.05, -0.012, 0.05]),
+    inside = link.inside(np.array([0.0, 0.0, 0.05, -0.012, 0.05]),
                               np.array([0.0, 0.008, 0.0, 0.0, 0.012]))
     assert inside.tolist() == [False, True, True, True, False]
 

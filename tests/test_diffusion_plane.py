@@ -279,7 +279,7 @@ def test_graded_mesh_keeps_the_outline_and_well_shaped_triangles():
     for part in (rectangle, link):
         mesh = triangles.triangulate(part, 5e-4, growth=0.2)
         loops = [polygon.resample_loop(loop, 5e-4)
-                 for loop in outline.boundary_loops(part, 5e-4)[0]]
+                 for loop in part.boundary_loops(5e-4)[0]]
         enclosed = sum(0.5 * np.sum(p[:, 0] * np.roll(p[:, 1], -1) - np.roll(p[:, 0], -1) * p[:, 1])
                        for p in loops)
         area = polygon.triangle_areas(mesh.points, mesh.triangles).sum()

@@ -57,3 +57,19 @@ def test_concentration_dependent_d_takes_fick_where_f_is_one_number_else_the_pro
 def test_a_route_no_law_has_says_why_in_one_line():
     with pytest.raises(InputError, match="plane has no concentration-dependent form"):
         route_of(problem(PLATE, ConcentrationDependent(1.5, exponent=2.0), model="plane"))
+
+
+def test_the_model_names_are_the_registrys():
+    # the scene checks ``diffusion.model`` against the light list, the solve uses the registry
+    from fickcam.diffusion.dispatch import FICK_MODELS
+    from fickcam.diffusion.problem.definition import MODELS
+
+    assert MODELS == ("auto", *FICK_MODELS)
+
+
+@pytest.mark.parametrize("accuracy", [0.0, -1e-3, 0.5, 1.0, float("nan")])
+def test_an_accuracy_outside_the_range_is_refused_in_one_line(accuracy):
+    from fickcam.diffusion import solve_problem
+
+    with pytest.raises(InputError, match=r"^diffusion.accuracy .*must lie in \(0, 0.1\]"):
+        solve_problem(problem(Sheet(1e-3), accuracy=accuracy))

@@ -10,7 +10,7 @@ import pytest
 
 from fickcam.diffusion import (Bar, CamPlate, Diffusivity, DiffusionProblem, Exposure, LinkBar, Plan,
                               plan, solve)
-from fickcam.diffusion.accuracy import error_model
+from fickcam.diffusion.accuracy import budget
 from fickcam.diffusion.models import analytic
 from fickcam.diffusion.models.finite_volume import solve_direct
 from fickcam.diffusion.operators import prisms
@@ -228,7 +228,7 @@ def test_link_plane_model_matches_the_3d_reference_through_a_step_up_and_down(d,
     result = solve(LINK, Diffusivity(d, 0.0), UP_DOWN, TIMES, accuracy=accuracy)
     assert result.model == "plane"
     assert relative(result.mean, mean) <= accuracy
-    assert relative(result.surface, layer) <= error_model.LAYER_TOLERANCE * accuracy
+    assert relative(result.surface, layer) <= budget.LAYER_TOLERANCE * accuracy
 
 
 def test_link_prism_outline_is_the_true_outline_to_a_few_parts_in_ten_thousand():

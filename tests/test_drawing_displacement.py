@@ -11,7 +11,7 @@ ezdxf = pytest.importorskip("ezdxf")
 from fickcam.drawing.dxfread import read_drawing  # noqa: E402
 from fickcam.drawing.planform import pin_holes  # noqa: E402
 from fickcam.elastic.displacement import free_displacements, pin_distance  # noqa: E402
-from fickcam.elastic.fem import reduced_stiffness  # noqa: E402
+from fickcam.elastic.fem import stiffness_matrix  # noqa: E402
 
 TOL = 2e-6  # m, the chord tolerance
 LENGTH, BOSS, PIN, WEB, FILLET = 60.0, 9.0, 3.0, 2.5, 3.0  # mm: a dog-bone link
@@ -58,7 +58,7 @@ def test_a_uniform_free_strain_moves_the_pins_to_length_times_one_plus_strain(li
     eps = 0.0123
     (isotropic,), (orthotropic,) = (
         free_displacements(link, [lambda x, y: np.full(x.shape, eps)], 1.5e-3, order, stiffness=q)
-        for q in (None, reduced_stiffness(140e9, 9e9, 5e9, 0.3)))
+        for q in (None, stiffness_matrix(140e9, 9e9, 5e9, 0.3)))
     holes = pin_holes(link)
     length = pin_distance(free_displacements(link, [lambda x, y: 0 * x], 1.5e-3, order)[0], holes)
     assert length == pytest.approx(LENGTH * 1e-3, abs=1e-15)

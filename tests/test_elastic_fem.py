@@ -8,7 +8,7 @@ import pytest
 from scipy.integrate import cumulative_trapezoid
 from scipy.special import j0, j1, jn_zeros
 
-from fickcam.elastic.fem import PlaneElasticity, isotropic_stiffness, reduced_stiffness
+from fickcam.elastic.fem import PlaneElasticity, isotropic_stiffness, stiffness_matrix
 from fickcam.elastic.mesh import disc_plate, planform_mesh
 
 
@@ -62,7 +62,7 @@ def test_uniformly_loaded_orthotropic_plate_strains_by_the_ply_compliance():
     S = Q^-1, S11 = 1/E1, S12 = -nu12/E1, S22 = 1/E2, S66 = 1/G12 (Jones 1999 eq. 2.58).
     The linear displacement lies in the element space, so only round-off remains."""
     e1, e2, g12, nu12 = 138e9, 9e9, 6.9e9, 0.3
-    q = reduced_stiffness(e1, e2, g12, nu12)
+    q = stiffness_matrix(e1, e2, g12, nu12)
     points, triangles = _square(6, 0.05)
     pe = PlaneElasticity(points, triangles, 0.003, order=1)
     solve = pe.factorise(pe.stiffness(q), pe.statically_determinate_support())
@@ -155,7 +155,7 @@ def test_disc_with_cylinder_moisture_profile_gives_thin_disc_thermal_stress():
 def test_uniform_moisture_gives_free_swelling_and_no_stress():
     """A uniform free strain in a free orthotropic plate: u = eps* x (rigid motion removed),
     sigma = 0 (Timoshenko & Goodier 1970 sec. 150)."""
-    q = reduced_stiffness(138e9, 9e9, 6.9e9, 0.3)
+    q = stiffness_matrix(138e9, 9e9, 6.9e9, 0.3)
     mesh = planform_mesh(disc_plate(0.02, 0.004, 0.005), 2e-3)
     pe = PlaneElasticity(mesh.points, mesh.triangles, 0.004, order=2)
     free = (2e-4, 6e-3, 0.0)

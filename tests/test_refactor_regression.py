@@ -14,7 +14,7 @@ import numpy as np
 import pytest
 
 from fickcam.diffusion import Bar, CamPlate, Diffusivity, Disc, Exposure, LinkBar, Sheet, solve
-from fickcam.diffusion.accuracy.error_model import LAYER_TOLERANCE
+from fickcam.diffusion.accuracy.budget import LAYER_TOLERANCE
 
 REFERENCE = json.loads((Path(__file__).parent / "data" / "refactor_reference.json").read_text())
 SHAPES = {"Sheet": Sheet, "Disc": Disc, "Bar": Bar, "CamPlate": CamPlate, "LinkBar": LinkBar}

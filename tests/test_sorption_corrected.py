@@ -13,7 +13,7 @@ from hypothesis import given, settings, strategies as st
 
 from fickcam.diffusion import (Bar, CamPlate, DiffusionProblem, Diffusivity, Exposure, plan,
                                solve)
-from fickcam.diffusion.accuracy.error_model import LAYER_TOLERANCE
+from fickcam.diffusion.accuracy.budget import LAYER_TOLERANCE
 from fickcam.diffusion.accuracy.grid_convergence import three_levels
 from fickcam.diffusion.nonfickian.corrected_pieces import as_prism, bar_coordinates
 from fickcam.diffusion.nonfickian.corrected_product import gap, solve_corrected

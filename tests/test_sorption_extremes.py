@@ -111,7 +111,7 @@ def test_corrected_plate_extremes_stay_bounded_and_agree_with_the_3d_cells(expon
     MESH_LEVELS[-1]: those cells marched alone, uncorrected). Few examples: each runs about
     20 swept marches of 300-600 steps; the explicit one is the extreme skin (k = 5, drying)."""
     from fickcam.diffusion.nonfickian.corrected_product import MESH_LEVELS, solve_corrected
-    from fickcam.diffusion.accuracy.error_model import LAYER_TOLERANCE
+    from fickcam.diffusion.accuracy.budget import LAYER_TOLERANCE
 
     initial, wet, late = PLATE_HISTORIES[history]
     end = PLATE_TIMES[-1]

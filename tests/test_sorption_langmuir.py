@@ -5,7 +5,7 @@ import numpy as np
 import pytest
 
 from fickcam.diffusion import plan, solve
-from fickcam.diffusion.accuracy.error_model import LAYER_TOLERANCE
+from fickcam.diffusion.accuracy.budget import LAYER_TOLERANCE
 from fickcam.diffusion.exact.two_phase import (carter_kibler_approximation, exchange_propagator,
                                                two_phase_sheet_uptake)
 from fickcam.diffusion.nonfickian.planform_modes import (lanczos_spectrum, planform_operator,

@@ -15,7 +15,7 @@ from hypothesis import strategies as st
 from fickcam.diffusion import (Bar, CamPlate, Diffusivity, Exposure, Sheet, SolverSettings, plan,
                                solve)
 from fickcam.diffusion.accuracy import error_model
-from fickcam.diffusion.accuracy.error_model import LAYER_TOLERANCE
+from fickcam.diffusion.accuracy.budget import LAYER_TOLERANCE
 from fickcam.diffusion.forcing.clock import scales as scales_of
 from fickcam.diffusion.models.finite_volume import discretise, step_plan
 from fickcam.diffusion.nonfickian import concentration_dependent

@@ -12,7 +12,7 @@ import pytest
 from fickcam.simulation.blas import one_blas_thread
 from fickcam.cli.checkout import benchmark
 from fickcam.diffusion import CamPlate, Diffusivity, Disc, SolverSettings, plan, solve
-from fickcam.diffusion.accuracy.error_model import LAYER_TOLERANCE
+from fickcam.diffusion.accuracy.budget import LAYER_TOLERANCE
 from fickcam.diffusion.exact.modes import cylinder_factor
 from fickcam.diffusion.nonfickian import planform_modes
 from fickcam.diffusion.nonfickian.planform_modes import (mesh_error, error_coefficients,

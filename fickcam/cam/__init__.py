@@ -28,8 +28,9 @@ Yadav, S., Karmarkar, V., Surti, J., Mistry, S. & Vardhe, G. (2017). To study we
 """
 from .ageing import cam_state, scene_parts, scene_response
 from .design import CamDesign, CamState, design_from_scene
-from .kinematics import working_profile, write_profile_csv
+from .kinematics import working_profile
 from .model import cam_response
+from .profile import write_profile_csv
 from .spec import CamSection
 
 __all__ = ["CamDesign", "CamSection", "CamState", "cam_response", "cam_state", "design_from_scene",

@@ -391,31 +391,6 @@ def cam_frame_point(design: CamDesign, theta, x, y):
     return (-px if design.clockwise else px), py
 
 
-def write_profile_csv(path, design: CamDesign, strain_x: float = 0.0, strain_y: float = 0.0,
-                      n: int = 720):
-    """Write the working profile (cam frame, counter-clockwise) as CSV columns x_m, y_m,
-    through a temporary file renamed into place.
-
-    Parameters
-    ----------
-    path : str or os.PathLike
-        The CSV file to write.
-    design, strain_x, strain_y, n
-        The outline, as :func:`working_profile` takes it (strains [-]).
-
-    Returns
-    -------
-    str or os.PathLike
-        ``path``.
-    """
-    from ..results.store import replaced_atomically
-
-    x, y = working_profile(design, strain_x, strain_y, n)
-    with replaced_atomically(path) as tmp:
-        np.savetxt(tmp, np.c_[x, y], delimiter=",", header="x_m,y_m", comments="", fmt="%.9e")
-    return path
-
-
 def _design_lift(design: CamDesign) -> float:
     level, top = 0.0, 0.0
     for s in design.segments:

@@ -156,6 +156,12 @@ def _reference_commands(sub) -> None:
 
 def _design_commands(sub) -> None:
     """compensate, profile, fit and size: dimensions and materials to make."""
+    _compensate_command(sub)
+    _making_commands(sub)
+
+
+def _compensate_command(sub) -> None:
+    """compensate: the dry dimensions to make."""
     compensate = _command(
         sub, "compensate", "the dimensions to make so that the mechanism holds its design",
         "Give the dry dimensions at the reference temperature to make so that the mechanism has "
@@ -193,6 +199,9 @@ def _design_commands(sub) -> None:
     compensate.add_argument("--plot", metavar="PNG", help="also draw the drift of every "
                             "deviation limit against its band, as designed and compensated")
 
+
+def _making_commands(sub) -> None:
+    """profile, fit and size: a profile for manufacture, a material, a base circle."""
     profile = _command(sub, "profile", "a cam's dry working profile for manufacture (CSV or DXF)",
                        "Write the cam's dry working profile at the reference temperature, in mm, "
                        "as CSV (x [mm], y [mm]) or as a closed DXF polyline, by the output's suffix.",

@@ -19,16 +19,41 @@ before it (tests/test_architecture.py holds the order):
 
 FiPy is imported inside the backend's functions only, so importing this package stays
 light.
-"""
-from .accuracy.error_model import CellCaps
-from .dispatch import MODELS, SolverSettings, plan, plan_problem, refuse, solve, solve_problem
-from .problem.cache import RunCache, run_cache
-from .problem.definition import DiffusionProblem
-from .problem.exposure import GAS_CONSTANT, Diffusivity, Exposure
-from .problem.geometry import Bar, CamPlate, Disc, Geometry, LinkBar, Sheet
-from .problem.results import DiffusionResult, Plan
 
-__all__ = ["GAS_CONSTANT", "Diffusivity", "Exposure", "Bar", "CamPlate", "Disc",
-           "Geometry", "LinkBar", "Sheet", "MODELS", "DiffusionResult", "Plan", "SolverSettings",
-           "CellCaps", "RunCache", "run_cache", "DiffusionProblem", "plan", "plan_problem", "refuse",
-           "solve", "solve_problem"]
+Importing this package loads none of it: the public names below are looked up in their
+modules on first use (PEP 562), so a module that needs one light part (the model names,
+the accuracy check) does not load the engine with it.
+"""
+from __future__ import annotations
+
+import importlib
+
+#: public name -> the module (relative to this package) that defines it
+_PUBLIC = {
+    "CellCaps": ".accuracy.error_model",
+    "MODELS": ".problem.definition",
+    "SolverSettings": ".dispatch", "plan": ".dispatch", "plan_problem": ".dispatch",
+    "refuse": ".dispatch", "solve": ".dispatch", "solve_problem": ".dispatch",
+    "RunCache": ".problem.cache", "run_cache": ".problem.cache",
+    "DiffusionProblem": ".problem.definition",
+    "GAS_CONSTANT": ".problem.exposure", "Diffusivity": ".problem.exposure",
+    "Exposure": ".problem.exposure",
+    "Bar": ".problem.geometry", "CamPlate": ".problem.geometry", "Disc": ".problem.geometry",
+    "Geometry": ".problem.geometry", "LinkBar": ".problem.geometry", "Sheet": ".problem.geometry",
+    "DiffusionResult": ".problem.results", "Plan": ".problem.results",
+}
+
+__all__ = sorted(_PUBLIC)
+
+
+def __getattr__(name: str):
+    """A public name, imported from its module on first use (PEP 562)."""
+    if name not in _PUBLIC:
+        raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+    value = getattr(importlib.import_module(_PUBLIC[name], __name__), name)
+    globals()[name] = value
+    return value
+
+
+def __dir__() -> list[str]:
+    return sorted(set(globals()) | set(_PUBLIC))

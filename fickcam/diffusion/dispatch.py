@@ -30,11 +30,8 @@ from typing import Callable
 import numpy as np
 
 from ..errors import InputError
-from .accuracy.error_model import (ANALYTIC_ERROR, LAYER_TOLERANCE, MAX_CELLS, PLANFORM_SHARE,
-                                   CellCaps)
-from .exact.separable import exact_available
-from .forcing.clock import RescaledTime
-from .forcing.clock import scales as scales_of
+from .accuracy.budget import check_accuracy
+from .accuracy.error_model import ANALYTIC_ERROR, MAX_CELLS, CellCaps
 from .forcing.record import is_long_record
 from .models.analytic import solve_analytic
 from .models.finite_volume import plan_direct, solve_direct
@@ -42,19 +39,16 @@ from .models.plane import PanelExtension, plan_plane, solve_plane
 from .nonfickian.concentration_dependent import (SWEEPS, Sweeps, nonlinear_plan, solve_nonlinear,
                                                  spread)
 from .nonfickian.corrected_product import plan_corrected, solve_corrected
-from .nonfickian.planform_modes import (REFINEMENT, PlanformMeasure, RefinedPlanform,
-                                        Refinement, lanczos_spectrum, planform_design, planform_operator,
-                                        planform_source, refined_planform)
+from .nonfickian.planform_modes import REFINEMENT, Refinement
 from .nonfickian.two_phase_mesh import two_phase_marcher
-from .nonfickian.two_phase_modes import langmuir_history
+from .nonfickian.two_phase_planform import langmuir_modes, plan_two_phase_planform
 from .problem.cache import RunCache, run_cache
-from .problem.definition import DiffusionProblem
-from .problem.exposure import Diffusivity, Exposure, swing
-from .problem.geometry import LAYER_DEPTH, Bar, CamPlate, Disc, LinkBar, Sheet
+from .problem.definition import MODELS, DiffusionProblem
+from .problem.exposure import Diffusivity, Exposure
+from .problem.geometry import LAYER_DEPTH
 from .problem.results import DiffusionResult, Plan
 from .problem.sorption import describe, is_langmuir, is_nonlinear
 from .stepping.dense_output import held_to_plan
-from .stepping.step_plans import earliest_output
 
 log = logging.getLogger(__name__)
 
@@ -80,8 +74,9 @@ class FickModel:
     ----------
     name : str
         The model's name, as ``diffusion.model`` spells it.
-    parts : tuple of type
-        The geometry classes it applies to (``Sheet``, ``Disc``, ...).
+    grids : tuple of str
+        The geometries it applies to, by the grid each names (``Geometry.grid``: ``sheet``,
+        ``disc``, ``box``, ``prisms``).
     plan : callable
         ``plan(problem, caps, cache) -> Plan``: cells, steps and error estimate [-].
     solve : callable
@@ -91,23 +86,19 @@ class FickModel:
     """
 
     name: str
-    parts: tuple[type, ...]
+    grids: tuple[str, ...]
     plan: Callable
     solve: Callable
     exact: bool = False   # only where a separable exact solution exists
 
     def applies(self, geometry) -> bool:
-        return isinstance(geometry, self.parts)
+        return geometry.grid in self.grids
 
     def refusal(self, geometry) -> str | None:
         """Why this model cannot solve ``geometry`` (None where it can)."""
         if not self.applies(geometry):
             return f"does not apply to a {type(geometry).__name__}"
-        if self.exact and not exact_available(geometry):
-            if isinstance(geometry, Disc) and geometry.inner_radius > 0:
-                return "an annulus has no product solution (use axisymmetric)"
-            return "no separable exact solution (use plane)"
-        return None
+        return geometry.exact_refusal() if self.exact else None
 
 
 def _plan_analytic(problem: DiffusionProblem, caps, cache) -> Plan:
@@ -126,27 +117,26 @@ def _solve_analytic(problem: DiffusionProblem, chosen: Plan, cache) -> Diffusion
     return solve_analytic(problem, chosen, record, cache)
 
 
-def _finite_volume(name: str, parts: tuple[type, ...]) -> FickModel:
-    """A finite-volume model (``models.finite_volume``) of these parts."""
+def _finite_volume(name: str, grids: tuple[str, ...]) -> FickModel:
+    """A finite-volume model (``models.finite_volume``) of the parts on these grids."""
     def planned(problem: DiffusionProblem, caps, cache) -> Plan:
         return plan_direct(problem, name, caps=caps, cache=cache)
 
     def solved(problem: DiffusionProblem, chosen: Plan, cache) -> DiffusionResult:
         return solve_direct(problem, chosen, cache=cache)
-    return FickModel(name, parts, planned, solved)
+    return FickModel(name, grids, planned, solved)
 
 
 # The Fickian models, in the order ``diffusion.model`` lists them; ``auto`` takes the exact
 # series where the part has one, else the first numerical model that applies (``solid``
 # CamPlate / LinkBar: prisms of admissible cells, the check of ``plane``).
 FICK_MODELS = {model.name: model for model in (
-    FickModel("analytic", (Sheet, Bar, Disc), _plan_analytic, _solve_analytic, exact=True),
-    _finite_volume("slab", (Sheet,)),
-    _finite_volume("axisymmetric", (Disc,)),
-    FickModel("plane", (CamPlate, LinkBar), plan_plane, solve_plane),
-    _finite_volume("solid", (Bar, CamPlate, LinkBar)))}
-MODELS = ("auto", *FICK_MODELS)
-PARTS = (Sheet, Disc, Bar, CamPlate, LinkBar)
+    FickModel("analytic", ("sheet", "box", "disc"), _plan_analytic, _solve_analytic, exact=True),
+    _finite_volume("slab", ("sheet",)),
+    _finite_volume("axisymmetric", ("disc",)),
+    FickModel("plane", ("prisms",), plan_plane, solve_plane),
+    _finite_volume("solid", ("box", "prisms")))}
+GRIDS = ("sheet", "disc", "box", "prisms")  # every grid some model builds
 
 
 def numerical_model(geometry) -> str:
@@ -170,10 +160,9 @@ def _validate(problem: DiffusionProblem) -> None:
     geometry, model, accuracy = problem.geometry, problem.model, problem.accuracy
     if model not in MODELS:
         raise InputError(f"diffusion.model {model!r}: one of {', '.join(MODELS)}")
-    if type(geometry) not in PARTS:
+    if getattr(geometry, "grid", None) not in GRIDS:
         raise InputError(f"unsupported diffusion geometry {type(geometry).__name__}")
-    if not (0 < accuracy < 1):
-        raise InputError(f"diffusion.accuracy {accuracy!r}: must lie in (0, 1)")
+    check_accuracy(accuracy, "diffusion.accuracy")
     if model != "auto" and not FICK_MODELS[model].applies(geometry):
         allowed = sorted(name for name, m in FICK_MODELS.items() if m.applies(geometry))
         raise InputError(f"diffusion.model {model!r} does not apply to a "
@@ -250,7 +239,7 @@ def plan(geometry, diffusivity: Diffusivity, exposure: Exposure, times: np.ndarr
     ------
     fickcam.errors.InputError
         When the model is unknown or does not apply to the part, the geometry is not
-        one of the five, or the accuracy is outside (0, 1).
+        one of the five, or the accuracy is outside (0, 0.1].
     """
     return plan_problem(DiffusionProblem(geometry, diffusivity, exposure, times, accuracy, model,
                                          surface_layer_depth, sorption=sorption),
@@ -260,8 +249,9 @@ def plan(geometry, diffusivity: Diffusivity, exposure: Exposure, times: np.ndarr
 def refuse(problem: DiffusionProblem) -> None:
     """Refuse, before any work, a problem that no model can plan: an unknown model, a
     model that does not apply to the part's shape or has no solution for it, an accuracy
-    outside (0, 1), no route of its sorption law. A run checks every part so before it
-    plans or solves the first (a refusal costs nothing then).
+    outside (0, 0.1] (``accuracy.budget.check_accuracy``), no route of its sorption law. A
+    run checks every part so before it plans or solves the first (a refusal costs nothing
+    then).
 
     Parameters
     ----------
@@ -301,58 +291,6 @@ def plan_problem(problem: DiffusionProblem, settings: SolverSettings = SETTINGS,
     return route_of(problem).plan(problem, settings, run_cache(cache))
 
 
-def _plan_planform(problem: DiffusionProblem, refinement: Refinement, cache: RunCache) -> Plan:
-    """The planform mesh the solve will use: the first mesh from the error model, refined
-    from the two-phase histories it measures (``refined``, kept for the solve, so that
-    ``fickcam check`` shows the refined mesh and a run pays for it once)."""
-    design, refined = _planform_refinement(problem, refinement, cache)
-    _, estimate = refined.result
-    capped = ("" if refined.error <= PLANFORM_SHARE * problem.accuracy else
-              f"; capped at {refinement.cap} cells: error above the requested accuracy")
-    return Plan("plane", refined.cells, 0, f"{describe(problem.sorption)}: the planform's FiPy "
-                f"operator (first mesh {design.note}, about {int(np.prod(design.cells))} cells; "
-                f"refined from the two-phase histories on {refined.levels} meshes to "
-                f"{refined.cells} cells), its decay seen by the mean and layer as a "
-                f"{refined.steps}-point shift-invert Lanczos quadrature, x the exact sheet "
-                "modes, each a 2x2 free/bound system advanced exactly through the history"
-                f"{capped}", estimate + refined.error, (refined.cells,),
-                finest=refined.finest, growth=refined.growth)
-
-
-def _planform_refinement(problem: DiffusionProblem, refinement: Refinement, cache: RunCache):
-    """(first mesh, ``_refined``) of a two-phase CamPlate or LinkBar, the refinement kept in
-    the run's ``cache``: ``plan`` and ``solve`` share it."""
-    geometry, diffusivity, exposure = problem.geometry, problem.diffusivity, problem.exposure
-    scales = scales_of(geometry, diffusivity, exposure, cache)
-    t_lo = earliest_output(scales.tau_star(exposure.change_times), scales.tau_star(problem.times))
-    design = planform_design(geometry, diffusivity.pre_exponential, problem.accuracy, t_lo)
-    key = ("two-phase planform refinement", geometry, diffusivity, exposure,
-           problem.times.tobytes(), problem.accuracy, problem.sorption,
-           problem.surface_layer_depth, design.finest, design.growth, refinement)
-    return design, cache.get(key, lambda: _refined(problem, design.finest, design.growth,
-                                                   refinement, cache))
-
-
-def _refined(problem: DiffusionProblem, finest, growth, refinement: Refinement,
-             cache: RunCache) -> RefinedPlanform:
-    """``planform_modes.refined_planform`` of the two-phase history (the march on each mesh,
-    most of whose cost is the planform operators): its mesh error is ``PLANFORM_SHARE`` of
-    the accuracy, the march the rest."""
-    geometry, diffusivity, exposure = problem.geometry, problem.diffusivity, problem.exposure
-    times, accuracy, depth = problem.times, problem.accuracy, problem.surface_layer_depth
-    share, scale = PLANFORM_SHARE * accuracy, 1.0 / max(swing(exposure), 1e-300)
-
-    def measure(source):
-        history, estimate = langmuir_history(geometry, diffusivity, problem.sorption, exposure,
-                                             times, accuracy - share, depth, source)
-        compared = [history["mean"], history["bound"], history["surface"] / LAYER_TOLERANCE]
-        return np.stack(compared) * scale, (history, estimate)
-
-    ages = read_ages(RescaledTime(diffusivity, exposure), exposure, times)
-    task = PlanformMeasure(geometry, diffusivity.pre_exponential, depth, ages, share, measure)
-    return refined_planform(task, finest, growth, refinement, cache)
-
-
 def _as_fick(call, problem: DiffusionProblem, settings: SolverSettings, cache: RunCache):
     """``call`` (plan or solve of a problem) for Fick with D f(c0): f is constant where the
     part goes."""
@@ -381,7 +319,7 @@ def solve(geometry, diffusivity: Diffusivity, exposure: Exposure, times: np.ndar
     times : array_like
         The times [s] at which the moisture is wanted, from 0 (the start of the history).
     accuracy : float
-        The relative accuracy [-], in (0, 1), a fraction of the moisture swing.
+        The relative accuracy [-], in (0, 0.1], a fraction of the moisture swing.
     model : str
         One of ``MODELS``; "auto" chooses (the exact series where it applies).
     surface_layer_depth : float
@@ -409,7 +347,7 @@ def solve(geometry, diffusivity: Diffusivity, exposure: Exposure, times: np.ndar
     ------
     fickcam.errors.InputError
         When the model is unknown or does not apply to the part, or the accuracy is
-        outside (0, 1).
+        outside (0, 0.1].
     """
     return solve_problem(DiffusionProblem(geometry, diffusivity, exposure, times, accuracy, model,
                                           surface_layer_depth, store_fields, part, sorption),
@@ -563,11 +501,12 @@ def _plan_two_phase_modes(problem, settings, cache) -> Plan:
 
 
 def _plan_two_phase_planform(problem, settings, cache) -> Plan:
-    return _plan_planform(_with_layer(problem), settings.planform, cache)
+    return plan_two_phase_planform(_with_layer(problem), settings.planform, cache)
 
 
 def _solve_two_phase_modes(problem, settings, cache) -> DiffusionResult:
-    return _langmuir_modes(problem, _planned(problem, settings, cache), settings.planform, cache)
+    return langmuir_modes(_with_layer(problem), _planned(problem, settings, cache),
+                          settings.planform, cache)
 
 
 def _plan_two_phase_mesh(problem, settings, cache) -> Plan:
@@ -584,7 +523,7 @@ def _solve_two_phase_mesh(problem, settings, cache) -> DiffusionResult:
 # Concentration-dependent D: Fick with D f where f is one number, the corrected product
 # (auto on a Bar, CamPlate or LinkBar), else the part's own mesh swept per step
 def _prism_under_auto(problem: DiffusionProblem) -> str | None:
-    if problem.model != "auto" or not isinstance(problem.geometry, (Bar, CamPlate, LinkBar)):
+    if problem.model != "auto" or not problem.geometry.mirror_axes:
         return "auto on a Bar, CamPlate or LinkBar only"
     return None
 
@@ -602,7 +541,7 @@ def _corrected_refusal(problem: DiffusionProblem) -> str | None:
     """The D(c) sheet x planform corrected on coarse 3-D cells (``corrected_product``) is far
     cheaper than the 3-D cells alone at the same accuracy; for a Bar (the prism of its
     rectangular section) from ``BAR_CORRECTED_FROM`` down, above it its octant's cells."""
-    if isinstance(problem.geometry, Bar) and problem.accuracy > BAR_CORRECTED_FROM:
+    if problem.geometry.grid == "box" and problem.accuracy > BAR_CORRECTED_FROM:
         return f"a Bar's octant is cheaper above accuracy {BAR_CORRECTED_FROM:g}"
     return _prism_under_auto(problem)
 
@@ -630,14 +569,13 @@ def _solve_corrected(problem, settings, cache) -> DiffusionResult:
 def _swept_mesh(geometry, model: str) -> str:
     """The D(c) sweeps' mesh: the slab (Sheet), the (r, z) grid (Disc), 3-D cells cut at
     the mirror planes (Bar, CamPlate, LinkBar: ``symmetry_cuts``)."""
-    if isinstance(geometry, (Bar, CamPlate, LinkBar)):
+    if geometry.mirror_axes:
         return "solid"
     return numerical_model(geometry) if model in ("auto", "analytic") else model
 
 
-MIRRORS = {Bar: "; solved on one octant (mirror planes)",
-           CamPlate: "; solved on half the thickness (mid-plane mirror)",
-           LinkBar: "; solved on half the thickness (mid-plane mirror)"}
+MIRRORS = {(0, 1, 2): "; solved on one octant (mirror planes)",  # by ``Geometry.mirror_axes``
+           (1,): "; solved on half the thickness (mid-plane mirror)"}
 
 
 def _plan_swept(problem, settings, cache) -> Plan:
@@ -649,7 +587,7 @@ def _plan_swept(problem, settings, cache) -> Plan:
                                      chosen, mirror_cut, settings.cells, cache),
         problem.diffusivity, problem.sorption, problem.exposure, problem.times, problem.accuracy)
     return replace(direct, reason=f"{describe(problem.sorption)}; {direct.reason}"
-                                  f"{MIRRORS.get(type(problem.geometry), '')}")
+                                  f"{MIRRORS.get(problem.geometry.mirror_axes, '')}")
 
 
 def _solve_swept(problem, settings, cache) -> DiffusionResult:
@@ -692,70 +630,3 @@ ROUTES = {
         Route("corrected product", _corrected_refusal, _plan_corrected, _solve_corrected),
         Route("swept mesh", _swept_refusal, _plan_swept, _solve_swept)),
 }
-
-
-def _langmuir_modes(problem: DiffusionProblem, chosen: Plan, refinement: Refinement,
-                    cache: RunCache):
-    """The exact two-phase modal march; for a CamPlate or LinkBar on its planform's
-    quadrature (``planform_modes``), the histories of the plan's refined mesh (``_refined``,
-    from the run's ``cache``)."""
-    problem = _with_layer(problem)
-    geometry, diffusivity, exposure = problem.geometry, problem.diffusivity, problem.exposure
-    times, accuracy, depth = problem.times, problem.accuracy, problem.surface_layer_depth
-    if chosen.model != "plane":
-        history, estimate = langmuir_history(geometry, diffusivity, problem.sorption, exposure,
-                                             times, accuracy, depth)
-        return _langmuir_result(times, history, estimate, chosen)
-    _, refined = _planform_refinement(problem, refinement, cache)
-    history, _ = refined.result
-    stored = _langmuir_result(times, history, chosen.error_estimate, chosen)
-    source = planform_source(geometry, diffusivity.pre_exponential, lanczos_spectrum(
-        planform_operator(geometry, diffusivity.pre_exponential, depth, refined.finest,
-                          refined.growth, cache), refined.steps))
-
-    def extend(at) -> DiffusionResult:
-        """The limit search's extra times on this refined mesh (no new refinement): the
-        march through the stored and new times together, the new rows kept."""
-        new = np.setdiff1d(np.asarray(at, float), times)
-        both = np.union1d(times, new)
-        extra, _ = langmuir_history(geometry, diffusivity, problem.sorption, exposure, both,
-                                    (1.0 - PLANFORM_SHARE) * accuracy, depth, source)
-        rows = np.searchsorted(both, new)
-        return stored.merged(new, extra["mean"][rows], extra["surface"][rows],
-                             extra["bound"][rows])
-    return replace(stored, extend=extend)
-
-
-def _langmuir_result(times, history, estimate, chosen) -> DiffusionResult:
-    """The result of a two-phase modal history (a planform's: read-only, kept in the run's
-    cache with its refinement for the next plan and solve)."""
-    return DiffusionResult(times, history["mean"], history["surface"], chosen.model,
-                           chosen.cells, 0, estimate, chosen.reason, bound=history["bound"])
-
-
-def read_ages(clock, exposure, times, most: int = 256) -> np.ndarray:
-    """Rescaled ages (s) the outputs read after each change of the exposure (at most
-    ``most``, spread over their range, the least and largest kept).
-
-    Parameters
-    ----------
-    clock : callable
-        Wall time [s] -> rescaled time [s] (the Arrhenius-weighted clock of the exposure).
-    exposure : Exposure
-        The surface history; its ``change_times`` [s] start each age.
-    times : array_like
-        The output times [s].
-    most : int
-        The most ages returned [-].
-
-    Returns
-    -------
-    numpy.ndarray
-        The sorted, distinct, positive rescaled ages [s] of every output after every change.
-    """
-    changes = clock(np.asarray(exposure.change_times, float))
-    ages = np.subtract.outer(clock(np.asarray(times, float)), changes).ravel()
-    ages = np.unique(ages[ages > 0])
-    if ages.size > most:
-        ages = ages[np.unique(np.linspace(0, ages.size - 1, most).astype(int))]
-    return ages

@@ -20,7 +20,7 @@ from ..messages import note
 from ..mechanisms.response import Response
 from .contact import (cam_plate_model, contact_response, follower_shift, hertz_half_width,
                       lift_error)
-from .fem import reduced_stiffness
+from .fem import stiffness_matrix
 
 log = logging.getLogger(__name__)
 
@@ -33,8 +33,8 @@ def _ply_stiffness(state: dict, k: int, prefix: str = "") -> np.ndarray:
     (``prefix`` 'surface_': the wet contact skin)."""
     def at(name):
         return float(np.asarray(state[prefix + name])[k])
-    return reduced_stiffness(at("longitudinal_modulus"), at("transverse_modulus"),
-                             at("shear_modulus"), at("poisson_ratio"))
+    return stiffness_matrix(at("longitudinal_modulus"), at("transverse_modulus"),
+                            at("shear_modulus"), at("poisson_ratio"))
 
 
 def _cam_plate(design):

@@ -32,6 +32,7 @@ from scipy.sparse.linalg import splu
 import skfem
 from skfem.helpers import sym_grad
 
+from ..materials.micromechanics import reduced_stiffness
 from ..messages import quieter
 
 
@@ -46,9 +47,10 @@ def _quiet_skfem(method):
     return quiet
 
 
-def reduced_stiffness(e1, e2, g12, nu12) -> np.ndarray:
-    """Plane-stress Q (3 x 3, Voigt xx, yy, xy) of an orthotropic ply, axis 1 = x
-    (Jones 1999 eq. 2.61); arrays broadcast (shape (3, 3, ...)).
+def stiffness_matrix(e1, e2, g12, nu12) -> np.ndarray:
+    """Plane-stress Q (3 x 3, Voigt xx, yy, xy) of an orthotropic ply, axis 1 = x: the
+    reduced stiffnesses (``materials.micromechanics.reduced_stiffness``, Jones 1999 eq.
+    2.61) as a matrix; arrays broadcast (shape (3, 3, ...)).
 
     Parameters
     ----------
@@ -63,19 +65,12 @@ def reduced_stiffness(e1, e2, g12, nu12) -> np.ndarray:
     -------
     numpy.ndarray
         Q [Pa], shape (3, 3, ...).
-
-    References
-    ----------
-    R. M. Jones, *Mechanics of Composite Materials*, 2nd ed., Taylor & Francis, 1999,
-    eq. 2.61.
     """
-    e1, e2, g12, nu12 = (np.asarray(v, float) for v in (e1, e2, g12, nu12))
-    nu21 = nu12 * e2 / e1
-    d = 1.0 - nu12 * nu21
-    zero = 0.0 * e1
-    return np.array([[e1 / d, nu12 * e2 / d, zero],
-                     [nu12 * e2 / d, e2 / d, zero],
-                     [zero, zero, g12 + zero]])
+    q11, q22, q12, q66 = reduced_stiffness(*(np.asarray(v, float) for v in (e1, e2, g12, nu12)))
+    zero = 0.0 * q11
+    return np.array([[q11, q12, zero],
+                     [q12, q22, zero],
+                     [zero, zero, q66 + zero]])
 
 
 def isotropic_stiffness(e, nu) -> np.ndarray:
@@ -93,7 +88,8 @@ def isotropic_stiffness(e, nu) -> np.ndarray:
     numpy.ndarray
         Q [Pa], shape (3, 3, ...).
     """
-    return reduced_stiffness(e, e, np.asarray(e, float) / (2.0 * (1.0 + np.asarray(nu, float))), nu)
+    shear = np.asarray(e, float) / (2.0 * (1.0 + np.asarray(nu, float)))
+    return stiffness_matrix(e, e, shear, nu)
 
 
 def _voigt(eps) -> tuple:

@@ -103,7 +103,8 @@ def drawn_mesh(loops, spacing: float) -> PlateMesh:
         When the triangles do not cover the polygon (a vertex closer to an edge than the
         mesh can resolve): their area differs from the polygon's by more than 1e-9.
     """
-    from ..diffusion.planform.polygon import Wall, drop_unused, resample_polyline, triangle_areas
+    from ..diffusion.planform.polygon import Wall, drop_unused, triangle_areas
+    from ..diffusion.problem.curves import resample_polyline
     from ..diffusion.planform.triangles import MIN_GAP, delaunay_inside, hex_lattice
 
     boundary = np.vstack([resample_polyline(*loop.T, spacing) for loop in loops])

@@ -28,7 +28,8 @@ import dataclasses
 
 import numpy as np
 
-from .fem import PlaneElasticity, principal_stresses, reduced_stiffness
+from ..materials.hygrothermal import free_strain
+from .fem import PlaneElasticity, principal_stresses, stiffness_matrix
 from .strength import ply_strengths, tsai_wu_index
 from .thickness import SheetProfile, planform_accomplished_fraction, product_moisture
 
@@ -39,14 +40,11 @@ QI_PLIES = np.radians([0.0, 45.0, 90.0, -45.0])
 
 def _part_plate(geometry):
     """The planform to mesh for a diffusion geometry (a disc about its own centre), or None."""
-    from ..diffusion.problem.geometry import CamPlate, Disc, LinkBar
     from .mesh import disc_plate
 
-    if isinstance(geometry, Disc):
+    if geometry.axisymmetric:
         return disc_plate(geometry.outer_radius, geometry.thickness, geometry.inner_radius)
-    if isinstance(geometry, (CamPlate, LinkBar)):
-        return geometry
-    return None
+    return geometry if geometry.planform else None
 
 
 def plate_size(plate) -> float:
@@ -62,11 +60,7 @@ def plate_size(plate) -> float:
     float
         The dimension [m].
     """
-    from ..diffusion.problem.geometry import CamPlate
-
-    if isinstance(plate, CamPlate):
-        return float(max(np.ptp(plate.profile_x), np.ptp(plate.profile_y)))
-    return float(plate.length + 2 * plate.boss_outer_radius)
+    return float(max(plate.extent()))
 
 
 def mid_plane_cells(coordinates: dict, thickness: float) -> np.ndarray:
@@ -109,13 +103,11 @@ def _nodal_moisture(result, geometry, points, surface, outline=None) -> np.ndarr
     boundary, where the part is exposed)."""
     from scipy.interpolate import LinearNDInterpolator, NearestNDInterpolator
 
-    from ..diffusion.problem.geometry import Disc
-
     coords = result.cell_coordinates
     level = mid_plane_cells(coords, geometry.thickness)
     fields = np.asarray(result.fields, float)[:, level]
     surface = np.asarray(surface, float)
-    if isinstance(geometry, Disc):
+    if geometry.axisymmetric:
         radii, inverse = np.unique(np.round(coords["x"][level], 12), return_inverse=True)
         profile = np.stack([np.bincount(inverse, f) / np.bincount(inverse) for f in fields])
         ends = [geometry.inner_radius] if geometry.inner_radius > 0 else []
@@ -186,8 +178,9 @@ def _local_properties(material, moisture, temperature, reference):
     return laminate, ply, retention
 
 
-def free_strain(props, moisture_change, temperature_change) -> tuple:
-    """(exx, eyy, gxy) = alpha dT + beta dM along the axes of ``props`` (arrays broadcast).
+def ply_free_strains(props, moisture_change, temperature_change) -> tuple:
+    """(exx, eyy, gxy) = alpha dT + beta dM along the axes of ``props`` (arrays broadcast;
+    ``materials.hygrothermal.free_strain`` along each axis).
 
     Parameters
     ----------
@@ -204,8 +197,10 @@ def free_strain(props, moisture_change, temperature_change) -> tuple:
     tuple of numpy.ndarray
         The free strains exx, eyy and gxy [-] (gxy = 0 along the property axes).
     """
-    return (props["alpha11"] * temperature_change + props["beta11"] * moisture_change,
-            props["alpha22"] * temperature_change + props["beta22"] * moisture_change,
+    return (free_strain(props["alpha11"], props["beta11"], temperature_change, 0.0,
+                        moisture_change, 0.0),
+            free_strain(props["alpha22"], props["beta22"], temperature_change, 0.0,
+                        moisture_change, 0.0),
             0.0 * moisture_change)
 
 
@@ -232,7 +227,7 @@ def to_ply_axes(strain, angle) -> tuple:
 
 
 def _stiffness(props) -> np.ndarray:
-    return reduced_stiffness(props["e11"], props["e22"], props["g12"], props["nu12"])
+    return stiffness_matrix(props["e11"], props["e22"], props["g12"], props["nu12"])
 
 
 def _columns(props: dict) -> dict:
@@ -283,7 +278,7 @@ def stress_at_time(pe: PlaneElasticity, material, layers, mean, temperature, ref
                                                 reference)
     q = _stiffness(laminate)                                  # (3, 3, elements)
     lam, d_t = _columns(laminate), temperature - reference
-    star = free_strain(lam, average - initial_moisture, d_t)
+    star = ply_free_strains(lam, average - initial_moisture, d_t)
     u = pe.factorise(pe.stiffness(q), pe.statically_determinate_support())(pe.eigenstrain_load(q, star))
     strain = pe.strain(u)
     strengths = ply_strengths(material, retention)
@@ -292,7 +287,7 @@ def stress_at_time(pe: PlaneElasticity, material, layers, mean, temperature, ref
     tensile, compressive, index, field = -np.inf, np.inf, np.nan, None
     for layer in np.asarray(layers, float):
         change = pe.nodal_at_points(layer) - initial_moisture
-        mechanical = np.stack([e - s for e, s in zip(strain, free_strain(lam, change, d_t))])
+        mechanical = np.stack([e - s for e, s in zip(strain, ply_free_strains(lam, change, d_t))])
         largest, smallest = principal_stresses(np.einsum("ije,jeq->ieq", q, mechanical))
         tensile, compressive = max(tensile, largest.max()), min(compressive, smallest.min())
         if field is None:
@@ -301,7 +296,7 @@ def stress_at_time(pe: PlaneElasticity, material, layers, mean, temperature, ref
             continue
         for angle in _ply_angles(material):
             ply_strain = np.stack([e - s for e, s in zip(to_ply_axes(strain, angle),
-                                                         free_strain(plies, change, d_t))])
+                                                         ply_free_strains(plies, change, d_t))])
             s1, s2, s12 = np.einsum("ije,jeq->ieq", q_ply, ply_strain)
             index = np.nanmax([index, np.max(tsai_wu_index(s1, s2, s12, columns))])
     return float(tensile), float(compressive), float(index), field

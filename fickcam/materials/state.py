@@ -180,6 +180,33 @@ def wet_tg_error(part, times, index, temperature, state) -> PhysicsDomainError:
     return error
 
 
+def _free_strains(material, bulk, secant, temperature, reference_temperature, mean,
+                  initial_moisture) -> tuple:
+    """The free strains along the part's x, y and z [-] (``hygrothermal.free_strain``): the
+    secant thermal and the bulk moisture expansion of the ply axes (y in-plane: 11 for a
+    quasi-isotropic layup, else 22); a metal's thermal alone."""
+    dT_args = (temperature, reference_temperature)
+    if material.kind == "metal":
+        strain = free_strain(bulk["alpha11"], 0.0, *dT_args, 0.0, 0.0)
+        return strain, strain, strain
+    in_plane = "11" if material.layup == "quasi_isotropic" else "22"
+    strain_x = free_strain(secant["alpha11"], bulk["beta11"], *dT_args, mean, initial_moisture)
+    strain_y = free_strain(secant["alpha" + in_plane], bulk["beta" + in_plane], *dT_args, mean,
+                           initial_moisture)
+    strain_z = free_strain(secant["alpha22"], bulk["beta22"], *dT_args, mean, initial_moisture)
+    return strain_x, strain_y, strain_z
+
+
+def _moduli(material, bulk, skin, temperature) -> dict:
+    """The bulk and surface moduli of the state, each as long as ``temperature`` [Pa]."""
+    moduli = {name: np.asarray(bulk[key], float) + 0.0 * temperature
+              for key, name in _MODULI.items()}
+    moduli.update({f"surface_{_MODULI[key]}": np.asarray(skin[key], float) + 0.0 * temperature
+                   for key in _SURFACE})
+    moduli["surface_modulus"] = surface_in_plane_modulus(material, skin) + 0.0 * temperature
+    return moduli
+
+
 def material_state(material, temperature, moisture, surface_moisture, reference_temperature,
                    initial_moisture, part: str = "", times=None, raise_on_wet_tg: bool = False):
     """State of one part at each ageing time: SI arrays (moisture in weight %) named as in
@@ -221,14 +248,8 @@ def material_state(material, temperature, moisture, surface_moisture, reference_
     skin = material.ply_properties(retention_s)
     secant = material.ply_properties(retention, _secant_factor(material, tgw, temperature,
                                                                reference_temperature))
-    dT_args = (temperature, reference_temperature)
-    in_plane = "11" if material.layup == "quasi_isotropic" else "22"
-    strain_x = free_strain(secant["alpha11"], bulk["beta11"], *dT_args, mean, initial_moisture)
-    strain_y = free_strain(secant["alpha" + in_plane], bulk["beta" + in_plane], *dT_args, mean,
-                           initial_moisture)
-    strain_z = free_strain(secant["alpha22"], bulk["beta22"], *dT_args, mean, initial_moisture)
-    if material.kind == "metal":
-        strain_x = strain_y = strain_z = free_strain(bulk["alpha11"], 0.0, *dT_args, 0.0, 0.0)
+    strain_x, strain_y, strain_z = _free_strains(material, bulk, secant, temperature,
+                                                 reference_temperature, mean, initial_moisture)
     state = {
         "moisture_content": mean,
         "surface_moisture_content": surface,
@@ -252,11 +273,8 @@ def material_state(material, temperature, moisture, surface_moisture, reference_
         "moisture_expansion_transverse": bulk["beta22"],
         "thermal_conductivity_longitudinal": bulk["k11"],
         "thermal_conductivity_transverse": bulk["k22"],
+        **_moduli(material, bulk, skin, temperature),
     }
-    state.update({name: np.asarray(bulk[key], float) + 0.0 * temperature for key, name in _MODULI.items()})
-    state.update({f"surface_{_MODULI[key]}": np.asarray(skin[key], float) + 0.0 * temperature
-                  for key in _SURFACE})
-    state["surface_modulus"] = surface_in_plane_modulus(material, skin) + 0.0 * temperature
     index = first_invalid_index(temperature, tgw, tgw_s)
     state["within_wet_tg"] = np.arange(temperature.size) < (temperature.size if index is None else index)
     if index is not None:

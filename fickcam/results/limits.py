@@ -26,6 +26,7 @@ from typing import Any, Callable
 import numpy as np
 from pydantic import Field, model_validator
 
+from ..diffusion.accuracy.budget import CROSSING_INTERPOLATION_SHARE
 from ..quantities.plausibility import ambiguity
 from .query import drift
 from .schema import VARIABLES, Var, design_name
@@ -40,10 +41,6 @@ FLOOR = 3600.0
 POINTS = 4
 #: rounds after the first that evaluate only two times straddling the secant's root
 SECANT_ROUNDS = 3
-#: a bracket closes when the cubic through the four samples about its crossing and
-#: the quadratics through three of them put the crossing within this share of the tolerance
-#: of each other (the quadratics' error, which bounds the cubic's: ``_interpolated``)
-INTERPOLATION_SHARE = 0.5
 #: the times evaluated either side of a guessed crossing are at least and at most these
 #: shares of the tolerance away from it (twice the guess's error estimate, within them)
 STRADDLE = (0.05, 0.45)
@@ -443,7 +440,8 @@ class _Bracket:
         (``_interpolated``) in a steady climate, and once SECANT_ROUNDS of guesses have not
         closed it."""
         agreed = self.nodes.size == 0 and _interpolated(
-            self.samples, self.lo, self.hi, INTERPOLATION_SHARE * self.tolerance.at(self.lo))
+            self.samples, self.lo, self.hi,
+            CROSSING_INTERPOLATION_SHARE * self.tolerance.at(self.lo))
         if (self.rounds == 0 and not agreed) or self.rounds > SECANT_ROUNDS \
                 or not np.isfinite(self.r_lo):
             even = np.linspace(*_root_time([self.lo, self.hi]), POINTS + 2)[1:-1] ** 2

@@ -79,17 +79,7 @@ def select(ds, variable: str, *, time=None, part=None, cam_angle=None, crank_ang
         answered.append(_answered(dim, angle, between, lambda x: f"{x % 360:g} deg"))
         selected[dim] = angle
     if time is not None:
-        if "time" not in array.dims:
-            raise InputError(f"{variable} does not vary with time")
-        stored = ageing_seconds(ds)
-        seconds = ageing_time("--time", time, stored[-1]) if isinstance(time, str) else float(time)
-        if seconds < stored[0] - 1e-9 or seconds > stored[-1] + 1e-9:
-            raise InputError(f"time {time} is outside the stored ageing times "
-                             f"({stored[0] / 86400:g} to {stored[-1] / 86400:g} d)")
-        array, between = _interp_along(array, "time", stored, seconds)
-        answered.append(_answered("time", seconds, between,
-                                  lambda x: format_duration(x, stored[-1])))
-        selected["time_d"] = seconds / 86400
+        array = _at_time(ds, variable, array, time, answered, selected)
     error = VARIABLES[variable].error if variable in VARIABLES and against is None else ""
     if error in ds and set(ds[error].dims) == set(array.dims):  # its error estimate, alike
         array.attrs["error"] = ds[error].transpose(*array.dims).values
@@ -97,6 +87,23 @@ def select(ds, variable: str, *, time=None, part=None, cam_angle=None, crank_ang
     array.attrs["selected"] = selected
     if "time" in ds.coords:  # the result's last ageing time: its times' unit (format_result)
         array.attrs["time_span_s"] = float(ageing_seconds(ds)[-1])  # [s], named with its unit
+    return array
+
+
+def _at_time(ds, variable: str, array, time, answered: list, selected: dict):
+    """``array`` interpolated at the ageing ``time`` (text with units, or [s]), what was
+    answered appended to ``answered`` and ``selected``."""
+    if "time" not in array.dims:
+        raise InputError(f"{variable} does not vary with time")
+    stored = ageing_seconds(ds)
+    seconds = ageing_time("--time", time, stored[-1]) if isinstance(time, str) else float(time)
+    if seconds < stored[0] - 1e-9 or seconds > stored[-1] + 1e-9:
+        raise InputError(f"time {time} is outside the stored ageing times "
+                         f"({stored[0] / 86400:g} to {stored[-1] / 86400:g} d)")
+    array, between = _interp_along(array, "time", stored, seconds)
+    answered.append(_answered("time", seconds, between,
+                              lambda x: format_duration(x, stored[-1])))
+    selected["time_d"] = seconds / 86400
     return array
 
 

@@ -7,10 +7,11 @@ from __future__ import annotations
 import math
 from typing import Annotated, Literal, Union
 
-from pydantic import BeforeValidator, Field, field_validator, model_validator
+from pydantic import AfterValidator, BeforeValidator, Field, field_validator, model_validator
 
 from ..cam.spec import CamSection
-from ..diffusion import MODELS
+from ..diffusion.accuracy.budget import accuracy_problem
+from ..diffusion.problem.definition import MODELS
 from ..results.limits import LimitSpec
 from ..linkage.spec import LinkageSection
 from ..materials import MaterialSpec
@@ -197,6 +198,15 @@ def last_ageing_time(outputs) -> float | None:
     return times[-1] if isinstance(times, list) else None
 
 
+def _accuracy(value: float) -> float:
+    """``diffusion.accuracy`` refused outside the range every run accepts
+    (``diffusion.accuracy.budget``)."""
+    why = accuracy_problem(value)
+    if why is not None:
+        raise ValueError(why)
+    return value
+
+
 class DiffusionSection(StrictModel):
     # one model for every part, or per part name (parts not named: auto)
     """``diffusion:``: the model of moisture transport in the parts and its accuracy.
@@ -213,8 +223,8 @@ class DiffusionSection(StrictModel):
     """
     model: Union[str, dict[str, str]] = Field(
         "auto", description="Diffusion model for every part, or one per part name (others auto)")
-    accuracy: float = Field(
-        1e-3, gt=0, le=0.1, description="Relative accuracy asked of the mean moisture, at most 0.1 [1]")
+    accuracy: Annotated[float, AfterValidator(_accuracy)] = Field(
+        1e-3, description="Relative accuracy asked of the mean moisture, at most 0.1 [1]")
     surface_layer_depth: Length = Field(
         5e-4, description="Depth below the surface over which the surface moisture is averaged [m]")
 

@@ -60,8 +60,6 @@ GROWTH_REACH = 1.2
 PLANE_PAIR = 0.03
 PAIR_TO_TIME_ERROR = 2.5
 ANALYTIC_ERROR = 1e-8
-PLANFORM_SHARE = 0.5  # of the accuracy: the planform's mesh error (the rest: the march in time)
-LAYER_TOLERANCE = 4.0  # the contact layer may be this many times less accurate than the mean
 
 
 
@@ -118,4 +116,3 @@ class CellCaps:
 MAX_CELLS = CellCaps()
 MIN_CELLS_PER_AXIS = 4
 MIN_STEPS_PER_DOUBLING = 4
-EXPANSION_SHARE = 0.25   # plane: share of the accuracy allowed to the short-time expansion

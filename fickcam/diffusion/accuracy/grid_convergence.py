@@ -16,6 +16,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from .budget import CONVERGENCE_INDEX_SAFETY
+
 
 def taken(extrapolate: bool, middle, fine):
     """What ``three_levels`` chose: the 2x Richardson extrapolation, or the finest mesh.
@@ -37,7 +39,6 @@ def taken(extrapolate: bool, middle, fine):
 
 
 CONTRACTION = 3.0  # |change ratio| between two 2x refinements read as converging (order >= 1.6)
-SAFETY = 1.25      # Roache's factor on the three-grid convergence index
 OVERSHOOT = 7.0    # largest rho at which the order-2 extrapolation is taken
 
 
@@ -88,7 +89,8 @@ def three_levels(coarse, middle, fine) -> tuple[bool, float]:
     significant = np.abs(changes[1]) >= 0.1 * largest
     rho = changes[0][significant] / changes[1][significant]
     if np.all(rho >= CONTRACTION):
-        return bool(np.all(rho <= OVERSHOOT)), SAFETY * largest / (float(np.min(rho)) - 1.0)
+        return (bool(np.all(rho <= OVERSHOOT)),
+                CONVERGENCE_INDEX_SAFETY * largest / (float(np.min(rho)) - 1.0))
     if np.all(np.abs(rho) >= CONTRACTION):
         return False, 0.5 * largest
     return False, largest

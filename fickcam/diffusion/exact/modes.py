@@ -32,7 +32,6 @@ import numpy as np
 from scipy.special import j1, jn_zeros
 
 from ..forcing.record import Forcing
-from ..problem.geometry import Disc, Sheet
 from .separable import step_response
 
 FIRST_COUNT = 32         # modes per factor to start with (doubled with the bins halved
@@ -159,14 +158,17 @@ def factors(geometry, d0, depth, counts) -> list[Factor]:
     Carslaw, H. S. & Jaeger, J. C. (1959). Conduction of Heat in Solids, 2nd ed. Oxford:
     Clarendon Press, sec. 1.16 (products of one-dimensional solutions).
     """
-    if isinstance(geometry, Sheet):
+    if geometry.exact_route == "sheet":
         return [sheet_factor(geometry.thickness, d0[2], depth, counts[0])]
-    if isinstance(geometry, Disc):
+    if geometry.exact_route == "disc":
         axial = sheet_factor(geometry.thickness, d0[2], 0.0, counts[1])
         return [cylinder_factor(geometry.outer_radius, d0[0], depth, counts[0]),
                 Factor(axial.rates, axial.mean, axial.mean, 1.0)]
     return [sheet_factor(length, d0[axis], depth, count) for length, axis, count in
             zip((geometry.length, geometry.width, geometry.thickness), (0, 1, 2), counts)]
+
+
+DIMENSIONS = {"sheet": 1, "disc": 2, "box": 3}  # separable directions by ``exact_route``
 
 
 def dimensions(geometry) -> int:
@@ -182,7 +184,7 @@ def dimensions(geometry) -> int:
     int
         1 for a sheet, 2 for a solid disc, 3 for a bar [-].
     """
-    return 1 if isinstance(geometry, Sheet) else 2 if isinstance(geometry, Disc) else 3
+    return DIMENSIONS[geometry.exact_route]
 
 
 @dataclass(frozen=True)

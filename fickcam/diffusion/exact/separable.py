@@ -33,7 +33,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..problem.geometry import LAYER_DEPTH, Bar, Disc, Sheet
+from ..problem.geometry import LAYER_DEPTH
 from .series import (cylinder_core_mean, cylinder_profile, cylinder_uptake, sheet_interval_mean,
                      sheet_profile, sheet_uptake)
 
@@ -53,9 +53,7 @@ def exact_available(geometry) -> bool:
     bool
         True for a Sheet, a Bar or a Disc whose inner radius is 0.
     """
-    if isinstance(geometry, Disc):
-        return geometry.inner_radius == 0.0
-    return isinstance(geometry, (Sheet, Bar))
+    return geometry.exact_route is not None
 
 
 def _sheet_layer_mean(fourier, depth_fraction):
@@ -69,7 +67,7 @@ def _sheet_layer_mean(fourier, depth_fraction):
 
 def _box_sides(geometry):
     """(lengths, axis indices) of the sheets whose product is the part."""
-    if isinstance(geometry, Sheet):
+    if geometry.exact_route == "sheet":
         return (geometry.thickness,), (2,)
     return (geometry.length, geometry.width, geometry.thickness), (0, 1, 2)
 
@@ -86,7 +84,7 @@ def _box_response(geometry, pre_exponential, tau, depth):
         if fraction < 0.5:
             core = core * (1.0 - sheet_interval_mean(fraction, 1.0 - fraction, fourier))
     mean = 1.0 - whole
-    if isinstance(geometry, Sheet):
+    if geometry.exact_route == "sheet":
         layer = _sheet_layer_mean(pre_exponential[2] * tau / lengths[0] ** 2, min(depth / lengths[0], 0.5))
     elif core_volume <= 0.0:
         layer = mean
@@ -113,7 +111,7 @@ def _disc_response(disc, pre_exponential, tau, depth):
 def _check_exact(geometry, pre_exponential):
     if not exact_available(geometry):
         raise ValueError(f"no exact solution for {type(geometry).__name__}")
-    if isinstance(geometry, Disc) and pre_exponential[0] != pre_exponential[1]:
+    if geometry.exact_route == "disc" and pre_exponential[0] != pre_exponential[1]:
         raise ValueError("a Disc needs equal radial diffusivities Dx = Dy")
 
 
@@ -151,7 +149,7 @@ def step_response(geometry, pre_exponential, tau, surface_layer_depth=LAYER_DEPT
     """
     _check_exact(geometry, pre_exponential)
     tau = np.maximum(np.asarray(tau, float), 0.0)
-    if isinstance(geometry, Disc):
+    if geometry.exact_route == "disc":
         mean, layer = _disc_response(geometry, pre_exponential, tau, surface_layer_depth)
     else:
         mean, layer = _box_response(geometry, pre_exponential, tau, surface_layer_depth)
@@ -195,7 +193,7 @@ def step_field(geometry, pre_exponential, tau, points):
     _check_exact(geometry, pre_exponential)
     tau = np.maximum(np.asarray(tau, float), 0.0)[:, None]
     p = _point_coordinates(geometry, points)
-    if isinstance(geometry, Disc):
+    if geometry.exact_route == "disc":
         radial = cylinder_profile(p["r"][None, :] / geometry.outer_radius,
                                   pre_exponential[0] * tau / geometry.outer_radius ** 2)
         axial = sheet_profile(p["z"][None, :] / geometry.thickness,
@@ -226,7 +224,7 @@ def saturation_tau(geometry, pre_exponential) -> tuple[float, float]:
     tuple of float
         The shortest and longest L^2 / D0 over the part's directions [s] of rescaled time.
     """
-    if isinstance(geometry, Disc):
+    if geometry.exact_route == "disc":
         scales = [geometry.outer_radius ** 2 / pre_exponential[0],
                   geometry.thickness ** 2 / pre_exponential[2]]
     else:

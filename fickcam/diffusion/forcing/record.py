@@ -13,8 +13,6 @@ from .clock import RescaledTime
 
 LONG_RECORD = 32         # records with this many segments take the tabulated sum; shorter
 #   histories keep Duhamel's panels, exact to 1e-8 (measured: benchmarks/results/tuned_constants.md)
-RECORD_SHARE = 0.2       # share of the accuracy a numerical model (plane) leaves to the sum
-#   over a long record (Ms interpolation + tabulation); the exact paths give it all
 MAX_PIECES = 512         # pieces per row at most
 
 

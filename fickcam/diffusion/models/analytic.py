@@ -11,7 +11,7 @@ import numpy as np
 from ..exact.separable import saturation_tau, step_field, step_response
 from ..problem.cache import RunCache, run_cache
 from ..problem.definition import DiffusionProblem
-from ..problem.geometry import LAYER_DEPTH, Bar, Disc, Sheet
+from ..problem.geometry import LAYER_DEPTH
 from ..problem.results import DiffusionResult, Plan
 from ..superposition.duhamel import duhamel
 from ..superposition.tabulated import LongRecord
@@ -192,7 +192,8 @@ def solve_analytic(problem: DiffusionProblem, chosen: Plan, record_accuracy: flo
     return replace(result, extend=extend)
 
 
-FIELD_POINTS = {Sheet: (40,), Disc: (24, 12), Bar: (16, 12, 8)}  # cell centres for exact fields
+FIELD_POINTS = {"sheet": (40,), "disc": (24, 12), "box": (16, 12, 8)}  # by ``exact_route``:
+#   cell centres for exact fields
 
 
 def _analytic_fields(geometry, diffusivity, exposure, times, record, cache):
@@ -201,10 +202,10 @@ def _analytic_fields(geometry, diffusivity, exposure, times, record, cache):
     def centres(length, count):
         return (np.arange(count) + 0.5) * length / count
 
-    counts = FIELD_POINTS[type(geometry)]
-    if isinstance(geometry, Sheet):
+    counts = FIELD_POINTS[geometry.exact_route]
+    if geometry.exact_route == "sheet":
         axes = {"z": centres(geometry.thickness, counts[0])}
-    elif isinstance(geometry, Disc):
+    elif geometry.exact_route == "disc":
         axes = {"r": centres(geometry.outer_radius, counts[0]),
                 "z": centres(geometry.thickness, counts[1])}
     else:

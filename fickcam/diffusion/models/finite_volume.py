@@ -11,7 +11,6 @@ cancels its first-order part. Cells come from the spatial error model
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 
 import numpy as np
 
@@ -26,12 +25,15 @@ from ..planform.admissible import band_share
 from ..problem.cache import RunCache
 from ..problem.definition import DiffusionProblem
 from ..problem.exposure import Diffusivity, swing
-from ..problem.geometry import Bar, CamPlate, Disc, LinkBar, Sheet
 from ..problem.results import DiffusionResult, Plan
 from ..problem.scaling import stretch_of
 from ..stepping import step_plans
 from ..stepping.march import march
 from ..stepping.step_plans import StepPlan
+
+#: what the ``solid`` model builds, by the part's grid (``Geometry.grid``)
+SOLID_GRIDS = {"box": "bar in 3-D",
+               "prisms": "3-D prisms of the outline (Delaunay-admissible cells x graded thickness)"}
 
 
 def plan_direct(problem: DiffusionProblem, model: str, mirrored: bool = False,
@@ -74,10 +76,8 @@ def plan_direct(problem: DiffusionProblem, model: str, mirrored: bool = False,
     estimate = cells.space_error + TIME_ERROR / per_doubling ** 2
     why = {"slab": "sheet through the thickness, 1-D finite volumes",
            "axisymmetric": "disc/annulus in (r, z)" + (
-               " (bore: no exact path)" if isinstance(geometry, Disc) and geometry.inner_radius > 0
-               else ""),
-           "solid": "bar in 3-D" if isinstance(geometry, Bar) else
-           "3-D prisms of the outline (Delaunay-admissible cells x graded thickness)"}[model]
+               " (bore: no exact path)" if geometry.exact_route is None else ""),
+           "solid": SOLID_GRIDS.get(geometry.grid, "")}[model]
     reason = (f"{why}; cells from accuracy ({cells.note}, earliest output "
               f"tau*={t_lo:.2g}), backward Euler {per_doubling} steps/doubling + Richardson")
     if estimate > accuracy:
@@ -92,7 +92,7 @@ def _cells(geometry, diffusivity, accuracy: float, t_lo: float, cap: int, halved
     or uniform for a Disc or Bar, uniform for the slab; at most ``cap`` solved; ``halved``:
     the axes the solve cuts at their mirror plane."""
     d = diffusivity.pre_exponential
-    if isinstance(geometry, (CamPlate, LinkBar)):
+    if geometry.planform:
         return sizing.prism_layout(geometry, d, accuracy, t_lo, cap, space_error(t_lo), halved,
                                    cache)
     return sizing.choose(geometry, sizing.extents(geometry, d), accuracy, t_lo, cap,
@@ -136,16 +136,16 @@ def discretise(geometry, diffusivity: Diffusivity, cells: tuple[int, ...],
     d = tuple(float(v) for v in diffusivity.pre_exponential)
     widths = (sizing.physical_widths(geometry, sizing.extents(geometry, d), d, finest,
                                      growth)
-              if finest > 0 and isinstance(geometry, (Disc, Bar)) else None)
-    if isinstance(geometry, Sheet):
+              if finest > 0 and geometry.grid in sizing.GRADED_GRIDS else None)
+    if geometry.grid == "sheet":
         return grids.sheet(geometry.thickness, cells[0], surface_layer_depth)
-    if isinstance(geometry, Disc):
+    if geometry.grid == "disc":
         return grids.disc(geometry.outer_radius, geometry.thickness, geometry.inner_radius,
                        cells[0], cells[1], surface_layer_depth, d[0], d[2], widths=widths)
-    if isinstance(geometry, Bar):
+    if geometry.grid == "box":
         return grids.bar(geometry.length, geometry.width, geometry.thickness, cells,
                       surface_layer_depth, d, widths=widths)
-    if isinstance(geometry, (CamPlate, LinkBar)):
+    if geometry.grid == "prisms":
         tess = sizing.planform_cells(geometry, finest, growth, stretch_of(d), cache)
         return prism(tess, geometry.thickness, sizing.prism_widths(finest, growth)
                      * geometry.thickness, band_share(tess, surface_layer_depth), d)

@@ -32,16 +32,16 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from ..accuracy.error_model import (EXPANSION_SHARE, LAYER_TOLERANCE, FIRST_STEP, GROWTH_REACH,
-                                    MAX_CELLS, MESH_ERROR, MIN_CELLS_PER_AXIS, CellCaps,
-                                    MIN_STEPS_PER_DOUBLING, PAIR_TO_TIME_ERROR, PLANE_PAIR,
-                                    space_error)
+from ..accuracy.budget import (EXPANSION_SHARE, LAYER_TOLERANCE, PLANE_PLAN_MARGIN,
+                               PLANE_TIME_SHARE, RECORD_SHARE)
+from ..accuracy.error_model import (FIRST_STEP, GROWTH_REACH, MAX_CELLS, MESH_ERROR,
+                                    MIN_CELLS_PER_AXIS, MIN_STEPS_PER_DOUBLING,
+                                    PAIR_TO_TIME_ERROR, PLANE_PAIR, CellCaps, space_error)
 from ..forcing.clock import scales as scales_of
-from ..forcing.record import RECORD_SHARE, is_long_record
+from ..forcing.record import is_long_record
 from ..operators import grids
 from ..operators.grading import MAX_GROWTH
 from ..operators.p1 import plane_operator
-from ..planform.outline import outline_extent
 from ..planform.short_time import expansion_of, sheet_fraction, weighted
 from ..planform.triangles import triangulate
 from ..problem.cache import RunCache, run_cache
@@ -56,8 +56,6 @@ from ..superposition.tabulated import KernelKey, LongRecord
 
 log = logging.getLogger(__name__)
 
-TIME_SHARE = 0.1     # share of the accuracy allowed to the time steps (the rest: the mesh)
-DESIGN_MARGIN = 0.8  # the plan aims at this share of the accuracy (its models err by 10-20 %)
 MESH_FIRST_STEP = 1 / 16  # the mesh's first step, in units of h0^2: earlier it resolves nothing
 MESH_LEAD_DOUBLINGS = 7   # ... or this many doublings before the switch (six before its half)
 FEATURE_POINTS = 16  # at least this many outline points round the tightest curve
@@ -114,7 +112,7 @@ def leading_uptake(perimeter: float, area: float, tau):
 
 
 @dataclass(frozen=True)
-class MeshDesign:
+class MeshSpacing:
     """The graded mesh for a target: finest spacing h0 and growth g (scaled units), the
     estimated number of nodes and the relative uptake error it leaves at ``start``.
 
@@ -127,7 +125,7 @@ class MeshDesign:
     nodes : int
         The estimated number of nodes [-].
     relative_error : float
-        The relative error of the planform uptake it leaves at the design time [-].
+        The relative error of the planform uptake it leaves at ``start`` [-].
     """
 
     finest: float
@@ -136,8 +134,8 @@ class MeshDesign:
     relative_error: float
 
 
-def mesh_design(target: float, start: float, perimeter: float, tightest: float,
-                cap: int) -> MeshDesign:
+def graded_spacing(target: float, start: float, perimeter: float, tightest: float,
+                cap: int) -> MeshSpacing:
     """h0 and g meeting a relative uptake error ``target`` from scaled time ``start`` on.
 
     The error model r = MESH_ERROR (h0 / sqrt(t) + GROWTH_REACH g)^2 (``error_model``) and the
@@ -162,8 +160,8 @@ def mesh_design(target: float, start: float, perimeter: float, tightest: float,
 
     Returns
     -------
-    MeshDesign
-        h0, g, the node count and the relative error the design leaves at ``start``.
+    MeshSpacing
+        h0, g, the node count and the relative error the spacing leaves at ``start``.
     """
     reach = math.sqrt(max(target, 1e-300) / MESH_ERROR)
     growth = min(MAX_GROWTH, 0.5 * reach / GROWTH_REACH)
@@ -175,11 +173,11 @@ def mesh_design(target: float, start: float, perimeter: float, tightest: float,
         growth, finest = min(MAX_GROWTH, growth * coarser), finest * coarser
         nodes = perimeter / (growth * finest)
     error = MESH_ERROR * (finest / math.sqrt(start) + GROWTH_REACH * growth) ** 2
-    return MeshDesign(finest, growth, int(math.ceil(nodes)), error)
+    return MeshSpacing(finest, growth, int(math.ceil(nodes)), error)
 
 
-def uniform_design(target: float, start: float, area: float, tightest: float,
-                   cap: int) -> MeshDesign:
+def uniform_spacing(target: float, start: float, area: float, tightest: float,
+                   cap: int) -> MeshSpacing:
     """The uniform lattice of outlines without loops (``triangulate`` falls back to it):
     r = MESH_ERROR h^2 / t, about 2 area / (sqrt 3 h^2) nodes, at most ``cap``.
 
@@ -198,14 +196,14 @@ def uniform_design(target: float, start: float, area: float, tightest: float,
 
     Returns
     -------
-    MeshDesign
+    MeshSpacing
         The spacing h (``finest``), growth 0, nodes and the relative error at ``start``.
     """
     spacing = min(math.sqrt(max(target, 1e-300) * start / MESH_ERROR),
                   2 * math.pi / (FEATURE_POINTS * max(tightest, 1e-9)))
     spacing = max(spacing, math.sqrt(2 * area / (math.sqrt(3) * cap)))
     nodes = 2 * area / (math.sqrt(3) * spacing ** 2)
-    return MeshDesign(spacing, 0.0, int(math.ceil(nodes)), MESH_ERROR * spacing ** 2 / start)
+    return MeshSpacing(spacing, 0.0, int(math.ceil(nodes)), MESH_ERROR * spacing ** 2 / start)
 
 
 def mesh_first_step(finest: float, switch: float) -> float:
@@ -257,7 +255,7 @@ def _planform_size(part, d, expansion) -> PlanformSize:
         return PlanformSize(expansion.perimeter, expansion.area,
                             max(expansion.max_curvature, 1e-9))
     scale = np.asarray(planar_scale(part, d))
-    width, height = np.asarray(outline_extent(part)) * scale
+    width, height = np.asarray(part.extent()) * scale
     holes = 4 * math.pi * getattr(part, "boss_inner_radius", 0.0) * float(scale.max())
     radius = getattr(part, "boss_inner_radius", 0.0) or getattr(part, "boss_outer_radius", 1.0)
     return PlanformSize(2 * (width + height) + holes, width * height,
@@ -363,10 +361,11 @@ def plan_plane(problem: DiffusionProblem, caps: CellCaps = MAX_CELLS,
     """What ``solve_plane`` will do and the error it will report, by the blend's error model
     at the ages the outputs read (``step_plans.output_ages``): the expansion up to its switch
     (error ``EXPANSION_SHARE`` x accuracy); after it a graded P1 mesh whose relative error
-    at half the switch (``mesh_design`` plus the expansion's own relative error there) times
+    at half the switch (``graded_spacing`` plus the expansion's own relative error there) times
     the largest uptake x sheet fraction at the later ages takes what the time error,
-    PAIR_TO_TIME_ERROR (PLANE_PAIR F(end) / m)^2 (at most ``TIME_SHARE`` of it), leaves of
-    ``DESIGN_MARGIN`` x accuracy (a long record's sum takes ``RECORD_SHARE`` of it first).
+    PAIR_TO_TIME_ERROR (PLANE_PAIR F(end) / m)^2 (at most ``PLANE_TIME_SHARE`` of it),
+    leaves of ``PLANE_PLAN_MARGIN`` x accuracy (a long record's sum takes ``RECORD_SHARE`` of it
+    first).
     The cells are those of the mesh ``solve`` builds. The plan reads nothing of the contact
     layer: the problem's layer depth (the solve's) only lets plan and solve share the
     expansion (``expansion_of``); ``caps``: the most nodes of the mesh and cells of the
@@ -402,37 +401,39 @@ def plan_plane(problem: DiffusionProblem, caps: CellCaps = MAX_CELLS,
     size = _planform_size(geometry, d, expansion)
     pair = PLANE_PAIR * float(leading_uptake(size.perimeter, size.area, end))  # times 1 / m
     per_doubling = max(MIN_STEPS_PER_DOUBLING,
-                       math.ceil(pair * math.sqrt(PAIR_TO_TIME_ERROR / (TIME_SHARE * accuracy))))
+                       math.ceil(pair * math.sqrt(PAIR_TO_TIME_ERROR
+                                                  / (PLANE_TIME_SHARE * accuracy))))
     time_error = PAIR_TO_TIME_ERROR * (pair / per_doubling) ** 2
-    design, leak, peak = _design(expansion, switch, end, ages, size, accuracy, time_error,
-                                 caps.plane)
+    spacing, leak, peak = _mesh_spacing(expansion, switch, end, ages, size, accuracy,
+                                        time_error, caps.plane)
     sheet = min(caps.slab, max(MIN_CELLS_PER_AXIS, math.ceil(
         1.0 / math.sqrt(0.5 * accuracy * max(t_lo, switch)
                         / (3 * space_error(max(t_lo, switch)))))))
     reason = (f"2-D outline x exact sheet: short-time expansion of the outline up to "
               f"tau*={switch:.2g}, then P1 elements on a mesh graded from the outline "
-              f"(h0*={design.finest:.2g}, growth {design.growth:.2g}), backward Euler "
+              f"(h0*={spacing.finest:.2g}, growth {spacing.growth:.2g}), backward Euler "
               f"{per_doubling} steps/doubling + Richardson")
     if expansion is not None and switch >= end:
         return Plan("plane", 0, 0, reason + " (the expansion covers every output: no mesh)",
                     expansion_error_at(expansion, ages), (0, sheet), per_doubling,
-                    tolerance, finest=design.finest, growth=design.growth)
+                    tolerance, finest=spacing.finest, growth=spacing.growth)
     at_switch = expansion_error_at(expansion, ages[ages <= switch]) if switch > 0 else 0.0
-    estimate = max(at_switch, (design.relative_error + leak) * peak) + time_error
+    estimate = max(at_switch, (spacing.relative_error + leak) * peak) + time_error
     if estimate > accuracy:
         reason += f"; capped at {caps.plane} nodes: error above the requested accuracy"
-    mesh = planform_mesh(geometry, design.finest, design.growth, stretch_of(d), cache)
+    mesh = planform_mesh(geometry, spacing.finest, spacing.growth, stretch_of(d), cache)
     nodes = int(np.count_nonzero(~mesh.on_outline))
-    steps = geometric_steps(0.0, end, mesh_first_step(design.finest, switch), per_doubling)
+    steps = geometric_steps(0.0, end, mesh_first_step(spacing.finest, switch), per_doubling)
     return Plan("plane", nodes + sheet, 3 * (steps.size - 1), reason, float(estimate),
-                (nodes, sheet), per_doubling, tolerance, finest=design.finest,
-                growth=design.growth)
+                (nodes, sheet), per_doubling, tolerance, finest=spacing.finest,
+                growth=spacing.growth)
 
 
-def _design(expansion, switch, end, ages, size: PlanformSize, accuracy, time_error, cap: int):
-    """(MeshDesign, leak, peak): the mesh meeting what the time error leaves of
-    ``DESIGN_MARGIN`` x accuracy at every time from the switch (or the first output) to
-    the last output (so the contact layer, which the design does not model, keeps its
+def _mesh_spacing(expansion, switch, end, ages, size: PlanformSize, accuracy, time_error,
+                  cap: int):
+    """(MeshSpacing, leak, peak): the mesh meeting what the time error leaves of
+    ``PLANE_PLAN_MARGIN`` x accuracy at every time from the switch (or the first output) to
+    the last output (so the contact layer, which the spacing does not model, keeps its
     margin however sparse the outputs); ``leak`` is the expansion's relative error at half
     the switch (the blend's first bound), ``peak`` the weight at the ages the outputs read
     after the switch (for the estimate)."""
@@ -442,11 +443,11 @@ def _design(expansion, switch, end, ages, size: PlanformSize, accuracy, time_err
     span = np.geomspace(max(switch, first, 1e-9), max(end, switch, first, 1e-9), 200)
     peak = peak_weight(perimeter, area, ages[ages >= switch])
     leak = 0.0 if switch <= 0 else float(expansion.uptake_error(start) / expansion.uptake(start))
-    target = max((DESIGN_MARGIN * accuracy - time_error)
+    target = max((PLANE_PLAN_MARGIN * accuracy - time_error)
                  / max(peak_weight(perimeter, area, span), 1e-300) - leak, 0.1 * accuracy)
-    design = (mesh_design if expansion is not None else uniform_design)(
+    spacing = (graded_spacing if expansion is not None else uniform_spacing)(
         target, start, perimeter if expansion is not None else area, tightest, cap)
-    return design, leak, peak
+    return spacing, leak, peak
 
 
 # ------------------------------------------------------------------ solve
@@ -604,7 +605,7 @@ def _kernel(fraction, scale: float):
 
 def _diffusion_times(geometry, d) -> tuple[float, float]:
     """(fastest, slowest) L^2 / D0 of a prism: the thickness and the planform extents."""
-    sizes = (*outline_extent(geometry), geometry.thickness)
+    sizes = (*geometry.extent(), geometry.thickness)
     times = [size ** 2 / d[i] for i, size in enumerate(sizes)]
     return min(times), max(times)
 
@@ -614,7 +615,7 @@ class PrismSuperposition:
     """How ``solve_plane`` superposes over the exposure: Duhamel's panels (``duhamel``) for
     a few segments; for a long record (``record.is_long_record``) the tabulated sum of
     ``tabulated``, cost linear in the rows, shared by the mean, the layer and the fields,
-    within ``RECORD_SHARE`` of the accuracy (``plan`` designs the rest).
+    within ``RECORD_SHARE`` of the accuracy (``plan`` sizes the rest).
 
     Parameters
     ----------

@@ -44,6 +44,7 @@ import numpy as np
 from scipy import sparse
 from scipy.sparse import linalg as splinalg
 
+from ..accuracy.budget import ABSORPTION_MARGIN, SKIN_CELLS_MARGIN
 from ...errors import SolverError
 from ..accuracy.error_model import TIME_ERROR
 from ..forcing.clock import scales as scales_of
@@ -52,7 +53,6 @@ from ..operators.symmetry_cuts import mirrored
 from ..problem.cache import RunCache
 from ..problem.definition import DiffusionProblem
 from ..problem.exposure import Diffusivity, sample_times, swing
-from ..problem.geometry import Disc, Sheet
 from ..problem.results import DiffusionResult
 from ..stepping.dense_output import Extension, StepRecord
 from ..stepping.march import ORDERING, History, rounded_steps, norm
@@ -91,8 +91,6 @@ class Sweeps:
 
 SWEEPS = Sweeps()
 
-SKIN_CELLS_MARGIN = 1.0  # skin: cells at D_min for accuracy / (1 + it (sqrt(ratio) - 1))
-ABSORPTION_MARGIN = 2.0  # no skin: cells sized at D_max for accuracy / ABSORPTION_MARGIN
 SPACE_TO_ERROR = 1.0  # error / (m x the space estimate of the cells' plan) (measured:
 #   benchmarks/results/tuned_constants.md)
 
@@ -393,7 +391,7 @@ def solve_nonlinear(problem: DiffusionProblem, chosen, sweeps: Sweeps = SWEEPS,
     scales = scales_of(geometry, scaled, exposure, cache)
     weights = (discretise(geometry, scaled, chosen.cells_per_axis, surface_layer_depth,
                           chosen.finest, chosen.growth, cache)
-               if isinstance(geometry, (Sheet, Disc))
+               if not geometry.mirror_axes
                else mirrored(geometry, tuple(float(v) for v in scaled.pre_exponential),
                              chosen.cells_per_axis, chosen.finest, chosen.growth,
                              surface_layer_depth, cache))

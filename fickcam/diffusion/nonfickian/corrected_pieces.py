@@ -20,6 +20,7 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
+from ..accuracy.budget import SHEET_SHARE
 from ..accuracy.error_model import MIN_STEPS_PER_DOUBLING, TIME_ERROR
 from ..forcing.clock import scales as scales_of
 from ..models.finite_volume import plan_direct, step_plan
@@ -39,8 +40,6 @@ from ..stepping.dense_output import StepRecord
 from .concentration_dependent import (SWEEPS, Faces, Sweeps, fastest, nonlinear_plan,
                                       SweptMarch, solve_nonlinear, sweep_march, wettest)
 
-SHEET_SHARE = 0.1          # the fine sheet's accuracy: this share of the requested one, not
-#   loosened at loose accuracies (measured: benchmarks/results/tuned_constants.md)
 
 
 @dataclass(frozen=True)
@@ -104,7 +103,7 @@ def as_prism(geometry, diffusivity):
     faces_layer : bool
         True for a Bar: its contact layer includes the two faces.
     """
-    if not isinstance(geometry, Bar):
+    if geometry.planform:
         return geometry, diffusivity, False
     order = section_axes(geometry, diffusivity)
     a, b, h = bar_size(geometry)[order]

@@ -78,13 +78,13 @@ from functools import partial
 
 import numpy as np
 
-from ..accuracy.error_model import LAYER_TOLERANCE, PAIR_TO_EXTRAPOLATED, PLANFORM_SHARE
+from ..accuracy.budget import LAYER_TOLERANCE, PLANFORM_SHARE, SKIN_ESTIMATE_MARGIN
+from ..accuracy.error_model import PAIR_TO_EXTRAPOLATED
 from ..accuracy.grid_convergence import taken, three_levels
 from ..operators.sizing import prism_widths
 from ..operators.symmetry_cuts import half
 from ..problem.definition import DiffusionProblem
 from ..problem.exposure import swing
-from ..problem.geometry import Bar
 from ..problem.results import DiffusionResult, Plan
 from ..stepping.dense_output import Extension
 from .concentration_dependent import SWEEPS, Sweeps, dries_to_a_skin, spread
@@ -131,9 +131,6 @@ BASE_PER_ACCURACY = 1.0 / 3e-3  # the coarsest 3-D plan's accuracy per requested
 #   from 1.2e-2 up (measured: benchmarks/results/tuned_constants.md)
 MIN_Z_WIDTHS = 2           # z widths on the half thickness of the coarsest 3-D plan at least
 #   (``base_plan``; measured: benchmarks/results/tuned_constants.md)
-SKIN_ESTIMATE_MARGIN = 1.0  # on the two-mesh 3-D change of a drying part (``skin_margin``),
-#   the cells' margin (``concentration_dependent.SKIN_CELLS_MARGIN``; measured:
-#   benchmarks/results/tuned_constants.md)
 TARGET = "; est. = the target: the run measures its own and warns above it"
 ORDER_ONE = 1.0 / (2.0 - 1.0)  # the finer of two nested 3-D meshes' error / the change
 #   between them at order 1 (refinement ratio 2; a higher order gives less; what it replaced:
@@ -658,7 +655,7 @@ def solve_corrected(problem: DiffusionProblem, reason: str = "",
     if store_fields:
         fields, note = stored(run, result.reason)
         coordinates = (bar_coordinates(geometry, diffusivity, fine.coordinates)
-                       if isinstance(geometry, Bar) else fine.coordinates)
+                       if not geometry.planform else fine.coordinates)
         return replace(result, fields=fields, reason=note, cell_coordinates=coordinates)
     # the limit search's extra times: read between the marches' steps (``dense_output``)
     return replace(result, extend=extension(run, result, accuracy, lambda both: solve_corrected(

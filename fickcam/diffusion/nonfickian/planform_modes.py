@@ -64,7 +64,8 @@ from scipy.linalg import eigh_tridiagonal
 from scipy.sparse.linalg import splu
 
 from ...errors import InputError
-from ..accuracy.error_model import LAYER_TOLERANCE, space_error
+from ..accuracy.budget import LANCZOS_SHARE, LAYER_TOLERANCE, REFINEMENT_SAFETY
+from ..accuracy.error_model import space_error
 from ..exact.modes import Modes, sheet_factor
 from ..exact.series import sheet_uptake
 from ..operators import sizing
@@ -77,12 +78,10 @@ from .two_phase_modes import ModeSource
 
 log = logging.getLogger(__name__)
 
-FIRST_CAP = 2500      # cells of the first planform mesh (the plan's a-priori design)
+FIRST_CAP = 2500      # cells of the first planform mesh (the plan's a-priori sizing)
 PLANFORM_CAP = 60_000  # the finest planform mesh refined to, cells
 FIRST_LANCZOS = 32    # Lanczos steps to start with (doubled while the response moves)
 MAX_LANCZOS = 512     # steps at most: Q holds 512 x cells doubles (250 MB at the cap)
-LANCZOS_SHARE = 0.05  # share of the tolerance left to the quadrature
-SAFETY = 1.2          # refine a little past the Richardson prediction (it is asymptotic)
 MAX_REFINE = 4.0      # refine w0 by at most this factor per level (the estimate's reach)
 MIN_REFINE = 1.5      # ... and at least this (a smaller step's Richardson difference, / (r^2 - 1),
 #                       magnifies what is not yet asymptotic, and costs a level)
@@ -90,7 +89,7 @@ SPLIT_REACH = 6.0     # w0 and g apart (``_target``): each within this factor of
 SPLIT_GRID = 49       # ... searched on this many ratios each (geometric)
 
 
-def planform_design(geometry, d, accuracy: float, t_lo: float) -> sizing.Layout:
+def first_planform_mesh(geometry, d, accuracy: float, t_lo: float) -> sizing.Layout:
     """The first planform mesh of the two-phase modal solve.
 
     The first mesh: graded planform rows (w0, g) from the error model, shrunk under
@@ -500,7 +499,7 @@ def refined_planform(task: PlanformMeasure, finest: float, growth: float,
                      cache: RunCache | None = None) -> RefinedPlanform:
     """Refine the planform mesh until the Richardson estimate meets the tolerance.
 
-    Refine the first mesh (``planform_design``) by r = w0 / w0' (finest width and growth
+    Refine the first mesh (``first_planform_mesh``) by r = w0 / w0' (finest width and growth
     together) until the Richardson estimate |y' - y| / (r^2 - 1) of what ``measure(source)``
     compares (its first return: the two-phase history relative to the swing, the layer's
     / ``LAYER_TOLERANCE``; the second is kept), plus the quadrature's change at ``ages``
@@ -558,7 +557,8 @@ def refined_planform(task: PlanformMeasure, finest: float, growth: float,
             if apart is not None and apart.error <= tolerance:
                 return apart
             levels = levels if apart is None else apart.levels
-        ratio = float(np.clip(SAFETY * np.sqrt(mesh / max(tolerance - fine[4], 0.5 * tolerance)),
+        ratio = float(np.clip(REFINEMENT_SAFETY
+                              * np.sqrt(mesh / max(tolerance - fine[4], 0.5 * tolerance)),
                               MIN_REFINE, min(MAX_REFINE, reach)))
         coarse = fine
     return _lower(RefinedPlanform(float("inf"), coarse[2], coarse[3], levels, coarse[1], finest,
@@ -630,7 +630,8 @@ def mesh_error(parts, finest: float, growth: float) -> float:
 
 def _target(geometry, d, parts, meshes, budget: float, cap: int):
     """(finest, growth), within ``SPLIT_REACH`` of the last of ``meshes``, of the fewest
-    cells whose predicted mesh error (``mesh_error``) is ``budget`` / ``SAFETY``^2, under
+    cells whose predicted mesh error (``mesh_error``) is ``budget`` /
+    ``REFINEMENT_SAFETY``^2, under
     ``cap``, else of the least error under it. The cells: the cap's cheap count
     (``sizing.estimated_prism_cells``) times the largest ratio of the cells built to it
     so far (it misses by up to 20 % as w0 and g part)."""
@@ -647,7 +648,8 @@ def _target(geometry, d, parts, meshes, budget: float, cap: int):
             if count > cap:
                 continue
             error = mesh_error(parts, w, g)
-            key = (max(error * SAFETY ** 2, budget), count)   # met: fewest cells; else: least error
+            # met: fewest cells; else: least error
+            key = (max(error * REFINEMENT_SAFETY ** 2, budget), count)
             if best is None or key < best[0]:
                 best = (key, float(w), float(g))
     return None if best is None else best[1:]

@@ -34,6 +34,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..accuracy.budget import TWO_PHASE_INTERPOLATION_SHARE
 from ..exact.modes import (FIRST_COUNT, FIRST_PER_OCTAVE, MAX_PRODUCT, dimensions, lump,
                            product_modes, step_corrections)
 from ..exact.separable import step_response
@@ -44,7 +45,6 @@ from ..problem.exposure import swing as swing_of
 from ..problem.geometry import LAYER_DEPTH
 
 MAX_EXCHANGE_PIECES = 100_000  # pieces per ramp row at most (exchange frozen per piece)
-INTERPOLATION_SHARE = 0.25  # share of the tolerance for Ms piecewise linear between nodes
 
 
 @dataclass(frozen=True)
@@ -321,7 +321,8 @@ def langmuir_history(geometry, diffusivity, law, exposure, times, accuracy,
         bound = flat * (1.0 - law.free_share(exposure.temperature(times)))
         return {"mean": flat, "surface": flat.copy(), "bound": bound}, 0.0
     tolerance = accuracy * swing
-    nodes = march_nodes(law, diffusivity, exposure, times, INTERPOLATION_SHARE * tolerance)
+    nodes = march_nodes(law, diffusivity, exposure, times,
+                        TWO_PHASE_INTERPOLATION_SHARE * tolerance)
     counts, per_octave = [FIRST_COUNT] * source.directions, FIRST_PER_OCTAVE
     values = _history(source, nodes, counts, per_octave)
     while True:
@@ -329,7 +330,7 @@ def langmuir_history(geometry, diffusivity, law, exposure, times, accuracy,
         counts, per_octave = [2 * c for c in counts], 2 * per_octave
         values = _history(source, nodes, counts, per_octave)
         change = float(np.max(np.abs(values - coarse)))
-        if (change <= (1.0 - INTERPOLATION_SHARE) * tolerance
+        if (change <= (1.0 - TWO_PHASE_INTERPOLATION_SHARE) * tolerance
                 or source.fixed * np.prod(counts) * 2 ** len(counts) > MAX_PRODUCT):
             break
     free, bound, layer = values.T

@@ -30,13 +30,12 @@ import numpy as np
 
 from ..accuracy.error_model import GROWTH_ERROR, MIN_CELLS_PER_AXIS
 from ..planform.admissible import admissible
-from ..planform.outline import outline_extent
 from ..planform.triangles import triangulate
 from ..problem.cache import RunCache, run_cache
-from ..problem.geometry import Bar, CamPlate, Disc, LinkBar, Sheet
 from ..problem.scaling import axis_scale, stretch_of
 from .grading import MAX_GROWTH, graded_widths, growth_rate
 
+GRADED_GRIDS = ("disc", "box")  # the grids (``Geometry.grid``) whose cells may be graded
 CAP_STEP = 1.15  # the finest width grows by this factor until the cells fit the cap
 
 
@@ -113,14 +112,7 @@ def extents(geometry, d) -> tuple[float, ...]:
         The scaled extent of each axis [-] (the thickness: 1).
     """
     h = float(geometry.thickness)
-    if isinstance(geometry, Sheet):
-        return (1.0,)
-    if isinstance(geometry, Disc):
-        return ((geometry.outer_radius - geometry.inner_radius) * axis_scale(h, d[0], d[2]), 1.0)
-    if isinstance(geometry, Bar):
-        sizes = (geometry.length, geometry.width)
-    else:
-        sizes = outline_extent(geometry)
+    sizes = geometry.in_plane_sizes()
     return tuple(size * axis_scale(h, d[i], d[2]) for i, size in enumerate(sizes)) + (1.0,)
 
 
@@ -138,9 +130,7 @@ def exposed_ends(geometry) -> tuple[str, ...]:
     tuple of str
         ``both``, ``low`` or ``high`` per axis (as ``grading.graded_widths`` takes).
     """
-    if isinstance(geometry, Disc):
-        return ("both" if geometry.inner_radius > 0 else "high", "both")
-    return ("both",) * (3 if isinstance(geometry, Bar) else 1)
+    return geometry.exposed_ends()
 
 
 def uniform(extents, accuracy: float, t_lo: float, cap: int, space_error: float,
@@ -208,7 +198,7 @@ def graded_error(finest: float, growth: float, t_lo: float, axes: int,
     return axes * (space_error * finest ** 2 / t_lo + GROWTH_ERROR * growth ** 2)
 
 
-def graded_design(accuracy: float, t_lo: float, axes: int, space_error: float):
+def finest_and_growth(accuracy: float, t_lo: float, axes: int, space_error: float):
     """(w0, g) spending half the spatial budget 0.5 a on each error term.
 
     Parameters
@@ -276,7 +266,7 @@ def physical_widths(geometry, extents, d, finest: float, growth: float) -> tuple
     tuple of numpy.ndarray
         The widths of each axis [m].
     """
-    axes = (0, 1, 2) if isinstance(geometry, Bar) else (0, 2)
+    axes = (*range(len(geometry.in_plane_sizes())), 2)
     scaled = axis_widths(extents, exposed_ends(geometry), finest, growth)
     return tuple(w / axis_scale(geometry.thickness, d[i], d[2]) for w, i in zip(scaled, axes))
 
@@ -313,7 +303,7 @@ def graded(extents, ends, accuracy: float, t_lo: float, cap: int, space_error: f
     """
     count = count or (lambda w0, g: tuple(w.size for w in axis_widths(extents, ends, w0, g)))
     axes = len(extents)
-    finest, growth = graded_design(accuracy, t_lo, axes, space_error)
+    finest, growth = finest_and_growth(accuracy, t_lo, axes, space_error)
     cells = count(finest, growth)
     while unknowns(cells, halved) > cap and finest < 0.5 * min(extents):
         finest *= CAP_STEP
@@ -354,7 +344,7 @@ def choose(geometry, extents, accuracy: float, t_lo: float, cap: int,
         The graded or the uniform layout.
     """
     flat = uniform(extents, accuracy, t_lo, cap, space_error, halved)
-    if not isinstance(geometry, (Disc, Bar)):
+    if geometry.grid not in GRADED_GRIDS:
         return flat
     steep = graded(extents, exposed_ends(geometry), accuracy, t_lo, cap, space_error,
                    halved=halved)
@@ -451,7 +441,7 @@ def prism_layout(geometry, d, accuracy: float, t_lo: float, cap: int,
     TypeError
         For a part that is not a CamPlate or LinkBar.
     """
-    if not isinstance(geometry, (CamPlate, LinkBar)):
+    if not geometry.planform:
         raise TypeError(f"no prism layout for {type(geometry).__name__}")
     stretch = stretch_of(d)
     layout = graded((1.0, 1.0, 1.0), ("both",) * 3, accuracy, t_lo, cap, space_error,
@@ -481,7 +471,7 @@ def widest_row(part, stretch) -> float:
     float
         The widest first row in thicknesses [-].
     """
-    extent = np.asarray(outline_extent(part)) * np.asarray(stretch) / part.thickness
+    extent = np.asarray(part.extent()) * np.asarray(stretch) / part.thickness
     return 0.5 * float(extent.min())
 
 
@@ -507,7 +497,7 @@ def estimated_prism_cells(part, finest: float, growth: float, stretch) -> tuple[
     tuple of int
         The estimated planform triangles and the z cells [-].
     """
-    extent = np.asarray(outline_extent(part)) * np.asarray(stretch) / part.thickness
+    extent = np.asarray(part.extent()) * np.asarray(stretch) / part.thickness
     perimeter, depth = 2.0 * float(extent.sum()), 0.5 * float(extent.min())
     rows = depth / (finest * (finest + growth * depth))
     planar = max(1, int(2.0 / (math.sqrt(3) / 2) * perimeter * rows))

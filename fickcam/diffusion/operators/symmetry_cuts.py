@@ -21,7 +21,7 @@ import numpy as np
 
 from ..planform.admissible import band_share
 from ..problem.cache import RunCache
-from ..problem.geometry import Bar, CamPlate, LinkBar
+from ..problem.geometry import Bar
 from ..problem.scaling import axis_scale, stretch_of
 from . import sizing
 from .discretisation import Discretisation
@@ -49,11 +49,9 @@ def halved_axes(geometry) -> tuple[int, ...]:
     TypeError
         For any other part.
     """
-    if isinstance(geometry, Bar):
-        return (0, 1, 2)
-    if isinstance(geometry, (CamPlate, LinkBar)):
-        return (1,)
-    raise TypeError(f"no mirrored mesh for {type(geometry).__name__}")
+    if not geometry.mirror_axes:
+        raise TypeError(f"no mirrored mesh for {type(geometry).__name__}")
+    return geometry.mirror_axes
 
 
 def half(widths: np.ndarray) -> np.ndarray:
@@ -116,12 +114,12 @@ def mirrored(geometry, d, cells, finest: float, growth: float,
     ----------
     Crank (1975) §4.3.1 (see the module docstring).
     """
-    if isinstance(geometry, (CamPlate, LinkBar)):
+    if geometry.planform:
         tess = sizing.planform_cells(geometry, finest, growth, stretch_of(d), cache)
         z = half(sizing.prism_widths(finest, growth)) * geometry.thickness
         return prism(tess, geometry.thickness, z, band_share(tess, layer_depth), d,
                      mid_plane=True)
-    if isinstance(geometry, Bar):
+    if geometry.grid == "box":
         return octant(geometry, d, cells, finest, growth, layer_depth)
     raise TypeError(f"no mirrored mesh for {type(geometry).__name__}")
 

@@ -45,8 +45,8 @@ from scipy.sparse.csgraph import connected_components
 from scipy.spatial import Delaunay, cKDTree
 
 from ...errors import InputError
-from ..problem.geometry import CamPlate
-from .polygon import (centre_offsets, circumcentres, drop_unused, inside_polygon, segment_distance,
+from ..problem.curves import inside_polygon
+from .polygon import (centre_offsets, circumcentres, drop_unused, segment_distance,
                       triangle_areas, unique_edges)
 
 log = logging.getLogger(__name__)
@@ -195,13 +195,10 @@ def _cells(points: np.ndarray, triangles: np.ndarray) -> tuple[np.ndarray, np.nd
 
 
 def _contact_segments(part, segments: np.ndarray, stretch: np.ndarray) -> np.ndarray:
-    """The outline segments on the contact edge: a LinkBar's whole outline, a CamPlate's
-    profile (not the bore, whose samples lie on its circle)."""
-    if not isinstance(part, CamPlate) or part.bore_radius <= 0:
-        return segments
-    radius = np.hypot(*(segments / stretch[None, None, :]).transpose(2, 0, 1))
-    on_bore = np.all(np.abs(radius - part.bore_radius) <= 1e-6 * part.bore_radius, axis=1)
-    return segments[~on_bore]
+    """The outline segments on the contact edge (an end on it, ``on_contact``): a LinkBar's
+    whole outline, a CamPlate's profile (not the bore)."""
+    ends = (segments / stretch[None, None, :]).reshape(-1, 2)
+    return segments[np.any(part.on_contact(ends).reshape(len(segments), 2), axis=1)]
 
 
 def tessellation(points: np.ndarray, outline: np.ndarray, contact: np.ndarray,

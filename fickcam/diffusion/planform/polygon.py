@@ -1,7 +1,8 @@
 """Plane geometry of outlines and triangles, the one place each of these algorithms
-lives: turning angles and corners, resampling of polylines, normals, the signed
-distance to an outline (``Wall``), point in polygon, triangle areas, edges,
-circumcentres and distances to segments."""
+lives: turning angles and corners, resampling of closed loops, normals, the signed
+distance to an outline (``Wall``), triangle areas, edges, circumcentres and distances to
+segments. Sampling polylines and circles and point in polygon, which the geometries
+build their outlines with, are in ``problem.curves``."""
 from __future__ import annotations
 
 import math
@@ -74,59 +75,6 @@ def resample_loop(loop: np.ndarray, spacing: float) -> np.ndarray:
              for a, b in zip(starts, ends) for n in [max(1, math.ceil((b - a) / spacing))]]
     s = np.concatenate(steps) % total
     return np.column_stack([np.interp(s, arc, closed[:, 0]), np.interp(s, arc, closed[:, 1])])
-
-
-
-def resample_polyline(px, py, spacing: float, closed: bool = True) -> np.ndarray:
-    """Points every <= ``spacing`` along a polyline (closed: back to the start), each
-    vertex kept.
-
-    Parameters
-    ----------
-    px, py : array_like
-        The vertices' coordinates [m].
-    spacing : float
-        The largest gap between points [m].
-    closed : bool
-        True: the last vertex joins the first.
-
-    Returns
-    -------
-    numpy.ndarray
-        The points, shape (k, 2) [m]; an open polyline ends on its last vertex.
-    """
-    pts = np.column_stack([px, py]).astype(float)
-    if closed:
-        pts = np.vstack([pts, pts[:1]])
-    out = []
-    for a, b in zip(pts[:-1], pts[1:]):
-        count = max(1, math.ceil(np.hypot(*(b - a)) / spacing))
-        out.append(a + (b - a) * (np.arange(count) / count)[:, None])
-    if not closed:
-        out.append(pts[-1:])
-    return np.vstack(out)
-
-
-def circle(cx: float, cy: float, radius: float, spacing: float) -> np.ndarray:
-    """Counter-clockwise points every <= ``spacing`` round a circle (at least 12).
-
-    Parameters
-    ----------
-    cx, cy : float
-        The centre [m].
-    radius : float
-        The radius [m].
-    spacing : float
-        The largest gap along the circle [m].
-
-    Returns
-    -------
-    numpy.ndarray
-        The points, shape (k, 2) [m], from angle 0.
-    """
-    count = max(12, math.ceil(2 * np.pi * radius / spacing))
-    angle = 2 * np.pi * np.arange(count) / count
-    return np.column_stack([cx + radius * np.cos(angle), cy + radius * np.sin(angle)])
 
 
 def loop_length(loop: np.ndarray) -> float:
@@ -215,57 +163,6 @@ class Wall:
         inside = np.zeros(len(points), bool)
         inside[found] = np.einsum("ij,ij->i", offset, self.normals[nearest[found]]) > 0
         return gap, inside
-
-
-def polygon_segments(px, py) -> np.ndarray:
-    """(n, 2, 2) segments of the closed polygon with vertices (px, py).
-
-    Parameters
-    ----------
-    px, py : array_like
-        The vertices' coordinates [m].
-
-    Returns
-    -------
-    numpy.ndarray
-        Each edge's start and end [m], shape (n, 2, 2), the last closing the loop.
-    """
-    vertices = np.column_stack([px, py]).astype(float)
-    return np.stack([vertices, np.roll(vertices, -1, axis=0)], axis=1)
-
-
-def inside_polygon(query: np.ndarray, segments: np.ndarray, chunk: int = 2048) -> np.ndarray:
-    """Even-odd ray casting against a set of segments (Shimrat 1962, CACM algorithm 112).
-
-    Parameters
-    ----------
-    query : numpy.ndarray
-        The points, shape (q, 2) [m].
-    segments : numpy.ndarray
-        The polygons' edges, shape (n, 2, 2) [m].
-    chunk : int
-        Points tested at once (memory).
-
-    Returns
-    -------
-    numpy.ndarray
-        True for a point inside (an odd number of crossings).
-
-    References
-    ----------
-    M. Shimrat, "Algorithm 112: Position of point relative to polygon", *Communications of
-    the ACM* 5(8), 434, 1962.
-    """
-    a, b = segments[:, 0], segments[:, 1]
-    inside = np.zeros(len(query), bool)
-    for lo in range(0, len(query), chunk):
-        x, y = query[lo:lo + chunk, :1], query[lo:lo + chunk, 1:]
-        crosses = (a[None, :, 1] > y) != (b[None, :, 1] > y)
-        with np.errstate(divide="ignore", invalid="ignore"):
-            at = a[None, :, 0] + (y - a[None, :, 1]) * (b[None, :, 0] - a[None, :, 0]) / (
-                b[None, :, 1] - a[None, :, 1])
-        inside[lo:lo + chunk] = np.count_nonzero(crosses & (x < at), axis=1) % 2 == 1
-    return inside
 
 
 def triangle_areas(points: np.ndarray, triangles: np.ndarray) -> np.ndarray:
@@ -386,7 +283,6 @@ def segment_distance(query: np.ndarray, segments: np.ndarray, chunk: int = 1024)
         nearest = a[None] + along[..., None] * edge[None]
         out[lo:lo + chunk] = np.sqrt(np.min(np.sum((q - nearest) ** 2, axis=2), axis=1))
     return out
-
 
 
 def drop_unused(points: np.ndarray, triangles: np.ndarray):

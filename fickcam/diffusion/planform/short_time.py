@@ -11,7 +11,6 @@ from scipy.special import erf, erfc
 from ..exact.series import cylinder_short_coefficients, ierfc, sheet_uptake
 from ..problem.cache import RunCache, run_cache
 from ..problem.scaling import planar_scale
-from .outline import boundary_loops
 from .polygon import CORNER_TURN, Wall, loop_length, resample_loop, turning_angles, vertex_normals
 
 TAIL_FROM = 4          # first term of the disc series left to the error indicator
@@ -346,7 +345,7 @@ def short_time(part, scale: np.ndarray, layer_depth: float, spacing: float,
     ShortTime or None
         The coefficients; None without loops, with a clockwise outline or without a contact layer.
     """
-    found = boundary_loops(part, spacing)
+    found = part.boundary_loops(spacing)
     if found is None:
         return None
     loops, contact = found
@@ -391,7 +390,7 @@ def short_time(part, scale: np.ndarray, layer_depth: float, spacing: float,
 
 
 def outline_chords(part, scale: tuple[float, float], spacing: float, cache: RunCache):
-    """``inward_chords`` of the part's outline (``boundary_loops`` at ``spacing``) scaled by
+    """``inward_chords`` of the part's outline (its ``boundary_loops`` at ``spacing``) scaled by
     ``scale``, once per run (``cache``): plan and solve ask for the expansion at two layer
     depths, which leave the chords alone (half the expansion's cost). Read-only arrays.
 
@@ -412,7 +411,7 @@ def outline_chords(part, scale: tuple[float, float], spacing: float, cache: RunC
         The chords and the outline length each stands for, scaled [-].
     """
     def build():
-        loops, _ = boundary_loops(part, spacing)
+        loops, _ = part.boundary_loops(spacing)
         factor = np.asarray(scale)
         return inward_chords([loop * factor[None, :] for loop in loops],
                              0.25 * spacing * float(np.max(factor)))

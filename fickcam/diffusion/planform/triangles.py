@@ -30,7 +30,7 @@ from dataclasses import dataclass, field
 import numpy as np
 from scipy.spatial import Delaunay, cKDTree
 
-from .outline import boundary_loops, outline
+from .outline import outline
 from .polygon import Wall, drop_unused, edge_normals, resample_loop, triangle_areas, vertex_normals
 
 log = logging.getLogger(__name__)
@@ -366,7 +366,7 @@ def triangulate(part, spacing: float, *, growth: float | None = None,
     ----------
     Crank (1975), eqs. 2.13 and 2.45 (see the module docstring).
     """
-    found = None if growth is None else boundary_loops(part, spacing / max(stretch))
+    found = None if growth is None else part.boundary_loops(spacing / max(stretch))
     if found is None:
         return _lattice_triangulation(part, spacing / max(stretch))
     loops, contact = found

@@ -9,6 +9,12 @@ import numpy as np
 from .exposure import Diffusivity, Exposure
 from .geometry import LAYER_DEPTH
 
+#: The models a problem may ask for (``diffusion.model``): ``auto`` (the dispatcher
+#: chooses) and the Fickian models of the dispatcher's registry, in its order. The names
+#: live here, apart from the models, so that the scene checks them without loading the
+#: engine; ``tests/test_diffusion_registry.py`` holds them equal to the registry's.
+MODELS = ("auto", "analytic", "slab", "axisymmetric", "plane", "solid")
+
 
 @dataclass(frozen=True, eq=False)
 class DiffusionProblem:
@@ -26,9 +32,9 @@ class DiffusionProblem:
     times : numpy.ndarray
         The times at which the moisture is wanted [s] (kept read-only).
     accuracy : float
-        The relative accuracy [-] asked for, a fraction of the moisture swing, in (0, 1).
+        The relative accuracy [-] asked for, a fraction of the moisture swing, in (0, 0.1].
     model : str
-        One of ``diffusion.MODELS``; "auto" chooses.
+        One of ``MODELS``; "auto" chooses.
     surface_layer_depth : float or None
         The depth of the contact layer whose mean is reported as ``surface`` [m]; None
         (a plan alone): not given, the contact layer is not read.

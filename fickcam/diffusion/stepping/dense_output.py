@@ -45,7 +45,7 @@ from typing import Callable, Sequence
 
 import numpy as np
 
-from ..accuracy.error_model import LAYER_TOLERANCE
+from ..accuracy.budget import LAYER_TOLERANCE
 from .step_plans import earliest_output
 
 log = logging.getLogger(__name__)

@@ -35,6 +35,7 @@ from dataclasses import dataclass, field, replace
 
 import numpy as np
 
+from ..accuracy.budget import TABLE_SHARE, TABULATED_INTERPOLATION_SHARE
 from ..forcing.clock import clock_of
 from ..forcing.record import Forcing, forcing
 from ..problem.cache import RunCache, run_cache
@@ -46,8 +47,6 @@ SHORT_TIME = 1e-6        # the grid starts at this share of the fastest diffusio
 #   (below it K = K(w0) sqrt(w / w0), Crank eq. 4.20, relative error ~sqrt(1e-6); the
 #   ages there weigh ~w0^1.5)
 TABLE_ENTRIES = 20_000_000  # grid points x kernel outputs at most (fields: memory)
-INTERPOLATION_SHARE = 0.25  # share of the tolerance for Ms piecewise linear in tau
-TABLE_SHARE = 0.25          # share of the tolerance for the tabulation
 SLIVER = 1e-10           # pieces shorter than this share of the span act as steps (round-off)
 ROUND_OFF = 1e-12        # a step of Ms smaller than this share of Ms is a ramp's round-off
 FIELD_PER_DECADE = 32    # fields (wide kernels): one table at this density, not refined
@@ -697,7 +696,7 @@ def _forced(diffusivity, exposure, times: np.ndarray, accuracy: float, cache: Ru
     clock = clock_of(diffusivity, exposure, cache)
     swing = swing_of(exposure)
     tolerance = accuracy * max(swing, 1e-300)
-    force = forcing(exposure, clock, times, INTERPOLATION_SHARE * tolerance)
+    force = forcing(exposure, clock, times, TABULATED_INTERPOLATION_SHARE * tolerance)
     return force, sources(force, cache), swing, tolerance
 
 
