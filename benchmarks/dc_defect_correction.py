@@ -325,13 +325,13 @@ def demo_cam(k: float):
     """(geometry, diffusivity, exposure, times, law) of the cam of configs/singh2017_cam.yaml
     with ``sorption: {model: concentration_dependent, exponent: k}``."""
     from fickcam.scene.load import load_scene
-    from fickcam.simulation.simulate import ageing_times, build_parts, scene_environment
+    from fickcam.simulation.simulate import ageing_times
 
     raw = yaml.safe_load((ROOT / "configs" / "singh2017_cam.yaml").read_text())
     raw["materials"]["cfrp"]["sorption"] = {"model": "concentration_dependent", "exponent": k}
     scene = load_scene(raw)
-    environment = scene_environment(scene)
-    part = next(p for p in build_parts(scene) if p.name == "cam")
+    environment = scene.environment
+    part = next(p for p in scene.parts if p.name == "cam")
     return (part.geometry, part.material.diffusivity_for(part.geometry),
             environment.exposure(part.material.saturation_moisture),
             ageing_times(scene, environment), part.material.sorption_law())

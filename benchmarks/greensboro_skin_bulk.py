@@ -26,17 +26,15 @@ JULY_WEEK = (182.0, 189.0)  # days from 1 January
 def skin_and_bulk(times: np.ndarray):
     """(mean, skin, equilibrium) moisture in weight % of the demo cam at ``times`` (s)."""
     from fickcam.diffusion import solve
-    from fickcam.simulation.parts import build_parts
     from fickcam.scene.load import load_scene
-    from fickcam.simulation.simulate import scene_environment
 
     data = yaml.safe_load((ROOT / "configs" / "singh2017_cam.yaml").read_text())
     data["environment"] = {"reference_temperature": "23 degC",
                            "history_file": "pvlib:723170TYA.CSV"}
     data["outputs"] = {"ageing_times": [f"{times[-1] / DAY:g} d"]}
     scene = load_scene(data)
-    environment = scene_environment(scene)
-    cam = next(part for part in build_parts(scene) if part.name == "cam")
+    environment = scene.environment
+    cam = next(part for part in scene.parts if part.name == "cam")
     exposure = environment.exposure(cam.material.saturation_moisture)
     result = solve(cam.geometry, cam.material.diffusivity_for(cam.geometry), exposure, times,
                    accuracy=scene.model.diffusion.accuracy, part="cam")

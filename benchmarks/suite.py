@@ -17,6 +17,7 @@ from __future__ import annotations
 
 import argparse
 import os
+import re
 import shlex
 import statistics
 import subprocess
@@ -59,7 +60,8 @@ def run_tier(arguments: list[str]) -> tuple[float, float, str]:
         wall, cpu = timed(command, stdout=out, check=False)
         out.seek(0)
         lines = [line.strip() for line in out if line.strip()]
-    return wall, cpu, lines[-1] if lines else ""
+    counted = [line for line in lines if re.search(r"\d+ (passed|failed|error|deselected)", line)]
+    return wall, cpu, (counted or lines or ["no output"])[-1].strip("= ")
 
 
 def demo_runs(output: Path, count: int) -> list[tuple[float, float]]:

@@ -35,7 +35,7 @@ from fickcam.diffusion import CamPlate, Diffusivity, Disc, solve
 from fickcam.diffusion.accuracy.budget import LAYER_TOLERANCE
 from fickcam.diffusion.problem.exposure import swing as history_swing
 from fickcam.scene.load import load_scene
-from fickcam.simulation.simulate import ageing_times, build_parts, run, scene_environment
+from fickcam.simulation.simulate import ageing_times, run
 
 ROOT = Path(__file__).resolve().parents[1]
 CONFIGS = {"constant": ROOT / "configs/singh2017_cam_two_phase.yaml",
@@ -58,9 +58,9 @@ def cam_problem(config: Path):
     """(geometry, diffusivity, exposure, ageing times, sorption law, layer depth) of the
     scene's cam, as ``simulate`` builds them."""
     scene = load_scene(config)
-    environment = scene_environment(scene)
+    environment = scene.environment
     times = ageing_times(scene, environment)
-    cam = next(part for part in build_parts(scene) if part.name == "cam")
+    cam = next(part for part in scene.parts if part.name == "cam")
     return (cam.geometry, cam.material.diffusivity_for(cam.geometry),
             environment.exposure(cam.material.saturation_moisture), times,
             cam.material.sorption_law(), scene.model.diffusion.surface_layer_depth)

@@ -118,7 +118,8 @@ html_theme_options = {
 }
 # the wide tables of the reference and measurement pages get the width of the left sidebar
 html_sidebars = {page: [] for page in ("index", "changelog", "reference/scene", "reference/results",
-                                       "reference/cli", "benchmarks", "validation-record")}
+                                       "reference/cli", "benchmarks", "validation",
+                                       "validation-record", "architecture")}
 html_show_sourcelink = False
 
 # Intersphinx: the inventories are text files committed in ``_inventories/`` (generated

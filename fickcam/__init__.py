@@ -10,6 +10,7 @@ import logging as _logging
 
 from ._version import __version__
 from .errors import FickcamWarning, InputError, SceneError
+import importlib
 
 __all__ = ["load_scene", "run", "save", "open_result", "compensate", "fit_weight_gain",
            "FickcamWarning", "SceneError", "InputError", "__version__"]
@@ -29,8 +30,6 @@ def __getattr__(name: str):
     """``fickcam.plotting`` and the other sub-packages of :data:`_SUBMODULES`, imported
     when first reached, so that ``import fickcam`` stays light."""
     if name in _SUBMODULES:
-        import importlib
-
         return importlib.import_module(_SUBMODULES[name], __name__)
     raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
@@ -59,6 +58,7 @@ def load_scene(source, *, file_name: str | None = None):
         When the file cannot be read or a key is missing, misspelt, out of range or
         in a wrong unit: one line per problem, naming file, line and key.
     """
+    # deferred: keeps numpy, pydantic, yaml off the start-up path
     from .scene.load import load_scene as _load
 
     return _load(source, file_name=file_name)
@@ -108,6 +108,7 @@ def run(scene, *, accuracy: float | None = None, progress: bool = False, setting
         transition temperature is not an error: a notice says so, and that part's later
         values are NaN.
     """
+    # deferred: keeps numpy, pydantic, yaml off the start-up path
     from .simulation.simulate import run as _run
 
     return _run(scene, accuracy=accuracy, progress=progress, settings=settings, cache=cache)
@@ -156,6 +157,7 @@ def compensate(scene, *, at=None, over=None, accuracy: float | None = None,
     fickcam.errors.SceneError
         When the scene does not validate.
     """
+    # deferred: keeps numpy, yaml off the start-up path
     from .compensation import compensate as _compensate
 
     return _compensate(scene, at=at, over=over, accuracy=accuracy, keep_limits=keep_limits,
@@ -177,6 +179,7 @@ def save(dataset, path):
     pathlib.Path
         The path written.
     """
+    # deferred: keeps the command's modules off the start-up path
     from .results.store import save as _save
 
     return _save(dataset, path)
@@ -200,6 +203,7 @@ def open_result(path):
     fickcam.errors.InputError
         When the file is missing or is not a fickcam result.
     """
+    # deferred: keeps the command's modules off the start-up path
     from .results.store import open_result as _open
 
     return _open(path)
@@ -225,6 +229,7 @@ def fit_weight_gain(data, matrix: str, **options):
     fickcam.fit.report.FitReport
         The fitted parameters with their 95 % intervals, per coupon and per condition.
     """
+    # deferred: keeps numpy, scipy, scipy.optimize off the start-up path
     from .fit import fit_weight_gain as _fit
 
     return _fit(data, matrix, **options)

@@ -29,6 +29,8 @@ never as carriage-return frames in a log or a pipe.
 """
 from __future__ import annotations
 
+import importlib.util
+import time
 import contextlib
 import contextvars
 import logging
@@ -260,6 +262,7 @@ class _TerminalHandler(logging.Handler):
 
     def emit(self, record: logging.LogRecord) -> None:
         try:
+            # deferred: keeps tqdm off the start-up path
             from tqdm import tqdm
 
             tqdm.write(self.format(record), file=sys.stderr)
@@ -339,6 +342,7 @@ def progress_bar(total: int, *, enabled: bool = True, eta: bool = True, **option
     tqdm.std.tqdm
         The bar (disabled where nothing is shown); use it as tqdm's.
     """
+    # deferred: keeps tqdm off the start-up path
     from tqdm.std import tqdm
 
     options["bar_format"] = ETA_BAR if eta else COUNT_BAR
@@ -364,7 +368,6 @@ def notebook_kind() -> str | None:
     str or None
         ``"widget"``, ``"text"`` or None.
     """
-    import importlib.util
 
     shell = getattr(sys.modules.get("IPython"), "get_ipython", lambda: None)()
     if shell is None or "IPKernelApp" not in getattr(shell, "config", {}):
@@ -407,6 +410,7 @@ class _FrameWriter:
 
 def _notebook_bar(place: str, total: int, session, options: dict):
     """A bar shown in one notebook output (the session's, else its own)."""
+    # deferred: keeps IPython off the start-up path
     from IPython.display import display
 
     handle = session.handle if session is not None else None
@@ -415,12 +419,14 @@ def _notebook_bar(place: str, total: int, session, options: dict):
         if session is not None:
             session.handle = handle
     if place == "widget":
+        # deferred: keeps tqdm and ipywidgets off the start-up path
         from tqdm.notebook import tqdm as widget_bar
 
         options.pop("bar_format")  # the widget draws its own bar
         bar = widget_bar(total=total, display=False, **options)
         handle.update(bar.container)
         return bar
+    # deferred: keeps tqdm off the start-up path
     from tqdm.std import tqdm
 
     return tqdm(total=total, file=_FrameWriter(handle), ncols=100, **options)
@@ -434,13 +440,9 @@ class _Session:
     """The bars of one task and the notebook output they share."""
 
     def __init__(self, what: str):
-        import time
-
         self.what, self.started, self.steps, self.handle = what, time.perf_counter(), [], None
 
     def summary(self) -> str:
-        import time
-
         took = time.perf_counter() - self.started
         return f"{PROGRAM}: {self.what}: {', '.join(self.steps) or 'done'} in {took:.3g} s"
 
@@ -474,6 +476,7 @@ def progress_summary(what: str, enabled: bool = True):
         if session.handle is not None:
             session.handle.update(OutputLine(session.summary()))
         elif notebook_kind() is not None:
+            # deferred: IPython only in a notebook
             from IPython.display import display
 
             display(OutputLine(session.summary()))

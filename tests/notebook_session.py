@@ -1,6 +1,7 @@
 """A notebook as a new user writes it from the guide (small scenes, so that it runs in
 seconds): scenes shown, runs with progress, every public plotting function, xarray's
-``.plot()``, a part past its wet glass transition and a misspelt key. Executed with
+``.plot()``, a part past its wet glass transition, a two-case sweep, a material fit and a
+misspelt key. Executed with
 nbclient by ``test_notebook.py``; ``python tests/notebook_session.py OUT.ipynb`` writes and
 executes it to look at (``jupyter nbconvert --to html``)."""
 from __future__ import annotations
@@ -49,6 +50,23 @@ hot = dict(data, environment={"history": [{"duration": "60 d", "temperature": "1
                                            "relative_humidity": "85 %"}]})
 hot_ds = fickcam.run(hot)
 fickcam.plotting.plot(hot_ds, kind="kinematics")"""),
+    ("sweep", """\
+from fickcam.sweep import run_sweep
+with open("cam.yaml", "w") as file:
+    yaml.safe_dump(data, file)
+with open("sweep.yaml", "w") as file:
+    yaml.safe_dump({"base": "cam.yaml",
+                    "grid": {"environment.history.0.relative_humidity": ["50 %", "80 %"]}}, file)
+swept = fickcam.open_result(run_sweep("sweep.yaml", "sweep.h5"))
+fickcam.plotting.plot(swept)"""),
+    ("fit", """\
+from fickcam.fit import fit_weight_gain, plot_fit
+from fickcam.fit.synthetic import d5229_times, synthetic_specimen
+import numpy as np
+rng = np.random.default_rng(13)
+coupons = [synthetic_specimen(f"s{k}", 333.15, 85.0, 2e-3, d5229_times(60.0), 2.0, 5e-12, rng, 0.01)
+           for k in range(2)]
+plot_fit(fit_weight_gain(coupons, "3502", name="coupons"))"""),
     ("select", """\
 from fickcam.results.query import select
 select(ds, "lift", time="6 weeks").attrs"""),

@@ -13,7 +13,7 @@ import pytest
 from scipy.optimize import brentq, minimize_scalar
 
 from fickcam.cam.geometry import dry_profile, rotate
-from fickcam.cam.design import CamState, design_from_scene
+from fickcam.cam.design import CamState, cam_design
 from fickcam.cam.kinematics import motion_function
 from fickcam.cam.model import cam_response
 from fickcam.cam.motion import follower_motion
@@ -127,7 +127,7 @@ ANGLES = np.radians(np.arange(3.0, 360.0, 11.0))  # 33 cam angles across every s
 @pytest.mark.parametrize("state", [CamState(), AGED], ids=["dry", "aged"])
 def test_roller_arm_angle_matches_root_found_contact(rises, state):
     """Within 1e-9 rad, offset pivot, dry and swollen cam/roller/arm."""
-    design = design_from_scene(arm_section("roller", rises,
+    design = cam_design(arm_section("roller", rises,
                                            pivot=("90 mm", "40 mm") if rises == "counter_clockwise"
                                            else ("-60 mm", "75 mm")))
     psi = motion_function(design, state)[0](ANGLES)[0]
@@ -136,14 +136,14 @@ def test_roller_arm_angle_matches_root_found_contact(rises, state):
 
 @pytest.mark.parametrize("state", [CamState(), AGED], ids=["dry", "aged"])
 def test_flat_face_arm_angle_matches_root_found_contact(state):
-    design = design_from_scene(flat_section())
+    design = cam_design(flat_section())
     psi = motion_function(design, state)[0](ANGLES)[0]
     assert np.max(np.abs(psi - root_found_face_angles(design, state, ANGLES))) < 1e-9
 
 
 def test_dry_arm_follows_the_design_motion():
     """Without strain the arm angle is the motion program itself (swing 20 deg)."""
-    v = arm_response(design_from_scene(arm_section()), CamState(), THETA).variables
+    v = arm_response(cam_design(arm_section()), CamState(), THETA).variables
     assert v["arm_swing"] == pytest.approx(math.radians(20.0), rel=1e-12)
     assert v["follower_arm_angle"][120] == pytest.approx(math.radians(10.0), rel=1e-12)
 
@@ -164,7 +164,7 @@ SECTIONS = {"roller": arm_section, "flat": flat_section}
 def test_pressure_angle_matches_the_profile_normal_by_finite_differences(kind):
     """alpha between the direction the arm moves the contact point and the profile normal,
     the normal from a central difference of the generated profile (error ~h^2)."""
-    design = design_from_scene(SECTIONS[kind]())
+    design = cam_design(SECTIONS[kind]())
     v = arm_response(design, CamState(), SMOOTH).variables
     arm = design.arm
     for k, theta in enumerate(SMOOTH):
@@ -182,7 +182,7 @@ def test_pressure_angle_matches_the_profile_normal_by_finite_differences(kind):
 @pytest.mark.parametrize("kind", ["roller", "flat"])
 def test_radius_of_curvature_matches_finite_difference_curvature(kind):
     """rho of the working profile vs kappa = (x'y'' - y'x'')/|W'|^3 of the generated profile."""
-    design = design_from_scene(SECTIONS[kind]())
+    design = cam_design(SECTIONS[kind]())
     rho = arm_response(design, CamState(), SMOOTH).variables["radius_of_curvature"]
     for k, theta in enumerate(SMOOTH):
         _, d1, d2 = finite_difference_profile(design, theta)
@@ -195,7 +195,7 @@ def test_radius_of_curvature_matches_finite_difference_curvature(kind):
 def test_cam_torque_times_cam_speed_is_arm_torque_times_arm_speed(kind, state):
     """Virtual work (no friction): T omega = T_arm psi_dot; the cam torque is the moment of
     the contact force about the cam axis, the arm torque its moment about the pivot."""
-    design = design_from_scene(SECTIONS[kind]())
+    design = cam_design(SECTIONS[kind]())
     v = arm_response(design, state, THETA).variables
     power_in = v["cam_torque"] * design.speed
     power_out = v["arm_torque"] * v["follower_arm_angular_velocity"]
@@ -205,7 +205,7 @@ def test_cam_torque_times_cam_speed_is_arm_torque_times_arm_speed(kind, state):
 def test_arm_torque_is_inertia_spring_and_preload():
     """T_arm = I psi'' omega^2 + k_t psi + T_0 on the dry cam; the contact force is T_arm over
     the lever l cos(alpha)."""
-    design = design_from_scene(arm_section())
+    design = cam_design(arm_section())
     v = arm_response(design, CamState(), THETA).variables
     psi, acc = v["follower_arm_angle"], v["follower_arm_angular_acceleration"]
     assert np.allclose(v["arm_torque"], 1.3e-4 * acc + 2.0 * psi + 0.4, rtol=1e-12)
@@ -233,8 +233,8 @@ def long_arm_errors(length):
            "arm": {"pivot": [length, 38e-3 + lift / 2], "length": length, "rises": "clockwise",
                    "inertia": mass * length ** 2, "spring_rate": rate * length ** 2,
                    "spring_preload": preload * length}}
-    a = cam_response(design_from_scene(translating), CamState(), THETA).variables
-    b = arm_response(design_from_scene(translating | {"motion": arm_motion, "follower": arm}),
+    a = cam_response(cam_design(translating), CamState(), THETA).variables
+    b = arm_response(cam_design(translating | {"motion": arm_motion, "follower": arm}),
                      CamState(), THETA).variables
     return (np.max(np.abs(a["pressure_angle"] - b["pressure_angle"])),
             np.max(np.abs(a["cam_torque"] - b["cam_torque"])))
@@ -310,7 +310,7 @@ def test_clockwise_cam_touches_the_arm_where_it_says():
     turned by R(-theta) lie on the roller, whose centre is on the arm about the real pivot
     (base arm angle by root finding, arm turning clockwise on the rise)."""
     section = arm_section("roller", "clockwise", pivot=("-60 mm", "75 mm")) | {"direction": "clockwise"}
-    design = design_from_scene(section)
+    design = cam_design(section)
     v = arm_response(design, CamState(), THETA).variables
     x, y = rotate(-THETA, v["profile_x"], v["profile_y"])
     pivot = np.array([-60e-3, 75e-3])
@@ -329,7 +329,7 @@ def test_clockwise_cam_touches_the_translating_follower_where_it_says():
                "follower": {"kind": "knife", "offset": "7 mm", "mass": "0.1 kg"},
                "motion": [dict(s, **{k: "10 mm" for k in ("rise", "return") if k in s})
                           for s in MOTION]}
-    v = cam_response(design_from_scene(section), CamState(), THETA).variables
+    v = cam_response(cam_design(section), CamState(), THETA).variables
     x, y = rotate(-THETA, v["profile_x"], v["profile_y"])
     assert np.max(np.abs(x - 7e-3)) < 1e-12
     height = math.sqrt(30e-3 ** 2 - 7e-3 ** 2) + v["follower_displacement"]
@@ -346,9 +346,9 @@ def test_arm_on_a_cam_given_by_points_follows_the_motion_program(kind, tmp_path)
     from fickcam.cam.profile import write_profile_csv
 
     section = SECTIONS[kind]()
-    design = design_from_scene(section)
+    design = cam_design(section)
     path = write_profile_csv(tmp_path / "arm.csv", *working_outline(design, n=1440))
-    points = design_from_scene({k: v for k, v in section.items()
+    points = cam_design({k: v for k, v in section.items()
                                 if k not in ("motion", "base_circle_radius")} |
                                {"profile_file": str(path)})
     swing = design.segments[1].height
@@ -366,7 +366,7 @@ def test_sized_arm_cam_sits_on_the_pressure_angle_limit():
 
     from fickcam.cam.sizing import Limits, arm_reach, smallest_base_circle, worst
 
-    design = design_from_scene(arm_section())
+    design = cam_design(arm_section())
     limits = Limits(math.radians(30.0), 5e-3)
     radius = smallest_base_circle(design, limits)["pressure_angle"]
     low, high = arm_reach(design)

@@ -5,7 +5,8 @@ from types import SimpleNamespace
 import numpy as np
 import pytest
 
-from fickcam.cam import CamSection, scene_parts, scene_response
+from fickcam.cam import CamSection
+from fickcam.cam.mechanism import CamMechanism
 from fickcam.results.schema import VARIABLES
 
 xr = pytest.importorskip("xarray")
@@ -36,12 +37,14 @@ def dataset():
 
     times = np.array([0.0, 7.0, 30.0]) * 86400
     angles = np.radians(np.arange(0.0, 360.0, 2.0))
-    response = scene_response(SECTION, histories(), times, angles, np.ones(3, bool))
+    material = SimpleNamespace(dry_density=1500.0, absorbs=True)
+    response = CamMechanism(SECTION, {"cfrp": material}).response(histories(), times, angles,
+                                                                  np.ones(3, bool))
     return build_dataset(response.variables, {"time": times, "cam_angle": angles},
                          {"scene_name": "tiny-cam"}), response
 
 
-def test_scene_response_variables_follow_the_schema_and_age(dataset):
+def test_the_cam_mechanisms_variables_follow_the_schema_and_age(dataset):
     ds, response = dataset
     for name in ds.data_vars:
         assert ds[name].dims == VARIABLES[name].dims
@@ -63,15 +66,16 @@ def test_kinematics_and_dynamics_plots_are_written(dataset, tmp_path):
     assert all(p.exists() and p.stat().st_size > 5000 for p in written)
 
 
-def test_scene_parts_are_the_cam_plate_and_the_roller():
+def test_the_cam_mechanisms_parts_are_the_cam_plate_and_the_roller():
     from fickcam.diffusion.problem.geometry import CamPlate, Disc
     from fickcam.materials.bodies import polygon_section
 
-    material = SimpleNamespace(dry_density=1500.0)
-    parts = scene_parts(SECTION, {"cfrp": material})
-    assert [p[0] for p in parts] == ["cam", "follower"]
+    material = SimpleNamespace(dry_density=1500.0, absorbs=True)
+    parts = CamMechanism(SECTION, {"cfrp": material}).parts
+    assert [p.name for p in parts] == ["cam", "follower"]
     cam, follower = parts
-    assert isinstance(cam[2], CamPlate) and isinstance(follower[2], Disc)
-    area = polygon_section(cam[2].profile_x, cam[2].profile_y)[0]
-    assert cam[3] == pytest.approx(1500.0 * 0.01 * area, rel=1e-12)
-    assert follower[2].outer_radius == pytest.approx(0.01) and follower[3] == pytest.approx(0.5)
+    assert isinstance(cam.geometry, CamPlate) and isinstance(follower.geometry, Disc)
+    area = polygon_section(cam.geometry.profile_x, cam.geometry.profile_y)[0]
+    assert cam.dry_mass == pytest.approx(1500.0 * 0.01 * area, rel=1e-12)
+    assert follower.geometry.outer_radius == pytest.approx(0.01)
+    assert follower.dry_mass == pytest.approx(0.5)

@@ -29,7 +29,9 @@ def design(speed=100.0, design_speed=100.0, zeta=0.05):
 
 
 def output_error(d, state=CamState()):
-    rigid = cam_response(d, state, THETA).variables
+    """The train's response to the cam; the jump speed is given (not searched: 95 % of
+    the cost, and not what these tests check; a whole scene's run below searches it)."""
+    rigid = cam_response(d, state, THETA, jump_speed=math.inf).variables
     return tr.dynamic_response(d, state, THETA, rigid).variables
 
 
@@ -74,7 +76,7 @@ def test_scene_polydyne_run_off_its_design_speed_reports_the_error():
     for segment in scene["cam"]["motion"]:
         if "law" in segment:
             segment["law"] = "polynomial_4567"
-    scene["outputs"] = {"ageing_times": ["0 d"], "angle_step": "2 deg"}
+    scene["outputs"] = {"ageing_times": ["0 d"], "angle_step": "6 deg"}
     ds = fickcam.run(scene)
     assert float(ds["peak_polydyne_output_error_design"]) > 1e-7  # the scene runs at 1500 rpm
     scene["cam"]["polydyne"] = True  # design speed = the running speed

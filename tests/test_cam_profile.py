@@ -11,7 +11,7 @@ import yaml
 
 from fickcam.cam import dynamics as dyn
 from fickcam.cam.geometry import rotate, working_outline
-from fickcam.cam.design import CamState, design_from_scene
+from fickcam.cam.design import CamState, cam_design
 from fickcam.cam.model import cam_response
 from fickcam.cam.profile import (make_profile, profile_motion, read_profile_csv,
                                  write_profile_csv, write_profile_dxf)
@@ -38,10 +38,10 @@ def cam_section(kind="roller", law="cycloidal", offset="0 mm", lift="1.5 in", ba
 
 def as_points(section, tmp_path, n, name="profile.csv"):
     """The same cam given by n working-profile points written to a CSV."""
-    design = design_from_scene(section)
+    design = cam_design(section)
     path = write_profile_csv(tmp_path / name, *working_outline(design, n=n))
     points = {k: v for k, v in section.items() if k not in ("motion", "base_circle_radius")}
-    return design, design_from_scene(points | {"profile_file": str(path)})
+    return design, cam_design(points | {"profile_file": str(path)})
 
 
 def kinematics(design, state=CamState()):
@@ -107,7 +107,7 @@ def test_acceleration_jump_limits_the_pressure_angle_to_first_order_in_the_spaci
 
 def test_pitch_curve_file_gives_the_cam_of_its_working_profile(tmp_path):
     section = cam_section()
-    design = design_from_scene(section)
+    design = cam_design(section)
     psi = 2 * np.pi * np.arange(720) / 720
     from fickcam.cam.motion import follower_motion
 
@@ -115,7 +115,7 @@ def test_pitch_curve_file_gives_the_cam_of_its_working_profile(tmp_path):
     s0 = design.base_circle_radius + design.roller_radius
     px, py = rotate(-psi, 0.0, s0 + rise)  # pitch point in the cam frame (Norton eq. 8.32)
     path = write_profile_csv(tmp_path / "pitch.csv", px, py, curve="pitch")
-    points = design_from_scene({k: v for k, v in section.items()
+    points = cam_design({k: v for k, v in section.items()
                                 if k not in ("motion", "base_circle_radius")} | {"profile_file": str(path)})
     y0, phi0, lift = kinematics(design)
     y1, phi1, _ = kinematics(points)
@@ -124,7 +124,7 @@ def test_pitch_curve_file_gives_the_cam_of_its_working_profile(tmp_path):
 
 
 def test_units_in_the_header_are_honoured(tmp_path):
-    x, y = working_outline(design_from_scene(cam_section()), n=100)
+    x, y = working_outline(cam_design(cam_section()), n=100)
     (tmp_path / "in.csv").write_text("# inches\nx [in],y [in]\n" + "\n".join(
         f"{float(a) / 0.0254!r},{float(b) / 0.0254!r}" for a, b in zip(x, y)))
     x1, y1, curve = read_profile_csv(tmp_path / "in.csv")
@@ -134,7 +134,7 @@ def test_units_in_the_header_are_honoured(tmp_path):
 def test_dxf_holds_the_closed_profile_in_millimetres(tmp_path):
     import ezdxf
 
-    x, y = working_outline(design_from_scene(cam_section()), n=360)
+    x, y = working_outline(cam_design(cam_section()), n=360)
     doc = ezdxf.readfile(write_profile_dxf(tmp_path / "cam.dxf", x, y))
     (polyline,) = doc.modelspace().query("LWPOLYLINE")
     points = np.array([p[:2] for p in polyline.get_points()])
@@ -163,7 +163,7 @@ SCENE = textwrap.dedent("""\
     ("good.csv", "  bore_radius: 60 mm\n", "cam.bore_radius: must be smaller than the profile"),
 ])
 def test_bad_profile_files_are_refused_at_their_line(tmp_path, capsys, profile, extra, key):
-    x, y = working_outline(design_from_scene(cam_section()), n=100)
+    x, y = working_outline(cam_design(cam_section()), n=100)
     write_profile_csv(tmp_path / "good.csv", x, y)
     (tmp_path / "bad.csv").write_text("u [mm],v [mm]\n1,2\n")
     scene = tmp_path / "scene.yaml"
@@ -174,7 +174,7 @@ def test_bad_profile_files_are_refused_at_their_line(tmp_path, capsys, profile, 
 
 
 def test_profile_scene_runs_and_names_the_profile_cam(tmp_path, capsys):
-    x, y = working_outline(design_from_scene(cam_section()), n=720)
+    x, y = working_outline(cam_design(cam_section()), n=720)
     write_profile_csv(tmp_path / "good.csv", x, y)
     scene = tmp_path / "scene.yaml"
     scene.write_text(SCENE.replace("PROFILE", "good.csv").replace(

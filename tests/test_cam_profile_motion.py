@@ -14,7 +14,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 from scipy.interpolate import PPoly
 
-from fickcam.cam.design import CamState, design_from_scene
+from fickcam.cam.design import CamState, cam_design
 from fickcam.cam.geometry import working_outline
 from fickcam.cam.model import cam_response
 from fickcam.cam.profile import aged_profile_motion, make_profile, piece_roots
@@ -29,7 +29,7 @@ SWOLLEN = CamState(cam_strain_x=STRAIN, cam_strain_y=STRAIN)
 
 
 def closed_form_disc():
-    return design_from_scene(SECTION)
+    return cam_design(SECTION)
 
 
 def as_points(design, n):

@@ -6,13 +6,15 @@ import math
 from collections import Counter
 from dataclasses import replace
 
+import numpy as np
 import pytest
 
 import fickcam.diffusion
 import fickcam.simulation.simulate
 from fickcam.cam import CamDesign
 from fickcam.cam.motion import segments_from_spec
-from fickcam.cam.sizing import Limits, degenerate_notes, smallest_base_circle, worst
+from fickcam.cam.sizing import (Limits, contact_stress_radius, degenerate_notes,
+                                smallest_base_circle, worst)
 from fickcam.cam.sizing_scene import MAX_RUNS
 from fickcam.cam.spec import Segment
 from fickcam.cli.main import main
@@ -110,7 +112,8 @@ def test_size_sizes_dry_and_aged_in_at_most_five_runs(tmp_path, capsys, monkeypa
         return call
 
     monkeypatch.setattr(fickcam.simulation.simulate, "run", counted("runs", fickcam.simulation.simulate.run))
-    monkeypatch.setattr(fickcam.diffusion, "solve", counted("solves", fickcam.diffusion.solve))
+    monkeypatch.setattr(fickcam.diffusion, "solve_problem",
+                        counted("solves", fickcam.diffusion.solve_problem))
     assert main(["size", str(scene), "--pressure-angle", "30 deg"]) == 0
     out = capsys.readouterr().out
     assert 2 <= counts["runs"] <= MAX_RUNS and counts["solves"] == counts["runs"]  # the cam alone absorbs
@@ -121,6 +124,49 @@ def test_size_sizes_dry_and_aged_in_at_most_five_runs(tmp_path, capsys, monkeypa
     assert "aged, with the sized cam's own moisture" in out and "meets the limits" in out
     assert "NOT" not in out and "note:" not in out
     assert main(["size", str(scene), "--pressure-angle", "30 kg"]) == 2
+
+
+def test_a_flat_face_s_contact_stress_radius_keeps_the_hertz_pressure_at_first_yield():
+    """rho = F E* / (pi L (S / 0.30)^2): at that radius Johnson's p0 = sqrt(F E*/(pi L rho))
+    is S / 0.30, where the largest shear stress below the surface reaches S."""
+    from fickcam.cam.dynamics import hertz_line_pressure, subsurface_shear
+
+    force, e_star, length, strength = 40.0, 3.1e9, 0.01, 55e6
+    radius = contact_stress_radius(np.array([[0.5, 1.0], [0.25, np.nan]]) * force * e_star, length,
+                                   np.array([[strength], [strength]]))
+    p0 = hertz_line_pressure(force, length, radius, None, e_star)
+    shear, _ = subsurface_shear(p0, 1.0)
+    assert shear == pytest.approx(strength, rel=1e-12)
+    assert contact_stress_radius(np.zeros(3), length, strength) == 0.0
+
+
+FLAT = SCENE.replace("kind: roller, roller_radius: 8 mm", "kind: flat").replace(
+    "{ageing_times: {every: 10 d}", "{ageing_times: [0 d, 30 d, 60 d]").replace("20 mm", "8 mm")
+
+
+def test_a_flat_face_is_sized_for_its_contact_stress_and_a_pointed_answer_is_not_run(
+        tmp_path, capsys, monkeypatch):
+    """A flat face asked only a convex profile: the answer was a nearly pointed cam, whose
+    plate the run at the answer meshed with 140k cells. The default is now the radius the
+    contact stress asks, and a degenerate answer is told without a run there."""
+    import fickcam
+
+    scene = tmp_path / "flat.yaml"
+    scene.write_text(FLAT)
+    ds = fickcam.run(fickcam.load_scene(str(scene)))
+    runs = []
+    monkeypatch.setattr(fickcam.simulation.simulate, "run", lambda *a, **k: runs.append(1) or ds)
+    assert main(["size", str(scene)]) == 0
+    out = capsys.readouterr().out
+    assert len(runs) == 1  # the scene's own run only
+    cam = ds.sel(part="cam")  # an independent E*: the surface modulus and a steel face
+    e_star = 1 / ((1 - 0.35 ** 2) / cam["surface_modulus"] + (1 - 0.3 ** 2) / 210e9)
+    allowable = 55e6 * cam["surface_property_retention"] / 0.30
+    expected = float((ds["contact_force"].max("cam_angle") * e_star
+                      / (np.pi * 0.01 * allowable ** 2)).max())
+    assert f"radius of curvature >= {expected * 1e3:.4g} mm (the flat face's Hertz contact " \
+           f"stress: 0.30 p0 within the cam's shear strength, 55 MPa)" in out, out
+    assert "no run at a degenerate size" in out and "nearly pointed" in out
 
 
 def test_a_cam_that_cannot_be_sized_is_refused_before_any_run(tmp_path, capsys, monkeypatch):

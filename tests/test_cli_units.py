@@ -67,27 +67,30 @@ def test_a_bare_query_time_is_refused_and_zero_needs_no_unit(eccentric_result, c
 
 
 @pytest.mark.parametrize("option", ["--cam-angle", "--crank-angle"])
-def test_a_bare_angle_is_radians_as_in_a_scene(eccentric_result, capsys, option):
-    """120 rad is more than a turn: refused with '120 deg'; 2 (rad) is 114.6 deg, and the
-    answer says so."""
+@pytest.mark.parametrize("bare", ["120", "5", "-0.5", "2e-3"])
+def test_a_bare_angle_is_refused_with_degrees_suggested(eccentric_result, capsys, option, bare):
+    """A bare 5 was taken as 5 rad (286 deg) without a word; the command line shows angles
+    in degrees, so a bare angle is refused like a bare rotational speed. Zero needs no unit."""
     argv = ["query", str(eccentric_result), "contact_force", "--time", "30 d"]
-    if option == "--crank-angle":  # the cam result has no crank: the angle is judged first
-        err = _refused(capsys, argv + [option, "120"])
-        assert err.startswith(f"fickcam: error: {option} 120: 120 rad is an implausible angle")
-        return
-    err = _refused(capsys, argv + [option, "120"])
-    assert err.startswith("fickcam: error: --cam-angle 120: 120 rad is an implausible angle "
-                          "(more than a turn either way): did you mean '120 deg'?")
-    assert main(argv + [option, "120 deg"]) == 0
-    assert "cam_angle = 120 deg (stored)" in capsys.readouterr().out
-    assert main(argv + [option, "2"]) == 0
-    assert "cam_angle = 114.592 deg" in capsys.readouterr().out
+    err = _refused(capsys, argv + [option, bare])  # the cam result has no crank: judged first
+    number = f"{float(bare):g}"
+    assert err == (f"fickcam: error: {option} {bare}: {number} without a unit is ambiguous for "
+                   f"an angle (deg or rad): did you mean '{number} deg'? Give the unit "
+                   f"('{number} deg' or '{number} rad')")
+    if option == "--cam-angle":
+        assert main(argv + [option, "120 deg"]) == 0
+        assert "cam_angle = 120 deg (stored)" in capsys.readouterr().out
+        assert main(argv + [option, "2 rad"]) == 0
+        assert "cam_angle = 114.592 deg" in capsys.readouterr().out
+        assert main(argv + [option, "0"]) == 0
 
 
 @pytest.mark.parametrize("argv, expected", [
     (["size", str(DEMO), "--pressure-angle", "25"],
-     "--pressure-angle 25: 25 rad is an implausible angle (more than a turn either way): did "
+     "--pressure-angle 25: 25 without a unit is ambiguous for an angle (deg or rad): did "
      "you mean '25 deg'?"),
+    (["size", str(DEMO), "--pressure-angle", "0.4"],
+     "--pressure-angle 0.4: 0.4 without a unit is ambiguous for an angle (deg or rad)"),
     (["size", str(DEMO), "--radius-of-curvature", "5"],
      "--radius-of-curvature 5: 5 m is an implausible smallest radius of curvature (its base "
      "circle radius is 49.28 mm): did you mean '5 mm'?"),

@@ -15,7 +15,7 @@ from hypothesis import strategies as st
 
 import fickcam
 from fickcam.cli.main import main
-from fickcam.cam.design import CamState, design_from_scene
+from fickcam.cam.design import CamState, cam_design
 from fickcam.cam.model import cam_response
 from fickcam.compensation import compensate, write_scene
 from fickcam.compensation.core import made_value, residual
@@ -126,7 +126,7 @@ def test_demo_cam_compensated_at_60_days_follows_the_design_motion(tmp_path, cap
     assert drawing.exists()
     scene = load_scene(tmp_path / "demo.yaml")
     before, after = fickcam.run(scene), fickcam.run(path)
-    design = cam_response(design_from_scene(scene.model.cam), CamState(),
+    design = cam_response(cam_design(scene.model.cam), CamState(),
                           np.radians(before.cam_angle.values)).variables["follower_displacement"]
     deviation = np.abs(before.follower_displacement.values[-1] - design)
     left = np.abs(after.follower_displacement.values[-1] - design)

@@ -4,8 +4,8 @@ For a cam, a four-bar and a swinging arm, each with a limit crossed within hours
 day and one crossed in weeks, four choices of stored ageing times (regular, the ends
 only, dense just before the crossing then a long gap, and a first stored time after the
 crossing) must each give every ``time_out_of_spec`` within its stored error estimate of
-a dense reference, and that estimate within the crossing's tolerance (0.1 % of it or
-1 h). The reference is the first crossing on a grid 0.002 d apart about the crossing
+a dense reference, and that estimate within a tenth of the crossing's tolerance (0.1 % of
+it or 1 h). The reference is the first crossing on a grid 0.002 d apart about the crossing
 (linear between its times, its own error about 1e-5 h), of a run storing that grid; the
 grid's window is checked to hold the first crossing, not trusted.
 """
@@ -18,7 +18,8 @@ import pytest
 import yaml
 
 import fickcam
-from fickcam.results.limits import Tolerance, limit_ratio
+from fickcam.results.limits import FLOOR_SHARE, Tolerance, limit_ratio
+from fickcam.cli.reporting import crossing_text
 
 from test_limits import fast_fourbar
 
@@ -123,4 +124,9 @@ def test_time_out_of_spec_is_within_its_error_of_a_dense_reference(name):
             found = float(ds["time_out_of_spec"].sel(limit=limit)) * DAY
             error = float(ds["time_out_of_spec_error"].sel(limit=limit)) * DAY
             assert abs(found - expected * DAY) <= error, (limit, stored, found / DAY, expected)
-            assert 0.0 < error <= Tolerance().at(found), (limit, stored, error)
+            # tight, not only within the tolerance: the cubic's correction of the closed
+            # bracket's chord (its bound was 0.05 to 0.86 h against a true error of 1e-5 h)
+            assert 0.0 < error <= FLOOR_SHARE * Tolerance().at(found) * (1 + 1e-9), \
+                (limit, stored, error)
+        if name == "cam":  # the digits a report prints: 19.99 d, where 20.0 d was printed
+            assert crossing_text(ds, "follower_position") == "19.99 d"

@@ -20,11 +20,11 @@ def scene_part(config: str, name: str):
     """(geometry, diffusivity, exposure, ageing times, accuracy) of a part of a config."""
     from fickcam.climate.environment import Environment
     from fickcam.scene.load import load_scene
-    from fickcam.simulation.simulate import ageing_times, build_parts
+    from fickcam.simulation.simulate import ageing_times
 
     scene = load_scene(CONFIGS / config)
     environment = Environment.from_section(scene.model.environment, base_dir=scene.base_dir)
-    part = next(p for p in build_parts(scene) if p.name == name)
+    part = next(p for p in scene.parts if p.name == name)
     return (part.geometry, part.material.diffusivity_for(part.geometry),
             environment.exposure(part.material.saturation_moisture),
             ageing_times(scene, environment), scene.model.diffusion.accuracy)

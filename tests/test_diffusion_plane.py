@@ -330,11 +330,10 @@ def demo_cam():
     """The cam of configs/singh2017_cam.yaml: its CamPlate, diffusivity and exposure."""
     from fickcam.climate.environment import Environment
     from fickcam.scene.load import load_scene
-    from fickcam.simulation.simulate import build_parts
 
     scene = load_scene(CONFIGS / "singh2017_cam.yaml")
     environment = Environment.from_section(scene.model.environment, base_dir=scene.base_dir)
-    cam = next(p for p in build_parts(scene) if isinstance(p.geometry, CamPlate))
+    cam = next(p for p in scene.parts if isinstance(p.geometry, CamPlate))
     return (cam.geometry, cam.material.diffusivity_for(cam.geometry),
             environment.exposure(cam.material.saturation_moisture))
 

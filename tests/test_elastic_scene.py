@@ -129,8 +129,8 @@ def test_demo_cam_deflection_grows_as_the_matrix_softens():
     rigid = {name: ds[name].values for name in ("contact_force", "contact_stress", "profile_x",
                                                 "profile_y", "follower_displacement")}
     rigid["pressure_angle"] = np.radians(ds["pressure_angle"].values)
-    section = fickcam.load_scene(doc).model.cam
-    result = cam_elastic_response(section, state, rigid, np.ones(2, bool)).variables
+    design = fickcam.load_scene(doc).mechanism("cam").design
+    result = cam_elastic_response(design, state, rigid, np.ones(2, bool)).variables
     peak = np.argmax(rigid["contact_force"], axis=1)
     deflection = result["elastic_deflection"][[0, 1], peak]
     ratios = [float(cam[v][1] / cam[v][0]) for v in moduli[:3]]

@@ -14,7 +14,7 @@ from hypothesis import strategies as st
 from fickcam.cli.main import main
 from fickcam.results.query import select
 from fickcam.scene.load import load_scene
-from fickcam.simulation.simulate import ageing_times, every_step_times, scene_environment
+from fickcam.simulation.simulate import ageing_times, every_step_times
 
 CONFIGS = Path(__file__).resolve().parents[1] / "configs"
 DAY = 86400.0
@@ -58,7 +58,7 @@ def test_every_grid_starts_at_zero_steps_evenly_and_ends_on_the_history(step, st
 def test_a_two_year_history_every_30_d_is_reported_to_two_years(tmp_path, capsys):
     path = steel_cam(tmp_path, {"every": "30 d"}, history=TWO_YEAR_HISTORY)
     scene = load_scene(path)
-    times = ageing_times(scene, scene_environment(scene))
+    times = ageing_times(scene, scene.environment)
     assert times[-1] == TWO_YEARS and times[-2] == 720 * DAY
     result = tmp_path / "out.h5"
     assert main(["run", str(path), "-o", str(result), "--quiet"]) == 0
@@ -75,7 +75,7 @@ def test_a_chamber_log_ends_the_every_grid_at_its_last_row(tmp_path):
     (tmp_path / "log.csv").write_text("time [d],temperature [degC],relative_humidity [%]\n"
                                       "0,90,50\n45,90,50\n")
     scene = load_scene(steel_cam(tmp_path, {"every": "30 d"}, history_file="log.csv"))
-    assert np.array_equal(ageing_times(scene, scene_environment(scene)) / DAY, [0, 30, 45])
+    assert np.array_equal(ageing_times(scene, scene.environment) / DAY, [0, 30, 45])
 
 
 # ------------------------------------------------------------- beyond the history

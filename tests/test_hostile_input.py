@@ -16,6 +16,7 @@ import yaml
 from fickcam.cli.main import main
 from fickcam.errors import SceneError
 from fickcam.climate.records import read_record
+from fickcam.scene.load import load_scene
 from fickcam.scene.yamldoc import MAX_BYTES, MAX_DEPTH, MAX_NODES, parse_yaml, read_yaml
 from test_scene_errors import CAM_SCENE
 
@@ -109,6 +110,50 @@ def test_a_huge_scene_is_refused_unread(tmp_path):
     assert time.perf_counter() - started < 0.5
 
 
+def _shared_bomb(levels: int = 9, fan: int = 9) -> dict:
+    """The alias bomb as Python data: one list shared ``fan`` times at each level."""
+    value = ["lol"]
+    for _ in range(levels):
+        value = [value] * fan
+    return {"name": value}
+
+
+def _holds_itself() -> dict:
+    scene = {"name": "loop"}
+    scene["cam"] = scene
+    return scene
+
+
+@pytest.mark.parametrize("make, reason", [
+    (_shared_bomb, f"more than {MAX_NODES:,} values"),
+    (lambda: {"name": "big", **{f"key_{k}": k for k in range(1_500_000)}},
+     f"more than {MAX_NODES:,} values"),
+    (lambda: {"name": "t", "outputs": {"ageing_times": ["1 h"] * 2_700_000}},
+     f"more than {MAX_NODES:,} values"),
+    (lambda: {"name": "x" * (MAX_BYTES + 1)}, f"a scene file is at most {MAX_BYTES / 2**20:g} MiB"),
+    (lambda: {"name": "x", "deep": json_nest(MAX_DEPTH + 1)}, f"nested more than {MAX_DEPTH} levels"),
+    (_holds_itself, "or holds itself"),
+])
+def test_a_scene_given_as_a_dict_is_bounded_as_a_file_is(make, reason):
+    """``load_scene(dict)`` wrote the data as YAML before the file's bounds applied: a
+    dict of 1.5 million keys took seconds and a deep or self-holding one a RecursionError."""
+    scene = make()
+    started = time.perf_counter()
+    with pytest.raises(SceneError) as error:
+        load_scene(scene)
+    assert time.perf_counter() - started < 0.5
+    (problem,) = error.value.problems
+    assert problem.file == "<dict>" and problem.reason.startswith("scene refused: ")
+    assert reason in problem.reason and "\n" not in str(error.value)
+
+
+def json_nest(levels: int) -> dict:
+    value: dict = {}
+    for _ in range(levels):
+        value = {"a": value}
+    return value
+
+
 def test_a_sweep_file_is_bounded_too(tmp_path):
     sweep = tmp_path / "sweep.yaml"
     sweep.write_text("base: base.yaml\n" + alias_bomb(levels=7, fan=9).replace("name:", "grid:"))
@@ -170,6 +215,8 @@ def test_a_resumed_sweep_removes_the_temporary_file_of_a_killed_write(tmp_path):
     from fickcam.sweep import run_sweep
 
     sweep = write_sweep(tmp_path)
+    sweep.write_text("base: base.yaml\ngrid:\n  environment.history.0.relative_humidity: "
+                     "[55 %]\n")  # one case: what is tested is the result's write
     output = tmp_path / "out.h5"
     stale = tmp_path / ".out.h5.k3j_9x2q.tmp"  # what a kill during the result's write leaves
     stale.write_bytes(b"half a result")

@@ -6,7 +6,8 @@ import numpy as np
 import pytest
 from pydantic import ValidationError
 
-from fickcam.linkage import JOINTS, LINKS, LinkageSection, scene_response
+from fickcam.linkage import JOINTS, LinkageSection
+from fickcam.linkage.mechanism import LINKS, linkage_response
 
 SECTION = {
     "material": "resin", "frame_material": "steel",
@@ -71,7 +72,7 @@ def test_ageing_that_lengthens_the_crank_removes_full_rotation_and_is_warned():
     histories = {"crank": history([0.0, 0.01, 0.06], [0.0, 1.0, 2.0]), "coupler": history([0, 0, 0]),
                  "rocker": history([0, 0, 0]), "frame": history([0, 0, 0], density=7850.0)}
     angles = np.radians(np.arange(0, 360, 2.0))
-    result = scene_response(section(), histories, times, angles, np.ones(3, bool))
+    result = linkage_response(section(), histories, times, angles, np.ones(3, bool))
     v = result.variables
     assert list(v["grashof_class"]) == ["crank-rocker", "crank-rocker", "non-Grashof"]
     assert v["coupler_angle"].shape == (3, angles.size)
@@ -90,8 +91,8 @@ def test_ageing_that_lengthens_the_crank_removes_full_rotation_and_is_warned():
 def test_invalid_ageing_times_stay_nan():
     times = np.array([0.0, 86400.0])
     histories = {name: history([0.0, 0.01]) for name in LINKS}
-    result = scene_response(section(), histories, times, np.radians(np.arange(0, 360, 10.0)),
-                            np.array([True, False]))
+    result = linkage_response(section(), histories, times, np.radians(np.arange(0, 360, 10.0)),
+                              np.array([True, False]))
     assert np.isnan(result.variables["input_torque"][1]).all()
     assert result.variables["grashof_class"][1] == ""
 

@@ -54,8 +54,9 @@ def test_figures_show_inline_and_the_backend_stays(session):
     assert session["end"][0].text.rstrip().endswith("True")  # the same backend at the end
     assert images(session["plot_all"]) >= 6  # uptake, kinematics, drift, profile, dynamics...
     assert images(session["plot_kinds"]) == images(session["plot_all"])
-    for marker in ("xarray_plot", "fourbar", "hot", "end"):
+    for marker in ("xarray_plot", "fourbar", "hot", "end", "fit"):
         assert images(session[marker]) >= 1, marker
+    assert images(session["sweep"]) >= 2  # the sweep's outputs over the humidity, and over time
 
 
 def test_no_cell_shows_foreign_warning_text_or_an_unlabelled_line(session):

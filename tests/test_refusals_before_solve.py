@@ -45,6 +45,7 @@ def work_done(monkeypatch):
     monkeypatch.setattr(dispatch, "plan_problem", planned)
     monkeypatch.setattr(dispatch, "solve_problem", solved)
     monkeypatch.setattr(fickcam.diffusion, "plan_problem", planned)
+    monkeypatch.setattr(fickcam.diffusion, "solve_problem", solved)
     return done
 
 

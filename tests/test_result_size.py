@@ -93,3 +93,37 @@ def test_a_large_result_is_chunked_deflated_and_read_lazily(tmp_path, monkeypatc
                                       select(eager, "follower_displacement", time=time).values)
     xr.testing.assert_identical(lazy.load(), eager)
     lazy.close()
+
+
+DAILY = CAM_SCENE.replace("duration: 60 d", "duration: 3650 d").replace(
+    "ageing_times: [0 d, 1 d, 7 d, 30 d, 60 d]", "ageing_times: {every: 1 d}")
+
+
+def test_a_sweep_is_estimated_warned_of_and_refused_before_its_first_case(tmp_path, capsys,
+                                                                            monkeypatch):
+    """A sweep combines its cases into one result: ten years of daily outputs are 0.2 GB
+    a case, and 12 cases 2.4 GB, which no sweep estimated before its cases ran."""
+    (tmp_path / "base.yaml").write_text(DAILY)
+    sweep = tmp_path / "sweep.yaml"
+    sweep.write_text("base: base.yaml\ngrid:\n  cam.speed: [" + ", ".join(
+        f"{500 + 10 * k} rpm" for k in range(12)) + "]\n")
+    output = tmp_path / "out.h5"
+
+    def no_case(*args, **kwargs):
+        raise AssertionError("a case started")
+
+    monkeypatch.setattr("fickcam.sweep.runner.run_here", no_case)
+    monkeypatch.setattr("fickcam.results.resultsize.free_space", lambda folder: 10**8)  # 100 MB free
+    assert main(["sweep", str(sweep), "-o", str(output), "--workers", "1"]) == 1
+    err = capsys.readouterr().err.strip().splitlines()
+    size = r"about 2\.\d+ GB \(12 cases x 3,651 ageing times x 360 cam angles\)"
+    assert re.fullmatch(rf"fickcam: warning: the result will be {size}, written compressed; to "
+                        r"shrink it: fewer cases, fewer ageing times \(outputs.ageing_times\) or "
+                        r"a coarser outputs.angle_step", err[-2]), err
+    assert re.fullmatch(rf"fickcam: error: {re.escape(str(output))}: the result will be {size} "
+                        r"and needs at least .* on the disk, which has 100 MB free: nothing was "
+                        r"run; .*", err[-1]), err
+    assert not output.exists()
+    one = estimate(load_scene(tmp_path / "base.yaml"))
+    assert estimate(load_scene(tmp_path / "base.yaml"), cases=12).bytes == pytest.approx(
+        12 * one.bytes, rel=0.01)

@@ -5,7 +5,8 @@ import numpy as np
 import pytest
 import xarray as xr
 
-from fickcam.sweep.scatter import fractions, out_of_spec_counts, summary_lines, wilson_interval
+from fickcam.cli.reporting import sweep_limit_lines
+from fickcam.sweep.scatter import fractions, out_of_spec_counts, wilson_interval
 
 Z = 1.959963984540054  # standard normal 97.5 % quantile
 
@@ -65,6 +66,15 @@ def test_combined_sweep_gets_fractions_and_a_summary():
     assert float(out["fraction_out_of_spec_low"].isel(time=2, limit=0)) == pytest.approx(100 * low)
     assert float(out["fraction_out_of_spec_high"].isel(time=2, limit=0)) == pytest.approx(100 * high)
     assert out["fraction_out_of_spec"].attrs["units"] == "%"
-    lines = summary_lines(out)
-    assert lines[0].startswith("out of spec (of 4 case(s)")
-    assert "60 d: 75 % [" in lines[1] and "transmission_angle: 0 d: 25 %" in lines[2]
+    ds = ds.merge(out)
+    ds["time_out_of_spec_error"] = xr.full_like(ds["time_out_of_spec"], 0.0021)  # 3 min [d]
+    ds.attrs["time_unit"] = "h"
+    lines = sweep_limit_lines(ds)
+    assert lines[0] == "out of spec (of 4 case(s) that ran; Wilson 95 % interval):"
+    high = f"{100 * wilson_interval(3, 4)[1]:.3g}"
+    assert lines[1] == (f"  rocker_angle: 3 of 4 by 1440 h (75 % [{100 * low:.3g}, {high}]); "
+                        f"first at 240.0 h (case 0), last at 1200.0 h (case 3)")
+    assert lines[2].startswith("  transmission_angle: 1 of 4 by 1440 h (25 % [") and \
+        lines[2].endswith("]); first at 0.0 h (case 1)")
+    assert lines[3].endswith("fickcam query RESULT fraction_out_of_spec)")
+    assert all(len(line) < 120 for line in lines)

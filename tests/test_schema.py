@@ -8,9 +8,9 @@ import yaml
 
 import fickcam
 from fickcam.results.dataset import build_dataset
-from fickcam.simulation.parts import build_parts, part_values
+from fickcam.simulation.parts import part_values
 from fickcam.results.schema import VARIABLES
-from fickcam.simulation.simulate import design_part, mechanism_values, scene_environment
+from fickcam.simulation.simulate import as_designed_part, mechanism_values
 
 CONFIGS = Path(__file__).resolve().parents[1] / "configs"
 SCENES = sorted(p for p in CONFIGS.glob("*.yaml") if not p.name.startswith("sweep"))
@@ -32,8 +32,8 @@ def follower_variants():
 def test_every_name_the_models_return_is_in_the_schema(name, scene):
     scene = fickcam.load_scene(scene, file_name=f"{name}.yaml") if isinstance(scene, dict) else \
         fickcam.load_scene(scene)
-    environment = scene_environment(scene)
-    states = [design_part(part, environment) for part in build_parts(scene)]
+    environment = scene.environment
+    states = [as_designed_part(part, environment) for part in scene.parts]
     mechanisms = mechanism_values(scene, states, np.zeros(1), np.ones(1, bool))
     returned = set(part_values(states)) | set(mechanisms.variables)
     assert returned, name

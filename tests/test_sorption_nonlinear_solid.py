@@ -362,12 +362,13 @@ def test_prisms_of_square_cells_are_the_grid3d_octant_to_round_off():
 def test_extreme_exponents_on_a_bar_stay_bounded_without_nan(exponent):
     """k from 0 to 5 on a bar wetted to Mm then dried: finite, within [0, Mm] up to the
     run's own error estimate, wetter after the soak than after the drying (k = 5 always
-    tried: drying to a skin sizes its cells at D0 for accuracy / 46, 1 440 cells here)."""
+    tried: drying to a skin sizes its cells at D0, the finest). At the loosest accuracy a
+    solve accepts (0.1)."""
     small = Bar(3e-3, 2e-3, 1e-3)
     end = 0.6 * 1e-3 ** 2 / D
     history = Exposure.piecewise([0.0, 0.5 * end, end], [330.0, 330.0], [MM, 0.0])
     times = np.linspace(0.0, end, 7)
-    result = solve(small, ISOTROPIC, history, times, accuracy=0.5, sorption=law(exponent))
+    result = solve(small, ISOTROPIC, history, times, accuracy=0.1, sorption=law(exponent))
     bound = result.error_estimate * MM
     assert np.all(np.isfinite(result.mean)) and np.all(np.isfinite(result.surface))
     assert np.all(result.mean >= -bound) and np.all(result.mean <= MM + bound)

@@ -95,3 +95,76 @@ def test_kill_9_at_random_moments_never_leaves_an_unreadable_result(tmp_path):
         xr.testing.assert_allclose(result.drop_attrs(), reference.drop_attrs())
         outcomes.append(process.returncode)
     assert any(code == -signal.SIGKILL for code in outcomes), "no run was actually killed"
+
+
+SLOW_WRITE = """
+import sys, time
+from pathlib import Path
+import fickcam.results.store
+from fickcam.cli.main import process_main
+
+READY = Path(sys.argv[1])
+
+
+def stalled(ds, target):  # the temporary file is open and half written when the signal comes
+    target.write(b"half a result")
+    READY.write_text("writing")
+    time.sleep(60)
+
+fickcam.results.store._write_netcdf = stalled
+sys.argv = ["fickcam", "run", sys.argv[2], "-o", sys.argv[3], "-qq"]
+sys.exit(process_main())
+"""
+
+
+@pytest.mark.parametrize("stop, status, said", [(signal.SIGTERM, 143, "terminated"),
+                                                (signal.SIGINT, 130, "interrupted")])
+def test_a_run_stopped_while_it_writes_leaves_no_temporary(tmp_path, stop, status, said):
+    """SIGTERM ended the process on the spot and left the hidden ``.out.h5.XXXXXXXX.tmp``
+    beside the result; it is now raised where the process is, as Ctrl-C is."""
+    target, ready = tmp_path / "out.h5", tmp_path / "ready"
+    save(_dataset(300.0), target)
+    process = subprocess.Popen([sys.executable, "-c", SLOW_WRITE, str(ready),
+                                str(CONFIGS / "yadav2017_cam.yaml"), str(target)],
+                               cwd=tmp_path, stderr=subprocess.PIPE, text=True,
+                               env=dict(os.environ, PYTHONPATH=str(CONFIGS.parent)))
+    deadline = time.monotonic() + 120
+    while not ready.exists() and process.poll() is None and time.monotonic() < deadline:
+        time.sleep(0.05)
+    process.send_signal(stop)
+    _, err = process.communicate(timeout=60)
+    assert (process.returncode, err) == (status, f"fickcam: error: {said}\n")
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["out.h5", "ready"]
+    assert float(open_result(target).temperature[0]) == 300.0
+
+
+HOLDER = """
+import sys, time
+from pathlib import Path
+from fickcam.results.store import temporary_beside
+
+with temporary_beside(Path(sys.argv[1])) as tmp:
+    print(tmp, flush=True)
+    time.sleep(60)
+"""
+
+
+def test_a_later_write_removes_a_dead_writers_temporary_and_keeps_a_live_ones(tmp_path):
+    """A writer killed by SIGKILL (nothing runs) leaves its temporary file: the next save
+    of the same result removes it, but never the file a live writer holds."""
+    target = tmp_path / "out.h5"
+    dead = tmp_path / ".out.h5.k3j_9x2q.tmp"  # what a killed write leaves, held by nobody
+    dead.write_bytes(b"half a result")
+    other = tmp_path / ".other.h5.k3j_9x2q.tmp"  # another result's
+    other.write_bytes(b"another file's")
+    holder = subprocess.Popen([sys.executable, "-c", HOLDER, str(target)], stdout=subprocess.PIPE,
+                              text=True, env=dict(os.environ, PYTHONPATH=str(CONFIGS.parent)))
+    try:
+        live = Path(holder.stdout.readline().strip())
+        save(_dataset(300.0), target)
+        assert not dead.exists() and other.exists() and live.exists()
+    finally:
+        holder.kill()
+        holder.wait()
+    save(_dataset(400.0), target)  # its writer is gone now
+    assert sorted(p.name for p in tmp_path.iterdir()) == [".other.h5.k3j_9x2q.tmp", "out.h5"]

@@ -5,23 +5,17 @@ Composite box cam: contact deflection and swelling stress
 An orthotropic T300/epoxy box cam with two noses, clamped at its bore, after Al-Shamma &
 Yousuf (2011), 60 days at 60 °C and 85 % relative humidity. ``cam.elastic: true`` adds
 the elastic part: the deflection under the contact load and the stress from swelling.
-
-The scene is ``alshamma2011_box_cam.yaml``, one of the examples that come with fickcam
-(``fickcam examples --copy DIR`` writes it to ``DIR`` to edit and run).
 """
 
 # %%
-# Run the scene
-# -------------
-# :func:`fickcam.run` ages it and returns the result, an :class:`xarray.Dataset`;
-# the summary is what ``fickcam run`` prints.
+# Age the box cam, clamped at its bore
+# ------------------------------------
 
 import fickcam
 from fickcam.scene import examples as example_scenes
-from fickcam.plotting import plot
 from fickcam.cli.reporting import summary
 
-ds = fickcam.run(fickcam.load_scene(example_scenes.path("alshamma2011_box_cam")))
+ds = fickcam.run(example_scenes.path("alshamma2011_box_cam"))
 print(summary(ds, notices=False))
 
 
@@ -31,7 +25,7 @@ print(summary(ds, notices=False))
 # Contact deflection over the cam angle, and the swelling stress and failure index in
 # the plate, at several ages.
 
-figures = plot(ds, kind="elastic")
+figures = fickcam.plotting.plot(ds, kind="elastic")
 
 
 # %%

@@ -6,23 +6,17 @@ An eccentric disc cam moulded in nylon (eccentricity 4 mm, radius 23 mm) with a 
 steel roller, after Madhukar et al. (2023), aged 180 days at 40 °C and 90 % relative
 humidity. Nylon takes up several percent of water, which swells it and softens its
 surface.
-
-The scene is ``eccentric_cam.yaml``, one of the examples that come with fickcam
-(``fickcam examples --copy DIR`` writes it to ``DIR`` to edit and run).
 """
 
 # %%
-# Run the scene
-# -------------
-# :func:`fickcam.run` ages it and returns the result, an :class:`xarray.Dataset`;
-# the summary is what ``fickcam run`` prints.
+# Half a year of humid air
+# ------------------------
 
 import fickcam
 from fickcam.scene import examples as example_scenes
-from fickcam.plotting import plot
 from fickcam.cli.reporting import summary
 
-ds = fickcam.run(fickcam.load_scene(example_scenes.path("eccentric_cam")))
+ds = fickcam.run(example_scenes.path("eccentric_cam"))
 print(summary(ds, notices=False))
 
 
@@ -31,7 +25,7 @@ print(summary(ds, notices=False))
 # ---------------
 # The cam's moisture content against ageing time.
 
-figures = plot(ds, kind="uptake")
+figures = fickcam.plotting.plot(ds, kind="uptake")
 
 
 # %%
@@ -40,7 +34,7 @@ figures = plot(ds, kind="uptake")
 # Contact force and Hertz contact stress over one turn at several ages: as the wet
 # surface softens, the peak contact stress falls.
 
-figures = plot(ds, kind="dynamics")
+figures = fickcam.plotting.plot(ds, kind="dynamics")
 
 
 # %%

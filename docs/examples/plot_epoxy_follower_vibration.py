@@ -5,23 +5,17 @@ Epoxy push rod: the follower train's vibration as it ages
 A steel cam drives a flat tappet on a neat-epoxy push rod, aged a year at 40 °C and 85 %
 relative humidity. The push rod is elastic: the follower train has a natural frequency,
 and above a dynamic jump speed the tappet leaves the cam.
-
-The scene is ``epoxy_follower_vibration.yaml``, one of the examples that come with fickcam
-(``fickcam examples --copy DIR`` writes it to ``DIR`` to edit and run).
 """
 
 # %%
-# Run the scene
-# -------------
-# :func:`fickcam.run` ages it and returns the result, an :class:`xarray.Dataset`;
-# the summary is what ``fickcam run`` prints.
+# The push rod and its spring, wet
+# --------------------------------
 
 import fickcam
 from fickcam.scene import examples as example_scenes
-from fickcam.plotting import plot
 from fickcam.cli.reporting import summary
 
-ds = fickcam.run(fickcam.load_scene(example_scenes.path("epoxy_follower_vibration")))
+ds = fickcam.run(example_scenes.path("epoxy_follower_vibration"))
 print(summary(ds, notices=False))
 
 
@@ -31,7 +25,7 @@ print(summary(ds, notices=False))
 # Displacement and contact force of the elastic follower train against the rigid one
 # over a turn, at several ages.
 
-figures = plot(ds, kind="vibration")
+figures = fickcam.plotting.plot(ds, kind="vibration")
 
 
 # %%

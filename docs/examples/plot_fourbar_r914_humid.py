@@ -5,23 +5,17 @@ R914 four-bar at 60 °C and 85 % RH: out of tolerance within days
 A four-bar linkage of R914 neat resin (crank 100 mm, coupler and rocker 160 mm, frame
 200 mm) a year at 60 °C and 85 % relative humidity, with limits on the rocker angle
 (0.5°), the coupler point (1 mm) and the transmission angle (at least 35°).
-
-The scene is ``fourbar_r914_humid.yaml``, one of the examples that come with fickcam
-(``fickcam examples --copy DIR`` writes it to ``DIR`` to edit and run).
 """
 
 # %%
-# Run the scene
-# -------------
-# :func:`fickcam.run` ages it and returns the result, an :class:`xarray.Dataset`;
-# the summary is what ``fickcam run`` prints.
+# A resin linkage at 60 °C and 85 % RH
+# ------------------------------------
 
 import fickcam
 from fickcam.scene import examples as example_scenes
-from fickcam.plotting import plot
 from fickcam.cli.reporting import summary
 
-ds = fickcam.run(fickcam.load_scene(example_scenes.path("fourbar_r914_humid")))
+ds = fickcam.run(example_scenes.path("fourbar_r914_humid"))
 print(summary(ds, notices=False))
 
 
@@ -31,7 +25,7 @@ print(summary(ds, notices=False))
 # The rocker angle's and the coupler point's drift from the design over a crank turn at
 # several ages, as the links grow.
 
-figures = plot(ds, kind="linkage")
+figures = fickcam.plotting.plot(ds, kind="linkage")
 
 
 # %%
@@ -40,7 +34,7 @@ figures = plot(ds, kind="linkage")
 # Each limit against ageing time: the rocker and coupler-point limits fail within two
 # days, the transmission angle at about 96 days.
 
-figures = plot(ds, kind="limits")
+figures = fickcam.plotting.plot(ds, kind="limits")
 
 
 # %%

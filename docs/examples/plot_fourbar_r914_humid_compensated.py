@@ -4,23 +4,17 @@ The R914 four-bar made to compensate for 30 days to a year
 
 The same four-bar with links made shorter by ``fickcam compensate --over "30 d" "365 d"``,
 so that they grow into their design length; ``design:`` keeps the drawing's intent.
-
-The scene is ``fourbar_r914_humid_compensated.yaml``, one of the examples that come with fickcam
-(``fickcam examples --copy DIR`` writes it to ``DIR`` to edit and run).
 """
 
 # %%
-# Run the scene
-# -------------
-# :func:`fickcam.run` ages it and returns the result, an :class:`xarray.Dataset`;
-# the summary is what ``fickcam run`` prints.
+# Links cut short to grow into their length
+# -----------------------------------------
 
 import fickcam
 from fickcam.scene import examples as example_scenes
-from fickcam.plotting import plot
 from fickcam.cli.reporting import summary
 
-ds = fickcam.run(fickcam.load_scene(example_scenes.path("fourbar_r914_humid_compensated")))
+ds = fickcam.run(example_scenes.path("fourbar_r914_humid_compensated"))
 print(summary(ds, notices=False))
 
 
@@ -30,7 +24,7 @@ print(summary(ds, notices=False))
 # Each limit against ageing time: after entering the band before 30 days, rocker angle
 # and coupler point stay inside their limits to the end of the year.
 
-figures = plot(ds, kind="limits")
+figures = fickcam.plotting.plot(ds, kind="limits")
 
 
 # %%

@@ -4,23 +4,17 @@ Acetal cam with a nylon swinging arm
 
 An acetal cam drives a nylon swinging roller arm, a year at 30 °C and 85 % relative
 humidity. Both parts absorb water: the arm grows longer while the cam grows larger.
-
-The scene is ``nylon_swinging_arm.yaml``, one of the examples that come with fickcam
-(``fickcam examples --copy DIR`` writes it to ``DIR`` to edit and run).
 """
 
 # %%
-# Run the scene
-# -------------
-# :func:`fickcam.run` ages it and returns the result, an :class:`xarray.Dataset`;
-# the summary is what ``fickcam run`` prints.
+# A pivoted arm that swells
+# -------------------------
 
 import fickcam
 from fickcam.scene import examples as example_scenes
-from fickcam.plotting import plot
 from fickcam.cli.reporting import summary
 
-ds = fickcam.run(fickcam.load_scene(example_scenes.path("nylon_swinging_arm")))
+ds = fickcam.run(example_scenes.path("nylon_swinging_arm"))
 print(summary(ds, notices=False))
 
 
@@ -30,7 +24,7 @@ print(summary(ds, notices=False))
 # The arm's angle, angular velocity and acceleration and the pressure angle over one
 # turn, at several ages.
 
-figures = plot(ds, kind="kinematics")
+figures = fickcam.plotting.plot(ds, kind="kinematics")
 
 
 # %%

@@ -5,23 +5,17 @@ R914 four-bar at 118 °C and 100 % RH, hour by hour
 Singh & Sanyal's (2016) R914 four-bar put into 118 °C and 100 % relative humidity,
 computed with moisture diffusing into its links, every 10 minutes. At this temperature the
 wet resin's glass transition is reached within hours.
-
-The scene is ``singh2016_fourbar.yaml``, one of the examples that come with fickcam
-(``fickcam examples --copy DIR`` writes it to ``DIR`` to edit and run).
 """
 
 # %%
-# Run the scene
-# -------------
-# :func:`fickcam.run` ages it and returns the result, an :class:`xarray.Dataset`;
-# the summary is what ``fickcam run`` prints.
+# Three hours near the wet glass transition
+# -----------------------------------------
 
 import fickcam
 from fickcam.scene import examples as example_scenes
-from fickcam.plotting import plot
 from fickcam.cli.reporting import summary
 
-ds = fickcam.run(fickcam.load_scene(example_scenes.path("singh2016_fourbar")))
+ds = fickcam.run(example_scenes.path("singh2016_fourbar"))
 print(summary(ds, notices=False))
 
 
@@ -31,7 +25,7 @@ print(summary(ds, notices=False))
 # Mean moisture of each link against ageing time, until the run stops a part whose
 # surface layer reaches its wet glass transition temperature (a notice says when).
 
-figures = plot(ds, kind="uptake")
+figures = fickcam.plotting.plot(ds, kind="uptake")
 
 
 # %%

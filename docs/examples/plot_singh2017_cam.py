@@ -7,23 +7,17 @@ held at 113 °C and 80 % relative humidity for 60 days. The scene states four li
 follower's motion within 0.25 mm of its design, a jump speed of at least 1000 rpm, and
 maximum contact and subsurface shear stresses. This is the demo scene of
 :doc:`/getting-started/first-hour`.
-
-The scene is ``singh2017_cam.yaml``, one of the examples that come with fickcam
-(``fickcam examples --copy DIR`` writes it to ``DIR`` to edit and run).
 """
 
 # %%
-# Run the scene
-# -------------
-# :func:`fickcam.run` ages it and returns the result, an :class:`xarray.Dataset`;
-# the summary is what ``fickcam run`` prints.
+# Sixty days at 113 °C and 80 % RH
+# --------------------------------
 
 import fickcam
 from fickcam.scene import examples as example_scenes
-from fickcam.plotting import plot
 from fickcam.cli.reporting import summary
 
-ds = fickcam.run(fickcam.load_scene(example_scenes.path("singh2017_cam")))
+ds = fickcam.run(example_scenes.path("singh2017_cam"))
 print(summary(ds, notices=False))
 
 
@@ -35,7 +29,7 @@ print(summary(ds, notices=False))
 # days; the right-hand panel shows where in the turn the deviation is. Jump speed,
 # contact stress and subsurface shear stress stay clear of their limits.
 
-figures = plot(ds, kind="limits")
+figures = fickcam.plotting.plot(ds, kind="limits")
 
 
 # %%

@@ -5,23 +5,17 @@ The same cam made to compensate: it stays in spec for 60 days
 The demo carbon/epoxy cam as ``fickcam compensate --over "0 d" "60 d" --points`` makes
 it: the profile given by its points, smaller by the growth it will see, and the
 original geometry kept under ``design:``. Its limits are checked against that design.
-
-The scene is ``singh2017_cam_compensated.yaml``, one of the examples that come with fickcam
-(``fickcam examples --copy DIR`` writes it to ``DIR`` to edit and run).
 """
 
 # %%
-# Run the scene
-# -------------
-# :func:`fickcam.run` ages it and returns the result, an :class:`xarray.Dataset`;
-# the summary is what ``fickcam run`` prints.
+# The made profile, aged the same
+# -------------------------------
 
 import fickcam
 from fickcam.scene import examples as example_scenes
-from fickcam.plotting import plot
 from fickcam.cli.reporting import summary
 
-ds = fickcam.run(fickcam.load_scene(example_scenes.path("singh2017_cam_compensated")))
+ds = fickcam.run(example_scenes.path("singh2017_cam_compensated"))
 print(summary(ds, notices=False))
 
 
@@ -31,7 +25,7 @@ print(summary(ds, notices=False))
 # The follower's largest deviation from the designed motion now stays far inside the
 # 0.25 mm band for the whole 60 days; the other limits hold as before.
 
-figures = plot(ds, kind="limits")
+figures = fickcam.plotting.plot(ds, kind="limits")
 
 
 # %%

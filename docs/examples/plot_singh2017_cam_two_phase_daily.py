@@ -4,23 +4,17 @@ The two-phase cam through a daily chamber log
 
 The two-phase cam aged through a SYNTHETIC daily chamber log (181 readings around
 113 °C and 80 % relative humidity, joined linearly) instead of a constant climate.
-
-The scene is ``singh2017_cam_two_phase_daily.yaml``, one of the examples that come with fickcam
-(``fickcam examples --copy DIR`` writes it to ``DIR`` to edit and run).
 """
 
 # %%
-# Run the scene
-# -------------
-# :func:`fickcam.run` ages it and returns the result, an :class:`xarray.Dataset`;
-# the summary is what ``fickcam run`` prints.
+# Day by day through the chamber's log
+# ------------------------------------
 
 import fickcam
 from fickcam.scene import examples as example_scenes
-from fickcam.plotting import plot
 from fickcam.cli.reporting import summary
 
-ds = fickcam.run(fickcam.load_scene(example_scenes.path("singh2017_cam_two_phase_daily")))
+ds = fickcam.run(example_scenes.path("singh2017_cam_two_phase_daily"))
 print(summary(ds, notices=False))
 
 
@@ -29,7 +23,7 @@ print(summary(ds, notices=False))
 # ------------------------
 # Moisture of cam and follower against ageing time through the log.
 
-figures = plot(ds, kind="uptake")
+figures = fickcam.plotting.plot(ds, kind="uptake")
 
 
 # %%

@@ -5,23 +5,17 @@ Steel cycloidal cam with a flat follower at 900 rpm
 A steel cam with a cycloidal rise of 25.4 mm over 100° at 900 rpm, driving a flat-faced
 follower in a guide bush with friction, after Yadav et al. (2017). Steel absorbs no
 moisture: the scene shows the kinematics and dynamics fickcam computes for any cam.
-
-The scene is ``yadav2017_cam.yaml``, one of the examples that come with fickcam
-(``fickcam examples --copy DIR`` writes it to ``DIR`` to edit and run).
 """
 
 # %%
-# Run the scene
-# -------------
-# :func:`fickcam.run` ages it and returns the result, an :class:`xarray.Dataset`;
-# the summary is what ``fickcam run`` prints.
+# A year at 90 °C and 50 % RH
+# ---------------------------
 
 import fickcam
 from fickcam.scene import examples as example_scenes
-from fickcam.plotting import plot
 from fickcam.cli.reporting import summary
 
-ds = fickcam.run(fickcam.load_scene(example_scenes.path("yadav2017_cam")))
+ds = fickcam.run(example_scenes.path("yadav2017_cam"))
 print(summary(ds, notices=False))
 
 
@@ -30,7 +24,7 @@ print(summary(ds, notices=False))
 # ----------
 # Follower lift, velocity, acceleration and pressure angle over one turn.
 
-figures = plot(ds, kind="kinematics")
+figures = fickcam.plotting.plot(ds, kind="kinematics")
 
 
 # %%

@@ -2,9 +2,10 @@
 kinematics, dynamics, jump, Hertz contact stress, friction and wear.
 
 Public API: :class:`~fickcam.cam.spec.CamSection` (scene section), :class:`~fickcam.cam.design.CamDesign`,
-:class:`~fickcam.cam.design.CamState`, :func:`~fickcam.cam.design.design_from_scene`, :func:`~fickcam.cam.model.cam_response`,
-:func:`~fickcam.cam.kinematics.working_profile`, and for :mod:`fickcam.simulation.simulate` :func:`~fickcam.cam.ageing.scene_parts`,
-:func:`~fickcam.cam.ageing.scene_response`.
+:class:`~fickcam.cam.design.CamState`, :func:`~fickcam.cam.design.cam_design`, :func:`~fickcam.cam.model.cam_response`,
+:func:`~fickcam.cam.kinematics.working_profile`; the scene's cam as a mechanism is
+:class:`~fickcam.cam.mechanism.CamMechanism` (imported from its module: it imports the
+mechanisms' package, which the scene's validation loads).
 
 References
 ----------
@@ -26,12 +27,11 @@ Yadav, S., Karmarkar, V., Surti, J., Mistry, S. & Vardhe, G. (2017). To study we
     and friction at contact surface of cam and follower of I.C. engine. International
     Research Journal of Engineering and Technology (IRJET) 4(4).
 """
-from .ageing import cam_state, scene_parts, scene_response
-from .design import CamDesign, CamState, design_from_scene
+from .design import CamDesign, CamState, cam_design
 from .kinematics import working_profile
 from .model import cam_response
 from .profile import write_profile_csv
 from .spec import CamSection
 
-__all__ = ["CamDesign", "CamSection", "CamState", "cam_response", "cam_state", "design_from_scene",
-           "scene_parts", "scene_response", "working_profile", "write_profile_csv"]
+__all__ = ["CamDesign", "CamSection", "CamState", "cam_design", "cam_response",
+           "working_profile", "write_profile_csv"]

@@ -11,6 +11,7 @@ from pydantic import Field
 
 from ..quantities.types import (Length, MomentOfInertia, SignedLength, StrictModel, Torque,
                      TorsionalStiffness)
+from .arm import Arm, face_opening, roller_arm_opening
 
 
 class SwingingArm(StrictModel):
@@ -118,7 +119,6 @@ def reach_problems(section, rb: float, swing: float = 0.0) -> list[tuple[tuple, 
     list of tuple
         (key path, reason) per problem; empty when there is none.
     """
-    from .arm import Arm, face_opening, roller_arm_opening
 
     arm = section.follower.arm
     geometry = Arm(arm.pivot[0], arm.pivot[1], arm.length or 0.0, arm.face_offset)

@@ -1,11 +1,16 @@
-"""The dry cam and follower (:class:`~fickcam.cam.design.CamDesign`), their state at one ageing time
-(:class:`~fickcam.cam.design.CamState`), and the design read from a scene's ``cam:`` section."""
+"""The dry cam and follower (:class:`~fickcam.cam.design.CamDesign`), their state at one
+ageing time (:class:`~fickcam.cam.design.CamState`), and
+:func:`~fickcam.cam.design.cam_design`, the dry design of a scene's ``cam:`` section."""
 from __future__ import annotations
 
 from dataclasses import dataclass
 
 from . import dynamics as dyn
 from .motion import segments_from_spec
+from .spec import CamSection
+from .arm import Arm
+from .drawn import drawn_cam, drawn_profile
+from .profile import load_profile
 
 
 @dataclass(frozen=True)
@@ -161,14 +166,18 @@ def _train(stiffness) -> tuple | None:
     return ("lever", lever.length, lever.width, lever.height)
 
 
-def design_from_scene(section) -> CamDesign:
-    """CamDesign from a validated :class:`~fickcam.cam.spec.CamSection` (or the dict of a
-    scene's ``cam:`` section, validated here).
+def cam_design(section, profile=None) -> CamDesign:
+    """The dry cam and follower (:class:`CamDesign`) of a validated
+    :class:`~fickcam.cam.spec.CamSection` (or the dict of a scene's ``cam:`` section,
+    validated here).
 
     Parameters
     ----------
     section : CamSection or dict
         The validated section, or the dict of a scene's ``cam:`` section (validated here).
+    profile : CamProfile, optional
+        A cam given by points or drawn: its profile as the scene read it (mirrored for a
+        clockwise cam); None: read from ``section.profile_file`` or ``section.drawing``.
 
     Returns
     -------
@@ -176,8 +185,6 @@ def design_from_scene(section) -> CamDesign:
         The dry design at the reference temperature, in SI.
     """
     if isinstance(section, dict):
-        from .spec import CamSection
-
         section = CamSection.model_validate(section)
     f = section.follower
     guide = 0.0 if f.guide is None else dyn.guide_friction_factor(
@@ -197,22 +204,17 @@ def design_from_scene(section) -> CamDesign:
                   polydyne_speed=None if section.polydyne is None else
                   (section.polydyne.speed or section.speed))
     if f.arm is not None:
-        from .arm import Arm
-
         sense = 1 if f.arm.rises == "counter_clockwise" else -1
         common["arm"] = Arm(mirror * f.arm.pivot[0], f.arm.pivot[1], f.arm.length or 0.0,
                             f.arm.face_offset, int(mirror) * sense, f.arm.inertia,
                             f.arm.spring_rate, f.arm.spring_preload, f.arm.load_torque)
     if section.drawing is not None:
-        from .profile import make_profile
-
-        x, y = section.drawing.part().profile
-        profile = make_profile(-x if mirror < 0 else x, y, "working")
+        if profile is None:
+            profile = drawn_profile(section, drawn_cam(section))
         return CamDesign("profile", profile.radii()[0], profile=profile, **common)
     if section.profile_file is not None:
-        from .profile import load_profile
-
-        profile = load_profile(section.profile_file, f.roller_radius or 0.0, mirror=mirror < 0)
+        if profile is None:
+            profile = load_profile(section.profile_file, f.roller_radius or 0.0, mirror=mirror < 0)
         return CamDesign("profile", profile.radii()[0], profile=profile, **common)
     if section.eccentric is not None:
         e, r = section.eccentric.eccentricity, section.eccentric.radius

@@ -13,6 +13,7 @@ The papers are cited in full in :mod:`fickcam.cam`.
 """
 from __future__ import annotations
 
+from dataclasses import replace
 import functools
 import math
 from typing import Callable, NamedTuple
@@ -23,6 +24,8 @@ from .design import CamDesign, CamState
 from .geometry import (evaluate_geometric_motion, fit_geometric_motion, pieces_of, prime_height,
                        rotate, working_outline)
 from .motion import ORDERS, follower_motion
+from . import arm
+from .profile import aged_profile_motion
 
 
 def _scales_exactly(design: CamDesign, state: CamState) -> bool:
@@ -283,8 +286,6 @@ def motion_function(design: CamDesign, state: CamState):
         return (lambda theta, orders=ORDERS: picked(form.heights(design, state, theta), orders),
                 form.extremes(design, state))
     if design.kind == "profile":
-        from .profile import aged_profile_motion
-
         arm = {} if design.arm is None else grown_arm(design, state.arm_strain)
         motion = aged_profile_motion(design.profile, state.cam_strain_x, state.cam_strain_y,
                                      design.roller_radius * (1 + state.roller_strain),
@@ -315,9 +316,7 @@ def grown_arm(design: CamDesign, strain: float) -> dict:
         grown by 1 + strain; ``base``: its dry base angle [rad]; the keywords of
         :func:`fickcam.cam.profile.profile_motion`.
     """
-    from dataclasses import replace
 
-    from . import arm
 
     a, rb = design.arm, design.base_circle_radius
     base = (arm.face_base_angle(a, rb) if design.follower_kind == "flat" else

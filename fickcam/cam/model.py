@@ -97,44 +97,23 @@ def cam_response(design: CamDesign, state: CamState, cam_angle,
     roller = design.roller_radius * (1 + state.roller_strain)
     motion, (lowest, highest) = motion_function(design, state)
     height, d1, d2, d3 = motion(theta)
-    y = height - lowest
     notices: list[str] = joint_notices(design.segments) if design.kind == "motion" else []
-
-    if design.follower_kind == "flat":
-        phi = np.zeros_like(theta)
-        rho = dyn.flat_radius_of_curvature(height, d2)
-        rho_pitch = rho
-    else:
-        phi = dyn.pressure_angle(height, d1, design.offset)
-        rho_pitch = dyn.pitch_radius_of_curvature(height, d1, d2, design.offset)
-        rho = rho_pitch - roller
+    phi, rho_pitch, rho = _angle_and_curvature(design, height, d1, d2, roller)
     notices += geometry_notices(design, theta, phi, rho_pitch, rho, roller)
 
     velocity, acceleration = d1 * omega, d2 * omega ** 2
     holding = _holding_force(design, mass, height)
     axial = holding + mass * acceleration
-    force = dyn.normal_force(axial, phi, velocity, design.guide_factor)
-    cx, cy = _contact_point(design, height, d1, phi, roller)
-    torque = dyn.contact_torque(cx, cy, force, phi)
-    sliding = design.follower_kind != "roller"
-    friction = design.friction_coefficient * np.maximum(force, 0.0) * sliding
-    lever = np.abs(cx * np.sin(phi) - cy * np.cos(phi))
     jump = continuous_jump_speed(design, motion, mass, theta, d2, holding) \
         if jump_speed is None else jump_speed
     notices += jump_notices(theta, axial, jump, omega)
-
     if design.follower_kind == "knife":
         notices.append(note("knife-edge follower: Hertz line-contact stress is not defined"))
-    stress, shear, shear_depth = hertz_contact(design, state, force, rho, roller)
-    wear = (dyn.archard_wear_per_revolution(design.archard_coefficient, design.hardness, force,
-                                            design.contact_length, _slide_ratio(design, height, rho))
-            if design.hardness else np.zeros_like(theta))
-    px, py = cam_frame_point(design, theta, cx, cy)
     variables = {
         "base_circle_radius": aged_base_circle(design, state),
         "lift": highest - lowest,
         "jump_speed": jump,
-        "follower_displacement": y,
+        "follower_displacement": height - lowest,
         "follower_position": height,
         "follower_velocity": velocity,
         "follower_acceleration": acceleration,
@@ -142,6 +121,41 @@ def cam_response(design: CamDesign, state: CamState, cam_angle,
         "pressure_angle": phi,
         "radius_of_curvature": rho,
         "pitch_radius_of_curvature": rho_pitch,
+    }
+    variables.update(_contact(design, state, theta, (height, d1), phi, rho, roller,
+                              (axial, velocity)))
+    return Response(variables, notices)
+
+
+def _angle_and_curvature(design: CamDesign, height, d1, d2, roller):
+    """(pressure angle [rad], pitch curve's and working profile's radii of curvature [m])
+    of the aged motion (a flat face: no pressure angle, one radius)."""
+    if design.follower_kind == "flat":
+        rho = dyn.flat_radius_of_curvature(height, d2)
+        return np.zeros_like(height), rho, rho
+    phi = dyn.pressure_angle(height, d1, design.offset)
+    rho_pitch = dyn.pitch_radius_of_curvature(height, d1, d2, design.offset)
+    return phi, rho_pitch, rho_pitch - roller
+
+
+def _contact(design: CamDesign, state: CamState, theta, motion, phi, rho, roller,
+             load) -> dict:
+    """The contact's variables of :func:`cam_response`: forces, torques, Hertz stress,
+    the contact point in the cam's frame and wear; ``motion``: the follower's (height [m],
+    dY/dtheta [m/rad]), ``load``: (axial force on the follower [N], its velocity [m/s])."""
+    (height, d1), (axial, velocity) = motion, load
+    force = dyn.normal_force(axial, phi, velocity, design.guide_factor)
+    cx, cy = _contact_point(design, height, d1, phi, roller)
+    torque = dyn.contact_torque(cx, cy, force, phi)
+    sliding = design.follower_kind != "roller"
+    friction = design.friction_coefficient * np.maximum(force, 0.0) * sliding
+    lever = np.abs(cx * np.sin(phi) - cy * np.cos(phi))
+    stress, shear, shear_depth = hertz_contact(design, state, force, rho, roller)
+    wear = (dyn.archard_wear_per_revolution(design.archard_coefficient, design.hardness, force,
+                                            design.contact_length, _slide_ratio(design, height, rho))
+            if design.hardness else np.zeros_like(theta))
+    px, py = cam_frame_point(design, theta, cx, cy)
+    return {
         "contact_force": force,
         "cam_torque": torque,
         "friction_force": friction,
@@ -153,9 +167,8 @@ def cam_response(design: CamDesign, state: CamState, cam_angle,
         "profile_x": px,
         "profile_y": py,
         "wear_per_revolution": wear,
-        "wear_rate": float(np.max(wear)) * omega / (2 * np.pi),
+        "wear_rate": float(np.max(wear)) * design.speed / (2 * np.pi),
     }
-    return Response(variables, notices)
 
 
 def aged_base_circle(design: CamDesign, state: CamState) -> float:

@@ -19,6 +19,7 @@ import numpy as np
 
 from ..messages import design_notice
 from .fourier import at_angles, correction_motion
+from .spline import spline_motion
 
 #: the derivative orders of a follower motion: Y, dY/dtheta, d2Y/dtheta2, d3Y/dtheta3
 ORDERS = (0, 1, 2, 3)
@@ -251,6 +252,7 @@ def _spline_of(spec):
     given = getattr(spec, "spline", None)
     if given is None:
         return None
+    # deferred: keeps the command's modules off the start-up path
     from .spline import spline_law
 
     return spline_law(given.points, spec.height, spec.angle, given.degree,
@@ -287,8 +289,6 @@ def _law_motion(segment: MotionSegment, theta):
         return zero + segment.level, zero, zero, zero
     x = (theta - segment.start) / segment.span
     if segment.law == "spline":
-        from .spline import spline_motion
-
         s, s1, s2, s3 = spline_motion(segment.spline, x)
     else:
         s, s1, s2, s3 = LAW_FUNCTIONS[segment.law](x)

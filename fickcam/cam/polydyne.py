@@ -17,17 +17,20 @@ its second derivative jumps where y'''' does (the cam's curvature steps at the j
 """
 from __future__ import annotations
 
+from dataclasses import replace
 import math
 
 import numpy as np
 
 from .fourier import harmonics
 from .train import FINE, Train, transfer
+from .motion import follower_motion
+from .design import CamState
+from .train import train_of
 
 
 def _correction_harmonics(segments, train: Train, speed: float) -> np.ndarray:
     """Harmonics of e - P/k = s - y for the chosen motion ``segments`` at cam speed ``speed``."""
-    from .motion import follower_motion
 
     fine = np.linspace(0.0, 2 * math.pi, FINE, endpoint=False)
     y = harmonics(follower_motion(segments, fine)[0])
@@ -56,10 +59,7 @@ def polydyne_design(design, modulus: float | None):
     Stoddart, D. (1953). Polydyne cam design. Machine Design 25(1), January 1953.
     Norton (2012), ch. 15; in full in :mod:`fickcam.cam`.
     """
-    from dataclasses import replace
 
-    from .design import CamState
-    from .train import train_of
 
     state = CamState(follower_train_modulus=modulus)
     train = train_of(design, state, 0.0)

@@ -23,7 +23,6 @@ the table. The dry spline is evaluated as a :class:`scipy.interpolate.PPoly`.
 from __future__ import annotations
 
 import functools
-import os
 import re
 from dataclasses import dataclass
 from pathlib import Path
@@ -61,10 +60,13 @@ class CamProfile:
         chord fraction u in [0, 1) [-] (:func:`periodic_spline`).
     points : int
         How many points it was made from.
+    planform : fickcam.drawing.planform.Planform, optional
+        A drawn plate's outline and holes about the axis [m] (None: a cam given by points).
     """
 
     spline: object  # scipy BSpline, u -> (x, y)
     points: int     # how many points it was made from
+    planform: object = None  # the drawn plate (fickcam.drawing.planform.Planform) or None
 
     @functools.cached_property
     def pieces(self):
@@ -272,14 +274,9 @@ def read_profile_csv(path) -> tuple[np.ndarray, np.ndarray, str]:
     return xy[:, 0], xy[:, 1], CURVES[pair]
 
 
-@functools.lru_cache(maxsize=16)
-def _load(path: str, mtime: float, curve_roller: float, mirror: bool = False) -> CamProfile:
-    x, y, curve = read_profile_csv(path)
-    return make_profile(-x if mirror else x, y, curve, curve_roller)
-
-
 def load_profile(path, roller_radius: float = 0.0, mirror: bool = False) -> CamProfile:
-    """The :class:`CamProfile` of a profile file (cached while the file is unchanged);
+    """The :class:`CamProfile` of a profile file, read each time it is asked for (a scene
+    reads its profile once, when it is validated, and keeps it);
     ``mirror``: its mirror image x -> -x (a clockwise cam, :mod:`fickcam.cam.kinematics`).
 
     Parameters
@@ -301,12 +298,28 @@ def load_profile(path, roller_radius: float = 0.0, mirror: bool = False) -> CamP
     ValueError
         As :func:`read_profile_csv`.
     """
-    path = str(Path(path))
-    try:
-        mtime = os.path.getmtime(path)
-    except OSError:
-        raise ValueError(f"profile file {path!r} not found") from None
-    return _load(path, mtime, float(roller_radius), mirror)
+    return profile_of(read_profile_csv(path), roller_radius, mirror)
+
+
+def profile_of(points: tuple, roller_radius: float = 0.0, mirror: bool = False) -> CamProfile:
+    """The :class:`CamProfile` of a profile file's points as read (:func:`read_profile_csv`).
+
+    Parameters
+    ----------
+    points : tuple
+        (x [m], y [m], "working" or "pitch").
+    roller_radius : float
+        Roller radius [m], to move a pitch curve in to the working profile.
+    mirror : bool
+        Whether to mirror the points (x -> -x).
+
+    Returns
+    -------
+    CamProfile
+        The closed dry working profile.
+    """
+    x, y, curve = points
+    return make_profile(-x if mirror else x, y, curve, float(roller_radius))
 
 
 def write_profile_csv(path, x, y, curve: str = "working") -> Path:

@@ -21,6 +21,9 @@ import math
 from dataclasses import dataclass, replace
 
 import numpy as np
+from .design import CamState
+from .dynamics import SUBSURFACE_SHEAR_RATIO
+from .oscillating import follower_response
 
 #: bisection tolerance on the base circle radius (m)
 SIZE_TOLERANCE = 1e-7
@@ -116,8 +119,6 @@ def worst(design, state=None, step: float = SIZE_STEP) -> tuple[float, float]:
     tuple of float
         The largest |pressure angle| [rad] and the smallest convex radius of curvature [m].
     """
-    from .design import CamState
-    from .oscillating import follower_response
 
     theta = np.arange(0.0, 2 * math.pi, step)
     v = follower_response(design, state or CamState(), theta).variables
@@ -347,7 +348,6 @@ def aged_states(ds, design, extremes: bool = True) -> list[tuple]:
     list of tuple
         (ageing time [d], CamState), valid times only.
     """
-    from .design import CamState
 
     def strain(part: str, name: str) -> np.ndarray:
         if part not in ds["part"].values:
@@ -387,7 +387,7 @@ def degenerate_notes(design, sizes: dict) -> list[str]:
     notes = []
     radius = sizes["base_circle_radius"]
     low, reason = floor(design)
-    if radius <= low + SIZE_TOLERANCE:
+    if _at_floor(design, sizes):
         if reason == "zero":
             default = (f" (the roller's radius, {design.roller_radius * 1e3:g} mm, by default)"
                        if design.follower_kind == "roller" else "")
@@ -397,10 +397,73 @@ def degenerate_notes(design, sizes: dict) -> list[str]:
                          f"--radius-of-curvature{default}")
         else:
             notes.append(f"{reason} sets this size ({low * 1e3:.4f} mm): both limits are met "
-                         f"below it")
+                         f"below it, and the cam leaves no wall around its bore there; choose "
+                         f"the base circle from the hub the shaft needs")
     rho = worst(replace(design, base_circle_radius=radius))[1]
     if 0 < rho < POINTED * radius and sizes["radius_of_curvature"] >= sizes["pressure_angle"]:
         notes.append(f"the radius of curvature bound sets this size, and the profile is nearly "
-                     f"pointed there (smallest radius {rho * 1e3:.3g} mm); set "
-                     f"--radius-of-curvature to the smallest radius the contact stress allows")
+                     f"pointed there (smallest radius {rho * 1e3:.3g} mm); set cam.bore_radius "
+                     f"to the shaft's radius, or --radius-of-curvature to the smallest radius "
+                     f"you will make")
     return notes
+
+
+def _at_floor(design, sizes: dict) -> bool:
+    """Whether no limit sets the size: both are met at the smallest base circle the
+    geometry allows (:func:`floor`), so the answer is that bound, not a design.
+
+    Parameters
+    ----------
+    design : CamDesign
+        The cam.
+    sizes : dict of str to float
+        :func:`smallest_base_circle` of it [m] (the answer may be rounded up).
+
+    Returns
+    -------
+    bool
+        True when the floor sets the size.
+    """
+    low = floor(design)[0]
+    return max(sizes["pressure_angle"], sizes["radius_of_curvature"]) <= low + SIZE_TOLERANCE
+
+
+def contact_stress_radius(load_modulus, length: float, shear_strength) -> float:
+    """The smallest radius of curvature of a cam under a flat face whose Hertz line
+    contact keeps the largest shear stress below the surface within the cam's shear
+    strength S [m].
+
+    Below a line contact the largest principal shear stress is 0.30 p0 (Johnson 1985
+    sec. 4.2), so yield first begins below the surface at p0 = S / 0.30 (Tresca; the
+    classical 3.3 k). With p0 = sqrt(F E* / (pi L rho)) (a flat face: 1/R = 1/rho) the
+    contact stays elastic where rho >= F E* / (pi L (S / 0.30)^2), the largest of this over
+    the cam angles and ageing times.
+
+    Parameters
+    ----------
+    load_modulus : array_like
+        The contact force times the contact modulus, F E* [N Pa], at each cam angle and
+        ageing time (independent of the base circle: a flat face's force is the
+        follower's, and E* the materials').
+    length : float
+        The contact length L [m].
+    shear_strength : array_like
+        The cam's shear strength S at each ageing time (broadcast against
+        ``load_modulus``) [Pa].
+
+    Returns
+    -------
+    float
+        The radius [m]; 0 where nothing bears.
+
+    References
+    ----------
+    K. L. Johnson, *Contact Mechanics*, Cambridge University Press, 1985, sec. 4.2 and
+    eq. 4.45, doi:10.1017/CBO9781139171731; R. L. Norton, *Design of Machinery*, 5th ed.,
+    McGraw-Hill, 2012, sec. 8.7 (a flat face's smallest radius of curvature is chosen for
+    the contact stress).
+    """
+    allowable = np.asarray(shear_strength, float) / SUBSURFACE_SHEAR_RATIO
+    need = np.asarray(load_modulus, float) / (np.pi * length * allowable ** 2)
+    need = need[np.isfinite(need)]
+    return float(np.max(need, initial=0.0))

@@ -8,7 +8,12 @@ thickness until the in-plane edges matter), so one run of the scene at its own b
 circle gives the strains the search uses. A run at the answer then measures how much the
 moisture does change with the size. The answer is rounded up to :data:`RUN_TOLERANCE`
 and run there; where its own moisture asks for a larger one, the search and the run
-are repeated.
+are repeated. An answer that a bound makes degenerate (no wall around the bore, a nearly
+pointed profile) is told, not run: its plate would ask a mesh out of all proportion.
+
+A flat face's radius of curvature defaults to the one its Hertz contact stress asks
+(:func:`~fickcam.cam.sizing.contact_stress_radius`), read from the first run's contact
+stresses and the cam material's shear strength.
 """
 from __future__ import annotations
 
@@ -19,7 +24,7 @@ import math
 
 import numpy as np
 
-from .sizing import (SIZE_TOLERANCE, Limits, aged_states, default_radius_of_curvature,
+from .sizing import (SIZE_TOLERANCE, Limits, aged_states, contact_stress_radius,
                      degenerate_notes, meets, smallest_base_circle, worst)
 
 #: most runs of the scene one sizing makes
@@ -49,6 +54,9 @@ class Sizing:
         (base circle radius [m], result) of each run of the scene, in order.
     first : dict of str to float
         The sizes found with the moisture of the scene's own base circle [m].
+    curvature : str
+        Why the radius of curvature limit is what it is, when it is a default (``"the
+        roller's radius"``); empty when given.
     """
 
     name: str
@@ -58,6 +66,7 @@ class Sizing:
     sizes: dict
     runs: list
     first: dict
+    curvature: str = ""
 
     @property
     def radius(self) -> float:
@@ -77,9 +86,7 @@ class Sizing:
 
     def _needs(self) -> str:
         rho = self.limits.radius_of_curvature
-        default = rho == default_radius_of_curvature(self.design)
-        why = (" (the roller's radius)" if default and self.design.follower_kind == "roller"
-               else " (a convex profile)" if default else "")
+        why = f" ({self.curvature})" if self.curvature else ""
 
         def need(key: str) -> str:
             if self.sizes[key] <= self.sizes["floor"] + SIZE_TOLERANCE:
@@ -88,7 +95,7 @@ class Sizing:
 
         return (f"pressure angle <= {math.degrees(self.limits.pressure_angle):g} deg "
                 f"{need('pressure_angle')}; radius of curvature "
-                f"{'> 0' if rho == 0 else f'>= {rho * 1e3:g} mm'}{why} {need('radius_of_curvature')}")
+                f"{'> 0' if rho == 0 else f'>= {rho * 1e3:.4g} mm'}{why} {need('radius_of_curvature')}")
 
     def _moisture(self) -> str:
         (start, first), (_, last) = self.runs[0], self.runs[-1]
@@ -120,7 +127,10 @@ class Sizing:
         rho = min(range(len(found)), key=lambda i: found[i][1])
         ok = found[phi][0] <= self.limits.pressure_angle + 1e-9 and found[rho][1] > 0 and \
             found[rho][1] >= self.limits.radius_of_curvature * (1 - 1e-6)
-        return (f"aged, with the sized cam's own moisture: largest pressure angle "
+        own = abs(self.runs[-1][0] - self.radius) <= 1e-12
+        whose = ("the sized cam's own moisture" if own else
+                 f"the moisture at {self.runs[-1][0] * 1e3:.3f} mm (no run at a degenerate size)")
+        return (f"aged, with {whose}: largest pressure angle "
                 f"{math.degrees(found[phi][0]):.4g} deg (t = {states[phi][0]:.4g} d), smallest "
                 f"convex radius of curvature {found[rho][1] * 1e3:.4g} mm (t = {states[rho][0]:.4g} d): "
                 f"{'meets the limits' if ok else 'does NOT meet the limits'}")
@@ -157,17 +167,23 @@ def size_scene(scene, limits: Limits) -> Sizing:
         limits); before any run.
     """
     from ..simulation.simulate import run
-    from .design import design_from_scene
 
-    design = design_from_scene(scene.model.cam)
+    design = scene.mechanism("cam").design
+    given = limits.radius_of_curvature is not None
     limits = limits.for_design(design)
     dry = smallest_base_circle(design, limits)  # refuses a cam it cannot size before any run
     bare = dataclasses.replace(scene, limits=[])  # the sizing reads no limit crossing
     start = design.base_circle_radius
     with _told_once():
         runs = [(start, run(bare))]
+        curvature = "" if given else _default_reason(design)
+        if not given and design.follower_kind == "flat":
+            limits, curvature = _flat_face_limits(scene, design, limits, runs[-1][1])
+            dry = smallest_base_circle(design, limits)
         first = sizes = _sized(design, limits, runs[-1][1], dry)
         target = _rounded_up(sizes["base_circle_radius"])
+        if degenerate_notes(design, sizes):  # no run of a cam without a wall or a point
+            target = start
         while len(runs) < MAX_RUNS and abs(target - runs[-1][0]) > 1e-12:
             runs.append((target, run(_with_radius(bare, target))))
             own = [state for _, state in aged_states(runs[-1][1], design)]
@@ -175,8 +191,45 @@ def size_scene(scene, limits: Limits) -> Sizing:
                 break  # the size meets the limits with its own moisture too
             sizes = _sized(design, limits, runs[-1][1], dry)
             target = max(target, _rounded_up(sizes["base_circle_radius"]))
-    answer = runs[-1][0] if len(runs) > 1 or abs(target - start) <= 1e-12 else target
-    return Sizing(scene.name, design, limits, dry, {**sizes, "base_circle_radius": answer}, runs, first)
+    answer = runs[-1][0] if len(runs) > 1 else _rounded_up(sizes["base_circle_radius"])
+    return Sizing(scene.name, design, limits, dry, {**sizes, "base_circle_radius": answer}, runs,
+                  first, curvature)
+
+
+def _default_reason(design) -> str:
+    """Why the default radius of curvature is what it is
+    (:func:`~fickcam.cam.sizing.default_radius_of_curvature`)."""
+    return "the roller's radius" if design.follower_kind == "roller" else "a convex profile"
+
+
+def _flat_face_limits(scene, design, limits: Limits, ds) -> tuple[Limits, str]:
+    """The limits with a flat face's default radius of curvature, the one its contact
+    stress asks (:func:`~fickcam.cam.sizing.contact_stress_radius`), read from a run of the
+    scene, and why; the limits as they are where the cam's material gives no strength.
+
+    The Hertz pressure p0 at radius rho under force F gives F E* = pi L rho p0^2 at each
+    cam angle and ageing time of the run, whatever its base circle; the shear strength
+    is the cam material's, times the contact surface's property retention at each time.
+    """
+    from ..elastic.strength import ply_strengths
+
+    material = scene.materials[scene.model.cam.material]
+    retention = np.asarray(ds["surface_property_retention"].sel(part="cam").values, float)
+    strengths = ply_strengths(material, retention)
+    if strengths is None:
+        return limits, _default_reason(design)
+    shear = np.asarray(strengths["S"], float)
+    length = design.contact_length
+    rho = np.asarray(ds["radius_of_curvature"].values, float)
+    stress = np.asarray(ds["contact_stress"].values, float)
+    with np.errstate(invalid="ignore"):
+        radius = contact_stress_radius(np.pi * length * rho * stress ** 2, length, shear[:, None])
+    if radius <= limits.radius_of_curvature:
+        return limits, _default_reason(design)
+    strength = float(np.nanmin(shear))
+    return (dataclasses.replace(limits, radius_of_curvature=radius),
+            f"the flat face's Hertz contact stress: 0.30 p0 within the cam's shear strength, "
+            f"{strength / 1e6:.3g} MPa")
 
 
 def _rounded_up(radius: float) -> float:

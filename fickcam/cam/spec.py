@@ -19,6 +19,7 @@ from pydantic import (AfterValidator, BeforeValidator, ConfigDict, Discriminator
 from ..quantities.types import (Angle, AngularSpeed, Force, Length, Mass, NonNegativeLength, PositiveAngle,
                      Pressure, SignedLength, Stiffness, quantity)
 from ..quantities.parsing import is_bare_number, to_si
+from .spline import spline_law
 
 #: follower train stiffness: zero would leave the follower mass unconnected to the cam
 PositiveStiffness = quantity("stiffness", positive=True)
@@ -151,8 +152,6 @@ class Segment(_Strict):
         if (self.law == "spline") != (self.spline is not None):
             raise ValueError("law: spline goes with spline: {points: ...} (and only it)")
         if self.spline is not None:
-            from .spline import spline_law
-
             spline_law(self.spline.points, self.height, self.over, self.spline.degree,
                        self.spline.start_derivatives, self.spline.end_derivatives)
         return self
@@ -427,11 +426,6 @@ class Drawing(_Strict):
         None, description="The drawing's unit where its header sets none ($INSUNITS)")
     axis_layer: str = Field("AXIS", description="The layer of a point marking the axis of rotation "
                                                 "(without one: the centre of the bore)")
-    _part: object = PrivateAttr(default=None)  # the part read (fickcam.drawing.parts), set on loading
-
-    def part(self):
-        """The part read from the file when the scene was loaded (None before)."""
-        return self._part
 
 
 def _drawing_file(value):

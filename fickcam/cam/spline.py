@@ -75,6 +75,7 @@ def bspline(law: SplineLaw):
     ValueError
         Where scipy cannot build it (and numpy.linalg.LinAlgError for a singular system).
     """
+    # deferred: keeps scipy.interpolate off the start-up path
     from scipy.interpolate import make_interp_spline
 
     conditions = ([(j + 1, v) for j, v in enumerate(law.start)],

@@ -39,6 +39,10 @@ import numpy as np
 
 from ..mechanisms.response import Response
 from .fourier import at_angles, harmonics, on_grid, series
+from . import dynamics as dyn
+from .kinematics import dry_lowest_height, follower_heights
+from .kinematics import follower_heights
+from .motion import follower_motion
 
 #: samples per revolution for the Fourier coefficients of the cam motion
 FINE = 8192
@@ -288,6 +292,7 @@ def dynamic_jump_speed(train: Train, s_harmonics, s_fine, ds_fine, upper: float)
     ----------
     Norton (2012), ch. 15; Koster (1974); in full in :class:`Train`.
     """
+    # deferred: keeps scipy.optimize off the start-up path
     from scipy.optimize import brentq
 
     def margin(omega):
@@ -378,8 +383,6 @@ class SteadyState:
 
 def _steady_state(design, state) -> SteadyState:
     """:class:`SteadyState` of ``design`` at ageing state ``state`` (needs design.train)."""
-    from . import dynamics as dyn
-    from .kinematics import dry_lowest_height, follower_heights
 
     fine = np.linspace(0.0, 2 * np.pi, FINE, endpoint=False)
     (height, d1, d2, _), (lowest, _) = follower_heights(design, state, fine)
@@ -422,8 +425,6 @@ def dynamic_response(design, state, cam_angle, rigid) -> Response:
     ----------
     Norton (2012), ch. 15; Koster (1974); in full in :class:`Train`.
     """
-    from . import dynamics as dyn
-    from .kinematics import follower_heights
 
     theta = np.asarray(cam_angle, float)
     omega = design.speed
@@ -459,7 +460,6 @@ def _polydyne_variables(design, theta, x) -> dict:
     """Profile correction (cam motion minus chosen motion, dry design) and the output error:
     the mass's motion minus the chosen motion, both from the chosen motion's lowest point
     (which removes the constant static compression of the train)."""
-    from .motion import follower_motion
 
     chosen = follower_motion(design.segments, theta, corrected=False)[0]
     low = int(np.argmin(chosen))
@@ -492,7 +492,6 @@ def residual_vibrations(design, state, steady: SteadyState | None = None) -> np.
     ----------
     Koster, M. P. (1974). Vibrations of Cam Mechanisms, sec. 3.2. London: Macmillan.
     """
-    from .kinematics import follower_heights
 
     events = np.asarray(_events(design) if design.kind == "motion" else [], float)
     if events.size == 0:

@@ -14,9 +14,11 @@ log = logging.getLogger("fickcam")
 
 
 def _cmd_run(args) -> int:
+    # deferred: keeps numpy, pydantic, yaml off the start-up path
     from ..scene.load import load_scene
     from .reporting import summary
     from ..simulation.simulate import run
+    from ..results.resultsize import result_fits
     from ..results.store import save
 
     accuracy = scene_accuracy(args.accuracy)
@@ -47,35 +49,11 @@ def scene_accuracy(text) -> float | None:
     float or None
         The relative accuracy [-]; None: the scene's.
     """
+    # deferred: keeps the command's modules off the start-up path
     from ..quantities.options import field_value
     from ..scene.load import DiffusionSection
 
     return field_value("--accuracy", text, DiffusionSection, "accuracy")
-
-
-def result_fits(scene, output: Path) -> None:
-    """Before a run: warn of a result above 1 GiB, with the settings that shrink it, and
-    refuse one that the disk at ``output`` cannot hold (:mod:`fickcam.results.resultsize`).
-
-    Parameters
-    ----------
-    scene : fickcam.scene.load.Scene
-        The scene to run.
-    output : pathlib.Path
-        The result file.
-
-    Raises
-    ------
-    fickcam.errors.WriteError
-        When the disk cannot hold the result.
-    """
-    from ..results.resultsize import check_space, estimate, size_warning
-
-    size = estimate(scene)
-    warning = size_warning(size)
-    if warning:
-        log.warning(warning)
-    check_space(size, output)
 
 
 def notices_line(notices, quiet: int) -> str:
@@ -96,6 +74,7 @@ def notices_line(notices, quiet: int) -> str:
     str
         The indented line.
     """
+    # deferred: keeps the command's modules off the start-up path
     from ..messages import count_levels
 
     counts = count_levels(notices)
@@ -129,11 +108,14 @@ def default_output(scene) -> Path:
 
 
 def _cmd_check(args) -> int:
-    from .reporting import describe_plan
-    from ..results.resultsize import estimate, size_warning
+    # deferred: keeps numpy, pydantic off the start-up path
     from ..scene.load import load_scene
 
     scene = load_scene(args.scene)
+    # deferred until the scene is valid: a refused scene never loads the diffusion engine
+    from .reporting import describe_plan
+    from ..results.resultsize import estimate, size_warning
+
     print(describe_plan(scene))
     warning = size_warning(estimate(scene))
     if warning:
@@ -142,17 +124,18 @@ def _cmd_check(args) -> int:
 
 
 def _cmd_size(args) -> int:
+    # deferred: keeps numpy, pydantic off the start-up path
     from ..cam.sizing import Limits
     from ..cam.sizing_scene import size_scene
-    from ..quantities.options import option_value
+    from ..quantities.options import angle, option_value
     from ..quantities.plausibility import cam_length_reading
     from ..scene.load import load_scene
     from ..simulation.simulate import plan_parts
     from ..quantities.types import NonNegativeLength, PositiveAngle
 
-    pressure_angle = option_value("--pressure-angle", args.pressure_angle, PositiveAngle)
+    pressure_angle = angle("--pressure-angle", args.pressure_angle, PositiveAngle)
     scene = load_scene(args.scene)
-    if scene.model.cam is None:
+    if not scene.has("cam"):
         raise InputError("the scene has no cam: section to size")
     curvature = None if args.radius_of_curvature is None else option_value(
         "--radius-of-curvature", args.radius_of_curvature, NonNegativeLength,
@@ -167,6 +150,7 @@ def _cmd_size(args) -> int:
 
 
 def _cmd_query(args) -> int:
+    # deferred: keeps the command's modules off the start-up path
     from ..quantities.options import angle_degrees
     from .reporting import limit_line
     from ..results.query import format_result, select, time_units
@@ -184,6 +168,7 @@ def _cmd_query(args) -> int:
 
 
 def _cmd_export(args) -> int:
+    # deferred: keeps numpy, pydantic off the start-up path
     from ..results.export import export
     from ..results.store import open_result
 
@@ -194,6 +179,7 @@ def _cmd_export(args) -> int:
 
 
 def _cmd_plot(args) -> int:
+    # deferred: keeps the command's modules off the start-up path
     from ..plotting import plot
     from ..results.store import open_result
 
@@ -210,9 +196,11 @@ BENCH_EXPECTED = {False: "about 3 min", True: "about 10 s"}
 
 def _cmd_bench(args) -> int:
     """The benchmarks of the source checkout (``benchmarks/``): not part of a wheel."""
+    # deferred: keeps the command's modules off the start-up path
     from .checkout import benchmark
 
     if args.records:
+        # deferred: each command loads what it runs (start-up)
         from ..extras import require
 
         require("weather")  # the records bench reads a TMY3 year that pvlib ships
@@ -222,6 +210,7 @@ def _cmd_bench(args) -> int:
         if not args.quick:
             print(records.format_year_accuracy(records.year_accuracy()))
         return 0
+    # deferred: keeps the command's modules off the start-up path
     from ..messages import progress_bar
 
     tradeoff = benchmark("diffusion_tradeoff")
@@ -244,6 +233,7 @@ def _cmd_bench(args) -> int:
 
 
 def _cmd_materials(args) -> int:
+    # deferred: keeps pydantic off the start-up path
     from ..scene.keys import closest_names
     from ..materials.library import GROUPS, entry_text, find_entry, known_names, library_table
 
@@ -262,6 +252,7 @@ def _cmd_materials(args) -> int:
 
 
 def _cmd_examples(args) -> int:
+    # deferred: keeps yaml off the start-up path
     from ..scene import examples as example_scenes
 
     if args.copy:
@@ -276,6 +267,7 @@ def _cmd_examples(args) -> int:
 
 
 def _cmd_schema(args) -> int:
+    # deferred: keeps the command's modules off the start-up path
     from ..results.schema import markdown_table
 
     print(markdown_table())
@@ -283,23 +275,24 @@ def _cmd_schema(args) -> int:
 
 
 def _cmd_sweep(args) -> int:
-    from .reporting import sweep_summary
+    # deferred: each command loads what it runs (start-up)
+    from .reporting import sweep_limit_lines, sweep_summary
     from ..results.store import open_result
     from ..sweep import run_sweep
-    from ..sweep.scatter import summary_lines
 
     run_sweep(args.sweep, args.output, workers=args.workers, scheduler=args.scheduler,
               progress=not args.quiet)
     if args.quiet < 2:
         result = open_result(args.output)
         print(sweep_summary(result))
-        for line in summary_lines(result):
+        for line in sweep_limit_lines(result):
             print(line)
         print(f"wrote {args.output}")
     return 0
 
 
 def _cmd_compensate(args) -> int:
+    # deferred: keeps numpy, yaml off the start-up path
     from ..compensation import compensate
     from ..compensation.report import report, write_files
     from ..scene.load import load_scene
@@ -310,11 +303,12 @@ def _cmd_compensate(args) -> int:
             raise InputError(f"--profile {args.profile}: the made cam's profile is written as "
                              f".csv or .dxf (by the suffix)")
         if suffix == ".dxf":  # before any computation: the extra may be missing
+            # deferred: each command loads what it runs (start-up)
             from ..cam.profile import dxf_module
 
             dxf_module()
     scene = load_scene(args.scene)
-    if args.profile is not None and scene.model.cam is None:
+    if args.profile is not None and not scene.has("cam"):
         raise InputError(f"{args.scene}: --profile needs a cam (the scene has none)")
     comp = compensate(scene, at=args.at, over=args.over, accuracy=scene_accuracy(args.accuracy),
                       plot=args.plot is not None, keep_limits=args.keep_limits,
@@ -329,7 +323,7 @@ def _cmd_compensate(args) -> int:
 
 
 def _cmd_profile(args) -> int:
-    from ..cam.design import design_from_scene
+    # deferred: keeps numpy, pydantic off the start-up path
     from ..cam.kinematics import working_profile
     from ..cam.profile import dxf_module, write_profile_csv, write_profile_dxf
     from ..scene.load import load_scene
@@ -341,14 +335,15 @@ def _cmd_profile(args) -> int:
     if suffix == ".dxf":
         dxf_module()  # refused before any work without the dxf extra
     scene = load_scene(args.scene)
-    if scene.model.cam is None:
+    if not scene.has("cam"):
         raise InputError(f"{args.scene}: the scene has no cam")
-    x, y = working_profile(design_from_scene(scene.model.cam), n=args.points)
+    x, y = working_profile(scene.mechanism("cam").design, n=args.points)
     print(f"wrote {writers[suffix](args.output, x, y)}")
     return 0
 
 
 def _cmd_fit(args) -> int:
+    # deferred: keeps the command's modules off the start-up path
     from ..quantities.options import field_value
     from ..fit import fit_weight_gain, materials_yaml, parameter_table, plot_fit
     from ..materials import MaterialSpec

@@ -7,6 +7,7 @@ from __future__ import annotations
 
 import atexit
 import gc
+import signal
 import sys
 
 from .parser import build_parser
@@ -25,7 +26,18 @@ def process_main() -> int:
     of a demo run, measured as whole processes. Only here: in a caller's process (tests,
     notebooks) a freeze would keep whatever garbage exists at that moment for good."""
     atexit.register(gc.freeze)
+    signal.signal(signal.SIGTERM, _terminate)
     return main(whole_process=True)
+
+
+class Terminated(KeyboardInterrupt):
+    """The process was asked to stop (SIGTERM): raised where it is, as Ctrl-C raises
+    KeyboardInterrupt, so that what it was writing is cleaned up as on Ctrl-C (Python's
+    default for SIGTERM ends the process on the spot, its temporary files left behind)."""
+
+
+def _terminate(signum, frame):
+    raise Terminated
 
 
 def main(argv: list[str] | None = None, whole_process: bool = False) -> int:
@@ -81,9 +93,10 @@ def _run_command(args) -> int:
     except FickcamError as exc:
         print(error_line(str(exc)), file=sys.stderr)
         return 1
-    except KeyboardInterrupt:
-        print(error_line("interrupted"), file=sys.stderr)
-        return 130
+    except KeyboardInterrupt as exc:  # Ctrl-C, or SIGTERM as Terminated: 128 + the signal
+        stopped = isinstance(exc, Terminated)
+        print(error_line("terminated" if stopped else "interrupted"), file=sys.stderr)
+        return 128 + (signal.SIGTERM if stopped else signal.SIGINT)
     except BrokenPipeError:
         return 0
     except Exception as exc:  # last resort: one line, never a traceback unless --debug

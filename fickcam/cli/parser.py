@@ -93,7 +93,7 @@ def _result_commands(sub) -> None:
     for mechanism, example in (("cam", "120 deg"), ("crank", "90 deg")):
         query.add_argument(f"--{mechanism}-angle", metavar="ANGLE",
                            help=f'{mechanism} angle with its unit, e.g. "{example}" (a bare '
-                                "number is radians, as in a scene)")
+                                "number is refused: degrees or radians?)")
     query.add_argument("--format", choices=("table", "csv", "json"), default="table")
     query.add_argument("--units", help="unit to show the values in, e.g. um, MPa, degF (default: "
                                        "the variable's display unit, as in the run summary)")
@@ -238,12 +238,12 @@ def _making_commands(sub) -> None:
     size.add_argument("scene")
     size.add_argument("--pressure-angle", default="30 deg",
                       help="largest |pressure angle| with its unit (30 deg; a bare number is "
-                           "radians, as in a scene)")
+                           "refused: degrees or radians?)")
     size.add_argument("--radius-of-curvature", default=None,
                       help="smallest convex working radius of curvature with its unit (default: "
-                           "the roller's radius for a roller follower, Norton's rule; a positive "
-                           "radius for a flat face or knife; a bare number is metres, as in a "
-                           "scene)")
+                           "the roller's radius for a roller follower, Norton's rule; for a flat "
+                           "face the radius its Hertz contact stress allows; a positive radius "
+                           "for a knife; a bare number is metres, as in a scene)")
 
 
 def _sweep_command(sub) -> None:

@@ -9,6 +9,7 @@ down, its peak and when it happened.
 from __future__ import annotations
 
 import math
+from collections.abc import Mapping
 
 import numpy as np
 
@@ -18,6 +19,9 @@ from ..results.limits import stored_limits
 from ..results.query import drift
 from ..results.schema import VARIABLES, design_name
 from ..quantities.parsing import convert
+from ..results.resultsize import estimate as result_size
+from ..simulation.simulate import STATE_GIVEN, plan_parts
+from ..results.query import swept_values
 
 #: scalar results over ageing the summary reports, in this order (when present)
 KEY_OUTPUTS = ("lift", "arm_swing", "base_circle_radius", "jump_speed", "peak_cam_torque",
@@ -34,7 +38,7 @@ PEAK_SHARE = 0.02
 
 
 def _model_text(model) -> str:
-    if isinstance(model, dict):
+    if isinstance(model, Mapping):
         return ", ".join(f"{part}: {name}" for part, name in model.items()) + " (others auto)"
     return model
 
@@ -56,8 +60,6 @@ def describe_plan(scene, accuracy: float | None = None) -> str:
         Lines: the climate, each part's diffusion model with its cells, steps and estimated
         error, the mechanisms, the follower and the limits.
     """
-    from ..results.resultsize import estimate as result_size
-    from ..simulation.simulate import STATE_GIVEN, plan_parts
 
     environment, times, options, plans = plan_parts(scene, accuracy)
     climate = (f"{len(times)} state(s) given directly (no diffusion)"
@@ -65,7 +67,7 @@ def describe_plan(scene, accuracy: float | None = None) -> str:
                f"{len(environment.change_times) - 1} segment(s), {format_duration(environment.end)}; "
                f"{len(times)} ageing times")
     lines = [f"scene {scene.name}: valid", f"  environment: {climate}",
-             f"  diffusion: model {_model_text(options['model'])}, accuracy {options['accuracy']:g}"]
+             f"  diffusion: model {_model_text(options.model)}, accuracy {options.accuracy:g}"]
     for part, p in plans:
         head = f"  part {part.name:<9} material {part.material_name}"
         if p is None:
@@ -75,14 +77,9 @@ def describe_plan(scene, accuracy: float | None = None) -> str:
         else:
             lines.append(f"{head}: {type(part.geometry).__name__} → {p.model}, {p.cells} cells, "
                          f"{p.steps} steps, est. error {p.error_estimate:.1e} ({p.reason})")
-    mechanisms = [s for s in ("cam", "linkage") if getattr(scene.model, s) is not None]
-    lines.append(f"  mechanisms: {', '.join(mechanisms)}; angle step "
-                 f"{np.degrees(scene.model.outputs.angle_step):g} deg")
-    if scene.model.cam is not None and scene.model.cam.follower.arm is not None:
-        from ..cam.design import design_from_scene
-        from ..cam.oscillating import describe_arm
-
-        lines.append(f"  follower: {describe_arm(design_from_scene(scene.model.cam))}")
+    lines.append(f"  mechanisms: {', '.join(m.section_name for m in scene.mechanisms)}; angle "
+                 f"step {np.degrees(scene.model.outputs.angle_step):g} deg")
+    lines += [f"  {line}" for mechanism in scene.mechanisms for line in mechanism.described()]
     if scene.limits:
         lines.append("  limits: " + "; ".join(f"{limit.variable} {limit.text}"
                                              for limit in scene.limits))
@@ -443,6 +440,49 @@ def _sweep_cell(ds, name: str, case: int) -> str:
     return f"{_number(value)} ({_change(change)})" if np.isfinite(change) else _number(value)
 
 
+def sweep_limit_lines(ds) -> list[str]:
+    """Per limit of a sweep: how many of the cases that ran are out of spec by its last
+    ageing time, with the Wilson 95 % interval of that fraction, and when the first and the
+    last of them left it, each case's time as a single run reports it (:func:`crossing_text`:
+    the digits its error estimate supports, in the scene's time unit).
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        A sweep's combined result with limits (``time_out_of_spec`` over case and limit,
+        and the fractions of :func:`fickcam.sweep.scatter.fractions`).
+
+    Returns
+    -------
+    list of str
+        A heading, one line per limit and where the fractions by each ageing time are;
+        empty without fractions.
+    """
+    if "fraction_out_of_spec" not in ds:
+        return []
+    n = int(ds["cases_out_of_spec"].attrs.get("cases", 0))
+    last = ds.isel(time=-1)
+    with times_in(ds.attrs.get("time_unit") or None):
+        by = format_duration(ageing_seconds(ds)[-1])
+    lines = [f"out of spec (of {n} case(s) that ran; Wilson 95 % interval):"]
+    for limit in ds["limit"].values.tolist():
+        row = last.sel(limit=limit)
+        fraction, low, high = (float(row[v]) for v in ("fraction_out_of_spec",
+                                                       "fraction_out_of_spec_low",
+                                                       "fraction_out_of_spec_high"))
+        text = (f"  {limit}: {int(row['cases_out_of_spec'])} of {n} by {by} ({fraction:.3g} % "
+                f"[{low:.3g}, {high:.3g}])")
+        days = ds["time_out_of_spec"].sel(limit=limit).values
+        failed = np.flatnonzero(np.isfinite(days))
+        if failed.size:
+            ends = sorted({int(failed[np.argmin(days[failed])]), int(failed[np.argmax(days[failed])])},
+                          key=lambda case: days[case])
+            when = [f"{crossing_text(ds.isel(case=case), limit)} (case {case})" for case in ends]
+            text += "; first at " + when[0] + (f", last at {when[1]}" if len(when) > 1 else "")
+        lines.append(text)
+    return lines + ["  (the fraction by each ageing time: fickcam query RESULT fraction_out_of_spec)"]
+
+
 def sweep_summary(ds) -> str:
     """One line per case after ``fickcam sweep``.
 
@@ -460,7 +500,6 @@ def sweep_summary(ds) -> str:
     str
         The table, without a trailing newline.
     """
-    from ..results.query import swept_values
 
     swept = swept_values(ds)
     outputs = _sweep_outputs(ds)

@@ -15,6 +15,7 @@ import numpy as np
 
 from .damp_heat import STANDARD_TESTS, Segments, standard_climate
 from .records import read_history_csv, read_record, resolve_record_path
+from ..diffusion import Exposure
 
 __all__ = ["Environment", "read_history_csv", "summary_edges"]
 
@@ -216,7 +217,6 @@ class Environment(Segments):
     def exposure(self, saturation_moisture):
         """The diffusion boundary history of a part whose material saturates at
         ``saturation_moisture(T, RH)`` (weight %)."""
-        from ..diffusion import Exposure
 
         if saturation_moisture in self._exposures:
             return self._exposures[saturation_moisture]

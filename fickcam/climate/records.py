@@ -24,7 +24,6 @@ import csv
 import math
 import re
 from dataclasses import dataclass, replace
-from functools import lru_cache
 from pathlib import Path
 
 import numpy as np
@@ -222,9 +221,8 @@ def _site(name, region) -> str:
 def read_record(path: Path) -> ClimateRecord:
     """Read a chamber CSV, a TMY3 CSV or an EPW file (chosen by its content).
 
-    A file read before and not changed since (same size and modification time) is not read
-    again (a scene's check and its run, a sweep's cases); the arrays are then shared and
-    read-only.
+    A scene reads its record once, when it is validated, and keeps the climate built from
+    it (``Scene.environment``).
 
     Parameters
     ----------
@@ -242,24 +240,7 @@ def read_record(path: Path) -> ClimateRecord:
         When the file is missing or unreadable; :class:`RecordError` (a ValueError) with its
         line and column for a problem inside it.
     """
-    path = Path(path)
-    try:
-        stat = path.stat()
-    except FileNotFoundError:
-        raise ValueError(f"history file {str(path)!r} not found") from None
-    except OSError as exc:
-        raise ValueError(f"cannot read history file {str(path)!r}: {exc}") from None
-    return _read_unchanged(str(path.resolve()), stat.st_size, stat.st_mtime_ns)
-
-
-@lru_cache(maxsize=8)
-def _read_unchanged(path: str, size: int, modified: int) -> ClimateRecord:
-    """``read_record`` of a file of this size and modification time (the cache key); its
-    arrays read-only, as they are shared."""
-    record = _read_record(Path(path))
-    for values in (record.time, record.temperature, record.relative_humidity):
-        values.setflags(write=False)
-    return record
+    return _read_record(Path(path))
 
 
 def _read_record(path: Path) -> ClimateRecord:

@@ -13,7 +13,7 @@
   scaling its parameters would not give its motion back; its points do.
 
 A roller that takes up moisture: its radius with its mean in-plane strain, as
-:func:`fickcam.cam.ageing.cam_state` ages it; a swinging arm: its length (roller) or face
+:func:`fickcam.cam.mechanism.cam_state` ages it; a swinging arm: its length (roller) or face
 offset (flat) with the follower's strain along it. Cam thickness, bore and the follower's
 offset from the cam axis (set by the frame) are left as designed.
 
@@ -28,9 +28,11 @@ from pathlib import Path
 
 import numpy as np
 
-from ..cam.design import design_from_scene
+from ..cam.design import cam_design
 from ..cam.kinematics import working_profile
 from .core import Target, scene_from
+from ..quantities.parsing import to_si
+from ..scene.load import CAM_SHAPE_KEYS
 
 #: points of a written compensated profile (0.1 deg apart on average)
 PROFILE_POINTS = 3600
@@ -43,7 +45,8 @@ ARM_NAMES = {"length": "arm length", "face_offset": "arm face offset"}
 def _given_by_points(section, points: bool = False) -> bool:
     """True when the made cam is written as points: a profile file, a swinging arm's cam,
     or any cam when ``points`` is asked for."""
-    return points or section.profile_file is not None or section.follower.arm is not None
+    return (points or section.profile_file is not None or section.drawing is not None
+            or section.follower.arm is not None)
 
 
 def _segment_name(index: int, segment) -> str:
@@ -54,7 +57,7 @@ def _shape_targets(section, points: bool = False) -> list[Target]:
     """The cam's own dimensions, in the form it was given in (module docstring), or its
     points when ``points`` is asked for."""
     if _given_by_points(section, points):
-        x, y = working_profile(design_from_scene(section), n=PROFILE_POINTS)
+        x, y = working_profile(cam_design(section), n=PROFILE_POINTS)
         return [Target("cam", PROFILE_NAMES[0], "cam", ("strain_longitudinal",), x),
                 Target("cam", PROFILE_NAMES[1], "cam", ("strain_transverse",), y)]
     if section.eccentric is not None:
@@ -92,7 +95,7 @@ def targets(section, points: bool = False) -> list[Target]:
         found.append(Target("follower", "roller radius", "follower", IN_PLANE,
                             float(follower.roller_radius)))
     arm = follower.arm
-    if arm is not None and follower.material:  # grows along its length (fickcam.cam.ageing)
+    if arm is not None and follower.material:  # grows along its length (fickcam.cam.mechanism)
         key = "length" if follower.kind == "roller" else "face_offset"
         if getattr(arm, key):
             found.append(Target("follower", ARM_NAMES[key], "follower", ("strain_longitudinal",),
@@ -125,7 +128,6 @@ def profile_path(folder: Path, stem: str) -> Path:
 def _motion(section, segments: list, shape: dict, length_text) -> list:
     """The scene's motion segments with the made rises and returns (to the picometre, so
     that they still cancel), a spline law's distances scaled with its segment's lift."""
-    from ..quantities.parsing import to_si
 
     made = copy.deepcopy(segments)
     for index, (given, segment) in enumerate(zip(section.motion, made)):
@@ -172,9 +174,11 @@ def write(data: dict, section, targets, made, profile, length_text) -> np.ndarra
     points = None
     if PROFILE_NAMES[0] in shape:
         points = np.c_[shape[PROFILE_NAMES[0]], shape[PROFILE_NAMES[1]]]
-        for key in ("base_circle_radius", "motion", "eccentric"):
+        for key in ("base_circle_radius", "motion", "eccentric", "drawing"):
             cam.pop(key, None)
         cam["profile_file"] = str(profile)
+        if section.drawing is not None:  # the drawn bore, which the points do not give
+            cam["bore_radius"] = length_text(section.bore_radius)
     elif "eccentricity" in shape:
         cam["eccentric"] = {"eccentricity": length_text(shape["eccentricity"]),
                             "radius": length_text(shape["disc radius"])}
@@ -231,7 +235,6 @@ def design_entry(section: dict, targets) -> dict:
     dict
         The entry, lengths as the scene gives them.
     """
-    from ..scene.load import CAM_SHAPE_KEYS
 
     entry = {key: section[key] for key in CAM_SHAPE_KEYS if key in section}
     names = {t.name for t in targets}
@@ -262,7 +265,7 @@ def made_outline(data: dict, base_dir: Path, points: int):
         x and y [m].
     """
     section = scene_from(data, base_dir, "<compensated scene>").model.cam
-    return working_profile(design_from_scene(section), n=points)
+    return working_profile(cam_design(section), n=points)
 
 
 #: a parametric cam's in-plane strains differ by more than this fraction of the larger:

@@ -17,6 +17,7 @@ iteration, each step a run of the scene with the current made dimensions.
 """
 from __future__ import annotations
 
+import os
 import contextlib
 import dataclasses
 import logging
@@ -25,6 +26,7 @@ from pathlib import Path
 
 import numpy as np
 import yaml
+from ..scene.load import parse_yaml, validate_document
 
 log = logging.getLogger(__name__)
 
@@ -272,7 +274,6 @@ def relative_to(path: str, old_dir: Path, new_dir: Path) -> str:
     str
         The rewritten path.
     """
-    import os
 
     resolved = (old_dir / path).resolve()
     return os.path.relpath(resolved, new_dir.resolve())
@@ -300,7 +301,6 @@ def scene_from(data: dict, base_dir: Path, file_name: str):
     SceneError
         When the mapping is not a valid scene.
     """
-    from ..scene.load import parse_yaml, validate_document
 
     doc = parse_yaml(yaml.safe_dump(data, sort_keys=False), file=file_name)
     return validate_document(doc, base_dir=base_dir)

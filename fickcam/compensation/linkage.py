@@ -5,7 +5,7 @@ coupler's length). The link sections (width, thickness, bosses) are left as desi
 they carry the load, not the motion."""
 from __future__ import annotations
 
-from ..linkage.ageing import LINKS
+from ..linkage.mechanism import LINKS
 from .core import Target
 
 LONGITUDINAL = ("strain_longitudinal",)

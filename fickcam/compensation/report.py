@@ -11,6 +11,16 @@ import numpy as np
 import yaml
 
 from .core import Compensation, relative_to
+from .cam import profile_radii
+from ..results.limits import stored_limits
+from ..results.query import drift
+from ..simulation.simulate import ageing_times
+from .cam import anisotropy_note
+from ..cam.profile import write_profile_csv, write_profile_dxf
+from .cam import PROFILE_POINTS, made_outline
+from ..results.store import replaced_together
+from .cam import profile_path
+from .solve import write_made, write_points
 
 #: key outputs over angle whose largest deviation from the design is reported:
 #: result variable, label, scale from the stored unit, unit shown
@@ -42,7 +52,6 @@ def days(seconds: float) -> str:
 def _dimension_rows(comp: Compensation) -> list[tuple]:
     """(group, dimension, design m, made m) per scalar target; a cam given by points
     gives its smallest and largest radius and its extents."""
-    from .cam import profile_radii
 
     rows = [(t.group, t.name, float(t.design), float(m))
             for t, m in zip(comp.targets, comp.made) if not np.ndim(t.design)]
@@ -191,7 +200,6 @@ def limit_lines(comp: Compensation) -> list[str]:
     list of str
         The lines.
     """
-    from ..results.limits import stored_limits
 
     if "limit_ratio" not in comp.before:
         return ["the scene has no limits: section, so the made part is not checked against a "
@@ -267,7 +275,6 @@ def _largest_deviation(ds, name: str) -> np.ndarray | None:
     :func:`fickcam.results.query.drift` against the result's as-designed state, which for a
     compensated scene is its ``design:``); the coupler point is the distance between the
     two points. None where the result lacks ``name``."""
-    from ..results.query import drift
 
     if name == "coupler_point":
         if "coupler_point_x" not in ds:
@@ -283,10 +290,9 @@ def _largest_deviation(ds, name: str) -> np.ndarray | None:
 def _shown_times(comp: Compensation) -> np.ndarray:
     """The ageing times (s) the drift table shows: the scene's inside the life, its ends
     and the ends of the compensation."""
-    from ..simulation.simulate import ageing_times, scene_environment
 
     scene = comp.scene
-    stored = ageing_times(scene, scene_environment(scene))
+    stored = ageing_times(scene, scene.environment)
     inside = stored[(stored >= comp.life[0]) & (stored <= comp.life[1])]
     return np.unique(np.concatenate([inside, np.array(comp.life), comp.times[[0, -1]]]))
 
@@ -325,7 +331,6 @@ def report(comp: Compensation, scene) -> str:
     str
         The report.
     """
-    from .cam import anisotropy_note
 
     lines = [header(comp, scene), dimension_table(comp)] + _residual_lines(comp) + \
         limit_lines(comp) + _advice_lines(comp, scene) + anisotropy_note(comp) + _drift_lines(comp)
@@ -376,8 +381,6 @@ def scene_text(comp: Compensation, scene, data: dict, folder: Path) -> str:
 def _drawing_writer(data: dict, points, base_dir: Path, path: Path):
     """A writer of the made cam's dry working profile to ``path`` (.csv or .dxf, mm);
     ``data``: the made scene mapping, its paths relative to ``base_dir``."""
-    from ..cam.profile import write_profile_csv, write_profile_dxf
-    from .cam import PROFILE_POINTS, made_outline
 
     x, y = (points[:, 0], points[:, 1]) if points is not None else \
         made_outline(data, base_dir, PROFILE_POINTS)
@@ -427,9 +430,6 @@ def write_files(comp: Compensation, scene, path, *, profile=None, plot=None) -> 
     list of pathlib.Path
         The paths written, the scene's first.
     """
-    from ..results.store import replaced_together
-    from .cam import profile_path
-    from .solve import write_made, write_points
 
     path = Path(path)
     folder = path.parent if str(path.parent) else Path(".")
@@ -443,6 +443,7 @@ def write_files(comp: Compensation, scene, path, *, profile=None, plot=None) -> 
         writers[Path(profile)] = _drawing_writer(data, points, scene.base_dir,
                                                        Path(profile))
     if plot is not None:
+        # deferred: keeps matplotlib off the path unless a plot is asked
         from ..plotting.compensation import plot_against_band
 
         window = tuple(np.unique(comp.times[[0, -1]]) / DAY)

@@ -57,16 +57,12 @@ def length_text(value: float, digits: int = 6) -> str:
 
 
 def _targets(scene, points: bool) -> list:
-    found = []
-    if scene.model.cam is not None:
-        from . import cam
+    """The dimensions compensated, mechanism by mechanism (each mechanism's module here)."""
+    from . import cam, linkage
 
-        found += cam.targets(scene.model.cam, points)
-    if scene.model.linkage is not None:
-        from . import linkage
-
-        found += linkage.targets(scene.model.linkage)
-    return found
+    targets = {"cam": lambda section: cam.targets(section, points), "linkage": linkage.targets}
+    return [target for mechanism in scene.mechanisms
+            for target in targets[mechanism.section_name](mechanism.section)]
 
 
 def with_design(data: dict, design: dict, targets: list) -> dict:
@@ -214,18 +210,14 @@ def part_states(data: dict, base_dir: Path, times: np.ndarray, accuracy, names: 
         name -> its ``DiffusionResult`` at ``times``, None for a part that does not absorb).
     """
     from ..results.dataset import build_dataset
-    from ..elastic.parts import elastic_parts
-    from ..simulation.parts import build_parts, part_values
-    from ..simulation.simulate import age_part, diffusion_options, scene_environment
+    from ..simulation.parts import part_values
+    from ..simulation.options import RunOptions
+    from ..simulation.simulate import age_parts
 
     scene = _scene_at(data, base_dir, times)
-    environment = scene_environment(scene)
-    options = diffusion_options(scene, accuracy, cache=cache)
-    elastic = elastic_parts(scene.model)
-    solved: dict = {}  # parts alike share a solve, as in a run
-    histories = [age_part(part, environment, times, options, scene, [],
-                          keep_field=part.name in elastic, solved=solved)
-                 for part in build_parts(scene) if part.name in names]
+    parts = [part for part in scene.parts if part.name in names]
+    histories = age_parts(scene, scene.environment, times,
+                          RunOptions.for_scene(scene, accuracy, cache=cache), parts, [])
     coords = {"time": times, "part": [h.part.name for h in histories]}
     return (build_dataset(part_values(histories), coords),
             {h.part.name: h.diffusion for h in histories})
@@ -233,8 +225,8 @@ def part_states(data: dict, base_dir: Path, times: np.ndarray, accuracy, names: 
 
 def diffusions_for(data: dict, base_dir: Path, times: np.ndarray, by_name: dict) -> dict:
     """The diffusion results ``by_name`` keyed for a run of the scene mapping at ``times``
-    (``simulate.run(diffusions=...)``), as :func:`fickcam.simulation.simulate.age_part` keys them:
-    the part's shape (of this scene mapping), material and whether fields are kept.
+    (``simulate.run(diffusions=...)``), by :func:`fickcam.simulation.simulate.diffusion_key`: the
+    part's shape (of this scene mapping), material and whether its field is kept.
 
     Parameters
     ----------
@@ -247,13 +239,12 @@ def diffusions_for(data: dict, base_dir: Path, times: np.ndarray, by_name: dict)
     by_name : dict
         Part name -> ``DiffusionResult`` (:func:`part_states`).
     """
-    from ..elastic.parts import elastic_parts
-    from ..simulation.parts import build_parts
+    from ..simulation.simulate import diffusion_key
 
     scene = _scene_at(data, base_dir, times)
-    elastic = elastic_parts(scene.model)
-    return {(part.geometry, part.material_name, part.name in elastic): by_name[part.name]
-            for part in build_parts(scene) if by_name.get(part.name) is not None}
+    elastic = scene.elastic_parts  # its runs keep no fields but these (``_scene_at``)
+    return {diffusion_key(part, part.name in elastic): by_name[part.name]
+            for part in scene.parts if by_name.get(part.name) is not None}
 
 
 def _compensation_times(scene, at, over) -> tuple[np.ndarray, tuple[float, float]]:
@@ -261,9 +252,9 @@ def _compensation_times(scene, at, over) -> tuple[np.ndarray, tuple[float, float
     or delivery to the end of the history for ``at``), s; refuses times outside the
     history."""
     from ..quantities.options import ageing_time
-    from ..simulation.simulate import ageing_times, scene_environment
+    from ..simulation.simulate import ageing_times
 
-    environment = scene_environment(scene)
+    environment = scene.environment
     if (at is None) == (over is None):
         raise InputError("give exactly one of --at TIME or --over T1 T2")
     given = [("--at", at)] if at is not None else [("--over", value) for value in over]
@@ -286,9 +277,9 @@ def _check_times(scene, times: np.ndarray, life: tuple[float, float], *, plot: b
     inside ``life``, its ends and ``times``; ``plot``: the scene's ageing times over the
     whole history too (the plot shows the part before and after a window, from the runs
     the compensation makes anyway); ``wide``: the grid of a window over the whole life."""
-    from ..simulation.simulate import ageing_times, scene_environment
+    from ..simulation.simulate import ageing_times
 
-    environment = scene_environment(scene)
+    environment = scene.environment
     stored = ageing_times(scene, environment)
     inside = stored[(stored >= life[0]) & (stored <= life[1])]
     extra = [stored] if plot else []
@@ -407,7 +398,7 @@ def compensate(scene, at=None, over=None, *, accuracy: float | None = None,
         scene's history, or ``keep_limits`` is given without ``at``.
     """
     from ..diffusion import RunCache
-    from ..scene.load import design_data, load_scene
+    from ..scene.load import as_designed_data, load_scene
 
     cache = RunCache()   # every run of this compensation shares it
     scene = load_scene(scene)
@@ -418,7 +409,7 @@ def compensate(scene, at=None, over=None, *, accuracy: float | None = None,
     check = _check_times(scene, times, life, plot=plot, wide=wide)
     design = scene.as_designed()  # a compensated scene is compensated anew
     targets = _targets(design, points)
-    data = design_data(copy.deepcopy(scene.document.data))
+    data = as_designed_data(copy.deepcopy(scene.document.data))
     with quiet_runs():
         before = _run_at(data, scene.base_dir, check, accuracy, cache=cache)
     made, after, iterations, strains = _fixed_point(design, data, targets, times, check, before,

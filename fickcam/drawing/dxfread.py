@@ -86,6 +86,7 @@ def unit_of(document, given: str | None, path: str) -> float:
     DrawingError
         No unit, an unknown one, or a given unit the header contradicts.
     """
+    # deferred: keeps ezdxf off the start-up path
     from ezdxf.units import METER_FACTOR, unit_name
 
     code = int(document.header.get("$INSUNITS", 0) or 0)
@@ -104,6 +105,7 @@ def unit_of(document, given: str | None, path: str) -> float:
 
 def _extent(document) -> float:
     """The largest side of the model space's bounding box, in drawing units (0: empty)."""
+    # deferred: keeps ezdxf off the start-up path
     from ezdxf import bbox
 
     box = bbox.extents(document.modelspace())
@@ -139,6 +141,7 @@ def _entities(space):
 def _piece(entity, unit: float, tolerance: float) -> Piece | None:
     """The entity flattened within ``tolerance`` [m], in metres; None if it is not flat in
     the drawing's plane."""
+    # deferred: keeps ezdxf off the start-up path
     from ezdxf import path as dxfpath
 
     rough = dxfpath.make_path(entity)

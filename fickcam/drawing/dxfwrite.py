@@ -17,6 +17,7 @@ import numpy as np
 from ..extras import require
 from ..messages import quieter
 from .planform import Planform
+from ..results.store import replaced_atomically
 
 OUTLINE_LAYER, HOLE_LAYER = "OUTLINE", "HOLES"
 
@@ -47,6 +48,7 @@ class Similarity:
 
     def matrix(self, unit: float):
         """The map as an ezdxf ``Matrix44`` in drawing units of ``unit`` [m]."""
+        # deferred: keeps ezdxf off the start-up path
         from ezdxf.math import Matrix44
 
         return Matrix44.chain(Matrix44.scale(self.scale), Matrix44.z_rotate(self.angle),
@@ -55,6 +57,7 @@ class Similarity:
 
 def _document(unit: float, layers):
     ezdxf = require("dxf")
+    # deferred: keeps ezdxf off the start-up path
     from ezdxf.units import METER_FACTOR
 
     codes = [i for i, f in enumerate(METER_FACTOR) if f and math.isclose(1.0 / f, unit)]
@@ -65,8 +68,6 @@ def _document(unit: float, layers):
 
 
 def _save(document, path) -> Path:
-    from ..results.store import replaced_atomically
-
     with replaced_atomically(path) as tmp:
         document.saveas(tmp)
     return Path(path)

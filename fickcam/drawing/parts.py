@@ -11,7 +11,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .planform import DrawingError, Loop, Planform, pin_holes, where
+from .planform import DrawingError, Loop, Planform, inside, pin_holes, where
 
 AXIS_LAYER = "AXIS"
 CENTRED = 1e-3  # a hole is about the axis when its centre is within 0.1 % of its radius
@@ -98,8 +98,6 @@ def cam_of(planform: Planform, points: dict | None = None, axis_layer: str = AXI
 
 
 def _inside_outline(planform: Planform) -> bool:
-    from .planform import inside
-
     return bool(inside(np.zeros((1, 2)), planform.outer)[0])
 
 

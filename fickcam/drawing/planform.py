@@ -1,17 +1,23 @@
-"""A part's planform as drawn: one outer loop and its holes, in metres, checked for being a
+r"""A part's planform as drawn: one outer loop and its holes, in metres, checked for being a
 part, and its area, centre and second moments by Green's theorem.
 
-For a polygon with vertices (x_i, y_i), i = 0..n-1 taken cyclically, and
-c_i = x_i y_(i+1) - x_(i+1) y_i (Steger, On the calculation of arbitrary moments of
-polygons, Technical Report FGBV-96-05, TU Munich, 1996, eqs. 5-8; Green's theorem turns
-each area integral into a sum over the edges):
+For a polygon with vertices :math:`(x_i, y_i)`, :math:`i = 0 \ldots n-1` taken cyclically,
+and :math:`c_i = x_i y_{i+1} - x_{i+1} y_i` (Steger, On the calculation of arbitrary
+moments of polygons, Technical Report FGBV-96-05, TU Munich, 1996, eqs. 5-8; Green's
+theorem turns each area integral into a sum over the edges):
 
-    A    = 1/2  sum c_i
-    S_x  = 1/6  sum (x_i + x_(i+1)) c_i                    (= A x_c)
-    S_y  = 1/6  sum (y_i + y_(i+1)) c_i                    (= A y_c)
-    I_yy = 1/12 sum (x_i^2 + x_i x_(i+1) + x_(i+1)^2) c_i  (= int x^2 dA)
-    I_xx = 1/12 sum (y_i^2 + y_i y_(i+1) + y_(i+1)^2) c_i  (= int y^2 dA)
-    I_xy = 1/24 sum (x_i y_(i+1) + 2 x_i y_i + 2 x_(i+1) y_(i+1) + x_(i+1) y_i) c_i
+.. math::
+
+    A = \tfrac{1}{2} \sum_i c_i, \qquad
+    S_x = \tfrac{1}{6} \sum_i (x_i + x_{i+1})\, c_i = A\, x_c, \qquad
+    S_y = \tfrac{1}{6} \sum_i (y_i + y_{i+1})\, c_i = A\, y_c,
+
+    I_{yy} = \tfrac{1}{12} \sum_i (x_i^2 + x_i x_{i+1} + x_{i+1}^2)\, c_i = \int x^2\, dA,
+    \qquad
+    I_{xx} = \tfrac{1}{12} \sum_i (y_i^2 + y_i y_{i+1} + y_{i+1}^2)\, c_i = \int y^2\, dA,
+
+    I_{xy} = \tfrac{1}{24} \sum_i (x_i y_{i+1} + 2 x_i y_i + 2 x_{i+1} y_{i+1}
+    + x_{i+1} y_i)\, c_i.
 
 The outer loop runs counter-clockwise and the holes clockwise, so that each sum over all
 loops is the planform's (material on the left of every loop). These are exact for the
@@ -351,6 +357,7 @@ def inside(points: np.ndarray, loop: Loop) -> np.ndarray:
     numpy.ndarray
         True inside.
     """
+    # deferred: keeps matplotlib off the start-up path
     from matplotlib.path import Path
 
     return Path(loop.points, closed=False).contains_points(np.asarray(points, float).reshape(-1, 2))

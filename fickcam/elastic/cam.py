@@ -21,6 +21,9 @@ from ..mechanisms.response import Response
 from .contact import (cam_plate_model, contact_response, follower_shift, hertz_half_width,
                       lift_error)
 from .fem import stiffness_matrix
+from ..cam.kinematics import working_profile
+from ..diffusion.problem.geometry import CamPlate
+from .mesh import planform_mesh
 
 log = logging.getLogger(__name__)
 
@@ -39,8 +42,6 @@ def _ply_stiffness(state: dict, k: int, prefix: str = "") -> np.ndarray:
 
 def _cam_plate(design):
     """The dry working profile as a plate held at its bore, and the mesh spacing."""
-    from ..cam.kinematics import working_profile
-    from ..diffusion.problem.geometry import CamPlate
 
     x, y = working_profile(design)
     perimeter = float(np.sum(np.hypot(np.diff(x, append=x[:1]), np.diff(y, append=y[:1]))))
@@ -48,7 +49,7 @@ def _cam_plate(design):
     return CamPlate(x, y, design.thickness, design.bore_radius), spacing
 
 
-def cam_elastic_response(section, cam_state: dict, variables: dict, valid) -> Response:
+def cam_elastic_response(design, cam_state: dict, variables: dict, valid) -> Response:
     """elastic_deflection, elastic_stress_tensile, elastic_stress_compressive (time,
     cam_angle) and elastic_lift_error (time) from the cam's
     material state and the rigid cam results (contact force and stress, contact point,
@@ -56,8 +57,8 @@ def cam_elastic_response(section, cam_state: dict, variables: dict, valid) -> Re
 
     Parameters
     ----------
-    section : CamSection
-        The scene's ``cam`` section.
+    design : CamDesign
+        The dry cam (its working profile, thickness and bore [m]).
     cam_state : dict
         The cam's material state over ageing times: bulk and ``surface_`` ply moduli [Pa]
         and Poisson's ratio [-].
@@ -73,10 +74,7 @@ def cam_elastic_response(section, cam_state: dict, variables: dict, valid) -> Re
         elastic_deflection [m], elastic_stress_tensile/compressive [Pa] over (time,
         cam_angle) and elastic_lift_error [m] over time.
     """
-    from ..cam.design import design_from_scene
-    from .mesh import planform_mesh
 
-    design = design_from_scene(section)
     plate, spacing = _cam_plate(design)
     mesh = planform_mesh(plate, spacing, GROWTH)
     model = cam_plate_model(mesh.points, mesh.triangles, design.thickness, design.bore_radius, spacing)

@@ -23,6 +23,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .fem import PlaneElasticity, principal_stresses
+from scipy.spatial import cKDTree
 
 #: load cases solved and reduced to stress extremes at a time (memory ~ 3 elements x this)
 CHUNK = 48
@@ -126,7 +127,6 @@ def hertz_half_width(force, peak_pressure, length):
 
 def _nearest(model: CamPlateModel, contact) -> np.ndarray:
     """Index of the profile quadrature point nearest each contact point."""
-    from scipy.spatial import cKDTree
 
     return cKDTree(model.points).query(contact)[1]
 

@@ -1,18 +1,25 @@
-"""Plane-stress linear elasticity on a triangle mesh with scikit-fem (the only module
+r"""Plane-stress linear elasticity on a triangle mesh with scikit-fem (the only module
 that imports skfem).
 
 Constitutive law in Voigt form (xx, yy, engineering xy): sigma = Q (eps - eps*), with the
 reduced (plane-stress) stiffness of an orthotropic ply whose axis 1 is x,
 
-    Q11 = E1 / (1 - nu12 nu21),  Q22 = E2 / (1 - nu12 nu21),  Q12 = nu12 E2 / (1 - nu12 nu21),
-    Q66 = G12,  nu21 = nu12 E2 / E1            (Jones, Mechanics of Composite Materials,
-                                                 2nd ed. 1999, eq. 2.61)
+.. math::
+
+    Q_{11} = \frac{E_1}{1 - \nu_{12} \nu_{21}}, \quad Q_{22} = \frac{E_2}{1 - \nu_{12} \nu_{21}},
+    \quad Q_{12} = \frac{\nu_{12} E_2}{1 - \nu_{12} \nu_{21}}, \quad Q_{66} = G_{12},
+    \quad \nu_{21} = \nu_{12} \frac{E_2}{E_1}
+
+(Jones, Mechanics of Composite Materials, 2nd ed. 1999, eq. 2.61)
 
 (isotropic and quasi-isotropic: E1 = E2, G12 = E / (2 (1 + nu))). The weak form of
 equilibrium in a plate of thickness t (Zienkiewicz & Taylor, The Finite Element Method
 vol. 1, 6th ed. 2005, eq. 6.12 and ch. 4 for the initial strain eps*):
 
-    t int B(v)^T Q B(u) dA = t int B(v)^T Q eps* dA + t int v . traction ds,
+.. math::
+
+    t \int B(v)^T Q\, B(u)\, dA = t \int B(v)^T Q\, \varepsilon^*\, dA
+    + t \oint v \cdot \text{traction}\, ds,
 
 with Lagrange P1 or P2 elements. Displacements then converge in L2 as h^(p+1) for smooth
 solutions on a domain the mesh represents (Ciarlet 1978, Theorem 3.2.5); a curved edge

@@ -6,6 +6,11 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+from ..diffusion.planform.triangles import triangulate
+from ..diffusion.problem.geometry import CamPlate
+from ..diffusion.planform.polygon import Wall, drop_unused, triangle_areas
+from ..diffusion.problem.curves import resample_polyline
+from ..diffusion.planform.triangles import MIN_GAP, delaunay_inside, hex_lattice
 
 
 @dataclass(frozen=True)
@@ -43,7 +48,6 @@ def planform_mesh(geometry, spacing: float, growth: float | None = None) -> Plat
     PlateMesh
         The mesh.
     """
-    from ..diffusion.planform.triangles import triangulate
 
     mesh = triangulate(geometry, spacing, growth=growth)
     return PlateMesh(np.asarray(mesh.points, float), np.asarray(mesh.triangles, int))
@@ -72,7 +76,6 @@ def disc_plate(radius: float, thickness: float, bore_radius: float = 0.0, centre
     CamPlate
         The disc's plate.
     """
-    from ..diffusion.problem.geometry import CamPlate
 
     angle = 2 * np.pi * np.arange(samples) / samples
     return CamPlate(centre[0] + radius * np.cos(angle), centre[1] + radius * np.sin(angle),
@@ -103,9 +106,6 @@ def drawn_mesh(loops, spacing: float) -> PlateMesh:
         When the triangles do not cover the polygon (a vertex closer to an edge than the
         mesh can resolve): their area differs from the polygon's by more than 1e-9.
     """
-    from ..diffusion.planform.polygon import Wall, drop_unused, triangle_areas
-    from ..diffusion.problem.curves import resample_polyline
-    from ..diffusion.planform.triangles import MIN_GAP, delaunay_inside, hex_lattice
 
     boundary = np.vstack([resample_polyline(*loop.T, spacing) for loop in loops])
     wall = Wall.of(loops, spacing / 8)

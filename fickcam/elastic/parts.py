@@ -1,5 +1,6 @@
-"""Which parts get an elastic analysis (``cam.elastic``, ``linkage.elastic``) and their
-swelling-stress variables over (time, part), for :mod:`fickcam.simulation.simulate`."""
+"""The swelling-stress variables over (time, part) of the parts that get an elastic
+analysis (``cam.elastic``, ``linkage.elastic``: each mechanism's ``elastic_parts``), for
+:mod:`fickcam.simulation.simulate`."""
 from __future__ import annotations
 
 import numpy as np
@@ -8,27 +9,6 @@ from .thickness import SheetProfile
 
 DEPTH_STRIDE = 2   # every other cell of the exact sheet field (40 cells) between face and mid-plane
 SWELLING = ("swelling_stress_tensile", "swelling_stress_compressive", "failure_index")
-
-
-def elastic_parts(model) -> set[str]:
-    """Names of the parts whose swelling stress the scene asks for.
-
-    Parameters
-    ----------
-    model : SceneModel
-        The validated scene.
-
-    Returns
-    -------
-    set of str
-        The part names.
-    """
-    names: set[str] = set()
-    if model.cam is not None and model.cam.elastic:
-        names.add("cam")
-    if model.linkage is not None and model.linkage.elastic:
-        names.update(("crank", "coupler", "rocker", "frame"))
-    return names
 
 
 def sheet_profile(part, environment, times) -> SheetProfile | None:
@@ -110,7 +90,7 @@ def swelling_variables(histories, names: set[str], environment, times, temperatu
     histories : list of PartHistory
         The parts' ageing.
     names : set of str
-        The parts asked for (:func:`elastic_parts`).
+        The parts asked for (the scene's ``elastic_parts``).
     environment : Environment
         The climate history (reference temperature [K], initial moisture [weight %]).
     times : array_like

@@ -1,11 +1,16 @@
-"""Wet ply strengths and the Tsai-Wu failure index.
+r"""Wet ply strengths and the Tsai-Wu failure index.
 
 Ply strengths from the constituents (Chamis 1984, NASA TM-83696, "Simplified composite
 micromechanics equations for strength ..."):
 
-    S11T = kf SfT,   S11C = kf SfC,
-    S22T = [1 - (sqrt(kf) - kf)(1 - Em/Ef22)] SmT,   S22C: the same with SmC,
-    S12S = [1 - (sqrt(kf) - kf)(1 - Gm/Gf12)] SmS,
+.. math::
+
+    S_{11T} = k_f S_{fT}, \qquad S_{11C} = k_f S_{fC},
+
+    S_{22T} = \Big[1 - (\sqrt{k_f} - k_f)\Big(1 - \frac{E_m}{E_{f22}}\Big)\Big] S_{mT},
+    \qquad S_{22C} \text{ the same with } S_{mC},
+
+    S_{12S} = \Big[1 - (\sqrt{k_f} - k_f)\Big(1 - \frac{G_m}{G_{f12}}\Big)\Big] S_{mS},
 
 with the matrix strengths and moduli degraded by the same hygrothermal retention P/P0 as
 the stiffness (Chamis 1984 eq. for environmental effects). A resin or plastic: its own

@@ -32,6 +32,10 @@ from ..materials.hygrothermal import free_strain
 from .fem import PlaneElasticity, principal_stresses, stiffness_matrix
 from .strength import ply_strengths, tsai_wu_index
 from .thickness import SheetProfile, planform_accomplished_fraction, product_moisture
+from .mesh import disc_plate
+from ..materials.hygrothermal import secant_thermal_factor
+from ..materials.state import wet_tg_and_retention
+from .mesh import planform_mesh
 
 ROWS = 100        # mesh spacing = planform size / ROWS at the outline
 GROWTH = 0.1      # row-to-row growth inward
@@ -40,7 +44,6 @@ QI_PLIES = np.radians([0.0, 45.0, 90.0, -45.0])
 
 def _part_plate(geometry):
     """The planform to mesh for a diffusion geometry (a disc about its own centre), or None."""
-    from .mesh import disc_plate
 
     if geometry.axisymmetric:
         return disc_plate(geometry.outer_radius, geometry.thickness, geometry.inner_radius)
@@ -101,6 +104,7 @@ def _nodal_moisture(result, geometry, points, surface, outline=None) -> np.ndarr
     between its rim and bore; a plate's field linearly interpolated on the triangles of
     its cell points and the vertices ``outline`` (indices into ``points``: the mesh's
     boundary, where the part is exposed)."""
+    # deferred: keeps scipy.interpolate off the start-up path
     from scipy.interpolate import LinearNDInterpolator, NearestNDInterpolator
 
     coords = result.cell_coordinates
@@ -158,7 +162,6 @@ def through_thickness(in_plane, depth: float, sheet: SheetProfile | None
 
 def _thermal_factor(material, wet_tg, temperature, reference):
     """The secant factor on the thermal expansion (as ``materials.state``)."""
-    from ..materials.hygrothermal import secant_thermal_factor
 
     tgd = material.dry_glass_transition_temperature
     if tgd is None or material.kind == "metal":
@@ -168,7 +171,6 @@ def _thermal_factor(material, wet_tg, temperature, reference):
 
 def _local_properties(material, moisture, temperature, reference):
     """(laminate props, ply props, retention) at each element's moisture."""
-    from ..materials.state import wet_tg_and_retention
 
     _, wet_tg, retention = wet_tg_and_retention(material, moisture, temperature, reference)
     factor = _thermal_factor(material, wet_tg, temperature, reference)
@@ -370,7 +372,6 @@ def swelling_history(geometry, material, result, state: dict, temperature, refer
         swelling_stress_tensile/compressive [Pa] and failure_index [-] over ageing times,
         and ``field`` [Pa] / ``points`` [m] of the worst time.
     """
-    from .mesh import planform_mesh
 
     n = len(temperature)
     out = {name: np.full(n, np.nan) for name in

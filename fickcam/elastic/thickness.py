@@ -1,4 +1,4 @@
-"""Moisture through the thickness of a plate from its in-plane field and the exact sheet.
+r"""Moisture through the thickness of a plate from its in-plane field and the exact sheet.
 
 The diffusion engine gives a plate's moisture on one level of its thickness (the
 mid-plane of a cam plate or link, the level nearest it of a disc's (r, z) cells); the
@@ -10,12 +10,16 @@ the unaccomplished fractions of its directions (Crank, The Mathematics of Diffus
 times the plane sheet's; Carslaw & Jaeger, Conduction of Heat in Solids, 2nd ed.,
 Oxford 1959, §1.16):
 
-    Ms - M(x, y, z) = (Ms - M0) U_p(x, y) U_s(z),
+.. math::
+
+    M_s - M(x, y, z) = (M_s - M_0)\, U_p(x, y)\, U_s(z),
 
 U_p of the planform, U_s of the sheet. With the sheet's field S(z) = Ms - (Ms - M0) U_s(z)
 this reads
 
-    M(x, y, z) = (1 - w) S(z) + w Ms,        w = 1 - U_p,
+.. math::
+
+    M(x, y, z) = (1 - w)\, S(z) + w M_s, \qquad w = 1 - U_p,
 
 the sheet's field where the planform has not been reached (w = 0, the core) and the
 surface value where it is saturated (w = 1, the edge and the bore), and w follows from

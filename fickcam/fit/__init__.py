@@ -29,6 +29,7 @@ def plot_fit(report, path=None, save=None):
     fickcam.plotting.Figures
         The one figure, shown inline in a notebook; ``.paths``: the file written.
     """
+    # deferred: keeps the command's modules off the start-up path
     from .plot import plot_fit as _plot
 
     return _plot(report, path, save)

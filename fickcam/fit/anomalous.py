@@ -1,4 +1,4 @@
-"""Anomalous uptake: does Fick describe a condition's data? Two tests must agree:
+r"""Anomalous uptake: does Fick describe a condition's data? Two tests must agree:
 
 1. The Fickian residuals are systematic: Wald & Wolfowitz's runs test (1940; too few
    runs of equal sign in time order, e.g. the curve overshooting the knee and then
@@ -6,7 +6,7 @@
 2. The Carter & Kibler (1978) two-phase model (D, Mm, binding rate gamma, release
    rate beta; gamma = 0 is Fick) removes them: extra-sum-of-squares F test of the
    nested models (Bates & Watts 1988, section 3.10),
-   F = ((SSR_F - SSR_L)/2) / (SSR_L/(n - 4)).
+   :math:`F = \dfrac{(SSR_F - SSR_L)/2}{SSR_L/(n - 4)}`.
 
 Each at 1 %. Neither alone is trusted: gamma = 0 lies on the boundary with beta then
 undefined, so the F test alone is liberal (we measured about 5 % false alarms at a

@@ -13,6 +13,10 @@ from . import across
 from .anomalous import AnomalyTest, LangmuirFit, check_fickian
 from .data import Specimen, condition_label, read_weight_gain
 from .single import FickFit, fit_fickian
+from pydantic import ValidationError
+from ..materials import MaterialSpec, resolve
+from ..materials import temperature_limit_reasons
+import xarray as xr
 
 
 UNDETERMINED = 10.0       # D interval wider than this factor (or Mm's wider than Mm): not determined
@@ -103,7 +107,6 @@ class FitReport:
     def to_dataset(self):
         """The condition fits (dimension ``condition``) and the specimen fits (``specimen_*``
         variables, dimension ``specimen``) as an xarray Dataset, the laws as attributes."""
-        import xarray as xr
 
         def column(get):
             return ("condition", np.array([get(c) for c in self.conditions], float))
@@ -151,9 +154,7 @@ class FitReport:
 
 def _material(matrix: str, fiber: str | None, fiber_volume_fraction: float | None):
     """The library material the coupons are made of (names checked like a scene's)."""
-    from pydantic import ValidationError
 
-    from ..materials import MaterialSpec, resolve
 
     spec = {"matrix": matrix}
     if fiber is not None or fiber_volume_fraction is not None:
@@ -168,7 +169,6 @@ def _material(matrix: str, fiber: str | None, fiber_volume_fraction: float | Non
 def _check_temperatures(specimens: list[Specimen], material, name: str, file: str) -> None:
     """Coupons aged at or above the material's dry Tg or melting point are refused at their
     first line; above its service limit they are warned once per temperature."""
-    from ..materials import temperature_limit_reasons
 
     problems, warned = [], set()
     for specimen in specimens:

@@ -11,6 +11,7 @@ import numpy as np
 
 from .data import Specimen
 from .models import fickian_fraction, two_phase_fraction
+from ..diffusion.problem.exposure import GAS_CONSTANT
 
 DAY = 86400.0
 EARLY_HOURS = (1.0, 2.0, 4.0, 8.0)
@@ -153,7 +154,6 @@ def example_arrhenius() -> tuple[float, float]:
     tuple of float
         D0 [m^2/s] and Ea [J/mol].
     """
-    from ..diffusion.problem.exposure import GAS_CONSTANT
 
     t1, t2 = 293.15, 358.15
     ea = GAS_CONSTANT * np.log(EXAMPLE_D_85C / EXAMPLE_D_20C) / (1.0 / t1 - 1.0 / t2)
@@ -176,7 +176,6 @@ def write_example(path) -> Path:
     """
     rng = np.random.default_rng(EXAMPLE_SEED)
     d0, ea = example_arrhenius()
-    from ..diffusion.problem.exposure import GAS_CONSTANT
 
     coupons = []
     for t_c, rh in EXAMPLE_CONDITIONS:

@@ -3,8 +3,9 @@ transmission angle, coupler curve, velocities, accelerations and kinetostatics.
 
 Public API: :class:`~fickcam.linkage.spec.LinkageSection` (scene section), :class:`~fickcam.linkage.model.FourBarDesign`,
 :class:`~fickcam.linkage.model.FourBarState`, :func:`~fickcam.linkage.model.fourbar_response`, :func:`~fickcam.linkage.classify.class_changes`,
-:func:`~fickcam.linkage.classify.grashof_class`, and for :mod:`fickcam.simulation.simulate` :func:`~fickcam.linkage.ageing.scene_parts`,
-:func:`~fickcam.linkage.ageing.scene_response`, ``LINKS`` and ``JOINTS`` (coordinate values).
+:func:`~fickcam.linkage.classify.grashof_class`, ``JOINTS`` (coordinate values); the scene's
+four-bar as a mechanism is :class:`~fickcam.linkage.mechanism.LinkageMechanism` (with
+``LINKS``), imported from its module.
 
 References
 ----------
@@ -17,12 +18,10 @@ Singh, S. & Sanyal, S. (2016). Variations in geometry, volume, mass and moment o
     environment. International Journal of Innovative Research in Science, Engineering and
     Technology (IJIRSET) 5(12).
 """
-from .ageing import LINKS, link_state, scene_parts, scene_response
 from .classify import class_changes, grashof_class
 from .dynamics import JOINT_MEANING, JOINTS
 from .model import FourBarDesign, FourBarState, fourbar_response
 from .spec import LinkageSection
 
-__all__ = ["JOINTS", "JOINT_MEANING", "LINKS", "FourBarDesign", "FourBarState", "LinkageSection",
-           "class_changes", "fourbar_response", "grashof_class", "link_state", "scene_parts",
-           "scene_response"]
+__all__ = ["JOINTS", "JOINT_MEANING", "FourBarDesign", "FourBarState", "LinkageSection",
+           "class_changes", "fourbar_response", "grashof_class"]

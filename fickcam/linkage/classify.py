@@ -5,6 +5,8 @@ from __future__ import annotations
 import numpy as np
 
 from ..mechanisms.ageing import first_change
+from ..errors import format_duration
+from ..messages import note
 
 CRANK_ROCKER = "crank-rocker"
 DOUBLE_CRANK = "double-crank"
@@ -86,8 +88,6 @@ def class_changes(classes, times) -> list[str]:
         The notices, in time order; a regained rotation is a note
         (:func:`fickcam.messages.note`).
     """
-    from ..errors import format_duration
-    from ..messages import note
 
     classes = [str(c) for c in classes]
     span = float(np.max(times)) if len(times) else None

@@ -128,21 +128,50 @@ def fourbar_response(design: FourBarDesign, state: FourBarState, crank_angle) ->
 
     References
     ----------
-    Norton (2012), chs. 4, 6, 7; in full in :mod:`fickcam.linkage`.
-        and 11.
+    Norton (2012), chs. 4, 6, 7 and 11; in full in :mod:`fickcam.linkage`.
     """
     theta2 = np.asarray(crank_angle, float)
     a, b, c, d = (float(x) for x in state.link_lengths)
     branch = design.assembly
-    omega2, alpha2 = design.crank_speed, design.crank_angular_acceleration
     theta3, theta4 = positions(a, b, c, d, theta2, branch)
     ok = np.isfinite(theta3) & np.isfinite(theta4)
+    kinetics = _kinetics(design, state, theta2, theta3, theta4)
+    torque = kinetics["input_torque"]
+    mu = transmission_angle(theta3, theta4)
+    label = grashof_class(a, b, c, d)
+    toggles = toggle_crank_angles(a, b, c, d, branch)
+    rocker = continuous(theta4)
+    variables = {
+        "coupler_angle": continuous(theta3),
+        "rocker_angle": rocker,
+        "transmission_angle": mu,
+        **kinetics,
+        "grashof_class": np.array(label),
+        "minimum_transmission_angle": np.nanmin(mu) if ok.any() else np.nan,
+        "maximum_transmission_angle": np.nanmax(mu) if ok.any() else np.nan,
+        "peak_input_torque": np.nanmax(np.abs(torque)) if ok.any() else np.nan,
+        "rms_input_torque": rms(torque),
+        "rocker_swing": np.nanmax(rocker) - np.nanmin(rocker) if ok.any() else np.nan,
+        "toggle_crank_angle_extended": toggles["extended"][0] if toggles["extended"] else np.nan,
+        "toggle_crank_angle_folded": toggles["folded"][0] if toggles["folded"] else np.nan,
+    }
+    notices = fourbar_notices(label, assembly_gaps(theta2, ok), toggles, branch)
+    for message in notices:
+        log.debug("%s", message)
+    return Response(variables, notices)
+
+
+def _kinetics(design: FourBarDesign, state: FourBarState, theta2, theta3, theta4) -> dict:
+    """The variables of :func:`fourbar_response` over the crank angle that follow from the
+    link angles [rad]: coupler point [m], angular velocities [rad/s] and accelerations
+    [rad/s^2], the links' centre-of-mass motion, the input torque [N m], joint forces [N]."""
+    a, b, c, d = (float(x) for x in state.link_lengths)
+    omega2, alpha2 = design.crank_speed, design.crank_angular_acceleration
     omega3, omega4 = angular_velocities(a, b, c, theta2, theta3, theta4, omega2)
     alpha3, alpha4 = angular_accelerations(a, b, c, theta2, theta3, theta4, omega2, omega3,
                                            omega4, alpha2)
-    dry_b = design.coupler
     p_dist = (state.coupler_point_distance if state.coupler_point_distance is not None
-              else design.coupler_point_distance * b / dry_b)
+              else design.coupler_point_distance * b / design.coupler)
     px, py = coupler_point(a, theta2, theta3, p_dist, design.coupler_point_angle)
     omega2_arr = np.full_like(theta2, omega2)
     alpha2_arr = np.full_like(theta2, alpha2)
@@ -154,15 +183,8 @@ def fourbar_response(design: FourBarDesign, state: FourBarState, crank_angle) ->
                                    (alpha2_arr, alpha3, alpha4), pins, position,
                                    STANDARD_GRAVITY if design.gravity else 0.0,
                                    design.rocker_load_torque)
-    mu = transmission_angle(theta3, theta4)
-    label = grashof_class(a, b, c, d)
-    toggles = toggle_crank_angles(a, b, c, d, branch)
-    rocker = continuous(theta4)
     zero = np.zeros((1,) + theta2.shape)  # the frame's centre of mass does not move
-    variables = {
-        "coupler_angle": continuous(theta3),
-        "rocker_angle": rocker,
-        "transmission_angle": mu,
+    return {
         "coupler_point_x": px,
         "coupler_point_y": py,
         "coupler_angular_velocity": omega3,
@@ -177,20 +199,34 @@ def fourbar_response(design: FourBarDesign, state: FourBarState, crank_angle) ->
         "joint_force_x": forces.real,
         "joint_force_y": forces.imag,
         "joint_force": np.abs(forces),
-        "grashof_class": np.array(label),
-        "minimum_transmission_angle": np.nanmin(mu) if ok.any() else np.nan,
-        "maximum_transmission_angle": np.nanmax(mu) if ok.any() else np.nan,
-        "peak_input_torque": np.nanmax(np.abs(torque)) if ok.any() else np.nan,
-        "rms_input_torque": rms(torque),
-        "rocker_swing": np.nanmax(rocker) - np.nanmin(rocker) if ok.any() else np.nan,
-        "toggle_crank_angle_extended": toggles["extended"][0] if toggles["extended"] else np.nan,
-        "toggle_crank_angle_folded": toggles["folded"][0] if toggles["folded"] else np.nan,
     }
+
+
+def fourbar_notices(label: str, gaps, toggles: dict, branch: str) -> list[str]:
+    """What :func:`fourbar_response` tells of one four-bar: its Grashof class, the crank
+    angles where it cannot assemble and its toggle positions.
+
+    Parameters
+    ----------
+    label : str
+        The Grashof class (:func:`~fickcam.linkage.classify.grashof_class`).
+    gaps : iterable of tuple of float
+        (first, last) crank angle [rad] of each range where it cannot assemble.
+    toggles : dict
+        Toggle crank angles [rad] by kind (:func:`~fickcam.linkage.positions.toggle_crank_angles`).
+    branch : str
+        The assembly branch, ``"open"`` or ``"crossed"``.
+
+    Returns
+    -------
+    list of str
+        The notices, informational ones made with :func:`fickcam.messages.note`.
+    """
     notices = [f"Grashof class: {label}" + ("" if label in FULL_ROTATION
                                             else " (the crank cannot make a full revolution)")]
     if label in FULL_ROTATION:  # what the mechanism is: for information
         notices[0] = note(notices[0])
-    for lo, hi in assembly_gaps(theta2, ok):
+    for lo, hi in gaps:
         notices.append(f"cannot assemble for crank angles {_fmt_range(lo, hi)} ({branch} branch)")
     named = {"extended": "crank and coupler extended in line (rocker limit)",
              "folded": "crank and coupler folded in line (rocker limit)",
@@ -199,6 +235,4 @@ def fourbar_response(design: FourBarDesign, state: FourBarState, crank_angle) ->
         if toggles[key]:
             angles = ", ".join(f"{np.degrees(t):.1f}" for t in toggles[key])
             notices.append(note(f"toggle: {what} at crank angle {angles} deg"))
-    for message in notices:
-        log.debug("%s", message)
-    return Response(variables, notices)
+    return notices

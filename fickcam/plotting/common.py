@@ -6,7 +6,18 @@ display and never change the caller's backend or pyplot's list of open figures.
 """
 from __future__ import annotations
 
+import io
+import functools
+import textwrap
+import math
+import base64
 from pathlib import Path
+from ..errors import times_in
+import numpy as np
+from ..errors import format_duration
+from ..results.schema import design_name
+from ..results.query import drift
+from ..results.store import replaced_atomically
 
 
 class FigureMaker:
@@ -17,6 +28,7 @@ class FigureMaker:
     @property
     def rcParams(self):  # noqa: N802 (pyplot's name, so that plot code reads the same)
         """matplotlib's settings (colour cycle, fonts)."""
+        # deferred: keeps matplotlib off the start-up path
         import matplotlib
 
         return matplotlib.rcParams
@@ -42,6 +54,7 @@ class FigureMaker:
         tuple
             (:class:`matplotlib.figure.Figure`, axes).
         """
+        # deferred: keeps matplotlib off the start-up path
         from matplotlib.backends.backend_agg import FigureCanvasAgg
         from matplotlib.figure import Figure
 
@@ -70,12 +83,11 @@ class Figures(list):
         return f"<{len(self)} fickcam figure{'s' * (len(self) != 1)}: {names}>"
 
     def _repr_html_(self) -> str:
-        import base64
-
         return "".join(f'<img src="data:image/png;base64,{base64.b64encode(png(fig)).decode()}"'
                        f' alt="{fig.get_label()}"/>' for fig in self)
 
     def _ipython_display_(self) -> None:
+        # deferred: keeps IPython off the start-up path
         from IPython.display import Image, display
 
         for fig in self:
@@ -97,7 +109,6 @@ def png(fig, dpi: float = 100.0) -> bytes:
     bytes
         The PNG file's content.
     """
-    import io
 
     buffer = io.BytesIO()
     fig.savefig(buffer, format="png", dpi=dpi, bbox_inches="tight")
@@ -123,9 +134,7 @@ def returns_figures(draw):
     callable
         The wrapped function.
     """
-    import functools
 
-    from ..errors import times_in
 
     @functools.wraps(draw)
     def wrapper(ds, outdir=None, *args, save=None, **kwargs):
@@ -195,7 +204,6 @@ def days(ds):
     numpy.ndarray
         The ageing times [d], float.
     """
-    import numpy as np
 
     return np.asarray(ds["time"].values, float)
 
@@ -222,7 +230,6 @@ def ages(ds, most: int = 4) -> list[int]:
     list of int
         Ascending indices along ``time``.
     """
-    import numpy as np
 
     valid = np.arange(ds.sizes["time"])
     motion = next((name for name in MOTIONS if name in ds), None)
@@ -249,9 +256,7 @@ def wet_tg_stop(ds) -> str | None:
         (157 °C at t = 0 d)"``, in lines of at most 72 characters; None when every ageing
         time was computed.
     """
-    import textwrap
 
-    import numpy as np
 
     if "within_wet_tg" not in ds:
         return None
@@ -294,6 +299,7 @@ def age_colour(ds, k: int):
     tuple of float
         An RGBA colour.
     """
+    # deferred: keeps matplotlib off the start-up path
     from matplotlib import colormaps
 
     return colormaps["viridis"](0.85 * k / max(ds.sizes["time"] - 1, 1))
@@ -316,7 +322,6 @@ def age_label(t_days: float, span_days: float | None = None) -> str:
     str
         ``"t = 30 d"``, ``"t = 2.5 h"`` or ``"t = 20 min"``.
     """
-    from ..errors import format_duration
 
     span = None if span_days is None else float(span_days) * DAY
     return f"t = {format_duration(float(t_days) * DAY, span)}"
@@ -378,7 +383,6 @@ def exaggeration(size: float, deviation: float) -> float:
         The factor [-]: the largest of 1, 2, 5 x 10^n not above 0.08 ``size``/``deviation``;
         1 (the deviation shown as it is) when it is already that large, or not positive.
     """
-    import math
 
     if not deviation > 0 or deviation >= 0.08 * size:
         return 1.0
@@ -404,7 +408,6 @@ def reference_curve(ds, names) -> tuple[tuple, str]:
     label : str
         ``"design"``, or the first ageing time's label in a result without design values.
     """
-    from ..results.schema import design_name
 
     if all(design_name(n) in ds for n in names):
         return tuple(ds[design_name(n)].values for n in names), "design"
@@ -436,7 +439,6 @@ def exaggerated_outlines(ax, ds, reference, deviations, picks, what: str,
     against : str
         The reference's legend label (``"design"`` or an ageing time).
     """
-    import numpy as np
 
     x, y = reference
     size = float(np.ptp(np.concatenate([x, y])))
@@ -474,7 +476,6 @@ def length_drift_panel(ax, ds, x, lengths: dict, xlabel: str, quantity: str, tit
     title : str
         The panel's title.
     """
-    import numpy as np
 
     scale, units = length_scale(max(float(np.nanmax(np.abs(v))) for v in lengths.values()))
     t = days(ds)
@@ -497,6 +498,7 @@ def tidy_ticks(fig) -> None:
     fig : matplotlib.figure.Figure
         The figure, changed in place.
     """
+    # deferred: keeps matplotlib off the start-up path
     from matplotlib.ticker import AutoLocator, MaxNLocator, ScalarFormatter
 
     for ax in fig.axes:
@@ -537,9 +539,7 @@ def drift_panel(ax, x, ds, name: str, picks, scale: float, ylabel: str) -> None:
     fickcam.errors.InputError
         When the result holds no as-designed value of ``name`` (:func:`fickcam.results.query.drift`).
     """
-    from ..results.query import drift
 
-    import numpy as np
 
     change = drift(ds, name, "design")
     t = days(ds)
@@ -557,7 +557,6 @@ def _clip_spikes(ax, values) -> None:
     """y limits from the 1st to 99th percentile: a step of the curve (a joint of the motion
     law) moves a little with the swelling, and its pointwise difference is a spike that
     would flatten the drift everywhere else; say so when one is cut."""
-    import numpy as np
 
     values = values[np.isfinite(values)]
     if values.size < 20:
@@ -615,7 +614,6 @@ def save_figure(fig, path: Path) -> Path:
     pathlib.Path
         ``path``.
     """
-    from ..results.store import replaced_atomically
 
     tidy_ticks(fig)
     with replaced_atomically(path) as tmp:

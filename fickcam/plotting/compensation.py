@@ -7,12 +7,13 @@ import math
 import numpy as np
 
 from .common import Figures, days, figure, legend, one_figure
+from ..cli.reporting import crossing_text
+from ..results.limits import stored_limits, worst_value
 
 
 def _spec_text(ds, variable: str) -> str:
     """'out of spec at 41.2 d' or 'in spec throughout' from the result's time_out_of_spec
     (only the digits its error estimate supports, in the result's time unit)."""
-    from ..cli.reporting import crossing_text
 
     failed = float(ds["time_out_of_spec"].sel(limit=variable))
     return "in spec throughout" if math.isnan(failed) else \
@@ -45,7 +46,6 @@ def plot_against_band(before, after, path=None, window=(), save=None) -> Figures
     Figures
         The one figure, shown inline in a notebook; ``.paths``: the file written.
     """
-    from ..results.limits import stored_limits, worst_value
 
     limits = [limit for limit in stored_limits(before).values()
               if limit.deviation is not None and limit.variable in after]

@@ -108,6 +108,7 @@ def cell_triangulation(x, y, stretch: float = 4.0):
     matplotlib.tri.Triangulation
         The triangulation, with its mask set.
     """
+    # deferred: keeps matplotlib off the start-up path
     import matplotlib.tri as mtri
 
     triangulation = mtri.Triangulation(x, y)

@@ -1,12 +1,14 @@
 """Each limit's variable against its band over ageing (and over the cycle)."""
 from __future__ import annotations
 
+import textwrap
 import math
 from pathlib import Path
 
 from ..results.limits import stored_limits, worst_value
 from ..results.query import drift
 from .common import legend, age_colour, age_label, ages, days, figure, Figures, returns_figures, save_figure
+from ..cli.reporting import crossing_text
 
 ANGLES = ("cam_angle", "crank_angle")
 
@@ -54,8 +56,6 @@ def _over_time(ax, ds, limit) -> None:
         ax.axhline(getattr(limit, kind) * scale, color="r", lw=1.2, ls="--", label=f"limit ({kind})")
     failed = float(ds["time_out_of_spec"].sel(limit=limit.variable))
     if not math.isnan(failed):
-        from ..cli.reporting import crossing_text
-
         ax.axvline(failed, color="k", lw=1, ls=":",
                    label=f"out of spec at {crossing_text(ds, limit.variable)}")
     ax.set_xlabel("ageing time [d]")
@@ -98,7 +98,6 @@ def _legend_below(ax) -> None:
 
 def _wrapped(label: str, width: int = 34) -> str:
     """An axis label broken into lines of about ``width`` characters (a limits row is short)."""
-    import textwrap
 
     return "\n".join(textwrap.wrap(label, width))
 

@@ -20,6 +20,8 @@ from pathlib import Path
 import numpy as np
 
 from .common import legend, days, figure, legend_outside, Figures, returns_figures, save_figure
+from ..quantities.parsing import convert
+from ..sweep.scatter import out_of_spec_counts, wilson_interval
 
 QUANTILES = (0.05, 0.25, 0.5, 0.75, 0.95)
 
@@ -92,7 +94,6 @@ def parameters(ds) -> list[str]:
 
 def _shown(ds, name: str) -> tuple[np.ndarray, str]:
     """A varied value in the unit the sweep file gave it (degC, not K), and that unit."""
-    from ..quantities.parsing import convert
 
     coord = ds[name]
     unit = coord.attrs.get("given_units") or coord.attrs.get("units", "1")
@@ -332,7 +333,6 @@ def plot_out_of_spec(ds, outdir=None, save=None) -> Figures:
     inference", Journal of the American Statistical Association 22 (158), 209-212, 1927,
     doi:10.1080/01621459.1927.10502953.
     """
-    from ..sweep.scatter import out_of_spec_counts, wilson_interval
 
     plt = figure()
     t = days(ds)

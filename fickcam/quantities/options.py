@@ -2,7 +2,9 @@
 
 An option's text is validated by the scene's own type for that value
 (:func:`fickcam.quantities.types.quantity`, or a scene model's field): a bare number is read in the
-SI unit of its dimension, a bare rotational speed is refused, bounds are the scene's.
+SI unit of its dimension, a bare rotational speed is refused, bounds are the scene's; a
+bare angle, which a scene reads in radians, is refused too (:func:`angle`): the command
+line shows angles in degrees.
 Where a scene judges a bare value against its context (an ageing time against the
 history it samples), the option's is judged by the same :class:`fickcam.quantities.plausibility.Reading`:
 an almost certain unit slip is refused with the likely unit, an unusual value is warned
@@ -10,6 +12,7 @@ about. Every refusal is one line that names the option (``--at 45: ...``).
 """
 from __future__ import annotations
 
+from typing import Annotated
 import logging
 import math
 
@@ -52,8 +55,10 @@ def option_value(option: str, text, kind, reading=None) -> float:
         One line naming the option: not a number, a wrong or ambiguous unit, out of the
         scene's bounds, or a bare number that is almost certainly a unit slip.
     """
+    # deferred: keeps pydantic off the start-up path
     from pydantic import TypeAdapter, ValidationError
 
+    # deferred: keeps the command's modules off the start-up path
     from .plausibility import Verdict, bare_judgement
     from .parsing import is_bare_number
 
@@ -97,16 +102,52 @@ def ageing_time(option: str, text, end: float) -> float:
         history lasts 60 d): did you mean '45 d'? ...``. Whether the time lies inside
         the history is the caller's to say.
     """
+    # deferred: keeps the command's modules off the start-up path
     from .plausibility import output_time_reading
     from .types import NonNegativeTime
 
     return option_value(option, text, NonNegativeTime, output_time_reading("ageing time", end))
 
 
+def angle(option: str, text, kind=None) -> float:
+    """An angle option, read as a scene's angle, except that a bare number other than zero
+    is refused: the command line's angles are read and printed in degrees, so a bare
+    ``--cam-angle 5`` is as likely 5 deg as 5 rad
+    (:data:`fickcam.quantities.plausibility.OPTION_AMBIGUOUS`).
+
+    Parameters
+    ----------
+    option : str
+        The option (``"--cam-angle"``).
+    text : str
+        The angle as given (``"120 deg"``).
+    kind : object, optional
+        The scene's type of the value (default ``fickcam.quantities.types.Angle``).
+
+    Returns
+    -------
+    float
+        The angle [rad].
+
+    Raises
+    ------
+    fickcam.errors.InputError
+        One line naming the option: ``--cam-angle 5: 5 without a unit is ambiguous for an
+        angle (deg or rad): did you mean '5 deg'? ...``.
+    """
+    # deferred: keeps pydantic off the start-up path
+    from .plausibility import OPTION_AMBIGUOUS, ambiguity
+    from .types import Angle
+
+    slip = ambiguity(text, "angle", OPTION_AMBIGUOUS)
+    if slip:
+        raise InputError(f"{option} {' '.join(str(text).split())}: {slip}")
+    return option_value(option, text, Angle if kind is None else kind)
+
+
 def angle_degrees(option: str, text) -> float | None:
-    """An angle option in degrees (the unit of a result's angles), read as a scene's angle:
-    ``"120 deg"``, or a bare number in radians judged as the scene judges one (``120`` is
-    more than a turn: did you mean '120 deg'?).
+    """An angle option in degrees (the unit of a result's angles), read by :func:`angle`:
+    ``"120 deg"``; a bare number other than zero is refused (did you mean '120 deg'?).
 
     Parameters
     ----------
@@ -125,9 +166,7 @@ def angle_degrees(option: str, text) -> float | None:
     fickcam.errors.InputError
         One line naming the option.
     """
-    from .types import Angle
-
-    return None if text is None else math.degrees(option_value(option, text, Angle))
+    return None if text is None else math.degrees(angle(option, text))
 
 
 def field_value(option: str, text, model, name: str):
@@ -155,7 +194,6 @@ def field_value(option: str, text, model, name: str):
     fickcam.errors.InputError
         One line naming the option.
     """
-    from typing import Annotated
 
     if text is None:
         return None

@@ -56,6 +56,7 @@ _HUMAN = {
 @functools.lru_cache(maxsize=1)
 def registry():
     """The one pint registry fickcam uses (created on first use: pint is slow to import)."""
+    # deferred: keeps pint off the start-up path
     import pint
 
     try:  # pint's own cache of its parsed definition files (user cache folder): 0.15 s less
@@ -312,6 +313,7 @@ def convert(values, unit: str, to: str):
     pint.errors.DimensionalityError
         When ``unit`` cannot be converted to ``to``.
     """
+    # deferred: keeps numpy off the start-up path
     import numpy as np
 
     values = np.asarray(values, float)

@@ -269,10 +269,13 @@ BARE_READINGS = {"temperature": TEMPERATURE, "relative_humidity": RELATIVE_HUMID
 #: safe. A rotational speed in rad/s and in rpm differ by a factor of 9.55 and both are
 #: common in machine design: (the units a bare number may have meant, the first suggested)
 AMBIGUOUS = {"angular_speed": ("rpm", "rad/s")}
-_AMBIGUOUS_WHAT = {"angular_speed": "a rotational speed"}
+#: on the command line an angle is ambiguous too: the results, the reports and every
+#: example give angles in degrees, so a bare ``--cam-angle 5`` means 5 deg as often as 5 rad
+OPTION_AMBIGUOUS = {**AMBIGUOUS, "angle": ("deg", "rad")}
+_AMBIGUOUS_WHAT = {"angular_speed": "a rotational speed", "angle": "an angle"}
 
 
-def ambiguity(value, dimension: str) -> str | None:
+def ambiguity(value, dimension: str, among: dict = AMBIGUOUS) -> str | None:
     """Why a bare value of an ambiguous dimension (:data:`AMBIGUOUS`) is refused, or None.
 
     Zero needs no unit; values with units are never refused here.
@@ -283,16 +286,19 @@ def ambiguity(value, dimension: str) -> str | None:
         The value as written (a number, or a string with or without a unit).
     dimension : str
         Its dimension (a key of ``fickcam.quantities.parsing.SI_UNITS``).
+    among : dict
+        The ambiguous dimensions: :data:`AMBIGUOUS` in a scene, :data:`OPTION_AMBIGUOUS`
+        on the command line.
 
     Returns
     -------
     str or None
         The one-line reason, suggesting the likely unit (``did you mean '200 rpm'?``).
     """
-    if dimension not in AMBIGUOUS or not is_bare_number(value) or float(value) == 0:
+    if dimension not in among or not is_bare_number(value) or float(value) == 0:
         return None
     number = f"{float(value):g}"
-    meant, other = AMBIGUOUS[dimension]
+    meant, other = among[dimension]
     return (f"{number} without a unit is ambiguous for {_AMBIGUOUS_WHAT[dimension]} ({meant} "
             f"or {other}): did you mean '{number} {meant}'? Give the unit ('{number} {meant}' "
             f"or '{number} {other}')")
@@ -505,6 +511,7 @@ LIMIT_BOUND = Band(0.0, 5.0, 0.0, 25.0)
 def _limit_findings(doc, findings: Findings, scales: dict[str, Scale]) -> None:
     """Bare bounds of ``limits:`` on a mechanism's lengths (m) judged as the mechanism's own
     lengths; bare bounds on its speeds (rpm variables) refused as any bare speed is."""
+    # deferred: keeps the command's modules off the start-up path
     from ..results.schema import VARIABLES
 
     for name, spec in doc.data["limits"].items():
@@ -720,15 +727,15 @@ class Absorber:
         return plate_uptake(self.diffusivity, time, self.half_thickness)
 
 
-def fastest_absorber(model, materials: dict, temperature: float) -> Absorber | None:
-    """The part that takes up water fastest: the cam (half of its thickness or radius,
-    whichever is smaller), its roller (half of its width or diameter) or the links (half of
-    the section's thickness or width).
+def fastest_absorber(sizes, materials: dict, temperature: float) -> Absorber | None:
+    """The part that takes up water fastest, of the bodies ``sizes`` (each mechanism's
+    ``absorber_sizes``: a cam by half of its thickness or radius, a roller by half of its
+    width or diameter, links by half of their section's thickness or width).
 
     Parameters
     ----------
-    model : SceneModel
-        The validated scene.
+    sizes : list of tuple
+        (part, material name, half-size [m]) per body.
     materials : dict
         Scene material name -> resolved :class:`fickcam.materials.material.Material`.
     temperature : float
@@ -739,20 +746,8 @@ def fastest_absorber(model, materials: dict, temperature: float) -> Absorber | N
     Absorber or None
         None when no part absorbs.
     """
-    parts = []
-    cam = model.cam
-    if cam is not None:
-        radius = cam.base_circle_radius or (cam.eccentric.radius if cam.eccentric else cam.thickness)
-        parts.append(("cam", cam.material, 0.5 * min(cam.thickness, radius)))
-        if cam.follower.material and cam.follower.roller_radius:
-            width = cam.follower.width or cam.thickness
-            parts.append(("follower", cam.follower.material,
-                          0.5 * min(width, 2.0 * cam.follower.roller_radius)))
-    if model.linkage is not None:
-        section = model.linkage.section
-        parts.append(("links", model.linkage.material, 0.5 * min(section.thickness, section.width)))
     found = []
-    for name, material, half in parts:
+    for name, material, half in sizes:
         if material in materials and materials[material].absorbs:
             d = float(max(materials[material].diffusivity_for()(temperature)))
             found.append(Absorber(name, half, d))
@@ -763,7 +758,7 @@ def _days(seconds: float) -> str:
     return f"{seconds:g} s" if seconds < 86400 else f"{seconds / 86400:.4g} d"
 
 
-def history_findings(model, doc, environment, materials: dict) -> Findings:
+def history_findings(model, doc, environment, materials: dict, sizes) -> Findings:
     """Bare climate-history lengths judged by the uptake of the fastest-absorbing part.
 
     A history (or a segment of it) in which the parts take up almost nothing ages nothing
@@ -780,6 +775,9 @@ def history_findings(model, doc, environment, materials: dict) -> Findings:
         The scene's climate.
     materials : dict
         Scene material name -> resolved :class:`fickcam.materials.material.Material`.
+    sizes : list of tuple
+        (part, material name, half-size [m]) of the mechanisms' bodies
+        (:func:`fastest_absorber`).
 
     Returns
     -------
@@ -794,7 +792,7 @@ def history_findings(model, doc, environment, materials: dict) -> Findings:
     findings = Findings([], [])
     section = model.environment
     kelvin = environment.hottest()[1]
-    absorber = fastest_absorber(model, materials, kelvin)
+    absorber = fastest_absorber(sizes, materials, kelvin)
     if absorber is not None and section.history is not None:
         total = environment.end
         for k, segment in enumerate(section.history):

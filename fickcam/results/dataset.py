@@ -4,6 +4,7 @@ from __future__ import annotations
 import numpy as np
 
 from .schema import COORDINATES, VARIABLES
+from ..errors import TIME_UNITS, time_unit
 
 
 DAY = 86400.0  # s
@@ -55,7 +56,6 @@ def report_time_unit(ds) -> tuple[str, float]:
     tuple of (str, float)
         The unit's name and its length [s].
     """
-    from ..errors import TIME_UNITS, time_unit
 
     name = ds.attrs.get("time_unit", "")
     known = {unit: length for unit, length, _ in TIME_UNITS}
@@ -80,6 +80,7 @@ def ageing_time_days(seconds):
     xarray.Variable
         The ageing times [d].
     """
+    # deferred: keeps xarray off the start-up path
     import xarray as xr
 
     units, long_name = COORDINATES["ageing_time"]
@@ -140,6 +141,7 @@ def build_dataset(values: dict, coords: dict, attrs: dict | None = None):
     ValueError
         For values whose shape does not match the variable's dimensions.
     """
+    # deferred: keeps xarray off the start-up path
     import xarray as xr
 
     coordinates = {}

@@ -9,6 +9,9 @@ import numpy as np
 from ..errors import InputError
 from .query import csv_cell, to_records
 from .store import write_text_atomically
+from .store import save
+from .query import supported_values
+from .schema import VARIABLES
 
 
 def _chosen(ds, variables):
@@ -102,7 +105,6 @@ def export_netcdf(ds, path, variables=None) -> Path:
     pathlib.Path
         What :func:`fickcam.save` wrote.
     """
-    from .store import save
 
     names = _chosen(ds, variables)
     return save(ds[names], path)
@@ -123,8 +125,6 @@ def with_supported_digits(ds):
     xarray.Dataset
         The copy.
     """
-    from .query import supported_values
-    from .schema import VARIABLES
 
     out = ds.copy()
     for name in ds.data_vars:

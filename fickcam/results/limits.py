@@ -44,6 +44,11 @@ SECANT_ROUNDS = 3
 #: the times evaluated either side of a guessed crossing are at least and at most these
 #: shares of the tolerance away from it (twice the guess's error estimate, within them)
 STRADDLE = (0.05, 0.45)
+#: the crossing's stated error (``_Bracket.root``): SAFETY times the distance between the
+#: cubic's crossing and the closed bracket's chord's, but not below FLOOR_SHARE of the
+#: tolerance, nor above the bracket's bound
+SAFETY = 2.0
+FLOOR_SHARE = 0.1
 #: at most this many of the climate's change times inside a bracket are sampled in its
 #: first round (evenly chosen where there are more)
 CLIMATE_NODES = 256
@@ -465,18 +470,28 @@ class _Bracket:
         return float((ends[0] + (1.0 - low) / (high - low) * (ends[1] - ends[0])) ** 2), np.inf
 
     def root(self) -> tuple[float, float]:
-        """(crossing [s], its error bound [s]) in the closed bracket: read off the cubic
-        through the samples about it (else linear in the square root of the time), within
-        the larger of its distances to the bracket's ends."""
+        """(crossing [s], its error [s]) in the closed bracket: read off the cubic through
+        the samples about it (else linear in the square root of the time).
+
+        The error is at most the larger of its distances to the bracket's ends, a bound.
+        Inside the closed bracket the ratio is smooth (the climate's change times were
+        sampled, so none lies inside it), and the line through its two ends misses the
+        crossing by about r'' w^2 / (8 r') (w its width); the cubic, which also reads the
+        curvature, moves the crossing by about that much from the line's, and is itself
+        closer: SAFETY times that move is the error, but not below FLOOR_SHARE of the
+        crossing's tolerance, the share of it the model's own accuracy is taken to support."""
         if not np.isfinite(self.r_lo) or self.r_hi == self.r_lo:
             return float(self.hi), float(self.hi - self.lo)
+        ends = _root_time([self.lo, self.hi])
+        share = (1.0 - self.r_lo) / (self.r_hi - self.r_lo)
+        line = float((ends[0] + share * (ends[1] - ends[0])) ** 2)
         read = _interpolated(self.samples, self.lo, self.hi, np.inf)
-        if read is None:
-            ends = _root_time([self.lo, self.hi])
-            share = (1.0 - self.r_lo) / (self.r_hi - self.r_lo)
-            read = ((ends[0] + share * (ends[1] - ends[0])) ** 2, 0.0)
-        crossing = float(np.clip(read[0], self.lo, self.hi))
-        return crossing, max(crossing - self.lo, self.hi - crossing)
+        crossing = float(np.clip(line if read is None else read[0], self.lo, self.hi))
+        bound = max(crossing - self.lo, self.hi - crossing)
+        if read is not None:
+            move = abs(crossing - line)
+            bound = min(bound, max(SAFETY * move, FLOOR_SHARE * self.tolerance.at(crossing)))
+        return crossing, bound
 
 
 def _interpolated(samples: dict, lo: float, hi: float,
@@ -511,6 +526,7 @@ def _interpolated(samples: dict, lo: float, hi: float,
 def _crossing(x: np.ndarray, r: np.ndarray, lo: float, hi: float) -> float:
     """Where the polynomial through (x, r) crosses 1 in [lo, hi] (it interpolates r(lo) <=
     1 < r(hi): a sign change), by Brent's method on the scaled variable."""
+    # deferred: keeps scipy.optimize off the start-up path
     from scipy.optimize import brentq
 
     x = (x - lo) / (hi - lo)

@@ -19,6 +19,7 @@ The file is the one h5netcdf writes: netCDF4's dimension scales (``CLASS``, ``NA
 from __future__ import annotations
 
 import numpy as np
+from xarray import conventions
 
 #: encoding keys :func:`write` applies (``zlib``/``complevel``/``shuffle``/``chunksizes``/
 #: ``fletcher32``), those xarray's encoder applies before (``dtype``, ``_FillValue``,
@@ -70,7 +71,6 @@ def encoded(ds, coordinates=()) -> tuple[dict, dict]:
     """The variables and attributes as xarray writes them: non-dimension coordinates named in
     each variable's ``coordinates`` attribute, CF encoding, ``coordinates`` first (each
     dimension's coordinate is then its scale before a variable is attached to it)."""
-    from xarray import conventions
 
     variables, attributes = conventions.encode_dataset_coordinates(ds)
     variables, attributes = conventions.cf_encoder(variables, attributes)
@@ -91,6 +91,7 @@ def dimension_ids(variables: dict) -> dict[str, tuple[int, int]]:
 
 def stored(variable):
     """The values and HDF5 type of one encoded variable (text as variable-length UTF-8)."""
+    # deferred: keeps h5py off the start-up path
     import h5py
 
     values = np.asarray(variable.values)
@@ -138,6 +139,7 @@ def write(ds, filename) -> None:
         The file to create (overwritten), or a binary file object open for writing
         (h5py writes through it).
     """
+    # deferred: keeps h5py off the start-up path
     import h5py
 
     variables, attributes = encoded(ds, tuple(ds.coords))

@@ -15,6 +15,8 @@ from .dataset import ageing_seconds
 from ..errors import InputError, format_duration, time_unit
 from ..scene.keys import closest_names, short_names
 from .schema import VARIABLES, design_name
+from ..errors import supported_digits
+from .dataset import report_time_unit
 
 def select(ds, variable: str, *, time=None, part=None, cam_angle=None, crank_angle=None, link=None,
            against: str | None = None):
@@ -224,6 +226,7 @@ def _own_points(array, dim, grid, value):
     """``array`` at ``value`` along ``dim``, each series between its own nearest grid points
     that hold a value (a sweep's case whose ageing times differ from the others', or
     that ends earlier), NaN outside them: never extrapolated, never NaN by a neighbour."""
+    # deferred: keeps xarray off the start-up path
     import xarray as xr
 
     def own(values):
@@ -250,6 +253,7 @@ def swept_values(array) -> dict[str, np.ndarray]:
         ``{"temperature [degC]": [60, 85, ...]}``, each varied value by its shortest distinct
         name and given unit; empty for a single run.
     """
+    # deferred: keeps the command's modules off the start-up path
     from ..quantities.parsing import convert
 
     swept = [name for name, coord in array.coords.items()
@@ -432,6 +436,7 @@ def shown_values(array, variable: str, units: str | None = None, drift: bool = F
     tuple of (numpy.ndarray, str)
         The values and their unit.
     """
+    # deferred: keeps the command's modules off the start-up path
     from ..quantities.parsing import convert
 
     var = VARIABLES.get(variable)
@@ -441,6 +446,7 @@ def shown_values(array, variable: str, units: str | None = None, drift: bool = F
         return array.values, stored
     if drift and _is_offset(wanted):
         return array.values, stored  # a difference of temperature: K, not degC
+    # deferred: keeps pint off the start-up path
     from pint.errors import PintError
 
     try:
@@ -458,8 +464,10 @@ UNIT_ERRORS = (ValueError, AttributeError, TypeError, AssertionError)
 def _is_offset(unit: str) -> bool:
     """True for a unit whose zero is offset (degC, degF): a difference is not converted
     as a value is."""
+    # deferred: keeps pint off the start-up path
     from pint.errors import PintError
 
+    # deferred: keeps the command's modules off the start-up path
     from ..quantities.parsing import convert
 
     try:
@@ -500,7 +508,6 @@ def supported_values(values, errors, text: bool = True) -> np.ndarray:
     numpy.ndarray
         Of str, or of float.
     """
-    from ..errors import supported_digits
 
     cells = [supported_digits(float(v), float(e)) for v, e in
              zip(np.ravel(values), np.ravel(np.broadcast_to(errors, np.shape(values))))]
@@ -524,7 +531,6 @@ def time_units(ds, variable: str) -> str | None:
     str or None
         A pint unit (``d``, ``h``, ``yr``), or None: the variable's own display unit.
     """
-    from .dataset import report_time_unit
 
     var = VARIABLES.get(variable)
     return report_time_unit(ds)[0] if var is not None and var.units == "d" else None

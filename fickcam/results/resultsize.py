@@ -6,6 +6,8 @@ angles (one per ``angle_step``), links and joints of a four-bar, limits, and the
 each part when ``outputs.fields`` keeps the moisture fields. `fickcam check` prints the
 estimate; `fickcam check` and `fickcam run` warn above :data:`WARN_ABOVE`, with the
 settings that shrink it, and `run` refuses a result the disk cannot hold before it starts.
+A sweep's combined result is its base scene's times its cases, warned of and refused the
+same way before its first case.
 """
 from __future__ import annotations
 
@@ -14,7 +16,10 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from ..errors import WriteError
+from ..messages import warn
 from .store import CHUNKED_ABOVE, byte_size, free_space
+from .schema import VARIABLES
+from ..simulation.simulate import ageing_times, plan_parts
 
 #: a result above this [bytes] is warned of, with the settings that shrink it
 WARN_ABOVE = 2**30
@@ -51,14 +56,17 @@ class ResultSize:
 
     def text(self) -> str:
         """``about 4.8 GB (87,601 ageing times x 360 cam angles)``: the estimate in words."""
-        named = [("time", "ageing times"), ("cam_angle", "cam angles"),
+        named = [("case", "cases"), ("time", "ageing times"), ("cam_angle", "cam angles"),
                  ("crank_angle", "crank angles"), ("cell", "cells")]
-        factors = [f"{self.sizes[dim]:,} {words}" for dim, words in named if self.sizes.get(dim)]
+        factors = [f"{self.sizes[dim]:,} {words}" for dim, words in named
+                   if self.sizes.get(dim) and not (dim == "case" and self.sizes[dim] == 1)]
         return f"about {byte_size(self.bytes)} ({' x '.join(factors)})"
 
     def advice(self) -> str:
         """What shrinks the result, in scene keys."""
         ways = ["fewer ageing times (outputs.ageing_times)"]
+        if self.sizes.get("case", 1) > 1:
+            ways.insert(0, "fewer cases")
         if self.sizes.get("cam_angle") or self.sizes.get("crank_angle"):
             ways.append("a coarser outputs.angle_step")
         if self.fields:
@@ -72,16 +80,17 @@ def _computed(name: str, section: str, scene) -> bool:
     if section == "fields":
         return bool(model.outputs.fields)
     if section == "elastic":
-        return any(getattr(getattr(model, s), "elastic", False) for s in ("cam", "linkage"))
-    if section == "cam" and model.cam is not None:
-        switches = {"arm": model.cam.follower.arm, "stiffness": model.cam.follower.stiffness,
-                    "polydyne": model.cam.polydyne}
+        return bool(scene.elastic_parts)
+    if section == "cam" and scene.has("cam"):
+        cam = scene.mechanism("cam").section
+        switches = {"arm": cam.follower.arm, "stiffness": cam.follower.stiffness,
+                    "polydyne": cam.polydyne}
         return all(switches[switch] is not None for prefix, switch in _OPTIONAL_CAM
                    if name.startswith(prefix))
     return True
 
 
-def estimate(scene, times=None, cells: int | None = None) -> ResultSize:
+def estimate(scene, times=None, cells: int | None = None, cases: int = 1) -> ResultSize:
     """The result's size, from the scene alone.
 
     Parameters
@@ -93,34 +102,35 @@ def estimate(scene, times=None, cells: int | None = None) -> ResultSize:
     cells : int, optional
         The most cells of a part's moisture field [1], when the fields are kept (None:
         planned here when ``outputs.fields`` is true).
+    cases : int
+        The cases of a sweep whose base scene ``scene`` is [1]: each variable of the
+        combined result holds one case's values per case.
 
     Returns
     -------
     ResultSize
         The estimate, uncompressed.
     """
-    from ..simulation.parts import build_parts
-    from .schema import VARIABLES
-    from ..simulation.simulate import ageing_times, plan_parts, scene_environment
 
     model = scene.model
     if times is None:
-        times = ageing_times(scene, scene_environment(scene))
+        times = ageing_times(scene, scene.environment)
     if model.outputs.fields and cells is None:
         cells = max((p.cells for _, p in plan_parts(scene)[3] if hasattr(p, "cells")), default=0)
     angles = round(2 * math.pi / model.outputs.angle_step)
-    sizes = {"time": len(times), "part": len(build_parts(scene)),
-             "cam_angle": angles if model.cam is not None else 0,
-             "crank_angle": angles if model.linkage is not None else 0,
+    coordinates = {name: len(values) for mechanism in scene.mechanisms
+                   for name, values in mechanism.coordinates(range(angles)).items()}
+    sizes = {"time": len(times), "part": len(scene.parts), "cam_angle": 0, "crank_angle": 0,
+             **FOURBAR_POINTS, **coordinates,
              "limit": len(scene.limits or ()), "cell": (cells or 0) if model.outputs.fields else 0,
-             **FOURBAR_POINTS}
+             "case": cases}
     total = 0
     for name, var in VARIABLES.items():
         if not _computed(name, var.section, scene):
             continue
         points = math.prod(sizes.get(dim, 0) for dim in var.dims)
         if points:
-            total += 8 * points + PER_VARIABLE
+            total += 8 * points * cases + PER_VARIABLE
     return ResultSize(total, sizes, bool(model.outputs.fields))
 
 
@@ -171,3 +181,28 @@ def check_space(size: ResultSize, path) -> None:
         raise WriteError(f"{path}: the result will be {size.text()} and needs{least} "
                          f"{byte_size(needed)} on the disk, which has {byte_size(free)} free: "
                          f"nothing was run; to shrink it: {size.advice()}")
+
+
+def result_fits(scene, output, cases: int = 1) -> None:
+    """Before a run or a sweep: warn of a result above :data:`WARN_ABOVE`, with the
+    settings that shrink it, and refuse one that the disk at ``output`` cannot hold.
+
+    Parameters
+    ----------
+    scene : fickcam.scene.load.Scene
+        The scene to run, or a sweep's base scene.
+    output : str or pathlib.Path
+        The result file.
+    cases : int
+        The sweep's cases [1]; 1 for a run.
+
+    Raises
+    ------
+    fickcam.errors.WriteError
+        When the disk cannot hold the result.
+    """
+    size = estimate(scene, cases=cases)
+    warning = size_warning(size)
+    if warning:
+        warn(warning)
+    check_space(size, output)

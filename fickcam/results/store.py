@@ -7,15 +7,22 @@ never a damaged file.
 """
 from __future__ import annotations
 
+import shutil
+import re
 import json
 import math
 import os
 import tempfile
 from collections.abc import Iterator
-from contextlib import contextmanager
+from contextlib import ExitStack, contextmanager
 from pathlib import Path
 
 from ..errors import InputError, WriteError
+
+try:
+    import fcntl
+except ImportError:  # not on Windows: temporaries are not held, and none is taken as stale
+    fcntl = None
 
 
 #: a result above this [bytes, in memory] is written in chunks, its large variables
@@ -68,8 +75,15 @@ def _umask_mode() -> int:
     return 0o666 & ~mask
 
 
-def temporary_beside(path: Path, suffix: str = ".tmp") -> str:
-    """A new temporary file in ``path``'s folder, with the usual permissions.
+@contextmanager
+def temporary_beside(path: Path, suffix: str = ".tmp") -> Iterator[str]:
+    """A new temporary file in ``path``'s folder, with the usual permissions, held by
+    this process for the block (an exclusive ``flock`` on it) and removed at the block's
+    end unless the block renamed it.
+
+    The hold tells a later writer of ``path`` whether the writer of a temporary file it
+    finds is alive (:func:`remove_stale_temporaries`): the kernel releases it when the
+    process dies, however it dies.
 
     Parameters
     ----------
@@ -78,15 +92,20 @@ def temporary_beside(path: Path, suffix: str = ".tmp") -> str:
     suffix : str
         The end of its name.
 
-    Returns
-    -------
+    Yields
+    ------
     str
         The temporary file's path (created empty, mode as ``open(path, 'w')`` would give).
     """
     fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=suffix, dir=path.parent)
-    os.fchmod(fd, _umask_mode())
-    os.close(fd)
-    return tmp
+    try:
+        os.fchmod(fd, _umask_mode())
+        if fcntl is not None:
+            fcntl.flock(fd, fcntl.LOCK_EX)
+        yield tmp
+    finally:
+        Path(tmp).unlink(missing_ok=True)  # nothing when the block renamed it
+        os.close(fd)  # the hold ends with it
 
 
 @contextmanager
@@ -108,13 +127,9 @@ def replaced_atomically(path) -> Iterator[str]:
     """
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
-    tmp = temporary_beside(path)
-    try:
+    with temporary_beside(path) as tmp:
         yield tmp
         os.replace(tmp, path)
-    except BaseException:
-        Path(tmp).unlink(missing_ok=True)
-        raise
 
 
 def write_text_atomically(path, text: str) -> Path:
@@ -240,7 +255,6 @@ def free_space(folder) -> int | None:
     int or None
         The free space [bytes].
     """
-    import shutil
 
     try:
         return shutil.disk_usage(folder).free
@@ -304,11 +318,13 @@ def _write_netcdf(ds, target: GuardedFile) -> None:
     ``to_netcdf``, which computes and writes it (data variables first). An in-memory dataset
     whose encodings :mod:`fickcam.results.ncwrite` knows is written by it in one pass through h5py
     (the same file, without h5netcdf's per-variable bookkeeping)."""
+    # deferred: keeps numpy off the start-up path
     from . import ncwrite
 
     if ncwrite.writable(ds):
         ncwrite.write(ds, target)
         return
+    # deferred: keeps h5netcdf off the start-up path
     import h5netcdf
     import h5py
 
@@ -317,6 +333,7 @@ def _write_netcdf(ds, target: GuardedFile) -> None:
         if any(variable.chunks is not None for variable in ds.variables.values()):
             ds.to_netcdf(h5file, engine="h5netcdf")
             return
+        # deferred: keeps h5netcdf off the start-up path
         from xarray.backends import H5NetCDFStore
 
         held: dict[str, dict] = {}
@@ -460,8 +477,8 @@ def save(dataset, path, compress: bool = False) -> Path:
             variable.encoding.update(zlib=True, complevel=1, shuffle=True)
         if large:
             variable.encoding.update(chunked_encoding(variable))
-    tmp = temporary_beside(path)
-    try:
+    remove_stale_temporaries(path)
+    with temporary_beside(path) as tmp:
         target = GuardedFile(tmp)
         try:
             _write_netcdf(ds, target)
@@ -474,9 +491,6 @@ def save(dataset, path, compress: bool = False) -> Path:
             Path(tmp).unlink(missing_ok=True)  # before the free space is measured
             raise write_failure(path, target.error, target.size, path.exists())
         os.replace(tmp, path)
-    except BaseException:
-        Path(tmp).unlink(missing_ok=True)
-        raise
     try:  # make the rename durable too
         dir_fd = os.open(folder, os.O_RDONLY)
         try:
@@ -489,12 +503,12 @@ def save(dataset, path, compress: bool = False) -> Path:
 
 
 def remove_stale_temporaries(path) -> list[Path]:
-    """Remove the temporary files an interrupted :func:`save` of ``path`` left beside it.
+    """Remove the temporary files that writers of ``path`` which died left beside it.
 
     A process killed while it wrote ``path`` leaves its hidden ``.NAME.XXXXXXXX.tmp`` (the
-    name :func:`temporary_beside` gives). Only for a writer that owns ``path`` (a sweep with
-    its work folder): another process writing ``path`` at the same moment would lose its
-    temporary file.
+    name :func:`temporary_beside` gives). A temporary file whose writer is alive is held
+    by it and kept: only one that no process holds is removed, so two writers of ``path``
+    never take each other's file. Where files cannot be held (no ``fcntl``), none is removed.
 
     Parameters
     ----------
@@ -506,15 +520,34 @@ def remove_stale_temporaries(path) -> list[Path]:
     list of pathlib.Path
         The files removed.
     """
-    import re
 
+    if fcntl is None:
+        return []
     path = Path(path)
     pattern = re.compile(rf"\.{re.escape(path.name)}\.[A-Za-z0-9_]{{8}}\.tmp")
     folder = path.parent if str(path.parent) else Path(".")
-    removed = [p for p in folder.glob(f".{path.name}.*.tmp") if pattern.fullmatch(p.name)]
-    for stale in removed:
-        stale.unlink(missing_ok=True)
+    removed = []
+    for found in folder.glob(f".{path.name}.*.tmp"):
+        if pattern.fullmatch(found.name) and not _held(found):
+            found.unlink(missing_ok=True)
+            removed.append(found)
     return removed
+
+
+def _held(path: Path) -> bool:
+    """Whether a live process holds ``path`` (:func:`temporary_beside`); a file that cannot
+    be opened counts as held (it is not ours to remove)."""
+    try:
+        fd = os.open(path, os.O_RDONLY)
+    except OSError:
+        return True
+    try:
+        fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
+    except OSError:
+        return True
+    finally:
+        os.close(fd)  # a hold taken here ends with it
+    return False
 
 
 JSON_ATTRIBUTES = ("diffusion", "notices", "sweep_parameters", "limits")
@@ -544,8 +577,10 @@ def open_result(path):
     fickcam.errors.InputError
         When the file does not exist or is not a netCDF/HDF5 result.
     """
+    # deferred: keeps xarray off the start-up path
     import xarray as xr
 
+    # deferred: keeps numpy off the start-up path
     from .dataset import with_time_in_days
 
     path = Path(path)
@@ -587,14 +622,11 @@ def replaced_together(paths) -> Iterator[list[str]]:
         The temporary files, in the order of ``paths``.
     """
     paths = [Path(p) for p in paths]
-    temps: list[str] = []
-    try:
+    with ExitStack() as held:
+        temps = []
         for path in paths:
             path.parent.mkdir(parents=True, exist_ok=True)
-            temps.append(temporary_beside(path, suffix=f".tmp{path.suffix}"))
+            temps.append(held.enter_context(temporary_beside(path, suffix=f".tmp{path.suffix}")))
         yield temps
         for tmp, path in zip(temps, paths):
             os.replace(tmp, path)
-    finally:
-        for tmp in temps:
-            Path(tmp).unlink(missing_ok=True)

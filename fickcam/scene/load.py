@@ -18,6 +18,7 @@ from pydantic import ValidationError
 
 from ..errors import Problem, SceneError, format_duration
 from ..results.limits import parse_limit
+from ..mechanisms import mechanism_types, scene_sections
 from ..messages import warn
 from ..quantities.plausibility import Findings, geometry_findings, history_findings
 from .sections import (  # noqa: F401  (re-exported: fickcam.scene.load is their public home)
@@ -32,6 +33,7 @@ from .sections import (  # noqa: F401  (re-exported: fickcam.scene.load is their
     StateSpec,
     last_ageing_time,
 )
+from .yamldoc import check_mapping_bounds
 from .yamldoc import (  # noqa: F401  (re-exported)
     YamlDocument,
     parse_yaml,
@@ -90,12 +92,18 @@ class Scene:
         The parsed file, with the line of every key.
     materials : dict
         Scene material name -> resolved :class:`fickcam.materials.material.Material`.
-    design_model : fickcam.scene.sections.SceneModel, optional
-        The mechanisms as designed (from ``design:``).
+    as_designed_model : fickcam.scene.sections.SceneModel, optional
+        The mechanisms as designed (from ``design:``); None: as made.
     limits : list of fickcam.results.limits.Limit
         The limits, in scene order.
     warnings : list of fickcam.errors.Problem
         Unusual bare values and other notes told at validation.
+    environment : fickcam.climate.environment.Environment, optional
+        The climate history to the last ageing time, built once at validation.
+    mechanisms : tuple of fickcam.mechanisms.Mechanism
+        The scene's mechanisms, each built once at validation (in the registry's order).
+    as_designed_mechanisms : tuple of fickcam.mechanisms.Mechanism, optional
+        The mechanisms as designed (``design:``); None: as made.
     """
 
     model: SceneModel
@@ -104,9 +112,12 @@ class Scene:
     base_dir: Path
     document: YamlDocument | None = field(default=None, repr=False)
     materials: dict = field(default_factory=dict, repr=False)  # name -> resolved Material
-    design_model: SceneModel | None = field(default=None, repr=False)  # from ``design:``
+    as_designed_model: SceneModel | None = field(default=None, repr=False)  # from ``design:``
     limits: list = field(default_factory=list, repr=False)  # fickcam.results.limits.Limit, scene order
     warnings: list = field(default_factory=list, repr=False)  # Problem: unusual bare values
+    environment: object = field(default=None, repr=False)  # the climate, built once
+    mechanisms: tuple = field(default=(), repr=False)  # each built once
+    as_designed_mechanisms: tuple | None = field(default=None, repr=False)
 
     @property
     def name(self) -> str:
@@ -130,9 +141,70 @@ class Scene:
 
     def as_designed(self) -> "Scene":
         """This scene with its mechanisms as designed (``design:``), or itself."""
-        if self.design_model is None:
+        if self.as_designed_model is None:
             return self
-        return dataclasses.replace(self, model=self.design_model, design_model=None)
+        return dataclasses.replace(self, model=self.as_designed_model, as_designed_model=None,
+                                   mechanisms=self.as_designed_mechanisms,
+                                   as_designed_mechanisms=None)
+
+    @property
+    def parts(self) -> tuple:
+        """The bodies that age, mechanism by mechanism (each mechanism's ``parts``).
+
+        Returns
+        -------
+        tuple of fickcam.mechanisms.part.Part
+            The parts, in a run's order.
+        """
+        return tuple(part for mechanism in self.mechanisms for part in mechanism.parts)
+
+    @property
+    def elastic_parts(self) -> frozenset:
+        """The names of the parts whose swelling stress the scene asks for.
+
+        Returns
+        -------
+        frozenset of str
+            The part names.
+        """
+        return frozenset().union(*(m.elastic_parts for m in self.mechanisms))
+
+    def has(self, section: str) -> bool:
+        """Whether the scene has the mechanism of ``section`` (``cam``, ``linkage``).
+
+        Parameters
+        ----------
+        section : str
+            A name of the mechanism registry.
+
+        Returns
+        -------
+        bool
+        """
+        return any(m.section_name == section for m in self.mechanisms)
+
+    def mechanism(self, section: str):
+        """The scene's mechanism built from ``section``.
+
+        Parameters
+        ----------
+        section : str
+            A name of the mechanism registry (``cam``, ``linkage``).
+
+        Returns
+        -------
+        fickcam.mechanisms.Mechanism
+            The mechanism.
+
+        Raises
+        ------
+        KeyError
+            When the scene has no such section.
+        """
+        found = [m for m in self.mechanisms if m.section_name == section]
+        if not found:
+            raise KeyError(f"the scene has no {section} section")
+        return found[0]
 
 
 # --------------------------------------------------------------------------
@@ -141,32 +213,24 @@ class Scene:
 
 def _used_materials(model: SceneModel) -> list[tuple[tuple, str]]:
     """(key path, material name) for every material reference in the scene."""
-    refs = []
-    if model.cam is not None:
-        refs.append((("cam", "material"), model.cam.material))
-        follower_material = getattr(model.cam.follower, "material", None)
-        if follower_material:
-            refs.append((("cam", "follower", "material"), follower_material))
-    if model.linkage is not None:
-        refs.append((("linkage", "material"), model.linkage.material))
-        if model.linkage.frame_material:
-            refs.append((("linkage", "frame_material"), model.linkage.frame_material))
-    return refs
+    types = mechanism_types()
+    return [((name,) + path, material) for name, section in scene_sections(model).items()
+            for path, material in types[name].materials_used(section)]
 
 
 def _part_names(model: SceneModel) -> tuple[str, ...]:
-    """Names of the parts a scene builds (``simulate.build_parts``), in its order."""
-    from ..linkage.ageing import LINKS
-
-    cam = ("cam", "follower") if model.cam is not None else ()
-    return cam + (LINKS if model.linkage is not None else ())
+    """Names of the parts a scene's mechanisms build, in their order."""
+    types = mechanism_types()
+    return tuple(part for name, section in scene_sections(model).items()
+                 for part in types[name].part_names(section))
 
 
 def _cross_checks(model: SceneModel, doc: YamlDocument, base_dir: Path,
-                  findings: Findings) -> tuple[list[Problem], dict]:
+                  findings: Findings) -> tuple[list[Problem], dict, object]:
     """What no single section can check: parts name defined materials, bare durations are
     plausible for the parts (``findings``), the climate stays below their dry Tg, the
-    outputs' times fit the climate's history."""
+    outputs' times fit the climate's history; (problems, the resolved materials, the
+    Environment or None where it cannot be built)."""
     from ..climate.environment import Environment
 
     problems = _part_problems(model, doc)
@@ -179,8 +243,11 @@ def _cross_checks(model: SceneModel, doc: YamlDocument, base_dir: Path,
         key = next(name for name in ("test", "history_file", "history", "state")
                    if getattr(model.environment, name) is not None)
         problems.append(doc.problem(("environment", key), str(exc)))
-        return problems, resolved
-    durations = history_findings(model, doc, environment, resolved)
+        return problems, resolved, None
+    types = mechanism_types()
+    sizes = [size for name, section in scene_sections(model).items()
+             for size in types[name].absorber_sizes(section)]
+    durations = history_findings(model, doc, environment, resolved, sizes)
     problems += durations.errors
     problems += _temperature_limit_problems(model, doc, environment, resolved, findings)
     problems += _model_name_problems(model, doc)
@@ -191,18 +258,21 @@ def _cross_checks(model: SceneModel, doc: YamlDocument, base_dir: Path,
     else:
         problems += timing
         findings.warnings += durations.warnings
-    return problems, resolved
+    return problems, resolved, environment
 
 
 def _part_problems(model: SceneModel, doc: YamlDocument) -> list[Problem]:
-    """Something to age, and a cam's follower arm that fits."""
+    """Something to age, and what each mechanism checks of its section (a cam's follower
+    arm that fits)."""
+    types = mechanism_types()
+    sections = scene_sections(model)
     problems: list[Problem] = []
-    if model.cam is None and model.linkage is None:
-        problems.append(doc.problem((), "a scene needs a cam or a linkage section (nothing to age)"))
-    if model.cam is not None:
-        from ..cam.spec import arm_problems
-
-        problems += [doc.problem(("cam",) + path, reason) for path, reason in arm_problems(model.cam)]
+    if not sections:
+        problems.append(doc.problem((), f"a scene needs a {' or a '.join(types)} section "
+                                        f"(nothing to age)"))
+    for name, section in sections.items():
+        problems += [doc.problem((name,) + path, reason)
+                     for path, reason in types[name].section_problems(section)]
     return problems
 
 
@@ -290,78 +360,34 @@ def _ageing_time_problems(model: SceneModel, doc: YamlDocument, environment) -> 
     return problems
 
 
-def _cam_profile(model: SceneModel, doc: YamlDocument, base_dir: Path) -> tuple[list[Problem], SceneModel]:
-    """Read ``cam.profile_file`` or ``cam.drawing`` (relative to the scene): problems at its
-    line, and the model with the path made absolute (and the drawing's part kept) so that the
-    cam can be built from it anywhere."""
-    cam = model.cam
-    if cam is None or (cam.profile_file is None and cam.drawing is None):
-        return [], model
-    from ..cam.profile import load_profile
-
-    if cam.drawing is not None:
-        problems, cam, smallest = _cam_drawing(cam, doc, base_dir, model.diffusion.accuracy)
-        if smallest is None:
-            return problems, model
-    else:
-        path = (base_dir / cam.profile_file).resolve()
-        try:
-            smallest = load_profile(path, cam.follower.roller_radius or 0.0).radii()[0]
-        except (OSError, ValueError) as exc:
-            return [doc.problem(("cam", "profile_file"), str(exc))], model
-        problems, cam = [], cam.model_copy(update={"profile_file": str(path)})
-    if cam.bore_radius >= smallest:
-        problems.append(doc.problem(("cam", "bore_radius"), f"must be smaller than the profile's "
-                                                            f"smallest radius ({smallest * 1e3:g} mm)"))
-    if cam.follower.arm is not None:
-        from ..cam.arm_spec import reach_problems
-
-        problems += [doc.problem(("cam",) + key, reason) for key, reason in reach_problems(cam, smallest)]
-    reach = smallest + (cam.follower.roller_radius or 0.0)
-    if cam.follower.kind != "flat" and abs(cam.follower.offset) >= reach:
-        problems.append(doc.problem(("cam", "follower", "offset"),
-                                    "follower offset must be smaller than the prime circle radius"))
-    return problems, model.model_copy(update={"cam": cam})
+def _files(model: SceneModel, doc: YamlDocument, base_dir: Path,
+           read: dict) -> tuple[list[Problem], SceneModel, dict]:
+    """Read the files the mechanisms name (a cam's ``profile_file`` or ``drawing``, relative
+    to the scene):
+    (problems at their lines, the model with the paths made absolute so that a mechanism
+    can be built from it anywhere, what each mechanism read by section name); ``read``:
+    what this validation has read already, by path."""
+    types = mechanism_types()
+    problems: list[Problem] = []
+    files, update = {}, {}
+    for name, section in scene_sections(model).items():
+        found, update[name], files[name] = types[name].read_files(
+            section, base_dir, read, model.diffusion.accuracy)
+        problems += [doc.problem((name,) + path, reason) for path, reason in found]
+    return problems, model.model_copy(update=update), files
 
 
-#: the chord tolerance of a drawing, as a share of its extent times the scene's accuracy: the
-#: chords' sagitta s changes a plate's area, and so its mean moisture, by at most
-#: (2/3) s x perimeter / area, below 0.1 x accuracy for any plate wider than 1/15 of its extent
-CHORD_SHARE = 0.01
-
-
-def _cam_drawing(cam, doc: YamlDocument, base_dir: Path, accuracy: float):
-    """(problems, the cam section with its drawing read, the profile's smallest radius [m] or
-    None) for ``cam.drawing``."""
-    from ..drawing.dxfread import read_drawing
-    from ..drawing.parts import cam_of
-    from ..drawing.planform import DrawingError
-    from ..extras import MissingExtra
-
-    where = ("cam", "drawing")
-    path = (base_dir / cam.drawing.file).resolve()
-    try:
-        drawing = read_drawing(path, CHORD_SHARE * accuracy, cam.drawing.units, relative=True)
-        part = cam_of(drawing.planform, drawing.points, cam.drawing.axis_layer)
-    except (DrawingError, MissingExtra) as exc:
-        return [doc.problem(where, str(exc))], cam, None
-    if part.other_holes:
-        sources = ", ".join(h.source for h in part.other_holes)
-        return [doc.problem(where, f"{path}: holes besides the bore ({sources}) are not modelled "
-                                   f"in a cam yet; draw the plate without them")], cam, None
-    problems = []
-    if "bore_radius" in cam.model_fields_set and abs(cam.bore_radius - part.bore_radius) > 1e-9:
-        problems.append(doc.problem(("cam", "bore_radius"), f"the drawing's bore has radius "
-                                    f"{part.bore_radius * 1e3:.6g} mm; leave bore_radius out"))
-    spec = cam.drawing.model_copy(update={"file": str(path)})
-    spec._part = part
-    cam = cam.model_copy(update={"drawing": spec, "bore_radius": part.bore_radius})
-    return problems, cam, part.smallest_radius
+def _mechanisms(model: SceneModel, materials: dict, files: dict) -> tuple:
+    """The scene's mechanisms, each built once from its section, the resolved materials
+    and the files it read."""
+    types = mechanism_types()
+    return tuple(types[name](section, materials, files.get(name))
+                 for name, section in scene_sections(model).items())
 
 
 def _limits(model: SceneModel, doc: YamlDocument) -> tuple[list, list[Problem]]:
     """The scene's limits (fickcam.results.limits.Limit) and a Problem per limit that cannot apply."""
-    sections = {name for name in ("cam", "linkage") if getattr(model, name) is not None}
+    sections = set(scene_sections(model))
     limits, problems = [], []
     for name, spec in (model.limits or {}).items():
         try:
@@ -409,10 +435,11 @@ def validate_document(doc: YamlDocument, *, base_dir: Path) -> Scene:
         model = SceneModel.model_validate(doc.data)
     except ValidationError as exc:
         raise SceneError(problems_from_validation(exc, doc, model=SceneModel)) from None
-    problems, resolved = _cross_checks(model, doc, base_dir, findings)
-    profile_problems, model = _cam_profile(model, doc, base_dir)
-    problems += profile_problems
-    design_problems, design_model = _design_model(model, doc, base_dir, findings)
+    problems, resolved, environment = _cross_checks(model, doc, base_dir, findings)
+    read: dict = {}  # the files read, by path: each read once
+    file_problems, model, files = _files(model, doc, base_dir, read)
+    problems += file_problems
+    design_problems, as_designed = _as_designed_model(model, doc, base_dir, findings, read)
     problems += design_problems
     limits, limit_problems = _limits(model, doc)
     problems += limit_problems
@@ -421,12 +448,18 @@ def validate_document(doc: YamlDocument, *, base_dir: Path) -> Scene:
     findings.warnings += _alias_notes(doc)
     for warning in findings.warnings:
         warn("%s", warning)
+    as_designed_model, as_designed_mechanisms = None, None
+    if as_designed is not None:
+        as_designed_model, as_designed_files = as_designed
+        as_designed_mechanisms = _mechanisms(as_designed_model, resolved, as_designed_files)
     return Scene(model=model, file=doc.file, text=doc.text, base_dir=base_dir, document=doc,
-                 materials=resolved, design_model=design_model, limits=limits,
-                 warnings=findings.warnings)
+                 materials=resolved, as_designed_model=as_designed_model, limits=limits,
+                 warnings=findings.warnings, environment=environment,
+                 mechanisms=_mechanisms(model, resolved, files),
+                 as_designed_mechanisms=as_designed_mechanisms)
 
 
-def design_data(data: dict) -> dict:
+def as_designed_data(data: dict) -> dict:
     """A scene mapping as designed: its ``design:`` merged into ``cam:`` and ``linkage:``.
 
     A design cam shape replaces the made one; ``design:`` is dropped.
@@ -464,14 +497,16 @@ def _design_slips(doc: YamlDocument, data: dict, findings: Findings) -> list[Pro
     return errors
 
 
-def _design_model(model: SceneModel, doc: YamlDocument, base_dir: Path, findings: Findings):
-    """(problems, the SceneModel as designed) from the ``design:`` section, or ([], None)."""
+def _as_designed_model(model: SceneModel, doc: YamlDocument, base_dir: Path, findings: Findings,
+                       read: dict):
+    """(problems, (the SceneModel as designed, the files its mechanisms read)) from the
+    ``design:`` section, or ([], None); ``read``: the files this validation has read."""
     if model.design is None:
         return [], None
     for section in ("cam", "linkage"):
         if getattr(model.design, section) is not None and getattr(model, section) is None:
             return [doc.problem(("design", section), f"the scene has no {section} section")], None
-    data = design_data(doc.data)
+    data = as_designed_data(doc.data)
     slips = _design_slips(doc, data, findings)
     if slips:
         return slips, None
@@ -480,8 +515,8 @@ def _design_model(model: SceneModel, doc: YamlDocument, base_dir: Path, findings
     except ValidationError as exc:
         return [doc.problem(("design",) + tuple(problem.key.split(".")), problem.reason)
                 for problem in problems_from_validation(exc, doc)], None
-    problems, design = _cam_profile(design, doc, base_dir)
-    return problems, design
+    problems, design, files = _files(design, doc, base_dir, read)
+    return problems, (design, files)
 
 
 def load_scene(source, *, file_name: str | None = None) -> Scene:
@@ -508,6 +543,7 @@ def load_scene(source, *, file_name: str | None = None) -> Scene:
     if isinstance(source, Scene):
         return source
     if isinstance(source, dict):
+        check_mapping_bounds(source, file=file_name or "<dict>")
         text = yaml.safe_dump(source, sort_keys=False)
         doc = parse_yaml(text, file=file_name or "<dict>")
         return validate_document(doc, base_dir=Path.cwd())

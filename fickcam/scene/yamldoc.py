@@ -10,6 +10,7 @@ kilobyte) is refused at the alias that crosses the bound, without building anyth
 """
 from __future__ import annotations
 
+import itertools
 import os
 from dataclasses import dataclass
 from pathlib import Path
@@ -130,6 +131,56 @@ def check_bounds(text: str, *, file: str = "<scene>", what: str = "scene") -> No
                     f"nested more than {MAX_DEPTH} levels deep once its aliases are expanded"))
     finally:
         loader.dispose()
+
+
+def check_mapping_bounds(data, *, file: str = "<dict>", what: str = "scene") -> None:
+    """Refuse a scene given as Python data (a dict of lists, mappings and scalars) beyond
+    the bounds of a YAML document, before anything is written or built from it.
+
+    The data are walked once, without recursion, as :func:`check_bounds` reads events:
+    each key, scalar, list and mapping counts one value (an object shared by several
+    places counts at each, as an alias does), the nesting is bounded (a mapping that holds
+    itself is refused by its depth), and the text of its keys and scalars by
+    :data:`MAX_BYTES`. The first value past a bound stops the walk, so the cost is that of
+    :data:`MAX_NODES` values at most.
+
+    Parameters
+    ----------
+    data : object
+        The scene's data (a mapping, as :func:`fickcam.load_scene` takes it).
+    file : str
+        The name problems give it (``"<dict>"``).
+    what : str
+        What the data are, for messages (``"scene"``).
+
+    Raises
+    ------
+    fickcam.errors.SceneError
+        One problem naming the bound passed.
+    """
+    total, size = 1, 0
+    stack = [(data, 1)]
+    while stack:
+        value, depth = stack.pop()
+        if isinstance(value, (dict, list, tuple)):  # its items (and keys) count as they come
+            total += len(value) * (2 if isinstance(value, dict) else 1)
+        if total > MAX_NODES:
+            raise _bound_problem(file, what, None, f"more than {MAX_NODES:,} values (each "
+                                 f"place a shared object is used counts all of its values)")
+        if depth > MAX_DEPTH:
+            raise _bound_problem(file, what, None, f"nested more than {MAX_DEPTH} levels deep "
+                                 f"(or holds itself)")
+        if isinstance(value, dict):
+            size += sum(len(str(key)) for key in value)
+            stack.extend((item, depth + 1) for item in value.values())
+        elif isinstance(value, (list, tuple)):
+            stack.extend((item, depth + 1) for item in itertools.islice(value, MAX_NODES))
+        else:
+            size += len(value) if isinstance(value, (str, bytes)) else 8
+        if size > MAX_BYTES:
+            raise _bound_problem(file, what, None, f"more than {MAX_BYTES / 2**20:g} MiB of "
+                                 f"keys and values; a {what} file is at most "
+                                 f"{MAX_BYTES / 2**20:g} MiB")
 
 
 def _line_map(node, path: tuple = (), lines: dict | None = None) -> dict[tuple, int]:

@@ -12,13 +12,13 @@ The limit is scoped (``threadpoolctl``): the caller's BLAS threads are restored 
 from __future__ import annotations
 
 import functools
+import scipy.linalg  # noqa: F401  (loads scipy's own OpenBLAS, so that it is limited too)
+from threadpoolctl import threadpool_limits
 
 
 def one_blas_thread():
     """A context manager limiting every loaded BLAS library (numpy's and scipy's OpenBLAS)
     to one thread, restoring the caller's limits on exit."""
-    import scipy.linalg  # noqa: F401  (loads scipy's own OpenBLAS, so that it is limited too)
-    from threadpoolctl import threadpool_limits
 
     return threadpool_limits(1, "blas")
 

@@ -1,9 +1,9 @@
-"""The bodies a scene ages, and their per-part results gathered into arrays.
+"""What the run gives for the bodies a scene ages, gathered into arrays.
 
-A :class:`Part` is one body (cam, follower, a link) with its material and
-diffusion geometry; a :class:`PartHistory` is what diffusion and the material
-state give for it over the ageing times (or, for the as-designed state, at one
-time). :func:`part_values` stacks the histories into ``(time, part)`` arrays
+A :class:`~fickcam.mechanisms.part.Part` is one body (cam, follower, a link) with its
+material and diffusion geometry, as its mechanism builds it; a :class:`PartHistory` is
+what diffusion and the material state give for it over the ageing times (or, for the
+as-designed state, at one time). :func:`part_values` stacks the histories into ``(time, part)`` arrays
 named after the schema (:mod:`fickcam.results.schema`); :func:`field_values` does the
 same for the moisture fields.
 """
@@ -13,30 +13,7 @@ from dataclasses import dataclass, field, replace
 
 import numpy as np
 
-
-@dataclass
-class Part:
-    """One body that ages: its name, material, diffusion geometry and dry mass.
-
-    Parameters
-    ----------
-    name : str
-        The part (``cam``, ``follower``, ``crank``...).
-    material_name : str
-        Its scene material's name.
-    material : fickcam.materials.Material
-        The resolved material.
-    geometry : object or None
-        Its diffusion geometry (:mod:`fickcam.diffusion`); None when the part does not absorb.
-    dry_mass : float, optional
-        Its dry mass [kg]; None when not known.
-    """
-
-    name: str
-    material_name: str
-    material: object
-    geometry: object | None  # diffusion geometry (None: the part does not absorb)
-    dry_mass: float | None = None
+from ..mechanisms.part import Part
 
 
 @dataclass
@@ -88,37 +65,6 @@ class PartHistory:
                                          else result.fields[rows])
         return PartHistory(self.part, result, {k: take(v) for k, v in self.state.items()},
                            self.valid[rows])
-
-
-def build_parts(scene) -> list[Part]:
-    """The parts a scene models, in a fixed order (cam, follower, links).
-
-    Parameters
-    ----------
-    scene : fickcam.scene.load.Scene
-        A validated scene.
-
-    Returns
-    -------
-    list of Part
-        The parts; one whose material does not absorb has no diffusion geometry.
-    """
-    parts: list[Part] = []
-    model = scene.model
-    if model.cam is not None:
-        from ..cam import scene_parts as cam_parts
-
-        parts += [Part(name, mat, scene.materials[mat], geometry, mass)
-                  for name, mat, geometry, mass in cam_parts(model.cam, scene.materials)]
-    if model.linkage is not None:
-        from ..linkage import scene_parts as linkage_parts
-
-        parts += [Part(name, mat, scene.materials[mat], geometry, mass)
-                  for name, mat, geometry, mass in linkage_parts(model.linkage, scene.materials)]
-    for part in parts:
-        if not getattr(part.material, "absorbs", False):
-            part.geometry = None
-    return parts
 
 
 def part_mass(history: PartHistory) -> np.ndarray:

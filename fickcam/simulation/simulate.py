@@ -15,32 +15,18 @@ from .._version import __version__
 from .blas import on_one_blas_thread
 from ..climate.environment import Environment, summary_edges
 from ..errors import InputError, SceneError, times_in
+from ..mechanisms.response import Response
 from ..messages import log_notices, progress_bar, progress_summary
-from .parts import Part, PartHistory, build_parts, diffusion_attrs, field_values, part_values
-from ..scene.load import EveryStep, Scene, last_ageing_time, load_scene
+from ..mechanisms.part import Part
+from .parts import PartHistory, diffusion_attrs, field_values, part_values
+from .options import RunOptions
+from ..scene.load import EveryStep, Scene, load_scene
 from ..results.schema import VARIABLES, design_name
 
 log = logging.getLogger(__name__)
 
 
 # ----------------------------------------------------------------- planning
-
-
-def scene_environment(scene: Scene) -> Environment:
-    """The scene's climate history (a weather year repeated to its last ageing time).
-
-    Parameters
-    ----------
-    scene : Scene
-        The loaded scene.
-
-    Returns
-    -------
-    Environment
-        Temperature [K] and surface moisture over time [s].
-    """
-    return Environment.from_section(scene.model.environment, base_dir=scene.base_dir,
-                                    until=last_ageing_time(scene.model.outputs))
 
 
 def ageing_times(scene: Scene, environment: Environment) -> np.ndarray:
@@ -130,42 +116,6 @@ def written_time_unit(scene: Scene) -> str:
     return ""
 
 
-def diffusion_options(scene: Scene, accuracy: float | None, settings=None, cache=None) -> dict:
-    """The scene's diffusion section, ``accuracy`` (when given) in place of its own, the
-    solvers' tuned limits and the run's cache.
-
-    Parameters
-    ----------
-    scene : Scene
-        The loaded scene.
-    accuracy : float or None
-        Relative accuracy of the diffusion [-]; None: the scene's.
-    settings : SolverSettings, optional
-        The solvers' tuned limits; None: the defaults.
-    cache : RunCache, optional
-        What the run's diffusion solves build once and share; None: a fresh one.
-
-    Returns
-    -------
-    dict
-        accuracy [-], model, surface_layer_depth [m], settings and cache, as
-        :func:`fickcam.diffusion.solve <fickcam.diffusion.dispatch.solve>` takes them.
-    """
-    from ..diffusion import SolverSettings, run_cache
-
-    section = scene.model.diffusion
-    return {"accuracy": accuracy if accuracy is not None else section.accuracy,
-            "model": section.model, "surface_layer_depth": section.surface_layer_depth,
-            "settings": SolverSettings() if settings is None else settings,
-            "cache": run_cache(cache)}
-
-
-def _part_model(options: dict, part: str) -> str:
-    """The diffusion model asked for ``part`` (``diffusion.model``: one name or per part)."""
-    model = options["model"]
-    return model.get(part, "auto") if isinstance(model, dict) else model
-
-
 def _for_part(name: str, call, *args, **kwargs):
     """``call`` with an InputError (e.g. a model that does not apply) naming the part."""
     try:
@@ -197,8 +147,7 @@ def plan_parts(scene: Scene, accuracy: float | None = None, *, parts: list[Part]
     accuracy : float, optional
         Relative accuracy of the diffusion [-]; None: the scene's.
     parts : list of Part, optional
-        The scene's parts when already built (a run's: their outline expansions are kept
-        per part object); None: built here.
+        The parts to plan; None: the scene's.
     settings : SolverSettings, optional
         The solvers' tuned limits; None: the defaults.
     cache : RunCache, optional
@@ -215,30 +164,27 @@ def plan_parts(scene: Scene, accuracy: float | None = None, *, parts: list[Part]
         Naming the part, when its diffusion cannot be planned (a model that does not
         apply to its shape, an outline that cannot be meshed).
     """
-    return _planned_parts(scene, accuracy, parts, settings, cache)
+    return _planned_parts(scene, RunOptions.for_scene(scene, accuracy, settings, cache), parts)
 
 
-def _planned_parts(scene: Scene, accuracy, parts, settings, cache):
-    """:func:`plan_parts` in the caller's BLAS threads (:func:`run` has limited them)."""
-    from ..diffusion import DiffusionProblem, plan_problem, refuse
+def _planned_parts(scene: Scene, options: RunOptions, parts: list[Part] | None):
+    """:func:`plan_parts` with the run's options, in the caller's BLAS threads (:func:`run`
+    has limited them)."""
+    from ..diffusion import plan_problem, refuse
 
-    environment = scene_environment(scene)
+    environment = scene.environment
     times = ageing_times(scene, environment)
-    options = diffusion_options(scene, accuracy, settings, cache)
     problems = []
-    for part in build_parts(scene) if parts is None else parts:
+    for part in scene.parts if parts is None else parts:
         if part.geometry is None or environment.state_times is not None:
             problems.append((part, None))
             continue
-        problem = DiffusionProblem(
-            part.geometry, part.material.diffusivity_for(part.geometry),
-            environment.exposure(part.material.saturation_moisture), times,
-            options["accuracy"], _part_model(options, part.name),
-            options["surface_layer_depth"], sorption=part.material.sorption_law())
+        problem = options.problem(part, environment.exposure(part.material.saturation_moisture),
+                                  times)
         _for_part(part.name, refuse, problem)  # every part's before the first costly plan
         problems.append((part, problem))
     plans = [(part, (None if part.geometry is None else STATE_GIVEN) if problem is None else
-              _for_part(part.name, plan_problem, problem, options["settings"], options["cache"]))
+              _for_part(part.name, plan_problem, problem, options.settings, options.cache))
              for part, problem in problems]
     return environment, times, options, plans
 
@@ -287,23 +233,19 @@ def run(scene, *, accuracy: float | None = None, progress: bool = False, setting
     fickcam.errors.SolverError
         When a diffusion solve fails.
     """
-    from ..diffusion import run_cache
-
     started = _time.perf_counter()
-    cache = run_cache(cache)
     scene = load_scene(scene)
+    options = RunOptions.for_scene(scene, accuracy, settings, cache)
     unit = written_time_unit(scene)  # the unit the scene wrote its times in: reports use it
     with progress_summary(f"run {scene.name}", progress), times_in(unit or None):
-        environment = scene_environment(scene)
+        environment = scene.environment
         times = ageing_times(scene, environment)
-        parts = build_parts(scene)
+        parts = list(scene.parts)
         # every refusal of `fickcam check` before any solve; the solves read the plans cached
-        _planned_parts(scene, accuracy, parts, settings, cache)
-        ds, histories = _age(scene, environment, times, accuracy, progress, parts=parts,
-                             settings=settings, diffusions=diffusions, cache=cache)
+        _planned_parts(scene, options, parts)
+        ds, histories = _age(scene, environment, times, options, progress, parts, diffusions)
         if scene.limits:
-            limits, searched = _limits(ds, scene, environment, times, accuracy, parts,
-                                       histories, settings, cache)
+            limits, searched = _limits(ds, scene, environment, (times, histories), options)
             notices = [*ds.attrs["notices"], *searched]
             ds = ds.merge(limits, compat="override")
             ds.attrs["notices"] = notices
@@ -313,20 +255,17 @@ def run(scene, *, accuracy: float | None = None, progress: bool = False, setting
     return ds
 
 
-def _age(scene: Scene, environment: Environment, times: np.ndarray, accuracy: float | None,
-         progress: bool, parts: list[Part] | None = None, settings=None, diffusions=None,
-         cache=None):
+def _age(scene: Scene, environment: Environment, times: np.ndarray, options: RunOptions,
+         progress: bool, parts: list[Part], diffusions: dict | None):
     """The Dataset of ``scene`` at ageing ``times`` (s) and the part histories;
-    ``parts``: the scene's parts when already built (their outline expansions are cached
-    per part object)."""
+    ``diffusions``: results already solved (:func:`run`)."""
     from ..results.dataset import build_dataset
 
-    values, coords, notices, histories = _aged_values(scene, environment, times, accuracy,
-                                                      progress, parts, settings=settings,
-                                                      diffusions=diffusions, cache=cache)
-    design_scene = scene.as_designed()  # differs where the scene is made to compensate
-    designs = [design_part(part, environment) for part in build_parts(design_scene)]
-    values.update(_design_values(design_scene, designs))
+    values, coords, notices, histories = _aged_values(scene, environment, times, options,
+                                                      progress, parts, diffusions)
+    as_designed = scene.as_designed()  # differs where the scene is made to compensate
+    dry = [as_designed_part(part, environment) for part in as_designed.parts]
+    values.update(_as_designed_values(as_designed, dry))
     if environment.state_times is None and times[-1] > 0:  # states given directly: no climate
         edges = summary_edges(times[-1])
         values.update(climate_values(environment, edges))
@@ -371,51 +310,100 @@ def climate_values(environment: Environment, edges: np.ndarray) -> dict[str, np.
 
 
 def _aged_values(scene: Scene, environment: Environment, times: np.ndarray,
-                 accuracy: float | None, progress: bool, parts: list[Part] | None = None,
-                 stored: tuple[np.ndarray, list[PartHistory]] | None = None, settings=None,
-                 diffusions: dict | None = None, cache=None):
+                 options: RunOptions, progress: bool, parts: list[Part],
+                 diffusions: dict | None = None):
     """(values, coords, notices, part histories) of ``scene`` at ageing ``times`` (s): every
-    variable but the as-designed ones, as SI arrays keyed by schema name.
-    ``stored``: the stored run's times and part histories (the limit search): diffusion is
-    then taken at the stored times and ``times`` together, so it has the stored run's plan
-    and its material state the stored run's past (validity up to the wet Tg): extended from
-    the stored solve where it can (``DiffusionResult.extend``: only the new times are
-    summed), else re-solved at both; the part histories are then taken at ``times``."""
-    options = diffusion_options(scene, accuracy, settings, cache)
-    parts = build_parts(scene) if parts is None else parts
+    variable but the as-designed ones, as SI arrays keyed by schema name; ``diffusions``:
+    results already solved, keyed as :func:`diffusion_key` keys them."""
     notices: list[str] = list(environment.notes)
-    from ..elastic.parts import elastic_parts
-
-    elastic = elastic_parts(scene.model)  # these need their moisture fields
     # diffusion then mechanisms, one bar each: a part's diffusion may cost a thousand times an
     # ageing time's mechanisms, and parts differ a hundredfold (a steel frame: nothing), so
     # the diffusion bar counts parts without a remaining time; the mechanisms' is honest
     bar = progress_bar(len(parts), enabled=progress, eta=False, desc=f"{scene.name}: diffusion",
                        unit="parts", leave=False)
-
-    histories, solved = [], dict(diffusions or {})
-    stored_times, befores = stored if stored is not None else (None, [None] * len(parts))
-    for part, before in zip(parts, befores):
-        bar.set_postfix_str(part.name)
-        if before is None:
-            history = age_part(part, environment, times, options, scene, notices,
-                               keep_field=part.name in elastic, solved=solved)
-        else:
-            both = np.union1d(stored_times, times)
-            history = age_part(part, environment, both, options, scene, notices,
-                               keep_field=part.name in elastic, before=before.diffusion,
-                               solved=solved)
-            history = history.at_rows(np.searchsorted(both, times))
-        histories.append(history)
-        bar.update()
+    histories = age_parts(scene, environment, times, options, parts, notices, diffusions, bar)
     bar.close()
+    return _values(scene, environment, times, histories, notices, scene.elastic_parts, progress)
+
+
+def age_parts(scene: Scene, environment: Environment, times: np.ndarray, options: RunOptions,
+              parts: list[Part], notices: list[str], diffusions: dict | None = None,
+              bar=None) -> list[PartHistory]:
+    """The diffusion and material state of ``parts`` of ``scene`` over ageing ``times``
+    (:func:`age_part` each), no mechanisms: a part's moisture field is kept where the scene
+    stores fields or its swelling stress needs it.
+
+    Parameters
+    ----------
+    scene : Scene
+        The loaded scene.
+    environment : Environment
+        Its climate history (temperature [K], surface moisture).
+    times : numpy.ndarray
+        Ageing times [s].
+    options : RunOptions
+        The run's diffusion options.
+    parts : list of Part
+        The parts to age (the scene's, or some of them).
+    notices : list of str
+        Notices so far; the parts' are appended.
+    diffusions : dict, optional
+        Diffusion results already solved, keyed by :func:`diffusion_key`.
+    bar : optional
+        A progress bar (:func:`fickcam.messages.progress_bar`), updated per part.
+
+    Returns
+    -------
+    list of PartHistory
+        One per part, in order.
+    """
+    elastic = scene.elastic_parts  # these need their moisture fields
+    histories, solved = [], dict(diffusions or {})
+    for part in parts:
+        if bar is not None:
+            bar.set_postfix_str(part.name)
+        histories.append(age_part(part, environment, times, options, notices,
+                                  store_fields=scene.model.outputs.fields or part.name in elastic,
+                                  solved=solved))
+        if bar is not None:
+            bar.update()
+    return histories
+
+
+def _searched_values(scene: Scene, environment: Environment, at: np.ndarray,
+                     options: RunOptions, stored: tuple[np.ndarray, list[PartHistory]]):
+    """:func:`_aged_values` at the limit search's ageing times ``at`` (s), given the stored
+    run's (times, part histories): diffusion is taken at the stored times and ``at``
+    together, so it has the stored run's plan and its material state the stored run's past
+    (validity up to the wet Tg): extended from the stored solve where it can
+    (``DiffusionResult.extend``: only the new times are summed), else re-solved at both;
+    the part histories are then taken at ``at``."""
+    notices: list[str] = list(environment.notes)
+    elastic = scene.elastic_parts
+    stored_times, befores = stored
+    both = np.union1d(stored_times, at)
+    rows = np.searchsorted(both, at)
+    solved: dict = {}
+    histories = [age_part(before.part, environment, both, options, notices,
+                          store_fields=scene.model.outputs.fields or before.part.name in elastic,
+                          before=before.diffusion, solved=solved).at_rows(rows)
+                 for before in befores]
+    return _values(scene, environment, at, histories, notices, elastic, False)
+
+
+def _values(scene: Scene, environment: Environment, times: np.ndarray,
+            histories: list[PartHistory], notices: list[str], elastic: frozenset[str],
+            progress: bool):
+    """(values, coords, notices, histories): the climate, the parts' states, the mechanisms,
+    the swelling stress of the ``elastic`` parts and the moisture fields at ``times`` (s)
+    from the parts' ``histories``; the mechanisms' notices join ``notices``."""
     bar = progress_bar(len(times), enabled=progress, desc=f"{scene.name}: mechanisms",
                        unit="ageing times", leave=False)
     values = {"temperature": environment.temperature(times),
               "relative_humidity": environment.relative_humidity(times)}
     coords: dict = {"time": times}
-    if parts:
-        coords["part"] = [p.name for p in parts]
+    if histories:
+        coords["part"] = [h.part.name for h in histories]
         values.update(part_values(histories))
     valid_all = np.logical_and.reduce([h.valid for h in histories]) if histories else \
         np.ones_like(times, bool)
@@ -439,12 +427,13 @@ def _aged_values(scene: Scene, environment: Environment, times: np.ndarray,
     return values, coords, notices, histories
 
 
-def _limits(ds, scene: Scene, environment: Environment, times, accuracy: float | None,
-            parts: list[Part], histories: list[PartHistory], settings=None, cache=None):
+def _limits(ds, scene: Scene, environment: Environment,
+            stored_run: tuple[np.ndarray, list[PartHistory]], options: RunOptions):
     """(limit_ratio (time, limit), time_out_of_spec (limit) and its error estimate of the
     scene's limits, each crossing located by re-running the model inside its bracketing
     interval to the crossing's own tolerance (``limits.Tolerance``, finer where the
-    diffusion accuracy asked is); the search's notices, ``_search_notices``)."""
+    diffusion accuracy asked is); the search's notices, ``_search_notices``);
+    ``stored_run``: the stored run's ageing times [s] and part histories."""
     from ..results.dataset import build_dataset
     from ..results.limits import Tolerance, first_crossings, limit_ratio
 
@@ -461,17 +450,16 @@ def _limits(ds, scene: Scene, environment: Environment, times, accuracy: float |
     designs = {design_name(n): ds[design_name(n)].variable for n in names
                if design_name(n) in ds}
 
+    times, histories = stored_run
     searched: dict[str, float] = {}   # part -> largest diffusion estimate of the search
 
     def evaluate(at) -> np.ndarray:
         """The ratios at ageing times ``at`` (inside the stored span): diffusion at the
-        stored times and ``at`` together (``_aged_values``), so its plan and cached step
+        stored times and ``at`` together (``_searched_values``), so its plan and cached step
         responses are the stored run's; the mechanisms evaluated at ``at`` only; only the
         limited variables go into the Dataset, beside the stored run's as-designed values."""
         at = np.asarray(at, float)
-        values, coords, _, aged = _aged_values(scene, environment, at, accuracy, False, parts,
-                                               stored=(times, histories), settings=settings,
-                                               cache=cache)
+        values, coords, _, aged = _searched_values(scene, environment, at, options, stored_run)
         for history in aged:
             if history.diffusion is not None:
                 searched[history.part.name] = max(searched.get(history.part.name, 0.0),
@@ -485,14 +473,14 @@ def _limits(ds, scene: Scene, environment: Environment, times, accuracy: float |
     search_times, search = times, stored
     if times[0] > 0 and (stored[0] > 1).any():  # out of spec at the first stored time: since?
         search_times, search = np.concatenate([[0.0], times]), np.vstack([evaluate([0.0]), stored])
-    asked = diffusion_options(scene, accuracy)["accuracy"]
     crossings, errors = first_crossings(search_times, search, evaluate,
-                                        Tolerance.for_accuracy(asked), environment.change_times)
+                                        Tolerance.for_accuracy(options.accuracy),
+                                        environment.change_times)
     return (build_dataset({"limit_ratio": stored, "time_out_of_spec": crossings,
                            "time_out_of_spec_error": errors},
                           {"time": times, "limit": [limit.variable for limit in scene.limits]}),
             search_notices(searched, {h.part.name: h.diffusion.error_estimate for h in histories
-                                      if h.diffusion is not None}, asked))
+                                      if h.diffusion is not None}, options.accuracy))
 
 
 def search_notices(searched: dict[str, float], stored: dict[str, float],
@@ -520,15 +508,33 @@ def search_notices(searched: dict[str, float], stored: dict[str, float],
     return notices
 
 
-def age_part(part: Part, environment: Environment, times, options: dict, scene: Scene,
-             notices: list[str], keep_field: bool = False, before=None,
+def diffusion_key(part: Part, store_fields: bool) -> tuple:
+    """What makes two parts' diffusion the same solve: their shape, material and whether
+    the moisture field is kept (parts alike in all three absorb alike, e.g. a four-bar's
+    coupler and rocker).
+
+    Parameters
+    ----------
+    part : Part
+        The part (its diffusion geometry [m] and material's name).
+    store_fields : bool
+        Whether its moisture field is kept.
+
+    Returns
+    -------
+    tuple
+        A hashable key.
+    """
+    return (part.geometry, part.material_name, store_fields)
+
+
+def age_part(part: Part, environment: Environment, times, options: RunOptions,
+             notices: list[str], *, store_fields: bool = False, before=None,
              solved: dict | None = None) -> PartHistory:
-    """Diffusion, then the material state, of one part over the ageing times (its moisture
-    field kept when the scene stores fields or ``keep_field``: its swelling stress);
+    """Diffusion, then the material state, of one part over the ageing times;
     ``before``: a DiffusionResult of this part at some of ``times``, extended to the others
     where it can be (``_extended``) instead of solving again; ``solved``: the diffusion
-    results of the run's earlier parts by shape, material and fields kept (parts alike in
-    all three absorb alike, e.g. a four-bar's coupler and rocker: solved once).
+    results of the run's earlier parts by :func:`diffusion_key` (parts alike are solved once).
 
     Parameters
     ----------
@@ -538,14 +544,13 @@ def age_part(part: Part, environment: Environment, times, options: dict, scene: 
         The climate history (temperature [K], surface moisture).
     times : array_like
         Ageing times [s].
-    options : dict
-        Diffusion options (:func:`diffusion_options`).
-    scene : Scene
-        The loaded scene.
+    options : RunOptions
+        The run's diffusion options.
     notices : list of str
         Notices so far; this part's are appended.
-    keep_field : bool
-        Keep the moisture field even when the scene stores none.
+    store_fields : bool
+        Keep the moisture field (the scene stores fields, or the part's swelling stress
+        needs it).
     before : DiffusionResult, optional
         A result of this part at some of ``times``, to extend.
     solved : dict, optional
@@ -556,7 +561,7 @@ def age_part(part: Part, environment: Environment, times, options: dict, scene: 
     PartHistory
         The part's diffusion result, material state and validity at each time.
     """
-    from ..diffusion import solve
+    from ..diffusion import solve_problem
 
     temperature = environment.temperature(times)
     if part.geometry is None:
@@ -568,24 +573,20 @@ def age_part(part: Part, environment: Environment, times, options: dict, scene: 
             part.material.saturation_moisture, times)
     else:
         exposure = environment.exposure(part.material.saturation_moisture)
-        alike = (part.geometry, part.material_name, keep_field)
+        alike = diffusion_key(part, store_fields)
         result = (solved or {}).get(alike) or _extended(before, times)
         if result is None:
-            result = _for_part(part.name, solve, part.geometry,
-                               part.material.diffusivity_for(part.geometry), exposure, times,
-                               accuracy=options["accuracy"], model=_part_model(options, part.name),
-                               surface_layer_depth=options["surface_layer_depth"],
-                               store_fields=scene.model.outputs.fields or keep_field,
-                               part=part.name, sorption=part.material.sorption_law(),
-                               settings=options["settings"], cache=options["cache"])
+            result = _for_part(part.name, solve_problem,
+                               options.problem(part, exposure, times, store_fields),
+                               options.settings, options.cache)
         if solved is not None:
             solved[alike] = result
         mean, surface = result.mean, result.surface  # total (free + bound) moisture
         saturation = exposure.surface_moisture(times)
-        if result.error_estimate > options["accuracy"]:  # e.g. capped at MAX_CELLS
+        if result.error_estimate > options.accuracy:  # e.g. capped at MAX_CELLS
             notices.append(f"{part.name}: estimated diffusion error "
                            f"{result.error_estimate:.1e} above the requested accuracy "
-                           f"{options['accuracy']:g} ({result.model})")
+                           f"{options.accuracy:g} ({result.model})")
     state = _state(part, temperature, mean, surface, environment, times)
     state["equilibrium_moisture_content"] = saturation
     if result is not None and result.bound is not None:
@@ -604,7 +605,7 @@ def _extended(before, times):
     return before.extend(times)
 
 
-def design_part(part: Part, environment: Environment) -> PartHistory:
+def as_designed_part(part: Part, environment: Environment) -> PartHistory:
     """The as-designed state of one part: dry (no moisture) at the reference temperature,
     by the same material-state model, as a history of one time.
 
@@ -637,20 +638,14 @@ def _state(part: Part, temperature, mean, surface, environment: Environment, tim
 
 def _mechanism_coords(scene: Scene) -> dict:
     """The angle (and link, joint) coordinates of the mechanisms a scene models."""
-    coords: dict = {}
     angles = _angle_grid(scene.model.outputs.angle_step)
-    if scene.model.cam is not None:
-        coords["cam_angle"] = angles
-    if scene.model.linkage is not None:
-        from ..linkage import JOINTS, LINKS
-
-        coords.update(crank_angle=angles, link=list(LINKS), joint=list(JOINTS))
-    return coords
+    return {name: values for mechanism in scene.mechanisms
+            for name, values in mechanism.coordinates(angles).items()}
 
 
 def mechanism_values(scene: Scene, histories: list[PartHistory], times, valid,
                      on_step=lambda: None):
-    """The cam, then the four-bar, at every valid ageing time: a Response over time.
+    """The scene's mechanisms, in turn, at every valid ageing time: a Response over time.
 
     Parameters
     ----------
@@ -670,42 +665,26 @@ def mechanism_values(scene: Scene, histories: list[PartHistory], times, valid,
     Response
         The mechanism variables over time and angle (SI) and the notices.
     """
-    from ..mechanisms.response import Response
-
     response = Response()
     angles = _angle_grid(scene.model.outputs.angle_step)
     by_name = {h.part.name: h for h in histories}
-    if scene.model.cam is not None:
-        from ..cam import scene_response as cam_response
-
-        mech = cam_response(scene.model.cam, by_name, times, angles, valid, on_step=on_step)
-        response.variables.update(mech.variables)
-        response.notices += mech.notices
-        if scene.model.cam.elastic:
-            from ..elastic.cam import cam_elastic_response
-
-            mech = cam_elastic_response(scene.model.cam, by_name["cam"].state,
-                                        response.variables, valid)
-            response.variables.update(mech.variables)
-            response.notices += mech.notices
-    if scene.model.linkage is not None:
-        from ..linkage import scene_response as linkage_response
-
-        mech = linkage_response(scene.model.linkage, by_name, times, angles, valid, on_step=on_step)
+    for mechanism in scene.mechanisms:
+        mech = mechanism.response(by_name, times, angles, valid, on_step=on_step)
         response.variables.update(mech.variables)
         response.notices += mech.notices
     return response
 
 
-def _design_values(scene: Scene, designs: list[PartHistory]) -> dict[str, np.ndarray]:
+def _as_designed_values(scene: Scene, dry: list[PartHistory]) -> dict[str, np.ndarray]:
     """``<name>_design`` for every variable the schema marks: the material state and the
-    mechanisms evaluated for the design (one time, then the time axis dropped). The
-    design's notices repeat those at t = 0 and are not reported."""
-    if not designs:
+    mechanisms of the scene as designed, evaluated for its parts' dry state ``dry`` (one
+    time, then the time axis dropped). These notices repeat those at t = 0 and are not
+    reported."""
+    if not dry:
         return {}
-    values = part_values(designs)
-    valid = np.logical_and.reduce([h.valid for h in designs])
-    mechanisms = mechanism_values(scene, designs, np.zeros(1), valid)
+    values = part_values(dry)
+    valid = np.logical_and.reduce([h.valid for h in dry])
+    mechanisms = mechanism_values(scene, dry, np.zeros(1), valid)
     values.update(mechanisms.variables)
     return {design_name(name): np.asarray(value)[0] for name, value in values.items()
             if VARIABLES[name].has_design}

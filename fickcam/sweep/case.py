@@ -20,6 +20,11 @@ from pathlib import Path
 
 from ..errors import FickcamError, SceneError
 from ..messages import quieter
+import yaml
+from ..scene.load import parse_yaml, validate_document
+from ..diffusion import RunCache
+from ..simulation.simulate import run
+from .journal import encode_case
 
 log = logging.getLogger(__name__)
 
@@ -69,9 +74,7 @@ def case_scene(task: CaseTask):
     fickcam.errors.SceneError
         When a value of the case is invalid.
     """
-    import yaml
 
-    from ..scene.load import parse_yaml, validate_document
 
     text = yaml.dump(task.scene, Dumper=getattr(yaml, "CSafeDumper", yaml.SafeDumper),
                      sort_keys=False, allow_unicode=True)
@@ -113,9 +116,9 @@ def worker_cache():
     fickcam.diffusion.RunCache
         The cache.
     """
-    from ..diffusion import RunCache
 
     try:
+        # deferred: dask.distributed only on a cluster
         from distributed import get_worker
 
         worker = get_worker()
@@ -150,8 +153,6 @@ def run_case(task: CaseTask, cache=None) -> tuple[dict, bytes]:
     payload : bytes
         The journal entry (:func:`fickcam.sweep.journal.encode_case`).
     """
-    from ..simulation.simulate import run
-    from .journal import encode_case
 
     started = time.perf_counter()
     retry = False

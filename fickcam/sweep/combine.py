@@ -18,6 +18,10 @@ from .._version import __version__
 from ..results.dataset import ageing_seconds
 from .journal import CaseArrays
 from .spec import Sweep
+import xarray as xr
+from ..climate.records import site_name
+from ..errors import format_duration
+from .scatter import fractions
 
 
 def missing_like(template):
@@ -33,7 +37,6 @@ def missing_like(template):
     xarray.Dataset
         Its layout, NaN data (integers and booleans become float NaN, text empty).
     """
-    import xarray as xr
 
     filled = {}
     for name, variable in template.data_vars.items():
@@ -64,7 +67,6 @@ def case_coordinates(sweep: Sweep, records: dict[int, dict]) -> dict:
         The coordinates: each varied value in SI (angles in degrees, speeds in rpm) with the
         unit the sweep file wrote as ``given_units``; ``case_wall_time`` [s].
     """
-    import xarray as xr
 
     n = len(sweep.cases)
     coords = {"case": xr.Variable("case", np.arange(n), {"long_name": "case index"})}
@@ -97,7 +99,6 @@ def case_coordinates(sweep: Sweep, records: dict[int, dict]) -> dict:
 def _site_labels(files, base_dir) -> dict:
     """``value_labels``: each weather file's site by the file's own metadata (JSON, value ->
     "Sand Point, AK"), for legends and ticks; {} when no value names a weather file."""
-    from ..climate.records import site_name
 
     labels = {str(f): site_name(str(f), base_dir) for f in dict.fromkeys(np.asarray(files).tolist())}
     labels = {value: site for value, site in labels.items() if site}
@@ -171,7 +172,6 @@ def stack_cases(case, n: int):
     xarray.Dataset
         The stacked cases (without the ``case`` coordinates of :func:`case_coordinates`).
     """
-    import xarray as xr
 
     first = _arrays(case(0))
     stacks: dict[str, np.ndarray] = {}
@@ -229,7 +229,6 @@ def combine(sweep: Sweep, records: dict[int, dict], cases: Mapping,
     xarray.Dataset
         The combined result along ``case``; only coordinates and attributes when no case ran.
     """
-    import xarray as xr
 
     coords = case_coordinates(sweep, records)
     attrs = sweep_attributes(sweep, records, started)
@@ -240,8 +239,6 @@ def combine(sweep: Sweep, records: dict[int, dict], cases: Mapping,
     combined = stack_cases(lambda i: cases[i] if i in cases else template, len(sweep.cases))
     combined = combined.assign_coords(coords)
     if "time_out_of_spec" in combined:
-        from .scatter import fractions
-
         combined = combined.merge(fractions(combined), compat="override")
     combined.attrs = attrs
     return combined
@@ -287,7 +284,6 @@ def early_ends(ds) -> str | None:
     str or None
         The line, naming the cases and when they end.
     """
-    from ..errors import format_duration
 
     if "time" not in ds.dims or "case" not in ds.dims:
         return None

@@ -25,6 +25,7 @@ import numpy as np
 from ..errors import WriteError
 from ..messages import warn
 from ..results.store import byte_size
+import xarray as xr
 
 
 MAGIC = b"FKJ1"
@@ -126,8 +127,6 @@ class CaseArrays:
         return cls(plain(dataset.data_vars), plain(dataset.coords))
 
     def to_dataset(self):
-        import xarray as xr
-
         return xr.Dataset({name: xr.Variable(*v) for name, v in self.data.items()},
                           coords={name: xr.Variable(*v) for name, v in self.coords.items()})
 

@@ -30,6 +30,12 @@ from .journal import decode_arrays
 from .scheduler import probe
 from .spec import Sweep, load_sweep
 from .workdir import WorkFolder
+from ..diffusion import run_cache
+from ..scene.load import load_scene
+from ..simulation.simulate import plan_parts, written_time_unit
+from ..results.store import remove_stale_temporaries, save
+from ..results.resultsize import result_fits
+from ..messages import progress_bar
 
 log = logging.getLogger(__name__)
 
@@ -111,6 +117,7 @@ def dask_client(workers: int | None, scheduler: str | None, n_cases: int):
 
 @contextmanager
 def _connect(workers: int | None, scheduler: str | None, n_cases: int):
+    # deferred: keeps distributed off the start-up path
     from distributed import Client, LocalCluster
 
     if scheduler:
@@ -136,8 +143,6 @@ class _Collector:
     """Appends each finished case to the journal, keeps its record, shows progress."""
 
     def __init__(self, sweep: Sweep, folder: WorkFolder, progress: bool, done: int):
-        from ..messages import progress_bar
-
         self.journal = folder.journal
         self.records: dict[int, dict] = {}
         self.failed = 0
@@ -182,7 +187,6 @@ def run_here(sweep: Sweep, folder: WorkFolder, indices, *, progress: bool = Fals
     dict of int to dict
         Case index -> its record (:func:`fickcam.sweep.case.run_case`).
     """
-    from ..diffusion import run_cache
 
     cache = run_cache(cache)
     collector = _Collector(sweep, folder, progress, done)
@@ -250,6 +254,7 @@ def compute_cases(sweep: Sweep, folder: WorkFolder, indices, client, *, progress
     dict of int to dict
         The records of the cases, by index, as :func:`run_here` gives them.
     """
+    # deferred: keeps distributed off the start-up path
     from distributed import as_completed
 
     run_id = uuid.uuid4().hex[:12]  # keys unique per run: never reuse another run's result
@@ -336,6 +341,32 @@ def in_process(workers: int | None, scheduler: str | None, n_cases: int) -> bool
     return (workers if workers is not None else default_workers(n_cases)) == 1
 
 
+def checked_base(sweep: Sweep, output: Path, cache):
+    """The sweep's base scene as `fickcam check` takes it (its parts planned, into
+    ``cache``) and its combined result's size judged, before any case; a case's own
+    refusals come before its solves (``fickcam.run`` plans first). A temporary file a
+    killed write of ``output`` left is removed when the result is saved.
+
+    Parameters
+    ----------
+    sweep : fickcam.sweep.spec.Sweep
+        The sweep.
+    output : pathlib.Path
+        Its result file.
+    cache : RunCache
+        The run's cache of diffusion plans.
+
+    Returns
+    -------
+    fickcam.scene.load.Scene
+        The base scene.
+    """
+    base = load_scene(sweep.base_file)
+    plan_parts(base, cache=cache)
+    result_fits(base, output, cases=len(sweep.cases))
+    return base
+
+
 def run_sweep(sweep_path, output, workers: int | None = None, scheduler: str | None = None,
               progress: bool = False) -> Path:
     """Run every case of the sweep file ``sweep_path`` and write one result to ``output``.
@@ -371,25 +402,17 @@ def run_sweep(sweep_path, output, workers: int | None = None, scheduler: str | N
     fickcam.extras.MissingExtra
         When workers or a scheduler are asked for without dask.distributed installed.
     """
-    from ..diffusion import run_cache
-    from ..scene.load import load_scene
-    from ..simulation.simulate import plan_parts
-    from ..results.store import remove_stale_temporaries, save
 
     started = time.perf_counter()
     if scheduler or (workers or 1) > 1:
         require_distributed()  # before the sweep file is read
     sweep = load_sweep(sweep_path)
     here = in_process(workers, scheduler, len(sweep.cases))
-    # the base scene as `fickcam check` takes it (its parts planned) before any case; a
-    # case's own refusals come before its solves (``fickcam.run`` plans first)
     cache = run_cache(None)
-    plan_parts(load_scene(sweep.base_file), cache=cache)
     output = Path(output)
+    base = checked_base(sweep, output, cache)
     folder = WorkFolder.next_to(output)
     records = folder.open_for(sweep.identity, len(sweep.cases))
-    for stale in remove_stale_temporaries(output):  # a run killed while it wrote the result
-        log.info("removed %s, left by an interrupted write of %s", stale, output)
     todo = [c.index for c in sweep.cases if c.index not in records]
     if records:
         log.info("resuming: %d of %d case(s) already finished", len(records), len(sweep.cases))
@@ -406,6 +429,7 @@ def run_sweep(sweep_path, output, workers: int | None = None, scheduler: str | N
         warn("%d of %d case(s) failed (case_status, case_message in the result): %s",
              len(failed), len(sweep.cases), shown)
     result = combine(sweep, records, finished_cases(folder, sweep, records), started=started)
+    result.attrs["time_unit"] = written_time_unit(base)  # the reports' unit, as a run's
     short = early_ends(result)
     if short:
         warn(short)

@@ -14,6 +14,8 @@ from __future__ import annotations
 import numpy as np
 
 from ..results.schema import VARIABLES
+from scipy.special import ndtri
+import xarray as xr
 
 CONFIDENCE = 0.95
 
@@ -48,7 +50,6 @@ def wilson_interval(k: int, n: int, confidence: float = CONFIDENCE) -> tuple[flo
     L. D. Brown, T. T. Cai and A. DasGupta, "Interval estimation for a binomial
     proportion", Statistical Science 16 (2), 101-133, 2001, doi:10.1214/ss/1009213286.
     """
-    from scipy.special import ndtri
 
     if n == 0:
         return np.nan, np.nan
@@ -101,7 +102,6 @@ def fractions(ds):
         ``cases_out_of_spec`` [1] over (time, limit); the last carries ``cases`` = n. The
         bounds are :func:`wilson_interval`'s (see its references).
     """
-    import xarray as xr
 
     ages = np.asarray(ds["time"].values, float)
     ran = (np.asarray(ds["case_status"].values) == "ok") if "case_status" in ds.coords else \
@@ -119,33 +119,3 @@ def fractions(ds):
                                  {"units": var.units, "long_name": var.long_name,
                                   **({"cases": n} if name == "cases_out_of_spec" else {})})
     return xr.Dataset(data, coords={"time": ds["time"], "limit": ds["limit"]})
-
-
-def summary_lines(ds) -> list[str]:
-    """Per limit: the fraction out of spec at each stored ageing time, with its interval.
-
-    Parameters
-    ----------
-    ds : xarray.Dataset
-        A sweep result with :func:`fractions`' variables.
-
-    Returns
-    -------
-    list of str
-        A heading and one line per limit; empty without fractions.
-    """
-    if "fraction_out_of_spec" not in ds:
-        return []
-    n = int(ds["cases_out_of_spec"].attrs.get("cases", 0))
-    ages = np.asarray(ds["time"].values, float)
-    lines = [f"out of spec (of {n} case(s) that ran; Wilson 95 % interval):"]
-    for limit in ds["limit"].values:
-        cells = []
-        for i, age in enumerate(ages):
-            pick = {"time": i, "limit": ds["limit"].values.tolist().index(limit)}
-            f, lo, hi = (float(ds[v].isel(pick)) for v in ("fraction_out_of_spec",
-                                                           "fraction_out_of_spec_low",
-                                                           "fraction_out_of_spec_high"))
-            cells.append(f"{age:g} d: {f:.3g} % [{lo:.3g}, {hi:.3g}]")
-        lines.append(f"  {limit}: " + "; ".join(cells))
-    return lines

@@ -45,12 +45,14 @@ def scheduler_address(address: str) -> tuple[str, str, int | None]:
     fickcam.errors.InputError
         For an http address, an unknown scheme or an address without a valid host.
     """
+    # deferred: keeps distributed off the start-up path
     from distributed.comm.addressing import parse_address, parse_host_port
 
     text = address.strip()
     if text.split("://", 1)[0] in ("http", "https"):
         raise InputError(f"--scheduler {address}: an http address is a web page (the dask "
                          f"dashboard?); the scheduler listens on e.g. {EXAMPLE}")
+    # deferred: keeps distributed off the start-up path
     from distributed.comm.registry import backends
 
     try:

@@ -25,6 +25,14 @@ from .._version import __version__
 from ..scene.keys import short_names
 from ..quantities.types import StrictModel
 from ..errors import Problem, SceneError
+from ..quantities.parsing import split_number_unit
+from ..quantities.parsing import registry
+from ..quantities.parsing import to_si
+from .fitdraw import draw_fitted
+from ..scene.load import SceneModel
+from .fitdraw import fitted_parameters
+from ..climate.records import read_record, resolve_record_path
+from ..scene.load import problems_from_validation, read_yaml, validate_document
 
 Scalar = Union[bool, int, float, str]
 
@@ -37,7 +45,6 @@ Scalar = Union[bool, int, float, str]
 
 def _number_and_unit(value: Any) -> tuple[float, str]:
     """``0.6`` → (0.6, ""), ``"65 %"`` → (65.0, "%"); ValueError if not a number."""
-    from ..quantities.parsing import split_number_unit
 
     if isinstance(value, bool):
         raise ValueError(f"expected a number, got {value!r}")
@@ -331,8 +338,6 @@ _LABELS = {
 
 
 def _is_angular(text: str) -> bool:
-    from ..quantities.parsing import registry
-
     _, unit = _number_and_unit(text)
     try:
         root = registry().Quantity(1.0, unit.replace("%", "percent")).to_root_units()
@@ -359,7 +364,6 @@ def infer_dimension(text: str, si_value: float) -> str | None:
         The dimension (a key of ``fickcam.quantities.parsing.SI_UNITS``), or None when none
         matches.
     """
-    from ..quantities.parsing import to_si
 
     angular = _is_angular(text)
     for dimension in _LABELS:
@@ -428,7 +432,6 @@ class Parameter:
     def coordinate(self, raws: list):
         """Coordinate values for the result (SI, angles in degrees, speeds in rpm);
         NaN for a value that cannot be read (its case fails validation)."""
-        from ..quantities.parsing import to_si
 
         if self.dimension is None:
             numbers = [_bare_number(r) for r in raws]
@@ -546,7 +549,6 @@ def _draw_cases(random: dict[str, Distribution], samples: int, seed: int,
                 base_data: dict) -> list[Case]:
     """Draws in file order from one generator seeded with ``seed`` (reproducible); a
     fit's covariance draw sets each of its fitted values."""
-    from .fitdraw import draw_fitted
 
     rng = np.random.default_rng(seed)
     columns: dict[str, list] = {}
@@ -575,7 +577,6 @@ def _probe_values(model: SweepModel, path: str, base_value) -> list:
 def _dimension_of(model: SweepModel, path: str, keys: tuple, base_data: dict) -> str | None:
     """Learn the dimension of a scene value by validating the base scene with a
     probe value at ``path`` and comparing the SI value the scene model made of it."""
-    from ..scene.load import SceneModel
 
     for probe in _probe_values(model, path, get_path(base_data, keys)):
         data = copy.deepcopy(base_data)
@@ -594,7 +595,6 @@ def _dimension_of(model: SweepModel, path: str, keys: tuple, base_data: dict) ->
 
 def _fitted_parameters(path: str, base_data: dict) -> list[Parameter]:
     """The values a fit's covariance draw sets, each as a varied parameter."""
-    from .fitdraw import fitted_parameters
 
     return [Parameter(p, split_path(p, base_data), dimension)
             for p, dimension in fitted_parameters(path, base_data)]
@@ -604,7 +604,6 @@ def _history_file_problems(model: SweepModel, doc, base_dir: Path) -> list[Probl
     """Each climate file a grid names, read before any case runs: a file that is missing,
     or that needs an extra this install lacks (pvlib), is refused at once at its line,
     not found by every case that uses it after the others have run."""
-    from ..climate.records import read_record, resolve_record_path
 
     problems: list[Problem] = []
     for path, values in (model.grid or {}).items():
@@ -637,7 +636,6 @@ def load_sweep(source) -> Sweep:
         When the sweep file or its base scene does not validate (file, line and key of
         each fault).
     """
-    from ..scene.load import problems_from_validation, read_yaml, validate_document
 
     doc = read_yaml(source, what="sweep")
     try:

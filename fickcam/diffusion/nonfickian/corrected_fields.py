@@ -1,4 +1,4 @@
-"""Stored fields of the corrected product (``corrected_product``): each coarse 3-D cell's own value
+r"""Stored fields of the corrected product (``corrected_product``): each coarse 3-D cell's own value
 corrected as the mean and the layer are, cell by cell.
 
 For Fick on a prism mesh (planform cells i x z widths k, a tensor product) the discrete
@@ -7,7 +7,9 @@ U_3d(i, k) = S_h(k) P_h(i) / (g - c0) (Crank 1975 §4.3, eq. 4.51 pointwise; U =
 the unaccomplished uptake), so the same swap of each coarse factor for its reference
 (``corrected_pieces.corrected``) applies to every cell:
 
-    U(i, k) = U_3d(i, k) [S_ref(z_k) / S_h(k)] [P_ref(x_i) / P_h(i)],
+.. math::
+
+    U(i, k) = U_{3d}(i, k)\, \frac{S_{ref}(z_k)}{S_h(k)}\, \frac{P_{ref}(x_i)}{P_h(i)},
 
 a ratio 1 where the coarse U is within round-off of zero. With constant D this is the
 fine sheet x fine planform at the cell's point, whatever the 3-D mesh.

@@ -1,4 +1,4 @@
-"""Concentration-dependent D on a CamPlate, LinkBar or Bar (the prism of its rectangular
+r"""Concentration-dependent D on a CamPlate, LinkBar or Bar (the prism of its rectangular
 section, ``corrected_pieces.as_prism``): the D(c) sheet x D(c) planform product, corrected on
 coarse mirrored 3-D prisms (defect correction; Stetter 1978, Numer. Math. 29:425-443;
 Böhmer, Hemker & Stetter 1984, Computing Suppl. 5:1-32).
@@ -13,7 +13,9 @@ prisms' cells without their faces) against the same planform refined twice and f
 times (Richardson, second order: 1.25e-3 then 3.1e-4 on the demo cam's mean at 1 d).
 The result takes the coarse 3-D U and swaps each factor's coarse value for its fine one:
 
-    U = U_3d (U_sheet,ref / U_sheet,h) (U_planform,ref / U_planform,h)
+.. math::
+
+    U = U_{3d}\, \frac{U_{sheet,ref}}{U_{sheet,h}}\, \frac{U_{planform,ref}}{U_{planform,h}}
 
 for the mean, and for the contact layer with the planform's band in place of its mean
 (the layer spans the thickness). With constant D this is the fine sheet x fine planform

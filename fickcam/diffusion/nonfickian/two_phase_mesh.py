@@ -1,16 +1,26 @@
-"""Two-phase (Langmuir) free and bound water on the direct FiPy finite-volume models
+r"""Two-phase (Langmuir) free and bound water on the direct FiPy finite-volume models
 (slab, axisymmetric disc/annulus, solid bar and prisms of cam plates and links).
 
 The coupled system (Carter & Kibler 1978 eqs. 1-2, ``sorption``) on a mesh with
 FiPy's assembled operator (M = diag(volumes), K, f; ``fipy_backend.assemble``) is the
 block system
 
-    [[M, 0], [0, M]] d/dt [n; N] = -[[K + gamma M, -beta M], [-gamma M, beta M]] [n; N] + [g f; 0],
+.. math::
 
-g = beta/(gamma + beta) Ms the free water held on the exposed faces. Backward Euler on
-it (step h) eliminates the bound block exactly, because it is diagonal:
-N_new = (N_old + gamma h n_new) / (1 + beta h), leaving
-(M (1/h + gamma/(1 + beta h)) + K) n_new = M (n_old/h + beta N_old/(1 + beta h)) + g f:
+    \begin{bmatrix} M & 0 \\ 0 & M \end{bmatrix} \frac{d}{dt}
+    \begin{bmatrix} n \\ N \end{bmatrix}
+    = -\begin{bmatrix} K + \gamma M & -\beta M \\ -\gamma M & \beta M \end{bmatrix}
+    \begin{bmatrix} n \\ N \end{bmatrix} + \begin{bmatrix} g f \\ 0 \end{bmatrix},
+
+:math:`g = \beta/(\gamma + \beta)\, M_s` the free water held on the exposed faces. Backward
+Euler on it (step h) eliminates the bound block exactly, because it is diagonal:
+
+.. math::
+
+    N_{new} = \frac{N_{old} + \gamma h\, n_{new}}{1 + \beta h}, \qquad
+    \Big(M \big(\tfrac{1}{h} + \tfrac{\gamma}{1 + \beta h}\big) + K\Big)\, n_{new}
+    = M \Big(\frac{n_{old}}{h} + \frac{\beta N_{old}}{1 + \beta h}\Big) + g f:
+
 the Fickian step of ``march.ThetaStepper`` with 1/h_eff = 1/h + gamma/(1 + beta h), so
 every step reuses its factorisations (one per distinct h_eff), banded solves and residual
 checks. Backward Euler is L-stable and keeps n, N >= 0 for any gamma, beta (the

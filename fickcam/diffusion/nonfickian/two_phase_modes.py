@@ -1,4 +1,4 @@
-"""Two-phase (Langmuir-type) moisture in the parts whose Fickian solution is a modal
+r"""Two-phase (Langmuir-type) moisture in the parts whose Fickian solution is a modal
 series (Sheet, Bar, solid Disc), advanced exactly mode by mode through the history.
 
 Carter & Kibler (1978) eqs. 1-2 (``sorption``): free water n diffuses, N is bound.
@@ -6,7 +6,12 @@ Expanding n - n_s(t) and N in the Fickian eigenfunctions psi_k of the part (zero
 exposed surfaces, decay rates D lambda_k; ``modes.product_modes``), Green's identity
 gives for the coefficients (p_k, q_k) of n and N, relative to those of the constant 1:
 
-    d/dt [p; q] = [[-(D lambda_k + gamma), beta], [gamma, -beta]] [p; q] + [D lambda_k n_s(t); 0],
+.. math::
+
+    \frac{d}{dt} \begin{bmatrix} p \\ q \end{bmatrix}
+    = \begin{bmatrix} -(D \lambda_k + \gamma) & \beta \\ \gamma & -\beta \end{bmatrix}
+    \begin{bmatrix} p \\ q \end{bmatrix}
+    + \begin{bmatrix} D \lambda_k\, n_s(t) \\ 0 \end{bmatrix},
 
 one 2x2 linear system per mode (gamma = 0: the Fickian mode equation);
 the volume and contact-layer means are sum A_k p_k, sum A_k q_k with the Fickian

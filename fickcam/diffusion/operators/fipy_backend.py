@@ -63,6 +63,7 @@ def assemble(mesh, corrected: bool = False, exposed: np.ndarray | None = None
     boundary : (n,) array [-]
         f, FiPy's right side at dt = 1, c_old = 0, for a unit surface value.
     """
+    # deferred: keeps fipy off the start-up path
     from fipy import (CellVariable, DiffusionTerm, DiffusionTermCorrection, LinearLUSolver,
                       TransientTerm)
 
@@ -96,6 +97,7 @@ def interval_mesh(dx, nx: int | None = None):
     fipy.Grid1D
         The 1-D mesh.
     """
+    # deferred: keeps fipy off the start-up path
     from fipy import Grid1D
 
     return Grid1D(dx=dx, nx=nx)
@@ -118,6 +120,7 @@ def cylindrical_mesh(radial: dict, axial: dict, inner_radius: float):
     fipy.CylindricalGrid2D
         The axisymmetric mesh in (r, z).
     """
+    # deferred: keeps fipy off the start-up path
     from fipy import CylindricalGrid2D
 
     return CylindricalGrid2D(nr=radial["n"], nz=axial["n"], dr=radial["d"], dz=axial["d"],
@@ -138,6 +141,7 @@ def box_mesh(axes: list[dict]):
     fipy.Grid3D
         The box mesh from the origin.
     """
+    # deferred: keeps fipy off the start-up path
     from fipy import Grid3D
 
     x, y, z = axes
@@ -183,6 +187,7 @@ def centred_mesh(dimensions: int, vertex_coords: np.ndarray, face_vertex_ids: np
         faces = np.asarray(mesh.faceCenters)[:, centred_faces]
         taken &= np.allclose(faces, face_centres, rtol=1e-12, atol=0.0)
     if not taken:
+        # deferred: FiPy only where its solver is asked for
         import fipy
 
         raise RuntimeError(f"FiPy {fipy.__version__} ignores the given cell points of a "
@@ -194,6 +199,7 @@ def _centred_mesh_class(dimensions: int):
     """The subclass of FiPy's ``Mesh2D`` or ``Mesh`` behind ``centred_mesh`` (private
     FiPy API: ``_calcCellCenters``, ``_calcFaceCenters``), made per mesh (a class costs
     microseconds beside the mesh)."""
+    # deferred: keeps fipy off the start-up path
     from fipy.meshes.mesh import Mesh
     from fipy.meshes.mesh2D import Mesh2D
 

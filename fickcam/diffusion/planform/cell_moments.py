@@ -1,4 +1,4 @@
-"""Means of a planform's cell values over the part and over its contact band, corrected
+r"""Means of a planform's cell values over the part and over its contact band, corrected
 to second order for where each cell's value sits.
 
 On the admissible cells (``admissible``) the finite-volume value of cell K approximates u at
@@ -7,7 +7,10 @@ Numerical Analysis VII, §9: the two-point flux is consistent because x_K is the
 circumcentre). Over a region R of the cell (the whole cell, or its part within the
 contact band), the Taylor expansion about x_K gives
 
-    int_R u dA = |R| u(x_K) + grad u(x_K) . (|R| (c_R - x_K)) + O(h^2 |R|),
+.. math::
+
+    \int_R u\, dA = |R|\, u(x_K) + \nabla u(x_K) \cdot \big(|R| (c_R - x_K)\big)
+    + O(h^2 |R|),
 
 c_R the centroid of R. Summing |R| u_K alone (the plain weights) leaves the first-order
 term, which does not cancel where the cells are graded (their circumcentres lean one

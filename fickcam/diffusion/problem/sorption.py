@@ -1,17 +1,19 @@
-"""Sorption laws beyond Fick: the two-phase (Langmuir-type) model and a diffusivity
+r"""Sorption laws beyond Fick: the two-phase (Langmuir-type) model and a diffusivity
 that depends on the moisture already absorbed. Plain data and small functions of
 numpy arrays; no solver here (``two_phase_modes`` / ``two_phase_mesh`` /
 ``concentration_dependent`` solve).
 
 - Two-phase: Carter & Kibler (1978), J. Compos. Mater. 12:118-131, eqs. 1-2: free water
-  n diffuses, is bound at rate gamma and released at rate beta,
-  dn/dt = div(D grad n) - gamma n + beta N, dN/dt = gamma n - beta N. The saturation
-  law gives the TOTAL equilibrium content Mm = n_inf + N_inf; the surface holds the
-  free share beta/(gamma + beta) of it (gamma n_inf = beta N_inf). Each rate may follow
-  Arrhenius, rate(T) = rate0 exp(-Ea/(R T)).
-- Concentration-dependent: D(c, T) = D(T) f(c/Mm_ref), f = exp(k c/Mm_ref) (Crank 1975
-  §9.3, the exponential diffusion coefficient) or a table of f against c/Mm_ref,
-  Mm_ref the material's saturation at 100 % RH (a material constant, so that D depends
+  n diffuses, is bound at rate :math:`\gamma` and released at rate :math:`\beta`,
+  :math:`\partial n/\partial t = \nabla \cdot (D \nabla n) - \gamma n + \beta N`,
+  :math:`\partial N/\partial t = \gamma n - \beta N`. The saturation law gives the TOTAL
+  equilibrium content :math:`M_m = n_\infty + N_\infty`; the surface holds the free share
+  :math:`\beta/(\gamma + \beta)` of it (:math:`\gamma n_\infty = \beta N_\infty`). Each rate
+  may follow Arrhenius, :math:`r(T) = r_0 \exp(-E_a/(R T))`.
+- Concentration-dependent: :math:`D(c, T) = D(T)\, f(c/M_{m,ref})`,
+  :math:`f = \exp(k\, c/M_{m,ref})` (Crank 1975 §9.3, the exponential diffusion
+  coefficient) or a table of f against :math:`c/M_{m,ref}`, :math:`M_{m,ref}` the
+  material's saturation at 100 % RH (a material constant, so that D depends
   on the local moisture only, never on the climate).
 
 References

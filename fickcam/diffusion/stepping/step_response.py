@@ -55,6 +55,7 @@ class StepResponse:
 
 
     def _spline(self, values: np.ndarray):
+        # deferred: keeps scipy.interpolate off the start-up path
         from scipy.interpolate import PchipInterpolator
 
         return PchipInterpolator(np.log(self.nodes[1:]), values[1:], axis=0, extrapolate=True)

@@ -1,10 +1,13 @@
-"""Duhamel superposition of unit-step responses over an exposure history: the one
+r"""Duhamel superposition of unit-step responses over an exposure history: the one
 implementation every model that superposes (exact series, the plane model) uses.
 
 Duhamel's theorem (Carslaw & Jaeger 1959 §1.14, time-dependent surface
 conditions; Crank 1975 §4.2.1, eq. 4.34): with the rescaled time tau(t) (``clock``),
 
-    M(t) = M0 + sum_k dMs_k K(tau(t) - tau(t_k)) + integral_ramps K(tau(t) - tau(s)) dMs(s)
+.. math::
+
+    M(t) = M_0 + \sum_k \Delta M_{s,k}\, K\big(\tau(t) - \tau(t_k)\big)
+    + \int_{\text{ramps}} K\big(\tau(t) - \tau(s)\big)\, dM_s(s)
 
 where K is the unit-step response (mean, contact-layer mean, or a field).
 The ramp integral is taken against the measure dMs (so the kernel K, bounded,

@@ -1,4 +1,4 @@
-"""Duhamel's sum over a long climate record from a tabulated unit-step response: cost
+r"""Duhamel's sum over a long climate record from a tabulated unit-step response: cost
 linear in the rows whatever the kernel (the plane model's planform x sheet, its fields,
 an exact field).
 
@@ -8,7 +8,9 @@ rows cut into pieces where Ms curves in tau), Duhamel's sum (Carslaw & Jaeger 19
 response K and its running integral I(w) = int_0^w K(v) dv; summed by parts over the
 pieces,
 
-    M(tau) - M0 = sum_i J_i K(tau - tau_i) + sum_i (s_i - s_i-1) I(tau - tau_i),
+.. math::
+
+    M(\tau) - M_0 = \sum_i J_i\, K(\tau - \tau_i) + \sum_i (s_i - s_{i-1})\, I(\tau - \tau_i),
 
 J_i the step of Ms at node i, s_i its slope in tau after it. K is tabulated once, on a
 grid uniform in x = log w, and I from it (each cell integrates the cubic through four

@@ -1,0 +1,268 @@
+"""The scene's four-bar as a mechanism
+(:class:`~fickcam.linkage.mechanism.LinkageMechanism`): built once from its ``linkage:``
+section, it names its links and their materials, and answers the run's questions: which
+bodies age, which coordinates its results have, and its response over the ageing times
+(which part state feeds which link).
+
+Each link (crank, coupler, rocker, frame) is a diffusion part of geometry
+:class:`~fickcam.diffusion.problem.geometry.LinkBar`. At every ageing time its pin-to-pin
+length is L (1 + eps_x) with eps_x the free hygrothermal strain along the link,
+eps = alpha dT + beta dm (Singh & Sanyal 2016 eqs. 11-14, read as
+a_1 = a (1 + alpha dT + beta dm); the printed a (alpha dT + beta dm) is a slip: it is the
+change of length, not the wet length), and its mass and inertia come from
+:func:`fickcam.materials.bodies.aged_link_body`. A metal frame only expands
+thermally (eq. 14, last line).
+
+The paper is cited in full in :mod:`fickcam.linkage`.
+"""
+from __future__ import annotations
+
+from functools import cached_property
+
+import numpy as np
+
+from ..mechanisms.ageing import over_ageing
+from ..mechanisms.part import Part
+from ..mechanisms.response import Response
+from .classify import class_changes
+from .dynamics import JOINTS
+from .model import FourBarDesign, FourBarState, fourbar_response
+from .spec import LinkageSection
+
+#: the links, each a part that ages, in their order
+LINKS = ("crank", "coupler", "rocker", "frame")
+
+
+def _link_material(section, link: str) -> str:
+    return section.frame_material or section.material if link == "frame" else section.material
+
+
+class LinkageMechanism:
+    """A four-bar, built once from the scene's ``linkage:`` section: its dry design and
+    its links as parts.
+
+    Parameters
+    ----------
+    section : LinkageSection
+        The validated ``linkage:`` section (lengths and section [m]).
+    materials : dict of str to Material
+        The scene's resolved materials by name (the links' dry densities [kg/m^3] give
+        their masses).
+    files : None
+        Unused: a four-bar reads no file (:meth:`read_files`).
+    """
+
+    #: the scene's section this mechanism is built from
+    section_name = "linkage"
+
+    def __init__(self, section: LinkageSection, materials: dict, files=None):
+        self.section = section
+        self.materials = materials
+        #: the dry four-bar
+        self.design = FourBarDesign.from_section(section)
+        self.elastic_parts = frozenset(LINKS if section.elastic else ())
+
+    @staticmethod
+    def part_names(section: LinkageSection) -> tuple[str, ...]:
+        """The parts that age: the four links; see
+        :meth:`fickcam.mechanisms.Mechanism.part_names`."""
+        return LINKS
+
+    @staticmethod
+    def materials_used(section: LinkageSection) -> list[tuple[tuple, str]]:
+        """(key path inside the section, material name) of every material it names; see
+        :meth:`fickcam.mechanisms.Mechanism.materials_used`."""
+        refs = [(("material",), section.material)]
+        if section.frame_material:
+            refs.append((("frame_material",), section.frame_material))
+        return refs
+
+    @staticmethod
+    def absorber_sizes(section: LinkageSection) -> list[tuple[str, str, float]]:
+        """(part, material name, half-size [m]) of the bodies whose uptake time the scene's
+        plausibility readings judge a history's length by: the links (half of the
+        section's thickness or width); see :meth:`fickcam.mechanisms.Mechanism.absorber_sizes`."""
+        s = section.section
+        return [("links", section.material, 0.5 * min(s.thickness, s.width))]
+
+    @staticmethod
+    def section_problems(section: LinkageSection) -> list[tuple[tuple, str]]:
+        """None: a four-bar's section is checked whole by its model; see
+        :meth:`fickcam.mechanisms.Mechanism.section_problems`."""
+        return []
+
+    @staticmethod
+    def read_files(section: LinkageSection, base_dir, read: dict, accuracy: float):
+        """None: a four-bar names no file; (no problems, the section, None); see
+        :meth:`fickcam.mechanisms.Mechanism.read_files`."""
+        return [], section, None
+
+    @staticmethod
+    def coordinates(angles: np.ndarray) -> dict:
+        """The coordinates of its results: ``crank_angle`` [rad], ``link`` and ``joint``; see
+        :meth:`fickcam.mechanisms.Mechanism.coordinates`."""
+        return {"crank_angle": angles, "link": list(LINKS), "joint": list(JOINTS)}
+
+    @cached_property
+    def parts(self) -> tuple[Part, ...]:
+        """The links as parts that age, each a link bar with bosses (built on first use:
+        the diffusion geometries are the run's, not the scene's validation's)."""
+        from ..diffusion.problem.geometry import LinkBar
+        from ..materials.bodies import link_body
+
+        section, s = self.section, self.section.section
+        parts = []
+        for link in self.part_names(section):
+            name = _link_material(section, link)
+            length = getattr(section, link)
+            geometry = LinkBar(length, s.width, s.thickness, s.boss_outer_radius,
+                               s.boss_inner_radius)
+            _, mass, _ = link_body(length, s.width, s.thickness, s.boss_outer_radius,
+                                   s.boss_inner_radius, self.materials[name].dry_density)
+            parts.append(Part.made(link, name, self.materials, geometry, float(mass)))
+        return tuple(parts)
+
+    def described(self) -> list[str]:
+        """What `fickcam check` says of the four-bar beyond its parts: nothing.
+
+        Returns
+        -------
+        list of str
+            Empty.
+        """
+        return []
+
+    def response(self, histories: dict, times, angles, valid,
+                 on_step=lambda: None) -> Response:
+        """The four-bar over ageing (:func:`linkage_response`).
+
+        Parameters
+        ----------
+        histories : dict of str to PartHistory
+            The links' histories, by link name.
+        times : array_like
+            Ageing times [s].
+        angles : array_like
+            Crank angles over one turn [rad].
+        valid : array_like of bool
+            Per ageing time, whether every link is within its model's range.
+        on_step : callable
+            Called after each ageing time is evaluated (progress).
+
+        Returns
+        -------
+        fickcam.mechanisms.response.Response
+            SI variables over (time, ...) and the notices.
+        """
+        return linkage_response(self.section, histories, times, angles, valid, on_step,
+                                self.design)
+
+
+def link_states(section, histories):
+    """The swollen links at every ageing time: lengths grown by the longitudinal strain,
+    masses and inertias of the swollen, wet bodies, evaluated for the whole history at once.
+
+    Parameters
+    ----------
+    section : LinkageSection
+        The scene's validated ``linkage:`` section (dry lengths [m]).
+    histories : dict of str to PartHistory
+        Each link's history: strains [-] and moisture [weight %] over ageing time.
+
+    Returns
+    -------
+    tuple of numpy.ndarray
+        Lengths [m], masses [kg] and moments of inertia about the centres of mass
+        [kg m^2] of crank, coupler, rocker and frame, each of shape (ageing times, 4).
+    """
+    from ..materials.bodies import aged_link_body
+
+    s = section.section
+    lengths, masses, inertias = [], [], []
+    for link in LINKS:
+        state = histories[link].state
+        eps_x = np.asarray(state["strain_longitudinal"], float)
+        length = getattr(section, link)
+        _, mass, inertia = aged_link_body(
+            length, s.width, s.thickness, s.boss_outer_radius, s.boss_inner_radius,
+            histories[link].part.material.dry_density,
+            np.asarray(state["moisture_content"], float), eps_x,
+            np.asarray(state["strain_transverse"], float),
+            np.asarray(state["strain_through_thickness"], float))
+        lengths.append(length * (1.0 + eps_x))
+        masses.append(mass)
+        inertias.append(inertia)
+    return tuple(np.stack(np.broadcast_arrays(*values), axis=-1)
+                 for values in (lengths, masses, inertias))
+
+
+def link_state(section, histories, k: int):
+    """The swollen links at one ageing time: one row of :func:`link_states`.
+
+    Parameters
+    ----------
+    section : LinkageSection
+        The ``linkage:`` section, as for :func:`link_states` (lengths [m]).
+    histories : dict of str to PartHistory
+        The links' histories, as for :func:`link_states` (strains [-], moisture [weight %]).
+    k : int
+        Index of the ageing time [-].
+
+    Returns
+    -------
+    tuple of numpy.ndarray
+        Lengths [m], masses [kg] and moments of inertia [kg m^2] of crank, coupler,
+        rocker and frame, each of shape (4,).
+    """
+    return tuple(values[k] for values in link_states(section, histories))
+
+
+def linkage_response(section, histories: dict, times, angles, valid, on_step=lambda: None,
+                     design: FourBarDesign | None = None) -> Response:
+    """The linkage over ageing: variables (time, ...) and notices, including a warning
+    where ageing changes the Grashof class or removes the crank's full rotation.
+    Toggle positions are reported at the first and last computed ageing time.
+
+    Parameters
+    ----------
+    section : LinkageSection
+        The validated ``linkage:`` section of the scene.
+    histories : dict of str to PartHistory
+        The links' histories, by link name.
+    times : array_like
+        Ageing times [s].
+    angles : array_like
+        Crank angles over one turn [rad].
+    valid : array_like of bool
+        Per ageing time, whether every link is within its model's range (NaN where not).
+    on_step : callable
+        Called after each ageing time is evaluated (progress).
+    design : FourBarDesign, optional
+        The section's dry four-bar when already built; None: built here.
+
+    Returns
+    -------
+    fickcam.mechanisms.response.Response
+        SI variables over (time, ...) and the notices.
+    """
+    design = FourBarDesign.from_section(section) if design is None else design
+    valid = np.asarray(valid, bool)
+    computed = np.nonzero(valid)[0]
+    ends = {int(computed[0]), int(computed[-1])} if computed.size else set()
+    states = link_states(section, histories)
+
+    def evaluate(k: int) -> Response:
+        lengths, masses, inertias = (values[k] for values in states)
+        state = FourBarState(tuple(lengths), tuple(masses[:3]), tuple(inertias[:3]),
+                             tuple(section.centre_of_mass))
+        response = fourbar_response(design, state, angles)
+        response.variables.update(link_length=lengths, link_mass=masses, link_inertia=inertias)
+        response.notices = [n for n in response.notices
+                            if k in ends or not n.startswith("toggle")]
+        return response
+
+    result = over_ageing(np.asarray(times, float), valid, evaluate, on_step)
+    if "grashof_class" in result.variables:
+        result.notices += class_changes(result.variables["grashof_class"], times)
+    return result
+
