@@ -27,6 +27,7 @@ from ..mechanisms.ageing import over_ageing
 from ..mechanisms.part import Part
 from ..mechanisms.response import Response, peak
 from .design import CamDesign, CamState, cam_design
+from .drawn import read_cam_drawing
 from .kinematics import working_profile
 from .model import cam_response, closed_form_jump_speeds
 from .oscillating import follower_response
@@ -109,13 +110,20 @@ class CamMechanism:
         return arm_problems(section)
 
     @staticmethod
-    def read_files(section: CamSection, base_dir: Path, read: dict):
-        """Read the file the section names (a cam given by points) once: (problems as (key
-        path inside the section, reason), the section with the file's path absolute, the
-        profile (:class:`~fickcam.cam.profile.CamProfile`, mirrored for a clockwise cam) or
-        None). ``read``: the points of the files this scene's validation has read, by path
-        (a ``design:`` that keeps the shape reads no file twice), added to; see
+    def read_files(section: CamSection, base_dir: Path, read: dict, accuracy: float):
+        """Read the file the section names (a cam given by points or drawn) once: (problems
+        as (key path inside the section, reason), the section with the file's path
+        absolute (a drawing's bore radius set), the profile
+        (:class:`~fickcam.cam.profile.CamProfile`, mirrored for a clockwise cam) or None).
+        ``read``: the points of the files this scene's validation has read, by path (a
+        ``design:`` that keeps the shape reads no file twice), added to; ``accuracy``: the
+        scene's [-], which sets a drawing's chord tolerance; see
         :meth:`fickcam.mechanisms.Mechanism.read_files`."""
+        if section.drawing is not None:
+            problems, section, profile, smallest = read_cam_drawing(section, base_dir, accuracy)
+            if profile is None or problems:
+                return problems, section, profile
+            return _profile_problems(section, smallest), section, profile
         if section.profile_file is None:
             return [], section, None
         from .profile import profile_of, read_profile_csv  # only a cam given by points needs it

@@ -92,7 +92,7 @@ class LinkageMechanism:
         return []
 
     @staticmethod
-    def read_files(section: LinkageSection, base_dir, read: dict):
+    def read_files(section: LinkageSection, base_dir, read: dict, accuracy: float):
         """None: a four-bar names no file; (no problems, the section, None); see
         :meth:`fickcam.mechanisms.Mechanism.read_files`."""
         return [], section, None

@@ -113,7 +113,7 @@ class Mechanism(Protocol):
         """
 
     @staticmethod
-    def read_files(section, base_dir: Path, read: dict) -> tuple[list, object, object]:
+    def read_files(section, base_dir: Path, read: dict, accuracy: float) -> tuple[list, object, object]:
         """Read the files its section names, once per scene.
 
         Parameters
@@ -124,6 +124,8 @@ class Mechanism(Protocol):
             The folder the scene's relative paths start from.
         read : dict
             What the scene's validation has read so far, by path (added to).
+        accuracy : float
+            The scene's relative accuracy [-] (a drawing's chord tolerance follows it).
 
         Returns
         -------

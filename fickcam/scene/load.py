@@ -45,7 +45,7 @@ log = logging.getLogger(__name__)
 
 
 #: keys that together give a cam's shape: a design shape replaces the made one whole
-CAM_SHAPE_KEYS = ("base_circle_radius", "motion", "eccentric", "profile_file")
+CAM_SHAPE_KEYS = ("base_circle_radius", "motion", "eccentric", "profile_file", "drawing")
 
 
 def merged(made: dict, overrides: dict, replace_whole: tuple = ()) -> dict:
@@ -388,7 +388,8 @@ def _ageing_time_problems(model: SceneModel, doc: YamlDocument, environment) -> 
 
 def _files(model: SceneModel, doc: YamlDocument, base_dir: Path,
            read: dict) -> tuple[list[Problem], SceneModel, dict]:
-    """Read the files the mechanisms name (a cam's ``profile_file``, relative to the scene):
+    """Read the files the mechanisms name (a cam's ``profile_file`` or ``drawing``, relative
+    to the scene):
     (problems at their lines, the model with the paths made absolute so that a mechanism
     can be built from it anywhere, what each mechanism read by section name); ``read``:
     what this validation has read already, by path."""
@@ -396,7 +397,8 @@ def _files(model: SceneModel, doc: YamlDocument, base_dir: Path,
     problems: list[Problem] = []
     files, update = {}, {}
     for name, section in scene_sections(model).items():
-        found, update[name], files[name] = types[name].read_files(section, base_dir, read)
+        found, update[name], files[name] = types[name].read_files(
+            section, base_dir, read, model.diffusion.accuracy)
         problems += [doc.problem((name,) + path, reason) for path, reason in found]
     return problems, model.model_copy(update=update), files
 
