@@ -3,29 +3,17 @@ of mass and moment of inertia by Green's theorem against closed forms, the same 
 as the cam it writes out, and the polygons a scene refuses at their key."""
 import numpy as np
 import pytest
-import yaml
 
 import fickcam
 from fickcam.cli.main import main
+from drawn_scenes import refused as check, scene as drawn_scene
 
 DENSITY = 1140.0  # kg/m^3, the dry density of the nylon below
 THICKNESS = 0.010
-NYLON_CAM = {
-    "name": "outline-cam", "materials": {"nylon": {"plastic": "nylon"}},
-    "cam": {"material": "nylon", "thickness": "10 mm", "speed": "300 rpm",
-            "follower": {"kind": "roller", "roller_radius": "10 mm", "mass": "0.737 kg",
-                         "spring_rate": "660.02 N/m"}},
-    "environment": {"history": [{"duration": "60 d", "temperature": "40 degC",
-                                 "relative_humidity": "90 %"}]},
-    "outputs": {"ageing_times": {"every": "20 d"}, "angle_step": "2 deg"}}
 
 
 def scene(folder, name="outline", **cam):
-    data = yaml.safe_load(yaml.safe_dump(NYLON_CAM))
-    data["cam"].update(cam)
-    path = folder / f"{name}.yaml"
-    path.write_text(yaml.safe_dump(data, default_flow_style=None))
-    return path
+    return drawn_scene(folder, name, **cam)
 
 
 def mm(points):
@@ -81,14 +69,6 @@ def test_check_prints_the_plate_s_mass_centre_and_inertia(tmp_path, capsys):
     assert f"{grams:.4g} g, centre of mass (1.768, 0) mm from the axis" in line
 
 
-def check(capsys, path) -> str:
-    code = main(["check", str(path)])
-    err = capsys.readouterr().err.strip()
-    assert code == 2, err
-    assert len(err.splitlines()) == 1 and "Traceback" not in err, err
-    return err
-
-
 SQUARE = [[20.0, -20.0], [20.0, 20.0], [-20.0, 20.0], [-20.0, -20.0]]
 
 
@@ -111,7 +91,7 @@ SQUARE = [[20.0, -20.0], [20.0, 20.0], [-20.0, 20.0], [-20.0, -20.0]]
 ])
 def test_a_polygon_that_cannot_be_a_cam_is_refused_at_its_key(tmp_path, capsys, cam, key, words):
     err = check(capsys, scene(tmp_path, **cam))
-    assert f"outline.yaml:" in err and key in err and words in err, err
+    assert "outline.yaml:" in err and key in err and words in err, err
 
 
 def test_a_bore_radius_alone_is_the_bore_of_the_outline(tmp_path):

@@ -410,15 +410,11 @@ class Polydyne(_Strict):
 
 
 class Drawing(DrawingFile):
-    """A cam plate given by its DXF drawing (``drawing: FILE.dxf`` is short for
-    ``{file: FILE.dxf}``).
+    """A cam plate given by its DXF drawing: ``file`` and ``units`` as in
+    :class:`fickcam.drawing.spec.DrawingFile`, and the layer of its axis.
 
     Parameters
     ----------
-    file : str
-        The DXF file, relative to the scene.
-    units : {"mm", "cm", "m", "in", "ft"}, optional
-        The drawing's unit where its header sets none ($INSUNITS).
     axis_layer : str
         The layer of a point marking the cam's axis of rotation.
     """
