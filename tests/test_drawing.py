@@ -270,3 +270,54 @@ def test_reading_a_drawing_without_ezdxf_is_the_one_line_refusal(tmp_path, monke
     monkeypatch.setitem(sys.modules, "ezdxf", None)
     with pytest.raises(MissingExtra, match=r'^reading or writing DXF drawings needs ezdxf: pip install "fickcam\[dxf\]"$'):
         read_drawing(tmp_path / "part.dxf", tolerance=TOL)
+
+
+# ------------------------------------------------------------------ what a drawing means
+
+
+def test_a_cam_drawn_as_an_eccentric_disc_turns_about_its_bore():
+    from fickcam.drawing.parts import cam_of
+
+    plan = polygon_planform(ngon(720, 0.023, (0.004, 0.0)), [((0.0, 0.0), 0.005)], tolerance=TOL)
+    cam = cam_of(plan)
+    assert cam.bore_radius == pytest.approx(0.005, rel=1e-12) and cam.other_holes == ()
+    x, y = cam.profile
+    assert np.hypot(x - 0.004, y).max() == pytest.approx(0.023, rel=1e-12)
+
+
+def test_a_cam_profile_written_by_fickcam_turns_about_its_axis_point(tmp_path):
+    from fickcam.cam.profile import write_profile_dxf
+    from fickcam.drawing.parts import cam_of
+
+    a = 2 * np.pi * np.arange(360) / 360
+    r = 0.03 + 0.005 * np.sin(a) ** 2
+    path = write_profile_dxf(tmp_path / "cam.dxf", r * np.cos(a), r * np.sin(a))
+    drawing = read_drawing(path, tolerance=TOL)
+    cam = cam_of(drawing.planform, drawing.points)
+    assert cam.bore_radius == 0.0
+    assert np.hypot(*cam.profile).max() == pytest.approx(0.035, rel=1e-9)
+
+
+def test_a_cam_without_an_axis_is_refused():
+    from fickcam.drawing.parts import cam_of
+
+    with pytest.raises(DrawingError, match="no axis: draw the bore as a circle, or a point on layer AXIS"):
+        cam_of(polygon_planform(ngon(40, 0.02)))
+
+
+def test_a_link_is_put_in_its_frame_first_pin_at_the_origin_second_on_x():
+    from fickcam.drawing.parts import link_of
+
+    angle, shift = 0.7, np.array([0.01, 0.02])
+    c, s = math.cos(angle), math.sin(angle)
+    place = lambda p: np.asarray(p) @ np.array([[c, s], [-s, c]]) + shift  # noqa: E731
+    outline = place(np.vstack([ngon(90, 0.008, (0.0, 0.0), 0.5 * np.pi)[:46],
+                               ngon(90, 0.008, (0.05, 0.0), -0.5 * np.pi)[:46]]))
+    plan = polygon_planform(outline, [(tuple(place([[0.0, 0.0]])[0]), 0.003),
+                                      (tuple(place([[0.05, 0.0]])[0]), 0.003)], tolerance=TOL)
+    link = link_of(plan)
+    assert link.length == pytest.approx(0.05, rel=1e-12)
+    first, second = (link.planform.hole_centre(h) for h in link.pins)
+    assert first == pytest.approx((0.0, 0.0), abs=1e-15)
+    assert second == pytest.approx((0.05, 0.0), abs=1e-15)
+    assert link.planform.area == pytest.approx(plan.area, rel=1e-12)

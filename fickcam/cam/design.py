@@ -9,6 +9,7 @@ from . import dynamics as dyn
 from .motion import segments_from_spec
 from .spec import CamSection
 from .arm import Arm
+from .drawn import drawn_cam, drawn_profile
 from .profile import load_profile
 
 
@@ -175,8 +176,8 @@ def cam_design(section, profile=None) -> CamDesign:
     section : CamSection or dict
         The validated section, or the dict of a scene's ``cam:`` section (validated here).
     profile : CamProfile, optional
-        A cam given by points: its profile as the scene read it (mirrored for a clockwise
-        cam); None: read from ``section.profile_file``.
+        A cam given by points or drawn: its profile as the scene read it (mirrored for a
+        clockwise cam); None: read from ``section.profile_file`` or ``section.drawing``.
 
     Returns
     -------
@@ -207,6 +208,10 @@ def cam_design(section, profile=None) -> CamDesign:
         common["arm"] = Arm(mirror * f.arm.pivot[0], f.arm.pivot[1], f.arm.length or 0.0,
                             f.arm.face_offset, int(mirror) * sense, f.arm.inertia,
                             f.arm.spring_rate, f.arm.spring_preload, f.arm.load_torque)
+    if section.drawing is not None:
+        if profile is None:
+            profile = drawn_profile(section, drawn_cam(section))
+        return CamDesign("profile", profile.radii()[0], profile=profile, **common)
     if section.profile_file is not None:
         if profile is None:
             profile = load_profile(section.profile_file, f.roller_radius or 0.0, mirror=mirror < 0)

@@ -27,6 +27,7 @@ from ..mechanisms.ageing import over_ageing
 from ..mechanisms.part import Part
 from ..mechanisms.response import Response, peak
 from .design import CamDesign, CamState, cam_design
+from .drawn import read_cam_drawing
 from .kinematics import fitted_motions, working_profile
 from .model import cam_response, jump_speeds_over_ageing
 from .oscillating import follower_response
@@ -109,13 +110,20 @@ class CamMechanism:
         return arm_problems(section)
 
     @staticmethod
-    def read_files(section: CamSection, base_dir: Path, read: dict):
-        """Read the file the section names (a cam given by points) once: (problems as (key
-        path inside the section, reason), the section with the file's path absolute, the
-        profile (:class:`~fickcam.cam.profile.CamProfile`, mirrored for a clockwise cam) or
-        None). ``read``: the points of the files this scene's validation has read, by path
-        (a ``design:`` that keeps the shape reads no file twice), added to; see
+    def read_files(section: CamSection, base_dir: Path, read: dict, accuracy: float):
+        """Read the file the section names (a cam given by points or drawn) once: (problems
+        as (key path inside the section, reason), the section with the file's path
+        absolute (a drawing's bore radius set), the profile
+        (:class:`~fickcam.cam.profile.CamProfile`, mirrored for a clockwise cam) or None).
+        ``read``: the points of the files this scene's validation has read, by path (a
+        ``design:`` that keeps the shape reads no file twice), added to; ``accuracy``: the
+        scene's [-], which sets a drawing's chord tolerance; see
         :meth:`fickcam.mechanisms.Mechanism.read_files`."""
+        if section.drawing is not None:
+            problems, section, profile, smallest = read_cam_drawing(section, base_dir, accuracy)
+            if profile is None or problems:
+                return problems, section, profile
+            return _profile_problems(section, smallest), section, profile
         if section.profile_file is None:
             return [], section, None
         from .profile import profile_of, read_profile_csv  # only a cam given by points needs it
@@ -168,6 +176,22 @@ class CamMechanism:
             parts.append(Part.made(names[1], follower.material, self.materials, geometry,
                                    float(follower.mass)))
         return tuple(parts)
+
+    def shape_problems(self) -> list[tuple[tuple, str]]:
+        """A dry profile given by motion segments that is no cam: a flat face's profile
+        with a cusp, or a roller's working profile with an undercut (its smallest convex
+        radius of curvature at most 0); see :meth:`fickcam.mechanisms.Mechanism.shape_problems`.
+
+        Returns
+        -------
+        list of tuple
+            ``(("base_circle_radius",), reason)``, the reason naming the smallest base
+            circle whose profile is a cam; empty when the profile is one.
+        """
+        from .sizing import profile_fault  # the sizing's search only for a faulty profile
+
+        fault = profile_fault(self.design)
+        return [] if fault is None else [(("base_circle_radius",), fault)]
 
     def described(self) -> list[str]:
         """What `fickcam check` says of the cam beyond its parts: a swinging arm's

@@ -60,10 +60,13 @@ class CamProfile:
         chord fraction u in [0, 1) [-] (:func:`periodic_spline`).
     points : int
         How many points it was made from.
+    planform : fickcam.drawing.planform.Planform, optional
+        A drawn plate's outline and holes about the axis [m] (None: a cam given by points).
     """
 
     spline: object  # scipy BSpline, u -> (x, y)
     points: int     # how many points it was made from
+    planform: object = None  # the drawn plate (fickcam.drawing.planform.Planform) or None
 
     @functools.cached_property
     def pieces(self):

@@ -408,6 +408,30 @@ class Polydyne(_Strict):
         None, description="Speed the cam is cut for; default the cam's speed [rad/s]")
 
 
+class Drawing(_Strict):
+    """A part given by its DXF drawing (``drawing: FILE.dxf`` is short for ``{file: FILE.dxf}``).
+
+    Parameters
+    ----------
+    file : str
+        The DXF file, relative to the scene.
+    units : {"mm", "cm", "m", "in", "ft"}, optional
+        The drawing's unit where its header sets none ($INSUNITS).
+    axis_layer : str
+        The layer of a point marking the cam's axis of rotation.
+    """
+
+    file: str = Field(description="The DXF drawing, relative to the scene (outer loop: the profile)")
+    units: Literal["mm", "cm", "m", "in", "ft"] | None = Field(
+        None, description="The drawing's unit where its header sets none ($INSUNITS)")
+    axis_layer: str = Field("AXIS", description="The layer of a point marking the axis of rotation "
+                                                "(without one: the centre of the bore)")
+
+
+def _drawing_file(value):
+    return {"file": value} if isinstance(value, str) else value
+
+
 class CamSection(_Strict):
     """The ``cam:`` section. Optional keys (defaults): ``gravity`` (false; g along
     the follower axis, against the lift), ``wear`` (none: no Archard wear),
@@ -438,7 +462,9 @@ class CamSection(_Strict):
     eccentric : Eccentric, optional
         An eccentric disc instead of a motion.
     profile_file : str, optional
-        A CSV or DXF file of profile points instead of a motion.
+        A CSV file of profile points instead of a motion.
+    drawing : Drawing, optional
+        The plate's DXF drawing instead of a motion.
     gravity : bool
         Weight of the follower along its axis, against the lift.
     wear : Wear, optional
@@ -464,7 +490,9 @@ class CamSection(_Strict):
     eccentric: Eccentric | None = Field(
         None, description="An eccentric disc cam instead of a motion")
     profile_file: str | None = Field(
-        None, description="A CSV or DXF file of profile points instead of a motion")
+        None, description="A CSV file of profile points instead of a motion")
+    drawing: Annotated[Drawing | None, BeforeValidator(_drawing_file)] = Field(
+        None, description="The cam plate's DXF drawing instead of a motion (the dxf extra)")
     gravity: bool = Field(
         False, description="Whether the follower's weight acts along its axis, against the lift")
     wear: Wear | None = Field(None, description="Archard wear of the cam surface")
@@ -497,14 +525,17 @@ class CamSection(_Strict):
                                      f"segments (or profile_file), without {key}")
             if self.gravity or self.elastic:
                 raise ValueError("gravity and elastic are not modelled for a swinging arm")
-        if self.profile_file is not None:
-            if any(v is not None for v in (self.motion, self.base_circle_radius, self.eccentric)):
-                raise ValueError("give one of profile_file, eccentric or motion with "
+        if self.profile_file is not None or self.drawing is not None:
+            given = (self.motion, self.base_circle_radius, self.eccentric, self.profile_file,
+                     self.drawing)
+            if sum(v is not None for v in given) > 1:
+                raise ValueError("give one of profile_file, drawing, eccentric or motion with "
                                  "base_circle_radius")
             if self.follower.kind == "flat" and self.follower.offset != 0.0:
                 raise ValueError("a flat follower's offset does not change its motion; leave it 0")
             if self.polydyne is not None:
-                raise ValueError("polydyne needs motion segments (a profile_file cam is cut as given)")
+                raise ValueError("polydyne needs motion segments (a cam given by points or a "
+                                 "drawing is cut as given)")
             return self  # the bore and offset are checked against the profile when it is read
         if self.eccentric is not None:
             if self.motion is not None or self.base_circle_radius is not None:

@@ -45,7 +45,8 @@ ARM_NAMES = {"length": "arm length", "face_offset": "arm face offset"}
 def _given_by_points(section, points: bool = False) -> bool:
     """True when the made cam is written as points: a profile file, a swinging arm's cam,
     or any cam when ``points`` is asked for."""
-    return points or section.profile_file is not None or section.follower.arm is not None
+    return (points or section.profile_file is not None or section.drawing is not None
+            or section.follower.arm is not None)
 
 
 def _segment_name(index: int, segment) -> str:
@@ -173,9 +174,11 @@ def write(data: dict, section, targets, made, profile, length_text) -> np.ndarra
     points = None
     if PROFILE_NAMES[0] in shape:
         points = np.c_[shape[PROFILE_NAMES[0]], shape[PROFILE_NAMES[1]]]
-        for key in ("base_circle_radius", "motion", "eccentric"):
+        for key in ("base_circle_radius", "motion", "eccentric", "drawing"):
             cam.pop(key, None)
         cam["profile_file"] = str(profile)
+        if section.drawing is not None:  # the drawn bore, which the points do not give
+            cam["bore_radius"] = length_text(section.bore_radius)
     elif "eccentricity" in shape:
         cam["eccentric"] = {"eccentricity": length_text(shape["eccentricity"]),
                             "radius": length_text(shape["disc radius"])}

@@ -1,7 +1,10 @@
 """A part's planform read from a DXF drawing with ezdxf (the ``dxf`` extra).
 
 Lines, arcs, circles, ellipses, 2-D polylines with bulges and splines become ezdxf paths
-(``ezdxf.path.make_path``), flattened by ezdxf within the chord tolerance; block
+(``ezdxf.path.make_path``), flattened by ezdxf within the chord tolerance, every line and
+curve into ``LINE_POINTS`` pieces at least, each point on the drawn geometry (a cam
+profile's spline through them then sees a line as straight), a polyline's straight
+segments kept as drawn (a polyline of many points is a curve sampled); block
 references are read through their virtual entities. Annotation (text, dimensions,
 hatches) and construction lines (centre, hidden and phantom line types, the ``Defpoints``
 layer) are left out and counted; points are kept by layer (a cam's axis); any other entity
@@ -29,6 +32,8 @@ CONSTRUCTION_LINETYPES = ("CENTER", "HIDDEN", "PHANTOM", "DASH", "DOT", "DIVIDE"
 UNITS = {"mm": 1e-3, "cm": 1e-2, "m": 1.0, "in": 0.0254, "ft": 0.3048}  # m per unit
 TYPICAL_SIZE = 0.05   # m: the size a part's outline most likely has, to judge a missing unit
 JOIN = 1e-5           # m: ends closer than this meet
+LINE_POINTS = 16      # the fewest pieces a line or curve is cut into (all its points on it)
+BEZIER = 2.7e-4       # a cubic Bézier's largest radial error on a quarter circle, per radius
 
 
 @dataclass(frozen=True, eq=False)
@@ -98,15 +103,18 @@ def unit_of(document, given: str | None, path: str) -> float:
     return header if header is not None else chosen
 
 
-def _likely_unit(document) -> str:
-    """`` (the outline is S units across: likely mm); add units: mm`` from the extents."""
+def _extent(document) -> float:
+    """The largest side of the model space's bounding box, in drawing units (0: empty)."""
     # deferred: keeps ezdxf off the start-up path
     from ezdxf import bbox
 
     box = bbox.extents(document.modelspace())
-    if not box.has_data:
-        return ""
-    size = float(max(box.size.x, box.size.y))
+    return float(max(box.size.x, box.size.y)) if box.has_data else 0.0
+
+
+def _likely_unit(document) -> str:
+    """`` (the outline is S units across: likely mm); add units: mm`` from the extents."""
+    size = _extent(document)
     if size <= 0:
         return ""
     unit = min(UNITS, key=lambda name: abs(math.log(size * UNITS[name] / TYPICAL_SIZE)))
@@ -136,8 +144,16 @@ def _piece(entity, unit: float, tolerance: float) -> Piece | None:
     # deferred: keeps ezdxf off the start-up path
     from ezdxf import path as dxfpath
 
-    curve = dxfpath.make_path(entity)
-    vertices = np.array([(v.x, v.y, v.z) for v in curve.flattening(distance=tolerance / unit)])
+    rough = dxfpath.make_path(entity)
+    corners = np.array([(v.x, v.y) for v in rough.control_vertices()]) * unit
+    radius = 0.5 * float(np.ptp(corners, axis=0).max()) if len(corners) else 0.0
+    # a cubic Bézier strays from a circular arc of angle a by BEZIER r (a / (pi/2))^6
+    count = max(1, math.ceil(4 * (BEZIER * radius / tolerance) ** (1 / 6)))
+    curve = dxfpath.make_path(entity, segments=count)
+    if entity.dxftype() == "LINE":  # a straight Bézier: points along the line
+        curve = dxfpath.lines_to_curve4(curve)
+    vertices = np.array([(v.x, v.y, v.z) for v in curve.flattening(distance=tolerance / unit,
+                                                                    segments=LINE_POINTS)])
     if len(vertices) < 2 or np.ptp(vertices[:, 2]) * unit > tolerance:
         return None
     points = vertices[:, :2] * unit
@@ -175,7 +191,7 @@ def _sorted_entities(document, path: str, unit: float, tolerance: float, layers)
 
 
 def read_drawing(path, tolerance: float, units: str | None = None, join_tolerance: float = JOIN,
-                 layers=None) -> Drawing:
+                 layers=None, relative: bool = False) -> Drawing:
     """A part's planform from a DXF drawing.
 
     Parameters
@@ -183,13 +199,16 @@ def read_drawing(path, tolerance: float, units: str | None = None, join_toleranc
     path : str or pathlib.Path
         The DXF file.
     tolerance : float
-        The largest distance between a curve and its chords [m].
+        The largest distance between a curve and its chords [m] (``relative``: [-], a share
+        of the drawing's largest extent).
     units : str, optional
         The drawing's unit (``mm``, ``cm``, ``m``, ``in``, ``ft``) where its header sets none.
     join_tolerance : float
         Ends closer than this meet [m].
     layers : sequence of str, optional
         Read only these layers (all but ``Defpoints`` by default).
+    relative : bool
+        ``tolerance`` is a share of the drawing's extent.
 
     Returns
     -------
@@ -212,6 +231,8 @@ def read_drawing(path, tolerance: float, units: str | None = None, join_toleranc
         except (OSError, ezdxf.DXFError) as error:
             raise DrawingError(f"{path}: not a readable DXF drawing ({error})") from None
         unit = unit_of(document, units, path)
+        if relative:
+            tolerance *= _extent(document) * unit
         pieces, points, left_out = _sorted_entities(document, path, unit, tolerance, layers)
     try:
         planform = planform_of(join(pieces, join_tolerance))

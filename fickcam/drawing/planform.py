@@ -227,13 +227,13 @@ class Planform:
 
     def round_holes(self) -> list[tuple[Loop, float]]:
         """The holes whose vertices and edge midpoints lie within ``ROUND`` of a circle about
-        their centre, with that circle's mean radius [m], largest first."""
+        their centre, with the mean distance of the vertices [m], largest first."""
         found = []
         for hole in self.holes:
             middle = 0.5 * (hole.points + np.roll(hole.points, -1, axis=0))
             r = np.hypot(*(np.vstack([hole.points, middle]) - self.hole_centre(hole)).T)
-            if np.ptp(r) <= ROUND * r.mean():
-                found.append((hole, float(r.mean())))
+            if np.ptp(r) <= ROUND * r.mean():  # the radius of the vertices, on the circle
+                found.append((hole, float(r[:len(hole.points)].mean())))
         return sorted(found, key=lambda pair: -pair[1])
 
 
@@ -303,7 +303,9 @@ def crossing(segments_a: np.ndarray, segments_b: np.ndarray, same: bool) -> tupl
         a1 = segments_a[start:start + 256, None, 1]
         d1, d2 = _orient(a0, a1, b0), _orient(a0, a1, b1)
         d3, d4 = _orient(b0, b1, a0), _orient(b0, b1, a1)
-        collinear = (d1 == 0) & (d2 == 0)
+        # round-off: a point within 1e-10 of a segment's length from its line is on it
+        tiny = 1e-10 * np.hypot(*(a1 - a0).T).T * np.hypot(*(b1 - b0).T)
+        collinear = (np.abs(d1) <= tiny) & (np.abs(d2) <= tiny)
         apart = np.zeros(collinear.shape, bool)
         for axis in (0, 1):
             apart |= ((np.maximum(a0[..., axis], a1[..., axis]) < np.minimum(b0[:, axis], b1[:, axis]))

@@ -92,7 +92,7 @@ class LinkageMechanism:
         return []
 
     @staticmethod
-    def read_files(section: LinkageSection, base_dir, read: dict):
+    def read_files(section: LinkageSection, base_dir, read: dict, accuracy: float):
         """None: a four-bar names no file; (no problems, the section, None); see
         :meth:`fickcam.mechanisms.Mechanism.read_files`."""
         return [], section, None
@@ -121,6 +121,17 @@ class LinkageMechanism:
                                    s.boss_inner_radius, self.materials[name].dry_density)
             parts.append(Part.made(link, name, self.materials, geometry, float(mass)))
         return tuple(parts)
+
+    def shape_problems(self) -> list[tuple[tuple, str]]:
+        """What the built four-bar's shape cannot be: nothing that its section's checks
+        (:meth:`section_problems`) have not refused already.
+
+        Returns
+        -------
+        list of tuple
+            Empty.
+        """
+        return []
 
     def described(self) -> list[str]:
         """What `fickcam check` says of the four-bar beyond its parts: nothing.

@@ -113,7 +113,7 @@ class Mechanism(Protocol):
         """
 
     @staticmethod
-    def read_files(section, base_dir: Path, read: dict) -> tuple[list, object, object]:
+    def read_files(section, base_dir: Path, read: dict, accuracy: float) -> tuple[list, object, object]:
         """Read the files its section names, once per scene.
 
         Parameters
@@ -124,6 +124,8 @@ class Mechanism(Protocol):
             The folder the scene's relative paths start from.
         read : dict
             What the scene's validation has read so far, by path (added to).
+        accuracy : float
+            The scene's relative accuracy [-] (a drawing's chord tolerance follows it).
 
         Returns
         -------
@@ -150,6 +152,17 @@ class Mechanism(Protocol):
     @property
     def parts(self) -> tuple[Part, ...]:
         """The bodies that age, in the order of ``part_names``."""
+
+    def shape_problems(self) -> list[tuple[tuple, str]]:
+        """What its dry shape cannot be, found once it is built: a cam profile with a cusp
+        or an undercut. A run and `fickcam check` refuse it; `fickcam size` starts from a
+        size without it.
+
+        Returns
+        -------
+        list of tuple
+            (key path inside its section, reason); empty when there is none.
+        """
 
     def described(self) -> list[str]:
         """What `fickcam check` prints of it beyond its parts.

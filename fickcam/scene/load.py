@@ -45,7 +45,7 @@ log = logging.getLogger(__name__)
 
 
 #: keys that together give a cam's shape: a design shape replaces the made one whole
-CAM_SHAPE_KEYS = ("base_circle_radius", "motion", "eccentric", "profile_file")
+CAM_SHAPE_KEYS = ("base_circle_radius", "motion", "eccentric", "profile_file", "drawing")
 
 
 def merged(made: dict, overrides: dict, replace_whole: tuple = ()) -> dict:
@@ -182,6 +182,32 @@ class Scene:
         bool
         """
         return any(m.section_name == section for m in self.mechanisms)
+
+    def with_model(self, model: SceneModel) -> "Scene":
+        """This scene with its sections replaced by ``model``'s and its mechanisms rebuilt
+        from them (a sizing's cam at another base circle); the climate, materials and
+        limits stay.
+
+        Parameters
+        ----------
+        model : fickcam.scene.sections.SceneModel
+            The sections, SI, validated (e.g. this scene's ``model.model_copy(update=...)``).
+
+        Returns
+        -------
+        Scene
+            The scene with ``model`` and its mechanisms.
+
+        Raises
+        ------
+        fickcam.errors.SceneError
+            When a file a section names cannot be read.
+        """
+        problems, model, files = _files(model, self.document, self.base_dir, {})
+        if problems:
+            raise SceneError(problems)
+        return dataclasses.replace(self, model=model,
+                                   mechanisms=_mechanisms(model, self.materials, files))
 
     def mechanism(self, section: str):
         """The scene's mechanism built from ``section``.
@@ -362,7 +388,8 @@ def _ageing_time_problems(model: SceneModel, doc: YamlDocument, environment) -> 
 
 def _files(model: SceneModel, doc: YamlDocument, base_dir: Path,
            read: dict) -> tuple[list[Problem], SceneModel, dict]:
-    """Read the files the mechanisms name (a cam's ``profile_file``, relative to the scene):
+    """Read the files the mechanisms name (a cam's ``profile_file`` or ``drawing``, relative
+    to the scene):
     (problems at their lines, the model with the paths made absolute so that a mechanism
     can be built from it anywhere, what each mechanism read by section name); ``read``:
     what this validation has read already, by path."""
@@ -370,7 +397,8 @@ def _files(model: SceneModel, doc: YamlDocument, base_dir: Path,
     problems: list[Problem] = []
     files, update = {}, {}
     for name, section in scene_sections(model).items():
-        found, update[name], files[name] = types[name].read_files(section, base_dir, read)
+        found, update[name], files[name] = types[name].read_files(
+            section, base_dir, read, model.diffusion.accuracy)
         problems += [doc.problem((name,) + path, reason) for path, reason in found]
     return problems, model.model_copy(update=update), files
 

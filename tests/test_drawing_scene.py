@@ -1,0 +1,104 @@
+"""A cam given by its DXF drawing (``cam.drawing``): the same moisture and motion as the
+cam it draws, the round trip through ``fickcam profile -o cam.dxf``, and the drawings a
+scene refuses in one line."""
+import sys
+
+import numpy as np
+import pytest
+import yaml
+
+ezdxf = pytest.importorskip("ezdxf")
+
+import fickcam  # noqa: E402
+from fickcam.cli.main import main  # noqa: E402
+
+NYLON_CAM = {
+    "name": "drawn-cam", "materials": {"nylon": {"plastic": "nylon"}},
+    "cam": {"material": "nylon", "thickness": "10 mm", "speed": "300 rpm",
+            "follower": {"kind": "roller", "roller_radius": "10 mm", "mass": "0.737 kg",
+                         "spring_rate": "660.02 N/m"}},
+    "environment": {"history": [{"duration": "60 d", "temperature": "40 degC",
+                                 "relative_humidity": "90 %"}]},
+    "outputs": {"ageing_times": {"every": "20 d"}, "angle_step": "2 deg"}}
+
+
+def scene(folder, name, **cam):
+    data = yaml.safe_load(yaml.safe_dump(NYLON_CAM))
+    data["cam"].update(cam)
+    path = folder / f"{name}.yaml"
+    path.write_text(yaml.safe_dump(data))
+    return path
+
+
+def disc_drawing(folder, units=4, holes=((0.0, 0.0, 5.0, "BORE"),)):
+    document = ezdxf.new("R2010")
+    document.header["$INSUNITS"] = units
+    space = document.modelspace()
+    space.add_circle((0.0, -4.0), 23.0, dxfattribs={"layer": "PROFILE"})
+    for x, y, r, layer in holes:
+        space.add_circle((x, y), r, dxfattribs={"layer": layer})
+    path = folder / "disc.dxf"
+    document.saveas(path)
+    return path
+
+
+def same_moisture(a, b, accuracy=1e-3):
+    m, n = (np.asarray(r["moisture_content"]) for r in (a, b))
+    swing = np.nanmax(np.abs(m))
+    assert np.nanmax(np.abs(m - n)) <= accuracy * swing
+
+
+@pytest.mark.slow  # two runs of a nylon cam (about 10 s)
+def test_a_drawn_disc_with_a_bore_ages_as_the_eccentric_cam(tmp_path):
+    disc_drawing(tmp_path)
+    drawn = fickcam.run(fickcam.load_scene(scene(tmp_path, "drawn", drawing="disc.dxf")))
+    eccentric = fickcam.run(fickcam.load_scene(scene(
+        tmp_path, "eccentric", eccentric={"radius": "23 mm", "eccentricity": "4 mm"},
+        bore_radius="5 mm")))
+    same_moisture(drawn, eccentric)
+    for name in ("lift", "base_circle_radius"):
+        assert np.asarray(drawn[name]) == pytest.approx(np.asarray(eccentric[name]), rel=1e-4), name
+    # the closed form against a profile's search on the 2-degree grid of the outputs
+    assert np.asarray(drawn["jump_speed"]) == pytest.approx(np.asarray(eccentric["jump_speed"]), rel=5e-3)
+
+
+@pytest.mark.slow  # a run, a profile written, a run of the drawing (about 10 s)
+def test_a_profile_written_as_dxf_and_read_back_as_a_drawing_gives_the_same_results(tmp_path):
+    motion = [{"rise": "8 mm", "over": "120 deg", "law": "cycloidal"}, {"dwell": "60 deg"},
+              {"return": "8 mm", "over": "120 deg", "law": "cycloidal"}, {"dwell": "60 deg"}]
+    first = scene(tmp_path, "motion", motion=motion, base_circle_radius="25 mm")
+    assert main(["profile", str(first), "-o", str(tmp_path / "cam.dxf"), "--points", "720"]) == 0
+    made = fickcam.run(fickcam.load_scene(first))
+    again = fickcam.run(fickcam.load_scene(scene(tmp_path, "drawn", drawing="cam.dxf")))
+    same_moisture(made, again)
+    for name in ("lift", "base_circle_radius"):
+        assert np.asarray(again[name]) == pytest.approx(np.asarray(made[name]), rel=1e-4), name
+
+
+def check(capsys, path) -> str:
+    code = main(["check", str(path)])
+    err = capsys.readouterr().err.strip()
+    assert code == 2, err
+    assert len(err.splitlines()) == 1 and "Traceback" not in err, err
+    return err
+
+
+def test_a_drawing_without_units_is_refused_at_its_key(tmp_path, capsys):
+    disc_drawing(tmp_path, units=0)
+    err = check(capsys, scene(tmp_path, "drawn", drawing="disc.dxf"))
+    assert "cam.drawing:" in err and "no units:" in err and "likely mm" in err
+    assert main(["check", str(scene(tmp_path, "given", drawing={"file": "disc.dxf", "units": "mm"}))]) == 0
+
+
+def test_a_cam_drawing_with_holes_besides_the_bore_is_refused(tmp_path, capsys):
+    disc_drawing(tmp_path, holes=((0.0, 0.0, 5.0, "BORE"), (0.0, -12.0, 3.0, "LIGHTENING")))
+    err = check(capsys, scene(tmp_path, "drawn", drawing="disc.dxf"))
+    assert "holes besides the bore (CIRCLE on layer LIGHTENING)" in err
+
+
+def test_a_drawing_scene_without_the_dxf_extra_is_refused_with_the_install_command(
+        tmp_path, capsys, monkeypatch):
+    disc_drawing(tmp_path)
+    monkeypatch.setitem(sys.modules, "ezdxf", None)
+    err = check(capsys, scene(tmp_path, "drawn", drawing="disc.dxf"))
+    assert "cam.drawing:" in err and 'pip install "fickcam[dxf]"' in err
