@@ -177,3 +177,90 @@ def test_a_cam_that_cannot_be_sized_is_refused_before_any_run(tmp_path, capsys, 
     monkeypatch.setattr(fickcam.simulation.simulate, "run", lambda *a, **k: counts.update(["runs"]))
     assert main(["size", str(scene)]) == 2
     assert counts["runs"] == 0 and "motion segments" in capsys.readouterr().err
+
+
+CUSP = FLAT.replace("8 mm", "20 mm").replace(
+    "limits:\n  follower_position: {deviation: 0.01 mm}\n", "")
+UNDERCUT = SCENE.replace("base_circle_radius: 30 mm", "base_circle_radius: 5 mm").replace(
+    "roller_radius: 8 mm", "roller_radius: 15 mm").replace(
+    "rise: 20 mm, over: 90 deg", "rise: 30 mm, over: 60 deg").replace(
+    "return: 20 mm, over: 90 deg", "return: 30 mm, over: 120 deg")
+
+
+def cycloidal_cusp_radius(h: float, beta: float) -> float:
+    """The base circle [m] below which a flat face's cycloidal rise h [m] over beta [rad]
+    has a cusp: rho = Rb + s + s'' (Norton 2012, eq. 8.31) at its least, found by a bounded
+    scalar search on the closed form rather than the cam's sampled response."""
+    from scipy.optimize import minimize_scalar
+
+    def rho_less_rb(x):
+        return h * (x - math.sin(2 * math.pi * x) / (2 * math.pi)) \
+            + 2 * math.pi * h / beta ** 2 * math.sin(2 * math.pi * x)
+
+    found = minimize_scalar(rho_less_rb, bounds=(0.5, 1.0), method="bounded",
+                            options={"xatol": 1e-10})
+    return -found.fun
+
+
+def test_a_profile_with_a_cusp_is_refused_at_the_base_circle_with_the_size_without_one(
+        tmp_path, capsys):
+    """A flat face's 20 mm cycloidal rise over 90 deg on a 30 mm base circle: the profile
+    crosses itself. `check` and `run` refuse it in one line at the base circle's line,
+    naming the smallest base circle with a convex profile (the closed form's, to the
+    0.25 deg sampling of the check and the micrometre the message prints)."""
+    scene = tmp_path / "cusp.yaml"
+    scene.write_text(CUSP)
+    threshold = cycloidal_cusp_radius(0.02, math.pi / 2)
+    assert 0.0325 < threshold < 0.0330  # above the scene's 30 mm: a cusp
+    for command in (["check", str(scene)], ["run", str(scene), "-o", str(tmp_path / "x.nc")]):
+        assert main(command) == 2
+        err = capsys.readouterr().err.strip()
+        assert len(err.splitlines()) == 1, err
+        assert err.startswith(f"{scene}:7 cam.base_circle_radius: 30 mm gives the flat face's "
+                              f"profile a cusp"), err
+        said = float(err.split("the smallest without one is ")[1].split(" mm")[0]) * 1e-3
+        assert threshold <= said <= threshold + 2e-6
+    assert not (tmp_path / "x.nc").exists()
+
+
+def test_a_roller_s_undercut_is_refused_like_a_cusp(tmp_path, capsys):
+    scene = tmp_path / "undercut.yaml"
+    scene.write_text(UNDERCUT)
+    assert main(["check", str(scene)]) == 2
+    err = capsys.readouterr().err.strip()
+    assert len(err.splitlines()) == 1 and "cam.base_circle_radius: 5 mm gives the roller's " \
+                                          "profile an undercut" in err, err
+    segments = segments_from_spec([
+        Segment(dwell=math.radians(90)), Segment(rise=0.03, over=math.radians(60), law="cycloidal"),
+        Segment(dwell=math.radians(90)),
+        Segment(**{"return": 0.03}, over=math.radians(120), law="polynomial_345")])
+    d = replace(design(), base_circle_radius=0.005, roller_radius=0.015, segments=segments)
+    said = float(err.split("the smallest without one is ")[1].split(" mm")[0]) * 1e-3
+    _, rho = worst(replace(d, base_circle_radius=said))
+    assert rho > 0
+    _, rho = worst(replace(d, base_circle_radius=said - 2e-6))
+    assert rho <= 0
+
+
+def test_size_sizes_a_cam_whose_own_profile_has_a_cusp(tmp_path, capsys):
+    """`size` is how a cusp is mended: it runs from a convex cam, not the scene's own."""
+    scene = tmp_path / "cusp.yaml"
+    scene.write_text(CUSP)
+    assert main(["size", str(scene)]) == 0
+    out = capsys.readouterr().out
+    answer = float(out.split("smallest base circle radius ")[1].split(" mm")[0]) * 1e-3
+    assert answer >= cycloidal_cusp_radius(0.02, math.pi / 2)
+    assert "meets the limits" in out and "NOT" not in out
+
+
+def test_a_scene_with_another_model_has_its_mechanisms_rebuilt(tmp_path):
+    """The sizing's runs at other base circles age the cam at that base circle."""
+    import fickcam
+
+    path = tmp_path / "cam.yaml"
+    path.write_text(SCENE)
+    scene = fickcam.load_scene(str(path))
+    cam = scene.model.cam.model_copy(update={"base_circle_radius": 0.045})
+    other = scene.with_model(scene.model.model_copy(update={"cam": cam}))
+    assert other.mechanism("cam").design.base_circle_radius == 0.045
+    assert scene.mechanism("cam").design.base_circle_radius == 0.03

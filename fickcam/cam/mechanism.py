@@ -28,8 +28,8 @@ from ..mechanisms.part import Part
 from ..mechanisms.response import Response, peak
 from .design import CamDesign, CamState, cam_design
 from .drawn import describe_plate, read_cam_drawing
-from .kinematics import working_profile
-from .model import cam_response, closed_form_jump_speeds
+from .kinematics import fitted_motions, working_profile
+from .model import cam_response, jump_speeds_over_ageing
 from .oscillating import follower_response
 from .spec import CamSection, arm_problems
 
@@ -182,6 +182,22 @@ class CamMechanism:
                                    float(follower.mass)))
         return tuple(parts)
 
+    def shape_problems(self) -> list[tuple[tuple, str]]:
+        """A dry profile given by motion segments that is no cam: a flat face's profile
+        with a cusp, or a roller's working profile with an undercut (its smallest convex
+        radius of curvature at most 0); see :meth:`fickcam.mechanisms.Mechanism.shape_problems`.
+
+        Returns
+        -------
+        list of tuple
+            ``(("base_circle_radius",), reason)``, the reason naming the smallest base
+            circle whose profile is a cam; empty when the profile is one.
+        """
+        from .sizing import profile_fault  # the sizing's search only for a faulty profile
+
+        fault = profile_fault(self.design)
+        return [] if fault is None else [(("base_circle_radius",), fault)]
+
     def described(self) -> list[str]:
         """What `fickcam check` says of the cam beyond its parts: a drawn plate's mass,
         centre of mass and moment of inertia, a swinging arm's follower (where it sits, the
@@ -324,12 +340,16 @@ def rigid_response(design: CamDesign, histories: dict, times, angles, valid,
     times = np.asarray(times, float)
     valid = np.asarray(valid, bool)
     states = {k: cam_state(design, histories, k) for k in np.flatnonzero(valid).tolist()}
-    # the closed-form motions' jump speeds, searched for all ageing times at once
-    jumps = closed_form_jump_speeds(design, states, angles)
+    # the fitted motions made together, and every closed-form or fitted motion's jump speed
+    # searched for all ageing times at once
+    fitted = fitted_motions(design, states)
+    motions = {} if fitted is None else {k: fitted.motion(k) for k in fitted.indices}
+    jumps = jump_speeds_over_ageing(design, states, angles, fitted)
 
     def evaluate(k: int) -> Response:
         state = states[k]
-        response = cam_response(design, state, angles, jump_speed=jumps[k]) if k in jumps \
+        response = cam_response(design, state, angles, jump_speed=jumps[k],
+                                motion=motions.get(k)) if k in jumps \
             else follower_response(design, state, angles)
         if design.train is not None:  # elastic follower train (Norton ch. 15)
             from .train import dynamic_response

@@ -127,6 +127,67 @@ def worst(design, state=None, step: float = SIZE_STEP) -> tuple[float, float]:
                                    v["pitch_radius_of_curvature"]))
 
 
+def profile_fault(design, step: float = SIZE_STEP) -> str | None:
+    """Why the dry profile of a cam given by motion segments is no cam, in one line: a flat
+    face's profile with a cusp, or a roller's working profile with an undercut (the convex
+    radius of curvature at most 0 somewhere, Norton 2012, sec. 8.7); None when it is one,
+    or when the cam is not given by motion segments.
+
+    Parameters
+    ----------
+    design : CamDesign
+        The cam, dry.
+    step : float
+        The cam angle step of the check [rad].
+
+    Returns
+    -------
+    str or None
+        The reason, naming where and the smallest base circle radius whose profile is a
+        cam [mm]; None when there is no fault.
+    """
+    if design.kind != "motion":
+        return None
+    theta = np.arange(0.0, 2 * math.pi, step)
+    v = follower_response(design, CamState(), theta).variables
+    kind = design.follower_kind
+    rho = np.asarray(v["radius_of_curvature"], float)
+    convex = rho if kind == "flat" else np.where(np.asarray(v["pitch_radius_of_curvature"]) > 0,
+                                                 rho, np.inf)
+    if np.nanmin(convex) > 0.0:
+        return None
+    k = int(np.nanargmin(convex))
+    what = "a cusp" if kind == "flat" else "an undercut"
+    where = (f"{design.base_circle_radius * 1e3:.4g} mm gives the {'flat face' if kind == 'flat' else 'roller'}"
+             f"'s profile {what} (radius of curvature {rho[k] * 1e3:.3g} mm at "
+             f"{math.degrees(theta[k]):.4g} deg)")
+    try:  # the smallest radius whose profile is convex, with no pressure angle limit
+        size = smallest_base_circle(design, Limits(math.radians(89.0), SIZE_TOLERANCE))
+    except ValueError:
+        return f"{where}; no base circle within the follower's reach avoids it"
+    return (f"{where}: the smallest without one is {rounded_up(size['base_circle_radius']) * 1e3:.3f} mm; "
+            f"`fickcam size` gives the one the pressure angle and curvature limits ask")
+
+
+def rounded_up(radius: float, tolerance: float = 1e-6) -> float:
+    """``radius`` rounded up to ``tolerance``, so that a size printed to its digits stays on
+    the safe side of the bound.
+
+    Parameters
+    ----------
+    radius : float
+        A smallest radius [m].
+    tolerance : float
+        The step it is rounded up to [m] (1 um: the printed digits of a size in mm).
+
+    Returns
+    -------
+    float
+        The radius rounded up [m].
+    """
+    return math.ceil(radius / tolerance - 1e-6) * tolerance
+
+
 def _smallest_convex_radius(kind: str, rho, pitch) -> float:
     """Smallest working radius of curvature where the pitch curve is convex (m); a flat
     follower's profile must be convex everywhere (rho <= 0 is a cusp), a roller's working

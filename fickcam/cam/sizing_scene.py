@@ -24,8 +24,9 @@ import math
 
 import numpy as np
 
-from .sizing import (SIZE_TOLERANCE, Limits, aged_states, contact_stress_radius,
-                     degenerate_notes, meets, smallest_base_circle, worst)
+from .sizing import (POINTED, SIZE_TOLERANCE, Limits, aged_states, contact_stress_radius,
+                     degenerate_notes, meets, profile_fault, rounded_up, smallest_base_circle,
+                     worst)
 
 #: most runs of the scene one sizing makes
 MAX_RUNS = 5
@@ -78,7 +79,7 @@ class Sizing:
         on the size, the aged check, and what to set where a bound makes it degenerate."""
         lines = [f"{self.name}: smallest base circle radius {self.radius * 1e3:.3f} mm, dry and "
                  f"aged (the scene has {self.design.base_circle_radius * 1e3:.3f} mm; "
-                 f"dry alone {_rounded_up(self.dry['base_circle_radius']) * 1e3:.3f} mm)",
+                 f"dry alone {rounded_up(self.dry['base_circle_radius'], RUN_TOLERANCE) * 1e3:.3f} mm)",
                  f"  {self._needs()}"]
         lines += [f"  {line}" for line in (self._moisture(), self._aged()) if line]
         lines += [f"  note: {line}" for line in self._degenerate()]
@@ -91,7 +92,7 @@ class Sizing:
         def need(key: str) -> str:
             if self.sizes[key] <= self.sizes["floor"] + SIZE_TOLERANCE:
                 return "met at any size"
-            return f"needs {_rounded_up(self.sizes[key]) * 1e3:.3f} mm"
+            return f"needs {rounded_up(self.sizes[key], RUN_TOLERANCE) * 1e3:.3f} mm"
 
         return (f"pressure angle <= {math.degrees(self.limits.pressure_angle):g} deg "
                 f"{need('pressure_angle')}; radius of curvature "
@@ -114,7 +115,7 @@ class Sizing:
                 f"({change[k] / np.nanmax(np.abs(m0)) * 100:.2g} % relative, at t = "
                 f"{float(last['time'][k]):.4g} d), its strains by {max(strains):.2g}; sized with "
                 f"the moisture at {start * 1e3:.3f} mm: "
-                f"{_rounded_up(self.first['base_circle_radius']) * 1e3:.3f} mm ({len(self.runs)} runs of the scene)")
+                f"{rounded_up(self.first['base_circle_radius'], RUN_TOLERANCE) * 1e3:.3f} mm ({len(self.runs)} runs of the scene)")
 
     def _aged(self) -> str:
         design = dataclasses.replace(self.design, base_circle_radius=self.radius)
@@ -141,7 +142,7 @@ class Sizing:
 
 def _with_radius(scene, radius: float):
     cam = scene.model.cam.model_copy(update={"base_circle_radius": radius})
-    return dataclasses.replace(scene, model=scene.model.model_copy(update={"cam": cam}))
+    return scene.with_model(scene.model.model_copy(update={"cam": cam}))
 
 
 def size_scene(scene, limits: Limits) -> Sizing:
@@ -165,23 +166,34 @@ def size_scene(scene, limits: Limits) -> Sizing:
     ValueError
         When the cam cannot be sized (not motion segments; no base circle meets the
         limits); before any run.
+    fickcam.errors.InputError
+        What `fickcam check` refuses of the scene at its first size (the scene's own, or
+        the dry answer where the scene's profile has a cusp or an undercut).
     """
-    from ..simulation.simulate import run
+    from ..simulation.simulate import plan_parts, run
 
     design = scene.mechanism("cam").design
     given = limits.radius_of_curvature is not None
     limits = limits.for_design(design)
     dry = smallest_base_circle(design, limits)  # refuses a cam it cannot size before any run
     bare = dataclasses.replace(scene, limits=[])  # the sizing reads no limit crossing
-    start = design.base_circle_radius
+    start, first_scene = design.base_circle_radius, bare
+    if profile_fault(design) is not None:  # the scene's own cam has a cusp: no run of it,
+        # nor of a nearly pointed one (its tip would set the mesh): the dry answer, its
+        # profile no sharper than POINTED of its base circle
+        sharpest = max(limits.radius_of_curvature, POINTED * dry["base_circle_radius"])
+        away = smallest_base_circle(design, dataclasses.replace(limits, radius_of_curvature=sharpest))
+        start = rounded_up(away["base_circle_radius"], RUN_TOLERANCE)
+        first_scene = _with_radius(bare, start)
+    plan_parts(first_scene)  # every refusal of `fickcam check` before the search's first run
     with _told_once():
-        runs = [(start, run(bare))]
+        runs = [(start, run(first_scene))]
         curvature = "" if given else _default_reason(design)
         if not given and design.follower_kind == "flat":
             limits, curvature = _flat_face_limits(scene, design, limits, runs[-1][1])
             dry = smallest_base_circle(design, limits)
         first = sizes = _sized(design, limits, runs[-1][1], dry)
-        target = _rounded_up(sizes["base_circle_radius"])
+        target = rounded_up(sizes["base_circle_radius"], RUN_TOLERANCE)
         if degenerate_notes(design, sizes):  # no run of a cam without a wall or a point
             target = start
         while len(runs) < MAX_RUNS and abs(target - runs[-1][0]) > 1e-12:
@@ -190,8 +202,8 @@ def size_scene(scene, limits: Limits) -> Sizing:
             if all(meets(dataclasses.replace(design, base_circle_radius=target), limits, own)):
                 break  # the size meets the limits with its own moisture too
             sizes = _sized(design, limits, runs[-1][1], dry)
-            target = max(target, _rounded_up(sizes["base_circle_radius"]))
-    answer = runs[-1][0] if len(runs) > 1 else _rounded_up(sizes["base_circle_radius"])
+            target = max(target, rounded_up(sizes["base_circle_radius"], RUN_TOLERANCE))
+    answer = runs[-1][0] if len(runs) > 1 else rounded_up(sizes["base_circle_radius"], RUN_TOLERANCE)
     return Sizing(scene.name, design, limits, dry, {**sizes, "base_circle_radius": answer}, runs,
                   first, curvature)
 
@@ -230,11 +242,6 @@ def _flat_face_limits(scene, design, limits: Limits, ds) -> tuple[Limits, str]:
     return (dataclasses.replace(limits, radius_of_curvature=radius),
             f"the flat face's Hertz contact stress: 0.30 p0 within the cam's shear strength, "
             f"{strength / 1e6:.3g} MPa")
-
-
-def _rounded_up(radius: float) -> float:
-    """``radius`` rounded up to :data:`RUN_TOLERANCE` [m] (the answer's printed digits)."""
-    return math.ceil(radius / RUN_TOLERANCE - 1e-6) * RUN_TOLERANCE
 
 
 @contextlib.contextmanager

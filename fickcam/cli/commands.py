@@ -130,7 +130,6 @@ def _cmd_size(args) -> int:
     from ..quantities.options import angle, option_value
     from ..quantities.plausibility import cam_length_reading
     from ..scene.load import load_scene
-    from ..simulation.simulate import plan_parts
     from ..quantities.types import NonNegativeLength, PositiveAngle
 
     pressure_angle = angle("--pressure-angle", args.pressure_angle, PositiveAngle)
@@ -140,7 +139,6 @@ def _cmd_size(args) -> int:
     curvature = None if args.radius_of_curvature is None else option_value(
         "--radius-of-curvature", args.radius_of_curvature, NonNegativeLength,
         cam_length_reading("smallest radius of curvature", scene.document.data))
-    plan_parts(scene)  # every refusal of `fickcam check` before the search and the run
     try:
         sizing = size_scene(scene, Limits(pressure_angle, curvature))
     except ValueError as exc:

@@ -122,6 +122,17 @@ class LinkageMechanism:
             parts.append(Part.made(link, name, self.materials, geometry, float(mass)))
         return tuple(parts)
 
+    def shape_problems(self) -> list[tuple[tuple, str]]:
+        """What the built four-bar's shape cannot be: nothing that its section's checks
+        (:meth:`section_problems`) have not refused already.
+
+        Returns
+        -------
+        list of tuple
+            Empty.
+        """
+        return []
+
     def described(self) -> list[str]:
         """What `fickcam check` says of the four-bar beyond its parts: nothing.
 

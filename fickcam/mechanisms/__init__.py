@@ -153,6 +153,17 @@ class Mechanism(Protocol):
     def parts(self) -> tuple[Part, ...]:
         """The bodies that age, in the order of ``part_names``."""
 
+    def shape_problems(self) -> list[tuple[tuple, str]]:
+        """What its dry shape cannot be, found once it is built: a cam profile with a cusp
+        or an undercut. A run and `fickcam check` refuse it; `fickcam size` starts from a
+        size without it.
+
+        Returns
+        -------
+        list of tuple
+            (key path inside its section, reason); empty when there is none.
+        """
+
     def described(self) -> list[str]:
         """What `fickcam check` prints of it beyond its parts.
 

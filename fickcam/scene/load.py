@@ -184,6 +184,32 @@ class Scene:
         """
         return any(m.section_name == section for m in self.mechanisms)
 
+    def with_model(self, model: SceneModel) -> "Scene":
+        """This scene with its sections replaced by ``model``'s and its mechanisms rebuilt
+        from them (a sizing's cam at another base circle); the climate, materials and
+        limits stay.
+
+        Parameters
+        ----------
+        model : fickcam.scene.sections.SceneModel
+            The sections, SI, validated (e.g. this scene's ``model.model_copy(update=...)``).
+
+        Returns
+        -------
+        Scene
+            The scene with ``model`` and its mechanisms.
+
+        Raises
+        ------
+        fickcam.errors.SceneError
+            When a file a section names cannot be read.
+        """
+        problems, model, files = _files(model, self.document, self.base_dir, {})
+        if problems:
+            raise SceneError(problems)
+        return dataclasses.replace(self, model=model,
+                                   mechanisms=_mechanisms(model, self.materials, files))
+
     def mechanism(self, section: str):
         """The scene's mechanism built from ``section``.
 

@@ -172,6 +172,7 @@ def _planned_parts(scene: Scene, options: RunOptions, parts: list[Part] | None):
     has limited them)."""
     from ..diffusion import plan_problem, refuse
 
+    _refuse_shapes(scene)
     environment = scene.environment
     times = ageing_times(scene, environment)
     problems = []
@@ -187,6 +188,15 @@ def _planned_parts(scene: Scene, options: RunOptions, parts: list[Part] | None):
               _for_part(part.name, plan_problem, problem, options.settings, options.cache))
              for part, problem in problems]
     return environment, times, options, plans
+
+
+def _refuse_shapes(scene: Scene) -> None:
+    """Refuse, at the scene's lines, a mechanism whose dry shape is none (a cam profile
+    with a cusp): its parts cannot be meshed nor its follower run."""
+    problems = [scene.document.problem((mechanism.section_name, *path), reason)
+                for mechanism in scene.mechanisms for path, reason in mechanism.shape_problems()]
+    if problems:
+        raise SceneError(problems)
 
 
 # ---------------------------------------------------------------------- run
