@@ -201,7 +201,9 @@ def _lobatto(n: int) -> np.ndarray:
 @dataclass(frozen=True)
 class PiecewiseMotion:
     """The aged follower motion as one Chebyshev series per design piece, with its first
-    three derivatives (:func:`fit_geometric_motion`).
+    three derivatives (:func:`fit_geometric_motion`); stacked over ageing times
+    (:func:`fit_geometric_motions`), each field has a leading time axis (the table's is its
+    third).
 
     Parameters
     ----------
@@ -221,15 +223,31 @@ class PiecewiseMotion:
     scales: np.ndarray
     table: np.ndarray
 
+    def at(self, k: int) -> PiecewiseMotion:
+        """Ageing time k of a motion stacked over ageing times (:func:`fit_geometric_motions`:
+        each field with a leading time axis, the table's third).
 
-def _series_table(coef, mapping):
+        Parameters
+        ----------
+        k : int
+            The ageing time's index.
+
+        Returns
+        -------
+        PiecewiseMotion
+            That time's series.
+        """
+        return PiecewiseMotion(self.starts[k], self.ends[k], self.offsets[k], self.scales[k],
+                               self.table[:, :, k])
+
+
+def _series_table(coef, scales):
     """Coefficients (term, order, piece) of Y and dY, d2Y, d3Y per piece from Y's
     coefficients (term, piece), each derivative padded with zeros: the series
     Chebyshev.fit(...).deriv(k) make, all pieces at once (chebder multiplies by the scale
-    before each differentiation, here each piece's own)."""
+    before each differentiation, here each piece's own ``scales``)."""
     table = np.zeros((len(coef), 4, coef.shape[1]))
     table[:, 0] = coef
-    scales = np.array([scl for _, scl in mapping])
     for k in (1, 2, 3):
         coef = chebyshev.chebder(coef * scales, 1, 1.0)
         table[:len(coef), k] = coef
@@ -257,26 +275,23 @@ def fit_geometric_motion(design, pieces, strain_x, strain_y, roller_radius, node
                          arm_strain: float = 0.0):
     """The aged follower height as Chebyshev series, one per design piece (a
     :class:`PiecewiseMotion`), the angle origin, and (lowest, highest) Y over the turn.
-    ``pieces`` are (segment, psi_start, psi_end).
-
-    Each swollen profile point psi is put where it touches the follower (Newton on the
-    contact angle, all pieces in one solve) at the Chebyshev-Lobatto nodes of its piece,
-    and the height there is fitted by a Chebyshev series of degree ``nodes``.
+    ``pieces`` are (segment, psi_start, psi_end): :func:`fit_geometric_motions` for one
+    ageing time.
 
     Parameters
     ----------
     design : CamDesign
         The dry design, lengths [m].
     pieces : sequence of tuple
-        (segment, psi_start [rad], psi_end [rad]) per piece (:func:`pieces_of`).
+        Each design piece's (segment, psi_start [rad], psi_end [rad]).
     strain_x, strain_y : float
-        Swelling strain of the cam plate along its x and y axes [-].
+        The plate's swelling strains along x and y [-].
     roller_radius : float
-        The (aged) roller radius [m].
+        The swollen roller's radius [m].
     nodes : int
-        Degree of each Chebyshev series.
+        The series' degree.
     arm_strain : float
-        Swelling strain of a swinging arm's length and face offset [-].
+        A swinging arm's swelling strain along its length [-].
 
     Returns
     -------
@@ -289,46 +304,86 @@ def fit_geometric_motion(design, pieces, strain_x, strain_y, roller_radius, node
         Lowest and highest Y over the turn: follower height [m], or arm angle [rad] for a
         swinging arm.
     """
+    stacked, origins, extremes = fit_geometric_motions(design, pieces, strain_x, strain_y,
+                                                       roller_radius, nodes, arm_strain)
+    return stacked.at(0), float(origins[0]), extremes[0]
+
+
+def fit_geometric_motions(design, pieces, strain_x, strain_y, roller_radius, nodes: int = 40,
+                          arm_strain=0.0):
+    """The aged follower height of several ageing times at once (one per value of the
+    strains), each as Chebyshev series, one per design piece; ``pieces`` are (segment,
+    psi_start, psi_end).
+
+    Each swollen profile point psi is put where it touches the follower (Newton on the
+    contact angle, all pieces and times in one solve) at the Chebyshev-Lobatto nodes of its
+    piece, and the height there is fitted by a Chebyshev series of degree ``nodes`` (one
+    least-squares solve for every piece and time: the nodes are the same Lobatto points on
+    [-1, 1]).
+
+    Parameters
+    ----------
+    design : CamDesign
+        The dry design, lengths [m].
+    pieces : sequence of tuple
+        (segment, psi_start [rad], psi_end [rad]) per piece (:func:`pieces_of`).
+    strain_x, strain_y : float or array_like
+        Swelling strain of the cam plate along its x and y axes [-], one per ageing time.
+    roller_radius : float or array_like
+        The (aged) roller radius [m], one per ageing time.
+    nodes : int
+        Degree of each Chebyshev series.
+    arm_strain : float or array_like
+        Swelling strain of a swinging arm's length and face offset [-], one per ageing time.
+
+    Returns
+    -------
+    fitted : PiecewiseMotion
+        The series of every time, its fields with a leading time axis: starts and ends
+        (time, piece) [rad], table (term, order, time, piece).
+    origins : numpy.ndarray
+        Cam angle where each time's first piece starts [rad].
+    extremes : list of tuple of float
+        Each time's lowest and highest Y over the turn: follower height [m], or arm angle
+        [rad] for a swinging arm.
+    """
+    strains = np.broadcast_arrays(*(np.atleast_1d(np.asarray(v, float)) for v in
+                                    (strain_x, strain_y, roller_radius, arm_strain)))
+    times, count, size = strains[0].size, len(pieces), nodes + 1
     segments = [segment for segment, _, _ in pieces]
-    count = len(pieces)
+
+    def contact(label, points_per_time, repeats=1):  # each point with its time's strains
+        return _pieces_contact(design, segments, np.tile(label, times * repeats), *(
+            np.tile(np.repeat(v, points_per_time), repeats) for v in strains))
+
     ends = np.array([[a, b] for _, a, b in pieces], float).ravel()
-    spans = _pieces_contact(design, segments, np.repeat(np.arange(count), 2), strain_x,
-                            strain_y, roller_radius, arm_strain)(ends)[0]
-    starts, stops = spans[0::2], spans[1::2]
-    size = nodes + 1
+    spans = contact(np.repeat(np.arange(count), 2), 2 * count)(np.tile(ends, times))[0]
+    starts, stops = spans[0::2].reshape(times, count), spans[1::2].reshape(times, count)
     label = np.repeat(np.arange(count), size)
-    contact = _pieces_contact(design, segments, np.tile(label, 3), strain_x, strain_y,
-                              roller_radius, arm_strain)
-    t_nodes = np.concatenate([ta + (tb - ta) * (_lobatto(nodes) + 1) / 2
-                              for ta, tb in zip(starts, stops)])
+    lobatto = _lobatto(nodes)
+    t_nodes = (starts[..., None] + (stops - starts)[..., None] * (lobatto + 1) / 2).ravel()
     # swelling shifts theta(psi) only slightly: the nodes are the first guess
-    psi = _solve_psi(contact, t_nodes, t_nodes)
-    heights = _pieces_contact(design, segments, label, strain_x, strain_y, roller_radius,
-                              arm_strain)(psi)[1]
-    coef = np.empty((size, count))
-    mapping = []
-    for k, (ta, tb) in enumerate(zip(starts, stops)):
-        group = slice(k * size, (k + 1) * size)
-        coef[:, k] = chebyshev.chebfit(polyutils.mapdomain(t_nodes[group], [ta, tb], [-1.0, 1.0]),
-                                       heights[group], nodes)
-        mapping.append(polyutils.mapparms([ta, tb], [-1.0, 1.0]))
-    table = _series_table(coef, mapping)
-    fitted = PiecewiseMotion(starts, stops, np.array([m[0] for m in mapping]),
-                             np.array([m[1] for m in mapping]), table)
-    turning = _turning_points(table, starts, stops)
-    at = [np.r_[ta, tb, points] for ta, tb, points in zip(starts, stops, turning)]
-    piece = np.repeat(np.arange(count), [len(a) for a in at])
+    psi = _solve_psi(contact(label, count * size, 3), t_nodes, t_nodes)
+    heights = contact(label, count * size)(psi)[1].reshape(times * count, size)
+    offsets, scales = polyutils.mapparms([starts.ravel(), stops.ravel()], [-1.0, 1.0])
+    table = _series_table(chebyshev.chebfit(lobatto, heights.T, nodes), scales)
+    turning = _turning_points(table, starts.ravel(), stops.ravel())
+    at = [np.r_[ta, tb, points] for ta, tb, points in zip(starts.ravel(), stops.ravel(), turning)]
+    column = np.repeat(np.arange(times * count), [len(a) for a in at])
     at = np.concatenate(at)
-    extremes = chebyshev.chebval(fitted.offsets[piece] + fitted.scales[piece] * at,
-                                 table[:, 0, piece], tensor=False)
-    lowest, highest = float(extremes.min()), float(extremes.max())
-    return fitted, float(starts[0]), (lowest, highest)
+    values = chebyshev.chebval(offsets[column] + scales[column] * at, table[:, 0, column],
+                               tensor=False)
+    extremes = [(float(values[column // count == k].min()),
+                 float(values[column // count == k].max())) for k in range(times)]
+    fitted = PiecewiseMotion(starts, stops, offsets.reshape(times, count),
+                             scales.reshape(times, count),
+                             table.reshape(size, 4, times, count))
+    return fitted, starts[:, 0].copy(), extremes
 
 
 def evaluate_geometric_motion(fitted, origin, theta, orders=ORDERS):
-    """(Y, dY/dtheta, d2Y, d3Y) at cam angles ``theta`` from :func:`fit_geometric_motion`
-    (all pieces and the orders asked for in one Clenshaw recursion, numpy's ``chebval``;
-    NaN outside every piece).
+    """(Y, dY/dtheta, d2Y, d3Y) at cam angles ``theta`` from :func:`fit_geometric_motion`:
+    :func:`evaluate_geometric_motions` for one ageing time.
 
     Parameters
     ----------
@@ -339,25 +394,59 @@ def evaluate_geometric_motion(fitted, origin, theta, orders=ORDERS):
     theta : float or array_like
         Cam angles, taken modulo 2 pi [rad].
     orders : tuple of int
+        The derivative orders returned [-] (all four by default).
+
+    Returns
+    -------
+    tuple of numpy.ndarray
+        The derivatives ``orders`` [m/rad^k] ([rad/rad^k] for an arm), each of the shape of
+        ``theta``; NaN outside every piece.
+    """
+    theta = np.asarray(theta, float)
+    stacked = PiecewiseMotion(*(np.asarray(v)[None] for v in (
+        fitted.starts, fitted.ends, fitted.offsets, fitted.scales)),
+        fitted.table[:, :, None])
+    values = evaluate_geometric_motions(stacked, np.array([origin]), theta.reshape(1, -1),
+                                        orders)
+    return tuple(v.reshape(theta.shape) for v in values)
+
+
+def evaluate_geometric_motions(fitted, origins, theta, orders=ORDERS):
+    """(Y, dY/dtheta, d2Y, d3Y) of several ageing times at cam angles ``theta``, one row
+    of angles per time, from :func:`fit_geometric_motions` (all pieces, times and the orders
+    asked for in one Clenshaw recursion, numpy's ``chebval``; NaN outside every piece).
+
+    Parameters
+    ----------
+    fitted : PiecewiseMotion
+        The series of :func:`fit_geometric_motions`, with a leading time axis.
+    origins : numpy.ndarray
+        Cam angle where each time's first piece starts [rad], shape (n,).
+    theta : numpy.ndarray
+        Cam angles, taken modulo 2 pi [rad], shape (n, k): row i for time i.
+    orders : tuple of int
         The derivative orders returned, each in 0..3 [-] (all four by default).
 
     Returns
     -------
     tuple of numpy.ndarray
         Y [m] and its first three derivatives [m/rad^k] (arm angle [rad] and [rad/rad^k]
-        for a swinging arm), or those of ``orders``, in that order.
+        for a swinging arm), or those of ``orders``, in that order, each (n, k).
     """
     theta = np.mod(np.asarray(theta, float), TWO_PI)
+    origin = np.asarray(origins, float)[:, None]
     shifted = origin + np.mod(theta - origin, TWO_PI)
     piece = np.full(theta.shape, -1)
-    for k, (ta, tb) in enumerate(zip(fitted.starts, fitted.ends)):
-        inside = (shifted >= ta) & (shifted < tb) if tb < origin + TWO_PI - 1e-12 else \
-            (shifted >= ta)
+    for k in range(fitted.starts.shape[1]):
+        ta, tb = fitted.starts[:, k, None], fitted.ends[:, k, None]
+        inside = np.where(tb < origin + TWO_PI - 1e-12, (shifted >= ta) & (shifted < tb),
+                          shifted >= ta)
         piece[inside] = k
-    known = np.maximum(piece, 0)
-    x = fitted.offsets[known] + fitted.scales[known] * shifted
-    # each angle's own piece: x broadcast over the (order, angle) columns of its series
-    values = chebyshev.chebval(x, fitted.table[:, list(orders)][:, :, known], tensor=False)
+    known, rows = np.maximum(piece, 0), np.arange(theta.shape[0])[:, None]
+    x = fitted.offsets[rows, known] + fitted.scales[rows, known] * shifted
+    # each angle's own time and piece: x broadcast over the (order, time, angle) columns
+    values = chebyshev.chebval(x, fitted.table[:, list(orders)][:, :, rows, known],
+                               tensor=False)
     values[:, piece < 0] = np.nan
     return tuple(values)
 

@@ -21,7 +21,8 @@ from typing import Callable, NamedTuple
 import numpy as np
 
 from .design import CamDesign, CamState
-from .geometry import (evaluate_geometric_motion, fit_geometric_motion, pieces_of, prime_height,
+from .geometry import (PiecewiseMotion, evaluate_geometric_motion, evaluate_geometric_motions,
+                       fit_geometric_motion, fit_geometric_motions, pieces_of, prime_height,
                        rotate, working_outline)
 from .motion import ORDERS, follower_motion
 from . import arm
@@ -293,10 +294,79 @@ def motion_function(design: CamDesign, state: CamState):
         return motion, motion.extremes
     fitted, origin, extremes = fit_geometric_motion(
         design, pieces_of(design), state.cam_strain_x, state.cam_strain_y,
-        design.roller_radius * (1 + state.roller_strain),
-        nodes=96 if design.kind == "eccentric" else 40, arm_strain=state.arm_strain)
-    return (lambda theta, orders=ORDERS: evaluate_geometric_motion(fitted, origin, theta,
-                                                                   orders)), extremes
+        design.roller_radius * (1 + state.roller_strain), nodes=_fit_nodes(design),
+        arm_strain=state.arm_strain)
+    return _fitted_motion(fitted, origin), extremes
+
+
+def _fit_nodes(design: CamDesign) -> int:
+    """The degree of each piece's spectral fit: the disc's one piece is a whole turn."""
+    return 96 if design.kind == "eccentric" else 40
+
+
+def _fitted_motion(fitted: PiecewiseMotion, origin: float) -> Callable:
+    return lambda theta, orders=ORDERS: evaluate_geometric_motion(fitted, origin, theta, orders)
+
+
+class FittedMotions(NamedTuple):
+    """The spectral fits of several ageing times' aged motions, made together
+    (:func:`fitted_motions`).
+
+    ``indices`` are the ageing indices fitted, in the order of the stacked fit's rows;
+    ``motion(k)`` gives ageing index k's (motion, extremes) as :func:`motion_function`
+    does; ``rows(angles, orders)`` evaluates every fitted time at once, angles [rad] of shape
+    (n, k) (or (k,), the same for every time) -> the derivative ``orders`` (Y [m], dY/dtheta
+    [m/rad], ...), each (n, k).
+    """
+
+    indices: list
+    fitted: PiecewiseMotion
+    origins: np.ndarray
+    extremes: list
+
+    def motion(self, k: int) -> tuple[Callable, tuple[float, float]]:
+        """Ageing index k's (motion, (lowest, highest) Y [m])."""
+        row = self.indices.index(k)
+        return _fitted_motion(self.fitted.at(row), float(self.origins[row])), self.extremes[row]
+
+    def rows(self, angles, orders=ORDERS) -> tuple:
+        """Every fitted time's motion at its row of ``angles`` [rad]."""
+        angles = np.asarray(angles, float)
+        angles = np.broadcast_to(angles, (len(self.indices), angles.shape[-1]))
+        return evaluate_geometric_motions(self.fitted, self.origins, angles, orders)
+
+
+def fitted_motions(design: CamDesign, states: dict) -> FittedMotions | None:
+    """The spectral fits of the ageing times whose aged motion has neither a closed form
+    nor a profile of points, made together (:func:`~fickcam.cam.geometry.fit_geometric_motions`:
+    one contact solve and one least-squares fit for all of them, each time equal to its own
+    :func:`motion_function` to round-off); a translating follower only.
+
+    Parameters
+    ----------
+    design : CamDesign
+        The dry design, lengths [m].
+    states : dict of int to CamState
+        The aged state at each ageing index (strains [-]).
+
+    Returns
+    -------
+    FittedMotions or None
+        The fits, or None where no time needs one (or the follower swings on an arm).
+    """
+    indices = [k for k, state in states.items()
+               if design.kind != "profile" and closed_form(design, state) is None]
+    if not indices or design.arm is not None:
+        return None
+    chosen = [states[k] for k in indices]
+
+    def strains(name):
+        return np.array([getattr(state, name) for state in chosen], float)
+
+    fitted, origins, extremes = fit_geometric_motions(
+        design, pieces_of(design), strains("cam_strain_x"), strains("cam_strain_y"),
+        design.roller_radius * (1 + strains("roller_strain")), nodes=_fit_nodes(design))
+    return FittedMotions(indices, fitted, origins, extremes)
 
 
 def grown_arm(design: CamDesign, strain: float) -> dict:

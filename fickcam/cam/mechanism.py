@@ -29,9 +29,9 @@ from ..mechanisms.part import Part
 from ..mechanisms.response import Response, peak
 from .arm_spec import reach_problems
 from .design import CamDesign, CamState, cam_design
-from .drawn import read_cam_drawing
-from .kinematics import working_profile
-from .model import cam_response, closed_form_jump_speeds
+from .drawn import describe_plate, read_cam_drawing
+from .kinematics import fitted_motions, working_profile
+from .model import cam_response, jump_speeds_over_ageing
 from .oscillating import describe_arm, follower_response
 from .polydyne import polydyne_design
 from .spec import CamSection, arm_problems
@@ -70,6 +70,8 @@ class CamMechanism:
             self.motion_design = polydyne_design(self.design, dry)
         #: the dry working profile, x and y [m]
         self.profile = working_profile(self.design)
+        #: a drawn plate's outline and holes about the axis [m] (None: not drawn)
+        self.planform = getattr(self.design.profile, "planform", None)
         self.elastic_parts = frozenset({"cam"} if section.elastic else ())
 
     # ---------------------------------------------------------- from the section alone
@@ -121,7 +123,7 @@ class CamMechanism:
         ``design:`` that keeps the shape reads no file twice), added to; ``accuracy``: the
         scene's [-], which sets a drawing's chord tolerance; see
         :meth:`fickcam.mechanisms.Mechanism.read_files`."""
-        if section.drawing is not None:
+        if section.drawing is not None or section.outline is not None:
             problems, section, profile, smallest = read_cam_drawing(section, base_dir, accuracy)
             if profile is None or problems:
                 return problems, section, profile
@@ -157,8 +159,11 @@ class CamMechanism:
         from ..diffusion.problem.geometry import Bar, CamPlate, Disc
 
         section, design, (x, y) = self.section, self.design, self.profile
-        _, cam_mass, _ = plate_body(x, y, section.thickness, section.bore_radius,
-                                    self.materials[section.material].dry_density)
+        density = self.materials[section.material].dry_density
+        if self.planform is not None:  # drawn: the plate with every hole (Green's theorem)
+            cam_mass = self.planform.mass_properties(section.thickness, density).mass
+        else:
+            _, cam_mass, _ = plate_body(x, y, section.thickness, section.bore_radius, density)
         if section.eccentric is not None and section.bore_radius == 0:
             # a solid eccentric disc is a finite cylinder about its own centre: exact series
             geometry = Disc(section.eccentric.radius, section.thickness)
@@ -196,18 +201,22 @@ class CamMechanism:
         return [] if fault is None else [(("base_circle_radius",), fault)]
 
     def described(self) -> list[str]:
-        """What `fickcam check` says of the cam beyond its parts: a swinging arm's
-        follower (where it sits, the dry design's pressure angle and curvature).
+        """What `fickcam check` says of the cam beyond its parts: a drawn plate's mass,
+        centre of mass and moment of inertia, a swinging arm's follower (where it sits, the
+        dry design's pressure angle and curvature).
 
         Returns
         -------
         list of str
-            Lines, without indent; none for a translating follower.
+            Lines, without indent; none for a cam not drawn with a translating follower.
         """
+        lines = []
+        if self.planform is not None:
+            density = self.materials[self.section.material].dry_density
+            lines.append(f"cam plate: {describe_plate(self.planform, self.section.thickness, density)}")
         if self.design.arm is None:
-            return []
-
-        return [f"follower: {describe_arm(self.design)}"]
+            return lines
+        return lines + [f"follower: {describe_arm(self.design)}"]
 
     def response(self, histories: dict, times, angles, valid,
                  on_step=lambda: None) -> Response:
@@ -329,15 +338,18 @@ def rigid_response(design: CamDesign, histories: dict, times, angles, valid,
     times = np.asarray(times, float)
     valid = np.asarray(valid, bool)
     states = {k: cam_state(design, histories, k) for k in np.flatnonzero(valid).tolist()}
-    # the closed-form motions' jump speeds, searched for all ageing times at once
-    jumps = closed_form_jump_speeds(design, states, angles)
+    # the fitted motions made together, and every closed-form or fitted motion's jump speed
+    # searched for all ageing times at once
+    fitted = fitted_motions(design, states)
+    motions = {} if fitted is None else {k: fitted.motion(k) for k in fitted.indices}
+    jumps = jump_speeds_over_ageing(design, states, angles, fitted)
 
     def evaluate(k: int) -> Response:
         state = states[k]
-        response = cam_response(design, state, angles, jump_speed=jumps[k]) if k in jumps \
+        response = cam_response(design, state, angles, jump_speed=jumps[k],
+                                motion=motions.get(k)) if k in jumps \
             else follower_response(design, state, angles)
         if design.train is not None:  # elastic follower train (Norton ch. 15)
-
             elastic = dynamic_response(design, state, angles, response.variables)
             response.variables.update(elastic.variables)
             response.notices.extend(elastic.notices)

@@ -11,7 +11,9 @@ does not swell, so a swollen base circle also compresses the spring.
 
 The jump speed is searched between the angle grid's points (:func:`continuous_jump_speed`);
 where the aged motion is in closed form, for all ageing times at once
-(:func:`closed_form_jump_speeds`, whose speeds :func:`cam_response` is then given).
+and where it is a spectral fit of the aged geometry, for all ageing times at once
+(:func:`jump_speeds_over_ageing`, whose speeds :func:`cam_response` is then given, with the
+fits made together, :func:`~fickcam.cam.kinematics.fitted_motions`).
 """
 from __future__ import annotations
 
@@ -54,7 +56,7 @@ def _slide_ratio(design, height, rho):
 
 
 def cam_response(design: CamDesign, state: CamState, cam_angle,
-                 jump_speed: float | None = None) -> Response:
+                 jump_speed: float | None = None, motion=None) -> Response:
     """Kinematics, dynamics and contact of the (aged) cam at cam angles (rad).
 
     Scalars: base_circle_radius, lift (m), jump_speed (rad/s; the schema stores rpm),
@@ -79,8 +81,13 @@ def cam_response(design: CamDesign, state: CamState, cam_angle,
         Cam angles [rad].
     jump_speed : float, optional
         The jump speed [rad/s] where it was already searched for this state together with
-        other ageing times (:func:`closed_form_jump_speeds`); by default it is searched here
+        other ageing times (:func:`jump_speeds_over_ageing`); by default it is searched here
         (:func:`continuous_jump_speed`).
+    motion : tuple, optional
+        The aged motion and its (lowest, highest) Y [m] as
+        :func:`~fickcam.cam.kinematics.motion_function` gives them, where it was already
+        fitted for this state together with other ageing times
+        (:meth:`~fickcam.cam.kinematics.FittedMotions.motion`); by default made here.
 
     Returns
     -------
@@ -95,7 +102,7 @@ def cam_response(design: CamDesign, state: CamState, cam_angle,
     omega = design.speed
     mass = _follower_mass(design, state)
     roller = design.roller_radius * (1 + state.roller_strain)
-    motion, (lowest, highest) = motion_function(design, state)
+    motion, (lowest, highest) = motion_function(design, state) if motion is None else motion
     height, d1, d2, d3 = motion(theta)
     notices: list[str] = joint_notices(design.segments) if design.kind == "motion" else []
     phi, rho_pitch, rho = _angle_and_curvature(design, height, d1, d2, roller)
@@ -348,9 +355,10 @@ def continuous_jump_speeds(design: CamDesign, motion, masses, theta, d2, holding
     return np.where(searched, np.sqrt(best), on_grid)
 
 
-def closed_form_jump_speeds(design: CamDesign, states: dict, theta) -> dict:
-    """The jump speeds of the ageing times whose aged motion has a closed form, searched for
-    all of them at once (:func:`continuous_jump_speeds`); a translating follower only.
+def jump_speeds_over_ageing(design: CamDesign, states: dict, theta, fitted=None) -> dict:
+    """The jump speeds of the ageing times whose aged motion has a closed form, and of those
+    ``fitted`` together, searched for all of them at once (:func:`continuous_jump_speeds`);
+    a translating follower only.
 
     Parameters
     ----------
@@ -360,13 +368,16 @@ def closed_form_jump_speeds(design: CamDesign, states: dict, theta) -> dict:
         The aged state at each ageing index.
     theta : numpy.ndarray
         The angle grid [rad].
+    fitted : fickcam.cam.kinematics.FittedMotions, optional
+        The spectral fits of the other ageing times, made together
+        (:func:`~fickcam.cam.kinematics.fitted_motions`).
 
     Returns
     -------
     dict of int to float
         The jump speed [rad/s] by ageing index, for the indices whose motion is in closed
-        form (:func:`~fickcam.cam.kinematics.closed_form`); the others are left to
-        :func:`cam_response`.
+        form (:func:`~fickcam.cam.kinematics.closed_form`) or fitted; the others are left
+        to :func:`cam_response`.
     """
     if design.arm is not None:
         return {}
@@ -379,16 +390,24 @@ def closed_form_jump_speeds(design: CamDesign, states: dict, theta) -> dict:
     speeds = {}
     for form, indices in groups.items():
         stacked = stacked_state([states[k] for k in indices])
-        masses = np.array([_follower_mass(design, states[k]) for k in indices], float)
 
         def motion(angles, orders=ORDERS, form=form, stacked=stacked):
             return picked(form.heights(design, stacked, angles), orders)
 
-        height, d2 = np.broadcast_arrays(*motion(theta, orders=(0, 2)))
-        holding = _holding_force(design, masses[:, None], height)
-        speeds.update(zip(indices, continuous_jump_speeds(design, motion, masses, theta, d2,
-                                                          holding).tolist()))
+        speeds.update(_stacked_jump_speeds(design, motion, indices, states, theta))
+    if fitted is not None:
+        speeds.update(_stacked_jump_speeds(design, fitted.rows, fitted.indices, states, theta))
     return speeds
+
+
+def _stacked_jump_speeds(design: CamDesign, motion, indices: list, states: dict, theta) -> dict:
+    """:func:`continuous_jump_speeds` of ageing ``indices`` whose motions ``motion`` gives as
+    rows, by index."""
+    masses = np.array([_follower_mass(design, states[k]) for k in indices], float)
+    height, d2 = np.broadcast_arrays(*motion(theta, orders=(0, 2)))
+    holding = _holding_force(design, masses[:, None], height)
+    return dict(zip(indices, continuous_jump_speeds(design, motion, masses, theta, d2,
+                                                    holding).tolist()))
 
 
 def zoomed_minimum(function, low, high, points: int = SEARCH_POINTS,

@@ -36,7 +36,8 @@ log = logging.getLogger(__name__)
 
 
 #: keys that together give a cam's shape: a design shape replaces the made one whole
-CAM_SHAPE_KEYS = ("base_circle_radius", "motion", "eccentric", "profile_file", "drawing")
+CAM_SHAPE_KEYS = ("base_circle_radius", "motion", "eccentric", "profile_file", "drawing",
+                  "outline", "holes")
 
 
 def merged(made: dict, overrides: dict, replace_whole: tuple = ()) -> dict:
