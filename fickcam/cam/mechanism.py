@@ -23,15 +23,19 @@ from pathlib import Path
 
 import numpy as np
 
+from ..materials.bodies import plate_body
 from ..mechanisms.ageing import over_ageing
 from ..mechanisms.part import Part
 from ..mechanisms.response import Response, peak
+from .arm_spec import reach_problems
 from .design import CamDesign, CamState, cam_design
 from .drawn import describe_plate, read_cam_drawing
 from .kinematics import fitted_motions, working_profile
 from .model import cam_response, jump_speeds_over_ageing
-from .oscillating import follower_response
+from .oscillating import describe_arm, follower_response
+from .polydyne import polydyne_design
 from .spec import CamSection, arm_problems
+from .train import dynamic_response
 
 
 class CamMechanism:
@@ -61,8 +65,6 @@ class CamMechanism:
         #: the design whose motion the follower runs: the polydyne-corrected one where asked
         self.motion_design = self.design
         if self.design.polydyne_speed is not None:
-            from .polydyne import polydyne_design
-
             material = section.follower.material
             dry = float(materials[material].ply_properties(1.0)["e11"]) if material else None
             self.motion_design = polydyne_design(self.design, dry)
@@ -153,8 +155,8 @@ class CamMechanism:
     def parts(self) -> tuple[Part, ...]:
         """The bodies that age, cam then follower (built on first use: the diffusion
         geometries are the run's, not the scene's validation's)."""
+        # imported here: the geometries bring scipy.sparse, which validating a scene needs not
         from ..diffusion.problem.geometry import Bar, CamPlate, Disc
-        from ..materials.bodies import plate_body
 
         section, design, (x, y) = self.section, self.design, self.profile
         density = self.materials[section.material].dry_density
@@ -214,8 +216,6 @@ class CamMechanism:
             lines.append(f"cam plate: {describe_plate(self.planform, self.section.thickness, density)}")
         if self.design.arm is None:
             return lines
-        from .oscillating import describe_arm
-
         return lines + [f"follower: {describe_arm(self.design)}"]
 
     def response(self, histories: dict, times, angles, valid,
@@ -244,7 +244,7 @@ class CamMechanism:
         """
         result = rigid_response(self.motion_design, histories, times, angles, valid, on_step)
         if self.section.elastic:
-            from ..elastic.cam import cam_elastic_response
+            from ..elastic.cam import cam_elastic_response  # scikit-fem: only an elastic cam
 
             elastic = cam_elastic_response(self.design, histories["cam"].state,
                                            result.variables, valid)
@@ -256,8 +256,6 @@ class CamMechanism:
 def _profile_problems(section: CamSection, smallest: float) -> list[tuple[tuple, str]]:
     """What a cam given by points (its smallest radius [m]) refuses: a bore that does not
     fit inside, an arm that does not reach, a follower offset beyond the prime circle."""
-    from .arm_spec import reach_problems
-
     problems = []
     if section.bore_radius >= smallest:
         problems.append((("bore_radius",), f"must be smaller than the profile's smallest "
@@ -352,8 +350,6 @@ def rigid_response(design: CamDesign, histories: dict, times, angles, valid,
                                 motion=motions.get(k)) if k in jumps \
             else follower_response(design, state, angles)
         if design.train is not None:  # elastic follower train (Norton ch. 15)
-            from .train import dynamic_response
-
             elastic = dynamic_response(design, state, angles, response.variables)
             response.variables.update(elastic.variables)
             response.notices.extend(elastic.notices)

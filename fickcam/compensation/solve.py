@@ -31,9 +31,18 @@ from pathlib import Path
 
 import numpy as np
 
+from ..cam.profile import write_profile_csv
+from ..diffusion import RunCache
 from ..errors import FickcamError, InputError, format_duration
-from .core import (MAX_ITERATIONS, scene_from, Compensation, converged, made_value, part_strain, quiet_runs,
-                   residual, window_times)
+from ..quantities.options import ageing_time
+from ..results.dataset import build_dataset
+from ..scene.load import as_designed_data, load_scene
+from ..simulation.options import RunOptions
+from ..simulation.parts import part_values
+from ..simulation.simulate import age_parts, ageing_times, diffusion_key, run
+from . import cam, linkage
+from .core import (MAX_ITERATIONS, Compensation, converged, made_value, part_strain, quiet_runs,
+                   residual, scene_from, window_times)
 
 log = logging.getLogger(__name__)
 
@@ -58,8 +67,6 @@ def length_text(value: float, digits: int = 6) -> str:
 
 def _targets(scene, points: bool) -> list:
     """The dimensions compensated, mechanism by mechanism (each mechanism's module here)."""
-    from . import cam, linkage
-
     targets = {"cam": lambda section: cam.targets(section, points), "linkage": linkage.targets}
     return [target for mechanism in scene.mechanisms
             for target in targets[mechanism.section_name](mechanism.section)]
@@ -84,8 +91,6 @@ def with_design(data: dict, design: dict, targets: list) -> dict:
     dict
         A new mapping with the ``design:`` section.
     """
-    from . import cam, linkage
-
     entry = {}
     if "cam" in data:
         entry["cam"] = cam.design_entry(design["cam"], targets)
@@ -128,12 +133,8 @@ def write_made(data: dict, scene, targets: list, made: list, profile: Path):
     link_part = [(t, m) for t, m in zip(targets, made) if t.group not in ("cam", "follower")]
     points = None
     if cam_part:
-        from . import cam
-
         points = cam.write(data, scene.model.cam, *zip(*cam_part), profile, length_text)
     if link_part:
-        from . import linkage
-
         linkage.write(data, *zip(*link_part), length_text)
     return with_design(data, design, targets), points
 
@@ -153,8 +154,6 @@ def write_points(path, points: np.ndarray) -> Path:
     pathlib.Path
         The path written.
     """
-    from ..cam.profile import write_profile_csv
-
     return write_profile_csv(path, points[:, 0], points[:, 1])
 
 
@@ -174,8 +173,6 @@ def _run_at(data: dict, base_dir: Path, times: np.ndarray, accuracy, diffusions=
     """The scene mapping run at ageing ``times`` (s) only, fields off, no file;
     ``diffusions``: diffusion results already solved at ``times`` (:func:`part_states`);
     ``cache``: the compensation's ``diffusion.RunCache`` (its runs share it)."""
-    from ..simulation.simulate import run
-
     ds = run(_scene_at(data, base_dir, times), accuracy=accuracy, diffusions=diffusions,
              cache=cache)
     if ds.sizes["time"] != len(times):
@@ -209,11 +206,6 @@ def part_states(data: dict, base_dir: Path, times: np.ndarray, accuracy, names: 
         (xarray.Dataset of the parts' state variables over (time, part); dict of part
         name -> its ``DiffusionResult`` at ``times``, None for a part that does not absorb).
     """
-    from ..results.dataset import build_dataset
-    from ..simulation.parts import part_values
-    from ..simulation.options import RunOptions
-    from ..simulation.simulate import age_parts
-
     scene = _scene_at(data, base_dir, times)
     parts = [part for part in scene.parts if part.name in names]
     histories = age_parts(scene, scene.environment, times,
@@ -239,8 +231,6 @@ def diffusions_for(data: dict, base_dir: Path, times: np.ndarray, by_name: dict)
     by_name : dict
         Part name -> ``DiffusionResult`` (:func:`part_states`).
     """
-    from ..simulation.simulate import diffusion_key
-
     scene = _scene_at(data, base_dir, times)
     elastic = scene.elastic_parts  # its runs keep no fields but these (``_scene_at``)
     return {diffusion_key(part, part.name in elastic): by_name[part.name]
@@ -251,9 +241,6 @@ def _compensation_times(scene, at, over) -> tuple[np.ndarray, tuple[float, float
     """([T] for ``at`` or the window grid for ``over``, the life asked about: the window,
     or delivery to the end of the history for ``at``), s; refuses times outside the
     history."""
-    from ..quantities.options import ageing_time
-    from ..simulation.simulate import ageing_times
-
     environment = scene.environment
     if (at is None) == (over is None):
         raise InputError("give exactly one of --at TIME or --over T1 T2")
@@ -277,8 +264,6 @@ def _check_times(scene, times: np.ndarray, life: tuple[float, float], *, plot: b
     inside ``life``, its ends and ``times``; ``plot``: the scene's ageing times over the
     whole history too (the plot shows the part before and after a window, from the runs
     the compensation makes anyway); ``wide``: the grid of a window over the whole life."""
-    from ..simulation.simulate import ageing_times
-
     environment = scene.environment
     stored = ageing_times(scene, environment)
     inside = stored[(stored >= life[0]) & (stored <= life[1])]
@@ -397,9 +382,6 @@ def compensate(scene, at=None, over=None, *, accuracy: float | None = None,
         When ``at`` and ``over`` are both given or both missing, a time is outside the
         scene's history, or ``keep_limits`` is given without ``at``.
     """
-    from ..diffusion import RunCache
-    from ..scene.load import as_designed_data, load_scene
-
     cache = RunCache()   # every run of this compensation shares it
     scene = load_scene(scene)
     times, life = _compensation_times(scene, at, over)

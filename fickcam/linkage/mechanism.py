@@ -21,6 +21,7 @@ from functools import cached_property
 
 import numpy as np
 
+from ..materials.bodies import aged_link_body, link_body
 from ..mechanisms.ageing import over_ageing
 from ..mechanisms.part import Part
 from ..mechanisms.response import Response
@@ -112,8 +113,8 @@ class LinkageMechanism:
     def parts(self) -> tuple[Part, ...]:
         """The links as parts that age, each a link bar with bosses (built on first use:
         the diffusion geometries are the run's, not the scene's validation's)."""
+        # imported here: the geometries bring scipy.sparse, which validating a scene needs not
         from ..diffusion.problem.geometry import DrawnPlate, LinkBar
-        from ..materials.bodies import link_body
 
         section, s = self.section, self.section.section
         parts = []
@@ -202,8 +203,6 @@ def link_states(section, histories, drawn=None):
         Lengths [m], masses [kg] and moments of inertia about the centres of mass
         [kg m^2] of crank, coupler, rocker and frame, each of shape (ageing times, 4).
     """
-    from ..materials.bodies import aged_link_body
-
     s, drawn = section.section, drawn or {}
     lengths, masses, inertias = [], [], []
     for link, length in zip(LINKS, link_lengths(section, drawn)):

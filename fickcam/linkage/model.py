@@ -126,7 +126,7 @@ def fourbar_response(design: FourBarDesign, state: FourBarState, crank_angle) ->
     -------
     fickcam.mechanisms.response.Response
         SI arrays (angles in rad), named, dimensioned and in the units of the "linkage"
-        rows of ``fickcam.results.schema.VARIABLES``, and the notices.
+        rows of ``fickcam.schema.VARIABLES``, and the notices.
 
     References
     ----------
