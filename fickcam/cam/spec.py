@@ -20,7 +20,7 @@ from ..quantities.types import (Angle, AngularSpeed, Force, Length, Mass, NonNeg
                      Pressure, SignedLength, Stiffness, quantity)
 from ..quantities.parsing import is_bare_number, to_si
 from .spline import spline_law
-from ..drawing.spec import DrawingFile, Hole, Point, drawing_file, span_slip
+from ..drawing.spec import DrawingFile, Hole, Point, drawing_file, plausible_outline
 
 #: follower train stiffness: zero would leave the follower mass unconnected to the cam
 PositiveStiffness = quantity("stiffness", positive=True)
@@ -513,10 +513,7 @@ class CamSection(_Strict):
     @field_validator("outline")
     @classmethod
     def _outline_span(cls, value):
-        reason = None if value is None else span_slip(value)
-        if reason:
-            raise ValueError(reason)
-        return value
+        return plausible_outline(value)
 
     @field_validator("motion")
     @classmethod

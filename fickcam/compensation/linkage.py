@@ -5,7 +5,9 @@ coupler's length). The link sections (width, thickness, bosses) are left as desi
 they carry the load, not the motion."""
 from __future__ import annotations
 
+from ..errors import InputError
 from ..linkage.mechanism import LINKS
+from ..linkage.spec import DRAWN_LINKS, DrawnLinkSpec
 from .core import Target
 
 LONGITUDINAL = ("strain_longitudinal",)
@@ -25,7 +27,16 @@ def targets(section, points: bool = False) -> list[Target]:
     -------
     list of Target
         The dimensions, design values [m].
+
+    Raises
+    ------
+    fickcam.errors.InputError
+        A drawn link, whose drawing compensation does not write yet.
     """
+    drawn = [link for link in DRAWN_LINKS if isinstance(getattr(section, link), DrawnLinkSpec)]
+    if drawn:
+        raise InputError(f"linkage.{drawn[0]}: compensation does not write a drawn link yet; "
+                         f"give its length to compensate it")
     found = [Target(link, "length", link, LONGITUDINAL, float(getattr(section, link)))
              for link in LINKS]
     if section.coupler_point.distance > 0:

@@ -29,6 +29,26 @@ class _Strict(StrictModel):
     model_config = ConfigDict(extra="forbid", frozen=True, populate_by_name=True)
 
 
+def plausible_outline(value):
+    """An ``outline:`` as given, refused (ValueError) when its span is a unit slip
+    (:func:`span_slip`): a pydantic validator of the key.
+
+    Parameters
+    ----------
+    value : list of tuple of float or None
+        The outline's points [m].
+
+    Returns
+    -------
+    list of tuple of float or None
+        The value, unchanged.
+    """
+    reason = None if value is None else span_slip(value)
+    if reason:
+        raise ValueError(reason)
+    return value
+
+
 class DrawingFile(_Strict):
     """A part given by its DXF drawing (``drawing: FILE.dxf`` is short for ``{file: FILE.dxf}``).
 
