@@ -13,13 +13,15 @@ from .core import Target
 LONGITUDINAL = ("strain_longitudinal",)
 
 
-def targets(section) -> list[Target]:
+def targets(section, points: bool = False) -> list[Target]:
     """Link lengths (crank, coupler, rocker, frame) and the coupler point distance.
 
     Parameters
     ----------
     section : LinkageSection
         The design's validated ``linkage`` section.
+    points : bool
+        Compensate a profile's points (a cam's option; a four-bar has no profile).
 
     Returns
     -------
@@ -43,19 +45,29 @@ def targets(section) -> list[Target]:
     return found
 
 
-def write(data: dict, targets: list[Target], made: list, length_text) -> None:
+def write(data: dict, section, targets: list[Target], made: list, profile,
+          length_text) -> None:
     """Put the made values into the scene's ``linkage:`` mapping (in place).
 
     Parameters
     ----------
     data : dict
         The made scene's YAML mapping.
+    section : LinkageSection
+        The design's validated ``linkage`` section (its lengths are all in ``targets``).
     targets : list of Target
         The dimensions.
     made : list
         Their made values [m].
+    profile : str
+        A made cam's points file (a cam's; a four-bar writes none).
     length_text : callable
         Length [m] -> the text the scene stores.
+
+    Returns
+    -------
+    None
+        A four-bar has no points for the caller to write.
     """
     linkage = data["linkage"]
     for target, value in zip(targets, made):
@@ -67,13 +79,15 @@ def write(data: dict, targets: list[Target], made: list, length_text) -> None:
             linkage["coupler_point"] = point
 
 
-def design_entry(section: dict) -> dict:
+def design_entry(section: dict, targets=()) -> dict:
     """The ``design:`` entry of a compensated scene: the design's link lengths and point.
 
     Parameters
     ----------
     section : dict
         The design scene's ``linkage`` mapping.
+    targets : list of Target
+        The dimensions compensated (every link's: the entry names them all).
 
     Returns
     -------

@@ -247,7 +247,36 @@ def run(scene, *, accuracy: float | None = None, progress: bool = False, setting
     """
     started = _time.perf_counter()
     scene = load_scene(scene)
-    options = RunOptions.for_scene(scene, accuracy, settings, cache)
+    return run_with(scene, RunOptions.for_scene(scene, accuracy, settings, cache),
+                    progress=progress, diffusions=diffusions, started=started)
+
+
+@on_one_blas_thread  # the caller's BLAS threads are restored on return (fickcam.simulation.blas)
+def run_with(scene: Scene, options: RunOptions, *, progress: bool = False,
+             diffusions: dict | None = None, started: float | None = None):
+    """:func:`run` of a loaded scene with its options built: what compensation and the
+    sweeps' cases call, each passing the one :class:`RunOptions` of all its runs.
+
+    Parameters
+    ----------
+    scene : Scene
+        The loaded scene.
+    options : RunOptions
+        The diffusion's accuracy, models, solver settings and cache [-, SI].
+    progress : bool
+        Show progress (as :func:`run`).
+    diffusions : dict, optional
+        Diffusion results already solved, keyed as :func:`age_part` keys them.
+    started : float, optional
+        When the caller started, by ``time.perf_counter`` [s] (the result's wall time
+        counts from it); None: now.
+
+    Returns
+    -------
+    xarray.Dataset
+        The result (as :func:`run`).
+    """
+    started = _time.perf_counter() if started is None else started
     unit = written_time_unit(scene)  # the unit the scene wrote its times in: reports use it
     with progress_summary(f"run {scene.name}", progress), times_in(unit or None):
         environment = scene.environment
