@@ -364,10 +364,11 @@ def dxf_module():
     return require("dxf", advice="or write the profile as .csv")
 
 
-def write_profile_dxf(path, x, y) -> Path:
-    """Write a closed profile (m) as a DXF closed polyline in mm (ezdxf), with the cam
-    axis marked by a point at the origin. Needs the extra ``fickcam[dxf]`` (ezdxf):
-    without it, :class:`~fickcam.extras.MissingExtra` and no file.
+def write_profile_dxf(path, x, y, layer: str = "PROFILE") -> Path:
+    """Write a closed profile (m) as a DXF closed polyline in mm (ezdxf, ``$INSUNITS``
+    millimetres) on ``layer``, with the cam axis marked by a point at the origin on layer
+    ``AXIS``. Needs the extra ``fickcam[dxf]`` (ezdxf): without it,
+    :class:`~fickcam.extras.MissingExtra` and no file.
 
     Parameters
     ----------
@@ -375,6 +376,8 @@ def write_profile_dxf(path, x, y) -> Path:
         The DXF file to write.
     x, y : array_like
         Profile points [m].
+    layer : str
+        The polyline's layer (``PROFILE``: the dry profile; an aged one is named for its time).
 
     Returns
     -------
@@ -389,9 +392,11 @@ def write_profile_dxf(path, x, y) -> Path:
     ezdxf = dxf_module()
     logging.getLogger("ezdxf").setLevel(logging.WARNING)  # its INFO lines are about DXF internals
     document = ezdxf.new("R2010", units=ezdxf.units.MM)
+    for name in {layer, "AXIS"}:  # declared, as CAD tools expect of every layer used
+        document.layers.add(name)
     space = document.modelspace()
     space.add_lwpolyline(list(zip(np.asarray(x) * 1e3, np.asarray(y) * 1e3)), close=True,
-                         dxfattribs={"layer": "PROFILE"})
+                         dxfattribs={"layer": layer})
     space.add_point((0.0, 0.0), dxfattribs={"layer": "AXIS"})
     with replaced_atomically(path) as tmp:
         document.saveas(tmp)

@@ -340,6 +340,30 @@ def _cmd_profile(args) -> int:
     return 0
 
 
+def _cmd_outline(args) -> int:
+    # deferred: keeps numpy, xarray off the start-up path
+    from ..cam.profile import dxf_module, write_profile_csv, write_profile_dxf
+    from ..results.outline import aged_outline
+    from ..results.store import open_result
+
+    suffix = Path(args.output).suffix.lower()
+    if suffix not in (".csv", ".dxf"):
+        raise InputError(f"outline: -o {args.output}: the aged outline is written as .csv or "
+                         f".dxf (by the suffix)")
+    if suffix == ".dxf":
+        dxf_module()  # refused before any work without the dxf extra
+    outline = aged_outline(open_result(args.result), args.time)
+    if suffix == ".dxf":
+        path = write_profile_dxf(args.output, outline.x, outline.y, layer=outline.layer)
+        where = f", layer {outline.layer}, mm"
+    else:
+        path = write_profile_csv(args.output, outline.x, outline.y)
+        where = ", mm"
+    print(f"wrote {path}: the cam's aged working profile at {outline.label}, {outline.how}"
+          f"{where}")
+    return 0
+
+
 def _cmd_fit(args) -> int:
     # deferred: keeps the command's modules off the start-up path
     from ..quantities.options import field_value
@@ -365,4 +389,4 @@ COMMANDS = {"run": _cmd_run, "check": _cmd_check, "query": _cmd_query, "export":
             "plot": _cmd_plot, "bench": _cmd_bench, "materials": _cmd_materials,
             "schema": _cmd_schema, "sweep": _cmd_sweep, "fit": _cmd_fit,
             "examples": _cmd_examples, "size": _cmd_size, "compensate": _cmd_compensate,
-            "profile": _cmd_profile}
+            "profile": _cmd_profile, "outline": _cmd_outline}
