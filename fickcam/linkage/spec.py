@@ -278,8 +278,8 @@ class LinkageSection(StrictModel):
     elastic: bool = Field(
         False, description="Whether to compute the links' swelling stress and failure index")
     aged_length: Literal["field", "mean_strain"] = Field(
-        "field", description="A drawn link's aged length: its pins displaced by its moisture "
-                             "field (field) or L (1 + eps) of its mean moisture (mean_strain)")
+        "field", description="A drawn link's aged length: its pins moved by its moisture field, "
+                             "or L (1 + eps) of its mean")
 
     @model_validator(mode="after")
     def _is_a_four_bar(self):
