@@ -263,9 +263,6 @@ def test_no_module_switches_on_a_geometry_class():
 
 #: the two mechanism responses, being split where the mechanisms become objects: this set
 #: only shrinks (empty it when they are)
-LONG_FOR_NOW: set = set()
-
-
 def test_functions_stay_short_everywhere():
     long_functions = []
     for path in sorted(PACKAGE.rglob("*.py")):
@@ -273,7 +270,7 @@ def test_functions_stay_short_everywhere():
             length = function.end_lineno - function.lineno + 1
             if length > MAX_FUNCTION_LINES:
                 long_functions.append((str(path.relative_to(PACKAGE)), function.name, length))
-    assert [f for f in long_functions if f[:2] not in LONG_FOR_NOW] == []
+    assert long_functions == []
 
 
 # An import inside a function is there to keep a heavy dependency off the start-up path,
@@ -302,18 +299,8 @@ def test_the_late_import_check_finds_one_without_a_reason():
         "def f():\n    # deferred: heavy\n    import a\n    import b\n    return a, b\n") == []
 
 
-#: modules being reworked as the mechanisms become objects: their late imports are sorted
-#: when that lands (this set only shrinks)
-LATE_IMPORTS_FOR_NOW = {"scene/load.py", "simulation/simulate.py", "simulation/parts.py",
-                        "mechanisms/ageing.py", "mechanisms/__init__.py", "cam/model.py",
-                        "linkage/model.py", "compensation/solve.py", "cam/mechanism.py",
-                        "linkage/mechanism.py", "climate/records.py", "cam/profile.py",
-                        "elastic/parts.py", "cam/sizing_scene.py"}
-
-
 def test_imports_inside_functions_say_why():
     late = [f"{path.relative_to(PACKAGE)}:{line}" for path in sorted(PACKAGE.rglob("*.py"))
-            if str(path.relative_to(PACKAGE)) not in LATE_IMPORTS_FOR_NOW
             for line in late_imports_without_a_reason(path.read_text())]
     assert late == []
 
@@ -323,7 +310,7 @@ def test_imports_inside_functions_say_why():
 # The scene reads the domains' specs (``*.spec``, the mechanism registry, the diffusion
 # model names and accuracy check) but no implementation of them (below).
 LAYERS = (
-    ("errors", "_version", "extras", "messages", "quantities", "drawing"),  # foundations
+    ("errors", "_version", "extras", "messages", "files", "schema", "quantities", "drawing"),  # foundations
     ("diffusion",),
     ("materials",),
     ("climate",),
@@ -340,10 +327,6 @@ LAYERS = (
 SCENE_READS = ("fickcam.cam.spec", "fickcam.linkage.spec", "fickcam.materials",
                "fickcam.mechanisms", "fickcam.diffusion.accuracy.budget",
                "fickcam.diffusion.problem.definition")
-#: imports against the flow found when the stages were drawn: this list only shrinks
-AGAINST_THE_FLOW_FOR_NOW = {
-    ("quantities", "results"), ("drawing", "results"), ("cam", "simulation"),
-    ("cam", "results"), ("plotting", "cli"), ("results", "simulation"), ("scene", "results")}
 
 
 def layer_of(module: str) -> int:
@@ -376,7 +359,7 @@ def test_every_stage_has_its_place():
 
 def test_imports_follow_the_flow():
     found = against_the_flow(import_graph(everywhere_in="fickcam"))
-    assert found - AGAINST_THE_FLOW_FOR_NOW == set()
+    assert found == set()
 
 
 def test_the_scene_reads_no_implementation_of_the_later_stages():
@@ -385,14 +368,6 @@ def test_the_scene_reads_no_implementation_of_the_later_stages():
              if name.startswith("fickcam.scene.load") for target in targets
              if layer_of(target) > layer_of("fickcam.scene.load.x") or target.split(".")[1] in (
                  "diffusion", "cam", "linkage", "elastic", "materials", "mechanisms")]
-    assert [(n, t) for n, t in later if not t.startswith(SCENE_READS)
-            and (n, t) not in SCENE_READS_FOR_NOW] == []
+    assert [(n, t) for n, t in later if not t.startswith(SCENE_READS)] == []
 
 
-#: what the scene still reads of the implementations until the mechanisms become objects
-#: (and ``LimitSpec`` lives with the limit search): this set only shrinks
-SCENE_READS_FOR_NOW = {("fickcam.scene.load", "fickcam.cam.arm_spec"),
-                       ("fickcam.scene.load", "fickcam.cam.profile"),
-                       ("fickcam.scene.load", "fickcam.linkage.ageing"),
-                       ("fickcam.scene.load", "fickcam.results.limits"),
-                       ("fickcam.scene.sections", "fickcam.results.limits")}

@@ -11,7 +11,9 @@ import pytest
 from threadpoolctl import threadpool_info, threadpool_limits
 
 from fickcam.errors import SceneError
-from fickcam.simulation.simulate import run
+from fickcam.scene.load import load_scene
+from fickcam.simulation.options import RunOptions
+from fickcam.simulation.simulate import run, run_with
 
 DEMO = Path(__file__).resolve().parents[1] / "configs" / "singh2017_cam.yaml"
 CALLER_THREADS = 2  # what the caller asks for; the run must give it back
@@ -36,8 +38,8 @@ class ThreadsSeen(logging.Handler):
 
 @pytest.fixture(scope="module")
 def demo_runs():
-    """The demo run with the limit, then without it (``run.__wrapped__``: the function the
-    limit wraps), the caller having set its own limit first: (threads seen inside the
+    """The demo run with the limit, then without it (``run_with.__wrapped__``: the function
+    the limit wraps, which ``run`` calls once it has loaded the scene), the caller having set its own limit first: (threads seen inside the
     limited run, the caller's threads after it, its result, the result without the limit,
     threads seen inside that run)."""
     spy, logger = ThreadsSeen(), logging.getLogger("fickcam")
@@ -48,7 +50,8 @@ def demo_runs():
         with threadpool_limits(CALLER_THREADS, "blas"):
             limited = run(DEMO)
             inside, after = list(spy.seen), blas_threads()
-            default = run.__wrapped__(DEMO)
+            scene = load_scene(DEMO)
+            default = run_with.__wrapped__(scene, RunOptions.for_scene(scene))
             unlimited = spy.seen[len(inside):]
     finally:
         logger.removeHandler(spy)

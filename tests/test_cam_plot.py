@@ -7,7 +7,7 @@ import pytest
 
 from fickcam.cam import CamSection
 from fickcam.cam.mechanism import CamMechanism
-from fickcam.results.schema import VARIABLES
+from fickcam.schema import VARIABLES
 
 xr = pytest.importorskip("xarray")
 

@@ -9,13 +9,13 @@ from dataclasses import replace
 import numpy as np
 import pytest
 
-import fickcam.diffusion
+import fickcam.compensation.base_circle
 import fickcam.simulation.simulate
 from fickcam.cam import CamDesign
 from fickcam.cam.motion import segments_from_spec
 from fickcam.cam.sizing import (Limits, contact_stress_radius, degenerate_notes,
                                 smallest_base_circle, worst)
-from fickcam.cam.sizing_scene import MAX_RUNS
+from fickcam.compensation.base_circle import MAX_RUNS
 from fickcam.cam.spec import Segment
 from fickcam.cli.main import main
 
@@ -111,9 +111,10 @@ def test_size_sizes_dry_and_aged_in_at_most_five_runs(tmp_path, capsys, monkeypa
             return function(*args, **kwargs)
         return call
 
-    monkeypatch.setattr(fickcam.simulation.simulate, "run", counted("runs", fickcam.simulation.simulate.run))
-    monkeypatch.setattr(fickcam.diffusion, "solve_problem",
-                        counted("solves", fickcam.diffusion.solve_problem))
+    monkeypatch.setattr(fickcam.compensation.base_circle, "run",
+                        counted("runs", fickcam.compensation.base_circle.run))
+    monkeypatch.setattr(fickcam.simulation.simulate, "solve_problem",
+                        counted("solves", fickcam.simulation.simulate.solve_problem))
     assert main(["size", str(scene), "--pressure-angle", "30 deg"]) == 0
     out = capsys.readouterr().out
     assert 2 <= counts["runs"] <= MAX_RUNS and counts["solves"] == counts["runs"]  # the cam alone absorbs
@@ -155,7 +156,7 @@ def test_a_flat_face_is_sized_for_its_contact_stress_and_a_pointed_answer_is_not
     scene.write_text(FLAT)
     ds = fickcam.run(fickcam.load_scene(str(scene)))
     runs = []
-    monkeypatch.setattr(fickcam.simulation.simulate, "run", lambda *a, **k: runs.append(1) or ds)
+    monkeypatch.setattr(fickcam.compensation.base_circle, "run", lambda *a, **k: runs.append(1) or ds)
     assert main(["size", str(scene)]) == 0
     out = capsys.readouterr().out
     assert len(runs) == 1  # the scene's own run only
@@ -174,7 +175,7 @@ def test_a_cam_that_cannot_be_sized_is_refused_before_any_run(tmp_path, capsys, 
     scene.write_text(SCENE.replace("base_circle_radius: 30 mm", "eccentric: {eccentricity: 4 mm, radius: 23 mm}")
                      .split("  motion:")[0] + "outputs: {ageing_times: [0 d, 60 d]}\n")
     counts = Counter()
-    monkeypatch.setattr(fickcam.simulation.simulate, "run", lambda *a, **k: counts.update(["runs"]))
+    monkeypatch.setattr(fickcam.compensation.base_circle, "run", lambda *a, **k: counts.update(["runs"]))
     assert main(["size", str(scene)]) == 2
     assert counts["runs"] == 0 and "motion segments" in capsys.readouterr().err
 

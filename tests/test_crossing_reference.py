@@ -19,7 +19,7 @@ import yaml
 
 import fickcam
 from fickcam.results.limits import FLOOR_SHARE, Tolerance, limit_ratio
-from fickcam.cli.reporting import crossing_text
+from fickcam.results.limits import crossing_text
 
 from test_limits import fast_fourbar
 

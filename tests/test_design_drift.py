@@ -10,7 +10,7 @@ import fickcam
 from fickcam.cli.main import main
 from fickcam.results.query import drift
 from fickcam.cli.reporting import peak, summary
-from fickcam.results.schema import DESIGN_NOTE, VARIABLES, design_name
+from fickcam.schema import DESIGN_NOTE, VARIABLES, design_name
 
 CONFIGS = Path(__file__).resolve().parents[1] / "configs"
 INCH = 0.0254

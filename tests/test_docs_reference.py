@@ -12,7 +12,7 @@ from pathlib import Path
 
 import pytest
 
-from fickcam.results import schema
+from fickcam import schema
 from fickcam.cli.parser import build_parser
 from fickcam.scene.sections import SceneModel
 

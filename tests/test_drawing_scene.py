@@ -5,30 +5,12 @@ import sys
 
 import numpy as np
 import pytest
-import yaml
 
 ezdxf = pytest.importorskip("ezdxf")
 
 import fickcam  # noqa: E402
+from drawn_scenes import refused as check, scene  # noqa: E402
 from fickcam.cli.main import main  # noqa: E402
-
-NYLON_CAM = {
-    "name": "drawn-cam", "materials": {"nylon": {"plastic": "nylon"}},
-    "cam": {"material": "nylon", "thickness": "10 mm", "speed": "300 rpm",
-            "follower": {"kind": "roller", "roller_radius": "10 mm", "mass": "0.737 kg",
-                         "spring_rate": "660.02 N/m"}},
-    "environment": {"history": [{"duration": "60 d", "temperature": "40 degC",
-                                 "relative_humidity": "90 %"}]},
-    "outputs": {"ageing_times": {"every": "20 d"}, "angle_step": "2 deg"}}
-
-
-def scene(folder, name, **cam):
-    data = yaml.safe_load(yaml.safe_dump(NYLON_CAM))
-    data["cam"].update(cam)
-    path = folder / f"{name}.yaml"
-    path.write_text(yaml.safe_dump(data))
-    return path
-
 
 def disc_drawing(folder, units=4, holes=((0.0, 0.0, 5.0, "BORE"),)):
     document = ezdxf.new("R2010")
@@ -73,14 +55,6 @@ def test_a_profile_written_as_dxf_and_read_back_as_a_drawing_gives_the_same_resu
     same_moisture(made, again)
     for name in ("lift", "base_circle_radius"):
         assert np.asarray(again[name]) == pytest.approx(np.asarray(made[name]), rel=1e-4), name
-
-
-def check(capsys, path) -> str:
-    code = main(["check", str(path)])
-    err = capsys.readouterr().err.strip()
-    assert code == 2, err
-    assert len(err.splitlines()) == 1 and "Traceback" not in err, err
-    return err
 
 
 def test_a_drawing_without_units_is_refused_at_its_key(tmp_path, capsys):

@@ -12,7 +12,7 @@ import yaml
 
 from fickcam.cli.main import main
 from fickcam.extras import EXTRAS, MissingExtra, installed
-from fickcam.results.store import replaced_atomically
+from fickcam.files import replaced_atomically
 
 ROOT = Path(__file__).resolve().parents[1]
 CONFIGS = ROOT / "configs"

@@ -8,9 +8,9 @@ import yaml
 
 import fickcam
 from fickcam.cli.main import main
-from fickcam.results.limits import (FLOOR, POINTS, RELATIVE, Limit, LimitSpec, Tolerance,
-                            first_crossings, limit_ratio, parse_limit)
-from fickcam.results.schema import VARIABLES
+from fickcam.results.limits import FLOOR, POINTS, RELATIVE, Tolerance, first_crossings, limit_ratio
+from fickcam.scene.limits import Limit, LimitSpec, parse_limit
+from fickcam.schema import VARIABLES
 from fickcam.simulation.simulate import search_notices
 
 from test_scene_errors import LINKAGE_SCENE

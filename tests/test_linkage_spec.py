@@ -99,7 +99,7 @@ def test_invalid_ageing_times_stay_nan():
 
 def test_fourbar_response_returns_exactly_the_schema_linkage_variables():
     from fickcam.linkage import FourBarDesign, FourBarState, fourbar_response
-    from fickcam.results.schema import VARIABLES
+    from fickcam.schema import VARIABLES
 
     v = fourbar_response(FourBarDesign(0.1, 0.16, 0.16, 0.2), FourBarState((0.1, 0.16, 0.16, 0.2)),
                          np.radians(np.arange(0, 360, 30.0))).variables

@@ -9,7 +9,7 @@ import yaml
 
 import fickcam
 from fickcam.cli.main import main
-from fickcam.results.schema import VARIABLES
+from fickcam.schema import VARIABLES
 
 ROOT = Path(__file__).resolve().parents[1]
 CONFIGS = ROOT / "configs"

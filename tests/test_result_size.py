@@ -12,7 +12,7 @@ import xarray as xr
 import fickcam
 from fickcam.results import store
 from fickcam.cli.main import main
-from fickcam.results.resultsize import WARN_ABOVE, estimate
+from fickcam.simulation.resultsize import WARN_ABOVE, estimate
 from fickcam.scene.load import load_scene
 from test_scene_errors import CAM_SCENE
 
@@ -58,7 +58,7 @@ def test_a_result_the_disk_cannot_hold_is_refused_before_the_run(tmp_path, capsy
         raise AssertionError("the run started")
 
     monkeypatch.setattr("fickcam.simulation.simulate.run", no_run)
-    monkeypatch.setattr("fickcam.results.resultsize.free_space", lambda folder: 10**9)  # 1 GB free
+    monkeypatch.setattr("fickcam.simulation.resultsize.free_space", lambda folder: 10**9)  # 1 GB free
     assert main(["run", str(scene), "-o", str(output)]) == 1
     err = capsys.readouterr().err.strip().splitlines()[-1]
     assert re.fullmatch(rf"fickcam: error: {re.escape(str(output))}: the result will be about "
@@ -113,7 +113,7 @@ def test_a_sweep_is_estimated_warned_of_and_refused_before_its_first_case(tmp_pa
         raise AssertionError("a case started")
 
     monkeypatch.setattr("fickcam.sweep.runner.run_here", no_case)
-    monkeypatch.setattr("fickcam.results.resultsize.free_space", lambda folder: 10**8)  # 100 MB free
+    monkeypatch.setattr("fickcam.simulation.resultsize.free_space", lambda folder: 10**8)  # 100 MB free
     assert main(["sweep", str(sweep), "-o", str(output), "--workers", "1"]) == 1
     err = capsys.readouterr().err.strip().splitlines()
     size = r"about 2\.\d+ GB \(12 cases x 3,651 ageing times x 360 cam angles\)"

@@ -1,4 +1,4 @@
-"""The schema (fickcam/results/schema.py) is the one table of result names: every name a model
+"""The schema (fickcam/schema.py) is the one table of result names: every name a model
 returns has its row there, and a name it lacks fails instead of being dropped."""
 from pathlib import Path
 
@@ -9,7 +9,7 @@ import yaml
 import fickcam
 from fickcam.results.dataset import build_dataset
 from fickcam.simulation.parts import part_values
-from fickcam.results.schema import VARIABLES
+from fickcam.schema import VARIABLES
 from fickcam.simulation.simulate import as_designed_part, mechanism_values
 
 CONFIGS = Path(__file__).resolve().parents[1] / "configs"
@@ -41,7 +41,7 @@ def test_every_name_the_models_return_is_in_the_schema(name, scene):
 
 
 def test_a_name_the_schema_lacks_fails_instead_of_being_dropped():
-    with pytest.raises(KeyError, match="not declared in fickcam/results/schema.py"):
+    with pytest.raises(KeyError, match="not declared in fickcam/schema.py"):
         build_dataset({"lift": np.zeros(2), "lift_in_furlongs": np.zeros(2)}, {"time": [0.0, 1.0]})
 
 

@@ -141,7 +141,7 @@ def test_a_run_stopped_while_it_writes_leaves_no_temporary(tmp_path, stop, statu
 HOLDER = """
 import sys, time
 from pathlib import Path
-from fickcam.results.store import temporary_beside
+from fickcam.files import temporary_beside
 
 with temporary_beside(Path(sys.argv[1])) as tmp:
     print(tmp, flush=True)

@@ -1,5 +1,5 @@
 """Reference pages generated from the code: scene keys from the pydantic scene models,
-result variables from :mod:`fickcam.results.schema`, the command line from its argparse parser.
+result variables from :mod:`fickcam.schema`, the command line from its argparse parser.
 
 Sphinx calls :func:`setup`; the pages are written to ``docs/reference/`` when the build
 starts, so they cannot fall behind the code. The functions that build the Markdown need
@@ -17,7 +17,7 @@ import yaml
 from pydantic import BaseModel
 from pydantic_core import PydanticUndefined
 
-from fickcam.results import schema
+from fickcam import schema
 from fickcam.cli.parser import build_parser
 from fickcam.scene.sections import SceneModel
 from fickcam.quantities.parsing import SI_UNITS
@@ -225,7 +225,7 @@ def _cell(text: str) -> str:
 # -- result variables -------------------------------------------------------------------
 
 def results_reference_markdown() -> str:
-    """The result variables and coordinates page, from :mod:`fickcam.results.schema`."""
+    """The result variables and coordinates page, from :mod:`fickcam.schema`."""
     lines = ["# Result variables", "",
              "Every variable a result Dataset can hold, generated from the schema when the "
              "documentation is built (`fickcam schema` prints the same list). A variable is "

@@ -9,7 +9,7 @@ from . import dynamics as dyn
 from .motion import segments_from_spec
 from .spec import CamSection
 from .arm import Arm
-from .drawn import drawn_cam, drawn_profile
+from .drawn import drawn_cam, drawn_profile, with_bore
 from .profile import load_profile
 
 
@@ -177,7 +177,8 @@ def cam_design(section, profile=None) -> CamDesign:
         The validated section, or the dict of a scene's ``cam:`` section (validated here).
     profile : CamProfile, optional
         A cam given by points or drawn: its profile as the scene read it (mirrored for a
-        clockwise cam); None: read from ``section.profile_file`` or ``section.drawing``.
+        clockwise cam); None: read from ``section.profile_file``, ``section.drawing`` or
+        ``section.outline``.
 
     Returns
     -------
@@ -208,9 +209,9 @@ def cam_design(section, profile=None) -> CamDesign:
         common["arm"] = Arm(mirror * f.arm.pivot[0], f.arm.pivot[1], f.arm.length or 0.0,
                             f.arm.face_offset, int(mirror) * sense, f.arm.inertia,
                             f.arm.spring_rate, f.arm.spring_preload, f.arm.load_torque)
-    if section.drawing is not None:
+    if section.drawing is not None or section.outline is not None:
         if profile is None:
-            profile = drawn_profile(section, drawn_cam(section))
+            profile = drawn_profile(section, with_bore(drawn_cam(section), section.bore_radius))
         return CamDesign("profile", profile.radii()[0], profile=profile, **common)
     if section.profile_file is not None:
         if profile is None:

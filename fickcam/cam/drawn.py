@@ -1,6 +1,7 @@
-"""A cam plate as drawn (``cam.drawing``): its DXF drawing read into the working profile,
-the axis and the bore (:func:`fickcam.drawing.parts.cam_of`), which then go the way of a
-cam given by points.
+"""A cam plate as drawn (``cam.drawing``) or written in the scene (``cam.outline`` with
+``cam.holes``, about the axis at the origin): read into the working profile, the axis and
+the bore (:func:`fickcam.drawing.parts.cam_of`), which then go the way of a cam given by
+points. A bore given by ``bore_radius`` alone is added to the plate as a round hole.
 
 The drawing is flattened within a chord tolerance tied to the scene's accuracy
 (``CHORD_SHARE``): the chords' sagitta s changes a plate's area, and so its mean
@@ -12,9 +13,12 @@ from __future__ import annotations
 from dataclasses import replace
 from pathlib import Path
 
+import numpy as np
+
 from ..drawing.dxfread import read_drawing
-from ..drawing.parts import DrawnCam, cam_of
-from ..drawing.planform import DrawingError
+from ..drawing.parts import AXIS_LAYER, DrawnCam, cam_of
+from ..drawing.planform import DrawingError, Loop, circle_points
+from ..drawing.spec import polygon_key, polygon_of
 from ..extras import MissingExtra
 from .profile import CamProfile, make_profile
 
@@ -28,12 +32,12 @@ BORE_AGREES = 1e-9
 
 def drawn_cam(section, accuracy: float = DEFAULT_ACCURACY) -> DrawnCam:
     """The cam plate a section's ``drawing`` names (its path absolute or relative to the
-    working folder).
+    working folder), or its ``outline`` and ``holes``.
 
     Parameters
     ----------
     section : CamSection
-        The validated ``cam:`` section, with a ``drawing``.
+        The validated ``cam:`` section, with a ``drawing`` or an ``outline``.
     accuracy : float
         The scene's relative accuracy [-]; the chord tolerance is ``CHORD_SHARE`` x it x
         the drawing's extent.
@@ -51,6 +55,10 @@ def drawn_cam(section, accuracy: float = DEFAULT_ACCURACY) -> DrawnCam:
         Without the ``dxf`` extra.
     """
     spec = section.drawing
+    if spec is None:
+        extent = max(max(abs(v) for v in point) for point in section.outline)
+        planform = polygon_of(section.outline, section.holes, CHORD_SHARE * accuracy * extent)
+        return cam_of(planform, {AXIS_LAYER: [(0.0, 0.0)]})
     drawing = read_drawing(spec.file, CHORD_SHARE * accuracy, spec.units, relative=True)
     return cam_of(drawing.planform, drawing.points, spec.axis_layer)
 
@@ -76,15 +84,42 @@ def drawn_profile(section, part: DrawnCam) -> CamProfile:
     return replace(profile, planform=part.planform)
 
 
+def with_bore(part: DrawnCam, radius: float, accuracy: float = DEFAULT_ACCURACY) -> DrawnCam:
+    """The plate with a round bore about the axis added, where it has none.
+
+    Parameters
+    ----------
+    part : fickcam.drawing.parts.DrawnCam
+        The plate about its axis [m].
+    radius : float
+        The bore's radius [m] (0: none).
+    accuracy : float
+        The scene's relative accuracy [-] (the bore's chords stray ``CHORD_SHARE`` x it x
+        the radius at most).
+
+    Returns
+    -------
+    fickcam.drawing.parts.DrawnCam
+        The plate, its bore drawn.
+    """
+    if part.bore is not None or radius <= 0:
+        return part
+    bore = Loop(circle_points((0.0, 0.0), radius, CHORD_SHARE * accuracy * radius)[::-1], "",
+                "bore_radius")
+    planform = replace(part.planform, holes=(*part.planform.holes, bore))
+    return DrawnCam(planform, bore, radius)
+
+
 def read_cam_drawing(section, base_dir: Path, accuracy: float):
-    """Read ``cam.drawing`` (relative to the scene): (problems as (key path inside the
-    section, reason), the section with the drawing's path absolute and the drawing's bore
-    radius, the :class:`CamProfile` or None, the profile's smallest radius [m]).
+    """Read ``cam.drawing`` (relative to the scene), or ``cam.outline`` with ``cam.holes``:
+    (problems as (key path inside the section, reason), the section with the drawing's path
+    absolute and the plate's bore radius, the :class:`CamProfile` or None, the profile's
+    smallest radius [m]).
 
     Parameters
     ----------
     section : CamSection
-        The validated ``cam:`` section, with a ``drawing``.
+        The validated ``cam:`` section, with a ``drawing`` or an ``outline``.
     base_dir : pathlib.Path
         The folder the scene's relative paths start from.
     accuracy : float
@@ -93,23 +128,54 @@ def read_cam_drawing(section, base_dir: Path, accuracy: float):
     Returns
     -------
     tuple
-        As above; the profile None when the drawing is refused.
+        As above; the profile None when the plate is refused.
     """
-    path = str((base_dir / section.drawing.file).resolve())
-    section = section.model_copy(update={"drawing": section.drawing.model_copy(
-        update={"file": path})})
+    drawn = section.drawing is not None
+    if drawn:
+        path = str((base_dir / section.drawing.file).resolve())
+        section = section.model_copy(update={"drawing": section.drawing.model_copy(
+            update={"file": path})})
     try:
         part = drawn_cam(section, accuracy)
     except (DrawingError, MissingExtra) as exc:
-        return [(("drawing",), str(exc))], section, None, 0.0
+        return [(("drawing",) if drawn else polygon_key(str(exc)), str(exc))], section, None, 0.0
     if part.other_holes:
         sources = ", ".join(h.source for h in part.other_holes)
-        return [(("drawing",), f"{path}: holes besides the bore ({sources}) are not modelled "
-                               f"in a cam yet; draw the plate without them")], section, None, 0.0
+        where, what = ((("drawing",), f"{path}: ") if drawn else
+                       (polygon_key(part.other_holes[0].source), ""))
+        return [(where, f"{what}holes besides the bore ({sources}) are not modelled in a cam "
+                        f"yet; leave them out")], section, None, 0.0
     problems = []
-    if ("bore_radius" in section.model_fields_set
-            and abs(section.bore_radius - part.bore_radius) > BORE_AGREES):
-        problems.append((("bore_radius",), f"the drawing's bore has radius "
+    given = "bore_radius" in section.model_fields_set
+    if given and part.bore is not None and abs(section.bore_radius - part.bore_radius) > BORE_AGREES:
+        problems.append((("bore_radius",), f"the plate's bore has radius "
                                            f"{part.bore_radius * 1e3:.6g} mm; leave bore_radius out"))
+    part = with_bore(part, section.bore_radius if given else 0.0, accuracy)
     section = section.model_copy(update={"bore_radius": part.bore_radius})
     return problems, section, drawn_profile(section, part), part.smallest_radius
+
+
+def describe_plate(planform, thickness: float, density: float) -> str:
+    """``M g, centre of mass (x, y) mm from the axis, J kg m^2 about it`` of a drawn plate
+    (:meth:`fickcam.drawing.planform.Planform.mass_properties`).
+
+    Parameters
+    ----------
+    planform : fickcam.drawing.planform.Planform
+        The plate about its axis [m].
+    thickness : float
+        The plate's thickness [m].
+    density : float
+        Its dry density [kg/m^3].
+
+    Returns
+    -------
+    str
+        The line: four significant digits (the chords change the area by less than
+        ``CHORD_SHARE`` x the accuracy), the centre to the micrometre.
+    """
+    mass = planform.mass_properties(thickness, density)
+    about_axis = mass.inertia + mass.mass * float(np.hypot(*mass.centre)) ** 2
+    x, y = np.round(np.asarray(mass.centre) * 1e3, 3) + 0.0  # to the micrometre, no -0
+    return (f"{mass.mass * 1e3:.4g} g, centre of mass ({x:g}, {y:g}) mm from the axis, "
+            f"moment of inertia {about_axis:.4g} kg m^2 about it (dry)")

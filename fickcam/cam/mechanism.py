@@ -23,15 +23,19 @@ from pathlib import Path
 
 import numpy as np
 
+from ..materials.bodies import plate_body
 from ..mechanisms.ageing import over_ageing
 from ..mechanisms.part import Part
 from ..mechanisms.response import Response, peak
+from .arm_spec import reach_problems
 from .design import CamDesign, CamState, cam_design
-from .drawn import read_cam_drawing
+from .drawn import describe_plate, read_cam_drawing
 from .kinematics import fitted_motions, working_profile
 from .model import cam_response, jump_speeds_over_ageing
-from .oscillating import follower_response
+from .oscillating import describe_arm, follower_response
+from .polydyne import polydyne_design
 from .spec import CamSection, arm_problems
+from .train import dynamic_response
 
 
 class CamMechanism:
@@ -61,13 +65,13 @@ class CamMechanism:
         #: the design whose motion the follower runs: the polydyne-corrected one where asked
         self.motion_design = self.design
         if self.design.polydyne_speed is not None:
-            from .polydyne import polydyne_design
-
             material = section.follower.material
             dry = float(materials[material].ply_properties(1.0)["e11"]) if material else None
             self.motion_design = polydyne_design(self.design, dry)
         #: the dry working profile, x and y [m]
         self.profile = working_profile(self.design)
+        #: a drawn plate's outline and holes about the axis [m] (None: not drawn)
+        self.planform = getattr(self.design.profile, "planform", None)
         self.elastic_parts = frozenset({"cam"} if section.elastic else ())
 
     # ---------------------------------------------------------- from the section alone
@@ -119,7 +123,7 @@ class CamMechanism:
         ``design:`` that keeps the shape reads no file twice), added to; ``accuracy``: the
         scene's [-], which sets a drawing's chord tolerance; see
         :meth:`fickcam.mechanisms.Mechanism.read_files`."""
-        if section.drawing is not None:
+        if section.drawing is not None or section.outline is not None:
             problems, section, profile, smallest = read_cam_drawing(section, base_dir, accuracy)
             if profile is None or problems:
                 return problems, section, profile
@@ -151,12 +155,15 @@ class CamMechanism:
     def parts(self) -> tuple[Part, ...]:
         """The bodies that age, cam then follower (built on first use: the diffusion
         geometries are the run's, not the scene's validation's)."""
+        # imported here: the geometries bring scipy.sparse, which validating a scene needs not
         from ..diffusion.problem.geometry import Bar, CamPlate, Disc
-        from ..materials.bodies import plate_body
 
         section, design, (x, y) = self.section, self.design, self.profile
-        _, cam_mass, _ = plate_body(x, y, section.thickness, section.bore_radius,
-                                    self.materials[section.material].dry_density)
+        density = self.materials[section.material].dry_density
+        if self.planform is not None:  # drawn: the plate with every hole (Green's theorem)
+            cam_mass = self.planform.mass_properties(section.thickness, density).mass
+        else:
+            _, cam_mass, _ = plate_body(x, y, section.thickness, section.bore_radius, density)
         if section.eccentric is not None and section.bore_radius == 0:
             # a solid eccentric disc is a finite cylinder about its own centre: exact series
             geometry = Disc(section.eccentric.radius, section.thickness)
@@ -194,19 +201,22 @@ class CamMechanism:
         return [] if fault is None else [(("base_circle_radius",), fault)]
 
     def described(self) -> list[str]:
-        """What `fickcam check` says of the cam beyond its parts: a swinging arm's
-        follower (where it sits, the dry design's pressure angle and curvature).
+        """What `fickcam check` says of the cam beyond its parts: a drawn plate's mass,
+        centre of mass and moment of inertia, a swinging arm's follower (where it sits, the
+        dry design's pressure angle and curvature).
 
         Returns
         -------
         list of str
-            Lines, without indent; none for a translating follower.
+            Lines, without indent; none for a cam not drawn with a translating follower.
         """
+        lines = []
+        if self.planform is not None:
+            density = self.materials[self.section.material].dry_density
+            lines.append(f"cam plate: {describe_plate(self.planform, self.section.thickness, density)}")
         if self.design.arm is None:
-            return []
-        from .oscillating import describe_arm
-
-        return [f"follower: {describe_arm(self.design)}"]
+            return lines
+        return lines + [f"follower: {describe_arm(self.design)}"]
 
     def response(self, histories: dict, times, angles, valid,
                  on_step=lambda: None) -> Response:
@@ -234,7 +244,7 @@ class CamMechanism:
         """
         result = rigid_response(self.motion_design, histories, times, angles, valid, on_step)
         if self.section.elastic:
-            from ..elastic.cam import cam_elastic_response
+            from ..elastic.cam import cam_elastic_response  # scikit-fem: only an elastic cam
 
             elastic = cam_elastic_response(self.design, histories["cam"].state,
                                            result.variables, valid)
@@ -246,8 +256,6 @@ class CamMechanism:
 def _profile_problems(section: CamSection, smallest: float) -> list[tuple[tuple, str]]:
     """What a cam given by points (its smallest radius [m]) refuses: a bore that does not
     fit inside, an arm that does not reach, a follower offset beyond the prime circle."""
-    from .arm_spec import reach_problems
-
     problems = []
     if section.bore_radius >= smallest:
         problems.append((("bore_radius",), f"must be smaller than the profile's smallest "
@@ -342,8 +350,6 @@ def rigid_response(design: CamDesign, histories: dict, times, angles, valid,
                                 motion=motions.get(k)) if k in jumps \
             else follower_response(design, state, angles)
         if design.train is not None:  # elastic follower train (Norton ch. 15)
-            from .train import dynamic_response
-
             elastic = dynamic_response(design, state, angles, response.variables)
             response.variables.update(elastic.variables)
             response.notices.extend(elastic.notices)

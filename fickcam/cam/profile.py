@@ -23,6 +23,7 @@ the table. The dry spline is evaluated as a :class:`scipy.interpolate.PPoly`.
 from __future__ import annotations
 
 import functools
+import logging
 import re
 from dataclasses import dataclass
 from pathlib import Path
@@ -31,7 +32,8 @@ import numpy as np
 
 from ..climate.csvrows import CsvError, numbered_rows
 from ..extras import require
-from ..results.store import replaced_atomically
+from ..files import replaced_atomically
+from ..quantities.parsing import to_si
 from .arm import aged_profile_contact
 from .motion import ORDERS
 
@@ -72,7 +74,7 @@ class CamProfile:
     def pieces(self):
         """The spline as a :class:`scipy.interpolate.PPoly` (coefficients (6, pieces, 2)):
         the same curve, evaluated several times faster."""
-        from scipy.interpolate import PPoly
+        from scipy.interpolate import PPoly  # only a cam given by points
 
         t, c, k = self.spline.tck
         x, y = (PPoly.from_spline((t, c[:, j], k)) for j in (0, 1))
@@ -120,7 +122,7 @@ def periodic_spline(x, y):
     ----------
     de Boor (2001), ch. XIII; in full in :mod:`fickcam.cam`.
     """
-    from scipy.interpolate import make_interp_spline
+    from scipy.interpolate import make_interp_spline  # only a cam given by points
 
     xy = np.c_[x, y]
     closed = np.r_[xy, xy[:1]]
@@ -208,8 +210,6 @@ def make_profile(x, y, curve: str = "working", roller_radius: float = 0.0) -> Ca
 
 
 def _column_scale(cell: str, path) -> tuple[str, float]:
-    from ..quantities.parsing import to_si
-
     match = _HEADER.match(cell)
     if not match:
         raise ValueError(f"profile file {str(path)!r}: header {cell!r} is not 'name [unit]'")
@@ -364,10 +364,11 @@ def dxf_module():
     return require("dxf", advice="or write the profile as .csv")
 
 
-def write_profile_dxf(path, x, y) -> Path:
-    """Write a closed profile (m) as a DXF closed polyline in mm (ezdxf), with the cam
-    axis marked by a point at the origin. Needs the extra ``fickcam[dxf]`` (ezdxf):
-    without it, :class:`~fickcam.extras.MissingExtra` and no file.
+def write_profile_dxf(path, x, y, layer: str = "PROFILE") -> Path:
+    """Write a closed profile (m) as a DXF closed polyline in mm (ezdxf, ``$INSUNITS``
+    millimetres) on ``layer``, with the cam axis marked by a point at the origin on layer
+    ``AXIS``. Needs the extra ``fickcam[dxf]`` (ezdxf): without it,
+    :class:`~fickcam.extras.MissingExtra` and no file.
 
     Parameters
     ----------
@@ -375,6 +376,8 @@ def write_profile_dxf(path, x, y) -> Path:
         The DXF file to write.
     x, y : array_like
         Profile points [m].
+    layer : str
+        The polyline's layer (``PROFILE``: the dry profile; an aged one is named for its time).
 
     Returns
     -------
@@ -386,14 +389,14 @@ def write_profile_dxf(path, x, y) -> Path:
     fickcam.extras.MissingExtra
         Without ezdxf.
     """
-    import logging
-
     ezdxf = dxf_module()
     logging.getLogger("ezdxf").setLevel(logging.WARNING)  # its INFO lines are about DXF internals
     document = ezdxf.new("R2010", units=ezdxf.units.MM)
+    for name in {layer, "AXIS"}:  # declared, as CAD tools expect of every layer used
+        document.layers.add(name)
     space = document.modelspace()
     space.add_lwpolyline(list(zip(np.asarray(x) * 1e3, np.asarray(y) * 1e3)), close=True,
-                         dxfattribs={"layer": "PROFILE"})
+                         dxfattribs={"layer": layer})
     space.add_point((0.0, 0.0), dxfattribs={"layer": "AXIS"})
     with replaced_atomically(path) as tmp:
         document.saveas(tmp)
@@ -646,7 +649,7 @@ def aged_profile_motion(profile: CamProfile, strain_x: float, strain_y: float, r
     -------
     ProfileMotion
     """
-    from scipy.interpolate import PPoly, make_interp_spline
+    from scipy.interpolate import PPoly, make_interp_spline  # only a cam given by points
 
     contact = AgedContact(profile, strain_x, strain_y, roller, offset, flat, arm, base)
     table = contact_table(contact)

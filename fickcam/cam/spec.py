@@ -20,6 +20,7 @@ from ..quantities.types import (Angle, AngularSpeed, Force, Length, Mass, NonNeg
                      Pressure, SignedLength, Stiffness, quantity)
 from ..quantities.parsing import is_bare_number, to_si
 from .spline import spline_law
+from ..drawing.spec import DrawingFile, Hole, Point, drawing_file, plausible_outline
 
 #: follower train stiffness: zero would leave the follower mass unconnected to the cam
 PositiveStiffness = quantity("stiffness", positive=True)
@@ -408,28 +409,18 @@ class Polydyne(_Strict):
         None, description="Speed the cam is cut for; default the cam's speed [rad/s]")
 
 
-class Drawing(_Strict):
-    """A part given by its DXF drawing (``drawing: FILE.dxf`` is short for ``{file: FILE.dxf}``).
+class Drawing(DrawingFile):
+    """A cam plate given by its DXF drawing: ``file`` and ``units`` as in
+    :class:`fickcam.drawing.spec.DrawingFile`, and the layer of its axis.
 
     Parameters
     ----------
-    file : str
-        The DXF file, relative to the scene.
-    units : {"mm", "cm", "m", "in", "ft"}, optional
-        The drawing's unit where its header sets none ($INSUNITS).
     axis_layer : str
         The layer of a point marking the cam's axis of rotation.
     """
 
-    file: str = Field(description="The DXF drawing, relative to the scene (outer loop: the profile)")
-    units: Literal["mm", "cm", "m", "in", "ft"] | None = Field(
-        None, description="The drawing's unit where its header sets none ($INSUNITS)")
     axis_layer: str = Field("AXIS", description="The layer of a point marking the axis of rotation "
                                                 "(without one: the centre of the bore)")
-
-
-def _drawing_file(value):
-    return {"file": value} if isinstance(value, str) else value
 
 
 class CamSection(_Strict):
@@ -465,6 +456,11 @@ class CamSection(_Strict):
         A CSV file of profile points instead of a motion.
     drawing : Drawing, optional
         The plate's DXF drawing instead of a motion.
+    outline : list of tuple of float, optional
+        The plate's outline (x, y) [m] about the axis instead of a motion: its working
+        profile.
+    holes : list, optional
+        The holes of an ``outline`` [m]: a round hole about the axis is the bore.
     gravity : bool
         Weight of the follower along its axis, against the lift.
     wear : Wear, optional
@@ -491,8 +487,14 @@ class CamSection(_Strict):
         None, description="An eccentric disc cam instead of a motion")
     profile_file: str | None = Field(
         None, description="A CSV file of profile points instead of a motion")
-    drawing: Annotated[Drawing | None, BeforeValidator(_drawing_file)] = Field(
+    drawing: Annotated[Drawing | None, BeforeValidator(drawing_file)] = Field(
         None, description="The cam plate's DXF drawing instead of a motion (the dxf extra)")
+    outline: list[Point] | None = Field(
+        None, min_length=3, description="The plate's outline (x, y) about the axis, its working "
+                                        "profile, instead of a motion [m]")
+    holes: list[Hole] | None = Field(
+        None, description="Holes of the outline, round {centre, radius} or points; the one "
+                          "about the axis is the bore [m]")
     gravity: bool = Field(
         False, description="Whether the follower's weight acts along its axis, against the lift")
     wear: Wear | None = Field(None, description="Archard wear of the cam surface")
@@ -507,6 +509,11 @@ class CamSection(_Strict):
     @classmethod
     def _polydyne_true(cls, value):
         return {} if value is True else (None if value is False else value)
+
+    @field_validator("outline")
+    @classmethod
+    def _outline_span(cls, value):
+        return plausible_outline(value)
 
     @field_validator("motion")
     @classmethod
@@ -525,12 +532,14 @@ class CamSection(_Strict):
                                      f"segments (or profile_file), without {key}")
             if self.gravity or self.elastic:
                 raise ValueError("gravity and elastic are not modelled for a swinging arm")
-        if self.profile_file is not None or self.drawing is not None:
+        if self.holes is not None and self.outline is None:
+            raise ValueError("holes belong to an outline: give outline too")
+        if self.profile_file is not None or self.drawing is not None or self.outline is not None:
             given = (self.motion, self.base_circle_radius, self.eccentric, self.profile_file,
-                     self.drawing)
+                     self.drawing, self.outline)
             if sum(v is not None for v in given) > 1:
-                raise ValueError("give one of profile_file, drawing, eccentric or motion with "
-                                 "base_circle_radius")
+                raise ValueError("give one of profile_file, drawing, outline, eccentric or motion "
+                                 "with base_circle_radius")
             if self.follower.kind == "flat" and self.follower.offset != 0.0:
                 raise ValueError("a flat follower's offset does not change its motion; leave it 0")
             if self.polydyne is not None:

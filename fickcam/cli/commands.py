@@ -18,7 +18,7 @@ def _cmd_run(args) -> int:
     from ..scene.load import load_scene
     from .reporting import summary
     from ..simulation.simulate import run
-    from ..results.resultsize import result_fits
+    from ..simulation.resultsize import result_fits
     from ..results.store import save
 
     accuracy = scene_accuracy(args.accuracy)
@@ -114,7 +114,7 @@ def _cmd_check(args) -> int:
     scene = load_scene(args.scene)
     # deferred until the scene is valid: a refused scene never loads the diffusion engine
     from .reporting import describe_plan
-    from ..results.resultsize import estimate, size_warning
+    from ..simulation.resultsize import estimate, size_warning
 
     print(describe_plan(scene))
     warning = size_warning(estimate(scene))
@@ -126,7 +126,7 @@ def _cmd_check(args) -> int:
 def _cmd_size(args) -> int:
     # deferred: keeps numpy, pydantic off the start-up path
     from ..cam.sizing import Limits
-    from ..cam.sizing_scene import size_scene
+    from ..compensation.base_circle import size_scene
     from ..quantities.options import angle, option_value
     from ..quantities.plausibility import cam_length_reading
     from ..scene.load import load_scene
@@ -266,7 +266,7 @@ def _cmd_examples(args) -> int:
 
 def _cmd_schema(args) -> int:
     # deferred: keeps the command's modules off the start-up path
-    from ..results.schema import markdown_table
+    from ..schema import markdown_table
 
     print(markdown_table())
     return 0
@@ -340,12 +340,36 @@ def _cmd_profile(args) -> int:
     return 0
 
 
+def _cmd_outline(args) -> int:
+    # deferred: keeps numpy, xarray off the start-up path
+    from ..cam.profile import dxf_module, write_profile_csv, write_profile_dxf
+    from ..results.outline import aged_outline
+    from ..results.store import open_result
+
+    suffix = Path(args.output).suffix.lower()
+    if suffix not in (".csv", ".dxf"):
+        raise InputError(f"outline: -o {args.output}: the aged outline is written as .csv or "
+                         f".dxf (by the suffix)")
+    if suffix == ".dxf":
+        dxf_module()  # refused before any work without the dxf extra
+    outline = aged_outline(open_result(args.result), args.time)
+    if suffix == ".dxf":
+        path = write_profile_dxf(args.output, outline.x, outline.y, layer=outline.layer)
+        where = f", layer {outline.layer}, mm"
+    else:
+        path = write_profile_csv(args.output, outline.x, outline.y)
+        where = ", mm"
+    print(f"wrote {path}: the cam's aged working profile at {outline.label}, {outline.how}"
+          f"{where}")
+    return 0
+
+
 def _cmd_fit(args) -> int:
     # deferred: keeps the command's modules off the start-up path
     from ..quantities.options import field_value
     from ..fit import fit_weight_gain, materials_yaml, parameter_table, plot_fit
     from ..materials import MaterialSpec
-    from ..results.store import write_text_atomically
+    from ..files import write_text_atomically
 
     if (args.fiber is None) != (args.fiber_volume_fraction is None):
         raise InputError("--fiber and --fiber-volume-fraction go together")
@@ -365,4 +389,4 @@ COMMANDS = {"run": _cmd_run, "check": _cmd_check, "query": _cmd_query, "export":
             "plot": _cmd_plot, "bench": _cmd_bench, "materials": _cmd_materials,
             "schema": _cmd_schema, "sweep": _cmd_sweep, "fit": _cmd_fit,
             "examples": _cmd_examples, "size": _cmd_size, "compensate": _cmd_compensate,
-            "profile": _cmd_profile}
+            "profile": _cmd_profile, "outline": _cmd_outline}

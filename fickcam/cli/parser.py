@@ -210,6 +210,22 @@ def _making_commands(sub) -> None:
     profile.add_argument("-o", "--output", required=True, help="PATH.csv or PATH.dxf")
     profile.add_argument("--points", type=int, default=3600, help="points round the profile")
 
+    outline = _command(sub, "outline", "a cam result's aged outline at an ageing time (CSV or DXF)",
+                       "Write the cam's aged working profile at an ageing time, as the result "
+                       "stores it, in mm about the cam's axis: CSV (x [mm], y [mm]) or a closed "
+                       "DXF polyline on a layer named for the time (AGED_45d), with the axis a "
+                       "point on layer AXIS, to overlay on the drawing. Between stored ageing "
+                       "times the outline is interpolated in sqrt(t) and the estimated error "
+                       "printed (with fewer than three stored times it is refused).",
+                       'fickcam outline outputs/cam.h5 --time "60 d" -o aged.dxf',
+                       'fickcam outline outputs/cam.h5 --time "45 d" -o aged.csv')
+    outline.add_argument("result", help="result file (.h5) of a scene with a cam")
+    outline.add_argument("--time", required=True,
+                         help='ageing time with its unit, e.g. "60 d" (a bare number is '
+                              'seconds, as in a scene, and refused when it is almost '
+                              'certainly a slip: 45 -> did you mean "45 d"?)')
+    outline.add_argument("-o", "--output", required=True, help="PATH.csv or PATH.dxf")
+
     fit = _command(sub, "fit", "calibrate a material from ASTM D5229 weight-gain data",
                    "Fit the diffusivity (D0, Ea) and saturation law of a material to weight-gain "
                    "coupon data (ASTM D5229, one row per weighing) and write a scene-ready "

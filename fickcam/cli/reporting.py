@@ -1,6 +1,6 @@
 """Text a person reads: the plan `fickcam check` prints and the summary after a run.
 
-Units and scales come from the schema (:mod:`fickcam.results.schema`): a value is shown in
+Units and scales come from the schema (:mod:`fickcam.schema`): a value is shown in
 its variable's ``display`` unit (converted from the stored unit with pint), or in
 the stored unit. The summary gives each key output as design → t = 0 → end, its
 drift against the design and against t = 0 and, for a history that goes up and
@@ -15,11 +15,11 @@ import numpy as np
 
 from ..results.dataset import ageing_seconds, report_time_unit
 from ..errors import format_duration, format_time, times_in
-from ..results.limits import stored_limits
+from ..results.limits import crossing, crossing_text, stored_limits
 from ..results.query import drift
-from ..results.schema import VARIABLES, design_name
+from ..schema import VARIABLES, design_name
 from ..quantities.parsing import convert
-from ..results.resultsize import estimate as result_size
+from ..simulation.resultsize import estimate as result_size
 from ..simulation.simulate import STATE_GIVEN, plan_parts
 from ..results.query import swept_values
 
@@ -248,52 +248,6 @@ def _table(rows: list[list[str]], header: list[str]) -> list[str]:
 
 
 # ------------------------------------------------------------------- limits
-
-
-def crossing(ds, name: str) -> tuple[float, float | None]:
-    """When a limit of a result first fails and that time's error estimate [s] (NaN: it
-    holds; the estimate None in a result written before it was stored).
-
-    Parameters
-    ----------
-    ds : xarray.Dataset
-        A result with ``time_out_of_spec``.
-    name : str
-        The limited variable.
-
-    Returns
-    -------
-    tuple of (float, float or None)
-        The time [s] and its error estimate [s].
-    """
-    failed = float(ds["time_out_of_spec"].sel(limit=name)) * 86400.0
-    if "time_out_of_spec_error" not in ds:
-        return failed, None
-    return failed, float(ds["time_out_of_spec_error"].sel(limit=name)) * 86400.0
-
-
-def crossing_text(ds, name: str) -> str:
-    """When a limit first fails, in the result's time unit, with only the digits its error
-    estimate supports (``"20.0 d"``); "never" where it holds.
-
-    Parameters
-    ----------
-    ds : xarray.Dataset
-        A result with ``time_out_of_spec``.
-    name : str
-        The limited variable.
-
-    Returns
-    -------
-    str
-        The time's text.
-    """
-    failed, error = crossing(ds, name)
-    if math.isnan(failed):
-        return "never"
-    unit = report_time_unit(ds)
-    return format_time(failed, unit, error) if error is not None else \
-        f"{failed / unit[1]:.4g} {unit[0]}"
 
 
 def limit_line(ds, name: str) -> str | None:

@@ -28,9 +28,11 @@ from pathlib import Path
 
 import numpy as np
 
-from .csvrows import CsvError, numbered_rows
 from ..extras import require
 from ..quantities.parsing import to_si
+from ..quantities.plausibility import (RECORD_LENGTH, RELATIVE_HUMIDITY, TEMPERATURE, Verdict,
+                                       plausible_units)
+from .csvrows import CsvError, numbered_rows
 
 _HEADER = re.compile(r"^\s*(?P<name>[A-Za-z_]+)\s*(?:[\[(](?P<unit>[^\])]*)[\])])?\s*$")
 _COLUMNS = {"time": "time", "temperature": "temperature", "relative_humidity": "percent"}
@@ -381,9 +383,6 @@ def check_last_line(path: Path, rows: list[tuple[int, list[str]]], columns: dict
 def _unit_slip(path, header_line: int, name: str, values: np.ndarray) -> None:
     """Refuse a column without a unit in the header whose values read in SI are almost
     certainly a slip (times in days, temperatures in degC), naming the likely unit."""
-    from ..quantities.plausibility import (RECORD_LENGTH, RELATIVE_HUMIDITY, TEMPERATURE, Verdict,
-                               plausible_units)
-
     reading, number = {
         "time": (RECORD_LENGTH, float(np.ptp(values)) if values.size else 0.0),
         "temperature": (TEMPERATURE, float(np.min(values, initial=np.inf))),

@@ -46,7 +46,7 @@ def _given_by_points(section, points: bool = False) -> bool:
     """True when the made cam is written as points: a profile file, a swinging arm's cam,
     or any cam when ``points`` is asked for."""
     return (points or section.profile_file is not None or section.drawing is not None
-            or section.follower.arm is not None)
+            or section.outline is not None or section.follower.arm is not None)
 
 
 def _segment_name(index: int, segment) -> str:
@@ -174,10 +174,10 @@ def write(data: dict, section, targets, made, profile, length_text) -> np.ndarra
     points = None
     if PROFILE_NAMES[0] in shape:
         points = np.c_[shape[PROFILE_NAMES[0]], shape[PROFILE_NAMES[1]]]
-        for key in ("base_circle_radius", "motion", "eccentric", "drawing"):
+        for key in ("base_circle_radius", "motion", "eccentric", "drawing", "outline", "holes"):
             cam.pop(key, None)
         cam["profile_file"] = str(profile)
-        if section.drawing is not None:  # the drawn bore, which the points do not give
+        if section.drawing is not None or section.outline is not None:  # the drawn bore
             cam["bore_radius"] = length_text(section.bore_radius)
     elif "eccentricity" in shape:
         cam["eccentric"] = {"eccentricity": length_text(shape["eccentricity"]),

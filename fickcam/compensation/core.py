@@ -57,6 +57,8 @@ class Target:
         Result variables averaged into that strain.
     design : float or numpy.ndarray
         The design value(s) [m].
+    mechanism : str
+        The scene section of the mechanism it belongs to (``cam``, ``linkage``).
     """
 
     group: str
@@ -64,6 +66,7 @@ class Target:
     part: str
     strains: tuple[str, ...]
     design: float | np.ndarray
+    mechanism: str = ""
 
 
 @dataclass

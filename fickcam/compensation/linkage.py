@@ -5,25 +5,38 @@ coupler's length). The link sections (width, thickness, bosses) are left as desi
 they carry the load, not the motion."""
 from __future__ import annotations
 
+from ..errors import InputError
 from ..linkage.mechanism import LINKS
+from ..linkage.spec import DRAWN_LINKS, DrawnLinkSpec
 from .core import Target
 
 LONGITUDINAL = ("strain_longitudinal",)
 
 
-def targets(section) -> list[Target]:
+def targets(section, points: bool = False) -> list[Target]:
     """Link lengths (crank, coupler, rocker, frame) and the coupler point distance.
 
     Parameters
     ----------
     section : LinkageSection
         The design's validated ``linkage`` section.
+    points : bool
+        Compensate a profile's points (a cam's option; a four-bar has no profile).
 
     Returns
     -------
     list of Target
         The dimensions, design values [m].
+
+    Raises
+    ------
+    fickcam.errors.InputError
+        A drawn link, whose drawing compensation does not write yet.
     """
+    drawn = [link for link in DRAWN_LINKS if isinstance(getattr(section, link), DrawnLinkSpec)]
+    if drawn:
+        raise InputError(f"linkage.{drawn[0]}: compensation does not write a drawn link yet; "
+                         f"give its length to compensate it")
     found = [Target(link, "length", link, LONGITUDINAL, float(getattr(section, link)))
              for link in LINKS]
     if section.coupler_point.distance > 0:
@@ -32,19 +45,29 @@ def targets(section) -> list[Target]:
     return found
 
 
-def write(data: dict, targets: list[Target], made: list, length_text) -> None:
+def write(data: dict, section, targets: list[Target], made: list, profile,
+          length_text) -> None:
     """Put the made values into the scene's ``linkage:`` mapping (in place).
 
     Parameters
     ----------
     data : dict
         The made scene's YAML mapping.
+    section : LinkageSection
+        The design's validated ``linkage`` section (its lengths are all in ``targets``).
     targets : list of Target
         The dimensions.
     made : list
         Their made values [m].
+    profile : str
+        A made cam's points file (a cam's; a four-bar writes none).
     length_text : callable
         Length [m] -> the text the scene stores.
+
+    Returns
+    -------
+    None
+        A four-bar has no points for the caller to write.
     """
     linkage = data["linkage"]
     for target, value in zip(targets, made):
@@ -56,13 +79,15 @@ def write(data: dict, targets: list[Target], made: list, length_text) -> None:
             linkage["coupler_point"] = point
 
 
-def design_entry(section: dict) -> dict:
+def design_entry(section: dict, targets=()) -> dict:
     """The ``design:`` entry of a compensated scene: the design's link lengths and point.
 
     Parameters
     ----------
     section : dict
         The design scene's ``linkage`` mapping.
+    targets : list of Target
+        The dimensions compensated (every link's: the entry names them all).
 
     Returns
     -------

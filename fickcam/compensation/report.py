@@ -18,7 +18,7 @@ from ..simulation.simulate import ageing_times
 from .cam import anisotropy_note
 from ..cam.profile import write_profile_csv, write_profile_dxf
 from .cam import PROFILE_POINTS, made_outline
-from ..results.store import replaced_together
+from ..files import replaced_together
 from .cam import profile_path
 from .solve import write_made, write_points
 

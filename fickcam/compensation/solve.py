@@ -25,15 +25,25 @@ and the made scene's run takes the second.
 from __future__ import annotations
 
 import copy
+import dataclasses
 import logging
 import tempfile
 from pathlib import Path
 
 import numpy as np
 
+from ..cam.profile import write_profile_csv
+from ..diffusion import RunCache
 from ..errors import FickcamError, InputError, format_duration
-from .core import (MAX_ITERATIONS, scene_from, Compensation, converged, made_value, part_strain, quiet_runs,
-                   residual, window_times)
+from ..quantities.options import ageing_time
+from ..results.dataset import build_dataset
+from ..scene.load import as_designed_data, load_scene
+from ..simulation.options import RunOptions
+from ..simulation.parts import part_values
+from ..simulation.simulate import age_parts, ageing_times, diffusion_key, run_with
+from . import cam, linkage
+from .core import (MAX_ITERATIONS, Compensation, converged, made_value, part_strain, quiet_runs,
+                   residual, scene_from, window_times)
 
 log = logging.getLogger(__name__)
 
@@ -56,13 +66,17 @@ def length_text(value: float, digits: int = 6) -> str:
     return f"{value * 1e3:.{digits}f} mm"
 
 
-def _targets(scene, points: bool) -> list:
-    """The dimensions compensated, mechanism by mechanism (each mechanism's module here)."""
-    from . import cam, linkage
+#: what compensation does to each mechanism, by its scene section: the dimensions it
+#: compensates (``targets``), how the made values are written into the scene (``write``)
+#: and the ``design:`` entry that keeps the design's (``design_entry``)
+COMPENSATED = {"cam": cam, "linkage": linkage}
 
-    targets = {"cam": lambda section: cam.targets(section, points), "linkage": linkage.targets}
-    return [target for mechanism in scene.mechanisms
-            for target in targets[mechanism.section_name](mechanism.section)]
+
+def _targets(scene, points: bool) -> list:
+    """The dimensions compensated, mechanism by mechanism, each marked with its section."""
+    return [dataclasses.replace(target, mechanism=mechanism.section_name)
+            for mechanism in scene.mechanisms
+            for target in COMPENSATED[mechanism.section_name].targets(mechanism.section, points)]
 
 
 def with_design(data: dict, design: dict, targets: list) -> dict:
@@ -84,18 +98,14 @@ def with_design(data: dict, design: dict, targets: list) -> dict:
     dict
         A new mapping with the ``design:`` section.
     """
-    from . import cam, linkage
-
-    entry = {}
-    if "cam" in data:
-        entry["cam"] = cam.design_entry(design["cam"], targets)
-    if "linkage" in data:
-        entry["linkage"] = linkage.design_entry(design["linkage"])
+    sections = [name for name in data if name in COMPENSATED]
+    entry = {name: COMPENSATED[name].design_entry(
+        design[name], [t for t in targets if t.mechanism == name]) for name in sections}
     out = {}
     for key, value in data.items():
         if key != "design":
             out[key] = value
-        if key == ("linkage" if "linkage" in data else "cam"):
+        if key == sections[-1]:
             out["design"] = entry
     return out
 
@@ -124,17 +134,13 @@ def write_made(data: dict, scene, targets: list, made: list, profile: Path):
         (the made scene mapping, the made points (n, 2) [m] or None).
     """
     design, data = data, copy.deepcopy(data)
-    cam_part = [(t, m) for t, m in zip(targets, made) if t.group in ("cam", "follower")]
-    link_part = [(t, m) for t, m in zip(targets, made) if t.group not in ("cam", "follower")]
     points = None
-    if cam_part:
-        from . import cam
-
-        points = cam.write(data, scene.model.cam, *zip(*cam_part), profile, length_text)
-    if link_part:
-        from . import linkage
-
-        linkage.write(data, *zip(*link_part), length_text)
+    for name, compensated in COMPENSATED.items():
+        own = [(t, m) for t, m in zip(targets, made) if t.mechanism == name]
+        if own:
+            written = compensated.write(data, scene.mechanism(name).section, *zip(*own), profile,
+                                        length_text)
+            points = points if written is None else written
     return with_design(data, design, targets), points
 
 
@@ -153,8 +159,6 @@ def write_points(path, points: np.ndarray) -> Path:
     pathlib.Path
         The path written.
     """
-    from ..cam.profile import write_profile_csv
-
     return write_profile_csv(path, points[:, 0], points[:, 1])
 
 
@@ -169,22 +173,19 @@ def _scene_at(data: dict, base_dir: Path, times: np.ndarray):
     return scene_from(data, base_dir, "<compensation>")
 
 
-def _run_at(data: dict, base_dir: Path, times: np.ndarray, accuracy, diffusions=None,
-            cache=None):
+def _run_at(data: dict, base_dir: Path, times: np.ndarray, options: RunOptions,
+            diffusions=None):
     """The scene mapping run at ageing ``times`` (s) only, fields off, no file;
     ``diffusions``: diffusion results already solved at ``times`` (:func:`part_states`);
-    ``cache``: the compensation's ``diffusion.RunCache`` (its runs share it)."""
-    from ..simulation.simulate import run
-
-    ds = run(_scene_at(data, base_dir, times), accuracy=accuracy, diffusions=diffusions,
-             cache=cache)
+    ``options``: the compensation's, one for all its runs (they share its cache)."""
+    ds = run_with(_scene_at(data, base_dir, times), options, diffusions=diffusions)
     if ds.sizes["time"] != len(times):
         raise FickcamError("compensation: a run did not keep the ageing times it was given")
     return ds
 
 
-def part_states(data: dict, base_dir: Path, times: np.ndarray, accuracy, names: set,
-                cache=None):
+def part_states(data: dict, base_dir: Path, times: np.ndarray, options: RunOptions,
+                names: set):
     """What a run of the scene computes for the parts ``names``, without its mechanisms,
     limits and other parts: their diffusion and material state.
 
@@ -196,12 +197,11 @@ def part_states(data: dict, base_dir: Path, times: np.ndarray, accuracy, names: 
         The folder the scene's relative paths start from.
     times : numpy.ndarray
         Ageing times [s].
-    accuracy : float or None
-        The diffusion's requested accuracy [-] (None: the scene's).
+    options : fickcam.simulation.options.RunOptions
+        The compensation's diffusion options [-, SI], one for all its runs (they share its
+        cache).
     names : set of str
         The parts to compute.
-    cache : fickcam.diffusion.RunCache, optional
-        The compensation's cache, which its runs share; None: a fresh one.
 
     Returns
     -------
@@ -209,15 +209,9 @@ def part_states(data: dict, base_dir: Path, times: np.ndarray, accuracy, names: 
         (xarray.Dataset of the parts' state variables over (time, part); dict of part
         name -> its ``DiffusionResult`` at ``times``, None for a part that does not absorb).
     """
-    from ..results.dataset import build_dataset
-    from ..simulation.parts import part_values
-    from ..simulation.options import RunOptions
-    from ..simulation.simulate import age_parts
-
     scene = _scene_at(data, base_dir, times)
     parts = [part for part in scene.parts if part.name in names]
-    histories = age_parts(scene, scene.environment, times,
-                          RunOptions.for_scene(scene, accuracy, cache=cache), parts, [])
+    histories = age_parts(scene, scene.environment, times, options, parts, [])
     coords = {"time": times, "part": [h.part.name for h in histories]}
     return (build_dataset(part_values(histories), coords),
             {h.part.name: h.diffusion for h in histories})
@@ -239,8 +233,6 @@ def diffusions_for(data: dict, base_dir: Path, times: np.ndarray, by_name: dict)
     by_name : dict
         Part name -> ``DiffusionResult`` (:func:`part_states`).
     """
-    from ..simulation.simulate import diffusion_key
-
     scene = _scene_at(data, base_dir, times)
     elastic = scene.elastic_parts  # its runs keep no fields but these (``_scene_at``)
     return {diffusion_key(part, part.name in elastic): by_name[part.name]
@@ -251,9 +243,6 @@ def _compensation_times(scene, at, over) -> tuple[np.ndarray, tuple[float, float
     """([T] for ``at`` or the window grid for ``over``, the life asked about: the window,
     or delivery to the end of the history for ``at``), s; refuses times outside the
     history."""
-    from ..quantities.options import ageing_time
-    from ..simulation.simulate import ageing_times
-
     environment = scene.environment
     if (at is None) == (over is None):
         raise InputError("give exactly one of --at TIME or --over T1 T2")
@@ -277,8 +266,6 @@ def _check_times(scene, times: np.ndarray, life: tuple[float, float], *, plot: b
     inside ``life``, its ends and ``times``; ``plot``: the scene's ageing times over the
     whole history too (the plot shows the part before and after a window, from the runs
     the compensation makes anyway); ``wide``: the grid of a window over the whole life."""
-    from ..simulation.simulate import ageing_times
-
     environment = scene.environment
     stored = ageing_times(scene, environment)
     inside = stored[(stored >= life[0]) & (stored <= life[1])]
@@ -309,7 +296,7 @@ def settles_next(previous: list, made: list, new: list, targets: list) -> bool:
 
 
 def _fixed_point(scene, data: dict, targets: list, times: np.ndarray, check: np.ndarray,
-                 start, accuracy, cache=None):
+                 start, options: RunOptions):
     """(made values, the run of the made scene at ``check``, iterations, strains at
     ``times``) from ``start``, the run of the design at ``check``.
 
@@ -319,7 +306,7 @@ def _fixed_point(scene, data: dict, targets: list, times: np.ndarray, check: np.
     (:func:`settles_next`), the last dimensions are made without solving their diffusion
     again: their strains differ from the last iteration's by less than the tolerances'
     share of the compensation. The made scene is run once, at the end, with the diffusion
-    of the last iteration. ``cache``: the compensation's ``diffusion.RunCache``."""
+    of the last iteration. ``options``: the compensation's, one for all its runs."""
     at = np.searchsorted(check, times)
     names = {t.part for t in targets}
     made = previous = [t.design for t in targets]
@@ -335,12 +322,12 @@ def _fixed_point(scene, data: dict, targets: list, times: np.ndarray, check: np.
                 made, settled = new, iteration + 1
                 trial = _made_trial(data, scene, targets, made, Path(folder))
             if settled:
-                after = _run_at(trial, scene.base_dir, check, accuracy,
-                               diffusions_for(trial, scene.base_dir, check, solved), cache)
+                after = _run_at(trial, scene.base_dir, check, options,
+                               diffusions_for(trial, scene.base_dir, check, solved))
                 return made, after, settled, strains
             previous, made = made, new
             trial = _made_trial(data, scene, targets, made, Path(folder))
-            ds, solved = part_states(trial, scene.base_dir, check, accuracy, names, cache)
+            ds, solved = part_states(trial, scene.base_dir, check, options, names)
     raise FickcamError(f"compensation did not settle in {MAX_ITERATIONS} iterations")
 
 
@@ -397,11 +384,9 @@ def compensate(scene, at=None, over=None, *, accuracy: float | None = None,
         When ``at`` and ``over`` are both given or both missing, a time is outside the
         scene's history, or ``keep_limits`` is given without ``at``.
     """
-    from ..diffusion import RunCache
-    from ..scene.load import as_designed_data, load_scene
-
-    cache = RunCache()   # every run of this compensation shares it
     scene = load_scene(scene)
+    # one set of options for every run of this compensation: they share its cache
+    options = RunOptions.for_scene(scene, accuracy, cache=RunCache())
     times, life = _compensation_times(scene, at, over)
     if keep_limits and at is None:
         raise InputError("--keep-limits goes with --at (a window is already its own life)")
@@ -411,9 +396,9 @@ def compensate(scene, at=None, over=None, *, accuracy: float | None = None,
     targets = _targets(design, points)
     data = as_designed_data(copy.deepcopy(scene.document.data))
     with quiet_runs():
-        before = _run_at(data, scene.base_dir, check, accuracy, cache=cache)
+        before = _run_at(data, scene.base_dir, check, options)
     made, after, iterations, strains = _fixed_point(design, data, targets, times, check, before,
-                                                    accuracy, cache)
+                                                    options)
     comp = Compensation(targets, made, times, iterations, data, scene=scene, life=life,
                         check=check, before=before, after=after,
                         residual=[residual(t.design, m, s)
@@ -421,7 +406,7 @@ def compensate(scene, at=None, over=None, *, accuracy: float | None = None,
     if wide and comp.fails():
         window = window_times(*life, check)
         made, after, iterations, strains = _fixed_point(design, data, targets, window, check,
-                                                        before, accuracy, cache)
+                                                        before, options)
         comp = comp.widened(window, made, after, iterations,
                             [residual(t.design, m, s) for t, m, s in zip(targets, made, strains)])
     return comp

@@ -17,7 +17,7 @@ import numpy as np
 from ..extras import require
 from ..messages import quieter
 from .planform import Planform
-from ..results.store import replaced_atomically
+from ..files import replaced_atomically
 
 OUTLINE_LAYER, HOLE_LAYER = "OUTLINE", "HOLES"
 

@@ -64,7 +64,7 @@ class Loop:
     layer : str
         The drawing layer ("" when written in a scene).
     source : str
-        What drew it, for messages (``"CIRCLE on layer HOLES"``, ``"outline:"``).
+        What drew it, for messages (``"CIRCLE on layer HOLES"``, ``"given as outline"``).
     """
 
     points: np.ndarray
@@ -450,9 +450,13 @@ def polygon_planform(outline, holes=(), tolerance: float = 1e-5) -> Planform:
     DrawingError
         As :func:`planform_of`.
     """
-    loops = [Loop(outline, "", "outline:")]
+    loops = [Loop(outline, "", "given as outline")]
     for i, hole in enumerate(holes):
         if isinstance(hole, tuple) and len(hole) == 2 and np.ndim(hole[1]) == 0:
             hole = circle_points(hole[0], float(hole[1]), tolerance)
-        loops.append(Loop(hole, "", f"holes[{i}]"))
-    return planform_of(loops)
+        loops.append(Loop(hole, "", f"given as holes[{i}]"))
+    planform = planform_of(loops)
+    if planform.outer.source != loops[0].source:
+        raise DrawingError(f"hole outside the outline: the loop {planform.outer.source} is "
+                           f"larger than the outline")
+    return planform

@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..diffusion import Diffusivity, Sheet, solve
 from .thickness import SheetProfile
 
 DEPTH_STRIDE = 2   # every other cell of the exact sheet field (40 cells) between face and mid-plane
@@ -29,8 +30,6 @@ def sheet_profile(part, environment, times) -> SheetProfile | None:
     SheetProfile or None
         The sheet's moisture [weight %] through the thickness.
     """
-    from ..diffusion import Diffusivity
-
     if part.geometry is None:
         return None
     d = part.material.diffusivity_for(part.geometry)
@@ -62,8 +61,6 @@ def exact_sheet(thickness, diffusivity, exposure, times, name: str = "") -> Shee
         From a face (the surface value; at t = 0 still the initial moisture) to the
         mid-plane at every ``DEPTH_STRIDE``-th cell of the series' field, and the mean.
     """
-    from ..diffusion import Sheet, solve
-
     result = solve(Sheet(thickness), diffusivity, exposure, times, model="analytic",
                    store_fields=True, part=name)
     z = np.asarray(result.cell_coordinates["z"])
@@ -105,7 +102,7 @@ def swelling_variables(histories, names: set[str], environment, times, temperatu
     coords : dict
         The face stress fields [Pa] and their points [m] over (part, stress_point).
     """
-    from .swelling import swelling_history
+    from .swelling import swelling_history  # scikit-fem: only a scene that asks for stress
 
     out = {name: np.full((len(temperature), len(histories)), np.nan) for name in SWELLING}
     fields = {}

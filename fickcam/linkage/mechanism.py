@@ -21,10 +21,13 @@ from functools import cached_property
 
 import numpy as np
 
+from ..materials.bodies import aged_link_body, link_body
 from ..mechanisms.ageing import over_ageing
 from ..mechanisms.part import Part
 from ..mechanisms.response import Response
 from .classify import class_changes
+from .drawn import (aged_drawn_body, centre_fraction, describe_link, link_lengths,
+                    read_drawn_links)
 from .dynamics import JOINTS
 from .model import FourBarDesign, FourBarState, fourbar_response
 from .spec import LinkageSection
@@ -48,8 +51,8 @@ class LinkageMechanism:
     materials : dict of str to Material
         The scene's resolved materials by name (the links' dry densities [kg/m^3] give
         their masses).
-    files : None
-        Unused: a four-bar reads no file (:meth:`read_files`).
+    files : dict of str to DrawnLink, optional
+        The drawn links by name, as :meth:`read_files` read them (:mod:`fickcam.linkage.drawn`).
     """
 
     #: the scene's section this mechanism is built from
@@ -58,8 +61,10 @@ class LinkageMechanism:
     def __init__(self, section: LinkageSection, materials: dict, files=None):
         self.section = section
         self.materials = materials
+        #: the drawn links by name (none: every link a bar between bosses)
+        self.drawn = dict(files or {})
         #: the dry four-bar
-        self.design = FourBarDesign.from_section(section)
+        self.design = FourBarDesign.from_section(section, link_lengths(section, self.drawn))
         self.elastic_parts = frozenset(LINKS if section.elastic else ())
 
     @staticmethod
@@ -93,9 +98,10 @@ class LinkageMechanism:
 
     @staticmethod
     def read_files(section: LinkageSection, base_dir, read: dict, accuracy: float):
-        """None: a four-bar names no file; (no problems, the section, None); see
-        :meth:`fickcam.mechanisms.Mechanism.read_files`."""
-        return [], section, None
+        """Read the drawn links (:func:`fickcam.linkage.drawn.read_drawn_links`): (problems
+        as (key path inside the section, reason), the section with the drawings' paths
+        absolute, the drawn links by name); see :meth:`fickcam.mechanisms.Mechanism.read_files`."""
+        return read_drawn_links(section, base_dir, accuracy)
 
     @staticmethod
     def coordinates(angles: np.ndarray) -> dict:
@@ -107,18 +113,24 @@ class LinkageMechanism:
     def parts(self) -> tuple[Part, ...]:
         """The links as parts that age, each a link bar with bosses (built on first use:
         the diffusion geometries are the run's, not the scene's validation's)."""
-        from ..diffusion.problem.geometry import LinkBar
-        from ..materials.bodies import link_body
+        # imported here: the geometries bring scipy.sparse, which validating a scene needs not
+        from ..diffusion.problem.geometry import DrawnPlate, LinkBar
 
         section, s = self.section, self.section.section
         parts = []
-        for link in self.part_names(section):
+        for link, length in zip(self.part_names(section), self.design.lengths):
             name = _link_material(section, link)
-            length = getattr(section, link)
-            geometry = LinkBar(length, s.width, s.thickness, s.boss_outer_radius,
-                               s.boss_inner_radius)
-            _, mass, _ = link_body(length, s.width, s.thickness, s.boss_outer_radius,
-                                   s.boss_inner_radius, self.materials[name].dry_density)
+            density = self.materials[name].dry_density
+            if link in self.drawn:  # the drawn planform, every edge exposed
+                planform = self.drawn[link].planform
+                geometry = DrawnPlate(planform.outer.points,
+                                      tuple(h.points for h in planform.holes), s.thickness)
+                mass = planform.mass_properties(s.thickness, density).mass
+            else:
+                geometry = LinkBar(length, s.width, s.thickness, s.boss_outer_radius,
+                                   s.boss_inner_radius)
+                _, mass, _ = link_body(length, s.width, s.thickness, s.boss_outer_radius,
+                                       s.boss_inner_radius, density)
             parts.append(Part.made(link, name, self.materials, geometry, float(mass)))
         return tuple(parts)
 
@@ -134,14 +146,17 @@ class LinkageMechanism:
         return []
 
     def described(self) -> list[str]:
-        """What `fickcam check` says of the four-bar beyond its parts: nothing.
+        """What `fickcam check` says of the four-bar beyond its parts: each drawn link's
+        length, dry mass and centre of mass along it.
 
         Returns
         -------
         list of str
-            Empty.
+            A line per drawn link, without indent.
         """
-        return []
+        thickness = self.section.section.thickness
+        return [f"{link}: {describe_link(drawn, thickness, self.materials[self.section.material].dry_density)}"
+                for link, drawn in self.drawn.items()]
 
     def response(self, histories: dict, times, angles, valid,
                  on_step=lambda: None) -> Response:
@@ -166,10 +181,10 @@ class LinkageMechanism:
             SI variables over (time, ...) and the notices.
         """
         return linkage_response(self.section, histories, times, angles, valid, on_step,
-                                self.design)
+                                self.design, self.drawn)
 
 
-def link_states(section, histories):
+def link_states(section, histories, drawn=None):
     """The swollen links at every ageing time: lengths grown by the longitudinal strain,
     masses and inertias of the swollen, wet bodies, evaluated for the whole history at once.
 
@@ -179,6 +194,8 @@ def link_states(section, histories):
         The scene's validated ``linkage:`` section (dry lengths [m]).
     histories : dict of str to PartHistory
         Each link's history: strains [-] and moisture [weight %] over ageing time.
+    drawn : dict of str to DrawnLink, optional
+        The drawn links by name (:mod:`fickcam.linkage.drawn`).
 
     Returns
     -------
@@ -186,21 +203,25 @@ def link_states(section, histories):
         Lengths [m], masses [kg] and moments of inertia about the centres of mass
         [kg m^2] of crank, coupler, rocker and frame, each of shape (ageing times, 4).
     """
-    from ..materials.bodies import aged_link_body
-
-    s = section.section
+    s, drawn = section.section, drawn or {}
     lengths, masses, inertias = [], [], []
-    for link in LINKS:
+    for link, length in zip(LINKS, link_lengths(section, drawn)):
         state = histories[link].state
         eps_x = np.asarray(state["strain_longitudinal"], float)
-        length = getattr(section, link)
+        lengths.append(length * (1.0 + eps_x))
+        if link in drawn:
+            mass, inertia = aged_drawn_body(
+                drawn[link], s.thickness, histories[link].part.material.dry_density,
+                state["moisture_content"], eps_x, state["strain_transverse"])
+            masses.append(mass)
+            inertias.append(inertia)
+            continue
         _, mass, inertia = aged_link_body(
             length, s.width, s.thickness, s.boss_outer_radius, s.boss_inner_radius,
             histories[link].part.material.dry_density,
             np.asarray(state["moisture_content"], float), eps_x,
             np.asarray(state["strain_transverse"], float),
             np.asarray(state["strain_through_thickness"], float))
-        lengths.append(length * (1.0 + eps_x))
         masses.append(mass)
         inertias.append(inertia)
     return tuple(np.stack(np.broadcast_arrays(*values), axis=-1)
@@ -229,7 +250,7 @@ def link_state(section, histories, k: int):
 
 
 def linkage_response(section, histories: dict, times, angles, valid, on_step=lambda: None,
-                     design: FourBarDesign | None = None) -> Response:
+                     design: FourBarDesign | None = None, drawn=None) -> Response:
     """The linkage over ageing: variables (time, ...) and notices, including a warning
     where ageing changes the Grashof class or removes the crank's full rotation.
     Toggle positions are reported at the first and last computed ageing time.
@@ -250,22 +271,28 @@ def linkage_response(section, histories: dict, times, angles, valid, on_step=lam
         Called after each ageing time is evaluated (progress).
     design : FourBarDesign, optional
         The section's dry four-bar when already built; None: built here.
+    drawn : dict of str to DrawnLink, optional
+        The drawn links by name (:mod:`fickcam.linkage.drawn`).
 
     Returns
     -------
     fickcam.mechanisms.response.Response
         SI variables over (time, ...) and the notices.
     """
-    design = FourBarDesign.from_section(section) if design is None else design
+    drawn = drawn or {}
+    design = (FourBarDesign.from_section(section, link_lengths(section, drawn))
+              if design is None else design)
     valid = np.asarray(valid, bool)
     computed = np.nonzero(valid)[0]
     ends = {int(computed[0]), int(computed[-1])} if computed.size else set()
-    states = link_states(section, histories)
+    states = link_states(section, histories, drawn)
+    fractions = tuple(centre_fraction(drawn[link]) if link in drawn else fraction
+                      for link, fraction in zip(LINKS, section.centre_of_mass))
 
     def evaluate(k: int) -> Response:
         lengths, masses, inertias = (values[k] for values in states)
         state = FourBarState(tuple(lengths), tuple(masses[:3]), tuple(inertias[:3]),
-                             tuple(section.centre_of_mass))
+                             fractions)
         response = fourbar_response(design, state, angles)
         response.variables.update(link_length=lengths, link_mass=masses, link_inertia=inertias)
         response.notices = [n for n in response.notices

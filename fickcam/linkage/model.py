@@ -68,9 +68,11 @@ class FourBarDesign:
         return (self.crank, self.coupler, self.rocker, self.frame)
 
     @classmethod
-    def from_section(cls, section) -> "FourBarDesign":
-        """From a validated :class:`~fickcam.linkage.spec.LinkageSection`."""
-        return cls(section.crank, section.coupler, section.rocker, section.frame,
+    def from_section(cls, section, lengths=None) -> "FourBarDesign":
+        """From a validated :class:`~fickcam.linkage.spec.LinkageSection`; ``lengths``:
+        a, b, c, d [m] where some links are drawn (their lengths from their pins)."""
+        a, b, c, d = lengths or (section.crank, section.coupler, section.rocker, section.frame)
+        return cls(a, b, c, d,
                    section.coupler_point.distance, section.coupler_point.angle,
                    section.crank_speed, section.crank_angular_acceleration, section.assembly,
                    section.gravity, section.rocker_load_torque)
@@ -124,7 +126,7 @@ def fourbar_response(design: FourBarDesign, state: FourBarState, crank_angle) ->
     -------
     fickcam.mechanisms.response.Response
         SI arrays (angles in rad), named, dimensioned and in the units of the "linkage"
-        rows of ``fickcam.results.schema.VARIABLES``, and the notices.
+        rows of ``fickcam.schema.VARIABLES``, and the notices.
 
     References
     ----------

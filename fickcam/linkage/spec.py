@@ -12,8 +12,9 @@ from __future__ import annotations
 import math
 from typing import Annotated, Literal
 
-from pydantic import BeforeValidator, Field, model_validator
+from pydantic import BeforeValidator, Discriminator, Field, Tag, field_validator, model_validator
 
+from ..drawing.spec import DrawingFile, Hole, Point, drawing_file, plausible_outline
 from ..quantities.types import StrictModel, Angle, AngularSpeed, Length, NonNegativeLength
 from ..quantities.parsing import registry
 
@@ -62,6 +63,97 @@ class CouplerPoint(StrictModel):
         description="Distance of the coupler point from the crank-coupler pin A [m]")
     angle: Angle = Field(
         0.0, description="Angle of the coupler point from the line A to B, counter-clockwise [rad]")
+
+
+class LinkDrawing(DrawingFile):
+    """A link's DXF drawing: ``file`` and ``units`` as in
+    :class:`fickcam.drawing.spec.DrawingFile`, and the layer of its pin holes.
+
+    Parameters
+    ----------
+    pin_layer : str, optional
+        The layer of the two pin holes; None: the two largest round holes.
+    """
+
+    pin_layer: str | None = Field(
+        None, description="The layer of the two pin holes (default: the two largest round holes)")
+
+
+class DrawnLinkSpec(StrictModel):
+    """A link as drawn (``{drawing: crank.dxf}``) or written (``{outline: ..., holes: ...}``)
+    in place of its length: the outer loop with its holes, the two pin holes giving the
+    pin centres, whose distance is the link's length.
+
+    Parameters
+    ----------
+    drawing : LinkDrawing, optional
+        The link's DXF drawing.
+    outline : list of tuple of float, optional
+        The link's outline (x, y) [m].
+    holes : list, optional
+        The outline's holes [m], round ``{centre, radius}`` or points.
+    """
+
+    drawing: Annotated[LinkDrawing | None, BeforeValidator(drawing_file)] = Field(
+        None, description="The link's DXF drawing, its length the distance of its pin holes "
+                          "(the dxf extra)")
+    outline: list[Point] | None = Field(
+        None, min_length=3, description="The link's outline (x, y) instead of a drawing [m]")
+    holes: list[Hole] | None = Field(
+        None, description="The outline's holes, round {centre, radius} or points; the two "
+                          "largest round ones are the pins [m]")
+
+    @field_validator("outline")
+    @classmethod
+    def _outline_span(cls, value):
+        return plausible_outline(value)
+
+    @model_validator(mode="after")
+    def _one_shape(self):
+        if (self.drawing is None) == (self.outline is None):
+            raise ValueError("give the link's drawing or its outline (with holes), one of them")
+        if self.holes is not None and self.outline is None:
+            raise ValueError("holes belong to an outline: give outline too")
+        return self
+
+
+#: a link given by its length, or drawn (a mapping)
+LinkLength = Annotated[
+    Annotated[DrawnLinkSpec, Tag("DrawnLinkSpec")] | Annotated[Length, Tag("Length")],
+    Discriminator(lambda v: "DrawnLinkSpec" if isinstance(v, dict | DrawnLinkSpec) else "Length")]
+#: the links that may be drawn (the frame is the ground between the fixed pivots)
+DRAWN_LINKS = ("crank", "coupler", "rocker")
+
+
+def four_bar_problem(lengths, boss_outer_radius: float, drawn=()) -> str | None:
+    """Why link lengths a, b, c, d [m] are no four-bar, or None: it cannot assemble at
+    any crank angle, or a link given by its length is shorter than two boss radii.
+
+    Parameters
+    ----------
+    lengths : tuple of float
+        a, b, c, d [m].
+    boss_outer_radius : float
+        The section's boss radius [m] (links given by their length).
+    drawn : collection of str
+        The drawn links (their bosses are drawn).
+
+    Returns
+    -------
+    str or None
+        The reason, in one line.
+    """
+    a, b, c, d = lengths
+    if not can_assemble_somewhere(a, b, c, d):
+        return (f"the linkage cannot assemble at any crank angle: the distance from the "
+                f"crank pin to the rocker pivot spans {abs(d - a) * 1e3:g}-{(d + a) * 1e3:g} mm "
+                f"but coupler and rocker reach only {abs(b - c) * 1e3:g}-{(b + c) * 1e3:g} mm")
+    two_r = 2.0 * boss_outer_radius
+    for name, length in zip(("crank", "coupler", "rocker", "frame"), lengths):
+        if name not in drawn and length < two_r:
+            return (f"{name} ({length * 1e3:g} mm) is shorter than two boss radii "
+                    f"({two_r * 1e3:g} mm): its bosses would overlap")
+    return None
 
 
 class LinkSectionSpec(StrictModel):
@@ -125,8 +217,10 @@ class LinkageSection(StrictModel):
         The links' material (a name under ``materials:``).
     frame_material : str or None
         The frame's; None: the links'.
-    crank, coupler, rocker, frame : float
-        Link lengths a, b, c, d, pin to pin [m].
+    crank, coupler, rocker : float or DrawnLinkSpec
+        Link lengths a, b, c, pin to pin [m], or the link as drawn.
+    frame : float
+        Frame length d, between the fixed pivots [m].
     coupler_point : CouplerPoint
         The coupler point.
     section : LinkSectionSpec
@@ -159,9 +253,9 @@ class LinkageSection(StrictModel):
     material: str = Field(description="The links' material (a name under materials)")
     frame_material: str | None = Field(
         None, description="The frame's material; default the links' material")
-    crank: Length = Field(description="Crank length a, pin to pin [m]")
-    coupler: Length = Field(description="Coupler length b, pin to pin [m]")
-    rocker: Length = Field(description="Rocker length c, pin to pin [m]")
+    crank: LinkLength = Field(description="Crank length a, pin to pin, or its drawing [m]")
+    coupler: LinkLength = Field(description="Coupler length b, pin to pin, or its drawing [m]")
+    rocker: LinkLength = Field(description="Rocker length c, pin to pin, or its drawing [m]")
     frame: Length = Field(description="Frame length d, between the fixed pivots [m]")
     coupler_point: CouplerPoint = Field(description="The coupler point whose path is traced")
     section: LinkSectionSpec = Field(description="Cross-section of every link")
@@ -181,17 +275,14 @@ class LinkageSection(StrictModel):
 
     @model_validator(mode="after")
     def _is_a_four_bar(self):
-        a, b, c, d = self.crank, self.coupler, self.rocker, self.frame
-        if not can_assemble_somewhere(a, b, c, d):
-            raise ValueError(
-                f"the linkage cannot assemble at any crank angle: the distance from the "
-                f"crank pin to the rocker pivot spans {abs(d - a) * 1e3:g}-{(d + a) * 1e3:g} mm "
-                f"but coupler and rocker reach only {abs(b - c) * 1e3:g}-{(b + c) * 1e3:g} mm")
-        two_r = 2.0 * self.section.boss_outer_radius
-        for name in ("crank", "coupler", "rocker", "frame"):
-            if getattr(self, name) < two_r:
-                raise ValueError(f"{name} ({getattr(self, name) * 1e3:g} mm) is shorter than two "
-                                 f"boss radii ({two_r * 1e3:g} mm): its bosses would overlap")
+        drawn = [name for name in DRAWN_LINKS if isinstance(getattr(self, name), DrawnLinkSpec)]
+        if drawn and self.elastic:
+            raise ValueError(f"elastic is not modelled for a drawn link ({drawn[0]}) yet")
+        if not drawn:  # a drawn link's length is known once its drawing is read
+            reason = four_bar_problem((self.crank, self.coupler, self.rocker, self.frame),
+                                      self.section.boss_outer_radius)
+            if reason:
+                raise ValueError(reason)
         if not all(0.0 <= f <= 1.0 for f in self.centre_of_mass):
             raise ValueError("centre_of_mass fractions must lie between 0 and 1")
         return self

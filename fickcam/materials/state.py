@@ -210,7 +210,7 @@ def _moduli(material, bulk, skin, temperature) -> dict:
 def material_state(material, temperature, moisture, surface_moisture, reference_temperature,
                    initial_moisture, part: str = "", times=None, raise_on_wet_tg: bool = False):
     """State of one part at each ageing time: SI arrays (moisture in weight %) named as in
-    :mod:`fickcam.results.schema`, of the length of ``temperature``; times with T >= wet Tg (bulk or
+    :mod:`fickcam.schema`, of the length of ``temperature``; times with T >= wet Tg (bulk or
     surface) hold NaN and ``within_wet_tg`` False (Chamis 1983).
 
     Parameters

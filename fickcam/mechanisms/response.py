@@ -13,7 +13,7 @@ class Response:
     Parameters
     ----------
     variables : dict of str to numpy.ndarray
-        Schema name (:mod:`fickcam.results.schema`) -> a scalar or an array over the mechanism angle
+        Schema name (:mod:`fickcam.schema`) -> a scalar or an array over the mechanism angle
         [SI units, angles in rad].
     notices : list of str
         One-line warnings the run reports (e.g. "follower jumps at 312 deg"), without the

@@ -8,7 +8,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ..results.schema import design_name
+from ..schema import design_name
 from .common import (legend, age_colour, age_label, ages, days, drift_panel, exaggerated_outlines,
                      figure, legend_outside, length_drift_panel, reference_curve, save_figure, Figures, returns_figures,
                      wet_tg_stop)

@@ -15,9 +15,9 @@ from pathlib import Path
 from ..errors import times_in
 import numpy as np
 from ..errors import format_duration
-from ..results.schema import design_name
+from ..schema import design_name
 from ..results.query import drift
-from ..results.store import replaced_atomically
+from ..files import replaced_atomically
 
 
 class FigureMaker:

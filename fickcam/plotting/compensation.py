@@ -7,8 +7,7 @@ import math
 import numpy as np
 
 from .common import Figures, days, figure, legend, one_figure
-from ..cli.reporting import crossing_text
-from ..results.limits import stored_limits, worst_value
+from ..results.limits import crossing_text, stored_limits, worst_value
 
 
 def _spec_text(ds, variable: str) -> str:

@@ -7,7 +7,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ..results.schema import design_name
+from ..schema import design_name
 from .common import (age_colour, age_label, ages, days, drift_panel, exaggerated_outlines,
                      figure, legend_outside, length_drift_panel, reference_curve, save_figure, Figures, returns_figures)
 

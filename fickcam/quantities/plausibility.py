@@ -37,6 +37,7 @@ from enum import IntEnum
 from typing import Callable
 
 from ..errors import Problem
+from ..schema import VARIABLES
 from .parsing import is_bare_number, to_si
 
 
@@ -511,9 +512,6 @@ LIMIT_BOUND = Band(0.0, 5.0, 0.0, 25.0)
 def _limit_findings(doc, findings: Findings, scales: dict[str, Scale]) -> None:
     """Bare bounds of ``limits:`` on a mechanism's lengths (m) judged as the mechanism's own
     lengths; bare bounds on its speeds (rpm variables) refused as any bare speed is."""
-    # deferred: keeps the command's modules off the start-up path
-    from ..results.schema import VARIABLES
-
     for name, spec in doc.data["limits"].items():
         var = VARIABLES.get(name)
         if var is None or not isinstance(spec, dict):

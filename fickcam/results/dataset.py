@@ -3,7 +3,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .schema import COORDINATES, VARIABLES
+from ..schema import COORDINATES, VARIABLES
 from ..errors import TIME_UNITS, time_unit
 
 
@@ -161,7 +161,7 @@ def build_dataset(values: dict, coords: dict, attrs: dict | None = None):
     data_vars = {}
     for name, value in values.items():
         if name not in VARIABLES:  # no silent drops: every result has its row in the schema
-            raise KeyError(f"{name!r} is not declared in fickcam/results/schema.py (add its row there)")
+            raise KeyError(f"{name!r} is not declared in fickcam/schema.py (add its row there)")
         var = VARIABLES[name]
         array = np.asarray(value)
         if array.dtype.kind in "fc":

@@ -8,10 +8,10 @@ import numpy as np
 
 from ..errors import InputError
 from .query import csv_cell, to_records
-from .store import write_text_atomically
+from ..files import write_text_atomically
 from .store import save
 from .query import supported_values
-from .schema import VARIABLES
+from ..schema import VARIABLES
 
 
 def _chosen(ds, variables):

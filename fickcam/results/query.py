@@ -14,7 +14,7 @@ from ..quantities.options import ageing_time
 from .dataset import ageing_seconds
 from ..errors import InputError, format_duration, time_unit
 from ..scene.keys import closest_names, short_names
-from .schema import VARIABLES, design_name
+from ..schema import VARIABLES, design_name
 from ..errors import supported_digits
 from .dataset import report_time_unit
 

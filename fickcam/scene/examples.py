@@ -13,7 +13,7 @@ import yaml
 
 from ..errors import InputError
 
-SUFFIXES = (".yaml", ".csv")
+SUFFIXES = (".yaml", ".csv", ".dxf")
 
 
 def folder() -> Path:
@@ -86,11 +86,15 @@ def listing() -> str:
 
 def _uses(file: Path) -> list[str]:
     """Files next to ``file`` that it names: a sweep's base scene, a history file, a cam's
-    profile file (as made and as designed)."""
+    profile file (as made and as designed), the drawings of a cam and of links."""
     data = yaml.safe_load(file.read_text(encoding="utf-8")) or {}
+    cam, linkage = data.get("cam") or {}, data.get("linkage") or {}
     used = [data.get("base"), (data.get("environment") or {}).get("history_file"),
-            (data.get("cam") or {}).get("profile_file"),
+            cam.get("profile_file"),
             ((data.get("design") or {}).get("cam") or {}).get("profile_file")]
+    shapes = [cam] + [linkage.get(link) for link in ("crank", "coupler", "rocker")]
+    for drawing in (shape.get("drawing") for shape in shapes if isinstance(shape, dict)):
+        used.append(drawing.get("file") if isinstance(drawing, dict) else drawing)
     return [u for u in used if isinstance(u, str) and (folder() / u).is_file()]
 
 

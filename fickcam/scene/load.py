@@ -16,36 +16,28 @@ from pathlib import Path
 import yaml
 from pydantic import ValidationError
 
+from ..climate.environment import Environment
 from ..errors import Problem, SceneError, format_duration
-from ..results.limits import parse_limit
+from ..materials import resolve, temperature_limit_reasons
+from ..materials.library import ALIAS_NOTES
+from ..materials.spec import KIND_GROUPS
 from ..mechanisms import mechanism_types, scene_sections
 from ..messages import warn
 from ..quantities.plausibility import Findings, geometry_findings, history_findings
+from .display import scene_html, scene_text
+from .limits import parse_limit
 from .sections import (  # noqa: F401  (re-exported: fickcam.scene.load is their public home)
-    DesignSection,
-    DiffusionSection,
-    EnvironmentSection,
-    EveryStep,
-    HistorySegment,
-    OutputsSection,
-    SceneModel,
-    StandardTest,
-    StateSpec,
-    last_ageing_time,
-)
-from .yamldoc import check_mapping_bounds
-from .yamldoc import (  # noqa: F401  (re-exported)
-    YamlDocument,
-    parse_yaml,
-    problems_from_validation,
-    read_yaml,
-)
+    DesignSection, DiffusionSection, EnvironmentSection, EveryStep, HistorySegment, OutputsSection,
+    SceneModel, StandardTest, StateSpec, last_ageing_time)
+from .yamldoc import (YamlDocument, check_mapping_bounds, parse_yaml,  # noqa: F401  (re-exported)
+                      problems_from_validation, read_yaml)
 
 log = logging.getLogger(__name__)
 
 
 #: keys that together give a cam's shape: a design shape replaces the made one whole
-CAM_SHAPE_KEYS = ("base_circle_radius", "motion", "eccentric", "profile_file", "drawing")
+CAM_SHAPE_KEYS = ("base_circle_radius", "motion", "eccentric", "profile_file", "drawing",
+                  "outline", "holes")
 
 
 def merged(made: dict, overrides: dict, replace_whole: tuple = ()) -> dict:
@@ -94,7 +86,7 @@ class Scene:
         Scene material name -> resolved :class:`fickcam.materials.material.Material`.
     as_designed_model : fickcam.scene.sections.SceneModel, optional
         The mechanisms as designed (from ``design:``); None: as made.
-    limits : list of fickcam.results.limits.Limit
+    limits : list of fickcam.scene.limits.Limit
         The limits, in scene order.
     warnings : list of fickcam.errors.Problem
         Unusual bare values and other notes told at validation.
@@ -113,7 +105,7 @@ class Scene:
     document: YamlDocument | None = field(default=None, repr=False)
     materials: dict = field(default_factory=dict, repr=False)  # name -> resolved Material
     as_designed_model: SceneModel | None = field(default=None, repr=False)  # from ``design:``
-    limits: list = field(default_factory=list, repr=False)  # fickcam.results.limits.Limit, scene order
+    limits: list = field(default_factory=list, repr=False)  # fickcam.scene.limits.Limit, scene order
     warnings: list = field(default_factory=list, repr=False)  # Problem: unusual bare values
     environment: object = field(default=None, repr=False)  # the climate, built once
     mechanisms: tuple = field(default=(), repr=False)  # each built once
@@ -124,13 +116,9 @@ class Scene:
         return self.model.name
 
     def __repr__(self) -> str:
-        from .display import scene_text
-
         return scene_text(self.name, self.file, self._as_written())
 
     def _repr_html_(self) -> str:
-        from .display import scene_html
-
         return scene_html(self.name, self.file, self._as_written())
 
     def _as_written(self) -> dict:
@@ -257,8 +245,6 @@ def _cross_checks(model: SceneModel, doc: YamlDocument, base_dir: Path,
     plausible for the parts (``findings``), the climate stays below their dry Tg, the
     outputs' times fit the climate's history; (problems, the resolved materials, the
     Environment or None where it cannot be built)."""
-    from ..climate.environment import Environment
-
     problems = _part_problems(model, doc)
     material_problems, resolved = _resolved_materials(model, doc)
     problems += material_problems
@@ -314,8 +300,6 @@ def _model_name_problems(model: SceneModel, doc: YamlDocument) -> list[Problem]:
 
 def _resolved_materials(model: SceneModel, doc: YamlDocument) -> tuple[list[Problem], dict]:
     """Each material a part uses, resolved once (library name or own values)."""
-    from ..materials import resolve
-
     problems: list[Problem] = []
     resolved = {}
     for path, name in _used_materials(model):
@@ -333,9 +317,6 @@ def _resolved_materials(model: SceneModel, doc: YamlDocument) -> tuple[list[Prob
 
 def _alias_notes(doc: YamlDocument) -> list[Problem]:
     """What a material named by a close alias must know (``plastic: PA6`` reads PA66 data)."""
-    from ..materials.library import ALIAS_NOTES
-    from ..materials.spec import KIND_GROUPS
-
     notes = {alias.casefold(): note for alias, note in ALIAS_NOTES.items()}
     materials = doc.data.get("materials")
     return [doc.problem(("materials", name, key), notes[str(spec[key]).casefold()])
@@ -349,8 +330,6 @@ def _temperature_limit_problems(model: SceneModel, doc: YamlDocument, environmen
     """The hottest climate must stay below the dry Tg of every thermoset and the melting
     point of every thermoplastic in use (refused at the climate's line); above a material's
     service limit it is warned once per material (``findings``)."""
-    from ..materials import temperature_limit_reasons
-
     problems: list[Problem] = []
     hottest_index, hottest = environment.hottest()
     path = (("environment", "history", hottest_index, "temperature")
@@ -412,7 +391,7 @@ def _mechanisms(model: SceneModel, materials: dict, files: dict) -> tuple:
 
 
 def _limits(model: SceneModel, doc: YamlDocument) -> tuple[list, list[Problem]]:
-    """The scene's limits (fickcam.results.limits.Limit) and a Problem per limit that cannot apply."""
+    """The scene's limits (fickcam.scene.limits.Limit) and a Problem per limit that cannot apply."""
     sections = set(scene_sections(model))
     limits, problems = [], []
     for name, spec in (model.limits or {}).items():

@@ -12,7 +12,7 @@ from pydantic import AfterValidator, BeforeValidator, Field, field_validator, mo
 from ..cam.spec import CamSection
 from ..diffusion.accuracy.budget import accuracy_problem
 from ..diffusion.problem.definition import MODELS
-from ..results.limits import LimitSpec
+from .limits import LimitSpec
 from ..linkage.spec import LinkageSection
 from ..materials import MaterialSpec
 from ..quantities.types import (
@@ -333,7 +333,7 @@ class SceneModel(StrictModel):
         Ageing times, angle step, fields, file.
     design : DesignSection, optional
         The in-service geometry, where the mechanism sections give it as made.
-    limits : dict of str to fickcam.results.limits.LimitSpec, optional
+    limits : dict of str to fickcam.scene.limits.LimitSpec, optional
         Result variable -> its limit.
     """
     name: str = Field(

@@ -4,7 +4,7 @@ A :class:`~fickcam.mechanisms.part.Part` is one body (cam, follower, a link) wit
 material and diffusion geometry, as its mechanism builds it; a :class:`PartHistory` is
 what diffusion and the material state give for it over the ageing times (or, for the
 as-designed state, at one time). :func:`part_values` stacks the histories into ``(time, part)`` arrays
-named after the schema (:mod:`fickcam.results.schema`); :func:`field_values` does the
+named after the schema (:mod:`fickcam.schema`); :func:`field_values` does the
 same for the moisture fields.
 """
 from __future__ import annotations

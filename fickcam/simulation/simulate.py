@@ -12,16 +12,23 @@ import time as _time
 import numpy as np
 
 from .._version import __version__
-from .blas import on_one_blas_thread
 from ..climate.environment import Environment, summary_edges
-from ..errors import InputError, SceneError, times_in
+from ..diffusion import plan_problem, refuse, solve_problem
+from ..elastic.parts import swelling_variables
+from ..errors import InputError, SceneError, times_in, unit_of_length
+from ..materials import material_state
+from ..materials.state import wet_tg_error
+from ..mechanisms.part import Part
 from ..mechanisms.response import Response
 from ..messages import log_notices, progress_bar, progress_summary
-from ..mechanisms.part import Part
-from .parts import PartHistory, diffusion_attrs, field_values, part_values
-from .options import RunOptions
+from ..quantities.parsing import parse_duration, split_number_unit
+from ..results.dataset import build_dataset
+from ..results.limits import Tolerance, first_crossings, limit_ratio
 from ..scene.load import EveryStep, Scene, load_scene
-from ..results.schema import VARIABLES, design_name
+from ..schema import VARIABLES, design_name
+from .blas import on_one_blas_thread
+from .options import RunOptions
+from .parts import PartHistory, diffusion_attrs, field_values, part_values
 
 log = logging.getLogger(__name__)
 
@@ -97,9 +104,6 @@ def written_time_unit(scene: Scene) -> str:
     str
         ``"s"``, ``"min"``, ``"h"``, ``"d"``, ``"yr"`` or ``""``.
     """
-    from ..errors import unit_of_length
-    from ..quantities.parsing import parse_duration, split_number_unit
-
     data = scene.document.data if scene.document is not None else {}
     requested = (data.get("outputs") or {}).get("ageing_times")
     texts = [requested.get("every")] if isinstance(requested, dict) else list(requested or [])
@@ -170,8 +174,6 @@ def plan_parts(scene: Scene, accuracy: float | None = None, *, parts: list[Part]
 def _planned_parts(scene: Scene, options: RunOptions, parts: list[Part] | None):
     """:func:`plan_parts` with the run's options, in the caller's BLAS threads (:func:`run`
     has limited them)."""
-    from ..diffusion import plan_problem, refuse
-
     _refuse_shapes(scene)
     environment = scene.environment
     times = ageing_times(scene, environment)
@@ -245,7 +247,36 @@ def run(scene, *, accuracy: float | None = None, progress: bool = False, setting
     """
     started = _time.perf_counter()
     scene = load_scene(scene)
-    options = RunOptions.for_scene(scene, accuracy, settings, cache)
+    return run_with(scene, RunOptions.for_scene(scene, accuracy, settings, cache),
+                    progress=progress, diffusions=diffusions, started=started)
+
+
+@on_one_blas_thread  # the caller's BLAS threads are restored on return (fickcam.simulation.blas)
+def run_with(scene: Scene, options: RunOptions, *, progress: bool = False,
+             diffusions: dict | None = None, started: float | None = None):
+    """:func:`run` of a loaded scene with its options built: what compensation and the
+    sweeps' cases call, each passing the one :class:`RunOptions` of all its runs.
+
+    Parameters
+    ----------
+    scene : Scene
+        The loaded scene.
+    options : RunOptions
+        The diffusion's accuracy, models, solver settings and cache [-, SI].
+    progress : bool
+        Show progress (as :func:`run`).
+    diffusions : dict, optional
+        Diffusion results already solved, keyed as :func:`age_part` keys them.
+    started : float, optional
+        When the caller started, by ``time.perf_counter`` [s] (the result's wall time
+        counts from it); None: now.
+
+    Returns
+    -------
+    xarray.Dataset
+        The result (as :func:`run`).
+    """
+    started = _time.perf_counter() if started is None else started
     unit = written_time_unit(scene)  # the unit the scene wrote its times in: reports use it
     with progress_summary(f"run {scene.name}", progress), times_in(unit or None):
         environment = scene.environment
@@ -269,8 +300,6 @@ def _age(scene: Scene, environment: Environment, times: np.ndarray, options: Run
          progress: bool, parts: list[Part], diffusions: dict | None):
     """The Dataset of ``scene`` at ageing ``times`` (s) and the part histories;
     ``diffusions``: results already solved (:func:`run`)."""
-    from ..results.dataset import build_dataset
-
     values, coords, notices, histories = _aged_values(scene, environment, times, options,
                                                       progress, parts, diffusions)
     as_designed = scene.as_designed()  # differs where the scene is made to compensate
@@ -422,8 +451,6 @@ def _values(scene: Scene, environment: Environment, times: np.ndarray,
     coords.update(_mechanism_coords(scene))
     notices += mechanisms.notices
     if elastic:
-        from ..elastic.parts import swelling_variables
-
         bar.set_postfix_str("swelling stress")
         swelling, points = swelling_variables(histories, elastic, environment, times,
                                               environment.temperature(times))
@@ -444,9 +471,6 @@ def _limits(ds, scene: Scene, environment: Environment,
     interval to the crossing's own tolerance (``limits.Tolerance``, finer where the
     diffusion accuracy asked is); the search's notices, ``_search_notices``);
     ``stored_run``: the stored run's ageing times [s] and part histories."""
-    from ..results.dataset import build_dataset
-    from ..results.limits import Tolerance, first_crossings, limit_ratio
-
     missing = [limit for limit in scene.limits if limit.variable not in ds]
     if missing:
         raise SceneError([scene.document.problem(("limits", limit.variable),
@@ -571,8 +595,6 @@ def age_part(part: Part, environment: Environment, times, options: RunOptions,
     PartHistory
         The part's diffusion result, material state and validity at each time.
     """
-    from ..diffusion import solve_problem
-
     temperature = environment.temperature(times)
     if part.geometry is None:
         result = None
@@ -639,8 +661,6 @@ def as_designed_part(part: Part, environment: Environment) -> PartHistory:
 
 
 def _state(part: Part, temperature, mean, surface, environment: Environment, times) -> dict:
-    from ..materials import material_state
-
     return material_state(part.material, temperature, mean, surface,
                           environment.reference_temperature, environment.initial_moisture,
                           part=part.name, times=times)
@@ -708,8 +728,6 @@ def _angle_grid(step: float) -> np.ndarray:
 def _valid_until_wet_tg(part: Part, state: dict, temperature, times, notices) -> np.ndarray:
     """False from the first ageing time at which T reaches the wet Tg of the
     bulk or of the surface layer (Chamis' degradation law no longer applies)."""
-    from ..materials.state import wet_tg_error
-
     within = np.asarray(state.get("within_wet_tg", np.ones(times.shape, bool)), bool)
     valid = np.logical_and.accumulate(within)
     if not valid.all():

@@ -13,7 +13,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..results.schema import VARIABLES
+from ..schema import VARIABLES
 from scipy.special import ndtri
 import xarray as xr
 

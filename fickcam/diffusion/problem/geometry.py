@@ -477,3 +477,114 @@ def narrow_boss_outline(length: float, half: float, radius: float, spacing: floa
 
 
 Geometry = Sheet | Disc | Bar | CamPlate | LinkBar
+
+
+@dataclass(frozen=True, eq=False)
+class DrawnPlate(_Planform):
+    """A prismatic part as drawn: its outline and holes, every edge (the holes' too) and
+    both faces exposed, every edge a contact edge.
+
+    Parameters
+    ----------
+    outer : numpy.ndarray
+        The outline's vertices [m], shape (n, 2), counter-clockwise, last not repeated
+        (copied and made read-only).
+    holes : tuple of numpy.ndarray
+        Each hole's vertices [m], clockwise (copied and made read-only).
+    thickness : float
+        The plate's thickness [m].
+    """
+
+    outer: np.ndarray = field(repr=False)
+    holes: tuple = field(default=(), repr=False)
+    thickness: float = 0.0
+
+    def __post_init__(self):
+        """Own read-only copies of the loops: equality and hash are by value (the caches
+        of meshes and step responses are keyed by them)."""
+        loops = [np.array(loop, dtype=float).reshape(-1, 2) for loop in (self.outer, *self.holes)]
+        for loop in loops:
+            loop.setflags(write=False)
+        object.__setattr__(self, "outer", loops[0])
+        object.__setattr__(self, "holes", tuple(loops[1:]))
+
+    def _values(self) -> tuple:
+        return (tuple(loop.tobytes() for loop in (self.outer, *self.holes)),
+                tuple(len(loop) for loop in (self.outer, *self.holes)), float(self.thickness))
+
+    def __eq__(self, other) -> bool:
+        return type(other) is DrawnPlate and self._values() == other._values()
+
+    def __hash__(self) -> int:
+        return hash(self._values())
+
+    def inside(self, x, y) -> np.ndarray:
+        """Which points lie in the material: inside the outline, outside every hole
+        (the even-odd test against all the loops).
+
+        Parameters
+        ----------
+        x, y : array_like
+            The points' coordinates [m], 1-D.
+
+        Returns
+        -------
+        numpy.ndarray
+            True inside the material.
+        """
+        segments = np.concatenate([polygon_segments(*loop.T) for loop in (self.outer, *self.holes)])
+        return inside_polygon(np.column_stack([np.asarray(x, float), np.asarray(y, float)]),
+                              segments)
+
+    def edge_samples(self, spacing: float) -> tuple[np.ndarray, np.ndarray]:
+        """Points along every edge, the holes' included; every edge is a contact edge.
+
+        Parameters
+        ----------
+        spacing : float
+            The largest gap between samples [m].
+
+        Returns
+        -------
+        tuple of numpy.ndarray
+            The boundary and contact samples [m] (the same), shape (n, 2).
+        """
+        boundary = np.vstack(self.boundary_loops(spacing)[0])
+        return boundary, boundary
+
+    def extent(self) -> tuple[float, float]:
+        """The outline's bounding box: its width along x and height along y [m]."""
+        width, height = np.ptp(self.outer, axis=0)
+        return (float(width), float(height))
+
+    def boundary_loops(self, spacing: float) -> tuple[list[np.ndarray], list[bool]]:
+        """The outline (counter-clockwise) and the holes (clockwise), each resampled at
+        ``spacing`` with its vertices kept, all contact edges.
+
+        Parameters
+        ----------
+        spacing : float
+            The largest gap between points [m].
+
+        Returns
+        -------
+        tuple
+            The loops [m] and a contact flag per loop.
+        """
+        loops = [resample_polyline(*loop.T, spacing) for loop in (self.outer, *self.holes)]
+        return loops, [True] * len(loops)
+
+    def on_contact(self, points: np.ndarray) -> np.ndarray:
+        """Every point of a drawn part's outline is on its contact surface.
+
+        Parameters
+        ----------
+        points : numpy.ndarray
+            Points of the outline [m], shape (n, 2).
+
+        Returns
+        -------
+        numpy.ndarray
+            True for every point.
+        """
+        return np.ones(len(points), bool)

@@ -24,7 +24,9 @@ import math
 
 import numpy as np
 
-from .sizing import (POINTED, SIZE_TOLERANCE, Limits, aged_states, contact_stress_radius,
+from ..elastic.strength import ply_strengths
+from ..simulation.simulate import plan_parts, run
+from ..cam.sizing import (POINTED, SIZE_TOLERANCE, Limits, aged_states, contact_stress_radius,
                      degenerate_notes, meets, profile_fault, rounded_up, smallest_base_circle,
                      worst)
 
@@ -170,8 +172,6 @@ def size_scene(scene, limits: Limits) -> Sizing:
         What `fickcam check` refuses of the scene at its first size (the scene's own, or
         the dry answer where the scene's profile has a cusp or an undercut).
     """
-    from ..simulation.simulate import plan_parts, run
-
     design = scene.mechanism("cam").design
     given = limits.radius_of_curvature is not None
     limits = limits.for_design(design)
@@ -223,8 +223,6 @@ def _flat_face_limits(scene, design, limits: Limits, ds) -> tuple[Limits, str]:
     cam angle and ageing time of the run, whatever its base circle; the shear strength
     is the cam material's, times the contact surface's property retention at each time.
     """
-    from ..elastic.strength import ply_strengths
-
     material = scene.materials[scene.model.cam.material]
     retention = np.asarray(ds["surface_property_retention"].sel(part="cam").values, float)
     strengths = ply_strengths(material, retention)

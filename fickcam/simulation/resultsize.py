@@ -1,6 +1,6 @@
 """The size of a scene's result, estimated from the scene before any work.
 
-The result holds, for each variable of the schema (:mod:`fickcam.results.schema`) that the scene
+The result holds, for each variable of the schema (:mod:`fickcam.schema`) that the scene
 computes, one 8-byte number per point of its dimensions: ageing times, parts, cam or crank
 angles (one per ``angle_step``), links and joints of a four-bar, limits, and the cells of
 each part when ``outputs.fields`` keeps the moisture fields. `fickcam check` prints the
@@ -17,9 +17,9 @@ from pathlib import Path
 
 from ..errors import WriteError
 from ..messages import warn
-from .store import CHUNKED_ABOVE, byte_size, free_space
-from .schema import VARIABLES
-from ..simulation.simulate import ageing_times, plan_parts
+from ..results.store import CHUNKED_ABOVE, byte_size, free_space
+from ..schema import VARIABLES
+from .simulate import ageing_times, plan_parts
 
 #: a result above this [bytes] is warned of, with the settings that shrink it
 WARN_ABOVE = 2**30
