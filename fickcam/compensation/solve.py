@@ -234,8 +234,8 @@ def diffusions_for(data: dict, base_dir: Path, times: np.ndarray, by_name: dict)
         Part name -> ``DiffusionResult`` (:func:`part_states`).
     """
     scene = _scene_at(data, base_dir, times)
-    elastic = scene.elastic_parts  # its runs keep no fields but these (``_scene_at``)
-    return {diffusion_key(part, part.name in elastic): by_name[part.name]
+    kept = scene.field_parts  # its runs keep no fields but these (``_scene_at``)
+    return {diffusion_key(part, part.name in kept): by_name[part.name]
             for part in scene.parts if by_name.get(part.name) is not None}
 
 
