@@ -13,8 +13,6 @@ to itself.
 """
 from __future__ import annotations
 
-from pathlib import Path
-
 import numpy as np
 
 from ..cam.drawn import CHORD_SHARE
@@ -25,24 +23,6 @@ from .cam import PROFILE_NAMES
 
 #: two scales closer than this (relative) make a similarity
 SAME_SCALE = 1e-12
-
-
-def made_drawing_path(folder: Path, stem: str) -> Path:
-    """Where the made drawing of a drawn cam goes: beside the made scene.
-
-    Parameters
-    ----------
-    folder : pathlib.Path
-        The made scene's folder.
-    stem : str
-        The made scene's file name without suffix.
-
-    Returns
-    -------
-    pathlib.Path
-        ``folder/<stem>_cam.dxf``.
-    """
-    return Path(folder) / f"{stem}_cam.dxf"
 
 
 def profile_scales(targets, made) -> tuple[float, float]:

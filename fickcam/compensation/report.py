@@ -20,7 +20,7 @@ from ..cam.profile import write_profile_csv, write_profile_dxf
 from .cam import PROFILE_POINTS, made_outline
 from ..files import replaced_together
 from .cam import profile_path
-from .drawn import made_drawing_path, made_drawing_writer, profile_scales
+from .drawn import made_drawing_writer, profile_scales
 from .solve import write_made, write_points
 
 #: key outputs over angle whose largest deviation from the design is reported:
@@ -442,8 +442,9 @@ def write_files(comp: Compensation, scene, path, *, profile=None, plot=None) -> 
     if points is not None:
         writers[csv] = lambda tmp: write_points(tmp, points)
     if points is not None and scene.has("cam") and scene.model.cam.drawing is not None:
-        writers[made_drawing_path(folder, path.stem)] = made_drawing_writer(
-            scene.model.cam, scene.model.diffusion.accuracy, profile_scales(comp.targets, comp.made))
+        scales = profile_scales(comp.targets, comp.made)
+        writers[folder / f"{path.stem}_cam.dxf"] = made_drawing_writer(
+            scene.model.cam, scene.model.diffusion.accuracy, scales)
     if profile is not None:
         writers[Path(profile)] = _drawing_writer(data, points, scene.base_dir,
                                                        Path(profile))
