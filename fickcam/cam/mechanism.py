@@ -73,6 +73,8 @@ class CamMechanism:
         #: a drawn plate's outline and holes about the axis [m] (None: not drawn)
         self.planform = getattr(self.design.profile, "planform", None)
         self.elastic_parts = frozenset({"cam"} if section.elastic else ())
+        #: none: the cam ages by its mean strains
+        self.field_parts = frozenset()
 
     # ---------------------------------------------------------- from the section alone
 

@@ -11,6 +11,12 @@ distance between points of the part grows by (1 + eps) to round-off, today's L(1
 An uneven field (a wet skin around a dry web, heavy bosses) moves the pins by what the
 field gives.
 
+A link's aged length from its moisture field (``uneven_pin_shifts``, ``aged_pin_distance``)
+splits the free strain beta (M - M0) into its area mean, which stretches the part by a
+similarity (today's L (1 + eps) with eps from the mean moisture), and the field's departure
+from that mean, whose displacement shifts one pin from the other; the model is linear, so
+the two add, and a uniform field (at saturation) gives L (1 + eps) to round-off.
+
 The mesh covers the drawn polygon exactly (``mesh.drawn_mesh``: every vertex kept), so the
 discretisation error is the mesh's alone and falls as h^(p+1) for elements of order p on
 smooth fields (Ciarlet 1978, Theorem 3.2.5); the polygon's own distance from the drawn
@@ -25,6 +31,7 @@ from scipy.spatial import cKDTree
 
 from ..drawing.planform import Planform, edge_sums
 from .fem import PlaneElasticity, isotropic_stiffness
+from .swelling import plate_moisture
 from .mesh import PlateMesh, drawn_mesh  # noqa: F401  (PlateMesh: the type of FreeDisplacement.mesh)
 
 POISSON = 0.3  # of the default isotropic stiffness: a free part's u does not depend on E
@@ -92,15 +99,27 @@ def free_displacements(planform: Planform, strains, spacing: float, order: int =
     list of FreeDisplacement
         One per field, on one mesh and one factorisation.
     """
-    mesh = drawn_mesh([loop.points for loop in planform.loops], spacing)
-    model = PlaneElasticity(mesh.points, mesh.triangles, 1.0, order)
-    q = isotropic_stiffness(1.0, POISSON) if stiffness is None else stiffness
+    mesh, model = _model(planform, spacing, order)
     x, y = model.quadrature_points()
-    loads = []
+    fields = []
     for strain in strains:
         value = strain(x, y)
         parts = value if isinstance(value, tuple) else (value, value, 0.0)
-        loads.append(model.eigenstrain_load(q, tuple(np.broadcast_to(p, x.shape) for p in parts)))
+        fields.append(tuple(np.broadcast_to(p, x.shape) for p in parts))
+    return _solved(planform, mesh, model, fields, stiffness)
+
+
+def _model(planform: Planform, spacing: float, order: int):
+    """(mesh, plane-stress model) of a drawn planform."""
+    mesh = drawn_mesh([loop.points for loop in planform.loops], spacing)
+    return mesh, PlaneElasticity(mesh.points, mesh.triangles, 1.0, order)
+
+
+def _solved(planform, mesh, model, fields, stiffness) -> list[FreeDisplacement]:
+    """The free displacement under each (eps_xx, eps_yy, gamma_xy) at the quadrature
+    points, on one factorisation."""
+    q = isotropic_stiffness(1.0, POISSON) if stiffness is None else stiffness
+    loads = [model.eigenstrain_load(q, parts) for parts in fields]
     solve = model.factorise(model.stiffness(q), model.statically_determinate_support())
     solved = solve(np.column_stack(loads))
     return [FreeDisplacement(planform, mesh,
@@ -125,3 +144,107 @@ def pin_distance(displacement: FreeDisplacement, holes) -> float:
     """
     a, b = (displacement.hole_centre(h) for h in holes)
     return float(np.hypot(*(b - a)))
+
+
+def uneven_pin_shifts(planform: Planform, pins, moisture, expansion, spacing: float,
+                      order: int = 2, stiffness=None) -> np.ndarray:
+    """How far the moisture field's unevenness moves a link's second pin from its first.
+
+    The free strain beta (M(x, y) - M0) splits into the strain of the field's area mean,
+    beta (M_mean - M0), which moves every point by a similarity (the pins part by
+    L beta (M_mean - M0): the mean-strain length), and the strain of the field's
+    departure from its mean, beta (M(x, y) - M_mean), whose displacement this solves for.
+    The model is linear, so the pin-to-pin vector is their sum; a uniform field gives no
+    shift at all.
+
+    Parameters
+    ----------
+    planform : Planform
+        The link as drawn [m], its first pin at the origin and its second on +x.
+    pins : tuple of Loop
+        The two pin holes, as drawn [m].
+    moisture : callable
+        ``moisture(points)`` of points [m] (n, 2) gives the thickness-mean moisture
+        [weight %] there at each ageing time, shape (times, n).
+    expansion : array_like
+        The moisture expansion coefficients along and across the link [1/weight %], shape
+        (2,) or (times, 2).
+    spacing : float
+        The mesh's edge length [m].
+    order : int
+        The Lagrange elements' order (1 or 2).
+    stiffness : array_like, optional
+        The plane-stress stiffness [Pa] (3, 3), as for :func:`free_displacements`.
+
+    Returns
+    -------
+    numpy.ndarray
+        The change of the vector from the first pin's centre to the second's [m], shape
+        (times, 2): along the link, then across it.
+    """
+    mesh, model = _model(planform, spacing, order)
+    x, y = model.quadrature_points()
+    values = np.asarray(moisture(np.column_stack([x.ravel(), y.ravel()])), float)
+    values = values.reshape(-1, *x.shape)
+    weights = model.quadrature_weights()
+    uneven = values - np.einsum("tep,ep->t", values, weights)[:, None, None] / weights.sum()
+    expansion = np.broadcast_to(np.asarray(expansion, float), (len(uneven), 2))
+    fields = [(bx * d, by * d, 0.0 * d) for d, (bx, by) in zip(uneven, expansion)]
+    drawn = np.subtract(*(planform.hole_centre(h) for h in pins[::-1]))
+    return np.array([np.subtract(*(moved.hole_centre(h) for h in pins[::-1])) - drawn
+                     for moved in _solved(planform, mesh, model, fields, stiffness)])
+
+
+def aged_pin_distance(length, strain, shift) -> np.ndarray:
+    """A link's aged pin-to-pin length [m]: the mean strain's L (1 + eps) plus the shift of
+    the field's unevenness (:func:`uneven_pin_shifts`).
+
+    Parameters
+    ----------
+    length : float
+        The dry pin-to-pin length L [m].
+    strain : array_like
+        The free strain along the link of the field's mean [-], shape (times,).
+    shift : array_like
+        The unevenness's shift of the pin-to-pin vector [m], shape (times, 2).
+
+    Returns
+    -------
+    numpy.ndarray
+        The aged lengths [m], shape (times,); L (1 + eps) exactly where the shift is zero.
+    """
+    shift = np.asarray(shift, float)
+    return np.hypot(length * (1.0 + np.asarray(strain, float)) + shift[:, 0], shift[:, 1])
+
+
+def drawn_moisture(result, geometry, sheet, planform: Planform):
+    """The thickness-mean moisture over a drawn planform at each stored time, as a function
+    of the points: the plane model's field on its mid-thickness level, the drawn edges at
+    the sheet's face value, carried through the thickness with the exact sheet
+    (:func:`fickcam.elastic.swelling.plate_moisture`).
+
+    Parameters
+    ----------
+    result : fickcam.diffusion.DiffusionResult
+        The part's diffusion result with its ``fields`` [weight %].
+    geometry : fickcam.diffusion.problem.geometry.DrawnPlate
+        Its diffusion geometry [m].
+    sheet : fickcam.elastic.thickness.SheetProfile
+        The exact sheet of its thickness under its exposure [weight %].
+    planform : Planform
+        The part as drawn [m] (its loops the exposed edges).
+
+    Returns
+    -------
+    callable
+        ``moisture(points)`` of points [m] (n, 2): the moisture [weight %], (times, n).
+    """
+    edge = np.vstack([loop.points for loop in planform.loops])
+
+    def moisture(points):
+        points = np.vstack([edge, np.asarray(points, float).reshape(-1, 2)])
+        _, mean = plate_moisture(result, geometry, points, sheet.surface, sheet,
+                                 np.arange(len(edge)))
+        return mean[:, len(edge):]
+
+    return moisture

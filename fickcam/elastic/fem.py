@@ -341,6 +341,11 @@ class PlaneElasticity:
         """(2, n_elements, n_points) coordinates of the quadrature points."""
         return np.asarray(self.basis.global_coordinates())
 
+    def quadrature_weights(self) -> np.ndarray:
+        """(n_elements, n_points) areas [m^2] the quadrature points stand for (their sum is
+        the mesh's area)."""
+        return np.asarray(self.basis.dx)
+
     def displacement_at_nodes(self, u) -> np.ndarray:
         """(n_nodes, 2) displacement at the mesh vertices."""
         return np.column_stack([u[self.basis.nodal_dofs[0]], u[self.basis.nodal_dofs[1]]])

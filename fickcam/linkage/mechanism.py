@@ -26,8 +26,8 @@ from ..mechanisms.ageing import over_ageing
 from ..mechanisms.part import Part
 from ..mechanisms.response import Response
 from .classify import class_changes
-from .drawn import (aged_drawn_body, centre_fraction, describe_link, link_lengths,
-                    read_drawn_links)
+from .drawn import (aged_drawn_body, aged_drawn_length, centre_fraction, describe_link,
+                    link_lengths, read_drawn_links)
 from .dynamics import JOINTS
 from .model import FourBarDesign, FourBarState, fourbar_response
 from .spec import LinkageSection
@@ -66,6 +66,9 @@ class LinkageMechanism:
         #: the dry four-bar
         self.design = FourBarDesign.from_section(section, link_lengths(section, self.drawn))
         self.elastic_parts = frozenset(LINKS if section.elastic else ())
+        #: the drawn links, each one's aged length its displaced pins' distance (none with
+        #: ``aged_length: mean_strain``)
+        self.field_parts = frozenset(self.drawn if section.aged_length == "field" else ())
 
     @staticmethod
     def part_names(section: LinkageSection) -> tuple[str, ...]:
@@ -208,7 +211,8 @@ def link_states(section, histories, drawn=None):
     for link, length in zip(LINKS, link_lengths(section, drawn)):
         state = histories[link].state
         eps_x = np.asarray(state["strain_longitudinal"], float)
-        lengths.append(length * (1.0 + eps_x))
+        lengths.append(aged_drawn_length(drawn[link], histories[link], eps_x) if link in drawn
+                       else length * (1.0 + eps_x))
         if link in drawn:
             mass, inertia = aged_drawn_body(
                 drawn[link], s.thickness, histories[link].part.material.dry_density,

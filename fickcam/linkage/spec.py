@@ -242,6 +242,11 @@ class LinkageSection(StrictModel):
     elastic : bool
         Whether to compute the links' swelling stress and failure index
         (:mod:`fickcam.elastic`).
+    aged_length : {"field", "mean_strain"}
+        How a drawn link's aged pin-to-pin length is found: the distance between its pins
+        displaced by its moisture field over the drawn planform (``field``,
+        :func:`fickcam.linkage.drawn.aged_drawn_length`), or L (1 + eps) of its mean
+        moisture (``mean_strain``, as a link given by its length).
 
     Raises
     ------
@@ -272,6 +277,9 @@ class LinkageSection(StrictModel):
         (0.5, 0.5, 0.5), description="Centres of mass of crank, coupler, rocker as fractions of their lengths [1]")
     elastic: bool = Field(
         False, description="Whether to compute the links' swelling stress and failure index")
+    aged_length: Literal["field", "mean_strain"] = Field(
+        "field", description="A drawn link's aged length: its pins moved by its moisture field, "
+                             "or L (1 + eps) of its mean")
 
     @model_validator(mode="after")
     def _is_a_four_bar(self):

@@ -31,7 +31,7 @@ class Mechanism(Protocol):
     ``part_names``, ``materials_used``, ``absorber_sizes``, ``section_problems``,
     ``read_files``, ``coordinates``. An instance, built once from the validated section,
     the scene's resolved materials and what ``read_files`` read, holds what it is made of
-    (its dry ``design``) and answers the run: ``parts``, ``elastic_parts``, ``described``,
+    (its dry ``design``) and answers the run: ``parts``, ``elastic_parts``, ``field_parts``, ``described``,
     ``response``. Its as-designed values are its ``response`` to its parts' dry state.
 
     Parameters
@@ -48,6 +48,9 @@ class Mechanism(Protocol):
     section_name: ClassVar[str]
     #: the names of its parts whose swelling stress the scene asks for
     elastic_parts: frozenset[str]
+    #: the names of its parts whose moisture field over the planform its ``response``
+    #: reads (a drawn link's aged length): their histories carry the field and the sheet
+    field_parts: frozenset[str]
 
     def __init__(self, section, materials: dict, files=None) -> None: ...
 

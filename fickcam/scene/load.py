@@ -157,6 +157,18 @@ class Scene:
         """
         return frozenset().union(*(m.elastic_parts for m in self.mechanisms))
 
+    @property
+    def field_parts(self) -> frozenset:
+        """The names of the parts whose moisture field a run keeps for the mechanisms or
+        the swelling stress (``elastic_parts`` and each mechanism's ``field_parts``).
+
+        Returns
+        -------
+        frozenset of str
+            The part names.
+        """
+        return self.elastic_parts.union(*(m.field_parts for m in self.mechanisms))
+
     def has(self, section: str) -> bool:
         """Whether the scene has the mechanism of ``section`` (``cam``, ``linkage``).
 

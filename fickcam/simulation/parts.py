@@ -30,12 +30,16 @@ class PartHistory:
         Material state variables by schema name, each over the ageing times [schema units].
     valid : numpy.ndarray of bool, optional
         Over ageing times: where the part's state is in the model's domain.
+    sheet : fickcam.elastic.thickness.SheetProfile, optional
+        The exact sheet of its thickness under its exposure [weight %], for a part whose
+        moisture field its mechanism reads (``field_parts``); None otherwise.
     """
 
     part: Part
     diffusion: object | None
     state: dict = field(default_factory=dict)
     valid: np.ndarray | None = None  # bool over ageing times
+    sheet: object | None = None
 
     def at_rows(self, rows: np.ndarray) -> "PartHistory":
         """The history at the ageing times ``rows`` only.

@@ -8,13 +8,14 @@ from __future__ import annotations
 
 import logging
 import time as _time
+from dataclasses import replace
 
 import numpy as np
 
 from .._version import __version__
 from ..climate.environment import Environment, summary_edges
 from ..diffusion import plan_problem, refuse, solve_problem
-from ..elastic.parts import swelling_variables
+from ..elastic.parts import sheet_profile, swelling_variables
 from ..errors import InputError, SceneError, times_in, unit_of_length
 from ..materials import material_state
 from ..materials.state import wet_tg_error
@@ -396,13 +397,13 @@ def age_parts(scene: Scene, environment: Environment, times: np.ndarray, options
     list of PartHistory
         One per part, in order.
     """
-    elastic = scene.elastic_parts  # these need their moisture fields
+    kept = scene.field_parts  # these need their moisture fields
     histories, solved = [], dict(diffusions or {})
     for part in parts:
         if bar is not None:
             bar.set_postfix_str(part.name)
         histories.append(age_part(part, environment, times, options, notices,
-                                  store_fields=scene.model.outputs.fields or part.name in elastic,
+                                  store_fields=scene.model.outputs.fields or part.name in kept,
                                   solved=solved))
         if bar is not None:
             bar.update()
@@ -418,13 +419,13 @@ def _searched_values(scene: Scene, environment: Environment, at: np.ndarray,
     (``DiffusionResult.extend``: only the new times are summed), else re-solved at both;
     the part histories are then taken at ``at``."""
     notices: list[str] = list(environment.notes)
-    elastic = scene.elastic_parts
+    elastic, kept = scene.elastic_parts, scene.field_parts
     stored_times, befores = stored
     both = np.union1d(stored_times, at)
     rows = np.searchsorted(both, at)
     solved: dict = {}
     histories = [age_part(before.part, environment, both, options, notices,
-                          store_fields=scene.model.outputs.fields or before.part.name in elastic,
+                          store_fields=scene.model.outputs.fields or before.part.name in kept,
                           before=before.diffusion, solved=solved).at_rows(rows)
                  for before in befores]
     return _values(scene, environment, at, histories, notices, elastic, False)
@@ -446,6 +447,7 @@ def _values(scene: Scene, environment: Environment, times: np.ndarray,
         values.update(part_values(histories))
     valid_all = np.logical_and.reduce([h.valid for h in histories]) if histories else \
         np.ones_like(times, bool)
+    histories = with_sheets(scene, environment, times, histories)
     mechanisms = mechanism_values(scene, histories, times, valid_all, bar.update)
     values.update(mechanisms.variables)
     coords.update(_mechanism_coords(scene))
@@ -462,6 +464,35 @@ def _values(scene: Scene, environment: Environment, times: np.ndarray,
         coords.update(cells)
     bar.close()
     return values, coords, notices, histories
+
+
+def with_sheets(scene: Scene, environment: Environment, times: np.ndarray,
+                histories: list[PartHistory]) -> list[PartHistory]:
+    """The histories, those of the parts whose moisture field a mechanism reads
+    (``field_parts``) with the exact sheet of their thickness under their exposure
+    (:func:`fickcam.elastic.parts.sheet_profile`), which carries their stored mid-plane field
+    through the thickness.
+
+    Parameters
+    ----------
+    scene : Scene
+        The loaded scene.
+    environment : Environment
+        Its climate history (temperature [K], surface moisture).
+    times : numpy.ndarray
+        Ageing times [s].
+    histories : list of PartHistory
+        The parts' ageing.
+
+    Returns
+    -------
+    list of PartHistory
+        The same, in order; a part without a stored field unchanged.
+    """
+    read = frozenset().union(*(m.field_parts for m in scene.mechanisms))
+    return [replace(h, sheet=sheet_profile(h.part, environment, times))
+            if h.part.name in read and getattr(h.diffusion, "fields", None) is not None else h
+            for h in histories]
 
 
 def _limits(ds, scene: Scene, environment: Environment,
