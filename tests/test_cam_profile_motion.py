@@ -10,7 +10,7 @@ from dataclasses import replace
 
 import numpy as np
 import pytest
-from hypothesis import given, settings
+from hypothesis import example, given, settings
 from hypothesis import strategies as st
 from scipy.interpolate import PPoly
 
@@ -83,6 +83,7 @@ def test_the_motion_at_any_angle_is_the_motion_on_the_whole_turn():
 @settings(max_examples=30, deadline=None)
 @given(st.lists(st.floats(-1.0, 1.0, allow_subnormal=False), min_size=12, max_size=40),
        st.integers(1, 5), st.floats(-0.5, 0.5))
+@example(values=[0.0] * 9 + [-0.75, -0.5, 0.0], degree=2, shift=0.0)  # a root at the last end
 def test_piece_roots_are_the_roots_scipy_finds(values, degree, shift):
     """piece_roots solves only the pieces that can reach zero; it finds the roots
     PPoly.roots finds on every piece (simple roots, to 1e-9 of the breakpoint spacing)."""

@@ -76,7 +76,7 @@ def drawn_profile(section, part: DrawnCam) -> CamProfile:
 
     Returns
     -------
-    CamProfile
+    fickcam.cam.profile.CamProfile
         The closed dry working profile, its ``planform`` the drawn plate.
     """
     x, y = part.profile
@@ -113,8 +113,8 @@ def with_bore(part: DrawnCam, radius: float, accuracy: float = DEFAULT_ACCURACY)
 def read_cam_drawing(section, base_dir: Path, accuracy: float):
     """Read ``cam.drawing`` (relative to the scene), or ``cam.outline`` with ``cam.holes``:
     (problems as (key path inside the section, reason), the section with the drawing's path
-    absolute and the plate's bore radius, the :class:`CamProfile` or None, the profile's
-    smallest radius [m]).
+    absolute and the plate's bore radius, the :class:`~fickcam.cam.profile.CamProfile` or
+    None, the profile's smallest radius [m]).
 
     Parameters
     ----------

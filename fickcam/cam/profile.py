@@ -561,7 +561,8 @@ def piece_roots(curve):
     degree = c.shape[0] - 1
     powers = width[None, :] ** np.arange(degree, 0, -1)[:, None]
     reach = np.sum(np.abs(c[:-1]) * powers, axis=0)
-    pieces = np.nonzero((np.abs(c[-1]) <= reach) & (reach > 0))[0]
+    # a root at a piece's far end makes the bound an equality: keep it within round-off
+    pieces = np.nonzero((np.abs(c[-1]) <= reach * (1 + 1e-12)) & (reach > 0))[0]
     if not pieces.size:
         return np.empty(0)
     lead = c[0, pieces]

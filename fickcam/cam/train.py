@@ -41,7 +41,6 @@ from ..mechanisms.response import Response
 from .fourier import at_angles, harmonics, on_grid, series
 from . import dynamics as dyn
 from .kinematics import dry_lowest_height, follower_heights
-from .kinematics import follower_heights
 from .motion import follower_motion
 
 #: samples per revolution for the Fourier coefficients of the cam motion

@@ -397,8 +397,9 @@ def _sweep_cell(ds, name: str, case: int) -> str:
 def sweep_limit_lines(ds) -> list[str]:
     """Per limit of a sweep: how many of the cases that ran are out of spec by its last
     ageing time, with the Wilson 95 % interval of that fraction, and when the first and the
-    last of them left it, each case's time as a single run reports it (:func:`crossing_text`:
-    the digits its error estimate supports, in the scene's time unit).
+    last of them left it, each case's time as a single run reports it
+    (:func:`~fickcam.results.limits.crossing_text`: the digits its error estimate supports,
+    in the scene's time unit).
 
     Parameters
     ----------

@@ -7,7 +7,7 @@ from pathlib import Path
 
 import numpy as np
 
-from .common import legend, days, figure, Figures, returns_figures, save_figure
+from .common import legend, days, figure, Figures, returns_figures
 from .cam import angle_panels
 from .fields import cell_triangulation
 

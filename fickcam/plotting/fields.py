@@ -7,7 +7,7 @@ from pathlib import Path
 
 import numpy as np
 
-from .common import legend, age_label, ages, days, figure, Figures, returns_figures, save_figure
+from .common import legend, age_label, ages, days, figure, Figures, returns_figures
 
 PANELS = 4
 

@@ -7,7 +7,7 @@ from pathlib import Path
 
 from ..results.limits import crossing_text, stored_limits, worst_value
 from ..results.query import drift
-from .common import legend, age_colour, age_label, ages, days, figure, Figures, returns_figures, save_figure
+from .common import legend, age_colour, age_label, ages, days, figure, Figures, returns_figures
 
 ANGLES = ("cam_angle", "crank_angle")
 

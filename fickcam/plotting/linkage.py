@@ -9,7 +9,7 @@ import numpy as np
 
 from ..schema import design_name
 from .common import (age_colour, age_label, ages, days, drift_panel, exaggerated_outlines,
-                     figure, legend_outside, length_drift_panel, reference_curve, save_figure, Figures, returns_figures)
+                     figure, legend_outside, length_drift_panel, reference_curve, Figures, returns_figures)
 
 
 def _wrapped_degrees(x):

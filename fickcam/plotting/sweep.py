@@ -19,7 +19,7 @@ from pathlib import Path
 
 import numpy as np
 
-from .common import legend, days, figure, legend_outside, Figures, returns_figures, save_figure
+from .common import legend, days, figure, legend_outside, Figures, returns_figures
 from ..quantities.parsing import convert
 from ..sweep.scatter import out_of_spec_counts, wilson_interval
 

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from .common import legend, age_colour, age_label, ages, days, figure, legend_outside, Figures, returns_figures, save_figure
+from .common import legend, age_colour, age_label, ages, days, figure, legend_outside, Figures, returns_figures
 
 ANGLE_PANELS = (("follower_displacement", "dynamic_follower_displacement", "displacement [mm]", 1e3),
                 (None, "dynamic_displacement_error", "dynamic − kinematic [mm]", 1e3),

@@ -5,7 +5,7 @@ from pathlib import Path
 
 import numpy as np
 
-from .common import days, figure, legend_outside, Figures, returns_figures, save_figure
+from .common import days, figure, legend_outside, Figures, returns_figures
 
 #: names of the climate summary's interval lengths [s]
 INTERVALS = {3600.0: "hourly", 86400.0: "daily", 7 * 86400.0: "weekly", 30 * 86400.0: "30-day"}

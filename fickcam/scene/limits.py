@@ -1,6 +1,7 @@
-"""What a limit is: a scene's ``limits:`` entry (:class:`LimitSpec`), read against the
-variable table into a :class:`Limit` (bounds in the variable's stored unit), and a
-result's stored ``limits`` attribute read back.
+"""What a limit is: a scene's ``limits:`` entry
+(:class:`~fickcam.scene.limits.LimitSpec`), read against the variable table into a
+:class:`~fickcam.scene.limits.Limit` (bounds in the variable's stored unit), and a result's
+stored ``limits`` attribute read back.
 
 A limit names a result variable and, for it, a band around the as-designed value
 (``deviation``) and/or bounds (``max``, ``min``), in any unit pint knows. How a result

@@ -255,8 +255,8 @@ def run(scene, *, accuracy: float | None = None, progress: bool = False, setting
 @on_one_blas_thread  # the caller's BLAS threads are restored on return (fickcam.simulation.blas)
 def run_with(scene: Scene, options: RunOptions, *, progress: bool = False,
              diffusions: dict | None = None, started: float | None = None):
-    """:func:`run` of a loaded scene with its options built: what compensation and the
-    sweeps' cases call, each passing the one :class:`RunOptions` of all its runs.
+    """:func:`run` of a loaded scene with its options built: what compensation calls,
+    passing the one :class:`~fickcam.simulation.options.RunOptions` of all its runs.
 
     Parameters
     ----------

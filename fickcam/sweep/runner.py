@@ -33,7 +33,6 @@ from .workdir import WorkFolder
 from ..diffusion import run_cache
 from ..scene.load import load_scene
 from ..simulation.simulate import plan_parts, written_time_unit
-from ..files import remove_stale_temporaries
 from ..results.store import save
 from ..simulation.resultsize import result_fits
 from ..messages import progress_bar
