@@ -20,6 +20,7 @@ from ..cam.profile import write_profile_csv, write_profile_dxf
 from .cam import PROFILE_POINTS, made_outline
 from ..files import replaced_together
 from .cam import profile_path
+from .drawn import made_drawing_writer, profile_scales
 from .solve import write_made, write_points
 
 #: key outputs over angle whose largest deviation from the design is reported:
@@ -407,7 +408,8 @@ def write_scene(comp: Compensation, scene, path, *, profile=None, plot=None) -> 
 
 def write_files(comp: Compensation, scene, path, *, profile=None, plot=None) -> list[Path]:
     """Write the compensated scene (a cam given by points: its points beside it as
-    ``<stem>_cam_profile.csv``), and when asked the made cam's profile (``profile``, .csv
+    ``<stem>_cam_profile.csv``; a drawn cam also its made drawing as ``<stem>_cam.dxf``,
+    :mod:`fickcam.compensation.drawn`), and when asked the made cam's profile (``profile``, .csv
     or .dxf) and the drift against the bands (``plot``, PNG); all together through
     temporary files and renames, so that nothing is written if one fails. Returns the
     paths written, the scene's first.
@@ -439,6 +441,10 @@ def write_files(comp: Compensation, scene, path, *, profile=None, plot=None) -> 
     writers = {path: None}  # the scene's text last: the drawing may validate the made scene
     if points is not None:
         writers[csv] = lambda tmp: write_points(tmp, points)
+    if points is not None and scene.has("cam") and scene.model.cam.drawing is not None:
+        scales = profile_scales(comp.targets, comp.made)
+        writers[folder / f"{path.stem}_cam.dxf"] = made_drawing_writer(
+            scene.model.cam, scene.model.diffusion.accuracy, scales)
     if profile is not None:
         writers[Path(profile)] = _drawing_writer(data, points, scene.base_dir,
                                                        Path(profile))

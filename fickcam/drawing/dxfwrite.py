@@ -101,7 +101,7 @@ def write_planform(path, planform: Planform, unit: float = 1e-3) -> Path:
         return _save(document, path)
 
 
-def write_drawing(path, drawing, move) -> Path:
+def write_drawing(path, drawing, move, kept=()) -> Path:
     """``drawing`` written again, every entity through ``move``, in its own unit and layers.
 
     Parameters
@@ -113,6 +113,8 @@ def write_drawing(path, drawing, move) -> Path:
     move : Similarity or callable
         A :class:`Similarity` (entities transformed as they are), or any map of points
         (n, 2) [m] -> (n, 2) [m] (entities as polylines through their mapped chord points).
+    kept : sequence of Piece
+        Pieces of ``drawing`` written as drawn, not moved (a cam's bore, which fits its shaft).
 
     Returns
     -------
@@ -124,12 +126,16 @@ def write_drawing(path, drawing, move) -> Path:
         document = _document(unit, [p.layer for p in drawing.pieces])
         space = document.modelspace()
         for piece in drawing.pieces:
-            if isinstance(move, Similarity) and piece.entity is not None:
+            if any(piece is k for k in kept):
+                piece_move = Similarity()  # the identity: the entity as drawn
+            else:
+                piece_move = move
+            if isinstance(piece_move, Similarity) and piece.entity is not None:
                 copy = piece.entity.copy()
-                copy.transform(move.matrix(unit))
+                copy.transform(piece_move.matrix(unit))
                 space.add_foreign_entity(copy, copy=False)
             else:
-                space.add_lwpolyline((np.asarray(move(piece.points)) / unit).tolist(),
+                space.add_lwpolyline((np.asarray(piece_move(piece.points)) / unit).tolist(),
                                      close=piece.closed, dxfattribs={"layer": piece.layer})
         for layer, points in drawing.points.items():
             for point in np.asarray(move(np.asarray(points))) / unit:
