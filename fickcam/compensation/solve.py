@@ -38,9 +38,12 @@ from ..errors import FickcamError, InputError, format_duration
 from ..quantities.options import ageing_time
 from ..results.dataset import build_dataset
 from ..scene.load import as_designed_data, load_scene
+from ..simulation.ageing import age_parts, diffusion_key
 from ..simulation.options import RunOptions
 from ..simulation.parts import part_values
-from ..simulation.simulate import age_parts, ageing_times, diffusion_key, run_with
+from ..simulation.planning import climate_seen
+from ..simulation.simulate import run_with
+from ..simulation.times import ageing_times
 from . import cam, linkage
 from .core import (MAX_ITERATIONS, Compensation, converged, made_value, part_strain, quiet_runs,
                    residual, scene_from, window_times)
@@ -211,7 +214,7 @@ def part_states(data: dict, base_dir: Path, times: np.ndarray, options: RunOptio
     """
     scene = _scene_at(data, base_dir, times)
     parts = [part for part in scene.parts if part.name in names]
-    histories = age_parts(scene, scene.environment, times, options, parts, [])
+    histories = age_parts(scene, climate_seen(scene, times, parts), options, parts, [])
     coords = {"time": times, "part": [h.part.name for h in histories]}
     return (build_dataset(part_values(histories), coords),
             {h.part.name: h.diffusion for h in histories})
@@ -219,7 +222,7 @@ def part_states(data: dict, base_dir: Path, times: np.ndarray, options: RunOptio
 
 def diffusions_for(data: dict, base_dir: Path, times: np.ndarray, by_name: dict) -> dict:
     """The diffusion results ``by_name`` keyed for a run of the scene mapping at ``times``
-    (``simulate.run(diffusions=...)``), by :func:`fickcam.simulation.simulate.diffusion_key`: the
+    (``simulate.run(diffusions=...)``), by :func:`fickcam.simulation.ageing.diffusion_key`: the
     part's shape (of this scene mapping), material and whether its field is kept.
 
     Parameters
