@@ -109,8 +109,7 @@ def swelling_variables(histories, names: set[str], seen) -> tuple[dict[str, np.n
         result = swelling_history(history.part.geometry, history.part.material, history.diffusion,
                                   history.state, temperature, environment.reference_temperature,
                                   environment.initial_moisture, history.valid,
-                                  history.sheet or sheet_profile(
-                                      history.part, seen.exposures[history.part.name], seen.times))
+                                  _sheet_of(history, seen))
         for name in SWELLING:
             out[name][:, column] = result[name]
         if "field" in result:
@@ -125,3 +124,10 @@ def swelling_variables(histories, names: set[str], seen) -> tuple[dict[str, np.n
         stored["stress_point_x"][column, :len(field)] = points[:, 0]
         stored["stress_point_y"][column, :len(field)] = points[:, 1]
     return out | stored, {"stress_point": np.arange(count)}
+
+
+def _sheet_of(history, seen) -> SheetProfile | None:
+    """The history's exact sheet, else the one of its part's thickness under its exposure."""
+    if history.sheet is not None or history.part.geometry is None:
+        return history.sheet
+    return sheet_profile(history.part, seen.exposures[history.part.name], seen.times)
