@@ -238,8 +238,8 @@ class Environment(Segments):
         return ClimateSeen(
             self, times, self.temperature(times), self.relative_humidity(times),
             MappingProxyType(dict(saturations)),
-            MappingProxyType({} if given else {name: self.exposure(saturation)
-                                               for name, saturation in saturations.items()}),
+            MappingProxyType({name: self.exposure(saturation)
+                              for name, saturation in saturations.items()}),
             MappingProxyType({name: self.uniform_moisture(saturation, times) for name, saturation
                               in saturations.items()} if given else {}),
             MappingProxyType(between), centres)
@@ -289,7 +289,8 @@ class ClimateSeen:
     saturations : mapping of str to callable
         Part name -> Mm(T, RH) [weight %] of the parts that absorb.
     exposures : mapping of str to fickcam.diffusion.Exposure
-        Part name -> its diffusion boundary history; empty where the states are given.
+        Part name -> its diffusion boundary history (where the states are given, the
+        states held as segments: what a part's exact sheet reads).
     state_moisture : mapping of str to numpy.ndarray
         Part name -> its uniform moisture at ``times`` [weight %] where the states are
         given directly; empty otherwise.
