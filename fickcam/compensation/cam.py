@@ -73,7 +73,7 @@ def _shape_targets(section, points: bool = False) -> list[Target]:
     return found
 
 
-def targets(section, points: bool = False) -> list[Target]:
+def targets(section, points: bool = False, mechanism=None) -> list[Target]:
     """The cam's dimensions (``_shape_targets``) and, for an ageing follower, its roller
     radius and its arm's length or face offset.
 
@@ -83,6 +83,8 @@ def targets(section, points: bool = False) -> list[Target]:
         The design's validated ``cam`` section.
     points : bool
         Compensate the working profile's points (x and y apart) instead of the parameters.
+    mechanism : CamMechanism, optional
+        The design's cam (unused: its section says all).
 
     Returns
     -------
@@ -143,10 +145,10 @@ def _motion(section, segments: list, shape: dict, length_text) -> list:
     return made
 
 
-def write(data: dict, section, targets, made, profile, length_text) -> np.ndarray | None:
+def write(data: dict, section, targets, made, stem, length_text) -> np.ndarray | None:
     """Put the made cam into the scene's ``cam:`` mapping (in place; ``section`` is the
     design's validated ``cam``): its parameters, or for a cam given by points the file
-    name ``profile`` (the points, returned as an
+    :func:`profile_path` of ``stem`` (the points, returned as an
     (n, 2) array in m, are the caller's to write there); the roller radius and arm.
 
     Parameters
@@ -159,8 +161,8 @@ def write(data: dict, section, targets, made, profile, length_text) -> np.ndarra
         The dimensions.
     made : list
         Their made values [m].
-    profile : str
-        File name of the made points (a cam given by points).
+    stem : pathlib.Path
+        The made scene's path without its suffix (relative to its folder, or absolute).
     length_text : callable
         Length [m] -> the text the scene stores.
 
@@ -176,7 +178,7 @@ def write(data: dict, section, targets, made, profile, length_text) -> np.ndarra
         points = np.c_[shape[PROFILE_NAMES[0]], shape[PROFILE_NAMES[1]]]
         for key in ("base_circle_radius", "motion", "eccentric", "drawing", "outline", "holes"):
             cam.pop(key, None)
-        cam["profile_file"] = str(profile)
+        cam["profile_file"] = str(profile_path(stem.parent, stem.name))
         if section.drawing is not None or section.outline is not None:  # the drawn bore
             cam["bore_radius"] = length_text(section.bore_radius)
     elif "eccentricity" in shape:

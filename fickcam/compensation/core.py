@@ -59,6 +59,11 @@ class Target:
         The design value(s) [m].
     mechanism : str
         The scene section of the mechanism it belongs to (``cam``, ``linkage``).
+    grown : tuple of str
+        Where the dimension grows otherwise than by the part's mean strain (a drawn link's
+        displaced pins): (the result variable of the part's aged length, its coordinate,
+        the name of the target that is its dry length), e.g. ``("link_length", "link",
+        "length")``: the strain is their ratio less one; empty: by ``strains``.
     """
 
     group: str
@@ -67,6 +72,7 @@ class Target:
     strains: tuple[str, ...]
     design: float | np.ndarray
     mechanism: str = ""
+    grown: tuple[str, ...] = ()
 
 
 @dataclass
@@ -140,23 +146,54 @@ class Compensation:
                                    iterations=iterations, residual=left, asked=self)
 
 
-def part_strain(ds, target: Target) -> np.ndarray:
-    """The strain acting on ``target`` at every ageing time of a result (mean of its variables).
+def part_strain(ds, target: Target, dry=None) -> np.ndarray:
+    """The strain acting on ``target`` at every ageing time of a result: the mean of its
+    variables, or where it grows otherwise (``target.grown``) the part's aged length over
+    its dry length ``dry``, less one.
 
     Parameters
     ----------
     ds : xarray.Dataset
-        A result with a ``part`` dimension.
+        A result with a ``part`` dimension (and the variable ``target.grown`` names).
     target : Target
         The dimension.
+    dry : float, optional
+        The part's dry length in that result [m] (``target.grown``).
 
     Returns
     -------
     numpy.ndarray
         The strain eps(t) [-].
     """
+    if target.grown:
+        name, dimension, _ = target.grown
+        return ds[name].sel({dimension: target.part}).values / float(dry) - 1.0
     values = [ds[name].sel(part=target.part).values for name in target.strains]
     return np.mean(values, axis=0)
+
+
+def target_strains(ds, targets: list[Target], made: list) -> list[np.ndarray]:
+    """The strain acting on every target in a result whose dimensions are ``made``
+    (:func:`part_strain`; a grown target's dry length the made value of the target it
+    names).
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        The result.
+    targets : list of Target
+        The dimensions.
+    made : list
+        Their values in that result [m].
+
+    Returns
+    -------
+    list of numpy.ndarray
+        eps(t) per target [-].
+    """
+    made_of = {(t.part, t.name): m for t, m in zip(targets, made)}
+    return [part_strain(ds, t, made_of[(t.part, t.grown[2])] if t.grown else None)
+            for t in targets]
 
 
 def _midrange(strain: np.ndarray) -> float:

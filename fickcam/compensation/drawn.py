@@ -1,4 +1,4 @@
-"""The made drawing of a drawn cam: the designer's DXF written again, compensated.
+"""The made drawings of drawn parts: the designer's DXF written again, compensated.
 
 A cam given by its drawing (``cam.drawing``) is compensated as points
 (:mod:`fickcam.compensation.cam`): every x of the working profile by one scale, every y by
@@ -10,15 +10,26 @@ each entity becomes a polyline through its mapped chord points, which stray from
 curve by no more than the chords strayed from the drawn one times the larger scale. The bore
 is written as drawn, as the made scene keeps it (a bore fits its shaft); the axis point maps
 to itself.
+
+A drawn link (``linkage.crank: {drawing: ...}``) is compensated in its pin-to-pin length
+(:mod:`fickcam.compensation.linkage`), L_made = L_design / (1 + eps). Its drawing to make is
+the drawing scaled as a whole by L_made / L_design about its first pin, a similarity (lines,
+arcs and circles stay as they are): the pins are then L_made apart, and the outline, web,
+bosses and lightening holes are made as much smaller as the part swells back (for a material
+that swells alike along and across the link, the aged part is the drawn one). The pin holes
+keep their drawn diameter, each carried with its centre: a bearing or pin fits them at
+assembly, dry, as a cam's bore fits its shaft.
 """
 from __future__ import annotations
 
 import numpy as np
 
 from ..cam.drawn import CHORD_SHARE
-from ..drawing.dxfread import read_drawing
+from ..drawing.dxfread import JOIN, read_drawing
 from ..drawing.dxfwrite import Similarity, write_drawing
-from ..drawing.parts import CENTRED, cam_of
+from ..drawing.parts import cam_of
+from ..drawing.planform import pin_holes
+from ..linkage.drawn import CHORD_SHARE as LINK_CHORD_SHARE
 from .cam import PROFILE_NAMES
 
 #: two scales closer than this (relative) make a similarity
@@ -50,10 +61,55 @@ def profile_scales(targets, made) -> tuple[float, float]:
     return scales[0], scales[1]
 
 
-def _is_bore(piece, axis, radius: float) -> bool:
-    """Whether a drawn piece lies on the bore's circle (``radius`` [m] about ``axis``)."""
-    distance = np.hypot(*(piece.points - axis).T)
-    return radius > 0 and bool(np.all(np.abs(distance - radius) <= CENTRED * radius))
+def pieces_of(drawing, loop) -> list:
+    """The drawn pieces a loop of ``drawing`` was joined from: those whose every vertex is one
+    of the loop's (within the join tolerance).
+
+    Parameters
+    ----------
+    drawing : fickcam.drawing.dxfread.Drawing
+        The drawing read, with its pieces [m].
+    loop : fickcam.drawing.planform.Loop
+        One of its planform's loops [m].
+
+    Returns
+    -------
+    list of fickcam.drawing.pieces.Piece
+        The pieces, in drawing order.
+    """
+    vertices = np.asarray(loop.points, float)
+    found = []
+    for piece in drawing.pieces:
+        gaps = np.hypot(*(piece.points[:, None, :] - vertices[None, :, :]).transpose(2, 0, 1))
+        if np.all(gaps.min(axis=1) <= JOIN):
+            found.append(piece)
+    return found
+
+
+def scaled_about(centre, scales: tuple[float, float]):
+    """x -> centre + (x - centre) (sx, sy): a :class:`~fickcam.drawing.dxfwrite.Similarity`
+    where the two scales are equal (every entity kept as it is), else a map of points.
+
+    Parameters
+    ----------
+    centre : array_like
+        The fixed point (x, y) [m].
+    scales : tuple of float
+        The scales along x and y [-].
+
+    Returns
+    -------
+    Similarity or callable
+        The map, (n, 2) [m] -> (n, 2) [m].
+    """
+    centre = np.asarray(centre, float)
+    sx, sy = scales
+    if abs(sx - sy) <= SAME_SCALE * abs(sx):
+        return Similarity(scale=sx, shift=tuple((1.0 - sx) * centre))
+
+    def move(points):
+        return centre + (np.asarray(points, float) - centre) * (sx, sy)
+    return move
 
 
 def made_drawing_writer(section, accuracy: float, scales: tuple[float, float]):
@@ -79,11 +135,41 @@ def made_drawing_writer(section, accuracy: float, scales: tuple[float, float]):
     drawing = read_drawing(spec.file, CHORD_SHARE * accuracy, spec.units, relative=True)
     part = cam_of(drawing.planform, drawing.points, spec.axis_layer)
     axis = drawing.planform.outer.points[0] - part.planform.outer.points[0]
-    sx, sy = scales
-    if abs(sx - sy) <= SAME_SCALE * abs(sx):
-        move = Similarity(scale=sx, shift=tuple((1.0 - sx) * axis))
-    else:
-        def move(points):
-            return axis + (np.asarray(points, float) - axis) * (sx, sy)
-    kept = [p for p in drawing.pieces if _is_bore(p, axis, part.bore_radius)]
+    move = scaled_about(axis, scales)
+    kept = []
+    if part.bore is not None:  # the bore as drawn, in the drawing's own place
+        bore = drawing.planform.holes[list(part.planform.holes).index(part.bore)]
+        kept = pieces_of(drawing, bore)
     return lambda tmp: write_drawing(tmp, drawing, move, kept=kept)
+
+
+def made_link_writer(spec, accuracy: float, scale: float):
+    """A writer of a drawn link's made drawing (module docstring): ``tmp path -> None``.
+
+    Parameters
+    ----------
+    spec : fickcam.linkage.spec.DrawnLinkSpec
+        The design's link, with its ``drawing`` (path absolute) and pin layer.
+    accuracy : float
+        The scene's relative accuracy [-]: the drawing is read at the chord tolerance the
+        run reads it at (:data:`fickcam.linkage.drawn.CHORD_SHARE` x it x its extent).
+    scale : float
+        The made pin-to-pin length over the design's [-].
+
+    Returns
+    -------
+    callable
+        Writes the made drawing, in the drawing's unit and layers, to the path it is given:
+        the whole drawing scaled by ``scale`` about the first pin, the pin holes at their
+        drawn size, each carried with its centre.
+    """
+    given = spec.drawing
+    drawing = read_drawing(given.file, LINK_CHORD_SHARE * accuracy, given.units, relative=True)
+    planform = drawing.planform
+    pins = pin_holes(planform, given.pin_layer)
+    first = np.asarray(planform.hole_centre(pins[0]))
+    carried = [(piece, Similarity(shift=tuple((scale - 1.0) * (centre - first))))
+               for pin, centre in ((p, np.asarray(planform.hole_centre(p))) for p in pins)
+               for piece in pieces_of(drawing, pin)]
+    move = scaled_about(first, (scale, scale))
+    return lambda tmp: write_drawing(tmp, drawing, move, carried=carried)

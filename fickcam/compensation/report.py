@@ -22,6 +22,7 @@ from ..files import replaced_together
 from .cam import profile_path
 from .drawn import made_drawing_writer, profile_scales
 from .solve import write_made, write_points
+from ..linkage.spec import DRAWN_LINKS
 
 #: key outputs over angle whose largest deviation from the design is reported:
 #: result variable, label, scale from the stored unit, unit shown
@@ -341,6 +342,21 @@ def report(comp: Compensation, scene) -> str:
 # ------------------------------------------------------------------ files
 
 
+def _design_paths(design: dict, base_dir: Path, folder: Path) -> None:
+    """The files the ``design:`` entry names (a cam's points or drawing, a link's drawing),
+    rewritten from ``base_dir`` relative to ``folder`` (in place)."""
+    linkage = design.get("linkage") or {}
+    for owner in [design.get("cam") or {}] + [linkage.get(link) for link in DRAWN_LINKS]:
+        if not isinstance(owner, dict):  # a link given by its length
+            continue
+        for key in ("profile_file", "drawing"):
+            given = owner.get(key)
+            if isinstance(given, dict) and isinstance(given.get("file"), str):
+                owner[key] = {**given, "file": relative_to(given["file"], base_dir, folder)}
+            elif isinstance(given, str):
+                owner[key] = relative_to(given, base_dir, folder)
+
+
 def scene_text(comp: Compensation, scene, data: dict, folder: Path) -> str:
     """The compensated scene's YAML: the made dimensions, ``design:`` the drawing's intent,
     paths relative to ``folder``, the table and the limits as comments.
@@ -365,9 +381,7 @@ def scene_text(comp: Compensation, scene, data: dict, folder: Path) -> str:
     if isinstance(environment.get("history_file"), str) and ":" not in environment["history_file"]:
         environment["history_file"] = relative_to(environment["history_file"], scene.base_dir,
                                                   folder)
-    shape = data.get("design", {}).get("cam", {})
-    if isinstance(shape.get("profile_file"), str):
-        shape["profile_file"] = relative_to(shape["profile_file"], scene.base_dir, folder)
+    _design_paths(data.get("design") or {}, scene.base_dir, folder)
     data["name"] = f"{scene.name}-compensated"
     data["description"] = f"{scene.model.description} (compensated {_when_text(comp)})".strip()
     outputs = dict(data.get("outputs") or {})
@@ -408,7 +422,8 @@ def write_scene(comp: Compensation, scene, path, *, profile=None, plot=None) -> 
 
 def write_files(comp: Compensation, scene, path, *, profile=None, plot=None) -> list[Path]:
     """Write the compensated scene (a cam given by points: its points beside it as
-    ``<stem>_cam_profile.csv``; a drawn cam also its made drawing as ``<stem>_cam.dxf``,
+    ``<stem>_cam_profile.csv``; a drawn cam also its made drawing as ``<stem>_cam.dxf``, a
+    drawn link its made drawing as ``<stem>_<link>.dxf``, which the made scene names,
     :mod:`fickcam.compensation.drawn`), and when asked the made cam's profile (``profile``, .csv
     or .dxf) and the drift against the bands (``plot``, PNG); all together through
     temporary files and renames, so that nothing is written if one fails. Returns the
@@ -436,11 +451,12 @@ def write_files(comp: Compensation, scene, path, *, profile=None, plot=None) -> 
     path = Path(path)
     folder = path.parent if str(path.parent) else Path(".")
     csv = profile_path(folder, path.stem)
-    data, points = write_made(comp.scene_data, scene.as_designed(), comp.targets, comp.made,
-                              Path(csv.name))
+    data, points, drawings = write_made(comp.scene_data, scene.as_designed(), comp.targets,
+                                        comp.made, Path(path.stem))
     writers = {path: None}  # the scene's text last: the drawing may validate the made scene
     if points is not None:
         writers[csv] = lambda tmp: write_points(tmp, points)
+    writers.update((folder / name, write) for name, write in drawings.items())
     if points is not None and scene.has("cam") and scene.model.cam.drawing is not None:
         scales = profile_scales(comp.targets, comp.made)
         writers[folder / f"{path.stem}_cam.dxf"] = made_drawing_writer(

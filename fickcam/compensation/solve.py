@@ -40,10 +40,10 @@ from ..results.dataset import build_dataset
 from ..scene.load import as_designed_data, load_scene
 from ..simulation.options import RunOptions
 from ..simulation.parts import part_values
-from ..simulation.simulate import age_parts, ageing_times, diffusion_key, run_with
+from ..simulation.simulate import age_parts, ageing_times, diffusion_key, run_with, with_sheets
 from . import cam, linkage
-from .core import (MAX_ITERATIONS, Compensation, converged, made_value, part_strain, quiet_runs,
-                   residual, scene_from, window_times)
+from .core import (MAX_ITERATIONS, Compensation, converged, made_value, quiet_runs, residual,
+                   scene_from, target_strains, window_times)
 
 log = logging.getLogger(__name__)
 
@@ -76,7 +76,8 @@ def _targets(scene, points: bool) -> list:
     """The dimensions compensated, mechanism by mechanism, each marked with its section."""
     return [dataclasses.replace(target, mechanism=mechanism.section_name)
             for mechanism in scene.mechanisms
-            for target in COMPENSATED[mechanism.section_name].targets(mechanism.section, points)]
+            for target in COMPENSATED[mechanism.section_name].targets(
+                mechanism.section, points, mechanism=mechanism)]
 
 
 def with_design(data: dict, design: dict, targets: list) -> dict:
@@ -110,10 +111,11 @@ def with_design(data: dict, design: dict, targets: list) -> dict:
     return out
 
 
-def write_made(data: dict, scene, targets: list, made: list, profile: Path):
+def write_made(data: dict, scene, targets: list, made: list, stem: Path):
     """(a copy of the scene mapping ``data`` (as designed) with the made dimensions and a
-    ``design:`` section, the made cam's points or None): a cam given by points names
-    ``profile``, where the caller writes its points.
+    ``design:`` section, the made cam's points or None, the made drawings): a cam given by
+    points names its points file and a drawn link its made drawing, both named from
+    ``stem``, where the caller writes them.
 
     Parameters
     ----------
@@ -125,23 +127,27 @@ def write_made(data: dict, scene, targets: list, made: list, profile: Path):
         The dimensions.
     made : list
         Their made values [m].
-    profile : pathlib.Path
-        File name of the made cam's points.
+    stem : pathlib.Path
+        The made scene's path without its suffix: the points go to
+        :func:`fickcam.compensation.cam.profile_path` of it, a drawn link's drawing to
+        :func:`fickcam.compensation.linkage.drawing_path` of it.
 
     Returns
     -------
     tuple
-        (the made scene mapping, the made points (n, 2) [m] or None).
+        (the made scene mapping, the made points (n, 2) [m] or None, the made drawings as
+        path -> writer of a temporary path).
     """
     design, data = data, copy.deepcopy(data)
     points = None
     for name, compensated in COMPENSATED.items():
         own = [(t, m) for t, m in zip(targets, made) if t.mechanism == name]
         if own:
-            written = compensated.write(data, scene.mechanism(name).section, *zip(*own), profile,
+            written = compensated.write(data, scene.mechanism(name).section, *zip(*own), stem,
                                         length_text)
             points = points if written is None else written
-    return with_design(data, design, targets), points
+    drawings = linkage.made_drawings(scene, targets, made, stem)
+    return with_design(data, design, targets), points, drawings
 
 
 def write_points(path, points: np.ndarray) -> Path:
@@ -185,9 +191,10 @@ def _run_at(data: dict, base_dir: Path, times: np.ndarray, options: RunOptions,
 
 
 def part_states(data: dict, base_dir: Path, times: np.ndarray, options: RunOptions,
-                names: set):
-    """What a run of the scene computes for the parts ``names``, without its mechanisms,
-    limits and other parts: their diffusion and material state.
+                names: set, grown: dict | None = None):
+    """What a run of the scene computes for the parts ``names``, without its limits and
+    other parts: their diffusion and material state, and the mechanisms' variables
+    ``grown`` asks for (a drawn link's aged length: :func:`grown_values`).
 
     Parameters
     ----------
@@ -202,19 +209,62 @@ def part_states(data: dict, base_dir: Path, times: np.ndarray, options: RunOptio
         cache).
     names : set of str
         The parts to compute.
+    grown : dict, optional
+        Mechanism section -> the names of its result variables to compute; None: none.
 
     Returns
     -------
     tuple
-        (xarray.Dataset of the parts' state variables over (time, part); dict of part
-        name -> its ``DiffusionResult`` at ``times``, None for a part that does not absorb).
+        (xarray.Dataset of the parts' state variables over (time, part) and the variables
+        ``grown`` names; dict of part name -> its ``DiffusionResult`` at ``times``, None for
+        a part that does not absorb).
     """
     scene = _scene_at(data, base_dir, times)
     parts = [part for part in scene.parts if part.name in names]
     histories = age_parts(scene, scene.environment, times, options, parts, [])
+    values = part_values(histories)
     coords = {"time": times, "part": [h.part.name for h in histories]}
-    return (build_dataset(part_values(histories), coords),
-            {h.part.name: h.diffusion for h in histories})
+    for section, variables in (grown or {}).items():
+        more, more_coords = grown_values(scene, scene.mechanism(section), histories, times,
+                                         variables)
+        values.update(more)
+        coords.update(more_coords)
+    return build_dataset(values, coords), {h.part.name: h.diffusion for h in histories}
+
+
+#: crank angles of a mechanism evaluated for its aged dimensions alone
+GROWN_ANGLES = np.linspace(0.0, 2.0 * np.pi, 4, endpoint=False)
+
+
+def grown_values(scene, mechanism, histories: list, times: np.ndarray, variables) -> tuple:
+    """A mechanism's result variables ``variables`` at ``times`` from its parts' histories
+    (a drawn link's aged length: its moisture field carried through the thickness with the
+    exact sheet, as a run does), at a few crank angles.
+
+    Parameters
+    ----------
+    scene : Scene
+        The scene (its climate) [SI].
+    mechanism : Mechanism
+        One of its mechanisms, whose parts ``histories`` holds.
+    histories : list of PartHistory
+        The parts' ageing.
+    times : numpy.ndarray
+        Ageing times [s].
+    variables : collection of str
+        The result variables to keep.
+
+    Returns
+    -------
+    tuple of dict
+        (values [SI] by name, the mechanism's coordinates).
+    """
+    environment = scene.environment
+    by_name = {h.part.name: h for h in with_sheets(scene, environment, times, histories)}
+    valid = np.logical_and.reduce([h.valid for h in histories])
+    response = mechanism.response(by_name, times, GROWN_ANGLES, valid)
+    return ({name: response.variables[name] for name in variables},
+            mechanism.coordinates(GROWN_ANGLES))
 
 
 def diffusions_for(data: dict, base_dir: Path, times: np.ndarray, by_name: dict) -> dict:
@@ -306,14 +356,21 @@ def _fixed_point(scene, data: dict, targets: list, times: np.ndarray, check: np.
     (:func:`settles_next`), the last dimensions are made without solving their diffusion
     again: their strains differ from the last iteration's by less than the tolerances'
     share of the compensation. The made scene is run once, at the end, with the diffusion
-    of the last iteration. ``options``: the compensation's, one for all its runs."""
+    of the last iteration. ``options``: the compensation's, one for all its runs. A
+    dimension that grows otherwise than by its part's mean strain (``Target.grown``: a
+    drawn link's displaced pins) takes its strain from its mechanism's aged value of it
+    (:func:`grown_values`) in every iteration."""
     at = np.searchsorted(check, times)
     names = {t.part for t in targets}
+    grown: dict = {}
+    for target in targets:
+        if target.grown:
+            grown.setdefault(target.mechanism, set()).add(target.grown[0])
     made = previous = [t.design for t in targets]
     ds, solved, trial = start, {}, data
     with tempfile.TemporaryDirectory(prefix="fickcam-compensate-") as folder, quiet_runs():
         for iteration in range(MAX_ITERATIONS + 1):
-            strains = [part_strain(ds, t)[at] for t in targets]
+            strains = [s[at] for s in target_strains(ds, targets, made)]
             new = [made_value(t.design, s) for t, s in zip(targets, strains)]
             log.debug("compensation iteration %d: largest moves %s m", iteration,
                       [float(np.max(np.abs(np.asarray(n) - m))) for n, m in zip(new, made)])
@@ -327,16 +384,19 @@ def _fixed_point(scene, data: dict, targets: list, times: np.ndarray, check: np.
                 return made, after, settled, strains
             previous, made = made, new
             trial = _made_trial(data, scene, targets, made, Path(folder))
-            ds, solved = part_states(trial, scene.base_dir, check, options, names)
+            ds, solved = part_states(trial, scene.base_dir, check, options, names, grown)
     raise FickcamError(f"compensation did not settle in {MAX_ITERATIONS} iterations")
 
 
 def _made_trial(data: dict, scene, targets: list, made: list, folder: Path) -> dict:
-    """The scene mapping with the ``made`` dimensions (a cam given by points: its points
-    written in ``folder``)."""
-    trial, points = write_made(data, scene, targets, made, folder / "trial.csv")
+    """The scene mapping with the ``made`` dimensions (a cam given by points: its points,
+    a drawn link: its made drawing, written in ``folder``)."""
+    stem = folder / "trial"
+    trial, points, drawings = write_made(data, scene, targets, made, stem)
     if points is not None:
-        write_points(folder / "trial.csv", points)
+        write_points(cam.profile_path(folder, stem.name), points)
+    for path, write in drawings.items():
+        write(path)
     return trial
 
 

@@ -101,7 +101,7 @@ def write_planform(path, planform: Planform, unit: float = 1e-3) -> Path:
         return _save(document, path)
 
 
-def write_drawing(path, drawing, move, kept=()) -> Path:
+def write_drawing(path, drawing, move, kept=(), carried=()) -> Path:
     """``drawing`` written again, every entity through ``move``, in its own unit and layers.
 
     Parameters
@@ -115,6 +115,9 @@ def write_drawing(path, drawing, move, kept=()) -> Path:
         (n, 2) [m] -> (n, 2) [m] (entities as polylines through their mapped chord points).
     kept : sequence of Piece
         Pieces of ``drawing`` written as drawn, not moved (a cam's bore, which fits its shaft).
+    carried : sequence of tuple
+        (piece, Similarity) pairs: pieces of ``drawing`` moved by a similarity of their own
+        instead of ``move`` (a link's pin hole, carried with its centre at its drawn size).
 
     Returns
     -------
@@ -122,14 +125,13 @@ def write_drawing(path, drawing, move, kept=()) -> Path:
         ``path``.
     """
     unit = drawing.unit
+    own = {id(piece): Similarity() for piece in kept}  # the identity: the entity as drawn
+    own.update((id(piece), similarity) for piece, similarity in carried)
     with quieter("ezdxf", logging.WARNING):
         document = _document(unit, [p.layer for p in drawing.pieces])
         space = document.modelspace()
         for piece in drawing.pieces:
-            if any(piece is k for k in kept):
-                piece_move = Similarity()  # the identity: the entity as drawn
-            else:
-                piece_move = move
+            piece_move = own.get(id(piece), move)
             if isinstance(piece_move, Similarity) and piece.entity is not None:
                 copy = piece.entity.copy()
                 copy.transform(piece_move.matrix(unit))
