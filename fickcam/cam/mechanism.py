@@ -98,11 +98,11 @@ class CamMechanism:
         return refs
 
     @staticmethod
-    def absorber_sizes(section: CamSection) -> list[tuple[str, str, float]]:
+    def absorber_sizes(section: CamSection, files=None) -> list[tuple[str, str, float]]:
         """(part, material name, half-size [m]) of the bodies whose uptake time the scene's
         plausibility readings judge a history's length by: the cam (half of its thickness
         or radius, whichever is smaller) and a roller (half of its width or diameter); see
-        :meth:`fickcam.mechanisms.Mechanism.absorber_sizes`."""
+        :meth:`fickcam.mechanisms.Mechanism.absorber_sizes` (``files``: unused)."""
         radius = section.base_circle_radius or (section.eccentric.radius if section.eccentric
                                                 else section.thickness)
         sizes = [("cam", section.material, 0.5 * min(section.thickness, radius))]

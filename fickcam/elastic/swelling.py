@@ -43,8 +43,11 @@ QI_PLIES = np.radians([0.0, 45.0, 90.0, -45.0])
 
 
 def _part_plate(geometry):
-    """The planform to mesh for a diffusion geometry (a disc about its own centre), or None."""
+    """The planform to mesh for a diffusion geometry (a disc about its own centre), or None
+    (a part that takes up no moisture, a steel frame: no geometry)."""
 
+    if geometry is None:
+        return None
     if geometry.axisymmetric:
         return disc_plate(geometry.outer_radius, geometry.thickness, geometry.inner_radius)
     return geometry if geometry.planform else None

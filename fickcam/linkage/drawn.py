@@ -208,6 +208,28 @@ def aged_drawn_length(link: DrawnLink, history, strain_x) -> np.ndarray:
     return aged_pin_distance(link.length, strain_x, shift)
 
 
+def in_plane_half_size(link: DrawnLink) -> float:
+    """A drawn link's in-plane half-size [m]: its planform's area over its perimeter (every
+    edge exposed, the holes' too), the half-width of a long strip, the size whose early
+    uptake through the edges is the planform's (the surface-to-volume ratio of Crank,
+    The Mathematics of Diffusion, 2nd ed., Oxford 1975, eq. 4.20 for a plate): a thin
+    web between heavy bosses counts for what it is, not for the section's width.
+
+    Parameters
+    ----------
+    link : fickcam.drawing.parts.DrawnLink
+        The link in its frame [m].
+
+    Returns
+    -------
+    float
+        A / P [m].
+    """
+    perimeter = sum(float(np.hypot(*(np.roll(loop.points, -1, axis=0) - loop.points).T).sum())
+                    for loop in link.planform.loops)
+    return link.planform.area / perimeter
+
+
 def centre_fraction(link: DrawnLink) -> float:
     """A drawn link's centre of mass along it, as a fraction of its length [-].
 

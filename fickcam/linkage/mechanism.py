@@ -27,7 +27,7 @@ from ..mechanisms.part import Part
 from ..mechanisms.response import Response
 from .classify import class_changes
 from .drawn import (aged_drawn_body, aged_drawn_length, centre_fraction, describe_link,
-                    link_lengths, read_drawn_links)
+                    in_plane_half_size, link_lengths, read_drawn_links)
 from .dynamics import JOINTS
 from .model import FourBarDesign, FourBarState, fourbar_response
 from .spec import LinkageSection
@@ -86,12 +86,32 @@ class LinkageMechanism:
         return refs
 
     @staticmethod
-    def absorber_sizes(section: LinkageSection) -> list[tuple[str, str, float]]:
+    def absorber_sizes(section: LinkageSection, files=None) -> list[tuple[str, str, float]]:
         """(part, material name, half-size [m]) of the bodies whose uptake time the scene's
-        plausibility readings judge a history's length by: the links (half of the
-        section's thickness or width); see :meth:`fickcam.mechanisms.Mechanism.absorber_sizes`."""
-        s = section.section
-        return [("links", section.material, 0.5 * min(s.thickness, s.width))]
+        plausibility readings judge a history's length by: the links given by their length
+        (half of the section's thickness or width) and each drawn link (half of its
+        thickness, or its planform's in-plane half-size,
+        :func:`fickcam.linkage.drawn.in_plane_half_size`, whichever is smaller); see
+        :meth:`fickcam.mechanisms.Mechanism.absorber_sizes`.
+
+        Parameters
+        ----------
+        section : LinkageSection
+            The validated section (thickness and width [m]).
+        files : dict of str to DrawnLink, optional
+            The drawn links by name, as :meth:`read_files` read them.
+
+        Returns
+        -------
+        list of tuple
+            (part, material name, half-size [m]).
+        """
+        s, drawn = section.section, dict(files or {})
+        half = 0.5 * s.thickness
+        sizes = [("links", section.material, min(half, 0.5 * s.width))] if \
+            len(drawn) < len(LINKS) else []
+        return sizes + [(link, section.material, min(half, in_plane_half_size(shape)))
+                        for link, shape in drawn.items()]
 
     @staticmethod
     def section_problems(section: LinkageSection) -> list[tuple[tuple, str]]:

@@ -241,7 +241,7 @@ class LinkageSection(StrictModel):
         lengths from their first pins [-].
     elastic : bool
         Whether to compute the links' swelling stress and failure index
-        (:mod:`fickcam.elastic`).
+        (:mod:`fickcam.elastic`), a drawn link's on its drawn planform with every hole.
     aged_length : {"field", "mean_strain"}
         How a drawn link's aged pin-to-pin length is found: the distance between its pins
         displaced by its moisture field over the drawn planform (``field``,
@@ -284,8 +284,6 @@ class LinkageSection(StrictModel):
     @model_validator(mode="after")
     def _is_a_four_bar(self):
         drawn = [name for name in DRAWN_LINKS if isinstance(getattr(self, name), DrawnLinkSpec)]
-        if drawn and self.elastic:
-            raise ValueError(f"elastic is not modelled for a drawn link ({drawn[0]}) yet")
         if not drawn:  # a drawn link's length is known once its drawing is read
             reason = four_bar_problem((self.crank, self.coupler, self.rocker, self.frame),
                                       self.section.boss_outer_radius)

@@ -85,7 +85,7 @@ class Mechanism(Protocol):
         """
 
     @staticmethod
-    def absorber_sizes(section) -> list[tuple[str, str, float]]:
+    def absorber_sizes(section, files=None) -> list[tuple[str, str, float]]:
         """The bodies whose moisture uptake time the plausibility readings judge a bare
         history length by (:func:`fickcam.quantities.plausibility.fastest_absorber`).
 
@@ -93,6 +93,8 @@ class Mechanism(Protocol):
         ----------
         section : pydantic.BaseModel
             Its section.
+        files : object, optional
+            What :meth:`read_files` read (a drawn part's outline), or None.
 
         Returns
         -------

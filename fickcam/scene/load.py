@@ -252,9 +252,10 @@ def _part_names(model: SceneModel) -> tuple[str, ...]:
 
 
 def _cross_checks(model: SceneModel, doc: YamlDocument, base_dir: Path,
-                  findings: Findings) -> tuple[list[Problem], dict, object]:
+                  findings: Findings, files: dict) -> tuple[list[Problem], dict, object]:
     """What no single section can check: parts name defined materials, bare durations are
-    plausible for the parts (``findings``), the climate stays below their dry Tg, the
+    plausible for the parts (``findings``; a drawn part's size from its drawing, in
+    ``files``, what each mechanism read), the climate stays below their dry Tg, the
     outputs' times fit the climate's history; (problems, the resolved materials, the
     Environment or None where it cannot be built)."""
     problems = _part_problems(model, doc)
@@ -270,7 +271,7 @@ def _cross_checks(model: SceneModel, doc: YamlDocument, base_dir: Path,
         return problems, resolved, None
     types = mechanism_types()
     sizes = [size for name, section in scene_sections(model).items()
-             for size in types[name].absorber_sizes(section)]
+             for size in types[name].absorber_sizes(section, files.get(name))]
     durations = history_findings(model, doc, environment, resolved, sizes)
     problems += durations.errors
     problems += _temperature_limit_problems(model, doc, environment, resolved, findings)
@@ -452,9 +453,9 @@ def validate_document(doc: YamlDocument, *, base_dir: Path) -> Scene:
         model = SceneModel.model_validate(doc.data)
     except ValidationError as exc:
         raise SceneError(problems_from_validation(exc, doc, model=SceneModel)) from None
-    problems, resolved, environment = _cross_checks(model, doc, base_dir, findings)
     read: dict = {}  # the files read, by path: each read once
     file_problems, model, files = _files(model, doc, base_dir, read)
+    problems, resolved, environment = _cross_checks(model, doc, base_dir, findings, files)
     problems += file_problems
     design_problems, as_designed = _as_designed_model(model, doc, base_dir, findings, read)
     problems += design_problems
