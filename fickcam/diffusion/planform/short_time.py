@@ -261,7 +261,10 @@ def expansion_of(part, d, layer_depth: float | None = None,
                  cache: RunCache | None = None) -> ShortTime | None:
     """The outline's short-time expansion in scaled coordinates as plan and solve both see it
     (circles sampled at thickness / 20 or finer); None when the outline has none. Made once
-    per run (``cache``; None: a fresh one): plan and solve of one part share it.
+    per run (``cache``; None: a fresh one): plan and solve of one part share it, and so do
+    the cases of a sweep worker whose diffusivities scale the outline alike (it reads ``d``
+    only through ``planar_scale``: equal ratios D_z / D_x, D_z / D_y, e.g. an isotropic
+    part whatever its D0, give the same expansion).
 
     Parameters
     ----------
@@ -281,8 +284,9 @@ def expansion_of(part, d, layer_depth: float | None = None,
     """
     cache = run_cache(cache)
     depth = part.thickness / 100 if layer_depth is None else layer_depth
-    return cache.get(("outline expansion", part, d, depth), lambda: short_time(
-        part, np.asarray(planar_scale(part, d)), depth, part.thickness / 20, cache))
+    scale = tuple(float(s) for s in planar_scale(part, d))   # all of d the expansion reads
+    return cache.get(("outline expansion", part, scale, depth), lambda: short_time(
+        part, np.asarray(scale), depth, part.thickness / 20, cache))
 
 
 def weighted(indicator, weight):
