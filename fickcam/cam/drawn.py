@@ -1,7 +1,9 @@
 """A cam plate as drawn (``cam.drawing``) or written in the scene (``cam.outline`` with
 ``cam.holes``, about the axis at the origin): read into the working profile, the axis and
 the bore (:func:`fickcam.drawing.parts.cam_of`), which then go the way of a cam given by
-points. A bore given by ``bore_radius`` alone is added to the plate as a round hole.
+points. A bore given by ``bore_radius`` alone is added to the plate as a round hole. The
+plate ages with all its holes (a keyed bore, lightening holes), every edge exposed
+(:class:`fickcam.diffusion.problem.geometry.DrawnPlate`).
 
 The drawing is flattened within a chord tolerance tied to the scene's accuracy
 (``CHORD_SHARE``): the chords' sagitta s changes a plate's area, and so its mean
@@ -28,6 +30,9 @@ CHORD_SHARE = 0.01
 DEFAULT_ACCURACY = 1e-3
 #: a bore the section gives agrees with the drawing's within this [m]
 BORE_AGREES = 1e-9
+#: the displacement mesh's edge, a share 1/MESH_ROWS of the plate's extent (P2 elements, as
+#: a drawn link's: :data:`fickcam.linkage.drawn.MESH_ROWS`)
+MESH_ROWS = 100
 
 
 def drawn_cam(section, accuracy: float = DEFAULT_ACCURACY) -> DrawnCam:
@@ -139,13 +144,11 @@ def read_cam_drawing(section, base_dir: Path, accuracy: float):
         part = drawn_cam(section, accuracy)
     except (DrawingError, MissingExtra) as exc:
         return [(("drawing",) if drawn else polygon_key(str(exc)), str(exc))], section, None, 0.0
-    if part.other_holes:
-        sources = ", ".join(h.source for h in part.other_holes)
-        where, what = ((("drawing",), f"{path}: ") if drawn else
-                       (polygon_key(part.other_holes[0].source), ""))
-        return [(where, f"{what}holes besides the bore ({sources}) are not modelled in a cam "
-                        f"yet; leave them out")], section, None, 0.0
     problems = []
+    if part.other_holes and section.elastic:
+        sources = ", ".join(h.source for h in part.other_holes)
+        problems.append((("elastic",), f"the elastic contact is modelled on a plate held at its "
+                                       f"bore without other holes ({sources}); leave elastic out"))
     given = "bore_radius" in section.model_fields_set
     if given and part.bore is not None and abs(section.bore_radius - part.bore_radius) > BORE_AGREES:
         problems.append((("bore_radius",), f"the plate's bore has radius "
@@ -153,6 +156,52 @@ def read_cam_drawing(section, base_dir: Path, accuracy: float):
     part = with_bore(part, section.bore_radius if given else 0.0, accuracy)
     section = section.model_copy(update={"bore_radius": part.bore_radius})
     return problems, section, drawn_profile(section, part), part.smallest_radius
+
+
+def aged_drawn_designs(design, planform, history, states: dict) -> dict:
+    """The design of each ageing time whose working profile is the drawn outline displaced
+    by the plate's moisture field (``cam.aged_profile: field``): the mean strains' scaling
+    (1 + eps_x, 1 + eps_y) about the axis plus the displacement of the field's unevenness
+    (:func:`fickcam.elastic.displacement.uneven_outline_shifts`), carried as the dry profile
+    through the outline's points moved by that displacement over (1 + eps), so that the
+    state's strains scale it onto the displaced outline. A uniform field moves nothing:
+    today's scaled profile, to round-off.
+
+    Parameters
+    ----------
+    design : CamDesign
+        The dry design, its profile the drawn outline (mirrored for a clockwise cam).
+    planform : fickcam.drawing.planform.Planform
+        The plate as drawn, about its axis [m].
+    history : fickcam.simulation.parts.PartHistory
+        The cam's ageing: its diffusion fields and sheet [weight %], its moisture
+        expansion along x and y [1/weight %].
+    states : dict of int to CamState
+        The aged state at each ageing index (the cam's strains along x and y [-]).
+
+    Returns
+    -------
+    dict of int to CamDesign
+        The design at each of those indices; empty where the history holds no field (the
+        as-designed state, a state given directly).
+    """
+    result = history.diffusion
+    if getattr(result, "fields", None) is None or history.sheet is None or not states:
+        return {}
+    # imported here: scikit-fem and scipy's interpolation, which only a drawn cam's run needs
+    from ..elastic.displacement import field_inputs, uneven_outline_shifts
+
+    moisture, expansion, stiffness = field_inputs(history, planform)
+    shifts = uneven_outline_shifts(planform, moisture, expansion,
+                                   planform.extent() / MESH_ROWS, stiffness=stiffness)
+    (x, y), mirror = planform.outer.points.T, -1.0 if design.clockwise else 1.0
+    designs = {}
+    for k, state in states.items():
+        px = x + shifts[k, :, 0] / (1.0 + state.cam_strain_x)
+        py = y + shifts[k, :, 1] / (1.0 + state.cam_strain_y)
+        profile = replace(make_profile(mirror * px, py, "working"), planform=planform)
+        designs[k] = replace(design, profile=profile)
+    return designs
 
 
 def describe_plate(planform, thickness: float, density: float) -> str:

@@ -4,7 +4,9 @@ questions: which bodies age, which coordinates its results have, and its respons
 ageing times (which part state feeds which input of
 :func:`~fickcam.cam.model.cam_response`).
 
-Parts: ``cam`` (a :class:`fickcam.diffusion.problem.geometry.CamPlate` of the dry working profile) and,
+Parts: ``cam`` (a :class:`fickcam.diffusion.problem.geometry.CamPlate` of the dry working
+profile; a drawn plate's :class:`~fickcam.diffusion.problem.geometry.DrawnPlate` with all its
+holes) and,
 when the follower names a material, ``follower`` (a roller: a disc of the roller radius
 and the contact width; a knife or flat follower: a bar of the contact width, stem
 length 4 x width; a swinging arm: a bar of the arm length, or the pivot distance for a
@@ -18,7 +20,7 @@ The papers are cited in full in :mod:`fickcam.cam`.
 """
 from __future__ import annotations
 
-from functools import cached_property
+from functools import cached_property, partial
 from pathlib import Path
 
 import numpy as np
@@ -29,7 +31,7 @@ from ..mechanisms.part import Part
 from ..mechanisms.response import Response, peak
 from .arm_spec import reach_problems
 from .design import CamDesign, CamState, cam_design
-from .drawn import describe_plate, read_cam_drawing
+from .drawn import aged_drawn_designs, describe_plate, read_cam_drawing
 from .kinematics import fitted_motions, working_profile
 from .model import cam_response, jump_speeds_over_ageing
 from .oscillating import describe_arm, follower_response
@@ -73,8 +75,10 @@ class CamMechanism:
         #: a drawn plate's outline and holes about the axis [m] (None: not drawn)
         self.planform = getattr(self.design.profile, "planform", None)
         self.elastic_parts = frozenset({"cam"} if section.elastic else ())
-        #: none: the cam ages by its mean strains
-        self.field_parts = frozenset()
+        #: a drawn cam whose aged profile is its outline displaced by its moisture field
+        #: (none: the cam ages by its mean strains)
+        self.field_parts = frozenset({"cam"} if self.planform is not None
+                                     and section.aged_profile == "field" else ())
 
     # ---------------------------------------------------------- from the section alone
 
@@ -158,19 +162,21 @@ class CamMechanism:
         """The bodies that age, cam then follower (built on first use: the diffusion
         geometries are the run's, not the scene's validation's)."""
         # imported here: the geometries bring scipy.sparse, which validating a scene needs not
-        from ..diffusion.problem.geometry import Bar, CamPlate, Disc
+        from ..diffusion.problem.geometry import Bar, CamPlate, Disc, DrawnPlate
 
         section, design, (x, y) = self.section, self.design, self.profile
         density = self.materials[section.material].dry_density
-        if self.planform is not None:  # drawn: the plate with every hole (Green's theorem)
-            cam_mass = self.planform.mass_properties(section.thickness, density).mass
+        planform = self.planform
+        if planform is not None:  # drawn: the plate with every hole (Green's theorem)
+            cam_mass = planform.mass_properties(section.thickness, density).mass
+            geometry = DrawnPlate(planform.outer.points, tuple(h.points for h in planform.holes),
+                                  section.thickness, contact_holes=False)
         else:
             _, cam_mass, _ = plate_body(x, y, section.thickness, section.bore_radius, density)
+            geometry = CamPlate(x, y, section.thickness, section.bore_radius)
         if section.eccentric is not None and section.bore_radius == 0:
             # a solid eccentric disc is a finite cylinder about its own centre: exact series
             geometry = Disc(section.eccentric.radius, section.thickness)
-        else:  # the bore is on the rotation axis: a plate with the profile outline
-            geometry = CamPlate(x, y, section.thickness, section.bore_radius)
         names = self.part_names(section)
         parts = [Part.made(names[0], section.material, self.materials, geometry, float(cam_mass))]
         follower = section.follower
@@ -244,7 +250,10 @@ class CamMechanism:
         fickcam.mechanisms.response.Response
             Variables over (time, ...) in SI, and the notices.
         """
-        result = rigid_response(self.motion_design, histories, times, angles, valid, on_step)
+        aged = None
+        if "cam" in self.field_parts:  # the profile its moisture field displaces
+            aged = partial(aged_drawn_designs, self.motion_design, self.planform, histories["cam"])
+        result = rigid_response(self.motion_design, histories, times, angles, valid, on_step, aged)
         if self.section.elastic:
             from ..elastic.cam import cam_elastic_response  # scikit-fem: only an elastic cam
 
@@ -313,7 +322,7 @@ def cam_state(design, histories: dict, k: int) -> CamState:
 
 
 def rigid_response(design: CamDesign, histories: dict, times, angles, valid,
-                   on_step=lambda: None) -> Response:
+                   on_step=lambda: None, aged=None) -> Response:
     """The rigid cam of ``design`` over ageing (:meth:`CamMechanism.response` but the
     elastic contact).
 
@@ -331,6 +340,10 @@ def rigid_response(design: CamDesign, histories: dict, times, angles, valid,
         Per ageing time: the parts are within their models' range (False: NaN there).
     on_step : callable
         Called once per ageing time evaluated (a progress bar).
+    aged : callable, optional
+        ``aged(states)`` of the states by ageing index gives the design of each index whose
+        profile is not the design's scaled by the state's strains (a drawn cam's displaced
+        outline, :func:`fickcam.cam.drawn.aged_drawn_designs`); None: none.
 
     Returns
     -------
@@ -340,6 +353,7 @@ def rigid_response(design: CamDesign, histories: dict, times, angles, valid,
     times = np.asarray(times, float)
     valid = np.asarray(valid, bool)
     states = {k: cam_state(design, histories, k) for k in np.flatnonzero(valid).tolist()}
+    designs = {} if aged is None else aged(states)
     # the fitted motions made together, and every closed-form or fitted motion's jump speed
     # searched for all ageing times at once
     fitted = fitted_motions(design, states)
@@ -347,12 +361,12 @@ def rigid_response(design: CamDesign, histories: dict, times, angles, valid,
     jumps = jump_speeds_over_ageing(design, states, angles, fitted)
 
     def evaluate(k: int) -> Response:
-        state = states[k]
+        state, aged_design = states[k], designs.get(k, design)
         response = cam_response(design, state, angles, jump_speed=jumps[k],
                                 motion=motions.get(k)) if k in jumps \
-            else follower_response(design, state, angles)
+            else follower_response(aged_design, state, angles)
         if design.train is not None:  # elastic follower train (Norton ch. 15)
-            elastic = dynamic_response(design, state, angles, response.variables)
+            elastic = dynamic_response(aged_design, state, angles, response.variables)
             response.variables.update(elastic.variables)
             response.notices.extend(elastic.notices)
         return response

@@ -471,6 +471,11 @@ class CamSection(_Strict):
         Cut the cam for the elastic follower.
     direction : {"counter_clockwise", "clockwise"}
         Turning sense, seen from the front.
+    aged_profile : {"field", "mean_strain"}
+        How a drawn cam's aged working profile is found: its outline displaced by its
+        moisture field over the drawn plate (``field``,
+        :func:`fickcam.cam.drawn.aged_drawn_designs`), or scaled by (1 + eps) of its mean
+        (``mean_strain``); a cam not drawn is always scaled.
     """
 
     material: str = Field(description="The cam plate's material (a name under materials)")
@@ -504,6 +509,9 @@ class CamSection(_Strict):
         None, description="Cut the cam so that the elastic follower moves as designed")
     direction: Literal["counter_clockwise", "clockwise"] = Field(
         "counter_clockwise", description="Turning sense of the cam, seen from the front")
+    aged_profile: Literal["field", "mean_strain"] = Field(
+        "field", description="A drawn cam's aged profile: its outline moved by its moisture "
+                             "field, or scaled by (1 + eps) of its mean")
 
     @field_validator("polydyne", mode="before")
     @classmethod

@@ -2,8 +2,9 @@
 
 A cam: the outer loop is the working profile; the axis is a point on the axis layer (as
 ``fickcam profile -o cam.dxf`` writes it), else the centre of the round hole nearest the
-outline's centroid (the bore); the bore is the round hole about the axis. A link: the two
-pin holes (``planform.pin_holes``), whose distance is its length.
+outline's centroid (the bore); the bore is the round hole about the axis, or a keyed one
+(a round hole with a keyway cut into its edge: ``keyed_circle``). A link: the two pin holes
+(``planform.pin_holes``), whose distance is its length.
 """
 from __future__ import annotations
 
@@ -15,6 +16,8 @@ from .planform import DrawingError, Loop, Planform, inside, pin_holes, where
 
 AXIS_LAYER = "AXIS"
 CENTRED = 1e-3  # a hole is about the axis when its centre is within 0.1 % of its radius
+ON_ARC = 1e-3  # a keyed bore's vertices on its circle lie within 0.1 % of its radius of it
+KEYED_SHARE = 0.5  # ... and carry at least half of its perimeter
 
 
 @dataclass(frozen=True, eq=False)
@@ -52,6 +55,49 @@ class DrawnCam:
         return tuple(h for h in self.planform.holes if h is not self.bore)
 
 
+def keyed_circle(hole: Loop) -> tuple[np.ndarray, float] | None:
+    """The circle a keyed hole is cut from: the least-squares circle (Kasa, A circle
+    fitting procedure and its error analysis, IEEE Transactions on Instrumentation and
+    Measurement, 1976) of the hole's vertices, refitted to those within ``ON_ARC`` of it;
+    None unless those carry ``KEYED_SHARE`` of the perimeter (their edges between two of them).
+
+    Parameters
+    ----------
+    hole : Loop
+        The hole [m].
+
+    Returns
+    -------
+    tuple or None
+        The centre [m] and the radius [m].
+    """
+    points, on = hole.points, np.ones(len(hole.points), bool)
+    for step in range(4):  # first the better half of the vertices, then those on the arc
+        x, y = points[on].T
+        a = np.column_stack([x, y, np.ones_like(x)])
+        (cx2, cy2, c), *_ = np.linalg.lstsq(a, x * x + y * y, rcond=None)
+        centre = np.array([cx2 / 2, cy2 / 2])
+        radius = float(np.sqrt(max(c + centre @ centre, 0.0)))
+        misfit = np.abs(np.hypot(*(points - centre).T) - radius)
+        on = misfit <= (np.median(misfit) if step == 0 else ON_ARC * radius)
+        if on.sum() < 3:
+            return None
+    edges = np.hypot(*(np.roll(points, -1, axis=0) - points).T)
+    arc = edges[on & np.roll(on, -1)].sum()
+    return (centre, radius) if arc >= KEYED_SHARE * edges.sum() else None
+
+
+def _circular_holes(planform: Planform) -> list[tuple[Loop, np.ndarray, float]]:
+    """(hole, centre [m], radius [m]) of the round holes, then of the keyed ones."""
+    found = [(h, np.asarray(planform.hole_centre(h)), r) for h, r in planform.round_holes()]
+    round_ = {id(h) for h, _, _ in found}
+    for hole in planform.holes:
+        circle = None if id(hole) in round_ else keyed_circle(hole)
+        if circle is not None:
+            found.append((hole, *circle))
+    return found
+
+
 def cam_of(planform: Planform, points: dict | None = None, axis_layer: str = AXIS_LAYER) -> DrawnCam:
     """A cam from its planform: the axis, the bore, the profile about the axis.
 
@@ -78,17 +124,15 @@ def cam_of(planform: Planform, points: dict | None = None, axis_layer: str = AXI
     found = {k.casefold(): v for k, v in (points or {}).items()}.get(axis_layer.casefold(), [])
     if len(found) > 1:
         raise DrawingError(f"{len(found)} points on layer {axis_layer}: the cam's axis is one point")
-    round_holes = planform.round_holes()
+    circles = _circular_holes(planform)
     if found:
         axis = np.asarray(found[0], float)
-    elif round_holes:
+    elif circles:
         centre = np.asarray(planform.centroid)
-        axis = min((np.asarray(planform.hole_centre(h)) for h, _ in round_holes),
-                   key=lambda c: float(np.hypot(*(c - centre))))
+        axis = min((c for _, c, _ in circles), key=lambda c: float(np.hypot(*(c - centre))))
     else:
         raise DrawingError(f"no axis: draw the bore as a circle, or a point on layer {axis_layer}")
-    bore, radius = next(((h, r) for h, r in round_holes
-                         if np.hypot(*(np.asarray(planform.hole_centre(h)) - axis)) <= CENTRED * r),
+    bore, radius = next(((h, r) for h, c, r in circles if np.hypot(*(c - axis)) <= CENTRED * r),
                         (None, 0.0))
     moved = planform.mapped(lambda p: p - axis)
     if bore is None and not _inside_outline(moved):

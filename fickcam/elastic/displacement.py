@@ -29,12 +29,17 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.spatial import cKDTree
 
-from ..drawing.planform import Planform, edge_sums
-from .fem import PlaneElasticity, isotropic_stiffness
+from ..drawing.planform import Planform, edge_sums, inside
+from .fem import PlaneElasticity, isotropic_stiffness, stiffness_matrix
 from .swelling import plate_moisture
 from .mesh import PlateMesh, drawn_mesh  # noqa: F401  (PlateMesh: the type of FreeDisplacement.mesh)
 
 POISSON = 0.3  # of the default isotropic stiffness: a free part's u does not depend on E
+#: an outline's displacement keeps the components of wavelengths of this many mesh edges and
+#: longer: P2 elements' displacement converges at the vertices, but not its second
+#: derivative along an edge (the aged profile's curvature, which the contact reads), whose
+#: error at the mesh's own scale is O(1)
+SHORTEST_WAVE = 4
 
 
 @dataclass(frozen=True, eq=False)
@@ -118,13 +123,18 @@ def _model(planform: Planform, spacing: float, order: int):
 def _solved(planform, mesh, model, fields, stiffness) -> list[FreeDisplacement]:
     """The free displacement under each (eps_xx, eps_yy, gamma_xy) at the quadrature
     points, on one factorisation."""
+    return [FreeDisplacement(planform, mesh,
+                             model.displacement_at_nodes(model.without_rigid_motion(u)))
+            for u in _solutions(model, fields, stiffness).T]
+
+
+def _solutions(model, fields, stiffness) -> np.ndarray:
+    """The displacement dofs (dofs, fields) under each free strain field, held by three
+    statically determinate supports, on one factorisation."""
     q = isotropic_stiffness(1.0, POISSON) if stiffness is None else stiffness
     loads = [model.eigenstrain_load(q, parts) for parts in fields]
     solve = model.factorise(model.stiffness(q), model.statically_determinate_support())
-    solved = solve(np.column_stack(loads))
-    return [FreeDisplacement(planform, mesh,
-                             model.displacement_at_nodes(model.without_rigid_motion(u)))
-            for u in solved.T]
+    return solve(np.column_stack(loads))
 
 
 def pin_distance(displacement: FreeDisplacement, holes) -> float:
@@ -182,6 +192,15 @@ def uneven_pin_shifts(planform: Planform, pins, moisture, expansion, spacing: fl
         The change of the vector from the first pin's centre to the second's [m], shape
         (times, 2): along the link, then across it.
     """
+    mesh, model, fields = _uneven_fields(planform, moisture, expansion, spacing, order)
+    drawn = np.subtract(*(planform.hole_centre(h) for h in pins[::-1]))
+    return np.array([np.subtract(*(moved.hole_centre(h) for h in pins[::-1])) - drawn
+                     for moved in _solved(planform, mesh, model, fields, stiffness)])
+
+
+def _uneven_fields(planform: Planform, moisture, expansion, spacing: float, order: int):
+    """(mesh, model, the free strains (eps_xx, eps_yy, gamma_xy) at the quadrature points
+    of the moisture field's departure from its area mean at each time)."""
     mesh, model = _model(planform, spacing, order)
     x, y = model.quadrature_points()
     values = np.asarray(moisture(np.column_stack([x.ravel(), y.ravel()])), float)
@@ -189,10 +208,132 @@ def uneven_pin_shifts(planform: Planform, pins, moisture, expansion, spacing: fl
     weights = model.quadrature_weights()
     uneven = values - np.einsum("tep,ep->t", values, weights)[:, None, None] / weights.sum()
     expansion = np.broadcast_to(np.asarray(expansion, float), (len(uneven), 2))
-    fields = [(bx * d, by * d, 0.0 * d) for d, (bx, by) in zip(uneven, expansion)]
-    drawn = np.subtract(*(planform.hole_centre(h) for h in pins[::-1]))
-    return np.array([np.subtract(*(moved.hole_centre(h) for h in pins[::-1])) - drawn
-                     for moved in _solved(planform, mesh, model, fields, stiffness)])
+    return mesh, model, [(bx * d, by * d, 0.0 * d) for d, (bx, by) in zip(uneven, expansion)]
+
+
+def uneven_outline_shifts(planform: Planform, moisture, expansion, spacing: float,
+                          order: int = 2, stiffness=None) -> np.ndarray:
+    """How far the moisture field's unevenness moves a cam plate's outline about its axis.
+
+    As :func:`uneven_pin_shifts`, the free strain's area mean moves the plate by a
+    similarity about the axis (the mean-strain profile); this solves for the displacement
+    of the field's departure from its mean, in the cam's frame: its mean rotation
+    (:meth:`fickcam.elastic.fem.PlaneElasticity.mean_rotation`) taken out, and the
+    translation that keeps the axis where the shaft holds it, the mean displacement of the
+    bore's round edge (the centre of a displaced circle, to first order), or the
+    displacement at the axis where the plate has no bore. A uniform field moves nothing.
+    The outline's displacement keeps its components of wavelengths of ``SHORTEST_WAVE``
+    mesh edges and longer (:func:`band_limited`), so that the displaced profile's curvature
+    is the field's, not the mesh's.
+
+    Parameters
+    ----------
+    planform : Planform
+        The plate as drawn [m], its axis at the origin.
+    moisture, spacing, order, stiffness
+        The thickness-mean moisture ``moisture(points)`` [weight %] of points [m], the
+        mesh's edge [m], the elements' order and the plane-stress stiffness [Pa], as for
+        :func:`uneven_pin_shifts`.
+    expansion : array_like
+        The moisture expansion coefficients along x and y [1/weight %], shape (2,) or
+        (times, 2).
+
+    Returns
+    -------
+    numpy.ndarray
+        The displacement of each vertex of the outline [m], shape (times, n, 2).
+    """
+    mesh, model, fields = _uneven_fields(planform, moisture, expansion, spacing, order)
+    outer = planform.outer.points
+    shifts = []
+    for u in _solutions(model, fields, stiffness).T:
+        nodal = FreeDisplacement(planform, mesh, model.displacement_at_nodes(u))
+        turn = model.mean_rotation(u)
+        axis = _axis_displacement(planform, nodal, model, u, turn)
+        moved = nodal.moved(outer) - outer
+        shift = moved - axis - turn * np.column_stack([-outer[:, 1], outer[:, 0]])
+        shifts.append(band_limited(outer, shift, SHORTEST_WAVE * spacing))
+    return np.array(shifts)
+
+
+def band_limited(points, values, wavelength: float) -> np.ndarray:
+    """Values at the vertices of a closed loop with their components shorter than
+    ``wavelength`` along it taken out: the least-squares Fourier series in the arc length
+    s of the harmonics k <= L / wavelength (L the loop's length), at the vertices. A
+    band-limited set of values (a uniform or linear field's displacement of a circle) is
+    returned to round-off; with too few vertices for that series, the values as they are.
+
+    Parameters
+    ----------
+    points : numpy.ndarray
+        The loop's vertices [m], shape (n, 2).
+    values : numpy.ndarray
+        A value per vertex [any unit], shape (n, m).
+    wavelength : float
+        The shortest wavelength kept [m].
+
+    Returns
+    -------
+    numpy.ndarray
+        The values, shape (n, m).
+    """
+    edges = np.hypot(*(np.roll(points, -1, axis=0) - points).T)
+    length = edges.sum()
+    count = int(length / wavelength)
+    if 2 * count + 1 >= len(points):
+        return values
+    phase = 2 * np.pi * np.concatenate([[0.0], np.cumsum(edges[:-1])]) / length
+    k = np.arange(1, count + 1)
+    basis = np.column_stack([np.ones_like(phase), np.cos(np.outer(phase, k)),
+                             np.sin(np.outer(phase, k))])
+    coefficients, *_ = np.linalg.lstsq(basis, values, rcond=None)
+    return basis @ coefficients
+
+
+def _axis_displacement(planform: Planform, nodal: FreeDisplacement, model, u,
+                       turn: float) -> np.ndarray:
+    """The displacement of the cam's axis (the origin) once the rotation ``turn`` [rad] is
+    taken out [m]: the mean over the bore's vertices on its circle, weighted by the edge
+    each stands for, or the field at the origin where no hole holds it."""
+    origin = np.zeros((1, 2))
+    bore = next((h for h in planform.holes if inside(origin, h)[0]), None)
+    if bore is None:
+        return model.displacement_at(u, origin)[0]
+    points = bore.points
+    radius = np.hypot(*points.T)
+    on = np.abs(radius - radius.min()) <= 1e-3 * radius.min()
+    edges = np.hypot(*(np.roll(points, -1, axis=0) - points).T)
+    weight = np.where(on, 0.5 * (edges + np.roll(edges, 1)), 0.0)
+    moved = nodal.moved(points) - points - turn * np.column_stack([-points[:, 1], points[:, 0]])
+    return weight @ moved / weight.sum()
+
+
+def field_inputs(history, planform: Planform):
+    """(moisture, expansion, stiffness): what the free displacement of a drawn part's
+    moisture field reads from its ageing: the field over the planform
+    (:func:`drawn_moisture`), the moisture expansion coefficients along x and y at each
+    ageing time [1/weight %] (0 where the state gives none) and the dry plane-stress
+    stiffness of its material [Pa].
+
+    Parameters
+    ----------
+    history : fickcam.simulation.parts.PartHistory
+        The part's ageing, with its diffusion fields and its sheet.
+    planform : Planform
+        The part as drawn [m].
+
+    Returns
+    -------
+    tuple
+        As above.
+    """
+    state, material = history.state, history.part.material
+    expansion = np.nan_to_num(np.column_stack([state["moisture_expansion_longitudinal"],
+                                               state["moisture_expansion_transverse"]]))
+    dry = {k: float(np.ravel(v)[0]) for k, v in material.ply_properties(np.ones(1)).items()}
+    stiffness = stiffness_matrix(dry["e11"], dry["e22"], dry["g12"], dry["nu12"])
+    moisture = drawn_moisture(history.diffusion, history.part.geometry, history.sheet, planform)
+    return moisture, expansion, stiffness
 
 
 def aged_pin_distance(length, strain, shift) -> np.ndarray:

@@ -346,6 +346,20 @@ class PlaneElasticity:
         the mesh's area)."""
         return np.asarray(self.basis.dx)
 
+    @_quiet_skfem
+    def mean_rotation(self, u) -> float:
+        """The area mean of the small rotation (dv/dx - du/dy) / 2 of u [rad]: the rigid
+        rotation a displacement carries (a rigid rotation's own angle)."""
+        grad = np.asarray(self.basis.interpolate(u).grad)
+        weights = self.quadrature_weights()
+        return float(np.sum(0.5 * (grad[1, 0] - grad[0, 1]) * weights) / weights.sum())
+
+    @_quiet_skfem
+    def displacement_at(self, u, points) -> np.ndarray:
+        """(k, 2) displacement at points [m] (k, 2) inside the mesh."""
+        points = np.asarray(points, float).reshape(-1, 2).T
+        return np.column_stack([basis.probes(points) @ part for part, basis in self.basis.split(u)])
+
     def displacement_at_nodes(self, u) -> np.ndarray:
         """(n_nodes, 2) displacement at the mesh vertices."""
         return np.column_stack([u[self.basis.nodal_dofs[0]], u[self.basis.nodal_dofs[1]]])

@@ -200,15 +200,9 @@ def aged_drawn_length(link: DrawnLink, history, strain_x) -> np.ndarray:
     if getattr(result, "fields", None) is None or history.sheet is None:
         return link.length * (1.0 + np.asarray(strain_x, float))
     # imported here: scikit-fem and scipy's interpolation, which only a drawn link's run needs
-    from ..elastic.displacement import aged_pin_distance, drawn_moisture, uneven_pin_shifts
-    from ..elastic.fem import stiffness_matrix
+    from ..elastic.displacement import aged_pin_distance, field_inputs, uneven_pin_shifts
 
-    state, material = history.state, history.part.material
-    expansion = np.nan_to_num(np.column_stack([state["moisture_expansion_longitudinal"],
-                                               state["moisture_expansion_transverse"]]))
-    dry = {k: float(np.ravel(v)[0]) for k, v in material.ply_properties(np.ones(1)).items()}
-    stiffness = stiffness_matrix(dry["e11"], dry["e22"], dry["g12"], dry["nu12"])
-    moisture = drawn_moisture(result, history.part.geometry, history.sheet, link.planform)
+    moisture, expansion, stiffness = field_inputs(history, link.planform)
     shift = uneven_pin_shifts(link.planform, link.pins, moisture, expansion,
                               link.planform.extent() / MESH_ROWS, stiffness=stiffness)
     return aged_pin_distance(link.length, strain_x, shift)

@@ -45,9 +45,8 @@ from scipy.sparse.csgraph import connected_components
 from scipy.spatial import Delaunay, cKDTree
 
 from ...errors import InputError
-from ..problem.curves import inside_polygon
-from .polygon import (centre_offsets, circumcentres, drop_unused, segment_distance,
-                      triangle_areas, unique_edges)
+from ..problem.curves import inside_polygon, segment_distance
+from .polygon import centre_offsets, circumcentres, drop_unused, triangle_areas, unique_edges
 
 log = logging.getLogger(__name__)
 

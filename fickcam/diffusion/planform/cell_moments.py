@@ -36,7 +36,8 @@ import numpy as np
 from scipy import sparse
 from scipy.spatial import cKDTree
 
-from .polygon import segment_distance, unique_edges
+from ..problem.curves import segment_distance
+from .polygon import unique_edges
 
 
 def _triangle(a, b, c) -> tuple[np.ndarray, np.ndarray]:

@@ -131,3 +131,32 @@ def inside_polygon(query: np.ndarray, segments: np.ndarray, chunk: int = 2048) -
                 b[None, :, 1] - a[None, :, 1])
         inside[lo:lo + chunk] = np.count_nonzero(crosses & (x < at), axis=1) % 2 == 1
     return inside
+
+
+def segment_distance(query: np.ndarray, segments: np.ndarray, chunk: int = 1024) -> np.ndarray:
+    """Distance from each point to the nearest of ``segments`` (exact, by chunks).
+
+    Parameters
+    ----------
+    query : numpy.ndarray
+        The points, shape (q, 2) [m].
+    segments : numpy.ndarray
+        The segments, shape (n, 2, 2) [m].
+    chunk : int
+        Points measured at once (memory).
+
+    Returns
+    -------
+    numpy.ndarray
+        The distances [m], shape (q,).
+    """
+    a, b = segments[:, 0], segments[:, 1]
+    edge = b - a
+    length2 = np.maximum(np.einsum("ij,ij->i", edge, edge), np.finfo(float).tiny)
+    out = np.empty(len(query))
+    for lo in range(0, len(query), chunk):
+        q = query[lo:lo + chunk, None, :]
+        along = np.clip(np.einsum("qsi,si->qs", q - a[None], edge) / length2[None], 0.0, 1.0)
+        nearest = a[None] + along[..., None] * edge[None]
+        out[lo:lo + chunk] = np.sqrt(np.min(np.sum((q - nearest) ** 2, axis=2), axis=1))
+    return out

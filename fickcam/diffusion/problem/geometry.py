@@ -47,7 +47,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from .curves import (ARC_POINTS, arc_circle, circle, inside_polygon, polygon_segments,
-                     resample_polyline)
+                     resample_polyline, segment_distance)
 
 LAYER_DEPTH = 5e-4  # m, the contact layer's depth when none is given
 
@@ -482,7 +482,8 @@ Geometry = Sheet | Disc | Bar | CamPlate | LinkBar
 @dataclass(frozen=True, eq=False)
 class DrawnPlate(_Planform):
     """A prismatic part as drawn: its outline and holes, every edge (the holes' too) and
-    both faces exposed, every edge a contact edge.
+    both faces exposed; every edge a contact edge (a link's), or the outline alone (a cam
+    plate's working profile, ``contact_holes`` False).
 
     Parameters
     ----------
@@ -493,11 +494,14 @@ class DrawnPlate(_Planform):
         Each hole's vertices [m], clockwise (copied and made read-only).
     thickness : float
         The plate's thickness [m].
+    contact_holes : bool
+        The holes' edges are contact edges too (False: the outline alone, as a cam's).
     """
 
     outer: np.ndarray = field(repr=False)
     holes: tuple = field(default=(), repr=False)
     thickness: float = 0.0
+    contact_holes: bool = True
 
     def __post_init__(self):
         """Own read-only copies of the loops: equality and hash are by value (the caches
@@ -510,7 +514,8 @@ class DrawnPlate(_Planform):
 
     def _values(self) -> tuple:
         return (tuple(loop.tobytes() for loop in (self.outer, *self.holes)),
-                tuple(len(loop) for loop in (self.outer, *self.holes)), float(self.thickness))
+                tuple(len(loop) for loop in (self.outer, *self.holes)), float(self.thickness),
+                bool(self.contact_holes))
 
     def __eq__(self, other) -> bool:
         return type(other) is DrawnPlate and self._values() == other._values()
@@ -537,7 +542,7 @@ class DrawnPlate(_Planform):
                               segments)
 
     def edge_samples(self, spacing: float) -> tuple[np.ndarray, np.ndarray]:
-        """Points along every edge, the holes' included; every edge is a contact edge.
+        """Points along every edge, the holes' included, and along the contact edges.
 
         Parameters
         ----------
@@ -547,10 +552,10 @@ class DrawnPlate(_Planform):
         Returns
         -------
         tuple of numpy.ndarray
-            The boundary and contact samples [m] (the same), shape (n, 2).
+            The boundary and contact samples [m], shapes (n, 2) and (m, 2).
         """
-        boundary = np.vstack(self.boundary_loops(spacing)[0])
-        return boundary, boundary
+        loops, contact = self.boundary_loops(spacing)
+        return np.vstack(loops), np.vstack([loop for loop, c in zip(loops, contact) if c])
 
     def extent(self) -> tuple[float, float]:
         """The outline's bounding box: its width along x and height along y [m]."""
@@ -572,10 +577,11 @@ class DrawnPlate(_Planform):
             The loops [m] and a contact flag per loop.
         """
         loops = [resample_polyline(*loop.T, spacing) for loop in (self.outer, *self.holes)]
-        return loops, [True] * len(loops)
+        return loops, [True] + [bool(self.contact_holes)] * len(self.holes)
 
     def on_contact(self, points: np.ndarray) -> np.ndarray:
-        """Every point of a drawn part's outline is on its contact surface.
+        """Which points of the part's edges lie on its contact surface: every one, or
+        (``contact_holes`` False) those on the outline, within 1e-9 of its extent.
 
         Parameters
         ----------
@@ -585,6 +591,10 @@ class DrawnPlate(_Planform):
         Returns
         -------
         numpy.ndarray
-            True for every point.
+            True on a contact edge.
         """
-        return np.ones(len(points), bool)
+        if self.contact_holes:
+            return np.ones(len(points), bool)
+        gap = segment_distance(np.asarray(points, float).reshape(-1, 2),
+                               polygon_segments(*self.outer.T))
+        return gap <= 1e-9 * max(self.extent())
