@@ -325,7 +325,7 @@ def demo_cam(k: float):
     """(geometry, diffusivity, exposure, times, law) of the cam of configs/singh2017_cam.yaml
     with ``sorption: {model: concentration_dependent, exponent: k}``."""
     from fickcam.scene.load import load_scene
-    from fickcam.simulation.simulate import ageing_times
+    from fickcam.simulation.times import ageing_times
 
     raw = yaml.safe_load((ROOT / "configs" / "singh2017_cam.yaml").read_text())
     raw["materials"]["cfrp"]["sorption"] = {"model": "concentration_dependent", "exponent": k}

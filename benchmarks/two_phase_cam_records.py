@@ -35,7 +35,8 @@ from fickcam.diffusion import CamPlate, Diffusivity, Disc, solve
 from fickcam.diffusion.accuracy.budget import LAYER_TOLERANCE
 from fickcam.diffusion.problem.exposure import swing as history_swing
 from fickcam.scene.load import load_scene
-from fickcam.simulation.simulate import ageing_times, run
+from fickcam.simulation.simulate import run
+from fickcam.simulation.times import ageing_times
 
 ROOT = Path(__file__).resolve().parents[1]
 CONFIGS = {"constant": ROOT / "configs/singh2017_cam_two_phase.yaml",

@@ -68,7 +68,7 @@ def test_run_uses_one_blas_thread_in_every_blas_library(demo_runs):
 
 def test_without_the_limit_the_run_would_use_the_callers_threads(demo_runs):
     unlimited = demo_runs[4]  # the comparison below compares two thread counts
-    # the run's planning is limited by itself (fickcam.simulation.simulate.plan_parts, as `check`);
+    # the run's planning is limited by itself (fickcam.simulation.planning.plan_parts, as `check`);
     # its solves, unwrapped, run on the caller's threads
     assert unlimited and any(all(threads == CALLER_THREADS for threads in during.values())
                              for during in unlimited)

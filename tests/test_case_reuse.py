@@ -14,7 +14,7 @@ import yaml
 
 import fickcam
 from fickcam.diffusion import CamPlate, RunCache
-from fickcam.simulation.simulate import plan_parts
+from fickcam.simulation.planning import plan_parts
 from test_sweep_run import small_base
 
 

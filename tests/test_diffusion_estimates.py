@@ -20,7 +20,7 @@ def scene_part(config: str, name: str):
     """(geometry, diffusivity, exposure, ageing times, accuracy) of a part of a config."""
     from fickcam.climate.environment import Environment
     from fickcam.scene.load import load_scene
-    from fickcam.simulation.simulate import ageing_times
+    from fickcam.simulation.times import ageing_times
 
     scene = load_scene(CONFIGS / config)
     environment = Environment.from_section(scene.model.environment, base_dir=scene.base_dir)

@@ -13,8 +13,10 @@ import fickcam  # noqa: E402
 from fickcam.elastic.displacement import drawn_moisture, uneven_pin_shifts  # noqa: E402
 from fickcam.elastic.parts import sheet_profile  # noqa: E402
 from fickcam.scene import examples  # noqa: E402
-from fickcam.simulation import simulate  # noqa: E402
+from fickcam.simulation.ageing import age_part  # noqa: E402
 from fickcam.simulation.options import RunOptions  # noqa: E402
+from fickcam.simulation.planning import climate_seen  # noqa: E402
+from fickcam.simulation.times import ageing_times  # noqa: E402
 
 DAY = 86400.0
 
@@ -37,14 +39,13 @@ def test_a_drawn_link_s_field_is_kept_unless_the_scene_asks_for_the_mean_strain(
 @pytest.fixture(scope="module")
 def crank(dogbone):
     """(link, moisture over its planform, expansion, the ageing times [s]) of the crank."""
-    environment = dogbone.environment
-    times = simulate.ageing_times(dogbone, environment)
+    times = ageing_times(dogbone, dogbone.environment)
     part = next(p for p in dogbone.parts if p.name == "crank")
-    history = simulate.age_part(part, environment, times, RunOptions.for_scene(dogbone), [],
-                                store_fields=True)
+    seen = climate_seen(dogbone, times, [part])
+    history = age_part(part, seen, RunOptions.for_scene(dogbone), [], store_fields=True)
     link = dogbone.mechanisms[0].drawn["crank"]
     moisture = drawn_moisture(history.diffusion, part.geometry,
-                              sheet_profile(part, environment, times), link.planform)
+                              sheet_profile(part, seen.exposures["crank"], times), link.planform)
     expansion = np.column_stack([history.state["moisture_expansion_longitudinal"],
                                  history.state["moisture_expansion_transverse"]])
     return link, moisture, expansion, times

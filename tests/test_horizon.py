@@ -14,7 +14,7 @@ from hypothesis import strategies as st
 from fickcam.cli.main import main
 from fickcam.results.query import select
 from fickcam.scene.load import load_scene
-from fickcam.simulation.simulate import ageing_times, every_step_times
+from fickcam.simulation.times import ageing_times, every_step_times
 
 CONFIGS = Path(__file__).resolve().parents[1] / "configs"
 DAY = 86400.0

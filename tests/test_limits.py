@@ -11,7 +11,7 @@ from fickcam.cli.main import main
 from fickcam.results.limits import FLOOR, POINTS, RELATIVE, Tolerance, first_crossings, limit_ratio
 from fickcam.scene.limits import Limit, LimitSpec, parse_limit
 from fickcam.schema import VARIABLES
-from fickcam.simulation.simulate import search_notices
+from fickcam.simulation.limitsearch import search_notices
 
 from test_scene_errors import LINKAGE_SCENE
 

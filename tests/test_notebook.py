@@ -78,7 +78,7 @@ def test_a_warning_is_a_fickcam_warning_at_the_users_line_and_notes_need_the_log
     quiet = "".join(out.text for out in session["fourbar"] if out.output_type == "stream")
     loud = "".join(out.text for out in session["notes"] if out.output_type == "stream")
     assert "Grashof class" not in quiet  # notes are off until the user switches them on
-    assert "fickcam.simulation.simulate: INFO: at t = 0 h to 1 h (2 ageing times): Grashof class: " \
+    assert "fickcam.simulation.ageing: INFO: at t = 0 h to 1 h (2 ageing times): Grashof class: " \
            "crank-rocker" in loud
 
 

@@ -10,7 +10,7 @@ import fickcam
 from fickcam.results.dataset import build_dataset
 from fickcam.simulation.parts import part_values
 from fickcam.schema import VARIABLES
-from fickcam.simulation.simulate import as_designed_part, mechanism_values
+from fickcam.simulation.ageing import as_designed_part, mechanism_values
 
 CONFIGS = Path(__file__).resolve().parents[1] / "configs"
 SCENES = sorted(p for p in CONFIGS.glob("*.yaml") if not p.name.startswith("sweep"))

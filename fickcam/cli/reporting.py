@@ -20,7 +20,7 @@ from ..results.query import drift
 from ..schema import VARIABLES, design_name
 from ..quantities.parsing import convert
 from ..simulation.resultsize import estimate as result_size
-from ..simulation.simulate import STATE_GIVEN, plan_parts
+from ..simulation.planning import STATE_GIVEN, plan_parts
 from ..results.query import swept_values
 
 #: scalar results over ageing the summary reports, in this order (when present)

@@ -8,8 +8,10 @@ right-continuous functions of time; past the end the last values are held.
 """
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
+from types import MappingProxyType
+from typing import Callable, Mapping
 
 import numpy as np
 
@@ -17,7 +19,7 @@ from .damp_heat import STANDARD_TESTS, Segments, standard_climate
 from .records import read_history_csv, read_record, resolve_record_path
 from ..diffusion import Exposure
 
-__all__ = ["Environment", "read_history_csv", "summary_edges"]
+__all__ = ["ClimateSeen", "Environment", "read_history_csv", "summary_edges"]
 
 #: interval lengths of a climate summary [s] (an hour, a day, a week, 30 days): the shortest
 #: that cuts the history into at most SUMMARY_INTERVALS intervals
@@ -206,6 +208,42 @@ class Environment(Segments):
             out[name] = piecewise_linear_summary(self.change_times, after, ends, edges)
         return out
 
+    def seen_at(self, times, saturations: Mapping[str, Callable], *,
+                summary: bool = True) -> "ClimateSeen":
+        """All a run reads of this climate at its ageing times, asked at once: T and RH
+        there, each part's exposure (or, where the states are given, its uniform moisture)
+        and the climate between the times.
+
+        Parameters
+        ----------
+        times : array_like
+            Ageing times [s], increasing.
+        saturations : mapping of str to callable
+            Part name -> its material's saturation moisture Mm(T [K], RH [%]) [weight %],
+            for the parts that absorb.
+        summary : bool
+            Also summarise the climate between the times (a stored run's record).
+
+        Returns
+        -------
+        ClimateSeen
+            The climate at ``times`` [K, %, weight %].
+        """
+        times = np.asarray(times, float)
+        given = self.state_times is not None
+        between, centres = {}, None
+        if summary and not given and times.size and times[-1] > 0:  # states given: no climate
+            edges = summary_edges(times[-1])
+            between, centres = self.interval_summary(edges), 0.5 * (edges[:-1] + edges[1:])
+        return ClimateSeen(
+            self, times, self.temperature(times), self.relative_humidity(times),
+            MappingProxyType(dict(saturations)),
+            MappingProxyType({name: self.exposure(saturation)
+                              for name, saturation in saturations.items()}),
+            MappingProxyType({name: self.uniform_moisture(saturation, times) for name, saturation
+                              in saturations.items()} if given else {}),
+            MappingProxyType(between), centres)
+
     def hottest(self) -> tuple[int, float]:
         """(segment index, temperature) of the hottest point of the history."""
         index = int(np.argmax(self.temperature_end))
@@ -232,6 +270,65 @@ class Environment(Segments):
                             initial_moisture=self.initial_moisture)
         self._exposures[saturation_moisture] = exposure
         return exposure
+
+
+@dataclass(frozen=True, eq=False)
+class ClimateSeen:
+    """What a run reads of its climate history at its ageing times, asked of it once
+    (:meth:`Environment.seen_at`): the run's stages read these values, not the history.
+
+    Parameters
+    ----------
+    environment : Environment
+        The history (its reference temperature [K], initial moisture [weight %], change
+        times [s] and notes).
+    times : numpy.ndarray
+        The ageing times [s].
+    temperature, relative_humidity : numpy.ndarray
+        T [K] and RH [%] at ``times``.
+    saturations : mapping of str to callable
+        Part name -> Mm(T, RH) [weight %] of the parts that absorb.
+    exposures : mapping of str to fickcam.diffusion.Exposure
+        Part name -> its diffusion boundary history (where the states are given, the
+        states held as segments: what a part's exact sheet reads).
+    state_moisture : mapping of str to numpy.ndarray
+        Part name -> its uniform moisture at ``times`` [weight %] where the states are
+        given directly; empty otherwise.
+    summary : mapping of str to tuple of numpy.ndarray
+        ``"temperature"`` [K] and ``"relative_humidity"`` [%]: (mean, lowest, highest) over
+        each interval of :func:`summary_edges`; empty where the states are given or the
+        times end at 0.
+    summary_times : numpy.ndarray or None
+        The intervals' centres [s].
+    """
+
+    environment: Environment
+    times: np.ndarray
+    temperature: np.ndarray
+    relative_humidity: np.ndarray
+    saturations: Mapping[str, Callable]
+    exposures: Mapping[str, Exposure]
+    state_moisture: Mapping[str, np.ndarray]
+    summary: Mapping[str, tuple]
+    summary_times: np.ndarray | None
+
+    @property
+    def states_given(self) -> bool:
+        """Whether the environment gives the parts' moisture directly (no diffusion)."""
+        return self.environment.state_times is not None
+
+    def at(self, times) -> "ClimateSeen":
+        """The same parts' climate at other ageing ``times`` [s] (a limit search's), without
+        the summary between them."""
+        return self.environment.seen_at(times, self.saturations, summary=False)
+
+    def at_rows(self, rows) -> "ClimateSeen":
+        """The climate at the ageing times ``rows`` (indices) only, without the summary."""
+        return replace(self, times=self.times[rows], temperature=self.temperature[rows],
+                       relative_humidity=self.relative_humidity[rows],
+                       state_moisture=MappingProxyType({name: moisture[rows] for name, moisture
+                                                        in self.state_moisture.items()}),
+                       summary=MappingProxyType({}), summary_times=None)
 
 
 def summary_edges(end: float) -> np.ndarray:

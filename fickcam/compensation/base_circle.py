@@ -25,7 +25,8 @@ import math
 import numpy as np
 
 from ..elastic.strength import ply_strengths
-from ..simulation.simulate import plan_parts, run
+from ..simulation.planning import plan_parts
+from ..simulation.simulate import run
 from ..cam.sizing import (POINTED, SIZE_TOLERANCE, Limits, aged_states, contact_stress_radius,
                      degenerate_notes, meets, profile_fault, rounded_up, smallest_base_circle,
                      worst)

@@ -268,7 +268,7 @@ def converged(old: list, new: list, targets: list[Target]) -> bool:
 @contextlib.contextmanager
 def quiet_runs():
     """Silence the notices of the intermediate runs (the final runs report them)."""
-    logger = logging.getLogger("fickcam.simulation.simulate")
+    logger = logging.getLogger("fickcam.simulation")  # the runs' stages log under it
     level = logger.level
     logger.setLevel(logging.ERROR)
     try:

@@ -14,7 +14,7 @@ from .core import Compensation, relative_to
 from .cam import profile_radii
 from ..results.limits import stored_limits
 from ..results.query import drift
-from ..simulation.simulate import ageing_times
+from ..simulation.times import ageing_times
 from .cam import anisotropy_note
 from ..cam.profile import write_profile_csv, write_profile_dxf
 from .cam import PROFILE_POINTS, made_outline

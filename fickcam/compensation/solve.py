@@ -38,9 +38,12 @@ from ..errors import FickcamError, InputError, format_duration
 from ..quantities.options import ageing_time
 from ..results.dataset import build_dataset
 from ..scene.load import as_designed_data, load_scene
+from ..simulation.ageing import age_parts, diffusion_key, with_sheets
 from ..simulation.options import RunOptions
 from ..simulation.parts import part_values
-from ..simulation.simulate import age_parts, ageing_times, diffusion_key, run_with, with_sheets
+from ..simulation.planning import climate_seen
+from ..simulation.simulate import run_with
+from ..simulation.times import ageing_times
 from . import cam, linkage
 from .core import (MAX_ITERATIONS, Compensation, converged, made_value, quiet_runs, residual,
                    scene_from, target_strains, window_times)
@@ -221,11 +224,12 @@ def part_states(data: dict, base_dir: Path, times: np.ndarray, options: RunOptio
     """
     scene = _scene_at(data, base_dir, times)
     parts = [part for part in scene.parts if part.name in names]
-    histories = age_parts(scene, scene.environment, times, options, parts, [])
+    seen = climate_seen(scene, times, parts)
+    histories = age_parts(scene, seen, options, parts, [])
     values = part_values(histories)
     coords = {"time": times, "part": [h.part.name for h in histories]}
     for section, variables in (grown or {}).items():
-        more, more_coords = grown_values(scene, scene.mechanism(section), histories, times,
+        more, more_coords = grown_values(scene, seen, scene.mechanism(section), histories,
                                          variables)
         values.update(more)
         coords.update(more_coords)
@@ -236,21 +240,21 @@ def part_states(data: dict, base_dir: Path, times: np.ndarray, options: RunOptio
 GROWN_ANGLES = np.linspace(0.0, 2.0 * np.pi, 4, endpoint=False)
 
 
-def grown_values(scene, mechanism, histories: list, times: np.ndarray, variables) -> tuple:
-    """A mechanism's result variables ``variables`` at ``times`` from its parts' histories
+def grown_values(scene, seen, mechanism, histories: list, variables) -> tuple:
+    """A mechanism's result variables ``variables`` at the ageing times from its parts' histories
     (a drawn link's aged length: its moisture field carried through the thickness with the
     exact sheet, as a run does), at a few crank angles.
 
     Parameters
     ----------
     scene : Scene
-        The scene (its climate) [SI].
+        The scene [SI].
+    seen : fickcam.climate.environment.ClimateSeen
+        Its climate at the ageing times [s, K, %] (the parts' exposures).
     mechanism : Mechanism
         One of its mechanisms, whose parts ``histories`` holds.
     histories : list of PartHistory
         The parts' ageing.
-    times : numpy.ndarray
-        Ageing times [s].
     variables : collection of str
         The result variables to keep.
 
@@ -259,17 +263,16 @@ def grown_values(scene, mechanism, histories: list, times: np.ndarray, variables
     tuple of dict
         (values [SI] by name, the mechanism's coordinates).
     """
-    environment = scene.environment
-    by_name = {h.part.name: h for h in with_sheets(scene, environment, times, histories)}
+    by_name = {h.part.name: h for h in with_sheets(scene, seen, histories)}
     valid = np.logical_and.reduce([h.valid for h in histories])
-    response = mechanism.response(by_name, times, GROWN_ANGLES, valid)
+    response = mechanism.response(by_name, seen.times, GROWN_ANGLES, valid)
     return ({name: response.variables[name] for name in variables},
             mechanism.coordinates(GROWN_ANGLES))
 
 
 def diffusions_for(data: dict, base_dir: Path, times: np.ndarray, by_name: dict) -> dict:
     """The diffusion results ``by_name`` keyed for a run of the scene mapping at ``times``
-    (``simulate.run(diffusions=...)``), by :func:`fickcam.simulation.simulate.diffusion_key`: the
+    (``simulate.run(diffusions=...)``), by :func:`fickcam.simulation.ageing.diffusion_key`: the
     part's shape (of this scene mapping), material and whether its field is kept.
 
     Parameters

@@ -12,7 +12,7 @@ DEPTH_STRIDE = 2   # every other cell of the exact sheet field (40 cells) betwee
 SWELLING = ("swelling_stress_tensile", "swelling_stress_compressive", "failure_index")
 
 
-def sheet_profile(part, environment, times) -> SheetProfile | None:
+def sheet_profile(part, exposure, times) -> SheetProfile | None:
     """``exact_sheet`` of the part's thickness under its exposure, with its
     through-thickness diffusivity; None for a part without a diffusion geometry.
 
@@ -20,8 +20,8 @@ def sheet_profile(part, environment, times) -> SheetProfile | None:
     ----------
     part : Part
         The part (thickness [m], material).
-    environment : Environment
-        The climate history.
+    exposure : fickcam.diffusion.Exposure
+        Its surface moisture [weight %] and temperature [K] over time.
     times : array_like
         Ageing times [s].
 
@@ -35,7 +35,7 @@ def sheet_profile(part, environment, times) -> SheetProfile | None:
     d = part.material.diffusivity_for(part.geometry)
     dz = float(d.pre_exponential[2])
     return exact_sheet(part.geometry.thickness, Diffusivity((dz, dz, dz), d.activation_energy),
-                       environment.exposure(part.material.saturation_moisture), times, part.name)
+                       exposure, times, part.name)
 
 
 def exact_sheet(thickness, diffusivity, exposure, times, name: str = "") -> SheetProfile:
@@ -76,8 +76,7 @@ def exact_sheet(thickness, diffusivity, exposure, times, name: str = "") -> Shee
                         np.asarray(result.mean, float))
 
 
-def swelling_variables(histories, names: set[str], environment, times, temperature
-                       ) -> tuple[dict[str, np.ndarray], dict]:
+def swelling_variables(histories, names: set[str], seen) -> tuple[dict[str, np.ndarray], dict]:
     """(values, coords): (time, part) arrays of the swelling variables (NaN for parts not
     asked for) and each part's face stress field at its worst time over (part,
     stress_point), padded with NaN.
@@ -88,12 +87,9 @@ def swelling_variables(histories, names: set[str], environment, times, temperatu
         The parts' ageing.
     names : set of str
         The parts asked for (the scene's ``elastic_parts``).
-    environment : Environment
-        The climate history (reference temperature [K], initial moisture [weight %]).
-    times : array_like
-        Ageing times [s].
-    temperature : numpy.ndarray
-        Temperature at the ageing times [K].
+    seen : fickcam.climate.environment.ClimateSeen
+        The climate at the ageing times [s]: temperature [K], the parts' exposures, and
+        the history's reference temperature [K] and initial moisture [weight %].
 
     Returns
     -------
@@ -104,6 +100,7 @@ def swelling_variables(histories, names: set[str], environment, times, temperatu
     """
     from .swelling import swelling_history  # scikit-fem: only a scene that asks for stress
 
+    temperature, environment = seen.temperature, seen.environment
     out = {name: np.full((len(temperature), len(histories)), np.nan) for name in SWELLING}
     fields = {}
     for column, history in enumerate(histories):
@@ -112,7 +109,7 @@ def swelling_variables(histories, names: set[str], environment, times, temperatu
         result = swelling_history(history.part.geometry, history.part.material, history.diffusion,
                                   history.state, temperature, environment.reference_temperature,
                                   environment.initial_moisture, history.valid,
-                                  sheet_profile(history.part, environment, times))
+                                  _sheet_of(history, seen))
         for name in SWELLING:
             out[name][:, column] = result[name]
         if "field" in result:
@@ -127,3 +124,10 @@ def swelling_variables(histories, names: set[str], environment, times, temperatu
         stored["stress_point_x"][column, :len(field)] = points[:, 0]
         stored["stress_point_y"][column, :len(field)] = points[:, 1]
     return out | stored, {"stress_point": np.arange(count)}
+
+
+def _sheet_of(history, seen) -> SheetProfile | None:
+    """The history's exact sheet, else the one of its part's thickness under its exposure."""
+    if history.sheet is not None or history.part.geometry is None:
+        return history.sheet
+    return sheet_profile(history.part, seen.exposures[history.part.name], seen.times)

@@ -19,7 +19,8 @@ from ..errors import WriteError
 from ..messages import warn
 from ..results.store import CHUNKED_ABOVE, byte_size, free_space
 from ..schema import VARIABLES
-from .simulate import ageing_times, plan_parts
+from .planning import plan_parts
+from .times import ageing_times
 
 #: a result above this [bytes] is warned of, with the settings that shrink it
 WARN_ABOVE = 2**30

@@ -158,7 +158,7 @@ def run_case(task: CaseTask, cache=None) -> tuple[dict, bytes]:
     retry = False
     dataset = None
     try:
-        with quieter("fickcam.simulation.simulate", logging.ERROR):  # its notices go into the record
+        with quieter("fickcam.simulation", logging.ERROR):  # its notices go into the record
             dataset = run(case_scene(task), cache=worker_cache() if cache is None else cache)
         notices = dataset.attrs.get("notices") or []
         status, message = "ok", "; ".join(str(n) for n in notices)

@@ -32,7 +32,8 @@ from .spec import Sweep, load_sweep
 from .workdir import WorkFolder
 from ..diffusion import run_cache
 from ..scene.load import load_scene
-from ..simulation.simulate import plan_parts, written_time_unit
+from ..simulation.planning import plan_parts
+from ..simulation.times import written_time_unit
 from ..results.store import save
 from ..simulation.resultsize import result_fits
 from ..messages import progress_bar

@@ -53,7 +53,7 @@ log = logging.getLogger(__name__)
 INTERPOLATION_SHARE = 1.0  # of the accuracy: a larger interpolation estimate re-solves
 #   (measured: benchmarks/results/tuned_constants.md).
 #   The extended estimate (the stored one + this) can pass the accuracy below it: the limit
-#   search then says so (``simulate.search_notices``)
+#   search then says so (``limitsearch.search_notices``)
 
 
 @dataclass(frozen=True)
