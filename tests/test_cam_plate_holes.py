@@ -118,3 +118,24 @@ def test_a_written_cam_plate_with_lightening_holes_is_checked_with_its_real_mass
 def test_a_cam_plate_with_lightening_holes_refuses_the_elastic_contact(tmp_path, capsys):
     err = refused(capsys, scene(tmp_path, "elastic", outline=DISC, holes=HOLES, elastic=True))
     assert "cam.elastic:" in err and "given as holes[1]" in err
+
+
+@pytest.mark.slow  # a run of the example cam plate (about 5 s)
+def test_the_cam_plate_example_gives_today_s_moisture_and_copies_its_drawing(tmp_path):
+    pytest.importorskip("ezdxf")
+    import fickcam
+    from fickcam.scene import examples
+
+    scene = fickcam.load_scene(examples.path("carbon_epoxy_cam_plate"))
+    cam = scene.mechanisms[0]
+    assert len(cam.planform.holes) == 4 and scene.field_parts == {"cam"}
+    ds = fickcam.run(scene)
+    moisture = np.asarray(ds["moisture_content"].sel(part="cam"))
+    # today's (2026-11-29) mean moisture [%] at 0, 7, 30, 90, 180 d, within the scene's
+    # accuracy (1e-3 of the swing) twice over (this run's estimate and the record's)
+    today = [0.0, 0.10900165, 0.21407367, 0.34121373, 0.432292]
+    assert np.max(np.abs(moisture - today)) <= 2e-3 * 0.52
+    growth = np.asarray(ds["base_circle_radius"]) - 0.040
+    assert np.all(np.diff(growth) > 0)  # the plate grows as it takes up water
+    copied = {p.name for p in examples.copy_to(tmp_path, ["carbon_epoxy_cam_plate"])}
+    assert "carbon_epoxy_cam_plate.dxf" in copied

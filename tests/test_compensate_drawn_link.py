@@ -48,14 +48,38 @@ def test_a_made_link_drawing_is_the_drawing_scaled_about_its_first_pin_its_pins_
     assert len(first) == 1  # the first pin stays where it was drawn
 
 
-def test_a_link_given_by_its_outline_is_refused_in_one_line(tmp_path, capsys):
+def test_a_link_written_in_the_scene_is_made_scaled_about_its_first_pin_its_pins_as_given(
+        tmp_path):
+    from fickcam.compensation.linkage import made_outline
+    from fickcam.compensation.solve import length_text
     from test_drawing_links import PINS, bar_outline, mm, scene
 
-    path = scene(tmp_path, outline=mm(bar_outline()), holes=PINS)
-    code = main(["compensate", str(path), "--at", "10 d", "-o", str(tmp_path / "made.yaml")])
-    err = capsys.readouterr().err.strip()
-    assert code == 2 and len(err.splitlines()) == 1, err
-    assert "linkage.crank:" in err and "drawing: FILE.dxf" in err, err
+    lightening = {"centre": ["50 mm", "0 mm"], "radius": "3 mm"}
+    path = scene(tmp_path, outline=mm(bar_outline()), holes=PINS + [lightening])
+    spec = fickcam.load_scene(path).mechanisms[0].section.crank
+    made = made_outline(spec, 0.99, length_text)
+    again = scene(tmp_path, "made", **made)
+    link = fickcam.load_scene(again).mechanisms[0].drawn["crank"]
+    assert link.length == pytest.approx(0.99 * 0.100, rel=1e-11)  # to the picometre written
+    assert [h["radius"] for h in made["holes"]] == ["5.000000000 mm", "5.000000000 mm",
+                                                    "2.970000000 mm"]
+    assert made["holes"][1]["centre"] == ["99.000000000 mm", "0.000000000 mm"]
+    assert made["outline"][0] == [f"{v * 0.99e3:.9f} mm" for v in spec.outline[0]]
+
+
+@pytest.mark.slow  # a compensation of a four-bar and a run of the made scene (about 40 s)
+def test_a_link_written_in_the_scene_made_and_run_again_meets_the_design(tmp_path, capsys):
+    from test_drawing_links import PINS, bar_outline, mm, scene
+
+    design = scene(tmp_path, outline=mm(bar_outline()), holes=PINS)
+    made = tmp_path / "made.yaml"
+    assert main(["compensate", str(design), "--at", "10 d", "-o", str(made)]) == 0
+    assert "made_crank.dxf" not in capsys.readouterr().out
+    again, before = (fickcam.run(fickcam.load_scene(p)) for p in (made, design))
+    at = {"time": 10.0}
+    aged = again["link_length"].sel(link="crank").sel(at).item()
+    drift = before["link_length"].sel(link="crank").sel(at).item() - 0.100
+    assert abs(aged - 0.100) <= 1e-3 * abs(drift), (aged - 0.100, drift)
 
 
 @pytest.mark.slow  # a compensation of the example four-bar and a run of the made scene (about 40 s)

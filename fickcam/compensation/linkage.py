@@ -6,7 +6,8 @@ they carry the load, not the motion.
 
 A drawn link (``linkage.crank: {drawing: crank.dxf}``) is made from its drawing scaled to
 the made length (:func:`fickcam.compensation.drawn.made_link_writer`), written beside the
-made scene as ``<stem>_<link>.dxf``, which the made scene's link names. Where its aged
+made scene as ``<stem>_<link>.dxf``, which the made scene's link names; a link written in
+the scene (``outline:``, ``holes:``) is made the same way, in the scene (:func:`made_outline`). Where its aged
 length is its displaced pins' distance (``aged_length: field``), the strain the
 compensation takes up is that distance's, L_aged / L - 1 (the mean strain plus the
 unevenness of its moisture field), not the mean strain alone.
@@ -15,9 +16,14 @@ from __future__ import annotations
 
 from pathlib import Path
 
+import numpy as np
+
+from ..cam.drawn import DEFAULT_ACCURACY
+from ..drawing.planform import pin_holes
+from ..drawing.spec import RoundHole, polygon_key, polygon_of
+from ..linkage.drawn import CHORD_SHARE
 from ..linkage.mechanism import LINKS
 from ..linkage.spec import DRAWN_LINKS, DrawnLinkSpec
-from ..errors import InputError
 from .core import Target
 from .drawn import made_link_writer
 
@@ -61,17 +67,8 @@ def targets(section, points: bool = False, mechanism=None) -> list[Target]:
     list of Target
         The dimensions, design values [m].
 
-    Raises
-    ------
-    fickcam.errors.InputError
-        A link given by ``outline:``, whose made outline compensation does not write.
     """
     drawn = drawn_links(section)
-    outlined = [link for link in drawn if getattr(section, link).drawing is None]
-    if outlined:
-        raise InputError(f"linkage.{outlined[0]}: compensation writes a drawn link's made "
-                         f"drawing; give the link as a drawing (drawing: FILE.dxf), or by "
-                         f"its length")
     lengths = mechanism.design.lengths if drawn else [float(getattr(section, k)) for k in LINKS]
     field = set(drawn) if section.aged_length == "field" else set()
     found = [Target(link, "length", link, LONGITUDINAL, float(length),
@@ -131,7 +128,7 @@ def made_drawings(scene, targets: list[Target], made: list, stem: Path) -> dict:
                if t.name == "length" and t.mechanism == "linkage"}
     return {drawing_path(stem, link): made_link_writer(getattr(section, link), accuracy,
                                                        lengths[link][1] / lengths[link][0])
-            for link in drawn_links(section)}
+            for link in drawn_links(section) if getattr(section, link).drawing is not None}
 
 
 def _made_link(entry, path: Path) -> dict:
@@ -141,6 +138,50 @@ def _made_link(entry, path: Path) -> dict:
     entry["drawing"] = {**({"file": drawing} if isinstance(drawing, str) else drawing),
                         "file": str(path)}
     return entry
+
+
+def _scaled(points, centre, scale: float, length_text) -> list:
+    """Points [m] scaled about ``centre`` [m], as the scene's text (to the picometre)."""
+    moved = centre + (np.asarray(points, float) - centre) * scale
+    return [[length_text(x, digits=9), length_text(y, digits=9)] for x, y in moved]
+
+
+def made_outline(spec, scale: float, length_text) -> dict:
+    """A link written in the scene (``outline:``, ``holes:``) made as a drawn one is
+    (:mod:`fickcam.compensation.drawn`): scaled by ``scale`` about its first pin, its pin
+    holes at their given size, carried with their centres.
+
+    Parameters
+    ----------
+    spec : fickcam.linkage.spec.DrawnLinkSpec
+        The design's link, with its ``outline`` and ``holes`` [m].
+    scale : float
+        The made pin-to-pin length over the design's [-].
+    length_text : callable
+        Length [m] -> the text the scene stores.
+
+    Returns
+    -------
+    dict
+        The made link's ``outline`` and ``holes``, lengths as text.
+    """
+    extent = max(max(abs(v) for v in point) for point in spec.outline)
+    planform = polygon_of(spec.outline, spec.holes, CHORD_SHARE * DEFAULT_ACCURACY * extent)
+    pins = {polygon_key(pin.source)[1]: np.asarray(planform.hole_centre(pin))
+            for pin in pin_holes(planform)}
+    first = pins[min(pins, key=lambda i: float(np.hypot(*pins[i])))]
+    holes = []
+    for i, hole in enumerate(spec.holes or ()):
+        carried = (scale - 1.0) * (pins[i] - first) if i in pins else None
+        if isinstance(hole, RoundHole):
+            centre = _scaled([hole.centre], first, scale, length_text)[0]
+            radius = hole.radius if carried is not None else hole.radius * scale
+            holes.append({"centre": centre, "radius": length_text(radius, digits=9)})
+        elif carried is not None:
+            holes.append(_scaled(np.asarray(hole, float) + carried, 0.0, 1.0, length_text))
+        else:
+            holes.append(_scaled(hole, first, scale, length_text))
+    return {"outline": _scaled(spec.outline, first, scale, length_text), "holes": holes}
 
 
 def write(data: dict, section, targets: list[Target], made: list, stem: Path,
@@ -170,7 +211,10 @@ def write(data: dict, section, targets: list[Target], made: list, stem: Path,
     """
     linkage, drawn = data["linkage"], drawn_links(section)
     for target, value in zip(targets, made):
-        if target.name == "length" and target.part in drawn:
+        spec = getattr(section, target.part, None)
+        if target.name == "length" and target.part in drawn and spec.drawing is None:
+            linkage[target.part] = made_outline(spec, value / target.design, length_text)
+        elif target.name == "length" and target.part in drawn:
             linkage[target.part] = _made_link(linkage[target.part],
                                               drawing_path(stem, target.part))
         elif target.name == "length":
