@@ -53,15 +53,18 @@ def tiers() -> dict[str, list[str]]:
 
 
 def run_tier(arguments: list[str]) -> tuple[float, float, str]:
-    """(wall s, CPU s of pytest and its workers, pytest's last line) of one tier."""
-    command = [sys.executable, "-m", "pytest", *arguments, "-p", "no:cacheprovider"]
+    """(wall s, CPU s of pytest and its workers, pytest's last line and the tests that
+    failed, named) of one tier."""
+    command = [sys.executable, "-m", "pytest", *arguments, "-p", "no:cacheprovider", "-rfE"]
     print("+ " + " ".join(command[2:]), flush=True)
     with tempfile.TemporaryFile("w+") as out:
         wall, cpu = timed(command, stdout=out, check=False)
         out.seek(0)
         lines = [line.strip() for line in out if line.strip()]
     counted = [line for line in lines if re.search(r"\d+ (passed|failed|error|deselected)", line)]
-    return wall, cpu, (counted or lines or ["no output"])[-1].strip("= ")
+    failed = [line.split()[1] for line in lines if line.startswith(("FAILED ", "ERROR "))]
+    outcome = (counted or lines or ["no output"])[-1].strip("= ")
+    return wall, cpu, outcome + (f"; failed: {', '.join(failed)}" if failed else "")
 
 
 def demo_runs(output: Path, count: int) -> list[tuple[float, float]]:
