@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 
 import fickcam.compensation.base_circle
-import fickcam.simulation.simulate
+import fickcam.simulation.ageing
 from fickcam.cam import CamDesign
 from fickcam.cam.motion import segments_from_spec
 from fickcam.cam.sizing import (Limits, contact_stress_radius, degenerate_notes,
@@ -113,8 +113,8 @@ def test_size_sizes_dry_and_aged_in_at_most_five_runs(tmp_path, capsys, monkeypa
 
     monkeypatch.setattr(fickcam.compensation.base_circle, "run",
                         counted("runs", fickcam.compensation.base_circle.run))
-    monkeypatch.setattr(fickcam.simulation.simulate, "solve_problem",
-                        counted("solves", fickcam.simulation.simulate.solve_problem))
+    monkeypatch.setattr(fickcam.simulation.ageing, "solve_problem",
+                        counted("solves", fickcam.simulation.ageing.solve_problem))
     assert main(["size", str(scene), "--pressure-angle", "30 deg"]) == 0
     out = capsys.readouterr().out
     assert 2 <= counts["runs"] <= MAX_RUNS and counts["solves"] == counts["runs"]  # the cam alone absorbs
