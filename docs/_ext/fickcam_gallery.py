@@ -29,6 +29,7 @@ class TightFigures:
         return "fickcam-tight-figures"
 
     def __call__(self, block, block_vars, gallery_conf):
+        import matplotlib.pyplot as plt
         from sphinx_gallery.scrapers import figure_rst, matplotlib_scraper
 
         names = block_vars["example_globals"]
@@ -41,6 +42,7 @@ class TightFigures:
                 shown.append(figure)
                 path = next(block_vars["image_path_iterator"])
                 figure.savefig(path, bbox_inches="tight")
+                plt.close(figure)  # one pyplot made: the stock scraper below would save it again
                 paths.append(path)
         own = figure_rst(paths, gallery_conf["src_dir"]) if paths else ""
         return own + matplotlib_scraper(block, block_vars, gallery_conf, bbox_inches="tight")
