@@ -48,6 +48,14 @@ def test_polygon_annulus_area_and_polar_moment_are_the_regular_polygons_exactly(
     assert mass.inertia == pytest.approx(1400 * 0.005 * polar, rel=1e-11)
 
 
+def test_the_perimeter_counts_every_edge_the_holes_too():
+    """A regular n-gon of circumradius R has sides 2 R sin(pi / n)."""
+    n, big, small = 37, 0.04, 0.015
+    plan = polygon_planform(ngon(n, big), [ngon(n, small)[::-1], rectangle(0.004, 0.002, 0.025)[::-1]])
+    side = 2 * math.sin(math.pi / n)
+    assert plan.perimeter == pytest.approx(n * side * (big + small) + 0.012, rel=1e-13)
+
+
 def test_rectangle_with_off_centre_holes_has_the_exact_moments():
     outer, holes = (0.08, 0.03, 0.01, 0.005), [(0.01, 0.008, -0.02, 0.004), (0.012, 0.01, 0.03, 0.01)]
     plan = polygon_planform(rectangle(*outer), [rectangle(*h) for h in holes])

@@ -12,7 +12,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .planform import DrawingError, Loop, Planform, inside, pin_holes, where
+from .planform import DrawingError, Loop, Planform, edge_lengths, inside, pin_holes, where
 
 AXIS_LAYER = "AXIS"
 CENTRED = 1e-3  # a hole is about the axis when its centre is within 0.1 % of its radius
@@ -82,7 +82,7 @@ def keyed_circle(hole: Loop) -> tuple[np.ndarray, float] | None:
         on = misfit <= (np.median(misfit) if step == 0 else ON_ARC * radius)
         if on.sum() < 3:
             return None
-    edges = np.hypot(*(np.roll(points, -1, axis=0) - points).T)
+    edges = edge_lengths(points)
     arc = edges[on & np.roll(on, -1)].sum()
     return (centre, radius) if arc >= KEYED_SHARE * edges.sum() else None
 

@@ -83,6 +83,22 @@ class Loop:
         return replace(self, points=points)
 
 
+def edge_lengths(points: np.ndarray) -> np.ndarray:
+    """The lengths of a closed loop's edges, from each vertex to the next [m].
+
+    Parameters
+    ----------
+    points : numpy.ndarray
+        The loop's vertices, shape (n, 2) [m], the last joined to the first.
+
+    Returns
+    -------
+    numpy.ndarray
+        Shape (n,) [m].
+    """
+    return np.hypot(*(np.roll(points, -1, axis=0) - points).T)
+
+
 def edge_sums(points: np.ndarray) -> np.ndarray:
     """(A, S_x, S_y, I_xx, I_yy, I_xy) of one closed polygon about the origin, signed by
     its orientation (positive counter-clockwise), by Green's theorem (module docstring).
@@ -176,6 +192,11 @@ class Planform:
     def area(self) -> float:
         """The planform's area [m^2]."""
         return float(self.sums()[0])
+
+    @property
+    def perimeter(self) -> float:
+        """The length of all its edges, the outer loop's and the holes' [m]."""
+        return float(sum(edge_lengths(loop.points).sum() for loop in self.loops))
 
     @property
     def centroid(self) -> tuple[float, float]:

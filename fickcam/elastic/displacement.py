@@ -29,7 +29,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.spatial import cKDTree
 
-from ..drawing.planform import Planform, edge_sums, inside
+from ..drawing.planform import Planform, edge_lengths, edge_sums, inside
 from .fem import PlaneElasticity, isotropic_stiffness, stiffness_matrix
 from .swelling import plate_moisture
 from .mesh import PlateMesh, drawn_mesh  # noqa: F401  (PlateMesh: the type of FreeDisplacement.mesh)
@@ -277,7 +277,7 @@ def band_limited(points, values, wavelength: float) -> np.ndarray:
     numpy.ndarray
         The values, shape (n, m).
     """
-    edges = np.hypot(*(np.roll(points, -1, axis=0) - points).T)
+    edges = edge_lengths(points)
     length = edges.sum()
     count = int(length / wavelength)
     if 2 * count + 1 >= len(points):
@@ -302,7 +302,7 @@ def _axis_displacement(planform: Planform, nodal: FreeDisplacement, model, u,
     points = bore.points
     radius = np.hypot(*points.T)
     on = np.abs(radius - radius.min()) <= 1e-3 * radius.min()
-    edges = np.hypot(*(np.roll(points, -1, axis=0) - points).T)
+    edges = edge_lengths(points)
     weight = np.where(on, 0.5 * (edges + np.roll(edges, 1)), 0.0)
     moved = nodal.moved(points) - points - turn * np.column_stack([-points[:, 1], points[:, 0]])
     return weight @ moved / weight.sum()

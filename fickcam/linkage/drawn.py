@@ -225,9 +225,7 @@ def in_plane_half_size(link: DrawnLink) -> float:
     float
         A / P [m].
     """
-    perimeter = sum(float(np.hypot(*(np.roll(loop.points, -1, axis=0) - loop.points).T).sum())
-                    for loop in link.planform.loops)
-    return link.planform.area / perimeter
+    return link.planform.area / link.planform.perimeter
 
 
 def centre_fraction(link: DrawnLink) -> float:
