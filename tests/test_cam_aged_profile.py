@@ -88,9 +88,10 @@ def test_a_drawn_cam_keeps_its_field_unless_the_scene_asks_for_the_mean_strain(t
 def test_a_drawn_disc_s_displaced_outline_is_the_eccentric_cam_s_once_saturated(tmp_path):
     """The drawn disc with a bore (the field's displaced outline) against the eccentric cam
     (scaled by its mean strain), 720 d at 40 degC / 90 % RH: the same moisture, and at 0 d
-    and once saturated the same lift, base circle and jump speed (the polygon's chords:
-    1.1e-5). In between, the wet skin swells round a dry core, and the bore's centre moves
-    from the disc's by the core's smaller strain: measured, the lift 11, 16, 15 and 3.8 um
+    and once saturated the same lift and base circle (the polygon's chords: 1.1e-5); the
+    jump speed, which reads the profile's curvature, differs by 2.5e-3 already dry, and by
+    the same once saturated. In between, the wet skin swells round a dry core, and the
+    bore's centre moves from the disc's by the core's smaller strain: measured, the lift 11, 16, 15 and 3.8 um
     below the eccentric cam's at 5, 20, 60 and 180 d (of 40, 74, 112 and 138 um of
     growth), the base circle 6.3, 9.4, 8.9 and 2.4 um above, the follower's displacement
     within 16 um."""
@@ -115,8 +116,10 @@ def test_a_drawn_disc_s_displaced_outline_is_the_eccentric_cam_s_once_saturated(
     for name in ("lift", "base_circle_radius"):
         a, b = (np.asarray(r[name], float) for r in runs)
         assert a[ends] == pytest.approx(b[ends], rel=2e-5), name
-    assert np.asarray(drawn.jump_speed)[ends] == pytest.approx(
-        np.asarray(eccentric.jump_speed)[ends], rel=5e-3)
+    ratio = np.asarray(drawn.jump_speed)[ends] / np.asarray(eccentric.jump_speed)[ends]
+    # the jump speed reads the profile's curvature, which the drawing's chords move more than
+    # its radius: 2.5e-3 already dry (5e-3 allowed); once saturated, ageing adds nothing to it
+    assert abs(ratio[0] - 1) < 5e-3 and ratio[1] == pytest.approx(ratio[0], rel=2e-5)
     lift = [np.asarray(r.lift, float) for r in runs]
     growth = lift[1][1:-1] - lift[1][0]
     below = lift[1][1:-1] - lift[0][1:-1]
