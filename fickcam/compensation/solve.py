@@ -224,7 +224,7 @@ def part_states(data: dict, base_dir: Path, times: np.ndarray, options: RunOptio
     """
     scene = _scene_at(data, base_dir, times)
     parts = [part for part in scene.parts if part.name in names]
-    seen = climate_seen(scene, times, parts)
+    seen = climate_seen(scene, times, parts, summary=False)  # part states: no record kept
     histories = age_parts(scene, seen, options, parts, [])
     values = part_values(histories)
     coords = {"time": times, "part": [h.part.name for h in histories]}

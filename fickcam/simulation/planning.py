@@ -48,7 +48,8 @@ def for_part(name: str, call, *args, **kwargs):
         raise InputError(f"part {name}: {exc}") from None
 
 
-def climate_seen(scene: Scene, times, parts: list[Part] | None = None) -> ClimateSeen:
+def climate_seen(scene: Scene, times, parts: list[Part] | None = None, *,
+                 summary: bool = True) -> ClimateSeen:
     """What the run reads of the scene's climate at ``times``, for ``parts`` (those that
     absorb; None: the scene's), asked of the history once.
 
@@ -60,6 +61,9 @@ def climate_seen(scene: Scene, times, parts: list[Part] | None = None) -> Climat
         Ageing times [s].
     parts : list of Part, optional
         The parts aged; None: the scene's.
+    summary : bool
+        Also summarise the climate between the times (what a stored result keeps; a plan
+        or compensation's part states do not).
 
     Returns
     -------
@@ -68,7 +72,8 @@ def climate_seen(scene: Scene, times, parts: list[Part] | None = None) -> Climat
     """
     parts = scene.parts if parts is None else parts
     return scene.environment.seen_at(times, {part.name: part.material.saturation_moisture
-                                             for part in parts if part.geometry is not None})
+                                             for part in parts if part.geometry is not None},
+                                     summary=summary)
 
 
 @on_one_blas_thread  # a two-phase plate's plan runs its planform refinement (as ``run``)
@@ -110,7 +115,8 @@ def plan_parts(scene: Scene, accuracy: float | None = None, *, parts: list[Part]
     options = RunOptions.for_scene(scene, accuracy, settings, cache)
     parts = scene.parts if parts is None else parts
     times = ageing_times(scene, scene.environment)
-    plans = planned_parts(scene, climate_seen(scene, times, parts), options, parts)
+    plans = planned_parts(scene, climate_seen(scene, times, parts, summary=False), options,
+                          parts)
     return scene.environment, times, options, plans
 
 
