@@ -1,5 +1,5 @@
 """Start-up: the demo run as a whole process against the import floor, side by side, and
-their ratio (the target: at most 1.5 s, about 1.7 x the floor).
+their ratio (the target: at most 1.5 x the floor).
 
     python benchmarks/startup.py               # 7 runs of each
     python benchmarks/startup.py --repeats 3
@@ -38,7 +38,8 @@ ROOT = Path(__file__).resolve().parents[1]
 RESULT = ROOT / "benchmarks" / "results" / "startup.json"
 DEMO = ROOT / "configs" / "singh2017_cam.yaml"
 FLOOR_IMPORTS = "numpy, scipy.sparse, scipy.special, xarray, h5netcdf, pint, pydantic, yaml"
-TARGET_S = 1.5
+#: the demo run at most this many times the floor (CPU and wall, medians)
+TARGET_RATIO = 1.5
 #: one ``-X importtime`` line: self and cumulative microseconds, the indented module name
 IMPORT_LINE = re.compile(r"import time:\s+(\d+) \|\s+(\d+) \|( *)(\S+)")
 
@@ -107,11 +108,11 @@ def main(argv=None) -> None:
     for kind, what in (("floor", f"import {FLOOR_IMPORTS}"), ("demo", "fickcam run (demo)")):
         print(f"{what:80s} wall {row[kind]['wall_s']:.3f} s  CPU {row[kind]['cpu_s']:.3f} s")
     print(f"demo / floor: wall {row['ratio_wall']:.2f}, CPU {row['ratio_cpu']:.2f}; "
-          f"target: demo at most {TARGET_S} s")
+          f"target: at most {TARGET_RATIO} x the floor")
     print("imports beyond the floor (-X importtime, s): "
           + ", ".join(f"{name} {seconds:.3f}" for name, seconds in imports.items()))
     record = {"benchmark": "demo run as a whole process / importing what any run needs",
-              "target_s": TARGET_S, "commit": commit(),
+              "target_ratio": TARGET_RATIO, "commit": commit(),
               "date": datetime.datetime.now(datetime.timezone.utc).isoformat(timespec="seconds"),
               "machine": about, "load_average": os.getloadavg()[0], "runs": args.repeats,
               "command": f"fickcam run {DEMO.relative_to(ROOT)}", "floor": f"import {FLOOR_IMPORTS}",
