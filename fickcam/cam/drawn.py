@@ -185,15 +185,9 @@ def aged_drawn_designs(design, planform, history, states: dict) -> dict:
         The design at each of those indices; empty where the history holds no field (the
         as-designed state, a state given directly).
     """
-    result = history.diffusion
-    if getattr(result, "fields", None) is None or history.sheet is None or not states:
+    shifts = outline_shifts(planform, history) if states else None
+    if shifts is None:
         return {}
-    # imported here: scikit-fem and scipy's interpolation, which only a drawn cam's run needs
-    from ..elastic.displacement import field_inputs, uneven_outline_shifts
-
-    moisture, expansion, stiffness = field_inputs(history, planform)
-    shifts = uneven_outline_shifts(planform, moisture, expansion,
-                                   planform.extent() / MESH_ROWS, stiffness=stiffness)
     (x, y), mirror = planform.outer.points.T, -1.0 if design.clockwise else 1.0
     designs = {}
     for k, state in states.items():
@@ -202,6 +196,35 @@ def aged_drawn_designs(design, planform, history, states: dict) -> dict:
         profile = replace(make_profile(mirror * px, py, "working"), planform=planform)
         designs[k] = replace(design, profile=profile)
     return designs
+
+
+def outline_shifts(planform, history) -> np.ndarray | None:
+    """The displacement of a drawn plate's outline by its moisture field's unevenness, about
+    its axis, at each ageing time (:func:`fickcam.elastic.displacement.uneven_outline_shifts`
+    on a mesh of edge 1/``MESH_ROWS`` of the plate's extent).
+
+    Parameters
+    ----------
+    planform : fickcam.drawing.planform.Planform
+        The plate as drawn, about its axis [m].
+    history : fickcam.simulation.parts.PartHistory
+        The cam's ageing: its diffusion fields and sheet [weight %], its moisture
+        expansion along x and y [1/weight %].
+
+    Returns
+    -------
+    numpy.ndarray or None
+        The displacement of each outline vertex [m], shape (times, n, 2); None where the
+        history holds no field (the as-designed state, a state given directly).
+    """
+    if getattr(history.diffusion, "fields", None) is None or history.sheet is None:
+        return None
+    # imported here: scikit-fem and scipy's interpolation, which only a drawn cam's run needs
+    from ..elastic.displacement import field_inputs, uneven_outline_shifts
+
+    moisture, expansion, stiffness = field_inputs(history, planform)
+    return uneven_outline_shifts(planform, moisture, expansion, planform.extent() / MESH_ROWS,
+                                 stiffness=stiffness)
 
 
 def describe_plate(planform, thickness: float, density: float) -> str:

@@ -11,6 +11,16 @@
   points, x by 1/(1 + eps_x) and y by 1/(1 + eps_y) (x = the fibre direction). An arm's
   cam is drawn about the arm's pivot, which sits on the frame and does not swell, so
   scaling its parameters would not give its motion back; its points do.
+- ``drawing`` or ``outline`` (a drawn plate): the vertices of its drawn outline, about the
+  axis, made so that they age onto the drawn ones. Where its aged profile is its outline
+  displaced by its moisture field (``aged_profile: field``, the default), a vertex D ages
+  from the made m to (1 + eps) m + s, s the displacement of the field's unevenness on
+  the made plate (:func:`fickcam.cam.drawn.outline_shifts`), and m = (D - s) / (1 + eps):
+  the outline pre-distorted by minus that displacement, found with the rest of the fixed
+  point (:mod:`fickcam.compensation.core`). The made plate is written as a drawing
+  (:mod:`fickcam.compensation.drawn`) or, for an outline written in the scene, as its
+  ``outline:`` and ``holes:``, which the made scene gives; the bore (with its keyway) is
+  kept as drawn, and the other holes are scaled about the axis with the made outline.
 
 A roller that takes up moisture: its radius with its mean in-plane strain, as
 :func:`fickcam.cam.mechanism.cam_state` ages it; a swinging arm: its length (roller) or face
@@ -29,33 +39,50 @@ from pathlib import Path
 import numpy as np
 
 from ..cam.design import cam_design
+from ..cam.drawn import CHORD_SHARE, DEFAULT_ACCURACY, outline_shifts
 from ..cam.kinematics import working_profile
-from .core import Target, scene_from
+from .core import OUTLINE_SHIFT, OUTLINE_VERTEX, PROFILE_NAMES, Target, scene_from
+from .drawn import best_scales, made_cam_writer, made_outline_holes
 from ..quantities.parsing import to_si
 from ..scene.load import CAM_SHAPE_KEYS
 
 #: points of a written compensated profile (0.1 deg apart on average)
 PROFILE_POINTS = 3600
-PROFILE_NAMES = ("profile x", "profile y")
 IN_PLANE = ("strain_longitudinal", "strain_transverse")
 #: a swinging arm's dimensions that grow with the follower's strain along it
 ARM_NAMES = {"length": "arm length", "face_offset": "arm face offset"}
 
 
+def drawn(section) -> bool:
+    """True for a drawn plate: a cam given by its ``drawing`` or its ``outline``."""
+    return section.drawing is not None or section.outline is not None
+
+
 def _given_by_points(section, points: bool = False) -> bool:
     """True when the made cam is written as points: a profile file, a swinging arm's cam,
     or any cam when ``points`` is asked for."""
-    return (points or section.profile_file is not None or section.drawing is not None
-            or section.outline is not None or section.follower.arm is not None)
+    return (points or section.profile_file is not None or section.follower.arm is not None)
+
+
+def _outline_targets(section, planform) -> list[Target]:
+    """A drawn plate's outline vertices about the axis (module docstring), shifted by the
+    field's unevenness where its aged profile is its displaced outline."""
+    x, y = planform.outer.points.T
+    field = section.aged_profile == "field"
+    return [Target("cam", name, "cam", (strain,), np.array(values), shifted=axis if field else -1)
+            for axis, (name, strain, values) in enumerate(zip(PROFILE_NAMES, IN_PLANE, (x, y)))]
 
 
 def _segment_name(index: int, segment) -> str:
     return f"{segment.kind} of segment {index + 1}"
 
 
-def _shape_targets(section, points: bool = False) -> list[Target]:
+def _shape_targets(section, points: bool = False, planform=None) -> list[Target]:
     """The cam's own dimensions, in the form it was given in (module docstring), or its
-    points when ``points`` is asked for."""
+    points when ``points`` is asked for; a drawn plate's outline (``planform``, about the
+    axis)."""
+    if planform is not None:
+        return _outline_targets(section, planform)
     if _given_by_points(section, points):
         x, y = working_profile(cam_design(section), n=PROFILE_POINTS)
         return [Target("cam", PROFILE_NAMES[0], "cam", ("strain_longitudinal",), x),
@@ -84,14 +111,15 @@ def targets(section, points: bool = False, mechanism=None) -> list[Target]:
     points : bool
         Compensate the working profile's points (x and y apart) instead of the parameters.
     mechanism : CamMechanism, optional
-        The design's cam (unused: its section says all).
+        The design's cam (a drawn plate's outline, about the axis [m]).
 
     Returns
     -------
     list of Target
         The dimensions, design values [m].
     """
-    found = _shape_targets(section, points)
+    planform = getattr(mechanism, "planform", None) if drawn(section) else None
+    found = _shape_targets(section, points, planform)
     follower = section.follower
     if follower.kind == "roller" and follower.material:
         found.append(Target("follower", "roller radius", "follower", IN_PLANE,
@@ -149,7 +177,9 @@ def write(data: dict, section, targets, made, stem, length_text) -> np.ndarray |
     """Put the made cam into the scene's ``cam:`` mapping (in place; ``section`` is the
     design's validated ``cam``): its parameters, or for a cam given by points the file
     :func:`profile_path` of ``stem`` (the points, returned as an
-    (n, 2) array in m, are the caller's to write there); the roller radius and arm.
+    (n, 2) array in m, are the caller's to write there), or for a drawn plate its made
+    drawing :func:`drawing_path` of ``stem`` (:func:`made_drawings` writes it) or its made
+    ``outline:`` and ``holes:``; the roller radius and arm.
 
     Parameters
     ----------
@@ -169,18 +199,20 @@ def write(data: dict, section, targets, made, stem, length_text) -> np.ndarray |
     Returns
     -------
     numpy.ndarray or None
-        The made points, shape (n, 2) [m], or None for a parametric cam.
+        The made points, shape (n, 2) [m] (a drawn plate's outline, about the axis), or
+        None for a parametric cam.
     """
     cam = data["cam"]
     shape = _by_name(targets, made)
     points = None
     if PROFILE_NAMES[0] in shape:
         points = np.c_[shape[PROFILE_NAMES[0]], shape[PROFILE_NAMES[1]]]
-        for key in ("base_circle_radius", "motion", "eccentric", "drawing", "outline", "holes"):
+    if drawn(section):
+        _made_plate(cam, section, targets, points, stem, length_text)
+    elif points is not None:
+        for key in ("base_circle_radius", "motion", "eccentric"):
             cam.pop(key, None)
         cam["profile_file"] = str(profile_path(stem.parent, stem.name))
-        if section.drawing is not None or section.outline is not None:  # the drawn bore
-            cam["bore_radius"] = length_text(section.bore_radius)
     elif "eccentricity" in shape:
         cam["eccentric"] = {"eccentricity": length_text(shape["eccentricity"]),
                             "radius": length_text(shape["disc radius"])}
@@ -195,6 +227,98 @@ def write(data: dict, section, targets, made, stem, length_text) -> np.ndarray |
         follower["arm"] = dict(follower["arm"]) | arm
     cam["follower"] = follower
     return points
+
+
+def drawing_path(stem: Path) -> Path:
+    """Where a drawn cam's made drawing goes: ``<stem>_cam.dxf``.
+
+    Parameters
+    ----------
+    stem : pathlib.Path
+        The made scene's path without its suffix (relative to its folder, or absolute).
+
+    Returns
+    -------
+    pathlib.Path
+        The drawing's path, as ``stem`` is (relative or absolute).
+    """
+    return stem.with_name(f"{stem.name}_cam.dxf")
+
+
+def _made_plate(cam: dict, section, targets, points, stem: Path, length_text) -> None:
+    """A drawn plate's made shape in the scene's ``cam:`` mapping (in place): its made
+    drawing named, or its outline and holes written (module docstring)."""
+    if section.drawing is not None:
+        given = cam["drawing"]
+        cam["drawing"] = {**({"file": given} if isinstance(given, str) else given),
+                          "file": str(drawing_path(stem))}
+        return
+    design = np.column_stack([t.design for t in targets if t.name in PROFILE_NAMES])
+    scales = best_scales(design, points)
+    extent = max(max(abs(v) for v in point) for point in section.outline)
+    holes = made_outline_holes(section, scales, CHORD_SHARE * DEFAULT_ACCURACY * extent)
+
+    def text(values):
+        return [length_text(float(v), digits=9) for v in values]
+    cam["outline"] = [text(point) for point in points]
+    cam["holes"] = [{"centre": text(hole[0]), "radius": text([hole[1]])[0]}
+                    if isinstance(hole, tuple) else [text(point) for point in hole]
+                    for hole in holes]
+
+
+def made_drawings(scene, targets: list[Target], made: list, stem: Path) -> dict:
+    """The made drawing of the design's drawn cam: path -> writer (``tmp path -> None``).
+
+    Parameters
+    ----------
+    scene : Scene
+        The design scene (its ``cam`` section with the drawing's path absolute, and its
+        accuracy).
+    targets : list of Target
+        The dimensions.
+    made : list
+        Their made values [m].
+    stem : pathlib.Path
+        The made scene's path without its suffix; the drawing is :func:`drawing_path` of it.
+
+    Returns
+    -------
+    dict
+        The drawing's path -> its writer; empty without a drawn cam.
+    """
+    if not scene.has("cam") or scene.model.cam.drawing is None:
+        return {}
+    shape = _by_name(targets, made)
+    design = np.column_stack([t.design for t in targets if t.name in PROFILE_NAMES])
+    points = np.column_stack([shape[name] for name in PROFILE_NAMES])
+    return {drawing_path(stem): made_cam_writer(scene.model.cam, scene.model.diffusion.accuracy,
+                                                design, points)}
+
+
+def outline_shift_values(scene, histories: list) -> dict:
+    """A drawn cam's ``OUTLINE_SHIFT`` and ``OUTLINE_VERTEX`` in a compensation's part
+    states (:func:`fickcam.compensation.core.target_shifts`): the displacement of its
+    moisture field's unevenness at its outline's vertices, about the axis.
+
+    Parameters
+    ----------
+    scene : Scene
+        The scene run (its cam's drawn plate).
+    histories : list of PartHistory
+        The parts' ageing, with their sheets (the cam's fields kept).
+
+    Returns
+    -------
+    dict
+        Variable name -> (dimensions, values [m]); empty where the cam holds no field.
+    """
+    planform = scene.mechanism("cam").planform
+    history = next(h for h in histories if h.part.name == "cam")
+    shifts = outline_shifts(planform, history)
+    if shifts is None:
+        return {}
+    return {OUTLINE_SHIFT: (("time", "vertex", "axis"), shifts),
+            OUTLINE_VERTEX: (("vertex", "axis"), np.array(planform.outer.points))}
 
 
 def profile_radii(comp) -> list[tuple]:

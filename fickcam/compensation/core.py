@@ -26,6 +26,9 @@ from pathlib import Path
 
 import numpy as np
 import yaml
+from scipy.spatial import cKDTree
+
+from ..errors import FickcamError
 from ..scene.load import parse_yaml, validate_document
 
 log = logging.getLogger(__name__)
@@ -37,6 +40,16 @@ ABSOLUTE_TOLERANCE = 1e-12  # m
 MAX_ITERATIONS = 20
 #: ageing times at which a window's strain extremes are sought (besides the scene's own)
 WINDOW_POINTS = 33
+#: the targets of a cam's working profile: its points' x and y [m]
+PROFILE_NAMES = ("profile x", "profile y")
+#: the result variables of a drawn cam's outline in a compensation's part states: the
+#: displacement of its moisture field's unevenness at each vertex (time, vertex, axis) [m],
+#: and the vertices it was found at (vertex, axis) [m]
+OUTLINE_SHIFT, OUTLINE_VERTEX = "outline_shift", "outline_vertex"
+#: a made vertex is the part states' vertex within this share of the made outline's extent
+SAME_VERTEX = 1e-9
+#: bisection steps of a coordinate's minimax over a window (each halves its bracket)
+MINIMAX_STEPS = 80
 
 
 @dataclass(frozen=True)
@@ -64,6 +77,10 @@ class Target:
         displaced pins): (the result variable of the part's aged length, its coordinate,
         the name of the target that is its dry length), e.g. ``("link_length", "link",
         "length")``: the strain is their ratio less one; empty: by ``strains``.
+    shifted : int
+        For a drawn cam's outline coordinate (a ``PROFILE_NAMES`` target, field route): the
+        axis (0: x, 1: y) of the displacement its moisture field's unevenness adds to the
+        mean strain's, ``OUTLINE_SHIFT`` (:func:`target_shifts`); -1: none.
     """
 
     group: str
@@ -73,6 +90,7 @@ class Target:
     design: float | np.ndarray
     mechanism: str = ""
     grown: tuple[str, ...] = ()
+    shifted: int = -1
 
 
 @dataclass
@@ -201,9 +219,10 @@ def _midrange(strain: np.ndarray) -> float:
     return 0.5 * (float(np.min(strain)) + float(np.max(strain)))
 
 
-def made_value(design, strain: np.ndarray):
+def made_value(design, strain: np.ndarray, shift: np.ndarray | None = None):
     """L_made = L_design / (1 + eps_mid), eps_mid the middle of the strain's range: the
-    minimax made value over the window (see the module docstring).
+    minimax made value over the window (see the module docstring); with a ``shift``, the
+    minimax of a coordinate that ages to (1 + eps(t)) L_made + s(t) (:func:`made_shifted`).
 
     Parameters
     ----------
@@ -211,18 +230,64 @@ def made_value(design, strain: np.ndarray):
         L_design [m].
     strain : numpy.ndarray
         The strain over the window [-].
+    shift : numpy.ndarray, optional
+        The displacement added to the strained coordinate [m], shape (times, n).
 
     Returns
     -------
     float or numpy.ndarray
         L_made [m].
     """
+    if shift is not None:
+        return made_shifted(design, strain, shift)
     return np.asarray(design) / (1.0 + _midrange(strain)) if np.ndim(design) else \
         float(design) / (1.0 + _midrange(strain))
 
 
-def residual(design, made, strain: np.ndarray) -> float:
-    """max_t |L_made (1 + eps(t)) - L_design| over the window, largest over an array.
+def _deviations(design, made, strain, shift) -> np.ndarray:
+    """(1 + eps(t)) L_made + s(t) - L_design [m], shape (times, n)."""
+    grown = np.multiply.outer(1.0 + np.asarray(strain, float), np.asarray(made, float))
+    return grown + (0.0 if shift is None else np.asarray(shift, float)) - np.asarray(design)
+
+
+def made_shifted(design, strain: np.ndarray, shift: np.ndarray) -> np.ndarray:
+    """The made coordinates m that ages to (1 + eps(t)) m + s(t) (the mean strain and the
+    displacement of the field's unevenness) closest to the design's D over the window:
+    each coordinate's min over m of max_t |a_t m + b_t| (a_t = 1 + eps_t > 0, b_t = s_t - D),
+    where the rising max_t (a_t m + b_t) meets the falling max_t (-a_t m - b_t), found by
+    bisection from a bracket that holds it. One time: m = (D - s) / (1 + eps) exactly.
+
+    Parameters
+    ----------
+    design : array_like
+        D [m], shape (n,).
+    strain : numpy.ndarray
+        eps(t) [-], shape (times,).
+    shift : numpy.ndarray
+        s(t) [m], shape (times, n).
+
+    Returns
+    -------
+    numpy.ndarray
+        The made coordinates [m], shape (n,).
+    """
+    a = 1.0 + np.asarray(strain, float)[:, None]
+    b = np.asarray(shift, float) - np.asarray(design, float)
+    if len(a) == 1:
+        return -b[0] / a[0]
+    middle = -b.mean(axis=0) / a.mean()
+    half = np.abs(a * middle + b).max(axis=0) / a.min() + np.finfo(float).tiny
+    low, high = middle - half, middle + half  # above high every line is >= 0, below low <= 0
+    for _ in range(MINIMAX_STEPS):
+        m = 0.5 * (low + high)
+        lines = a * m + b
+        rising = lines.max(axis=0) >= (-lines).max(axis=0)
+        high, low = np.where(rising, m, high), np.where(rising, low, m)
+    return 0.5 * (low + high)
+
+
+def residual(design, made, strain: np.ndarray, shift: np.ndarray | None = None) -> float:
+    """max_t |L_made (1 + eps(t)) (+ s(t)) - L_design| over the window, largest over an array.
 
     Parameters
     ----------
@@ -232,14 +297,58 @@ def residual(design, made, strain: np.ndarray) -> float:
         L_made [m].
     strain : numpy.ndarray
         eps(t) over the window [-].
+    shift : numpy.ndarray, optional
+        The displacement added to the strained coordinate [m], shape (times, n).
 
     Returns
     -------
     float
         The largest deviation [m].
     """
-    grown = np.multiply.outer(1.0 + np.asarray(strain), np.asarray(made))
-    return float(np.max(np.abs(grown - np.asarray(design))))
+    return float(np.max(np.abs(_deviations(design, made, strain, shift))))
+
+
+def target_shifts(ds, targets: list[Target], made: list) -> list:
+    """The displacement of the moisture field's unevenness acting on each target whose
+    ``shifted`` names an axis, at the made outline's vertices: the part states'
+    ``OUTLINE_SHIFT`` matched to them by position (a run that holds none, the design's:
+    zeros, the mean strain's outline); None for every other target.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        The result (its ``time`` dimension; a compensation's part states also
+        ``OUTLINE_SHIFT`` and ``OUTLINE_VERTEX`` [m]).
+    targets : list of Target
+        The dimensions.
+    made : list
+        Their values in that result [m].
+
+    Returns
+    -------
+    list
+        Per target: the shifts (times, n) [m], or None.
+
+    Raises
+    ------
+    fickcam.errors.FickcamError
+        A made vertex that is none of the part states' vertices.
+    """
+    made_of = {t.name: m for t, m in zip(targets, made)}
+    found = []
+    for target in targets:
+        if target.shifted < 0:
+            found.append(None)
+            continue
+        points = np.column_stack([made_of[name] for name in PROFILE_NAMES])
+        if OUTLINE_SHIFT not in ds:
+            found.append(np.zeros((ds.sizes["time"], len(points))))
+            continue
+        gap, index = cKDTree(ds[OUTLINE_VERTEX].values).query(points)
+        if np.max(gap) > SAME_VERTEX * np.ptp(points, axis=0).max():
+            raise FickcamError("compensation: the made cam's outline lost a vertex when read again")
+        found.append(ds[OUTLINE_SHIFT].values[:, index, target.shifted])
+    return found
 
 
 def converged(old: list, new: list, targets: list[Target]) -> bool:

@@ -1,15 +1,18 @@
 """The made drawings of drawn parts: the designer's DXF written again, compensated.
 
-A cam given by its drawing (``cam.drawing``) is compensated as points
-(:mod:`fickcam.compensation.cam`): every x of the working profile by one scale, every y by
-another, about the cam's axis. The same map, applied to the drawing, is the drawing to make.
-Where the two scales are equal (a material that swells the same way in the plane) the map is
-a similarity, a uniform scale about the axis, and every entity is scaled as it is (lines stay
-lines, arcs arcs, circles circles: :func:`fickcam.drawing.dxfwrite.write_drawing`); otherwise
-each entity becomes a polyline through its mapped chord points, which stray from the mapped
-curve by no more than the chords strayed from the drawn one times the larger scale. The bore
-is written as drawn, as the made scene keeps it (a bore fits its shaft); the axis point maps
-to itself.
+A cam given by its drawing (``cam.drawing``) is compensated in the vertices of its drawn
+outline (:mod:`fickcam.compensation.cam`). Its drawing to make: the outline through the made
+vertices, every other entity (the lightening holes) mapped by the scales along x and y that
+fit the made outline best about the axis (:func:`best_scales`), the bore with its keyway as
+drawn (a bore fits its shaft, dry), the axis point where it was. Where the made outline is
+that map too (the mean strain's compensation, ``aged_profile: mean_strain``) and its two
+scales are equal (a material that swells the same way in the plane), the map is a
+similarity, a uniform scale about the axis, and every entity is scaled as it is (lines stay
+lines, arcs arcs, circles circles: :func:`fickcam.drawing.dxfwrite.write_drawing`);
+otherwise each entity of the outline becomes a polyline through its made chord points, and
+under two scales each other entity a polyline through its mapped chord points: these stray
+from the made curve by no more than the drawn chords strayed from the drawn one, times the
+larger scale.
 
 A drawn link (``linkage.crank: {drawing: ...}``) is compensated in its pin-to-pin length
 (:mod:`fickcam.compensation.linkage`), L_made = L_design / (1 + eps). Its drawing to make is
@@ -23,42 +26,82 @@ assembly, dry, as a cam's bore fits its shaft.
 from __future__ import annotations
 
 import numpy as np
+from scipy.spatial import cKDTree
 
 from ..cam.drawn import CHORD_SHARE
 from ..drawing.dxfread import JOIN, read_drawing
 from ..drawing.dxfwrite import Similarity, write_drawing
-from ..drawing.parts import cam_of
-from ..drawing.planform import pin_holes
+from ..drawing.parts import AXIS_LAYER, cam_of
+from ..drawing.planform import circle_points, pin_holes
+from ..drawing.spec import RoundHole, polygon_key, polygon_of
 from ..linkage.drawn import CHORD_SHARE as LINK_CHORD_SHARE
-from .cam import PROFILE_NAMES
 
 #: two scales closer than this (relative) make a similarity
 SAME_SCALE = 1e-12
+#: a made outline's two best scales whose changes from 1 agree within this share of the
+#: larger are one (the threshold of an anisotropic cam in ``fickcam.compensation.cam``)
+ALIKE = 0.1
 
 
-def profile_scales(targets, made) -> tuple[float, float]:
-    """The scales (x, y) [-] that made the working profile's points from the design's.
+def best_scales(design, made) -> tuple[float, float]:
+    """The scales (x, y) [-] about the axis that take the design's outline vertices closest
+    to the made ones (least squares: sum(m d) / sum(d d)), one for both axes where their
+    changes from 1 agree within ``ALIKE`` of the larger (a plate that swells alike in its
+    plane, whose field's displacement alone sets them apart: its holes stay round), one per
+    axis otherwise; exactly the made outline's where it is the design's scaled.
 
     Parameters
     ----------
-    targets : list of fickcam.compensation.core.Target
-        The compensation's targets, the profile's x and y among them.
-    made : list
-        Their made values [m].
+    design, made : array_like
+        The outline's vertices about the axis, designed and made [m], shape (n, 2).
 
     Returns
     -------
     tuple of float
-        made / design along x and along y [-], each from the point farthest along it.
+        The scales along x and along y [-].
     """
-    found = {t.name: (np.asarray(t.design, float), np.asarray(m, float))
-             for t, m in zip(targets, made) if t.name in PROFILE_NAMES}
-    scales = []
-    for name in PROFILE_NAMES:
-        design, value = found[name]
-        k = int(np.argmax(np.abs(design)))
-        scales.append(float(value[k] / design[k]))
-    return scales[0], scales[1]
+    design, made = np.asarray(design, float), np.asarray(made, float)
+    sx, sy = (made * design).sum(axis=0) / (design * design).sum(axis=0)
+    if abs(sx - sy) <= ALIKE * max(abs(1.0 - sx), abs(1.0 - sy)):
+        sx = sy = float((made * design).sum() / (design * design).sum())
+    return float(sx), float(sy)
+
+
+def made_outline_holes(section, scales: tuple[float, float], tolerance: float) -> list:
+    """The ``holes:`` of a cam plate written in the scene, made: the bore (the hole about the
+    axis) as given, every other hole scaled about the axis (a round one stays round under
+    one scale, else becomes the polygon of its mapped chord points).
+
+    Parameters
+    ----------
+    section : CamSection
+        The design's ``cam`` section, with its ``outline`` and ``holes`` [m].
+    scales : tuple of float
+        The made outline's scales along x and y about the axis [-] (:func:`best_scales`).
+    tolerance : float
+        The chord tolerance of a round hole that becomes a polygon [m].
+
+    Returns
+    -------
+    list
+        Per hole: ``(centre, radius)`` of a round one [m], or its vertices [m], (k, 2).
+    """
+    part = cam_of(polygon_of(section.outline, section.holes, tolerance), {AXIS_LAYER: [(0, 0)]})
+    bore = None if part.bore is None else polygon_key(part.bore.source)[1]
+    move = scaled_about((0.0, 0.0), scales)
+    found = []
+    for i, hole in enumerate(section.holes or ()):
+        if i == bore and isinstance(hole, RoundHole):
+            found.append((tuple(hole.centre), hole.radius))
+        elif i == bore:
+            found.append(np.asarray(hole, float))
+        elif isinstance(hole, RoundHole) and isinstance(move, Similarity):
+            found.append((tuple(move([hole.centre])[0]), hole.radius * move.scale))
+        elif isinstance(hole, RoundHole):
+            found.append(move(circle_points(hole.centre, hole.radius, tolerance)))
+        else:
+            found.append(move(hole))
+    return found
 
 
 def pieces_of(drawing, loop) -> list:
@@ -112,8 +155,21 @@ def scaled_about(centre, scales: tuple[float, float]):
     return move
 
 
-def made_drawing_writer(section, accuracy: float, scales: tuple[float, float]):
-    """A writer of the made drawing: ``tmp path -> None``.
+def _vertex_map(design, made):
+    """The map of the design's outline vertices [m] onto the made ones (each point taken to
+    the made vertex of the design vertex it is)."""
+    tree, made = cKDTree(design), np.asarray(made, float)
+
+    def move(points):
+        gap, index = tree.query(np.asarray(points, float).reshape(-1, 2))
+        if np.any(gap > JOIN):
+            raise ValueError("a point to move is not a vertex of the drawn outline")
+        return made[index]
+    return move
+
+
+def made_cam_writer(section, accuracy: float, design, made):
+    """A writer of a drawn cam's made drawing (module docstring): ``tmp path -> None``.
 
     Parameters
     ----------
@@ -122,9 +178,9 @@ def made_drawing_writer(section, accuracy: float, scales: tuple[float, float]):
     accuracy : float
         The scene's relative accuracy [-]: the drawing is read at the chord tolerance the
         run reads it at (:data:`fickcam.cam.drawn.CHORD_SHARE` x it x the drawing's extent).
-    scales : tuple of float
-        The made working profile's scales along x and y about the axis [-]
-        (:func:`profile_scales`).
+    design, made : array_like
+        The outline's vertices about the axis, designed (the drawing's, as the run reads
+        them) and made [m], shape (n, 2).
 
     Returns
     -------
@@ -135,12 +191,18 @@ def made_drawing_writer(section, accuracy: float, scales: tuple[float, float]):
     drawing = read_drawing(spec.file, CHORD_SHARE * accuracy, spec.units, relative=True)
     part = cam_of(drawing.planform, drawing.points, spec.axis_layer)
     axis = drawing.planform.outer.points[0] - part.planform.outer.points[0]
+    design, made = np.asarray(design, float), np.asarray(made, float)
+    scales = best_scales(design, made)
     move = scaled_about(axis, scales)
-    kept = []
+    kept, carried = [], []
     if part.bore is not None:  # the bore as drawn, in the drawing's own place
         bore = drawing.planform.holes[list(part.planform.holes).index(part.bore)]
         kept = pieces_of(drawing, bore)
-    return lambda tmp: write_drawing(tmp, drawing, move, kept=kept)
+    similar = np.abs(move(design + axis) - axis - made).max() <= SAME_SCALE * np.abs(made).max()
+    if not (similar and isinstance(move, Similarity)):  # the outline through its made vertices
+        outline = _vertex_map(design + axis, made + axis)
+        carried = [(piece, outline) for piece in pieces_of(drawing, drawing.planform.outer)]
+    return lambda tmp: write_drawing(tmp, drawing, move, kept=kept, carried=carried)
 
 
 def made_link_writer(spec, accuracy: float, scale: float):

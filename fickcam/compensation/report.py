@@ -19,8 +19,7 @@ from .cam import anisotropy_note
 from ..cam.profile import write_profile_csv, write_profile_dxf
 from .cam import PROFILE_POINTS, made_outline
 from ..files import replaced_together
-from .cam import profile_path
-from .drawn import made_drawing_writer, profile_scales
+from .cam import drawn, profile_path
 from .solve import write_made, write_points
 from ..linkage.spec import DRAWN_LINKS
 
@@ -422,7 +421,7 @@ def write_scene(comp: Compensation, scene, path, *, profile=None, plot=None) -> 
 
 def write_files(comp: Compensation, scene, path, *, profile=None, plot=None) -> list[Path]:
     """Write the compensated scene (a cam given by points: its points beside it as
-    ``<stem>_cam_profile.csv``; a drawn cam also its made drawing as ``<stem>_cam.dxf``, a
+    ``<stem>_cam_profile.csv``; a drawn cam its made drawing as ``<stem>_cam.dxf``, a
     drawn link its made drawing as ``<stem>_<link>.dxf``, which the made scene names,
     :mod:`fickcam.compensation.drawn`), and when asked the made cam's profile (``profile``, .csv
     or .dxf) and the drift against the bands (``plot``, PNG); all together through
@@ -454,13 +453,9 @@ def write_files(comp: Compensation, scene, path, *, profile=None, plot=None) -> 
     data, points, drawings = write_made(comp.scene_data, scene.as_designed(), comp.targets,
                                         comp.made, Path(path.stem))
     writers = {path: None}  # the scene's text last: the drawing may validate the made scene
-    if points is not None:
+    if points is not None and not drawn(scene.model.cam):  # a drawn plate: in its drawing
         writers[csv] = lambda tmp: write_points(tmp, points)
     writers.update((folder / name, write) for name, write in drawings.items())
-    if points is not None and scene.has("cam") and scene.model.cam.drawing is not None:
-        scales = profile_scales(comp.targets, comp.made)
-        writers[folder / f"{path.stem}_cam.dxf"] = made_drawing_writer(
-            scene.model.cam, scene.model.diffusion.accuracy, scales)
     if profile is not None:
         writers[Path(profile)] = _drawing_writer(data, points, scene.base_dir,
                                                        Path(profile))

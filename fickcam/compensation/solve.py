@@ -46,7 +46,7 @@ from ..simulation.simulate import run_with
 from ..simulation.times import ageing_times
 from . import cam, linkage
 from .core import (MAX_ITERATIONS, Compensation, converged, made_value, quiet_runs, residual,
-                   scene_from, target_strains, window_times)
+                   scene_from, target_shifts, target_strains, window_times)
 
 log = logging.getLogger(__name__)
 
@@ -117,8 +117,9 @@ def with_design(data: dict, design: dict, targets: list) -> dict:
 def write_made(data: dict, scene, targets: list, made: list, stem: Path):
     """(a copy of the scene mapping ``data`` (as designed) with the made dimensions and a
     ``design:`` section, the made cam's points or None, the made drawings): a cam given by
-    points names its points file and a drawn link its made drawing, both named from
-    ``stem``, where the caller writes them.
+    points names its points file, a drawn cam or link its made drawing, all named from
+    ``stem``, where the caller writes them (a drawn cam's points are its made outline's,
+    which its drawing or the scene holds).
 
     Parameters
     ----------
@@ -132,7 +133,8 @@ def write_made(data: dict, scene, targets: list, made: list, stem: Path):
         Their made values [m].
     stem : pathlib.Path
         The made scene's path without its suffix: the points go to
-        :func:`fickcam.compensation.cam.profile_path` of it, a drawn link's drawing to
+        :func:`fickcam.compensation.cam.profile_path` of it, a drawn cam's drawing to
+        :func:`fickcam.compensation.cam.drawing_path` of it, a drawn link's to
         :func:`fickcam.compensation.linkage.drawing_path` of it.
 
     Returns
@@ -149,7 +151,8 @@ def write_made(data: dict, scene, targets: list, made: list, stem: Path):
             written = compensated.write(data, scene.mechanism(name).section, *zip(*own), stem,
                                         length_text)
             points = points if written is None else written
-    drawings = linkage.made_drawings(scene, targets, made, stem)
+    drawings = {**cam.made_drawings(scene, targets, made, stem),
+                **linkage.made_drawings(scene, targets, made, stem)}
     return with_design(data, design, targets), points, drawings
 
 
@@ -194,7 +197,7 @@ def _run_at(data: dict, base_dir: Path, times: np.ndarray, options: RunOptions,
 
 
 def part_states(data: dict, base_dir: Path, times: np.ndarray, options: RunOptions,
-                names: set, grown: dict | None = None):
+                names: set, grown: dict | None = None, outline: bool = False):
     """What a run of the scene computes for the parts ``names``, without its limits and
     other parts: their diffusion and material state, and the mechanisms' variables
     ``grown`` asks for (a drawn link's aged length: :func:`grown_values`).
@@ -214,13 +217,16 @@ def part_states(data: dict, base_dir: Path, times: np.ndarray, options: RunOptio
         The parts to compute.
     grown : dict, optional
         Mechanism section -> the names of its result variables to compute; None: none.
+    outline : bool
+        Also the displacement of a drawn cam's outline by its moisture field's unevenness
+        (:func:`fickcam.compensation.cam.outline_shift_values`).
 
     Returns
     -------
     tuple
-        (xarray.Dataset of the parts' state variables over (time, part) and the variables
-        ``grown`` names; dict of part name -> its ``DiffusionResult`` at ``times``, None for
-        a part that does not absorb).
+        (xarray.Dataset of the parts' state variables over (time, part), the variables
+        ``grown`` names and the outline's; dict of part name -> its ``DiffusionResult`` at
+        ``times``, None for a part that does not absorb).
     """
     scene = _scene_at(data, base_dir, times)
     parts = [part for part in scene.parts if part.name in names]
@@ -233,7 +239,10 @@ def part_states(data: dict, base_dir: Path, times: np.ndarray, options: RunOptio
                                          variables)
         values.update(more)
         coords.update(more_coords)
-    return build_dataset(values, coords), {h.part.name: h.diffusion for h in histories}
+    ds = build_dataset(values, coords)
+    if outline:
+        ds = ds.assign(cam.outline_shift_values(scene, with_sheets(scene, seen, histories)))
+    return ds, {h.part.name: h.diffusion for h in histories}
 
 
 #: crank angles of a mechanism evaluated for its aged dimensions alone
@@ -350,8 +359,9 @@ def settles_next(previous: list, made: list, new: list, targets: list) -> bool:
 
 def _fixed_point(scene, data: dict, targets: list, times: np.ndarray, check: np.ndarray,
                  start, options: RunOptions):
-    """(made values, the run of the made scene at ``check``, iterations, strains at
-    ``times``) from ``start``, the run of the design at ``check``.
+    """(made values, the run of the made scene at ``check``, iterations, the largest
+    deviation left on each target over ``times`` [m]) from ``start``, the run of the design
+    at ``check``.
 
     Each iteration computes only the targets' parts (:func:`part_states`: their diffusion
     at the made size and their material state). The moisture depends on the made size
@@ -362,19 +372,23 @@ def _fixed_point(scene, data: dict, targets: list, times: np.ndarray, check: np.
     of the last iteration. ``options``: the compensation's, one for all its runs. A
     dimension that grows otherwise than by its part's mean strain (``Target.grown``: a
     drawn link's displaced pins) takes its strain from its mechanism's aged value of it
-    (:func:`grown_values`) in every iteration."""
+    (:func:`grown_values`) in every iteration; a drawn cam's outline (``Target.shifted``)
+    the displacement of its moisture field's unevenness on the made plate, from the first
+    made plate on (the design's run holds none: its first move is the mean strain's)."""
     at = np.searchsorted(check, times)
     names = {t.part for t in targets}
     grown: dict = {}
     for target in targets:
         if target.grown:
             grown.setdefault(target.mechanism, set()).add(target.grown[0])
+    outline = any(t.shifted >= 0 for t in targets)
     made = previous = [t.design for t in targets]
     ds, solved, trial = start, {}, data
     with tempfile.TemporaryDirectory(prefix="fickcam-compensate-") as folder, quiet_runs():
         for iteration in range(MAX_ITERATIONS + 1):
             strains = [s[at] for s in target_strains(ds, targets, made)]
-            new = [made_value(t.design, s) for t, s in zip(targets, strains)]
+            shifts = [None if s is None else s[at] for s in target_shifts(ds, targets, made)]
+            new = [made_value(t.design, s, d) for t, s, d in zip(targets, strains, shifts)]
             log.debug("compensation iteration %d: largest moves %s m", iteration,
                       [float(np.max(np.abs(np.asarray(n) - m))) for n, m in zip(new, made)])
             settled = iteration if iteration and converged(made, new, targets) else 0
@@ -384,10 +398,12 @@ def _fixed_point(scene, data: dict, targets: list, times: np.ndarray, check: np.
             if settled:
                 after = _run_at(trial, scene.base_dir, check, options,
                                diffusions_for(trial, scene.base_dir, check, solved))
-                return made, after, settled, strains
+                return made, after, settled, [residual(t.design, m, s, d) for t, m, s, d
+                                              in zip(targets, made, strains, shifts)]
             previous, made = made, new
             trial = _made_trial(data, scene, targets, made, Path(folder))
-            ds, solved = part_states(trial, scene.base_dir, check, options, names, grown)
+            ds, solved = part_states(trial, scene.base_dir, check, options, names, grown,
+                                     outline)
     raise FickcamError(f"compensation did not settle in {MAX_ITERATIONS} iterations")
 
 
@@ -396,7 +412,7 @@ def _made_trial(data: dict, scene, targets: list, made: list, folder: Path) -> d
     a drawn link: its made drawing, written in ``folder``)."""
     stem = folder / "trial"
     trial, points, drawings = write_made(data, scene, targets, made, stem)
-    if points is not None:
+    if points is not None and not cam.drawn(scene.model.cam):
         write_points(cam.profile_path(folder, stem.name), points)
     for path, write in drawings.items():
         write(path)
@@ -460,17 +476,14 @@ def compensate(scene, at=None, over=None, *, accuracy: float | None = None,
     data = as_designed_data(copy.deepcopy(scene.document.data))
     with quiet_runs():
         before = _run_at(data, scene.base_dir, check, options)
-    made, after, iterations, strains = _fixed_point(design, data, targets, times, check, before,
-                                                    options)
+    made, after, iterations, left = _fixed_point(design, data, targets, times, check, before,
+                                                 options)
     comp = Compensation(targets, made, times, iterations, data, scene=scene, life=life,
-                        check=check, before=before, after=after,
-                        residual=[residual(t.design, m, s)
-                                  for t, m, s in zip(targets, made, strains)])
+                        check=check, before=before, after=after, residual=left)
     if wide and comp.fails():
         window = window_times(*life, check)
-        made, after, iterations, strains = _fixed_point(design, data, targets, window, check,
-                                                        before, options)
-        comp = comp.widened(window, made, after, iterations,
-                            [residual(t.design, m, s) for t, m, s in zip(targets, made, strains)])
+        made, after, iterations, left = _fixed_point(design, data, targets, window, check,
+                                                     before, options)
+        comp = comp.widened(window, made, after, iterations, left)
     return comp
 

@@ -116,8 +116,9 @@ def write_drawing(path, drawing, move, kept=(), carried=()) -> Path:
     kept : sequence of Piece
         Pieces of ``drawing`` written as drawn, not moved (a cam's bore, which fits its shaft).
     carried : sequence of tuple
-        (piece, Similarity) pairs: pieces of ``drawing`` moved by a similarity of their own
-        instead of ``move`` (a link's pin hole, carried with its centre at its drawn size).
+        (piece, map) pairs: pieces of ``drawing`` moved by a map of their own instead of
+        ``move``, a :class:`Similarity` (a link's pin hole, carried with its centre at its
+        drawn size) or any map of points (a cam's outline through its made vertices).
 
     Returns
     -------
