@@ -29,8 +29,11 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.spatial import cKDTree
 
+from ..diffusion.problem.curves import polygon_segments
 from ..drawing.planform import Planform, edge_lengths, edge_sums, inside
+from .corners import GRADED_ZONE, reentrant_corners
 from .fem import PlaneElasticity, isotropic_stiffness, stiffness_matrix
+from .nodal import NodalField
 from .swelling import plate_moisture
 from .mesh import PlateMesh, drawn_mesh  # noqa: F401  (PlateMesh: the type of FreeDisplacement.mesh)
 
@@ -204,11 +207,87 @@ def _uneven_fields(planform: Planform, moisture, expansion, spacing: float, orde
     mesh, model = _model(planform, spacing, order)
     x, y = model.quadrature_points()
     values = np.asarray(moisture(np.column_stack([x.ravel(), y.ravel()])), float)
-    values = values.reshape(-1, *x.shape)
+    return mesh, model, _uneven_strains(model, values.reshape(-1, *x.shape), expansion)
+
+
+def _uneven_strains(model, values, expansion) -> list[tuple]:
+    """The free strains (eps_xx, eps_yy, gamma_xy) of the moisture's departure from its area
+    mean, from the moisture at the quadrature points (times, elements, points)."""
     weights = model.quadrature_weights()
     uneven = values - np.einsum("tep,ep->t", values, weights)[:, None, None] / weights.sum()
     expansion = np.broadcast_to(np.asarray(expansion, float), (len(uneven), 2))
-    return mesh, model, [(bx * d, by * d, 0.0 * d) for d, (bx, by) in zip(uneven, expansion)]
+    return [(bx * d, by * d, 0.0 * d) for d, (bx, by) in zip(uneven, expansion)]
+
+
+def field_pin_shifts(field: NodalField, planform: Planform, pins, expansion,
+                     refinements: int = 0, order: int = 2, stiffness=None) -> np.ndarray:
+    """How far the moisture field's unevenness moves a link's second pin from its first, on
+    the plane model's own mesh: as :func:`uneven_pin_shifts`, the free strain of the
+    field's departure from its area mean, solved on the field's mesh refined
+    ``refinements`` times and graded toward the drawn re-entrant corners
+    (:mod:`fickcam.elastic.corners`), so that the strain is exactly the engine's field and
+    the pins' shift converges at O(h^(2p)) (order p elements) in spite of the corners'
+    singularities. A pin's centre is the centre of the area of its hole as the mesh draws
+    it (its nodes on the hole's edge).
+
+    Parameters
+    ----------
+    field : NodalField
+        The thickness-mean moisture [weight %] at the nodes [m] of the plane model's mesh
+        (:func:`fickcam.elastic.swelling.plane_nodal_moisture`), (times, nodes).
+    planform : Planform
+        The link as drawn [m], its first pin at the origin and its second on +x.
+    pins : tuple of Loop
+        The two pin holes, as drawn [m].
+    expansion : array_like
+        The moisture expansion coefficients along and across the link [1/weight %], shape
+        (2,) or (times, 2).
+    refinements : int
+        How many times every element is split in four before the grading.
+    order : int
+        The Lagrange elements' order (1 or 2).
+    stiffness : array_like, optional
+        The plane-stress stiffness [Pa] (3, 3), as for :func:`free_displacements`.
+
+    Returns
+    -------
+    numpy.ndarray
+        The change of the vector from the first pin's centre to the second's [m], shape
+        (times, 2): along the link, then across it.
+    """
+    for _ in range(refinements):
+        field = field.refined()
+    field = field.graded_toward(reentrant_corners([loop.points for loop in planform.loops]),
+                                GRADED_ZONE * planform.extent(), order)
+    model = PlaneElasticity(field.points, field.triangles, 1.0, order)
+    values = np.array([model.nodal_at_points(v) for v in field.values])
+    holes = [_hole_nodes(field, pin.points) for pin in pins]
+
+    def vector(points):  # first pin's area centre to the second's
+        (a0, x0, y0), (a1, x1, y1) = (edge_sums(points[h])[:3] for h in holes)
+        return np.array([x1 / a1 - x0 / a0, y1 / a1 - y0 / a0])
+    drawn = vector(field.points)
+    return np.array([vector(field.points + model.displacement_at_nodes(model.without_rigid_motion(u)))
+                     - drawn for u in _solutions(model, _uneven_strains(model, values, expansion),
+                                                 stiffness).T])
+
+
+def _hole_nodes(field: NodalField, hole) -> np.ndarray:
+    """The nodes of the mesh's boundary on a hole's edge, in order along it: those within
+    1e-3 of the hole's extent (a mesh's chord may cut a drawn vertex by far less; the
+    other loops are much farther)."""
+    edges = np.sort(field.triangles[:, [0, 1, 1, 2, 2, 0]].reshape(-1, 2), axis=1)
+    unique, count = np.unique(edges, axis=0, return_counts=True)
+    boundary = np.unique(unique[count == 1])
+    segments = polygon_segments(*np.asarray(hole, float).T)
+    start, step = segments[:, 0], segments[:, 1] - segments[:, 0]
+    relative = field.points[boundary][:, None, :] - start[None]
+    along = np.clip(np.einsum("nsk,sk->ns", relative, step) / np.sum(step * step, axis=1), 0, 1)
+    gap = np.hypot(*(relative - along[..., None] * step[None]).transpose(2, 0, 1))
+    nearest = np.argmin(gap, axis=1)
+    rows = np.arange(len(boundary))
+    on = np.flatnonzero(gap[rows, nearest] <= 1e-3 * np.ptp(hole, axis=0).max())
+    return boundary[on[np.argsort(nearest[on] + along[on, nearest[on]], kind="stable")]]
 
 
 def uneven_outline_shifts(planform: Planform, moisture, expansion, spacing: float,

@@ -365,6 +365,33 @@ class PlaneElasticity:
         return np.column_stack([u[self.basis.nodal_dofs[0]], u[self.basis.nodal_dofs[1]]])
 
 
+def refined_triangles(points, triangles, marked=None):
+    """A triangle mesh refined by scikit-fem: every triangle split in four (``marked``
+    None), or the marked ones and what conformity asks of their neighbours (red-green-blue
+    refinement). The refined mesh's first nodes are the given ones; each new node is the
+    midpoint of an edge of the given mesh.
+
+    Parameters
+    ----------
+    points : numpy.ndarray
+        The nodes [m], shape (n, 2).
+    triangles : numpy.ndarray
+        Three node indices per triangle, shape (m, 3).
+    marked : array_like of int, optional
+        The triangles to split; None: all.
+
+    Returns
+    -------
+    tuple of numpy.ndarray
+        The refined mesh's nodes [m] (n', 2) and triangles (m', 3), and the given mesh's
+        edges (2, e) whose midpoints the new nodes may be.
+    """
+    mesh = skfem.MeshTri(np.asarray(points, float).T.copy(),
+                         np.asarray(triangles, np.int64).T.copy())
+    finer = mesh.refined() if marked is None else mesh.refined(np.asarray(marked, np.int64))
+    return finer.p.T.copy(), finer.t.T.copy(), mesh.facets
+
+
 def principal_stresses(sigma) -> tuple[np.ndarray, np.ndarray]:
     """(largest, smallest) in-plane principal stress of Voigt stresses (3, ...):
     (sxx + syy)/2 +- sqrt(((sxx - syy)/2)^2 + sxy^2) (Timoshenko & Goodier 1970, sec. 9).

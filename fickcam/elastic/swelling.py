@@ -33,6 +33,7 @@ from .fem import PlaneElasticity, principal_stresses, stiffness_matrix
 from .strength import ply_strengths, tsai_wu_index
 from .thickness import SheetProfile, planform_accomplished_fraction, product_moisture
 from .mesh import disc_plate
+from .nodal import NodalField
 from ..materials.hygrothermal import secant_thermal_factor
 from ..materials.state import wet_tg_and_retention
 from .mesh import planform_mesh
@@ -337,6 +338,40 @@ def plate_moisture(result, geometry, points, surface, sheet: SheetProfile | None
     in_plane = _nodal_moisture(result, geometry, points, surface, outline)
     depth = _level_depth(result.cell_coordinates, geometry.thickness)
     return through_thickness(in_plane, depth, sheet)
+
+
+def plane_nodal_moisture(result, thickness: float, sheet: SheetProfile):
+    """The plane model's thickness-mean moisture at the nodes of its own triangle mesh
+    (``result.planform``): the mid-thickness level's P1 field, the outline's nodes at the
+    sheet's face value, carried through the thickness with the exact sheet
+    (:func:`through_thickness`); None where the result keeps no such mesh (another model).
+
+    Parameters
+    ----------
+    result : fickcam.diffusion.DiffusionResult
+        The part's diffusion result, with its ``fields`` [weight %] and ``planform``.
+    thickness : float
+        The plate's thickness [m].
+    sheet : SheetProfile
+        The exact sheet of its thickness under its exposure [weight %].
+
+    Returns
+    -------
+    fickcam.elastic.nodal.NodalField or None
+        The moisture [weight %] at the mesh's nodes [m], (times, nodes).
+    """
+    mesh = getattr(result, "planform", None)
+    if mesh is None or result.fields is None:
+        return None
+    held = np.asarray(mesh.on_outline, bool)
+    fields = np.asarray(result.fields, float)
+    level = mid_plane_cells(result.cell_coordinates, thickness)
+    if fields[:, level].shape[1] != np.count_nonzero(~held):
+        raise ValueError("the plane model's stored field does not match its mesh's free nodes")
+    in_plane = np.empty((len(fields), len(mesh.points)))
+    in_plane[:, ~held], in_plane[:, held] = fields[:, level], sheet.surface[:, None]
+    _, mean = through_thickness(in_plane, _level_depth(result.cell_coordinates, thickness), sheet)
+    return NodalField(np.asarray(mesh.points, float), np.asarray(mesh.triangles), mean)
 
 
 def swelling_history(geometry, material, result, state: dict, temperature, reference,

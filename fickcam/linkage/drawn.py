@@ -175,7 +175,8 @@ def aged_drawn_body(link: DrawnLink, thickness: float, dry_density: float, moist
 
 def aged_drawn_length(link: DrawnLink, history, strain_x) -> np.ndarray:
     """A drawn link's aged pin-to-pin length [m] at each ageing time: the distance between
-    its displaced pin centres (:func:`fickcam.elastic.displacement.uneven_pin_shifts`), the
+    its displaced pin centres (:func:`fickcam.elastic.displacement.field_pin_shifts` on the
+    plane model's own mesh, graded toward the drawn corners), the
     mean strain's L (1 + eps_x) plus the shift of its moisture field's unevenness over the
     drawn planform (the plane model's mid-plane field through the thickness with the exact
     sheet); L (1 + eps_x) where the history holds no field (the as-designed state, a state
@@ -200,12 +201,19 @@ def aged_drawn_length(link: DrawnLink, history, strain_x) -> np.ndarray:
     if getattr(result, "fields", None) is None or history.sheet is None:
         return link.length * (1.0 + np.asarray(strain_x, float))
     # imported here: scikit-fem and scipy's interpolation, which only a drawn link's run needs
-    from ..elastic.displacement import aged_pin_distance, field_inputs, uneven_pin_shifts
+    from ..elastic import displacement
+    from ..elastic.swelling import plane_nodal_moisture
 
-    moisture, expansion, stiffness = field_inputs(history, link.planform)
-    shift = uneven_pin_shifts(link.planform, link.pins, moisture, expansion,
-                              link.planform.extent() / MESH_ROWS, stiffness=stiffness)
-    return aged_pin_distance(link.length, strain_x, shift)
+    moisture, expansion, stiffness = displacement.field_inputs(history, link.planform)
+    nodal = plane_nodal_moisture(result, history.part.geometry.thickness, history.sheet)
+    if nodal is None:  # a model without its own mesh: the field read on a mesh of the drawing
+        shift = displacement.uneven_pin_shifts(link.planform, link.pins, moisture, expansion,
+                                               link.planform.extent() / MESH_ROWS,
+                                               stiffness=stiffness)
+    else:
+        shift = displacement.field_pin_shifts(nodal, link.planform, link.pins, expansion,
+                                              stiffness=stiffness)
+    return displacement.aged_pin_distance(link.length, strain_x, shift)
 
 
 def in_plane_half_size(link: DrawnLink) -> float:

@@ -524,7 +524,8 @@ def solve_plane(problem: DiffusionProblem, chosen: Plan, cache: RunCache | None 
     if store_fields:
         fields, coordinates = _plane_fields(geometry, history, u_plane, planar, chosen, end,
                                             surface_layer_depth, part)
-        return replace(result, fields=fields, cell_coordinates=coordinates)
+        mesh = planform_mesh(geometry, chosen.finest, chosen.growth, stretch_of(d), cache)
+        return replace(result, fields=fields, cell_coordinates=coordinates, planform=mesh)
     if history.record is not None:
         return replace(result, extend=extension(result, lambda at: superposed(history.at(at),
                                                                                levels)))

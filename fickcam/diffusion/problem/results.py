@@ -75,6 +75,10 @@ class DiffusionResult:
         Two-phase (Langmuir) sorption: the bound-water mean [weight %].
     cell_coordinates : dict of str to numpy.ndarray
         The cells' centres [m] per axis, with ``fields``.
+    planform : fickcam.diffusion.planform.triangles.Triangulation, optional
+        The plane model's triangle mesh [m], with ``fields``: the P1 field lives on its
+        nodes, those off the outline carrying ``fields`` in order, those on it held at the
+        surface value.
     extend : callable, optional
         ``extend(at)`` [s]: this result with rows at ``at`` added (a new result).
     """
@@ -90,6 +94,7 @@ class DiffusionResult:
     fields: np.ndarray | None = None
     bound: np.ndarray | None = None  # two-phase (Langmuir) sorption: bound-water mean, weight %
     cell_coordinates: dict[str, np.ndarray] = field(default_factory=dict)
+    planform: object | None = field(default=None, repr=False)
     #: ``extend(at)``: this result at its times and ``at`` (inside their span) together,
     #: the new rows from the stored solve's plan and tables (the limit search); None where
     #: only a new solve can say
@@ -105,5 +110,6 @@ class DiffusionResult:
         both = self.bound is not None and bound is not None
         return replace(self, times=rows(self.times, times), mean=rows(self.mean, mean),
                        surface=rows(self.surface, surface), fields=None,
-                       bound=rows(self.bound, bound) if both else None, extend=None)
+                       bound=rows(self.bound, bound) if both else None, extend=None,
+                       planform=None)
 
