@@ -12,9 +12,6 @@ import pytest
 
 PACKAGE = Path(__file__).resolve().parents[1] / "fickcam"
 HEAVY = {"fipy", "matplotlib", "dask", "distributed"}  # may be imported inside functions
-#: imported inside diffusion's functions too: scipy.interpolate (and the scipy.optimize and
-#: scipy.linalg it brings) only where a step response is interpolated, not by every run
-DEFERRED = {"scipy.interpolate"}
 MAX_FUNCTION_LINES = 80
 
 
@@ -129,7 +126,7 @@ def test_diffusion_imports_at_module_top_except_heavy_libraries():
                 else:
                     continue
                 late += [f"{path.name}:{node.lineno} {n}" for n in names
-                         if n.split(".")[0] not in HEAVY and n not in DEFERRED]
+                         if n.split(".")[0] not in HEAVY]
     assert late == []
 
 

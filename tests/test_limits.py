@@ -8,7 +8,8 @@ import yaml
 
 import fickcam
 from fickcam.cli.main import main
-from fickcam.results.limits import FLOOR, POINTS, RELATIVE, Tolerance, first_crossings, limit_ratio
+from fickcam.results.limits import (FLOOR, POINTS, RELATIVE, Tolerance, first_crossings, limit_ratio,
+                                    polynomial_crossing)
 from fickcam.scene.limits import Limit, LimitSpec, parse_limit
 from fickcam.schema import VARIABLES
 from fickcam.simulation.limitsearch import search_notices
@@ -276,3 +277,20 @@ def test_a_search_estimate_above_the_accuracy_is_noticed_only_where_the_stored_w
     assert len(notices) == 1 and notices[0].startswith("coupler: estimated diffusion error "
                                                        "2.0e-03 at the limit search's times")
     assert "accuracy 0.001" in notices[0]
+
+
+@pytest.mark.parametrize("root", [0.0, 1e-9, 0.3, 0.999, 1.0])
+@pytest.mark.parametrize("degree", [1, 2, 3])
+def test_the_crossing_is_the_root_of_the_line_quadratic_or_cubic(degree, root):
+    # r - 1 = (x - root)(x + 2)^(degree - 1): the one root in [0, 1], a sign change there
+    x = np.linspace(-0.5, 1.5, degree + 1)
+    r = 1.0 + (x - root) * (x + 2.0) ** (degree - 1)
+    found = polynomial_crossing(10.0 + 5.0 * x, r, 10.0, 15.0)
+    assert found == pytest.approx(10.0 + 5.0 * root, abs=64 * np.finfo(float).eps * 15.0)
+
+
+def test_the_crossing_is_the_first_of_three_roots():
+    # r - 1 = (x - 0.2)(x - 0.5)(x - 0.8): three crossings in [0, 1], the first is taken
+    x = np.array([-0.1, 0.35, 0.65, 1.1])
+    r = 1.0 + (x - 0.2) * (x - 0.5) * (x - 0.8)
+    assert polynomial_crossing(x, r, 0.0, 1.0) == pytest.approx(0.2, abs=1e-14)

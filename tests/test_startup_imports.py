@@ -1,5 +1,7 @@
 """What a run of the demo scene imports: nothing the scene does not use (no dask, matplotlib,
-FiPy or scikit-fem), checked in a fresh interpreter each (``sys.modules`` after the run)."""
+FiPy, scikit-fem or ezdxf, and neither scipy.interpolate nor the scipy.optimize and scipy.fft
+it brings, a tenth of the demo's run), checked in a fresh interpreter each (``sys.modules`` after
+the run)."""
 import json
 import subprocess
 import sys
@@ -8,8 +10,10 @@ from pathlib import Path
 import pytest
 
 DEMO = Path(__file__).resolve().parents[1] / "configs" / "singh2017_cam.yaml"
-#: packages the demo scene does not use (plots, FiPy and scikit-fem solvers, sweeps)
-UNUSED = ("dask", "distributed", "matplotlib", "fipy", "skfem")
+#: packages the demo scene does not use (plots, FiPy and scikit-fem solvers, sweeps, DXF
+#: drawings, SciPy's splines and root finders)
+UNUSED = ("dask", "distributed", "matplotlib", "fipy", "skfem", "ezdxf", "scipy.interpolate",
+          "scipy.optimize")
 IMPORTED = f"[m for m in {UNUSED!r} if sys.modules.get(m) is not None]"
 
 

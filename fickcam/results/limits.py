@@ -308,27 +308,50 @@ def _interpolated(samples: dict, lo: float, hi: float,
     if not np.isfinite(r).all():
         return None
     u, ends = _root_time(t), _root_time([lo, hi])
-    cubic = _crossing(u, r, *ends) ** 2
-    estimates = [abs(_crossing(u[three], r[three], *ends) ** 2 - cubic)
+    cubic = polynomial_crossing(u, r, *ends) ** 2
+    estimates = [abs(polynomial_crossing(u[three], r[three], *ends) ** 2 - cubic)
                  for three in (slice(0, 3), slice(1, 4)) if lo in t[three] and hi in t[three]]
     if not estimates or max(estimates) > within:
         return None
     return float(cubic), float(max(estimates))
 
 
-def _crossing(x: np.ndarray, r: np.ndarray, lo: float, hi: float) -> float:
-    """Where the polynomial through (x, r) crosses 1 in [lo, hi] (it interpolates r(lo) <=
-    1 < r(hi): a sign change), by Brent's method on the scaled variable."""
-    # deferred: keeps scipy.optimize off the start-up path
-    from scipy.optimize import brentq
+def polynomial_crossing(x: np.ndarray, r: np.ndarray, lo: float, hi: float) -> float:
+    """Where the polynomial through (x, r) crosses 1 in [lo, hi], which it meets as
+    r(lo) <= 1 < r(hi): its first root there.
 
+    The roots are the eigenvalues of the polynomial's companion matrix (on x scaled to
+    [0, 1]; numpy.polynomial.polynomial.polyroots). A simple real root is computed real (a
+    real matrix's complex eigenvalues come in conjugate pairs), so the root of the sign
+    change is among the real ones; one that round-off moved just outside the bracket is
+    taken at its end.
+
+    Parameters
+    ----------
+    x : numpy.ndarray
+        The abscissae of the samples [any unit], two to four of them.
+    r : numpy.ndarray
+        The ratios at them [-].
+    lo, hi : float
+        The bracket [unit of x].
+
+    Returns
+    -------
+    float
+        The crossing [unit of x]; an end of the bracket when the fit, by its round-off,
+        does not change sign across it.
+    """
     x = (x - lo) / (hi - lo)
     coefficients = np.polynomial.polynomial.polyfit(x, r - 1.0, x.size - 1)
     ends = np.polynomial.polynomial.polyval([0.0, 1.0], coefficients)
     if not ends[0] <= 0.0 < ends[1]:   # the fit's round-off at a sample on 1: the ends
         return float(lo if ends[0] > 0.0 else hi)
-    root = brentq(lambda v: np.polynomial.polynomial.polyval(v, coefficients), 0.0, 1.0,
-                  xtol=1e-12)
+    roots = np.polynomial.polynomial.polyroots(coefficients)
+    real = np.sort(roots.real[roots.imag == 0.0])
+    if not real.size:  # not met with a sign change; the line through the ends then
+        return float(lo + ends[0] / (ends[0] - ends[1]) * (hi - lo))
+    held = np.clip(real, 0.0, 1.0)
+    root = held[np.argmin(np.abs(real - held))]  # the first inside, else the nearest
     return float(lo + root * (hi - lo))
 
 

@@ -11,6 +11,7 @@ import numpy as np
 
 from ..planform.short_time import weighted
 from . import march as marching
+from .pchip import Pchip
 from .step_plans import StepPlan
 from .step_plans import geometric_steps
 
@@ -54,11 +55,8 @@ class StepResponse:
         return out
 
 
-    def _spline(self, values: np.ndarray):
-        # deferred: keeps scipy.interpolate off the start-up path
-        from scipy.interpolate import PchipInterpolator
-
-        return PchipInterpolator(np.log(self.nodes[1:]), values[1:], axis=0, extrapolate=True)
+    def _spline(self, values: np.ndarray) -> Pchip:
+        return Pchip.through(np.log(self.nodes[1:]), values[1:])
 
     @cached_property
     def _mean_spline(self):
