@@ -29,3 +29,18 @@ def test_every_source_path_named_in_the_docs_exists():
                for path in PATH.findall(line)
                if not any(place.exists() for place in places(path))]
     assert not missing, "paths that do not exist:\n" + "\n".join(missing)
+
+
+CONFLICT = re.compile(r"^(<{7}|>{7})( |$)")
+
+
+def test_no_page_source_or_test_keeps_a_merge_conflict_marker():
+    """A merge resolved by hand can leave a ``<<<<<<<`` or ``>>>>>>>`` line behind (the
+    changelog, where parallel work meets, most often); Markdown renders it as text."""
+    files = [ROOT / "README.md", ROOT / "CONTRIBUTING.md", *sorted((ROOT / "docs").rglob("*.md")),
+             *sorted((ROOT / "fickcam").rglob("*.py")), *sorted((ROOT / "tests").rglob("*.py"))]
+    found = [f"{path.relative_to(ROOT)}:{number}"
+             for path in files if "_build" not in path.parts
+             for number, line in enumerate(path.read_text().splitlines(), 1)
+             if CONFLICT.match(line)]
+    assert found == []

@@ -260,3 +260,24 @@ def test_after_a_wet_tg_stop_the_drift_shows_what_was_computed_and_says_where_an
     drift = figures["cam_drift.png"].axes
     assert all("no ageing time after t = 0 d is computed" in [t.get_text() for t in ax.texts]
                for ax in drift)
+
+
+def test_vibration_shows_the_elastic_follower_against_the_rigid_one_and_its_train_over_ageing(
+        figures, tmp_path):
+    ds = fickcam.run(scene("epoxy_follower_vibration", ageing_times=["0 d", "365 d"],
+                           angle_step="5 deg"))
+    plotting.plot(ds, tmp_path, "vibration", save=figures)
+    over_angle = figures["cam_vibration.png"].axes
+    assert [ax.get_ylabel() for ax in over_angle] == [
+        "displacement [mm]", "dynamic − kinematic [mm]", "contact force [N]"]
+    elastic = [line for line in lines_of(over_angle[0]) if line.get_linestyle() == "-"]
+    rigid = [line for line in lines_of(over_angle[0]) if line.get_linestyle() == "--"]
+    assert len(elastic) == len(rigid) == 2
+    assert np.allclose(elastic[-1].get_ydata(),
+                       ds.dynamic_follower_displacement.isel(time=-1).values * 1e3)
+    assert np.allclose(rigid[0].get_ydata(), ds.follower_displacement.isel(time=0).values * 1e3)
+    assert legend_clear_of_axes(over_angle[0], over_angle[0].get_legend())
+    ageing = figures["cam_vibration_ageing.png"].axes
+    assert np.allclose(ageing[0].get_lines()[0].get_ydata(), ds.natural_frequency.values)
+    assert [t.get_text() for t in ageing[1].get_legend().get_texts()] == ["elastic (dynamic)", "rigid"]
+    assert ageing[2].get_ylabel() == "residual vibration [mm]"
