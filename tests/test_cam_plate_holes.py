@@ -115,9 +115,12 @@ def test_a_written_cam_plate_with_lightening_holes_is_checked_with_its_real_mass
     assert holes / bore == pytest.approx(1 - np.pi * (9 + 2.25) / area, rel=1.2e-3)
 
 
-def test_a_cam_plate_with_lightening_holes_refuses_the_elastic_contact(tmp_path, capsys):
-    err = refused(capsys, scene(tmp_path, "elastic", outline=DISC, holes=HOLES, elastic=True))
-    assert "cam.elastic:" in err and "given as holes[1]" in err
+def test_a_cam_plate_with_lightening_holes_and_no_bore_refuses_the_elastic_contact(
+        tmp_path, capsys):
+    assert main(["check", str(scene(tmp_path, "bore", outline=DISC, holes=HOLES,
+                                    elastic=True))]) == 0
+    err = refused(capsys, scene(tmp_path, "elastic", outline=DISC, holes=HOLES[1:], elastic=True))
+    assert "cam.elastic:" in err and "given as holes[0]" in err and "draw the bore" in err
 
 
 @pytest.mark.slow  # a run of the example cam plate (about 5 s)

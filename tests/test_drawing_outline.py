@@ -81,9 +81,9 @@ SQUARE = [[20.0, -20.0], [20.0, 20.0], [-20.0, 20.0], [-20.0, -20.0]]
      "cam.holes.0:", "hole outside the outline"),
     ({"outline": mm(SQUARE), "holes": [mm([[30, 0], [40, 0], [35, 5]])]}, "cam.holes.0:",
      "hole outside the outline: the loop given as holes[0]"),
-    ({"outline": mm(SQUARE), "holes": [{"centre": ["0 mm", "0 mm"], "radius": "5 mm"},
-                                       {"centre": ["10 mm", "0 mm"], "radius": "3 mm"}],
-      "elastic": True}, "cam.elastic:", "without other holes (given as holes[1])"),
+    ({"outline": mm(SQUARE), "holes": [{"centre": ["10 mm", "0 mm"], "radius": "3 mm"}],
+      "elastic": True}, "cam.elastic:", "holes (given as holes[0]) at its bore, and this one "
+                                        "has none"),
     ({"holes": [{"centre": ["0 mm", "0 mm"], "radius": "5 mm"}]}, "cam:", "give outline too"),
     ({"outline": mm(SQUARE), "base_circle_radius": "20 mm"}, "cam:", "give one of"),
     ({"outline": mm(SQUARE), "holes": [{"centre": ["0 mm", "0 mm"], "radius": "5 mm"}],

@@ -145,10 +145,11 @@ def read_cam_drawing(section, base_dir: Path, accuracy: float):
     except (DrawingError, MissingExtra) as exc:
         return [(("drawing",) if drawn else polygon_key(str(exc)), str(exc))], section, None, 0.0
     problems = []
-    if part.other_holes and section.elastic:
+    if part.other_holes and part.bore is None and section.elastic:
         sources = ", ".join(h.source for h in part.other_holes)
-        problems.append((("elastic",), f"the elastic contact is modelled on a plate held at its "
-                                       f"bore without other holes ({sources}); leave elastic out"))
+        problems.append((("elastic",), f"the elastic contact holds a plate with holes ({sources}) "
+                                       f"at its bore, and this one has none: draw the bore, or "
+                                       f"leave elastic out"))
     given = "bore_radius" in section.model_fields_set
     if given and part.bore is not None and abs(section.bore_radius - part.bore_radius) > BORE_AGREES:
         problems.append((("bore_radius",), f"the plate's bore has radius "

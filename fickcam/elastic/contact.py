@@ -66,9 +66,10 @@ class CamPlateModel:
 
 
 def cam_plate_model(points, triangles, thickness: float, bore_radius: float, spacing: float,
-                    order: int = 2) -> CamPlateModel:
+                    order: int = 2, loops=None) -> CamPlateModel:
     """Elements of a cam plate mesh held on the bore circle (radius ``bore_radius`` about
-    the origin, the rotation axis).
+    the origin, the rotation axis), or, for a drawn plate with other holes (``loops``), held
+    on its drawn bore and loaded on its drawn outline, every other hole free.
 
     Parameters
     ----------
@@ -84,6 +85,9 @@ def cam_plate_model(points, triangles, thickness: float, bore_radius: float, spa
         Mesh spacing along the profile [m].
     order : int
         Lagrange element order (1 or 2).
+    loops : tuple of numpy.ndarray, optional
+        (the outline, the bore) of a drawn plate, each its vertices [m], shape (k, 2): the
+        facets within a quarter of ``spacing`` of each; None: by their distance from the axis.
 
     Returns
     -------
@@ -91,11 +95,41 @@ def cam_plate_model(points, triangles, thickness: float, bore_radius: float, spa
         The model.
     """
     pe = PlaneElasticity(points, triangles, thickness, order)
-    on_bore = pe.boundary_facets(lambda x, y: np.hypot(x, y) < bore_radius + 0.25 * spacing)
-    profile = pe.boundary_facets(lambda x, y: np.hypot(x, y) >= bore_radius + 0.25 * spacing)
+    if loops is None:
+        on_bore = pe.boundary_facets(lambda x, y: np.hypot(x, y) < bore_radius + 0.25 * spacing)
+        profile = pe.boundary_facets(lambda x, y: np.hypot(x, y) >= bore_radius + 0.25 * spacing)
+    else:
+        profile, on_bore = (pe.boundary_facets(near_loop(loop, 0.25 * spacing)) for loop in loops)
     qp, normals, lengths, operator = pe.traction_operator(profile)
     strain, _ = pe.strain_operator()
     return CamPlateModel(pe, pe.facet_dofs(on_bore), qp, normals, lengths, operator, strain, spacing)
+
+
+def near_loop(loop, distance: float):
+    """``keep(x, y)``: whether points lie within ``distance`` of a closed loop's edges.
+
+    Parameters
+    ----------
+    loop : array_like
+        The loop's vertices [m], shape (k, 2).
+    distance : float
+        The largest distance [m].
+
+    Returns
+    -------
+    callable
+        ``keep(x, y)`` of coordinate arrays [m] -> bool array.
+    """
+    start = np.asarray(loop, float)
+    edge = np.roll(start, -1, axis=0) - start
+    length2 = np.maximum((edge * edge).sum(axis=1), np.finfo(float).tiny)
+
+    def keep(x, y):
+        p = np.column_stack([np.ravel(x), np.ravel(y)])[:, None, :] - start[None]
+        t = np.clip((p * edge).sum(axis=2) / length2, 0.0, 1.0)
+        gap = np.hypot(*(p - t[..., None] * edge).transpose(2, 0, 1)).min(axis=1)
+        return (gap <= distance).reshape(np.shape(x))
+    return keep
 
 
 def hertz_half_width(force, peak_pressure, length):
