@@ -4,7 +4,7 @@ response is read through between its nodes.
 The slopes at the nodes are Fritsch and Butland's weighted harmonic mean of the two
 neighbouring secants (zero where the data turn or stay flat), the end slopes Moler's
 one-sided three-point formula kept to the data's shape; between two nodes the interpolant is
-the cubic with those values and slopes. It is :class:`scipy.interpolate.PchipInterpolator`'s
+the cubic with those values and slopes. It is ``scipy.interpolate.PchipInterpolator``'s
 interpolant, computed operation for operation as SciPy computes it (the slopes, the cubic's
 power-basis coefficients and their evaluation), so that it reads the same values; it is
 written out here because importing ``scipy.interpolate`` imports ``scipy.optimize`` and
