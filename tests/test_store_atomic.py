@@ -109,7 +109,11 @@ READY = Path(sys.argv[1])
 def stalled(ds, target):  # the temporary file is open and half written when the signal comes
     target.write(b"half a result")
     READY.write_text("writing")
-    time.sleep(60)
+    # short sleeps, as a real write returns to Python often: the kernel may hand the signal
+    # to another thread (a BLAS pool's), and then one long sleep in the main thread would not
+    # be cut short; Python raises it in the main thread at its next step
+    for _ in range(600):
+        time.sleep(0.1)
 
 fickcam.results.store._write_netcdf = stalled
 sys.argv = ["fickcam", "run", sys.argv[2], "-o", sys.argv[3], "-qq"]
@@ -145,7 +149,8 @@ from fickcam.files import temporary_beside
 
 with temporary_beside(Path(sys.argv[1])) as tmp:
     print(tmp, flush=True)
-    time.sleep(60)
+    for _ in range(600):  # short sleeps: a signal another thread takes still stops it soon
+        time.sleep(0.1)
 """
 
 
