@@ -55,9 +55,8 @@ def crank(dogbone):
 
 
 def test_the_plane_model_s_field_is_the_same_function_on_its_own_mesh(crank):
-    """The nodal field holds the engine's stored values at its free nodes and the face
-    value on the outline: its mean over the planform is the thickness-mean moisture the
-    part's mean rests on, at every age (the quadrature of a P1 field on its own mesh)."""
+    """The nodal field lives on the plane model's own mesh, which covers the drawing to its
+    chords, and rises with age from the uniform dry start."""
     link, field, _, times = crank
     corners = field.points[field.triangles]
     (ax, ay), (bx, by) = ((corners[:, k] - corners[:, 0]).T for k in (1, 2))

@@ -66,7 +66,7 @@ def williams_exponent(angle: float) -> float:
     for sign in (1.0, -1.0):
         def equation(exponent, sign=sign):
             return math.sin(exponent * angle) + sign * exponent * math.sin(angle)
-        values = np.array([equation(x) for x in grid])
+        values = np.sin(grid * angle) + sign * grid * math.sin(angle)
         change = np.flatnonzero(np.sign(values[:-1]) * np.sign(values[1:]) < 0)
         roots += [brentq(equation, grid[i], grid[i + 1], xtol=1e-14) for i in change[:1]]
     return float(min(roots))

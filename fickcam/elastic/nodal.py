@@ -17,7 +17,6 @@ from scipy.spatial import cKDTree
 
 from .corners import ROUNDS, SPLIT_ABOVE, target_sizes
 from .fem import refined_triangles
-from .mesh import PlateMesh
 
 
 @dataclass(frozen=True, eq=False)
@@ -37,11 +36,6 @@ class NodalField:
     points: np.ndarray
     triangles: np.ndarray
     values: np.ndarray
-
-    @property
-    def mesh(self) -> PlateMesh:
-        """The triangle mesh [m]."""
-        return PlateMesh(self.points, self.triangles)
 
     def longest_edges(self) -> np.ndarray:
         """Each triangle's longest edge [m], shape (m,)."""
@@ -95,11 +89,11 @@ class NodalField:
             The field on the graded mesh (this one where there is no corner).
         """
         field = self
-        if not corners:
-            return field
         near = np.min([np.hypot(*(self.points[self.triangles].mean(axis=1) - c).T)
-                       for c, _ in corners], axis=0) < radius
-        size = float(self.longest_edges()[near].max()) if near.any() else 0.0
+                       for c, _ in corners], axis=0) < radius if corners else []
+        if not np.any(near):
+            return field
+        size = float(self.longest_edges()[near].max())
         for _ in range(ROUNDS):
             centroids = field.points[field.triangles].mean(axis=1)
             split = np.flatnonzero(field.longest_edges()
