@@ -42,7 +42,7 @@ from ..cam.design import cam_design
 from ..cam.drawn import CHORD_SHARE, DEFAULT_ACCURACY, outline_shifts
 from ..cam.kinematics import working_profile
 from .core import OUTLINE_SHIFT, OUTLINE_VERTEX, PROFILE_NAMES, Target, scene_from
-from .drawn import best_scales, made_cam_writer, made_outline_holes
+from .drawn import ANISOTROPY, best_scales, made_cam_writer, made_outline_holes
 from ..quantities.parsing import to_si
 from ..scene.load import CAM_SHAPE_KEYS
 
@@ -392,11 +392,6 @@ def made_outline(data: dict, base_dir: Path, points: int):
     """
     section = scene_from(data, base_dir, "<compensated scene>").model.cam
     return working_profile(cam_design(section), n=points)
-
-
-#: a parametric cam's in-plane strains differ by more than this fraction of the larger:
-#: the report suggests making it as points
-ANISOTROPY = 0.1
 
 
 def anisotropy_note(comp) -> list[str]:

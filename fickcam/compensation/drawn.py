@@ -38,15 +38,17 @@ from ..linkage.drawn import CHORD_SHARE as LINK_CHORD_SHARE
 
 #: two scales closer than this (relative) make a similarity
 SAME_SCALE = 1e-12
-#: a made outline's two best scales whose changes from 1 agree within this share of the
-#: larger are one (the threshold of an anisotropic cam in ``fickcam.compensation.cam``)
-ALIKE = 0.1
+#: two in-plane changes (a cam's strains along and across, a made outline's two best
+#: scales' departures from 1) that differ by more than this share of the larger are
+#: anisotropic: a parametric cam is then better made as points, a made plate's holes are
+#: not scaled alike in x and y
+ANISOTROPY = 0.1
 
 
 def best_scales(design, made) -> tuple[float, float]:
     """The scales (x, y) [-] about the axis that take the design's outline vertices closest
     to the made ones (least squares: sum(m d) / sum(d d)), one for both axes where their
-    changes from 1 agree within ``ALIKE`` of the larger (a plate that swells alike in its
+    changes from 1 agree within ``ANISOTROPY`` of the larger (a plate that swells alike in its
     plane, whose field's displacement alone sets them apart: its holes stay round), one per
     axis otherwise; exactly the made outline's where it is the design's scaled.
 
@@ -62,7 +64,7 @@ def best_scales(design, made) -> tuple[float, float]:
     """
     design, made = np.asarray(design, float), np.asarray(made, float)
     sx, sy = (made * design).sum(axis=0) / (design * design).sum(axis=0)
-    if abs(sx - sy) <= ALIKE * max(abs(1.0 - sx), abs(1.0 - sy)):
+    if abs(sx - sy) <= ANISOTROPY * max(abs(1.0 - sx), abs(1.0 - sy)):
         sx = sy = float((made * design).sum() / (design * design).sum())
     return float(sx), float(sy)
 
