@@ -98,22 +98,24 @@ def test_kill_9_at_random_moments_never_leaves_an_unreadable_result(tmp_path):
 
 
 SLOW_WRITE = """
-import sys, time
+import signal, sys, time
 from pathlib import Path
 import fickcam.results.store
 from fickcam.cli.main import process_main
 
 READY = Path(sys.argv[1])
+# Ctrl-C as in a terminal's foreground, whatever this process inherited: a shell starts a
+# background job (a CI script run with &) with SIGINT ignored, which Python then leaves
+# ignored, and a blocked signal stays blocked across exec; either way the signal did
+# nothing and the test timed out
+signal.signal(signal.SIGINT, signal.default_int_handler)
+signal.pthread_sigmask(signal.SIG_UNBLOCK, {signal.SIGINT, signal.SIGTERM})
 
 
 def stalled(ds, target):  # the temporary file is open and half written when the signal comes
     target.write(b"half a result")
     READY.write_text("writing")
-    # short sleeps, as a real write returns to Python often: the kernel may hand the signal
-    # to another thread (a BLAS pool's), and then one long sleep in the main thread would not
-    # be cut short; Python raises it in the main thread at its next step
-    for _ in range(600):
-        time.sleep(0.1)
+    time.sleep(60)
 
 fickcam.results.store._write_netcdf = stalled
 sys.argv = ["fickcam", "run", sys.argv[2], "-o", sys.argv[3], "-qq"]
@@ -149,8 +151,7 @@ from fickcam.files import temporary_beside
 
 with temporary_beside(Path(sys.argv[1])) as tmp:
     print(tmp, flush=True)
-    for _ in range(600):  # short sleeps: a signal another thread takes still stops it soon
-        time.sleep(0.1)
+    time.sleep(60)
 """
 
 
