@@ -29,6 +29,7 @@ from ..materials.bodies import plate_body
 from ..mechanisms.ageing import over_ageing
 from ..mechanisms.part import Part
 from ..mechanisms.response import Response, peak
+from ..schema import VARIABLES
 from .arm_spec import reach_problems
 from .design import CamDesign, CamState, cam_design
 from .drawn import aged_drawn_designs, describe_plate, read_cam_drawing
@@ -227,7 +228,7 @@ class CamMechanism:
         return lines + [f"follower: {describe_arm(self.design)}"]
 
     def response(self, histories: dict, times, angles, valid,
-                 on_step=lambda: None) -> Response:
+                 on_step=lambda: None, wanted=None) -> Response:
         """The cam over ageing: variables (time, ...) and notices; ``wear_depth`` accumulates
         the deepest Archard wear rate over the ageing times (trapezoid rule); the cam
         plate's elastic contact when the section asks for it.
@@ -244,6 +245,9 @@ class CamMechanism:
             Per ageing time: the parts are within their models' range (False: NaN there).
         on_step : callable
             Called once per ageing time evaluated (a progress bar).
+        wanted : frozenset of str, optional
+            The only variables the caller reads: without ``jump_speed`` its search is left
+            out, without an elastic variable the elastic contact. None: every variable.
 
         Returns
         -------
@@ -253,8 +257,10 @@ class CamMechanism:
         aged = None
         if "cam" in self.field_parts:  # the profile its moisture field displaces
             aged = partial(aged_drawn_designs, self.motion_design, self.planform, histories["cam"])
-        result = rigid_response(self.motion_design, histories, times, angles, valid, on_step, aged)
-        if self.section.elastic:
+        result = rigid_response(self.motion_design, histories, times, angles, valid, on_step, aged,
+                                jump=wanted is None or "jump_speed" in wanted)
+        if self.section.elastic and (wanted is None or any(VARIABLES[name].section == "elastic"
+                                                           for name in wanted)):
             from ..elastic.cam import cam_elastic_response  # scikit-fem: only an elastic cam
 
             elastic = cam_elastic_response(self.design, histories["cam"].state,
@@ -322,7 +328,7 @@ def cam_state(design, histories: dict, k: int) -> CamState:
 
 
 def rigid_response(design: CamDesign, histories: dict, times, angles, valid,
-                   on_step=lambda: None, aged=None) -> Response:
+                   on_step=lambda: None, aged=None, jump: bool = True) -> Response:
     """The rigid cam of ``design`` over ageing (:meth:`CamMechanism.response` but the
     elastic contact).
 
@@ -344,6 +350,8 @@ def rigid_response(design: CamDesign, histories: dict, times, angles, valid,
         ``aged(states)`` of the states by ageing index gives the design of each index whose
         profile is not the design's scaled by the state's strains (a drawn cam's displaced
         outline, :func:`fickcam.cam.drawn.aged_drawn_designs`); None: none.
+    jump : bool
+        Search the jump speed; False: ``jump_speed`` is left out, and its notice.
 
     Returns
     -------
@@ -359,7 +367,7 @@ def rigid_response(design: CamDesign, histories: dict, times, angles, valid,
     fitted = fitted_motions(design, states)
     fitted = None if fitted is None else fitted.sampled(angles)  # every time at once
     motions = {} if fitted is None else {k: fitted.motion(k) for k in fitted.indices}
-    jumps = jump_speeds_over_ageing(design, states, angles, fitted)
+    jumps = jump_speeds_over_ageing(design, states, angles, fitted, search=jump)
 
     def evaluate(k: int) -> Response:
         state, aged_design = states[k], designs.get(k, design)
@@ -373,6 +381,8 @@ def rigid_response(design: CamDesign, histories: dict, times, angles, valid,
         return response
 
     result = over_ageing(times, valid, evaluate, on_step)
+    if not jump:  # not searched
+        result.variables.pop("jump_speed", None)
     rate = result.variables.get("wear_rate")
     if rate is not None:
         steps = np.diff(times) * 0.5 * (rate[1:] + rate[:-1])

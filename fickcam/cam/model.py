@@ -355,7 +355,8 @@ def continuous_jump_speeds(design: CamDesign, motion, masses, theta, d2, holding
     return np.where(searched, np.sqrt(best), on_grid)
 
 
-def jump_speeds_over_ageing(design: CamDesign, states: dict, theta, fitted=None) -> dict:
+def jump_speeds_over_ageing(design: CamDesign, states: dict, theta, fitted=None,
+                            search: bool = True) -> dict:
     """The jump speeds of the ageing times whose aged motion has a closed form, and of those
     ``fitted`` together, searched for all of them at once (:func:`continuous_jump_speeds`);
     a translating follower only.
@@ -371,6 +372,8 @@ def jump_speeds_over_ageing(design: CamDesign, states: dict, theta, fitted=None)
     fitted : fickcam.cam.kinematics.FittedMotions, optional
         The spectral fits of the other ageing times, made together
         (:func:`~fickcam.cam.kinematics.fitted_motions`).
+    search : bool
+        Search them; False: the same indices with NaN (the jump speed is not asked for).
 
     Returns
     -------
@@ -394,9 +397,11 @@ def jump_speeds_over_ageing(design: CamDesign, states: dict, theta, fitted=None)
         def motion(angles, orders=ORDERS, form=form, stacked=stacked):
             return picked(form.heights(design, stacked, angles), orders)
 
-        speeds.update(_stacked_jump_speeds(design, motion, indices, states, theta))
+        speeds.update(_stacked_jump_speeds(design, motion, indices, states, theta) if search
+                      else dict.fromkeys(indices, math.nan))
     if fitted is not None:
-        speeds.update(_stacked_jump_speeds(design, fitted.rows, fitted.indices, states, theta))
+        speeds.update(_stacked_jump_speeds(design, fitted.rows, fitted.indices, states, theta)
+                      if search else dict.fromkeys(fitted.indices, math.nan))
     return speeds
 
 
@@ -509,16 +514,17 @@ def jump_notices(theta, axial, jump: float, omega: float) -> list[str]:
         The force the cam must supply at them [N] (an arm's torque [N m]): the notice
         names the angle where it is least.
     jump : float
-        The jump speed [rad/s].
+        The jump speed [rad/s]; NaN where it was not searched.
     omega : float
         The running speed [rad/s].
 
     Returns
     -------
     list of str
-        One sentence, or none where the running speed is below the jump speed.
+        One sentence, or none where the running speed is below the jump speed (or the
+        jump speed is not known).
     """
-    if omega < jump:
+    if not omega >= jump:
         return []
     k = int(np.argmin(axial))
     return [f"follower jumps at the running speed: contact force falls to zero near "

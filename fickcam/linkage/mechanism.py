@@ -182,7 +182,7 @@ class LinkageMechanism:
                 for link, drawn in self.drawn.items()]
 
     def response(self, histories: dict, times, angles, valid,
-                 on_step=lambda: None) -> Response:
+                 on_step=lambda: None, wanted=None) -> Response:
         """The four-bar over ageing (:func:`linkage_response`).
 
         Parameters
@@ -197,6 +197,8 @@ class LinkageMechanism:
             Per ageing time, whether every link is within its model's range.
         on_step : callable
             Called after each ageing time is evaluated (progress).
+        wanted : frozenset of str, optional
+            The variables the caller reads; unused (a four-bar's are all made together).
 
         Returns
         -------

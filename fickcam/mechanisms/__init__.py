@@ -179,7 +179,8 @@ class Mechanism(Protocol):
         """
 
     def response(self, histories: dict, times, angles, valid,
-                 on_step: Callable[[], object] = lambda: None) -> Response:
+                 on_step: Callable[[], object] = lambda: None,
+                 wanted: frozenset | None = None) -> Response:
         """Its variables over the ageing times, from its parts' histories.
 
         Parameters
@@ -194,6 +195,9 @@ class Mechanism(Protocol):
             Per ageing time: its parts are within their models' range (NaN where not).
         on_step : callable
             Called once per ageing time evaluated (a progress bar).
+        wanted : frozenset of str, optional
+            The only variables the caller reads (the limit search's limited ones): what
+            none of them needs may be left out, with its notices. None: every variable.
 
         Returns
         -------

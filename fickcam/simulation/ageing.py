@@ -16,7 +16,7 @@ import numpy as np
 from .._version import __version__
 from ..climate.environment import ClimateSeen, Environment
 from ..diffusion import solve_problem
-from ..elastic.parts import sheet_profile, swelling_variables
+from ..elastic.parts import SWELLING, sheet_profile, swelling_variables
 from ..materials import material_state
 from ..materials.state import wet_tg_error
 from ..mechanisms.part import Part
@@ -142,7 +142,8 @@ def age_parts(scene: Scene, seen: ClimateSeen, options: RunOptions, parts: list[
 
 
 def aged_values(scene: Scene, seen: ClimateSeen, histories: list[PartHistory],
-                notices: list[str], elastic: frozenset[str], progress: bool = False):
+                notices: list[str], elastic: frozenset[str], progress: bool = False,
+                wanted: frozenset | None = None):
     """The climate, the parts' states, the mechanisms, the swelling stress of the
     ``elastic`` parts and the moisture fields at the ageing times, from the parts' histories.
 
@@ -160,6 +161,11 @@ def aged_values(scene: Scene, seen: ClimateSeen, histories: list[PartHistory],
         The parts whose swelling stress is asked for.
     progress : bool
         Show a bar over the ageing times.
+    wanted : frozenset of str, optional
+        The only variables the caller reads (the limit search's limited ones): the parts'
+        other states are left out, and the swelling stress and the moisture fields where
+        none of them is one; the mechanisms are told (``Mechanism.response``). None: every
+        variable.
 
     Returns
     -------
@@ -173,20 +179,20 @@ def aged_values(scene: Scene, seen: ClimateSeen, histories: list[PartHistory],
     coords: dict = {"time": times}
     if histories:
         coords["part"] = [h.part.name for h in histories]
-        values.update(part_values(histories))
+        values.update(part_values(histories, wanted))
     valid_all = np.logical_and.reduce([h.valid for h in histories]) if histories else \
         np.ones_like(times, bool)
     histories = with_sheets(scene, seen, histories)
-    mechanisms = mechanism_values(scene, histories, times, valid_all, bar.update)
+    mechanisms = mechanism_values(scene, histories, times, valid_all, bar.update, wanted)
     values.update(mechanisms.variables)
     coords.update(_mechanism_coords(scene))
     notices += mechanisms.notices
-    if elastic:
+    if elastic and (wanted is None or not wanted.isdisjoint(SWELLING)):
         bar.set_postfix_str("swelling stress")
         swelling, points = swelling_variables(histories, elastic, seen)
         values.update(swelling)
         coords.update(points)
-    if scene.model.outputs.fields:
+    if scene.model.outputs.fields and (wanted is None or "moisture" in wanted):
         fields, cells = field_values(histories, times)
         values.update(fields)
         coords.update(cells)
@@ -195,7 +201,7 @@ def aged_values(scene: Scene, seen: ClimateSeen, histories: list[PartHistory],
 
 
 def values_at_times(scene: Scene, seen: ClimateSeen, options: RunOptions,
-                    befores: list[PartHistory]):
+                    befores: list[PartHistory], wanted: frozenset | None = None):
     """The stored run's model as a function of ageing time, for the limit search:
     :func:`aged_values` at other times, given the stored run's climate and part histories.
 
@@ -215,6 +221,8 @@ def values_at_times(scene: Scene, seen: ClimateSeen, options: RunOptions,
         The run's diffusion options (its cache holds the stored run's plans).
     befores : list of PartHistory
         The stored run's parts' histories.
+    wanted : frozenset of str, optional
+        The only variables read (:func:`aged_values`); None: every variable.
 
     Returns
     -------
@@ -234,7 +242,8 @@ def values_at_times(scene: Scene, seen: ClimateSeen, options: RunOptions,
                               store_fields=fields or before.part.name in kept,
                               before=before.diffusion, solved=solved).at_rows(rows)
                      for before in befores]
-        return aged_values(scene, both.at_rows(rows), histories, notices, elastic)
+        return aged_values(scene, both.at_rows(rows), histories, notices, elastic,
+                           wanted=wanted)
 
     return values_at
 
@@ -394,7 +403,7 @@ def _mechanism_coords(scene: Scene) -> dict:
 
 
 def mechanism_values(scene: Scene, histories: list[PartHistory], times, valid,
-                     on_step=lambda: None):
+                     on_step=lambda: None, wanted: frozenset | None = None):
     """The scene's mechanisms, in turn, at every valid ageing time: a Response over time.
 
     Parameters
@@ -409,6 +418,8 @@ def mechanism_values(scene: Scene, histories: list[PartHistory], times, valid,
         Which times every part is valid at (below its wet glass transition).
     on_step : callable
         Called once per mechanism evaluation (progress).
+    wanted : frozenset of str, optional
+        The only variables read (``Mechanism.response``); None: every variable.
 
     Returns
     -------
@@ -419,7 +430,7 @@ def mechanism_values(scene: Scene, histories: list[PartHistory], times, valid,
     angles = _angle_grid(scene.model.outputs.angle_step)
     by_name = {h.part.name: h for h in histories}
     for mechanism in scene.mechanisms:
-        mech = mechanism.response(by_name, times, angles, valid, on_step=on_step)
+        mech = mechanism.response(by_name, times, angles, valid, on_step=on_step, wanted=wanted)
         response.variables.update(mech.variables)
         response.notices += mech.notices
     return response

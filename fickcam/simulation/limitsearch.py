@@ -72,7 +72,9 @@ def limits_dataset(ds, scene: Scene, seen: ClimateSeen, histories: list[PartHist
 
     times = seen.times
     searched: dict[str, float] = {}   # part -> largest diffusion estimate of the search
-    values_at = values_at_times(scene, seen, options, histories)
+    # only the limited variables are made (no jump-speed search without a jump-speed limit)
+    values_at = values_at_times(scene, seen, options, histories,
+                                frozenset(limit.variable for limit in scene.limits))
 
     def evaluate(at) -> np.ndarray:
         """The ratios at ageing times ``at`` (inside the stored span): diffusion at the

@@ -98,7 +98,7 @@ def part_mass(history: PartHistory) -> np.ndarray:
     return np.full_like(moisture, np.nan) if dry is None else dry * (1 + moisture / 100.0)
 
 
-def part_values(histories: list[PartHistory]) -> dict[str, np.ndarray]:
+def part_values(histories: list[PartHistory], wanted=None) -> dict[str, np.ndarray]:
     """Every state variable of the parts as a (time, part) array.
 
     The schema names them (an unknown name fails when the Dataset is built). Numbers are
@@ -109,6 +109,8 @@ def part_values(histories: list[PartHistory]) -> dict[str, np.ndarray]:
     ----------
     histories : list of PartHistory
         One per part, in the parts' order.
+    wanted : frozenset of str, optional
+        Only these variables (those a caller reads); None: every one.
 
     Returns
     -------
@@ -116,7 +118,8 @@ def part_values(histories: list[PartHistory]) -> dict[str, np.ndarray]:
         Variable name -> (time, part) values [schema units].
     """
     states = [dict(h.state, mass=part_mass(h)) for h in histories]
-    names = list(dict.fromkeys(name for state in states for name in state))
+    names = [name for name in dict.fromkeys(name for state in states for name in state)
+             if wanted is None or name in wanted]
     values = {}
     for name in names:
         columns = []
