@@ -5,7 +5,6 @@ segments. Sampling polylines and circles and point in polygon, which the geometr
 build their outlines with, are in ``problem.curves``."""
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -65,16 +64,38 @@ def resample_loop(loop: np.ndarray, spacing: float) -> np.ndarray:
     numpy.ndarray
         The resampled points, shape (k, 2) [m].
     """
+    return loop_resampler(loop)(spacing)
+
+
+def loop_resampler(loop: np.ndarray):
+    """``spacing -> resample_loop(loop, spacing)`` with the loop's arc lengths and corners
+    found once, for a loop resampled at many spacings (the same points, bit for bit).
+
+    Parameters
+    ----------
+    loop : numpy.ndarray
+        The loop to resample, shape (n, 2) [m].
+
+    Returns
+    -------
+    callable
+        spacing [m] -> the resampled points [m], shape (k, 2).
+    """
     closed = np.vstack([loop, loop[:1]])
     arc = np.concatenate([[0.0], np.cumsum(np.hypot(*np.diff(closed, axis=0).T))])
     total = arc[-1]
     corners = corners_of(loop)
     starts = arc[corners] if corners.size else np.array([0.0])
-    ends = np.append(starts[1:], starts[0] + total)
-    steps = [a + (b - a) * np.arange(n) / n
-             for a, b in zip(starts, ends) for n in [max(1, math.ceil((b - a) / spacing))]]
-    s = np.concatenate(steps) % total
-    return np.column_stack([np.interp(s, arc, closed[:, 0]), np.interp(s, arc, closed[:, 1])])
+    span = np.append(starts[1:], starts[0] + total) - starts
+
+    def at(spacing: float) -> np.ndarray:
+        count = np.maximum(1, np.ceil(span / spacing)).astype(int)
+        step = np.arange(count.sum()) - np.repeat(np.cumsum(count) - count, count)
+        s = (np.repeat(starts, count) + np.repeat(span, count) * step / np.repeat(count, count)
+             ) % total
+        return np.column_stack([np.interp(s, arc, closed[:, 0]),
+                                np.interp(s, arc, closed[:, 1])])
+    return at
 
 
 def loop_length(loop: np.ndarray) -> float:
