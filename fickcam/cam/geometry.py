@@ -482,9 +482,11 @@ def evaluate_geometric_motions(fitted, origins, theta, orders=ORDERS):
         piece[inside] = k
     known, rows = np.maximum(piece, 0), np.arange(theta.shape[0])[:, None]
     x = fitted.offsets[rows, known] + fitted.scales[rows, known] * shifted
-    # each angle's own time and piece: x broadcast over the (order, time, angle) columns
-    values = chebyshev.chebval(x, fitted.table[:, list(orders)][:, :, rows, known],
-                               tensor=False)
+    # each angle's own time and piece: x broadcast over the (order, time, angle) columns;
+    # the gathered coefficients laid out term by term, which the Clenshaw recursion reads
+    # in turn (the gather leaves each term's values strided: twice the recursion's time)
+    coefficients = np.ascontiguousarray(fitted.table[:, list(orders)][:, :, rows, known])
+    values = chebyshev.chebval(x, coefficients, tensor=False)
     values[:, piece < 0] = np.nan
     return tuple(values)
 
