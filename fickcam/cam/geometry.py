@@ -30,6 +30,8 @@ TWO_PI = 2.0 * np.pi
 EPS = float(np.finfo(float).eps)
 #: Newton on the contact angle stops at steps below this many units in the last place of psi
 STEP_ULPS = 8
+#: Y's round-off, in units in the last place of the largest |Y| of its piece
+ROUNDOFF_ULPS = 16
 
 
 def rotate(angle, x, y):
@@ -254,21 +256,63 @@ def _series_table(coef, scales):
     return table
 
 
-def _turning_points(table, starts, ends):
-    """Real roots of each piece's dY/dtheta strictly inside the piece [rad] (the companion
-    matrices' eigenvalues in one call where the pieces' degrees agree)."""
-    slopes = [polyutils.as_series([table[:, 1, p]])[0] for p in range(table.shape[2])]
-    if len({len(c) for c in slopes}) == 1 and len(slopes[0]) > 2:
-        stack = np.stack([chebyshev.chebcompanion(c)[::-1, ::-1] for c in slopes])
-        roots = list(np.linalg.eigvals(stack))
-    else:
-        roots = [chebyshev.chebroots(c) for c in slopes]
-    turning = []
-    for r, ta, tb in zip(roots, starts, ends):
-        back_off, back_scl = polyutils.mapparms([-1.0, 1.0], [ta, tb])
-        r = back_off + back_scl * r
-        turning.append(r.real[(np.abs(r.imag) < 1e-9) & (r.real > ta) & (r.real < tb)])
-    return turning
+def _piece_extremes(table):
+    """Lowest and highest Y of each piece's series over its whole piece, x in [-1, 1]: the
+    largest and smallest of Y at its ends, on a grid of Chebyshev-Lobatto points of twice
+    its degree and at the turning points between them (every sign change of dY/dx on the
+    grid over which Y moves by more than its round-off, bracketed and closed by
+    :func:`_slope_roots`), all pieces at once.
+
+    Parameters
+    ----------
+    table : numpy.ndarray
+        Coefficients (term, order, piece) of :func:`_series_table` [m/rad^k] ([rad/rad^k]
+        for an arm).
+
+    Returns
+    -------
+    tuple of numpy.ndarray
+        The lowest and the highest Y of each piece [m] ([rad] for an arm), shape (piece,).
+    """
+    grid = _lobatto(2 * (len(table) - 1))
+    heights, slopes = chebyshev.chebval(grid, table[:, :2])  # each (piece, point)
+    lowest, highest = heights.min(axis=1), heights.max(axis=1)
+    # a bracket over which Y moves by less than its round-off (a dwell's slope is noise)
+    # holds no extreme beyond its ends' values
+    moves = np.maximum(np.abs(slopes[:, :-1]), np.abs(slopes[:, 1:])) * np.diff(grid)
+    noise = ROUNDOFF_ULPS * EPS * np.abs(heights).max(axis=1, keepdims=True)
+    piece, left = np.nonzero((slopes[:, :-1] * slopes[:, 1:] < 0.0) & (moves > noise))
+    if piece.size:
+        roots = _slope_roots(table[:, 1, piece], grid[left], grid[left + 1],
+                             slopes[piece, left], slopes[piece, left + 1])
+        turning = chebyshev.chebval(roots, table[:, 0, piece], tensor=False)
+        np.minimum.at(lowest, piece, turning)
+        np.maximum.at(highest, piece, turning)
+    return lowest, highest
+
+
+def _slope_roots(slope, low, high, at_low, at_high, steps: int = 60):
+    """The root of each series ``slope`` (term, bracket; dY/dtheta as a series in x) inside
+    its bracket (low, high) on x, where it changes sign from ``at_low`` to ``at_high``:
+    Newton steps on the series from the chord's root, a step that would leave the bracket
+    replaced by bisection, the bracket shrunk to the side that keeps the sign change, until
+    every step is a few units in the last place of x."""
+    both = np.stack([slope, np.pad(chebyshev.chebder(slope), ((0, 1), (0, 0)))], axis=1)
+    x = low + (high - low) * at_low / (at_low - at_high)
+    for _ in range(steps):
+        value, derivative = chebyshev.chebval(x, both, tensor=False)
+        same = np.signbit(value) == np.signbit(at_low)
+        low, high = np.where(same, x, low), np.where(same, high, x)
+        at_low = np.where(same, value, at_low)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            guess = x - value / derivative
+        inside = (guess >= low) & (guess <= high)
+        moved = np.where(value == 0.0, x, np.where(inside, guess, 0.5 * (low + high)))
+        done = np.max(np.abs(moved - x), initial=0.0) <= STEP_ULPS * EPS
+        x = moved
+        if done:
+            break
+    return x
 
 
 def fit_geometric_motion(design, pieces, strain_x, strain_y, roller_radius, nodes: int = 40,
@@ -367,14 +411,8 @@ def fit_geometric_motions(design, pieces, strain_x, strain_y, roller_radius, nod
     heights = contact(label, count * size)(psi)[1].reshape(times * count, size)
     offsets, scales = polyutils.mapparms([starts.ravel(), stops.ravel()], [-1.0, 1.0])
     table = _series_table(chebyshev.chebfit(lobatto, heights.T, nodes), scales)
-    turning = _turning_points(table, starts.ravel(), stops.ravel())
-    at = [np.r_[ta, tb, points] for ta, tb, points in zip(starts.ravel(), stops.ravel(), turning)]
-    column = np.repeat(np.arange(times * count), [len(a) for a in at])
-    at = np.concatenate(at)
-    values = chebyshev.chebval(offsets[column] + scales[column] * at, table[:, 0, column],
-                               tensor=False)
-    extremes = [(float(values[column // count == k].min()),
-                 float(values[column // count == k].max())) for k in range(times)]
+    lowest, highest = (v.reshape(times, count) for v in _piece_extremes(table))
+    extremes = list(zip(lowest.min(axis=1).tolist(), highest.max(axis=1).tolist()))
     fitted = PiecewiseMotion(starts, stops, offsets.reshape(times, count),
                              scales.reshape(times, count),
                              table.reshape(size, 4, times, count))
@@ -444,9 +482,11 @@ def evaluate_geometric_motions(fitted, origins, theta, orders=ORDERS):
         piece[inside] = k
     known, rows = np.maximum(piece, 0), np.arange(theta.shape[0])[:, None]
     x = fitted.offsets[rows, known] + fitted.scales[rows, known] * shifted
-    # each angle's own time and piece: x broadcast over the (order, time, angle) columns
-    values = chebyshev.chebval(x, fitted.table[:, list(orders)][:, :, rows, known],
-                               tensor=False)
+    # each angle's own time and piece: x broadcast over the (order, time, angle) columns;
+    # the gathered coefficients laid out term by term, which the Clenshaw recursion reads
+    # in turn (the gather leaves each term's values strided: twice the recursion's time)
+    coefficients = np.ascontiguousarray(fitted.table[:, list(orders)][:, :, rows, known])
+    values = chebyshev.chebval(x, coefficients, tensor=False)
     values[:, piece < 0] = np.nan
     return tuple(values)
 

@@ -316,21 +316,46 @@ class FittedMotions(NamedTuple):
     ``motion(k)`` gives ageing index k's (motion, extremes) as :func:`motion_function`
     does; ``rows(angles, orders)`` evaluates every fitted time at once, angles [rad] of shape
     (n, k) (or (k,), the same for every time) -> the derivative ``orders`` (Y [m], dY/dtheta
-    [m/rad], ...), each (n, k).
+    [m/rad], ...), each (n, k). ``grid``: (angles [rad], every time's Y and its derivatives
+    there) once :meth:`sampled` has made them; both answer at those angles from it.
     """
 
     indices: list
     fitted: PiecewiseMotion
     origins: np.ndarray
     extremes: list
+    grid: tuple = ()
+
+    def sampled(self, angles) -> FittedMotions:
+        """The same fits with every time's motion at ``angles`` [rad] made at once, every
+        order (the output angles, which the responses and the jump speeds' grid read):
+        the same values as each time's alone, element by element."""
+        angles = np.asarray(angles, float)
+        return self._replace(grid=(angles, self.rows(angles)))
+
+    def _on_grid(self, angles, orders) -> tuple | None:
+        """Every time's ``orders`` at ``angles`` where they are the sampled angles, else None."""
+        if not self.grid or np.shape(angles) != self.grid[0].shape \
+                or not np.array_equal(angles, self.grid[0]):
+            return None
+        return tuple(self.grid[1][ORDERS.index(order)] for order in orders)
 
     def motion(self, k: int) -> tuple[Callable, tuple[float, float]]:
         """Ageing index k's (motion, (lowest, highest) Y [m])."""
         row = self.indices.index(k)
-        return _fitted_motion(self.fitted.at(row), float(self.origins[row])), self.extremes[row]
+        alone = _fitted_motion(self.fitted.at(row), float(self.origins[row]))
+
+        def motion(theta, orders=ORDERS):
+            stored = self._on_grid(theta, orders)
+            return alone(theta, orders) if stored is None else tuple(v[row] for v in stored)
+
+        return motion, self.extremes[row]
 
     def rows(self, angles, orders=ORDERS) -> tuple:
         """Every fitted time's motion at its row of ``angles`` [rad]."""
+        stored = self._on_grid(angles, orders)
+        if stored is not None:
+            return stored
         angles = np.asarray(angles, float)
         angles = np.broadcast_to(angles, (len(self.indices), angles.shape[-1]))
         return evaluate_geometric_motions(self.fitted, self.origins, angles, orders)

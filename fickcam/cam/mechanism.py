@@ -357,6 +357,7 @@ def rigid_response(design: CamDesign, histories: dict, times, angles, valid,
     # the fitted motions made together, and every closed-form or fitted motion's jump speed
     # searched for all ageing times at once
     fitted = fitted_motions(design, states)
+    fitted = None if fitted is None else fitted.sampled(angles)  # every time at once
     motions = {} if fitted is None else {k: fitted.motion(k) for k in fitted.indices}
     jumps = jump_speeds_over_ageing(design, states, angles, fitted)
 

@@ -384,6 +384,13 @@ def joint_notices(segments, tolerance: float = 1e-9) -> list[str]:
     ----------
     Norton (2012), ch. 8; in full in :mod:`fickcam.cam`.
     """
+    return list(_joint_notices(tuple(segments), tolerance))
+
+
+@functools.lru_cache(maxsize=64)
+def _joint_notices(segments: tuple, tolerance: float) -> tuple:
+    """:func:`joint_notices` of a motion, once per motion (every ageing time and every
+    evaluation of the limit search tells the same)."""
     lift = max(abs(s.height) for s in segments) or 1.0
     steps: dict[str, list[tuple[float, set]]] = {"velocity": [], "acceleration": []}
     n = len(segments)
@@ -411,4 +418,4 @@ def joint_notices(segments, tolerance: float = 1e-9) -> list[str]:
                 "acceleration (infinite jerk)" if seg.spline.degree == 3 else ""
             notices.append(f"motion as designed: a degree-{seg.spline.degree} spline steps its "
                            f"{what} at its inner points ({math.degrees(seg.start):.4g} deg segment)")
-    return [design_notice(text) for text in notices]
+    return tuple(design_notice(text) for text in notices)

@@ -112,6 +112,25 @@ def with_time_in_days(ds):
     return ds
 
 
+def stored_unit(name: str, value) -> np.ndarray:
+    """A variable's values in its stored unit, as :func:`build_dataset` stores them.
+
+    Parameters
+    ----------
+    name : str
+        The variable's schema name.
+    value : array_like
+        Its values [SI]; text or flags as they are.
+
+    Returns
+    -------
+    numpy.ndarray
+        Numbers scaled to the schema's stored unit, anything else unchanged.
+    """
+    array = np.asarray(value)
+    return array * VARIABLES[name].scale if array.dtype.kind in "fc" else array
+
+
 def build_dataset(values: dict, coords: dict, attrs: dict | None = None):
     """An xarray.Dataset with every variable of ``values`` stored in its schema unit.
 
@@ -163,9 +182,7 @@ def build_dataset(values: dict, coords: dict, attrs: dict | None = None):
         if name not in VARIABLES:  # no silent drops: every result has its row in the schema
             raise KeyError(f"{name!r} is not declared in fickcam/schema.py (add its row there)")
         var = VARIABLES[name]
-        array = np.asarray(value)
-        if array.dtype.kind in "fc":
-            array = array * var.scale
+        array = stored_unit(name, value)
         expected = tuple(coordinates[d].shape[0] for d in var.dims if d in coordinates)
         if len(expected) == len(var.dims) and array.shape != expected:
             raise ValueError(f"{name}: shape {array.shape} does not match dims {var.dims} {expected}")

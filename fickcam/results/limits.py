@@ -92,13 +92,13 @@ def worst_value(ds, variable: str, kind: str) -> np.ndarray:
     return _per_time(_time_first(ds[variable]), np.nanmax if kind == "max" else np.nanmin)
 
 
-def _design_size(ds, variable: str, kind: str) -> float:
-    """|as-designed value| (first stored time without a design state): the scale of a 0 bound."""
-    name = design_name(variable)
-    if name in ds:
-        values = np.asarray(ds[name].values, float)
+def _design_size(design, worst: Callable[[str], np.ndarray], kind: str) -> float:
+    """|as-designed value| (``design``, or without one the first stored time's ``worst``
+    value of ``kind``): the scale of a 0 bound."""
+    if design is not None:
+        values = np.asarray(design, float)
         return float(np.nanmax(np.abs(values))) if np.isfinite(values).any() else 1.0
-    first = worst_value(ds, variable, kind)
+    first = worst(kind)
     finite = first[np.isfinite(first)]
     return float(abs(finite[0])) if finite.size and finite[0] != 0 else 1.0
 
@@ -119,14 +119,56 @@ def limit_ratio(ds, limit: Limit) -> np.ndarray:
         The ratio [-] per ageing time: the worst of |deviation| / allowed deviation and
         1 + (value - bound) / |bound| for max and min; NaN where the value is unknown.
     """
+    name = design_name(limit.variable)
+    design = ds[name].values if name in ds else None
+    return _ratio(lambda kind: worst_value(ds, limit.variable, kind), design, limit)
+
+
+def values_ratio(values: np.ndarray, design, limit: Limit, degrees: bool = False) -> np.ndarray:
+    """:func:`limit_ratio` of a variable's values given as an array, not in a result (the
+    limit search's evaluations build none).
+
+    Parameters
+    ----------
+    values : numpy.ndarray
+        The variable over (time, ...) in its stored unit.
+    design : numpy.ndarray or None
+        Its as-designed value over (...) in its stored unit; None where it has none (a
+        ``deviation`` then needs one).
+    limit : Limit
+        The limit, bounds in the variable's stored unit.
+    degrees : bool
+        The values are angles in degrees: a deviation is wrapped into [-180, 180).
+
+    Returns
+    -------
+    numpy.ndarray
+        The ratio [-] per ageing time, as :func:`limit_ratio` gives it.
+    """
+    values = np.asarray(values, float)
+
+    def worst(kind: str) -> np.ndarray:
+        if kind != "deviation":
+            return _per_time(values, np.nanmax if kind == "max" else np.nanmin)
+        change = values - np.asarray(design, float)
+        if degrees:
+            change = (change + 180.0) % 360.0 - 180.0
+        return _per_time(np.abs(change), np.nanmax)
+
+    return _ratio(worst, design, limit)
+
+
+def _ratio(worst: Callable[[str], np.ndarray], design, limit: Limit) -> np.ndarray:
+    """The limit ratio from ``worst(kind)``, the variable's worst value per ageing time of
+    each kind (``deviation``, ``max``, ``min``), and its as-designed value (or None)."""
     ratios = []
     if limit.deviation is not None:
-        ratios.append(worst_value(ds, limit.variable, "deviation") / limit.deviation)
+        ratios.append(worst("deviation") / limit.deviation)
     for kind, sign in (("max", 1.0), ("min", -1.0)):
         bound = getattr(limit, kind)
         if bound is not None:
-            scale = abs(bound) or _design_size(ds, limit.variable, kind)
-            ratios.append(1.0 + sign * (worst_value(ds, limit.variable, kind) - bound) / scale)
+            scale = abs(bound) or _design_size(design, worst, kind)
+            ratios.append(1.0 + sign * (worst(kind) - bound) / scale)
     stacked = np.vstack(ratios)
     out = np.full(stacked.shape[1], np.nan)
     known = np.isfinite(stacked).any(axis=0)

@@ -9,6 +9,7 @@ is judged against it, and when it first fails, is :mod:`fickcam.results.limits`.
 """
 from __future__ import annotations
 
+import functools
 import re
 from dataclasses import dataclass
 from typing import Any
@@ -147,6 +148,13 @@ def stored_value(value, var: Var, *, difference: bool = False) -> float:
     ValueError
         When the unit is unknown or of the wrong dimension, or a speed has none.
     """
+    return _stored_value(value, var, difference)
+
+
+@functools.lru_cache(maxsize=256)
+def _stored_value(value, var: Var, difference: bool) -> float:
+    """:func:`stored_value`, once per bound as written (a sweep's cases share their
+    limits; pint takes about a millisecond a conversion)."""
     number, unit = number_and_unit(value)
     slip = ambiguity(value, "angular_speed") if var.units == "rpm" else None
     if slip:
@@ -221,7 +229,12 @@ def _display(spec: LimitSpec, var: Var) -> dict:
         if isinstance(raw, str):
             unit = split_number_unit(raw)[1].replace("%", "percent")
             if unit and "degC" not in unit and "degF" not in unit:
-                ureg = registry()
-                scale = ureg.Quantity(1.0, _pint_units(var.units)).to(unit).magnitude
-                return {"display_units": split_number_unit(raw)[1], "display_scale": float(scale)}
+                return {"display_units": split_number_unit(raw)[1],
+                        "display_scale": _display_scale(var.units, unit)}
     return {}
+
+
+@functools.lru_cache(maxsize=256)
+def _display_scale(units: str, unit: str) -> float:
+    """One ``units`` (the schema's spelling) in ``unit`` (pint's)."""
+    return float(registry().Quantity(1.0, _pint_units(units)).to(unit).magnitude)

@@ -15,8 +15,8 @@ import numpy as np
 from ..climate.environment import ClimateSeen
 from ..errors import SceneError
 from ..messages import log_notices
-from ..results.dataset import build_dataset
-from ..results.limits import Tolerance, first_crossings, limit_ratio
+from ..results.dataset import build_dataset, stored_unit
+from ..results.limits import Tolerance, first_crossings, limit_ratio, values_ratio
 from ..scene.load import Scene
 from ..schema import VARIABLES, design_name
 from .ageing import values_at_times
@@ -67,9 +67,8 @@ def limits_dataset(ds, scene: Scene, seen: ClimateSeen, histories: list[PartHist
     def ratios(data) -> np.ndarray:
         return np.stack([limit_ratio(data, limit) for limit in scene.limits], axis=1)
 
-    names = {limit.variable for limit in scene.limits}
-    designs = {design_name(n): ds[design_name(n)].variable for n in names
-               if design_name(n) in ds}
+    designs = {limit.variable: ds[design_name(limit.variable)].values for limit in scene.limits
+               if design_name(limit.variable) in ds}
 
     times = seen.times
     searched: dict[str, float] = {}   # part -> largest diffusion estimate of the search
@@ -78,18 +77,19 @@ def limits_dataset(ds, scene: Scene, seen: ClimateSeen, histories: list[PartHist
     def evaluate(at) -> np.ndarray:
         """The ratios at ageing times ``at`` (inside the stored span): diffusion at the
         stored times and ``at`` together (``values_at``), so its plan and cached step
-        responses are the stored run's; the mechanisms evaluated at ``at`` only; only the
-        limited variables go into the Dataset, beside the stored run's as-designed values."""
+        responses are the stored run's; the mechanisms evaluated at ``at`` only; the
+        limited variables' ratios read from their values in the stored unit and the stored
+        run's as-designed values, no Dataset built."""
         at = np.asarray(at, float)
-        values, coords, _, aged = values_at(at)
+        values, _, _, aged = values_at(at)
         for history in aged:
             if history.diffusion is not None:
                 searched[history.part.name] = max(searched.get(history.part.name, 0.0),
                                                   history.diffusion.error_estimate)
-        kept = {name: value for name, value in values.items() if name in names}
-        dims = {dim for name in kept for dim in VARIABLES[name].dims}
-        return ratios(build_dataset(kept, {c: v for c, v in coords.items() if c in dims})
-                      .assign(designs))
+        return np.stack([values_ratio(stored_unit(limit.variable, values[limit.variable]),
+                                      designs.get(limit.variable), limit,
+                                      VARIABLES[limit.variable].units == "degree")
+                         for limit in scene.limits], axis=1)
 
     stored = ratios(ds)
     search_times, search = times, stored
