@@ -93,7 +93,7 @@ def main(argv=None) -> None:
             demo_cpu = statistics.median(c for _, c in demos)
             print(f"{name}: {wall:.0f} s wall, {cpu:.0f} CPU s; demo run {demo_wall:.2f} s "
                   f"wall, {demo_cpu:.2f} CPU s; {wall / demo_wall:.0f} demo runs ({outcome})")
-            rows.append([f"`pytest {' '.join(arguments)}`", f"{wall:.0f}", f"{cpu:.0f}",
+            rows.append([f"`pytest {shlex.join(arguments)}`", f"{wall:.0f}", f"{cpu:.0f}",
                          f"{demo_wall:.2f}", f"{wall / demo_wall:.0f}",
                          f"{cpu / demo_cpu:.0f}", outcome])
     columns = ["tier", "wall s", "CPU s (all workers)", "demo run wall s (median)",

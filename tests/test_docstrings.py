@@ -983,6 +983,8 @@ ENTRY_POINTS = {
     "fickcam.diffusion.planform.polygon.loop_length": ("loop",),
     "fickcam.diffusion.planform.polygon.edge_normals": ("points",),
     "fickcam.diffusion.planform.polygon.vertex_normals": ("points",),
+    "fickcam.diffusion.planform.polygon.first_exits": ("starts", "directions", "loops",
+                                                      "near"),
     "fickcam.diffusion.planform.polygon.Wall": ("samples", "normals"),
     "fickcam.diffusion.problem.curves.polygon_segments": ("px", "py"),
     "fickcam.diffusion.problem.curves.inside_polygon": ("query", "segments"),

@@ -77,6 +77,22 @@ def test_a_cam_drawing_with_a_lightening_hole_ages_with_it(tmp_path, capsys):
     assert main(["check", str(scene(tmp_path, "elastic", drawing="disc.dxf", elastic=True))]) == 0
 
 
+def test_a_drawn_cams_design_read_from_its_section_alone_is_the_runs(tmp_path):
+    """``cam_design`` of a drawn section not handed its profile reads the drawing itself and
+    gives the design the run's mechanism holds: the disc of 23 mm radius 4 mm off the bore's
+    centre has its base circle at 19 mm (within the arc's flattening)."""
+    from fickcam.cam.design import cam_design
+
+    disc_drawing(tmp_path)
+    drawn = fickcam.load_scene(scene(tmp_path, "drawn", drawing="disc.dxf"))
+    alone, run = cam_design(drawn.model.cam), drawn.mechanisms[0].design
+    assert alone.kind == run.kind == "profile"
+    assert alone.base_circle_radius == pytest.approx(0.019, abs=1e-6)
+    assert alone.base_circle_radius == run.base_circle_radius
+    for mine, theirs in zip(alone.profile.radii(), run.profile.radii()):
+        np.testing.assert_array_equal(mine, theirs)
+
+
 def test_a_drawing_scene_without_the_dxf_extra_is_refused_with_the_install_command(
         tmp_path, capsys, monkeypatch):
     disc_drawing(tmp_path)

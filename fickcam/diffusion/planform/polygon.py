@@ -5,7 +5,6 @@ segments. Sampling polylines and circles and point in polygon, which the geometr
 build their outlines with, are in ``problem.curves``."""
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -65,16 +64,38 @@ def resample_loop(loop: np.ndarray, spacing: float) -> np.ndarray:
     numpy.ndarray
         The resampled points, shape (k, 2) [m].
     """
+    return loop_resampler(loop)(spacing)
+
+
+def loop_resampler(loop: np.ndarray):
+    """``spacing -> resample_loop(loop, spacing)`` with the loop's arc lengths and corners
+    found once, for a loop resampled at many spacings (the same points, bit for bit).
+
+    Parameters
+    ----------
+    loop : numpy.ndarray
+        The loop to resample, shape (n, 2) [m].
+
+    Returns
+    -------
+    callable
+        spacing [m] -> the resampled points [m], shape (k, 2).
+    """
     closed = np.vstack([loop, loop[:1]])
     arc = np.concatenate([[0.0], np.cumsum(np.hypot(*np.diff(closed, axis=0).T))])
     total = arc[-1]
     corners = corners_of(loop)
     starts = arc[corners] if corners.size else np.array([0.0])
-    ends = np.append(starts[1:], starts[0] + total)
-    steps = [a + (b - a) * np.arange(n) / n
-             for a, b in zip(starts, ends) for n in [max(1, math.ceil((b - a) / spacing))]]
-    s = np.concatenate(steps) % total
-    return np.column_stack([np.interp(s, arc, closed[:, 0]), np.interp(s, arc, closed[:, 1])])
+    span = np.append(starts[1:], starts[0] + total) - starts
+
+    def at(spacing: float) -> np.ndarray:
+        count = np.maximum(1, np.ceil(span / spacing)).astype(int)
+        step = np.arange(count.sum()) - np.repeat(np.cumsum(count) - count, count)
+        s = (np.repeat(starts, count) + np.repeat(span, count) * step / np.repeat(count, count)
+             ) % total
+        return np.column_stack([np.interp(s, arc, closed[:, 0]),
+                                np.interp(s, arc, closed[:, 1])])
+    return at
 
 
 def loop_length(loop: np.ndarray) -> float:
@@ -127,6 +148,80 @@ def vertex_normals(points: np.ndarray) -> np.ndarray:
     after = edge_normals(points)
     both = np.roll(after, 1, axis=0) + after
     return both / np.hypot(*both.T)[:, None]
+
+
+def first_exits(starts: np.ndarray, directions: np.ndarray, loops: list[np.ndarray],
+                near: float) -> np.ndarray:
+    """Distance along each ray to where it first leaves the region the closed polylines
+    ``loops`` bound (material on their left, holes included), exactly: each ray is
+    intersected with the segments of every run of ``RUN`` consecutive ones whose bounding
+    circle its half-line meets. A vertex's side of a ray is decided once (on the line: the
+    left side), so a ray through a vertex crosses one of its two segments, a ray along a
+    segment crosses where its neighbours say, and a ray that touches the outline at a vertex
+    from inside (an entry and an exit at one distance) goes on. Crossings up to ``near``
+    (the ray's own start on the outline) do not count.
+
+    Parameters
+    ----------
+    starts : numpy.ndarray
+        The rays' starts, shape (r, 2) [m] (or scaled [-]), inside or on the outline.
+    directions : numpy.ndarray
+        The rays' unit directions [-], shape (r, 2).
+    loops : list of numpy.ndarray
+        Closed polylines, material on the left [m] (or scaled [-], as the starts).
+    near : float
+        Crossings up to this distance from the start are skipped [m] (or scaled [-]).
+
+    Returns
+    -------
+    numpy.ndarray
+        The distance to the first exit, shape (r,), in the starts' unit (inf: none).
+    """
+    ray, tail, head = _ray_segment_pairs(starts, directions, loops, near)
+    (dx, dy), (sx, sy) = directions[ray].T, starts[ray].T
+    side = [dx * (p[:, 1] - sy) - dy * (p[:, 0] - sx) for p in (tail, head)]  # > 0: left
+    along = [dx * (p[:, 0] - sx) + dy * (p[:, 1] - sy) for p in (tail, head)]
+    exits = (side[0] < 0) & (side[1] >= 0)          # right -> left: leaving the material
+    crossing = exits | ((side[0] >= 0) & (side[1] < 0))
+    fraction = side[0][crossing] / (side[0][crossing] - side[1][crossing])
+    at = np.where(fraction == 1.0, along[1][crossing],
+                  along[0][crossing] + fraction * (along[1][crossing] - along[0][crossing]))
+    ray, exits = ray[crossing][at > near], exits[crossing][at > near]
+    at = at[at > near]
+    order = np.lexsort((exits, at, ray))              # by ray, distance, entries first
+    ray, at, count = ray[order], at[order], np.cumsum(np.where(exits[order], 1, -1))
+    first_of_ray = np.searchsorted(ray, ray)          # the rays' own sums start at 0
+    count -= np.where(first_of_ray > 0, count[first_of_ray - 1], 0)
+    out = count == 1
+    rays, first = np.unique(ray[out], return_index=True)
+    found = np.full(len(starts), np.inf)
+    found[rays] = at[out][first]
+    return found
+
+
+RUN = 16  # segments per bounding circle in ``first_exits``
+
+
+def _ray_segment_pairs(starts, directions, loops, near):
+    """(ray, segment tail, segment head) of every segment in a run of ``RUN`` whose bounding
+    circle the ray's half-line beyond ``near`` meets (margin ``near``)."""
+    tails = np.vstack(loops)
+    heads = np.vstack([np.roll(loop, -1, axis=0) for loop in loops])
+    begin = np.arange(0, len(tails), RUN)
+    centre = np.add.reduceat(tails, begin) / np.diff(np.append(begin, len(tails)))[:, None]
+    own = np.repeat(centre, RUN, axis=0)[:len(tails)]   # each segment's run's centre
+    reach = np.maximum(np.hypot(*(tails - own).T), np.hypot(*(heads - own).T))
+    radius = np.maximum.reduceat(reach, begin) * (1 + 1e-9) + near
+    offset = centre[None, :, :] - starts[:, None, :]
+    across = np.abs(directions[:, None, 0] * offset[..., 1]
+                    - directions[:, None, 1] * offset[..., 0])
+    ahead = np.einsum("rgk,rk->rg", offset, directions)
+    ray, run = np.nonzero((across <= radius) & (ahead >= near - radius))
+    size = np.minimum(begin[run] + RUN, len(tails)) - begin[run]
+    ray = np.repeat(ray, size)
+    segment = (np.repeat(begin[run], size) + np.arange(size.sum())
+               - np.repeat(np.cumsum(size) - size, size))
+    return ray, tails[segment], heads[segment]
 
 
 @dataclass(frozen=True)

@@ -11,7 +11,8 @@ from scipy.special import erf, erfc
 from ..exact.series import cylinder_short_coefficients, ierfc, sheet_uptake
 from ..problem.cache import RunCache, run_cache
 from ..problem.scaling import planar_scale
-from .polygon import CORNER_TURN, Wall, loop_length, resample_loop, turning_angles, vertex_normals
+from .polygon import (CORNER_TURN, first_exits, loop_length, resample_loop, turning_angles,
+                      vertex_normals)
 
 TAIL_FROM = 4          # first term of the disc series left to the error indicator
 CHORD_RAYS = 256       # rays cast per outline loop for the facing-edge term
@@ -425,15 +426,16 @@ def outline_chords(part, scale: tuple[float, float], spacing: float, cache: RunC
 def inward_chords(loops: list[np.ndarray], spacing: float) -> tuple[np.ndarray, np.ndarray]:
     """(chord, outline length it stands for) at ``CHORD_RAYS`` points evenly spaced along
     each closed polyline of ``loops`` (material on the left): the length of the inward
-    normal ray inside the outline, marched on a geometric grid against the signed distance
-    of ``polygon.Wall`` (each ray only until it leaves), then bisected.
+    normal ray inside the outline, up to its first exit through any loop
+    (``polygon.first_exits``, exact); a ray that never leaves (an open outline) gets
+    4 times the outline's extent.
 
     Parameters
     ----------
     loops : list of numpy.ndarray
         Closed polylines, material on the left, scaled [-].
     spacing : float
-        The wall's sampling and the first ray step, scaled [-].
+        The outline's sampling, scaled [-]: crossings within 1e-6 of it are the ray's start.
 
     Returns
     -------
@@ -442,29 +444,11 @@ def inward_chords(loops: list[np.ndarray], spacing: float) -> tuple[np.ndarray, 
     lengths : numpy.ndarray
         The outline length each stands for [-].
     """
-    wall = Wall.of(loops, spacing)
     rays = [resample_loop(loop, loop_length(loop) / CHORD_RAYS) for loop in loops]
     start = np.vstack(rays)
-    normal = np.vstack([vertex_normals(ray) for ray in rays])
     lengths = np.concatenate([np.full(len(ray), loop_length(loop) / len(ray))
                               for ray, loop in zip(rays, loops)])
-    steps = np.geomspace(spacing, 4.0 * float(np.max(np.ptp(start, axis=0))), 64)
-
-    def inside(t):
-        return wall.distance(start + t[..., None] * normal)[1]
-    first = np.full(len(start), steps.size - 1)  # the first step outside (the last: none)
-    marching = np.arange(len(start))
-    for k, t in enumerate(steps):
-        left = ~wall.distance(start[marching] + t * normal[marching])[1]
-        first[marching[left]] = k
-        marching = marching[~left]
-        if not marching.size:
-            break
-    low = np.where(first > 0, steps[np.maximum(first - 1, 0)], 0.0)
-    high = steps[first]
-    for _ in range(16):
-        middle = 0.5 * (low + high)
-        within = inside(middle)
-        low, high = np.where(within, middle, low), np.where(within, high, middle)
-    return 0.5 * (low + high), lengths
-
+    chords = first_exits(start, np.vstack([vertex_normals(ray) for ray in rays]), loops,
+                         1e-6 * spacing)
+    far = 4.0 * float(np.max(np.ptp(np.vstack(loops), axis=0)))
+    return np.where(np.isfinite(chords), chords, far), lengths

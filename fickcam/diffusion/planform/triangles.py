@@ -31,7 +31,8 @@ import numpy as np
 from scipy.spatial import Delaunay, cKDTree
 
 from .outline import outline
-from .polygon import Wall, drop_unused, edge_normals, resample_loop, triangle_areas, vertex_normals
+from .polygon import (Wall, drop_unused, edge_normals, loop_resampler, resample_loop,
+                      triangle_areas)
 
 log = logging.getLogger(__name__)
 
@@ -59,8 +60,12 @@ def fanned(points: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """
     after = edge_normals(points)
     before = np.roll(after, 1, axis=0)
+    both = before + after   # ``vertex_normals``, from the edge normals at hand
+    bisector = both / np.hypot(*both.T)[:, None]
     turn = np.arctan2(before[:, 0] * after[:, 1] - before[:, 1] * after[:, 0],
                       np.einsum("ij,ij->i", before, after))
+    if not np.any(turn < -FAN_STEP):
+        return points, bisector
     count = np.where(turn < -FAN_STEP, np.ceil(-turn / FAN_STEP).astype(int), 0) + 1
     index = np.repeat(np.arange(points.size // 2), count)
     step = np.arange(index.size) - np.repeat(np.cumsum(count) - count, count)
@@ -68,7 +73,7 @@ def fanned(points: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     angle = (np.arctan2(before[index, 1], before[index, 0])
              + turn[index] * step / np.maximum(count[index] - 1, 1))
     normals = np.where(fan[:, None], np.column_stack([np.cos(angle), np.sin(angle)]),
-                       vertex_normals(points)[index])
+                       bisector[index])
     return points[index], normals
 
 
@@ -99,9 +104,12 @@ def _sparse_enough(candidates: np.ndarray, placed: np.ndarray, gap: float) -> np
     """Candidates at least ``gap`` from every placed point and from each other (greedy)."""
     if candidates.size == 0:
         return candidates
+    # only which distances reach ``gap`` counts: a bounded search, trees built unbalanced
     if placed.size:
-        candidates = candidates[cKDTree(placed).query(candidates)[0] >= gap]
-    pairs = cKDTree(candidates).query_pairs(gap, output_type="ndarray")
+        nearest = cKDTree(placed, balanced_tree=False).query(candidates,
+                                                             distance_upper_bound=gap)[0]
+        candidates = candidates[nearest >= gap]
+    pairs = cKDTree(candidates, balanced_tree=False).query_pairs(gap, output_type="ndarray")
     drop = np.zeros(len(candidates), bool)
     for i, j in pairs[np.lexsort(pairs.T[::-1])]:
         if not drop[i]:
@@ -163,9 +171,10 @@ def graded_points(loops: list[np.ndarray], finest: float, growth: float,
     wall = Wall.of(loops, finest / 4)
     placed = boundary
     spacing = depth = finest
+    resamplers = [loop_resampler(loop) for loop in loops]
     for k, (spacing, depth) in enumerate(row_spacings(finest, growth, coarsest), start=1):
         pieces = []
-        for points, normals in (fanned(resample_loop(loop, spacing / 4)) for loop in loops):
+        for points, normals in (fanned(along(spacing / 4)) for along in resamplers):
             moved = points + depth * normals
             gap, inside = wall.distance(moved, depth + DEPTH_TOLERANCE * spacing)
             runs, closed = _runs(inside & (np.abs(gap - depth) <= DEPTH_TOLERANCE * spacing))
@@ -321,7 +330,8 @@ class Triangulation:
     triangles : numpy.ndarray
         Each triangle's three nodes.
     contact_distance : numpy.ndarray
-        Each triangle's centroid's distance to the contact edge [m], shape (m,).
+        Each triangle's centroid's distance to the contact edge [m], shape (m,); a graded
+        mesh's is inf beyond 2 finest spacings of the edge (its least is what is read).
     on_outline : numpy.ndarray, optional
         True for a point on the outline, shape (n,).
     contact : callable, optional
@@ -376,8 +386,16 @@ def triangulate(part, spacing: float, *, growth: float | None = None,
     distance = _distance_to([loop for loop, edge in zip(loops, contact) if edge], spacing / 8)
     log.debug("graded mesh of %s: %d points, %d triangles", type(part).__name__, len(points),
               len(mesh.triangles))
-    return Triangulation(points, mesh.triangles, distance(points[mesh.triangles].mean(axis=1)),
+    return Triangulation(points, mesh.triangles, _nearest_distances(
+        distance, points[mesh.triangles].mean(axis=1), 2 * spacing / float(factor.min())),
                          mesh.on_outline, distance)
+
+
+def _nearest_distances(distance, points: np.ndarray, bound: float) -> np.ndarray:
+    """``distance(points, bound)`` (a bounded search: deep inside a nearly round outline an
+    unbounded one visits most of the tree), unbounded where no point lies within it."""
+    found = distance(points, bound)
+    return found if np.isfinite(found).any() else distance(points)
 
 
 def _distance_to(loops: list[np.ndarray], spacing: float):
