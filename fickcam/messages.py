@@ -45,6 +45,9 @@ PROGRAM = "fickcam"
 #: True while the command line shows the messages (:func:`terminal_messages`): warnings are
 #: then log records on its stderr, not Python warnings
 _ON_TERMINAL = contextvars.ContextVar("fickcam_on_terminal", default=False)
+#: the list :func:`warn` appends its warnings to instead of reporting them, while one is set
+#: (:func:`collected_warnings`)
+_COLLECTING = contextvars.ContextVar("fickcam_collecting", default=None)
 
 #: the word each logging level is shown with
 LABELS = {logging.DEBUG: "debug", logging.INFO: "note", logging.WARNING: "warning",
@@ -193,10 +196,34 @@ def warn(message: str, *args) -> None:
         Values for the ``%``-format.
     """
     text = message % args if args else message
-    if _ON_TERMINAL.get():
+    collecting = _COLLECTING.get()
+    if collecting is not None:
+        collecting.append(text)
+    elif _ON_TERMINAL.get():
         logging.getLogger(PROGRAM).warning("%s", text)
     else:
         warnings.warn(text, FickcamWarning, stacklevel=_callers_level())
+
+
+@contextlib.contextmanager
+def collected_warnings():
+    """Collect the warnings :func:`warn` makes while inside, instead of reporting them.
+
+    A sweep's case keeps its warnings in its record: its worker process has no terminal to
+    show them on, and a warning every case makes alike would repeat once a case. The sweep
+    reports each distinct warning once, with the number of cases that made it.
+
+    Yields
+    ------
+    list of str
+        The warnings made inside, in order.
+    """
+    caught: list[str] = []
+    token = _COLLECTING.set(caught)
+    try:
+        yield caught
+    finally:
+        _COLLECTING.reset(token)
 
 
 def _callers_level() -> int:

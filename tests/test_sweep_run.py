@@ -193,3 +193,50 @@ def test_batches_hold_every_case_once_in_order_and_keep_every_thread_busy(cases,
     assert [i for batch in split for i in batch] == indices
     assert all(1 <= len(batch) <= MAX_BATCH for batch in split)
     assert len(split) >= min(cases, BATCHES_PER_THREAD * threads)
+
+
+OK_GRID = """\
+base: base.yaml
+grid:
+  environment.history.0.relative_humidity: [60 %, 90 %]
+"""
+
+
+def test_a_case_keeps_its_warnings_in_its_record_and_lets_none_escape(tmp_path):
+    """A worker has no terminal: a case's warnings (here the demo motion's infinite jerk)
+    go into its record and its message, none reaches Python's warnings machinery."""
+    import warnings
+
+    from fickcam.sweep.case import run_case
+    from fickcam.sweep.runner import case_task
+
+    sweep = load_sweep(write_sweep(tmp_path, OK_GRID))
+    with warnings.catch_warnings(record=True) as escaped:
+        warnings.simplefilter("always")
+        record, _ = run_case(case_task(sweep, 0))
+    assert record["status"] == "ok"
+    assert [w.message for w in escaped if issubclass(w.category, fickcam.FickcamWarning)] == []
+    assert len(record["warnings"]) == 1 and "infinite jerk" in record["warnings"][0]
+    assert record["warnings"][0] in record["message"]
+
+
+def test_a_sweep_reports_each_warning_of_its_cases_once_with_their_count(tmp_path, capsys):
+    path = write_sweep(tmp_path, OK_GRID)
+    assert main(["sweep", str(path), "--workers", "1", "-o", str(tmp_path / "out.h5")]) == 0
+    warned = [line for line in capsys.readouterr().err.splitlines() if "warning" in line]
+    assert len(warned) == 1, warned
+    assert warned[0].startswith("fickcam: warning: 2 of 2 case(s): motion as designed:")
+
+
+def test_at_most_a_few_distinct_warnings_are_listed_and_the_rest_counted():
+    from fickcam.sweep.runner import SHOWN_WARNINGS, report_case_warnings
+
+    records = {i: {"status": "ok", "warnings": [f"case {i} is odd", "shared"]}
+               for i in range(SHOWN_WARNINGS + 3)}
+    records[99] = {"status": "ok"}  # journaled before records kept their warnings
+    with pytest.warns(fickcam.FickcamWarning) as caught:
+        report_case_warnings(records, len(records))
+    texts = [str(w.message) for w in caught]
+    assert texts[0] == f"{SHOWN_WARNINGS + 3} of {SHOWN_WARNINGS + 4} case(s): shared"
+    assert len(texts) == SHOWN_WARNINGS + 1
+    assert texts[-1].startswith("4 other warning(s) of the cases")

@@ -19,7 +19,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from ..errors import FickcamError, SceneError
-from ..messages import quieter
+from ..messages import collected_warnings, quieter
 import yaml
 from ..scene.load import parse_yaml, validate_document
 from ..diffusion import RunCache
@@ -148,8 +148,9 @@ def run_case(task: CaseTask, cache=None) -> tuple[dict, bytes]:
     Returns
     -------
     record : dict
-        ``index``, ``status`` ("ok" or "failed"), ``message``, ``values``, ``wall_time`` [s]
-        and, when rerun on resume, ``retry``.
+        ``index``, ``status`` ("ok" or "failed"), ``message``, ``values``, ``wall_time`` [s],
+        ``warnings`` (the distinct warnings the case made, in order; also in ``message``) and,
+        when rerun on resume, ``retry``.
     payload : bytes
         The journal entry (:func:`fickcam.sweep.journal.encode_case`).
     """
@@ -157,18 +158,22 @@ def run_case(task: CaseTask, cache=None) -> tuple[dict, bytes]:
     started = time.perf_counter()
     retry = False
     dataset = None
+    caught: list[str] = []
     try:
-        with quieter("fickcam.simulation", logging.ERROR):  # its notices go into the record
+        # its notices and warnings go into the record (the sweep reports each warning once)
+        with quieter("fickcam.simulation", logging.ERROR), collected_warnings() as caught:
             dataset = run(case_scene(task), cache=worker_cache() if cache is None else cache)
-        notices = dataset.attrs.get("notices") or []
-        status, message = "ok", "; ".join(str(n) for n in notices)
+        notices = [str(n) for n in dataset.attrs.get("notices") or []]
+        notices += [text for text in dict.fromkeys(caught) if text not in notices]
+        status, message = "ok", "; ".join(notices)
     except Exception as exc:  # noqa: BLE001 - a case's failure is data, not a crash
         if not isinstance(exc, FickcamError):
             log.exception("%s: internal error", task.label)
             retry = True  # not the scene's fault (a bug, or the cluster went away): rerun on resume
         status, message = "failed", failure_message(exc)
     record = {"index": task.index, "status": status, "message": message,
-              "values": task.values, "wall_time": time.perf_counter() - started}
+              "values": task.values, "wall_time": time.perf_counter() - started,
+              "warnings": list(dict.fromkeys(caught))}
     if retry:
         record["retry"] = True
     return record, encode_case(record, dataset if status == "ok" else None)

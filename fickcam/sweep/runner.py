@@ -13,6 +13,8 @@ is used: a plain install needs it only for ``--workers N`` > 1 or ``--scheduler`
 """
 from __future__ import annotations
 
+import collections
+
 import logging
 import os
 import time
@@ -86,7 +88,8 @@ def require_distributed() -> None:
 def dask_client(workers: int | None, scheduler: str | None, n_cases: int):
     """A distributed.Client to ``scheduler`` if given, else to a new LocalCluster.
 
-    The cluster is closed again on exit; dask's INFO chatter is kept off fickcam's stderr.
+    The cluster is closed again on exit; dask's INFO chatter is kept off fickcam's stderr, and
+    a local cluster's worker processes report only what stops them.
 
     Parameters
     ----------
@@ -157,8 +160,11 @@ def _connected(workers: int | None, scheduler: str | None, n_cases: int):
     n_workers = workers if workers is not None else default_workers(n_cases)
     if n_workers < 1:
         raise InputError("--workers must be at least 1")
+    # the worker processes log only what stops them: a case's failure is its record's, a lost
+    # worker the client's error; a worker's heartbeat that no longer reached the scheduler
+    # while the cluster closed printed a traceback (seen under load)
     with LocalCluster(n_workers=n_workers, threads_per_worker=1, processes=True,
-                      dashboard_address=":0", silence_logs=logging.WARNING) as cluster, \
+                      dashboard_address=":0", silence_logs=logging.CRITICAL) as cluster, \
             Client(cluster) as client:
         log.info("local dask cluster: %d worker process(es)", n_workers)
         yield client
@@ -453,6 +459,7 @@ def run_sweep(sweep_path, output, workers: int | None = None, scheduler: str | N
         shown = ", ".join(str(i) for i in failed[:20]) + (" ..." if len(failed) > 20 else "")
         warn("%d of %d case(s) failed (case_status, case_message in the result): %s",
              len(failed), len(sweep.cases), shown)
+    report_case_warnings(records, len(sweep.cases))
     result = combine(sweep, records, finished_cases(folder, sweep, records), started=started)
     result.attrs["time_unit"] = written_time_unit(base)  # the reports' unit, as a run's
     short = early_ends(result)
@@ -465,6 +472,32 @@ def run_sweep(sweep_path, output, workers: int | None = None, scheduler: str | N
         warn("kept %s: rerun the same command to retry the cases that did not finish",
              folder.path)
     return output
+
+
+#: distinct warnings of the cases a sweep shows at its end at most (the others counted)
+SHOWN_WARNINGS = 5
+
+
+def report_case_warnings(records: dict[int, dict], cases: int) -> None:
+    """Report each distinct warning the cases made once, with the number of cases that made
+    it, the most frequent first: at most ``SHOWN_WARNINGS``, then how many others there are
+    (every case's own are in its ``case_message``).
+
+    Parameters
+    ----------
+    records : dict of int to dict
+        Case index -> its record (:func:`fickcam.sweep.case.run_case`; a record journaled
+        before records kept their warnings has none).
+    cases : int
+        The sweep's number of cases [1].
+    """
+    counts = collections.Counter(text for record in records.values()
+                                 for text in record.get("warnings", ()))
+    for text, count in counts.most_common(SHOWN_WARNINGS):
+        warn("%d of %d case(s): %s", count, cases, text)
+    if len(counts) > SHOWN_WARNINGS:
+        warn("%d other warning(s) of the cases (case_message in the result)",
+             len(counts) - SHOWN_WARNINGS)
 
 
 class JournalCases(Mapping):
