@@ -30,7 +30,7 @@ from ..errors import format_time
 from ..schema import design_name
 from ..scene.limits import Limit, from_attrs
 from .dataset import report_time_unit
-from .query import drift
+from .query import drift, wrapped_degrees
 
 #: a crossing time's own tolerance: this share of the crossing time, or FLOOR s,
 #: whichever is larger (both scaled down where the scene asks a finer diffusion accuracy)
@@ -152,7 +152,7 @@ def values_ratio(values: np.ndarray, design, limit: Limit, degrees: bool = False
             return _per_time(values, np.nanmax if kind == "max" else np.nanmin)
         change = values - np.asarray(design, float)
         if degrees:
-            change = (change + 180.0) % 360.0 - 180.0
+            change = wrapped_degrees(change)
         return _per_time(np.abs(change), np.nanmax)
 
     return _ratio(worst, design, limit)

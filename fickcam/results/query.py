@@ -137,6 +137,23 @@ def unknown_variable(name: str, known) -> str:
 AGAINST = ("design", "start")
 
 
+def wrapped_degrees(change):
+    """An angle's change [degree] wrapped into [-180, 180): a cam that turned by 359 deg
+    drifted by -1 deg.
+
+    Parameters
+    ----------
+    change : array_like or xarray.DataArray
+        The change [degree].
+
+    Returns
+    -------
+    array_like or xarray.DataArray
+        The same change wrapped [degree].
+    """
+    return (change + 180.0) % 360.0 - 180.0
+
+
 def drift(ds, name: str, against: str = "design"):
     """``name`` minus its as-designed value (``against="design"``: ``<name>_design``, dry at
     the reference temperature) or minus its value at the first ageing time
@@ -181,7 +198,7 @@ def drift(ds, name: str, against: str = "design"):
         raise InputError(f"drift against {against!r}: use one of {', '.join(AGAINST)}")
     change = array - reference
     if array.attrs.get("units") == "degree":
-        change = (change + 180.0) % 360.0 - 180.0
+        change = wrapped_degrees(change)
     return change.assign_attrs(units=array.attrs.get("units", ""),
                                long_name=f"{array.attrs.get('long_name', name)}: change from {what}")
 
